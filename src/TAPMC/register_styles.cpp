@@ -1,0 +1,181 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// The one table of TAPMC styles. Adding a style edits only the three lists below.
+#include "register_styles.h"
+
+#include "command.h"
+#include "compute.h"
+#include "fix.h"
+#include "input.h"
+#include "lammps.h"
+#include "modify.h"
+
+#include <map>
+#include <string>
+
+// style headers
+#if __has_include("fix_tapdilate.h")
+#include "fix_tapdilate.h"
+#define TAPMC_HAVE_FIX_TAPDILATE
+#endif
+#if __has_include("fix_mc_settle.h")
+#include "fix_mc_settle.h"
+#define TAPMC_HAVE_FIX_MC_SETTLE
+#endif
+#if __has_include("compute_stereo_profile.h")
+#include "compute_stereo_profile.h"
+#define TAPMC_HAVE_COMPUTE_STEREO_PROFILE
+#endif
+#if __has_include("create_packing.h")
+#include "create_packing.h"
+#define TAPMC_HAVE_CREATE_PACKING
+#endif
+
+using namespace LAMMPS_NS;
+
+namespace {
+
+template <typename T> Fix *fix_creator(LAMMPS *lmp, int narg, char **arg)
+{
+  return new T(lmp, narg, arg);
+}
+template <typename T> Compute *compute_creator(LAMMPS *lmp, int narg, char **arg)
+{
+  return new T(lmp, narg, arg);
+}
+template <typename T> Command *command_creator(LAMMPS *lmp)
+{
+  return new T(lmp);
+}
+
+struct FixEntry {
+  const char *name;
+  Modify::FixCreator creator;
+  const char *info;
+};
+struct ComputeEntry {
+  const char *name;
+  Modify::ComputeCreator creator;
+  const char *info;
+};
+struct CommandEntry {
+  const char *name;
+  Input::CommandCreator creator;
+  const char *info;
+};
+
+const FixEntry kFixes[] = {
+#ifdef TAPMC_HAVE_FIX_TAPDILATE
+    {"tapdilate", &fix_creator<FixTapDilate>, "tap: homothetic vertical dilation about the floor"},
+#endif
+#ifdef TAPMC_HAVE_FIX_MC_SETTLE
+    {"mc/settle", &fix_creator<FixMCSettle>, "redeposition: biased hard-sphere Monte Carlo"},
+#endif
+    {nullptr, nullptr, nullptr}};
+const ComputeEntry kComputes[] = {
+#ifdef TAPMC_HAVE_COMPUTE_STEREO_PROFILE
+    {"stereo/profile", &compute_creator<ComputeStereoProfile>,
+     "exact stereological packing-fraction profiles"},
+#endif
+    {nullptr, nullptr, nullptr}};
+const CommandEntry kCommands[] = {
+#ifdef TAPMC_HAVE_CREATE_PACKING
+    {"create_packing", &command_creator<CreatePacking>,
+     "initial packing by sequential gravitational deposition (Jullien-Meakin)"},
+#endif
+    {nullptr, nullptr, nullptr}};
+
+// Box-creating commands wrapped so that a `clear` (new Modify, empty of our styles) is followed
+// by a re-registration before any fix or compute can be defined: every input defines its box
+// with one of these before the first fix.
+const char *const kBoxCommands[] = {"create_box", "read_data", "read_restart"};
+std::map<std::string, Input::CommandCreator> &original_box_creators()
+{
+  static std::map<std::string, Input::CommandCreator> originals;
+  return originals;
+}
+
+void insert_fix_and_compute_styles(LAMMPS *lmp)
+{
+  for (const auto &f : kFixes)
+    if (f.name) (*lmp->modify->fix_map)[f.name] = f.creator;
+  for (const auto &c : kComputes)
+    if (c.name) (*lmp->modify->compute_map)[c.name] = c.creator;
+}
+
+template <int I> Command *box_command_creator(LAMMPS *lmp)
+{
+  insert_fix_and_compute_styles(lmp);
+  return original_box_creators().at(kBoxCommands[I])(lmp);
+}
+const Input::CommandCreator kBoxWrappers[] = {&box_command_creator<0>, &box_command_creator<1>,
+                                              &box_command_creator<2>};
+
+}  // namespace
+
+namespace tapmc {
+
+void register_styles(LAMMPS *lmp)
+{
+  insert_fix_and_compute_styles(lmp);
+  auto &commands = *lmp->input->command_map;
+  for (const auto &c : kCommands)
+    if (c.name) commands[c.name] = c.creator;
+  for (int i = 0; i < 3; ++i) {
+    auto it = commands.find(kBoxCommands[i]);
+    if (it == commands.end() || it->second == kBoxWrappers[i]) continue;
+    original_box_creators()[kBoxCommands[i]] = it->second;
+    it->second = kBoxWrappers[i];
+  }
+}
+
+}  // namespace tapmc
+
+extern "C" int tapmc_register(void *lmp)
+{
+  tapmc::register_styles(static_cast<LAMMPS *>(lmp));
+  return 0;
+}
+
+// ---- PLUGIN interface (modern LAMMPS with PKG_PLUGIN) ----------------------------------------
+// The layout below is LAMMPS's documented plugin ABI: a record per style handed to regfunc.
+namespace {
+typedef void *(plugin_factory_lmp)(void *);
+typedef void *(plugin_factory_args)(void *, int, char **);
+struct PluginRecord {
+  const char *version;
+  const char *style;
+  const char *name;
+  const char *info;
+  const char *author;
+  union {
+    plugin_factory_lmp *v1;
+    plugin_factory_args *v2;
+  } creator;
+  void *handle;
+};
+typedef void (*plugin_regfunc)(PluginRecord *, void *);
+}  // namespace
+
+extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
+{
+  auto reg = reinterpret_cast<plugin_regfunc>(regfunc);
+  const char *version = static_cast<LAMMPS *>(lmp)->version;
+  for (const auto &f : kFixes) {
+    if (!f.name) continue;
+    PluginRecord r{version, "fix", f.name, f.info, "TAPMC developers", {nullptr}, handle};
+    r.creator.v2 = reinterpret_cast<plugin_factory_args *>(f.creator);
+    reg(&r, lmp);
+  }
+  for (const auto &c : kComputes) {
+    if (!c.name) continue;
+    PluginRecord r{version, "compute", c.name, c.info, "TAPMC developers", {nullptr}, handle};
+    r.creator.v2 = reinterpret_cast<plugin_factory_args *>(c.creator);
+    reg(&r, lmp);
+  }
+  for (const auto &c : kCommands) {
+    if (!c.name) continue;
+    PluginRecord r{version, "command", c.name, c.info, "TAPMC developers", {nullptr}, handle};
+    r.creator.v1 = reinterpret_cast<plugin_factory_lmp *>(c.creator);
+    reg(&r, lmp);
+  }
+}
