@@ -1,0 +1,33 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// Helpers for library-API tests: a LAMMPS instance with the TAPMC styles, fed line by line.
+#ifndef TAPMC_TEST_UTIL_H
+#define TAPMC_TEST_UTIL_H
+
+#include "input.h"
+#include "lammps.h"
+#include "register_styles.h"
+
+#include <memory>
+#include <mpi.h>
+#include <string>
+#include <vector>
+
+namespace tapmc_test {
+
+// A quiet LAMMPS instance (no screen, no log) with TAPMC registered.
+inline std::unique_ptr<LAMMPS_NS::LAMMPS> make_lammps(MPI_Comm comm = MPI_COMM_WORLD)
+{
+  const char *args[] = {"tapmc_test", "-log", "none", "-screen", "none", "-nocite"};
+  auto lmp = std::make_unique<LAMMPS_NS::LAMMPS>(6, const_cast<char **>(args), comm);
+  tapmc::register_styles(lmp.get());
+  return lmp;
+}
+
+inline void run_lines(LAMMPS_NS::LAMMPS *lmp, const std::vector<std::string> &lines)
+{
+  for (const auto &line : lines) lmp->input->one(line);
+}
+
+}  // namespace tapmc_test
+
+#endif
