@@ -1,0 +1,174 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// fix tapdilate: the tap of the model, a homothetic vertical dilation about the floor.
+#include "fix_tapdilate.h"
+
+#include "lammps_relocate.h"
+#include "tapmc_dilation.h"
+
+#include "atom.h"
+#include "domain.h"
+#include "error.h"
+#include "input.h"
+#include "modify.h"
+#include "update.h"
+#include "utils.h"
+#include "variable.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+namespace {
+constexpr int kBoundaryPeriodic = 0, kBoundaryFixed = 1;
+}
+
+FixTapDilate::FixTapDilate(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), eps_constant(0.0), eps_var_index(-1), tap_every(1),
+    z_floor(domain->boxlo[2]), last_eps(0.0), taps_done(0)
+{
+  if (narg < 4)
+    error->all(FLERR, "fix tapdilate: expected 'fix ID group tapdilate eps [every N] "
+               "[floor z0]', got {} argument(s)", narg);
+
+  if (std::strncmp(arg[3], "v_", 2) == 0) {
+    eps_variable = arg[3] + 2;
+  } else {
+    eps_constant = utils::numeric(FLERR, arg[3], false, lmp);
+    if (!(eps_constant >= 0.0))
+      error->all(FLERR, "fix tapdilate: eps = {} must be >= 0 (relative dilation of the "
+                 "heights above the floor)", arg[3]);
+  }
+
+  for (int iarg = 4; iarg < narg; iarg += 2) {
+    const std::string key = arg[iarg];
+    if (iarg + 1 >= narg)
+      error->all(FLERR, "fix tapdilate: keyword '{}' needs a value", key);
+    if (key == "every") {
+      tap_every = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
+      if (tap_every < 1)
+        error->all(FLERR, "fix tapdilate: every = {} must be an integer >= 1", arg[iarg + 1]);
+    } else if (key == "floor") {
+      z_floor = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+    } else {
+      error->all(FLERR, "fix tapdilate: unknown keyword '{}' (allowed: every, floor)", key);
+    }
+  }
+
+  if (domain->triclinic)
+    error->all(FLERR, "fix tapdilate: triclinic boxes are not supported; use an orthogonal box");
+  if (domain->periodicity[2])
+    error->all(FLERR, "fix tapdilate: the z boundary is periodic; the packing needs a floor and "
+               "an open top: use e.g. 'boundary p p fm' (or 'f s')");
+
+  // Moves happen in pre_exchange() of steps on which this fix forces reneighbouring.
+  force_reneighbor = 1;
+  next_reneighbor = -1;
+  scalar_flag = 1;
+  vector_flag = 1;
+  size_vector = 2;
+  extscalar = 0;
+  extvector = 0;
+  global_freq = 1;
+}
+
+int FixTapDilate::setmask()
+{
+  return PRE_EXCHANGE;
+}
+
+void FixTapDilate::init()
+{
+  if (!eps_variable.empty()) {
+    eps_var_index = input->variable->find(eps_variable.c_str());
+    if (eps_var_index < 0)
+      error->all(FLERR, "fix tapdilate: variable '{}' for eps does not exist", eps_variable);
+    if (!input->variable->equalstyle(eps_var_index))
+      error->all(FLERR, "fix tapdilate: variable '{}' for eps must be equal-style",
+                 eps_variable);
+  }
+}
+
+void FixTapDilate::schedule_next_tap()
+{
+  next_reneighbor = (update->ntimestep / tap_every) * tap_every + tap_every;
+}
+
+void FixTapDilate::setup_pre_exchange()
+{
+  check_geometry();
+  schedule_next_tap();
+}
+
+// Atoms of the group must sit above the floor; the dilation would otherwise push them down.
+void FixTapDilate::check_geometry()
+{
+  double **x = atom->x;
+  const int *mask = atom->mask;
+  double zmin = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < atom->nlocal; ++i)
+    if (mask[i] & groupbit) zmin = std::min(zmin, x[i][2]);
+  double zmin_all;
+  MPI_Allreduce(&zmin, &zmin_all, 1, MPI_DOUBLE, MPI_MIN, world);
+  if (zmin_all < z_floor)
+    error->all(FLERR, "fix tapdilate: an atom centre is at z = {} below the floor z0 = {}; "
+               "set 'floor' at or below the lowest atom", zmin_all, z_floor);
+}
+
+double FixTapDilate::current_eps()
+{
+  if (eps_var_index < 0) return eps_constant;
+  modify->clearstep_compute();
+  const double eps = input->variable->compute_equal(eps_var_index);
+  modify->addstep_compute(update->ntimestep + tap_every);
+  if (!(eps >= 0.0) || !std::isfinite(eps))
+    error->all(FLERR, "fix tapdilate: variable '{}' gave eps = {} on step {}; eps must be a "
+               "finite number >= 0", eps_variable, eps, update->ntimestep);
+  return eps;
+}
+
+void FixTapDilate::pre_exchange()
+{
+  if (update->ntimestep != next_reneighbor) return;
+  last_eps = current_eps();
+  schedule_next_tap();
+  if (last_eps == 0.0) return;
+
+  // A fixed upper z boundary would silently lose atoms: refuse before moving anything.
+  if (domain->boundary[2][1] == kBoundaryFixed) {
+    double top = -std::numeric_limits<double>::infinity();
+    double **x = atom->x;
+    const double *radius = atom->radius;
+    for (int i = 0; i < atom->nlocal; ++i) {
+      if (!(atom->mask[i] & groupbit)) continue;
+      const double r = radius ? radius[i] : 0.0;
+      top = std::max(top, tapmc::dilated_height(x[i][2], z_floor, last_eps) + r);
+    }
+    double top_all;
+    MPI_Allreduce(&top, &top_all, 1, MPI_DOUBLE, MPI_MAX, world);
+    if (top_all > domain->boxhi[2])
+      error->all(FLERR, "fix tapdilate: the tap on step {} lifts atoms to z = {} above the fixed "
+                 "upper z boundary {}; use an open top ('boundary p p fm' or 'f s') or a higher "
+                 "box", update->ntimestep, top_all, domain->boxhi[2]);
+  }
+
+  if (atom->nlocal > 0)
+    tapmc::dilate_about_floor(&atom->x[0][0], atom->mask, groupbit, atom->nlocal, z_floor,
+                              last_eps);
+  ++taps_done;
+  tapmc::relocate_moved_atoms(lmp);
+}
+
+double FixTapDilate::compute_scalar()
+{
+  return last_eps;
+}
+
+// [1] eps of the latest tap, [2] sqrt(eps): the excitation strength (paper, eq. 2).
+double FixTapDilate::compute_vector(int n)
+{
+  return n == 0 ? last_eps : std::sqrt(last_eps);
+}

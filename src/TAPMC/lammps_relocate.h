@@ -1,0 +1,50 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// Shared by the TAPMC fixes: bring LAMMPS back to a consistent state after owned atoms moved by
+// arbitrary distances during pre_exchange() of a (forced) reneighbouring step.
+#ifndef TAPMC_LAMMPS_RELOCATE_H
+#define TAPMC_LAMMPS_RELOCATE_H
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "irregular.h"
+#include "lammps.h"
+
+#include <mpi.h>
+#include <string>
+
+namespace tapmc {
+
+// Wrap periodic coordinates (remap, which keeps image flags right even after long moves),
+// shrink-wrap the box, and hand atoms that left more than a neighbouring sub-domain to their new
+// owners (Irregular), so that Verlet's exchange / borders / neighbour build that follow on this
+// step find every atom one hop from home. Every call is collective.
+inline void relocate_moved_atoms(LAMMPS_NS::LAMMPS *lmp)
+{
+  auto *atom = lmp->atom;
+  auto *domain = lmp->domain;
+  double **x = atom->x;
+  LAMMPS_NS::imageint *image = atom->image;
+  for (int i = 0; i < atom->nlocal; ++i) domain->remap(x[i], image[i]);
+  domain->reset_box();
+  if (lmp->comm->nprocs > 1) {
+    LAMMPS_NS::Irregular irregular(lmp);
+    if (irregular.migrate_check()) irregular.migrate_atoms(1);
+  }
+}
+
+// Stop with a clear message when the atom count changed (it never should: a lost atom is a bug
+// or an atom pushed through a fixed boundary).
+inline void check_atom_count(LAMMPS_NS::LAMMPS *lmp, const std::string &who)
+{
+  LAMMPS_NS::bigint nlocal = lmp->atom->nlocal, ntotal = 0;
+  MPI_Allreduce(&nlocal, &ntotal, 1, MPI_LMP_BIGINT, MPI_SUM, lmp->world);
+  if (ntotal != lmp->atom->natoms)
+    lmp->error->all(FLERR, "{}: atom count changed from {} to {} (atoms lost through a fixed "
+                    "boundary?)", who, lmp->atom->natoms, ntotal);
+}
+
+}  // namespace tapmc
+
+#endif
