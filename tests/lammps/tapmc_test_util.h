@@ -7,6 +7,7 @@
 #include "lammps.h"
 #include "register_styles.h"
 
+#include <cstdlib>
 #include <memory>
 #include <mpi.h>
 #include <string>
@@ -14,11 +15,15 @@
 
 namespace tapmc_test {
 
-// A quiet LAMMPS instance (no screen, no log) with TAPMC registered.
+// A quiet LAMMPS instance (no screen, no log) with TAPMC registered. TAPMC_TEST_VERBOSE=1 in
+// the environment keeps the screen output (LAMMPS errors end the process: this shows why).
 inline std::unique_ptr<LAMMPS_NS::LAMMPS> make_lammps(MPI_Comm comm = MPI_COMM_WORLD)
 {
-  const char *args[] = {"tapmc_test", "-log", "none", "-screen", "none", "-nocite"};
-  auto lmp = std::make_unique<LAMMPS_NS::LAMMPS>(6, const_cast<char **>(args), comm);
+  const char *quiet[] = {"tapmc_test", "-log", "none", "-screen", "none", "-nocite"};
+  const char *verbose[] = {"tapmc_test", "-log", "none", "-nocite"};
+  const bool loud = std::getenv("TAPMC_TEST_VERBOSE") != nullptr;
+  auto lmp = std::make_unique<LAMMPS_NS::LAMMPS>(loud ? 4 : 6,
+                                                 const_cast<char **>(loud ? verbose : quiet), comm);
   tapmc::register_styles(lmp.get());
   return lmp;
 }
