@@ -1,0 +1,76 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+# Helpers for process-level tests: run lmp_tapmc (optionally under mpirun) on an input text,
+# read dumps and check hard-sphere geometry with an independent all-pairs oracle.
+import os
+import subprocess
+import tempfile
+
+import numpy as np
+
+LMP = os.environ.get("TAPMC_LMP", os.path.join(os.environ.get("TAPMC_BUILD_DIR", "../../build"),
+                                                "lmp_tapmc"))
+MPIRUN = ["mpirun", "--allow-run-as-root", "--oversubscribe"]
+
+
+def run_lammps(script, nprocs=1, workdir=None, variables=None, timeout=600):
+    """Run lmp_tapmc on the input text `script` in `workdir` (a new temporary directory when
+    None). Returns (returncode, combined output, workdir)."""
+    workdir = workdir or tempfile.mkdtemp(prefix="tapmc_")
+    path = os.path.join(workdir, "in.test")
+    with open(path, "w") as f:
+        f.write(script)
+    cmd = [LMP, "-in", "in.test", "-log", "log.lammps", "-nocite"]
+    for name, value in (variables or {}).items():
+        cmd += ["-var", name, str(value)]
+    if nprocs > 1:
+        cmd = MPIRUN + ["-np", str(nprocs)] + cmd
+    proc = subprocess.run(cmd, cwd=workdir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                          text=True, timeout=timeout, stdin=subprocess.DEVNULL)
+    return proc.returncode, proc.stdout, workdir
+
+
+def read_dump(path):
+    """All frames of a LAMMPS text dump written with `dump custom ... id ... ` and
+    `dump_modify sort id`. Returns a list of (timestep, box (3x2 array), boundary strings,
+    {column: array})."""
+    frames = []
+    with open(path) as f:
+        lines = f.read().splitlines()
+    k = 0
+    while k < len(lines):
+        assert lines[k].startswith("ITEM: TIMESTEP"), lines[k]
+        step = int(lines[k + 1])
+        n = int(lines[k + 3])
+        bounds_header = lines[k + 4].split()[3:]
+        box = np.array([[float(v) for v in lines[k + 5 + d].split()[:2]] for d in range(3)])
+        columns = lines[k + 8].split()[2:]
+        data = np.array([[float(v) for v in line.split()] for line in lines[k + 9:k + 9 + n]])
+        data = data.reshape(n, len(columns))
+        frames.append((step, box, bounds_header, {c: data[:, i] for i, c in enumerate(columns)}))
+        k += 9 + n
+    return frames
+
+
+def min_gap(xyz, radius, box, periodic_xy, floor=None):
+    """Smallest surface gap over all pairs (periodic images in x / y by minimum image, valid
+    for boxes wider than two diameters), and optionally to the floor. Negative = overlap.
+    Returns (gap, i, j) with j = -1 for the floor."""
+    xyz = np.asarray(xyz, dtype=float)
+    n = len(xyz)
+    lengths = box[:, 1] - box[:, 0]
+    best = (np.inf, -1, -1)
+    for i in range(n - 1):
+        d = xyz[i + 1:] - xyz[i]
+        for dim in range(2):
+            if periodic_xy[dim]:
+                d[:, dim] -= lengths[dim] * np.round(d[:, dim] / lengths[dim])
+        gap = np.sqrt((d * d).sum(axis=1)) - (radius[i] + radius[i + 1:])
+        j = int(np.argmin(gap))
+        if gap[j] < best[0]:
+            best = (float(gap[j]), i, i + 1 + j)
+    if floor is not None:
+        fg = xyz[:, 2] - radius - floor
+        i = int(np.argmin(fg))
+        if fg[i] < best[0]:
+            best = (float(fg[i]), i, -1)
+    return best

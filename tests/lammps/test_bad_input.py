@@ -1,0 +1,66 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+# Every invalid argument of fix tapdilate and fix mc/settle stops lmp_tapmc with a non-zero
+# exit and a message naming the argument and the allowed range (LAMMPS errors end the process,
+# so each case is a child process).
+import pytest
+
+from lmprun import run_lammps
+
+BOX = """units lj
+atom_style sphere
+boundary {boundary}
+region box block 0 8 0 8 0 10
+create_box 1 box
+create_atoms 1 single 2 2 1
+create_atoms 1 single 5 5 1
+set group all diameter 1.0
+"""
+
+
+def run_case(body, boundary="p p fm", extra=""):
+    rc, out, _ = run_lammps(extra + BOX.format(boundary=boundary) + body)
+    return rc, out
+
+
+TAPDILATE_CASES = [
+    ("fix t all tapdilate -0.1", "eps = -0.1 must be >= 0"),
+    ("fix t all tapdilate abc", "abc"),
+    ("fix t all tapdilate 0.1 every 0", "every = 0 must be an integer >= 1"),
+    ("fix t all tapdilate 0.1 floor", "keyword 'floor' needs a value"),
+    ("fix t all tapdilate 0.1 bogus 3", "unknown keyword 'bogus'"),
+    ("fix t all tapdilate", "expected 'fix ID group tapdilate eps"),
+    ("fix t all tapdilate v_nothere\nrun 1", "variable 'nothere' for eps does not exist"),
+    ("variable e atom x\nfix t all tapdilate v_e\nrun 1", "variable 'e' for eps must be equal-style"),
+    ("variable e equal -0.5\nfix t all tapdilate v_e\nrun 1", "gave eps = -0.5"),
+    ("fix t all tapdilate 0.1 floor 3.0\nrun 1", "below the floor"),
+]
+
+
+@pytest.mark.parametrize("body,message", TAPDILATE_CASES)
+def test_tapdilate_bad_argument(body, message):
+    rc, out = run_case(body)
+    assert rc != 0, out
+    assert "ERROR" in out and message in out, out
+
+
+def test_tapdilate_periodic_z():
+    rc, out = run_case("fix t all tapdilate 0.1", boundary="p p p")
+    assert rc != 0 and "z boundary is periodic" in out, out
+
+
+def test_tapdilate_triclinic():
+    body = "fix t all tapdilate 0.1"
+    script = BOX.format(boundary="p p fm").replace(
+        "region box block 0 8 0 8 0 10", "region box prism 0 8 0 8 0 10 1 0 0")
+    rc, out, _ = run_lammps(script + body)
+    assert rc != 0 and "triclinic" in out, out
+
+
+def test_tapdilate_fixed_top_would_lose_atoms():
+    rc, out = run_case("fix t all tapdilate 20.0\nrun 1", boundary="p p ff")
+    assert rc != 0 and "above the fixed upper z boundary" in out, out
+
+
+def test_tapdilate_fixed_top_with_room_is_fine():
+    rc, out = run_case("fix t all tapdilate 0.5\nrun 2", boundary="p p ff")
+    assert rc == 0, out
