@@ -1,0 +1,468 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// Exact stereology kernels: closed-form sphere slab, disk band and two-plane sphere volumes.
+#include "tapmc_stereology.h"
+
+#include "tapmc_defaults.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace tapmc {
+namespace stereo {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Visits every sphere as visit(x, y, z, radius); the two layout choices (per-sphere radius or
+// not, index list or not) are taken once, outside the loops.
+template <class Visit> void for_each_sphere(const Spheres &s, Visit &&visit)
+{
+  const double *xyz = s.xyz;
+  if (s.radius) {
+    const double *r = s.radius;
+    if (s.index) {
+      for (int k = 0; k < s.count; ++k) {
+        const int m = s.index[k];
+        visit(xyz[3 * m], xyz[3 * m + 1], xyz[3 * m + 2], r[m]);
+      }
+    } else {
+      for (int m = 0; m < s.count; ++m) visit(xyz[3 * m], xyz[3 * m + 1], xyz[3 * m + 2], r[m]);
+    }
+  } else {
+    const double r = s.uniform_radius;
+    if (s.index) {
+      for (int k = 0; k < s.count; ++k) {
+        const int m = s.index[k];
+        visit(xyz[3 * m], xyz[3 * m + 1], xyz[3 * m + 2], r);
+      }
+    } else {
+      for (int m = 0; m < s.count; ++m) visit(xyz[3 * m], xyz[3 * m + 1], xyz[3 * m + 2], r);
+    }
+  }
+}
+
+// Volume of {z >= t} inside the unit sphere (a cap of height 1 - t).
+double unit_cap_volume(double t)
+{
+  if (t >= 1.0) return 0.0;
+  if (t <= -1.0) return 4.0 * kPi / 3.0;
+  return kPi * (1.0 - t) * (1.0 - t) * (2.0 + t) / 3.0;
+}
+
+// Area of {u <= t} inside a disk of radius rho, |t| <= rho.
+double disk_area_below(double rho, double t)
+{
+  // (rho - t)(rho + t), not rho^2 - t^2: exact zero at t = +-rho even with fused multiply-add
+  const double h = std::sqrt(std::max(0.0, (rho - t) * (rho + t)));
+  const double s = std::clamp(t / rho, -1.0, 1.0);
+  return t * h + rho * rho * std::asin(s) + 0.5 * kPi * rho * rho;
+}
+
+// Range of periodic image shifts k (centre + k L) that can reach [lo, hi] with reach `radius`.
+// A non-periodic direction has the single image k = 0.
+struct ImageRange {
+  int first = 0;
+  int last = 0;
+};
+ImageRange image_range(bool periodic, double centre, double radius, double lo, double hi,
+                       double period)
+{
+  if (!periodic) return {0, 0};
+  return {static_cast<int>(std::ceil((lo - centre - radius) / period)),
+          static_cast<int>(std::floor((hi - centre + radius) / period))};
+}
+
+void require(bool ok, const std::string &message)
+{
+  if (!ok) throw std::invalid_argument("stereology: " + message);
+}
+
+}  // namespace
+
+// ---- one sphere -------------------------------------------------------------------------------
+
+double sphere_slab_volume(double radius, double lo, double hi)
+{
+  const double a = std::max(lo, -radius);
+  const double b = std::min(hi, radius);
+  if (!(a < b)) return 0.0;
+  // integral of pi (R^2 - u^2) du over [a, b], written without cancellation of R^2 b - R^2 a
+  return kPi * (b - a) * (radius * radius - (a * a + a * b + b * b) / 3.0);
+}
+
+double disk_band_area(double rho, double lo, double hi)
+{
+  if (!(rho > 0.0)) return 0.0;
+  const double a = std::max(lo, -rho);
+  const double b = std::min(hi, rho);
+  if (!(a < b)) return 0.0;
+  return disk_area_below(rho, b) - disk_area_below(rho, a);
+}
+
+// For p, q >= 0 and p^2 + q^2 < 1 (derivation: integrate the chord-disk area
+// s^2 acos(q / s) - q sqrt(s^2 - q^2), s^2 = 1 - x^2, over x from p by parts):
+//   V = 2/3 atan2(D, p q) + 2/3 p q D - p (1 - p^2/3) acos(q / sqrt(1 - p^2))
+//       - q (1 - q^2/3) acos(p / sqrt(1 - q^2)),   D = sqrt(1 - p^2 - q^2).
+// The acos terms are written atan2(D, q) and atan2(D, p): every term then uses the same D, and
+// dV/dD = 0 at D = 0, so rounding in D costs only O(dD^2) where the sphere is barely cut.
+// Negative p or q follow by reflection: {x >= p} = everything minus the mirror of {x >= -p}.
+double unit_sphere_quadrant_volume(double p, double q)
+{
+  if (p >= 1.0 || q >= 1.0) return 0.0;
+  if (p < 0.0) return unit_cap_volume(q) - unit_sphere_quadrant_volume(-p, q);
+  if (q < 0.0) return unit_cap_volume(p) - unit_sphere_quadrant_volume(p, -q);
+  const double d2 = (1.0 - p) * (1.0 + p) - q * q;
+  if (d2 <= 0.0) return 0.0;
+  const double d = std::sqrt(d2);
+  const double v = (2.0 / 3.0) * (std::atan2(d, p * q) + p * q * d) -
+                   p * (1.0 - p * p / 3.0) * std::atan2(d, q) -
+                   q * (1.0 - q * q / 3.0) * std::atan2(d, p);
+  return std::max(0.0, v);
+}
+
+double sphere_box_band_volume(double radius, double xlo, double xhi, double zlo, double zhi)
+{
+  if (!(xlo < xhi) || !(zlo < zhi)) return 0.0;
+  if (xlo >= radius || xhi <= -radius || zlo >= radius || zhi <= -radius) return 0.0;
+  const double inv = 1.0 / radius;
+  const double pa = std::max(-1.0, xlo * inv), pb = std::min(1.0, xhi * inv);
+  const double qa = std::max(-1.0, zlo * inv), qb = std::min(1.0, zhi * inv);
+  // inclusion-exclusion: [pa, pb) x [qa, qb) = Q(pa,qa) - Q(pb,qa) - Q(pa,qb) + Q(pb,qb)
+  const double v = unit_sphere_quadrant_volume(pa, qa) - unit_sphere_quadrant_volume(pb, qa) -
+                   unit_sphere_quadrant_volume(pa, qb) + unit_sphere_quadrant_volume(pb, qb);
+  return std::max(0.0, v) * radius * radius * radius;
+}
+
+// ---- sums over spheres -----------------------------------------------------------------------
+
+double horizontal_cut_area(const Spheres &spheres, double z)
+{
+  double area = 0.0;
+  for_each_sphere(spheres, [&](double, double, double zc, double r) {
+    const double u = z - zc;
+    if (std::fabs(u) < r) area += kPi * (r - u) * (r + u);
+  });
+  return area;
+}
+
+double horizontal_slab_volume(const Spheres &spheres, double z0, double z1)
+{
+  double volume = 0.0;
+  for_each_sphere(spheres, [&](double, double, double zc, double r) {
+    volume += sphere_slab_volume(r, z0 - zc, z1 - zc);
+  });
+  return volume;
+}
+
+double vertical_cut_area(const Spheres &spheres, const Box &box, int axis, double c, double za,
+                         double zb)
+{
+  const bool periodic = box.periodic[axis];
+  const double period = box.length(axis);
+  double area = 0.0;
+  for_each_sphere(spheres, [&](double x, double y, double zc, double r) {
+    const double centre = axis == 0 ? x : y;
+    const ImageRange images = image_range(periodic, centre, r, c, c, period);
+    for (int k = images.first; k <= images.last; ++k) {
+      const double dx = c - (centre + k * period);
+      const double rho2 = (r - dx) * (r + dx);
+      if (rho2 > 0.0) area += disk_band_area(std::sqrt(rho2), za - zc, zb - zc);
+    }
+  });
+  return area;
+}
+
+double vertical_slab_volume(const Spheres &spheres, const Box &box, int axis, double c0,
+                            double c1, double za, double zb)
+{
+  if (!(c0 < c1) || !(za < zb)) return 0.0;
+  const bool periodic = box.periodic[axis];
+  const double period = box.length(axis);
+  double volume = 0.0;
+  for_each_sphere(spheres, [&](double x, double y, double zc, double r) {
+    const double centre = axis == 0 ? x : y;
+    const ImageRange images = image_range(periodic, centre, r, c0, c1, period);
+    for (int k = images.first; k <= images.last; ++k) {
+      const double shifted = centre + k * period;
+      volume += sphere_box_band_volume(r, c0 - shifted, c1 - shifted, za - zc, zb - zc);
+    }
+  });
+  return volume;
+}
+
+void accumulate_profile(const Spheres &spheres, const Box &box, int axis, const PlaneGrid &grid,
+                        double za, double zb, double *cut_area, double *bin_volume)
+{
+  require(axis >= 0 && axis <= 2, "axis = " + std::to_string(axis) + " must be 0, 1 or 2");
+  require(grid.n >= 1, "planes n = " + std::to_string(grid.n) + " must be >= 1");
+  require(grid.lo < grid.hi, "planes lo = " + std::to_string(grid.lo) +
+                                 " must be < hi = " + std::to_string(grid.hi));
+  const int n = grid.n;
+  const double w = grid.bin_width();
+  const double inv_w = 1.0 / w;
+  // Bins [first, last] that [lo, hi] reaches (clamped to the grid).
+  auto bin_range = [&](double lo, double hi, int &first, int &last) {
+    first = std::max(0, static_cast<int>(std::floor((lo - grid.lo) * inv_w)));
+    last = std::min(n - 1, static_cast<int>(std::floor((hi - grid.lo) * inv_w)));
+  };
+
+  if (axis == 2) {
+    for_each_sphere(spheres, [&](double, double, double zc, double r) {
+      int first, last;
+      bin_range(zc - r, zc + r, first, last);
+      for (int k = first; k <= last; ++k) {
+        const double u = grid.position(k) - zc;
+        if (std::fabs(u) < r) cut_area[k] += kPi * (r - u) * (r + u);
+        const double edge = grid.lo + k * w;
+        bin_volume[k] += sphere_slab_volume(r, edge - zc, edge + w - zc);
+      }
+    });
+    return;
+  }
+  if (!(za < zb)) return;
+  const bool periodic = box.periodic[axis];
+  const double period = box.length(axis);
+  for_each_sphere(spheres, [&](double x, double y, double zc, double r) {
+    const double centre = axis == 0 ? x : y;
+    if (za - zc >= r || zb - zc <= -r) return;  // the sphere misses the z-window
+    const ImageRange images = image_range(periodic, centre, r, grid.lo, grid.hi, period);
+    for (int img = images.first; img <= images.last; ++img) {
+      const double shifted = centre + img * period;
+      int first, last;
+      bin_range(shifted - r, shifted + r, first, last);
+      for (int k = first; k <= last; ++k) {
+        const double dx = grid.position(k) - shifted;
+        const double rho2 = (r - dx) * (r + dx);
+        if (rho2 > 0.0) cut_area[k] += disk_band_area(std::sqrt(rho2), za - zc, zb - zc);
+        const double edge = grid.lo + k * w - shifted;
+        bin_volume[k] += sphere_box_band_volume(r, edge, edge + w, za - zc, zb - zc);
+      }
+    }
+  });
+}
+
+// ---- surface height --------------------------------------------------------------------------
+
+int ColumnGrid::column_of(double x, double y) const
+{
+  const double c[2] = {x, y};
+  int idx[2];
+  for (int d = 0; d < 2; ++d) {
+    int i = static_cast<int>(std::floor((c[d] - lo[d]) / width[d]));
+    if (periodic[d]) {
+      i %= n[d];
+      if (i < 0) i += n[d];
+    } else {
+      i = std::clamp(i, 0, n[d] - 1);
+    }
+    idx[d] = i;
+  }
+  return idx[0] + n[0] * idx[1];
+}
+
+ColumnGrid make_column_grid(const Box &box, double width)
+{
+  require(width > 0.0, "column width = " + std::to_string(width) + " must be > 0");
+  ColumnGrid g;
+  for (int d = 0; d < 2; ++d) {
+    const double length = box.length(d);
+    require(length > 0.0, "box length along " + std::to_string(d) + " must be > 0");
+    g.lo[d] = box.lo[d];
+    g.n[d] = std::max(1, static_cast<int>(std::floor(length / width)));
+    g.width[d] = length / g.n[d];
+    g.periodic[d] = box.periodic[d];
+  }
+  return g;
+}
+
+void accumulate_column_tops(const Spheres &spheres, const ColumnGrid &grid, double *tops)
+{
+  for_each_sphere(spheres, [&](double x, double y, double zc, double r) {
+    double &top = tops[grid.column_of(x, y)];
+    top = std::max(top, zc + r);
+  });
+}
+
+double surface_height(const double *tops, int ncolumns, double fallback)
+{
+  double sum = 0.0;
+  int filled = 0;
+  for (int c = 0; c < ncolumns; ++c) {
+    if (!std::isfinite(tops[c])) continue;
+    sum += tops[c];
+    ++filled;
+  }
+  return filled ? sum / filled : fallback;
+}
+
+// ---- global measures -------------------------------------------------------------------------
+
+void validate(const SummarySettings &s)
+{
+  require(s.top_fraction > 0.0 && s.top_fraction <= 1.0,
+          "top_fraction = " + std::to_string(s.top_fraction) + " must be in (0, 1]");
+  require(s.wall_factor > 0.0,
+          "wall_factor = " + std::to_string(s.wall_factor) + " must be > 0");
+  require(s.transverse_axis == 0 || s.transverse_axis == 1,
+          "transverse axis = " + std::to_string(s.transverse_axis) + " must be 0 (x) or 1 (y)");
+  auto positive = [](const std::optional<double> &v, const char *name) {
+    if (v) require(*v > 0.0, std::string(name) + " = " + std::to_string(*v) + " must be > 0");
+  };
+  positive(s.bulk_height, "bulk");
+  positive(s.wall_band, "wall_band");
+  positive(s.lateral_width, "lateral");
+  positive(s.column_width, "column");
+  require(s.window_lo.has_value() == s.window_hi.has_value(),
+          "window needs both za and zb");
+  if (s.window_lo)
+    require(*s.window_lo < *s.window_hi, "window za = " + std::to_string(*s.window_lo) +
+                                             " must be < zb = " + std::to_string(*s.window_hi));
+}
+
+double resolved_column_width(const SummarySettings &settings, double mean_radius)
+{
+  return settings.column_width.value_or(defaults::kSurfaceColumnOverRadius * mean_radius);
+}
+
+Windows resolve_windows(const SummarySettings &s, const Box &box, double mean_radius,
+                        double surface)
+{
+  Windows w;
+  w.floor = s.floor;
+  w.surface = surface;
+  w.top = s.floor + s.top_fraction * std::max(0.0, surface - s.floor);
+  w.bulk_top = s.floor + s.bulk_height.value_or(defaults::kBulkHeightOverRadius * mean_radius);
+  w.wall_band_top = std::min(
+      w.top, s.floor + s.wall_band.value_or(defaults::kWallBandOverRadius * mean_radius));
+  w.wall_factor = s.wall_factor;
+  w.transverse_axis = s.transverse_axis;
+  default_vertical_window(s, w, mean_radius, w.window_lo, w.window_hi);
+  // lateral zones of width `lateral` at both faces, never overlapping (clipped at the middle)
+  const int a = s.transverse_axis;
+  const double lateral = s.lateral_width.value_or(defaults::kLateralWidthOverRadius * mean_radius);
+  const double middle = 0.5 * (box.lo[a] + box.hi[a]);
+  w.lateral_lo_end = std::min(box.lo[a] + lateral, middle);
+  w.lateral_hi_start = std::max(box.hi[a] - lateral, middle);
+  return w;
+}
+
+void default_vertical_window(const SummarySettings &s, const Windows &w, double mean_radius,
+                             double &za, double &zb)
+{
+  za = s.window_lo.value_or(s.floor + defaults::kVerticalWindowBottomOverRadius * mean_radius);
+  zb = s.window_hi.value_or(w.top);
+}
+
+void accumulate_summary(const Spheres &spheres, const Box &box, const Windows &w, double *sums)
+{
+  const int a = w.transverse_axis;
+  const bool periodic = box.periodic[a];
+  const double period = box.length(a);
+  const double za = w.window_lo, zb = w.window_hi;
+  const bool window_open = za < zb;
+  double count = 0.0, heights = 0.0, bulk = 0.0, band = 0.0, upper = 0.0, lateral = 0.0,
+         central = 0.0;
+  for_each_sphere(spheres, [&](double x, double y, double zc, double r) {
+    count += 1.0;
+    heights += zc - w.floor;
+    bulk += sphere_slab_volume(r, w.floor - zc, w.bulk_top - zc);
+    band += sphere_slab_volume(r, w.floor - zc, w.wall_band_top - zc);
+    upper += sphere_slab_volume(r, w.wall_band_top - zc, w.top - zc);
+    if (!window_open || za - zc >= r || zb - zc <= -r) return;
+    const double centre = a == 0 ? x : y;
+    const ImageRange images = image_range(periodic, centre, r, box.lo[a], box.hi[a], period);
+    for (int k = images.first; k <= images.last; ++k) {
+      const double s = centre + k * period;
+      lateral += sphere_box_band_volume(r, box.lo[a] - s, w.lateral_lo_end - s, za - zc, zb - zc) +
+                 sphere_box_band_volume(r, w.lateral_hi_start - s, box.hi[a] - s, za - zc, zb - zc);
+      central +=
+          sphere_box_band_volume(r, w.lateral_lo_end - s, w.lateral_hi_start - s, za - zc, zb - zc);
+    }
+  });
+  sums[kSphereCount] += count;
+  sums[kHeightSum] += heights;
+  sums[kBulkVolume] += bulk;
+  sums[kWallBandVolume] += band;
+  sums[kUpperVolume] += upper;
+  sums[kLateralVolume] += lateral;
+  sums[kCentralVolume] += central;
+}
+
+Summary finish_summary(const double *sums, const Box &box, const Windows &w)
+{
+  auto ratio = [](double num, double den) { return den > 0.0 ? num / den : 0.0; };
+  const double area = box.horizontal_area();
+  const int a = w.transverse_axis;
+  const double other = box.length(1 - a);
+  const double window = std::max(0.0, w.window_hi - w.window_lo);
+  const double lateral_length = (w.lateral_lo_end - box.lo[a]) + (box.hi[a] - w.lateral_hi_start);
+  const double central_length = w.lateral_hi_start - w.lateral_lo_end;
+
+  Summary out;
+  out.sphere_count = sums[kSphereCount];
+  out.mean_height = ratio(sums[kHeightSum], sums[kSphereCount]);
+  out.phi_bulk = ratio(sums[kBulkVolume], area * (w.bulk_top - w.floor));
+  out.phi_corrected = ratio(w.wall_factor * sums[kWallBandVolume] + sums[kUpperVolume],
+                            area * (w.top - w.floor));
+  out.top = w.top;
+  out.surface = w.surface;
+  out.phi_lateral = ratio(sums[kLateralVolume], lateral_length * other * window);
+  out.phi_central = ratio(sums[kCentralVolume], central_length * other * window);
+  return out;
+}
+
+double mean_radius(const Spheres &spheres)
+{
+  double sum = 0.0;
+  for_each_sphere(spheres, [&](double, double, double, double r) { sum += r; });
+  return spheres.count > 0 ? sum / spheres.count : 0.0;
+}
+
+Summary summarize(const Spheres &spheres, const Box &box, const SummarySettings &settings)
+{
+  validate(settings);
+  const double radius = mean_radius(spheres);
+  const ColumnGrid grid = make_column_grid(box, resolved_column_width(settings, radius));
+  std::vector<double> tops(grid.size(), -std::numeric_limits<double>::infinity());
+  accumulate_column_tops(spheres, grid, tops.data());
+  const double surface = surface_height(tops.data(), grid.size(), settings.floor);
+  const Windows w = resolve_windows(settings, box, radius, surface);
+  double sums[kNumSummarySums] = {};
+  accumulate_summary(spheres, box, w, sums);
+  return finish_summary(sums, box, w);
+}
+
+// ---- profiles ---------------------------------------------------------------------------------
+
+void finish_profile(const double *cut_area, const double *bin_volume, const Box &box, int axis,
+                    const PlaneGrid &grid, double za, double zb, double *rows)
+{
+  double plane_area;
+  if (axis == 2)
+    plane_area = box.horizontal_area();
+  else
+    plane_area = box.length(1 - axis) * std::max(0.0, zb - za);
+  const double inv_area = plane_area > 0.0 ? 1.0 / plane_area : 0.0;
+  const double inv_bin = inv_area / grid.bin_width();
+  for (int k = 0; k < grid.n; ++k) {
+    rows[3 * k] = grid.position(k);
+    rows[3 * k + 1] = cut_area[k] * inv_area;
+    rows[3 * k + 2] = bin_volume[k] * inv_bin;
+  }
+}
+
+std::vector<double> profile(const Spheres &spheres, const Box &box, int axis,
+                            const PlaneGrid &grid, double za, double zb)
+{
+  std::vector<double> cut(grid.n, 0.0), volume(grid.n, 0.0), rows(3 * grid.n);
+  accumulate_profile(spheres, box, axis, grid, za, zb, cut.data(), volume.data());
+  finish_profile(cut.data(), volume.data(), box, axis, grid, za, zb, rows.data());
+  return rows;
+}
+
+}  // namespace stereo
+}  // namespace tapmc

@@ -1,0 +1,181 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// Exact stereology of sphere packings (paper, sections III and IV.A): horizontal and vertical cuts.
+//
+// Every packing fraction here is an exact volume integral of sphere material (closed forms, no
+// sampling): the mean of the cut fraction Phi over a set of parallel planes is the volume
+// fraction of the region they sweep. Functions come in two layers:
+//  - one-sphere geometry (a sphere centred at the origin), and
+//  - accumulations over a set of spheres that ADD un-normalised sums (areas, volumes, counts)
+//    into caller buffers, so that a parallel caller sums over its own spheres, reduces the
+//    buffer once, then normalises with the finish_* functions. The serial convenience
+//    functions (summarize, profile) chain the same pieces.
+#ifndef TAPMC_STEREOLOGY_H
+#define TAPMC_STEREOLOGY_H
+
+#include <optional>
+#include <vector>
+
+namespace tapmc {
+namespace stereo {
+
+// ---- one sphere, centre at the origin -------------------------------------------------------
+// Volume of {lo <= z <= hi} inside a sphere of the given radius (a slab of a sphere).
+double sphere_slab_volume(double radius, double lo, double hi);
+// Area of {lo <= t <= hi} inside a disk of radius rho (t: a coordinate through the centre).
+double disk_band_area(double rho, double lo, double hi);
+// Volume of {x >= p, z >= q} inside the unit sphere (two perpendicular cutting planes).
+double unit_sphere_quadrant_volume(double p, double q);
+// Volume of {xlo <= x <= xhi, zlo <= z <= zhi} inside a sphere of the given radius (y free).
+double sphere_box_band_volume(double radius, double xlo, double xhi, double zlo, double zhi);
+
+// ---- inputs ---------------------------------------------------------------------------------
+// A set of spheres, read in place: sphere k is xyz[3 m], xyz[3 m + 1], xyz[3 m + 2] with
+// m = index ? index[k] : k, for k < count; radius[m] or, when radius == nullptr, uniform_radius.
+struct Spheres {
+  const double *xyz = nullptr;
+  const double *radius = nullptr;
+  double uniform_radius = 0.0;
+  const int *index = nullptr;
+  int count = 0;
+};
+
+// Orthogonal box. Horizontal cuts have area (hi[0]-lo[0]) (hi[1]-lo[1]); a periodic x or y
+// makes vertical cuts see images of the spheres. z is never periodic (the floor is at the bottom).
+struct Box {
+  double lo[3] = {0.0, 0.0, 0.0};
+  double hi[3] = {1.0, 1.0, 1.0};
+  bool periodic[2] = {true, true};
+  double length(int dim) const { return hi[dim] - lo[dim]; }
+  double horizontal_area() const { return length(0) * length(1); }
+};
+
+// n planes at the centres of n equal bins tiling [lo, hi]: plane k sits at lo + (k + 1/2) w,
+// bin k is [lo + k w, lo + (k + 1) w], w = (hi - lo) / n.
+struct PlaneGrid {
+  double lo = 0.0;
+  double hi = 1.0;
+  int n = 1;
+  double bin_width() const { return (hi - lo) / n; }
+  double position(int k) const { return lo + (k + 0.5) * bin_width(); }
+};
+
+// ---- sums over spheres (add into the caller's accumulators) --------------------------------
+// Sum of the disk areas cut by the plane z (a disk crossing a periodic side counts whole).
+double horizontal_cut_area(const Spheres &spheres, double z);
+// Volume of sphere material in the slab z0 <= z <= z1 (= integral of the cut area over z).
+double horizontal_slab_volume(const Spheres &spheres, double z0, double z1);
+// Vertical cut perpendicular to axis (0: x, 1: y) at coordinate c, restricted to za <= z <= zb:
+// the sum of the chord-disk areas of all spheres (and their periodic images along axis).
+double vertical_cut_area(const Spheres &spheres, const Box &box, int axis, double c, double za,
+                         double zb);
+// Volume of sphere material in c0 <= (coordinate along axis) <= c1, za <= z <= zb, with periodic
+// images along axis when the box is periodic there.
+double vertical_slab_volume(const Spheres &spheres, const Box &box, int axis, double c0,
+                            double c1, double za, double zb);
+
+// Adds, for every plane k of the grid, the cut area at the plane to cut_area[k] and the volume
+// of its bin to bin_volume[k]. axis 2: horizontal planes; axis 0 / 1: vertical planes restricted
+// to za <= z <= zb (za, zb ignored for axis 2).
+void accumulate_profile(const Spheres &spheres, const Box &box, int axis, const PlaneGrid &grid,
+                        double za, double zb, double *cut_area, double *bin_volume);
+
+// ---- surface height (defines the top of the <Phi^c> window) -------------------------------
+// The horizontal box is split into nx * ny columns, each about `width` wide (n = max(1,
+// floor(L / width)) per direction, exactly tiling the box). A sphere belongs to the column of
+// its centre (wrapped when periodic, clamped otherwise).
+struct ColumnGrid {
+  double lo[2] = {0.0, 0.0};
+  double width[2] = {1.0, 1.0};
+  int n[2] = {1, 1};
+  bool periodic[2] = {true, true};
+  int size() const { return n[0] * n[1]; }
+  int column_of(double x, double y) const;
+};
+ColumnGrid make_column_grid(const Box &box, double width);
+// tops[c] = max(tops[c], z_i + R_i) over the spheres of column c (initialise with -infinity;
+// combine ranks with a MAX reduction).
+void accumulate_column_tops(const Spheres &spheres, const ColumnGrid &grid, double *tops);
+// Mean of the finite column tops (empty columns are skipped); `fallback` when all are empty.
+double surface_height(const double *tops, int ncolumns, double fallback);
+
+// ---- the global measures (Phi_b, <Phi^c>, <Z>, lateral and central means) ------------------
+// User choices; unset optionals take their defaults from the mean radius (tapmc_defaults.h).
+struct SummarySettings {
+  double floor = 0.0;                   // z_floor
+  double top_fraction = 0.9;            // z_top = floor + top_fraction (h_s - floor)
+  double wall_factor = 16.0 / 11.0;     // perturbed-zone correction of [floor, floor + R]
+  int transverse_axis = 0;              // vertical cuts perpendicular to x (0) or y (1)
+  std::optional<double> bulk_height;    // Phi_b slab height (default 4 R)
+  std::optional<double> wall_band;      // corrected band height (default R)
+  std::optional<double> lateral_width;  // lateral zone width (default 7 R)
+  std::optional<double> column_width;   // surface column width (default 2 R)
+  std::optional<double> window_lo;      // vertical-cut z-window (default floor + 2 R ..
+  std::optional<double> window_hi;      //   z_top), absolute z
+};
+
+// Every height and zone, resolved from the settings, the box, the mean radius and h_s.
+struct Windows {
+  double floor = 0.0;
+  double bulk_top = 0.0;        // Phi_b slab: [floor, bulk_top]
+  double wall_band_top = 0.0;   // corrected band: [floor, wall_band_top] (<= top)
+  double surface = 0.0;         // h_s
+  double top = 0.0;             // z_top (>= floor)
+  double wall_factor = 1.0;
+  int transverse_axis = 0;
+  double window_lo = 0.0;       // vertical cuts: [window_lo, window_hi]
+  double window_hi = 0.0;
+  double lateral_lo_end = 0.0;  // lateral zones [box lo, lateral_lo_end], [lateral_hi_start,
+  double lateral_hi_start = 0.0;//   box hi] along transverse_axis, central zone in between
+};
+
+// Throws std::invalid_argument if a setting is outside its range (naming it).
+void validate(const SummarySettings &settings);
+double resolved_column_width(const SummarySettings &settings, double mean_radius);
+Windows resolve_windows(const SummarySettings &settings, const Box &box, double mean_radius,
+                        double surface);
+// The default z-window of the vertical cuts (also used by the profile along x or y).
+void default_vertical_window(const SummarySettings &settings, const Windows &w,
+                             double mean_radius, double &za, double &zb);
+
+// Layout of the summary accumulator (sum these over ranks).
+enum SummarySum {
+  kSphereCount,
+  kHeightSum,       // sum of (z_i - floor)
+  kBulkVolume,      // [floor, bulk_top]
+  kWallBandVolume,  // [floor, wall_band_top]
+  kUpperVolume,     // [wall_band_top, top]
+  kLateralVolume,   // lateral zones x window
+  kCentralVolume,   // central zone x window
+  kNumSummarySums
+};
+void accumulate_summary(const Spheres &spheres, const Box &box, const Windows &w, double *sums);
+
+struct Summary {
+  double phi_bulk = 0.0;         // Phi_b
+  double phi_corrected = 0.0;    // <Phi^c>
+  double mean_height = 0.0;      // <Z>
+  double top = 0.0;              // z_top
+  double phi_lateral = 0.0;      // lateral zone volume fraction
+  double phi_central = 0.0;      // central zone volume fraction
+  double surface = 0.0;          // h_s
+  double sphere_count = 0.0;
+};
+Summary finish_summary(const double *sums, const Box &box, const Windows &w);
+
+// Serial convenience: the whole chain for spheres held by one process.
+double mean_radius(const Spheres &spheres);
+Summary summarize(const Spheres &spheres, const Box &box, const SummarySettings &settings);
+
+// ---- profiles ---------------------------------------------------------------------------------
+// rows[3 k + 0] plane position, rows[3 k + 1] Phi at the plane, rows[3 k + 2] exact mean of Phi
+// over bin k, from the reduced cut_area / bin_volume sums. Phi of a vertical cut is normalised
+// by (length of the box along the other horizontal axis) * (zb - za): zero if zb <= za.
+void finish_profile(const double *cut_area, const double *bin_volume, const Box &box, int axis,
+                    const PlaneGrid &grid, double za, double zb, double *rows);
+std::vector<double> profile(const Spheres &spheres, const Box &box, int axis,
+                            const PlaneGrid &grid, double za, double zb);
+
+}  // namespace stereo
+}  // namespace tapmc
+
+#endif
