@@ -22,6 +22,29 @@ constexpr double kMaxStepOverRadius = 0.2;
 // giving the maximal compaction rate.
 constexpr double kThetaWidth = 0.78539816339744830962;  // pi/4
 
+// ---- stereology: compute stereo/profile (paper, sections III and IV.A) --------------------
+// R below is the sphere radius (the group's mean radius for mixed radii).
+// Phi_b is the mean of Phi(z) over [floor, floor + 4R]: the paper's bottom slab "between 0 and 4R".
+constexpr double kBulkHeightOverRadius = 4.0;
+// The perturbed-zone wall correction (paper ref. [20]) multiplies Phi(z) by 16/11 over the band
+// [floor, floor + R], where a plane wall lowers the density of an otherwise unperturbed packing.
+constexpr double kWallBandOverRadius = 1.0;
+constexpr double kWallBandFactor = 16.0 / 11.0;
+// <Phi^c> covers "approximately 90 % of the packing": z_top = floor + 0.9 (h_s - floor).
+constexpr double kTopFraction = 0.9;
+// h_s is the mean over columns of the highest sphere top: columns one diameter wide hold about
+// one top-layer sphere each, so h_s follows the top layer and one stray sphere moves it by
+// (its excess height) / (number of columns) only.
+constexpr double kSurfaceColumnOverRadius = 2.0;
+// Lateral zone of the transversal profiles: within 7R of the side walls ("roughly the wall
+// effects range", paper section IV.A).
+constexpr double kLateralWidthOverRadius = 7.0;
+// Default z-window of vertical cuts starts 2R above the floor: it leaves out the first, wall-
+// ordered layer, whose peaks would otherwise dominate transversal profiles.
+constexpr double kVerticalWindowBottomOverRadius = 2.0;
+// Default number of cut planes of the profile array (bins of about 0.3R for a 32R box).
+constexpr int kProfilePlanes = 100;
+
 }  // namespace defaults
 }  // namespace tapmc
 
