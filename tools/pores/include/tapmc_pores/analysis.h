@@ -1,0 +1,121 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// Pore statistics (CGAL-free): selection sub-box, P(xi), xi^3 P(xi), rho_v(v), nu, Gotoh's P0.
+#ifndef TAPMC_PORES_ANALYSIS_H
+#define TAPMC_PORES_ANALYSIS_H
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "tapmc_pores/dump_reader.h"
+#include "tapmc_pores/pores_config.h"
+#include "tapmc_pores/tessellation.h"
+
+namespace tapmc {
+namespace pores {
+
+// Selection sub-box (pores are selected by the position of their centre).
+struct Region {
+  std::array<double, 3> lo{}, hi{};
+  bool contains(const std::array<double, 3>& p) const {
+    return p[0] >= lo[0] && p[0] < hi[0] && p[1] >= lo[1] && p[1] < hi[1] && p[2] >= lo[2] && p[2] < hi[2];
+  }
+  double volume() const { return (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]); }
+};
+
+// How the user asked for the sub-box; a NaN bound means "default for that side": the box face
+// along periodic directions, the face moved inwards by wall_gap R along non-periodic ones.
+struct RegionSpec {
+  enum class Units { kAbsolute, kRadiiFromLo };  // coordinates, or multiples of R above box lo
+  std::array<double, 3> lo{{std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN(),
+                            std::numeric_limits<double>::quiet_NaN()}};
+  std::array<double, 3> hi = lo;
+  std::array<Units, 3> units{{Units::kAbsolute, Units::kAbsolute, Units::kAbsolute}};
+  double wall_gap_over_radius = config::kDefaultWallGap;
+};
+
+// Throws std::invalid_argument if the resulting region is empty.
+Region make_region(const Box& box, double radius, const RegionSpec& spec);
+
+// Fixed-bin histogram on [lo, hi) with under/overflow counts.
+class Histogram {
+ public:
+  Histogram() = default;
+  Histogram(double lo, double hi, std::size_t bins);
+  void add(double value);
+  void merge(const Histogram& other);
+  std::size_t bins() const { return counts_.size(); }
+  double lo() const { return lo_; }
+  double hi() const { return hi_; }
+  double width() const { return (hi_ - lo_) / static_cast<double>(counts_.size()); }
+  double bin_lo(std::size_t i) const { return lo_ + width() * static_cast<double>(i); }
+  double bin_centre(std::size_t i) const { return lo_ + width() * (static_cast<double>(i) + 0.5); }
+  std::uint64_t count(std::size_t i) const { return counts_[i]; }
+  std::uint64_t underflow() const { return underflow_; }
+  std::uint64_t overflow() const { return overflow_; }
+  std::uint64_t total() const { return total_; }
+  // Probability density in bin i, normalised by every value added (in range or not).
+  double density(std::size_t i) const;
+
+ private:
+  double lo_ = 0.0, hi_ = 1.0;
+  std::vector<std::uint64_t> counts_;
+  std::uint64_t underflow_ = 0, overflow_ = 0, total_ = 0;
+};
+
+struct HistogramSpec {
+  double xi_max = config::kDefaultXiMax;
+  std::size_t bins = config::kDefaultBins;
+};
+
+// Statistics of the selected pores of one frame or of many frames pooled.
+// P(xi) = xi histogram density; rho_v(xi) = xi^3 P(xi); rho_v(v) = density of v = xi^3
+// (equal to xi/3 P(xi) in the continuum, section IV.B); nu = <xi^3> = integral of xi^3 P(xi).
+struct PoreStatistics {
+  explicit PoreStatistics(const HistogramSpec& spec = {});
+  void add(const Pore& pore);
+  void merge(const PoreStatistics& other);
+  double nu() const;       // mean normalised pore volume <xi^3> (NaN without pores)
+  double mean_xi() const;  // NaN without pores
+  std::size_t pores = 0;
+  std::size_t degenerate = 0;  // pores merged from several tetrahedra
+  double sum_xi = 0.0, sum_xi3 = 0.0;
+  Histogram xi, v;
+};
+
+// Gotoh's P0(sigma) in the Percus-Yevick approximation, eq. 8 (sigma <= 1) and eq. 9.
+double gotoh_p0(double sigma, double phi);
+
+// Measured P0(sigma): the fraction of random points farther than sigma R from every centre.
+struct P0Statistics {
+  P0Statistics(double sigma_max = config::kDefaultSigmaMax, std::size_t steps = config::kDefaultSigmaBins);
+  void add_distance(double distance_over_radius);
+  void merge(const P0Statistics& other);
+  std::size_t steps() const { return farther.size(); }
+  double sigma(std::size_t k) const { return sigma_max * static_cast<double>(k) / static_cast<double>(steps() - 1); }
+  double p0(std::size_t k) const;
+  // Volume fraction seen by the samples: the fraction of points inside a sphere (1 - P0(1)).
+  double phi() const;
+  double sigma_max;
+  std::vector<std::uint64_t> farther;  // samples with distance > sigma_k R
+  std::uint64_t samples = 0, inside = 0;
+};
+
+// Uniform random points in the region (3 count coordinates), reproducible from (seed, stream).
+std::vector<double> random_points(const Region& region, std::size_t count, std::uint64_t seed, std::uint64_t stream);
+
+// Radius of a monodisperse frame: the radius column's common value, or `fallback` (> 0) when the
+// dump has none. Throws std::invalid_argument with the two extreme atoms when polydisperse, or
+// when the column disagrees with a given fallback.
+struct RadiusCheck {
+  double radius = 0.0;
+  std::size_t index_min = 0, index_max = 0;  // extreme atoms (for messages)
+};
+RadiusCheck common_radius(const Frame& frame, double fallback, double tolerance = config::kPolydisperseTolerance);
+
+}  // namespace pores
+}  // namespace tapmc
+
+#endif

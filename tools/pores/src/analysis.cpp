@@ -1,0 +1,172 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// Pore statistics: sub-box, histograms, nu, Gotoh's P0 measured and in Percus-Yevick form.
+#include "tapmc_pores/analysis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace tapmc {
+namespace pores {
+
+Region make_region(const Box& box, double radius, const RegionSpec& spec) {
+  Region region;
+  for (int d = 0; d < 3; ++d) {
+    const double gap = box.periodic[d] ? 0.0 : spec.wall_gap_over_radius * radius;
+    auto resolve = [&](double value, double fallback) {
+      if (std::isnan(value)) return fallback;
+      return spec.units[d] == RegionSpec::Units::kRadiiFromLo ? box.lo[d] + value * radius : value;
+    };
+    region.lo[d] = std::max(box.lo[d], resolve(spec.lo[d], box.lo[d] + gap));
+    region.hi[d] = std::min(box.hi[d], resolve(spec.hi[d], box.hi[d] - gap));
+    if (!(region.hi[d] > region.lo[d])) {
+      std::ostringstream what;
+      what << "empty selection region along " << "xyz"[d] << ": [" << region.lo[d] << ", " << region.hi[d]
+           << ") inside the box [" << box.lo[d] << ", " << box.hi[d] << "] (wall gap "
+           << spec.wall_gap_over_radius << " R, R = " << radius << ")";
+      throw std::invalid_argument(what.str());
+    }
+  }
+  return region;
+}
+
+Histogram::Histogram(double lo, double hi, std::size_t bins) : lo_(lo), hi_(hi), counts_(bins, 0) {
+  if (bins == 0) throw std::invalid_argument("histogram needs at least one bin");
+  if (!(hi > lo)) throw std::invalid_argument("histogram range must have hi > lo, got [" + std::to_string(lo) + ", " + std::to_string(hi) + ")");
+}
+
+void Histogram::add(double value) {
+  ++total_;
+  if (value < lo_) { ++underflow_; return; }
+  const double t = (value - lo_) / width();
+  if (!(t < static_cast<double>(counts_.size()))) { ++overflow_; return; }
+  ++counts_[static_cast<std::size_t>(t)];
+}
+
+void Histogram::merge(const Histogram& other) {
+  if (other.counts_.size() != counts_.size() || other.lo_ != lo_ || other.hi_ != hi_)
+    throw std::invalid_argument("cannot merge histograms with different bins");
+  for (std::size_t i = 0; i < counts_.size(); ++i) counts_[i] += other.counts_[i];
+  underflow_ += other.underflow_;
+  overflow_ += other.overflow_;
+  total_ += other.total_;
+}
+
+double Histogram::density(std::size_t i) const {
+  if (total_ == 0) return 0.0;
+  return static_cast<double>(counts_[i]) / (static_cast<double>(total_) * width());
+}
+
+PoreStatistics::PoreStatistics(const HistogramSpec& spec)
+    : xi(0.0, spec.xi_max, spec.bins), v(0.0, spec.xi_max * spec.xi_max * spec.xi_max, spec.bins) {}
+
+void PoreStatistics::add(const Pore& pore) {
+  ++pores;
+  if (pore.tetrahedra > 1) ++degenerate;
+  const double xi3 = pore.xi * pore.xi * pore.xi;
+  sum_xi += pore.xi;
+  sum_xi3 += xi3;
+  xi.add(pore.xi);
+  v.add(xi3);
+}
+
+void PoreStatistics::merge(const PoreStatistics& other) {
+  pores += other.pores;
+  degenerate += other.degenerate;
+  sum_xi += other.sum_xi;
+  sum_xi3 += other.sum_xi3;
+  xi.merge(other.xi);
+  v.merge(other.v);
+}
+
+double PoreStatistics::nu() const {
+  return pores ? sum_xi3 / static_cast<double>(pores) : std::numeric_limits<double>::quiet_NaN();
+}
+double PoreStatistics::mean_xi() const {
+  return pores ? sum_xi / static_cast<double>(pores) : std::numeric_limits<double>::quiet_NaN();
+}
+
+double gotoh_p0(double sigma, double phi) {
+  if (!(phi > 0 && phi < 1)) throw std::invalid_argument("gotoh_p0: phi must be in (0, 1), got " + std::to_string(phi));
+  if (!(sigma >= 0)) throw std::invalid_argument("gotoh_p0: sigma must be >= 0, got " + std::to_string(sigma));
+  if (sigma <= 1.0) return 1.0 - phi * sigma * sigma * sigma;  // eq. 8
+  const double s2 = sigma * sigma, s3 = s2 * sigma;             // eq. 9
+  return (1.0 - phi) * std::exp(phi / ((1.0 - phi) * (1.0 - phi)) *
+                                (-(1.0 - 2.0 * phi) * s3 + 4.5 * phi * s2 + 1.0 - sigma));
+}
+
+P0Statistics::P0Statistics(double sigma_max_in, std::size_t steps) : sigma_max(sigma_max_in), farther(steps, 0) {
+  if (steps < 2) throw std::invalid_argument("P0 needs at least 2 sigma steps, got " + std::to_string(steps));
+  if (!(sigma_max > 1.0)) throw std::invalid_argument("P0 sigma_max must exceed 1, got " + std::to_string(sigma_max));
+}
+
+void P0Statistics::add_distance(double distance_over_radius) {
+  ++samples;
+  if (distance_over_radius < 1.0) ++inside;
+  // farther[k] counts distance > sigma_k: every k with sigma_k < distance.
+  const double step = sigma_max / static_cast<double>(steps() - 1);
+  const double position = distance_over_radius / step;
+  std::size_t below = position <= 0 ? 0 : static_cast<std::size_t>(std::ceil(position));  // sigma_k < d  <=>  k < d/step
+  below = std::min(below, steps());
+  for (std::size_t k = 0; k < below; ++k) ++farther[k];
+}
+
+void P0Statistics::merge(const P0Statistics& other) {
+  if (other.steps() != steps() || other.sigma_max != sigma_max) throw std::invalid_argument("cannot merge P0 with different sigma grids");
+  for (std::size_t k = 0; k < steps(); ++k) farther[k] += other.farther[k];
+  samples += other.samples;
+  inside += other.inside;
+}
+
+double P0Statistics::p0(std::size_t k) const {
+  return samples ? static_cast<double>(farther[k]) / static_cast<double>(samples) : std::numeric_limits<double>::quiet_NaN();
+}
+
+double P0Statistics::phi() const {
+  return samples ? static_cast<double>(inside) / static_cast<double>(samples) : std::numeric_limits<double>::quiet_NaN();
+}
+
+std::vector<double> random_points(const Region& region, std::size_t count, std::uint64_t seed, std::uint64_t stream) {
+  std::seed_seq sequence{static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32),
+                         static_cast<std::uint32_t>(stream), static_cast<std::uint32_t>(stream >> 32), 0x7a9u};
+  std::mt19937_64 engine(sequence);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<double> points(3 * count);
+  for (std::size_t i = 0; i < count; ++i)
+    for (int d = 0; d < 3; ++d) points[3 * i + d] = region.lo[d] + unit(engine) * (region.hi[d] - region.lo[d]);
+  return points;
+}
+
+RadiusCheck common_radius(const Frame& frame, double fallback, double tolerance) {
+  RadiusCheck check;
+  if (frame.radius.empty()) {
+    if (!(fallback > 0))
+      throw std::invalid_argument("the dump has no radius or diameter column: give the sphere radius with --radius");
+    check.radius = fallback;
+    return check;
+  }
+  const auto [min_it, max_it] = std::minmax_element(frame.radius.begin(), frame.radius.end());
+  check.index_min = static_cast<std::size_t>(min_it - frame.radius.begin());
+  check.index_max = static_cast<std::size_t>(max_it - frame.radius.begin());
+  const double mean = 0.5 * (*min_it + *max_it);
+  std::ostringstream what;
+  what.precision(10);
+  if (*max_it - *min_it > tolerance * mean) {
+    what << "polydisperse input: radii from " << *min_it << " (atom " << frame.ids[check.index_min] << ") to "
+         << *max_it << " (atom " << frame.ids[check.index_max]
+         << "); the tangent-sphere pore (xi = r/R) is defined for equal spheres only";
+    throw std::invalid_argument(what.str());
+  }
+  check.radius = mean;
+  if (fallback > 0 && std::abs(fallback - mean) > tolerance * mean) {
+    what << "--radius " << fallback << " disagrees with the dump's radius column (" << mean << ")";
+    throw std::invalid_argument(what.str());
+  }
+  return check;
+}
+
+}  // namespace pores
+}  // namespace tapmc

@@ -1,0 +1,454 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// tapmc-pores command line: options, the frame loop over many dumps, CSV/JSON outputs.
+#include "tapmc_pores/cli.h"
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+
+#include "tapmc_pores/analysis.h"
+#include "tapmc_pores/dump_reader.h"
+#include "tapmc_pores/pores_config.h"
+#include "tapmc_pores/tessellation.h"
+
+namespace tapmc {
+namespace pores {
+namespace {
+
+const char* kUsage = R"(Usage: tapmc-pores [options] DUMP [DUMP ...]
+
+Pore-size analysis of LAMMPS text dumps (dump custom / dump atom, plain or gzip; any number of
+frames and files). Every Voronoi vertex of the sphere centres is a pore; its size is
+xi = r/R, r the radius of the empty sphere tangent to the four spheres of its Delaunay
+tetrahedron (Philippe & Bideau, section IV.B). Periodicity and box come from each frame's header.
+
+Input
+  -r, --radius R       sphere radius; needed when the dump has no radius/diameter column
+  --boundary XYZ       override the periodicity, e.g. ppf (p: periodic, f: not periodic)
+  --skip N             skip the first N frames of every file (default 0)
+  --every K            analyse every K-th frame after that (default 1)
+  --max-frames M       stop after M analysed frames in total (default: all)
+Selection of pores (by the position of the pore centre)
+  --x LO:HI --y LO:HI --z LO:HI
+                       sub-box bounds; either side may be left empty (default for that side)
+  --radii              read those bounds as multiples of R above the box's lower face
+                       (the paper's window: --radii --z 2:20)
+  --wall-gap G         default distance from non-periodic box faces, in R (default 2);
+                       periodic directions are used whole
+Histograms
+  --bins N             bins of xi on [0, XI_MAX) and of v = xi^3 on [0, XI_MAX^3) (default 150)
+  --xi-max X           (default 1.5)
+Outputs (files PREFIX.*)
+  -o, --output PREFIX  default "pores". Always: PREFIX.hist.csv (P(xi), xi^3 P(xi), rho_v(v) over
+                       all analysed frames) and PREFIX.frames.csv (one line per frame: counts, nu)
+  --frame-hist         also PREFIX.frame_hist.csv, the histograms of every frame
+  --pores              also PREFIX.pores.csv, every pore (centre, xi, four atom ids, selected)
+  --json               also PREFIX.json with the same content for Python
+  --p0 N               sample N random points per frame in the sub-box: PREFIX.p0.csv with the
+                       measured P0(sigma) next to Percus-Yevick's (eq. 8-9), e.g. --p0 100000
+  --sigma-max S        P0 grid 0..S (default 2) in --sigma-steps K steps (default 200)
+  --seed S             seed of the P0 sampling (default 1)
+Tolerances
+  --overlap-tol T      spheres closer than 2R (1 - T) are refused (default 1e-3)
+  --merge-tol T        circumcentres closer than T R are one pore (default 1e-8)
+  --padding P          periodic image padding in R (default 6; grown automatically)
+Other
+  -q, --quiet          no progress lines on stderr
+  -h, --help           this text
+
+Exit codes: 0 success, 1 usage error, 2 bad input (the message names file, frame and line).
+Documentation: doc/tapmc-pores.rst.
+)";
+
+struct Options {
+  std::vector<std::string> files;
+  double radius = 0.0;
+  ReaderOptions reader;
+  std::size_t skip = 0, every = 1, max_frames = std::numeric_limits<std::size_t>::max();
+  RegionSpec region;
+  HistogramSpec histogram;
+  std::string prefix = "pores";
+  bool frame_hist = false, pore_list = false, json = false, quiet = false;
+  std::size_t p0_samples = 0;
+  double sigma_max = config::kDefaultSigmaMax;
+  std::size_t sigma_steps = config::kDefaultSigmaBins;
+  std::uint64_t seed = 1;
+  PoreOptions pores;
+};
+
+class UsageError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+double to_double(const std::string& option, const std::string& text) {
+  std::size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || !std::isfinite(value)) throw UsageError(option + " expects a number, got '" + text + "'");
+  return value;
+}
+
+std::size_t to_count(const std::string& option, const std::string& text, std::size_t minimum) {
+  std::size_t used = 0;
+  unsigned long long value = 0;
+  try {
+    value = std::stoull(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || text.empty() || text[0] == '-' || value < minimum)
+    throw UsageError(option + " expects an integer >= " + std::to_string(minimum) + ", got '" + text + "'");
+  return static_cast<std::size_t>(value);
+}
+
+Options parse(const std::vector<std::string>& args, bool& help) {
+  Options o;
+  help = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> const std::string& {
+      if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
+      return args[++i];
+    };
+    auto range = [&](int d) {
+      const std::string text = value();
+      const auto colon = text.find(':');
+      if (colon == std::string::npos) throw UsageError(a + " expects LO:HI (either side may be empty), got '" + text + "'");
+      const std::string lo = text.substr(0, colon), hi = text.substr(colon + 1);
+      if (!lo.empty()) o.region.lo[d] = to_double(a, lo);
+      if (!hi.empty()) o.region.hi[d] = to_double(a, hi);
+      if (!lo.empty() && !hi.empty() && !(o.region.hi[d] > o.region.lo[d]))
+        throw UsageError(a + " needs LO < HI, got '" + text + "'");
+    };
+    if (a == "-h" || a == "--help") help = true;
+    else if (a == "-r" || a == "--radius") {
+      o.radius = to_double(a, value());
+      if (!(o.radius > 0)) throw UsageError("--radius must be positive");
+    } else if (a == "--boundary") {
+      const std::string text = value();
+      if (text.size() != 3 || text.find_first_not_of("pf") != std::string::npos)
+        throw UsageError("--boundary expects three letters p or f (e.g. ppf), got '" + text + "'");
+      o.reader.override_periodic = true;
+      for (int d = 0; d < 3; ++d) o.reader.periodic[d] = text[d] == 'p';
+    } else if (a == "--skip") o.skip = to_count(a, value(), 0);
+    else if (a == "--every") o.every = to_count(a, value(), 1);
+    else if (a == "--max-frames") o.max_frames = to_count(a, value(), 1);
+    else if (a == "--x") range(0);
+    else if (a == "--y") range(1);
+    else if (a == "--z") range(2);
+    else if (a == "--radii") o.region.units.fill(RegionSpec::Units::kRadiiFromLo);
+    else if (a == "--wall-gap") {
+      o.region.wall_gap_over_radius = to_double(a, value());
+      if (o.region.wall_gap_over_radius < 0) throw UsageError("--wall-gap must be >= 0");
+    } else if (a == "--bins") o.histogram.bins = to_count(a, value(), 1);
+    else if (a == "--xi-max") {
+      o.histogram.xi_max = to_double(a, value());
+      if (!(o.histogram.xi_max > 0)) throw UsageError("--xi-max must be positive");
+    } else if (a == "-o" || a == "--output") o.prefix = value();
+    else if (a == "--frame-hist") o.frame_hist = true;
+    else if (a == "--pores") o.pore_list = true;
+    else if (a == "--json") o.json = true;
+    else if (a == "--p0") o.p0_samples = to_count(a, value(), 1);
+    else if (a == "--sigma-max") {
+      o.sigma_max = to_double(a, value());
+      if (!(o.sigma_max > 1)) throw UsageError("--sigma-max must exceed 1");
+    } else if (a == "--sigma-steps") o.sigma_steps = to_count(a, value(), 2);
+    else if (a == "--seed") o.seed = to_count(a, value(), 0);
+    else if (a == "--overlap-tol") {
+      o.pores.overlap_tolerance = to_double(a, value());
+      if (!(o.pores.overlap_tolerance >= 0 && o.pores.overlap_tolerance < 1)) throw UsageError("--overlap-tol must be in [0, 1)");
+    } else if (a == "--merge-tol") {
+      o.pores.merge_tolerance = to_double(a, value());
+      if (!(o.pores.merge_tolerance >= 0 && o.pores.merge_tolerance < 0.1)) throw UsageError("--merge-tol must be in [0, 0.1)");
+    } else if (a == "--padding") {
+      o.pores.padding_over_radius = to_double(a, value());
+      if (!(o.pores.padding_over_radius >= 2)) throw UsageError("--padding must be >= 2 (in R)");
+    } else if (a == "-q" || a == "--quiet") o.quiet = true;
+    else if (a.size() > 1 && a[0] == '-') throw UsageError("unknown option '" + a + "'");
+    else o.files.push_back(a);
+  }
+  if (!help && o.files.empty()) throw UsageError("no dump file given");
+  return o;
+}
+
+std::ofstream open_output(const std::string& path) {
+  std::ofstream file(path);
+  if (!file) throw std::runtime_error("cannot write '" + path + "'");
+  file << std::setprecision(12);
+  return file;
+}
+
+// Numbers for CSV and JSON: NaN becomes an empty CSV field / JSON null.
+std::string csv_number(double v) {
+  if (std::isnan(v)) return "";
+  std::ostringstream s;
+  s << std::setprecision(12) << v;
+  return s.str();
+}
+std::string json_number(double v) { return std::isfinite(v) ? csv_number(v) : "null"; }
+std::string json_string(const std::string& text) {
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') out += '\\', out += c;
+    else if (static_cast<unsigned char>(c) < 32) out += ' ';
+    else out += c;
+  }
+  return out + "\"";
+}
+
+struct FrameSummary {
+  std::string file;
+  std::size_t frame = 0;
+  long long timestep = 0;
+  std::size_t atoms = 0, pores = 0, tetrahedra = 0, unresolved = 0;
+  double radius = 0, region_volume = 0, tetrahedra_volume = 0, phi_p0 = std::numeric_limits<double>::quiet_NaN();
+  double seconds = 0;
+  PoreStatistics stats;
+};
+
+void write_histogram_rows(std::ostream& out, const PoreStatistics& s, const std::string& row_prefix) {
+  for (std::size_t i = 0; i < s.xi.bins(); ++i) {
+    const double xi = s.xi.bin_centre(i), p = s.xi.density(i);
+    out << row_prefix << i << "," << csv_number(s.xi.bin_lo(i)) << "," << csv_number(s.xi.bin_lo(i) + s.xi.width()) << ","
+        << csv_number(xi) << "," << s.xi.count(i) << "," << csv_number(p) << "," << csv_number(xi * xi * xi * p) << ","
+        << csv_number(s.v.bin_lo(i)) << "," << csv_number(s.v.bin_lo(i) + s.v.width()) << "," << csv_number(s.v.bin_centre(i))
+        << "," << s.v.count(i) << "," << csv_number(s.v.density(i)) << "\n";
+  }
+}
+const char* kHistogramColumns = "bin,xi_lo,xi_hi,xi,count_xi,P_xi,xi3_P_xi,v_lo,v_hi,v,count_v,rho_v";
+
+void write_json_statistics(std::ostream& out, const PoreStatistics& s, bool with_histograms) {
+  out << "{\"pores\": " << s.pores << ", \"degenerate_pores\": " << s.degenerate << ", \"nu\": " << json_number(s.nu())
+      << ", \"mean_xi\": " << json_number(s.mean_xi()) << ", \"xi_underflow\": " << s.xi.underflow()
+      << ", \"xi_overflow\": " << s.xi.overflow();
+  if (with_histograms) {
+    auto array = [&](const char* name, std::size_t n, auto value) {
+      out << ", \"" << name << "\": [";
+      for (std::size_t i = 0; i < n; ++i) out << (i ? ", " : "") << value(i);
+      out << "]";
+    };
+    array("xi_edges", s.xi.bins() + 1, [&](std::size_t i) { return json_number(s.xi.lo() + s.xi.width() * double(i)); });
+    array("count_xi", s.xi.bins(), [&](std::size_t i) { return std::to_string(s.xi.count(i)); });
+    array("P_xi", s.xi.bins(), [&](std::size_t i) { return json_number(s.xi.density(i)); });
+    array("xi3_P_xi", s.xi.bins(), [&](std::size_t i) {
+      const double xi = s.xi.bin_centre(i);
+      return json_number(xi * xi * xi * s.xi.density(i));
+    });
+    array("v_edges", s.v.bins() + 1, [&](std::size_t i) { return json_number(s.v.lo() + s.v.width() * double(i)); });
+    array("count_v", s.v.bins(), [&](std::size_t i) { return std::to_string(s.v.count(i)); });
+    array("rho_v", s.v.bins(), [&](std::size_t i) { return json_number(s.v.density(i)); });
+  }
+  out << "}";
+}
+
+}  // namespace
+
+int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err) {
+  Options o;
+  try {
+    bool help = false;
+    o = parse(arguments, help);
+    if (help) {
+      out << kUsage;
+      return 0;
+    }
+    (void)PoreStatistics(o.histogram);  // validates the bins
+  } catch (const std::invalid_argument& e) {
+    err << "tapmc-pores: " << e.what() << " (see tapmc-pores --help)\n";
+    return 1;
+  }
+
+  std::string current_file;
+  std::size_t current_frame = 0;
+  try {
+    std::ofstream frames_csv = open_output(o.prefix + ".frames.csv");
+    frames_csv << "file,frame,timestep,atoms,radius,pores,tetrahedra,unresolved,selected,degenerate_selected,nu,mean_xi,"
+                  "region_volume,tetrahedra_volume,phi_p0,seconds\n";
+    std::ofstream frame_hist_csv, pores_csv;
+    if (o.frame_hist) {
+      frame_hist_csv = open_output(o.prefix + ".frame_hist.csv");
+      frame_hist_csv << "file,frame,timestep," << kHistogramColumns << "\n";
+    }
+    if (o.pore_list) {
+      pores_csv = open_output(o.prefix + ".pores.csv");
+      pores_csv << std::setprecision(15) << "file,frame,timestep,x,y,z,xi,id1,id2,id3,id4,tetrahedra,volume,selected\n";
+    }
+    PoreStatistics total(o.histogram);
+    P0Statistics p0_total(o.sigma_max, o.sigma_steps);
+    std::vector<FrameSummary> summaries;
+    std::size_t analysed = 0;
+
+    for (const std::string& path : o.files) {
+      if (analysed >= o.max_frames) break;
+      current_file = path;
+      current_frame = 0;
+      DumpReader reader = DumpReader::open(path, o.reader);
+      Frame frame;
+      std::size_t seen = 0;
+      while (analysed < o.max_frames && reader.next(frame)) {
+        current_frame = frame.index;
+        ++seen;
+        if (seen <= o.skip || (seen - o.skip - 1) % o.every != 0) continue;
+        const auto start = std::chrono::steady_clock::now();
+        auto where = [&](std::size_t line) {
+          std::ostringstream s;
+          s << frame.source << ":" << line << ": frame " << frame.index << " (timestep " << frame.timestep << "): ";
+          return s.str();
+        };
+        RadiusCheck radius;
+        try {
+          radius = common_radius(frame, o.radius);
+        } catch (const std::invalid_argument& e) {
+          throw std::runtime_error(where(frame.first_atom_line + radius.index_max) + e.what());
+        }
+        PoreOptions pore_options = o.pores;
+        pore_options.radius = radius.radius;
+        Region region;
+        try {
+          region = make_region(frame.box, radius.radius, o.region);
+        } catch (const std::invalid_argument& e) {
+          throw std::runtime_error(where(frame.first_line) + e.what());
+        }
+        std::unique_ptr<Tessellation> tessellation;
+        try {
+          tessellation = std::make_unique<Tessellation>(frame.box, frame.xyz, frame.ids, pore_options);
+        } catch (const OverlapError& e) {
+          throw std::runtime_error(where(frame.first_atom_line + e.index_a) + e.what() + " (atom lines " +
+                                   std::to_string(frame.first_atom_line + e.index_a) + " and " +
+                                   std::to_string(frame.first_atom_line + e.index_b) + ")");
+        } catch (const std::exception& e) {
+          throw std::runtime_error(where(frame.first_line) + e.what());
+        }
+        const PoreResult& result = tessellation->result();
+        FrameSummary summary;
+        summary.file = path;
+        summary.frame = frame.index;
+        summary.timestep = frame.timestep;
+        summary.atoms = frame.size();
+        summary.radius = radius.radius;
+        summary.pores = result.pores.size();
+        summary.tetrahedra = result.tetrahedra;
+        summary.unresolved = result.unresolved;
+        summary.region_volume = region.volume();
+        summary.tetrahedra_volume = result.tetrahedra_volume;
+        summary.stats = PoreStatistics(o.histogram);
+        for (const Pore& pore : result.pores) {
+          const bool selected = region.contains(pore.centre);
+          if (selected) summary.stats.add(pore);
+          if (o.pore_list)
+            pores_csv << path << "," << frame.index << "," << frame.timestep << "," << pore.centre[0] << ","
+                      << pore.centre[1] << "," << pore.centre[2] << "," << pore.xi << "," << pore.ids[0] << ","
+                      << pore.ids[1] << "," << pore.ids[2] << "," << pore.ids[3] << "," << pore.tetrahedra << ","
+                      << pore.volume << "," << (selected ? 1 : 0) << "\n";
+        }
+        if (result.unresolved_in_box > 0 && !o.quiet)
+          err << "tapmc-pores: warning: " << where(frame.first_line) << result.unresolved_in_box
+              << " Delaunay cells inside the box have empty spheres wider than the padding (" << result.padding
+              << "); they are left out (free surface? raise --padding)\n";
+        if (o.p0_samples > 0) {
+          P0Statistics p0(o.sigma_max, o.sigma_steps);
+          const auto points = random_points(region, o.p0_samples, o.seed, analysed);
+          for (double d : tessellation->nearest_centre_distances(points)) p0.add_distance(d / radius.radius);
+          summary.phi_p0 = p0.phi();
+          p0_total.merge(p0);
+        }
+        summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        total.merge(summary.stats);
+        const PoreStatistics& s = summary.stats;
+        frames_csv << path << "," << frame.index << "," << frame.timestep << "," << summary.atoms << ","
+                   << csv_number(summary.radius) << "," << summary.pores << "," << summary.tetrahedra << ","
+                   << summary.unresolved << "," << s.pores << "," << s.degenerate << "," << csv_number(s.nu()) << ","
+                   << csv_number(s.mean_xi()) << "," << csv_number(summary.region_volume) << ","
+                   << csv_number(summary.tetrahedra_volume) << "," << csv_number(summary.phi_p0) << ","
+                   << csv_number(summary.seconds) << "\n";
+        if (o.frame_hist) {
+          std::ostringstream row;
+          row << path << "," << frame.index << "," << frame.timestep << ",";
+          write_histogram_rows(frame_hist_csv, s, row.str());
+        }
+        if (!o.quiet)
+          err << "tapmc-pores: " << path << " frame " << frame.index << " (timestep " << frame.timestep << "): "
+              << summary.atoms << " spheres, " << summary.pores << " pores, " << s.pores << " selected, nu = "
+              << csv_number(s.nu()) << " (" << std::setprecision(3) << summary.seconds << " s)\n";
+        if (!o.json) summary.stats = PoreStatistics(HistogramSpec{1.0, 1});  // keep memory flat
+        summaries.push_back(std::move(summary));
+        ++analysed;
+      }
+    }
+    current_file.clear();
+    if (analysed == 0) throw std::runtime_error("no frame analysed (check --skip/--every and the files)");
+
+    std::ofstream hist_csv = open_output(o.prefix + ".hist.csv");
+    hist_csv << "# tapmc-pores: " << analysed << " frames, " << total.pores << " selected pores, nu = "
+             << csv_number(total.nu()) << ", xi below range " << total.xi.underflow() << ", above "
+             << total.xi.overflow() << "\n"
+             << kHistogramColumns << "\n";
+    write_histogram_rows(hist_csv, total, "");
+
+    if (o.p0_samples > 0) {
+      std::ofstream p0_csv = open_output(o.prefix + ".p0.csv");
+      const double phi = p0_total.phi();
+      p0_csv << "# tapmc-pores: " << p0_total.samples << " random points, phi seen by the points = " << csv_number(phi)
+             << "\nsigma,P0_measured,P0_percus_yevick\n";
+      for (std::size_t k = 0; k < p0_total.steps(); ++k)
+        p0_csv << csv_number(p0_total.sigma(k)) << "," << csv_number(p0_total.p0(k)) << ","
+               << (phi > 0 && phi < 1 ? csv_number(gotoh_p0(p0_total.sigma(k), phi)) : "") << "\n";
+    }
+
+    if (o.json) {
+      std::ofstream json = open_output(o.prefix + ".json");
+      json << "{\"tool\": \"tapmc-pores\", \"frames_analysed\": " << analysed << ",\n \"aggregate\": ";
+      write_json_statistics(json, total, true);
+      json << ",\n \"frames\": [";
+      for (std::size_t i = 0; i < summaries.size(); ++i) {
+        const FrameSummary& f = summaries[i];
+        json << (i ? ",\n  " : "\n  ") << "{\"file\": " << json_string(f.file) << ", \"frame\": " << f.frame
+             << ", \"timestep\": " << f.timestep << ", \"atoms\": " << f.atoms << ", \"radius\": " << json_number(f.radius)
+             << ", \"pores_total\": " << f.pores << ", \"tetrahedra\": " << f.tetrahedra
+             << ", \"unresolved\": " << f.unresolved << ", \"region_volume\": " << json_number(f.region_volume)
+             << ", \"tetrahedra_volume\": " << json_number(f.tetrahedra_volume) << ", \"phi_p0\": " << json_number(f.phi_p0)
+             << ", \"seconds\": " << json_number(f.seconds) << ", \"statistics\": ";
+        write_json_statistics(json, f.stats, o.frame_hist);
+        json << "}";
+      }
+      json << "]";
+      if (o.p0_samples > 0) {
+        const double phi = p0_total.phi();
+        json << ",\n \"p0\": {\"samples\": " << p0_total.samples << ", \"phi\": " << json_number(phi) << ", \"sigma\": [";
+        for (std::size_t k = 0; k < p0_total.steps(); ++k) json << (k ? ", " : "") << json_number(p0_total.sigma(k));
+        json << "], \"measured\": [";
+        for (std::size_t k = 0; k < p0_total.steps(); ++k) json << (k ? ", " : "") << json_number(p0_total.p0(k));
+        json << "], \"percus_yevick\": [";
+        for (std::size_t k = 0; k < p0_total.steps(); ++k)
+          json << (k ? ", " : "") << (phi > 0 && phi < 1 ? json_number(gotoh_p0(p0_total.sigma(k), phi)) : "null");
+        json << "]}";
+      }
+      json << "}\n";
+    }
+    if (!o.quiet)
+      err << "tapmc-pores: " << analysed << " frames, " << total.pores << " selected pores, nu = " << csv_number(total.nu())
+          << "; wrote " << o.prefix << ".hist.csv and " << o.prefix << ".frames.csv\n";
+    return 0;
+  } catch (const DumpError& e) {
+    err << "tapmc-pores: error: " << e.what() << "\n";
+  } catch (const std::exception& e) {
+    err << "tapmc-pores: error: " << (current_file.empty() || std::string(e.what()).rfind(current_file, 0) == 0
+                                          ? ""
+                                          : current_file + ": frame " + std::to_string(current_frame) + ": ")
+        << e.what() << "\n";
+  }
+  return 2;
+}
+
+}  // namespace pores
+}  // namespace tapmc
