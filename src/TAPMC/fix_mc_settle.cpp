@@ -1,0 +1,402 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// fix mc/settle: gathers the spheres, calls the LAMMPS-free Settler kernel once per timestep
+// (one complete redeposition = one tap), and puts the atoms back where LAMMPS expects them.
+//
+// Parallel scheme (correctness first): every rank gathers all spheres sorted by tag and runs the
+// same deterministic redeposition, then keeps its own atoms. Results are therefore identical for
+// any number of ranks. The kernel takes a `movable` mask, so a domain-decomposed scheme (each
+// rank settling its own active region) can reuse it unchanged.
+#include "fix_mc_settle.h"
+
+#include "lammps_relocate.h"
+#include "tapmc_defaults.h"
+#include "tapmc_settle.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "group.h"
+#include "update.h"
+#include "utils.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+namespace {
+constexpr int kBoundaryPeriodic = 0, kBoundaryFixed = 1;
+constexpr int kPackedPerAtom = 6;  // tag, x, y, z, radius, movable
+constexpr int kVectorSize = 6;
+const char *const kAxisName[2] = {"x", "y"};
+}  // namespace
+
+FixMCSettle::FixMCSettle(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), seed(0), d_max(0.0), theta0(tapmc::defaults::kThetaWidth),
+    eta(tapmc::defaults::kSettleEta), check_interval(0),
+    max_sweeps(tapmc::defaults::kSettleMaxSweeps), z_floor(domain->boxlo[2]), fixed_radius(0.0),
+    walls_given{false, false}, wall_pos{{0, 0}, {0, 0}}, sweep_order(false), last_sweeps(0),
+    last_acceptance(0), last_mean_z(0), last_hit_cap(0), last_trials(0), last_mean_z0(0),
+    settler(std::make_unique<tapmc::Settler>()), n_movable(0)
+{
+  if (narg < 4)
+    error->all(FLERR, "fix mc/settle: expected 'fix ID group mc/settle seed [keyword value ...]',"
+               " got {} argument(s)", narg);
+  seed = utils::bnumeric(FLERR, arg[3], false, lmp);
+  if (seed <= 0) error->all(FLERR, "fix mc/settle: seed = {} must be a positive integer", arg[3]);
+
+  for (int iarg = 4; iarg < narg;) {
+    const std::string key = arg[iarg];
+    auto need = [&](int n) {
+      if (iarg + n >= narg)
+        error->all(FLERR, "fix mc/settle: keyword '{}' needs {} value(s)", key, n);
+    };
+    if (key == "dmax") {
+      need(1);
+      d_max = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(d_max > 0.0))
+        error->all(FLERR, "fix mc/settle: dmax = {} must be > 0 (a length)", arg[iarg + 1]);
+      iarg += 2;
+    } else if (key == "theta0") {
+      need(1);
+      theta0 = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(theta0 > 0.0 && theta0 <= 0.5 * M_PI))
+        error->all(FLERR, "fix mc/settle: theta0 = {} must be in (0, pi/2] (radians)",
+                   arg[iarg + 1]);
+      iarg += 2;
+    } else if (key == "eta") {
+      need(1);
+      eta = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(eta > 0.0 && eta < 1.0))
+        error->all(FLERR, "fix mc/settle: eta = {} must be in (0, 1) (relative change of <Z>)",
+                   arg[iarg + 1]);
+      iarg += 2;
+    } else if (key == "check") {
+      need(1);
+      check_interval = utils::bnumeric(FLERR, arg[iarg + 1], false, lmp);
+      if (check_interval < 0)
+        error->all(FLERR, "fix mc/settle: check = {} must be >= 0 trial moves (0 = one sweep)",
+                   arg[iarg + 1]);
+      iarg += 2;
+    } else if (key == "maxsweeps") {
+      need(1);
+      max_sweeps = utils::bnumeric(FLERR, arg[iarg + 1], false, lmp);
+      if (max_sweeps < 1)
+        error->all(FLERR, "fix mc/settle: maxsweeps = {} must be >= 1", arg[iarg + 1]);
+      iarg += 2;
+    } else if (key == "floor") {
+      need(1);
+      z_floor = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      iarg += 2;
+    } else if (key == "diameter") {
+      need(1);
+      const double d = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(d > 0.0))
+        error->all(FLERR, "fix mc/settle: diameter = {} must be > 0", arg[iarg + 1]);
+      fixed_radius = 0.5 * d;
+      iarg += 2;
+    } else if (key == "xwalls" || key == "ywalls") {
+      need(2);
+      const int dim = key[0] == 'x' ? 0 : 1;
+      wall_pos[dim][0] = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      wall_pos[dim][1] = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+      if (!(wall_pos[dim][0] < wall_pos[dim][1]))
+        error->all(FLERR, "fix mc/settle: {} lo = {} must be below hi = {}", key, arg[iarg + 1],
+                   arg[iarg + 2]);
+      walls_given[dim] = true;
+      iarg += 3;
+    } else if (key == "order") {
+      need(1);
+      const std::string v = arg[iarg + 1];
+      if (v == "random") sweep_order = false;
+      else if (v == "sweep") sweep_order = true;
+      else
+        error->all(FLERR, "fix mc/settle: order = {} must be 'random' (the paper) or 'sweep'", v);
+      iarg += 2;
+    } else {
+      error->all(FLERR, "fix mc/settle: unknown keyword '{}' (allowed: dmax, theta0, eta, check,"
+                 " maxsweeps, floor, diameter, xwalls, ywalls, order)", key);
+    }
+  }
+
+  if (domain->triclinic)
+    error->all(FLERR, "fix mc/settle: triclinic boxes are not supported; use an orthogonal box");
+  if (domain->periodicity[2])
+    error->all(FLERR, "fix mc/settle: the z boundary is periodic; the packing needs a floor and "
+               "an open top: use e.g. 'boundary p p fm' (or 'f s')");
+  for (int dim = 0; dim < 2; ++dim) {
+    if (domain->periodicity[dim]) {
+      if (walls_given[dim])
+        error->all(FLERR, "fix mc/settle: {}walls given but the {} boundary is periodic; side "
+                   "walls exist only in non-periodic directions", kAxisName[dim], kAxisName[dim]);
+      continue;
+    }
+    if (!walls_given[dim]) {
+      if (domain->boundary[dim][0] != kBoundaryFixed || domain->boundary[dim][1] != kBoundaryFixed)
+        error->all(FLERR, "fix mc/settle: the {0} boundary is shrink-wrapped, so the side walls "
+                   "have no fixed position; use 'boundary f' in {0} or give '{0}walls lo hi'",
+                   kAxisName[dim]);
+      wall_pos[dim][0] = domain->boxlo[dim];
+      wall_pos[dim][1] = domain->boxhi[dim];
+    }
+  }
+  if (fixed_radius == 0.0 && !atom->radius_flag)
+    error->all(FLERR, "fix mc/settle: the atom style has no radius; use atom_style sphere or the "
+               "'diameter' keyword");
+
+  force_reneighbor = 1;
+  next_reneighbor = -1;
+  vector_flag = 1;
+  size_vector = kVectorSize;
+  extvector = 0;
+  global_freq = 1;
+  restart_global = 1;
+}
+
+FixMCSettle::~FixMCSettle() = default;
+
+int FixMCSettle::setmask()
+{
+  return PRE_EXCHANGE;
+}
+
+void FixMCSettle::init()
+{
+  if (comm->me == 0 && update->whichflag == 2)
+    error->warning(FLERR, "fix mc/settle moves atoms during minimization; use 'run' instead");
+
+  // Hard spheres need no pair style, which leaves LAMMPS with a zero ghost cutoff (and a warning
+  // on every reneighbouring). Keep ghosts one diameter deep: what a contact needs.
+  double rmax = fixed_radius;
+  if (rmax == 0.0)
+    for (int i = 0; i < atom->nlocal; ++i) rmax = std::max(rmax, atom->radius[i]);
+  double rmax_all = 0.0;
+  MPI_Allreduce(&rmax, &rmax_all, 1, MPI_DOUBLE, MPI_MAX, world);
+  if (comm->get_comm_cutoff() < 2.0 * rmax_all) comm->cutghostuser = 2.0 * rmax_all;
+}
+
+tapmc::SettleBox FixMCSettle::make_box() const
+{
+  tapmc::SettleBox box{};
+  for (int d = 0; d < 3; ++d) {
+    box.lo[d] = domain->boxlo[d];
+    box.hi[d] = domain->boxhi[d];
+  }
+  for (int dim = 0; dim < 2; ++dim) {
+    box.periodic[dim] = domain->periodicity[dim] != 0;
+    box.wall_lo[dim] = box.wall_hi[dim] = !box.periodic[dim];
+    box.wall_lo_pos[dim] = wall_pos[dim][0];
+    box.wall_hi_pos[dim] = wall_pos[dim][1];
+  }
+  box.floor_z = z_floor;
+  return box;
+}
+
+// Every rank ends with all spheres, sorted by tag: xyz, radius, movable (= in the group).
+void FixMCSettle::gather_system()
+{
+  const int nlocal = atom->nlocal;
+  double **x = atom->x;
+  const tagint *tag = atom->tag;
+  const int *mask = atom->mask;
+  const double *rad = atom->radius;
+
+  // Owned atoms into the box with consistent image flags before their positions are shared.
+  for (int i = 0; i < nlocal; ++i) domain->remap(x[i], atom->image[i]);
+
+  pack_local.resize(static_cast<size_t>(kPackedPerAtom) * nlocal);
+  for (int i = 0; i < nlocal; ++i) {
+    double *p = &pack_local[static_cast<size_t>(kPackedPerAtom) * i];
+    p[0] = static_cast<double>(tag[i]);
+    p[1] = x[i][0];
+    p[2] = x[i][1];
+    p[3] = x[i][2];
+    p[4] = fixed_radius > 0.0 ? fixed_radius : rad[i];
+    p[5] = (mask[i] & groupbit) ? 1.0 : 0.0;
+  }
+  const int nprocs = comm->nprocs;
+  counts.resize(nprocs);
+  displs.resize(nprocs);
+  const int nsend = kPackedPerAtom * nlocal;
+  MPI_Allgather(&nsend, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
+  long total = 0;
+  for (int p = 0; p < nprocs; ++p) {
+    displs[p] = static_cast<int>(total);
+    total += counts[p];
+  }
+  pack_all.resize(total);
+  MPI_Allgatherv(pack_local.data(), nsend, MPI_DOUBLE, pack_all.data(), counts.data(),
+                 displs.data(), MPI_DOUBLE, world);
+
+  const int n = static_cast<int>(total / kPackedPerAtom);
+  std::vector<int> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return pack_all[static_cast<size_t>(kPackedPerAtom) * a] <
+           pack_all[static_cast<size_t>(kPackedPerAtom) * b];
+  });
+  gathered_to_sorted.resize(n);
+  xyz.resize(3 * static_cast<size_t>(n));
+  radius.resize(n);
+  movable.resize(n);
+  sorted_tag.resize(n);
+  n_movable = 0;
+  for (int s = 0; s < n; ++s) {
+    const double *p = &pack_all[static_cast<size_t>(kPackedPerAtom) * order[s]];
+    gathered_to_sorted[order[s]] = s;
+    sorted_tag[s] = static_cast<tagint>(p[0]);
+    xyz[3 * s] = p[1];
+    xyz[3 * s + 1] = p[2];
+    xyz[3 * s + 2] = p[3];
+    radius[s] = p[4];
+    movable[s] = p[5] != 0.0;
+    n_movable += movable[s];
+  }
+}
+
+// Owned atoms take their settled positions; image flags follow the periodic wraps the kernel
+// counted, so unwrapped coordinates stay exact however far a sphere travels.
+void FixMCSettle::scatter_positions()
+{
+  const int first = displs[comm->me] / kPackedPerAtom;
+  double **x = atom->x;
+  imageint *image = atom->image;
+  for (int i = 0; i < atom->nlocal; ++i) {
+    const size_t s = static_cast<size_t>(gathered_to_sorted[first + i]);
+    x[i][0] = xyz[3 * s];
+    x[i][1] = xyz[3 * s + 1];
+    x[i][2] = xyz[3 * s + 2];
+    const int shift_x = image_shift[2 * s], shift_y = image_shift[2 * s + 1];
+    if (shift_x == 0 && shift_y == 0) continue;
+    const imageint xbox = (image[i] & IMGMASK) - IMGMAX + shift_x;
+    const imageint ybox = ((image[i] >> IMGBITS) & IMGMASK) - IMGMAX + shift_y;
+    const imageint zbox = (image[i] >> IMG2BITS) - IMGMAX;
+    image[i] = ((zbox + IMGMAX) & IMGMASK) << IMG2BITS | ((ybox + IMGMAX) & IMGMASK) << IMGBITS |
+               ((xbox + IMGMAX) & IMGMASK);
+  }
+}
+
+double FixMCSettle::effective_d_max() const
+{
+  if (d_max > 0.0) return d_max;
+  double rmin = std::numeric_limits<double>::infinity();
+  for (size_t s = 0; s < radius.size(); ++s)
+    if (movable[s]) rmin = std::min(rmin, radius[s]);
+  return tapmc::defaults::kMaxStepOverRadius * rmin;
+}
+
+void FixMCSettle::check_start_configuration()
+{
+  for (size_t s = 0; s < radius.size(); ++s)
+    if (!(radius[s] > 0.0))
+      error->all(FLERR, "fix mc/settle: atom {} has radius {}; every sphere needs a radius > 0 "
+                 "(set it with atom_style sphere / set diameter, or the 'diameter' keyword)",
+                 sorted_tag[s], radius[s]);
+  const tapmc::SettleBox box = make_box();
+  const auto v = tapmc::Settler::find_violation(xyz.data(), radius.data(),
+                                                static_cast<int>(radius.size()), box,
+                                                tapmc::defaults::kContactTolerance);
+  if (v.i < 0) return;
+  const tagint tag_i = sorted_tag[v.i];
+  if (v.j >= 0)
+    error->all(FLERR, "fix mc/settle: atoms {} and {} overlap by {} at the start (allowed: a "
+               "relative tolerance of {} of the contact distance); start from a non-overlapping "
+               "packing", tag_i, sorted_tag[v.j], -v.gap,
+               tapmc::defaults::kContactTolerance);
+  if (v.j == -1)
+    error->all(FLERR, "fix mc/settle: atom {} reaches {} below the floor z0 = {} (its centre "
+               "must be at least its radius above the floor)", tag_i, -v.gap, z_floor);
+  error->all(FLERR, "fix mc/settle: atom {} crosses a side wall in {} by {}", tag_i,
+             v.j == -2 ? "x" : "y", -v.gap);
+}
+
+void FixMCSettle::setup_pre_exchange()
+{
+  gather_system();
+  if (n_movable == 0)
+    error->all(FLERR, "fix mc/settle: group '{}' has no atoms", group->names[igroup]);
+  check_start_configuration();
+  next_reneighbor = update->ntimestep + 1;
+}
+
+void FixMCSettle::pre_exchange()
+{
+  if (update->ntimestep != next_reneighbor) return;
+  next_reneighbor = update->ntimestep + 1;
+
+  gather_system();
+  tapmc::SettleParams params;
+  params.d_max = effective_d_max();
+  params.theta0 = theta0;
+  params.eta = eta;
+  params.check_interval = check_interval;
+  const long interval = check_interval > 0 ? check_interval : n_movable;
+  params.max_checks = std::max(1L, (max_sweeps * n_movable + interval - 1) / interval);
+  params.contact_tol = tapmc::defaults::kContactTolerance;
+  params.seed = static_cast<std::uint64_t>(seed);
+  params.stream = static_cast<std::uint64_t>(update->ntimestep);
+  params.order = sweep_order ? tapmc::PickOrder::Sweep : tapmc::PickOrder::Random;
+
+  tapmc::SettleResult result;
+  try {
+    image_shift.assign(2 * radius.size(), 0);
+    result = settler->settle(xyz.data(), radius.data(), movable.data(),
+                             static_cast<int>(radius.size()), make_box(), params,
+                             image_shift.data());
+  } catch (const std::exception &e) {
+    error->all(FLERR, "fix mc/settle: {}", e.what());
+  }
+  scatter_positions();
+  tapmc::relocate_moved_atoms(lmp);
+
+  last_trials = static_cast<double>(result.trials);
+  last_sweeps = n_movable > 0 ? last_trials / static_cast<double>(n_movable) : 0.0;
+  last_acceptance = result.trials > 0 ? double(result.accepted) / double(result.trials) : 0.0;
+  last_mean_z = result.mean_height;
+  last_mean_z0 = result.mean_height_start;
+  last_hit_cap = result.hit_cap ? 1.0 : 0.0;
+  if (result.hit_cap && comm->me == 0)
+    error->warning(FLERR, "fix mc/settle: step {}: redeposition stopped at the cap of {} sweeps "
+                   "before <Z> converged to eta = {}", update->ntimestep, max_sweeps, eta);
+}
+
+// [1] sweeps used, [2] acceptance ratio, [3] <Z> after, [4] 1 if the sweep cap was hit,
+// [5] trial moves, [6] <Z> before the redeposition (after the tap).
+double FixMCSettle::compute_vector(int n)
+{
+  const double values[kVectorSize] = {last_sweeps,  last_acceptance, last_mean_z,
+                                      last_hit_cap, last_trials,     last_mean_z0};
+  return values[n];
+}
+
+// Random numbers are keyed by (seed, timestep, trial): the run continues exactly from a restart
+// without stored generator state. The file keeps the seed (checked) and the last diagnostics.
+void FixMCSettle::write_restart(FILE *fp)
+{
+  if (comm->me != 0) return;
+  double list[1 + kVectorSize] = {static_cast<double>(seed), last_sweeps, last_acceptance,
+                                  last_mean_z, last_hit_cap, last_trials, last_mean_z0};
+  int size = sizeof(list);
+  fwrite(&size, sizeof(int), 1, fp);
+  fwrite(list, sizeof(list), 1, fp);
+}
+
+void FixMCSettle::restart(char *buf)
+{
+  const auto *list = reinterpret_cast<const double *>(buf);
+  if (static_cast<long>(list[0]) != seed && comm->me == 0)
+    error->warning(FLERR, "fix mc/settle: seed {} differs from the restart file's {}; the run "
+                   "will not continue the original trajectory", seed,
+                   static_cast<long>(list[0]));
+  last_sweeps = list[1];
+  last_acceptance = list[2];
+  last_mean_z = list[3];
+  last_hit_cap = list[4];
+  last_trials = list[5];
+  last_mean_z0 = list[6];
+}

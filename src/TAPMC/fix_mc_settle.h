@@ -1,0 +1,68 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// fix mc/settle: the redeposition of the model, one complete hard-sphere Monte Carlo settling
+// per timestep (paper, section II). The physics lives in tapmc_settle.{h,cpp}.
+#ifndef LMP_FIX_MC_SETTLE_H
+#define LMP_FIX_MC_SETTLE_H
+
+#include "fix.h"
+#include "lmptype.h"
+
+#include <memory>
+#include <vector>
+
+namespace tapmc {
+class Settler;
+struct SettleBox;
+}
+
+namespace LAMMPS_NS {
+
+class FixMCSettle : public Fix {
+ public:
+  FixMCSettle(class LAMMPS *, int, char **);
+  ~FixMCSettle() override;
+  int setmask() override;
+  void init() override;
+  void setup_pre_exchange() override;
+  void pre_exchange() override;
+  double compute_vector(int) override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
+
+ private:
+  // user settings (defaults in tapmc_defaults.h)
+  long seed;
+  double d_max;               // <= 0: defaults::kMaxStepOverRadius * smallest group radius
+  double theta0, eta;
+  long check_interval;        // trials between <Z> checks; 0 = one sweep of the group
+  long max_sweeps;            // cap on sweeps per tap
+  double z_floor;
+  double fixed_radius;        // > 0: 'diameter' keyword given, overrides per-atom radii
+  bool walls_given[2];
+  double wall_pos[2][2];      // [dim][lo/hi]
+  bool sweep_order;
+
+  // per-tap diagnostics (global vector)
+  double last_sweeps, last_acceptance, last_mean_z, last_hit_cap, last_trials, last_mean_z0;
+
+  // gathered system, sorted by atom tag (so results do not depend on the rank count)
+  std::unique_ptr<tapmc::Settler> settler;
+  std::vector<double> pack_local, pack_all;
+  std::vector<int> counts, displs;
+  std::vector<int> gathered_to_sorted;
+  std::vector<double> xyz, radius;
+  std::vector<unsigned char> movable;
+  std::vector<tagint> sorted_tag;
+  std::vector<int> image_shift;  // periodic wraps per sorted sphere (x, y), from the kernel
+  long n_movable;
+
+  void gather_system();
+  void scatter_positions();
+  double effective_d_max() const;
+  void check_start_configuration();
+  tapmc::SettleBox make_box() const;
+};
+
+}  // namespace LAMMPS_NS
+
+#endif
