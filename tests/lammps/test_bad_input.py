@@ -64,3 +64,67 @@ def test_tapdilate_fixed_top_would_lose_atoms():
 def test_tapdilate_fixed_top_with_room_is_fine():
     rc, out = run_case("fix t all tapdilate 0.5\nrun 2", boundary="p p ff")
     assert rc == 0, out
+
+
+MC_SETTLE_CASES = [
+    ("fix s all mc/settle 0", "seed = 0 must be a positive integer"),
+    ("fix s all mc/settle -5", "seed = -5 must be a positive integer"),
+    ("fix s all mc/settle 1 dmax 0", "dmax = 0 must be > 0"),
+    ("fix s all mc/settle 1 dmax -0.1", "dmax = -0.1 must be > 0"),
+    ("fix s all mc/settle 1 theta0 0", "theta0 = 0 must be in (0, pi/2]"),
+    ("fix s all mc/settle 1 theta0 1.6", "theta0 = 1.6 must be in (0, pi/2]"),
+    ("fix s all mc/settle 1 eta 0", "eta = 0 must be in (0, 1)"),
+    ("fix s all mc/settle 1 eta -1e-3", "eta = -1e-3 must be in (0, 1)"),
+    ("fix s all mc/settle 1 check -1", "check = -1 must be >= 0"),
+    ("fix s all mc/settle 1 maxsweeps 0", "maxsweeps = 0 must be >= 1"),
+    ("fix s all mc/settle 1 diameter 0", "diameter = 0 must be > 0"),
+    ("fix s all mc/settle 1 order backwards", "order = backwards must be 'random'"),
+    ("fix s all mc/settle 1 xwalls 0 8", "xwalls given but the x boundary is periodic"),
+    ("fix s all mc/settle 1 wiggle 3", "unknown keyword 'wiggle'"),
+    ("fix s all mc/settle 1 eta", "keyword 'eta' needs 1 value(s)"),
+    ("fix s all mc/settle", "expected 'fix ID group mc/settle seed"),
+    ("fix s all mc/settle 1 floor 0.8\nrun 1", "below the floor"),
+    ("create_atoms 1 single 2.5 2 1\nfix s all mc/settle 1\nrun 1", "overlap by 0.5"),
+    ("set atom 1 diameter 0.0\nfix s all mc/settle 1\nrun 1", "every sphere needs a radius > 0"),
+]
+
+
+@pytest.mark.parametrize("body,message", MC_SETTLE_CASES)
+def test_mc_settle_bad_argument(body, message):
+    rc, out = run_case(body)
+    assert rc != 0, out
+    assert "ERROR" in out and message in out, out
+
+
+def test_mc_settle_periodic_z():
+    rc, out = run_case("fix s all mc/settle 1", boundary="p p p")
+    assert rc != 0 and "z boundary is periodic" in out, out
+
+
+def test_mc_settle_triclinic():
+    script = BOX.format(boundary="p p fm").replace(
+        "region box block 0 8 0 8 0 10", "region box prism 0 8 0 8 0 10 1 0 0")
+    rc, out, _ = run_lammps(script + "fix s all mc/settle 1")
+    assert rc != 0 and "triclinic" in out, out
+
+
+def test_mc_settle_needs_a_radius():
+    script = BOX.format(boundary="p p fm").replace("atom_style sphere", "atom_style atomic") \
+                .replace("set group all diameter 1.0", "mass 1 1.0")
+    rc, out, _ = run_lammps(script + "fix s all mc/settle 1")
+    assert rc != 0 and "has no radius; use atom_style sphere or the 'diameter'" in out, out
+    rc, out, _ = run_lammps(script + "fix s all mc/settle 1 diameter 1.0\nrun 2")
+    assert rc == 0, out
+
+
+def test_mc_settle_sphere_through_a_side_wall():
+    rc, out = run_case("create_atoms 1 single 7.8 5 3\nfix s all mc/settle 1\nrun 1",
+                       boundary="f f fm")
+    assert rc != 0 and "crosses a side wall in x" in out, out
+
+
+def test_mc_settle_shrink_wrapped_sides_need_walls():
+    rc, out = run_case("fix s all mc/settle 1", boundary="s s fm")
+    assert rc != 0 and "give 'xwalls lo hi'" in out, out
+    rc, out = run_case("fix s all mc/settle 1 xwalls 0 8 ywalls 0 8\nrun 2", boundary="s s fm")
+    assert rc == 0, out
