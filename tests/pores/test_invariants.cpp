@@ -1,0 +1,166 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// Invariants on random packings over many seeds: empty spheres (brute force), tiling of the
+// periodic box, each pore once, x-y periodic vs triply periodic agreement, overlaps, P0 queries.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <tuple>
+
+#include "pores_test_util.h"
+#include "tapmc_pores/analysis.h"
+#include "tapmc_pores/tessellation.h"
+
+namespace {
+
+using pores_test::Packing;
+using tapmc::pores::OverlapError;
+using tapmc::pores::Pore;
+using tapmc::pores::PoreOptions;
+using tapmc::pores::Tessellation;
+
+PoreOptions options_for(const Packing& p) {
+  PoreOptions o;
+  o.radius = p.radius;
+  return o;
+}
+
+// Brute force: the pore sphere touches its four spheres and contains no centre (any image).
+void expect_empty_spheres(const Packing& p, const Tessellation& t) {
+  const double tol = 1e-9 * p.radius;
+  for (const Pore& pore : t.result().pores) {
+    const double r = (1.0 + pore.xi) * p.radius;
+    double nearest = 1e300;
+    for (std::size_t j = 0; j < p.size(); ++j)
+      nearest = std::min(nearest, pores_test::distance(p.box, pore.centre.data(), &p.xyz[3 * j]));
+    EXPECT_NEAR(nearest, r, tol) << "pore sphere not empty or not touching";
+    for (std::int64_t id : pore.ids)
+      EXPECT_NEAR(pores_test::distance(p.box, pore.centre.data(), &p.xyz[3 * (id - 1)]), r, tol);
+    for (int d = 0; d < 3; ++d)
+      if (p.box.periodic[d]) {
+        EXPECT_GE(pore.centre[d], p.box.lo[d]);
+        EXPECT_LT(pore.centre[d], p.box.hi[d]);
+      }
+  }
+}
+
+// No two pores are the same Voronoi vertex (same centre up to periodicity).
+void expect_distinct(const Packing& p, const Tessellation& t) {
+  std::set<std::array<std::int64_t, 4>> tetrahedra;
+  for (const Pore& pore : t.result().pores) EXPECT_TRUE(tetrahedra.insert(pore.ids).second || pore.tetrahedra > 1);
+  const auto& pores = t.result().pores;
+  std::vector<std::size_t> order(pores.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return pores[a].centre[0] < pores[b].centre[0]; });
+  // Sweep in x (plus the periodic seam) for centres closer than 1e-7 R.
+  const double eps = 1e-7 * p.radius;
+  for (std::size_t a = 0; a < order.size(); ++a)
+    for (std::size_t b = a + 1; b < order.size() && pores[order[b]].centre[0] - pores[order[a]].centre[0] < eps; ++b)
+      EXPECT_GT(pores_test::distance(p.box, pores[order[a]].centre.data(), pores[order[b]].centre.data()), eps);
+}
+
+TEST(PoreInvariants, RandomTriplyPeriodicPackings) {
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    const Packing p = pores_test::random_packing(250, 8.0, {true, true, true}, seed);
+    ASSERT_EQ(p.size(), 250u);
+    const Tessellation t(p.box, p.xyz, p.ids, options_for(p));
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    EXPECT_NEAR(t.result().tetrahedra_volume, p.box.volume(), 1e-9 * p.box.volume());
+    EXPECT_EQ(t.result().unresolved, 0u);
+    // Random centres are in general position: no degenerate vertex, one tetrahedron per pore.
+    EXPECT_EQ(t.result().tetrahedra, t.result().pores.size());
+    expect_empty_spheres(p, t);
+    expect_distinct(p, t);
+  }
+}
+
+TEST(PoreInvariants, RandomSlabsPeriodicInXYOnly) {
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    const Packing p = pores_test::random_packing(250, 8.0, {true, true, false}, seed);
+    const Tessellation t(p.box, p.xyz, p.ids, options_for(p));
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    expect_empty_spheres(p, t);
+    expect_distinct(p, t);
+  }
+}
+
+// A pore whose empty sphere lies inside [zlo, zhi] cannot see z images: the x-y periodic and the
+// triply periodic analyses of the same centres must agree on exactly those pores (none missed,
+// none doubled at the x/y seams).
+TEST(PoreInvariants, SlabAgreesWithTriplyPeriodicAwayFromZFaces) {
+  for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+    Packing slab = pores_test::random_packing(250, 8.0, {true, true, false}, seed);
+    Packing bulk = slab;
+    bulk.box.periodic = {true, true, true};
+    const Tessellation ts(slab.box, slab.xyz, slab.ids, options_for(slab));
+    const Tessellation tb(bulk.box, bulk.xyz, bulk.ids, options_for(bulk));
+    auto interior = [&](const Tessellation& t) {
+      std::map<std::array<std::int64_t, 4>, double> pores;
+      for (const Pore& pore : t.result().pores) {
+        const double r = (1 + pore.xi) * slab.radius;
+        if (pore.centre[2] - r > slab.box.lo[2] && pore.centre[2] + r < slab.box.hi[2]) pores[pore.ids] = pore.xi;
+      }
+      return pores;
+    };
+    const auto a = interior(ts), b = interior(tb);
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    EXPECT_GT(a.size(), 500u);
+    ASSERT_EQ(a.size(), b.size());
+    for (const auto& [ids, xi] : a) {
+      const auto it = b.find(ids);
+      ASSERT_NE(it, b.end());
+      EXPECT_NEAR(it->second, xi, 1e-10);
+    }
+  }
+}
+
+TEST(PoreInvariants, OverlapAcrossThePeriodicSeamIsRefused) {
+  Packing p = pores_test::random_packing(60, 6.0, {true, true, true}, 7);
+  p.add(0.02, 3.0, 3.0);
+  p.add(5.99, 3.0, 3.3);  // 0.3 from the previous one through the x faces
+  try {
+    const Tessellation t(p.box, p.xyz, p.ids, options_for(p));
+    FAIL() << "overlap not detected";
+  } catch (const OverlapError& e) {
+    const std::set<std::size_t> pair{e.index_a, e.index_b};
+    EXPECT_TRUE(pair.count(p.size() - 1) || pair.count(p.size() - 2)) << e.what();
+    EXPECT_NE(std::string(e.what()).find("overlap"), std::string::npos);
+  }
+}
+
+TEST(PoreInvariants, ContactWithinToleranceIsAccepted) {
+  Packing p = pores_test::fcc(3, 0.5);
+  p.xyz[0] += 1e-6;  // pushes sphere 1 into its neighbour by 1e-6 of a diameter
+  EXPECT_NO_THROW(Tessellation(p.box, p.xyz, p.ids, options_for(p)));
+}
+
+TEST(PoreInvariants, BadArgumentsThrow) {
+  const Packing p = pores_test::fcc(2, 0.5);
+  PoreOptions o = options_for(p);
+  o.radius = -1;
+  EXPECT_THROW(Tessellation(p.box, p.xyz, p.ids, o), std::invalid_argument);
+  std::vector<double> short_xyz(p.xyz.begin(), p.xyz.end() - 1);
+  EXPECT_THROW(Tessellation(p.box, short_xyz, p.ids, options_for(p)), std::invalid_argument);
+}
+
+TEST(PoreInvariants, NearestCentreDistancesMatchBruteForce) {
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    for (const std::array<bool, 3> periodic : {std::array<bool, 3>{true, true, true}, std::array<bool, 3>{true, true, false}}) {
+      const Packing p = pores_test::random_packing(200, 7.0, periodic, seed);
+      const Tessellation t(p.box, p.xyz, p.ids, options_for(p));
+      tapmc::pores::Region whole{p.box.lo, p.box.hi};
+      const auto points = tapmc::pores::random_points(whole, 500, seed, 0);
+      const auto distances = t.nearest_centre_distances(points);
+      for (std::size_t i = 0; i < 500; ++i) {
+        double nearest = 1e300;
+        for (std::size_t j = 0; j < p.size(); ++j)
+          nearest = std::min(nearest, pores_test::distance(p.box, &points[3 * i], &p.xyz[3 * j]));
+        EXPECT_NEAR(distances[i], nearest, 1e-12);
+      }
+    }
+  }
+}
+
+}  // namespace
