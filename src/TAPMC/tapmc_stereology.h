@@ -12,6 +12,8 @@
 #ifndef TAPMC_STEREOLOGY_H
 #define TAPMC_STEREOLOGY_H
 
+#include "tapmc_defaults.h"
+
 #include <optional>
 #include <vector>
 
@@ -102,8 +104,8 @@ double surface_height(const double *tops, int ncolumns, double fallback);
 // User choices; unset optionals take their defaults from the mean radius (tapmc_defaults.h).
 struct SummarySettings {
   double floor = 0.0;                   // z_floor
-  double top_fraction = 0.9;            // z_top = floor + top_fraction (h_s - floor)
-  double wall_factor = 16.0 / 11.0;     // perturbed-zone correction of [floor, floor + R]
+  double top_fraction = defaults::kTopFraction;    // z_top = floor + top_fraction (h_s - floor)
+  double wall_factor = defaults::kWallBandFactor;  // perturbed-zone correction of the wall band
   int transverse_axis = 0;              // vertical cuts perpendicular to x (0) or y (1)
   std::optional<double> bulk_height;    // Phi_b slab height (default 4 R)
   std::optional<double> wall_band;      // corrected band height (default R)

@@ -1,0 +1,322 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// compute stereo/profile: LAMMPS front end of the exact stereology kernel (tapmc_stereology.h).
+// Each rank sums over its owned atoms; one MPI_Allreduce of a packed buffer per output (plus one
+// MAX reduction of the surface columns when the window top must be read from the data).
+#include "compute_stereo_profile.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "group.h"
+#include "memory.h"
+#include "update.h"
+#include "utils.h"
+
+#include "tapmc_defaults.h"
+
+#include <cstring>
+#include <limits>
+#include <mpi.h>
+#include <stdexcept>
+#include <string>
+
+using namespace LAMMPS_NS;
+namespace stereo = tapmc::stereo;
+
+namespace {
+// Output vector layout (documented in doc/compute_stereo_profile.rst).
+enum VectorEntry {
+  kPhiBulk,
+  kPhiCorrected,
+  kMeanHeight,
+  kWindowTop,
+  kPhiLateral,
+  kPhiCentral,
+  kSurfaceHeight,
+  kVectorSize
+};
+constexpr int kArrayColumns = 3;
+}  // namespace
+
+ComputeStereoProfile::ComputeStereoProfile(LAMMPS *lmp, int narg, char **arg) :
+    Compute(lmp, narg, arg), axis_(2), fixed_radius_(0.0), mean_radius_(0.0), radius_ready_(false)
+{
+  if (domain->triclinic) error->all(FLERR, "compute stereo/profile: triclinic boxes are not supported");
+  if (domain->zperiodic)
+    error->all(FLERR, "compute stereo/profile: the z boundary must be non-periodic (the floor)");
+
+  settings_.floor = domain->boxlo[2];
+  bool planes_given = false;
+  int nplanes = tapmc::defaults::kProfilePlanes;
+  double plane_lo = 0.0, plane_hi = 0.0;
+
+  auto need = [&](int iarg, int count) {
+    if (iarg + count >= narg)
+      error->all(FLERR, "compute stereo/profile: keyword '{}' needs {} value(s)", arg[iarg], count);
+  };
+  auto number = [&](int i) { return utils::numeric(FLERR, arg[i], false, lmp); };
+  auto positive = [&](const char *name, double v) {
+    if (!(v > 0.0)) error->all(FLERR, "compute stereo/profile: {} = {} must be > 0", name, v);
+    return v;
+  };
+
+  int iarg = 3;
+  while (iarg < narg) {
+    const std::string key = arg[iarg];
+    if (key == "floor") {
+      need(iarg, 1);
+      settings_.floor = number(iarg + 1);
+      iarg += 2;
+    } else if (key == "radius") {
+      need(iarg, 1);
+      fixed_radius_ = positive("radius", number(iarg + 1));
+      iarg += 2;
+    } else if (key == "axis") {
+      need(iarg, 1);
+      const std::string v = arg[iarg + 1];
+      if (v == "x")
+        axis_ = 0;
+      else if (v == "y")
+        axis_ = 1;
+      else if (v == "z")
+        axis_ = 2;
+      else
+        error->all(FLERR, "compute stereo/profile: axis = {} must be x, y or z", v);
+      iarg += 2;
+    } else if (key == "planes") {
+      need(iarg, 3);
+      plane_lo = number(iarg + 1);
+      plane_hi = number(iarg + 2);
+      nplanes = utils::inumeric(FLERR, arg[iarg + 3], false, lmp);
+      if (nplanes < 1) error->all(FLERR, "compute stereo/profile: planes n = {} must be >= 1", nplanes);
+      if (!(plane_lo < plane_hi))
+        error->all(FLERR, "compute stereo/profile: planes lo = {} must be < hi = {}", plane_lo,
+                   plane_hi);
+      planes_given = true;
+      iarg += 4;
+    } else if (key == "window") {
+      need(iarg, 2);
+      const double za = number(iarg + 1), zb = number(iarg + 2);
+      if (!(za < zb))
+        error->all(FLERR, "compute stereo/profile: window za = {} must be < zb = {}", za, zb);
+      settings_.window_lo = za;
+      settings_.window_hi = zb;
+      iarg += 3;
+    } else if (key == "lateral") {
+      need(iarg, 1);
+      settings_.lateral_width = positive("lateral", number(iarg + 1));
+      iarg += 2;
+    } else if (key == "top_fraction") {
+      need(iarg, 1);
+      const double f = number(iarg + 1);
+      if (!(f > 0.0 && f <= 1.0))
+        error->all(FLERR, "compute stereo/profile: top_fraction = {} must be in (0, 1]", f);
+      settings_.top_fraction = f;
+      iarg += 2;
+    } else if (key == "bulk") {
+      need(iarg, 1);
+      settings_.bulk_height = positive("bulk", number(iarg + 1));
+      iarg += 2;
+    } else if (key == "column") {
+      need(iarg, 1);
+      settings_.column_width = positive("column", number(iarg + 1));
+      iarg += 2;
+    } else if (key == "wall_band") {
+      need(iarg, 1);
+      settings_.wall_band = positive("wall_band", number(iarg + 1));
+      iarg += 2;
+    } else if (key == "wall_factor") {
+      need(iarg, 1);
+      settings_.wall_factor = positive("wall_factor", number(iarg + 1));
+      iarg += 2;
+    } else {
+      error->all(FLERR, "compute stereo/profile: unknown keyword '{}'", key);
+    }
+  }
+
+  if (!fixed_radius_ && !atom->radius_flag)
+    error->all(FLERR,
+               "compute stereo/profile: radius keyword required: atom style {} has no per-atom "
+               "radius",
+               atom->atom_style);
+
+  // Vertical cuts are perpendicular to the profile axis, or to x when the profile is vertical.
+  settings_.transverse_axis = axis_ == 2 ? 0 : axis_;
+  try {
+    stereo::validate(settings_);
+  } catch (const std::invalid_argument &e) {
+    error->all(FLERR, "compute stereo/profile: {}", e.what());
+  }
+
+  // Default plane range, fixed when the compute is defined (so that array rows keep their
+  // positions for time averages): floor .. box zhi along z, the box along x or y.
+  if (!planes_given) {
+    plane_lo = axis_ == 2 ? settings_.floor : domain->boxlo[axis_];
+    plane_hi = domain->boxhi[axis_];
+    if (!(plane_lo < plane_hi))
+      error->all(FLERR,
+                 "compute stereo/profile: default planes {} .. {} are empty (floor above the box "
+                 "top); give planes lo hi n",
+                 plane_lo, plane_hi);
+  }
+  planes_.lo = plane_lo;
+  planes_.hi = plane_hi;
+  planes_.n = nplanes;
+
+  vector_flag = 1;
+  size_vector = kVectorSize;
+  extvector = 0;
+  array_flag = 1;
+  size_array_rows = nplanes;
+  size_array_cols = kArrayColumns;
+  extarray = 0;
+
+  vector = new double[kVectorSize];
+  for (int i = 0; i < kVectorSize; ++i) vector[i] = 0.0;
+  memory->create(array, nplanes, kArrayColumns, "stereo/profile:array");
+  for (int k = 0; k < nplanes; ++k)
+    for (int c = 0; c < kArrayColumns; ++c) array[k][c] = 0.0;
+}
+
+ComputeStereoProfile::~ComputeStereoProfile()
+{
+  delete[] vector;
+  memory->destroy(array);
+}
+
+void ComputeStereoProfile::init()
+{
+  if (domain->triclinic) error->all(FLERR, "compute stereo/profile: triclinic boxes are not supported");
+  if (domain->zperiodic)
+    error->all(FLERR, "compute stereo/profile: the z boundary must be non-periodic (the floor)");
+  update_mean_radius();
+}
+
+// The radius R behind every default (bulk 4R, lateral 7R, columns 2R, ...): the fixed radius, or
+// the mean per-atom radius of the group, computed once per run (radii do not change in a run),
+// or at the first invocation when the compute is used before any run (library interface).
+void ComputeStereoProfile::update_mean_radius()
+{
+  radius_ready_ = true;
+  if (fixed_radius_ > 0.0) {
+    mean_radius_ = fixed_radius_;
+    return;
+  }
+  const int *mask = atom->mask;
+  const double *radius = atom->radius;
+  double local[3] = {0.0, 0.0, 0.0};  // sum of radii, count, count with radius <= 0
+  for (int i = 0; i < atom->nlocal; ++i) {
+    if (!(mask[i] & groupbit)) continue;
+    local[0] += radius[i];
+    local[1] += 1.0;
+    if (!(radius[i] > 0.0)) local[2] += 1.0;
+  }
+  double total[3];
+  MPI_Allreduce(local, total, 3, MPI_DOUBLE, MPI_SUM, world);
+  if (total[2] > 0.0)
+    error->all(FLERR,
+               "compute stereo/profile: per-atom radius must be > 0 ({} atoms of group {} have "
+               "radius <= 0)",
+               static_cast<long>(total[2]), group->names[igroup]);
+  mean_radius_ = total[1] > 0.0 ? total[0] / total[1] : 0.0;
+}
+
+stereo::Spheres ComputeStereoProfile::select_spheres()
+{
+  const int nlocal = atom->nlocal;
+  const int *mask = atom->mask;
+  selected_.clear();
+  for (int i = 0; i < nlocal; ++i)
+    if (mask[i] & groupbit) selected_.push_back(i);
+  stereo::Spheres s;
+  s.xyz = (nlocal > 0 && atom->x) ? atom->x[0] : nullptr;
+  if (fixed_radius_ > 0.0)
+    s.uniform_radius = fixed_radius_;
+  else
+    s.radius = atom->radius;
+  s.index = selected_.data();
+  s.count = static_cast<int>(selected_.size());
+  return s;
+}
+
+stereo::Box ComputeStereoProfile::current_box() const
+{
+  stereo::Box box;
+  for (int d = 0; d < 3; ++d) {
+    box.lo[d] = domain->boxlo[d];
+    box.hi[d] = domain->boxhi[d];
+  }
+  box.periodic[0] = domain->xperiodic != 0;
+  box.periodic[1] = domain->yperiodic != 0;
+  return box;
+}
+
+// h_s: every rank marks the highest sphere top per column, one MAX reduction, then the mean.
+double ComputeStereoProfile::reduce_surface_height(const stereo::Spheres &spheres,
+                                                   const stereo::Box &box)
+{
+  const stereo::ColumnGrid grid =
+      stereo::make_column_grid(box, stereo::resolved_column_width(settings_, mean_radius_));
+  buffer_.assign(grid.size(), -std::numeric_limits<double>::infinity());
+  stereo::accumulate_column_tops(spheres, grid, buffer_.data());
+  MPI_Allreduce(MPI_IN_PLACE, buffer_.data(), grid.size(), MPI_DOUBLE, MPI_MAX, world);
+  return stereo::surface_height(buffer_.data(), grid.size(), settings_.floor);
+}
+
+void ComputeStereoProfile::compute_vector()
+{
+  invoked_vector = update->ntimestep;
+  if (!radius_ready_) update_mean_radius();
+  const stereo::Spheres spheres = select_spheres();
+  const stereo::Box box = current_box();
+  const double surface = reduce_surface_height(spheres, box);
+  const stereo::Windows windows = stereo::resolve_windows(settings_, box, mean_radius_, surface);
+
+  double sums[stereo::kNumSummarySums] = {};
+  stereo::accumulate_summary(spheres, box, windows, sums);
+  MPI_Allreduce(MPI_IN_PLACE, sums, stereo::kNumSummarySums, MPI_DOUBLE, MPI_SUM, world);
+  const stereo::Summary s = stereo::finish_summary(sums, box, windows);
+
+  vector[kPhiBulk] = s.phi_bulk;
+  vector[kPhiCorrected] = s.phi_corrected;
+  vector[kMeanHeight] = s.mean_height;
+  vector[kWindowTop] = s.top;
+  vector[kPhiLateral] = s.phi_lateral;
+  vector[kPhiCentral] = s.phi_central;
+  vector[kSurfaceHeight] = s.surface;
+}
+
+void ComputeStereoProfile::compute_array()
+{
+  invoked_array = update->ntimestep;
+  if (!radius_ready_) update_mean_radius();
+  const stereo::Spheres spheres = select_spheres();
+  const stereo::Box box = current_box();
+
+  // z-window of vertical cuts: only the default top needs the data (h_s)
+  double za = 0.0, zb = 0.0;
+  if (axis_ != 2) {
+    stereo::Windows windows;
+    if (!settings_.window_hi) {
+      const double surface = reduce_surface_height(spheres, box);
+      windows = stereo::resolve_windows(settings_, box, mean_radius_, surface);
+    }
+    stereo::default_vertical_window(settings_, windows, mean_radius_, za, zb);
+  }
+
+  const int n = planes_.n;
+  buffer_.assign(2 * n, 0.0);  // cut areas, then bin volumes
+  stereo::accumulate_profile(spheres, box, axis_, planes_, za, zb, buffer_.data(),
+                             buffer_.data() + n);
+  MPI_Allreduce(MPI_IN_PLACE, buffer_.data(), 2 * n, MPI_DOUBLE, MPI_SUM, world);
+  stereo::finish_profile(buffer_.data(), buffer_.data() + n, box, axis_, planes_, za, zb,
+                         array[0]);
+}
+
+double ComputeStereoProfile::memory_usage()
+{
+  return static_cast<double>(planes_.n) * kArrayColumns * sizeof(double) +
+         static_cast<double>(selected_.capacity()) * sizeof(int) +
+         static_cast<double>(buffer_.capacity()) * sizeof(double);
+}

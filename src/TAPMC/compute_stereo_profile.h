@@ -1,0 +1,41 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// compute stereo/profile: exact stereological packing fractions (Phi_b, <Phi^c>, <Z>, profiles).
+#ifndef LMP_COMPUTE_STEREO_PROFILE_H
+#define LMP_COMPUTE_STEREO_PROFILE_H
+
+#include "compute.h"
+
+#include "tapmc_stereology.h"
+
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class ComputeStereoProfile : public Compute {
+ public:
+  ComputeStereoProfile(class LAMMPS *, int, char **);
+  ~ComputeStereoProfile() override;
+  void init() override;
+  void compute_vector() override;
+  void compute_array() override;
+  double memory_usage() override;
+
+ private:
+  tapmc::stereo::SummarySettings settings_;
+  tapmc::stereo::PlaneGrid planes_;
+  int axis_;                  // profile direction: 0 x, 1 y, 2 z
+  double fixed_radius_;       // radius keyword (> 0), or 0: per-atom radius
+  double mean_radius_;        // R used by the defaults (fixed radius or group mean at init)
+  bool radius_ready_;         // mean_radius_ computed (init, or first use before any run)
+  std::vector<int> selected_; // owned atoms of the group, rebuilt per invocation
+  std::vector<double> buffer_;
+
+  void update_mean_radius();
+  tapmc::stereo::Spheres select_spheres();
+  tapmc::stereo::Box current_box() const;
+  double reduce_surface_height(const tapmc::stereo::Spheres &, const tapmc::stereo::Box &);
+};
+
+}  // namespace LAMMPS_NS
+
+#endif
