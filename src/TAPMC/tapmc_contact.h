@@ -1,0 +1,36 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// Hard-sphere contact predicates with the relative contact tolerance (model.md, "Geometry"),
+// written once so the Monte Carlo kernel and the violation check do identical arithmetic.
+#ifndef TAPMC_CONTACT_H
+#define TAPMC_CONTACT_H
+
+namespace tapmc {
+
+// Pair overlap: |r_ij| < (R_i + R_j)(1 - tol). Squared threshold for one pair.
+inline double overlap_threshold_sq(double r_i, double r_j, double one_minus_tol)
+{
+  const double reach = (r_i + r_j) * one_minus_tol;
+  return reach * reach;
+}
+
+// Separation of j from i along one axis, with the periodic image shift of j (0 or +-L) added
+// last: sep(i, j) = -sep(j, i) exactly, so a pair tested from either side gives the same
+// squared distance, bit for bit.
+inline double separation(double x_j, double x_i, double image_shift)
+{
+  return (x_j - x_i) + image_shift;
+}
+
+// Plane constraints (floor below, side walls): the sphere's surface may reach a plane up to
+// tol * (2R) beyond it. `gap` = distance from the plane to the sphere surface (< 0: overlap).
+inline bool gap_violates(double gap, double r, double tol)
+{
+  return gap < -tol * (2.0 * r);
+}
+inline double floor_gap(double z, double r, double floor_z) { return (z - r) - floor_z; }
+inline double low_wall_gap(double x, double r, double wall) { return (x - r) - wall; }
+inline double high_wall_gap(double x, double r, double wall) { return wall - (x + r); }
+
+}  // namespace tapmc
+
+#endif

@@ -1,0 +1,93 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// The redeposition (paper, section II): downward-biased hard-sphere Monte Carlo until the mean
+// height <Z> stops changing. LAMMPS-free kernel behind fix mc/settle.
+#ifndef TAPMC_SETTLE_H
+#define TAPMC_SETTLE_H
+
+#include "tapmc_cell_grid.h"
+#include "tapmc_trial_move.h"
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace tapmc {
+
+struct SettleBox {
+  double lo[3], hi[3];          // box bounds; x, y used for periodic lengths and default walls
+  bool periodic[2];             // x, y periodic (z is never periodic: open top)
+  bool wall_lo[2], wall_hi[2];  // impassable side planes in non-periodic x / y
+  double wall_lo_pos[2], wall_hi_pos[2];  // their positions (sphere needs x - R >= wall_lo_pos)
+  double floor_z;               // impassable bottom plane: needs z - R >= floor_z
+};
+
+enum class PickOrder { Random, Sweep };  // Random: the paper (uniform pick); Sweep: memory order
+
+struct SettleParams {
+  double d_max;            // absolute step length bound, > 0
+  double theta0;           // width of P(theta), in (0, pi/2]
+  double eta;              // stop when |<Z>_now - <Z>_before| / <Z>_before < eta, > 0
+  long check_interval = 0; // trials between <Z> checks; 0 = number of movable spheres (1 sweep)
+  long max_checks;         // cap on check intervals per redeposition (reported, never silent)
+  double contact_tol;      // relative tolerance (defaults::kContactTolerance)
+  std::uint64_t seed;      // user seed
+  std::uint64_t stream;    // e.g. the LAMMPS timestep of this tap: keys the random numbers
+  PickOrder order = PickOrder::Random;
+};
+
+struct SettleResult {
+  long trials = 0, accepted = 0, checks = 0;
+  double mean_height_start = 0, mean_height = 0;  // <Z> of movable spheres above floor_z
+  bool hit_cap = false;
+  // Added: number of movable spheres, and whether the grid storage had to grow mid-run
+  // (a cell received more spheres than its slots; diagnostic only, results are unaffected).
+  long movable = 0;
+  int slot_growths = 0;
+};
+
+// j >= 0 sphere, -1 floor, -2 x wall, -3 y wall; gap < 0 = overlap depth
+struct Violation {
+  int i = -1, j = -1;
+  double gap = 0;
+};
+
+class Settler {
+ public:
+  Settler();
+  ~Settler();
+  Settler(const Settler &) = delete;
+  Settler &operator=(const Settler &) = delete;
+
+  // One complete redeposition (paper, section II) of the n spheres in xyz (interleaved x,y,z;
+  // modified in place). radius[n] per sphere (all equal -> monodisperse fast path chosen once).
+  // movable[n] nonzero = may move (nullptr = all); the others are fixed obstacles.
+  // Throws std::invalid_argument for bad parameters (message names the parameter, value, range).
+  // Precondition: no violation beyond contact_tol (the caller checks with find_violation).
+  // Movable spheres come back wrapped into [lo, hi) along periodic axes.
+  SettleResult settle(double *xyz, const double *radius, const unsigned char *movable, int n,
+                      const SettleBox &box, const SettleParams &params);
+
+  // Same, and adds to image_shift_xy[2i + d] (if not null) the number of periods sphere i was
+  // wrapped by along periodic axis d (x_unwrapped = x + image * L, LAMMPS convention), so the
+  // caller can keep image flags.
+  SettleResult settle(double *xyz, const double *radius, const unsigned char *movable, int n,
+                      const SettleBox &box, const SettleParams &params, int *image_shift_xy);
+
+  // The first violation found (overlapping pair incl. periodic images, sphere below floor or
+  // beyond a side wall, tolerance as in settle), or i == -1 when none. O(n) with a cell list.
+  static Violation find_violation(const double *xyz, const double *radius, int n,
+                                  const SettleBox &box, double contact_tol);
+
+  // Throws std::invalid_argument naming the first bad parameter (used by settle; exposed so
+  // the LAMMPS fix can validate its arguments at construction).
+  static void validate(const SettleParams &params);
+
+ private:
+  std::unique_ptr<TrialMoveSampler> sampler_;  // cached while (d_max, theta0) stay the same
+  CellGrid grid_;
+  std::vector<int> movable_ids_, image_;
+};
+
+}  // namespace tapmc
+
+#endif
