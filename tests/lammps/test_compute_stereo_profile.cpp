@@ -178,7 +178,7 @@ TEST(ComputeStereoProfile, MatchesKernelOnPerturbedPackingsWithGroupsAndWalls)
     set.lateral_width = 1.5;
     const std::vector<double> v_low = vector_of(lmp.get(), "low");
     expect_vector_matches(v_low, tapmc::stereo::summarize(snap.spheres(&low), snap.box, set));
-    for (int i : {0, 1, 4, 5}) EXPECT_GT(v_low[i], 0.3) << i;  // every zone holds spheres
+    for (int i : {0, 1, 4, 5}) EXPECT_GT(v_low[i], 0.1) << i;  // every zone holds spheres
 
     // profile along x, default window [floor + 2R, z_top] from the group's data
     tapmc::stereo::SummarySettings def;
