@@ -45,6 +45,15 @@ constexpr double kVerticalWindowBottomOverRadius = 2.0;
 // Default number of cut planes of the profile array (bins of about 0.3R for a 32R box).
 constexpr int kProfilePlanes = 100;
 
+// ---- redeposition: Monte Carlo settle kernel (tapmc_settle.h) ------------------------------
+// Cap on <Z> checks (sweeps with the default interval) per redeposition. A redeposition after
+// a tap converges in far fewer checks for any sensible eta (see kSettleEta); the cap only stops
+// a run whose eta is unreachable, and SettleResult::hit_cap reports it.
+constexpr long kSettleMaxChecks = 100000;
+// Recommended eta (no value in the paper): relative change of <Z> per sweep below which the
+// redeposition stops. Measured by bench_mc_settle (PBC, N = 4096, eps = 0.01; see the report).
+constexpr double kSettleEta = 1e-4;
+
 }  // namespace defaults
 }  // namespace tapmc
 
