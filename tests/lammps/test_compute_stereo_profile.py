@@ -1,0 +1,167 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+# compute stereo/profile run as lmp_tapmc child processes: thermo / print / fix ave/time output on
+# an FCC lattice, identical numbers on 1 and 2 MPI ranks, and every bad argument rejected.
+import math
+import re
+
+import numpy as np
+import pytest
+
+from lmprun import run_lammps
+
+FCC = math.pi / (3.0 * math.sqrt(2.0))
+
+# 4 x 4 x 8 FCC cells of side 2 (spheres at contact, R = 1/sqrt(2)), layers z = 0.2 .. 15.2 when
+# shifted; lattice points kept off the box faces so that random displacements lose no atom.
+LATTICE = """units metal
+atom_style sphere
+boundary {boundary}
+lattice fcc 2.0
+region box block 0 4 0 4 0 10
+create_box 1 box
+region latt block {region}
+create_atoms 1 region latt
+set group all diameter 1.4142135623730951
+set group all density 1.0
+"""
+
+
+def lattice(boundary="p p f", region="0 4 0 4 0 7.9"):
+    return LATTICE.format(boundary=boundary, region=region)
+
+
+def printed(out, tag):
+    """Numbers of the line `tag v1 v2 ...` written by `print`."""
+    lines = [l for l in out.splitlines() if l.startswith(tag + " ")]
+    assert lines, out[-2000:]
+    return np.array([float(v) for v in lines[-1].split()[1:]])
+
+
+def ave_time_rows(path):
+    """Last block of a fix ave/time mode vector file: rows of (index, c1, c2, ...)."""
+    with open(path) as f:
+        lines = [l for l in f.read().splitlines() if not l.startswith("#")]
+    blocks, k = [], 0
+    while k < len(lines):
+        step, nrows = (int(v) for v in lines[k].split())
+        blocks.append(np.array([[float(v) for v in l.split()] for l in lines[k + 1:k + 1 + nrows]]))
+        k += 1 + nrows
+    return blocks[-1]
+
+
+VECTOR_PRINT = 'print "VEC ' + " ".join("$(c_{id}[%d]:%%.17g)" % i for i in range(1, 8)) + '"\n'
+
+
+def test_thermo_print_and_time_average_on_fcc():
+    script = lattice() + """
+compute phi all stereo/profile floor 2.0 bulk 4.0 column 2.0
+compute pz all stereo/profile planes 2.0 10.0 4
+thermo_style custom step c_phi[1] c_phi[3]
+thermo_modify format float %.15g
+fix av all ave/time 1 1 1 c_pz[*] mode vector file prof.dat format " %.17g"
+run 0
+""" + VECTOR_PRINT.format(id="phi")
+    rc, out, wd = run_lammps(script)
+    assert rc == 0, out[-2000:]
+    # thermo line: step, Phi_b, <Z> (layers at z = 0 .. 15 above a floor at 2)
+    m = re.search(r"^\s+0\s+(\S+)\s+(\S+)\s*$", out, re.M)
+    assert m, out[-2000:]
+    assert float(m.group(1)) == pytest.approx(FCC, abs=1e-13)
+    assert float(m.group(2)) == pytest.approx(5.5, abs=1e-13)
+    vec = printed(out, "VEC")
+    assert vec[0] == pytest.approx(FCC, abs=1e-14)
+    # h_s: columns one cell wide each hold two top-layer spheres: top layer + R
+    assert vec[6] == pytest.approx(15.0 + math.sqrt(0.5), abs=1e-12)
+    assert vec[3] == pytest.approx(2.0 + 0.9 * (vec[6] - 2.0), abs=1e-12)  # z_top
+    rows = ave_time_rows(f"{wd}/prof.dat")
+    assert rows.shape == (4, 4)
+    np.testing.assert_allclose(rows[:, 1], [3.0, 5.0, 7.0, 9.0], atol=1e-14)
+    np.testing.assert_allclose(rows[:, 2], math.pi / 4.0, atol=1e-13)  # cuts through layers
+    np.testing.assert_allclose(rows[:, 3], FCC, atol=1e-13)  # bins of one period
+
+
+PERTURBED = """
+displace_atoms all random 0.15 0.15 0.15 4711 units box
+region low block INF INF INF INF INF 9.0 units box
+group low region low
+set group low diameter 1.2
+compute phi all stereo/profile floor 0.5 lateral 1.5
+compute low low stereo/profile floor 0.5 top_fraction 0.8 lateral 2.0
+compute px all stereo/profile axis x planes -0.5 8.5 30
+compute pz low stereo/profile planes 0.0 16.0 40
+thermo_style custom step c_phi[1] c_phi[2] c_phi[3] c_phi[4] c_phi[5] c_phi[6] c_phi[7] c_low[2]
+fix ax all ave/time 1 1 1 c_px[*] mode vector file px.dat format " %.17g"
+fix az all ave/time 1 1 1 c_pz[*] mode vector file pz.dat format " %.17g"
+run 0
+"""
+
+
+@pytest.mark.parametrize("boundary", ["p p f", "f f f"])
+def test_same_numbers_on_one_and_two_ranks(boundary):
+    body = lattice(boundary, "0.1 3.9 0.1 3.9 0.1 7.9") + PERTURBED
+    tail = VECTOR_PRINT.format(id="phi") + VECTOR_PRINT.format(id="low").replace("VEC", "LOW")
+    results = []
+    for nprocs, grid in [(1, "* * *"), (2, "2 1 1"), (2, "1 1 2")]:
+        rc, out, wd = run_lammps(f"processors {grid}\n" + body + tail, nprocs=nprocs)
+        assert rc == 0, out[-2000:]
+        results.append((printed(out, "VEC"), printed(out, "LOW"), ave_time_rows(f"{wd}/px.dat"),
+                        ave_time_rows(f"{wd}/pz.dat")))
+    serial = results[0]
+    assert np.all(serial[0][[0, 1, 4, 5]] > 0.1), serial[0]  # every zone holds spheres
+    assert np.all(serial[1][[0, 1, 4, 5]] > 0.1), serial[1]
+    assert serial[2][:, 3].max() > 0.3 and serial[3][:, 3].max() > 0.3
+    for parallel in results[1:]:
+        for a, b in zip(serial, parallel):
+            np.testing.assert_allclose(b, a, rtol=1e-12, atol=1e-14)
+
+
+BAD = [
+    ("compute s all stereo/profile radius 0", "radius = 0 must be > 0"),
+    ("compute s all stereo/profile radius -1.5", "radius = -1.5 must be > 0"),
+    ("compute s all stereo/profile planes 0 10 0", "planes n = 0 must be >= 1"),
+    ("compute s all stereo/profile planes 5 5 10", "planes lo = 5 must be < hi = 5"),
+    ("compute s all stereo/profile planes 6 5 10", "planes lo = 6 must be < hi = 5"),
+    ("compute s all stereo/profile bogus 3", "unknown keyword 'bogus'"),
+    ("compute s all stereo/profile window 5 3", "window za = 5 must be < zb = 3"),
+    ("compute s all stereo/profile window 4 4", "window za = 4 must be < zb = 4"),
+    ("compute s all stereo/profile top_fraction 0", "top_fraction = 0 must be in (0, 1]"),
+    ("compute s all stereo/profile top_fraction 1.5", "top_fraction = 1.5 must be in (0, 1]"),
+    ("compute s all stereo/profile top_fraction -0.2", "top_fraction = -0.2 must be in (0, 1]"),
+    ("compute s all stereo/profile axis w", "axis = w must be x, y or z"),
+    ("compute s all stereo/profile lateral 0", "lateral = 0 must be > 0"),
+    ("compute s all stereo/profile bulk -1", "bulk = -1 must be > 0"),
+    ("compute s all stereo/profile column 0", "column = 0 must be > 0"),
+    ("compute s all stereo/profile wall_factor 0", "wall_factor = 0 must be > 0"),
+    ("compute s all stereo/profile wall_band -2", "wall_band = -2 must be > 0"),
+    ("compute s all stereo/profile floor", "keyword 'floor' needs 1 value(s)"),
+    ("compute s all stereo/profile planes 0 1", "keyword 'planes' needs 3 value(s)"),
+    ("compute s all stereo/profile planes 0 1 x", "x"),
+    ("compute s all stereo/profile floor 30", "default planes 30 .. 20 are empty"),
+    ("set group all diameter 0.0\ncompute s all stereo/profile\nrun 0",
+     "per-atom radius must be > 0"),
+]
+
+
+@pytest.mark.parametrize("body,message", BAD)
+def test_bad_argument(body, message):
+    rc, out, _ = run_lammps(lattice() + body)
+    assert rc != 0
+    assert "ERROR" in out and message in out, out[-1500:]
+
+
+def test_missing_radius_with_atom_style_atomic():
+    script = lattice().replace("atom_style sphere", "atom_style atomic").replace(
+        "set group all diameter 1.4142135623730951\nset group all density 1.0\n", "mass 1 1.0\n")
+    rc, out, _ = run_lammps(script + "compute s all stereo/profile\n")
+    assert rc != 0 and "radius keyword required: atom style atomic" in out, out[-1500:]
+    # and with the radius keyword it runs
+    rc, out, _ = run_lammps(script + "compute s all stereo/profile floor 2.0 bulk 4.0 "
+                            "radius 0.70710678118654752\nthermo_style custom step c_s[1]\nrun 0\n"
+                            + VECTOR_PRINT.format(id="s"))
+    assert rc == 0, out[-1500:]
+    assert printed(out, "VEC")[0] == pytest.approx(FCC, abs=1e-14)
+
+
+def test_periodic_z_is_rejected():
+    rc, out, _ = run_lammps(lattice("p p p") + "compute s all stereo/profile\n")
+    assert rc != 0 and "z boundary must be non-periodic" in out, out[-1500:]
