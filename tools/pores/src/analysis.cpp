@@ -92,10 +92,15 @@ double PoreStatistics::mean_xi() const {
 double gotoh_p0(double sigma, double phi) {
   if (!(phi > 0 && phi < 1)) throw std::invalid_argument("gotoh_p0: phi must be in (0, 1), got " + std::to_string(phi));
   if (!(sigma >= 0)) throw std::invalid_argument("gotoh_p0: sigma must be >= 0, got " + std::to_string(sigma));
-  if (sigma <= 1.0) return 1.0 - phi * sigma * sigma * sigma;  // eq. 8
-  const double s2 = sigma * sigma, s3 = s2 * sigma;             // eq. 9
-  return (1.0 - phi) * std::exp(phi / ((1.0 - phi) * (1.0 - phi)) *
-                                (-(1.0 - 2.0 * phi) * s3 + 4.5 * phi * s2 + 1.0 - sigma));
+  if (sigma <= 1.0) return 1.0 - phi * sigma * sigma * sigma;  // eq. 8: disjoint balls
+  // sigma >= 1 (eq. 9): scaled-particle / Percus-Yevick result. -ln P0 is the cubic in
+  // t = sigma - 1 that continues eq. 8 with its value and first two derivatives at sigma = 1 and
+  // has the PY-compressibility pressure (1 + phi + phi^2) / (1 - phi)^3 as cubic coefficient
+  // (doc/tapmc-pores.rst: the copy of eq. 9 in our paper text is garbled).
+  const double t = sigma - 1.0, q = 1.0 - phi;
+  const double exponent = phi / (q * q * q) *
+                          (3.0 * q * q * t + q * (3.0 + 1.5 * phi) * t * t + (1.0 + phi + phi * phi) * t * t * t);
+  return q * std::exp(-exponent);
 }
 
 P0Statistics::P0Statistics(double sigma_max_in, std::size_t steps) : sigma_max(sigma_max_in), farther(steps, 0) {

@@ -85,7 +85,8 @@ struct PoreStatistics {
   Histogram xi, v;
 };
 
-// Gotoh's P0(sigma) in the Percus-Yevick approximation, eq. 8 (sigma <= 1) and eq. 9.
+// Gotoh's P0(sigma) in the Percus-Yevick approximation: eq. 8 (sigma <= 1) and, for sigma >= 1,
+// the scaled-particle/PY form of eq. 9 (continuous with two derivatives at sigma = 1).
 double gotoh_p0(double sigma, double phi);
 
 // Measured P0(sigma): the fraction of random points farther than sigma R from every centre.

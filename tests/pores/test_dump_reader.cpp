@@ -1,0 +1,158 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// Dump reader: column orders, coordinate styles, gzip, many frames, and every bad input refused
+// with the file, frame and line in the message.
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+#include <cstdio>
+#include <string>
+
+#include "tapmc_pores/dump_reader.h"
+
+namespace {
+
+using tapmc::pores::DumpError;
+using tapmc::pores::DumpReader;
+using tapmc::pores::Frame;
+
+std::string frame_text(long step, const std::string& bounds_flags, const std::string& columns,
+                       const std::vector<std::string>& atoms, const std::string& bounds = "0 4\n0 4\n0 4\n") {
+  std::string s = "ITEM: TIMESTEP\n" + std::to_string(step) + "\nITEM: NUMBER OF ATOMS\n" + std::to_string(atoms.size()) +
+                  "\nITEM: BOX BOUNDS " + bounds_flags + "\n" + bounds + "ITEM: ATOMS " + columns + "\n";
+  for (const auto& a : atoms) s += a + "\n";
+  return s;
+}
+
+Frame read_one(const std::string& text) {
+  DumpReader reader = DumpReader::from_memory(text, "mem.dump");
+  Frame f;
+  EXPECT_TRUE(reader.next(f));
+  return f;
+}
+
+// The message must name the file, the frame and the expected line.
+void expect_error(const std::string& text, std::size_t line, const std::string& fragment) {
+  DumpReader reader = DumpReader::from_memory(text, "bad.dump");
+  Frame f;
+  try {
+    while (reader.next(f)) {
+    }
+    ADD_FAILURE() << "no error for input containing: " << fragment;
+  } catch (const DumpError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(e.line(), line) << what;
+    EXPECT_NE(what.find("bad.dump:" + std::to_string(line)), std::string::npos) << what;
+    EXPECT_NE(what.find("frame "), std::string::npos) << what;
+    EXPECT_NE(what.find(fragment), std::string::npos) << what;
+  }
+}
+
+TEST(PoreDumpReader, AnyColumnOrderAndRadius) {
+  const Frame f = read_one(frame_text(7, "pp pp ff", "radius z type y id x",
+                                      {"0.5 1.5 1 2.5 10 3.5", "0.5 3 1 1 4 0.5"}));
+  EXPECT_EQ(f.timestep, 7);
+  ASSERT_EQ(f.size(), 2u);
+  EXPECT_EQ(f.ids[0], 10);
+  EXPECT_EQ(f.ids[1], 4);
+  EXPECT_DOUBLE_EQ(f.xyz[0], 3.5);
+  EXPECT_DOUBLE_EQ(f.xyz[1], 2.5);
+  EXPECT_DOUBLE_EQ(f.xyz[2], 1.5);
+  EXPECT_EQ(f.radius, (std::vector<double>{0.5, 0.5}));
+  EXPECT_TRUE(f.box.periodic[0] && f.box.periodic[1] && !f.box.periodic[2]);
+  EXPECT_EQ(f.first_atom_line, 10u);
+}
+
+TEST(PoreDumpReader, CoordinateStylesAreWrappedIntoThePeriodicBox) {
+  // Box [-2, 2]^3: scaled 0.75 -> 1; unwrapped 5 -> 1 (periodic); scaled unwrapped 1.25 -> -1.
+  for (const auto& [columns, line] : std::vector<std::pair<std::string, std::string>>{
+           {"id xs ys zs", "1 0.75 0.75 0.75"}, {"id xu yu zu", "1 5 5 5"}, {"id xsu ysu zsu", "1 0.75 1.75 -0.25"}}) {
+    const Frame f = read_one(frame_text(0, "pp pp pp", columns, {line}, "-2 2\n-2 2\n-2 2\n"));
+    for (int d = 0; d < 3; ++d) EXPECT_NEAR(f.xyz[d], 1.0, 1e-12) << columns;
+  }
+  const Frame d = read_one(frame_text(0, "pp pp pp", "id x y z diameter", {"1 1 1 1 2.0"}));
+  EXPECT_EQ(d.radius, std::vector<double>{1.0});
+}
+
+TEST(PoreDumpReader, ManyFramesTimeUnitsAndOldDumpAtom) {
+  std::string text = "ITEM: UNITS\nlj\nITEM: TIME\n0.5\n" + frame_text(0, "pp pp pp", "id type x y z", {"1 1 1 1 1"}) +
+                     "\n" + frame_text(100, "pp pp pp", "id type x y z", {"1 1 2 2 2", "2 1 3 3 3"});
+  // Old 'dump atom' without column names and without boundary flags (periodicity given).
+  text += "ITEM: TIMESTEP\n200\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS\n0 4\n0 4\n0 4\nITEM: ATOMS\n1 1 0.5 0.5 0.5\n";
+  tapmc::pores::ReaderOptions options;
+  options.override_periodic = true;
+  DumpReader reader = DumpReader::from_memory(text, "multi.dump", options);
+  Frame f;
+  std::vector<long long> steps;
+  while (reader.next(f)) steps.push_back(f.timestep);
+  EXPECT_EQ(steps, (std::vector<long long>{0, 100, 200}));
+  EXPECT_DOUBLE_EQ(f.xyz[0], 2.0);  // scaled 0.5 in [0, 4]
+  EXPECT_EQ(f.index, 3u);
+}
+
+TEST(PoreDumpReader, GzipAndPlainFilesReadAlike) {
+  const std::string text = frame_text(5, "pp pp pp", "id x y z", {"1 1 1 1", "2 2 2 2"}) +
+                           frame_text(6, "pp pp pp", "id x y z", {"1 1 1 1", "2 3 2 2"});
+  const std::string plain = ::testing::TempDir() + "pores_plain.dump", packed = ::testing::TempDir() + "pores_packed.dump.gz";
+  {
+    FILE* out = std::fopen(plain.c_str(), "w");
+    std::fwrite(text.data(), 1, text.size(), out);
+    std::fclose(out);
+    gzFile gz = gzopen(packed.c_str(), "wb");
+    gzwrite(gz, text.data(), static_cast<unsigned>(text.size()));
+    gzclose(gz);
+  }
+  for (const std::string& path : {plain, packed}) {
+    DumpReader reader = DumpReader::open(path);
+    Frame f;
+    std::vector<double> x;
+    while (reader.next(f)) x.push_back(f.xyz[3]);
+    EXPECT_EQ(x, (std::vector<double>{2.0, 3.0})) << path;
+  }
+  EXPECT_THROW(DumpReader::open(::testing::TempDir() + "no_such_file.dump"), DumpError);
+  std::remove(plain.c_str());
+  std::remove(packed.c_str());
+}
+
+TEST(PoreDumpReader, BadInputNamesFileFrameAndLine) {
+  const std::string good = frame_text(0, "pp pp pp", "id x y z", {"1 1 1 1", "2 2 2 2"});
+  // Truncated frame: 3 atoms announced, 2 present (the file ends).
+  expect_error(frame_text(0, "pp pp pp", "id x y z", {"1 1 1 1", "2 2 2 2"}).replace(39, 1, "3"), 11, "truncated");
+  // Truncated frame followed by the next frame.
+  expect_error(good.substr(0, good.size() - 8) + good, 11, "truncated");
+  expect_error(frame_text(0, "pp pp pp", "id x y z", {"1 1 1 1", "2 2 abc 2"}), 11, "non-numeric");
+  expect_error(frame_text(0, "pp pp pp", "id x y z", {"1 1 1 1", "2 2 nan 2"}), 11, "non-finite");
+  expect_error(frame_text(0, "pp pp pp", "id x y z", {"1 1 1 1", "2 2 inf 2"}), 11, "non-finite");
+  expect_error(frame_text(0, "pp pp pp", "id type x y", {"1 1 1 1"}), 9, "no z coordinate");
+  expect_error(frame_text(0, "pp pp pp", "id x y z", {}), 4, "zero atoms");
+  expect_error(frame_text(0, "pp pp pp", "id x y z", {"1 1 1 1", "1 2 2 2"}), 11, "duplicate atom id 1");
+  expect_error(frame_text(0, "pp pp ff", "id x y z", {"1 1 1 1", "2 2 2 4.5"}), 11, "outside the non-periodic box");
+  expect_error(frame_text(0, "xy xz yz pp pp pp", "id x y z", {"1 1 1 1"}, "0 4 0\n0 4 0\n0 4 0\n"), 5, "triclinic");
+  expect_error(frame_text(0, "pp pp pp", "id x y z", {"1 1 1 1"}, "0 4 0.5\n0 4 0\n0 4 0\n"), 6, "triclinic");
+  expect_error(frame_text(0, "pp pp pp", "id x y z", {"1 1 1 1", "2 2 2"}), 11, "fields");
+  expect_error(frame_text(0, "pp pp pp", "id x y z", {"1.5 1 1 1"}), 10, "atom id");
+  expect_error(frame_text(0, "pp pp pp", "id x y z radius", {"1 1 1 1 -0.5"}), 10, "radius must be positive");
+  expect_error(frame_text(0, "pp pp pp", "id x y z", {"1 1 1 1"}, "0 4\n4 0\n0 4\n"), 7, "lo < hi");
+  expect_error("ITEM: TIMESTEP\nten\n", 2, "timestep");
+  expect_error("ITEM: TIMESTEP\n", 1, "file ends");
+  expect_error("garbage\n", 1, "expected an 'ITEM:'");
+  expect_error(good + "ITEM: TIMESTEP\n1\nITEM: NUMBER OF ATOMS\n", 14, "file ends");
+  expect_error(good + "ITEM: TIMESTEP\n1\nITEM: NUMBER OF ATOMS\n1\n", 15, "before 'ITEM: ATOMS'");
+  expect_error("ITEM: TIMESTEP\n1\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS\n0 1\n0 1\n0 1\n", 5, "--boundary");
+}
+
+TEST(PoreDumpReader, ErrorsReportTheFrameNumber) {
+  const std::string good = frame_text(0, "pp pp pp", "id x y z", {"1 1 1 1"});
+  DumpReader reader = DumpReader::from_memory(good + good + frame_text(20, "pp pp pp", "id x y z", {"1 1 x 1"}), "f.dump");
+  Frame f;
+  try {
+    while (reader.next(f)) {
+    }
+    FAIL();
+  } catch (const DumpError& e) {
+    EXPECT_EQ(e.frame(), 3u);
+    EXPECT_EQ(e.line(), 30u);
+    EXPECT_NE(std::string(e.what()).find("timestep 20"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
