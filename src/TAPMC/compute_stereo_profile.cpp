@@ -15,7 +15,6 @@
 
 #include "tapmc_defaults.h"
 
-#include <cstring>
 #include <limits>
 #include <mpi.h>
 #include <stdexcept>

@@ -2,6 +2,7 @@
 # compute stereo/profile run as lmp_tapmc child processes: thermo / print / fix ave/time output on
 # an FCC lattice, identical numbers on 1 and 2 MPI ranks, and every bad argument rejected.
 import math
+import os
 import re
 
 import numpy as np
@@ -165,3 +166,18 @@ def test_missing_radius_with_atom_style_atomic():
 def test_periodic_z_is_rejected():
     rc, out, _ = run_lammps(lattice("p p p") + "compute s all stereo/profile\n")
     assert rc != 0 and "z boundary must be non-periodic" in out, out[-1500:]
+
+
+def test_doc_examples_run():
+    """The Examples block of doc/compute_stereo_profile.rst runs as written."""
+    doc = os.path.join(os.environ.get("TAPMC_SOURCE_DIR", "../.."), "doc",
+                       "compute_stereo_profile.rst")
+    with open(doc) as f:
+        text = f.read()
+    block = text.split("Examples\n\"\"\"\"\"\"\"\"")[1].split("Description\n")[0]
+    commands = [l.strip() for l in block.splitlines() if l.startswith("   ") and l.strip()]
+    assert len(commands) >= 5 and all("stereo/profile" in c or "c_" in c for c in commands)
+    rc, out, wd = run_lammps(lattice() + "\n".join(commands) + "\nrun 0\n")
+    assert rc == 0, out[-1500:]
+    for name in ("profile_z.dat", "profile_x.dat"):
+        assert os.path.getsize(os.path.join(wd, name)) > 0
