@@ -5,6 +5,7 @@
 #include "tapmc_contact.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -283,6 +284,11 @@ struct SettleRun {
   long sweep_cursor = 0, accepted = 0, checks = 0;
   double sum_height = 0.0, previous_mean = 0.0;
   bool converged = false, hit_cap = false;
+  // Trial draws are made ahead in batches (lane-parallel random numbers); the batch holds
+  // trials batch_first .. batch_first + batch_count - 1 and survives a re-dispatch.
+  std::array<TrialDraw, TrialMoveSampler::kBatchMax> batch{};
+  std::uint64_t batch_first = 0;
+  int batch_count = 0;
 };
 
 enum class RunStatus { Finished, Regrown };
@@ -300,7 +306,13 @@ RunStatus run_trials(SettleRun &run, CellGrid &grid, const std::vector<int> &mov
   for (;;) {
     while (run.trial < run.next_check) {
       const std::uint64_t t = run.trial++;
-      const TrialDraw draw = run.sampler->draw(run.rng, t, n_pick);
+      if (t - run.batch_first >= static_cast<std::uint64_t>(run.batch_count)) {
+        run.batch_first = t;
+        run.batch_count = static_cast<int>(std::min<std::uint64_t>(
+            TrialMoveSampler::kBatchMax, run.next_check - t));
+        run.sampler->draw_batch(run.rng, t, run.batch_count, n_pick, run.batch.data());
+      }
+      const TrialDraw &draw = run.batch[t - run.batch_first];
       long k;
       if (n_pick) {
         k = draw.pick;

@@ -76,7 +76,17 @@ double ThetaSampler::exp_fraction() const
   return sum / kStrips;
 }
 
-TrialMoveSampler::TrialMoveSampler(double d_max, double theta0) : d_max_(d_max), theta_(theta0)
+SinCosTable::SinCosTable(double range) : step_(range / kNodes), inv_step_(kNodes / range)
+{
+  for (int j = 0; j <= kNodes; ++j) {
+    node_[j] = j * step_;
+    sin_[j] = std::sin(node_[j]);
+    cos_[j] = std::cos(node_[j]);
+  }
+}
+
+TrialMoveSampler::TrialMoveSampler(double d_max, double theta0)
+    : d_max_(d_max), theta_(theta0), phi_table_(kTwoPi), theta_table_(ThetaSampler::kThetaMax)
 {
   if (!(d_max > 0.0 && std::isfinite(d_max)))
     throw std::invalid_argument("d_max = " + number(d_max) +
@@ -86,30 +96,9 @@ TrialMoveSampler::TrialMoveSampler(double d_max, double theta0) : d_max_(d_max),
 namespace {
 
 // Positions within one trial's slice of the stream.
-constexpr std::uint64_t kMainDraw = 0;        // pick, d, phi, theta strip
-constexpr std::uint64_t kFirstThetaDraw = 1;  // two (position, accept) pairs per block
-constexpr std::uint64_t kFirstPickDraw = 128; // fresh words for the rare pick rejection
-
-double sample_theta(const ThetaSampler &sampler, const CounterRandom &rng, std::uint64_t base,
-                    std::uint32_t strip_word)
-{
-  std::uint64_t attempt = 0;
-  RandomBlock block{};
-  return sampler.sample(strip_word, [&](std::uint32_t &w_pos, std::uint32_t &w_accept) {
-    const std::uint64_t draw = kFirstThetaDraw + attempt / 2;
-    if (draw >= kFirstPickDraw)  // needs > 250 consecutive rejections
-      throw std::runtime_error("theta sampler exhausted its random draws (impossible odds)");
-    if (attempt % 2 == 0) {
-      block = rng.block(base + draw);
-      w_pos = block[0];
-      w_accept = block[1];
-    } else {
-      w_pos = block[2];
-      w_accept = block[3];
-    }
-    ++attempt;
-  });
-}
+constexpr std::uint64_t kMainDraw = 0;         // pick, d, phi, theta strip
+constexpr std::uint64_t kFirstThetaDraw = 1;   // two (position, accept) pairs per block
+constexpr std::uint64_t kFirstPickDraw = 128;  // fresh words for the rare pick rejection
 
 std::uint32_t sample_pick(const CounterRandom &rng, std::uint64_t base, std::uint32_t first_word,
                           std::uint32_t n_pick)
@@ -126,22 +115,74 @@ std::uint32_t sample_pick(const CounterRandom &rng, std::uint64_t base, std::uin
 
 }  // namespace
 
+double TrialMoveSampler::theta_from(const CounterRandom &rng, std::uint64_t trial,
+                                    std::uint32_t strip_word, const RandomBlock &theta_first) const
+{
+  const std::uint64_t base = trial * kDrawsPerTrial;
+  std::uint64_t attempt = 0;
+  RandomBlock block = theta_first;
+  return theta_.sample(strip_word, [&](std::uint32_t &w_pos, std::uint32_t &w_accept) {
+    const std::uint64_t draw = kFirstThetaDraw + attempt / 2;
+    if (draw >= kFirstPickDraw)  // needs > 250 consecutive rejections
+      throw std::runtime_error("theta sampler exhausted its random draws (impossible odds)");
+    if (attempt % 2 == 0) {
+      if (attempt > 0) block = rng.block(base + draw);
+      w_pos = block[0];
+      w_accept = block[1];
+    } else {
+      w_pos = block[2];
+      w_accept = block[3];
+    }
+    ++attempt;
+  });
+}
+
+TrialDraw TrialMoveSampler::finish(const CounterRandom &rng, std::uint64_t trial,
+                                   std::uint32_t n_pick, const RandomBlock &main,
+                                   const RandomBlock &theta_first) const
+{
+  TrialDraw out{};
+  out.pick = n_pick ? sample_pick(rng, trial * kDrawsPerTrial, main[0], n_pick) : 0u;
+  const double d = d_max_ * uniform_open_from_u32(main[1]);
+  // phi = 2 pi main[2] / 2^32 = sector (top 8 bits) + offset (low 24 bits), both exact.
+  const int sector = static_cast<int>(main[2] >> 24);
+  const double phi_offset = static_cast<double>(main[2] & 0xFFFFFFu) * (kTwoPi * 0x1.0p-32);
+  double sin_phi, cos_phi, sin_theta, cos_theta;
+  phi_table_.rotate(sector, phi_offset, sin_phi, cos_phi);
+  theta_table_.sincos(theta_from(rng, trial, main[3], theta_first), sin_theta, cos_theta);
+  // theta <= pi/2, so cos(theta) >= 0 up to rounding (~1e-17 at pi/2): the clamp keeps
+  // dz <= 0 exactly, moves never go up.
+  const double d_sin = d * sin_theta;
+  out.move.dx = d_sin * cos_phi;
+  out.move.dy = d_sin * sin_phi;
+  out.move.dz = -d * std::max(cos_theta, 0.0);
+  return out;
+}
+
 TrialDraw TrialMoveSampler::draw(const CounterRandom &rng, std::uint64_t trial,
                                  std::uint32_t n_pick) const
 {
   const std::uint64_t base = trial * kDrawsPerTrial;
-  const RandomBlock main = rng.block(base + kMainDraw);
-  TrialDraw out{};
-  out.pick = n_pick ? sample_pick(rng, base, main[0], n_pick) : 0u;
-  const double d = d_max_ * uniform_open_from_u32(main[1]);
-  const double phi = kTwoPi * uniform_from_u32(main[2]);
-  const double theta = sample_theta(theta_, rng, base, main[3]);
-  // theta <= pi/2 (rounded down) keeps cos(theta) >= 0, so dz <= 0: moves never go up.
-  const double d_sin = d * std::sin(theta);
-  out.move.dx = d_sin * std::cos(phi);
-  out.move.dy = d_sin * std::sin(phi);
-  out.move.dz = -d * std::cos(theta);
-  return out;
+  return finish(rng, trial, n_pick, rng.block(base + kMainDraw), rng.block(base + kFirstThetaDraw));
+}
+
+void TrialMoveSampler::draw_batch(const CounterRandom &rng, std::uint64_t first, int count,
+                                  std::uint32_t n_pick, TrialDraw *out) const
+{
+  if (count < 0 || count > kBatchMax)
+    throw std::invalid_argument("draw_batch count = " + std::to_string(count) +
+                                " is outside the allowed range [0, " +
+                                std::to_string(kBatchMax) + "]");
+  std::uint64_t positions[2 * kBatchMax];
+  RandomBlock blocks[2 * kBatchMax];
+  for (int k = 0; k < count; ++k) {
+    const std::uint64_t base = (first + k) * kDrawsPerTrial;
+    positions[k] = base + kMainDraw;
+    positions[count + k] = base + kFirstThetaDraw;
+  }
+  rng.blocks(positions, 2 * count, blocks);
+  for (int k = 0; k < count; ++k)
+    out[k] = finish(rng, first + k, n_pick, blocks[k], blocks[count + k]);
 }
 
 TrialMoveSampler::Polar TrialMoveSampler::draw_polar(const CounterRandom &rng,
@@ -152,7 +193,7 @@ TrialMoveSampler::Polar TrialMoveSampler::draw_polar(const CounterRandom &rng,
   Polar out{};
   out.d = d_max_ * uniform_open_from_u32(main[1]);
   out.phi = kTwoPi * uniform_from_u32(main[2]);
-  out.theta = sample_theta(theta_, rng, base, main[3]);
+  out.theta = theta_from(rng, trial, main[3], rng.block(base + kFirstThetaDraw));
   return out;
 }
 
