@@ -149,7 +149,7 @@ RadiusCheck common_radius(const Frame& frame, double fallback, double tolerance)
   RadiusCheck check;
   if (frame.radius.empty()) {
     if (!(fallback > 0))
-      throw std::invalid_argument("the dump has no radius or diameter column: give the sphere radius with --radius");
+      throw RadiusError("the dump has no radius or diameter column: give the sphere radius with --radius", 0);
     check.radius = fallback;
     return check;
   }
@@ -163,12 +163,12 @@ RadiusCheck common_radius(const Frame& frame, double fallback, double tolerance)
     what << "polydisperse input: radii from " << *min_it << " (atom " << frame.ids[check.index_min] << ") to "
          << *max_it << " (atom " << frame.ids[check.index_max]
          << "); the tangent-sphere pore (xi = r/R) is defined for equal spheres only";
-    throw std::invalid_argument(what.str());
+    throw RadiusError(what.str(), check.index_max);
   }
   check.radius = mean;
   if (fallback > 0 && std::abs(fallback - mean) > tolerance * mean) {
     what << "--radius " << fallback << " disagrees with the dump's radius column (" << mean << ")";
-    throw std::invalid_argument(what.str());
+    throw RadiusError(what.str(), 0);
   }
   return check;
 }

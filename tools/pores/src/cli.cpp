@@ -308,8 +308,8 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
         RadiusCheck radius;
         try {
           radius = common_radius(frame, o.radius);
-        } catch (const std::invalid_argument& e) {
-          throw std::runtime_error(where(frame.first_atom_line + radius.index_max) + e.what());
+        } catch (const RadiusError& e) {
+          throw std::runtime_error(where(frame.first_atom_line + e.index) + e.what());
         }
         PoreOptions pore_options = o.pores;
         pore_options.radius = radius.radius;

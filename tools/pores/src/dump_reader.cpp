@@ -160,7 +160,7 @@ Columns assign_columns(const std::vector<std::string>& names, std::string& probl
 // ---- reader ---------------------------------------------------------------------------------
 DumpReader::DumpReader(std::unique_ptr<ByteSource> source, std::string name,
                        const ReaderOptions& options)
-    : source_(std::move(source)), name_(std::move(name)), options_(options), buffer_(1 << 20) {}
+    : source_(std::move(source)), name_(std::move(name)), options_(options), buffer_(1 << 16) {}
 DumpReader::DumpReader(DumpReader&&) noexcept = default;
 DumpReader& DumpReader::operator=(DumpReader&&) noexcept = default;
 DumpReader::~DumpReader() = default;

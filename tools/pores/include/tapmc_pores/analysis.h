@@ -7,6 +7,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "tapmc_pores/dump_reader.h"
@@ -108,11 +110,16 @@ struct P0Statistics {
 std::vector<double> random_points(const Region& region, std::size_t count, std::uint64_t seed, std::uint64_t stream);
 
 // Radius of a monodisperse frame: the radius column's common value, or `fallback` (> 0) when the
-// dump has none. Throws std::invalid_argument with the two extreme atoms when polydisperse, or
+// dump has none. Throws RadiusError with the two extreme atoms when polydisperse, or
 // when the column disagrees with a given fallback.
 struct RadiusCheck {
   double radius = 0.0;
   std::size_t index_min = 0, index_max = 0;  // extreme atoms (for messages)
+};
+class RadiusError : public std::invalid_argument {
+ public:
+  RadiusError(const std::string& what, std::size_t index) : std::invalid_argument(what), index(index) {}
+  std::size_t index;  // the atom (input position) the message is about
 };
 RadiusCheck common_radius(const Frame& frame, double fallback, double tolerance = config::kPolydisperseTolerance);
 

@@ -1,0 +1,76 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+# Shared helpers of the pore-tool pytest files: random packings, dump writing, running the tool.
+import gzip
+import os
+import subprocess
+
+import numpy as np
+
+EXE = os.environ.get("TAPMC_PORES_EXE", "tapmc-pores")
+
+
+def random_packing(n, side, periodic, seed, radius=0.5):
+    """Random sequential addition of n hard spheres in [0, side)^3 (brute force, small n)."""
+    rng = np.random.default_rng(seed)
+    lo = np.where(periodic, 0.0, radius)
+    hi = np.where(periodic, side, side - radius)
+    centres = np.empty((0, 3))
+    attempts = 0
+    while len(centres) < n:
+        attempts += 1
+        assert attempts < 10**6, "packing too dense for RSA"
+        c = lo + (hi - lo) * rng.random(3)
+        d = centres - c
+        for k in range(3):
+            if periodic[k]:
+                d[:, k] -= side * np.round(d[:, k] / side)
+        if len(centres) == 0 or np.min(np.einsum("ij,ij->i", d, d)) >= (2 * radius) ** 2:
+            centres = np.vstack([centres, c])
+    return centres
+
+
+def dump_text(centres, side, periodic, timestep=0, radius=0.5, columns="id type x y z radius", ids=None):
+    flags = " ".join("pp" if p else "ff" for p in periodic)
+    ids = np.arange(1, len(centres) + 1) if ids is None else ids
+    lines = ["ITEM: TIMESTEP", str(timestep), "ITEM: NUMBER OF ATOMS", str(len(centres)),
+             "ITEM: BOX BOUNDS " + flags] + [f"0 {side!r}"] * 3 + ["ITEM: ATOMS " + columns]
+    for i, c in zip(ids, centres):
+        values = {"id": str(i), "type": "1", "x": repr(c[0]), "y": repr(c[1]), "z": repr(c[2]),
+                  "radius": repr(radius), "diameter": repr(2 * radius)}
+        for k, axis in enumerate("xyz"):
+            values[axis + "u"] = values[axis]
+            values[axis + "s"] = repr(c[k] / side)
+        lines.append(" ".join(values[name] for name in columns.split()))
+    return "\n".join(lines) + "\n"
+
+
+def write(path, text):
+    if str(path).endswith(".gz"):
+        with gzip.open(path, "wt") as f:
+            f.write(text)
+    else:
+        with open(path, "w") as f:
+            f.write(text)
+    return str(path)
+
+
+def run(*args, cwd=None):
+    return subprocess.run([EXE, *map(str, args)], capture_output=True, text=True, cwd=cwd, timeout=600)
+
+
+def read_csv(path):
+    """CSV with '#' comment lines -> dict of column name -> numpy array (numbers) or list."""
+    with open(path) as f:
+        rows = [line.rstrip("\n") for line in f if not line.startswith("#")]
+    header = rows[0].split(",")
+    table = {h: [] for h in header}
+    for row in rows[1:]:
+        for h, v in zip(header, row.split(",")):
+            table[h].append(v)
+    out = {}
+    for h, values in table.items():
+        try:
+            out[h] = np.array([float(v) if v != "" else np.nan for v in values])
+        except ValueError:
+            out[h] = values
+    return out
