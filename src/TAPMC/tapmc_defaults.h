@@ -54,6 +54,31 @@ constexpr long kSettleMaxChecks = 100000;
 // redeposition stops. Measured by bench_mc_settle (PBC, N = 4096, eps = 0.01; see the report).
 constexpr double kSettleEta = 1e-4;
 
+// ---- initial packing: create_packing, sequential deposition (Jullien & Meakin 1987) ---------
+// A sphere or plane counts as touching (a possible support) when its gap is below this fraction
+// of the contact distance: well above the ~1e-15 rounding of analytically computed contact
+// points, well below any real gap. The tests identify supports with the same number.
+constexpr double kDepositionSupportTolerance = 1e-9;
+// Sign tolerance of the dimensionless support forces (gravity = 1) and of the slope of the
+// descent direction against a touching normal: rounding sits near 1e-15.
+constexpr double kDepositionForceTolerance = 1e-10;
+// Below this length of the (unit-gravity) descent direction the sphere is at an equilibrium;
+// an unstable one (on top of a sphere or of a ridge) is left in a random direction.
+constexpr double kDepositionEquilibriumTolerance = 1e-10;
+// Angle (radians) within which a touching constraint is taken as being left, not entered,
+// along a roll: a contact grazed at 1e-16 relative gap is left within ~1e-8 rad.
+constexpr double kDepositionAngleTolerance = 1e-7;
+// Cap on path pieces per drop (a drop takes about 3 to 10): beyond it the drop restarts from a
+// fresh random (x, y), so a degenerate geometry never loops forever.
+constexpr int kDepositionMaxSegments = 1000;
+// Drops per sphere before it is left where it stopped (non-overlapping) and counted unresolved.
+constexpr int kDepositionMaxAttempts = 8;
+// Bulk window of create_packing's reported packing fraction: this many mean radii away from the
+// floor (wall layering decays within about 3 diameters) and from the mean surface height.
+constexpr double kDepositionBulkMarginOverRadius = 6.0;
+// Mass density given to created spheres (rmass = density * 4/3 pi r^3), as create_atoms does.
+constexpr double kDepositionDensity = 1.0;
+
 }  // namespace defaults
 }  // namespace tapmc
 

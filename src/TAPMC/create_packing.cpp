@@ -1,0 +1,326 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// create_packing: runs the deposition kernel on every rank, creates each rank's own atoms.
+#include "create_packing.h"
+
+#include "lammps_compat.h"
+#include "tapmc_defaults.h"
+#include "tapmc_deposition.h"
+
+#include "atom.h"
+#include "atom_vec.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "irregular.h"
+#include "region.h"
+#include "utils.h"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <mpi.h>
+#include <string>
+
+using namespace LAMMPS_NS;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Boundary codes of Domain::boundary[dim][side].
+constexpr int kBoundaryFixed = 1;
+
+// Region lookup across the LAMMPS API change of 24 Mar 2022 (candidate for lammps_compat.h).
+Region *find_region_by_id(Domain *domain, const std::string &id)
+{
+#if TAPMC_LAMMPS_NEW_API
+  return domain->get_region_by_id(id);
+#else
+  const int index = domain->find_region(id);
+  return index < 0 ? nullptr : domain->regions[index];
+#endif
+}
+
+struct Options {
+  double floor_z = 0.0;
+  bool floor_given = false;
+  std::string region_id;
+  bool walls_given = false;
+  bool walls_x = false, walls_y = false;
+  double dispersity = 0.0;
+  double density = tapmc::defaults::kDepositionDensity;
+};
+
+// Ownership of a point by this rank: half-open sub-domain intervals, the outermost sub-domains
+// extended to infinity so that every point (also at a rounding distance outside the box, or
+// above a shrink-wrapped top) has exactly one owner.
+struct SubDomain {
+  double lo[3], hi[3];
+  bool open_lo[3], open_hi[3];
+  bool owns(const double *x) const
+  {
+    for (int d = 0; d < 3; ++d) {
+      if (!open_lo[d] && x[d] < lo[d]) return false;
+      if (!open_hi[d] && x[d] >= hi[d]) return false;
+    }
+    return true;
+  }
+};
+
+SubDomain my_subdomain(Domain *domain, Comm *comm)
+{
+  SubDomain s;
+  for (int d = 0; d < 3; ++d) {
+    s.lo[d] = domain->sublo[d];
+    s.hi[d] = domain->subhi[d];
+    if (comm->layout != Comm::LAYOUT_TILED) {
+      s.open_lo[d] = comm->myloc[d] == 0;
+      s.open_hi[d] = comm->myloc[d] == comm->procgrid[d] - 1;
+    } else {
+      s.open_lo[d] = comm->mysplit[d][0] == 0.0;
+      s.open_hi[d] = comm->mysplit[d][1] == 1.0;
+    }
+  }
+  return s;
+}
+
+}  // namespace
+
+void CreatePacking::command(int narg, char **arg)
+{
+  const char *usage = "create_packing N type R seed [floor z0] [region ID] "
+                      "[walls x y|x|y|none] [dispersity W] [density rho]";
+  if (!domain->box_exist)
+    error->all(FLERR, "create_packing: no simulation box yet; define one with create_box or "
+               "read_data first");
+  if (narg < 4)
+    error->all(FLERR, "create_packing: expected '{}', got {} argument(s)", usage, narg);
+  if (!atom->radius_flag || !atom->rmass_flag)
+    error->all(FLERR, "create_packing: the atom style has no per-atom radius and mass; use "
+               "atom_style sphere");
+  if (domain->dimension != 3)
+    error->all(FLERR, "create_packing: needs a 3d simulation (dimension 3)");
+  if (domain->triclinic)
+    error->all(FLERR, "create_packing: triclinic boxes are not supported; use an orthogonal box");
+  if (domain->zperiodic)
+    error->all(FLERR, "create_packing: the z boundary is periodic; the deposit needs a floor "
+               "and an open top: use e.g. 'boundary p p fm' or 'boundary f f fs'");
+
+  const bigint n_spheres = utils::bnumeric(FLERR, arg[0], false, lmp);
+  if (n_spheres <= 0 || n_spheres > std::numeric_limits<int>::max() - 1)
+    error->all(FLERR, "create_packing: N = {} must be a number of spheres in [1, 2^31 - 2]",
+               arg[0]);
+  const int type = utils::inumeric(FLERR, arg[1], false, lmp);
+  if (type < 1 || type > atom->ntypes)
+    error->all(FLERR, "create_packing: type = {} must be an atom type in [1, {}]", arg[1],
+               atom->ntypes);
+  const double radius = utils::numeric(FLERR, arg[2], false, lmp);
+  if (!(radius > 0.0) || !std::isfinite(radius))
+    error->all(FLERR, "create_packing: R = {} must be a positive sphere radius", arg[2]);
+  const int seed = utils::inumeric(FLERR, arg[3], false, lmp);
+  if (seed <= 0)
+    error->all(FLERR, "create_packing: seed = {} must be a positive integer", arg[3]);
+
+  Options opt;
+  for (int iarg = 4; iarg < narg;) {
+    const std::string key = arg[iarg];
+    if (key == "walls") {
+      opt.walls_given = true;
+      int used = 0;
+      for (int k = iarg + 1; k < narg && k <= iarg + 2; ++k) {
+        const std::string v = arg[k];
+        if (v == "x") opt.walls_x = true;
+        else if (v == "y") opt.walls_y = true;
+        else if (v == "none" && used == 0) { ++used; break; }
+        else break;
+        ++used;
+      }
+      if (used == 0)
+        error->all(FLERR, "create_packing: walls needs 'x', 'y', 'x y' or 'none'");
+      iarg += 1 + used;
+      continue;
+    }
+    if (iarg + 1 >= narg) error->all(FLERR, "create_packing: keyword '{}' needs a value", key);
+    const char *value = arg[iarg + 1];
+    if (key == "floor") {
+      opt.floor_z = utils::numeric(FLERR, value, false, lmp);
+      opt.floor_given = true;
+    } else if (key == "region") {
+      opt.region_id = value;
+    } else if (key == "dispersity") {
+      opt.dispersity = utils::numeric(FLERR, value, false, lmp);
+      if (!(opt.dispersity >= 0.0 && opt.dispersity < 1.0))
+        error->all(FLERR, "create_packing: dispersity = {} must be in [0, 1) (radii uniform in "
+                   "[R(1 - W), R(1 + W)])", value);
+    } else if (key == "density") {
+      opt.density = utils::numeric(FLERR, value, false, lmp);
+      if (!(opt.density > 0.0))
+        error->all(FLERR, "create_packing: density = {} must be > 0", value);
+    } else {
+      error->all(FLERR, "create_packing: unknown keyword '{}' (allowed: floor, region, walls, "
+                 "dispersity, density)", key);
+    }
+    iarg += 2;
+  }
+
+  // ---- the deposition domain: x-y extent, side conditions, floor and top ----
+  double lo[3] = {domain->boxlo[0], domain->boxlo[1], domain->boxlo[2]};
+  double hi[3] = {domain->boxhi[0], domain->boxhi[1], domain->boxhi[2]};
+  const bool top_fixed = domain->boundary[2][1] == kBoundaryFixed;
+  double z_top = top_fixed ? domain->boxhi[2] : std::numeric_limits<double>::infinity();
+  std::string top_name = top_fixed ? "the fixed box top" : "";
+  bool spans[2] = {true, true};
+  if (!opt.region_id.empty()) {
+    Region *region = find_region_by_id(domain, opt.region_id);
+    if (!region) error->all(FLERR, "create_packing: region ID '{}' does not exist", opt.region_id);
+    if (!region->bboxflag)
+      error->all(FLERR, "create_packing: region '{}' has no bounding box (use a block)",
+                 opt.region_id);
+    const double rlo[3] = {region->extent_xlo, region->extent_ylo, region->extent_zlo};
+    const double rhi[3] = {region->extent_xhi, region->extent_yhi, region->extent_zhi};
+    for (int d = 0; d < 3; ++d) {
+      if (d < 2) spans[d] = rlo[d] <= domain->boxlo[d] && rhi[d] >= domain->boxhi[d];
+      lo[d] = std::max(lo[d], rlo[d]);
+      hi[d] = std::min(hi[d], rhi[d]);
+    }
+    if (rhi[2] < z_top) {
+      z_top = rhi[2];
+      top_name = "the top of region '" + opt.region_id + "'";
+    }
+  }
+  const bool periodic_box[2] = {domain->xperiodic != 0, domain->yperiodic != 0};
+  bool walls[2];
+  for (int d = 0; d < 2; ++d) {
+    const bool can_wrap = periodic_box[d] && spans[d];
+    const bool asked = d == 0 ? opt.walls_x : opt.walls_y;
+    walls[d] = opt.walls_given ? asked : !can_wrap;
+    if (!walls[d] && !can_wrap)
+      error->all(FLERR, "create_packing: walls: the {} direction needs walls (the box is not "
+                 "periodic in {}, or the region is narrower than the box)", "xy"[d], "xy"[d]);
+  }
+  const double z_floor = opt.floor_given ? opt.floor_z : lo[2];
+  if (z_floor < domain->boxlo[2])
+    error->all(FLERR, "create_packing: floor = {} is below the box bottom {}", z_floor,
+               domain->boxlo[2]);
+  if (!(z_top > z_floor))
+    error->all(FLERR, "create_packing: floor = {} is not below {} (z = {})", z_floor, top_name,
+               z_top);
+
+  const double r_min = radius * (1.0 - opt.dispersity), r_max = radius * (1.0 + opt.dispersity);
+  tapmc::DepositionDomain dd;
+  dd.xlo = lo[0];
+  dd.xhi = hi[0];
+  dd.ylo = lo[1];
+  dd.yhi = hi[1];
+  dd.periodic_x = !walls[0];
+  dd.periodic_y = !walls[1];
+  dd.z_floor = z_floor;
+  dd.z_top = z_top;
+  const std::string where =
+      opt.region_id.empty() ? std::string("the box") : "region '" + opt.region_id + "'";
+  for (int d = 0; d < 2; ++d)
+    if (hi[d] - lo[d] < 2.0 * r_max)
+      error->all(FLERR, "create_packing: {} is {} wide in {}, less than one sphere diameter {}; "
+                 "it cannot hold the spheres", where, hi[d] - lo[d], "xy"[d], 2.0 * r_max);
+  // Cheap early refusal: even at random close packing (0.64) the spheres would not fit.
+  if (std::isfinite(z_top)) {
+    const double mean_r3 = radius * radius * radius * (1.0 + opt.dispersity * opt.dispersity);
+    const double need = n_spheres * (4.0 / 3.0) * kPi * mean_r3 / 0.64;
+    const double room = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (z_top - z_floor);
+    if (need > room)
+      error->all(FLERR, "create_packing: {} cannot hold N = {} spheres of radius {}: they need "
+                 "at least {:.6g} of volume (at packing fraction 0.64), {} offers {:.6g} between "
+                 "the floor z = {} and {} z = {}", where, n_spheres, radius, need, where, room,
+                 z_floor, top_name, z_top);
+  }
+
+  // ---- deposition: the same on every rank ----
+  MPI_Barrier(world);
+  const double t_start = MPI_Wtime();
+  tapmc::Packing packing;
+  try {
+    packing = tapmc::deposit_packing(n_spheres, tapmc::RadiusDistribution{r_min, r_max}, dd,
+                                     static_cast<std::uint64_t>(seed));
+  } catch (const std::exception &e) {
+    error->all(FLERR, "create_packing: {} ({}: {})", e.what(), where,
+               top_name.empty() ? "open top" : top_name);
+  }
+  const double t_deposit = MPI_Wtime() - t_start;
+
+  // ---- a shrink-wrapped top grows to hold the packing ----
+  double zmax = -std::numeric_limits<double>::infinity();
+  for (bigint i = 0; i < n_spheres; ++i) zmax = std::max(zmax, packing.xyz[3 * i + 2]);
+  bool box_changed = false;
+  if (!top_fixed && zmax >= domain->boxhi[2]) {
+    domain->boxhi[2] = zmax + r_max;
+    domain->set_initial_box();
+    domain->set_global_box();
+    domain->set_local_box();
+    box_changed = true;
+  }
+
+  // ---- create this rank's atoms (created atoms overwrite ghosts, as in create_atoms) ----
+  atom->nghost = 0;
+  atom->avec->clear_bonus();
+  const bigint natoms_before = atom->natoms;
+  const int nlocal_before = atom->nlocal;
+  tagint max_tag = 0, max_tag_all = 0;
+  if (atom->tag_enable)
+    for (int i = 0; i < atom->nlocal; ++i) max_tag = std::max(max_tag, atom->tag[i]);
+  MPI_Allreduce(&max_tag, &max_tag_all, 1, MPI_LMP_TAGINT, MPI_MAX, world);
+
+  const SubDomain mine = my_subdomain(domain, comm);
+  for (bigint i = 0; i < n_spheres; ++i) {
+    double x[3] = {packing.xyz[3 * i], packing.xyz[3 * i + 1], packing.xyz[3 * i + 2]};
+    if (!mine.owns(x)) continue;
+    atom->avec->create_atom(type, x);
+    const int m = atom->nlocal - 1;
+    const double r = packing.radius[i];
+    atom->radius[m] = r;
+    atom->rmass[m] = opt.density * (4.0 / 3.0) * kPi * r * r * r;
+    if (atom->tag_enable) atom->tag[m] = max_tag_all + static_cast<tagint>(i) + 1;
+  }
+  atom->data_fix_compute_variable(nlocal_before, atom->nlocal);
+
+  bigint nlocal = atom->nlocal;
+  MPI_Allreduce(&nlocal, &atom->natoms, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  if (atom->natoms != natoms_before + n_spheres)
+    error->all(FLERR, "create_packing: {} atoms exist after creating {} spheres on top of {} "
+               "(every sphere must have exactly one owner)", atom->natoms, n_spheres,
+               natoms_before);
+  if (atom->tag_enable) atom->tag_check();
+  if (atom->map_style != Atom::MAP_NONE) {
+    atom->map_init();
+    atom->map_set();
+  }
+  // Atoms that existed before a box change may now belong to another rank.
+  if (box_changed && natoms_before > 0 && comm->nprocs > 1) {
+    Irregular irregular(lmp);
+    irregular.migrate_atoms(1);
+  }
+
+  // ---- report ----
+  if (comm->me == 0) {
+    double z0, z1;
+    tapmc::bulk_window(packing, dd, tapmc::defaults::kDepositionBulkMarginOverRadius * radius,
+                       z0, z1);
+    std::string phi_text = "bulk window too thin for a packing fraction";
+    if (z1 - z0 > 2.0 * radius)
+      phi_text = fmt::format("bulk packing fraction {:.4f} (exact stereology, {:.4g} <= z <= "
+                             "{:.4g})", tapmc::slab_volume_fraction(packing, dd, z0, z1), z0, z1);
+    utils::logmesg(lmp,
+                   "Created {} spheres by sequential deposition (Jullien-Meakin), sides: x {}, "
+                   "y {}; floor z = {}\n"
+                   "  {}\n"
+                   "  highest centre z = {:.6g}; path segments {}, unstable equilibria left {}, "
+                   "re-drops {}, unresolved {}\n"
+                   "  create_packing CPU = {:.3f} seconds\n",
+                   n_spheres, walls[0] ? "walls" : "periodic", walls[1] ? "walls" : "periodic",
+                   z_floor, phi_text, zmax, packing.stats.segments, packing.stats.perturbations,
+                   packing.stats.redrops, packing.stats.unresolved, t_deposit);
+  }
+  if (packing.stats.unresolved > 0 && comm->me == 0)
+    error->warning(FLERR, "create_packing: {} spheres reached the step cap on every drop and "
+                   "were left where they stopped (non-overlapping, stability not proven)",
+                   packing.stats.unresolved);
+}

@@ -1,0 +1,875 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// Sequential deposition with steepest descent (Jullien & Meakin 1987): paths, contacts, grid.
+//
+// A dropped sphere (centre p, radius r) moves by steepest descent of its height under the
+// non-penetration constraints of the spheres and planes it touches. Constraint k keeps
+// f_k(p) >= 0 (sphere: |p - c_k| >= r + r_k; plane: n_k.p >= offset_k) with outward unit normal
+// n_k. At a point, the descent direction d is the projection of gravity g = -e_z onto the cone
+// {d : n_k.d >= 0 for every touching k}; the active set S (at most three independent normals)
+// satisfies g + sum_S mu_k n_k = d with support forces mu_k >= 0 (the KKT conditions). Then:
+//   S empty (or vertical walls only) -> vertical fall (a line),
+//   S = {one sphere}                 -> roll on the great circle in the vertical plane,
+//   S = {sphere, sphere or wall}     -> roll on the circle of points touching both,
+//   d = 0, floor in S or |S| = 3     -> at rest (mu >= 0: gravity is balanced; for three spheres
+//                                       this is the projection of p inside their triangle).
+// Every path is a line or a circle p(t) = m + rho (cos t e1 + sin t e2); along a circle each
+// contact function and each support force is K + P cos t + Q sin t, so the next event (a new
+// contact, a support force reaching zero, the lowest point) is found in closed form.
+#include "tapmc_deposition.h"
+
+#include "tapmc_defaults.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace tapmc {
+
+namespace {
+
+using defaults::kDepositionAngleTolerance;
+using defaults::kDepositionEquilibriumTolerance;
+using defaults::kDepositionForceTolerance;
+using defaults::kDepositionMaxSegments;
+using defaults::kDepositionSupportTolerance;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kTwoPi = 2.0 * kPi;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Counter offset of the random draws that leave unstable equilibria (below: drop points).
+constexpr std::uint64_t kPerturbationCounterBase = std::uint64_t(1) << 32;
+
+struct Vec3 {
+  double x, y, z;
+};
+inline Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline Vec3 operator*(double s, Vec3 a) { return {s * a.x, s * a.y, s * a.z}; }
+inline double dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Vec3 cross(Vec3 a, Vec3 b)
+{
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline double norm(Vec3 a) { return std::sqrt(dot(a, a)); }
+inline Vec3 unit(Vec3 a) { return (1.0 / norm(a)) * a; }
+
+const Vec3 kGravity{0.0, 0.0, -1.0};
+
+inline std::uint64_t mix64(std::uint64_t z)
+{
+  z += 0x9E3779B97F4A7C15ULL;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
+
+inline double wrap_angle(double t)
+{
+  t = std::fmod(t, kTwoPi);
+  return t < 0.0 ? t + kTwoPi : t;
+}
+
+inline std::int64_t floor_div(std::int64_t a, std::int64_t b)
+{
+  std::int64_t q = a / b;
+  if ((a % b != 0) && ((a < 0) != (b < 0))) --q;
+  return q;
+}
+
+// Plane constraints carry negative ids.
+enum PlaneId : std::int64_t { kFloor = -1, kWallXlo = -2, kWallXhi = -3, kWallYlo = -4, kWallYhi = -5 };
+
+struct Constraint {
+  bool is_sphere;
+  std::int64_t id;   // sphere index, or a PlaneId
+  int image_x = 0;   // periodic image of a sphere (box lengths added to its stored centre)
+  int image_y = 0;
+  Vec3 c;            // sphere: image centre; plane: unit normal pointing into the allowed side
+  double dist;       // sphere: contact distance r + r_k; plane: offset (allowed: n.p >= offset)
+  bool same(const Constraint &o) const
+  {
+    return is_sphere == o.is_sphere && id == o.id && image_x == o.image_x && image_y == o.image_y;
+  }
+};
+
+inline double gap_of(const Constraint &k, Vec3 p)
+{
+  return k.is_sphere ? norm(p - k.c) - k.dist : dot(k.c, p) - k.dist;
+}
+inline Vec3 normal_of(const Constraint &k, Vec3 p) { return k.is_sphere ? unit(p - k.c) : k.c; }
+
+// Depth (in units of the circle radius) below which a constraint f = K + P cos t + Q sin t is
+// taken as never entered: far below the contact tolerance, above the ~1e-13 rounding of f.
+constexpr double kGrazingDepth = 1e-11;
+
+// First t in [0, t_max] at which f(t) = K + P cos t + Q sin t enters f < 0, or +inf.
+// `entering_now` is set when f is negative just after t = 0 (a touching constraint that the
+// path enters immediately, to first or second order); a touching constraint being left (its
+// negative arc ends within kDepositionAngleTolerance after 0) is not an event.
+double first_entry(double K, double P, double Q, double t_max, bool &entering_now)
+{
+  entering_now = false;
+  const double A = std::hypot(P, Q);
+  // Never deeper than kGrazingDepth below zero anywhere on the circle (a constraint tangent to
+  // the whole path, e.g. a wall containing the rolling plane): not an event.
+  if (K - A > -kGrazingDepth) return kInf;
+  const double kappa = -K / A;  // f < 0  <=>  cos(t - beta) < kappa
+  if (kappa <= -1.0) return kInf;
+  if (kappa >= 1.0) {  // f <= 0 on the whole circle: only possible when touching at its maximum
+    entering_now = true;
+    return 0.0;
+  }
+  const double beta = std::atan2(Q, P);
+  const double w = std::acos(kappa);
+  const double start = wrap_angle(beta + w);  // negative arc: [start, start + length]
+  const double length = kTwoPi - 2.0 * w;
+  if (start + length > kTwoPi) {  // the negative arc contains t = 0
+    const double remaining = start + length - kTwoPi;
+    if (remaining > kDepositionAngleTolerance) {
+      entering_now = true;
+      return 0.0;
+    }
+  }
+  return start <= t_max ? start : kInf;
+}
+
+// ---------------------------------------------------------------------------------------------
+// 3-D grid: columns in x and y (periodic wrap or clamped at walls), layers in z from the floor,
+// added as the packing grows; linked lists of sphere indices per cell; height map of column tops.
+class LayeredGrid {
+ public:
+  void setup(const DepositionDomain &d, double min_width)
+  {
+    lx_ = d.xhi - d.xlo;
+    ly_ = d.yhi - d.ylo;
+    xlo_ = d.xlo;
+    ylo_ = d.ylo;
+    zf_ = d.z_floor;
+    px_ = d.periodic_x;
+    py_ = d.periodic_y;
+    nx_ = std::max(1, static_cast<int>(std::floor(lx_ / min_width)));
+    ny_ = std::max(1, static_cast<int>(std::floor(ly_ / min_width)));
+    hx_ = lx_ / nx_;
+    hy_ = ly_ / ny_;
+    hz_ = min_width;
+    layers_ = 0;
+    head_.clear();
+    next_.clear();
+    top_.assign(static_cast<std::size_t>(nx_) * ny_, -kInf);
+  }
+
+  int column_x(double x) const { return std::clamp(static_cast<int>(std::floor((x - xlo_) / hx_)), 0, nx_ - 1); }
+  int column_y(double y) const { return std::clamp(static_cast<int>(std::floor((y - ylo_) / hy_)), 0, ny_ - 1); }
+  int layer_of(double z) const { return std::max(0, static_cast<int>(std::floor((z - zf_) / hz_))); }
+  int layers() const { return layers_; }
+  double layer_width() const { return hz_; }
+  double floor_z() const { return zf_; }
+
+  void insert(std::int32_t index, double x, double y, double z, double r)
+  {
+    const int iz = layer_of(z);
+    while (layers_ <= iz) {
+      head_.resize(head_.size() + static_cast<std::size_t>(nx_) * ny_, -1);
+      ++layers_;
+    }
+    if (next_.size() <= static_cast<std::size_t>(index)) next_.resize(index + 1, -1);
+    const std::size_t column = static_cast<std::size_t>(column_y(y)) * nx_ + column_x(x);
+    const std::size_t cell = static_cast<std::size_t>(iz) * nx_ * ny_ + column;
+    next_[index] = head_[cell];
+    head_[cell] = index;
+    top_[column] = std::max(top_[column], z + r);
+  }
+
+  // Calls f(index, shift_x, shift_y, image_x, image_y) for every sphere whose cell meets the
+  // box [x0, x1] x [y0, y1] (unwrapped coordinates) in layers iz0..iz1; periodic images come
+  // with the shift to add to the stored centre.
+  template <class F>
+  void visit(double x0, double x1, double y0, double y1, int iz0, int iz1, F &&f) const
+  {
+    iz0 = std::max(iz0, 0);
+    iz1 = std::min(iz1, layers_ - 1);
+    if (iz0 > iz1) return;
+    int ix0, ix1, iy0, iy1;
+    column_range(x0, x1, hx_, xlo_, nx_, px_, ix0, ix1);
+    column_range(y0, y1, hy_, ylo_, ny_, py_, iy0, iy1);
+    for (int iz = iz0; iz <= iz1; ++iz) {
+      const std::size_t layer = static_cast<std::size_t>(iz) * nx_ * ny_;
+      for (int iy = iy0; iy <= iy1; ++iy) {
+        const int image_y = py_ ? static_cast<int>(floor_div(iy, ny_)) : 0;
+        const int cy = iy - image_y * ny_;
+        const double sy = image_y * ly_;
+        for (int ix = ix0; ix <= ix1; ++ix) {
+          const int image_x = px_ ? static_cast<int>(floor_div(ix, nx_)) : 0;
+          const int cx = ix - image_x * nx_;
+          const double sx = image_x * lx_;
+          for (std::int32_t i = head_[layer + static_cast<std::size_t>(cy) * nx_ + cx]; i >= 0;
+               i = next_[i])
+            f(i, sx, sy, image_x, image_y);
+        }
+      }
+    }
+  }
+
+  // Highest sphere top among the columns meeting [x0, x1] x [y0, y1] (-inf if none).
+  double highest_top(double x0, double x1, double y0, double y1) const
+  {
+    int ix0, ix1, iy0, iy1;
+    column_range(x0, x1, hx_, xlo_, nx_, px_, ix0, ix1);
+    column_range(y0, y1, hy_, ylo_, ny_, py_, iy0, iy1);
+    double best = -kInf;
+    for (int iy = iy0; iy <= iy1; ++iy) {
+      const int cy = static_cast<int>(iy - floor_div(iy, ny_) * ny_);
+      for (int ix = ix0; ix <= ix1; ++ix) {
+        const int cx = static_cast<int>(ix - floor_div(ix, nx_) * nx_);
+        best = std::max(best, top_[static_cast<std::size_t>(cy) * nx_ + cx]);
+      }
+    }
+    return best;
+  }
+
+ private:
+  static void column_range(double a0, double a1, double h, double lo, int n, bool periodic,
+                           int &i0, int &i1)
+  {
+    i0 = static_cast<int>(std::floor((a0 - lo) / h));
+    i1 = static_cast<int>(std::floor((a1 - lo) / h));
+    if (!periodic) {
+      i0 = std::clamp(i0, 0, n - 1);
+      i1 = std::clamp(i1, 0, n - 1);
+    }
+  }
+
+  int nx_ = 1, ny_ = 1, layers_ = 0;
+  double hx_ = 1, hy_ = 1, hz_ = 1, lx_ = 1, ly_ = 1, xlo_ = 0, ylo_ = 0, zf_ = 0;
+  bool px_ = true, py_ = true;
+  std::vector<std::int32_t> head_, next_;
+  std::vector<double> top_;
+};
+
+// A roll: p(t) = m + rho (cos t e1 + sin t e2), t in [0, t_end]; e2 is the initial direction.
+struct Circle {
+  Vec3 m, e1, e2;
+  double rho;
+  double t_end;
+  Vec3 at(double t) const { return m + rho * (std::cos(t) * e1 + std::sin(t) * e2); }
+};
+
+// Support force of an active constraint along a roll: mu(t) = K + P cos t + Q sin t.
+struct ForceLaw {
+  double K, P, Q;
+};
+
+// The descent at a point: active set (indices into the touching list) and direction.
+struct Descent {
+  bool found = false;
+  int n_active = 0;
+  int active[3] = {-1, -1, -1};
+  Vec3 d{0, 0, 0};
+};
+
+}  // namespace
+
+double deposition_uniform(std::uint64_t seed, std::uint64_t stream, std::uint64_t counter)
+{
+  const std::uint64_t h = mix64(mix64(mix64(seed) ^ stream) ^ counter);
+  return static_cast<double>(h >> 11) * 0x1.0p-53;
+}
+
+// ---------------------------------------------------------------------------------------------
+struct SequentialDeposition::Impl {
+  DepositionDomain domain;
+  double r_max;
+  std::uint64_t seed;
+  LayeredGrid grid;
+  std::vector<double> centres;  // 3 per sphere
+  std::vector<double> radii;
+  DepositionStats stats;
+  std::uint64_t perturbation_draws = 0;  // for the sphere being dropped (reset on insertion)
+
+  // Working storage, reused across drops.
+  std::vector<Constraint> touching;
+  std::vector<Vec3> normals;
+
+  Vec3 centre_of(std::int32_t i) const
+  {
+    return {centres[3 * static_cast<std::size_t>(i)], centres[3 * static_cast<std::size_t>(i) + 1],
+            centres[3 * static_cast<std::size_t>(i) + 2]};
+  }
+
+  void wrap(Vec3 &p) const
+  {
+    if (domain.periodic_x) p.x = wrap_coordinate(p.x, domain.xlo, domain.xhi);
+    if (domain.periodic_y) p.y = wrap_coordinate(p.y, domain.ylo, domain.yhi);
+  }
+  static double wrap_coordinate(double a, double lo, double hi)
+  {
+    const double length = hi - lo;
+    if (a >= lo && a < hi) return a;
+    a = lo + std::fmod(a - lo, length);
+    if (a < lo) a += length;
+    if (a >= hi) a = lo;  // rounding of fmod at the upper end
+    return a;
+  }
+
+  void insert(Vec3 p, double r)
+  {
+    const auto index = static_cast<std::int32_t>(radii.size());
+    centres.push_back(p.x);
+    centres.push_back(p.y);
+    centres.push_back(p.z);
+    radii.push_back(r);
+    grid.insert(index, p.x, p.y, p.z, r);
+    perturbation_draws = 0;
+  }
+
+  // The planes a sphere of radius r must respect: the floor, and the walls of non-periodic sides.
+  template <class F> void for_each_plane(double r, F &&f) const
+  {
+    f(Constraint{false, kFloor, 0, 0, {0, 0, 1}, domain.z_floor + r});
+    if (!domain.periodic_x) {
+      f(Constraint{false, kWallXlo, 0, 0, {1, 0, 0}, domain.xlo + r});
+      f(Constraint{false, kWallXhi, 0, 0, {-1, 0, 0}, -(domain.xhi - r)});
+    }
+    if (!domain.periodic_y) {
+      f(Constraint{false, kWallYlo, 0, 0, {0, 1, 0}, domain.ylo + r});
+      f(Constraint{false, kWallYhi, 0, 0, {0, -1, 0}, -(domain.yhi - r)});
+    }
+  }
+
+  // Spheres and planes within kDepositionSupportTolerance of contact with a sphere (p, r).
+  void collect_touching(Vec3 p, double r)
+  {
+    touching.clear();
+    normals.clear();
+    const double reach = (r + r_max) * (1.0 + 2.0 * kDepositionSupportTolerance);
+    grid.visit(p.x - reach, p.x + reach, p.y - reach, p.y + reach, grid.layer_of(p.z - reach),
+               grid.layer_of(p.z + reach),
+               [&](std::int32_t i, double sx, double sy, int ix, int iy) {
+                 const Vec3 c = centre_of(i) + Vec3{sx, sy, 0.0};
+                 const double dist = r + radii[i];
+                 const Vec3 delta = p - c;
+                 const double d2 = dot(delta, delta);
+                 const double limit = dist * (1.0 + kDepositionSupportTolerance);
+                 if (d2 > limit * limit) return;
+                 touching.push_back(Constraint{true, i, ix, iy, c, dist});
+               });
+    for_each_plane(r, [&](const Constraint &k) {
+      if (gap_of(k, p) <= kDepositionSupportTolerance * 2.0 * r) touching.push_back(k);
+    });
+    for (const auto &k : touching) normals.push_back(normal_of(k, p));
+  }
+
+  // Active set and descent direction (KKT of the projection of gravity onto the cone of
+  // feasible directions). Subsets are tried from the smallest: at a point where a support
+  // force is exactly zero, the smaller set (the support is being left) wins. Subsets must
+  // contain every constraint of `forced` (touching ones the previous path entered at once).
+  Descent solve_descent(const std::vector<int> &forced) const
+  {
+    const int n = std::min<int>(static_cast<int>(touching.size()), 12);
+    Descent out;
+    auto attempt = [&](const int *sel, int size) {
+      for (int f : forced)
+        if (std::find(sel, sel + size, f) == sel + size) return false;
+      Vec3 d;
+      if (!feasible(sel, size, n, d)) return false;
+      out.found = true;
+      out.n_active = size;
+      for (int a = 0; a < size; ++a) out.active[a] = sel[a];
+      out.d = d;
+      return true;
+    };
+    int sel[3] = {-1, -1, -1};
+    if (attempt(sel, 0)) return out;
+    for (sel[0] = 0; sel[0] < n; ++sel[0])
+      if (attempt(sel, 1)) return out;
+    for (sel[0] = 0; sel[0] < n; ++sel[0])
+      for (sel[1] = sel[0] + 1; sel[1] < n; ++sel[1])
+        if (attempt(sel, 2)) return out;
+    for (sel[0] = 0; sel[0] < n; ++sel[0])
+      for (sel[1] = sel[0] + 1; sel[1] < n; ++sel[1])
+        for (sel[2] = sel[1] + 1; sel[2] < n; ++sel[2])
+          if (attempt(sel, 3)) return out;
+    return out;
+  }
+
+  // Projection of gravity onto the subspace tangent to the selected normals; feasible when the
+  // support forces are >= 0 and the direction enters no other touching constraint.
+  bool feasible(const int *sel, int size, int n, Vec3 &d) const
+  {
+    const double tol = kDepositionForceTolerance;
+    double mu[3] = {0, 0, 0};
+    if (size == 0) {
+      d = kGravity;
+    } else if (size == 1) {
+      const Vec3 a = normals[sel[0]];
+      mu[0] = -dot(a, kGravity);
+      d = kGravity + mu[0] * a;
+    } else if (size == 2) {
+      const Vec3 a = normals[sel[0]], b = normals[sel[1]];
+      const double c = dot(a, b), det = 1.0 - c * c;
+      if (det < 1e-12) return false;  // (anti)parallel normals: a smaller set covers it
+      const double ga = dot(a, kGravity), gb = dot(b, kGravity);
+      mu[0] = -(ga - c * gb) / det;
+      mu[1] = -(gb - c * ga) / det;
+      d = kGravity + mu[0] * a + mu[1] * b;
+      d = d - dot(d, a) * a;  // remove rounding along the normals
+      d = d - dot(d, b) * b;
+    } else {
+      const Vec3 a = normals[sel[0]], b = normals[sel[1]], c = normals[sel[2]];
+      const double det = dot(a, cross(b, c));
+      if (std::fabs(det) < 1e-9) return false;  // coplanar normals: no isolated rest point
+      // Solve a mu0 + b mu1 + c mu2 = -g (Cramer), d = 0.
+      const Vec3 h = -1.0 * kGravity;
+      mu[0] = dot(h, cross(b, c)) / det;
+      mu[1] = dot(a, cross(h, c)) / det;
+      mu[2] = dot(a, cross(b, h)) / det;
+      d = {0, 0, 0};
+    }
+    for (int a = 0; a < size; ++a)
+      if (mu[a] < -tol) return false;
+    for (int k = 0; k < n; ++k) {
+      if (std::find(sel, sel + size, k) != sel + size) continue;
+      if (dot(normals[k], d) < -tol) return false;
+    }
+    return true;
+  }
+
+  // Start of a drop at (x, y): just above every sphere whose column is within reach.
+  double start_height(double x, double y, double r) const
+  {
+    const double reach = r + r_max;
+    const double top = grid.highest_top(x - reach, x + reach, y - reach, y + reach);
+    return std::max(domain.z_floor + r, top + r);
+  }
+
+  // Vertical fall from p: distance to the first contact (sphere or floor), and which.
+  double fall_event(Vec3 p, double r, const std::vector<Constraint> &active, Constraint &hit,
+                    bool &entering_now) const
+  {
+    entering_now = false;
+    double best = p.z - (domain.z_floor + r);
+    hit = Constraint{false, kFloor, 0, 0, {0, 0, 1}, domain.z_floor + r};
+    const double reach = r + r_max;
+    const double grazing_depth = kGrazingDepth * 2.0 * r;
+    // Layers from the top down; stop when a layer cannot hold a closer contact.
+    for (int iz = std::min(grid.layers() - 1, grid.layer_of(p.z + reach)); iz >= 0; --iz) {
+      const double layer_top = grid.floor_z() + (iz + 1) * grid.layer_width();
+      if (p.z - layer_top - reach > best) break;
+      grid.visit(p.x - reach, p.x + reach, p.y - reach, p.y + reach, iz, iz,
+                 [&](std::int32_t i, double sx, double sy, int ix, int iy) {
+                   const Constraint k{true, i, ix, iy, centre_of(i) + Vec3{sx, sy, 0.0},
+                                      r + radii[i]};
+                   for (const auto &a : active)
+                     if (a.same(k)) return;
+                   const Vec3 delta = p - k.c;
+                   if (delta.z <= 0.0) return;  // centre not below p: the fall moves away
+                   const double h2 = delta.x * delta.x + delta.y * delta.y;
+                   const double D2 = k.dist * k.dist;
+                   if (h2 >= D2) return;
+                   // Deepest point of the fall (beside the centre) barely inside: grazing.
+                   if (h2 - D2 > -2.0 * k.dist * grazing_depth) return;
+                   const double s = std::sqrt(D2 - h2);
+                   const double t1 = delta.z - s;  // overlap for t in (t1, delta.z + s)
+                   double t = t1;
+                   bool now = false;
+                   if (t1 < 0.0) {
+                     t = 0.0;
+                     now = true;
+                   }
+                   if (t < best) {
+                     best = t;
+                     hit = k;
+                     entering_now = now;
+                   }
+                 });
+    }
+    return best;
+  }
+
+  // Roll along circle `path` (constraints `active` kept): the first event parameter; `hit` is
+  // the constraint entered, if the event is a new contact.
+  double roll_event(const Circle &path, double r, const std::vector<Constraint> &active,
+                    const ForceLaw *forces, int n_forces, Constraint &hit, bool &is_contact,
+                    bool &entering_now) const
+  {
+    double best = path.t_end;
+    is_contact = false;
+    entering_now = false;
+    // Support forces reaching zero: the sphere leaves that support.
+    for (int a = 0; a < n_forces; ++a) {
+      bool now;
+      const double t = first_entry(forces[a].K, forces[a].P, forces[a].Q, best, now);
+      if (!now && t < best) best = t;
+    }
+    auto consider = [&](const Constraint &k, double K, double P, double Q) {
+      bool now;
+      const double t = first_entry(K, P, Q, best, now);
+      if (t < best || (now && !entering_now)) {
+        best = std::min(best, t);
+        hit = k;
+        is_contact = true;
+        entering_now = now;
+      }
+    };
+    // Planes: f / rho = (n.m - offset) / rho + n.e1 cos t + n.e2 sin t.
+    for_each_plane(r, [&](const Constraint &k) {
+      for (const auto &a : active)
+        if (a.same(k)) return;
+      consider(k, (dot(k.c, path.m) - k.dist) / path.rho, dot(k.c, path.e1), dot(k.c, path.e2));
+    });
+    // Spheres: (|p - c|^2 - D^2) / (2 rho D) = K + P cos t + Q sin t.
+    const Vec3 axis = cross(path.e1, path.e2);
+    const double reach = r + r_max;
+    const double ex = path.rho * std::sqrt(std::max(0.0, 1.0 - axis.x * axis.x)) + reach;
+    const double ey = path.rho * std::sqrt(std::max(0.0, 1.0 - axis.y * axis.y)) + reach;
+    const double ez = path.rho * std::sqrt(std::max(0.0, 1.0 - axis.z * axis.z)) + reach;
+    grid.visit(path.m.x - ex, path.m.x + ex, path.m.y - ey, path.m.y + ey,
+               grid.layer_of(path.m.z - ez), grid.layer_of(path.m.z + ez),
+               [&](std::int32_t i, double sx, double sy, int ix, int iy) {
+                 const Constraint k{true, i, ix, iy, centre_of(i) + Vec3{sx, sy, 0.0},
+                                    r + radii[i]};
+                 const Vec3 delta = path.m - k.c;
+                 const double d2 = dot(delta, delta);
+                 const double far = path.rho + k.dist;
+                 if (d2 >= far * far) return;  // the circle never comes within reach
+                 for (const auto &a : active)
+                   if (a.same(k)) return;
+                 const double scale = 1.0 / (2.0 * path.rho * k.dist);
+                 consider(k, (d2 + path.rho * path.rho - k.dist * k.dist) * scale,
+                          2.0 * path.rho * dot(path.e1, delta) * scale,
+                          2.0 * path.rho * dot(path.e2, delta) * scale);
+               });
+    return best;
+  }
+
+  Vec3 random_horizontal_direction()
+  {
+    const double angle =
+        kTwoPi * deposition_uniform(seed, radii.size(), kPerturbationCounterBase + perturbation_draws++);
+    return {std::cos(angle), std::sin(angle), 0.0};
+  }
+  bool random_sign()
+  {
+    return deposition_uniform(seed, radii.size(), kPerturbationCounterBase + perturbation_draws++) < 0.5;
+  }
+
+  // Lowest point of the circle, measured from t = 0 (the path descends from there).
+  static double lowest_point(const Circle &c)
+  {
+    return wrap_angle(std::atan2(c.e2.z, c.e1.z) + kPi);
+  }
+
+  // Whether moving from the current point along dir would enter a touching constraint that is
+  // not active (to first order).
+  bool blocked(Vec3 dir, const Descent &descent) const
+  {
+    for (std::size_t k = 0; k < normals.size(); ++k) {
+      const int ki = static_cast<int>(k);
+      if (std::find(descent.active, descent.active + descent.n_active, ki) !=
+          descent.active + descent.n_active)
+        continue;
+      if (dot(normals[k], dir) < -kDepositionForceTolerance) return true;
+    }
+    return false;
+  }
+
+  enum class RollSetup { Ok, Degenerate, Wedged };
+
+  // The roll for the active set (one or two constraints, at least one sphere), and the laws of
+  // the support forces along it. At an unstable equilibrium (on top of a sphere, or on the
+  // ridge of two supports) the roll starts in a random direction that enters no touching
+  // constraint; when both ways along a ridge are blocked the sphere is wedged (at rest).
+  RollSetup make_roll(Vec3 p, const Descent &descent, bool equilibrium, Circle &path,
+                      ForceLaw *forces)
+  {
+    const int n_act = descent.n_active;
+    const Constraint *act[2] = {&touching[descent.active[0]],
+                                n_act > 1 ? &touching[descent.active[1]] : nullptr};
+    if (n_act == 1) {  // great circle in the vertical plane through the contact normal
+      const Constraint &j = *act[0];
+      path.m = j.c;
+      path.rho = norm(p - j.c);
+      path.e1 = (1.0 / path.rho) * (p - j.c);
+      Vec3 dir = descent.d;
+      if (equilibrium) {
+        bool free = false;
+        for (int attempt = 0; attempt < 8 && !free; ++attempt) {
+          const Vec3 u = random_horizontal_direction();
+          dir = u - dot(u, path.e1) * path.e1;
+          free = !blocked(dir, descent);
+        }
+        if (!free) return RollSetup::Degenerate;
+      }
+      dir = dir - dot(dir, path.e1) * path.e1;
+      if (!(norm(dir) > 1e-300)) return RollSetup::Degenerate;
+      path.e2 = unit(dir);
+      // mu(t) = n_z(t): the normal force vanishes at the sphere's equator.
+      forces[0] = {0.0, path.e1.z, path.e2.z};
+    } else {
+      const Constraint &a = *act[0], &b = *act[1];
+      const Vec3 axis = (a.is_sphere && b.is_sphere) ? unit(b.c - a.c) : (a.is_sphere ? b.c : a.c);
+      const Constraint &s = a.is_sphere ? a : b;  // a sphere of the pair fixes the circle centre
+      path.m = s.c + dot(p - s.c, axis) * axis;
+      const Vec3 radial = p - path.m;
+      path.rho = norm(radial);
+      if (!(path.rho > 0.0)) return RollSetup::Degenerate;
+      path.e1 = (1.0 / path.rho) * radial;
+      path.e2 = unit(cross(axis, path.e1));
+      if (equilibrium) {
+        if (random_sign()) path.e2 = -1.0 * path.e2;
+        if (blocked(path.e2, descent)) path.e2 = -1.0 * path.e2;
+        if (blocked(path.e2, descent)) return RollSetup::Wedged;
+      } else if (dot(path.e2, descent.d) < 0.0) {
+        path.e2 = -1.0 * path.e2;
+      }
+      // Normals in the (axis, radial) basis: sphere (sigma, tau) = ((m - c).axis, rho) / |p - c|,
+      // plane (n.axis, 0). Forces: solve sigma_a mu_a + sigma_b mu_b = axis_z,
+      // tau_a mu_a + tau_b mu_b = radial_z(t) (balance of -g = e_z in that plane).
+      double sigma[2], tau[2];
+      for (int q = 0; q < 2; ++q) {
+        const Constraint &k = *act[q];
+        if (k.is_sphere) {
+          const double dist = norm(p - k.c);
+          sigma[q] = dot(path.m - k.c, axis) / dist;
+          tau[q] = path.rho / dist;
+        } else {
+          sigma[q] = dot(k.c, axis);
+          tau[q] = 0.0;
+        }
+      }
+      const double det = sigma[0] * tau[1] - sigma[1] * tau[0];
+      if (std::fabs(det) < 1e-12) return RollSetup::Degenerate;
+      const double nz = axis.z;
+      forces[0] = {nz * tau[1] / det, -sigma[1] * path.e1.z / det, -sigma[1] * path.e2.z / det};
+      forces[1] = {-tau[0] * nz / det, sigma[0] * path.e1.z / det, sigma[0] * path.e2.z / det};
+    }
+    path.t_end = lowest_point(path);
+    return RollSetup::Ok;
+  }
+
+  // One attempt: fall and roll from (x, y) until at rest, or until the segment cap.
+  DropOutcome descend(double x, double y, double r)
+  {
+    Vec3 p{x, y, 0.0};
+    wrap(p);
+    p.z = start_height(p.x, p.y, r);
+    std::vector<Constraint> forced;
+    std::vector<int> forced_idx;
+    std::vector<Constraint> active;
+    for (int segment = 0; segment < kDepositionMaxSegments; ++segment) {
+      ++stats.segments;
+      collect_touching(p, r);
+      forced_idx.clear();
+      for (const auto &f : forced)
+        for (std::size_t k = 0; k < touching.size(); ++k)
+          if (touching[k].same(f)) forced_idx.push_back(static_cast<int>(k));
+      Descent descent = solve_descent(forced_idx);
+      if (!descent.found && !forced_idx.empty()) {
+        forced.clear();
+        forced_idx.clear();
+        descent = solve_descent(forced_idx);
+      }
+      if (!descent.found) break;  // no consistent active set: give up this attempt
+
+      active.clear();
+      bool on_floor = false;
+      int n_spheres = 0;
+      for (int a = 0; a < descent.n_active; ++a) {
+        const Constraint &k = touching[descent.active[a]];
+        active.push_back(k);
+        on_floor = on_floor || (!k.is_sphere && k.id == kFloor);
+        n_spheres += k.is_sphere ? 1 : 0;
+      }
+      const bool equilibrium = norm(descent.d) < kDepositionEquilibriumTolerance;
+      if (equilibrium && (on_floor || descent.n_active == 3))
+        return {p.x, p.y, p.z, on_floor ? RestingOn::Floor : RestingOn::Supports, segment + 1};
+      if (equilibrium) ++stats.perturbations;
+
+      Constraint hit{};
+      bool entering_now = false;
+      if (n_spheres == 0) {  // free fall (possibly sliding along vertical walls)
+        const double t = fall_event(p, r, active, hit, entering_now);
+        p.z -= t;
+        if (!(t > 0.0) && entering_now) {
+          forced.push_back(hit);
+        } else {
+          forced.clear();
+        }
+        continue;
+      }
+      // Roll on one sphere, or on two constraints with at least one sphere.
+      Circle path;
+      ForceLaw forces[2];
+      const RollSetup setup = make_roll(p, descent, equilibrium, path, forces);
+      if (setup == RollSetup::Wedged) return {p.x, p.y, p.z, RestingOn::Supports, segment + 1};
+      if (setup == RollSetup::Degenerate) break;
+      bool is_contact = false;
+      const double t = roll_event(path, r, active, forces, descent.n_active, hit, is_contact,
+                                  entering_now);
+      if (is_contact && entering_now) {
+        bool known = false;
+        for (const auto &f : forced) known = known || f.same(hit);
+        if (!known) forced.push_back(hit);
+        continue;  // same point, the entered constraint joins the active set
+      }
+      forced.clear();
+      p = path.at(t);
+      wrap(p);
+    }
+    return {p.x, p.y, p.z, RestingOn::Unresolved, kDepositionMaxSegments};
+  }
+};
+
+SequentialDeposition::SequentialDeposition(const DepositionDomain &domain, double max_radius,
+                                           std::uint64_t seed)
+    : impl_(std::make_unique<Impl>())
+{
+  if (!(max_radius > 0.0) || !std::isfinite(max_radius))
+    throw std::invalid_argument("deposition: max_radius = " + std::to_string(max_radius) +
+                                " must be a positive finite number");
+  const double diameter = 2.0 * max_radius;
+  if (!(domain.xhi - domain.xlo >= diameter))
+    throw std::invalid_argument("deposition: x extent xhi - xlo = " +
+                                std::to_string(domain.xhi - domain.xlo) +
+                                " must be at least one sphere diameter (" +
+                                std::to_string(diameter) + ")");
+  if (!(domain.yhi - domain.ylo >= diameter))
+    throw std::invalid_argument("deposition: y extent yhi - ylo = " +
+                                std::to_string(domain.yhi - domain.ylo) +
+                                " must be at least one sphere diameter (" +
+                                std::to_string(diameter) + ")");
+  if (!std::isfinite(domain.z_floor))
+    throw std::invalid_argument("deposition: z_floor must be finite");
+  impl_->domain = domain;
+  impl_->r_max = max_radius;
+  impl_->seed = seed;
+  // Cells of one maximal contact distance (2 r_max): a fall visits 3 x 3 columns.
+  impl_->grid.setup(domain, diameter);
+}
+
+SequentialDeposition::~SequentialDeposition() = default;
+SequentialDeposition::SequentialDeposition(SequentialDeposition &&) noexcept = default;
+SequentialDeposition &SequentialDeposition::operator=(SequentialDeposition &&) noexcept = default;
+
+void SequentialDeposition::add_fixed_sphere(double x, double y, double z, double radius)
+{
+  if (!(radius > 0.0) || radius > impl_->r_max)
+    throw std::invalid_argument("deposition: radius = " + std::to_string(radius) +
+                                " must be in (0, max_radius = " + std::to_string(impl_->r_max) +
+                                "]");
+  Vec3 p{x, y, z};
+  impl_->wrap(p);
+  impl_->insert(p, radius);
+}
+
+DropOutcome SequentialDeposition::drop(double x, double y, double radius)
+{
+  Impl &s = *impl_;
+  if (!(radius > 0.0) || radius > s.r_max)
+    throw std::invalid_argument("deposition: radius = " + std::to_string(radius) +
+                                " must be in (0, max_radius = " + std::to_string(s.r_max) + "]");
+  const double slack = kDepositionSupportTolerance * radius;
+  if (!s.domain.periodic_x && (x < s.domain.xlo + radius - slack || x > s.domain.xhi - radius + slack))
+    throw std::invalid_argument("deposition: drop point x = " + std::to_string(x) +
+                                " must be in [xlo + r, xhi - r] between walls");
+  if (!s.domain.periodic_y && (y < s.domain.ylo + radius - slack || y > s.domain.yhi - radius + slack))
+    throw std::invalid_argument("deposition: drop point y = " + std::to_string(y) +
+                                " must be in [ylo + r, yhi - r] between walls");
+  DropOutcome out = s.descend(x, y, radius);
+  if (out.rest != RestingOn::Unresolved) s.insert({out.x, out.y, out.z}, radius);
+  return out;
+}
+
+std::size_t SequentialDeposition::size() const { return impl_->radii.size(); }
+const double *SequentialDeposition::centre(std::size_t i) const { return &impl_->centres[3 * i]; }
+double SequentialDeposition::radius(std::size_t i) const { return impl_->radii[i]; }
+const DepositionStats &SequentialDeposition::stats() const { return impl_->stats; }
+
+// ---------------------------------------------------------------------------------------------
+Packing deposit_packing(std::int64_t n, const RadiusDistribution &radii,
+                        const DepositionDomain &domain, std::uint64_t seed)
+{
+  if (n < 0 || n > std::numeric_limits<std::int32_t>::max() - 1)
+    throw std::invalid_argument("deposit_packing: n = " + std::to_string(n) +
+                                " must be in [0, 2^31 - 2]");
+  if (!(radii.r_min > 0.0) || !std::isfinite(radii.r_max))
+    throw std::invalid_argument("deposit_packing: r_min = " + std::to_string(radii.r_min) +
+                                " must be > 0 and r_max finite");
+  if (!(radii.r_max >= radii.r_min))
+    throw std::invalid_argument("deposit_packing: r_max = " + std::to_string(radii.r_max) +
+                                " must be >= r_min = " + std::to_string(radii.r_min));
+  SequentialDeposition engine(domain, radii.r_max, seed);
+  Packing out;
+  out.xyz.reserve(3 * static_cast<std::size_t>(n));
+  out.radius.reserve(static_cast<std::size_t>(n));
+  const double top_slack = kDepositionSupportTolerance * 2.0 * radii.r_max;
+  std::int64_t redrops = 0, unresolved = 0;
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto stream = static_cast<std::uint64_t>(i);
+    const double r = radii.is_monodisperse()
+                         ? radii.r_min
+                         : radii.r_min + (radii.r_max - radii.r_min) *
+                                             deposition_uniform(seed, stream, 0);
+    // Drop points: uniform over the box (periodic) or over [lo + r, hi - r] (walls).
+    const double x_lo = domain.periodic_x ? domain.xlo : domain.xlo + r;
+    const double x_span = domain.periodic_x ? domain.xhi - domain.xlo : domain.xhi - domain.xlo - 2.0 * r;
+    const double y_lo = domain.periodic_y ? domain.ylo : domain.ylo + r;
+    const double y_span = domain.periodic_y ? domain.yhi - domain.ylo : domain.yhi - domain.ylo - 2.0 * r;
+    DropOutcome o{};
+    for (int attempt = 0; attempt < defaults::kDepositionMaxAttempts; ++attempt) {
+      const double x = x_lo + x_span * deposition_uniform(seed, stream, 1 + 2 * attempt);
+      const double y = y_lo + y_span * deposition_uniform(seed, stream, 2 + 2 * attempt);
+      o = engine.drop(x, y, r);
+      if (o.rest != RestingOn::Unresolved) break;
+      ++redrops;
+    }
+    if (o.rest == RestingOn::Unresolved) {
+      engine.add_fixed_sphere(o.x, o.y, o.z, r);
+      ++unresolved;
+    }
+    if (o.z + r > domain.z_top + top_slack)
+      throw std::runtime_error("deposit_packing: sphere " + std::to_string(i) + " of " +
+                               std::to_string(n) + " rests with its top at z = " +
+                               std::to_string(o.z + r) + ", above the top limit z_top = " +
+                               std::to_string(domain.z_top) +
+                               ": the domain cannot hold the spheres");
+    out.xyz.insert(out.xyz.end(), {o.x, o.y, o.z});
+    out.radius.push_back(r);
+  }
+  out.stats = engine.stats();
+  out.stats.redrops = redrops;
+  out.stats.unresolved = unresolved;
+  return out;
+}
+
+double slab_volume_fraction(const Packing &packing, const DepositionDomain &domain, double z0,
+                            double z1)
+{
+  if (!(z1 > z0))
+    throw std::invalid_argument("slab_volume_fraction: z1 = " + std::to_string(z1) +
+                                " must be above z0 = " + std::to_string(z0));
+  double volume = 0.0;
+  for (std::size_t i = 0; i < packing.radius.size(); ++i) {
+    const double zc = packing.xyz[3 * i + 2], r = packing.radius[i];
+    const double lo = std::max(z0, zc - r) - zc, hi = std::min(z1, zc + r) - zc;
+    if (hi <= lo) continue;
+    volume += kPi * (r * r * (hi - lo) - (hi * hi * hi - lo * lo * lo) / 3.0);
+  }
+  return volume / ((domain.xhi - domain.xlo) * (domain.yhi - domain.ylo) * (z1 - z0));
+}
+
+void bulk_window(const Packing &packing, const DepositionDomain &domain, double margin,
+                 double &z0, double &z1)
+{
+  double mean = 0.0;
+  const std::size_t n = packing.radius.size();
+  for (std::size_t i = 0; i < n; ++i) mean += packing.xyz[3 * i + 2] - domain.z_floor;
+  mean = n ? mean / static_cast<double>(n) : 0.0;
+  z0 = domain.z_floor + margin;
+  z1 = domain.z_floor + 2.0 * mean - margin;
+}
+
+}  // namespace tapmc

@@ -1,0 +1,124 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// Initial packings by sequential gravitational deposition with steepest descent (Jullien & Meakin,
+// Europhys. Lett. 4, 1385 (1987)): the loose starting state of the paper (phi = 58.4 % in PBC).
+#ifndef TAPMC_DEPOSITION_H
+#define TAPMC_DEPOSITION_H
+
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <vector>
+
+namespace tapmc {
+
+// Where spheres are deposited. Sphere centres stay in z >= z_floor + r (impassable floor); in a
+// direction with walls the centres stay in [lo + r, hi - r] (impassable vertical planes, FBC);
+// a periodic direction wraps centres into [lo, hi).
+struct DepositionDomain {
+  double xlo = 0.0, xhi = 1.0;
+  double ylo = 0.0, yhi = 1.0;
+  bool periodic_x = true;
+  bool periodic_y = true;
+  double z_floor = 0.0;
+  // deposit_packing() throws std::runtime_error when a sphere comes to rest with its top
+  // above z_top (the region or box cannot hold the spheres).
+  double z_top = std::numeric_limits<double>::infinity();
+};
+
+// Radii uniform in [r_min, r_max]; r_min == r_max is the monodisperse case of the paper.
+struct RadiusDistribution {
+  double r_min = 1.0;
+  double r_max = 1.0;
+  static RadiusDistribution monodisperse(double r) { return {r, r}; }
+  static RadiusDistribution uniform(double r_min, double r_max) { return {r_min, r_max}; }
+  bool is_monodisperse() const { return r_min == r_max; }
+};
+
+// Counters of the geometric events, for reports and tests.
+struct DepositionStats {
+  std::int64_t segments = 0;       // path pieces (fall, roll on one, roll on two) over all drops
+  std::int64_t perturbations = 0;  // unstable equilibria (exactly on top of a sphere or a ridge)
+                                   // left in a random direction
+  std::int64_t redrops = 0;        // drops abandoned after kDepositionMaxSegments segments and
+                                   // restarted from a fresh random (x, y)
+  std::int64_t unresolved = 0;     // spheres left, non-overlapping but not proven stable, where
+                                   // the last of kDepositionMaxAttempts drops stopped
+};
+
+enum class RestingOn { Floor, Supports, Unresolved };
+
+struct DropOutcome {
+  double x, y, z;   // final centre (x, y wrapped into the box in periodic directions)
+  RestingOn rest;   // Floor or Supports: stable; Unresolved: the segment cap was reached
+  int segments;     // path pieces of this drop
+};
+
+// The deposition engine: a packing that grows one sphere at a time. A 3-D grid of cells of at
+// least one maximal diameter (columns in x, y; layers in z added as the packing grows) and a
+// height map of column tops make every drop cost O(1) neighbour visits.
+class SequentialDeposition {
+ public:
+  // max_radius bounds every radius ever added (sets the grid spacing). Throws
+  // std::invalid_argument naming the offending value (extent below one diameter, radius <= 0).
+  SequentialDeposition(const DepositionDomain &domain, double max_radius, std::uint64_t seed);
+  ~SequentialDeposition();
+  SequentialDeposition(SequentialDeposition &&) noexcept;
+  SequentialDeposition &operator=(SequentialDeposition &&) noexcept;
+
+  // Put a sphere in place without any descent (an obstacle or support of later drops).
+  void add_fixed_sphere(double x, double y, double z, double radius);
+
+  // Drop a sphere of the given radius vertically at (x, y) from above everything it could touch,
+  // then follow steepest descent: vertical fall, rolling on one support, rolling on two, until it
+  // rests on the floor or on three supports (spheres or walls) that balance gravity, i.e. its
+  // centre's vertical projection lies inside the triangle of its supports. The sphere joins the
+  // packing when the outcome is stable (rest != Unresolved). The random directions used to leave
+  // an unstable equilibrium are keyed by (seed, size(), attempt), so a drop is reproducible.
+  DropOutcome drop(double x, double y, double radius);
+
+  std::size_t size() const;
+  // Centre i (3 doubles) and radius i, in insertion order.
+  const double *centre(std::size_t i) const;
+  double radius(std::size_t i) const;
+  const DepositionStats &stats() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+struct Packing {
+  std::vector<double> xyz;     // 3 per sphere, deposition order
+  std::vector<double> radius;  // 1 per sphere
+  DepositionStats stats;
+};
+
+// The Jullien-Meakin packing: n spheres with radii drawn from `radii`, each dropped at a uniform
+// random (x, y) (in [lo + r, hi - r] along wall directions). Deterministic in (n, radii, domain,
+// seed): sphere i draws its radius and drop points from a counter-based stream keyed by
+// (seed, i), so the result does not depend on how many processes compute it.
+// Throws std::invalid_argument for bad input (n < 0, r_min <= 0, r_max < r_min, an extent below
+// one diameter) and std::runtime_error when a sphere's top ends above domain.z_top.
+Packing deposit_packing(std::int64_t n, const RadiusDistribution &radii,
+                        const DepositionDomain &domain, std::uint64_t seed);
+
+// Exact volume fraction of the spheres inside the slab z0 <= z <= z1 over the domain's x-y
+// extent (each sphere contributes the integral of its disk areas pi (r^2 - (z - z_i)^2) over
+// the slab). With periodic sides whole spheres count (images fill what crosses a side).
+double slab_volume_fraction(const Packing &packing, const DepositionDomain &domain, double z0,
+                            double z1);
+
+// The bulk window of a deposit, away from the floor and from the rough top:
+// [z_floor + margin, z_floor + 2 <z - z_floor> - margin], where 2 <z - z_floor> (twice the
+// mean centre height) is the height of a uniform slab with the same centre mean height.
+// create_packing uses margin = kDepositionBulkMarginOverRadius mean radii.
+void bulk_window(const Packing &packing, const DepositionDomain &domain, double margin,
+                 double &z0, double &z1);
+
+// Uniform double in [0, 1) for (seed, stream, counter): splitmix64 finaliser applied to a keyed
+// combination of the three (each word passes through the 64-bit mixer before combination).
+double deposition_uniform(std::uint64_t seed, std::uint64_t stream, std::uint64_t counter);
+
+}  // namespace tapmc
+
+#endif
