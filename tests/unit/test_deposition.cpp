@@ -226,7 +226,7 @@ double slab_packing_fraction(const Packing &p, const DepositionDomain &d, double
 // Bulk window: from 6R above the floor to 6R below the mean surface height, the surface height
 // being 2 <z - z_floor> (a slab of uniform density filled from the floor has its centres' mean
 // height at half its height).
-void bulk_window(const Packing &p, const DepositionDomain &d, double radius, double &z0,
+void oracle_bulk_window(const Packing &p, const DepositionDomain &d, double radius, double &z0,
                  double &z1)
 {
   double mean = 0.0;
@@ -463,9 +463,11 @@ TEST(Deposition, BulkPackingFractionN4096)
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {
     const Packing p = deposit_packing(4096, mono, d, seed);
     double z0, z1;
-    bulk_window(p, d, 1.0, z0, z1);
+    oracle_bulk_window(p, d, 1.0, z0, z1);
     ASSERT_GT(z1 - z0, 10.0);  // a real bulk slab (about 17R here)
     const double phi = slab_packing_fraction(p, d, z0, z1);
+    // The kernel's stereology (create_packing's report) agrees with the oracle.
+    EXPECT_NEAR(tapmc::slab_volume_fraction(p, d, z0, z1), phi, 1e-12);
     EXPECT_GE(phi, 0.56) << "seed " << seed;
     EXPECT_LE(phi, 0.61) << "seed " << seed;
     phis.push_back(phi);
@@ -487,4 +489,20 @@ TEST(Deposition, ValidPackingN4096Walls)
   const auto d = make_domain(32, 32, false, false);
   const Packing p = deposit_packing(4096, RadiusDistribution::monodisperse(1.0), d, 9);
   expect_valid_packing(p, d, "N=4096 FBC seed 9");
+}
+
+// The kernel's slab stereology on exact cases: half a sphere, a whole sphere, a thin cap.
+TEST(Deposition, SlabVolumeFractionExact)
+{
+  const auto d = make_domain(4, 5, true, true);
+  Packing p;
+  p.xyz = {1, 1, 3};
+  p.radius = {1.5};
+  const double sphere = 4.0 / 3.0 * kPi * 1.5 * 1.5 * 1.5, area = 20.0;
+  EXPECT_NEAR(tapmc::slab_volume_fraction(p, d, 3.0, 10.0), 0.5 * sphere / (area * 7.0), 1e-15);
+  EXPECT_NEAR(tapmc::slab_volume_fraction(p, d, -1.0, 9.0), sphere / (area * 10.0), 1e-15);
+  const double h = 0.25;  // cap of height h: pi h^2 (3r - h) / 3
+  EXPECT_NEAR(tapmc::slab_volume_fraction(p, d, 4.5 - h, 4.5),
+              kPi * h * h * (3 * 1.5 - h) / 3.0 / (area * h), 1e-13);
+  EXPECT_THROW(tapmc::slab_volume_fraction(p, d, 2.0, 2.0), std::invalid_argument);
 }

@@ -1,0 +1,208 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+# create_packing through lmp_tapmc: the same packing on 1, 2 and 4 ranks (also decomposed in z),
+# every atom once, no overlaps, walls / regions / shrink-wrapped tops, and bad input.
+import os
+
+import numpy as np
+import pytest
+
+from lmprun import min_gap, read_dump, run_lammps
+
+# Relative overlap tolerance of the whole package (tapmc_defaults.h, kContactTolerance).
+CONTACT_TOL = 1e-10
+
+HEADER = """units lj
+atom_style sphere
+boundary {boundary}
+region box block 0 {L} 0 {L} 0 {H}
+create_box {ntypes} box
+"""
+
+DUMP = """dump d all custom 1 packing.dump id type x y z radius mass
+dump_modify d sort id format float %.17g
+run 0
+"""
+
+
+def packing_script(n=800, L=16, H=40, boundary="p p fm", args="", pre="", ntypes=1):
+    return (HEADER.format(boundary=boundary, L=L, H=H, ntypes=ntypes) + pre +
+            f"create_packing {n} 1 1.0 4928 {args}\n" + DUMP)
+
+
+def run_packing(script, nprocs=1):
+    rc, out, wd = run_lammps(script, nprocs=nprocs)
+    assert rc == 0, out
+    step, box, bounds, cols = read_dump(os.path.join(wd, "packing.dump"))[-1]
+    return out, box, bounds, cols
+
+
+def check_geometry(cols, box, periodic_xy, floor, radius_range=(1.0, 1.0), walls=None):
+    xyz = np.column_stack([cols["x"], cols["y"], cols["z"]])
+    r = cols["radius"]
+    assert r.min() >= radius_range[0] - 1e-12 and r.max() <= radius_range[1] + 1e-12
+    gap, i, j = min_gap(xyz, r, box, periodic_xy, floor=floor)
+    assert gap >= -CONTACT_TOL * 2 * r.max(), (gap, i, j)
+    if walls is not None:
+        for dim, (lo, hi) in walls.items():
+            assert (xyz[:, dim] - r >= lo - 1e-9).all() and (xyz[:, dim] + r <= hi + 1e-9).all()
+    # rmass = density * 4/3 pi r^3 with the default density 1
+    np.testing.assert_allclose(cols["mass"], 4.0 / 3.0 * np.pi * r ** 3, rtol=1e-12)
+
+
+@pytest.mark.parametrize("nprocs,processors", [(2, ""), (4, ""), (4, "processors 1 1 4\n"),
+                                               (4, "processors 2 2 1\n")])
+def test_same_packing_on_1_2_4_ranks(nprocs, processors):
+    _, _, _, serial = run_packing(packing_script())
+    _, _, _, parallel = run_packing(processors + packing_script(), nprocs=nprocs)
+    assert len(parallel["id"]) == 800
+    np.testing.assert_array_equal(parallel["id"], np.arange(1, 801))
+    for c in ("x", "y", "z", "radius", "type"):
+        np.testing.assert_array_equal(parallel[c], serial[c])
+
+
+def test_periodic_packing_is_valid_and_reports_phi():
+    out, box, bounds, cols = run_packing(packing_script(n=1024, L=16, H=60))
+    assert len(cols["id"]) == 1024
+    np.testing.assert_array_equal(cols["id"], np.arange(1, 1025))
+    check_geometry(cols, box, (True, True), floor=0.0)
+    assert "Created 1024 spheres by sequential deposition" in out
+    phi = float(out.split("bulk packing fraction")[1].split()[0])
+    assert 0.55 < phi < 0.62, out
+
+
+def test_walls_in_nonperiodic_box():
+    out, box, bounds, cols = run_packing(packing_script(boundary="f f fm"), nprocs=2)
+    assert len(cols["id"]) == 800
+    assert "sides: x walls, y walls" in out
+    check_geometry(cols, box, (False, False), floor=0.0, walls={0: (0, 16), 1: (0, 16)})
+
+
+def test_walls_keyword_in_periodic_box():
+    out, box, bounds, cols = run_packing(packing_script(args="walls x"))
+    assert "sides: x walls, y periodic" in out
+    check_geometry(cols, box, (False, True), floor=0.0, walls={0: (0, 16)})
+
+
+def test_region_sets_extent_floor_and_walls():
+    pre = "region slab block 2 14 INF INF 1.5 INF\n"
+    out, box, bounds, cols = run_packing(packing_script(n=400, args="region slab", pre=pre),
+                                         nprocs=2)
+    assert "sides: x walls, y periodic" in out
+    check_geometry(cols, box, (False, True), floor=1.5, walls={0: (2, 14)})
+
+
+def test_floor_keyword():
+    out, box, bounds, cols = run_packing(packing_script(n=300, args="floor 2.5"))
+    assert cols["z"].min() >= 3.5 - 1e-12
+    check_geometry(cols, box, (True, True), floor=2.5)
+
+
+def test_shrink_wrapped_top_grows_the_box_on_ranks_split_in_z():
+    script = "processors 1 1 2\n" + packing_script(n=800, H=3, boundary="p p fs")
+    out, box, bounds, cols = run_packing(script, nprocs=2)
+    assert len(cols["id"]) == 800
+    assert box[2, 1] >= cols["z"].max()
+    _, _, _, serial = run_packing(packing_script(n=800, H=3, boundary="p p fs"))
+    np.testing.assert_array_equal(cols["z"], serial["z"])
+
+
+def test_polydisperse_and_existing_atoms():
+    pre = "create_atoms 1 single 8 8 38\nset atom 1 diameter 2.0\n"
+    out, box, bounds, cols = run_packing(packing_script(n=500, args="dispersity 0.2", pre=pre),
+                                         nprocs=4)
+    assert len(cols["id"]) == 501
+    np.testing.assert_array_equal(cols["id"], np.arange(1, 502))
+    new = {c: v[1:] for c, v in cols.items()}  # tag 1 is the pre-existing atom (far above)
+    check_geometry(new, box, (True, True), floor=0.0, radius_range=(0.8, 1.2))
+    assert np.ptp(new["radius"]) > 0.2
+
+
+BAD_CASES = [
+    ("create_packing 0 1 1.0 5", "N = 0 must be"),
+    ("create_packing -5 1 1.0 5", "N = -5 must be"),
+    ("create_packing 10 1 0.0 5", "R = 0.0 must be a positive sphere radius"),
+    ("create_packing 10 1 -1 5", "R = -1 must be a positive sphere radius"),
+    ("create_packing 10 2 1.0 5", "type = 2 must be an atom type in [1, 1]"),
+    ("create_packing 10 1 1.0 0", "seed = 0 must be a positive integer"),
+    ("create_packing 10 1 1.0", "expected 'create_packing N type R seed"),
+    ("create_packing 10 1 1.0 5 region nothere", "region ID 'nothere' does not exist"),
+    ("create_packing 10 1 1.0 5 bogus 1", "unknown keyword 'bogus'"),
+    ("create_packing 10 1 1.0 5 dispersity 1.5", "dispersity = 1.5 must be in [0, 1)"),
+    ("create_packing 10 1 1.0 5 density 0", "density = 0 must be > 0"),
+    ("create_packing 10 1 1.0 5 walls", "walls needs 'x', 'y', 'x y' or 'none'"),
+    ("create_packing 10 1 1.0 5 floor -1", "floor = -1 is below the box bottom"),
+    ("create_packing 10 1 20.0 5", "less than one sphere diameter"),
+    ("region thin block 0 16 0 1 0 10\ncreate_packing 10 1 1.0 5 region thin",
+     "region 'thin' is 1 wide in y, less than one sphere diameter"),
+    ("region low block INF INF INF INF 0 3\ncreate_packing 2000 1 1.0 5 region low",
+     "region 'low' cannot hold N = 2000 spheres"),
+    # Passes the volume estimate, but the deposit's top ends above the region's top.
+    ("region low block INF INF INF INF 0 4\ncreate_packing 120 1 1.0 5 region low",
+     "the domain cannot hold the spheres"),
+]
+
+
+@pytest.mark.parametrize("body,message", BAD_CASES)
+def test_bad_argument(body, message):
+    rc, out, _ = run_lammps(HEADER.format(boundary="p p fm", L=16, H=40, ntypes=1) + body)
+    assert rc != 0, out
+    assert "ERROR" in out and message in out, out
+
+
+def test_bad_periodic_z():
+    rc, out, _ = run_lammps(HEADER.format(boundary="p p p", L=16, H=40, ntypes=1) +
+                            "create_packing 10 1 1.0 5")
+    assert rc != 0 and "z boundary is periodic" in out, out
+
+
+def test_bad_walls_none_without_periodic_sides():
+    rc, out, _ = run_lammps(HEADER.format(boundary="f p fm", L=16, H=40, ntypes=1) +
+                            "create_packing 10 1 1.0 5 walls none")
+    assert rc != 0 and "the x direction needs walls" in out, out
+
+
+def test_bad_fixed_top_too_low():
+    rc, out, _ = run_lammps(HEADER.format(boundary="p p ff", L=16, H=4, ntypes=1) +
+                            "create_packing 120 1 1.0 5")
+    assert rc != 0 and "cannot hold" in out and "fixed box top" in out, out
+
+
+def test_bad_triclinic():
+    script = HEADER.format(boundary="p p fm", L=16, H=40, ntypes=1).replace(
+        "region box block 0 16 0 16 0 40", "region box prism 0 16 0 16 0 40 1 0 0")
+    rc, out, _ = run_lammps(script + "create_packing 10 1 1.0 5")
+    assert rc != 0 and "triclinic" in out, out
+
+
+def test_bad_atom_style():
+    script = HEADER.format(boundary="p p fm", L=16, H=40, ntypes=1).replace(
+        "atom_style sphere", "atom_style atomic")
+    rc, out, _ = run_lammps(script + "create_packing 10 1 1.0 5")
+    assert rc != 0 and "use atom_style sphere" in out, out
+
+
+def test_bad_no_box():
+    rc, out, _ = run_lammps("units lj\natom_style sphere\ncreate_packing 10 1 1.0 5\n")
+    assert rc != 0 and "no simulation box yet" in out, out
+
+
+def test_example_runs_and_matches_its_log():
+    source = os.environ.get("TAPMC_SOURCE_DIR",
+                            os.path.join(os.path.dirname(__file__), "..", ".."))
+    example = os.path.join(source, "examples", "deposition")
+    with open(os.path.join(example, "in.deposition")) as f:
+        rc, out, _ = run_lammps(f.read())
+    assert rc == 0, out
+    logs = [n for n in os.listdir(example) if n.startswith("log.") and
+            n.endswith(".deposition.g++.1")]
+    assert len(logs) == 1, logs
+    with open(os.path.join(example, logs[0])) as f:
+        log = f.read()
+
+    def phi_line(text):
+        return next(line for line in text.splitlines() if line.startswith("  bulk packing fraction"))
+
+    assert phi_line(out) == phi_line(log)
+    phi = float(phi_line(out).split("bulk packing fraction")[1].split()[0])
+    assert 0.56 <= phi <= 0.61
+    assert "Initial packing: N = 4096" in out
