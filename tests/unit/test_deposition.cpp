@@ -371,6 +371,8 @@ TEST(Deposition, NoOverlapAndStableOverSeeds)
       {"x periodic, y walls", 8, 6, true, false, RadiusDistribution::monodisperse(1.0)},
       {"PBC poly", 8, 8, true, true, RadiusDistribution::uniform(0.6, 1.0)},
       {"FBC poly", 7, 9, false, false, RadiusDistribution::uniform(0.5, 1.0)},
+      {"PBC wide poly (radius ratio 3.3)", 8, 8, true, true,
+       RadiusDistribution::uniform(0.3, 1.0)},
       {"narrow PBC (box of 2.5 diameters)", 5, 5, true, true,
        RadiusDistribution::monodisperse(1.0)},
   };
