@@ -30,17 +30,6 @@ constexpr double kPi = 3.14159265358979323846;
 // Boundary codes of Domain::boundary[dim][side].
 constexpr int kBoundaryFixed = 1;
 
-// Region lookup across the LAMMPS API change of 24 Mar 2022 (candidate for lammps_compat.h).
-Region *find_region_by_id(Domain *domain, const std::string &id)
-{
-#if TAPMC_LAMMPS_NEW_API
-  return domain->get_region_by_id(id);
-#else
-  const int index = domain->find_region(id);
-  return index < 0 ? nullptr : domain->regions[index];
-#endif
-}
-
 struct Options {
   double floor_z = 0.0;
   bool floor_given = false;
@@ -171,7 +160,7 @@ void CreatePacking::command(int narg, char **arg)
   std::string top_name = top_fixed ? "the fixed box top" : "";
   bool spans[2] = {true, true};
   if (!opt.region_id.empty()) {
-    Region *region = find_region_by_id(domain, opt.region_id);
+    Region *region = tapmc::compat::find_region(domain, opt.region_id);
     if (!region) error->all(FLERR, "create_packing: region ID '{}' does not exist", opt.region_id);
     if (!region->bboxflag)
       error->all(FLERR, "create_packing: region '{}' has no bounding box (use a block)",

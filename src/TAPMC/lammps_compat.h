@@ -9,6 +9,8 @@
 #include "modify.h"
 #include "neighbor.h"
 
+#include <string>
+
 #ifndef TAPMC_LAMMPS_VERSION
 #error "TAPMC_LAMMPS_VERSION must be defined (CMake sets it from the LAMMPS package version)"
 #endif
@@ -36,6 +38,17 @@ inline LAMMPS_NS::Fix *find_fix(LAMMPS_NS::Modify *modify, const std::string &id
 #else
   int ifix = modify->find_fix(id);
   return ifix < 0 ? nullptr : modify->fix[ifix];
+#endif
+}
+
+// Look up a region by ID; nullptr when absent.
+inline LAMMPS_NS::Region *find_region(LAMMPS_NS::Domain *domain, const std::string &id)
+{
+#if TAPMC_LAMMPS_NEW_API
+  return domain->get_region_by_id(id);
+#else
+  const int index = domain->find_region(id);
+  return index < 0 ? nullptr : domain->regions[index];
 #endif
 }
 
