@@ -30,7 +30,7 @@ PoreOptions options_for(const Packing& p) {
 // Brute force: the pore sphere touches its four spheres and contains no centre (any image).
 void expect_empty_spheres(const Packing& p, const Tessellation& t) {
   const double tol = 1e-9 * p.radius;
-  for (const Pore& pore : t.result().pores) {
+  for (const Pore& pore : t.pores()) {
     const double r = (1.0 + pore.xi) * p.radius;
     double nearest = 1e300;
     for (std::size_t j = 0; j < p.size(); ++j)
@@ -49,8 +49,8 @@ void expect_empty_spheres(const Packing& p, const Tessellation& t) {
 // No two pores are the same Voronoi vertex (same centre up to periodicity).
 void expect_distinct(const Packing& p, const Tessellation& t) {
   std::set<std::array<std::int64_t, 4>> tetrahedra;
-  for (const Pore& pore : t.result().pores) EXPECT_TRUE(tetrahedra.insert(pore.ids).second || pore.tetrahedra > 1);
-  const auto& pores = t.result().pores;
+  for (const Pore& pore : t.pores()) EXPECT_TRUE(tetrahedra.insert(pore.ids).second || pore.tetrahedra > 1);
+  const auto& pores = t.pores();
   std::vector<std::size_t> order(pores.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return pores[a].centre[0] < pores[b].centre[0]; });
@@ -70,7 +70,7 @@ TEST(PoreInvariants, RandomTriplyPeriodicPackings) {
     EXPECT_NEAR(t.result().tetrahedra_volume, p.box.volume(), 1e-9 * p.box.volume());
     EXPECT_EQ(t.result().unresolved, 0u);
     // Random centres are in general position: no degenerate vertex, one tetrahedron per pore.
-    EXPECT_EQ(t.result().tetrahedra, t.result().pores.size());
+    EXPECT_EQ(t.result().tetrahedra, t.result().pore_count);
     expect_empty_spheres(p, t);
     expect_distinct(p, t);
   }
@@ -98,7 +98,7 @@ TEST(PoreInvariants, SlabAgreesWithTriplyPeriodicAwayFromZFaces) {
     const Tessellation tb(bulk.box, bulk.xyz, bulk.ids, options_for(bulk));
     auto interior = [&](const Tessellation& t) {
       std::map<std::array<std::int64_t, 4>, double> pores;
-      for (const Pore& pore : t.result().pores) {
+      for (const Pore& pore : t.pores()) {
         const double r = (1 + pore.xi) * slab.radius;
         if (pore.centre[2] - r > slab.box.lo[2] && pore.centre[2] + r < slab.box.hi[2]) pores[pore.ids] = pore.xi;
       }

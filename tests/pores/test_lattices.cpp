@@ -28,7 +28,7 @@ PoreOptions options_for(const Packing& p) {
 // Counts pores per (rounded) xi value; checks the tiling invariant on the way.
 std::map<long, int> count_by_xi(const Packing& p, const Tessellation& t) {
   std::map<long, int> counts;
-  for (const Pore& pore : t.result().pores) ++counts[std::lround(pore.xi * 1e6)];
+  for (const Pore& pore : t.pores()) ++counts[std::lround(pore.xi * 1e6)];
   EXPECT_NEAR(t.result().tetrahedra_volume, p.box.volume(), 1e-9 * p.box.volume());
   EXPECT_EQ(t.result().unresolved, 0u);
   return counts;
@@ -40,7 +40,7 @@ void expect_close_packed(const Packing& p) {
   ASSERT_EQ(counts.size(), 2u) << "only tetrahedral and octahedral pores expected";
   EXPECT_EQ(counts.at(std::lround(kXiTetrahedral * 1e6)), static_cast<int>(2 * p.size()));
   EXPECT_EQ(counts.at(std::lround(kXiOctahedral * 1e6)), static_cast<int>(p.size()));
-  for (const Pore& pore : t.result().pores) {
+  for (const Pore& pore : t.pores()) {
     const bool tetrahedral = std::abs(pore.xi - kXiTetrahedral) < 1e-12;
     const bool octahedral = std::abs(pore.xi - kXiOctahedral) < 1e-12;
     EXPECT_TRUE(tetrahedral || octahedral) << "xi = " << pore.xi;
@@ -77,7 +77,7 @@ TEST(PoreLattices, SimpleCubic) {
     const auto counts = count_by_xi(p, t);
     ASSERT_EQ(counts.size(), 1u);
     EXPECT_EQ(counts.begin()->second, static_cast<int>(p.size()));
-    for (const Pore& pore : t.result().pores) {
+    for (const Pore& pore : t.pores()) {
       EXPECT_NEAR(pore.xi, kXiCubic, 1e-12);
       EXPECT_GE(pore.tetrahedra, 5);  // a cube splits into 5 or 6 tetrahedra
     }
@@ -95,7 +95,7 @@ TEST(PoreLattices, PerturbedCloseKeepsTetrahedralAndOctahedralSizes) {
       EXPECT_NEAR(t.result().tetrahedra_volume, p.box.volume(), 1e-9 * p.box.volume());
       std::size_t tetrahedral = 0, octahedral = 0;
       double octahedral_volume = 0;
-      for (const Pore& pore : t.result().pores) {
+      for (const Pore& pore : t.pores()) {
         if (std::abs(pore.xi - kXiTetrahedral) < 50 * delta) ++tetrahedral;
         else if (std::abs(pore.xi - kXiOctahedral) < 50 * delta) ++octahedral, octahedral_volume += pore.volume;
         else ADD_FAILURE() << "pore xi = " << pore.xi << " is neither tetrahedral nor octahedral";
@@ -124,7 +124,7 @@ TEST(PoreLattices, PerturbedSimpleCubicPoresLieOnTheCubicVoronoiSkeleton) {
     EXPECT_NEAR(t.result().tetrahedra_volume, p.box.volume(), 1e-9 * p.box.volume());
     const double a = 2 * p.radius;
     std::size_t at_cube_centres = 0;
-    for (const Pore& pore : t.result().pores) {
+    for (const Pore& pore : t.pores()) {
       double offset[3];  // position in the lattice cell, in units of a, lattice sites at integers
       int half = 0;
       for (int d = 0; d < 3; ++d) {

@@ -20,7 +20,7 @@ TEST(PoreStatistics, FccHistogramAndNu) {
   o.radius = p.radius;
   const Tessellation t(p.box, p.xyz, p.ids, o);
   PoreStatistics s(HistogramSpec{1.5, 150});
-  for (const Pore& pore : t.result().pores) s.add(pore);
+  for (const Pore& pore : t.pores()) s.add(pore);
   const double xt = std::sqrt(1.5) - 1, xo = std::sqrt(2.0) - 1;
   EXPECT_EQ(s.pores, 3 * p.size());
   EXPECT_EQ(s.degenerate, p.size());

@@ -336,13 +336,13 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
         summary.timestep = frame.timestep;
         summary.atoms = frame.size();
         summary.radius = radius.radius;
-        summary.pores = result.pores.size();
+        summary.pores = result.pore_count;
         summary.tetrahedra = result.tetrahedra;
         summary.unresolved = result.unresolved;
         summary.region_volume = region.volume();
         summary.tetrahedra_volume = result.tetrahedra_volume;
         summary.stats = PoreStatistics(o.histogram);
-        for (const Pore& pore : result.pores) {
+        tessellation->for_each_pore([&](const Pore& pore) {
           const bool selected = region.contains(pore.centre);
           if (selected) summary.stats.add(pore);
           if (o.pore_list)
@@ -350,7 +350,7 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
                       << pore.centre[1] << "," << pore.centre[2] << "," << pore.xi << "," << pore.ids[0] << ","
                       << pore.ids[1] << "," << pore.ids[2] << "," << pore.ids[3] << "," << pore.tetrahedra << ","
                       << pore.volume << "," << (selected ? 1 : 0) << "\n";
-        }
+        });
         if (result.unresolved_in_box > 0 && !o.quiet)
           err << "tapmc-pores: warning: " << where(frame.first_line) << result.unresolved_in_box
               << " Delaunay cells inside the box have empty spheres wider than the padding (" << result.padding
@@ -379,7 +379,9 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
         if (!o.quiet)
           err << "tapmc-pores: " << path << " frame " << frame.index << " (timestep " << frame.timestep << "): "
               << summary.atoms << " spheres, " << summary.pores << " pores, " << s.pores << " selected, nu = "
-              << csv_number(s.nu()) << " (" << std::setprecision(3) << summary.seconds << " s)\n";
+              << csv_number(s.nu()) << " (" << std::setprecision(3) << summary.seconds << " s: Delaunay "
+              << result.triangulation_seconds << " s, pores " << result.pore_seconds << " s, "
+              << result.attempts << " triangulation(s))\n";
         if (!o.json) summary.stats = PoreStatistics(HistogramSpec{1.0, 1});  // keep memory flat
         summaries.push_back(std::move(summary));
         ++analysed;

@@ -10,6 +10,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -85,14 +86,29 @@ std::uint32_t find_root(std::vector<std::uint32_t>& parent, std::uint32_t i) {
 struct Tessellation::Impl {
   Box box;
   PoreOptions options;
-  const std::vector<std::int64_t>* ids = nullptr;
   std::vector<std::uint32_t> origin;              // padded point -> input index
-  std::vector<std::array<std::int8_t, 3>> shift;  // padded point -> image shift (box lengths)
+  std::vector<std::uint8_t> primary;              // padded point -> 1 if the centre itself (no shift)
   Delaunay triangulation;
   PoreResult result;
+  std::vector<std::int64_t> ids;      // atom ids (copied: pores are emitted after construction)
+  std::vector<CellHandle> cells;      // finite cells, indexed by their info()
+  std::vector<std::uint32_t> grouped; // cells of degenerate clusters, consecutive per cluster
+  // A kept pore: one cell (size 1, begin = cell index) or grouped[begin, begin + size).
+  struct Kept {
+    std::uint32_t begin, size;
+  };
+  std::vector<Kept> kept_pores;
 
+  static Sphere sphere_of(const CellHandle& c) {
+    return circumsphere(c->vertex(0)->point(), c->vertex(1)->point(), c->vertex(2)->point(), c->vertex(3)->point());
+  }
+  static double volume_of(const CellHandle& c) {
+    return tetrahedron_volume(c->vertex(0)->point(), c->vertex(1)->point(), c->vertex(2)->point(),
+                              c->vertex(3)->point());
+  }
+  Pore make_pore(const Kept& kept) const;
   void build(const std::vector<double>& xyz, double padding);
-  void check_overlaps(const std::vector<CellHandle>& cells) const;
+  void check_overlaps(const CellHandle& cell, double contact2) const;
   void find_pores(double padding);
 };
 
@@ -108,7 +124,7 @@ void Tessellation::Impl::build(const std::vector<double>& xyz, double padding) {
   std::vector<std::pair<Point, std::uint32_t>> points;
   points.reserve(n + n / 4);
   origin.clear();
-  shift.clear();
+  primary.clear();
   for (std::size_t i = 0; i < n; ++i) {
     const double* p = &xyz[3 * i];
     for (int sx = -images[0]; sx <= images[0]; ++sx)
@@ -124,7 +140,7 @@ void Tessellation::Impl::build(const std::vector<double>& xyz, double padding) {
           if (!inside) continue;
           points.emplace_back(Point(q[0], q[1], q[2]), static_cast<std::uint32_t>(origin.size()));
           origin.push_back(static_cast<std::uint32_t>(i));
-          shift.push_back({static_cast<std::int8_t>(sx), static_cast<std::int8_t>(sy), static_cast<std::int8_t>(sz)});
+          primary.push_back(sx == 0 && sy == 0 && sz == 0 ? 1 : 0);
         }
   }
   if (points.size() >= std::numeric_limits<std::uint32_t>::max())
@@ -133,110 +149,104 @@ void Tessellation::Impl::build(const std::vector<double>& xyz, double padding) {
   triangulation.insert(points.begin(), points.end());  // spatially sorted insertion
 }
 
-void Tessellation::Impl::check_overlaps(const std::vector<CellHandle>& cells) const {
+void Tessellation::Impl::check_overlaps(const CellHandle& c, double contact2) const {
   // The closest pair is a Delaunay edge, so checking edges that touch a primary centre finds
   // every overlap, across periodic boundaries included.
-  const double contact = 2.0 * options.radius * (1.0 - options.overlap_tolerance);
-  const double contact2 = contact * contact;
-  for (const CellHandle& c : cells) {
-    for (int a = 0; a < 4; ++a)
-      for (int b = a + 1; b < 4; ++b) {
-        const auto va = c->vertex(a), vb = c->vertex(b);
-        const std::uint32_t pa = va->info(), pb = vb->info();
-        const bool primary_a = shift[pa] == std::array<std::int8_t, 3>{{0, 0, 0}};
-        const bool primary_b = shift[pb] == std::array<std::int8_t, 3>{{0, 0, 0}};
-        if (!primary_a && !primary_b) continue;
-        const double d2 = CGAL::squared_distance(va->point(), vb->point());
-        if (d2 < contact2) {
-          const std::size_t ia = origin[pa], ib = origin[pb];
-          std::ostringstream what;
-          what.precision(10);
-          if (ia == ib) {
-            what << "sphere " << (*ids)[ia] << " overlaps its own periodic image (box length below 2R)";
-          } else {
-            what << "spheres " << (*ids)[ia] << " and " << (*ids)[ib] << " overlap: centre distance "
-                 << std::sqrt(d2) << " < 2R = " << 2.0 * options.radius
-                 << " (tolerance " << options.overlap_tolerance
-                 << " of a diameter; the pore of a tangent empty sphere needs hard spheres)";
-          }
-          throw OverlapError(what.str(), ia, ib);
+  for (int a = 0; a < 4; ++a)
+    for (int b = a + 1; b < 4; ++b) {
+      const auto va = c->vertex(a), vb = c->vertex(b);
+      const std::uint32_t pa = va->info(), pb = vb->info();
+      if (!primary[pa] && !primary[pb]) continue;
+      const double d2 = CGAL::squared_distance(va->point(), vb->point());
+      if (d2 < contact2) {
+        const std::size_t ia = origin[pa], ib = origin[pb];
+        std::ostringstream what;
+        what.precision(10);
+        if (ia == ib) {
+          what << "sphere " << ids[ia] << " overlaps its own periodic image (box length below 2R)";
+        } else {
+          what << "spheres " << ids[ia] << " and " << ids[ib] << " overlap: centre distance " << std::sqrt(d2)
+               << " < 2R = " << 2.0 * options.radius << " (tolerance " << options.overlap_tolerance
+               << " of a diameter; the pore of a tangent empty sphere needs hard spheres)";
         }
+        throw OverlapError(what.str(), ia, ib);
       }
-  }
+    }
 }
 
 void Tessellation::Impl::find_pores(double padding) {
   result = PoreResult{};
   result.padding = padding;
-  std::vector<CellHandle> cells;
+  cells.clear();
   cells.reserve(7 * triangulation.number_of_vertices());
   for (auto c = triangulation.finite_cells_begin(); c != triangulation.finite_cells_end(); ++c) {
     c->info() = static_cast<std::uint32_t>(cells.size());
     cells.push_back(c);
   }
-  check_overlaps(cells);
   const std::size_t count = cells.size();
-
-  std::vector<Sphere> spheres(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    const CellHandle& c = cells[i];
-    spheres[i] = circumsphere(c->vertex(0)->point(), c->vertex(1)->point(), c->vertex(2)->point(),
-                              c->vertex(3)->point());
-  }
+  const double contact = 2.0 * options.radius * (1.0 - options.overlap_tolerance);
 
   // Degenerate Voronoi vertices: union face-adjacent tetrahedra with one common empty sphere.
+  // Necessary condition first (cheap, no storage): the neighbour's opposite vertex lies on this
+  // sphere within 2 tol (triangle inequality); only then compare the two circumspheres.
   const double tolerance = options.merge_tolerance * options.radius;
   std::vector<std::uint32_t> parent(count);
   std::iota(parent.begin(), parent.end(), 0u);
+  std::vector<std::uint8_t> clustered(count, 0);
   for (std::size_t i = 0; i < count; ++i) {
+    const CellHandle& c = cells[i];
+    check_overlaps(c, contact * contact);
+    const Sphere a = sphere_of(c);
     for (int k = 0; k < 4; ++k) {
-      const CellHandle neighbour = cells[i]->neighbor(k);
+      const CellHandle neighbour = c->neighbor(k);
       if (triangulation.is_infinite(neighbour)) continue;
       const std::uint32_t j = neighbour->info();
       if (j <= i) continue;
-      const Sphere &a = spheres[i], &b = spheres[j];
+      const Point& apex = neighbour->vertex(neighbour->index(c))->point();
+      const double off = std::sqrt(squared(apex.x() - a.x) + squared(apex.y() - a.y) + squared(apex.z() - a.z)) - a.r;
+      if (std::abs(off) > 2.0 * tolerance + 1e-14 * a.r) continue;
+      const Sphere b = sphere_of(neighbour);
       if (std::abs(a.r - b.r) < tolerance &&
           squared(a.x - b.x) + squared(a.y - b.y) + squared(a.z - b.z) < tolerance * tolerance) {
         const std::uint32_t ri = find_root(parent, static_cast<std::uint32_t>(i)), rj = find_root(parent, j);
         if (ri != rj) parent[std::max(ri, rj)] = std::min(ri, rj);
+        clustered[i] = clustered[j] = 1;
       }
     }
   }
-  std::vector<std::uint32_t> members(count, 0);  // cluster size, indexed by root
-  for (std::size_t i = 0; i < count; ++i) {
-    parent[i] = find_root(parent, static_cast<std::uint32_t>(i));
-    ++members[parent[i]];
-  }
-  std::vector<std::uint32_t> grouped;  // cells of multi-tetrahedron clusters, grouped by root
+  grouped.clear();  // cells of multi-tetrahedron clusters, grouped by root
   for (std::size_t i = 0; i < count; ++i)
-    if (members[parent[i]] > 1) grouped.push_back(static_cast<std::uint32_t>(i));
+    if (clustered[i]) {
+      parent[i] = find_root(parent, static_cast<std::uint32_t>(i));
+      grouped.push_back(static_cast<std::uint32_t>(i));
+    }
   std::stable_sort(grouped.begin(), grouped.end(),
                    [&](std::uint32_t a, std::uint32_t b) { return parent[a] < parent[b]; });
 
   // Keep each periodic cluster once: the copy whose lowest-index centre is the primary one
   // (image shift 0). A canonical vertex rule, independent of rounding of circumcentres.
-  const std::array<std::int8_t, 3> primary{{0, 0, 0}};
-  auto process = [&](const std::uint32_t* first, const std::uint32_t* last) {
+  auto process = [&](const std::uint32_t* first, const std::uint32_t* last, Kept kept) {
     std::uint32_t min_origin = std::numeric_limits<std::uint32_t>::max(), min_point = 0;
     for (const std::uint32_t* c = first; c != last; ++c)
       for (int k = 0; k < 4; ++k) {
         const std::uint32_t p = cells[*c]->vertex(k)->info();
         if (origin[p] < min_origin) min_origin = origin[p], min_point = p;
       }
-    if (shift[min_point] != primary) return;
+    if (!primary[min_point]) return;
     bool resolved = true;
+    Sphere first_sphere{};
     for (const std::uint32_t* c = first; c != last && resolved; ++c) {
-      const Sphere& s = spheres[*c];
+      const Sphere s = sphere_of(cells[*c]);
+      if (c == first) first_sphere = s;
       const double centre[3] = {s.x, s.y, s.z};
       for (int d = 0; d < 3; ++d)
         if (box.periodic[d] && (centre[d] - s.r < box.lo[d] - padding || centre[d] + s.r > box.hi[d] + padding))
           resolved = false;
     }
-    const Sphere& s = spheres[*first];
     if (!resolved) {
       ++result.unresolved;
       bool in_box = true;
-      const double centre[3] = {s.x, s.y, s.z};
+      const double centre[3] = {first_sphere.x, first_sphere.y, first_sphere.z};
       for (int d = 0; d < 3; ++d)
         if (!box.periodic[d] && (centre[d] < box.lo[d] || centre[d] > box.hi[d])) in_box = false;
       if (in_box) ++result.unresolved_in_box;
@@ -247,40 +257,47 @@ void Tessellation::Impl::find_pores(double padding) {
         const std::uint32_t p = cells[*c]->vertex(k)->info();
         if (origin[p] == min_origin && p != min_point)
           throw std::runtime_error(
-              "periodic box too small: sphere " + std::to_string((*ids)[min_origin]) +
+              "periodic box too small: sphere " + std::to_string(ids[min_origin]) +
               " and its own image bound one pore (a periodic length is below the pore diameter)");
       }
-    Pore pore;
-    pore.centre = {s.x, s.y, s.z};
-    for (int d = 0; d < 3; ++d)
-      if (box.periodic[d]) {
-        double t = (pore.centre[d] - box.lo[d]) / box.length(d);
-        t -= std::floor(t);
-        pore.centre[d] = std::min(box.lo[d] + t * box.length(d), std::nextafter(box.hi[d], box.lo[d]));
-      }
-    pore.xi = (s.r - options.radius) / options.radius;
-    for (int k = 0; k < 4; ++k) pore.ids[k] = (*ids)[origin[cells[*first]->vertex(k)->info()]];
-    std::sort(pore.ids.begin(), pore.ids.end());
-    pore.tetrahedra = static_cast<int>(last - first);
-    for (const std::uint32_t* c = first; c != last; ++c) {
-      const CellHandle& h = cells[*c];
-      pore.volume += tetrahedron_volume(h->vertex(0)->point(), h->vertex(1)->point(), h->vertex(2)->point(),
-                                        h->vertex(3)->point());
-    }
-    result.tetrahedra += pore.tetrahedra;
-    result.tetrahedra_volume += pore.volume;
-    result.pores.push_back(pore);
+    for (const std::uint32_t* c = first; c != last; ++c) result.tetrahedra_volume += volume_of(cells[*c]);
+    result.tetrahedra += static_cast<std::size_t>(last - first);
+    kept_pores.push_back(kept);
   };
 
-  result.pores.reserve(count / 2);
+  kept_pores.clear();
+  const std::size_t primaries = static_cast<std::size_t>(std::count(primary.begin(), primary.end(), 1));
+  kept_pores.reserve(static_cast<std::size_t>(1.02 * count * primaries / std::max<std::size_t>(1, primary.size())) + 16);
   for (std::uint32_t i = 0; i < count; ++i)
-    if (members[parent[i]] == 1) process(&i, &i + 1);
+    if (!clustered[i]) process(&i, &i + 1, Kept{i, 1});
   for (std::size_t begin = 0; begin < grouped.size();) {
     std::size_t end = begin + 1;
     while (end < grouped.size() && parent[grouped[end]] == parent[grouped[begin]]) ++end;
-    process(grouped.data() + begin, grouped.data() + end);
+    process(grouped.data() + begin, grouped.data() + end,
+            Kept{static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(end - begin)});
     begin = end;
   }
+  result.pore_count = kept_pores.size();
+}
+
+Pore Tessellation::Impl::make_pore(const Kept& kept) const {
+  const std::uint32_t* first = kept.size == 1 ? &kept.begin : grouped.data() + kept.begin;
+  const CellHandle& head = cells[*first];
+  const Sphere s = sphere_of(head);
+  Pore pore;
+  pore.centre = {s.x, s.y, s.z};
+  for (int d = 0; d < 3; ++d)
+    if (box.periodic[d]) {
+      double t = (pore.centre[d] - box.lo[d]) / box.length(d);
+      t -= std::floor(t);
+      pore.centre[d] = std::min(box.lo[d] + t * box.length(d), std::nextafter(box.hi[d], box.lo[d]));
+    }
+  pore.xi = (s.r - options.radius) / options.radius;
+  for (int k = 0; k < 4; ++k) pore.ids[k] = ids[origin[head->vertex(k)->info()]];
+  std::sort(pore.ids.begin(), pore.ids.end());
+  pore.tetrahedra = static_cast<int>(kept.size);
+  for (std::uint32_t c = 0; c < kept.size; ++c) pore.volume += volume_of(cells[first[c]]);
+  return pore;
 }
 
 Tessellation::Tessellation(const Box& box, const std::vector<double>& xyz, const std::vector<std::int64_t>& ids,
@@ -302,20 +319,38 @@ Tessellation::Tessellation(const Box& box, const std::vector<double>& xyz, const
   if (ids.empty()) throw std::invalid_argument("no centres given");
   impl_->box = box;
   impl_->options = options;
-  impl_->ids = &ids;
+  impl_->ids = ids;
   double padding = options.padding_over_radius * options.radius;
+  double triangulation_seconds = 0, pore_seconds = 0;
   for (int attempt = 0;; ++attempt) {
+    const auto start = std::chrono::steady_clock::now();
     impl_->build(xyz, padding);
+    const auto built = std::chrono::steady_clock::now();
     impl_->find_pores(padding);
+    triangulation_seconds += std::chrono::duration<double>(built - start).count();
+    pore_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - built).count();
+    impl_->result.attempts = attempt + 1;
     if (impl_->result.unresolved_in_box == 0 || attempt >= options.max_padding_retries) break;
     padding *= 2.0;
   }
-  impl_->ids = nullptr;  // the caller's ids may go away; pores hold copies
+  impl_->result.triangulation_seconds = triangulation_seconds;
+  impl_->result.pore_seconds = pore_seconds;
 }
 
 Tessellation::~Tessellation() = default;
 
 const PoreResult& Tessellation::result() const { return impl_->result; }
+
+void Tessellation::for_each_pore(const std::function<void(const Pore&)>& visit) const {
+  for (const auto& kept : impl_->kept_pores) visit(impl_->make_pore(kept));
+}
+
+std::vector<Pore> Tessellation::pores() const {
+  std::vector<Pore> all;
+  all.reserve(impl_->kept_pores.size());
+  for_each_pore([&](const Pore& pore) { all.push_back(pore); });
+  return all;
+}
 
 std::vector<double> Tessellation::nearest_centre_distances(const std::vector<double>& points) const {
   if (points.size() % 3 != 0)

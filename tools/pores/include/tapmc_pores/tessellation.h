@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -35,12 +36,15 @@ struct PoreOptions {
 };
 
 struct PoreResult {
-  std::vector<Pore> pores;           // each Voronoi vertex of the (periodic) centres exactly once
+  std::size_t pore_count = 0;        // Voronoi vertices of the (periodic) centres, each once
   std::size_t tetrahedra = 0;        // Delaunay tetrahedra behind those pores
   double tetrahedra_volume = 0.0;    // their total volume (= box volume when triply periodic)
   std::size_t unresolved = 0;        // Delaunay cells whose empty sphere exceeds the padding
   std::size_t unresolved_in_box = 0; // ... of which with their centre inside the box
   double padding = 0.0;              // padding finally used (length units)
+  int attempts = 1;                  // triangulations built (> 1: padding was grown)
+  double triangulation_seconds = 0;  // time in CGAL's Delaunay construction (all attempts)
+  double pore_seconds = 0;           // time in circumspheres, merging, canonical selection
 };
 
 // Two spheres closer than 2R (1 - overlap tolerance). `index_*` are positions in the input.
@@ -63,6 +67,11 @@ class Tessellation {
   Tessellation& operator=(const Tessellation&) = delete;
 
   const PoreResult& result() const;
+
+  // Every pore once (in no particular order), built on the fly: a 10^6-sphere frame has
+  // 6.5 10^6 pores, which the streaming form never holds in memory at once.
+  void for_each_pore(const std::function<void(const Pore&)>& visit) const;
+  std::vector<Pore> pores() const;  // the same, collected
 
   // Distance from each point (3 count coordinates, inside the box along periodic directions) to
   // the nearest sphere centre, periodic images included (Gotoh's P0 sampling).
