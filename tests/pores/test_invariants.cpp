@@ -116,6 +116,25 @@ TEST(PoreInvariants, SlabAgreesWithTriplyPeriodicAwayFromZFaces) {
   }
 }
 
+TEST(PoreInvariants, SparsePackingsGrowThePaddingUntilExact) {
+  // 40 spheres in an 8^3 periodic box: empty spheres wider than the default padding allows.
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const Packing p = pores_test::random_packing(40, 8.0, {true, true, true}, seed);
+    PoreOptions wide = options_for(p);
+    wide.padding_over_radius = 16.0;
+    const Tessellation adaptive(p.box, p.xyz, p.ids, options_for(p)), reference(p.box, p.xyz, p.ids, wide);
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    EXPECT_GT(adaptive.result().attempts, 1);
+    EXPECT_EQ(adaptive.result().unresolved, 0u);
+    EXPECT_NEAR(adaptive.result().tetrahedra_volume, p.box.volume(), 1e-9 * p.box.volume());
+    std::map<std::array<std::int64_t, 4>, double> a, b;
+    for (const Pore& pore : adaptive.pores()) a[pore.ids] = pore.xi;
+    for (const Pore& pore : reference.pores()) b[pore.ids] = pore.xi;
+    EXPECT_EQ(a, b);
+    expect_empty_spheres(p, adaptive);
+  }
+}
+
 TEST(PoreInvariants, OverlapAcrossThePeriodicSeamIsRefused) {
   Packing p = pores_test::random_packing(60, 6.0, {true, true, true}, 7);
   p.add(0.02, 3.0, 3.0);

@@ -56,7 +56,7 @@ Outputs (files PREFIX.*)
 Tolerances
   --overlap-tol T      spheres closer than 2R (1 - T) are refused (default 1e-3)
   --merge-tol T        circumcentres closer than T R are one pore (default 1e-8)
-  --padding P          periodic image padding in R (default 6; grown automatically)
+  --padding P          periodic image padding in R (default 4; grown automatically)
 Other
   -q, --quiet          no progress lines on stderr
   -h, --help           this text
