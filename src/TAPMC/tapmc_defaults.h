@@ -22,6 +22,11 @@ constexpr double kMaxStepOverRadius = 0.2;
 // giving the maximal compaction rate.
 constexpr double kThetaWidth = 0.78539816339744830962;  // pi/4
 
+// ---- fix mc/settle: the sweep cap (eta: see kSettleEta in the settle-kernel section) ------
+// A cap on sweeps per tap so that a redeposition that never converges (eta too small for the
+// noise of <Z>) ends; reaching it is reported in the fix's output vector and as a warning.
+constexpr long kSettleMaxSweeps = 20000;
+
 // ---- stereology: compute stereo/profile (paper, sections III and IV.A) --------------------
 // R below is the sphere radius (the group's mean radius for mixed radii).
 // Phi_b is the mean of Phi(z) over [floor, floor + 4R]: the paper's bottom slab "between 0 and 4R".
@@ -44,15 +49,6 @@ constexpr double kLateralWidthOverRadius = 7.0;
 constexpr double kVerticalWindowBottomOverRadius = 2.0;
 // Default number of cut planes of the profile array (bins of about 0.3R for a 32R box).
 constexpr int kProfilePlanes = 100;
-
-// ---- redeposition: Monte Carlo settle kernel (tapmc_settle.h) ------------------------------
-// Cap on <Z> checks (sweeps with the default interval) per redeposition. A redeposition after
-// a tap converges in far fewer checks for any sensible eta (see kSettleEta); the cap only stops
-// a run whose eta is unreachable, and SettleResult::hit_cap reports it.
-constexpr long kSettleMaxChecks = 100000;
-// Recommended eta (no value in the paper): relative change of <Z> per sweep below which the
-// redeposition stops. Measured by bench_mc_settle (PBC, N = 4096, eps = 0.01; see the report).
-constexpr double kSettleEta = 1e-4;
 
 // ---- initial packing: create_packing, sequential deposition (Jullien & Meakin 1987) ---------
 // A sphere or plane counts as touching (a possible support) when its gap is below this fraction
@@ -78,6 +74,18 @@ constexpr int kDepositionMaxAttempts = 8;
 constexpr double kDepositionBulkMarginOverRadius = 6.0;
 // Mass density given to created spheres (rmass = density * 4/3 pi r^3), as create_atoms does.
 constexpr double kDepositionDensity = 1.0;
+
+// ---- redeposition: Monte Carlo settle kernel (tapmc_settle.h) ------------------------------
+// Cap on <Z> checks (sweeps with the default interval) per redeposition. A redeposition after
+// a tap converges in far fewer checks for any sensible eta (see kSettleEta); the cap only stops
+// a run whose eta is unreachable, and SettleResult::hit_cap reports it.
+constexpr long kSettleMaxChecks = 100000;
+// Recommended eta (no value in the paper): relative change of <Z> per sweep below which the
+// redeposition stops. Measured by bench_mc_settle (N = 4096, PBC, deposited bed, eps = 0.01):
+// eta = 1e-3, 1e-4, 1e-5 stop after 1 sweep having recovered 0.1 % of the tap's lift of <Z>
+// (the first sweeps after a small tap change <Z> by < 1e-5); eta = 1e-6 takes ~1300 sweeps
+// (54 % recovered), 1e-7 ~3500 sweeps (72 %). 1e-6 is the loosest value that redeposits.
+constexpr double kSettleEta = 1e-6;
 
 }  // namespace defaults
 }  // namespace tapmc
