@@ -174,3 +174,35 @@ TEST(TrialMove, BadParametersThrowNamingTheParameter)
   EXPECT_NE(message(0.1, NAN).find("theta0"), std::string::npos);
   EXPECT_EQ(message(0.1, kPi / 2), "");
 }
+
+// The batched draw (lane-parallel random blocks) is bit-identical to the one-by-one draw.
+TEST(TrialMove, BatchDrawEqualsSingleDraws)
+{
+  const TrialMoveSampler sampler(0.2, 0.3);
+  const CounterRandom rng(31, 32);
+  std::vector<TrialDraw> batch(TrialMoveSampler::kBatchMax);
+  for (std::uint64_t first : {0ull, 5ull, 1ull << 33}) {
+    sampler.draw_batch(rng, first, TrialMoveSampler::kBatchMax, 1000, batch.data());
+    for (int k = 0; k < TrialMoveSampler::kBatchMax; ++k) {
+      const TrialDraw one = sampler.draw(rng, first + k, 1000);
+      EXPECT_EQ(one.pick, batch[k].pick);
+      EXPECT_EQ(one.move.dx, batch[k].move.dx);
+      EXPECT_EQ(one.move.dy, batch[k].move.dy);
+      EXPECT_EQ(one.move.dz, batch[k].move.dz);
+    }
+  }
+}
+
+// The table sin/cos agree with the library functions to a few ulp over the whole range.
+TEST(TrialMove, SinCosTableIsAccurate)
+{
+  const SinCosTable table(kPi / 2);
+  double worst = 0;
+  for (int k = 0; k <= 100000; ++k) {
+    const double a = k * (kPi / 2) / 100000;
+    double s, c;
+    table.sincos(a, s, c);
+    worst = std::max({worst, std::fabs(s - std::sin(a)), std::fabs(c - std::cos(a))});
+  }
+  EXPECT_LT(worst, 1e-15);
+}
