@@ -22,11 +22,6 @@ constexpr double kMaxStepOverRadius = 0.2;
 // giving the maximal compaction rate.
 constexpr double kThetaWidth = 0.78539816339744830962;  // pi/4
 
-// ---- fix mc/settle: the sweep cap (eta: see kSettleEta in the settle-kernel section) ------
-// A cap on sweeps per tap so that a redeposition that never converges (eta too small for the
-// noise of <Z>) ends; reaching it is reported in the fix's output vector and as a warning.
-constexpr long kSettleMaxSweeps = 20000;
-
 // ---- stereology: compute stereo/profile (paper, sections III and IV.A) --------------------
 // R below is the sphere radius (the group's mean radius for mixed radii).
 // Phi_b is the mean of Phi(z) over [floor, floor + 4R]: the paper's bottom slab "between 0 and 4R".
@@ -75,17 +70,22 @@ constexpr double kDepositionBulkMarginOverRadius = 6.0;
 // Mass density given to created spheres (rmass = density * 4/3 pi r^3), as create_atoms does.
 constexpr double kDepositionDensity = 1.0;
 
-// ---- redeposition: Monte Carlo settle kernel (tapmc_settle.h) ------------------------------
-// Cap on <Z> checks (sweeps with the default interval) per redeposition. A redeposition after
-// a tap converges in far fewer checks for any sensible eta (see kSettleEta); the cap only stops
-// a run whose eta is unreachable, and SettleResult::hit_cap reports it.
-constexpr long kSettleMaxChecks = 100000;
-// Recommended eta (no value in the paper): relative change of <Z> per sweep below which the
-// redeposition stops. Measured by bench_mc_settle (N = 4096, PBC, deposited bed, eps = 0.01):
-// eta = 1e-3, 1e-4, 1e-5 stop after 1 sweep having recovered 0.1 % of the tap's lift of <Z>
-// (the first sweeps after a small tap change <Z> by < 1e-5); eta = 1e-6 takes ~1300 sweeps
-// (54 % recovered), 1e-7 ~3500 sweeps (72 %). 1e-6 is the loosest value that redeposits.
+// ---- redeposition: fix mc/settle and its kernel (tapmc_settle.h) -------------------------
+// eta (no value in the paper): the redeposition stops when <Z> changes by less than eta
+// (relative) between two checks one sweep apart. Measured on the paper's PBC set-up (N = 4096,
+// Jullien-Meakin start, eps = 0.01, one seed, examples/tapping/in.tapping_pbc):
+//   eta     sweeps/tap  s/tap   Phi_b(200)  <Phi^c>(200)  <Z>(200)
+//   1e-4        65      0.04    0.548       0.566         7.466
+//   1e-5       350      0.18    0.556       0.588         7.248
+//   1e-6      1250      0.67    0.558       0.592         7.201
+// and, on the bed right after deposition (bench_mc_settle): 1e-3 to 1e-5 stop after one sweep
+// having undone 0.1 % of the tap's lift of <Z> (the first sweeps after a small tap change <Z>
+// by less than 1e-5), 1e-6 undoes 54 % in ~1300 sweeps, 1e-7 72 % in ~3500. 1e-6 is the
+// loosest value that redeposits from every state tried; looser values bias the packing loose.
 constexpr double kSettleEta = 1e-6;
+// Cap on sweeps per redeposition, 15 times what eta = 1e-6 needs: it only ends a run whose eta
+// is unreachable; reaching it is reported in the fix's output vector and as a warning.
+constexpr long kSettleMaxSweeps = 20000;
 
 }  // namespace defaults
 }  // namespace tapmc
