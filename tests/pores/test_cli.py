@@ -89,6 +89,12 @@ def test_fcc_and_paper_window(tmp_path):
     r = math.sqrt(0.5)
     assert np.all((pores["z"][sel] >= 2 * r) & (pores["z"][sel] < 6 * r))
     assert np.all((pores["z"][~sel] < 2 * r) | (pores["z"][~sel] >= 6 * r))
+    # --paper-window: z in [2R, 20R) above the floor (here: the whole 8-long periodic box from 2R).
+    result = run("-q", "-r", r, "--paper-window", "--pores", "-o", tmp_path / "paper", dump)
+    assert result.returncode == 0, result.stderr
+    pores = read_csv(tmp_path / "paper.pores.csv")
+    sel = pores["selected"] == 1
+    assert np.all(sel == (pores["z"] >= 2 * r) & (pores["z"] < 20 * r))
 
 
 def _frame(n_atoms_line, atom_lines, flags="pp pp pp", columns="id x y z radius", bounds=("0 7", "0 7", "0 7")):

@@ -130,7 +130,12 @@ TEST(PoreInvariants, SparsePackingsGrowThePaddingUntilExact) {
     std::map<std::array<std::int64_t, 4>, double> a, b;
     for (const Pore& pore : adaptive.pores()) a[pore.ids] = pore.xi;
     for (const Pore& pore : reference.pores()) b[pore.ids] = pore.xi;
-    EXPECT_EQ(a, b);
+    ASSERT_EQ(a.size(), b.size());
+    for (const auto& [ids, xi] : a) {
+      const auto it = b.find(ids);
+      ASSERT_NE(it, b.end());
+      EXPECT_NEAR(it->second, xi, 1e-12);  // same cell, vertices possibly in another order
+    }
     expect_empty_spheres(p, adaptive);
   }
 }

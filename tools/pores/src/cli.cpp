@@ -40,6 +40,8 @@ Selection of pores (by the position of the pore centre)
                        (the paper's window: --radii --z 2:20)
   --wall-gap G         default distance from non-periodic box faces, in R (default 2);
                        periodic directions are used whole
+  --paper-window       the paper's statistics box (section IV.B): 2R from the side walls,
+                       height 18R from 2R above the box floor (same as --radii --z 2:20)
 Histograms
   --bins N             bins of xi on [0, XI_MAX) and of v = xi^3 on [0, XI_MAX^3) (default 150)
   --xi-max X           (default 1.5)
@@ -147,6 +149,11 @@ Options parse(const std::vector<std::string>& args, bool& help) {
     else if (a == "--y") range(1);
     else if (a == "--z") range(2);
     else if (a == "--radii") o.region.units.fill(RegionSpec::Units::kRadiiFromLo);
+    else if (a == "--paper-window") {
+      o.region.units.fill(RegionSpec::Units::kRadiiFromLo);
+      o.region.lo[2] = 2.0;   // 2R above the floor ...
+      o.region.hi[2] = 20.0;  // ... 18R high (Fig. 10)
+    }
     else if (a == "--wall-gap") {
       o.region.wall_gap_over_radius = to_double(a, value());
       if (o.region.wall_gap_over_radius < 0) throw UsageError("--wall-gap must be >= 0");
@@ -353,8 +360,8 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
         });
         if (result.unresolved_in_box > 0 && !o.quiet)
           err << "tapmc-pores: warning: " << where(frame.first_line) << result.unresolved_in_box
-              << " Delaunay cells inside the box have empty spheres wider than the padding (" << result.padding
-              << "); they are left out (free surface? raise --padding)\n";
+              << " interior Delaunay cells have empty spheres wider than the padding (" << result.padding
+              << "); they are left out (raise --padding)\n";
         if (o.p0_samples > 0) {
           P0Statistics p0(o.sigma_max, o.sigma_steps);
           const auto points = random_points(region, o.p0_samples, o.seed, analysed);

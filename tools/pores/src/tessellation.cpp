@@ -107,12 +107,14 @@ struct Tessellation::Impl {
                               c->vertex(3)->point());
   }
   Pore make_pore(const Kept& kept) const;
-  void build(const std::vector<double>& xyz, double padding);
+  void build(const std::vector<double>& xyz, double padding, double previous);
   void check_overlaps(const CellHandle& cell, double contact2) const;
-  void find_pores(double padding);
+  void find_pores(double padding, double max_padding);
 };
 
-void Tessellation::Impl::build(const std::vector<double>& xyz, double padding) {
+// Adds the images within `padding` of the periodic faces that are not already there (those within
+// `previous` of them; previous < 0: start from scratch with the centres themselves).
+void Tessellation::Impl::build(const std::vector<double>& xyz, double padding, double previous) {
   const std::size_t n = xyz.size() / 3;
   std::array<int, 3> images{{0, 0, 0}};
   for (int d = 0; d < 3; ++d)
@@ -120,32 +122,37 @@ void Tessellation::Impl::build(const std::vector<double>& xyz, double padding) {
   if (std::max({images[0], images[1], images[2]}) > 100)
     throw std::invalid_argument("padding " + std::to_string(padding) +
                                 " is over 100 box lengths: the periodic box is far too small for R");
-
+  const bool fresh = previous < 0;
+  if (fresh) {
+    origin.clear();
+    primary.clear();
+    triangulation.clear();
+  }
+  auto within = [&](const double* q, const int* s, double margin) {
+    for (int d = 0; d < 3; ++d)
+      if (s[d] != 0 && !(q[d] >= box.lo[d] - margin && q[d] < box.hi[d] + margin)) return false;
+    return true;
+  };
   std::vector<std::pair<Point, std::uint32_t>> points;
-  points.reserve(n + n / 4);
-  origin.clear();
-  primary.clear();
+  points.reserve(fresh ? n + n / 4 : n / 8);
   for (std::size_t i = 0; i < n; ++i) {
     const double* p = &xyz[3 * i];
     for (int sx = -images[0]; sx <= images[0]; ++sx)
       for (int sy = -images[1]; sy <= images[1]; ++sy)
         for (int sz = -images[2]; sz <= images[2]; ++sz) {
           const int s[3] = {sx, sy, sz};
+          const bool is_primary = sx == 0 && sy == 0 && sz == 0;
+          if (!fresh && is_primary) continue;
           double q[3];
-          bool inside = true;
-          for (int d = 0; d < 3 && inside; ++d) {
-            q[d] = s[d] == 0 ? p[d] : p[d] + s[d] * box.length(d);
-            if (s[d] != 0) inside = q[d] >= box.lo[d] - padding && q[d] < box.hi[d] + padding;
-          }
-          if (!inside) continue;
+          for (int d = 0; d < 3; ++d) q[d] = s[d] == 0 ? p[d] : p[d] + s[d] * box.length(d);
+          if (!within(q, s, padding) || (!fresh && within(q, s, previous))) continue;
           points.emplace_back(Point(q[0], q[1], q[2]), static_cast<std::uint32_t>(origin.size()));
           origin.push_back(static_cast<std::uint32_t>(i));
-          primary.push_back(sx == 0 && sy == 0 && sz == 0 ? 1 : 0);
+          primary.push_back(is_primary ? 1 : 0);
         }
   }
-  if (points.size() >= std::numeric_limits<std::uint32_t>::max())
-    throw std::invalid_argument("too many centres with their periodic images (" + std::to_string(points.size()) + ")");
-  triangulation.clear();
+  if (origin.size() >= std::numeric_limits<std::uint32_t>::max())
+    throw std::invalid_argument("too many centres with their periodic images (" + std::to_string(origin.size()) + ")");
   triangulation.insert(points.begin(), points.end());  // spatially sorted insertion
 }
 
@@ -174,7 +181,7 @@ void Tessellation::Impl::check_overlaps(const CellHandle& c, double contact2) co
     }
 }
 
-void Tessellation::Impl::find_pores(double padding) {
+void Tessellation::Impl::find_pores(double padding, double max_padding) {
   result = PoreResult{};
   result.padding = padding;
   cells.clear();
@@ -233,23 +240,29 @@ void Tessellation::Impl::find_pores(double padding) {
         if (origin[p] < min_origin) min_origin = origin[p], min_point = p;
       }
     if (!primary[min_point]) return;
-    bool resolved = true;
+    // Exact iff every empty sphere of the cluster fits in the padded slab; `needed` is the
+    // padding that would make it fit.
+    double needed = 0.0;
     Sphere first_sphere{};
-    for (const std::uint32_t* c = first; c != last && resolved; ++c) {
+    for (const std::uint32_t* c = first; c != last; ++c) {
       const Sphere s = sphere_of(cells[*c]);
       if (c == first) first_sphere = s;
       const double centre[3] = {s.x, s.y, s.z};
       for (int d = 0; d < 3; ++d)
-        if (box.periodic[d] && (centre[d] - s.r < box.lo[d] - padding || centre[d] + s.r > box.hi[d] + padding))
-          resolved = false;
+        if (box.periodic[d])
+          needed = std::max({needed, box.lo[d] - (centre[d] - s.r), centre[d] + s.r - box.hi[d]});
     }
-    if (!resolved) {
+    if (needed > padding) {
       ++result.unresolved;
-      bool in_box = true;
+      // Resolvable with a wider padding (up to max_padding): ask for a retry. Wider cells are
+      // hull cells open towards a wall or a free surface (not pores of the packing).
+      if (needed <= max_padding) result.retry_padding = std::max(result.retry_padding, needed);
+      bool interior = true;  // empty sphere inside the non-periodic faces
       const double centre[3] = {first_sphere.x, first_sphere.y, first_sphere.z};
       for (int d = 0; d < 3; ++d)
-        if (!box.periodic[d] && (centre[d] < box.lo[d] || centre[d] > box.hi[d])) in_box = false;
-      if (in_box) ++result.unresolved_in_box;
+        if (!box.periodic[d] && (centre[d] - first_sphere.r < box.lo[d] || centre[d] + first_sphere.r > box.hi[d]))
+          interior = false;
+      if (interior) ++result.unresolved_in_box;
       return;
     }
     for (const std::uint32_t* c = first; c != last; ++c)
@@ -321,17 +334,20 @@ Tessellation::Tessellation(const Box& box, const std::vector<double>& xyz, const
   impl_->options = options;
   impl_->ids = ids;
   double padding = options.padding_over_radius * options.radius;
+  const double max_padding = padding * std::pow(2.0, options.max_padding_retries);
   double triangulation_seconds = 0, pore_seconds = 0;
+  double previous = -1.0;
   for (int attempt = 0;; ++attempt) {
     const auto start = std::chrono::steady_clock::now();
-    impl_->build(xyz, padding);
+    impl_->build(xyz, padding, previous);  // a retry only inserts the extra layer of images
     const auto built = std::chrono::steady_clock::now();
-    impl_->find_pores(padding);
+    impl_->find_pores(padding, max_padding);
     triangulation_seconds += std::chrono::duration<double>(built - start).count();
     pore_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - built).count();
     impl_->result.attempts = attempt + 1;
-    if (impl_->result.unresolved_in_box == 0 || attempt >= options.max_padding_retries) break;
-    padding *= 2.0;
+    if (impl_->result.retry_padding <= 0 || attempt >= options.max_padding_retries) break;
+    previous = padding;
+    padding = std::min(max_padding, std::max(1.0001 * impl_->result.retry_padding, 1.25 * padding));
   }
   impl_->result.triangulation_seconds = triangulation_seconds;
   impl_->result.pore_seconds = pore_seconds;

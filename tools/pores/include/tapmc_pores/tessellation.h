@@ -40,7 +40,9 @@ struct PoreResult {
   std::size_t tetrahedra = 0;        // Delaunay tetrahedra behind those pores
   double tetrahedra_volume = 0.0;    // their total volume (= box volume when triply periodic)
   std::size_t unresolved = 0;        // Delaunay cells whose empty sphere exceeds the padding
-  std::size_t unresolved_in_box = 0; // ... of which with their centre inside the box
+  std::size_t unresolved_in_box = 0; // ... of which with their empty sphere inside the non-periodic
+                                     // faces (interior cells: reported on stderr)
+  double retry_padding = 0.0;        // padding that would resolve the resolvable ones (0: none)
   double padding = 0.0;              // padding finally used (length units)
   int attempts = 1;                  // triangulations built (> 1: padding was grown)
   double triangulation_seconds = 0;  // time in CGAL's Delaunay construction (all attempts)
