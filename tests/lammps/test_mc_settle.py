@@ -32,7 +32,7 @@ fix settle all mc/settle {seed} floor 0.0 eta 1e-3
 thermo_style custom step atoms f_settle[1] f_settle[2] f_settle[3] f_settle[4]
 thermo 10
 thermo_modify lost error
-dump d all custom {every} dump.taps id x y z radius
+dump d all custom {every} dump.taps id x y z radius xu yu
 dump_modify d sort id format float %.17g
 run {taps}
 """
@@ -72,6 +72,14 @@ def test_no_overlap_after_every_tap_and_same_trajectory_on_any_rank_count(bounda
     frames = serial_run(boundary, 100) if nprocs == 1 else tapping_run(boundary, nprocs)[0]
     assert len(frames) == 101
     check_frames(frames, (periodic, periodic), (not periodic, not periodic))
+    # Image flags follow every periodic wrap: unwrapped positions never jump by a box length.
+    if periodic:
+        for (_, _, _, a), (_, _, _, b) in zip(frames[:-1], frames[1:]):
+            for c in ("xu", "yu"):
+                assert np.abs(b[c] - a[c]).max() < 5.0, c
+        drift = np.hypot(frames[-1][3]["xu"] - frames[0][3]["xu"],
+                         frames[-1][3]["yu"] - frames[0][3]["yu"])
+        assert drift.max() < 10.0
     # Compaction or at least settling happened: the mean height fell from the dilute lattice.
     z0 = frames[0][3]["z"].mean()
     z_end = frames[-1][3]["z"].mean()
