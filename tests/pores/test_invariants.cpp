@@ -140,6 +140,38 @@ TEST(PoreInvariants, SparsePackingsGrowThePaddingUntilExact) {
   }
 }
 
+TEST(PoreInvariants, DegenerateInputIsRefusedOrHandled) {
+  // A flat layer (non-periodic z): no tetrahedra at all.
+  Packing layer;
+  layer.box.lo = {0, 0, 0};
+  layer.box.hi = {6, 6, 2};
+  layer.box.periodic = {true, true, false};
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j) layer.add(i + 0.5, j + 0.5, 1.0);
+  EXPECT_THROW(Tessellation(layer.box, layer.xyz, layer.ids, options_for(layer)), std::runtime_error);
+  // Two spheres in a periodic box: their periodic Delaunay cells repeat a sphere (no simplicial
+  // tiling exists), refused with a message.
+  Packing pair;
+  pair.box.lo = {0, 0, 0};
+  pair.box.hi = {5, 5, 5};
+  pair.add(1.0, 1.2, 1.4);
+  pair.add(3.1, 2.9, 3.7);
+  EXPECT_THROW(Tessellation(pair.box, pair.xyz, pair.ids, options_for(pair)), std::runtime_error);
+  // Sparse (30 spheres in 10^3): the padding grows until the box is tiled exactly; with the
+  // growth forbidden (no retry): refused, never a partial answer.
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const Packing sparse = pores_test::random_packing(30, 10.0, {true, true, true}, seed);
+    const Tessellation t(sparse.box, sparse.xyz, sparse.ids, options_for(sparse));
+    EXPECT_NEAR(t.result().tetrahedra_volume, sparse.box.volume(), 1e-9 * sparse.box.volume());
+    EXPECT_GT(t.result().attempts, 1);
+    EXPECT_EQ(t.result().unresolved, 0u);
+    expect_empty_spheres(sparse, t);
+    PoreOptions fixed = options_for(sparse);
+    fixed.max_padding_retries = 0;
+    EXPECT_THROW(Tessellation(sparse.box, sparse.xyz, sparse.ids, fixed), std::runtime_error);
+  }
+}
+
 TEST(PoreInvariants, OverlapAcrossThePeriodicSeamIsRefused) {
   Packing p = pores_test::random_packing(60, 6.0, {true, true, true}, 7);
   p.add(0.02, 3.0, 3.0);

@@ -374,9 +374,26 @@ Tessellation::Tessellation(const Box& box, const std::vector<double>& xyz, const
     triangulation_seconds += std::chrono::duration<double>(built - start).count();
     pore_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - built).count();
     impl_->result.attempts = attempt + 1;
-    if (impl_->result.retry_padding <= 0 || attempt >= options.max_padding_retries) break;
+    // Very sparse periodic input can leave whole regions without any cell (nothing to flag as
+    // unresolved): a flat triangulation, or a triply periodic box not tiled by the kept cells.
+    const PoreResult& r = impl_->result;
+    const bool all_periodic = box.periodic[0] && box.periodic[1] && box.periodic[2];
+    const bool untiled = all_periodic && std::abs(r.tetrahedra_volume - box.volume()) > 1e-9 * box.volume();
+    const bool flat = impl_->triangulation.dimension() < 3;
+    const bool final_attempt = attempt >= options.max_padding_retries;
+    if (final_attempt && flat)
+      throw std::runtime_error("the centres span no volume (a " + std::to_string(impl_->triangulation.dimension()) +
+                               "-dimensional set): there are no Delaunay tetrahedra, hence no pores");
+    // Triply periodic: every cell is a pore of the packing, so none may stay unresolved.
+    if (final_attempt && all_periodic && (untiled || r.unresolved > 0))
+      throw std::runtime_error("the packing is too sparse for the padding " + std::to_string(padding) + " (" +
+                               std::to_string(r.unresolved) + " cells unresolved, cells cover " +
+                               std::to_string(r.tetrahedra_volume) + " of the box volume " +
+                               std::to_string(box.volume()) + "); raise --padding");
+    if (final_attempt || (r.retry_padding <= 0 && !flat && !(untiled && r.unresolved == 0))) break;
     previous = padding;
-    padding = std::min(max_padding, std::max(1.0001 * impl_->result.retry_padding, 1.25 * padding));
+    padding = std::min(max_padding, std::max({1.0001 * r.retry_padding, 1.25 * padding,
+                                              (flat || untiled) ? max_padding : 0.0}));
   }
   impl_->result.triangulation_seconds = triangulation_seconds;
   impl_->result.pore_seconds = pore_seconds;
