@@ -36,26 +36,6 @@ TAPDILATE_CASES = [
 ]
 
 
-@pytest.mark.parametrize("body,message", TAPDILATE_CASES)
-def test_tapdilate_bad_argument(body, message):
-    rc, out = run_case(body)
-    assert rc != 0, out
-    assert "ERROR" in out and message in out, out
-
-
-def test_tapdilate_periodic_z():
-    rc, out = run_case("fix t all tapdilate 0.1", boundary="p p p")
-    assert rc != 0 and "z boundary is periodic" in out, out
-
-
-def test_tapdilate_triclinic():
-    body = "fix t all tapdilate 0.1"
-    script = BOX.format(boundary="p p fm").replace(
-        "region box block 0 8 0 8 0 10", "region box prism 0 8 0 8 0 10 1 0 0")
-    rc, out, _ = run_lammps(script + body)
-    assert rc != 0 and "triclinic" in out, out
-
-
 def test_tapdilate_fixed_top_would_lose_atoms():
     rc, out = run_case("fix t all tapdilate 20.0\nrun 1", boundary="p p ff")
     assert rc != 0 and "above the fixed upper z boundary" in out, out
@@ -89,22 +69,27 @@ MC_SETTLE_CASES = [
 ]
 
 
-@pytest.mark.parametrize("body,message", MC_SETTLE_CASES)
-def test_mc_settle_bad_argument(body, message):
+@pytest.mark.parametrize("body,message", TAPDILATE_CASES + MC_SETTLE_CASES)
+def test_bad_argument_stops_with_a_message_naming_it(body, message):
     rc, out = run_case(body)
     assert rc != 0, out
     assert "ERROR" in out and message in out, out
 
 
-def test_mc_settle_periodic_z():
-    rc, out = run_case("fix s all mc/settle 1", boundary="p p p")
+FIX_LINES = ["fix t all tapdilate 0.1", "fix s all mc/settle 1"]
+
+
+@pytest.mark.parametrize("fix_line", FIX_LINES)
+def test_periodic_z_is_refused(fix_line):
+    rc, out = run_case(fix_line, boundary="p p p")
     assert rc != 0 and "z boundary is periodic" in out, out
 
 
-def test_mc_settle_triclinic():
+@pytest.mark.parametrize("fix_line", FIX_LINES)
+def test_triclinic_box_is_refused(fix_line):
     script = BOX.format(boundary="p p fm").replace(
         "region box block 0 8 0 8 0 10", "region box prism 0 8 0 8 0 10 1 0 0")
-    rc, out, _ = run_lammps(script + "fix s all mc/settle 1")
+    rc, out, _ = run_lammps(script + fix_line)
     assert rc != 0 and "triclinic" in out, out
 
 

@@ -13,9 +13,13 @@
 
 namespace {
 
-// 300 atoms at random positions in a 10 x 10 x 12 box with a floor at z = 0.5.
-std::vector<std::string> random_atoms_setup(const std::string &procs)
+// 300 atoms at random positions in a 10 x 10 x 12 box with a floor at z = 0.5, the processor
+// grid split along z (so that taps move atoms across sub-domains on several ranks).
+std::vector<std::string> random_atoms_setup()
 {
+  int nprocs = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &nprocs);
+  const std::string procs = "1 1 " + std::to_string(nprocs);
   return {"units lj",
           "atom_style sphere",
           "boundary p p fm",
@@ -49,16 +53,12 @@ void expect_same_positions(const std::vector<double> &a, const std::vector<doubl
 // processor grid splits z, so taps move atoms across sub-domains.
 TEST(MpiTapDilate, ConstantEpsMatchesDisplaceAtoms)
 {
-  int nprocs = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &nprocs);
-  const std::string procs = "1 1 " + std::to_string(nprocs);
-
   auto tapped = tapmc_test::make_lammps();
-  tapmc_test::run_lines(tapped.get(), random_atoms_setup(procs));
+  tapmc_test::run_lines(tapped.get(), random_atoms_setup());
   tapmc_test::run_lines(tapped.get(), {"fix tap all tapdilate 0.3 floor 0.5", "run 4"});
 
   auto reference = tapmc_test::make_lammps();
-  tapmc_test::run_lines(reference.get(), random_atoms_setup(procs));
+  tapmc_test::run_lines(reference.get(), random_atoms_setup());
   tapmc_test::run_lines(reference.get(), {"variable dz atom 0.3*(z-0.5)"});
   for (int tap = 0; tap < 4; ++tap)
     tapmc_test::run_lines(reference.get(), {"displace_atoms all move 0 0 v_dz units box"});
@@ -70,17 +70,13 @@ TEST(MpiTapDilate, ConstantEpsMatchesDisplaceAtoms)
 // eps from an equal-style variable, evaluated on each tap's timestep, tapping every 2 steps.
 TEST(MpiTapDilate, VariableEpsEveryTwoSteps)
 {
-  int nprocs = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &nprocs);
-  const std::string procs = "1 1 " + std::to_string(nprocs);
-
   auto tapped = tapmc_test::make_lammps();
-  tapmc_test::run_lines(tapped.get(), random_atoms_setup(procs));
+  tapmc_test::run_lines(tapped.get(), random_atoms_setup());
   tapmc_test::run_lines(tapped.get(), {"variable e equal 0.01*step",
                                        "fix tap all tapdilate v_e every 2 floor 0.5", "run 6"});
 
   auto reference = tapmc_test::make_lammps();
-  tapmc_test::run_lines(reference.get(), random_atoms_setup(procs));
+  tapmc_test::run_lines(reference.get(), random_atoms_setup());
   for (int step : {2, 4, 6})
     tapmc_test::run_lines(reference.get(),
                           {"variable dz atom " + std::to_string(0.01 * step) + "*(z-0.5)",
@@ -97,10 +93,8 @@ TEST(MpiTapDilate, VariableEpsEveryTwoSteps)
 // Only the group is dilated; the rest stays where it was.
 TEST(MpiTapDilate, GroupOnly)
 {
-  int nprocs = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &nprocs);
   auto lmp = tapmc_test::make_lammps();
-  tapmc_test::run_lines(lmp.get(), random_atoms_setup("1 1 " + std::to_string(nprocs)));
+  tapmc_test::run_lines(lmp.get(), random_atoms_setup());
   tapmc_test::run_lines(lmp.get(), {"group low id <= 150"});
   const auto before = positions_by_tag(lmp.get());
   tapmc_test::run_lines(lmp.get(), {"fix tap low tapdilate 0.1 floor 0.5", "run 1"});
