@@ -128,3 +128,37 @@ def test_restart_round_trip_is_exact(tmp_path):
         with open(os.path.join(d, "final.dump")) as f:
             return f.read().split("ITEM: ATOMS")[1]
     assert load(wd_full) == load(wd)
+
+
+def test_polydisperse_and_fixed_obstacles():
+    # Radii uniform in [0.35, 0.65] from create_packing; the spheres of the bottom layer (z < 1)
+    # are not in the group: obstacles that never move and are never overlapped.
+    script = """units lj
+atom_style sphere
+boundary p p fm
+region box block 0 8 0 8 0 30
+create_box 1 box
+create_packing 400 1 0.5 77 floor 0.0 dispersity 0.3
+group bottom variable low
+group grains subtract all bottom
+fix tap grains tapdilate 0.05 floor 0.0
+fix settle grains mc/settle 5 floor 0.0 eta 1e-4
+dump d all custom 1 dump.taps id x y z radius
+dump_modify d sort id format float %.17g
+thermo_modify lost error
+run 30
+""".replace("group bottom variable low", "variable low atom z<1.0\ngroup bottom variable low")
+    rc, out, wd = run_lammps(script)
+    assert rc == 0, out
+    frames = read_dump(os.path.join(wd, "dump.taps"))
+    first = frames[0][3]
+    bottom = first["z"] < 1.0
+    assert 0 < bottom.sum() < len(bottom)
+    assert first["radius"].min() < 0.4 and first["radius"].max() > 0.6
+    for step, box, _, cols in frames:
+        xyz = np.column_stack([cols["x"], cols["y"], cols["z"]])
+        gap, i, j = min_gap(xyz, cols["radius"], box, (True, True), floor=0.0)
+        assert gap >= -CONTACT_TOL * 1.3, f"step {step}: gap {gap} between {i} and {j}"
+        for c in ("x", "y", "z"):
+            np.testing.assert_array_equal(cols[c][bottom], first[c][bottom])
+    assert frames[-1][3]["z"][~bottom].mean() < first["z"][~bottom].mean() * 1.05
