@@ -326,6 +326,8 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
         } catch (const std::invalid_argument& e) {
           throw std::runtime_error(where(frame.first_line) + e.what());
         }
+        pore_options.focus_lo = region.lo;  // wider paddings only for pores that are analysed
+        pore_options.focus_hi = region.hi;
         std::unique_ptr<Tessellation> tessellation;
         try {
           tessellation = std::make_unique<Tessellation>(frame.box, frame.xyz, frame.ids, pore_options);

@@ -107,6 +107,22 @@ struct Tessellation::Impl {
                               c->vertex(3)->point());
   }
   Pore make_pore(const Kept& kept) const;
+  std::array<double, 3> wrapped(double x, double y, double z) const {
+    std::array<double, 3> p{{x, y, z}};
+    for (int d = 0; d < 3; ++d)
+      if (box.periodic[d]) {
+        double t = (p[d] - box.lo[d]) / box.length(d);
+        t -= std::floor(t);
+        p[d] = std::min(box.lo[d] + t * box.length(d), std::nextafter(box.hi[d], box.lo[d]));
+      }
+    return p;
+  }
+  bool in_focus(const Sphere& s) const {
+    const auto p = wrapped(s.x, s.y, s.z);
+    for (int d = 0; d < 3; ++d)
+      if (p[d] < options.focus_lo[d] || p[d] > options.focus_hi[d]) return false;
+    return true;
+  }
   void build(const std::vector<double>& xyz, double padding, double previous);
   void check_overlaps(const CellHandle& cell, double contact2) const;
   // Finds the pores; unless final_attempt, returns early (result.retry_padding > 0) as soon as
@@ -229,7 +245,8 @@ void Tessellation::Impl::find_pores(double padding, double max_padding, bool fin
         const double centre[3] = {a.x, a.y, a.z};
         for (int d = 0; d < 3; ++d)
           if (box.periodic[d]) needed = std::max({needed, box.lo[d] - (centre[d] - a.r), centre[d] + a.r - box.hi[d]});
-        if (needed > padding && needed <= max_padding) result.retry_padding = std::max(result.retry_padding, needed);
+        if (needed > padding && needed <= max_padding && in_focus(a))
+          result.retry_padding = std::max(result.retry_padding, needed);
       }
     }
     for (int k = 0; k < 4; ++k) {
@@ -285,7 +302,7 @@ void Tessellation::Impl::find_pores(double padding, double max_padding, bool fin
       ++result.unresolved;
       // Resolvable with a wider padding (up to max_padding): ask for a retry. Wider cells are
       // hull cells open towards a wall or a free surface (not pores of the packing).
-      if (needed <= max_padding) result.retry_padding = std::max(result.retry_padding, needed);
+      if (needed <= max_padding && in_focus(first_sphere)) result.retry_padding = std::max(result.retry_padding, needed);
       bool interior = true;  // empty sphere inside the non-periodic faces
       const double centre[3] = {first_sphere.x, first_sphere.y, first_sphere.z};
       for (int d = 0; d < 3; ++d)
@@ -327,13 +344,7 @@ Pore Tessellation::Impl::make_pore(const Kept& kept) const {
   const CellHandle& head = cells[*first];
   const Sphere s = sphere_of(head);
   Pore pore;
-  pore.centre = {s.x, s.y, s.z};
-  for (int d = 0; d < 3; ++d)
-    if (box.periodic[d]) {
-      double t = (pore.centre[d] - box.lo[d]) / box.length(d);
-      t -= std::floor(t);
-      pore.centre[d] = std::min(box.lo[d] + t * box.length(d), std::nextafter(box.hi[d], box.lo[d]));
-    }
+  pore.centre = wrapped(s.x, s.y, s.z);
   pore.xi = (s.r - options.radius) / options.radius;
   for (int k = 0; k < 4; ++k) pore.ids[k] = ids[origin[head->vertex(k)->info()]];
   std::sort(pore.ids.begin(), pore.ids.end());

@@ -33,6 +33,11 @@ struct PoreOptions {
   double overlap_tolerance = config::kOverlapTolerance;
   double padding_over_radius = config::kPaddingOverRadius;
   int max_padding_retries = config::kMaxPaddingRetries;
+  // Region of interest (box coordinates): only cells whose pore centre lies in it may ask for a
+  // wider padding. Wider cells outside it (free-surface hull cells, typically) are counted as
+  // unresolved instead of growing the padding for everybody. Default: everywhere.
+  std::array<double, 3> focus_lo{{-1e300, -1e300, -1e300}};
+  std::array<double, 3> focus_hi{{1e300, 1e300, 1e300}};
 };
 
 struct PoreResult {
