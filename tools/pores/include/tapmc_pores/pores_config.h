@@ -32,10 +32,11 @@ constexpr double kSliverRelativeVolume = 1e-6;
 // every pore with circumradius up to half the padding: 4 R resolves xi <= 1, beyond the interior
 // pores of hard-sphere packings (Bernal's largest hole: 0.645; our phi = 0.33 random packings
 // need no retry). The padding costs (1 + 2 P / L)^2 more points: 56 % for the paper's 32 R box at
-// 4 R (89 % at 6 R). Wider empty spheres trigger a retry that inserts just the extra layer of
-// images needed (at most kMaxPaddingRetries retries, padding at most 4 R x 2^retries = 16 R); what
-// is wider still (flat hull cells open towards a wall or free surface) is counted as unresolved
-// and left out, never silently kept.
+// 4 R (89 % at 6 R). Wider empty spheres of pores centred in the selection sub-box trigger a
+// retry that inserts just the extra layer of images needed (at most kMaxPaddingRetries retries,
+// padding at most 4 R x 2^retries = 16 R); what is wider still, or wide and outside the sub-box
+// (flat hull cells open towards a wall or free surface), is counted as unresolved and left out,
+// never silently kept (an error when triply periodic).
 constexpr double kPaddingOverRadius = 4.0;
 constexpr int kMaxPaddingRetries = 2;
 
