@@ -50,6 +50,7 @@ SETTINGS = [
     ("order sweep", "order", {"order": "sweep"}),
 ]
 REFERENCE = "reference (eta 1e-7)"
+DEFAULT = "default (eta 1e-6)"
 # The settings equal to the default by construction (shown in the table, not run twice).
 ALIASES = [("eta 1e-6", "eta"), ("check 4096", "check"), ("dmax 0.1", "dmax"),
            ("order random", "order")]
@@ -190,7 +191,8 @@ def summarize(rows, settings_run, csv_path, out=sys.stdout):
             vals = [float(runs[s][key]) for s in seeds]
             m, se = mean_se(vals)
             rec[key], rec[key + "_se"] = m, se
-            cols.append("%.5f +- %.5f" % (m, se) if key != "z_mean" else "%.4f +- %.4f" % (m, se))
+            digits = 4 if key == "z_mean" else 5
+            cols.append("%.*f +- %.*f" % (digits, m, digits, se) if se == se else "%.*f" % (digits, m))
             common = [s for s in seeds if s in ref]
             if name == REFERENCE or not common:
                 rec[key + "_dev_combined"] = rec[key + "_dev_paired"] = float("nan")
@@ -203,12 +205,32 @@ def summarize(rows, settings_run, csv_path, out=sys.stdout):
             dm, dse = mean_se([float(runs[s][key]) - float(ref[s][key]) for s in common])
             paired = dm / dse if dse == dse and dse > 0 else float("nan")
             rec[key + "_dev_combined"], rec[key + "_dev_paired"] = comb, paired
-            devs.append("%+.1f (%+.1f)" % (comb, paired))
+            devs.append("%s (%s)" % tuple("n/a" if v != v else "%+.1f" % v for v in (comb, paired)))
         records.append(rec)
         cpu_text = "%.3f +- %.3f" % cpu if cpu[1] == cpu[1] else "%.3f" % cpu[0]
         lines.append("%-22s %6d %13s %9.0f %19s %19s %17s %13s %13s %13s" % (
             name, len(seeds), cpu_text, sweeps[0], cols[0], cols[1], cols[2], devs[0], devs[1], devs[2]))
     lines.append("(same as the default: %s)" % ", ".join(a for a, _ in ALIASES))
+    # Each knob against the default it changes (same seeds: paired differences), e.g. whether
+    # sweep order differs from random order at the default eta.
+    default = by_setting.get(DEFAULT, {})
+    lines.append("")
+    lines.append("%-22s %6s %24s %24s %24s" % ("vs the default", "seeds", "dPhi_b (d/se)",
+                                               "d<Phi^c> (d/se)", "d<Z> (d/se)"))
+    for name in order:
+        runs = by_setting.get(name, {})
+        common = sorted(s for s in runs if s in default)
+        if name == DEFAULT or not common:
+            continue
+        cols = []
+        for rec in records:
+            if rec["setting"] == name:
+                break
+        for key, _ in OBSERVABLES:
+            dm, dse = mean_se([float(runs[s][key]) - float(default[s][key]) for s in common])
+            rec[key + "_vs_default"], rec[key + "_vs_default_se"] = dm, dse
+            cols.append("%+.5f +- %.5f (%s)" % (dm, dse, "n/a" if not dse > 0 else "%+.1f" % (dm / dse)))
+        lines.append("%-22s %6d %24s %24s %24s" % (name, len(common), cols[0], cols[1], cols[2]))
     for line in lines:
         print(line, file=out)
     if records:
