@@ -2,21 +2,24 @@
 // Benchmark behind the kernel's own cell list: tapmc::Settler against Verlet neighbour lists
 // with a skin (what LAMMPS would hand a fix) and a naive all-pairs loop, same trial moves.
 //
-// Conclusion (AMD EPYC, one core of a shared 2-core machine, medians): the measurement does not
-// back the cell list on speed. All methods accept exactly the same moves. The production cell
-// list makes 6.3 M trial moves/s over a whole redeposition (1000 sweeps after the tap; 190x the
-// all-pairs loop, 0.033 M/s); a Verlet list kept inside the kernel, LAMMPS rule (list radius
-// 2R + d_max + skin, rebuilt when a sphere has moved skin/2), makes 14.9 / 17.1 / 15.3 / 13.9 M/s
-// at skin 0.1 / 0.2 / 0.4 / 0.8 R (2.4 / 2.7 / 2.4 / 2.2x the cell list), with 0.030 / 0.006 /
-// 0.002 / 0.001 builds per sweep (30 / 6 / 2 / 1 builds per redeposition, build cost included).
-// The redeposition is a slow creep (2-3 % acceptance, accepted steps of order eps * 2R), so a
-// list built once per tap almost never needs rebuilding, and it holds 8-10 candidates instead of
-// the 27-cell stencil's padded slots. The "trial" rule needs skin > d_max: at skin = d_max it
-// rebuilds ~50 times per sweep (0.03 M/s). Entry order (below-first) changes little. What is
-// measured is an idealised list owned by the kernel; LAMMPS' own lists would add ghost copies
-// to update when a sphere near a periodic face moves, and a rebuild inside the fix would need
-// LAMMPS' exchange/borders/reneighbour cycle, so the better choice is a kernel-owned Verlet list
-// (skin ~0.2R, O(N) binning rebuild), not LAMMPS' lists and not the current cell stencil.
+// Conclusion (AMD EPYC, one core of a shared 2-core machine, medians; bench/README.md): the
+// measurement does not back the cell list on speed. All methods accept exactly the same moves
+// (40960 trials on the tapped bed and on a loose start with up to 23000 list rebuilds; positions
+// within 4e-15 after a whole redeposition). Over a whole redeposition (1000 sweeps after the
+// tap) the production cell list makes 9.6 M trial moves/s (~175x the all-pairs loop, 0.05 M/s);
+// a Verlet list owned by the kernel with the LAMMPS rule (list radius 2R + d_max + skin, rebuilt
+// when a sphere has moved skin/2) makes 23.6 / 28.2 / 26.2 / 22.9 M/s at skin 0.1 / 0.2 / 0.4 /
+// 0.8 R, i.e. 2.45 / 2.93 / 2.72 / 2.37x the cell list, rebuild cost included, with 0.030 /
+// 0.006 / 0.002 / 0.001 builds per sweep (30 / 6 / 2 / 1 builds per redeposition). The
+// redeposition is a slow creep (2-3 % acceptance, accepted steps of order eps * 2R), so a list
+// built once per tap almost never needs rebuilding, and it holds 8-10 candidates where the
+// 27-cell stencil tests all its padded slots. The exact "trial" rule (skin 0.4R: 2.8x) is no
+// better than the LAMMPS rule; at skin = d_max it rebuilds ~50 times per sweep (0.05 M/s).
+// Entry order (below-first) changes little. This is an idealised list owned by the kernel;
+// LAMMPS' own lists would add ghost copies to update whenever a sphere near a periodic face
+// moves, and a rebuild inside the fix would need LAMMPS' exchange/borders/reneighbour cycle. So
+// the better documented choice is a kernel-owned Verlet list (skin ~0.2R, O(N) binning rebuild),
+// not LAMMPS' lists, and not the current 27-cell stencil.
 //
 // What is compared (N = 4096, R = 1, L = 32R, PBC, floor, Jullien-Meakin bed dilated by a tap
 // eps = 0.01, d_max = R/5, theta0 = pi/4, seed/stream/trial-keyed draws of tapmc_trial_move.h,
