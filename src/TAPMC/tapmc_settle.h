@@ -1,6 +1,8 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 // The redeposition (paper, section II): downward-biased hard-sphere Monte Carlo until the mean
-// height <Z> stops changing. LAMMPS-free kernel behind fix mc/settle.
+// height <Z> stops changing. LAMMPS-free kernel behind fix mc/settle. Overlaps are tested
+// against a Verlet neighbour list owned by the kernel (list radius = contact distance + d_max +
+// skin, rebuilt by O(N) binning when a sphere has moved skin/2): exact, never misses an overlap.
 #ifndef TAPMC_SETTLE_H
 #define TAPMC_SETTLE_H
 
@@ -12,6 +14,10 @@
 #include <vector>
 
 namespace tapmc {
+
+namespace detail {
+struct NeighbourLists;  // the kernel-owned Verlet list (tapmc_settle.cpp)
+}
 
 struct SettleBox {
   double lo[3], hi[3];          // box bounds; x, y used for periodic lengths and default walls
@@ -39,10 +45,13 @@ struct SettleResult {
   long trials = 0, accepted = 0, checks = 0;
   double mean_height_start = 0, mean_height = 0;  // <Z> of movable spheres above floor_z
   bool hit_cap = false;
-  // Added: number of movable spheres, and whether the grid storage had to grow mid-run
-  // (a cell received more spheres than its slots; diagnostic only, results are unaffected).
+  // Added: number of movable spheres. slot_growths is always 0 since the Verlet list replaced
+  // the cell list (whose slots could grow mid-run); kept so callers compile unchanged.
   long movable = 0;
   int slot_growths = 0;
+  // Verlet neighbour-list builds in this call (1 at the start + one per skin/2 crossing;
+  // diagnostic only, results do not depend on the skin).
+  long list_builds = 0;
 };
 
 // j >= 0 sphere, -1 floor, -2 x wall, -3 y wall; gap < 0 = overlap depth
@@ -82,10 +91,18 @@ class Settler {
   // the LAMMPS fix can validate its arguments at construction).
   static void validate(const SettleParams &params);
 
+  // Skin of the Verlet list in units of the largest radius (default
+  // defaults::kVerletSkinOverRadius). Any value > 0 gives bit-identical results; only the
+  // speed changes (for tests and benchmarks). Throws std::invalid_argument outside (0, +inf).
+  void set_verlet_skin(double skin_over_max_radius);
+  double verlet_skin() const { return skin_over_max_radius_; }
+
  private:
   std::unique_ptr<TrialMoveSampler> sampler_;  // cached while (d_max, theta0) stay the same
-  CellGrid grid_;
+  std::unique_ptr<detail::NeighbourLists> lists_;  // Verlet list storage, reused between calls
   std::vector<int> movable_ids_, image_;
+  std::vector<double> position_;  // working copy of all positions, periodic axes wrapped
+  double skin_over_max_radius_;
 };
 
 }  // namespace tapmc
