@@ -5,5 +5,5 @@ set -euo pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 "$top/tools/setup/build.sh"
 cd "$top/examples/tapping"
-"$top/build/lmp_tapmc" -in in.tapping_pbc -log "$top/build/log.quickstart" -var taps 20
+"$top/build/lmp_tapmc" -in in.tapping_pbc -log "$top/build/log.quickstart" 
 echo "tapmc: built $top/build/lmp_tapmc and ran examples/tapping/in.tapping_pbc (log: build/log.quickstart)"
