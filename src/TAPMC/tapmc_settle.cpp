@@ -11,7 +11,10 @@
 // overlap and the accepted moves do not depend on the skin. Positions stay wrapped into the
 // box (as before), and the overlap test takes the nearest image of each listed sphere, so it
 // does the same arithmetic as the former cell list and a sphere crossing a periodic side needs
-// no rebuild. find_violation still uses the cell list (CellGrid).
+// no rebuild. The skin starts at 0.2 R_max each call and adapts (defaults.h): doubled when
+// rebuilds come less than a sweep apart (spheres falling freely from a loose start), halved
+// back after 64 calm sweeps; being exact, the list gives the same moves whatever the skin.
+// find_violation still uses the cell list (CellGrid).
 #include "tapmc_settle.h"
 
 #include "tapmc_contact.h"
