@@ -1,30 +1,37 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-// Benchmark behind the kernel's own cell list: tapmc::Settler against Verlet neighbour lists
+// Benchmark behind the kernel's neighbour list: tapmc::Settler against Verlet neighbour lists
 // with a skin (what LAMMPS would hand a fix) and a naive all-pairs loop, same trial moves.
 //
-// Conclusion (AMD EPYC, one core of a shared 2-core machine, medians; bench/README.md): the
-// measurement does not back the cell list on speed. All methods accept exactly the same moves
-// (40960 trials on the tapped bed and on a loose start with up to 23000 list rebuilds; positions
-// within 4e-15 after a whole redeposition). Over a whole redeposition (1000 sweeps after the
-// tap) the production cell list makes 9.6 M trial moves/s (~175x the all-pairs loop, 0.05 M/s);
-// a Verlet list owned by the kernel with the LAMMPS rule (list radius 2R + d_max + skin, rebuilt
-// when a sphere has moved skin/2) makes 23.6 / 28.2 / 26.2 / 22.9 M/s at skin 0.1 / 0.2 / 0.4 /
-// 0.8 R, i.e. 2.45 / 2.93 / 2.72 / 2.37x the cell list, rebuild cost included, with 0.030 /
-// 0.006 / 0.002 / 0.001 builds per sweep (30 / 6 / 2 / 1 builds per redeposition). The
-// redeposition is a slow creep (2-3 % acceptance, accepted steps of order eps * 2R), so a list
-// built once per tap almost never needs rebuilding, and it holds 8-10 candidates where the
-// 27-cell stencil tests all its padded slots. The exact "trial" rule (skin 0.4R: 2.8x) is no
-// better than the LAMMPS rule; at skin = d_max it rebuilds ~50 times per sweep (0.05 M/s).
-// Entry order (below-first) changes little. This is an idealised list owned by the kernel;
-// LAMMPS' own lists would add ghost copies to update whenever a sphere near a periodic face
-// moves, and a rebuild inside the fix would need LAMMPS' exchange/borders/reneighbour cycle. So
-// the better documented choice is a kernel-owned Verlet list (skin ~0.2R, O(N) binning rebuild),
-// not LAMMPS' lists, and not the current 27-cell stencil.
+// Status: this benchmark led to the change. tapmc::Settler now owns a Verlet list with the
+// "lammps" rule at skin 0.2 R (tapmc_settle.cpp, defaults::kVerletSkinOverRadius), so the rows
+// "tapmc::Settler" below measure that production kernel; the conclusion that follows (numbers
+// against the former 27-cell list) is kept as history. VerletRun here stays the variant
+// explorer (skins, rules, entry order; monodisperse PBC only), not a second production copy.
 //
-// What is compared (N = 4096, R = 1, L = 32R, PBC, floor, Jullien-Meakin bed dilated by a tap
+// Conclusion, measured against the former cell list (history; AMD EPYC, one core of a shared 2-core
+// machine, medians; bench/README.md): the measurement does not back the cell list on speed. All
+// methods accept exactly the same moves (40960 trials on the tapped bed and on a loose start with
+// up to 23000 list rebuilds; positions within 4e-15 after a whole redeposition). Over a whole
+// redeposition (1000 sweeps after the tap) the production cell list makes 9.6 M trial moves/s
+// (~175x the all-pairs loop, 0.05 M/s); a Verlet list owned by the kernel with the LAMMPS rule
+// (list radius 2R + d_max + skin, rebuilt when a sphere has moved skin/2) makes 23.6 / 28.2 / 26.2
+// / 22.9 M/s at skin 0.1 / 0.2 / 0.4 / 0.8 R, i.e. 2.45 / 2.93 / 2.72 / 2.37x the cell list,
+// rebuild cost included, with 0.030 / 0.006 / 0.002 / 0.001 builds per sweep (30 / 6 / 2 / 1 builds
+// per redeposition). The redeposition is a slow creep (2-3 % acceptance, accepted steps of order
+// eps * 2R), so a list built once per tap almost never needs rebuilding, and it holds 8-10
+// candidates where the 27-cell stencil tests all its padded slots. The exact "trial" rule (skin
+// 0.4R: 2.8x) is no better than the LAMMPS rule; at skin = d_max it rebuilds ~50 times per sweep
+// (0.05 M/s). Entry order (below-first) changes little. This is an idealised list owned by the
+// kernel; LAMMPS' own lists would add ghost copies to update whenever a sphere near a periodic face
+// moves, and a rebuild inside the fix would need LAMMPS' exchange/borders/reneighbour cycle. So the
+// better documented choice is a kernel-owned Verlet list (skin ~0.2R, O(N) binning rebuild), not
+// LAMMPS' lists, and not the 27-cell stencil (the kernel has since switched to this list).
+//
+// What was compared (N = 4096, R = 1, L = 32R, PBC, floor, Jullien-Meakin bed dilated by a tap
 // eps = 0.01, d_max = R/5, theta0 = pi/4, seed/stream/trial-keyed draws of tapmc_trial_move.h,
 // so every method makes the same trials in the same order):
-//  - cell list: tapmc::Settler (production), a fixed number of sweeps (no eta stop);
+//  - tapmc::Settler (production; was the cell list, now the Verlet list "lammps" 0.2R), a fixed
+//    number of sweeps (no eta stop);
 //  - Verlet lists: full list per sphere (CSR, periodic image shift stored per entry, coordinates
 //    left unwrapped between builds as LAMMPS does), built in O(N) by binning, each trial tests
 //    the floor and the sphere's list only (early exit on the first overlap). Two exact
@@ -37,7 +44,7 @@
 //    Each with list entries in build order, or sorted "below first" (lower spheres first, as the
 //    cell list visits the layer below first: downward moves are blocked from below);
 //  - all-pairs: every sphere, minimum image, early exit (the reference of the ratios).
-// Exactness: the all-pairs loop does the cell list's arithmetic bit for bit; the Verlet runs
+// Exactness: the all-pairs loop does the Settler's arithmetic bit for bit; the Verlet runs
 // use unwrapped coordinates, so positions agree to rounding (1e-9 is asserted) and the number
 // of accepted moves must be equal.
 //
@@ -485,7 +492,7 @@ int main(int argc, char **argv)
   const long trials = sweeps * kN;
   const long check_trials = quick ? 4 * kN : 10 * kN;
   const long naive_trials = quick ? kN : 3 * kN;
-  std::printf("bench_neighbor_list: cell list (tapmc::Settler) vs Verlet lists vs all pairs\n");
+  std::printf("bench_neighbor_list: tapmc::Settler (production Verlet list) vs Verlet variants vs all pairs\n");
   std::printf("machine: %s (one core)\n", cpu_model().c_str());
   std::printf("scene: N = %d, L = 32R, PBC + floor, Jullien-Meakin bed after a tap eps = 0.01,\n"
               "       d_max = R/5, theta0 = pi/4; %ld sweeps per timed run, median of %d\n\n",
@@ -509,7 +516,7 @@ int main(int argc, char **argv)
     const RunStats sc = run_settler(cell, 1, n_trials);
     const RunStats sn = run_all_pairs(naive, 1, n_trials);
     const std::vector<double> ref = wrapped(cell);
-    std::printf("exactness over %ld trials from %s (cell list: %ld accepted):\n", n_trials, label,
+    std::printf("exactness over %ld trials from %s (tapmc::Settler: %ld accepted):\n", n_trials, label,
                 sc.accepted);
     long bitwise = 0;
     for (std::size_t k = 0; k < ref.size(); ++k) bitwise += ref[k] != naive.xyz[k];
@@ -555,8 +562,8 @@ int main(int argc, char **argv)
     const double naive_rate = median(rates);
     std::printf("  acceptance %.4f\n", acceptance);
     std::printf("  %-36s %7s %9s %9s %11s %9s %9s\n", "method", "list r", "builds/sw", "list len",
-                "M moves/s", "/all-pairs", "/cell list");
-    std::printf("  %-36s %7s %9s %9s %11.3f %9.1f %9.2f\n", "cell list (tapmc::Settler)", "-", "-", "-",
+                "M moves/s", "/all-pairs", "/Settler");
+    std::printf("  %-36s %7s %9s %9s %11.3f %9.1f %9.2f\n", "tapmc::Settler (Verlet 0.2R)", "-", "-", "-",
                 cell_rate / 1e6, cell_rate / naive_rate, 1.0);
     for (const Variant &v : variants) {
       rates.clear();
@@ -582,8 +589,8 @@ int main(int argc, char **argv)
     const long long_trials = long_sweeps * kN;
     std::printf("%ld sweeps from the tapped bed (a whole redeposition at eta ~ 1e-6), median of 3:\n",
                 long_sweeps);
-    std::printf("  %-36s %9s %9s %11s %9s  %s\n", "method", "builds/sw", "list len", "M moves/s", "/cell list",
-                "final max |dr| vs cell list");
+    std::printf("  %-36s %9s %9s %11s %9s  %s\n", "method", "builds/sw", "list len", "M moves/s", "/Settler",
+                "final max |dr| vs Settler");
     std::vector<double> rates, cell_final;
     for (int r = 0; r < 3; ++r) {
       Scene s = after_tap;
@@ -592,7 +599,7 @@ int main(int argc, char **argv)
       if (r == 2) cell_final = wrapped(s);
     }
     const double cell_rate = median(rates);
-    std::printf("  %-36s %9s %9s %11.3f %9.2f\n", "cell list (tapmc::Settler)", "-", "-", cell_rate / 1e6, 1.0);
+    std::printf("  %-36s %9s %9s %11.3f %9.2f\n", "tapmc::Settler (Verlet 0.2R)", "-", "-", cell_rate / 1e6, 1.0);
     for (const Variant &v : {Variant{SkinRule::Lammps, 0.1, false}, Variant{SkinRule::Lammps, 0.2, false},
                              Variant{SkinRule::Lammps, 0.4, false}, Variant{SkinRule::Lammps, 0.8, false},
                              Variant{SkinRule::Trial, 0.4, false}}) {

@@ -11,7 +11,10 @@
 // overlap and the accepted moves do not depend on the skin. Positions stay wrapped into the
 // box (as before), and the overlap test takes the nearest image of each listed sphere, so it
 // does the same arithmetic as the former cell list and a sphere crossing a periodic side needs
-// no rebuild. find_violation still uses the cell list (CellGrid).
+// no rebuild. The skin starts at 0.2 R_max each call and adapts (defaults.h): doubled when
+// rebuilds come less than a sweep apart (spheres falling freely from a loose start), halved
+// back after 64 calm sweeps; being exact, the list gives the same moves whatever the skin.
+// find_violation still uses the cell list (CellGrid).
 #include "tapmc_settle.h"
 
 #include "tapmc_contact.h"
@@ -268,9 +271,20 @@ struct detail::NeighbourLists {
   std::vector<int> first, neighbour;  // neighbours of k: neighbour[first[k] .. first[k+1])
   std::vector<double> reference;      // position of k at the build (3 per k), moved with its wraps
   std::vector<int> cell, cell_start, binned, seen;  // binning scratch
+  std::vector<double> binned_xyzr;                  // x, y, z, R of binned[q] at 4q
   double skin = 0.0, half_skin_sq = 0.0;
-  double list_extra = 0.0;  // d_max + skin (+ rounding margin), added to R_i + R_j
+  double list_extra = 0.0;  // d_max + skin, added to R_i + R_j
+  double d_max = 0.0, base_skin = 0.0, max_skin = 0.0;
+  std::uint64_t built_at_trial = 0;
   long builds = 0;
+
+  // Takes effect at the next build (the trigger and the list radius must use the same skin).
+  void set_skin(double new_skin)
+  {
+    skin = new_skin;
+    half_skin_sq = 0.25 * skin * skin;
+    list_extra = d_max + skin;
+  }
 };
 
 namespace {
@@ -347,18 +361,29 @@ void build_lists(NeighbourLists &lists, const Scene &s, const double *pos, int n
   for (int i = 0; i < n; ++i) binned[cell_start[cell[i]]++] = i;
   for (std::size_t c = cell_start.size() - 1; c > 0; --c) cell_start[c] = cell_start[c - 1];
   cell_start[0] = 0;
+  // Coordinates in cell order: the candidates of one cell are contiguous.
+  lists.binned_xyzr.resize(4 * static_cast<std::size_t>(n));
+  double *bx = lists.binned_xyzr.data();
+  for (int q = 0; q < n; ++q) {
+    const int j = binned[q];
+    for (int d = 0; d < 3; ++d) bx[4 * q + d] = pos[3 * j + d];
+    bx[4 * q + 3] = radius_of(s, j);
+  }
 
   const long m = static_cast<long>(ids.size());
   first.resize(m + 1);
-  neighbour.clear();
   reference.resize(3 * static_cast<std::size_t>(m));
-  seen.assign(n, -1);  // a grid with < 3 cells on a periodic axis visits a sphere more than once
+  // A periodic axis with fewer than 3 cells makes the stencil visit a sphere more than once
+  // (through several images): only then are repeats filtered.
+  const bool repeats = (s.periodic[0] && ax.cells < 3) || (s.periodic[1] && ay.cells < 3);
+  if (repeats) seen.assign(n, -1);
   const double half_x = 0.5 * s.length[0], half_y = 0.5 * s.length[1];
+  std::size_t count = 0;
   for (long k = 0; k < m; ++k) {
     const int i = ids[k];
     const double *pi = pos + 3 * i;
     const double ri = radius_of(s, i);
-    first[k] = static_cast<int>(neighbour.size());
+    first[k] = static_cast<int>(count);
     for (int d = 0; d < 3; ++d) reference[3 * k + d] = pi[d];
     const int ix = ax.cell_of(pi[0]), iy = ay.cell_of(pi[1]), iz = az.cell_of(pi[2]);
     for (int kz = 0; kz < 3; ++kz)
@@ -366,22 +391,29 @@ void build_lists(NeighbourLists &lists, const Scene &s, const double *pos, int n
         for (int kx = 0; kx < 3; ++kx) {
           const int c = (az.neighbour[3 * iz + kz] * py + ay.neighbour[3 * iy + ky]) * px +
                         ax.neighbour[3 * ix + kx];
-          for (int q = cell_start[c]; q < cell_start[c + 1]; ++q) {
+          const int q0 = cell_start[c], q1 = cell_start[c + 1];
+          // neighbour only grows (its size is a capacity; first[] marks the entries in use)
+          if (neighbour.size() < count + (q1 - q0)) neighbour.resize(2 * (count + (q1 - q0)) + 64);
+          int *out = neighbour.data();
+          for (int q = q0; q < q1; ++q) {
             const int j = binned[q];
-            if (j == i || seen[j] == k) continue;
-            seen[j] = static_cast<int>(k);
-            const double *pj = pos + 3 * j;
+            const double *pj = bx + 4 * q;
             const double dx = s.periodic[0] ? nearest_separation(pj[0], pi[0], s.length[0], half_x)
                                             : pj[0] - pi[0];
             const double dy = s.periodic[1] ? nearest_separation(pj[1], pi[1], s.length[1], half_y)
                                             : pj[1] - pi[1];
-            const double list_radius = (ri + radius_of(s, j)) + extra;
-            if (distance_sq(dx, dy, pj[2] - pi[2]) < list_radius * list_radius)
-              neighbour.push_back(j);
+            const double list_radius = (ri + pj[3]) + extra;
+            bool keep = (distance_sq(dx, dy, pj[2] - pi[2]) < list_radius * list_radius) & (j != i);
+            if (repeats) {
+              keep = keep && seen[j] != k;
+              if (keep) seen[j] = static_cast<int>(k);
+            }
+            out[count] = j;  // branch-free append: kept entries advance the end
+            count += keep;
           }
         }
   }
-  first[m] = static_cast<int>(neighbour.size());
+  first[m] = static_cast<int>(count);
 }
 
 template <bool Mono, bool PeriodicX, bool PeriodicY>
@@ -441,8 +473,14 @@ void run_trials(SettleRun &run, double *pos, const std::vector<int> &movable_ids
         image[2 * i + 1] += wrap_y;
         ref[1] += wrap_y * sc.length[1];
       }
-      if (distance_sq(x - ref[0], y - ref[1], z - ref[2]) > lists.half_skin_sq)
+      if (distance_sq(x - ref[0], y - ref[1], z - ref[2]) > lists.half_skin_sq) {
+        // Rebuilds in quick succession (free fall): a wider skin, fewer O(N) builds.
+        if (static_cast<double>(run.trial - lists.built_at_trial) <
+            defaults::kVerletGrowBelowSweeps * static_cast<double>(m))
+          lists.set_skin(std::min(2.0 * lists.skin, lists.max_skin));
         build_lists(lists, sc, pos, n, movable_ids);
+        lists.built_at_trial = run.trial;
+      }
     }
     // <Z> check every interval (section II): stop on a relative change below eta.
     ++run.checks;
@@ -460,6 +498,14 @@ void run_trials(SettleRun &run, double *pos, const std::vector<int> &movable_ids
       return;
     }
     run.next_check += static_cast<std::uint64_t>(run.interval);
+    // Back towards the default skin (shorter lists) once the packing has calmed down.
+    if (lists.skin > lists.base_skin &&
+        static_cast<double>(run.trial - lists.built_at_trial) >=
+            defaults::kVerletShrinkAfterSweeps * static_cast<double>(m)) {
+      lists.set_skin(std::max(0.5 * lists.skin, lists.base_skin));
+      build_lists(lists, sc, pos, n, movable_ids);
+      lists.built_at_trial = run.trial;
+    }
   }
 }
 
@@ -548,10 +594,12 @@ SettleResult Settler::settle(double *xyz, const double *radius, const unsigned c
         position_[3 * i + d] = wrap_into_box(xyz[3 * i + d], run.scene.lo[d], run.scene.hi[d],
                                              run.scene.length[d], image_[2 * i + d]);
   NeighbourLists &lists = *lists_;
-  lists.skin = skin_over_max_radius_ * run.scene.r_max;
-  lists.half_skin_sq = 0.25 * lists.skin * lists.skin;
-  lists.list_extra = params.d_max + lists.skin;
+  lists.d_max = params.d_max;
+  lists.base_skin = skin_over_max_radius_ * run.scene.r_max;
+  lists.max_skin = std::max(lists.base_skin, defaults::kVerletSkinMaxOverRadius * run.scene.r_max);
+  lists.set_skin(lists.base_skin);
   lists.builds = 0;
+  lists.built_at_trial = 0;
   build_lists(lists, run.scene, position_.data(), n, movable_ids_);
 
   run.sampler = sampler_.get();

@@ -2,7 +2,8 @@
 // The redeposition (paper, section II): downward-biased hard-sphere Monte Carlo until the mean
 // height <Z> stops changing. LAMMPS-free kernel behind fix mc/settle. Overlaps are tested
 // against a Verlet neighbour list owned by the kernel (list radius = contact distance + d_max +
-// skin, rebuilt by O(N) binning when a sphere has moved skin/2): exact, never misses an overlap.
+// skin, rebuilt by O(N) binning when a sphere has moved skin/2; the skin adapts within a call):
+// exact, never misses an overlap, so the moves never depend on the skin.
 #ifndef TAPMC_SETTLE_H
 #define TAPMC_SETTLE_H
 
@@ -91,9 +92,10 @@ class Settler {
   // the LAMMPS fix can validate its arguments at construction).
   static void validate(const SettleParams &params);
 
-  // Skin of the Verlet list in units of the largest radius (default
-  // defaults::kVerletSkinOverRadius). Any value > 0 gives bit-identical results; only the
-  // speed changes (for tests and benchmarks). Throws std::invalid_argument outside (0, +inf).
+  // Initial skin of the Verlet list in each call, in units of the largest radius (default
+  // defaults::kVerletSkinOverRadius; it then adapts). Any value > 0 gives bit-identical
+  // results; only the speed changes (for tests and benchmarks). Throws std::invalid_argument
+  // outside (0, +inf).
   void set_verlet_skin(double skin_over_max_radius);
   double verlet_skin() const { return skin_over_max_radius_; }
 

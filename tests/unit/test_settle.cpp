@@ -317,7 +317,8 @@ TEST(Settle, RedepositionAfterTapConverges)
   expect_valid(s, "after tap");
 }
 
-// Small spheres (R = 0.1) with one big one (R = 1) that sizes the list's skin (0.2 R_max):
+// Small spheres (R = 0.1) with one big one (R = 1) that sizes the list's skin (0.2 R_max, then
+// adaptive):
 // the small spheres fall freely, so the Verlet list is rebuilt many times mid-run; the geometry
 // stays exact and the run deterministic.
 TEST(Settle, ManyListRebuildsMidRunKeepGeometryAndDeterminism)
@@ -328,7 +329,7 @@ TEST(Settle, ManyListRebuildsMidRunKeepGeometryAndDeterminism)
   Settler settler;
   SettleParams p = paper_params(1.0, 4, 4, 1e-300, 150);
   const SettleResult res = settler.settle(s.xyz.data(), s.radius.data(), nullptr, s.size(), s.box, p);
-  EXPECT_GT(res.list_builds, 100);
+  EXPECT_GT(res.list_builds, 20);
   EXPECT_EQ(res.slot_growths, 0);
   expect_valid(s, "rebuilds");
   Scene again = start;
