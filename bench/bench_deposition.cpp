@@ -3,6 +3,7 @@
 // 1e6 monodisperse spheres at the paper's height (box side 32R sqrt(N / 4096), PBC), time per
 // sphere to show the linear growth, and a naive O(N)-per-drop scan as the reference.
 // Usage: bench_deposition [--quick]   (--quick skips N = 1e6)
+#include "bench_common.h"
 #include "tapmc_deposition.h"
 
 #include <algorithm>
@@ -14,21 +15,13 @@
 #include <string>
 #include <vector>
 
+using tapmc_bench::cpu_model;
+using tapmc_bench::median;
+using tapmc_bench::seconds_since;
+
 namespace {
 
-std::string cpu_model()
-{
-  std::ifstream f("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(f, line))
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  return "unknown CPU";
-}
 
-double seconds_since(std::chrono::steady_clock::time_point t0)
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 tapmc::DepositionDomain domain_for(long n)
 {

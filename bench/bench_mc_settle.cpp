@@ -4,6 +4,7 @@
 // cost; sweeps per redeposition versus eta.
 //
 // Usage: bench_mc_settle [--quick]   (--quick: fewer repeats, no N = 32768)
+#include "bench_common.h"
 #include "../tests/unit/settle_test_scenes.h"
 #include "tapmc_contact.h"
 #include "tapmc_defaults.h"
@@ -24,27 +25,14 @@ using namespace tapmc;
 using namespace tapmc::test_scenes;
 using Clock = std::chrono::steady_clock;
 
+using tapmc_bench::cpu_model;
+using tapmc_bench::median;
+using tapmc_bench::seconds_since;
+
 namespace {
 
-double seconds_since(Clock::time_point t0)
-{
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
-double median(std::vector<double> v)
-{
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
 
-std::string cpu_model()
-{
-  std::ifstream in("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(in, line))
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  return "unknown";
-}
 
 // The paper's initial state: Jullien-Meakin sequential deposition (phi ~ 0.58), R = 1.
 Scene deposited_bed(int n, double side, bool periodic, bool poly, std::uint64_t seed)

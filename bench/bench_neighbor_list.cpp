@@ -49,6 +49,7 @@
 // of accepted moves must be equal.
 //
 // Usage: bench_neighbor_list [--quick]
+#include "bench_common.h"
 #include "../tests/unit/settle_test_scenes.h"
 #include "tapmc_contact.h"
 #include "tapmc_deposition.h"
@@ -71,6 +72,10 @@ using namespace tapmc;
 using namespace tapmc::test_scenes;
 using Clock = std::chrono::steady_clock;
 
+using tapmc_bench::cpu_model;
+using tapmc_bench::median;
+using tapmc_bench::seconds_since;
+
 namespace {
 
 constexpr double kRadius = 1.0;
@@ -81,35 +86,8 @@ constexpr double kTol = 1e-10;                       // paper_params' contact to
 constexpr std::uint64_t kSeed = 12345;
 constexpr int kN = 4096;
 
-double seconds_since(Clock::time_point t0)
-{
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
-double median(std::vector<double> v)
-{
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
 
-std::string cpu_model()
-{
-  std::ifstream in("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(in, line))
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  return "unknown";
-}
-
-// Squared distance with the same fused operations as the production kernel (bit-identical).
-inline double distance_sq(double dx, double dy, double dz)
-{
-#ifdef __FMA__
-  return std::fma(dz, dz, std::fma(dy, dy, dx * dx));
-#else
-  return dx * dx + dy * dy + dz * dz;
-#endif
-}
 
 // One trial step across the periodic seam, as the production kernel wraps it.
 inline double wrap_step(double x, double length)

@@ -4,7 +4,20 @@
 #ifndef TAPMC_CONTACT_H
 #define TAPMC_CONTACT_H
 
+#include <cmath>
+
 namespace tapmc {
+
+// Squared distance, written once with explicit fused operations so every caller (vectorised
+// kernel loop, scalar violation check, benchmarks) rounds identically.
+inline double distance_sq(double dx, double dy, double dz)
+{
+#ifdef __FMA__
+  return std::fma(dz, dz, std::fma(dy, dy, dx * dx));
+#else
+  return dx * dx + dy * dy + dz * dz;
+#endif
+}
 
 // Pair overlap: |r_ij| < (R_i + R_j)(1 - tol). Squared threshold for one pair.
 inline double overlap_threshold_sq(double r_i, double r_j, double one_minus_tol)

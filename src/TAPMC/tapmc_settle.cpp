@@ -48,17 +48,6 @@ std::string number(double value)
                               range);
 }
 
-// Squared distance, written once with explicit fused operations so every caller (vectorised
-// kernel loop, scalar violation check) rounds identically.
-inline double distance_sq(double dx, double dy, double dz)
-{
-#ifdef __FMA__
-  return std::fma(dz, dz, std::fma(dy, dy, dx * dx));
-#else
-  return dx * dx + dy * dy + dz * dz;
-#endif
-}
-
 // Wraps a coordinate into [lo, hi) along a periodic axis, counting periods in `image`
 // (x_unwrapped = x + image * L). Works for any distance; lands on lo if rounding at the seam
 // would give hi.
