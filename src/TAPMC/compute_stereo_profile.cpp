@@ -4,6 +4,7 @@
 // MAX reduction of the surface columns when the window top must be read from the data).
 #include "compute_stereo_profile.h"
 
+#include "lammps_box.h"
 #include "atom.h"
 #include "comm.h"
 #include "domain.h"
@@ -41,9 +42,7 @@ constexpr int kArrayColumns = 3;
 ComputeStereoProfile::ComputeStereoProfile(LAMMPS *lmp, int narg, char **arg) :
     Compute(lmp, narg, arg), axis_(2), fixed_radius_(0.0), mean_radius_(0.0), radius_ready_(false)
 {
-  if (domain->triclinic) error->all(FLERR, "compute stereo/profile: triclinic boxes are not supported");
-  if (domain->zperiodic)
-    error->all(FLERR, "compute stereo/profile: the z boundary must be non-periodic (the floor)");
+  tapmc::require_box_with_floor(lmp, "compute stereo/profile");
 
   settings_.floor = domain->boxlo[2];
   bool planes_given = false;
@@ -186,9 +185,7 @@ ComputeStereoProfile::~ComputeStereoProfile()
 
 void ComputeStereoProfile::init()
 {
-  if (domain->triclinic) error->all(FLERR, "compute stereo/profile: triclinic boxes are not supported");
-  if (domain->zperiodic)
-    error->all(FLERR, "compute stereo/profile: the z boundary must be non-periodic (the floor)");
+  tapmc::require_box_with_floor(lmp, "compute stereo/profile");
   update_mean_radius();
 }
 

@@ -2,6 +2,7 @@
 // create_packing: runs the deposition kernel on every rank, creates each rank's own atoms.
 #include "create_packing.h"
 
+#include "lammps_box.h"
 #include "lammps_compat.h"
 #include "tapmc_defaults.h"
 #include "tapmc_deposition.h"
@@ -89,11 +90,7 @@ void CreatePacking::command(int narg, char **arg)
                "atom_style sphere");
   if (domain->dimension != 3)
     error->all(FLERR, "create_packing: needs a 3d simulation (dimension 3)");
-  if (domain->triclinic)
-    error->all(FLERR, "create_packing: triclinic boxes are not supported; use an orthogonal box");
-  if (domain->zperiodic)
-    error->all(FLERR, "create_packing: the z boundary is periodic; the deposit needs a floor "
-               "and an open top: use e.g. 'boundary p p fm' or 'boundary f f fs'");
+  tapmc::require_box_with_floor(lmp, "create_packing");
 
   const bigint n_spheres = utils::bnumeric(FLERR, arg[0], false, lmp);
   if (n_spheres <= 0 || n_spheres > std::numeric_limits<int>::max() - 1)

@@ -8,6 +8,7 @@
 // rank settling its own active region) can reuse it unchanged.
 #include "fix_mc_settle.h"
 
+#include "lammps_box.h"
 #include "lammps_relocate.h"
 #include "tapmc_defaults.h"
 #include "tapmc_settle.h"
@@ -124,11 +125,7 @@ FixMCSettle::FixMCSettle(LAMMPS *lmp, int narg, char **arg) :
     }
   }
 
-  if (domain->triclinic)
-    error->all(FLERR, "fix mc/settle: triclinic boxes are not supported; use an orthogonal box");
-  if (domain->periodicity[2])
-    error->all(FLERR, "fix mc/settle: the z boundary is periodic; the packing needs a floor and "
-               "an open top: use e.g. 'boundary p p fm' (or 'f s')");
+  tapmc::require_box_with_floor(lmp, "fix mc/settle");
   for (int dim = 0; dim < 2; ++dim) {
     if (domain->periodicity[dim]) {
       if (walls_given[dim])

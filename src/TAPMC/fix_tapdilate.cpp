@@ -2,6 +2,7 @@
 // fix tapdilate: the tap of the model, a homothetic vertical dilation about the floor.
 #include "fix_tapdilate.h"
 
+#include "lammps_box.h"
 #include "lammps_relocate.h"
 #include "tapmc_dilation.h"
 
@@ -58,11 +59,7 @@ FixTapDilate::FixTapDilate(LAMMPS *lmp, int narg, char **arg) :
     }
   }
 
-  if (domain->triclinic)
-    error->all(FLERR, "fix tapdilate: triclinic boxes are not supported; use an orthogonal box");
-  if (domain->periodicity[2])
-    error->all(FLERR, "fix tapdilate: the z boundary is periodic; the packing needs a floor and "
-               "an open top: use e.g. 'boundary p p fm' (or 'f s')");
+  tapmc::require_box_with_floor(lmp, "fix tapdilate");
 
   // Moves happen in pre_exchange() of steps on which this fix forces reneighbouring.
   force_reneighbor = 1;

@@ -76,7 +76,7 @@ def test_bad_argument_stops_with_a_message_naming_it(body, message):
     assert "ERROR" in out and message in out, out
 
 
-FIX_LINES = ["fix t all tapdilate 0.1", "fix s all mc/settle 1"]
+FIX_LINES = ["fix t all tapdilate 0.1", "fix s all mc/settle 1", "compute c all stereo/profile"]
 
 
 @pytest.mark.parametrize("fix_line", FIX_LINES)

@@ -165,7 +165,7 @@ def test_missing_radius_with_atom_style_atomic():
 
 def test_periodic_z_is_rejected():
     rc, out, _ = run_lammps(lattice("p p p") + "compute s all stereo/profile\n")
-    assert rc != 0 and "z boundary must be non-periodic" in out, out[-1500:]
+    assert rc != 0 and "z boundary is periodic" in out, out[-1500:]
 
 
 def test_doc_examples_run():
