@@ -156,14 +156,20 @@ inline double radius_of(const Scene &s, int i) { return s.mono ? s.r_mono : s.ra
 
 // The plane constraints (floor, side walls) of a sphere of radius r at (x, y, z): 0 if none is
 // violated, else the code of the first (-1 floor, -2 x wall, -3 y wall) and its gap.
+// Floor, then side walls; a periodic axis has no walls, and the hot loop (which knows its axes
+// at compile time) skips their tests. Returns 0, or -1 floor / -2 x wall / -3 y wall.
+template <bool PeriodicX, bool PeriodicY>
 inline int plane_violation(const Scene &s, double x, double y, double z, double r, double &gap)
 {
   gap = floor_gap(z, r, s.floor_z);
   if (gap_violates(gap, r, s.tol)) return -1;
-  const double c[2] = {x, y};
-  for (int d = 0; d < 2; ++d) {
-    gap = std::min(low_wall_gap(c[d], r, s.wall_lo[d]), high_wall_gap(c[d], r, s.wall_hi[d]));
-    if (gap_violates(gap, r, s.tol)) return -2 - d;
+  if (!PeriodicX) {
+    gap = std::min(low_wall_gap(x, r, s.wall_lo[0]), high_wall_gap(x, r, s.wall_hi[0]));
+    if (gap_violates(gap, r, s.tol)) return -2;
+  }
+  if (!PeriodicY) {
+    gap = std::min(low_wall_gap(y, r, s.wall_lo[1]), high_wall_gap(y, r, s.wall_hi[1]));
+    if (gap_violates(gap, r, s.tol)) return -3;
   }
   return 0;
 }
@@ -442,7 +448,7 @@ void run_trials(SettleRun &run, double *pos, const std::vector<int> &movable_ids
       if (PeriodicX) x = wrap_step(x, sc.lo[0], sc.hi[0], sc.length[0], wrap_x);
       if (PeriodicY) y = wrap_step(y, sc.lo[1], sc.hi[1], sc.length[1], wrap_y);
       double gap;
-      if (plane_violation(sc, x, y, z, r, gap)) continue;
+      if (plane_violation<PeriodicX, PeriodicY>(sc, x, y, z, r, gap)) continue;
       const int *nb = lists.neighbour.data();
       if (list_overlap<Mono, PeriodicX, PeriodicY>(nb + lists.first[k], nb + lists.first[k + 1],
                                                    pos, sc, x, y, z, r, threshold_sq_mono,
@@ -644,7 +650,7 @@ Violation Settler::find_violation(const double *xyz, const double *radius, int n
   for (int i = 0; i < n; ++i) {
     const double x = grid.x(i), y = grid.y(i), z = grid.z(i), r = radius[i];
     double gap;
-    if (const int code = plane_violation(sc, x, y, z, r, gap)) {
+    if (const int code = plane_violation<false, false>(sc, x, y, z, r, gap)) {
       v.i = i;
       v.j = code;
       v.gap = gap;
