@@ -1,5 +1,5 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-// The one table of TAPMC styles. Adding a style edits only the three lists below.
+// The one table of TAPMC styles. Adding a style: include its header and add it to a list below.
 #include "register_styles.h"
 
 #include "command.h"
@@ -12,23 +12,10 @@
 #include <map>
 #include <string>
 
-// style headers
-#if __has_include("fix_tapdilate.h")
-#include "fix_tapdilate.h"
-#define TAPMC_HAVE_FIX_TAPDILATE
-#endif
-#if __has_include("fix_mc_settle.h")
-#include "fix_mc_settle.h"
-#define TAPMC_HAVE_FIX_MC_SETTLE
-#endif
-#if __has_include("compute_stereo_profile.h")
 #include "compute_stereo_profile.h"
-#define TAPMC_HAVE_COMPUTE_STEREO_PROFILE
-#endif
-#if __has_include("create_packing.h")
 #include "create_packing.h"
-#define TAPMC_HAVE_CREATE_PACKING
-#endif
+#include "fix_mc_settle.h"
+#include "fix_tapdilate.h"
 
 using namespace LAMMPS_NS;
 
@@ -64,25 +51,17 @@ struct CommandEntry {
 };
 
 const FixEntry kFixes[] = {
-#ifdef TAPMC_HAVE_FIX_TAPDILATE
     {"tapdilate", &fix_creator<FixTapDilate>, "tap: homothetic vertical dilation about the floor"},
-#endif
-#ifdef TAPMC_HAVE_FIX_MC_SETTLE
     {"mc/settle", &fix_creator<FixMCSettle>, "redeposition: biased hard-sphere Monte Carlo"},
-#endif
-    {nullptr, nullptr, nullptr}};
+};
 const ComputeEntry kComputes[] = {
-#ifdef TAPMC_HAVE_COMPUTE_STEREO_PROFILE
     {"stereo/profile", &compute_creator<ComputeStereoProfile>,
      "exact stereological packing-fraction profiles"},
-#endif
-    {nullptr, nullptr, nullptr}};
+};
 const CommandEntry kCommands[] = {
-#ifdef TAPMC_HAVE_CREATE_PACKING
     {"create_packing", &command_creator<CreatePacking>,
      "initial packing by sequential gravitational deposition (Jullien-Meakin)"},
-#endif
-    {nullptr, nullptr, nullptr}};
+};
 
 // Box-creating commands wrapped so that a `clear` (new Modify, empty of our styles) is followed
 // by a re-registration before any fix or compute can be defined: every input defines its box
@@ -96,10 +75,8 @@ std::map<std::string, Input::CommandCreator> &original_box_creators()
 
 void insert_fix_and_compute_styles(LAMMPS *lmp)
 {
-  for (const auto &f : kFixes)
-    if (f.name) (*lmp->modify->fix_map)[f.name] = f.creator;
-  for (const auto &c : kComputes)
-    if (c.name) (*lmp->modify->compute_map)[c.name] = c.creator;
+  for (const auto &f : kFixes) (*lmp->modify->fix_map)[f.name] = f.creator;
+  for (const auto &c : kComputes) (*lmp->modify->compute_map)[c.name] = c.creator;
 }
 
 template <int I> Command *box_command_creator(LAMMPS *lmp)
@@ -118,8 +95,7 @@ void register_styles(LAMMPS *lmp)
 {
   insert_fix_and_compute_styles(lmp);
   auto &commands = *lmp->input->command_map;
-  for (const auto &c : kCommands)
-    if (c.name) commands[c.name] = c.creator;
+  for (const auto &c : kCommands) commands[c.name] = c.creator;
   for (int i = 0; i < 3; ++i) {
     auto it = commands.find(kBoxCommands[i]);
     if (it == commands.end() || it->second == kBoxWrappers[i]) continue;
@@ -161,19 +137,16 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   auto reg = reinterpret_cast<plugin_regfunc>(regfunc);
   const char *version = static_cast<LAMMPS *>(lmp)->version;
   for (const auto &f : kFixes) {
-    if (!f.name) continue;
     PluginRecord r{version, "fix", f.name, f.info, "TAPMC developers", {nullptr}, handle};
     r.creator.v2 = reinterpret_cast<plugin_factory_args *>(f.creator);
     reg(&r, lmp);
   }
   for (const auto &c : kComputes) {
-    if (!c.name) continue;
     PluginRecord r{version, "compute", c.name, c.info, "TAPMC developers", {nullptr}, handle};
     r.creator.v2 = reinterpret_cast<plugin_factory_args *>(c.creator);
     reg(&r, lmp);
   }
   for (const auto &c : kCommands) {
-    if (!c.name) continue;
     PluginRecord r{version, "command", c.name, c.info, "TAPMC developers", {nullptr}, handle};
     r.creator.v1 = reinterpret_cast<plugin_factory_lmp *>(c.creator);
     reg(&r, lmp);
