@@ -31,7 +31,6 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 
 namespace {
-constexpr int kBoundaryPeriodic = 0, kBoundaryFixed = 1;
 constexpr int kPackedPerAtom = 6;  // tag, x, y, z, radius, movable
 constexpr int kVectorSize = 6;
 const char *const kAxisName[2] = {"x", "y"};
@@ -134,7 +133,7 @@ FixMCSettle::FixMCSettle(LAMMPS *lmp, int narg, char **arg) :
       continue;
     }
     if (!walls_given[dim]) {
-      if (domain->boundary[dim][0] != kBoundaryFixed || domain->boundary[dim][1] != kBoundaryFixed)
+      if (domain->boundary[dim][0] != tapmc::kBoundaryFixed || domain->boundary[dim][1] != tapmc::kBoundaryFixed)
         error->all(FLERR, "fix mc/settle: the {0} boundary is shrink-wrapped, so the side walls "
                    "have no fixed position; use 'boundary f' in {0} or give '{0}walls lo hi'",
                    kAxisName[dim]);
@@ -349,7 +348,7 @@ void FixMCSettle::pre_exchange()
     error->all(FLERR, "fix mc/settle: {}", e.what());
   }
   scatter_positions();
-  tapmc::relocate_moved_atoms(lmp);
+  tapmc::relocate_moved_atoms(lmp, "fix mc/settle");
 
   last_trials = static_cast<double>(result.trials);
   last_sweeps = n_movable > 0 ? last_trials / static_cast<double>(n_movable) : 0.0;

@@ -23,13 +23,9 @@
 using namespace LAMMPS_NS;
 using namespace FixConst;
 
-namespace {
-constexpr int kBoundaryPeriodic = 0, kBoundaryFixed = 1;
-}
-
 FixTapDilate::FixTapDilate(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), eps_constant(0.0), eps_var_index(-1), tap_every(1),
-    z_floor(domain->boxlo[2]), last_eps(0.0), taps_done(0)
+    z_floor(domain->boxlo[2]), last_eps(0.0)
 {
   if (narg < 4)
     error->all(FLERR, "fix tapdilate: expected 'fix ID group tapdilate eps [every N] "
@@ -135,7 +131,7 @@ void FixTapDilate::pre_exchange()
   if (last_eps == 0.0) return;
 
   // A fixed upper z boundary would silently lose atoms: refuse before moving anything.
-  if (domain->boundary[2][1] == kBoundaryFixed) {
+  if (domain->boundary[2][1] == tapmc::kBoundaryFixed) {
     double top = -std::numeric_limits<double>::infinity();
     double **x = atom->x;
     const double *radius = atom->radius;
@@ -155,8 +151,7 @@ void FixTapDilate::pre_exchange()
   if (atom->nlocal > 0)
     tapmc::dilate_about_floor(&atom->x[0][0], atom->mask, groupbit, atom->nlocal, z_floor,
                               last_eps);
-  ++taps_done;
-  tapmc::relocate_moved_atoms(lmp);
+  tapmc::relocate_moved_atoms(lmp, "fix tapdilate");
 }
 
 double FixTapDilate::compute_scalar()

@@ -26,7 +26,6 @@ class FixTapDilate : public Fix {
   int tap_every;            // dilate on timesteps that are multiples of tap_every
   double z_floor;
   double last_eps;          // eps of the most recent tap (thermo output)
-  long taps_done;           // taps in this run
 
   double current_eps();
   void schedule_next_tap();

@@ -10,6 +10,9 @@
 
 namespace tapmc {
 
+// Domain::boundary[dim][side] code of a fixed ('f') face.
+constexpr int kBoundaryFixed = 1;
+
 // Stops with a message naming the style (e.g. "fix mc/settle") and what to change.
 inline void require_box_with_floor(LAMMPS_NS::LAMMPS *lmp, const char *style)
 {

@@ -16,11 +16,22 @@
 
 namespace tapmc {
 
+// Stop with a clear message when the atom count changed (it never should: a lost atom is a bug
+// or an atom pushed through a fixed boundary). One reduction.
+inline void check_atom_count(LAMMPS_NS::LAMMPS *lmp, const std::string &who)
+{
+  LAMMPS_NS::bigint nlocal = lmp->atom->nlocal, ntotal = 0;
+  MPI_Allreduce(&nlocal, &ntotal, 1, MPI_LMP_BIGINT, MPI_SUM, lmp->world);
+  if (ntotal != lmp->atom->natoms)
+    lmp->error->all(FLERR, "{}: atom count changed from {} to {} (atoms lost through a fixed "
+                    "boundary?)", who, lmp->atom->natoms, ntotal);
+}
+
 // Wrap periodic coordinates (remap, which keeps image flags right even after long moves),
 // shrink-wrap the box, and hand atoms that left more than a neighbouring sub-domain to their new
 // owners (Irregular), so that Verlet's exchange / borders / neighbour build that follow on this
-// step find every atom one hop from home. Every call is collective.
-inline void relocate_moved_atoms(LAMMPS_NS::LAMMPS *lmp)
+// step find every atom one hop from home; then check that none was lost. Collective.
+inline void relocate_moved_atoms(LAMMPS_NS::LAMMPS *lmp, const std::string &who)
 {
   auto *atom = lmp->atom;
   auto *domain = lmp->domain;
@@ -32,17 +43,7 @@ inline void relocate_moved_atoms(LAMMPS_NS::LAMMPS *lmp)
     LAMMPS_NS::Irregular irregular(lmp);
     if (irregular.migrate_check()) irregular.migrate_atoms(1);
   }
-}
-
-// Stop with a clear message when the atom count changed (it never should: a lost atom is a bug
-// or an atom pushed through a fixed boundary).
-inline void check_atom_count(LAMMPS_NS::LAMMPS *lmp, const std::string &who)
-{
-  LAMMPS_NS::bigint nlocal = lmp->atom->nlocal, ntotal = 0;
-  MPI_Allreduce(&nlocal, &ntotal, 1, MPI_LMP_BIGINT, MPI_SUM, lmp->world);
-  if (ntotal != lmp->atom->natoms)
-    lmp->error->all(FLERR, "{}: atom count changed from {} to {} (atoms lost through a fixed "
-                    "boundary?)", who, lmp->atom->natoms, ntotal);
+  check_atom_count(lmp, who);
 }
 
 }  // namespace tapmc
