@@ -2,8 +2,11 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 # Benchmark of tapmc-pores against scipy/Qhull doing the same job in the same run: time, CPU time,
 # peak RSS (each computation in its own process, measured with wait4), and the ratio.
-"""Usage: /usr/bin/python3 bench/pores/bench_pores.py --build BUILD_DIR [--sizes 4096,100000,1000000]
+"""Usage: /usr/bin/python3 bench/pores/bench_pores.py [--build BUILD_DIR] [--sizes 4096,100000,1000000]
        [--frames 20] [--qhull-max 1000000] [--workdir DIR]
+
+BUILD_DIR defaults to $TAPMC_BUILD_DIR, else "build"; the packings and outputs go to --workdir,
+default BUILD_DIR/bench/pores/work (kept between runs: the packings are generated once).
 
 Packings: random sequential addition of hard spheres (phi = 0.33) from bench_pores_packing; the
 4096-sphere frame has the paper's geometry (32R x 32R, periodic in x and y, walls in z). Larger
@@ -80,11 +83,11 @@ def qhull_job(path):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--build", default=os.environ.get("TAPMC_BUILD_DIR", "build-pores"))
+    parser.add_argument("--build", default=os.environ.get("TAPMC_BUILD_DIR", "build"))
     parser.add_argument("--sizes", default="4096,100000,1000000")
     parser.add_argument("--frames", type=int, default=20, help="frames in the 4096-sphere dump")
     parser.add_argument("--qhull-max", type=int, default=1000000, help="largest size also run with Qhull")
-    parser.add_argument("--workdir", default="/tmp/tapmc-pores-bench")
+    parser.add_argument("--workdir", help="default: BUILD_DIR/bench/pores/work")
     parser.add_argument("--qhull", help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.qhull:
@@ -92,6 +95,11 @@ def main():
 
     tool = os.path.join(args.build, "tools/pores/tapmc-pores")
     generator = os.path.join(args.build, "bench/pores/bench_pores_packing")
+    for program in (tool, generator):
+        if not os.access(program, os.X_OK):
+            sys.exit(f"bench_pores: {program} not found: build it, or give the build directory with --build")
+    if args.workdir is None:
+        args.workdir = os.path.join(args.build, "bench/pores/work")
     os.makedirs(args.workdir, exist_ok=True)
     print(f"machine: {os.uname().nodename}, {os.cpu_count()} cores, load {os.getloadavg()[0]:.2f}; "
           "times are one core (tapmc-pores is serial; Qhull too)")

@@ -74,3 +74,29 @@ def read_csv(path):
         except ValueError:
             out[h] = values
     return out
+
+
+def read_dump_frame(path):
+    """First frame of a `dump custom` text file (plain or gzip): centres, bounds, periodic, text."""
+    opener = gzip.open if str(path).endswith(".gz") else open
+    with opener(path, "rt") as f:
+        text = f.read()
+    lines = text.splitlines()
+    n = int(lines[3])
+    periodic = [flag == "pp" for flag in lines[4].split()[3:6]]
+    bounds = np.array([[float(v) for v in lines[5 + k].split()[:2]] for k in range(3)])
+    columns = lines[8].split()[2:]
+    data = np.array([[float(v) for v in line.split()] for line in lines[9:9 + n]])
+    centres = data[:, [columns.index(a) for a in "xyz"]]
+    return centres, bounds, periodic, text
+
+
+def surface_height(centres, radius, lo, hi, width):
+    """Oracle of h_s: mean over the non-empty columns (width ~ `width`, tiling [lo, hi) in x and
+    y) of the highest sphere top in the column (doc/tapmc-pores.rst, "Selection")."""
+    n = [max(1, int(np.floor((hi[d] - lo[d]) / width))) for d in range(2)]
+    tops = {}
+    for c in centres:
+        key = tuple(min(n[d] - 1, max(0, int(np.floor((c[d] - lo[d]) / ((hi[d] - lo[d]) / n[d]))))) for d in range(2))
+        tops[key] = max(tops.get(key, -np.inf), c[2] + radius)
+    return float(np.mean(list(tops.values())))

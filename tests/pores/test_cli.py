@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from pores_py_util import dump_text, random_packing, read_csv, run, write
+from pores_py_util import dump_text, random_packing, read_csv, read_dump_frame, run, surface_height, write
 
 GOOD = dump_text(random_packing(120, 7.0, [True, True, True], 1), 7.0, [True, True, True])
 
@@ -44,8 +44,17 @@ def test_many_files_and_frames_aggregate(tmp_path):
     assert abs((hist["P_xi"] * (hist["xi_hi"] - hist["xi_lo"])).sum() - in_range) < 1e-9
     pores = read_csv(tmp_path / "out.pores.csv")
     sel = pores["selected"] == 1
-    # Selection: 2R (= 1.0) from the non-periodic z faces, whole x and y.
-    assert np.all((pores["z"][sel] >= 1.0) & (pores["z"][sel] < 6.0))
+    # Default selection: whole x and y (periodic), z from 2R (= 1.0) above the floor (the lowest
+    # sphere bottom) to 4R (= 2.0) below the free surface h_s (oracle: surface_height).
+    frame_of = [f"{f}:{int(t)}" for f, t in zip(pores["file"], pores["timestep"])]
+    keys = [f"{a}:0", f"{a}:100", f"{b}:0", f"{b}:100"]
+    for key, packing in zip(keys, packings):
+        floor = packing[:, 2].min() - 0.5
+        top = surface_height(packing, 0.5, [0, 0], [7, 7], 1.0) - 2.0
+        mine = np.array([k == key for k in frame_of])
+        assert mine.sum() > 500, key
+        z = pores["z"][mine]
+        assert np.array_equal(pores["selected"][mine] == 1, (z >= floor + 1.0) & (z < top)), key
     assert sel.sum() == frames["selected"].sum()
     nu = np.mean(pores["xi"][sel] ** 3)
     assert data["frames_analysed"] == 4

@@ -186,6 +186,49 @@ TEST(PoreInvariants, OverlapAcrossThePeriodicSeamIsRefused) {
   }
 }
 
+TEST(PoreInvariants, OverlapRefusalNamesTheDeepestPairAndTheThreshold) {
+  // Three overlapping pairs of different depths (1 %, 5 %, 2 % of a diameter) in a loose
+  // packing: the deepest is named, whatever the order of the cells.
+  for (int seed : {1, 2, 3}) {
+    const Packing p = pores_test::random_packing(80, 9.0, {true, true, false}, seed);
+    const double depths[3] = {0.01, 0.05, 0.02};
+    Packing q;  // the three pairs first (ids 1-6), then the spheres that overlap none of them
+    q.box = p.box;
+    q.radius = p.radius;
+    for (int k = 0; k < 3; ++k) {
+      q.add(1.5 + 3.0 * k, 4.5, 4.5);
+      q.add(1.5 + 3.0 * k + 2 * p.radius * (1 - depths[k]), 4.5, 4.5);
+    }
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      bool clear = true;
+      for (std::size_t j = 0; j < 6 && clear; ++j)
+        clear = pores_test::distance(p.box, &p.xyz[3 * i], &q.xyz[3 * j]) >= 2 * p.radius;
+      if (clear) q.add(p.xyz[3 * i], p.xyz[3 * i + 1], p.xyz[3 * i + 2]);
+    }
+    PoreOptions o = options_for(q);
+    try {
+      const Tessellation t(q.box, q.xyz, q.ids, o);
+      FAIL() << "overlaps not detected";
+    } catch (const OverlapError& e) {
+      const std::set<std::size_t> pair{e.index_a, e.index_b};
+      EXPECT_EQ(pair, (std::set<std::size_t>{2, 3})) << e.what();
+      EXPECT_NEAR(e.depth, 0.05, 1e-12);
+      EXPECT_NEAR(e.distance, 0.95, 1e-12);
+      EXPECT_NEAR(e.threshold, 1.0 * (1 - o.overlap_tolerance), 1e-15);
+      EXPECT_EQ(e.pairs, 3u);
+      const std::string what = e.what();
+      EXPECT_NE(what.find("spheres 3 and 4 overlap by 5 % of a diameter"), std::string::npos) << what;
+      EXPECT_NE(what.find("the deepest of 3 overlapping pairs"), std::string::npos) << what;
+      EXPECT_NE(what.find("2R (1 - 0.001) = 0.999"), std::string::npos) << what;
+    }
+    // A tolerance above the deepest overlap accepts the packing.
+    o.overlap_tolerance = 0.051;
+    EXPECT_NO_THROW(Tessellation(q.box, q.xyz, q.ids, o));
+    o.overlap_tolerance = 0.049;
+    EXPECT_THROW(Tessellation(q.box, q.xyz, q.ids, o), OverlapError);
+  }
+}
+
 TEST(PoreInvariants, ContactWithinToleranceIsAccepted) {
   Packing p = pores_test::fcc(3, 0.5);
   p.xyz[0] += 1e-6;  // pushes sphere 1 into its neighbour by 1e-6 of a diameter

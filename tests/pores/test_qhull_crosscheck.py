@@ -40,8 +40,8 @@ def test_pores_match_qhull(tmp_path, periodic, seed):
     side = 7.0
     centres = random_packing(220, side, periodic, seed)
     dump = write(tmp_path / "p.dump", dump_text(centres, side, periodic))
-    # --wall-gap 0: the whole box is the region of interest, so every pore centred in it is resolved.
-    result = run("-q", "--pores", "--wall-gap", "0", "-o", tmp_path / "out", dump)
+    # The whole box is the selection, so every pore centred in it is resolved.
+    result = run("-q", "--pores", "--wall-gap", "0", "--z", f"0:{side}", "-o", tmp_path / "out", dump)
     assert result.returncode == 0, result.stderr
     mine = read_csv(tmp_path / "out.pores.csv")
     ours = {}

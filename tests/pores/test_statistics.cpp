@@ -1,9 +1,11 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-// Pore statistics: histograms and nu on exact lattices, sub-box selection, Gotoh's P0 (eq. 8-9)
-// against the sampled one, monodisperse check.
+// Pore statistics: histograms and nu on exact lattices, the default selection (floor, free
+// surface h_s, side walls from the data), Gotoh's P0 (eq. 8, and the form replacing the printed
+// eq. 9) against the sampled one, monodisperse check.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "pores_test_util.h"
 #include "tapmc_pores/analysis.h"
@@ -36,32 +38,117 @@ TEST(PoreStatistics, FccHistogramAndNu) {
   EXPECT_NEAR(s.v.density(static_cast<std::size_t>(xo * xo * xo / vw)) * vw, 1.0 / 3, 1e-12);
 }
 
-TEST(PoreStatistics, RegionDefaultsAndExplicitBounds) {
+// A packing resting on a floor at z = 2 in a box starting at z = -5 (a DEM dump): simple cubic
+// layers of R = 0.5 at contact, 16 x 16 columns per layer; the top layer has one sphere missing
+// and one stray sphere 3 diameters higher.
+Packing layered_packing(int layers, bool periodic_xy) {
+  Packing p;
+  p.radius = 0.5;
+  for (int k = 0; k < layers; ++k)
+    for (int i = 0; i < 16; ++i)
+      for (int j = 0; j < 16; ++j)
+        if (!(k == layers - 1 && i == 3 && j == 4)) p.add(0.5 + i, 0.5 + j, 2.5 + k);
+  p.add(7.5, 7.5, 2.5 + layers - 1 + 3.0);  // stray sphere above column (7, 7)
+  p.box.lo = {periodic_xy ? 0.0 : -3.0, periodic_xy ? 0.0 : -3.0, -5.0};
+  p.box.hi = {periodic_xy ? 16.0 : 20.0, periodic_xy ? 16.0 : 20.0, 40.0};
+  p.box.periodic = {periodic_xy, periodic_xy, false};
+  return p;
+}
+
+TEST(PoreSelection, SurfaceHeightIsTheMeanColumnTop) {
+  const Packing p = layered_packing(10, true);
+  // 256 columns one diameter wide (2R): every column's top is 2 + 10 = 12, except the column
+  // without its top sphere (11) and the column of the stray sphere (15).
+  const double expected = 12.0 + (-1.0 + 3.0) / 256.0;
+  EXPECT_NEAR(surface_height(p.xyz, p.radius, {0, 0}, {16, 16}, 2 * p.radius), expected, 1e-12);
+  // Columns of 4 spheres (width 2): 64 columns; the missing sphere is hidden by its neighbours.
+  EXPECT_NEAR(surface_height(p.xyz, p.radius, {0, 0}, {16, 16}, 2.0), 12.0 + 3.0 / 64.0, 1e-12);
+  // Width above the box: one column, the highest top.
+  EXPECT_NEAR(surface_height(p.xyz, p.radius, {0, 0}, {16, 16}, 100.0), 15.0, 1e-12);
+  // Empty columns are skipped: a wider tiling around the same spheres gives the same height.
+  EXPECT_NEAR(surface_height(p.xyz, p.radius, {-16, -16}, {32, 32}, 1.0), expected, 1e-12);
+}
+
+TEST(PoreSelection, DefaultRegionIsThePackingNotTheBox) {
+  for (bool periodic_xy : {true, false}) {
+    const Packing p = layered_packing(10, periodic_xy);
+    const PackingBounds packing = find_packing(p.box, p.xyz, p.radius);
+    EXPECT_TRUE(packing.free_surface);
+    EXPECT_DOUBLE_EQ(packing.lo[2], 2.0);  // floor: the lowest sphere bottom, not the box's -5
+    EXPECT_NEAR(packing.hi[2], 12.0 + 2.0 / 256.0, 1e-12);
+    RegionSpec spec;  // 2R above the floor, 4R below h_s; 2R from the side walls or whole
+    Region r = make_region(p.box, packing, p.radius, spec);
+    EXPECT_DOUBLE_EQ(r.lo[2], 3.0);
+    EXPECT_NEAR(r.hi[2], packing.hi[2] - 2.0, 1e-12);
+    if (periodic_xy) {
+      EXPECT_EQ(r.lo[0], 0.0);
+      EXPECT_EQ(r.hi[1], 16.0);
+    } else {  // side walls where the outermost spheres are (x, y in [0, 16]), not the box
+      EXPECT_DOUBLE_EQ(r.lo[0], 1.0);
+      EXPECT_DOUBLE_EQ(r.hi[1], 15.0);
+    }
+    // The paper's window (--paper-window = --radii --z 2:20) counts from the floor.
+    spec.units.fill(RegionSpec::Units::kRadiiFromLo);
+    spec.lo[2] = 2;
+    spec.hi[2] = 20;
+    r = make_region(p.box, packing, p.radius, spec);
+    EXPECT_DOUBLE_EQ(r.lo[2], 3.0);
+    EXPECT_DOUBLE_EQ(r.hi[2], 12.0);
+    // An explicit floor replaces the lowest sphere bottom.
+    const PackingBounds floored = find_packing(p.box, p.xyz, p.radius, 1.5);
+    EXPECT_DOUBLE_EQ(floored.lo[2], 1.5);
+    EXPECT_DOUBLE_EQ(floored.lowest_bottom, 2.0);
+    EXPECT_DOUBLE_EQ(make_region(p.box, floored, p.radius, spec).lo[2], 2.5);
+  }
+}
+
+TEST(PoreSelection, BadFloorsAndEmptyRegionsAreRefused) {
+  Packing p = layered_packing(2, true);  // floor 2, h_s ~ 4: 4R tall, less than 2R + 4R
+  const PackingBounds packing = find_packing(p.box, p.xyz, p.radius);
+  try {
+    make_region(p.box, packing, p.radius, RegionSpec{});
+    FAIL() << "empty region accepted";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("empty selection region along z"), std::string::npos) << what;
+    EXPECT_NE(what.find("--surface-gap"), std::string::npos) << what;
+  }
+  EXPECT_THROW(find_packing(p.box, p.xyz, p.radius, 10.0), std::invalid_argument);  // above h_s
+  p.box.periodic[2] = true;  // no floor along a periodic z
+  EXPECT_THROW(find_packing(p.box, p.xyz, p.radius, 2.0), std::invalid_argument);
+  const PackingBounds whole = find_packing(p.box, p.xyz, p.radius);
+  EXPECT_FALSE(whole.free_surface);
+  const Region r = make_region(p.box, whole, p.radius, RegionSpec{});
+  EXPECT_EQ(r.lo, p.box.lo);
+  EXPECT_EQ(r.hi, p.box.hi);
+}
+
+TEST(PoreSelection, ExplicitBoundsAreClippedToTheBox) {
   Box box;
   box.lo = {0, 0, 0};
   box.hi = {32, 32, 40};
   box.periodic = {true, false, false};
-  RegionSpec spec;  // defaults: periodic x whole, 2R from the y and z faces
-  Region r = make_region(box, 0.5, spec);
-  EXPECT_EQ(r.lo, (std::array<double, 3>{0, 1, 1}));
-  EXPECT_EQ(r.hi, (std::array<double, 3>{32, 31, 39}));
-  spec.units = {RegionSpec::Units::kRadiiFromLo, RegionSpec::Units::kRadiiFromLo, RegionSpec::Units::kRadiiFromLo};
-  spec.lo[2] = 2;
-  spec.hi[2] = 20;  // the paper's 18 R window starting 2 R above the floor
-  r = make_region(box, 0.5, spec);
-  EXPECT_DOUBLE_EQ(r.lo[2], 1.0);
-  EXPECT_DOUBLE_EQ(r.hi[2], 10.0);
+  PackingBounds packing;
+  packing.lo = {0, 0, 0};
+  packing.hi = {32, 32, 30};
+  packing.free_surface = true;
+  RegionSpec spec;
+  spec.lo = {-10, 5, 1};
+  spec.hi = {50, 6, 39};
+  const Region r = make_region(box, packing, 0.5, spec);
+  EXPECT_EQ(r.lo, (std::array<double, 3>{0, 5, 1}));
+  EXPECT_EQ(r.hi, (std::array<double, 3>{32, 6, 39}));
   EXPECT_TRUE(r.contains({0.0, 5.0, 5.0}));
-  EXPECT_FALSE(r.contains({5.0, 0.5, 5.0}));
+  EXPECT_FALSE(r.contains({5.0, 6.0, 5.0}));
   spec.lo[2] = 90;
   spec.hi[2] = 95;
-  EXPECT_THROW(make_region(box, 0.5, spec), std::invalid_argument);
+  EXPECT_THROW(make_region(box, packing, 0.5, spec), std::invalid_argument);
 }
 
 TEST(PoreStatistics, GotohPercusYevick) {
   for (double phi : {0.584, 0.606}) {
     EXPECT_DOUBLE_EQ(gotoh_p0(0.0, phi), 1.0);
-    EXPECT_NEAR(gotoh_p0(1.0, phi), 1.0 - phi, 1e-15);  // eq. 8 and eq. 9 meet at sigma = 1
+    EXPECT_NEAR(gotoh_p0(1.0, phi), 1.0 - phi, 1e-15);  // both branches meet at sigma = 1
     // -ln P0 is continuous with its slope at sigma = 1 (one-sided finite differences) ...
     auto minus_log = [&](double sigma) { return -std::log(gotoh_p0(sigma, phi)); };
     const double h = 1e-5, below1 = (minus_log(1.0) - minus_log(1 - h)) / h,

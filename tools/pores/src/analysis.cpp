@@ -11,22 +11,101 @@
 
 namespace tapmc {
 namespace pores {
+namespace {
+std::string to_text(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+}  // namespace
 
-Region make_region(const Box& box, double radius, const RegionSpec& spec) {
+double surface_height(const std::vector<double>& xyz, double radius, const std::array<double, 2>& lo,
+                      const std::array<double, 2>& hi, double column_width) {
+  if (!(column_width > 0)) throw std::invalid_argument("surface column width must be > 0, got " + std::to_string(column_width));
+  std::array<int, 2> n{};
+  std::array<double, 2> width{};
+  for (int d = 0; d < 2; ++d) {
+    const double length = hi[d] - lo[d];
+    n[d] = length > 0 ? static_cast<int>(std::max(1.0, std::min(1e4, std::floor(length / column_width)))) : 1;
+    width[d] = length > 0 ? length / n[d] : 1.0;
+  }
+  std::vector<double> tops(static_cast<std::size_t>(n[0]) * n[1], -std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; 3 * i < xyz.size(); ++i) {
+    std::array<int, 2> column{};
+    for (int d = 0; d < 2; ++d)
+      column[d] = static_cast<int>(std::clamp(std::floor((xyz[3 * i + d] - lo[d]) / width[d]), 0.0, n[d] - 1.0));
+    double& top = tops[static_cast<std::size_t>(column[0]) * n[1] + column[1]];
+    top = std::max(top, xyz[3 * i + 2] + radius);
+  }
+  double sum = 0.0;
+  std::size_t filled = 0;
+  for (double top : tops)
+    if (std::isfinite(top)) sum += top, ++filled;
+  return filled ? sum / static_cast<double>(filled) : std::numeric_limits<double>::quiet_NaN();
+}
+
+PackingBounds find_packing(const Box& box, const std::vector<double>& xyz, double radius, double floor,
+                           double column_width_over_radius) {
+  if (xyz.empty()) throw std::invalid_argument("no spheres: the packing has no extent");
+  PackingBounds packing;
+  packing.lo = box.lo;
+  packing.hi = box.hi;
+  std::array<double, 3> lowest, highest;
+  lowest.fill(std::numeric_limits<double>::infinity());
+  highest.fill(-std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; 3 * i < xyz.size(); ++i)
+    for (int d = 0; d < 3; ++d) {
+      lowest[d] = std::min(lowest[d], xyz[3 * i + d] - radius);
+      highest[d] = std::max(highest[d], xyz[3 * i + d] + radius);
+    }
+  for (int d = 0; d < 2; ++d)
+    if (!box.periodic[d]) packing.lo[d] = lowest[d], packing.hi[d] = highest[d];
+  packing.lowest_bottom = lowest[2];
+  if (box.periodic[2]) {
+    if (!std::isnan(floor))
+      throw std::invalid_argument("--floor " + to_text(floor) +
+                                  " needs a non-periodic z, but z is periodic (no floor, no free surface)");
+    return packing;
+  }
+  packing.free_surface = true;
+  packing.lo[2] = std::isnan(floor) ? lowest[2] : floor;
+  packing.hi[2] = surface_height(xyz, radius, {packing.lo[0], packing.lo[1]}, {packing.hi[0], packing.hi[1]},
+                                 column_width_over_radius * radius);
+  if (!(packing.hi[2] > packing.lo[2])) {
+    std::ostringstream what;
+    what << "--floor " << packing.lo[2] << " is not below the free surface h_s = " << packing.hi[2]
+         << " (lowest sphere bottom " << lowest[2] << ")";
+    throw std::invalid_argument(what.str());
+  }
+  return packing;
+}
+
+Region make_region(const Box& box, const PackingBounds& packing, double radius, const RegionSpec& spec) {
   Region region;
   for (int d = 0; d < 3; ++d) {
-    const double gap = box.periodic[d] ? 0.0 : spec.wall_gap_over_radius * radius;
+    const double gap_lo = box.periodic[d] ? 0.0 : spec.wall_gap_over_radius * radius;
+    const double gap_hi = box.periodic[d] ? 0.0
+                          : (d == 2 && packing.free_surface ? spec.surface_gap_over_radius : spec.wall_gap_over_radius) * radius;
     auto resolve = [&](double value, double fallback) {
       if (std::isnan(value)) return fallback;
-      return spec.units[d] == RegionSpec::Units::kRadiiFromLo ? box.lo[d] + value * radius : value;
+      return spec.units[d] == RegionSpec::Units::kRadiiFromLo ? packing.lo[d] + value * radius : value;
     };
-    region.lo[d] = std::max(box.lo[d], resolve(spec.lo[d], box.lo[d] + gap));
-    region.hi[d] = std::min(box.hi[d], resolve(spec.hi[d], box.hi[d] - gap));
+    region.lo[d] = std::max(box.lo[d], resolve(spec.lo[d], packing.lo[d] + gap_lo));
+    region.hi[d] = std::min(box.hi[d], resolve(spec.hi[d], packing.hi[d] - gap_hi));
     if (!(region.hi[d] > region.lo[d])) {
       std::ostringstream what;
       what << "empty selection region along " << "xyz"[d] << ": [" << region.lo[d] << ", " << region.hi[d]
-           << ") inside the box [" << box.lo[d] << ", " << box.hi[d] << "] (wall gap "
-           << spec.wall_gap_over_radius << " R, R = " << radius << ")";
+           << ") in the box [" << box.lo[d] << ", " << box.hi[d] << "]";
+      if (!box.periodic[d]) {
+        if (d == 2 && packing.free_surface)
+          what << "; the packing spans the floor " << packing.lo[d] << " to the free surface h_s = " << packing.hi[d]
+               << ", the defaults keep " << spec.wall_gap_over_radius << " R above the floor (--wall-gap) and "
+               << spec.surface_gap_over_radius << " R below h_s (--surface-gap)";
+        else
+          what << "; the spheres span [" << packing.lo[d] << ", " << packing.hi[d] << "], the defaults keep "
+               << spec.wall_gap_over_radius << " R from them (--wall-gap)";
+      }
+      what << "; R = " << radius << " (give the bounds with --" << "xyz"[d] << " or smaller gaps)";
       throw std::invalid_argument(what.str());
     }
   }
@@ -93,10 +172,10 @@ double gotoh_p0(double sigma, double phi) {
   if (!(phi > 0 && phi < 1)) throw std::invalid_argument("gotoh_p0: phi must be in (0, 1), got " + std::to_string(phi));
   if (!(sigma >= 0)) throw std::invalid_argument("gotoh_p0: sigma must be >= 0, got " + std::to_string(sigma));
   if (sigma <= 1.0) return 1.0 - phi * sigma * sigma * sigma;  // eq. 8: disjoint balls
-  // sigma >= 1 (eq. 9): scaled-particle / Percus-Yevick result. -ln P0 is the cubic in
-  // t = sigma - 1 that continues eq. 8 with its value and first two derivatives at sigma = 1 and
-  // has the PY-compressibility pressure (1 + phi + phi^2) / (1 - phi)^3 as cubic coefficient
-  // (doc/tapmc-pores.rst: the copy of eq. 9 in our paper text is garbled).
+  // sigma >= 1: the scaled-particle / Percus-Yevick result, in place of the printed eq. 9 (which
+  // does not meet eq. 8 at sigma = 1; doc/tapmc-pores.rst). -ln P0 is the cubic in t = sigma - 1
+  // that continues eq. 8 with its value and first two derivatives at sigma = 1 and has the
+  // PY-compressibility pressure (1 + phi + phi^2) / (1 - phi)^3 as cubic coefficient.
   const double t = sigma - 1.0, q = 1.0 - phi;
   const double exponent = phi / (q * q * q) *
                           (3.0 * q * q * t + q * (3.0 + 1.5 * phi) * t * t + (1.0 + phi + phi * phi) * t * t * t);

@@ -2,14 +2,17 @@
 // tapmc-pores command line: options, the frame loop over many dumps, CSV/JSON outputs.
 #include "tapmc_pores/cli.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <iomanip>
 #include <limits>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "tapmc_pores/analysis.h"
 #include "tapmc_pores/dump_reader.h"
@@ -33,15 +36,20 @@ Input
   --skip N             skip the first N frames of every file (default 0)
   --every K            analyse every K-th frame after that (default 1)
   --max-frames M       stop after M analysed frames in total (default: all)
-Selection of pores (by the position of the pore centre)
+Selection of pores (by the position of the pore centre; z is the vertical)
+  Default: the packing itself, found in every frame. Periodic directions are used whole.
+  Non-periodic x, y: 2R inside the outermost sphere surfaces (the side walls). Non-periodic z:
+  from 2R above the floor to 4R below the free surface h_s, the mean over columns 2R wide of
+  the highest sphere top (as compute stereo/profile defines it).
+  --floor Z0           height of the floor (default: the lowest sphere bottom, min z - R)
   --x LO:HI --y LO:HI --z LO:HI
                        sub-box bounds; either side may be left empty (default for that side)
-  --radii              read those bounds as multiples of R above the box's lower face
-                       (the paper's window: --radii --z 2:20)
-  --wall-gap G         default distance from non-periodic box faces, in R (default 2);
-                       periodic directions are used whole
+  --radii              read those bounds as multiples of R above the lower reference: the floor
+                       along z, the side wall or the periodic box face along x and y
+  --wall-gap G         default distance from the side walls and the floor, in R (default 2)
+  --surface-gap G      default distance below the free surface h_s, in R (default 4)
   --paper-window       the paper's statistics box (section IV.B): 2R from the side walls,
-                       height 18R from 2R above the box floor (same as --radii --z 2:20)
+                       height 18R from 2R above the floor (same as --radii --z 2:20)
 Histograms
   --bins N             bins of xi on [0, XI_MAX) and of v = xi^3 on [0, XI_MAX^3) (default 150)
   --xi-max X           (default 1.5)
@@ -52,17 +60,22 @@ Outputs (files PREFIX.*)
   --pores              also PREFIX.pores.csv, every pore (centre, xi, four atom ids, selected)
   --json               also PREFIX.json with the same content for Python
   --p0 N               sample N random points per frame in the sub-box: PREFIX.p0.csv with the
-                       measured P0(sigma) next to Percus-Yevick's (eq. 8-9), e.g. --p0 100000
+                       measured P0(sigma) next to Gotoh's Percus-Yevick P0 (eq. 8 for sigma <= 1;
+                       for sigma > 1 the scaled-particle form that replaces the printed eq. 9,
+                       see doc/tapmc-pores.rst), e.g. --p0 100000
   --sigma-max S        P0 grid 0..S (default 2) in --sigma-steps K steps (default 200)
   --seed S             seed of the P0 sampling (default 1)
 Tolerances
-  --overlap-tol T      spheres closer than 2R (1 - T) are refused (default 1e-3)
+  --overlap-tol T      spheres closer than 2R (1 - T) are refused (default 1e-3); overlapping
+                       inputs such as DEM dumps need T above their deepest overlap
   --merge-tol T        circumcentres closer than T R are one pore (default 1e-8)
   --padding P          periodic image padding in R (default 4; grown automatically)
 Other
-  -q, --quiet          no progress lines on stderr
+  -q, --quiet          no progress lines on stderr (warnings and errors still)
   -h, --help           this text
 
+Outputs are written only when every frame was analysed; warnings (stderr, exit code 0) flag a
+selection without pores, with unresolved or out-of-range pores, or reaching the free surface.
 Exit codes: 0 success, 1 usage error, 2 bad input (the message names file, frame and line).
 Documentation: doc/tapmc-pores.rst.
 )";
@@ -73,6 +86,7 @@ struct Options {
   ReaderOptions reader;
   std::size_t skip = 0, every = 1, max_frames = std::numeric_limits<std::size_t>::max();
   RegionSpec region;
+  double floor = std::numeric_limits<double>::quiet_NaN();  // NaN: the lowest sphere bottom
   HistogramSpec histogram;
   std::string prefix = "pores";
   bool frame_hist = false, pore_list = false, json = false, quiet = false;
@@ -157,7 +171,10 @@ Options parse(const std::vector<std::string>& args, bool& help) {
     else if (a == "--wall-gap") {
       o.region.wall_gap_over_radius = to_double(a, value());
       if (o.region.wall_gap_over_radius < 0) throw UsageError("--wall-gap must be >= 0");
-    } else if (a == "--bins") o.histogram.bins = to_count(a, value(), 1);
+    } else if (a == "--surface-gap") {
+      o.region.surface_gap_over_radius = to_double(a, value());
+      if (o.region.surface_gap_over_radius < 0) throw UsageError("--surface-gap must be >= 0");
+    } else if (a == "--floor") o.floor = to_double(a, value()); else if (a == "--bins") o.histogram.bins = to_count(a, value(), 1);
     else if (a == "--xi-max") {
       o.histogram.xi_max = to_double(a, value());
       if (!(o.histogram.xi_max > 0)) throw UsageError("--xi-max must be positive");
@@ -188,12 +205,44 @@ Options parse(const std::vector<std::string>& args, bool& help) {
   return o;
 }
 
-std::ofstream open_output(const std::string& path) {
-  std::ofstream file(path);
-  if (!file) throw std::runtime_error("cannot write '" + path + "'");
-  file << std::setprecision(12);
-  return file;
-}
+// An output file written as PATH.partial and renamed to PATH by commit(), so that a refused or
+// interrupted run leaves no partial output (and no outdated file under a current name).
+class OutputFile {
+ public:
+  explicit OutputFile(std::string path) : path_(std::move(path)), partial_(path_ + ".partial") {
+    stream_.open(partial_);
+    if (!stream_) throw std::runtime_error("cannot write '" + partial_ + "'");
+    stream_ << std::setprecision(12);
+  }
+  ~OutputFile() {
+    if (!committed_) {
+      stream_.close();
+      std::remove(partial_.c_str());
+    }
+  }
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+  std::ofstream& stream() { return stream_; }
+  const std::string& path() const { return path_; }
+  void commit() {
+    stream_.close();
+    if (!stream_) throw std::runtime_error("writing '" + partial_ + "' failed (disk full?)");
+    if (std::rename(partial_.c_str(), path_.c_str()) != 0)
+      throw std::runtime_error("cannot rename '" + partial_ + "' to '" + path_ + "'");
+    committed_ = true;
+  }
+
+ private:
+  std::string path_, partial_;
+  std::ofstream stream_;
+  bool committed_ = false;
+};
+
+// A warning raised by some frames, printed once at the end with the first frame concerned.
+struct Warning {
+  std::size_t frames = 0;
+  std::string first_frame;  // location and details of the first frame concerned
+};
 
 // Numbers for CSV and JSON: NaN becomes an empty CSV field / JSON null.
 std::string csv_number(double v) {
@@ -258,6 +307,15 @@ void write_json_statistics(std::ostream& out, const PoreStatistics& s, bool with
   out << "}";
 }
 
+// The --overlap-tol that accepts an overlap of `depth` (of a diameter): rounded up to two
+// significant digits; 0 when no tolerance below 1 does (coincident centres).
+double accepting_tolerance(double depth) {
+  if (!(depth > 0)) return 0.0;
+  const double unit = std::pow(10.0, std::floor(std::log10(depth)) - 1.0);
+  const double tolerance = (std::floor(depth / unit) + 1.0) * unit;
+  return tolerance < 1.0 ? tolerance : 0.0;
+}
+
 }  // namespace
 
 int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err) {
@@ -277,18 +335,35 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
 
   std::string current_file;
   std::size_t current_frame = 0;
+  std::vector<std::unique_ptr<OutputFile>> outputs;  // removed unless the run succeeds
+  auto output = [&](const std::string& suffix) -> std::ofstream& {
+    outputs.push_back(std::make_unique<OutputFile>(o.prefix + suffix));
+    return outputs.back()->stream();
+  };
+  // Warnings by kind, in the order first raised.
+  std::vector<std::pair<std::string, Warning>> warnings;
+  auto warn = [&](const std::string& kind, const std::string& location, const std::string& details) {
+    auto it = std::find_if(warnings.begin(), warnings.end(), [&](const auto& w) { return w.first == kind; });
+    if (it == warnings.end()) {
+      warnings.emplace_back(kind, Warning{});
+      it = std::prev(warnings.end());
+      it->second.first_frame = location + details;
+    }
+    ++it->second.frames;
+  };
   try {
-    std::ofstream frames_csv = open_output(o.prefix + ".frames.csv");
+    std::ofstream& frames_csv = output(".frames.csv");
     frames_csv << "file,frame,timestep,atoms,radius,pores,tetrahedra,unresolved,selected,degenerate_selected,nu,mean_xi,"
                   "region_volume,tetrahedra_volume,phi_p0,seconds\n";
-    std::ofstream frame_hist_csv, pores_csv;
+    std::ofstream* frame_hist_csv = nullptr;
+    std::ofstream* pores_csv = nullptr;
     if (o.frame_hist) {
-      frame_hist_csv = open_output(o.prefix + ".frame_hist.csv");
-      frame_hist_csv << "file,frame,timestep," << kHistogramColumns << "\n";
+      frame_hist_csv = &output(".frame_hist.csv");
+      *frame_hist_csv << "file,frame,timestep," << kHistogramColumns << "\n";
     }
     if (o.pore_list) {
-      pores_csv = open_output(o.prefix + ".pores.csv");
-      pores_csv << std::setprecision(15) << "file,frame,timestep,x,y,z,xi,id1,id2,id3,id4,tetrahedra,volume,selected\n";
+      pores_csv = &output(".pores.csv");
+      *pores_csv << std::setprecision(15) << "file,frame,timestep,x,y,z,xi,id1,id2,id3,id4,tetrahedra,volume,selected\n";
     }
     PoreStatistics total(o.histogram);
     P0Statistics p0_total(o.sigma_max, o.sigma_steps);
@@ -320,11 +395,31 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
         }
         PoreOptions pore_options = o.pores;
         pore_options.radius = radius.radius;
+        PackingBounds packing;
         Region region;
         try {
-          region = make_region(frame.box, radius.radius, o.region);
+          packing = find_packing(frame.box, frame.xyz, radius.radius, o.floor);
+          region = make_region(frame.box, packing, radius.radius, o.region);
         } catch (const std::invalid_argument& e) {
           throw std::runtime_error(where(frame.first_line) + e.what());
+        }
+        const double r = radius.radius;
+        if (packing.free_surface) {
+          std::ostringstream details;
+          details.precision(6);
+          if (!std::isnan(o.floor) && packing.lowest_bottom < o.floor - 2.0 * r * o.pores.overlap_tolerance) {
+            details << "spheres reach below --floor " << o.floor << " (lowest sphere bottom " << packing.lowest_bottom
+                    << "): is the floor right?";
+            warn("below floor", where(frame.first_line), details.str());
+          } else if (region.hi[2] > packing.hi[2] - o.region.surface_gap_over_radius * r + 1e-9 * r) {
+            const double below = (packing.hi[2] - region.hi[2]) / r;
+            details << "the selection reaches z = " << region.hi[2] << ", ";
+            if (below > 0) details << "only " << below << " R below";
+            else details << -below << " R above";
+            details << " the free surface h_s = " << packing.hi[2] << " (--surface-gap " << o.region.surface_gap_over_radius
+                    << " R): pores near and above the free surface are larger than those of the bulk";
+            warn("surface", where(frame.first_line), details.str());
+          }
         }
         pore_options.focus_lo = region.lo;  // wider paddings only for pores that are analysed
         pore_options.focus_hi = region.hi;
@@ -332,9 +427,19 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
         try {
           tessellation = std::make_unique<Tessellation>(frame.box, frame.xyz, frame.ids, pore_options);
         } catch (const OverlapError& e) {
-          throw std::runtime_error(where(frame.first_atom_line + e.index_a) + e.what() + " (atom lines " +
-                                   std::to_string(frame.first_atom_line + e.index_a) + " and " +
-                                   std::to_string(frame.first_atom_line + e.index_b) + ")");
+          std::ostringstream what;
+          what << where(frame.first_atom_line + e.index_a) << e.what() << " (atom lines "
+               << frame.first_atom_line + e.index_a << " and " << frame.first_atom_line + e.index_b << "). ";
+          const double tolerance = accepting_tolerance(e.depth);
+          if (e.index_a == e.index_b)
+            what << "The periodic box is shorter than a diameter.";
+          else if (tolerance > 0)
+            what << "To accept overlapping spheres (e.g. a DEM dump), give --overlap-tol above the deepest overlap, "
+                    "here --overlap-tol "
+                 << tolerance << " (pores whose empty sphere is squeezed by overlaps get xi < 0, counted below range).";
+          else
+            what << "The centres nearly coincide: this is not a packing of spheres.";
+          throw std::runtime_error(what.str());
         } catch (const std::exception& e) {
           throw std::runtime_error(where(frame.first_line) + e.what());
         }
@@ -344,7 +449,7 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
         summary.frame = frame.index;
         summary.timestep = frame.timestep;
         summary.atoms = frame.size();
-        summary.radius = radius.radius;
+        summary.radius = r;
         summary.pores = result.pore_count;
         summary.tetrahedra = result.tetrahedra;
         summary.unresolved = result.unresolved;
@@ -354,43 +459,65 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
         tessellation->for_each_pore([&](const Pore& pore) {
           const bool selected = region.contains(pore.centre);
           if (selected) summary.stats.add(pore);
-          if (o.pore_list)
-            pores_csv << path << "," << frame.index << "," << frame.timestep << "," << pore.centre[0] << ","
-                      << pore.centre[1] << "," << pore.centre[2] << "," << pore.xi << "," << pore.ids[0] << ","
-                      << pore.ids[1] << "," << pore.ids[2] << "," << pore.ids[3] << "," << pore.tetrahedra << ","
-                      << pore.volume << "," << (selected ? 1 : 0) << "\n";
+          if (pores_csv)
+            *pores_csv << path << "," << frame.index << "," << frame.timestep << "," << pore.centre[0] << ","
+                       << pore.centre[1] << "," << pore.centre[2] << "," << pore.xi << "," << pore.ids[0] << ","
+                       << pore.ids[1] << "," << pore.ids[2] << "," << pore.ids[3] << "," << pore.tetrahedra << ","
+                       << pore.volume << "," << (selected ? 1 : 0) << "\n";
         });
-        if (result.unresolved_in_box > 0 && !o.quiet)
-          err << "tapmc-pores: warning: " << where(frame.first_line) << result.unresolved_in_box
-              << " interior Delaunay cells have empty spheres wider than the padding (" << result.padding
-              << "); they are left out (raise --padding)\n";
+        const PoreStatistics& s = summary.stats;
+        {
+          std::ostringstream region_text;
+          region_text.precision(6);
+          region_text << "[" << region.lo[0] << ", " << region.hi[0] << ") x [" << region.lo[1] << ", " << region.hi[1]
+                      << ") x [" << region.lo[2] << ", " << region.hi[2] << ")";
+          std::ostringstream details;
+          details.precision(3);
+          if (s.pores == 0 && result.unresolved_in_focus == 0) {
+            details << "no pore in the selection " << region_text.str() << " (check --x/--y/--z, --floor, --radii)";
+            warn("no pores", where(frame.first_line), details.str());
+          } else if (static_cast<double>(result.unresolved_in_focus) >
+                     config::kUnresolvedWarningFraction * static_cast<double>(s.pores + result.unresolved_in_focus)) {
+            details << result.unresolved_in_focus << " of the " << s.pores + result.unresolved_in_focus
+                    << " pores centred in the selection " << region_text.str()
+                    << " are unresolved (empty spheres wider than the padding " << result.padding
+                    << ", left out): the selection reaches beyond the packing (open space above a free surface?), "
+                       "or raise --padding";
+            warn("unresolved", where(frame.first_line), details.str());
+          } else if (static_cast<double>(s.xi.overflow()) > config::kOverflowWarningFraction * static_cast<double>(s.pores)) {
+            details << s.xi.overflow() << " of the " << s.pores << " selected pores (" << 100.0 * s.xi.overflow() / s.pores
+                    << " %) have xi >= --xi-max " << o.histogram.xi_max << " (counted in the normalisation, not in "
+                    << "the histogram): the selection " << region_text.str()
+                    << " reaches open space (a free surface or a wall?), or raise --xi-max";
+            warn("overflow", where(frame.first_line), details.str());
+          }
+        }
         if (o.p0_samples > 0) {
           P0Statistics p0(o.sigma_max, o.sigma_steps);
           const auto points = random_points(region, o.p0_samples, o.seed, analysed);
-          for (double d : tessellation->nearest_centre_distances(points)) p0.add_distance(d / radius.radius);
+          for (double d : tessellation->nearest_centre_distances(points)) p0.add_distance(d / r);
           summary.phi_p0 = p0.phi();
           p0_total.merge(p0);
         }
         summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         total.merge(summary.stats);
-        const PoreStatistics& s = summary.stats;
         frames_csv << path << "," << frame.index << "," << frame.timestep << "," << summary.atoms << ","
                    << csv_number(summary.radius) << "," << summary.pores << "," << summary.tetrahedra << ","
                    << summary.unresolved << "," << s.pores << "," << s.degenerate << "," << csv_number(s.nu()) << ","
                    << csv_number(s.mean_xi()) << "," << csv_number(summary.region_volume) << ","
                    << csv_number(summary.tetrahedra_volume) << "," << csv_number(summary.phi_p0) << ","
                    << csv_number(summary.seconds) << "\n";
-        if (o.frame_hist) {
+        if (frame_hist_csv) {
           std::ostringstream row;
           row << path << "," << frame.index << "," << frame.timestep << ",";
-          write_histogram_rows(frame_hist_csv, s, row.str());
+          write_histogram_rows(*frame_hist_csv, s, row.str());
         }
         if (!o.quiet)
           err << "tapmc-pores: " << path << " frame " << frame.index << " (timestep " << frame.timestep << "): "
-              << summary.atoms << " spheres, " << summary.pores << " pores, " << s.pores << " selected, nu = "
-              << csv_number(s.nu()) << " (" << std::setprecision(3) << summary.seconds << " s: Delaunay "
-              << result.triangulation_seconds << " s, pores " << result.pore_seconds << " s, "
-              << result.attempts << " triangulation(s))\n";
+              << summary.atoms << " spheres, " << summary.pores << " pores, " << s.pores << " selected in z ["
+              << csv_number(region.lo[2]) << ", " << csv_number(region.hi[2]) << "), nu = " << csv_number(s.nu())
+              << " (" << std::setprecision(3) << summary.seconds << " s: Delaunay " << result.triangulation_seconds
+              << " s, pores " << result.pore_seconds << " s, " << result.attempts << " triangulation(s))\n";
         if (!o.json) summary.stats = PoreStatistics(HistogramSpec{1.0, 1});  // keep memory flat
         summaries.push_back(std::move(summary));
         ++analysed;
@@ -399,7 +526,7 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
     current_file.clear();
     if (analysed == 0) throw std::runtime_error("no frame analysed (check --skip/--every and the files)");
 
-    std::ofstream hist_csv = open_output(o.prefix + ".hist.csv");
+    std::ofstream& hist_csv = output(".hist.csv");
     hist_csv << "# tapmc-pores: " << analysed << " frames, " << total.pores << " selected pores, nu = "
              << csv_number(total.nu()) << ", xi below range " << total.xi.underflow() << ", above "
              << total.xi.overflow() << "\n"
@@ -407,7 +534,7 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
     write_histogram_rows(hist_csv, total, "");
 
     if (o.p0_samples > 0) {
-      std::ofstream p0_csv = open_output(o.prefix + ".p0.csv");
+      std::ofstream& p0_csv = output(".p0.csv");
       const double phi = p0_total.phi();
       p0_csv << "# tapmc-pores: " << p0_total.samples << " random points, phi seen by the points = " << csv_number(phi)
              << "\nsigma,P0_measured,P0_percus_yevick\n";
@@ -417,7 +544,7 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
     }
 
     if (o.json) {
-      std::ofstream json = open_output(o.prefix + ".json");
+      std::ofstream& json = output(".json");
       json << "{\"tool\": \"tapmc-pores\", \"frames_analysed\": " << analysed << ",\n \"aggregate\": ";
       write_json_statistics(json, total, true);
       json << ",\n \"frames\": [";
@@ -446,9 +573,20 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
       }
       json << "}\n";
     }
+    std::string written;
+    for (const auto& file : outputs) {
+      file->commit();
+      written += (written.empty() ? "" : ", ") + file->path();
+    }
+    for (const auto& [kind, warning] : warnings)
+      err << "tapmc-pores: warning: " << warning.first_frame
+          << (warning.frames > 1 ? " (and in " + std::to_string(warning.frames - 1) + " more of the " +
+                                       std::to_string(analysed) + " frames)"
+                                 : std::string())
+          << "\n";
     if (!o.quiet)
       err << "tapmc-pores: " << analysed << " frames, " << total.pores << " selected pores, nu = " << csv_number(total.nu())
-          << "; wrote " << o.prefix << ".hist.csv and " << o.prefix << ".frames.csv\n";
+          << "; wrote " << written << "\n";
     return 0;
   } catch (const DumpError& e) {
     err << "tapmc-pores: error: " << e.what() << "\n";
@@ -458,6 +596,8 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
                                           : current_file + ": frame " + std::to_string(current_frame) + ": ")
         << e.what() << "\n";
   }
+  outputs.clear();  // removes the partial files
+  err << "tapmc-pores: no output written\n";
   return 2;
 }
 

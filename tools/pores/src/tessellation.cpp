@@ -14,6 +14,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <set>
 #include <sstream>
 #include <utility>
 
@@ -120,11 +121,17 @@ struct Tessellation::Impl {
   bool in_focus(const Sphere& s) const {
     const auto p = wrapped(s.x, s.y, s.z);
     for (int d = 0; d < 3; ++d)
-      if (p[d] < options.focus_lo[d] || p[d] > options.focus_hi[d]) return false;
+      if (p[d] < options.focus_lo[d] || p[d] >= options.focus_hi[d]) return false;  // as Region::contains
     return true;
   }
   void build(const std::vector<double>& xyz, double padding, double previous);
-  void check_overlaps(const CellHandle& cell, double contact2) const;
+  // Closest pair of centres seen on the Delaunay edges of the current attempt (padded indices).
+  struct ClosestPair {
+    double d2 = std::numeric_limits<double>::infinity();
+    std::uint32_t a = 0, b = 0;
+  } closest;
+  void check_overlaps(const CellHandle& cell, double contact2);
+  void refuse_overlaps(double contact) const;
   // Finds the pores; unless final_attempt, returns early (result.retry_padding > 0) as soon as
   // it is known that a wider padding is needed.
   void find_pores(double padding, double max_padding, bool final_attempt);
@@ -174,34 +181,58 @@ void Tessellation::Impl::build(const std::vector<double>& xyz, double padding, d
   triangulation.insert(points.begin(), points.end());  // spatially sorted insertion
 }
 
-void Tessellation::Impl::check_overlaps(const CellHandle& c, double contact2) const {
-  // The closest pair is a Delaunay edge, so checking edges that touch a primary centre finds
-  // every overlap, across periodic boundaries included.
+void Tessellation::Impl::check_overlaps(const CellHandle& c, double contact2) {
+  // The closest pair is a Delaunay edge, so the deepest overlap is found on the edges that touch
+  // a primary centre, across periodic boundaries included.
   for (int a = 0; a < 4; ++a)
     for (int b = a + 1; b < 4; ++b) {
       const auto va = c->vertex(a), vb = c->vertex(b);
       const std::uint32_t pa = va->info(), pb = vb->info();
       if (!primary[pa] && !primary[pb]) continue;
       const double d2 = CGAL::squared_distance(va->point(), vb->point());
-      if (d2 < contact2) {
-        const std::size_t ia = origin[pa], ib = origin[pb];
+      if (d2 >= closest.d2) continue;
+      if (origin[pa] == origin[pb] && d2 < contact2) {
         std::ostringstream what;
         what.precision(10);
-        if (ia == ib) {
-          what << "sphere " << ids[ia] << " overlaps its own periodic image (box length below 2R)";
-        } else {
-          what << "spheres " << ids[ia] << " and " << ids[ib] << " overlap: centre distance " << std::sqrt(d2)
-               << " < 2R = " << 2.0 * options.radius << " (tolerance " << options.overlap_tolerance
-               << " of a diameter; the pore of a tangent empty sphere needs hard spheres)";
-        }
-        throw OverlapError(what.str(), ia, ib);
+        what << "sphere " << ids[origin[pa]] << " overlaps its own periodic image: a periodic box length "
+             << std::sqrt(d2) << " is below the threshold 2R (1 - " << options.overlap_tolerance
+             << ") = " << std::sqrt(contact2);
+        throw OverlapError(what.str(), origin[pa], origin[pb], std::sqrt(d2), std::sqrt(contact2),
+                           1.0 - std::sqrt(d2) / (2.0 * options.radius), 1);
       }
+      closest = {d2, pa, pb};
     }
+}
+
+// Throws OverlapError for the closest pair when it is closer than the threshold.
+void Tessellation::Impl::refuse_overlaps(double contact) const {
+  if (!(closest.d2 < contact * contact)) return;
+  // Rare path: count the overlapping pairs (each once, images of one pair included once).
+  std::set<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  for (auto e = triangulation.finite_edges_begin(); e != triangulation.finite_edges_end(); ++e) {
+    const auto va = e->first->vertex(e->second), vb = e->first->vertex(e->third);
+    const std::uint32_t pa = va->info(), pb = vb->info();
+    if ((!primary[pa] && !primary[pb]) || origin[pa] == origin[pb]) continue;
+    if (CGAL::squared_distance(va->point(), vb->point()) < contact * contact)
+      pairs.emplace(std::min(origin[pa], origin[pb]), std::max(origin[pa], origin[pb]));
+  }
+  const std::size_t ia = std::min(origin[closest.a], origin[closest.b]), ib = std::max(origin[closest.a], origin[closest.b]);
+  const double distance = std::sqrt(closest.d2), diameter = 2.0 * options.radius;
+  const double depth = 1.0 - distance / diameter;
+  std::ostringstream what;
+  what.precision(6);
+  what << "spheres " << ids[ia] << " and " << ids[ib] << " overlap by " << 100.0 * depth
+       << " % of a diameter (centre distance " << distance << ", 2R = " << diameter
+       << "), the deepest of " << pairs.size() << " overlapping pair" << (pairs.size() == 1 ? "" : "s")
+       << "; pairs closer than 2R (1 - " << options.overlap_tolerance << ") = " << contact
+       << " are refused: the pore of a tangent empty sphere needs hard spheres";
+  throw OverlapError(what.str(), ia, ib, distance, contact, depth, pairs.size());
 }
 
 void Tessellation::Impl::find_pores(double padding, double max_padding, bool final_attempt) {
   result = PoreResult{};
   result.padding = padding;
+  closest = ClosestPair{};
   cells.clear();
   cells.reserve(7 * triangulation.number_of_vertices());
   for (auto c = triangulation.finite_cells_begin(); c != triangulation.finite_cells_end(); ++c) {
@@ -266,6 +297,7 @@ void Tessellation::Impl::find_pores(double padding, double max_padding, bool fin
       }
     }
   }
+  refuse_overlaps(contact);
   if (result.retry_padding > 0) return;  // not the final attempt: more images first
   grouped.clear();  // cells of multi-tetrahedron clusters, grouped by root
   for (std::size_t i = 0; i < count; ++i)
@@ -302,13 +334,9 @@ void Tessellation::Impl::find_pores(double padding, double max_padding, bool fin
       ++result.unresolved;
       // Resolvable with a wider padding (up to max_padding): ask for a retry. Wider cells are
       // hull cells open towards a wall or a free surface (not pores of the packing).
-      if (needed <= max_padding && in_focus(first_sphere)) result.retry_padding = std::max(result.retry_padding, needed);
-      bool interior = true;  // empty sphere inside the non-periodic faces
-      const double centre[3] = {first_sphere.x, first_sphere.y, first_sphere.z};
-      for (int d = 0; d < 3; ++d)
-        if (!box.periodic[d] && (centre[d] - first_sphere.r < box.lo[d] || centre[d] + first_sphere.r > box.hi[d]))
-          interior = false;
-      if (interior) ++result.unresolved_in_box;
+      const bool focused = in_focus(first_sphere);
+      if (focused) ++result.unresolved_in_focus;
+      if (needed <= max_padding && focused) result.retry_padding = std::max(result.retry_padding, needed);
       return;
     }
     for (const std::uint32_t* c = first; c != last; ++c)

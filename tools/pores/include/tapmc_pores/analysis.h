@@ -27,19 +27,47 @@ struct Region {
   double volume() const { return (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]); }
 };
 
-// How the user asked for the sub-box; a NaN bound means "default for that side": the box face
-// along periodic directions, the face moved inwards by wall_gap R along non-periodic ones.
+// Where the packing is, found from the frame's data (z is the vertical; doc/tapmc-pores.rst,
+// "Selection"). These are the reference faces of the selection:
+//  * periodic directions: the box faces;
+//  * non-periodic x or y: the side walls, taken where the outermost spheres are, min x_i - R and
+//    max x_i + R (the box may be wider than the walls);
+//  * non-periodic z: the floor (given, or the lowest sphere bottom min z_i - R) and the free
+//    surface h_s (surface_height()).
+struct PackingBounds {
+  std::array<double, 3> lo{}, hi{};
+  bool free_surface = false;   // z is not periodic: lo[2] is the floor, hi[2] the surface h_s
+  double lowest_bottom = 0.0;  // min z_i - R (to check a given floor against)
+};
+
+// Mean over columns `column_width` wide tiling [lo, hi) in x and y (n = max(1, floor(L / width))
+// per direction) of the highest sphere top z_i + radius in the column; empty columns skipped.
+// The surface height of compute stereo/profile (doc/compute_stereo_profile.rst).
+double surface_height(const std::vector<double>& xyz, double radius, const std::array<double, 2>& lo,
+                      const std::array<double, 2>& hi, double column_width);
+
+// `floor`: NaN for the default (the lowest sphere bottom). Throws std::invalid_argument when a
+// floor is given for a periodic z or lies at or above the surface.
+PackingBounds find_packing(const Box& box, const std::vector<double>& xyz, double radius,
+                           double floor = std::numeric_limits<double>::quiet_NaN(),
+                           double column_width_over_radius = config::kSurfaceColumnWidth);
+
+// How the user asked for the sub-box; a NaN bound means "default for that side": the reference
+// face (PackingBounds) moved inwards by wall_gap R (side walls, floor) or surface_gap R (free
+// surface); periodic directions are used whole.
 struct RegionSpec {
-  enum class Units { kAbsolute, kRadiiFromLo };  // coordinates, or multiples of R above box lo
+  enum class Units { kAbsolute, kRadiiFromLo };  // coordinates, or multiples of R above the lower
+                                                 // reference face (the floor along z)
   std::array<double, 3> lo{{std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN(),
                             std::numeric_limits<double>::quiet_NaN()}};
   std::array<double, 3> hi = lo;
   std::array<Units, 3> units{{Units::kAbsolute, Units::kAbsolute, Units::kAbsolute}};
   double wall_gap_over_radius = config::kDefaultWallGap;
+  double surface_gap_over_radius = config::kDefaultSurfaceGap;
 };
 
-// Throws std::invalid_argument if the resulting region is empty.
-Region make_region(const Box& box, double radius, const RegionSpec& spec);
+// The sub-box, clipped to the box. Throws std::invalid_argument if it is empty.
+Region make_region(const Box& box, const PackingBounds& packing, double radius, const RegionSpec& spec);
 
 // Fixed-bin histogram on [lo, hi) with under/overflow counts.
 class Histogram {
@@ -87,8 +115,9 @@ struct PoreStatistics {
   Histogram xi, v;
 };
 
-// Gotoh's P0(sigma) in the Percus-Yevick approximation: eq. 8 (sigma <= 1) and, for sigma >= 1,
-// the scaled-particle/PY form of eq. 9 (continuous with two derivatives at sigma = 1).
+// Gotoh's P0(sigma) in the Percus-Yevick approximation (paper, section IV.B): eq. 8 for
+// sigma <= 1 and, for sigma >= 1, the scaled-particle/Percus-Yevick form that replaces the
+// printed eq. 9 (continuous with two derivatives at sigma = 1; doc/tapmc-pores.rst).
 double gotoh_p0(double sigma, double phi);
 
 // Measured P0(sigma): the fraction of random points farther than sigma R from every centre.

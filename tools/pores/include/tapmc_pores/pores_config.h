@@ -56,10 +56,27 @@ constexpr double kPolydisperseTolerance = 1e-6;
 // kBoxTolerance times the box length (room for the rounding of printed bounds only).
 constexpr double kBoxTolerance = 1e-9;
 
+// ---- where the packing is (the default selection; doc/tapmc-pores.rst, "Selection") ----------
+// z is the vertical. Along a non-periodic z the packing lies on a floor (default: the lowest
+// sphere bottom, min z_i - R, which is the floor plane for a packing resting on it whatever the
+// box bounds) and ends at a free surface of height h_s: the mean, over columns
+// kSurfaceColumnWidth R wide tiling the horizontal extent, of the highest sphere top z_i + R in
+// the column (empty columns skipped). This is the surface height of compute stereo/profile
+// (doc/compute_stereo_profile.rst): columns one diameter wide each hold about one sphere of the
+// top layer, so h_s is the mean height of the top layer, and a stray sphere above the surface
+// moves it by its excess height over the number of columns only.
+constexpr double kSurfaceColumnWidth = 2.0;
+
 // ---- statistics defaults --------------------------------------------------------------------
-// Pores closer than kDefaultWallGap * R to a non-periodic box face are left out of the statistics
-// (paper, section IV.B: "at a distance 2R from the walls").
+// Pores closer than kDefaultWallGap * R to a side wall or to the floor are left out of the
+// statistics (paper, section IV.B: "at a distance 2R from the walls").
 constexpr double kDefaultWallGap = 2.0;
+// Pores closer than kDefaultSurfaceGap * R below the free surface h_s are left out: free-surface
+// pores are larger. Measured on 4096-sphere packings of the TAPMC tapping example (R = 0.5,
+// L = 32R, h_s = 29-30R, 0 to 30 taps, side walls and periodic): nu = <xi^3> in 1R slabs below
+// h_s is 0.26-0.56, 0.14-0.20, 0.11-0.15, then 0.10-0.13 as in the bulk (0.115-0.122). Up to
+// three radii are perturbed; 4R keeps one radius of margin for rougher surfaces.
+constexpr double kDefaultSurfaceGap = 4.0;
 // Histogram of xi on [0, kDefaultXiMax] with kDefaultBins bins; v = xi^3 on [0, kDefaultXiMax^3].
 // 1.5 covers every interior pore of a hard-sphere packing (Bernal's largest hole: 0.645).
 constexpr double kDefaultXiMax = 1.5;
@@ -69,6 +86,17 @@ constexpr double kDefaultSigmaMax = 2.0;
 constexpr std::size_t kDefaultSigmaBins = 200;
 // Random points per frame for P0 when --p0 is given without a count.
 constexpr std::size_t kDefaultP0Samples = 100000;
+
+// ---- warnings (stderr, exit code still 0) ----------------------------------------------------
+// Selected pores with xi >= --xi-max are counted in the normalisation of P(xi) but fall outside
+// the histogram; above this fraction of the selection the histogram visibly misses probability
+// (and interior pores of hard-sphere packings stay far below the default 1.5: such pores are
+// hull cells of a free surface or a wall inside the selection).
+constexpr double kOverflowWarningFraction = 0.01;
+// Unresolved cells centred in the selection (empty spheres wider than the largest padding) are
+// left out of the statistics, and they are the widest ones: leaving out more than this fraction
+// of the selection (unresolved + selected pores) makes nu too small by a visible amount.
+constexpr double kUnresolvedWarningFraction = 0.01;
 
 }  // namespace config
 }  // namespace pores

@@ -45,8 +45,7 @@ struct PoreResult {
   std::size_t tetrahedra = 0;        // Delaunay tetrahedra behind those pores
   double tetrahedra_volume = 0.0;    // their total volume (= box volume when triply periodic)
   std::size_t unresolved = 0;        // Delaunay cells whose empty sphere exceeds the padding
-  std::size_t unresolved_in_box = 0; // ... of which with their empty sphere inside the non-periodic
-                                     // faces (interior cells: reported on stderr)
+  std::size_t unresolved_in_focus = 0;  // ... of which centred in the region of interest (focus)
   double retry_padding = 0.0;        // padding that would resolve the resolvable ones (0: none)
   double padding = 0.0;              // padding finally used (length units)
   int attempts = 1;                  // triangulations built (> 1: padding was grown)
@@ -54,12 +53,19 @@ struct PoreResult {
   double pore_seconds = 0;           // time in circumspheres, merging, canonical selection
 };
 
-// Two spheres closer than 2R (1 - overlap tolerance). `index_*` are positions in the input.
+// Spheres closer than the threshold 2R (1 - overlap tolerance): the deepest overlapping pair
+// (the closest pair, always a Delaunay edge). `index_*` are positions in the input.
 class OverlapError : public std::runtime_error {
  public:
-  OverlapError(const std::string& what, std::size_t index_a, std::size_t index_b)
-      : std::runtime_error(what), index_a(index_a), index_b(index_b) {}
+  OverlapError(const std::string& what, std::size_t index_a, std::size_t index_b, double distance, double threshold,
+               double depth, std::size_t pairs)
+      : std::runtime_error(what), index_a(index_a), index_b(index_b), distance(distance), threshold(threshold),
+        depth(depth), pairs(pairs) {}
   std::size_t index_a, index_b;
+  double distance;   // centre distance of the pair
+  double threshold;  // 2R (1 - overlap tolerance): pairs closer than this are refused
+  double depth;      // overlap relative to a diameter: 1 - distance / 2R
+  std::size_t pairs; // overlapping pairs among Delaunay neighbours (at least this many overlap)
 };
 
 class Tessellation {
