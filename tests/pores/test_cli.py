@@ -1,8 +1,11 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-# tapmc-pores as users run it: many files and frames (gzip), outputs, P0, and bad input refused
-# with file, frame and line and a non-zero exit code.
+# tapmc-pores as users run it: many files and frames (gzip), outputs, P0, bad input refused with
+# file, frame and line and a non-zero exit code, the overlap refusal (deepest pair, threshold,
+# --overlap-tol), no output after a refused run, the closing line, and help/doc/config agreement.
 import json
 import math
+import os
+import re
 
 import numpy as np
 import pytest
@@ -144,3 +147,107 @@ def test_missing_radius_and_missing_file(tmp_path):
     assert result.returncode == 2 and "--radius" in result.stderr
     result = run("-q", "-o", tmp_path / "out", tmp_path / "missing.dump")
     assert result.returncode == 2 and "missing.dump" in result.stderr and "cannot open" in result.stderr
+
+
+DATA = os.path.join(os.environ.get("TAPMC_SOURCE_DIR", "."), "tests/pores/data/small_tapped.dump.gz")
+
+
+def deepest_pair(centres, box, periodic):
+    """Oracle: the closest pair of centres (minimum image along periodic directions)."""
+    d = centres[:, None, :] - centres[None, :, :]
+    for k in range(3):
+        if periodic[k]:
+            d[..., k] -= box[k] * np.round(d[..., k] / box[k])
+    dist = np.sqrt(np.einsum("ijk,ijk->ij", d, d))
+    np.fill_diagonal(dist, np.inf)
+    i, j = np.unravel_index(np.argmin(dist), dist.shape)
+    return min(i, j), max(i, j), dist[i, j], int(np.sum(dist < 0.999) // 2)
+
+
+def test_overlap_message_names_deepest_pair_threshold_and_option(tmp_path):
+    # A DEM-like frame: two pairs of the real packing pushed into each other, by 2 % and 4 %.
+    centres, bounds, periodic, text = read_dump_frame(DATA)
+    box = bounds[:, 1] - bounds[:, 0]
+    for atom, depth in ((100, 0.02), (300, 0.04)):
+        d = centres - centres[atom]
+        d[:, :2] -= box[:2] * np.round(d[:, :2] / box[:2])
+        dist = np.linalg.norm(d, axis=1)
+        dist[atom] = np.inf
+        other = int(np.argmin(dist))
+        centres[other] = centres[atom] + d[other] / dist[other] * (1 - depth)
+        centres[other, :2] %= box[:2]
+    i, j, distance, pairs = deepest_pair(centres, box, periodic)
+    lines = text.splitlines()
+    for k, c in enumerate(centres):
+        fields = lines[9 + k].split()
+        fields[2:5] = [repr(v) for v in c]
+        lines[9 + k] = " ".join(fields)
+    dem = write(tmp_path / "dem.dump", "\n".join(lines) + "\n")
+    result = run("-q", "--json", "-o", tmp_path / "out", dem)
+    assert result.returncode == 2
+    message = result.stderr
+    depth = 1 - distance  # 2R = 1
+    assert depth > 0.035
+    assert f"dem.dump:{10 + i}: frame 1 (timestep 20): spheres {i + 1} and {j + 1} overlap by " in message, message
+    assert f"{100 * depth:.4g} % of a diameter" in message, message
+    assert f"the deepest of {pairs} overlapping pair" in message
+    assert "pairs closer than 2R (1 - 0.001) = 0.999 are refused" in message
+    assert f"(atom lines {10 + i} and {10 + j})" in message
+    suggested = re.search(r"--overlap-tol ([0-9.e-]+) \(", message)
+    assert suggested, message
+    tolerance = float(suggested.group(1))
+    assert depth < tolerance < depth + 0.002
+    assert not list(tmp_path.glob("out*"))
+    # The suggested tolerance accepts the frame; a slightly smaller one does not.
+    assert run("-q", "--overlap-tol", tolerance, "-o", tmp_path / "out", dem).returncode == 0
+    assert run("-q", "--overlap-tol", depth - 1e-4, "-o", tmp_path / "out2", dem).returncode == 2
+
+
+def test_a_refused_run_writes_no_file(tmp_path):
+    good = write(tmp_path / "good.dump", GOOD)
+    bad = write(tmp_path / "bad.dump", BAD["non_numeric"][0])
+    result = run("--json", "--pores", "--frame-hist", "--p0", 100, "-o", tmp_path / "out", good, bad)
+    assert result.returncode == 2
+    assert "no output written" in result.stderr
+    assert not list(tmp_path.glob("out*")), list(tmp_path.glob("out*"))
+
+
+def test_closing_line_lists_every_file_written(tmp_path):
+    prefix = tmp_path / "all"
+    result = run("--json", "--pores", "--frame-hist", "--p0", 1000, "-o", prefix, DATA)
+    assert result.returncode == 0, result.stderr
+    closing = result.stderr.strip().splitlines()[-1]
+    suffixes = ["frames.csv", "frame_hist.csv", "pores.csv", "hist.csv", "p0.csv", "json"]
+    written = sorted(p.name for p in tmp_path.iterdir())
+    assert written == sorted(f"all.{s}" for s in suffixes)
+    for s in suffixes:
+        assert f"{prefix}.{s}" in closing, closing
+    assert "wrote" in closing
+
+
+def test_help_doc_and_config_tell_one_story():
+    """The defaults quoted by --help and by the table of doc/tapmc-pores.rst are those of
+    pores_config.h, and both cite P0 the same way (eq. 8, and the form replacing eq. 9)."""
+    source = os.environ.get("TAPMC_SOURCE_DIR", ".")
+    config = open(os.path.join(source, "tools/pores/include/tapmc_pores/pores_config.h")).read()
+    doc = open(os.path.join(source, "doc/tapmc-pores.rst")).read()
+    values = {name: float(value) for name, value in
+              re.findall(r"constexpr (?:double|int|std::size_t) (k\w+) = ([0-9.e+-]+);", config)}
+    assert len(values) >= 14
+    help_text = run("--help").stdout
+    quoted = {"--wall-gap": "kDefaultWallGap", "--surface-gap": "kDefaultSurfaceGap",
+              "--overlap-tol": "kOverlapTolerance", "--merge-tol": "kMergeTolerance",
+              "--padding": "kPaddingOverRadius", "--bins": "kDefaultBins", "--xi-max": "kDefaultXiMax",
+              "--sigma-max": "kDefaultSigmaMax"}
+    for option, name in quoted.items():
+        line = next(l for l in help_text.splitlines() if l.strip().startswith(option))
+        assert float(re.search(r"\(default ([0-9.e+-]+)", line).group(1)) == values[name], line
+    table = doc[doc.index("Tolerances and defaults ("):doc.index("A note on perturbed lattices")]
+    for name, value in values.items():
+        row = re.search(rf"``{name}``[^\n]*?\s{{2,}}([0-9.e+-]+)", table)
+        if name in ("kDefaultBins", "kDefaultSigmaBins"):  # on the row of their range
+            continue
+        assert row, f"{name} missing from the table of doc/tapmc-pores.rst"
+        assert float(row.group(1)) == value, (name, row.group(0))
+    assert "eq. 8-9" not in help_text and "eq. 8-9" not in doc
+    assert "replaces the printed eq. 9" in help_text and "replaces eq. 9" in doc

@@ -1,5 +1,6 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-// Pore statistics: sub-box, histograms, nu, Gotoh's P0 measured and in Percus-Yevick form.
+// Pore statistics: where the packing is (floor, free surface, walls), the selection, histograms,
+// nu, Gotoh's P0 measured and in Percus-Yevick form.
 #include "tapmc_pores/analysis.h"
 
 #include <algorithm>

@@ -43,7 +43,7 @@ Selection of pores (by the position of the pore centre; z is the vertical)
   the highest sphere top (as compute stereo/profile defines it).
   --floor Z0           height of the floor (default: the lowest sphere bottom, min z - R)
   --x LO:HI --y LO:HI --z LO:HI
-                       sub-box bounds; either side may be left empty (default for that side)
+                       selection bounds; either side may be left empty (default for that side)
   --radii              read those bounds as multiples of R above the lower reference: the floor
                        along z, the side wall or the periodic box face along x and y
   --wall-gap G         default distance from the side walls and the floor, in R (default 2)
@@ -59,7 +59,7 @@ Outputs (files PREFIX.*)
   --frame-hist         also PREFIX.frame_hist.csv, the histograms of every frame
   --pores              also PREFIX.pores.csv, every pore (centre, xi, four atom ids, selected)
   --json               also PREFIX.json with the same content for Python
-  --p0 N               sample N random points per frame in the sub-box: PREFIX.p0.csv with the
+  --p0 N               sample N random points per frame in the selection: PREFIX.p0.csv with the
                        measured P0(sigma) next to Gotoh's Percus-Yevick P0 (eq. 8 for sigma <= 1;
                        for sigma > 1 the scaled-particle form that replaces the printed eq. 9,
                        see doc/tapmc-pores.rst), e.g. --p0 100000

@@ -1,5 +1,6 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-// Pore statistics (CGAL-free): selection sub-box, P(xi), xi^3 P(xi), rho_v(v), nu, Gotoh's P0.
+// Pore statistics (CGAL-free): where the packing is, the selection, P(xi), xi^3 P(xi), rho_v(v),
+// nu, Gotoh's P0.
 #ifndef TAPMC_PORES_ANALYSIS_H
 #define TAPMC_PORES_ANALYSIS_H
 

@@ -84,8 +84,6 @@ constexpr std::size_t kDefaultBins = 150;
 // Gotoh's P0(sigma) is tabulated on [0, kDefaultSigmaMax] with kDefaultSigmaBins steps.
 constexpr double kDefaultSigmaMax = 2.0;
 constexpr std::size_t kDefaultSigmaBins = 200;
-// Random points per frame for P0 when --p0 is given without a count.
-constexpr std::size_t kDefaultP0Samples = 100000;
 
 // ---- warnings (stderr, exit code still 0) ----------------------------------------------------
 // Selected pores with xi >= --xi-max are counted in the normalisation of P(xi) but fall outside
