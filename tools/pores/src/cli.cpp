@@ -205,8 +205,8 @@ Options parse(const std::vector<std::string>& args, bool& help) {
   return o;
 }
 
-// An output file written as PATH.partial and renamed to PATH by commit(), so that a refused or
-// interrupted run leaves no partial output (and no outdated file under a current name).
+// An output file written as PATH.partial and renamed to PATH by commit(): a refused run removes
+// it (destructor), so that no partial output ever carries a final name.
 class OutputFile {
  public:
   explicit OutputFile(std::string path) : path_(std::move(path)), partial_(path_ + ".partial") {
@@ -405,13 +405,16 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
         }
         const double r = radius.radius;
         if (packing.free_surface) {
-          std::ostringstream details;
-          details.precision(6);
           if (!std::isnan(o.floor) && packing.lowest_bottom < o.floor - 2.0 * r * o.pores.overlap_tolerance) {
+            std::ostringstream details;
+            details.precision(6);
             details << "spheres reach below --floor " << o.floor << " (lowest sphere bottom " << packing.lowest_bottom
                     << "): is the floor right?";
             warn("below floor", where(frame.first_line), details.str());
-          } else if (region.hi[2] > packing.hi[2] - o.region.surface_gap_over_radius * r + 1e-9 * r) {
+          }
+          if (region.hi[2] > packing.hi[2] - o.region.surface_gap_over_radius * r + 1e-9 * r) {
+            std::ostringstream details;
+            details.precision(6);
             const double below = (packing.hi[2] - region.hi[2]) / r;
             details << "the selection reaches z = " << region.hi[2] << ", ";
             if (below > 0) details << "only " << below << " R below";
