@@ -15,6 +15,13 @@ namespace defaults {
 // and to side walls (measured against the sphere's diameter).
 constexpr double kContactTolerance = 1e-10;
 
+// ---- the tap: fix tapdilate (paper, section II) --------------------------------------------
+// Largest eps. The paper taps with eps from 5e-3 to 0.15 (FIG. 2, eps^1/2 up to ~0.4 in FIG. 4);
+// eps = 1 doubles every height above the floor, which already turns the redeposition into a
+// fresh sedimentation of a gas. Larger values only cost time (the spheres fall freely for
+// ~eps h / d_max sweeps) and, near the double range, lose atoms: refused.
+constexpr double kMaxTapEps = 1.0;
+
 // ---- trial moves (paper, section II) -------------------------------------------------------
 // d_max = R/5: the paper's optimised step (too small freezes, too large is always rejected).
 constexpr double kMaxStepOverRadius = 0.2;
