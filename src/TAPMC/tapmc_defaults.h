@@ -30,8 +30,8 @@ constexpr double kMaxStepOverRadius = 0.2;
 constexpr double kThetaWidth = 0.78539816339744830962;  // pi/4
 // Exact theta sampler (tapmc_trial_move.h): a strip whose flat envelope would accept fewer than
 // this fraction of its proposals uses the tangent exponential envelope instead (one log per
-// proposal, acceptance ~0.9 in the tail strips). Speed only: both envelopes are exact. At
-// theta0 = pi/4 every strip stays flat (lowest flat acceptance 0.98).
+// proposal, acceptance >= 0.74 in the tail strips). Speed only: both envelopes are exact. At
+// theta0 = pi/4 every strip stays flat (lowest flat acceptance 0.77).
 constexpr double kThetaFlatMinAcceptance = 0.5;
 
 // ---- stereology: compute stereo/profile (paper, sections III and IV.A) --------------------

@@ -26,7 +26,8 @@ namespace tapmc {
 //    P(left) exp(-lambda (theta - left)), lambda = 2 left / theta0^2. ln P is concave, so the
 //    tangent lies above P everywhere; theta - left is drawn from the truncated exponential by
 //    inversion and accepted with probability exp(-((theta - left) / theta0)^2).
-// Every strip accepts at least about half of its proposals (min_acceptance()), for any theta0.
+// Every strip accepts at least ~3/4 of its proposals (min_acceptance()) for any theta0 above the
+// subnormal range.
 // The result is exact up to double rounding of the strip edges.
 class ThetaSampler {
  public:
