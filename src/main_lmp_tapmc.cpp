@@ -7,13 +7,24 @@
 
 #include <mpi.h>
 
+#include <cstdio>
+#include <exception>
+
 int main(int argc, char **argv)
 {
   MPI_Init(&argc, &argv);
-  auto *lmp = new LAMMPS_NS::LAMMPS(argc, argv, MPI_COMM_WORLD);
-  tapmc::register_styles(lmp);
-  lmp->input->file();
-  delete lmp;
+  // The TAPMC styles turn every error into a LAMMPS error; this is the last line of defence
+  // for anything else (e.g. memory exhaustion): a message and a non-zero exit, no backtrace.
+  try {
+    auto *lmp = new LAMMPS_NS::LAMMPS(argc, argv, MPI_COMM_WORLD);
+    tapmc::register_styles(lmp);
+    lmp->input->file();
+    delete lmp;
+  } catch (const std::exception &e) {
+    std::fprintf(stderr, "ERROR: lmp_tapmc stopped: %s\n", e.what());
+    std::fflush(stderr);
+    MPI_Abort(MPI_COMM_WORLD, 1);
+  }
   MPI_Barrier(MPI_COMM_WORLD);
   MPI_Finalize();
   return 0;

@@ -5,6 +5,7 @@
 #include "compute_stereo_profile.h"
 
 #include "lammps_box.h"
+#include "lammps_support.h"
 #include "atom.h"
 #include "comm.h"
 #include "domain.h"
@@ -40,7 +41,8 @@ constexpr int kArrayColumns = 3;
 }  // namespace
 
 ComputeStereoProfile::ComputeStereoProfile(LAMMPS *lmp, int narg, char **arg) :
-    Compute(lmp, narg, arg), axis_(2), fixed_radius_(0.0), mean_radius_(0.0), radius_ready_(false)
+    Compute(lmp, narg, arg), axis_(2), fixed_radius_(0.0), mean_radius_(0.0), group_count_(0.0), radius_ready_(false),
+    floor_warned_(false)
 {
   tapmc::require_box_with_floor(lmp, "compute stereo/profile");
 
@@ -141,11 +143,7 @@ ComputeStereoProfile::ComputeStereoProfile(LAMMPS *lmp, int narg, char **arg) :
 
   // Vertical cuts are perpendicular to the profile axis, or to x when the profile is vertical.
   settings_.transverse_axis = axis_ == 2 ? 0 : axis_;
-  try {
-    stereo::validate(settings_);
-  } catch (const std::invalid_argument &e) {
-    error->all(FLERR, "compute stereo/profile: {}", e.what());
-  }
+  tapmc::guarded(lmp, "compute stereo/profile", true, [&] { stereo::validate(settings_); });
 
   // Default plane range, fixed when the compute is defined (so that array rows keep their
   // positions for time averages): floor .. box zhi along z, the box along x or y.
@@ -186,7 +184,52 @@ ComputeStereoProfile::~ComputeStereoProfile()
 void ComputeStereoProfile::init()
 {
   tapmc::require_box_with_floor(lmp, "compute stereo/profile");
+  tapmc::quiet_sorting_without_pair_style(lmp);
   update_mean_radius();
+  floor_warned_ = false;
+}
+
+// An empty group (now): mean radius 0 after a fresh look at the group. Collective.
+bool ComputeStereoProfile::group_is_empty()
+{
+  if (!radius_ready_ || group_count_ == 0.0) update_mean_radius();
+  return group_count_ == 0.0;
+}
+
+// Heights, <Z> and the 16/11 wall band are measured from the floor: a sphere of the group
+// reaching below it (beyond the contact tolerance) means the floor is not the one under the
+// packing. One warning per run, naming the lowest sphere. Collective.
+void ComputeStereoProfile::warn_below_floor()
+{
+  if (floor_warned_) return;
+  const int *mask = atom->mask;
+  double **x = atom->x;
+  struct {
+    double excess;  // (floor - bottom) / diameter: > tolerance means below the floor
+    int rank;
+  } local{-std::numeric_limits<double>::infinity(), comm->me}, global;
+  double bottom = 0.0;
+  tagint tag = 0;
+  for (int i = 0; i < atom->nlocal; ++i) {
+    if (!(mask[i] & groupbit)) continue;
+    const double r = fixed_radius_ > 0.0 ? fixed_radius_ : atom->radius[i];
+    const double excess = (settings_.floor - (x[i][2] - r)) / (2.0 * r);
+    if (excess > local.excess) {
+      local.excess = excess;
+      bottom = x[i][2] - r;
+      tag = atom->tag ? atom->tag[i] : 0;
+    }
+  }
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
+  if (!(global.excess > tapmc::defaults::kContactTolerance)) return;
+  MPI_Bcast(&bottom, 1, MPI_DOUBLE, global.rank, world);
+  MPI_Bcast(&tag, 1, MPI_LMP_TAGINT, global.rank, world);
+  floor_warned_ = true;
+  if (comm->me == 0)
+    error->warning(FLERR, "compute stereo/profile: atom {} of group {} reaches down to z = {}, "
+                   "below the floor z0 = {}: heights, <Z> and the wall correction are measured "
+                   "from the floor; set 'floor' at or below the bottom of the packing",
+                   tag, group->names[igroup], bottom, settings_.floor);
 }
 
 // The radius R behind every default (bulk 4R, lateral 7R, columns 2R, ...): the fixed radius, or
@@ -195,18 +238,15 @@ void ComputeStereoProfile::init()
 void ComputeStereoProfile::update_mean_radius()
 {
   radius_ready_ = true;
-  if (fixed_radius_ > 0.0) {
-    mean_radius_ = fixed_radius_;
-    return;
-  }
   const int *mask = atom->mask;
   const double *radius = atom->radius;
   double local[3] = {0.0, 0.0, 0.0};  // sum of radii, count, count with radius <= 0
   for (int i = 0; i < atom->nlocal; ++i) {
     if (!(mask[i] & groupbit)) continue;
-    local[0] += radius[i];
+    const double r = fixed_radius_ > 0.0 ? fixed_radius_ : radius[i];
+    local[0] += r;
     local[1] += 1.0;
-    if (!(radius[i] > 0.0)) local[2] += 1.0;
+    if (!(r > 0.0)) local[2] += 1.0;
   }
   double total[3];
   MPI_Allreduce(local, total, 3, MPI_DOUBLE, MPI_SUM, world);
@@ -215,7 +255,8 @@ void ComputeStereoProfile::update_mean_radius()
                "compute stereo/profile: per-atom radius must be > 0 ({} atoms of group {} have "
                "radius <= 0)",
                static_cast<long>(total[2]), group->names[igroup]);
-  mean_radius_ = total[1] > 0.0 ? total[0] / total[1] : 0.0;
+  group_count_ = total[1];
+  mean_radius_ = fixed_radius_ > 0.0 ? fixed_radius_ : (total[1] > 0.0 ? total[0] / total[1] : 0.0);
 }
 
 stereo::Spheres ComputeStereoProfile::select_spheres()
@@ -263,7 +304,17 @@ double ComputeStereoProfile::reduce_surface_height(const stereo::Spheres &sphere
 void ComputeStereoProfile::compute_vector()
 {
   invoked_vector = update->ntimestep;
-  if (!radius_ready_) update_mean_radius();
+  if (group_is_empty()) {  // no sphere: every fraction 0, z_top = h_s = z0 (see the doc page)
+    for (int i = 0; i < kVectorSize; ++i) vector[i] = 0.0;
+    vector[kWindowTop] = vector[kSurfaceHeight] = settings_.floor;
+    return;
+  }
+  warn_below_floor();
+  tapmc::guarded(lmp, "compute stereo/profile", false, [&] { compute_vector_guarded(); });
+}
+
+void ComputeStereoProfile::compute_vector_guarded()
+{
   const stereo::Spheres spheres = select_spheres();
   const stereo::Box box = current_box();
   const double surface = reduce_surface_height(spheres, box);
@@ -286,7 +337,19 @@ void ComputeStereoProfile::compute_vector()
 void ComputeStereoProfile::compute_array()
 {
   invoked_array = update->ntimestep;
-  if (!radius_ready_) update_mean_radius();
+  if (group_is_empty()) {  // no sphere: plane positions, zero fractions
+    for (int k = 0; k < planes_.n; ++k) {
+      array[k][0] = planes_.position(k);
+      array[k][1] = array[k][2] = 0.0;
+    }
+    return;
+  }
+  warn_below_floor();
+  tapmc::guarded(lmp, "compute stereo/profile", false, [&] { compute_array_guarded(); });
+}
+
+void ComputeStereoProfile::compute_array_guarded()
+{
   const stereo::Spheres spheres = select_spheres();
   const stereo::Box box = current_box();
 

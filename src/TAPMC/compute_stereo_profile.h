@@ -26,11 +26,17 @@ class ComputeStereoProfile : public Compute {
   int axis_;                  // profile direction: 0 x, 1 y, 2 z
   double fixed_radius_;       // radius keyword (> 0), or 0: per-atom radius
   double mean_radius_;        // R used by the defaults (fixed radius or group mean at init)
+  double group_count_;        // atoms in the group when mean_radius_ was computed
   bool radius_ready_;         // mean_radius_ computed (init, or first use before any run)
+  bool floor_warned_;         // the below-the-floor warning was given in this run
   std::vector<int> selected_; // owned atoms of the group, rebuilt per invocation
   std::vector<double> buffer_;
 
   void update_mean_radius();
+  bool group_is_empty();
+  void warn_below_floor();
+  void compute_vector_guarded();
+  void compute_array_guarded();
   tapmc::stereo::Spheres select_spheres();
   tapmc::stereo::Box current_box() const;
   double reduce_surface_height(const tapmc::stereo::Spheres &, const tapmc::stereo::Box &);

@@ -4,6 +4,7 @@
 
 #include "lammps_box.h"
 #include "lammps_compat.h"
+#include "lammps_support.h"
 #include "tapmc_defaults.h"
 #include "tapmc_deposition.h"
 
@@ -18,6 +19,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <exception>
 #include <limits>
 #include <mpi.h>
@@ -103,9 +105,7 @@ void CreatePacking::command(int narg, char **arg)
   const double radius = utils::numeric(FLERR, arg[2], false, lmp);
   if (!(radius > 0.0) || !std::isfinite(radius))
     error->all(FLERR, "create_packing: R = {} must be a positive sphere radius", arg[2]);
-  const int seed = utils::inumeric(FLERR, arg[3], false, lmp);
-  if (seed <= 0)
-    error->all(FLERR, "create_packing: seed = {} must be a positive integer", arg[3]);
+  const std::int64_t seed = tapmc::parse_seed(lmp, "create_packing", "seed", arg[3]);
 
   Options opt;
   for (int iarg = 4; iarg < narg;) {
@@ -224,13 +224,12 @@ void CreatePacking::command(int narg, char **arg)
   MPI_Barrier(world);
   const double t_start = MPI_Wtime();
   tapmc::Packing packing;
-  try {
+  const std::string style = "create_packing (" + where + ": " +
+                            (top_name.empty() ? std::string("open top") : top_name) + ")";
+  tapmc::guarded(lmp, style.c_str(), true, [&] {
     packing = tapmc::deposit_packing(n_spheres, tapmc::RadiusDistribution{r_min, r_max}, dd,
                                      static_cast<std::uint64_t>(seed));
-  } catch (const std::exception &e) {
-    error->all(FLERR, "create_packing: {} ({}: {})", e.what(), where,
-               top_name.empty() ? "open top" : top_name);
-  }
+  });
   const double t_deposit = MPI_Wtime() - t_start;
 
   // ---- a shrink-wrapped top grows to hold the packing ----
@@ -287,13 +286,16 @@ void CreatePacking::command(int narg, char **arg)
 
   // ---- report ----
   if (comm->me == 0) {
-    double z0, z1;
-    tapmc::bulk_window(packing, dd, tapmc::defaults::kDepositionBulkMarginOverRadius * radius,
-                       z0, z1);
+    double z0 = 0.0, z1 = 0.0;
     std::string phi_text = "bulk window too thin for a packing fraction";
-    if (z1 - z0 > 2.0 * radius)
-      phi_text = fmt::format("bulk packing fraction {:.4f} (exact stereology, {:.4g} <= z <= "
-                             "{:.4g})", tapmc::slab_volume_fraction(packing, dd, z0, z1), z0, z1);
+    tapmc::guarded(lmp, "create_packing", false, [&] {
+      tapmc::bulk_window(packing, dd, tapmc::defaults::kDepositionBulkMarginOverRadius * radius,
+                         z0, z1);
+      if (z1 - z0 > 2.0 * radius)
+        phi_text = fmt::format("bulk packing fraction {:.4f} (exact stereology, {:.4g} <= z <= "
+                               "{:.4g})", tapmc::slab_volume_fraction(packing, dd, z0, z1), z0,
+                               z1);
+    });
     utils::logmesg(lmp,
                    "Created {} spheres by sequential deposition (Jullien-Meakin), sides: x {}, "
                    "y {}; floor z = {}\n"

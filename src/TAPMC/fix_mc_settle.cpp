@@ -8,8 +8,10 @@
 // rank settling its own active region) can reuse it unchanged.
 #include "fix_mc_settle.h"
 
+#include "fix_tapdilate.h"
 #include "lammps_box.h"
 #include "lammps_relocate.h"
+#include "lammps_support.h"
 #include "tapmc_defaults.h"
 #include "tapmc_settle.h"
 
@@ -18,14 +20,17 @@
 #include "domain.h"
 #include "error.h"
 #include "group.h"
+#include "modify.h"
 #include "update.h"
 #include "utils.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <cstring>
 #include <numeric>
 #include <stdexcept>
+#include <string>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
@@ -47,8 +52,7 @@ FixMCSettle::FixMCSettle(LAMMPS *lmp, int narg, char **arg) :
   if (narg < 4)
     error->all(FLERR, "fix mc/settle: expected 'fix ID group mc/settle seed [keyword value ...]',"
                " got {} argument(s)", narg);
-  seed = utils::bnumeric(FLERR, arg[3], false, lmp);
-  if (seed <= 0) error->all(FLERR, "fix mc/settle: seed = {} must be a positive integer", arg[3]);
+  seed = tapmc::parse_seed(lmp, "fix mc/settle", "seed", arg[3]);
 
   for (int iarg = 4; iarg < narg;) {
     const std::string key = arg[iarg];
@@ -141,6 +145,7 @@ FixMCSettle::FixMCSettle(LAMMPS *lmp, int narg, char **arg) :
       wall_pos[dim][1] = domain->boxhi[dim];
     }
   }
+  check_walls_inside_fixed_box();
   if (fixed_radius == 0.0 && !atom->radius_flag)
     error->all(FLERR, "fix mc/settle: the atom style has no radius; use atom_style sphere or the "
                "'diameter' keyword");
@@ -161,8 +166,33 @@ int FixMCSettle::setmask()
   return PRE_EXCHANGE;
 }
 
+// Side walls given with 'xwalls'/'ywalls' along a fixed ('f') boundary must lie within the box
+// faces: spheres pushed beyond a face would be lost by LAMMPS.
+void FixMCSettle::check_walls_inside_fixed_box()
+{
+  for (int dim = 0; dim < 2; ++dim) {
+    if (!walls_given[dim] || domain->periodicity[dim]) continue;
+    for (int side = 0; side < 2; ++side) {
+      if (domain->boundary[dim][side] != tapmc::kBoundaryFixed) continue;
+      const double lo = domain->boxlo[dim], hi = domain->boxhi[dim];
+      const double w = wall_pos[dim][side];
+      if (w < lo || w > hi)
+        error->all(FLERR, "fix mc/settle: {}walls {} = {} is outside the box: along a fixed ('f') "
+                   "{} boundary the side walls must lie within the box faces [{}, {}]",
+                   kAxisName[dim], side == 0 ? "lo" : "hi", w, kAxisName[dim], lo, hi);
+    }
+  }
+}
+
 void FixMCSettle::init()
 {
+  tapmc::quiet_sorting_without_pair_style(lmp);
+  check_walls_inside_fixed_box();
+  tappers.clear();
+  for (int i = 0; i < modify->nfix; ++i)
+    if (std::strcmp(modify->fix[i]->style, "tapdilate") == 0)
+      tappers.push_back(static_cast<FixTapDilate *>(modify->fix[i]));
+
   if (comm->me == 0 && update->whichflag == 2)
     error->warning(FLERR, "fix mc/settle moves atoms during minimization; use 'run' instead");
 
@@ -294,9 +324,11 @@ void FixMCSettle::check_start_configuration()
                  "(set it with atom_style sphere / set diameter, or the 'diameter' keyword)",
                  sorted_tag[s], radius[s]);
   const tapmc::SettleBox box = make_box();
-  const auto v = tapmc::Settler::find_violation(xyz.data(), radius.data(),
-                                                static_cast<int>(radius.size()), box,
-                                                tapmc::defaults::kContactTolerance);
+  tapmc::Violation v;
+  tapmc::guarded(lmp, "fix mc/settle", true, [&] {
+    v = tapmc::Settler::find_violation(xyz.data(), radius.data(), static_cast<int>(radius.size()),
+                                       box, tapmc::defaults::kContactTolerance);
+  });
   if (v.i < 0) return;
   const tagint tag_i = sorted_tag[v.i];
   if (v.j >= 0)
@@ -317,13 +349,33 @@ void FixMCSettle::setup_pre_exchange()
   if (n_movable == 0)
     error->all(FLERR, "fix mc/settle: group '{}' has no atoms", group->names[igroup]);
   check_start_configuration();
-  next_reneighbor = update->ntimestep + 1;
+  schedule_next_settle();
+}
+
+// The next step after this one on which a tapdilate fix taps (any fix, whatever its order), or
+// simply the next step when the run has no tapdilate fix.
+void FixMCSettle::schedule_next_settle()
+{
+  const bigint now = update->ntimestep;
+  next_reneighbor = now + 1;
+  if (tappers.empty()) return;
+  next_reneighbor = tappers.front()->next_tap_after(now);
+  for (FixTapDilate *tap : tappers)
+    next_reneighbor = std::min(next_reneighbor, tap->next_tap_after(now));
 }
 
 void FixMCSettle::pre_exchange()
 {
   if (update->ntimestep != next_reneighbor) return;
-  next_reneighbor = update->ntimestep + 1;
+  // The taps of this step come first, also those of tapdilate fixes defined after this fix
+  // (LAMMPS calls pre_exchange in definition order); each taps once per step.
+  bool tap_step = tappers.empty();
+  for (FixTapDilate *tap : tappers) {
+    tap->tap_if_due();
+    tap_step = tap_step || tap->tapped_this_step();
+  }
+  schedule_next_settle();
+  if (!tap_step) return;
 
   gather_system();
   tapmc::SettleParams params;
@@ -339,14 +391,12 @@ void FixMCSettle::pre_exchange()
   params.order = sweep_order ? tapmc::PickOrder::Sweep : tapmc::PickOrder::Random;
 
   tapmc::SettleResult result;
-  try {
-    image_shift.assign(2 * radius.size(), 0);
+  image_shift.assign(2 * radius.size(), 0);
+  tapmc::guarded(lmp, "fix mc/settle", true, [&] {
     result = settler->settle(xyz.data(), radius.data(), movable.data(),
                              static_cast<int>(radius.size()), make_box(), params,
                              image_shift.data());
-  } catch (const std::exception &e) {
-    error->all(FLERR, "fix mc/settle: {}", e.what());
-  }
+  });
   scatter_positions();
   tapmc::relocate_moved_atoms(lmp, "fix mc/settle");
 
@@ -371,12 +421,27 @@ double FixMCSettle::compute_vector(int n)
 }
 
 // Random numbers are keyed by (seed, timestep, trial): the run continues exactly from a restart
-// without stored generator state. The file keeps the seed (checked) and the last diagnostics.
+// without stored generator state. The file keeps every setting that shapes the trajectory
+// (compared after read_restart: a change gives one warning naming old and new values) and the
+// last diagnostics. Layout: kRestartLayout, the seed as two exact 32-bit halves, the settings,
+// the diagnostics.
+namespace {
+constexpr double kRestartLayout = -2.0;  // negative: cannot be the seed of the seed-only layout
+constexpr int kRestartSettings = 14;
+}  // namespace
+
 void FixMCSettle::write_restart(FILE *fp)
 {
   if (comm->me != 0) return;
-  double list[1 + kVectorSize] = {static_cast<double>(seed), last_sweeps, last_acceptance,
-                                  last_mean_z, last_hit_cap, last_trials, last_mean_z0};
+  const auto useed = static_cast<std::uint64_t>(seed);
+  const double list[1 + kRestartSettings + kVectorSize] = {
+      kRestartLayout,
+      static_cast<double>(useed >> 32), static_cast<double>(useed & 0xFFFFFFFFu),
+      d_max, theta0, eta, static_cast<double>(check_interval), static_cast<double>(max_sweeps),
+      z_floor, fixed_radius, sweep_order ? 1.0 : 0.0,
+      walls_given[0] ? wall_pos[0][0] : NAN, walls_given[0] ? wall_pos[0][1] : NAN,
+      walls_given[1] ? wall_pos[1][0] : NAN, walls_given[1] ? wall_pos[1][1] : NAN,
+      last_sweeps, last_acceptance, last_mean_z, last_hit_cap, last_trials, last_mean_z0};
   int size = sizeof(list);
   fwrite(&size, sizeof(int), 1, fp);
   fwrite(list, sizeof(list), 1, fp);
@@ -385,14 +450,50 @@ void FixMCSettle::write_restart(FILE *fp)
 void FixMCSettle::restart(char *buf)
 {
   const auto *list = reinterpret_cast<const double *>(buf);
-  if (static_cast<long>(list[0]) != seed && comm->me == 0)
-    error->warning(FLERR, "fix mc/settle: seed {} differs from the restart file's {}; the run "
-                   "will not continue the original trajectory", seed,
-                   static_cast<long>(list[0]));
-  last_sweeps = list[1];
-  last_acceptance = list[2];
-  last_mean_z = list[3];
-  last_hit_cap = list[4];
-  last_trials = list[5];
-  last_mean_z0 = list[6];
+  if (list[0] != kRestartLayout) {  // seed-only layout: seed, then the diagnostics
+    if (static_cast<std::int64_t>(list[0]) != seed && comm->me == 0)
+      error->warning(FLERR, "fix mc/settle: seed {} differs from the restart file's {}; the run "
+                     "will not continue the original trajectory", seed,
+                     static_cast<std::int64_t>(list[0]));
+    last_sweeps = list[1];
+    last_acceptance = list[2];
+    last_mean_z = list[3];
+    last_hit_cap = list[4];
+    last_trials = list[5];
+    last_mean_z0 = list[6];
+    return;
+  }
+  const auto old_seed = static_cast<std::int64_t>(
+      (static_cast<std::uint64_t>(list[1]) << 32) | static_cast<std::uint64_t>(list[2]));
+  auto text = [](double v) { return std::isnan(v) ? std::string("none") : fmt::format("{}", v); };
+  std::string changed;
+  auto compare = [&](const char *name, double old_value, double new_value) {
+    const bool same = old_value == new_value || (std::isnan(old_value) && std::isnan(new_value));
+    if (!same)
+      changed += fmt::format("{}{} {} -> {}", changed.empty() ? "" : ", ", name, text(old_value),
+                             text(new_value));
+  };
+  if (old_seed != seed) changed += fmt::format("seed {} -> {}", old_seed, seed);
+  compare("dmax (0 = default R/5)", list[3], d_max);
+  compare("theta0", list[4], theta0);
+  compare("eta", list[5], eta);
+  compare("check", list[6], static_cast<double>(check_interval));
+  compare("maxsweeps", list[7], static_cast<double>(max_sweeps));
+  compare("floor", list[8], z_floor);
+  compare("diameter/2 (0 = per-atom radii)", list[9], fixed_radius);
+  compare("order (0 random, 1 sweep)", list[10], sweep_order ? 1.0 : 0.0);
+  compare("xwalls lo", list[11], walls_given[0] ? wall_pos[0][0] : NAN);
+  compare("xwalls hi", list[12], walls_given[0] ? wall_pos[0][1] : NAN);
+  compare("ywalls lo", list[13], walls_given[1] ? wall_pos[1][0] : NAN);
+  compare("ywalls hi", list[14], walls_given[1] ? wall_pos[1][1] : NAN);
+  if (!changed.empty() && comm->me == 0)
+    error->warning(FLERR, "fix mc/settle: settings differ from the restart file (restart -> now): "
+                   "{}; the run will not continue the original trajectory", changed);
+  const double *diag = list + 1 + kRestartSettings;
+  last_sweeps = diag[0];
+  last_acceptance = diag[1];
+  last_mean_z = diag[2];
+  last_hit_cap = diag[3];
+  last_trials = diag[4];
+  last_mean_z0 = diag[5];
 }

@@ -7,6 +7,7 @@
 #include "fix.h"
 #include "lmptype.h"
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -16,6 +17,8 @@ struct SettleBox;
 }
 
 namespace LAMMPS_NS {
+
+class FixTapDilate;
 
 class FixMCSettle : public Fix {
  public:
@@ -31,7 +34,7 @@ class FixMCSettle : public Fix {
 
  private:
   // user settings (defaults in tapmc_defaults.h)
-  long seed;
+  std::int64_t seed;
   double d_max;               // <= 0: defaults::kMaxStepOverRadius * smallest group radius
   double theta0, eta;
   long check_interval;        // trials between <Z> checks; 0 = one sweep of the group
@@ -56,6 +59,12 @@ class FixMCSettle : public Fix {
   std::vector<int> image_shift;  // periodic wraps per sorted sphere (x, y), from the kernel
   long n_movable;
 
+  // The run's tapdilate fixes, in definition order: the redeposition follows their taps, on
+  // their tap steps only (none: every step).
+  std::vector<FixTapDilate *> tappers;
+
+  void check_walls_inside_fixed_box();
+  void schedule_next_settle();
   void gather_system();
   void scatter_positions();
   double effective_d_max() const;

@@ -4,6 +4,8 @@
 
 #include "lammps_box.h"
 #include "lammps_relocate.h"
+#include "lammps_support.h"
+#include "tapmc_defaults.h"
 #include "tapmc_dilation.h"
 
 #include "atom.h"
@@ -25,7 +27,7 @@ using namespace FixConst;
 
 FixTapDilate::FixTapDilate(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), eps_constant(0.0), eps_var_index(-1), tap_every(1),
-    z_floor(domain->boxlo[2]), last_eps(0.0)
+    z_floor(domain->boxlo[2]), last_eps(0.0), tapped_step(-1)
 {
   if (narg < 4)
     error->all(FLERR, "fix tapdilate: expected 'fix ID group tapdilate eps [every N] "
@@ -35,9 +37,10 @@ FixTapDilate::FixTapDilate(LAMMPS *lmp, int narg, char **arg) :
     eps_variable = arg[3] + 2;
   } else {
     eps_constant = utils::numeric(FLERR, arg[3], false, lmp);
-    if (!(eps_constant >= 0.0))
-      error->all(FLERR, "fix tapdilate: eps = {} must be >= 0 (relative dilation of the "
-                 "heights above the floor)", arg[3]);
+    if (!(eps_constant >= 0.0 && eps_constant <= tapmc::defaults::kMaxTapEps))
+      error->all(FLERR, "fix tapdilate: eps = {} must be in [0, {}] (relative dilation of the "
+                 "heights above the floor; eps = {} doubles them)", arg[3],
+                 tapmc::defaults::kMaxTapEps, tapmc::defaults::kMaxTapEps);
   }
 
   for (int iarg = 4; iarg < narg; iarg += 2) {
@@ -75,6 +78,7 @@ int FixTapDilate::setmask()
 
 void FixTapDilate::init()
 {
+  tapmc::quiet_sorting_without_pair_style(lmp);
   if (!eps_variable.empty()) {
     eps_var_index = input->variable->find(eps_variable.c_str());
     if (eps_var_index < 0)
@@ -87,11 +91,12 @@ void FixTapDilate::init()
 
 void FixTapDilate::schedule_next_tap()
 {
-  next_reneighbor = (update->ntimestep / tap_every) * tap_every + tap_every;
+  next_reneighbor = next_tap_after(update->ntimestep);
 }
 
 void FixTapDilate::setup_pre_exchange()
 {
+  tapped_step = -1;
   check_geometry();
   schedule_next_tap();
 }
@@ -117,15 +122,31 @@ double FixTapDilate::current_eps()
   modify->clearstep_compute();
   const double eps = input->variable->compute_equal(eps_var_index);
   modify->addstep_compute(update->ntimestep + tap_every);
-  if (!(eps >= 0.0) || !std::isfinite(eps))
-    error->all(FLERR, "fix tapdilate: variable '{}' gave eps = {} on step {}; eps must be a "
-               "finite number >= 0", eps_variable, eps, update->ntimestep);
+  if (!(eps >= 0.0 && eps <= tapmc::defaults::kMaxTapEps))
+    error->all(FLERR, "fix tapdilate: variable '{}' gave eps = {} on step {}; eps must be in "
+               "[0, {}]", eps_variable, eps, update->ntimestep, tapmc::defaults::kMaxTapEps);
   return eps;
+}
+
+bigint FixTapDilate::next_tap_after(bigint step) const
+{
+  return (step / tap_every) * tap_every + tap_every;
+}
+
+bool FixTapDilate::tapped_this_step() const
+{
+  return tapped_step == update->ntimestep;
 }
 
 void FixTapDilate::pre_exchange()
 {
-  if (update->ntimestep != next_reneighbor) return;
+  tap_if_due();
+}
+
+void FixTapDilate::tap_if_due()
+{
+  if (update->ntimestep != next_reneighbor || tapped_this_step()) return;
+  tapped_step = update->ntimestep;
   last_eps = current_eps();
   schedule_next_tap();
   if (last_eps == 0.0) return;

@@ -4,6 +4,7 @@
 #define LMP_FIX_TAPDILATE_H
 
 #include "fix.h"
+#include "lmptype.h"
 
 #include <string>
 
@@ -19,6 +20,14 @@ class FixTapDilate : public Fix {
   double compute_scalar() override;
   double compute_vector(int) override;
 
+  // For fix mc/settle, which redeposits after the taps whatever the order of the fix commands:
+  // tap now if this step is a tap step and the tap has not been done yet (idempotent).
+  void tap_if_due();
+  // True when this fix tapped on the current step (also with eps = 0).
+  bool tapped_this_step() const;
+  // The first tap step after `step` (taps fall on the multiples of 'every').
+  bigint next_tap_after(bigint step) const;
+
  private:
   double eps_constant;      // eps when given as a number
   std::string eps_variable; // name of the equal-style variable, else empty
@@ -26,6 +35,7 @@ class FixTapDilate : public Fix {
   int tap_every;            // dilate on timesteps that are multiples of tap_every
   double z_floor;
   double last_eps;          // eps of the most recent tap (thermo output)
+  bigint tapped_step;       // timestep of the most recent tap (-1: none yet)
 
   double current_eps();
   void schedule_next_tap();

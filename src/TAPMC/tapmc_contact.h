@@ -1,6 +1,7 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-// Hard-sphere contact predicates with the relative contact tolerance (model.md, "Geometry"),
-// written once so the Monte Carlo kernel and the violation check do identical arithmetic.
+// Hard-sphere contact predicates with the relative contact tolerance (the overlap rule of
+// doc/fix_mc_settle.rst, "Description"), written once so the Monte Carlo kernel and the
+// violation check do identical arithmetic.
 #ifndef TAPMC_CONTACT_H
 #define TAPMC_CONTACT_H
 

@@ -15,12 +15,24 @@ namespace defaults {
 // and to side walls (measured against the sphere's diameter).
 constexpr double kContactTolerance = 1e-10;
 
+// ---- the tap: fix tapdilate (paper, section II) --------------------------------------------
+// Largest eps. The paper taps with eps from 5e-3 to 0.15 (FIG. 2, eps^1/2 up to ~0.4 in FIG. 4);
+// eps = 1 doubles every height above the floor, which already turns the redeposition into a
+// fresh sedimentation of a gas. Larger values only cost time (the spheres fall freely for
+// ~eps h / d_max sweeps) and, near the double range, lose atoms: refused.
+constexpr double kMaxTapEps = 1.0;
+
 // ---- trial moves (paper, section II) -------------------------------------------------------
 // d_max = R/5: the paper's optimised step (too small freezes, too large is always rejected).
 constexpr double kMaxStepOverRadius = 0.2;
 // theta0 = pi/4: width of P(theta) = A exp(-(theta/theta0)^2) (eq. 1), the paper's value
 // giving the maximal compaction rate.
 constexpr double kThetaWidth = 0.78539816339744830962;  // pi/4
+// Exact theta sampler (tapmc_trial_move.h): a strip whose flat envelope would accept fewer than
+// this fraction of its proposals uses the tangent exponential envelope instead (one log per
+// proposal, acceptance >= 0.74 in the tail strips). Speed only: both envelopes are exact. At
+// theta0 = pi/4 every strip stays flat (lowest flat acceptance 0.77).
+constexpr double kThetaFlatMinAcceptance = 0.5;
 
 // ---- stereology: compute stereo/profile (paper, sections III and IV.A) --------------------
 // R below is the sphere radius (the group's mean radius for mixed radii).
@@ -85,6 +97,13 @@ constexpr double kDepositionDensity = 1.0;
 // a single sweep (the first sweeps after a small tap change <Z> by less than 1e-5). The default
 // is the accurate value; 1e-6 is the documented faster choice.
 constexpr double kSettleEta = 1e-7;
+// The eta test only counts once the packing no longer falls freely: fewer than this fraction of
+// the interval's trials may have been accepted. A sphere with nothing below it accepts every
+// trial (each move only goes down or sideways), so free fall means acceptance 1; a settled
+// packing accepts ~1 % (the paper's set-up at eta = 1e-7, eps = 0.01). Without the rule, a
+// packing lifted very high (huge eps) changes <Z> by less than eta per sweep while every sphere
+// is still falling, and would be reported converged after one sweep.
+constexpr double kSettleFreeFallAcceptance = 0.5;
 // Cap on sweeps per redeposition, 15 times what eta = 1e-7 needs after a tap of eps = 0.01: it
 // only ends a run whose eta is unreachable; reaching it is reported in the fix's output vector
 // and as a warning.

@@ -111,6 +111,16 @@ class CounterRandom {
     for (int k = 0; k < count; ++k) out[k] = {c0[k], c1[k], c2[k], c3[k]};
   }
 
+  // The same stream under the key seed + round * 0x9E3779B97F4A7C15 (mod 2^64): for a fixed
+  // seed, the keys of rounds 0 .. 2^64 - 1 are all distinct (the constant is odd), so an
+  // overflow round never reuses a (key, counter) pair of the stream itself. round 0 = *this.
+  CounterRandom round(std::uint64_t round_index) const
+  {
+    constexpr std::uint64_t kGolden = 0x9E3779B97F4A7C15ull;
+    const std::uint64_t seed = join_u32(key1_, key0_) + round_index * kGolden;
+    return CounterRandom(seed, join_u32(stream_hi_, stream_lo_));
+  }
+
   // Uniform double in [0, 1) (53 bits) from the first two words of block(position).
   double uniform(std::uint64_t position) const
   {

@@ -314,6 +314,7 @@ struct SettleRun {
   PickOrder order = PickOrder::Random;
   long interval = 0, max_checks = 0;
   double eta = 0.0;
+  long accepted_at_check = 0;  // run.accepted at the previous check
   std::uint64_t trial = 0, next_check = 0;
   long sweep_cursor = 0, accepted = 0, checks = 0;
   double sum_height = 0.0, previous_mean = 0.0;
@@ -477,14 +478,18 @@ void run_trials(SettleRun &run, double *pos, const std::vector<int> &movable_ids
         lists.built_at_trial = run.trial;
       }
     }
-    // <Z> check every interval (section II): stop on a relative change below eta.
+    // <Z> check every interval (section II): stop on a relative change below eta, once the
+    // packing is no longer in free fall (defaults::kSettleFreeFallAcceptance).
     ++run.checks;
     const double mean = run.sum_height / static_cast<double>(m);
     const double change = std::fabs(mean - run.previous_mean);
     const double relative = run.previous_mean != 0.0 ? change / std::fabs(run.previous_mean)
                                                      : (change == 0.0 ? 0.0 : kInf);
     run.previous_mean = mean;
-    if (relative < run.eta) {
+    const bool falling = static_cast<double>(run.accepted - run.accepted_at_check) >=
+                         defaults::kSettleFreeFallAcceptance * static_cast<double>(run.interval);
+    run.accepted_at_check = run.accepted;
+    if (relative < run.eta && !falling) {
       run.converged = true;
       return;
     }
@@ -629,7 +634,6 @@ SettleResult Settler::settle(double *xyz, const double *radius, const unsigned c
   result.checks = run.checks;
   result.mean_height = sum / static_cast<double>(m);
   result.hit_cap = run.hit_cap;
-  result.slot_growths = 0;
   result.list_builds = lists.builds;
   return result;
 }

@@ -33,7 +33,8 @@ enum class PickOrder { Random, Sweep };  // Random: the paper (uniform pick); Sw
 struct SettleParams {
   double d_max;            // absolute step length bound, > 0
   double theta0;           // width of P(theta), in (0, pi/2]
-  double eta;              // stop when |<Z>_now - <Z>_before| / <Z>_before < eta, > 0
+  double eta;              // stop when |<Z>_now - <Z>_before| / <Z>_before < eta, > 0, and
+                           // the packing is no longer in free fall (kSettleFreeFallAcceptance)
   long check_interval = 0; // trials between <Z> checks; 0 = number of movable spheres (1 sweep)
   long max_checks;         // cap on check intervals per redeposition (reported, never silent)
   double contact_tol;      // relative tolerance (defaults::kContactTolerance)
@@ -46,10 +47,7 @@ struct SettleResult {
   long trials = 0, accepted = 0, checks = 0;
   double mean_height_start = 0, mean_height = 0;  // <Z> of movable spheres above floor_z
   bool hit_cap = false;
-  // Added: number of movable spheres. slot_growths is always 0 since the Verlet list replaced
-  // the cell list (whose slots could grow mid-run); kept so callers compile unchanged.
-  long movable = 0;
-  int slot_growths = 0;
+  long movable = 0;  // number of movable spheres
   // Verlet neighbour-list builds in this call (1 at the start + one per skin/2 crossing;
   // diagnostic only, results do not depend on the skin).
   long list_builds = 0;

@@ -2,6 +2,8 @@
 // Trial displacement of the redeposition: strip tables of the theta sampler, the full draw.
 #include "tapmc_trial_move.h"
 
+#include "tapmc_defaults.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -29,16 +31,19 @@ ThetaSampler::ThetaSampler(double theta0) : theta0_(theta0)
   if (!(theta0 > 0.0 && theta0 <= kThetaMax))
     throw std::invalid_argument("theta0 = " + number(theta0) +
                                 " is outside the allowed range (0, pi/2]");
+  scaled_ = theta0 < kScaledBelow;
   inv_theta0_sq_ = 1.0 / (theta0 * theta0);
   norm_ = std::erf(kThetaMax / theta0);
   // Equal-probability strip edges: cdf(edge_k) = k / kStrips, by bisection (cdf is strictly
-  // increasing; 100 halvings reach the double resolution of [0, pi/2]).
+  // increasing). The loop stops at the double resolution of the edge, which takes at most
+  // ~1100 halvings of [0, pi/2] (edges near the smallest subnormal for the smallest theta0).
+  constexpr int kMaxHalvings = 1200;
   edge_[0] = 0.0;
   edge_[kStrips] = kThetaMax;
   for (int k = 1; k < kStrips; ++k) {
     const double target = static_cast<double>(k) / kStrips;
     double lo = edge_[k - 1], hi = kThetaMax;
-    for (int it = 0; it < 100 && hi - lo > 0.0; ++it) {
+    for (int it = 0; it < kMaxHalvings && hi - lo > 0.0; ++it) {
       const double mid = 0.5 * (lo + hi);
       if (mid <= lo || mid >= hi) break;
       if (cdf(mid) < target)
@@ -48,10 +53,25 @@ ThetaSampler::ThetaSampler(double theta0) : theta0_(theta0)
     }
     edge_[k] = 0.5 * (lo + hi);
   }
+  // Per strip, in units of theta0 (x = theta / theta0): the strip holds the mass
+  // int_{xl}^{xr} exp(-x^2) dx = (sqrt(pi) / 2) (erf(xr) - erf(xl)); the flat envelope has
+  // mass exp(-xl^2) (xr - xl), the exponential one exp(-xl^2) (1 - exp(-2 xl (xr - xl))) / (2 xl).
+  // Acceptance = strip mass / envelope mass; exp(xl^2) stays below e^5 (xl is at most the
+  // 255/256 quantile of the half-Gaussian, ~2.05).
   for (int k = 0; k < kStrips; ++k) {
     width_[k] = edge_[k + 1] - edge_[k];
     const double l = edge_[k], r = edge_[k + 1];
-    squeeze_[k] = std::exp(-(r - l) * (r + l) * inv_theta0_sq_);  // P(right) / P(left)
+    squeeze_[k] = std::exp(-flat_exponent(r, l));  // P(right) / P(left)
+    const double xl = l / theta0, xw = width_[k] / theta0;
+    const double mass_scaled = 0.5 * kSqrtPi * (std::erf(r / theta0) - std::erf(xl)) *
+                               std::exp(xl * xl);  // strip mass / exp(-xl^2)
+    const double flat_acceptance = xw > 0.0 ? mass_scaled / xw : 1.0;
+    rate_[k] = 2.0 * xl;
+    span_[k] = -std::expm1(-rate_[k] * xw);  // 1 - exp(-rate xw); 1 when xw is infinite
+    const double tail_acceptance = rate_[k] > 0.0 ? mass_scaled * rate_[k] / span_[k] : 0.0;
+    tail_[k] = flat_acceptance < defaults::kThetaFlatMinAcceptance && rate_[k] > 0.0 &&
+               tail_acceptance > flat_acceptance;
+    acceptance_[k] = std::min(1.0, tail_[k] ? tail_acceptance : flat_acceptance);
   }
 }
 
@@ -59,7 +79,8 @@ double ThetaSampler::density(double theta) const
 {
   if (theta < 0.0 || theta > kThetaMax) return 0.0;
   // A = 2 / (sqrt(pi) theta0 erf(pi / (2 theta0))) normalises eq. 1 on [0, pi/2].
-  return 2.0 / (kSqrtPi * theta0_ * norm_) * std::exp(-theta * theta * inv_theta0_sq_);
+  const double x = theta / theta0_;
+  return 2.0 / (kSqrtPi * theta0_ * norm_) * std::exp(-x * x);
 }
 
 double ThetaSampler::cdf(double theta) const
@@ -71,9 +92,21 @@ double ThetaSampler::cdf(double theta) const
 
 double ThetaSampler::exp_fraction() const
 {
+  // flat strips: 1 - squeeze; tail strips: P(u > 1 - s^2) <= E[s^2] <= 2 / rate^2
   double sum = 0.0;
-  for (int k = 0; k < kStrips; ++k) sum += 1.0 - squeeze_[k];
+  for (int k = 0; k < kStrips; ++k)
+    sum += tail_[k] ? std::min(1.0, 2.0 / (rate_[k] * rate_[k])) : 1.0 - squeeze_[k];
   return sum / kStrips;
+}
+
+double ThetaSampler::min_acceptance() const
+{
+  return *std::min_element(acceptance_.begin(), acceptance_.end());
+}
+
+int ThetaSampler::tail_strips() const
+{
+  return static_cast<int>(std::count(tail_.begin(), tail_.end(), true));
 }
 
 SinCosTable::SinCosTable(double range) : step_(range / kNodes), inv_step_(kNodes / range)
@@ -99,39 +132,56 @@ namespace {
 constexpr std::uint64_t kMainDraw = 0;         // pick, d, phi, theta strip
 constexpr std::uint64_t kFirstThetaDraw = 1;   // two (position, accept) pairs per block
 constexpr std::uint64_t kFirstPickDraw = 128;  // fresh words for the rare pick rejection
+// Pairs of theta words and pick words per round of the slice. A rejection sampler has no
+// bound on its draws: after a round is used up, the same positions are read again under the
+// keys of the overflow rounds 1, 2, ... (CounterRandom::round), never under the run's own key.
+constexpr std::uint64_t kThetaPairsPerRound = 2 * (kFirstPickDraw - kFirstThetaDraw);
+constexpr std::uint64_t kPickWordsPerRound = 4 * (TrialMoveSampler::kDrawsPerTrial - kFirstPickDraw);
 
-std::uint32_t sample_pick(const CounterRandom &rng, std::uint64_t base, std::uint32_t first_word,
+std::uint32_t sample_pick(const CounterRandom &rng, std::uint64_t trial, std::uint32_t first_word,
                           std::uint32_t n_pick)
 {
   std::uint32_t index = 0;
   if (bounded_index(first_word, n_pick, index)) return index;
-  for (std::uint64_t draw = kFirstPickDraw; draw < TrialMoveSampler::kDrawsPerTrial; ++draw) {
-    const RandomBlock block = rng.block(base + draw);
-    for (std::uint32_t word : block)
-      if (bounded_index(word, n_pick, index)) return index;
-  }
-  throw std::runtime_error("sphere pick exhausted its random draws (impossible odds)");
+  for (std::uint64_t k = 0;; ++k)
+    if (bounded_index(TrialMoveSampler::pick_word(rng, trial, k), n_pick, index)) return index;
 }
 
 }  // namespace
 
+void TrialMoveSampler::theta_words(const CounterRandom &rng, std::uint64_t trial,
+                                   std::uint64_t attempt, std::uint32_t &w_pos,
+                                   std::uint32_t &w_accept)
+{
+  const std::uint64_t round = attempt / kThetaPairsPerRound;
+  const std::uint64_t within = attempt % kThetaPairsPerRound;
+  const std::uint64_t position = trial * kDrawsPerTrial + kFirstThetaDraw + within / 2;
+  const RandomBlock block = round == 0 ? rng.block(position) : rng.round(round).block(position);
+  w_pos = block[within % 2 == 0 ? 0 : 2];
+  w_accept = block[within % 2 == 0 ? 1 : 3];
+}
+
+std::uint32_t TrialMoveSampler::pick_word(const CounterRandom &rng, std::uint64_t trial,
+                                          std::uint64_t index)
+{
+  const std::uint64_t round = index / kPickWordsPerRound;
+  const std::uint64_t within = index % kPickWordsPerRound;
+  const std::uint64_t position = trial * kDrawsPerTrial + kFirstPickDraw + within / 4;
+  const RandomBlock block = round == 0 ? rng.block(position) : rng.round(round).block(position);
+  return block[within % 4];
+}
+
 double TrialMoveSampler::theta_from(const CounterRandom &rng, std::uint64_t trial,
                                     std::uint32_t strip_word, const RandomBlock &theta_first) const
 {
-  const std::uint64_t base = trial * kDrawsPerTrial;
   std::uint64_t attempt = 0;
   RandomBlock block = theta_first;
   return theta_.sample(strip_word, [&](std::uint32_t &w_pos, std::uint32_t &w_accept) {
-    const std::uint64_t draw = kFirstThetaDraw + attempt / 2;
-    if (draw >= kFirstPickDraw)  // needs > 250 consecutive rejections
-      throw std::runtime_error("theta sampler exhausted its random draws (impossible odds)");
-    if (attempt % 2 == 0) {
-      if (attempt > 0) block = rng.block(base + draw);
-      w_pos = block[0];
-      w_accept = block[1];
+    if (attempt < 2) {  // the first block, drawn with the trial's main block
+      w_pos = block[attempt == 0 ? 0 : 2];
+      w_accept = block[attempt == 0 ? 1 : 3];
     } else {
-      w_pos = block[2];
-      w_accept = block[3];
+      theta_words(rng, trial, attempt, w_pos, w_accept);
     }
     ++attempt;
   });
@@ -142,7 +192,7 @@ TrialDraw TrialMoveSampler::finish(const CounterRandom &rng, std::uint64_t trial
                                    const RandomBlock &theta_first) const
 {
   TrialDraw out{};
-  out.pick = n_pick ? sample_pick(rng, trial * kDrawsPerTrial, main[0], n_pick) : 0u;
+  out.pick = n_pick ? sample_pick(rng, trial, main[0], n_pick) : 0u;
   const double d = d_max_ * uniform_open_from_u32(main[1]);
   // phi = 2 pi main[2] / 2^32 = sector (top 8 bits) + offset (low 24 bits), both exact.
   const int sector = static_cast<int>(main[2] >> 24);

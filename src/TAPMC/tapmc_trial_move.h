@@ -14,12 +14,21 @@
 namespace tapmc {
 
 // theta from P(theta) = A exp(-(theta/theta0)^2) on [0, pi/2] (eq. 1; theta from the downward
-// vertical), sampled exactly and cheaply: [0, pi/2] is cut into kStrips strips of equal
-// probability (edges from the inverse of the erf-based CDF, computed once), a strip is picked
-// uniformly, and a point of the strip is drawn by rejection from the flat envelope at the
-// strip's left (highest) density. Since P decreases on [0, pi/2], a "squeeze" test against the
-// strip's right density accepts most points without evaluating exp. The result is exact up to
-// double rounding of the strip edges.
+// vertical), sampled exactly for every theta0 in (0, pi/2]: [0, pi/2] is cut into kStrips
+// strips of equal probability (edges from the inverse of the erf-based CDF, computed once), a
+// strip is picked uniformly, and a point of the strip is drawn by rejection from an envelope of
+// P on the strip:
+//  - flat strips: the constant envelope P(left) (P decreases on [0, pi/2]); a "squeeze" test
+//    against the strip's right density accepts most points without evaluating exp;
+//  - tail strips (where the flat envelope would accept less than
+//    defaults::kThetaFlatMinAcceptance of the points: wide strips of a narrow Gaussian, e.g. the
+//    last strip [~2 theta0, pi/2] of theta0 = 0.1): the tangent exponential envelope
+//    P(left) exp(-lambda (theta - left)), lambda = 2 left / theta0^2. ln P is concave, so the
+//    tangent lies above P everywhere; theta - left is drawn from the truncated exponential by
+//    inversion and accepted with probability exp(-((theta - left) / theta0)^2).
+// Every strip accepts at least ~3/4 of its proposals (min_acceptance()) for any theta0 above the
+// subnormal range.
+// The result is exact up to double rounding of the strip edges.
 class ThetaSampler {
  public:
   static constexpr int kStrips = 256;
@@ -36,12 +45,27 @@ class ThetaSampler {
 
   // One exact sample. `strip_word` chooses the strip (its top 8 bits); `next_pair(u0, u1)`
   // supplies fresh independent 32-bit words (position within the strip, acceptance test) as
-  // often as the rejection step needs them (on average 1.0x pairs; see reject_fraction()).
+  // often as the rejection step needs them (on average at most 1 / min_acceptance() pairs).
   template <class NextPair>
   double sample(std::uint32_t strip_word, NextPair &&next_pair) const
   {
     const unsigned strip = strip_word >> 24;
     const double left = edge_[strip];
+    if (tail_[strip]) {
+      // theta = left + theta0 s, s ~ truncated Exp(rate) on [0, width / theta0] (inversion)
+      const double rate = rate_[strip], span = span_[strip];
+      const double right = std::min(edge_[strip + 1], kThetaMax);
+      for (;;) {
+        std::uint32_t w_pos, w_accept;
+        next_pair(w_pos, w_accept);
+        const double s = -std::log1p(-span * uniform_open_from_u32(w_pos)) / rate;
+        const double theta = std::min(left + theta0_ * s, right);
+        const double u = uniform_open_from_u32(w_accept);
+        const double s2 = s * s;
+        if (u <= 1.0 - s2) return theta;  // exp(-s^2) >= 1 - s^2: accept without exp
+        if (u <= std::exp(-s2)) return theta;
+      }
+    }
     const double width = width_[strip];
     for (;;) {
       std::uint32_t w_pos, w_accept;
@@ -50,18 +74,32 @@ class ThetaSampler {
       const double theta = std::min(left + width * uniform_open_from_u32(w_pos), kThetaMax);
       const double u = uniform_open_from_u32(w_accept);
       if (u <= squeeze_[strip]) return theta;  // below the strip's lowest density: accept
-      // P(theta) / P(left) = exp(-(theta - left)(theta + left) / theta0^2)
-      if (u <= std::exp(-(theta - left) * (theta + left) * inv_theta0_sq_)) return theta;
+      if (u <= std::exp(-flat_exponent(theta, left))) return theta;
     }
   }
 
   // Fraction of first attempts that need exp (diagnostic of the squeeze efficiency).
   double exp_fraction() const;
+  // Smallest acceptance probability of a proposal over the strips (exact, from the CDF).
+  double min_acceptance() const;
+  // Number of strips sampled from the exponential envelope.
+  int tail_strips() const;
 
  private:
+  // ln(P(left) / P(theta)) = (theta - left)(theta + left) / theta0^2. Below
+  // kScaledBelow, 1 / theta0^2 would overflow: the factors are scaled by theta0 first.
+  static constexpr double kScaledBelow = 1e-100;
+  double flat_exponent(double theta, double left) const
+  {
+    if (scaled_) return ((theta - left) / theta0_) * ((theta + left) / theta0_);
+    return (theta - left) * (theta + left) * inv_theta0_sq_;
+  }
+
   double theta0_, inv_theta0_sq_, norm_;
+  bool scaled_;
   std::array<double, kStrips + 1> edge_{};
-  std::array<double, kStrips> width_{}, squeeze_{};
+  std::array<double, kStrips> width_{}, squeeze_{}, rate_{}, span_{}, acceptance_{};
+  std::array<bool, kStrips> tail_{};
 };
 
 // sin and cos of angles in a fixed range [0, range] from a table of 256 nodes and short
@@ -129,6 +167,14 @@ class TrialMoveSampler {
   static constexpr int kBatchMax = CounterRandom::kBatchMax / 2;
   void draw_batch(const CounterRandom &rng, std::uint64_t first, int count, std::uint32_t n_pick,
                   TrialDraw *out) const;
+
+  // The random words behind a draw's rejection steps, from positions of the trial's slice and,
+  // past the slice, of the overflow rounds (never exhausted): the pair of theta attempt
+  // `attempt` (attempts 0 and 1 share the first theta block), and extra pick word `index`.
+  static void theta_words(const CounterRandom &rng, std::uint64_t trial, std::uint64_t attempt,
+                          std::uint32_t &w_pos, std::uint32_t &w_accept);
+  static std::uint32_t pick_word(const CounterRandom &rng, std::uint64_t trial,
+                                 std::uint64_t index);
 
   // The angles and length of the same draw (for tests of the distributions).
   struct Polar {

@@ -23,7 +23,10 @@ def run_case(body, boundary="p p fm", extra=""):
 
 
 TAPDILATE_CASES = [
-    ("fix t all tapdilate -0.1", "eps = -0.1 must be >= 0"),
+    ("fix t all tapdilate -0.1", "eps = -0.1 must be in [0, 1]"),
+    ("fix t all tapdilate 1e6", "eps = 1e6 must be in [0, 1]"),
+    ("fix t all tapdilate 1e300", "eps = 1e300 must be in [0, 1]"),
+    ("variable e equal 5\nfix t all tapdilate v_e\nrun 1", "gave eps = 5 on step 1; eps must be in [0, 1]"),
     ("fix t all tapdilate abc", "abc"),
     ("fix t all tapdilate 0.1 every 0", "every = 0 must be an integer >= 1"),
     ("fix t all tapdilate 0.1 floor", "keyword 'floor' needs a value"),
@@ -37,7 +40,8 @@ TAPDILATE_CASES = [
 
 
 def test_tapdilate_fixed_top_would_lose_atoms():
-    rc, out = run_case("fix t all tapdilate 20.0\nrun 1", boundary="p p ff")
+    rc, out = run_case("create_atoms 1 single 5 2 8\nset group all diameter 1.0\n"
+                       "fix t all tapdilate 0.5\nrun 1", boundary="p p ff")
     assert rc != 0 and "above the fixed upper z boundary" in out, out
 
 
@@ -49,6 +53,13 @@ def test_tapdilate_fixed_top_with_room_is_fine():
 MC_SETTLE_CASES = [
     ("fix s all mc/settle 0", "seed = 0 must be a positive integer"),
     ("fix s all mc/settle -5", "seed = -5 must be a positive integer"),
+    ("fix s all mc/settle 99999999999999999999",
+     "seed = 99999999999999999999 must be a positive integer in [1, 9223372036854775807]"),
+    ("fix s all mc/settle 9223372036854775808",
+     "seed = 9223372036854775808 must be a positive integer in [1, 9223372036854775807]"),
+    ("fix s all mc/settle 1.5", "seed = 1.5 must be a positive integer"),
+    ("create_packing 10 1 0.5 99999999999999999999",
+     "create_packing: seed = 99999999999999999999 must be a positive integer in [1, "),
     ("fix s all mc/settle 1 dmax 0", "dmax = 0 must be > 0"),
     ("fix s all mc/settle 1 dmax -0.1", "dmax = -0.1 must be > 0"),
     ("fix s all mc/settle 1 theta0 0", "theta0 = 0 must be in (0, pi/2]"),
@@ -106,6 +117,35 @@ def test_mc_settle_sphere_through_a_side_wall():
     rc, out = run_case("create_atoms 1 single 7.8 5 3\nfix s all mc/settle 1\nrun 1",
                        boundary="f f fm")
     assert rc != 0 and "crosses a side wall in x" in out, out
+
+
+def test_largest_seed_is_accepted():
+    rc, out = run_case("fix t all tapdilate 0.1\nfix s all mc/settle 9223372036854775807\nrun 2")
+    assert rc == 0, out
+
+
+@pytest.mark.parametrize("walls,message", [
+    ("xwalls -10 50", "xwalls lo = -10 is outside the box: along a fixed ('f') x boundary the "
+                      "side walls must lie within the box faces [0, 8]"),
+    ("ywalls 0 9", "ywalls hi = 9 is outside the box"),
+])
+def test_side_walls_beyond_fixed_box_faces_are_refused_at_setup(walls, message):
+    rc, out = run_case(f"fix s all mc/settle 1 {walls}", boundary="f f fm")
+    assert rc != 0 and message in out, out
+    rc, out = run_case("fix t all tapdilate 0.1\nfix s all mc/settle 1 xwalls 1 7 ywalls 0 8\nrun 2",
+                       boundary="f f fm")
+    assert rc == 0, out
+
+
+def test_stereo_profile_warns_about_atoms_below_its_floor():
+    rc, out = run_case("compute c all stereo/profile floor 3.0\nthermo_style custom step c_c[1]\n"
+                       "run 0\nrun 0")
+    assert rc == 0, out
+    assert out.count("WARNING: compute stereo/profile: atom 1 of group all reaches down to "
+                     "z = 0.5, below the floor z0 = 3") == 2, out  # once per run
+    rc, out = run_case("compute c all stereo/profile floor 0.5\nthermo_style custom step c_c[1]\n"
+                       "run 0")
+    assert rc == 0 and "below the floor" not in out, out
 
 
 def test_mc_settle_shrink_wrapped_sides_need_walls():

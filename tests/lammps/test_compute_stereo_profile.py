@@ -181,3 +181,26 @@ def test_doc_examples_run():
     assert rc == 0, out[-1500:]
     for name in ("profile_z.dat", "profile_x.dat"):
         assert os.path.getsize(os.path.join(wd, name)) > 0
+
+
+@pytest.mark.parametrize("nprocs", [1, 2])
+def test_empty_group_gives_zero_fractions(nprocs):
+    """An empty group is no error: every fraction and <Z> are 0, z_top = h_s = the floor, the
+    profile rows keep their plane positions (doc page, "Window top"); serial and under mpirun."""
+    script = lattice() + """group none empty
+compute s none stereo/profile floor 1.5
+compute r none stereo/profile floor 0.5 radius 0.7
+compute p none stereo/profile planes 0.0 8.0 4
+compute q none stereo/profile axis x planes 0.0 8.0 4
+fix az all ave/time 1 1 1 c_p[*] c_q[*] mode vector file p.dat format " %.17g"
+thermo_style custom step c_s[1] c_s[3] c_r[1]
+run 0
+""" + VECTOR_PRINT.format(id="s") + VECTOR_PRINT.format(id="r").replace("VEC", "RAD")
+    rc, out, wd = run_lammps(script, nprocs=nprocs)
+    assert rc == 0, out[-2000:]
+    assert "Traceback" not in out and "terminate called" not in out
+    np.testing.assert_array_equal(printed(out, "VEC"), [0, 0, 0, 1.5, 0, 0, 1.5])
+    np.testing.assert_array_equal(printed(out, "RAD"), [0, 0, 0, 0.5, 0, 0, 0.5])
+    rows = ave_time_rows(os.path.join(wd, "p.dat"))
+    np.testing.assert_array_equal(rows[:, 1], [1, 3, 5, 7])
+    np.testing.assert_array_equal(rows[:, [2, 3, 5, 6]], 0.0)

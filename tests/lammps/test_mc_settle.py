@@ -162,3 +162,75 @@ run 30
         for c in ("x", "y", "z"):
             np.testing.assert_array_equal(cols[c][bottom], first[c][bottom])
     assert frames[-1][3]["z"][~bottom].mean() < first["z"][~bottom].mean() * 1.05
+
+
+def small_run(fix_lines, steps, extra="", boundary="p p fm"):
+    script = SCENE.format(boundary=boundary, zprocs=1) + fix_lines + """
+thermo_style custom step f_settle[1] f_settle[5]
+thermo 1
+dump d all custom 1 dump.taps id x y z
+dump_modify d sort id format float %.17g
+""" + extra + f"run {steps}\n"
+    rc, out, wd = run_lammps(script)
+    assert rc == 0, out
+    return read_dump(os.path.join(wd, "dump.taps")), out
+
+
+def test_fix_order_does_not_matter():
+    # mc/settle defined before tapdilate still redeposits after the tap of the same step.
+    tap = "fix tap all tapdilate 0.05 floor 0.0\n"
+    settle = "fix settle all mc/settle 7 floor 0.0 eta 1e-3\n"
+    a, _ = small_run(tap + settle, 3)
+    b, _ = small_run(settle + tap, 3)
+    for (sa, _, _, fa), (sb, _, _, fb) in zip(a, b):
+        assert sa == sb
+        for c in ("x", "y", "z"):
+            np.testing.assert_array_equal(fa[c], fb[c])
+
+
+def test_settle_runs_only_on_tap_steps():
+    # Taps every 2 steps: nothing moves on odd steps (no tap, no redeposition); even steps tap
+    # and redeposit. Without tapdilate, mc/settle redeposits on every step.
+    frames, out = small_run("fix tap all tapdilate 0.05 floor 0.0 every 2\n"
+                            "fix settle all mc/settle 7 floor 0.0 eta 1e-3\n", 5)
+    assert [f[0] for f in frames] == [0, 1, 2, 3, 4, 5]
+    for k in range(1, 6):
+        moved = not np.array_equal(frames[k][3]["z"], frames[k - 1][3]["z"])
+        assert moved == (k % 2 == 0), k
+    alone, _ = small_run("fix settle all mc/settle 7 floor 0.0 eta 1e-3\n", 3)
+    for k in range(1, 4):
+        assert not np.array_equal(alone[k][3]["z"], alone[k - 1][3]["z"]), k
+    assert "Atom sorting therefore disabled" not in out, out
+
+
+@pytest.mark.parametrize("theta0", [0.1, 0.01])
+def test_narrow_theta0_taps_keep_hard_spheres(theta0):
+    # Small theta0 (nearly vertical moves, the paper's decompacting regime): every tap ends
+    # with a valid packing, and the redeposition still settles the dilute start (its columns
+    # close their vertical gaps of 0.25: <Z> falls from 10 towards 8).
+    frames, out = small_run(f"fix tap all tapdilate 0.05 floor 0.0\n"
+                            f"fix settle all mc/settle 9 floor 0.0 eta 1e-3 theta0 {theta0}\n", 10)
+    check_frames([(s, b, h, dict(c, radius=np.full(1024, 0.5))) for s, b, h, c in frames],
+                 (True, True), (False, False))
+    assert frames[-1][3]["z"].mean() < 0.9 * frames[0][3]["z"].mean()
+
+
+def test_restart_with_changed_settings_warns_naming_them():
+    base = SCENE.format(boundary="p p fm", zprocs=1)
+    first = base + ("fix tap all tapdilate 0.05 floor 0.0\n"
+                    "fix settle all mc/settle 11 floor 0.0 eta 1e-3\nrun 2\n"
+                    "write_restart a.restart\n")
+    rc, out, wd = run_lammps(first)
+    assert rc == 0, out
+    same = ("read_restart a.restart\nfix tap all tapdilate 0.05 floor 0.0\n"
+            "fix settle all mc/settle 11 floor 0.0 eta 1e-3\nrun 1\n")
+    rc, out, _ = run_lammps(same, workdir=wd)
+    assert rc == 0 and "differ from the restart file" not in out, out
+    changed = same.replace("eta 1e-3", "eta 1e-4 theta0 0.5 dmax 0.05 order sweep")
+    rc, out, _ = run_lammps(changed, workdir=wd)
+    assert rc == 0, out
+    assert "WARNING: fix mc/settle: settings differ from the restart file (restart -> now): " \
+           "dmax (0 = default R/5) 0 -> 0.05, theta0 0.7853981633974483 -> 0.5, " \
+           "eta 0.001 -> 0.0001, order (0 random, 1 sweep) 0 -> 1" in out, out
+    rc, out, _ = run_lammps(same.replace("mc/settle 11", "mc/settle 12"), workdir=wd)
+    assert rc == 0 and "seed 11 -> 12" in out, out

@@ -169,7 +169,7 @@ inline Scene settled_bed(int n, double side, double r, bool periodic, bool poly,
   return s;
 }
 
-// Homothetic dilation of the heights about the floor (the tap, model.md step 1).
+// Homothetic dilation of the heights about the floor (the tap: paper, section II).
 inline void dilate(Scene &s, double eps)
 {
   for (int i = 0; i < s.size(); ++i)

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -205,4 +206,140 @@ TEST(TrialMove, SinCosTableIsAccurate)
     worst = std::max({worst, std::fabs(s - std::sin(a)), std::fabs(c - std::cos(a))});
   }
   EXPECT_LT(worst, 1e-15);
+}
+
+namespace {
+
+// Kolmogorov-Smirnov statistic sqrt(n) D of sorted samples against a CDF.
+template <class Cdf> double ks_statistic(std::vector<double> samples, Cdf &&cdf)
+{
+  std::sort(samples.begin(), samples.end());
+  const double n = static_cast<double>(samples.size());
+  double d = 0.0;
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const double f = cdf(samples[k]);
+    d = std::max({d, f - k / n, (k + 1) / n - f});
+  }
+  return std::sqrt(n) * d;
+}
+// P(sqrt(n) D > k) ~ 2 exp(-2 k^2): 2.69 is the 1e-6 tail of the Kolmogorov law.
+constexpr double kKolmogorov6 = 2.69;
+
+}  // namespace
+
+// Eq. 1 exactly for every theta0 of the allowed range, from very narrow (0.01: almost every
+// move vertical) to the flat-topped pi/2: the whole law (KS and equal-probability chi-square
+// against the exact CDF) and, separately, the last strip [~2 theta0, pi/2], whose flat envelope
+// was the inefficient one at small theta0 (conditional KS with erfc, exact in the far tail).
+TEST(TrialMove, ThetaIsExactForEveryWidth)
+{
+  for (double theta0 : {0.01, 0.03, 0.1, 0.15, 0.2, 0.5, kPi / 4, 1.2, kPi / 2}) {
+    const TrialMoveSampler sampler(1.0, theta0);
+    const ThetaSampler &ts = sampler.theta_sampler();
+    const CounterRandom rng(99, 5);
+    const int n = 300000, bins = 100;
+    std::vector<double> theta(n);
+    std::vector<long> counts(bins, 0);
+    for (int t = 0; t < n; ++t) {
+      theta[t] = sampler.draw_polar(rng, t).theta;
+      ASSERT_GE(theta[t], 0.0);
+      ASSERT_LE(theta[t], kPi / 2);
+      ++counts[std::min(bins - 1, static_cast<int>(ts.cdf(theta[t]) * bins))];
+    }
+    EXPECT_LT(ks_statistic(theta, [&](double x) { return ts.cdf(x); }), kKolmogorov6)
+        << "theta0 " << theta0;
+    EXPECT_TRUE(chi_square_plausible(chi_square(counts, std::vector<double>(bins, double(n) / bins)),
+                                     bins - 1))
+        << "theta0 " << theta0;
+  }
+  for (double theta0 : {1e-200, 1e-6, 0.01, 0.1, 0.2, kPi / 4, kPi / 2}) {
+    const ThetaSampler ts(theta0);
+    const CounterRandom rng(3, 4);
+    // left edge of the last strip: cdf(left) = 255/256
+    double lo = 0.0, hi = kPi / 2;
+    for (int it = 0; it < 2000 && hi - lo > 0.0; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      if (mid <= lo || mid >= hi) break;
+      (ts.cdf(mid) < 255.0 / 256 ? lo : hi) = mid;
+    }
+    const double left = 0.5 * (lo + hi);
+    const double tail_left = std::erfc(left / theta0), tail_top = std::erfc(kPi / 2 / theta0);
+    const int n = 100000;
+    std::vector<double> theta(n);
+    std::uint64_t position = 0;
+    for (int k = 0; k < n; ++k)
+      theta[k] = ts.sample(0xFF000000u, [&](std::uint32_t &p, std::uint32_t &u) {
+        const RandomBlock b = rng.block(position++);
+        p = b[0];
+        u = b[1];
+      });
+    for (double x : theta) {
+      ASSERT_GE(x, left * (1 - 1e-12));
+      ASSERT_LE(x, kPi / 2);
+    }
+    EXPECT_LT(ks_statistic(theta, [&](double x) {
+                return (tail_left - std::erfc(x / theta0)) / (tail_left - tail_top);
+              }),
+              kKolmogorov6)
+        << "last strip, theta0 " << theta0;
+  }
+}
+
+// Every strip accepts more than 0.7 of its proposals whatever theta0 above the subnormal range
+// (so a theta needs fewer than ~3 random words on average), and the default pi/4 keeps only
+// flat strips (draws of the paper's set-up do not depend on the tail envelope).
+TEST(TrialMove, ThetaSamplerIsEfficientForEveryWidth)
+{
+  for (double theta0 = kPi / 2; theta0 > 1e-300; theta0 *= 0.13) {
+    const ThetaSampler ts(theta0);
+    EXPECT_GT(ts.min_acceptance(), 0.7) << "theta0 " << theta0;
+  }
+  // the smallest subnormal: strip edges can only be multiples of theta0 itself
+  EXPECT_GT(ThetaSampler(5e-324).min_acceptance(), 0.4);
+  EXPECT_EQ(ThetaSampler(kPi / 4).tail_strips(), 0);
+  EXPECT_GT(ThetaSampler(0.1).tail_strips(), 0);
+}
+
+// The rejection steps never run out of random words: past the trial's slice they continue in
+// the overflow rounds (other keys), whose words are fresh (no pair repeats across attempts and
+// trials) and uniform.
+TEST(TrialMove, RejectionWordsNeverRunOut)
+{
+  const CounterRandom rng(1234, 56);
+  EXPECT_EQ(rng.round(0).block(7), rng.block(7));
+  std::uint32_t p, u;
+  TrialMoveSampler::theta_words(rng, 3, 2, p, u);
+  EXPECT_EQ(p, rng.block(3 * 256 + 2)[0]);
+  TrialMoveSampler::theta_words(rng, 3, 253, p, u);
+  EXPECT_EQ(u, rng.block(3 * 256 + 127)[3]);
+  TrialMoveSampler::theta_words(rng, 3, 254, p, u);  // first pair of overflow round 1
+  EXPECT_EQ(p, rng.round(1).block(3 * 256 + 1)[0]);
+  EXPECT_EQ(TrialMoveSampler::pick_word(rng, 3, 512), rng.round(1).block(3 * 256 + 128)[0]);
+
+  std::vector<std::uint64_t> pairs;
+  std::vector<long> counts(64, 0);
+  for (std::uint64_t trial : {0ull, 1ull, 2ull})
+    for (std::uint64_t attempt = 0; attempt < 3000; ++attempt) {
+      TrialMoveSampler::theta_words(rng, trial, attempt, p, u);
+      pairs.push_back(join_u32(p, u));
+      if (attempt >= 254) {
+        ++counts[p >> 26];
+        ++counts[u >> 26];
+      }
+    }
+  std::sort(pairs.begin(), pairs.end());
+  EXPECT_EQ(std::adjacent_find(pairs.begin(), pairs.end()), pairs.end());
+  const double expected = 2.0 * 3 * (3000 - 254) / 64;
+  EXPECT_TRUE(chi_square_plausible(chi_square(counts, std::vector<double>(64, expected)), 63));
+
+  // A strip sampler fed only rejected proposals for 1000 attempts still ends with a valid theta.
+  const ThetaSampler ts(0.1);
+  int calls = 0;
+  const double theta = ts.sample(0xFF000000u, [&](std::uint32_t &pos, std::uint32_t &acc) {
+    pos = 0x80000000u;
+    acc = ++calls <= 1000 ? 0xFFFFFFFFu : 0u;
+  });
+  EXPECT_EQ(calls, 1001);
+  EXPECT_GT(theta, 0.0);
+  EXPECT_LE(theta, kPi / 2);
 }
