@@ -3,10 +3,15 @@
 # doc/*.rst page (`.. code-block::` directives and `::` literal blocks). One pytest case per
 # block, named file:line, so a failure names the block.
 #
-# How each block runs (in a fresh temporary directory that mirrors the repository root: a
-# symbolic link to every top-level entry of the source tree, and `build` -> the build directory;
-# PATH starts with the build directory and build/tools/pores; TAPMC_BUILD_DIR, TAPMC_SOURCE_DIR,
-# TAPMC_LMP and TAPMC_LIB are exported):
+# How each block runs: the blocks of one page run in document order in one temporary directory
+# of that page, so a block may read what an earlier block of the same page wrote (run the whole
+# file, not one block alone, when a block depends on another). The directory mirrors the
+# repository root (a symbolic link to every top-level entry of the source tree, and `build` ->
+# the build directory), so blocks are written as run from the repository root; PATH starts with
+# the build directory and build/tools/pores; TAPMC_BUILD_DIR, TAPMC_SOURCE_DIR, TAPMC_LMP and
+# TAPMC_LIB are exported. A block naming a program of an optional part of the build that was not
+# built (tapmc-pores with TAPMC_BUILD_PORES=OFF) is skipped.
+#
 #   LAMMPS  (```lammps, `.. code-block:: LAMMPS`): $TAPMC_LMP -in the block -var taps 2. A block
 #           without create_box/read_data/read_restart is a fragment: it runs after PREAMBLE (a
 #           small periodic box with an open top, plus CREATE_SPHERES unless the block creates its
@@ -58,6 +63,9 @@ CREATE_SPHERES = "create_packing  200 1 0.5 4928 floor 0.0\n"
 SMALL_RUN = 2
 MAX_LITERAL_RUN = 100
 TIMEOUT = 300  # seconds per block
+
+# Programs of optional parts of the build: a block that names one is skipped when it is absent.
+OPTIONAL_PROGRAMS = {"tapmc-pores": os.path.join(BUILD_DIR, "tools", "pores", "tapmc-pores")}
 
 RUNNABLE = {"lammps": "lammps", "python": "python", "python3": "python", "sh": "sh",
             "bash": "sh", "shell": "sh"}
@@ -276,8 +284,20 @@ def block_param(block):
     return pytest.param(block, id=block.name, marks=marks)
 
 
+PAGE_DIRS = {}
+
+
+def page_directory(block, tmp_path_factory):
+    """The working directory shared by the blocks of block's page, made on first use."""
+    if block.path not in PAGE_DIRS:
+        path = tmp_path_factory.mktemp(re.sub(r"\W", "_", block.path))
+        repository_mirror(str(path))
+        PAGE_DIRS[block.path] = str(path)
+    return PAGE_DIRS[block.path]
+
+
 @pytest.mark.parametrize("block", [block_param(b) for b in BLOCKS])
-def test_doc_block_runs(block, tmp_path):
+def test_doc_block_runs(block, tmp_path_factory):
     if block.skip_reason:
         pytest.skip("snippet: skip " + block.skip_reason)
     if block.language is None:
@@ -291,10 +311,13 @@ def test_doc_block_runs(block, tmp_path):
     if lang not in ("lammps", "python", "sh"):
         pytest.fail("%s: unknown language '%s' (python, sh, bash, LAMMPS, or text)"
                     % (block.name, block.language))
+    for program, path in OPTIONAL_PROGRAMS.items():
+        if re.search(r"(?<![\w-])%s(?![\w-])" % re.escape(program), block.code) and \
+                not os.path.exists(path):
+            pytest.skip("%s is not built (%s)" % (program, path))
     block.language = lang
-    repository_mirror(str(tmp_path))
     try:
-        rc, out = run_block(block, str(tmp_path))
+        rc, out = run_block(block, page_directory(block, tmp_path_factory))
     except ValueError as err:
         pytest.fail("%s: %s" % (block.name, err))
     assert rc == 0, "%s (%s) exited with %d:\n%s\n--- output (last 60 lines):\n%s" % (
