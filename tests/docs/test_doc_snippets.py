@@ -331,19 +331,98 @@ def test_every_page_was_read():
     assert os.path.join("doc", "user_guide.rst") in paths
 
 
-# The documentation cites the paper and the project's own files, never private notes or paths
-# of one machine.
-PRIVATE_REFERENCES = re.compile(r"model\.md|\.\./shared/|(?<![\w.~])/(?:work|tmp|home|root)/")
+# The documentation cites the paper and the project's own files, never notes kept outside the
+# repository (a *.md file that is not in it) or paths of one machine.
+MACHINE_PATH = re.compile(r"\.\./shared/|(?<![\w.~])/(?:work|tmp|home|root)/")
+MARKDOWN_NAME = re.compile(r"[\w.-]+\.md\b")
 DOC_FILES = ["README.md", os.path.join("bench", "README.md")] + sorted(
     os.path.relpath(p, SOURCE_DIR) for p in glob.glob(os.path.join(SOURCE_DIR, "doc", "*.rst")))
+
+
+def markdown_files_in_repository():
+    names = set()
+    for root, dirs, files in os.walk(SOURCE_DIR):
+        dirs[:] = [d for d in dirs if d != ".git" and not d.startswith("build")]
+        names.update(f for f in files if f.endswith(".md"))
+    return names
 
 
 @pytest.mark.parametrize("doc", [pytest.param(d, marks=[pytest.mark.xfail(
     reason=KNOWN_FAILURES_TO_FIX_AT_MERGE[d], strict=False)] if d in KNOWN_FAILURES_TO_FIX_AT_MERGE
     else []) for d in DOC_FILES])
 def test_docs_cite_no_private_files_or_machine_paths(doc):
+    ours = markdown_files_in_repository()
     with open(os.path.join(SOURCE_DIR, doc)) as f:
         hits = ["%s:%d: %s" % (doc, n, line.strip()) for n, line in enumerate(f, 1)
-                if PRIVATE_REFERENCES.search(line)]
+                if MACHINE_PATH.search(line)
+                or any(name not in ours for name in MARKDOWN_NAME.findall(line))]
     assert not hits, "cite the paper (section, equation) or the project's own files:\n" + \
         "\n".join(hits)
+
+
+SAMPLE_RST = '''Title
+=====
+
+Syntax
+""""""
+
+.. code-block:: LAMMPS
+
+   fix ID group tapdilate eps
+
+Examples
+""""""""
+
+.. snippet: skip needs an hour
+
+.. code-block:: LAMMPS
+
+   run 4000
+
+Text::
+
+   untyped
+
+.. code-block:: python
+   :linenos:
+
+   print(1)
+   if True:
+       print(2)
+'''
+
+SAMPLE_MD = """# T
+
+<!-- snippet: skip installs packages -->
+```sh
+tools/setup.sh
+```
+
+```
+untyped
+```
+"""
+
+
+def test_blocks_are_found_with_language_line_section_and_skip_marker(tmp_path):
+    (tmp_path / "page.rst").write_text(SAMPLE_RST)
+    (tmp_path / "page.md").write_text(SAMPLE_MD)
+    rst = [(b.line, b.language, b.section, b.skip_reason, b.code)
+           for b in rst_blocks(str(tmp_path / "page.rst"))]
+    assert rst == [(7, "lammps", "Syntax", None, "fix ID group tapdilate eps\n"),
+                   (16, "lammps", "Examples", "needs an hour", "run 4000\n"),
+                   (20, None, "Examples", None, "untyped\n"),
+                   (24, "python", "Examples", None, "print(1)\nif True:\n    print(2)\n")]
+    md = [(b.line, b.language, b.skip_reason, b.code) for b in markdown_blocks(str(tmp_path / "page.md"))]
+    assert md == [(4, "sh", "installs packages", "tools/setup.sh\n"), (8, None, None, "untyped\n")]
+
+
+def test_lammps_fragments_get_the_preamble_and_a_short_run():
+    fragment = lammps_input("fix tap all tapdilate 0.01 floor 0.0\n")
+    assert fragment.startswith(PREAMBLE + CREATE_SPHERES) and fragment.endswith("run 2\n")
+    own_spheres = lammps_input("create_packing 10 1 0.5 7\nrun ${taps}\n")
+    assert own_spheres == PREAMBLE + "create_packing 10 1 0.5 7\nrun ${taps}\n"
+    whole = "units lj\nregion b block 0 1 0 1 0 1\ncreate_box 1 b\nrun 0\n"
+    assert lammps_input(whole) == whole
+    with pytest.raises(ValueError, match="run \\$\\{taps\\}"):
+        lammps_input("run 4000\n")
