@@ -4,7 +4,8 @@
 # `plugin load`, from its own `lmp` and from its Python module; the paper's periodic example then
 # follows exactly the trajectory of lmp_tapmc (same kernels, same random streams), and in Python
 # a bad TAPMC input raises an exception carrying TAPMC's message while LAMMPS stays usable.
-# Skipped when that LAMMPS is not built, unless TAPMC_SLOW=1, which builds it (20-40 min).
+# Skipped when that LAMMPS is not built, unless TAPMC_SLOW=1, which builds it (about 20 minutes on
+# two busy cores).
 import json
 import os
 import subprocess
@@ -93,8 +94,8 @@ def plugin(tmp_path_factory):
         assert rc == 0, out
     elif not os.path.exists(os.path.join(prefix, ".tapmc-lammps-plugin")):
         pytest.skip(f"no LAMMPS with PLUGIN and exceptions in {prefix}: build it with "
-                    "tools/setup/build-lammps-plugin.sh (20-40 min), or run with TAPMC_SLOW=1 "
-                    "to let this test build it")
+                    "tools/setup/build-lammps-plugin.sh (about 20 minutes on two busy cores), "
+                    "or run with TAPMC_SLOW=1 to let this test build it")
     # TAPMC compiled against that LAMMPS (its headers, LAMMPS_EXCEPTIONS, its liblammps), with
     # the compiler settings of the main build so that the kernels are the same machine code.
     build = os.path.join(BUILD_DIR, "lammps-plugin")

@@ -30,7 +30,8 @@ for arg in "$@"; do
   case "$arg" in
     --print-prefix) print_prefix=1 ;;
     --keep-build) keep_build=1 ;;
-    *) echo "build-lammps-plugin.sh: unknown argument '$arg' (allowed: --print-prefix, --keep-build)" >&2
+    *) echo "build-lammps-plugin.sh: unknown argument '$arg'" \
+            "(allowed: --print-prefix, --keep-build)" >&2
        exit 2 ;;
   esac
 done
@@ -40,8 +41,9 @@ if [ -z "$pkg_version" ]; then
   pkg_version=$(dpkg-query -W -f='${source:Version}' liblammps0 2>/dev/null || true)
 fi
 if [ -z "$pkg_version" ]; then
-  echo "build-lammps-plugin.sh: Debian's liblammps0 is not installed, so the LAMMPS version to" \
-       "build is unknown; install it (tools/setup/install-deps.sh) or set TAPMC_LAMMPS_SRC_VERSION" >&2
+  echo "build-lammps-plugin.sh: Debian's liblammps0 is not installed, so the LAMMPS version" \
+       "to build is unknown; install it (tools/setup/install-deps.sh) or set" \
+       "TAPMC_LAMMPS_SRC_VERSION" >&2
   exit 1
 fi
 
@@ -81,18 +83,25 @@ if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$stamp_text" ] && [ -x "$prefix/bin
   exit 0
 fi
 
-for tool in cmake ninja mpicxx; do
+for tool in cmake make mpicxx; do
   command -v "$tool" > /dev/null || {
     echo "build-lammps-plugin.sh: '$tool' not found; install the build dependencies" \
          "(tools/setup/install-deps.sh)" >&2; exit 1; }
 done
 
-TAPMC_LAMMPS_SRC_VERSION=$pkg_version bash "$here/fetch-lammps-headers.sh" --source-tree "$work/source"
-
 jobs=${TAPMC_JOBS:-$(nproc)}
+if ! [[ "$jobs" =~ ^[1-9][0-9]*$ ]]; then
+  echo "build-lammps-plugin.sh: TAPMC_JOBS = '$jobs' must be a positive integer" >&2
+  exit 2
+fi
+
+TAPMC_LAMMPS_SRC_VERSION=$pkg_version \
+  bash "$here/fetch-lammps-headers.sh" --source-tree "$work/source"
+
 start=$(date +%s)
-echo "tapmc: building LAMMPS ($pkg_version) with PLUGIN and exceptions, $jobs jobs, into $prefix" >&2
-cmake -S "$work/source/cmake" -B "$work/build" -G Ninja "${cmake_options[@]}" > "$work/configure.log"
+echo "tapmc: building LAMMPS ($pkg_version) with PLUGIN and exceptions," \
+     "$jobs jobs, into $prefix" >&2
+cmake -S "$work/source/cmake" -B "$work/build" "${cmake_options[@]}" > "$work/configure.log"
 # nice: the build is long and must not starve interactive work on a shared machine
 nice -n 19 cmake --build "$work/build" -j "$jobs"
 rm -rf "$prefix"
