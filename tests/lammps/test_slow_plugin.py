@@ -4,7 +4,7 @@
 # `plugin load`, from its own `lmp` and from its Python module; the paper's periodic example then
 # follows exactly the trajectory of lmp_tapmc (same kernels, same random streams), and in Python
 # a bad TAPMC input raises an exception carrying TAPMC's message while LAMMPS stays usable.
-# Skipped when that LAMMPS is not built, unless TAPMC_SLOW=1, which builds it (about 20 minutes on
+# Skipped when that LAMMPS is not built, unless TAPMC_SLOW=1, which builds it (about 15 minutes on
 # two busy cores).
 import json
 import os
@@ -94,7 +94,7 @@ def plugin(tmp_path_factory):
         assert rc == 0, out
     elif not os.path.exists(os.path.join(prefix, ".tapmc-lammps-plugin")):
         pytest.skip(f"no LAMMPS with PLUGIN and exceptions in {prefix}: build it with "
-                    "tools/setup/build-lammps-plugin.sh (about 20 minutes on two busy cores), "
+                    "tools/setup/build-lammps-plugin.sh (about 15 minutes on two busy cores), "
                     "or run with TAPMC_SLOW=1 to let this test build it")
     # TAPMC compiled against that LAMMPS (its headers, LAMMPS_EXCEPTIONS, its liblammps), with
     # the compiler settings of the main build so that the kernels are the same machine code.
@@ -160,9 +160,9 @@ def test_plugin_lmp_follows_the_lmp_tapmc_trajectory(plugin, reference, tmp_path
 
 
 def test_plugin_lmp_under_mpirun(plugin, reference, tmp_path):
-    """`plugin load` registers the styles on every rank; the redeposition does not depend on
-    the rank count, so the end state is the serial one (sums over ranks may round differently
-    in the last bits)."""
+    """`plugin load` registers the styles on every rank; every rank performs the same
+    redeposition of all spheres, so the end state is the serial one bit for bit (the printed
+    measurements are sums over ranks, which may round differently in the last bits)."""
     prefix, lib = plugin
     write_inputs(str(tmp_path), lib)
     rc, out = run(MPIRUN + ["-np", "2", os.path.join(prefix, "bin", "lmp"), "-in", "in.plugin",
@@ -173,8 +173,8 @@ def test_plugin_lmp_under_mpirun(plugin, reference, tmp_path):
     (ref_names, ref_table), (ref_box, ref_atoms) = reference
     assert names == ref_names
     np.testing.assert_allclose(table, ref_table, rtol=1e-12, atol=0)
-    np.testing.assert_allclose(box, ref_box, rtol=1e-12, atol=0)
-    np.testing.assert_allclose(atoms, ref_atoms, rtol=1e-12, atol=0)
+    np.testing.assert_array_equal(box, ref_box)
+    np.testing.assert_array_equal(atoms, ref_atoms)
 
 
 def test_python_module_raises_on_bad_input_and_keeps_going(plugin, reference, tmp_path):
