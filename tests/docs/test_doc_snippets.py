@@ -42,14 +42,7 @@ PYTHON = "/usr/bin/python3"
 
 # Blocks in pages owned by work merged in parallel that fail today, keyed file:line. Each entry is
 # reported as an expected failure; the list is emptied when that work is merged.
-KNOWN_FAILURES_TO_FIX_AT_MERGE = {
-    "doc/fix_mc_settle.rst:47": "group 'grains' is not defined; xwalls 0 32 lie outside the box",
-    "doc/tapmc-pores.rst:55": "a `::` block without a language (a usage synopsis: text)",
-    "doc/tapmc-pores.rst:107": "a `::` block without a language; genfromtxt reads the '#' line "
-                               "as the header on Debian's numpy; plt is not imported",
-    "doc/tapmc-pores.rst:116": "a `::` block without a language; the dump files do not exist",
-    "doc/tapmc-pores.rst": "cites docs/model.md",
-}
+KNOWN_FAILURES_TO_FIX_AT_MERGE = {}
 
 # The standard small scene of a LAMMPS fragment: 200 spheres of radius 0.5 (diameter 1) on a
 # floor at z = 0, periodic sides of 8, open top; two atom types.
