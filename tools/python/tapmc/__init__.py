@@ -1,0 +1,14 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""tapmc: analysis of TAPMC tapping runs (Philippe & Bideau, sections III and IV).
+
+Submodules: ``readers`` (LAMMPS logs, fix ave/time and fix print files, dumps), ``laws``
+(fits of eqs. 3, 4, 6, 7 and a sum of two exponentials), ``fluctuations`` (steady state,
+power spectrum, sigma_X), ``hysteresis`` (ramp runs of Fig. 4), ``ageing`` (eqs. 5, 6),
+``profiles`` (delta Phi_lateral / central, vertical profiles) and ``pores`` (tapmc-pores
+outputs, the tetrahedral law, the volume tail, Percus-Yevick P0).
+"""
+
+__version__ = "0.1.0"
+
+from . import readers  # noqa: F401
+from .readers import TapmcFormatError, read_ave_time, read_dump, read_fix_print, read_log  # noqa: F401
