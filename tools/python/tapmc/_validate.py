@@ -94,3 +94,9 @@ def new_axis(ax):
     import matplotlib.pyplot as plt
     _, ax = plt.subplots()
     return ax
+
+
+def result(attr, method="compute", doc=None):
+    """A read-only property returning ``self.<attr>``, or raising NotComputedError before
+    ``method()`` has set it."""
+    return property(lambda self: require(self, attr, method), doc=doc)
