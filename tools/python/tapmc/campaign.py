@@ -58,13 +58,15 @@ class CampaignError(RuntimeError):
 def find_lmp(lmp=None):
     """Path of the LAMMPS executable: ``lmp``, else $TAPMC_LMP, else the repository's
     build/lmp_tapmc, else ``lmp_tapmc`` on the PATH."""
-    candidates = [lmp, os.environ.get("TAPMC_LMP"), _REPO / "build" / "lmp_tapmc",
+    if lmp is not None:
+        if Path(lmp).is_file() and os.access(lmp, os.X_OK):
+            return Path(lmp).resolve()
+        raise FileNotFoundError(f"lmp = {str(lmp)!r}: not an executable file")
+    candidates = [os.environ.get("TAPMC_LMP"), _REPO / "build" / "lmp_tapmc",
                   shutil.which("lmp_tapmc")]
     for c in candidates:
         if c and Path(c).is_file() and os.access(c, os.X_OK):
             return Path(c).resolve()
-    if lmp is not None:
-        raise FileNotFoundError(f"lmp = {lmp!r}: not an executable file")
     raise FileNotFoundError("no LAMMPS executable: build TAPMC (build/lmp_tapmc), set TAPMC_LMP "
                             "or pass lmp=PATH")
 
@@ -277,10 +279,11 @@ def _log_error(log):
     """The first ERROR line of a LAMMPS log (or screen file), or ''."""
     if not log.exists():
         return ""
-    for line in log.read_text(errors="replace").splitlines():
-        if "ERROR" in line:
+    lines = log.read_text(errors="replace").splitlines()
+    for line in lines:  # LAMMPS's own error lines start with ERROR (echoed input does not)
+        if line.startswith("ERROR"):
             return line.strip()
-    return ""
+    return next((line.strip() for line in lines if "ERROR" in line), "")
 
 
 def _taps_done(path):
