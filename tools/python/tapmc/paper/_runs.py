@@ -80,12 +80,12 @@ def ageing_run(scale, bc, eps, seed, taps=None):
                       int(seed))
 
 
-def pore_run(scale, bc, eps, seed, dump_times, taps=None):
+def pore_run(scale, bc, eps, seed, dump_times, taps=None, kind="pores"):
     times = sorted(int(t) for t in dump_times if int(t) > 0)
     taps = int(times[-1] if taps is None else taps)
     variables = dict(_size(scale), eps=float(eps), taps=taps, bc=bc,
                      dump_times=times)
-    return _RunSpec()(f"pores_{bc}_eps{eps_tag(eps)}_t{taps}_s{seed}", _input(PORE_DUMPS),
+    return _RunSpec()(f"{kind}_{bc}_eps{eps_tag(eps)}_t{taps}_s{seed}", _input(PORE_DUMPS),
                       variables, int(seed))
 
 
@@ -165,3 +165,16 @@ def run_pores(dumps, prefix, args):
     if proc.returncode != 0:
         raise RuntimeError(f"{' '.join(cmd)} failed ({proc.returncode}): {proc.stderr.strip()}")
     return prefix
+
+
+def matching_scale(specs):
+    """The preset of ``tapmc.paper.scales`` whose N, L and eta are those of ``specs`` (the
+    runs do not record their scale), or None."""
+    from .scales import SCALES
+
+    for scale in SCALES.values():
+        if all(int(s.variables.get("N", -1)) == scale.N
+               and float(s.variables.get("L", -1)) == float(scale.L)
+               and float(s.variables.get("eta", -1)) == float(scale.eta) for s in specs):
+            return scale
+    return None

@@ -2,8 +2,8 @@
 """Fig. 10 of Philippe & Bideau: volume distributions of the pores at different stages of the
 compaction (section IV.B).
 
-F.B.C., eps = 2e-2 (``scale.fig10_eps``); the packing dumped at t = 0, 1, 4, 10, 30, 100, 300,
-1000 and 4000 taps (those within the run). tapmc-pores gives, in a statistics box 2R above the
+F.B.C., eps = 2e-2 (``scale.pore_eps``, ``scale.pore_bc``); the packing dumped at t = 0, 1, 4,
+10, 30, 100, 300, 1000 and 4000 taps (``scale.dump_times``). tapmc-pores gives, in a statistics box 2R above the
 floor and 2R from the walls, 18R high at most (lower when the packing is: 80 % of its highest
 centre), (a) rho_v(xi) = xi^3 P(xi) against xi = r/R and (b) rho_v(v) against v = xi^3, mean
 and standard error over seeds. T and O mark the tetrahedral (xi_T = sqrt(3/2) - 1) and
@@ -26,26 +26,20 @@ from . import _plotting as P
 from . import _pores, _runs
 
 NAME = "fig10"
-BC = "fbc"
-#: the paper's tap counts of Fig. 10.
-PAPER_TIMES = (1, 4, 10, 30, 100, 300, 1000, 4000)
-
-
-def dump_times(taps):
-    """The paper's times up to ``taps``, and ``taps`` itself."""
-    return sorted({t for t in PAPER_TIMES if t <= taps} | {int(taps)})
+#: run-name prefix of the Fig. 10 runs.
+KIND = "pores"
 
 
 def runs(scale, seeds):
-    """One pore-dump F.B.C. run per seed at ``scale.fig10_eps`` with dumps at the paper's
-    times (up to ``scale.taps``)."""
-    return [_runs.pore_run(scale, BC, scale.fig10_eps, s, dump_times(scale.taps))
+    """One pore-dump run per seed at ``scale.pore_eps`` and ``scale.pore_bc`` with dumps at
+    ``scale.dump_times`` (and t = 0)."""
+    return [_runs.pore_run(scale, scale.pore_bc, scale.pore_eps, s, scale.dump_times, kind=KIND)
             for s in _runs.seed_list(seeds)]
 
 
-def distributions(campaign, bc=BC):
+def distributions(campaign, bc=None):
     """dict step -> lists over seeds of (xi, xi3_P_xi, v, rho_v, nu, xi_min)."""
-    specs = _runs.select(campaign, "pores_", bc=bc)
+    specs = _runs.select(campaign, KIND + "_", **({} if bc is None else {"bc": bc}))
     if not specs:
         raise ValueError(f"campaign {campaign.directory} has no pore-dump {bc} run")
     out = defaultdict(lambda: defaultdict(list))
@@ -118,7 +112,7 @@ def draw(campaign, out_dir):
         ax.set_ylim(bottom=0)
     ax_xi.set_xlim(0, 1.0)
     ax_v.set_xlim(0, 0.6)
-    ax_xi.legend(fontsize=6, ncol=2, title=f"F.B.C.", title_fontsize=6)
+    ax_xi.legend(fontsize=6, ncol=2)
     P.save_figure(fig, png)
     table.write(csv)
     return png, csv

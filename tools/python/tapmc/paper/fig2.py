@@ -23,6 +23,8 @@ from . import _runs
 NAME = "fig2"
 #: Boundary conditions of the paper's Fig. 2.
 BC = "fbc"
+#: the paper's eps of Fig. 2.
+PAPER_EPS = (5e-3, 5e-2, 0.15)
 
 
 def runs(scale, seeds):
@@ -55,8 +57,20 @@ def fit_curve(t, mean, sem):
     return InverseLogLaw().fit(t, mean, sigma=sigma)
 
 
+def paper_eps(available, targets=PAPER_EPS):
+    """For each of the paper's eps, the nearest available eps (in log): the campaign may hold
+    more F.B.C. runs (Figs. 6-8) than Fig. 2 shows."""
+    available = sorted(available)
+    return sorted({min(available, key=lambda e: abs(np.log(e / t))) for t in targets})
+
+
 def draw(campaign, out_dir, eps_values=None):
+    """Draw Fig. 2 from the campaign's F.B.C. constant-eps runs: those of ``eps_values``, by
+    default the eps nearest to the paper's 5e-3, 5e-2 and 0.15."""
     png, csv = P.figure_paths(out_dir, NAME)
+    available = {s.variables["eps"] for s in _runs.select(campaign, "const_", bc=BC)}
+    if eps_values is None and available:
+        eps_values = paper_eps(available)
     data = curves(campaign, "phi_b", BC, eps_values)
     table = P.FigureTable()
     fig, (ax_log, ax_lin) = P.new_figure(2, 1)

@@ -24,18 +24,21 @@ from . import _pores, _runs
 
 NAME = "fig9"
 BC = "pbc"
+#: run-name prefix of the Fig. 9 runs (dumps at t = 0 and at the end only).
+KIND = "p0"
 
 
 def runs(scale, seeds):
-    """One pore-dump P.B.C. run per seed at ``scale.fig9_eps``, dumped at t = 0 and at the end."""
-    return [_runs.pore_run(scale, BC, scale.fig9_eps, s, [scale.taps])
+    """One pore-dump P.B.C. run per seed at ``scale.pore_eps`` (the paper does not give the
+    eps of Fig. 9), dumped at t = 0 and after ``scale.taps`` taps."""
+    return [_runs.pore_run(scale, BC, scale.pore_eps, s, [scale.taps], kind=KIND)
             for s in _runs.seed_list(seeds)]
 
 
 def p0_curves(campaign, bc=BC):
     """dict 'initial'/'final' -> (sigma, list of P0 per seed, list of phi per seed) and the
     stereological <Phi^c> at both ends, over the campaign's pore-dump runs of ``bc``."""
-    specs = _runs.select(campaign, "pores_", bc=bc)
+    specs = _runs.select(campaign, KIND + "_", bc=bc)
     if not specs:
         raise ValueError(f"campaign {campaign.directory} has no pore-dump {bc} run")
     out = {"initial": [None, [], []], "final": [None, [], []]}
