@@ -8,8 +8,6 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
-import numpy as np
-
 from tapmc.readers import read_dump
 
 from . import _runs
@@ -58,9 +56,3 @@ def analyse(campaign, spec, tag, steps=None, extra=()):
     args = ["--radii", "--z", f"{window[0]:g}:{top:.4f}", *extra]
     prefix = _runs.run_pores(list(files.values()), run_dir / f"pores_{tag}", args)
     return prefix, window
-
-
-def read_csv(path):
-    """A tapmc-pores CSV (first comment line skipped) as a numpy structured array."""
-    return np.genfromtxt(path, delimiter=",", names=True, comments="#", dtype=None,
-                         encoding="utf-8")

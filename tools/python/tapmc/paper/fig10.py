@@ -11,7 +11,9 @@ octahedral (xi_O = sqrt(2) - 1) sites.
 
 CSV panels: ``a`` (series ``t=<taps>``, x = xi), ``b`` (series ``t=<taps>``, x = v),
 ``params``: per t (x = t) ``nu`` (mean normalised pore volume), ``xi_min`` (smallest pore
-size), ``small`` (integral of xi^3 P(xi) over [xi_T, xi_O]), ``large`` (over [xi_O, inf));
+size), ``xi_T`` (the start of the (xi - xi_T)^2 law fitted between 0.15 and xi_O,
+``tapmc.pores.TetrahedralLaw``), ``nu_tail`` (the decay volume of the exponential tail of
+rho_v(v), ``tapmc.pores.VolumeTail``; the paper: close to nu), ``small`` (integral of xi^3 P(xi) over [xi_T, xi_O]), ``large`` (over [xi_O, inf));
 ``small_change`` and ``large_change`` (integral of |rho_v(t_last) - rho_v(0)| over each range,
 relative to the initial integral: the paper finds the small-pore part invariant).
 """
@@ -38,27 +40,31 @@ def runs(scale, seeds):
 
 
 def distributions(campaign, bc=None):
-    """dict step -> lists over seeds of (xi, xi3_P_xi, v, rho_v, nu, xi_min)."""
+    """dict step -> lists over seeds of xi, xi3_P_xi, v, rho_v, nu, xi_min (smallest selected
+    pore), xi_T (fitted by ``tapmc.pores.TetrahedralLaw``) and nu_tail (``VolumeTail``)."""
+    from tapmc.pores import read_pores
+
     specs = _runs.select(campaign, KIND + "_", **({} if bc is None else {"bc": bc}))
     if not specs:
-        raise ValueError(f"campaign {campaign.directory} has no pore-dump {bc} run")
+        raise ValueError(f"campaign {campaign.directory} has no pore-dump run")
     out = defaultdict(lambda: defaultdict(list))
     for spec in specs:
         prefix, _ = _pores.analyse(campaign, spec, "fig10", extra=["--frame-hist", "--pores"])
-        hist = _pores.read_csv(str(prefix) + ".frame_hist.csv")
-        frames = _pores.read_csv(str(prefix) + ".frames.csv")
-        pores = _pores.read_csv(str(prefix) + ".pores.csv")
-        for row in np.atleast_1d(frames):
-            step = int(row["timestep"])
-            rows = hist[hist["timestep"] == step]
+        pores = read_pores(prefix)
+        for step in pores.timesteps:
+            dist = pores.distribution(step)
             d = out[step]
-            d["xi"].append(rows["xi"])
-            d["xi3_P_xi"].append(rows["xi3_P_xi"])
-            d["v"].append(rows["v"])
-            d["rho_v"].append(rows["rho_v"])
-            d["nu"].append([float(row["nu"])])
-            sel = (pores["timestep"] == step) & (pores["selected"] == 1)
-            d["xi_min"].append([float(pores["xi"][sel].min())])
+            for name in ("xi", "xi3_P_xi", "v", "rho_v"):
+                d[name].append(getattr(dist, name))
+            d["nu"].append([dist.nu])
+            sel = (pores.pores["timestep"] == step) & (pores.pores["selected"] == 1)
+            d["xi_min"].append([float(pores.pores["xi"][sel].min())])
+            for name, fit, key in (("xi_T", dist.tetrahedral_law, "xi_T"),
+                                   ("nu_tail", dist.volume_tail, "nu_tail")):
+                try:
+                    d[name].append([fit().params[key]])
+                except (ValueError, RuntimeError):
+                    pass
     return dict(sorted(out.items()))
 
 
@@ -86,7 +92,9 @@ def draw(campaign, out_dir):
         P.errorbars(ax_v, v, rv[0], rv[1], label=label, color=color, lw=0.9)
         table.add("a", f"t={step}", xi, *rxi)
         table.add("b", f"t={step}", v, *rv)
-        for name in ("nu", "xi_min"):
+        for name in ("nu", "xi_min", "xi_T", "nu_tail"):
+            if not d.get(name):
+                continue
             m, s, n = P.seed_stats(d[name])
             table.add("params", name, step, m[0], s[0], n[0])
         table.add("params", "small", step, _integral(xi, rxi[0], P.XI_T, P.XI_O), None,

@@ -31,30 +31,36 @@ def runs(scale, seeds):
     return _fig6_runs(scale, seeds)
 
 
-def increases(campaign, bc=BC):
-    """dict eps -> (t, (lateral mean, sem, n), (central mean, sem, n), finals) over seeds."""
+def increases(campaign, bc=BC, eps_values=None):
+    """dict eps -> (t, (lateral mean, sem, n), (central mean, sem, n), finals) over seeds, for
+    ``eps_values`` (default: the preset's ``profile_eps`` when the runs are those of a preset
+    of ``tapmc.paper.scales``, else every eps of the campaign's ``bc`` constant-eps runs)."""
     from tapmc.profiles import ProfileIncrease
 
-    groups = _runs.by_variable(_runs.select(campaign, "const_", bc=bc), "eps")
+    specs = _runs.select(campaign, "const_", bc=bc)
+    if eps_values is None:
+        scale = _runs.matching_scale(specs)
+        eps_values = scale.profile_eps if scale is not None else None
+    groups = _runs.by_variable(specs, "eps")
+    if eps_values is not None:
+        groups = {e: g for e, g in groups.items()
+                  if any(abs(e - v) <= 1e-9 * v for v in eps_values)}
     if not groups:
         raise ValueError(f"campaign {campaign.directory} has no constant-eps {bc} run")
     out = {}
     for eps, specs in groups.items():
-        lat, cen, t = [], [], None
-        for spec in specs:
-            tab = _runs.taps_table(campaign, spec)
-            inc = ProfileIncrease(tab["step"], tab["lateral"], tab["central"])
-            if hasattr(inc, "compute"):
-                inc = inc.compute()
-            lat.append(np.asarray(inc.delta_lateral))
-            cen.append(np.asarray(inc.delta_central))
-            t = tab["step"] if t is None or len(tab["step"]) < len(t) else t
-        length = min(len(x) for x in lat)
+        tables = [_runs.taps_table(campaign, s) for s in specs]
+        length = min(len(tab["step"]) for tab in tables)
+        t = tables[0]["step"][:length]
+        inc = ProfileIncrease(t, np.array([tab["lateral"][:length] for tab in tables]),
+                              np.array([tab["central"][:length] for tab in tables])).compute()
+        n = np.full(length, len(tables))
         last = max(length // 4, 1)
-        finals = {"lateral": P.seed_stats([[x[length - last:length].mean()] for x in lat]),
-                  "central": P.seed_stats([[x[length - last:length].mean()] for x in cen])}
-        out[eps] = (t[:length], P.seed_stats([x[:length] for x in lat]),
-                    P.seed_stats([x[:length] for x in cen]), finals)
+        finals = {zone: P.seed_stats([[x[length - last:].mean()] for x in per_seed])
+                  for zone, per_seed in (("lateral", inc.delta_lateral_all),
+                                         ("central", inc.delta_central_all))}
+        out[eps] = (t, (np.asarray(inc.delta_lateral), np.asarray(inc.delta_lateral_sem), n),
+                    (np.asarray(inc.delta_central), np.asarray(inc.delta_central_sem), n), finals)
     return out
 
 

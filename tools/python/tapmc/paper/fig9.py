@@ -38,6 +38,8 @@ def runs(scale, seeds):
 def p0_curves(campaign, bc=BC):
     """dict 'initial'/'final' -> (sigma, list of P0 per seed, list of phi per seed) and the
     stereological <Phi^c> at both ends, over the campaign's pore-dump runs of ``bc``."""
+    from tapmc.pores import read_pores
+
     specs = _runs.select(campaign, KIND + "_", bc=bc)
     if not specs:
         raise ValueError(f"campaign {campaign.directory} has no pore-dump {bc} run")
@@ -51,11 +53,10 @@ def p0_curves(campaign, bc=BC):
             prefix, _ = _pores.analyse(campaign, spec, f"p0_t{step}", steps=[step],
                                        extra=["--p0", str(_pores.P0_POINTS), "--seed",
                                               str(spec.seed)])
-            p0 = _pores.read_csv(str(prefix) + ".p0.csv")
-            frames = _pores.read_csv(str(prefix) + ".frames.csv")
-            out[key][0] = p0["sigma"]
-            out[key][1].append(p0["P0_measured"])
-            out[key][2].append([float(np.atleast_1d(frames["phi_p0"])[0])])
+            pores = read_pores(prefix)
+            out[key][0] = pores.p0["sigma"]
+            out[key][1].append(pores.p0["P0_measured"])
+            out[key][2].append([float(pores.frames["phi_p0"][0])])
             row = np.searchsorted(tab["step"], step)
             phi_c[key].append([tab["phi_c"][row]])
     return out, phi_c
