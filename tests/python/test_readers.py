@@ -51,6 +51,8 @@ dump_modify d1 format float %.10g
 dump d2 all custom 2 no_type.dump id x y z diameter
 dump_modify d2 format float %.10g
 dump d3 all atom 2 atom.dump
+dump d4 all custom 2 items.dump id type x y z
+dump_modify d4 units yes time yes format float %.10g
 thermo_style custom step c_phi[1] c_phi[2] c_phi[3]
 thermo_modify format float %.10g
 thermo 1
@@ -144,6 +146,9 @@ def test_dumps_agree_across_formats_and_backends(run_dir):
         "with_type mda": read_dump(run_dir / "with_type.dump", backend="mdanalysis"),
         "atom native": read_dump(run_dir / "atom.dump", radius=0.5),
         "atom mda": read_dump(run_dir / "atom.dump", backend="mdanalysis"),
+        # UNITS and TIME items: eleven header lines, which MDAnalysis alone cannot read
+        "items native": read_dump(run_dir / "items.dump"),
+        "items mda": read_dump(run_dir / "items.dump", backend="mdanalysis"),
     }
     for name, dump in others.items():
         assert len(dump) == 3, name

@@ -86,7 +86,14 @@ class Ageing:
     def _fit(self, tws, bootstrap, seed):
         require(self, "_A")
         law = AgeingLaw()
-        res = law.fit(*self._points(tws))
+        t, a, sem = self._points(tws)
+        # weights from the law, not from each point's own scatter: a point that fluctuates low
+        # also has a low standard error and would pull a fit weighted by it (the standard error
+        # of a mean of squares is proportional to its mean, so sigma = law * median(sem / A))
+        first = law.fit(t, a, sem)
+        ratio = float(np.median(sem / a))
+        model_sigma = np.maximum(first(t), 1e-300) * ratio
+        res = law.fit(t, a, model_sigma, p0=list(first.params.values()))
         if bootstrap:
             # the points of one curve (and of curves of different t_w) come from the same
             # realizations and are strongly correlated: the weighted-fit covariance ignores
@@ -97,7 +104,8 @@ class Ageing:
             samples = []
             for _ in range(bootstrap):
                 rows = rng.integers(0, self.n_realizations, self.n_realizations)
-                samples.append(list(law.fit(*self._points(tws, rows), p0=p0).params.values()))
+                tb, ab, _ = self._points(tws, rows)
+                samples.append(list(law.fit(tb, ab, model_sigma, p0=p0).params.values()))
             res.covariance = np.cov(np.array(samples).T)
             lo, hi = (np.broadcast_to(v, (3,)).astype(float) for v in law.bounds(None, None))
             determined, notes = law._assess(res._popt, res.covariance, lo, hi)
