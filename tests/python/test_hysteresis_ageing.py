@@ -115,3 +115,17 @@ def test_plots():
     z = np.cumsum(rng.normal(size=(5, 60)), axis=1)
     ax = Ageing(z, [0, 10]).compute().plot(fit=False)
     assert len(ax.containers) == 2
+
+
+def test_ageing_undetermined_cases_are_reported():
+    # three random walks: A grows linearly (eq. 6 in its t << tau_A regime) and three
+    # realizations are too few for bootstrap errors; both must show in the verdict
+    rng = np.random.default_rng(0)
+    z = 7.0 + np.cumsum(rng.normal(0, 1e-3, (3, 101)), axis=1)
+    ag = Ageing(z, [1, 10, 30]).compute()
+    for tw in (1, 10, 30):
+        res = ag.fit(tw, bootstrap=30)
+        assert not res.determined and res.note
+    assert "too few" in ag.collapse(bootstrap=30).note
+    with pytest.raises(ValueError, match="bootstrap"):
+        ag.fit(1, bootstrap=-1)

@@ -19,7 +19,11 @@ import numpy as np
 from ._validate import as_1d, as_2d, new_axis, require, result
 from .laws import AgeingLaw
 
-__all__ = ["Ageing"]
+__all__ = ["Ageing", "MIN_BOOTSTRAP_REALIZATIONS"]
+
+#: fewer realizations than this have too few distinct resamples for bootstrap errors (the
+#: paper averaged 10)
+MIN_BOOTSTRAP_REALIZATIONS = 5
 
 
 class Ageing:
@@ -71,22 +75,27 @@ class Ageing:
     A = result("_A")
     A_sem = result("_A_sem")
 
-    def _points(self, tws, rows=None):
+    def _curves(self, tws, rows=None):
+        """(t, A, sem) of every (t_w, t > 0) pair, realizations ``rows`` (default all)."""
         z = self.z if rows is None else self.z[rows]
+        t = self._t_in[self._t_in > 0]
         ts, ys, ss = [], [], []
         for tw in tws:
-            d2 = (z[:, tw + self._t_in] - z[:, [tw]]) ** 2
-            a, s = d2.mean(axis=0), d2.std(axis=0, ddof=1) / np.sqrt(len(z))
-            keep = (self._t_in > 0) & (s > 0)
-            ts.append(self._t_in[keep].astype(float))
-            ys.append(a[keep])
-            ss.append(s[keep])
+            d2 = (z[:, tw + t] - z[:, [tw]]) ** 2
+            ts.append(t.astype(float))
+            ys.append(d2.mean(axis=0))
+            ss.append(d2.std(axis=0, ddof=1) / np.sqrt(len(z)))
         return np.concatenate(ts), np.concatenate(ys), np.concatenate(ss)
 
     def _fit(self, tws, bootstrap, seed):
         require(self, "_A")
+        bootstrap = int(bootstrap)
+        if bootstrap < 0:
+            raise ValueError(f"bootstrap = {bootstrap} must be >= 0 (0: no resampling)")
         law = AgeingLaw()
-        t, a, sem = self._points(tws)
+        t, a, sem = self._curves(tws)
+        keep = sem > 0  # a delay where every realization moved alike carries no error estimate
+        t, a, sem = t[keep], a[keep], sem[keep]
         # weights from the law, not from each point's own scatter: a point that fluctuates low
         # also has a low standard error and would pull a fit weighted by it (the standard error
         # of a mean of squares is proportional to its mean, so sigma = law * median(sem / A))
@@ -104,14 +113,30 @@ class Ageing:
             samples = []
             for _ in range(bootstrap):
                 rows = rng.integers(0, self.n_realizations, self.n_realizations)
-                tb, ab, _ = self._points(tws, rows)
-                samples.append(list(law.fit(tb, ab, model_sigma, p0=p0).params.values()))
-            res.covariance = np.cov(np.array(samples).T)
+                _, ab, _ = self._curves(tws, rows)
+                fit_b = law.fit(t, ab[keep], model_sigma, p0=p0)
+                if not fit_b.note.startswith("fit did not converge"):
+                    samples.append(list(fit_b.params.values()))
             lo, hi = (np.broadcast_to(v, (3,)).astype(float) for v in law.bounds(None, None))
+            if len(samples) < max(10, bootstrap // 2):
+                res.determined = False
+                res.note = "; ".join(filter(None, [res.note, f"only {len(samples)} of "
+                                                   f"{bootstrap} bootstrap refits converged: "
+                                                   "errors from the weighted fit, too small"]))
+                return res
+            # determined only if both the fit's own covariance (it sees degenerate directions
+            # of the law, e.g. the linear regime t << tau_A) and the bootstrap one pass
+            analytic_ok, analytic_note = res.determined, res.note
+            res.covariance = np.cov(np.array(samples).T)
             determined, notes = law._assess(res._popt, res.covariance, lo, hi)
-            res.determined = determined
-            res.note = "; ".join(notes + [f"errors from {bootstrap} bootstrap resamples of "
-                                          "the realizations"])
+            res.determined = determined and analytic_ok
+            notes = ([f"weighted fit: {analytic_note}"] if analytic_note else []) + notes
+            if self.n_realizations < MIN_BOOTSTRAP_REALIZATIONS:
+                res.determined = False
+                notes.append(f"only {self.n_realizations} realizations: too few for bootstrap "
+                             f"errors (at least {MIN_BOOTSTRAP_REALIZATIONS})")
+            res.note = "; ".join(notes + [f"errors from {len(samples)} bootstrap resamples "
+                                          "of the realizations"])
         return res
 
     def fit(self, t_w, bootstrap=100, seed=0):
