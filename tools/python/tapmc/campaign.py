@@ -210,6 +210,8 @@ def _trim_rows(path, before_step):
         return
     kept = []
     for line in path.read_text().splitlines(keepends=True):
+        if not line.endswith("\n"):
+            break  # a row cut short by the kill
         step = _first_int(line)
         if line.startswith("#") or (step is not None and step < before_step):
             kept.append(line)
