@@ -124,8 +124,8 @@ def test_ageing_undetermined_cases_are_reported():
     z = 7.0 + np.cumsum(rng.normal(0, 1e-3, (3, 101)), axis=1)
     ag = Ageing(z, [1, 10, 30]).compute()
     for tw in (1, 10, 30):
-        res = ag.fit(tw, bootstrap=30)
+        res = ag.fit(tw, bootstrap=12)
         assert not res.determined and res.note
-    assert "too few" in ag.collapse(bootstrap=30).note
+    assert "too few" in ag.collapse(bootstrap=12).note
     with pytest.raises(ValueError, match="bootstrap"):
         ag.fit(1, bootstrap=-1)
