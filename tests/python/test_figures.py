@@ -6,7 +6,6 @@ axes that hold data), and the validation report built from the same campaign."""
 
 import math
 import os
-import shutil
 import sys
 import time
 from pathlib import Path

@@ -8,6 +8,7 @@ folder serves every figure that needs it and :class:`tapmc.campaign.Campaign` ru
 
 from __future__ import annotations
 
+import json
 import os
 import shutil
 import subprocess
@@ -165,6 +166,29 @@ def run_pores(dumps, prefix, args):
     if proc.returncode != 0:
         raise RuntimeError(f"{' '.join(cmd)} failed ({proc.returncode}): {proc.stderr.strip()}")
     return prefix
+
+
+#: file of a campaign folder that records the Scale the campaign was built with.
+SCALE_FILE = "scale.json"
+
+
+def write_scale(directory, scale):
+    """Record ``scale`` in the campaign folder (see :func:`campaign_scale`)."""
+    directory = Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    (directory / SCALE_FILE).write_text(json.dumps(scale.as_dict(), indent=1) + "\n")
+
+
+def campaign_scale(campaign):
+    """The Scale of a campaign: the one recorded in its folder (``scale.json``, written by
+    :func:`write_scale`), else the preset of ``tapmc.paper.scales`` that its runs match, else
+    None (the runs themselves do not record the scale)."""
+    from .scales import Scale
+
+    path = Path(campaign.directory) / SCALE_FILE
+    if path.exists():
+        return Scale(**json.loads(path.read_text()))
+    return matching_scale(campaign.runs)
 
 
 def matching_scale(specs):

@@ -66,13 +66,14 @@ def paper_eps(available, targets=PAPER_EPS):
 
 def draw(campaign, out_dir, eps_values=None):
     """Draw Fig. 2 from the campaign's F.B.C. constant-eps runs: those of ``eps_values``, by
-    default the preset's ``fig2_eps`` when the runs are those of a preset of
-    ``tapmc.paper.scales``, else the eps nearest to the paper's 5e-3, 5e-2 and 0.15."""
+    default the campaign's ``fig2_eps`` when its scale is known
+    (``tapmc.paper._runs.campaign_scale``), else the eps nearest to the paper's 5e-3, 5e-2
+    and 0.15."""
     png, csv = P.figure_paths(out_dir, NAME)
     specs = _runs.select(campaign, "const_", bc=BC)
     available = {s.variables["eps"] for s in specs}
     if eps_values is None and available:
-        scale = _runs.matching_scale(specs)
+        scale = _runs.campaign_scale(campaign)
         eps_values = scale.fig2_eps if scale is not None else paper_eps(available)
     data = curves(campaign, "phi_b", BC, eps_values)
     table = P.FigureTable()

@@ -45,7 +45,7 @@ def ageing(campaign, waiting_times=None, bc=BC):
     length = min(len(z) for z in series)
     z = np.array([s[:length] for s in series])
     if waiting_times is None:
-        scale = _runs.matching_scale(specs)
+        scale = _runs.campaign_scale(campaign)
         if scale is not None and scale.ageing_taps == length - 1:
             waiting_times = scale.ageing_waiting_times
         else:

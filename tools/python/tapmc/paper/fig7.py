@@ -15,7 +15,7 @@ CSV panels: ``a`` (series ``initial``, ``final``; x = x/R), ``params`` (``fronti
 from __future__ import annotations
 
 from . import _plotting as P
-from .fig6 import BC, nearest_eps_runs, profiles, radius
+from .fig6 import nearest_eps_runs, profiles
 from .fig6 import runs as _fig6_runs
 
 NAME = "fig7"

@@ -33,13 +33,14 @@ def runs(scale, seeds):
 
 def increases(campaign, bc=BC, eps_values=None):
     """dict eps -> (t, (lateral mean, sem, n), (central mean, sem, n), finals) over seeds, for
-    ``eps_values`` (default: the preset's ``profile_eps`` when the runs are those of a preset
-    of ``tapmc.paper.scales``, else every eps of the campaign's ``bc`` constant-eps runs)."""
+    ``eps_values`` (default: the campaign's ``profile_eps`` when its scale is known
+    (``tapmc.paper._runs.campaign_scale``), else every eps of the campaign's ``bc``
+    constant-eps runs)."""
     from tapmc.profiles import ProfileIncrease
 
     specs = _runs.select(campaign, "const_", bc=bc)
     if eps_values is None:
-        scale = _runs.matching_scale(specs)
+        scale = _runs.campaign_scale(campaign)
         eps_values = scale.profile_eps if scale is not None else None
     groups = _runs.by_variable(specs, "eps")
     if eps_values is not None:

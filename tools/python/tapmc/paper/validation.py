@@ -131,14 +131,21 @@ class _Csv:
 def describe_scale(campaign):
     """One sentence on the scale that was run, from the runs themselves."""
     specs = campaign.runs
-    scale = _runs.matching_scale(specs)
+    scale = _runs.campaign_scale(campaign)
     sizes = sorted({(int(s.variables["N"]), float(s.variables["L"])) for s in specs
                     if "N" in s.variables})
     taps = sorted({int(s.taps) for s in specs if s.taps is not None})
     seeds = sorted({s.seed for s in specs})
     eta = sorted({float(s.variables["eta"]) for s in specs if "eta" in s.variables})
     size = ", ".join(f"N = {n} spheres in a {l:g}R x {l:g}R box" for n, l in sizes)
-    name = f"the ``{scale.name}`` preset" if scale is not None else "a custom scale"
+    from .scales import SCALES
+
+    if scale is None:
+        name = "a scale of no preset"
+    elif scale.name in SCALES and SCALES[scale.name] == scale:
+        name = f"the ``{scale.name}`` preset"
+    else:
+        name = f"the scale ``{scale.name}``"
     return (f"Scale: {name} ({size}; {len(specs)} runs of {', '.join(map(str, taps))} taps; "
             f"{len(seeds)} seeds per point; redeposition threshold eta = "
             f"{', '.join(f'{e:g}' for e in eta)}). The paper used N = 4096, L = 32R, 4000 taps "
@@ -197,7 +204,7 @@ def _rows_and_sections(campaign, files):
                      _fmt(m, s), verdict_range(m, s, lo, hi), "range"))
         steady = csv["fig4"].get("a", "steady")
         if steady is not None and len(steady[0]) >= 3:
-            sq, mean, sem = steady[0], steady[1], steady[2]
+            mean, sem = steady[1], steady[2]
             i = int(np.nanargmax(mean))
             rows.append(("Bell: steady state at the largest sqrt(eps) below the maximum",
                          "lower (bell shape)", f"{_fmt(mean[-1], sem[-1], pct=True)} vs "
@@ -257,8 +264,8 @@ def _rows_and_sections(campaign, files):
             i = int(np.argmin(d[1]))
             m, s = float(d[1][i]), float(d[2][i])
             ok = m >= PAPER["xi_T"] - 1e-3 and m - PAPER["xi_T"] <= XI_MIN_TOLERANCE
-            rows.append(("Smallest pore xi_min", f"xi_T = {PAPER['xi_T']:.4f}", _fmt(m, s, digits=4),
-                         "agrees" if ok else "disagrees", "xi"))
+            rows.append(("Smallest pore xi_min", f"xi_T = {PAPER['xi_T']:.4f}",
+                         _fmt(m, s, digits=4), "agrees" if ok else "disagrees", "xi"))
         small, _, _ = c.param("small_change")
         large, _, _ = c.param("large_change")
         rows.append(("Change of xi^3 P(xi), small pores [xi_T, xi_O] vs large (> xi_O)",
