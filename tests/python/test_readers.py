@@ -220,6 +220,15 @@ def test_broken_log_ave_time_print(tmp_path):
     _expect(_write(tmp_path, "bad.log", log), 5, read_log)
     _expect(_write(tmp_path, "short.log", log.replace("1 abc", "1 2 3")), 5, read_log)
     _expect(_write(tmp_path, "empty.log", "LAMMPS (29 Sep 2021)\n"), None, read_log)
+    printed = log.replace("1 abc\n", "tap 1 done\n1 2.0\n7 0.5 0.25\n")
+    _expect(_write(tmp_path, "printed.log", printed), 5, read_log)
+    lenient = read_log(tmp_path / "printed.log", strict=False)
+    assert lenient.skipped == [(5, "tap 1 done"), (7, "7 0.5 0.25")]
+    np.testing.assert_array_equal(lenient.thermo.data, [[0, 1.0], [1, 2.0]])
+    _expect(_write(tmp_path, "bad2.log", printed.replace("1 2.0", "1 two")), 6, read_log,
+            strict=False)
+    multi = log.replace("Step Temp", "---------------- Step        0 ----- CPU = 0 (sec)")
+    _expect(_write(tmp_path, "multi.log", multi), 3, read_log)
     killed = read_log(_write(tmp_path, "killed.log", log.replace("1 abc\nLoop time of 0.1 on "
                                                                 "1 procs\n", "1 2.0\n")))
     assert not killed.runs[0].complete and len(killed.thermo) == 2

@@ -95,12 +95,14 @@ class Thermo(Table):
 
 class Log:
     """A LAMMPS log: ``runs`` (one :class:`Thermo` per ``run``), ``warnings`` (every
-    ``WARNING`` line of the file, in order) and ``thermo`` (all runs concatenated)."""
+    ``WARNING`` line of the file, in order), ``thermo`` (all runs concatenated) and
+    ``skipped`` (lines left out of the tables by ``read_log(..., strict=False)``)."""
 
     def __init__(self, runs, warnings, path=None):
         self.runs = runs
         self.warnings = warnings
         self.path = path
+        self.skipped = []
 
     @property
     def thermo(self):
@@ -136,13 +138,17 @@ class Log:
 _MEMORY_LINE = re.compile(r"^\s*(Per MPI rank memory|Memory usage per processor)")
 
 
-def read_log(path):
-    """Read a LAMMPS log file: the thermo table of every ``run`` (``thermo_style`` one-line
-    styles: the header line follows the "Per MPI rank memory" line, the table ends at
-    ``Loop time``) and the ``WARNING`` lines. A table row with the wrong number of fields or a
-    non-numeric field raises :class:`TapmcFormatError`; a log cut during a run (killed job)
-    keeps the rows written so far and marks that run ``complete = False``."""
-    runs, warnings = [], []
+def read_log(path, strict=True):
+    """Read a LAMMPS log file: the thermo table of every ``run`` (one-line thermo styles: the
+    header line follows the "Per MPI rank memory" line, the table ends at ``Loop time``) and
+    the ``WARNING`` lines. A log cut during a run (killed job, ``ERROR``) keeps the rows written
+    so far and marks that run ``complete = False``.
+
+    A table row with a non-numeric field raises :class:`TapmcFormatError`. Other lines inside a
+    table (a wrong number of fields, text) raise it too when ``strict``; with ``strict=False``
+    they are skipped and listed in ``Log.skipped`` as (line number, text), for logs where
+    ``fix print`` or ``print`` also write to the screen during runs."""
+    runs, warnings, skipped = [], [], []
     with _open_text(path) as f:
         lines = f.read().splitlines()
     i = 0
@@ -155,6 +161,9 @@ def read_log(path):
             header = lines[i + 1].split()
             if not header:
                 raise TapmcFormatError(path, i + 2, "empty thermo header line")
+            if header[0].startswith("---"):
+                raise TapmcFormatError(path, i + 2, "multi-line thermo output (thermo_modify "
+                                       "line multi) is not supported: use one-line thermo")
             i += 2
             rows, run_warnings, complete = [], [], False
             while i < n:
@@ -170,19 +179,26 @@ def read_log(path):
                     run_warnings.append(text.strip())
                 elif fields == header:
                     pass  # header repeated (thermo_modify line yes / multi-line styles)
-                elif fields and (_is_float(fields[0]) or len(fields) == len(header)):
+                elif len(fields) == len(header) and _is_float(fields[0]):
                     rows.append(_floats(path, i + 1, fields, len(header)))
-                elif fields:
+                elif fields and strict:
+                    what = (f"expected {len(header)} fields, found {len(fields)}"
+                            if _is_float(fields[0]) else "unexpected text")
                     raise TapmcFormatError(path, i + 1,
-                                           f"unexpected line in the thermo table of run "
-                                           f"{len(runs) + 1}: {text.strip()[:60]!r}")
+                                           f"{what} in the thermo table of run {len(runs) + 1}: "
+                                           f"{text.strip()[:60]!r} (other output during the "
+                                           "run? read_log(path, strict=False) skips it)")
+                elif fields:
+                    skipped.append((i + 1, text))
                 i += 1
             runs.append(Thermo(header, np.array(rows).reshape(-1, len(header)), path,
                                run_warnings, complete))
         i += 1
     if not runs:
         raise TapmcFormatError(path, None, "no thermo table found (no 'run' in this log?)")
-    return Log(runs, warnings, path)
+    log = Log(runs, warnings, path)
+    log.skipped = skipped
+    return log
 
 
 class AveTime(Table):
