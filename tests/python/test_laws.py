@@ -115,6 +115,8 @@ def test_validation_messages():
         InverseLogLaw().fit([0, 1], [1, 2])
     with pytest.raises(ValueError, match="same length"):
         InverseLogLaw().fit(np.arange(10), np.arange(9))
+    with pytest.raises(ValueError, match="taps must be >= 0"):
+        ZLaw().fit(np.arange(-1.0, 9.0), np.ones(10))
     with pytest.raises(ValueError, match="sigma"):
         AgeingLaw().fit(np.arange(10.0), np.arange(10.0), sigma=0.0)
     with pytest.raises(ValueError, match="boundary"):

@@ -201,6 +201,17 @@ class _Law:
         return not notes, notes
 
 
+class _TapsLaw(_Law):
+    """A law of the number of taps t >= 0 (the logarithmic laws of eqs. 3, 4 and 6)."""
+
+    def _prepare(self, x, y, sigma):
+        x, y, sigma, weighted = super()._prepare(x, y, sigma)
+        if np.any(x < 0):
+            bad = int(np.flatnonzero(x < 0)[0])
+            raise ValueError(f"x[{bad}] = {x[bad]:g}: taps must be >= 0")
+        return x, y, sigma, weighted
+
+
 def _log_term(t, B, tau):
     return B * np.log1p(np.maximum(t, 0.0) / tau)
 
@@ -242,7 +253,7 @@ def _grid_inverse_log(t, targets, w, ncols):
     return best[1]
 
 
-class InverseLogLaw(_Law):
+class InverseLogLaw(_TapsLaw):
     """Eq. 3 (section III.A): X(t) = X_inf - dX_inf / (1 + B ln(1 + t/tau)); X(0) = X_inf -
     dX_inf. Parameters ``X_inf, dX_inf, B, tau`` (B, tau > 0; dX_inf of either sign, negative
     for a decompaction). At small eps the data often fix only a combination of (X_inf, B, tau):
@@ -262,7 +273,7 @@ class InverseLogLaw(_Law):
         return [c_inf, c_inf - c_0, B, tau]
 
 
-class ZLaw(_Law):
+class ZLaw(_TapsLaw):
     """Eq. 4 (section III.A): <Z>(t) = Z_inf (1 + B L) / (Z_inf/Z_0 + B L), L = ln(1 + t/tau).
     Parameters ``Z_inf, Z_0, B, tau`` (all > 0). Equivalently 1/<Z> = g/Z_0 + (1 - g)/Z_inf with
     g = 1/(1 + B L), which gives the starting values."""
@@ -286,7 +297,7 @@ class ZLaw(_Law):
                 B, tau]
 
 
-class AgeingLaw(_Law):
+class AgeingLaw(_TapsLaw):
     """Eq. 6 (section III.C): A(t) = A_inf (1 - 1/(1 + B_A ln(1 + t/tau_A))). Parameters
     ``A_inf, B_A, tau_A`` (all > 0)."""
 
