@@ -46,6 +46,21 @@ def test_slope_recovered_from_power_law_noise(beta):
     assert np.mean(z) < 1.3  # no bias beyond a fraction of the error
 
 
+def test_slope_from_several_realizations():
+    # periodograms of independent series average: the error shrinks about as 1/sqrt(series)
+    beta, z, errs = 1.3, [], []
+    for seed in range(20):
+        rng = np.random.default_rng(500 + seed)
+        x = np.array([7.0 + powerlaw_noise(1000, beta, rng) for _ in range(5)])
+        ps = PowerSpectrum(x).compute()
+        z.append((ps.slope + beta) / ps.slope_error)
+        errs.append(ps.slope_error)
+    z = np.abs(np.array(z))
+    assert np.mean(z <= 2) >= 0.8 and 0.4 <= np.mean(z <= 1) <= 0.95, z
+    single = PowerSpectrum(x[0]).compute().slope_error
+    assert np.mean(errs) < 0.7 * single
+
+
 def test_spectrum_of_white_noise_and_frequency_units():
     rng = np.random.default_rng(5)
     x = rng.normal(size=4096)

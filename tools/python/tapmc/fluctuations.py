@@ -13,7 +13,7 @@ section III.A-B and Fig. 3 of Philippe & Bideau.
 import numpy as np
 from scipy import signal, special
 
-from ._validate import as_1d, new_axis, positive_int, result
+from ._validate import as_1d, as_2d, new_axis, positive_int, result
 from .laws import FitResult, _Law
 
 __all__ = ["SteadyState", "PowerSpectrum", "sigma_x", "sigma_scaling", "Proportional",
@@ -118,8 +118,9 @@ class PowerSpectrum:
     bins), each bin weighted by the number of periodogram ordinates it averages; its
     uncertainty is scaled by the scatter of the binned points about the line.
 
-    Parameters: ``x`` (one value per sample), ``steady_from`` (first sample of the segment,
-    default 0), ``taps_per_sample`` (taps between samples, default 1: f in 1/taps),
+    Parameters: ``x`` (one value per sample; or (n_series, n_samples) for independent
+    realizations, e.g. seeds, whose periodograms are averaged, each about its own X_SS),
+    ``steady_from`` (first sample of the segment, default 0), ``taps_per_sample`` (taps between samples, default 1: f in 1/taps),
     ``bins_per_decade``, ``fit_range`` ((f_min, f_max) in 1/taps or None).
     Results: ``frequency`` and ``power`` (binned), ``counts`` (ordinates per bin),
     ``raw_frequency`` and ``raw_power`` (the periodogram), ``slope``, ``slope_error``,
@@ -128,10 +129,15 @@ class PowerSpectrum:
 
     def __init__(self, x, steady_from=None, taps_per_sample=1, bins_per_decade=DEFAULT_BINS_PER_DECADE,
                  fit_range=None, window="hann"):
-        self.x = as_1d("x", x, min_len=16)
+        arr = np.asarray(x, dtype=float)
+        if arr.ndim == 2:
+            self.x = as_2d("x", arr, min_rows=1, min_cols=16)
+        else:
+            self.x = as_1d("x", arr, min_len=16)[None, :]
+        n = self.x.shape[1]
         start = 0 if steady_from is None else positive_int("steady_from", steady_from, minimum=0)
-        if len(self.x) - start < 16:
-            raise ValueError(f"steady_from = {steady_from} leaves {len(self.x) - start} samples;"
+        if n - start < 16:
+            raise ValueError(f"steady_from = {steady_from} leaves {n - start} samples;"
                              " at least 16 are needed for a spectrum")
         self.steady_from = start
         self.taps_per_sample = positive_int("taps_per_sample", taps_per_sample)
@@ -150,11 +156,13 @@ class PowerSpectrum:
         self._fit = None
 
     def compute(self):
-        seg = self.x[self.steady_from:]
-        self.x_ss = float(seg.mean())
-        self.sigma = float(seg.std())
-        f, p = signal.periodogram(seg - self.x_ss, fs=1.0 / self.taps_per_sample,
+        seg = self.x[:, self.steady_from:]
+        x_ss = seg.mean(axis=1, keepdims=True)  # X_SS of every series
+        self.x_ss = float(x_ss.mean())
+        self.sigma = float(np.sqrt(np.mean((seg - x_ss) ** 2)))
+        f, p = signal.periodogram(seg - x_ss, fs=1.0 / self.taps_per_sample, axis=1,
                                   window=self.window, detrend="constant", scaling="density")
+        p = p.mean(axis=0)  # independent series: their periodograms average
         f, p = f[1:], p[1:]  # f = 0 carries the removed mean only
         self.raw_frequency, self.raw_power = f, p
         bpd = self.bins_per_decade
@@ -196,7 +204,8 @@ class PowerSpectrum:
             np.add.at(cov, (index[:-lag], index[lag:]), r)
             np.add.at(cov, (index[lag:], index[:-lag]), r)
         counts = np.bincount(index, minlength=nbins).astype(float)
-        cov = (cov / np.outer(counts, counts))[np.ix_(use, use)]  # relative cov of bin means
+        # relative covariance of the bin means, over n_series independent periodograms
+        cov = (cov / np.outer(counts, counts))[np.ix_(use, use)] / self.x.shape[0]
         m_eff = 1.0 / np.diag(cov)
         ratio = special.polygamma(1, m_eff) * m_eff  # exact / delta-method variance of the log
         cov = cov * np.sqrt(np.outer(ratio, ratio)) / np.log(10) ** 2
