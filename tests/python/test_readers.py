@@ -140,7 +140,12 @@ def test_dumps_agree_across_formats_and_backends(run_dir):
         assert frame.positions[:, 0].min() >= -2 and frame.positions[:, 0].max() <= 2
         z_mean = th["c_phi[3]"][list(th["Step"]).index(frame.step)]
         assert frame.positions[:, 2].mean() == pytest.approx(z_mean, rel=1e-8)
+    import gzip
+    with open(run_dir / "with_type.dump", "rb") as src, \
+            gzip.open(run_dir / "compressed.dump.gz", "wb") as dst:
+        dst.write(src.read())
     others = {
+        "gzip native": read_dump(run_dir / "compressed.dump.gz"),
         "no_type native": read_dump(run_dir / "no_type.dump"),
         "no_type mda": read_dump(run_dir / "no_type.dump", backend="mdanalysis"),
         "with_type mda": read_dump(run_dir / "with_type.dump", backend="mdanalysis"),
