@@ -61,7 +61,8 @@ class Hysteresis:
             if np.ptp(window) > LEVEL_TOLERANCE:
                 raise ValueError(f"level {k} (taps {a + 1}..{b}): sqrt(eps) varies from "
                                  f"{window.min():g} to {window.max():g} inside the averaging "
-                                 f"window of the last {self.last} taps; check taps_per_level")
+                                 f"window of the last {self.last} taps; check taps_per_level and that "
+                                 "entry k is tap k + 1 (no step-0 row)")
             ss = SteadyState(self.x[a:b], last=self.last).compute()
             rows.append(["", k, float(np.median(window)), ss.mean, ss.sem, ss.std, a + 1, b])
         values = np.array([r[2] for r in rows])
