@@ -15,7 +15,6 @@ sys.path.insert(0, str(SOURCE / "tools" / "python"))
 
 from tapmc.laws import (AgeingLaw, InverseLogLaw, ProfileLaw, TwoExponentials,  # noqa: E402
                         ZLaw, profile_gradient)
-from tapmc._validate import NotComputedError  # noqa: E402,F401
 
 SEEDS = 30
 # Taps sampled as in a run written every tap at early times and sparsely later (log spacing).

@@ -10,13 +10,20 @@ outputs, the tetrahedral law, the volume tail, Percus-Yevick P0). See doc/python
 
 __version__ = "0.1.0"
 
-from . import ageing, fluctuations, hysteresis, laws, pores, profiles, readers  # noqa: F401
-from .ageing import Ageing  # noqa: F401
-from .fluctuations import PowerSpectrum, SteadyState, sigma_scaling, sigma_x  # noqa: F401
-from .hysteresis import Hysteresis  # noqa: F401
-from .laws import (AgeingLaw, FitResult, InverseLogLaw, ProfileLaw, TwoExponentials,  # noqa: F401
+from . import ageing, fluctuations, hysteresis, laws, pores, profiles, readers
+from .ageing import Ageing
+from .fluctuations import PowerSpectrum, SteadyState, sigma_scaling, sigma_x
+from .hysteresis import Hysteresis
+from .laws import (AgeingLaw, FitResult, InverseLogLaw, ProfileLaw, TwoExponentials,
                    ZLaw, profile_gradient)
-from .pores import (TetrahedralLaw, VolumeTail, percus_yevick_p0, read_pores)  # noqa: F401
-from .profiles import ProfileIncrease, transversal_profile, vertical_profile  # noqa: F401
-from .readers import (TapmcFormatError, read_ave_time, read_dump, read_fix_print,  # noqa: F401
+from .pores import (TetrahedralLaw, VolumeTail, percus_yevick_p0, read_pores)
+from .profiles import ProfileIncrease, transversal_profile, vertical_profile
+from .readers import (TapmcFormatError, read_ave_time, read_dump, read_fix_print,
                       read_log)
+
+__all__ = ["ageing", "fluctuations", "hysteresis", "laws", "pores", "profiles", "readers",
+           "Ageing", "PowerSpectrum", "SteadyState", "sigma_scaling", "sigma_x", "Hysteresis",
+           "AgeingLaw", "FitResult", "InverseLogLaw", "ProfileLaw", "TwoExponentials", "ZLaw",
+           "profile_gradient", "TetrahedralLaw", "VolumeTail", "percus_yevick_p0", "read_pores",
+           "ProfileIncrease", "transversal_profile", "vertical_profile", "TapmcFormatError",
+           "read_ave_time", "read_dump", "read_fix_print", "read_log"]

@@ -30,7 +30,7 @@ import re
 import numpy as np
 
 from ._validate import as_1d, in_range, new_axis
-from .laws import FitResult, _Law  # noqa: F401 (FitResult is the type returned by the fits)
+from .laws import _Law
 from .readers import TapmcFormatError
 
 __all__ = ["XI_T", "XI_O", "CsvTable", "PoreOutput", "PoreDistribution", "read_pores",
