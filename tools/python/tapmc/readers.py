@@ -402,15 +402,26 @@ def _parse_dump_frames(path, radius=None, boundary=None):
                                        "NUMBER OF ATOMS or BOX BOUNDS")
             if not columns:  # old dump atom without column names
                 columns = ["id", "type", "xs", "ys", "zs"]
-            table = np.empty((n_atoms, len(columns)))
-            for a in range(n_atoms):
-                fields = nextline().split()
-                if len(fields) < len(columns):
-                    raise TapmcFormatError(path, lineno, f"expected {len(columns)} fields "
-                                           f"({' '.join(columns)}), found {len(fields)}")
-                table[a] = _floats(path, lineno, fields[:len(columns)])
-                if not np.all(np.isfinite(table[a])):
-                    raise TapmcFormatError(path, lineno, "NaN or infinite value")
+            first_atom_line = lineno + 1
+            text = [nextline() for _ in range(n_atoms)]
+            table = None
+            try:  # fast path: the whole block at once; any doubt goes line by line
+                flat = np.array(" ".join(text).split(), dtype=float)
+                if flat.size == n_atoms * len(columns) and np.all(np.isfinite(flat)):
+                    table = flat.reshape(n_atoms, len(columns))
+            except ValueError:
+                pass
+            if table is None:
+                table = np.empty((n_atoms, len(columns)))
+                for a, line_text in enumerate(text):
+                    here = first_atom_line + a
+                    fields = line_text.split()
+                    if len(fields) != len(columns):
+                        raise TapmcFormatError(path, here, f"expected {len(columns)} fields "
+                                               f"({' '.join(columns)}), found {len(fields)}")
+                    table[a] = _floats(path, here, fields)
+                    if not np.all(np.isfinite(table[a])):
+                        raise TapmcFormatError(path, here, "NaN or infinite value")
             lo = np.array([b[0] for b in bounds])
             hi = np.array([b[1] for b in bounds])
             if boundary is not None:
