@@ -29,6 +29,16 @@ class TapmcFormatError(ValueError):
         super().__init__(f"{where}: {what}")
 
 
+def _mdanalysis_universe(path):
+    """MDAnalysis Universe of a LAMMPS dump, without its import-time and mass-guessing
+    warnings (irrelevant here: only positions are used)."""
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        import MDAnalysis
+        return MDAnalysis.Universe(path, format="LAMMPSDUMP")
+
+
 def _open_text(path):
     """Open a text file, gzip-compressed or not (detected from the content, not the name)."""
     with open(path, "rb") as probe:
@@ -546,20 +556,18 @@ class Dump:
     def universe(self):
         """An MDAnalysis Universe of this dump (positions shifted to the origin, as MDAnalysis
         does; add ``frame.box_lo`` back for absolute coordinates)."""
-        import MDAnalysis
         frames = list(_parse_dump_frames(self.path, self.radius, self.boundary))
         path, temporary = self._mda_compatible_file(frames)
-        universe = MDAnalysis.Universe(path, format="LAMMPSDUMP")
+        universe = _mdanalysis_universe(path)
         if temporary:  # MDAnalysis keeps reading the file: remove it when Python exits
             import atexit
             atexit.register(lambda: os.path.exists(path) and os.remove(path))
         return universe
 
     def _mdanalysis_positions(self, frames):
-        import MDAnalysis
         path, temporary = self._mda_compatible_file(frames)
         try:
-            universe = MDAnalysis.Universe(path, format="LAMMPSDUMP")
+            universe = _mdanalysis_universe(path)
             if len(universe.trajectory) != len(frames):
                 raise TapmcFormatError(self.path, None, f"MDAnalysis reads "
                                        f"{len(universe.trajectory)} frames, the header scan "
