@@ -129,7 +129,7 @@ class _Csv:
 
 
 def describe_scale(campaign):
-    """One sentence on the scale that was run, from the runs themselves."""
+    """The scale that was run, from the runs and the campaign's recorded Scale."""
     specs = campaign.runs
     scale = _runs.campaign_scale(campaign)
     sizes = sorted({(int(s.variables["N"]), float(s.variables["L"])) for s in specs
@@ -146,10 +146,20 @@ def describe_scale(campaign):
         name = f"the ``{scale.name}`` preset"
     else:
         name = f"the scale ``{scale.name}``"
-    return (f"Scale: {name} ({size}; {len(specs)} runs of {', '.join(map(str, taps))} taps; "
+    text = (f"Scale: {name} ({size}; {len(specs)} runs of {', '.join(map(str, taps))} taps; "
             f"{len(seeds)} seeds per point; redeposition threshold eta = "
             f"{', '.join(f'{e:g}' for e in eta)}). The paper used N = 4096, L = 32R, 4000 taps "
             "and 10 realizations.")
+    if scale is not None and not (scale.name in SCALES and SCALES[scale.name] == scale):
+        fields = scale.as_dict()
+        fields["steady sqrt(eps)"] = tuple(round(math.sqrt(e), 4) for e in scale.steady_eps)
+        keys = ("taps", "steady_last", "fig2_eps", "steady sqrt(eps)", "ramp_sqrt0",
+                "ramp_dsqrt", "ramp_levels", "ramp_taps_per_level", "ageing_eps",
+                "ageing_taps", "ageing_waiting_times", "profile_eps", "pore_eps", "dump_times")
+        text += (" Its fields (a ``Scale.replace`` of the quick preset, recorded in the "
+                 "campaign's ``scale.json``): "
+                 + "; ".join(f"{k} = {fields[k]}" for k in keys) + ".")
+    return text
 
 
 def _initial_phi(campaign):
@@ -391,7 +401,8 @@ def write_rst(campaign, files, out_dir):
              f"Summary: {agree} of {len(rows)} comparisons agree with the paper; "
              f"{undecided} are undecided at this statistics.", ""]
     lines += _rst_table(rows)
-    lines += ["", "Regenerate this page (hours at the full scale):", "",
+    lines += ["", "Regenerate this page from a quick campaign (``--full`` for the paper's scale, "
+              "hours to days):", "",
               ".. snippet: skip runs a whole campaign",
               "", ".. code-block:: sh", "",
               "   build/tapmc-paper report --quick --campaign tapmc-paper-quick --out doc", ""]
