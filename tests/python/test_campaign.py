@@ -1,0 +1,195 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""tapmc.campaign: a process pool of tiny runs, resuming a killed campaign from restart files
+(finished runs untouched, the resumed trajectory identical to an uninterrupted one), the
+manifest, LAMMPS -partition mode under mpirun, and clear errors for bad runs."""
+
+import hashlib
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", Path(__file__).resolve().parents[2]))
+BUILD = Path(os.environ.get("TAPMC_BUILD_DIR", SOURCE / "build"))
+LMP = Path(os.environ.get("TAPMC_LMP", BUILD / "lmp_tapmc"))
+sys.path.insert(0, str(SOURCE / "tools" / "python"))
+
+from tapmc.campaign import Campaign, CampaignError, RunSpec  # noqa: E402
+
+CONSTANT_EPS = SOURCE / "examples" / "paper" / "in.constant_eps"
+TINY = dict(N=64, L=8, eta=1e-5, rsteps=5, thermo_every=5)
+
+pytestmark = pytest.mark.skipif(not LMP.is_file(), reason=f"no LAMMPS executable at {LMP}")
+
+
+def steps(path):
+    """Steps of the data rows of a per-tap file."""
+    return [int(line.split()[0]) for line in Path(path).read_text().splitlines()
+            if line.strip() and not line.startswith("#")]
+
+
+def test_pool_two_jobs_and_manifest(tmp_path):
+    runs = [RunSpec(f"pbc_eps{eps}_s{s}", CONSTANT_EPS, dict(TINY, taps=12, eps=eps), seed=s)
+            for eps in (0.01, 0.05) for s in (1, 2)]
+    campaign = Campaign(tmp_path / "c", runs, lmp=LMP, jobs=2, progress_interval=0.2)
+    assert campaign.run(progress=False) is campaign
+    for spec in runs:
+        folder = campaign.result(spec.name)
+        assert folder == tmp_path / "c" / "runs" / spec.name
+        assert steps(folder / "taps.dat") == list(range(13))
+        assert (folder / "DONE.json").exists()
+        log = (folder / "log.lammps").read_text()
+        assert f"mc/settle {spec.seed} " in log  # each run got its own seed
+    # different seeds, different trajectories; a run is reproducible from its seed
+    a = (campaign.result("pbc_eps0.01_s1") / "taps.dat").read_text()
+    b = (campaign.result("pbc_eps0.01_s2") / "taps.dat").read_text()
+    assert a != b
+
+    manifest = json.loads((tmp_path / "c" / "manifest.json").read_text())
+    assert manifest["mode"] == "pool" and manifest["jobs"] == 2
+    assert "2021" in manifest["lammps_version"]
+    entry = manifest["inputs"]["in.constant_eps"]
+    assert entry["sha256"] == hashlib.sha256(CONSTANT_EPS.read_bytes()).hexdigest()
+    assert (tmp_path / "c" / entry["copy"]).read_bytes() == CONSTANT_EPS.read_bytes()
+    assert [r["name"] for r in manifest["runs"]] == [r.name for r in runs]
+    for rec, spec in zip(manifest["runs"], runs):
+        assert rec["status"] == "done" and rec["seed"] == spec.seed
+        assert rec["variables"]["eps"] == spec.variables["eps"]
+        cmd = rec["command"]
+        assert cmd[0] == str(LMP.resolve())
+        assert cmd[cmd.index("seed") - 1] == "-var" and cmd[cmd.index("seed") + 1] == str(spec.seed)
+        assert rec["attempts"][-1]["returncode"] == 0 and rec["wall_s"] > 0
+
+    # a second run() does nothing: every run is done
+    mtimes = {r.name: (campaign.result(r.name) / "log.lammps").stat().st_mtime_ns for r in runs}
+    Campaign(tmp_path / "c", runs, lmp=LMP, jobs=2).run(progress=False)
+    assert mtimes == {r.name: (campaign.result(r.name) / "log.lammps").stat().st_mtime_ns
+                      for r in runs}
+    with pytest.raises(KeyError, match="nope"):
+        campaign.result("nope")
+
+
+RUNNER = """
+import sys
+sys.path.insert(0, {python!r})
+from tapmc.campaign import Campaign, RunSpec
+runs = [RunSpec("short", {inp!r}, {short!r}, seed=1), RunSpec("long", {inp!r}, {long!r}, seed=2)]
+Campaign({folder!r}, runs, lmp={lmp!r}, jobs=1, progress_interval=0.5).run()
+"""
+
+
+def test_resume_after_kill(tmp_path):
+    short = dict(TINY, taps=5)
+    long = dict(TINY, N=128, taps=200, eta=1e-6, rsteps=20, pevery=50)
+    folder = tmp_path / "c"
+    script = RUNNER.format(python=str(SOURCE / "tools" / "python"), inp=str(CONSTANT_EPS),
+                           short=short, long=long, folder=str(folder), lmp=str(LMP))
+    runner = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.DEVNULL,
+                              stderr=subprocess.STDOUT)
+    long_taps = folder / "runs" / "long" / "taps.dat"
+    deadline = time.time() + 40
+    while time.time() < deadline:  # kill once the long run is past a restart file
+        if (folder / "runs" / "long" / "restart.40").exists() and long_taps.exists() \
+                and steps(long_taps)[-1] >= 45:
+            break
+        time.sleep(0.05)
+    runner.send_signal(signal.SIGKILL)
+    runner.wait()
+    killed_at = steps(long_taps)[-1]
+    assert 45 <= killed_at < 200, "the long run finished before the kill: make it longer"
+    assert not (folder / "runs" / "long" / "DONE.json").exists()
+    time.sleep(1.0)
+    assert steps(long_taps)[-1] == killed_at, "the LAMMPS child outlived its campaign"
+
+    short_log = folder / "runs" / "short" / "log.lammps"
+    before = short_log.stat().st_mtime_ns, (folder / "runs" / "short" / "DONE.json").read_text()
+    runs = [RunSpec("short", CONSTANT_EPS, short, seed=1), RunSpec("long", CONSTANT_EPS, long, seed=2)]
+    campaign = Campaign(folder, runs, lmp=LMP, jobs=1).run(progress=False)
+
+    # the finished run was not redone
+    assert (short_log.stat().st_mtime_ns,
+            (folder / "runs" / "short" / "DONE.json").read_text()) == before
+    # the killed run continued from its latest restart file, to the right final step
+    run_dir = campaign.result("long")
+    log = (run_dir / "log.lammps").read_text()
+    assert "read_restart" in log and "Reading restart file" in log
+    assert (run_dir / "log.attempt1.lammps").exists()
+    assert steps(run_dir / "taps.dat") == list(range(201))
+    attempts = json.loads((folder / "manifest.json").read_text())["runs"][1]["attempts"]
+    assert attempts[0]["interrupted"] and attempts[-1]["resumed_from_step"] >= 40
+    # ... and followed exactly the trajectory of an uninterrupted run (counter-based RNG)
+    ref = Campaign(tmp_path / "ref", [RunSpec("long", CONSTANT_EPS, long, seed=2)],
+                   lmp=LMP, jobs=1).run(progress=False).result("long")
+    assert (run_dir / "taps.dat").read_text() == (ref / "taps.dat").read_text()
+    assert (run_dir / "profile_z.dat").read_text() == (ref / "profile_z.dat").read_text()
+    assert not list(run_dir.glob("*.from*"))
+
+
+@pytest.mark.skipif(shutil.which("mpirun") is None, reason="no mpirun")
+def test_partition_mode_two_partitions(tmp_path):
+    runs = [RunSpec(f"fbc_s{s}", CONSTANT_EPS, dict(TINY, taps=8 + s, bc="fbc"), seed=s)
+            for s in (1, 2)]
+    campaign = Campaign(tmp_path / "p", runs, lmp=LMP, jobs=2, mode="partition")
+    campaign.run(progress=False)
+    for spec in runs:
+        assert steps(campaign.result(spec.name) / "taps.dat") == list(range(spec.taps + 1))
+    manifest = json.loads((tmp_path / "p" / "manifest.json").read_text())
+    cmd = manifest["runs"][0]["command"]
+    assert "mpirun" in cmd[0] and cmd[cmd.index("-partition") + 1] == "2x1"
+    driver = (tmp_path / "p" / manifest["runs"][0]["driver"]).read_text()
+    assert "variable seed world 1 2" in driver and "variable taps world 9 10" in driver
+    # the same runs in pool mode give the same trajectories
+    pool = Campaign(tmp_path / "q", runs, lmp=LMP, jobs=2).run(progress=False)
+    for spec in runs:
+        assert (pool.result(spec.name) / "taps.dat").read_text() == \
+            (campaign.result(spec.name) / "taps.dat").read_text()
+
+
+def test_bad_input_names_run_and_log(tmp_path):
+    bad_bc = RunSpec("bad_bc", CONSTANT_EPS, dict(TINY, taps=3, bc="xyz"), seed=1)
+    broken = tmp_path / "in.broken"
+    broken.write_text("units lj\natom_style sphere\nfix_this is not a command\n")
+    bad_cmd = RunSpec("broken", broken, {}, seed=1)
+    good = RunSpec("good", CONSTANT_EPS, dict(TINY, taps=3), seed=1)
+    campaign = Campaign(tmp_path / "c", [bad_bc, bad_cmd, good], lmp=LMP, jobs=2)
+    with pytest.raises(CampaignError) as err:
+        campaign.run(progress=False)
+    text = str(err.value)
+    assert "2 of 3 runs failed" in text
+    assert "run 'bad_bc' failed: ERROR: bc = xyz; allowed values: pbc, fbc" in text
+    assert str(tmp_path / "c" / "runs" / "bad_bc" / "log.lammps") in text
+    assert "run 'broken' failed" in text and "fix_this" in text
+    assert campaign.result("good").is_dir()
+    with pytest.raises(RuntimeError, match="has not finished"):
+        campaign.result("bad_bc")
+
+
+def test_runspec_and_campaign_validation(tmp_path):
+    with pytest.raises(ValueError, match="name = 'a b'"):
+        RunSpec("a b", CONSTANT_EPS)
+    with pytest.raises(ValueError, match="input = .*no such file"):
+        RunSpec("a", tmp_path / "missing")
+    with pytest.raises(ValueError, match="seed = 0"):
+        RunSpec("a", CONSTANT_EPS, seed=0)
+    with pytest.raises(ValueError, match=r"variables\['seed'\]"):
+        RunSpec("a", CONSTANT_EPS, {"seed": 3})
+    with pytest.raises(ValueError, match="nprocs = 0"):
+        RunSpec("a", CONSTANT_EPS, nprocs=0)
+    with pytest.raises(ValueError, match="strings without spaces"):
+        RunSpec("a", CONSTANT_EPS, {"bc": "p p"})
+    assert RunSpec("r", SOURCE / "examples/paper/in.ramp", {"P": 10, "nlev": 3}).taps == 70
+    spec = RunSpec("a", CONSTANT_EPS, {"taps": 4})
+    with pytest.raises(ValueError, match="appears twice"):
+        Campaign(tmp_path, [spec, spec], lmp=LMP)
+    with pytest.raises(ValueError, match="mode = 'mpi'"):
+        Campaign(tmp_path, [spec], lmp=LMP, mode="mpi")
+    with pytest.raises(ValueError, match="jobs = 0"):
+        Campaign(tmp_path, [spec], lmp=LMP, jobs=0)
+    with pytest.raises(FileNotFoundError, match="lmp = "):
+        Campaign(tmp_path, [spec], lmp=tmp_path / "no_lmp")

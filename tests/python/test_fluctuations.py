@@ -1,0 +1,122 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+# tapmc.fluctuations: the spectral slope is recovered from synthetic 1/f^beta noise (spectral
+# synthesis, beta in [0.5, 2]) within its reported error over seeds; steady-state mean, sigma_X
+# and the batch-means standard error on series with known statistics.
+import os
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+HERE = Path(__file__).resolve().parent
+SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", HERE.parent.parent))
+sys.path.insert(0, str(SOURCE / "tools" / "python"))
+
+from tapmc._validate import NotComputedError  # noqa: E402
+from tapmc.fluctuations import PowerSpectrum, SteadyState, sigma_scaling, sigma_x  # noqa: E402
+
+
+def powerlaw_noise(n, beta, rng, pad=4):
+    """Gaussian noise with power spectrum ~ f^-beta: random Fourier amplitudes ~ f^(-beta/2)
+    over a series ``pad`` times longer, then a random window of n samples (so the sample is not
+    periodic, as a real series is not)."""
+    m = n * pad
+    f = np.fft.rfftfreq(m)
+    amp = np.zeros_like(f)
+    amp[1:] = f[1:] ** (-beta / 2.0)
+    coef = amp * (rng.normal(size=f.size) + 1j * rng.normal(size=f.size))
+    x = np.fft.irfft(coef, m)
+    start = rng.integers(0, m - n)
+    return x[start:start + n]
+
+
+@pytest.mark.parametrize("beta", [0.5, 1.0, 1.5, 2.0])
+def test_slope_recovered_from_power_law_noise(beta):
+    seeds = 30
+    z = []
+    for seed in range(seeds):
+        x = 0.6 + 1e-3 * powerlaw_noise(4000, beta, np.random.default_rng(seed))
+        ps = PowerSpectrum(x).compute()
+        z.append((ps.slope + beta) / ps.slope_error)
+    z = np.abs(np.array(z))
+    # calibrated errors: ~95 % within 2 sigma, ~68 % within 1 sigma (binomial bounds, 30 seeds)
+    assert np.mean(z <= 2) >= 0.8, z
+    assert 0.4 <= np.mean(z <= 1) <= 0.95, z
+    assert np.mean(z) < 1.3  # no bias beyond a fraction of the error
+
+
+def test_slope_from_several_realizations():
+    # periodograms of independent series average: the error shrinks about as 1/sqrt(series)
+    beta, z, errs = 1.3, [], []
+    for seed in range(20):
+        rng = np.random.default_rng(500 + seed)
+        x = np.array([7.0 + powerlaw_noise(1000, beta, rng) for _ in range(5)])
+        ps = PowerSpectrum(x).compute()
+        z.append((ps.slope + beta) / ps.slope_error)
+        errs.append(ps.slope_error)
+    z = np.abs(np.array(z))
+    assert np.mean(z <= 2) >= 0.8 and 0.4 <= np.mean(z <= 1) <= 0.95, z
+    single = PowerSpectrum(x[0]).compute().slope_error
+    assert np.mean(errs) < 0.7 * single
+
+
+def test_spectrum_of_white_noise_and_frequency_units():
+    rng = np.random.default_rng(5)
+    x = rng.normal(size=4096)
+    ps = PowerSpectrum(x, taps_per_sample=1).compute()
+    assert abs(ps.slope) < 3 * ps.slope_error
+    assert ps.frequency.max() <= 0.5 and ps.frequency.min() >= 1.0 / 4096
+    # one-sided density: its integral is the variance of X - X_SS
+    assert np.trapz(ps.raw_power, ps.raw_frequency) == pytest.approx(np.var(x), rel=0.05)
+    sparse = PowerSpectrum(x[::10], taps_per_sample=10).compute()
+    assert sparse.frequency.max() <= 0.05
+    ranged = PowerSpectrum(x, fit_range=(0.01, 0.2)).compute()
+    assert ranged.fit.x.min() >= -2 and ranged.fit.x.max() <= np.log10(0.2)
+
+
+def test_steady_state_mean_sigma_and_correlated_sem():
+    rng = np.random.default_rng(11)
+    # AR(1) fluctuations (correlation time ~ 10 taps) around 0.62 after a compaction transient
+    n, a = 4000, 0.9
+    noise = np.empty(n)
+    noise[0] = 0.0
+    eps = rng.normal(0, 1e-3, n)
+    for i in range(1, n):
+        noise[i] = a * noise[i - 1] + eps[i]
+    x = 0.62 - 0.03 * np.exp(-np.arange(n) / 300.0) + noise
+    ss = SteadyState(x, last=1000).compute()
+    sd = 1e-3 / np.sqrt(1 - a * a)
+    assert ss.mean == pytest.approx(0.62, abs=5 * ss.sem)
+    assert ss.std == pytest.approx(sd, rel=0.15)
+    assert sigma_x(x) == ss.std
+    # correlated taps: the batch-means error is larger than the naive one by about
+    # sqrt((1 + a) / (1 - a)) = 4.4
+    assert 2.5 < ss.sem / ss.sem_naive < 7
+    assert ss.last_value == x[-1]
+
+
+def test_sigma_scaling_fit_and_validation():
+    s = np.array([0.05, 0.1, 0.15, 0.2])
+    res = sigma_scaling(s, 0.02 * s, 1e-4 * np.ones(4))
+    assert res.params["k"] == pytest.approx(0.02)
+    with pytest.raises(ValueError, match="last = 5000"):
+        SteadyState(np.ones(4000), last=5000)
+    with pytest.raises(ValueError, match="steady_from"):
+        PowerSpectrum(np.ones(100), steady_from=95)
+    with pytest.raises(ValueError, match="fit_range"):
+        PowerSpectrum(np.ones(100), fit_range=(0.3, 0.1))
+    with pytest.raises(NotComputedError):
+        PowerSpectrum(np.ones(100)).slope
+    with pytest.raises(NotComputedError):
+        SteadyState(np.ones(100), last=50).mean
+
+
+def test_plots():
+    import matplotlib
+    matplotlib.use("Agg")
+    rng = np.random.default_rng(2)
+    ps = PowerSpectrum(powerlaw_noise(2000, 1.0, rng)).compute()
+    assert len(ps.plot(raw=True).lines) == 3
+    ss = SteadyState(rng.normal(size=2000)).compute()
+    assert len(ss.plot().lines) >= 4

@@ -1,0 +1,131 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+# tapmc.hysteresis: per-level steady states and the up/down/up branches of a synthetic ramp
+# with known level values; tapmc.ageing: A(t, t_w) exactly on a hand-made example, and on a
+# Gaussian process whose increments have the variogram of eq. 6 (the collapse must recover
+# its parameters within the reported errors).
+import os
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+HERE = Path(__file__).resolve().parent
+SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", HERE.parent.parent))
+sys.path.insert(0, str(SOURCE / "tools" / "python"))
+
+from tapmc.ageing import Ageing  # noqa: E402
+from tapmc.hysteresis import Hysteresis  # noqa: E402
+from tapmc.laws import AgeingLaw  # noqa: E402
+
+
+def ramp(taps_per_level, rng, noise=1e-3):
+    up = np.round(np.arange(1, 9) * 0.025, 6)       # 0.025 .. 0.2
+    down = up[-2::-1]                               # 0.175 .. 0.025
+    up2 = up[1:]                                    # 0.05 .. 0.2
+    levels = np.concatenate([up, down, up2])
+    bell = lambda s: 0.60 + 0.1 * s - 0.3 * s * s   # noqa: E731
+    truth = np.concatenate([bell(up), 0.63 - 0.05 * down, 0.63 - 0.05 * up2])
+    sqrt_eps = np.repeat(levels, taps_per_level)
+    x = np.repeat(truth, taps_per_level) + rng.normal(0, noise, sqrt_eps.size)
+    return levels, truth, sqrt_eps, x
+
+
+def test_ramp_levels_and_branches():
+    rng = np.random.default_rng(4)
+    levels, truth, sqrt_eps, x = ramp(400, rng)
+    h = Hysteresis(sqrt_eps, x, taps_per_level=400, last=100).compute()
+    lv = h.levels
+    assert len(lv) == len(levels)
+    np.testing.assert_allclose(lv["sqrt_eps"], levels)
+    assert list(lv["branch"]) == ["up1"] * 8 + ["down"] * 7 + ["up2"] * 7
+    np.testing.assert_array_equal(lv["first_tap"], 1 + 400 * np.arange(len(levels)))
+    z = (lv["mean"] - truth) / lv["sem"]
+    assert np.mean(np.abs(z) <= 2) >= 0.8
+    assert np.all(np.abs(lv["std"] - 1e-3) < 3e-4)
+    assert len(h.branch("down")) == 7 and h.branch("up2")["sqrt_eps"][0] == 0.05
+
+
+def test_ramp_incomplete_level_and_errors():
+    rng = np.random.default_rng(1)
+    _, _, sqrt_eps, x = ramp(400, rng)
+    h = Hysteresis(sqrt_eps[:-350], x[:-350], taps_per_level=400, last=100).compute()
+    assert len(h.levels) == 21 and h.incomplete_taps == 50
+    with pytest.raises(ValueError, match="varies"):
+        Hysteresis(sqrt_eps[200:], x[200:], taps_per_level=400, last=300).compute()
+    with pytest.raises(ValueError, match="last = 500 exceeds taps_per_level"):
+        Hysteresis(sqrt_eps, x, taps_per_level=400, last=500)
+    with pytest.raises(ValueError, match="same length"):
+        Hysteresis(sqrt_eps, x[:-1])
+    with pytest.raises(ValueError, match="branch"):
+        Hysteresis(sqrt_eps, x, 400, 100).compute().branch("sideways")
+
+
+def test_ageing_exact_small_example():
+    z = np.array([[0.0, 1.0, 3.0, 6.0],
+                  [0.0, 2.0, 2.0, 2.0]])
+    ag = Ageing(z, waiting_times=[0, 1]).compute()
+    np.testing.assert_array_equal(ag.t, [0, 1, 2])
+    # t_w = 0: (z(t) - z(0))^2 averaged: t=1: (1 + 4)/2, t=2: (9 + 4)/2
+    np.testing.assert_allclose(ag.A[0], [0.0, 2.5, 6.5])
+    # t_w = 1: (z(1 + t) - z(1))^2: t=1: (4 + 0)/2, t=2: (25 + 0)/2
+    np.testing.assert_allclose(ag.A[1], [0.0, 2.0, 12.5])
+    np.testing.assert_allclose(ag.A_sem[1], np.std([[0, 4, 25], [0, 0, 0]], axis=0, ddof=1)
+                               / np.sqrt(2))
+    with pytest.raises(ValueError, match="waiting time 3"):
+        Ageing(z, waiting_times=[3])
+    with pytest.raises(ValueError, match="z_series"):
+        Ageing(z[:1], waiting_times=[0])
+
+
+def test_ageing_collapse_recovers_eq6():
+    # stationary Gaussian process with covariance (A_inf/2) g(|i - j|), g = 1/(1 + B ln(1+t/tau))
+    # (decreasing and convex, so a valid covariance): the mean of (Z(t_w+t) - Z(t_w))^2 is
+    # exactly eq. 6 for every t_w, i.e. the curves collapse.
+    A_inf, B, tau = 4e-3, 0.6, 5.0
+    n = 241
+    lag = np.abs(np.subtract.outer(np.arange(n), np.arange(n)))
+    cov = 0.5 * A_inf / (1.0 + B * np.log1p(lag / tau))
+    chol = np.linalg.cholesky(cov + 1e-12 * np.eye(n))
+    rng = np.random.default_rng(9)
+    z = 7.0 + (chol @ rng.normal(size=(n, 1000))).T
+    ag = Ageing(z, waiting_times=[0, 20, 80], t=np.unique(np.geomspace(1, 160, 40).round()))
+    ag.compute()
+    expected = AgeingLaw.function(ag.t, A_inf, B, tau)
+    for tw in ag.waiting_times:
+        # the points of one curve share the realizations (strongly correlated along t), so the
+        # check is per point at 4 standard errors, not a coverage fraction
+        chi = (ag.A[tw] - expected) / ag.A_sem[tw]
+        assert np.all(np.abs(chi) < 4), (tw, chi)
+    res = ag.collapse()
+    assert res.determined, res
+    for name, true in zip(res.names, (A_inf, B, tau)):
+        # points of different t_w share realizations (correlated), so allow 3 sigma
+        assert abs(res.params[name] - true) <= 3 * res.errors[name] + 0.05 * true, res
+    assert ag.fit(20).params["A_inf"] == pytest.approx(A_inf, rel=0.3)
+
+
+def test_plots():
+    import matplotlib
+    matplotlib.use("Agg")
+    rng = np.random.default_rng(0)
+    _, _, sqrt_eps, x = ramp(200, rng)
+    ax = Hysteresis(sqrt_eps, x, 200, 100).compute().plot()
+    assert len(ax.containers) == 3
+    z = np.cumsum(rng.normal(size=(5, 60)), axis=1)
+    ax = Ageing(z, [0, 10]).compute().plot(fit=False)
+    assert len(ax.containers) == 2
+
+
+def test_ageing_undetermined_cases_are_reported():
+    # three random walks: A grows linearly (eq. 6 in its t << tau_A regime) and three
+    # realizations are too few for bootstrap errors; both must show in the verdict
+    rng = np.random.default_rng(0)
+    z = 7.0 + np.cumsum(rng.normal(0, 1e-3, (3, 101)), axis=1)
+    ag = Ageing(z, [1, 10, 30]).compute()
+    for tw in (1, 10, 30):
+        res = ag.fit(tw, bootstrap=12)
+        assert not res.determined and res.note
+    assert "too few" in ag.collapse(bootstrap=12).note
+    with pytest.raises(ValueError, match="bootstrap"):
+        ag.fit(1, bootstrap=-1)

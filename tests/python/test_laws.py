@@ -1,0 +1,132 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+# The fits of tapmc.laws recover known parameters from synthetic data with Gaussian noise,
+# within their reported 1-sigma errors, over many seeds (coverage of the 1- and 2-sigma
+# intervals compatible with 68 % and 95 %), and report undetermined fits as undetermined.
+import os
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+HERE = Path(__file__).resolve().parent
+SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", HERE.parent.parent))
+sys.path.insert(0, str(SOURCE / "tools" / "python"))
+
+from tapmc.laws import (AgeingLaw, InverseLogLaw, ProfileLaw, TwoExponentials,  # noqa: E402
+                        ZLaw, profile_gradient)
+
+SEEDS = 30
+# Taps sampled as in a run written every tap at early times and sparsely later (log spacing).
+TAPS = np.unique(np.round(np.concatenate([[0], np.geomspace(1, 4000, 200)])))
+
+
+def coverage(law, x, true, noise, seeds=SEEDS, **fit_kw):
+    """Fraction of seeds whose k-sigma interval holds the true value, per parameter."""
+    inside1 = np.zeros(len(true))
+    inside2 = np.zeros(len(true))
+    for seed in range(seeds):
+        rng = np.random.default_rng(1000 + seed)
+        y = law.function(x, *true) + rng.normal(0.0, noise, x.size)
+        res = law.fit(x, y, sigma=noise, **fit_kw)
+        assert res.determined, (seed, res)
+        p = np.array(list(res.params.values()))
+        e = np.array(list(res.errors.values()))
+        inside1 += np.abs(p - true) <= e
+        inside2 += np.abs(p - true) <= 2 * e
+    return inside1 / seeds, inside2 / seeds
+
+
+def assert_calibrated(frac1, frac2):
+    # 30 seeds: the 2-sigma count is Binomial(30, 0.954) (mean 28.6, sd 1.1), the 1-sigma count
+    # Binomial(30, 0.683) (mean 20.5, sd 2.5); the bounds are > 3 sd away for calibrated errors.
+    assert np.all(frac2 >= 0.8), frac2
+    assert np.all(frac1 >= 0.4) and np.all(frac1 <= 0.95), frac1
+    assert 0.55 <= frac1.mean() <= 0.82, frac1
+
+
+@pytest.mark.parametrize("law,true,noise", [
+    (InverseLogLaw(), np.array([0.64, 0.05, 0.4, 8.0]), 1e-3),
+    (ZLaw(), np.array([7.0, 7.4, 0.4, 3.0]), 5e-3),
+    (AgeingLaw(), np.array([0.02, 0.5, 10.0]), 3e-4),
+])
+def test_inverse_log_family_coverage(law, true, noise):
+    frac1, frac2 = coverage(law, TAPS, true, noise)
+    assert_calibrated(frac1, frac2)
+
+
+def test_two_exponentials_coverage_and_ordering():
+    t = np.arange(0.0, 2000.0, 5.0)
+    true = np.array([7.0, 0.2, 20.0, 0.2, 500.0])
+    frac1, frac2 = coverage(TwoExponentials(), t, true, 3e-3)
+    assert_calibrated(frac1, frac2)
+    # labels ordered tau1 <= tau2 whatever the start
+    y = TwoExponentials.function(t, *true)
+    res = TwoExponentials().fit(t, y, p0=[7.0, 0.2, 500.0, 0.2, 20.0])
+    assert res.params["tau1"] == pytest.approx(20.0, rel=1e-6)
+    assert res.params["tau2"] == pytest.approx(500.0, rel=1e-6)
+
+
+def test_profile_law_coverage_and_gradient_window():
+    zb = np.arange(0.25, 40.0, 0.5)
+    true = np.array([0.62, 0.002, 1.5, 28.0])
+    frac1, frac2 = coverage(ProfileLaw(boundary="fbc"), zb, true, 5e-3)
+    assert_calibrated(frac1, frac2)
+    # the straight-line gradient in the paper's windows is exact on a linear profile
+    phi = 0.63 - 0.003 * zb
+    for boundary, hi in (("fbc", 22.0), ("pbc", 26.0)):
+        g = profile_gradient(zb, phi, boundary=boundary)
+        assert g.params["alpha"] == pytest.approx(0.003, rel=1e-9)
+        assert g.x.min() >= 5.0 and g.x.max() <= hi and g.x.max() > hi - 0.5
+    assert ProfileLaw(boundary="pbc").window == (5.0, 26.0)
+
+
+def test_exact_data_give_exact_parameters():
+    true = [0.61, 0.03, 0.7, 12.0]
+    res = InverseLogLaw().fit(TAPS, InverseLogLaw.function(TAPS, *true))
+    np.testing.assert_allclose(list(res.params.values()), true, rtol=1e-6)
+    assert res.rms < 1e-10
+
+
+def test_early_linear_regime_is_not_determined():
+    # tau far beyond the data: X grows linearly, only the initial slope is fixed
+    t = np.arange(0.0, 100.0)
+    rng = np.random.default_rng(7)
+    y = InverseLogLaw.function(t, 0.64, 0.06, 0.3, 1e4) + rng.normal(0, 1e-3, t.size)
+    res = InverseLogLaw().fit(t, y, sigma=1e-3)
+    assert not res.determined
+    assert "exceeds 100%" in res.note or "correlations" in res.note
+    # the fitted curve still describes the data
+    assert res.reduced_chi2 < 1.5
+
+
+def test_small_eps_triplet_not_unique():
+    # section III.B: at small eps (X_inf, B, tau) is no longer unique
+    rng = np.random.default_rng(3)
+    y = InverseLogLaw.function(TAPS, 0.62, 0.02, 0.05, 50.0) + rng.normal(0, 2e-3, TAPS.size)
+    res = InverseLogLaw().fit(TAPS, y, sigma=2e-3)
+    assert not res.determined and res.note
+    assert "determined" in repr(res)
+
+
+def test_validation_messages():
+    with pytest.raises(ValueError, match="x needs at least"):
+        InverseLogLaw().fit([0, 1], [1, 2])
+    with pytest.raises(ValueError, match="same length"):
+        InverseLogLaw().fit(np.arange(10), np.arange(9))
+    with pytest.raises(ValueError, match="taps must be >= 0"):
+        ZLaw().fit(np.arange(-1.0, 9.0), np.ones(10))
+    with pytest.raises(ValueError, match="sigma"):
+        AgeingLaw().fit(np.arange(10.0), np.arange(10.0), sigma=0.0)
+    with pytest.raises(ValueError, match="boundary"):
+        ProfileLaw(boundary="xyz")
+    with pytest.raises(ValueError, match="window"):
+        ProfileLaw(window=(10, 5))
+
+
+def test_plot_draws_data_and_fit():
+    import matplotlib
+    matplotlib.use("Agg")
+    res = AgeingLaw().fit(TAPS, AgeingLaw.function(TAPS, 0.02, 0.5, 10.0))
+    ax = res.plot(logx=True)
+    assert len(ax.lines) >= 2

@@ -1,0 +1,283 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+# tapmc.profiles: profile increases and profiles from compute stereo/profile arrays;
+# tapmc.pores: Percus-Yevick P0 (limits, continuity, exact eq. 8 on a lattice by brute force),
+# the tetrahedral law and the volume tail recovered from sampled pore sizes over seeds, and the
+# tapmc-pores output reader (documented format; the real program when it is built).
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+HERE = Path(__file__).resolve().parent
+SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", HERE.parent.parent))
+sys.path.insert(0, str(SOURCE / "tools" / "python"))
+
+from tapmc.laws import ProfileLaw  # noqa: E402
+from tapmc.pores import (XI_O, XI_T, TetrahedralLaw, VolumeTail, percus_yevick_p0,  # noqa: E402
+                         read_pores)
+from tapmc.profiles import ProfileIncrease, transversal_profile, vertical_profile  # noqa: E402
+from tapmc.readers import AveTime, TapmcFormatError  # noqa: E402
+
+# ------------------------------------------------------------------ Percus-Yevick P0
+
+
+def test_p0_limits_and_continuity():
+    for phi in (0.1, 0.3, 0.584, 0.606, 0.64):
+        assert percus_yevick_p0(0.0, phi) == 1.0
+        assert percus_yevick_p0(1.0, phi) == pytest.approx(1 - phi)
+        h = 1e-4
+        below = percus_yevick_p0(np.array([1 - 2 * h, 1 - h, 1.0]), phi)
+        above = percus_yevick_p0(np.array([1.0, 1 + h, 1 + 2 * h]), phi)
+        # value, slope and curvature continuous at sigma = 1 (one-sided differences)
+        d1_lo, d1_hi = (below[2] - below[1]) / h, (above[1] - above[0]) / h
+        assert d1_hi == pytest.approx(d1_lo, rel=2e-3)
+        d2_lo = (below[2] - 2 * below[1] + below[0]) / h ** 2
+        d2_hi = (above[2] - 2 * above[1] + above[0]) / h ** 2
+        assert d2_hi == pytest.approx(d2_lo, rel=2e-2)
+        s = np.linspace(0, 8, 801)
+        p = percus_yevick_p0(s, phi)
+        assert np.all(np.diff(p) <= 0) and np.all(np.diff(p[p > 1e-300]) < 0) and p[-1] < 1e-6
+    # ideal-gas limit: -ln P0 -> phi sigma^3
+    s = np.linspace(1, 3, 5)
+    np.testing.assert_allclose(-np.log(percus_yevick_p0(s, 1e-6)), 1e-6 * s ** 3, rtol=1e-4)
+    with pytest.raises(ValueError, match="phi"):
+        percus_yevick_p0(1.0, 1.2)
+
+
+def test_p0_eq8_exact_on_fcc_by_brute_force():
+    from scipy.spatial import cKDTree
+    # FCC at contact, R = 0.5 (cubic cell a = sqrt(2)), 4x4x4 cells, periodic
+    a, n = np.sqrt(2.0), 4
+    basis = np.array([[0, 0, 0], [0.5, 0.5, 0], [0.5, 0, 0.5], [0, 0.5, 0.5]])
+    cells = np.array(np.meshgrid(*[np.arange(n)] * 3, indexing="ij")).reshape(3, -1).T
+    centres = ((cells[:, None, :] + basis[None]) * a).reshape(-1, 3)
+    box = n * a
+    phi = len(centres) * 4 / 3 * np.pi * 0.5 ** 3 / box ** 3
+    assert phi == pytest.approx(np.pi / np.sqrt(18))
+    rng = np.random.default_rng(3)
+    points = rng.uniform(0, box, (40000, 3))
+    dist, _ = cKDTree(centres, boxsize=box).query(points)
+    for sigma in (0.3, 0.6, 0.9, 1.0):
+        measured = np.mean(dist > sigma * 0.5)
+        err = np.sqrt(measured * (1 - measured) / len(points))
+        assert abs(measured - percus_yevick_p0(sigma, phi)) < 4 * err + 1e-12
+
+
+# ------------------------------------------------------------------ pore-size laws
+
+
+def sample_pores(rng, n, xi_t=XI_T, tail_nu=0.06):
+    """Pore sizes with xi^3 P(xi) ~ (xi - xi_t)^2 on [xi_t, xi_O] (P ~ (xi - xi_t)^2 / xi^3,
+    rejection sampling), plus larger pores whose v = xi^3 is exponential beyond xi_O^3."""
+    out = []
+    pmax = ((XI_O - xi_t) ** 2 / xi_t ** 3)
+    while len(out) < n:
+        xi = rng.uniform(xi_t, XI_O, 4 * n)
+        keep = rng.uniform(0, pmax, xi.size) < (xi - xi_t) ** 2 / xi ** 3
+        out.extend(xi[keep])
+    small = np.array(out[:n])
+    v_tail = XI_O ** 3 + rng.exponential(tail_nu, n // 3)
+    return small, np.concatenate([small, np.cbrt(v_tail)])
+
+
+def histogram(xi, bins=150, xi_max=1.5):
+    """The columns of tapmc-pores' hist.csv from pore sizes."""
+    edges = np.linspace(0, xi_max, bins + 1)
+    count, _ = np.histogram(xi, edges)
+    centres = 0.5 * (edges[1:] + edges[:-1])
+    p = count / (len(xi) * np.diff(edges))
+    vedges = np.linspace(0, xi_max ** 3, bins + 1)
+    count_v, _ = np.histogram(xi ** 3, vedges)
+    rho_v = count_v / (len(xi) * np.diff(vedges))
+    return dict(xi_lo=edges[:-1], xi_hi=edges[1:], xi=centres, count_xi=count, P_xi=p,
+                xi3_P_xi=centres ** 3 * p, v_lo=vedges[:-1], v_hi=vedges[1:],
+                v=0.5 * (vedges[1:] + vedges[:-1]), count_v=count_v, rho_v=rho_v)
+
+
+def test_tetrahedral_law_recovers_xi_t_over_seeds():
+    inside = []
+    for seed in range(20):
+        rng = np.random.default_rng(seed)
+        _, xi = sample_pores(rng, 20000, xi_t=0.23)
+        h = histogram(xi)
+        res = TetrahedralLaw(xi_range=(0.15, XI_O)).fit(h["xi"], h["xi3_P_xi"],
+                                                        counts=h["count_xi"])
+        assert res.determined, res
+        inside.append(abs(res.params["xi_T"] - 0.23) <= 2 * res.errors["xi_T"] + 0.005)
+    # 0.005 = half a bin: the law is evaluated at bin centres
+    assert np.mean(inside) >= 0.8
+    fixed = TetrahedralLaw(fit_xi_t=False).fit(h["xi"], h["xi3_P_xi"], counts=h["count_xi"])
+    assert fixed.names == ["a"]
+
+
+def test_volume_tail_recovers_nu_over_seeds():
+    z = []
+    for seed in range(20):
+        rng = np.random.default_rng(100 + seed)
+        _, xi = sample_pores(rng, 30000, tail_nu=0.06)
+        h = histogram(xi, bins=300)
+        res = VolumeTail(v_range=(XI_O ** 3 + 0.01, 0.4)).fit(h["v"], h["rho_v"],
+                                                             counts=h["count_v"])
+        z.append((res.params["nu_tail"] - 0.06) / res.errors["nu_tail"])
+    assert np.mean(np.abs(z) <= 2) >= 0.8, z
+
+
+# ------------------------------------------------------------------ tapmc-pores outputs
+
+def write_pores_output(prefix, frames):
+    """Files in tapmc-pores' documented format (doc/tapmc-pores.rst) for given pore sizes."""
+    cols = ["xi_lo", "xi_hi", "xi", "count_xi", "P_xi", "xi3_P_xi", "v_lo", "v_hi", "v",
+            "count_v", "rho_v"]
+    allxi = np.concatenate([xi for _, _, xi in frames])
+    h = histogram(allxi)
+    with open(f"{prefix}.hist.csv", "w") as f:
+        f.write(f"# tapmc-pores: {len(frames)} frames, {allxi.size} selected pores, nu = "
+                f"{np.mean(allxi ** 3):.12g}, xi below range 0, above 0\n")
+        f.write("bin," + ",".join(cols) + "\n")
+        for b in range(150):
+            f.write(f"{b}," + ",".join(f"{h[c][b]:.12g}" for c in cols) + "\n")
+    with open(f"{prefix}.frames.csv", "w") as f:
+        f.write("file,frame,timestep,atoms,radius,pores,tetrahedra,unresolved,selected,"
+                "degenerate_selected,nu,mean_xi,region_volume,tetrahedra_volume,seconds\n")
+        for k, (file, step, xi) in enumerate(frames):
+            f.write(f"{file},{k + 1},{step},100,0.5,{xi.size},{xi.size},0,{xi.size},0,"
+                    f"{np.mean(xi ** 3):.12g},{np.mean(xi):.12g},10,10,0.01\n")
+    with open(f"{prefix}.frame_hist.csv", "w") as f:
+        f.write("file,frame,timestep,bin," + ",".join(cols) + "\n")
+        for k, (file, step, xi) in enumerate(frames):
+            hk = histogram(xi)
+            for b in range(150):
+                f.write(f"{file},{k + 1},{step},{b}," + ",".join(f"{hk[c][b]:.12g}" for c in cols)
+                        + "\n")
+
+
+def test_read_pores_documented_format(tmp_path):
+    rng = np.random.default_rng(0)
+    frames = [("a.dump", 0, sample_pores(rng, 3000)[1]), ("a.dump", 10, sample_pores(rng, 2000)[1]),
+              ("b.dump", 10, sample_pores(rng, 1000)[1])]
+    write_pores_output(tmp_path / "fig10", frames)
+    out = read_pores(tmp_path)  # the directory holds one output
+    assert out.timesteps == [0, 10]
+    assert out.p0 is None and out.json is None
+    agg = out.distribution()
+    assert agg.selected == sum(f[2].size for f in frames)
+    assert agg.nu == pytest.approx(np.mean(np.concatenate([f[2] for f in frames]) ** 3))
+    d10 = out.distribution(10)
+    both = np.concatenate([frames[1][2], frames[2][2]])
+    np.testing.assert_allclose(d10.P_xi, histogram(both)["P_xi"], rtol=1e-9, atol=1e-12)
+    np.testing.assert_array_equal(d10.count_xi, histogram(both)["count_xi"])
+    assert d10.nu == pytest.approx(np.mean(both ** 3))
+    assert np.trapz(d10.P_xi, d10.xi) == pytest.approx(1.0, rel=1e-9)
+    with pytest.raises(ValueError, match="timestep = 5"):
+        out.distribution(5)
+    (tmp_path / "other.hist.csv").write_text("bin\n")
+    with pytest.raises(ValueError, match="give prefix"):
+        read_pores(tmp_path)
+    bad = tmp_path / "bad"
+    write_pores_output(bad, frames[:1])
+    text = (tmp_path / "bad.frames.csv").read_text().splitlines()
+    (tmp_path / "bad.frames.csv").write_text("\n".join(text + ["x.dump,2,3"]) + "\n")
+    with pytest.raises(TapmcFormatError, match="bad.frames.csv:3"):
+        read_pores(bad)
+
+
+def _pores_binary():
+    build = Path(os.environ.get("TAPMC_BUILD_DIR", SOURCE / "build"))
+    exe = build / "tools" / "pores" / "tapmc-pores"
+    return exe if exe.exists() else None
+
+
+@pytest.mark.skipif(_pores_binary() is None, reason="tapmc-pores not built")
+def test_read_pores_real_program_fcc(tmp_path):
+    # FCC at contact, periodic: pores are tetrahedral (2 per sphere) and octahedral (1)
+    a, n = np.sqrt(2.0), 3
+    basis = np.array([[0, 0, 0], [0.5, 0.5, 0], [0.5, 0, 0.5], [0, 0.5, 0.5]])
+    cells = np.array(np.meshgrid(*[np.arange(n)] * 3, indexing="ij")).reshape(3, -1).T
+    rng = np.random.default_rng(1)
+    centres = ((cells[:, None, :] + basis[None]) * a).reshape(-1, 3) * 1.02
+    centres += rng.uniform(-1e-3, 1e-3, centres.shape)
+    box = n * a * 1.02
+    lines = [f"ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n{len(centres)}\n"
+             f"ITEM: BOX BOUNDS pp pp pp\n0 {box}\n0 {box}\n0 {box}\nITEM: ATOMS id x y z radius"]
+    lines += [f"{i + 1} {x} {y} {z} 0.5" for i, (x, y, z) in enumerate(centres)]
+    (tmp_path / "fcc.dump").write_text("\n".join(lines) + "\n")
+    proc = subprocess.run([str(_pores_binary()), "--frame-hist", "--p0", "20000", "--json", "-o",
+                           str(tmp_path / "fcc"), str(tmp_path / "fcc.dump")],
+                          capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 0, proc.stderr
+    out = read_pores(tmp_path / "fcc")
+    assert out.timesteps == [0] and out.json is not None and out.p0 is not None
+    d = out.distribution(0)
+    # spheres expanded by 2 %: pore sizes (1.02 (xi + 1) - 1) around the two sites
+    small = d.count_xi[(d.xi > 0.2) & (d.xi < 0.3)].sum()
+    large = d.count_xi[(d.xi > 0.4) & (d.xi < 0.5)].sum()
+    assert small == 2 * len(centres) and large >= len(centres)
+    # the program's Percus-Yevick column is the same function (phi printed to 4 digits)
+    np.testing.assert_allclose(out.p0["P0_percus_yevick"],
+                               percus_yevick_p0(out.p0["sigma"], out.p0_phi), atol=2e-4)
+
+
+# ------------------------------------------------------------------ profiles
+
+def test_profile_increase_single_and_seeds():
+    t = np.arange(5.0)
+    lat = np.array([0.55, 0.57, 0.575, 0.58, 0.58])
+    cen = np.array([0.60, 0.601, 0.603, 0.604, 0.605])
+    pi = ProfileIncrease(t, lat, cen).compute()
+    np.testing.assert_allclose(pi.delta_lateral, lat - 0.55)
+    np.testing.assert_allclose(pi.delta_central, cen - 0.60)
+    assert np.all(np.isnan(pi.delta_lateral_sem))
+    seeds = ProfileIncrease(t, np.stack([lat, lat + 0.01]), np.stack([cen, cen + 0.002 * t]))
+    seeds.compute()
+    np.testing.assert_allclose(seeds.delta_lateral, lat - 0.55)
+    np.testing.assert_allclose(seeds.delta_central, cen - 0.60 + 0.001 * t)
+    np.testing.assert_allclose(seeds.delta_central_sem, 0.001 * t)
+    given = ProfileIncrease(t, lat, cen, initial=(0.5, 0.6)).compute()
+    np.testing.assert_allclose(given.delta_lateral, lat - 0.5)
+    table = AveTime(["TimeStep", "c_t[5]", "c_t[6]"], np.stack([t, lat, cen], axis=1))
+    from_file = ProfileIncrease.from_ave_time(table, "c_t[5]", "c_t[6]").compute()
+    np.testing.assert_allclose(from_file.delta_central, pi.delta_central)
+    with pytest.raises(ValueError, match="must match"):
+        ProfileIncrease(t, lat, np.stack([cen, cen]))
+
+
+def test_vertical_profile_from_stereo_array_and_eq7():
+    R = 0.5
+    z = 0.25 * R + 0.5 * R * np.arange(80)          # plane positions (bin centres), floor 0
+    zb = z / R
+    rng = np.random.default_rng(2)
+    phi = ProfileLaw.function(zb, 0.63, 0.002, 2.0, 30.0) + rng.normal(0, 3e-3, zb.size)
+    block = np.stack([z, phi + 0.01, phi], axis=1)   # columns: position, Phi(plane), bin mean
+    table = AveTime(["c_p[1]", "c_p[2]", "c_p[3]"], steps=[0, 100],
+                    blocks=np.stack([block * 0 + block[0], block]))
+    zb_read, phi_read = vertical_profile(table, radius=R, floor=0.0)
+    np.testing.assert_allclose(zb_read, zb)
+    np.testing.assert_allclose(phi_read, phi)
+    _, plane = vertical_profile(table, radius=R, value="plane")
+    np.testing.assert_allclose(plane, phi + 0.01)
+    res = ProfileLaw(boundary="pbc").fit(zb_read, phi_read, sigma=3e-3)
+    assert res.determined
+    assert abs(res.params["alpha"] - 0.002) < 3 * res.errors["alpha"]
+    assert abs(res.params["zb_star"] - 30.0) < 3 * res.errors["zb_star"]
+    xb, _ = transversal_profile(table, radius=R, wall=1.0)
+    np.testing.assert_allclose(xb, (z - 1.0) / R)
+    with pytest.raises(ValueError, match="vector-mode"):
+        vertical_profile(AveTime(["TimeStep", "a"], np.zeros((2, 2))), radius=R)
+    with pytest.raises(ValueError, match="radius"):
+        vertical_profile(table, radius=-1)
+
+
+def test_plots():
+    import matplotlib
+    matplotlib.use("Agg")
+    rng = np.random.default_rng(0)
+    h = histogram(sample_pores(rng, 2000)[1])
+    from tapmc.pores import PoreDistribution
+    d = PoreDistribution(h, 0.05, 2000, 4)
+    assert len(d.plot(kind="xi3P").lines) == 1 and len(d.plot(kind="rho_v").lines) == 1
+    t = np.arange(1.0, 6.0)
+    ax = ProfileIncrease(t, t * 0.01, t * 0.002).compute().plot()
+    assert len(ax.containers) == 2

@@ -1,0 +1,250 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+# Readers of tapmc.readers on real LAMMPS outputs written here by lmp_tapmc (a tiny tapping run
+# with two `run` commands and a warning between them), cross-checked against each other and
+# against exact stereology recomputed from the dumps; and on broken files (file and line named).
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+HERE = Path(__file__).resolve().parent
+SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", HERE.parent.parent))
+sys.path.insert(0, str(SOURCE / "tools" / "python"))
+
+from tapmc.readers import (TapmcFormatError, read_ave_time, read_dump,  # noqa: E402
+                           read_fix_print, read_log)
+
+
+def find_lmp():
+    lmp = os.environ.get("TAPMC_LMP")
+    if lmp:
+        return lmp
+    for cand in (SOURCE / "build" / "lmp_tapmc",
+                 Path(os.environ.get("TAPMC_BUILD_DIR", SOURCE / "build")) / "lmp_tapmc"):
+        if cand.exists():
+            return str(cand)
+    pytest.skip("lmp_tapmc not found (set TAPMC_LMP)")
+
+
+# Box with a non-zero lower corner in every direction, so that a reader that shifts positions
+# to the origin (as MDAnalysis does) is caught.
+INPUT = """
+units lj
+atom_style sphere
+boundary p p fm
+region box block -2 2 -1.5 2.5 -1 11
+create_box 1 box
+create_packing 150 1 0.5 4928 floor 0.0
+compute phi all stereo/profile floor 0.0
+compute vprof all stereo/profile floor 0.0 planes 0.0 8.0 16
+compute tprof all stereo/profile axis x window 1.0 5.0 lateral 1.0
+fix tap all tapdilate 0.01 floor 0.0
+fix settle all mc/settle 4928 floor 0.0 eta 1e-4 maxsweeps 100
+fix avs all ave/time 1 1 1 c_phi[1] c_phi[2] c_phi[3] c_tprof[5] c_tprof[6] file scalar.dat
+fix avv all ave/time 1 1 2 c_vprof[*] mode vector file vector.dat
+fix pr all print 1 "$(step) $(c_phi[1]:%.8f) $(c_phi[3]:%.8f)" file print.dat screen no title "# step phib z"
+dump d1 all custom 2 with_type.dump id type x y z radius
+dump_modify d1 format float %.10g
+dump d2 all custom 2 no_type.dump id x y z diameter
+dump_modify d2 format float %.10g
+dump d3 all atom 2 atom.dump
+dump d4 all custom 2 items.dump id type x y z
+dump_modify d4 units yes time yes format float %.10g
+thermo_style custom step c_phi[1] c_phi[2] c_phi[3]
+thermo_modify format float %.10g
+thermo 1
+run 3
+fix n1 all nve
+fix n2 all nve
+thermo_style custom step c_phi[1] c_phi[3]
+run 2
+"""
+
+
+@pytest.fixture(scope="module")
+def run_dir(tmp_path_factory):
+    d = tmp_path_factory.mktemp("lammps_outputs")
+    (d / "in.small").write_text(INPUT)
+    proc = subprocess.run([find_lmp(), "-in", "in.small", "-log", "log.lammps", "-screen",
+                           "none"], cwd=d, capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    return d
+
+
+def test_log_runs_warnings_and_concatenation(run_dir):
+    log = read_log(run_dir / "log.lammps")
+    assert len(log.runs) == 2
+    assert [len(r) for r in log.runs] == [4, 3]
+    assert log.runs[1].columns == ["Step", "c_phi[1]", "c_phi[3]"]
+    assert all(r.complete for r in log.runs)
+    assert any("time integrated more than once" in w for w in log.warnings)
+    assert any("time integrated more than once" in w for w in log.runs[1].warnings) is False
+    th = log.thermo
+    np.testing.assert_array_equal(th["Step"], np.arange(6))
+    # the run-boundary row keeps run 1's values, a column absent from run 2 is NaN after it
+    assert th["c_phi[2]"][3] == log.runs[0]["c_phi[2]"][3]
+    assert np.isnan(th["c_phi[2]"][4:]).all()
+
+
+def test_ave_time_scalar_and_print_agree_with_log(run_dir):
+    th = read_log(run_dir / "log.lammps").thermo
+    av = read_ave_time(run_dir / "scalar.dat")
+    assert not av.vector
+    assert av.columns[0] == "TimeStep"
+    np.testing.assert_array_equal(av.steps, np.arange(6))
+    np.testing.assert_allclose(av["c_phi[3]"], th["c_phi[3]"], rtol=1e-5)
+    pr = read_fix_print(run_dir / "print.dat")
+    assert pr.columns == ["step", "phib", "z"]
+    np.testing.assert_array_equal(pr["step"], np.arange(6))  # boundary duplicate dropped
+    np.testing.assert_allclose(pr["phib"], th["c_phi[1]"], rtol=1e-7)
+    # lateral and central means of the transversal profile are packing fractions
+    assert np.all((av["c_tprof[5]"] > 0.3) & (av["c_tprof[5]"] < 0.75))
+
+
+def _slab_fraction(z, r, z0, z1, area):
+    """Exact volume of spheres inside z0 <= z <= z1 over the slab volume."""
+    a = np.clip(z0 - z, -r, r)
+    b = np.clip(z1 - z, -r, r)
+    vol = np.pi * ((b - a) * r ** 2 - (b ** 3 - a ** 3) / 3.0)
+    return vol.sum() / (area * (z1 - z0))
+
+
+def test_ave_time_vector_matches_stereology_of_dump(run_dir):
+    vec = read_ave_time(run_dir / "vector.dat")
+    assert vec.vector
+    assert vec.blocks.shape == (3, 16, 3)
+    np.testing.assert_array_equal(vec.steps, [0, 2, 4])
+    np.testing.assert_allclose(vec["c_vprof[1]"][0], 0.25 + 0.5 * np.arange(16))
+    dump = read_dump(run_dir / "with_type.dump")
+    for frame, bins in zip(dump.frames, vec["c_vprof[3]"]):
+        z, r = frame.positions[:, 2], frame.radii
+        area = np.prod(frame.box_hi[:2] - frame.box_lo[:2])
+        expected = [_slab_fraction(z, r, k * 0.5, (k + 1) * 0.5, area) for k in range(16)]
+        np.testing.assert_allclose(bins, expected, atol=2e-6)
+
+
+def test_dumps_agree_across_formats_and_backends(run_dir):
+    ref = read_dump(run_dir / "with_type.dump")
+    th = read_log(run_dir / "log.lammps").thermo
+    assert list(ref.steps) == [0, 2, 4]
+    for frame in ref.frames:
+        np.testing.assert_array_equal(frame.box_lo, [-2, -1.5, -1])
+        np.testing.assert_array_equal(frame.periodic, [True, True, False])
+        np.testing.assert_array_equal(frame.ids, np.arange(1, 151))
+        assert frame.types is not None and np.all(frame.types == 1)
+        np.testing.assert_array_equal(frame.radii, 0.5)
+        # positions in the dump's own frame: x within the box, <Z> equals compute's
+        assert frame.positions[:, 0].min() >= -2 and frame.positions[:, 0].max() <= 2
+        z_mean = th["c_phi[3]"][list(th["Step"]).index(frame.step)]
+        assert frame.positions[:, 2].mean() == pytest.approx(z_mean, rel=1e-8)
+    import gzip
+    with open(run_dir / "with_type.dump", "rb") as src, \
+            gzip.open(run_dir / "compressed.dump.gz", "wb") as dst:
+        dst.write(src.read())
+    others = {
+        "gzip native": read_dump(run_dir / "compressed.dump.gz"),
+        "no_type native": read_dump(run_dir / "no_type.dump"),
+        "no_type mda": read_dump(run_dir / "no_type.dump", backend="mdanalysis"),
+        "with_type mda": read_dump(run_dir / "with_type.dump", backend="mdanalysis"),
+        "atom native": read_dump(run_dir / "atom.dump", radius=0.5),
+        "atom mda": read_dump(run_dir / "atom.dump", backend="mdanalysis"),
+        # UNITS and TIME items: eleven header lines, which MDAnalysis alone cannot read
+        "items native": read_dump(run_dir / "items.dump"),
+        "items mda": read_dump(run_dir / "items.dump", backend="mdanalysis"),
+    }
+    for name, dump in others.items():
+        assert len(dump) == 3, name
+        for a, b in zip(ref.frames, dump.frames):
+            assert a.step == b.step
+            np.testing.assert_array_equal(a.ids, b.ids)
+            # float32 in MDAnalysis, 6 digits in dump atom's scaled coordinates
+            np.testing.assert_allclose(b.positions, a.positions, atol=2e-5 * 12, err_msg=name)
+    assert others["no_type native"].frames[0].types is None
+    np.testing.assert_array_equal(others["no_type native"].frames[0].radii, 0.5)
+    assert others["atom mda"].frames[0].radii is None
+    universe = others["no_type native"].universe()
+    assert universe.atoms.n_atoms == 150 and len(universe.trajectory) == 3
+
+
+# ---------------------------------------------------------------- broken files
+
+def _write(tmp_path, name, text):
+    p = tmp_path / name
+    p.write_text(text)
+    return p
+
+
+def _expect(path, line, func, *args, **kw):
+    with pytest.raises(TapmcFormatError) as info:
+        obj = func(path, *args, **kw)
+        if hasattr(obj, "frames"):
+            obj.frames
+    assert info.value.path == str(path)
+    assert info.value.line == line
+    assert str(info.value).startswith(f"{path}:{line}:" if line else f"{path}:")
+    return info.value
+
+
+DUMP_OK = """ITEM: TIMESTEP
+0
+ITEM: NUMBER OF ATOMS
+2
+ITEM: BOX BOUNDS pp pp fm
+0 4
+0 4
+0 10
+ITEM: ATOMS id x y z
+1 0.5 0.5 0.5
+2 1.5 0.5 0.5
+"""
+
+
+def test_broken_dumps(tmp_path):
+    assert len(read_dump(_write(tmp_path, "ok.dump", DUMP_OK))) == 1
+    _expect(_write(tmp_path, "trunc.dump", DUMP_OK.rsplit("\n", 2)[0] + "\n"), 11, read_dump)
+    _expect(_write(tmp_path, "nan.dump", DUMP_OK.replace("1.5 0.5 0.5", "1.5 x12 0.5")),
+            11, read_dump)
+    e = _expect(_write(tmp_path, "short.dump", DUMP_OK.replace("2 1.5 0.5 0.5", "2 1.5")),
+                11, read_dump)
+    assert "expected 4 fields" in str(e)
+    _expect(_write(tmp_path, "count.dump", DUMP_OK.replace("\n2\n", "\ntwo\n")), 4, read_dump)
+    _expect(_write(tmp_path, "item.dump", DUMP_OK.replace("ITEM: BOX", "ITEM: BLOB")), 5,
+            read_dump)
+    _expect(_write(tmp_path, "nocoord.dump", DUMP_OK.replace("id x y z", "id a b c")), 9,
+            read_dump)
+    _expect(_write(tmp_path, "dup.dump", DUMP_OK.replace("\n2 1.5", "\n1 1.5")), 9, read_dump)
+    _expect(_write(tmp_path, "garbage.dump", DUMP_OK + "hello\n"), 12, read_dump)
+
+
+def test_broken_log_ave_time_print(tmp_path):
+    log = ("LAMMPS (29 Sep 2021)\nPer MPI rank memory allocation (min/avg/max) = 1 | 1 | 1\n"
+           "Step Temp\n0 1.0\n1 abc\nLoop time of 0.1 on 1 procs\n")
+    _expect(_write(tmp_path, "bad.log", log), 5, read_log)
+    _expect(_write(tmp_path, "short.log", log.replace("1 abc", "1 2 3")), 5, read_log)
+    _expect(_write(tmp_path, "empty.log", "LAMMPS (29 Sep 2021)\n"), None, read_log)
+    printed = log.replace("1 abc\n", "tap 1 done\n1 2.0\n7 0.5 0.25\n")
+    _expect(_write(tmp_path, "printed.log", printed), 5, read_log)
+    lenient = read_log(tmp_path / "printed.log", strict=False)
+    assert lenient.skipped == [(5, "tap 1 done"), (7, "7 0.5 0.25")]
+    np.testing.assert_array_equal(lenient.thermo.data, [[0, 1.0], [1, 2.0]])
+    _expect(_write(tmp_path, "bad2.log", printed.replace("1 2.0", "1 two")), 6, read_log,
+            strict=False)
+    multi = log.replace("Step Temp", "---------------- Step        0 ----- CPU = 0 (sec)")
+    _expect(_write(tmp_path, "multi.log", multi), 3, read_log)
+    killed = read_log(_write(tmp_path, "killed.log", log.replace("1 abc\nLoop time of 0.1 on "
+                                                                "1 procs\n", "1 2.0\n")))
+    assert not killed.runs[0].complete and len(killed.thermo) == 2
+    vec = ("# Time-averaged data for fix v\n# TimeStep Number-of-rows\n# Row c_p[1] c_p[2]\n"
+           "0 2\n1 0.25 0.5\n2 0.75 0.6\n10 2\n1 0.25 0.5\n")
+    _expect(_write(tmp_path, "trunc.vec", vec), 7, read_ave_time)
+    _expect(_write(tmp_path, "bad.vec", vec.replace("2 0.75 0.6", "2 0.75 nope") + "2 1 1\n"),
+            6, read_ave_time)
+    _expect(_write(tmp_path, "rows.vec", vec.replace("10 2\n", "10 3\n") + "2 1 1\n3 1 1\n"),
+            7, read_ave_time)
+    _expect(_write(tmp_path, "bad.sca", "# t\n# TimeStep a b\n0 1 2\n1 2\n"), 4, read_ave_time)
+    _expect(_write(tmp_path, "nohead.sca", "0 1 2\n"), 1, read_ave_time)
+    _expect(_write(tmp_path, "bad.print", "# s a\n0 1\n1 1e-3x\n"), 3, read_fix_print)
+    _expect(_write(tmp_path, "width.print", "0 1\n1 2 3\n"), 2, read_fix_print)

@@ -1,0 +1,270 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""Steady state and fluctuations of a global value X(t) (Phi_b, <Phi^c>, <Z>) over taps t,
+section III.A-B and Fig. 3 of Philippe & Bideau.
+
+* :class:`SteadyState`: X_SS, the mean over the last ``last`` taps (paper: the last 1000 of
+  4000), with its standard deviation sigma_X = sqrt(<(X - X_SS)^2>) and a standard error that
+  accounts for the correlation between successive taps (batch means).
+* :class:`PowerSpectrum`: the power spectrum of X - X_SS against the frequency 1/taps and its
+  log-log slope with an uncertainty.
+* :func:`sigma_x` and :func:`sigma_scaling` (sigma_X proportional to sqrt(eps), Fig. 3).
+"""
+
+import numpy as np
+from scipy import signal, special
+
+from ._validate import as_1d, as_2d, new_axis, positive_int, result
+from .laws import FitResult, _Law
+
+__all__ = ["SteadyState", "PowerSpectrum", "sigma_x", "sigma_scaling", "Proportional",
+           "DEFAULT_LAST", "DEFAULT_BATCHES", "DEFAULT_BINS_PER_DECADE"]
+
+#: taps averaged for the steady state (paper, section III.B: the last 1000 of 4000 taps)
+DEFAULT_LAST = 1000
+#: batches of the batch-means standard error: 20 batches of 50 taps for 1000 taps, longer than
+#: the correlation time of the steady-state fluctuations in the paper's runs
+DEFAULT_BATCHES = 20
+#: logarithmic frequency bins per decade for the averaged spectrum (about 10 gives bins holding
+#: several periodogram ordinates everywhere but at the lowest frequencies)
+DEFAULT_BINS_PER_DECADE = 10
+#: correlation of periodogram ordinates k apart (k = 0, 1, 2) for a tapered series:
+#: |sum_t w_t^2 exp(-2 pi i k t / N)|^2 / (sum_t w_t^2)^2; Hann: w^2 has Fourier weights
+#: 3/8, -1/4, 1/16, so (1, 4/9, 1/36); boxcar (no taper): independent ordinates
+WINDOW_CORRELATIONS = {"hann": (1.0, 4.0 / 9.0, 1.0 / 36.0), "boxcar": (1.0,)}
+
+
+def _batch_sem(x, batches):
+    n = len(x) // batches
+    if n < 1:
+        return np.std(x, ddof=1) / np.sqrt(len(x))
+    means = x[: n * batches].reshape(batches, n).mean(axis=1)
+    return float(np.std(means, ddof=1) / np.sqrt(batches))
+
+
+class SteadyState:
+    """Steady-state value of a series X(t), one value per tap (section III.B).
+
+    Parameters: ``x`` (the series), ``last`` (taps averaged at the end, default 1000),
+    ``batches`` (batches for the standard error, default 20).
+    Results after ``compute()``: ``mean`` (X_SS), ``std`` (sigma_X over the window),
+    ``sem`` (batch-means standard error of X_SS: successive taps are correlated, so the naive
+    std/sqrt(n) underestimates it), ``sem_naive``, ``last_value`` (the paper's alternative
+    estimate, "directly through the last value"), ``window`` (slice of the taps used)."""
+
+    def __init__(self, x, last=DEFAULT_LAST, batches=DEFAULT_BATCHES):
+        self.x = as_1d("x", x, min_len=2)
+        self.last = positive_int("last", last, minimum=2)
+        if self.last > len(self.x):
+            raise ValueError(f"last = {last} exceeds the series length {len(self.x)}")
+        self.batches = positive_int("batches", batches, minimum=2)
+        self._mean = None
+
+    def compute(self):
+        seg = self.x[-self.last:]
+        self.window = slice(len(self.x) - self.last, len(self.x))
+        self._mean = float(seg.mean())
+        self._std = float(seg.std(ddof=1))
+        self._sem = _batch_sem(seg, min(self.batches, self.last // 2))
+        self._sem_naive = self._std / np.sqrt(len(seg))
+        return self
+
+    mean = result("_mean")
+    std = result("_std")
+    sem = result("_sem")
+    sem_naive = result("_sem_naive")
+    last_value = property(lambda self: float(self.x[-1]))
+
+    def plot(self, ax=None, **kw):
+        """The series, the averaging window and X_SS +- sigma_X."""
+        ax = new_axis(ax)
+        t = np.arange(len(self.x))
+        ax.plot(t, self.x, lw=0.7, **kw)
+        ax.axvspan(self.window.start, len(self.x) - 1, color="0.9")
+        ax.axhline(self.mean, color="k")
+        ax.axhline(self.mean + self.std, color="k", ls=":")
+        ax.axhline(self.mean - self.std, color="k", ls=":")
+        ax.set_xlabel("taps")
+        return ax
+
+
+def sigma_x(x, last=DEFAULT_LAST):
+    """sigma_X = sqrt(<(X - X_SS)^2>) over the last ``last`` taps (section III.A, Fig. 3)."""
+    return SteadyState(x, last=last).compute().std
+
+
+class _LogLogLine(_Law):
+    names = ("log10_amplitude", "slope")
+    may_vanish = ("log10_amplitude", "slope")
+
+    @staticmethod
+    def function(x, a, b):
+        return a + b * x
+
+    def initial_guess(self, x, y, w):
+        b, a = np.polyfit(x, y, 1)
+        return [a, b]
+
+
+class PowerSpectrum:
+    """Power spectrum of the fluctuations X - X_SS against the frequency f = 1/taps and its
+    log-log slope (section III.A, Fig. 3: "more or less a simple power-law ... with a slope in
+    the range 1 to 1.5", i.e. P(f) ~ f^slope with slope about -1 to -1.5).
+
+    Estimator: the periodogram (one-sided power spectral density, scipy.signal.periodogram) of
+    the segment ``x[steady_from:]`` minus its mean X_SS, with a Hann window (its side lobes fall
+    as f^-3, so that steep spectra, up to f^-2 and beyond, are not flattened by leakage from the
+    lowest frequencies), averaged in logarithmic frequency bins (``bins_per_decade``). The slope
+    is a weighted straight-line fit of log10 P against log10 f over ``fit_range`` (default all
+    bins), each bin weighted by the number of periodogram ordinates it averages; its
+    uncertainty is scaled by the scatter of the binned points about the line.
+
+    Parameters: ``x`` (one value per sample; or (n_series, n_samples) for independent
+    realizations, e.g. seeds, whose periodograms are averaged, each about its own X_SS),
+    ``steady_from`` (first sample of the segment, default 0), ``taps_per_sample`` (taps between samples, default 1: f in 1/taps),
+    ``bins_per_decade``, ``fit_range`` ((f_min, f_max) in 1/taps or None).
+    Results: ``frequency`` and ``power`` (binned), ``counts`` (ordinates per bin),
+    ``raw_frequency`` and ``raw_power`` (the periodogram), ``slope``, ``slope_error``,
+    ``fit`` (a :class:`tapmc.laws.FitResult` in log10-log10), ``x_ss``, ``sigma``.
+    """
+
+    def __init__(self, x, steady_from=None, taps_per_sample=1, bins_per_decade=DEFAULT_BINS_PER_DECADE,
+                 fit_range=None, window="hann"):
+        arr = np.asarray(x, dtype=float)
+        if arr.ndim == 2:
+            self.x = as_2d("x", arr, min_rows=1, min_cols=16)
+        else:
+            self.x = as_1d("x", arr, min_len=16)[None, :]
+        n = self.x.shape[1]
+        start = 0 if steady_from is None else positive_int("steady_from", steady_from, minimum=0)
+        if n - start < 16:
+            raise ValueError(f"steady_from = {steady_from} leaves {n - start} samples;"
+                             " at least 16 are needed for a spectrum")
+        self.steady_from = start
+        self.taps_per_sample = positive_int("taps_per_sample", taps_per_sample)
+        self.bins_per_decade = positive_int("bins_per_decade", bins_per_decade)
+        if fit_range is not None:
+            lo, hi = (float(v) for v in fit_range)
+            if not (0 < lo < hi):
+                raise ValueError(f"fit_range = {fit_range!r} must be (f_min, f_max) with "
+                                 "0 < f_min < f_max (in 1/taps)")
+            fit_range = (lo, hi)
+        self.fit_range = fit_range
+        if window not in WINDOW_CORRELATIONS:
+            raise ValueError(f"window = {window!r} must be one of {sorted(WINDOW_CORRELATIONS)}")
+        self.window = window
+        self.ordinate_correlation = WINDOW_CORRELATIONS[window]
+        self._fit = None
+
+    def compute(self):
+        seg = self.x[:, self.steady_from:]
+        x_ss = seg.mean(axis=1, keepdims=True)  # X_SS of every series
+        self.x_ss = float(x_ss.mean())
+        self.sigma = float(np.sqrt(np.mean((seg - x_ss) ** 2)))
+        f, p = signal.periodogram(seg - x_ss, fs=1.0 / self.taps_per_sample, axis=1,
+                                  window=self.window, detrend="constant", scaling="density")
+        p = p.mean(axis=0)  # independent series: their periodograms average
+        f, p = f[1:], p[1:]  # f = 0 carries the removed mean only
+        self.raw_frequency, self.raw_power = f, p
+        bpd = self.bins_per_decade
+        edges = 10 ** (np.arange(np.floor(np.log10(f[0]) * bpd),
+                                 np.ceil(np.log10(f[-1]) * bpd) + 2) / bpd)
+        which = np.digitize(f, edges)
+        freq, power, counts = [], [], []
+        for b in np.unique(which):
+            sel = which == b
+            freq.append(np.exp(np.mean(np.log(f[sel]))))
+            power.append(p[sel].mean())
+            counts.append(sel.sum())
+        self._frequency = np.array(freq)
+        self._power = np.array(power)
+        self._counts = np.array(counts)
+        use = self._power > 0
+        if self.fit_range is not None:
+            use &= (self._frequency >= self.fit_range[0]) & (self._frequency <= self.fit_range[1])
+        if use.sum() < 3:
+            raise ValueError(f"only {use.sum()} spectrum bins in fit_range = {self.fit_range}; "
+                             "at least 3 are needed for a slope")
+        self._fit = self._fit_slope(which, np.unique(which), use)
+        return self
+
+    def _fit_slope(self, which, labels, use):
+        """Generalised least squares of log10 P against log10 f over the bins in ``use``.
+        The periodogram ordinates are exponential variables; those of a tapered series are
+        correlated with their neighbours (``ordinate_correlation``). The covariance of the bin
+        means follows from that (delta method), the exact variance of the log of a Gamma
+        variable (trigamma) replaces the delta-method diagonal, and the bias of that log,
+        ln(m) - digamma(m) for m effective ordinates, is removed (left in, it would flatten the
+        slope through the sparse low-frequency bins)."""
+        rho = self.ordinate_correlation
+        index = np.searchsorted(labels, which)  # bin of every ordinate, 0..nbins-1
+        nbins = len(labels)
+        cov = np.zeros((nbins, nbins))
+        np.add.at(cov, (index, index), rho[0])
+        for lag, r in enumerate(rho[1:], start=1):
+            np.add.at(cov, (index[:-lag], index[lag:]), r)
+            np.add.at(cov, (index[lag:], index[:-lag]), r)
+        counts = np.bincount(index, minlength=nbins).astype(float)
+        # relative covariance of the bin means, over n_series independent periodograms
+        cov = (cov / np.outer(counts, counts))[np.ix_(use, use)] / self.x.shape[0]
+        m_eff = 1.0 / np.diag(cov)
+        ratio = special.polygamma(1, m_eff) * m_eff  # exact / delta-method variance of the log
+        cov = cov * np.sqrt(np.outer(ratio, ratio)) / np.log(10) ** 2
+        x = np.log10(self._frequency[use])
+        y = np.log10(self._power[use]) + (np.log(m_eff) - special.digamma(m_eff)) / np.log(10)
+        design = np.stack([np.ones_like(x), x], axis=1)
+        cinv = np.linalg.inv(cov)
+        pcov = np.linalg.inv(design.T @ cinv @ design)
+        popt = pcov @ design.T @ cinv @ y
+        resid = y - design @ popt
+        chi2 = float(resid @ cinv @ resid)
+        dof = len(x) - 2
+        # a spectrum that is not a power law over the range scatters more than the estimator
+        # does: widen the errors by the reduced chi2 then (never narrow them)
+        pcov = pcov * max(1.0, chi2 / dof if dof > 0 else 1.0)
+        res = FitResult(_LogLogLine(), _LogLogLine.names, popt, pcov, x, y,
+                        np.sqrt(np.diag(cov)), True, "", True)
+        res.chi2, res.dof = chi2, dof
+        res.reduced_chi2 = chi2 / dof if dof > 0 else np.nan
+        return res
+
+    frequency = result("_frequency")
+    power = result("_power")
+    counts = result("_counts")
+    fit = result("_fit")
+    slope = property(lambda self: float(self.fit.params["slope"]))
+    slope_error = property(lambda self: float(self.fit.errors["slope"]))
+
+    def plot(self, ax=None, raw=False, **kw):
+        """Binned spectrum (points) and the fitted power law, log-log."""
+        ax = new_axis(ax)
+        if raw:
+            ax.loglog(self.raw_frequency, self.raw_power, color="0.8", lw=0.5)
+        kw.setdefault("marker", "o")
+        kw.setdefault("ls", "none")
+        ax.loglog(self.frequency, self.power, **kw)
+        fx = 10 ** self.fit.x
+        ax.loglog(fx, 10 ** self.fit(self.fit.x), "k-",
+                  label=f"slope {self.slope:.2f} $\\pm$ {self.slope_error:.2f}")
+        ax.set_xlabel("frequency (1/taps)")
+        ax.set_ylabel("power")
+        return ax
+
+
+class Proportional(_Law):
+    """y = k x (sigma_X proportional to sqrt(eps), section III.A)."""
+
+    names = ("k",)
+
+    @staticmethod
+    def function(x, k):
+        return k * x
+
+    def initial_guess(self, x, y, w):
+        return [np.sum(w * x * y) / np.sum(w * x * x)]
+
+
+def sigma_scaling(sqrt_eps, sigma, sigma_error=None):
+    """Fit sigma_X = k sqrt(eps) (Fig. 3b); returns a :class:`tapmc.laws.FitResult`; its
+    ``reduced_chi2`` (with ``sigma_error``) tests the proportionality."""
+    return Proportional().fit(sqrt_eps, sigma, sigma_error)
+

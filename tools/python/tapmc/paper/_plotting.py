@@ -1,0 +1,170 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""Shared helpers of the figure modules ``tapmc.paper.fig2`` ... ``fig10``.
+
+Every figure writes one PNG and one CSV. The CSV is a tidy table with one row per plotted
+number::
+
+    panel,series,x,mean,sem,n
+
+``panel`` names the axis ("a" top, "b" bottom, as in the paper's captions), ``series`` the
+curve (e.g. ``eps=0.05``, ``fit:eps=0.05``), ``x`` the abscissa, ``mean`` the mean over seeds
+(or realizations), ``sem`` its standard error (sample standard deviation / sqrt(n), empty when
+n < 2 or for a fitted curve) and ``n`` the number of seeds behind the mean.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import re
+from collections import defaultdict
+from pathlib import Path
+
+import numpy as np
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+#: Column names of every figure CSV.
+CSV_COLUMNS = ("panel", "series", "x", "mean", "sem", "n")
+
+#: Resolution of the PNGs: the paper's two-panel layout at 110 dpi stays well under 200 kB.
+PNG_DPI = 110
+
+#: Tetrahedral and octahedral site sizes xi = r/R in a dense packing (paper, section IV.B).
+XI_T = math.sqrt(1.5) - 1.0
+XI_O = math.sqrt(2.0) - 1.0
+
+
+def seed_stats(samples):
+    """Mean and standard error over the first axis of ``samples`` (seeds x points).
+
+    Rows may have different lengths (a run that stopped early): each point uses the seeds that
+    reach it. Returns ``(mean, sem, n)``; ``sem`` is NaN where fewer than two seeds contribute.
+    """
+    rows = [np.asarray(s, dtype=float).ravel() for s in samples]
+    if not rows:
+        raise ValueError("seed_stats needs at least one sample, got none")
+    length = max(len(r) for r in rows)
+    table = np.full((len(rows), length), np.nan)
+    for i, r in enumerate(rows):
+        table[i, : len(r)] = r
+    n = np.sum(np.isfinite(table), axis=0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        mean = np.nanmean(table, axis=0) if length else np.array([])
+        std = np.nanstd(table, axis=0, ddof=1) if len(rows) > 1 else np.full(length, np.nan)
+        sem = np.where(n > 1, std / np.sqrt(np.maximum(n, 1)), np.nan)
+    return mean, sem, n
+
+
+class FigureTable:
+    """Rows of a figure CSV (see the module docstring), written with :meth:`write`."""
+
+    def __init__(self):
+        self._rows = []
+
+    def add(self, panel, series, x, mean, sem=None, n=1):
+        """Add one curve: arrays (or scalars) of equal length."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        mean = np.atleast_1d(np.asarray(mean, dtype=float))
+        if sem is None:
+            sem = np.full(x.shape, np.nan)
+        sem = np.broadcast_to(np.asarray(sem, dtype=float), x.shape)
+        n = np.broadcast_to(np.asarray(n), x.shape)
+        if mean.shape != x.shape:
+            raise ValueError(f"series {series!r}: x has {x.size} points but mean has {mean.size}")
+        for xi, mi, si, ni in zip(x, mean, sem, n):
+            self._rows.append((panel, series, xi, mi, si, int(ni)))
+
+    def __len__(self):
+        return len(self._rows)
+
+    def write(self, path):
+        path = Path(path)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        with open(path, "w", newline="") as handle:
+            writer = csv.writer(handle)
+            writer.writerow(CSV_COLUMNS)
+            for panel, series, x, mean, sem, n in self._rows:
+                writer.writerow([panel, series, _fmt(x), _fmt(mean), _fmt(sem), n])
+        return path
+
+
+def _fmt(value):
+    return "" if not np.isfinite(value) else f"{value:.10g}"
+
+
+def read_table(path):
+    """Read a figure CSV back: dict (panel, series) -> dict of arrays x, mean, sem, n."""
+    out = defaultdict(lambda: {"x": [], "mean": [], "sem": [], "n": []})
+    with open(path, newline="") as handle:
+        for row in csv.DictReader(handle):
+            cur = out[(row["panel"], row["series"])]
+            for key in ("x", "mean", "sem"):
+                cur[key].append(float(row[key]) if row[key] != "" else np.nan)
+            cur["n"].append(int(row["n"]))
+    return {k: {c: np.asarray(v) for c, v in d.items()} for k, d in out.items()}
+
+
+def new_figure(nrows=2, ncols=1, height=3.0, width=5.0):
+    """A figure with the paper's stacked panels (``nrows`` x ``ncols`` axes, as an array)."""
+    fig, axes = plt.subplots(nrows, ncols, figsize=(width * ncols, height * nrows), squeeze=False)
+    return fig, axes.ravel()
+
+
+def save_figure(fig, path):
+    """Save ``fig`` as a PNG (small: :data:`PNG_DPI`) and close it; returns the path."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.tight_layout()
+    fig.savefig(path, dpi=PNG_DPI)
+    plt.close(fig)
+    return path
+
+
+def errorbars(ax, x, mean, sem, label=None, **kw):
+    """Mean over seeds with its standard error as a band (lines) or bars (markers)."""
+    x = np.asarray(x, dtype=float)
+    mean = np.asarray(mean, dtype=float)
+    sem = np.nan_to_num(np.asarray(sem, dtype=float))
+    if kw.get("marker") and kw.get("linestyle", "-") in ("", "none", "None"):
+        return ax.errorbar(x, mean, yerr=sem, label=label, capsize=2, **kw)
+    (line,) = ax.plot(x, mean, label=label, **kw)
+    if np.any(sem > 0):
+        ax.fill_between(x, mean - sem, mean + sem, color=line.get_color(), alpha=0.25, lw=0)
+    return line
+
+
+def fmt_eps(eps):
+    """Compact label of an eps value (5e-3 -> '0.005')."""
+    return f"{eps:.4g}"
+
+
+_SEED_RE = re.compile(r"_s(\d+)$")
+
+
+def group_runs(specs, key):
+    """Group RunSpecs by ``key(spec)`` -> dict key -> list of specs sorted by seed."""
+    groups = defaultdict(list)
+    for spec in specs:
+        groups[key(spec)].append(spec)
+    return {k: sorted(v, key=lambda s: s.seed) for k, v in groups.items()}
+
+
+def campaign_runs(campaign, prefix):
+    """The RunSpecs of ``campaign`` whose name starts with ``prefix``."""
+    specs = [s for s in campaign.runs if s.name.startswith(prefix)]
+    if not specs:
+        names = ", ".join(sorted(s.name for s in campaign.runs)[:8])
+        raise ValueError(
+            f"campaign {campaign.directory} has no run named {prefix}*; it holds: {names} ..."
+        )
+    return specs
+
+
+def figure_paths(out_dir, name):
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    return out_dir / f"{name}.png", out_dir / f"{name}.csv"

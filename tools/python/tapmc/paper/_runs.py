@@ -1,0 +1,204 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""Run specifications shared by the figure modules, and access to their outputs.
+
+Figures that use the same protocol share runs: a run is named by its protocol, boundary
+conditions, excitation and seed only (e.g. ``const_fbc_eps0.05_s3``), so that one campaign
+folder serves every figure that needs it and :class:`tapmc.campaign.Campaign` runs it once.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+from collections import defaultdict
+from pathlib import Path
+
+import numpy as np
+
+from tapmc.readers import read_ave_time, read_fix_print
+
+#: Inputs of the paper's protocols, relative to the repository root.
+CONSTANT_EPS = "examples/paper/in.constant_eps"
+RAMP = "examples/paper/in.ramp"
+AGEING = "examples/paper/in.ageing"
+PORE_DUMPS = "examples/paper/in.pore_dumps"
+
+#: Repository root (tools/python/tapmc/paper -> four levels up).
+SOURCE_DIR = Path(__file__).resolve().parents[4]
+
+
+def seed_list(seeds):
+    """``seeds`` as a list of ints: an int k gives 1..k, an iterable is used as is."""
+    if isinstance(seeds, (int, np.integer)):
+        if seeds < 1:
+            raise ValueError(f"seeds = {seeds}: need at least one seed (an int >= 1 or a list)")
+        return list(range(1, int(seeds) + 1))
+    out = [int(s) for s in seeds]
+    if not out:
+        raise ValueError("seeds is empty: give an int >= 1 or a non-empty list of seeds")
+    return out
+
+
+def _input(path):
+    return str(SOURCE_DIR / path)
+
+
+def _size(scale):
+    return {"N": int(scale.N), "L": float(scale.L), "eta": float(scale.eta)}
+
+
+def _RunSpec():
+    from tapmc.campaign import RunSpec
+
+    return RunSpec
+
+
+def eps_tag(eps):
+    return f"{float(eps):.6g}"
+
+
+def constant_eps_run(scale, bc, eps, seed, taps=None):
+    """A constant-eps tapping sequence (in.constant_eps): taps.dat, profiles at 0 and the end."""
+    taps = int(scale.taps if taps is None else taps)
+    variables = dict(_size(scale), eps=float(eps), taps=taps, bc=bc, pevery=taps)
+    return _RunSpec()(f"const_{bc}_eps{eps_tag(eps)}_s{seed}", _input(CONSTANT_EPS), variables,
+                      int(seed))
+
+
+def ramp_run(scale, bc, seed):
+    variables = dict(_size(scale), bc=bc, sqrt0=float(scale.ramp_sqrt0),
+                     dsqrt=float(scale.ramp_dsqrt), nlev=int(scale.ramp_levels),
+                     P=int(scale.ramp_taps_per_level))
+    return _RunSpec()(f"ramp_{bc}_s{seed}", _input(RAMP), variables, int(seed))
+
+
+def ageing_run(scale, bc, eps, seed, taps=None):
+    taps = int(scale.ageing_taps if taps is None else taps)
+    variables = dict(_size(scale), eps=float(eps), taps=taps, bc=bc)
+    return _RunSpec()(f"ageing_{bc}_eps{eps_tag(eps)}_s{seed}", _input(AGEING), variables,
+                      int(seed))
+
+
+def pore_run(scale, bc, eps, seed, dump_times, taps=None, kind="pores"):
+    times = sorted(int(t) for t in dump_times if int(t) > 0)
+    taps = int(times[-1] if taps is None else taps)
+    variables = dict(_size(scale), eps=float(eps), taps=taps, bc=bc,
+                     dump_times=times)
+    return _RunSpec()(f"{kind}_{bc}_eps{eps_tag(eps)}_t{taps}_s{seed}", _input(PORE_DUMPS),
+                      variables, int(seed))
+
+
+def select(campaign, prefix, **match):
+    """The campaign's runs whose name starts with ``prefix`` and whose variables equal
+    ``match`` (floats compared to 1e-9 relative)."""
+    out = []
+    for spec in campaign.runs:
+        if not spec.name.startswith(prefix):
+            continue
+        ok = True
+        for key, value in match.items():
+            have = spec.variables.get(key)
+            if isinstance(value, float):
+                ok = have is not None and abs(float(have) - value) <= 1e-9 * max(1.0, abs(value))
+            else:
+                ok = have == value
+            if not ok:
+                break
+        if ok:
+            out.append(spec)
+    return out
+
+
+def by_variable(specs, key):
+    """Group specs by ``spec.variables[key]`` -> dict value -> specs sorted by seed."""
+    groups = defaultdict(list)
+    for spec in specs:
+        groups[spec.variables[key]].append(spec)
+    return {k: sorted(v, key=lambda s: s.seed) for k, v in sorted(groups.items())}
+
+
+def run_dir(campaign, spec):
+    return Path(campaign.result(spec.name))
+
+
+def taps_table(campaign, spec):
+    """The per-tap table (``taps.dat``) of a run: ``Table`` with named columns."""
+    return read_fix_print(run_dir(campaign, spec) / "taps.dat")
+
+
+def profile(campaign, spec, name):
+    """A vector-mode profile file (``profile_z.dat`` or ``profile_x.dat``) of a run."""
+    return read_ave_time(run_dir(campaign, spec) / name)
+
+
+def pores_executable():
+    """The tapmc-pores program: $TAPMC_PORES, else $TAPMC_BUILD_DIR/tools/pores/tapmc-pores,
+    else build/tools/pores/tapmc-pores of the source tree, else tapmc-pores on PATH."""
+    candidates = []
+    if os.environ.get("TAPMC_PORES"):
+        candidates.append(Path(os.environ["TAPMC_PORES"]))
+    if os.environ.get("TAPMC_BUILD_DIR"):
+        candidates.append(Path(os.environ["TAPMC_BUILD_DIR"]) / "tools/pores/tapmc-pores")
+    candidates.append(SOURCE_DIR / "build/tools/pores/tapmc-pores")
+    for path in candidates:
+        if path.is_file() and os.access(path, os.X_OK):
+            return str(path)
+    found = shutil.which("tapmc-pores")
+    if found:
+        return found
+    raise FileNotFoundError(
+        "tapmc-pores not found: build it (cmake -DTAPMC_BUILD_PORES=ON) or set TAPMC_PORES "
+        "to its path; looked in " + ", ".join(str(c) for c in candidates))
+
+
+def run_pores(dumps, prefix, args):
+    """Run tapmc-pores on ``dumps`` with output prefix ``prefix`` unless its outputs are newer
+    than the dumps (figures are redrawn cheaply); returns the prefix as a Path."""
+    prefix = Path(prefix)
+    hist = Path(str(prefix) + ".hist.csv")
+    newest = max(Path(d).stat().st_mtime for d in dumps)
+    if hist.exists() and hist.stat().st_mtime >= newest:
+        return prefix
+    cmd = [pores_executable(), *args, "-o", str(prefix), *map(str, dumps)]
+    proc = subprocess.run(cmd, capture_output=True, text=True)
+    if proc.returncode != 0:
+        raise RuntimeError(f"{' '.join(cmd)} failed ({proc.returncode}): {proc.stderr.strip()}")
+    return prefix
+
+
+#: file of a campaign folder that records the Scale the campaign was built with.
+SCALE_FILE = "scale.json"
+
+
+def write_scale(directory, scale):
+    """Record ``scale`` in the campaign folder (see :func:`campaign_scale`)."""
+    directory = Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    (directory / SCALE_FILE).write_text(json.dumps(scale.as_dict(), indent=1) + "\n")
+
+
+def campaign_scale(campaign):
+    """The Scale of a campaign: the one recorded in its folder (``scale.json``, written by
+    :func:`write_scale`), else the preset of ``tapmc.paper.scales`` that its runs match, else
+    None (the runs themselves do not record the scale)."""
+    from .scales import Scale
+
+    path = Path(campaign.directory) / SCALE_FILE
+    if path.exists():
+        return Scale(**json.loads(path.read_text()))
+    return matching_scale(campaign.runs)
+
+
+def matching_scale(specs):
+    """The preset of ``tapmc.paper.scales`` whose N, L and eta are those of ``specs`` (the
+    runs do not record their scale), or None."""
+    from .scales import SCALES
+
+    for scale in SCALES.values():
+        if all(int(s.variables.get("N", -1)) == scale.N
+               and float(s.variables.get("L", -1)) == float(scale.L)
+               and float(s.variables.get("eta", -1)) == float(scale.eta) for s in specs):
+            return scale
+    return None

@@ -1,0 +1,174 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""The ``tapmc-paper`` command: one subcommand per figure of the paper, and ``report``.
+
+``tapmc-paper figN [--quick|--full] [--seeds K] [--jobs J] [--campaign DIR] [--out DIR]``
+builds the runs of Fig. N at the chosen scale (:mod:`tapmc.paper.scales`), runs the missing
+ones in the campaign folder (:class:`tapmc.campaign.Campaign`: resumable, shared by all
+figures, so runs common to several figures run once) and draws the PNG and the CSV of every
+plotted number into the output folder. ``tapmc-paper report`` does this for every figure and
+writes the validation report (``tapmc.paper.validation``).
+
+Exit status: 0 on success, 1 when a run failed (the message names the run and its log),
+2 on a usage error or a figure that this installation does not provide.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+from pathlib import Path
+
+from . import FIGURES
+from .scales import SCALES, get_scale
+
+
+class FigureUnavailable(RuntimeError):
+    """A figure module (tapmc.paper.figN) is missing or lacks runs()/draw()."""
+
+
+def load_figure(name):
+    """The module ``tapmc.paper.<name>``; FigureUnavailable with a clear message if this
+    installation does not have it (or it lacks ``runs`` and ``draw``)."""
+    if name not in FIGURES:
+        raise FigureUnavailable(f"figure {name!r}: allowed values are {', '.join(FIGURES)}")
+    modname = f"{__package__}.{name}"
+    try:
+        module = importlib.import_module(modname)
+    except ModuleNotFoundError as err:
+        if err.name != modname:
+            raise  # the figure module exists but one of its own imports is missing
+        raise FigureUnavailable(
+            f"{name}: the figure module {modname} is not installed in this TAPMC "
+            f"(looked in {Path(__file__).parent}); available figures: "
+            f"{', '.join(available_figures()) or 'none'}") from None
+    for attr in ("runs", "draw"):
+        if not callable(getattr(module, attr, None)):
+            raise FigureUnavailable(f"{name}: module {modname} has no {attr}() function "
+                                    "(a figure module needs runs(scale, seeds) and "
+                                    "draw(campaign, out_dir))")
+    return module
+
+
+def available_figures():
+    """Figure subcommands whose module file is present."""
+    here = Path(__file__).parent
+    return [f for f in FIGURES if (here / f"{f}.py").exists()]
+
+
+def _positive_int(text):
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{value} is not >= 1")
+    return value
+
+
+def build_parser():
+    parser = argparse.ArgumentParser(
+        prog="tapmc-paper",
+        description="Reproduce the figures of Philippe & Bideau (tapping model): run the "
+                    "paper's protocols as a resumable campaign of LAMMPS runs, then draw each "
+                    "figure as a PNG with a CSV of every plotted number.",
+        epilog="Example: tapmc-paper fig2 --quick --jobs 2   (writes tapmc-paper-quick/"
+               "figures/fig2.png and fig2.csv)")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    sub.required = True
+
+    def common(p):
+        size = p.add_mutually_exclusive_group()
+        size.add_argument("--quick", dest="scale", action="store_const", const="quick",
+                          help="small packings and few taps, about a minute per figure on "
+                               "2 cores (the default)")
+        size.add_argument("--full", dest="scale", action="store_const", const="full",
+                          help="the paper's scale: N = 4096, L = 32R, 4000 taps, 10 seeds "
+                               "(hours to days)")
+        p.set_defaults(scale="quick")
+        p.add_argument("--seeds", type=_positive_int, default=None, metavar="K",
+                       help="number of seeds (realizations) per point; default: the scale's")
+        p.add_argument("--jobs", type=_positive_int, default=None, metavar="J",
+                       help="runs at a time (default: all cores)")
+        p.add_argument("--campaign", type=Path, default=None, metavar="DIR",
+                       help="campaign folder, shared by the figures and resumable "
+                            "(default: ./tapmc-paper-SCALE)")
+        p.add_argument("--out", type=Path, default=None, metavar="DIR",
+                       help="where PNG and CSV files go (default: CAMPAIGN/figures)")
+        p.add_argument("--mode", choices=("pool", "partition"), default="pool",
+                       help="pool: a process pool on this machine; partition: LAMMPS "
+                            "-partition under mpirun (multi-node)")
+        p.add_argument("--lmp", type=Path, default=None, metavar="EXE",
+                       help="LAMMPS executable (default: $TAPMC_LMP, build/lmp_tapmc)")
+        p.add_argument("--dry-run", action="store_true",
+                       help="list the runs and exit without running anything")
+        p.add_argument("--quiet", action="store_true", help="no progress report")
+
+    for fig in FIGURES:
+        common(sub.add_parser(fig, help=f"Fig. {fig[3:]} of the paper"))
+    common(sub.add_parser("report", help="every figure, then the validation report"))
+    return parser
+
+
+def _campaign_for(args, modules):
+    from tapmc.campaign import Campaign
+
+    scale = get_scale(args.scale)
+    seeds = args.seeds if args.seeds is not None else scale.seeds
+    runs, seen = [], {}
+    for name, module in modules:
+        for spec in module.runs(scale, seeds):
+            if spec.name in seen:
+                if seen[spec.name].describe() != spec.describe():
+                    raise ValueError(f"{name}: run {spec.name!r} is also defined, differently, "
+                                     "by another figure")
+                continue
+            seen[spec.name] = spec
+            runs.append(spec)
+    directory = args.campaign or Path(f"tapmc-paper-{scale.name}")
+    return Campaign(directory, runs, lmp=args.lmp, jobs=args.jobs, mode=args.mode)
+
+
+def main(argv=None):
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    from tapmc.campaign import CampaignError
+
+    figures = list(FIGURES) if args.command == "report" else [args.command]
+    try:
+        modules = [(f, load_figure(f)) for f in figures]
+        validation = None
+        if args.command == "report":
+            try:
+                validation = importlib.import_module(f"{__package__}.validation")
+            except ModuleNotFoundError as err:
+                if err.name != f"{__package__}.validation":
+                    raise
+                raise FigureUnavailable("report: the module tapmc.paper.validation is not "
+                                        "installed in this TAPMC") from None
+        campaign = _campaign_for(args, modules)
+    except (FigureUnavailable, ValueError, FileNotFoundError) as err:
+        print(f"tapmc-paper: {err}", file=sys.stderr)
+        return 2
+    out = args.out or campaign.directory / "figures"
+    if args.dry_run:
+        print(f"campaign {campaign.directory} ({args.scale}, {len(campaign.runs)} runs):")
+        for spec in campaign.runs:
+            state = "done" if campaign.is_done(spec.name) else "to run"
+            print(f"  {spec.name}  [{spec.input.name}, taps {spec.taps}, {state}]")
+        return 0
+    try:
+        campaign.run(progress=not args.quiet)
+    except (CampaignError, ValueError) as err:
+        print(f"tapmc-paper: {err}", file=sys.stderr)
+        return 1
+    out.mkdir(parents=True, exist_ok=True)
+    drawn = {}
+    for name, module in modules:
+        png, csv = module.draw(campaign, out)
+        drawn[name] = (Path(png), Path(csv))
+        print(f"{name}: {png}  {csv}")
+    if validation is not None:
+        report = validation.report(campaign, out, drawn)
+        print(f"report: {report}")
+    return 0

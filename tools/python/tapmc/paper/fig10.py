@@ -1,0 +1,134 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""Fig. 10 of Philippe & Bideau: volume distributions of the pores at different stages of the
+compaction (section IV.B).
+
+F.B.C., eps = 2e-2 (``scale.pore_eps``, ``scale.pore_bc``); the packing dumped at t = 0, 1, 4,
+10, 30, 100, 300, 1000 and 4000 taps (``scale.dump_times``). tapmc-pores gives, in a
+statistics box 2R above the floor and 2R from the walls, 18R high at most (lower when the
+packing is: 80 % of its highest centre), (a) rho_v(xi) = xi^3 P(xi) against xi = r/R and
+(b) rho_v(v) against v = xi^3, mean and standard error over seeds. T and O mark the
+tetrahedral (xi_T = sqrt(3/2) - 1) and octahedral (xi_O = sqrt(2) - 1) sites.
+
+CSV panels: ``a`` (series ``t=<taps>``, x = xi), ``b`` (series ``t=<taps>``, x = v),
+``params``: per t (x = t) ``nu`` (mean normalised pore volume), ``xi_min`` (smallest pore
+size), ``xi_T`` (the start of the (xi - xi_T)^2 law fitted between 0.15 and xi_O,
+``tapmc.pores.TetrahedralLaw``), ``nu_tail`` (the decay volume of the exponential tail of
+rho_v(v), ``tapmc.pores.VolumeTail``; the paper: close to nu), ``small`` (integral of
+xi^3 P(xi) over [xi_T, xi_O]), ``large`` (over [xi_O, inf)); ``small_change`` and
+``large_change`` (integral of |rho_v(t_last) - rho_v(0)| over each range, relative to the
+initial integral: the paper finds the small-pore part invariant).
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+
+import numpy as np
+
+from . import _plotting as P
+from . import _pores, _runs
+
+NAME = "fig10"
+#: run-name prefix of the Fig. 10 runs.
+KIND = "pores"
+
+
+def runs(scale, seeds):
+    """One pore-dump run per seed at ``scale.pore_eps`` and ``scale.pore_bc`` with dumps at
+    ``scale.dump_times`` (and t = 0)."""
+    return [_runs.pore_run(scale, scale.pore_bc, scale.pore_eps, s, scale.dump_times, kind=KIND)
+            for s in _runs.seed_list(seeds)]
+
+
+def distributions(campaign, bc=None):
+    """dict step -> lists over seeds of xi, xi3_P_xi, v, rho_v, nu, xi_min (smallest selected
+    pore), xi_T (fitted by ``tapmc.pores.TetrahedralLaw``) and nu_tail (``VolumeTail``)."""
+    from tapmc.pores import read_pores
+
+    specs = _runs.select(campaign, KIND + "_", **({} if bc is None else {"bc": bc}))
+    if not specs:
+        raise ValueError(f"campaign {campaign.directory} has no pore-dump run")
+    out = defaultdict(lambda: defaultdict(list))
+    for spec in specs:
+        prefix, _ = _pores.analyse(campaign, spec, "fig10", extra=["--frame-hist", "--pores"])
+        pores = read_pores(prefix)
+        for step in pores.timesteps:
+            dist = pores.distribution(step)
+            d = out[step]
+            for name in ("xi", "xi3_P_xi", "v", "rho_v"):
+                d[name].append(getattr(dist, name))
+            d["nu"].append([dist.nu])
+            sel = (pores.pores["timestep"] == step) & (pores.pores["selected"] == 1)
+            d["xi_min"].append([float(pores.pores["xi"][sel].min())])
+            for name, fit, key in (("xi_T", dist.tetrahedral_law, "xi_T"),
+                                   ("nu_tail", dist.volume_tail, "nu_tail")):
+                try:
+                    d[name].append([fit().params[key]])
+                except (ValueError, RuntimeError):
+                    pass
+    return dict(sorted(out.items()))
+
+
+def _integral(x, y, lo, hi):
+    edges_w = np.gradient(x)
+    keep = (x >= lo) & (x < hi)
+    return float(np.sum(y[keep] * edges_w[keep]))
+
+
+def draw(campaign, out_dir):
+    png, csv = P.figure_paths(out_dir, NAME)
+    data = distributions(campaign)
+    table = P.FigureTable()
+    fig, (ax_xi, ax_v) = P.new_figure(2, 1)
+    colors = matplotlib_colors(len(data))
+    means = {}
+    for (step, d), color in zip(data.items(), colors):
+        xi = d["xi"][0]
+        v = d["v"][0]
+        rxi = P.seed_stats(d["xi3_P_xi"])
+        rv = P.seed_stats(d["rho_v"])
+        means[step] = (xi, rxi[0])
+        label = f"t = {step}"
+        P.errorbars(ax_xi, xi, rxi[0], rxi[1], label=label, color=color, lw=0.9)
+        P.errorbars(ax_v, v, rv[0], rv[1], label=label, color=color, lw=0.9)
+        table.add("a", f"t={step}", xi, *rxi)
+        table.add("b", f"t={step}", v, *rv)
+        for name in ("nu", "xi_min", "xi_T", "nu_tail"):
+            if not d.get(name):
+                continue
+            m, s, n = P.seed_stats(d[name])
+            table.add("params", name, step, m[0], s[0], n[0])
+        table.add("params", "small", step, _integral(xi, rxi[0], P.XI_T, P.XI_O), None,
+                  len(d["nu"]))
+        table.add("params", "large", step, _integral(xi, rxi[0], P.XI_O, np.inf), None,
+                  len(d["nu"]))
+    steps = list(means)
+    xi, first = means[steps[0]]
+    last = means[steps[-1]][1]
+    for name, lo, hi in (("small_change", P.XI_T, P.XI_O), ("large_change", P.XI_O, np.inf)):
+        base = _integral(xi, first, lo, hi)
+        change = _integral(xi, np.abs(last - first), lo, hi) / base if base > 0 else np.nan
+        table.add("params", name, steps[-1], change, None, 1)
+    for ax, marks, xlabel, ylabel in (
+            (ax_xi, (P.XI_T, P.XI_O), r"$\xi = r/R$", r"$\rho_v(\xi) = \xi^3 P(\xi)$"),
+            (ax_v, (P.XI_T ** 3, P.XI_O ** 3), r"$v = \xi^3$", r"$\rho_v(v)$")):
+        for x, name in zip(marks, "TO"):
+            ax.axvline(x, color="0.5", ls="--", lw=0.6)
+            ax.annotate(name, (x, 1.0), xycoords=("data", "axes fraction"), ha="center",
+                        va="bottom", fontsize=9)
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(ylabel)
+        ax.set_ylim(bottom=0)
+    ax_xi.set_xlim(0, 1.0)
+    ax_v.set_xlim(0, 0.6)
+    ax_xi.legend(fontsize=6, ncol=2)
+    P.save_figure(fig, png)
+    table.write(csv)
+    return png, csv
+
+
+def matplotlib_colors(n):
+    from matplotlib import colormaps
+
+    cmap = colormaps["viridis"]
+    return [cmap(x) for x in np.linspace(0.0, 0.9, max(n, 1))]

@@ -1,0 +1,126 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""Fig. 3 of Philippe & Bideau: fluctuations of <Z> in the steady state (section III.A).
+
+Top: the power spectrum of <Z> - <Z>_SS against the frequency (1/taps), one curve per eps
+(``tapmc.fluctuations.PowerSpectrum`` of each seed's steady segment, averaged over seeds, with
+the log-log slope of each seed averaged over seeds; paper: slope 1 to 1.5 in magnitude).
+Bottom: sigma_<Z> (standard deviation of <Z> over the steady segment) against sqrt(eps), mean
+and standard error over seeds, with the proportional law sigma = k sqrt(eps) of the paper
+(``tapmc.fluctuations.sigma_scaling``) dotted.
+
+The runs are the constant-eps P.B.C. runs of Fig. 4 (``scale.steady_eps``): the steady
+segment is the last quarter of the taps (paper: the last 1000 of 4000).
+
+CSV panels: ``a`` (series ``eps=<eps>``: x = frequency, mean/sem of the power), ``b``
+(series ``sigma_Z``: x = sqrt(eps); ``fit:k sqrt(eps)``), ``params`` (``eps=<eps>:slope``
+with x = eps; ``k`` and ``k_reduced_chi2`` of the proportional fit; ``intercept`` and
+``intercept_error`` of a free straight line, which is zero for a proportional law).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from tapmc.fluctuations import PowerSpectrum, SteadyState, sigma_scaling
+from tapmc.laws import StraightLine
+
+from . import _plotting as P
+from . import _runs
+
+NAME = "fig3"
+BC = "pbc"
+
+
+def runs(scale, seeds):
+    """Constant-eps P.B.C. runs, one per eps of ``scale.steady_eps`` and seed (shared with
+    Fig. 4)."""
+    return [_runs.constant_eps_run(scale, BC, eps, s)
+            for eps in scale.steady_eps for s in _runs.seed_list(seeds)]
+
+
+def steady_last(taps):
+    """Taps of the steady segment: the last quarter, the paper's proportion (the last 1000
+    of 4000 taps), and at least the 16 samples a spectrum needs."""
+    return int(min(max(taps // 4, 16), taps))
+
+
+def series_by_eps(campaign, column, bc=BC):
+    """dict eps -> list over seeds of the per-tap column (tap 0 excluded)."""
+    groups = _runs.by_variable(_runs.select(campaign, "const_", bc=bc), "eps")
+    if not groups:
+        raise ValueError(f"campaign {campaign.directory} has no constant-eps {bc} run")
+    return {eps: [_runs.taps_table(campaign, s)[column][1:] for s in specs]
+            for eps, specs in groups.items()}
+
+
+def analyse(campaign, column="Z", bc=BC):
+    """Spectra, slopes and sigma per eps: dict eps -> dict with 'frequency', 'power' (mean,
+    sem), 'slope' (mean, sem, n), 'sigma' (mean, sem, n)."""
+    out = {}
+    for eps, series in series_by_eps(campaign, column, bc).items():
+        length = min(len(s) for s in series)
+        last = steady_last(length)
+        spectra = [PowerSpectrum(s[:length], steady_from=length - last).compute()
+                   for s in series]
+        nbins = min(len(sp.frequency) for sp in spectra)
+        freq = spectra[0].frequency[:nbins]
+        pmean, psem, pn = P.seed_stats([sp.power[:nbins] for sp in spectra])
+        slope = P.seed_stats([[sp.slope] for sp in spectra])
+        sig = P.seed_stats([[SteadyState(s[:length], last=last).compute().std]
+                            for s in series])
+        out[eps] = {"frequency": freq, "power": (pmean, psem, pn), "last": last,
+                    "slope": tuple(v[0] for v in slope),
+                    "slope_error_single": spectra[0].slope_error,
+                    "sigma": tuple(v[0] for v in sig)}
+    return out
+
+
+def draw(campaign, out_dir):
+    png, csv = P.figure_paths(out_dir, NAME)
+    data = analyse(campaign)
+    table = P.FigureTable()
+    fig, (ax_s, ax_sig) = P.new_figure(2, 1)
+    for eps, d in data.items():
+        pmean, psem, pn = d["power"]
+        s_mean, s_sem, s_n = d["slope"]
+        label = f"eps = {P.fmt_eps(eps)}, slope {s_mean:.2f}"
+        ax_s.errorbar(d["frequency"], pmean, yerr=np.nan_to_num(psem), marker="o", ms=3,
+                      ls="-", lw=0.8, capsize=0, label=label)
+        table.add("a", f"eps={P.fmt_eps(eps)}", d["frequency"], pmean, psem, pn)
+        table.add("params", f"eps={P.fmt_eps(eps)}:slope", eps, s_mean, s_sem, s_n)
+    ax_s.set_xscale("log")
+    ax_s.set_yscale("log")
+    ax_s.set_xlabel("frequency (1/taps)")
+    ax_s.set_ylabel(r"power of $\langle Z\rangle - \langle Z\rangle_{SS}$")
+    ax_s.legend(fontsize=7, title="P.B.C.", title_fontsize=7)
+
+    eps = np.array(sorted(data))
+    sq = np.sqrt(eps)
+    smean = np.array([data[e]["sigma"][0] for e in eps])
+    ssem = np.array([data[e]["sigma"][1] for e in eps])
+    sn = np.array([data[e]["sigma"][2] for e in eps])
+    table.add("b", "sigma_Z", sq, smean, ssem, sn)
+    weights = ssem if np.all(np.isfinite(ssem)) and np.all(ssem > 0) else None
+    ax_sig.errorbar(sq, smean, yerr=np.nan_to_num(ssem), marker="s", ls="none", color="k",
+                    capsize=2, label=r"$\sigma_{\langle Z\rangle}$")
+    if len(eps) >= 2:
+        prop = sigma_scaling(sq, smean, weights)
+        xs = np.linspace(0, sq.max() * 1.05, 50)
+        ax_sig.plot(xs, prop(xs), "k:", label=r"$k\,\varepsilon^{1/2}$")
+        table.add("b", "fit:k sqrt(eps)", xs, prop(xs), None, 0)
+        table.add("params", "k", 0.0, prop.params["k"], prop.errors["k"], len(eps))
+        table.add("params", "k_reduced_chi2", 0.0, prop.reduced_chi2, None, len(eps))
+    if len(eps) >= 3:
+        line = StraightLine().fit(sq, smean, weights)
+        names = list(line.params)
+        intercept = names[0]
+        table.add("params", "intercept", 0.0, line.params[intercept], line.errors[intercept],
+                  len(eps))
+    ax_sig.set_xlim(left=0)
+    ax_sig.set_ylim(bottom=0)
+    ax_sig.set_xlabel(r"$\varepsilon^{1/2}$")
+    ax_sig.set_ylabel(r"$\sigma_{\langle Z\rangle}$")
+    ax_sig.legend(fontsize=8)
+    P.save_figure(fig, png)
+    table.write(csv)
+    return png, csv

@@ -1,0 +1,122 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""Fig. 6 of Philippe & Bideau: vertical packing-fraction profiles Phi(z/R) with the eq. 7 fit
+(section IV.A).
+
+F.B.C.; the initial packing (dotted) and the packing after the run (solid) at the campaign's
+eps nearest to the paper's 0.1. The profile is the exact slab average of compute
+stereo/profile over bins of R/5 (the "smoothing" of the paper), averaged over seeds. Thin
+lines: eq. 7 (``tapmc.laws.ProfileLaw``) fitted to the seed-averaged profiles.
+
+The gradient alpha (``tapmc.laws.profile_gradient``, straight line Phi0 - alpha z/R) is fitted
+per seed in the paper's window 5 <= z/R <= 22 (F.B.C.), cut at 78 % of the packing height
+(22R of the paper's 28R) when the packing is lower; alpha > 0 is the paper's "negative
+vertical gradient" (density decreasing with height).
+
+CSV panels: ``a`` (series ``initial``, ``final``, ``fit:initial``, ``fit:final``; x = z/R),
+``params`` (``initial:alpha``, ``final:alpha`` over seeds; ``final:<eq. 7 parameter>``,
+``window_lo``, ``window_hi``, ``eps``).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from tapmc.laws import PROFILE_WINDOWS, ProfileLaw, profile_gradient
+
+from . import _plotting as P
+from . import _runs
+
+NAME = "fig6"
+BC = "fbc"
+#: the paper's eps of Figs. 6 and 7.
+PAPER_EPS = 0.1
+#: upper end of the gradient window as a fraction of the packing height (22R of 28R).
+WINDOW_TOP_FRACTION = 22.0 / 28.0
+
+
+def runs(scale, seeds):
+    """Constant-eps F.B.C. runs of ``scale.profile_eps`` (shared with Figs. 7 and 8)."""
+    return [_runs.constant_eps_run(scale, BC, eps, s)
+            for eps in scale.profile_eps for s in _runs.seed_list(seeds)]
+
+
+def nearest_eps_runs(campaign, bc=BC, target=PAPER_EPS):
+    """(eps, specs) of the campaign's constant-eps runs with eps nearest to ``target``."""
+    groups = _runs.by_variable(_runs.select(campaign, "const_", bc=bc), "eps")
+    if not groups:
+        raise ValueError(f"campaign {campaign.directory} has no constant-eps {bc} run")
+    eps = min(groups, key=lambda e: abs(np.log(e / target)))
+    return eps, groups[eps]
+
+
+def radius(spec):
+    return float(spec.variables.get("R", 0.5))
+
+
+def gradient_window(campaign, specs, bc=BC):
+    """The paper's gradient window, cut at WINDOW_TOP_FRACTION of the initial packing height."""
+    lo, hi = PROFILE_WINDOWS[bc]
+    heights = [_runs.taps_table(campaign, s)["h_s"][0] / radius(s) for s in specs]
+    return lo, min(hi, WINDOW_TOP_FRACTION * float(np.min(heights)))
+
+
+def profiles(campaign, specs, filename):
+    """(x/R, initial mean, sem, n, final mean, sem, n) over seeds of a stereo/profile file
+    (columns: plane position, Phi at the plane, exact bin mean; the bin mean is used)."""
+    init, final = [], []
+    x = None
+    for spec in specs:
+        blocks = _runs.profile(campaign, spec, filename).blocks
+        x = blocks[0, :, 0] / radius(spec)
+        init.append(blocks[0, :, 2])
+        final.append(blocks[-1, :, 2])
+    return (x, *P.seed_stats(init), *P.seed_stats(final))
+
+
+def draw(campaign, out_dir):
+    png, csv = P.figure_paths(out_dir, NAME)
+    eps, specs = nearest_eps_runs(campaign)
+    window = gradient_window(campaign, specs)
+    zb, im, isem, i_n, fm, fsem, f_n = profiles(campaign, specs, "profile_z.dat")
+    table = P.FigureTable()
+    fig, (ax,) = P.new_figure(1, 1, height=4.0)
+    ax.plot(zb, im, ":", color="k", label="initial packing")
+    ax.plot(zb, fm, "-", color="C3", label=f"after {int(specs[0].variables['taps'])} taps")
+    ax.fill_between(zb, fm - np.nan_to_num(fsem), fm + np.nan_to_num(fsem), color="C3",
+                    alpha=0.25, lw=0)
+    table.add("a", "initial", zb, im, isem, i_n)
+    table.add("a", "final", zb, fm, fsem, f_n)
+    law = ProfileLaw(window=window)
+    for tag, mean, color in (("initial", im, "k"), ("final", fm, "C3")):
+        try:
+            fit = law.fit(zb, mean)
+        except (ValueError, RuntimeError):
+            continue
+        keep = zb >= window[0]
+        ax.plot(zb[keep], fit(zb[keep]), "-", lw=0.6, color=color, alpha=0.7)
+        table.add("a", f"fit:{tag}", zb[keep], fit(zb[keep]), None, 0)
+        for name, value in fit.params.items():
+            table.add("params", f"{tag}:eq7_{name}", eps, value, fit.errors.get(name, np.nan),
+                      int(bool(fit.determined)))
+    for tag, index in (("initial", 0), ("final", -1)):
+        alphas = []
+        for spec in specs:
+            blocks = _runs.profile(campaign, spec, "profile_z.dat").blocks
+            z = blocks[index, :, 0] / radius(spec)
+            alphas.append([profile_gradient(z, blocks[index, :, 2], window=window)
+                           .params["alpha"]])
+        m, s, n = P.seed_stats(alphas)
+        table.add("params", f"{tag}:alpha", eps, m[0], s[0], n[0])
+    table.add("params", "window_lo", eps, window[0], None, len(specs))
+    table.add("params", "window_hi", eps, window[1], None, len(specs))
+    table.add("params", "eps", eps, eps, None, len(specs))
+    for edge in window:
+        ax.axvline(edge, color="0.6", lw=0.6, ls="--")
+    ax.set_xlabel("z/R")
+    ax.set_ylabel(r"$\Phi$")
+    ax.set_ylim(bottom=0)
+    ax.legend(fontsize=8, title=f"F.B.C., eps = {P.fmt_eps(eps)}; dashed: gradient window",
+              title_fontsize=7)
+    P.save_figure(fig, png)
+    table.write(csv)
+    return png, csv

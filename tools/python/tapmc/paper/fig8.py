@@ -1,0 +1,91 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""Fig. 8 of Philippe & Bideau: lateral (top) and central (bottom) packing-fraction increases
+delta Phi_lateral(t) and delta Phi_central(t) relative to the initial packing (section IV.A).
+
+F.B.C., four excitations (``scale.profile_eps``); the means of the transversal profile within
+7R of the side walls (lateral) and beyond (central), in one fixed z-window, from compute
+stereo/profile's exact zone means (taps.dat columns ``lateral`` and ``central``); the
+increase per seed minus its t = 0 value (``tapmc.profiles.ProfileIncrease``), mean and
+standard error over seeds. The paper finds delta Phi_central systematically below
+delta Phi_lateral and a nearly frozen dynamics at small eps.
+
+CSV panels: ``a`` (lateral) and ``b`` (central), series ``eps=<eps>``, x = t; ``params``
+(``eps=<eps>:final_lateral``, ``eps=<eps>:final_central``: mean over the last quarter of the
+taps, over seeds).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import _plotting as P
+from . import _runs
+from .fig6 import BC
+from .fig6 import runs as _fig6_runs
+
+NAME = "fig8"
+
+
+def runs(scale, seeds):
+    """The constant-eps F.B.C. runs of Fig. 6 (``scale.profile_eps``)."""
+    return _fig6_runs(scale, seeds)
+
+
+def increases(campaign, bc=BC, eps_values=None):
+    """dict eps -> (t, (lateral mean, sem, n), (central mean, sem, n), finals) over seeds, for
+    ``eps_values`` (default: the campaign's ``profile_eps`` when its scale is known
+    (``tapmc.paper._runs.campaign_scale``), else every eps of the campaign's ``bc``
+    constant-eps runs)."""
+    from tapmc.profiles import ProfileIncrease
+
+    specs = _runs.select(campaign, "const_", bc=bc)
+    if eps_values is None:
+        scale = _runs.campaign_scale(campaign)
+        eps_values = scale.profile_eps if scale is not None else None
+    groups = _runs.by_variable(specs, "eps")
+    if eps_values is not None:
+        groups = {e: g for e, g in groups.items()
+                  if any(abs(e - v) <= 1e-9 * v for v in eps_values)}
+    if not groups:
+        raise ValueError(f"campaign {campaign.directory} has no constant-eps {bc} run")
+    out = {}
+    for eps, specs in groups.items():
+        tables = [_runs.taps_table(campaign, s) for s in specs]
+        length = min(len(tab["step"]) for tab in tables)
+        t = tables[0]["step"][:length]
+        inc = ProfileIncrease(t, np.array([tab["lateral"][:length] for tab in tables]),
+                              np.array([tab["central"][:length] for tab in tables])).compute()
+        n = np.full(length, len(tables))
+        last = max(length // 4, 1)
+        finals = {zone: P.seed_stats([[x[length - last:].mean()] for x in per_seed])
+                  for zone, per_seed in (("lateral", inc.delta_lateral_all),
+                                         ("central", inc.delta_central_all))}
+        out[eps] = (t, (np.asarray(inc.delta_lateral), np.asarray(inc.delta_lateral_sem), n),
+                    (np.asarray(inc.delta_central), np.asarray(inc.delta_central_sem), n), finals)
+    return out
+
+
+def draw(campaign, out_dir):
+    png, csv = P.figure_paths(out_dir, NAME)
+    data = increases(campaign)
+    table = P.FigureTable()
+    fig, (ax_l, ax_c) = P.new_figure(2, 1)
+    for eps, (t, lat, cen, finals) in data.items():
+        label = f"eps = {P.fmt_eps(eps)}"
+        pos = t > 0
+        line = P.errorbars(ax_l, t[pos], lat[0][pos], lat[1][pos], label=label)
+        P.errorbars(ax_c, t[pos], cen[0][pos], cen[1][pos], label=label, color=line.get_color())
+        table.add("a", f"eps={P.fmt_eps(eps)}", t, *lat)
+        table.add("b", f"eps={P.fmt_eps(eps)}", t, *cen)
+        for zone in ("lateral", "central"):
+            m, s, n = finals[zone]
+            table.add("params", f"eps={P.fmt_eps(eps)}:final_{zone}", eps, m[0], s[0], n[0])
+    for ax, name in ((ax_l, "lateral"), (ax_c, "central")):
+        ax.set_xscale("log")
+        ax.axhline(0, color="0.7", lw=0.6)
+        ax.set_xlabel("t (taps)")
+        ax.set_ylabel(rf"$\delta\Phi_{{\rm {name}}}$")
+    ax_l.legend(fontsize=7, title="F.B.C.", title_fontsize=7)
+    P.save_figure(fig, png)
+    table.write(csv)
+    return png, csv

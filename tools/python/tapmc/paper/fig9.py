@@ -1,0 +1,107 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""Fig. 9 of Philippe & Bideau: Gotoh's pore size distribution P0(sigma) against the
+Percus-Yevick expression (section IV.B, eqs. 8-9).
+
+P.B.C.; P0 measured by tapmc-pores (the probability that a random point of the statistics
+box lies farther than sigma R from every centre) for the packing after the run (open
+circles) and for the initial packing (thin line), mean and standard error over seeds; the
+thick line is the Percus-Yevick P0 (``tapmc.pores.percus_yevick_p0``) at the volume fraction
+of the final packings (the fraction of random points inside a sphere). The paper finds the
+measured P0 close to the theory and hardly different between the initial (58.4 %) and the
+tapped (60.6 %) packings.
+
+CSV panels: ``a`` (series ``final``, ``initial``, ``percus_yevick``; x = sigma), ``params``
+(``phi_initial``, ``phi_final`` seen by the random points; ``max_abs_diff_initial_final``,
+``max_abs_diff_final_py``; ``phi_c_initial``, ``phi_c_final`` of the stereology).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import _plotting as P
+from . import _pores, _runs
+
+NAME = "fig9"
+BC = "pbc"
+#: run-name prefix of the Fig. 9 runs (dumps at t = 0 and at the end only).
+KIND = "p0"
+
+
+def runs(scale, seeds):
+    """One pore-dump P.B.C. run per seed at ``scale.pore_eps`` (the paper does not give the
+    eps of Fig. 9), dumped at t = 0 and after ``scale.taps`` taps."""
+    return [_runs.pore_run(scale, BC, scale.pore_eps, s, [scale.taps], kind=KIND)
+            for s in _runs.seed_list(seeds)]
+
+
+def p0_curves(campaign, bc=BC):
+    """dict 'initial'/'final' -> (sigma, list of P0 per seed, list of phi per seed) and the
+    stereological <Phi^c> at both ends, over the campaign's pore-dump runs of ``bc``."""
+    from tapmc.pores import read_pores
+
+    specs = _runs.select(campaign, KIND + "_", bc=bc)
+    if not specs:
+        raise ValueError(f"campaign {campaign.directory} has no pore-dump {bc} run")
+    out = {"initial": [None, [], []], "final": [None, [], []]}
+    phi_c = {"initial": [], "final": []}
+    for spec in specs:
+        files = _pores.dumps(_runs.run_dir(campaign, spec))
+        first, last = min(files), max(files)
+        tab = _runs.taps_table(campaign, spec)
+        for key, step in (("initial", first), ("final", last)):
+            prefix, _ = _pores.analyse(campaign, spec, f"p0_t{step}", steps=[step],
+                                       extra=["--p0", str(_pores.P0_POINTS), "--seed",
+                                              str(spec.seed)])
+            pores = read_pores(prefix)
+            out[key][0] = pores.p0["sigma"]
+            out[key][1].append(pores.p0["P0_measured"])
+            out[key][2].append([float(pores.frames["phi_p0"][0])])
+            row = np.searchsorted(tab["step"], step)
+            phi_c[key].append([tab["phi_c"][row]])
+    return out, phi_c
+
+
+def draw(campaign, out_dir):
+    from tapmc.pores import percus_yevick_p0
+
+    png, csv = P.figure_paths(out_dir, NAME)
+    curves, phi_c = p0_curves(campaign)
+    table = P.FigureTable()
+    fig, (ax,) = P.new_figure(1, 1, height=4.0)
+    stats = {}
+    for key in ("final", "initial"):
+        sigma, p0s, phis = curves[key]
+        mean, sem, n = P.seed_stats(p0s)
+        stats[key] = (sigma, mean)
+        pm, ps, pn = P.seed_stats(phis)
+        table.add("a", key, sigma, mean, sem, n)
+        table.add("params", f"phi_{key}", 0.0, pm[0], ps[0], pn[0])
+        cm, cs, cn = P.seed_stats(phi_c[key])
+        table.add("params", f"phi_c_{key}", 0.0, cm[0], cs[0], cn[0])
+        if key == "final":
+            phi_final = pm[0]
+            every = max(len(sigma) // 40, 1)
+            ax.errorbar(sigma[::every], mean[::every], yerr=np.nan_to_num(sem[::every]),
+                        marker="o", mfc="none", ls="none", color="C0", capsize=1,
+                        label=f"after the taps ($\\Phi$ = {100 * pm[0]:.1f} %)")
+        else:
+            ax.plot(sigma, mean, "-", lw=0.8, color="k",
+                    label=f"initial packing ($\\Phi$ = {100 * pm[0]:.1f} %)")
+    sigma = stats["final"][0]
+    theory = np.asarray(percus_yevick_p0(sigma, phi_final), dtype=float)
+    ax.plot(sigma, theory, "-", lw=2.5, color="C1", alpha=0.7,
+            label=f"Percus-Yevick, $\\Phi$ = {100 * phi_final:.1f} %")
+    table.add("a", "percus_yevick", sigma, theory, None, 0)
+    table.add("params", "max_abs_diff_initial_final", 0.0,
+              float(np.max(np.abs(stats["final"][1] - stats["initial"][1]))), None, 1)
+    table.add("params", "max_abs_diff_final_py", 0.0,
+              float(np.max(np.abs(stats["final"][1] - theory))), None, 1)
+    ax.set_yscale("log")
+    ax.set_ylim(max(1e-5, float(np.nanmin(stats["final"][1][stats["final"][1] > 0])) / 2), 1.2)
+    ax.set_xlabel(r"$\sigma = r'/R$")
+    ax.set_ylabel(r"$P_0(\sigma)$")
+    ax.legend(fontsize=7, title="P.B.C.", title_fontsize=7)
+    P.save_figure(fig, png)
+    table.write(csv)
+    return png, csv

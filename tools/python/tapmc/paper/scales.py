@@ -1,0 +1,112 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""Scales of the paper's campaigns: ``QUICK`` (minutes on 2 cores, used by the tests) and
+``FULL`` (the paper's set-up, section II: N = 4096 spheres, L = 32R, 4000 taps).
+
+A :class:`Scale` holds every size the figure modules need; ``Scale.replace(**fields)`` gives a
+variant (e.g. ``FULL.replace(seeds=20)``). Lengths are in units of the sphere radius R; eps is
+the dilation of one tap, the excitation is sqrt(eps) (paper, eq. 2).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+
+__all__ = ["Scale", "QUICK", "FULL", "SCALES", "get_scale"]
+
+
+def _sq(values):
+    return tuple(round(v * v, 10) for v in values)
+
+
+@dataclass(frozen=True)
+class Scale:
+    """Sizes of one campaign scale (all fields read-only; see QUICK and FULL)."""
+
+    name: str
+    N: int                            #: spheres per packing
+    L: float                          #: box side in units of R
+    eta: float                        #: redeposition threshold of fix mc/settle
+    taps: int                         #: taps of a constant-eps run
+    seeds: int                        #: default number of seeds (realizations)
+    steady_last: int                  #: taps averaged for a steady state (paper: last 1000)
+    fig2_eps: tuple                   #: Fig. 2 eps values (FBC)
+    steady_eps: tuple                 #: Figs. 3-4 eps values of the constant-eps PBC runs
+    ramp_sqrt0: float                 #: Fig. 4 ramp: first sqrt(eps)
+    ramp_dsqrt: float                 #: Fig. 4 ramp: sqrt(eps) step (paper: 0.025)
+    ramp_levels: int                  #: Fig. 4 ramp: levels of the first up branch
+    ramp_taps_per_level: int          #: Fig. 4 ramp: taps per level (paper: 4000)
+    ageing_eps: float                 #: Fig. 5 eps
+    ageing_taps: int                  #: Fig. 5 taps per realization
+    ageing_waiting_times: tuple       #: Fig. 5 waiting times t_W
+    profile_eps: tuple                #: Figs. 6-8 eps values (FBC); Figs. 6-7 use the largest
+    pore_eps: float                   #: Fig. 10 eps (paper: 2e-2, FBC)
+    dump_times: tuple                 #: Fig. 10 dump taps (t = 0 is always dumped)
+    pore_bc: str = "fbc"              #: Fig. 10 boundary conditions
+
+    def __post_init__(self):
+        for field in ("N", "taps", "seeds", "steady_last", "ramp_levels",
+                      "ramp_taps_per_level", "ageing_taps"):
+            value = getattr(self, field)
+            if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+                raise ValueError(f"Scale.{field} = {value!r}: must be an integer >= 1")
+        for field in ("L", "eta", "ramp_sqrt0", "ramp_dsqrt", "ageing_eps", "pore_eps"):
+            value = getattr(self, field)
+            if not isinstance(value, (int, float)) or not value > 0:
+                raise ValueError(f"Scale.{field} = {value!r}: must be a number > 0")
+        if not self.eta < 1:
+            raise ValueError(f"Scale.eta = {self.eta!r}: must be in (0, 1)")
+        for field in ("fig2_eps", "steady_eps", "profile_eps", "ageing_waiting_times",
+                      "dump_times"):
+            values = tuple(getattr(self, field))
+            if not values or any(not v > 0 for v in values):
+                raise ValueError(f"Scale.{field} = {values!r}: must be a non-empty list of "
+                                 "positive numbers")
+            object.__setattr__(self, field, values)
+        if list(self.dump_times) != sorted(set(self.dump_times)):
+            raise ValueError(f"Scale.dump_times = {self.dump_times!r}: must be increasing")
+        if self.steady_last > self.taps:
+            raise ValueError(f"Scale.steady_last = {self.steady_last}: must be <= taps = "
+                             f"{self.taps}")
+        if self.pore_bc not in ("pbc", "fbc"):
+            raise ValueError(f"Scale.pore_bc = {self.pore_bc!r}: allowed values 'pbc', 'fbc'")
+
+    def replace(self, **fields):
+        """A copy with some fields changed (validated again)."""
+        return dataclasses.replace(self, **fields)
+
+    def as_dict(self):
+        return dataclasses.asdict(self)
+
+
+#: Small packings and few taps: every figure's campaign in about a minute on 2 cores.
+QUICK = Scale(
+    name="quick", N=512, L=16.0, eta=1e-5, taps=100, seeds=2, steady_last=25,
+    fig2_eps=(5e-3, 5e-2, 0.15),
+    steady_eps=_sq((0.05, 0.1, 0.2, 0.3)),
+    ramp_sqrt0=0.05, ramp_dsqrt=0.05, ramp_levels=4, ramp_taps_per_level=25,
+    ageing_eps=0.01, ageing_taps=100, ageing_waiting_times=(5, 10, 20, 40),
+    profile_eps=(5e-3, 2e-2, 5e-2, 0.1),
+    pore_eps=2e-2, dump_times=(1, 4, 10, 30, 100),
+)
+
+#: The paper's set-up (section II): 4096 spheres, L = 32R, 4000 taps, 10 realizations.
+FULL = Scale(
+    name="full", N=4096, L=32.0, eta=1e-7, taps=4000, seeds=10, steady_last=1000,
+    fig2_eps=(5e-3, 5e-2, 0.15),
+    steady_eps=_sq([0.025 * k for k in range(1, 13)]),
+    ramp_sqrt0=0.025, ramp_dsqrt=0.025, ramp_levels=12, ramp_taps_per_level=4000,
+    ageing_eps=0.01, ageing_taps=4000, ageing_waiting_times=(10, 30, 100, 300, 1000),
+    profile_eps=(5e-3, 2e-2, 5e-2, 0.1),
+    pore_eps=2e-2, dump_times=(1, 4, 10, 30, 100, 300, 1000, 4000),
+)
+
+SCALES = {"quick": QUICK, "full": FULL}
+
+
+def get_scale(name):
+    """The preset called ``name`` ('quick' or 'full')."""
+    try:
+        return SCALES[name]
+    except KeyError:
+        raise ValueError(f"scale = {name!r}: allowed values are {sorted(SCALES)}") from None

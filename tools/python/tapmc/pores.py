@@ -1,0 +1,339 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""Pores, section IV.B of Philippe & Bideau (Figs. 9, 10): reading ``tapmc-pores`` outputs,
+the distributions xi^3 P(xi) and rho_v(v) at several taps, the (xi - xi_T)^2 law between xi_T
+and xi_O, the exponential tail of rho_v(v) against nu, and Gotoh's P0(sigma) with its
+Percus-Yevick form.
+
+Percus-Yevick P0 (eqs. 8, 9). P0(sigma) is the probability that no sphere centre lies within
+sigma R of a random point. For sigma <= 1 at most one centre can (centres are 2R apart), so
+P0 = 1 - Phi sigma^3 exactly (eq. 8). For sigma >= 1 the scaled-particle / Percus-Yevick
+theory (Reiss, Frisch & Lebowitz) makes -ln P0 a cubic in sigma that continues eq. 8 with its
+value and first two derivatives at sigma = 1 and whose cubic coefficient is Phi times the PY
+compressibility pressure, beta P / rho = (1 + Phi + Phi^2)/(1 - Phi)^3. With t = sigma - 1:
+
+    P0 = (1 - Phi) exp{-Phi/(1 - Phi)^3 [3 (1 - Phi)^2 t + (1 - Phi)(3 + 3 Phi / 2) t^2
+                                          + (1 + Phi + Phi^2) t^3]}.
+
+Checks: continuous with eq. 8 (value, slope, curvature) at sigma = 1; P0 -> 0 as sigma grows;
+at low density -ln P0 -> Phi sigma^3 (ideal gas). Eq. 9 as printed in the paper,
+(1 - Phi) exp[Phi/(1 - Phi)^2 (-(1 - 2 Phi) sigma^3 + 9/2 Phi sigma^2 + 1 - sigma)], does not
+meet eq. 8 at sigma = 1 (its exponent there is Phi (13 Phi/2 - 1)/(1 - Phi)^2, not 0) and grows
+without bound for Phi > 1/2, so it is a misprint; the form above is the one it stands for, and
+the one tapmc-pores writes in its p0 file.
+"""
+
+import csv
+import json
+import os
+import re
+
+import numpy as np
+
+from ._validate import as_1d, in_range, new_axis
+from .laws import _Law
+from .readers import TapmcFormatError
+
+__all__ = ["XI_T", "XI_O", "CsvTable", "PoreOutput", "PoreDistribution", "read_pores",
+           "percus_yevick_p0", "TetrahedralLaw", "VolumeTail"]
+
+#: tetrahedral site, the smallest pore: sqrt(3/2) - 1 (section IV.B)
+XI_T = np.sqrt(1.5) - 1.0
+#: octahedral site: sqrt(2) - 1 (section IV.B)
+XI_O = np.sqrt(2.0) - 1.0
+
+
+def percus_yevick_p0(sigma, phi):
+    """Gotoh's P0(sigma) for hard spheres at volume fraction ``phi`` (0 <= phi < 1): eq. 8 for
+    sigma <= 1, the scaled-particle / Percus-Yevick form for sigma >= 1 (module text)."""
+    phi = in_range("phi", phi, 0.0, 1.0, hi_open=True)
+    s = np.asarray(sigma, dtype=float)
+    if np.any(s < 0) or not np.all(np.isfinite(s)):
+        raise ValueError("sigma must be finite and >= 0 (sigma = r'/R)")
+    t = np.maximum(s - 1.0, 0.0)
+    q = 1.0 - phi
+    exponent = -phi / q ** 3 * (3 * q ** 2 * t + q * (3 + 1.5 * phi) * t ** 2
+                                + (1 + phi + phi ** 2) * t ** 3)
+    inner = 1.0 - phi * np.minimum(s, 1.0) ** 3
+    return np.where(s <= 1.0, inner, q * np.exp(exponent))
+
+
+def _number(text):
+    try:
+        return float(text)
+    except ValueError:
+        return None
+
+
+class CsvTable:
+    """A CSV file with a header row: ``columns``, ``table[name]`` (float array when every entry
+    is numeric, else str array), ``len(table)``, ``comments`` (leading '#' lines)."""
+
+    def __init__(self, path):
+        self.path = str(path)
+        with open(path, newline="") as f:
+            lines = f.read().splitlines()
+        self.comments = []
+        k = 0
+        while k < len(lines) and lines[k].startswith("#"):
+            self.comments.append(lines[k].lstrip("# ").strip())
+            k += 1
+        if k >= len(lines):
+            raise TapmcFormatError(path, k + 1 if lines else None, "no CSV header row")
+        rows = list(csv.reader(lines[k:]))
+        self.columns = rows[0]
+        body = [r for r in rows[1:] if r]
+        for i, r in enumerate(body):
+            if len(r) != len(self.columns):
+                raise TapmcFormatError(path, k + 2 + i, f"expected {len(self.columns)} fields, "
+                                       f"found {len(r)}")
+        self._data = {}
+        for j, name in enumerate(self.columns):
+            col = [r[j] for r in body]
+            nums = [_number(v) for v in col]
+            if all(v is not None for v in nums):
+                self._data[name] = np.array(nums, dtype=float)
+            else:
+                self._data[name] = np.array(col, dtype=str)
+
+    def __getitem__(self, name):
+        try:
+            return self._data[name]
+        except KeyError:
+            raise KeyError(f"no column {name!r} in {self.path}; columns are "
+                           f"{self.columns}") from None
+
+    def __contains__(self, name):
+        return name in self._data
+
+    def __len__(self):
+        return len(next(iter(self._data.values()))) if self._data else 0
+
+
+_HIST_COLUMNS = ("xi_lo", "xi_hi", "xi", "count_xi", "P_xi", "xi3_P_xi", "v_lo", "v_hi", "v",
+                 "count_v", "rho_v")
+
+
+class PoreDistribution:
+    """Histograms of one set of frames: arrays ``xi``, ``xi_lo``, ``xi_hi``, ``count_xi``,
+    ``P_xi``, ``xi3_P_xi`` (rho_v(xi) = xi^3 P(xi)), ``v``, ``v_lo``, ``v_hi``, ``count_v``,
+    ``rho_v`` (the density of v = xi^3), plus ``nu`` (mean normalised pore volume, exact from
+    the pores), ``selected`` (pores) and ``timestep`` (None for the aggregate)."""
+
+    def __init__(self, columns, nu, selected, timestep=None):
+        for name in _HIST_COLUMNS:
+            setattr(self, name, np.asarray(columns[name], dtype=float))
+        self.nu = nu
+        self.selected = selected
+        self.timestep = timestep
+
+    def tetrahedral_law(self, xi_range=None, fit_xi_t=True):
+        """:class:`TetrahedralLaw` fitted to this xi^3 P(xi) with Poisson errors."""
+        law = TetrahedralLaw(xi_range=xi_range, fit_xi_t=fit_xi_t)
+        return law.fit(self.xi, self.xi3_P_xi, counts=self.count_xi)
+
+    def volume_tail(self, v_range=None):
+        """:class:`VolumeTail` fitted to this rho_v(v) with Poisson errors."""
+        return VolumeTail(v_range=v_range).fit(self.v, self.rho_v, counts=self.count_v)
+
+    def plot(self, ax=None, kind="xi3P", **kw):
+        """xi^3 P(xi) against xi (``kind='xi3P'``, Fig. 10a) or rho_v(v) against v
+        (``kind='rho_v'``, Fig. 10b)."""
+        ax = new_axis(ax)
+        kw.setdefault("label", "initial" if self.timestep == 0 else
+                      (f"t = {self.timestep}" if self.timestep is not None else "all frames"))
+        if kind == "xi3P":
+            ax.plot(self.xi, self.xi3_P_xi, **kw)
+            ax.set_xlabel(r"$\xi$")
+            ax.set_ylabel(r"$\xi^3 P(\xi)$")
+        elif kind == "rho_v":
+            ax.plot(self.v, self.rho_v, **kw)
+            ax.set_xlabel(r"$v = \xi^3$")
+            ax.set_ylabel(r"$\rho_v(v)$")
+        else:
+            raise ValueError(f"kind = {kind!r} must be 'xi3P' or 'rho_v'")
+        return ax
+
+
+class PoreOutput:
+    """The output files of one ``tapmc-pores -o PREFIX`` run: ``hist`` (PREFIX.hist.csv,
+    aggregate), ``frames`` (PREFIX.frames.csv), and when present ``frame_hist``
+    (``--frame-hist``), ``p0`` (``--p0``), ``pores`` (``--pores``), ``json`` (``--json``, a
+    dict). ``timesteps`` lists the frames' timesteps; ``distribution(timestep=None)`` gives a
+    :class:`PoreDistribution` (the aggregate, or the frames of one timestep combined, e.g. over
+    several dumps of different seeds, weighted by their selected pores)."""
+
+    def __init__(self, prefix):
+        self.prefix = str(prefix)
+        path = lambda suffix: self.prefix + suffix  # noqa: E731
+        for required in (".hist.csv", ".frames.csv"):
+            if not os.path.isfile(path(required)):
+                raise FileNotFoundError(f"tapmc-pores output {path(required)!r} not found")
+        self.hist = CsvTable(path(".hist.csv"))
+        self.frames = CsvTable(path(".frames.csv"))
+        self.frame_hist = CsvTable(path(".frame_hist.csv")) \
+            if os.path.isfile(path(".frame_hist.csv")) else None
+        self.p0 = CsvTable(path(".p0.csv")) if os.path.isfile(path(".p0.csv")) else None
+        self.pores = CsvTable(path(".pores.csv")) if os.path.isfile(path(".pores.csv")) else None
+        self.json = None
+        if os.path.isfile(path(".json")):
+            with open(path(".json")) as f:
+                self.json = json.load(f)
+
+    @property
+    def p0_phi(self):
+        """The volume fraction used by the Percus-Yevick column of the p0 file (the fraction
+        of random points inside a sphere, from its comment line), or None."""
+        if self.p0 is None:
+            return None
+        for line in self.p0.comments:
+            match = re.search(r"phi[^=]*=\s*([-+0-9.eE]+)", line)
+            if match:
+                return float(match.group(1))
+        return None
+
+    @property
+    def timesteps(self):
+        return sorted(set(int(s) for s in self.frames["timestep"]))
+
+    @property
+    def nu(self):
+        """nu over all analysed frames (weighted by their selected pores)."""
+        w = self.frames["selected"]
+        return float(np.sum(self.frames["nu"] * w) / np.sum(w))
+
+    def distribution(self, timestep=None):
+        if timestep is None:
+            return PoreDistribution({c: self.hist[c] for c in _HIST_COLUMNS}, self.nu,
+                                    int(np.sum(self.frames["selected"])))
+        if self.frame_hist is None:
+            raise ValueError(f"{self.prefix}.frame_hist.csv is missing: run tapmc-pores with "
+                             "--frame-hist for per-timestep distributions")
+        fsel = self.frames["timestep"] == timestep
+        if not np.any(fsel):
+            raise ValueError(f"timestep = {timestep} is not in {self.prefix}.frames.csv; "
+                             f"timesteps are {self.timesteps}")
+        fh = self.frame_hist
+        frames = list(zip(self.frames["file"][fsel], self.frames["frame"][fsel],
+                          self.frames["selected"][fsel], self.frames["nu"][fsel]))
+        total = sum(f[2] for f in frames)
+        combined = {}
+        for file, frame, selected, _ in frames:
+            rows = (fh["file"] == file) & (fh["frame"] == frame)
+            for c in _HIST_COLUMNS:
+                values = fh[c][rows]
+                if c.startswith("count"):
+                    combined[c] = combined.get(c, 0) + values
+                elif c in ("P_xi", "xi3_P_xi", "rho_v"):
+                    combined[c] = combined.get(c, 0) + values * selected / total
+                else:
+                    combined[c] = values
+        nu = sum(f[3] * f[2] for f in frames) / total
+        return PoreDistribution(combined, nu, int(total), timestep)
+
+
+def read_pores(path, prefix=None):
+    """Open the outputs of ``tapmc-pores -o PREFIX``. ``path`` is the prefix itself (e.g.
+    ``out/fig10``) or a directory holding exactly one ``*.hist.csv`` (or give ``prefix``, the
+    file-name prefix inside that directory)."""
+    path = str(path)
+    if os.path.isdir(path):
+        if prefix is None:
+            hists = sorted(f for f in os.listdir(path) if f.endswith(".hist.csv"))
+            if len(hists) != 1:
+                raise ValueError(f"{path!r} holds {len(hists)} tapmc-pores outputs "
+                                 f"({', '.join(hists) or 'none'}); give prefix")
+            prefix = hists[0][:-len(".hist.csv")]
+        return PoreOutput(os.path.join(path, prefix))
+    return PoreOutput(path)
+
+
+def _poisson_sigma(x_power, values, counts):
+    """1-sigma errors of a histogram density from its bin counts: value per count times
+    sqrt(count), one count for empty bins (so that they weigh, not vanish). The value per count
+    is x^k times a constant (the normalisation), estimated from the non-empty bins."""
+    counts = np.asarray(counts, dtype=float)
+    full = counts > 0
+    if not np.any(full):
+        raise ValueError("every bin is empty")
+    per_count = np.median(values[full] / counts[full] / x_power[full])
+    return np.maximum(per_count * x_power, 1e-300) * np.sqrt(np.maximum(counts, 1.0))
+
+
+class TetrahedralLaw(_Law):
+    """xi^3 P(xi) = a (xi - xi_T)^2 for xi_T <= xi <= xi_O, zero below xi_T (section IV.B).
+    Parameters ``a`` and ``xi_T`` (``fit_xi_t=True``, to test that the smallest pores are
+    tetrahedral sites, xi_T = sqrt(3/2) - 1) or ``a`` alone with xi_T fixed at that value.
+    ``xi_range`` (default (0.15, xi_O)) selects the bins; below xi_T they hold no pore and fix
+    xi_T."""
+
+    def __init__(self, xi_range=None, fit_xi_t=True):
+        lo, hi = xi_range if xi_range is not None else (0.15, XI_O)
+        if not (0 <= lo < hi):
+            raise ValueError(f"xi_range = {xi_range!r} must be (lo, hi) with 0 <= lo < hi")
+        self.xi_range = (float(lo), float(hi))
+        self.fit_xi_t = bool(fit_xi_t)
+        self.names = ("a", "xi_T") if self.fit_xi_t else ("a",)
+
+    def function(self, xi, a, xi_t=XI_T):
+        return a * np.maximum(xi - xi_t, 0.0) ** 2
+
+    def bounds(self, x, y):
+        return ([0.0, 0.0], [np.inf, self.xi_range[1]]) if self.fit_xi_t else ([0.0], [np.inf])
+
+    def initial_guess(self, xi, y, w):
+        nonzero = xi[y > 0]
+        xi_t = nonzero.min() if nonzero.size else XI_T
+        xi_t = min(xi_t, 0.5 * (self.xi_range[0] + self.xi_range[1])) if self.fit_xi_t else XI_T
+        d2 = np.maximum(xi - xi_t, 0.0) ** 2
+        a = np.sum(w * d2 * y) / max(np.sum(w * d2 * d2), 1e-300)
+        return [a, xi_t] if self.fit_xi_t else [a]
+
+    def fit(self, xi, xi3_p, counts=None, sigma=None, p0=None):
+        xi = as_1d("xi", xi)
+        xi3_p = as_1d("xi3_P_xi", xi3_p)
+        sel = (xi >= self.xi_range[0]) & (xi <= self.xi_range[1])
+        if sigma is None and counts is not None:
+            sigma = _poisson_sigma(xi ** 3, xi3_p, counts)
+        s = None if sigma is None else np.broadcast_to(np.asarray(sigma, float), xi.shape)[sel]
+        return super().fit(xi[sel], xi3_p[sel], s, p0)
+
+
+class VolumeTail(_Law):
+    """rho_v(v) = c exp(-v / nu_tail) over the tail of the volume distribution (section IV.B:
+    "compatible with a Poisson law exp(-v/nu)", nu the mean normalised pore volume).
+    Parameters ``c`` and ``nu_tail``; ``v_range`` defaults to (xi_O^3, largest non-empty v).
+    Compare ``nu_tail`` with the distribution's ``nu``."""
+
+    names = ("c", "nu_tail")
+
+    def __init__(self, v_range=None):
+        self.v_range = v_range
+
+    @staticmethod
+    def function(v, c, nu_tail):
+        return c * np.exp(-v / nu_tail)
+
+    def bounds(self, x, y):
+        return ([0.0, 0.0], [np.inf, np.inf])
+
+    def initial_guess(self, v, y, w):
+        pos = y > 0
+        if pos.sum() >= 2:
+            slope, intercept = np.polyfit(v[pos], np.log(y[pos]), 1)
+            if slope < 0:
+                return [np.exp(intercept), -1.0 / slope]
+        return [max(y.max(), 1e-300), max(np.ptp(v), 1e-3)]
+
+    def fit(self, v, rho_v, counts=None, sigma=None, p0=None):
+        v = as_1d("v", v)
+        rho_v = as_1d("rho_v", rho_v)
+        if self.v_range is None:
+            nonzero = v[rho_v > 0]
+            lo, hi = XI_O ** 3, (nonzero.max() if nonzero.size else v.max())
+        else:
+            lo, hi = self.v_range
+        sel = (v >= lo) & (v <= hi)
+        if sigma is None and counts is not None:
+            sigma = _poisson_sigma(np.ones_like(v), rho_v, counts)
+        s = None if sigma is None else np.broadcast_to(np.asarray(sigma, float), v.shape)[sel]
+        return super().fit(v[sel], rho_v[sel], s, p0)
