@@ -218,6 +218,9 @@ def snippet_environment():
                TAPMC_LIB=LIB)
     env["PATH"] = os.pathsep.join([BUILD_DIR, os.path.join(BUILD_DIR, "tools", "pores"),
                                    env.get("PATH", "")])
+    # The tapmc package of this tree, whatever tree the user-site tapmc.pth points at.
+    env["PYTHONPATH"] = os.pathsep.join(filter(None, [os.path.join(SOURCE_DIR, "tools", "python"),
+                                                      env.get("PYTHONPATH")]))
     return env
 
 
