@@ -1,7 +1,7 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 """The ``tapmc-paper`` command: one subcommand per figure of the paper, and ``report``.
 
-``tapmc-paper figN [--quick|--full] [--seeds K] [--jobs J] [--campaign DIR] [--out DIR]``
+``tapmc-paper figN [--quick|--medium|--full] [--seeds K] [--jobs J] [--campaign DIR] [--out DIR]``
 builds the runs of Fig. N at the chosen scale (:mod:`tapmc.paper.scales`), runs the missing
 ones in the campaign folder (:class:`tapmc.campaign.Campaign`: resumable, shared by all
 figures, so runs common to several figures run once) and draws the PNG and the CSV of every
@@ -82,6 +82,9 @@ def build_parser():
         size.add_argument("--quick", dest="scale", action="store_const", const="quick",
                           help="small packings and few taps, about a minute per figure on "
                                "2 cores (the default)")
+        size.add_argument("--medium", dest="scale", action="store_const", const="medium",
+                          help="N = 1024, L = 16R, 1000 taps, 2 seeds: about 25 minutes for "
+                               "every figure on 2 cores (doc/validation.rst)")
         size.add_argument("--full", dest="scale", action="store_const", const="full",
                           help="the paper's scale: N = 4096, L = 32R, 4000 taps, 10 seeds "
                                "(hours to days)")

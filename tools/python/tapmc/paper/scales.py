@@ -1,6 +1,7 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-"""Scales of the paper's campaigns: ``QUICK`` (minutes on 2 cores, used by the tests) and
-``FULL`` (the paper's set-up, section II: N = 4096 spheres, L = 32R, 4000 taps).
+"""Scales of the paper's campaigns: ``QUICK`` (minutes on 2 cores, used by the tests), ``MEDIUM``
+(the validation report's) and ``FULL`` (the paper's set-up, section II: N = 4096 spheres,
+L = 32R, 4000 taps).
 
 A :class:`Scale` holds every size the figure modules need; ``Scale.replace(**fields)`` gives a
 variant (e.g. ``FULL.replace(seeds=20)``). Lengths are in units of the sphere radius R; eps is
@@ -12,7 +13,7 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass
 
-__all__ = ["Scale", "QUICK", "FULL", "SCALES", "get_scale"]
+__all__ = ["Scale", "QUICK", "MEDIUM", "FULL", "SCALES", "get_scale"]
 
 
 def _sq(values):
@@ -101,11 +102,23 @@ FULL = Scale(
     pore_eps=2e-2, dump_times=(1, 4, 10, 30, 100, 300, 1000, 4000),
 )
 
-SCALES = {"quick": QUICK, "full": FULL}
+#: Between the two: 1024 spheres (the paper's bed height on a 16R x 16R base), 1000 taps, two
+#: seeds; about 25 minutes on 2 cores. doc/validation.rst is made from this preset.
+MEDIUM = Scale(
+    name="medium", N=1024, L=16.0, eta=1e-5, taps=1000, seeds=2, steady_last=250,
+    fig2_eps=(5e-3, 5e-2, 0.15),
+    steady_eps=(0.0025, 0.01, 0.0225, 0.04, 0.09),
+    ramp_sqrt0=0.05, ramp_dsqrt=0.05, ramp_levels=5, ramp_taps_per_level=200,
+    ageing_eps=0.01, ageing_taps=1000, ageing_waiting_times=(10, 30, 100, 250),
+    profile_eps=(5e-3, 2e-2, 5e-2, 0.1),
+    pore_eps=2e-2, dump_times=(1, 4, 10, 30, 100, 300, 1000),
+)
+
+SCALES = {"quick": QUICK, "medium": MEDIUM, "full": FULL}
 
 
 def get_scale(name):
-    """The preset called ``name`` ('quick' or 'full')."""
+    """The preset called ``name`` ('quick', 'medium' or 'full')."""
     try:
         return SCALES[name]
     except KeyError:
