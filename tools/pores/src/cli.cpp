@@ -16,6 +16,8 @@
 
 #include "tapmc_pores/analysis.h"
 #include "tapmc_pores/dump_reader.h"
+#include "tapmc_pores/errors.h"
+#include "tapmc_pores/json_writer.h"
 #include "tapmc_pores/pores_config.h"
 #include "tapmc_pores/tessellation.h"
 
@@ -95,11 +97,6 @@ struct Options {
   std::size_t sigma_steps = config::kDefaultSigmaBins;
   std::uint64_t seed = 1;
   PoreOptions pores;
-};
-
-class UsageError : public std::invalid_argument {
- public:
-  using std::invalid_argument::invalid_argument;
 };
 
 double to_double(const std::string& option, const std::string& text) {
@@ -211,7 +208,7 @@ class OutputFile {
  public:
   explicit OutputFile(std::string path) : path_(std::move(path)), partial_(path_ + ".partial") {
     stream_.open(partial_);
-    if (!stream_) throw std::runtime_error("cannot write '" + partial_ + "'");
+    if (!stream_) throw OutputError("cannot write '" + partial_ + "'");
     stream_ << std::setprecision(12);
   }
   ~OutputFile() {
@@ -226,9 +223,9 @@ class OutputFile {
   const std::string& path() const { return path_; }
   void commit() {
     stream_.close();
-    if (!stream_) throw std::runtime_error("writing '" + partial_ + "' failed (disk full?)");
+    if (!stream_) throw OutputError("writing '" + partial_ + "' failed (disk full?)");
     if (std::rename(partial_.c_str(), path_.c_str()) != 0)
-      throw std::runtime_error("cannot rename '" + partial_ + "' to '" + path_ + "'");
+      throw OutputError("cannot rename '" + partial_ + "' to '" + path_ + "'");
     committed_ = true;
   }
 
@@ -244,23 +241,8 @@ struct Warning {
   std::string first_frame;  // location and details of the first frame concerned
 };
 
-// Numbers for CSV and JSON: NaN becomes an empty CSV field / JSON null.
-std::string csv_number(double v) {
-  if (std::isnan(v)) return "";
-  std::ostringstream s;
-  s << std::setprecision(12) << v;
-  return s.str();
-}
-std::string json_number(double v) { return std::isfinite(v) ? csv_number(v) : "null"; }
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '"' || c == '\\') out += '\\', out += c;
-    else if (static_cast<unsigned char>(c) < 32) out += ' ';
-    else out += c;
-  }
-  return out + "\"";
-}
+// Numbers for CSV: NaN becomes an empty field.
+std::string csv_number(double v) { return std::isnan(v) ? "" : number_text(v); }
 
 struct FrameSummary {
   std::string file;
@@ -283,28 +265,65 @@ void write_histogram_rows(std::ostream& out, const PoreStatistics& s, const std:
 }
 const char* kHistogramColumns = "bin,xi_lo,xi_hi,xi,count_xi,P_xi,xi3_P_xi,v_lo,v_hi,v,count_v,rho_v";
 
-void write_json_statistics(std::ostream& out, const PoreStatistics& s, bool with_histograms) {
-  out << "{\"pores\": " << s.pores << ", \"degenerate_pores\": " << s.degenerate << ", \"nu\": " << json_number(s.nu())
-      << ", \"mean_xi\": " << json_number(s.mean_xi()) << ", \"xi_underflow\": " << s.xi.underflow()
-      << ", \"xi_overflow\": " << s.xi.overflow();
+void write_json_statistics(JsonWriter& json, const PoreStatistics& s, bool with_histograms) {
+  json.begin_object();
+  json.key("pores").value(s.pores).key("degenerate_pores").value(s.degenerate).key("nu").value(s.nu());
+  json.key("mean_xi").value(s.mean_xi()).key("xi_underflow").value(s.xi.underflow());
+  json.key("xi_overflow").value(s.xi.overflow());
   if (with_histograms) {
     auto array = [&](const char* name, std::size_t n, auto value) {
-      out << ", \"" << name << "\": [";
-      for (std::size_t i = 0; i < n; ++i) out << (i ? ", " : "") << value(i);
-      out << "]";
+      json.key(name).begin_array();
+      for (std::size_t i = 0; i < n; ++i) json.value(value(i));
+      json.end_array();
     };
-    array("xi_edges", s.xi.bins() + 1, [&](std::size_t i) { return json_number(s.xi.lo() + s.xi.width() * double(i)); });
-    array("count_xi", s.xi.bins(), [&](std::size_t i) { return std::to_string(s.xi.count(i)); });
-    array("P_xi", s.xi.bins(), [&](std::size_t i) { return json_number(s.xi.density(i)); });
+    array("xi_edges", s.xi.bins() + 1, [&](std::size_t i) { return s.xi.lo() + s.xi.width() * double(i); });
+    array("count_xi", s.xi.bins(), [&](std::size_t i) { return s.xi.count(i); });
+    array("P_xi", s.xi.bins(), [&](std::size_t i) { return s.xi.density(i); });
     array("xi3_P_xi", s.xi.bins(), [&](std::size_t i) {
       const double xi = s.xi.bin_centre(i);
-      return json_number(xi * xi * xi * s.xi.density(i));
+      return xi * xi * xi * s.xi.density(i);
     });
-    array("v_edges", s.v.bins() + 1, [&](std::size_t i) { return json_number(s.v.lo() + s.v.width() * double(i)); });
-    array("count_v", s.v.bins(), [&](std::size_t i) { return std::to_string(s.v.count(i)); });
-    array("rho_v", s.v.bins(), [&](std::size_t i) { return json_number(s.v.density(i)); });
+    array("v_edges", s.v.bins() + 1, [&](std::size_t i) { return s.v.lo() + s.v.width() * double(i); });
+    array("count_v", s.v.bins(), [&](std::size_t i) { return s.v.count(i); });
+    array("rho_v", s.v.bins(), [&](std::size_t i) { return s.v.density(i); });
   }
-  out << "}";
+  json.end_object();
+}
+
+// PREFIX.json: the aggregate, every frame and the P0 curves (when sampled), for Python.
+void write_json(std::ostream& out, std::size_t analysed, const PoreStatistics& total,
+                const std::vector<FrameSummary>& summaries, bool frame_histograms, const P0Statistics* p0) {
+  JsonWriter json(out);
+  json.begin_object().key("tool").value("tapmc-pores").key("frames_analysed").value(analysed);
+  json.break_line(1).key("aggregate");
+  write_json_statistics(json, total, true);
+  json.break_line(1).key("frames").begin_array();
+  for (const FrameSummary& f : summaries) {
+    json.break_line(2).begin_object();
+    json.key("file").value(f.file).key("frame").value(f.frame).key("timestep").value(f.timestep);
+    json.key("atoms").value(f.atoms).key("radius").value(f.radius).key("pores_total").value(f.pores);
+    json.key("tetrahedra").value(f.tetrahedra).key("unresolved").value(f.unresolved);
+    json.key("region_volume").value(f.region_volume).key("tetrahedra_volume").value(f.tetrahedra_volume);
+    json.key("phi_p0").value(f.phi_p0).key("seconds").value(f.seconds).key("statistics");
+    write_json_statistics(json, f.stats, frame_histograms);
+    json.end_object();
+  }
+  json.end_array();
+  if (p0) {
+    const double phi = p0->phi();
+    std::vector<double> sigma, measured, percus_yevick;
+    for (std::size_t k = 0; k < p0->steps(); ++k) {
+      sigma.push_back(p0->sigma(k));
+      measured.push_back(p0->p0(k));
+      // No Percus-Yevick curve outside 0 < phi < 1: NaN, written as null.
+      percus_yevick.push_back(phi > 0 && phi < 1 ? gotoh_p0(p0->sigma(k), phi) : std::numeric_limits<double>::quiet_NaN());
+    }
+    json.break_line(1).key("p0").begin_object().key("samples").value(p0->samples).key("phi").value(phi);
+    json.key("sigma").array(sigma).key("measured").array(measured).key("percus_yevick").array(percus_yevick);
+    json.end_object();
+  }
+  json.end_object();
+  out << "\n";
 }
 
 // The --overlap-tol that accepts an overlap of `depth` (of a diameter): rounded up to two
@@ -318,23 +337,19 @@ double accepting_tolerance(double depth) {
 
 }  // namespace
 
-int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err) {
-  Options o;
+void run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err) {
+  bool help = false;
+  const Options o = parse(arguments, help);
+  if (help) {
+    out << kUsage;
+    return;
+  }
   try {
-    bool help = false;
-    o = parse(arguments, help);
-    if (help) {
-      out << kUsage;
-      return 0;
-    }
     (void)PoreStatistics(o.histogram);  // validates the bins
   } catch (const std::invalid_argument& e) {
-    err << "tapmc-pores: " << e.what() << " (see tapmc-pores --help)\n";
-    return 1;
+    throw UsageError(e.what());
   }
 
-  std::string current_file;
-  std::size_t current_frame = 0;
   std::vector<std::unique_ptr<OutputFile>> outputs;  // removed unless the run succeeds
   auto output = [&](const std::string& suffix) -> std::ofstream& {
     outputs.push_back(std::make_unique<OutputFile>(o.prefix + suffix));
@@ -351,7 +366,7 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
     }
     ++it->second.frames;
   };
-  try {
+  {
     std::ofstream& frames_csv = output(".frames.csv");
     frames_csv << "file,frame,timestep,atoms,radius,pores,tetrahedra,unresolved,selected,degenerate_selected,nu,mean_xi,"
                   "region_volume,tetrahedra_volume,phi_p0,seconds\n";
@@ -372,8 +387,8 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
 
     for (const std::string& path : o.files) {
       if (analysed >= o.max_frames) break;
-      current_file = path;
-      current_frame = 0;
+      std::size_t current_frame = 0;
+      try {
       DumpReader reader = DumpReader::open(path, o.reader);
       Frame frame;
       std::size_t seen = 0;
@@ -391,7 +406,7 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
         try {
           radius = common_radius(frame, o.radius);
         } catch (const RadiusError& e) {
-          throw std::runtime_error(where(frame.first_atom_line + e.index) + e.what());
+          throw InputError(where(frame.first_atom_line + e.index) + e.what());
         }
         PoreOptions pore_options = o.pores;
         pore_options.radius = radius.radius;
@@ -401,7 +416,7 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
           packing = find_packing(frame.box, frame.xyz, radius.radius, o.floor);
           region = make_region(frame.box, packing, radius.radius, o.region);
         } catch (const std::invalid_argument& e) {
-          throw std::runtime_error(where(frame.first_line) + e.what());
+          throw InputError(where(frame.first_line) + e.what());
         }
         const double r = radius.radius;
         if (packing.free_surface) {
@@ -442,9 +457,9 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
                  << tolerance << " (pores whose empty sphere is squeezed by overlaps get xi < 0, counted below range).";
           else
             what << "The centres nearly coincide: this is not a packing of spheres.";
-          throw std::runtime_error(what.str());
+          throw InputError(what.str());
         } catch (const std::exception& e) {
-          throw std::runtime_error(where(frame.first_line) + e.what());
+          throw InputError(where(frame.first_line) + e.what());
         }
         const PoreResult& result = tessellation->result();
         FrameSummary summary;
@@ -525,9 +540,13 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
         summaries.push_back(std::move(summary));
         ++analysed;
       }
+      } catch (const InputError&) {
+        throw;
+      } catch (const std::exception& e) {  // unforeseen: still say where
+        throw InputError(path + ": frame " + std::to_string(current_frame) + ": " + e.what());
+      }
     }
-    current_file.clear();
-    if (analysed == 0) throw std::runtime_error("no frame analysed (check --skip/--every and the files)");
+    if (analysed == 0) throw InputError("no frame analysed (check --skip/--every and the files)");
 
     std::ofstream& hist_csv = output(".hist.csv");
     hist_csv << "# tapmc-pores: " << analysed << " frames, " << total.pores << " selected pores, nu = "
@@ -546,36 +565,7 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
                << (phi > 0 && phi < 1 ? csv_number(gotoh_p0(p0_total.sigma(k), phi)) : "") << "\n";
     }
 
-    if (o.json) {
-      std::ofstream& json = output(".json");
-      json << "{\"tool\": \"tapmc-pores\", \"frames_analysed\": " << analysed << ",\n \"aggregate\": ";
-      write_json_statistics(json, total, true);
-      json << ",\n \"frames\": [";
-      for (std::size_t i = 0; i < summaries.size(); ++i) {
-        const FrameSummary& f = summaries[i];
-        json << (i ? ",\n  " : "\n  ") << "{\"file\": " << json_string(f.file) << ", \"frame\": " << f.frame
-             << ", \"timestep\": " << f.timestep << ", \"atoms\": " << f.atoms << ", \"radius\": " << json_number(f.radius)
-             << ", \"pores_total\": " << f.pores << ", \"tetrahedra\": " << f.tetrahedra
-             << ", \"unresolved\": " << f.unresolved << ", \"region_volume\": " << json_number(f.region_volume)
-             << ", \"tetrahedra_volume\": " << json_number(f.tetrahedra_volume) << ", \"phi_p0\": " << json_number(f.phi_p0)
-             << ", \"seconds\": " << json_number(f.seconds) << ", \"statistics\": ";
-        write_json_statistics(json, f.stats, o.frame_hist);
-        json << "}";
-      }
-      json << "]";
-      if (o.p0_samples > 0) {
-        const double phi = p0_total.phi();
-        json << ",\n \"p0\": {\"samples\": " << p0_total.samples << ", \"phi\": " << json_number(phi) << ", \"sigma\": [";
-        for (std::size_t k = 0; k < p0_total.steps(); ++k) json << (k ? ", " : "") << json_number(p0_total.sigma(k));
-        json << "], \"measured\": [";
-        for (std::size_t k = 0; k < p0_total.steps(); ++k) json << (k ? ", " : "") << json_number(p0_total.p0(k));
-        json << "], \"percus_yevick\": [";
-        for (std::size_t k = 0; k < p0_total.steps(); ++k)
-          json << (k ? ", " : "") << (phi > 0 && phi < 1 ? json_number(gotoh_p0(p0_total.sigma(k), phi)) : "null");
-        json << "]}";
-      }
-      json << "}\n";
-    }
+    if (o.json) write_json(output(".json"), analysed, total, summaries, o.frame_hist, o.p0_samples > 0 ? &p0_total : nullptr);
     std::string written;
     for (const auto& file : outputs) {
       file->commit();
@@ -590,18 +580,7 @@ int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::o
     if (!o.quiet)
       err << "tapmc-pores: " << analysed << " frames, " << total.pores << " selected pores, nu = " << csv_number(total.nu())
           << "; wrote " << written << "\n";
-    return 0;
-  } catch (const DumpError& e) {
-    err << "tapmc-pores: error: " << e.what() << "\n";
-  } catch (const std::exception& e) {
-    err << "tapmc-pores: error: " << (current_file.empty() || std::string(e.what()).rfind(current_file, 0) == 0
-                                          ? ""
-                                          : current_file + ": frame " + std::to_string(current_frame) + ": ")
-        << e.what() << "\n";
   }
-  outputs.clear();  // removes the partial files
-  err << "tapmc-pores: no output written\n";
-  return 2;
 }
 
 }  // namespace pores

@@ -17,7 +17,7 @@ namespace pores {
 
 DumpError::DumpError(const std::string& file, std::size_t frame, std::size_t line,
                      const std::string& what)
-    : std::runtime_error([&] {
+    : InputError([&] {
         std::ostringstream out;
         out << file;
         if (line > 0) out << ":" << line;

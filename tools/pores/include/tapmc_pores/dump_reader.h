@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "tapmc_pores/errors.h"
+
 namespace tapmc {
 namespace pores {
 
@@ -40,7 +42,7 @@ struct Frame {
 };
 
 // An input error, with the place where it was found (file, frame, line; 0 when unknown).
-class DumpError : public std::runtime_error {
+class DumpError : public InputError {
  public:
   DumpError(const std::string& file, std::size_t frame, std::size_t line, const std::string& what);
   const std::string& file() const { return file_; }
