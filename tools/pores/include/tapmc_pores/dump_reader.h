@@ -79,10 +79,23 @@ class DumpReader {
   // malformed, truncated or physically invalid frame (never returns a partial frame).
   bool next(Frame& frame);
 
+  struct Columns;  // where id, centre and radius sit in an atom line (defined in dump_reader.cpp)
+
  private:
   DumpReader(std::unique_ptr<ByteSource> source, std::string name, const ReaderOptions& options);
   bool next_line(std::string_view& line);
   [[noreturn]] void fail(std::size_t line, const std::string& what) const;
+  // The steps of next(), each reading one item of the frame.
+  std::string_view value_line(const char* item, std::vector<std::string_view>& fields);
+  long long read_timestep();
+  long long read_atom_count();
+  void read_box(std::string_view item, std::string_view flags_text, Box& box);
+  void read_atoms(std::string_view names_text, std::size_t count, Frame& frame);
+  void read_atom(const std::vector<std::string_view>& fields, const Columns& columns, std::size_t i,
+                 Frame& frame) const;
+  double field_number(std::string_view field, const char* role) const;
+  double place(double value, int d, bool scaled, const Frame& frame) const;
+  void check_unique_ids(const Frame& frame) const;
 
   std::unique_ptr<ByteSource> source_;
   std::string name_;
