@@ -479,7 +479,7 @@ void PoreRun::analyse_file(const std::string& path) {
       if (seen <= o_.skip || (seen - o_.skip - 1) % o_.every != 0) continue;
       analyse_frame(frame);
     }
-  } catch (const InputError&) {
+  } catch (const RunRefused&) {
     throw;
   } catch (const std::exception& e) {  // unforeseen: still say where
     throw InputError(path + ": frame " + std::to_string(current_frame) + ": " + e.what());

@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <sstream>
 
 #include "tapmc_pores/pores_config.h"
@@ -226,22 +227,14 @@ std::string_view DumpReader::value_line(const char* item, std::vector<std::strin
   return line;
 }
 
-long long DumpReader::read_timestep() {
+// The one integer of the value line of 'ITEM: <item>', refused below `minimum` with `refusal`.
+long long DumpReader::read_integer(const char* item, const char* refusal, long long minimum) {
   std::vector<std::string_view> fields;
-  const std::string_view line = value_line("TIMESTEP", fields);
-  long long step = 0;
-  if (fields.size() != 1 || !parse_integer(fields[0], step)) fail(line_number_, "timestep is not an integer: " + quoted(line));
-  return step;
-}
-
-long long DumpReader::read_atom_count() {
-  std::vector<std::string_view> fields;
-  const std::string_view line = value_line("NUMBER OF ATOMS", fields);
-  long long count = -1;
-  if (fields.size() != 1 || !parse_integer(fields[0], count) || count < 0)
-    fail(line_number_, "number of atoms is not a non-negative integer: " + quoted(line));
-  if (count == 0) fail(line_number_, "the frame has zero atoms (nothing to analyse)");
-  return count;
+  const std::string_view line = value_line(item, fields);
+  long long value = 0;
+  if (fields.size() != 1 || !parse_integer(fields[0], value) || value < minimum)
+    fail(line_number_, refusal + quoted(line));
+  return value;
 }
 
 // 'ITEM: BOX BOUNDS <flags>' (`flags_text`) and its three lines 'lo hi'.
@@ -417,13 +410,15 @@ bool DumpReader::next(Frame& frame) {
     if (line.substr(0, 6) != "ITEM: ") fail(line_number_, "expected an 'ITEM:' line, found " + quoted(line));
     const std::string_view item = line.substr(6);
     if (item.substr(0, 8) == "TIMESTEP") {
-      frame.timestep = current_timestep_ = read_timestep();
+      frame.timestep = current_timestep_ =
+          read_integer("TIMESTEP", "timestep is not an integer: ", std::numeric_limits<long long>::min());
       have_timestep_ = true;
     } else if (item.substr(0, 4) == "TIME" || item.substr(0, 5) == "UNITS") {
       std::vector<std::string_view> fields;
       value_line("TIME/UNITS", fields);  // informational items written by dump_modify time/units
     } else if (item.substr(0, 15) == "NUMBER OF ATOMS") {
-      atom_count = read_atom_count();
+      atom_count = read_integer("NUMBER OF ATOMS", "number of atoms is not a non-negative integer: ", 0);
+      if (atom_count == 0) fail(line_number_, "the frame has zero atoms (nothing to analyse)");
     } else if (item.substr(0, 10) == "BOX BOUNDS") {
       read_box(item, item.substr(10), frame.box);
       have_box = true;

@@ -14,10 +14,7 @@ int main(int argc, char** argv) {
   } catch (const UsageError& error) {
     std::cerr << "tapmc-pores: " << error.what() << " (see tapmc-pores --help)\n";
     return 1;
-  } catch (const InputError& error) {
-    std::cerr << "tapmc-pores: error: " << error.what() << "\ntapmc-pores: no output written\n";
-    return 2;
-  } catch (const OutputError& error) {
+  } catch (const RunRefused& error) {
     std::cerr << "tapmc-pores: error: " << error.what() << "\ntapmc-pores: no output written\n";
     return 2;
   } catch (const std::exception& error) {

@@ -11,8 +11,8 @@ namespace tapmc {
 namespace pores {
 
 // Runs tapmc-pores with `arguments` (without the program name): help on `out`, progress and
-// warnings on `err`. Throws UsageError on a bad command line, InputError (naming file, frame and
-// line) or OutputError when the run is refused; no output file is left then.
+// warnings on `err`. Throws UsageError on a bad command line, and RunRefused (InputError naming
+// file, frame and line, or OutputError) when the run is refused; no output file is left then.
 void run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err);
 
 }  // namespace pores

@@ -87,8 +87,7 @@ class DumpReader {
   [[noreturn]] void fail(std::size_t line, const std::string& what) const;
   // The steps of next(), each reading one item of the frame.
   std::string_view value_line(const char* item, std::vector<std::string_view>& fields);
-  long long read_timestep();
-  long long read_atom_count();
+  long long read_integer(const char* item, const char* refusal, long long minimum);
   void read_box(std::string_view item, std::string_view flags_text, Box& box);
   void read_atoms(std::string_view names_text, std::size_t count, Frame& frame);
   void read_atom(const std::vector<std::string_view>& fields, const Columns& columns, std::size_t i,

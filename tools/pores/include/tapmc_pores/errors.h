@@ -14,16 +14,22 @@ class UsageError : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-// The input cannot be analysed (exit code 2): the message names file, frame and line.
-class InputError : public std::runtime_error {
+// The run is refused (exit code 2) and leaves no output file.
+class RunRefused : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
 
-// An output file cannot be written (exit code 2).
-class OutputError : public std::runtime_error {
+// The input cannot be analysed: the message names file, frame and line.
+class InputError : public RunRefused {
  public:
-  using std::runtime_error::runtime_error;
+  using RunRefused::RunRefused;
+};
+
+// An output file cannot be written.
+class OutputError : public RunRefused {
+ public:
+  using RunRefused::RunRefused;
 };
 
 }  // namespace pores
