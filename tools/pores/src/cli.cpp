@@ -236,7 +236,7 @@ class OutputFile {
   explicit OutputFile(std::string path) : path_(std::move(path)), partial_(path_ + ".partial") {
     stream_.open(partial_);
     if (!stream_) throw OutputError("cannot write '" + partial_ + "'");
-    stream_ << std::setprecision(12);
+    stream_ << std::setprecision(kOutputDigits);
   }
   ~OutputFile() {
     if (!committed_) {
