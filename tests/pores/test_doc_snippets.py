@@ -1,6 +1,7 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 # Every snippet of doc/tapmc-pores.rst runs as written: the `.. code-block:: sh` blocks with bash
-# and the `.. code-block:: python` blocks with this Python, in the order of the page, from a
+# and the `.. code-block:: python` blocks with this Python (`text` blocks show usage and messages
+# and are not run), in the order of the page, from a
 # repository root whose build/ holds this build's lmp_tapmc and tapmc-pores. The root is a
 # scratch directory (tests/ linked from the sources), so the outputs the snippets write in
 # build/doc-pores are real outputs of the programs, checked below.
@@ -51,7 +52,7 @@ def snippets(text):
 def test_snippet_extraction_sees_every_block():
     blocks = snippets(DOC.read_text())
     languages = [language for language, _ in blocks]
-    assert set(languages) <= {"sh", "python"}, languages
+    assert set(languages) <= {"sh", "python", "text"}, languages
     assert languages.count("sh") >= 2 and languages.count("python") >= 1
     assert all(code.strip() for _, code in blocks)
 
@@ -65,6 +66,8 @@ def test_doc_snippets_run_as_written(tmp_path):
     os.symlink(PORES, root / "build" / "tools" / "pores" / "tapmc-pores")
     outputs = []
     for number, (language, code) in enumerate(snippets(DOC.read_text()), 1):
+        if language == "text":
+            continue
         command = ["bash", "-e", "-c", code] if language == "sh" else [sys.executable, "-c", code]
         result = subprocess.run(command, cwd=root, capture_output=True, text=True, timeout=300)
         assert result.returncode == 0, f"snippet {number} ({language}) failed:\n{code}\n{result.stderr}"

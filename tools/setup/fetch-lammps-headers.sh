@@ -1,15 +1,34 @@
 #!/usr/bin/env bash
 # TAPMC setup helper: extract the LAMMPS source headers that Debian's liblammps-dev does not
-# install (fmt/, neigh_request.h, irregular.h, ...) from Debian's *source package* of the same
-# LAMMPS version. Nothing from LAMMPS is committed to this repository: the headers are fetched
-# here, at setup time, into a cache directory outside the work tree.
+# install (fmt/, neigh_request.h, irregular.h, ...) from Debian's *source package* of the
+# installed LAMMPS version. Nothing from LAMMPS is committed to this repository: the headers are
+# fetched here, at setup time, into a cache directory outside the work tree.
 #
 # usage: fetch-lammps-headers.sh [--source-tree] DEST_DIR
-# DEST_DIR ends up holding DEST_DIR/src/*.h and DEST_DIR/src/fmt/*.h; a stamp file makes the
-# script a no-op when the headers are already there. With --source-tree, DEST_DIR receives the
-# whole LAMMPS source tree instead (src/, cmake/, python/, ...), for
-# tools/setup/build-lammps-plugin.sh.
+# DEST_DIR ends up holding DEST_DIR/src/*.h and DEST_DIR/src/fmt/*.h; a stamp file
+# DEST_DIR/.tapmc-headers-<source version> makes the script a no-op when the headers are already
+# there. With --source-tree, DEST_DIR receives the whole LAMMPS source tree instead (src/, cmake/,
+# python/, ...; stamp .tapmc-source-<source version>), for tools/setup/build-lammps-plugin.sh.
+# environment:
+#   TAPMC_LAMMPS_SRC_VERSION  Debian source version to fetch (default: the source version of the
+#                             installed liblammps-dev, else liblammps0, else lammps)
+#   TAPMC_LAMMPS_SRC_SUITE    Debian suite whose deb-src holds that version (default: this
+#                             system's release, VERSION_CODENAME of /etc/os-release)
 set -euo pipefail
+
+# The Debian source version of the first installed package among the arguments.
+installed_source_version() {
+  local pkg status version
+  for pkg in "$@"; do
+    read -r status version < <(dpkg-query -W -f='${db:Status-Abbrev} ${source:Version}\n' "$pkg" 2>/dev/null \
+                               | head -n 1) || continue
+    if [ "$status" = ii ] && [ -n "$version" ]; then
+      echo "$version"
+      return 0
+    fi
+  done
+  return 1
+}
 
 mode=headers
 if [ "${1:-}" = "--source-tree" ]; then
@@ -17,10 +36,23 @@ if [ "${1:-}" = "--source-tree" ]; then
   shift
 fi
 dest=${1:?usage: fetch-lammps-headers.sh [--source-tree] DEST_DIR}
-# Debian bookworm's lammps source package; its LAMMPS version is 29 Sep 2021 (update 2), the
-# version of the binary liblammps0 / liblammps-dev packages we link against.
-suite=${TAPMC_LAMMPS_SRC_SUITE:-bookworm}
-pkg_version=${TAPMC_LAMMPS_SRC_VERSION:-20220106.git7586adbb6a+ds1-2}
+# The headers must be those of the LAMMPS that TAPMC compiles against and links with.
+pkg_version=${TAPMC_LAMMPS_SRC_VERSION:-}
+if [ -z "$pkg_version" ] && ! pkg_version=$(installed_source_version liblammps-dev liblammps0 lammps); then
+  echo "fetch-lammps-headers.sh: none of liblammps-dev, liblammps0, lammps is installed, so the" \
+       "LAMMPS version is unknown; install them (tools/setup/install-deps.sh) or set" \
+       "TAPMC_LAMMPS_SRC_VERSION" >&2
+  exit 1
+fi
+suite=${TAPMC_LAMMPS_SRC_SUITE:-}
+if [ -z "$suite" ] && [ -r /etc/os-release ]; then
+  suite=$(. /etc/os-release && echo "${VERSION_CODENAME:-}")
+fi
+if [ -z "$suite" ]; then
+  echo "fetch-lammps-headers.sh: no VERSION_CODENAME in /etc/os-release; set TAPMC_LAMMPS_SRC_SUITE" \
+       "(e.g. bookworm)" >&2
+  exit 1
+fi
 stamp="$dest/.tapmc-$mode-$pkg_version"
 
 if [ -f "$stamp" ]; then
@@ -40,7 +72,11 @@ apt_opts=(-o "Dir::Etc::SourceList=$work/apt/sources.list" -o "Dir::Etc::SourceP
           -o "APT::Sandbox::User=root")
 echo "tapmc: fetching Debian source package lammps=$pkg_version ($suite) for $mode" >&2
 apt-get "${apt_opts[@]}" update -qq
-(cd "$work" && apt-get "${apt_opts[@]}" source --download-only -qq "lammps=$pkg_version")
+(cd "$work" && apt-get "${apt_opts[@]}" source --download-only -qq "lammps=$pkg_version") || {
+  echo "fetch-lammps-headers.sh: Debian's $suite deb-src has no lammps=$pkg_version; set" \
+       "TAPMC_LAMMPS_SRC_SUITE to the suite that has it" >&2
+  exit 1
+}
 
 orig=$(ls "$work"/lammps_*.orig.tar.* | head -n 1)
 mkdir -p "$work/x"

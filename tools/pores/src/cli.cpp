@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <limits>
 #include <memory>
@@ -16,6 +17,8 @@
 
 #include "tapmc_pores/analysis.h"
 #include "tapmc_pores/dump_reader.h"
+#include "tapmc_pores/errors.h"
+#include "tapmc_pores/json_writer.h"
 #include "tapmc_pores/pores_config.h"
 #include "tapmc_pores/tessellation.h"
 
@@ -89,17 +92,12 @@ struct Options {
   double floor = std::numeric_limits<double>::quiet_NaN();  // NaN: the lowest sphere bottom
   HistogramSpec histogram;
   std::string prefix = "pores";
-  bool frame_hist = false, pore_list = false, json = false, quiet = false;
+  bool help = false, frame_hist = false, pore_list = false, json = false, quiet = false;
   std::size_t p0_samples = 0;
   double sigma_max = config::kDefaultSigmaMax;
   std::size_t sigma_steps = config::kDefaultSigmaBins;
   std::uint64_t seed = 1;
   PoreOptions pores;
-};
-
-class UsageError : public std::invalid_argument {
- public:
-  using std::invalid_argument::invalid_argument;
 };
 
 double to_double(const std::string& option, const std::string& text) {
@@ -127,81 +125,107 @@ std::size_t to_count(const std::string& option, const std::string& text, std::si
   return static_cast<std::size_t>(value);
 }
 
-Options parse(const std::vector<std::string>& args, bool& help) {
+// The value of the option being parsed (the next argument); UsageError when there is none.
+using NextValue = std::function<const std::string&()>;
+
+// `text` as LO:HI into the selection bounds along `d` (either side may be empty).
+void set_range(RegionSpec& region, int d, const std::string& option, const std::string& text) {
+  const auto colon = text.find(':');
+  if (colon == std::string::npos) throw UsageError(option + " expects LO:HI (either side may be empty), got '" + text + "'");
+  const std::string lo = text.substr(0, colon), hi = text.substr(colon + 1);
+  if (!lo.empty()) region.lo[d] = to_double(option, lo);
+  if (!hi.empty()) region.hi[d] = to_double(option, hi);
+  if (!lo.empty() && !hi.empty() && !(region.hi[d] > region.lo[d]))
+    throw UsageError(option + " needs LO < HI, got '" + text + "'");
+}
+
+// Options without a value; false when `a` is none of them.
+bool set_flag(Options& o, const std::string& a) {
+  if (a == "-h" || a == "--help") o.help = true;
+  else if (a == "--radii") o.region.units.fill(RegionSpec::Units::kRadiiFromLo);
+  else if (a == "--paper-window") {
+    o.region.units.fill(RegionSpec::Units::kRadiiFromLo);
+    o.region.lo[2] = 2.0;   // 2R above the floor ...
+    o.region.hi[2] = 20.0;  // ... 18R high (Fig. 10)
+  } else if (a == "--frame-hist") o.frame_hist = true;
+  else if (a == "--pores") o.pore_list = true;
+  else if (a == "--json") o.json = true;
+  else if (a == "-q" || a == "--quiet") o.quiet = true;
+  else return false;
+  return true;
+}
+
+// Options of the input and of the selection; false when `a` is none of them.
+bool set_input_option(Options& o, const std::string& a, const NextValue& value) {
+  if (a == "-r" || a == "--radius") {
+    o.radius = to_double(a, value());
+    if (!(o.radius > 0)) throw UsageError("--radius must be positive");
+  } else if (a == "--boundary") {
+    const std::string text = value();
+    if (text.size() != 3 || text.find_first_not_of("pf") != std::string::npos)
+      throw UsageError("--boundary expects three letters p or f (e.g. ppf), got '" + text + "'");
+    o.reader.override_periodic = true;
+    for (int d = 0; d < 3; ++d) o.reader.periodic[d] = text[d] == 'p';
+  } else if (a == "--skip") o.skip = to_count(a, value(), 0);
+  else if (a == "--every") o.every = to_count(a, value(), 1);
+  else if (a == "--max-frames") o.max_frames = to_count(a, value(), 1);
+  else if (a == "--x" || a == "--y" || a == "--z") set_range(o.region, a[2] - 'x', a, value());
+  else if (a == "--wall-gap") {
+    o.region.wall_gap_over_radius = to_double(a, value());
+    if (o.region.wall_gap_over_radius < 0) throw UsageError("--wall-gap must be >= 0");
+  } else if (a == "--surface-gap") {
+    o.region.surface_gap_over_radius = to_double(a, value());
+    if (o.region.surface_gap_over_radius < 0) throw UsageError("--surface-gap must be >= 0");
+  } else if (a == "--floor") o.floor = to_double(a, value());
+  else return false;
+  return true;
+}
+
+// Options of the analysis and of the outputs; false when `a` is none of them.
+bool set_analysis_option(Options& o, const std::string& a, const NextValue& value) {
+  if (a == "--bins") o.histogram.bins = to_count(a, value(), 1);
+  else if (a == "--xi-max") {
+    o.histogram.xi_max = to_double(a, value());
+    if (!(o.histogram.xi_max > 0)) throw UsageError("--xi-max must be positive");
+  } else if (a == "-o" || a == "--output") o.prefix = value();
+  else if (a == "--p0") o.p0_samples = to_count(a, value(), 1);
+  else if (a == "--sigma-max") {
+    o.sigma_max = to_double(a, value());
+    if (!(o.sigma_max > 1)) throw UsageError("--sigma-max must exceed 1");
+  } else if (a == "--sigma-steps") o.sigma_steps = to_count(a, value(), 2);
+  else if (a == "--seed") o.seed = to_count(a, value(), 0);
+  else if (a == "--overlap-tol") {
+    o.pores.overlap_tolerance = to_double(a, value());
+    if (!(o.pores.overlap_tolerance >= 0 && o.pores.overlap_tolerance < 1)) throw UsageError("--overlap-tol must be in [0, 1)");
+  } else if (a == "--merge-tol") {
+    o.pores.merge_tolerance = to_double(a, value());
+    if (!(o.pores.merge_tolerance >= 0 && o.pores.merge_tolerance < 0.1)) throw UsageError("--merge-tol must be in [0, 0.1)");
+  } else if (a == "--padding") {
+    o.pores.padding_over_radius = to_double(a, value());
+    if (!(o.pores.padding_over_radius >= 2)) throw UsageError("--padding must be >= 2 (in R)");
+  } else return false;
+  return true;
+}
+
+Options parse(const std::vector<std::string>& args) {
   Options o;
-  help = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
-    auto value = [&]() -> const std::string& {
+    const NextValue value = [&]() -> const std::string& {
       if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
       return args[++i];
     };
-    auto range = [&](int d) {
-      const std::string text = value();
-      const auto colon = text.find(':');
-      if (colon == std::string::npos) throw UsageError(a + " expects LO:HI (either side may be empty), got '" + text + "'");
-      const std::string lo = text.substr(0, colon), hi = text.substr(colon + 1);
-      if (!lo.empty()) o.region.lo[d] = to_double(a, lo);
-      if (!hi.empty()) o.region.hi[d] = to_double(a, hi);
-      if (!lo.empty() && !hi.empty() && !(o.region.hi[d] > o.region.lo[d]))
-        throw UsageError(a + " needs LO < HI, got '" + text + "'");
-    };
-    if (a == "-h" || a == "--help") help = true;
-    else if (a == "-r" || a == "--radius") {
-      o.radius = to_double(a, value());
-      if (!(o.radius > 0)) throw UsageError("--radius must be positive");
-    } else if (a == "--boundary") {
-      const std::string text = value();
-      if (text.size() != 3 || text.find_first_not_of("pf") != std::string::npos)
-        throw UsageError("--boundary expects three letters p or f (e.g. ppf), got '" + text + "'");
-      o.reader.override_periodic = true;
-      for (int d = 0; d < 3; ++d) o.reader.periodic[d] = text[d] == 'p';
-    } else if (a == "--skip") o.skip = to_count(a, value(), 0);
-    else if (a == "--every") o.every = to_count(a, value(), 1);
-    else if (a == "--max-frames") o.max_frames = to_count(a, value(), 1);
-    else if (a == "--x") range(0);
-    else if (a == "--y") range(1);
-    else if (a == "--z") range(2);
-    else if (a == "--radii") o.region.units.fill(RegionSpec::Units::kRadiiFromLo);
-    else if (a == "--paper-window") {
-      o.region.units.fill(RegionSpec::Units::kRadiiFromLo);
-      o.region.lo[2] = 2.0;   // 2R above the floor ...
-      o.region.hi[2] = 20.0;  // ... 18R high (Fig. 10)
-    }
-    else if (a == "--wall-gap") {
-      o.region.wall_gap_over_radius = to_double(a, value());
-      if (o.region.wall_gap_over_radius < 0) throw UsageError("--wall-gap must be >= 0");
-    } else if (a == "--surface-gap") {
-      o.region.surface_gap_over_radius = to_double(a, value());
-      if (o.region.surface_gap_over_radius < 0) throw UsageError("--surface-gap must be >= 0");
-    } else if (a == "--floor") o.floor = to_double(a, value()); else if (a == "--bins") o.histogram.bins = to_count(a, value(), 1);
-    else if (a == "--xi-max") {
-      o.histogram.xi_max = to_double(a, value());
-      if (!(o.histogram.xi_max > 0)) throw UsageError("--xi-max must be positive");
-    } else if (a == "-o" || a == "--output") o.prefix = value();
-    else if (a == "--frame-hist") o.frame_hist = true;
-    else if (a == "--pores") o.pore_list = true;
-    else if (a == "--json") o.json = true;
-    else if (a == "--p0") o.p0_samples = to_count(a, value(), 1);
-    else if (a == "--sigma-max") {
-      o.sigma_max = to_double(a, value());
-      if (!(o.sigma_max > 1)) throw UsageError("--sigma-max must exceed 1");
-    } else if (a == "--sigma-steps") o.sigma_steps = to_count(a, value(), 2);
-    else if (a == "--seed") o.seed = to_count(a, value(), 0);
-    else if (a == "--overlap-tol") {
-      o.pores.overlap_tolerance = to_double(a, value());
-      if (!(o.pores.overlap_tolerance >= 0 && o.pores.overlap_tolerance < 1)) throw UsageError("--overlap-tol must be in [0, 1)");
-    } else if (a == "--merge-tol") {
-      o.pores.merge_tolerance = to_double(a, value());
-      if (!(o.pores.merge_tolerance >= 0 && o.pores.merge_tolerance < 0.1)) throw UsageError("--merge-tol must be in [0, 0.1)");
-    } else if (a == "--padding") {
-      o.pores.padding_over_radius = to_double(a, value());
-      if (!(o.pores.padding_over_radius >= 2)) throw UsageError("--padding must be >= 2 (in R)");
-    } else if (a == "-q" || a == "--quiet") o.quiet = true;
-    else if (a.size() > 1 && a[0] == '-') throw UsageError("unknown option '" + a + "'");
-    else o.files.push_back(a);
+    if (set_flag(o, a) || set_input_option(o, a, value) || set_analysis_option(o, a, value)) continue;
+    if (a.size() > 1 && a[0] == '-') throw UsageError("unknown option '" + a + "'");
+    o.files.push_back(a);
   }
-  if (!help && o.files.empty()) throw UsageError("no dump file given");
+  if (o.help) return o;
+  if (o.files.empty()) throw UsageError("no dump file given");
+  try {
+    (void)PoreStatistics(o.histogram);  // validates the bins
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
   return o;
 }
 
@@ -211,8 +235,8 @@ class OutputFile {
  public:
   explicit OutputFile(std::string path) : path_(std::move(path)), partial_(path_ + ".partial") {
     stream_.open(partial_);
-    if (!stream_) throw std::runtime_error("cannot write '" + partial_ + "'");
-    stream_ << std::setprecision(12);
+    if (!stream_) throw OutputError("cannot write '" + partial_ + "'");
+    stream_ << std::setprecision(kOutputDigits);
   }
   ~OutputFile() {
     if (!committed_) {
@@ -226,9 +250,9 @@ class OutputFile {
   const std::string& path() const { return path_; }
   void commit() {
     stream_.close();
-    if (!stream_) throw std::runtime_error("writing '" + partial_ + "' failed (disk full?)");
+    if (!stream_) throw OutputError("writing '" + partial_ + "' failed (disk full?)");
     if (std::rename(partial_.c_str(), path_.c_str()) != 0)
-      throw std::runtime_error("cannot rename '" + partial_ + "' to '" + path_ + "'");
+      throw OutputError("cannot rename '" + partial_ + "' to '" + path_ + "'");
     committed_ = true;
   }
 
@@ -244,23 +268,8 @@ struct Warning {
   std::string first_frame;  // location and details of the first frame concerned
 };
 
-// Numbers for CSV and JSON: NaN becomes an empty CSV field / JSON null.
-std::string csv_number(double v) {
-  if (std::isnan(v)) return "";
-  std::ostringstream s;
-  s << std::setprecision(12) << v;
-  return s.str();
-}
-std::string json_number(double v) { return std::isfinite(v) ? csv_number(v) : "null"; }
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '"' || c == '\\') out += '\\', out += c;
-    else if (static_cast<unsigned char>(c) < 32) out += ' ';
-    else out += c;
-  }
-  return out + "\"";
-}
+// Numbers for CSV: NaN becomes an empty field.
+std::string csv_number(double v) { return std::isnan(v) ? "" : number_text(v); }
 
 struct FrameSummary {
   std::string file;
@@ -283,28 +292,65 @@ void write_histogram_rows(std::ostream& out, const PoreStatistics& s, const std:
 }
 const char* kHistogramColumns = "bin,xi_lo,xi_hi,xi,count_xi,P_xi,xi3_P_xi,v_lo,v_hi,v,count_v,rho_v";
 
-void write_json_statistics(std::ostream& out, const PoreStatistics& s, bool with_histograms) {
-  out << "{\"pores\": " << s.pores << ", \"degenerate_pores\": " << s.degenerate << ", \"nu\": " << json_number(s.nu())
-      << ", \"mean_xi\": " << json_number(s.mean_xi()) << ", \"xi_underflow\": " << s.xi.underflow()
-      << ", \"xi_overflow\": " << s.xi.overflow();
+void write_json_statistics(JsonWriter& json, const PoreStatistics& s, bool with_histograms) {
+  json.begin_object();
+  json.key("pores").value(s.pores).key("degenerate_pores").value(s.degenerate).key("nu").value(s.nu());
+  json.key("mean_xi").value(s.mean_xi()).key("xi_underflow").value(s.xi.underflow());
+  json.key("xi_overflow").value(s.xi.overflow());
   if (with_histograms) {
     auto array = [&](const char* name, std::size_t n, auto value) {
-      out << ", \"" << name << "\": [";
-      for (std::size_t i = 0; i < n; ++i) out << (i ? ", " : "") << value(i);
-      out << "]";
+      json.key(name).begin_array();
+      for (std::size_t i = 0; i < n; ++i) json.value(value(i));
+      json.end_array();
     };
-    array("xi_edges", s.xi.bins() + 1, [&](std::size_t i) { return json_number(s.xi.lo() + s.xi.width() * double(i)); });
-    array("count_xi", s.xi.bins(), [&](std::size_t i) { return std::to_string(s.xi.count(i)); });
-    array("P_xi", s.xi.bins(), [&](std::size_t i) { return json_number(s.xi.density(i)); });
+    array("xi_edges", s.xi.bins() + 1, [&](std::size_t i) { return s.xi.lo() + s.xi.width() * double(i); });
+    array("count_xi", s.xi.bins(), [&](std::size_t i) { return s.xi.count(i); });
+    array("P_xi", s.xi.bins(), [&](std::size_t i) { return s.xi.density(i); });
     array("xi3_P_xi", s.xi.bins(), [&](std::size_t i) {
       const double xi = s.xi.bin_centre(i);
-      return json_number(xi * xi * xi * s.xi.density(i));
+      return xi * xi * xi * s.xi.density(i);
     });
-    array("v_edges", s.v.bins() + 1, [&](std::size_t i) { return json_number(s.v.lo() + s.v.width() * double(i)); });
-    array("count_v", s.v.bins(), [&](std::size_t i) { return std::to_string(s.v.count(i)); });
-    array("rho_v", s.v.bins(), [&](std::size_t i) { return json_number(s.v.density(i)); });
+    array("v_edges", s.v.bins() + 1, [&](std::size_t i) { return s.v.lo() + s.v.width() * double(i); });
+    array("count_v", s.v.bins(), [&](std::size_t i) { return s.v.count(i); });
+    array("rho_v", s.v.bins(), [&](std::size_t i) { return s.v.density(i); });
   }
-  out << "}";
+  json.end_object();
+}
+
+// PREFIX.json: the aggregate, every frame and the P0 curves (when sampled), for Python.
+void write_json(std::ostream& out, std::size_t analysed, const PoreStatistics& total,
+                const std::vector<FrameSummary>& summaries, bool frame_histograms, const P0Statistics* p0) {
+  JsonWriter json(out);
+  json.begin_object().key("tool").value("tapmc-pores").key("frames_analysed").value(analysed);
+  json.break_line(1).key("aggregate");
+  write_json_statistics(json, total, true);
+  json.break_line(1).key("frames").begin_array();
+  for (const FrameSummary& f : summaries) {
+    json.break_line(2).begin_object();
+    json.key("file").value(f.file).key("frame").value(f.frame).key("timestep").value(f.timestep);
+    json.key("atoms").value(f.atoms).key("radius").value(f.radius).key("pores_total").value(f.pores);
+    json.key("tetrahedra").value(f.tetrahedra).key("unresolved").value(f.unresolved);
+    json.key("region_volume").value(f.region_volume).key("tetrahedra_volume").value(f.tetrahedra_volume);
+    json.key("phi_p0").value(f.phi_p0).key("seconds").value(f.seconds).key("statistics");
+    write_json_statistics(json, f.stats, frame_histograms);
+    json.end_object();
+  }
+  json.end_array();
+  if (p0) {
+    const double phi = p0->phi();
+    std::vector<double> sigma, measured, percus_yevick;
+    for (std::size_t k = 0; k < p0->steps(); ++k) {
+      sigma.push_back(p0->sigma(k));
+      measured.push_back(p0->p0(k));
+      // No Percus-Yevick curve outside 0 < phi < 1: NaN, written as null.
+      percus_yevick.push_back(phi > 0 && phi < 1 ? gotoh_p0(p0->sigma(k), phi) : std::numeric_limits<double>::quiet_NaN());
+    }
+    json.break_line(1).key("p0").begin_object().key("samples").value(p0->samples).key("phi").value(phi);
+    json.key("sigma").array(sigma).key("measured").array(measured).key("percus_yevick").array(percus_yevick);
+    json.end_object();
+  }
+  json.end_object();
+  out << "\n";
 }
 
 // The --overlap-tol that accepts an overlap of `depth` (of a diameter): rounded up to two
@@ -316,292 +362,326 @@ double accepting_tolerance(double depth) {
   return tolerance < 1.0 ? tolerance : 0.0;
 }
 
+// "FILE:LINE: frame N (timestep T): ", the place of a message about `frame`.
+std::string where(const Frame& frame, std::size_t line) {
+  std::ostringstream s;
+  s << frame.source << ":" << line << ": frame " << frame.index << " (timestep " << frame.timestep << "): ";
+  return s.str();
+}
+
+// The message refusing overlapping spheres: the deepest pair, its atom lines, and the
+// --overlap-tol that would accept it.
+std::string overlap_message(const Frame& frame, const OverlapError& e) {
+  std::ostringstream what;
+  what << where(frame, frame.first_atom_line + e.index_a) << e.what() << " (atom lines "
+       << frame.first_atom_line + e.index_a << " and " << frame.first_atom_line + e.index_b << "). ";
+  const double tolerance = accepting_tolerance(e.depth);
+  if (e.index_a == e.index_b)
+    what << "The periodic box is shorter than a diameter.";
+  else if (tolerance > 0)
+    what << "To accept overlapping spheres (e.g. a DEM dump), give --overlap-tol above the deepest overlap, "
+            "here --overlap-tol "
+         << tolerance << " (pores whose empty sphere is squeezed by overlaps get xi < 0, counted below range).";
+  else
+    what << "The centres nearly coincide: this is not a packing of spheres.";
+  return what.str();
+}
+
+std::string region_text(const Region& region) {
+  std::ostringstream text;
+  text.precision(6);
+  text << "[" << region.lo[0] << ", " << region.hi[0] << ") x [" << region.lo[1] << ", " << region.hi[1] << ") x ["
+       << region.lo[2] << ", " << region.hi[2] << ")";
+  return text.str();
+}
+
+// The packing of one frame and the selection of its pores.
+struct Selection {
+  double radius = 0;
+  PackingBounds packing;
+  Region region;
+};
+
+// One run of the program: its output files (removed unless the run succeeds), the warnings, and
+// the totals over the frames analysed.
+class PoreRun {
+ public:
+  PoreRun(const Options& options, std::ostream& err);
+  // Analyses the chosen frames of one file, up to --max-frames in total.
+  void analyse_file(const std::string& path);
+  // Writes the aggregate outputs, renames every output to its final name, prints the warnings.
+  void finish();
+
+ private:
+  std::ofstream& output(const std::string& suffix);
+  void warn(const std::string& kind, const std::string& location, const std::string& details);
+  void analyse_frame(const Frame& frame);
+  Selection select(const Frame& frame);
+  void warn_about_packing(const Frame& frame, const Selection& selection);
+  std::unique_ptr<Tessellation> tessellate(const Frame& frame, const Selection& selection) const;
+  void warn_about_pores(const Frame& frame, const Region& region, const PoreResult& result, const PoreStatistics& s);
+  void write_frame(const Frame& frame, const FrameSummary& summary, const Region& region, const PoreResult& result);
+  void write_p0_csv();
+
+  const Options& o_;
+  std::ostream& err_;
+  std::vector<std::unique_ptr<OutputFile>> outputs_;
+  std::vector<std::pair<std::string, Warning>> warnings_;  // by kind, in the order first raised
+  std::ofstream* frames_csv_ = nullptr;
+  std::ofstream* frame_hist_csv_ = nullptr;
+  std::ofstream* pores_csv_ = nullptr;
+  PoreStatistics total_;
+  P0Statistics p0_total_;
+  std::vector<FrameSummary> summaries_;
+  std::size_t analysed_ = 0;
+};
+
+PoreRun::PoreRun(const Options& options, std::ostream& err)
+    : o_(options), err_(err), total_(options.histogram), p0_total_(options.sigma_max, options.sigma_steps) {
+  frames_csv_ = &output(".frames.csv");
+  *frames_csv_ << "file,frame,timestep,atoms,radius,pores,tetrahedra,unresolved,selected,degenerate_selected,nu,mean_xi,"
+                  "region_volume,tetrahedra_volume,phi_p0,seconds\n";
+  if (o_.frame_hist) {
+    frame_hist_csv_ = &output(".frame_hist.csv");
+    *frame_hist_csv_ << "file,frame,timestep," << kHistogramColumns << "\n";
+  }
+  if (o_.pore_list) {
+    pores_csv_ = &output(".pores.csv");
+    *pores_csv_ << std::setprecision(15) << "file,frame,timestep,x,y,z,xi,id1,id2,id3,id4,tetrahedra,volume,selected\n";
+  }
+}
+
+std::ofstream& PoreRun::output(const std::string& suffix) {
+  outputs_.push_back(std::make_unique<OutputFile>(o_.prefix + suffix));
+  return outputs_.back()->stream();
+}
+
+void PoreRun::warn(const std::string& kind, const std::string& location, const std::string& details) {
+  auto it = std::find_if(warnings_.begin(), warnings_.end(), [&](const auto& w) { return w.first == kind; });
+  if (it == warnings_.end()) {
+    warnings_.emplace_back(kind, Warning{});
+    it = std::prev(warnings_.end());
+    it->second.first_frame = location + details;
+  }
+  ++it->second.frames;
+}
+
+void PoreRun::analyse_file(const std::string& path) {
+  if (analysed_ >= o_.max_frames) return;  // the files after the last frame wanted are not opened
+  std::size_t current_frame = 0;
+  try {
+    DumpReader reader = DumpReader::open(path, o_.reader);
+    Frame frame;
+    std::size_t seen = 0;
+    while (analysed_ < o_.max_frames && reader.next(frame)) {
+      current_frame = frame.index;
+      ++seen;
+      if (seen <= o_.skip || (seen - o_.skip - 1) % o_.every != 0) continue;
+      analyse_frame(frame);
+    }
+  } catch (const RunRefused&) {
+    throw;
+  } catch (const std::exception& e) {  // unforeseen: still say where
+    throw InputError(path + ": frame " + std::to_string(current_frame) + ": " + e.what());
+  }
+}
+
+Selection PoreRun::select(const Frame& frame) {
+  Selection selection;
+  try {
+    selection.radius = common_radius(frame, o_.radius).radius;
+  } catch (const RadiusError& e) {
+    throw InputError(where(frame, frame.first_atom_line + e.index) + e.what());
+  }
+  try {
+    selection.packing = find_packing(frame.box, frame.xyz, selection.radius, o_.floor);
+    selection.region = make_region(frame.box, selection.packing, selection.radius, o_.region);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(where(frame, frame.first_line) + e.what());
+  }
+  return selection;
+}
+
+// Spheres below --floor, and a selection reaching the free surface.
+void PoreRun::warn_about_packing(const Frame& frame, const Selection& selection) {
+  const PackingBounds& packing = selection.packing;
+  const Region& region = selection.region;
+  const double r = selection.radius;
+  if (!packing.free_surface) return;
+  if (!std::isnan(o_.floor) && packing.lowest_bottom < o_.floor - 2.0 * r * o_.pores.overlap_tolerance) {
+    std::ostringstream details;
+    details.precision(6);
+    details << "spheres reach below --floor " << o_.floor << " (lowest sphere bottom " << packing.lowest_bottom
+            << "): is the floor right?";
+    warn("below floor", where(frame, frame.first_line), details.str());
+  }
+  if (region.hi[2] > packing.hi[2] - o_.region.surface_gap_over_radius * r + 1e-9 * r) {
+    std::ostringstream details;
+    details.precision(6);
+    const double below = (packing.hi[2] - region.hi[2]) / r;
+    details << "the selection reaches z = " << region.hi[2] << ", ";
+    if (below > 0) details << "only " << below << " R below";
+    else details << -below << " R above";
+    details << " the free surface h_s = " << packing.hi[2] << " (--surface-gap " << o_.region.surface_gap_over_radius
+            << " R): pores near and above the free surface are larger than those of the bulk";
+    warn("surface", where(frame, frame.first_line), details.str());
+  }
+}
+
+std::unique_ptr<Tessellation> PoreRun::tessellate(const Frame& frame, const Selection& selection) const {
+  PoreOptions pore_options = o_.pores;
+  pore_options.radius = selection.radius;
+  pore_options.focus_lo = selection.region.lo;  // wider paddings only for pores that are analysed
+  pore_options.focus_hi = selection.region.hi;
+  try {
+    return std::make_unique<Tessellation>(frame.box, frame.xyz, frame.ids, pore_options);
+  } catch (const OverlapError& e) {
+    throw InputError(overlap_message(frame, e));
+  } catch (const std::exception& e) {
+    throw InputError(where(frame, frame.first_line) + e.what());
+  }
+}
+
+// A selection without pores, with many unresolved pores, or with many beyond --xi-max.
+void PoreRun::warn_about_pores(const Frame& frame, const Region& region, const PoreResult& result,
+                               const PoreStatistics& s) {
+  std::ostringstream details;
+  details.precision(3);
+  if (s.pores == 0 && result.unresolved_in_focus == 0) {
+    details << "no pore in the selection " << region_text(region) << " (check --x/--y/--z, --floor, --radii)";
+    warn("no pores", where(frame, frame.first_line), details.str());
+  } else if (static_cast<double>(result.unresolved_in_focus) >
+             config::kUnresolvedWarningFraction * static_cast<double>(s.pores + result.unresolved_in_focus)) {
+    details << result.unresolved_in_focus << " of the " << s.pores + result.unresolved_in_focus
+            << " pores centred in the selection " << region_text(region)
+            << " are unresolved (empty spheres wider than the padding " << result.padding
+            << ", left out): the selection reaches beyond the packing (open space above a free surface?), "
+               "or raise --padding";
+    warn("unresolved", where(frame, frame.first_line), details.str());
+  } else if (static_cast<double>(s.xi.overflow()) > config::kOverflowWarningFraction * static_cast<double>(s.pores)) {
+    details << s.xi.overflow() << " of the " << s.pores << " selected pores (" << 100.0 * s.xi.overflow() / s.pores
+            << " %) have xi >= --xi-max " << o_.histogram.xi_max << " (counted in the normalisation, not in "
+            << "the histogram): the selection " << region_text(region)
+            << " reaches open space (a free surface or a wall?), or raise --xi-max";
+    warn("overflow", where(frame, frame.first_line), details.str());
+  }
+}
+
+void PoreRun::analyse_frame(const Frame& frame) {
+  const auto start = std::chrono::steady_clock::now();
+  const Selection selection = select(frame);
+  const Region& region = selection.region;
+  warn_about_packing(frame, selection);
+  const std::unique_ptr<Tessellation> tessellation = tessellate(frame, selection);
+  const PoreResult& result = tessellation->result();
+  FrameSummary summary;
+  summary.file = frame.source;
+  summary.frame = frame.index;
+  summary.timestep = frame.timestep;
+  summary.atoms = frame.size();
+  summary.radius = selection.radius;
+  summary.pores = result.pore_count;
+  summary.tetrahedra = result.tetrahedra;
+  summary.unresolved = result.unresolved;
+  summary.region_volume = region.volume();
+  summary.tetrahedra_volume = result.tetrahedra_volume;
+  summary.stats = PoreStatistics(o_.histogram);
+  tessellation->for_each_pore([&](const Pore& pore) {
+    const bool selected = region.contains(pore.centre);
+    if (selected) summary.stats.add(pore);
+    if (pores_csv_)
+      *pores_csv_ << frame.source << "," << frame.index << "," << frame.timestep << "," << pore.centre[0] << ","
+                  << pore.centre[1] << "," << pore.centre[2] << "," << pore.xi << "," << pore.ids[0] << ","
+                  << pore.ids[1] << "," << pore.ids[2] << "," << pore.ids[3] << "," << pore.tetrahedra << ","
+                  << pore.volume << "," << (selected ? 1 : 0) << "\n";
+  });
+  warn_about_pores(frame, region, result, summary.stats);
+  if (o_.p0_samples > 0) {
+    P0Statistics p0(o_.sigma_max, o_.sigma_steps);
+    const auto points = random_points(region, o_.p0_samples, o_.seed, analysed_);
+    for (double d : tessellation->nearest_centre_distances(points)) p0.add_distance(d / selection.radius);
+    summary.phi_p0 = p0.phi();
+    p0_total_.merge(p0);
+  }
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  total_.merge(summary.stats);
+  write_frame(frame, summary, region, result);
+  if (!o_.json) summary.stats = PoreStatistics(HistogramSpec{1.0, 1});  // keep memory flat
+  summaries_.push_back(std::move(summary));
+  ++analysed_;
+}
+
+// The frame's line of PREFIX.frames.csv, its histograms (--frame-hist) and its progress line.
+void PoreRun::write_frame(const Frame& frame, const FrameSummary& summary, const Region& region,
+                          const PoreResult& result) {
+  const PoreStatistics& s = summary.stats;
+  *frames_csv_ << frame.source << "," << frame.index << "," << frame.timestep << "," << summary.atoms << ","
+               << csv_number(summary.radius) << "," << summary.pores << "," << summary.tetrahedra << ","
+               << summary.unresolved << "," << s.pores << "," << s.degenerate << "," << csv_number(s.nu()) << ","
+               << csv_number(s.mean_xi()) << "," << csv_number(summary.region_volume) << ","
+               << csv_number(summary.tetrahedra_volume) << "," << csv_number(summary.phi_p0) << ","
+               << csv_number(summary.seconds) << "\n";
+  if (frame_hist_csv_) {
+    std::ostringstream row;
+    row << frame.source << "," << frame.index << "," << frame.timestep << ",";
+    write_histogram_rows(*frame_hist_csv_, s, row.str());
+  }
+  if (!o_.quiet)
+    err_ << "tapmc-pores: " << frame.source << " frame " << frame.index << " (timestep " << frame.timestep << "): "
+         << summary.atoms << " spheres, " << summary.pores << " pores, " << s.pores << " selected in z ["
+         << csv_number(region.lo[2]) << ", " << csv_number(region.hi[2]) << "), nu = " << csv_number(s.nu()) << " ("
+         << std::setprecision(3) << summary.seconds << " s: Delaunay " << result.triangulation_seconds << " s, pores "
+         << result.pore_seconds << " s, " << result.attempts << " triangulation(s))\n";
+}
+
+void PoreRun::write_p0_csv() {
+  std::ofstream& p0_csv = output(".p0.csv");
+  const double phi = p0_total_.phi();
+  p0_csv << "# tapmc-pores: " << p0_total_.samples << " random points, phi seen by the points = " << csv_number(phi)
+         << "\nsigma,P0_measured,P0_percus_yevick\n";
+  for (std::size_t k = 0; k < p0_total_.steps(); ++k)
+    p0_csv << csv_number(p0_total_.sigma(k)) << "," << csv_number(p0_total_.p0(k)) << ","
+           << (phi > 0 && phi < 1 ? csv_number(gotoh_p0(p0_total_.sigma(k), phi)) : "") << "\n";
+}
+
+void PoreRun::finish() {
+  if (analysed_ == 0) throw InputError("no frame analysed (check --skip/--every and the files)");
+  std::ofstream& hist_csv = output(".hist.csv");
+  hist_csv << "# tapmc-pores: " << analysed_ << " frames, " << total_.pores << " selected pores, nu = "
+           << csv_number(total_.nu()) << ", xi below range " << total_.xi.underflow() << ", above "
+           << total_.xi.overflow() << "\n"
+           << kHistogramColumns << "\n";
+  write_histogram_rows(hist_csv, total_, "");
+  if (o_.p0_samples > 0) write_p0_csv();
+  if (o_.json)
+    write_json(output(".json"), analysed_, total_, summaries_, o_.frame_hist, o_.p0_samples > 0 ? &p0_total_ : nullptr);
+  std::string written;
+  for (const auto& file : outputs_) {
+    file->commit();
+    written += (written.empty() ? "" : ", ") + file->path();
+  }
+  for (const auto& [kind, warning] : warnings_)
+    err_ << "tapmc-pores: warning: " << warning.first_frame
+         << (warning.frames > 1 ? " (and in " + std::to_string(warning.frames - 1) + " more of the " +
+                                      std::to_string(analysed_) + " frames)"
+                                : std::string())
+         << "\n";
+  if (!o_.quiet)
+    err_ << "tapmc-pores: " << analysed_ << " frames, " << total_.pores << " selected pores, nu = "
+         << csv_number(total_.nu()) << "; wrote " << written << "\n";
+}
+
 }  // namespace
 
-int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err) {
-  Options o;
-  try {
-    bool help = false;
-    o = parse(arguments, help);
-    if (help) {
-      out << kUsage;
-      return 0;
-    }
-    (void)PoreStatistics(o.histogram);  // validates the bins
-  } catch (const std::invalid_argument& e) {
-    err << "tapmc-pores: " << e.what() << " (see tapmc-pores --help)\n";
-    return 1;
+void run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err) {
+  const Options o = parse(arguments);
+  if (o.help) {
+    out << kUsage;
+    return;
   }
-
-  std::string current_file;
-  std::size_t current_frame = 0;
-  std::vector<std::unique_ptr<OutputFile>> outputs;  // removed unless the run succeeds
-  auto output = [&](const std::string& suffix) -> std::ofstream& {
-    outputs.push_back(std::make_unique<OutputFile>(o.prefix + suffix));
-    return outputs.back()->stream();
-  };
-  // Warnings by kind, in the order first raised.
-  std::vector<std::pair<std::string, Warning>> warnings;
-  auto warn = [&](const std::string& kind, const std::string& location, const std::string& details) {
-    auto it = std::find_if(warnings.begin(), warnings.end(), [&](const auto& w) { return w.first == kind; });
-    if (it == warnings.end()) {
-      warnings.emplace_back(kind, Warning{});
-      it = std::prev(warnings.end());
-      it->second.first_frame = location + details;
-    }
-    ++it->second.frames;
-  };
-  try {
-    std::ofstream& frames_csv = output(".frames.csv");
-    frames_csv << "file,frame,timestep,atoms,radius,pores,tetrahedra,unresolved,selected,degenerate_selected,nu,mean_xi,"
-                  "region_volume,tetrahedra_volume,phi_p0,seconds\n";
-    std::ofstream* frame_hist_csv = nullptr;
-    std::ofstream* pores_csv = nullptr;
-    if (o.frame_hist) {
-      frame_hist_csv = &output(".frame_hist.csv");
-      *frame_hist_csv << "file,frame,timestep," << kHistogramColumns << "\n";
-    }
-    if (o.pore_list) {
-      pores_csv = &output(".pores.csv");
-      *pores_csv << std::setprecision(15) << "file,frame,timestep,x,y,z,xi,id1,id2,id3,id4,tetrahedra,volume,selected\n";
-    }
-    PoreStatistics total(o.histogram);
-    P0Statistics p0_total(o.sigma_max, o.sigma_steps);
-    std::vector<FrameSummary> summaries;
-    std::size_t analysed = 0;
-
-    for (const std::string& path : o.files) {
-      if (analysed >= o.max_frames) break;
-      current_file = path;
-      current_frame = 0;
-      DumpReader reader = DumpReader::open(path, o.reader);
-      Frame frame;
-      std::size_t seen = 0;
-      while (analysed < o.max_frames && reader.next(frame)) {
-        current_frame = frame.index;
-        ++seen;
-        if (seen <= o.skip || (seen - o.skip - 1) % o.every != 0) continue;
-        const auto start = std::chrono::steady_clock::now();
-        auto where = [&](std::size_t line) {
-          std::ostringstream s;
-          s << frame.source << ":" << line << ": frame " << frame.index << " (timestep " << frame.timestep << "): ";
-          return s.str();
-        };
-        RadiusCheck radius;
-        try {
-          radius = common_radius(frame, o.radius);
-        } catch (const RadiusError& e) {
-          throw std::runtime_error(where(frame.first_atom_line + e.index) + e.what());
-        }
-        PoreOptions pore_options = o.pores;
-        pore_options.radius = radius.radius;
-        PackingBounds packing;
-        Region region;
-        try {
-          packing = find_packing(frame.box, frame.xyz, radius.radius, o.floor);
-          region = make_region(frame.box, packing, radius.radius, o.region);
-        } catch (const std::invalid_argument& e) {
-          throw std::runtime_error(where(frame.first_line) + e.what());
-        }
-        const double r = radius.radius;
-        if (packing.free_surface) {
-          if (!std::isnan(o.floor) && packing.lowest_bottom < o.floor - 2.0 * r * o.pores.overlap_tolerance) {
-            std::ostringstream details;
-            details.precision(6);
-            details << "spheres reach below --floor " << o.floor << " (lowest sphere bottom " << packing.lowest_bottom
-                    << "): is the floor right?";
-            warn("below floor", where(frame.first_line), details.str());
-          }
-          if (region.hi[2] > packing.hi[2] - o.region.surface_gap_over_radius * r + 1e-9 * r) {
-            std::ostringstream details;
-            details.precision(6);
-            const double below = (packing.hi[2] - region.hi[2]) / r;
-            details << "the selection reaches z = " << region.hi[2] << ", ";
-            if (below > 0) details << "only " << below << " R below";
-            else details << -below << " R above";
-            details << " the free surface h_s = " << packing.hi[2] << " (--surface-gap " << o.region.surface_gap_over_radius
-                    << " R): pores near and above the free surface are larger than those of the bulk";
-            warn("surface", where(frame.first_line), details.str());
-          }
-        }
-        pore_options.focus_lo = region.lo;  // wider paddings only for pores that are analysed
-        pore_options.focus_hi = region.hi;
-        std::unique_ptr<Tessellation> tessellation;
-        try {
-          tessellation = std::make_unique<Tessellation>(frame.box, frame.xyz, frame.ids, pore_options);
-        } catch (const OverlapError& e) {
-          std::ostringstream what;
-          what << where(frame.first_atom_line + e.index_a) << e.what() << " (atom lines "
-               << frame.first_atom_line + e.index_a << " and " << frame.first_atom_line + e.index_b << "). ";
-          const double tolerance = accepting_tolerance(e.depth);
-          if (e.index_a == e.index_b)
-            what << "The periodic box is shorter than a diameter.";
-          else if (tolerance > 0)
-            what << "To accept overlapping spheres (e.g. a DEM dump), give --overlap-tol above the deepest overlap, "
-                    "here --overlap-tol "
-                 << tolerance << " (pores whose empty sphere is squeezed by overlaps get xi < 0, counted below range).";
-          else
-            what << "The centres nearly coincide: this is not a packing of spheres.";
-          throw std::runtime_error(what.str());
-        } catch (const std::exception& e) {
-          throw std::runtime_error(where(frame.first_line) + e.what());
-        }
-        const PoreResult& result = tessellation->result();
-        FrameSummary summary;
-        summary.file = path;
-        summary.frame = frame.index;
-        summary.timestep = frame.timestep;
-        summary.atoms = frame.size();
-        summary.radius = r;
-        summary.pores = result.pore_count;
-        summary.tetrahedra = result.tetrahedra;
-        summary.unresolved = result.unresolved;
-        summary.region_volume = region.volume();
-        summary.tetrahedra_volume = result.tetrahedra_volume;
-        summary.stats = PoreStatistics(o.histogram);
-        tessellation->for_each_pore([&](const Pore& pore) {
-          const bool selected = region.contains(pore.centre);
-          if (selected) summary.stats.add(pore);
-          if (pores_csv)
-            *pores_csv << path << "," << frame.index << "," << frame.timestep << "," << pore.centre[0] << ","
-                       << pore.centre[1] << "," << pore.centre[2] << "," << pore.xi << "," << pore.ids[0] << ","
-                       << pore.ids[1] << "," << pore.ids[2] << "," << pore.ids[3] << "," << pore.tetrahedra << ","
-                       << pore.volume << "," << (selected ? 1 : 0) << "\n";
-        });
-        const PoreStatistics& s = summary.stats;
-        {
-          std::ostringstream region_text;
-          region_text.precision(6);
-          region_text << "[" << region.lo[0] << ", " << region.hi[0] << ") x [" << region.lo[1] << ", " << region.hi[1]
-                      << ") x [" << region.lo[2] << ", " << region.hi[2] << ")";
-          std::ostringstream details;
-          details.precision(3);
-          if (s.pores == 0 && result.unresolved_in_focus == 0) {
-            details << "no pore in the selection " << region_text.str() << " (check --x/--y/--z, --floor, --radii)";
-            warn("no pores", where(frame.first_line), details.str());
-          } else if (static_cast<double>(result.unresolved_in_focus) >
-                     config::kUnresolvedWarningFraction * static_cast<double>(s.pores + result.unresolved_in_focus)) {
-            details << result.unresolved_in_focus << " of the " << s.pores + result.unresolved_in_focus
-                    << " pores centred in the selection " << region_text.str()
-                    << " are unresolved (empty spheres wider than the padding " << result.padding
-                    << ", left out): the selection reaches beyond the packing (open space above a free surface?), "
-                       "or raise --padding";
-            warn("unresolved", where(frame.first_line), details.str());
-          } else if (static_cast<double>(s.xi.overflow()) > config::kOverflowWarningFraction * static_cast<double>(s.pores)) {
-            details << s.xi.overflow() << " of the " << s.pores << " selected pores (" << 100.0 * s.xi.overflow() / s.pores
-                    << " %) have xi >= --xi-max " << o.histogram.xi_max << " (counted in the normalisation, not in "
-                    << "the histogram): the selection " << region_text.str()
-                    << " reaches open space (a free surface or a wall?), or raise --xi-max";
-            warn("overflow", where(frame.first_line), details.str());
-          }
-        }
-        if (o.p0_samples > 0) {
-          P0Statistics p0(o.sigma_max, o.sigma_steps);
-          const auto points = random_points(region, o.p0_samples, o.seed, analysed);
-          for (double d : tessellation->nearest_centre_distances(points)) p0.add_distance(d / r);
-          summary.phi_p0 = p0.phi();
-          p0_total.merge(p0);
-        }
-        summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        total.merge(summary.stats);
-        frames_csv << path << "," << frame.index << "," << frame.timestep << "," << summary.atoms << ","
-                   << csv_number(summary.radius) << "," << summary.pores << "," << summary.tetrahedra << ","
-                   << summary.unresolved << "," << s.pores << "," << s.degenerate << "," << csv_number(s.nu()) << ","
-                   << csv_number(s.mean_xi()) << "," << csv_number(summary.region_volume) << ","
-                   << csv_number(summary.tetrahedra_volume) << "," << csv_number(summary.phi_p0) << ","
-                   << csv_number(summary.seconds) << "\n";
-        if (frame_hist_csv) {
-          std::ostringstream row;
-          row << path << "," << frame.index << "," << frame.timestep << ",";
-          write_histogram_rows(*frame_hist_csv, s, row.str());
-        }
-        if (!o.quiet)
-          err << "tapmc-pores: " << path << " frame " << frame.index << " (timestep " << frame.timestep << "): "
-              << summary.atoms << " spheres, " << summary.pores << " pores, " << s.pores << " selected in z ["
-              << csv_number(region.lo[2]) << ", " << csv_number(region.hi[2]) << "), nu = " << csv_number(s.nu())
-              << " (" << std::setprecision(3) << summary.seconds << " s: Delaunay " << result.triangulation_seconds
-              << " s, pores " << result.pore_seconds << " s, " << result.attempts << " triangulation(s))\n";
-        if (!o.json) summary.stats = PoreStatistics(HistogramSpec{1.0, 1});  // keep memory flat
-        summaries.push_back(std::move(summary));
-        ++analysed;
-      }
-    }
-    current_file.clear();
-    if (analysed == 0) throw std::runtime_error("no frame analysed (check --skip/--every and the files)");
-
-    std::ofstream& hist_csv = output(".hist.csv");
-    hist_csv << "# tapmc-pores: " << analysed << " frames, " << total.pores << " selected pores, nu = "
-             << csv_number(total.nu()) << ", xi below range " << total.xi.underflow() << ", above "
-             << total.xi.overflow() << "\n"
-             << kHistogramColumns << "\n";
-    write_histogram_rows(hist_csv, total, "");
-
-    if (o.p0_samples > 0) {
-      std::ofstream& p0_csv = output(".p0.csv");
-      const double phi = p0_total.phi();
-      p0_csv << "# tapmc-pores: " << p0_total.samples << " random points, phi seen by the points = " << csv_number(phi)
-             << "\nsigma,P0_measured,P0_percus_yevick\n";
-      for (std::size_t k = 0; k < p0_total.steps(); ++k)
-        p0_csv << csv_number(p0_total.sigma(k)) << "," << csv_number(p0_total.p0(k)) << ","
-               << (phi > 0 && phi < 1 ? csv_number(gotoh_p0(p0_total.sigma(k), phi)) : "") << "\n";
-    }
-
-    if (o.json) {
-      std::ofstream& json = output(".json");
-      json << "{\"tool\": \"tapmc-pores\", \"frames_analysed\": " << analysed << ",\n \"aggregate\": ";
-      write_json_statistics(json, total, true);
-      json << ",\n \"frames\": [";
-      for (std::size_t i = 0; i < summaries.size(); ++i) {
-        const FrameSummary& f = summaries[i];
-        json << (i ? ",\n  " : "\n  ") << "{\"file\": " << json_string(f.file) << ", \"frame\": " << f.frame
-             << ", \"timestep\": " << f.timestep << ", \"atoms\": " << f.atoms << ", \"radius\": " << json_number(f.radius)
-             << ", \"pores_total\": " << f.pores << ", \"tetrahedra\": " << f.tetrahedra
-             << ", \"unresolved\": " << f.unresolved << ", \"region_volume\": " << json_number(f.region_volume)
-             << ", \"tetrahedra_volume\": " << json_number(f.tetrahedra_volume) << ", \"phi_p0\": " << json_number(f.phi_p0)
-             << ", \"seconds\": " << json_number(f.seconds) << ", \"statistics\": ";
-        write_json_statistics(json, f.stats, o.frame_hist);
-        json << "}";
-      }
-      json << "]";
-      if (o.p0_samples > 0) {
-        const double phi = p0_total.phi();
-        json << ",\n \"p0\": {\"samples\": " << p0_total.samples << ", \"phi\": " << json_number(phi) << ", \"sigma\": [";
-        for (std::size_t k = 0; k < p0_total.steps(); ++k) json << (k ? ", " : "") << json_number(p0_total.sigma(k));
-        json << "], \"measured\": [";
-        for (std::size_t k = 0; k < p0_total.steps(); ++k) json << (k ? ", " : "") << json_number(p0_total.p0(k));
-        json << "], \"percus_yevick\": [";
-        for (std::size_t k = 0; k < p0_total.steps(); ++k)
-          json << (k ? ", " : "") << (phi > 0 && phi < 1 ? json_number(gotoh_p0(p0_total.sigma(k), phi)) : "null");
-        json << "]}";
-      }
-      json << "}\n";
-    }
-    std::string written;
-    for (const auto& file : outputs) {
-      file->commit();
-      written += (written.empty() ? "" : ", ") + file->path();
-    }
-    for (const auto& [kind, warning] : warnings)
-      err << "tapmc-pores: warning: " << warning.first_frame
-          << (warning.frames > 1 ? " (and in " + std::to_string(warning.frames - 1) + " more of the " +
-                                       std::to_string(analysed) + " frames)"
-                                 : std::string())
-          << "\n";
-    if (!o.quiet)
-      err << "tapmc-pores: " << analysed << " frames, " << total.pores << " selected pores, nu = " << csv_number(total.nu())
-          << "; wrote " << written << "\n";
-    return 0;
-  } catch (const DumpError& e) {
-    err << "tapmc-pores: error: " << e.what() << "\n";
-  } catch (const std::exception& e) {
-    err << "tapmc-pores: error: " << (current_file.empty() || std::string(e.what()).rfind(current_file, 0) == 0
-                                          ? ""
-                                          : current_file + ": frame " + std::to_string(current_frame) + ": ")
-        << e.what() << "\n";
-  }
-  outputs.clear();  // removes the partial files
-  err << "tapmc-pores: no output written\n";
-  return 2;
+  PoreRun run(o, err);
+  for (const std::string& path : o.files) run.analyse_file(path);
+  run.finish();
 }
 
 }  // namespace pores

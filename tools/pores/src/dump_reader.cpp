@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <sstream>
 
 #include "tapmc_pores/pores_config.h"
@@ -17,7 +18,7 @@ namespace pores {
 
 DumpError::DumpError(const std::string& file, std::size_t frame, std::size_t line,
                      const std::string& what)
-    : std::runtime_error([&] {
+    : InputError([&] {
         std::ostringstream out;
         out << file;
         if (line > 0) out << ":" << line;
@@ -114,7 +115,9 @@ std::string quoted(std::string_view text) {
 // Coordinate styles in order of preference: wrapped, unwrapped, scaled, scaled unwrapped.
 enum class CoordinateStyle { kBox, kUnwrapped, kScaled, kScaledUnwrapped };
 
-struct Columns {
+}  // namespace
+
+struct DumpReader::Columns {
   int id = -1;
   int radius = -1;
   int diameter = -1;
@@ -123,8 +126,10 @@ struct Columns {
   std::size_t count = 0;
 };
 
-Columns assign_columns(const std::vector<std::string>& names, std::string& problem) {
-  Columns columns;
+namespace {
+
+DumpReader::Columns assign_columns(const std::vector<std::string>& names, std::string& problem) {
+  DumpReader::Columns columns;
   columns.count = names.size();
   static const char* kAxes[3] = {"x", "y", "z"};
   static const std::pair<const char*, CoordinateStyle> kSuffixes[4] = {
@@ -214,9 +219,176 @@ bool DumpReader::next_line(std::string_view& line) {
   }
 }
 
-bool DumpReader::next(Frame& frame) {
+// The value line after 'ITEM: <item>', split into `fields`.
+std::string_view DumpReader::value_line(const char* item, std::vector<std::string_view>& fields) {
+  std::string_view line;
+  if (!next_line(line)) fail(line_number_, std::string("file ends after 'ITEM: ") + item + "'");
+  split_fields(line, fields);
+  return line;
+}
+
+// The one integer of the value line of 'ITEM: <item>', refused below `minimum` with `refusal`.
+long long DumpReader::read_integer(const char* item, const char* refusal, long long minimum) {
+  std::vector<std::string_view> fields;
+  const std::string_view line = value_line(item, fields);
+  long long value = 0;
+  if (fields.size() != 1 || !parse_integer(fields[0], value) || value < minimum)
+    fail(line_number_, refusal + quoted(line));
+  return value;
+}
+
+// 'ITEM: BOX BOUNDS <flags>' (`flags_text`) and its three lines 'lo hi'.
+void DumpReader::read_box(std::string_view item, std::string_view flags_text, Box& box) {
+  std::vector<std::string_view> flags;
+  split_fields(flags_text, flags);
+  if (!flags.empty() && (flags[0] == "xy" || flags[0] == "xz" || flags[0] == "yz"))
+    fail(line_number_, "triclinic box ('" + std::string(item) + "'): tapmc-pores handles orthogonal boxes only");
+  std::array<bool, 3> periodic{{true, true, true}};
+  if (flags.size() == 3) {
+    for (int d = 0; d < 3; ++d) {
+      const std::string_view f = flags[d];
+      const bool valid = f.size() == 2 && std::string_view("pfsm").find(f[0]) != std::string_view::npos &&
+                         std::string_view("pfsm").find(f[1]) != std::string_view::npos &&
+                         ((f[0] == 'p') == (f[1] == 'p'));
+      if (!valid) fail(line_number_, "invalid boundary flag " + quoted(f) + " (expected pp, ff, fs, sm, ...)");
+      periodic[d] = f[0] == 'p';
+    }
+  } else if (!flags.empty()) {
+    fail(line_number_, "BOX BOUNDS carries " + std::to_string(flags.size()) +
+                           " boundary flags, expected 3 (e.g. 'pp pp fm')");
+  } else if (!options_.override_periodic) {
+    fail(line_number_, "BOX BOUNDS carries no boundary flags (old dump): give the periodicity "
+                       "with --boundary, e.g. --boundary ppf");
+  }
+  if (options_.override_periodic) periodic = options_.periodic;
+  std::vector<std::string_view> fields;
+  for (int d = 0; d < 3; ++d) {
+    const std::string_view line = value_line("BOX BOUNDS", fields);
+    double lo = 0, hi = 0;
+    if (fields.size() == 3)
+      fail(line_number_, "box bounds line has a tilt factor (triclinic box): tapmc-pores handles "
+                         "orthogonal boxes only");
+    if (fields.size() != 2 || !parse_double(fields[0], lo) || !parse_double(fields[1], hi))
+      fail(line_number_, "box bounds line must hold two numbers 'lo hi': " + quoted(line));
+    if (!std::isfinite(lo) || !std::isfinite(hi) || !(hi > lo))
+      fail(line_number_, "box bounds must be finite with lo < hi: " + quoted(line));
+    box.lo[d] = lo;
+    box.hi[d] = hi;
+  }
+  box.periodic = periodic;
+}
+
+// 'ITEM: ATOMS <names>' (`names_text`) and its `count` atom lines; old 'dump atom' files name no
+// columns and are recognised by their number of fields.
+void DumpReader::read_atoms(std::string_view names_text, std::size_t count, Frame& frame) {
+  std::vector<std::string> names;
+  {
+    std::vector<std::string_view> views;
+    split_fields(names_text, views);
+    for (auto v : views) names.emplace_back(v);
+  }
+  const std::size_t header_line = line_number_;
+  frame.first_atom_line = line_number_ + 1;
+  frame.ids.reserve(std::min<std::size_t>(count, 1u << 22));
+  frame.xyz.reserve(3 * std::min<std::size_t>(count, 1u << 22));
+  Columns columns;
+  bool columns_known = false;
+  auto set_columns = [&](const std::vector<std::string>& column_names) {
+    std::string problem;
+    columns = assign_columns(column_names, problem);
+    if (!problem.empty()) fail(header_line, problem);
+    columns_known = true;
+  };
+  if (!names.empty()) set_columns(names);
   std::string_view line;
   std::vector<std::string_view> fields;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!next_line(line))
+      fail(line_number_, "truncated frame: expected " + std::to_string(count) + " atom lines, the file ends after " +
+                             std::to_string(i));
+    split_fields(line, fields);
+    if (!columns_known) {
+      // Old 'dump atom' without column names: id type xs ys zs [ix iy iz].
+      if (fields.size() == 5) set_columns({"id", "type", "xs", "ys", "zs"});
+      else if (fields.size() == 8) set_columns({"id", "type", "xs", "ys", "zs", "ix", "iy", "iz"});
+      else fail(header_line, "'ITEM: ATOMS' names no columns and the lines do not look like 'dump atom'");
+    }
+    if (fields.size() != columns.count) {
+      if (!fields.empty() && fields[0].substr(0, 5) == "ITEM:")
+        fail(line_number_, "truncated frame: expected " + std::to_string(count) + " atom lines, found " +
+                               std::to_string(i) + " before the next ITEM");
+      fail(line_number_, "atom line has " + std::to_string(fields.size()) + " fields, the ATOMS header names " +
+                             std::to_string(columns.count));
+    }
+    read_atom(fields, columns, i, frame);
+  }
+}
+
+double DumpReader::field_number(std::string_view field, const char* role) const {
+  double value = 0;
+  if (!parse_double(field, value)) fail(line_number_, std::string("non-numeric ") + role + " field " + quoted(field));
+  if (!std::isfinite(value)) fail(line_number_, std::string("non-finite ") + role + " value " + quoted(field));
+  return value;
+}
+
+// One atom line: its id (i + 1 without an id column), its centre in the box, its radius.
+void DumpReader::read_atom(const std::vector<std::string_view>& fields, const Columns& columns, std::size_t i,
+                           Frame& frame) const {
+  if (columns.id >= 0) {
+    long long id = 0;
+    if (!parse_integer(fields[columns.id], id)) fail(line_number_, "atom id is not an integer: " + quoted(fields[columns.id]));
+    frame.ids.push_back(id);
+  } else {
+    frame.ids.push_back(static_cast<std::int64_t>(i + 1));
+  }
+  for (int d = 0; d < 3; ++d) {
+    const CoordinateStyle style = columns.style[d];
+    const bool scaled = style == CoordinateStyle::kScaled || style == CoordinateStyle::kScaledUnwrapped;
+    frame.xyz.push_back(place(field_number(fields[columns.coordinate[d]], "coordinate"), d, scaled, frame));
+  }
+  if (columns.radius >= 0) frame.radius.push_back(field_number(fields[columns.radius], "radius"));
+  else if (columns.diameter >= 0) frame.radius.push_back(0.5 * field_number(fields[columns.diameter], "diameter"));
+  if (!frame.radius.empty() && !(frame.radius.back() > 0))
+    fail(line_number_, "radius must be positive, found " + std::to_string(frame.radius.back()));
+}
+
+// Coordinate `value` along `d` in box units: wrapped into a periodic box, checked against the
+// faces of a non-periodic one (the atom is the last one read).
+double DumpReader::place(double value, int d, bool scaled, const Frame& frame) const {
+  const double lo = frame.box.lo[d], length = frame.box.length(d);
+  if (scaled) value = lo + value * length;
+  if (frame.box.periodic[d]) {
+    double t = (value - lo) / length;
+    t -= std::floor(t);
+    value = lo + t * length;
+    if (value >= frame.box.hi[d]) value = lo;  // rounding of t just below 1
+  } else {
+    const double slack = config::kBoxTolerance * length;
+    if (value < lo - slack || value > frame.box.hi[d] + slack) {
+      std::ostringstream what;
+      what.precision(17);
+      what << "atom " << frame.ids.back() << " lies outside the non-periodic box along " << "xyz"[d] << ": " << value
+           << " not in [" << lo << ", " << frame.box.hi[d] << "]";
+      fail(line_number_, what.str());
+    }
+  }
+  return value;
+}
+
+// Duplicate ids: sort a copy (O(N log N), negligible next to the triangulation).
+void DumpReader::check_unique_ids(const Frame& frame) const {
+  std::vector<std::int64_t> sorted(frame.ids);
+  std::sort(sorted.begin(), sorted.end());
+  const auto duplicate = std::adjacent_find(sorted.begin(), sorted.end());
+  if (duplicate == sorted.end()) return;
+  const std::size_t at = std::find(frame.ids.begin(), frame.ids.end(), *duplicate) - frame.ids.begin();
+  const std::size_t again = std::find(frame.ids.begin() + at + 1, frame.ids.end(), *duplicate) - frame.ids.begin();
+  fail(frame.first_atom_line + again, "duplicate atom id " + std::to_string(*duplicate) + " (first on line " +
+                                          std::to_string(frame.first_atom_line + at) + ")");
+}
+
+bool DumpReader::next(Frame& frame) {
+  std::string_view line;
   have_timestep_ = false;
 
   // Skip blank lines before the frame; a clean end of input here ends the dump.
@@ -234,163 +406,27 @@ bool DumpReader::next(Frame& frame) {
 
   long long atom_count = -1;
   bool have_box = false;
-  auto read_value_line = [&](const char* item) {
-    if (!next_line(line)) fail(line_number_, std::string("file ends after 'ITEM: ") + item + "'");
-    split_fields(line, fields);
-  };
-
   for (;;) {
-    if (line.substr(0, 6) != "ITEM: ")
-      fail(line_number_, "expected an 'ITEM:' line, found " + quoted(line));
+    if (line.substr(0, 6) != "ITEM: ") fail(line_number_, "expected an 'ITEM:' line, found " + quoted(line));
     const std::string_view item = line.substr(6);
     if (item.substr(0, 8) == "TIMESTEP") {
-      read_value_line("TIMESTEP");
-      long long step = 0;
-      if (fields.size() != 1 || !parse_integer(fields[0], step))
-        fail(line_number_, "timestep is not an integer: " + quoted(line));
-      frame.timestep = current_timestep_ = step;
+      frame.timestep = current_timestep_ =
+          read_integer("TIMESTEP", "timestep is not an integer: ", std::numeric_limits<long long>::min());
       have_timestep_ = true;
     } else if (item.substr(0, 4) == "TIME" || item.substr(0, 5) == "UNITS") {
-      read_value_line("TIME/UNITS");  // informational items written by dump_modify time/units
+      std::vector<std::string_view> fields;
+      value_line("TIME/UNITS", fields);  // informational items written by dump_modify time/units
     } else if (item.substr(0, 15) == "NUMBER OF ATOMS") {
-      read_value_line("NUMBER OF ATOMS");
-      if (fields.size() != 1 || !parse_integer(fields[0], atom_count) || atom_count < 0)
-        fail(line_number_, "number of atoms is not a non-negative integer: " + quoted(line));
+      atom_count = read_integer("NUMBER OF ATOMS", "number of atoms is not a non-negative integer: ", 0);
       if (atom_count == 0) fail(line_number_, "the frame has zero atoms (nothing to analyse)");
     } else if (item.substr(0, 10) == "BOX BOUNDS") {
-      std::vector<std::string_view> flags;
-      split_fields(item.substr(10), flags);
-      if (!flags.empty() && (flags[0] == "xy" || flags[0] == "xz" || flags[0] == "yz"))
-        fail(line_number_, "triclinic box ('" + std::string(item) +
-                               "'): tapmc-pores handles orthogonal boxes only");
-      std::array<bool, 3> periodic{{true, true, true}};
-      if (flags.size() == 3) {
-        for (int d = 0; d < 3; ++d) {
-          const std::string_view f = flags[d];
-          const bool valid = f.size() == 2 && std::string_view("pfsm").find(f[0]) != std::string_view::npos &&
-                             std::string_view("pfsm").find(f[1]) != std::string_view::npos &&
-                             ((f[0] == 'p') == (f[1] == 'p'));
-          if (!valid) fail(line_number_, "invalid boundary flag " + quoted(f) + " (expected pp, ff, fs, sm, ...)");
-          periodic[d] = f[0] == 'p';
-        }
-      } else if (!flags.empty()) {
-        fail(line_number_, "BOX BOUNDS carries " + std::to_string(flags.size()) +
-                               " boundary flags, expected 3 (e.g. 'pp pp fm')");
-      } else if (!options_.override_periodic) {
-        fail(line_number_, "BOX BOUNDS carries no boundary flags (old dump): give the periodicity "
-                           "with --boundary, e.g. --boundary ppf");
-      }
-      if (options_.override_periodic) periodic = options_.periodic;
-      for (int d = 0; d < 3; ++d) {
-        read_value_line("BOX BOUNDS");
-        double lo = 0, hi = 0;
-        if (fields.size() == 3)
-          fail(line_number_, "box bounds line has a tilt factor (triclinic box): tapmc-pores handles "
-                             "orthogonal boxes only");
-        if (fields.size() != 2 || !parse_double(fields[0], lo) || !parse_double(fields[1], hi))
-          fail(line_number_, "box bounds line must hold two numbers 'lo hi': " + quoted(line));
-        if (!std::isfinite(lo) || !std::isfinite(hi) || !(hi > lo))
-          fail(line_number_, "box bounds must be finite with lo < hi: " + quoted(line));
-        frame.box.lo[d] = lo;
-        frame.box.hi[d] = hi;
-      }
-      frame.box.periodic = periodic;
+      read_box(item, item.substr(10), frame.box);
       have_box = true;
     } else if (item.substr(0, 5) == "ATOMS") {
       if (atom_count < 0) fail(line_number_, "'ITEM: ATOMS' before 'ITEM: NUMBER OF ATOMS'");
       if (!have_box) fail(line_number_, "'ITEM: ATOMS' before 'ITEM: BOX BOUNDS'");
-      std::vector<std::string> names;
-      {
-        std::vector<std::string_view> views;
-        split_fields(item.substr(5), views);
-        for (auto v : views) names.emplace_back(v);
-      }
-      const std::size_t header_line = line_number_;
-      frame.first_atom_line = line_number_ + 1;
-      const std::size_t n = static_cast<std::size_t>(atom_count);
-      frame.ids.reserve(std::min<std::size_t>(n, 1u << 22));
-      frame.xyz.reserve(3 * std::min<std::size_t>(n, 1u << 22));
-      Columns columns;
-      bool columns_known = false;
-      auto set_columns = [&](const std::vector<std::string>& column_names) {
-        std::string problem;
-        columns = assign_columns(column_names, problem);
-        if (!problem.empty()) fail(header_line, problem);
-        columns_known = true;
-      };
-      if (!names.empty()) set_columns(names);
-
-      for (std::size_t i = 0; i < n; ++i) {
-        if (!next_line(line))
-          fail(line_number_, "truncated frame: expected " + std::to_string(n) + " atom lines, the file ends after " +
-                                 std::to_string(i));
-        split_fields(line, fields);
-        if (!columns_known) {
-          // Old 'dump atom' without column names: id type xs ys zs [ix iy iz].
-          if (fields.size() == 5) set_columns({"id", "type", "xs", "ys", "zs"});
-          else if (fields.size() == 8) set_columns({"id", "type", "xs", "ys", "zs", "ix", "iy", "iz"});
-          else fail(header_line, "'ITEM: ATOMS' names no columns and the lines do not look like 'dump atom'");
-        }
-        if (fields.size() != columns.count) {
-          if (!fields.empty() && fields[0].substr(0, 5) == "ITEM:")
-            fail(line_number_, "truncated frame: expected " + std::to_string(n) + " atom lines, found " +
-                                   std::to_string(i) + " before the next ITEM");
-          fail(line_number_, "atom line has " + std::to_string(fields.size()) + " fields, the ATOMS header names " +
-                                 std::to_string(columns.count));
-        }
-        auto number = [&](int column, const char* role) {
-          double value = 0;
-          if (!parse_double(fields[column], value))
-            fail(line_number_, std::string("non-numeric ") + role + " field " + quoted(fields[column]));
-          if (!std::isfinite(value))
-            fail(line_number_, std::string("non-finite ") + role + " value " + quoted(fields[column]));
-          return value;
-        };
-        if (columns.id >= 0) {
-          long long id = 0;
-          if (!parse_integer(fields[columns.id], id))
-            fail(line_number_, "atom id is not an integer: " + quoted(fields[columns.id]));
-          frame.ids.push_back(id);
-        } else {
-          frame.ids.push_back(static_cast<std::int64_t>(i + 1));
-        }
-        for (int d = 0; d < 3; ++d) {
-          double value = number(columns.coordinate[d], "coordinate");
-          const double lo = frame.box.lo[d], length = frame.box.length(d);
-          if (columns.style[d] == CoordinateStyle::kScaled || columns.style[d] == CoordinateStyle::kScaledUnwrapped)
-            value = lo + value * length;
-          if (frame.box.periodic[d]) {
-            double t = (value - lo) / length;
-            t -= std::floor(t);
-            value = lo + t * length;
-            if (value >= frame.box.hi[d]) value = lo;  // rounding of t just below 1
-          } else {
-            const double slack = config::kBoxTolerance * length;
-            if (value < lo - slack || value > frame.box.hi[d] + slack) {
-              std::ostringstream what;
-              what.precision(17);
-              what << "atom " << frame.ids.back() << " lies outside the non-periodic box along "
-                   << "xyz"[d] << ": " << value << " not in [" << lo << ", " << frame.box.hi[d] << "]";
-              fail(line_number_, what.str());
-            }
-          }
-          frame.xyz.push_back(value);
-        }
-        if (columns.radius >= 0) frame.radius.push_back(number(columns.radius, "radius"));
-        else if (columns.diameter >= 0) frame.radius.push_back(0.5 * number(columns.diameter, "diameter"));
-        if (!frame.radius.empty() && !(frame.radius.back() > 0))
-          fail(line_number_, "radius must be positive, found " + std::to_string(frame.radius.back()));
-      }
-      // Duplicate ids: sort a copy (O(N log N), negligible next to the triangulation).
-      std::vector<std::int64_t> sorted(frame.ids);
-      std::sort(sorted.begin(), sorted.end());
-      const auto duplicate = std::adjacent_find(sorted.begin(), sorted.end());
-      if (duplicate != sorted.end()) {
-        const std::size_t at = std::find(frame.ids.begin(), frame.ids.end(), *duplicate) - frame.ids.begin();
-        const std::size_t again = std::find(frame.ids.begin() + at + 1, frame.ids.end(), *duplicate) - frame.ids.begin();
-        fail(frame.first_atom_line + again, "duplicate atom id " + std::to_string(*duplicate) + " (first on line " +
-                                                std::to_string(frame.first_atom_line + at) + ")");
-      }
+      read_atoms(item.substr(5), static_cast<std::size_t>(atom_count), frame);
+      check_unique_ids(frame);
       ++frames_read_;
       return true;
     } else {

@@ -135,6 +135,22 @@ struct Tessellation::Impl {
   // Finds the pores; unless final_attempt, returns early (result.retry_padding > 0) as soon as
   // it is known that a wider padding is needed.
   void find_pores(double padding, double max_padding, bool final_attempt);
+
+  // The steps of find_pores.
+  std::vector<std::uint32_t> parent;      // cell -> union-find parent (degenerate clusters)
+  std::vector<std::uint8_t> clustered;    // cell -> 1 if merged with a neighbour
+  void index_cells();
+  void scan_cells(double padding, double max_padding, bool final_attempt, double contact);
+  void merge_with_neighbours(std::uint32_t i, const Sphere& a);
+  void group_clusters();
+  void keep_pore(const std::uint32_t* first, const std::uint32_t* last, Kept kept, double padding, double max_padding);
+  // The padded point of the lowest input index among the vertices of cells [first, last).
+  struct Canonical {
+    std::uint32_t origin, point;
+  };
+  Canonical canonical_vertex(const std::uint32_t* first, const std::uint32_t* last) const;
+  // How far the empty sphere `s` reaches beyond the periodic faces (0 when inside the box).
+  double padding_needed(const Sphere& s) const;
 };
 
 // Adds the images within `padding` of the periodic faces that are not already there (those within
@@ -229,30 +245,68 @@ void Tessellation::Impl::refuse_overlaps(double contact) const {
   throw OverlapError(what.str(), ia, ib, distance, contact, depth, pairs.size());
 }
 
-void Tessellation::Impl::find_pores(double padding, double max_padding, bool final_attempt) {
-  result = PoreResult{};
-  result.padding = padding;
-  closest = ClosestPair{};
+Tessellation::Impl::Canonical Tessellation::Impl::canonical_vertex(const std::uint32_t* first,
+                                                                   const std::uint32_t* last) const {
+  Canonical lowest{std::numeric_limits<std::uint32_t>::max(), 0};
+  for (const std::uint32_t* c = first; c != last; ++c)
+    for (int k = 0; k < 4; ++k) {
+      const std::uint32_t p = cells[*c]->vertex(k)->info();
+      if (origin[p] < lowest.origin) lowest = {origin[p], p};
+    }
+  return lowest;
+}
+
+double Tessellation::Impl::padding_needed(const Sphere& s) const {
+  double needed = 0.0;
+  const double centre[3] = {s.x, s.y, s.z};
+  for (int d = 0; d < 3; ++d)
+    if (box.periodic[d]) needed = std::max({needed, box.lo[d] - (centre[d] - s.r), centre[d] + s.r - box.hi[d]});
+  return needed;
+}
+
+void Tessellation::Impl::index_cells() {
   cells.clear();
   cells.reserve(7 * triangulation.number_of_vertices());
   for (auto c = triangulation.finite_cells_begin(); c != triangulation.finite_cells_end(); ++c) {
     c->info() = static_cast<std::uint32_t>(cells.size());
     cells.push_back(c);
   }
-  const std::size_t count = cells.size();
-  const double contact = 2.0 * options.radius * (1.0 - options.overlap_tolerance);
+}
 
-  // Degenerate Voronoi vertices: union face-adjacent tetrahedra with one common empty sphere.
-  // Necessary condition first (cheap, no storage): the neighbour's opposite vertex lies on this
-  // sphere within 2 tol (triangle inequality); only then compare the two circumspheres.
+// Degenerate Voronoi vertices: union face-adjacent tetrahedra with one common empty sphere.
+// Necessary condition first (cheap, no storage): the neighbour's opposite vertex lies on this
+// sphere within 2 tol (triangle inequality); only then compare the two circumspheres.
+void Tessellation::Impl::merge_with_neighbours(std::uint32_t i, const Sphere& a) {
   const double tolerance = options.merge_tolerance * options.radius;
-  std::vector<std::uint32_t> parent(count);
+  const CellHandle& c = cells[i];
+  for (int k = 0; k < 4; ++k) {
+    const CellHandle neighbour = c->neighbor(k);
+    if (triangulation.is_infinite(neighbour)) continue;
+    const std::uint32_t j = neighbour->info();
+    if (j <= i) continue;
+    const Point& apex = neighbour->vertex(neighbour->index(c))->point();
+    const double off = std::sqrt(squared(apex.x() - a.x) + squared(apex.y() - a.y) + squared(apex.z() - a.z)) - a.r;
+    if (std::abs(off) > 2.0 * tolerance + 1e-14 * a.r) continue;
+    const Sphere b = sphere_of(neighbour);
+    if (std::abs(a.r - b.r) < tolerance &&
+        squared(a.x - b.x) + squared(a.y - b.y) + squared(a.z - b.z) < tolerance * tolerance) {
+      const std::uint32_t ri = find_root(parent, i), rj = find_root(parent, j);
+      if (ri != rj) parent[std::max(ri, rj)] = std::min(ri, rj);
+      clustered[i] = clustered[j] = 1;
+    }
+  }
+}
+
+// One pass over the cells: overlaps, the padding wanted (unless final_attempt), degenerate clusters.
+void Tessellation::Impl::scan_cells(double padding, double max_padding, bool final_attempt, double contact) {
+  const std::size_t count = cells.size();
+  parent.resize(count);
   std::iota(parent.begin(), parent.end(), 0u);
-  std::vector<std::uint8_t> clustered(count, 0);
+  clustered.assign(count, 0);
   // Software prefetch of the neighbour cells and vertices a few cells ahead hides most of this
   // loop's cache misses (the neighbour test was a third of the pore time without it).
   constexpr std::size_t kPrefetchFar = 16;
-  for (std::size_t i = 0; i < count; ++i) {
+  for (std::uint32_t i = 0; i < count; ++i) {
     if (i + kPrefetchFar < count) {
       const CellHandle& ahead = cells[i + kPrefetchFar];
       for (int k = 0; k < 4; ++k) {
@@ -260,108 +314,83 @@ void Tessellation::Impl::find_pores(double padding, double max_padding, bool fin
         __builtin_prefetch(&*ahead->vertex(k));
       }
     }
-    const CellHandle& c = cells[i];
-    check_overlaps(c, contact * contact);
-    const Sphere a = sphere_of(c);
-    if (!final_attempt) {
-      // Padding check on the cell's own canonical copy: if some pore needs a wider padding, the
-      // caller inserts more images and comes back, so the rest of this pass would be wasted.
-      std::uint32_t min_origin = std::numeric_limits<std::uint32_t>::max(), min_point = 0;
-      for (int k = 0; k < 4; ++k) {
-        const std::uint32_t p = c->vertex(k)->info();
-        if (origin[p] < min_origin) min_origin = origin[p], min_point = p;
-      }
-      if (primary[min_point]) {
-        double needed = 0.0;
-        const double centre[3] = {a.x, a.y, a.z};
-        for (int d = 0; d < 3; ++d)
-          if (box.periodic[d]) needed = std::max({needed, box.lo[d] - (centre[d] - a.r), centre[d] + a.r - box.hi[d]});
-        if (needed > padding && needed <= max_padding && in_focus(a))
-          result.retry_padding = std::max(result.retry_padding, needed);
-      }
+    check_overlaps(cells[i], contact * contact);
+    const Sphere a = sphere_of(cells[i]);
+    // Padding check on the cell's own canonical copy: if some pore needs a wider padding, the
+    // caller inserts more images and comes back, so the rest of this pass would be wasted.
+    if (!final_attempt && primary[canonical_vertex(&i, &i + 1).point]) {
+      const double needed = padding_needed(a);
+      if (needed > padding && needed <= max_padding && in_focus(a))
+        result.retry_padding = std::max(result.retry_padding, needed);
     }
-    for (int k = 0; k < 4; ++k) {
-      const CellHandle neighbour = c->neighbor(k);
-      if (triangulation.is_infinite(neighbour)) continue;
-      const std::uint32_t j = neighbour->info();
-      if (j <= i) continue;
-      const Point& apex = neighbour->vertex(neighbour->index(c))->point();
-      const double off = std::sqrt(squared(apex.x() - a.x) + squared(apex.y() - a.y) + squared(apex.z() - a.z)) - a.r;
-      if (std::abs(off) > 2.0 * tolerance + 1e-14 * a.r) continue;
-      const Sphere b = sphere_of(neighbour);
-      if (std::abs(a.r - b.r) < tolerance &&
-          squared(a.x - b.x) + squared(a.y - b.y) + squared(a.z - b.z) < tolerance * tolerance) {
-        const std::uint32_t ri = find_root(parent, static_cast<std::uint32_t>(i)), rj = find_root(parent, j);
-        if (ri != rj) parent[std::max(ri, rj)] = std::min(ri, rj);
-        clustered[i] = clustered[j] = 1;
-      }
-    }
+    merge_with_neighbours(i, a);
   }
-  refuse_overlaps(contact);
-  if (result.retry_padding > 0) return;  // not the final attempt: more images first
-  grouped.clear();  // cells of multi-tetrahedron clusters, grouped by root
-  for (std::size_t i = 0; i < count; ++i)
+}
+
+// The cells of multi-tetrahedron clusters in `grouped`, consecutive per cluster (by root).
+void Tessellation::Impl::group_clusters() {
+  grouped.clear();
+  for (std::size_t i = 0; i < cells.size(); ++i)
     if (clustered[i]) {
       parent[i] = find_root(parent, static_cast<std::uint32_t>(i));
       grouped.push_back(static_cast<std::uint32_t>(i));
     }
   std::stable_sort(grouped.begin(), grouped.end(),
                    [&](std::uint32_t a, std::uint32_t b) { return parent[a] < parent[b]; });
+}
 
-  // Keep each periodic cluster once: the copy whose lowest-index centre is the primary one
-  // (image shift 0). A canonical vertex rule, independent of rounding of circumcentres.
-  auto process = [&](const std::uint32_t* first, const std::uint32_t* last, Kept kept) {
-    std::uint32_t min_origin = std::numeric_limits<std::uint32_t>::max(), min_point = 0;
-    for (const std::uint32_t* c = first; c != last; ++c)
-      for (int k = 0; k < 4; ++k) {
-        const std::uint32_t p = cells[*c]->vertex(k)->info();
-        if (origin[p] < min_origin) min_origin = origin[p], min_point = p;
-      }
-    if (!primary[min_point]) return;
-    // Exact iff every empty sphere of the cluster fits in the padded slab; `needed` is the
-    // padding that would make it fit.
-    double needed = 0.0;
-    Sphere first_sphere{};
-    for (const std::uint32_t* c = first; c != last; ++c) {
-      const Sphere s = sphere_of(cells[*c]);
-      if (c == first) first_sphere = s;
-      const double centre[3] = {s.x, s.y, s.z};
-      for (int d = 0; d < 3; ++d)
-        if (box.periodic[d])
-          needed = std::max({needed, box.lo[d] - (centre[d] - s.r), centre[d] + s.r - box.hi[d]});
+// Keeps each periodic cluster of cells [first, last) once: the copy whose lowest-index centre is
+// the primary one (image shift 0). A canonical vertex rule, independent of rounding of circumcentres.
+void Tessellation::Impl::keep_pore(const std::uint32_t* first, const std::uint32_t* last, Kept kept, double padding,
+                                   double max_padding) {
+  const Canonical canonical = canonical_vertex(first, last);
+  if (!primary[canonical.point]) return;
+  // Exact iff every empty sphere of the cluster fits in the padded slab; `needed` is the
+  // padding that would make it fit.
+  double needed = 0.0;
+  for (const std::uint32_t* c = first; c != last; ++c) needed = std::max(needed, padding_needed(sphere_of(cells[*c])));
+  if (needed > padding) {
+    ++result.unresolved;
+    // Resolvable with a wider padding (up to max_padding): ask for a retry. Wider cells are
+    // hull cells open towards a wall or a free surface (not pores of the packing).
+    const bool focused = in_focus(sphere_of(cells[*first]));
+    if (focused) ++result.unresolved_in_focus;
+    if (needed <= max_padding && focused) result.retry_padding = std::max(result.retry_padding, needed);
+    return;
+  }
+  for (const std::uint32_t* c = first; c != last; ++c)
+    for (int k = 0; k < 4; ++k) {
+      const std::uint32_t p = cells[*c]->vertex(k)->info();
+      if (origin[p] == canonical.origin && p != canonical.point)
+        throw std::runtime_error("periodic box too small: sphere " + std::to_string(ids[canonical.origin]) +
+                                 " and its own image bound one pore (a periodic length is below the pore diameter)");
     }
-    if (needed > padding) {
-      ++result.unresolved;
-      // Resolvable with a wider padding (up to max_padding): ask for a retry. Wider cells are
-      // hull cells open towards a wall or a free surface (not pores of the packing).
-      const bool focused = in_focus(first_sphere);
-      if (focused) ++result.unresolved_in_focus;
-      if (needed <= max_padding && focused) result.retry_padding = std::max(result.retry_padding, needed);
-      return;
-    }
-    for (const std::uint32_t* c = first; c != last; ++c)
-      for (int k = 0; k < 4; ++k) {
-        const std::uint32_t p = cells[*c]->vertex(k)->info();
-        if (origin[p] == min_origin && p != min_point)
-          throw std::runtime_error(
-              "periodic box too small: sphere " + std::to_string(ids[min_origin]) +
-              " and its own image bound one pore (a periodic length is below the pore diameter)");
-      }
-    for (const std::uint32_t* c = first; c != last; ++c) result.tetrahedra_volume += volume_of(cells[*c]);
-    result.tetrahedra += static_cast<std::size_t>(last - first);
-    kept_pores.push_back(kept);
-  };
+  for (const std::uint32_t* c = first; c != last; ++c) result.tetrahedra_volume += volume_of(cells[*c]);
+  result.tetrahedra += static_cast<std::size_t>(last - first);
+  kept_pores.push_back(kept);
+}
 
+void Tessellation::Impl::find_pores(double padding, double max_padding, bool final_attempt) {
+  result = PoreResult{};
+  result.padding = padding;
+  closest = ClosestPair{};
+  index_cells();
+  const double contact = 2.0 * options.radius * (1.0 - options.overlap_tolerance);
+  scan_cells(padding, max_padding, final_attempt, contact);
+  refuse_overlaps(contact);
+  if (result.retry_padding > 0) return;  // not the final attempt: more images first
+  group_clusters();
   kept_pores.clear();
+  const std::uint32_t count = static_cast<std::uint32_t>(cells.size());
   const std::size_t primaries = static_cast<std::size_t>(std::count(primary.begin(), primary.end(), 1));
   kept_pores.reserve(static_cast<std::size_t>(1.02 * count * primaries / std::max<std::size_t>(1, primary.size())) + 16);
   for (std::uint32_t i = 0; i < count; ++i)
-    if (!clustered[i]) process(&i, &i + 1, Kept{i, 1});
+    if (!clustered[i]) keep_pore(&i, &i + 1, Kept{i, 1}, padding, max_padding);
   for (std::size_t begin = 0; begin < grouped.size();) {
     std::size_t end = begin + 1;
     while (end < grouped.size() && parent[grouped[end]] == parent[grouped[begin]]) ++end;
-    process(grouped.data() + begin, grouped.data() + end,
-            Kept{static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(end - begin)});
+    keep_pore(grouped.data() + begin, grouped.data() + end,
+              Kept{static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(end - begin)}, padding, max_padding);
     begin = end;
   }
   result.pore_count = kept_pores.size();

@@ -10,9 +10,10 @@
 namespace tapmc {
 namespace pores {
 
-// Runs tapmc-pores with `arguments` (without the program name). Returns the exit code:
-// 0 success, 1 usage error, 2 input or analysis error (message on `err` naming file, frame, line).
-int run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err);
+// Runs tapmc-pores with `arguments` (without the program name): help on `out`, progress and
+// warnings on `err`. Throws UsageError on a bad command line, and RunRefused (InputError naming
+// file, frame and line, or OutputError) when the run is refused; no output file is left then.
+void run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err);
 
 }  // namespace pores
 }  // namespace tapmc

@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "tapmc_pores/errors.h"
+
 namespace tapmc {
 namespace pores {
 
@@ -40,7 +42,7 @@ struct Frame {
 };
 
 // An input error, with the place where it was found (file, frame, line; 0 when unknown).
-class DumpError : public std::runtime_error {
+class DumpError : public InputError {
  public:
   DumpError(const std::string& file, std::size_t frame, std::size_t line, const std::string& what);
   const std::string& file() const { return file_; }
@@ -77,10 +79,22 @@ class DumpReader {
   // malformed, truncated or physically invalid frame (never returns a partial frame).
   bool next(Frame& frame);
 
+  struct Columns;  // where id, centre and radius sit in an atom line (defined in dump_reader.cpp)
+
  private:
   DumpReader(std::unique_ptr<ByteSource> source, std::string name, const ReaderOptions& options);
   bool next_line(std::string_view& line);
   [[noreturn]] void fail(std::size_t line, const std::string& what) const;
+  // The steps of next(), each reading one item of the frame.
+  std::string_view value_line(const char* item, std::vector<std::string_view>& fields);
+  long long read_integer(const char* item, const char* refusal, long long minimum);
+  void read_box(std::string_view item, std::string_view flags_text, Box& box);
+  void read_atoms(std::string_view names_text, std::size_t count, Frame& frame);
+  void read_atom(const std::vector<std::string_view>& fields, const Columns& columns, std::size_t i,
+                 Frame& frame) const;
+  double field_number(std::string_view field, const char* role) const;
+  double place(double value, int d, bool scaled, const Frame& frame) const;
+  void check_unique_ids(const Frame& frame) const;
 
   std::unique_ptr<ByteSource> source_;
   std::string name_;
