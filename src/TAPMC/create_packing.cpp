@@ -208,16 +208,17 @@ void CreatePacking::command(int narg, char **arg)
     if (hi[d] - lo[d] < 2.0 * r_max)
       error->all(FLERR, "create_packing: {} is {} wide in {}, less than one sphere diameter {}; "
                  "it cannot hold the spheres", where, hi[d] - lo[d], "xy"[d], 2.0 * r_max);
-  // Cheap early refusal: even at random close packing (0.64) the spheres would not fit.
+  // Cheap early refusal: even at random close packing the spheres would not fit.
   if (std::isfinite(z_top)) {
     const double mean_r3 = radius * radius * radius * (1.0 + opt.dispersity * opt.dispersity);
-    const double need = n_spheres * (4.0 / 3.0) * kPi * mean_r3 / 0.64;
+    const double packing = tapmc::defaults::kRandomClosePacking;
+    const double need = n_spheres * (4.0 / 3.0) * kPi * mean_r3 / packing;
     const double room = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (z_top - z_floor);
     if (need > room)
       error->all(FLERR, "create_packing: {} cannot hold N = {} spheres of radius {}: they need "
-                 "at least {:.6g} of volume (at packing fraction 0.64), {} offers {:.6g} between "
-                 "the floor z = {} and {} z = {}", where, n_spheres, radius, need, where, room,
-                 z_floor, top_name, z_top);
+                 "at least {:.6g} of volume (at packing fraction {}), {} offers {:.6g} between "
+                 "the floor z = {} and {} z = {}", where, n_spheres, radius, need, packing, where,
+                 room, z_floor, top_name, z_top);
   }
 
   // ---- deposition: the same on every rank ----

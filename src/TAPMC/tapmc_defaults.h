@@ -14,6 +14,9 @@ namespace defaults {
 // 1e-16 relative rounding of the coordinates. The same relative tolerance applies to the floor
 // and to side walls (measured against the sphere's diameter).
 constexpr double kContactTolerance = 1e-10;
+// Largest contact tolerance the kernels accept: beyond a tenth of the contact distance the
+// "hard" spheres would interpenetrate visibly and the packing fractions would be biased.
+constexpr double kMaxContactTolerance = 0.1;
 
 // ---- the tap: fix tapdilate (paper, section II) --------------------------------------------
 // Largest eps. The paper taps with eps from 5e-3 to 0.15 (FIG. 2, eps^1/2 up to ~0.4 in FIG. 4);
@@ -71,6 +74,27 @@ constexpr double kDepositionEquilibriumTolerance = 1e-10;
 // Angle (radians) within which a touching constraint is taken as being left, not entered,
 // along a roll: a contact grazed at 1e-16 relative gap is left within ~1e-8 rad.
 constexpr double kDepositionAngleTolerance = 1e-7;
+// Relative depth below which a constraint is taken as never entered along a path (of the roll's
+// constraint functions f = K + P cos t + Q sin t; of the sphere diameter in the contact search):
+// far below the contact tolerance, above the ~1e-13 rounding of f.
+constexpr double kDepositionGrazingDepth = 1e-11;
+// Two unit contact normals whose 1 - cos^2 of their angle is below this are (anti)parallel: the
+// two-contact descent is then covered by a one-contact set (rounding of the cosine ~1e-16).
+constexpr double kDepositionParallelNormals = 1e-12;
+// Three unit contact normals whose triple product is below this are coplanar: no isolated
+// three-contact rest point (a looser bound than for two normals, as three products round).
+constexpr double kDepositionCoplanarNormals = 1e-9;
+// Determinant below which the 2x2 force balance of a roll on two contacts is singular (the two
+// normals and gravity in one plane): the roll is degenerate and the drop takes another path.
+constexpr double kDepositionSingularRoll = 1e-12;
+// A roll direction shorter than this (after removing its radial part) has no direction.
+constexpr double kDepositionZeroLength = 1e-300;
+// Random horizontal directions tried to leave an unstable equilibrium on one sphere before the
+// roll is declared degenerate (each is blocked with probability below 1/2).
+constexpr int kDepositionLeaveAttempts = 8;
+// create_packing refuses at once a region whose volume could not hold the spheres even at
+// random close packing (packing fraction ~0.64): a cheap, safe bound on what deposition can do.
+constexpr double kRandomClosePacking = 0.64;
 // Cap on path pieces per drop (a drop takes about 3 to 10): beyond it the drop restarts from a
 // fresh random (x, y), so a degenerate geometry never loops forever.
 constexpr int kDepositionMaxSegments = 1000;
@@ -123,6 +147,21 @@ constexpr double kVerletSkinOverRadius = 0.2;
 constexpr double kVerletGrowBelowSweeps = 1.0;
 constexpr double kVerletSkinMaxOverRadius = 3.2;  // 16x the default: lists of ~100 at phi 0.6
 constexpr double kVerletShrinkAfterSweeps = 64.0;
+
+// ---- cell grid of the kernel's neighbour searches (tapmc_cell_grid.h) -----------------------
+// Cells are at least the search radius plus this relative rounding margin wide (relative to
+// 2 R_max + the largest coordinate): positions, steps and wraps round at ~1e-16 of the
+// coordinates, so the margin keeps every pair within the search radius in the 27-cell stencil,
+// and it lies far below contact_tol, so it never changes which pairs count.
+constexpr double kGridRoundingMargin = 1e-12;
+// At most this many cells along x and along y (wider cells beyond): bounds the grid of a very
+// wide box of few spheres.
+constexpr int kGridMaxCellsPerSideAxis = 4096;
+// At most kGridCellsPerSphere * N + kGridMinCells cells in all (the z axis gets the cells left):
+// a floor far below the spheres must not allocate a huge empty grid, while a dense packing
+// (a few spheres per cell) stays well inside the cap.
+constexpr int kGridCellsPerSphere = 16;
+constexpr int kGridMinCells = 4096;
 
 }  // namespace defaults
 }  // namespace tapmc

@@ -49,6 +49,12 @@ std::string number(double value)
                               range);
 }
 
+void check_contact_tol(double contact_tol)
+{
+  if (!(contact_tol >= 0.0 && contact_tol < defaults::kMaxContactTolerance))
+    bad("contact_tol", contact_tol, "[0, " + number(defaults::kMaxContactTolerance) + ")");
+}
+
 // Wraps a coordinate into [lo, hi) along a periodic axis, counting periods in `image`
 // (x_unwrapped = x + image * L). Works for any distance; lands on lo if rounding at the seam
 // would give hi.
@@ -178,7 +184,7 @@ inline int plane_violation(const Scene &s, double x, double y, double z, double 
 // Cells sized for the largest contact distance plus a rounding margin far below contact_tol,
 // covering the periodic period, or the data (and walls / floor) along the other axes.
 // extra_reach widens the cells beyond the contact distance (the Verlet list's d_max + skin).
-std::array<GridAxis, 3> make_axes(const Scene &s, const double *xyz, int n, int n_grid_cap,
+std::array<GridAxis, 3> make_axes(const Scene &s, const double *xyz, int n,
                                   double extra_reach = 0.0)
 {
   double mn[3] = {kInf, kInf, kInf}, mx[3] = {-kInf, -kInf, -kInf};
@@ -197,19 +203,20 @@ std::array<GridAxis, 3> make_axes(const Scene &s, const double *xyz, int n, int 
   }
   mn[2] = std::min(mn[2], s.floor_z);  // movable spheres only go down, at most to the floor
   scale = std::max(scale, std::fabs(s.floor_z));
-  const double reach =
-      2.0 * s.r_max * s.one_minus_tol + extra_reach + 1e-12 * (2.0 * s.r_max + scale);
+  const double margin = defaults::kGridRoundingMargin * (2.0 * s.r_max + scale);
+  const double reach = 2.0 * s.r_max * s.one_minus_tol + extra_reach + margin;
 
   std::array<GridAxis, 3> axes;
-  constexpr int kMaxCellsPerSideAxis = 4096;
+  const int max_side = defaults::kGridMaxCellsPerSideAxis;
   for (int d = 0; d < 2; ++d) {
     if (s.periodic[d])
-      axes[d].setup(s.lo[d], s.length[d], reach, true, kMaxCellsPerSideAxis);
+      axes[d].setup(s.lo[d], s.length[d], reach, true, max_side);
     else
-      axes[d].setup(mn[d], std::max(mx[d] - mn[d], 0.0), reach, false, kMaxCellsPerSideAxis);
+      axes[d].setup(mn[d], std::max(mx[d] - mn[d], 0.0), reach, false, max_side);
   }
   // Cap the cell count (a floor far below the spheres must not allocate a huge empty grid).
-  const int max_z = std::max(1, n_grid_cap / (axes[0].cells * axes[1].cells));
+  const int max_cells = defaults::kGridCellsPerSphere * n + defaults::kGridMinCells;
+  const int max_z = std::max(1, max_cells / (axes[0].cells * axes[1].cells));
   axes[2].setup(mn[2], std::max(mx[2] - mn[2], 0.0), reach, false, max_z);
   return axes;
 }
@@ -308,10 +315,10 @@ void build_lists(NeighbourLists &lists, const Scene &s, const double *pos, int n
   for (int i = 0; i < 3 * n; ++i) scale = std::max(scale, std::fabs(pos[i]));
   for (int d = 0; d < 2; ++d) scale = std::max({scale, std::fabs(s.lo[d]), std::fabs(s.hi[d])});
   // Rounding margin of the list radius (positions, steps and wraps round at ~1e-16 * scale).
-  const double margin = 1e-12 * (2.0 * s.r_max + scale);
+  const double margin = defaults::kGridRoundingMargin * (2.0 * s.r_max + scale);
   const double extra = lists.list_extra + margin;
   CellGrid &grid = lists.grid;
-  grid.build(make_axes(s, pos, n, 16 * n + 4096, 2.0 * s.r_max * s.tol + extra + margin), pos,
+  grid.build(make_axes(s, pos, n, 2.0 * s.r_max * s.tol + extra + margin), pos,
              s.radius, n);
 
   const long m = static_cast<long>(ids.size());
@@ -484,8 +491,7 @@ void Settler::validate(const SettleParams &p)
   if (p.check_interval < 0)
     bad("check_interval", static_cast<double>(p.check_interval), "[0, +inf) (0 = one sweep)");
   if (p.max_checks < 1) bad("max_checks", static_cast<double>(p.max_checks), "[1, +inf)");
-  if (!(p.contact_tol >= 0.0 && p.contact_tol < 0.1))
-    bad("contact_tol", p.contact_tol, "[0, 0.1)");
+  check_contact_tol(p.contact_tol);
 }
 
 SettleResult Settler::settle(double *xyz, const double *radius, const unsigned char *movable,
@@ -579,7 +585,7 @@ SettleResult Settler::settle(double *xyz, const double *radius, const unsigned c
 Violation Settler::find_violation(const double *xyz, const double *radius, int n,
                                   const SettleBox &box, double contact_tol)
 {
-  if (!(contact_tol >= 0.0 && contact_tol < 0.1)) bad("contact_tol", contact_tol, "[0, 0.1)");
+  check_contact_tol(contact_tol);
   if (n < 0) bad("n", n, "[0, +inf)");
   Violation v;
   if (n == 0) return v;
@@ -594,7 +600,7 @@ Violation Settler::find_violation(const double *xyz, const double *radius, int n
         wrapped[3 * i + d] = wrap_into_box(xyz[3 * i + d], sc.lo[d], sc.hi[d], sc.length[d], image);
       }
   CellGrid grid;
-  grid.build(make_axes(sc, xyz, n, 16 * n + 4096), wrapped.data(), radius, n);
+  grid.build(make_axes(sc, xyz, n), wrapped.data(), radius, n);
   for (int i = 0; i < n; ++i) {
     const double x = wrapped[3 * i], y = wrapped[3 * i + 1], z = wrapped[3 * i + 2];
     const double r = radius[i];
