@@ -136,14 +136,16 @@ constexpr long kSettleMaxSweeps = 50000;
 // ---- Verlet neighbour list of the redeposition kernel (tapmc_settle.cpp) --------------------
 // Skin of the kernel's Verlet list in units of the largest radius R_max: list radius of a pair
 // = (R_i + R_j) + d_max + skin, rebuilt when a sphere has moved skin/2 since the last build.
-// 0.2 R was the fastest skin in bench_neighbor_list (2.9x the cell list; 0.1 / 0.4 / 0.8 R:
-// 2.45 / 2.7 / 2.4x); the results do not depend on it (the list is exact), only the speed.
+// 0.2 R is the fastest skin in bench_neighbor_list (28.2 M moves/s over a whole redeposition;
+// 0.1 / 0.4 / 0.8 R: 23.6 / 26.2 / 22.9; bench/README.md); the results do not depend on it (the
+// list is exact), only the speed.
 constexpr double kVerletSkinOverRadius = 0.2;
 // The skin adapts within one call (results do not depend on it): doubled at a rebuild that comes
 // less than kVerletGrowBelowSweeps sweeps after the previous one (spheres falling freely from
-// a loose start would otherwise cost one O(N) rebuild every few accepted moves: 25x slower
-// than the cell list), up to kVerletSkinMaxOverRadius; halved back towards the default (one
-// extra build) once kVerletShrinkAfterSweeps sweeps passed without a rebuild.
+// a loose start would otherwise cost one O(N) rebuild every few accepted moves: 15 s instead
+// of 0.5 s for 5 taps of a loose 1024-sphere start), up to kVerletSkinMaxOverRadius; halved
+// back towards the default (one extra build) once kVerletShrinkAfterSweeps sweeps passed
+// without a rebuild.
 constexpr double kVerletGrowBelowSweeps = 1.0;
 constexpr double kVerletSkinMaxOverRadius = 3.2;  // 16x the default: lists of ~100 at phi 0.6
 constexpr double kVerletShrinkAfterSweeps = 64.0;

@@ -2,19 +2,19 @@
 // The redeposition kernel: hard-sphere Monte Carlo with biased downward moves (paper, section
 // II) on a kernel-owned Verlet neighbour list.
 //
-// The list (bench/bench_neighbor_list.cpp measured it 2.4-2.9x faster than the former 27-cell
-// stencil; bench/README.md): each movable sphere i lists every sphere j whose nearest periodic
-// image lies within (R_i + R_j) + d_max + skin at the build. A trial puts i at most d_max from
-// its current position, and no sphere has moved more than skin/2 since the build (an accepted
-// move that takes a sphere further triggers an O(N) rebuild by binning at once), so by the
-// triangle inequality every sphere the trial can overlap is listed: the list never misses an
-// overlap and the accepted moves do not depend on the skin. Positions stay wrapped into the
-// box (as before), and the overlap test takes the nearest image of each listed sphere, so it
-// does the same arithmetic as the former cell list and a sphere crossing a periodic side needs
-// no rebuild. The skin starts at 0.2 R_max each call and adapts (defaults.h): doubled when
-// rebuilds come less than a sweep apart (spheres falling freely from a loose start), halved
-// back after 64 calm sweeps; being exact, the list gives the same moves whatever the skin.
-// The list build and find_violation search through one cell grid (tapmc_cell_grid.h).
+// The list (why a kernel-owned Verlet list, and its skin: bench/bench_neighbor_list.cpp and
+// bench/README.md): each movable sphere i lists every sphere j whose nearest periodic image lies
+// within (R_i + R_j) + d_max + skin at the build. A trial puts i at most d_max from its current
+// position, and no sphere has moved more than skin/2 since the build (an accepted move that
+// takes a sphere further triggers an O(N) rebuild by binning at once), so by the triangle
+// inequality every sphere the trial can overlap is listed: the list never misses an overlap and
+// the accepted moves do not depend on the skin. Positions stay wrapped into the box, and the
+// overlap test takes the nearest image of each listed sphere (the separation() arithmetic of
+// tapmc_contact.h), so a sphere crossing a periodic side needs no rebuild. The skin starts at
+// 0.2 R_max each call and adapts (tapmc_defaults.h): doubled when rebuilds come less than a
+// sweep apart (spheres falling freely from a loose start), halved back after 64 calm sweeps;
+// being exact, the list gives the same moves whatever the skin. The list build and
+// find_violation search through one cell grid (tapmc_cell_grid.h).
 #include "tapmc_settle.h"
 
 #include "tapmc_cell_grid.h"
@@ -222,7 +222,7 @@ std::array<GridAxis, 3> make_axes(const Scene &s, const double *xyz, int n,
 }
 
 // Separation of j from i along a periodic axis, nearest image: the shift (0 or +-L) is chosen
-// from the raw difference and added last, exactly as separation() with the cell list's shift.
+// from the raw difference and added last, exactly as separation() with a cell's image shift.
 inline double nearest_separation(double x_j, double x_i, double length, double half_length)
 {
   const double raw = x_j - x_i;
