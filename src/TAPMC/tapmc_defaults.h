@@ -4,6 +4,8 @@
 #ifndef TAPMC_DEFAULTS_H
 #define TAPMC_DEFAULTS_H
 
+#include "tapmc_math.h"
+
 namespace tapmc {
 namespace defaults {
 
@@ -30,7 +32,7 @@ constexpr double kMaxTapEps = 1.0;
 constexpr double kMaxStepOverRadius = 0.2;
 // theta0 = pi/4: width of P(theta) = A exp(-(theta/theta0)^2) (eq. 1), the paper's value
 // giving the maximal compaction rate.
-constexpr double kThetaWidth = 0.78539816339744830962;  // pi/4
+constexpr double kThetaWidth = 0.25 * kPi;
 // Exact theta sampler (tapmc_trial_move.h): a strip whose flat envelope would accept fewer than
 // this fraction of its proposals uses the tangent exponential envelope instead (one log per
 // proposal, acceptance >= 0.74 in the tail strips). Speed only: both envelopes are exact. At

@@ -18,6 +18,7 @@
 #include "tapmc_deposition.h"
 
 #include "tapmc_defaults.h"
+#include "tapmc_math.h"
 
 #include <algorithm>
 #include <cmath>
@@ -36,8 +37,6 @@ using defaults::kDepositionGrazingDepth;
 using defaults::kDepositionMaxSegments;
 using defaults::kDepositionSupportTolerance;
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kTwoPi = 2.0 * kPi;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Counter offset of the random draws that leave unstable equilibria (below: drop points).

@@ -20,11 +20,11 @@
 #include "tapmc_cell_grid.h"
 #include "tapmc_contact.h"
 #include "tapmc_defaults.h"
+#include "tapmc_math.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -34,15 +34,6 @@ namespace tapmc {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kPi = 3.14159265358979323846;
-
-std::string number(double value)
-{
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
-}
-
 [[noreturn]] void bad(const std::string &name, double value, const std::string &range)
 {
   throw std::invalid_argument(name + " = " + number(value) + " is outside the allowed range " +
