@@ -80,19 +80,20 @@ constexpr double kDepositionAngleTolerance = 1e-7;
 // constraint functions f = K + P cos t + Q sin t; of the sphere diameter in the contact search):
 // far below the contact tolerance, above the ~1e-13 rounding of f.
 constexpr double kDepositionGrazingDepth = 1e-11;
-// Two unit contact normals whose 1 - cos^2 of their angle is below this are (anti)parallel: the
-// two-contact descent is then covered by a one-contact set (rounding of the cosine ~1e-16).
+// Two unit contact normals whose 1 - cos^2 of their angle is below this are taken as
+// (anti)parallel: a one-contact set covers the two-contact descent, whose solve divides by it
+// (far above the ~1e-16 rounding of the cosine).
 constexpr double kDepositionParallelNormals = 1e-12;
-// Three unit contact normals whose triple product is below this are coplanar: no isolated
-// three-contact rest point (a looser bound than for two normals, as three products round).
+// Three unit contact normals whose triple product is below this are taken as coplanar: no
+// isolated three-contact rest point (the Cramer solve of the support forces divides by it).
 constexpr double kDepositionCoplanarNormals = 1e-9;
-// Determinant below which the 2x2 force balance of a roll on two contacts is singular (the two
-// normals and gravity in one plane): the roll is degenerate and the drop takes another path.
+// Determinant below which the 2x2 force balance of a roll on two contacts is taken as singular
+// (the force solve divides by it): the roll is degenerate.
 constexpr double kDepositionSingularRoll = 1e-12;
 // A roll direction shorter than this (after removing its radial part) has no direction.
 constexpr double kDepositionZeroLength = 1e-300;
-// Random horizontal directions tried to leave an unstable equilibrium on one sphere before the
-// roll is declared degenerate (each is blocked with probability below 1/2).
+// Random horizontal directions tried to leave an unstable equilibrium on one sphere (a direction
+// that a touching contact blocks is rejected) before the roll is declared degenerate.
 constexpr int kDepositionLeaveAttempts = 8;
 // create_packing refuses at once a region whose volume could not hold the spheres even at
 // random close packing (packing fraction ~0.64): a cheap, safe bound on what deposition can do.
