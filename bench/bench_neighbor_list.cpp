@@ -2,35 +2,31 @@
 // Benchmark behind the kernel's neighbour list: tapmc::Settler against Verlet neighbour lists
 // with a skin (what LAMMPS would hand a fix) and a naive all-pairs loop, same trial moves.
 //
-// Status: this benchmark led to the change. tapmc::Settler now owns a Verlet list with the
-// "lammps" rule at skin 0.2 R (tapmc_settle.cpp, defaults::kVerletSkinOverRadius), so the rows
-// "tapmc::Settler" below measure that production kernel; the conclusion that follows (numbers
-// against the former 27-cell list) is kept as history. VerletRun here stays the variant
-// explorer (skins, rules, entry order; monodisperse PBC only), not a second production copy.
+// tapmc::Settler owns a Verlet list with the "lammps" rule at skin 0.2 R (tapmc_settle.cpp,
+// defaults::kVerletSkinOverRadius). VerletRun here is the variant explorer (skins, rules, entry
+// order; monodisperse PBC only), not a second production copy: it shows why the kernel uses
+// this list and this skin.
 //
-// Conclusion, measured against the former cell list (history; AMD EPYC, one core of a shared 2-core
-// machine, medians; bench/README.md): the measurement does not back the cell list on speed. All
-// methods accept exactly the same moves (40960 trials on the tapped bed and on a loose start with
-// up to 23000 list rebuilds; positions within 4e-15 after a whole redeposition). Over a whole
-// redeposition (1000 sweeps after the tap) the production cell list makes 9.6 M trial moves/s
-// (~175x the all-pairs loop, 0.05 M/s); a Verlet list owned by the kernel with the LAMMPS rule
-// (list radius 2R + d_max + skin, rebuilt when a sphere has moved skin/2) makes 23.6 / 28.2 / 26.2
-// / 22.9 M/s at skin 0.1 / 0.2 / 0.4 / 0.8 R, i.e. 2.45 / 2.93 / 2.72 / 2.37x the cell list,
-// rebuild cost included, with 0.030 / 0.006 / 0.002 / 0.001 builds per sweep (30 / 6 / 2 / 1 builds
-// per redeposition). The redeposition is a slow creep (2-3 % acceptance, accepted steps of order
-// eps * 2R), so a list built once per tap almost never needs rebuilding, and it holds 8-10
-// candidates where the 27-cell stencil tests all its padded slots. The exact "trial" rule (skin
-// 0.4R: 2.8x) is no better than the LAMMPS rule; at skin = d_max it rebuilds ~50 times per sweep
-// (0.05 M/s). Entry order (below-first) changes little. This is an idealised list owned by the
-// kernel; LAMMPS' own lists would add ghost copies to update whenever a sphere near a periodic face
-// moves, and a rebuild inside the fix would need LAMMPS' exchange/borders/reneighbour cycle. So the
-// better documented choice is a kernel-owned Verlet list (skin ~0.2R, O(N) binning rebuild), not
-// LAMMPS' lists, and not the 27-cell stencil (the kernel has since switched to this list).
+// Result (AMD EPYC, one core of a shared 2-core machine, medians; bench/README.md): all methods
+// accept exactly the same moves (40960 trials on the tapped bed and on a loose start with up to
+// 23000 list rebuilds; positions within 4e-15 after a whole redeposition). Over a whole
+// redeposition (1000 sweeps after the tap) a Verlet list owned by the kernel with the LAMMPS
+// rule (list radius 2R + d_max + skin, rebuilt when a sphere has moved skin/2) makes 23.6 / 28.2
+// / 26.2 / 22.9 M trial moves/s at skin 0.1 / 0.2 / 0.4 / 0.8 R (~440-530x the all-pairs loop,
+// 0.05 M/s), rebuild cost included, with 0.030 / 0.006 / 0.002 / 0.001 builds per sweep (30 / 6
+// / 2 / 1 builds per redeposition). The redeposition is a slow creep (2-3 % acceptance, accepted
+// steps of order eps * 2R), so a list built once per tap almost never needs rebuilding, and it
+// holds 8-10 candidates. The exact "trial" rule (skin 0.4R: 27.1 M/s) is no better than the
+// LAMMPS rule; at skin = d_max it rebuilds ~50 times per sweep (0.05 M/s). Entry order
+// (below-first) changes little. This is an idealised list owned by the kernel; LAMMPS' own
+// lists would add ghost copies to update whenever a sphere near a periodic face moves, and a
+// rebuild inside the fix would need LAMMPS' exchange/borders/reneighbour cycle: hence a
+// kernel-owned Verlet list (skin ~0.2R, O(N) binning rebuild), not LAMMPS' lists.
 //
-// What was compared (N = 4096, R = 1, L = 32R, PBC, floor, Jullien-Meakin bed dilated by a tap
+// What is compared (N = 4096, R = 1, L = 32R, PBC, floor, Jullien-Meakin bed dilated by a tap
 // eps = 0.01, d_max = R/5, theta0 = pi/4, seed/stream/trial-keyed draws of tapmc_trial_move.h,
 // so every method makes the same trials in the same order):
-//  - tapmc::Settler (production; was the cell list, now the Verlet list "lammps" 0.2R), a fixed
+//  - tapmc::Settler (production: the Verlet list "lammps" 0.2R, adaptive skin), a fixed
 //    number of sweeps (no eta stop);
 //  - Verlet lists: full list per sphere (CSR, periodic image shift stored per entry, coordinates
 //    left unwrapped between builds as LAMMPS does), built in O(N) by binning, each trial tests
@@ -41,8 +37,8 @@
 //                its position at the build (LAMMPS' `neigh_modify every 1 delay 0 check yes`);
 //      "trial":  list radius 2R + skin (skin >= d_max), rebuilt only when a trial could miss a
 //                neighbour: |trial - r_i(build)| + max_j |r_j - r_j(build)| > skin.
-//    Each with list entries in build order, or sorted "below first" (lower spheres first, as the
-//    cell list visits the layer below first: downward moves are blocked from below);
+//    Each with list entries in build order, or sorted "below first" (lower spheres first:
+//    downward moves are blocked from below);
 //  - all-pairs: every sphere, minimum image, early exit (the reference of the ratios).
 // Exactness: the all-pairs loop does the Settler's arithmetic bit for bit; the Verlet runs
 // use unwrapped coordinates, so positions agree to rounding (1e-9 is asserted) and the number
@@ -175,8 +171,8 @@ RunStats run_settler(Scene &s, std::uint64_t stream, long trials)
   return st;
 }
 
-// Naive reference: every other sphere, minimum image (for near pairs the same operation as the
-// cell list's image shift: bit-identical), early exit on the first overlap.
+// Naive reference: every other sphere, minimum image (the Settler's nearest-image arithmetic:
+// bit-identical), early exit on the first overlap.
 RunStats run_all_pairs(Scene &s, std::uint64_t stream, long trials)
 {
   const int n = s.size();
@@ -490,10 +486,10 @@ int main(int argc, char **argv)
   // 1. Same moves, same answer: on the tapped bed (few rebuilds), and on a loose random start
   // (random sequential addition, phi 0.3) where spheres fall far and lists are rebuilt often.
   auto check_same_moves = [&](const Scene &start, const char *label, long n_trials) {
-    Scene cell = start, naive = start;
-    const RunStats sc = run_settler(cell, 1, n_trials);
+    Scene settler = start, naive = start;
+    const RunStats sc = run_settler(settler, 1, n_trials);
     const RunStats sn = run_all_pairs(naive, 1, n_trials);
-    const std::vector<double> ref = wrapped(cell);
+    const std::vector<double> ref = wrapped(settler);
     std::printf("exactness over %ld trials from %s (tapmc::Settler: %ld accepted):\n", n_trials, label,
                 sc.accepted);
     long bitwise = 0;
@@ -530,7 +526,7 @@ int main(int argc, char **argv)
       rates.push_back(st.trials / st.seconds);
       acceptance = static_cast<double>(st.accepted) / st.trials;
     }
-    const double cell_rate = median(rates);
+    const double settler_rate = median(rates);
     rates.clear();
     for (int r = 0; r < (quick ? 1 : 3); ++r) {
       Scene s = start;
@@ -542,7 +538,7 @@ int main(int argc, char **argv)
     std::printf("  %-36s %7s %9s %9s %11s %9s %9s\n", "method", "list r", "builds/sw", "list len",
                 "M moves/s", "/all-pairs", "/Settler");
     std::printf("  %-36s %7s %9s %9s %11.3f %9.1f %9.2f\n", "tapmc::Settler (Verlet 0.2R)", "-", "-", "-",
-                cell_rate / 1e6, cell_rate / naive_rate, 1.0);
+                settler_rate / 1e6, settler_rate / naive_rate, 1.0);
     for (const Variant &v : variants) {
       rates.clear();
       RunStats st;
@@ -554,10 +550,10 @@ int main(int argc, char **argv)
       const double rate = median(rates);
       std::printf("  %-36s %6.1fR %9.2f %9.1f %11.3f %9.1f %9.2f\n", v.name().c_str(), v.list_radius(),
                   static_cast<double>(st.builds) / sweeps, st.mean_list, rate / 1e6, rate / naive_rate,
-                  rate / cell_rate);
+                  rate / settler_rate);
     }
     std::printf("  %-36s %7s %9s %9d %11.4f %9.1f %9.2f\n\n", "all pairs (reference)", "-", "-", kN - 1,
-                naive_rate / 1e6, 1.0, naive_rate / cell_rate);
+                naive_rate / 1e6, 1.0, naive_rate / settler_rate);
   }
 
   // 3. A whole redeposition: the accepted moves are tiny (the tap opens gaps of ~eps * 2R), so
@@ -569,15 +565,15 @@ int main(int argc, char **argv)
                 long_sweeps);
     std::printf("  %-36s %9s %9s %11s %9s  %s\n", "method", "builds/sw", "list len", "M moves/s", "/Settler",
                 "final max |dr| vs Settler");
-    std::vector<double> rates, cell_final;
+    std::vector<double> rates, settler_final;
     for (int r = 0; r < 3; ++r) {
       Scene s = after_tap;
       const RunStats st = run_settler(s, 200 + r, long_trials);
       rates.push_back(st.trials / st.seconds);
-      if (r == 2) cell_final = wrapped(s);
+      if (r == 2) settler_final = wrapped(s);
     }
-    const double cell_rate = median(rates);
-    std::printf("  %-36s %9s %9s %11.3f %9.2f\n", "tapmc::Settler (Verlet 0.2R)", "-", "-", cell_rate / 1e6, 1.0);
+    const double settler_rate = median(rates);
+    std::printf("  %-36s %9s %9s %11.3f %9.2f\n", "tapmc::Settler (Verlet 0.2R)", "-", "-", settler_rate / 1e6, 1.0);
     for (const Variant &v : {Variant{SkinRule::Lammps, 0.1, false}, Variant{SkinRule::Lammps, 0.2, false},
                              Variant{SkinRule::Lammps, 0.4, false}, Variant{SkinRule::Lammps, 0.8, false},
                              Variant{SkinRule::Trial, 0.4, false}}) {
@@ -588,12 +584,12 @@ int main(int argc, char **argv)
         VerletRun run(after_tap, v.skin * kRadius, v.rule, v.below_first);
         st = run.run(200 + r, long_trials);
         rates.push_back(st.trials / st.seconds);
-        if (r == 2) final_xyz = run.positions();  // same stream as the last cell-list run
+        if (r == 2) final_xyz = run.positions();  // same stream as the last Settler run
       }
       const double rate = median(rates);
       std::printf("  %-36s %9.3f %9.1f %11.3f %9.2f  %.1e\n", v.name().c_str(),
-                  static_cast<double>(st.builds) / long_sweeps, st.mean_list, rate / 1e6, rate / cell_rate,
-                  max_difference(cell_final, final_xyz));
+                  static_cast<double>(st.builds) / long_sweeps, st.mean_list, rate / 1e6, rate / settler_rate,
+                  max_difference(settler_final, final_xyz));
     }
   }
   return 0;

@@ -7,6 +7,7 @@
 #include "lammps_support.h"
 #include "tapmc_defaults.h"
 #include "tapmc_deposition.h"
+#include "tapmc_math.h"
 
 #include "atom.h"
 #include "atom_vec.h"
@@ -29,7 +30,6 @@ using namespace LAMMPS_NS;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Boundary codes of Domain::boundary[dim][side].
 constexpr int kBoundaryFixed = 1;
 
@@ -208,16 +208,17 @@ void CreatePacking::command(int narg, char **arg)
     if (hi[d] - lo[d] < 2.0 * r_max)
       error->all(FLERR, "create_packing: {} is {} wide in {}, less than one sphere diameter {}; "
                  "it cannot hold the spheres", where, hi[d] - lo[d], "xy"[d], 2.0 * r_max);
-  // Cheap early refusal: even at random close packing (0.64) the spheres would not fit.
+  // Cheap early refusal: even at random close packing the spheres would not fit.
   if (std::isfinite(z_top)) {
     const double mean_r3 = radius * radius * radius * (1.0 + opt.dispersity * opt.dispersity);
-    const double need = n_spheres * (4.0 / 3.0) * kPi * mean_r3 / 0.64;
+    const double packing = tapmc::defaults::kRandomClosePacking;
+    const double need = n_spheres * (4.0 / 3.0) * tapmc::kPi * mean_r3 / packing;
     const double room = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (z_top - z_floor);
     if (need > room)
       error->all(FLERR, "create_packing: {} cannot hold N = {} spheres of radius {}: they need "
-                 "at least {:.6g} of volume (at packing fraction 0.64), {} offers {:.6g} between "
-                 "the floor z = {} and {} z = {}", where, n_spheres, radius, need, where, room,
-                 z_floor, top_name, z_top);
+                 "at least {:.6g} of volume (at packing fraction {}), {} offers {:.6g} between "
+                 "the floor z = {} and {} z = {}", where, n_spheres, radius, need, packing, where,
+                 room, z_floor, top_name, z_top);
   }
 
   // ---- deposition: the same on every rank ----
@@ -262,7 +263,7 @@ void CreatePacking::command(int narg, char **arg)
     const int m = atom->nlocal - 1;
     const double r = packing.radius[i];
     atom->radius[m] = r;
-    atom->rmass[m] = opt.density * (4.0 / 3.0) * kPi * r * r * r;
+    atom->rmass[m] = opt.density * (4.0 / 3.0) * tapmc::kPi * r * r * r;
     if (atom->tag_enable) atom->tag[m] = max_tag_all + static_cast<tagint>(i) + 1;
   }
   atom->data_fix_compute_variable(nlocal_before, atom->nlocal);

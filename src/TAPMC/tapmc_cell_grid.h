@@ -1,14 +1,13 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-// Cell list of the hard-sphere Monte Carlo kernel: cells at least one contact distance wide,
-// a fixed number of padded slots per cell in structure-of-arrays layout, and a ring of empty
-// cells around the grid, so a 27-cell overlap test has no branches and no bounds checks.
+// The neighbour search of the redeposition kernel: spheres binned into cells at least one search
+// radius wide, and one visitor over the 27 cells around a point that hands every binned sphere
+// to a per-pair action (a lambda, inlined). The Verlet list build and the violation check
+// (tapmc_settle.cpp) both search through it.
 #ifndef TAPMC_CELL_GRID_H
 #define TAPMC_CELL_GRID_H
 
 #include <array>
 #include <cstddef>
-#include <cstdint>
-#include <memory>
 #include <vector>
 
 namespace tapmc {
@@ -41,85 +40,52 @@ struct GridAxis {
 
 class CellGrid {
  public:
-  // Coordinate of empty slots and of a sphere hidden during its own trial: its squared
-  // distance to any real point (1e60) dwarfs every contact threshold, with no overflow.
-  static constexpr double kFar = 1e30;
-
-  // Sets up empty storage for spheres 0..n_spheres-1; slots per cell is rounded up to a
-  // multiple of 4; with_radius adds a radius row per cell (polydisperse).
-  void reset(const std::array<GridAxis, 3> &axes, int slots, bool with_radius, int n_spheres);
+  // Bins the n spheres xyz (interleaved x, y, z; periodic axes already wrapped into the box)
+  // of radius radius[i]. Within a cell the spheres keep their index order. Storage is reused
+  // between builds.
+  void build(const std::array<GridAxis, 3> &axes, const double *xyz, const double *radius, int n);
 
   const GridAxis &axis(int d) const { return axes_[d]; }
-  int slots() const { return slots_; }
-  int rows() const { return rows_; }      // 3 (x, y, z) or 4 (+ radius)
-  int stride() const { return stride_; }  // doubles per cell block = rows * slots
-  int padded(int d) const { return axes_[d].cells + 2; }
-
-  int cell_index(int px, int py, int pz) const { return (pz * padded(1) + py) * padded(0) + px; }
-  int locate(double x, double y, double z) const
+  // A periodic axis with fewer than 3 cells makes the stencil visit a sphere more than once
+  // (through several images).
+  bool visits_repeat() const
   {
-    return cell_index(axes_[0].cell_of(x) + 1, axes_[1].cell_of(y) + 1, axes_[2].cell_of(z) + 1);
+    return (axes_[0].periodic && axes_[0].cells < 3) || (axes_[1].periodic && axes_[1].cells < 3);
   }
-  // Real (unpadded) cell coordinates of a padded cell index.
-  void real_coords(int cell, int &ix, int &iy, int &iz) const
-  {
-    const int px = padded(0), py = padded(1);
-    ix = cell % px - 1;
-    iy = (cell / px) % py - 1;
-    iz = cell / (px * py) - 1;
-  }
+  // Upper bound on the spheres one visit hands to its action (27 cells of the fullest size).
+  std::size_t max_visited() const { return 27 * static_cast<std::size_t>(max_count_); }
 
-  double *block(int cell) { return data_.get() + static_cast<std::size_t>(cell) * stride_; }
-  const double *block(int cell) const
+  // Calls visit(j, pj, shift_x, shift_y) for every sphere j binned in the 27 cells around
+  // (x, y, z), cell by cell (z, then y, then x offset from -1 to +1), where pj points to x, y, z,
+  // R of j and shift_x / shift_y is the image shift of j's cell (0 or +-L). The action returns
+  // true to stop the search; visit_neighbours then returns true.
+  template <class Visit>
+  bool visit_neighbours(double x, double y, double z, Visit &&visit) const
   {
-    return data_.get() + static_cast<std::size_t>(cell) * stride_;
+    const GridAxis &ax = axes_[0], &ay = axes_[1], &az = axes_[2];
+    const int px = ax.cells + 2, py = ay.cells + 2;
+    const int ix = 3 * ax.cell_of(x), iy = 3 * ay.cell_of(y), iz = 3 * az.cell_of(z);
+    const int *binned = binned_.data();
+    const double *xyzr = binned_xyzr_.data();
+    for (int kz = 0; kz < 3; ++kz)
+      for (int ky = 0; ky < 3; ++ky)
+        for (int kx = 0; kx < 3; ++kx) {
+          const int c = (az.neighbour[iz + kz] * py + ay.neighbour[iy + ky]) * px +
+                        ax.neighbour[ix + kx];
+          const double shift_x = ax.shift[ix + kx], shift_y = ay.shift[iy + ky];
+          const int q1 = cell_start_[c + 1];
+          for (int q = cell_start_[c]; q < q1; ++q)
+            if (visit(binned[q], xyzr + 4 * q, shift_x, shift_y)) return true;
+        }
+    return false;
   }
-  const double *data() const { return data_.get(); }
-  int count(int cell) const { return count_[cell]; }
-  int owner(int cell, int slot) const { return owner_[static_cast<std::size_t>(cell) * slots_ + slot]; }
-  int home_cell(int id) const { return home_cell_[id]; }
-  int home_slot(int id) const { return home_slot_[id]; }
-
-  double x(int id) const { return block(home_cell_[id])[home_slot_[id]]; }
-  double y(int id) const { return block(home_cell_[id])[slots_ + home_slot_[id]]; }
-  double z(int id) const { return block(home_cell_[id])[2 * slots_ + home_slot_[id]]; }
-
-  // Puts sphere id into cell `cell`. Returns true if the cell was full and the storage had to
-  // grow (slots doubled): callers specialised on slots() must then re-dispatch.
-  bool insert(int id, int cell, double x, double y, double z, double r);
-  // Takes sphere id out of its cell (the cell's last sphere fills the hole).
-  void remove(int id);
-  // New position inside the same cell.
-  void set_position(int id, double x, double y, double z)
-  {
-    double *b = block(home_cell_[id]);
-    const int s = home_slot_[id];
-    b[s] = x;
-    b[slots_ + s] = y;
-    b[2 * slots_ + s] = z;
-  }
-  // Moves sphere id to a position in another cell. Returns true if the storage grew.
-  bool relocate(int id, int new_cell, double x, double y, double z, double r)
-  {
-    remove(id);
-    return insert(id, new_cell, x, y, z, r);
-  }
-
-  // Largest number of spheres in one cell.
-  int max_count() const;
 
  private:
-  struct FreeAligned {
-    void operator()(double *p) const;
-  };
-  void allocate(std::size_t n_cells);
-  void grow();
-
   std::array<GridAxis, 3> axes_;
-  int slots_ = 4, rows_ = 3, stride_ = 12;
-  std::size_t n_cells_ = 0;
-  std::unique_ptr<double[], FreeAligned> data_;
-  std::vector<int> count_, owner_, home_cell_, home_slot_;
+  int max_count_ = 0;
+  std::vector<int> cell_, cell_start_, binned_;  // CSR: spheres of padded cell c at
+                                                 // binned_[cell_start_[c] .. cell_start_[c + 1])
+  std::vector<double> binned_xyzr_;              // x, y, z, R of binned_[q] at 4q
 };
 
 }  // namespace tapmc

@@ -4,6 +4,8 @@
 #ifndef TAPMC_DEFAULTS_H
 #define TAPMC_DEFAULTS_H
 
+#include "tapmc_math.h"
+
 namespace tapmc {
 namespace defaults {
 
@@ -14,6 +16,9 @@ namespace defaults {
 // 1e-16 relative rounding of the coordinates. The same relative tolerance applies to the floor
 // and to side walls (measured against the sphere's diameter).
 constexpr double kContactTolerance = 1e-10;
+// Largest contact tolerance the kernels accept: beyond a tenth of the contact distance the
+// "hard" spheres would interpenetrate visibly and the packing fractions would be biased.
+constexpr double kMaxContactTolerance = 0.1;
 
 // ---- the tap: fix tapdilate (paper, section II) --------------------------------------------
 // Largest eps. The paper taps with eps from 5e-3 to 0.15 (FIG. 2, eps^1/2 up to ~0.4 in FIG. 4);
@@ -27,7 +32,7 @@ constexpr double kMaxTapEps = 1.0;
 constexpr double kMaxStepOverRadius = 0.2;
 // theta0 = pi/4: width of P(theta) = A exp(-(theta/theta0)^2) (eq. 1), the paper's value
 // giving the maximal compaction rate.
-constexpr double kThetaWidth = 0.78539816339744830962;  // pi/4
+constexpr double kThetaWidth = 0.25 * kPi;
 // Exact theta sampler (tapmc_trial_move.h): a strip whose flat envelope would accept fewer than
 // this fraction of its proposals uses the tangent exponential envelope instead (one log per
 // proposal, acceptance >= 0.74 in the tail strips). Speed only: both envelopes are exact. At
@@ -71,6 +76,28 @@ constexpr double kDepositionEquilibriumTolerance = 1e-10;
 // Angle (radians) within which a touching constraint is taken as being left, not entered,
 // along a roll: a contact grazed at 1e-16 relative gap is left within ~1e-8 rad.
 constexpr double kDepositionAngleTolerance = 1e-7;
+// Relative depth below which a constraint is taken as never entered along a path (of the roll's
+// constraint functions f = K + P cos t + Q sin t; of the sphere diameter in the contact search):
+// far below the contact tolerance, above the ~1e-13 rounding of f.
+constexpr double kDepositionGrazingDepth = 1e-11;
+// Two unit contact normals whose 1 - cos^2 of their angle is below this are taken as
+// (anti)parallel: a one-contact set covers the two-contact descent, whose solve divides by it
+// (far above the ~1e-16 rounding of the cosine).
+constexpr double kDepositionParallelNormals = 1e-12;
+// Three unit contact normals whose triple product is below this are taken as coplanar: no
+// isolated three-contact rest point (the Cramer solve of the support forces divides by it).
+constexpr double kDepositionCoplanarNormals = 1e-9;
+// Determinant below which the 2x2 force balance of a roll on two contacts is taken as singular
+// (the force solve divides by it): the roll is degenerate.
+constexpr double kDepositionSingularRoll = 1e-12;
+// A roll direction shorter than this (after removing its radial part) has no direction.
+constexpr double kDepositionZeroLength = 1e-300;
+// Random horizontal directions tried to leave an unstable equilibrium on one sphere (a direction
+// that a touching contact blocks is rejected) before the roll is declared degenerate.
+constexpr int kDepositionLeaveAttempts = 8;
+// create_packing refuses at once a region whose volume could not hold the spheres even at
+// random close packing (packing fraction ~0.64): a cheap, safe bound on what deposition can do.
+constexpr double kRandomClosePacking = 0.64;
 // Cap on path pieces per drop (a drop takes about 3 to 10): beyond it the drop restarts from a
 // fresh random (x, y), so a degenerate geometry never loops forever.
 constexpr int kDepositionMaxSegments = 1000;
@@ -112,17 +139,34 @@ constexpr long kSettleMaxSweeps = 50000;
 // ---- Verlet neighbour list of the redeposition kernel (tapmc_settle.cpp) --------------------
 // Skin of the kernel's Verlet list in units of the largest radius R_max: list radius of a pair
 // = (R_i + R_j) + d_max + skin, rebuilt when a sphere has moved skin/2 since the last build.
-// 0.2 R was the fastest skin in bench_neighbor_list (2.9x the cell list; 0.1 / 0.4 / 0.8 R:
-// 2.45 / 2.7 / 2.4x); the results do not depend on it (the list is exact), only the speed.
+// 0.2 R is the fastest skin in bench_neighbor_list (28.2 M moves/s over a whole redeposition;
+// 0.1 / 0.4 / 0.8 R: 23.6 / 26.2 / 22.9; bench/README.md); the results do not depend on it (the
+// list is exact), only the speed.
 constexpr double kVerletSkinOverRadius = 0.2;
 // The skin adapts within one call (results do not depend on it): doubled at a rebuild that comes
 // less than kVerletGrowBelowSweeps sweeps after the previous one (spheres falling freely from
-// a loose start would otherwise cost one O(N) rebuild every few accepted moves: 25x slower
-// than the cell list), up to kVerletSkinMaxOverRadius; halved back towards the default (one
-// extra build) once kVerletShrinkAfterSweeps sweeps passed without a rebuild.
+// a loose start would otherwise cost one O(N) rebuild every few accepted moves: 15 s instead
+// of 0.5 s for 5 taps of a loose 1024-sphere start), up to kVerletSkinMaxOverRadius; halved
+// back towards the default (one extra build) once kVerletShrinkAfterSweeps sweeps passed
+// without a rebuild.
 constexpr double kVerletGrowBelowSweeps = 1.0;
 constexpr double kVerletSkinMaxOverRadius = 3.2;  // 16x the default: lists of ~100 at phi 0.6
 constexpr double kVerletShrinkAfterSweeps = 64.0;
+
+// ---- cell grid of the kernel's neighbour searches (tapmc_cell_grid.h) -----------------------
+// Cells are at least the search radius plus this relative rounding margin wide (relative to
+// 2 R_max + the largest coordinate): positions, steps and wraps round at ~1e-16 of the
+// coordinates, so the margin keeps every pair within the search radius in the 27-cell stencil,
+// and it lies far below contact_tol, so it never changes which pairs count.
+constexpr double kGridRoundingMargin = 1e-12;
+// At most this many cells along x and along y (wider cells beyond): bounds the grid of a very
+// wide box of few spheres.
+constexpr int kGridMaxCellsPerSideAxis = 4096;
+// At most kGridCellsPerSphere * N + kGridMinCells cells in all (the z axis gets the cells left):
+// a floor far below the spheres must not allocate a huge empty grid, while a dense packing
+// (a few spheres per cell) stays well inside the cap.
+constexpr int kGridCellsPerSphere = 16;
+constexpr int kGridMinCells = 4096;
 
 }  // namespace defaults
 }  // namespace tapmc

@@ -18,6 +18,7 @@
 #include "tapmc_deposition.h"
 
 #include "tapmc_defaults.h"
+#include "tapmc_math.h"
 
 #include <algorithm>
 #include <cmath>
@@ -32,11 +33,10 @@ namespace {
 using defaults::kDepositionAngleTolerance;
 using defaults::kDepositionEquilibriumTolerance;
 using defaults::kDepositionForceTolerance;
+using defaults::kDepositionGrazingDepth;
 using defaults::kDepositionMaxSegments;
 using defaults::kDepositionSupportTolerance;
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kTwoPi = 2.0 * kPi;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Counter offset of the random draws that leave unstable equilibria (below: drop points).
@@ -101,10 +101,6 @@ inline double gap_of(const Constraint &k, Vec3 p)
 }
 inline Vec3 normal_of(const Constraint &k, Vec3 p) { return k.is_sphere ? unit(p - k.c) : k.c; }
 
-// Depth (in units of the circle radius) below which a constraint f = K + P cos t + Q sin t is
-// taken as never entered: far below the contact tolerance, above the ~1e-13 rounding of f.
-constexpr double kGrazingDepth = 1e-11;
-
 // First t in [0, t_max] at which f(t) = K + P cos t + Q sin t enters f < 0, or +inf.
 // `entering_now` is set when f is negative just after t = 0 (a touching constraint that the
 // path enters immediately, to first or second order); a touching constraint being left (its
@@ -113,9 +109,9 @@ double first_entry(double K, double P, double Q, double t_max, bool &entering_no
 {
   entering_now = false;
   const double A = std::hypot(P, Q);
-  // Never deeper than kGrazingDepth below zero anywhere on the circle (a constraint tangent to
-  // the whole path, e.g. a wall containing the rolling plane): not an event.
-  if (K - A > -kGrazingDepth) return kInf;
+  // Never deeper than kDepositionGrazingDepth below zero anywhere on the circle (a constraint
+  // tangent to the whole path, e.g. a wall containing the rolling plane): not an event.
+  if (K - A > -kDepositionGrazingDepth) return kInf;
   const double kappa = -K / A;  // f < 0  <=>  cos(t - beta) < kappa
   if (kappa <= -1.0) return kInf;
   if (kappa >= 1.0) {  // f <= 0 on the whole circle: only possible when touching at its maximum
@@ -410,7 +406,8 @@ struct SequentialDeposition::Impl {
     } else if (size == 2) {
       const Vec3 a = normals[sel[0]], b = normals[sel[1]];
       const double c = dot(a, b), det = 1.0 - c * c;
-      if (det < 1e-12) return false;  // (anti)parallel normals: a smaller set covers it
+      // (anti)parallel normals: a smaller set covers it
+      if (det < defaults::kDepositionParallelNormals) return false;
       const double ga = dot(a, kGravity), gb = dot(b, kGravity);
       mu[0] = -(ga - c * gb) / det;
       mu[1] = -(gb - c * ga) / det;
@@ -420,7 +417,8 @@ struct SequentialDeposition::Impl {
     } else {
       const Vec3 a = normals[sel[0]], b = normals[sel[1]], c = normals[sel[2]];
       const double det = dot(a, cross(b, c));
-      if (std::fabs(det) < 1e-9) return false;  // coplanar normals: no isolated rest point
+      // coplanar normals: no isolated rest point
+      if (std::fabs(det) < defaults::kDepositionCoplanarNormals) return false;
       // Solve a mu0 + b mu1 + c mu2 = -g (Cramer), d = 0.
       const Vec3 h = -1.0 * kGravity;
       mu[0] = dot(h, cross(b, c)) / det;
@@ -453,7 +451,7 @@ struct SequentialDeposition::Impl {
     double best = p.z - (domain.z_floor + r);
     hit = Constraint{false, kFloor, 0, 0, {0, 0, 1}, domain.z_floor + r};
     const double reach = r + r_max;
-    const double grazing_depth = kGrazingDepth * 2.0 * r;
+    const double grazing_depth = kDepositionGrazingDepth * 2.0 * r;
     // Layers from the top down; stop when a layer cannot hold a closer contact.
     for (int iz = std::min(grid.layers() - 1, grid.layer_of(p.z + reach)); iz >= 0; --iz) {
       const double layer_top = grid.floor_z() + (iz + 1) * grid.layer_width();
@@ -596,7 +594,7 @@ struct SequentialDeposition::Impl {
       Vec3 dir = descent.d;
       if (equilibrium) {
         bool free = false;
-        for (int attempt = 0; attempt < 8 && !free; ++attempt) {
+        for (int attempt = 0; attempt < defaults::kDepositionLeaveAttempts && !free; ++attempt) {
           const Vec3 u = random_horizontal_direction();
           dir = u - dot(u, path.e1) * path.e1;
           free = !blocked(dir, descent);
@@ -604,7 +602,7 @@ struct SequentialDeposition::Impl {
         if (!free) return RollSetup::Degenerate;
       }
       dir = dir - dot(dir, path.e1) * path.e1;
-      if (!(norm(dir) > 1e-300)) return RollSetup::Degenerate;
+      if (!(norm(dir) > defaults::kDepositionZeroLength)) return RollSetup::Degenerate;
       path.e2 = unit(dir);
       // mu(t) = n_z(t): the normal force vanishes at the sphere's equator.
       forces[0] = {0.0, path.e1.z, path.e2.z};
@@ -641,7 +639,7 @@ struct SequentialDeposition::Impl {
         }
       }
       const double det = sigma[0] * tau[1] - sigma[1] * tau[0];
-      if (std::fabs(det) < 1e-12) return RollSetup::Degenerate;
+      if (std::fabs(det) < defaults::kDepositionSingularRoll) return RollSetup::Degenerate;
       const double nz = axis.z;
       forces[0] = {nz * tau[1] / det, -sigma[1] * path.e1.z / det, -sigma[1] * path.e2.z / det};
       forces[1] = {-tau[0] * nz / det, sigma[0] * path.e1.z / det, sigma[0] * path.e2.z / det};

@@ -16,22 +16,33 @@ using RandomBlock = std::array<std::uint32_t, 4>;
 // multiplies two counter words by fixed odd constants and mixes the 64-bit products' halves
 // with the other words and the round key; the key is bumped by Weyl constants between rounds.
 // Crush-resistant with 10 rounds (the paper's recommended count).
+namespace philox {
+constexpr int kRounds = 10;
+constexpr std::uint64_t kMul0 = 0xD2511F53u, kMul1 = 0xCD9E8D57u;
+constexpr std::uint32_t kWeyl0 = 0x9E3779B9u, kWeyl1 = 0xBB67AE85u;
+
+// One round on the counter words c0..c3 under the round key (k0, k1).
+inline void round(std::uint32_t &c0, std::uint32_t &c1, std::uint32_t &c2, std::uint32_t &c3,
+                  std::uint32_t k0, std::uint32_t k1)
+{
+  const std::uint64_t p0 = kMul0 * c0;
+  const std::uint64_t p1 = kMul1 * c2;
+  const std::uint32_t n0 = static_cast<std::uint32_t>(p1 >> 32) ^ c1 ^ k0;
+  const std::uint32_t n2 = static_cast<std::uint32_t>(p0 >> 32) ^ c3 ^ k1;
+  c1 = static_cast<std::uint32_t>(p1);
+  c3 = static_cast<std::uint32_t>(p0);
+  c0 = n0;
+  c2 = n2;
+}
+}  // namespace philox
+
 inline RandomBlock philox4x32_10(RandomBlock counter, std::uint32_t key0, std::uint32_t key1)
 {
-  constexpr std::uint64_t kMul0 = 0xD2511F53u, kMul1 = 0xCD9E8D57u;
-  constexpr std::uint32_t kWeyl0 = 0x9E3779B9u, kWeyl1 = 0xBB67AE85u;
   std::uint32_t c0 = counter[0], c1 = counter[1], c2 = counter[2], c3 = counter[3];
-  for (int round = 0; round < 10; ++round) {
-    const std::uint64_t p0 = kMul0 * c0;
-    const std::uint64_t p1 = kMul1 * c2;
-    const std::uint32_t n0 = static_cast<std::uint32_t>(p1 >> 32) ^ c1 ^ key0;
-    const std::uint32_t n2 = static_cast<std::uint32_t>(p0 >> 32) ^ c3 ^ key1;
-    c1 = static_cast<std::uint32_t>(p1);
-    c3 = static_cast<std::uint32_t>(p0);
-    c0 = n0;
-    c2 = n2;
-    key0 += kWeyl0;
-    key1 += kWeyl1;
+  for (int r = 0; r < philox::kRounds; ++r) {
+    philox::round(c0, c1, c2, c3, key0, key1);
+    key0 += philox::kWeyl0;
+    key1 += philox::kWeyl1;
   }
   return {c0, c1, c2, c3};
 }
@@ -84,8 +95,6 @@ class CounterRandom {
   static constexpr int kBatchMax = 256;
   void blocks(const std::uint64_t *positions, int count, RandomBlock *out) const
   {
-    constexpr std::uint64_t kMul0 = 0xD2511F53u, kMul1 = 0xCD9E8D57u;
-    constexpr std::uint32_t kWeyl0 = 0x9E3779B9u, kWeyl1 = 0xBB67AE85u;
     alignas(64) std::uint32_t c0[kBatchMax], c1[kBatchMax], c2[kBatchMax], c3[kBatchMax];
     for (int k = 0; k < count; ++k) {
       c0[k] = static_cast<std::uint32_t>(positions[k]);
@@ -94,19 +103,10 @@ class CounterRandom {
       c3[k] = stream_hi_;
     }
     std::uint32_t k0 = key0_, k1 = key1_;
-    for (int round = 0; round < 10; ++round) {
-      for (int k = 0; k < count; ++k) {
-        const std::uint64_t p0 = kMul0 * c0[k];
-        const std::uint64_t p1 = kMul1 * c2[k];
-        const std::uint32_t n0 = static_cast<std::uint32_t>(p1 >> 32) ^ c1[k] ^ k0;
-        const std::uint32_t n2 = static_cast<std::uint32_t>(p0 >> 32) ^ c3[k] ^ k1;
-        c1[k] = static_cast<std::uint32_t>(p1);
-        c3[k] = static_cast<std::uint32_t>(p0);
-        c0[k] = n0;
-        c2[k] = n2;
-      }
-      k0 += kWeyl0;
-      k1 += kWeyl1;
+    for (int r = 0; r < philox::kRounds; ++r) {
+      for (int k = 0; k < count; ++k) philox::round(c0[k], c1[k], c2[k], c3[k], k0, k1);
+      k0 += philox::kWeyl0;
+      k1 += philox::kWeyl1;
     }
     for (int k = 0; k < count; ++k) out[k] = {c0[k], c1[k], c2[k], c3[k]};
   }

@@ -2,28 +2,29 @@
 // The redeposition kernel: hard-sphere Monte Carlo with biased downward moves (paper, section
 // II) on a kernel-owned Verlet neighbour list.
 //
-// The list (bench/bench_neighbor_list.cpp measured it 2.4-2.9x faster than the former 27-cell
-// stencil; bench/README.md): each movable sphere i lists every sphere j whose nearest periodic
-// image lies within (R_i + R_j) + d_max + skin at the build. A trial puts i at most d_max from
-// its current position, and no sphere has moved more than skin/2 since the build (an accepted
-// move that takes a sphere further triggers an O(N) rebuild by binning at once), so by the
-// triangle inequality every sphere the trial can overlap is listed: the list never misses an
-// overlap and the accepted moves do not depend on the skin. Positions stay wrapped into the
-// box (as before), and the overlap test takes the nearest image of each listed sphere, so it
-// does the same arithmetic as the former cell list and a sphere crossing a periodic side needs
-// no rebuild. The skin starts at 0.2 R_max each call and adapts (defaults.h): doubled when
-// rebuilds come less than a sweep apart (spheres falling freely from a loose start), halved
-// back after 64 calm sweeps; being exact, the list gives the same moves whatever the skin.
-// find_violation still uses the cell list (CellGrid).
+// The list (why a kernel-owned Verlet list, and its skin: bench/bench_neighbor_list.cpp and
+// bench/README.md): each movable sphere i lists every sphere j whose nearest periodic image lies
+// within (R_i + R_j) + d_max + skin at the build. A trial puts i at most d_max from its current
+// position, and no sphere has moved more than skin/2 since the build (an accepted move that
+// takes a sphere further triggers an O(N) rebuild by binning at once), so by the triangle
+// inequality every sphere the trial can overlap is listed: the list never misses an overlap and
+// the accepted moves do not depend on the skin. Positions stay wrapped into the box, and the
+// overlap test takes the nearest image of each listed sphere (the separation() arithmetic of
+// tapmc_contact.h), so a sphere crossing a periodic side needs no rebuild. The skin starts at
+// 0.2 R_max each call and adapts (tapmc_defaults.h): doubled when rebuilds come less than a
+// sweep apart (spheres falling freely from a loose start), halved back after 64 calm sweeps;
+// being exact, the list gives the same moves whatever the skin. The list build and
+// find_violation search through one cell grid (tapmc_cell_grid.h).
 #include "tapmc_settle.h"
 
+#include "tapmc_cell_grid.h"
 #include "tapmc_contact.h"
 #include "tapmc_defaults.h"
+#include "tapmc_math.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -33,19 +34,16 @@ namespace tapmc {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kPi = 3.14159265358979323846;
-
-std::string number(double value)
-{
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
-}
-
 [[noreturn]] void bad(const std::string &name, double value, const std::string &range)
 {
   throw std::invalid_argument(name + " = " + number(value) + " is outside the allowed range " +
                               range);
+}
+
+void check_contact_tol(double contact_tol)
+{
+  if (!(contact_tol >= 0.0 && contact_tol < defaults::kMaxContactTolerance))
+    bad("contact_tol", contact_tol, "[0, " + number(defaults::kMaxContactTolerance) + ")");
 }
 
 // Wraps a coordinate into [lo, hi) along a periodic axis, counting periods in `image`
@@ -177,7 +175,7 @@ inline int plane_violation(const Scene &s, double x, double y, double z, double 
 // Cells sized for the largest contact distance plus a rounding margin far below contact_tol,
 // covering the periodic period, or the data (and walls / floor) along the other axes.
 // extra_reach widens the cells beyond the contact distance (the Verlet list's d_max + skin).
-std::array<GridAxis, 3> make_axes(const Scene &s, const double *xyz, int n, int n_grid_cap,
+std::array<GridAxis, 3> make_axes(const Scene &s, const double *xyz, int n,
                                   double extra_reach = 0.0)
 {
   double mn[3] = {kInf, kInf, kInf}, mx[3] = {-kInf, -kInf, -kInf};
@@ -196,56 +194,26 @@ std::array<GridAxis, 3> make_axes(const Scene &s, const double *xyz, int n, int 
   }
   mn[2] = std::min(mn[2], s.floor_z);  // movable spheres only go down, at most to the floor
   scale = std::max(scale, std::fabs(s.floor_z));
-  const double reach =
-      2.0 * s.r_max * s.one_minus_tol + extra_reach + 1e-12 * (2.0 * s.r_max + scale);
+  const double margin = defaults::kGridRoundingMargin * (2.0 * s.r_max + scale);
+  const double reach = 2.0 * s.r_max * s.one_minus_tol + extra_reach + margin;
 
   std::array<GridAxis, 3> axes;
-  constexpr int kMaxCellsPerSideAxis = 4096;
+  const int max_side = defaults::kGridMaxCellsPerSideAxis;
   for (int d = 0; d < 2; ++d) {
     if (s.periodic[d])
-      axes[d].setup(s.lo[d], s.length[d], reach, true, kMaxCellsPerSideAxis);
+      axes[d].setup(s.lo[d], s.length[d], reach, true, max_side);
     else
-      axes[d].setup(mn[d], std::max(mx[d] - mn[d], 0.0), reach, false, kMaxCellsPerSideAxis);
+      axes[d].setup(mn[d], std::max(mx[d] - mn[d], 0.0), reach, false, max_side);
   }
   // Cap the cell count (a floor far below the spheres must not allocate a huge empty grid).
-  const int max_z = std::max(1, n_grid_cap / (axes[0].cells * axes[1].cells));
+  const int max_cells = defaults::kGridCellsPerSphere * n + defaults::kGridMinCells;
+  const int max_z = std::max(1, max_cells / (axes[0].cells * axes[1].cells));
   axes[2].setup(mn[2], std::max(mx[2] - mn[2], 0.0), reach, false, max_z);
   return axes;
 }
 
-// Fills `grid` with all spheres (periodic coordinates wrapped; images counted in `image` if
-// not null), with enough slots per cell for the fullest cell.
-void fill_grid(CellGrid &grid, const std::array<GridAxis, 3> &axes, const Scene &s,
-               const double *xyz, int n, int *image)
-{
-  std::vector<double> wrapped(3 * static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    for (int d = 0; d < 3; ++d) wrapped[3 * i + d] = xyz[3 * i + d];
-    for (int d = 0; d < 2; ++d)
-      if (s.periodic[d]) {
-        int dummy = 0;
-        int &im = image ? image[2 * i + d] : dummy;
-        wrapped[3 * i + d] = wrap_into_box(xyz[3 * i + d], s.lo[d], s.hi[d], s.length[d], im);
-      }
-  }
-  // Padded cell index as CellGrid::locate computes it, before the storage exists.
-  const int px = axes[0].cells + 2, py = axes[1].cells + 2;
-  std::vector<int> cell_of(n), fill(static_cast<std::size_t>(px) * py * (axes[2].cells + 2), 0);
-  int max_fill = 0;
-  for (int i = 0; i < n; ++i) {
-    const double *p = &wrapped[3 * i];
-    cell_of[i] = ((axes[2].cell_of(p[2]) + 1) * py + axes[1].cell_of(p[1]) + 1) * px +
-                 axes[0].cell_of(p[0]) + 1;
-    max_fill = std::max(max_fill, ++fill[cell_of[i]]);
-  }
-  grid.reset(axes, max_fill, !s.mono, n);
-  for (int i = 0; i < n; ++i)
-    grid.insert(i, cell_of[i], wrapped[3 * i], wrapped[3 * i + 1], wrapped[3 * i + 2],
-                radius_of(s, i));
-}
-
 // Separation of j from i along a periodic axis, nearest image: the shift (0 or +-L) is chosen
-// from the raw difference and added last, exactly as separation() with the cell list's shift.
+// from the raw difference and added last, exactly as separation() with a cell's image shift.
 inline double nearest_separation(double x_j, double x_i, double length, double half_length)
 {
   const double raw = x_j - x_i;
@@ -265,8 +233,8 @@ inline double axis_separation(double x_j, double x_i, double length, double half
 struct detail::NeighbourLists {
   std::vector<int> first, neighbour;  // neighbours of k: neighbour[first[k] .. first[k+1])
   std::vector<double> reference;      // position of k at the build (3 per k), moved with its wraps
-  std::vector<int> cell, cell_start, binned, seen;  // binning scratch
-  std::vector<double> binned_xyzr;                  // x, y, z, R of binned[q] at 4q
+  CellGrid grid;          // binning of the build, reused
+  std::vector<int> seen;  // repeat filter of the build (periodic axes of fewer than 3 cells)
   double skin = 0.0, half_skin_sq = 0.0;
   double list_extra = 0.0;  // d_max + skin, added to R_i + R_j
   double d_max = 0.0, base_skin = 0.0, max_skin = 0.0;
@@ -331,47 +299,23 @@ struct SettleRun {
 void build_lists(NeighbourLists &lists, const Scene &s, const double *pos, int n,
                  const std::vector<int> &ids)
 {
-  std::vector<int> &cell = lists.cell, &cell_start = lists.cell_start, &binned = lists.binned,
-                   &seen = lists.seen, &first = lists.first, &neighbour = lists.neighbour;
+  std::vector<int> &seen = lists.seen, &first = lists.first, &neighbour = lists.neighbour;
   std::vector<double> &reference = lists.reference;
   ++lists.builds;
   double scale = std::max(std::fabs(s.floor_z), 2.0 * s.r_max);
   for (int i = 0; i < 3 * n; ++i) scale = std::max(scale, std::fabs(pos[i]));
   for (int d = 0; d < 2; ++d) scale = std::max({scale, std::fabs(s.lo[d]), std::fabs(s.hi[d])});
   // Rounding margin of the list radius (positions, steps and wraps round at ~1e-16 * scale).
-  const double margin = 1e-12 * (2.0 * s.r_max + scale);
+  const double margin = defaults::kGridRoundingMargin * (2.0 * s.r_max + scale);
   const double extra = lists.list_extra + margin;
-  const std::array<GridAxis, 3> axes =
-      make_axes(s, pos, n, 16 * n + 4096, 2.0 * s.r_max * s.tol + extra + margin);
-  const GridAxis &ax = axes[0], &ay = axes[1], &az = axes[2];
-  const int px = ax.cells + 2, py = ay.cells + 2, pz = az.cells + 2;
-  cell.resize(n);
-  cell_start.assign(static_cast<std::size_t>(px) * py * pz + 1, 0);
-  for (int i = 0; i < n; ++i) {
-    const double *p = pos + 3 * i;
-    cell[i] = ((az.cell_of(p[2]) + 1) * py + ay.cell_of(p[1]) + 1) * px + ax.cell_of(p[0]) + 1;
-    ++cell_start[cell[i] + 1];
-  }
-  for (std::size_t c = 1; c < cell_start.size(); ++c) cell_start[c] += cell_start[c - 1];
-  binned.resize(n);
-  for (int i = 0; i < n; ++i) binned[cell_start[cell[i]]++] = i;
-  for (std::size_t c = cell_start.size() - 1; c > 0; --c) cell_start[c] = cell_start[c - 1];
-  cell_start[0] = 0;
-  // Coordinates in cell order: the candidates of one cell are contiguous.
-  lists.binned_xyzr.resize(4 * static_cast<std::size_t>(n));
-  double *bx = lists.binned_xyzr.data();
-  for (int q = 0; q < n; ++q) {
-    const int j = binned[q];
-    for (int d = 0; d < 3; ++d) bx[4 * q + d] = pos[3 * j + d];
-    bx[4 * q + 3] = radius_of(s, j);
-  }
+  CellGrid &grid = lists.grid;
+  grid.build(make_axes(s, pos, n, 2.0 * s.r_max * s.tol + extra + margin), pos,
+             s.radius, n);
 
   const long m = static_cast<long>(ids.size());
   first.resize(m + 1);
   reference.resize(3 * static_cast<std::size_t>(m));
-  // A periodic axis with fewer than 3 cells makes the stencil visit a sphere more than once
-  // (through several images): only then are repeats filtered.
-  const bool repeats = (s.periodic[0] && ax.cells < 3) || (s.periodic[1] && ay.cells < 3);
+  const bool repeats = grid.visits_repeat();  // only then are repeats filtered
   if (repeats) seen.assign(n, -1);
   const double half_x = 0.5 * s.length[0], half_y = 0.5 * s.length[1];
   std::size_t count = 0;
@@ -381,33 +325,25 @@ void build_lists(NeighbourLists &lists, const Scene &s, const double *pos, int n
     const double ri = radius_of(s, i);
     first[k] = static_cast<int>(count);
     for (int d = 0; d < 3; ++d) reference[3 * k + d] = pi[d];
-    const int ix = ax.cell_of(pi[0]), iy = ay.cell_of(pi[1]), iz = az.cell_of(pi[2]);
-    for (int kz = 0; kz < 3; ++kz)
-      for (int ky = 0; ky < 3; ++ky)
-        for (int kx = 0; kx < 3; ++kx) {
-          const int c = (az.neighbour[3 * iz + kz] * py + ay.neighbour[3 * iy + ky]) * px +
-                        ax.neighbour[3 * ix + kx];
-          const int q0 = cell_start[c], q1 = cell_start[c + 1];
-          // neighbour only grows (its size is a capacity; first[] marks the entries in use)
-          if (neighbour.size() < count + (q1 - q0)) neighbour.resize(2 * (count + (q1 - q0)) + 64);
-          int *out = neighbour.data();
-          for (int q = q0; q < q1; ++q) {
-            const int j = binned[q];
-            const double *pj = bx + 4 * q;
-            const double dx = s.periodic[0] ? nearest_separation(pj[0], pi[0], s.length[0], half_x)
-                                            : pj[0] - pi[0];
-            const double dy = s.periodic[1] ? nearest_separation(pj[1], pi[1], s.length[1], half_y)
-                                            : pj[1] - pi[1];
-            const double list_radius = (ri + pj[3]) + extra;
-            bool keep = (distance_sq(dx, dy, pj[2] - pi[2]) < list_radius * list_radius) & (j != i);
-            if (repeats) {
-              keep = keep && seen[j] != k;
-              if (keep) seen[j] = static_cast<int>(k);
-            }
-            out[count] = j;  // branch-free append: kept entries advance the end
-            count += keep;
-          }
-        }
+    // neighbour only grows (its size is a capacity; first[] marks the entries in use)
+    if (neighbour.size() < count + grid.max_visited())
+      neighbour.resize(2 * (count + grid.max_visited()) + 64);
+    int *out = neighbour.data();
+    grid.visit_neighbours(pi[0], pi[1], pi[2], [&](int j, const double *pj, double, double) {
+      const double dx =
+          s.periodic[0] ? nearest_separation(pj[0], pi[0], s.length[0], half_x) : pj[0] - pi[0];
+      const double dy =
+          s.periodic[1] ? nearest_separation(pj[1], pi[1], s.length[1], half_y) : pj[1] - pi[1];
+      const double list_radius = (ri + pj[3]) + extra;
+      bool keep = (distance_sq(dx, dy, pj[2] - pi[2]) < list_radius * list_radius) & (j != i);
+      if (repeats) {
+        keep = keep && seen[j] != k;
+        if (keep) seen[j] = static_cast<int>(k);
+      }
+      out[count] = j;  // branch-free append: kept entries advance the end
+      count += keep;
+      return false;
+    });
   }
   first[m] = static_cast<int>(count);
 }
@@ -546,8 +482,7 @@ void Settler::validate(const SettleParams &p)
   if (p.check_interval < 0)
     bad("check_interval", static_cast<double>(p.check_interval), "[0, +inf) (0 = one sweep)");
   if (p.max_checks < 1) bad("max_checks", static_cast<double>(p.max_checks), "[1, +inf)");
-  if (!(p.contact_tol >= 0.0 && p.contact_tol < 0.1))
-    bad("contact_tol", p.contact_tol, "[0, 0.1)");
+  check_contact_tol(p.contact_tol);
 }
 
 SettleResult Settler::settle(double *xyz, const double *radius, const unsigned char *movable,
@@ -641,18 +576,25 @@ SettleResult Settler::settle(double *xyz, const double *radius, const unsigned c
 Violation Settler::find_violation(const double *xyz, const double *radius, int n,
                                   const SettleBox &box, double contact_tol)
 {
-  if (!(contact_tol >= 0.0 && contact_tol < 0.1)) bad("contact_tol", contact_tol, "[0, 0.1)");
+  check_contact_tol(contact_tol);
   if (n < 0) bad("n", n, "[0, +inf)");
   Violation v;
   if (n == 0) return v;
   if (!xyz || !radius) throw std::invalid_argument("xyz and radius must not be null when n > 0");
   Scene sc = make_scene(radius, n, box, contact_tol);
-  sc.mono = false;  // one generic path: per-pair thresholds from the stored radii
+  // Positions with periodic axes wrapped into the box.
+  std::vector<double> wrapped(xyz, xyz + 3 * static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i)
+    for (int d = 0; d < 2; ++d)
+      if (sc.periodic[d]) {
+        int image = 0;
+        wrapped[3 * i + d] = wrap_into_box(xyz[3 * i + d], sc.lo[d], sc.hi[d], sc.length[d], image);
+      }
   CellGrid grid;
-  fill_grid(grid, make_axes(sc, xyz, n, 16 * n + 4096), sc, xyz, n, nullptr);
-  const int slots = grid.slots();
+  grid.build(make_axes(sc, xyz, n), wrapped.data(), radius, n);
   for (int i = 0; i < n; ++i) {
-    const double x = grid.x(i), y = grid.y(i), z = grid.z(i), r = radius[i];
+    const double x = wrapped[3 * i], y = wrapped[3 * i + 1], z = wrapped[3 * i + 2];
+    const double r = radius[i];
     double gap;
     if (const int code = plane_violation<false, false>(sc, x, y, z, r, gap)) {
       v.i = i;
@@ -660,30 +602,22 @@ Violation Settler::find_violation(const double *xyz, const double *radius, int n
       v.gap = gap;
       return v;
     }
-    int ix, iy, iz;
-    grid.real_coords(grid.home_cell(i), ix, iy, iz);
-    const GridAxis &ax = grid.axis(0), &ay = grid.axis(1), &az = grid.axis(2);
-    for (int kz = 0; kz < 3; ++kz)
-      for (int ky = 0; ky < 3; ++ky)
-        for (int kx = 0; kx < 3; ++kx) {
-          const int cell = grid.cell_index(ax.neighbour[3 * ix + kx], ay.neighbour[3 * iy + ky],
-                                           az.neighbour[3 * iz + kz]);
-          const double *b = grid.block(cell);
-          for (int s = 0; s < grid.count(cell); ++s) {
-            const int j = grid.owner(cell, s);
-            if (j == i) continue;
-            const double dx = separation(b[s], x, ax.shift[3 * ix + kx]);
-            const double dy = separation(b[slots + s], y, ay.shift[3 * iy + ky]);
-            const double dz = b[2 * slots + s] - z;
-            const double d2 = distance_sq(dx, dy, dz);
-            if (d2 < overlap_threshold_sq(r, radius[j], sc.one_minus_tol)) {
-              v.i = i;
-              v.j = j;
-              v.gap = std::sqrt(d2) - (r + radius[j]);
-              return v;
-            }
-          }
-        }
+    // The image shift of each cell (not the nearest image): with fewer than 3 cells along a
+    // periodic axis every image in reach is tested.
+    const bool found = grid.visit_neighbours(x, y, z, [&](int j, const double *pj, double shift_x,
+                                                          double shift_y) {
+      if (j == i) return false;
+      const double d2 =
+          distance_sq(separation(pj[0], x, shift_x), separation(pj[1], y, shift_y), pj[2] - z);
+      if (!(d2 < overlap_threshold_sq(r, pj[3], sc.one_minus_tol))) return false;
+      v.j = j;
+      v.gap = std::sqrt(d2) - (r + pj[3]);
+      return true;
+    });
+    if (found) {
+      v.i = i;
+      return v;
+    }
   }
   return v;
 }

@@ -7,7 +7,6 @@
 #ifndef TAPMC_SETTLE_H
 #define TAPMC_SETTLE_H
 
-#include "tapmc_cell_grid.h"
 #include "tapmc_trial_move.h"
 
 #include <cstdint>

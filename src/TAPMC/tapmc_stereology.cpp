@@ -3,6 +3,7 @@
 #include "tapmc_stereology.h"
 
 #include "tapmc_defaults.h"
+#include "tapmc_math.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,7 +16,6 @@ namespace stereo {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // Visits every sphere as visit(x, y, z, radius); the two layout choices (per-sphere radius or
 // not, index list or not) are taken once, outside the loops.

@@ -3,28 +3,15 @@
 #include "tapmc_trial_move.h"
 
 #include "tapmc_defaults.h"
+#include "tapmc_math.h"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 #include <string>
 
 namespace tapmc {
 
-namespace {
-
-constexpr double kTwoPi = 6.28318530717958647693;
-constexpr double kSqrtPi = 1.77245385090551602730;
-
-std::string number(double value)
-{
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
-}
-
-}  // namespace
 
 ThetaSampler::ThetaSampler(double theta0) : theta0_(theta0)
 {

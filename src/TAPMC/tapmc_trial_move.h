@@ -4,6 +4,7 @@
 #ifndef TAPMC_TRIAL_MOVE_H
 #define TAPMC_TRIAL_MOVE_H
 
+#include "tapmc_math.h"
 #include "tapmc_random.h"
 
 #include <algorithm>
@@ -32,7 +33,7 @@ namespace tapmc {
 class ThetaSampler {
  public:
   static constexpr int kStrips = 256;
-  static constexpr double kThetaMax = 1.57079632679489661923;  // pi/2
+  static constexpr double kThetaMax = 0.5 * kPi;  // exact: halving does not round
 
   // theta0 in (0, pi/2]; throws std::invalid_argument otherwise.
   explicit ThetaSampler(double theta0);

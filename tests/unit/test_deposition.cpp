@@ -3,6 +3,7 @@
 // oracles over many seeds (PBC, FBC, polydisperse), and the bulk packing fraction.
 #include "tapmc_defaults.h"
 #include "tapmc_deposition.h"
+#include "tapmc_math.h"
 
 #include <gtest/gtest.h>
 
@@ -22,7 +23,7 @@ using tapmc::SequentialDeposition;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using tapmc::kPi;
 constexpr double kSupportTol = tapmc::defaults::kDepositionSupportTolerance;
 constexpr double kOverlapTol = tapmc::defaults::kContactTolerance;
 // Barycentric coordinates / support forces accepted down to -kBalanceTol (dimensionless).

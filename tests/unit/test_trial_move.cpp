@@ -14,9 +14,6 @@
 using namespace tapmc;
 using namespace tapmc::test_stats;
 
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}
 
 TEST(TrialMove, StepIsBoundedAndNeverUp)
 {
