@@ -258,7 +258,15 @@ struct ForceLaw {
   double K, P, Q;
 };
 
-// The descent at a point: active set (indices into the touching list) and direction.
+// The constraints touching the dropped sphere at one point and their unit normals there
+// (normals[k] belongs to constraints[k]). Every step that reads contacts takes this set.
+struct ContactSet {
+  std::vector<Constraint> constraints;
+  std::vector<Vec3> normals;
+  int size() const { return static_cast<int>(constraints.size()); }
+};
+
+// The descent at a point: active set (indices into a ContactSet) and direction.
 struct Descent {
   bool found = false;
   int n_active = 0;
@@ -284,10 +292,6 @@ struct SequentialDeposition::Impl {
   std::vector<double> radii;
   DepositionStats stats;
   std::uint64_t perturbation_draws = 0;  // for the sphere being dropped (reset on insertion)
-
-  // Working storage, reused across drops.
-  std::vector<Constraint> touching;
-  std::vector<Vec3> normals;
 
   Vec3 centre_of(std::int32_t i) const
   {
@@ -335,11 +339,13 @@ struct SequentialDeposition::Impl {
     }
   }
 
-  // Spheres and planes within kDepositionSupportTolerance of contact with a sphere (p, r).
-  void collect_touching(Vec3 p, double r)
+  // Fills `contacts` with the spheres and planes within kDepositionSupportTolerance of contact
+  // with a sphere (p, r) (its previous content is discarded; the caller reuses its storage).
+  void collect_touching(Vec3 p, double r, ContactSet &contacts) const
   {
+    std::vector<Constraint> &touching = contacts.constraints;
     touching.clear();
-    normals.clear();
+    contacts.normals.clear();
     const double reach = (r + r_max) * (1.0 + 2.0 * kDepositionSupportTolerance);
     grid.visit(p.x - reach, p.x + reach, p.y - reach, p.y + reach, grid.layer_of(p.z - reach),
                grid.layer_of(p.z + reach),
@@ -355,22 +361,23 @@ struct SequentialDeposition::Impl {
     for_each_plane(r, [&](const Constraint &k) {
       if (gap_of(k, p) <= kDepositionSupportTolerance * 2.0 * r) touching.push_back(k);
     });
-    for (const auto &k : touching) normals.push_back(normal_of(k, p));
+    for (const auto &k : touching) contacts.normals.push_back(normal_of(k, p));
   }
 
   // Active set and descent direction (KKT of the projection of gravity onto the cone of
   // feasible directions). Subsets are tried from the smallest: at a point where a support
   // force is exactly zero, the smaller set (the support is being left) wins. Subsets must
-  // contain every constraint of `forced` (touching ones the previous path entered at once).
-  Descent solve_descent(const std::vector<int> &forced) const
+  // contain every constraint of `forced` (indices into `contacts` of the constraints the previous
+  // path entered at once).
+  Descent solve_descent(const ContactSet &contacts, const std::vector<int> &forced) const
   {
-    const int n = std::min<int>(static_cast<int>(touching.size()), 12);
+    const int n = std::min<int>(contacts.size(), 12);
     Descent out;
     auto attempt = [&](const int *sel, int size) {
       for (int f : forced)
         if (std::find(sel, sel + size, f) == sel + size) return false;
       Vec3 d;
-      if (!feasible(sel, size, n, d)) return false;
+      if (!feasible(contacts.normals, sel, size, n, d)) return false;
       out.found = true;
       out.n_active = size;
       for (int a = 0; a < size; ++a) out.active[a] = sel[a];
@@ -393,7 +400,7 @@ struct SequentialDeposition::Impl {
 
   // Projection of gravity onto the subspace tangent to the selected normals; feasible when the
   // support forces are >= 0 and the direction enters no other touching constraint.
-  bool feasible(const int *sel, int size, int n, Vec3 &d) const
+  static bool feasible(const std::vector<Vec3> &normals, const int *sel, int size, int n, Vec3 &d)
   {
     const double tol = kDepositionForceTolerance;
     double mu[3] = {0, 0, 0};
@@ -562,8 +569,9 @@ struct SequentialDeposition::Impl {
 
   // Whether moving from the current point along dir would enter a touching constraint that is
   // not active (to first order).
-  bool blocked(Vec3 dir, const Descent &descent) const
+  static bool blocked(Vec3 dir, const ContactSet &contacts, const Descent &descent)
   {
+    const std::vector<Vec3> &normals = contacts.normals;
     for (std::size_t k = 0; k < normals.size(); ++k) {
       const int ki = static_cast<int>(k);
       if (std::find(descent.active, descent.active + descent.n_active, ki) !=
@@ -580,12 +588,12 @@ struct SequentialDeposition::Impl {
   // the support forces along it. At an unstable equilibrium (on top of a sphere, or on the
   // ridge of two supports) the roll starts in a random direction that enters no touching
   // constraint; when both ways along a ridge are blocked the sphere is wedged (at rest).
-  RollSetup make_roll(Vec3 p, const Descent &descent, bool equilibrium, Circle &path,
-                      ForceLaw *forces)
+  RollSetup make_roll(Vec3 p, const ContactSet &contacts, const Descent &descent,
+                      bool equilibrium, Circle &path, ForceLaw *forces)
   {
     const int n_act = descent.n_active;
-    const Constraint *act[2] = {&touching[descent.active[0]],
-                                n_act > 1 ? &touching[descent.active[1]] : nullptr};
+    const Constraint *act[2] = {&contacts.constraints[descent.active[0]],
+                                n_act > 1 ? &contacts.constraints[descent.active[1]] : nullptr};
     if (n_act == 1) {  // great circle in the vertical plane through the contact normal
       const Constraint &j = *act[0];
       path.m = j.c;
@@ -597,7 +605,7 @@ struct SequentialDeposition::Impl {
         for (int attempt = 0; attempt < defaults::kDepositionLeaveAttempts && !free; ++attempt) {
           const Vec3 u = random_horizontal_direction();
           dir = u - dot(u, path.e1) * path.e1;
-          free = !blocked(dir, descent);
+          free = !blocked(dir, contacts, descent);
         }
         if (!free) return RollSetup::Degenerate;
       }
@@ -618,8 +626,8 @@ struct SequentialDeposition::Impl {
       path.e2 = unit(cross(axis, path.e1));
       if (equilibrium) {
         if (random_sign()) path.e2 = -1.0 * path.e2;
-        if (blocked(path.e2, descent)) path.e2 = -1.0 * path.e2;
-        if (blocked(path.e2, descent)) return RollSetup::Wedged;
+        if (blocked(path.e2, contacts, descent)) path.e2 = -1.0 * path.e2;
+        if (blocked(path.e2, contacts, descent)) return RollSetup::Wedged;
       } else if (dot(path.e2, descent.d) < 0.0) {
         path.e2 = -1.0 * path.e2;
       }
@@ -657,18 +665,19 @@ struct SequentialDeposition::Impl {
     std::vector<Constraint> forced;
     std::vector<int> forced_idx;
     std::vector<Constraint> active;
+    ContactSet contacts;  // storage reused by every segment of this drop
     for (int segment = 0; segment < kDepositionMaxSegments; ++segment) {
       ++stats.segments;
-      collect_touching(p, r);
+      collect_touching(p, r, contacts);
       forced_idx.clear();
       for (const auto &f : forced)
-        for (std::size_t k = 0; k < touching.size(); ++k)
-          if (touching[k].same(f)) forced_idx.push_back(static_cast<int>(k));
-      Descent descent = solve_descent(forced_idx);
+        for (int k = 0; k < contacts.size(); ++k)
+          if (contacts.constraints[k].same(f)) forced_idx.push_back(k);
+      Descent descent = solve_descent(contacts, forced_idx);
       if (!descent.found && !forced_idx.empty()) {
         forced.clear();
         forced_idx.clear();
-        descent = solve_descent(forced_idx);
+        descent = solve_descent(contacts, forced_idx);
       }
       if (!descent.found) break;  // no consistent active set: give up this attempt
 
@@ -676,7 +685,7 @@ struct SequentialDeposition::Impl {
       bool on_floor = false;
       int n_spheres = 0;
       for (int a = 0; a < descent.n_active; ++a) {
-        const Constraint &k = touching[descent.active[a]];
+        const Constraint &k = contacts.constraints[descent.active[a]];
         active.push_back(k);
         on_floor = on_floor || (!k.is_sphere && k.id == kFloor);
         n_spheres += k.is_sphere ? 1 : 0;
@@ -701,7 +710,7 @@ struct SequentialDeposition::Impl {
       // Roll on one sphere, or on two constraints with at least one sphere.
       Circle path;
       ForceLaw forces[2];
-      const RollSetup setup = make_roll(p, descent, equilibrium, path, forces);
+      const RollSetup setup = make_roll(p, contacts, descent, equilibrium, path, forces);
       if (setup == RollSetup::Wedged) return {p.x, p.y, p.z, RestingOn::Supports, segment + 1};
       if (setup == RollSetup::Degenerate) break;
       bool is_contact = false;
