@@ -259,7 +259,12 @@ struct ForceLaw {
 };
 
 // The constraints touching the dropped sphere at one point and their unit normals there
-// (normals[k] belongs to constraints[k]). Every step that reads contacts takes this set.
+// (normals[k] belongs to constraints[k]). Every step that reads contacts takes this set and
+// considers all of it, as candidate supports and as obstacles, with no size limit: an ignored
+// touching constraint would let the descent enter it. A sphere touches at most 12 equal spheres,
+// but a large sphere among small ones (polydisperse radii) can touch more. The set is bounded by
+// geometry and a generic drop touches at most three constraints at once, so the subset search
+// of solve_descent stays cheap.
 struct ContactSet {
   std::vector<Constraint> constraints;
   std::vector<Vec3> normals;
@@ -371,13 +376,13 @@ struct SequentialDeposition::Impl {
   // path entered at once).
   Descent solve_descent(const ContactSet &contacts, const std::vector<int> &forced) const
   {
-    const int n = std::min<int>(contacts.size(), 12);
+    const int n = contacts.size();
     Descent out;
     auto attempt = [&](const int *sel, int size) {
       for (int f : forced)
         if (std::find(sel, sel + size, f) == sel + size) return false;
       Vec3 d;
-      if (!feasible(contacts.normals, sel, size, n, d)) return false;
+      if (!feasible(contacts.normals, sel, size, d)) return false;
       out.found = true;
       out.n_active = size;
       for (int a = 0; a < size; ++a) out.active[a] = sel[a];
@@ -400,8 +405,9 @@ struct SequentialDeposition::Impl {
 
   // Projection of gravity onto the subspace tangent to the selected normals; feasible when the
   // support forces are >= 0 and the direction enters no other touching constraint.
-  static bool feasible(const std::vector<Vec3> &normals, const int *sel, int size, int n, Vec3 &d)
+  static bool feasible(const std::vector<Vec3> &normals, const int *sel, int size, Vec3 &d)
   {
+    const int n = static_cast<int>(normals.size());
     const double tol = kDepositionForceTolerance;
     double mu[3] = {0, 0, 0};
     if (size == 0) {

@@ -356,6 +356,35 @@ TEST(Deposition, PeriodicImageIsAnObstacle)
   EXPECT_NEAR(o.y, 5.0, 1e-12);
 }
 
+// Every touching constraint counts, however many: a unit sphere falling onto the floor at (5, 5)
+// meets at the same instant 12 fixed spheres of radius s = 0.05 resting on the floor on an arc
+// around it (horizontal distance 2 sqrt(s), so |centre difference| = 1 + s at height 1). The
+// floor is the 13th contact; the arc spans less than a half-turn, so no three small spheres
+// balance the sphere and only the floor can hold it: it rests on the floor where it landed.
+TEST(Deposition, ThirteenContactsAllCount)
+{
+  SequentialDeposition engine(make_domain(10, 10, true, true), 1.0, 5);
+  const double s = 0.05, h = 2.0 * std::sqrt(s);
+  const int n_small = 12;
+  const double step = 150.0 / (n_small - 1) * kPi / 180.0;  // chord 2 h sin(step / 2) > 2 s
+  for (int k = 0; k < n_small; ++k) {
+    const double angle = -75.0 * kPi / 180.0 + k * step;
+    engine.add_fixed_sphere(5 + h * std::cos(angle), 5 + h * std::sin(angle), s, s);
+  }
+  const auto o = engine.drop(5.0, 5.0, 1.0);
+  EXPECT_EQ(o.rest, RestingOn::Floor);
+  EXPECT_NEAR(o.x, 5.0, 1e-12);
+  EXPECT_NEAR(o.y, 5.0, 1e-12);
+  EXPECT_NEAR(o.z, 1.0, 1e-12);
+  // The rest point touches all 12 small spheres (and the floor).
+  for (std::size_t k = 0; k < engine.size() - 1; ++k) {
+    const double *c = engine.centre(k);
+    const double gap = std::sqrt((o.x - c[0]) * (o.x - c[0]) + (o.y - c[1]) * (o.y - c[1]) +
+                                 (o.z - c[2]) * (o.z - c[2])) - (1.0 + s);
+    EXPECT_NEAR(gap, 0.0, kSupportTol) << "small sphere " << k;
+  }
+}
+
 // ---- brute-force oracles over many seeds -----------------------------------------------------
 
 TEST(Deposition, NoOverlapAndStableOverSeeds)
