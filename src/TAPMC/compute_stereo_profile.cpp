@@ -5,6 +5,7 @@
 #include "compute_stereo_profile.h"
 
 #include "lammps_box.h"
+#include "lammps_keywords.h"
 #include "lammps_support.h"
 #include "atom.h"
 #include "comm.h"
@@ -17,7 +18,6 @@
 
 #include "tapmc_defaults.h"
 
-#include <functional>
 #include <limits>
 #include <mpi.h>
 #include <stdexcept>
@@ -97,11 +97,7 @@ ComputeStereoProfile::ComputeStereoProfile(LAMMPS *lmp, int narg, char **arg) :
 // 'planes' was given. Ranges are checked once, by the kernel (stereo::validate).
 bool ComputeStereoProfile::parse_keywords(int narg, char **arg)
 {
-  struct Keyword {
-    const char *name;
-    int nvalues;
-    std::function<void(char **values)> parse;
-  };
+  using tapmc::Keyword;
   auto number = [&](const char *text) { return utils::numeric(FLERR, text, false, lmp); };
   bool planes_given = false;
   const Keyword table[] = {
@@ -138,18 +134,7 @@ bool ComputeStereoProfile::parse_keywords(int narg, char **arg)
       {"wall_band", 1, [&](char **v) { settings_.wall_band = number(v[0]); }},
       {"wall_factor", 1, [&](char **v) { settings_.wall_factor = number(v[0]); }},
   };
-  for (int iarg = 3; iarg < narg;) {
-    const std::string key = arg[iarg];
-    const Keyword *found = nullptr;
-    for (const Keyword &k : table)
-      if (key == k.name) found = &k;
-    if (!found) error->all(FLERR, "compute stereo/profile: unknown keyword '{}'", key);
-    if (iarg + found->nvalues >= narg)
-      error->all(FLERR, "compute stereo/profile: keyword '{}' needs {} value(s)", key,
-                 found->nvalues);
-    found->parse(&arg[iarg + 1]);
-    iarg += 1 + found->nvalues;
-  }
+  tapmc::parse_keywords(lmp, "compute stereo/profile", table, 3, narg, arg);
   return planes_given;
 }
 

@@ -10,6 +10,7 @@
 
 #include "fix_tapdilate.h"
 #include "lammps_box.h"
+#include "lammps_keywords.h"
 #include "lammps_relocate.h"
 #include "lammps_support.h"
 #include "tapmc_defaults.h"
@@ -28,7 +29,6 @@
 #include <cmath>
 #include <limits>
 #include <cstring>
-#include <functional>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -100,11 +100,7 @@ FixMCSettle::~FixMCSettle() = default;
 // by the kernel (Settler::validate), after all keywords are read.
 void FixMCSettle::parse_keywords(int narg, char **arg)
 {
-  struct Keyword {
-    const char *name;
-    int nvalues;
-    std::function<void(char **values)> parse;
-  };
+  using tapmc::Keyword;
   auto number = [&](const char *text) { return utils::numeric(FLERR, text, false, lmp); };
   auto integer = [&](const char *text) { return utils::bnumeric(FLERR, text, false, lmp); };
   auto walls = [&](int dim) {
@@ -146,19 +142,7 @@ void FixMCSettle::parse_keywords(int narg, char **arg)
          sweep_order = order == "sweep";
        }},
   };
-  for (int iarg = 4; iarg < narg;) {
-    const std::string key = arg[iarg];
-    const Keyword *found = nullptr;
-    for (const Keyword &k : table)
-      if (key == k.name) found = &k;
-    if (!found)
-      error->all(FLERR, "fix mc/settle: unknown keyword '{}' (allowed: dmax, theta0, eta, check,"
-                 " maxsweeps, floor, diameter, xwalls, ywalls, order)", key);
-    if (iarg + found->nvalues >= narg)
-      error->all(FLERR, "fix mc/settle: keyword '{}' needs {} value(s)", key, found->nvalues);
-    found->parse(&arg[iarg + 1]);
-    iarg += 1 + found->nvalues;
-  }
+  tapmc::parse_keywords(lmp, "fix mc/settle", table, 4, narg, arg);
 }
 
 // The kernel's parameters for a redeposition with step bound `step` of `movable` spheres.
