@@ -5,6 +5,7 @@
 #include "compute_stereo_profile.h"
 
 #include "lammps_box.h"
+#include "lammps_keywords.h"
 #include "lammps_support.h"
 #include "atom.h"
 #include "comm.h"
@@ -47,93 +48,8 @@ ComputeStereoProfile::ComputeStereoProfile(LAMMPS *lmp, int narg, char **arg) :
   tapmc::require_box_with_floor(lmp, "compute stereo/profile");
 
   settings_.floor = domain->boxlo[2];
-  bool planes_given = false;
-  int nplanes = tapmc::defaults::kProfilePlanes;
-  double plane_lo = 0.0, plane_hi = 0.0;
-
-  auto need = [&](int iarg, int count) {
-    if (iarg + count >= narg)
-      error->all(FLERR, "compute stereo/profile: keyword '{}' needs {} value(s)", arg[iarg], count);
-  };
-  auto number = [&](int i) { return utils::numeric(FLERR, arg[i], false, lmp); };
-  auto positive = [&](const char *name, double v) {
-    if (!(v > 0.0)) error->all(FLERR, "compute stereo/profile: {} = {} must be > 0", name, v);
-    return v;
-  };
-
-  int iarg = 3;
-  while (iarg < narg) {
-    const std::string key = arg[iarg];
-    if (key == "floor") {
-      need(iarg, 1);
-      settings_.floor = number(iarg + 1);
-      iarg += 2;
-    } else if (key == "radius") {
-      need(iarg, 1);
-      fixed_radius_ = positive("radius", number(iarg + 1));
-      iarg += 2;
-    } else if (key == "axis") {
-      need(iarg, 1);
-      const std::string v = arg[iarg + 1];
-      if (v == "x")
-        axis_ = 0;
-      else if (v == "y")
-        axis_ = 1;
-      else if (v == "z")
-        axis_ = 2;
-      else
-        error->all(FLERR, "compute stereo/profile: axis = {} must be x, y or z", v);
-      iarg += 2;
-    } else if (key == "planes") {
-      need(iarg, 3);
-      plane_lo = number(iarg + 1);
-      plane_hi = number(iarg + 2);
-      nplanes = utils::inumeric(FLERR, arg[iarg + 3], false, lmp);
-      if (nplanes < 1) error->all(FLERR, "compute stereo/profile: planes n = {} must be >= 1", nplanes);
-      if (!(plane_lo < plane_hi))
-        error->all(FLERR, "compute stereo/profile: planes lo = {} must be < hi = {}", plane_lo,
-                   plane_hi);
-      planes_given = true;
-      iarg += 4;
-    } else if (key == "window") {
-      need(iarg, 2);
-      const double za = number(iarg + 1), zb = number(iarg + 2);
-      if (!(za < zb))
-        error->all(FLERR, "compute stereo/profile: window za = {} must be < zb = {}", za, zb);
-      settings_.window_lo = za;
-      settings_.window_hi = zb;
-      iarg += 3;
-    } else if (key == "lateral") {
-      need(iarg, 1);
-      settings_.lateral_width = positive("lateral", number(iarg + 1));
-      iarg += 2;
-    } else if (key == "top_fraction") {
-      need(iarg, 1);
-      const double f = number(iarg + 1);
-      if (!(f > 0.0 && f <= 1.0))
-        error->all(FLERR, "compute stereo/profile: top_fraction = {} must be in (0, 1]", f);
-      settings_.top_fraction = f;
-      iarg += 2;
-    } else if (key == "bulk") {
-      need(iarg, 1);
-      settings_.bulk_height = positive("bulk", number(iarg + 1));
-      iarg += 2;
-    } else if (key == "column") {
-      need(iarg, 1);
-      settings_.column_width = positive("column", number(iarg + 1));
-      iarg += 2;
-    } else if (key == "wall_band") {
-      need(iarg, 1);
-      settings_.wall_band = positive("wall_band", number(iarg + 1));
-      iarg += 2;
-    } else if (key == "wall_factor") {
-      need(iarg, 1);
-      settings_.wall_factor = positive("wall_factor", number(iarg + 1));
-      iarg += 2;
-    } else {
-      error->all(FLERR, "compute stereo/profile: unknown keyword '{}'", key);
-    }
-  }
+  planes_.n = tapmc::defaults::kProfilePlanes;
+  const bool planes_given = parse_keywords(narg, arg);
 
   if (!fixed_radius_ && !atom->radius_flag)
     error->all(FLERR,
@@ -143,22 +59,24 @@ ComputeStereoProfile::ComputeStereoProfile(LAMMPS *lmp, int narg, char **arg) :
 
   // Vertical cuts are perpendicular to the profile axis, or to x when the profile is vertical.
   settings_.transverse_axis = axis_ == 2 ? 0 : axis_;
-  tapmc::guarded(lmp, "compute stereo/profile", true, [&] { stereo::validate(settings_); });
 
   // Default plane range, fixed when the compute is defined (so that array rows keep their
   // positions for time averages): floor .. box zhi along z, the box along x or y.
   if (!planes_given) {
-    plane_lo = axis_ == 2 ? settings_.floor : domain->boxlo[axis_];
-    plane_hi = domain->boxhi[axis_];
-    if (!(plane_lo < plane_hi))
+    planes_.lo = axis_ == 2 ? settings_.floor : domain->boxlo[axis_];
+    planes_.hi = domain->boxhi[axis_];
+    if (!(planes_.lo < planes_.hi))
       error->all(FLERR,
                  "compute stereo/profile: default planes {} .. {} are empty (floor above the box "
                  "top); give planes lo hi n",
-                 plane_lo, plane_hi);
+                 planes_.lo, planes_.hi);
   }
-  planes_.lo = plane_lo;
-  planes_.hi = plane_hi;
-  planes_.n = nplanes;
+  // The kernel's one validation of every setting (ranges named there).
+  tapmc::guarded(lmp, "compute stereo/profile", true, [&] {
+    stereo::validate(settings_);
+    stereo::validate(planes_);
+  });
+  const int nplanes = planes_.n;
 
   vector_flag = 1;
   size_vector = kVectorSize;
@@ -173,6 +91,51 @@ ComputeStereoProfile::ComputeStereoProfile(LAMMPS *lmp, int narg, char **arg) :
   memory->create(array, nplanes, kArrayColumns, "stereo/profile:array");
   for (int k = 0; k < nplanes; ++k)
     for (int c = 0; c < kArrayColumns; ++c) array[k][c] = 0.0;
+}
+
+// One table of keywords: name, number of values, what the values set. Returns whether
+// 'planes' was given. Ranges are checked once, by the kernel (stereo::validate).
+bool ComputeStereoProfile::parse_keywords(int narg, char **arg)
+{
+  using tapmc::Keyword;
+  auto number = [&](const char *text) { return utils::numeric(FLERR, text, false, lmp); };
+  bool planes_given = false;
+  const Keyword table[] = {
+      {"floor", 1, [&](char **v) { settings_.floor = number(v[0]); }},
+      {"radius", 1,
+       [&](char **v) {
+         fixed_radius_ = number(v[0]);
+         if (!(fixed_radius_ > 0.0))
+           error->all(FLERR, "compute stereo/profile: radius = {} must be > 0", fixed_radius_);
+       }},
+      {"axis", 1,
+       [&](char **v) {
+         const std::string axis = v[0];
+         if (axis != "x" && axis != "y" && axis != "z")
+           error->all(FLERR, "compute stereo/profile: axis = {} must be x, y or z", axis);
+         axis_ = axis[0] - 'x';
+       }},
+      {"planes", 3,
+       [&](char **v) {
+         planes_.lo = number(v[0]);
+         planes_.hi = number(v[1]);
+         planes_.n = utils::inumeric(FLERR, v[2], false, lmp);
+         planes_given = true;
+       }},
+      {"window", 2,
+       [&](char **v) {
+         settings_.window_lo = number(v[0]);
+         settings_.window_hi = number(v[1]);
+       }},
+      {"lateral", 1, [&](char **v) { settings_.lateral_width = number(v[0]); }},
+      {"top_fraction", 1, [&](char **v) { settings_.top_fraction = number(v[0]); }},
+      {"bulk", 1, [&](char **v) { settings_.bulk_height = number(v[0]); }},
+      {"column", 1, [&](char **v) { settings_.column_width = number(v[0]); }},
+      {"wall_band", 1, [&](char **v) { settings_.wall_band = number(v[0]); }},
+      {"wall_factor", 1, [&](char **v) { settings_.wall_factor = number(v[0]); }},
+  };
+  tapmc::parse_keywords(lmp, "compute stereo/profile", table, 3, narg, arg);
+  return planes_given;
 }
 
 ComputeStereoProfile::~ComputeStereoProfile()

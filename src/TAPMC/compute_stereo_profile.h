@@ -32,6 +32,7 @@ class ComputeStereoProfile : public Compute {
   std::vector<int> selected_; // owned atoms of the group, rebuilt per invocation
   std::vector<double> buffer_;
 
+  bool parse_keywords(int narg, char **arg);
   void update_mean_radius();
   bool group_is_empty();
   void warn_below_floor();

@@ -76,54 +76,68 @@ SubDomain my_subdomain(Domain *domain, Comm *comm)
   return s;
 }
 
-}  // namespace
+// The command's arguments: N, type, R, seed and the optional keywords.
+struct Request {
+  bigint n_spheres = 0;
+  int type = 0;
+  double radius = 0.0;
+  std::int64_t seed = 0;
+  Options opt;
+};
 
-void CreatePacking::command(int narg, char **arg)
+// Where the spheres go: the kernel's domain and what the messages and the report name.
+struct Plan {
+  tapmc::DepositionDomain dd;
+  bool walls[2] = {false, false};
+  bool top_fixed = false;
+  std::string top_name;  // "" for an open top
+  std::string where;     // "the box" or "region 'ID'"
+  double r_min = 0.0, r_max = 0.0;
+};
+
+void check_preconditions(LAMMPS *lmp, int narg)
 {
   const char *usage = "create_packing N type R seed [floor z0] [region ID] "
                       "[walls x y|x|y|none] [dispersity W] [density rho]";
-  if (!domain->box_exist)
+  Error *error = lmp->error;
+  if (!lmp->domain->box_exist)
     error->all(FLERR, "create_packing: no simulation box yet; define one with create_box or "
                "read_data first");
   if (narg < 4)
     error->all(FLERR, "create_packing: expected '{}', got {} argument(s)", usage, narg);
-  if (!atom->radius_flag || !atom->rmass_flag)
+  if (!lmp->atom->radius_flag || !lmp->atom->rmass_flag)
     error->all(FLERR, "create_packing: the atom style has no per-atom radius and mass; use "
                "atom_style sphere");
-  if (domain->dimension != 3)
+  if (lmp->domain->dimension != 3)
     error->all(FLERR, "create_packing: needs a 3d simulation (dimension 3)");
   tapmc::require_box_with_floor(lmp, "create_packing");
+}
 
-  const bigint n_spheres = utils::bnumeric(FLERR, arg[0], false, lmp);
-  if (n_spheres <= 0 || n_spheres > std::numeric_limits<int>::max() - 1)
-    error->all(FLERR, "create_packing: N = {} must be a number of spheres in [1, 2^31 - 2]",
-               arg[0]);
-  const int type = utils::inumeric(FLERR, arg[1], false, lmp);
-  if (type < 1 || type > atom->ntypes)
-    error->all(FLERR, "create_packing: type = {} must be an atom type in [1, {}]", arg[1],
-               atom->ntypes);
-  const double radius = utils::numeric(FLERR, arg[2], false, lmp);
-  if (!(radius > 0.0) || !std::isfinite(radius))
-    error->all(FLERR, "create_packing: R = {} must be a positive sphere radius", arg[2]);
-  const std::int64_t seed = tapmc::parse_seed(lmp, "create_packing", "seed", arg[3]);
+// 'walls' takes one or two of x, y, or none: returns how many values it used.
+int parse_walls(LAMMPS *lmp, Options &opt, int iarg, int narg, char **arg)
+{
+  opt.walls_given = true;
+  int used = 0;
+  for (int k = iarg + 1; k < narg && k <= iarg + 2; ++k) {
+    const std::string v = arg[k];
+    if (v == "x") opt.walls_x = true;
+    else if (v == "y") opt.walls_y = true;
+    else if (v == "none" && used == 0) { ++used; break; }
+    else break;
+    ++used;
+  }
+  if (used == 0) lmp->error->all(FLERR, "create_packing: walls needs 'x', 'y', 'x y' or 'none'");
+  return used;
+}
 
+Options parse_options(LAMMPS *lmp, int narg, char **arg)
+{
+  Error *error = lmp->error;
   Options opt;
   for (int iarg = 4; iarg < narg;) {
     const std::string key = arg[iarg];
     if (key == "walls") {
-      opt.walls_given = true;
-      int used = 0;
-      for (int k = iarg + 1; k < narg && k <= iarg + 2; ++k) {
-        const std::string v = arg[k];
-        if (v == "x") opt.walls_x = true;
-        else if (v == "y") opt.walls_y = true;
-        else if (v == "none" && used == 0) { ++used; break; }
-        else break;
-        ++used;
-      }
-      if (used == 0)
-        error->all(FLERR, "create_packing: walls needs 'x', 'y', 'x y' or 'none'");
-      iarg += 1 + used;
+      iarg += 1 + parse_walls(lmp, opt, iarg, narg, arg);
       continue;
     }
     if (iarg + 1 >= narg) error->all(FLERR, "create_packing: keyword '{}' needs a value", key);
@@ -148,13 +162,42 @@ void CreatePacking::command(int narg, char **arg)
     }
     iarg += 2;
   }
+  return opt;
+}
 
-  // ---- the deposition domain: x-y extent, side conditions, floor and top ----
+Request parse_request(LAMMPS *lmp, int narg, char **arg)
+{
+  check_preconditions(lmp, narg);
+  Error *error = lmp->error;
+  Request req;
+  req.n_spheres = utils::bnumeric(FLERR, arg[0], false, lmp);
+  if (req.n_spheres <= 0 || req.n_spheres > std::numeric_limits<int>::max() - 1)
+    error->all(FLERR, "create_packing: N = {} must be a number of spheres in [1, 2^31 - 2]",
+               arg[0]);
+  req.type = utils::inumeric(FLERR, arg[1], false, lmp);
+  if (req.type < 1 || req.type > lmp->atom->ntypes)
+    error->all(FLERR, "create_packing: type = {} must be an atom type in [1, {}]", arg[1],
+               lmp->atom->ntypes);
+  req.radius = utils::numeric(FLERR, arg[2], false, lmp);
+  if (!(req.radius > 0.0) || !std::isfinite(req.radius))
+    error->all(FLERR, "create_packing: R = {} must be a positive sphere radius", arg[2]);
+  req.seed = tapmc::parse_seed(lmp, "create_packing", "seed", arg[3]);
+  req.opt = parse_options(lmp, narg, arg);
+  return req;
+}
+
+// The x-y extent (box, clipped to the region), side conditions, floor and top.
+Plan plan_domain(LAMMPS *lmp, const Request &req)
+{
+  Domain *domain = lmp->domain;
+  Error *error = lmp->error;
+  const Options &opt = req.opt;
+  Plan plan;
   double lo[3] = {domain->boxlo[0], domain->boxlo[1], domain->boxlo[2]};
   double hi[3] = {domain->boxhi[0], domain->boxhi[1], domain->boxhi[2]};
-  const bool top_fixed = domain->boundary[2][1] == kBoundaryFixed;
-  double z_top = top_fixed ? domain->boxhi[2] : std::numeric_limits<double>::infinity();
-  std::string top_name = top_fixed ? "the fixed box top" : "";
+  plan.top_fixed = domain->boundary[2][1] == kBoundaryFixed;
+  double z_top = plan.top_fixed ? domain->boxhi[2] : std::numeric_limits<double>::infinity();
+  plan.top_name = plan.top_fixed ? "the fixed box top" : "";
   bool spans[2] = {true, true};
   if (!opt.region_id.empty()) {
     Region *region = tapmc::compat::find_region(domain, opt.region_id);
@@ -171,16 +214,15 @@ void CreatePacking::command(int narg, char **arg)
     }
     if (rhi[2] < z_top) {
       z_top = rhi[2];
-      top_name = "the top of region '" + opt.region_id + "'";
+      plan.top_name = "the top of region '" + opt.region_id + "'";
     }
   }
   const bool periodic_box[2] = {domain->xperiodic != 0, domain->yperiodic != 0};
-  bool walls[2];
   for (int d = 0; d < 2; ++d) {
     const bool can_wrap = periodic_box[d] && spans[d];
     const bool asked = d == 0 ? opt.walls_x : opt.walls_y;
-    walls[d] = opt.walls_given ? asked : !can_wrap;
-    if (!walls[d] && !can_wrap)
+    plan.walls[d] = opt.walls_given ? asked : !can_wrap;
+    if (!plan.walls[d] && !can_wrap)
       error->all(FLERR, "create_packing: walls: the {} direction needs walls (the box is not "
                  "periodic in {}, or the region is narrower than the box)", "xy"[d], "xy"[d]);
   }
@@ -189,63 +231,71 @@ void CreatePacking::command(int narg, char **arg)
     error->all(FLERR, "create_packing: floor = {} is below the box bottom {}", z_floor,
                domain->boxlo[2]);
   if (!(z_top > z_floor))
-    error->all(FLERR, "create_packing: floor = {} is not below {} (z = {})", z_floor, top_name,
-               z_top);
+    error->all(FLERR, "create_packing: floor = {} is not below {} (z = {})", z_floor,
+               plan.top_name, z_top);
 
-  const double r_min = radius * (1.0 - opt.dispersity), r_max = radius * (1.0 + opt.dispersity);
-  tapmc::DepositionDomain dd;
+  plan.r_min = req.radius * (1.0 - opt.dispersity);
+  plan.r_max = req.radius * (1.0 + opt.dispersity);
+  tapmc::DepositionDomain &dd = plan.dd;
   dd.xlo = lo[0];
   dd.xhi = hi[0];
   dd.ylo = lo[1];
   dd.yhi = hi[1];
-  dd.periodic_x = !walls[0];
-  dd.periodic_y = !walls[1];
+  dd.periodic_x = !plan.walls[0];
+  dd.periodic_y = !plan.walls[1];
   dd.z_floor = z_floor;
   dd.z_top = z_top;
-  const std::string where =
-      opt.region_id.empty() ? std::string("the box") : "region '" + opt.region_id + "'";
+  plan.where = opt.region_id.empty() ? std::string("the box") : "region '" + opt.region_id + "'";
+  return plan;
+}
+
+// Refuses a domain narrower than one sphere, or (cheaply, before depositing) one that could not
+// hold the spheres even at random close packing.
+void check_room(LAMMPS *lmp, const Request &req, const Plan &plan)
+{
+  const tapmc::DepositionDomain &dd = plan.dd;
+  const double width[2] = {dd.xhi - dd.xlo, dd.yhi - dd.ylo};
   for (int d = 0; d < 2; ++d)
-    if (hi[d] - lo[d] < 2.0 * r_max)
-      error->all(FLERR, "create_packing: {} is {} wide in {}, less than one sphere diameter {}; "
-                 "it cannot hold the spheres", where, hi[d] - lo[d], "xy"[d], 2.0 * r_max);
-  // Cheap early refusal: even at random close packing the spheres would not fit.
-  if (std::isfinite(z_top)) {
-    const double mean_r3 = radius * radius * radius * (1.0 + opt.dispersity * opt.dispersity);
-    const double packing = tapmc::defaults::kRandomClosePacking;
-    const double need = n_spheres * (4.0 / 3.0) * tapmc::kPi * mean_r3 / packing;
-    const double room = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (z_top - z_floor);
-    if (need > room)
-      error->all(FLERR, "create_packing: {} cannot hold N = {} spheres of radius {}: they need "
-                 "at least {:.6g} of volume (at packing fraction {}), {} offers {:.6g} between "
-                 "the floor z = {} and {} z = {}", where, n_spheres, radius, need, packing, where,
-                 room, z_floor, top_name, z_top);
-  }
+    if (width[d] < 2.0 * plan.r_max)
+      lmp->error->all(FLERR, "create_packing: {} is {} wide in {}, less than one sphere diameter "
+                      "{}; it cannot hold the spheres", plan.where, width[d], "xy"[d],
+                      2.0 * plan.r_max);
+  if (!std::isfinite(dd.z_top)) return;
+  const double radius = req.radius, w = req.opt.dispersity;
+  const double mean_r3 = radius * radius * radius * (1.0 + w * w);
+  const double packing = tapmc::defaults::kRandomClosePacking;
+  const double need = req.n_spheres * (4.0 / 3.0) * tapmc::kPi * mean_r3 / packing;
+  const double room = width[0] * width[1] * (dd.z_top - dd.z_floor);
+  if (need > room)
+    lmp->error->all(FLERR, "create_packing: {} cannot hold N = {} spheres of radius {}: they need "
+                    "at least {:.6g} of volume (at packing fraction {}), {} offers {:.6g} between "
+                    "the floor z = {} and {} z = {}", plan.where, req.n_spheres, radius, need,
+                    packing, plan.where, room, dd.z_floor, plan.top_name, dd.z_top);
+}
 
-  // ---- deposition: the same on every rank ----
-  MPI_Barrier(world);
-  const double t_start = MPI_Wtime();
-  tapmc::Packing packing;
-  const std::string style = "create_packing (" + where + ": " +
-                            (top_name.empty() ? std::string("open top") : top_name) + ")";
-  tapmc::guarded(lmp, style.c_str(), true, [&] {
-    packing = tapmc::deposit_packing(n_spheres, tapmc::RadiusDistribution{r_min, r_max}, dd,
-                                     static_cast<std::uint64_t>(seed));
-  });
-  const double t_deposit = MPI_Wtime() - t_start;
+// The highest centre; a shrink-wrapped top below it grows to hold the packing (returns whether
+// the box changed).
+bool grow_open_top(LAMMPS *lmp, const Plan &plan, const tapmc::Packing &packing, double &zmax)
+{
+  Domain *domain = lmp->domain;
+  zmax = -std::numeric_limits<double>::infinity();
+  const std::size_t n = packing.radius.size();
+  for (std::size_t i = 0; i < n; ++i) zmax = std::max(zmax, packing.xyz[3 * i + 2]);
+  if (plan.top_fixed || zmax < domain->boxhi[2]) return false;
+  domain->boxhi[2] = zmax + plan.r_max;
+  domain->set_initial_box();
+  domain->set_global_box();
+  domain->set_local_box();
+  return true;
+}
 
-  // ---- a shrink-wrapped top grows to hold the packing ----
-  double zmax = -std::numeric_limits<double>::infinity();
-  for (bigint i = 0; i < n_spheres; ++i) zmax = std::max(zmax, packing.xyz[3 * i + 2]);
-  bool box_changed = false;
-  if (!top_fixed && zmax >= domain->boxhi[2]) {
-    domain->boxhi[2] = zmax + r_max;
-    domain->set_initial_box();
-    domain->set_global_box();
-    domain->set_local_box();
-    box_changed = true;
-  }
-
-  // ---- create this rank's atoms (created atoms overwrite ghosts, as in create_atoms) ----
+// This rank's atoms (created atoms overwrite ghosts, as in create_atoms); tags follow the
+// deposition order after the largest existing tag.
+void create_own_atoms(LAMMPS *lmp, const Request &req, const tapmc::Packing &packing,
+                      bool box_changed)
+{
+  Atom *atom = lmp->atom;
+  MPI_Comm world = lmp->world;
   atom->nghost = 0;
   atom->avec->clear_bonus();
   const bigint natoms_before = atom->natoms;
@@ -255,47 +305,50 @@ void CreatePacking::command(int narg, char **arg)
     for (int i = 0; i < atom->nlocal; ++i) max_tag = std::max(max_tag, atom->tag[i]);
   MPI_Allreduce(&max_tag, &max_tag_all, 1, MPI_LMP_TAGINT, MPI_MAX, world);
 
-  const SubDomain mine = my_subdomain(domain, comm);
-  for (bigint i = 0; i < n_spheres; ++i) {
+  const SubDomain mine = my_subdomain(lmp->domain, lmp->comm);
+  for (bigint i = 0; i < req.n_spheres; ++i) {
     double x[3] = {packing.xyz[3 * i], packing.xyz[3 * i + 1], packing.xyz[3 * i + 2]};
     if (!mine.owns(x)) continue;
-    atom->avec->create_atom(type, x);
+    atom->avec->create_atom(req.type, x);
     const int m = atom->nlocal - 1;
     const double r = packing.radius[i];
     atom->radius[m] = r;
-    atom->rmass[m] = opt.density * (4.0 / 3.0) * tapmc::kPi * r * r * r;
+    atom->rmass[m] = req.opt.density * (4.0 / 3.0) * tapmc::kPi * r * r * r;
     if (atom->tag_enable) atom->tag[m] = max_tag_all + static_cast<tagint>(i) + 1;
   }
   atom->data_fix_compute_variable(nlocal_before, atom->nlocal);
 
   bigint nlocal = atom->nlocal;
   MPI_Allreduce(&nlocal, &atom->natoms, 1, MPI_LMP_BIGINT, MPI_SUM, world);
-  if (atom->natoms != natoms_before + n_spheres)
-    error->all(FLERR, "create_packing: {} atoms exist after creating {} spheres on top of {} "
-               "(every sphere must have exactly one owner)", atom->natoms, n_spheres,
-               natoms_before);
+  if (atom->natoms != natoms_before + req.n_spheres)
+    lmp->error->all(FLERR, "create_packing: {} atoms exist after creating {} spheres on top of "
+                    "{} (every sphere must have exactly one owner)", atom->natoms,
+                    req.n_spheres, natoms_before);
   if (atom->tag_enable) atom->tag_check();
   if (atom->map_style != Atom::MAP_NONE) {
     atom->map_init();
     atom->map_set();
   }
   // Atoms that existed before a box change may now belong to another rank.
-  if (box_changed && natoms_before > 0 && comm->nprocs > 1) {
+  if (box_changed && natoms_before > 0 && lmp->comm->nprocs > 1) {
     Irregular irregular(lmp);
     irregular.migrate_atoms(1);
   }
+}
 
-  // ---- report ----
-  if (comm->me == 0) {
+void report(LAMMPS *lmp, const Request &req, const Plan &plan, const tapmc::Packing &packing,
+            double zmax, double t_deposit)
+{
+  if (lmp->comm->me == 0) {
     double z0 = 0.0, z1 = 0.0;
     std::string phi_text = "bulk window too thin for a packing fraction";
     tapmc::guarded(lmp, "create_packing", false, [&] {
-      tapmc::bulk_window(packing, dd, tapmc::defaults::kDepositionBulkMarginOverRadius * radius,
-                         z0, z1);
-      if (z1 - z0 > 2.0 * radius)
+      tapmc::bulk_window(packing, plan.dd,
+                         tapmc::defaults::kDepositionBulkMarginOverRadius * req.radius, z0, z1);
+      if (z1 - z0 > 2.0 * req.radius)
         phi_text = fmt::format("bulk packing fraction {:.4f} (exact stereology, {:.4g} <= z <= "
-                               "{:.4g})", tapmc::slab_volume_fraction(packing, dd, z0, z1), z0,
-                               z1);
+                               "{:.4g})", tapmc::slab_volume_fraction(packing, plan.dd, z0, z1),
+                               z0, z1);
     });
     utils::logmesg(lmp,
                    "Created {} spheres by sequential deposition (Jullien-Meakin), sides: x {}, "
@@ -304,12 +357,42 @@ void CreatePacking::command(int narg, char **arg)
                    "  highest centre z = {:.6g}; path segments {}, unstable equilibria left {}, "
                    "re-drops {}, unresolved {}\n"
                    "  create_packing CPU = {:.3f} seconds\n",
-                   n_spheres, walls[0] ? "walls" : "periodic", walls[1] ? "walls" : "periodic",
-                   z_floor, phi_text, zmax, packing.stats.segments, packing.stats.perturbations,
-                   packing.stats.redrops, packing.stats.unresolved, t_deposit);
+                   req.n_spheres, plan.walls[0] ? "walls" : "periodic",
+                   plan.walls[1] ? "walls" : "periodic", plan.dd.z_floor, phi_text, zmax,
+                   packing.stats.segments, packing.stats.perturbations, packing.stats.redrops,
+                   packing.stats.unresolved, t_deposit);
   }
-  if (packing.stats.unresolved > 0 && comm->me == 0)
-    error->warning(FLERR, "create_packing: {} spheres reached the step cap on every drop and "
-                   "were left where they stopped (non-overlapping, stability not proven)",
-                   packing.stats.unresolved);
+  if (packing.stats.unresolved > 0 && lmp->comm->me == 0)
+    lmp->error->warning(FLERR, "create_packing: {} spheres reached the step cap on every drop "
+                        "and were left where they stopped (non-overlapping, stability not "
+                        "proven)", packing.stats.unresolved);
+}
+
+}  // namespace
+
+// parse -> plan the deposition domain -> deposit (the same on every rank) -> grow an open top
+// -> create this rank's atoms -> report.
+void CreatePacking::command(int narg, char **arg)
+{
+  const Request req = parse_request(lmp, narg, arg);
+  const Plan plan = plan_domain(lmp, req);
+  check_room(lmp, req, plan);
+
+  MPI_Barrier(world);
+  const double t_start = MPI_Wtime();
+  tapmc::Packing packing;
+  const std::string style = "create_packing (" + plan.where + ": " +
+                            (plan.top_name.empty() ? std::string("open top") : plan.top_name) +
+                            ")";
+  tapmc::guarded(lmp, style.c_str(), true, [&] {
+    packing = tapmc::deposit_packing(req.n_spheres,
+                                     tapmc::RadiusDistribution{plan.r_min, plan.r_max}, plan.dd,
+                                     static_cast<std::uint64_t>(req.seed));
+  });
+  const double t_deposit = MPI_Wtime() - t_start;
+
+  double zmax = 0.0;
+  const bool box_changed = grow_open_top(lmp, plan, packing, zmax);
+  create_own_atoms(lmp, req, packing, box_changed);
+  report(lmp, req, plan, packing, zmax, t_deposit);
 }

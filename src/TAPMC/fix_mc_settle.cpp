@@ -10,6 +10,7 @@
 
 #include "fix_tapdilate.h"
 #include "lammps_box.h"
+#include "lammps_keywords.h"
 #include "lammps_relocate.h"
 #include "lammps_support.h"
 #include "tapmc_defaults.h"
@@ -45,7 +46,8 @@ FixMCSettle::FixMCSettle(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), seed(0), d_max(0.0), theta0(tapmc::defaults::kThetaWidth),
     eta(tapmc::defaults::kSettleEta), check_interval(0),
     max_sweeps(tapmc::defaults::kSettleMaxSweeps), z_floor(domain->boxlo[2]), fixed_radius(0.0),
-    walls_given{false, false}, wall_pos{{0, 0}, {0, 0}}, sweep_order(false), last_sweeps(0),
+    walls_given{false, false}, wall_pos{{0, 0}, {0, 0}}, sweep_order(false), dmax_given(false),
+    last_sweeps(0),
     last_acceptance(0), last_mean_z(0), last_hit_cap(0), last_trials(0), last_mean_z0(0),
     settler(std::make_unique<tapmc::Settler>()), n_movable(0)
 {
@@ -54,79 +56,12 @@ FixMCSettle::FixMCSettle(LAMMPS *lmp, int narg, char **arg) :
                " got {} argument(s)", narg);
   seed = tapmc::parse_seed(lmp, "fix mc/settle", "seed", arg[3]);
 
-  for (int iarg = 4; iarg < narg;) {
-    const std::string key = arg[iarg];
-    auto need = [&](int n) {
-      if (iarg + n >= narg)
-        error->all(FLERR, "fix mc/settle: keyword '{}' needs {} value(s)", key, n);
-    };
-    if (key == "dmax") {
-      need(1);
-      d_max = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-      if (!(d_max > 0.0))
-        error->all(FLERR, "fix mc/settle: dmax = {} must be > 0 (a length)", arg[iarg + 1]);
-      iarg += 2;
-    } else if (key == "theta0") {
-      need(1);
-      theta0 = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-      if (!(theta0 > 0.0 && theta0 <= 0.5 * M_PI))
-        error->all(FLERR, "fix mc/settle: theta0 = {} must be in (0, pi/2] (radians)",
-                   arg[iarg + 1]);
-      iarg += 2;
-    } else if (key == "eta") {
-      need(1);
-      eta = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-      if (!(eta > 0.0 && eta < 1.0))
-        error->all(FLERR, "fix mc/settle: eta = {} must be in (0, 1) (relative change of <Z>)",
-                   arg[iarg + 1]);
-      iarg += 2;
-    } else if (key == "check") {
-      need(1);
-      check_interval = utils::bnumeric(FLERR, arg[iarg + 1], false, lmp);
-      if (check_interval < 0)
-        error->all(FLERR, "fix mc/settle: check = {} must be >= 0 trial moves (0 = one sweep)",
-                   arg[iarg + 1]);
-      iarg += 2;
-    } else if (key == "maxsweeps") {
-      need(1);
-      max_sweeps = utils::bnumeric(FLERR, arg[iarg + 1], false, lmp);
-      if (max_sweeps < 1)
-        error->all(FLERR, "fix mc/settle: maxsweeps = {} must be >= 1", arg[iarg + 1]);
-      iarg += 2;
-    } else if (key == "floor") {
-      need(1);
-      z_floor = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-      iarg += 2;
-    } else if (key == "diameter") {
-      need(1);
-      const double d = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-      if (!(d > 0.0))
-        error->all(FLERR, "fix mc/settle: diameter = {} must be > 0", arg[iarg + 1]);
-      fixed_radius = 0.5 * d;
-      iarg += 2;
-    } else if (key == "xwalls" || key == "ywalls") {
-      need(2);
-      const int dim = key[0] == 'x' ? 0 : 1;
-      wall_pos[dim][0] = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-      wall_pos[dim][1] = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
-      if (!(wall_pos[dim][0] < wall_pos[dim][1]))
-        error->all(FLERR, "fix mc/settle: {} lo = {} must be below hi = {}", key, arg[iarg + 1],
-                   arg[iarg + 2]);
-      walls_given[dim] = true;
-      iarg += 3;
-    } else if (key == "order") {
-      need(1);
-      const std::string v = arg[iarg + 1];
-      if (v == "random") sweep_order = false;
-      else if (v == "sweep") sweep_order = true;
-      else
-        error->all(FLERR, "fix mc/settle: order = {} must be 'random' (the paper) or 'sweep'", v);
-      iarg += 2;
-    } else {
-      error->all(FLERR, "fix mc/settle: unknown keyword '{}' (allowed: dmax, theta0, eta, check,"
-                 " maxsweeps, floor, diameter, xwalls, ywalls, order)", key);
-    }
-  }
+  parse_keywords(narg, arg);
+  // The kernel's one validation; without 'dmax' the step comes from the radii at each tap
+  // (kMaxStepOverRadius times the smallest radius, > 0 once the radii are checked).
+  const double step = dmax_given ? d_max : tapmc::defaults::kMaxStepOverRadius;
+  tapmc::guarded(lmp, "fix mc/settle", true,
+                 [&] { tapmc::Settler::validate(make_params(step, 1)); });
 
   tapmc::require_box_with_floor(lmp, "fix mc/settle");
   for (int dim = 0; dim < 2; ++dim) {
@@ -160,6 +95,71 @@ FixMCSettle::FixMCSettle(LAMMPS *lmp, int narg, char **arg) :
 }
 
 FixMCSettle::~FixMCSettle() = default;
+
+// One table of keywords: name, number of values, what the values set. Ranges are checked once,
+// by the kernel (Settler::validate), after all keywords are read.
+void FixMCSettle::parse_keywords(int narg, char **arg)
+{
+  using tapmc::Keyword;
+  auto number = [&](const char *text) { return utils::numeric(FLERR, text, false, lmp); };
+  auto integer = [&](const char *text) { return utils::bnumeric(FLERR, text, false, lmp); };
+  auto walls = [&](int dim) {
+    return [this, dim, number](char **v) {
+      wall_pos[dim][0] = number(v[0]);
+      wall_pos[dim][1] = number(v[1]);
+      if (!(wall_pos[dim][0] < wall_pos[dim][1]))
+        error->all(FLERR, "fix mc/settle: {}walls lo = {} must be below hi = {}", kAxisName[dim],
+                   v[0], v[1]);
+      walls_given[dim] = true;
+    };
+  };
+  const Keyword table[] = {
+      {"dmax", 1,
+       [&](char **v) {
+         d_max = number(v[0]);
+         dmax_given = true;
+       }},
+      {"theta0", 1, [&](char **v) { theta0 = number(v[0]); }},
+      {"eta", 1, [&](char **v) { eta = number(v[0]); }},
+      {"check", 1, [&](char **v) { check_interval = integer(v[0]); }},
+      {"maxsweeps", 1, [&](char **v) { max_sweeps = integer(v[0]); }},
+      {"floor", 1, [&](char **v) { z_floor = number(v[0]); }},
+      {"diameter", 1,
+       [&](char **v) {
+         const double d = number(v[0]);
+         if (!(d > 0.0))
+           error->all(FLERR, "fix mc/settle: diameter = {} must be > 0", v[0]);
+         fixed_radius = 0.5 * d;
+       }},
+      {"xwalls", 2, walls(0)},
+      {"ywalls", 2, walls(1)},
+      {"order", 1,
+       [&](char **v) {
+         const std::string order = v[0];
+         if (order != "random" && order != "sweep")
+           error->all(FLERR, "fix mc/settle: order = {} must be 'random' (the paper) or 'sweep'",
+                      order);
+         sweep_order = order == "sweep";
+       }},
+  };
+  tapmc::parse_keywords(lmp, "fix mc/settle", table, 4, narg, arg);
+}
+
+// The kernel's parameters for a redeposition with step bound `step` of `movable` spheres.
+tapmc::SettleParams FixMCSettle::make_params(double step, long movable) const
+{
+  tapmc::SettleParams params;
+  params.d_max = step;
+  params.theta0 = theta0;
+  params.eta = eta;
+  params.check_interval = check_interval;
+  params.max_checks = tapmc::Settler::max_checks_for_sweeps(max_sweeps, check_interval, movable);
+  params.contact_tol = tapmc::defaults::kContactTolerance;
+  params.seed = static_cast<std::uint64_t>(seed);
+  params.stream = static_cast<std::uint64_t>(update->ntimestep);
+  params.order = sweep_order ? tapmc::PickOrder::Sweep : tapmc::PickOrder::Random;
+  return params;
+}
 
 int FixMCSettle::setmask()
 {
@@ -378,17 +378,7 @@ void FixMCSettle::pre_exchange()
   if (!tap_step) return;
 
   gather_system();
-  tapmc::SettleParams params;
-  params.d_max = effective_d_max();
-  params.theta0 = theta0;
-  params.eta = eta;
-  params.check_interval = check_interval;
-  const long interval = check_interval > 0 ? check_interval : n_movable;
-  params.max_checks = std::max(1L, (max_sweeps * n_movable + interval - 1) / interval);
-  params.contact_tol = tapmc::defaults::kContactTolerance;
-  params.seed = static_cast<std::uint64_t>(seed);
-  params.stream = static_cast<std::uint64_t>(update->ntimestep);
-  params.order = sweep_order ? tapmc::PickOrder::Sweep : tapmc::PickOrder::Random;
+  const tapmc::SettleParams params = make_params(effective_d_max(), n_movable);
 
   tapmc::SettleResult result;
   image_shift.assign(2 * radius.size(), 0);

@@ -14,6 +14,7 @@
 namespace tapmc {
 class Settler;
 struct SettleBox;
+struct SettleParams;
 }
 
 namespace LAMMPS_NS {
@@ -44,6 +45,7 @@ class FixMCSettle : public Fix {
   bool walls_given[2];
   double wall_pos[2][2];      // [dim][lo/hi]
   bool sweep_order;
+  bool dmax_given;
 
   // per-tap diagnostics (global vector)
   double last_sweeps, last_acceptance, last_mean_z, last_hit_cap, last_trials, last_mean_z0;
@@ -63,6 +65,8 @@ class FixMCSettle : public Fix {
   // their tap steps only (none: every step).
   std::vector<FixTapDilate *> tappers;
 
+  void parse_keywords(int narg, char **arg);
+  tapmc::SettleParams make_params(double step, long movable) const;
   void check_walls_inside_fixed_box();
   void schedule_next_settle();
   void gather_system();

@@ -3,6 +3,7 @@
 #include "fix_tapdilate.h"
 
 #include "lammps_box.h"
+#include "lammps_keywords.h"
 #include "lammps_relocate.h"
 #include "lammps_support.h"
 #include "tapmc_defaults.h"
@@ -43,20 +44,16 @@ FixTapDilate::FixTapDilate(LAMMPS *lmp, int narg, char **arg) :
                  tapmc::defaults::kMaxTapEps, tapmc::defaults::kMaxTapEps);
   }
 
-  for (int iarg = 4; iarg < narg; iarg += 2) {
-    const std::string key = arg[iarg];
-    if (iarg + 1 >= narg)
-      error->all(FLERR, "fix tapdilate: keyword '{}' needs a value", key);
-    if (key == "every") {
-      tap_every = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
-      if (tap_every < 1)
-        error->all(FLERR, "fix tapdilate: every = {} must be an integer >= 1", arg[iarg + 1]);
-    } else if (key == "floor") {
-      z_floor = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-    } else {
-      error->all(FLERR, "fix tapdilate: unknown keyword '{}' (allowed: every, floor)", key);
-    }
-  }
+  const tapmc::Keyword table[] = {
+      {"every", 1,
+       [&](char **v) {
+         tap_every = utils::inumeric(FLERR, v[0], false, lmp);
+         if (tap_every < 1)
+           error->all(FLERR, "fix tapdilate: every = {} must be an integer >= 1", v[0]);
+       }},
+      {"floor", 1, [&](char **v) { z_floor = utils::numeric(FLERR, v[0], false, lmp); }},
+  };
+  tapmc::parse_keywords(lmp, "fix tapdilate", table, 4, narg, arg);
 
   tapmc::require_box_with_floor(lmp, "fix tapdilate");
 

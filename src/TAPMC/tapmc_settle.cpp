@@ -46,6 +46,12 @@ void check_contact_tol(double contact_tol)
     bad("contact_tol", contact_tol, "[0, " + number(defaults::kMaxContactTolerance) + ")");
 }
 
+void check_check_interval(long check_interval)
+{
+  if (check_interval < 0)
+    bad("check_interval", static_cast<double>(check_interval), "[0, +inf) (0 = one sweep)");
+}
+
 // Wraps a coordinate into [lo, hi) along a periodic axis, counting periods in `image`
 // (x_unwrapped = x + image * L). Works for any distance; lands on lo if rounding at the seam
 // would give hi.
@@ -478,11 +484,23 @@ void Settler::validate(const SettleParams &p)
 {
   if (!(p.d_max > 0.0 && std::isfinite(p.d_max))) bad("d_max", p.d_max, "(0, +inf)");
   if (!(p.theta0 > 0.0 && p.theta0 <= 0.5 * kPi)) bad("theta0", p.theta0, "(0, pi/2]");
-  if (!(p.eta > 0.0 && std::isfinite(p.eta))) bad("eta", p.eta, "(0, +inf)");
-  if (p.check_interval < 0)
-    bad("check_interval", static_cast<double>(p.check_interval), "[0, +inf) (0 = one sweep)");
+  if (!(p.eta > 0.0 && p.eta < 1.0)) bad("eta", p.eta, "(0, 1) (relative change of <Z>)");
+  check_check_interval(p.check_interval);
   if (p.max_checks < 1) bad("max_checks", static_cast<double>(p.max_checks), "[1, +inf)");
   check_contact_tol(p.contact_tol);
+}
+
+long Settler::trials_per_check(long check_interval, long movable)
+{
+  return check_interval > 0 ? check_interval : movable;
+}
+
+long Settler::max_checks_for_sweeps(long max_sweeps, long check_interval, long movable)
+{
+  check_check_interval(check_interval);
+  if (max_sweeps < 1) bad("max_sweeps", static_cast<double>(max_sweeps), "[1, +inf)");
+  const long interval = trials_per_check(check_interval, movable);
+  return std::max(1L, (max_sweeps * movable + interval - 1) / interval);
 }
 
 SettleResult Settler::settle(double *xyz, const double *radius, const unsigned char *movable,
@@ -540,7 +558,7 @@ SettleResult Settler::settle(double *xyz, const double *radius, const unsigned c
   run.sampler = sampler_.get();
   run.rng = CounterRandom(params.seed, params.stream);
   run.order = params.order;
-  run.interval = params.check_interval > 0 ? params.check_interval : m;
+  run.interval = trials_per_check(params.check_interval, m);
   run.max_checks = params.max_checks;
   run.eta = params.eta;
   run.next_check = static_cast<std::uint64_t>(run.interval);

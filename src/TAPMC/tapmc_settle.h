@@ -32,10 +32,11 @@ enum class PickOrder { Random, Sweep };  // Random: the paper (uniform pick); Sw
 struct SettleParams {
   double d_max;            // absolute step length bound, > 0
   double theta0;           // width of P(theta), in (0, pi/2]
-  double eta;              // stop when |<Z>_now - <Z>_before| / <Z>_before < eta, > 0, and
+  double eta;              // stop when |<Z>_now - <Z>_before| / <Z>_before < eta, in (0, 1), and
                            // the packing is no longer in free fall (kSettleFreeFallAcceptance)
   long check_interval = 0; // trials between <Z> checks; 0 = number of movable spheres (1 sweep)
-  long max_checks;         // cap on check intervals per redeposition (reported, never silent)
+  long max_checks;         // cap on check intervals per redeposition (reported, never silent);
+                           // from a cap in sweeps: Settler::max_checks_for_sweeps
   double contact_tol;      // relative tolerance (defaults::kContactTolerance)
   std::uint64_t seed;      // user seed
   std::uint64_t stream;    // e.g. the LAMMPS timestep of this tap: keys the random numbers
@@ -85,9 +86,16 @@ class Settler {
   static Violation find_violation(const double *xyz, const double *radius, int n,
                                   const SettleBox &box, double contact_tol);
 
-  // Throws std::invalid_argument naming the first bad parameter (used by settle; exposed so
-  // the LAMMPS fix can validate its arguments at construction).
+  // Throws std::invalid_argument naming the first bad parameter, its value and its allowed
+  // range (used by settle, and by fix mc/settle on its arguments at construction).
   static void validate(const SettleParams &params);
+
+  // Trial moves between two <Z> checks: check_interval, or one sweep (`movable`) when it is 0.
+  static long trials_per_check(long check_interval, long movable);
+
+  // The max_checks that allows max_sweeps sweeps of `movable` spheres (at least one check).
+  // Throws std::invalid_argument for check_interval < 0 or max_sweeps < 1.
+  static long max_checks_for_sweeps(long max_sweeps, long check_interval, long movable);
 
   // Initial skin of the Verlet list in each call, in units of the largest radius (default
   // defaults::kVerletSkinOverRadius; it then adapts). Any value > 0 gives bit-identical

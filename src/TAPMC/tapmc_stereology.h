@@ -60,6 +60,8 @@ struct PlaneGrid {
   double bin_width() const { return (hi - lo) / n; }
   double position(int k) const { return lo + (k + 0.5) * bin_width(); }
 };
+// Throws std::invalid_argument unless n >= 1 and lo < hi (naming the setting and its value).
+void validate(const PlaneGrid &grid);
 
 // ---- sums over spheres (add into the caller's accumulators) --------------------------------
 // Sum of the disk areas cut by the plane z (a disk crossing a periodic side counts whole).

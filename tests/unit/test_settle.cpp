@@ -299,7 +299,7 @@ TEST(Settle, CheckIntervalAndCapAreHonoured)
       resting.xyz.insert(resting.xyz.end(), {i + 0.5, j + 0.5, 0.5});
       resting.radius.push_back(0.5);
     }
-  p.eta = 10.0;
+  p.eta = 0.5;
   const SettleResult quick = settler.settle(resting.xyz.data(), resting.radius.data(), nullptr,
                                             resting.size(), resting.box, p);
   EXPECT_FALSE(quick.hit_cap);
@@ -526,6 +526,9 @@ TEST(Settle, BadParametersThrowNamingTheParameter)
   p.eta = 0.0;
   expect_throw(p, "eta");
   p = good;
+  p.eta = 1.0;  // a relative change of <Z>: 1 would stop at the first check
+  expect_throw(p, "eta");
+  p = good;
   p.max_checks = 0;
   expect_throw(p, "max_checks");
   p = good;
@@ -539,4 +542,16 @@ TEST(Settle, BadParametersThrowNamingTheParameter)
   s.radius[3] = 0.5;
   s.box.hi[0] = 0.5;  // periodic length below one diameter
   expect_throw(good, "periodic box length x");
+}
+
+// The sweep cap in checks: ceil(max_sweeps * movable / trials per check), at least 1.
+TEST(Settle, SweepCapInChecks)
+{
+  EXPECT_EQ(Settler::trials_per_check(0, 37), 37);
+  EXPECT_EQ(Settler::trials_per_check(5, 37), 5);
+  EXPECT_EQ(Settler::max_checks_for_sweeps(10, 0, 37), 10);   // one check per sweep
+  EXPECT_EQ(Settler::max_checks_for_sweeps(10, 5, 37), 74);   // ceil(370 / 5)
+  EXPECT_EQ(Settler::max_checks_for_sweeps(1, 1000, 37), 1);  // never below one check
+  EXPECT_THROW(Settler::max_checks_for_sweeps(0, 0, 37), std::invalid_argument);
+  EXPECT_THROW(Settler::max_checks_for_sweeps(1, -1, 37), std::invalid_argument);
 }
