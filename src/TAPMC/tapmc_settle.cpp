@@ -49,7 +49,7 @@ void check_contact_tol(double contact_tol)
 void check_check_interval(long check_interval)
 {
   if (check_interval < 0)
-    bad("check_interval", static_cast<double>(check_interval), "[0, +inf) (0 = one sweep)");
+    bad("check", static_cast<double>(check_interval), "[0, +inf) (0 = one sweep)");
 }
 
 // Wraps a coordinate into [lo, hi) along a periodic axis, counting periods in `image`
@@ -482,7 +482,7 @@ Settler::~Settler() = default;
 
 void Settler::validate(const SettleParams &p)
 {
-  if (!(p.d_max > 0.0 && std::isfinite(p.d_max))) bad("d_max", p.d_max, "(0, +inf)");
+  if (!(p.d_max > 0.0 && std::isfinite(p.d_max))) bad("dmax", p.d_max, "(0, +inf)");
   if (!(p.theta0 > 0.0 && p.theta0 <= 0.5 * kPi)) bad("theta0", p.theta0, "(0, pi/2]");
   if (!(p.eta > 0.0 && p.eta < 1.0)) bad("eta", p.eta, "(0, 1) (relative change of <Z>)");
   check_check_interval(p.check_interval);
@@ -498,7 +498,7 @@ long Settler::trials_per_check(long check_interval, long movable)
 long Settler::max_checks_for_sweeps(long max_sweeps, long check_interval, long movable)
 {
   check_check_interval(check_interval);
-  if (max_sweeps < 1) bad("max_sweeps", static_cast<double>(max_sweeps), "[1, +inf)");
+  if (max_sweeps < 1) bad("maxsweeps", static_cast<double>(max_sweeps), "[1, +inf)");
   const long interval = trials_per_check(check_interval, movable);
   return std::max(1L, (max_sweeps * movable + interval - 1) / interval);
 }
@@ -521,7 +521,7 @@ SettleResult Settler::settle(double *xyz, const double *radius, const unsigned c
   run.scene = make_scene(radius, n, box, params.contact_tol);
   for (int d = 0; d < 2; ++d)
     if (run.scene.periodic[d] && !(params.d_max < run.scene.length[d]))
-      bad("d_max", params.d_max,
+      bad("dmax", params.d_max,
           "(0, periodic length) = (0, " + number(run.scene.length[d]) + ")");
 
   movable_ids_.clear();

