@@ -440,17 +440,20 @@ void FixMCSettle::write_restart(FILE *fp)
 void FixMCSettle::restart(char *buf)
 {
   const auto *list = reinterpret_cast<const double *>(buf);
+  auto restore_diagnostics = [this](const double *diag) {
+    last_sweeps = diag[0];
+    last_acceptance = diag[1];
+    last_mean_z = diag[2];
+    last_hit_cap = diag[3];
+    last_trials = diag[4];
+    last_mean_z0 = diag[5];
+  };
   if (list[0] != kRestartLayout) {  // seed-only layout: seed, then the diagnostics
     if (static_cast<std::int64_t>(list[0]) != seed && comm->me == 0)
       error->warning(FLERR, "fix mc/settle: seed {} differs from the restart file's {}; the run "
                      "will not continue the original trajectory", seed,
                      static_cast<std::int64_t>(list[0]));
-    last_sweeps = list[1];
-    last_acceptance = list[2];
-    last_mean_z = list[3];
-    last_hit_cap = list[4];
-    last_trials = list[5];
-    last_mean_z0 = list[6];
+    restore_diagnostics(list + 1);
     return;
   }
   const auto old_seed = static_cast<std::int64_t>(
@@ -479,11 +482,5 @@ void FixMCSettle::restart(char *buf)
   if (!changed.empty() && comm->me == 0)
     error->warning(FLERR, "fix mc/settle: settings differ from the restart file (restart -> now): "
                    "{}; the run will not continue the original trajectory", changed);
-  const double *diag = list + 1 + kRestartSettings;
-  last_sweeps = diag[0];
-  last_acceptance = diag[1];
-  last_mean_z = diag[2];
-  last_hit_cap = diag[3];
-  last_trials = diag[4];
-  last_mean_z0 = diag[5];
+  restore_diagnostics(list + 1 + kRestartSettings);
 }
