@@ -368,14 +368,10 @@ void FixMCSettle::pre_exchange()
 {
   if (update->ntimestep != next_reneighbor) return;
   // The taps of this step come first, also those of tapdilate fixes defined after this fix
-  // (LAMMPS calls pre_exchange in definition order); each taps once per step.
-  bool tap_step = tappers.empty();
-  for (FixTapDilate *tap : tappers) {
-    tap->tap_if_due();
-    tap_step = tap_step || tap->tapped_this_step();
-  }
+  // (LAMMPS calls pre_exchange in definition order); each taps once per step, and this step is
+  // a tap step of at least one of them (schedule_next_settle).
+  for (FixTapDilate *tap : tappers) tap->tap_if_due();
   schedule_next_settle();
-  if (!tap_step) return;
 
   gather_system();
   const tapmc::SettleParams params = make_params(effective_d_max(), n_movable);

@@ -23,8 +23,6 @@ class FixTapDilate : public Fix {
   // For fix mc/settle, which redeposits after the taps whatever the order of the fix commands:
   // tap now if this step is a tap step and the tap has not been done yet (idempotent).
   void tap_if_due();
-  // True when this fix tapped on the current step (also with eps = 0).
-  bool tapped_this_step() const;
   // The first tap step after `step` (taps fall on the multiples of 'every').
   bigint next_tap_after(bigint step) const;
 
@@ -38,6 +36,7 @@ class FixTapDilate : public Fix {
   bigint tapped_step;       // timestep of the most recent tap (-1: none yet)
 
   double current_eps();
+  bool tapped_this_step() const;  // this fix tapped on the current step (also with eps = 0)
   void schedule_next_tap();
   void check_geometry();
 };

@@ -136,16 +136,22 @@ std::uint32_t sample_pick(const CounterRandom &rng, std::uint64_t trial, std::ui
 
 }  // namespace
 
-void TrialMoveSampler::theta_words(const CounterRandom &rng, std::uint64_t trial,
-                                   std::uint64_t attempt, std::uint32_t &w_pos,
-                                   std::uint32_t &w_accept)
+RandomBlock TrialMoveSampler::theta_block(const CounterRandom &rng, std::uint64_t trial,
+                                          std::uint64_t attempt)
 {
   const std::uint64_t round = attempt / kThetaPairsPerRound;
   const std::uint64_t within = attempt % kThetaPairsPerRound;
   const std::uint64_t position = trial * kDrawsPerTrial + kFirstThetaDraw + within / 2;
-  const RandomBlock block = round == 0 ? rng.block(position) : rng.round(round).block(position);
-  w_pos = block[within % 2 == 0 ? 0 : 2];
-  w_accept = block[within % 2 == 0 ? 1 : 3];
+  return round == 0 ? rng.block(position) : rng.round(round).block(position);
+}
+
+void TrialMoveSampler::theta_words(const CounterRandom &rng, std::uint64_t trial,
+                                   std::uint64_t attempt, std::uint32_t &w_pos,
+                                   std::uint32_t &w_accept)
+{
+  const RandomBlock block = theta_block(rng, trial, attempt);
+  w_pos = block[attempt % 2 == 0 ? 0 : 2];
+  w_accept = block[attempt % 2 == 0 ? 1 : 3];
 }
 
 std::uint32_t TrialMoveSampler::pick_word(const CounterRandom &rng, std::uint64_t trial,
@@ -163,13 +169,14 @@ double TrialMoveSampler::theta_from(const CounterRandom &rng, std::uint64_t tria
 {
   std::uint64_t attempt = 0;
   RandomBlock block = theta_first;
+  // Attempts come in pairs per block (a round holds an even number of attempts): a block is
+  // drawn once, for the even attempt, and its second pair serves the odd one. The first block
+  // comes with the trial's main block.
   return theta_.sample(strip_word, [&](std::uint32_t &w_pos, std::uint32_t &w_accept) {
-    if (attempt < 2) {  // the first block, drawn with the trial's main block
-      w_pos = block[attempt == 0 ? 0 : 2];
-      w_accept = block[attempt == 0 ? 1 : 3];
-    } else {
-      theta_words(rng, trial, attempt, w_pos, w_accept);
-    }
+    const bool even = attempt % 2 == 0;
+    if (even && attempt > 0) block = theta_block(rng, trial, attempt);
+    w_pos = block[even ? 0 : 2];
+    w_accept = block[even ? 1 : 3];
     ++attempt;
   });
 }

@@ -174,6 +174,9 @@ class TrialMoveSampler {
   // `attempt` (attempts 0 and 1 share the first theta block), and extra pick word `index`.
   static void theta_words(const CounterRandom &rng, std::uint64_t trial, std::uint64_t attempt,
                           std::uint32_t &w_pos, std::uint32_t &w_accept);
+  // The block holding the words of theta attempt `attempt` (and of its pair partner).
+  static RandomBlock theta_block(const CounterRandom &rng, std::uint64_t trial,
+                                 std::uint64_t attempt);
   static std::uint32_t pick_word(const CounterRandom &rng, std::uint64_t trial,
                                  std::uint64_t index);
 

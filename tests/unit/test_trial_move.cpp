@@ -340,3 +340,24 @@ TEST(TrialMove, RejectionWordsNeverRunOut)
   EXPECT_GT(theta, 0.0);
   EXPECT_LE(theta, kPi / 2);
 }
+
+// A draw reads its theta words exactly where theta_words says, through every rejection: the
+// narrow theta0 = 0.1 rejects often in its tail strips, so many trials reach the third and later
+// attempts (words of later blocks, each block serving two attempts).
+TEST(TrialMove, DrawUsesTheDocumentedThetaWords)
+{
+  const CounterRandom rng(99, 7);
+  const TrialMoveSampler sampler(0.2, 0.1);
+  const ThetaSampler theta(0.1);
+  long later_attempts = 0;
+  for (std::uint64_t t = 0; t < 20000; ++t) {
+    const std::uint32_t strip_word = rng.block(t * TrialMoveSampler::kDrawsPerTrial)[3];
+    std::uint64_t attempt = 0;
+    const double expected = theta.sample(strip_word, [&](std::uint32_t &p, std::uint32_t &u) {
+      TrialMoveSampler::theta_words(rng, t, attempt++, p, u);
+    });
+    later_attempts += attempt > 2;
+    ASSERT_EQ(sampler.draw_polar(rng, t).theta, expected) << "trial " << t;
+  }
+  EXPECT_GT(later_attempts, 0);
+}
