@@ -124,6 +124,13 @@ def save_figure(fig, path):
     return path
 
 
+def write_figure(fig, png, table, csv):
+    """A figure's two outputs: the PNG of ``fig`` and the CSV of ``table``; returns their paths."""
+    save_figure(fig, png)
+    table.write(csv)
+    return png, csv
+
+
 def errorbars(ax, x, mean, sem, label=None, **kw):
     """Mean over seeds with its standard error as a band (lines) or bars (markers)."""
     x = np.asarray(x, dtype=float)

@@ -20,7 +20,7 @@ import sys
 from pathlib import Path
 
 from . import FIGURES
-from .scales import SCALES, get_scale
+from .scales import get_scale
 
 
 class FigureUnavailable(RuntimeError):

@@ -122,9 +122,7 @@ def draw(campaign, out_dir):
     ax_xi.set_xlim(0, 1.0)
     ax_v.set_xlim(0, 0.6)
     ax_xi.legend(fontsize=6, ncol=2)
-    P.save_figure(fig, png)
-    table.write(csv)
-    return png, csv
+    return P.write_figure(fig, png, table, csv)
 
 
 def matplotlib_colors(n):

@@ -100,6 +100,4 @@ def draw(campaign, out_dir, eps_values=None):
         ax.set_xlabel("t (taps)")
         ax.set_ylabel(r"$\Phi_b$")
     ax_log.legend(fontsize=8, title="F.B.C.; dotted: eq. 3 fits", title_fontsize=8)
-    P.save_figure(fig, png)
-    table.write(csv)
-    return png, csv
+    return P.write_figure(fig, png, table, csv)

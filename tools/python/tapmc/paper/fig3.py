@@ -121,6 +121,4 @@ def draw(campaign, out_dir):
     ax_sig.set_xlabel(r"$\varepsilon^{1/2}$")
     ax_sig.set_ylabel(r"$\sigma_{\langle Z\rangle}$")
     ax_sig.legend(fontsize=8)
-    P.save_figure(fig, png)
-    table.write(csv)
-    return png, csv
+    return P.write_figure(fig, png, table, csv)

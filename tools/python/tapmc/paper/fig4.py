@@ -116,6 +116,4 @@ def draw(campaign, out_dir):
     ax.set_xlabel(r"$\varepsilon^{1/2}$")
     ax.set_ylabel(r"steady state $\langle\Phi^c\rangle$")
     ax.legend(fontsize=7, title="P.B.C.", title_fontsize=7)
-    P.save_figure(fig, png)
-    table.write(csv)
-    return png, csv
+    return P.write_figure(fig, png, table, csv)

@@ -120,6 +120,4 @@ def draw(campaign, out_dir, waiting_times=None):
     ax_c.set_xlabel("t (taps)")
     ax_c.set_ylabel(r"$A(t, t_W)$")
     ax_c.legend(fontsize=7)
-    P.save_figure(fig, png)
-    table.write(csv)
-    return png, csv
+    return P.write_figure(fig, png, table, csv)

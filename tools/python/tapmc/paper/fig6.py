@@ -117,6 +117,4 @@ def draw(campaign, out_dir):
     ax.set_ylim(bottom=0)
     ax.legend(fontsize=8, title=f"F.B.C., eps = {P.fmt_eps(eps)}; dashed: gradient window",
               title_fontsize=7)
-    P.save_figure(fig, png)
-    table.write(csv)
-    return png, csv
+    return P.write_figure(fig, png, table, csv)

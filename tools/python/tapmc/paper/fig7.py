@@ -50,6 +50,4 @@ def draw(campaign, out_dir):
     ax.set_ylabel(r"$\Phi$")
     ax.set_xlim(0, side)
     ax.legend(fontsize=8, title=f"F.B.C., eps = {P.fmt_eps(eps)}", title_fontsize=7)
-    P.save_figure(fig, png)
-    table.write(csv)
-    return png, csv
+    return P.write_figure(fig, png, table, csv)

@@ -86,6 +86,4 @@ def draw(campaign, out_dir):
         ax.set_xlabel("t (taps)")
         ax.set_ylabel(rf"$\delta\Phi_{{\rm {name}}}$")
     ax_l.legend(fontsize=7, title="F.B.C.", title_fontsize=7)
-    P.save_figure(fig, png)
-    table.write(csv)
-    return png, csv
+    return P.write_figure(fig, png, table, csv)

@@ -102,6 +102,4 @@ def draw(campaign, out_dir):
     ax.set_xlabel(r"$\sigma = r'/R$")
     ax.set_ylabel(r"$P_0(\sigma)$")
     ax.legend(fontsize=7, title="P.B.C.", title_fontsize=7)
-    P.save_figure(fig, png)
-    table.write(csv)
-    return png, csv
+    return P.write_figure(fig, png, table, csv)
