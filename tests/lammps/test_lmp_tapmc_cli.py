@@ -3,7 +3,7 @@
 # TAPMC styles still known after `clear` (which rebuilds LAMMPS's style tables).
 import subprocess
 
-from lmprun import LMP, MPIRUN, run_lammps
+from lmprun import LMP, run_lammps
 
 SCRIPT = """units lj
 atom_style sphere

@@ -3,8 +3,6 @@
 # as shipped (examples/tapping/in.tapping_pbc: 4096 spheres, L = 32R, Jullien-Meakin start, seed
 # 4928) tapped 200 times at eps = 0.01 with the default redeposition settings densifies, measured
 # by the exact stereology compute. About 3 minutes of one core.
-import numpy as np
-
 from lmprun import run_lammps
 from test_compaction import EXAMPLE, thermo_table
 

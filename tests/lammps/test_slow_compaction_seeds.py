@@ -3,7 +3,6 @@
 # periodic set-up, 200 taps at eps = 0.01 with the default redeposition compact the packing for
 # every one of 5 independent seeds (initial packing and moves), and the mean rise of Phi_b and
 # <Phi^c> over the seeds is positive by more than 3 standard errors. About 15 minutes.
-import os
 
 import numpy as np
 import pytest

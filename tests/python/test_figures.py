@@ -14,10 +14,8 @@ import numpy as np
 import pytest
 
 SOURCE_DIR = Path(os.environ.get("TAPMC_SOURCE_DIR", Path(__file__).resolve().parents[2]))
-try:
-    import tapmc  # noqa: F401
-except ImportError:
-    sys.path.insert(0, str(SOURCE_DIR / "tools" / "python"))
+# The tapmc package of this tree, whatever tree the user-site tapmc.pth points at.
+sys.path.insert(0, str(SOURCE_DIR / "tools" / "python"))
 
 from tapmc.campaign import Campaign  # noqa: E402
 from tapmc.paper import FIGURES, _plotting, _runs  # noqa: E402

@@ -633,7 +633,6 @@ class Campaign:
             running = dict(self._t0)
             done0 = dict(self._done0)
         for name, n, total, finished in self.progress():
-            spec = self._by_name[name]
             if total is not None and not finished:
                 total_left += max(0, total - n)
             if name in done0:
