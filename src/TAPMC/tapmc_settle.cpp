@@ -21,11 +21,13 @@
 #include "tapmc_contact.h"
 #include "tapmc_defaults.h"
 #include "tapmc_math.h"
+#include "tapmc_stop_rule.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -286,12 +288,12 @@ struct SettleRun {
   const TrialMoveSampler *sampler = nullptr;
   CounterRandom rng{0, 0};
   PickOrder order = PickOrder::Random;
-  long interval = 0, max_checks = 0;
-  double eta = 0.0;
+  long interval = 0;
+  std::unique_ptr<ConvergenceCheck> stop;
   long accepted_at_check = 0;  // run.accepted at the previous check
   std::uint64_t trial = 0, next_check = 0;
-  long sweep_cursor = 0, accepted = 0, checks = 0;
-  double sum_height = 0.0, previous_mean = 0.0;
+  long sweep_cursor = 0, accepted = 0;
+  double sum_height = 0.0;
   bool converged = false, hit_cap = false;
   // Trial draws are made ahead in batches (lane-parallel random numbers); the batch holds
   // trials batch_first .. batch_first + batch_count - 1.
@@ -420,22 +422,16 @@ void run_trials(SettleRun &run, double *pos, const std::vector<int> &movable_ids
         lists.built_at_trial = run.trial;
       }
     }
-    // <Z> check every interval (section II): stop on a relative change below eta, once the
-    // packing is no longer in free fall (defaults::kSettleFreeFallAcceptance).
-    ++run.checks;
-    const double mean = run.sum_height / static_cast<double>(m);
-    const double change = std::fabs(mean - run.previous_mean);
-    const double relative = run.previous_mean != 0.0 ? change / std::fabs(run.previous_mean)
-                                                     : (change == 0.0 ? 0.0 : kInf);
-    run.previous_mean = mean;
-    const bool falling = static_cast<double>(run.accepted - run.accepted_at_check) >=
-                         defaults::kSettleFreeFallAcceptance * static_cast<double>(run.interval);
+    // <Z> check every interval (section II), by the rule of tapmc_stop_rule.h.
+    const ConvergenceCheck::Verdict verdict = run.stop->after_check(
+        run.sum_height / static_cast<double>(m), run.accepted - run.accepted_at_check,
+        run.interval);
     run.accepted_at_check = run.accepted;
-    if (relative < run.eta && !falling) {
+    if (verdict == ConvergenceCheck::Verdict::Converged) {
       run.converged = true;
       return;
     }
-    if (run.checks >= run.max_checks) {
+    if (verdict == ConvergenceCheck::Verdict::HitCap) {
       run.hit_cap = true;
       return;
     }
@@ -559,12 +555,11 @@ SettleResult Settler::settle(double *xyz, const double *radius, const unsigned c
   run.rng = CounterRandom(params.seed, params.stream);
   run.order = params.order;
   run.interval = trials_per_check(params.check_interval, m);
-  run.max_checks = params.max_checks;
-  run.eta = params.eta;
   run.next_check = static_cast<std::uint64_t>(run.interval);
   for (int i : movable_ids_) run.sum_height += position_[3 * i + 2] - box.floor_z;
-  run.previous_mean = run.sum_height / static_cast<double>(m);
-  result.mean_height_start = run.previous_mean;
+  result.mean_height_start = run.sum_height / static_cast<double>(m);
+  run.stop = std::make_unique<ConvergenceCheck>(params.eta, params.max_checks,
+                                                result.mean_height_start);
 
   if (run.scene.mono)
     dispatch_axes<true>(run, position_.data(), movable_ids_, image_, lists);
@@ -584,7 +579,7 @@ SettleResult Settler::settle(double *xyz, const double *radius, const unsigned c
   }
   result.trials = static_cast<long>(run.trial);
   result.accepted = run.accepted;
-  result.checks = run.checks;
+  result.checks = run.stop->checks();
   result.mean_height = sum / static_cast<double>(m);
   result.hit_cap = run.hit_cap;
   result.list_builds = lists.builds;
