@@ -1,0 +1,75 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// The trial-move engine of the redeposition (paper, section II), LAMMPS-free and without MPI:
+// n hard spheres, some of which may move, with neighbour lists kept up to date locally (only
+// what moved is rebuilt). The serial kernel (Settler) runs one redeposition on it; the
+// domain-decomposed fix mc/settle runs blocks of trials on each rank's own spheres, the
+// others (LAMMPS ghosts) being obstacles whose positions it refreshes between blocks.
+#ifndef TAPMC_SPHERE_MOVER_H
+#define TAPMC_SPHERE_MOVER_H
+
+#include "tapmc_random.h"
+#include "tapmc_settle.h"
+#include "tapmc_trial_move.h"
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace tapmc {
+
+// A trial whose new centre leaves [lo, hi) along any axis is rejected: the sampling window of
+// one round of the decomposed redeposition (tapmc_decomposition.h).
+struct MoveRegion {
+  double lo[3], hi[3];
+};
+
+// Running totals of blocks of trials, accumulated in place (the serial kernel adds every
+// accepted dz to one running sum, in trial order).
+struct TrialTally {
+  long trials = 0, accepted = 0;
+  double sum_dz = 0.0;  // sum of the z changes of the accepted moves
+};
+
+class SphereMover {
+ public:
+  SphereMover();
+  ~SphereMover();
+  SphereMover(const SphereMover &) = delete;
+  SphereMover &operator=(const SphereMover &) = delete;
+
+  // Takes a copy of the n spheres (xyz interleaved, radius per sphere) and builds every
+  // neighbour list. box: floor, side walls and periodic axes (positions along a periodic axis
+  // are wrapped into the box; image_shift counts the wraps). d_max: the largest trial step.
+  // Throws std::invalid_argument for bad geometry (message names the value and its range).
+  void reset(const double *xyz, const double *radius, int n, const SettleBox &box, double d_max,
+             double contact_tol);
+
+  // Sphere i (typically an obstacle: a ghost refreshed by the caller) is now at xyz[3]; the
+  // lists are updated locally when it left its list skin.
+  void set_position(int i, const double *xyz);
+
+  const double *position(int i) const;   // current position (x, y, z) of sphere i
+  int image_shift(int i, int axis) const;  // periods sphere i was wrapped by along x / y
+
+  // `trials` trial moves numbered first_trial, first_trial + 1, ...: trial t draws its move
+  // (and, for PickOrder::Random, its pick among candidates[0 .. m)) from rng at counter t
+  // (TrialMoveSampler::draw_batch), so results depend only on (rng, t, candidates). Sweep order
+  // visits candidates[sweep_cursor], candidates[sweep_cursor + 1], ... (cursor updated).
+  // A move is accepted when the new centre stays inside `region` (if given), above the floor,
+  // inside the walls and overlaps no other sphere (nearest periodic image). Adds to tally.
+  void run(const int *candidates, long m, PickOrder order, long &sweep_cursor,
+           const TrialMoveSampler &sampler, const CounterRandom &rng, std::uint64_t first_trial,
+           long trials, const MoveRegion *region, TrialTally &tally);
+
+  // Diagnostics: full builds and local list updates since reset.
+  long full_builds() const;
+  long local_updates() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace tapmc
+
+#endif
