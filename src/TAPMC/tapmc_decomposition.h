@@ -1,0 +1,92 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// The rounds of the domain-decomposed redeposition: which of its own spheres each rank may move
+// at the same time as the others, and where, so that no two ranks ever move interacting spheres
+// at once. LAMMPS-free (no MPI): fix mc/settle draws the cuts, calls these functions on every
+// rank and communicates between rounds.
+//
+// The scheme. Along every axis that is split among ranks or periodic (a rank then borders its
+// own periodic image), each rank's sub-domain [lo, lo + w) is cut at lo + c into a lower and an
+// upper part; c is drawn anew for every cycle of rounds and is the same on every rank. A cycle
+// has one round per combination of parts (2 rounds for one such axis, 4 for two, 8 for three).
+// In a round a rank moves only the spheres that were in that round's parts at the start of the
+// cycle (each sphere of a rank is active in exactly one round of a cycle), and a trial is
+// rejected when its new centre leaves the round's region:
+//     lower part: [lo - e, lo + c + e),   upper part: [lo + c - e, lo + w + e)
+// (e = margin, so spheres cross the cut and the sub-domain faces, in the round where they are
+// active; a sphere reaches a region's edge only by travelling e within one round).
+// With contact = the largest contact distance 2 R_max and
+//     contact + 2e <= c <= w_min - contact - 2e
+// (w_min = the narrowest sub-domain along the axis), two regions of the same round on
+// neighbouring ranks, or on a rank and its own periodic image, are at least `contact` apart:
+// lower regions by w - c - 2e, upper regions by c - 2e. Spheres of different ranks that move in
+// the same round therefore never touch, and a rank sees the others' spheres near its region as
+// LAMMPS ghosts that do not move during the round (refreshed between rounds). The cost: trials
+// that would cross a region edge are rejected in that round; averaged over the random cuts no
+// place is special, and every sphere is picked with the same probability as in the serial
+// random pick (round_trials), since each is active once per cycle.
+#ifndef TAPMC_DECOMPOSITION_H
+#define TAPMC_DECOMPOSITION_H
+
+#include "tapmc_sphere_mover.h"
+
+#include <array>
+#include <cstdint>
+
+namespace tapmc {
+
+// One axis of this rank's sub-domain.
+struct DecomposedAxis {
+  bool split = false;     // split among ranks, or periodic: cut into two parts
+  double lo = 0, hi = 0;  // this rank's sub-domain along the axis
+  double min_width = 0;   // the narrowest sub-domain along the axis over all ranks
+};
+
+class RoundSchedule {
+ public:
+  // contact: the largest contact distance (2 R_max); margin: e above. Throws
+  // std::invalid_argument naming the axis when a split axis is narrower than min_width().
+  RoundSchedule(const std::array<DecomposedAxis, 3> &axes, double contact, double margin);
+
+  // Narrowest sub-domain the scheme allows along a split axis: 2 contact + 4 margin.
+  static double min_width(double contact, double margin);
+
+  int rounds() const { return rounds_; }  // 2^(number of split axes)
+
+  // A new cycle: the cut of split axis d at lo + contact + 2e + uniform[d] * (allowed range),
+  // uniform[d] in [0, 1) drawn identically on every rank.
+  void start_cycle(const std::array<double, 3> &uniform);
+
+  // The round in which a sphere at xyz is active this cycle (bit k = upper part of the k-th
+  // split axis). Spheres outside the sub-domain (moved there within their margin) count in the
+  // part on their side.
+  int round_of(const double *xyz) const;
+
+  // Where the active spheres of `round` may go (unbounded along axes that are not split).
+  MoveRegion region(int round) const;
+
+  double cut(int axis) const { return cut_[axis]; }
+
+ private:
+  std::array<DecomposedAxis, 3> axes_;
+  double contact_, margin_;
+  int rounds_ = 1;
+  int split_axis_[3] = {-1, -1, -1};  // the split axes in order; split_count_ of them
+  int split_count_ = 0;
+  std::array<double, 3> cut_{};  // absolute cut position per split axis
+};
+
+// Trials a rank makes in one round: its active spheres times the trials per check over all
+// movable spheres (rounded to nearest), so each sphere expects trials_per_check / movable_total
+// picks per cycle, as in the serial uniform pick.
+long round_trials(long active, long trials_per_check, long movable_total);
+
+// Random streams of the decomposed redeposition, all under the user seed and the tap's stream:
+// rank r draws its trials from key index (r + 1) * 2^32 and the cuts of every cycle come from
+// key index kCutKeyIndex (CounterRandom::round). Each key's overflow rounds (fewer than 2^32)
+// never reach another's.
+constexpr std::uint64_t kCutKeyIndex = 0xFFFFFFFF00000000ull;
+inline std::uint64_t rank_key_index(int rank) { return (static_cast<std::uint64_t>(rank) + 1) << 32; }
+
+}  // namespace tapmc
+
+#endif
