@@ -1,15 +1,16 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-// fix mc/settle: gathers the spheres, calls the LAMMPS-free Settler kernel once per timestep
-// (one complete redeposition = one tap), and puts the atoms back where LAMMPS expects them.
-//
-// Parallel scheme (correctness first): every rank gathers all spheres sorted by tag and runs the
-// same deterministic redeposition, then keeps its own atoms. Results are therefore identical for
-// any number of ranks. The kernel takes a `movable` mask, so a domain-decomposed scheme (each
-// rank settling its own active region) can reuse it unchanged.
+// fix mc/settle: runs one complete redeposition per tap step and puts the atoms back where LAMMPS
+// expects them. Two schemes (keyword 'scheme'):
+// - gather: every rank gathers all spheres sorted by tag and runs the same deterministic serial
+//   kernel (tapmc_settle.h), then keeps its own atoms: identical results for any rank count.
+// - domain: each rank moves its own spheres against LAMMPS ghosts (lammps_domain_settle.h):
+//   memory and work O(N / ranks); results depend on the processor grid (deterministic for a
+//   fixed grid and seed), the physics does not.
 #include "fix_mc_settle.h"
 
 #include "fix_tapdilate.h"
 #include "lammps_box.h"
+#include "lammps_domain_settle.h"
 #include "lammps_keywords.h"
 #include "lammps_relocate.h"
 #include "lammps_support.h"
@@ -47,7 +48,7 @@ FixMCSettle::FixMCSettle(LAMMPS *lmp, int narg, char **arg) :
     eta(tapmc::defaults::kSettleEta), check_interval(0),
     max_sweeps(tapmc::defaults::kSettleMaxSweeps), z_floor(domain->boxlo[2]), fixed_radius(0.0),
     walls_given{false, false}, wall_pos{{0, 0}, {0, 0}}, sweep_order(false), dmax_given(false),
-    last_sweeps(0),
+    scheme(Scheme::Auto), last_sweeps(0),
     last_acceptance(0), last_mean_z(0), last_hit_cap(0), last_trials(0), last_mean_z0(0),
     settler(std::make_unique<tapmc::Settler>()), n_movable(0)
 {
@@ -141,6 +142,15 @@ void FixMCSettle::parse_keywords(int narg, char **arg)
                       order);
          sweep_order = order == "sweep";
        }},
+      {"scheme", 1,
+       [&](char **v) {
+         const std::string name = v[0];
+         if (name != "auto" && name != "gather" && name != "domain")
+           error->all(FLERR, "fix mc/settle: scheme = {} must be 'auto' (gather on one rank, "
+                      "domain on several), 'gather' or 'domain'", name);
+         scheme = name == "gather" ? Scheme::Gather
+                                   : (name == "domain" ? Scheme::Domain : Scheme::Auto);
+       }},
   };
   tapmc::parse_keywords(lmp, "fix mc/settle", table, 4, narg, arg);
 }
@@ -197,13 +207,54 @@ void FixMCSettle::init()
     error->warning(FLERR, "fix mc/settle moves atoms during minimization; use 'run' instead");
 
   // Hard spheres need no pair style, which leaves LAMMPS with a zero ghost cutoff (and a warning
-  // on every reneighbouring). Keep ghosts one diameter deep: what a contact needs.
-  double rmax = fixed_radius;
-  if (rmax == 0.0)
-    for (int i = 0; i < atom->nlocal; ++i) rmax = std::max(rmax, atom->radius[i]);
-  double rmax_all = 0.0;
-  MPI_Allreduce(&rmax, &rmax_all, 1, MPI_DOUBLE, MPI_MAX, world);
-  if (comm->get_comm_cutoff() < 2.0 * rmax_all) comm->cutghostuser = 2.0 * rmax_all;
+  // on every reneighbouring). Keep ghosts one diameter deep (what a contact needs), and as deep
+  // as the decomposed scheme needs (a contact, its move margin and ghost skin).
+  const double rmax_all = group_radius_extreme(true);
+  double needed = 2.0 * rmax_all;
+  if (decomposed()) {
+    const double step =
+        dmax_given ? d_max : tapmc::defaults::kMaxStepOverRadius * group_radius_extreme(false);
+    needed = tapmc::DomainSettle::ghost_cutoff(rmax_all, step);
+    if (!domain_settle) domain_settle = std::make_unique<tapmc::DomainSettle>(lmp);
+  }
+  if (comm->get_comm_cutoff() < needed) comm->cutghostuser = needed;
+}
+
+bool FixMCSettle::decomposed() const
+{
+  return scheme == Scheme::Domain || (scheme == Scheme::Auto && comm->nprocs > 1);
+}
+
+// Largest radius of all spheres (every sphere takes part in contacts), or smallest radius of the
+// group's (d_max follows it), over all ranks (0 / +inf for none).
+double FixMCSettle::group_radius_extreme(bool largest) const
+{
+  double value = largest ? 0.0 : std::numeric_limits<double>::infinity();
+  for (int i = 0; i < atom->nlocal; ++i) {
+    if (!largest && !(atom->mask[i] & groupbit)) continue;
+    const double r = fixed_radius > 0.0 ? fixed_radius : atom->radius[i];
+    value = largest ? std::max(value, r) : std::min(value, r);
+  }
+  double all = value;
+  MPI_Allreduce(&value, &all, 1, MPI_DOUBLE, largest ? MPI_MAX : MPI_MIN, world);
+  return all;
+}
+
+long FixMCSettle::count_movable() const
+{
+  long local = 0, all = 0;
+  for (int i = 0; i < atom->nlocal; ++i) local += (atom->mask[i] & groupbit) ? 1 : 0;
+  MPI_Allreduce(&local, &all, 1, MPI_LONG, MPI_SUM, world);
+  return all;
+}
+
+tapmc::DomainSettleSetup FixMCSettle::domain_setup() const
+{
+  tapmc::DomainSettleSetup setup;
+  setup.groupbit = groupbit;
+  setup.fixed_radius = fixed_radius;
+  setup.planes = make_box();
+  return setup;
 }
 
 tapmc::SettleBox FixMCSettle::make_box() const
@@ -345,11 +396,49 @@ void FixMCSettle::check_start_configuration()
 
 void FixMCSettle::setup_pre_exchange()
 {
-  gather_system();
+  if (decomposed()) {
+    check_start_decomposed();
+  } else {
+    gather_system();
+    if (n_movable == 0)
+      error->all(FLERR, "fix mc/settle: group '{}' has no atoms", group->names[igroup]);
+    check_start_configuration();
+  }
+  schedule_next_settle();
+}
+
+// The start check of the decomposed scheme: each rank checks its spheres against its ghosts.
+void FixMCSettle::check_start_decomposed()
+{
+  n_movable = count_movable();
   if (n_movable == 0)
     error->all(FLERR, "fix mc/settle: group '{}' has no atoms", group->names[igroup]);
-  check_start_configuration();
-  schedule_next_settle();
+  const double rmin = group_radius_extreme(false);
+  if (!(rmin > 0.0))
+    error->all(FLERR, "fix mc/settle: a sphere of the group has radius {}; every sphere needs a "
+               "radius > 0 (set it with atom_style sphere / set diameter, or the 'diameter' "
+               "keyword)", rmin);
+  domain_settle->distribute();
+  tapmc::Violation v;
+  tapmc::guarded(lmp, "fix mc/settle", false,
+                 [&] { v = domain_settle->find_violation(domain_setup()); });
+  int found = v.i >= 0 ? 1 : 0, any = 0;
+  MPI_Allreduce(&found, &any, 1, MPI_INT, MPI_MAX, world);
+  if (!any) return;
+  if (!found) {  // another rank reports it
+    error->all(FLERR, "fix mc/settle: the start configuration has an overlap or a sphere "
+               "outside the floor / walls (reported by another rank)");
+  }
+  const tagint *tag = atom->tag;
+  if (v.j >= 0)
+    error->one(FLERR, "fix mc/settle: atoms {} and {} overlap by {} at the start (allowed: a "
+               "relative tolerance of {} of the contact distance); start from a non-overlapping "
+               "packing", tag[v.i], tag[v.j], -v.gap, tapmc::defaults::kContactTolerance);
+  if (v.j == -1)
+    error->one(FLERR, "fix mc/settle: atom {} reaches {} below the floor z0 = {} (its centre "
+               "must be at least its radius above the floor)", tag[v.i], -v.gap, z_floor);
+  error->one(FLERR, "fix mc/settle: atom {} crosses a side wall in {} by {}", tag[v.i],
+             v.j == -2 ? "x" : "y", -v.gap);
 }
 
 // The next step after this one on which a tapdilate fix taps (any fix, whatever its order), or
@@ -373,9 +462,17 @@ void FixMCSettle::pre_exchange()
   for (FixTapDilate *tap : tappers) tap->tap_if_due();
   schedule_next_settle();
 
+  const tapmc::SettleResult result = decomposed() ? settle_decomposed() : settle_gathered();
+  store_diagnostics(result);
+  if (result.hit_cap && comm->me == 0)
+    error->warning(FLERR, "fix mc/settle: step {}: redeposition stopped at the cap of {} sweeps "
+                   "before <Z> converged to eta = {}", update->ntimestep, max_sweeps, eta);
+}
+
+tapmc::SettleResult FixMCSettle::settle_gathered()
+{
   gather_system();
   const tapmc::SettleParams params = make_params(effective_d_max(), n_movable);
-
   tapmc::SettleResult result;
   image_shift.assign(2 * radius.size(), 0);
   tapmc::guarded(lmp, "fix mc/settle", true, [&] {
@@ -385,16 +482,27 @@ void FixMCSettle::pre_exchange()
   });
   scatter_positions();
   tapmc::relocate_moved_atoms(lmp, "fix mc/settle");
+  return result;
+}
 
+tapmc::SettleResult FixMCSettle::settle_decomposed()
+{
+  n_movable = count_movable();
+  const double step = d_max > 0.0
+                          ? d_max
+                          : tapmc::defaults::kMaxStepOverRadius * group_radius_extreme(false);
+  const tapmc::SettleParams params = make_params(step, n_movable);
+  return domain_settle->settle(domain_setup(), params, n_movable);
+}
+
+void FixMCSettle::store_diagnostics(const tapmc::SettleResult &result)
+{
   last_trials = static_cast<double>(result.trials);
   last_sweeps = n_movable > 0 ? last_trials / static_cast<double>(n_movable) : 0.0;
   last_acceptance = result.trials > 0 ? double(result.accepted) / double(result.trials) : 0.0;
   last_mean_z = result.mean_height;
   last_mean_z0 = result.mean_height_start;
   last_hit_cap = result.hit_cap ? 1.0 : 0.0;
-  if (result.hit_cap && comm->me == 0)
-    error->warning(FLERR, "fix mc/settle: step {}: redeposition stopped at the cap of {} sweeps "
-                   "before <Z> converged to eta = {}", update->ntimestep, max_sweeps, eta);
 }
 
 // [1] sweeps used, [2] acceptance ratio, [3] <Z> after, [4] 1 if the sweep cap was hit,

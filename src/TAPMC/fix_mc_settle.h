@@ -12,8 +12,11 @@
 #include <vector>
 
 namespace tapmc {
+class DomainSettle;
+struct DomainSettleSetup;
 class Settler;
 struct SettleBox;
+struct SettleResult;
 struct SettleParams;
 }
 
@@ -46,12 +49,17 @@ class FixMCSettle : public Fix {
   double wall_pos[2][2];      // [dim][lo/hi]
   bool sweep_order;
   bool dmax_given;
+  // 'scheme': gather = every rank runs the serial kernel on all spheres (results independent of
+  // the rank count); domain = the decomposed redeposition (lammps_domain_settle.h); auto =
+  // gather on one rank, domain on several.
+  enum class Scheme { Auto, Gather, Domain } scheme;
 
   // per-tap diagnostics (global vector)
   double last_sweeps, last_acceptance, last_mean_z, last_hit_cap, last_trials, last_mean_z0;
 
   // gathered system, sorted by atom tag (so results do not depend on the rank count)
   std::unique_ptr<tapmc::Settler> settler;
+  std::unique_ptr<tapmc::DomainSettle> domain_settle;
   std::vector<double> pack_local, pack_all;
   std::vector<int> counts, displs;
   std::vector<int> gathered_to_sorted;
@@ -74,6 +82,14 @@ class FixMCSettle : public Fix {
   double effective_d_max() const;
   void check_start_configuration();
   tapmc::SettleBox make_box() const;
+  bool decomposed() const;
+  tapmc::DomainSettleSetup domain_setup() const;
+  double group_radius_extreme(bool largest) const;
+  long count_movable() const;
+  void check_start_decomposed();
+  tapmc::SettleResult settle_decomposed();
+  tapmc::SettleResult settle_gathered();
+  void store_diagnostics(const tapmc::SettleResult &result);
 };
 
 }  // namespace LAMMPS_NS

@@ -153,6 +153,17 @@ constexpr double kVerletGrowBelowSweeps = 1.0;
 constexpr double kVerletSkinMaxOverRadius = 3.2;  // 16x the default: lists of ~100 at phi 0.6
 constexpr double kVerletShrinkAfterSweeps = 64.0;
 
+// ---- domain-decomposed redeposition (tapmc_decomposition.h, lammps_domain_settle.h) ----------
+// Move margin e of the rounds' regions, in units of d_max: a sphere active in a round reaches its
+// region's edge only by travelling e within that round (the trials rejected there are the
+// scheme's one artefact). The narrowest sub-domain is 2 contact distances + 4 e (7.2 R at the
+// default d_max = R/5), so 4 ranks along the paper's L = 32 R still fit.
+constexpr double kDomainMoveMarginOverStep = 4.0;
+// Ghost skin in units of R_max: atoms migrate and ghosts are rebuilt (exchange + borders) once a
+// sphere has moved this far since the last build. Larger: more ghosts refreshed every round;
+// smaller: more rebuilds. The ghost cutoff is 2 R_max + e + skin.
+constexpr double kDomainGhostSkinOverRadius = 1.0;
+
 // ---- cell grid of the kernel's neighbour searches (tapmc_cell_grid.h) -----------------------
 // Cells are at least the search radius plus this relative rounding margin wide (relative to
 // 2 R_max + the largest coordinate): positions, steps and wraps round at ~1e-16 of the

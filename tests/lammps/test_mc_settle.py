@@ -39,9 +39,11 @@ run {taps}
 """
 
 
-def tapping_run(boundary, nprocs, taps=100, eps=0.02, seed=4928, every=1, workdir=None):
-    script = SCENE.format(boundary=boundary, zprocs=1) + TAPPING.format(
-        eps=eps, seed=seed, every=every, taps=taps)
+def tapping_run(boundary, nprocs, taps=100, eps=0.02, seed=4928, every=1, workdir=None,
+                scheme="auto"):
+    script = SCENE.format(boundary=boundary, zprocs=1) + TAPPING.replace(
+        "eta 1e-3", f"eta 1e-3 scheme {scheme}").format(eps=eps, seed=seed, every=every,
+                                                         taps=taps)
     rc, out, wd = run_lammps(script, nprocs=nprocs, workdir=workdir)
     assert rc == 0, out
     return read_dump(os.path.join(wd, "dump.taps")), out

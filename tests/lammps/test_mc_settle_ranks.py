@@ -1,8 +1,9 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 # fix tapdilate + fix mc/settle on 1, 2 and 4 ranks (child processes under mpirun), PBC and FBC:
 # hard-sphere invariants after every tap (independent all-pairs oracle, periodic images
-# included), atom conservation, continuous unwrapped positions, and the same trajectory on any
-# rank count. The scene and its helpers are those of test_mc_settle.py.
+# included), atom conservation, continuous unwrapped positions, and with 'scheme gather' the same
+# trajectory on any rank count. The scene and its helpers are those of test_mc_settle.py; the
+# domain-decomposed scheme has its own tests (test_mc_settle_domain.py).
 import numpy as np
 import pytest
 
@@ -13,7 +14,8 @@ from test_mc_settle import check_frames, serial_run, tapping_run
 @pytest.mark.parametrize("boundary", ["p p fm", "f f fm"])
 def test_no_overlap_after_every_tap_and_same_trajectory_on_any_rank_count(boundary, nprocs):
     periodic = boundary.startswith("p")
-    frames = serial_run(boundary, 100) if nprocs == 1 else tapping_run(boundary, nprocs)[0]
+    frames = (serial_run(boundary, 100) if nprocs == 1
+              else tapping_run(boundary, nprocs, scheme="gather")[0])
     assert len(frames) == 101
     check_frames(frames, (periodic, periodic), (not periodic, not periodic))
     # Image flags follow every periodic wrap: unwrapped positions never jump by a box length.

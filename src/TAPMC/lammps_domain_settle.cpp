@@ -1,0 +1,272 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// The domain-decomposed redeposition (scheme and guarantees: lammps_domain_settle.h and
+// tapmc_decomposition.h).
+//
+// Why it never misses an overlap: a trial of an active sphere ends inside its round's region,
+// which lies within the margin e of the rank's sub-domain; any sphere it can touch lies within
+// 2 R_max of that. Spheres of other ranks are ghosts when they were within the ghost cutoff
+// (2 R_max + e + skin) of the sub-domain at the last borders(), and none has moved more than the
+// skin since (checked after every round, a rebuild otherwise), so every sphere in reach is
+// present. Those that move in the same round lie in other regions, at least 2 R_max away; the
+// others are at their current positions (forward communication after every round).
+#include "lammps_domain_settle.h"
+
+#include "lammps_relocate.h"
+#include "lammps_support.h"
+#include "tapmc_defaults.h"
+#include "tapmc_random.h"
+#include "tapmc_stop_rule.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "neighbor.h"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+using namespace LAMMPS_NS;
+
+namespace tapmc {
+
+DomainSettle::DomainSettle(LAMMPS *lmp)
+    : Pointers(lmp), mover_(std::make_unique<SphereMover>())
+{
+}
+
+DomainSettle::~DomainSettle() = default;
+
+double DomainSettle::ghost_cutoff(double r_max, double d_max)
+{
+  return 2.0 * r_max + defaults::kDomainMoveMarginOverStep * d_max +
+         defaults::kDomainGhostSkinOverRadius * r_max;
+}
+
+void DomainSettle::distribute()
+{
+  relocate_moved_atoms(lmp, "fix mc/settle");  // remap, shrink-wrap, irregular migration
+  comm->setup();
+  if (neighbor->style) neighbor->setup_bins();
+  comm->exchange();
+  atom->nghost = 0;
+  comm->borders();
+}
+
+double DomainSettle::largest_radius(const DomainSettleSetup &setup) const
+{
+  double r = setup.fixed_radius;
+  if (r == 0.0)
+    for (int i = 0; i < atom->nlocal; ++i) r = std::max(r, atom->radius[i]);
+  double all = 0.0;
+  MPI_Allreduce(&r, &all, 1, MPI_DOUBLE, MPI_MAX, world);
+  return all;
+}
+
+// The mover takes this rank's spheres and ghosts (periodicity is in the ghosts: the kernel sees
+// open axes with the side walls and the floor); the movable owned spheres are listed in tag
+// order, so the picks do not depend on LAMMPS's memory order (restarts, sorting).
+void DomainSettle::load(const DomainSettleSetup &setup, double d_max, double contact_tol)
+{
+  const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
+  double **x = atom->x;
+  xyz_.resize(3 * static_cast<std::size_t>(nall));
+  radius_.resize(nall);
+  for (int i = 0; i < nall; ++i) {
+    for (int d = 0; d < 3; ++d) xyz_[3 * i + d] = x[i][d];
+    radius_[i] = setup.fixed_radius > 0.0 ? setup.fixed_radius : atom->radius[i];
+  }
+  SettleBox box = setup.planes;
+  box.periodic[0] = box.periodic[1] = false;
+  mover_->reset(xyz_.data(), radius_.data(), nall, box, d_max, contact_tol);
+
+  owned_by_tag_.clear();
+  for (int i = 0; i < nlocal; ++i)
+    if (atom->mask[i] & setup.groupbit) owned_by_tag_.push_back(i);
+  const tagint *tag = atom->tag;
+  std::sort(owned_by_tag_.begin(), owned_by_tag_.end(),
+            [tag](int a, int b) { return tag[a] < tag[b]; });
+  x_at_borders_.assign(xyz_.begin(), xyz_.begin() + 3 * static_cast<std::size_t>(nlocal));
+  max_shift_sq_ = 0.0;
+}
+
+// Rounds from_round .. rounds-1 of this cycle get the movable spheres now in their parts.
+void DomainSettle::partition(const RoundSchedule &schedule, int from_round)
+{
+  round_members_.resize(schedule.rounds());
+  for (int r = from_round; r < schedule.rounds(); ++r) round_members_[r].clear();
+  for (int i : owned_by_tag_) {
+    const int r = schedule.round_of(mover_->position(i));
+    if (r >= from_round) round_members_[r].push_back(i);
+  }
+}
+
+// After a round: the moved owned spheres to LAMMPS, their ghost copies refreshed everywhere,
+// the ghosts' new positions to the mover. True when a sphere of this rank has now moved more
+// than the ghost skin since borders() (the caller reduces it: ghosts must then be rebuilt).
+bool DomainSettle::publish_round(const std::vector<int> &moved, double ghost_skin)
+{
+  double **x = atom->x;
+  for (int i : moved) {
+    const double *p = mover_->position(i);
+    const double *b = &x_at_borders_[3 * static_cast<std::size_t>(i)];
+    double d2 = 0.0;
+    for (int d = 0; d < 3; ++d) {
+      x[i][d] = p[d];
+      d2 += (p[d] - b[d]) * (p[d] - b[d]);
+    }
+    max_shift_sq_ = std::max(max_shift_sq_, d2);
+  }
+  comm->forward_comm();
+  const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
+  for (int g = nlocal; g < nall; ++g) {
+    const double *p = mover_->position(g);
+    if (x[g][0] != p[0] || x[g][1] != p[1] || x[g][2] != p[2]) mover_->set_position(g, x[g]);
+  }
+  return max_shift_sq_ > ghost_skin * ghost_skin;
+}
+
+std::array<DecomposedAxis, 3> DomainSettle::decomposed_axes() const
+{
+  std::array<DecomposedAxis, 3> axes;
+  double width[3], min_width[3];
+  for (int d = 0; d < 3; ++d) width[d] = domain->subhi[d] - domain->sublo[d];
+  MPI_Allreduce(width, min_width, 3, MPI_DOUBLE, MPI_MIN, world);
+  for (int d = 0; d < 3; ++d) {
+    axes[d].split = comm->procgrid[d] > 1 || domain->periodicity[d];
+    axes[d].lo = domain->sublo[d];
+    axes[d].hi = domain->subhi[d];
+    axes[d].min_width = min_width[d];
+  }
+  return axes;
+}
+
+Violation DomainSettle::find_violation(const DomainSettleSetup &setup)
+{
+  const int nall = atom->nlocal + atom->nghost;
+  double **x = atom->x;
+  xyz_.resize(3 * static_cast<std::size_t>(nall));
+  radius_.resize(nall);
+  for (int i = 0; i < nall; ++i) {
+    for (int d = 0; d < 3; ++d) xyz_[3 * i + d] = x[i][d];
+    radius_[i] = setup.fixed_radius > 0.0 ? setup.fixed_radius : atom->radius[i];
+  }
+  SettleBox box = setup.planes;
+  box.periodic[0] = box.periodic[1] = false;
+  return Settler::find_violation(xyz_.data(), radius_.data(), nall, box,
+                                 defaults::kContactTolerance);
+}
+
+namespace {
+// One reduction per check: the running sums every rank adds up.
+struct CheckSums {
+  double sum_dz, accepted, trials, rebuild;
+};
+}  // namespace
+
+SettleResult DomainSettle::settle(const DomainSettleSetup &setup, const SettleParams &params,
+                                  long movable_total)
+{
+  Settler::validate(params);
+  distribute();
+  const double r_max = largest_radius(setup);
+  const double needed = ghost_cutoff(r_max, params.d_max);
+  if (comm->get_comm_cutoff() < needed * (1.0 - 1e-12))
+    error->all(FLERR, "fix mc/settle: the ghost cutoff {} is below the {} the decomposed "
+               "redeposition needs (2 R_max + margin + skin, R_max = {}); set 'comm_modify "
+               "cutoff {}' or larger", comm->get_comm_cutoff(), needed, r_max, needed);
+  const double ghost_skin = defaults::kDomainGhostSkinOverRadius * r_max;
+  const double margin = defaults::kDomainMoveMarginOverStep * params.d_max;
+  load(setup, params.d_max, params.contact_tol);
+
+  std::unique_ptr<RoundSchedule> schedule;
+  guarded(lmp, "fix mc/settle", true, [&] {
+    schedule = std::make_unique<RoundSchedule>(decomposed_axes(), 2.0 * r_max, margin);
+  });
+  if (!sampler_ || sampler_->d_max() != params.d_max ||
+      sampler_->theta_sampler().theta0() != params.theta0)
+    sampler_ = std::make_unique<TrialMoveSampler>(params.d_max, params.theta0);
+
+  // <Z> at the start, over all ranks.
+  double local_height = 0.0, start_height = 0.0;
+  for (int i : owned_by_tag_) local_height += mover_->position(i)[2] - setup.planes.floor_z;
+  MPI_Allreduce(&local_height, &start_height, 1, MPI_DOUBLE, MPI_SUM, world);
+  SettleResult result;
+  result.movable = movable_total;
+  result.mean_height_start = start_height / static_cast<double>(movable_total);
+
+  const CounterRandom tap_stream(params.seed, params.stream);
+  const CounterRandom trial_stream = tap_stream.round(rank_key_index(comm->me));
+  const CounterRandom cut_stream = tap_stream.round(kCutKeyIndex);
+  const long interval = Settler::trials_per_check(params.check_interval, movable_total);
+  ConvergenceCheck stop(params.eta, params.max_checks, result.mean_height_start);
+  TrialTally tally;
+  std::uint64_t next_trial = 0, cycle = 0;
+  CheckSums total{0, 0, 0, 0};
+  ghost_rebuilds_ = rounds_ = 0;
+  bool rebuild_pending = false;
+
+  for (;;) {
+    const std::array<double, 3> uniform = {cut_stream.uniform(3 * cycle),
+                                           cut_stream.uniform(3 * cycle + 1),
+                                           cut_stream.uniform(3 * cycle + 2)};
+    ++cycle;
+    schedule->start_cycle(uniform);
+    partition(*schedule, 0);
+    const long accepted_before = tally.accepted, trials_before = tally.trials;
+    for (int r = 0; r < schedule->rounds(); ++r) {
+      if (rebuild_pending) {  // collective: decided by the reduction after the last round
+        distribute();
+        load(setup, params.d_max, params.contact_tol);
+        partition(*schedule, r);
+        ++ghost_rebuilds_;
+        rebuild_pending = false;
+      }
+      const std::vector<int> &members = round_members_[r];
+      const long trials = round_trials(static_cast<long>(members.size()), interval,
+                                       movable_total);
+      const MoveRegion region = schedule->region(r);
+      long cursor = 0;
+      guarded(lmp, "fix mc/settle", false, [&] {
+        mover_->run(members.data(), static_cast<long>(members.size()), params.order, cursor,
+                    *sampler_, trial_stream, next_trial, trials, &region, tally);
+      });
+      next_trial += static_cast<std::uint64_t>(trials);
+      ++rounds_;
+      int need = publish_round(members, ghost_skin) ? 1 : 0;
+      if (r + 1 < schedule->rounds()) {
+        int any = 0;
+        MPI_Allreduce(&need, &any, 1, MPI_INT, MPI_MAX, world);
+        rebuild_pending = any != 0;
+      } else {
+        rebuild_pending = need != 0;  // folded into the check's reduction below
+      }
+    }
+    // The <Z> check (section II): one reduction per check interval.
+    const CheckSums local{tally.sum_dz, static_cast<double>(tally.accepted - accepted_before),
+                          static_cast<double>(tally.trials - trials_before),
+                          rebuild_pending ? 1.0 : 0.0};
+    CheckSums sums;
+    MPI_Allreduce(&local, &sums, 4, MPI_DOUBLE, MPI_SUM, world);
+    rebuild_pending = sums.rebuild > 0.0;
+    total.accepted += sums.accepted;
+    total.trials += sums.trials;
+    const double mean = (start_height + sums.sum_dz) / static_cast<double>(movable_total);
+    result.mean_height = mean;
+    const ConvergenceCheck::Verdict verdict =
+        stop.after_check(mean, static_cast<long>(sums.accepted), static_cast<long>(sums.trials));
+    if (verdict == ConvergenceCheck::Verdict::Continue) continue;
+    result.hit_cap = verdict == ConvergenceCheck::Verdict::HitCap;
+    break;
+  }
+  result.trials = static_cast<long>(total.trials);
+  result.accepted = static_cast<long>(total.accepted);
+  result.checks = stop.checks();
+  result.list_builds = mover_->full_builds();
+  return result;
+}
+
+}  // namespace tapmc

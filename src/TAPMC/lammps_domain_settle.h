@@ -1,0 +1,71 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// The domain-decomposed redeposition behind fix mc/settle (scheme 'domain'): each rank moves
+// only the spheres it owns, seeing its neighbours' as LAMMPS ghosts, in the rounds of
+// tapmc_decomposition.h. Between rounds the moved ghosts are refreshed (forward communication);
+// when any sphere has moved more than the ghost skin since the ghosts were made, atoms migrate
+// and ghosts are rebuilt (exchange and borders). The <Z> check is one global reduction per check
+// interval. Memory per rank: its own spheres and their ghosts, O(N / ranks).
+#ifndef TAPMC_LAMMPS_DOMAIN_SETTLE_H
+#define TAPMC_LAMMPS_DOMAIN_SETTLE_H
+
+#include "pointers.h"
+
+#include "tapmc_decomposition.h"
+#include "tapmc_settle.h"
+#include "tapmc_sphere_mover.h"
+
+#include <memory>
+#include <vector>
+
+namespace tapmc {
+
+struct DomainSettleSetup {
+  int groupbit = 0;           // the movable group
+  double fixed_radius = 0.0;  // > 0: every sphere has this radius (the 'diameter' keyword)
+  SettleBox planes{};         // floor and side walls (the periodic flags are ignored: ghosts)
+};
+
+class DomainSettle : protected LAMMPS_NS::Pointers {
+ public:
+  explicit DomainSettle(LAMMPS_NS::LAMMPS *lmp);
+  ~DomainSettle();
+
+  // Ghost cutoff the scheme needs: a contact (2 R_max), the move margin and the ghost skin.
+  static double ghost_cutoff(double r_max, double d_max);
+
+  // Collective. Atoms to their owners (after the tap moved them by any distance), ghosts made.
+  void distribute();
+
+  // Collective, after distribute(): the first overlap or plane violation among this rank's
+  // spheres and ghosts, i == -1 when none (indices are local LAMMPS indices).
+  Violation find_violation(const DomainSettleSetup &setup);
+
+  // Collective: one complete redeposition (paper, section II) of the group's spheres; the
+  // atoms end where LAMMPS's own exchange and borders (which follow on this step) expect them.
+  // movable_total: spheres in the group over all ranks.
+  SettleResult settle(const DomainSettleSetup &setup, const SettleParams &params,
+                      long movable_total);
+
+  // Diagnostics of the last settle(): ghost rebuilds (exchange + borders) during it, rounds.
+  long ghost_rebuilds() const { return ghost_rebuilds_; }
+  long rounds() const { return rounds_; }
+
+ private:
+  std::unique_ptr<SphereMover> mover_;
+  std::unique_ptr<TrialMoveSampler> sampler_;
+  std::vector<double> xyz_, radius_, x_at_borders_;
+  std::vector<int> owned_by_tag_;               // movable owned spheres, in tag order
+  std::vector<std::vector<int>> round_members_;  // per round of the cycle, in tag order
+  long ghost_rebuilds_ = 0, rounds_ = 0;
+  double max_shift_sq_ = 0.0;  // largest squared displacement of an owned sphere since borders
+
+  void load(const DomainSettleSetup &setup, double d_max, double contact_tol);
+  void partition(const RoundSchedule &schedule, int from_round);
+  bool publish_round(const std::vector<int> &moved, double ghost_skin);
+  std::array<DecomposedAxis, 3> decomposed_axes() const;
+  double largest_radius(const DomainSettleSetup &setup) const;
+};
+
+}  // namespace tapmc
+
+#endif

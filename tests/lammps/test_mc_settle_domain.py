@@ -1,0 +1,152 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+# fix mc/settle's domain-decomposed redeposition (scheme domain, the default on several ranks)
+# under mpirun: hard-sphere invariants after every tap by the independent all-pairs oracle on
+# 1, 2 and 4 ranks, x, y, x-y and z grids, PBC and FBC, polydisperse with fixed obstacles; atom
+# count conserved; deterministic for a fixed grid; exact restart; clear errors without a hang.
+import os
+
+import numpy as np
+import pytest
+
+from lmprun import min_gap, read_dump, run_lammps
+from test_mc_settle import CONTACT_TOL, SCENE, TAPPING, check_frames
+
+DOMAIN_TAPPING = TAPPING.replace("eta 1e-3", "eta 1e-3 scheme domain")
+
+
+def scene(boundary, grid):
+    return SCENE.format(boundary=boundary, zprocs=1).replace("processors * * 1",
+                                                             f"processors {grid}")
+
+
+def domain_run(boundary, nprocs, grid, taps=30, seed=4928, workdir=None):
+    script = scene(boundary, grid) + DOMAIN_TAPPING.format(eps=0.02, seed=seed, every=1,
+                                                           taps=taps)
+    rc, out, wd = run_lammps(script, nprocs=nprocs, workdir=workdir)
+    assert rc == 0, out
+    assert f"{grid.replace(' ', ' by ')} MPI processor grid" in out
+    return read_dump(os.path.join(wd, "dump.taps")), out
+
+
+@pytest.mark.parametrize("nprocs,grid,boundary", [
+    (2, "2 1 1", "p p fm"),
+    (2, "1 2 1", "f f fm"),
+    (4, "2 2 1", "p p fm"),
+    (4, "2 2 1", "f f fm"),
+    (2, "1 1 2", "p p fm"),
+    (1, "1 1 1", "f p fm"),
+])
+def test_no_overlap_after_every_tap(nprocs, grid, boundary):
+    # A dilute lattice falls into a packing (ghosts rebuilt many times), then 29 taps.
+    periodic = (boundary[0] == "p", boundary[2] == "p")
+    frames, _ = domain_run(boundary, nprocs, grid)
+    assert len(frames) == 31
+    check_frames(frames, periodic, (not periodic[0], not periodic[1]))
+    for dim, c in ((0, "xu"), (1, "yu")):  # image flags follow the wraps: no jumps
+        if periodic[dim]:
+            for (_, _, _, a), (_, _, _, b) in zip(frames[:-1], frames[1:]):
+                assert np.abs(b[c] - a[c]).max() < 5.0
+    assert frames[-1][3]["z"].mean() < 0.8 * frames[0][3]["z"].mean()
+
+
+def test_fixed_grid_and_seed_give_one_trajectory_and_seeds_differ():
+    a, _ = domain_run("p p fm", 2, "2 1 1", taps=8)
+    b, _ = domain_run("p p fm", 2, "2 1 1", taps=8)
+    c, _ = domain_run("p p fm", 2, "2 1 1", taps=8, seed=4929)
+    for (_, _, _, fa), (_, _, _, fb) in zip(a, b):
+        for col in ("x", "y", "z"):
+            np.testing.assert_array_equal(fa[col], fb[col])
+    assert not np.array_equal(a[-1][3]["z"], c[-1][3]["z"])
+
+
+def test_restart_round_trip_is_exact(tmp_path):
+    common = """fix tap all tapdilate 0.02 floor 0.0
+fix settle all mc/settle 31 floor 0.0 eta 1e-3 scheme domain
+thermo_modify lost error
+"""
+    final = "write_dump all custom final.dump id x y z modify sort id format float %.17g\n"
+    full = scene("p p fm", "2 1 1") + common + "run 6\n" + final
+    rc, out, wd_full = run_lammps(full, nprocs=2)
+    assert rc == 0, out
+    first = scene("p p fm", "2 1 1") + common + "run 3\nwrite_restart mid.restart\n"
+    wd = str(tmp_path)
+    rc, out, _ = run_lammps(first, nprocs=2, workdir=wd)
+    assert rc == 0, out
+    second = ("processors 2 1 1\nread_restart mid.restart\n" + common + "run 3\n" + final)
+    rc, out, _ = run_lammps(second, nprocs=2, workdir=wd)
+    assert rc == 0, out
+
+    def load(d):
+        with open(os.path.join(d, "final.dump")) as f:
+            return f.read().split("ITEM: ATOMS")[1]
+    assert load(wd_full) == load(wd)
+
+
+def test_polydisperse_with_fixed_obstacles_on_two_by_two_ranks():
+    script = """units lj
+atom_style sphere
+boundary p p fm
+processors 2 2 1
+region box block 0 12 0 12 0 30
+create_box 1 box
+create_packing 600 1 0.5 77 floor 0.0 dispersity 0.3
+variable low atom z<1.0
+group bottom variable low
+group grains subtract all bottom
+fix tap grains tapdilate 0.05 floor 0.0
+fix settle grains mc/settle 5 floor 0.0 eta 1e-4 scheme domain
+dump d all custom 1 dump.taps id x y z radius
+dump_modify d sort id format float %.17g
+thermo_modify lost error
+run 20
+"""
+    rc, out, wd = run_lammps(script, nprocs=4)
+    assert rc == 0, out
+    frames = read_dump(os.path.join(wd, "dump.taps"))
+    first = frames[0][3]
+    bottom = first["z"] < 1.0
+    assert 0 < bottom.sum() < len(bottom)
+    for step, box, _, cols in frames:
+        assert len(cols["id"]) == 600
+        xyz = np.column_stack([cols["x"], cols["y"], cols["z"]])
+        gap, i, j = min_gap(xyz, cols["radius"], box, (True, True), floor=0.0)
+        assert gap >= -CONTACT_TOL * 1.3, f"step {step}: gap {gap} between {i} and {j}"
+        for c in ("x", "y", "z"):
+            np.testing.assert_array_equal(cols[c][bottom], first[c][bottom])
+
+
+def test_gather_scheme_on_two_ranks_is_the_serial_trajectory():
+    serial = TAPPING.replace("eta 1e-3", "eta 1e-3 scheme gather")
+    runs = []
+    for nprocs, grid in ((1, "1 1 1"), (2, "2 1 1")):
+        rc, out, wd = run_lammps(scene("p p fm", grid) + serial.format(
+            eps=0.02, seed=4928, every=5, taps=10), nprocs=nprocs)
+        assert rc == 0, out
+        runs.append(read_dump(os.path.join(wd, "dump.taps")))
+    for (_, _, _, a), (_, _, _, b) in zip(*runs):
+        for c in ("x", "y", "z"):
+            np.testing.assert_array_equal(a[c], b[c])
+
+
+@pytest.mark.parametrize("nprocs,grid,message", [
+    (4, "4 1 1", "the narrowest sub-domain along x is 2.5 wide; the decomposed redeposition "
+                 "needs at least 3.6"),
+    (2, "1 2 1", None),
+])
+def test_narrow_sub_domains_are_refused_with_the_needed_width(nprocs, grid, message):
+    script = scene("p p fm", grid) + DOMAIN_TAPPING.format(eps=0.02, seed=1, every=1, taps=2)
+    rc, out, _ = run_lammps(script, nprocs=nprocs, timeout=120)
+    if message is None:
+        assert rc == 0, out
+    else:
+        assert rc != 0
+        assert message in out, out
+
+
+def test_bad_scheme_is_refused():
+    script = scene("p p fm", "1 1 1") + TAPPING.replace("eta 1e-3", "eta 1e-3 scheme tiles") \
+        .format(eps=0.02, seed=1, every=1, taps=1)
+    rc, out, _ = run_lammps(script)
+    assert rc != 0
+    assert "scheme = tiles must be 'auto' (gather on one rank, domain on several), 'gather' " \
+           "or 'domain'" in out
