@@ -39,7 +39,8 @@ using namespace FixConst;
 
 namespace {
 constexpr int kPackedPerAtom = 6;  // tag, x, y, z, radius, movable
-constexpr int kVectorSize = 6;
+constexpr int kRestartDiagnostics = 6;  // the first entries of the output vector
+constexpr int kVectorSize = 12;
 const char *const kAxisName[2] = {"x", "y"};
 }  // namespace
 
@@ -503,14 +504,25 @@ void FixMCSettle::store_diagnostics(const tapmc::SettleResult &result)
   last_mean_z = result.mean_height;
   last_mean_z0 = result.mean_height_start;
   last_hit_cap = result.hit_cap ? 1.0 : 0.0;
+  last_parallel = {};
+  if (decomposed()) {
+    const tapmc::DomainSettle::Timing &t = domain_settle->timing();
+    last_parallel = {static_cast<double>(domain_settle->ghost_rebuilds()),
+                     static_cast<double>(domain_settle->rounds()), t.trials, t.publish,
+                     t.reductions, t.rebuilds};
+  }
 }
 
 // [1] sweeps used, [2] acceptance ratio, [3] <Z> after, [4] 1 if the sweep cap was hit,
-// [5] trial moves, [6] <Z> before the redeposition (after the tap).
+// [5] trial moves, [6] <Z> before the redeposition (after the tap); scheme domain (else 0):
+// [7] ghost rebuilds, [8] rounds, and this rank's seconds in [9] trial moves, [10] ghost
+// refreshes, [11] reductions, [12] migration and ghost rebuilds.
 double FixMCSettle::compute_vector(int n)
 {
-  const double values[kVectorSize] = {last_sweeps,  last_acceptance, last_mean_z,
-                                      last_hit_cap, last_trials,     last_mean_z0};
+  const double values[kVectorSize] = {
+      last_sweeps,       last_acceptance,   last_mean_z,       last_hit_cap,
+      last_trials,       last_mean_z0,      last_parallel[0],  last_parallel[1],
+      last_parallel[2],  last_parallel[3],  last_parallel[4],  last_parallel[5]};
   return values[n];
 }
 
@@ -528,7 +540,7 @@ void FixMCSettle::write_restart(FILE *fp)
 {
   if (comm->me != 0) return;
   const auto useed = static_cast<std::uint64_t>(seed);
-  const double list[1 + kRestartSettings + kVectorSize] = {
+  const double list[1 + kRestartSettings + kRestartDiagnostics] = {
       kRestartLayout,
       static_cast<double>(useed >> 32), static_cast<double>(useed & 0xFFFFFFFFu),
       d_max, theta0, eta, static_cast<double>(check_interval), static_cast<double>(max_sweeps),

@@ -7,6 +7,7 @@
 #include "fix.h"
 #include "lmptype.h"
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -56,6 +57,7 @@ class FixMCSettle : public Fix {
 
   // per-tap diagnostics (global vector)
   double last_sweeps, last_acceptance, last_mean_z, last_hit_cap, last_trials, last_mean_z0;
+  std::array<double, 6> last_parallel{};  // scheme domain: rebuilds, rounds, seconds per phase
 
   // gathered system, sorted by atom tag (so results do not depend on the rank count)
   std::unique_ptr<tapmc::Settler> settler;

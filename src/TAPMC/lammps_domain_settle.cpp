@@ -171,6 +171,14 @@ SettleResult DomainSettle::settle(const DomainSettleSetup &setup, const SettlePa
                                   long movable_total)
 {
   Settler::validate(params);
+  timing_ = Timing();
+  double clock = MPI_Wtime();
+  // Adds the seconds since the last mark to a phase.
+  auto mark = [&clock](double &phase) {
+    const double now = MPI_Wtime();
+    phase += now - clock;
+    clock = now;
+  };
   distribute();
   const double r_max = largest_radius(setup);
   const double needed = ghost_cutoff(r_max, params.d_max);
@@ -181,6 +189,7 @@ SettleResult DomainSettle::settle(const DomainSettleSetup &setup, const SettlePa
   const double ghost_skin = defaults::kDomainGhostSkinOverRadius * r_max;
   const double margin = defaults::kDomainMoveMarginOverStep * params.d_max;
   load(setup, params.d_max, params.contact_tol);
+  mark(timing_.rebuilds);
 
   std::unique_ptr<RoundSchedule> schedule;
   guarded(lmp, "fix mc/settle", true, [&] {
@@ -224,6 +233,7 @@ SettleResult DomainSettle::settle(const DomainSettleSetup &setup, const SettlePa
         partition(*schedule, r);
         ++ghost_rebuilds_;
         rebuild_pending = false;
+        mark(timing_.rebuilds);
       }
       const std::vector<int> &members = round_members_[r];
       const long trials = round_trials(static_cast<long>(members.size()), interval,
@@ -236,11 +246,14 @@ SettleResult DomainSettle::settle(const DomainSettleSetup &setup, const SettlePa
       });
       next_trial += static_cast<std::uint64_t>(trials);
       ++rounds_;
+      mark(timing_.trials);
       int need = publish_round(members, ghost_skin) ? 1 : 0;
+      mark(timing_.publish);
       if (r + 1 < schedule->rounds()) {
         int any = 0;
         MPI_Allreduce(&need, &any, 1, MPI_INT, MPI_MAX, world);
         rebuild_pending = any != 0;
+        mark(timing_.reductions);
       } else {
         rebuild_pending = need != 0;  // folded into the check's reduction below
       }
@@ -251,6 +264,7 @@ SettleResult DomainSettle::settle(const DomainSettleSetup &setup, const SettlePa
                           rebuild_pending ? 1.0 : 0.0};
     CheckSums sums;
     MPI_Allreduce(&local, &sums, 4, MPI_DOUBLE, MPI_SUM, world);
+    mark(timing_.reductions);
     rebuild_pending = sums.rebuild > 0.0;
     total.accepted += sums.accepted;
     total.trials += sums.trials;

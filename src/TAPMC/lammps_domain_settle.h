@@ -46,9 +46,17 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
   SettleResult settle(const DomainSettleSetup &setup, const SettleParams &params,
                       long movable_total);
 
-  // Diagnostics of the last settle(): ghost rebuilds (exchange + borders) during it, rounds.
+  // Diagnostics of the last settle() on this rank: ghost rebuilds (exchange + borders) during
+  // it, rounds, and wall-clock seconds in each phase.
+  struct Timing {
+    double trials = 0;      // the kernel's trial moves
+    double publish = 0;     // moved spheres to LAMMPS, forward communication, ghosts to the kernel
+    double reductions = 0;  // the per-round rebuild vote and the per-check <Z> reduction
+    double rebuilds = 0;    // migration and ghost rebuilds (exchange, borders, kernel reset)
+  };
   long ghost_rebuilds() const { return ghost_rebuilds_; }
   long rounds() const { return rounds_; }
+  const Timing &timing() const { return timing_; }
 
  private:
   std::unique_ptr<SphereMover> mover_;
@@ -57,6 +65,7 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
   std::vector<int> owned_by_tag_;               // movable owned spheres, in tag order
   std::vector<std::vector<int>> round_members_;  // per round of the cycle, in tag order
   long ghost_rebuilds_ = 0, rounds_ = 0;
+  Timing timing_;
   double max_shift_sq_ = 0.0;  // largest squared displacement of an owned sphere since borders
 
   void load(const DomainSettleSetup &setup, double d_max, double contact_tol);
