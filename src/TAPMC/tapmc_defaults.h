@@ -136,22 +136,19 @@ constexpr double kSettleFreeFallAcceptance = 0.5;
 // and as a warning.
 constexpr long kSettleMaxSweeps = 50000;
 
-// ---- Verlet neighbour list of the redeposition kernel (tapmc_settle.cpp) --------------------
-// Skin of the kernel's Verlet list in units of the largest radius R_max: list radius of a pair
-// = (R_i + R_j) + d_max + skin, rebuilt when a sphere has moved skin/2 since the last build.
-// 0.2 R is the fastest skin in bench_neighbor_list (28.2 M moves/s over a whole redeposition;
-// 0.1 / 0.4 / 0.8 R: 23.6 / 26.2 / 22.9; bench/README.md); the results do not depend on it (the
-// list is exact), only the speed.
-constexpr double kVerletSkinOverRadius = 0.2;
-// The skin adapts within one call (results do not depend on it): doubled at a rebuild that comes
-// less than kVerletGrowBelowSweeps sweeps after the previous one (spheres falling freely from
-// a loose start would otherwise cost one O(N) rebuild every few accepted moves: 15 s instead
-// of 0.5 s for 5 taps of a loose 1024-sphere start), up to kVerletSkinMaxOverRadius; halved
-// back towards the default (one extra build) once kVerletShrinkAfterSweeps sweeps passed
-// without a rebuild.
-constexpr double kVerletGrowBelowSweeps = 1.0;
-constexpr double kVerletSkinMaxOverRadius = 3.2;  // 16x the default: lists of ~100 at phi 0.6
-constexpr double kVerletShrinkAfterSweeps = 64.0;
+// ---- neighbour lists of the trial-move engine (tapmc_sphere_mover.cpp) --------------------
+// Skin of the lists in units of the largest radius R_max: a pair is listed when its reference
+// positions are within (R_i + R_j) + d_max + skin; a sphere's list is remade (locally) when it
+// has moved skin/2 from its reference. The lists are exact, so the skin never changes the
+// moves, only the speed: a wider skin means longer lists (more overlap tests per trial), a
+// narrower one more local updates (bench/bench_mc_settle.cpp, bench/README.md).
+constexpr double kListSkinOverRadius = 0.2;
+// A list row holds its count and the neighbours' indices; rows are a multiple of this many
+// ints wide (16 ints = one 64-byte cache line), widened by this step when a list outgrows its row.
+constexpr int kListCapacityStep = 16;
+// Room left in every row at a build beyond the longest list (local updates lengthen lists a
+// little as the packing compacts; widening is O(N), so it should stay rare).
+constexpr int kListSlack = 8;
 
 // ---- domain-decomposed redeposition (tapmc_decomposition.h, lammps_domain_settle.h) ----------
 // Move margin e of the rounds' regions, in units of d_max: a sphere active in a round reaches its

@@ -1,9 +1,8 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 // The redeposition (paper, section II): downward-biased hard-sphere Monte Carlo until the mean
-// height <Z> stops changing. LAMMPS-free kernel behind fix mc/settle. Overlaps are tested
-// against a Verlet neighbour list owned by the kernel (list radius = contact distance + d_max +
-// skin, rebuilt by O(N) binning when a sphere has moved skin/2; the skin adapts within a call):
-// exact, never misses an overlap, so the moves never depend on the skin.
+// height <Z> stops changing. LAMMPS-free kernel behind fix mc/settle. The trials run on the
+// trial-move engine (tapmc_sphere_mover.h): neighbour lists with a skin, kept up to date
+// locally, exact (they never miss an overlap), so the moves never depend on the skin.
 #ifndef TAPMC_SETTLE_H
 #define TAPMC_SETTLE_H
 
@@ -15,9 +14,7 @@
 
 namespace tapmc {
 
-namespace detail {
-struct NeighbourLists;  // the kernel-owned Verlet list (tapmc_settle.cpp)
-}
+class SphereMover;
 
 struct SettleBox {
   double lo[3], hi[3];          // box bounds; x, y used for periodic lengths and default walls
@@ -48,9 +45,11 @@ struct SettleResult {
   double mean_height_start = 0, mean_height = 0;  // <Z> of movable spheres above floor_z
   bool hit_cap = false;
   long movable = 0;  // number of movable spheres
-  // Verlet neighbour-list builds in this call (1 at the start + one per skin/2 crossing;
-  // diagnostic only, results do not depend on the skin).
-  long list_builds = 0;
+  // Neighbour-list upkeep in this call (diagnostics only, results do not depend on the skin):
+  // local list updates (a sphere moved skin/2 from where its list was made), and the mean
+  // list length at the end.
+  long list_updates = 0;
+  double mean_list_length = 0.0;
 };
 
 // j >= 0 sphere, -1 floor, -2 x wall, -3 y wall; gap < 0 = overlap depth
@@ -97,18 +96,16 @@ class Settler {
   // Throws std::invalid_argument for check_interval < 0 or max_sweeps < 1.
   static long max_checks_for_sweeps(long max_sweeps, long check_interval, long movable);
 
-  // Initial skin of the Verlet list in each call, in units of the largest radius (default
-  // defaults::kVerletSkinOverRadius; it then adapts). Any value > 0 gives bit-identical
-  // results; only the speed changes (for tests and benchmarks). Throws std::invalid_argument
-  // outside (0, +inf).
+  // Skin of the neighbour lists, in units of the largest radius (default
+  // defaults::kListSkinOverRadius). Any value > 0 gives bit-identical results; only the speed
+  // changes (for tests and benchmarks). Throws std::invalid_argument outside (0, +inf).
   void set_verlet_skin(double skin_over_max_radius);
   double verlet_skin() const { return skin_over_max_radius_; }
 
  private:
   std::unique_ptr<TrialMoveSampler> sampler_;  // cached while (d_max, theta0) stay the same
-  std::unique_ptr<detail::NeighbourLists> lists_;  // Verlet list storage, reused between calls
-  std::vector<int> movable_ids_, image_;
-  std::vector<double> position_;  // working copy of all positions, periodic axes wrapped
+  std::unique_ptr<SphereMover> mover_;  // the trial-move engine, storage reused between calls
+  std::vector<int> movable_ids_;
   double skin_over_max_radius_;
 };
 

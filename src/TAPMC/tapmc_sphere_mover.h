@@ -61,12 +61,22 @@ class SphereMover {
            const TrialMoveSampler &sampler, const CounterRandom &rng, std::uint64_t first_trial,
            long trials, const MoveRegion *region, TrialTally &tally);
 
-  // Diagnostics: full builds and local list updates since reset.
+  // Diagnostics: full builds and local list updates since reset; times the list rows were
+  // widened (a list outgrew its row); mean list length now.
   long full_builds() const;
   long local_updates() const;
+  long capacity_grows() const;
+  double mean_list_length() const;
+
+  // List skin in units of the largest radius, used from the next reset (default
+  // defaults::kListSkinOverRadius). Any value > 0 gives the same moves (the lists are exact);
+  // only the speed changes. Throws std::invalid_argument outside (0, +inf).
+  void set_skin(double skin_over_max_radius);
+  double skin() const;
+
+  struct State;  // defined in tapmc_sphere_mover.cpp
 
  private:
-  struct State;
   std::unique_ptr<State> state_;
 };
 

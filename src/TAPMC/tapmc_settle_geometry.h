@@ -1,0 +1,186 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// The geometry of the redeposition shared by its kernels (tapmc_settle.cpp,
+// tapmc_sphere_mover.cpp): validated box and radii, periodic wraps, plane constraints and the
+// nearest-image separation, written once so every kernel does identical arithmetic.
+#ifndef TAPMC_SETTLE_GEOMETRY_H
+#define TAPMC_SETTLE_GEOMETRY_H
+
+#include "tapmc_contact.h"
+#include "tapmc_defaults.h"
+#include "tapmc_math.h"
+#include "tapmc_settle.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace tapmc {
+namespace settle_geometry {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+[[noreturn]] inline void bad(const std::string &name, double value, const std::string &range)
+{
+  throw std::invalid_argument(name + " = " + number(value) + " is outside the allowed range " +
+                              range);
+}
+
+inline void check_contact_tol(double contact_tol)
+{
+  if (!(contact_tol >= 0.0 && contact_tol < defaults::kMaxContactTolerance))
+    bad("contact_tol", contact_tol, "[0, " + number(defaults::kMaxContactTolerance) + ")");
+}
+
+inline void check_check_interval(long check_interval)
+{
+  if (check_interval < 0)
+    bad("check", static_cast<double>(check_interval), "[0, +inf) (0 = one sweep)");
+}
+
+// Wraps a coordinate into [lo, hi) along a periodic axis, counting periods in `image`
+// (x_unwrapped = x + image * L). Works for any distance; lands on lo if rounding at the seam
+// would give hi.
+inline double wrap_into_box(double x, double lo, double hi, double length, int &image)
+{
+  if (x >= lo && x < hi) return x;
+  const double k = std::floor((x - lo) / length);
+  x -= k * length;
+  image += static_cast<int>(k);
+  if (x < lo) {
+    x += length;
+    image -= 1;
+  } else if (x >= hi) {
+    x -= length;
+    image += 1;
+  }
+  if (!(x >= lo && x < hi)) x = lo;  // the seam: lo and hi are the same point modulo L
+  return x;
+}
+
+// The same for one trial step (|step| < L): at most one period.
+inline double wrap_step(double x, double lo, double hi, double length, int &image)
+{
+  if (x < lo) {
+    x += length;
+    image -= 1;
+    if (x >= hi) x = lo;
+  } else if (x >= hi) {
+    x -= length;
+    image += 1;
+    if (x < lo) x = lo;
+  }
+  return x;
+}
+
+// Everything about the scene that stays fixed during one call.
+struct Scene {
+  const double *radius = nullptr;
+  bool mono = true;
+  double r_mono = 0.0, r_max = 0.0, r_min = 0.0;
+  double tol = 0.0, one_minus_tol = 1.0;
+  bool periodic[2] = {false, false};
+  double lo[2] = {0, 0}, hi[2] = {0, 0}, length[2] = {0, 0};
+  // Side planes; -inf / +inf where there is none, so the plane tests never fire.
+  double wall_lo[2] = {-kInf, -kInf}, wall_hi[2] = {kInf, kInf};
+  double floor_z = 0.0;
+};
+
+inline Scene make_scene(const double *radius, int n, const SettleBox &box, double contact_tol)
+{
+  Scene s;
+  s.radius = radius;
+  s.tol = contact_tol;
+  s.one_minus_tol = 1.0 - contact_tol;
+  s.floor_z = box.floor_z;
+  if (!std::isfinite(box.floor_z)) bad("floor_z", box.floor_z, "(finite)");
+  if (n > 0) {
+    s.r_min = s.r_max = radius[0];
+    for (int i = 0; i < n; ++i) {
+      const double r = radius[i];
+      if (!(r > 0.0 && std::isfinite(r)))
+        bad("radius[" + std::to_string(i) + "]", r, "(0, +inf)");
+      s.r_min = std::min(s.r_min, r);
+      s.r_max = std::max(s.r_max, r);
+    }
+  }
+  s.mono = (s.r_min == s.r_max);
+  s.r_mono = s.r_max;
+  const char *axis_name[2] = {"x", "y"};
+  for (int d = 0; d < 2; ++d) {
+    s.periodic[d] = box.periodic[d];
+    s.lo[d] = box.lo[d];
+    s.hi[d] = box.hi[d];
+    if (box.periodic[d]) {
+      if (!(std::isfinite(box.lo[d]) && std::isfinite(box.hi[d]) && box.hi[d] > box.lo[d]))
+        throw std::invalid_argument(std::string("box ") + axis_name[d] + " bounds [" +
+                                    number(box.lo[d]) + ", " + number(box.hi[d]) +
+                                    ") of a periodic axis must be finite with lo < hi");
+      s.length[d] = box.hi[d] - box.lo[d];
+      if (s.length[d] < 2.0 * s.r_max)
+        bad(std::string("periodic box length ") + axis_name[d], s.length[d],
+            "[2 R_max, +inf) = [" + number(2.0 * s.r_max) + ", +inf)");
+      if (box.wall_lo[d] || box.wall_hi[d])
+        throw std::invalid_argument(std::string("wall_lo/wall_hi[") + axis_name[d] +
+                                    "] set on a periodic axis: walls need a non-periodic axis");
+    } else {
+      if (box.wall_lo[d]) {
+        if (!std::isfinite(box.wall_lo_pos[d]))
+          bad(std::string("wall_lo_pos[") + axis_name[d] + "]", box.wall_lo_pos[d], "(finite)");
+        s.wall_lo[d] = box.wall_lo_pos[d];
+      }
+      if (box.wall_hi[d]) {
+        if (!std::isfinite(box.wall_hi_pos[d]))
+          bad(std::string("wall_hi_pos[") + axis_name[d] + "]", box.wall_hi_pos[d], "(finite)");
+        s.wall_hi[d] = box.wall_hi_pos[d];
+      }
+      if (box.wall_lo[d] && box.wall_hi[d] && !(box.wall_lo_pos[d] < box.wall_hi_pos[d]))
+        bad(std::string("wall_hi_pos[") + axis_name[d] + "]", box.wall_hi_pos[d],
+            "(wall_lo_pos, +inf) = (" + number(box.wall_lo_pos[d]) + ", +inf)");
+    }
+  }
+  return s;
+}
+
+inline double radius_of(const Scene &s, int i) { return s.mono ? s.r_mono : s.radius[i]; }
+
+// The plane constraints (floor, side walls) of a sphere of radius r at (x, y, z): 0 if none is
+// violated, else the code of the first (-1 floor, -2 x wall, -3 y wall) and its gap.
+// Floor, then side walls; a periodic axis has no walls, and the hot loop (which knows its axes
+// at compile time) skips their tests. Returns 0, or -1 floor / -2 x wall / -3 y wall.
+template <bool PeriodicX, bool PeriodicY>
+inline int plane_violation(const Scene &s, double x, double y, double z, double r, double &gap)
+{
+  gap = floor_gap(z, r, s.floor_z);
+  if (gap_violates(gap, r, s.tol)) return -1;
+  if (!PeriodicX) {
+    gap = std::min(low_wall_gap(x, r, s.wall_lo[0]), high_wall_gap(x, r, s.wall_hi[0]));
+    if (gap_violates(gap, r, s.tol)) return -2;
+  }
+  if (!PeriodicY) {
+    gap = std::min(low_wall_gap(y, r, s.wall_lo[1]), high_wall_gap(y, r, s.wall_hi[1]));
+    if (gap_violates(gap, r, s.tol)) return -3;
+  }
+  return 0;
+}
+
+
+// Separation of j from i along a periodic axis, nearest image: the shift (0 or +-L) is chosen
+// from the raw difference and added last, exactly as separation() with a cell's image shift.
+inline double nearest_separation(double x_j, double x_i, double length, double half_length)
+{
+  const double raw = x_j - x_i;
+  const double shift = raw > half_length ? -length : (raw < -half_length ? length : 0.0);
+  return separation(x_j, x_i, shift);
+}
+
+template <bool Periodic>
+inline double axis_separation(double x_j, double x_i, double length, double half_length)
+{
+  return Periodic ? nearest_separation(x_j, x_i, length, half_length) : x_j - x_i;
+}
+
+}  // namespace settle_geometry
+}  // namespace tapmc
+
+#endif

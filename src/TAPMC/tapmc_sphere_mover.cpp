@@ -1,0 +1,523 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// The trial-move engine of the redeposition (paper, section II) with neighbour lists kept up to
+// date locally.
+//
+// Lists. Every sphere i has a reference position ref_i (its position when its list was last
+// made) and lists every sphere j whose reference is within reach:
+//     |ref_i - ref_j| < (R_i + R_j) + d_max + skin + margin      (nearest periodic image),
+// a symmetric predicate (the same arithmetic from either side), so the lists are symmetric:
+// j in list(i) <=> i in list(j). Invariant: every sphere is within skin/2 of its reference.
+// A trial puts i at most d_max from r_i; if it overlapped j then
+//     |ref_i - ref_j| <= |ref_i - r_i| + |r_i - trial| + |trial - r_j| + |r_j - ref_j|
+//                     <  skin/2 + d_max + (R_i + R_j) + skin/2,
+// so j is listed: the lists never miss an overlap, and the accepted moves are those of an
+// all-pairs test whatever the skin. `margin` (defaults::kGridRoundingMargin of the coordinate
+// scale) covers the rounding of positions, steps and wraps.
+//
+// Local upkeep. When an accepted move (or set_position) takes sphere i beyond skin/2 of ref_i,
+// ref_i becomes its current position: i is removed from the lists of its old neighbours, moved
+// to the grid cell of its new reference, and its new list is found by a 27-cell query over the
+// reference positions, i being inserted in the list of each new neighbour. The work is O(list
+// length), never O(N). Positions stay wrapped into the box along periodic axes and every test
+// takes the nearest image, so crossing a periodic side needs no update.
+//
+// Storage. Sphere data (x, y, z, R; reference; image counts; list) is kept in an internal
+// spatial order (cell order at reset), so the neighbours of a sphere lie close in memory; the
+// caller's indices map to internal slots. The picks draw candidates[k] by the same random
+// numbers whatever the internal order: results do not depend on it. Each list is a row of fixed
+// capacity (the count, then the neighbours' slots); a row that would overflow widens every row
+// (rare: a few times per reset at most, counted in capacity_grows()).
+//
+// Hot loop. Picks are drawn a batch ahead (TrialMoveSampler::draw_batch); the picked spheres'
+// data and rows are prefetched at the draw, their neighbours' data a few trials ahead. The loop
+// is compiled once per combination of mono/poly, periodic axes and region (dispatched once per
+// call), with the overlap arithmetic of tapmc_contact.h and tapmc_settle_geometry.h.
+#include "tapmc_sphere_mover.h"
+
+#include "tapmc_cell_grid.h"
+#include "tapmc_contact.h"
+#include "tapmc_defaults.h"
+#include "tapmc_settle_geometry.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace tapmc {
+
+using namespace settle_geometry;
+
+namespace {
+
+// The distinct cells next to cell c along one axis (1 to 3: an axis of fewer than 3 periodic
+// cells would otherwise visit a cell twice).
+int neighbour_cells(const GridAxis &axis, int c, int out[3])
+{
+  int count = 0;
+  for (int o = -1; o <= 1; ++o) {
+    int k = c + o;
+    if (axis.periodic) k = (k + axis.cells) % axis.cells;
+    else if (k < 0 || k >= axis.cells) continue;
+    bool seen = false;
+    for (int q = 0; q < count; ++q) seen = seen || out[q] == k;
+    if (!seen) out[count++] = k;
+  }
+  return count;
+}
+
+inline void prefetch(const void *p) { __builtin_prefetch(p, 0, 3); }
+
+}  // namespace
+
+struct SphereMover::State {
+  Scene scene;  // planes, periodic lengths, tolerance (scene.radius is not used: radii are in xyzr)
+  int n = 0;
+  double skin_over_max_radius = defaults::kListSkinOverRadius;
+  double d_max = 0.0, half_skin_sq = 0.0;
+  double list_extra = 0.0;  // d_max + skin + rounding margin, added to R_i + R_j
+
+  // Per internal slot.
+  std::vector<double> xyzr;   // x, y, z, R
+  std::vector<double> ref;    // reference position (x, y, z), wrapped into the box
+  std::vector<int> image;     // periods wrapped along x, y
+  std::vector<int> cell;      // grid cell of the reference
+  std::vector<int> slot_of, external_of;
+
+  // Lists: row s = rows[s * stride ...]: count, then the slots of the neighbours.
+  int stride = 0;
+  std::vector<int> rows;
+
+  // Grid of the reference positions.
+  std::array<GridAxis, 3> axes;
+  std::vector<std::vector<int>> members;  // slots per cell
+
+  long full_builds = 0, local_updates = 0, capacity_grows = 0;
+
+  // Batch of draws and their slots.
+  std::array<TrialDraw, TrialMoveSampler::kBatchMax> batch{};
+  std::array<int, TrialMoveSampler::kBatchMax> batch_slot{};
+
+  int *row(int s) { return rows.data() + static_cast<std::size_t>(s) * stride; }
+
+  int cell_index(const double *p) const
+  {
+    return (axes[2].cell_of(p[2]) * axes[1].cells + axes[1].cell_of(p[1])) * axes[0].cells +
+           axes[0].cell_of(p[0]);
+  }
+
+  // The list predicate over reference positions (symmetric in a, b, bit for bit).
+  bool in_reach(int a, int b) const
+  {
+    const double *pa = ref.data() + 3 * a, *pb = ref.data() + 3 * b;
+    const Scene &sc = scene;
+    const double dx = sc.periodic[0]
+                          ? nearest_separation(pb[0], pa[0], sc.length[0], 0.5 * sc.length[0])
+                          : pb[0] - pa[0];
+    const double dy = sc.periodic[1]
+                          ? nearest_separation(pb[1], pa[1], sc.length[1], 0.5 * sc.length[1])
+                          : pb[1] - pa[1];
+    const double reach = (xyzr[4 * a + 3] + xyzr[4 * b + 3]) + list_extra;
+    return distance_sq(dx, dy, pb[2] - pa[2]) < reach * reach;
+  }
+
+  // Calls visit(j) for every sphere j != s in reach of s (27-cell query over references).
+  template <class Visit>
+  void for_each_in_reach(int s, Visit &&visit) const
+  {
+    const double *p = ref.data() + 3 * s;
+    int cx[3], cy[3], cz[3];
+    const int nx = neighbour_cells(axes[0], axes[0].cell_of(p[0]), cx);
+    const int ny = neighbour_cells(axes[1], axes[1].cell_of(p[1]), cy);
+    const int nz = neighbour_cells(axes[2], axes[2].cell_of(p[2]), cz);
+    for (int a = 0; a < nz; ++a)
+      for (int b = 0; b < ny; ++b)
+        for (int c = 0; c < nx; ++c)
+          for (int j : members[(cz[a] * axes[1].cells + cy[b]) * axes[0].cells + cx[c]])
+            if (j != s && in_reach(s, j)) visit(j);
+  }
+
+  void append(int s, int j)
+  {
+    if (row(s)[0] + 1 >= stride) widen_rows();
+    int *r = row(s);
+    r[++r[0]] = j;
+  }
+
+  static void remove(int *r, int j)
+  {
+    for (int q = 1; q <= r[0]; ++q)
+      if (r[q] == j) {
+        r[q] = r[r[0]--];
+        return;
+      }
+  }
+
+  // Every row gets defaults::kListCapacityStep more entries.
+  void widen_rows()
+  {
+    const int wider = stride + defaults::kListCapacityStep;
+    std::vector<int> grown(static_cast<std::size_t>(n) * wider);
+    for (int s = 0; s < n; ++s)
+      std::copy(row(s), row(s) + row(s)[0] + 1, grown.data() + static_cast<std::size_t>(s) * wider);
+    rows.swap(grown);
+    stride = wider;
+    ++capacity_grows;
+  }
+
+  // ref_s := the current position of s; the lists and grid follow (local upkeep, see header).
+  void relist(int s)
+  {
+    int *r = row(s);
+    for (int q = 1; q <= r[0]; ++q) remove(row(r[q]), s);
+    r[0] = 0;
+    for (int d = 0; d < 3; ++d) ref[3 * s + d] = xyzr[4 * s + d];
+    const int c = cell_index(ref.data() + 3 * s);
+    if (c != cell[s]) {
+      std::vector<int> &old = members[cell[s]];
+      old.erase(std::find(old.begin(), old.end(), s));
+      members[c].push_back(s);
+      cell[s] = c;
+    }
+    for_each_in_reach(s, [&](int j) {
+      append(s, j);
+      append(j, s);
+    });
+    ++local_updates;
+  }
+
+  // Squared displacement of s from its reference (nearest image).
+  template <bool PeriodicX, bool PeriodicY>
+  double drift_sq(int s) const
+  {
+    const double *p = xyzr.data() + 4 * s, *q = ref.data() + 3 * s;
+    const Scene &sc = scene;
+    return distance_sq(axis_separation<PeriodicX>(p[0], q[0], sc.length[0], 0.5 * sc.length[0]),
+                       axis_separation<PeriodicY>(p[1], q[1], sc.length[1], 0.5 * sc.length[1]),
+                       p[2] - q[2]);
+  }
+
+  void build(const double *xyz_wrapped, const double *radius, const int *image_in);
+};
+
+namespace {
+
+// Cells at least `reach` wide covering the periodic period, or the data (and walls / floor)
+// along the other axes; the number of cells is capped as in the violation check's grid.
+std::array<GridAxis, 3> mover_axes(const Scene &s, const double *xyz, int n, double reach)
+{
+  double mn[3] = {kInf, kInf, kInf}, mx[3] = {-kInf, -kInf, -kInf};
+  for (int i = 0; i < n; ++i)
+    for (int d = 0; d < 3; ++d) {
+      mn[d] = std::min(mn[d], xyz[3 * i + d]);
+      mx[d] = std::max(mx[d], xyz[3 * i + d]);
+    }
+  for (int d = 0; d < 2; ++d) {
+    if (std::isfinite(s.wall_lo[d])) mn[d] = std::min(mn[d], s.wall_lo[d]);
+    if (std::isfinite(s.wall_hi[d])) mx[d] = std::max(mx[d], s.wall_hi[d]);
+  }
+  mn[2] = std::min(mn[2], s.floor_z);
+  std::array<GridAxis, 3> axes;
+  for (int d = 0; d < 2; ++d) {
+    if (s.periodic[d])
+      axes[d].setup(s.lo[d], s.length[d], reach, true, defaults::kGridMaxCellsPerSideAxis);
+    else
+      axes[d].setup(mn[d], std::max(mx[d] - mn[d], 0.0), reach, false,
+                    defaults::kGridMaxCellsPerSideAxis);
+  }
+  const long max_cells = defaults::kGridCellsPerSphere * static_cast<long>(n) +
+                         defaults::kGridMinCells;
+  const int max_z = static_cast<int>(
+      std::max(1L, max_cells / (static_cast<long>(axes[0].cells) * axes[1].cells)));
+  axes[2].setup(mn[2], std::max(mx[2] - mn[2], 0.0), reach, false, max_z);
+  return axes;
+}
+
+}  // namespace
+
+// Sorts the spheres into cell order, bins them and makes every list (O(N)).
+void SphereMover::State::build(const double *xyz_wrapped, const double *radius,
+                               const int *image_in)
+{
+  const Scene &sc = scene;
+  double scale = std::max(std::fabs(sc.floor_z), 2.0 * sc.r_max);
+  for (int i = 0; i < 3 * n; ++i) scale = std::max(scale, std::fabs(xyz_wrapped[i]));
+  for (int d = 0; d < 2; ++d) scale = std::max({scale, std::fabs(sc.lo[d]), std::fabs(sc.hi[d])});
+  const double margin = defaults::kGridRoundingMargin * (2.0 * sc.r_max + scale);
+  const double skin = skin_over_max_radius * sc.r_max;
+  half_skin_sq = 0.25 * skin * skin;
+  list_extra = d_max + skin + margin;
+  axes = mover_axes(sc, xyz_wrapped, n, 2.0 * sc.r_max + list_extra + margin);
+
+  // Internal order: by cell (stable), so neighbours are close in memory.
+  const std::size_t cells =
+      static_cast<std::size_t>(axes[0].cells) * axes[1].cells * axes[2].cells;
+  std::vector<int> start(cells + 1, 0), cell_ext(n);
+  for (int i = 0; i < n; ++i) {
+    cell_ext[i] = cell_index(xyz_wrapped + 3 * i);
+    ++start[cell_ext[i] + 1];
+  }
+  for (std::size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
+  slot_of.resize(n);
+  external_of.resize(n);
+  for (int i = 0; i < n; ++i) {
+    const int s = start[cell_ext[i]]++;
+    slot_of[i] = s;
+    external_of[s] = i;
+  }
+  xyzr.resize(4 * static_cast<std::size_t>(n));
+  ref.resize(3 * static_cast<std::size_t>(n));
+  image.resize(2 * static_cast<std::size_t>(n));
+  cell.resize(n);
+  members.assign(cells, {});
+  for (int s = 0; s < n; ++s) {
+    const int i = external_of[s];
+    for (int d = 0; d < 3; ++d) xyzr[4 * s + d] = ref[3 * s + d] = xyz_wrapped[3 * i + d];
+    xyzr[4 * s + 3] = radius[i];
+    image[2 * s] = image_in[2 * i];
+    image[2 * s + 1] = image_in[2 * i + 1];
+    cell[s] = cell_ext[i];
+    members[cell[s]].push_back(s);
+  }
+
+  // Rows wide enough for the longest list plus slack (widened later only if a list outgrows it).
+  int longest = 0;
+  for (int s = 0; s < n; ++s) {
+    int count = 0;
+    for_each_in_reach(s, [&](int) { ++count; });
+    longest = std::max(longest, count);
+  }
+  const int step = defaults::kListCapacityStep;
+  stride = ((longest + 1 + defaults::kListSlack + step - 1) / step) * step;
+  rows.assign(static_cast<std::size_t>(n) * stride, 0);
+  for (int s = 0; s < n; ++s) {
+    int *r = row(s);
+    for_each_in_reach(s, [&](int j) { r[++r[0]] = j; });
+  }
+  ++full_builds;
+}
+
+SphereMover::SphereMover() : state_(std::make_unique<State>()) {}
+SphereMover::~SphereMover() = default;
+
+void SphereMover::set_skin(double skin_over_max_radius)
+{
+  if (!(skin_over_max_radius > 0.0 && std::isfinite(skin_over_max_radius)))
+    bad("list skin (units of R_max)", skin_over_max_radius, "(0, +inf)");
+  state_->skin_over_max_radius = skin_over_max_radius;
+}
+
+double SphereMover::skin() const { return state_->skin_over_max_radius; }
+
+void SphereMover::reset(const double *xyz, const double *radius, int n, const SettleBox &box,
+                        double d_max, double contact_tol)
+{
+  State &st = *state_;
+  check_contact_tol(contact_tol);
+  if (n < 0) bad("n", n, "[0, +inf)");
+  if (n > 0 && (!xyz || !radius))
+    throw std::invalid_argument("xyz and radius must not be null when n > 0");
+  if (!(d_max > 0.0 && std::isfinite(d_max))) bad("dmax", d_max, "(0, +inf)");
+  Scene sc = make_scene(radius, n, box, contact_tol);
+  for (int d = 0; d < 2; ++d)
+    if (sc.periodic[d] && !(d_max < sc.length[d]))
+      bad("dmax", d_max, "(0, periodic length) = (0, " + number(sc.length[d]) + ")");
+  sc.radius = nullptr;
+  st.scene = sc;
+  st.n = n;
+  st.d_max = d_max;
+  st.full_builds = st.local_updates = st.capacity_grows = 0;
+
+  std::vector<double> wrapped(xyz, xyz + 3 * static_cast<std::size_t>(n));
+  std::vector<int> image(2 * static_cast<std::size_t>(n), 0);
+  for (int i = 0; i < n; ++i)
+    for (int d = 0; d < 2; ++d)
+      if (sc.periodic[d])
+        wrapped[3 * i + d] =
+            wrap_into_box(xyz[3 * i + d], sc.lo[d], sc.hi[d], sc.length[d], image[2 * i + d]);
+  st.build(wrapped.data(), radius, image.data());
+}
+
+void SphereMover::set_position(int i, const double *xyz)
+{
+  State &st = *state_;
+  if (!(i >= 0 && i < st.n)) bad("sphere index", i, "[0, " + std::to_string(st.n) + ")");
+  const Scene &sc = st.scene;
+  const int s = st.slot_of[i];
+  double *p = st.xyzr.data() + 4 * s;
+  for (int d = 0; d < 3; ++d) p[d] = xyz[d];
+  for (int d = 0; d < 2; ++d)
+    if (sc.periodic[d]) {
+      st.image[2 * s + d] = 0;
+      p[d] = wrap_into_box(xyz[d], sc.lo[d], sc.hi[d], sc.length[d], st.image[2 * s + d]);
+    }
+  const bool px = sc.periodic[0], py = sc.periodic[1];
+  const double drift = px ? (py ? st.drift_sq<true, true>(s) : st.drift_sq<true, false>(s))
+                          : (py ? st.drift_sq<false, true>(s) : st.drift_sq<false, false>(s));
+  if (drift > st.half_skin_sq) st.relist(s);
+}
+
+const double *SphereMover::position(int i) const
+{
+  return state_->xyzr.data() + 4 * static_cast<std::size_t>(state_->slot_of[i]);
+}
+
+int SphereMover::image_shift(int i, int axis) const
+{
+  return state_->image[2 * static_cast<std::size_t>(state_->slot_of[i]) + axis];
+}
+
+long SphereMover::full_builds() const { return state_->full_builds; }
+long SphereMover::local_updates() const { return state_->local_updates; }
+long SphereMover::capacity_grows() const { return state_->capacity_grows; }
+
+double SphereMover::mean_list_length() const
+{
+  const State &st = *state_;
+  if (st.n == 0) return 0.0;
+  double sum = 0.0;
+  for (int s = 0; s < st.n; ++s) sum += st.rows[static_cast<std::size_t>(s) * st.stride];
+  return sum / st.n;
+}
+
+namespace {
+
+// How far ahead (in trials) the neighbours of a picked sphere are prefetched.
+constexpr int kNeighbourPrefetchAhead = 4;
+
+struct RunArgs {
+  const int *candidates;
+  long m;
+  bool random;
+  long *sweep_cursor;
+  const TrialMoveSampler *sampler;
+  const CounterRandom *rng;
+  std::uint64_t first_trial;
+  long trials;
+  const MoveRegion *region;
+  TrialTally *tally;
+};
+
+}  // namespace
+
+// One block of trials, compiled per (mono/poly, periodic x, periodic y, region).
+template <bool Mono, bool PeriodicX, bool PeriodicY, bool Region>
+void run_trials(SphereMover::State &st, const RunArgs &a)
+{
+  const Scene &sc = st.scene;
+  const double r_mono = sc.r_mono;
+  const double threshold_sq_mono = overlap_threshold_sq(r_mono, r_mono, sc.one_minus_tol);
+  const double half_x = 0.5 * sc.length[0], half_y = 0.5 * sc.length[1];
+  const std::uint32_t n_pick = a.random ? static_cast<std::uint32_t>(a.m) : 0u;
+  const MoveRegion region = Region ? *a.region : MoveRegion{};
+  long accepted = 0;
+  double sum_dz = a.tally->sum_dz;
+  for (long done = 0; done < a.trials;) {
+    const int count =
+        static_cast<int>(std::min<long>(TrialMoveSampler::kBatchMax, a.trials - done));
+    a.sampler->draw_batch(*a.rng, a.first_trial + static_cast<std::uint64_t>(done), count, n_pick,
+                          st.batch.data());
+    done += count;
+    for (int b = 0; b < count; ++b) {
+      long k = st.batch[b].pick;
+      if (!a.random) {
+        k = *a.sweep_cursor;
+        if (++*a.sweep_cursor == a.m) *a.sweep_cursor = 0;
+      }
+      const int s = st.slot_of[a.candidates[k]];
+      st.batch_slot[b] = s;
+      prefetch(st.xyzr.data() + 4 * s);
+      prefetch(st.row(s));
+    }
+    for (int b = 0; b < count; ++b) {
+      if (b + kNeighbourPrefetchAhead < count) {
+        const int *ahead = st.row(st.batch_slot[b + kNeighbourPrefetchAhead]);
+        for (int q = 1; q <= ahead[0]; ++q) prefetch(st.xyzr.data() + 4 * ahead[q]);
+      }
+      const int s = st.batch_slot[b];
+      const Displacement &move = st.batch[b].move;
+      double *p = st.xyzr.data() + 4 * s;
+      const double r = Mono ? r_mono : p[3];
+      const double oz = p[2];
+      double x = p[0] + move.dx, y = p[1] + move.dy;
+      const double z = oz + move.dz;
+      int wrap_x = 0, wrap_y = 0;
+      if (PeriodicX) x = wrap_step(x, sc.lo[0], sc.hi[0], sc.length[0], wrap_x);
+      if (PeriodicY) y = wrap_step(y, sc.lo[1], sc.hi[1], sc.length[1], wrap_y);
+      if (Region && !(x >= region.lo[0] && x < region.hi[0] && y >= region.lo[1] &&
+                      y < region.hi[1] && z >= region.lo[2] && z < region.hi[2]))
+        continue;
+      double gap;
+      if (plane_violation<PeriodicX, PeriodicY>(sc, x, y, z, r, gap)) continue;
+      const int *nb = st.row(s);
+      const double *xyzr = st.xyzr.data();
+      bool overlap = false;
+      for (int q = 1, end = nb[0]; q <= end; ++q) {
+        const double *pj = xyzr + 4 * nb[q];
+        const double dx = axis_separation<PeriodicX>(pj[0], x, sc.length[0], half_x);
+        const double dy = axis_separation<PeriodicY>(pj[1], y, sc.length[1], half_y);
+        const double limit =
+            Mono ? threshold_sq_mono : overlap_threshold_sq(r, pj[3], sc.one_minus_tol);
+        if (distance_sq(dx, dy, pj[2] - z) < limit) {
+          overlap = true;
+          break;
+        }
+      }
+      if (overlap) continue;
+      ++accepted;
+      sum_dz += z - oz;  // <Z> kept incrementally, in trial order (section II)
+      p[0] = x;
+      p[1] = y;
+      p[2] = z;
+      if (PeriodicX) st.image[2 * s] += wrap_x;
+      if (PeriodicY) st.image[2 * s + 1] += wrap_y;
+      if (st.drift_sq<PeriodicX, PeriodicY>(s) > st.half_skin_sq) st.relist(s);
+    }
+  }
+  a.tally->trials += a.trials;
+  a.tally->accepted += accepted;
+  a.tally->sum_dz = sum_dz;
+}
+
+namespace {
+
+template <bool Mono, bool PeriodicX, bool PeriodicY>
+void dispatch_region(SphereMover::State &st, const RunArgs &a)
+{
+  if (a.region) run_trials<Mono, PeriodicX, PeriodicY, true>(st, a);
+  else run_trials<Mono, PeriodicX, PeriodicY, false>(st, a);
+}
+
+template <bool Mono>
+void dispatch_axes(SphereMover::State &st, const RunArgs &a)
+{
+  const bool px = st.scene.periodic[0], py = st.scene.periodic[1];
+  if (px && py) dispatch_region<Mono, true, true>(st, a);
+  else if (px) dispatch_region<Mono, true, false>(st, a);
+  else if (py) dispatch_region<Mono, false, true>(st, a);
+  else dispatch_region<Mono, false, false>(st, a);
+}
+
+}  // namespace
+
+void SphereMover::run(const int *candidates, long m, PickOrder order, long &sweep_cursor,
+                      const TrialMoveSampler &sampler, const CounterRandom &rng,
+                      std::uint64_t first_trial, long trials, const MoveRegion *region,
+                      TrialTally &tally)
+{
+  State &st = *state_;
+  if (trials <= 0) return;
+  if (!(m >= 1 && static_cast<std::uint64_t>(m) < (std::uint64_t{1} << 32)))
+    bad("number of candidates", static_cast<double>(m), "[1, 2^32)");
+  if (!(sweep_cursor >= 0 && sweep_cursor < m))
+    bad("sweep_cursor", static_cast<double>(sweep_cursor), "[0, m)");
+  if (sampler.d_max() > st.d_max)
+    bad("sampler d_max", sampler.d_max(), "(0, " + number(st.d_max) + "] (the d_max of reset)");
+  const RunArgs args{candidates, m,     order == PickOrder::Random, &sweep_cursor, &sampler, &rng,
+                     first_trial, trials, region,                     &tally};
+  if (st.scene.mono) dispatch_axes<true>(st, args);
+  else dispatch_axes<false>(st, args);
+}
+
+}  // namespace tapmc
