@@ -279,7 +279,7 @@ SettleResult DomainSettle::settle(const DomainSettleSetup &setup, const SettlePa
   result.trials = static_cast<long>(total.trials);
   result.accepted = static_cast<long>(total.accepted);
   result.checks = stop.checks();
-  result.list_builds = mover_->full_builds();
+  result.list_updates = mover_->local_updates();
   return result;
 }
 
