@@ -105,9 +105,10 @@ void DomainSettle::partition(const RoundSchedule &schedule, int from_round)
 }
 
 // After a round: the moved owned spheres to LAMMPS, their ghost copies refreshed everywhere,
-// the ghosts' new positions to the mover. True when a sphere of this rank has now moved more
-// than the ghost skin since borders() (the caller reduces it: ghosts must then be rebuilt).
-bool DomainSettle::publish_round(const std::vector<int> &moved, double ghost_skin)
+// the ghosts' new positions to the mover. Returns whether some sphere has moved more than the
+// ghost skin since borders() (ghosts must then be rebuilt): on all ranks when `vote` (one
+// non-blocking reduction, overlapped with the forward communication), else on this rank only.
+bool DomainSettle::publish_round(const std::vector<int> &moved, double ghost_skin, bool vote)
 {
   double **x = atom->x;
   for (int i : moved) {
@@ -120,13 +121,17 @@ bool DomainSettle::publish_round(const std::vector<int> &moved, double ghost_ski
     }
     max_shift_sq_ = std::max(max_shift_sq_, d2);
   }
+  int need = max_shift_sq_ > ghost_skin * ghost_skin ? 1 : 0, any = need;
+  MPI_Request request;
+  if (vote) MPI_Iallreduce(&need, &any, 1, MPI_INT, MPI_MAX, world, &request);
   comm->forward_comm();
   const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
   for (int g = nlocal; g < nall; ++g) {
     const double *p = mover_->position(g);
     if (x[g][0] != p[0] || x[g][1] != p[1] || x[g][2] != p[2]) mover_->set_position(g, x[g]);
   }
-  return max_shift_sq_ > ghost_skin * ghost_skin;
+  if (vote) MPI_Wait(&request, MPI_STATUS_IGNORE);
+  return any != 0;
 }
 
 std::array<DecomposedAxis, 3> DomainSettle::decomposed_axes() const
@@ -247,16 +252,10 @@ SettleResult DomainSettle::settle(const DomainSettleSetup &setup, const SettlePa
       next_trial += static_cast<std::uint64_t>(trials);
       ++rounds_;
       mark(timing_.trials);
-      int need = publish_round(members, ghost_skin) ? 1 : 0;
+      // The rebuild vote of the last round rides on the check's reduction below.
+      const bool last = r + 1 == schedule->rounds();
+      rebuild_pending = publish_round(members, ghost_skin, !last);
       mark(timing_.publish);
-      if (r + 1 < schedule->rounds()) {
-        int any = 0;
-        MPI_Allreduce(&need, &any, 1, MPI_INT, MPI_MAX, world);
-        rebuild_pending = any != 0;
-        mark(timing_.reductions);
-      } else {
-        rebuild_pending = need != 0;  // folded into the check's reduction below
-      }
     }
     // The <Z> check (section II): one reduction per check interval.
     const CheckSums local{tally.sum_dz, static_cast<double>(tally.accepted - accepted_before),

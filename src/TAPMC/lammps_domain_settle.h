@@ -50,8 +50,9 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
   // it, rounds, and wall-clock seconds in each phase.
   struct Timing {
     double trials = 0;      // the kernel's trial moves
-    double publish = 0;     // moved spheres to LAMMPS, forward communication, ghosts to the kernel
-    double reductions = 0;  // the per-round rebuild vote and the per-check <Z> reduction
+    double publish = 0;     // moved spheres to LAMMPS, forward communication and rebuild vote,
+                            // ghosts to the kernel
+    double reductions = 0;  // the per-check <Z> reduction
     double rebuilds = 0;    // migration and ghost rebuilds (exchange, borders, kernel reset)
   };
   long ghost_rebuilds() const { return ghost_rebuilds_; }
@@ -70,7 +71,7 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
 
   void load(const DomainSettleSetup &setup, double d_max, double contact_tol);
   void partition(const RoundSchedule &schedule, int from_round);
-  bool publish_round(const std::vector<int> &moved, double ghost_skin);
+  bool publish_round(const std::vector<int> &moved, double ghost_skin, bool vote);
   std::array<DecomposedAxis, 3> decomposed_axes() const;
   double largest_radius(const DomainSettleSetup &setup) const;
 };
