@@ -213,6 +213,9 @@ void FixMCSettle::init()
   const double rmax_all = group_radius_extreme(true);
   double needed = 2.0 * rmax_all;
   if (decomposed()) {
+    if (comm->style != 0)
+      error->all(FLERR, "fix mc/settle: scheme domain needs the brick communication of LAMMPS "
+                 "('comm_style brick', the default); with 'comm_style tiled' use 'scheme gather'");
     const double step =
         dmax_given ? d_max : tapmc::defaults::kMaxStepOverRadius * group_radius_extreme(false);
     needed = tapmc::DomainSettle::ghost_cutoff(rmax_all, step);
