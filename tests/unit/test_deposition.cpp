@@ -4,6 +4,7 @@
 #include "tapmc_defaults.h"
 #include "tapmc_deposition.h"
 #include "tapmc_math.h"
+#include "tapmc_stereology.h"
 
 #include <gtest/gtest.h>
 
@@ -498,8 +499,12 @@ TEST(Deposition, BulkPackingFractionN4096)
     oracle_bulk_window(p, d, 1.0, z0, z1);
     ASSERT_GT(z1 - z0, 10.0);  // a real bulk slab (about 17R here)
     const double phi = slab_packing_fraction(p, d, z0, z1);
-    // The kernel's stereology (create_packing's report) agrees with the oracle.
-    EXPECT_NEAR(tapmc::slab_volume_fraction(p, d, z0, z1), phi, 1e-12);
+    // The stereology kernel (create_packing's report) agrees with the oracle.
+    const tapmc::stereo::Spheres spheres{p.xyz.data(), p.radius.data(), 0.0, nullptr,
+                                         static_cast<int>(p.radius.size())};
+    EXPECT_NEAR(tapmc::stereo::horizontal_slab_volume(spheres, z0, z1) /
+                    ((d.xhi - d.xlo) * (d.yhi - d.ylo) * (z1 - z0)),
+                phi, 1e-12);
     EXPECT_GE(phi, 0.56) << "seed " << seed;
     EXPECT_LE(phi, 0.61) << "seed " << seed;
     phis.push_back(phi);
@@ -523,18 +528,3 @@ TEST(Deposition, ValidPackingN4096Walls)
   expect_valid_packing(p, d, "N=4096 FBC seed 9");
 }
 
-// The kernel's slab stereology on exact cases: half a sphere, a whole sphere, a thin cap.
-TEST(Deposition, SlabVolumeFractionExact)
-{
-  const auto d = make_domain(4, 5, true, true);
-  Packing p;
-  p.xyz = {1, 1, 3};
-  p.radius = {1.5};
-  const double sphere = 4.0 / 3.0 * kPi * 1.5 * 1.5 * 1.5, area = 20.0;
-  EXPECT_NEAR(tapmc::slab_volume_fraction(p, d, 3.0, 10.0), 0.5 * sphere / (area * 7.0), 1e-15);
-  EXPECT_NEAR(tapmc::slab_volume_fraction(p, d, -1.0, 9.0), sphere / (area * 10.0), 1e-15);
-  const double h = 0.25;  // cap of height h: pi h^2 (3r - h) / 3
-  EXPECT_NEAR(tapmc::slab_volume_fraction(p, d, 4.5 - h, 4.5),
-              kPi * h * h * (3 * 1.5 - h) / 3.0 / (area * h), 1e-13);
-  EXPECT_THROW(tapmc::slab_volume_fraction(p, d, 2.0, 2.0), std::invalid_argument);
-}
