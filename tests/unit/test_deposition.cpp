@@ -484,6 +484,33 @@ TEST(Deposition, BadInputNamesTheArgument)
   EXPECT_EQ(deposit_packing(0, mono, d, 1).radius.size(), 0u);
 }
 
+// create_packing's parameters: each bad one is named with its value and its range; the radii
+// span [R (1 - W), R (1 + W)].
+TEST(Deposition, PackingParamsValidation)
+{
+  tapmc::PackingParams good;
+  good.n = 10;
+  good.radius = 2.0;
+  good.dispersity = 0.25;
+  EXPECT_NO_THROW(tapmc::validate(good));
+  EXPECT_EQ(good.radii().r_min, 1.5);
+  EXPECT_EQ(good.radii().r_max, 2.5);
+  auto message = [&](auto change) {
+    tapmc::PackingParams p = good;
+    change(p);
+    return message_of<std::invalid_argument>([&] { tapmc::validate(p); });
+  };
+  EXPECT_EQ(message([](auto &p) { p.n = 0; }),
+            "N = 0 must be a number of spheres in [1, 2^31 - 2]");
+  EXPECT_EQ(message([](auto &p) { p.n = 2147483647; }),
+            "N = 2147483647 must be a number of spheres in [1, 2^31 - 2]");
+  EXPECT_EQ(message([](auto &p) { p.radius = -0.5; }), "R = -0.5 must be a positive sphere radius");
+  EXPECT_EQ(message([](auto &p) { p.radius = INFINITY; }), "R = inf must be a positive sphere radius");
+  EXPECT_EQ(message([](auto &p) { p.dispersity = 1.0; }),
+            "dispersity = 1 must be in [0, 1) (radii uniform in [R(1 - W), R(1 + W)])");
+  EXPECT_EQ(message([](auto &p) { p.density = 0.0; }), "density = 0 must be > 0");
+}
+
 // ---- the paper's initial packing: N = 4096, L = 32R, PBC -------------------------------------
 
 // Bulk packing fraction over 5 seeds (literature value of this algorithm about 0.58; the
