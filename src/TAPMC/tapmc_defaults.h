@@ -131,6 +131,18 @@ constexpr double kSettleEta = 1e-7;
 // packing lifted very high (huge eps) changes <Z> by less than eta per sweep while every sphere
 // is still falling, and would be reported converged after one sweep.
 constexpr double kSettleFreeFallAcceptance = 0.5;
+// 'stop drift' (tapmc_stop_rule.h): the drift of <Z> per sweep is the mean of the per-sweep
+// decrements over the last kSettleDriftWindow checks, and the redeposition stops when that mean
+// plus kSettleDriftConfidence standard errors (from the scatter of the decrements in the window)
+// is below eta <Z>. The single-check change of the paper's rule is a noisy estimate (its standard
+// deviation goes as 1/sqrt(N): 0.37 of its mean at N = 4096 near eta = 1e-7), so that rule stops
+// at the first lucky sweep, earlier in a small packing; 32 checks and 2 standard errors stopped
+// N = 1024 and N = 4096 (same bed height) within 5 % of each other and of the sweep at which the
+// drift, averaged over 200 sweeps, crosses eta (bench/stop_rule_scaling.py, bench/README.md).
+constexpr long kSettleDriftWindow = 32;
+constexpr double kSettleDriftConfidence = 2.0;
+// Largest accepted window (bounds the memory of the estimate; far beyond a useful window).
+constexpr long kSettleDriftWindowMax = 100000;
 // Cap on sweeps per redeposition, 15 times what eta = 1e-7 needs after a tap of eps = 0.01: it
 // only ends a run whose eta is unreachable; reaching it is reported in the fix's output vector
 // and as a warning.

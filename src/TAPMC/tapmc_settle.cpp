@@ -481,6 +481,10 @@ void Settler::validate(const SettleParams &p)
   if (!(p.d_max > 0.0 && std::isfinite(p.d_max))) bad("dmax", p.d_max, "(0, +inf)");
   if (!(p.theta0 > 0.0 && p.theta0 <= 0.5 * kPi)) bad("theta0", p.theta0, "(0, pi/2]");
   if (!(p.eta > 0.0 && p.eta < 1.0)) bad("eta", p.eta, "(0, 1) (relative change of <Z>)");
+  if (!(p.drift_window >= 2 && p.drift_window <= defaults::kSettleDriftWindowMax))
+    bad("window", static_cast<double>(p.drift_window),
+        "[2, " + std::to_string(defaults::kSettleDriftWindowMax) +
+            "] (checks averaged by 'stop drift')");
   check_check_interval(p.check_interval);
   if (p.max_checks < 1) bad("max_checks", static_cast<double>(p.max_checks), "[1, +inf)");
   check_contact_tol(p.contact_tol);
@@ -558,8 +562,10 @@ SettleResult Settler::settle(double *xyz, const double *radius, const unsigned c
   run.next_check = static_cast<std::uint64_t>(run.interval);
   for (int i : movable_ids_) run.sum_height += position_[3 * i + 2] - box.floor_z;
   result.mean_height_start = run.sum_height / static_cast<double>(m);
-  run.stop = std::make_unique<ConvergenceCheck>(params.eta, params.max_checks,
-                                                result.mean_height_start);
+  run.stop = std::make_unique<ConvergenceCheck>(
+      params.stop, params.eta, params.max_checks, result.mean_height_start,
+      static_cast<double>(run.interval) / static_cast<double>(m), params.drift_window,
+      defaults::kSettleDriftConfidence);
 
   if (run.scene.mono)
     dispatch_axes<true>(run, position_.data(), movable_ids_, image_, lists);

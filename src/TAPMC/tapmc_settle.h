@@ -7,6 +7,8 @@
 #ifndef TAPMC_SETTLE_H
 #define TAPMC_SETTLE_H
 
+#include "tapmc_defaults.h"
+#include "tapmc_stop_rule.h"
 #include "tapmc_trial_move.h"
 
 #include <cstdint>
@@ -41,6 +43,11 @@ struct SettleParams {
   std::uint64_t seed;      // user seed
   std::uint64_t stream;    // e.g. the LAMMPS timestep of this tap: keys the random numbers
   PickOrder order = PickOrder::Random;
+  // How eta is applied (tapmc_stop_rule.h): Change = the paper's change between two checks;
+  // Drift = the drift per sweep averaged over drift_window checks (>= 2) plus
+  // defaults::kSettleDriftConfidence standard errors, below eta <Z>.
+  StopRule stop = StopRule::Change;
+  long drift_window = defaults::kSettleDriftWindow;
 };
 
 struct SettleResult {
