@@ -68,7 +68,7 @@ def side_for(n):
 def preamble(n, seed):
     side = side_for(n)
     return ("units lj\natom_style sphere\nboundary p p fm\n"
-            "region box block 0 %.10g 0 %.10g 0 %g\ncreate_box 1 box\n"
+            "region box block 0 %.15g 0 %.15g 0 %g\ncreate_box 1 box\n"
             "create_packing %d 1 %g %d floor 0.0\n" % (side, side, BOX_HEIGHT, n, RADIUS, seed))
 
 
