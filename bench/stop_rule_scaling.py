@@ -454,9 +454,9 @@ def main():
                     row = run_taps(args.lmp, n, setting, seed, args.taps)
                     writer.writerow(row)
                     f.flush()
-                    print("  N %6d %-13s seed %5d: %6.1f s CPU, %s sweeps/tap, <Phi^c> %s"
-                          % (n, " ".join(setting), seed, float(row["cpu_s"]),
-                             row["sweeps_per_tap"], row["phi_c"]))
+                    print("  N %6d %-13s seed %5d: %6.1f s CPU (wall %.1f s), %s sweeps/tap, "
+                          "<Phi^c> %s" % (n, " ".join(setting), seed, float(row["cpu_s"]),
+                                          time.time() - t0, row["sweeps_per_tap"], row["phi_c"]))
                     sys.stdout.flush()
     print()
     summarize(read_runs(runs_path, args.taps), reference, args.csv)
