@@ -495,6 +495,16 @@ long Settler::trials_per_check(long check_interval, long movable)
   return check_interval > 0 ? check_interval : movable;
 }
 
+ConvergenceCheck Settler::make_convergence_check(const SettleParams &params, long movable,
+                                                 double mean_height_start)
+{
+  if (movable < 1) bad("movable", static_cast<double>(movable), "[1, +inf)");
+  const long interval = trials_per_check(params.check_interval, movable);
+  return ConvergenceCheck(params.stop, params.eta, params.max_checks, mean_height_start,
+                          static_cast<double>(interval) / static_cast<double>(movable),
+                          params.drift_window, defaults::kSettleDriftConfidence);
+}
+
 long Settler::max_checks_for_sweeps(long max_sweeps, long check_interval, long movable)
 {
   check_check_interval(check_interval);
@@ -563,9 +573,7 @@ SettleResult Settler::settle(double *xyz, const double *radius, const unsigned c
   for (int i : movable_ids_) run.sum_height += position_[3 * i + 2] - box.floor_z;
   result.mean_height_start = run.sum_height / static_cast<double>(m);
   run.stop = std::make_unique<ConvergenceCheck>(
-      params.stop, params.eta, params.max_checks, result.mean_height_start,
-      static_cast<double>(run.interval) / static_cast<double>(m), params.drift_window,
-      defaults::kSettleDriftConfidence);
+      make_convergence_check(params, m, result.mean_height_start));
 
   if (run.scene.mono)
     dispatch_axes<true>(run, position_.data(), movable_ids_, image_, lists);

@@ -100,6 +100,13 @@ class Settler {
   // Trial moves between two <Z> checks: check_interval, or one sweep (`movable`) when it is 0.
   static long trials_per_check(long check_interval, long movable);
 
+  // The stopping rule of one redeposition of `movable` spheres starting at <Z> =
+  // mean_height_start, as `params` asks (stop, eta, max_checks, check_interval, drift_window):
+  // what settle uses, and what a driver that feeds its own (e.g. globally reduced) <Z> uses to
+  // stop alike.
+  static ConvergenceCheck make_convergence_check(const SettleParams &params, long movable,
+                                                 double mean_height_start);
+
   // The max_checks that allows max_sweeps sweeps of `movable` spheres (at least one check).
   // Throws std::invalid_argument for check_interval < 0 or max_sweeps < 1.
   static long max_checks_for_sweeps(long max_sweeps, long check_interval, long movable);

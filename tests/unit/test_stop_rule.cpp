@@ -143,6 +143,30 @@ TEST(StopRule, DriftIsPerSweepWhateverTheCheckInterval)
   EXPECT_NEAR(static_cast<double>(four), r.crossing() + 16.0, 5.0);
 }
 
+// Settler::make_convergence_check (what settle and a decomposed driver use) builds the rule of
+// the parameters: check every 4 sweeps of 100 spheres = drift per sweep of a quarter of the
+// change per check.
+TEST(StopRule, MadeFromTheSettleParameters)
+{
+  const Relaxation r;
+  SettleParams p = paper_params(0.5, 1, 1, r.eta, 100000);
+  p.stop = StopRule::Drift;
+  p.drift_window = 8;
+  p.check_interval = 400;
+  ConvergenceCheck made = Settler::make_convergence_check(p, 100, r.z_inf + r.amplitude);
+  ConvergenceCheck manual(StopRule::Drift, r.eta, 100000, r.z_inf + r.amplitude, 4.0, 8,
+                          defaults::kSettleDriftConfidence);
+  for (long c = 1; c < 100000; ++c) {
+    const double z = r.z_inf + r.amplitude * std::exp(-4.0 * static_cast<double>(c) / r.tau);
+    const auto a = made.after_check(z, 1, 400);
+    ASSERT_EQ(a, manual.after_check(z, 1, 400)) << c;
+    ASSERT_DOUBLE_EQ(made.drift_per_sweep(), manual.drift_per_sweep());
+    if (a != ConvergenceCheck::Verdict::Continue) break;
+  }
+  EXPECT_GT(made.checks(), 8);
+  EXPECT_THROW(Settler::make_convergence_check(p, 0, 1.0), std::invalid_argument);
+}
+
 // The paper's rule through both constructors: the same verdicts on the same series.
 TEST(StopRule, ChangeRuleIsTheSameThroughBothConstructors)
 {
