@@ -46,6 +46,8 @@ class FixMCSettle : public Fix {
   double wall_pos[2][2];      // [dim][lo/hi]
   bool sweep_order;
   bool dmax_given;
+  bool stop_drift = false;    // 'stop drift': the windowed drift rule (tapmc_stop_rule.h)
+  long drift_window = 0;      // 'window': checks averaged by 'stop drift' (kSettleDriftWindow)
 
   // per-tap diagnostics (global vector)
   double last_sweeps, last_acceptance, last_mean_z, last_hit_cap, last_trials, last_mean_z0;

@@ -481,6 +481,10 @@ void Settler::validate(const SettleParams &p)
   if (!(p.d_max > 0.0 && std::isfinite(p.d_max))) bad("dmax", p.d_max, "(0, +inf)");
   if (!(p.theta0 > 0.0 && p.theta0 <= 0.5 * kPi)) bad("theta0", p.theta0, "(0, pi/2]");
   if (!(p.eta > 0.0 && p.eta < 1.0)) bad("eta", p.eta, "(0, 1) (relative change of <Z>)");
+  if (!(p.drift_window >= 2 && p.drift_window <= defaults::kSettleDriftWindowMax))
+    bad("window", static_cast<double>(p.drift_window),
+        "[2, " + std::to_string(defaults::kSettleDriftWindowMax) +
+            "] (checks averaged by 'stop drift')");
   check_check_interval(p.check_interval);
   if (p.max_checks < 1) bad("max_checks", static_cast<double>(p.max_checks), "[1, +inf)");
   check_contact_tol(p.contact_tol);
@@ -489,6 +493,16 @@ void Settler::validate(const SettleParams &p)
 long Settler::trials_per_check(long check_interval, long movable)
 {
   return check_interval > 0 ? check_interval : movable;
+}
+
+ConvergenceCheck Settler::make_convergence_check(const SettleParams &params, long movable,
+                                                 double mean_height_start)
+{
+  if (movable < 1) bad("movable", static_cast<double>(movable), "[1, +inf)");
+  const long interval = trials_per_check(params.check_interval, movable);
+  return ConvergenceCheck(params.stop, params.eta, params.max_checks, mean_height_start,
+                          static_cast<double>(interval) / static_cast<double>(movable),
+                          params.drift_window, defaults::kSettleDriftConfidence);
 }
 
 long Settler::max_checks_for_sweeps(long max_sweeps, long check_interval, long movable)
@@ -558,8 +572,8 @@ SettleResult Settler::settle(double *xyz, const double *radius, const unsigned c
   run.next_check = static_cast<std::uint64_t>(run.interval);
   for (int i : movable_ids_) run.sum_height += position_[3 * i + 2] - box.floor_z;
   result.mean_height_start = run.sum_height / static_cast<double>(m);
-  run.stop = std::make_unique<ConvergenceCheck>(params.eta, params.max_checks,
-                                                result.mean_height_start);
+  run.stop = std::make_unique<ConvergenceCheck>(
+      make_convergence_check(params, m, result.mean_height_start));
 
   if (run.scene.mono)
     dispatch_axes<true>(run, position_.data(), movable_ids_, image_, lists);
