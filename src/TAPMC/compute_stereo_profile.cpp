@@ -264,16 +264,25 @@ double ComputeStereoProfile::reduce_surface_height(const stereo::Spheres &sphere
   return stereo::surface_height(buffer_.data(), grid.size(), settings_.floor);
 }
 
+// The group has spheres to measure (else the caller fills its empty output); warns once per run
+// about a sphere below the floor. Collective.
+bool ComputeStereoProfile::ready_to_measure()
+{
+  if (group_is_empty()) return false;
+  warn_below_floor();
+  return true;
+}
+
 void ComputeStereoProfile::compute_vector()
 {
   invoked_vector = update->ntimestep;
-  if (group_is_empty()) {  // no sphere: every fraction 0, z_top = h_s = z0 (see the doc page)
-    for (int i = 0; i < kVectorSize; ++i) vector[i] = 0.0;
-    vector[kWindowTop] = vector[kSurfaceHeight] = settings_.floor;
+  if (ready_to_measure()) {
+    tapmc::guarded(lmp, "compute stereo/profile", false, [&] { compute_vector_guarded(); });
     return;
   }
-  warn_below_floor();
-  tapmc::guarded(lmp, "compute stereo/profile", false, [&] { compute_vector_guarded(); });
+  // no sphere: every fraction 0, z_top = h_s = z0 (see the doc page)
+  for (int i = 0; i < kVectorSize; ++i) vector[i] = 0.0;
+  vector[kWindowTop] = vector[kSurfaceHeight] = settings_.floor;
 }
 
 void ComputeStereoProfile::compute_vector_guarded()
@@ -300,15 +309,15 @@ void ComputeStereoProfile::compute_vector_guarded()
 void ComputeStereoProfile::compute_array()
 {
   invoked_array = update->ntimestep;
-  if (group_is_empty()) {  // no sphere: plane positions, zero fractions
-    for (int k = 0; k < planes_.n; ++k) {
-      array[k][0] = planes_.position(k);
-      array[k][1] = array[k][2] = 0.0;
-    }
+  if (ready_to_measure()) {
+    tapmc::guarded(lmp, "compute stereo/profile", false, [&] { compute_array_guarded(); });
     return;
   }
-  warn_below_floor();
-  tapmc::guarded(lmp, "compute stereo/profile", false, [&] { compute_array_guarded(); });
+  // no sphere: plane positions, zero fractions
+  for (int k = 0; k < planes_.n; ++k) {
+    array[k][0] = planes_.position(k);
+    array[k][1] = array[k][2] = 0.0;
+  }
 }
 
 void ComputeStereoProfile::compute_array_guarded()

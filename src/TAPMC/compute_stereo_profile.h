@@ -36,6 +36,7 @@ class ComputeStereoProfile : public Compute {
   void update_mean_radius();
   bool group_is_empty();
   void warn_below_floor();
+  bool ready_to_measure();
   void compute_vector_guarded();
   void compute_array_guarded();
   tapmc::stereo::Spheres select_spheres();

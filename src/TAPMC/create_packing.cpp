@@ -8,6 +8,7 @@
 #include "tapmc_defaults.h"
 #include "tapmc_deposition.h"
 #include "tapmc_math.h"
+#include "tapmc_stereology.h"
 
 #include "atom.h"
 #include "atom_vec.h"
@@ -33,14 +34,13 @@ namespace {
 // Boundary codes of Domain::boundary[dim][side].
 constexpr int kBoundaryFixed = 1;
 
+// Where to deposit: the keywords floor, region and walls.
 struct Options {
   double floor_z = 0.0;
   bool floor_given = false;
   std::string region_id;
   bool walls_given = false;
   bool walls_x = false, walls_y = false;
-  double dispersity = 0.0;
-  double density = tapmc::defaults::kDepositionDensity;
 };
 
 // Ownership of a point by this rank: half-open sub-domain intervals, the outermost sub-domains
@@ -76,11 +76,11 @@ SubDomain my_subdomain(Domain *domain, Comm *comm)
   return s;
 }
 
-// The command's arguments: N, type, R, seed and the optional keywords.
+// The command's arguments: N, R, dispersity, density (the kernel's parameters), type, seed and
+// where to deposit.
 struct Request {
-  bigint n_spheres = 0;
+  tapmc::PackingParams params;
   int type = 0;
-  double radius = 0.0;
   std::int64_t seed = 0;
   Options opt;
 };
@@ -130,10 +130,10 @@ int parse_walls(LAMMPS *lmp, Options &opt, int iarg, int narg, char **arg)
   return used;
 }
 
-Options parse_options(LAMMPS *lmp, int narg, char **arg)
+void parse_options(LAMMPS *lmp, int narg, char **arg, Request &req)
 {
   Error *error = lmp->error;
-  Options opt;
+  Options &opt = req.opt;
   for (int iarg = 4; iarg < narg;) {
     const std::string key = arg[iarg];
     if (key == "walls") {
@@ -148,41 +148,30 @@ Options parse_options(LAMMPS *lmp, int narg, char **arg)
     } else if (key == "region") {
       opt.region_id = value;
     } else if (key == "dispersity") {
-      opt.dispersity = utils::numeric(FLERR, value, false, lmp);
-      if (!(opt.dispersity >= 0.0 && opt.dispersity < 1.0))
-        error->all(FLERR, "create_packing: dispersity = {} must be in [0, 1) (radii uniform in "
-                   "[R(1 - W), R(1 + W)])", value);
+      req.params.dispersity = utils::numeric(FLERR, value, false, lmp);
     } else if (key == "density") {
-      opt.density = utils::numeric(FLERR, value, false, lmp);
-      if (!(opt.density > 0.0))
-        error->all(FLERR, "create_packing: density = {} must be > 0", value);
+      req.params.density = utils::numeric(FLERR, value, false, lmp);
     } else {
       error->all(FLERR, "create_packing: unknown keyword '{}' (allowed: floor, region, walls, "
                  "dispersity, density)", key);
     }
     iarg += 2;
   }
-  return opt;
 }
 
 Request parse_request(LAMMPS *lmp, int narg, char **arg)
 {
   check_preconditions(lmp, narg);
-  Error *error = lmp->error;
   Request req;
-  req.n_spheres = utils::bnumeric(FLERR, arg[0], false, lmp);
-  if (req.n_spheres <= 0 || req.n_spheres > std::numeric_limits<int>::max() - 1)
-    error->all(FLERR, "create_packing: N = {} must be a number of spheres in [1, 2^31 - 2]",
-               arg[0]);
+  req.params.n = utils::bnumeric(FLERR, arg[0], false, lmp);
   req.type = utils::inumeric(FLERR, arg[1], false, lmp);
-  if (req.type < 1 || req.type > lmp->atom->ntypes)
-    error->all(FLERR, "create_packing: type = {} must be an atom type in [1, {}]", arg[1],
-               lmp->atom->ntypes);
-  req.radius = utils::numeric(FLERR, arg[2], false, lmp);
-  if (!(req.radius > 0.0) || !std::isfinite(req.radius))
-    error->all(FLERR, "create_packing: R = {} must be a positive sphere radius", arg[2]);
+  req.params.radius = utils::numeric(FLERR, arg[2], false, lmp);
   req.seed = tapmc::parse_seed(lmp, "create_packing", "seed", arg[3]);
-  req.opt = parse_options(lmp, narg, arg);
+  parse_options(lmp, narg, arg, req);
+  tapmc::guarded(lmp, "create_packing", true, [&] { tapmc::validate(req.params); });
+  if (req.type < 1 || req.type > lmp->atom->ntypes)
+    lmp->error->all(FLERR, "create_packing: type = {} must be an atom type in [1, {}]", arg[1],
+                    lmp->atom->ntypes);
   return req;
 }
 
@@ -234,8 +223,8 @@ Plan plan_domain(LAMMPS *lmp, const Request &req)
     error->all(FLERR, "create_packing: floor = {} is not below {} (z = {})", z_floor,
                plan.top_name, z_top);
 
-  plan.r_min = req.radius * (1.0 - opt.dispersity);
-  plan.r_max = req.radius * (1.0 + opt.dispersity);
+  plan.r_min = req.params.radii().r_min;
+  plan.r_max = req.params.radii().r_max;
   tapmc::DepositionDomain &dd = plan.dd;
   dd.xlo = lo[0];
   dd.xhi = hi[0];
@@ -261,15 +250,15 @@ void check_room(LAMMPS *lmp, const Request &req, const Plan &plan)
                       "{}; it cannot hold the spheres", plan.where, width[d], "xy"[d],
                       2.0 * plan.r_max);
   if (!std::isfinite(dd.z_top)) return;
-  const double radius = req.radius, w = req.opt.dispersity;
+  const double radius = req.params.radius, w = req.params.dispersity;
   const double mean_r3 = radius * radius * radius * (1.0 + w * w);
   const double packing = tapmc::defaults::kRandomClosePacking;
-  const double need = req.n_spheres * (4.0 / 3.0) * tapmc::kPi * mean_r3 / packing;
+  const double need = req.params.n * (4.0 / 3.0) * tapmc::kPi * mean_r3 / packing;
   const double room = width[0] * width[1] * (dd.z_top - dd.z_floor);
   if (need > room)
     lmp->error->all(FLERR, "create_packing: {} cannot hold N = {} spheres of radius {}: they need "
                     "at least {:.6g} of volume (at packing fraction {}), {} offers {:.6g} between "
-                    "the floor z = {} and {} z = {}", plan.where, req.n_spheres, radius, need,
+                    "the floor z = {} and {} z = {}", plan.where, req.params.n, radius, need,
                     packing, plan.where, room, dd.z_floor, plan.top_name, dd.z_top);
 }
 
@@ -306,24 +295,24 @@ void create_own_atoms(LAMMPS *lmp, const Request &req, const tapmc::Packing &pac
   MPI_Allreduce(&max_tag, &max_tag_all, 1, MPI_LMP_TAGINT, MPI_MAX, world);
 
   const SubDomain mine = my_subdomain(lmp->domain, lmp->comm);
-  for (bigint i = 0; i < req.n_spheres; ++i) {
+  for (bigint i = 0; i < req.params.n; ++i) {
     double x[3] = {packing.xyz[3 * i], packing.xyz[3 * i + 1], packing.xyz[3 * i + 2]};
     if (!mine.owns(x)) continue;
     atom->avec->create_atom(req.type, x);
     const int m = atom->nlocal - 1;
     const double r = packing.radius[i];
     atom->radius[m] = r;
-    atom->rmass[m] = req.opt.density * (4.0 / 3.0) * tapmc::kPi * r * r * r;
+    atom->rmass[m] = req.params.density * (4.0 / 3.0) * tapmc::kPi * r * r * r;
     if (atom->tag_enable) atom->tag[m] = max_tag_all + static_cast<tagint>(i) + 1;
   }
   atom->data_fix_compute_variable(nlocal_before, atom->nlocal);
 
   bigint nlocal = atom->nlocal;
   MPI_Allreduce(&nlocal, &atom->natoms, 1, MPI_LMP_BIGINT, MPI_SUM, world);
-  if (atom->natoms != natoms_before + req.n_spheres)
+  if (atom->natoms != natoms_before + req.params.n)
     lmp->error->all(FLERR, "create_packing: {} atoms exist after creating {} spheres on top of "
                     "{} (every sphere must have exactly one owner)", atom->natoms,
-                    req.n_spheres, natoms_before);
+                    req.params.n, natoms_before);
   if (atom->tag_enable) atom->tag_check();
   if (atom->map_style != Atom::MAP_NONE) {
     atom->map_init();
@@ -336,20 +325,29 @@ void create_own_atoms(LAMMPS *lmp, const Request &req, const tapmc::Packing &pac
   }
 }
 
+// Volume fraction of the spheres in the slab z0 <= z <= z1 over the domain's x-y extent (the
+// stereology kernel's exact slab integral; whole spheres count across periodic sides).
+double slab_volume_fraction(const tapmc::Packing &packing, const tapmc::DepositionDomain &dd,
+                            double z0, double z1)
+{
+  const tapmc::stereo::Spheres spheres{packing.xyz.data(), packing.radius.data(), 0.0, nullptr,
+                                       static_cast<int>(packing.radius.size())};
+  const double area = (dd.xhi - dd.xlo) * (dd.yhi - dd.ylo);
+  return tapmc::stereo::horizontal_slab_volume(spheres, z0, z1) / (area * (z1 - z0));
+}
+
 void report(LAMMPS *lmp, const Request &req, const Plan &plan, const tapmc::Packing &packing,
             double zmax, double t_deposit)
 {
   if (lmp->comm->me == 0) {
     double z0 = 0.0, z1 = 0.0;
     std::string phi_text = "bulk window too thin for a packing fraction";
-    tapmc::guarded(lmp, "create_packing", false, [&] {
-      tapmc::bulk_window(packing, plan.dd,
-                         tapmc::defaults::kDepositionBulkMarginOverRadius * req.radius, z0, z1);
-      if (z1 - z0 > 2.0 * req.radius)
-        phi_text = fmt::format("bulk packing fraction {:.4f} (exact stereology, {:.4g} <= z <= "
-                               "{:.4g})", tapmc::slab_volume_fraction(packing, plan.dd, z0, z1),
-                               z0, z1);
-    });
+    const double radius = req.params.radius;
+    tapmc::bulk_window(packing, plan.dd,
+                       tapmc::defaults::kDepositionBulkMarginOverRadius * radius, z0, z1);
+    if (z1 - z0 > 2.0 * radius)
+      phi_text = fmt::format("bulk packing fraction {:.4f} (exact stereology, {:.4g} <= z <= "
+                             "{:.4g})", slab_volume_fraction(packing, plan.dd, z0, z1), z0, z1);
     utils::logmesg(lmp,
                    "Created {} spheres by sequential deposition (Jullien-Meakin), sides: x {}, "
                    "y {}; floor z = {}\n"
@@ -357,7 +355,7 @@ void report(LAMMPS *lmp, const Request &req, const Plan &plan, const tapmc::Pack
                    "  highest centre z = {:.6g}; path segments {}, unstable equilibria left {}, "
                    "re-drops {}, unresolved {}\n"
                    "  create_packing CPU = {:.3f} seconds\n",
-                   req.n_spheres, plan.walls[0] ? "walls" : "periodic",
+                   req.params.n, plan.walls[0] ? "walls" : "periodic",
                    plan.walls[1] ? "walls" : "periodic", plan.dd.z_floor, phi_text, zmax,
                    packing.stats.segments, packing.stats.perturbations, packing.stats.redrops,
                    packing.stats.unresolved, t_deposit);
@@ -385,8 +383,7 @@ void CreatePacking::command(int narg, char **arg)
                             (plan.top_name.empty() ? std::string("open top") : plan.top_name) +
                             ")";
   tapmc::guarded(lmp, style.c_str(), true, [&] {
-    packing = tapmc::deposit_packing(req.n_spheres,
-                                     tapmc::RadiusDistribution{plan.r_min, plan.r_max}, plan.dd,
+    packing = tapmc::deposit_packing(req.params.n, req.params.radii(), plan.dd,
                                      static_cast<std::uint64_t>(req.seed));
   });
   const double t_deposit = MPI_Wtime() - t_start;

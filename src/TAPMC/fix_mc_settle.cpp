@@ -57,6 +57,7 @@ FixMCSettle::FixMCSettle(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR, "fix mc/settle: expected 'fix ID group mc/settle seed [keyword value ...]',"
                " got {} argument(s)", narg);
   seed = tapmc::parse_seed(lmp, "fix mc/settle", "seed", arg[3]);
+  drift_window = tapmc::defaults::kSettleDriftWindow;
 
   parse_keywords(narg, arg);
   // The kernel's one validation; without 'dmax' the step comes from the radii at each tap
@@ -152,6 +153,15 @@ void FixMCSettle::parse_keywords(int narg, char **arg)
          scheme = name == "gather" ? Scheme::Gather
                                    : (name == "domain" ? Scheme::Domain : Scheme::Auto);
        }},
+      {"stop", 1,
+       [&](char **v) {
+         const std::string rule = v[0];
+         if (rule != "change" && rule != "drift")
+           error->all(FLERR, "fix mc/settle: stop = {} must be 'change' (the paper's rule) or "
+                      "'drift'", rule);
+         stop_drift = rule == "drift";
+       }},
+      {"window", 1, [&](char **v) { drift_window = integer(v[0]); }},
   };
   tapmc::parse_keywords(lmp, "fix mc/settle", table, 4, narg, arg);
 }
@@ -169,6 +179,8 @@ tapmc::SettleParams FixMCSettle::make_params(double step, long movable) const
   params.seed = static_cast<std::uint64_t>(seed);
   params.stream = static_cast<std::uint64_t>(update->ntimestep);
   params.order = sweep_order ? tapmc::PickOrder::Sweep : tapmc::PickOrder::Random;
+  params.stop = stop_drift ? tapmc::StopRule::Drift : tapmc::StopRule::Change;
+  params.drift_window = drift_window;
   return params;
 }
 
@@ -533,10 +545,13 @@ double FixMCSettle::compute_vector(int n)
 // without stored generator state. The file keeps every setting that shapes the trajectory
 // (compared after read_restart: a change gives one warning naming old and new values) and the
 // last diagnostics. Layout: kRestartLayout, the seed as two exact 32-bit halves, the settings,
-// the diagnostics.
+// the diagnostics. Files of the layout without the stop rule (kRestartLayoutNoStop: its first
+// kRestartSettingsNoStop settings) were written by runs with 'stop change' and the default window.
 namespace {
-constexpr double kRestartLayout = -2.0;  // negative: cannot be the seed of the seed-only layout
-constexpr int kRestartSettings = 14;
+constexpr double kRestartLayout = -3.0;  // negative: cannot be the seed of the seed-only layout
+constexpr int kRestartSettings = 16;
+constexpr double kRestartLayoutNoStop = -2.0;
+constexpr int kRestartSettingsNoStop = 14;
 }  // namespace
 
 void FixMCSettle::write_restart(FILE *fp)
@@ -550,6 +565,7 @@ void FixMCSettle::write_restart(FILE *fp)
       z_floor, fixed_radius, sweep_order ? 1.0 : 0.0,
       walls_given[0] ? wall_pos[0][0] : NAN, walls_given[0] ? wall_pos[0][1] : NAN,
       walls_given[1] ? wall_pos[1][0] : NAN, walls_given[1] ? wall_pos[1][1] : NAN,
+      stop_drift ? 1.0 : 0.0, static_cast<double>(drift_window),
       last_sweeps, last_acceptance, last_mean_z, last_hit_cap, last_trials, last_mean_z0};
   int size = sizeof(list);
   fwrite(&size, sizeof(int), 1, fp);
@@ -567,7 +583,8 @@ void FixMCSettle::restart(char *buf)
     last_trials = diag[4];
     last_mean_z0 = diag[5];
   };
-  if (list[0] != kRestartLayout) {  // seed-only layout: seed, then the diagnostics
+  const bool with_stop = list[0] == kRestartLayout;
+  if (!with_stop && list[0] != kRestartLayoutNoStop) {  // seed-only layout: seed, diagnostics
     if (static_cast<std::int64_t>(list[0]) != seed && comm->me == 0)
       error->warning(FLERR, "fix mc/settle: seed {} differs from the restart file's {}; the run "
                      "will not continue the original trajectory", seed,
@@ -598,8 +615,11 @@ void FixMCSettle::restart(char *buf)
   compare("xwalls hi", list[12], walls_given[0] ? wall_pos[0][1] : NAN);
   compare("ywalls lo", list[13], walls_given[1] ? wall_pos[1][0] : NAN);
   compare("ywalls hi", list[14], walls_given[1] ? wall_pos[1][1] : NAN);
+  compare("stop (0 change, 1 drift)", with_stop ? list[15] : 0.0, stop_drift ? 1.0 : 0.0);
+  compare("window", with_stop ? list[16] : static_cast<double>(tapmc::defaults::kSettleDriftWindow),
+          static_cast<double>(drift_window));
   if (!changed.empty() && comm->me == 0)
     error->warning(FLERR, "fix mc/settle: settings differ from the restart file (restart -> now): "
                    "{}; the run will not continue the original trajectory", changed);
-  restore_diagnostics(list + 1 + kRestartSettings);
+  restore_diagnostics(list + 1 + (with_stop ? kRestartSettings : kRestartSettingsNoStop));
 }

@@ -54,6 +54,8 @@ class FixMCSettle : public Fix {
   // the rank count); domain = the decomposed redeposition (lammps_domain_settle.h); auto =
   // gather on one rank, domain on several.
   enum class Scheme { Auto, Gather, Domain } scheme;
+  bool stop_drift = false;    // 'stop drift': the windowed drift rule (tapmc_stop_rule.h)
+  long drift_window = 0;      // 'window': checks averaged by 'stop drift' (kSettleDriftWindow)
 
   // per-tap diagnostics (global vector)
   double last_sweeps, last_acceptance, last_mean_z, last_hit_cap, last_trials, last_mean_z0;

@@ -6,7 +6,6 @@
 #include "lammps_keywords.h"
 #include "lammps_relocate.h"
 #include "lammps_support.h"
-#include "tapmc_defaults.h"
 #include "tapmc_dilation.h"
 
 #include "atom.h"
@@ -27,33 +26,24 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 
 FixTapDilate::FixTapDilate(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), eps_constant(0.0), eps_var_index(-1), tap_every(1),
-    z_floor(domain->boxlo[2]), last_eps(0.0), tapped_step(-1)
+    Fix(lmp, narg, arg), eps_var_index(-1), last_eps(0.0), tapped_step(-1)
 {
   if (narg < 4)
     error->all(FLERR, "fix tapdilate: expected 'fix ID group tapdilate eps [every N] "
                "[floor z0]', got {} argument(s)", narg);
 
-  if (std::strncmp(arg[3], "v_", 2) == 0) {
-    eps_variable = arg[3] + 2;
-  } else {
-    eps_constant = utils::numeric(FLERR, arg[3], false, lmp);
-    if (!(eps_constant >= 0.0 && eps_constant <= tapmc::defaults::kMaxTapEps))
-      error->all(FLERR, "fix tapdilate: eps = {} must be in [0, {}] (relative dilation of the "
-                 "heights above the floor; eps = {} doubles them)", arg[3],
-                 tapmc::defaults::kMaxTapEps, tapmc::defaults::kMaxTapEps);
-  }
+  params.z_floor = domain->boxlo[2];
+  if (std::strncmp(arg[3], "v_", 2) == 0)
+    eps_variable = arg[3] + 2;  // params.eps stays 0 here; each tap checks the variable's value
+  else
+    params.eps = utils::numeric(FLERR, arg[3], false, lmp);
 
   const tapmc::Keyword table[] = {
-      {"every", 1,
-       [&](char **v) {
-         tap_every = utils::inumeric(FLERR, v[0], false, lmp);
-         if (tap_every < 1)
-           error->all(FLERR, "fix tapdilate: every = {} must be an integer >= 1", v[0]);
-       }},
-      {"floor", 1, [&](char **v) { z_floor = utils::numeric(FLERR, v[0], false, lmp); }},
+      {"every", 1, [&](char **v) { params.every = utils::inumeric(FLERR, v[0], false, lmp); }},
+      {"floor", 1, [&](char **v) { params.z_floor = utils::numeric(FLERR, v[0], false, lmp); }},
   };
   tapmc::parse_keywords(lmp, "fix tapdilate", table, 4, narg, arg);
+  tapmc::guarded(lmp, "fix tapdilate", true, [&] { tapmc::validate(params); });
 
   tapmc::require_box_with_floor(lmp, "fix tapdilate");
 
@@ -108,26 +98,27 @@ void FixTapDilate::check_geometry()
     if (mask[i] & groupbit) zmin = std::min(zmin, x[i][2]);
   double zmin_all;
   MPI_Allreduce(&zmin, &zmin_all, 1, MPI_DOUBLE, MPI_MIN, world);
-  if (zmin_all < z_floor)
+  if (zmin_all < params.z_floor)
     error->all(FLERR, "fix tapdilate: an atom centre is at z = {} below the floor z0 = {}; "
-               "set 'floor' at or below the lowest atom", zmin_all, z_floor);
+               "set 'floor' at or below the lowest atom", zmin_all, params.z_floor);
 }
 
 double FixTapDilate::current_eps()
 {
-  if (eps_var_index < 0) return eps_constant;
+  if (eps_var_index < 0) return params.eps;
   modify->clearstep_compute();
-  const double eps = input->variable->compute_equal(eps_var_index);
-  modify->addstep_compute(update->ntimestep + tap_every);
-  if (!(eps >= 0.0 && eps <= tapmc::defaults::kMaxTapEps))
-    error->all(FLERR, "fix tapdilate: variable '{}' gave eps = {} on step {}; eps must be in "
-               "[0, {}]", eps_variable, eps, update->ntimestep, tapmc::defaults::kMaxTapEps);
-  return eps;
+  tapmc::DilationParams now = params;
+  now.eps = input->variable->compute_equal(eps_var_index);
+  modify->addstep_compute(update->ntimestep + params.every);
+  const std::string style =
+      fmt::format("fix tapdilate (variable '{}', step {})", eps_variable, update->ntimestep);
+  tapmc::guarded(lmp, style.c_str(), true, [&] { tapmc::validate(now); });
+  return now.eps;
 }
 
 bigint FixTapDilate::next_tap_after(bigint step) const
 {
-  return (step / tap_every) * tap_every + tap_every;
+  return (step / params.every) * params.every + params.every;
 }
 
 bool FixTapDilate::tapped_this_step() const
@@ -156,7 +147,7 @@ void FixTapDilate::tap_if_due()
     for (int i = 0; i < atom->nlocal; ++i) {
       if (!(atom->mask[i] & groupbit)) continue;
       const double r = radius ? radius[i] : 0.0;
-      top = std::max(top, tapmc::dilated_height(x[i][2], z_floor, last_eps) + r);
+      top = std::max(top, tapmc::dilated_height(x[i][2], params.z_floor, last_eps) + r);
     }
     double top_all;
     MPI_Allreduce(&top, &top_all, 1, MPI_DOUBLE, MPI_MAX, world);
@@ -167,8 +158,8 @@ void FixTapDilate::tap_if_due()
   }
 
   if (atom->nlocal > 0)
-    tapmc::dilate_about_floor(&atom->x[0][0], atom->mask, groupbit, atom->nlocal, z_floor,
-                              last_eps);
+    tapmc::dilate_about_floor(&atom->x[0][0], atom->mask, groupbit, atom->nlocal,
+                              params.z_floor, last_eps);
   tapmc::relocate_moved_atoms(lmp, "fix tapdilate");
 }
 

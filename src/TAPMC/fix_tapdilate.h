@@ -5,6 +5,7 @@
 
 #include "fix.h"
 #include "lmptype.h"
+#include "tapmc_dilation.h"
 
 #include <string>
 
@@ -27,11 +28,9 @@ class FixTapDilate : public Fix {
   bigint next_tap_after(bigint step) const;
 
  private:
-  double eps_constant;      // eps when given as a number
+  tapmc::DilationParams params;  // eps (when given as a number), every, floor
   std::string eps_variable; // name of the equal-style variable, else empty
   int eps_var_index;
-  int tap_every;            // dilate on timesteps that are multiples of tap_every
-  double z_floor;
   double last_eps;          // eps of the most recent tap (thermo output)
   bigint tapped_step;       // timestep of the most recent tap (-1: none yet)
 

@@ -216,7 +216,8 @@ SettleResult DomainSettle::settle(const DomainSettleSetup &setup, const SettlePa
   const CounterRandom trial_stream = tap_stream.round(rank_key_index(comm->me));
   const CounterRandom cut_stream = tap_stream.round(kCutKeyIndex);
   const long interval = Settler::trials_per_check(params.check_interval, movable_total);
-  ConvergenceCheck stop(params.eta, params.max_checks, result.mean_height_start);
+  ConvergenceCheck stop =
+      Settler::make_convergence_check(params, movable_total, result.mean_height_start);
   TrialTally tally;
   std::uint64_t next_trial = 0, cycle = 0;
   CheckSums total{0, 0, 0, 0};

@@ -35,6 +35,32 @@ inline double separation(double x_j, double x_i, double image_shift)
   return (x_j - x_i) + image_shift;
 }
 
+// The impassable planes, numbered once for every kernel and message: where a partner index j
+// names a sphere when j >= 0, a negative j names one of these planes (the deposition's
+// constraints, a violation found by the Monte Carlo kernel).
+enum PlaneId : int {
+  kFloorPlane = -1,  // z = z_floor, below
+  kWallXlo = -2,     // x = low x wall (non-periodic x)
+  kWallXhi = -3,     // x = high x wall
+  kWallYlo = -4,     // y = low y wall (non-periodic y)
+  kWallYhi = -5,     // y = high y wall
+};
+// The two side walls of axis 0 (x) or 1 (y).
+inline PlaneId low_wall(int axis) { return axis == 0 ? kWallXlo : kWallYlo; }
+inline PlaneId high_wall(int axis) { return axis == 0 ? kWallXhi : kWallYhi; }
+// As messages name it: "the floor", "the low x wall", ...
+inline const char *plane_name(PlaneId plane)
+{
+  switch (plane) {
+    case kFloorPlane: return "the floor";
+    case kWallXlo: return "the low x wall";
+    case kWallXhi: return "the high x wall";
+    case kWallYlo: return "the low y wall";
+    case kWallYhi: return "the high y wall";
+  }
+  return "an unknown plane";
+}
+
 // Plane constraints (floor below, side walls): the sphere's surface may reach a plane up to
 // tol * (2R) beyond it. `gap` = distance from the plane to the sphere surface (< 0: overlap).
 inline bool gap_violates(double gap, double r, double tol)
@@ -44,6 +70,18 @@ inline bool gap_violates(double gap, double r, double tol)
 inline double floor_gap(double z, double r, double floor_z) { return (z - r) - floor_z; }
 inline double low_wall_gap(double x, double r, double wall) { return (x - r) - wall; }
 inline double high_wall_gap(double x, double r, double wall) { return wall - (x + r); }
+
+// The side wall of one axis that a sphere (coordinate c along the axis, radius r) crosses beyond
+// the tolerance, the low one first, with its gap; 0 when it crosses neither.
+inline int side_wall_violation(int axis, double c, double r, double wall_lo, double wall_hi,
+                               double tol, double &gap)
+{
+  gap = low_wall_gap(c, r, wall_lo);
+  if (gap_violates(gap, r, tol)) return low_wall(axis);
+  gap = high_wall_gap(c, r, wall_hi);
+  if (gap_violates(gap, r, tol)) return high_wall(axis);
+  return 0;
+}
 
 }  // namespace tapmc
 

@@ -131,6 +131,22 @@ constexpr double kSettleEta = 1e-7;
 // packing lifted very high (huge eps) changes <Z> by less than eta per sweep while every sphere
 // is still falling, and would be reported converged after one sweep.
 constexpr double kSettleFreeFallAcceptance = 0.5;
+// 'stop drift' (tapmc_stop_rule.h): the drift of <Z> per sweep is the mean of the per-sweep
+// decrements over the last kSettleDriftWindow checks, and the redeposition stops when that mean
+// plus kSettleDriftConfidence standard errors (from the scatter of the decrements in the window)
+// is below eta <Z>. The single-check change of the paper's rule is a noisy estimate of the drift
+// (standard deviation / mean of one sweep's decrement near eta = 4e-7: 0.66, 0.34, 0.21, 0.14
+// at N = 1024, 4096, 16384, 32768), so that rule stops at the first lucky sweep: at eta = 1e-7
+// after 1716, 3384, 5188, 6074 sweeps. The mean drift itself is intensive (it crosses 4e-7 after
+// 3321, 3406, 3372, 3374 sweeps). 32 checks and 2 standard errors stopped every recorded tap
+// within -5 % / +10 % of the crossing of the drift smoothed over 200 sweeps (N = 1024 to 32768,
+// eta 1e-6 to 1e-7; -2 % / +6 % from N = 4096 on); 8 checks stopped N = 1024 up to 30 % early.
+// The window lags by window/2 sweeps, negligible against the thousands a tap needs.
+// (bench/stop_rule_scaling.py --trajectories; bench/README.md.)
+constexpr long kSettleDriftWindow = 32;
+constexpr double kSettleDriftConfidence = 2.0;
+// Largest accepted window (bounds the memory of the estimate; far beyond a useful window).
+constexpr long kSettleDriftWindowMax = 100000;
 // Cap on sweeps per redeposition, 15 times what eta = 1e-7 needs after a tap of eps = 0.01: it
 // only ends a run whose eta is unreachable; reaching it is reported in the fix's output vector
 // and as a warning.

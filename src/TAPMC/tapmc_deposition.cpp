@@ -17,8 +17,10 @@
 // contact, a support force reaching zero, the lowest point) is found in closed form.
 #include "tapmc_deposition.h"
 
+#include "tapmc_contact.h"
 #include "tapmc_defaults.h"
 #include "tapmc_math.h"
+#include "tapmc_random.h"
 
 #include <algorithm>
 #include <cmath>
@@ -39,9 +41,6 @@ using defaults::kDepositionSupportTolerance;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Counter offset of the random draws that leave unstable equilibria (below: drop points).
-constexpr std::uint64_t kPerturbationCounterBase = std::uint64_t(1) << 32;
-
 struct Vec3 {
   double x, y, z;
 };
@@ -58,14 +57,6 @@ inline Vec3 unit(Vec3 a) { return (1.0 / norm(a)) * a; }
 
 const Vec3 kGravity{0.0, 0.0, -1.0};
 
-inline std::uint64_t mix64(std::uint64_t z)
-{
-  z += 0x9E3779B97F4A7C15ULL;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
-}
-
 inline double wrap_angle(double t)
 {
   t = std::fmod(t, kTwoPi);
@@ -79,12 +70,9 @@ inline std::int64_t floor_div(std::int64_t a, std::int64_t b)
   return q;
 }
 
-// Plane constraints carry negative ids.
-enum PlaneId : std::int64_t { kFloor = -1, kWallXlo = -2, kWallXhi = -3, kWallYlo = -4, kWallYhi = -5 };
-
 struct Constraint {
   bool is_sphere;
-  std::int64_t id;   // sphere index, or a PlaneId
+  std::int64_t id;   // sphere index, or a PlaneId (tapmc_contact.h)
   int image_x = 0;   // periodic image of a sphere (box lengths added to its stored centre)
   int image_y = 0;
   Vec3 c;            // sphere: image centre; plane: unit normal pointing into the allowed side
@@ -281,12 +269,6 @@ struct Descent {
 
 }  // namespace
 
-double deposition_uniform(std::uint64_t seed, std::uint64_t stream, std::uint64_t counter)
-{
-  const std::uint64_t h = mix64(mix64(mix64(seed) ^ stream) ^ counter);
-  return static_cast<double>(h >> 11) * 0x1.0p-53;
-}
-
 // ---------------------------------------------------------------------------------------------
 struct SequentialDeposition::Impl {
   DepositionDomain domain;
@@ -306,17 +288,8 @@ struct SequentialDeposition::Impl {
 
   void wrap(Vec3 &p) const
   {
-    if (domain.periodic_x) p.x = wrap_coordinate(p.x, domain.xlo, domain.xhi);
-    if (domain.periodic_y) p.y = wrap_coordinate(p.y, domain.ylo, domain.yhi);
-  }
-  static double wrap_coordinate(double a, double lo, double hi)
-  {
-    const double length = hi - lo;
-    if (a >= lo && a < hi) return a;
-    a = lo + std::fmod(a - lo, length);
-    if (a < lo) a += length;
-    if (a >= hi) a = lo;  // rounding of fmod at the upper end
-    return a;
+    if (domain.periodic_x) p.x = wrap_periodic(p.x, domain.xlo, domain.xhi);
+    if (domain.periodic_y) p.y = wrap_periodic(p.y, domain.ylo, domain.yhi);
   }
 
   void insert(Vec3 p, double r)
@@ -333,7 +306,7 @@ struct SequentialDeposition::Impl {
   // The planes a sphere of radius r must respect: the floor, and the walls of non-periodic sides.
   template <class F> void for_each_plane(double r, F &&f) const
   {
-    f(Constraint{false, kFloor, 0, 0, {0, 0, 1}, domain.z_floor + r});
+    f(Constraint{false, kFloorPlane, 0, 0, {0, 0, 1}, domain.z_floor + r});
     if (!domain.periodic_x) {
       f(Constraint{false, kWallXlo, 0, 0, {1, 0, 0}, domain.xlo + r});
       f(Constraint{false, kWallXhi, 0, 0, {-1, 0, 0}, -(domain.xhi - r)});
@@ -462,7 +435,7 @@ struct SequentialDeposition::Impl {
   {
     entering_now = false;
     double best = p.z - (domain.z_floor + r);
-    hit = Constraint{false, kFloor, 0, 0, {0, 0, 1}, domain.z_floor + r};
+    hit = Constraint{false, kFloorPlane, 0, 0, {0, 0, 1}, domain.z_floor + r};
     const double reach = r + r_max;
     const double grazing_depth = kDepositionGrazingDepth * 2.0 * r;
     // Layers from the top down; stop when a layer cannot hold a closer contact.
@@ -556,16 +529,18 @@ struct SequentialDeposition::Impl {
     return best;
   }
 
+  // The next draw of the sphere being dropped (the radii.size()-th) at unstable equilibria.
+  double equilibrium_draw()
+  {
+    return CounterRandom(seed, RandomPurpose::kDepositionEquilibria, radii.size())
+        .uniform(perturbation_draws++);
+  }
   Vec3 random_horizontal_direction()
   {
-    const double angle =
-        kTwoPi * deposition_uniform(seed, radii.size(), kPerturbationCounterBase + perturbation_draws++);
+    const double angle = kTwoPi * equilibrium_draw();
     return {std::cos(angle), std::sin(angle), 0.0};
   }
-  bool random_sign()
-  {
-    return deposition_uniform(seed, radii.size(), kPerturbationCounterBase + perturbation_draws++) < 0.5;
-  }
+  bool random_sign() { return equilibrium_draw() < 0.5; }
 
   // Lowest point of the circle, measured from t = 0 (the path descends from there).
   static double lowest_point(const Circle &c)
@@ -693,7 +668,7 @@ struct SequentialDeposition::Impl {
       for (int a = 0; a < descent.n_active; ++a) {
         const Constraint &k = contacts.constraints[descent.active[a]];
         active.push_back(k);
-        on_floor = on_floor || (!k.is_sphere && k.id == kFloor);
+        on_floor = on_floor || (!k.is_sphere && k.id == kFloorPlane);
         n_spheres += k.is_sphere ? 1 : 0;
       }
       const bool equilibrium = norm(descent.d) < kDepositionEquilibriumTolerance;
@@ -802,6 +777,21 @@ double SequentialDeposition::radius(std::size_t i) const { return impl_->radii[i
 const DepositionStats &SequentialDeposition::stats() const { return impl_->stats; }
 
 // ---------------------------------------------------------------------------------------------
+void validate(const PackingParams &params)
+{
+  if (params.n < 1 || params.n > std::numeric_limits<std::int32_t>::max() - 1)
+    throw std::invalid_argument("N = " + std::to_string(params.n) +
+                                " must be a number of spheres in [1, 2^31 - 2]");
+  if (!(params.radius > 0.0) || !std::isfinite(params.radius))
+    throw std::invalid_argument("R = " + number(params.radius) +
+                                " must be a positive sphere radius");
+  if (!(params.dispersity >= 0.0 && params.dispersity < 1.0))
+    throw std::invalid_argument("dispersity = " + number(params.dispersity) +
+                                " must be in [0, 1) (radii uniform in [R(1 - W), R(1 + W)])");
+  if (!(params.density > 0.0))
+    throw std::invalid_argument("density = " + number(params.density) + " must be > 0");
+}
+
 Packing deposit_packing(std::int64_t n, const RadiusDistribution &radii,
                         const DepositionDomain &domain, std::uint64_t seed)
 {
@@ -821,11 +811,11 @@ Packing deposit_packing(std::int64_t n, const RadiusDistribution &radii,
   const double top_slack = kDepositionSupportTolerance * 2.0 * radii.r_max;
   std::int64_t redrops = 0, unresolved = 0;
   for (std::int64_t i = 0; i < n; ++i) {
-    const auto stream = static_cast<std::uint64_t>(i);
+    // Sphere i's draws: its radius at position 0, the drop point of attempt a at position 1 + a.
+    const CounterRandom draws(seed, RandomPurpose::kDepositionDrops, static_cast<std::uint64_t>(i));
     const double r = radii.is_monodisperse()
                          ? radii.r_min
-                         : radii.r_min + (radii.r_max - radii.r_min) *
-                                             deposition_uniform(seed, stream, 0);
+                         : radii.r_min + (radii.r_max - radii.r_min) * draws.uniform(0);
     // Drop points: uniform over the box (periodic) or over [lo + r, hi - r] (walls).
     const double x_lo = domain.periodic_x ? domain.xlo : domain.xlo + r;
     const double x_span = domain.periodic_x ? domain.xhi - domain.xlo : domain.xhi - domain.xlo - 2.0 * r;
@@ -833,8 +823,9 @@ Packing deposit_packing(std::int64_t n, const RadiusDistribution &radii,
     const double y_span = domain.periodic_y ? domain.yhi - domain.ylo : domain.yhi - domain.ylo - 2.0 * r;
     DropOutcome o{};
     for (int attempt = 0; attempt < defaults::kDepositionMaxAttempts; ++attempt) {
-      const double x = x_lo + x_span * deposition_uniform(seed, stream, 1 + 2 * attempt);
-      const double y = y_lo + y_span * deposition_uniform(seed, stream, 2 + 2 * attempt);
+      const RandomBlock point = draws.block(1 + static_cast<std::uint64_t>(attempt));
+      const double x = x_lo + x_span * uniform_from_u64(join_u32(point[0], point[1]));
+      const double y = y_lo + y_span * uniform_from_u64(join_u32(point[2], point[3]));
       o = engine.drop(x, y, r);
       if (o.rest != RestingOn::Unresolved) break;
       ++redrops;
@@ -856,22 +847,6 @@ Packing deposit_packing(std::int64_t n, const RadiusDistribution &radii,
   out.stats.redrops = redrops;
   out.stats.unresolved = unresolved;
   return out;
-}
-
-double slab_volume_fraction(const Packing &packing, const DepositionDomain &domain, double z0,
-                            double z1)
-{
-  if (!(z1 > z0))
-    throw std::invalid_argument("slab_volume_fraction: z1 = " + std::to_string(z1) +
-                                " must be above z0 = " + std::to_string(z0));
-  double volume = 0.0;
-  for (std::size_t i = 0; i < packing.radius.size(); ++i) {
-    const double zc = packing.xyz[3 * i + 2], r = packing.radius[i];
-    const double lo = std::max(z0, zc - r) - zc, hi = std::min(z1, zc + r) - zc;
-    if (hi <= lo) continue;
-    volume += kPi * (r * r * (hi - lo) - (hi * hi * hi - lo * lo * lo) / 3.0);
-  }
-  return volume / ((domain.xhi - domain.xlo) * (domain.yhi - domain.ylo) * (z1 - z0));
 }
 
 void bulk_window(const Packing &packing, const DepositionDomain &domain, double margin,

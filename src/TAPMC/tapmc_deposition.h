@@ -4,6 +4,8 @@
 #ifndef TAPMC_DEPOSITION_H
 #define TAPMC_DEPOSITION_H
 
+#include "tapmc_defaults.h"
+
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -73,7 +75,8 @@ class SequentialDeposition {
   // rests on the floor or on three supports (spheres or walls) that balance gravity, i.e. its
   // centre's vertical projection lies inside the triangle of its supports. The sphere joins the
   // packing when the outcome is stable (rest != Unresolved). The random directions used to leave
-  // an unstable equilibrium are keyed by (seed, size(), attempt), so a drop is reproducible.
+  // an unstable equilibrium are the stream size() of purpose kDepositionEquilibria under the
+  // seed (tapmc_random.h), so a drop is reproducible.
   DropOutcome drop(double x, double y, double radius);
 
   std::size_t size() const;
@@ -87,6 +90,22 @@ class SequentialDeposition {
   std::unique_ptr<Impl> impl_;
 };
 
+// What create_packing asks for, in the kernel's terms: n spheres of radii uniform in
+// [R (1 - W), R (1 + W)] with mass density rho.
+struct PackingParams {
+  std::int64_t n = 0;        // number of spheres, in [1, 2^31 - 2]
+  double radius = 1.0;       // R, the mean radius: > 0 and finite
+  double dispersity = 0.0;   // W, in [0, 1)
+  double density = defaults::kDepositionDensity;  // rho > 0: each sphere weighs rho 4/3 pi r^3
+  RadiusDistribution radii() const
+  {
+    return RadiusDistribution::uniform(radius * (1.0 - dispersity), radius * (1.0 + dispersity));
+  }
+};
+// Throws std::invalid_argument naming the first bad parameter (N, R, dispersity, density), its
+// value and its allowed range.
+void validate(const PackingParams &params);
+
 struct Packing {
   std::vector<double> xyz;     // 3 per sphere, deposition order
   std::vector<double> radius;  // 1 per sphere
@@ -95,18 +114,13 @@ struct Packing {
 
 // The Jullien-Meakin packing: n spheres with radii drawn from `radii`, each dropped at a uniform
 // random (x, y) (in [lo + r, hi - r] along wall directions). Deterministic in (n, radii, domain,
-// seed): sphere i draws its radius and drop points from a counter-based stream keyed by
-// (seed, i), so the result does not depend on how many processes compute it.
+// seed): sphere i draws its radius and drop points from the counter-based stream i of purpose
+// kDepositionDrops under the seed (tapmc_random.h), so the result does not depend on how many
+// processes compute it.
 // Throws std::invalid_argument for bad input (n < 0, r_min <= 0, r_max < r_min, an extent below
 // one diameter) and std::runtime_error when a sphere's top ends above domain.z_top.
 Packing deposit_packing(std::int64_t n, const RadiusDistribution &radii,
                         const DepositionDomain &domain, std::uint64_t seed);
-
-// Exact volume fraction of the spheres inside the slab z0 <= z <= z1 over the domain's x-y
-// extent (each sphere contributes the integral of its disk areas pi (r^2 - (z - z_i)^2) over
-// the slab). With periodic sides whole spheres count (images fill what crosses a side).
-double slab_volume_fraction(const Packing &packing, const DepositionDomain &domain, double z0,
-                            double z1);
 
 // The bulk window of a deposit, away from the floor and from the rough top:
 // [z_floor + margin, z_floor + 2 <z - z_floor> - margin], where 2 <z - z_floor> (twice the
@@ -114,10 +128,6 @@ double slab_volume_fraction(const Packing &packing, const DepositionDomain &doma
 // create_packing uses margin = kDepositionBulkMarginOverRadius mean radii.
 void bulk_window(const Packing &packing, const DepositionDomain &domain, double margin,
                  double &z0, double &z1);
-
-// Uniform double in [0, 1) for (seed, stream, counter): splitmix64 finaliser applied to a keyed
-// combination of the three (each word passes through the 64-bit mixer before combination).
-double deposition_uniform(std::uint64_t seed, std::uint64_t stream, std::uint64_t counter);
 
 }  // namespace tapmc
 

@@ -70,6 +70,21 @@ inline std::uint64_t join_u32(std::uint32_t hi, std::uint32_t lo)
   return (static_cast<std::uint64_t>(hi) << 32) | lo;
 }
 
+// What a stream of random numbers is for, one constant per use of the package (as HOOMD-blue
+// gives each use its own identifier): the purpose fills the top byte of the stream word of the
+// counter, so two uses never draw the same (key, counter) pair, whatever their seeds and stream
+// ids (stream ids stay below kMaxPurposeStream). Every random draw of the product names its
+// purpose here.
+enum class RandomPurpose : std::uint8_t {
+  kSettleMoves = 0,             // fix mc/settle trial moves; stream: the timestep of the tap
+  kDepositionDrops = 1,         // create_packing: sphere i's radius and drop points; stream: i
+  kDepositionEquilibria = 2,    // create_packing: directions that leave unstable equilibria
+                                // while sphere i descends; stream: i
+  kPoreSamplePoints = 3,        // tapmc-pores --p0: the sample points; stream: the frame
+};
+constexpr int kPurposeShift = 56;  // bits of the stream word below the purpose byte
+constexpr std::uint64_t kMaxPurposeStream = std::uint64_t(1) << kPurposeShift;
+
 // A keyed stream of blocks. Key = 64-bit user seed; the 128-bit counter holds the 64-bit
 // stream id (e.g. the LAMMPS timestep of a tap) and a 64-bit position within the stream,
 // so (seed, stream, position) -> block is injective and needs no state.
@@ -79,6 +94,15 @@ class CounterRandom {
       : key0_(static_cast<std::uint32_t>(seed)), key1_(static_cast<std::uint32_t>(seed >> 32)),
         stream_lo_(static_cast<std::uint32_t>(stream)),
         stream_hi_(static_cast<std::uint32_t>(stream >> 32))
+  {
+  }
+
+  // The stream `stream` of one purpose: the stream word is purpose * 2^56 + (stream mod 2^56)
+  // (a stream id at or above kMaxPurposeStream would reuse a smaller one of its own purpose,
+  // never another purpose's). With kSettleMoves (0) this is the plain stream.
+  CounterRandom(std::uint64_t seed, RandomPurpose purpose, std::uint64_t stream)
+      : CounterRandom(seed, (static_cast<std::uint64_t>(purpose) << kPurposeShift) |
+                                (stream & (kMaxPurposeStream - 1)))
   {
   }
 

@@ -94,6 +94,10 @@ void Settler::validate(const SettleParams &p)
   if (!(p.d_max > 0.0 && std::isfinite(p.d_max))) bad("dmax", p.d_max, "(0, +inf)");
   if (!(p.theta0 > 0.0 && p.theta0 <= 0.5 * kPi)) bad("theta0", p.theta0, "(0, pi/2]");
   if (!(p.eta > 0.0 && p.eta < 1.0)) bad("eta", p.eta, "(0, 1) (relative change of <Z>)");
+  if (!(p.drift_window >= 2 && p.drift_window <= defaults::kSettleDriftWindowMax))
+    bad("window", static_cast<double>(p.drift_window),
+        "[2, " + std::to_string(defaults::kSettleDriftWindowMax) +
+            "] (checks averaged by 'stop drift')");
   check_check_interval(p.check_interval);
   if (p.max_checks < 1) bad("max_checks", static_cast<double>(p.max_checks), "[1, +inf)");
   check_contact_tol(p.contact_tol);
@@ -102,6 +106,16 @@ void Settler::validate(const SettleParams &p)
 long Settler::trials_per_check(long check_interval, long movable)
 {
   return check_interval > 0 ? check_interval : movable;
+}
+
+ConvergenceCheck Settler::make_convergence_check(const SettleParams &params, long movable,
+                                                 double mean_height_start)
+{
+  if (movable < 1) bad("movable", static_cast<double>(movable), "[1, +inf)");
+  const long interval = trials_per_check(params.check_interval, movable);
+  return ConvergenceCheck(params.stop, params.eta, params.max_checks, mean_height_start,
+                          static_cast<double>(interval) / static_cast<double>(movable),
+                          params.drift_window, defaults::kSettleDriftConfidence);
 }
 
 long Settler::max_checks_for_sweeps(long max_sweeps, long check_interval, long movable)
@@ -149,7 +163,7 @@ SettleResult Settler::settle(double *xyz, const double *radius, const unsigned c
   TrialTally tally;  // sum_dz starts at the sum of the heights: it then holds the sum of <Z>
   for (int i : movable_ids_) tally.sum_dz += xyz[3 * i + 2] - box.floor_z;
   result.mean_height_start = tally.sum_dz / static_cast<double>(m);
-  ConvergenceCheck stop(params.eta, params.max_checks, result.mean_height_start);
+  ConvergenceCheck stop = make_convergence_check(params, m, result.mean_height_start);
   const CounterRandom rng(params.seed, params.stream);
   const long interval = trials_per_check(params.check_interval, m);
   long sweep_cursor = 0;

@@ -6,6 +6,8 @@
 #ifndef TAPMC_SETTLE_H
 #define TAPMC_SETTLE_H
 
+#include "tapmc_defaults.h"
+#include "tapmc_stop_rule.h"
 #include "tapmc_trial_move.h"
 
 #include <cstdint>
@@ -38,6 +40,11 @@ struct SettleParams {
   std::uint64_t seed;      // user seed
   std::uint64_t stream;    // e.g. the LAMMPS timestep of this tap: keys the random numbers
   PickOrder order = PickOrder::Random;
+  // How eta is applied (tapmc_stop_rule.h): Change = the paper's change between two checks;
+  // Drift = the drift per sweep averaged over drift_window checks (>= 2) plus
+  // defaults::kSettleDriftConfidence standard errors, below eta <Z>.
+  StopRule stop = StopRule::Change;
+  long drift_window = defaults::kSettleDriftWindow;
 };
 
 struct SettleResult {
@@ -91,6 +98,13 @@ class Settler {
 
   // Trial moves between two <Z> checks: check_interval, or one sweep (`movable`) when it is 0.
   static long trials_per_check(long check_interval, long movable);
+
+  // The stopping rule of one redeposition of `movable` spheres starting at <Z> =
+  // mean_height_start, as `params` asks (stop, eta, max_checks, check_interval, drift_window):
+  // what settle uses, and what a driver that feeds its own (e.g. globally reduced) <Z> uses to
+  // stop alike.
+  static ConvergenceCheck make_convergence_check(const SettleParams &params, long movable,
+                                                 double mean_height_start);
 
   // The max_checks that allows max_sweeps sweeps of `movable` spheres (at least one check).
   // Throws std::invalid_argument for check_interval < 0 or max_sweeps < 1.

@@ -158,20 +158,32 @@ double horizontal_slab_volume(const Spheres &spheres, double z0, double z1)
   return volume;
 }
 
-double vertical_cut_area(const Spheres &spheres, const Box &box, int axis, double c, double za,
-                         double zb)
+namespace {
+// Visits every image of every sphere that can reach [lo, hi] along axis (0: x, 1: y) as
+// visit(centre, zc, r), centre = the image's coordinate along axis (the sphere itself when the
+// axis is not periodic).
+template <class Visit>
+void for_each_image(const Spheres &spheres, const Box &box, int axis, double lo, double hi,
+                    Visit &&visit)
 {
   const bool periodic = box.periodic[axis];
   const double period = box.length(axis);
-  double area = 0.0;
   for_each_sphere(spheres, [&](double x, double y, double zc, double r) {
     const double centre = axis == 0 ? x : y;
-    const ImageRange images = image_range(periodic, centre, r, c, c, period);
-    for (int k = images.first; k <= images.last; ++k) {
-      const double dx = c - (centre + k * period);
-      const double rho2 = (r - dx) * (r + dx);
-      if (rho2 > 0.0) area += disk_band_area(std::sqrt(rho2), za - zc, zb - zc);
-    }
+    const ImageRange images = image_range(periodic, centre, r, lo, hi, period);
+    for (int k = images.first; k <= images.last; ++k) visit(centre + k * period, zc, r);
+  });
+}
+}  // namespace
+
+double vertical_cut_area(const Spheres &spheres, const Box &box, int axis, double c, double za,
+                         double zb)
+{
+  double area = 0.0;
+  for_each_image(spheres, box, axis, c, c, [&](double centre, double zc, double r) {
+    const double dx = c - centre;
+    const double rho2 = (r - dx) * (r + dx);
+    if (rho2 > 0.0) area += disk_band_area(std::sqrt(rho2), za - zc, zb - zc);
   });
   return area;
 }
@@ -180,16 +192,9 @@ double vertical_slab_volume(const Spheres &spheres, const Box &box, int axis, do
                             double c1, double za, double zb)
 {
   if (!(c0 < c1) || !(za < zb)) return 0.0;
-  const bool periodic = box.periodic[axis];
-  const double period = box.length(axis);
   double volume = 0.0;
-  for_each_sphere(spheres, [&](double x, double y, double zc, double r) {
-    const double centre = axis == 0 ? x : y;
-    const ImageRange images = image_range(periodic, centre, r, c0, c1, period);
-    for (int k = images.first; k <= images.last; ++k) {
-      const double shifted = centre + k * period;
-      volume += sphere_box_band_volume(r, c0 - shifted, c1 - shifted, za - zc, zb - zc);
-    }
+  for_each_image(spheres, box, axis, c0, c1, [&](double centre, double zc, double r) {
+    volume += sphere_box_band_volume(r, c0 - centre, c1 - centre, za - zc, zb - zc);
   });
   return volume;
 }

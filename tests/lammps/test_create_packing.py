@@ -120,7 +120,7 @@ def test_polydisperse_and_existing_atoms():
 BAD_CASES = [
     ("create_packing 0 1 1.0 5", "N = 0 must be"),
     ("create_packing -5 1 1.0 5", "N = -5 must be"),
-    ("create_packing 10 1 0.0 5", "R = 0.0 must be a positive sphere radius"),
+    ("create_packing 10 1 0.0 5", "R = 0 must be a positive sphere radius"),
     ("create_packing 10 1 -1 5", "R = -1 must be a positive sphere radius"),
     ("create_packing 10 2 1.0 5", "type = 2 must be an atom type in [1, 1]"),
     ("create_packing 10 1 1.0 0", "seed = 0 must be a positive integer"),

@@ -4,6 +4,7 @@
 #include "tapmc_defaults.h"
 #include "tapmc_deposition.h"
 #include "tapmc_math.h"
+#include "tapmc_stereology.h"
 
 #include <gtest/gtest.h>
 
@@ -483,6 +484,33 @@ TEST(Deposition, BadInputNamesTheArgument)
   EXPECT_EQ(deposit_packing(0, mono, d, 1).radius.size(), 0u);
 }
 
+// create_packing's parameters: each bad one is named with its value and its range; the radii
+// span [R (1 - W), R (1 + W)].
+TEST(Deposition, PackingParamsValidation)
+{
+  tapmc::PackingParams good;
+  good.n = 10;
+  good.radius = 2.0;
+  good.dispersity = 0.25;
+  EXPECT_NO_THROW(tapmc::validate(good));
+  EXPECT_EQ(good.radii().r_min, 1.5);
+  EXPECT_EQ(good.radii().r_max, 2.5);
+  auto message = [&](auto change) {
+    tapmc::PackingParams p = good;
+    change(p);
+    return message_of<std::invalid_argument>([&] { tapmc::validate(p); });
+  };
+  EXPECT_EQ(message([](auto &p) { p.n = 0; }),
+            "N = 0 must be a number of spheres in [1, 2^31 - 2]");
+  EXPECT_EQ(message([](auto &p) { p.n = 2147483647; }),
+            "N = 2147483647 must be a number of spheres in [1, 2^31 - 2]");
+  EXPECT_EQ(message([](auto &p) { p.radius = -0.5; }), "R = -0.5 must be a positive sphere radius");
+  EXPECT_EQ(message([](auto &p) { p.radius = INFINITY; }), "R = inf must be a positive sphere radius");
+  EXPECT_EQ(message([](auto &p) { p.dispersity = 1.0; }),
+            "dispersity = 1 must be in [0, 1) (radii uniform in [R(1 - W), R(1 + W)])");
+  EXPECT_EQ(message([](auto &p) { p.density = 0.0; }), "density = 0 must be > 0");
+}
+
 // ---- the paper's initial packing: N = 4096, L = 32R, PBC -------------------------------------
 
 // Bulk packing fraction over 5 seeds (literature value of this algorithm about 0.58; the
@@ -498,8 +526,12 @@ TEST(Deposition, BulkPackingFractionN4096)
     oracle_bulk_window(p, d, 1.0, z0, z1);
     ASSERT_GT(z1 - z0, 10.0);  // a real bulk slab (about 17R here)
     const double phi = slab_packing_fraction(p, d, z0, z1);
-    // The kernel's stereology (create_packing's report) agrees with the oracle.
-    EXPECT_NEAR(tapmc::slab_volume_fraction(p, d, z0, z1), phi, 1e-12);
+    // The stereology kernel (create_packing's report) agrees with the oracle.
+    const tapmc::stereo::Spheres spheres{p.xyz.data(), p.radius.data(), 0.0, nullptr,
+                                         static_cast<int>(p.radius.size())};
+    EXPECT_NEAR(tapmc::stereo::horizontal_slab_volume(spheres, z0, z1) /
+                    ((d.xhi - d.xlo) * (d.yhi - d.ylo) * (z1 - z0)),
+                phi, 1e-12);
     EXPECT_GE(phi, 0.56) << "seed " << seed;
     EXPECT_LE(phi, 0.61) << "seed " << seed;
     phis.push_back(phi);
@@ -523,18 +555,3 @@ TEST(Deposition, ValidPackingN4096Walls)
   expect_valid_packing(p, d, "N=4096 FBC seed 9");
 }
 
-// The kernel's slab stereology on exact cases: half a sphere, a whole sphere, a thin cap.
-TEST(Deposition, SlabVolumeFractionExact)
-{
-  const auto d = make_domain(4, 5, true, true);
-  Packing p;
-  p.xyz = {1, 1, 3};
-  p.radius = {1.5};
-  const double sphere = 4.0 / 3.0 * kPi * 1.5 * 1.5 * 1.5, area = 20.0;
-  EXPECT_NEAR(tapmc::slab_volume_fraction(p, d, 3.0, 10.0), 0.5 * sphere / (area * 7.0), 1e-15);
-  EXPECT_NEAR(tapmc::slab_volume_fraction(p, d, -1.0, 9.0), sphere / (area * 10.0), 1e-15);
-  const double h = 0.25;  // cap of height h: pi h^2 (3r - h) / 3
-  EXPECT_NEAR(tapmc::slab_volume_fraction(p, d, 4.5 - h, 4.5),
-              kPi * h * h * (3 * 1.5 - h) / 3.0 / (area * h), 1e-13);
-  EXPECT_THROW(tapmc::slab_volume_fraction(p, d, 2.0, 2.0), std::invalid_argument);
-}

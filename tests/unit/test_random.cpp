@@ -151,3 +151,24 @@ TEST(Random, BoundedIndexIsUniformAndRejectsTheBiasZone)
     EXPECT_LE(rejected, 3);  // probability < n / 2^32 per draw
   }
 }
+
+// Purposes: purpose 0 (the Monte Carlo moves) is the plain stream; the other purposes draw other
+// blocks for the same (seed, stream, position), and a stream id beyond 2^56 stays in its purpose.
+TEST(Random, PurposesNeverShareABlock)
+{
+  const std::uint64_t seed = 4928, stream = 77, position = 5;
+  EXPECT_EQ(CounterRandom(seed, RandomPurpose::kSettleMoves, stream).block(position),
+            CounterRandom(seed, stream).block(position));
+  std::set<RandomBlock> seen;
+  for (RandomPurpose purpose : {RandomPurpose::kSettleMoves, RandomPurpose::kDepositionDrops,
+                                RandomPurpose::kDepositionEquilibria,
+                                RandomPurpose::kPoreSamplePoints})
+    seen.insert(CounterRandom(seed, purpose, stream).block(position));
+  EXPECT_EQ(seen.size(), 4u);
+  // The purpose byte is the top byte of the stream word.
+  EXPECT_EQ(CounterRandom(seed, RandomPurpose::kDepositionDrops, stream).block(position),
+            CounterRandom(seed, (std::uint64_t(1) << 56) | stream).block(position));
+  EXPECT_EQ(CounterRandom(seed, RandomPurpose::kSettleMoves, kMaxPurposeStream + stream)
+                .block(position),
+            CounterRandom(seed, stream).block(position));
+}

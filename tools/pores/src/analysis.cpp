@@ -3,9 +3,10 @@
 // nu, Gotoh's P0 measured and in Percus-Yevick form.
 #include "tapmc_pores/analysis.h"
 
+#include "tapmc_random.h"
+
 #include <algorithm>
 #include <cmath>
-#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -214,14 +215,16 @@ double P0Statistics::phi() const {
   return samples ? static_cast<double>(inside) / static_cast<double>(samples) : std::numeric_limits<double>::quiet_NaN();
 }
 
+// Point i takes x, y from block 2i and z from block 2i + 1 of the stream (53-bit uniforms).
 std::vector<double> random_points(const Region& region, std::size_t count, std::uint64_t seed, std::uint64_t stream) {
-  std::seed_seq sequence{static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32),
-                         static_cast<std::uint32_t>(stream), static_cast<std::uint32_t>(stream >> 32), 0x7a9u};
-  std::mt19937_64 engine(sequence);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const CounterRandom draws(seed, RandomPurpose::kPoreSamplePoints, stream);
   std::vector<double> points(3 * count);
-  for (std::size_t i = 0; i < count; ++i)
-    for (int d = 0; d < 3; ++d) points[3 * i + d] = region.lo[d] + unit(engine) * (region.hi[d] - region.lo[d]);
+  for (std::size_t i = 0; i < count; ++i) {
+    const RandomBlock xy = draws.block(2 * static_cast<std::uint64_t>(i));
+    const double u[3] = {uniform_from_u64(join_u32(xy[0], xy[1])), uniform_from_u64(join_u32(xy[2], xy[3])),
+                         draws.uniform(2 * static_cast<std::uint64_t>(i) + 1)};
+    for (int d = 0; d < 3; ++d) points[3 * i + d] = region.lo[d] + u[d] * (region.hi[d] - region.lo[d]);
+  }
   return points;
 }
 

@@ -11,6 +11,7 @@
 #include <limits>
 #include <sstream>
 
+#include "tapmc_math.h"
 #include "tapmc_pores/pores_config.h"
 
 namespace tapmc {
@@ -357,11 +358,11 @@ void DumpReader::read_atom(const std::vector<std::string_view>& fields, const Co
 double DumpReader::place(double value, int d, bool scaled, const Frame& frame) const {
   const double lo = frame.box.lo[d], length = frame.box.length(d);
   if (scaled) value = lo + value * length;
+  if (!std::isfinite(value))
+    fail(line_number_, "atom " + std::to_string(frame.ids.back()) + " has a scaled coordinate along " + "xyz"[d] +
+                           " beyond the double range");
   if (frame.box.periodic[d]) {
-    double t = (value - lo) / length;
-    t -= std::floor(t);
-    value = lo + t * length;
-    if (value >= frame.box.hi[d]) value = lo;  // rounding of t just below 1
+    value = wrap_periodic(value, lo, frame.box.hi[d]);
   } else {
     const double slack = config::kBoxTolerance * length;
     if (value < lo - slack || value > frame.box.hi[d] + slack) {

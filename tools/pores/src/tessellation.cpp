@@ -3,6 +3,8 @@
 // periodic tetrahedra, merged degenerate Voronoi vertices, nearest-centre queries.
 #include "tapmc_pores/tessellation.h"
 
+#include "tapmc_math.h"
+
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -111,11 +113,7 @@ struct Tessellation::Impl {
   std::array<double, 3> wrapped(double x, double y, double z) const {
     std::array<double, 3> p{{x, y, z}};
     for (int d = 0; d < 3; ++d)
-      if (box.periodic[d]) {
-        double t = (p[d] - box.lo[d]) / box.length(d);
-        t -= std::floor(t);
-        p[d] = std::min(box.lo[d] + t * box.length(d), std::nextafter(box.hi[d], box.lo[d]));
-      }
+      if (box.periodic[d]) p[d] = wrap_periodic(p[d], box.lo[d], box.hi[d]);
     return p;
   }
   bool in_focus(const Sphere& s) const {
@@ -383,7 +381,8 @@ void Tessellation::Impl::find_pores(double padding, double max_padding, bool fin
   kept_pores.clear();
   const std::uint32_t count = static_cast<std::uint32_t>(cells.size());
   const std::size_t primaries = static_cast<std::size_t>(std::count(primary.begin(), primary.end(), 1));
-  kept_pores.reserve(static_cast<std::size_t>(1.02 * count * primaries / std::max<std::size_t>(1, primary.size())) + 16);
+  kept_pores.reserve(static_cast<std::size_t>(config::kKeptPoresHeadroom * count * primaries /
+                                              std::max<std::size_t>(1, primary.size())) + 16);
   for (std::uint32_t i = 0; i < count; ++i)
     if (!clustered[i]) keep_pore(&i, &i + 1, Kept{i, 1}, padding, max_padding);
   for (std::size_t begin = 0; begin < grouped.size();) {
@@ -460,7 +459,8 @@ Tessellation::Tessellation(const Box& box, const std::vector<double>& xyz, const
                                std::to_string(box.volume()) + "); raise --padding");
     if (final_attempt || (r.retry_padding <= 0 && !flat && !(untiled && r.unresolved == 0))) break;
     previous = padding;
-    padding = std::min(max_padding, std::max({1.0001 * r.retry_padding, 1.25 * padding,
+    padding = std::min(max_padding, std::max({config::kRetryPaddingMargin * r.retry_padding,
+                                              config::kMinPaddingGrowth * padding,
                                               (flat || untiled) ? max_padding : 0.0}));
   }
   impl_->result.triangulation_seconds = triangulation_seconds;

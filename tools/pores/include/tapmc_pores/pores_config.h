@@ -39,6 +39,18 @@ constexpr double kSliverRelativeVolume = 1e-6;
 // never silently kept (an error when triply periodic).
 constexpr double kPaddingOverRadius = 4.0;
 constexpr int kMaxPaddingRetries = 2;
+// A retry pads to at least kRetryPaddingMargin times the widest padding a pore asked for: the
+// relative margin 1e-4 lies far above the rounding of the circumradius (~1e-15) and far below
+// a layer of images, so the pore surely fits next time at no visible cost.
+constexpr double kRetryPaddingMargin = 1.0001;
+// A retry grows the padding by at least kMinPaddingGrowth: a pore asking for barely more than
+// the current padding would otherwise lead to near-identical retries, while 1.25 adds at least
+// one radius of images to the 4 R padding (the retry cap of 16 R stays).
+constexpr double kMinPaddingGrowth = 1.25;
+// Room reserved for the pores kept in the selection: the primary share of the Delaunay cells
+// (all cells x primary centres / all centres) plus kKeptPoresHeadroom (2 %), the spread of that
+// share between the image layers, so the list is almost never reallocated.
+constexpr double kKeptPoresHeadroom = 1.02;
 
 // ---- input checks ---------------------------------------------------------------------------
 // Two spheres overlap when their distance is below 2R (1 - kOverlapTolerance). LAMMPS's default

@@ -1,0 +1,112 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+# fix mc/settle's stopping rule keywords ('stop change' / 'stop drift', 'window'), run by
+# lmp_tapmc as a child process: the default is the paper's rule, the drift rule stops only after
+# a full window, bad values stop with a message naming keyword, value and range, and restart
+# files keep the rule.
+import os
+
+import numpy as np
+import pytest
+
+from lmprun import read_dump, run_lammps
+
+# 294 spheres of diameter 1 on a simple cubic lattice (spacing 1.1, 7 x 7 x 6) in an 8 x 8 box.
+SCENE = """units lj
+atom_style sphere
+boundary p p fm
+region box block 0 8 0 8 0 30
+create_box 1 box
+lattice sc 0.751314800901578 origin 0.5 0.5 0.5
+region fill block 0 8 0 8 0.5 7 units box
+create_atoms 1 region fill
+reset_atom_ids sort yes
+set group all diameter 1.0
+"""
+
+RUN = """fix tap all tapdilate 0.02 floor 0.0
+fix settle all mc/settle 31 floor 0.0 {keywords}
+thermo_style custom step f_settle[1] f_settle[4] f_settle[5]
+thermo 1
+thermo_modify format float %.10g
+dump d all custom 1 dump.taps id x y z
+dump_modify d sort id format float %.17g
+run {taps}
+"""
+
+
+def tapping(keywords, taps=3):
+    rc, out, wd = run_lammps(SCENE + RUN.format(keywords=keywords, taps=taps))
+    assert rc == 0, out
+    sweeps = []
+    header = None
+    for line in open(os.path.join(wd, "log.lammps")):
+        words = line.split()
+        if words[:1] == ["Step"]:
+            header = words
+        elif header and len(words) == len(header) and words[0].isdigit() and int(words[0]) > 0:
+            sweeps.append((float(words[1]), float(words[2])))
+        elif line.startswith("Loop time"):
+            header = None
+    return read_dump(os.path.join(wd, "dump.taps")), sweeps
+
+
+def test_stop_change_is_the_default_and_drift_waits_for_its_window():
+    default, _ = tapping("eta 1e-4")
+    change, _ = tapping("eta 1e-4 stop change")
+    for (sa, _, _, fa), (sb, _, _, fb) in zip(default, change):
+        assert sa == sb
+        np.testing.assert_array_equal(fa["z"], fb["z"])
+    drift, sweeps = tapping("eta 1e-4 stop drift window 12")
+    assert len(sweeps) == 3
+    for used, capped in sweeps:
+        assert capped == 0
+        assert used >= 12  # one check per sweep: never before the window of 12 checks is full
+    assert not np.array_equal(drift[-1][3]["z"], change[-1][3]["z"])
+    # A window longer than the sweep cap can never fill: every tap ends at the cap.
+    _, sweeps = tapping("eta 1e-4 stop drift window 50 maxsweeps 20", taps=1)
+    assert sweeps == [(20.0, 1.0)]
+
+
+BOX = """units lj
+atom_style sphere
+boundary p p fm
+region box block 0 8 0 8 0 10
+create_box 1 box
+create_atoms 1 single 2 2 1
+set group all diameter 1.0
+"""
+
+BAD = [
+    ("stop bogus", "stop = bogus must be 'change' (the paper's rule) or 'drift'"),
+    ("stop 3", "stop = 3 must be 'change'"),
+    ("stop", "keyword 'stop' needs 1 value(s)"),
+    ("stop drift window 1", "window = 1 is outside the allowed range [2, 100000]"),
+    ("window 0", "window = 0 is outside the allowed range [2, 100000]"),
+    ("stop drift window -4", "window = -4 is outside the allowed range [2, 100000]"),
+    ("stop drift window 100001", "window = 100001 is outside the allowed range [2, 100000]"),
+    ("stop drift window 2.5", "2.5"),
+    ("stop drift window", "keyword 'window' needs 1 value(s)"),
+]
+
+
+@pytest.mark.parametrize("keywords,message", BAD)
+def test_bad_stop_values_stop_with_a_message_naming_them(keywords, message):
+    rc, out, _ = run_lammps(BOX + f"fix s all mc/settle 1 {keywords}\nrun 1\n")
+    assert rc != 0, out
+    assert "ERROR" in out and message in out, out
+
+
+def test_restart_keeps_the_stop_rule():
+    first = SCENE + ("fix tap all tapdilate 0.02 floor 0.0\n"
+                     "fix settle all mc/settle 11 floor 0.0 eta 1e-4 stop drift window 16\n"
+                     "run 1\nwrite_restart a.restart\n")
+    rc, out, wd = run_lammps(first)
+    assert rc == 0, out
+    same = ("read_restart a.restart\nfix tap all tapdilate 0.02 floor 0.0\n"
+            "fix settle all mc/settle 11 floor 0.0 eta 1e-4 stop drift window 16\nrun 1\n")
+    rc, out, _ = run_lammps(same, workdir=wd)
+    assert rc == 0 and "differ from the restart file" not in out, out
+    rc, out, _ = run_lammps(same.replace(" stop drift window 16", ""), workdir=wd)
+    assert rc == 0, out
+    assert "WARNING: fix mc/settle: settings differ from the restart file (restart -> now): " \
+           "stop (0 change, 1 drift) 1 -> 0, window 16 -> 32;" in out, out
