@@ -212,9 +212,10 @@ SettleResult DomainSettle::settle(const DomainSettleSetup &setup, const SettlePa
   result.movable = movable_total;
   result.mean_height_start = start_height / static_cast<double>(movable_total);
 
-  const CounterRandom tap_stream(params.seed, params.stream);
-  const CounterRandom trial_stream = tap_stream.round(rank_key_index(comm->me));
-  const CounterRandom cut_stream = tap_stream.round(kCutKeyIndex);
+  const CounterRandom trial_stream =
+      CounterRandom(params.seed, RandomPurpose::kDomainSettleMoves, params.stream)
+          .round(rank_key_index(comm->me));
+  const CounterRandom cut_stream(params.seed, RandomPurpose::kDomainSettleCuts, params.stream);
   const long interval = Settler::trials_per_check(params.check_interval, movable_total);
   ConvergenceCheck stop =
       Settler::make_convergence_check(params, movable_total, result.mean_height_start);

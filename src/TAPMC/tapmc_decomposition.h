@@ -80,11 +80,9 @@ class RoundSchedule {
 // picks per cycle, as in the serial uniform pick.
 long round_trials(long active, long trials_per_check, long movable_total);
 
-// Random streams of the decomposed redeposition, all under the user seed and the tap's stream:
-// rank r draws its trials from key index (r + 1) * 2^32 and the cuts of every cycle come from
-// key index kCutKeyIndex (CounterRandom::round). Each key's overflow rounds (fewer than 2^32)
-// never reach another's.
-constexpr std::uint64_t kCutKeyIndex = 0xFFFFFFFF00000000ull;
+// Trial moves of rank r in the decomposed redeposition: purpose kDomainSettleMoves
+// (tapmc_random.h) under the key round (r + 1) * 2^32 (CounterRandom::round): each rank's
+// overflow rounds (fewer than 2^32) never reach another rank's key.
 inline std::uint64_t rank_key_index(int rank) { return (static_cast<std::uint64_t>(rank) + 1) << 32; }
 
 }  // namespace tapmc
