@@ -148,7 +148,7 @@ constexpr double kListSkinOverRadius = 0.2;
 constexpr int kListCapacityStep = 16;
 // Room left in every row at a build beyond the longest list (local updates lengthen lists a
 // little as the packing compacts; widening is O(N), so it should stay rare).
-constexpr int kListSlack = 8;
+constexpr int kListSlack = 2;
 
 // ---- cell grid of the kernel's neighbour searches (tapmc_cell_grid.h) -----------------------
 // Cells are at least the search radius plus this relative rounding margin wide (relative to

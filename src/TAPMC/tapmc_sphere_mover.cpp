@@ -69,6 +69,9 @@ int neighbour_cells(const GridAxis &axis, int c, int out[3])
 
 inline void prefetch(const void *p) { __builtin_prefetch(p, 0, 3); }
 
+// Grid cells hold a count and their spheres' slots in rows a multiple of this many ints wide.
+constexpr int kCellCapacityStep = 4;
+
 }  // namespace
 
 struct SphereMover::State {
@@ -89,9 +92,15 @@ struct SphereMover::State {
   int stride = 0;
   std::vector<int> rows;
 
-  // Grid of the reference positions.
+  // Grid of the reference positions: cell c = cells[c * cell_stride ...]: count, then slots.
   std::array<GridAxis, 3> axes;
-  std::vector<std::vector<int>> members;  // slots per cell
+  int cell_stride = 0;
+  std::vector<int> cells;
+
+  // Scratch of reset / build, kept to avoid reallocation.
+  std::vector<double> wrapped;
+  std::vector<int> wrapped_image, order_start, cell_ext, pairs;
+  std::vector<int> candidate_slots;  // run(): slots of the candidates of the current block
 
   long full_builds = 0, local_updates = 0, capacity_grows = 0;
 
@@ -100,6 +109,12 @@ struct SphereMover::State {
   std::array<int, TrialMoveSampler::kBatchMax> batch_slot{};
 
   int *row(int s) { return rows.data() + static_cast<std::size_t>(s) * stride; }
+  const int *row(int s) const { return rows.data() + static_cast<std::size_t>(s) * stride; }
+  int *cell_row(int c) { return cells.data() + static_cast<std::size_t>(c) * cell_stride; }
+  const int *cell_row(int c) const
+  {
+    return cells.data() + static_cast<std::size_t>(c) * cell_stride;
+  }
 
   int cell_index(const double *p) const
   {
@@ -126,6 +141,15 @@ struct SphereMover::State {
   template <class Visit>
   void for_each_in_reach(int s, Visit &&visit) const
   {
+    for_each_candidate(s, [&](int j) {
+      if (j != s && in_reach(s, j)) visit(j);
+    });
+  }
+
+  // Calls visit(j) for every sphere j binned in the (distinct) cells around s's reference.
+  template <class Visit>
+  void for_each_candidate(int s, Visit &&visit) const
+  {
     const double *p = ref.data() + 3 * s;
     int cx[3], cy[3], cz[3];
     const int nx = neighbour_cells(axes[0], axes[0].cell_of(p[0]), cx);
@@ -134,8 +158,10 @@ struct SphereMover::State {
     for (int a = 0; a < nz; ++a)
       for (int b = 0; b < ny; ++b)
         for (int c = 0; c < nx; ++c)
-          for (int j : members[(cz[a] * axes[1].cells + cy[b]) * axes[0].cells + cx[c]])
-            if (j != s && in_reach(s, j)) visit(j);
+        {
+          const int *cr = cell_row((cz[a] * axes[1].cells + cy[b]) * axes[0].cells + cx[c]);
+          for (int q = 1; q <= cr[0]; ++q) visit(cr[q]);
+        }
   }
 
   void append(int s, int j)
@@ -143,6 +169,13 @@ struct SphereMover::State {
     if (row(s)[0] + 1 >= stride) widen_rows();
     int *r = row(s);
     r[++r[0]] = j;
+  }
+
+  void add_to_cell(int c, int s)
+  {
+    if (cell_row(c)[0] + 1 >= cell_stride) widen_cells();
+    int *cr = cell_row(c);
+    cr[++cr[0]] = s;
   }
 
   static void remove(int *r, int j)
@@ -166,6 +199,18 @@ struct SphereMover::State {
     ++capacity_grows;
   }
 
+  // Every cell gets room for kCellCapacityStep more spheres.
+  void widen_cells()
+  {
+    const int wider = cell_stride + kCellCapacityStep;
+    const std::size_t count = cells.size() / cell_stride;
+    std::vector<int> grown(count * wider);
+    for (std::size_t c = 0; c < count; ++c)
+      std::copy(cell_row(c), cell_row(c) + cell_row(c)[0] + 1, grown.data() + c * wider);
+    cells.swap(grown);
+    cell_stride = wider;
+  }
+
   // ref_s := the current position of s; the lists and grid follow (local upkeep, see header).
   void relist(int s)
   {
@@ -175,9 +220,8 @@ struct SphereMover::State {
     for (int d = 0; d < 3; ++d) ref[3 * s + d] = xyzr[4 * s + d];
     const int c = cell_index(ref.data() + 3 * s);
     if (c != cell[s]) {
-      std::vector<int> &old = members[cell[s]];
-      old.erase(std::find(old.begin(), old.end(), s));
-      members[c].push_back(s);
+      remove(cell_row(cell[s]), s);
+      add_to_cell(c, s);
       cell[s] = c;
     }
     for_each_in_reach(s, [&](int j) {
@@ -251,18 +295,22 @@ void SphereMover::State::build(const double *xyz_wrapped, const double *radius,
   axes = mover_axes(sc, xyz_wrapped, n, 2.0 * sc.r_max + list_extra + margin);
 
   // Internal order: by cell (stable), so neighbours are close in memory.
-  const std::size_t cells =
-      static_cast<std::size_t>(axes[0].cells) * axes[1].cells * axes[2].cells;
-  std::vector<int> start(cells + 1, 0), cell_ext(n);
+  const int n_cells = axes[0].cells * axes[1].cells * axes[2].cells;
+  order_start.assign(static_cast<std::size_t>(n_cells) + 1, 0);
+  cell_ext.resize(n);
   for (int i = 0; i < n; ++i) {
     cell_ext[i] = cell_index(xyz_wrapped + 3 * i);
-    ++start[cell_ext[i] + 1];
+    ++order_start[cell_ext[i] + 1];
   }
-  for (std::size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
+  int fullest = 0;
+  for (int c = 0; c < n_cells; ++c) {
+    fullest = std::max(fullest, order_start[c + 1]);
+    order_start[c + 1] += order_start[c];
+  }
   slot_of.resize(n);
   external_of.resize(n);
   for (int i = 0; i < n; ++i) {
-    const int s = start[cell_ext[i]]++;
+    const int s = order_start[cell_ext[i]]++;
     slot_of[i] = s;
     external_of[s] = i;
   }
@@ -270,7 +318,8 @@ void SphereMover::State::build(const double *xyz_wrapped, const double *radius,
   ref.resize(3 * static_cast<std::size_t>(n));
   image.resize(2 * static_cast<std::size_t>(n));
   cell.resize(n);
-  members.assign(cells, {});
+  cell_stride = ((fullest + 1 + kCellCapacityStep - 1) / kCellCapacityStep + 1) * kCellCapacityStep;
+  cells.assign(static_cast<std::size_t>(n_cells) * cell_stride, 0);
   for (int s = 0; s < n; ++s) {
     const int i = external_of[s];
     for (int d = 0; d < 3; ++d) xyzr[4 * s + d] = ref[3 * s + d] = xyz_wrapped[3 * i + d];
@@ -278,22 +327,32 @@ void SphereMover::State::build(const double *xyz_wrapped, const double *radius,
     image[2 * s] = image_in[2 * i];
     image[2 * s + 1] = image_in[2 * i + 1];
     cell[s] = cell_ext[i];
-    members[cell[s]].push_back(s);
+    int *cr = cell_row(cell[s]);
+    cr[++cr[0]] = s;
   }
 
-  // Rows wide enough for the longest list plus slack (widened later only if a list outgrows it).
-  int longest = 0;
-  for (int s = 0; s < n; ++s) {
-    int count = 0;
-    for_each_in_reach(s, [&](int) { ++count; });
-    longest = std::max(longest, count);
-  }
+  // Every pair in reach once (j > s), then rows wide enough for the longest list plus slack
+  // (widened later only if a list outgrows its row).
+  pairs.clear();
+  std::vector<int> &count = cell_ext;  // reused: one count per slot
+  count.assign(n, 0);
+  for (int s = 0; s < n; ++s)
+    for_each_candidate(s, [&](int j) {
+      if (j > s && in_reach(s, j)) {
+        pairs.push_back(s);
+        pairs.push_back(j);
+        ++count[s];
+        ++count[j];
+      }
+    });
+  const int longest = n > 0 ? *std::max_element(count.begin(), count.end()) : 0;
   const int step = defaults::kListCapacityStep;
   stride = ((longest + 1 + defaults::kListSlack + step - 1) / step) * step;
   rows.assign(static_cast<std::size_t>(n) * stride, 0);
-  for (int s = 0; s < n; ++s) {
-    int *r = row(s);
-    for_each_in_reach(s, [&](int j) { r[++r[0]] = j; });
+  for (std::size_t q = 0; q < pairs.size(); q += 2) {
+    int *a = row(pairs[q]), *b = row(pairs[q + 1]);
+    a[++a[0]] = pairs[q + 1];
+    b[++b[0]] = pairs[q];
   }
   ++full_builds;
 }
@@ -329,8 +388,10 @@ void SphereMover::reset(const double *xyz, const double *radius, int n, const Se
   st.d_max = d_max;
   st.full_builds = st.local_updates = st.capacity_grows = 0;
 
-  std::vector<double> wrapped(xyz, xyz + 3 * static_cast<std::size_t>(n));
-  std::vector<int> image(2 * static_cast<std::size_t>(n), 0);
+  std::vector<double> &wrapped = st.wrapped;
+  std::vector<int> &image = st.wrapped_image;
+  wrapped.assign(xyz, xyz + 3 * static_cast<std::size_t>(n));
+  image.assign(2 * static_cast<std::size_t>(n), 0);
   for (int i = 0; i < n; ++i)
     for (int d = 0; d < 2; ++d)
       if (sc.periodic[d])
@@ -381,6 +442,40 @@ double SphereMover::mean_list_length() const
   return sum / st.n;
 }
 
+std::string SphereMover::check_lists() const
+{
+  const State &st = *state_;
+  const bool px = st.scene.periodic[0], py = st.scene.periodic[1];
+  std::vector<int> times_listed(st.n);
+  for (int a = 0; a < st.n; ++a) {
+    const std::string sphere = "sphere " + std::to_string(st.external_of[a]);
+    const double drift = px ? (py ? st.drift_sq<true, true>(a) : st.drift_sq<true, false>(a))
+                            : (py ? st.drift_sq<false, true>(a) : st.drift_sq<false, false>(a));
+    if (drift > st.half_skin_sq) return sphere + " is beyond skin/2 of its reference";
+    if (st.cell[a] != st.cell_index(st.ref.data() + 3 * a))
+      return sphere + " is not in the cell of its reference";
+    int binned = 0;
+    for (std::size_t c = 0; c < st.cells.size() / st.cell_stride; ++c) {
+      const int *cr = st.cell_row(static_cast<int>(c));
+      for (int q = 1; q <= cr[0]; ++q) binned += cr[q] == a && static_cast<int>(c) == st.cell[a];
+      for (int q = 1; q <= cr[0]; ++q)
+        if (cr[q] == a && static_cast<int>(c) != st.cell[a]) return sphere + " binned twice";
+    }
+    if (binned != 1) return sphere + " binned " + std::to_string(binned) + " times";
+    std::fill(times_listed.begin(), times_listed.end(), 0);
+    const int *r = st.row(a);
+    for (int q = 1; q <= r[0]; ++q) ++times_listed[r[q]];
+    for (int b = 0; b < st.n; ++b) {
+      const int expected = b != a && st.in_reach(a, b) ? 1 : 0;
+      if (times_listed[b] != expected)
+        return sphere + " lists sphere " + std::to_string(st.external_of[b]) + " " +
+               std::to_string(times_listed[b]) + " times (expected " + std::to_string(expected) +
+               ")";
+    }
+  }
+  return "";
+}
+
 namespace {
 
 // How far ahead (in trials) the neighbours of a picked sphere are prefetched.
@@ -388,6 +483,7 @@ constexpr int kNeighbourPrefetchAhead = 4;
 
 struct RunArgs {
   const int *candidates;
+  const int *candidate_slots;  // slots of the candidates, or nullptr (then looked up per trial)
   long m;
   bool random;
   long *sweep_cursor;
@@ -425,7 +521,7 @@ void run_trials(SphereMover::State &st, const RunArgs &a)
         k = *a.sweep_cursor;
         if (++*a.sweep_cursor == a.m) *a.sweep_cursor = 0;
       }
-      const int s = st.slot_of[a.candidates[k]];
+      const int s = a.candidate_slots ? a.candidate_slots[k] : st.slot_of[a.candidates[k]];
       st.batch_slot[b] = s;
       prefetch(st.xyzr.data() + 4 * s);
       prefetch(st.row(s));
@@ -470,8 +566,8 @@ void run_trials(SphereMover::State &st, const RunArgs &a)
       p[0] = x;
       p[1] = y;
       p[2] = z;
-      if (PeriodicX) st.image[2 * s] += wrap_x;
-      if (PeriodicY) st.image[2 * s + 1] += wrap_y;
+      if (PeriodicX && wrap_x) st.image[2 * s] += wrap_x;
+      if (PeriodicY && wrap_y) st.image[2 * s + 1] += wrap_y;
       if (st.drift_sq<PeriodicX, PeriodicY>(s) > st.half_skin_sq) st.relist(s);
     }
   }
@@ -514,8 +610,17 @@ void SphereMover::run(const int *candidates, long m, PickOrder order, long &swee
     bad("sweep_cursor", static_cast<double>(sweep_cursor), "[0, m)");
   if (sampler.d_max() > st.d_max)
     bad("sampler d_max", sampler.d_max(), "(0, " + number(st.d_max) + "] (the d_max of reset)");
-  const RunArgs args{candidates, m,     order == PickOrder::Random, &sweep_cursor, &sampler, &rng,
-                     first_trial, trials, region,                     &tally};
+  // A block of at least half a sweep translates the candidates to slots once (one pass in
+  // order), so a random pick costs one indirection instead of two dependent ones.
+  const int *candidate_slots = nullptr;
+  if (trials >= m / 2) {
+    st.candidate_slots.resize(m);
+    for (long k = 0; k < m; ++k) st.candidate_slots[k] = st.slot_of[candidates[k]];
+    candidate_slots = st.candidate_slots.data();
+  }
+  const RunArgs args{candidates, candidate_slots, m,      order == PickOrder::Random,
+                     &sweep_cursor, &sampler,    &rng,   first_trial,
+                     trials,        region,      &tally};
   if (st.scene.mono) dispatch_axes<true>(st, args);
   else dispatch_axes<false>(st, args);
 }

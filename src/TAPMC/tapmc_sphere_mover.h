@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace tapmc {
@@ -67,6 +68,11 @@ class SphereMover {
   long local_updates() const;
   long capacity_grows() const;
   double mean_list_length() const;
+
+  // Self-check for tests, O(N^2): every list holds exactly the spheres in reach of the
+  // reference (no duplicates, so symmetric), every sphere is within skin/2 of its reference and
+  // binned in its reference's cell. Returns "" when all hold, else the first failure.
+  std::string check_lists() const;
 
   // List skin in units of the largest radius, used from the next reset (default
   // defaults::kListSkinOverRadius). Any value > 0 gives the same moves (the lists are exact);
