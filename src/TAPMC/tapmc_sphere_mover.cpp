@@ -42,6 +42,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -69,21 +70,30 @@ int neighbour_cells(const GridAxis &axis, int c, int out[3])
 
 inline void prefetch(const void *p) { __builtin_prefetch(p, 0, 3); }
 
+// Sphere records: kRecord doubles, the reference position from kRef.
+constexpr int kRecord = 8, kRef = 4;
+
 // Grid cells hold a count and their spheres' slots in rows a multiple of this many ints wide.
 constexpr int kCellCapacityStep = 4;
 
 }  // namespace
 
 struct SphereMover::State {
-  Scene scene;  // planes, periodic lengths, tolerance (scene.radius is not used: radii are in xyzr)
+  Scene scene;  // planes, periodic lengths, tolerance (scene.radius is not used: radii are in records)
   int n = 0;
   double skin_over_max_radius = defaults::kListSkinOverRadius;
   double d_max = 0.0, half_skin_sq = 0.0;
   double list_extra = 0.0;  // d_max + skin + rounding margin, added to R_i + R_j
 
   // Per internal slot.
-  std::vector<double> xyzr;   // x, y, z, R
-  std::vector<double> ref;    // reference position (x, y, z), wrapped into the box
+  // One 64-byte record (one cache line) per slot: x, y, z, R, then the reference position
+  // (wrapped into the box): a trial reads the picked sphere's line only, and the neighbours'
+  // first four doubles.
+  std::vector<double> record_storage;
+  double *records = nullptr;  // record_storage aligned to 64 bytes
+  double *at(int s) { return records + static_cast<std::size_t>(s) * kRecord; }
+  const double *at(int s) const { return records + static_cast<std::size_t>(s) * kRecord; }
+  const double *ref(int s) const { return at(s) + kRef; }
   std::vector<int> image;     // periods wrapped along x, y
   std::vector<int> cell;      // grid cell of the reference
   std::vector<int> slot_of, external_of;
@@ -125,7 +135,7 @@ struct SphereMover::State {
   // The list predicate over reference positions (symmetric in a, b, bit for bit).
   bool in_reach(int a, int b) const
   {
-    const double *pa = ref.data() + 3 * a, *pb = ref.data() + 3 * b;
+    const double *pa = ref(a), *pb = ref(b);
     const Scene &sc = scene;
     const double dx = sc.periodic[0]
                           ? nearest_separation(pb[0], pa[0], sc.length[0], 0.5 * sc.length[0])
@@ -133,7 +143,7 @@ struct SphereMover::State {
     const double dy = sc.periodic[1]
                           ? nearest_separation(pb[1], pa[1], sc.length[1], 0.5 * sc.length[1])
                           : pb[1] - pa[1];
-    const double reach = (xyzr[4 * a + 3] + xyzr[4 * b + 3]) + list_extra;
+    const double reach = (at(a)[3] + at(b)[3]) + list_extra;
     return distance_sq(dx, dy, pb[2] - pa[2]) < reach * reach;
   }
 
@@ -150,7 +160,7 @@ struct SphereMover::State {
   template <class Visit>
   void for_each_candidate(int s, Visit &&visit) const
   {
-    const double *p = ref.data() + 3 * s;
+    const double *p = ref(s);
     int cx[3], cy[3], cz[3];
     const int nx = neighbour_cells(axes[0], axes[0].cell_of(p[0]), cx);
     const int ny = neighbour_cells(axes[1], axes[1].cell_of(p[1]), cy);
@@ -217,8 +227,9 @@ struct SphereMover::State {
     int *r = row(s);
     for (int q = 1; q <= r[0]; ++q) remove(row(r[q]), s);
     r[0] = 0;
-    for (int d = 0; d < 3; ++d) ref[3 * s + d] = xyzr[4 * s + d];
-    const int c = cell_index(ref.data() + 3 * s);
+    double *p = at(s);
+    for (int d = 0; d < 3; ++d) p[kRef + d] = p[d];
+    const int c = cell_index(p + kRef);
     if (c != cell[s]) {
       remove(cell_row(cell[s]), s);
       add_to_cell(c, s);
@@ -235,7 +246,7 @@ struct SphereMover::State {
   template <bool PeriodicX, bool PeriodicY>
   double drift_sq(int s) const
   {
-    const double *p = xyzr.data() + 4 * s, *q = ref.data() + 3 * s;
+    const double *p = at(s), *q = p + kRef;
     const Scene &sc = scene;
     return distance_sq(axis_separation<PeriodicX>(p[0], q[0], sc.length[0], 0.5 * sc.length[0]),
                        axis_separation<PeriodicY>(p[1], q[1], sc.length[1], 0.5 * sc.length[1]),
@@ -314,16 +325,19 @@ void SphereMover::State::build(const double *xyz_wrapped, const double *radius,
     slot_of[i] = s;
     external_of[s] = i;
   }
-  xyzr.resize(4 * static_cast<std::size_t>(n));
-  ref.resize(3 * static_cast<std::size_t>(n));
+  record_storage.resize(static_cast<std::size_t>(n) * kRecord + kRecord);
+  records = record_storage.data();
+  while (reinterpret_cast<std::uintptr_t>(records) % (kRecord * sizeof(double)) != 0) ++records;
   image.resize(2 * static_cast<std::size_t>(n));
   cell.resize(n);
   cell_stride = ((fullest + 1 + kCellCapacityStep - 1) / kCellCapacityStep + 1) * kCellCapacityStep;
   cells.assign(static_cast<std::size_t>(n_cells) * cell_stride, 0);
   for (int s = 0; s < n; ++s) {
     const int i = external_of[s];
-    for (int d = 0; d < 3; ++d) xyzr[4 * s + d] = ref[3 * s + d] = xyz_wrapped[3 * i + d];
-    xyzr[4 * s + 3] = radius[i];
+    double *p = at(s);
+    for (int d = 0; d < 3; ++d) p[d] = p[kRef + d] = xyz_wrapped[3 * i + d];
+    p[3] = radius[i];
+    p[kRecord - 1] = 0.0;
     image[2 * s] = image_in[2 * i];
     image[2 * s + 1] = image_in[2 * i + 1];
     cell[s] = cell_ext[i];
@@ -406,7 +420,7 @@ void SphereMover::set_position(int i, const double *xyz)
   if (!(i >= 0 && i < st.n)) bad("sphere index", i, "[0, " + std::to_string(st.n) + ")");
   const Scene &sc = st.scene;
   const int s = st.slot_of[i];
-  double *p = st.xyzr.data() + 4 * s;
+  double *p = st.at(s);
   for (int d = 0; d < 3; ++d) p[d] = xyz[d];
   for (int d = 0; d < 2; ++d)
     if (sc.periodic[d]) {
@@ -421,7 +435,7 @@ void SphereMover::set_position(int i, const double *xyz)
 
 const double *SphereMover::position(int i) const
 {
-  return state_->xyzr.data() + 4 * static_cast<std::size_t>(state_->slot_of[i]);
+  return state_->at(state_->slot_of[i]);
 }
 
 int SphereMover::image_shift(int i, int axis) const
@@ -452,7 +466,7 @@ std::string SphereMover::check_lists() const
     const double drift = px ? (py ? st.drift_sq<true, true>(a) : st.drift_sq<true, false>(a))
                             : (py ? st.drift_sq<false, true>(a) : st.drift_sq<false, false>(a));
     if (drift > st.half_skin_sq) return sphere + " is beyond skin/2 of its reference";
-    if (st.cell[a] != st.cell_index(st.ref.data() + 3 * a))
+    if (st.cell[a] != st.cell_index(st.ref(a)))
       return sphere + " is not in the cell of its reference";
     int binned = 0;
     for (std::size_t c = 0; c < st.cells.size() / st.cell_stride; ++c) {
@@ -478,8 +492,10 @@ std::string SphereMover::check_lists() const
 
 namespace {
 
-// How far ahead (in trials) the neighbours of a picked sphere are prefetched.
-constexpr int kNeighbourPrefetchAhead = 4;
+// How far ahead (in trials) the neighbours of a picked sphere are prefetched (when the sphere
+// data outgrow the caches: defaults::kNeighbourPrefetchMinSpheres). Measured at N = 262144:
+// 2 / 4 / 8 / 16 trials ahead 11.5 / 12.1 / 12.7 / 12.2 M moves/s, none 8.7.
+constexpr int kNeighbourPrefetchAhead = 8;
 
 struct RunArgs {
   const int *candidates;
@@ -497,8 +513,9 @@ struct RunArgs {
 
 }  // namespace
 
-// One block of trials, compiled per (mono/poly, periodic x, periodic y, region).
-template <bool Mono, bool PeriodicX, bool PeriodicY, bool Region>
+// One block of trials, compiled per (mono/poly, periodic x, periodic y, region, prefetch of the
+// neighbours' data).
+template <bool Mono, bool PeriodicX, bool PeriodicY, bool Region, bool PrefetchNeighbours>
 void run_trials(SphereMover::State &st, const RunArgs &a)
 {
   const Scene &sc = st.scene;
@@ -523,17 +540,17 @@ void run_trials(SphereMover::State &st, const RunArgs &a)
       }
       const int s = a.candidate_slots ? a.candidate_slots[k] : st.slot_of[a.candidates[k]];
       st.batch_slot[b] = s;
-      prefetch(st.xyzr.data() + 4 * s);
+      prefetch(st.at(s));
       prefetch(st.row(s));
     }
     for (int b = 0; b < count; ++b) {
-      if (b + kNeighbourPrefetchAhead < count) {
+      if (PrefetchNeighbours && b + kNeighbourPrefetchAhead < count) {
         const int *ahead = st.row(st.batch_slot[b + kNeighbourPrefetchAhead]);
-        for (int q = 1; q <= ahead[0]; ++q) prefetch(st.xyzr.data() + 4 * ahead[q]);
+        for (int q = 1; q <= ahead[0]; ++q) prefetch(st.at(ahead[q]));
       }
       const int s = st.batch_slot[b];
       const Displacement &move = st.batch[b].move;
-      double *p = st.xyzr.data() + 4 * s;
+      double *p = st.at(s);
       const double r = Mono ? r_mono : p[3];
       const double oz = p[2];
       double x = p[0] + move.dx, y = p[1] + move.dy;
@@ -547,10 +564,9 @@ void run_trials(SphereMover::State &st, const RunArgs &a)
       double gap;
       if (plane_violation<PeriodicX, PeriodicY>(sc, x, y, z, r, gap)) continue;
       const int *nb = st.row(s);
-      const double *xyzr = st.xyzr.data();
       bool overlap = false;
       for (int q = 1, end = nb[0]; q <= end; ++q) {
-        const double *pj = xyzr + 4 * nb[q];
+        const double *pj = st.at(nb[q]);
         const double dx = axis_separation<PeriodicX>(pj[0], x, sc.length[0], half_x);
         const double dy = axis_separation<PeriodicY>(pj[1], y, sc.length[1], half_y);
         const double limit =
@@ -578,11 +594,20 @@ void run_trials(SphereMover::State &st, const RunArgs &a)
 
 namespace {
 
+template <bool Mono, bool PeriodicX, bool PeriodicY, bool Region>
+void dispatch_prefetch(SphereMover::State &st, const RunArgs &a)
+{
+  if (st.n >= defaults::kNeighbourPrefetchMinSpheres)
+    run_trials<Mono, PeriodicX, PeriodicY, Region, true>(st, a);
+  else
+    run_trials<Mono, PeriodicX, PeriodicY, Region, false>(st, a);
+}
+
 template <bool Mono, bool PeriodicX, bool PeriodicY>
 void dispatch_region(SphereMover::State &st, const RunArgs &a)
 {
-  if (a.region) run_trials<Mono, PeriodicX, PeriodicY, true>(st, a);
-  else run_trials<Mono, PeriodicX, PeriodicY, false>(st, a);
+  if (a.region) dispatch_prefetch<Mono, PeriodicX, PeriodicY, true>(st, a);
+  else dispatch_prefetch<Mono, PeriodicX, PeriodicY, false>(st, a);
 }
 
 template <bool Mono>
