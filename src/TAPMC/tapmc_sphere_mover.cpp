@@ -21,17 +21,20 @@
 // length), never O(N). Positions stay wrapped into the box along periodic axes and every test
 // takes the nearest image, so crossing a periodic side needs no update.
 //
-// Storage. Sphere data (x, y, z, R; reference; image counts; list) is kept in an internal
-// spatial order (cell order at reset), so the neighbours of a sphere lie close in memory; the
-// caller's indices map to internal slots. The picks draw candidates[k] by the same random
-// numbers whatever the internal order: results do not depend on it. Each list is a row of fixed
-// capacity (the count, then the neighbours' slots); a row that would overflow widens every row
-// (rare: a few times per reset at most, counted in capacity_grows()).
+// Storage. Each sphere has a 64-byte record (one cache line: x, y, z, R and its reference
+// position), its image counts and a list row, all kept in an internal spatial order (cell order
+// at reset), so the neighbours of a sphere lie close in memory; the caller's indices map to
+// internal slots. The picks draw candidates[k] by the same random numbers whatever the internal
+// order: results do not depend on it. A list row has a fixed capacity (the count, then the
+// neighbours' slots: one cache line at the paper's densities); a row that would overflow widens
+// every row (O(N), rare; counted in capacity_grows()).
 //
 // Hot loop. Picks are drawn a batch ahead (TrialMoveSampler::draw_batch); the picked spheres'
-// data and rows are prefetched at the draw, their neighbours' data a few trials ahead. The loop
-// is compiled once per combination of mono/poly, periodic axes and region (dispatched once per
-// call), with the overlap arithmetic of tapmc_contact.h and tapmc_settle_geometry.h.
+// records and rows are prefetched 16 trials ahead, and, for large N
+// (defaults::kNeighbourPrefetchMinSpheres), their neighbours' records 8 trials ahead. The loop
+// is compiled once per combination of mono/poly, periodic axes, region and neighbour prefetch
+// (dispatched once per call), with the overlap arithmetic of tapmc_contact.h and
+// tapmc_settle_geometry.h.
 #include "tapmc_sphere_mover.h"
 
 #include "tapmc_cell_grid.h"
@@ -492,9 +495,12 @@ std::string SphereMover::check_lists() const
 
 namespace {
 
-// How far ahead (in trials) the neighbours of a picked sphere are prefetched (when the sphere
-// data outgrow the caches: defaults::kNeighbourPrefetchMinSpheres). Measured at N = 262144:
-// 2 / 4 / 8 / 16 trials ahead 11.5 / 12.1 / 12.7 / 12.2 M moves/s, none 8.7.
+// How far ahead (in trials) a picked sphere's record and list row are prefetched, and its
+// neighbours' records (the latter only when the sphere data outgrow the caches:
+// defaults::kNeighbourPrefetchMinSpheres). Measured at N = 262144 (M moves/s): neighbours 2 / 4
+// / 8 / 16 trials ahead 11.5 / 12.1 / 12.7 / 12.2, none 8.7; own data 16 trials ahead about 5 %
+// faster than all 128 of a batch at its draw (10 ahead: slower); no change at N = 4096.
+constexpr int kOwnPrefetchAhead = 16;
 constexpr int kNeighbourPrefetchAhead = 8;
 
 struct RunArgs {
@@ -540,10 +546,17 @@ void run_trials(SphereMover::State &st, const RunArgs &a)
       }
       const int s = a.candidate_slots ? a.candidate_slots[k] : st.slot_of[a.candidates[k]];
       st.batch_slot[b] = s;
-      prefetch(st.at(s));
-      prefetch(st.row(s));
+      if (b < kOwnPrefetchAhead) {
+        prefetch(st.at(s));
+        prefetch(st.row(s));
+      }
     }
     for (int b = 0; b < count; ++b) {
+      if (b + kOwnPrefetchAhead < count) {
+        const int later = st.batch_slot[b + kOwnPrefetchAhead];
+        prefetch(st.at(later));
+        prefetch(st.row(later));
+      }
       if (PrefetchNeighbours && b + kNeighbourPrefetchAhead < count) {
         const int *ahead = st.row(st.batch_slot[b + kNeighbourPrefetchAhead]);
         for (int q = 1; q <= ahead[0]; ++q) prefetch(st.at(ahead[q]));
