@@ -421,6 +421,8 @@ void SphereMover::set_position(int i, const double *xyz)
 {
   State &st = *state_;
   if (!(i >= 0 && i < st.n)) bad("sphere index", i, "[0, " + std::to_string(st.n) + ")");
+  for (int d = 0; d < 3; ++d)
+    if (!std::isfinite(xyz[d])) bad("position of sphere " + std::to_string(i), xyz[d], "(finite)");
   const Scene &sc = st.scene;
   const int s = st.slot_of[i];
   double *p = st.at(s);
@@ -653,7 +655,12 @@ void SphereMover::run(const int *candidates, long m, PickOrder order, long &swee
   const int *candidate_slots = nullptr;
   if (trials >= m / 2) {
     st.candidate_slots.resize(m);
-    for (long k = 0; k < m; ++k) st.candidate_slots[k] = st.slot_of[candidates[k]];
+    for (long k = 0; k < m; ++k) {
+      const int c = candidates[k];
+      if (!(c >= 0 && c < st.n))
+        bad("candidates[" + std::to_string(k) + "]", c, "[0, " + std::to_string(st.n) + ")");
+      st.candidate_slots[k] = st.slot_of[c];
+    }
     candidate_slots = st.candidate_slots.data();
   }
   const RunArgs args{candidates, candidate_slots, m,      order == PickOrder::Random,

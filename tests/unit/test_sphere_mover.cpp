@@ -403,4 +403,11 @@ TEST(SphereMover, ArgumentsAreChecked)
                std::invalid_argument);  // steps longer than the lists allow for
   mover.run(ids.data(), s.size(), PickOrder::Random, cursor, sampler, rng, 0, 0, nullptr, tally);
   EXPECT_EQ(tally.trials, 0);
+  std::vector<int> bad_ids = ids;
+  bad_ids[7] = s.size();
+  EXPECT_THROW(mover.run(bad_ids.data(), s.size(), PickOrder::Random, cursor, sampler, rng, 0,
+                         s.size(), nullptr, tally),
+               std::invalid_argument);
+  const double not_finite[3] = {1, std::nan(""), 1};
+  EXPECT_THROW(mover.set_position(3, not_finite), std::invalid_argument);
 }
