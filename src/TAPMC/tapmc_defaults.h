@@ -154,6 +154,12 @@ constexpr int kListSlack = 2;
 // of the development machine: without it 8.7 against 12.7 M moves/s at N = 262144, about equal
 // at 65536, and with it 7-11 % slower at 4096-32768, where the data stay in cache).
 constexpr int kNeighbourPrefetchMinSpheres = 50000;
+// How far ahead (in trials) the trial loop prefetches a picked sphere's record and list row, and
+// its neighbours' records. Measured at N = 262144 (M moves/s): neighbours 2 / 4 / 8 / 16 trials
+// ahead 11.5 / 12.1 / 12.7 / 12.2, none 8.7; own data 16 trials ahead about 5 % faster than all
+// 128 of a batch at its draw (10 ahead: slower, 24 or 32: the same); no change at N = 4096.
+constexpr int kOwnPrefetchAhead = 16;
+constexpr int kNeighbourPrefetchAhead = 8;
 
 // ---- cell grid of the kernel's neighbour searches (tapmc_cell_grid.h) -----------------------
 // Cells are at least the search radius plus this relative rounding margin wide (relative to

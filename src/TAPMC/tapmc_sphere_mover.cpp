@@ -82,7 +82,7 @@ constexpr int kCellCapacityStep = 4;
 }  // namespace
 
 struct SphereMover::State {
-  Scene scene;  // planes, periodic lengths, tolerance (scene.radius is not used: radii are in records)
+  Scene scene;  // planes, periodic lengths, tolerance (radii are in the records, not scene.radius)
   int n = 0;
   double skin_over_max_radius = defaults::kListSkinOverRadius;
   double d_max = 0.0, half_skin_sq = 0.0;
@@ -497,14 +497,6 @@ std::string SphereMover::check_lists() const
 
 namespace {
 
-// How far ahead (in trials) a picked sphere's record and list row are prefetched, and its
-// neighbours' records (the latter only when the sphere data outgrow the caches:
-// defaults::kNeighbourPrefetchMinSpheres). Measured at N = 262144 (M moves/s): neighbours 2 / 4
-// / 8 / 16 trials ahead 11.5 / 12.1 / 12.7 / 12.2, none 8.7; own data 16 trials ahead about 5 %
-// faster than all 128 of a batch at its draw (10 ahead: slower); no change at N = 4096.
-constexpr int kOwnPrefetchAhead = 16;
-constexpr int kNeighbourPrefetchAhead = 8;
-
 struct RunArgs {
   const int *candidates;
   const int *candidate_slots;  // slots of the candidates, or nullptr (then looked up per trial)
@@ -548,19 +540,19 @@ void run_trials(SphereMover::State &st, const RunArgs &a)
       }
       const int s = a.candidate_slots ? a.candidate_slots[k] : st.slot_of[a.candidates[k]];
       st.batch_slot[b] = s;
-      if (b < kOwnPrefetchAhead) {
+      if (b < defaults::kOwnPrefetchAhead) {
         prefetch(st.at(s));
         prefetch(st.row(s));
       }
     }
     for (int b = 0; b < count; ++b) {
-      if (b + kOwnPrefetchAhead < count) {
-        const int later = st.batch_slot[b + kOwnPrefetchAhead];
+      if (b + defaults::kOwnPrefetchAhead < count) {
+        const int later = st.batch_slot[b + defaults::kOwnPrefetchAhead];
         prefetch(st.at(later));
         prefetch(st.row(later));
       }
-      if (PrefetchNeighbours && b + kNeighbourPrefetchAhead < count) {
-        const int *ahead = st.row(st.batch_slot[b + kNeighbourPrefetchAhead]);
+      if (PrefetchNeighbours && b + defaults::kNeighbourPrefetchAhead < count) {
+        const int *ahead = st.row(st.batch_slot[b + defaults::kNeighbourPrefetchAhead]);
         for (int q = 1; q <= ahead[0]; ++q) prefetch(st.at(ahead[q]));
       }
       const int s = st.batch_slot[b];
