@@ -30,11 +30,10 @@
 // every row (O(N), rare; counted in capacity_grows()).
 //
 // Hot loop. Picks are drawn a batch ahead (TrialMoveSampler::draw_batch); the picked spheres'
-// records and rows are prefetched 16 trials ahead, and, for large N
-// (defaults::kNeighbourPrefetchMinSpheres), their neighbours' records 8 trials ahead. The loop
-// is compiled once per combination of mono/poly, periodic axes, region and neighbour prefetch
-// (dispatched once per call), with the overlap arithmetic of tapmc_contact.h and
-// tapmc_settle_geometry.h.
+// records and rows are prefetched 16 trials ahead, the records of the first few entries of their
+// lists 8 trials ahead (the test exits at the first overlap, after 2.2 entries on average). The
+// loop is compiled once per combination of mono/poly, periodic axes and region (dispatched once
+// per call), with the overlap arithmetic of tapmc_contact.h and tapmc_settle_geometry.h.
 #include "tapmc_sphere_mover.h"
 
 #include "tapmc_cell_grid.h"
@@ -513,9 +512,8 @@ struct RunArgs {
 
 }  // namespace
 
-// One block of trials, compiled per (mono/poly, periodic x, periodic y, region, prefetch of the
-// neighbours' data).
-template <bool Mono, bool PeriodicX, bool PeriodicY, bool Region, bool PrefetchNeighbours>
+// One block of trials, compiled per (mono/poly, periodic x, periodic y, region).
+template <bool Mono, bool PeriodicX, bool PeriodicY, bool Region>
 void run_trials(SphereMover::State &st, const RunArgs &a)
 {
   const Scene &sc = st.scene;
@@ -551,9 +549,10 @@ void run_trials(SphereMover::State &st, const RunArgs &a)
         prefetch(st.at(later));
         prefetch(st.row(later));
       }
-      if (PrefetchNeighbours && b + defaults::kNeighbourPrefetchAhead < count) {
+      if (b + defaults::kNeighbourPrefetchAhead < count) {
         const int *ahead = st.row(st.batch_slot[b + defaults::kNeighbourPrefetchAhead]);
-        for (int q = 1; q <= ahead[0]; ++q) prefetch(st.at(ahead[q]));
+        const int prefetched = std::min(ahead[0], defaults::kNeighbourPrefetchCount);
+        for (int q = 1; q <= prefetched; ++q) prefetch(st.at(ahead[q]));
       }
       const int s = st.batch_slot[b];
       const Displacement &move = st.batch[b].move;
@@ -601,20 +600,11 @@ void run_trials(SphereMover::State &st, const RunArgs &a)
 
 namespace {
 
-template <bool Mono, bool PeriodicX, bool PeriodicY, bool Region>
-void dispatch_prefetch(SphereMover::State &st, const RunArgs &a)
-{
-  if (st.n >= defaults::kNeighbourPrefetchMinSpheres)
-    run_trials<Mono, PeriodicX, PeriodicY, Region, true>(st, a);
-  else
-    run_trials<Mono, PeriodicX, PeriodicY, Region, false>(st, a);
-}
-
 template <bool Mono, bool PeriodicX, bool PeriodicY>
 void dispatch_region(SphereMover::State &st, const RunArgs &a)
 {
-  if (a.region) dispatch_prefetch<Mono, PeriodicX, PeriodicY, true>(st, a);
-  else dispatch_prefetch<Mono, PeriodicX, PeriodicY, false>(st, a);
+  if (a.region) run_trials<Mono, PeriodicX, PeriodicY, true>(st, a);
+  else run_trials<Mono, PeriodicX, PeriodicY, false>(st, a);
 }
 
 template <bool Mono>
