@@ -7,6 +7,7 @@
 #include <chrono>
 #include <fstream>
 #include <string>
+#include <time.h>
 #include <vector>
 
 namespace tapmc_bench {
@@ -14,6 +15,15 @@ namespace tapmc_bench {
 inline double seconds_since(std::chrono::steady_clock::time_point t0)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// CPU time of the calling thread, s: on a shared machine a rate per CPU second does not count
+// the time other processes held the core.
+inline double thread_cpu_seconds()
+{
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 inline double median(std::vector<double> v)

@@ -1,9 +1,12 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 // Benchmark of the redeposition kernel: trial moves per second on the paper's scene, against a
-// naive all-pairs loop making the same moves; sweep order, poly, FBC, large N; theta sampler
-// cost; sweeps per redeposition versus eta.
+// naive all-pairs loop making the same moves; sweep order, poly, FBC; theta sampler cost;
+// sweeps per redeposition versus eta; scaling with N (4096, 32768, 262144) on a first and a
+// second tap, with list lengths, local list updates per sweep and peak memory.
 //
-// Usage: bench_mc_settle [--quick]   (--quick: fewer repeats, no N = 32768)
+// Usage: bench_mc_settle [--quick] [--scaling]
+//   --quick:   fewer repeats and sweeps, scaling for N = 4096 and 262144 only (under 2 min)
+//   --scaling: only the scaling section
 #include "bench_common.h"
 #include "../tests/unit/settle_test_scenes.h"
 #include "tapmc_contact.h"
@@ -19,6 +22,7 @@
 #include <cstring>
 #include <fstream>
 #include <string>
+#include <sys/resource.h>
 #include <vector>
 
 using namespace tapmc;
@@ -28,6 +32,7 @@ using Clock = std::chrono::steady_clock;
 using tapmc_bench::cpu_model;
 using tapmc_bench::median;
 using tapmc_bench::seconds_since;
+using tapmc_bench::thread_cpu_seconds;
 
 namespace {
 
@@ -109,12 +114,108 @@ double time_naive(Scene &s, std::uint64_t stream, long trials)
   return trials / seconds_since(t0);
 }
 
+// Peak resident memory of this process so far, MB.
+double peak_rss_mb()
+{
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;  // Linux: kB
+}
+
+struct TapRate {
+  double moves_per_s = 0, list_length = 0, updates_per_sweep = 0, acceptance = 0;
+  long sweeps = 0, widenings = 0;
+};
+
+// One redeposition of `start` (Random order): until eta, or `sweeps` sweeps when eta is 0,
+// timed in CPU seconds of this thread (the machine is shared). The settled positions are left
+// in `out` when given.
+TapRate time_tap(Settler &settler, const Scene &start, double eta, long sweeps,
+                 std::uint64_t stream, Scene *out = nullptr)
+{
+  Scene s = start;
+  const SettleParams p = paper_params(1.0, 31, stream, eta > 0 ? eta : 1e-300, sweeps);
+  const double t0 = thread_cpu_seconds();
+  const SettleResult res =
+      settler.settle(s.xyz.data(), s.radius.data(), nullptr, s.size(), s.box, p);
+  const double secs = thread_cpu_seconds() - t0;
+  TapRate r;
+  r.moves_per_s = res.trials / secs;
+  r.list_length = res.mean_list_length;
+  r.sweeps = res.checks;
+  r.updates_per_sweep = static_cast<double>(res.list_updates) / res.checks;
+  r.acceptance = static_cast<double>(res.accepted) / res.trials;
+  r.widenings = res.list_widenings;
+  if (out) *out = s;
+  return r;
+}
+
+// Scaling with N at the paper's height (N / L^2 = 4 / R^2 as for N = 4096, L = 32R): a
+// Jullien-Meakin bed tapped once (eps = 0.01) and, after settling to eta = 1e-5, tapped again.
+// One Settler per N, as fix mc/settle keeps one for the whole run (storage reused between
+// calls), warmed up by one untimed sweep.
+void scaling_section(bool quick)
+{
+  std::printf("\nscaling (PBC, R = 1, N / L^2 = 4 as for N = 4096 at L = 32R; Random order; eps = 0.01;\n"
+              "  M moves per CPU second of this thread, the list build of each call included;\n"
+              "  'first': the deposited bed tapped once, 'second': that tap settled to eta = 1e-5 and\n"
+              "  tapped again; 'fixed': %d sweeps, 'eta': until eta = 1e-5):\n", quick ? 20 : 100);
+  std::printf("%7s %6s %-7s %-6s %7s %9s %8s %11s %10s\n", "N", "L/R", "tap", "run", "sweeps",
+              "M moves/s", "list len", "upd./sweep", "accept.");
+  const long fixed = quick ? 20 : 100;
+  std::vector<int> sizes = {4096, 32768, 262144};
+  if (quick) sizes = {4096, 262144};
+  double rate_4096[4] = {0, 0, 0, 0};
+  for (int n : sizes) {
+    const double side = 32.0 * std::sqrt(n / 4096.0);
+    Scene first = deposited_bed(n, side, true, false, 7);
+    dilate(first, 0.01);
+    Scene settled;
+    TapRate rates[4];
+    Settler settler;
+    time_tap(settler, first, 0.0, 1, 499);
+    rates[0] = time_tap(settler, first, 0.0, fixed, 500);
+    rates[1] = time_tap(settler, first, 1e-5, 50000, 501, &settled);
+    Scene second = settled;
+    dilate(second, 0.01);
+    rates[2] = time_tap(settler, second, 0.0, fixed, 502);
+    rates[3] = time_tap(settler, second, 1e-5, 50000, 503);
+    const char *tap[4] = {"first", "first", "second", "second"};
+    const char *run[4] = {"fixed", "eta", "fixed", "eta"};
+    for (int k = 0; k < 4; ++k) {
+      if (n == 4096) rate_4096[k] = rates[k].moves_per_s;
+      std::printf("%7d %6.1f %-7s %-6s %7ld %9.2f %8.1f %11.1f %10.4f", n, side, tap[k], run[k],
+                  rates[k].sweeps, rates[k].moves_per_s / 1e6, rates[k].list_length,
+                  rates[k].updates_per_sweep, rates[k].acceptance);
+      if (rates[k].widenings) std::printf("  (%ld row widenings)", rates[k].widenings);
+      if (n != 4096) std::printf("   ratio to N = 4096: %.2f", rates[k].moves_per_s / rate_4096[k]);
+      std::printf("\n");
+    }
+    std::printf("%7s peak RSS so far: %.0f MB\n", "", peak_rss_mb());
+  }
+}
+
 }  // namespace
 
 int main(int argc, char **argv)
 {
-  const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
+  bool quick = false, scaling_only = false;
+  for (int a = 1; a < argc; ++a) {
+    if (std::strcmp(argv[a], "--quick") == 0) quick = true;
+    else if (std::strcmp(argv[a], "--scaling") == 0) scaling_only = true;
+    else {
+      std::fprintf(stderr, "bench_mc_settle: unknown argument '%s' (allowed: --quick, --scaling)\n",
+                   argv[a]);
+      return 2;
+    }
+  }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress visible when redirected
+  if (scaling_only) {
+    std::printf("bench_mc_settle: TAPMC redeposition kernel\nmachine: %s (one core)\n",
+                cpu_model().c_str());
+    scaling_section(quick);
+    return 0;
+  }
   const int repeats = quick ? 3 : 5;
   const long sweeps = quick ? 20 : 50;
   std::printf("bench_mc_settle: TAPMC redeposition kernel\n");
@@ -185,14 +286,6 @@ int main(int argc, char **argv)
     }
     std::printf("%-44s %10.2f M moves/s\n", "Settler, same, until eta = 1e-6", median(rates) / 1e6);
   }
-  if (!quick) {
-    Scene big = deposited_bed(32768, 32.0 * std::sqrt(8.0), true, false, 7);
-    dilate(big, 0.01);
-    const Rate big_random = time_settler(big, PickOrder::Random, 10, 3);
-    const Rate big_sweep = time_settler(big, PickOrder::Sweep, 10, 3);
-    std::printf("%-44s %10.2f M moves/s\n", "Settler, N = 32768 (L = 90.5R), Random", big_random.moves_per_s / 1e6);
-    std::printf("%-44s %10.2f M moves/s\n", "Settler, N = 32768 (L = 90.5R), Sweep", big_sweep.moves_per_s / 1e6);
-  }
 
   // 3. Cost of the move generation alone.
   {
@@ -257,5 +350,6 @@ int main(int argc, char **argv)
     std::printf("  eta = %.0e: %8.1f sweeps, %7.3f s per tap, recovered %5.1f %% of the tap's <Z> lift\n",
                 eta, sweeps_sum / taps, secs / taps, 100 * recovered / taps);
   }
+  scaling_section(quick);
   return 0;
 }

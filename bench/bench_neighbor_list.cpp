@@ -2,10 +2,11 @@
 // Benchmark behind the kernel's neighbour list: tapmc::Settler against Verlet neighbour lists
 // with a skin (what LAMMPS would hand a fix) and a naive all-pairs loop, same trial moves.
 //
-// tapmc::Settler owns a Verlet list with the "lammps" rule at skin 0.2 R (tapmc_settle.cpp,
-// defaults::kVerletSkinOverRadius). VerletRun here is the variant explorer (skins, rules, entry
-// order; monodisperse PBC only), not a second production copy: it shows why the kernel uses
-// this list and this skin.
+// tapmc::Settler runs on tapmc::SphereMover (tapmc_sphere_mover.cpp): lists of the "lammps"
+// radius (R_i + R_j) + d_max + skin, skin 0.2 R (defaults::kListSkinOverRadius), kept up to date
+// per sphere (a sphere that moved skin/2 is relisted locally) instead of by global rebuilds.
+// VerletRun here is the variant explorer (skins, rules, entry order; monodisperse PBC only),
+// not a second production copy: it shows why the kernel uses this list radius and this skin.
 //
 // Result (AMD EPYC, one core of a shared 2-core machine, medians; bench/README.md): all methods
 // accept exactly the same moves (40960 trials on the tapped bed and on a loose start with up to
@@ -20,13 +21,13 @@
 // LAMMPS rule; at skin = d_max it rebuilds ~50 times per sweep (0.05 M/s). Entry order
 // (below-first) changes little. This is an idealised list owned by the kernel; LAMMPS' own
 // lists would add ghost copies to update whenever a sphere near a periodic face moves, and a
-// rebuild inside the fix would need LAMMPS' exchange/borders/reneighbour cycle: hence a
-// kernel-owned Verlet list (skin ~0.2R, O(N) binning rebuild), not LAMMPS' lists.
+// rebuild inside the fix would need LAMMPS' exchange/borders/reneighbour cycle: hence
+// kernel-owned lists (skin 0.2R), not LAMMPS' lists.
 //
 // What is compared (N = 4096, R = 1, L = 32R, PBC, floor, Jullien-Meakin bed dilated by a tap
 // eps = 0.01, d_max = R/5, theta0 = pi/4, seed/stream/trial-keyed draws of tapmc_trial_move.h,
 // so every method makes the same trials in the same order):
-//  - tapmc::Settler (production: the Verlet list "lammps" 0.2R, adaptive skin), a fixed
+//  - tapmc::Settler (production: "lammps" list radius, skin 0.2R, local upkeep), a fixed
 //    number of sweeps (no eta stop);
 //  - Verlet lists: full list per sphere (CSR, periodic image shift stored per entry, coordinates
 //    left unwrapped between builds as LAMMPS does), built in O(N) by binning, each trial tests

@@ -14,6 +14,7 @@
 #include "lammps_keywords.h"
 #include "lammps_relocate.h"
 #include "lammps_support.h"
+#include "tapmc_contact.h"
 #include "tapmc_defaults.h"
 #include "tapmc_settle.h"
 
@@ -397,17 +398,26 @@ void FixMCSettle::check_start_configuration()
                                        box, tapmc::defaults::kContactTolerance);
   });
   if (v.i < 0) return;
-  const tagint tag_i = sorted_tag[v.i];
+  error->all(FLERR, violation_message(v, sorted_tag[v.i], v.j >= 0 ? sorted_tag[v.j] : 0));
+}
+
+// What is wrong with a start configuration: an overlapping pair, a sphere below the floor or
+// through a side wall (plane numbering of tapmc_contact.h).
+std::string FixMCSettle::violation_message(const tapmc::Violation &v, tagint tag_i,
+                                           tagint tag_j) const
+{
   if (v.j >= 0)
-    error->all(FLERR, "fix mc/settle: atoms {} and {} overlap by {} at the start (allowed: a "
-               "relative tolerance of {} of the contact distance); start from a non-overlapping "
-               "packing", tag_i, sorted_tag[v.j], -v.gap,
-               tapmc::defaults::kContactTolerance);
-  if (v.j == -1)
-    error->all(FLERR, "fix mc/settle: atom {} reaches {} below the floor z0 = {} (its centre "
-               "must be at least its radius above the floor)", tag_i, -v.gap, z_floor);
-  error->all(FLERR, "fix mc/settle: atom {} crosses a side wall in {} by {}", tag_i,
-             v.j == -2 ? "x" : "y", -v.gap);
+    return fmt::format("fix mc/settle: atoms {} and {} overlap by {} at the start (allowed: a "
+                       "relative tolerance of {} of the contact distance); start from a "
+                       "non-overlapping packing", tag_i, tag_j, -v.gap,
+                       tapmc::defaults::kContactTolerance);
+  if (v.j == tapmc::kFloorPlane)
+    return fmt::format("fix mc/settle: atom {} reaches {} below the floor z0 = {} (its centre "
+                       "must be at least its radius above the floor)", tag_i, -v.gap, z_floor);
+  const bool x_wall = v.j == tapmc::kWallXlo || v.j == tapmc::kWallXhi;
+  return fmt::format("fix mc/settle: atom {} crosses a side wall in {} by {} ({})", tag_i,
+                     x_wall ? "x" : "y", -v.gap,
+                     tapmc::plane_name(static_cast<tapmc::PlaneId>(v.j)));
 }
 
 void FixMCSettle::setup_pre_exchange()
@@ -438,23 +448,19 @@ void FixMCSettle::check_start_decomposed()
   tapmc::Violation v;
   tapmc::guarded(lmp, "fix mc/settle", false,
                  [&] { v = domain_settle->find_violation(domain_setup()); });
-  int found = v.i >= 0 ? 1 : 0, any = 0;
-  MPI_Allreduce(&found, &any, 1, MPI_INT, MPI_MAX, world);
-  if (!any) return;
-  if (!found) {  // another rank reports it
-    error->all(FLERR, "fix mc/settle: the start configuration has an overlap or a sphere "
-               "outside the floor / walls (reported by another rank)");
-  }
-  const tagint *tag = atom->tag;
-  if (v.j >= 0)
-    error->one(FLERR, "fix mc/settle: atoms {} and {} overlap by {} at the start (allowed: a "
-               "relative tolerance of {} of the contact distance); start from a non-overlapping "
-               "packing", tag[v.i], tag[v.j], -v.gap, tapmc::defaults::kContactTolerance);
-  if (v.j == -1)
-    error->one(FLERR, "fix mc/settle: atom {} reaches {} below the floor z0 = {} (its centre "
-               "must be at least its radius above the floor)", tag[v.i], -v.gap, z_floor);
-  error->one(FLERR, "fix mc/settle: atom {} crosses a side wall in {} by {}", tag[v.i],
-             v.j == -2 ? "x" : "y", -v.gap);
+  // The lowest rank that found a violation states it; every rank stops with its message.
+  const int mine = v.i >= 0 ? comm->me : comm->nprocs;
+  int reporter = comm->nprocs;
+  MPI_Allreduce(&mine, &reporter, 1, MPI_INT, MPI_MIN, world);
+  if (reporter == comm->nprocs) return;
+  std::string message;
+  if (comm->me == reporter)
+    message = violation_message(v, atom->tag[v.i], v.j >= 0 ? atom->tag[v.j] : 0);
+  int length = static_cast<int>(message.size());
+  MPI_Bcast(&length, 1, MPI_INT, reporter, world);
+  message.resize(length);
+  MPI_Bcast(&message[0], length, MPI_CHAR, reporter, world);
+  error->all(FLERR, message);
 }
 
 // The next step after this one on which a tapdilate fix taps (any fix, whatever its order), or

@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace tapmc {
@@ -18,6 +19,7 @@ struct DomainSettleSetup;
 class Settler;
 struct SettleBox;
 struct SettleResult;
+struct Violation;
 struct SettleParams;
 }
 
@@ -91,6 +93,7 @@ class FixMCSettle : public Fix {
   double group_radius_extreme(bool largest) const;
   long count_movable() const;
   void check_start_decomposed();
+  std::string violation_message(const tapmc::Violation &v, tagint tag_i, tagint tag_j) const;
   tapmc::SettleResult settle_decomposed();
   tapmc::SettleResult settle_gathered();
   void store_diagnostics(const tapmc::SettleResult &result);

@@ -1,8 +1,8 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 // The neighbour search of the redeposition kernel: spheres binned into cells at least one search
 // radius wide, and one visitor over the 27 cells around a point that hands every binned sphere
-// to a per-pair action (a lambda, inlined). The Verlet list build and the violation check
-// (tapmc_settle.cpp) both search through it.
+// to a per-pair action (a lambda, inlined). The violation check (tapmc_settle.cpp) searches
+// through it; the trial-move engine (tapmc_sphere_mover.cpp) bins on its axes (GridAxis).
 #ifndef TAPMC_CELL_GRID_H
 #define TAPMC_CELL_GRID_H
 

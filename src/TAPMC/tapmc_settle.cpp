@@ -29,9 +29,7 @@ namespace {
 
 // Cells sized for the largest contact distance plus a rounding margin far below contact_tol,
 // covering the periodic period, or the data (and walls / floor) along the other axes.
-// extra_reach widens the cells beyond the contact distance (the Verlet list's d_max + skin).
-std::array<GridAxis, 3> make_axes(const Scene &s, const double *xyz, int n,
-                                  double extra_reach = 0.0)
+std::array<GridAxis, 3> make_axes(const Scene &s, const double *xyz, int n)
 {
   double mn[3] = {kInf, kInf, kInf}, mx[3] = {-kInf, -kInf, -kInf};
   double scale = 0.0;
@@ -50,7 +48,7 @@ std::array<GridAxis, 3> make_axes(const Scene &s, const double *xyz, int n,
   mn[2] = std::min(mn[2], s.floor_z);  // movable spheres only go down, at most to the floor
   scale = std::max(scale, std::fabs(s.floor_z));
   const double margin = defaults::kGridRoundingMargin * (2.0 * s.r_max + scale);
-  const double reach = 2.0 * s.r_max * s.one_minus_tol + extra_reach + margin;
+  const double reach = 2.0 * s.r_max * s.one_minus_tol + margin;
 
   std::array<GridAxis, 3> axes;
   const int max_side = defaults::kGridMaxCellsPerSideAxis;
@@ -164,7 +162,7 @@ SettleResult Settler::settle(double *xyz, const double *radius, const unsigned c
   for (int i : movable_ids_) tally.sum_dz += xyz[3 * i + 2] - box.floor_z;
   result.mean_height_start = tally.sum_dz / static_cast<double>(m);
   ConvergenceCheck stop = make_convergence_check(params, m, result.mean_height_start);
-  const CounterRandom rng(params.seed, params.stream);
+  const CounterRandom rng(params.seed, RandomPurpose::kSettleMoves, params.stream);
   const long interval = trials_per_check(params.check_interval, m);
   long sweep_cursor = 0;
   for (;;) {
@@ -197,6 +195,7 @@ SettleResult Settler::settle(double *xyz, const double *radius, const unsigned c
   result.mean_height = sum / static_cast<double>(m);
   result.list_updates = mover_->local_updates();
   result.mean_list_length = mover_->mean_list_length();
+  result.list_widenings = mover_->capacity_grows();
   return result;
 }
 
@@ -217,7 +216,7 @@ Violation Settler::find_violation(const double *xyz, const double *radius, int n
     for (int d = 0; d < 2; ++d)
       if (sc.periodic[d]) {
         int image = 0;
-        wrapped[3 * i + d] = wrap_into_box(xyz[3 * i + d], sc.lo[d], sc.hi[d], sc.length[d], image);
+        wrapped[3 * i + d] = wrap_periodic(xyz[3 * i + d], sc.lo[d], sc.hi[d], sc.length[d], image);
       }
   CellGrid &grid = scratch.grid;
   grid.build(make_axes(sc, xyz, n), wrapped.data(), radius, n);

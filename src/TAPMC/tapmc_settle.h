@@ -53,13 +53,13 @@ struct SettleResult {
   bool hit_cap = false;
   long movable = 0;  // number of movable spheres
   // Neighbour-list upkeep in this call (diagnostics only, results do not depend on the skin):
-  // local list updates (a sphere moved skin/2 from where its list was made), and the mean
-  // list length at the end.
-  long list_updates = 0;
+  // local list updates (a sphere moved skin/2 from where its list was made), widenings of the
+  // list rows (a list outgrew its row: O(N), rare) and the mean list length at the end.
+  long list_updates = 0, list_widenings = 0;
   double mean_list_length = 0.0;
 };
 
-// j >= 0 sphere, -1 floor, -2 x wall, -3 y wall; gap < 0 = overlap depth
+// j >= 0 sphere, else the PlaneId crossed (tapmc_contact.h); gap < 0 = overlap depth
 struct Violation {
   int i = -1, j = -1;
   double gap = 0;

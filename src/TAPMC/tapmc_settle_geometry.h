@@ -38,27 +38,8 @@ inline void check_check_interval(long check_interval)
     bad("check", static_cast<double>(check_interval), "[0, +inf) (0 = one sweep)");
 }
 
-// Wraps a coordinate into [lo, hi) along a periodic axis, counting periods in `image`
-// (x_unwrapped = x + image * L). Works for any distance; lands on lo if rounding at the seam
-// would give hi.
-inline double wrap_into_box(double x, double lo, double hi, double length, int &image)
-{
-  if (x >= lo && x < hi) return x;
-  const double k = std::floor((x - lo) / length);
-  x -= k * length;
-  image += static_cast<int>(k);
-  if (x < lo) {
-    x += length;
-    image -= 1;
-  } else if (x >= hi) {
-    x -= length;
-    image += 1;
-  }
-  if (!(x >= lo && x < hi)) x = lo;  // the seam: lo and hi are the same point modulo L
-  return x;
-}
-
-// The same for one trial step (|step| < L): at most one period.
+// Wraps one trial step (|step| < L) into [lo, hi): at most one period (wrap_periodic of
+// tapmc_math.h for any distance).
 inline double wrap_step(double x, double lo, double hi, double length, int &image)
 {
   if (x < lo) {
@@ -145,25 +126,22 @@ inline Scene make_scene(const double *radius, int n, const SettleBox &box, doubl
 inline double radius_of(const Scene &s, int i) { return s.mono ? s.r_mono : s.radius[i]; }
 
 // The plane constraints (floor, side walls) of a sphere of radius r at (x, y, z): 0 if none is
-// violated, else the code of the first (-1 floor, -2 x wall, -3 y wall) and its gap.
-// Floor, then side walls; a periodic axis has no walls, and the hot loop (which knows its axes
-// at compile time) skips their tests. Returns 0, or -1 floor / -2 x wall / -3 y wall.
+// violated, else the PlaneId (tapmc_contact.h) of the first, floor then side walls, with its
+// gap. A periodic axis has no walls, and the hot loop (which knows its axes at compile time)
+// skips their tests.
 template <bool PeriodicX, bool PeriodicY>
 inline int plane_violation(const Scene &s, double x, double y, double z, double r, double &gap)
 {
   gap = floor_gap(z, r, s.floor_z);
-  if (gap_violates(gap, r, s.tol)) return -1;
-  if (!PeriodicX) {
-    gap = std::min(low_wall_gap(x, r, s.wall_lo[0]), high_wall_gap(x, r, s.wall_hi[0]));
-    if (gap_violates(gap, r, s.tol)) return -2;
-  }
-  if (!PeriodicY) {
-    gap = std::min(low_wall_gap(y, r, s.wall_lo[1]), high_wall_gap(y, r, s.wall_hi[1]));
-    if (gap_violates(gap, r, s.tol)) return -3;
-  }
+  if (gap_violates(gap, r, s.tol)) return kFloorPlane;
+  if (!PeriodicX)
+    if (const int wall = side_wall_violation(0, x, r, s.wall_lo[0], s.wall_hi[0], s.tol, gap))
+      return wall;
+  if (!PeriodicY)
+    if (const int wall = side_wall_violation(1, y, r, s.wall_lo[1], s.wall_hi[1], s.tol, gap))
+      return wall;
   return 0;
 }
-
 
 // Separation of j from i along a periodic axis, nearest image: the shift (0 or +-L) is chosen
 // from the raw difference and added last, exactly as separation() with a cell's image shift.

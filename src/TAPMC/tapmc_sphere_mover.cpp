@@ -21,17 +21,19 @@
 // length), never O(N). Positions stay wrapped into the box along periodic axes and every test
 // takes the nearest image, so crossing a periodic side needs no update.
 //
-// Storage. Sphere data (x, y, z, R; reference; image counts; list) is kept in an internal
-// spatial order (cell order at reset), so the neighbours of a sphere lie close in memory; the
-// caller's indices map to internal slots. The picks draw candidates[k] by the same random
-// numbers whatever the internal order: results do not depend on it. Each list is a row of fixed
-// capacity (the count, then the neighbours' slots); a row that would overflow widens every row
-// (rare: a few times per reset at most, counted in capacity_grows()).
+// Storage. Each sphere has a 64-byte record (one cache line: x, y, z, R and its reference
+// position), its image counts and a list row, all kept in an internal spatial order (cell order
+// at reset), so the neighbours of a sphere lie close in memory; the caller's indices map to
+// internal slots. The picks draw candidates[k] by the same random numbers whatever the internal
+// order: results do not depend on it. A list row has a fixed capacity (the count, then the
+// neighbours' slots: one cache line at the paper's densities); a row that would overflow widens
+// every row (O(N), rare; counted in capacity_grows()).
 //
 // Hot loop. Picks are drawn a batch ahead (TrialMoveSampler::draw_batch); the picked spheres'
-// data and rows are prefetched at the draw, their neighbours' data a few trials ahead. The loop
-// is compiled once per combination of mono/poly, periodic axes and region (dispatched once per
-// call), with the overlap arithmetic of tapmc_contact.h and tapmc_settle_geometry.h.
+// records and rows are prefetched 16 trials ahead, the records of the first few entries of their
+// lists 8 trials ahead (the test exits at the first overlap, after 2.2 entries on average). The
+// loop is compiled once per combination of mono/poly, periodic axes and region (dispatched once
+// per call), with the overlap arithmetic of tapmc_contact.h and tapmc_settle_geometry.h.
 #include "tapmc_sphere_mover.h"
 
 #include "tapmc_cell_grid.h"
@@ -42,6 +44,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -69,18 +72,30 @@ int neighbour_cells(const GridAxis &axis, int c, int out[3])
 
 inline void prefetch(const void *p) { __builtin_prefetch(p, 0, 3); }
 
+// Sphere records: kRecord doubles, the reference position from kRef.
+constexpr int kRecord = 8, kRef = 4;
+
+// Grid cells hold a count and their spheres' slots in rows a multiple of this many ints wide.
+constexpr int kCellCapacityStep = 4;
+
 }  // namespace
 
 struct SphereMover::State {
-  Scene scene;  // planes, periodic lengths, tolerance (scene.radius is not used: radii are in xyzr)
+  Scene scene;  // planes, periodic lengths, tolerance (radii are in the records, not scene.radius)
   int n = 0;
   double skin_over_max_radius = defaults::kListSkinOverRadius;
   double d_max = 0.0, half_skin_sq = 0.0;
   double list_extra = 0.0;  // d_max + skin + rounding margin, added to R_i + R_j
 
   // Per internal slot.
-  std::vector<double> xyzr;   // x, y, z, R
-  std::vector<double> ref;    // reference position (x, y, z), wrapped into the box
+  // One 64-byte record (one cache line) per slot: x, y, z, R, then the reference position
+  // (wrapped into the box): a trial reads the picked sphere's line only, and the neighbours'
+  // first four doubles.
+  std::vector<double> record_storage;
+  double *records = nullptr;  // record_storage aligned to 64 bytes
+  double *at(int s) { return records + static_cast<std::size_t>(s) * kRecord; }
+  const double *at(int s) const { return records + static_cast<std::size_t>(s) * kRecord; }
+  const double *ref(int s) const { return at(s) + kRef; }
   std::vector<int> image;     // periods wrapped along x, y
   std::vector<int> cell;      // grid cell of the reference
   std::vector<int> slot_of, external_of;
@@ -89,9 +104,15 @@ struct SphereMover::State {
   int stride = 0;
   std::vector<int> rows;
 
-  // Grid of the reference positions.
+  // Grid of the reference positions: cell c = cells[c * cell_stride ...]: count, then slots.
   std::array<GridAxis, 3> axes;
-  std::vector<std::vector<int>> members;  // slots per cell
+  int cell_stride = 0;
+  std::vector<int> cells;
+
+  // Scratch of reset / build, kept to avoid reallocation.
+  std::vector<double> wrapped;
+  std::vector<int> wrapped_image, order_start, cell_ext, pairs;
+  std::vector<int> candidate_slots;  // run(): slots of the candidates of the current block
 
   long full_builds = 0, local_updates = 0, capacity_grows = 0;
 
@@ -100,6 +121,12 @@ struct SphereMover::State {
   std::array<int, TrialMoveSampler::kBatchMax> batch_slot{};
 
   int *row(int s) { return rows.data() + static_cast<std::size_t>(s) * stride; }
+  const int *row(int s) const { return rows.data() + static_cast<std::size_t>(s) * stride; }
+  int *cell_row(int c) { return cells.data() + static_cast<std::size_t>(c) * cell_stride; }
+  const int *cell_row(int c) const
+  {
+    return cells.data() + static_cast<std::size_t>(c) * cell_stride;
+  }
 
   int cell_index(const double *p) const
   {
@@ -110,7 +137,7 @@ struct SphereMover::State {
   // The list predicate over reference positions (symmetric in a, b, bit for bit).
   bool in_reach(int a, int b) const
   {
-    const double *pa = ref.data() + 3 * a, *pb = ref.data() + 3 * b;
+    const double *pa = ref(a), *pb = ref(b);
     const Scene &sc = scene;
     const double dx = sc.periodic[0]
                           ? nearest_separation(pb[0], pa[0], sc.length[0], 0.5 * sc.length[0])
@@ -118,7 +145,7 @@ struct SphereMover::State {
     const double dy = sc.periodic[1]
                           ? nearest_separation(pb[1], pa[1], sc.length[1], 0.5 * sc.length[1])
                           : pb[1] - pa[1];
-    const double reach = (xyzr[4 * a + 3] + xyzr[4 * b + 3]) + list_extra;
+    const double reach = (at(a)[3] + at(b)[3]) + list_extra;
     return distance_sq(dx, dy, pb[2] - pa[2]) < reach * reach;
   }
 
@@ -126,7 +153,16 @@ struct SphereMover::State {
   template <class Visit>
   void for_each_in_reach(int s, Visit &&visit) const
   {
-    const double *p = ref.data() + 3 * s;
+    for_each_candidate(s, [&](int j) {
+      if (j != s && in_reach(s, j)) visit(j);
+    });
+  }
+
+  // Calls visit(j) for every sphere j binned in the (distinct) cells around s's reference.
+  template <class Visit>
+  void for_each_candidate(int s, Visit &&visit) const
+  {
+    const double *p = ref(s);
     int cx[3], cy[3], cz[3];
     const int nx = neighbour_cells(axes[0], axes[0].cell_of(p[0]), cx);
     const int ny = neighbour_cells(axes[1], axes[1].cell_of(p[1]), cy);
@@ -134,8 +170,10 @@ struct SphereMover::State {
     for (int a = 0; a < nz; ++a)
       for (int b = 0; b < ny; ++b)
         for (int c = 0; c < nx; ++c)
-          for (int j : members[(cz[a] * axes[1].cells + cy[b]) * axes[0].cells + cx[c]])
-            if (j != s && in_reach(s, j)) visit(j);
+        {
+          const int *cr = cell_row((cz[a] * axes[1].cells + cy[b]) * axes[0].cells + cx[c]);
+          for (int q = 1; q <= cr[0]; ++q) visit(cr[q]);
+        }
   }
 
   void append(int s, int j)
@@ -143,6 +181,13 @@ struct SphereMover::State {
     if (row(s)[0] + 1 >= stride) widen_rows();
     int *r = row(s);
     r[++r[0]] = j;
+  }
+
+  void add_to_cell(int c, int s)
+  {
+    if (cell_row(c)[0] + 1 >= cell_stride) widen_cells();
+    int *cr = cell_row(c);
+    cr[++cr[0]] = s;
   }
 
   static void remove(int *r, int j)
@@ -166,18 +211,30 @@ struct SphereMover::State {
     ++capacity_grows;
   }
 
+  // Every cell gets room for kCellCapacityStep more spheres.
+  void widen_cells()
+  {
+    const int wider = cell_stride + kCellCapacityStep;
+    const std::size_t count = cells.size() / cell_stride;
+    std::vector<int> grown(count * wider);
+    for (std::size_t c = 0; c < count; ++c)
+      std::copy(cell_row(c), cell_row(c) + cell_row(c)[0] + 1, grown.data() + c * wider);
+    cells.swap(grown);
+    cell_stride = wider;
+  }
+
   // ref_s := the current position of s; the lists and grid follow (local upkeep, see header).
   void relist(int s)
   {
     int *r = row(s);
     for (int q = 1; q <= r[0]; ++q) remove(row(r[q]), s);
     r[0] = 0;
-    for (int d = 0; d < 3; ++d) ref[3 * s + d] = xyzr[4 * s + d];
-    const int c = cell_index(ref.data() + 3 * s);
+    double *p = at(s);
+    for (int d = 0; d < 3; ++d) p[kRef + d] = p[d];
+    const int c = cell_index(p + kRef);
     if (c != cell[s]) {
-      std::vector<int> &old = members[cell[s]];
-      old.erase(std::find(old.begin(), old.end(), s));
-      members[c].push_back(s);
+      remove(cell_row(cell[s]), s);
+      add_to_cell(c, s);
       cell[s] = c;
     }
     for_each_in_reach(s, [&](int j) {
@@ -191,7 +248,7 @@ struct SphereMover::State {
   template <bool PeriodicX, bool PeriodicY>
   double drift_sq(int s) const
   {
-    const double *p = xyzr.data() + 4 * s, *q = ref.data() + 3 * s;
+    const double *p = at(s), *q = p + kRef;
     const Scene &sc = scene;
     return distance_sq(axis_separation<PeriodicX>(p[0], q[0], sc.length[0], 0.5 * sc.length[0]),
                        axis_separation<PeriodicY>(p[1], q[1], sc.length[1], 0.5 * sc.length[1]),
@@ -251,49 +308,67 @@ void SphereMover::State::build(const double *xyz_wrapped, const double *radius,
   axes = mover_axes(sc, xyz_wrapped, n, 2.0 * sc.r_max + list_extra + margin);
 
   // Internal order: by cell (stable), so neighbours are close in memory.
-  const std::size_t cells =
-      static_cast<std::size_t>(axes[0].cells) * axes[1].cells * axes[2].cells;
-  std::vector<int> start(cells + 1, 0), cell_ext(n);
+  const int n_cells = axes[0].cells * axes[1].cells * axes[2].cells;
+  order_start.assign(static_cast<std::size_t>(n_cells) + 1, 0);
+  cell_ext.resize(n);
   for (int i = 0; i < n; ++i) {
     cell_ext[i] = cell_index(xyz_wrapped + 3 * i);
-    ++start[cell_ext[i] + 1];
+    ++order_start[cell_ext[i] + 1];
   }
-  for (std::size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
+  int fullest = 0;
+  for (int c = 0; c < n_cells; ++c) {
+    fullest = std::max(fullest, order_start[c + 1]);
+    order_start[c + 1] += order_start[c];
+  }
   slot_of.resize(n);
   external_of.resize(n);
   for (int i = 0; i < n; ++i) {
-    const int s = start[cell_ext[i]]++;
+    const int s = order_start[cell_ext[i]]++;
     slot_of[i] = s;
     external_of[s] = i;
   }
-  xyzr.resize(4 * static_cast<std::size_t>(n));
-  ref.resize(3 * static_cast<std::size_t>(n));
+  record_storage.resize(static_cast<std::size_t>(n) * kRecord + kRecord);
+  records = record_storage.data();
+  while (reinterpret_cast<std::uintptr_t>(records) % (kRecord * sizeof(double)) != 0) ++records;
   image.resize(2 * static_cast<std::size_t>(n));
   cell.resize(n);
-  members.assign(cells, {});
+  cell_stride = ((fullest + 1 + kCellCapacityStep - 1) / kCellCapacityStep + 1) * kCellCapacityStep;
+  cells.assign(static_cast<std::size_t>(n_cells) * cell_stride, 0);
   for (int s = 0; s < n; ++s) {
     const int i = external_of[s];
-    for (int d = 0; d < 3; ++d) xyzr[4 * s + d] = ref[3 * s + d] = xyz_wrapped[3 * i + d];
-    xyzr[4 * s + 3] = radius[i];
+    double *p = at(s);
+    for (int d = 0; d < 3; ++d) p[d] = p[kRef + d] = xyz_wrapped[3 * i + d];
+    p[3] = radius[i];
+    p[kRecord - 1] = 0.0;
     image[2 * s] = image_in[2 * i];
     image[2 * s + 1] = image_in[2 * i + 1];
     cell[s] = cell_ext[i];
-    members[cell[s]].push_back(s);
+    int *cr = cell_row(cell[s]);
+    cr[++cr[0]] = s;
   }
 
-  // Rows wide enough for the longest list plus slack (widened later only if a list outgrows it).
-  int longest = 0;
-  for (int s = 0; s < n; ++s) {
-    int count = 0;
-    for_each_in_reach(s, [&](int) { ++count; });
-    longest = std::max(longest, count);
-  }
+  // Every pair in reach once (j > s), then rows wide enough for the longest list plus slack
+  // (widened later only if a list outgrows its row).
+  pairs.clear();
+  std::vector<int> &count = cell_ext;  // reused: one count per slot
+  count.assign(n, 0);
+  for (int s = 0; s < n; ++s)
+    for_each_candidate(s, [&](int j) {
+      if (j > s && in_reach(s, j)) {
+        pairs.push_back(s);
+        pairs.push_back(j);
+        ++count[s];
+        ++count[j];
+      }
+    });
+  const int longest = n > 0 ? *std::max_element(count.begin(), count.end()) : 0;
   const int step = defaults::kListCapacityStep;
   stride = ((longest + 1 + defaults::kListSlack + step - 1) / step) * step;
   rows.assign(static_cast<std::size_t>(n) * stride, 0);
-  for (int s = 0; s < n; ++s) {
-    int *r = row(s);
-    for_each_in_reach(s, [&](int j) { r[++r[0]] = j; });
+  for (std::size_t q = 0; q < pairs.size(); q += 2) {
+    int *a = row(pairs[q]), *b = row(pairs[q + 1]);
+    a[++a[0]] = pairs[q + 1];
+    b[++b[0]] = pairs[q];
   }
   ++full_builds;
 }
@@ -329,13 +404,15 @@ void SphereMover::reset(const double *xyz, const double *radius, int n, const Se
   st.d_max = d_max;
   st.full_builds = st.local_updates = st.capacity_grows = 0;
 
-  std::vector<double> wrapped(xyz, xyz + 3 * static_cast<std::size_t>(n));
-  std::vector<int> image(2 * static_cast<std::size_t>(n), 0);
+  std::vector<double> &wrapped = st.wrapped;
+  std::vector<int> &image = st.wrapped_image;
+  wrapped.assign(xyz, xyz + 3 * static_cast<std::size_t>(n));
+  image.assign(2 * static_cast<std::size_t>(n), 0);
   for (int i = 0; i < n; ++i)
     for (int d = 0; d < 2; ++d)
       if (sc.periodic[d])
         wrapped[3 * i + d] =
-            wrap_into_box(xyz[3 * i + d], sc.lo[d], sc.hi[d], sc.length[d], image[2 * i + d]);
+            wrap_periodic(xyz[3 * i + d], sc.lo[d], sc.hi[d], sc.length[d], image[2 * i + d]);
   st.build(wrapped.data(), radius, image.data());
 }
 
@@ -343,14 +420,16 @@ void SphereMover::set_position(int i, const double *xyz)
 {
   State &st = *state_;
   if (!(i >= 0 && i < st.n)) bad("sphere index", i, "[0, " + std::to_string(st.n) + ")");
+  for (int d = 0; d < 3; ++d)
+    if (!std::isfinite(xyz[d])) bad("position of sphere " + std::to_string(i), xyz[d], "(finite)");
   const Scene &sc = st.scene;
   const int s = st.slot_of[i];
-  double *p = st.xyzr.data() + 4 * s;
+  double *p = st.at(s);
   for (int d = 0; d < 3; ++d) p[d] = xyz[d];
   for (int d = 0; d < 2; ++d)
     if (sc.periodic[d]) {
       st.image[2 * s + d] = 0;
-      p[d] = wrap_into_box(xyz[d], sc.lo[d], sc.hi[d], sc.length[d], st.image[2 * s + d]);
+      p[d] = wrap_periodic(xyz[d], sc.lo[d], sc.hi[d], sc.length[d], st.image[2 * s + d]);
     }
   const bool px = sc.periodic[0], py = sc.periodic[1];
   const double drift = px ? (py ? st.drift_sq<true, true>(s) : st.drift_sq<true, false>(s))
@@ -360,7 +439,7 @@ void SphereMover::set_position(int i, const double *xyz)
 
 const double *SphereMover::position(int i) const
 {
-  return state_->xyzr.data() + 4 * static_cast<std::size_t>(state_->slot_of[i]);
+  return state_->at(state_->slot_of[i]);
 }
 
 int SphereMover::image_shift(int i, int axis) const
@@ -381,13 +460,45 @@ double SphereMover::mean_list_length() const
   return sum / st.n;
 }
 
-namespace {
+std::string SphereMover::check_lists() const
+{
+  const State &st = *state_;
+  const bool px = st.scene.periodic[0], py = st.scene.periodic[1];
+  std::vector<int> times_listed(st.n);
+  for (int a = 0; a < st.n; ++a) {
+    const std::string sphere = "sphere " + std::to_string(st.external_of[a]);
+    const double drift = px ? (py ? st.drift_sq<true, true>(a) : st.drift_sq<true, false>(a))
+                            : (py ? st.drift_sq<false, true>(a) : st.drift_sq<false, false>(a));
+    if (drift > st.half_skin_sq) return sphere + " is beyond skin/2 of its reference";
+    if (st.cell[a] != st.cell_index(st.ref(a)))
+      return sphere + " is not in the cell of its reference";
+    int binned = 0;
+    for (std::size_t c = 0; c < st.cells.size() / st.cell_stride; ++c) {
+      const int *cr = st.cell_row(static_cast<int>(c));
+      for (int q = 1; q <= cr[0]; ++q) binned += cr[q] == a && static_cast<int>(c) == st.cell[a];
+      for (int q = 1; q <= cr[0]; ++q)
+        if (cr[q] == a && static_cast<int>(c) != st.cell[a]) return sphere + " binned twice";
+    }
+    if (binned != 1) return sphere + " binned " + std::to_string(binned) + " times";
+    std::fill(times_listed.begin(), times_listed.end(), 0);
+    const int *r = st.row(a);
+    for (int q = 1; q <= r[0]; ++q) ++times_listed[r[q]];
+    for (int b = 0; b < st.n; ++b) {
+      const int expected = b != a && st.in_reach(a, b) ? 1 : 0;
+      if (times_listed[b] != expected)
+        return sphere + " lists sphere " + std::to_string(st.external_of[b]) + " " +
+               std::to_string(times_listed[b]) + " times (expected " + std::to_string(expected) +
+               ")";
+    }
+  }
+  return "";
+}
 
-// How far ahead (in trials) the neighbours of a picked sphere are prefetched.
-constexpr int kNeighbourPrefetchAhead = 4;
+namespace {
 
 struct RunArgs {
   const int *candidates;
+  const int *candidate_slots;  // slots of the candidates, or nullptr (then looked up per trial)
   long m;
   bool random;
   long *sweep_cursor;
@@ -425,19 +536,27 @@ void run_trials(SphereMover::State &st, const RunArgs &a)
         k = *a.sweep_cursor;
         if (++*a.sweep_cursor == a.m) *a.sweep_cursor = 0;
       }
-      const int s = st.slot_of[a.candidates[k]];
+      const int s = a.candidate_slots ? a.candidate_slots[k] : st.slot_of[a.candidates[k]];
       st.batch_slot[b] = s;
-      prefetch(st.xyzr.data() + 4 * s);
-      prefetch(st.row(s));
+      if (b < defaults::kOwnPrefetchAhead) {
+        prefetch(st.at(s));
+        prefetch(st.row(s));
+      }
     }
     for (int b = 0; b < count; ++b) {
-      if (b + kNeighbourPrefetchAhead < count) {
-        const int *ahead = st.row(st.batch_slot[b + kNeighbourPrefetchAhead]);
-        for (int q = 1; q <= ahead[0]; ++q) prefetch(st.xyzr.data() + 4 * ahead[q]);
+      if (b + defaults::kOwnPrefetchAhead < count) {
+        const int later = st.batch_slot[b + defaults::kOwnPrefetchAhead];
+        prefetch(st.at(later));
+        prefetch(st.row(later));
+      }
+      if (b + defaults::kNeighbourPrefetchAhead < count) {
+        const int *ahead = st.row(st.batch_slot[b + defaults::kNeighbourPrefetchAhead]);
+        const int prefetched = std::min(ahead[0], defaults::kNeighbourPrefetchCount);
+        for (int q = 1; q <= prefetched; ++q) prefetch(st.at(ahead[q]));
       }
       const int s = st.batch_slot[b];
       const Displacement &move = st.batch[b].move;
-      double *p = st.xyzr.data() + 4 * s;
+      double *p = st.at(s);
       const double r = Mono ? r_mono : p[3];
       const double oz = p[2];
       double x = p[0] + move.dx, y = p[1] + move.dy;
@@ -451,10 +570,9 @@ void run_trials(SphereMover::State &st, const RunArgs &a)
       double gap;
       if (plane_violation<PeriodicX, PeriodicY>(sc, x, y, z, r, gap)) continue;
       const int *nb = st.row(s);
-      const double *xyzr = st.xyzr.data();
       bool overlap = false;
       for (int q = 1, end = nb[0]; q <= end; ++q) {
-        const double *pj = xyzr + 4 * nb[q];
+        const double *pj = st.at(nb[q]);
         const double dx = axis_separation<PeriodicX>(pj[0], x, sc.length[0], half_x);
         const double dy = axis_separation<PeriodicY>(pj[1], y, sc.length[1], half_y);
         const double limit =
@@ -470,8 +588,8 @@ void run_trials(SphereMover::State &st, const RunArgs &a)
       p[0] = x;
       p[1] = y;
       p[2] = z;
-      if (PeriodicX) st.image[2 * s] += wrap_x;
-      if (PeriodicY) st.image[2 * s + 1] += wrap_y;
+      if (PeriodicX && wrap_x) st.image[2 * s] += wrap_x;
+      if (PeriodicY && wrap_y) st.image[2 * s + 1] += wrap_y;
       if (st.drift_sq<PeriodicX, PeriodicY>(s) > st.half_skin_sq) st.relist(s);
     }
   }
@@ -514,8 +632,22 @@ void SphereMover::run(const int *candidates, long m, PickOrder order, long &swee
     bad("sweep_cursor", static_cast<double>(sweep_cursor), "[0, m)");
   if (sampler.d_max() > st.d_max)
     bad("sampler d_max", sampler.d_max(), "(0, " + number(st.d_max) + "] (the d_max of reset)");
-  const RunArgs args{candidates, m,     order == PickOrder::Random, &sweep_cursor, &sampler, &rng,
-                     first_trial, trials, region,                     &tally};
+  // A block of at least half a sweep translates the candidates to slots once (one pass in
+  // order), so a random pick costs one indirection instead of two dependent ones.
+  const int *candidate_slots = nullptr;
+  if (trials >= m / 2) {
+    st.candidate_slots.resize(m);
+    for (long k = 0; k < m; ++k) {
+      const int c = candidates[k];
+      if (!(c >= 0 && c < st.n))
+        bad("candidates[" + std::to_string(k) + "]", c, "[0, " + std::to_string(st.n) + ")");
+      st.candidate_slots[k] = st.slot_of[c];
+    }
+    candidate_slots = st.candidate_slots.data();
+  }
+  const RunArgs args{candidates, candidate_slots, m,      order == PickOrder::Random,
+                     &sweep_cursor, &sampler,    &rng,   first_trial,
+                     trials,        region,      &tally};
   if (st.scene.mono) dispatch_axes<true>(st, args);
   else dispatch_axes<false>(st, args);
 }

@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace tapmc {
@@ -44,15 +45,17 @@ class SphereMover {
   void reset(const double *xyz, const double *radius, int n, const SettleBox &box, double d_max,
              double contact_tol);
 
-  // Sphere i (typically an obstacle: a ghost refreshed by the caller) is now at xyz[3]; the
-  // lists are updated locally when it left its list skin.
+  // Sphere i (typically an obstacle: a ghost refreshed by the caller) is now at xyz[3] (finite;
+  // along a periodic axis it is wrapped into the box and image_shift(i) becomes the number of
+  // periods of that wrap); the lists are updated locally when it left its list skin.
   void set_position(int i, const double *xyz);
 
   const double *position(int i) const;   // current position (x, y, z) of sphere i
   int image_shift(int i, int axis) const;  // periods sphere i was wrapped by along x / y
 
   // `trials` trial moves numbered first_trial, first_trial + 1, ...: trial t draws its move
-  // (and, for PickOrder::Random, its pick among candidates[0 .. m)) from rng at counter t
+  // (and, for PickOrder::Random, its pick among candidates[0 .. m), each a sphere index in
+  // [0, n), checked when the block is at least m / 2 trials) from rng at counter t
   // (TrialMoveSampler::draw_batch), so results depend only on (rng, t, candidates). Sweep order
   // visits candidates[sweep_cursor], candidates[sweep_cursor + 1], ... (cursor updated).
   // A move is accepted when the new centre stays inside `region` (if given), above the floor,
@@ -67,6 +70,11 @@ class SphereMover {
   long local_updates() const;
   long capacity_grows() const;
   double mean_list_length() const;
+
+  // Self-check for tests, O(N^2): every list holds exactly the spheres in reach of the
+  // reference (no duplicates, so symmetric), every sphere is within skin/2 of its reference and
+  // binned in its reference's cell. Returns "" when all hold, else the first failure.
+  std::string check_lists() const;
 
   // List skin in units of the largest radius, used from the next reset (default
   // defaults::kListSkinOverRadius). Any value > 0 gives the same moves (the lists are exact);

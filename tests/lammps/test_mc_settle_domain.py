@@ -150,3 +150,26 @@ def test_bad_scheme_is_refused():
     assert rc != 0
     assert "scheme = tiles must be 'auto' (gather on one rank, domain on several), 'gather' " \
            "or 'domain'" in out
+
+
+@pytest.mark.parametrize("atoms,message", [
+    ("create_atoms 1 single 7.0 5.0 3.0\ncreate_atoms 1 single 7.5 5.0 3.0\n",
+     "fix mc/settle: atoms 1 and 2 overlap by 0.5 at the start"),
+    ("create_atoms 1 single 7.0 5.0 0.2\n",
+     "fix mc/settle: atom 1 reaches 0.3 below the floor z0 = 0"),
+])
+def test_bad_start_is_reported_once_by_the_rank_that_finds_it(atoms, message):
+    # The atoms sit in rank 1's half: every rank stops with rank 1's message, no hang.
+    script = """processors 2 1 1
+units lj
+atom_style sphere
+boundary p p fm
+region box block 0 10 0 10 0 20
+create_box 1 box
+""" + atoms + """set group all diameter 1.0
+fix settle all mc/settle 3 floor 0.0 scheme domain
+run 1
+"""
+    rc, out, _ = run_lammps(script, nprocs=2, timeout=120)
+    assert rc != 0
+    assert message in out, out
