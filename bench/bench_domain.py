@@ -97,8 +97,10 @@ def tap_run(lmp, data, ranks, scheme, sweeps, taps, workdir):
     rows = []
     lines = out.splitlines()
     start = next(k for k, line in enumerate(lines) if line.split()[:1] == ["Step"])
-    for line in lines[start + 1:start + 2 + taps]:
-        fields = line.split()
+    for line in lines[start + 1:]:
+        if line.startswith("Loop time"):
+            break
+        fields = line.split()  # thermo rows (warnings of the sweep cap come in between)
         if len(fields) == 9 and fields[0].isdigit():
             rows.append([float(v) for v in fields])
     rows = rows[1:]  # step 0 is the set-up

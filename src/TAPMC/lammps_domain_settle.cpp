@@ -90,28 +90,35 @@ void DomainSettle::load(const DomainSettleSetup &setup, double d_max, double con
   std::sort(owned_by_tag_.begin(), owned_by_tag_.end(),
             [tag](int a, int b) { return tag[a] < tag[b]; });
   x_at_borders_.assign(xyz_.begin(), xyz_.begin() + 3 * static_cast<std::size_t>(nlocal));
+  ghost_x_.assign(xyz_.begin() + 3 * static_cast<std::size_t>(nlocal), xyz_.end());
   max_shift_sq_ = 0.0;
 }
 
-// Rounds from_round .. rounds-1 of this cycle get the movable spheres now in their parts.
+// Rounds from_round .. rounds-1 of this cycle get the movable spheres now in their parts, in tag
+// order (LAMMPS's x holds every owned sphere's current position: publish_round copies them).
 void DomainSettle::partition(const RoundSchedule &schedule, int from_round)
 {
+  double **x = atom->x;
+  const int nlocal = atom->nlocal;
+  round_of_local_.resize(nlocal);
+  for (int i = 0; i < nlocal; ++i) round_of_local_[i] = schedule.round_of(x[i]);
   round_members_.resize(schedule.rounds());
   for (int r = from_round; r < schedule.rounds(); ++r) round_members_[r].clear();
   for (int i : owned_by_tag_) {
-    const int r = schedule.round_of(mover_->position(i));
+    const int r = round_of_local_[i];
     if (r >= from_round) round_members_[r].push_back(i);
   }
 }
 
-// After a round: the moved owned spheres to LAMMPS, their ghost copies refreshed everywhere,
-// the ghosts' new positions to the mover. Returns whether some sphere has moved more than the
-// ghost skin since borders() (ghosts must then be rebuilt): on all ranks when `vote` (one
+// After a round: the spheres that moved to LAMMPS, their ghost copies refreshed everywhere, the
+// ghosts that changed to the mover. Returns whether some sphere has moved more than the ghost
+// skin since borders() (ghosts must then be rebuilt): on all ranks when `vote` (one
 // non-blocking reduction, overlapped with the forward communication), else on this rank only.
-bool DomainSettle::publish_round(const std::vector<int> &moved, double ghost_skin, bool vote)
+bool DomainSettle::publish_round(double ghost_skin, bool vote)
 {
   double **x = atom->x;
-  for (int i : moved) {
+  mover_->take_moved(moved_);
+  for (int i : moved_) {
     const double *p = mover_->position(i);
     const double *b = &x_at_borders_[3 * static_cast<std::size_t>(i)];
     double d2 = 0.0;
@@ -126,9 +133,11 @@ bool DomainSettle::publish_round(const std::vector<int> &moved, double ghost_ski
   if (vote) MPI_Iallreduce(&need, &any, 1, MPI_INT, MPI_MAX, world, &request);
   comm->forward_comm();
   const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
-  for (int g = nlocal; g < nall; ++g) {
-    const double *p = mover_->position(g);
-    if (x[g][0] != p[0] || x[g][1] != p[1] || x[g][2] != p[2]) mover_->set_position(g, x[g]);
+  double *known = ghost_x_.data();
+  for (int g = nlocal; g < nall; ++g, known += 3) {
+    if (x[g][0] == known[0] && x[g][1] == known[1] && x[g][2] == known[2]) continue;
+    for (int d = 0; d < 3; ++d) known[d] = x[g][d];
+    mover_->set_position(g, x[g]);
   }
   if (vote) MPI_Wait(&request, MPI_STATUS_IGNORE);
   return any != 0;
@@ -256,7 +265,7 @@ SettleResult DomainSettle::settle(const DomainSettleSetup &setup, const SettlePa
       mark(timing_.trials);
       // The rebuild vote of the last round rides on the check's reduction below.
       const bool last = r + 1 == schedule->rounds();
-      rebuild_pending = publish_round(members, ghost_skin, !last);
+      rebuild_pending = publish_round(ghost_skin, !last);
       mark(timing_.publish);
     }
     // The <Z> check (section II): one reduction per check interval.

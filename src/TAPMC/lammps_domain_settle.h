@@ -63,6 +63,9 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
   std::unique_ptr<SphereMover> mover_;
   std::unique_ptr<TrialMoveSampler> sampler_;
   std::vector<double> xyz_, radius_, x_at_borders_;
+  std::vector<double> ghost_x_;          // the ghosts' positions as the mover has them
+  std::vector<int> round_of_local_;      // round of each owned sphere this cycle
+  std::vector<int> moved_;               // spheres moved in the last round
   std::vector<int> owned_by_tag_;               // movable owned spheres, in tag order
   std::vector<std::vector<int>> round_members_;  // per round of the cycle, in tag order
   long ghost_rebuilds_ = 0, rounds_ = 0;
@@ -71,7 +74,7 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
 
   void load(const DomainSettleSetup &setup, double d_max, double contact_tol);
   void partition(const RoundSchedule &schedule, int from_round);
-  bool publish_round(const std::vector<int> &moved, double ghost_skin, bool vote);
+  bool publish_round(double ghost_skin, bool vote);
   std::array<DecomposedAxis, 3> decomposed_axes() const;
   double largest_radius(const DomainSettleSetup &setup) const;
 };

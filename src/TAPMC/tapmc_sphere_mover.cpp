@@ -113,6 +113,9 @@ struct SphereMover::State {
   std::vector<double> wrapped;
   std::vector<int> wrapped_image, order_start, cell_ext, pairs;
   std::vector<int> candidate_slots;  // run(): slots of the candidates of the current block
+  // Slots that accepted a move since the last take_moved(), each once (flag per slot).
+  std::vector<int> moved_slots;
+  std::vector<unsigned char> moved_flag;
 
   long full_builds = 0, local_updates = 0, capacity_grows = 0;
 
@@ -403,6 +406,8 @@ void SphereMover::reset(const double *xyz, const double *radius, int n, const Se
   st.n = n;
   st.d_max = d_max;
   st.full_builds = st.local_updates = st.capacity_grows = 0;
+  st.moved_slots.clear();
+  st.moved_flag.assign(n, 0);
 
   std::vector<double> &wrapped = st.wrapped;
   std::vector<int> &image = st.wrapped_image;
@@ -588,6 +593,10 @@ void run_trials(SphereMover::State &st, const RunArgs &a)
       p[0] = x;
       p[1] = y;
       p[2] = z;
+      if (!st.moved_flag[s]) {
+        st.moved_flag[s] = 1;
+        st.moved_slots.push_back(s);
+      }
       if (PeriodicX && wrap_x) st.image[2 * s] += wrap_x;
       if (PeriodicY && wrap_y) st.image[2 * s + 1] += wrap_y;
       if (st.drift_sq<PeriodicX, PeriodicY>(s) > st.half_skin_sq) st.relist(s);
@@ -618,6 +627,17 @@ void dispatch_axes(SphereMover::State &st, const RunArgs &a)
 }
 
 }  // namespace
+
+void SphereMover::take_moved(std::vector<int> &moved)
+{
+  State &st = *state_;
+  moved.clear();
+  for (int s : st.moved_slots) {
+    moved.push_back(st.external_of[s]);
+    st.moved_flag[s] = 0;
+  }
+  st.moved_slots.clear();
+}
 
 void SphereMover::run(const int *candidates, long m, PickOrder order, long &sweep_cursor,
                       const TrialMoveSampler &sampler, const CounterRandom &rng,

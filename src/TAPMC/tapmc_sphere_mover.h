@@ -64,6 +64,10 @@ class SphereMover {
            const TrialMoveSampler &sampler, const CounterRandom &rng, std::uint64_t first_trial,
            long trials, const MoveRegion *region, TrialTally &tally);
 
+  // The spheres (caller indices) that accepted a move in run() since the previous call, each
+  // once, into `moved` (cleared first): a caller mirroring positions copies only these.
+  void take_moved(std::vector<int> &moved);
+
   // Diagnostics: full builds and local list updates since reset; times the list rows were
   // widened (a list outgrew its row); mean list length now.
   long full_builds() const;

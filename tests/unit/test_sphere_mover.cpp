@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -410,4 +412,47 @@ TEST(SphereMover, ArgumentsAreChecked)
                std::invalid_argument);
   const double not_finite[3] = {1, std::nan(""), 1};
   EXPECT_THROW(mover.set_position(3, not_finite), std::invalid_argument);
+}
+
+// take_moved() lists exactly the spheres whose positions changed since the previous call, each
+// once, and obstacles placed with set_position are not among them.
+TEST(SphereMover, TakeMovedListsExactlyTheSpheresThatMoved)
+{
+  Scene s = random_loose(150, 7.0, 0.5, false, false, 9, 0.2);
+  std::vector<int> candidates;
+  for (int i = 0; i < s.size(); i += 2) candidates.push_back(i);
+  const double d_max = 0.1;
+  SphereMover mover;
+  mover.reset(s.xyz.data(), s.radius.data(), s.size(), s.box, d_max, kTol);
+  const TrialMoveSampler sampler(d_max, defaults::kThetaWidth);
+  const CounterRandom rng(4, 2);
+  TrialTally tally;
+  long cursor = 0;
+  std::vector<int> moved;
+  std::uint64_t first = 0;
+  for (int block = 0; block < 6; ++block) {
+    std::vector<double> before(3 * static_cast<std::size_t>(s.size()));
+    for (int i = 0; i < s.size(); ++i)
+      for (int d = 0; d < 3; ++d) before[3 * i + d] = mover.position(i)[d];
+    const long trials = block == 3 ? 1 : 200;
+    mover.run(candidates.data(), static_cast<long>(candidates.size()), PickOrder::Random, cursor,
+              sampler, rng, first, trials, nullptr, tally);
+    first += static_cast<std::uint64_t>(trials);
+    const double *odd = mover.position(1);  // an obstacle moved from outside: not reported
+    const double lifted[3] = {odd[0], odd[1], odd[2] + 5.0};
+    mover.set_position(1, lifted);
+    mover.take_moved(moved);
+    std::vector<int> changed;
+    for (int i = 0; i < s.size(); ++i) {
+      if (i == 1) continue;
+      const double *p = mover.position(i);
+      if (p[0] != before[3 * i] || p[1] != before[3 * i + 1] || p[2] != before[3 * i + 2])
+        changed.push_back(i);
+    }
+    std::sort(moved.begin(), moved.end());
+    EXPECT_EQ(moved, changed) << "block " << block;
+    if (block == 0) EXPECT_FALSE(moved.empty());
+  }
+  mover.take_moved(moved);
+  EXPECT_TRUE(moved.empty());
 }
