@@ -66,12 +66,10 @@ double DomainSettle::largest_radius(const DomainSettleSetup &setup) const
   return all;
 }
 
-// The mover takes this rank's spheres and ghosts (periodicity is in the ghosts: the kernel sees
-// open axes with the side walls and the floor); the movable owned spheres are listed in tag
-// order, so the picks do not depend on LAMMPS's memory order (restarts, sorting).
-void DomainSettle::load(const DomainSettleSetup &setup, double d_max, double contact_tol)
+// This rank's spheres and ghosts into xyz_ / radius_; returns their number.
+int DomainSettle::copy_spheres(const DomainSettleSetup &setup)
 {
-  const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
+  const int nall = atom->nlocal + atom->nghost;
   double **x = atom->x;
   xyz_.resize(3 * static_cast<std::size_t>(nall));
   radius_.resize(nall);
@@ -79,9 +77,24 @@ void DomainSettle::load(const DomainSettleSetup &setup, double d_max, double con
     for (int d = 0; d < 3; ++d) xyz_[3 * i + d] = x[i][d];
     radius_[i] = setup.fixed_radius > 0.0 ? setup.fixed_radius : atom->radius[i];
   }
+  return nall;
+}
+
+// The floor and walls without periodic axes: the ghosts are the periodic images.
+SettleBox DomainSettle::open_box(const DomainSettleSetup &setup)
+{
   SettleBox box = setup.planes;
   box.periodic[0] = box.periodic[1] = false;
-  mover_->reset(xyz_.data(), radius_.data(), nall, box, d_max, contact_tol);
+  return box;
+}
+
+// The mover takes this rank's spheres and ghosts (periodicity is in the ghosts: the kernel sees
+// open axes with the side walls and the floor); the movable owned spheres are listed in tag
+// order, so the picks do not depend on LAMMPS's memory order (restarts, sorting).
+void DomainSettle::load(const DomainSettleSetup &setup, double d_max, double contact_tol)
+{
+  const int nlocal = atom->nlocal, nall = copy_spheres(setup);
+  mover_->reset(xyz_.data(), radius_.data(), nall, open_box(setup), d_max, contact_tol);
 
   owned_by_tag_.clear();
   for (int i = 0; i < nlocal; ++i)
@@ -160,17 +173,8 @@ std::array<DecomposedAxis, 3> DomainSettle::decomposed_axes() const
 
 Violation DomainSettle::find_violation(const DomainSettleSetup &setup)
 {
-  const int nall = atom->nlocal + atom->nghost;
-  double **x = atom->x;
-  xyz_.resize(3 * static_cast<std::size_t>(nall));
-  radius_.resize(nall);
-  for (int i = 0; i < nall; ++i) {
-    for (int d = 0; d < 3; ++d) xyz_[3 * i + d] = x[i][d];
-    radius_[i] = setup.fixed_radius > 0.0 ? setup.fixed_radius : atom->radius[i];
-  }
-  SettleBox box = setup.planes;
-  box.periodic[0] = box.periodic[1] = false;
-  return Settler::find_violation(xyz_.data(), radius_.data(), nall, box,
+  const int nall = copy_spheres(setup);
+  return Settler::find_violation(xyz_.data(), radius_.data(), nall, open_box(setup),
                                  defaults::kContactTolerance);
 }
 
@@ -181,37 +185,105 @@ struct CheckSums {
 };
 }  // namespace
 
-SettleResult DomainSettle::settle(const DomainSettleSetup &setup, const SettleParams &params,
-                                  long movable_total)
-{
-  Settler::validate(params);
-  timing_ = Timing();
-  double clock = MPI_Wtime();
-  // Adds the seconds since the last mark to a phase.
-  auto mark = [&clock](double &phase) {
+// The state of one redeposition shared by its steps.
+struct DomainSettle::Run {
+  Run(const DomainSettleSetup &s, const SettleParams &p, long n)
+      : setup(s), params(p), movable_total(n), clock(MPI_Wtime())
+  {
+  }
+  const DomainSettleSetup &setup;
+  const SettleParams &params;
+  long movable_total;
+  double ghost_skin = 0.0;
+  std::unique_ptr<RoundSchedule> schedule;
+  CounterRandom trial_stream{0, 0}, cut_stream{0, 0};
+  long interval = 0;
+  TrialTally tally;
+  std::uint64_t next_trial = 0, cycle = 0;
+  bool rebuild_pending = false;
+  double clock = 0.0;
+  // Adds the seconds since the last mark to a phase of the timing.
+  void mark(double &phase)
+  {
     const double now = MPI_Wtime();
     phase += now - clock;
     clock = now;
-  };
+  }
+};
+
+// Ghosts made, the mover loaded, the rounds and the random streams set up.
+void DomainSettle::prepare(Run &run)
+{
+  const SettleParams &params = run.params;
   distribute();
-  const double r_max = largest_radius(setup);
+  const double r_max = largest_radius(run.setup);
   const double needed = ghost_cutoff(r_max, params.d_max);
   if (comm->get_comm_cutoff() < needed * (1.0 - 1e-12))
     error->all(FLERR, "fix mc/settle: the ghost cutoff {} is below the {} the decomposed "
                "redeposition needs (2 R_max + margin + skin, R_max = {}); set 'comm_modify "
                "cutoff {}' or larger", comm->get_comm_cutoff(), needed, r_max, needed);
-  const double ghost_skin = defaults::kDomainGhostSkinOverRadius * r_max;
-  const double margin = defaults::kDomainMoveMarginOverStep * params.d_max;
-  load(setup, params.d_max, params.contact_tol);
-  mark(timing_.rebuilds);
+  run.ghost_skin = defaults::kDomainGhostSkinOverRadius * r_max;
+  load(run.setup, params.d_max, params.contact_tol);
+  run.mark(timing_.rebuilds);
 
-  std::unique_ptr<RoundSchedule> schedule;
+  const double margin = defaults::kDomainMoveMarginOverStep * params.d_max;
   guarded(lmp, "fix mc/settle", true, [&] {
-    schedule = std::make_unique<RoundSchedule>(decomposed_axes(), 2.0 * r_max, margin);
+    run.schedule = std::make_unique<RoundSchedule>(decomposed_axes(), 2.0 * r_max, margin);
   });
   if (!sampler_ || sampler_->d_max() != params.d_max ||
       sampler_->theta_sampler().theta0() != params.theta0)
     sampler_ = std::make_unique<TrialMoveSampler>(params.d_max, params.theta0);
+  run.trial_stream = CounterRandom(params.seed, RandomPurpose::kDomainSettleMoves, params.stream)
+                         .round(rank_key_index(comm->me));
+  run.cut_stream = CounterRandom(params.seed, RandomPurpose::kDomainSettleCuts, params.stream);
+  run.interval = Settler::trials_per_check(params.check_interval, run.movable_total);
+}
+
+// One cycle of rounds (one check interval): new cuts, then each round's trials on every rank,
+// each followed by the refresh of the ghosts (and a ghost rebuild where one is due).
+void DomainSettle::run_cycle(Run &run)
+{
+  RoundSchedule &schedule = *run.schedule;
+  const std::uint64_t c = run.cycle++;
+  schedule.start_cycle({run.cut_stream.uniform(3 * c), run.cut_stream.uniform(3 * c + 1),
+                        run.cut_stream.uniform(3 * c + 2)});
+  partition(schedule, 0);
+  for (int r = 0; r < schedule.rounds(); ++r) {
+    if (run.rebuild_pending) {  // collective: decided by the reduction after the last round
+      distribute();
+      load(run.setup, run.params.d_max, run.params.contact_tol);
+      partition(schedule, r);
+      ++ghost_rebuilds_;
+      run.rebuild_pending = false;
+      run.mark(timing_.rebuilds);
+    }
+    const std::vector<int> &members = round_members_[r];
+    const long m = static_cast<long>(members.size());
+    const long trials = round_trials(m, run.interval, run.movable_total);
+    const MoveRegion region = schedule.region(r);
+    long cursor = 0;
+    guarded(lmp, "fix mc/settle", false, [&] {
+      mover_->run(members.data(), m, run.params.order, cursor, *sampler_, run.trial_stream,
+                  run.next_trial, trials, &region, run.tally);
+    });
+    run.next_trial += static_cast<std::uint64_t>(trials);
+    ++rounds_;
+    run.mark(timing_.trials);
+    // The rebuild vote of the last round rides on the check's reduction.
+    const bool last = r + 1 == schedule.rounds();
+    run.rebuild_pending = publish_round(run.ghost_skin, !last);
+    run.mark(timing_.publish);
+  }
+}
+
+SettleResult DomainSettle::settle(const DomainSettleSetup &setup, const SettleParams &params,
+                                  long movable_total)
+{
+  Settler::validate(params);
+  timing_ = Timing();
+  ghost_rebuilds_ = rounds_ = 0;
+  Run run(setup, params, movable_total);
+  prepare(run);
 
   // <Z> at the start, over all ranks.
   double local_height = 0.0, start_height = 0.0;
@@ -220,74 +292,32 @@ SettleResult DomainSettle::settle(const DomainSettleSetup &setup, const SettlePa
   SettleResult result;
   result.movable = movable_total;
   result.mean_height_start = start_height / static_cast<double>(movable_total);
-
-  const CounterRandom trial_stream =
-      CounterRandom(params.seed, RandomPurpose::kDomainSettleMoves, params.stream)
-          .round(rank_key_index(comm->me));
-  const CounterRandom cut_stream(params.seed, RandomPurpose::kDomainSettleCuts, params.stream);
-  const long interval = Settler::trials_per_check(params.check_interval, movable_total);
   ConvergenceCheck stop =
       Settler::make_convergence_check(params, movable_total, result.mean_height_start);
-  TrialTally tally;
-  std::uint64_t next_trial = 0, cycle = 0;
-  CheckSums total{0, 0, 0, 0};
-  ghost_rebuilds_ = rounds_ = 0;
-  bool rebuild_pending = false;
-
+  double accepted_total = 0.0, trials_total = 0.0;
   for (;;) {
-    const std::array<double, 3> uniform = {cut_stream.uniform(3 * cycle),
-                                           cut_stream.uniform(3 * cycle + 1),
-                                           cut_stream.uniform(3 * cycle + 2)};
-    ++cycle;
-    schedule->start_cycle(uniform);
-    partition(*schedule, 0);
-    const long accepted_before = tally.accepted, trials_before = tally.trials;
-    for (int r = 0; r < schedule->rounds(); ++r) {
-      if (rebuild_pending) {  // collective: decided by the reduction after the last round
-        distribute();
-        load(setup, params.d_max, params.contact_tol);
-        partition(*schedule, r);
-        ++ghost_rebuilds_;
-        rebuild_pending = false;
-        mark(timing_.rebuilds);
-      }
-      const std::vector<int> &members = round_members_[r];
-      const long trials = round_trials(static_cast<long>(members.size()), interval,
-                                       movable_total);
-      const MoveRegion region = schedule->region(r);
-      long cursor = 0;
-      guarded(lmp, "fix mc/settle", false, [&] {
-        mover_->run(members.data(), static_cast<long>(members.size()), params.order, cursor,
-                    *sampler_, trial_stream, next_trial, trials, &region, tally);
-      });
-      next_trial += static_cast<std::uint64_t>(trials);
-      ++rounds_;
-      mark(timing_.trials);
-      // The rebuild vote of the last round rides on the check's reduction below.
-      const bool last = r + 1 == schedule->rounds();
-      rebuild_pending = publish_round(ghost_skin, !last);
-      mark(timing_.publish);
-    }
+    const long accepted_before = run.tally.accepted, trials_before = run.tally.trials;
+    run_cycle(run);
     // The <Z> check (section II): one reduction per check interval.
-    const CheckSums local{tally.sum_dz, static_cast<double>(tally.accepted - accepted_before),
-                          static_cast<double>(tally.trials - trials_before),
-                          rebuild_pending ? 1.0 : 0.0};
+    const CheckSums local{run.tally.sum_dz,
+                          static_cast<double>(run.tally.accepted - accepted_before),
+                          static_cast<double>(run.tally.trials - trials_before),
+                          run.rebuild_pending ? 1.0 : 0.0};
     CheckSums sums;
     MPI_Allreduce(&local, &sums, 4, MPI_DOUBLE, MPI_SUM, world);
-    mark(timing_.reductions);
-    rebuild_pending = sums.rebuild > 0.0;
-    total.accepted += sums.accepted;
-    total.trials += sums.trials;
-    const double mean = (start_height + sums.sum_dz) / static_cast<double>(movable_total);
-    result.mean_height = mean;
-    const ConvergenceCheck::Verdict verdict =
-        stop.after_check(mean, static_cast<long>(sums.accepted), static_cast<long>(sums.trials));
+    run.mark(timing_.reductions);
+    run.rebuild_pending = sums.rebuild > 0.0;
+    accepted_total += sums.accepted;
+    trials_total += sums.trials;
+    result.mean_height = (start_height + sums.sum_dz) / static_cast<double>(movable_total);
+    const ConvergenceCheck::Verdict verdict = stop.after_check(
+        result.mean_height, static_cast<long>(sums.accepted), static_cast<long>(sums.trials));
     if (verdict == ConvergenceCheck::Verdict::Continue) continue;
     result.hit_cap = verdict == ConvergenceCheck::Verdict::HitCap;
     break;
   }
-  result.trials = static_cast<long>(total.trials);
-  result.accepted = static_cast<long>(total.accepted);
+  result.trials = static_cast<long>(trials_total);
+  result.accepted = static_cast<long>(accepted_total);
   result.checks = stop.checks();
   result.list_updates = mover_->local_updates();
   return result;

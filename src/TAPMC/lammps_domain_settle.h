@@ -72,6 +72,11 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
   Timing timing_;
   double max_shift_sq_ = 0.0;  // largest squared displacement of an owned sphere since borders
 
+  struct Run;
+  void prepare(Run &run);
+  void run_cycle(Run &run);
+  int copy_spheres(const DomainSettleSetup &setup);
+  static SettleBox open_box(const DomainSettleSetup &setup);
   void load(const DomainSettleSetup &setup, double d_max, double contact_tol);
   void partition(const RoundSchedule &schedule, int from_round);
   bool publish_round(double ghost_skin, bool vote);
