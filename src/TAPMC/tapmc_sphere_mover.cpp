@@ -517,6 +517,25 @@ struct RunArgs {
 
 }  // namespace
 
+// Does a sphere of radius r at (x, y, z) overlap one of the spheres of list row `row` (nearest
+// image)? Flat loop, early exit on the first overlap.
+template <bool Mono, bool PeriodicX, bool PeriodicY>
+inline bool overlaps_listed(const SphereMover::State &st, const int *row, double x, double y,
+                            double z, double r, double threshold_sq_mono, double half_x,
+                            double half_y)
+{
+  const Scene &sc = st.scene;
+  for (int q = 1, end = row[0]; q <= end; ++q) {
+    const double *pj = st.at(row[q]);
+    const double dx = axis_separation<PeriodicX>(pj[0], x, sc.length[0], half_x);
+    const double dy = axis_separation<PeriodicY>(pj[1], y, sc.length[1], half_y);
+    const double limit =
+        Mono ? threshold_sq_mono : overlap_threshold_sq(r, pj[3], sc.one_minus_tol);
+    if (distance_sq(dx, dy, pj[2] - z) < limit) return true;
+  }
+  return false;
+}
+
 // One block of trials, compiled per (mono/poly, periodic x, periodic y, region).
 template <bool Mono, bool PeriodicX, bool PeriodicY, bool Region>
 void run_trials(SphereMover::State &st, const RunArgs &a)
@@ -574,20 +593,9 @@ void run_trials(SphereMover::State &st, const RunArgs &a)
         continue;
       double gap;
       if (plane_violation<PeriodicX, PeriodicY>(sc, x, y, z, r, gap)) continue;
-      const int *nb = st.row(s);
-      bool overlap = false;
-      for (int q = 1, end = nb[0]; q <= end; ++q) {
-        const double *pj = st.at(nb[q]);
-        const double dx = axis_separation<PeriodicX>(pj[0], x, sc.length[0], half_x);
-        const double dy = axis_separation<PeriodicY>(pj[1], y, sc.length[1], half_y);
-        const double limit =
-            Mono ? threshold_sq_mono : overlap_threshold_sq(r, pj[3], sc.one_minus_tol);
-        if (distance_sq(dx, dy, pj[2] - z) < limit) {
-          overlap = true;
-          break;
-        }
-      }
-      if (overlap) continue;
+      if (overlaps_listed<Mono, PeriodicX, PeriodicY>(st, st.row(s), x, y, z, r,
+                                                     threshold_sq_mono, half_x, half_y))
+        continue;
       ++accepted;
       sum_dz += z - oz;  // <Z> kept incrementally, in trial order (section II)
       p[0] = x;
