@@ -16,7 +16,7 @@ ghost refreshes, reductions, rebuilds) from the fix's output vector. A model of 
 round then extrapolates the communication cost to 64 and 1024 ranks.
 
   /usr/bin/python3 bench/bench_domain.py --lmp build/lmp_tapmc [--sizes 4096,32768,262144]
-      [--sweeps 200] [--taps 2] [--quick] [--csv FILE]
+      [--sweeps 1000] [--taps 2] [--quick] [--csv FILE]
 """
 import argparse
 import csv
@@ -135,7 +135,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--lmp", default="build/lmp_tapmc")
     ap.add_argument("--sizes", default="4096,32768,262144")
-    ap.add_argument("--sweeps", type=int, default=200, help="sweeps per tap (fixed work)")
+    ap.add_argument("--sweeps", type=int, default=1000, help="sweeps per tap (fixed work)")
     ap.add_argument("--taps", type=int, default=2)
     ap.add_argument("--quick", action="store_true", help="sizes 4096,32768, 50 sweeps")
     ap.add_argument("--workdir", default=None, help="packing cache (default: a temp dir)")
