@@ -10,6 +10,7 @@ import gzip
 import os
 import re
 import tempfile
+from collections import namedtuple
 
 import numpy as np
 
@@ -348,124 +349,175 @@ _COORDS = (("x", "y", "z", False), ("xs", "ys", "zs", True), ("xu", "yu", "zu", 
            ("xsu", "ysu", "zsu", True))
 
 
+class _DumpLines:
+    """The lines of an open dump with the number of the last one read, so that every error
+    names its line."""
+
+    def __init__(self, path, f):
+        self.path = path
+        self.lineno = 0
+        self._file = f
+
+    def next_or_none(self):
+        """The next raw line, or None at the end of the file."""
+        self.lineno += 1
+        return self._file.readline() or None
+
+    def next_in_frame(self):
+        """The next line without its newline; the end of the file here cuts a frame short."""
+        line = self.next_or_none()
+        if line is None:
+            raise TapmcFormatError(self.path, self.lineno,
+                                   "unexpected end of file inside a frame")
+        return line.rstrip("\n")
+
+    def error(self, what, line=None):
+        """A TapmcFormatError at ``line``, by default the last line read."""
+        return TapmcFormatError(self.path, self.lineno if line is None else line, what)
+
+
+_FrameHeader = namedtuple("_FrameHeader", "step n_atoms bounds flags columns line")
+
+
+def _read_timestep(lines):
+    text = lines.next_in_frame().split()
+    if len(text) != 1 or not text[0].lstrip("-").isdigit():
+        raise lines.error(f"bad timestep {' '.join(text)!r}")
+    return int(text[0])
+
+
+def _read_atom_count(lines):
+    text = lines.next_in_frame().strip()
+    if not text.isdigit():
+        raise lines.error(f"bad atom count {text!r}")
+    return int(text)
+
+
+def _read_box_bounds(lines, item):
+    """(lo, hi) of the three axes and the boundary flags of the item (None when absent)."""
+    words = item.split()[2:]
+    if any(w in ("xy", "xz", "yz") for w in words):
+        raise lines.error("triclinic boxes are not supported")
+    flags = words if len(words) == 3 else None
+    bounds = []
+    for _ in range(3):
+        fields = lines.next_in_frame().split()
+        bounds.append(_floats(lines.path, lines.lineno, fields, 2))
+    return bounds, flags
+
+
+def _read_frame_header(lines, line):
+    """The ITEM lines of one frame, in any order, from ``line`` (already read) to ATOMS."""
+    step = n_atoms = bounds = flags = None
+    while True:
+        if not line.startswith("ITEM:"):
+            raise lines.error(f"expected an 'ITEM:' line, found {line.strip()[:60]!r}")
+        item = line[5:].strip()
+        if item.startswith("TIMESTEP"):
+            step = _read_timestep(lines)
+        elif item.startswith("NUMBER OF ATOMS"):
+            n_atoms = _read_atom_count(lines)
+        elif item.startswith("BOX BOUNDS"):
+            bounds, flags = _read_box_bounds(lines, item)
+        elif item.startswith("ATOMS"):
+            columns = item.split()[1:]
+            break
+        elif item.startswith(("UNITS", "TIME")):
+            lines.next_in_frame()
+        else:
+            raise lines.error(f"unknown dump item {item!r}")
+        line = lines.next_or_none()
+        if line is None:
+            raise lines.error("unexpected end of file in a header")
+    if step is None or n_atoms is None or bounds is None:
+        raise lines.error("frame header lacks TIMESTEP, NUMBER OF ATOMS or BOX BOUNDS")
+    if not columns:  # old dump atom without column names
+        columns = ["id", "type", "xs", "ys", "zs"]
+    return _FrameHeader(step, n_atoms, bounds, flags, columns, lines.lineno)
+
+
+def _read_atom_table(lines, header):
+    """The per-atom block as an (N, columns) float array: parsed whole when it is clean,
+    line by line otherwise so that the error names the bad line."""
+    n_atoms, width = header.n_atoms, len(header.columns)
+    text = [lines.next_in_frame() for _ in range(n_atoms)]
+    try:
+        flat = np.array(" ".join(text).split(), dtype=float)
+        if flat.size == n_atoms * width and np.all(np.isfinite(flat)):
+            return flat.reshape(n_atoms, width)
+    except ValueError:
+        pass
+    table = np.empty((n_atoms, width))
+    for a, line_text in enumerate(text):
+        here = header.line + 1 + a
+        fields = line_text.split()
+        if len(fields) != width:
+            raise lines.error(f"expected {width} fields ({' '.join(header.columns)}), "
+                              f"found {len(fields)}", here)
+        table[a] = _floats(lines.path, here, fields)
+        if not np.all(np.isfinite(table[a])):
+            raise lines.error("NaN or infinite value", here)
+    return table
+
+
+def _periodic_axes(boundary, flags):
+    """Periodicity per axis: the reader's ``boundary`` wins over the dump's flags."""
+    if boundary is not None:
+        return np.array([c == "p" for c in boundary])
+    if flags is not None:
+        return np.array([fl == "pp" for fl in flags])
+    return np.zeros(3, dtype=bool)
+
+
+def _absolute_positions(path, header, table, col, lo, hi):
+    """(N, 3) positions from the first coordinate triple present, scaled ones unscaled."""
+    for cx, cy, cz, scaled in _COORDS:
+        if cx in col and cy in col and cz in col:
+            pos = table[:, [col[cx], col[cy], col[cz]]]
+            return lo + pos * (hi - lo) if scaled else pos
+    raise TapmcFormatError(path, header.line, f"no coordinate columns (x y z, xs ys zs, xu yu "
+                           f"zu or xsu ysu zsu) in {' '.join(header.columns)}")
+
+
+def _frame_from_table(path, header, table, radius, boundary):
+    """The Frame of a parsed block, atoms sorted by id."""
+    n_atoms = header.n_atoms
+    lo = np.array([b[0] for b in header.bounds])
+    hi = np.array([b[1] for b in header.bounds])
+    periodic = _periodic_axes(boundary, header.flags)
+    col = {name: j for j, name in enumerate(header.columns)}
+    pos = _absolute_positions(path, header, table, col, lo, hi)
+    ids = table[:, col["id"]].astype(np.int64) if "id" in col \
+        else np.arange(1, n_atoms + 1, dtype=np.int64)
+    if len(np.unique(ids)) != n_atoms:
+        raise TapmcFormatError(path, header.line, "duplicate atom ids in the frame")
+    order = np.argsort(ids, kind="stable")
+    if "radius" in col:
+        radii = table[order, col["radius"]]
+    elif "diameter" in col:
+        radii = 0.5 * table[order, col["diameter"]]
+    elif radius is not None:
+        radii = np.full(n_atoms, float(radius))
+    else:
+        radii = None
+    types = table[order, col["type"]].astype(np.int64) if "type" in col else None
+    fields = {name: table[order, j] for j, name in enumerate(header.columns)}
+    return Frame(header.step, lo, hi, periodic, ids[order], pos[order], radii, types, fields)
+
+
 def _parse_dump_frames(path, radius=None, boundary=None):
     """Generator over the frames of a text dump, float64, checked line by line."""
     with _open_text(path) as f:
-        lineno = 0
-
-        def nextline():
-            nonlocal lineno
-            lineno += 1
-            line = f.readline()
-            if not line:
-                raise TapmcFormatError(path, lineno, "unexpected end of file inside a frame")
-            return line.rstrip("\n")
-
+        lines = _DumpLines(path, f)
         while True:
-            lineno += 1
-            line = f.readline()
-            if not line:
+            line = lines.next_or_none()
+            if line is None:
                 return
             if not line.strip():
                 continue
-            step = None
-            n_atoms = None
-            bounds = None
-            flags = None
-            # items of the header, any order; ATOMS ends it
-            while True:
-                if not line.startswith("ITEM:"):
-                    raise TapmcFormatError(path, lineno, f"expected an 'ITEM:' line, found "
-                                           f"{line.strip()[:60]!r}")
-                item = line[5:].strip()
-                if item.startswith("TIMESTEP"):
-                    text = nextline().split()
-                    if len(text) != 1 or not text[0].lstrip("-").isdigit():
-                        raise TapmcFormatError(path, lineno, f"bad timestep {' '.join(text)!r}")
-                    step = int(text[0])
-                elif item.startswith("NUMBER OF ATOMS"):
-                    text = nextline().strip()
-                    if not text.isdigit():
-                        raise TapmcFormatError(path, lineno, f"bad atom count {text!r}")
-                    n_atoms = int(text)
-                elif item.startswith("BOX BOUNDS"):
-                    words = item.split()[2:]
-                    if any(w in ("xy", "xz", "yz") for w in words):
-                        raise TapmcFormatError(path, lineno, "triclinic boxes are not supported")
-                    flags = words if len(words) == 3 else None
-                    bounds = [_floats(path, lineno + 1, nextline().split(), 2)
-                              for _ in range(3)]
-                elif item.startswith("ATOMS"):
-                    columns = item.split()[1:]
-                    break
-                elif item.startswith(("UNITS", "TIME")):
-                    nextline()
-                else:
-                    raise TapmcFormatError(path, lineno, f"unknown dump item {item!r}")
-                lineno += 1
-                line = f.readline()
-                if not line:
-                    raise TapmcFormatError(path, lineno, "unexpected end of file in a header")
-            header_line = lineno
-            if step is None or n_atoms is None or bounds is None:
-                raise TapmcFormatError(path, header_line, "frame header lacks TIMESTEP, "
-                                       "NUMBER OF ATOMS or BOX BOUNDS")
-            if not columns:  # old dump atom without column names
-                columns = ["id", "type", "xs", "ys", "zs"]
-            first_atom_line = lineno + 1
-            text = [nextline() for _ in range(n_atoms)]
-            table = None
-            try:  # fast path: the whole block at once; any doubt goes line by line
-                flat = np.array(" ".join(text).split(), dtype=float)
-                if flat.size == n_atoms * len(columns) and np.all(np.isfinite(flat)):
-                    table = flat.reshape(n_atoms, len(columns))
-            except ValueError:
-                pass
-            if table is None:
-                table = np.empty((n_atoms, len(columns)))
-                for a, line_text in enumerate(text):
-                    here = first_atom_line + a
-                    fields = line_text.split()
-                    if len(fields) != len(columns):
-                        raise TapmcFormatError(path, here, f"expected {len(columns)} fields "
-                                               f"({' '.join(columns)}), found {len(fields)}")
-                    table[a] = _floats(path, here, fields)
-                    if not np.all(np.isfinite(table[a])):
-                        raise TapmcFormatError(path, here, "NaN or infinite value")
-            lo = np.array([b[0] for b in bounds])
-            hi = np.array([b[1] for b in bounds])
-            if boundary is not None:
-                periodic = np.array([c == "p" for c in boundary])
-            elif flags is not None:
-                periodic = np.array([fl == "pp" for fl in flags])
-            else:
-                periodic = np.zeros(3, dtype=bool)
-            col = {name: j for j, name in enumerate(columns)}
-            for cx, cy, cz, scaled in _COORDS:
-                if cx in col and cy in col and cz in col:
-                    pos = table[:, [col[cx], col[cy], col[cz]]]
-                    if scaled:
-                        pos = lo + pos * (hi - lo)
-                    break
-            else:
-                raise TapmcFormatError(path, header_line, f"no coordinate columns (x y z, xs ys "
-                                       f"zs, xu yu zu or xsu ysu zsu) in {' '.join(columns)}")
-            ids = table[:, col["id"]].astype(np.int64) if "id" in col \
-                else np.arange(1, n_atoms + 1, dtype=np.int64)
-            if len(np.unique(ids)) != n_atoms:
-                raise TapmcFormatError(path, header_line, "duplicate atom ids in the frame")
-            order = np.argsort(ids, kind="stable")
-            if "radius" in col:
-                radii = table[order, col["radius"]]
-            elif "diameter" in col:
-                radii = 0.5 * table[order, col["diameter"]]
-            elif radius is not None:
-                radii = np.full(n_atoms, float(radius))
-            else:
-                radii = None
-            types = table[order, col["type"]].astype(np.int64) if "type" in col else None
-            fields = {name: table[order, j] for j, name in enumerate(columns)}
-            yield Frame(step, lo, hi, periodic, ids[order], pos[order], radii, types, fields)
+            header = _read_frame_header(lines, line)
+            table = _read_atom_table(lines, header)
+            yield _frame_from_table(path, header, table, radius, boundary)
 
 
 class Dump:

@@ -192,112 +192,136 @@ def _collect(drawn, out_dir):
     return out
 
 
-def _rows_and_sections(campaign, files):
-    """The summary table rows (quantity, paper, TAPMC, verdict) and per-figure text."""
-    rows, notes = [], {}
-    csv = {name: _Csv(paths[1]) for name, paths in files.items()}
+def _initial_phi_row(campaign):
+    """Initial <Phi^c> of the P.B.C. packings against the paper's 58.4 %."""
+    m, s, _ = _initial_phi(campaign)
+    return ("Initial <Phi^c> (P.B.C.)", "58.4 %", _fmt(m, s, pct=True),
+            verdict_value(m, s, PAPER["phi_initial"]), "value")
 
-    m, s, n = _initial_phi(campaign)
-    rows.append(("Initial <Phi^c> (P.B.C.)", "58.4 %", _fmt(m, s, pct=True),
-                 verdict_value(m, s, PAPER["phi_initial"]), "value"))
-    if "fig9" in csv:
-        m, s, n = csv["fig9"].param("phi_c_final")
-        rows.append(("<Phi^c> after the taps (P.B.C., Fig. 9 runs)", "60.6 % (4000 taps)",
-                     _fmt(m, s, pct=True), verdict_value(m, s, PAPER["phi_tapped"]), "value"))
-    if "fig4" in csv:
-        m, s, _ = csv["fig4"].param("phi_c_max")
-        rows.append(("Highest steady-state <Phi^c> (Fig. 4 squares)", "60.6 % (after 4000 taps)",
-                     _fmt(m, s, pct=True), verdict_value(m, s, PAPER["phi_tapped"]), "value"))
-        m, s, _ = csv["fig4"].param("sqrt_eps_max")
-        lo, hi = PAPER["bell_range"]
-        rows.append(("sqrt(eps) of the steady-state maximum (bell)", "between 0.1 and 0.2",
-                     _fmt(m, s), verdict_range(m, s, lo, hi), "range"))
-        steady = csv["fig4"].get("a", "steady")
-        if steady is not None and len(steady[0]) >= 3:
-            mean, sem = steady[1], steady[2]
-            i = int(np.nanargmax(mean))
-            rows.append(("Bell: steady state at the largest sqrt(eps) below the maximum",
-                         "lower (bell shape)", f"{_fmt(mean[-1], sem[-1], pct=True)} vs "
-                         f"{_fmt(mean[i], sem[i], pct=True)}",
-                         verdict_less(mean[-1], mean[i], sem[-1], sem[i]), "less"))
-        notes["fig4"], row = _hysteresis(csv["fig4"])
-        if row is not None:
-            rows.append(row)
-    if "fig3" in csv:
-        c = csv["fig3"]
-        slopes = [(float(series.split("=")[1].split(":")[0]), *c.param(series))
-                  for series in c.series("params") if series.endswith(":slope")]
-        lo, hi = PAPER["slope_range"]
-        for eps, m, s, _ in slopes:
-            rows.append((f"Spectral slope of <Z> (eps = {eps:g})", "-1 to -1.5", _fmt(m, s),
-                         verdict_range(-m, s, lo, hi), "range"))
-        m, s, _ = c.param("intercept")
-        k, ks, _ = c.param("k")
-        rows.append(("sigma_<Z> = k sqrt(eps): intercept of a free line", "0 (proportional)",
-                     _fmt(m, s), verdict_zero(m, s), "zero"))
-        notes["fig3"] = (f"Proportional fit: k = {_fmt(k, ks)}; reduced chi2 "
-                         f"{_fmt(c.param('k_reduced_chi2')[0])}.")
-    if "fig2" in csv:
-        notes["fig2"], dyn_rows = _dynamics(csv["fig2"])
-        rows += dyn_rows
-    if "fig6" in csv:
-        m, s, n = csv["fig6"].param("final:alpha")
-        rows.append(("Vertical gradient alpha after the taps (Phi = Phi0 - alpha z/R)",
-                     "alpha > 0 (density decreasing upwards)", _fmt(m, s),
-                     verdict_sign(m, s, +1), "sign"))
-        mi, si, _ = csv["fig6"].param("initial:alpha")
-        lo, _, _ = csv["fig6"].param("window_lo")
-        hi, _, _ = csv["fig6"].param("window_hi")
-        notes["fig6"] = (f"Gradient window {lo:.3g} <= z/R <= {hi:.3g}; initial packing: "
-                         f"alpha = {_fmt(mi, si)}.")
-    if "fig8" in csv:
-        c = csv["fig8"]
-        eps_list = sorted({float(x.split("=")[1].split(":")[0]) for x in c.series("params")})
-        for eps in eps_list:
-            lat = c.param(f"eps={P.fmt_eps(eps)}:final_lateral")
-            cen = c.param(f"eps={P.fmt_eps(eps)}:final_central")
-            rows.append((f"delta Phi_central < delta Phi_lateral (F.B.C., eps = {eps:g})",
-                         "central smaller", f"{_fmt(cen[0], cen[1])} vs {_fmt(lat[0], lat[1])}",
-                         verdict_less(cen[0], lat[0], cen[1], lat[1]), "less"))
-    if "fig9" in csv:
-        c = csv["fig9"]
-        d_if, _, _ = c.param("max_abs_diff_initial_final")
-        d_py, _, _ = c.param("max_abs_diff_final_py")
-        rows.append(("max |P0(initial) - P0(tapped)|", "no significant difference",
-                     _fmt(d_if), ("agrees" if d_if < P0_TOLERANCE else "disagrees")
-                     + f" (bound {P0_TOLERANCE})", "bound"))
-        rows.append(("max |P0(tapped) - Percus-Yevick|", "good agreement", _fmt(d_py),
-                     ("agrees" if d_py < P0_TOLERANCE else "disagrees")
-                     + f" (bound {P0_TOLERANCE})", "bound"))
-    if "fig10" in csv:
-        c = csv["fig10"]
-        d = c.get("params", "xi_min")
-        if d is not None:
-            i = int(np.argmin(d[1]))
-            m, s = float(d[1][i]), float(d[2][i])
-            ok = m >= PAPER["xi_T"] - 1e-3 and m - PAPER["xi_T"] <= XI_MIN_TOLERANCE
-            rows.append(("Smallest pore xi_min", f"xi_T = {PAPER['xi_T']:.4f}",
-                         _fmt(m, s, digits=4), "agrees" if ok else "disagrees", "xi"))
-        small, _, _ = c.param("small_change")
-        large, _, _ = c.param("large_change")
-        rows.append(("Change of xi^3 P(xi), small pores [xi_T, xi_O] vs large (> xi_O)",
-                     "small pores invariant, tail shrinks", f"{_fmt(small)} vs {_fmt(large)}",
-                     verdict_less(small, large), "less"))
-        nu = c.get("params", "nu")
-        if nu is not None:
-            rows.append(("nu = <xi^3> from t = 0 to the last dump", "decreases",
-                         f"{_fmt(nu[1][0], nu[2][0], digits=4)} -> "
-                         f"{_fmt(nu[1][-1], nu[2][-1], digits=4)}",
-                         verdict_less(nu[1][-1], nu[1][0], nu[2][-1], nu[2][0]), "less"))
-    if "fig5" in csv:
-        chi, _, det = csv["fig5"].param("collapse:reduced_chi2")
-        notes["fig5"] = (f"One eq. 6 for all waiting times: reduced chi2 {_fmt(chi)}"
-                         f"{'' if det else ' (parameters not determined)'}.")
-    return rows, notes
+
+def _tapped_phi(c):
+    """Fig. 9 runs: <Phi^c> after the taps against the paper's 60.6 %."""
+    m, s, _ = c.param("phi_c_final")
+    return [("<Phi^c> after the taps (P.B.C., Fig. 9 runs)", "60.6 % (4000 taps)",
+             _fmt(m, s, pct=True), verdict_value(m, s, PAPER["phi_tapped"]), "value")], None
+
+
+def _steady_state(c):
+    """Fig. 4: the highest steady state, where it lies, the bell shape and the hysteresis."""
+    rows = []
+    m, s, _ = c.param("phi_c_max")
+    rows.append(("Highest steady-state <Phi^c> (Fig. 4 squares)", "60.6 % (after 4000 taps)",
+                 _fmt(m, s, pct=True), verdict_value(m, s, PAPER["phi_tapped"]), "value"))
+    m, s, _ = c.param("sqrt_eps_max")
+    lo, hi = PAPER["bell_range"]
+    rows.append(("sqrt(eps) of the steady-state maximum (bell)", "between 0.1 and 0.2",
+                 _fmt(m, s), verdict_range(m, s, lo, hi), "range"))
+    steady = c.get("a", "steady")
+    if steady is not None and len(steady[0]) >= 3:
+        mean, sem = steady[1], steady[2]
+        i = int(np.nanargmax(mean))
+        rows.append(("Bell: steady state at the largest sqrt(eps) below the maximum",
+                     "lower (bell shape)", f"{_fmt(mean[-1], sem[-1], pct=True)} vs "
+                     f"{_fmt(mean[i], sem[i], pct=True)}",
+                     verdict_less(mean[-1], mean[i], sem[-1], sem[i]), "less"))
+    note, row = _hysteresis(c)
+    if row is not None:
+        rows.append(row)
+    return rows, note
+
+
+def _fluctuations(c):
+    """Fig. 3: spectral slopes of <Z> and sigma_<Z> proportional to sqrt(eps)."""
+    rows = []
+    slopes = [(float(series.split("=")[1].split(":")[0]), *c.param(series))
+              for series in c.series("params") if series.endswith(":slope")]
+    lo, hi = PAPER["slope_range"]
+    for eps, m, s, _ in slopes:
+        rows.append((f"Spectral slope of <Z> (eps = {eps:g})", "-1 to -1.5", _fmt(m, s),
+                     verdict_range(-m, s, lo, hi), "range"))
+    m, s, _ = c.param("intercept")
+    k, ks, _ = c.param("k")
+    rows.append(("sigma_<Z> = k sqrt(eps): intercept of a free line", "0 (proportional)",
+                 _fmt(m, s), verdict_zero(m, s), "zero"))
+    note = (f"Proportional fit: k = {_fmt(k, ks)}; reduced chi2 "
+            f"{_fmt(c.param('k_reduced_chi2')[0])}.")
+    return rows, note
+
+
+def _vertical_gradient(c):
+    """Fig. 6: the sign of the vertical gradient alpha after the taps (eq. 7)."""
+    m, s, _ = c.param("final:alpha")
+    row = ("Vertical gradient alpha after the taps (Phi = Phi0 - alpha z/R)",
+           "alpha > 0 (density decreasing upwards)", _fmt(m, s), verdict_sign(m, s, +1), "sign")
+    mi, si, _ = c.param("initial:alpha")
+    lo, _, _ = c.param("window_lo")
+    hi, _, _ = c.param("window_hi")
+    note = (f"Gradient window {lo:.3g} <= z/R <= {hi:.3g}; initial packing: "
+            f"alpha = {_fmt(mi, si)}.")
+    return [row], note
+
+
+def _central_lateral(c):
+    """Fig. 8: the centre of an F.B.C. packing compacts less than its walls, per eps."""
+    rows = []
+    eps_list = sorted({float(x.split("=")[1].split(":")[0]) for x in c.series("params")})
+    for eps in eps_list:
+        lat = c.param(f"eps={P.fmt_eps(eps)}:final_lateral")
+        cen = c.param(f"eps={P.fmt_eps(eps)}:final_central")
+        rows.append((f"delta Phi_central < delta Phi_lateral (F.B.C., eps = {eps:g})",
+                     "central smaller", f"{_fmt(cen[0], cen[1])} vs {_fmt(lat[0], lat[1])}",
+                     verdict_less(cen[0], lat[0], cen[1], lat[1]), "less"))
+    return rows, None
+
+
+def _bounded(value):
+    """Verdict of a number that must stay below P0_TOLERANCE."""
+    return ("agrees" if value < P0_TOLERANCE else "disagrees") + f" (bound {P0_TOLERANCE})"
+
+
+def _contact_probability(c):
+    """Fig. 9: P0 barely changes with the taps and follows Percus-Yevick."""
+    d_if, _, _ = c.param("max_abs_diff_initial_final")
+    d_py, _, _ = c.param("max_abs_diff_final_py")
+    return [("max |P0(initial) - P0(tapped)|", "no significant difference", _fmt(d_if),
+             _bounded(d_if), "bound"),
+            ("max |P0(tapped) - Percus-Yevick|", "good agreement", _fmt(d_py),
+             _bounded(d_py), "bound")], None
+
+
+def _pores(c):
+    """Fig. 10: the smallest pore is the tetrahedral site; the taps shrink the large pores."""
+    rows = []
+    d = c.get("params", "xi_min")
+    if d is not None:
+        i = int(np.argmin(d[1]))
+        m, s = float(d[1][i]), float(d[2][i])
+        ok = m >= PAPER["xi_T"] - 1e-3 and m - PAPER["xi_T"] <= XI_MIN_TOLERANCE
+        rows.append(("Smallest pore xi_min", f"xi_T = {PAPER['xi_T']:.4f}",
+                     _fmt(m, s, digits=4), "agrees" if ok else "disagrees", "xi"))
+    small, _, _ = c.param("small_change")
+    large, _, _ = c.param("large_change")
+    rows.append(("Change of xi^3 P(xi), small pores [xi_T, xi_O] vs large (> xi_O)",
+                 "small pores invariant, tail shrinks", f"{_fmt(small)} vs {_fmt(large)}",
+                 verdict_less(small, large), "less"))
+    nu = c.get("params", "nu")
+    if nu is not None:
+        rows.append(("nu = <xi^3> from t = 0 to the last dump", "decreases",
+                     f"{_fmt(nu[1][0], nu[2][0], digits=4)} -> "
+                     f"{_fmt(nu[1][-1], nu[2][-1], digits=4)}",
+                     verdict_less(nu[1][-1], nu[1][0], nu[2][-1], nu[2][0]), "less"))
+    return rows, None
+
+
+def _ageing(c):
+    """Fig. 5: how well one eq. 6 collapses every waiting time (a note, no verdict)."""
+    chi, _, det = c.param("collapse:reduced_chi2")
+    return [], (f"One eq. 6 for all waiting times: reduced chi2 {_fmt(chi)}"
+                f"{'' if det else ' (parameters not determined)'}.")
 
 
 def _dynamics(c):
-    """Fig. 2: eq. 3 parameters per eps, and whether Phi_b increased."""
+    """Fig. 2: whether Phi_b increased (rows) and the eq. 3 parameters per eps (note)."""
     rows, lines = [], []
     eps_list = sorted({float(s.split("=")[1].split(":")[0]) for s in c.series("params")})
     for eps in eps_list:
@@ -325,7 +349,7 @@ def _dynamics(c):
                      f"{eps_list[-1]:g}", "smaller at small eps",
                      f"{_fmt(g_lo, e_lo)} vs {_fmt(g_hi, e_hi)}",
                      verdict_less(g_lo, g_hi, e_lo, e_hi), "less"))
-    return "\n".join(f"* {line}" for line in lines), [r[:5] for r in rows]
+    return [r[:5] for r in rows], "\n".join(f"* {line}" for line in lines)
 
 
 def _hysteresis(c):
@@ -348,6 +372,28 @@ def _hysteresis(c):
     row = ("Ramp: decreasing branch minus first increase (mean over common sqrt(eps))",
            "> 0 (hysteresis)", _fmt(mean, err), verdict_sign(mean, err, +1), "sign")
     return note, row
+
+
+#: (figure, comparison) in the order of the summary table; a comparison takes the figure's
+#: CSV and returns (rows, note or None).
+_COMPARISONS = (("fig9", _tapped_phi), ("fig4", _steady_state), ("fig3", _fluctuations),
+                ("fig2", _dynamics), ("fig6", _vertical_gradient),
+                ("fig8", _central_lateral), ("fig9", _contact_probability), ("fig10", _pores),
+                ("fig5", _ageing))
+
+
+def _rows_and_sections(campaign, files):
+    """The summary table rows (quantity, paper, TAPMC, verdict) and per-figure text."""
+    csv = {name: _Csv(paths[1]) for name, paths in files.items()}
+    rows, notes = [_initial_phi_row(campaign)], {}
+    for name, compare in _COMPARISONS:
+        if name not in csv:
+            continue
+        new_rows, note = compare(csv[name])
+        rows += new_rows
+        if note is not None:
+            notes[name] = note
+    return rows, notes
 
 
 CAPTIONS = {
