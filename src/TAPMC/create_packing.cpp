@@ -325,17 +325,6 @@ void create_own_atoms(LAMMPS *lmp, const Request &req, const tapmc::Packing &pac
   }
 }
 
-// Volume fraction of the spheres in the slab z0 <= z <= z1 over the domain's x-y extent (the
-// stereology kernel's exact slab integral; whole spheres count across periodic sides).
-double slab_volume_fraction(const tapmc::Packing &packing, const tapmc::DepositionDomain &dd,
-                            double z0, double z1)
-{
-  const tapmc::stereo::Spheres spheres{packing.xyz.data(), packing.radius.data(), 0.0, nullptr,
-                                       static_cast<int>(packing.radius.size())};
-  const double area = (dd.xhi - dd.xlo) * (dd.yhi - dd.ylo);
-  return tapmc::stereo::horizontal_slab_volume(spheres, z0, z1) / (area * (z1 - z0));
-}
-
 void report(LAMMPS *lmp, const Request &req, const Plan &plan, const tapmc::Packing &packing,
             double zmax, double t_deposit)
 {
@@ -347,7 +336,7 @@ void report(LAMMPS *lmp, const Request &req, const Plan &plan, const tapmc::Pack
                        tapmc::defaults::kDepositionBulkMarginOverRadius * radius, z0, z1);
     if (z1 - z0 > 2.0 * radius)
       phi_text = fmt::format("bulk packing fraction {:.4f} (exact stereology, {:.4g} <= z <= "
-                             "{:.4g})", slab_volume_fraction(packing, plan.dd, z0, z1), z0, z1);
+                             "{:.4g})", tapmc::slab_volume_fraction(packing, plan.dd, z0, z1), z0, z1);
     utils::logmesg(lmp,
                    "Created {} spheres by sequential deposition (Jullien-Meakin), sides: x {}, "
                    "y {}; floor z = {}\n"

@@ -21,6 +21,7 @@
 #include "tapmc_defaults.h"
 #include "tapmc_math.h"
 #include "tapmc_random.h"
+#include "tapmc_stereology.h"
 
 #include <algorithm>
 #include <cmath>
@@ -858,6 +859,15 @@ void bulk_window(const Packing &packing, const DepositionDomain &domain, double 
   mean = n ? mean / static_cast<double>(n) : 0.0;
   z0 = domain.z_floor + margin;
   z1 = domain.z_floor + 2.0 * mean - margin;
+}
+
+double slab_volume_fraction(const Packing &packing, const DepositionDomain &domain, double z0,
+                            double z1)
+{
+  const stereo::Spheres spheres{packing.xyz.data(), packing.radius.data(), 0.0, nullptr,
+                                static_cast<int>(packing.radius.size())};
+  const double area = (domain.xhi - domain.xlo) * (domain.yhi - domain.ylo);
+  return stereo::horizontal_slab_volume(spheres, z0, z1) / (area * (z1 - z0));
 }
 
 }  // namespace tapmc

@@ -129,6 +129,12 @@ Packing deposit_packing(std::int64_t n, const RadiusDistribution &radii,
 void bulk_window(const Packing &packing, const DepositionDomain &domain, double margin,
                  double &z0, double &z1);
 
+// Volume fraction of the packing's spheres in the slab z0 <= z <= z1 over the domain's x-y
+// extent: the stereology kernel's exact slab integral (tapmc_stereology.h; whole spheres count
+// across periodic sides).
+double slab_volume_fraction(const Packing &packing, const DepositionDomain &domain, double z0,
+                            double z1);
+
 }  // namespace tapmc
 
 #endif
