@@ -26,6 +26,7 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <unordered_map>
 #include <cmath>
 #include <numeric>
 
@@ -88,13 +89,62 @@ SettleBox DomainSettle::open_box(const DomainSettleSetup &setup)
   return box;
 }
 
-// The mover takes this rank's spheres and ghosts (periodicity is in the ghosts: the kernel sees
-// open axes with the side walls and the floor); the movable owned spheres are listed in tag
-// order, so the picks do not depend on LAMMPS's memory order (restarts, sorting).
+// Periodic axes with a single rank along them are periodic in the kernel (nearest image, as the
+// serial kernel): the rank needs no rounds along them, and LAMMPS's ghost copies of its own
+// spheres across them are left out (they would be stale during a round). Along the other axes
+// the periodic images are LAMMPS ghosts.
+bool DomainSettle::kernel_periodic(int axis) const
+{
+  return axis < 2 && domain->periodicity[axis] && comm->procgrid[axis] == 1;
+}
+
+// The ghosts the kernel takes: all but the copies of this rank's own spheres across a
+// kernel-periodic axis (the same tag as an owned sphere, the same coordinates along the other
+// axes).
+void DomainSettle::select_ghosts()
+{
+  const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
+  ghost_index_.clear();
+  const bool any = kernel_periodic(0) || kernel_periodic(1);
+  if (any) {
+    owned_of_tag_.clear();
+    owned_of_tag_.reserve(static_cast<std::size_t>(nlocal));
+    for (int i = 0; i < nlocal; ++i) owned_of_tag_.emplace(atom->tag[i], i);
+  }
+  double **x = atom->x;
+  for (int g = nlocal; g < nall; ++g) {
+    if (any) {
+      const auto owner = owned_of_tag_.find(atom->tag[g]);
+      if (owner != owned_of_tag_.end()) {
+        bool image = true;
+        for (int d = 0; d < 3; ++d)
+          if (!kernel_periodic(d) && x[g][d] != x[owner->second][d]) image = false;
+        if (image) continue;
+      }
+    }
+    ghost_index_.push_back(g);
+  }
+}
+
+// The mover takes this rank's spheres and the selected ghosts (periodicity is in the ghosts, or
+// in the kernel along kernel-periodic axes); the movable owned spheres are listed in tag order,
+// so the picks do not depend on LAMMPS's memory order (restarts, sorting).
 void DomainSettle::load(const DomainSettleSetup &setup, double d_max, double contact_tol)
 {
-  const int nlocal = atom->nlocal, nall = copy_spheres(setup);
-  mover_->reset(xyz_.data(), radius_.data(), nall, open_box(setup), d_max, contact_tol);
+  const int nlocal = atom->nlocal;
+  select_ghosts();
+  const int n = nlocal + static_cast<int>(ghost_index_.size());
+  double **x = atom->x;
+  xyz_.resize(3 * static_cast<std::size_t>(n));
+  radius_.resize(n);
+  for (int k = 0; k < n; ++k) {
+    const int i = k < nlocal ? k : ghost_index_[k - nlocal];
+    for (int d = 0; d < 3; ++d) xyz_[3 * k + d] = x[i][d];
+    radius_[k] = setup.fixed_radius > 0.0 ? setup.fixed_radius : atom->radius[i];
+  }
+  SettleBox box = setup.planes;
+  for (int d = 0; d < 2; ++d) box.periodic[d] = kernel_periodic(d);
+  mover_->reset(xyz_.data(), radius_.data(), n, box, d_max, contact_tol);
 
   owned_by_tag_.clear();
   for (int i = 0; i < nlocal; ++i)
@@ -104,6 +154,12 @@ void DomainSettle::load(const DomainSettleSetup &setup, double d_max, double con
             [tag](int a, int b) { return tag[a] < tag[b]; });
   x_at_borders_.assign(xyz_.begin(), xyz_.begin() + 3 * static_cast<std::size_t>(nlocal));
   ghost_x_.assign(xyz_.begin() + 3 * static_cast<std::size_t>(nlocal), xyz_.end());
+  // LAMMPS keeps owned coordinates unwrapped during the redeposition (its next pbc() wraps them
+  // and counts the image flags): x = kernel position + (wraps since now) * L + (x - kernel x now).
+  frame_.resize(2 * static_cast<std::size_t>(nlocal));
+  for (int i = 0; i < nlocal; ++i)
+    for (int d = 0; d < 2; ++d)
+      frame_[2 * i + d] = {mover_->image_shift(i, d), x[i][d] - mover_->position(i)[d]};
   max_shift_sq_ = 0.0;
 }
 
@@ -131,13 +187,19 @@ bool DomainSettle::publish_round(double ghost_skin, bool vote)
 {
   double **x = atom->x;
   mover_->take_moved(moved_);
+  const double length[2] = {domain->prd[0], domain->prd[1]};
   for (int i : moved_) {
     const double *p = mover_->position(i);
     const double *b = &x_at_borders_[3 * static_cast<std::size_t>(i)];
     double d2 = 0.0;
     for (int d = 0; d < 3; ++d) {
-      x[i][d] = p[d];
-      d2 += (p[d] - b[d]) * (p[d] - b[d]);
+      double v = p[d];
+      if (d < 2 && kernel_periodic(d)) {
+        const Frame &f = frame_[2 * static_cast<std::size_t>(i) + d];
+        v += (mover_->image_shift(i, d) - f.image) * length[d] + f.offset;
+      }
+      x[i][d] = v;
+      d2 += (v - b[d]) * (v - b[d]);
     }
     max_shift_sq_ = std::max(max_shift_sq_, d2);
   }
@@ -145,12 +207,13 @@ bool DomainSettle::publish_round(double ghost_skin, bool vote)
   MPI_Request request;
   if (vote) MPI_Iallreduce(&need, &any, 1, MPI_INT, MPI_MAX, world, &request);
   comm->forward_comm();
-  const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
+  const int nlocal = atom->nlocal, ng = static_cast<int>(ghost_index_.size());
   double *known = ghost_x_.data();
-  for (int g = nlocal; g < nall; ++g, known += 3) {
-    if (x[g][0] == known[0] && x[g][1] == known[1] && x[g][2] == known[2]) continue;
-    for (int d = 0; d < 3; ++d) known[d] = x[g][d];
-    mover_->set_position(g, x[g]);
+  for (int k = 0; k < ng; ++k, known += 3) {
+    const double *xg = x[ghost_index_[k]];
+    if (xg[0] == known[0] && xg[1] == known[1] && xg[2] == known[2]) continue;
+    for (int d = 0; d < 3; ++d) known[d] = xg[d];
+    mover_->set_position(nlocal + k, xg);
   }
   if (vote) MPI_Wait(&request, MPI_STATUS_IGNORE);
   return any != 0;
@@ -163,7 +226,7 @@ std::array<DecomposedAxis, 3> DomainSettle::decomposed_axes() const
   for (int d = 0; d < 3; ++d) width[d] = domain->subhi[d] - domain->sublo[d];
   MPI_Allreduce(width, min_width, 3, MPI_DOUBLE, MPI_MIN, world);
   for (int d = 0; d < 3; ++d) {
-    axes[d].split = comm->procgrid[d] > 1 || domain->periodicity[d];
+    axes[d].split = comm->procgrid[d] > 1 || (domain->periodicity[d] && !kernel_periodic(d));
     axes[d].lo = domain->sublo[d];
     axes[d].hi = domain->subhi[d];
     axes[d].min_width = min_width[d];

@@ -8,6 +8,7 @@
 #ifndef TAPMC_LAMMPS_DOMAIN_SETTLE_H
 #define TAPMC_LAMMPS_DOMAIN_SETTLE_H
 
+#include "lmptype.h"
 #include "pointers.h"
 
 #include "tapmc_decomposition.h"
@@ -15,6 +16,7 @@
 #include "tapmc_sphere_mover.h"
 
 #include <memory>
+#include <unordered_map>
 #include <vector>
 
 namespace tapmc {
@@ -66,6 +68,13 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
   std::vector<double> ghost_x_;          // the ghosts' positions as the mover has them
   std::vector<int> round_of_local_;      // round of each owned sphere this cycle
   std::vector<int> moved_;               // spheres moved in the last round
+  std::vector<int> ghost_index_;         // LAMMPS index of the kernel's ghost k (index nlocal + k)
+  std::unordered_map<LAMMPS_NS::tagint, int> owned_of_tag_;
+  struct Frame {
+    int image;      // the kernel's wrap count of the sphere at load()
+    double offset;  // LAMMPS coordinate - kernel coordinate at load()
+  };
+  std::vector<Frame> frame_;  // per owned sphere and kernel-periodic axis (x, y)
   std::vector<int> owned_by_tag_;               // movable owned spheres, in tag order
   std::vector<std::vector<int>> round_members_;  // per round of the cycle, in tag order
   long ghost_rebuilds_ = 0, rounds_ = 0;
@@ -76,6 +85,8 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
   void prepare(Run &run);
   void run_cycle(Run &run);
   int copy_spheres(const DomainSettleSetup &setup);
+  bool kernel_periodic(int axis) const;
+  void select_ghosts();
   static SettleBox open_box(const DomainSettleSetup &setup);
   void load(const DomainSettleSetup &setup, double d_max, double contact_tol);
   void partition(const RoundSchedule &schedule, int from_round);

@@ -4,8 +4,10 @@
 // at once. LAMMPS-free (no MPI): fix mc/settle draws the cuts, calls these functions on every
 // rank and communicates between rounds.
 //
-// The scheme. Along every axis that is split among ranks or periodic (a rank then borders its
-// own periodic image), each rank's sub-domain [lo, lo + w) is cut at lo + c into a lower and an
+// The scheme. Along every axis that is split among ranks (or periodic with one rank, when the
+// caller lets the rank border its own periodic image through ghosts; fix mc/settle handles such
+// an axis by the nearest image in the kernel instead), each rank's sub-domain [lo, lo + w) is
+// cut at lo + c into a lower and an
 // upper part; c is drawn anew for every cycle of rounds and is the same on every rank. A cycle
 // has one round per combination of parts (2 rounds for one such axis, 4 for two, 8 for three).
 // In a round a rank moves only the spheres that were in that round's parts at the start of the
