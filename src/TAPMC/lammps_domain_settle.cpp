@@ -8,7 +8,10 @@
 // (2 R_max + e + skin) of the sub-domain at the last borders(), and none has moved more than the
 // skin since (checked after every round, a rebuild otherwise), so every sphere in reach is
 // present. Those that move in the same round lie in other regions, at least 2 R_max away; the
-// others are at their current positions (forward communication after every round).
+// others are at their current positions (forward communication after every round). Along a
+// periodic axis with one rank the kernel takes the nearest image of the rank's own spheres, at
+// their current positions; their LAMMPS ghost copies across it, stale during a round, are left
+// out.
 #include "lammps_domain_settle.h"
 
 #include "lammps_relocate.h"
