@@ -15,7 +15,6 @@
 #include "tapmc_stop_rule.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
@@ -26,44 +25,6 @@ namespace tapmc {
 using namespace settle_geometry;
 
 namespace {
-
-// Cells sized for the largest contact distance plus a rounding margin far below contact_tol,
-// covering the periodic period, or the data (and walls / floor) along the other axes.
-std::array<GridAxis, 3> make_axes(const Scene &s, const double *xyz, int n)
-{
-  double mn[3] = {kInf, kInf, kInf}, mx[3] = {-kInf, -kInf, -kInf};
-  double scale = 0.0;
-  for (int i = 0; i < n; ++i)
-    for (int d = 0; d < 3; ++d) {
-      const double v = xyz[3 * i + d];
-      mn[d] = std::min(mn[d], v);
-      mx[d] = std::max(mx[d], v);
-      scale = std::max(scale, std::fabs(v));
-    }
-  for (int d = 0; d < 2; ++d) {
-    if (std::isfinite(s.wall_lo[d])) mn[d] = std::min(mn[d], s.wall_lo[d]);
-    if (std::isfinite(s.wall_hi[d])) mx[d] = std::max(mx[d], s.wall_hi[d]);
-    scale = std::max({scale, std::fabs(s.lo[d]), std::fabs(s.hi[d])});
-  }
-  mn[2] = std::min(mn[2], s.floor_z);  // movable spheres only go down, at most to the floor
-  scale = std::max(scale, std::fabs(s.floor_z));
-  const double margin = defaults::kGridRoundingMargin * (2.0 * s.r_max + scale);
-  const double reach = 2.0 * s.r_max * s.one_minus_tol + margin;
-
-  std::array<GridAxis, 3> axes;
-  const int max_side = defaults::kGridMaxCellsPerSideAxis;
-  for (int d = 0; d < 2; ++d) {
-    if (s.periodic[d])
-      axes[d].setup(s.lo[d], s.length[d], reach, true, max_side);
-    else
-      axes[d].setup(mn[d], std::max(mx[d] - mn[d], 0.0), reach, false, max_side);
-  }
-  // Cap the cell count (a floor far below the spheres must not allocate a huge empty grid).
-  const int max_cells = defaults::kGridCellsPerSphere * n + defaults::kGridMinCells;
-  const int max_z = std::max(1, max_cells / (axes[0].cells * axes[1].cells));
-  axes[2].setup(mn[2], std::max(mx[2] - mn[2], 0.0), reach, false, max_z);
-  return axes;
-}
 
 // Scratch of find_violation, reused between calls on one thread (no allocation once warm).
 struct ViolationScratch {
@@ -219,7 +180,9 @@ Violation Settler::find_violation(const double *xyz, const double *radius, int n
         wrapped[3 * i + d] = wrap_periodic(xyz[3 * i + d], sc.lo[d], sc.hi[d], sc.length[d], image);
       }
   CellGrid &grid = scratch.grid;
-  grid.build(make_axes(sc, xyz, n), wrapped.data(), radius, n);
+  // Cells one contact distance (plus the rounding margin) wide.
+  const double reach = 2.0 * sc.r_max * sc.one_minus_tol + rounding_margin(sc, xyz, n);
+  grid.build(grid_axes(sc, xyz, n, reach), wrapped.data(), radius, n);
   for (int i = 0; i < n; ++i) {
     const double x = wrapped[3 * i], y = wrapped[3 * i + 1], z = wrapped[3 * i + 2];
     const double r = radius[i];

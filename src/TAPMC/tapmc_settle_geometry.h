@@ -5,12 +5,14 @@
 #ifndef TAPMC_SETTLE_GEOMETRY_H
 #define TAPMC_SETTLE_GEOMETRY_H
 
+#include "tapmc_cell_grid.h"
 #include "tapmc_contact.h"
 #include "tapmc_defaults.h"
 #include "tapmc_math.h"
 #include "tapmc_settle.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -156,6 +158,49 @@ template <bool Periodic>
 inline double axis_separation(double x_j, double x_i, double length, double half_length)
 {
   return Periodic ? nearest_separation(x_j, x_i, length, half_length) : x_j - x_i;
+}
+
+// Rounding margin of a search radius: positions, steps and wraps round at ~1e-16 of the
+// coordinates (defaults::kGridRoundingMargin of 2 R_max + the largest coordinate, plane or box
+// bound), far below the contact tolerance.
+inline double rounding_margin(const Scene &s, const double *xyz, int n)
+{
+  double scale = std::max(std::fabs(s.floor_z), 2.0 * s.r_max);
+  for (int i = 0; i < 3 * n; ++i) scale = std::max(scale, std::fabs(xyz[i]));
+  for (int d = 0; d < 2; ++d) scale = std::max({scale, std::fabs(s.lo[d]), std::fabs(s.hi[d])});
+  return defaults::kGridRoundingMargin * (2.0 * s.r_max + scale);
+}
+
+// Cells at least `reach` wide covering the periodic period, or the data (with the walls and the
+// floor: movable spheres only go down, at most to the floor) along the other axes. The cell
+// count is capped (a floor far below the spheres must not allocate a huge empty grid).
+inline std::array<GridAxis, 3> grid_axes(const Scene &s, const double *xyz, int n, double reach)
+{
+  double mn[3] = {kInf, kInf, kInf}, mx[3] = {-kInf, -kInf, -kInf};
+  for (int i = 0; i < n; ++i)
+    for (int d = 0; d < 3; ++d) {
+      mn[d] = std::min(mn[d], xyz[3 * i + d]);
+      mx[d] = std::max(mx[d], xyz[3 * i + d]);
+    }
+  for (int d = 0; d < 2; ++d) {
+    if (std::isfinite(s.wall_lo[d])) mn[d] = std::min(mn[d], s.wall_lo[d]);
+    if (std::isfinite(s.wall_hi[d])) mx[d] = std::max(mx[d], s.wall_hi[d]);
+  }
+  mn[2] = std::min(mn[2], s.floor_z);
+  std::array<GridAxis, 3> axes;
+  for (int d = 0; d < 2; ++d) {
+    if (s.periodic[d])
+      axes[d].setup(s.lo[d], s.length[d], reach, true, defaults::kGridMaxCellsPerSideAxis);
+    else
+      axes[d].setup(mn[d], std::max(mx[d] - mn[d], 0.0), reach, false,
+                    defaults::kGridMaxCellsPerSideAxis);
+  }
+  const long max_cells = defaults::kGridCellsPerSphere * static_cast<long>(n) +
+                         defaults::kGridMinCells;
+  const int max_z = static_cast<int>(
+      std::max(1L, max_cells / (static_cast<long>(axes[0].cells) * axes[1].cells)));
+  axes[2].setup(mn[2], std::max(mx[2] - mn[2], 0.0), reach, false, max_z);
+  return axes;
 }
 
 }  // namespace settle_geometry

@@ -261,54 +261,16 @@ struct SphereMover::State {
   void build(const double *xyz_wrapped, const double *radius, const int *image_in);
 };
 
-namespace {
-
-// Cells at least `reach` wide covering the periodic period, or the data (and walls / floor)
-// along the other axes; the number of cells is capped as in the violation check's grid.
-std::array<GridAxis, 3> mover_axes(const Scene &s, const double *xyz, int n, double reach)
-{
-  double mn[3] = {kInf, kInf, kInf}, mx[3] = {-kInf, -kInf, -kInf};
-  for (int i = 0; i < n; ++i)
-    for (int d = 0; d < 3; ++d) {
-      mn[d] = std::min(mn[d], xyz[3 * i + d]);
-      mx[d] = std::max(mx[d], xyz[3 * i + d]);
-    }
-  for (int d = 0; d < 2; ++d) {
-    if (std::isfinite(s.wall_lo[d])) mn[d] = std::min(mn[d], s.wall_lo[d]);
-    if (std::isfinite(s.wall_hi[d])) mx[d] = std::max(mx[d], s.wall_hi[d]);
-  }
-  mn[2] = std::min(mn[2], s.floor_z);
-  std::array<GridAxis, 3> axes;
-  for (int d = 0; d < 2; ++d) {
-    if (s.periodic[d])
-      axes[d].setup(s.lo[d], s.length[d], reach, true, defaults::kGridMaxCellsPerSideAxis);
-    else
-      axes[d].setup(mn[d], std::max(mx[d] - mn[d], 0.0), reach, false,
-                    defaults::kGridMaxCellsPerSideAxis);
-  }
-  const long max_cells = defaults::kGridCellsPerSphere * static_cast<long>(n) +
-                         defaults::kGridMinCells;
-  const int max_z = static_cast<int>(
-      std::max(1L, max_cells / (static_cast<long>(axes[0].cells) * axes[1].cells)));
-  axes[2].setup(mn[2], std::max(mx[2] - mn[2], 0.0), reach, false, max_z);
-  return axes;
-}
-
-}  // namespace
-
 // Sorts the spheres into cell order, bins them and makes every list (O(N)).
 void SphereMover::State::build(const double *xyz_wrapped, const double *radius,
                                const int *image_in)
 {
   const Scene &sc = scene;
-  double scale = std::max(std::fabs(sc.floor_z), 2.0 * sc.r_max);
-  for (int i = 0; i < 3 * n; ++i) scale = std::max(scale, std::fabs(xyz_wrapped[i]));
-  for (int d = 0; d < 2; ++d) scale = std::max({scale, std::fabs(sc.lo[d]), std::fabs(sc.hi[d])});
-  const double margin = defaults::kGridRoundingMargin * (2.0 * sc.r_max + scale);
+  const double margin = rounding_margin(sc, xyz_wrapped, n);
   const double skin = skin_over_max_radius * sc.r_max;
   half_skin_sq = 0.25 * skin * skin;
   list_extra = d_max + skin + margin;
-  axes = mover_axes(sc, xyz_wrapped, n, 2.0 * sc.r_max + list_extra + margin);
+  axes = grid_axes(sc, xyz_wrapped, n, 2.0 * sc.r_max + list_extra + margin);
 
   // Internal order: by cell (stable), so neighbours are close in memory.
   const int n_cells = axes[0].cells * axes[1].cells * axes[2].cells;
