@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import csv
 import math
-import re
 from collections import defaultdict
 from pathlib import Path
 
@@ -147,28 +146,6 @@ def errorbars(ax, x, mean, sem, label=None, **kw):
 def fmt_eps(eps):
     """Compact label of an eps value (5e-3 -> '0.005')."""
     return f"{eps:.4g}"
-
-
-_SEED_RE = re.compile(r"_s(\d+)$")
-
-
-def group_runs(specs, key):
-    """Group RunSpecs by ``key(spec)`` -> dict key -> list of specs sorted by seed."""
-    groups = defaultdict(list)
-    for spec in specs:
-        groups[key(spec)].append(spec)
-    return {k: sorted(v, key=lambda s: s.seed) for k, v in groups.items()}
-
-
-def campaign_runs(campaign, prefix):
-    """The RunSpecs of ``campaign`` whose name starts with ``prefix``."""
-    specs = [s for s in campaign.runs if s.name.startswith(prefix)]
-    if not specs:
-        names = ", ".join(sorted(s.name for s in campaign.runs)[:8])
-        raise ValueError(
-            f"campaign {campaign.directory} has no run named {prefix}*; it holds: {names} ..."
-        )
-    return specs
 
 
 def figure_paths(out_dir, name):
