@@ -66,6 +66,12 @@ def check_frames(frames, periodic_xy, walls):
             if walls[dim]:
                 assert (xyz[:, dim] - radius).min() >= -CONTACT_TOL, f"step {step}: wall {dim}"
                 assert (xyz[:, dim] + radius).max() <= 10 + CONTACT_TOL, f"step {step}: wall {dim}"
+    # Image flags follow every periodic wrap: unwrapped positions (when dumped) never jump by a
+    # box length between frames.
+    for dim, c in ((0, "xu"), (1, "yu")):
+        if periodic_xy[dim] and c in frames[0][3]:
+            for (step, _, _, a), (_, _, _, b) in zip(frames[:-1], frames[1:]):
+                assert np.abs(b[c] - a[c]).max() < 5.0, f"step {step}: {c} jumps"
 
 
 def test_same_seed_same_trajectory_other_seed_differs():

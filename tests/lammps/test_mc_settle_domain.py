@@ -41,11 +41,7 @@ def test_no_overlap_after_every_tap(nprocs, grid, boundary):
     periodic = (boundary[0] == "p", boundary[2] == "p")
     frames, _ = domain_run(boundary, nprocs, grid)
     assert len(frames) == 31
-    check_frames(frames, periodic, (not periodic[0], not periodic[1]))
-    for dim, c in ((0, "xu"), (1, "yu")):  # image flags follow the wraps: no jumps
-        if periodic[dim]:
-            for (_, _, _, a), (_, _, _, b) in zip(frames[:-1], frames[1:]):
-                assert np.abs(b[c] - a[c]).max() < 5.0
+    check_frames(frames, periodic, (not periodic[0], not periodic[1]))  # also no xu / yu jumps
     assert frames[-1][3]["z"].mean() < 0.8 * frames[0][3]["z"].mean()
 
 
