@@ -70,63 +70,81 @@ double DomainSettle::largest_radius(const DomainSettleSetup &setup) const
   return all;
 }
 
-// This rank's spheres and ghosts into xyz_ / radius_; returns their number.
-int DomainSettle::copy_spheres(const DomainSettleSetup &setup)
-{
-  const int nall = atom->nlocal + atom->nghost;
-  double **x = atom->x;
-  xyz_.resize(3 * static_cast<std::size_t>(nall));
-  radius_.resize(nall);
-  for (int i = 0; i < nall; ++i) {
-    for (int d = 0; d < 3; ++d) xyz_[3 * i + d] = x[i][d];
-    radius_[i] = setup.fixed_radius > 0.0 ? setup.fixed_radius : atom->radius[i];
-  }
-  return nall;
-}
-
-// The floor and walls without periodic axes: the ghosts are the periodic images.
-SettleBox DomainSettle::open_box(const DomainSettleSetup &setup)
-{
-  SettleBox box = setup.planes;
-  box.periodic[0] = box.periodic[1] = false;
-  return box;
-}
-
 // Periodic axes with a single rank along them are periodic in the kernel (nearest image, as the
 // serial kernel): the rank needs no rounds along them, and LAMMPS's ghost copies of its own
 // spheres across them are left out (they would be stale during a round). Along the other axes
 // the periodic images are LAMMPS ghosts.
-bool DomainSettle::kernel_periodic(int axis) const
+void DomainSettle::set_kernel_axes()
 {
-  return axis < 2 && domain->periodicity[axis] && comm->procgrid[axis] == 1;
+  for (int d = 0; d < 3; ++d)
+    kernel_periodic_[d] = d < 2 && domain->periodicity[d] && comm->procgrid[d] == 1;
 }
 
-// The ghosts the kernel takes: all but the copies of this rank's own spheres across a
-// kernel-periodic axis (the same tag as an owned sphere, the same coordinates along the other
-// axes).
+// The ghosts the kernel takes: one copy of each sphere per place along the axes the kernel does
+// not wrap. Left out: the copies of this rank's own spheres, and repeated copies of another
+// rank's sphere, across a kernel-periodic axis.
 void DomainSettle::select_ghosts()
 {
   const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
   ghost_index_.clear();
-  const bool any = kernel_periodic(0) || kernel_periodic(1);
-  if (any) {
-    owned_of_tag_.clear();
-    owned_of_tag_.reserve(static_cast<std::size_t>(nlocal));
-    for (int i = 0; i < nlocal; ++i) owned_of_tag_.emplace(atom->tag[i], i);
-  }
+  for (int g = nlocal; g < nall; ++g) ghost_index_.push_back(g);
+  if (!kernel_periodic_[0] && !kernel_periodic_[1]) return;
   double **x = atom->x;
-  for (int g = nlocal; g < nall; ++g) {
-    if (any) {
-      const auto owner = owned_of_tag_.find(atom->tag[g]);
-      if (owner != owned_of_tag_.end()) {
-        bool image = true;
-        for (int d = 0; d < 3; ++d)
-          if (!kernel_periodic(d) && x[g][d] != x[owner->second][d]) image = false;
-        if (image) continue;
-      }
-    }
-    ghost_index_.push_back(g);
+  const tagint *tag = atom->tag;
+  // Same sphere (tag) at the same place along the axes the kernel does not wrap.
+  auto same_copy = [&](int a, int b) {
+    if (tag[a] != tag[b]) return false;
+    for (int d = 0; d < 3; ++d)
+      if (!kernel_periodic_[d] && x[a][d] != x[b][d]) return false;
+    return true;
+  };
+  auto before = [&](int a, int b) {
+    if (tag[a] != tag[b]) return tag[a] < tag[b];
+    for (int d = 0; d < 3; ++d)
+      if (!kernel_periodic_[d] && x[a][d] != x[b][d]) return x[a][d] < x[b][d];
+    return a < b;
+  };
+  std::sort(ghost_index_.begin(), ghost_index_.end(), before);
+  ghost_index_.erase(std::unique(ghost_index_.begin(), ghost_index_.end(), same_copy),
+                     ghost_index_.end());
+  owned_of_tag_.clear();
+  owned_of_tag_.reserve(static_cast<std::size_t>(nlocal));
+  for (int i = 0; i < nlocal; ++i) owned_of_tag_.emplace(tag[i], i);
+  ghost_index_.erase(std::remove_if(ghost_index_.begin(), ghost_index_.end(),
+                                    [&](int g) {
+                                      const auto owner = owned_of_tag_.find(tag[g]);
+                                      return owner != owned_of_tag_.end() &&
+                                             same_copy(g, owner->second);
+                                    }),
+                     ghost_index_.end());
+  std::sort(ghost_index_.begin(), ghost_index_.end());  // memory order for the refreshes
+}
+
+// This rank's spheres and the selected ghosts into xyz_ / radius_ (the kernel's indices: owned
+// i, then ghost k at nlocal + k), with the box the kernel sees; returns their number.
+int DomainSettle::copy_spheres(const DomainSettleSetup &setup, SettleBox &box)
+{
+  set_kernel_axes();
+  select_ghosts();
+  const int nlocal = atom->nlocal;
+  const int n = nlocal + static_cast<int>(ghost_index_.size());
+  double **x = atom->x;
+  xyz_.resize(3 * static_cast<std::size_t>(n));
+  radius_.resize(n);
+  for (int k = 0; k < n; ++k) {
+    const int i = lammps_index(k);
+    for (int d = 0; d < 3; ++d) xyz_[3 * k + d] = x[i][d];
+    radius_[k] = setup.fixed_radius > 0.0 ? setup.fixed_radius : atom->radius[i];
   }
+  box = setup.planes;
+  for (int d = 0; d < 2; ++d) box.periodic[d] = kernel_periodic_[d];
+  return n;
+}
+
+int DomainSettle::lammps_index(int k) const
+{
+  const int nlocal = atom->nlocal;
+  return k < nlocal ? k : ghost_index_[k - nlocal];
 }
 
 // The mover takes this rank's spheres and the selected ghosts (periodicity is in the ghosts, or
@@ -135,19 +153,10 @@ void DomainSettle::select_ghosts()
 void DomainSettle::load(const DomainSettleSetup &setup, double d_max, double contact_tol)
 {
   const int nlocal = atom->nlocal;
-  select_ghosts();
-  const int n = nlocal + static_cast<int>(ghost_index_.size());
-  double **x = atom->x;
-  xyz_.resize(3 * static_cast<std::size_t>(n));
-  radius_.resize(n);
-  for (int k = 0; k < n; ++k) {
-    const int i = k < nlocal ? k : ghost_index_[k - nlocal];
-    for (int d = 0; d < 3; ++d) xyz_[3 * k + d] = x[i][d];
-    radius_[k] = setup.fixed_radius > 0.0 ? setup.fixed_radius : atom->radius[i];
-  }
-  SettleBox box = setup.planes;
-  for (int d = 0; d < 2; ++d) box.periodic[d] = kernel_periodic(d);
+  SettleBox box;
+  const int n = copy_spheres(setup, box);
   mover_->reset(xyz_.data(), radius_.data(), n, box, d_max, contact_tol);
+  double **x = atom->x;
 
   owned_by_tag_.clear();
   for (int i = 0; i < nlocal; ++i)
@@ -190,14 +199,14 @@ bool DomainSettle::publish_round(double ghost_skin, bool vote)
 {
   double **x = atom->x;
   mover_->take_moved(moved_);
-  const double length[2] = {domain->prd[0], domain->prd[1]};
+  const double *length = domain->prd;
   for (int i : moved_) {
     const double *p = mover_->position(i);
     const double *b = &x_at_borders_[3 * static_cast<std::size_t>(i)];
     double d2 = 0.0;
     for (int d = 0; d < 3; ++d) {
       double v = p[d];
-      if (d < 2 && kernel_periodic(d)) {
+      if (kernel_periodic_[d]) {
         const Frame &f = frame_[2 * static_cast<std::size_t>(i) + d];
         v += (mover_->image_shift(i, d) - f.image) * length[d] + f.offset;
       }
@@ -229,7 +238,7 @@ std::array<DecomposedAxis, 3> DomainSettle::decomposed_axes() const
   for (int d = 0; d < 3; ++d) width[d] = domain->subhi[d] - domain->sublo[d];
   MPI_Allreduce(width, min_width, 3, MPI_DOUBLE, MPI_MIN, world);
   for (int d = 0; d < 3; ++d) {
-    axes[d].split = comm->procgrid[d] > 1 || (domain->periodicity[d] && !kernel_periodic(d));
+    axes[d].split = comm->procgrid[d] > 1 || (domain->periodicity[d] && !kernel_periodic_[d]);
     axes[d].lo = domain->sublo[d];
     axes[d].hi = domain->subhi[d];
     axes[d].min_width = min_width[d];
@@ -239,9 +248,13 @@ std::array<DecomposedAxis, 3> DomainSettle::decomposed_axes() const
 
 Violation DomainSettle::find_violation(const DomainSettleSetup &setup)
 {
-  const int nall = copy_spheres(setup);
-  return Settler::find_violation(xyz_.data(), radius_.data(), nall, open_box(setup),
-                                 defaults::kContactTolerance);
+  SettleBox box;
+  const int n = copy_spheres(setup, box);
+  Violation v =
+      Settler::find_violation(xyz_.data(), radius_.data(), n, box, defaults::kContactTolerance);
+  if (v.i >= 0) v.i = lammps_index(v.i);
+  if (v.j >= 0) v.j = lammps_index(v.j);
+  return v;
 }
 
 namespace {

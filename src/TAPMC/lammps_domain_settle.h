@@ -69,6 +69,7 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
   std::vector<int> round_of_local_;      // round of each owned sphere this cycle
   std::vector<int> moved_;               // spheres moved in the last round
   std::vector<int> ghost_index_;         // LAMMPS index of the kernel's ghost k (index nlocal + k)
+  bool kernel_periodic_[3] = {false, false, false};  // periodic in the kernel (set_kernel_axes)
   std::unordered_map<LAMMPS_NS::tagint, int> owned_of_tag_;
   struct Frame {
     int image;      // the kernel's wrap count of the sphere at load()
@@ -84,10 +85,10 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
   struct Run;
   void prepare(Run &run);
   void run_cycle(Run &run);
-  int copy_spheres(const DomainSettleSetup &setup);
-  bool kernel_periodic(int axis) const;
+  void set_kernel_axes();
   void select_ghosts();
-  static SettleBox open_box(const DomainSettleSetup &setup);
+  int copy_spheres(const DomainSettleSetup &setup, SettleBox &box);
+  int lammps_index(int kernel_index) const;
   void load(const DomainSettleSetup &setup, double d_max, double contact_tol);
   void partition(const RoundSchedule &schedule, int from_round);
   bool publish_round(double ghost_skin, bool vote);
