@@ -94,20 +94,24 @@ def tap_run(lmp, data, ranks, scheme, sweeps, taps, workdir):
         cmd = MPIRUN + ["-np", str(ranks)] + cmd
     out, rss = run(cmd, workdir)
     loop = float(re.search(r"Loop time of ([0-9.eE+-]+) on", out).group(1))
-    rows = []
     lines = out.splitlines()
     start = next(k for k, line in enumerate(lines) if line.split()[:1] == ["Step"])
+    names = lines[start].split()
+    rows = []
     for line in lines[start + 1:]:
         if line.startswith("Loop time"):
             break
         fields = line.split()  # thermo rows (warnings of the sweep cap come in between)
-        if len(fields) == 9 and fields[0].isdigit():
-            rows.append([float(v) for v in fields])
+        if len(fields) == len(names) and fields[0].isdigit():
+            rows.append(dict(zip(names, map(float, fields))))
     rows = rows[1:]  # step 0 is the set-up
-    trials = sum(r[2] for r in rows)
-    phases = [sum(r[k] for r in rows) for k in (5, 6, 7, 8)]
-    return {"loop": loop, "trials": trials, "rss": rss, "rounds": sum(r[4] for r in rows),
-            "rebuilds": sum(r[3] for r in rows), "phases": phases, "taps": len(rows)}
+
+    def total(name):
+        return sum(r[name] for r in rows)
+
+    return {"loop": loop, "trials": total("f_settle[5]"), "rss": rss,
+            "rounds": total("f_settle[8]"), "rebuilds": total("f_settle[7]"),
+            "phases": [total(f"f_settle[{k}]") for k in (9, 10, 11, 12)], "taps": len(rows)}
 
 
 def ghosts_per_rank(n, side, ranks_per_axis, cutoff):
