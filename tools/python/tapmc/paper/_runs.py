@@ -119,6 +119,19 @@ def by_variable(specs, key):
     return {k: sorted(v, key=lambda s: s.seed) for k, v in sorted(groups.items())}
 
 
+def constant_eps_groups(campaign, bc, eps_values=None):
+    """The campaign's constant-eps runs with boundary ``bc``, grouped by eps (dict eps -> specs
+    sorted by seed), restricted to ``eps_values`` when given (1e-9 relative); raises ValueError
+    when none is left."""
+    groups = by_variable(select(campaign, "const_", bc=bc), "eps")
+    if eps_values is not None:
+        groups = {e: g for e, g in groups.items()
+                  if any(abs(e - v) <= 1e-9 * v for v in eps_values)}
+    if not groups:
+        raise ValueError(f"campaign {campaign.directory} has no constant-eps {bc} run")
+    return groups
+
+
 def run_dir(campaign, spec):
     return Path(campaign.result(spec.name))
 

@@ -36,18 +36,13 @@ def runs(scale, seeds):
 def curves(campaign, column="phi_b", bc=BC, eps_values=None):
     """dict eps -> (t, mean, sem, n) of a taps.dat column over the seeds of the campaign's
     constant-eps runs with boundary ``bc`` (all eps, or those in ``eps_values``)."""
-    groups = _runs.by_variable(_runs.select(campaign, "const_", bc=bc), "eps")
     out = {}
-    for eps, specs in groups.items():
-        if eps_values is not None and not any(abs(eps - e) <= 1e-9 * e for e in eps_values):
-            continue
+    for eps, specs in _runs.constant_eps_groups(campaign, bc, eps_values).items():
         tables = [_runs.taps_table(campaign, s) for s in specs]
         length = min(len(t["step"]) for t in tables)
         t = tables[0]["step"][:length]
         mean, sem, n = P.seed_stats([tab[column][:length] for tab in tables])
         out[eps] = (t, mean, sem, n)
-    if not out:
-        raise ValueError(f"campaign {campaign.directory} has no constant-eps {bc} run")
     return out
 
 

@@ -46,9 +46,7 @@ def steady_last(taps):
 
 def series_by_eps(campaign, column, bc=BC):
     """dict eps -> list over seeds of the per-tap column (tap 0 excluded)."""
-    groups = _runs.by_variable(_runs.select(campaign, "const_", bc=bc), "eps")
-    if not groups:
-        raise ValueError(f"campaign {campaign.directory} has no constant-eps {bc} run")
+    groups = _runs.constant_eps_groups(campaign, bc)
     return {eps: [_runs.taps_table(campaign, s)[column][1:] for s in specs]
             for eps, specs in groups.items()}
 

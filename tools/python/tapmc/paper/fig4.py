@@ -40,9 +40,7 @@ def runs(scale, seeds):
 
 def steady_states(campaign, column="phi_c", bc=BC):
     """(sqrt_eps, mean, sem, n) of the steady state of ``column`` over seeds, per eps."""
-    groups = _runs.by_variable(_runs.select(campaign, "const_", bc=bc), "eps")
-    if not groups:
-        raise ValueError(f"campaign {campaign.directory} has no constant-eps {bc} run")
+    groups = _runs.constant_eps_groups(campaign, bc)
     eps_list, means, sems, ns = [], [], [], []
     for eps, specs in groups.items():
         values = []

@@ -42,9 +42,7 @@ def runs(scale, seeds):
 
 def nearest_eps_runs(campaign, bc=BC, target=PAPER_EPS):
     """(eps, specs) of the campaign's constant-eps runs with eps nearest to ``target``."""
-    groups = _runs.by_variable(_runs.select(campaign, "const_", bc=bc), "eps")
-    if not groups:
-        raise ValueError(f"campaign {campaign.directory} has no constant-eps {bc} run")
+    groups = _runs.constant_eps_groups(campaign, bc)
     eps = min(groups, key=lambda e: abs(np.log(e / target)))
     return eps, groups[eps]
 

@@ -38,16 +38,10 @@ def increases(campaign, bc=BC, eps_values=None):
     constant-eps runs)."""
     from tapmc.profiles import ProfileIncrease
 
-    specs = _runs.select(campaign, "const_", bc=bc)
     if eps_values is None:
         scale = _runs.campaign_scale(campaign)
         eps_values = scale.profile_eps if scale is not None else None
-    groups = _runs.by_variable(specs, "eps")
-    if eps_values is not None:
-        groups = {e: g for e, g in groups.items()
-                  if any(abs(e - v) <= 1e-9 * v for v in eps_values)}
-    if not groups:
-        raise ValueError(f"campaign {campaign.directory} has no constant-eps {bc} run")
+    groups = _runs.constant_eps_groups(campaign, bc, eps_values)
     out = {}
     for eps, specs in groups.items():
         tables = [_runs.taps_table(campaign, s) for s in specs]
