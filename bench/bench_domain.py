@@ -27,6 +27,8 @@ import subprocess
 import sys
 import tempfile
 
+from bench_util import thermo_rows
+
 R = 0.5
 MPIRUN = ["mpirun", "--allow-run-as-root", "--oversubscribe"]
 
@@ -94,17 +96,7 @@ def tap_run(lmp, data, ranks, scheme, sweeps, taps, workdir):
         cmd = MPIRUN + ["-np", str(ranks)] + cmd
     out, rss = run(cmd, workdir)
     loop = float(re.search(r"Loop time of ([0-9.eE+-]+) on", out).group(1))
-    lines = out.splitlines()
-    start = next(k for k, line in enumerate(lines) if line.split()[:1] == ["Step"])
-    names = lines[start].split()
-    rows = []
-    for line in lines[start + 1:]:
-        if line.startswith("Loop time"):
-            break
-        fields = line.split()  # thermo rows (warnings of the sweep cap come in between)
-        if len(fields) == len(names) and fields[0].isdigit():
-            rows.append(dict(zip(names, map(float, fields))))
-    rows = rows[1:]  # step 0 is the set-up
+    rows = [r for r in thermo_rows(out.splitlines()) if r["Step"] > 0]  # step 0: the set-up
 
     def total(name):
         return sum(r[name] for r in rows)

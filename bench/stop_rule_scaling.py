@@ -42,11 +42,13 @@ import argparse
 import csv
 import math
 import os
-import resource
 import subprocess
 import sys
 import tempfile
 import time
+
+from bench_util import (child_cpu, log_thermo_rows, loop_time, mean_se, read_runs,
+                        thermo_rows)
 
 FIRST_SEED = 4928
 SEED_STEP = 1117
@@ -80,11 +82,6 @@ def parse_setting(text):
     return words[0], words[1]
 
 
-def child_cpu():
-    r = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return r.ru_utime + r.ru_stime
-
-
 def run_lmp(lmp, text, tmp):
     path = os.path.join(tmp, "in.run")
     with open(path, "w") as f:
@@ -97,36 +94,6 @@ def run_lmp(lmp, text, tmp):
         tail = (proc.stdout + proc.stderr).decode(errors="replace")[-2000:]
         raise RuntimeError("lmp failed (rc %d): %s\n%s" % (proc.returncode, " ".join(cmd), tail))
     return log
-
-
-def thermo_rows(log):
-    """Every thermo row (dict column -> float) of a LAMMPS log, in order."""
-    rows, header = [], None
-    with open(log) as f:
-        for line in f:
-            words = line.split()
-            if words[:1] == ["Step"]:
-                header = words
-                continue
-            if line.startswith("Loop time of"):
-                header = None
-                continue
-            if header and len(words) == len(header):
-                try:
-                    rows.append(dict(zip(header, [float(w) for w in words])))
-                except ValueError:
-                    continue
-    return rows
-
-
-def mean_se(values):
-    n = len(values)
-    if n == 0:
-        return float("nan"), float("nan")
-    m = sum(values) / n
-    if n < 2:
-        return m, float("nan")
-    return m, math.sqrt(sum((v - m) ** 2 for v in values) / (n - 1) / n)
 
 
 # ---- taps mode --------------------------------------------------------------------------------
@@ -148,7 +115,7 @@ def run_taps(lmp, n, setting, seed, taps):
         cpu0 = child_cpu()
         log = run_lmp(lmp, text, tmp)
         cpu = child_cpu() - cpu0
-        rows = [r for r in thermo_rows(log) if r["Step"] > 0]
+        rows = [r for r in log_thermo_rows(log) if r["Step"] > 0]
     if not rows or int(rows[-1]["Step"]) != taps:
         raise RuntimeError("N %d %s seed %d: no thermo row for tap %d" % (n, setting, seed, taps))
     sweeps = [r["f_settle[1]"] for r in rows]
@@ -161,13 +128,6 @@ def run_taps(lmp, n, setting, seed, taps):
     for key, column in OBSERVABLES:
         row[key] = "%.6f" % last[column]
     return row
-
-
-def read_runs(path, taps):
-    if not os.path.exists(path):
-        return []
-    with open(path) as f:
-        return [r for r in csv.DictReader(f) if int(r["taps"]) == taps]
 
 
 def summarize(rows, reference, csv_path, out=sys.stdout):
@@ -250,13 +210,12 @@ def trajectory_input(n, seed, taps, sweeps):
 def read_trajectories(log):
     """(N, {step: thermo row}, last step) of a log of trajectory_input."""
     by_step, n = {}, None
-    for r in thermo_rows(log):
+    with open(log) as f:
+        lines = f.read().splitlines()
+    for r in thermo_rows(lines):
         if r["Step"] > 0 and r["f_settle[5]"] > 0:
             by_step[int(r["Step"])] = r
-    with open(log) as f:
-        for line in f:
-            if line.startswith("Loop time of"):
-                n = int(line.split()[-2])
+    n = loop_time(lines)[1]
     if not by_step or n is None:
         raise RuntimeError("%s: no trajectory" % log)
     return n, by_step, max(by_step)

@@ -26,11 +26,12 @@ import csv
 import math
 import os
 import re
-import resource
 import subprocess
 import sys
 import tempfile
 import time
+
+from bench_util import child_cpu, loop_time, mean_se, read_runs, thermo_rows
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DEFAULT_INPUT = os.path.join(ROOT, "examples", "tapping", "in.tapping_pbc")
@@ -84,29 +85,15 @@ def make_input(template_text, keywords, directory):
 
 
 def parse_log(path):
-    """Last thermo row (dict column -> float) and the loop wall time of a LAMMPS log."""
-    header, last, loop, sweeps = None, None, None, []
+    """Last thermo row (dict column -> float), the loop wall time and the sweeps of every tap of
+    a LAMMPS log."""
     with open(path) as f:
-        for line in f:
-            words = line.split()
-            if words[:1] == ["Step"]:
-                header = words
-                continue
-            if line.startswith("Loop time of"):
-                loop = float(words[3])
-                header = None
-                continue
-            if header and len(words) == len(header):
-                try:
-                    values = [float(w) for w in words]
-                except ValueError:
-                    continue
-                last = dict(zip(header, values))
-                if last.get("Step", 0) > 0 and "f_settle[1]" in last:
-                    sweeps.append(last["f_settle[1]"])
-    if last is None:
+        lines = f.read().splitlines()
+    rows = thermo_rows(lines)
+    if not rows:
         raise RuntimeError("no thermo table in %s" % path)
-    return last, loop, sweeps
+    sweeps = [r["f_settle[1]"] for r in rows if r.get("Step", 0) > 0 and "f_settle[1]" in r]
+    return rows[-1], loop_time(lines)[0], sweeps
 
 
 def run_one(lmp, template_text, keywords, taps, seed, eps):
@@ -132,34 +119,8 @@ def run_one(lmp, template_text, keywords, taps, seed, eps):
     return last, loop, sweeps
 
 
-def child_cpu():
-    r = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return r.ru_utime + r.ru_stime
-
-
-def mean_se(values):
-    n = len(values)
-    if n == 0:
-        return float("nan"), float("nan")
-    m = sum(values) / n
-    if n < 2:
-        return m, float("nan")
-    var = sum((v - m) ** 2 for v in values) / (n - 1)
-    return m, math.sqrt(var / n)
-
-
 RUN_FIELDS = ["setting", "seed", "taps", "eta", "check", "dmax", "order", "cpu_s", "cpu_per_tap",
               "loop_wall_s", "sweeps_per_tap_sampled", "phi_b", "phi_c", "z_mean"]
-
-
-def read_runs(path, taps):
-    rows = []
-    if os.path.exists(path):
-        with open(path) as f:
-            for row in csv.DictReader(f):
-                if int(row["taps"]) == taps:
-                    rows.append(row)
-    return rows
 
 
 def summarize(rows, settings_run, csv_path, out=sys.stdout):
