@@ -96,9 +96,49 @@ FixMCSettle::FixMCSettle(LAMMPS *lmp, int narg, char **arg) :
   extvector = 0;
   global_freq = 1;
   restart_global = 1;
+  // The decomposed scheme: moved spheres between rounds (forward communication), and each
+  // atom's round of the cycle travels with it when it migrates.
+  domain_settle = std::make_unique<tapmc::DomainSettle>(lmp, this);
+  comm_forward = tapmc::DomainSettle::kForwardPerAtom;
+  maxexchange = 1;
+  atom->add_callback(Atom::GROW);
+  FixMCSettle::grow_arrays(atom->nmax);
 }
 
-FixMCSettle::~FixMCSettle() = default;
+void FixMCSettle::grow_arrays(int nmax)
+{
+  domain_settle->grow_atoms(nmax);
+}
+
+void FixMCSettle::copy_arrays(int i, int j, int /*delflag*/)
+{
+  domain_settle->copy_atom(i, j);
+}
+
+int FixMCSettle::pack_exchange(int i, double *buf)
+{
+  return domain_settle->pack_atom(i, buf);
+}
+
+int FixMCSettle::unpack_exchange(int nlocal, double *buf)
+{
+  return domain_settle->unpack_atom(nlocal, buf);
+}
+
+int FixMCSettle::pack_forward_comm(int n, int *list, double *buf, int pbc_flag, int *pbc)
+{
+  return domain_settle->pack_moved(n, list, buf, pbc_flag, pbc);
+}
+
+void FixMCSettle::unpack_forward_comm(int n, int first, double *buf)
+{
+  domain_settle->unpack_moved(n, first, buf);
+}
+
+FixMCSettle::~FixMCSettle()
+{
+  atom->delete_callback(id, Atom::GROW);
+}
 
 // One table of keywords: name, number of values, what the values set. Ranges are checked once,
 // by the kernel (Settler::validate), after all keywords are read.
@@ -163,6 +203,13 @@ void FixMCSettle::parse_keywords(int narg, char **arg)
          stop_drift = rule == "drift";
        }},
       {"window", 1, [&](char **v) { drift_window = integer(v[0]); }},
+      {"verify", 1,
+       [&](char **v) {
+         const std::string value = v[0];
+         if (value != "yes" && value != "no")
+           error->all(FLERR, "fix mc/settle: verify = {} must be 'yes' or 'no'", value);
+         verify_ghosts = value == "yes";
+       }},
   };
   tapmc::parse_keywords(lmp, "fix mc/settle", table, 4, narg, arg);
 }
@@ -232,7 +279,7 @@ void FixMCSettle::init()
     const double step =
         dmax_given ? d_max : tapmc::defaults::kMaxStepOverRadius * group_radius_extreme(false);
     needed = tapmc::DomainSettle::ghost_cutoff(rmax_all, step);
-    if (!domain_settle) domain_settle = std::make_unique<tapmc::DomainSettle>(lmp);
+    domain_settle->set_verify(verify_ghosts);
   }
   if (comm->get_comm_cutoff() < needed) comm->cutghostuser = needed;
 }

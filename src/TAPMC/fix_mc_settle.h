@@ -38,6 +38,12 @@ class FixMCSettle : public Fix {
   double compute_vector(int) override;
   void write_restart(FILE *) override;
   void restart(char *) override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void grow_arrays(int) override;
+  void copy_arrays(int, int, int) override;
+  int pack_exchange(int, double *) override;
+  int unpack_exchange(int, double *) override;
+  void unpack_forward_comm(int, int, double *) override;
 
  private:
   // user settings (defaults in tapmc_defaults.h)
@@ -58,6 +64,7 @@ class FixMCSettle : public Fix {
   enum class Scheme { Auto, Gather, Domain } scheme;
   bool stop_drift = false;    // 'stop drift': the windowed drift rule (tapmc_stop_rule.h)
   long drift_window = 0;      // 'window': checks averaged by 'stop drift' (kSettleDriftWindow)
+  bool verify_ghosts = false; // 'verify': scheme domain checks every ghost after every round
 
   // per-tap diagnostics (global vector)
   double last_sweeps, last_acceptance, last_mean_z, last_hit_cap, last_trials, last_mean_z0;

@@ -8,12 +8,15 @@
 // (2 R_max + e + skin) of the sub-domain at the last borders(), and none has moved more than the
 // skin since (checked after every round, a rebuild otherwise), so every sphere in reach is
 // present. Those that move in the same round lie in other regions, at least 2 R_max away; the
-// others are at their current positions (forward communication after every round). Along a
+// others are at their current positions (after every round, every sphere that moved in it is
+// sent along LAMMPS's ghost swaps, which reach every copy of it, as a full forward
+// communication would: a swap forwards what it received from an earlier one). Along a
 // periodic axis with one rank the kernel takes the nearest image of the rank's own spheres, at
 // their current positions; their LAMMPS ghost copies across it, stale during a round, are left
 // out.
 #include "lammps_domain_settle.h"
 
+#include "lammps_compat.h"
 #include "lammps_relocate.h"
 #include "lammps_support.h"
 #include "tapmc_defaults.h"
@@ -37,8 +40,8 @@ using namespace LAMMPS_NS;
 
 namespace tapmc {
 
-DomainSettle::DomainSettle(LAMMPS *lmp)
-    : Pointers(lmp), mover_(std::make_unique<SphereMover>())
+DomainSettle::DomainSettle(LAMMPS *lmp, Fix *owner)
+    : Pointers(lmp), mover_(std::make_unique<SphereMover>()), owner_(owner)
 {
 }
 
@@ -120,6 +123,17 @@ void DomainSettle::select_ghosts()
   std::sort(ghost_index_.begin(), ghost_index_.end());  // memory order for the refreshes
 }
 
+// The kernel index of each LAMMPS ghost (-1: left out), and no atom marked as moved.
+void DomainSettle::index_ghosts()
+{
+  const int nlocal = atom->nlocal;
+  kernel_of_ghost_.assign(static_cast<std::size_t>(atom->nghost), -1);
+  for (std::size_t k = 0; k < ghost_index_.size(); ++k)
+    kernel_of_ghost_[ghost_index_[k] - nlocal] = nlocal + static_cast<int>(k);
+  fresh_.assign(static_cast<std::size_t>(nlocal + atom->nghost), 0);
+  refreshed_.clear();
+}
+
 // This rank's spheres and the selected ghosts into xyz_ / radius_ (the kernel's indices: owned
 // i, then ghost k at nlocal + k), with the box the kernel sees; returns their number.
 int DomainSettle::copy_spheres(const DomainSettleSetup &setup, SettleBox &box)
@@ -155,6 +169,7 @@ void DomainSettle::load(const DomainSettleSetup &setup, double d_max, double con
   const int nlocal = atom->nlocal;
   SettleBox box;
   const int n = copy_spheres(setup, box);
+  index_ghosts();
   mover_->reset(xyz_.data(), radius_.data(), n, box, d_max, contact_tol);
   double **x = atom->x;
 
@@ -164,6 +179,14 @@ void DomainSettle::load(const DomainSettleSetup &setup, double d_max, double con
   const tagint *tag = atom->tag;
   std::sort(owned_by_tag_.begin(), owned_by_tag_.end(),
             [tag](int a, int b) { return tag[a] < tag[b]; });
+  // Their positions in tag order too, so that the partition of every cycle reads memory in order.
+  tag_slot_.assign(static_cast<std::size_t>(nlocal), -1);
+  tag_xyz_.resize(3 * owned_by_tag_.size());
+  for (std::size_t j = 0; j < owned_by_tag_.size(); ++j) {
+    const int i = owned_by_tag_[j];
+    tag_slot_[i] = static_cast<int>(j);
+    for (int d = 0; d < 3; ++d) tag_xyz_[3 * j + d] = x[i][d];
+  }
   x_at_borders_.assign(xyz_.begin(), xyz_.begin() + 3 * static_cast<std::size_t>(nlocal));
   ghost_x_.assign(xyz_.begin() + 3 * static_cast<std::size_t>(nlocal), xyz_.end());
   // LAMMPS keeps owned coordinates unwrapped during the redeposition (its next pbc() wraps them
@@ -175,26 +198,81 @@ void DomainSettle::load(const DomainSettleSetup &setup, double d_max, double con
   max_shift_sq_ = 0.0;
 }
 
-// Rounds from_round .. rounds-1 of this cycle get the movable spheres now in their parts, in tag
-// order (LAMMPS's x holds every owned sphere's current position: publish_round copies them).
-void DomainSettle::partition(const RoundSchedule &schedule, int from_round)
+namespace {
+// Spheres (tag order) to the lists of their rounds: every list gets the sphere written at its
+// end, only its own list's end advances, so the counters stay in registers (no chain of loads
+// and stores through one counter when consecutive spheres share a round).
+template <int Rounds>
+void split_by_round(const RoundSchedule &schedule, const double *xyz, const int *sphere,
+                    std::size_t m, int *round_of, int *const *out, long *size)
 {
-  double **x = atom->x;
-  const int nlocal = atom->nlocal;
-  round_of_local_.resize(nlocal);
-  for (int i = 0; i < nlocal; ++i) round_of_local_[i] = schedule.round_of(x[i]);
-  round_members_.resize(schedule.rounds());
-  for (int r = from_round; r < schedule.rounds(); ++r) round_members_[r].clear();
-  for (int i : owned_by_tag_) {
-    const int r = round_of_local_[i];
-    if (r >= from_round) round_members_[r].push_back(i);
+  long end[Rounds] = {};
+  for (std::size_t j = 0; j < m; ++j, xyz += 3) {
+    const int r = schedule.round_of(xyz);
+    round_of[j] = r;
+    for (int q = 0; q < Rounds; ++q) {
+      out[q][end[q]] = sphere[j];
+      end[q] += q == r;
+    }
+  }
+  for (int q = 0; q < Rounds; ++q) size[q] = end[q];
+}
+}  // namespace
+
+// At the start of a cycle: every movable owned sphere to the round of the part it is in, in tag
+// order within each round. One branch-free pass over the positions in tag order.
+void DomainSettle::partition(const RoundSchedule &schedule)
+{
+  const int rounds = schedule.rounds();
+  const std::size_t m = owned_by_tag_.size();
+  member_store_.resize(static_cast<std::size_t>(rounds) * m + 1);  // + 1: the unused writes
+  tag_round_.resize(m);
+  int *out[RoundSchedule::kMaxRounds];
+  long size[RoundSchedule::kMaxRounds] = {};
+  for (int r = 0; r < rounds; ++r) out[r] = member_store_.data() + r * m;
+  const auto split = rounds == 1   ? split_by_round<1>
+                     : rounds == 2 ? split_by_round<2>
+                     : rounds == 4 ? split_by_round<4>
+                                   : split_by_round<8>;
+  split(schedule, tag_xyz_.data(), owned_by_tag_.data(), m, tag_round_.data(), out, size);
+  round_size_.assign(size, size + rounds);
+}
+
+// A ghost rebuild in the middle of a cycle: each sphere keeps the round it got at the start of
+// the cycle, also when it moves to another rank (the round travels with the atom through
+// LAMMPS's exchange), so no sphere is active twice in a cycle or skipped. Before distribute():
+void DomainSettle::hand_rounds_to_atoms()
+{
+  for (std::size_t j = 0; j < owned_by_tag_.size(); ++j)
+    cycle_round_[owned_by_tag_[j]] = tag_round_[j];
+}
+
+// After load(): the spheres whose round is `from_round` or later, in tag order.
+void DomainSettle::repartition_after_rebuild(int from_round)
+{
+  const int rounds = static_cast<int>(round_size_.size());
+  const std::size_t m = owned_by_tag_.size();
+  member_store_.resize(static_cast<std::size_t>(rounds) * m);
+  tag_round_.resize(m);
+  std::fill(round_size_.begin(), round_size_.end(), 0);
+  for (std::size_t j = 0; j < m; ++j) {
+    const int i = owned_by_tag_[j];
+    const int r = cycle_round_[i];
+    tag_round_[j] = r;
+    if (r >= from_round && r < rounds) member_store_[r * m + round_size_[r]++] = i;
   }
 }
 
-// After a round: the spheres that moved to LAMMPS, their ghost copies refreshed everywhere, the
-// ghosts that changed to the mover. Returns whether some sphere has moved more than the ghost
-// skin since borders() (ghosts must then be rebuilt): on all ranks when `vote` (one
-// non-blocking reduction, overlapped with the forward communication), else on this rank only.
+const int *DomainSettle::members(int round) const
+{
+  return member_store_.data() + static_cast<std::size_t>(round) * owned_by_tag_.size();
+}
+
+// After a round: the spheres that moved to LAMMPS, their ghost copies refreshed everywhere (only
+// theirs: the forward communication of the owner fix carries the moved spheres), the refreshed
+// ghosts to the mover. Returns whether some sphere has moved more than the ghost skin since
+// borders() (ghosts must then be rebuilt): on all ranks when `vote` (one non-blocking reduction,
+// overlapped with the forward communication), else on this rank only.
 bool DomainSettle::publish_round(double ghost_skin, bool vote)
 {
   double **x = atom->x;
@@ -214,21 +292,92 @@ bool DomainSettle::publish_round(double ghost_skin, bool vote)
       d2 += (v - b[d]) * (v - b[d]);
     }
     max_shift_sq_ = std::max(max_shift_sq_, d2);
+    fresh_[i] = 1;
+    double *t = &tag_xyz_[3 * static_cast<std::size_t>(tag_slot_[i])];  // moved: movable
+    for (int d = 0; d < 3; ++d) t[d] = x[i][d];
   }
   int need = max_shift_sq_ > ghost_skin * ghost_skin ? 1 : 0, any = need;
   MPI_Request request;
   if (vote) MPI_Iallreduce(&need, &any, 1, MPI_INT, MPI_MAX, world, &request);
-  comm->forward_comm();
-  const int nlocal = atom->nlocal, ng = static_cast<int>(ghost_index_.size());
-  double *known = ghost_x_.data();
-  for (int k = 0; k < ng; ++k, known += 3) {
-    const double *xg = x[ghost_index_[k]];
-    if (xg[0] == known[0] && xg[1] == known[1] && xg[2] == known[2]) continue;
-    for (int d = 0; d < 3; ++d) known[d] = xg[d];
-    mover_->set_position(nlocal + k, xg);
+  compat::forward_comm_fix(comm, owner_);
+  for (int i : moved_) fresh_[i] = 0;
+  const int nlocal = atom->nlocal;
+  for (int g : refreshed_) {
+    fresh_[g] = 0;
+    const int k = kernel_of_ghost_[g - nlocal];
+    if (k < 0) continue;
+    double *known = &ghost_x_[3 * static_cast<std::size_t>(k - nlocal)];
+    for (int d = 0; d < 3; ++d) known[d] = x[g][d];
+    mover_->set_position(k, x[g]);
   }
+  refreshed_.clear();
+  if (verify_) verify_ghosts();
   if (vote) MPI_Wait(&request, MPI_STATUS_IGNORE);
   return any != 0;
+}
+
+int DomainSettle::pack_moved(int n, const int *list, double *buf, int pbc_flag, const int *pbc)
+{
+  if (n == 0) return 0;
+  double shift[3] = {0.0, 0.0, 0.0};
+  if (pbc_flag)
+    for (int d = 0; d < 3; ++d) shift[d] = pbc[d] * domain->prd[d];
+  double **x = atom->x;
+  int m = 1, count = 0;
+  for (int place = 0; place < n; ++place) {
+    const int j = list[place];
+    if (!fresh_[j]) continue;
+    if (m + kForwardPerAtom > kForwardPerAtom * n) {  // nearly all moved: every position is shorter
+      m = 0;
+      buf[m++] = -1.0;
+      for (int q = 0; q < n; ++q)
+        for (int d = 0; d < 3; ++d) buf[m++] = x[list[q]][d] + shift[d];
+      return m;
+    }
+    buf[m++] = place;
+    for (int d = 0; d < 3; ++d) buf[m++] = x[j][d] + shift[d];
+    ++count;
+  }
+  buf[0] = count;
+  return m;
+}
+
+void DomainSettle::unpack_moved(int n, int first, const double *buf)
+{
+  if (n == 0) return;  // nothing was received: buf holds no message
+  double **x = atom->x;
+  const int count = static_cast<int>(buf[0]);
+  const auto take = [&](int g, const double *p) {
+    if (p[0] == x[g][0] && p[1] == x[g][1] && p[2] == x[g][2]) return;
+    for (int d = 0; d < 3; ++d) x[g][d] = p[d];
+    fresh_[g] = 1;
+    refreshed_.push_back(g);
+  };
+  if (count < 0) {
+    for (int q = 0; q < n; ++q) take(first + q, buf + 1 + 3 * q);
+    return;
+  }
+  for (int r = 0; r < count; ++r) {
+    const double *record = buf + 1 + kForwardPerAtom * r;
+    take(first + static_cast<int>(record[0]), record + 1);
+  }
+}
+
+// Every ghost the kernel sees must be at its owner's position (a full forward communication
+// tells); on any difference the run stops naming the sphere.
+void DomainSettle::verify_ghosts()
+{
+  comm->forward_comm();
+  double **x = atom->x;
+  for (std::size_t k = 0; k < ghost_index_.size(); ++k) {
+    const double *known = &ghost_x_[3 * k];
+    const int g = ghost_index_[k];
+    for (int d = 0; d < 3; ++d)
+      if (known[d] != x[g][d])
+        error->one(FLERR, "fix mc/settle verify: after round {} the ghost of atom {} on rank {} "
+                   "is at {} {} {}, its owner at {} {} {}", rounds_, atom->tag[g], comm->me,
+                   known[0], known[1], known[2], x[g][0], x[g][1], x[g][2]);
+  }
 }
 
 std::array<DecomposedAxis, 3> DomainSettle::decomposed_axes() const
@@ -326,23 +475,23 @@ void DomainSettle::run_cycle(Run &run)
   const std::uint64_t c = run.cycle++;
   schedule.start_cycle({run.cut_stream.uniform(3 * c), run.cut_stream.uniform(3 * c + 1),
                         run.cut_stream.uniform(3 * c + 2)});
-  partition(schedule, 0);
+  partition(schedule);
   for (int r = 0; r < schedule.rounds(); ++r) {
     if (run.rebuild_pending) {  // collective: decided by the reduction after the last round
+      hand_rounds_to_atoms();
       distribute();
       load(run.setup, run.params.d_max, run.params.contact_tol);
-      partition(schedule, r);
+      repartition_after_rebuild(r);
       ++ghost_rebuilds_;
       run.rebuild_pending = false;
       run.mark(timing_.rebuilds);
     }
-    const std::vector<int> &members = round_members_[r];
-    const long m = static_cast<long>(members.size());
+    const long m = round_size_[r];
     const long trials = round_trials(m, run.interval, run.movable_total);
     const MoveRegion region = schedule.region(r);
     long cursor = 0;
     guarded(lmp, "fix mc/settle", false, [&] {
-      mover_->run(members.data(), m, run.params.order, cursor, *sampler_, run.trial_stream,
+      mover_->run(members(r), m, run.params.order, cursor, *sampler_, run.trial_stream,
                   run.next_trial, trials, &region, run.tally);
     });
     run.next_trial += static_cast<std::uint64_t>(trials);

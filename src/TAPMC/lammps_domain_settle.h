@@ -1,7 +1,8 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 // The domain-decomposed redeposition behind fix mc/settle (scheme 'domain'): each rank moves
 // only the spheres it owns, seeing its neighbours' as LAMMPS ghosts, in the rounds of
-// tapmc_decomposition.h. Between rounds the moved ghosts are refreshed (forward communication);
+// tapmc_decomposition.h. Between rounds the moved ghosts are refreshed: a forward communication
+// through LAMMPS's ghost swaps that carries only the spheres that moved in the round;
 // when any sphere has moved more than the ghost skin since the ghosts were made, atoms migrate
 // and ghosts are rebuilt (exchange and borders). The <Z> check is one global reduction per check
 // interval. Memory per rank: its own spheres and their ghosts, O(N / ranks).
@@ -19,6 +20,10 @@
 #include <unordered_map>
 #include <vector>
 
+namespace LAMMPS_NS {
+class Fix;
+}
+
 namespace tapmc {
 
 struct DomainSettleSetup {
@@ -29,8 +34,39 @@ struct DomainSettleSetup {
 
 class DomainSettle : protected LAMMPS_NS::Pointers {
  public:
-  explicit DomainSettle(LAMMPS_NS::LAMMPS *lmp);
+  // owner: the fix whose forward communication carries the moved spheres; its comm_forward must
+  // be at least kForwardPerAtom, and its pack/unpack_forward_comm call pack_moved/unpack_moved.
+  DomainSettle(LAMMPS_NS::LAMMPS *lmp, LAMMPS_NS::Fix *owner);
   ~DomainSettle();
+
+  // Doubles per atom of the moved-sphere message: (place in the swap's list, x, y, z).
+  static constexpr int kForwardPerAtom = 4;
+  // One swap of the moved-sphere forward communication: the spheres of `list` that changed
+  // position in this round (a count, then one record each; or -1 then every position when that
+  // is shorter), shifted by the swap's periodic image; at most kForwardPerAtom * n doubles.
+  int pack_moved(int n, const int *list, double *buf, int pbc_flag, const int *pbc);
+  void unpack_moved(int n, int first, const double *buf);
+
+  // After every round, also compare each ghost the kernel sees with its owner's position (a full
+  // forward communication) and stop with an error on any difference: a check of the refresh, for
+  // tests and debugging ('verify yes' of fix mc/settle).
+  void set_verify(bool on) { verify_ = on; }
+
+  // Per-atom state that travels with the atoms when they migrate (the owner fix's grow_arrays,
+  // copy_arrays, pack_exchange and unpack_exchange call these): the round of the current cycle
+  // in which the sphere is active.
+  void grow_atoms(int nmax) { cycle_round_.resize(static_cast<std::size_t>(nmax), -1); }
+  void copy_atom(int from, int to) { cycle_round_[to] = cycle_round_[from]; }
+  int pack_atom(int i, double *buf) const
+  {
+    buf[0] = cycle_round_[i];
+    return 1;
+  }
+  int unpack_atom(int i, const double *buf)
+  {
+    cycle_round_[i] = static_cast<int>(buf[0]);
+    return 1;
+  }
 
   // Ghost cutoff the scheme needs: a contact (2 R_max), the move margin and the ghost skin.
   static double ghost_cutoff(double r_max, double d_max);
@@ -66,9 +102,13 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
   std::unique_ptr<TrialMoveSampler> sampler_;
   std::vector<double> xyz_, radius_, x_at_borders_;
   std::vector<double> ghost_x_;          // the ghosts' positions as the mover has them
-  std::vector<int> round_of_local_;      // round of each owned sphere this cycle
   std::vector<int> moved_;               // spheres moved in the last round
   std::vector<int> ghost_index_;         // LAMMPS index of the kernel's ghost k (index nlocal + k)
+  std::vector<int> kernel_of_ghost_;     // per LAMMPS ghost (index - nlocal): kernel index or -1
+  std::vector<unsigned char> fresh_;     // per LAMMPS atom: position changed in this round
+  std::vector<int> refreshed_;           // ghosts the round's forward communication updated
+  LAMMPS_NS::Fix *owner_;
+  bool verify_ = false;
   bool kernel_periodic_[3] = {false, false, false};  // periodic in the kernel (set_kernel_axes)
   std::unordered_map<LAMMPS_NS::tagint, int> owned_of_tag_;
   struct Frame {
@@ -77,7 +117,14 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
   };
   std::vector<Frame> frame_;  // per owned sphere and kernel-periodic axis (x, y)
   std::vector<int> owned_by_tag_;               // movable owned spheres, in tag order
-  std::vector<std::vector<int>> round_members_;  // per round of the cycle, in tag order
+  // The active spheres of each round of the cycle, in tag order: round r's are the first
+  // round_size_[r] entries of member_store_ from r * (movable owned spheres).
+  std::vector<int> member_store_;
+  std::vector<long> round_size_;
+  std::vector<int> cycle_round_;  // per LAMMPS atom: its round in this cycle (travels with it)
+  std::vector<double> tag_xyz_;   // positions of owned_by_tag_, in that order
+  std::vector<int> tag_round_;    // rounds of owned_by_tag_ in this cycle
+  std::vector<int> tag_slot_;     // per owned LAMMPS atom: its place in owned_by_tag_, or -1
   long ghost_rebuilds_ = 0, rounds_ = 0;
   Timing timing_;
   double max_shift_sq_ = 0.0;  // largest squared displacement of an owned sphere since borders
@@ -87,11 +134,16 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
   void run_cycle(Run &run);
   void set_kernel_axes();
   void select_ghosts();
+  void index_ghosts();
   int copy_spheres(const DomainSettleSetup &setup, SettleBox &box);
   int lammps_index(int kernel_index) const;
   void load(const DomainSettleSetup &setup, double d_max, double contact_tol);
-  void partition(const RoundSchedule &schedule, int from_round);
+  void partition(const RoundSchedule &schedule);
+  void hand_rounds_to_atoms();
+  void repartition_after_rebuild(int from_round);
+  const int *members(int round) const;
   bool publish_round(double ghost_skin, bool vote);
+  void verify_ghosts();
   std::array<DecomposedAxis, 3> decomposed_axes() const;
   double largest_radius(const DomainSettleSetup &setup) const;
 };

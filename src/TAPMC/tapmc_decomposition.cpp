@@ -60,16 +60,6 @@ void RoundSchedule::start_cycle(const std::array<double, 3> &uniform)
   }
 }
 
-int RoundSchedule::round_of(const double *xyz) const
-{
-  int round = 0;
-  for (int k = 0; k < split_count_; ++k) {
-    const int d = split_axis_[k];
-    round |= (xyz[d] >= cut_[d]) << k;
-  }
-  return round;
-}
-
 MoveRegion RoundSchedule::region(int round) const
 {
   MoveRegion r{{-kInf, -kInf, -kInf}, {kInf, kInf, kInf}};

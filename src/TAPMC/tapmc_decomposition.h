@@ -52,6 +52,7 @@ class RoundSchedule {
   // Narrowest sub-domain the scheme allows along a split axis: 2 contact + 4 margin.
   static double min_width(double contact, double margin);
 
+  static constexpr int kMaxRounds = 8;     // three split axes
   int rounds() const { return rounds_; }  // 2^(number of split axes)
 
   // A new cycle: the cut of split axis d at lo + contact + 2e + uniform[d] * (allowed range),
@@ -61,7 +62,15 @@ class RoundSchedule {
   // The round in which a sphere at xyz is active this cycle (bit k = upper part of the k-th
   // split axis). Spheres outside the sub-domain (moved there within their margin) count in the
   // part on their side.
-  int round_of(const double *xyz) const;
+  int round_of(const double *xyz) const
+  {
+    int round = 0;
+    for (int k = 0; k < split_count_; ++k) {
+      const int d = split_axis_[k];
+      round |= static_cast<int>(xyz[d] >= cut_[d]) << k;
+    }
+    return round;
+  }
 
   // Where the active spheres of `round` may go (unbounded along axes that are not split).
   MoveRegion region(int round) const;

@@ -2,7 +2,9 @@
 # fix mc/settle's domain-decomposed redeposition (scheme domain, the default on several ranks)
 # under mpirun: hard-sphere invariants after every tap by the independent all-pairs oracle on
 # 1, 2 and 4 ranks, x, y, x-y and z grids, PBC and FBC, polydisperse with fixed obstacles; atom
-# count conserved; deterministic for a fixed grid; exact restart; clear errors without a hang.
+# count conserved; every ghost the kernel sees checked against its owner after every round
+# ('verify yes'); every sphere active once per cycle across ghost rebuilds; deterministic for a
+# fixed grid; exact restart; clear errors without a hang.
 import os
 
 import numpy as np
@@ -11,7 +13,9 @@ import pytest
 from lmprun import min_gap, read_dump, run_lammps
 from test_mc_settle import CONTACT_TOL, SCENE, TAPPING, check_frames
 
-DOMAIN_TAPPING = TAPPING.replace("eta 1e-3", "eta 1e-3 scheme domain")
+# 'verify yes': after every round a full forward communication checks that the ghosts the kernel
+# sees (refreshed with the moved spheres only) are where their owners are; the run stops otherwise.
+DOMAIN_TAPPING = TAPPING.replace("eta 1e-3", "eta 1e-3 scheme domain verify yes")
 
 
 def scene(boundary, grid):
@@ -90,7 +94,7 @@ variable low atom z<1.0
 group bottom variable low
 group grains subtract all bottom
 fix tap grains tapdilate 0.05 floor 0.0
-fix settle grains mc/settle 5 floor 0.0 eta 1e-4 scheme domain
+fix settle grains mc/settle 5 floor 0.0 eta 1e-4 scheme domain verify yes
 dump d all custom 1 dump.taps id x y z radius
 dump_modify d sort id format float %.17g
 thermo_modify lost error
@@ -109,6 +113,28 @@ run 20
         assert gap >= -CONTACT_TOL * 1.3, f"step {step}: gap {gap} between {i} and {j}"
         for c in ("x", "y", "z"):
             np.testing.assert_array_equal(cols[c][bottom], first[c][bottom])
+
+
+def test_every_sphere_is_active_once_per_cycle_across_ghost_rebuilds():
+    # The check interval is one sweep, so a cycle of rounds activates every movable sphere once
+    # and makes exactly N trials: the trials of each tap are a whole number of sweeps, also in
+    # the taps whose cycles were cut by ghost rebuilds (an atom that migrates keeps its round).
+    taps = 6
+    script = scene("p p fm", "2 2 1") + DOMAIN_TAPPING.replace(
+        "thermo_style custom step atoms f_settle[1] f_settle[2] f_settle[3] f_settle[4]\n"
+        "thermo 10", "thermo_style custom step atoms f_settle[5] f_settle[7]\nthermo 1"
+    ).format(eps=0.05, seed=4928, every=taps, taps=taps)
+    rc, out, _ = run_lammps(script, nprocs=4)
+    assert rc == 0, out
+    lines = out.splitlines()
+    start = lines.index(next(line for line in lines if line.split()[:2] == ["Step", "Atoms"]))
+    rows = np.array([[float(v) for v in line.split()]
+                     for line in lines[start + 2:start + 2 + taps]])
+    n = rows[:, 1]
+    trials, rebuilds = rows[:, 2], rows[:, 3]
+    assert (rebuilds > 0).sum() >= 3, rows  # the falling lattice and the taps rebuild ghosts
+    np.testing.assert_array_equal(trials % n, 0)
+    assert (trials > 0).all()
 
 
 def test_gather_scheme_on_two_ranks_is_the_serial_trajectory():
@@ -139,13 +165,17 @@ def test_narrow_sub_domains_are_refused_with_the_needed_width(nprocs, grid, mess
         assert message in out, out
 
 
-def test_bad_scheme_is_refused():
-    script = scene("p p fm", "1 1 1") + TAPPING.replace("eta 1e-3", "eta 1e-3 scheme tiles") \
+@pytest.mark.parametrize("keywords,message", [
+    ("scheme tiles", "scheme = tiles must be 'auto' (gather on one rank, domain on several), "
+                     "'gather' or 'domain'"),
+    ("verify maybe", "fix mc/settle: verify = maybe must be 'yes' or 'no'"),
+])
+def test_bad_scheme_or_verify_is_refused(keywords, message):
+    script = scene("p p fm", "1 1 1") + TAPPING.replace("eta 1e-3", "eta 1e-3 " + keywords) \
         .format(eps=0.02, seed=1, every=1, taps=1)
     rc, out, _ = run_lammps(script)
     assert rc != 0
-    assert "scheme = tiles must be 'auto' (gather on one rank, domain on several), 'gather' " \
-           "or 'domain'" in out
+    assert message in out
 
 
 @pytest.mark.parametrize("atoms,message", [
