@@ -1,5 +1,5 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-// create_packing: runs the deposition kernel on every rank, creates each rank's own atoms.
+// create_packing: runs the deposition kernel on rank 0 and gives every rank its own atoms.
 #include "create_packing.h"
 
 #include "lammps_box.h"
@@ -26,6 +26,7 @@
 #include <limits>
 #include <mpi.h>
 #include <string>
+#include <vector>
 
 using namespace LAMMPS_NS;
 
@@ -262,14 +263,21 @@ void check_room(LAMMPS *lmp, const Request &req, const Plan &plan)
                     packing, plan.where, room, dd.z_floor, plan.top_name, dd.z_top);
 }
 
-// The highest centre; a shrink-wrapped top below it grows to hold the packing (returns whether
-// the box changed).
-bool grow_open_top(LAMMPS *lmp, const Plan &plan, const tapmc::Packing &packing, double &zmax)
+// The highest centre of the packing (on rank 0), known to every rank.
+double highest_centre(LAMMPS *lmp, const tapmc::Packing &packing)
 {
-  Domain *domain = lmp->domain;
-  zmax = -std::numeric_limits<double>::infinity();
+  double zmax = -std::numeric_limits<double>::infinity();
   const std::size_t n = packing.radius.size();
   for (std::size_t i = 0; i < n; ++i) zmax = std::max(zmax, packing.xyz[3 * i + 2]);
+  MPI_Bcast(&zmax, 1, MPI_DOUBLE, 0, lmp->world);
+  return zmax;
+}
+
+// A shrink-wrapped top below the highest centre grows to hold the packing (returns whether the
+// box changed).
+bool grow_open_top(LAMMPS *lmp, const Plan &plan, double zmax)
+{
+  Domain *domain = lmp->domain;
   if (plan.top_fixed || zmax < domain->boxhi[2]) return false;
   domain->boxhi[2] = zmax + plan.r_max;
   domain->set_initial_box();
@@ -279,7 +287,8 @@ bool grow_open_top(LAMMPS *lmp, const Plan &plan, const tapmc::Packing &packing,
 }
 
 // This rank's atoms (created atoms overwrite ghosts, as in create_atoms); tags follow the
-// deposition order after the largest existing tag.
+// deposition order after the largest existing tag. Rank 0 holds the packing and broadcasts it
+// piece by piece (kPackingBroadcastSpheres); every rank keeps the spheres of its sub-domain.
 void create_own_atoms(LAMMPS *lmp, const Request &req, const tapmc::Packing &packing,
                       bool box_changed)
 {
@@ -295,15 +304,29 @@ void create_own_atoms(LAMMPS *lmp, const Request &req, const tapmc::Packing &pac
   MPI_Allreduce(&max_tag, &max_tag_all, 1, MPI_LMP_TAGINT, MPI_MAX, world);
 
   const SubDomain mine = my_subdomain(lmp->domain, lmp->comm);
-  for (bigint i = 0; i < req.params.n; ++i) {
-    double x[3] = {packing.xyz[3 * i], packing.xyz[3 * i + 1], packing.xyz[3 * i + 2]};
-    if (!mine.owns(x)) continue;
-    atom->avec->create_atom(req.type, x);
-    const int m = atom->nlocal - 1;
-    const double r = packing.radius[i];
-    atom->radius[m] = r;
-    atom->rmass[m] = req.params.density * (4.0 / 3.0) * tapmc::kPi * r * r * r;
-    if (atom->tag_enable) atom->tag[m] = max_tag_all + static_cast<tagint>(i) + 1;
+  const bool root = lmp->comm->me == 0;
+  std::vector<double> piece;  // x, y, z, r of the spheres first .. first + count - 1
+  for (bigint first = 0; first < req.params.n; first += tapmc::defaults::kPackingBroadcastSpheres) {
+    const int count = static_cast<int>(
+        std::min<bigint>(tapmc::defaults::kPackingBroadcastSpheres, req.params.n - first));
+    piece.resize(4 * static_cast<std::size_t>(count));
+    if (root)
+      for (int k = 0; k < count; ++k) {
+        const std::size_t i = static_cast<std::size_t>(first) + k;
+        for (int d = 0; d < 3; ++d) piece[4 * k + d] = packing.xyz[3 * i + d];
+        piece[4 * k + 3] = packing.radius[i];
+      }
+    MPI_Bcast(piece.data(), 4 * count, MPI_DOUBLE, 0, world);
+    for (int k = 0; k < count; ++k) {
+      double x[3] = {piece[4 * k], piece[4 * k + 1], piece[4 * k + 2]};
+      if (!mine.owns(x)) continue;
+      atom->avec->create_atom(req.type, x);
+      const int m = atom->nlocal - 1;
+      const double r = piece[4 * k + 3];
+      atom->radius[m] = r;
+      atom->rmass[m] = req.params.density * (4.0 / 3.0) * tapmc::kPi * r * r * r;
+      if (atom->tag_enable) atom->tag[m] = max_tag_all + static_cast<tagint>(first + k) + 1;
+    }
   }
   atom->data_fix_compute_variable(nlocal_before, atom->nlocal);
 
@@ -357,8 +380,9 @@ void report(LAMMPS *lmp, const Request &req, const Plan &plan, const tapmc::Pack
 
 }  // namespace
 
-// parse -> plan the deposition domain -> deposit (the same on every rank) -> grow an open top
-// -> create this rank's atoms -> report.
+// parse -> plan the deposition domain -> deposit (on rank 0: the deposition is sequential, and
+// no other rank needs the whole packing) -> grow an open top -> create each rank's atoms ->
+// report.
 void CreatePacking::command(int narg, char **arg)
 {
   const Request req = parse_request(lmp, narg, arg);
@@ -371,14 +395,14 @@ void CreatePacking::command(int narg, char **arg)
   const std::string style = "create_packing (" + plan.where + ": " +
                             (plan.top_name.empty() ? std::string("open top") : plan.top_name) +
                             ")";
-  tapmc::guarded(lmp, style.c_str(), true, [&] {
+  tapmc::guarded_on_root(lmp, style.c_str(), [&] {
     packing = tapmc::deposit_packing(req.params.n, req.params.radii(), plan.dd,
                                      static_cast<std::uint64_t>(req.seed));
   });
   const double t_deposit = MPI_Wtime() - t_start;
 
-  double zmax = 0.0;
-  const bool box_changed = grow_open_top(lmp, plan, packing, zmax);
+  const double zmax = highest_centre(lmp, packing);
+  const bool box_changed = grow_open_top(lmp, plan, zmax);
   create_own_atoms(lmp, req, packing, box_changed);
   report(lmp, req, plan, packing, zmax, t_deposit);
 }

@@ -1,10 +1,11 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-// Helpers shared by the TAPMC styles: exact seed parsing, the guard that turns a kernel
+// Helpers shared by the TAPMC styles: exact seed parsing, the guards that turn a kernel
 // exception into a LAMMPS error, and atom sorting for runs without a pair style.
 #ifndef TAPMC_LAMMPS_SUPPORT_H
 #define TAPMC_LAMMPS_SUPPORT_H
 
 #include "atom.h"
+#include "comm.h"
 #include "error.h"
 #include "force.h"
 #include "lammps.h"
@@ -60,6 +61,31 @@ void guarded(LAMMPS_NS::LAMMPS *lmp, const char *style, bool same_on_all_ranks, 
     lmp->error->all(FLERR, "{}: {}", style, message);
   else
     lmp->error->one(FLERR, "{}: {}", style, message);
+}
+
+// Runs a kernel call on rank 0 only (its result stays there); an exception becomes a LAMMPS error
+// on every rank, naming the style (rank 0 broadcasts the message: a clean collective stop).
+// Collective.
+template <class Call>
+void guarded_on_root(LAMMPS_NS::LAMMPS *lmp, const char *style, Call &&call)
+{
+  std::string message;
+  if (lmp->comm->me == 0) {
+    try {
+      call();
+    } catch (const std::exception &e) {
+      message = e.what();
+      if (message.empty()) message = "unknown internal error";
+    } catch (...) {
+      message = "unknown internal error";
+    }
+  }
+  int length = static_cast<int>(message.size());
+  MPI_Bcast(&length, 1, MPI_INT, 0, lmp->world);
+  if (length == 0) return;
+  message.resize(static_cast<std::size_t>(length));
+  MPI_Bcast(&message[0], length, MPI_CHAR, 0, lmp->world);
+  lmp->error->all(FLERR, "{}: {}", style, message);
 }
 
 // Without a pair style LAMMPS has no neighbour cutoff to size its sort bins, so it disables

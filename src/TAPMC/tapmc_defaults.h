@@ -108,6 +108,9 @@ constexpr int kDepositionMaxAttempts = 8;
 constexpr double kDepositionBulkMarginOverRadius = 6.0;
 // Mass density given to created spheres (rmass = density * 4/3 pi r^3), as create_atoms does.
 constexpr double kDepositionDensity = 1.0;
+// create_packing deposits on rank 0 and broadcasts the spheres in pieces of this many (4 doubles
+// each: 2 MiB), so that no other rank ever holds more than a piece of the packing.
+constexpr long kPackingBroadcastSpheres = 65536;
 
 // ---- redeposition: fix mc/settle and its kernel (tapmc_settle.h) -------------------------
 // eta (no value in the paper): the redeposition stops when <Z> changes by less than eta

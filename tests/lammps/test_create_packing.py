@@ -1,6 +1,7 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-# create_packing through lmp_tapmc: the same packing on 1, 2 and 4 ranks (also decomposed in z),
-# every atom once, no overlaps, walls / regions / shrink-wrapped tops, and bad input.
+# create_packing through lmp_tapmc: the same packing on 1, 2 and 4 ranks (also decomposed in z,
+# and beyond one broadcast piece), every atom once, no overlaps, walls / regions /
+# shrink-wrapped tops, and bad input (also a deposition that fails on rank 0 of several).
 import os
 
 import numpy as np
@@ -58,6 +59,27 @@ def test_same_packing_on_1_2_4_ranks(nprocs, processors):
     np.testing.assert_array_equal(parallel["id"], np.arange(1, 801))
     for c in ("x", "y", "z", "radius", "type"):
         np.testing.assert_array_equal(parallel[c], serial[c])
+
+
+# Rank 0 deposits and broadcasts pieces of 65536 spheres (kPackingBroadcastSpheres): 70000
+# spheres take two pieces, the second one partial.
+def test_packing_larger_than_one_broadcast_piece_is_the_same_on_2_ranks():
+    script = packing_script(n=70000, L=60, H=40, args="floor 0.0").replace(
+        "create_packing 70000 1 1.0", "create_packing 70000 1 0.5")
+    _, _, _, serial = run_packing(script)
+    _, _, _, parallel = run_packing(script, nprocs=2)
+    np.testing.assert_array_equal(parallel["id"], np.arange(1, 70001))
+    for c in ("x", "y", "z", "radius"):
+        np.testing.assert_array_equal(parallel[c], serial[c])
+
+
+def test_deposition_failing_on_rank_0_stops_every_rank_with_its_message():
+    # The room check passes (random close packing would fit), the deposition does not.
+    rc, out, _ = run_lammps(HEADER.format(boundary="p p ff", L=16, H=10, ntypes=1) +
+                            "create_packing 380 1 1.0 5", nprocs=2, timeout=120)
+    assert rc != 0
+    message = "rests with its top at z = 10.037706, above the top limit z_top = 10.000000"
+    assert out.count(message) == 1, out
 
 
 def test_periodic_packing_is_valid_and_reports_phi():
