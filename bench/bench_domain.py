@@ -10,13 +10,15 @@ timings compare equal work:
   1 rank, scheme gather  (the serial kernel: the reference of the speed-up)
   1 rank, scheme domain  (the decomposed code path on one rank: its own overhead)
   2 ranks, scheme domain (processors * * 1)
+Each configuration runs --repeats times and its fastest run is reported (the machine is shared:
+the fastest run is the least disturbed one), with the spread (slowest / fastest - 1).
 Printed: s per tap, trial moves per second per core, speed-up of 2 ranks over the serial
 kernel, peak RSS of the largest process, and for scheme domain the time per phase (trial moves,
 ghost refreshes, reductions, rebuilds) from the fix's output vector. A model of the time per
-round then extrapolates the communication cost to 64 and 1024 ranks.
+round then extrapolates the communication and synchronisation cost to 64 and 1024 ranks.
 
   /usr/bin/python3 bench/bench_domain.py --lmp build/lmp_tapmc [--sizes 4096,32768,262144]
-      [--sweeps 1000] [--taps 2] [--quick] [--csv FILE]
+      [--sweeps 1000] [--taps 2] [--repeats 3] [--quick] [--csv FILE]
 """
 import argparse
 import csv
@@ -113,18 +115,44 @@ def ghosts_per_rank(n, side, ranks_per_axis, cutoff):
     return per_area * ((w + 2 * cutoff) ** 2 - w ** 2)
 
 
-def model(t_trial, n, side, ranks, cutoff, latency=2e-6, bandwidth=10e9, reduce_latency=2e-6):
+def expected_max_normal(p):
+    """E[max of p independent standard normal variables] (numerical integral)."""
+    step, total = 1e-3, 0.0
+    for k in range(-8000, 8001):
+        x = k * step
+        pdf = math.exp(-0.5 * x * x) / math.sqrt(2 * math.pi)
+        cdf = 0.5 * (1 + math.erf(x / math.sqrt(2)))
+        total += x * p * pdf * cdf ** (p - 1) * step
+    return total
+
+
+def model(t_trial, n, side, ranks, cutoff, jitter, acceptance=0.012, latency=2e-6,
+          bandwidth=10e9, reduce_latency=2e-6):
     """Seconds per check (one sweep) per rank of the decomposed scheme on an x-y grid of
-    `ranks` ranks: trial moves + 4 rounds x (4 forward-communication swaps + the ghosts'
-    bytes + one allreduce). Network constants: an InfiniBand-class cluster (assumed, stated in
-    bench/README.md); t_trial measured here."""
+    `ranks` ranks: trial moves + 4 rounds x (4 forward-communication swaps carrying the moved
+    spheres of the ghost shell + one allreduce + waiting for the slowest rank).
+    - moved spheres: each sphere is active in one round per cycle and moves with probability
+      `acceptance` (1.2 %: a tap of examples/tapping at the default eta), 32 bytes each;
+    - waiting: a round's trial time fluctuates between ranks with standard deviation
+      jitter x (its mean), and every rank waits for the slowest of `ranks`;
+    - network constants: an InfiniBand-class cluster (assumed, stated in bench/README.md);
+      t_trial and jitter measured here."""
     per_axis = math.sqrt(ranks)
     rounds = 4
     compute = n / ranks * t_trial
     ghosts = ghosts_per_rank(n, side, per_axis, cutoff)
-    per_round = 4 * latency + 24 * ghosts / bandwidth + 2 * math.log2(max(ranks, 2)) * \
-        reduce_latency
+    moved_bytes = 32 * ghosts * acceptance / rounds
+    wait = jitter * compute / rounds * expected_max_normal(ranks)
+    per_round = 4 * latency + moved_bytes / bandwidth + \
+        2 * math.log2(max(ranks, 2)) * reduce_latency + wait
     return compute, rounds * per_round, side / per_axis
+
+
+def fastest(runs):
+    """The fastest of repeated runs, with the spread of their loop times."""
+    best = min(runs, key=lambda r: r["loop"])
+    best["spread"] = max(r["loop"] for r in runs) / best["loop"] - 1
+    return best
 
 
 def main():
@@ -133,37 +161,46 @@ def main():
     ap.add_argument("--sizes", default="4096,32768,262144")
     ap.add_argument("--sweeps", type=int, default=1000, help="sweeps per tap (fixed work)")
     ap.add_argument("--taps", type=int, default=2)
+    ap.add_argument("--repeats", type=int, default=3, help="runs per configuration (fastest kept)")
     ap.add_argument("--quick", action="store_true", help="sizes 4096,32768, 50 sweeps")
     ap.add_argument("--workdir", default=None, help="packing cache (default: a temp dir)")
     ap.add_argument("--csv", default=None)
     a = ap.parse_args()
     lmp = os.path.abspath(a.lmp)
     if a.quick:
-        a.sizes, a.sweeps = "4096,32768", 50
+        a.sizes, a.sweeps, a.repeats = "4096,32768", 50, 1
+    if a.repeats < 1:
+        sys.exit(f"--repeats = {a.repeats} must be at least 1")
     workdir = a.workdir or tempfile.mkdtemp(prefix="tapmc_bench_domain_")
     os.makedirs(workdir, exist_ok=True)
     cpu = next((line.split(":", 1)[1].strip() for line in open("/proc/cpuinfo")
                 if line.startswith("model name")), "unknown")
-    print(f"# bench_domain: {a.sweeps} sweeps per tap, {a.taps} taps of eps 0.01, CPU {cpu}, "
-          f"{os.cpu_count()} cores")
-    header = ["N", "ranks", "scheme", "s_per_tap", "Mmoves_per_s_per_core", "speedup_vs_serial",
-              "peak_rss_MiB", "rounds_per_tap", "ghost_rebuilds", "s_trials", "s_ghost_refresh",
-              "s_reductions", "s_rebuilds"]
+    print(f"# bench_domain: {a.sweeps} sweeps per tap, {a.taps} taps of eps 0.01, fastest of "
+          f"{a.repeats} run(s), CPU {cpu}, {os.cpu_count()} cores")
+    header = ["N", "ranks", "scheme", "s_per_tap", "spread", "Mmoves_per_s_per_core",
+              "speedup_vs_serial", "peak_rss_MiB", "rounds_per_tap", "ghost_rebuilds", "s_trials",
+              "s_ghost_refresh", "s_reductions", "s_rebuilds"]
     print(" ".join(f"{h:>12}" for h in header))
     results = []
-    t_trial = None
+    t_trial = jitter = None
     for n in [int(s) for s in a.sizes.split(",")]:
         data = make_packing(lmp, n, workdir)
         serial = None
         for ranks, scheme in ((1, "gather"), (1, "domain"), (2, "domain")):
-            r = tap_run(lmp, data, ranks, scheme, a.sweeps, a.taps, workdir)
+            r = fastest([tap_run(lmp, data, ranks, scheme, a.sweeps, a.taps, workdir)
+                         for _ in range(a.repeats)])
             per_tap = r["loop"] / r["taps"]
             rate = r["trials"] / r["loop"] / ranks / 1e6
             if scheme == "gather":
                 serial = per_tap
             if ranks == 1 and scheme == "domain" and r["trials"]:
                 t_trial = r["phases"][0] / r["trials"]
-            row = [n, ranks, scheme, per_tap, rate, serial / per_tap, r["rss"],
+            if ranks == 2 and r["rounds"]:
+                # All of rank 0's refresh time counted as waiting for the other rank (an upper
+                # bound: it includes the forward communication): E[wait] = sigma E[max of 2].
+                round_trials = r["phases"][0] / r["rounds"]
+                jitter = r["phases"][1] / r["rounds"] / expected_max_normal(2) / round_trials
+            row = [n, ranks, scheme, per_tap, r["spread"], rate, serial / per_tap, r["rss"],
                    r["rounds"] / r["taps"], r["rebuilds"]] + r["phases"]
             results.append(row)
             print(" ".join(f"{v:>12.4g}" if isinstance(v, float) else f"{v:>12}" for v in row),
@@ -176,17 +213,18 @@ def main():
 
     # Communication model: where the decomposed scheme stops scaling.
     cutoff = 2 * R + 4 * 0.2 * R + R  # 2 R_max + margin (4 d_max, d_max = R/5) + skin R
-    print(f"\n# model (x-y grid, 4 rounds per sweep, t_trial = {t_trial * 1e9:.1f} ns measured; "
+    print(f"\n# model (x-y grid, 4 rounds per sweep; measured at the largest N: t_trial = "
+          f"{t_trial * 1e9:.1f} ns, round-time jitter {100 * jitter:.1f} % (sd / mean); "
           "network: 2 us latency, 10 GB/s, allreduce 2 log2(P) x 2 us)")
-    print(f"{'N':>9} {'ranks':>6} {'width/R':>8} {'s/sweep compute':>16} {'s/sweep comm':>13} "
+    print(f"{'N':>9} {'ranks':>6} {'width/R':>8} {'s/sweep compute':>16} {'s/sweep comm+wait':>17} "
           f"{'efficiency':>10} {'speed-up':>9}")
     for n, ranks in ((409600, 64), (409600, 1024), (4096 * 64, 64), (4096 * 1024, 1024),
                      (32768 * 1024, 1024)):
         side = side_of(n)
-        compute, comm, width = model(t_trial, n, side, ranks, cutoff)
+        compute, comm, width = model(t_trial, n, side, ranks, cutoff, jitter)
         eff = compute / (compute + comm)
         fits = width >= (2 * 2 * R + 4 * 4 * 0.2 * R)
-        print(f"{n:>9} {ranks:>6} {width / R:>8.1f} {compute:>16.3g} {comm:>13.3g} "
+        print(f"{n:>9} {ranks:>6} {width / R:>8.1f} {compute:>16.3g} {comm:>17.3g} "
               f"{eff:>10.2f} {ranks * eff:>9.1f}{'' if fits else '  (sub-domain too narrow)'}")
 
 
