@@ -3,8 +3,8 @@
 # under mpirun: hard-sphere invariants after every tap by the independent all-pairs oracle on
 # 1, 2 and 4 ranks, x, y, x-y and z grids, PBC and FBC, polydisperse with fixed obstacles; atom
 # count conserved; every ghost the kernel sees checked against its owner after every round
-# ('verify yes'); every sphere active once per cycle across ghost rebuilds; deterministic for a
-# fixed grid; exact restart; clear errors without a hang.
+# ('verify yes'); every sphere active once per cycle across ghost rebuilds; the scale example at
+# the paper's size; deterministic for a fixed grid; exact restart; clear errors without a hang.
 import os
 
 import numpy as np
@@ -135,6 +135,25 @@ def test_every_sphere_is_active_once_per_cycle_across_ghost_rebuilds():
     assert (rebuilds > 0).sum() >= 3, rows  # the falling lattice and the taps rebuild ghosts
     np.testing.assert_array_equal(trials % n, 0)
     assert (trials > 0).all()
+
+
+def test_scale_example_runs_at_paper_size_on_two_ranks():
+    # examples/scale/in.paper_x100 with its switches set to the paper's own size (4096 spheres,
+    # L = 32 R): the input runs as documented, with the domain scheme's columns.
+    source = os.environ.get("TAPMC_SOURCE_DIR", "../..")
+    with open(os.path.join(source, "examples", "scale", "in.paper_x100")) as f:
+        script = f.read()
+    rc, out, _ = run_lammps(script, nprocs=2, variables={"N": 4096, "L": 32})
+    assert rc == 0, out
+    assert "Created 4096 spheres by sequential deposition" in out
+    assert "1 by 2 by 1 MPI processor grid" in out or "2 by 1 by 1 MPI processor grid" in out
+    lines = out.splitlines()
+    head = next(k for k, line in enumerate(lines) if line.split()[:2] == ["Step", "c_phi[1]"])
+    names = lines[head].split()
+    tap = dict(zip(names, (float(v) for v in lines[head + 2].split())))
+    assert tap["Step"] == 1 and tap["f_settle[1]"] > 100  # sweeps at the default eta
+    assert tap["f_settle[8]"] == 2 * tap["f_settle[1]"]  # 2 rounds per sweep on 2 ranks
+    assert 0.5 < tap["c_phi[1]"] < 0.6  # Phi_b
 
 
 def test_gather_scheme_on_two_ranks_is_the_serial_trajectory():
