@@ -179,22 +179,27 @@ void DomainSettle::load(const DomainSettleSetup &setup, double d_max, double con
   const tagint *tag = atom->tag;
   std::sort(owned_by_tag_.begin(), owned_by_tag_.end(),
             [tag](int a, int b) { return tag[a] < tag[b]; });
-  // Their positions in tag order too, so that the partition of every cycle reads memory in order.
-  tag_slot_.assign(static_cast<std::size_t>(nlocal), -1);
+  // LAMMPS keeps owned coordinates unwrapped during the redeposition (its next pbc() wraps them
+  // and counts the image flags): x = kernel position + (wraps since now) * L + (x - kernel x now).
+  owned_.resize(static_cast<std::size_t>(nlocal));
+  for (int i = 0; i < nlocal; ++i) {
+    Owned &o = owned_[i];
+    for (int d = 0; d < 3; ++d) o.x_at_borders[d] = x[i][d];
+    for (int d = 0; d < 2; ++d) {
+      o.image[d] = mover_->image_shift(i, d);
+      o.offset[d] = x[i][d] - mover_->position(i)[d];
+    }
+    o.tag_slot = -1;
+  }
+  // The movable spheres' positions in tag order too, so that the partition of every cycle reads
+  // memory in order.
   tag_xyz_.resize(3 * owned_by_tag_.size());
   for (std::size_t j = 0; j < owned_by_tag_.size(); ++j) {
     const int i = owned_by_tag_[j];
-    tag_slot_[i] = static_cast<int>(j);
+    owned_[i].tag_slot = static_cast<int>(j);
     for (int d = 0; d < 3; ++d) tag_xyz_[3 * j + d] = x[i][d];
   }
-  x_at_borders_.assign(xyz_.begin(), xyz_.begin() + 3 * static_cast<std::size_t>(nlocal));
   ghost_x_.assign(xyz_.begin() + 3 * static_cast<std::size_t>(nlocal), xyz_.end());
-  // LAMMPS keeps owned coordinates unwrapped during the redeposition (its next pbc() wraps them
-  // and counts the image flags): x = kernel position + (wraps since now) * L + (x - kernel x now).
-  frame_.resize(2 * static_cast<std::size_t>(nlocal));
-  for (int i = 0; i < nlocal; ++i)
-    for (int d = 0; d < 2; ++d)
-      frame_[2 * i + d] = {mover_->image_shift(i, d), x[i][d] - mover_->position(i)[d]};
   max_shift_sq_ = 0.0;
 }
 
@@ -278,29 +283,26 @@ bool DomainSettle::publish_round(double ghost_skin, bool vote)
   double **x = atom->x;
   mover_->take_moved(moved_);
   const double *length = domain->prd;
-  for (int i : moved_) {
-    const double *p = mover_->position(i);
-    const double *b = &x_at_borders_[3 * static_cast<std::size_t>(i)];
+  for (const SphereMover::Moved &m : moved_) {
+    const int i = m.index;
+    const Owned &o = owned_[i];
     double d2 = 0.0;
     for (int d = 0; d < 3; ++d) {
-      double v = p[d];
-      if (kernel_periodic_[d]) {
-        const Frame &f = frame_[2 * static_cast<std::size_t>(i) + d];
-        v += (mover_->image_shift(i, d) - f.image) * length[d] + f.offset;
-      }
+      double v = m.x[d];
+      if (d < 2 && kernel_periodic_[d]) v += (m.image[d] - o.image[d]) * length[d] + o.offset[d];
       x[i][d] = v;
-      d2 += (v - b[d]) * (v - b[d]);
+      d2 += (v - o.x_at_borders[d]) * (v - o.x_at_borders[d]);
     }
     max_shift_sq_ = std::max(max_shift_sq_, d2);
     fresh_[i] = 1;
-    double *t = &tag_xyz_[3 * static_cast<std::size_t>(tag_slot_[i])];  // moved: movable
+    double *t = &tag_xyz_[3 * static_cast<std::size_t>(o.tag_slot)];  // moved: movable
     for (int d = 0; d < 3; ++d) t[d] = x[i][d];
   }
   int need = max_shift_sq_ > ghost_skin * ghost_skin ? 1 : 0, any = need;
   MPI_Request request;
   if (vote) MPI_Iallreduce(&need, &any, 1, MPI_INT, MPI_MAX, world, &request);
   compat::forward_comm_fix(comm, owner_);
-  for (int i : moved_) fresh_[i] = 0;
+  for (const SphereMover::Moved &m : moved_) fresh_[m.index] = 0;
   const int nlocal = atom->nlocal;
   for (int g : refreshed_) {
     fresh_[g] = 0;

@@ -100,9 +100,9 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
  private:
   std::unique_ptr<SphereMover> mover_;
   std::unique_ptr<TrialMoveSampler> sampler_;
-  std::vector<double> xyz_, radius_, x_at_borders_;
+  std::vector<double> xyz_, radius_;
   std::vector<double> ghost_x_;          // the ghosts' positions as the mover has them
-  std::vector<int> moved_;               // spheres moved in the last round
+  std::vector<SphereMover::Moved> moved_;  // spheres moved in the last round
   std::vector<int> ghost_index_;         // LAMMPS index of the kernel's ghost k (index nlocal + k)
   std::vector<int> kernel_of_ghost_;     // per LAMMPS ghost (index - nlocal): kernel index or -1
   std::vector<unsigned char> fresh_;     // per LAMMPS atom: position changed in this round
@@ -111,11 +111,14 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
   bool verify_ = false;
   bool kernel_periodic_[3] = {false, false, false};  // periodic in the kernel (set_kernel_axes)
   std::unordered_map<LAMMPS_NS::tagint, int> owned_of_tag_;
-  struct Frame {
-    int image;      // the kernel's wrap count of the sphere at load()
-    double offset;  // LAMMPS coordinate - kernel coordinate at load()
+  // What publish_round needs of an owned sphere that moved, in one record.
+  struct Owned {
+    double x_at_borders[3];  // LAMMPS position at load()
+    double offset[2];        // x, y: LAMMPS coordinate - kernel coordinate at load()
+    int image[2];            // x, y: the kernel's wrap count at load()
+    int tag_slot;            // place in owned_by_tag_, or -1 (not movable)
   };
-  std::vector<Frame> frame_;  // per owned sphere and kernel-periodic axis (x, y)
+  std::vector<Owned> owned_;  // per owned LAMMPS atom
   std::vector<int> owned_by_tag_;               // movable owned spheres, in tag order
   // The active spheres of each round of the cycle, in tag order: round r's are the first
   // round_size_[r] entries of member_store_ from r * (movable owned spheres).
@@ -124,7 +127,6 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
   std::vector<int> cycle_round_;  // per LAMMPS atom: its round in this cycle (travels with it)
   std::vector<double> tag_xyz_;   // positions of owned_by_tag_, in that order
   std::vector<int> tag_round_;    // rounds of owned_by_tag_ in this cycle
-  std::vector<int> tag_slot_;     // per owned LAMMPS atom: its place in owned_by_tag_, or -1
   long ghost_rebuilds_ = 0, rounds_ = 0;
   Timing timing_;
   double max_shift_sq_ = 0.0;  // largest squared displacement of an owned sphere since borders

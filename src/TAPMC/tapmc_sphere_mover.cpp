@@ -598,12 +598,16 @@ void dispatch_axes(SphereMover::State &st, const RunArgs &a)
 
 }  // namespace
 
-void SphereMover::take_moved(std::vector<int> &moved)
+void SphereMover::take_moved(std::vector<Moved> &moved)
 {
   State &st = *state_;
   moved.clear();
   for (int s : st.moved_slots) {
-    moved.push_back(st.external_of[s]);
+    const double *p = st.at(s);
+    moved.push_back({st.external_of[s],
+                     {st.image[2 * static_cast<std::size_t>(s)],
+                      st.image[2 * static_cast<std::size_t>(s) + 1]},
+                     {p[0], p[1], p[2]}});
     st.moved_flag[s] = 0;
   }
   st.moved_slots.clear();

@@ -65,8 +65,15 @@ class SphereMover {
            long trials, const MoveRegion *region, TrialTally &tally);
 
   // The spheres (caller indices) that accepted a move in run() since the previous call, each
-  // once, into `moved` (cleared first): a caller mirroring positions copies only these.
-  void take_moved(std::vector<int> &moved);
+  // once, into `moved` (cleared first), with their positions and image shifts (as position()
+  // and image_shift() give them, read while the record is at hand): a caller mirroring
+  // positions copies only these.
+  struct Moved {
+    int index;
+    int image[2];
+    double x[3];
+  };
+  void take_moved(std::vector<Moved> &moved);
 
   // Diagnostics: full builds and local list updates since reset; times the list rows were
   // widened (a list outgrew its row); mean list length now.

@@ -415,10 +415,11 @@ TEST(SphereMover, ArgumentsAreChecked)
 }
 
 // take_moved() lists exactly the spheres whose positions changed since the previous call, each
-// once, and obstacles placed with set_position are not among them.
+// once, with their positions and image shifts; obstacles placed with set_position are not among
+// them. Periodic sides, so that moves wrap.
 TEST(SphereMover, TakeMovedListsExactlyTheSpheresThatMoved)
 {
-  Scene s = random_loose(150, 7.0, 0.5, false, false, 9, 0.2);
+  Scene s = random_loose(150, 7.0, 0.5, true, false, 9, 0.2);
   std::vector<int> candidates;
   for (int i = 0; i < s.size(); i += 2) candidates.push_back(i);
   const double d_max = 0.1;
@@ -428,8 +429,9 @@ TEST(SphereMover, TakeMovedListsExactlyTheSpheresThatMoved)
   const CounterRandom rng(4, 2);
   TrialTally tally;
   long cursor = 0;
-  std::vector<int> moved;
+  std::vector<SphereMover::Moved> moved;
   std::uint64_t first = 0;
+  bool wrapped = false;
   for (int block = 0; block < 6; ++block) {
     std::vector<double> before(3 * static_cast<std::size_t>(s.size()));
     for (int i = 0; i < s.size(); ++i)
@@ -442,17 +444,26 @@ TEST(SphereMover, TakeMovedListsExactlyTheSpheresThatMoved)
     const double lifted[3] = {odd[0], odd[1], odd[2] + 5.0};
     mover.set_position(1, lifted);
     mover.take_moved(moved);
-    std::vector<int> changed;
+    std::vector<int> changed, listed;
     for (int i = 0; i < s.size(); ++i) {
       if (i == 1) continue;
       const double *p = mover.position(i);
       if (p[0] != before[3 * i] || p[1] != before[3 * i + 1] || p[2] != before[3 * i + 2])
         changed.push_back(i);
     }
-    std::sort(moved.begin(), moved.end());
-    EXPECT_EQ(moved, changed) << "block " << block;
+    for (const SphereMover::Moved &m : moved) {
+      listed.push_back(m.index);
+      for (int d = 0; d < 3; ++d) EXPECT_EQ(m.x[d], mover.position(m.index)[d]);
+      for (int d = 0; d < 2; ++d) {
+        EXPECT_EQ(m.image[d], mover.image_shift(m.index, d));
+        wrapped = wrapped || m.image[d] != 0;
+      }
+    }
+    std::sort(listed.begin(), listed.end());
+    EXPECT_EQ(listed, changed) << "block " << block;
     if (block == 0) EXPECT_FALSE(moved.empty());
   }
+  EXPECT_TRUE(wrapped);  // some move crossed a periodic side
   mover.take_moved(moved);
   EXPECT_TRUE(moved.empty());
 }
