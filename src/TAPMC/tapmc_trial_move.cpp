@@ -59,6 +59,7 @@ ThetaSampler::ThetaSampler(double theta0) : theta0_(theta0)
     tail_[k] = flat_acceptance < defaults::kThetaFlatMinAcceptance && rate_[k] > 0.0 &&
                tail_acceptance > flat_acceptance;
     acceptance_[k] = std::min(1.0, tail_[k] ? tail_acceptance : flat_acceptance);
+    first_squeeze_[k] = tail_[k] ? -1.0 : squeeze_[k];  // uniforms lie in (0, 1)
   }
 }
 
@@ -225,8 +226,34 @@ void TrialMoveSampler::draw_batch(const CounterRandom &rng, std::uint64_t first,
     positions[count + k] = base + kFirstThetaDraw;
   }
   rng.blocks(positions, 2 * count, blocks);
+  // Lane-parallel pass over the draws that need no rejection step: the pick's first word is
+  // accepted, the theta strip is flat and its first point passes the squeeze test (most
+  // draws). finish() redoes the others from the same blocks, so every draw is bit-identical to
+  // draw().
+  // 64-bit lanes throughout, so that a vector holds 8 draws (bytes would make it 64).
+  std::uint64_t pick[kBatchMax], slow[kBatchMax];
+  double dx[kBatchMax], dy[kBatchMax], dz[kBatchMax];
+  for (int k = 0; k < count; ++k) {
+    const RandomBlock &main = blocks[k], &theta_first = blocks[count + k];
+    const std::uint64_t product = static_cast<std::uint64_t>(main[0]) * n_pick;
+    const bool pick_done = static_cast<std::uint32_t>(product) >= n_pick;  // bounded_index
+    pick[k] = product >> 32;
+    const double d = d_max_ * uniform_open_from_u32(main[1]);
+    const int sector = static_cast<int>(main[2] >> 24);
+    const double phi_offset = static_cast<double>(main[2] & 0xFFFFFFu) * (kTwoPi * 0x1.0p-32);
+    double theta, sin_phi, cos_phi, sin_theta, cos_theta;
+    phi_table_.rotate(sector, phi_offset, sin_phi, cos_phi);
+    const bool theta_done = theta_.first_attempt(main[3], theta_first[0], theta_first[1], theta);
+    theta_table_.sincos(theta, sin_theta, cos_theta);
+    const double d_sin = d * sin_theta;
+    dx[k] = d_sin * cos_phi;
+    dy[k] = d_sin * sin_phi;
+    dz[k] = -d * std::max(cos_theta, 0.0);
+    slow[k] = !(pick_done && theta_done) ? 1u : 0u;
+  }
   for (int k = 0; k < count; ++k)
-    out[k] = finish(rng, first + k, n_pick, blocks[k], blocks[count + k]);
+    out[k] = slow[k] ? finish(rng, first + k, n_pick, blocks[k], blocks[count + k])
+                     : TrialDraw{static_cast<std::uint32_t>(pick[k]), {dx[k], dy[k], dz[k]}};
 }
 
 TrialMoveSampler::Polar TrialMoveSampler::draw_polar(const CounterRandom &rng,

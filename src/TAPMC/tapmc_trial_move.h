@@ -79,6 +79,18 @@ class ThetaSampler {
     }
   }
 
+  // The first attempt of sample() when it is the last: a flat strip whose squeeze test accepts
+  // the point, which is most draws. Returns false where sample() would go on (a tail strip, or
+  // a point the squeeze test does not accept; theta is then meaningless). The same arithmetic
+  // as sample() and no branch, so that a batch of draws runs lane-parallel.
+  bool first_attempt(std::uint32_t strip_word, std::uint32_t w_pos, std::uint32_t w_accept,
+                     double &theta) const
+  {
+    const unsigned strip = strip_word >> 24;
+    theta = std::min(edge_[strip] + width_[strip] * uniform_open_from_u32(w_pos), kThetaMax);
+    return uniform_open_from_u32(w_accept) <= first_squeeze_[strip];
+  }
+
   // Fraction of first attempts that need exp (diagnostic of the squeeze efficiency).
   double exp_fraction() const;
   // Smallest acceptance probability of a proposal over the strips (exact, from the CDF).
@@ -100,6 +112,7 @@ class ThetaSampler {
   bool scaled_;
   std::array<double, kStrips + 1> edge_{};
   std::array<double, kStrips> width_{}, squeeze_{}, rate_{}, span_{}, acceptance_{};
+  std::array<double, kStrips> first_squeeze_{};  // squeeze_ of flat strips, -1 for tail strips
   std::array<bool, kStrips> tail_{};
 };
 

@@ -1,6 +1,7 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 // Tests of the biased trial displacement (paper eq. 1): bounds and exact distributions.
 #include "mc_test_stats.h"
+#include "tapmc_defaults.h"
 #include "tapmc_trial_move.h"
 
 #include <gtest/gtest.h>
@@ -173,20 +174,33 @@ TEST(TrialMove, BadParametersThrowNamingTheParameter)
   EXPECT_EQ(message(0.1, kPi / 2), "");
 }
 
-// The batched draw (lane-parallel random blocks) is bit-identical to the one-by-one draw.
+// The batched draw (lane-parallel random blocks, a lane-parallel pass over the draws that need
+// no rejection step, finish() for the others) is bit-identical to the one-by-one draw: theta0
+// with and without tail strips, picks with frequent rejections (n = 3 2^30: a quarter of the
+// first words is rejected), no pick, and batch sizes that leave partial vectors.
 TEST(TrialMove, BatchDrawEqualsSingleDraws)
 {
-  const TrialMoveSampler sampler(0.2, 0.3);
-  const CounterRandom rng(31, 32);
-  std::vector<TrialDraw> batch(TrialMoveSampler::kBatchMax);
-  for (std::uint64_t first : {0ull, 5ull, 1ull << 33}) {
-    sampler.draw_batch(rng, first, TrialMoveSampler::kBatchMax, 1000, batch.data());
-    for (int k = 0; k < TrialMoveSampler::kBatchMax; ++k) {
-      const TrialDraw one = sampler.draw(rng, first + k, 1000);
-      EXPECT_EQ(one.pick, batch[k].pick);
-      EXPECT_EQ(one.move.dx, batch[k].move.dx);
-      EXPECT_EQ(one.move.dy, batch[k].move.dy);
-      EXPECT_EQ(one.move.dz, batch[k].move.dz);
+  for (double theta0 : {defaults::kThetaWidth, 0.3, 0.05, kPi / 2}) {
+    const TrialMoveSampler sampler(0.2, theta0);
+    if (theta0 == 0.05) EXPECT_GT(sampler.theta_sampler().tail_strips(), 0);
+    const CounterRandom rng(31, 32);
+    std::vector<TrialDraw> batch(TrialMoveSampler::kBatchMax);
+    for (std::uint32_t n_pick : {1000u, 3u << 30, 0u}) {
+      for (int count : {TrialMoveSampler::kBatchMax, 37, 1}) {
+        for (std::uint64_t first : {0ull, 5ull, 1ull << 33}) {
+          for (int repeat = 0; repeat < 40; ++repeat) {
+            const std::uint64_t start = first + static_cast<std::uint64_t>(repeat) * 1000;
+            sampler.draw_batch(rng, start, count, n_pick, batch.data());
+            for (int k = 0; k < count; ++k) {
+              const TrialDraw one = sampler.draw(rng, start + k, n_pick);
+              ASSERT_EQ(one.pick, batch[k].pick) << theta0 << " " << n_pick << " " << start + k;
+              ASSERT_EQ(one.move.dx, batch[k].move.dx) << theta0 << " " << start + k;
+              ASSERT_EQ(one.move.dy, batch[k].move.dy) << theta0 << " " << start + k;
+              ASSERT_EQ(one.move.dz, batch[k].move.dz) << theta0 << " " << start + k;
+            }
+          }
+        }
+      }
     }
   }
 }
