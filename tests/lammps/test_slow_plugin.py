@@ -130,15 +130,25 @@ def measurements(log_text):
     return [names[k] for k in keep], table[:, keep]
 
 
+def lmp_tapmc_run(workdir, ranks):
+    write_inputs(workdir, lib="unused")
+    cmd = [LMP, "-in", "in.body", "-var", "taps", str(TAPS), "-log", "log.lammps", "-nocite"]
+    rc, out = run(MPIRUN + ["-np", str(ranks)] + cmd if ranks > 1 else cmd, cwd=workdir)
+    assert rc == 0, out
+    return measurements(out), final_state(workdir)
+
+
 @pytest.fixture(scope="module")
 def reference(tmp_path_factory):
     """The example under lmp_tapmc (Debian's LAMMPS, styles registered by the launcher)."""
-    workdir = str(tmp_path_factory.mktemp("reference"))
-    write_inputs(workdir, lib="unused")
-    rc, out = run([LMP, "-in", "in.body", "-var", "taps", str(TAPS), "-log", "log.lammps",
-                   "-nocite"], cwd=workdir)
-    assert rc == 0, out
-    return measurements(out), final_state(workdir)
+    return lmp_tapmc_run(str(tmp_path_factory.mktemp("reference")), 1)
+
+
+@pytest.fixture(scope="module")
+def reference_two_ranks(tmp_path_factory):
+    """The same on 2 ranks: fix mc/settle's decomposed redeposition (scheme auto), whose
+    trajectory is fixed by the seed and the processor grid."""
+    return lmp_tapmc_run(str(tmp_path_factory.mktemp("reference2")), 2)
 
 
 def test_plugin_lmp_follows_the_lmp_tapmc_trajectory(plugin, reference, tmp_path):
@@ -159,9 +169,10 @@ def test_plugin_lmp_follows_the_lmp_tapmc_trajectory(plugin, reference, tmp_path
     np.testing.assert_array_equal(atoms, ref_atoms)
 
 
-def test_plugin_lmp_under_mpirun(plugin, reference, tmp_path):
-    """`plugin load` registers the styles on every rank; every rank performs the same
-    redeposition of all spheres, so the end state is the serial one bit for bit (the printed
+def test_plugin_lmp_under_mpirun(plugin, reference_two_ranks, tmp_path):
+    """`plugin load` registers the styles on every rank, and the decomposed redeposition (its
+    forward communication of the moved spheres, the per-atom round that travels with migrating
+    atoms) follows on the plugin LAMMPS exactly the 2-rank trajectory of lmp_tapmc (the printed
     measurements are sums over ranks, which may round differently in the last bits)."""
     prefix, lib = plugin
     write_inputs(str(tmp_path), lib)
@@ -170,7 +181,7 @@ def test_plugin_lmp_under_mpirun(plugin, reference, tmp_path):
                   cwd=str(tmp_path))
     assert rc == 0, out
     (names, table), (box, atoms) = measurements(out), final_state(str(tmp_path))
-    (ref_names, ref_table), (ref_box, ref_atoms) = reference
+    (ref_names, ref_table), (ref_box, ref_atoms) = reference_two_ranks
     assert names == ref_names
     np.testing.assert_allclose(table, ref_table, rtol=1e-12, atol=0)
     np.testing.assert_array_equal(box, ref_box)
