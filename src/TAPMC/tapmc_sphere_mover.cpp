@@ -31,14 +31,18 @@
 //
 // Hot loop. Picks are drawn a batch ahead (TrialMoveSampler::draw_batch); the picked spheres'
 // records and rows are prefetched 16 trials ahead, the records of the first few entries of their
-// lists 8 trials ahead (the test exits at the first overlap, after 2.2 entries on average). The
-// loop is compiled once per combination of mono/poly, periodic axes and region (dispatched once
-// per call), with the overlap arithmetic of tapmc_contact.h and tapmc_settle_geometry.h.
+// lists 8 trials ahead (the test exits at the first overlap, after 2.2 entries on average).
+// Records, rows and cells live in large-page storage (tapmc_memory.h): with 4 KiB pages the
+// random picks of a 262144-sphere bed miss the TLB, and huge pages made that bed 1.3-2.3 times
+// faster (bench_mc_settle --scaling, alternating runs). The loop is compiled once per
+// combination of mono/poly, periodic axes and region (dispatched once per call), with the
+// overlap arithmetic of tapmc_contact.h and tapmc_settle_geometry.h.
 #include "tapmc_sphere_mover.h"
 
 #include "tapmc_cell_grid.h"
 #include "tapmc_contact.h"
 #include "tapmc_defaults.h"
+#include "tapmc_memory.h"
 #include "tapmc_settle_geometry.h"
 
 #include <algorithm>
@@ -91,7 +95,7 @@ struct SphereMover::State {
   // One 64-byte record (one cache line) per slot: x, y, z, R, then the reference position
   // (wrapped into the box): a trial reads the picked sphere's line only, and the neighbours'
   // first four doubles.
-  std::vector<double> record_storage;
+  LargeVector<double> record_storage;
   double *records = nullptr;  // record_storage aligned to 64 bytes
   double *at(int s) { return records + static_cast<std::size_t>(s) * kRecord; }
   const double *at(int s) const { return records + static_cast<std::size_t>(s) * kRecord; }
@@ -102,12 +106,12 @@ struct SphereMover::State {
 
   // Lists: row s = rows[s * stride ...]: count, then the slots of the neighbours.
   int stride = 0;
-  std::vector<int> rows;
+  LargeVector<int> rows;
 
   // Grid of the reference positions: cell c = cells[c * cell_stride ...]: count, then slots.
   std::array<GridAxis, 3> axes;
   int cell_stride = 0;
-  std::vector<int> cells;
+  LargeVector<int> cells;
 
   // Scratch of reset / build, kept to avoid reallocation.
   std::vector<double> wrapped;
@@ -206,7 +210,7 @@ struct SphereMover::State {
   void widen_rows()
   {
     const int wider = stride + defaults::kListCapacityStep;
-    std::vector<int> grown(static_cast<std::size_t>(n) * wider);
+    LargeVector<int> grown(static_cast<std::size_t>(n) * wider);
     for (int s = 0; s < n; ++s)
       std::copy(row(s), row(s) + row(s)[0] + 1, grown.data() + static_cast<std::size_t>(s) * wider);
     rows.swap(grown);
@@ -219,7 +223,7 @@ struct SphereMover::State {
   {
     const int wider = cell_stride + kCellCapacityStep;
     const std::size_t count = cells.size() / cell_stride;
-    std::vector<int> grown(count * wider);
+    LargeVector<int> grown(count * wider);
     for (std::size_t c = 0; c < count; ++c)
       std::copy(cell_row(c), cell_row(c) + cell_row(c)[0] + 1, grown.data() + c * wider);
     cells.swap(grown);

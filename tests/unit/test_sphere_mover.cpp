@@ -6,6 +6,7 @@
 #include "settle_test_scenes.h"
 #include "tapmc_contact.h"
 #include "tapmc_defaults.h"
+#include "tapmc_memory.h"
 #include "tapmc_sphere_mover.h"
 
 #include <gtest/gtest.h>
@@ -13,6 +14,7 @@
 #include <algorithm>
 
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -467,3 +469,24 @@ TEST(SphereMover, TakeMovedListsExactlyTheSpheresThatMoved)
   mover.take_moved(moved);
   EXPECT_TRUE(moved.empty());
 }
+
+// The kernel's large arrays: blocks of a large page or more start on a large-page boundary (so
+// that the kernel can map them with huge pages), smaller ones come from the plain allocator;
+// both hold and copy their elements as a std::vector does.
+TEST(LargePageAllocator, LargeBlocksStartOnALargePageAndBehaveAsVectors)
+{
+  LargeVector<int> big(kLargePageBytes / sizeof(int) + 3, 7), small(100, 3);
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(big.data()) % kLargePageBytes, 0u);
+  big[big.size() - 1] = 11;
+  LargeVector<int> copy = big;
+  EXPECT_EQ(copy.size(), big.size());
+  EXPECT_EQ(copy.back(), 11);
+  EXPECT_EQ(copy.front(), 7);
+  copy.swap(small);
+  EXPECT_EQ(copy.size(), 100u);
+  EXPECT_EQ(small.back(), 11);
+  small.resize(10);
+  small.shrink_to_fit();
+  EXPECT_EQ(small.size(), 10u);
+}
+
