@@ -182,25 +182,29 @@ double TrialMoveSampler::theta_from(const CounterRandom &rng, std::uint64_t tria
   });
 }
 
-TrialDraw TrialMoveSampler::finish(const CounterRandom &rng, std::uint64_t trial,
-                                   std::uint32_t n_pick, const RandomBlock &main,
-                                   const RandomBlock &theta_first) const
+// d from main[1], phi from main[2], theta given: the displacement of eq. 1.
+inline Displacement TrialMoveSampler::displacement(const RandomBlock &main, double theta) const
 {
-  TrialDraw out{};
-  out.pick = n_pick ? sample_pick(rng, trial, main[0], n_pick) : 0u;
   const double d = d_max_ * uniform_open_from_u32(main[1]);
   // phi = 2 pi main[2] / 2^32 = sector (top 8 bits) + offset (low 24 bits), both exact.
   const int sector = static_cast<int>(main[2] >> 24);
   const double phi_offset = static_cast<double>(main[2] & 0xFFFFFFu) * (kTwoPi * 0x1.0p-32);
   double sin_phi, cos_phi, sin_theta, cos_theta;
   phi_table_.rotate(sector, phi_offset, sin_phi, cos_phi);
-  theta_table_.sincos(theta_from(rng, trial, main[3], theta_first), sin_theta, cos_theta);
+  theta_table_.sincos(theta, sin_theta, cos_theta);
   // theta <= pi/2, so cos(theta) >= 0 up to rounding (~1e-17 at pi/2): the clamp keeps
   // dz <= 0 exactly, moves never go up.
   const double d_sin = d * sin_theta;
-  out.move.dx = d_sin * cos_phi;
-  out.move.dy = d_sin * sin_phi;
-  out.move.dz = -d * std::max(cos_theta, 0.0);
+  return {d_sin * cos_phi, d_sin * sin_phi, -d * std::max(cos_theta, 0.0)};
+}
+
+TrialDraw TrialMoveSampler::finish(const CounterRandom &rng, std::uint64_t trial,
+                                   std::uint32_t n_pick, const RandomBlock &main,
+                                   const RandomBlock &theta_first) const
+{
+  TrialDraw out{};
+  out.pick = n_pick ? sample_pick(rng, trial, main[0], n_pick) : 0u;
+  out.move = displacement(main, theta_from(rng, trial, main[3], theta_first));
   return out;
 }
 
@@ -236,19 +240,15 @@ void TrialMoveSampler::draw_batch(const CounterRandom &rng, std::uint64_t first,
   for (int k = 0; k < count; ++k) {
     const RandomBlock &main = blocks[k], &theta_first = blocks[count + k];
     const std::uint64_t product = static_cast<std::uint64_t>(main[0]) * n_pick;
-    const bool pick_done = static_cast<std::uint32_t>(product) >= n_pick;  // bounded_index
+    // bounded_index's acceptance without its rare threshold test (left to finish())
+    const bool pick_done = static_cast<std::uint32_t>(product) >= n_pick;
     pick[k] = product >> 32;
-    const double d = d_max_ * uniform_open_from_u32(main[1]);
-    const int sector = static_cast<int>(main[2] >> 24);
-    const double phi_offset = static_cast<double>(main[2] & 0xFFFFFFu) * (kTwoPi * 0x1.0p-32);
-    double theta, sin_phi, cos_phi, sin_theta, cos_theta;
-    phi_table_.rotate(sector, phi_offset, sin_phi, cos_phi);
+    double theta;
     const bool theta_done = theta_.first_attempt(main[3], theta_first[0], theta_first[1], theta);
-    theta_table_.sincos(theta, sin_theta, cos_theta);
-    const double d_sin = d * sin_theta;
-    dx[k] = d_sin * cos_phi;
-    dy[k] = d_sin * sin_phi;
-    dz[k] = -d * std::max(cos_theta, 0.0);
+    const Displacement move = displacement(main, theta);
+    dx[k] = move.dx;
+    dy[k] = move.dy;
+    dz[k] = move.dz;
     slow[k] = !(pick_done && theta_done) ? 1u : 0u;
   }
   for (int k = 0; k < count; ++k)

@@ -206,6 +206,7 @@ class TrialMoveSampler {
                    const RandomBlock &main, const RandomBlock &theta_first) const;
   double theta_from(const CounterRandom &rng, std::uint64_t trial, std::uint32_t strip_word,
                     const RandomBlock &theta_first) const;
+  Displacement displacement(const RandomBlock &main, double theta) const;
 
   double d_max_;
   ThetaSampler theta_;
