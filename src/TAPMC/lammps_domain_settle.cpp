@@ -20,6 +20,7 @@
 #include "lammps_relocate.h"
 #include "lammps_support.h"
 #include "tapmc_defaults.h"
+#include "tapmc_math.h"
 #include "tapmc_random.h"
 #include "tapmc_stop_rule.h"
 
@@ -199,7 +200,6 @@ void DomainSettle::load(const DomainSettleSetup &setup, double d_max, double con
     owned_[i].tag_slot = static_cast<int>(j);
     for (int d = 0; d < 3; ++d) tag_xyz_[3 * j + d] = x[i][d];
   }
-  ghost_x_.assign(xyz_.begin() + 3 * static_cast<std::size_t>(nlocal), xyz_.end());
   max_shift_sq_ = 0.0;
 }
 
@@ -307,10 +307,7 @@ bool DomainSettle::publish_round(double ghost_skin, bool vote)
   for (int g : refreshed_) {
     fresh_[g] = 0;
     const int k = kernel_of_ghost_[g - nlocal];
-    if (k < 0) continue;
-    double *known = &ghost_x_[3 * static_cast<std::size_t>(k - nlocal)];
-    for (int d = 0; d < 3; ++d) known[d] = x[g][d];
-    mover_->set_position(k, x[g]);
+    if (k >= 0) mover_->set_position(k, x[g]);
   }
   refreshed_.clear();
   if (verify_) verify_ghosts();
@@ -366,19 +363,24 @@ void DomainSettle::unpack_moved(int n, int first, const double *buf)
 }
 
 // Every ghost the kernel sees must be at its owner's position (a full forward communication
-// tells); on any difference the run stops naming the sphere.
+// tells; the kernel holds it wrapped into the box along kernel-periodic axes); on any
+// difference the run stops naming the sphere.
 void DomainSettle::verify_ghosts()
 {
   comm->forward_comm();
   double **x = atom->x;
+  const int nlocal = atom->nlocal;
   for (std::size_t k = 0; k < ghost_index_.size(); ++k) {
-    const double *known = &ghost_x_[3 * k];
     const int g = ghost_index_[k];
+    const double *seen = mover_->position(nlocal + static_cast<int>(k));
+    double truth[3];
     for (int d = 0; d < 3; ++d)
-      if (known[d] != x[g][d])
-        error->one(FLERR, "fix mc/settle verify: after round {} the ghost of atom {} on rank {} "
-                   "is at {} {} {}, its owner at {} {} {}", rounds_, atom->tag[g], comm->me,
-                   known[0], known[1], known[2], x[g][0], x[g][1], x[g][2]);
+      truth[d] = kernel_periodic_[d] ? wrap_periodic(x[g][d], domain->boxlo[d], domain->boxhi[d])
+                                     : x[g][d];
+    if (seen[0] != truth[0] || seen[1] != truth[1] || seen[2] != truth[2])
+      error->one(FLERR, "fix mc/settle verify: after round {} the ghost of atom {} on rank {} "
+                 "is at {} {} {} in the kernel, its owner at {} {} {}", rounds_, atom->tag[g],
+                 comm->me, seen[0], seen[1], seen[2], truth[0], truth[1], truth[2]);
   }
 }
 

@@ -101,7 +101,6 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
   std::unique_ptr<SphereMover> mover_;
   std::unique_ptr<TrialMoveSampler> sampler_;
   std::vector<double> xyz_, radius_;
-  std::vector<double> ghost_x_;          // the ghosts' positions as the mover has them
   std::vector<SphereMover::Moved> moved_;  // spheres moved in the last round
   std::vector<int> ghost_index_;         // LAMMPS index of the kernel's ghost k (index nlocal + k)
   std::vector<int> kernel_of_ghost_;     // per LAMMPS ghost (index - nlocal): kernel index or -1
