@@ -29,6 +29,13 @@ def run_lammps(script, nprocs=1, workdir=None, variables=None, timeout=600):
     return proc.returncode, proc.stdout, workdir
 
 
+def dump_atoms_text(workdir, name="final.dump"):
+    """The atom lines of a one-frame dump, as text: two runs that should have ended in the same
+    state compare equal bit for bit (write the dump with format float %.17g)."""
+    with open(os.path.join(workdir, name)) as f:
+        return f.read().split("ITEM: ATOMS")[1]
+
+
 def read_dump(path):
     """All frames of a LAMMPS text dump written with `dump custom ... id ... ` and
     `dump_modify sort id`. Returns a list of (timestep, box (3x2 array), boundary strings,

@@ -10,7 +10,7 @@ import os
 import numpy as np
 import pytest
 
-from lmprun import min_gap, read_dump, run_lammps
+from lmprun import dump_atoms_text, min_gap, read_dump, run_lammps
 from test_mc_settle import CONTACT_TOL, SCENE, TAPPING, check_frames
 
 # 'verify yes': after every round a full forward communication checks that the ghosts the kernel
@@ -75,11 +75,7 @@ thermo_modify lost error
     second = ("processors 2 1 1\nread_restart mid.restart\n" + common + "run 3\n" + final)
     rc, out, _ = run_lammps(second, nprocs=2, workdir=wd)
     assert rc == 0, out
-
-    def load(d):
-        with open(os.path.join(d, "final.dump")) as f:
-            return f.read().split("ITEM: ATOMS")[1]
-    assert load(wd_full) == load(wd)
+    assert dump_atoms_text(wd_full) == dump_atoms_text(wd)
 
 
 def test_polydisperse_with_fixed_obstacles_on_two_by_two_ranks():

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace tapmc {
@@ -22,6 +23,13 @@ struct Scene {
 };
 
 // Square box [0, L)^2 in x, y, floor at z = 0; periodic sides or walls on the box faces.
+// A scene variant as failure messages name it: "PBC poly seed 3", "walls mono seed 1".
+inline std::string variant_name(bool periodic, bool poly, std::uint64_t seed)
+{
+  return std::string(periodic ? "PBC" : "walls") + (poly ? " poly" : " mono") + " seed " +
+         std::to_string(seed);
+}
+
 inline SettleBox make_box(double side, bool periodic, double height = 0.0)
 {
   SettleBox b{};

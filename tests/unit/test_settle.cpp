@@ -45,8 +45,7 @@ TEST(Settle, NoViolationsAfterSettlingAllBoundariesAndRadii)
   for (int periodic = 0; periodic < 2; ++periodic)
     for (int poly = 0; poly < 2; ++poly)
       for (std::uint64_t seed = 1; seed <= 4; ++seed) {
-        const std::string what = std::string(periodic ? "PBC" : "FBC") + (poly ? " poly" : " mono") +
-                                 " seed " + std::to_string(seed);
+        const std::string what = variant_name(periodic, poly, seed);
         Scene s = dilute_lattice(250, 9.0, 0.5, periodic, poly, seed);
         const std::vector<double> start = s.xyz;
         Settler settler;

@@ -6,6 +6,7 @@
 #include "settle_test_scenes.h"
 #include "tapmc_contact.h"
 #include "tapmc_defaults.h"
+#include "tapmc_math.h"
 #include "tapmc_memory.h"
 #include "tapmc_sphere_mover.h"
 
@@ -41,25 +42,10 @@ class AllPairsMover {
   {
     for (int d = 0; d < 3; ++d) xyz_[3 * i + d] = p[d];
     for (int d = 0; d < 2; ++d)
-      if (box_.periodic[d]) {
-        const double lo = box_.lo[d], hi = box_.hi[d], length = hi - lo;
-        double x = p[d];
-        int image = 0;
-        if (!(x >= lo && x < hi)) {  // wrap_into_box of the kernel
-          const double k = std::floor((x - lo) / length);
-          x -= k * length;
-          image += static_cast<int>(k);
-          if (x < lo) {
-            x += length;
-            image -= 1;
-          } else if (x >= hi) {
-            x -= length;
-            image += 1;
-          }
-          if (!(x >= lo && x < hi)) x = lo;
-        }
-        xyz_[3 * i + d] = x;
-        image_[2 * i + d] = image;
+      if (box_.periodic[d]) {  // the kernel's wrap (tapmc_math.h), images counted from 0
+        image_[2 * i + d] = 0;
+        xyz_[3 * i + d] = wrap_periodic(p[d], box_.lo[d], box_.hi[d], box_.hi[d] - box_.lo[d],
+                                        image_[2 * i + d]);
       }
   }
 
@@ -240,8 +226,7 @@ TEST(SphereMover, MatchesAllPairsOracleFromLooseStarts)
   for (int periodic = 0; periodic < 2; ++periodic)
     for (int poly = 0; poly < 2; ++poly)
       for (std::uint64_t seed = 1; seed <= 5; ++seed) {
-        const std::string what = std::string(periodic ? "PBC" : "walls") + (poly ? " poly" : " mono") +
-                                 " seed " + std::to_string(seed);
+        const std::string what = variant_name(periodic, poly, seed);
         const Scene s = random_loose(160, 6.0, 0.5, periodic, poly, seed, 0.25);
         std::vector<Block> blocks;
         for (int k = 0; k < 300; ++k) blocks.push_back({1, PickOrder::Random});
@@ -321,8 +306,7 @@ TEST(SphereMover, ObstaclesMovedBetweenBlocks)
   for (int periodic = 0; periodic < 2; ++periodic)
     for (int poly = 0; poly < 2; ++poly)
       for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-        const std::string what = std::string(periodic ? "PBC" : "walls") + (poly ? " poly" : " mono") +
-                                 " seed " + std::to_string(seed);
+        const std::string what = variant_name(periodic, poly, seed);
         Scene s = random_loose(180, 7.0, 0.5, periodic, poly, seed, 0.2);
         std::vector<int> candidates;
         std::vector<int> obstacles;
