@@ -503,10 +503,7 @@ void FixMCSettle::check_start_decomposed()
   std::string message;
   if (comm->me == reporter)
     message = violation_message(v, atom->tag[v.i], v.j >= 0 ? atom->tag[v.j] : 0);
-  int length = static_cast<int>(message.size());
-  MPI_Bcast(&length, 1, MPI_INT, reporter, world);
-  message.resize(length);
-  MPI_Bcast(&message[0], length, MPI_CHAR, reporter, world);
+  tapmc::broadcast_text(lmp, reporter, message);
   error->all(FLERR, message);
 }
 

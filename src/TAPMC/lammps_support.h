@@ -63,6 +63,16 @@ void guarded(LAMMPS_NS::LAMMPS *lmp, const char *style, bool same_on_all_ranks, 
     lmp->error->one(FLERR, "{}: {}", style, message);
 }
 
+// Collective: rank `root`'s text in `text` on every rank (for a message only one rank can write,
+// with which every rank then stops: error->all).
+inline void broadcast_text(LAMMPS_NS::LAMMPS *lmp, int root, std::string &text)
+{
+  int length = static_cast<int>(text.size());
+  MPI_Bcast(&length, 1, MPI_INT, root, lmp->world);
+  text.resize(static_cast<std::size_t>(length));
+  if (length > 0) MPI_Bcast(&text[0], length, MPI_CHAR, root, lmp->world);
+}
+
 // Runs a kernel call on rank 0 only (its result stays there); an exception becomes a LAMMPS error
 // on every rank, naming the style (rank 0 broadcasts the message: a clean collective stop).
 // Collective.
@@ -80,12 +90,8 @@ void guarded_on_root(LAMMPS_NS::LAMMPS *lmp, const char *style, Call &&call)
       message = "unknown internal error";
     }
   }
-  int length = static_cast<int>(message.size());
-  MPI_Bcast(&length, 1, MPI_INT, 0, lmp->world);
-  if (length == 0) return;
-  message.resize(static_cast<std::size_t>(length));
-  MPI_Bcast(&message[0], length, MPI_CHAR, 0, lmp->world);
-  lmp->error->all(FLERR, "{}: {}", style, message);
+  broadcast_text(lmp, 0, message);
+  if (!message.empty()) lmp->error->all(FLERR, "{}: {}", style, message);
 }
 
 // Without a pair style LAMMPS has no neighbour cutoff to size its sort bins, so it disables
