@@ -276,9 +276,7 @@ void FixMCSettle::init()
     if (comm->style != 0)
       error->all(FLERR, "fix mc/settle: scheme domain needs the brick communication of LAMMPS "
                  "('comm_style brick', the default); with 'comm_style tiled' use 'scheme gather'");
-    const double step =
-        dmax_given ? d_max : tapmc::defaults::kMaxStepOverRadius * group_radius_extreme(false);
-    needed = tapmc::DomainSettle::ghost_cutoff(rmax_all, step);
+    needed = tapmc::DomainSettle::ghost_cutoff(rmax_all, effective_d_max());
     domain_settle->set_verify(verify_ghosts);
   }
   if (comm->get_comm_cutoff() < needed) comm->cutghostuser = needed;
@@ -422,13 +420,12 @@ void FixMCSettle::scatter_positions()
   }
 }
 
+// The step bound of the trials: 'dmax', else kMaxStepOverRadius times the smallest radius of the
+// group (collective).
 double FixMCSettle::effective_d_max() const
 {
-  if (d_max > 0.0) return d_max;
-  double rmin = std::numeric_limits<double>::infinity();
-  for (size_t s = 0; s < radius.size(); ++s)
-    if (movable[s]) rmin = std::min(rmin, radius[s]);
-  return tapmc::defaults::kMaxStepOverRadius * rmin;
+  if (dmax_given) return d_max;
+  return tapmc::defaults::kMaxStepOverRadius * group_radius_extreme(false);
 }
 
 void FixMCSettle::check_start_configuration()
@@ -554,10 +551,7 @@ tapmc::SettleResult FixMCSettle::settle_gathered()
 tapmc::SettleResult FixMCSettle::settle_decomposed()
 {
   n_movable = count_movable();
-  const double step = d_max > 0.0
-                          ? d_max
-                          : tapmc::defaults::kMaxStepOverRadius * group_radius_extreme(false);
-  const tapmc::SettleParams params = make_params(step, n_movable);
+  const tapmc::SettleParams params = make_params(effective_d_max(), n_movable);
   return domain_settle->settle(domain_setup(), params, n_movable);
 }
 
