@@ -148,3 +148,43 @@ def test_launcher_in_build():
     out = subprocess.run([str(launcher), "--help"], env=env, capture_output=True, text=True,
                          timeout=60)
     assert out.returncode == 0 and "fig10" in out.stdout
+
+
+def test_paper_scale_plan():
+    """The paper-scale plan: unique names, the tiers in order, the bell of Fig. 4 as the
+    figures define it (same names and parameters, so the figures find the plan's runs), one
+    initial packing per boundary condition in tier 1 (the paper's protocol: seed 1 for every
+    eps), restart files every FULL.restart_every taps."""
+    from tapmc.paper import fig2, fig3, fig6, fig10, plan
+
+    tier1 = plan.tier_runs(1)
+    everything = plan.runs(3)
+    names = [s.name for s in everything]
+    assert len(names) == len(set(names))
+    assert names[:len(tier1)] == [s.name for s in tier1]
+    assert [s.name for s in plan.runs(1)] == [s.name for s in tier1]
+    by_name = {s.name: s.describe() for s in everything}
+    for module in (fig2, fig3, fig6, fig10):
+        for spec in module.runs(FULL, 1):
+            assert by_name.get(spec.name) == spec.describe(), spec.name
+    sqrt_eps = sorted(round(s.variables["eps"] ** 0.5, 4) for s in tier1
+                      if s.name.startswith("const_pbc"))
+    assert len(sqrt_eps) >= 8 and sqrt_eps[0] == 0.05 and sqrt_eps[-1] == 0.3873
+    assert {0.0707, 0.2236, 0.3873} <= set(sqrt_eps)
+    assert {s.seed for s in tier1} == {1}
+    assert all(s.variables["rsteps"] == FULL.restart_every for s in everything)
+    with pytest.raises(ValueError, match="tier = 4"):
+        plan.runs(4)
+
+
+def test_campaign_subcommand(tmp_path):
+    from tapmc.paper import plan
+
+    out = cli("campaign", "--dry-run", "--tier", "2", "--campaign", tmp_path / "c")
+    assert out.returncode == 0, out.stderr
+    lines = out.stdout.splitlines()
+    assert "full plan, tiers 1-2" in lines[0]
+    assert len(lines) - 1 == len(plan.runs(2))
+    assert all(line.endswith("to run]") for line in lines[1:])
+    bad = cli("campaign", "--quick", "--dry-run", "--campaign", tmp_path / "c")
+    assert bad.returncode == 2 and "paper-scale plan only" in bad.stderr

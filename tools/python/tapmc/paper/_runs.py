@@ -46,7 +46,8 @@ def _input(path):
 
 
 def _size(scale):
-    return {"N": int(scale.N), "L": float(scale.L), "eta": float(scale.eta)}
+    return {"N": int(scale.N), "L": float(scale.L), "eta": float(scale.eta),
+            "rsteps": int(scale.restart_every)}
 
 
 def _RunSpec():
@@ -60,9 +61,11 @@ def eps_tag(eps):
 
 
 def constant_eps_run(scale, bc, eps, seed, taps=None):
-    """A constant-eps tapping sequence (in.constant_eps): taps.dat, profiles at 0 and the end."""
+    """A constant-eps tapping sequence (in.constant_eps): taps.dat, profiles and packing dumps
+    at 0 and the end."""
     taps = int(scale.taps if taps is None else taps)
-    variables = dict(_size(scale), eps=float(eps), taps=taps, bc=bc, pevery=taps)
+    variables = dict(_size(scale), eps=float(eps), taps=taps, bc=bc, pevery=taps,
+                     dump_ends="yes")
     return _RunSpec()(f"const_{bc}_eps{eps_tag(eps)}_s{seed}", _input(CONSTANT_EPS), variables,
                       int(seed))
 

@@ -110,6 +110,13 @@ def build_parser():
     for fig in FIGURES:
         common(sub.add_parser(fig, help=f"Fig. {fig[3:]} of the paper"))
     common(sub.add_parser("report", help="every figure, then the validation report"))
+    plan = sub.add_parser("campaign", help="run the paper-scale campaign (tapmc.paper.plan) "
+                                           "up to a tier, without drawing")
+    common(plan)
+    plan.set_defaults(scale="full")
+    plan.add_argument("--tier", type=int, choices=(1, 2, 3), default=1,
+                      help="run tiers 1 .. TIER of the plan (default 1: the paper's one run "
+                           "per point)")
     return parser
 
 
@@ -132,11 +139,50 @@ def _campaign_for(args, modules):
     return Campaign(directory, runs, lmp=args.lmp, jobs=args.jobs, mode=args.mode)
 
 
+def _run_plan(args):
+    """``tapmc-paper campaign``: the paper-scale plan's runs, resumable, nothing drawn."""
+    from tapmc.campaign import Campaign, CampaignError
+
+    from . import _runs, plan
+
+    if args.scale != "full" or args.seeds is not None:
+        print("tapmc-paper: campaign runs the paper-scale plan only (--full, no --seeds; the "
+              "plan fixes its seeds per tier)", file=sys.stderr)
+        return 2
+    scale = get_scale("full")
+    directory = args.campaign or Path(f"tapmc-paper-{scale.name}")
+    try:
+        campaign = Campaign(directory, plan.runs(args.tier, scale), lmp=args.lmp,
+                            jobs=args.jobs, mode=args.mode)
+    except (ValueError, FileNotFoundError) as err:
+        print(f"tapmc-paper: {err}", file=sys.stderr)
+        return 2
+    if args.dry_run:
+        return _list_runs(campaign, f"full plan, tiers 1-{args.tier}")
+    _runs.write_scale(campaign.directory, scale)
+    try:
+        campaign.run(progress=not args.quiet)
+    except (CampaignError, ValueError) as err:
+        print(f"tapmc-paper: {err}", file=sys.stderr)
+        return 1
+    return 0
+
+
+def _list_runs(campaign, what):
+    print(f"campaign {campaign.directory} ({what}, {len(campaign.runs)} runs):")
+    for spec in campaign.runs:
+        state = "done" if campaign.is_done(spec.name) else "to run"
+        print(f"  {spec.name}  [{spec.input.name}, taps {spec.taps}, {state}]")
+    return 0
+
+
 def main(argv=None):
     parser = build_parser()
     args = parser.parse_args(argv)
     from tapmc.campaign import CampaignError
 
+    if args.command == "campaign":
+        return _run_plan(args)
     figures = list(FIGURES) if args.command == "report" else [args.command]
     try:
         modules = [(f, load_figure(f)) for f in figures]
@@ -155,11 +201,7 @@ def main(argv=None):
         return 2
     out = args.out or campaign.directory / "figures"
     if args.dry_run:
-        print(f"campaign {campaign.directory} ({args.scale}, {len(campaign.runs)} runs):")
-        for spec in campaign.runs:
-            state = "done" if campaign.is_done(spec.name) else "to run"
-            print(f"  {spec.name}  [{spec.input.name}, taps {spec.taps}, {state}]")
-        return 0
+        return _list_runs(campaign, args.scale)
     try:
         campaign.run(progress=not args.quiet)
     except (CampaignError, ValueError) as err:

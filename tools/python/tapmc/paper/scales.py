@@ -44,10 +44,11 @@ class Scale:
     pore_eps: float                   #: Fig. 10 eps (paper: 2e-2, FBC)
     dump_times: tuple                 #: Fig. 10 dump taps (t = 0 is always dumped)
     pore_bc: str = "fbc"              #: Fig. 10 boundary conditions
+    restart_every: int = 500          #: taps between restart files (what a killed run loses)
 
     def __post_init__(self):
         for field in ("N", "taps", "seeds", "steady_last", "ramp_levels",
-                      "ramp_taps_per_level", "ageing_taps"):
+                      "ramp_taps_per_level", "ageing_taps", "restart_every"):
             value = getattr(self, field)
             if isinstance(value, bool) or not isinstance(value, int) or value < 1:
                 raise ValueError(f"Scale.{field} = {value!r}: must be an integer >= 1")
@@ -91,15 +92,18 @@ QUICK = Scale(
     pore_eps=2e-2, dump_times=(1, 4, 10, 30, 100),
 )
 
-#: The paper's set-up (section II): 4096 spheres, L = 32R, 4000 taps, 10 realizations.
+#: The paper's set-up (section II): 4096 spheres, L = 32R, 4000 taps, 10 realizations. The bell
+#: (Fig. 4 squares, steady_eps) spans sqrt(eps) = 0.05 to 0.387, dense around the maximum the
+#: paper places between 0.1 and 0.2, and holds Fig. 2's eps = 5e-3, 5e-2, 0.15 and Figs. 6-7's
+#: eps = 0.1 at P.B.C.
 FULL = Scale(
     name="full", N=4096, L=32.0, eta=1e-7, taps=4000, seeds=10, steady_last=1000,
     fig2_eps=(5e-3, 5e-2, 0.15),
-    steady_eps=_sq([0.025 * k for k in range(1, 13)]),
+    steady_eps=(0.0025, 0.005, 0.01, 0.015625, 0.0225, 0.04, 0.05, 0.09, 0.1, 0.15),
     ramp_sqrt0=0.025, ramp_dsqrt=0.025, ramp_levels=12, ramp_taps_per_level=4000,
     ageing_eps=0.01, ageing_taps=4000, ageing_waiting_times=(10, 30, 100, 300, 1000),
     profile_eps=(5e-3, 2e-2, 5e-2, 0.1),
-    pore_eps=2e-2, dump_times=(1, 4, 10, 30, 100, 300, 1000, 4000),
+    pore_eps=2e-2, dump_times=(1, 4, 10, 30, 100, 300, 1000, 4000), restart_every=100,
 )
 
 #: Between the two: 1024 spheres (the paper's bed height on a 16R x 16R base), 1000 taps, two

@@ -1,0 +1,69 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""The paper-scale campaign in the order its runs are worth running.
+
+At the paper's scale (``FULL``: N = 4096, L = 32R, 4000 taps, eta = 1e-7) one run costs one to
+four core-hours, so the campaign behind the validation report spans many working sessions. Its
+runs come in tiers; each tier completes figures on its own:
+
+1. the paper's own protocol, one run per point from the same initial packing (seed 1 for every
+   eps, so ``pack_seed`` is shared, section III.B): the P.B.C. bell of Fig. 4 (squares) with
+   Fig. 3 from the same runs, Fig. 2's F.B.C. eps, Figs. 6-7 at eps = 0.1 (F.B.C. and P.B.C.),
+   Fig. 10's pore-dump run (F.B.C., eps = 2e-2); Fig. 9 uses the packing dumps of the P.B.C.
+   runs (t = 0 and after 4000 taps);
+2. error bars where the bell's shape is decided: seeds 2 and 3 at both ends and at the top,
+   and Fig. 8's fourth eps;
+3. the history-dependent protocols: the ramp (Fig. 4 open symbols) at 1000 taps per level
+   instead of the paper's 4000, and ageing (Fig. 5).
+
+Within a tier the runs that settle the report's open questions first come first. Runs carry
+the names of the figure modules' runs (:mod:`tapmc.paper._runs`), so the figures find them.
+"""
+
+from __future__ import annotations
+
+from . import _runs
+from .scales import FULL
+
+#: P.B.C. eps of tier 1 in the order they run: the eps of the report's <Phi^c> question and of
+#: the bell's top first, then the ends, then the rest of the bell.
+TIER1_PBC_EPS = (0.0225, 0.005, 0.15, 0.1, 0.05, 0.0025, 0.01, 0.015625, 0.04, 0.09)
+#: F.B.C. eps of tier 1: Figs. 6-7 (0.1), then Fig. 2 (5e-3, 5e-2, 0.15).
+TIER1_FBC_EPS = (0.1, 0.005, 0.05, 0.15)
+#: Tier 2: P.B.C. eps with more seeds (the bell's ends and top) and the seeds added.
+TIER2_PBC_EPS = (0.0025, 0.0225, 0.15)
+TIER2_SEEDS = (2, 3)
+#: Tier 2: the F.B.C. eps Fig. 8 adds to tier 1's.
+TIER2_FBC_EPS = (0.02,)
+#: Tier 3: taps per level of the ramp (the paper: 4000) and ageing realizations.
+TIER3_RAMP_TAPS_PER_LEVEL = 1000
+TIER3_AGEING_SEEDS = (1, 2, 3, 4)
+
+TIERS = (1, 2, 3)
+
+
+def tier_runs(tier, scale=FULL):
+    """The RunSpecs of one tier (1, 2 or 3), in running order."""
+    if tier == 1:
+        pbc = [_runs.constant_eps_run(scale, "pbc", eps, 1) for eps in TIER1_PBC_EPS]
+        fbc = [_runs.constant_eps_run(scale, "fbc", eps, 1) for eps in TIER1_FBC_EPS]
+        pores = _runs.pore_run(scale, scale.pore_bc, scale.pore_eps, 1, scale.dump_times)
+        # the first P.B.C. run, then Fig. 10's dumps, then alternate so both figure families fill
+        return [pbc[0], pores, pbc[1], pbc[2], fbc[0], pbc[3], *fbc[1:], *pbc[4:]]
+    if tier == 2:
+        return ([_runs.constant_eps_run(scale, "pbc", eps, s)
+                 for s in TIER2_SEEDS for eps in TIER2_PBC_EPS]
+                + [_runs.constant_eps_run(scale, "fbc", eps, 1) for eps in TIER2_FBC_EPS])
+    if tier == 3:
+        ramp_scale = scale.replace(ramp_taps_per_level=TIER3_RAMP_TAPS_PER_LEVEL)
+        return ([_runs.ramp_run(ramp_scale, "pbc", 1)]
+                + [_runs.ageing_run(scale, "pbc", scale.ageing_eps, s)
+                   for s in TIER3_AGEING_SEEDS])
+    raise ValueError(f"tier = {tier!r}: allowed values are {', '.join(map(str, TIERS))}")
+
+
+def runs(up_to_tier=TIERS[-1], scale=FULL):
+    """Every run of tiers 1 .. ``up_to_tier``, in running order."""
+    if up_to_tier not in TIERS:
+        raise ValueError(f"tier = {up_to_tier!r}: allowed values are "
+                         f"{', '.join(map(str, TIERS))}")
+    return [spec for tier in TIERS if tier <= up_to_tier for spec in tier_runs(tier, scale)]
