@@ -3,6 +3,7 @@
 (finished runs untouched, the resumed trajectory identical to an uninterrupted one), the
 manifest, LAMMPS -partition mode under mpirun, and clear errors for bad runs."""
 
+import io
 import hashlib
 import json
 import os
@@ -193,3 +194,27 @@ def test_runspec_and_campaign_validation(tmp_path):
         Campaign(tmp_path, [spec], lmp=LMP, jobs=0)
     with pytest.raises(FileNotFoundError, match="lmp = "):
         Campaign(tmp_path, [spec], lmp=tmp_path / "no_lmp")
+
+
+def test_changed_input_stops_or_is_pinned(tmp_path):
+    """An input edited after the campaign started: the default stops with a message naming
+    it; pin_inputs=True keeps executing the campaign's copy, and the manifest records both
+    digests."""
+    source = tmp_path / "in.constant_eps"
+    source.write_bytes(CONSTANT_EPS.read_bytes())
+    runs = [RunSpec("a", source, dict(TINY, taps=3, eps=0.01), seed=1)]
+    Campaign(tmp_path / "c", runs, lmp=LMP, jobs=1).run(progress=False)
+    original = source.read_bytes()
+    source.write_bytes(original + b"# edited after the campaign started\n")
+    more = runs + [RunSpec("b", source, dict(TINY, taps=3, eps=0.02), seed=1)]
+    with pytest.raises(ValueError, match="in.constant_eps: differs from the copy"):
+        Campaign(tmp_path / "c", more, lmp=LMP, jobs=1).run(progress=False)
+    stream = io.StringIO()
+    Campaign(tmp_path / "c", more, lmp=LMP, jobs=1, stream=stream,
+             pin_inputs=True).run(progress=True)
+    assert "keep executing the campaign's copy" in stream.getvalue()
+    assert (tmp_path / "c" / "inputs" / "in.constant_eps").read_bytes() == original
+    entry = json.loads((tmp_path / "c" / "manifest.json").read_text())["inputs"]["in.constant_eps"]
+    assert entry["sha256"] == hashlib.sha256(original).hexdigest()
+    assert entry["source_sha256"] == hashlib.sha256(source.read_bytes()).hexdigest()
+    assert steps(tmp_path / "c" / "runs" / "b" / "taps.dat") == [0, 1, 2, 3]

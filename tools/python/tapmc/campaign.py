@@ -349,10 +349,14 @@ class Campaign:
         seconds between progress reports.
     stream : file
         where progress goes (default sys.stdout).
+    pin_inputs : bool
+        what to do when an input changed since the campaign started: False (default) stops
+        with an error asking for a new campaign folder; True keeps running the campaign's own
+        copy (a campaign that spans months of development stays one set of runs) and says so.
     """
 
     def __init__(self, directory, runs, lmp=None, jobs=None, mode="pool",
-                 progress_interval=PROGRESS_INTERVAL, stream=None):
+                 progress_interval=PROGRESS_INTERVAL, stream=None, pin_inputs=False):
         runs = list(runs)
         if not runs:
             raise ValueError("runs = []: a campaign needs at least one RunSpec")
@@ -379,6 +383,7 @@ class Campaign:
         self.mode = mode
         self.progress_interval = float(progress_interval)
         self.stream = stream if stream is not None else sys.stdout
+        self.pin_inputs = bool(pin_inputs)
         self._by_name = {r.name: r for r in runs}
         self._lock = threading.Lock()
         self._records = {}
@@ -437,13 +442,18 @@ class Campaign:
                 continue
             digest = _sha256(src)
             copy = folder / src.name
+            entry = {"source": str(src), "sha256": digest,
+                     "copy": str(copy.relative_to(self.directory))}
             if copy.exists() and _sha256(copy) != digest:
-                raise ValueError(f"input {src}: differs from the copy this campaign started with "
-                                 f"({copy}); use a new campaign directory")
+                if not self.pin_inputs:
+                    raise ValueError(f"input {src}: differs from the copy this campaign started "
+                                     f"with ({copy}); use a new campaign directory")
+                entry.update(sha256=_sha256(copy), source_sha256=digest)
+                print(f"[campaign] input {src} changed since this campaign started; its runs "
+                      f"keep executing the campaign's copy {copy}", file=self.stream, flush=True)
             if not copy.exists():
                 shutil.copyfile(src, copy)
-            inputs[src.name] = {"source": str(src), "sha256": digest,
-                                "copy": str(copy.relative_to(self.directory))}
+            inputs[src.name] = entry
         return inputs
 
     def _write_manifest(self):

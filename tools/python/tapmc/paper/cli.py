@@ -153,7 +153,7 @@ def _run_plan(args):
     directory = args.campaign or Path(f"tapmc-paper-{scale.name}")
     try:
         campaign = Campaign(directory, plan.runs(args.tier, scale), lmp=args.lmp,
-                            jobs=args.jobs, mode=args.mode)
+                            jobs=args.jobs, mode=args.mode, pin_inputs=True)
     except (ValueError, FileNotFoundError) as err:
         print(f"tapmc-paper: {err}", file=sys.stderr)
         return 2
