@@ -148,6 +148,7 @@ void ComputeStereoProfile::init()
 {
   tapmc::require_box_with_floor(lmp, "compute stereo/profile");
   tapmc::quiet_sorting_without_pair_style(lmp);
+  tapmc::request_ghost_depth(lmp, 2.0 * tapmc::largest_radius(lmp));
   update_mean_radius();
   floor_warned_ = false;
 }

@@ -258,6 +258,7 @@ void FixMCSettle::check_walls_inside_fixed_box()
 void FixMCSettle::init()
 {
   tapmc::quiet_sorting_without_pair_style(lmp);
+  tapmc::forbid_same_style_on_shared_atoms(lmp, this);
   check_walls_inside_fixed_box();
   tappers.clear();
   for (int i = 0; i < modify->nfix; ++i)
@@ -267,9 +268,8 @@ void FixMCSettle::init()
   if (comm->me == 0 && update->whichflag == 2)
     error->warning(FLERR, "fix mc/settle moves atoms during minimization; use 'run' instead");
 
-  // Hard spheres need no pair style, which leaves LAMMPS with a zero ghost cutoff (and a warning
-  // on every reneighbouring). Keep ghosts one diameter deep (what a contact needs), and as deep
-  // as the decomposed scheme needs (a contact, its move margin and ghost skin).
+  // Ghosts one diameter deep (what a contact needs), and as deep as the decomposed scheme needs
+  // (a contact, its move margin and ghost skin).
   const double rmax_all = group_radius_extreme(true);
   double needed = 2.0 * rmax_all;
   if (decomposed()) {
@@ -279,7 +279,7 @@ void FixMCSettle::init()
     needed = tapmc::DomainSettle::ghost_cutoff(rmax_all, effective_d_max());
     domain_settle->set_verify(verify_ghosts);
   }
-  if (comm->get_comm_cutoff() < needed) comm->cutghostuser = needed;
+  tapmc::request_ghost_depth(lmp, needed);
 }
 
 bool FixMCSettle::decomposed() const

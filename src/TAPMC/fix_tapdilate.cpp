@@ -66,6 +66,8 @@ int FixTapDilate::setmask()
 void FixTapDilate::init()
 {
   tapmc::quiet_sorting_without_pair_style(lmp);
+  tapmc::request_ghost_depth(lmp, 2.0 * tapmc::largest_radius(lmp));
+  tapmc::forbid_same_style_on_shared_atoms(lmp, this);
   if (!eps_variable.empty()) {
     eps_var_index = input->variable->find(eps_variable.c_str());
     if (eps_var_index < 0)

@@ -1,18 +1,24 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 // Helpers shared by the TAPMC styles: exact seed parsing, the guards that turn a kernel
-// exception into a LAMMPS error, and atom sorting for runs without a pair style.
+// exception into a LAMMPS error, atom sorting and the ghost shell for runs without a pair style,
+// and the check that no two fixes of one style move the same atoms.
 #ifndef TAPMC_LAMMPS_SUPPORT_H
 #define TAPMC_LAMMPS_SUPPORT_H
 
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
+#include "fix.h"
 #include "force.h"
+#include "group.h"
 #include "lammps.h"
+#include "modify.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <limits>
 #include <string>
@@ -102,6 +108,55 @@ inline void quiet_sorting_without_pair_style(LAMMPS_NS::LAMMPS *lmp)
 {
   LAMMPS_NS::Atom *atom = lmp->atom;
   if (!lmp->force->pair && atom->sortfreq > 0 && atom->userbinsize == 0.0) atom->sortfreq = 0;
+}
+
+// Largest sphere radius over all atoms and ranks (0 when the atom style has no radius).
+// Collective.
+inline double largest_radius(LAMMPS_NS::LAMMPS *lmp)
+{
+  double local = 0.0, all = 0.0;
+  const double *radius = lmp->atom->radius;
+  if (radius)
+    for (int i = 0; i < lmp->atom->nlocal; ++i) local = std::max(local, radius[i]);
+  MPI_Allreduce(&local, &all, 1, MPI_DOUBLE, MPI_MAX, lmp->world);
+  return all;
+}
+
+// Hard spheres need no pair style, which leaves LAMMPS with a zero communication cutoff and the
+// warning "Communication cutoff is 0.0 ... Atoms may get lost" at every reneighbouring (every
+// tap). A style asks here for ghosts `depth` deep: fix mc/settle for what its contacts and
+// scheme need; fix tapdilate and compute stereo/profile, which read no ghosts, for one sphere
+// diameter (the shell fix mc/settle keeps), so that a run without fix mc/settle is not told
+// that atoms may get lost. Never lowers a cutoff set by the user or a pair style. Call from
+// init().
+inline void request_ghost_depth(LAMMPS_NS::LAMMPS *lmp, double depth)
+{
+  if (depth > 0.0 && lmp->comm->get_comm_cutoff() < depth) lmp->comm->cutghostuser = depth;
+}
+
+// Two fixes of one style acting on the same atoms would tap (or settle) them twice per step.
+// Stops with an error naming both fix IDs, their groups and how many atoms they share when a
+// fix of `self`'s style listed before it has a group sharing atoms with `self`'s; fixes on
+// disjoint groups are allowed. Collective; call from init().
+inline void forbid_same_style_on_shared_atoms(LAMMPS_NS::LAMMPS *lmp, LAMMPS_NS::Fix *self)
+{
+  LAMMPS_NS::Modify *modify = lmp->modify;
+  for (int k = 0; k < modify->nfix && modify->fix[k] != self; ++k) {
+    LAMMPS_NS::Fix *other = modify->fix[k];
+    if (std::strcmp(other->style, self->style) != 0) continue;
+    const int both = other->groupbit | self->groupbit;
+    long local = 0, shared = 0;
+    for (int i = 0; i < lmp->atom->nlocal; ++i)
+      local += (lmp->atom->mask[i] & both) == both ? 1 : 0;
+    MPI_Allreduce(&local, &shared, 1, MPI_LONG, MPI_SUM, lmp->world);
+    if (shared > 0)
+      lmp->error->all(FLERR,
+                      "fix {}: fixes '{}' (group '{}') and '{}' (group '{}') both act on {} "
+                      "atom(s), which would be moved twice per step; give each atom one fix {} "
+                      "(disjoint groups) or unfix one",
+                      self->style, other->id, lmp->group->names[other->igroup], self->id,
+                      lmp->group->names[self->igroup], shared, self->style);
+  }
 }
 
 }  // namespace tapmc

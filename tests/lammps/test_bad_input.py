@@ -155,3 +155,49 @@ def test_mc_settle_shrink_wrapped_sides_need_walls():
     assert rc != 0 and "give 'xwalls lo hi'" in out, out
     rc, out = run_case("fix s all mc/settle 1 xwalls 0 8 ywalls 0 8\nrun 2", boundary="s s fm")
     assert rc == 0, out
+
+
+PACKING = """units lj
+atom_style sphere
+boundary p p fm
+region box block 0 4 0 4 0 20
+create_box 1 box
+create_packing 64 1 0.5 7 floor 0.0
+group low id 1:10
+group high id 11:64
+"""
+
+
+@pytest.mark.parametrize("fixes,names", [
+    ("fix a all tapdilate 0.01\nfix b low tapdilate 0.02", "fixes 'a' (group 'all') and 'b' "
+     "(group 'low') both act on 10 atom(s)"),
+    ("fix a all mc/settle 5 eta 1e-3\nfix b all mc/settle 6 eta 1e-3",
+     "fixes 'a' (group 'all') and 'b' (group 'all') both act on 64 atom(s)"),
+])
+@pytest.mark.parametrize("nprocs", [1, 2])
+def test_two_fixes_of_one_style_on_shared_atoms_stop(fixes, names, nprocs):
+    rc, out, _ = run_lammps(PACKING + fixes + "\nrun 1", nprocs=nprocs)
+    assert rc != 0 and names in out and "moved twice per step" in out, out
+
+
+def test_fixes_of_one_style_on_disjoint_groups_run():
+    rc, out, _ = run_lammps(PACKING + "fix a low tapdilate 0.01\nfix b high tapdilate 0.02\n"
+                            "fix s low mc/settle 5 eta 1e-3\nfix t high mc/settle 6 eta 1e-3\n"
+                            "run 2")
+    assert rc == 0, out
+
+
+@pytest.mark.parametrize("styles", [
+    "fix tap all tapdilate 0.01",
+    "compute phi all stereo/profile\nthermo_style custom step c_phi[1]",
+    "fix tap all tapdilate 0.01\nfix s all mc/settle 5 eta 1e-3",
+])
+@pytest.mark.parametrize("nprocs", [1, 2])
+def test_no_warning_without_a_pair_style(styles, nprocs):
+    """The TAPMC styles need no pair style; LAMMPS's zero-cutoff ('Atoms may get lost') and
+    sorting warnings must not reach a user who runs them alone or together. The one warning
+    left is about the input itself (a run with a compute and no fix moves nothing)."""
+    rc, out, _ = run_lammps(PACKING + styles + "\nrun 3", nprocs=nprocs)
+    assert rc == 0, out
+    warnings = [line for line in out.splitlines() if "WARNING" in line]
+    assert all("No fixes defined, atoms won't move" in w for w in warnings), out
