@@ -1,0 +1,312 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+# Every documented -var switch of every example input (examples/tapping, deposition, paper,
+# scale: the `variable NAME index ...` lines of each input, which its comments and its folder's
+# README document) runs at a tiny size for one to four taps with a non-default but valid value,
+# and the switch has its documented effect where that is cheap to see: a file name, a column,
+# the number of spheres, the substituted command in the log (eps, seeds, eta, window). Switches
+# with independent effects share a run; a resumed run reuses the folder of the first. The
+# switches an input validates (bc, resume, dump_ends, nlev, P) stop with the input's ERROR line
+# and a non-zero exit. test_every_switch_is_exercised fails when an input gains a switch that
+# no run here sets, so the table below cannot fall behind the inputs.
+import math
+import os
+import re
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from lmprun import LMP, read_dump
+
+EXAMPLES = Path(os.environ.get("TAPMC_SOURCE_DIR", Path(__file__).resolve().parents[2])) / \
+    "examples"
+
+# The size of every paper-protocol run here: 64 spheres on an 8R x 8R base, a loose
+# redeposition threshold, so that a tap costs milliseconds and the runs cost their start-up.
+TINY = {"N": 64, "L": 8, "eta": 1e-5}
+
+# Runs of each input, each a dict of -var switches (a list is a multi-valued index variable).
+# The values differ from the inputs' defaults (test_every_switch_is_exercised checks that).
+CONSTANT_EPS_FRESH = dict(
+    TINY, R=0.6, eps=0.05, sqrteps=0.15, taps=2, seed=7, pack_seed=9, bc="fbc", pevery=1,
+    zbins_per_R=3, xbins_per_R=2, lateral_R=3, wfrac=0.7, thermo_every=1, rsteps=1,
+    taps_file="t.dat", zprof_file="z.dat", xprof_file="x.dat", dump_ends="yes")
+# eps without sqrteps takes effect: sqrteps = 0 is the default
+CONSTANT_EPS_RESUME = dict(CONSTANT_EPS_FRESH, eps=0.03, taps=3, resume="yes",
+                           resume_file="restart.1")
+del CONSTANT_EPS_RESUME["sqrteps"]
+RAMP_FRESH = dict(TINY, R=0.6, sqrt0=0.1, dsqrt=0.05, nlev=2, P=1, seed=3, pack_seed=5,
+                  bc="fbc", zbins_per_R=2, thermo_every=1, rsteps=2, taps_file="r.dat",
+                  zprof_file="rz.dat")
+RAMP_RESUME = dict(RAMP_FRESH, resume="yes", resume_file="restart.2")
+AGEING_FRESH = dict(TINY, R=0.6, sqrteps=0.2, taps=2, seed=3, pack_seed=6, bc="fbc",
+                    thermo_every=1, rsteps=1, taps_file="a.dat")
+AGEING_RESUME = dict(AGEING_FRESH, eps=0.03, taps=3, resume="yes", resume_file="restart.1")
+del AGEING_RESUME["sqrteps"]
+PORES_FRESH = dict(TINY, R=0.6, sqrteps=0.1, taps=2, seed=3, pack_seed=6, bc="pbc",
+                   dump_times=[2], thermo_every=1, rsteps=1, taps_file="p.dat",
+                   dump_file="pd.*.txt")
+PORES_RESUME = dict(PORES_FRESH, eps=0.03, taps=3, dump_times=[2, 3], resume="yes",
+                    resume_file="restart.1")
+del PORES_RESUME["sqrteps"]
+TAPPING = dict(taps=1, eps=0.02, seed=11)   # these inputs fix N = 4096: one tap, ~2 s
+SCALE = dict(N=64, L=8, R=0.6, eps=0.02, eta=1e-5, taps=2, seed=5)
+
+RUNS = {
+    "paper/in.constant_eps": [CONSTANT_EPS_FRESH, CONSTANT_EPS_RESUME],
+    "paper/in.ramp": [RAMP_FRESH, RAMP_RESUME],
+    "paper/in.ageing": [AGEING_FRESH, AGEING_RESUME],
+    "paper/in.pore_dumps": [PORES_FRESH, PORES_RESUME],
+    "tapping/in.tapping_pbc": [TAPPING],
+    "tapping/in.tapping_fbc": [TAPPING],
+    "scale/in.paper_x100": [SCALE],
+    "deposition/in.deposition": [{}],
+}
+
+
+def run(example, variables, workdir):
+    """Run lmp_tapmc on examples/<example> in `workdir`; returns (returncode, screen, log)."""
+    cmd = [LMP, "-in", str(EXAMPLES / example), "-log", "log.lammps", "-nocite"]
+    for name, value in variables.items():
+        values = value if isinstance(value, list) else [value]
+        cmd += ["-var", name] + [str(v) for v in values]
+    proc = subprocess.run(cmd, cwd=workdir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                          text=True, timeout=300, stdin=subprocess.DEVNULL)
+    log = Path(workdir) / "log.lammps"
+    return proc.returncode, proc.stdout, log.read_text() if log.exists() else ""
+
+
+def run_ok(example, variables, workdir):
+    rc, screen, log = run(example, variables, workdir)
+    assert rc == 0, screen
+    return log
+
+
+def commands(log, name):
+    """The commands of the log that start with `name` after every variable substitution
+    (LAMMPS echoes each stage; the last has no '$'), with whitespace collapsed."""
+    out = []
+    for line in log.splitlines():
+        words = line.split()
+        if words[:len(name.split())] == name.split() and "$" not in line:
+            out.append(" ".join(words))
+    return out
+
+
+def thermo_steps(log):
+    """Steps of the thermo rows of every run in the log."""
+    steps, inside = [], False
+    for line in log.splitlines():
+        if line.startswith("Step "):
+            inside = True
+        elif line.startswith("Loop time"):
+            inside = False
+        elif inside:
+            steps.append(int(line.split()[0]))
+    return steps
+
+
+def table(path):
+    """Rows of a fix print file (comment lines skipped) as a 2-d array."""
+    rows = [[float(v) for v in line.split()] for line in Path(path).read_text().splitlines()
+            if line.strip() and not line.startswith("#")]
+    return np.array(rows)
+
+
+def ave_time_blocks(path):
+    """{step: rows} of a fix ave/time file in vector mode."""
+    lines = [ln for ln in Path(path).read_text().splitlines() if not ln.startswith("#")]
+    blocks, k = {}, 0
+    while k < len(lines):
+        step, nrows = (int(v) for v in lines[k].split())
+        blocks[step] = lines[k + 1:k + 1 + nrows]
+        k += 1 + nrows
+    return blocks
+
+
+def estimated_height(v):
+    """hest of the paper inputs: the bed height at packing fraction 0.58."""
+    side = v["L"] * v["R"]
+    return v["N"] * 4.0 / 3.0 * math.pi * v["R"] ** 3 / (0.58 * side ** 2)
+
+
+def check_packing(log, v):
+    """N, R, pack_seed and the side L R reached create_packing and the box."""
+    assert f"create_packing {v['N']} 1 {v['R']} {v['pack_seed']} floor 0.0" in \
+        commands(log, "create_packing")
+    side = v["L"] * v["R"]
+    box = re.search(r"Created orthogonal box = \(0\S* 0\S* 0\S*\) to \((\S+) (\S+) ", log)
+    assert box and float(box.group(1)) == pytest.approx(side) == float(box.group(2))
+
+
+def check_fresh_common(log, v, eps):
+    check_packing(log, v)
+    assert f"fix tap all tapdilate {eps} floor 0.0" in commands(log, "fix tap")
+    assert f"fix settle all mc/settle {v['seed']} floor 0.0 eta {v['eta']}" in \
+        commands(log, "fix settle")
+    assert f"boundary {'f f' if v['bc'] == 'fbc' else 'p p'} fm" in commands(log, "boundary")
+    assert thermo_steps(log) == list(range(v["taps"] + 1))   # thermo_every = 1
+
+
+def test_constant_eps_every_switch(tmp_path):
+    v = CONSTANT_EPS_FRESH
+    log = run_ok("paper/in.constant_eps", v, tmp_path)
+    check_fresh_common(log, v, "0.0225")     # eps = sqrteps^2, -var eps ignored
+    rows = table(tmp_path / "t.dat")
+    assert rows.shape == (3, 11) and list(rows[:, 0]) == [0, 1, 2]
+    hest = estimated_height(v)
+    z, x = ave_time_blocks(tmp_path / "z.dat"), ave_time_blocks(tmp_path / "x.dat")
+    assert sorted(z) == sorted(x) == [0, 1, 2]           # pevery = 1
+    assert all(len(b) == math.ceil(1.5 * hest / v["R"] * 3) for b in z.values())
+    assert all(len(b) == 8 * 2 for b in x.values())        # L xbins_per_R
+    (tprof,) = [c for c in commands(log, "compute tprof") if "window" in c]
+    window = re.search(r"window (\S+) (\S+) lateral (\S+)", tprof)
+    assert [float(w) for w in window.groups()] == pytest.approx([1.2, 0.7 * hest, 3 * 0.6])
+    for step in (0, 2):                                     # dump_ends = yes
+        ((_, box, bounds, atoms),) = read_dump(tmp_path / f"dump.{step}.lammpstrj")
+        assert bounds == ["ff", "ff", "fm"] and len(atoms["id"]) == 64
+        assert np.all(atoms["radius"] == 0.6) and box[0, 1] == pytest.approx(4.8)
+    assert {p.name for p in tmp_path.glob("restart.*")} == {"restart.1", "restart.2"}
+    assert not any((tmp_path / f).exists() for f in ("taps.dat", "profile_z.dat",
+                                                     "profile_x.dat"))
+
+    v = CONSTANT_EPS_RESUME
+    log = run_ok("paper/in.constant_eps", v, tmp_path)
+    assert "read_restart restart.1" in commands(log, "read_restart")
+    assert "fix tap all tapdilate 0.03 floor 0.0" in commands(log, "fix tap")
+    # appended; the resumed run writes the row of its restart step again
+    assert list(table(tmp_path / "t.dat")[:, 0]) == [0, 1, 2, 1, 2, 3]
+    assert sorted(ave_time_blocks(tmp_path / "z.dat.from1")) == [1, 2, 3]
+    assert sorted(ave_time_blocks(tmp_path / "x.dat.from1")) == [1, 2, 3]
+    assert (tmp_path / "dump.3.lammpstrj").exists()
+
+    # the default resume_file (restart.*) is the restart of the latest step: 3
+    log = run_ok("paper/in.constant_eps", dict(v, taps=4, resume_file="restart.*"), tmp_path)
+    assert (tmp_path / "z.dat.from3").exists() and table(tmp_path / "t.dat")[-1, 0] == 4
+
+
+def test_ramp_every_switch(tmp_path):
+    v = RAMP_FRESH
+    log = run_ok("paper/in.ramp", v, tmp_path)
+    check_fresh_common(log, dict(v, taps=4), "v_eps")   # P (3 nlev - 2) = 4 taps
+    rows = table(tmp_path / "r.dat")
+    assert rows.shape == (5, 7)
+    level, branch, sqrt_eps = rows[1:, 1], rows[1:, 2], rows[1:, 3]
+    # one tap per level: up (0.1, 0.15), down to 0.1, up again to 0.15
+    assert list(level) == [0, 1, 2, 3] and list(branch) == [0, 0, 1, 2]
+    assert sqrt_eps == pytest.approx([0.1, 0.15, 0.1, 0.15])
+    z = ave_time_blocks(tmp_path / "rz.dat")
+    assert sorted(z) == [0, 1, 2, 3, 4]                    # every P taps
+    assert all(len(b) == math.ceil(1.5 * estimated_height(v) / v["R"] * 2) for b in z.values())
+    assert {p.name for p in tmp_path.glob("restart.*")} == {"restart.2", "restart.4"}
+
+    log = run_ok("paper/in.ramp", RAMP_RESUME, tmp_path)
+    assert "read_restart restart.2" in commands(log, "read_restart")
+    assert sorted(ave_time_blocks(tmp_path / "rz.dat.from2")) == [2, 3, 4]
+    assert table(tmp_path / "r.dat")[-1, 0] == 4
+
+
+def test_ageing_every_switch(tmp_path):
+    v = AGEING_FRESH
+    log = run_ok("paper/in.ageing", v, tmp_path)
+    check_fresh_common(log, v, "0.04")
+    rows = table(tmp_path / "a.dat")
+    assert rows.shape == (3, 4) and list(rows[:, 0]) == [0, 1, 2]
+    assert {p.name for p in tmp_path.glob("restart.*")} == {"restart.1", "restart.2"}
+
+    log = run_ok("paper/in.ageing", AGEING_RESUME, tmp_path)
+    assert "read_restart restart.1" in commands(log, "read_restart")
+    assert "fix tap all tapdilate 0.03 floor 0.0" in commands(log, "fix tap")
+    assert list(table(tmp_path / "a.dat")[:, 0]) == [0, 1, 2, 1, 2, 3]
+
+
+def test_pore_dumps_every_switch(tmp_path):
+    v = PORES_FRESH
+    log = run_ok("paper/in.pore_dumps", v, tmp_path)
+    check_fresh_common(log, v, "0.01")
+    assert table(tmp_path / "p.dat").shape == (3, 4)
+    assert sorted(p.name for p in tmp_path.glob("pd.*.txt")) == ["pd.0.txt", "pd.2.txt"]
+    ((step, box, bounds, atoms),) = read_dump(tmp_path / "pd.2.txt")
+    assert step == 2 and bounds == ["pp", "pp", "fm"] and len(atoms["id"]) == 64
+    assert np.all(atoms["radius"] == 0.6)
+
+    log = run_ok("paper/in.pore_dumps", PORES_RESUME, tmp_path)
+    assert "read_restart restart.1" in commands(log, "read_restart")
+    assert "fix tap all tapdilate 0.03 floor 0.0" in commands(log, "fix tap")
+    # a resumed run dumps the listed steps after the restart, not the restart step itself
+    assert sorted(p.name for p in tmp_path.glob("pd.*.txt")) == ["pd.0.txt", "pd.2.txt",
+                                                                  "pd.3.txt"]
+    assert table(tmp_path / "p.dat")[-1, 0] == 3
+
+
+@pytest.mark.parametrize("example", ["tapping/in.tapping_pbc", "tapping/in.tapping_fbc"])
+def test_tapping_switches(tmp_path, example):
+    log = run_ok(example, TAPPING, tmp_path)
+    assert "create_packing 4096 1 0.5 11 floor 0.0" in commands(log, "create_packing")
+    assert "fix tap all tapdilate 0.02 floor 0.0" in commands(log, "fix tap")
+    assert "fix settle all mc/settle 11 floor 0.0" in commands(log, "fix settle")
+    assert thermo_steps(log) == [0, 1]
+
+
+def test_scale_switches(tmp_path):
+    v = SCALE
+    log = run_ok("scale/in.paper_x100", v, tmp_path)
+    check_packing(log, dict(v, pack_seed=v["seed"]))
+    assert "fix tap all tapdilate 0.02 floor 0.0" in commands(log, "fix tap")
+    assert "fix settle all mc/settle 5 floor 0.0 eta 1e-05" in commands(log, "fix settle")
+    assert thermo_steps(log) == [0, 1, 2]
+    assert "for 2 steps with 64 atoms" in log
+
+
+def test_deposition_runs(tmp_path):
+    log = run_ok("deposition/in.deposition", {}, tmp_path)
+    assert "Initial packing: N = 4096" in log
+
+
+@pytest.mark.parametrize("example, name, value, message", [
+    ("paper/in.constant_eps", "bc", "xyz", "ERROR: bc = xyz; allowed values: pbc, fbc"),
+    ("paper/in.constant_eps", "resume", "maybe",
+     "ERROR: resume = maybe; allowed values: no, yes"),
+    ("paper/in.constant_eps", "dump_ends", "all",
+     "ERROR: dump_ends = all; allowed values: yes, no"),
+    ("paper/in.ramp", "bc", "xyz", "ERROR: bc = xyz; allowed values: pbc, fbc"),
+    ("paper/in.ramp", "resume", "maybe", "ERROR: resume = maybe; allowed values: no, yes"),
+    ("paper/in.ramp", "nlev", "0", "ERROR: nlev = 0; allowed: an integer >= 1"),
+    ("paper/in.ramp", "P", "0", "ERROR: P = 0; allowed: an integer >= 1"),
+    ("paper/in.ageing", "bc", "xyz", "ERROR: bc = xyz; allowed values: pbc, fbc"),
+    ("paper/in.ageing", "resume", "maybe", "ERROR: resume = maybe; allowed values: no, yes"),
+    ("paper/in.pore_dumps", "bc", "xyz", "ERROR: bc = xyz; allowed values: pbc, fbc"),
+    ("paper/in.pore_dumps", "resume", "maybe",
+     "ERROR: resume = maybe; allowed values: no, yes"),
+])
+def test_invalid_switch_value(tmp_path, example, name, value, message):
+    rc, screen, log = run(example, dict(TINY, **{name: value}), tmp_path)
+    assert rc != 0
+    assert message in screen.splitlines() and message in log.splitlines()
+    assert not list(tmp_path.glob("*.dat")), "the input ran before checking its switches"
+
+
+def index_variables(example):
+    """{name: default} of the `variable NAME index ...` lines of an input."""
+    out = {}
+    for line in (EXAMPLES / example).read_text().splitlines():
+        m = re.match(r"variable\s+(\w+)\s+index\s+([^#]*)", line)
+        if m:
+            out[m.group(1)] = m.group(2).split()
+    return out
+
+
+def test_every_switch_is_exercised():
+    """Every index variable of every example input is set by a run above, at least once to a
+    value other than its default; a run sets no variable the input does not declare."""
+    inputs = sorted(str(p.relative_to(EXAMPLES)) for p in EXAMPLES.glob("*/in.*"))
+    assert sorted(RUNS) == inputs
+    for example, runs in RUNS.items():
+        declared = index_variables(example)
+        for v in runs:
+            assert set(v) <= set(declared), (example, set(v) - set(declared))
+        for name, default in declared.items():
+            values = [[str(x) for x in (v[name] if isinstance(v[name], list) else [v[name]])]
+                      for v in runs if name in v]
+            assert any(val != default for val in values), (example, name, default)
