@@ -109,7 +109,12 @@ def build_parser():
 
     for fig in FIGURES:
         common(sub.add_parser(fig, help=f"Fig. {fig[3:]} of the paper"))
-    common(sub.add_parser("report", help="every figure, then the validation report"))
+    report = sub.add_parser("report", help="every figure, then the validation report")
+    common(report)
+    report.add_argument("--from-data", action="store_true",
+                        help="rewrite OUT/validation.rst from the figure CSVs and report.json "
+                             "already in OUT/validation (default OUT: the repository's doc/); "
+                             "nothing is run or drawn")
     plan = sub.add_parser("campaign", help="run the paper-scale campaign (tapmc.paper.plan) "
                                            "up to a tier, without drawing")
     common(plan)
@@ -168,6 +173,20 @@ def _run_plan(args):
     return 0
 
 
+def _report_from_data(args):
+    """``tapmc-paper report --from-data``: the report rewritten from committed data."""
+    from . import _runs, validation
+
+    out = args.out or _runs.SOURCE_DIR / "doc"
+    try:
+        path = validation.regenerate(out)
+    except (FileNotFoundError, ValueError) as err:
+        print(f"tapmc-paper: {err}", file=sys.stderr)
+        return 2
+    print(f"report: {path}")
+    return 0
+
+
 def _list_runs(campaign, what):
     print(f"campaign {campaign.directory} ({what}, {len(campaign.runs)} runs):")
     for spec in campaign.runs:
@@ -183,6 +202,8 @@ def main(argv=None):
 
     if args.command == "campaign":
         return _run_plan(args)
+    if args.command == "report" and args.from_data:
+        return _report_from_data(args)
     figures = list(FIGURES) if args.command == "report" else [args.command]
     try:
         modules = [(f, load_figure(f)) for f in figures]

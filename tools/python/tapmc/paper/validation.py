@@ -10,6 +10,7 @@ differ by less than ``2 sem`` plus half a unit of the paper's last printed digit
 
 from __future__ import annotations
 
+import json
 import math
 import shutil
 from pathlib import Path
@@ -128,42 +129,66 @@ class _Csv:
         return [s for (p, s) in self.table if p == panel]
 
 
-def describe_scale(campaign):
-    """The scale that was run, from the runs and the campaign's recorded Scale."""
-    specs = campaign.runs
-    scale = _runs.campaign_scale(campaign)
-    sizes = sorted({(int(s.variables["N"]), float(s.variables["L"])) for s in specs
-                    if "N" in s.variables})
-    taps = sorted({int(s.taps) for s in specs if s.taps is not None})
-    seeds = sorted({s.seed for s in specs})
-    eta = sorted({float(s.variables["eta"]) for s in specs if "eta" in s.variables})
-    size = ", ".join(f"N = {n} spheres in a {l:g}R x {l:g}R box" for n, l in sizes)
+#: the campaign's facts the report needs beyond the figure CSVs, kept next to them so that the
+#: report can be rewritten from committed data alone (:func:`regenerate`).
+SUMMARY_FILE = "report.json"
+#: Scale fields listed for a scale that is no preset.
+_SCALE_KEYS = ("taps", "steady_last", "fig2_eps", "steady sqrt(eps)", "ramp_sqrt0",
+               "ramp_dsqrt", "ramp_levels", "ramp_taps_per_level", "ageing_eps",
+               "ageing_taps", "ageing_waiting_times", "profile_eps", "pore_eps", "dump_times")
+
+
+def campaign_summary(campaign):
+    """What the report says of the campaign itself (a JSON-ready dict): its scale, sizes,
+    runs, taps, seeds, eta, and the initial <Phi^c> of its P.B.C. packings."""
     from .scales import SCALES
 
-    if scale is None:
-        name = "a scale of no preset"
-    elif scale.name in SCALES and SCALES[scale.name] == scale:
-        name = f"the ``{scale.name}`` preset"
-    else:
-        name = f"the scale ``{scale.name}``"
-    text = (f"Scale: {name} ({size}; {len(specs)} runs of {', '.join(map(str, taps))} taps; "
-            f"{len(seeds)} seeds per point; redeposition threshold eta = "
-            f"{', '.join(f'{e:g}' for e in eta)}). The paper used N = 4096, L = 32R, 4000 taps "
-            "and 10 realizations.")
-    if scale is not None and not (scale.name in SCALES and SCALES[scale.name] == scale):
+    specs = campaign.runs
+    scale = _runs.campaign_scale(campaign)
+    preset = scale is not None and scale.name in SCALES and SCALES[scale.name] == scale
+    fields = None
+    if scale is not None and not preset:
         fields = scale.as_dict()
         fields["steady sqrt(eps)"] = tuple(round(math.sqrt(e), 4) for e in scale.steady_eps)
-        keys = ("taps", "steady_last", "fig2_eps", "steady sqrt(eps)", "ramp_sqrt0",
-                "ramp_dsqrt", "ramp_levels", "ramp_taps_per_level", "ageing_eps",
-                "ageing_taps", "ageing_waiting_times", "profile_eps", "pore_eps", "dump_times")
+        fields = {k: fields[k] for k in _SCALE_KEYS}
+    return {
+        "scale": None if scale is None else scale.name,
+        "preset": preset,
+        "fields": fields,
+        "sizes": sorted({(int(s.variables["N"]), float(s.variables["L"])) for s in specs
+                         if "N" in s.variables}),
+        "runs": len(specs),
+        "taps": sorted({int(s.taps) for s in specs if s.taps is not None}),
+        "seeds": len({s.seed for s in specs}),
+        "eta": sorted({float(s.variables["eta"]) for s in specs if "eta" in s.variables}),
+        "initial_phi_c": list(_initial_phi(campaign)),
+    }
+
+
+def describe_scale(summary):
+    """The scale that was run, from :func:`campaign_summary`."""
+    size = ", ".join(f"N = {n} spheres in a {l:g}R x {l:g}R box" for n, l in summary["sizes"])
+    if summary["scale"] is None:
+        name = "a scale of no preset"
+    elif summary["preset"]:
+        name = f"the ``{summary['scale']}`` preset"
+    else:
+        name = f"the scale ``{summary['scale']}``"
+    text = (f"Scale: {name} ({size}; {summary['runs']} runs of "
+            f"{', '.join(map(str, summary['taps']))} taps; {summary['seeds']} seeds per point; "
+            f"redeposition threshold eta = {', '.join(f'{e:g}' for e in summary['eta'])}). "
+            "The paper used N = 4096, L = 32R, 4000 taps and 10 realizations.")
+    if summary["fields"]:
+        fields = {k: tuple(v) if isinstance(v, list) else v
+                  for k, v in summary["fields"].items()}
         text += (" Its fields (a ``Scale.replace`` of the quick preset, recorded in the "
                  "campaign's ``scale.json``): "
-                 + "; ".join(f"{k} = {fields[k]}" for k in keys) + ".")
+                 + "; ".join(f"{k} = {fields[k]}" for k in _SCALE_KEYS) + ".")
     return text
 
 
 def _initial_phi(campaign):
-    """<Phi^c> of the initial P.B.C. packings, one per packing seed."""
+    """<Phi^c> of the initial P.B.C. packings, one per packing seed: (mean, sem, n)."""
     per_seed = {}
     for spec in _runs.select(campaign, "const_", bc="pbc"):
         if spec.seed not in per_seed:
@@ -192,9 +217,9 @@ def _collect(drawn, out_dir):
     return out
 
 
-def _initial_phi_row(campaign):
+def _initial_phi_row(summary):
     """Initial <Phi^c> of the P.B.C. packings against the paper's 58.4 %."""
-    m, s, _ = _initial_phi(campaign)
+    m, s, _ = (np.nan if v is None else v for v in summary["initial_phi_c"])
     return ("Initial <Phi^c> (P.B.C.)", "58.4 %", _fmt(m, s, pct=True),
             verdict_value(m, s, PAPER["phi_initial"]), "value")
 
@@ -382,10 +407,10 @@ _COMPARISONS = (("fig9", _tapped_phi), ("fig4", _steady_state), ("fig3", _fluctu
                 ("fig5", _ageing))
 
 
-def _rows_and_sections(campaign, files):
+def _rows_and_sections(summary, files):
     """The summary table rows (quantity, paper, TAPMC, verdict) and per-figure text."""
     csv = {name: _Csv(paths[1]) for name, paths in files.items()}
-    rows, notes = [_initial_phi_row(campaign)], {}
+    rows, notes = [_initial_phi_row(summary)], {}
     for name, compare in _COMPARISONS:
         if name not in csv:
             continue
@@ -430,11 +455,10 @@ def _rst_table(rows):
     return lines
 
 
-def write_rst(campaign, files, out_dir):
-    """Write out_dir/validation.rst from the figure files (name -> (png, csv) in
-    out_dir/validation); returns its path."""
-    out_dir = Path(out_dir)
-    rows, notes = _rows_and_sections(campaign, files)
+def render(summary, files):
+    """The text of validation.rst from the campaign summary and the figure files (name ->
+    (png, csv))."""
+    rows, notes = _rows_and_sections(summary, files)
     undecided = sum(1 for r in rows if r[3].startswith("undecided"))
     agree = sum(1 for r in rows if r[3].startswith("agrees"))
     lines = [".. TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.", "",
@@ -443,11 +467,18 @@ def write_rst(campaign, files, out_dir):
              "below is computed from the campaign's runs and every verdict from the numbers, "
              "by the rule stated next to it. TAPMC values are means over seeds with their "
              "standard errors (sem); the paper gives single runs without error bars.", "",
-             describe_scale(campaign), "",
+             describe_scale(summary), "",
              f"Summary: {agree} of {len(rows)} comparisons agree with the paper; "
              f"{undecided} are undecided at this statistics.", ""]
     lines += _rst_table(rows)
-    lines += ["", "Regenerate this page from a quick campaign (``--full`` for the paper's scale, "
+    lines += ["", f"The numbers come from the figure CSVs and ``{FIG_DIR}/{SUMMARY_FILE}`` (the "
+              "campaign's scale and initial packings), committed with this page; rewrite it "
+              "from them (a test checks that this gives the committed page):", "",
+              ".. snippet: skip rewrites this page; tests/python/test_validation_report.py "
+              "checks that it gives the committed text", "",
+              ".. code-block:: sh", "",
+              "   build/tapmc-paper report --from-data --out doc", "",
+              "or run a campaign and draw everything anew (``--full`` for the paper's scale, "
               "hours to days):", "",
               ".. snippet: skip runs a whole campaign",
               "", ".. code-block:: sh", "",
@@ -464,9 +495,46 @@ def write_rst(campaign, files, out_dir):
                   "n).", ""]
         if name in notes:
             lines += [notes[name], ""]
+    return "\n".join(lines).rstrip() + "\n"
+
+
+def write_rst(summary, files, out_dir):
+    """Write out_dir/validation.rst (:func:`render`) and the summary as
+    out_dir/validation/report.json; returns the path of the rst."""
+    out_dir = Path(out_dir)
+    (out_dir / FIG_DIR).mkdir(parents=True, exist_ok=True)
+    (out_dir / FIG_DIR / SUMMARY_FILE).write_text(json.dumps(summary, indent=1) + "\n")
     path = out_dir / "validation.rst"
-    path.write_text("\n".join(lines).rstrip() + "\n")
+    path.write_text(render(summary, files))
     return path
+
+
+def committed_inputs(out_dir):
+    """(summary, files) of a report already written to out_dir: report.json and the figure
+    PNG/CSV pairs in out_dir/validation. Raises FileNotFoundError naming what is missing."""
+    folder = Path(out_dir) / FIG_DIR
+    path = folder / SUMMARY_FILE
+    if not path.is_file():
+        raise FileNotFoundError(f"{path}: no report summary (written by 'tapmc-paper report' "
+                                "from a campaign)")
+    summary = json.loads(path.read_text())
+    files = {name: (folder / f"{name}.png", folder / f"{name}.csv") for name in FIGURES
+             if (folder / f"{name}.csv").is_file()}
+    if not files:
+        raise FileNotFoundError(f"{folder}: no figure CSV (fig2.csv ... fig10.csv)")
+    return summary, files
+
+
+def regenerate(out_dir):
+    """Rewrite out_dir/validation.rst from the committed data alone (report.json and the
+    figure CSVs in out_dir/validation); nothing is run or drawn. Returns its path."""
+    summary, files = committed_inputs(out_dir)
+    path = Path(out_dir) / "validation.rst"
+    path.write_text(render(summary, files))
+    return path
+
+
+
 
 
 def report(campaign, out_dir, drawn=None):
@@ -488,7 +556,8 @@ def report(campaign, out_dir, drawn=None):
         except ValueError:
             continue  # this campaign has no run of that figure
     files = _collect(drawn, out_dir)
-    return write_rst(campaign, files, out_dir)
+    return write_rst(campaign_summary(campaign), files, out_dir)
 
 
-__all__ = ["report", "write_rst", "PAPER", "RULES"]
+__all__ = ["report", "regenerate", "render", "write_rst", "campaign_summary",
+           "committed_inputs", "PAPER", "RULES"]

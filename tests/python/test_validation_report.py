@@ -1,0 +1,75 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""The validation report never drifts from its data: rewriting doc/validation.rst from the
+committed figure CSVs and doc/validation/report.json gives the committed page, byte for byte;
+the summary of a campaign survives the JSON round trip; missing data is named."""
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", Path(__file__).resolve().parents[2]))
+PYTHON_DIR = SOURCE / "tools" / "python"
+sys.path.insert(0, str(PYTHON_DIR))
+
+from tapmc.paper import validation  # noqa: E402
+
+DOC = SOURCE / "doc"
+
+
+def test_committed_report_equals_its_regeneration():
+    summary, files = validation.committed_inputs(DOC)
+    committed = (DOC / "validation.rst").read_text()
+    assert validation.render(summary, files) == committed, (
+        "doc/validation.rst differs from what its committed data give: run "
+        "'build/tapmc-paper report --from-data --out doc' and commit the result")
+    for png, csv in files.values():  # every figure the page embeds is committed with it
+        assert png.is_file() and csv.is_file()
+        assert f".. image:: validation/{png.name}" in committed
+
+
+def test_regenerate_writes_the_page_and_the_cli_does_too(tmp_path):
+    shutil.copytree(DOC / "validation", tmp_path / "validation",
+                    ignore=shutil.ignore_patterns("data"))
+    path = validation.regenerate(tmp_path)
+    assert path == tmp_path / "validation.rst"
+    assert path.read_text() == (DOC / "validation.rst").read_text()
+    path.unlink()
+    env = dict(os.environ, PYTHONPATH=str(PYTHON_DIR))
+    out = subprocess.run([sys.executable, "-m", "tapmc.paper", "report", "--from-data",
+                          "--out", str(tmp_path)], env=env, capture_output=True, text=True,
+                         timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert path.read_text() == (DOC / "validation.rst").read_text()
+
+
+def test_summary_round_trip_changes_nothing(tmp_path):
+    """The report of a summary given in memory (tuples, as campaign_summary makes it) equals
+    the report of the same summary read back from report.json (lists)."""
+    summary, files = validation.committed_inputs(DOC)
+    live = dict(summary, sizes=[tuple(s) for s in summary["sizes"]], preset=False,
+                scale="custom",
+                fields={k: (0.1, 0.2) if k.endswith("eps") else 7 for k in validation._SCALE_KEYS})
+    validation.write_rst(live, files, tmp_path)
+    stored = json.loads((tmp_path / "validation" / validation.SUMMARY_FILE).read_text())
+    assert validation.render(stored, files) == validation.render(live, files)
+    assert "the scale ``custom``" in validation.render(stored, files)
+
+
+def test_missing_data_is_named(tmp_path):
+    with pytest.raises(FileNotFoundError, match="report.json: no report summary"):
+        validation.regenerate(tmp_path)
+    (tmp_path / "validation").mkdir()
+    (tmp_path / "validation" / "report.json").write_text("{}")
+    with pytest.raises(FileNotFoundError, match="no figure CSV"):
+        validation.regenerate(tmp_path)
+    env = dict(os.environ, PYTHONPATH=str(PYTHON_DIR))
+    out = subprocess.run([sys.executable, "-m", "tapmc.paper", "report", "--from-data",
+                          "--out", str(tmp_path / "nowhere")], env=env, capture_output=True,
+                         text=True, timeout=120)
+    assert out.returncode == 2 and "no report summary" in out.stderr
+    assert "Traceback" not in out.stderr
