@@ -3,13 +3,19 @@
 commands), ``fix ave/time`` files (scalar and vector mode), ``fix print`` files and text dumps
 (``dump custom`` / ``dump atom``, plain or gzip).
 
-Every malformed file raises :class:`TapmcFormatError` with the file name and the line number.
+Every malformed file raises :class:`TapmcFormatError` with the file name and, where the fault
+sits on one line, its number: an empty or binary file (bytes that are not UTF-8 text), a damaged
+gzip stream, a wrong number of fields, a non-numeric field. A last line without its end-of-line
+is a write cut short (a job killed while LAMMPS was writing it): logs, ``fix ave/time`` and
+``fix print`` files keep the complete lines before it and leave it out, since a number cut
+short still parses as a number; in a dump it cuts the last frame short and raises.
 """
 
 import gzip
 import os
 import re
 import tempfile
+import zlib
 from collections import namedtuple
 
 import numpy as np
@@ -40,13 +46,59 @@ def _mdanalysis_universe(path):
         return MDAnalysis.Universe(path, format="LAMMPSDUMP")
 
 
+_GZIP_MAGIC = b"\x1f\x8b"
+# What a damaged gzip stream raises: BadGzipFile (an OSError) for a bad header, zlib.error for
+# corrupt data, EOFError for a stream cut short.
+_GZIP_ERRORS = (OSError, EOFError, zlib.error)
+
+
 def _open_text(path):
     """Open a text file, gzip-compressed or not (detected from the content, not the name)."""
     with open(path, "rb") as probe:
         magic = probe.read(2)
-    if magic == b"\x1f\x8b":
+    if magic == _GZIP_MAGIC:
         return gzip.open(path, "rt")
     return open(path, "r")
+
+
+def _open_bytes(path):
+    """Open a file for reading bytes, through gzip when its content starts with gzip's magic."""
+    with open(path, "rb") as probe:
+        magic = probe.read(2)
+    return gzip.open(path, "rb") if magic == _GZIP_MAGIC else open(path, "rb")
+
+
+def _decode_line(path, lineno, raw):
+    """One line of bytes as text; bytes that are not UTF-8 mean a binary file, named here."""
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError as err:
+        raise TapmcFormatError(path, lineno, f"byte 0x{raw[err.start]:02x} at column "
+                               f"{err.start + 1} is not UTF-8 text (a binary file?)") from None
+
+
+def _read_lines(path):
+    """The complete lines of a text file (plain or gzip) without their end-of-line, and whether a
+    last line without an end-of-line was left out (see the module's docstring). Lines are split
+    at line feeds only, not at the other characters str.splitlines() breaks at (form feed,
+    \\x1c, ...), so that line numbers are the ones an editor shows."""
+    try:
+        with _open_bytes(path) as f:
+            data = f.read()
+    except _GZIP_ERRORS as err:
+        raise TapmcFormatError(path, None, f"damaged gzip file ({err})") from None
+    pieces = data.split(b"\n")
+    cut_short = pieces[-1].strip() != b""
+    lines = []
+    for i, raw in enumerate(pieces[:-1]):
+        lines.append(_decode_line(path, i + 1, raw[:-1] if raw.endswith(b"\r") else raw))
+    return lines, cut_short
+
+
+def _cut_short_note(cut_short, nlines):
+    """Appended to a 'nothing found' message when the only content was a line cut short."""
+    return (f" (line {nlines + 1}, the last, has no end-of-line and was left out as cut short)"
+            if cut_short else "")
 
 
 def _floats(path, lineno, fields, expected=None):
@@ -155,13 +207,16 @@ def read_log(path, strict=True):
     the ``WARNING`` lines. A log cut during a run (killed job, ``ERROR``) keeps the rows written
     so far and marks that run ``complete = False``.
 
+    A last line without its end-of-line (the job was killed while LAMMPS wrote it) is left
+    out: the run keeps its complete rows.
+
     A table row with a non-numeric field raises :class:`TapmcFormatError`. Other lines inside a
     table (a wrong number of fields, text) raise it too when ``strict``; with ``strict=False``
     they are skipped and listed in ``Log.skipped`` as (line number, text), for logs where
-    ``fix print`` or ``print`` also write to the screen during runs."""
+    ``fix print`` or ``print`` also write to the screen during runs. An empty or binary file
+    raises it as well."""
     runs, warnings, skipped = [], [], []
-    with _open_text(path) as f:
-        lines = f.read().splitlines()
+    lines, cut_short = _read_lines(path)
     i = 0
     n = len(lines)
     while i < n:
@@ -206,7 +261,9 @@ def read_log(path, strict=True):
                                run_warnings, complete))
         i += 1
     if not runs:
-        raise TapmcFormatError(path, None, "no thermo table found (no 'run' in this log?)")
+        what = "empty file" if not lines and not cut_short else \
+            "no thermo table found (no 'run' in this log?)"
+        raise TapmcFormatError(path, None, what + _cut_short_note(cut_short, len(lines)))
     log = Log(runs, warnings, path)
     log.skipped = skipped
     return log
@@ -246,9 +303,12 @@ class AveTime(Table):
 
 def read_ave_time(path):
     """Read a ``fix ave/time`` output file, scalar or vector mode (told apart by the header:
-    vector mode has a third comment line starting with ``# Row``)."""
-    with _open_text(path) as f:
-        lines = f.read().splitlines()
+    vector mode has a third comment line starting with ``# Row``). A last line without its
+    end-of-line (a killed run) is left out; a scalar-mode file with its header and no row yet
+    gives an empty table, a vector-mode file without a complete block raises."""
+    lines, cut_short = _read_lines(path)
+    if not lines and not cut_short:
+        raise TapmcFormatError(path, None, "empty file")
     comments = []
     k = 0
     while k < len(lines) and lines[k].startswith("#"):
@@ -256,20 +316,28 @@ def read_ave_time(path):
         k += 1
     if len(comments) < 2:
         raise TapmcFormatError(path, k + 1, "not a fix ave/time file: expected at least two "
-                               "'#' header lines (title and column names)")
-    vector = len(comments) >= 3 and comments[2][:1] == ["Row"]
+                               "'#' header lines (title and column names)"
+                               + _cut_short_note(cut_short and k == len(lines), len(lines)))
+    # Vector mode names its second header line "TimeStep Number-of-rows": a file cut before
+    # the third ("# Row ...") is a vector file without its column names, not a scalar one.
+    vector = (len(comments) >= 3 and comments[2][:1] == ["Row"]) or \
+        comments[1] == ["TimeStep", "Number-of-rows"]
+    if vector and (len(comments) < 3 or comments[2][:1] != ["Row"]):
+        raise TapmcFormatError(path, 3, "vector-mode fix ave/time file without its "
+                               "third header line '# Row <names>'")
+    names = comments[2][1:] if vector else comments[1]
+    if not names:
+        raise TapmcFormatError(path, 3 if vector else 2, "header line names no column")
     body = [(i + 1, lines[i].split()) for i in range(k, len(lines)) if lines[i].strip()]
     if not vector:
-        names = comments[1]
         rows = [_floats(path, ln, fields, len(names)) for ln, fields in body]
         return AveTime(names, np.array(rows).reshape(-1, len(names)), path=path)
-    names = comments[2][1:]
     steps, blocks = [], []
     j = 0
     while j < len(body):
         ln, fields = body[j]
         step, nrows = _floats(path, ln, fields, 2)
-        if nrows != int(nrows) or nrows < 1:
+        if not np.isfinite(nrows) or nrows != int(nrows) or nrows < 1:
             raise TapmcFormatError(path, ln, f"row count {fields[1]!r} is not a positive integer")
         nrows = int(nrows)
         if blocks and nrows != blocks[0].shape[0]:
@@ -284,7 +352,8 @@ def read_ave_time(path):
         blocks.append(np.array(block)[:, 1:])
         j += nrows + 1
     if not blocks:
-        raise TapmcFormatError(path, None, "vector-mode file with no data block")
+        raise TapmcFormatError(path, None, "vector-mode file with no data block"
+                               + _cut_short_note(cut_short, len(lines)))
     return AveTime(names, steps=steps, blocks=np.array(blocks), path=path)
 
 
@@ -292,9 +361,9 @@ def read_fix_print(path, columns=None):
     """Read a ``fix print`` file of numeric lines. Column names: ``columns`` if given, else the
     last ``#`` line before the data when it has one name per field (a ``title`` such as
     ``"# step phib z"``), else ``c1, c2, ...``. A row identical to the previous one is dropped
-    (``fix print`` writes the boundary step of consecutive runs twice)."""
-    with _open_text(path) as f:
-        lines = f.read().splitlines()
+    (``fix print`` writes the boundary step of consecutive runs twice). A last line without its
+    end-of-line (a killed run) is left out."""
+    lines, cut_short = _read_lines(path)
     rows, title = [], None
     width = None
     for i, line in enumerate(lines):
@@ -310,7 +379,8 @@ def read_fix_print(path, columns=None):
         if not rows or row != rows[-1]:
             rows.append(row)
     if not rows:
-        raise TapmcFormatError(path, None, "no numeric line found")
+        what = "empty file" if not lines and not cut_short else "no numeric line found"
+        raise TapmcFormatError(path, None, what + _cut_short_note(cut_short, len(lines)))
     if columns is None:
         columns = title if title and len(title) == width else [f"c{j + 1}" for j in range(width)]
     elif len(columns) != width:
@@ -350,8 +420,9 @@ _COORDS = (("x", "y", "z", False), ("xs", "ys", "zs", True), ("xu", "yu", "zu", 
 
 
 class _DumpLines:
-    """The lines of an open dump with the number of the last one read, so that every error
-    names its line."""
+    """The lines of an open dump (bytes, plain or gzip) with the number of the last one read,
+    so that every error names its line. Lines are decoded one by one, so that a binary file or
+    a damaged gzip stream is reported at its line too."""
 
     def __init__(self, path, f):
         self.path = path
@@ -359,9 +430,18 @@ class _DumpLines:
         self._file = f
 
     def next_or_none(self):
-        """The next raw line, or None at the end of the file."""
+        """The next raw line (with its end-of-line), or None at the end of the file."""
         self.lineno += 1
-        return self._file.readline() or None
+        try:
+            raw = self._file.readline()
+        except _GZIP_ERRORS as err:
+            raise self.error(f"damaged gzip file ({err})") from None
+        if not raw.endswith(b"\n"):
+            if raw.strip():  # the file ends inside this line: its last number may be cut short
+                raise self.error("the file ends inside this line (no end-of-line): cut short "
+                                 "while being written?")
+            return None
+        return _decode_line(self.path, self.lineno, raw)
 
     def next_in_frame(self):
         """The next line without its newline; the end of the file here cuts a frame short."""
@@ -379,16 +459,20 @@ class _DumpLines:
 _FrameHeader = namedtuple("_FrameHeader", "step n_atoms bounds flags columns line")
 
 
+# ASCII digits only: str.isdigit also accepts characters such as '\u00b2' that int() refuses.
+_INTEGER = re.compile(r"-?[0-9]+")
+
+
 def _read_timestep(lines):
     text = lines.next_in_frame().split()
-    if len(text) != 1 or not text[0].lstrip("-").isdigit():
+    if len(text) != 1 or not _INTEGER.fullmatch(text[0]):
         raise lines.error(f"bad timestep {' '.join(text)!r}")
     return int(text[0])
 
 
 def _read_atom_count(lines):
     text = lines.next_in_frame().strip()
-    if not text.isdigit():
+    if not _INTEGER.fullmatch(text) or text.startswith("-"):
         raise lines.error(f"bad atom count {text!r}")
     return int(text)
 
@@ -479,6 +563,17 @@ def _absolute_positions(path, header, table, col, lo, hi):
                            f"zu or xsu ysu zsu) in {' '.join(header.columns)}")
 
 
+def _integer_column(path, header, table, col, name):
+    """Column ``name`` as int64, refused at its first line that is not an integer in range
+    (a cast would silently truncate 1.5 to 1 or wrap 1e30)."""
+    values = table[:, col[name]]
+    bad = np.flatnonzero((values != np.round(values)) | (np.abs(values) >= 2.0 ** 63))
+    if bad.size:
+        raise TapmcFormatError(path, header.line + 1 + bad[0], f"atom {name} "
+                               f"{values[bad[0]]!r} is not an integer")
+    return values.astype(np.int64)
+
+
 def _frame_from_table(path, header, table, radius, boundary):
     """The Frame of a parsed block, atoms sorted by id."""
     n_atoms = header.n_atoms
@@ -487,7 +582,7 @@ def _frame_from_table(path, header, table, radius, boundary):
     periodic = _periodic_axes(boundary, header.flags)
     col = {name: j for j, name in enumerate(header.columns)}
     pos = _absolute_positions(path, header, table, col, lo, hi)
-    ids = table[:, col["id"]].astype(np.int64) if "id" in col \
+    ids = _integer_column(path, header, table, col, "id") if "id" in col \
         else np.arange(1, n_atoms + 1, dtype=np.int64)
     if len(np.unique(ids)) != n_atoms:
         raise TapmcFormatError(path, header.line, "duplicate atom ids in the frame")
@@ -500,24 +595,31 @@ def _frame_from_table(path, header, table, radius, boundary):
         radii = np.full(n_atoms, float(radius))
     else:
         radii = None
-    types = table[order, col["type"]].astype(np.int64) if "type" in col else None
+    types = _integer_column(path, header, table, col, "type")[order] if "type" in col else None
     fields = {name: table[order, j] for j, name in enumerate(header.columns)}
     return Frame(header.step, lo, hi, periodic, ids[order], pos[order], radii, types, fields)
 
 
 def _parse_dump_frames(path, radius=None, boundary=None):
-    """Generator over the frames of a text dump, float64, checked line by line."""
-    with _open_text(path) as f:
+    """Generator over the frames of a text dump, float64, checked line by line. A dump without
+    any frame raises: no caller can mean an empty trajectory, and a file that LAMMPS has not
+    written yet (or a wrong path to an empty file) would otherwise pass silently."""
+    with _open_bytes(path) as f:
         lines = _DumpLines(path, f)
+        frames = 0
         while True:
             line = lines.next_or_none()
             if line is None:
-                return
+                break
             if not line.strip():
                 continue
             header = _read_frame_header(lines, line)
             table = _read_atom_table(lines, header)
+            frames += 1
             yield _frame_from_table(path, header, table, radius, boundary)
+    if frames == 0:
+        raise TapmcFormatError(path, None, "empty file: no dump frame" if lines.lineno == 1
+                               else "no dump frame: the file holds only blank lines")
 
 
 class Dump:
