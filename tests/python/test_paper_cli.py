@@ -155,7 +155,7 @@ def test_paper_scale_plan():
     figures define it (same names and parameters, so the figures find the plan's runs), one
     initial packing per boundary condition in tier 1 (the paper's protocol: seed 1 for every
     eps), restart files every FULL.restart_every taps."""
-    from tapmc.paper import fig2, fig3, fig6, fig10, plan
+    from tapmc.paper import fig2, fig3, fig6, fig9, fig10, plan
 
     tier1 = plan.tier_runs(1)
     everything = plan.runs(3)
@@ -164,7 +164,7 @@ def test_paper_scale_plan():
     assert names[:len(tier1)] == [s.name for s in tier1]
     assert [s.name for s in plan.runs(1)] == [s.name for s in tier1]
     by_name = {s.name: s.describe() for s in everything}
-    for module in (fig2, fig3, fig6, fig10):
+    for module in (fig2, fig3, fig6, fig9, fig10):
         for spec in module.runs(FULL, 1):
             assert by_name.get(spec.name) == spec.describe(), spec.name
     sqrt_eps = sorted(round(s.variables["eps"] ** 0.5, 4) for s in tier1
@@ -188,3 +188,146 @@ def test_campaign_subcommand(tmp_path):
     assert all(line.endswith("to run]") for line in lines[1:])
     bad = cli("campaign", "--quick", "--dry-run", "--campaign", tmp_path / "c")
     assert bad.returncode == 2 and "paper-scale plan only" in bad.stderr
+
+
+def _one_line_error(out, rc=2):
+    """A bad path ends with exit `rc` and one line on stderr, never a traceback."""
+    assert out.returncode == rc, (out.stdout, out.stderr)
+    lines = out.stderr.splitlines()
+    assert len(lines) == 1 and lines[0].startswith("tapmc-paper: "), out.stderr
+    return lines[0]
+
+
+def _folder(tmp_path, manifest=None, scale=None):
+    """A campaign folder with a manifest.json text (or a directory when manifest is ...) and
+    a scale.json of Scale `scale`."""
+    from tapmc.paper import _runs
+
+    folder = tmp_path / "camp"
+    folder.mkdir()
+    if manifest is ...:
+        (folder / "manifest.json").mkdir()
+    elif manifest is not None:
+        (folder / "manifest.json").write_text(manifest)
+    if scale is not None:
+        _runs.write_scale(folder, scale)
+    return folder
+
+
+@pytest.mark.parametrize("case", [
+    "campaign_is_file", "campaign_below_file", "campaign_uncreatable", "out_is_file",
+    "out_below_file", "out_uncreatable", "manifest_is_directory", "manifest_not_json",
+    "manifest_not_object", "manifest_newer_format", "other_preset", "campaign_other_preset",
+    "edited_preset", "scale_json_damaged", "lmp_not_executable"])
+def test_bad_paths(tmp_path, case):
+    """Each bad path: exit 2, one line naming the path and what is wrong. The checks run
+    before any LAMMPS run, so the real figure modules are used; --dry-run only where a check
+    must not need it (the ones that write nothing)."""
+    afile = tmp_path / "F"
+    afile.write_text("a regular file\n")
+    camp = tmp_path / "camp"
+    args, expected = None, None
+    if case == "campaign_is_file":
+        args = ["--campaign", afile]
+        expected = f"campaign directory {afile}: exists and is not a directory"
+    elif case == "campaign_below_file":
+        args = ["--campaign", afile / "sub"]
+        expected = (f"campaign directory {afile / 'sub'}: cannot be created: {afile} is not "
+                    "a directory")
+    elif case == "campaign_uncreatable":   # /proc takes no new entries, even from root
+        args = ["--campaign", "/proc/tapmc-test-campaign"]
+        expected = "campaign directory /proc/tapmc-test-campaign: cannot be created or written"
+    elif case == "out_is_file":
+        args = ["--campaign", camp, "--out", afile]
+        expected = f"--out {afile}: exists and is not a directory"
+    elif case == "out_below_file":
+        args = ["--campaign", camp, "--out", afile / "figs"]
+        expected = f"--out {afile / 'figs'}: cannot be created: {afile} is not a directory"
+    elif case == "out_uncreatable":
+        args = ["--campaign", camp, "--out", "/proc/tapmc-test-out"]
+        expected = "--out /proc/tapmc-test-out: cannot be created or written"
+    elif case == "manifest_is_directory":
+        folder = _folder(tmp_path, manifest=...)
+        args = ["--campaign", folder, "--dry-run"]
+        expected = (f"campaign manifest {folder / 'manifest.json'}: cannot be read (Is a "
+                    "directory)")
+    elif case == "manifest_not_json":
+        folder = _folder(tmp_path, manifest='{"runs": [')
+        args = ["--campaign", folder, "--dry-run"]
+        expected = f"campaign manifest {folder / 'manifest.json'}: not valid JSON"
+    elif case == "manifest_not_object":
+        folder = _folder(tmp_path, manifest="[1, 2]")
+        args = ["--campaign", folder, "--dry-run"]
+        expected = f"campaign manifest {folder / 'manifest.json'}: not a campaign manifest"
+    elif case == "manifest_newer_format":
+        folder = _folder(tmp_path, manifest='{"format": 2, "runs": []}')
+        args = ["--campaign", folder, "--dry-run"]
+        expected = (f"campaign manifest {folder / 'manifest.json'}: format 2, this TAPMC reads "
+                    "format 1; the campaign was made by another TAPMC version")
+    elif case == "other_preset":
+        folder = _folder(tmp_path, scale=QUICK)
+        args = ["--full", "--campaign", folder]
+        expected = (f"campaign {folder}: made with Scale 'quick', not the 'full' asked for "
+                    f"({folder / 'scale.json'}: N = 512 instead of 4096")
+    elif case == "campaign_other_preset":
+        folder = _folder(tmp_path, scale=QUICK)
+        out = cli("campaign", "--campaign", folder)
+        assert "use --quick or another --campaign" in _one_line_error(out)
+        assert sorted(p.name for p in folder.iterdir()) == ["scale.json"]   # nothing ran
+        return
+    elif case == "edited_preset":
+        folder = _folder(tmp_path, scale=QUICK.replace(taps=50, steady_last=10))
+        args = ["--quick", "--campaign", folder, "--dry-run"]
+        expected = (f"campaign {folder}: made with another Scale 'quick' than this TAPMC's "
+                    f"({folder / 'scale.json'}: taps = 50 instead of 100, steady_last = 10 "
+                    "instead of 25); use another --campaign")
+    elif case == "scale_json_damaged":
+        folder = _folder(tmp_path)
+        (folder / "scale.json").write_text("{")
+        args = ["--campaign", folder, "--dry-run"]
+        expected = f"{folder / 'scale.json'}: not valid JSON"
+    elif case == "lmp_not_executable":
+        args = ["--campaign", camp, "--lmp", afile]
+        expected = f"lmp = '{afile}': not an executable file"
+    line = _one_line_error(cli("fig2", "--quiet", *args))
+    assert line.startswith("tapmc-paper: " + expected), line
+    if case in ("out_is_file", "out_below_file", "lmp_not_executable"):
+        assert not camp.exists(), "a refused command left a campaign folder behind"
+
+
+@pytest.mark.skipif(not shutil.which("setpriv") and os.geteuid() == 0,
+                    reason="root reads any folder; setpriv is needed to run as another user")
+def test_unreadable_campaign_and_manifest(tmp_path):
+    """Folders and manifests the user may not read (mode 000). Root reads them anyway, so as
+    root the command runs as user nobody (setpriv) on a world-traversable copy of the
+    situation."""
+    import tempfile
+
+    base = Path(tempfile.mkdtemp(prefix="tapmc_unreadable_"))
+    try:
+        base.chmod(0o755)
+        closed = base / "closed"
+        closed.mkdir(mode=0o000)
+        closed.chmod(0o000)
+        camp = base / "camp"
+        camp.mkdir()
+        camp.chmod(0o777)
+        (camp / "manifest.json").write_text('{"runs": []}')
+        (camp / "manifest.json").chmod(0o000)
+        prefix = []
+        if os.geteuid() == 0:
+            prefix = ["setpriv", "--reuid=65534", "--regid=65534", "--clear-groups"]
+        env = dict(os.environ, PYTHONPATH=str(PYTHON_DIR), TAPMC_LMP=str(LMP))
+        for folder, expected in [
+                (closed, f"campaign directory {closed}: cannot be read (Permission denied)"),
+                (camp, f"campaign manifest {camp / 'manifest.json'}: cannot be read "
+                       "(Permission denied)")]:
+            out = subprocess.run([*prefix, sys.executable, "-m", "tapmc.paper", "fig2",
+                                  "--dry-run", "--campaign", str(folder)], env=env,
+                                 cwd=base, capture_output=True, text=True, timeout=120)
+            assert _one_line_error(out) == "tapmc-paper: " + expected
+    finally:
+        for p in (base / "closed", base / "camp" / "manifest.json"):
+            if p.exists():
+                p.chmod(0o700)
+        shutil.rmtree(base)

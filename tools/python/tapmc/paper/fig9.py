@@ -24,25 +24,33 @@ from . import _pores, _runs
 
 NAME = "fig9"
 BC = "pbc"
-#: run-name prefix of the Fig. 9 runs (dumps at t = 0 and at the end only).
-KIND = "p0"
+#: eps of the Fig. 9 runs when the campaign's scale is not recorded (that of the presets).
+DEFAULT_P0_EPS = 0.0225
 
 
 def runs(scale, seeds):
-    """One pore-dump P.B.C. run per seed at ``scale.pore_eps`` (the paper does not give the
-    eps of Fig. 9), dumped at t = 0 and after ``scale.taps`` taps."""
-    return [_runs.pore_run(scale, BC, scale.pore_eps, s, [scale.taps], kind=KIND)
-            for s in _runs.seed_list(seeds)]
+    """One constant-eps P.B.C. run per seed at ``scale.p0_eps`` (the paper does not give the eps
+    of Fig. 9; the presets take one of their bell's eps, so the run is shared with Figs. 3-4),
+    which dumps its packing at t = 0 and after ``scale.taps`` taps."""
+    return [_runs.constant_eps_run(scale, BC, scale.p0_eps, s) for s in _runs.seed_list(seeds)]
+
+
+def p0_runs(campaign, bc=BC):
+    """(eps, specs): the campaign's constant-eps runs of ``bc`` at its scale's ``p0_eps``
+    (nearest eps when the scale is not recorded)."""
+    scale = _runs.campaign_scale(campaign)
+    groups = _runs.constant_eps_groups(campaign, bc)
+    target = scale.p0_eps if scale is not None else DEFAULT_P0_EPS
+    eps = min(groups, key=lambda e: abs(np.log(e / target)))
+    return eps, groups[eps]
 
 
 def p0_curves(campaign, bc=BC):
     """dict 'initial'/'final' -> (sigma, list of P0 per seed, list of phi per seed) and the
-    stereological <Phi^c> at both ends, over the campaign's pore-dump runs of ``bc``."""
+    stereological <Phi^c> at both ends, over the runs of :func:`p0_runs`."""
     from tapmc.pores import read_pores
 
-    specs = _runs.select(campaign, KIND + "_", bc=bc)
-    if not specs:
-        raise ValueError(f"campaign {campaign.directory} has no pore-dump {bc} run")
+    _, specs = p0_runs(campaign, bc)
     out = {"initial": [None, [], []], "final": [None, [], []]}
     phi_c = {"initial": [], "final": []}
     for spec in specs:

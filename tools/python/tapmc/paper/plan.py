@@ -8,8 +8,8 @@ runs come in tiers; each tier completes figures on its own:
 1. the paper's own protocol, one run per point from the same initial packing (seed 1 for every
    eps, so ``pack_seed`` is shared, section III.B): the P.B.C. bell of Fig. 4 (squares) with
    Fig. 3 from the same runs, Fig. 2's F.B.C. eps, Figs. 6-7 at eps = 0.1 (F.B.C. and P.B.C.),
-   Fig. 10's pore-dump run (F.B.C., eps = 2e-2); Fig. 9 uses the packing dumps of the P.B.C.
-   runs (t = 0 and after 4000 taps);
+   Fig. 10's pore-dump run (F.B.C., eps = 2e-2); Fig. 9 uses the packing dumps (t = 0 and
+   after 4000 taps) of the P.B.C. run at ``FULL.p0_eps`` = 0.0225, the bell's top;
 2. error bars where the bell's shape is decided: seeds 2 and 3 at both ends and at the top,
    and Fig. 8's fourth eps;
 3. the history-dependent protocols: the ramp (Fig. 4 open symbols) at 1000 taps per level

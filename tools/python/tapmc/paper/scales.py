@@ -45,6 +45,7 @@ class Scale:
     dump_times: tuple                 #: Fig. 10 dump taps (t = 0 is always dumped)
     pore_bc: str = "fbc"              #: Fig. 10 boundary conditions
     restart_every: int = 500          #: taps between restart files (what a killed run loses)
+    p0_eps: float = 0.0225            #: Fig. 9 eps (P.B.C. constant-eps run, dumped at both ends)
 
     def __post_init__(self):
         for field in ("N", "taps", "seeds", "steady_last", "ramp_levels",
@@ -52,7 +53,8 @@ class Scale:
             value = getattr(self, field)
             if isinstance(value, bool) or not isinstance(value, int) or value < 1:
                 raise ValueError(f"Scale.{field} = {value!r}: must be an integer >= 1")
-        for field in ("L", "eta", "ramp_sqrt0", "ramp_dsqrt", "ageing_eps", "pore_eps"):
+        for field in ("L", "eta", "ramp_sqrt0", "ramp_dsqrt", "ageing_eps", "pore_eps",
+                      "p0_eps"):
             value = getattr(self, field)
             if not isinstance(value, (int, float)) or not value > 0:
                 raise ValueError(f"Scale.{field} = {value!r}: must be a number > 0")
@@ -89,7 +91,7 @@ QUICK = Scale(
     ramp_sqrt0=0.05, ramp_dsqrt=0.05, ramp_levels=4, ramp_taps_per_level=25,
     ageing_eps=0.01, ageing_taps=100, ageing_waiting_times=(5, 10, 20, 40),
     profile_eps=(5e-3, 2e-2, 5e-2, 0.1),
-    pore_eps=2e-2, dump_times=(1, 4, 10, 30, 100),
+    pore_eps=2e-2, dump_times=(1, 4, 10, 30, 100), p0_eps=0.04,
 )
 
 #: The paper's set-up (section II): 4096 spheres, L = 32R, 4000 taps, 10 realizations. The bell
