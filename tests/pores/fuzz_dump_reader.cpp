@@ -1,6 +1,7 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 // libFuzzer target: arbitrary bytes through the dump reader must give frames or DumpError only
-// (no crash, no hang, no sanitizer report). Built with clang when available (tests/pores).
+// (no crash, no hang, no sanitizer report); an input without any frame (empty, blank) must be a
+// DumpError too, and every DumpError names the file. Built with clang when available (tests/pores).
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -18,13 +19,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     auto reader = tapmc::pores::DumpReader::from_memory(std::string(reinterpret_cast<const char*>(data), size),
                                                         "fuzz.dump", options);
     tapmc::pores::Frame frame;
-    for (int frames = 0; frames < 64 && reader.next(frame); ++frames) {
+    int frames = 0;
+    for (; frames < 64 && reader.next(frame); ++frames) {
       if (frame.xyz.size() != 3 * frame.ids.size()) __builtin_trap();
       if (!frame.radius.empty() && frame.radius.size() != frame.ids.size()) __builtin_trap();
       for (int d = 0; d < 3; ++d)
         if (!(frame.box.hi[d] > frame.box.lo[d])) __builtin_trap();
     }
-  } catch (const tapmc::pores::DumpError&) {
+    if (frames == 0) __builtin_trap();  // a dump without a frame ended cleanly: it must be named
+  } catch (const tapmc::pores::DumpError& error) {
+    if (error.file() != "fuzz.dump" || std::string(error.what()).rfind("fuzz.dump:", 0) != 0) __builtin_trap();
   }
   return 0;
 }

@@ -141,6 +141,17 @@ def test_bad_input_is_refused_with_file_frame_and_line(tmp_path, name):
     assert "Traceback" not in message and "internal error" not in message
 
 
+def test_an_empty_dump_is_named_as_such(tmp_path):
+    # It used to end the file cleanly: the run then said only "no frame analysed".
+    good = write(tmp_path / "good.dump", GOOD)
+    for name in ("empty.dump", "empty.dump.gz"):
+        empty = write(tmp_path / name, "")
+        result = run("-q", "-o", tmp_path / "out", good, empty)
+        assert result.returncode == 2, result.stderr
+        assert f"{empty}: empty file" in result.stderr, result.stderr
+        assert "no frame analysed" not in result.stderr
+
+
 def test_missing_radius_and_missing_file(tmp_path):
     dump = write(tmp_path / "nor.dump", _frame("1", ["1 1 1 1"], columns="id x y z"))
     result = run("-q", "-o", tmp_path / "out", dump)

@@ -155,4 +155,42 @@ TEST(PoreDumpReader, ErrorsReportTheFrameNumber) {
   }
 }
 
+// The message of a DumpError raised at the first frame, or "" when the input reads cleanly.
+std::string first_error(DumpReader reader) {
+  Frame f;
+  try {
+    while (reader.next(f)) {
+    }
+  } catch (const DumpError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(PoreDumpReader, AnEmptyDumpIsNamedAsSuch) {
+  // Empty input was a clean end of the dump: the tool then said only "no frame analysed".
+  EXPECT_EQ(first_error(DumpReader::from_memory("", "empty.dump")), "empty.dump: empty file (no dump frame)");
+  EXPECT_EQ(first_error(DumpReader::from_memory("\n  \n\t", "blank.dump")),
+            "blank.dump: no dump frame: the file holds only blank lines");
+  // The same from files, plain and gzip-compressed (an empty gzip stream is not an empty file).
+  const std::string plain = ::testing::TempDir() + "pores_empty.dump", packed = ::testing::TempDir() + "pores_empty.dump.gz";
+  std::fclose(std::fopen(plain.c_str(), "w"));
+  gzclose(gzopen(packed.c_str(), "wb"));
+  EXPECT_EQ(first_error(DumpReader::open(plain)), plain + ": empty file (no dump frame)");
+  EXPECT_EQ(first_error(DumpReader::open(packed)), packed + ": empty file (no dump frame)");
+  std::remove(plain.c_str());
+  std::remove(packed.c_str());
+  // After a frame, the end of the input (even after blank lines) still ends the dump cleanly.
+  const std::string good = frame_text(0, "pp pp pp", "id x y z", {"1 1 1 1"});
+  EXPECT_EQ(first_error(DumpReader::from_memory(good + "\n  \n", "ok.dump")), "");
+}
+
+TEST(PoreDumpReader, ALastLineWithoutNewlineIsRefused) {
+  // A run killed while writing the dump: "2 2 2 2.5" cut to "2 2 2 2" would still parse.
+  const std::string good = frame_text(0, "pp pp pp", "id x y z", {"1 1 1 1", "2 2 2 2"});
+  expect_error(good.substr(0, good.size() - 1), 11, "no newline");
+  expect_error(good + "ITEM: TIME", 12, "no newline");
+  EXPECT_EQ(first_error(DumpReader::from_memory(good + "  ", "spaces.dump")), "");
+}
+
 }  // namespace

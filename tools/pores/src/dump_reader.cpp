@@ -199,10 +199,13 @@ bool DumpReader::next_line(std::string_view& line) {
     }
     if (eof_) {
       if (begin_ == end_) return false;
-      line = std::string_view(start, end_ - begin_);  // last line without a newline
+      // A last line without its newline is a write cut short (a run killed while LAMMPS wrote
+      // the dump): its last number may be cut too and would still parse, so it is refused.
+      const std::string_view rest(start, end_ - begin_);
       begin_ = end_;
       ++line_number_;
-      return true;
+      if (blank(rest)) return false;
+      fail(line_number_, "the file ends inside this line (no newline): cut short while being written?");
     }
     // Move the partial line to the front, grow if one line fills the buffer, then refill.
     std::memmove(buffer_.data(), start, end_ - begin_);
@@ -392,9 +395,14 @@ bool DumpReader::next(Frame& frame) {
   std::string_view line;
   have_timestep_ = false;
 
-  // Skip blank lines before the frame; a clean end of input here ends the dump.
+  // Skip blank lines before the frame; a clean end of input here ends the dump, unless no frame
+  // came before: an empty dump is named as such rather than found later as "no frame analysed".
   do {
-    if (!next_line(line)) return false;
+    if (!next_line(line)) {
+      if (frames_read_ > 0) return false;
+      throw DumpError(name_, 0, 0, line_number_ == 0 ? "empty file (no dump frame)"
+                                                     : "no dump frame: the file holds only blank lines");
+    }
   } while (blank(line));
 
   frame.source = name_;

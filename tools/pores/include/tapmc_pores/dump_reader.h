@@ -76,7 +76,8 @@ class DumpReader {
   ~DumpReader();
 
   // Reads the next frame into `frame`; false at the end of the input. Throws DumpError on any
-  // malformed, truncated or physically invalid frame (never returns a partial frame).
+  // malformed, truncated or physically invalid frame (never returns a partial frame), on an
+  // input without any frame (empty or blank) and on a last line without its newline.
   bool next(Frame& frame);
 
   struct Columns;  // where id, centre and radius sit in an atom line (defined in dump_reader.cpp)
