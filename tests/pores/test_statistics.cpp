@@ -1,9 +1,10 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-// Pore statistics: histograms and nu on exact lattices, the default selection (floor, free
-// surface h_s, side walls from the data), Gotoh's P0 (eq. 8, and the form replacing the printed
-// eq. 9) against the sampled one, monodisperse check.
+// Pore statistics: histograms, nu, n_v(v) and rho_v(v) on exact lattices and on an analytic
+// P(xi), the default selection (floor, free surface h_s, side walls from the data), Gotoh's P0
+// (eq. 8, and the form replacing the printed eq. 9) against the sampled one, monodisperse check.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -33,9 +34,69 @@ TEST(PoreStatistics, FccHistogramAndNu) {
   EXPECT_NEAR(integral, 1.0, 1e-12);
   EXPECT_NEAR(s.xi.density(static_cast<std::size_t>(xt / 0.01)) * 0.01, 2.0 / 3, 1e-12);
   EXPECT_NEAR(s.xi.density(static_cast<std::size_t>(xo / 0.01)) * 0.01, 1.0 / 3, 1e-12);
-  // rho_v(v): same weights at v = xi^3.
+  // n_v(v), the number density of v = xi^3: same weights at v = xi^3, integral 1.
   const double vw = s.v.width();
-  EXPECT_NEAR(s.v.density(static_cast<std::size_t>(xo * xo * xo / vw)) * vw, 1.0 / 3, 1e-12);
+  const auto bin_t = static_cast<std::size_t>(xt * xt * xt / vw), bin_o = static_cast<std::size_t>(xo * xo * xo / vw);
+  ASSERT_NE(bin_t, bin_o);
+  EXPECT_NEAR(s.v.density(bin_o) * vw, 1.0 / 3, 1e-12);
+  EXPECT_NEAR(s.v.density(bin_t) * vw, 2.0 / 3, 1e-12);
+  // rho_v(v) = v n_v(v), the paper's volume distribution (section IV.B): each peak weighs its
+  // share of nu, xi^3 times its fraction, and the whole integrates to nu, not to 1.
+  EXPECT_NEAR(s.v.weighted_density(bin_o) * vw, xo * xo * xo / 3, 1e-12);
+  EXPECT_NEAR(s.v.weighted_density(bin_t) * vw, 2 * xt * xt * xt / 3, 1e-12);
+  double n_integral = 0, rho_integral = 0;
+  for (std::size_t i = 0; i < s.v.bins(); ++i) {
+    n_integral += s.v.density(i) * vw;
+    rho_integral += s.v.weighted_density(i) * vw;
+  }
+  EXPECT_NEAR(n_integral, 1.0, 1e-12);
+  EXPECT_NEAR(rho_integral, s.nu(), 1e-12);
+}
+
+// The conversion of section IV.B on an analytic case: P(xi) uniform on [a, b]. Then
+// n_v(v) = P(xi) / (3 xi^2) and rho_v(v) = (xi/3) P(xi) with xi = v^(1/3), whose averages over a
+// v bin [v0, v1) are, with x = clip(v^(1/3), a, b), (x1 - x0) / ((b - a) w) and
+// (x1^4 - x0^4) / (4 (b - a) w): rho_v dv = xi^3 P(xi) dxi. The pores are M quantiles of P, so
+// every bin holds its expected count to within one pore: a bound of 1/M on each bin's weight.
+TEST(PoreStatistics, VolumeDistributionIsXiOverThreeTimesP) {
+  const double a = 0.25, b = 0.65;
+  const std::size_t m = 400000;
+  PoreStatistics whole(HistogramSpec{1.0, 100}), first(HistogramSpec{1.0, 100}), second(HistogramSpec{1.0, 100});
+  PoreStatistics clipped(HistogramSpec{0.6, 100});  // pores with xi >= 0.6 overflow
+  for (std::size_t k = 0; k < m; ++k) {
+    Pore pore;
+    pore.xi = a + (b - a) * (static_cast<double>(k) + 0.5) / static_cast<double>(m);
+    whole.add(pore);
+    (k % 3 == 0 ? first : second).add(pore);
+    clipped.add(pore);
+  }
+  first.merge(second);  // merging keeps the sums of v per bin
+  const double nu = (std::pow(b, 4) - std::pow(a, 4)) / (4 * (b - a));
+  EXPECT_NEAR(whole.nu(), nu, 1e-9);
+  const Histogram& v = whole.v;
+  const double w = v.width(), bound = 1.0 / static_cast<double>(m);
+  auto clip = [&](double edge) { return std::min(b, std::max(a, std::cbrt(edge))); };
+  double n_integral = 0, rho_integral = 0;
+  for (std::size_t i = 0; i < v.bins(); ++i) {
+    const double v0 = v.bin_lo(i), v1 = v0 + w, x0 = clip(v0), x1 = clip(v1);
+    EXPECT_NEAR(v.density(i) * w, (x1 - x0) / (b - a), bound) << "bin " << i;
+    EXPECT_NEAR(v.weighted_density(i) * w, (std::pow(x1, 4) - std::pow(x0, 4)) / (4 * (b - a)), v1 * bound)
+        << "bin " << i;
+    // Each v of the bin is within w/2 of its centre: |rho_v - v_centre n_v| <= (w/2) n_v.
+    EXPECT_LE(std::abs(v.weighted_density(i) - v.bin_centre(i) * v.density(i)), 0.5 * w * v.density(i) + 1e-12);
+    EXPECT_NEAR(first.v.weighted_density(i), v.weighted_density(i), 1e-12 * (1 + v.weighted_density(i)));
+    n_integral += v.density(i) * w;
+    rho_integral += v.weighted_density(i) * w;
+  }
+  EXPECT_NEAR(n_integral, 1.0, 1e-12);
+  EXPECT_NEAR(rho_integral, whole.nu(), 1e-12);  // int rho_v(v) dv = nu (section IV.B)
+  // Out-of-range pores count in the normalisation but carry no volume into the bins: the
+  // integral is then the in-range part of nu, int_a^0.6 xi^3 P(xi) dxi.
+  double clipped_integral = 0;
+  for (std::size_t i = 0; i < clipped.v.bins(); ++i)
+    clipped_integral += clipped.v.weighted_density(i) * clipped.v.width();
+  EXPECT_GT(clipped.v.overflow(), 0u);
+  EXPECT_NEAR(clipped_integral, (std::pow(0.6, 4) - std::pow(a, 4)) / (4 * (b - a)), 0.6 * 0.6 * 0.6 * bound);
 }
 
 // A packing resting on a floor at z = 2 in a box starting at z = -5 (a DEM dump): simple cubic

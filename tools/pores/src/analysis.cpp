@@ -114,7 +114,7 @@ Region make_region(const Box& box, const PackingBounds& packing, double radius, 
   return region;
 }
 
-Histogram::Histogram(double lo, double hi, std::size_t bins) : lo_(lo), hi_(hi), counts_(bins, 0) {
+Histogram::Histogram(double lo, double hi, std::size_t bins) : lo_(lo), hi_(hi), counts_(bins, 0), sums_(bins, 0.0) {
   if (bins == 0) throw std::invalid_argument("histogram needs at least one bin");
   if (!(hi > lo)) throw std::invalid_argument("histogram range must have hi > lo, got [" + std::to_string(lo) + ", " + std::to_string(hi) + ")");
 }
@@ -124,13 +124,18 @@ void Histogram::add(double value) {
   if (value < lo_) { ++underflow_; return; }
   const double t = (value - lo_) / width();
   if (!(t < static_cast<double>(counts_.size()))) { ++overflow_; return; }
-  ++counts_[static_cast<std::size_t>(t)];
+  const auto bin = static_cast<std::size_t>(t);
+  ++counts_[bin];
+  sums_[bin] += value;
 }
 
 void Histogram::merge(const Histogram& other) {
   if (other.counts_.size() != counts_.size() || other.lo_ != lo_ || other.hi_ != hi_)
     throw std::invalid_argument("cannot merge histograms with different bins");
-  for (std::size_t i = 0; i < counts_.size(); ++i) counts_[i] += other.counts_[i];
+  for (std::size_t i = 0; i < counts_.size(); ++i) {
+    counts_[i] += other.counts_[i];
+    sums_[i] += other.sums_[i];
+  }
   underflow_ += other.underflow_;
   overflow_ += other.overflow_;
   total_ += other.total_;
@@ -139,6 +144,11 @@ void Histogram::merge(const Histogram& other) {
 double Histogram::density(std::size_t i) const {
   if (total_ == 0) return 0.0;
   return static_cast<double>(counts_[i]) / (static_cast<double>(total_) * width());
+}
+
+double Histogram::weighted_density(std::size_t i) const {
+  if (total_ == 0) return 0.0;
+  return sums_[i] / (static_cast<double>(total_) * width());
 }
 
 PoreStatistics::PoreStatistics(const HistogramSpec& spec)

@@ -57,8 +57,10 @@ Histograms
   --bins N             bins of xi on [0, XI_MAX) and of v = xi^3 on [0, XI_MAX^3) (default 150)
   --xi-max X           (default 1.5)
 Outputs (files PREFIX.*)
-  -o, --output PREFIX  default "pores". Always: PREFIX.hist.csv (P(xi), xi^3 P(xi), rho_v(v) over
-                       all analysed frames) and PREFIX.frames.csv (one line per frame: counts, nu)
+  -o, --output PREFIX  default "pores". Always: PREFIX.hist.csv (over all analysed frames: P(xi),
+                       xi^3 P(xi), the number density n_v(v) of v = xi^3 (integral 1) and the
+                       paper's volume distribution rho_v(v) = v n_v(v) = (xi/3) P(xi) (integral
+                       nu)) and PREFIX.frames.csv (one line per frame: counts, nu)
   --frame-hist         also PREFIX.frame_hist.csv, the histograms of every frame
   --pores              also PREFIX.pores.csv, every pore (centre, xi, four atom ids, selected)
   --json               also PREFIX.json with the same content for Python
@@ -287,10 +289,12 @@ void write_histogram_rows(std::ostream& out, const PoreStatistics& s, const std:
     out << row_prefix << i << "," << csv_number(s.xi.bin_lo(i)) << "," << csv_number(s.xi.bin_lo(i) + s.xi.width()) << ","
         << csv_number(xi) << "," << s.xi.count(i) << "," << csv_number(p) << "," << csv_number(xi * xi * xi * p) << ","
         << csv_number(s.v.bin_lo(i)) << "," << csv_number(s.v.bin_lo(i) + s.v.width()) << "," << csv_number(s.v.bin_centre(i))
-        << "," << s.v.count(i) << "," << csv_number(s.v.density(i)) << "\n";
+        << "," << s.v.count(i) << "," << csv_number(s.v.density(i)) << "," << csv_number(s.v.weighted_density(i))
+        << "\n";
   }
 }
-const char* kHistogramColumns = "bin,xi_lo,xi_hi,xi,count_xi,P_xi,xi3_P_xi,v_lo,v_hi,v,count_v,rho_v";
+// n_v: number density of v (integral 1); rho_v: the paper's v n_v(v) (integral nu, section IV.B).
+const char* kHistogramColumns = "bin,xi_lo,xi_hi,xi,count_xi,P_xi,xi3_P_xi,v_lo,v_hi,v,count_v,n_v,rho_v";
 
 void write_json_statistics(JsonWriter& json, const PoreStatistics& s, bool with_histograms) {
   json.begin_object();
@@ -312,7 +316,8 @@ void write_json_statistics(JsonWriter& json, const PoreStatistics& s, bool with_
     });
     array("v_edges", s.v.bins() + 1, [&](std::size_t i) { return s.v.lo() + s.v.width() * double(i); });
     array("count_v", s.v.bins(), [&](std::size_t i) { return s.v.count(i); });
-    array("rho_v", s.v.bins(), [&](std::size_t i) { return s.v.density(i); });
+    array("n_v", s.v.bins(), [&](std::size_t i) { return s.v.density(i); });
+    array("rho_v", s.v.bins(), [&](std::size_t i) { return s.v.weighted_density(i); });
   }
   json.end_object();
 }

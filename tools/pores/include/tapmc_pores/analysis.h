@@ -1,6 +1,6 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-// Pore statistics (CGAL-free): where the packing is, the selection, P(xi), xi^3 P(xi), rho_v(v),
-// nu, Gotoh's P0.
+// Pore statistics (CGAL-free): where the packing is, the selection, P(xi), xi^3 P(xi), the number
+// density n_v(v) and the volume distribution rho_v(v) of v = xi^3, nu, Gotoh's P0.
 #ifndef TAPMC_PORES_ANALYSIS_H
 #define TAPMC_PORES_ANALYSIS_H
 
@@ -70,7 +70,8 @@ struct RegionSpec {
 // The sub-box, clipped to the box. Throws std::invalid_argument if it is empty.
 Region make_region(const Box& box, const PackingBounds& packing, double radius, const RegionSpec& spec);
 
-// Fixed-bin histogram on [lo, hi) with under/overflow counts.
+// Fixed-bin histogram on [lo, hi) with under/overflow counts, and the sum of the values that fell
+// in each bin (for the value-weighted density).
 class Histogram {
  public:
   Histogram() = default;
@@ -87,12 +88,20 @@ class Histogram {
   std::uint64_t underflow() const { return underflow_; }
   std::uint64_t overflow() const { return overflow_; }
   std::uint64_t total() const { return total_; }
-  // Probability density in bin i, normalised by every value added (in range or not).
+  double sum(std::size_t i) const { return sums_[i]; }
+  // Probability density n(x) in bin i, normalised by every value added (in range or not): its
+  // integral over the bins is the fraction of values in range.
   double density(std::size_t i) const;
+  // The value-weighted density x n(x) averaged over bin i: the sum of the values in the bin over
+  // (every value added x width). Exact bin by bin (no bin-centre approximation), so its integral
+  // over the bins is the sum of the in-range values over their total count: the mean <x> when
+  // none is out of range.
+  double weighted_density(std::size_t i) const;
 
  private:
   double lo_ = 0.0, hi_ = 1.0;
   std::vector<std::uint64_t> counts_;
+  std::vector<double> sums_;
   std::uint64_t underflow_ = 0, overflow_ = 0, total_ = 0;
 };
 
@@ -101,9 +110,13 @@ struct HistogramSpec {
   std::size_t bins = config::kDefaultBins;
 };
 
-// Statistics of the selected pores of one frame or of many frames pooled.
-// P(xi) = xi histogram density; rho_v(xi) = xi^3 P(xi); rho_v(v) = density of v = xi^3
-// (equal to xi/3 P(xi) in the continuum, section IV.B); nu = <xi^3> = integral of xi^3 P(xi).
+// Statistics of the selected pores of one frame or of many frames pooled (section IV.B):
+//  * P(xi) = xi.density(); the paper's rho_v(xi) = xi^3 P(xi);
+//  * n_v(v) = v.density(): the number density of v = xi^3, P(xi) / (3 xi^2); integral 1;
+//  * rho_v(v) = v.weighted_density() = v n_v(v) = (xi/3) P(xi): the paper's volume distribution
+//    in v, rho_v(v) dv = xi^3 P(xi) dxi, whose integral is nu ("nu = int xi^3 P(xi) dxi =
+//    int rho_v(v) dv"), the function of the claim rho_v(v) ~ exp(-v/nu);
+//  * nu = <xi^3>, exact from the pores.
 struct PoreStatistics {
   explicit PoreStatistics(const HistogramSpec& spec = {});
   void add(const Pore& pore);
