@@ -21,7 +21,8 @@ BUILD = Path(os.environ.get("TAPMC_BUILD_DIR", SOURCE / "build"))
 LMP = Path(os.environ.get("TAPMC_LMP", BUILD / "lmp_tapmc"))
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
 
-from tapmc.campaign import Campaign, CampaignError, RunSpec  # noqa: E402
+from tapmc.campaign import (Campaign, CampaignDirectoryError, CampaignError,  # noqa: E402
+                            MANIFEST_FORMAT, RunSpec)
 
 CONSTANT_EPS = SOURCE / "examples" / "paper" / "in.constant_eps"
 TINY = dict(N=64, L=8, eta=1e-5, rsteps=5, thermo_every=5)
@@ -54,6 +55,7 @@ def test_pool_two_jobs_and_manifest(tmp_path):
 
     manifest = json.loads((tmp_path / "c" / "manifest.json").read_text())
     assert manifest["mode"] == "pool" and manifest["jobs"] == 2
+    assert manifest["format"] == MANIFEST_FORMAT
     assert "2021" in manifest["lammps_version"]
     entry = manifest["inputs"]["in.constant_eps"]
     assert entry["sha256"] == hashlib.sha256(CONSTANT_EPS.read_bytes()).hexdigest()
@@ -207,7 +209,7 @@ def test_changed_input_stops_or_is_pinned(tmp_path):
     original = source.read_bytes()
     source.write_bytes(original + b"# edited after the campaign started\n")
     more = runs + [RunSpec("b", source, dict(TINY, taps=3, eps=0.02), seed=1)]
-    with pytest.raises(ValueError, match="in.constant_eps: differs from the copy"):
+    with pytest.raises(CampaignDirectoryError, match="in.constant_eps: differs from the copy"):
         Campaign(tmp_path / "c", more, lmp=LMP, jobs=1).run(progress=False)
     stream = io.StringIO()
     Campaign(tmp_path / "c", more, lmp=LMP, jobs=1, stream=stream,
@@ -218,3 +220,27 @@ def test_changed_input_stops_or_is_pinned(tmp_path):
     assert entry["sha256"] == hashlib.sha256(original).hexdigest()
     assert entry["source_sha256"] == hashlib.sha256(source.read_bytes()).hexdigest()
     assert steps(tmp_path / "c" / "runs" / "b" / "taps.dat") == [0, 1, 2, 3]
+
+
+def test_campaign_folder_checks(tmp_path):
+    """A manifest without "format" (written before TAPMC recorded it) is format 1 and is kept
+    (its created date too); a finished run asked again with other parameters, a damaged
+    DONE.json and a regular file as the folder are refused with CampaignDirectoryError."""
+    folder = tmp_path / "c"
+    folder.mkdir()
+    (folder / "manifest.json").write_text(json.dumps({"created": "2026-01-01T00:00:00Z",
+                                                      "runs": []}))
+    spec = RunSpec("a", CONSTANT_EPS, dict(TINY, taps=2), seed=1)
+    Campaign(folder, [spec], lmp=LMP).run(progress=False)
+    manifest = json.loads((folder / "manifest.json").read_text())
+    assert manifest["format"] == MANIFEST_FORMAT
+    assert manifest["created"] == "2026-01-01T00:00:00Z"
+    other = RunSpec("a", CONSTANT_EPS, dict(TINY, taps=3), seed=1)
+    with pytest.raises(CampaignDirectoryError, match="run 'a': finished in .* with other "
+                                                     "parameters"):
+        Campaign(folder, [other], lmp=LMP).run(progress=False)
+    (folder / "runs" / "a" / "DONE.json").write_text("{")
+    with pytest.raises(CampaignDirectoryError, match="DONE.json: cannot be read as the record"):
+        Campaign(folder, [spec], lmp=LMP).run(progress=False)
+    with pytest.raises(CampaignDirectoryError, match="manifest.json: exists and is not a dir"):
+        Campaign(folder / "manifest.json", [spec], lmp=LMP)

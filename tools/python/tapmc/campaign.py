@@ -23,7 +23,6 @@ written after it and merging the profile files of the two segments) and skips fi
 
 from __future__ import annotations
 
-import contextlib
 import ctypes
 import fcntl
 import hashlib
@@ -40,7 +39,8 @@ import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-__all__ = ["RunSpec", "Campaign", "CampaignError", "find_lmp", "merge_ave_time_parts"]
+__all__ = ["RunSpec", "Campaign", "CampaignError", "CampaignDirectoryError", "find_lmp",
+           "merge_ave_time_parts", "MANIFEST_FORMAT"]
 
 _NAME_RE = re.compile(r"^[A-Za-z0-9_.+-]+$")
 _VAR_RE = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
@@ -49,10 +49,21 @@ _RESERVED = ("seed", "resume", "resume_file")
 #: seconds between two progress reports
 PROGRESS_INTERVAL = 10.0
 _REPO = Path(__file__).resolve().parents[3]
+#: Layout of a campaign folder (manifest keys, inputs/, runs/NAME/DONE.json) that this module
+#: reads and writes, recorded as "format" in manifest.json. A manifest without the key was
+#: written before it was recorded and has this layout. Raise it when a change of the layout
+#: would make an older TAPMC misread a folder: a folder of another format is refused.
+MANIFEST_FORMAT = 1
 
 
 class CampaignError(RuntimeError):
     """A run of a campaign failed; the message names each failed run and its log."""
+
+
+class CampaignDirectoryError(ValueError):
+    """The campaign folder cannot be used: it is not a directory, cannot be created, read or
+    written, its manifest is damaged or of another format, or it holds finished runs or input
+    copies that differ from the ones asked for. The message names the path and what is wrong."""
 
 
 def find_lmp(lmp=None):
@@ -377,6 +388,7 @@ class Campaign:
         if progress_interval <= 0:
             raise ValueError(f"progress_interval = {progress_interval!r}: must be > 0")
         self.directory = Path(directory).resolve()
+        self.check_directory()
         self.runs = runs
         self.lmp = find_lmp(lmp)
         self.jobs = jobs
@@ -390,6 +402,59 @@ class Campaign:
         self._started = {}
 
     # -- folders -------------------------------------------------------------------------
+    def check_directory(self):
+        """Raise CampaignDirectoryError unless the campaign folder is usable: an existing
+        directory that can be listed, with a readable manifest of MANIFEST_FORMAT if it has
+        one, or a path whose nearest existing ancestor is a writable directory. Writes
+        nothing (a dry run checks too); run() finds what only a write can show."""
+        d = self.directory
+        if d.exists():
+            if not d.is_dir():
+                raise CampaignDirectoryError(f"campaign directory {d}: exists and is not a "
+                                             "directory")
+            try:
+                os.listdir(d)
+            except OSError as err:
+                raise CampaignDirectoryError(f"campaign directory {d}: cannot be read "
+                                             f"({err.strerror})") from None
+            self._read_manifest()
+            return
+        parent = d.parent
+        while not parent.exists() and parent != parent.parent:
+            parent = parent.parent
+        if not parent.is_dir():
+            raise CampaignDirectoryError(f"campaign directory {d}: cannot be created: {parent} "
+                                         "is not a directory")
+        if not os.access(parent, os.W_OK | os.X_OK):
+            raise CampaignDirectoryError(f"campaign directory {d}: cannot be created: {parent} "
+                                         "is not writable")
+
+    def _read_manifest(self):
+        """manifest.json of the folder as a dict ({} when there is none yet); a manifest that
+        cannot be read, is not one, or has another format raises CampaignDirectoryError
+        instead of being overwritten, so that a folder is never silently taken over."""
+        path = self.directory / "manifest.json"
+        if not path.exists():
+            return {}
+        try:
+            data = json.loads(path.read_text())
+        except OSError as err:
+            raise CampaignDirectoryError(f"campaign manifest {path}: cannot be read "
+                                         f"({err.strerror})") from None
+        except ValueError as err:  # also UnicodeDecodeError
+            raise CampaignDirectoryError(f"campaign manifest {path}: not valid JSON ({err}); "
+                                         "a damaged manifest or not a campaign folder") from None
+        if not isinstance(data, dict) or not isinstance(data.get("runs", []), list):
+            raise CampaignDirectoryError(f"campaign manifest {path}: not a campaign manifest "
+                                         "(expected a JSON object with a list of runs)")
+        fmt = data.get("format", MANIFEST_FORMAT)
+        if fmt != MANIFEST_FORMAT:
+            raise CampaignDirectoryError(
+                f"campaign manifest {path}: format {fmt!r}, this TAPMC reads format "
+                f"{MANIFEST_FORMAT}; the campaign was made by another TAPMC version (use that "
+                "version, or a new campaign directory)")
+        return data
+
     def run_dir(self, name):
         """Folder of run ``name`` (whether or not it has run)."""
         return self.directory / "runs" / name
@@ -446,8 +511,9 @@ class Campaign:
                      "copy": str(copy.relative_to(self.directory))}
             if copy.exists() and _sha256(copy) != digest:
                 if not self.pin_inputs:
-                    raise ValueError(f"input {src}: differs from the copy this campaign started "
-                                     f"with ({copy}); use a new campaign directory")
+                    raise CampaignDirectoryError(
+                        f"input {src}: differs from the copy this campaign started with "
+                        f"({copy}); use a new campaign directory")
                 entry.update(sha256=_sha256(copy), source_sha256=digest)
                 print(f"[campaign] input {src} changed since this campaign started; its runs "
                       f"keep executing the campaign's copy {copy}", file=self.stream, flush=True)
@@ -665,8 +731,15 @@ class Campaign:
     def run(self, progress=True):
         """Run every unfinished run (resuming from restart files), write manifest.json;
         raise CampaignError naming each failed run and its log. Returns self."""
-        self.directory.mkdir(parents=True, exist_ok=True)
-        with open(self.directory / "campaign.lock", "w") as lockfile:
+        self.check_directory()
+        try:
+            self.directory.mkdir(parents=True, exist_ok=True)
+            lockfile = open(self.directory / "campaign.lock", "w")
+        except OSError as err:
+            raise CampaignDirectoryError(
+                f"campaign directory {self.directory}: cannot be created or written "
+                f"({err.strerror}: {err.filename})") from None
+        with lockfile:
             try:
                 fcntl.flock(lockfile, fcntl.LOCK_EX | fcntl.LOCK_NB)
             except OSError:
@@ -675,18 +748,15 @@ class Campaign:
             return self._run_locked(progress)
 
     def _run_locked(self, progress):
-        old = {}
-        mpath = self.directory / "manifest.json"
-        if mpath.exists():
-            with contextlib.suppress(ValueError, OSError):
-                old = {r["name"]: r for r in json.loads(mpath.read_text()).get("runs", [])}
+        previous = self._read_manifest()
+        old = {r["name"]: r for r in previous.get("runs", [])
+               if isinstance(r, dict) and "name" in r}
         self._manifest = {
-            "campaign": str(self.directory), "created": None, "mode": self.mode,
-            "jobs": self.jobs, "host": platform.node(), "python": sys.version.split()[0],
-            "lmp": str(self.lmp), "lammps_version": self._lammps_version(),
+            "format": MANIFEST_FORMAT, "campaign": str(self.directory),
+            "created": previous.get("created"), "mode": self.mode, "jobs": self.jobs,
+            "host": platform.node(), "python": sys.version.split()[0], "lmp": str(self.lmp),
+            "lammps_version": self._lammps_version(),
             "tapmc_version": self._tapmc_version(), "inputs": self._copy_inputs()}
-        with contextlib.suppress(ValueError, OSError):
-            self._manifest["created"] = json.loads(mpath.read_text()).get("created")
         self._manifest["created"] = self._manifest["created"] or _now()
         self._t0, self._done0 = {}, {}
         pending = []
@@ -694,10 +764,15 @@ class Campaign:
             desc = spec.describe()
             done_file = self.run_dir(spec.name) / "DONE.json"
             if done_file.exists():
-                recorded = json.loads(done_file.read_text())["run"]
+                try:
+                    recorded = json.loads(done_file.read_text())["run"]
+                except (OSError, ValueError, KeyError, TypeError) as err:
+                    raise CampaignDirectoryError(f"{done_file}: cannot be read as the record of "
+                                                 f"a finished run ({err!r})") from None
                 if recorded != json.loads(json.dumps(desc)):
-                    raise ValueError(f"run {spec.name!r}: finished in {done_file.parent} with "
-                                     f"other parameters ({recorded}); use a new name or campaign")
+                    raise CampaignDirectoryError(
+                        f"run {spec.name!r}: finished in {done_file.parent} with other "
+                        f"parameters ({recorded}); use a new name or campaign")
             rec = dict(old.get(spec.name, {}))
             rec.update(desc)
             rec.setdefault("attempts", [])
