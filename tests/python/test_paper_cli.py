@@ -198,6 +198,17 @@ def _one_line_error(out, rc=2):
     return lines[0]
 
 
+def _main(capsys, *args):
+    """tapmc-paper in this process (a child process costs seconds of imports per case): the
+    exit status and stdout / stderr; an exception, which would be a traceback, fails the
+    test."""
+    from tapmc.paper.cli import main
+
+    status = main([str(a) for a in args])
+    captured = capsys.readouterr()
+    return subprocess.CompletedProcess(args, status, captured.out, captured.err)
+
+
 def _folder(tmp_path, manifest=None, scale=None):
     """A campaign folder with a manifest.json text (or a directory when manifest is ...) and
     a scale.json of Scale `scale`."""
@@ -219,10 +230,11 @@ def _folder(tmp_path, manifest=None, scale=None):
     "out_below_file", "out_uncreatable", "manifest_is_directory", "manifest_not_json",
     "manifest_not_object", "manifest_newer_format", "other_preset", "campaign_other_preset",
     "edited_preset", "scale_json_damaged", "lmp_not_executable"])
-def test_bad_paths(tmp_path, case):
+def test_bad_paths(tmp_path, case, capsys, monkeypatch):
     """Each bad path: exit 2, one line naming the path and what is wrong. The checks run
     before any LAMMPS run, so the real figure modules are used; --dry-run only where a check
     must not need it (the ones that write nothing)."""
+    monkeypatch.setenv("TAPMC_LMP", str(LMP))
     afile = tmp_path / "F"
     afile.write_text("a regular file\n")
     camp = tmp_path / "camp"
@@ -271,7 +283,7 @@ def test_bad_paths(tmp_path, case):
                     f"({folder / 'scale.json'}: N = 512 instead of 4096")
     elif case == "campaign_other_preset":
         folder = _folder(tmp_path, scale=QUICK)
-        out = cli("campaign", "--campaign", folder)
+        out = _main(capsys, "campaign", "--campaign", folder)
         assert "use --quick or another --campaign" in _one_line_error(out)
         assert sorted(p.name for p in folder.iterdir()) == ["scale.json"]   # nothing ran
         return
@@ -289,10 +301,19 @@ def test_bad_paths(tmp_path, case):
     elif case == "lmp_not_executable":
         args = ["--campaign", camp, "--lmp", afile]
         expected = f"lmp = '{afile}': not an executable file"
-    line = _one_line_error(cli("fig2", "--quiet", *args))
+    line = _one_line_error(_main(capsys, "fig2", "--quiet", *args))
     assert line.startswith("tapmc-paper: " + expected), line
     if case in ("out_is_file", "out_below_file", "lmp_not_executable"):
         assert not camp.exists(), "a refused command left a campaign folder behind"
+
+
+def test_bad_path_process(tmp_path):
+    """The command as a process: a campaign that is a regular file (a FileExistsError
+    traceback before) ends with status 2 and one line."""
+    afile = tmp_path / "F"
+    afile.write_text("")
+    line = _one_line_error(cli("fig2", "--quick", "--campaign", afile))
+    assert line == f"tapmc-paper: campaign directory {afile}: exists and is not a directory"
 
 
 @pytest.mark.skipif(not shutil.which("setpriv") and os.geteuid() == 0,
@@ -317,7 +338,11 @@ def test_unreadable_campaign_and_manifest(tmp_path):
         prefix = []
         if os.geteuid() == 0:
             prefix = ["setpriv", "--reuid=65534", "--regid=65534", "--clear-groups"]
-        env = dict(os.environ, PYTHONPATH=str(PYTHON_DIR), TAPMC_LMP=str(LMP))
+        home = base / "home"   # matplotlib's cache: nobody cannot write root's home
+        home.mkdir()
+        home.chmod(0o777)
+        env = dict(os.environ, PYTHONPATH=str(PYTHON_DIR), TAPMC_LMP=str(LMP), HOME=str(home),
+                   MPLCONFIGDIR=str(home))
         for folder, expected in [
                 (closed, f"campaign directory {closed}: cannot be read (Permission denied)"),
                 (camp, f"campaign manifest {camp / 'manifest.json'}: cannot be read "

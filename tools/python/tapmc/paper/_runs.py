@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from tapmc.pores import hist_is_current
 from tapmc.readers import read_ave_time, read_fix_print
 
 #: Inputs of the paper's protocols, relative to the repository root.
@@ -171,11 +172,13 @@ def pores_executable():
 
 def run_pores(dumps, prefix, args):
     """Run tapmc-pores on ``dumps`` with output prefix ``prefix`` unless its outputs are newer
-    than the dumps (figures are redrawn cheaply); returns the prefix as a Path."""
+    than the dumps and have the present columns (figures are redrawn cheaply; an output of an
+    older tool, whose rho_v was the number density of v, is made again); returns the prefix
+    as a Path."""
     prefix = Path(prefix)
     hist = Path(str(prefix) + ".hist.csv")
     newest = max(Path(d).stat().st_mtime for d in dumps)
-    if hist.exists() and hist.stat().st_mtime >= newest:
+    if hist.exists() and hist.stat().st_mtime >= newest and hist_is_current(hist):
         return prefix
     cmd = [pores_executable(), *args, "-o", str(prefix), *map(str, dumps)]
     proc = subprocess.run(cmd, capture_output=True, text=True)
@@ -193,6 +196,44 @@ def write_scale(directory, scale):
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
     (directory / SCALE_FILE).write_text(json.dumps(scale.as_dict(), indent=1) + "\n")
+
+
+def check_scale(directory, scale):
+    """Raise :class:`tapmc.campaign.CampaignDirectoryError` when the campaign folder records
+    (``scale.json``) another Scale than ``scale``: its runs, and the figures drawn from them
+    (:func:`campaign_scale`), belong to the recorded one. Every field counts, so a preset
+    edited since the campaign started is refused too. A folder without the file passes."""
+    from tapmc.campaign import CampaignDirectoryError
+
+    from .scales import SCALES
+
+    path = Path(directory) / SCALE_FILE
+    if not path.exists():
+        return
+    try:
+        recorded = json.loads(path.read_text())
+    except OSError as err:
+        raise CampaignDirectoryError(f"{path}: cannot be read ({err.strerror})") from None
+    except ValueError as err:
+        raise CampaignDirectoryError(f"{path}: not valid JSON ({err})") from None
+    if not isinstance(recorded, dict):
+        raise CampaignDirectoryError(f"{path}: not a Scale record (expected a JSON object)")
+    asked = json.loads(json.dumps(scale.as_dict()))
+    differ = [k for k in asked if recorded.get(k) != asked[k]]
+    if not differ:
+        return
+    name = recorded.get("name")
+    shown = [f"{k} = {recorded.get(k)!r} instead of {asked[k]!r}" for k in differ
+             if k != "name"]
+    shown = ", ".join(shown[:3]) + (", ..." if len(shown) > 3 else "")
+    if name != scale.name:
+        hint = f"--{name} or another --campaign" if name in SCALES else "another --campaign"
+        raise CampaignDirectoryError(f"campaign {Path(directory)}: made with Scale {name!r}, "
+                                     f"not the {scale.name!r} asked for ({path}: {shown}); "
+                                     f"use {hint}")
+    raise CampaignDirectoryError(f"campaign {Path(directory)}: made with another Scale "
+                                 f"{name!r} than this TAPMC's ({path}: {shown}); use another "
+                                 "--campaign")
 
 
 def campaign_scale(campaign):

@@ -9,7 +9,10 @@ plotted number into the output folder. ``tapmc-paper report`` does this for ever
 writes the validation report (``tapmc.paper.validation``).
 
 Exit status: 0 on success, 1 when a run failed (the message names the run and its log),
-2 on a usage error or a figure that this installation does not provide.
+2 on a usage error, a figure that this installation does not provide, or a path that cannot be
+used (a campaign folder that is not a directory, cannot be created, read or written, has a
+damaged manifest or one of another format, or was made with another Scale; an ``--out`` that
+cannot be created or written): one line naming the path and what is wrong, no traceback.
 """
 
 from __future__ import annotations
@@ -17,6 +20,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import sys
+import tempfile
 from pathlib import Path
 
 from . import FIGURES
@@ -144,9 +148,50 @@ def _campaign_for(args, modules):
     return Campaign(directory, runs, lmp=args.lmp, jobs=args.jobs, mode=args.mode)
 
 
+def _check_dir(path, label, create):
+    """Refuse a folder (``label``: the campaign directory, --out) that cannot hold what the
+    command writes before the campaign runs: hours of runs must not end at a mkdir. With
+    ``create``, make it and write a probe file in it, the one check that also holds for root
+    and for read-only file systems."""
+    path = Path(path)
+    if path.exists() and not path.is_dir():
+        raise ValueError(f"{label} {path}: exists and is not a directory")
+    if not path.exists():
+        parent = path.parent
+        while not parent.exists() and parent != parent.parent:
+            parent = parent.parent
+        if not parent.is_dir():
+            raise ValueError(f"{label} {path}: cannot be created: {parent} is not a directory")
+    if create:
+        try:
+            path.mkdir(parents=True, exist_ok=True)
+            with tempfile.TemporaryFile(dir=path):
+                pass
+        except OSError as err:
+            raise ValueError(f"{label} {path}: cannot be created or written "
+                             f"({err.strerror})") from None
+
+
+def _os_message(err):
+    """One line for an OSError: the path first, then what is wrong."""
+    where = f"{err.filename}: " if err.filename else ""
+    return f"tapmc-paper: {where}{err.strerror or err}"
+
+
+def _scale_before_run(campaign, scale):
+    """Record the Scale of a new campaign folder before its first run starts, so that a later
+    command with another scale is refused (_runs.check_scale) before it could resume these
+    runs with other sizes. A folder made before scale.json existed gets it after a run that
+    succeeded (see _run_campaign): only then do its finished runs match the scale."""
+    from . import _runs
+
+    if not (campaign.directory / "manifest.json").exists():
+        _runs.write_scale(campaign.directory, scale)
+
+
 def _run_plan(args):
     """``tapmc-paper campaign``: the paper-scale plan's runs, resumable, nothing drawn."""
-    from tapmc.campaign import Campaign, CampaignError
+    from tapmc.campaign import Campaign
 
     from . import _runs, plan
 
@@ -159,14 +204,32 @@ def _run_plan(args):
     try:
         campaign = Campaign(directory, plan.runs(args.tier, scale), lmp=args.lmp,
                             jobs=args.jobs, mode=args.mode, pin_inputs=True)
+        _runs.check_scale(campaign.directory, scale)
+        _check_dir(campaign.directory, "campaign directory", create=not args.dry_run)
     except (ValueError, FileNotFoundError) as err:
         print(f"tapmc-paper: {err}", file=sys.stderr)
         return 2
     if args.dry_run:
         return _list_runs(campaign, f"full plan, tiers 1-{args.tier}")
-    _runs.write_scale(campaign.directory, scale)
+    return _run_campaign(campaign, scale, args.quiet)
+
+
+def _run_campaign(campaign, scale, quiet):
+    """Run the campaign; the exit status: 0, 1 (a run failed) or 2 (the folder is unusable)."""
+    from tapmc.campaign import CampaignDirectoryError, CampaignError
+
+    from . import _runs
+
     try:
-        campaign.run(progress=not args.quiet)
+        _scale_before_run(campaign, scale)
+        campaign.run(progress=not quiet)
+        _runs.write_scale(campaign.directory, scale)
+    except CampaignDirectoryError as err:
+        print(f"tapmc-paper: {err}", file=sys.stderr)
+        return 2
+    except OSError as err:
+        print(_os_message(err), file=sys.stderr)
+        return 2
     except (CampaignError, ValueError) as err:
         print(f"tapmc-paper: {err}", file=sys.stderr)
         return 1
@@ -198,7 +261,7 @@ def _list_runs(campaign, what):
 def main(argv=None):
     parser = build_parser()
     args = parser.parse_args(argv)
-    from tapmc.campaign import CampaignError
+    from . import _runs
 
     if args.command == "campaign":
         return _run_plan(args)
@@ -217,24 +280,33 @@ def main(argv=None):
                 raise FigureUnavailable("report: the module tapmc.paper.validation is not "
                                         "installed in this TAPMC") from None
         campaign = _campaign_for(args, modules)
+        scale = get_scale(args.scale)
+        _runs.check_scale(campaign.directory, scale)
+        out = args.out or campaign.directory / "figures"
+        folders = ((campaign.directory, "campaign directory"),
+                   (out, "--out" if args.out else "figure folder"))
+        # every check that writes nothing first: a bad --out leaves no empty campaign folder
+        for create in (False, not args.dry_run):
+            for path, label in folders:
+                _check_dir(path, label, create)
     except (FigureUnavailable, ValueError, FileNotFoundError) as err:
         print(f"tapmc-paper: {err}", file=sys.stderr)
         return 2
-    out = args.out or campaign.directory / "figures"
     if args.dry_run:
         return _list_runs(campaign, args.scale)
+    status = _run_campaign(campaign, scale, args.quiet)
+    if status:
+        return status
     try:
-        campaign.run(progress=not args.quiet)
-    except (CampaignError, ValueError) as err:
-        print(f"tapmc-paper: {err}", file=sys.stderr)
-        return 1
-    out.mkdir(parents=True, exist_ok=True)
-    drawn = {}
-    for name, module in modules:
-        png, csv = module.draw(campaign, out)
-        drawn[name] = (Path(png), Path(csv))
-        print(f"{name}: {png}  {csv}")
-    if validation is not None:
-        report = validation.report(campaign, out, drawn)
-        print(f"report: {report}")
+        drawn = {}
+        for name, module in modules:
+            png, csv = module.draw(campaign, out)
+            drawn[name] = (Path(png), Path(csv))
+            print(f"{name}: {png}  {csv}")
+        if validation is not None:
+            report = validation.report(campaign, out, drawn)
+            print(f"report: {report}")
+    except OSError as err:
+        print(_os_message(err), file=sys.stderr)
+        return 2
     return 0
