@@ -252,8 +252,11 @@ def test_fig10_pore_volume_distributions(campaign, out_dir):
         nu_t = nu["mean"][nu["x"] == step][0]
         integral = np.sum(d["mean"] * np.gradient(d["x"]))
         assert integral == pytest.approx(nu_t, rel=0.1)  # nu = integral of xi^3 P(xi)
+        # the paper's rho_v(v) = (xi/3) P(xi) (section IV.B) integrates to nu, not to 1: the tool
+        # sums the pores' v in each bin, so this holds to the CSV's 10 digits when no pore is
+        # beyond --xi-max (the statistics box keeps off the free surface)
         rho_v = table[("b", label)]
-        assert np.sum(rho_v["mean"] * np.gradient(rho_v["x"])) == pytest.approx(1.0, abs=0.05)
+        assert np.sum(rho_v["mean"] * np.gradient(rho_v["x"])) == pytest.approx(nu_t, rel=1e-6)
     xi_min = table[("params", "xi_min")]
     assert np.all(xi_min["mean"] >= _plotting.XI_T - 1e-3)
     large = table[("params", "large")]

@@ -1,8 +1,9 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 # tapmc.profiles: profile increases and profiles from compute stereo/profile arrays;
 # tapmc.pores: Percus-Yevick P0 (limits, continuity, exact eq. 8 on a lattice by brute force),
-# the tetrahedral law and the volume tail recovered from sampled pore sizes over seeds, and the
-# tapmc-pores output reader (documented format; the real program when it is built).
+# the tetrahedral law and the volume tail of the paper's rho_v(v) recovered from sampled pore sizes
+# over seeds (with Poisson errors that match the scatter over seeds), and the tapmc-pores output
+# reader (documented format, older files refused; the real program on a real packing when built).
 import os
 import subprocess
 import sys
@@ -16,8 +17,8 @@ SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", HERE.parent.parent))
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
 
 from tapmc.laws import ProfileLaw  # noqa: E402
-from tapmc.pores import (XI_O, XI_T, TetrahedralLaw, VolumeTail, percus_yevick_p0,  # noqa: E402
-                         read_pores)
+from tapmc.pores import (XI_O, XI_T, PoreDistribution, TetrahedralLaw, VolumeTail,  # noqa: E402
+                         hist_is_current, percus_yevick_p0, read_pores)
 from tapmc.profiles import ProfileIncrease, transversal_profile, vertical_profile  # noqa: E402
 from tapmc.readers import AveTime, TapmcFormatError  # noqa: E402
 
@@ -71,7 +72,9 @@ def test_p0_eq8_exact_on_fcc_by_brute_force():
 
 def sample_pores(rng, n, xi_t=XI_T, tail_nu=0.06):
     """Pore sizes with xi^3 P(xi) ~ (xi - xi_t)^2 on [xi_t, xi_O] (P ~ (xi - xi_t)^2 / xi^3,
-    rejection sampling), plus larger pores whose v = xi^3 is exponential beyond xi_O^3."""
+    rejection sampling), plus n // 3 larger pores whose rho_v(v) = v n_v(v) (the paper's, section
+    IV.B) is exp(-v / tail_nu) beyond v_O = xi_O^3: their number density is exp(-v / tail_nu) / v,
+    drawn as v_O + an exponential, kept with probability v_O / v."""
     out = []
     pmax = ((XI_O - xi_t) ** 2 / xi_t ** 3)
     while len(out) < n:
@@ -79,22 +82,28 @@ def sample_pores(rng, n, xi_t=XI_T, tail_nu=0.06):
         keep = rng.uniform(0, pmax, xi.size) < (xi - xi_t) ** 2 / xi ** 3
         out.extend(xi[keep])
     small = np.array(out[:n])
-    v_tail = XI_O ** 3 + rng.exponential(tail_nu, n // 3)
-    return small, np.concatenate([small, np.cbrt(v_tail)])
+    v_o, tail = XI_O ** 3, []
+    while len(tail) < n // 3:
+        v = v_o + rng.exponential(tail_nu, n)
+        tail.extend(v[rng.uniform(0, 1, n) < v_o / v])
+    return small, np.concatenate([small, np.cbrt(np.array(tail[:n // 3]))])
 
 
 def histogram(xi, bins=150, xi_max=1.5):
-    """The columns of tapmc-pores' hist.csv from pore sizes."""
+    """The columns of tapmc-pores' hist.csv from pore sizes (doc/tapmc-pores.rst): n_v counts
+    the pores of each v bin, rho_v sums their v (both over N w)."""
     edges = np.linspace(0, xi_max, bins + 1)
     count, _ = np.histogram(xi, edges)
     centres = 0.5 * (edges[1:] + edges[:-1])
     p = count / (len(xi) * np.diff(edges))
     vedges = np.linspace(0, xi_max ** 3, bins + 1)
     count_v, _ = np.histogram(xi ** 3, vedges)
-    rho_v = count_v / (len(xi) * np.diff(vedges))
+    volume_v, _ = np.histogram(xi ** 3, vedges, weights=xi ** 3)
+    norm = len(xi) * np.diff(vedges)
     return dict(xi_lo=edges[:-1], xi_hi=edges[1:], xi=centres, count_xi=count, P_xi=p,
                 xi3_P_xi=centres ** 3 * p, v_lo=vedges[:-1], v_hi=vedges[1:],
-                v=0.5 * (vedges[1:] + vedges[:-1]), count_v=count_v, rho_v=rho_v)
+                v=0.5 * (vedges[1:] + vedges[:-1]), count_v=count_v, n_v=count_v / norm,
+                rho_v=volume_v / norm)
 
 
 def test_tetrahedral_law_recovers_xi_t_over_seeds():
@@ -114,15 +123,52 @@ def test_tetrahedral_law_recovers_xi_t_over_seeds():
 
 
 def test_volume_tail_recovers_nu_over_seeds():
-    z = []
+    z, z_number = [], []
+    # Up to v = 0.3 the tail bins hold >= ~10 pores. Beyond, bins of one or two pores bias a
+    # least-squares fit with errors from the counts (Neyman's chi2) low: to 0.4, nu_tail is
+    # 1.4 sigma low on average over these seeds (0.6 sigma to 0.3).
+    v_range = (XI_O ** 3 + 0.01, 0.3)
     for seed in range(20):
         rng = np.random.default_rng(100 + seed)
         _, xi = sample_pores(rng, 30000, tail_nu=0.06)
         h = histogram(xi, bins=300)
-        res = VolumeTail(v_range=(XI_O ** 3 + 0.01, 0.4)).fit(h["v"], h["rho_v"],
-                                                             counts=h["count_v"])
+        res = VolumeTail(v_range=v_range).fit(h["v"], h["rho_v"], counts=h["count_v"])
         z.append((res.params["nu_tail"] - 0.06) / res.errors["nu_tail"])
+        # PoreDistribution.volume_tail fits the same function, the paper's rho_v
+        same = PoreDistribution(h, 0.1, len(xi)).volume_tail(v_range=v_range)
+        assert same.params["nu_tail"] == pytest.approx(res.params["nu_tail"], rel=1e-9)
+        # the number density n_v = rho_v / v decays faster: its fit misses 0.06 by far
+        number = VolumeTail(v_range=v_range).fit(h["v"], h["n_v"])
+        z_number.append((number.params["nu_tail"] - 0.06) / res.errors["nu_tail"])
     assert np.mean(np.abs(z) <= 2) >= 0.8, z
+    assert np.all(np.array(z_number) < -5), z_number
+
+
+def test_poisson_errors_of_rho_v_match_the_scatter_over_seeds():
+    """The errors VolumeTail gives rho_v(v) from the counts of v (about v sqrt(count) / (N w))
+    are the scatter of rho_v over independent samples, at small and at large v alike. Errors
+    taken as constant per count (right for n_v, not for rho_v = v n_v) would be off by the
+    ratio of the v's: too large below the median v, too small above."""
+    from tapmc.pores import _poisson_sigma
+
+    seeds = 60
+    rho, sigma, counts = [], [], []
+    for seed in range(seeds):
+        _, xi = sample_pores(np.random.default_rng(500 + seed), 20000)
+        h = histogram(xi, bins=400, xi_max=1.0)  # v bins 0.0025 wide
+        rho.append(h["rho_v"])
+        counts.append(h["count_v"])
+        sigma.append(_poisson_sigma(h["v"], h["rho_v"], h["count_v"]))
+    rho, sigma = np.array(rho), np.array(sigma)
+    v, mean_count = h["v"], np.mean(counts, axis=0)
+    full = np.all(rho > 0, axis=0) & (mean_count >= 30)  # Gaussian enough
+    scatter = np.std(rho, axis=0, ddof=1)
+    for lo, hi in ((XI_T ** 3, 0.04), (0.04, 0.1), (0.1, 0.3)):
+        sel = full & (v >= lo) & (v < hi)
+        assert sel.sum() >= 5, (lo, hi)
+        # pooled over the bins of the range: 60 seeds x >= 5 bins, a few % of statistical error
+        ratio = np.sqrt(np.mean((scatter[sel] / np.mean(sigma, axis=0)[sel]) ** 2))
+        assert 0.85 < ratio < 1.15, (lo, hi, ratio)
 
 
 # ------------------------------------------------------------------ tapmc-pores outputs
@@ -130,7 +176,7 @@ def test_volume_tail_recovers_nu_over_seeds():
 def write_pores_output(prefix, frames):
     """Files in tapmc-pores' documented format (doc/tapmc-pores.rst) for given pore sizes."""
     cols = ["xi_lo", "xi_hi", "xi", "count_xi", "P_xi", "xi3_P_xi", "v_lo", "v_hi", "v",
-            "count_v", "rho_v"]
+            "count_v", "n_v", "rho_v"]
     allxi = np.concatenate([xi for _, _, xi in frames])
     h = histogram(allxi)
     with open(f"{prefix}.hist.csv", "w") as f:
@@ -171,6 +217,13 @@ def test_read_pores_documented_format(tmp_path):
     np.testing.assert_array_equal(d10.count_xi, histogram(both)["count_xi"])
     assert d10.nu == pytest.approx(np.mean(both ** 3))
     assert np.trapz(d10.P_xi, d10.xi) == pytest.approx(1.0, rel=1e-9)
+    # the frames combined keep the paper's rho_v (integral nu) apart from n_v (integral 1)
+    np.testing.assert_allclose(d10.rho_v, histogram(both)["rho_v"], rtol=1e-9, atol=1e-12)
+    np.testing.assert_allclose(d10.n_v, histogram(both)["n_v"], rtol=1e-9, atol=1e-12)
+    w = d10.v_hi - d10.v_lo
+    assert np.sum(d10.rho_v * w) == pytest.approx(d10.nu, rel=1e-9)
+    assert np.sum(d10.n_v * w) == pytest.approx(1.0, rel=1e-9)
+    assert hist_is_current(tmp_path / "fig10.hist.csv")
     with pytest.raises(ValueError, match="timestep = 5"):
         out.distribution(5)
     (tmp_path / "other.hist.csv").write_text("bin\n")
@@ -182,6 +235,25 @@ def test_read_pores_documented_format(tmp_path):
     (tmp_path / "bad.frames.csv").write_text("\n".join(text + ["x.dump,2,3"]) + "\n")
     with pytest.raises(TapmcFormatError, match="bad.frames.csv:3"):
         read_pores(bad)
+    # An output of the tool before n_v: its rho_v column was the number density of v. Reading
+    # it as the paper's rho_v would be wrong, so it is refused, and the figures remake it.
+    old = tmp_path / "old"
+    write_pores_output(old, frames[:1])
+    for suffix in (".hist.csv", ".frame_hist.csv"):
+        path = tmp_path / f"old{suffix}"
+        lines = path.read_text().splitlines()
+        k = next(i for i, line in enumerate(lines) if line.startswith(("bin,", "file,")))
+        header = lines[k].split(",")
+        drop = header.index("rho_v")
+        header.remove("n_v")
+        body = [line.split(",") for line in lines[k + 1:]]
+        body = [r[:drop - 1] + [r[drop - 1]] for r in body]  # n_v's values under the name rho_v
+        path.write_text("\n".join(lines[:k] + [",".join(header)] + [",".join(r) for r in body])
+                        + "\n")
+    assert not hist_is_current(tmp_path / "old.hist.csv")
+    assert not hist_is_current(tmp_path / "missing.hist.csv")
+    with pytest.raises(TapmcFormatError, match="old.hist.csv: written by an older tapmc-pores"):
+        read_pores(old)
 
 
 def _pores_binary():
@@ -218,6 +290,31 @@ def test_read_pores_real_program_fcc(tmp_path):
     # the program's Percus-Yevick column is the same function (phi printed to 4 digits)
     np.testing.assert_allclose(out.p0["P0_percus_yevick"],
                                percus_yevick_p0(out.p0["sigma"], out.p0_phi), atol=2e-4)
+
+
+@pytest.mark.skipif(_pores_binary() is None, reason="tapmc-pores not built")
+def test_read_pores_real_packing_rho_v_integrates_to_nu(tmp_path):
+    # The reference TAPMC dump of the pore tests (512 spheres, 20 taps) as two frames of one
+    # timestep (two files), combined by PoreOutput.distribution: the paper's rho_v(v) integrates
+    # to nu, the number density n_v to 1 (no pore is beyond --xi-max here: the '#' line says
+    # "above 0"). Tolerance 1e-9: the tool sums the pores' v in each bin (no bin-centre
+    # approximation), so only the 12 printed digits of the 150 terms are left.
+    dump = SOURCE / "tests" / "pores" / "data" / "small_tapped.dump.gz"
+    copy = tmp_path / "seed2.dump.gz"  # frames are told apart by their file
+    copy.write_bytes(dump.read_bytes())
+    proc = subprocess.run([str(_pores_binary()), "-q", "--frame-hist", "-o", str(tmp_path / "real"),
+                           str(dump), str(copy)], capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 0, proc.stderr
+    out = read_pores(tmp_path / "real")
+    assert out.hist.comments[0].endswith("xi below range 0, above 0")
+    for d in (out.distribution(), out.distribution(20)):
+        w = d.v_hi - d.v_lo
+        assert 0.08 < d.nu < 0.16 and d.selected > 3000
+        assert np.sum(d.rho_v * w) == pytest.approx(d.nu, rel=1e-9)
+        assert np.sum(d.n_v * w) == pytest.approx(1.0, rel=1e-9)
+        # and the tail fit runs on the paper's rho_v with its Poisson errors
+        res = d.volume_tail(v_range=(XI_O ** 3, 0.3))
+        assert res.params["nu_tail"] > 0 and np.isfinite(res.errors["nu_tail"])
 
 
 # ------------------------------------------------------------------ profiles

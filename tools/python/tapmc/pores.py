@@ -4,6 +4,13 @@ the distributions xi^3 P(xi) and rho_v(v) at several taps, the (xi - xi_T)^2 law
 and xi_O, the exponential tail of rho_v(v) against nu, and Gotoh's P0(sigma) with its
 Percus-Yevick form.
 
+The two distributions of the normalised pore volume v = xi^3 (section IV.B):
+
+* ``n_v``: the number density of v, n_v(v) = P(xi) / (3 xi^2); its integral is 1;
+* ``rho_v``: the paper's rho_v(v) = (xi/3) P(xi) = v n_v(v), the volume-weighted distribution
+  (rho_v(v) dv = xi^3 P(xi) dxi); its integral is nu ("nu = int xi^3 P(xi) dxi =
+  int rho_v(v) dv"), and it is the function of the claim rho_v(v) ~ exp(-v/nu) (Fig. 10b).
+
 Percus-Yevick P0 (eqs. 8, 9). P0(sigma) is the probability that no sphere centre lies within
 sigma R of a random point. For sigma <= 1 at most one centre can (centres are 2R apart), so
 P0 = 1 - Phi sigma^3 exactly (eq. 8). For sigma >= 1 the scaled-particle / Percus-Yevick
@@ -34,7 +41,7 @@ from .laws import _Law
 from .readers import TapmcFormatError
 
 __all__ = ["XI_T", "XI_O", "CsvTable", "PoreOutput", "PoreDistribution", "read_pores",
-           "percus_yevick_p0", "TetrahedralLaw", "VolumeTail"]
+           "hist_is_current", "percus_yevick_p0", "TetrahedralLaw", "VolumeTail"]
 
 #: tetrahedral site, the smallest pore: sqrt(3/2) - 1 (section IV.B)
 XI_T = np.sqrt(1.5) - 1.0
@@ -110,14 +117,41 @@ class CsvTable:
 
 
 _HIST_COLUMNS = ("xi_lo", "xi_hi", "xi", "count_xi", "P_xi", "xi3_P_xi", "v_lo", "v_hi", "v",
-                 "count_v", "rho_v")
+                 "count_v", "n_v", "rho_v")
+#: columns that are densities (combined over frames by their selected pores, not summed)
+_DENSITY_COLUMNS = ("P_xi", "xi3_P_xi", "n_v", "rho_v")
+
+
+def _check_volume_columns(table):
+    """Refuse a histogram file written before the ``n_v`` column: its ``rho_v`` column is the
+    number density of v (integral 1), not the paper's rho_v(v) (integral nu)."""
+    if "rho_v" in table and "n_v" not in table:
+        raise TapmcFormatError(table.path, None, "written by an older tapmc-pores, whose rho_v "
+                               "column is the number density of v = xi^3 (now n_v), not the "
+                               "paper's rho_v(v) = v n_v(v) (section IV.B): run tapmc-pores "
+                               "again on the dumps")
+
+
+def hist_is_current(path):
+    """True when ``path`` (a PREFIX.hist.csv) has the present columns, so that a cached output
+    can be reused; False for a missing or older file."""
+    try:
+        with open(path) as f:
+            for line in f:
+                if not line.startswith("#"):
+                    return line.strip().split(",") == ["bin", *_HIST_COLUMNS]
+    except OSError:
+        return False
+    return False
 
 
 class PoreDistribution:
     """Histograms of one set of frames: arrays ``xi``, ``xi_lo``, ``xi_hi``, ``count_xi``,
     ``P_xi``, ``xi3_P_xi`` (rho_v(xi) = xi^3 P(xi)), ``v``, ``v_lo``, ``v_hi``, ``count_v``,
-    ``rho_v`` (the density of v = xi^3), plus ``nu`` (mean normalised pore volume, exact from
-    the pores), ``selected`` (pores) and ``timestep`` (None for the aggregate)."""
+    ``n_v`` (the number density of v = xi^3, integral 1), ``rho_v`` (the paper's
+    rho_v(v) = v n_v(v) = (xi/3) P(xi), integral nu; module text), plus ``nu`` (mean normalised
+    pore volume, exact from the pores), ``selected`` (pores) and ``timestep`` (None for the
+    aggregate)."""
 
     def __init__(self, columns, nu, selected, timestep=None):
         for name in _HIST_COLUMNS:
@@ -132,7 +166,8 @@ class PoreDistribution:
         return law.fit(self.xi, self.xi3_P_xi, counts=self.count_xi)
 
     def volume_tail(self, v_range=None):
-        """:class:`VolumeTail` fitted to this rho_v(v) with Poisson errors."""
+        """:class:`VolumeTail` fitted to this rho_v(v) (the paper's, not ``n_v``) with Poisson
+        errors."""
         return VolumeTail(v_range=v_range).fit(self.v, self.rho_v, counts=self.count_v)
 
     def plot(self, ax=None, kind="xi3P", **kw):
@@ -172,6 +207,9 @@ class PoreOutput:
         self.frames = CsvTable(path(".frames.csv"))
         self.frame_hist = CsvTable(path(".frame_hist.csv")) \
             if os.path.isfile(path(".frame_hist.csv")) else None
+        for table in (self.hist, self.frame_hist):
+            if table is not None:
+                _check_volume_columns(table)
         self.p0 = CsvTable(path(".p0.csv")) if os.path.isfile(path(".p0.csv")) else None
         self.pores = CsvTable(path(".pores.csv")) if os.path.isfile(path(".pores.csv")) else None
         self.json = None
@@ -223,7 +261,7 @@ class PoreOutput:
                 values = fh[c][rows]
                 if c.startswith("count"):
                     combined[c] = combined.get(c, 0) + values
-                elif c in ("P_xi", "xi3_P_xi", "rho_v"):
+                elif c in _DENSITY_COLUMNS:
                     combined[c] = combined.get(c, 0) + values * selected / total
                 else:
                     combined[c] = values
@@ -250,7 +288,10 @@ def read_pores(path, prefix=None):
 def _poisson_sigma(x_power, values, counts):
     """1-sigma errors of a histogram density from its bin counts: value per count times
     sqrt(count), one count for empty bins (so that they weigh, not vanish). The value per count
-    is x^k times a constant (the normalisation), estimated from the non-empty bins."""
+    is x^k times a constant (the normalisation), estimated from the non-empty bins: x^3 for
+    xi^3 P(xi) against the counts of xi; x = v for rho_v(v) against the counts of v (a bin of
+    rho_v is the sum of its pores' v over N w, so each pore adds about v / (N w) and the
+    Poisson error of c pores is about v sqrt(c) / (N w)); x^0 for P(xi) or n_v(v)."""
     counts = np.asarray(counts, dtype=float)
     full = counts > 0
     if not np.any(full):
@@ -300,9 +341,12 @@ class TetrahedralLaw(_Law):
 
 class VolumeTail(_Law):
     """rho_v(v) = c exp(-v / nu_tail) over the tail of the volume distribution (section IV.B:
-    "compatible with a Poisson law exp(-v/nu)", nu the mean normalised pore volume).
-    Parameters ``c`` and ``nu_tail``; ``v_range`` defaults to (xi_O^3, largest non-empty v).
-    Compare ``nu_tail`` with the distribution's ``nu``."""
+    "compatible with a Poisson law exp(-v/nu)", nu the mean normalised pore volume), rho_v the
+    paper's rho_v(v) = v n_v(v) (module text; fitting the number density n_v instead gives a
+    shorter decay, since n_v = rho_v / v). Parameters ``c`` and ``nu_tail``; ``v_range``
+    defaults to (xi_O^3, largest non-empty v). With ``counts`` (the counts of v, ``count_v``)
+    the errors are Poisson: sigma of a bin about v sqrt(count) / (N w). Compare ``nu_tail``
+    with the distribution's ``nu``."""
 
     names = ("c", "nu_tail")
 
@@ -334,6 +378,6 @@ class VolumeTail(_Law):
             lo, hi = self.v_range
         sel = (v >= lo) & (v <= hi)
         if sigma is None and counts is not None:
-            sigma = _poisson_sigma(np.ones_like(v), rho_v, counts)
+            sigma = _poisson_sigma(v, rho_v, counts)
         s = None if sigma is None else np.broadcast_to(np.asarray(sigma, float), v.shape)[sel]
         return super().fit(v[sel], rho_v[sel], s, p0)

@@ -6,14 +6,17 @@ F.B.C., eps = 2e-2 (``scale.pore_eps``, ``scale.pore_bc``); the packing dumped a
 10, 30, 100, 300, 1000 and 4000 taps (``scale.dump_times``). tapmc-pores gives, in a
 statistics box 2R above the floor and 2R from the walls, 18R high at most (lower when the
 packing is: 80 % of its highest centre), (a) rho_v(xi) = xi^3 P(xi) against xi = r/R and
-(b) rho_v(v) against v = xi^3, mean and standard error over seeds. T and O mark the
-tetrahedral (xi_T = sqrt(3/2) - 1) and octahedral (xi_O = sqrt(2) - 1) sites.
+(b) rho_v(v) against v = xi^3, mean and standard error over seeds. rho_v(v) is the paper's
+(section IV.B): rho_v(v) = (xi/3) P(xi) = v n_v(v), with n_v the number density of v, so that
+rho_v(v) dv = xi^3 P(xi) dxi and its integral is nu, not 1 (``tapmc.pores``, module text).
+T and O mark the tetrahedral (xi_T = sqrt(3/2) - 1) and octahedral (xi_O = sqrt(2) - 1) sites.
 
-CSV panels: ``a`` (series ``t=<taps>``, x = xi), ``b`` (series ``t=<taps>``, x = v),
+CSV panels: ``a`` (series ``t=<taps>``, x = xi), ``b`` (series ``t=<taps>``, x = v; rho_v(v),
+integral nu),
 ``params``: per t (x = t) ``nu`` (mean normalised pore volume), ``xi_min`` (smallest pore
 size), ``xi_T`` (the start of the (xi - xi_T)^2 law fitted between 0.15 and xi_O,
-``tapmc.pores.TetrahedralLaw``), ``nu_tail`` (the decay volume of the exponential tail of
-rho_v(v), ``tapmc.pores.VolumeTail``; the paper: close to nu), ``small`` (integral of
+``tapmc.pores.TetrahedralLaw``), ``nu_tail`` (the decay volume of the exponential tail of the
+paper's rho_v(v), ``tapmc.pores.VolumeTail``; the paper: close to nu), ``small`` (integral of
 xi^3 P(xi) over [xi_T, xi_O]), ``large`` (over [xi_O, inf)); ``small_change`` and
 ``large_change`` (integral of |rho_v(t_last) - rho_v(0)| over each range, relative to the
 initial integral: the paper finds the small-pore part invariant).
@@ -41,8 +44,9 @@ def runs(scale, seeds):
 
 
 def distributions(campaign, bc=None):
-    """dict step -> lists over seeds of xi, xi3_P_xi, v, rho_v, nu, xi_min (smallest selected
-    pore), xi_T (fitted by ``tapmc.pores.TetrahedralLaw``) and nu_tail (``VolumeTail``)."""
+    """dict step -> lists over seeds of xi, xi3_P_xi, v, rho_v (the paper's rho_v(v) =
+    v n_v(v)), nu, xi_min (smallest selected pore), xi_T (fitted by
+    ``tapmc.pores.TetrahedralLaw``) and nu_tail (``VolumeTail`` on rho_v)."""
     from tapmc.pores import read_pores
 
     specs = _runs.select(campaign, KIND + "_", **({} if bc is None else {"bc": bc}))
