@@ -274,6 +274,8 @@ def test_deposition_runs(tmp_path):
     ("paper/in.ramp", "resume", "maybe", "ERROR: resume = maybe; allowed values: no, yes"),
     ("paper/in.ramp", "nlev", "0", "ERROR: nlev = 0; allowed: an integer >= 1"),
     ("paper/in.ramp", "P", "0", "ERROR: P = 0; allowed: an integer >= 1"),
+    ("paper/in.ramp", "nlev", "1.5", "ERROR: nlev = 1.5; allowed: an integer >= 1"),
+    ("paper/in.ramp", "P", "2.5", "ERROR: P = 2.5; allowed: an integer >= 1"),
     ("paper/in.ageing", "bc", "xyz", "ERROR: bc = xyz; allowed values: pbc, fbc"),
     ("paper/in.ageing", "resume", "maybe", "ERROR: resume = maybe; allowed values: no, yes"),
     ("paper/in.pore_dumps", "bc", "xyz", "ERROR: bc = xyz; allowed values: pbc, fbc"),
@@ -285,6 +287,18 @@ def test_invalid_switch_value(tmp_path, example, name, value, message):
     assert rc != 0
     assert message in screen.splitlines() and message in log.splitlines()
     assert not list(tmp_path.glob("*.dat")), "the input ran before checking its switches"
+
+
+@pytest.mark.parametrize("example", ["paper/in.constant_eps", "paper/in.ageing",
+                                     "paper/in.pore_dumps"])
+def test_sqrteps_that_is_no_number_stops(tmp_path, example):
+    """A sqrteps that is not a number stops before anything runs, naming the switch (it used
+    to be ignored, leaving the default eps)."""
+    rc, screen, _ = run(example, dict(TINY, sqrteps="x"), tmp_path)
+    assert rc != 0
+    assert any(line.startswith("ERROR: Variable sqrteps_must_be_a_number")
+               for line in screen.splitlines()), screen
+    assert not list(tmp_path.glob("*.dat"))
 
 
 def index_variables(example):
