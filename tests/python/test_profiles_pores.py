@@ -317,6 +317,29 @@ def test_read_pores_real_packing_rho_v_integrates_to_nu(tmp_path):
         assert res.params["nu_tail"] > 0 and np.isfinite(res.errors["nu_tail"])
 
 
+@pytest.mark.skipif(_pores_binary() is None, reason="tapmc-pores not built")
+def test_run_pores_remakes_outputs_of_the_older_tool(tmp_path, monkeypatch):
+    # The figures reuse a tapmc-pores output newer than its dumps; one without n_v (its rho_v
+    # the number density) is made again, so Fig. 10b never plots the old quantity.
+    from tapmc.paper import _runs
+
+    monkeypatch.setenv("TAPMC_PORES", str(_pores_binary()))
+    dump = SOURCE / "tests" / "pores" / "data" / "small_tapped.dump.gz"
+    prefix = _runs.run_pores([dump], tmp_path / "fig10", ["-q"])
+    hist = Path(f"{prefix}.hist.csv")
+    made = hist.stat().st_mtime_ns
+    assert _runs.run_pores([dump], prefix, ["-q"]) == prefix and hist.stat().st_mtime_ns == made
+    lines = hist.read_text().splitlines()
+    old = [",".join(line.split(",")[:-1]) if not line.startswith("#") else line for line in lines]
+    old[1] = old[1].replace(",n_v", ",rho_v")  # the old header: n_v's values under rho_v
+    hist.write_text("\n".join(old) + "\n")
+    assert not hist_is_current(hist)
+    _runs.run_pores([dump], prefix, ["-q"])
+    assert hist_is_current(hist)
+    d = read_pores(prefix).distribution()
+    assert np.sum(d.rho_v * (d.v_hi - d.v_lo)) == pytest.approx(d.nu, rel=1e-9)
+
+
 # ------------------------------------------------------------------ profiles
 
 def test_profile_increase_single_and_seeds():
