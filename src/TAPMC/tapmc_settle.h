@@ -7,6 +7,7 @@
 #define TAPMC_SETTLE_H
 
 #include "tapmc_defaults.h"
+#include "tapmc_settle_types.h"
 #include "tapmc_stop_rule.h"
 #include "tapmc_trial_move.h"
 
@@ -17,16 +18,6 @@
 namespace tapmc {
 
 class SphereMover;
-
-struct SettleBox {
-  double lo[3], hi[3];          // box bounds; x, y used for periodic lengths and default walls
-  bool periodic[2];             // x, y periodic (z is never periodic: open top)
-  bool wall_lo[2], wall_hi[2];  // impassable side planes in non-periodic x / y
-  double wall_lo_pos[2], wall_hi_pos[2];  // their positions (sphere needs x - R >= wall_lo_pos)
-  double floor_z;               // impassable bottom plane: needs z - R >= floor_z
-};
-
-enum class PickOrder { Random, Sweep };  // Random: the paper (uniform pick); Sweep: memory order
 
 struct SettleParams {
   double d_max;            // absolute step length bound, > 0

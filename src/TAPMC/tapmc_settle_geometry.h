@@ -9,7 +9,7 @@
 #include "tapmc_contact.h"
 #include "tapmc_defaults.h"
 #include "tapmc_math.h"
-#include "tapmc_settle.h"
+#include "tapmc_settle_types.h"
 
 #include <algorithm>
 #include <array>

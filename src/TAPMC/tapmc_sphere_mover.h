@@ -8,7 +8,7 @@
 #define TAPMC_SPHERE_MOVER_H
 
 #include "tapmc_random.h"
-#include "tapmc_settle.h"
+#include "tapmc_settle_types.h"
 #include "tapmc_trial_move.h"
 
 #include <cstdint>
