@@ -61,11 +61,18 @@ def test_pool_two_jobs_and_manifest(tmp_path):
     assert entry["sha256"] == hashlib.sha256(CONSTANT_EPS.read_bytes()).hexdigest()
     assert (tmp_path / "c" / entry["copy"]).read_bytes() == CONSTANT_EPS.read_bytes()
     assert [r["name"] for r in manifest["runs"]] == [r.name for r in runs]
+    # no folder of this machine: the campaign's and the repository's paths are tagged
+    text = (tmp_path / "c" / "manifest.json").read_text()
+    assert str(tmp_path) not in text and str(SOURCE) not in text
+    assert manifest["campaign"] == "<campaign>"
+    assert manifest["runs"][0]["cwd"] == "<campaign>/runs/" + runs[0].name
+    assert entry["source"] == "<repo>/examples/paper/in.constant_eps"
     for rec, spec in zip(manifest["runs"], runs):
         assert rec["status"] == "done" and rec["seed"] == spec.seed
         assert rec["variables"]["eps"] == spec.variables["eps"]
         cmd = rec["command"]
-        assert cmd[0] == str(LMP.resolve())
+        lmp = str(LMP.resolve())  # under the repository when it is the build's lmp_tapmc
+        assert cmd[0] in (lmp, "<repo>" + lmp[len(str(SOURCE.resolve())):])
         assert cmd[cmd.index("seed") - 1] == "-var" and cmd[cmd.index("seed") + 1] == str(spec.seed)
         assert rec["attempts"][-1]["returncode"] == 0 and rec["wall_s"] > 0
 

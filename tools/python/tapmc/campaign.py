@@ -90,6 +90,27 @@ def _sha256(path):
     return h.hexdigest()
 
 
+def _portable_paths(value, campaign_dir):
+    """``value`` (nested dicts, lists, strings) with paths inside the campaign folder written
+    as ``<campaign>/...`` and paths inside the repository as ``<repo>/...``: a manifest
+    committed with its campaign (doc/validation/data) names no folder of the machine it ran
+    on. Only what is written changes; the runner never reads these paths back."""
+    prefixes = sorted(((str(Path(campaign_dir).resolve()), "<campaign>"),
+                       (str(_REPO), "<repo>")), key=lambda p: -len(p[0]))
+
+    def fix(text):
+        for prefix, tag in prefixes:
+            if text == prefix or text.startswith(prefix + os.sep):
+                return tag + text[len(prefix):]
+        return text
+
+    if isinstance(value, dict):
+        return {k: _portable_paths(v, campaign_dir) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_portable_paths(v, campaign_dir) for v in value]
+    return fix(value) if isinstance(value, str) else value
+
+
 def _now():
     return time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
 
@@ -527,6 +548,7 @@ class Campaign:
             data = dict(self._manifest)
             data["updated"] = _now()
             data["runs"] = [self._records[r.name] for r in self.runs]
+            data = _portable_paths(data, self.directory)
             tmp = self.directory / "manifest.json.tmp"
             tmp.write_text(json.dumps(data, indent=1, sort_keys=False) + "\n")
             tmp.replace(self.directory / "manifest.json")
