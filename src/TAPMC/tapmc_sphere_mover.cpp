@@ -27,7 +27,9 @@
 // internal slots. The picks draw candidates[k] by the same random numbers whatever the internal
 // order: results do not depend on it. A list row has a fixed capacity (the count, then the
 // neighbours' slots: one cache line at the paper's densities); a row that would overflow widens
-// every row (O(N), rare; counted in capacity_grows()).
+// every row (O(N), rare; counted in capacity_grows()). In the code: SlotRecords (records, image
+// counts, index maps), CountedRows (the list rows, and the grid cells), ReferenceGrid, MovedSlots
+// (for take_moved); State holds them, with the list upkeep (relist) and the full build.
 //
 // Hot loop. Picks are drawn a batch ahead (TrialMoveSampler::draw_batch); the picked spheres'
 // records and rows are prefetched 16 trials ahead, the records of the first few entries of their
@@ -51,7 +53,6 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
-
 namespace tapmc {
 
 using namespace settle_geometry;
@@ -82,58 +83,85 @@ constexpr int kRecord = 8, kRef = 4;
 // Grid cells hold a count and their spheres' slots in rows a multiple of this many ints wide.
 constexpr int kCellCapacityStep = 4;
 
-}  // namespace
+// Rows of one fixed width in large-page storage: row r = its count, then its entries. The
+// neighbour lists (a row per slot) and the grid cells (a row per cell) are such rows; a row that
+// would overflow widens every row by `step` entries (O(rows), rare).
+struct CountedRows {
+  int stride = 0;  // ints per row: the count and at most stride - 1 entries
+  int step = 0;    // entries added to every row by a widening
+  LargeVector<int> data;
+  long widenings = 0;
 
-struct SphereMover::State {
-  Scene scene;  // planes, periodic lengths, tolerance (radii are in the records, not scene.radius)
-  int n = 0;
-  double skin_over_max_radius = defaults::kListSkinOverRadius;
-  double d_max = 0.0, half_skin_sq = 0.0;
-  double list_extra = 0.0;  // d_max + skin + rounding margin, added to R_i + R_j
+  // `count` empty rows of `width` ints.
+  void assign(std::size_t count, int width, int widen_step)
+  {
+    stride = width;
+    step = widen_step;
+    data.assign(count * width, 0);
+  }
+  std::size_t count() const { return data.size() / stride; }
+  int *row(int r) { return data.data() + static_cast<std::size_t>(r) * stride; }
+  const int *row(int r) const { return data.data() + static_cast<std::size_t>(r) * stride; }
 
-  // Per internal slot.
-  // One 64-byte record (one cache line) per slot: x, y, z, R, then the reference position
-  // (wrapped into the box): a trial reads the picked sphere's line only, and the neighbours'
-  // first four doubles.
-  LargeVector<double> record_storage;
-  double *records = nullptr;  // record_storage aligned to 64 bytes
+  void append(int r, int entry)
+  {
+    if (row(r)[0] + 1 >= stride) widen();
+    int *x = row(r);
+    x[++x[0]] = entry;
+  }
+
+  // Removes `entry` from row `x` (the last entry takes its place).
+  static void remove(int *x, int entry)
+  {
+    for (int q = 1; q <= x[0]; ++q)
+      if (x[q] == entry) {
+        x[q] = x[x[0]--];
+        return;
+      }
+  }
+
+  void widen()
+  {
+    const int wider = stride + step;
+    const std::size_t rows = count();
+    LargeVector<int> grown(rows * wider);
+    for (std::size_t r = 0; r < rows; ++r) {
+      const int *x = data.data() + r * stride;
+      std::copy(x, x + x[0] + 1, grown.data() + r * wider);
+    }
+    data.swap(grown);
+    stride = wider;
+    ++widenings;
+  }
+};
+
+// Per internal slot: one 64-byte record (one cache line) of x, y, z, R, then the reference
+// position (wrapped into the box), so a trial reads the picked sphere's line only and the
+// neighbours' first four doubles; the periods each sphere was wrapped by; the maps between the
+// caller's indices and the slots.
+struct SlotRecords {
+  LargeVector<double> storage;
+  double *records = nullptr;  // storage aligned to 64 bytes
+  std::vector<int> image;     // periods wrapped along x, y: image[2 s + axis]
+  std::vector<int> slot_of, external_of;
+
+  void allocate(int n)
+  {
+    storage.resize(static_cast<std::size_t>(n) * kRecord + kRecord);
+    records = storage.data();
+    while (reinterpret_cast<std::uintptr_t>(records) % (kRecord * sizeof(double)) != 0) ++records;
+    image.resize(2 * static_cast<std::size_t>(n));
+  }
   double *at(int s) { return records + static_cast<std::size_t>(s) * kRecord; }
   const double *at(int s) const { return records + static_cast<std::size_t>(s) * kRecord; }
   const double *ref(int s) const { return at(s) + kRef; }
-  std::vector<int> image;     // periods wrapped along x, y
-  std::vector<int> cell;      // grid cell of the reference
-  std::vector<int> slot_of, external_of;
+};
 
-  // Lists: row s = rows[s * stride ...]: count, then the slots of the neighbours.
-  int stride = 0;
-  LargeVector<int> rows;
-
-  // Grid of the reference positions: cell c = cells[c * cell_stride ...]: count, then slots.
+// The grid of the reference positions: cell c = cells.row(c): count, then the slots binned there.
+struct ReferenceGrid {
   std::array<GridAxis, 3> axes;
-  int cell_stride = 0;
-  LargeVector<int> cells;
-
-  // Scratch of reset / build, kept to avoid reallocation.
-  std::vector<double> wrapped;
-  std::vector<int> wrapped_image, order_start, cell_ext, pairs;
-  std::vector<int> candidate_slots;  // run(): slots of the candidates of the current block
-  // Slots that accepted a move since the last take_moved(), each once (flag per slot).
-  std::vector<int> moved_slots;
-  std::vector<unsigned char> moved_flag;
-
-  long full_builds = 0, local_updates = 0, capacity_grows = 0;
-
-  // Batch of draws and their slots.
-  std::array<TrialDraw, TrialMoveSampler::kBatchMax> batch{};
-  std::array<int, TrialMoveSampler::kBatchMax> batch_slot{};
-
-  int *row(int s) { return rows.data() + static_cast<std::size_t>(s) * stride; }
-  const int *row(int s) const { return rows.data() + static_cast<std::size_t>(s) * stride; }
-  int *cell_row(int c) { return cells.data() + static_cast<std::size_t>(c) * cell_stride; }
-  const int *cell_row(int c) const
-  {
-    return cells.data() + static_cast<std::size_t>(c) * cell_stride;
-  }
+  CountedRows cells;
+  std::vector<int> cell_of_slot;  // grid cell of each slot's reference
 
   int cell_index(const double *p) const
   {
@@ -141,35 +169,20 @@ struct SphereMover::State {
            axes[0].cell_of(p[0]);
   }
 
-  // The list predicate over reference positions (symmetric in a, b, bit for bit).
-  bool in_reach(int a, int b) const
+  // Slot s, whose reference is now at p, moves to the cell of p if it left its cell.
+  void rebin(int s, const double *p)
   {
-    const double *pa = ref(a), *pb = ref(b);
-    const Scene &sc = scene;
-    const double dx = sc.periodic[0]
-                          ? nearest_separation(pb[0], pa[0], sc.length[0], 0.5 * sc.length[0])
-                          : pb[0] - pa[0];
-    const double dy = sc.periodic[1]
-                          ? nearest_separation(pb[1], pa[1], sc.length[1], 0.5 * sc.length[1])
-                          : pb[1] - pa[1];
-    const double reach = (at(a)[3] + at(b)[3]) + list_extra;
-    return distance_sq(dx, dy, pb[2] - pa[2]) < reach * reach;
+    const int c = cell_index(p);
+    if (c == cell_of_slot[s]) return;
+    CountedRows::remove(cells.row(cell_of_slot[s]), s);
+    cells.append(c, s);
+    cell_of_slot[s] = c;
   }
 
-  // Calls visit(j) for every sphere j != s in reach of s (27-cell query over references).
+  // Calls visit(j) for every slot j binned in the (distinct) cells around p.
   template <class Visit>
-  void for_each_in_reach(int s, Visit &&visit) const
+  void for_each_around(const double *p, Visit &&visit) const
   {
-    for_each_candidate(s, [&](int j) {
-      if (j != s && in_reach(s, j)) visit(j);
-    });
-  }
-
-  // Calls visit(j) for every sphere j binned in the (distinct) cells around s's reference.
-  template <class Visit>
-  void for_each_candidate(int s, Visit &&visit) const
-  {
-    const double *p = ref(s);
     int cx[3], cy[3], cz[3];
     const int nx = neighbour_cells(axes[0], axes[0].cell_of(p[0]), cx);
     const int ny = neighbour_cells(axes[1], axes[1].cell_of(p[1]), cy);
@@ -178,75 +191,85 @@ struct SphereMover::State {
       for (int b = 0; b < ny; ++b)
         for (int c = 0; c < nx; ++c)
         {
-          const int *cr = cell_row((cz[a] * axes[1].cells + cy[b]) * axes[0].cells + cx[c]);
+          const int *cr = cells.row((cz[a] * axes[1].cells + cy[b]) * axes[0].cells + cx[c]);
           for (int q = 1; q <= cr[0]; ++q) visit(cr[q]);
         }
   }
+};
 
-  void append(int s, int j)
+// Slots that accepted a move since the last take_moved(), each once (a flag per slot).
+struct MovedSlots {
+  std::vector<int> slots;
+  std::vector<unsigned char> flag;
+
+  void clear(int n)
   {
-    if (row(s)[0] + 1 >= stride) widen_rows();
-    int *r = row(s);
-    r[++r[0]] = j;
+    slots.clear();
+    flag.assign(n, 0);
   }
-
-  void add_to_cell(int c, int s)
+  void note(int s)
   {
-    if (cell_row(c)[0] + 1 >= cell_stride) widen_cells();
-    int *cr = cell_row(c);
-    cr[++cr[0]] = s;
+    if (!flag[s]) {
+      flag[s] = 1;
+      slots.push_back(s);
+    }
   }
+};
 
-  static void remove(int *r, int j)
-  {
-    for (int q = 1; q <= r[0]; ++q)
-      if (r[q] == j) {
-        r[q] = r[r[0]--];
-        return;
-      }
-  }
+}  // namespace
 
-  // Every row gets defaults::kListCapacityStep more entries.
-  void widen_rows()
-  {
-    const int wider = stride + defaults::kListCapacityStep;
-    LargeVector<int> grown(static_cast<std::size_t>(n) * wider);
-    for (int s = 0; s < n; ++s)
-      std::copy(row(s), row(s) + row(s)[0] + 1, grown.data() + static_cast<std::size_t>(s) * wider);
-    rows.swap(grown);
-    stride = wider;
-    ++capacity_grows;
-  }
+// The engine's state: the scene, the parts above, and the upkeep of the lists (relist).
+struct SphereMover::State {
+  Scene scene;  // planes, periodic lengths, tolerance (radii are in the records, not scene.radius)
+  int n = 0;
+  double skin_over_max_radius = defaults::kListSkinOverRadius;
+  double d_max = 0.0, half_skin_sq = 0.0;
+  double list_extra = 0.0;  // d_max + skin + rounding margin, added to R_i + R_j
 
-  // Every cell gets room for kCellCapacityStep more spheres.
-  void widen_cells()
+  SlotRecords spheres;
+  CountedRows lists;  // row s: the slots of the spheres in reach of slot s (see header)
+  ReferenceGrid grid;
+  MovedSlots moved;
+  long full_builds = 0, local_updates = 0;
+
+  // Scratch of reset / build, kept to avoid reallocation.
+  std::vector<double> wrapped;
+  std::vector<int> wrapped_image, order_start, cell_ext, pairs;
+  // Scratch of run(): slots of the candidates of the current block, a batch of draws and the
+  // slots of their picks.
+  std::vector<int> candidate_slots;
+  std::array<TrialDraw, TrialMoveSampler::kBatchMax> batch{};
+  std::array<int, TrialMoveSampler::kBatchMax> batch_slot{};
+
+  // The list predicate over reference positions (symmetric in a, b, bit for bit).
+  bool in_reach(int a, int b) const
   {
-    const int wider = cell_stride + kCellCapacityStep;
-    const std::size_t count = cells.size() / cell_stride;
-    LargeVector<int> grown(count * wider);
-    for (std::size_t c = 0; c < count; ++c)
-      std::copy(cell_row(c), cell_row(c) + cell_row(c)[0] + 1, grown.data() + c * wider);
-    cells.swap(grown);
-    cell_stride = wider;
+    const double *pa = spheres.ref(a), *pb = spheres.ref(b);
+    const Scene &sc = scene;
+    const double dx = sc.periodic[0]
+                          ? nearest_separation(pb[0], pa[0], sc.length[0], 0.5 * sc.length[0])
+                          : pb[0] - pa[0];
+    const double dy = sc.periodic[1]
+                          ? nearest_separation(pb[1], pa[1], sc.length[1], 0.5 * sc.length[1])
+                          : pb[1] - pa[1];
+    const double reach = (spheres.at(a)[3] + spheres.at(b)[3]) + list_extra;
+    return distance_sq(dx, dy, pb[2] - pa[2]) < reach * reach;
   }
 
   // ref_s := the current position of s; the lists and grid follow (local upkeep, see header).
   void relist(int s)
   {
-    int *r = row(s);
-    for (int q = 1; q <= r[0]; ++q) remove(row(r[q]), s);
+    int *r = lists.row(s);
+    for (int q = 1; q <= r[0]; ++q) CountedRows::remove(lists.row(r[q]), s);
     r[0] = 0;
-    double *p = at(s);
+    double *p = spheres.at(s);
     for (int d = 0; d < 3; ++d) p[kRef + d] = p[d];
-    const int c = cell_index(p + kRef);
-    if (c != cell[s]) {
-      remove(cell_row(cell[s]), s);
-      add_to_cell(c, s);
-      cell[s] = c;
-    }
-    for_each_in_reach(s, [&](int j) {
-      append(s, j);
-      append(j, s);
+    grid.rebin(s, p + kRef);
+    grid.for_each_around(p + kRef, [&](int j) {
+      if (j != s && in_reach(s, j)) {
+        lists.append(s, j);
+        lists.append(j, s);
+      }
     });
     ++local_updates;
   }
@@ -255,11 +278,19 @@ struct SphereMover::State {
   template <bool PeriodicX, bool PeriodicY>
   double drift_sq(int s) const
   {
-    const double *p = at(s), *q = p + kRef;
+    const double *p = spheres.at(s), *q = p + kRef;
     const Scene &sc = scene;
     return distance_sq(axis_separation<PeriodicX>(p[0], q[0], sc.length[0], 0.5 * sc.length[0]),
                        axis_separation<PeriodicY>(p[1], q[1], sc.length[1], 0.5 * sc.length[1]),
                        p[2] - q[2]);
+  }
+
+  // The same, with the periodic axes read at run time (set_position, check_lists).
+  double drift_sq(int s) const
+  {
+    const bool px = scene.periodic[0], py = scene.periodic[1];
+    return px ? (py ? drift_sq<true, true>(s) : drift_sq<true, false>(s))
+              : (py ? drift_sq<false, true>(s) : drift_sq<false, false>(s));
   }
 
   void build(const double *xyz_wrapped, const double *radius, const int *image_in);
@@ -274,6 +305,7 @@ void SphereMover::State::build(const double *xyz_wrapped, const double *radius,
   const double skin = skin_over_max_radius * sc.r_max;
   half_skin_sq = 0.25 * skin * skin;
   list_extra = d_max + skin + margin;
+  std::array<GridAxis, 3> &axes = grid.axes;
   axes = grid_axes(sc, xyz_wrapped, n, 2.0 * sc.r_max + list_extra + margin);
 
   // Internal order: by cell (stable), so neighbours are close in memory.
@@ -281,7 +313,7 @@ void SphereMover::State::build(const double *xyz_wrapped, const double *radius,
   order_start.assign(static_cast<std::size_t>(n_cells) + 1, 0);
   cell_ext.resize(n);
   for (int i = 0; i < n; ++i) {
-    cell_ext[i] = cell_index(xyz_wrapped + 3 * i);
+    cell_ext[i] = grid.cell_index(xyz_wrapped + 3 * i);
     ++order_start[cell_ext[i] + 1];
   }
   int fullest = 0;
@@ -289,30 +321,29 @@ void SphereMover::State::build(const double *xyz_wrapped, const double *radius,
     fullest = std::max(fullest, order_start[c + 1]);
     order_start[c + 1] += order_start[c];
   }
-  slot_of.resize(n);
-  external_of.resize(n);
+  spheres.slot_of.resize(n);
+  spheres.external_of.resize(n);
   for (int i = 0; i < n; ++i) {
     const int s = order_start[cell_ext[i]]++;
-    slot_of[i] = s;
-    external_of[s] = i;
+    spheres.slot_of[i] = s;
+    spheres.external_of[s] = i;
   }
-  record_storage.resize(static_cast<std::size_t>(n) * kRecord + kRecord);
-  records = record_storage.data();
-  while (reinterpret_cast<std::uintptr_t>(records) % (kRecord * sizeof(double)) != 0) ++records;
-  image.resize(2 * static_cast<std::size_t>(n));
-  cell.resize(n);
-  cell_stride = ((fullest + 1 + kCellCapacityStep - 1) / kCellCapacityStep + 1) * kCellCapacityStep;
-  cells.assign(static_cast<std::size_t>(n_cells) * cell_stride, 0);
+  spheres.allocate(n);
+  grid.cell_of_slot.resize(n);
+  grid.cells.assign(
+      static_cast<std::size_t>(n_cells),
+      ((fullest + 1 + kCellCapacityStep - 1) / kCellCapacityStep + 1) * kCellCapacityStep,
+      kCellCapacityStep);
   for (int s = 0; s < n; ++s) {
-    const int i = external_of[s];
-    double *p = at(s);
+    const int i = spheres.external_of[s];
+    double *p = spheres.at(s);
     for (int d = 0; d < 3; ++d) p[d] = p[kRef + d] = xyz_wrapped[3 * i + d];
     p[3] = radius[i];
     p[kRecord - 1] = 0.0;
-    image[2 * s] = image_in[2 * i];
-    image[2 * s + 1] = image_in[2 * i + 1];
-    cell[s] = cell_ext[i];
-    int *cr = cell_row(cell[s]);
+    spheres.image[2 * s] = image_in[2 * i];
+    spheres.image[2 * s + 1] = image_in[2 * i + 1];
+    grid.cell_of_slot[s] = cell_ext[i];
+    int *cr = grid.cells.row(cell_ext[i]);
     cr[++cr[0]] = s;
   }
 
@@ -322,7 +353,7 @@ void SphereMover::State::build(const double *xyz_wrapped, const double *radius,
   std::vector<int> &count = cell_ext;  // reused: one count per slot
   count.assign(n, 0);
   for (int s = 0; s < n; ++s)
-    for_each_candidate(s, [&](int j) {
+    grid.for_each_around(spheres.ref(s), [&](int j) {
       if (j > s && in_reach(s, j)) {
         pairs.push_back(s);
         pairs.push_back(j);
@@ -332,10 +363,10 @@ void SphereMover::State::build(const double *xyz_wrapped, const double *radius,
     });
   const int longest = n > 0 ? *std::max_element(count.begin(), count.end()) : 0;
   const int step = defaults::kListCapacityStep;
-  stride = ((longest + 1 + defaults::kListSlack + step - 1) / step) * step;
-  rows.assign(static_cast<std::size_t>(n) * stride, 0);
+  lists.assign(static_cast<std::size_t>(n),
+               ((longest + 1 + defaults::kListSlack + step - 1) / step) * step, step);
   for (std::size_t q = 0; q < pairs.size(); q += 2) {
-    int *a = row(pairs[q]), *b = row(pairs[q + 1]);
+    int *a = lists.row(pairs[q]), *b = lists.row(pairs[q + 1]);
     a[++a[0]] = pairs[q + 1];
     b[++b[0]] = pairs[q];
   }
@@ -371,9 +402,8 @@ void SphereMover::reset(const double *xyz, const double *radius, int n, const Se
   st.scene = sc;
   st.n = n;
   st.d_max = d_max;
-  st.full_builds = st.local_updates = st.capacity_grows = 0;
-  st.moved_slots.clear();
-  st.moved_flag.assign(n, 0);
+  st.full_builds = st.local_updates = st.lists.widenings = 0;
+  st.moved.clear(n);
 
   std::vector<double> &wrapped = st.wrapped;
   std::vector<int> &image = st.wrapped_image;
@@ -394,70 +424,66 @@ void SphereMover::set_position(int i, const double *xyz)
   for (int d = 0; d < 3; ++d)
     if (!std::isfinite(xyz[d])) bad("position of sphere " + std::to_string(i), xyz[d], "(finite)");
   const Scene &sc = st.scene;
-  const int s = st.slot_of[i];
-  double *p = st.at(s);
+  const int s = st.spheres.slot_of[i];
+  double *p = st.spheres.at(s);
   for (int d = 0; d < 3; ++d) p[d] = xyz[d];
   for (int d = 0; d < 2; ++d)
     if (sc.periodic[d]) {
-      st.image[2 * s + d] = 0;
-      p[d] = wrap_periodic(xyz[d], sc.lo[d], sc.hi[d], sc.length[d], st.image[2 * s + d]);
+      st.spheres.image[2 * s + d] = 0;
+      p[d] = wrap_periodic(xyz[d], sc.lo[d], sc.hi[d], sc.length[d], st.spheres.image[2 * s + d]);
     }
-  const bool px = sc.periodic[0], py = sc.periodic[1];
-  const double drift = px ? (py ? st.drift_sq<true, true>(s) : st.drift_sq<true, false>(s))
-                          : (py ? st.drift_sq<false, true>(s) : st.drift_sq<false, false>(s));
-  if (drift > st.half_skin_sq) st.relist(s);
+  if (st.drift_sq(s) > st.half_skin_sq) st.relist(s);
 }
 
 const double *SphereMover::position(int i) const
 {
-  return state_->at(state_->slot_of[i]);
+  return state_->spheres.at(state_->spheres.slot_of[i]);
 }
 
 int SphereMover::image_shift(int i, int axis) const
 {
-  return state_->image[2 * static_cast<std::size_t>(state_->slot_of[i]) + axis];
+  return state_->spheres.image[2 * static_cast<std::size_t>(state_->spheres.slot_of[i]) + axis];
 }
 
 long SphereMover::full_builds() const { return state_->full_builds; }
 long SphereMover::local_updates() const { return state_->local_updates; }
-long SphereMover::capacity_grows() const { return state_->capacity_grows; }
+long SphereMover::capacity_grows() const { return state_->lists.widenings; }
 
 double SphereMover::mean_list_length() const
 {
   const State &st = *state_;
   if (st.n == 0) return 0.0;
   double sum = 0.0;
-  for (int s = 0; s < st.n; ++s) sum += st.rows[static_cast<std::size_t>(s) * st.stride];
+  for (int s = 0; s < st.n; ++s) sum += st.lists.row(s)[0];
   return sum / st.n;
 }
 
 std::string SphereMover::check_lists() const
 {
   const State &st = *state_;
-  const bool px = st.scene.periodic[0], py = st.scene.periodic[1];
+  const ReferenceGrid &grid = st.grid;
   std::vector<int> times_listed(st.n);
   for (int a = 0; a < st.n; ++a) {
-    const std::string sphere = "sphere " + std::to_string(st.external_of[a]);
-    const double drift = px ? (py ? st.drift_sq<true, true>(a) : st.drift_sq<true, false>(a))
-                            : (py ? st.drift_sq<false, true>(a) : st.drift_sq<false, false>(a));
-    if (drift > st.half_skin_sq) return sphere + " is beyond skin/2 of its reference";
-    if (st.cell[a] != st.cell_index(st.ref(a)))
+    const std::string sphere = "sphere " + std::to_string(st.spheres.external_of[a]);
+    if (st.drift_sq(a) > st.half_skin_sq) return sphere + " is beyond skin/2 of its reference";
+    const int cell = grid.cell_of_slot[a];
+    if (cell != grid.cell_index(st.spheres.ref(a)))
       return sphere + " is not in the cell of its reference";
     int binned = 0;
-    for (std::size_t c = 0; c < st.cells.size() / st.cell_stride; ++c) {
-      const int *cr = st.cell_row(static_cast<int>(c));
-      for (int q = 1; q <= cr[0]; ++q) binned += cr[q] == a && static_cast<int>(c) == st.cell[a];
+    for (std::size_t c = 0; c < grid.cells.count(); ++c) {
+      const int *cr = grid.cells.row(static_cast<int>(c));
+      for (int q = 1; q <= cr[0]; ++q) binned += cr[q] == a && static_cast<int>(c) == cell;
       for (int q = 1; q <= cr[0]; ++q)
-        if (cr[q] == a && static_cast<int>(c) != st.cell[a]) return sphere + " binned twice";
+        if (cr[q] == a && static_cast<int>(c) != cell) return sphere + " binned twice";
     }
     if (binned != 1) return sphere + " binned " + std::to_string(binned) + " times";
     std::fill(times_listed.begin(), times_listed.end(), 0);
-    const int *r = st.row(a);
+    const int *r = st.lists.row(a);
     for (int q = 1; q <= r[0]; ++q) ++times_listed[r[q]];
     for (int b = 0; b < st.n; ++b) {
       const int expected = b != a && st.in_reach(a, b) ? 1 : 0;
       if (times_listed[b] != expected)
-        return sphere + " lists sphere " + std::to_string(st.external_of[b]) + " " +
+        return sphere + " lists sphere " + std::to_string(st.spheres.external_of[b]) + " " +
                std::to_string(times_listed[b]) + " times (expected " + std::to_string(expected) +
                ")";
     }
@@ -492,7 +518,7 @@ inline bool overlaps_listed(const SphereMover::State &st, const int *row, double
 {
   const Scene &sc = st.scene;
   for (int q = 1, end = row[0]; q <= end; ++q) {
-    const double *pj = st.at(row[q]);
+    const double *pj = st.spheres.at(row[q]);
     const double dx = axis_separation<PeriodicX>(pj[0], x, sc.length[0], half_x);
     const double dy = axis_separation<PeriodicY>(pj[1], y, sc.length[1], half_y);
     const double limit =
@@ -507,6 +533,8 @@ template <bool Mono, bool PeriodicX, bool PeriodicY, bool Region>
 void run_trials(SphereMover::State &st, const RunArgs &a)
 {
   const Scene &sc = st.scene;
+  SlotRecords &spheres = st.spheres;
+  const CountedRows &lists = st.lists;
   const double r_mono = sc.r_mono;
   const double threshold_sq_mono = overlap_threshold_sq(r_mono, r_mono, sc.one_minus_tol);
   const double half_x = 0.5 * sc.length[0], half_y = 0.5 * sc.length[1];
@@ -526,27 +554,27 @@ void run_trials(SphereMover::State &st, const RunArgs &a)
         k = *a.sweep_cursor;
         if (++*a.sweep_cursor == a.m) *a.sweep_cursor = 0;
       }
-      const int s = a.candidate_slots ? a.candidate_slots[k] : st.slot_of[a.candidates[k]];
+      const int s = a.candidate_slots ? a.candidate_slots[k] : spheres.slot_of[a.candidates[k]];
       st.batch_slot[b] = s;
       if (b < defaults::kOwnPrefetchAhead) {
-        prefetch(st.at(s));
-        prefetch(st.row(s));
+        prefetch(spheres.at(s));
+        prefetch(lists.row(s));
       }
     }
     for (int b = 0; b < count; ++b) {
       if (b + defaults::kOwnPrefetchAhead < count) {
         const int later = st.batch_slot[b + defaults::kOwnPrefetchAhead];
-        prefetch(st.at(later));
-        prefetch(st.row(later));
+        prefetch(spheres.at(later));
+        prefetch(lists.row(later));
       }
       if (b + defaults::kNeighbourPrefetchAhead < count) {
-        const int *ahead = st.row(st.batch_slot[b + defaults::kNeighbourPrefetchAhead]);
+        const int *ahead = lists.row(st.batch_slot[b + defaults::kNeighbourPrefetchAhead]);
         const int prefetched = std::min(ahead[0], defaults::kNeighbourPrefetchCount);
-        for (int q = 1; q <= prefetched; ++q) prefetch(st.at(ahead[q]));
+        for (int q = 1; q <= prefetched; ++q) prefetch(spheres.at(ahead[q]));
       }
       const int s = st.batch_slot[b];
       const Displacement &move = st.batch[b].move;
-      double *p = st.at(s);
+      double *p = spheres.at(s);
       const double r = Mono ? r_mono : p[3];
       const double oz = p[2];
       double x = p[0] + move.dx, y = p[1] + move.dy;
@@ -559,7 +587,7 @@ void run_trials(SphereMover::State &st, const RunArgs &a)
         continue;
       double gap;
       if (plane_violation<PeriodicX, PeriodicY>(sc, x, y, z, r, gap)) continue;
-      if (overlaps_listed<Mono, PeriodicX, PeriodicY>(st, st.row(s), x, y, z, r,
+      if (overlaps_listed<Mono, PeriodicX, PeriodicY>(st, lists.row(s), x, y, z, r,
                                                      threshold_sq_mono, half_x, half_y))
         continue;
       ++accepted;
@@ -567,12 +595,9 @@ void run_trials(SphereMover::State &st, const RunArgs &a)
       p[0] = x;
       p[1] = y;
       p[2] = z;
-      if (!st.moved_flag[s]) {
-        st.moved_flag[s] = 1;
-        st.moved_slots.push_back(s);
-      }
-      if (PeriodicX && wrap_x) st.image[2 * s] += wrap_x;
-      if (PeriodicY && wrap_y) st.image[2 * s + 1] += wrap_y;
+      st.moved.note(s);
+      if (PeriodicX && wrap_x) spheres.image[2 * s] += wrap_x;
+      if (PeriodicY && wrap_y) spheres.image[2 * s + 1] += wrap_y;
       if (st.drift_sq<PeriodicX, PeriodicY>(s) > st.half_skin_sq) st.relist(s);
     }
   }
@@ -605,16 +630,17 @@ void dispatch_axes(SphereMover::State &st, const RunArgs &a)
 void SphereMover::take_moved(std::vector<Moved> &moved)
 {
   State &st = *state_;
+  const SlotRecords &spheres = st.spheres;
   moved.clear();
-  for (int s : st.moved_slots) {
-    const double *p = st.at(s);
-    moved.push_back({st.external_of[s],
-                     {st.image[2 * static_cast<std::size_t>(s)],
-                      st.image[2 * static_cast<std::size_t>(s) + 1]},
+  for (int s : st.moved.slots) {
+    const double *p = spheres.at(s);
+    moved.push_back({spheres.external_of[s],
+                     {spheres.image[2 * static_cast<std::size_t>(s)],
+                      spheres.image[2 * static_cast<std::size_t>(s) + 1]},
                      {p[0], p[1], p[2]}});
-    st.moved_flag[s] = 0;
+    st.moved.flag[s] = 0;
   }
-  st.moved_slots.clear();
+  st.moved.slots.clear();
 }
 
 void SphereMover::run(const int *candidates, long m, PickOrder order, long &sweep_cursor,
@@ -639,7 +665,7 @@ void SphereMover::run(const int *candidates, long m, PickOrder order, long &swee
       const int c = candidates[k];
       if (!(c >= 0 && c < st.n))
         bad("candidates[" + std::to_string(k) + "]", c, "[0, " + std::to_string(st.n) + ")");
-      st.candidate_slots[k] = st.slot_of[c];
+      st.candidate_slots[k] = st.spheres.slot_of[c];
     }
     candidate_slots = st.candidate_slots.data();
   }
