@@ -20,16 +20,23 @@
 #           `-var taps 2` given here wins over the index value. A literal `run N` with N above
 #           MAX_LITERAL_RUN fails the test. Blocks in a "Syntax" section describe syntax, not input,
 #           and are not run.
-#   python  (```python, `.. code-block:: python`): /usr/bin/python3.
+#   python  (```python, `.. code-block:: python`): the Python that runs this file (under ctest the
+#           project's TAPMC_PYTHON).
 #   sh      (```sh, ```bash, `.. code-block:: sh` or bash): bash -e.
 #   text    (```text, `.. code-block:: text`, also console/none): output or prose, not run.
 # A block without a language (``` or `::`) fails: say what it is (one of the above).
 # A block preceded by `.. snippet: skip <reason>` (rst comment) or `<!-- snippet: skip <reason> -->`
 # (markdown) is skipped with that reason shown.
+#
+# Pages in PAGE_OUTPUTS show clean runs of programs that write files: each of their blocks must
+# print no warning, and after the page's last block test_page_outputs checks the files the blocks
+# wrote (see there).
 import glob
 import os
 import re
 import subprocess
+import sys
+import time
 
 import pytest
 
@@ -38,7 +45,7 @@ SOURCE_DIR = os.path.abspath(os.environ.get(
 BUILD_DIR = os.path.abspath(os.environ.get("TAPMC_BUILD_DIR", os.path.join(SOURCE_DIR, "build")))
 LMP = os.environ.get("TAPMC_LMP", os.path.join(BUILD_DIR, "lmp_tapmc"))
 LIB = os.environ.get("TAPMC_LIB", os.path.join(BUILD_DIR, "libtapmc.so"))
-PYTHON = "/usr/bin/python3"
+PYTHON = sys.executable
 
 # Blocks in pages owned by work merged in parallel that fail today, keyed file:line. Each entry is
 # reported as an expected failure; the list is emptied when that work is merged.
@@ -59,6 +66,21 @@ TIMEOUT = 300  # seconds per block
 
 # Programs of optional parts of the build: a block that names one is skipped when it is absent.
 OPTIONAL_PROGRAMS = {"tapmc-pores": os.path.join(BUILD_DIR, "tools", "pores", "tapmc-pores")}
+
+# Pages whose blocks write outputs, checked after the page's last block (test_page_outputs):
+# the page has at least `blocks` runnable blocks of each language; the blocks wrote every file of
+# `files` in `folder` (relative to the repository root), not empty, during this test session (the
+# folder is in the build directory, where an earlier session left its outputs) and left no
+# `*.partial` file there; one block printed `printed`.
+PAGE_OUTPUTS = {
+    os.path.join("doc", "tapmc-pores.rst"): {
+        "blocks": {"sh": 2, "python": 1},
+        "folder": os.path.join("build", "doc-pores"),
+        "files": ("fig10.hist.csv", "fig10.frame_hist.csv", "fig10.json", "fig9.p0.csv",
+                  "late.frames.csv", "deep_box.hist.csv", "fig10.png", "fig9.png"),
+        "printed": "nu over all frames:",
+    },
+}
 
 RUNNABLE = {"lammps": "lammps", "python": "python", "python3": "python", "sh": "sh",
             "bash": "sh", "shell": "sh"}
@@ -280,7 +302,19 @@ def block_param(block):
     return pytest.param(block, id=block.name, marks=marks)
 
 
+def missing_optional_program(code):
+    """(program, path) of a program of an optional part of the build that the code names and
+    that was not built, else None."""
+    for program, path in OPTIONAL_PROGRAMS.items():
+        if re.search(r"(?<![\w-])%s(?![\w-])" % re.escape(program), code) and \
+                not os.path.exists(path):
+            return program, path
+    return None
+
+
 PAGE_DIRS = {}
+PAGE_STARTS = {}   # page -> time.time() before its first block ran
+PAGE_PRINTED = {}  # page -> outputs of its blocks, in order
 
 
 def page_directory(block, tmp_path_factory):
@@ -289,6 +323,7 @@ def page_directory(block, tmp_path_factory):
         path = tmp_path_factory.mktemp(re.sub(r"\W", "_", block.path))
         repository_mirror(str(path))
         PAGE_DIRS[block.path] = str(path)
+        PAGE_STARTS[block.path] = time.time()
     return PAGE_DIRS[block.path]
 
 
@@ -307,10 +342,9 @@ def test_doc_block_runs(block, tmp_path_factory):
     if lang not in ("lammps", "python", "sh"):
         pytest.fail("%s: unknown language '%s' (python, sh, bash, LAMMPS, or text)"
                     % (block.name, block.language))
-    for program, path in OPTIONAL_PROGRAMS.items():
-        if re.search(r"(?<![\w-])%s(?![\w-])" % re.escape(program), block.code) and \
-                not os.path.exists(path):
-            pytest.skip("%s is not built (%s)" % (program, path))
+    missing = missing_optional_program(block.code)
+    if missing:
+        pytest.skip("%s is not built (%s)" % missing)
     block.language = lang
     try:
         rc, out = run_block(block, page_directory(block, tmp_path_factory))
@@ -318,6 +352,42 @@ def test_doc_block_runs(block, tmp_path_factory):
         pytest.fail("%s: %s" % (block.name, err))
     assert rc == 0, "%s (%s) exited with %d:\n%s\n--- output (last 60 lines):\n%s" % (
         block.name, lang, rc, block.code, "\n".join(out.splitlines()[-60:]))
+    if block.path in PAGE_OUTPUTS:
+        PAGE_PRINTED.setdefault(block.path, []).append(out)
+        # The page shows clean runs: no warning, no error.
+        assert "warning" not in out.lower(), "%s printed a warning:\n%s" % (block.name, out)
+
+
+# Runs after test_doc_block_runs (pytest keeps the order of the file).
+@pytest.mark.parametrize("page", sorted(PAGE_OUTPUTS))
+def test_page_outputs(page):
+    expected = PAGE_OUTPUTS[page]
+    languages = [RUNNABLE.get(b.language, b.language) for b in BLOCKS
+                 if b.path == page and not b.skip_reason]
+    for language, count in expected["blocks"].items():
+        assert languages.count(language) >= count, \
+            "%s: %d %s blocks, expected at least %d" % (page, languages.count(language),
+                                                        language, count)
+    missing = missing_optional_program("".join(b.code for b in BLOCKS if b.path == page))
+    if missing:
+        pytest.skip("%s is not built (%s)" % missing)
+    if page not in PAGE_DIRS:
+        pytest.skip("the blocks of %s did not run in this session: run the whole file" % page)
+    folder = os.path.join(PAGE_DIRS[page], expected["folder"])
+    # one second of slack for file systems whose clock lags time.time(); an earlier session's
+    # outputs are older than that
+    since = PAGE_STARTS[page] - 1.0
+    for name in expected["files"]:
+        path = os.path.join(folder, name)
+        assert os.path.isfile(path), "%s: the blocks did not write %s" % (page, name)
+        assert os.path.getsize(path) > 0, "%s: %s is empty" % (page, name)
+        assert os.path.getmtime(path) >= since, \
+            "%s: %s was not written by this session's blocks" % (page, name)
+    partial = [p for p in glob.glob(os.path.join(folder, "*.partial"))
+               if os.path.getmtime(p) >= since]
+    assert not partial, "%s: unfinished outputs left: %s" % (page, partial)
+    assert any(expected["printed"] in out for out in PAGE_PRINTED.get(page, [])), \
+        "%s: no block printed %r" % (page, expected["printed"])
 
 
 def test_every_page_was_read():
