@@ -21,7 +21,7 @@ from collections import namedtuple
 import numpy as np
 
 __all__ = ["TapmcFormatError", "Table", "Thermo", "Log", "AveTime", "Frame", "Dump",
-           "read_log", "read_ave_time", "read_fix_print", "read_dump"]
+           "read_log", "read_ave_time", "read_ave_time_blocks", "read_fix_print", "read_dump"]
 
 
 class TapmcFormatError(ValueError):
@@ -301,11 +301,13 @@ class AveTime(Table):
         return len(self.steps)
 
 
-def read_ave_time(path):
-    """Read a ``fix ave/time`` output file, scalar or vector mode (told apart by the header:
-    vector mode has a third comment line starting with ``# Row``). A last line without its
-    end-of-line (a killed run) is left out; a scalar-mode file with its header and no row yet
-    gives an empty table, a vector-mode file without a complete block raises."""
+def _parse_ave_time(path, killed=False):
+    """The one parser of ``fix ave/time`` files, behind :func:`read_ave_time` and
+    :func:`read_ave_time_blocks`. Returns (lines, number of header lines, column names, vector
+    mode?, blocks); a block is (step, line numbers (1-based) of its lines, values): one row in
+    scalar mode (values: the row), a ``TimeStep Number-of-rows`` line and its rows in vector mode
+    (values: the rows without their ``Row`` column). ``killed``: the file was written by a run
+    that was killed, so a last vector block cut short is left out instead of raising."""
     lines, cut_short = _read_lines(path)
     if not lines and not cut_short:
         raise TapmcFormatError(path, None, "empty file")
@@ -330,9 +332,9 @@ def read_ave_time(path):
         raise TapmcFormatError(path, 3 if vector else 2, "header line names no column")
     body = [(i + 1, lines[i].split()) for i in range(k, len(lines)) if lines[i].strip()]
     if not vector:
-        rows = [_floats(path, ln, fields, len(names)) for ln, fields in body]
-        return AveTime(names, np.array(rows).reshape(-1, len(names)), path=path)
-    steps, blocks = [], []
+        rows = [(ln, _floats(path, ln, fields, len(names))) for ln, fields in body]
+        return lines, k, names, False, [(row[0], [ln], row) for ln, row in rows]
+    blocks = []
     j = 0
     while j < len(body):
         ln, fields = body[j]
@@ -340,21 +342,52 @@ def read_ave_time(path):
         if not np.isfinite(nrows) or nrows != int(nrows) or nrows < 1:
             raise TapmcFormatError(path, ln, f"row count {fields[1]!r} is not a positive integer")
         nrows = int(nrows)
-        if blocks and nrows != blocks[0].shape[0]:
+        if blocks and nrows != len(blocks[0][2]):
             raise TapmcFormatError(path, ln, f"block has {nrows} rows, the first block had "
-                                   f"{blocks[0].shape[0]}")
+                                   f"{len(blocks[0][2])}")
         if j + nrows >= len(body):
+            if killed:
+                break
             raise TapmcFormatError(path, ln, f"truncated block: {nrows} rows announced, "
                                    f"{len(body) - j - 1} present")
-        block = [_floats(path, body[j + 1 + r][0], body[j + 1 + r][1], len(names) + 1)
-                 for r in range(nrows)]
-        steps.append(step)
-        blocks.append(np.array(block)[:, 1:])
+        rows = body[j + 1:j + 1 + nrows]
+        values = [_floats(path, rln, rfields, len(names) + 1)[1:] for rln, rfields in rows]
+        blocks.append((step, [ln] + [rln for rln, _ in rows], values))
         j += nrows + 1
-    if not blocks:
+    if not blocks and not killed:
         raise TapmcFormatError(path, None, "vector-mode file with no data block"
                                + _cut_short_note(cut_short, len(lines)))
-    return AveTime(names, steps=steps, blocks=np.array(blocks), path=path)
+    return lines, k, names, True, blocks
+
+
+def read_ave_time(path):
+    """Read a ``fix ave/time`` output file, scalar or vector mode (told apart by the header:
+    vector mode has a third comment line starting with ``# Row``). A last line without its
+    end-of-line (a killed run) is left out; a scalar-mode file with its header and no row yet
+    gives an empty table, a vector-mode file without a complete block raises."""
+    _, _, names, vector, blocks = _parse_ave_time(path)
+    if not vector:
+        rows = [values for _, _, values in blocks]
+        return AveTime(names, np.array(rows).reshape(-1, len(names)), path=path)
+    return AveTime(names, steps=[step for step, _, _ in blocks],
+                   blocks=np.array([values for _, _, values in blocks]), path=path)
+
+
+def read_ave_time_blocks(path, killed=False):
+    """The text of a ``fix ave/time`` file, for tools that rewrite such files keeping every byte
+    of what they keep (:func:`tapmc.campaign.merge_ave_time_parts`): ``(header, blocks)``, the
+    header lines and a list of ``(step, lines)``, one per output time (a row in scalar mode, a
+    block in vector mode), each line with its end-of-line. Parsed and checked as by
+    :func:`read_ave_time`, with the same errors; a step that is not an integer is refused.
+    ``killed=True`` is for a file of a run that was killed: a last vector block cut short is
+    left out (a last row cut short always is), and a file with no complete block is allowed."""
+    lines, nheader, _, _, blocks = _parse_ave_time(path, killed)
+    out = []
+    for step, linenos, _ in blocks:
+        if not np.isfinite(step) or step != int(step):
+            raise TapmcFormatError(path, linenos[0], f"step {step!r} is not an integer")
+        out.append((int(step), [lines[n - 1] + "\n" for n in linenos]))
+    return [line + "\n" for line in lines[:nheader]], out
 
 
 def read_fix_print(path, columns=None):
