@@ -1,8 +1,8 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 # fix tapdilate + fix mc/settle run by lmp_tapmc as a child process, serial and under mpirun:
-# seed reproducibility, exact restart round trip, fix order, tap steps, narrow theta0, restart
-# settings. The all-pairs oracle on 1, 2 and 4 ranks is test_mc_settle_ranks.py (its own ctest
-# entry, so that no single entry runs much over a minute).
+# seed reproducibility, exact restart round trip (serial, and scheme domain on 2 ranks), fix
+# order, tap steps, narrow theta0, restart settings. The all-pairs oracle on 1, 2 and 4 ranks is
+# test_mc_settle_ranks.py (its own ctest entry, so that no single entry runs much over a minute).
 import functools
 import os
 
@@ -82,26 +82,37 @@ def test_same_seed_same_trajectory_other_seed_differs():
     assert not np.array_equal(a[-1][3]["z"], c[-1][3]["z"])
 
 
-def test_restart_round_trip_is_exact(tmp_path):
-    # Uninterrupted: 12 taps. Interrupted: 6 taps, write_restart, then a new process reads the
-    # restart and does 6 more. Positions and image flags must be identical bit for bit.
-    common = TAPPING.replace("dump d all custom {every} dump.taps id x y z radius\n", "") \
-                    .replace("dump_modify d sort id format float %.17g\n", "")
-    full = SCENE.format(boundary="p p fm", zprocs=1) + common.format(
-        eps=0.05, seed=11, every=1, taps=12) + \
-        "write_dump all custom final.dump id x y z ix iy iz modify sort id format float %.17g\n"
-    rc, out, wd_full = run_lammps(full)
-    assert rc == 0, out
-
-    first = SCENE.format(boundary="p p fm", zprocs=1) + common.format(
-        eps=0.05, seed=11, every=1, taps=6) + "write_restart half.restart\n"
-    rc, out, wd = run_lammps(first)
-    assert rc == 0, out
-    second = ("read_restart half.restart\n" +
-              common.format(eps=0.05, seed=11, every=1, taps=6) +
-              "write_dump all custom final.dump id x y z ix iy iz modify sort id "
+FINAL_DUMP = ("write_dump all custom final.dump id x y z ix iy iz modify sort id "
               "format float %.17g\n")
-    rc, out, _ = run_lammps(second, workdir=wd)
+
+
+@pytest.mark.parametrize("nprocs,grid,scheme,eps,seed,taps", [
+    pytest.param(1, "* * 1", "", 0.05, 11, 12, id="serial"),
+    pytest.param(2, "2 1 1", " scheme domain", 0.02, 31, 6, id="domain_2_ranks"),
+])
+def test_restart_round_trip_is_exact(tmp_path, nprocs, grid, scheme, eps, seed, taps):
+    # Uninterrupted: `taps` taps. Interrupted: half of them, write_restart, then a new process
+    # on the same ranks and grid reads the restart and does the other half. Positions and image
+    # flags must be identical bit for bit, serial and with the domain-decomposed scheme.
+    scene = SCENE.format(boundary="p p fm", zprocs=1).replace("processors * * 1",
+                                                              f"processors {grid}")
+    tapping = (TAPPING.replace("eta 1e-3", "eta 1e-3" + scheme)
+               .replace("dump d all custom {every} dump.taps id x y z radius xu yu\n", "")
+               .replace("dump_modify d sort id format float %.17g\n", ""))
+    assert "dump" not in tapping
+
+    def taps_of(n):
+        return tapping.format(eps=eps, seed=seed, taps=n)
+
+    rc, out, wd_full = run_lammps(scene + taps_of(taps) + FINAL_DUMP, nprocs=nprocs)
+    assert rc == 0, out
+    wd = str(tmp_path)
+    first = scene + taps_of(taps // 2) + "write_restart half.restart\n"
+    rc, out, _ = run_lammps(first, nprocs=nprocs, workdir=wd)
+    assert rc == 0, out
+    second = (f"processors {grid}\nread_restart half.restart\n" + taps_of(taps - taps // 2)
+              + FINAL_DUMP)
+    rc, out, _ = run_lammps(second, nprocs=nprocs, workdir=wd)
     assert rc == 0, out
     assert dump_atoms_text(wd_full) == dump_atoms_text(wd)
 
