@@ -15,6 +15,11 @@
 // Every path is a line or a circle p(t) = m + rho (cos t e1 + sin t e2); along a circle each
 // contact function and each support force is K + P cos t + Q sin t, so the next event (a new
 // contact, a support force reaching zero, the lowest point) is found in closed form.
+//
+// In this file, in order: the layered grid; the deposited spheres (storage and planes); the
+// descent at a point (from the touching constraints alone); the searches of the deposited spheres
+// (contacts, start of a drop, next event of a fall or a roll); the random numbers of unstable
+// equilibria; the roll of one segment; and the engine (Impl) that drops a sphere with them.
 #include "tapmc_deposition.h"
 
 #include "tapmc_contact.h"
@@ -268,18 +273,17 @@ struct Descent {
   Vec3 d{0, 0, 0};
 };
 
-}  // namespace
-
 // ---------------------------------------------------------------------------------------------
-struct SequentialDeposition::Impl {
+// The spheres deposited so far (centres and radii in insertion order, binned in the layered
+// grid) and the planes of the domain: what every contact and event search reads.
+struct DepositedSpheres {
   DepositionDomain domain;
-  double r_max;
-  std::uint64_t seed;
+  double r_max = 0.0;
   LayeredGrid grid;
   std::vector<double> centres;  // 3 per sphere
   std::vector<double> radii;
-  DepositionStats stats;
-  std::uint64_t perturbation_draws = 0;  // for the sphere being dropped (reset on insertion)
+
+  std::size_t size() const { return radii.size(); }
 
   Vec3 centre_of(std::int32_t i) const
   {
@@ -301,7 +305,6 @@ struct SequentialDeposition::Impl {
     centres.push_back(p.z);
     radii.push_back(r);
     grid.insert(index, p.x, p.y, p.z, r);
-    perturbation_draws = 0;
   }
 
   // The planes a sphere of radius r must respect: the floor, and the walls of non-periodic sides.
@@ -317,340 +320,385 @@ struct SequentialDeposition::Impl {
       f(Constraint{false, kWallYhi, 0, 0, {0, -1, 0}, -(domain.yhi - r)});
     }
   }
+};
 
-  // Fills `contacts` with the spheres and planes within kDepositionSupportTolerance of contact
-  // with a sphere (p, r) (its previous content is discarded; the caller reuses its storage).
-  void collect_touching(Vec3 p, double r, ContactSet &contacts) const
-  {
-    std::vector<Constraint> &touching = contacts.constraints;
-    touching.clear();
-    contacts.normals.clear();
-    const double reach = (r + r_max) * (1.0 + 2.0 * kDepositionSupportTolerance);
-    grid.visit(p.x - reach, p.x + reach, p.y - reach, p.y + reach, grid.layer_of(p.z - reach),
-               grid.layer_of(p.z + reach),
-               [&](std::int32_t i, double sx, double sy, int ix, int iy) {
-                 const Vec3 c = centre_of(i) + Vec3{sx, sy, 0.0};
-                 const double dist = r + radii[i];
-                 const Vec3 delta = p - c;
-                 const double d2 = dot(delta, delta);
-                 const double limit = dist * (1.0 + kDepositionSupportTolerance);
-                 if (d2 > limit * limit) return;
-                 touching.push_back(Constraint{true, i, ix, iy, c, dist});
-               });
-    for_each_plane(r, [&](const Constraint &k) {
-      if (gap_of(k, p) <= kDepositionSupportTolerance * 2.0 * r) touching.push_back(k);
-    });
-    for (const auto &k : touching) contacts.normals.push_back(normal_of(k, p));
+// ---------------------------------------------------------------------------------------------
+// The descent at a point (the KKT conditions of the header comment), from the contacts alone.
+
+// Projection of gravity onto the subspace tangent to the selected normals; feasible when the
+// support forces are >= 0 and the direction enters no other touching constraint.
+bool feasible(const std::vector<Vec3> &normals, const int *sel, int size, Vec3 &d)
+{
+  const int n = static_cast<int>(normals.size());
+  const double tol = kDepositionForceTolerance;
+  double mu[3] = {0, 0, 0};
+  if (size == 0) {
+    d = kGravity;
+  } else if (size == 1) {
+    const Vec3 a = normals[sel[0]];
+    mu[0] = -dot(a, kGravity);
+    d = kGravity + mu[0] * a;
+  } else if (size == 2) {
+    const Vec3 a = normals[sel[0]], b = normals[sel[1]];
+    const double c = dot(a, b), det = 1.0 - c * c;
+    // (anti)parallel normals: a smaller set covers it
+    if (det < defaults::kDepositionParallelNormals) return false;
+    const double ga = dot(a, kGravity), gb = dot(b, kGravity);
+    mu[0] = -(ga - c * gb) / det;
+    mu[1] = -(gb - c * ga) / det;
+    d = kGravity + mu[0] * a + mu[1] * b;
+    d = d - dot(d, a) * a;  // remove rounding along the normals
+    d = d - dot(d, b) * b;
+  } else {
+    const Vec3 a = normals[sel[0]], b = normals[sel[1]], c = normals[sel[2]];
+    const double det = dot(a, cross(b, c));
+    // coplanar normals: no isolated rest point
+    if (std::fabs(det) < defaults::kDepositionCoplanarNormals) return false;
+    // Solve a mu0 + b mu1 + c mu2 = -g (Cramer), d = 0.
+    const Vec3 h = -1.0 * kGravity;
+    mu[0] = dot(h, cross(b, c)) / det;
+    mu[1] = dot(a, cross(h, c)) / det;
+    mu[2] = dot(a, cross(b, h)) / det;
+    d = {0, 0, 0};
   }
-
-  // Active set and descent direction (KKT of the projection of gravity onto the cone of
-  // feasible directions). Subsets are tried from the smallest: at a point where a support
-  // force is exactly zero, the smaller set (the support is being left) wins. Subsets must
-  // contain every constraint of `forced` (indices into `contacts` of the constraints the previous
-  // path entered at once).
-  Descent solve_descent(const ContactSet &contacts, const std::vector<int> &forced) const
-  {
-    const int n = contacts.size();
-    Descent out;
-    auto attempt = [&](const int *sel, int size) {
-      for (int f : forced)
-        if (std::find(sel, sel + size, f) == sel + size) return false;
-      Vec3 d;
-      if (!feasible(contacts.normals, sel, size, d)) return false;
-      out.found = true;
-      out.n_active = size;
-      for (int a = 0; a < size; ++a) out.active[a] = sel[a];
-      out.d = d;
-      return true;
-    };
-    int sel[3] = {-1, -1, -1};
-    if (attempt(sel, 0)) return out;
-    for (sel[0] = 0; sel[0] < n; ++sel[0])
-      if (attempt(sel, 1)) return out;
-    for (sel[0] = 0; sel[0] < n; ++sel[0])
-      for (sel[1] = sel[0] + 1; sel[1] < n; ++sel[1])
-        if (attempt(sel, 2)) return out;
-    for (sel[0] = 0; sel[0] < n; ++sel[0])
-      for (sel[1] = sel[0] + 1; sel[1] < n; ++sel[1])
-        for (sel[2] = sel[1] + 1; sel[2] < n; ++sel[2])
-          if (attempt(sel, 3)) return out;
-    return out;
+  for (int a = 0; a < size; ++a)
+    if (mu[a] < -tol) return false;
+  for (int k = 0; k < n; ++k) {
+    if (std::find(sel, sel + size, k) != sel + size) continue;
+    if (dot(normals[k], d) < -tol) return false;
   }
+  return true;
+}
 
-  // Projection of gravity onto the subspace tangent to the selected normals; feasible when the
-  // support forces are >= 0 and the direction enters no other touching constraint.
-  static bool feasible(const std::vector<Vec3> &normals, const int *sel, int size, Vec3 &d)
-  {
-    const int n = static_cast<int>(normals.size());
-    const double tol = kDepositionForceTolerance;
-    double mu[3] = {0, 0, 0};
-    if (size == 0) {
-      d = kGravity;
-    } else if (size == 1) {
-      const Vec3 a = normals[sel[0]];
-      mu[0] = -dot(a, kGravity);
-      d = kGravity + mu[0] * a;
-    } else if (size == 2) {
-      const Vec3 a = normals[sel[0]], b = normals[sel[1]];
-      const double c = dot(a, b), det = 1.0 - c * c;
-      // (anti)parallel normals: a smaller set covers it
-      if (det < defaults::kDepositionParallelNormals) return false;
-      const double ga = dot(a, kGravity), gb = dot(b, kGravity);
-      mu[0] = -(ga - c * gb) / det;
-      mu[1] = -(gb - c * ga) / det;
-      d = kGravity + mu[0] * a + mu[1] * b;
-      d = d - dot(d, a) * a;  // remove rounding along the normals
-      d = d - dot(d, b) * b;
-    } else {
-      const Vec3 a = normals[sel[0]], b = normals[sel[1]], c = normals[sel[2]];
-      const double det = dot(a, cross(b, c));
-      // coplanar normals: no isolated rest point
-      if (std::fabs(det) < defaults::kDepositionCoplanarNormals) return false;
-      // Solve a mu0 + b mu1 + c mu2 = -g (Cramer), d = 0.
-      const Vec3 h = -1.0 * kGravity;
-      mu[0] = dot(h, cross(b, c)) / det;
-      mu[1] = dot(a, cross(h, c)) / det;
-      mu[2] = dot(a, cross(b, h)) / det;
-      d = {0, 0, 0};
-    }
-    for (int a = 0; a < size; ++a)
-      if (mu[a] < -tol) return false;
-    for (int k = 0; k < n; ++k) {
-      if (std::find(sel, sel + size, k) != sel + size) continue;
-      if (dot(normals[k], d) < -tol) return false;
-    }
+// Active set and descent direction (KKT of the projection of gravity onto the cone of
+// feasible directions). Subsets are tried from the smallest: at a point where a support
+// force is exactly zero, the smaller set (the support is being left) wins. Subsets must
+// contain every constraint of `forced` (indices into `contacts` of the constraints the previous
+// path entered at once).
+Descent solve_descent(const ContactSet &contacts, const std::vector<int> &forced)
+{
+  const int n = contacts.size();
+  Descent out;
+  auto attempt = [&](const int *sel, int size) {
+    for (int f : forced)
+      if (std::find(sel, sel + size, f) == sel + size) return false;
+    Vec3 d;
+    if (!feasible(contacts.normals, sel, size, d)) return false;
+    out.found = true;
+    out.n_active = size;
+    for (int a = 0; a < size; ++a) out.active[a] = sel[a];
+    out.d = d;
     return true;
-  }
+  };
+  int sel[3] = {-1, -1, -1};
+  if (attempt(sel, 0)) return out;
+  for (sel[0] = 0; sel[0] < n; ++sel[0])
+    if (attempt(sel, 1)) return out;
+  for (sel[0] = 0; sel[0] < n; ++sel[0])
+    for (sel[1] = sel[0] + 1; sel[1] < n; ++sel[1])
+      if (attempt(sel, 2)) return out;
+  for (sel[0] = 0; sel[0] < n; ++sel[0])
+    for (sel[1] = sel[0] + 1; sel[1] < n; ++sel[1])
+      for (sel[2] = sel[1] + 1; sel[2] < n; ++sel[2])
+        if (attempt(sel, 3)) return out;
+  return out;
+}
 
-  // Start of a drop at (x, y): just above every sphere whose column is within reach.
-  double start_height(double x, double y, double r) const
-  {
-    const double reach = r + r_max;
-    const double top = grid.highest_top(x - reach, x + reach, y - reach, y + reach);
-    return std::max(domain.z_floor + r, top + r);
+// Whether moving from the current point along dir would enter a touching constraint that is
+// not active (to first order).
+bool blocked(Vec3 dir, const ContactSet &contacts, const Descent &descent)
+{
+  const std::vector<Vec3> &normals = contacts.normals;
+  for (std::size_t k = 0; k < normals.size(); ++k) {
+    const int ki = static_cast<int>(k);
+    if (std::find(descent.active, descent.active + descent.n_active, ki) !=
+        descent.active + descent.n_active)
+      continue;
+    if (dot(normals[k], dir) < -kDepositionForceTolerance) return true;
   }
+  return false;
+}
 
-  // Vertical fall from p: distance to the first contact (sphere or floor), and which.
-  double fall_event(Vec3 p, double r, const std::vector<Constraint> &active, Constraint &hit,
-                    bool &entering_now) const
-  {
-    entering_now = false;
-    double best = p.z - (domain.z_floor + r);
-    hit = Constraint{false, kFloorPlane, 0, 0, {0, 0, 1}, domain.z_floor + r};
-    const double reach = r + r_max;
-    const double grazing_depth = kDepositionGrazingDepth * 2.0 * r;
-    // Layers from the top down; stop when a layer cannot hold a closer contact.
-    for (int iz = std::min(grid.layers() - 1, grid.layer_of(p.z + reach)); iz >= 0; --iz) {
-      const double layer_top = grid.floor_z() + (iz + 1) * grid.layer_width();
-      if (p.z - layer_top - reach > best) break;
-      grid.visit(p.x - reach, p.x + reach, p.y - reach, p.y + reach, iz, iz,
-                 [&](std::int32_t i, double sx, double sy, int ix, int iy) {
-                   const Constraint k{true, i, ix, iy, centre_of(i) + Vec3{sx, sy, 0.0},
-                                      r + radii[i]};
-                   for (const auto &a : active)
-                     if (a.same(k)) return;
-                   const Vec3 delta = p - k.c;
-                   if (delta.z <= 0.0) return;  // centre not below p: the fall moves away
-                   const double h2 = delta.x * delta.x + delta.y * delta.y;
-                   const double D2 = k.dist * k.dist;
-                   if (h2 >= D2) return;
-                   // Deepest point of the fall (beside the centre) barely inside: grazing.
-                   if (h2 - D2 > -2.0 * k.dist * grazing_depth) return;
-                   const double s = std::sqrt(D2 - h2);
-                   const double t1 = delta.z - s;  // overlap for t in (t1, delta.z + s)
-                   double t = t1;
-                   bool now = false;
-                   if (t1 < 0.0) {
-                     t = 0.0;
-                     now = true;
-                   }
-                   if (t < best) {
-                     best = t;
-                     hit = k;
-                     entering_now = now;
-                   }
-                 });
-    }
-    return best;
-  }
+// ---------------------------------------------------------------------------------------------
+// Searches of the deposited spheres and the planes: what touches a point, where a drop starts,
+// and the next event along a fall or a roll.
 
-  // Roll along circle `path` (constraints `active` kept): the first event parameter; `hit` is
-  // the constraint entered, if the event is a new contact.
-  double roll_event(const Circle &path, double r, const std::vector<Constraint> &active,
-                    const ForceLaw *forces, int n_forces, Constraint &hit, bool &is_contact,
-                    bool &entering_now) const
-  {
-    double best = path.t_end;
-    is_contact = false;
-    entering_now = false;
-    // Support forces reaching zero: the sphere leaves that support.
-    for (int a = 0; a < n_forces; ++a) {
-      bool now;
-      const double t = first_entry(forces[a].K, forces[a].P, forces[a].Q, best, now);
-      if (!now && t < best) best = t;
-    }
-    auto consider = [&](const Constraint &k, double K, double P, double Q) {
-      bool now;
-      const double t = first_entry(K, P, Q, best, now);
-      if (t < best || (now && !entering_now)) {
-        best = std::min(best, t);
-        hit = k;
-        is_contact = true;
-        entering_now = now;
-      }
-    };
-    // Planes: f / rho = (n.m - offset) / rho + n.e1 cos t + n.e2 sin t.
-    for_each_plane(r, [&](const Constraint &k) {
-      for (const auto &a : active)
-        if (a.same(k)) return;
-      consider(k, (dot(k.c, path.m) - k.dist) / path.rho, dot(k.c, path.e1), dot(k.c, path.e2));
-    });
-    // Spheres: (|p - c|^2 - D^2) / (2 rho D) = K + P cos t + Q sin t.
-    const Vec3 axis = cross(path.e1, path.e2);
-    const double reach = r + r_max;
-    const double ex = path.rho * std::sqrt(std::max(0.0, 1.0 - axis.x * axis.x)) + reach;
-    const double ey = path.rho * std::sqrt(std::max(0.0, 1.0 - axis.y * axis.y)) + reach;
-    const double ez = path.rho * std::sqrt(std::max(0.0, 1.0 - axis.z * axis.z)) + reach;
-    grid.visit(path.m.x - ex, path.m.x + ex, path.m.y - ey, path.m.y + ey,
-               grid.layer_of(path.m.z - ez), grid.layer_of(path.m.z + ez),
+// Fills `contacts` with the spheres and planes within kDepositionSupportTolerance of contact
+// with a sphere (p, r) (its previous content is discarded; the caller reuses its storage).
+void collect_touching(const DepositedSpheres &packing, Vec3 p, double r, ContactSet &contacts)
+{
+  std::vector<Constraint> &touching = contacts.constraints;
+  touching.clear();
+  contacts.normals.clear();
+  const LayeredGrid &grid = packing.grid;
+  const double reach = (r + packing.r_max) * (1.0 + 2.0 * kDepositionSupportTolerance);
+  grid.visit(p.x - reach, p.x + reach, p.y - reach, p.y + reach, grid.layer_of(p.z - reach),
+             grid.layer_of(p.z + reach),
+             [&](std::int32_t i, double sx, double sy, int ix, int iy) {
+               const Vec3 c = packing.centre_of(i) + Vec3{sx, sy, 0.0};
+               const double dist = r + packing.radii[i];
+               const Vec3 delta = p - c;
+               const double d2 = dot(delta, delta);
+               const double limit = dist * (1.0 + kDepositionSupportTolerance);
+               if (d2 > limit * limit) return;
+               touching.push_back(Constraint{true, i, ix, iy, c, dist});
+             });
+  packing.for_each_plane(r, [&](const Constraint &k) {
+    if (gap_of(k, p) <= kDepositionSupportTolerance * 2.0 * r) touching.push_back(k);
+  });
+  for (const auto &k : touching) contacts.normals.push_back(normal_of(k, p));
+}
+
+// Start of a drop at (x, y): just above every sphere whose column is within reach.
+double start_height(const DepositedSpheres &packing, double x, double y, double r)
+{
+  const double reach = r + packing.r_max;
+  const double top = packing.grid.highest_top(x - reach, x + reach, y - reach, y + reach);
+  return std::max(packing.domain.z_floor + r, top + r);
+}
+
+// Vertical fall from p: distance to the first contact (sphere or floor), and which.
+double fall_event(const DepositedSpheres &packing, Vec3 p, double r,
+                  const std::vector<Constraint> &active, Constraint &hit, bool &entering_now)
+{
+  const LayeredGrid &grid = packing.grid;
+  const double z_floor = packing.domain.z_floor;
+  entering_now = false;
+  double best = p.z - (z_floor + r);
+  hit = Constraint{false, kFloorPlane, 0, 0, {0, 0, 1}, z_floor + r};
+  const double reach = r + packing.r_max;
+  const double grazing_depth = kDepositionGrazingDepth * 2.0 * r;
+  // Layers from the top down; stop when a layer cannot hold a closer contact.
+  for (int iz = std::min(grid.layers() - 1, grid.layer_of(p.z + reach)); iz >= 0; --iz) {
+    const double layer_top = grid.floor_z() + (iz + 1) * grid.layer_width();
+    if (p.z - layer_top - reach > best) break;
+    grid.visit(p.x - reach, p.x + reach, p.y - reach, p.y + reach, iz, iz,
                [&](std::int32_t i, double sx, double sy, int ix, int iy) {
-                 const Constraint k{true, i, ix, iy, centre_of(i) + Vec3{sx, sy, 0.0},
-                                    r + radii[i]};
-                 const Vec3 delta = path.m - k.c;
-                 const double d2 = dot(delta, delta);
-                 const double far = path.rho + k.dist;
-                 if (d2 >= far * far) return;  // the circle never comes within reach
+                 const Constraint k{true, i, ix, iy, packing.centre_of(i) + Vec3{sx, sy, 0.0},
+                                    r + packing.radii[i]};
                  for (const auto &a : active)
                    if (a.same(k)) return;
-                 const double scale = 1.0 / (2.0 * path.rho * k.dist);
-                 consider(k, (d2 + path.rho * path.rho - k.dist * k.dist) * scale,
-                          2.0 * path.rho * dot(path.e1, delta) * scale,
-                          2.0 * path.rho * dot(path.e2, delta) * scale);
+                 const Vec3 delta = p - k.c;
+                 if (delta.z <= 0.0) return;  // centre not below p: the fall moves away
+                 const double h2 = delta.x * delta.x + delta.y * delta.y;
+                 const double D2 = k.dist * k.dist;
+                 if (h2 >= D2) return;
+                 // Deepest point of the fall (beside the centre) barely inside: grazing.
+                 if (h2 - D2 > -2.0 * k.dist * grazing_depth) return;
+                 const double s = std::sqrt(D2 - h2);
+                 const double t1 = delta.z - s;  // overlap for t in (t1, delta.z + s)
+                 double t = t1;
+                 bool now = false;
+                 if (t1 < 0.0) {
+                   t = 0.0;
+                   now = true;
+                 }
+                 if (t < best) {
+                   best = t;
+                   hit = k;
+                   entering_now = now;
+                 }
                });
-    return best;
   }
+  return best;
+}
 
-  // The next draw of the sphere being dropped (the radii.size()-th) at unstable equilibria.
-  double equilibrium_draw()
-  {
-    return CounterRandom(seed, RandomPurpose::kDepositionEquilibria, radii.size())
-        .uniform(perturbation_draws++);
+// Roll along circle `path` (constraints `active` kept): the first event parameter; `hit` is
+// the constraint entered, if the event is a new contact.
+double roll_event(const DepositedSpheres &packing, const Circle &path, double r,
+                  const std::vector<Constraint> &active, const ForceLaw *forces, int n_forces,
+                  Constraint &hit, bool &is_contact, bool &entering_now)
+{
+  const LayeredGrid &grid = packing.grid;
+  double best = path.t_end;
+  is_contact = false;
+  entering_now = false;
+  // Support forces reaching zero: the sphere leaves that support.
+  for (int a = 0; a < n_forces; ++a) {
+    bool now;
+    const double t = first_entry(forces[a].K, forces[a].P, forces[a].Q, best, now);
+    if (!now && t < best) best = t;
   }
-  Vec3 random_horizontal_direction()
+  auto consider = [&](const Constraint &k, double K, double P, double Q) {
+    bool now;
+    const double t = first_entry(K, P, Q, best, now);
+    if (t < best || (now && !entering_now)) {
+      best = std::min(best, t);
+      hit = k;
+      is_contact = true;
+      entering_now = now;
+    }
+  };
+  // Planes: f / rho = (n.m - offset) / rho + n.e1 cos t + n.e2 sin t.
+  packing.for_each_plane(r, [&](const Constraint &k) {
+    for (const auto &a : active)
+      if (a.same(k)) return;
+    consider(k, (dot(k.c, path.m) - k.dist) / path.rho, dot(k.c, path.e1), dot(k.c, path.e2));
+  });
+  // Spheres: (|p - c|^2 - D^2) / (2 rho D) = K + P cos t + Q sin t.
+  const Vec3 axis = cross(path.e1, path.e2);
+  const double reach = r + packing.r_max;
+  const double ex = path.rho * std::sqrt(std::max(0.0, 1.0 - axis.x * axis.x)) + reach;
+  const double ey = path.rho * std::sqrt(std::max(0.0, 1.0 - axis.y * axis.y)) + reach;
+  const double ez = path.rho * std::sqrt(std::max(0.0, 1.0 - axis.z * axis.z)) + reach;
+  grid.visit(path.m.x - ex, path.m.x + ex, path.m.y - ey, path.m.y + ey,
+             grid.layer_of(path.m.z - ez), grid.layer_of(path.m.z + ez),
+             [&](std::int32_t i, double sx, double sy, int ix, int iy) {
+               const Constraint k{true, i, ix, iy, packing.centre_of(i) + Vec3{sx, sy, 0.0},
+                                  r + packing.radii[i]};
+               const Vec3 delta = path.m - k.c;
+               const double d2 = dot(delta, delta);
+               const double far = path.rho + k.dist;
+               if (d2 >= far * far) return;  // the circle never comes within reach
+               for (const auto &a : active)
+                 if (a.same(k)) return;
+               const double scale = 1.0 / (2.0 * path.rho * k.dist);
+               consider(k, (d2 + path.rho * path.rho - k.dist * k.dist) * scale,
+                        2.0 * path.rho * dot(path.e1, delta) * scale,
+                        2.0 * path.rho * dot(path.e2, delta) * scale);
+             });
+  return best;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The random numbers that leave unstable equilibria: the draws of sphere k (the k-th inserted)
+// are the stream k of purpose kDepositionEquilibria under the seed, numbered from 0 and
+// continued over every drop of that sphere until it is inserted, so a drop is reproducible.
+class EquilibriumDraws {
+ public:
+  explicit EquilibriumDraws(std::uint64_t seed = 0) : seed_(seed) {}
+  void start_sphere(std::uint64_t sphere)
   {
-    const double angle = kTwoPi * equilibrium_draw();
+    sphere_ = sphere;
+    next_ = 0;
+  }
+  double uniform()
+  {
+    return CounterRandom(seed_, RandomPurpose::kDepositionEquilibria, sphere_).uniform(next_++);
+  }
+  Vec3 horizontal_direction()
+  {
+    const double angle = kTwoPi * uniform();
     return {std::cos(angle), std::sin(angle), 0.0};
   }
-  bool random_sign() { return equilibrium_draw() < 0.5; }
+  bool sign() { return uniform() < 0.5; }
 
-  // Lowest point of the circle, measured from t = 0 (the path descends from there).
-  static double lowest_point(const Circle &c)
-  {
-    return wrap_angle(std::atan2(c.e2.z, c.e1.z) + kPi);
-  }
+ private:
+  std::uint64_t seed_, sphere_ = 0, next_ = 0;
+};
 
-  // Whether moving from the current point along dir would enter a touching constraint that is
-  // not active (to first order).
-  static bool blocked(Vec3 dir, const ContactSet &contacts, const Descent &descent)
-  {
-    const std::vector<Vec3> &normals = contacts.normals;
-    for (std::size_t k = 0; k < normals.size(); ++k) {
-      const int ki = static_cast<int>(k);
-      if (std::find(descent.active, descent.active + descent.n_active, ki) !=
-          descent.active + descent.n_active)
-        continue;
-      if (dot(normals[k], dir) < -kDepositionForceTolerance) return true;
+// ---------------------------------------------------------------------------------------------
+// The roll of one segment.
+
+// Lowest point of the circle, measured from t = 0 (the path descends from there).
+double lowest_point(const Circle &c)
+{
+  return wrap_angle(std::atan2(c.e2.z, c.e1.z) + kPi);
+}
+
+enum class RollSetup { Ok, Degenerate, Wedged };
+
+// The roll for the active set (one or two constraints, at least one sphere), and the laws of
+// the support forces along it. At an unstable equilibrium (on top of a sphere, or on the
+// ridge of two supports) the roll starts in a random direction (from `draws`) that enters no
+// touching constraint; when both ways along a ridge are blocked the sphere is wedged (at rest).
+RollSetup make_roll(Vec3 p, const ContactSet &contacts, const Descent &descent, bool equilibrium,
+                    EquilibriumDraws &draws, Circle &path, ForceLaw *forces)
+{
+  const int n_act = descent.n_active;
+  const Constraint *act[2] = {&contacts.constraints[descent.active[0]],
+                              n_act > 1 ? &contacts.constraints[descent.active[1]] : nullptr};
+  if (n_act == 1) {  // great circle in the vertical plane through the contact normal
+    const Constraint &j = *act[0];
+    path.m = j.c;
+    path.rho = norm(p - j.c);
+    path.e1 = (1.0 / path.rho) * (p - j.c);
+    Vec3 dir = descent.d;
+    if (equilibrium) {
+      bool free = false;
+      for (int attempt = 0; attempt < defaults::kDepositionLeaveAttempts && !free; ++attempt) {
+        const Vec3 u = draws.horizontal_direction();
+        dir = u - dot(u, path.e1) * path.e1;
+        free = !blocked(dir, contacts, descent);
+      }
+      if (!free) return RollSetup::Degenerate;
     }
-    return false;
-  }
-
-  enum class RollSetup { Ok, Degenerate, Wedged };
-
-  // The roll for the active set (one or two constraints, at least one sphere), and the laws of
-  // the support forces along it. At an unstable equilibrium (on top of a sphere, or on the
-  // ridge of two supports) the roll starts in a random direction that enters no touching
-  // constraint; when both ways along a ridge are blocked the sphere is wedged (at rest).
-  RollSetup make_roll(Vec3 p, const ContactSet &contacts, const Descent &descent,
-                      bool equilibrium, Circle &path, ForceLaw *forces)
-  {
-    const int n_act = descent.n_active;
-    const Constraint *act[2] = {&contacts.constraints[descent.active[0]],
-                                n_act > 1 ? &contacts.constraints[descent.active[1]] : nullptr};
-    if (n_act == 1) {  // great circle in the vertical plane through the contact normal
-      const Constraint &j = *act[0];
-      path.m = j.c;
-      path.rho = norm(p - j.c);
-      path.e1 = (1.0 / path.rho) * (p - j.c);
-      Vec3 dir = descent.d;
-      if (equilibrium) {
-        bool free = false;
-        for (int attempt = 0; attempt < defaults::kDepositionLeaveAttempts && !free; ++attempt) {
-          const Vec3 u = random_horizontal_direction();
-          dir = u - dot(u, path.e1) * path.e1;
-          free = !blocked(dir, contacts, descent);
-        }
-        if (!free) return RollSetup::Degenerate;
-      }
-      dir = dir - dot(dir, path.e1) * path.e1;
-      if (!(norm(dir) > defaults::kDepositionZeroLength)) return RollSetup::Degenerate;
-      path.e2 = unit(dir);
-      // mu(t) = n_z(t): the normal force vanishes at the sphere's equator.
-      forces[0] = {0.0, path.e1.z, path.e2.z};
-    } else {
-      const Constraint &a = *act[0], &b = *act[1];
-      const Vec3 axis = (a.is_sphere && b.is_sphere) ? unit(b.c - a.c) : (a.is_sphere ? b.c : a.c);
-      const Constraint &s = a.is_sphere ? a : b;  // a sphere of the pair fixes the circle centre
-      path.m = s.c + dot(p - s.c, axis) * axis;
-      const Vec3 radial = p - path.m;
-      path.rho = norm(radial);
-      if (!(path.rho > 0.0)) return RollSetup::Degenerate;
-      path.e1 = (1.0 / path.rho) * radial;
-      path.e2 = unit(cross(axis, path.e1));
-      if (equilibrium) {
-        if (random_sign()) path.e2 = -1.0 * path.e2;
-        if (blocked(path.e2, contacts, descent)) path.e2 = -1.0 * path.e2;
-        if (blocked(path.e2, contacts, descent)) return RollSetup::Wedged;
-      } else if (dot(path.e2, descent.d) < 0.0) {
-        path.e2 = -1.0 * path.e2;
-      }
-      // Normals in the (axis, radial) basis: sphere (sigma, tau) = ((m - c).axis, rho) / |p - c|,
-      // plane (n.axis, 0). Forces: solve sigma_a mu_a + sigma_b mu_b = axis_z,
-      // tau_a mu_a + tau_b mu_b = radial_z(t) (balance of -g = e_z in that plane).
-      double sigma[2], tau[2];
-      for (int q = 0; q < 2; ++q) {
-        const Constraint &k = *act[q];
-        if (k.is_sphere) {
-          const double dist = norm(p - k.c);
-          sigma[q] = dot(path.m - k.c, axis) / dist;
-          tau[q] = path.rho / dist;
-        } else {
-          sigma[q] = dot(k.c, axis);
-          tau[q] = 0.0;
-        }
-      }
-      const double det = sigma[0] * tau[1] - sigma[1] * tau[0];
-      if (std::fabs(det) < defaults::kDepositionSingularRoll) return RollSetup::Degenerate;
-      const double nz = axis.z;
-      forces[0] = {nz * tau[1] / det, -sigma[1] * path.e1.z / det, -sigma[1] * path.e2.z / det};
-      forces[1] = {-tau[0] * nz / det, sigma[0] * path.e1.z / det, sigma[0] * path.e2.z / det};
+    dir = dir - dot(dir, path.e1) * path.e1;
+    if (!(norm(dir) > defaults::kDepositionZeroLength)) return RollSetup::Degenerate;
+    path.e2 = unit(dir);
+    // mu(t) = n_z(t): the normal force vanishes at the sphere's equator.
+    forces[0] = {0.0, path.e1.z, path.e2.z};
+  } else {
+    const Constraint &a = *act[0], &b = *act[1];
+    const Vec3 axis = (a.is_sphere && b.is_sphere) ? unit(b.c - a.c) : (a.is_sphere ? b.c : a.c);
+    const Constraint &s = a.is_sphere ? a : b;  // a sphere of the pair fixes the circle centre
+    path.m = s.c + dot(p - s.c, axis) * axis;
+    const Vec3 radial = p - path.m;
+    path.rho = norm(radial);
+    if (!(path.rho > 0.0)) return RollSetup::Degenerate;
+    path.e1 = (1.0 / path.rho) * radial;
+    path.e2 = unit(cross(axis, path.e1));
+    if (equilibrium) {
+      if (draws.sign()) path.e2 = -1.0 * path.e2;
+      if (blocked(path.e2, contacts, descent)) path.e2 = -1.0 * path.e2;
+      if (blocked(path.e2, contacts, descent)) return RollSetup::Wedged;
+    } else if (dot(path.e2, descent.d) < 0.0) {
+      path.e2 = -1.0 * path.e2;
     }
-    path.t_end = lowest_point(path);
-    return RollSetup::Ok;
+    // Normals in the (axis, radial) basis: sphere (sigma, tau) = ((m - c).axis, rho) / |p - c|,
+    // plane (n.axis, 0). Forces: solve sigma_a mu_a + sigma_b mu_b = axis_z,
+    // tau_a mu_a + tau_b mu_b = radial_z(t) (balance of -g = e_z in that plane).
+    double sigma[2], tau[2];
+    for (int q = 0; q < 2; ++q) {
+      const Constraint &k = *act[q];
+      if (k.is_sphere) {
+        const double dist = norm(p - k.c);
+        sigma[q] = dot(path.m - k.c, axis) / dist;
+        tau[q] = path.rho / dist;
+      } else {
+        sigma[q] = dot(k.c, axis);
+        tau[q] = 0.0;
+      }
+    }
+    const double det = sigma[0] * tau[1] - sigma[1] * tau[0];
+    if (std::fabs(det) < defaults::kDepositionSingularRoll) return RollSetup::Degenerate;
+    const double nz = axis.z;
+    forces[0] = {nz * tau[1] / det, -sigma[1] * path.e1.z / det, -sigma[1] * path.e2.z / det};
+    forces[1] = {-tau[0] * nz / det, sigma[0] * path.e1.z / det, sigma[0] * path.e2.z / det};
+  }
+  path.t_end = lowest_point(path);
+  return RollSetup::Ok;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// The engine: the deposited spheres, the equilibrium draws of the sphere being dropped, the
+// counters, and the drop itself (segment after segment: contacts, descent, fall or roll).
+struct SequentialDeposition::Impl {
+  DepositedSpheres packing;
+  EquilibriumDraws equilibrium_draws;  // of sphere packing.size(), the next to be inserted
+  DepositionStats stats;
+
+  void insert(Vec3 p, double r)
+  {
+    packing.insert(p, r);
+    equilibrium_draws.start_sphere(packing.size());
   }
 
   // One attempt: fall and roll from (x, y) until at rest, or until the segment cap.
   DropOutcome descend(double x, double y, double r)
   {
     Vec3 p{x, y, 0.0};
-    wrap(p);
-    p.z = start_height(p.x, p.y, r);
+    packing.wrap(p);
+    p.z = start_height(packing, p.x, p.y, r);
     std::vector<Constraint> forced;
     std::vector<int> forced_idx;
     std::vector<Constraint> active;
     ContactSet contacts;  // storage reused by every segment of this drop
     for (int segment = 0; segment < kDepositionMaxSegments; ++segment) {
       ++stats.segments;
-      collect_touching(p, r, contacts);
+      collect_touching(packing, p, r, contacts);
       forced_idx.clear();
       for (const auto &f : forced)
         for (int k = 0; k < contacts.size(); ++k)
@@ -680,7 +728,7 @@ struct SequentialDeposition::Impl {
       Constraint hit{};
       bool entering_now = false;
       if (n_spheres == 0) {  // free fall (possibly sliding along vertical walls)
-        const double t = fall_event(p, r, active, hit, entering_now);
+        const double t = fall_event(packing, p, r, active, hit, entering_now);
         p.z -= t;
         if (!(t > 0.0) && entering_now) {
           forced.push_back(hit);
@@ -692,12 +740,13 @@ struct SequentialDeposition::Impl {
       // Roll on one sphere, or on two constraints with at least one sphere.
       Circle path;
       ForceLaw forces[2];
-      const RollSetup setup = make_roll(p, contacts, descent, equilibrium, path, forces);
+      const RollSetup setup =
+          make_roll(p, contacts, descent, equilibrium, equilibrium_draws, path, forces);
       if (setup == RollSetup::Wedged) return {p.x, p.y, p.z, RestingOn::Supports, segment + 1};
       if (setup == RollSetup::Degenerate) break;
       bool is_contact = false;
-      const double t = roll_event(path, r, active, forces, descent.n_active, hit, is_contact,
-                                  entering_now);
+      const double t = roll_event(packing, path, r, active, forces, descent.n_active, hit,
+                                  is_contact, entering_now);
       if (is_contact && entering_now) {
         bool known = false;
         for (const auto &f : forced) known = known || f.same(hit);
@@ -706,7 +755,7 @@ struct SequentialDeposition::Impl {
       }
       forced.clear();
       p = path.at(t);
-      wrap(p);
+      packing.wrap(p);
     }
     return {p.x, p.y, p.z, RestingOn::Unresolved, kDepositionMaxSegments};
   }
@@ -732,11 +781,12 @@ SequentialDeposition::SequentialDeposition(const DepositionDomain &domain, doubl
                                 std::to_string(diameter) + ")");
   if (!std::isfinite(domain.z_floor))
     throw std::invalid_argument("deposition: z_floor must be finite");
-  impl_->domain = domain;
-  impl_->r_max = max_radius;
-  impl_->seed = seed;
+  DepositedSpheres &packing = impl_->packing;
+  packing.domain = domain;
+  packing.r_max = max_radius;
   // Cells of one maximal contact distance (2 r_max): a fall visits 3 x 3 columns.
-  impl_->grid.setup(domain, diameter);
+  packing.grid.setup(domain, diameter);
+  impl_->equilibrium_draws = EquilibriumDraws(seed);
 }
 
 SequentialDeposition::~SequentialDeposition() = default;
@@ -745,26 +795,28 @@ SequentialDeposition &SequentialDeposition::operator=(SequentialDeposition &&) n
 
 void SequentialDeposition::add_fixed_sphere(double x, double y, double z, double radius)
 {
-  if (!(radius > 0.0) || radius > impl_->r_max)
+  if (!(radius > 0.0) || radius > impl_->packing.r_max)
     throw std::invalid_argument("deposition: radius = " + std::to_string(radius) +
-                                " must be in (0, max_radius = " + std::to_string(impl_->r_max) +
-                                "]");
+                                " must be in (0, max_radius = " +
+                                std::to_string(impl_->packing.r_max) + "]");
   Vec3 p{x, y, z};
-  impl_->wrap(p);
+  impl_->packing.wrap(p);
   impl_->insert(p, radius);
 }
 
 DropOutcome SequentialDeposition::drop(double x, double y, double radius)
 {
   Impl &s = *impl_;
-  if (!(radius > 0.0) || radius > s.r_max)
+  const DepositionDomain &domain = s.packing.domain;
+  if (!(radius > 0.0) || radius > s.packing.r_max)
     throw std::invalid_argument("deposition: radius = " + std::to_string(radius) +
-                                " must be in (0, max_radius = " + std::to_string(s.r_max) + "]");
+                                " must be in (0, max_radius = " +
+                                std::to_string(s.packing.r_max) + "]");
   const double slack = kDepositionSupportTolerance * radius;
-  if (!s.domain.periodic_x && (x < s.domain.xlo + radius - slack || x > s.domain.xhi - radius + slack))
+  if (!domain.periodic_x && (x < domain.xlo + radius - slack || x > domain.xhi - radius + slack))
     throw std::invalid_argument("deposition: drop point x = " + std::to_string(x) +
                                 " must be in [xlo + r, xhi - r] between walls");
-  if (!s.domain.periodic_y && (y < s.domain.ylo + radius - slack || y > s.domain.yhi - radius + slack))
+  if (!domain.periodic_y && (y < domain.ylo + radius - slack || y > domain.yhi - radius + slack))
     throw std::invalid_argument("deposition: drop point y = " + std::to_string(y) +
                                 " must be in [ylo + r, yhi - r] between walls");
   DropOutcome out = s.descend(x, y, radius);
@@ -772,9 +824,12 @@ DropOutcome SequentialDeposition::drop(double x, double y, double radius)
   return out;
 }
 
-std::size_t SequentialDeposition::size() const { return impl_->radii.size(); }
-const double *SequentialDeposition::centre(std::size_t i) const { return &impl_->centres[3 * i]; }
-double SequentialDeposition::radius(std::size_t i) const { return impl_->radii[i]; }
+std::size_t SequentialDeposition::size() const { return impl_->packing.size(); }
+const double *SequentialDeposition::centre(std::size_t i) const
+{
+  return &impl_->packing.centres[3 * i];
+}
+double SequentialDeposition::radius(std::size_t i) const { return impl_->packing.radii[i]; }
 const DepositionStats &SequentialDeposition::stats() const { return impl_->stats; }
 
 // ---------------------------------------------------------------------------------------------
