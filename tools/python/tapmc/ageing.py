@@ -128,7 +128,7 @@ class Ageing:
             # of the law, e.g. the linear regime t << tau_A) and the bootstrap one pass
             analytic_ok, analytic_note = res.determined, res.note
             res.covariance = np.cov(np.array(samples).T)
-            determined, notes = law._assess(res._popt, res.covariance, lo, hi)
+            determined, notes = law.assess(list(res.params.values()), res.covariance, lo, hi)
             res.determined = determined and analytic_ok
             notes = ([f"weighted fit: {analytic_note}"] if analytic_note else []) + notes
             if self.n_realizations < MIN_BOOTSTRAP_REALIZATIONS:

@@ -14,7 +14,7 @@ import numpy as np
 from scipy import signal, special
 
 from ._validate import as_1d, as_2d, new_axis, positive_int, result
-from .laws import FitResult, _Law
+from .laws import FitResult, Law
 
 __all__ = ["SteadyState", "PowerSpectrum", "sigma_x", "sigma_scaling", "Proportional",
            "DEFAULT_LAST", "DEFAULT_BATCHES", "DEFAULT_BINS_PER_DECADE"]
@@ -92,7 +92,7 @@ def sigma_x(x, last=DEFAULT_LAST):
     return SteadyState(x, last=last).compute().std
 
 
-class _LogLogLine(_Law):
+class _LogLogLine(Law):
     names = ("log10_amplitude", "slope")
     may_vanish = ("log10_amplitude", "slope")
 
@@ -250,7 +250,7 @@ class PowerSpectrum:
         return ax
 
 
-class Proportional(_Law):
+class Proportional(Law):
     """y = k x (sigma_X proportional to sqrt(eps), section III.A)."""
 
     names = ("k",)

@@ -34,8 +34,8 @@ from scipy.optimize import OptimizeWarning, curve_fit
 
 from ._validate import as_1d, new_axis, same_length
 
-__all__ = ["FitResult", "InverseLogLaw", "ZLaw", "TwoExponentials", "AgeingLaw", "ProfileLaw",
-           "StraightLine", "profile_gradient", "PROFILE_WINDOWS",
+__all__ = ["FitResult", "Law", "InverseLogLaw", "ZLaw", "TwoExponentials", "AgeingLaw",
+           "ProfileLaw", "StraightLine", "profile_gradient", "PROFILE_WINDOWS",
            "CORRELATION_LIMIT", "RELATIVE_ERROR_LIMIT"]
 
 #: |correlation| between two parameters above which they are reported as not separately
@@ -112,8 +112,12 @@ class FitResult:
         return ax
 
 
-class _Law:
-    """A law y = function(x, *params) with automatic starting values and physical bounds."""
+class Law:
+    """A law y = function(x, *params) with automatic starting values and physical bounds: the
+    base class of every fitter of the package (here and in :mod:`tapmc.fluctuations` and
+    :mod:`tapmc.pores`). A law sets ``names`` (its parameters, in the order of ``function``),
+    ``function(x, *params)`` and ``initial_guess(x, y, w)`` (``w`` the weights 1/sigma^2), and
+    may set ``bounds(x, y)`` and ``may_vanish``; :meth:`fit` and :meth:`assess` do the rest."""
 
     names = ()
     #: parameters that may legitimately be zero (their relative error is not tested)
@@ -169,7 +173,7 @@ class _Law:
                 pcov = np.full((len(start), len(start)), np.inf)
                 notes.append(f"fit did not converge ({exc})")
         popt, pcov = self._canonical(popt, pcov)
-        determined, more = self._assess(popt, pcov, lo, hi)
+        determined, more = self.assess(popt, pcov, lo, hi)
         notes += more
         return FitResult(self, self.names, popt, pcov, x, y, sigma, determined and not notes,
                          "; ".join(notes), weighted)
@@ -177,7 +181,12 @@ class _Law:
     def _canonical(self, popt, pcov):
         return popt, pcov
 
-    def _assess(self, popt, pcov, lo, hi):
+    def assess(self, popt, pcov, lo, hi):
+        """Whether the parameters ``popt`` with covariance ``pcov`` are determined, given the
+        bounds ``lo`` and ``hi`` (one per parameter): ``(determined, notes)``, the notes saying
+        why not (covariance not finite, a parameter on a bound, a relative error above
+        ``RELATIVE_ERROR_LIMIT``, correlations beyond ``CORRELATION_LIMIT``). :meth:`fit` applies
+        it to the fit's covariance; it also judges a covariance found otherwise (a bootstrap)."""
         notes = []
         if not np.all(np.isfinite(pcov)):
             return False, ["covariance not finite: the data do not constrain every parameter"]
@@ -201,7 +210,7 @@ class _Law:
         return not notes, notes
 
 
-class _TapsLaw(_Law):
+class _TapsLaw(Law):
     """A law of the number of taps t >= 0 (the logarithmic laws of eqs. 3, 4 and 6)."""
 
     def _prepare(self, x, y, sigma):
@@ -315,7 +324,7 @@ class AgeingLaw(_TapsLaw):
         return [max(a_inf, 1e-300), B, tau]
 
 
-class TwoExponentials(_Law):
+class TwoExponentials(Law):
     """y(t) = y_inf + a1 exp(-t/tau1) + a2 exp(-t/tau2) with 0 < tau1 <= tau2 (the labels are
     ordered after the fit). Parameters ``y_inf, a1, tau1, a2, tau2``."""
 
@@ -355,7 +364,7 @@ class TwoExponentials(_Law):
         return popt, pcov
 
 
-class StraightLine(_Law):
+class StraightLine(Law):
     """y = Phi0 - alpha x (the numerator of eq. 7); parameters ``Phi0, alpha`` (alpha may be 0
     within errors: its sign is the result, so its relative error is not a determination test)."""
 
@@ -400,7 +409,7 @@ def profile_gradient(zb, phi, window=None, boundary="fbc", sigma=None):
     return StraightLine().fit(zb[inside], phi[inside], s)
 
 
-class ProfileLaw(_Law):
+class ProfileLaw(Law):
     """Eq. 7 (section IV.A): Phi(zb) = (Phi0 - alpha zb) / (1 + exp(beta (zb - zb_star))),
     zb = z/R. Parameters ``Phi0, alpha, beta, zb_star`` (beta > 0). The fit uses the points
     with zb >= window[0] (above the wall layers whose peaks eq. 7 does not describe); the

@@ -37,7 +37,7 @@ import re
 import numpy as np
 
 from ._validate import as_1d, in_range, new_axis
-from .laws import _Law
+from .laws import Law
 from .readers import TapmcFormatError
 
 __all__ = ["XI_T", "XI_O", "CsvTable", "PoreOutput", "PoreDistribution", "read_pores",
@@ -300,7 +300,7 @@ def _poisson_sigma(x_power, values, counts):
     return np.maximum(per_count * x_power, 1e-300) * np.sqrt(np.maximum(counts, 1.0))
 
 
-class TetrahedralLaw(_Law):
+class TetrahedralLaw(Law):
     """xi^3 P(xi) = a (xi - xi_T)^2 for xi_T <= xi <= xi_O, zero below xi_T (section IV.B).
     Parameters ``a`` and ``xi_T`` (``fit_xi_t=True``, to test that the smallest pores are
     tetrahedral sites, xi_T = sqrt(3/2) - 1) or ``a`` alone with xi_T fixed at that value.
@@ -339,7 +339,7 @@ class TetrahedralLaw(_Law):
         return super().fit(xi[sel], xi3_p[sel], s, p0)
 
 
-class VolumeTail(_Law):
+class VolumeTail(Law):
     """rho_v(v) = c exp(-v / nu_tail) over the tail of the volume distribution (section IV.B:
     "compatible with a Poisson law exp(-v/nu)", nu the mean normalised pore volume), rho_v the
     paper's rho_v(v) = v n_v(v) (module text; fitting the number density n_v instead gives a
