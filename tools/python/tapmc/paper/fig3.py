@@ -25,23 +25,16 @@ from tapmc.fluctuations import PowerSpectrum, SteadyState, sigma_scaling
 from tapmc.laws import StraightLine
 
 from . import _plotting as P
-from . import _runs
+from . import _runs, _steady_state
+from ._steady_state import BC, steady_last
 
 NAME = "fig3"
-BC = "pbc"
 
 
 def runs(scale, seeds):
     """Constant-eps P.B.C. runs, one per eps of ``scale.steady_eps`` and seed (shared with
-    Fig. 4)."""
-    return [_runs.constant_eps_run(scale, BC, eps, s)
-            for eps in scale.steady_eps for s in _runs.seed_list(seeds)]
-
-
-def steady_last(taps):
-    """Taps of the steady segment: the last quarter, the paper's proportion (the last 1000
-    of 4000 taps), and at least the 16 samples a spectrum needs."""
-    return int(min(max(taps // 4, 16), taps))
+    Fig. 4: ``_steady_state.runs``)."""
+    return _steady_state.runs(scale, seeds)
 
 
 def series_by_eps(campaign, column, bc=BC):

@@ -23,19 +23,18 @@ import numpy as np
 from tapmc.fluctuations import SteadyState
 
 from . import _plotting as P
-from . import _runs
-from .fig3 import BC, steady_last
+from . import _runs, _steady_state
+from ._steady_state import BC, steady_last
 
 NAME = "fig4"
 BRANCH_STYLE = {"up1": ("o", "increase"), "down": ("^", "decrease"), "up2": ("v", "increase again")}
 
 
 def runs(scale, seeds):
-    """The constant-eps P.B.C. runs of ``scale.steady_eps`` (shared with Fig. 3) and one ramp
-    run per seed."""
-    seeds = _runs.seed_list(seeds)
-    return ([_runs.constant_eps_run(scale, BC, eps, s) for eps in scale.steady_eps for s in seeds]
-            + [_runs.ramp_run(scale, BC, s) for s in seeds])
+    """The constant-eps P.B.C. runs of ``scale.steady_eps`` (shared with Fig. 3:
+    ``_steady_state.runs``) and one ramp run per seed."""
+    return (_steady_state.runs(scale, seeds)
+            + [_runs.ramp_run(scale, BC, s) for s in _runs.seed_list(seeds)])
 
 
 def steady_states(campaign, column="phi_c", bc=BC):

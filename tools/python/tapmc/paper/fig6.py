@@ -24,31 +24,18 @@ import numpy as np
 from tapmc.laws import PROFILE_WINDOWS, ProfileLaw, profile_gradient
 
 from . import _plotting as P
-from . import _runs
+from . import _profile_runs, _runs
+from ._profile_runs import BC, nearest_eps_runs, profiles, radius
 
 NAME = "fig6"
-BC = "fbc"
-#: the paper's eps of Figs. 6 and 7.
-PAPER_EPS = 0.1
 #: upper end of the gradient window as a fraction of the packing height (22R of 28R).
 WINDOW_TOP_FRACTION = 22.0 / 28.0
 
 
 def runs(scale, seeds):
-    """Constant-eps F.B.C. runs of ``scale.profile_eps`` (shared with Figs. 7 and 8)."""
-    return [_runs.constant_eps_run(scale, BC, eps, s)
-            for eps in scale.profile_eps for s in _runs.seed_list(seeds)]
-
-
-def nearest_eps_runs(campaign, bc=BC, target=PAPER_EPS):
-    """(eps, specs) of the campaign's constant-eps runs with eps nearest to ``target``."""
-    groups = _runs.constant_eps_groups(campaign, bc)
-    eps = min(groups, key=lambda e: abs(np.log(e / target)))
-    return eps, groups[eps]
-
-
-def radius(spec):
-    return float(spec.variables.get("R", 0.5))
+    """Constant-eps F.B.C. runs of ``scale.profile_eps`` (shared with Figs. 7 and 8:
+    ``_profile_runs.runs``)."""
+    return _profile_runs.runs(scale, seeds)
 
 
 def gradient_window(campaign, specs, bc=BC):
@@ -56,19 +43,6 @@ def gradient_window(campaign, specs, bc=BC):
     lo, hi = PROFILE_WINDOWS[bc]
     heights = [_runs.taps_table(campaign, s)["h_s"][0] / radius(s) for s in specs]
     return lo, min(hi, WINDOW_TOP_FRACTION * float(np.min(heights)))
-
-
-def profiles(campaign, specs, filename):
-    """(x/R, initial mean, sem, n, final mean, sem, n) over seeds of a stereo/profile file
-    (columns: plane position, Phi at the plane, exact bin mean; the bin mean is used)."""
-    init, final = [], []
-    x = None
-    for spec in specs:
-        blocks = _runs.profile(campaign, spec, filename).blocks
-        x = blocks[0, :, 0] / radius(spec)
-        init.append(blocks[0, :, 2])
-        final.append(blocks[-1, :, 2])
-    return (x, *P.seed_stats(init), *P.seed_stats(final))
 
 
 def draw(campaign, out_dir):

@@ -15,8 +15,8 @@ CSV panels: ``a`` (series ``initial``, ``final``; x = x/R), ``params`` (``fronti
 from __future__ import annotations
 
 from . import _plotting as P
-from .fig6 import nearest_eps_runs, profiles
-from .fig6 import runs as _fig6_runs
+from . import _profile_runs
+from ._profile_runs import nearest_eps_runs, profiles
 
 NAME = "fig7"
 #: width of the lateral zone, in R (paper: the wall effects' range of about three layers).
@@ -25,7 +25,7 @@ LATERAL_WIDTH = 7.0
 
 def runs(scale, seeds):
     """The constant-eps F.B.C. runs of Fig. 6 (``scale.profile_eps``)."""
-    return _fig6_runs(scale, seeds)
+    return _profile_runs.runs(scale, seeds)
 
 
 def draw(campaign, out_dir):

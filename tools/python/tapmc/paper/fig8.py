@@ -19,16 +19,15 @@ from __future__ import annotations
 import numpy as np
 
 from . import _plotting as P
-from . import _runs
-from .fig6 import BC
-from .fig6 import runs as _fig6_runs
+from . import _profile_runs, _runs
+from ._profile_runs import BC
 
 NAME = "fig8"
 
 
 def runs(scale, seeds):
     """The constant-eps F.B.C. runs of Fig. 6 (``scale.profile_eps``)."""
-    return _fig6_runs(scale, seeds)
+    return _profile_runs.runs(scale, seeds)
 
 
 def increases(campaign, bc=BC, eps_values=None):
