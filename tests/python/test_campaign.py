@@ -251,3 +251,160 @@ def test_campaign_folder_checks(tmp_path):
         Campaign(folder, [spec], lmp=LMP).run(progress=False)
     with pytest.raises(CampaignDirectoryError, match="manifest.json: exists and is not a dir"):
         Campaign(folder / "manifest.json", [spec], lmp=LMP)
+
+
+def _flip_byte(path, offset):
+    data = bytearray(Path(path).read_bytes())
+    data[offset] ^= 0x01
+    Path(path).write_bytes(bytes(data))
+
+
+def test_damaged_output_is_rerun(tmp_path):
+    """DONE.json records the sha256 and size of every output; a later run() finds a damaged
+    one, sets DONE.json and the damaged file aside, names them, and redoes exactly that run:
+    from the start for a damaged per-tap file, from the latest restart for a damaged final
+    dump. The redone runs give back the files recorded when they first finished."""
+    ends = dict(TINY, taps=5, rsteps=2, pevery=1, dump_ends="yes")
+    runs = [RunSpec(name, CONSTANT_EPS, ends, seed=s)
+            for s, name in enumerate(("taps_damaged", "dump_damaged", "intact"), start=1)]
+    folder = tmp_path / "c"
+    campaign = Campaign(folder, runs, lmp=LMP, jobs=2).run(progress=False)
+    done = {r.name: json.loads((campaign.result(r.name) / "DONE.json").read_text())
+            for r in runs}
+    outputs = done["intact"]["outputs"]
+    assert sorted(outputs) == ["dump.0.lammpstrj", "dump.5.lammpstrj", "profile_x.dat",
+                               "profile_z.dat", "restart.4", "taps.dat"]
+    for name, digest in outputs.items():
+        path = campaign.result("intact") / name
+        assert digest == {"sha256": hashlib.sha256(path.read_bytes()).hexdigest(),
+                          "size": path.stat().st_size}
+    original = {name: (campaign.result(name) / file).read_bytes() for name, file in
+                (("taps_damaged", "taps.dat"), ("dump_damaged", "dump.5.lammpstrj"))}
+    intact_log = (campaign.result("intact") / "log.lammps").stat().st_mtime_ns
+
+    _flip_byte(campaign.result("taps_damaged") / "taps.dat", -10)
+    dump = campaign.result("dump_damaged") / "dump.5.lammpstrj"
+    dump.write_bytes(dump.read_bytes()[:-100])
+    stream = io.StringIO()
+    Campaign(folder, runs, lmp=LMP, jobs=2, stream=stream).run(progress=True)
+    text = stream.getvalue()
+    assert (f"run 'taps_damaged': {folder / 'runs' / 'taps_damaged' / 'taps.dat'}: sha256 "
+            "differs from the one recorded when the run finished; the run goes again from "
+            "the start") in text
+    assert (f"run 'dump_damaged': {dump}: {len(original['dump_damaged']) - 100} bytes, "
+            f"{len(original['dump_damaged'])} when the run finished; the run goes again "
+            "from its restart at step 4") in text
+    assert "1 of 3 runs already done, 2 to run" in text
+
+    assert (campaign.result("intact") / "log.lammps").stat().st_mtime_ns == intact_log
+    for name, file in (("taps_damaged", "taps.dat"), ("dump_damaged", "dump.5.lammpstrj")):
+        run_dir = campaign.result(name)
+        assert (run_dir / file).read_bytes() == original[name]
+        assert json.loads((run_dir / "DONE.json").read_text())["outputs"][file] == \
+            done[name]["outputs"][file]
+        aside = run_dir / "damaged1"
+        assert json.loads((aside / "DONE.json").read_text()) == done[name]
+        assert (aside / file).read_bytes() != original[name]
+    resumed = (campaign.result("dump_damaged") / "log.lammps").read_text()
+    redone = (campaign.result("taps_damaged") / "log.lammps").read_text()
+    assert "Reading restart file" in resumed and "Reading restart file" not in redone
+    manifest = {r["name"]: r for r in json.loads((folder / "manifest.json").read_text())["runs"]}
+    assert manifest["taps_damaged"]["damaged"][0]["files"] == {
+        "taps.dat": "sha256 differs from the one recorded when the run finished"}
+    assert manifest["taps_damaged"]["damaged"][0]["rerun_from_step"] == 0
+    assert manifest["dump_damaged"]["damaged"][0]["rerun_from_step"] == 4
+    assert manifest["dump_damaged"]["damaged"][0]["set_aside"] == "damaged1"
+    assert "damaged" not in manifest["intact"]
+    assert all(r["status"] == "done" for r in manifest.values())
+
+
+def test_damaged_run_that_cannot_be_rerun_is_named(tmp_path, monkeypatch):
+    import tapmc.campaign.run_folder as run_folder
+
+    spec = RunSpec("a", CONSTANT_EPS, dict(TINY, taps=2), seed=1)
+    folder = tmp_path / "c"
+    Campaign(folder, [spec], lmp=LMP).run(progress=False)
+    (folder / "runs" / "a" / "profile_z.dat").unlink()
+
+    def refuse(run_dir, names):
+        raise PermissionError(13, "Permission denied", str(run_dir))
+
+    monkeypatch.setattr(run_folder, "set_aside", refuse)
+    with pytest.raises(CampaignError, match=r"run 'a': damaged since it finished: "
+                                            r"profile_z.dat \(missing\) in .*runs/a; it cannot "
+                                            r"be re-run: Permission denied"):
+        Campaign(folder, [spec], lmp=LMP).run(progress=False)
+    assert (folder / "runs" / "a" / "DONE.json").exists()
+
+
+def test_folder_written_before_outputs_were_recorded(tmp_path):
+    """A campaign folder written by TAPMC before DONE.json recorded the outputs
+    (tests/python/data/campaign_before_checksums, see its README) keeps resuming: its finished
+    run is trusted as it is, even with a changed file, and new runs record their outputs."""
+    folder = tmp_path / "c"
+    shutil.copytree(Path(__file__).parent / "data" / "campaign_before_checksums", folder)
+    run_dir = folder / "runs" / "pbc_s1"
+    done_before = (run_dir / "DONE.json").read_text()
+    assert "outputs" not in json.loads(done_before)
+    (run_dir / "taps.dat").write_text((run_dir / "taps.dat").read_text() + "# a note\n")
+    log_before = (run_dir / "log.lammps").stat().st_mtime_ns
+    inp = folder / "inputs" / "in.constant_eps"  # the input the folder's run executed
+    old = RunSpec("pbc_s1", inp, dict(N=64, L=8, eta=1e-5, rsteps=2, thermo_every=1, taps=3,
+                                      pevery=1), seed=1)
+    new = RunSpec("pbc_s2", inp, dict(TINY, taps=2), seed=2)
+    campaign = Campaign(folder, [old, new], lmp=LMP, jobs=1).run(progress=False)
+    assert (run_dir / "DONE.json").read_text() == done_before
+    assert (run_dir / "log.lammps").stat().st_mtime_ns == log_before
+    assert "taps.dat" in json.loads((campaign.result("pbc_s2") / "DONE.json").read_text())[
+        "outputs"]
+    manifest = json.loads((folder / "manifest.json").read_text())
+    assert manifest["format"] == MANIFEST_FORMAT
+    assert [r["status"] for r in manifest["runs"]] == ["done", "done"]
+
+
+AFFINITY = """
+import sys
+sys.path.insert(0, {python!r})
+from tapmc.campaign import Campaign, RunSpec, available_cores
+spec = RunSpec("a", {inp!r}, {{"taps": 1}})
+print(available_cores(), Campaign({folder!r}, [spec], lmp={lmp!r}).jobs)
+"""
+
+
+def test_default_jobs_follow_cpu_affinity(tmp_path):
+    """The default jobs count the cores this process may use, not the machine's."""
+    from tapmc.campaign import available_cores
+    if hasattr(os, "sched_getaffinity"):
+        assert available_cores() == len(os.sched_getaffinity(0))
+    spec = RunSpec("a", CONSTANT_EPS, {"taps": 1})
+    assert Campaign(tmp_path / "c", [spec], lmp=LMP).jobs == available_cores()
+    if shutil.which("taskset") is None:
+        pytest.skip("no taskset")
+    script = AFFINITY.format(python=str(SOURCE / "tools" / "python"), inp=str(CONSTANT_EPS),
+                             folder=str(tmp_path / "c"), lmp=str(LMP))
+    out = subprocess.run(["taskset", "-c", "0", sys.executable, "-c", script],
+                         capture_output=True, text=True, check=True).stdout
+    assert out.split() == ["1", "1"]
+
+
+def test_merge_ave_time_parts_reads_with_the_readers_parser(tmp_path):
+    """Segments of a resumed run's profile are merged keeping every byte of the blocks they
+    keep; the earlier segment, written by a killed run, may end in a block cut short; a
+    malformed last segment raises the readers' TapmcFormatError naming it."""
+    from tapmc.campaign import merge_ave_time_parts
+    from tapmc.readers import TapmcFormatError
+
+    header = "# Time-averaged data\n# TimeStep Number-of-rows\n# Row c_p[1]\n"
+    block = "{} 2\n1 {}.5\n2 {}.25\n"
+    (tmp_path / "prof.dat").write_text(header + block.format(0, 0, 0) + block.format(5, 9, 9)
+                                       + "10 2\n1 3.5\n")
+    (tmp_path / "prof.dat.from5").write_text(header + block.format(5, 5, 5)
+                                             + block.format(10, 10, 10))
+    assert merge_ave_time_parts(tmp_path) == ["prof.dat"]
+    assert (tmp_path / "prof.dat").read_text() == (header + block.format(0, 0, 0)
+                                                   + block.format(5, 5, 5)
+                                                   + block.format(10, 10, 10))
+    assert not (tmp_path / "prof.dat.from5").exists()
+    (tmp_path / "prof.dat.from10").write_text(header + "10 2\n1 3.5\n")
+    with pytest.raises(TapmcFormatError, match=r"prof.dat.from10:4: truncated block"):
+        merge_ave_time_parts(tmp_path)

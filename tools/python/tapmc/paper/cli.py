@@ -96,7 +96,7 @@ def build_parser():
         p.add_argument("--seeds", type=_positive_int, default=None, metavar="K",
                        help="number of seeds (realizations) per point; default: the scale's")
         p.add_argument("--jobs", type=_positive_int, default=None, metavar="J",
-                       help="runs at a time (default: all cores)")
+                       help="runs at a time (default: the cores this process may use)")
         p.add_argument("--campaign", type=Path, default=None, metavar="DIR",
                        help="campaign folder, shared by the figures and resumable "
                             "(default: ./tapmc-paper-SCALE)")
@@ -202,9 +202,16 @@ def _run_plan(args):
     scale = get_scale("full")
     directory = args.campaign or Path(f"tapmc-paper-{scale.name}")
     try:
+        # The plan's campaign is pinned: it keeps the Scale it started with (as its inputs),
+        # so that FULL can change while a campaign of many sessions runs.
+        recorded = _runs.recorded_scale(directory)
+        if recorded is not None and recorded != scale:
+            changed = [k for k, v in scale.as_dict().items() if recorded.as_dict()[k] != v]
+            print(f"[campaign] {directory}: keeps the Scale it started with ("
+                  f"{', '.join(changed)} differ from this TAPMC's FULL)", flush=True)
+            scale = recorded
         campaign = Campaign(directory, plan.runs(args.tier, scale), lmp=args.lmp,
                             jobs=args.jobs, mode=args.mode, pin_inputs=True)
-        _runs.check_scale(campaign.directory, scale)
         _check_dir(campaign.directory, "campaign directory", create=not args.dry_run)
     except (ValueError, FileNotFoundError) as err:
         print(f"tapmc-paper: {err}", file=sys.stderr)

@@ -1,0 +1,161 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""Starting LAMMPS processes for a campaign: the executable, the cores this process may use,
+the lock that keeps one runner per folder, one run as a child that dies with its parent, and
+the batches, driver input and command line of LAMMPS's ``-partition`` mode."""
+
+import contextlib
+import ctypes
+import fcntl
+import os
+import shutil
+import signal
+import subprocess
+from pathlib import Path
+
+from .errors import CampaignDirectoryError, CampaignError
+
+__all__ = ["find_lmp", "available_cores", "campaign_lock", "run_child", "mpirun_prefix",
+           "lammps_command", "partition_batches", "partition_driver", "partition_command"]
+
+_REPO = Path(__file__).resolve().parents[4]
+
+
+def find_lmp(lmp=None):
+    """Path of the LAMMPS executable: ``lmp``, else $TAPMC_LMP, else the repository's
+    build/lmp_tapmc, else ``lmp_tapmc`` on the PATH."""
+    if lmp is not None:
+        if Path(lmp).is_file() and os.access(lmp, os.X_OK):
+            return Path(lmp).resolve()
+        raise FileNotFoundError(f"lmp = {str(lmp)!r}: not an executable file")
+    candidates = [os.environ.get("TAPMC_LMP"), _REPO / "build" / "lmp_tapmc",
+                  shutil.which("lmp_tapmc")]
+    for c in candidates:
+        if c and Path(c).is_file() and os.access(c, os.X_OK):
+            return Path(c).resolve()
+    raise FileNotFoundError("no LAMMPS executable: build TAPMC (build/lmp_tapmc), set TAPMC_LMP "
+                            "or pass lmp=PATH")
+
+
+def available_cores():
+    """Cores this process may run on: its CPU affinity (``taskset``, a batch system's cgroup
+    cpuset) where the system reports it, else all cores of the machine."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except (AttributeError, OSError):
+        return os.cpu_count() or 1
+
+
+@contextlib.contextmanager
+def campaign_lock(directory):
+    """Hold ``<directory>/campaign.lock`` (created with the folder if needed) while the block
+    runs: a second runner of the same folder gets CampaignError instead of racing this one."""
+    directory = Path(directory)
+    try:
+        directory.mkdir(parents=True, exist_ok=True)
+        lockfile = open(directory / "campaign.lock", "w")
+    except OSError as err:
+        raise CampaignDirectoryError(
+            f"campaign directory {directory}: cannot be created or written "
+            f"({err.strerror}: {err.filename})") from None
+    with lockfile:
+        try:
+            fcntl.flock(lockfile, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            raise CampaignError(f"campaign {directory} is being run by another "
+                                "process (campaign.lock is held)") from None
+        yield
+
+
+def _die_with_parent():
+    """Child setup: get SIGTERM when the campaign process dies (no orphaned runs that would
+    race a resumed campaign)."""
+    try:
+        ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
+    except OSError:
+        pass
+
+
+def run_child(cmd, cwd, screen):
+    """Run ``cmd`` in ``cwd`` with its output in the file ``screen``, as a child that dies with
+    this process; returns its exit status."""
+    with open(screen, "w") as out:
+        return subprocess.run(cmd, cwd=cwd, stdin=subprocess.DEVNULL, stdout=out,
+                              stderr=subprocess.STDOUT, preexec_fn=_die_with_parent).returncode
+
+
+def mpirun_prefix(nprocs):
+    """``mpirun -np nprocs`` from $TAPMC_MPIRUN, else ``mpirun`` (plus --allow-run-as-root
+    as root, --oversubscribe beyond the cores this process may use)."""
+    env = os.environ.get("TAPMC_MPIRUN")
+    if env:
+        cmd = env.split()
+    else:
+        cmd = ["mpirun"]
+        if hasattr(os, "geteuid") and os.geteuid() == 0:
+            cmd.append("--allow-run-as-root")
+        if nprocs > available_cores():
+            cmd.append("--oversubscribe")
+    return cmd + ["-np", str(nprocs)]
+
+
+def lammps_command(lmp, spec, input_copy, resume):
+    """Command line of one run in pool mode: the input copy, the run's variables and seed,
+    the ``resume`` variables, under mpirun when the run has several ranks."""
+    cmd = [str(lmp), "-nocite", "-in", str(input_copy), "-log", "log.lammps",
+           "-screen", "none"] + spec.var_args()
+    for key, value in resume.items():
+        cmd += ["-var", key, value]
+    return mpirun_prefix(spec.nprocs) + cmd if spec.nprocs > 1 else cmd
+
+
+def partition_batches(pending, jobs):
+    """Groups of at most ``jobs`` runs that one -partition mpirun can run together: same
+    input, same ranks, same variable names, equal multi-valued variables."""
+    groups = {}
+    for spec in pending:
+        multi = tuple(sorted((k, tuple(map(str, v))) for k, v in spec.variables.items()
+                             if isinstance(v, (list, tuple))))
+        key = (str(spec.input), spec.nprocs, tuple(sorted(spec.variables)), multi)
+        groups.setdefault(key, []).append(spec)
+    batches = []
+    for specs in groups.values():
+        for i in range(0, len(specs), jobs):
+            batches.append(specs[i:i + jobs])
+    return batches
+
+
+def partition_driver(batch, run_dirs, resumes, input_copy):
+    """Text of the driver input of a batch: each partition goes to its run's folder and sets
+    its run's variables, seed and resume through world-style variables, then includes the
+    input copy. ``run_dirs`` and ``resumes`` map run names to folders and resume variables."""
+    first = batch[0]
+    lines = ["# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.",
+             "# Written by tapmc.campaign: one run per partition, each in its own folder.",
+             "variable run_dir world " + " ".join(str(run_dirs[s.name]) for s in batch),
+             "shell cd ${run_dir}", "log log.lammps"]
+    single = [k for k, v in first.variables.items() if not isinstance(v, (list, tuple))]
+    for key in single + ["seed", "resume", "resume_file"]:
+        values = []
+        for s in batch:
+            if key == "seed":
+                values.append(str(s.seed))
+            elif key in ("resume", "resume_file"):
+                values.append(str(resumes[s.name][key]))
+            else:
+                values.append(str(s.variables[key]))
+        lines.append(f"variable {key} world " + " ".join(values))
+    lines.append(f"include {input_copy}")
+    return "\n".join(lines) + "\n"
+
+
+def partition_command(lmp, batch, driver, log):
+    """``mpirun ... lmp_tapmc -partition PxN -in driver``, with the batch's multi-valued
+    variables (equal for every run of a batch) on the command line."""
+    first = batch[0]
+    cmd = mpirun_prefix(len(batch) * first.nprocs) + [
+        str(lmp), "-nocite", "-partition", f"{len(batch)}x{first.nprocs}",
+        "-in", str(driver), "-log", str(log), "-plog", "none", "-pscreen", "none"]
+    for key, value in first.variables.items():
+        if isinstance(value, (list, tuple)):
+            cmd += ["-var", key] + [str(v) for v in value]
+    return cmd

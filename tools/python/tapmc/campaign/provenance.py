@@ -1,0 +1,201 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""What a campaign records about itself: manifest.json (format, versions, input copies and
+their sha256, per run its parameters, commands and attempts) and each finished run's DONE.json
+(its parameters and the sha256 and size of its outputs), and the check of those outputs."""
+
+import hashlib
+import json
+import os
+import re
+import shutil
+import subprocess
+import time
+from pathlib import Path
+
+from .errors import CampaignDirectoryError
+
+__all__ = ["MANIFEST_FORMAT", "sha256", "now", "portable_paths", "read_manifest",
+           "write_manifest", "lammps_version", "tapmc_version", "copy_inputs", "read_done",
+           "write_done", "output_digests", "damaged_outputs"]
+
+_REPO = Path(__file__).resolve().parents[4]
+#: Layout of a campaign folder (manifest keys, inputs/, runs/NAME/DONE.json) that this package
+#: reads and writes, recorded as "format" in manifest.json. A manifest without the key was
+#: written before it was recorded and has this layout. Raise it when a change of the layout
+#: would make an older TAPMC misread a folder: a folder of another format is refused.
+MANIFEST_FORMAT = 1
+
+
+def sha256(path):
+    """Hex SHA-256 of a file's bytes."""
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def now():
+    """The current UTC time as the manifest writes it."""
+    return time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
+
+
+def portable_paths(value, campaign_dir):
+    """``value`` (nested dicts, lists, strings) with paths inside the campaign folder written
+    as ``<campaign>/...`` and paths inside the repository as ``<repo>/...``: a manifest
+    committed with its campaign (doc/validation/data) names no folder of the machine it ran
+    on. Only what is written changes; the runner never reads these paths back."""
+    prefixes = sorted(((str(Path(campaign_dir).resolve()), "<campaign>"),
+                       (str(_REPO), "<repo>")), key=lambda p: -len(p[0]))
+
+    def fix(text):
+        for prefix, tag in prefixes:
+            if text == prefix or text.startswith(prefix + os.sep):
+                return tag + text[len(prefix):]
+        return text
+
+    if isinstance(value, dict):
+        return {k: portable_paths(v, campaign_dir) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [portable_paths(v, campaign_dir) for v in value]
+    return fix(value) if isinstance(value, str) else value
+
+
+def read_manifest(directory):
+    """manifest.json of a campaign folder as a dict ({} when there is none yet); a manifest
+    that cannot be read, is not one, or has another format raises CampaignDirectoryError
+    instead of being overwritten, so that a folder is never silently taken over."""
+    path = Path(directory) / "manifest.json"
+    if not path.exists():
+        return {}
+    try:
+        data = json.loads(path.read_text())
+    except OSError as err:
+        raise CampaignDirectoryError(f"campaign manifest {path}: cannot be read "
+                                     f"({err.strerror})") from None
+    except ValueError as err:  # also UnicodeDecodeError
+        raise CampaignDirectoryError(f"campaign manifest {path}: not valid JSON ({err}); "
+                                     "a damaged manifest or not a campaign folder") from None
+    if not isinstance(data, dict) or not isinstance(data.get("runs", []), list):
+        raise CampaignDirectoryError(f"campaign manifest {path}: not a campaign manifest "
+                                     "(expected a JSON object with a list of runs)")
+    fmt = data.get("format", MANIFEST_FORMAT)
+    if fmt != MANIFEST_FORMAT:
+        raise CampaignDirectoryError(
+            f"campaign manifest {path}: format {fmt!r}, this TAPMC reads format "
+            f"{MANIFEST_FORMAT}; the campaign was made by another TAPMC version (use that "
+            "version, or a new campaign directory)")
+    return data
+
+
+def write_manifest(directory, data):
+    """Write manifest.json (paths made portable) through a temporary file, so that a kill
+    never leaves half a manifest."""
+    directory = Path(directory)
+    tmp = directory / "manifest.json.tmp"
+    tmp.write_text(json.dumps(portable_paths(data, directory), indent=1) + "\n")
+    tmp.replace(directory / "manifest.json")
+
+
+def lammps_version(lmp):
+    """LAMMPS's version as ``lmp -h`` prints it, or None."""
+    try:
+        out = subprocess.run([str(lmp), "-h"], stdin=subprocess.DEVNULL,
+                             capture_output=True, text=True, timeout=60).stdout
+    except (OSError, subprocess.TimeoutExpired):
+        return None
+    m = re.search(r"Simulator - (.+)", out)
+    return m.group(1).strip() if m else None
+
+
+def tapmc_version():
+    """``git describe`` of the repository this package runs from, or None."""
+    try:
+        out = subprocess.run(["git", "-C", str(_REPO), "describe", "--always", "--dirty",
+                              "--tags"], capture_output=True, text=True, timeout=30)
+        return out.stdout.strip() or None
+    except (OSError, subprocess.TimeoutExpired):
+        return None
+
+
+def copy_inputs(directory, runs, pin_inputs, stream):
+    """Copy each input into <campaign>/inputs once and return the manifest's "inputs" entry;
+    the runs execute the copies, so a resumed campaign runs exactly what it started with. An
+    input that changed since: CampaignDirectoryError, or with ``pin_inputs`` a note on
+    ``stream`` and both digests recorded."""
+    directory = Path(directory)
+    inputs = {}
+    folder = directory / "inputs"
+    folder.mkdir(parents=True, exist_ok=True)
+    for r in runs:
+        src = r.input
+        if src.name in inputs:
+            if inputs[src.name]["source"] != str(src):
+                raise ValueError(f"runs: two different inputs named {src.name!r} "
+                                 f"({inputs[src.name]['source']} and {src})")
+            continue
+        digest = sha256(src)
+        copy = folder / src.name
+        entry = {"source": str(src), "sha256": digest,
+                 "copy": str(copy.relative_to(directory))}
+        if copy.exists() and sha256(copy) != digest:
+            if not pin_inputs:
+                raise CampaignDirectoryError(
+                    f"input {src}: differs from the copy this campaign started with "
+                    f"({copy}); use a new campaign directory")
+            entry.update(sha256=sha256(copy), source_sha256=digest)
+            print(f"[campaign] input {src} changed since this campaign started; its runs "
+                  f"keep executing the campaign's copy {copy}", file=stream, flush=True)
+        if not copy.exists():
+            shutil.copyfile(src, copy)
+        inputs[src.name] = entry
+    return inputs
+
+
+def read_done(done_file):
+    """The record of a finished run (DONE.json) as a dict with at least "run"; one that
+    cannot be read raises CampaignDirectoryError naming it."""
+    try:
+        done = json.loads(Path(done_file).read_text())
+        if not isinstance(done["run"], dict):
+            raise TypeError(f"'run' is {type(done['run']).__name__}, not an object")
+        outputs = done.get("outputs", {})
+        if not isinstance(outputs, dict) or not all(
+                isinstance(v, dict) and "sha256" in v and "size" in v for v in outputs.values()):
+            raise TypeError("'outputs' is not an object of {sha256, size} per file")
+    except (OSError, ValueError, KeyError, TypeError) as err:
+        raise CampaignDirectoryError(f"{done_file}: cannot be read as the record of "
+                                     f"a finished run ({err!r})") from None
+    return done
+
+
+def write_done(run_dir, done):
+    """Write DONE.json, the mark of a finished run, last and through a temporary file."""
+    tmp = Path(run_dir) / "DONE.json.tmp"
+    tmp.write_text(json.dumps(done, indent=1) + "\n")
+    tmp.replace(Path(run_dir) / "DONE.json")
+
+
+def output_digests(run_dir, names):
+    """{name: {"sha256", "size"}} of the files ``names`` of a run folder (DONE.json's
+    "outputs")."""
+    run_dir = Path(run_dir)
+    return {name: {"sha256": sha256(run_dir / name), "size": (run_dir / name).stat().st_size}
+            for name in names}
+
+
+def damaged_outputs(run_dir, recorded):
+    """{name: what is wrong} for the files of ``recorded`` (DONE.json's "outputs") that are
+    missing or whose size or sha256 differ from the record; {} when all are intact."""
+    run_dir = Path(run_dir)
+    damaged = {}
+    for name, digest in recorded.items():
+        path = run_dir / name
+        if not path.is_file():
+            damaged[name] = "missing"
+        elif path.stat().st_size != digest["size"]:
+            damaged[name] = (f"{path.stat().st_size} bytes, {digest['size']} when the run "
+                             "finished")
+        elif sha256(path) != digest["sha256"]:
+            damaged[name] = "sha256 differs from the one recorded when the run finished"
+    return damaged

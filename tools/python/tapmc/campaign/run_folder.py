@@ -1,0 +1,175 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""The folder of one run: what it holds and how it is repaired for a resume. Steps of the
+per-tap file and restart files, trimming rows written after a restart, the title lines that a
+resumed segment repeats, merging the ``fix ave/time`` segments of resumed runs, LAMMPS's error
+line, and setting damaged files aside."""
+
+import os
+import re
+from pathlib import Path
+
+from ..readers import read_ave_time_blocks
+
+__all__ = ["latest_restart", "keep_latest_restart", "trim_rows", "drop_repeated_titles",
+           "merge_ave_time_parts", "taps_done", "log_error", "keep_log_as_attempt",
+           "output_files", "step_in_name", "set_aside"]
+
+#: files that record how a run went rather than what it computed (never checksummed)
+_RECORDS = re.compile(r"DONE\.json|screen\.txt|log\.lammps|log\.attempt\d+\.lammps")
+
+
+def latest_restart(run_dir):
+    """(step, path) of the restart file of the largest step, or (None, None)."""
+    best = (None, None)
+    for p in Path(run_dir).glob("restart.*"):
+        m = re.fullmatch(r"restart\.(\d+)", p.name)
+        if m and p.stat().st_size > 0 and (best[0] is None or int(m.group(1)) > best[0]):
+            best = (int(m.group(1)), p)
+    return best
+
+
+def keep_latest_restart(run_dir):
+    """Delete every restart file but the latest: it continues the sequence."""
+    last, _ = latest_restart(run_dir)
+    for p in Path(run_dir).glob("restart.*"):
+        m = re.fullmatch(r"restart\.(\d+)", p.name)
+        if m and int(m.group(1)) != last:
+            p.unlink()
+
+
+def _first_int(line):
+    try:
+        return int(line.split()[0])
+    except (IndexError, ValueError):
+        return None
+
+
+def trim_rows(path, before_step):
+    """Keep the comment lines and the rows of a per-step file whose step < before_step."""
+    path = Path(path)
+    if not path.exists():
+        return
+    kept = []
+    for line in path.read_text().splitlines(keepends=True):
+        if not line.endswith("\n"):
+            break  # a row cut short by the kill
+        step = _first_int(line)
+        if line.startswith("#") or (step is not None and step < before_step):
+            kept.append(line)
+    path.write_text("".join(kept))
+
+
+def drop_repeated_titles(path):
+    """Remove the title line that each resumed segment appends again (fix print append)."""
+    path = Path(path)
+    if not path.exists():
+        return
+    seen, out = set(), []
+    for line in path.read_text().splitlines(keepends=True):
+        if line.startswith("#"):
+            if line in seen:
+                continue
+            seen.add(line)
+        out.append(line)
+    path.write_text("".join(out))
+
+
+def merge_ave_time_parts(run_dir):
+    """Merge ``X.from<step>`` segments of fix ave/time files written by resumed runs into X.
+
+    Each segment replaces the blocks of the earlier ones from its first step on; the merged
+    file has the header of the first segment. The files are read by
+    :func:`tapmc.readers.read_ave_time_blocks` (a malformed one raises its TapmcFormatError);
+    every segment but the last was written by a killed run, so its last block may be cut
+    short. Returns the list of merged file names."""
+    run_dir = Path(run_dir)
+    parts = {}
+    for p in run_dir.glob("*.from*"):
+        m = re.fullmatch(r"(.+)\.from(\d+)", p.name)
+        if m:
+            parts.setdefault(m.group(1), []).append((int(m.group(2)), p))
+    merged = []
+    for base, segs in parts.items():
+        segs.sort()
+        main = run_dir / base
+        files = ([(0, main)] if main.exists() else []) + segs
+        header, blocks = None, []
+        for k, (start, p) in enumerate(files):
+            last = k + 1 == len(files)
+            h, b = read_ave_time_blocks(p, killed=not last)
+            header = header if header is not None else h
+            end = None if last else files[k + 1][0]
+            blocks += [blk for blk in b if blk[0] >= start and (end is None or blk[0] < end)]
+        main.write_text("".join(header) + "".join("".join(lines) for _, lines in blocks))
+        for _, p in segs:
+            p.unlink()
+        merged.append(base)
+    return merged
+
+
+def log_error(log):
+    """The first ERROR line of a LAMMPS log (or screen file), or ''."""
+    log = Path(log)
+    if not log.exists():
+        return ""
+    lines = log.read_text(errors="replace").splitlines()
+    for line in lines:  # LAMMPS's own error lines start with ERROR (echoed input does not)
+        if line.startswith("ERROR"):
+            return line.strip()
+    return next((line.strip() for line in lines if "ERROR" in line), "")
+
+
+def taps_done(path):
+    """Step of the last row of a per-tap file (cheap: reads its tail), or 0."""
+    try:
+        with open(path, "rb") as f:
+            f.seek(0, os.SEEK_END)
+            size = f.tell()
+            f.seek(max(0, size - 4096))
+            tail = f.read().decode(errors="replace").splitlines()
+    except OSError:
+        return 0
+    for line in reversed(tail):
+        step = _first_int(line)
+        if step is not None and not line.startswith("#"):
+            return step
+    return 0
+
+
+def keep_log_as_attempt(run_dir):
+    """Rename the log.lammps of an attempt that did not finish to log.attemptK.lammps (K the
+    next free number); returns the new name, or None when there is no log."""
+    run_dir = Path(run_dir)
+    if not (run_dir / "log.lammps").exists():
+        return None
+    kept = run_dir / f"log.attempt{len(list(run_dir.glob('log.attempt*.lammps'))) + 1}.lammps"
+    (run_dir / "log.lammps").replace(kept)
+    return kept.name
+
+
+def output_files(run_dir):
+    """Names of the files a run computed (per-tap file, profiles, dumps, restart): every file
+    of its folder but DONE.json, the logs and screen.txt, sorted."""
+    return sorted(p.name for p in Path(run_dir).iterdir()
+                  if p.is_file() and not _RECORDS.fullmatch(p.name))
+
+
+def step_in_name(name):
+    """The step a file is named for (``restart.4000``, ``dump.4000.lammpstrj``), or None."""
+    m = re.search(r"(?:^|\.)(\d+)(?:\.|$)", name)
+    return int(m.group(1)) if m else None
+
+
+def set_aside(run_dir, names):
+    """Move the files ``names`` of a run folder into a new subfolder damagedK (K the next
+    free number) and return its path; raises OSError when they cannot be moved."""
+    run_dir = Path(run_dir)
+    k = 1
+    while (run_dir / f"damaged{k}").exists():
+        k += 1
+    folder = run_dir / f"damaged{k}"
+    folder.mkdir()
+    for name in names:
+        if (run_dir / name).exists():
+            (run_dir / name).replace(folder / name)
+    return folder

@@ -1,0 +1,425 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""Campaign: runs a list of RunSpec in one folder, resumable, with a progress report. It
+decides what runs and when; starting processes is :mod:`.launch`'s job, repairing a run folder
+:mod:`.run_folder`'s and recording what happened :mod:`.provenance`'s."""
+
+import json
+import os
+import platform
+import sys
+import threading
+import time
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+from . import launch, provenance, run_folder
+from .errors import CampaignDirectoryError, CampaignError
+from .spec import RunSpec
+
+__all__ = ["Campaign", "PROGRESS_INTERVAL"]
+
+#: seconds between two progress reports
+PROGRESS_INTERVAL = 10.0
+
+
+def _fmt_seconds(s):
+    if s is None:
+        return "?"
+    s = int(round(s))
+    h, rem = divmod(s, 3600)
+    m, sec = divmod(rem, 60)
+    return f"{h}h{m:02d}m{sec:02d}s" if h else (f"{m}m{sec:02d}s" if m else f"{sec}s")
+
+
+class Campaign:
+    """An ensemble of runs in one folder, resumable; see :mod:`tapmc.campaign`.
+
+    Parameters
+    ----------
+    directory : path
+        the campaign folder (created if needed).
+    runs : list of RunSpec
+        names must be unique.
+    lmp : path or None
+        the LAMMPS executable (default: :func:`find_lmp`).
+    jobs : int or None
+        runs at a time (pool) or partitions per mpirun (partition); default: the cores this
+        process may use (its CPU affinity: ``taskset``, a batch system's cpuset) divided by
+        the ranks of a run.
+    mode : 'pool' or 'partition'
+    progress_interval : float
+        seconds between progress reports.
+    stream : file
+        where progress goes (default sys.stdout).
+    pin_inputs : bool
+        what to do when an input changed since the campaign started: False (default) stops
+        with an error asking for a new campaign folder; True keeps running the campaign's own
+        copy (a campaign that spans months of development stays one set of runs) and says so.
+    """
+
+    def __init__(self, directory, runs, lmp=None, jobs=None, mode="pool",
+                 progress_interval=PROGRESS_INTERVAL, stream=None, pin_inputs=False):
+        runs = list(runs)
+        if not runs:
+            raise ValueError("runs = []: a campaign needs at least one RunSpec")
+        names = set()
+        for r in runs:
+            if not isinstance(r, RunSpec):
+                raise ValueError(f"runs: {r!r} is not a RunSpec")
+            if r.name in names:
+                raise ValueError(f"runs: name {r.name!r} appears twice; names must be unique")
+            names.add(r.name)
+        if mode not in ("pool", "partition"):
+            raise ValueError(f"mode = {mode!r}: allowed values are 'pool' and 'partition'")
+        nmax = max(r.nprocs for r in runs)
+        if jobs is None:
+            jobs = max(1, launch.available_cores() // nmax)
+        if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
+            raise ValueError(f"jobs = {jobs!r}: must be an integer >= 1")
+        if progress_interval <= 0:
+            raise ValueError(f"progress_interval = {progress_interval!r}: must be > 0")
+        self.directory = Path(directory).resolve()
+        self.check_directory()
+        self.runs = runs
+        self.lmp = launch.find_lmp(lmp)
+        self.jobs = jobs
+        self.mode = mode
+        self.progress_interval = float(progress_interval)
+        self.stream = stream if stream is not None else sys.stdout
+        self.pin_inputs = bool(pin_inputs)
+        self._by_name = {r.name: r for r in runs}
+        self._lock = threading.Lock()
+        self._records = {}
+        self._started = {}
+        self._redo = {}  # name -> damaged files the running re-run must write again
+
+    # -- folders -------------------------------------------------------------------------
+    def check_directory(self):
+        """Raise CampaignDirectoryError unless the campaign folder is usable: an existing
+        directory that can be listed, with a readable manifest of MANIFEST_FORMAT if it has
+        one, or a path whose nearest existing ancestor is a writable directory. Writes
+        nothing (a dry run checks too); run() finds what only a write can show."""
+        d = self.directory
+        if d.exists():
+            if not d.is_dir():
+                raise CampaignDirectoryError(f"campaign directory {d}: exists and is not a "
+                                             "directory")
+            try:
+                os.listdir(d)
+            except OSError as err:
+                raise CampaignDirectoryError(f"campaign directory {d}: cannot be read "
+                                             f"({err.strerror})") from None
+            provenance.read_manifest(d)
+            return
+        parent = d.parent
+        while not parent.exists() and parent != parent.parent:
+            parent = parent.parent
+        if not parent.is_dir():
+            raise CampaignDirectoryError(f"campaign directory {d}: cannot be created: {parent} "
+                                         "is not a directory")
+        if not os.access(parent, os.W_OK | os.X_OK):
+            raise CampaignDirectoryError(f"campaign directory {d}: cannot be created: {parent} "
+                                         "is not writable")
+
+    def run_dir(self, name):
+        """Folder of run ``name`` (whether or not it has run)."""
+        return self.directory / "runs" / name
+
+    def is_done(self, name):
+        """True when run ``name`` finished successfully (its DONE.json exists)."""
+        return (self.run_dir(name) / "DONE.json").exists()
+
+    def result(self, name):
+        """Folder of the finished run ``name``; raises if it is unknown or unfinished."""
+        if name not in self._by_name:
+            raise KeyError(f"run {name!r} is not in this campaign "
+                           f"({len(self._by_name)} runs, e.g. {next(iter(self._by_name))!r})")
+        if not self.is_done(name):
+            raise RuntimeError(f"run {name!r} has not finished: call Campaign.run() first "
+                               f"(folder {self.run_dir(name)})")
+        return self.run_dir(name)
+
+    def _input_copy(self, spec):
+        return self.directory / self._manifest["inputs"][spec.input.name]["copy"]
+
+    def _write_manifest(self):
+        with self._lock:
+            data = dict(self._manifest)
+            data["updated"] = provenance.now()
+            data["runs"] = [self._records[r.name] for r in self.runs]
+            provenance.write_manifest(self.directory, data)
+
+    # -- finished runs ---------------------------------------------------------------------
+    @staticmethod
+    def _check_parameters(spec, done_file):
+        """Refuse (CampaignDirectoryError) a finished run whose DONE.json records other
+        parameters than ``spec``: its name now means another run."""
+        done = provenance.read_done(done_file)
+        if done["run"] != json.loads(json.dumps(spec.describe())):
+            raise CampaignDirectoryError(
+                f"run {spec.name!r}: finished in {done_file.parent} with other "
+                f"parameters ({done['run']}); use a new name or campaign")
+
+    def _unfinish_if_damaged(self, spec, done_file):
+        """Check the outputs of a finished run against its DONE.json (one written before
+        TAPMC recorded them is trusted as it is). A damaged or missing output makes the run
+        unfinished: DONE.json, its log, the damaged files and any file made from the outputs
+        after the run finished go to runs/NAME/damagedK/ (every file when the run must start
+        again), and the run resumes from its latest restart when that restart is intact and
+        no damaged file is named for an earlier step, else from the start. The damage is
+        printed and recorded in the manifest. Returns True when the run was made unfinished."""
+        recorded = provenance.read_done(done_file).get("outputs")
+        if recorded is None:
+            return False
+        run_dir = done_file.parent
+        damaged = provenance.damaged_outputs(run_dir, recorded)
+        if not damaged:
+            return False
+        step, restart = run_folder.latest_restart(run_dir)
+        if restart is not None and (restart.name not in recorded or restart.name in damaged):
+            step = None
+        steps = [run_folder.step_in_name(name) for name in damaged]
+        resume = step is not None and all(s is not None and s >= step for s in steps)
+        if resume:  # what the resumed run writes again, its log, and files made later
+            derived = [n for n in run_folder.output_files(run_dir) if n not in recorded]
+            moved = ["DONE.json", "log.lammps", "screen.txt"] + sorted(damaged) + derived
+        else:
+            moved = [p.name for p in run_dir.iterdir() if p.is_file()]
+        try:
+            aside = run_folder.set_aside(run_dir, moved)
+        except OSError as err:
+            files = ", ".join(f"{n} ({what})" for n, what in damaged.items())
+            raise CampaignError(
+                f"run {spec.name!r}: damaged since it finished: {files} in {run_dir}; it "
+                f"cannot be re-run: {err.strerror}: {err.filename}") from None
+        start = f"from its restart at step {step}" if resume else "from the start"
+        for name, what in damaged.items():
+            print(f"[campaign] run {spec.name!r}: {run_dir / name}: {what}; the run goes again "
+                  f"{start} (DONE.json and the files it replaces moved to {aside.name}/)",
+                  file=self.stream, flush=True)
+        self._records[spec.name].setdefault("damaged", []).append(
+            {"found": provenance.now(), "files": damaged, "set_aside": aside.name,
+             "rerun_from_step": step if resume else 0})
+        self._redo[spec.name] = sorted(damaged)
+        return True
+
+    # -- one run ---------------------------------------------------------------------------
+    def _prepare(self, spec):
+        """Set up the folder of an unfinished run; returns the resume variables and the
+        restart step resumed from (or None)."""
+        run_dir = self.run_dir(spec.name)
+        run_dir.mkdir(parents=True, exist_ok=True)
+        kept = run_folder.keep_log_as_attempt(run_dir)  # an earlier attempt that did not finish
+        if kept:
+            with self._lock:
+                self._records[spec.name]["attempts"].append(
+                    {"interrupted": True, "log": kept,
+                     "taps_done": run_folder.taps_done(run_dir / spec.taps_file)})
+        step, path = run_folder.latest_restart(run_dir)
+        if step is None:
+            return {"resume": "no", "resume_file": "restart.*"}, None
+        run_folder.trim_rows(run_dir / spec.taps_file, step)
+        return {"resume": "yes", "resume_file": path.name}, step
+
+    def _started_run(self, spec, cmd, step, **extra):
+        """Record the command and start of a run (under the lock)."""
+        rec = self._records[spec.name]
+        rec["command"] = cmd
+        rec.update(extra)
+        rec["cwd"] = str(self.run_dir(spec.name))
+        self._started[spec.name] = provenance.now()
+        self._t0[spec.name] = time.time()
+        self._done0[spec.name] = (run_folder.taps_done(self.run_dir(spec.name) / spec.taps_file)
+                                  if step else 0)
+
+    def _finish(self, spec, returncode, wall, resumed_from):
+        """Check a run that ended; write DONE.json on success, return an error or ''."""
+        run_dir = self.run_dir(spec.name)
+        log = run_dir / "log.lammps"
+        text = log.read_text(errors="replace") if log.exists() else ""
+        error = ""
+        if returncode != 0 or "Total wall time" not in text:
+            error = (run_folder.log_error(log) or run_folder.log_error(run_dir / "screen.txt")
+                     or f"LAMMPS exited with code {returncode}")
+        elif spec.taps is not None and run_folder.taps_done(run_dir / spec.taps_file) != spec.taps:
+            error = (f"the per-tap file {spec.taps_file} ends at step "
+                     f"{run_folder.taps_done(run_dir / spec.taps_file)}, expected {spec.taps}")
+        rec = self._records[spec.name]
+        rec["attempts"].append({"started": self._started.get(spec.name),
+                                "finished": provenance.now(), "wall_s": round(wall, 3),
+                                "returncode": returncode, "resumed_from_step": resumed_from,
+                                "error": error or None})
+        if not error:
+            run_folder.merge_ave_time_parts(run_dir)
+            run_folder.drop_repeated_titles(run_dir / spec.taps_file)
+            run_folder.keep_latest_restart(run_dir)
+            missing = [n for n in self._redo.get(spec.name, []) if not (run_dir / n).exists()]
+            if missing:
+                error = (f"re-run after damage did not write {', '.join(missing)} again; the "
+                         "damaged files are in its damagedK/ folder")
+        if error:
+            rec["status"] = "failed"
+            return f"run {spec.name!r} failed: {error}\n    log: {log}"
+        self._redo.pop(spec.name, None)
+        rec["status"] = "done"
+        rec["wall_s"] = round(sum(a.get("wall_s", 0) for a in rec["attempts"]), 3)
+        done = {"run": spec.describe(), "finished": provenance.now(), "wall_s": rec["wall_s"],
+                "attempts": len(rec["attempts"]),
+                "outputs": provenance.output_digests(run_dir, run_folder.output_files(run_dir))}
+        provenance.write_done(run_dir, done)
+        return ""
+
+    def _pool_one(self, spec):
+        run_dir = self.run_dir(spec.name)
+        resume, step = self._prepare(spec)
+        cmd = launch.lammps_command(self.lmp, spec, self._input_copy(spec), resume)
+        with self._lock:
+            self._started_run(spec, cmd, step)
+        self._write_manifest()
+        t0 = time.time()
+        returncode = launch.run_child(cmd, run_dir, run_dir / "screen.txt")
+        error = self._finish(spec, returncode, time.time() - t0, step)
+        with self._lock:
+            self._t0.pop(spec.name, None)
+        self._write_manifest()
+        return error
+
+    def _partition_batch(self, index, batch):
+        pdir = self.directory / "partition"
+        pdir.mkdir(exist_ok=True)
+        resumes = {spec.name: self._prepare(spec) for spec in batch}
+        driver = pdir / f"batch{index}.in"
+        driver.write_text(launch.partition_driver(
+            batch, {s.name: self.run_dir(s.name) for s in batch},
+            {name: r[0] for name, r in resumes.items()}, self._input_copy(batch[0])))
+        cmd = launch.partition_command(self.lmp, batch, driver, pdir / f"batch{index}.log")
+        with self._lock:
+            for spec in batch:
+                self._started_run(spec, cmd, resumes[spec.name][1],
+                                  driver=str(driver.relative_to(self.directory)))
+        self._write_manifest()
+        t0 = time.time()
+        returncode = launch.run_child(cmd, pdir, pdir / f"batch{index}.screen")
+        errors = []
+        for spec in batch:
+            log = self.run_dir(spec.name) / "log.lammps"
+            ok = log.exists() and "Total wall time" in log.read_text(errors="replace")
+            err = self._finish(spec, 0 if ok else (returncode or 1), time.time() - t0,
+                               resumes[spec.name][1])
+            if err:
+                errors.append(err)
+            with self._lock:
+                self._t0.pop(spec.name, None)
+        self._write_manifest()
+        return errors
+
+    # -- progress --------------------------------------------------------------------------
+    def progress(self):
+        """Per-run (name, taps done, total taps or None, finished) for every run."""
+        out = []
+        for spec in self.runs:
+            done = self.is_done(spec.name)
+            n = spec.taps if (done and spec.taps is not None) else \
+                run_folder.taps_done(self.run_dir(spec.name) / spec.taps_file)
+            out.append((spec.name, n, spec.taps, done))
+        return out
+
+    def _report(self, session_start, final=False):
+        now = time.time()
+        lines = []
+        total_left, done_session = 0, 0
+        with self._lock:
+            running = dict(self._t0)
+            done0 = dict(self._done0)
+        for name, n, total, finished in self.progress():
+            if total is not None and not finished:
+                total_left += max(0, total - n)
+            if name in done0:
+                done_session += max(0, n - done0[name])
+            if name in running and not final:
+                rate = (n - done0.get(name, 0)) / max(now - running[name], 1e-9)
+                eta = (total - n) / rate if (total is not None and rate > 0) else None
+                pct = f" ({100.0 * n / total:.0f}%)" if total else ""
+                lines.append(f"[campaign]   {name}: {n}/{total if total is not None else '?'} "
+                             f"taps{pct}, ETA {_fmt_seconds(eta)}")
+        finished = sum(1 for r in self.runs if self.is_done(r.name))
+        elapsed = now - session_start
+        rate = done_session / elapsed if elapsed > 0 else 0
+        eta = total_left / rate if rate > 0 else (0 if total_left == 0 else None)
+        lines.append(f"[campaign] {finished}/{len(self.runs)} runs done, elapsed "
+                     f"{_fmt_seconds(elapsed)}, ETA {_fmt_seconds(eta)}")
+        print("\n".join(lines), file=self.stream, flush=True)
+
+    # -- main ------------------------------------------------------------------------------
+    def run(self, progress=True):
+        """Run every unfinished run (resuming from restart files) and every finished run whose
+        outputs were damaged since, write manifest.json; raise CampaignError naming each
+        failed run and its log. Returns self."""
+        self.check_directory()
+        with launch.campaign_lock(self.directory):
+            return self._run_locked(progress)
+
+    def _run_locked(self, progress):
+        previous = provenance.read_manifest(self.directory)
+        old = {r["name"]: r for r in previous.get("runs", [])
+               if isinstance(r, dict) and "name" in r}
+        self._manifest = {
+            "format": provenance.MANIFEST_FORMAT, "campaign": str(self.directory),
+            "created": previous.get("created"), "mode": self.mode, "jobs": self.jobs,
+            "host": platform.node(), "python": sys.version.split()[0], "lmp": str(self.lmp),
+            "lammps_version": provenance.lammps_version(self.lmp),
+            "tapmc_version": provenance.tapmc_version(),
+            "inputs": provenance.copy_inputs(self.directory, self.runs, self.pin_inputs,
+                                             self.stream)}
+        self._manifest["created"] = self._manifest["created"] or provenance.now()
+        self._t0, self._done0 = {}, {}
+        for spec in self.runs:  # every finished run's parameters first: a refusal moves nothing
+            if self.is_done(spec.name):
+                self._check_parameters(spec, self.run_dir(spec.name) / "DONE.json")
+        pending = []
+        for spec in self.runs:
+            done_file = self.run_dir(spec.name) / "DONE.json"
+            rec = dict(old.get(spec.name, {}))
+            rec.update(spec.describe())
+            rec.setdefault("attempts", [])
+            self._records[spec.name] = rec
+            finished = done_file.exists() and not self._unfinish_if_damaged(spec, done_file)
+            rec["status"] = "done" if finished else "pending"
+            if not finished:
+                pending.append(spec)
+        self._write_manifest()
+        if progress:
+            print(f"[campaign] {self.directory}: {len(self.runs) - len(pending)} of "
+                  f"{len(self.runs)} runs already done, {len(pending)} to run "
+                  f"({self.mode}, {self.jobs} at a time)", file=self.stream, flush=True)
+        if not pending:
+            return self
+        start = time.time()
+        stop = threading.Event()
+
+        def monitor():
+            while not stop.wait(self.progress_interval):
+                self._report(start)
+
+        watcher = threading.Thread(target=monitor, daemon=True)
+        if progress:
+            watcher.start()
+        errors = []
+        try:
+            if self.mode == "pool":
+                with ThreadPoolExecutor(max_workers=self.jobs) as pool:
+                    for err in pool.map(self._pool_one, pending):
+                        if err:
+                            errors.append(err)
+            else:
+                for i, batch in enumerate(launch.partition_batches(pending, self.jobs)):
+                    errors += self._partition_batch(i, batch)
+        finally:
+            stop.set()
+            if progress:
+                watcher.join()
+                self._report(start, final=True)
+        if errors:
+            raise CampaignError(f"{len(errors)} of {len(pending)} runs failed:\n  "
+                                + "\n  ".join(errors))
+        return self
