@@ -356,3 +356,29 @@ def test_unreadable_campaign_and_manifest(tmp_path):
             if p.exists():
                 p.chmod(0o700)
         shutil.rmtree(base)
+
+
+def test_campaign_keeps_the_scale_it_started_with(tmp_path):
+    """The plan's campaign is pinned to its recorded Scale: a scale.json written before a
+    field existed reads with that field's default, and one that differs from today's FULL is
+    kept (with a note) instead of refused."""
+    import json
+
+    from tapmc.paper import _runs, plan
+
+    folder = tmp_path / "c"
+    folder.mkdir()
+    old = FULL.as_dict()
+    del old["p0_eps"]  # a record written before the field existed
+    (folder / "scale.json").write_text(json.dumps(old))
+    assert _runs.recorded_scale(folder) == FULL
+    _runs.check_scale(folder, FULL)  # accepted: the missing field takes its default
+    (folder / "scale.json").write_text(json.dumps(dict(old, restart_every=50)))
+    out = cli("campaign", "--dry-run", "--campaign", folder)
+    assert out.returncode == 0, out.stderr
+    assert "keeps the Scale it started with (restart_every differ" in out.stdout
+    assert len([line for line in out.stdout.splitlines() if "to run]" in line]) == \
+        len(plan.runs(1))
+    (folder / "scale.json").write_text(json.dumps(dict(old, bogus=1)))
+    bad = cli("campaign", "--dry-run", "--campaign", folder)
+    assert bad.returncode == 2 and "not a Scale record of this TAPMC" in bad.stderr

@@ -218,6 +218,7 @@ def check_scale(directory, scale):
         raise CampaignDirectoryError(f"{path}: not valid JSON ({err})") from None
     if not isinstance(recorded, dict):
         raise CampaignDirectoryError(f"{path}: not a Scale record (expected a JSON object)")
+    recorded = _with_defaults(recorded, path)
     asked = json.loads(json.dumps(scale.as_dict()))
     differ = [k for k in asked if recorded.get(k) != asked[k]]
     if not differ:
@@ -234,6 +235,38 @@ def check_scale(directory, scale):
     raise CampaignDirectoryError(f"campaign {Path(directory)}: made with another Scale "
                                  f"{name!r} than this TAPMC's ({path}: {shown}); use another "
                                  "--campaign")
+
+
+def _with_defaults(recorded, path):
+    """A recorded Scale as JSON data, with the fields added to Scale since it was written set
+    to their defaults (what the code that wrote it used)."""
+    from tapmc.campaign import CampaignDirectoryError
+
+    from .scales import Scale
+
+    try:
+        return json.loads(json.dumps(Scale(**recorded).as_dict()))
+    except (TypeError, ValueError) as err:
+        raise CampaignDirectoryError(f"{path}: not a Scale record of this TAPMC ({err})") from None
+
+
+def recorded_scale(directory):
+    """The Scale recorded in a campaign folder (``scale.json``; fields added since take their
+    defaults), or None when the folder records none."""
+    from tapmc.campaign import CampaignDirectoryError
+
+    from .scales import Scale
+
+    path = Path(directory) / SCALE_FILE
+    if not path.exists():
+        return None
+    try:
+        recorded = json.loads(path.read_text())
+    except (OSError, ValueError) as err:
+        raise CampaignDirectoryError(f"{path}: cannot be read as a Scale record ({err})") from None
+    if not isinstance(recorded, dict):
+        raise CampaignDirectoryError(f"{path}: not a Scale record (expected a JSON object)")
+    return Scale(**_with_defaults(recorded, path))
 
 
 def campaign_scale(campaign):

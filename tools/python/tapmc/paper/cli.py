@@ -202,9 +202,18 @@ def _run_plan(args):
     scale = get_scale("full")
     directory = args.campaign or Path(f"tapmc-paper-{scale.name}")
     try:
+        # The plan's campaign is pinned: it keeps the Scale it started with (as its inputs),
+        # so that FULL can change while a campaign of many sessions runs.
+        recorded = _runs.recorded_scale(directory)
+        if recorded is not None and recorded.name != scale.name:
+            _runs.check_scale(directory, scale)  # another preset's folder: refused, named
+        if recorded is not None and recorded != scale:
+            changed = [k for k, v in scale.as_dict().items() if recorded.as_dict()[k] != v]
+            print(f"[campaign] {directory}: keeps the Scale it started with ("
+                  f"{', '.join(changed)} differ from this TAPMC's FULL)", flush=True)
+            scale = recorded
         campaign = Campaign(directory, plan.runs(args.tier, scale), lmp=args.lmp,
                             jobs=args.jobs, mode=args.mode, pin_inputs=True)
-        _runs.check_scale(campaign.directory, scale)
         _check_dir(campaign.directory, "campaign directory", create=not args.dry_run)
     except (ValueError, FileNotFoundError) as err:
         print(f"tapmc-paper: {err}", file=sys.stderr)
