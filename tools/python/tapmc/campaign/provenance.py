@@ -184,13 +184,22 @@ def output_digests(run_dir, names):
             for name in names}
 
 
+#: Outputs a finished run may lack without being damaged: its final restart file continues
+#: the run (a longer run, a later protocol) but no figure reads it, and a campaign committed
+#: with the project (doc/validation/data) leaves it out to stay small.
+OPTIONAL_OUTPUTS = re.compile(r"restart\.\d+")
+
+
 def damaged_outputs(run_dir, recorded):
     """{name: what is wrong} for the files of ``recorded`` (DONE.json's "outputs") that are
-    missing or whose size or sha256 differ from the record; {} when all are intact."""
+    missing (unless OPTIONAL_OUTPUTS) or whose size or sha256 differ from the record; {} when
+    all are intact."""
     run_dir = Path(run_dir)
     damaged = {}
     for name, digest in recorded.items():
         path = run_dir / name
+        if not path.is_file() and OPTIONAL_OUTPUTS.fullmatch(name):
+            continue
         if not path.is_file():
             damaged[name] = "missing"
         elif path.stat().st_size != digest["size"]:
