@@ -8,12 +8,12 @@
 //   fixed grid and seed), the physics does not.
 #include "fix_mc_settle.h"
 
-#include "fix_tapdilate.h"
 #include "lammps_box.h"
 #include "lammps_domain_settle.h"
 #include "lammps_keywords.h"
 #include "lammps_relocate.h"
 #include "lammps_support.h"
+#include "lammps_tapper.h"
 #include "tapmc_contact.h"
 #include "tapmc_defaults.h"
 #include "tapmc_settle.h"
@@ -30,7 +30,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <cstring>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -40,10 +39,72 @@ using namespace FixConst;
 
 namespace {
 constexpr int kPackedPerAtom = 6;  // tag, x, y, z, radius, movable
-constexpr int kRestartDiagnostics = 6;  // the first entries of the output vector
 constexpr int kVectorSize = 12;
 const char *const kAxisName[2] = {"x", "y"};
 }  // namespace
+
+// One complete redeposition per tap step, spread over the ranks as the 'scheme' keyword says.
+class FixMCSettle::Redeposition {
+ public:
+  virtual ~Redeposition() = default;
+  // From init(): the depth of the ghost shell the scheme reads, given the largest radius of all
+  // spheres (collective).
+  virtual double ghost_depth(double r_max) = 0;
+  // From setup: stops with an error naming the atoms when the start configuration has an overlap
+  // or a sphere through the floor or a wall (collective).
+  virtual void check_start() = 0;
+  // One redeposition; the atoms end where LAMMPS's exchange and borders of this step expect
+  // them (collective).
+  virtual tapmc::SettleResult settle() = 0;
+  // Output vector [7]-[12] after settle(): zeros unless the scheme is decomposed.
+  virtual std::array<double, 6> parallel_diagnostics() const { return {}; }
+};
+
+// 'scheme gather': every rank gathers all spheres sorted by tag, runs the same deterministic
+// serial kernel (tapmc_settle.h) and keeps its own atoms: the same trajectory on any rank count.
+class FixMCSettle::GatheredRedeposition : public FixMCSettle::Redeposition,
+                                          protected LAMMPS_NS::Pointers {
+ public:
+  explicit GatheredRedeposition(FixMCSettle &fix) :
+      Pointers(fix.lmp), fix(fix), settler(std::make_unique<tapmc::Settler>())
+  {
+  }
+  double ghost_depth(double r_max) override { return 2.0 * r_max; }  // one contact
+  void check_start() override;
+  tapmc::SettleResult settle() override;
+
+ private:
+  FixMCSettle &fix;
+  std::unique_ptr<tapmc::Settler> settler;
+  // the gathered system, sorted by atom tag (so results do not depend on the rank count)
+  std::vector<double> pack_local, pack_all;
+  std::vector<int> counts, displs;
+  std::vector<int> gathered_to_sorted;
+  std::vector<double> xyz, radius;
+  std::vector<unsigned char> movable;
+  std::vector<tagint> sorted_tag;
+  std::vector<int> image_shift;  // periodic wraps per sorted sphere (x, y), from the kernel
+  long n_movable = 0;
+
+  void gather_system();
+  void scatter_positions();
+};
+
+// 'scheme domain': each rank moves its own spheres against LAMMPS ghosts
+// (lammps_domain_settle.h): memory and work O(N / ranks).
+class FixMCSettle::DecomposedRedeposition : public FixMCSettle::Redeposition,
+                                            protected LAMMPS_NS::Pointers {
+ public:
+  explicit DecomposedRedeposition(FixMCSettle &fix) : Pointers(fix.lmp), fix(fix) {}
+  double ghost_depth(double r_max) override;
+  void check_start() override;
+  tapmc::SettleResult settle() override;
+  std::array<double, 6> parallel_diagnostics() const override;
+
+ private:
+  FixMCSettle &fix;
+  tapmc::DomainSettle &kernel() const { return *fix.domain_settle; }
+};
 
 FixMCSettle::FixMCSettle(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), seed(0), d_max(0.0), theta0(tapmc::defaults::kThetaWidth),
@@ -51,8 +112,7 @@ FixMCSettle::FixMCSettle(LAMMPS *lmp, int narg, char **arg) :
     max_sweeps(tapmc::defaults::kSettleMaxSweeps), z_floor(domain->boxlo[2]), fixed_radius(0.0),
     walls_given{false, false}, wall_pos{{0, 0}, {0, 0}}, sweep_order(false), dmax_given(false),
     scheme(Scheme::Auto), last_sweeps(0),
-    last_acceptance(0), last_mean_z(0), last_hit_cap(0), last_trials(0), last_mean_z0(0),
-    settler(std::make_unique<tapmc::Settler>()), n_movable(0)
+    last_acceptance(0), last_mean_z(0), last_hit_cap(0), last_trials(0), last_mean_z0(0)
 {
   if (narg < 4)
     error->all(FLERR, "fix mc/settle: expected 'fix ID group mc/settle seed [keyword value ...]',"
@@ -103,6 +163,12 @@ FixMCSettle::FixMCSettle(LAMMPS *lmp, int narg, char **arg) :
   maxexchange = 1;
   atom->add_callback(Atom::GROW);
   FixMCSettle::grow_arrays(atom->nmax);
+
+  const bool decomposed = scheme == Scheme::Domain || (scheme == Scheme::Auto && comm->nprocs > 1);
+  if (decomposed)
+    redeposition = std::make_unique<DecomposedRedeposition>(*this);
+  else
+    redeposition = std::make_unique<GatheredRedeposition>(*this);
 }
 
 void FixMCSettle::grow_arrays(int nmax)
@@ -262,29 +328,23 @@ void FixMCSettle::init()
   check_walls_inside_fixed_box();
   tappers.clear();
   for (int i = 0; i < modify->nfix; ++i)
-    if (std::strcmp(modify->fix[i]->style, "tapdilate") == 0)
-      tappers.push_back(static_cast<FixTapDilate *>(modify->fix[i]));
+    if (auto *tapper = dynamic_cast<tapmc::Tapper *>(modify->fix[i])) tappers.push_back(tapper);
 
   if (comm->me == 0 && update->whichflag == 2)
     error->warning(FLERR, "fix mc/settle moves atoms during minimization; use 'run' instead");
 
-  // Ghosts one diameter deep (what a contact needs), and as deep as the decomposed scheme needs
-  // (a contact, its move margin and ghost skin).
-  const double rmax_all = group_radius_extreme(true);
-  double needed = 2.0 * rmax_all;
-  if (decomposed()) {
-    if (comm->style != 0)
-      error->all(FLERR, "fix mc/settle: scheme domain needs the brick communication of LAMMPS "
-                 "('comm_style brick', the default); with 'comm_style tiled' use 'scheme gather'");
-    needed = tapmc::DomainSettle::ghost_cutoff(rmax_all, effective_d_max());
-    domain_settle->set_verify(verify_ghosts);
-  }
-  tapmc::request_ghost_depth(lmp, needed);
+  tapmc::request_ghost_depth(lmp, redeposition->ghost_depth(group_radius_extreme(true)));
 }
 
-bool FixMCSettle::decomposed() const
+// Ghosts as deep as the scheme needs: a contact, its move margin and the ghost skin.
+double FixMCSettle::DecomposedRedeposition::ghost_depth(double r_max)
 {
-  return scheme == Scheme::Domain || (scheme == Scheme::Auto && comm->nprocs > 1);
+  if (comm->style != 0)
+    error->all(FLERR, "fix mc/settle: scheme domain needs the brick communication of LAMMPS "
+               "('comm_style brick', the default); with 'comm_style tiled' use 'scheme gather'");
+  const double depth = tapmc::DomainSettle::ghost_cutoff(r_max, fix.effective_d_max());
+  kernel().set_verify(fix.verify_ghosts);
+  return depth;
 }
 
 // Largest radius of all spheres (every sphere takes part in contacts), or smallest radius of the
@@ -337,7 +397,7 @@ tapmc::SettleBox FixMCSettle::make_box() const
 }
 
 // Every rank ends with all spheres, sorted by tag: xyz, radius, movable (= in the group).
-void FixMCSettle::gather_system()
+void FixMCSettle::GatheredRedeposition::gather_system()
 {
   const int nlocal = atom->nlocal;
   double **x = atom->x;
@@ -355,8 +415,8 @@ void FixMCSettle::gather_system()
     p[1] = x[i][0];
     p[2] = x[i][1];
     p[3] = x[i][2];
-    p[4] = fixed_radius > 0.0 ? fixed_radius : rad[i];
-    p[5] = (mask[i] & groupbit) ? 1.0 : 0.0;
+    p[4] = fix.fixed_radius > 0.0 ? fix.fixed_radius : rad[i];
+    p[5] = (mask[i] & fix.groupbit) ? 1.0 : 0.0;
   }
   const int nprocs = comm->nprocs;
   counts.resize(nprocs);
@@ -400,7 +460,7 @@ void FixMCSettle::gather_system()
 
 // Owned atoms take their settled positions; image flags follow the periodic wraps the kernel
 // counted, so unwrapped coordinates stay exact however far a sphere travels.
-void FixMCSettle::scatter_positions()
+void FixMCSettle::GatheredRedeposition::scatter_positions()
 {
   const int first = displs[comm->me] / kPackedPerAtom;
   double **x = atom->x;
@@ -428,21 +488,24 @@ double FixMCSettle::effective_d_max() const
   return tapmc::defaults::kMaxStepOverRadius * group_radius_extreme(false);
 }
 
-void FixMCSettle::check_start_configuration()
+void FixMCSettle::GatheredRedeposition::check_start()
 {
+  gather_system();
+  if (n_movable == 0)
+    error->all(FLERR, "fix mc/settle: group '{}' has no atoms", group->names[fix.igroup]);
   for (size_t s = 0; s < radius.size(); ++s)
     if (!(radius[s] > 0.0))
       error->all(FLERR, "fix mc/settle: atom {} has radius {}; every sphere needs a radius > 0 "
                  "(set it with atom_style sphere / set diameter, or the 'diameter' keyword)",
                  sorted_tag[s], radius[s]);
-  const tapmc::SettleBox box = make_box();
+  const tapmc::SettleBox box = fix.make_box();
   tapmc::Violation v;
   tapmc::guarded(lmp, "fix mc/settle", true, [&] {
     v = tapmc::Settler::find_violation(xyz.data(), radius.data(), static_cast<int>(radius.size()),
                                        box, tapmc::defaults::kContactTolerance);
   });
   if (v.i < 0) return;
-  error->all(FLERR, violation_message(v, sorted_tag[v.i], v.j >= 0 ? sorted_tag[v.j] : 0));
+  error->all(FLERR, fix.violation_message(v, sorted_tag[v.i], v.j >= 0 ? sorted_tag[v.j] : 0));
 }
 
 // What is wrong with a start configuration: an overlapping pair, a sphere below the floor or
@@ -466,32 +529,24 @@ std::string FixMCSettle::violation_message(const tapmc::Violation &v, tagint tag
 
 void FixMCSettle::setup_pre_exchange()
 {
-  if (decomposed()) {
-    check_start_decomposed();
-  } else {
-    gather_system();
-    if (n_movable == 0)
-      error->all(FLERR, "fix mc/settle: group '{}' has no atoms", group->names[igroup]);
-    check_start_configuration();
-  }
+  redeposition->check_start();
   schedule_next_settle();
 }
 
-// The start check of the decomposed scheme: each rank checks its spheres against its ghosts.
-void FixMCSettle::check_start_decomposed()
+// Each rank checks its spheres against its ghosts.
+void FixMCSettle::DecomposedRedeposition::check_start()
 {
-  n_movable = count_movable();
-  if (n_movable == 0)
-    error->all(FLERR, "fix mc/settle: group '{}' has no atoms", group->names[igroup]);
-  const double rmin = group_radius_extreme(false);
+  if (fix.count_movable() == 0)
+    error->all(FLERR, "fix mc/settle: group '{}' has no atoms", group->names[fix.igroup]);
+  const double rmin = fix.group_radius_extreme(false);
   if (!(rmin > 0.0))
     error->all(FLERR, "fix mc/settle: a sphere of the group has radius {}; every sphere needs a "
                "radius > 0 (set it with atom_style sphere / set diameter, or the 'diameter' "
                "keyword)", rmin);
-  domain_settle->distribute();
+  kernel().distribute();
   tapmc::Violation v;
   tapmc::guarded(lmp, "fix mc/settle", false,
-                 [&] { v = domain_settle->find_violation(domain_setup()); });
+                 [&] { v = kernel().find_violation(fix.domain_setup()); });
   // The lowest rank that found a violation states it; every rank stops with its message.
   const int mine = v.i >= 0 ? comm->me : comm->nprocs;
   int reporter = comm->nprocs;
@@ -499,48 +554,48 @@ void FixMCSettle::check_start_decomposed()
   if (reporter == comm->nprocs) return;
   std::string message;
   if (comm->me == reporter)
-    message = violation_message(v, atom->tag[v.i], v.j >= 0 ? atom->tag[v.j] : 0);
+    message = fix.violation_message(v, atom->tag[v.i], v.j >= 0 ? atom->tag[v.j] : 0);
   tapmc::broadcast_text(lmp, reporter, message);
   error->all(FLERR, message);
 }
 
-// The next step after this one on which a tapdilate fix taps (any fix, whatever its order), or
-// simply the next step when the run has no tapdilate fix.
+// The next step after this one on which a tapping fix taps (any fix, whatever its order), or
+// simply the next step when the run has no tapping fix.
 void FixMCSettle::schedule_next_settle()
 {
   const bigint now = update->ntimestep;
   next_reneighbor = now + 1;
   if (tappers.empty()) return;
   next_reneighbor = tappers.front()->next_tap_after(now);
-  for (FixTapDilate *tap : tappers)
+  for (const tapmc::Tapper *tap : tappers)
     next_reneighbor = std::min(next_reneighbor, tap->next_tap_after(now));
 }
 
 void FixMCSettle::pre_exchange()
 {
   if (update->ntimestep != next_reneighbor) return;
-  // The taps of this step come first, also those of tapdilate fixes defined after this fix
+  // The taps of this step come first, also those of tapping fixes defined after this fix
   // (LAMMPS calls pre_exchange in definition order); each taps once per step, and this step is
   // a tap step of at least one of them (schedule_next_settle).
-  for (FixTapDilate *tap : tappers) tap->tap_if_due();
+  for (tapmc::Tapper *tap : tappers) tap->tap_if_due();
   schedule_next_settle();
 
-  const tapmc::SettleResult result = decomposed() ? settle_decomposed() : settle_gathered();
+  const tapmc::SettleResult result = redeposition->settle();
   store_diagnostics(result);
   if (result.hit_cap && comm->me == 0)
     error->warning(FLERR, "fix mc/settle: step {}: redeposition stopped at the cap of {} sweeps "
                    "before <Z> converged to eta = {}", update->ntimestep, max_sweeps, eta);
 }
 
-tapmc::SettleResult FixMCSettle::settle_gathered()
+tapmc::SettleResult FixMCSettle::GatheredRedeposition::settle()
 {
   gather_system();
-  const tapmc::SettleParams params = make_params(effective_d_max(), n_movable);
+  const tapmc::SettleParams params = fix.make_params(fix.effective_d_max(), n_movable);
   tapmc::SettleResult result;
   image_shift.assign(2 * radius.size(), 0);
   tapmc::guarded(lmp, "fix mc/settle", true, [&] {
     result = settler->settle(xyz.data(), radius.data(), movable.data(),
-                             static_cast<int>(radius.size()), make_box(), params,
+                             static_cast<int>(radius.size()), fix.make_box(), params,
                              image_shift.data());
   });
   scatter_positions();
@@ -548,28 +603,29 @@ tapmc::SettleResult FixMCSettle::settle_gathered()
   return result;
 }
 
-tapmc::SettleResult FixMCSettle::settle_decomposed()
+tapmc::SettleResult FixMCSettle::DecomposedRedeposition::settle()
 {
-  n_movable = count_movable();
-  const tapmc::SettleParams params = make_params(effective_d_max(), n_movable);
-  return domain_settle->settle(domain_setup(), params, n_movable);
+  const long n_movable = fix.count_movable();
+  const tapmc::SettleParams params = fix.make_params(fix.effective_d_max(), n_movable);
+  return kernel().settle(fix.domain_setup(), params, n_movable);
+}
+
+std::array<double, 6> FixMCSettle::DecomposedRedeposition::parallel_diagnostics() const
+{
+  const tapmc::DomainSettle::Timing &t = kernel().timing();
+  return {static_cast<double>(kernel().ghost_rebuilds()), static_cast<double>(kernel().rounds()),
+          t.trials, t.publish, t.reductions, t.rebuilds};
 }
 
 void FixMCSettle::store_diagnostics(const tapmc::SettleResult &result)
 {
   last_trials = static_cast<double>(result.trials);
-  last_sweeps = n_movable > 0 ? last_trials / static_cast<double>(n_movable) : 0.0;
+  last_sweeps = result.movable > 0 ? last_trials / static_cast<double>(result.movable) : 0.0;
   last_acceptance = result.trials > 0 ? double(result.accepted) / double(result.trials) : 0.0;
   last_mean_z = result.mean_height;
   last_mean_z0 = result.mean_height_start;
   last_hit_cap = result.hit_cap ? 1.0 : 0.0;
-  last_parallel = {};
-  if (decomposed()) {
-    const tapmc::DomainSettle::Timing &t = domain_settle->timing();
-    last_parallel = {static_cast<double>(domain_settle->ghost_rebuilds()),
-                     static_cast<double>(domain_settle->rounds()), t.trials, t.publish,
-                     t.reductions, t.rebuilds};
-  }
+  last_parallel = redeposition->parallel_diagnostics();
 }
 
 // [1] sweeps used, [2] acceptance ratio, [3] <Z> after, [4] 1 if the sweep cap was hit,
@@ -586,58 +642,76 @@ double FixMCSettle::compute_vector(int n)
 }
 
 // Random numbers are keyed by (seed, timestep, trial): the run continues exactly from a restart
-// without stored generator state. The file keeps every setting that shapes the trajectory
-// (compared after read_restart: a change gives one warning naming old and new values) and the
-// last diagnostics. Layout: kRestartLayout, the seed as two exact 32-bit halves, the settings,
-// the diagnostics. Files of the layout without the stop rule (kRestartLayoutNoStop: its first
-// kRestartSettingsNoStop settings) were written by runs with 'stop change' and the default window.
+// without stored generator state. The restart record keeps every setting that shapes the
+// trajectory (compared after read_restart: a change gives one warning naming old and new values)
+// and the last diagnostics [1]-[6]. Its layouts, told apart by the first double:
+// - kLayoutSettings (today's): the marker, the seed as two exact 32-bit halves, the values of
+//   restart_settings() in its order, the diagnostics in the order of restart_diagnostics();
+// - kLayoutSettingsNoStop (written before 'stop' and 'window' existed): the same without the
+//   settings that came with the stop rule; such runs had 'stop change' and the default window;
+// - seed only (the first runs; the first double is the seed itself, >= 1): seed, diagnostics.
+// Files of all three are read: no release has been cut yet, but runs of every layout may exist.
 namespace {
-constexpr double kRestartLayout = -3.0;  // negative: cannot be the seed of the seed-only layout
-constexpr int kRestartSettings = 16;
-constexpr double kRestartLayoutNoStop = -2.0;
-constexpr int kRestartSettingsNoStop = 14;
+constexpr double kLayoutSettings = -3.0;  // negative: cannot be the seed of the seed-only layout
+constexpr double kLayoutSettingsNoStop = -2.0;
 }  // namespace
+
+// One setting in the restart record: its name in the changed-settings warning, this fix's value
+// and, for the settings that came with the stop rule, the value a file of the older layout
+// without them implies.
+struct FixMCSettle::RestartSetting {
+  const char *name;
+  double value;
+  bool added_with_stop_rule = false;
+  double before_stop_rule = 0.0;
+};
+
+std::vector<FixMCSettle::RestartSetting> FixMCSettle::restart_settings() const
+{
+  auto wall = [this](int dim, int side) { return walls_given[dim] ? wall_pos[dim][side] : NAN; };
+  return {
+      {"dmax (0 = default R/5)", d_max},
+      {"theta0", theta0},
+      {"eta", eta},
+      {"check", static_cast<double>(check_interval)},
+      {"maxsweeps", static_cast<double>(max_sweeps)},
+      {"floor", z_floor},
+      {"diameter/2 (0 = per-atom radii)", fixed_radius},
+      {"order (0 random, 1 sweep)", sweep_order ? 1.0 : 0.0},
+      {"xwalls lo", wall(0, 0)},  // NaN: no walls given
+      {"xwalls hi", wall(0, 1)},
+      {"ywalls lo", wall(1, 0)},
+      {"ywalls hi", wall(1, 1)},
+      {"stop (0 change, 1 drift)", stop_drift ? 1.0 : 0.0, true, 0.0},
+      {"window", static_cast<double>(drift_window), true,
+       static_cast<double>(tapmc::defaults::kSettleDriftWindow)},
+  };
+}
+
+// The diagnostics kept in the record: the output vector's [1]-[6].
+std::array<double *, 6> FixMCSettle::restart_diagnostics()
+{
+  return {&last_sweeps, &last_acceptance, &last_mean_z, &last_hit_cap, &last_trials,
+          &last_mean_z0};
+}
 
 void FixMCSettle::write_restart(FILE *fp)
 {
   if (comm->me != 0) return;
   const auto useed = static_cast<std::uint64_t>(seed);
-  const double list[1 + kRestartSettings + kRestartDiagnostics] = {
-      kRestartLayout,
-      static_cast<double>(useed >> 32), static_cast<double>(useed & 0xFFFFFFFFu),
-      d_max, theta0, eta, static_cast<double>(check_interval), static_cast<double>(max_sweeps),
-      z_floor, fixed_radius, sweep_order ? 1.0 : 0.0,
-      walls_given[0] ? wall_pos[0][0] : NAN, walls_given[0] ? wall_pos[0][1] : NAN,
-      walls_given[1] ? wall_pos[1][0] : NAN, walls_given[1] ? wall_pos[1][1] : NAN,
-      stop_drift ? 1.0 : 0.0, static_cast<double>(drift_window),
-      last_sweeps, last_acceptance, last_mean_z, last_hit_cap, last_trials, last_mean_z0};
-  int size = sizeof(list);
+  std::vector<double> record = {kLayoutSettings, static_cast<double>(useed >> 32),
+                                static_cast<double>(useed & 0xFFFFFFFFu)};
+  for (const RestartSetting &setting : restart_settings()) record.push_back(setting.value);
+  for (const double *diagnostic : restart_diagnostics()) record.push_back(*diagnostic);
+  const int size = static_cast<int>(record.size() * sizeof(double));
   fwrite(&size, sizeof(int), 1, fp);
-  fwrite(list, sizeof(list), 1, fp);
+  fwrite(record.data(), sizeof(double), record.size(), fp);
 }
 
 void FixMCSettle::restart(char *buf)
 {
-  const auto *list = reinterpret_cast<const double *>(buf);
-  auto restore_diagnostics = [this](const double *diag) {
-    last_sweeps = diag[0];
-    last_acceptance = diag[1];
-    last_mean_z = diag[2];
-    last_hit_cap = diag[3];
-    last_trials = diag[4];
-    last_mean_z0 = diag[5];
-  };
-  const bool with_stop = list[0] == kRestartLayout;
-  if (!with_stop && list[0] != kRestartLayoutNoStop) {  // seed-only layout: seed, diagnostics
-    if (static_cast<std::int64_t>(list[0]) != seed && comm->me == 0)
-      error->warning(FLERR, "fix mc/settle: seed {} differs from the restart file's {}; the run "
-                     "will not continue the original trajectory", seed,
-                     static_cast<std::int64_t>(list[0]));
-    restore_diagnostics(list + 1);
-    return;
-  }
-  const auto old_seed = static_cast<std::int64_t>(
-      (static_cast<std::uint64_t>(list[1]) << 32) | static_cast<std::uint64_t>(list[2]));
+  const auto *next = reinterpret_cast<const double *>(buf);
+  const double layout = *next++;
   auto text = [](double v) { return std::isnan(v) ? std::string("none") : fmt::format("{}", v); };
   std::string changed;
   auto compare = [&](const char *name, double old_value, double new_value) {
@@ -646,24 +720,21 @@ void FixMCSettle::restart(char *buf)
       changed += fmt::format("{}{} {} -> {}", changed.empty() ? "" : ", ", name, text(old_value),
                              text(new_value));
   };
-  if (old_seed != seed) changed += fmt::format("seed {} -> {}", old_seed, seed);
-  compare("dmax (0 = default R/5)", list[3], d_max);
-  compare("theta0", list[4], theta0);
-  compare("eta", list[5], eta);
-  compare("check", list[6], static_cast<double>(check_interval));
-  compare("maxsweeps", list[7], static_cast<double>(max_sweeps));
-  compare("floor", list[8], z_floor);
-  compare("diameter/2 (0 = per-atom radii)", list[9], fixed_radius);
-  compare("order (0 random, 1 sweep)", list[10], sweep_order ? 1.0 : 0.0);
-  compare("xwalls lo", list[11], walls_given[0] ? wall_pos[0][0] : NAN);
-  compare("xwalls hi", list[12], walls_given[0] ? wall_pos[0][1] : NAN);
-  compare("ywalls lo", list[13], walls_given[1] ? wall_pos[1][0] : NAN);
-  compare("ywalls hi", list[14], walls_given[1] ? wall_pos[1][1] : NAN);
-  compare("stop (0 change, 1 drift)", with_stop ? list[15] : 0.0, stop_drift ? 1.0 : 0.0);
-  compare("window", with_stop ? list[16] : static_cast<double>(tapmc::defaults::kSettleDriftWindow),
-          static_cast<double>(drift_window));
+  if (layout == kLayoutSettings || layout == kLayoutSettingsNoStop) {
+    const auto old_seed = static_cast<std::int64_t>((static_cast<std::uint64_t>(next[0]) << 32) |
+                                                    static_cast<std::uint64_t>(next[1]));
+    next += 2;
+    if (old_seed != seed) changed += fmt::format("seed {} -> {}", old_seed, seed);
+    for (const RestartSetting &setting : restart_settings()) {
+      const bool stored = layout == kLayoutSettings || !setting.added_with_stop_rule;
+      compare(setting.name, stored ? *next++ : setting.before_stop_rule, setting.value);
+    }
+  } else {
+    const auto old_seed = static_cast<std::int64_t>(layout);
+    if (old_seed != seed) changed += fmt::format("seed {} -> {}", old_seed, seed);
+  }
   if (!changed.empty() && comm->me == 0)
     error->warning(FLERR, "fix mc/settle: settings differ from the restart file (restart -> now): "
                    "{}; the run will not continue the original trajectory", changed);
-  restore_diagnostics(list + 1 + (with_stop ? kRestartSettings : kRestartSettingsNoStop));
+  for (double *diagnostic : restart_diagnostics()) *diagnostic = *next++;
 }

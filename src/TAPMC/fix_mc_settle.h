@@ -16,16 +16,14 @@
 namespace tapmc {
 class DomainSettle;
 struct DomainSettleSetup;
-class Settler;
 struct SettleBox;
 struct SettleResult;
 struct Violation;
 struct SettleParams;
+class Tapper;
 }
 
 namespace LAMMPS_NS {
-
-class FixTapDilate;
 
 class FixMCSettle : public Fix {
  public:
@@ -70,39 +68,36 @@ class FixMCSettle : public Fix {
   double last_sweeps, last_acceptance, last_mean_z, last_hit_cap, last_trials, last_mean_z0;
   std::array<double, 6> last_parallel{};  // scheme domain: rebuilds, rounds, seconds per phase
 
-  // gathered system, sorted by atom tag (so results do not depend on the rank count)
-  std::unique_ptr<tapmc::Settler> settler;
+  // How one redeposition is spread over the ranks ('scheme'), chosen once when the fix is
+  // defined (the rank count is fixed by then): GatheredRedeposition or DecomposedRedeposition,
+  // in fix_mc_settle.cpp.
+  class Redeposition;
+  class GatheredRedeposition;
+  class DecomposedRedeposition;
+  std::unique_ptr<Redeposition> redeposition;
+  // The per-atom state of the decomposed scheme (each atom's round), which travels with the
+  // atoms from the start whatever the scheme.
   std::unique_ptr<tapmc::DomainSettle> domain_settle;
-  std::vector<double> pack_local, pack_all;
-  std::vector<int> counts, displs;
-  std::vector<int> gathered_to_sorted;
-  std::vector<double> xyz, radius;
-  std::vector<unsigned char> movable;
-  std::vector<tagint> sorted_tag;
-  std::vector<int> image_shift;  // periodic wraps per sorted sphere (x, y), from the kernel
-  long n_movable;
 
-  // The run's tapdilate fixes, in definition order: the redeposition follows their taps, on
-  // their tap steps only (none: every step).
-  std::vector<FixTapDilate *> tappers;
+  // The run's tapping fixes, in definition order: the redeposition follows their taps, on their
+  // tap steps only (none: every step).
+  std::vector<tapmc::Tapper *> tappers;
+
+  // The settings kept in restart files (fix_mc_settle.cpp: the record's layouts).
+  struct RestartSetting;
+  std::vector<RestartSetting> restart_settings() const;
+  std::array<double *, 6> restart_diagnostics();
 
   void parse_keywords(int narg, char **arg);
   tapmc::SettleParams make_params(double step, long movable) const;
   void check_walls_inside_fixed_box();
   void schedule_next_settle();
-  void gather_system();
-  void scatter_positions();
   double effective_d_max() const;
-  void check_start_configuration();
   tapmc::SettleBox make_box() const;
-  bool decomposed() const;
   tapmc::DomainSettleSetup domain_setup() const;
   double group_radius_extreme(bool largest) const;
   long count_movable() const;
-  void check_start_decomposed();
   std::string violation_message(const tapmc::Violation &v, tagint tag_i, tagint tag_j) const;
-  tapmc::SettleResult settle_decomposed();
-  tapmc::SettleResult settle_gathered();
   void store_diagnostics(const tapmc::SettleResult &result);
 };
 

@@ -4,6 +4,7 @@
 #define LMP_FIX_TAPDILATE_H
 
 #include "fix.h"
+#include "lammps_tapper.h"
 #include "lmptype.h"
 #include "tapmc_dilation.h"
 
@@ -11,7 +12,7 @@
 
 namespace LAMMPS_NS {
 
-class FixTapDilate : public Fix {
+class FixTapDilate : public Fix, public tapmc::Tapper {
  public:
   FixTapDilate(class LAMMPS *, int, char **);
   int setmask() override;
@@ -21,11 +22,9 @@ class FixTapDilate : public Fix {
   double compute_scalar() override;
   double compute_vector(int) override;
 
-  // For fix mc/settle, which redeposits after the taps whatever the order of the fix commands:
-  // tap now if this step is a tap step and the tap has not been done yet (idempotent).
-  void tap_if_due();
-  // The first tap step after `step` (taps fall on the multiples of 'every').
-  bigint next_tap_after(bigint step) const;
+  // tapmc::Tapper, for fix mc/settle (taps fall on the multiples of 'every').
+  void tap_if_due() override;
+  bigint next_tap_after(bigint step) const override;
 
  private:
   tapmc::DilationParams params;  // eps (when given as a number), every, floor

@@ -5,6 +5,7 @@
 # test_mc_settle_ranks.py (its own ctest entry, so that no single entry runs much over a minute).
 import functools
 import os
+import struct
 
 import numpy as np
 import pytest
@@ -221,3 +222,83 @@ def test_restart_with_changed_settings_warns_naming_them():
            "eta 0.001 -> 0.0001, order (0 random, 1 sweep) 0 -> 1" in out, out
     rc, out, _ = run_lammps(same.replace("mc/settle 11", "mc/settle 12"), workdir=wd)
     assert rc == 0 and "seed 11 -> 12" in out, out
+
+
+# The restart record of fix mc/settle (fix_mc_settle.cpp): an int byte count, then doubles:
+# layout -3 (today's): -3, seed as two 32-bit halves, dmax, theta0, eta, check, maxsweeps,
+# floor, diameter/2, order, xwalls lo hi, ywalls lo hi (NaN: none), stop, window, then the
+# diagnostics [1]-[6]; layout -2 (before 'stop' and 'window'): the same without those two;
+# seed only (the first runs): seed, diagnostics.
+RECORD_DOUBLES = 1 + 2 + 14 + 6
+
+
+def restart_record(data):
+    """(offset of the byte count, the doubles) of the fix mc/settle record in restart bytes."""
+    head = struct.pack("<i", 8 * RECORD_DOUBLES) + struct.pack("<d", -3.0)
+    at = data.find(head)
+    assert at >= 0 and data.find(head, at + 1) < 0
+    return at, struct.unpack_from(f"<{RECORD_DOUBLES}d", data, at + 4)
+
+
+def with_record(data, at, values):
+    """The restart bytes with the record at `at` replaced by `values` (its byte count too)."""
+    end = at + 4 + 8 * RECORD_DOUBLES
+    return data[:at] + struct.pack(f"<i{len(values)}d", 8 * len(values), *values) + data[end:]
+
+
+DIAGNOSTICS = "f_settle[1] f_settle[2] f_settle[3] f_settle[4] f_settle[5] f_settle[6]"
+
+
+def last_thermo_row(out):
+    """The values after Step of the last thermo row of the last run."""
+    rows = [line.split() for line in out.splitlines()]
+    header = max(i for i, r in enumerate(rows) if r[:1] == ["Step"])
+    last = header + 1
+    while rows[last + 1][:1] and rows[last + 1][0].isdigit():
+        last += 1
+    return [float(v) for v in rows[last][1:]]
+
+
+def test_restart_record_layout_and_older_layouts_are_read():
+    # Today's record holds exactly the documented fields, so files stay byte for byte what the
+    # layout says; records of the two older layouts (written here from today's by dropping
+    # fields, as those versions wrote them) are read: the diagnostics come back, the settings
+    # they did not store are taken as those versions ran them ('stop change', window 32).
+    base = SCENE.format(boundary="f p fm", zprocs=1)
+    settle = ("fix tap all tapdilate 0.05 floor 0.0\n"
+              "fix settle all mc/settle 8589934597 floor 0.0 eta 1e-3 xwalls 0 10 check 700\n"
+              f"thermo_style custom step {DIAGNOSTICS}\nthermo_modify format float %.17g\n")
+    rc, out, wd = run_lammps(base + settle + "run 2\nwrite_restart a.restart\n")
+    assert rc == 0, out
+    diagnostics = last_thermo_row(out)
+    with open(os.path.join(wd, "a.restart"), "rb") as f:
+        data = f.read()
+    at, record = restart_record(data)
+    settings = [0.0, np.pi / 4, 1e-3, 700, 50000, 0.0, 0.0, 0, 0.0, 10.0]
+    assert record[:3] == (-3.0, 2.0, 5.0)  # 8589934597 = 2 * 2^32 + 5
+    assert list(record[3:13]) == settings
+    assert np.isnan(record[13:15]).all()  # no ywalls
+    assert record[15:17] == (0.0, 32.0)   # stop change, window 32
+    assert list(record[17:]) == diagnostics
+
+    no_stop = record[:15] + record[17:]
+    no_stop = (-2.0,) + no_stop[1:]
+    seed_only = (float(8589934597),) + record[17:]
+    for name, values in (("no_stop", no_stop), ("seed_only", seed_only)):
+        with open(os.path.join(wd, name + ".restart"), "wb") as f:
+            f.write(with_record(data, at, values))
+        again = (f"read_restart {name}.restart\n" + settle + "run 0\n")
+        rc, out, _ = run_lammps(again, workdir=wd)
+        assert rc == 0, out
+        assert "differ from the restart file" not in out, out
+        assert last_thermo_row(out) == diagnostics, name
+    rc, out, _ = run_lammps("read_restart no_stop.restart\n" + settle.replace(
+        "check 700", "check 700 stop drift") + "run 0\n", workdir=wd)
+    assert rc == 0, out
+    assert "settings differ from the restart file (restart -> now): stop (0 change, 1 drift) " \
+           "0 -> 1;" in out, out
+    rc, out, _ = run_lammps("read_restart seed_only.restart\n" + settle.replace(
+        "8589934597", "7") + "run 0\n", workdir=wd)
+    assert rc == 0, out
+    assert "settings differ from the restart file (restart -> now): seed 8589934597 -> 7;" \
+        in out, out
