@@ -169,6 +169,20 @@ FixMCSettle::FixMCSettle(LAMMPS *lmp, int narg, char **arg) :
     redeposition = std::make_unique<DecomposedRedeposition>(*this);
   else
     redeposition = std::make_unique<GatheredRedeposition>(*this);
+  warn_ignored_keywords(decomposed);
+}
+
+// Keywords that a combination of settings makes meaningless are accepted, but said to be.
+void FixMCSettle::warn_ignored_keywords(bool decomposed) const
+{
+  if (comm->me != 0) return;
+  if (window_given && !stop_drift)
+    error->warning(FLERR, "fix mc/settle: window = {} is ignored with 'stop change' (the "
+                   "default); it sets the checks averaged by 'stop drift'", drift_window);
+  if (verify_ghosts && !decomposed)
+    error->warning(FLERR, "fix mc/settle: verify yes is ignored with scheme gather{}; it checks "
+                   "the ghosts of scheme domain", scheme == Scheme::Auto ? " (scheme auto on one "
+                   "rank)" : "");
 }
 
 void FixMCSettle::grow_arrays(int nmax)
@@ -268,7 +282,11 @@ void FixMCSettle::parse_keywords(int narg, char **arg)
                       "'drift'", rule);
          stop_drift = rule == "drift";
        }},
-      {"window", 1, [&](char **v) { drift_window = integer(v[0]); }},
+      {"window", 1,
+       [&](char **v) {
+         drift_window = integer(v[0]);
+         window_given = true;
+       }},
       {"verify", 1,
        [&](char **v) {
          const std::string value = v[0];

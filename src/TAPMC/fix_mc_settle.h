@@ -62,6 +62,7 @@ class FixMCSettle : public Fix {
   enum class Scheme { Auto, Gather, Domain } scheme;
   bool stop_drift = false;    // 'stop drift': the windowed drift rule (tapmc_stop_rule.h)
   long drift_window = 0;      // 'window': checks averaged by 'stop drift' (kSettleDriftWindow)
+  bool window_given = false;
   bool verify_ghosts = false; // 'verify': scheme domain checks every ghost after every round
 
   // per-tap diagnostics (global vector)
@@ -89,6 +90,7 @@ class FixMCSettle : public Fix {
   std::array<double *, 6> restart_diagnostics();
 
   void parse_keywords(int narg, char **arg);
+  void warn_ignored_keywords(bool decomposed) const;
   tapmc::SettleParams make_params(double step, long movable) const;
   void check_walls_inside_fixed_box();
   void schedule_next_settle();

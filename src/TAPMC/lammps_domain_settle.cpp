@@ -36,6 +36,8 @@
 #include <unordered_map>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 using namespace LAMMPS_NS;
 
@@ -460,7 +462,14 @@ void DomainSettle::prepare(Run &run)
 
   const double margin = defaults::kDomainMoveMarginOverStep * params.d_max;
   guarded(lmp, "fix mc/settle", true, [&] {
-    run.schedule = std::make_unique<RoundSchedule>(decomposed_axes(), 2.0 * r_max, margin);
+    try {
+      run.schedule = std::make_unique<RoundSchedule>(decomposed_axes(), 2.0 * r_max, margin);
+    } catch (const std::invalid_argument &e) {  // sub-domains too narrow for the rounds
+      throw std::invalid_argument(std::string(e.what()) +
+                                  "; 'scheme gather' runs the same input on this processor grid "
+                                  "(every rank redeposits all spheres), or use fewer ranks along "
+                                  "that axis");
+    }
   });
   if (!sampler_ || sampler_->d_max() != params.d_max ||
       sampler_->theta_sampler().theta0() != params.theta0)

@@ -149,7 +149,8 @@ def test_gather_scheme_on_two_ranks_is_the_serial_trajectory():
 
 @pytest.mark.parametrize("nprocs,grid,message", [
     (4, "4 1 1", "the narrowest sub-domain along x is 2.5 wide; the decomposed redeposition "
-                 "needs at least 3.6"),
+                 "needs at least 3.6 (2 contact distances + 4 move margins); 'scheme gather' "
+                 "runs the same input on this processor grid"),
     (2, "1 2 1", None),
 ])
 def test_narrow_sub_domains_are_refused_with_the_needed_width(nprocs, grid, message):
@@ -157,9 +158,32 @@ def test_narrow_sub_domains_are_refused_with_the_needed_width(nprocs, grid, mess
     rc, out, _ = run_lammps(script, nprocs=nprocs, timeout=120)
     if message is None:
         assert rc == 0, out
+        return
+    assert rc != 0
+    assert message in out, out
+    # What the message offers holds: the same input with 'scheme gather' runs on that grid.
+    rc, out, _ = run_lammps(script.replace("scheme domain verify yes", "scheme gather"),
+                            nprocs=nprocs, timeout=120)
+    assert rc == 0, out
+
+
+@pytest.mark.parametrize("nprocs,keywords,warning", [
+    (1, "scheme gather verify yes", "verify yes is ignored with scheme gather; it checks the "
+                                    "ghosts of scheme domain"),
+    (1, "verify yes", "verify yes is ignored with scheme gather (scheme auto on one rank)"),
+    (2, "scheme gather verify yes", "verify yes is ignored with scheme gather;"),
+    (2, "scheme domain verify yes", None),
+    (2, "verify yes", None),
+])
+def test_verify_without_scheme_domain_is_ignored_with_a_warning(nprocs, keywords, warning):
+    script = scene("p p fm", f"{nprocs} 1 1") + TAPPING.replace(
+        "eta 1e-3", "eta 1e-3 " + keywords).format(eps=0.02, seed=1, every=1, taps=1)
+    rc, out, _ = run_lammps(script, nprocs=nprocs, timeout=120)
+    assert rc == 0, out
+    if warning is None:
+        assert "verify yes is ignored" not in out, out
     else:
-        assert rc != 0
-        assert message in out, out
+        assert out.count("WARNING: fix mc/settle: " + warning) == 1, out
 
 
 @pytest.mark.parametrize("keywords,message", [

@@ -110,3 +110,16 @@ def test_restart_keeps_the_stop_rule():
     assert rc == 0, out
     assert "WARNING: fix mc/settle: settings differ from the restart file (restart -> now): " \
            "stop (0 change, 1 drift) 1 -> 0, window 16 -> 32;" in out, out
+
+
+def test_window_without_stop_drift_is_ignored_with_a_warning():
+    warning = "WARNING: fix mc/settle: window = 12 is ignored with 'stop change' (the default)"
+    plain, _ = tapping("eta 1e-3", taps=2)
+    for keywords in ("eta 1e-3 window 12", "eta 1e-3 stop change window 12"):
+        rc, out, wd = run_lammps(SCENE + RUN.format(keywords=keywords, taps=2))
+        assert rc == 0 and out.count(warning) == 1, out
+        frames = read_dump(os.path.join(wd, "dump.taps"))  # ignored indeed: the same taps
+        for (_, _, _, a), (_, _, _, b) in zip(plain, frames):
+            np.testing.assert_array_equal(a["z"], b["z"])
+    rc, out, _ = run_lammps(SCENE + RUN.format(keywords="eta 1e-3 stop drift window 12", taps=1))
+    assert rc == 0 and "is ignored" not in out, out
