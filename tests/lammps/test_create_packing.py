@@ -3,11 +3,14 @@
 # and beyond one broadcast piece), every atom once, no overlaps, walls / regions /
 # shrink-wrapped tops, and bad input (also a deposition that fails on rank 0 of several).
 import os
+import resource
+import subprocess
+import tempfile
 
 import numpy as np
 import pytest
 
-from lmprun import min_gap, read_dump, run_lammps
+from lmprun import LMP, min_gap, read_dump, run_lammps
 
 # Relative overlap tolerance of the whole package (tapmc_defaults.h, kContactTolerance).
 CONTACT_TOL = 1e-10
@@ -228,3 +231,52 @@ def test_example_runs_and_matches_its_log():
     phi = float(phi_line(out).split("bulk packing fraction")[1].split()[0])
     assert 0.56 <= phi <= 0.61
     assert "Initial packing: N = 4096" in out
+
+
+def memory_available_gib():
+    """MemAvailable + SwapFree of /proc/meminfo, in GiB (what create_packing compares with)."""
+    kib = 0
+    with open("/proc/meminfo") as f:
+        for line in f:
+            key, value = line.split()[:2]
+            if key in ("MemAvailable:", "SwapFree:"):
+                kib += int(value)
+    return kib / 2**20
+
+
+def test_more_spheres_than_memory_are_refused_naming_n_and_the_memory():
+    # 10^9 spheres need about 284 GiB on one rank (305 bytes each): refused before anything is
+    # allocated, where the deposition used to end in a bare "std::bad_alloc".
+    if memory_available_gib() > 284:
+        pytest.skip("this machine could hold 10^9 spheres")
+    rc, out, _ = run_lammps(HEADER.format(boundary="p p fm", L=16, H=40, ntypes=1) +
+                            "create_packing 1000000000 1 0.5 7\n")
+    assert rc != 0, out
+    assert "ERROR: create_packing: N = 1000000000 spheres need about 284 GiB of memory where " \
+           "MPI rank 0 runs (about 160 bytes per sphere for the deposition on rank 0, 145 per " \
+           "atom for the atoms of the ranks there), but only " in out, out
+    assert "bad_alloc" not in out, out
+
+
+def test_out_of_memory_in_the_deposition_names_n_and_the_memory():
+    # Under an address-space limit (ulimit -v, as batch systems set) the deposition of 2 10^7
+    # spheres (5.68 GiB) fails to allocate although the machine has the memory: the error names
+    # N and the memory instead of a bare "std::bad_alloc". (The limit is below the packing's
+    # first allocation, 480 MB, so the failure comes at once.)
+    limit = 400 * 2**20
+
+    def limited():
+        resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+
+    workdir = tempfile.mkdtemp(prefix="tapmc_")
+    with open(os.path.join(workdir, "in.test"), "w") as f:
+        f.write(HEADER.format(boundary="p p fm", L=16, H=40, ntypes=1) +
+                "create_packing 20000000 1 0.5 7\n")
+    proc = subprocess.run([LMP, "-in", "in.test", "-log", "none", "-nocite"], cwd=workdir,
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                          timeout=300, stdin=subprocess.DEVNULL, preexec_fn=limited)
+    out = proc.stdout
+    assert proc.returncode != 0, out
+    assert "ERROR: create_packing (the box: open top): N = 20000000 spheres: rank 0 ran out " \
+           "of memory during the deposition (std::bad_alloc); it needs about 5.68 GiB there" \
+        in out, out
