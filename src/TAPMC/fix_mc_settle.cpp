@@ -33,6 +33,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
@@ -46,7 +47,9 @@ const char *const kAxisName[2] = {"x", "y"};
 // One complete redeposition per tap step, spread over the ranks as the 'scheme' keyword says.
 class FixMCSettle::Redeposition {
  public:
-  virtual ~Redeposition() = default;
+  // The schemes derive from this and from LAMMPS's Pointers, whose destructor is noexcept in
+  // 2021 and noexcept(false) from 2023 on; both bases must promise the same, in either version.
+  virtual ~Redeposition() noexcept(std::is_nothrow_destructible_v<LAMMPS_NS::Pointers>) = default;
   // From init(): the depth of the ghost shell the scheme reads, given the largest radius of all
   // spheres (collective).
   virtual double ghost_depth(double r_max) = 0;

@@ -49,6 +49,9 @@ FixTapDilate::FixTapDilate(LAMMPS *lmp, int narg, char **arg) :
 
   // Moves happen in pre_exchange() of steps on which this fix forces reneighbouring.
   force_reneighbor = 1;
+  // The tap is what moves the atoms from step to step (LAMMPS from 2023 on warns "No fixes with
+  // time integration, atoms won't move" when no fix says so).
+  time_integrate = 1;
   next_reneighbor = -1;
   scalar_flag = 1;
   vector_flag = 1;
