@@ -2,8 +2,9 @@
 # TAPMC setup helper: build a LAMMPS that can `plugin load` TAPMC and that turns errors into C++
 # exceptions (so the Python module raises instead of ending the process). Debian's binary LAMMPS
 # has neither the PLUGIN package nor LAMMPS_EXCEPTIONS; this script builds the same LAMMPS
-# version from Debian's *source package* (fetched by fetch-lammps-headers.sh --source-tree) with
-# only what TAPMC's inputs need: the core styles (atom_style sphere is core), PLUGIN, MPI, a
+# version, or another one (the current 4 Jul 2026 release: see below), from Debian's *source
+# package* (its original tarball, fetched and checked by fetch-lammps-headers.sh --source-tree)
+# with only what TAPMC's inputs need: the core styles (atom_style sphere is core), PLUGIN, MPI, a
 # shared library and exceptions. Everything goes into the user's cache, never into the
 # repository. See doc/lammps_plugin.rst.
 #
@@ -13,14 +14,19 @@
 # environment:
 #   TAPMC_LAMMPS_SRC_VERSION  Debian source version to build (default: that of the installed
 #                             liblammps0, so the plugin LAMMPS is the version TAPMC targets)
+#   TAPMC_LAMMPS_SRC_SUITE    Debian suite that has it (default: this system's release); LAMMPS
+#                             4 Jul 2026 is TAPMC_LAMMPS_SRC_VERSION=20260704+dfsg-2
+#                             TAPMC_LAMMPS_SRC_SUITE=unstable
 #   TAPMC_JOBS                parallel compile jobs (default: nproc)
 #   XDG_CACHE_HOME            cache root (default ~/.cache); the install is
 #                             $XDG_CACHE_HOME/tapmc/lammps-plugin-<source version>
 #
 # The install holds bin/lmp, lib/liblammps.so, lib/cmake/LAMMPS (for TAPMC's
 # -DLAMMPS_DIR=<prefix>/lib/cmake/LAMMPS) and python/lammps (the Python module with the library
-# beside it: PYTHONPATH=<prefix>/python). A stamp file records the version and the options; the
-# script does nothing when the install is present and matches.
+# beside it: PYTHONPATH=<prefix>/python); the LAMMPS source headers TAPMC compiles with go to
+# $XDG_CACHE_HOME/tapmc/lammps-<version, e.g. 20260704>, where TAPMC's CMake looks for them. A
+# stamp file records the version and the options; the script does nothing when the install is
+# present and matches.
 set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -72,8 +78,6 @@ cmake_options=(
   -D LAMMPS_EXCEPTIONS=on
   -D WITH_JPEG=off -D WITH_PNG=off -D WITH_FFMPEG=off -D WITH_GZIP=on
   -D BUILD_TOOLS=off -D BUILD_DOC=off -D ENABLE_TESTING=off
-  # the Python module is installed below, by hand, next to its library
-  -D CMAKE_DISABLE_FIND_PACKAGE_Python=on -D CMAKE_DISABLE_FIND_PACKAGE_PythonInterp=on
 )
 stamp="$prefix/.tapmc-lammps-plugin"
 stamp_text="$pkg_version ${cmake_options[*]}"
@@ -98,26 +102,53 @@ fi
 TAPMC_LAMMPS_SRC_VERSION=$pkg_version \
   bash "$here/fetch-lammps-headers.sh" --source-tree "$work/source"
 
+# The Python module is installed below, by hand, next to its library. LAMMPS up to 2022 would
+# also install it with the library when CMake finds Python, so Python is hidden from it; newer
+# LAMMPS (2026) refuses to configure without Python >= 3.6 and uses it only for its
+# install-python target, so it gets Debian's interpreter.
+if grep -q 'LAMMPS requires Python' "$work/source/cmake/CMakeLists.txt"; then
+  python_options=(-D "Python_EXECUTABLE=$python")
+else
+  python_options=(-D CMAKE_DISABLE_FIND_PACKAGE_Python=on
+                  -D CMAKE_DISABLE_FIND_PACKAGE_PythonInterp=on)
+fi
+lammps_version=$(sed -n 's/^#define LAMMPS_VERSION "\(.*\)"$/\1/p' "$work/source/src/version.h")
+
 start=$(date +%s)
-echo "tapmc: building LAMMPS ($pkg_version) with PLUGIN and exceptions," \
+echo "tapmc: building LAMMPS $lammps_version ($pkg_version) with PLUGIN and exceptions," \
      "$jobs jobs, into $prefix" >&2
-cmake -S "$work/source/cmake" -B "$work/build" "${cmake_options[@]}" > "$work/configure.log"
+cmake -S "$work/source/cmake" -B "$work/build" "${cmake_options[@]}" "${python_options[@]}" \
+  > "$work/configure.log" || {
+  echo "build-lammps-plugin.sh: configuring LAMMPS failed; see $work/configure.log" >&2
+  exit 1; }
 # nice: the build is long and must not starve interactive work on a shared machine
 nice -n 19 cmake --build "$work/build" -j "$jobs"
 rm -rf "$prefix"
 cmake --install "$work/build" > "$work/install.log"
-# LAMMPS installs its potential files; no core-only input of TAPMC reads them (53 MB)
-rm -rf "$prefix/share/lammps/potentials"
+# LAMMPS installs its potential files (53 MB) and, from 2023 on, its benchmark inputs (37 MB);
+# no core-only input of TAPMC reads them
+rm -rf "$prefix/share/lammps/potentials" "$prefix/share/lammps/bench"
 
 # Python module: LAMMPS's python/lammps package with the library beside it, where
 # lammps.lammps() looks first (before the system's liblammps.so).
 mkdir -p "$prefix/python"
 cp -r "$work/source/python/lammps" "$prefix/python/lammps"
 ln -sf ../../lib/liblammps.so "$prefix/python/lammps/liblammps.so"
+# Package metadata with the library's version: newer modules compare the version of the
+# installed 'lammps' distribution with the library's and would otherwise find Debian's
+# python3-lammps (2021.9.29) and refuse to start.
+dist_version=$(date -d "$lammps_version" +%Y.%-m.%-d)
+mkdir -p "$prefix/python/lammps-$dist_version.dist-info"
+printf 'Metadata-Version: 2.1\nName: lammps\nVersion: %s\n' "$dist_version" \
+  > "$prefix/python/lammps-$dist_version.dist-info/METADATA"
 "$python" -c "import sys; sys.path.insert(0, '$prefix/python'); import lammps; \
 L = lammps.lammps(cmdargs=['-log', 'none', '-screen', 'none']); \
 assert L.has_exceptions, 'built without exceptions'; \
 assert 'PLUGIN' in L.installed_packages, 'built without PLUGIN'; L.close()"
+
+# The source headers for TAPMC's build (cmake/LAMMPSHeaders.cmake), from the tree just built.
+TAPMC_LAMMPS_SRC_VERSION=$pkg_version bash "$here/fetch-lammps-headers.sh" \
+  --from-tree "$work/source" "$cache/lammps-$(date -d "$lammps_version" +%Y%m%d)"
 
 echo "$stamp_text" > "$stamp"
 end=$(date +%s)

@@ -42,6 +42,10 @@ install_headers() {
   mkdir -p "$dest/src"
   cp "$top"/src/*.h "$dest/src/"
   cp -r "$top/src/fmt" "$dest/src/fmt"
+  # LAMMPS from 2023 on: json_fwd.h, included by atom.h, needs the bundled JSON library
+  if [ -d "$top/src/nlohmann" ]; then
+    cp -r "$top/src/nlohmann" "$dest/src/nlohmann"
+  fi
   echo "$pkg_version" > "$stamp"
   echo "tapmc: LAMMPS headers ready in $dest/src" >&2
 }
@@ -174,7 +178,11 @@ if [ "$mode" = source ]; then
   exit 0
 fi
 # Only the top-level src/ headers and the bundled fmt library are needed.
-# ('*' also matches the empty string and '/', so this covers both layouts.)
-tar -xf "$orig" -C "$work/x" --wildcards '*src/*.h' '*src/fmt/*' 2>/dev/null || \
+# ('*' also matches the empty string and '/', so this covers both layouts; tar complains about
+# the patterns that match nothing, such as nlohmann/ before 2023.)
+tar -xf "$orig" -C "$work/x" --wildcards '*src/*.h' '*src/fmt/*' '*src/nlohmann/*' \
+  2> /dev/null || true
+if ! source_top src/neigh_request.h > /dev/null 2>&1; then
   tar -xf "$orig" -C "$work/x"
+fi
 install_headers "$(source_top src/neigh_request.h)"
