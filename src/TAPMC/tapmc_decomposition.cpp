@@ -2,6 +2,7 @@
 // Rounds of the domain-decomposed redeposition (the scheme and its proof: tapmc_decomposition.h).
 #include "tapmc_decomposition.h"
 
+#include "tapmc_checks.h"
 #include "tapmc_math.h"
 
 #include <cmath>
@@ -26,11 +27,9 @@ RoundSchedule::RoundSchedule(const std::array<DecomposedAxis, 3> &axes, double c
     : axes_(axes), contact_(contact), margin_(margin)
 {
   if (!(contact > 0.0 && std::isfinite(contact)))
-    throw std::invalid_argument("contact distance = " + number(contact) +
-                                " is outside the allowed range (0, +inf)");
+    throw_outside_range("contact distance", contact, "(0, +inf)");
   if (!(margin >= 0.0 && std::isfinite(margin)))
-    throw std::invalid_argument("margin = " + number(margin) +
-                                " is outside the allowed range [0, +inf)");
+    throw_outside_range("margin", margin, "[0, +inf)");
   const double needed = min_width(contact, margin);
   for (int d = 0; d < 3; ++d) {
     if (!axes[d].split) continue;

@@ -22,6 +22,7 @@
 // equilibria; the roll of one segment; and the engine (Impl) that drops a sphere with them.
 #include "tapmc_deposition.h"
 
+#include "tapmc_checks.h"
 #include "tapmc_contact.h"
 #include "tapmc_defaults.h"
 #include "tapmc_math.h"
@@ -761,26 +762,27 @@ struct SequentialDeposition::Impl {
   }
 };
 
+namespace {
+void check_radius(double radius, double max_radius)
+{
+  if (!(radius > 0.0) || radius > max_radius)
+    throw_outside_range("radius", radius, "(0, max_radius] = (0, " + number(max_radius) + "]");
+}
+}  // namespace
+
 SequentialDeposition::SequentialDeposition(const DepositionDomain &domain, double max_radius,
                                            std::uint64_t seed)
     : impl_(std::make_unique<Impl>())
 {
   if (!(max_radius > 0.0) || !std::isfinite(max_radius))
-    throw std::invalid_argument("deposition: max_radius = " + std::to_string(max_radius) +
-                                " must be a positive finite number");
+    throw_outside_range("max_radius", max_radius, "(0, +inf)");
   const double diameter = 2.0 * max_radius;
+  const std::string one_diameter = "[2 max_radius, +inf) = [" + number(diameter) + ", +inf)";
   if (!(domain.xhi - domain.xlo >= diameter))
-    throw std::invalid_argument("deposition: x extent xhi - xlo = " +
-                                std::to_string(domain.xhi - domain.xlo) +
-                                " must be at least one sphere diameter (" +
-                                std::to_string(diameter) + ")");
+    throw_outside_range("x extent xhi - xlo", domain.xhi - domain.xlo, one_diameter);
   if (!(domain.yhi - domain.ylo >= diameter))
-    throw std::invalid_argument("deposition: y extent yhi - ylo = " +
-                                std::to_string(domain.yhi - domain.ylo) +
-                                " must be at least one sphere diameter (" +
-                                std::to_string(diameter) + ")");
-  if (!std::isfinite(domain.z_floor))
-    throw std::invalid_argument("deposition: z_floor must be finite");
+    throw_outside_range("y extent yhi - ylo", domain.yhi - domain.ylo, one_diameter);
+  if (!std::isfinite(domain.z_floor)) throw_outside_range("z_floor", domain.z_floor, "(finite)");
   DepositedSpheres &packing = impl_->packing;
   packing.domain = domain;
   packing.r_max = max_radius;
@@ -795,10 +797,7 @@ SequentialDeposition &SequentialDeposition::operator=(SequentialDeposition &&) n
 
 void SequentialDeposition::add_fixed_sphere(double x, double y, double z, double radius)
 {
-  if (!(radius > 0.0) || radius > impl_->packing.r_max)
-    throw std::invalid_argument("deposition: radius = " + std::to_string(radius) +
-                                " must be in (0, max_radius = " +
-                                std::to_string(impl_->packing.r_max) + "]");
+  check_radius(radius, impl_->packing.r_max);
   Vec3 p{x, y, z};
   impl_->packing.wrap(p);
   impl_->insert(p, radius);
@@ -808,17 +807,16 @@ DropOutcome SequentialDeposition::drop(double x, double y, double radius)
 {
   Impl &s = *impl_;
   const DepositionDomain &domain = s.packing.domain;
-  if (!(radius > 0.0) || radius > s.packing.r_max)
-    throw std::invalid_argument("deposition: radius = " + std::to_string(radius) +
-                                " must be in (0, max_radius = " +
-                                std::to_string(s.packing.r_max) + "]");
+  check_radius(radius, s.packing.r_max);
   const double slack = kDepositionSupportTolerance * radius;
   if (!domain.periodic_x && (x < domain.xlo + radius - slack || x > domain.xhi - radius + slack))
-    throw std::invalid_argument("deposition: drop point x = " + std::to_string(x) +
-                                " must be in [xlo + r, xhi - r] between walls");
+    throw_outside_range("drop point x", x,
+                        "[xlo + r, xhi - r] = [" + number(domain.xlo + radius) + ", " +
+                            number(domain.xhi - radius) + "] (between walls)");
   if (!domain.periodic_y && (y < domain.ylo + radius - slack || y > domain.yhi - radius + slack))
-    throw std::invalid_argument("deposition: drop point y = " + std::to_string(y) +
-                                " must be in [ylo + r, yhi - r] between walls");
+    throw_outside_range("drop point y", y,
+                        "[ylo + r, yhi - r] = [" + number(domain.ylo + radius) + ", " +
+                            number(domain.yhi - radius) + "] (between walls)");
   DropOutcome out = s.descend(x, y, radius);
   if (out.rest != RestingOn::Unresolved) s.insert({out.x, out.y, out.z}, radius);
   return out;
@@ -836,30 +834,24 @@ const DepositionStats &SequentialDeposition::stats() const { return impl_->stats
 void validate(const PackingParams &params)
 {
   if (params.n < 1 || params.n > std::numeric_limits<std::int32_t>::max() - 1)
-    throw std::invalid_argument("N = " + std::to_string(params.n) +
-                                " must be a number of spheres in [1, 2^31 - 2]");
+    throw_outside_range("N", params.n, "[1, 2^31 - 2] (a number of spheres)");
   if (!(params.radius > 0.0) || !std::isfinite(params.radius))
-    throw std::invalid_argument("R = " + number(params.radius) +
-                                " must be a positive sphere radius");
+    throw_outside_range("R", params.radius, "(0, +inf) (the mean sphere radius)");
   if (!(params.dispersity >= 0.0 && params.dispersity < 1.0))
-    throw std::invalid_argument("dispersity = " + number(params.dispersity) +
-                                " must be in [0, 1) (radii uniform in [R(1 - W), R(1 + W)])");
-  if (!(params.density > 0.0))
-    throw std::invalid_argument("density = " + number(params.density) + " must be > 0");
+    throw_outside_range("dispersity", params.dispersity,
+                        "[0, 1) (radii uniform in [R(1 - W), R(1 + W)])");
+  if (!(params.density > 0.0)) throw_outside_range("density", params.density, "(0, +inf)");
 }
 
 Packing deposit_packing(std::int64_t n, const RadiusDistribution &radii,
                         const DepositionDomain &domain, std::uint64_t seed)
 {
   if (n < 0 || n > std::numeric_limits<std::int32_t>::max() - 1)
-    throw std::invalid_argument("deposit_packing: n = " + std::to_string(n) +
-                                " must be in [0, 2^31 - 2]");
-  if (!(radii.r_min > 0.0) || !std::isfinite(radii.r_max))
-    throw std::invalid_argument("deposit_packing: r_min = " + std::to_string(radii.r_min) +
-                                " must be > 0 and r_max finite");
-  if (!(radii.r_max >= radii.r_min))
-    throw std::invalid_argument("deposit_packing: r_max = " + std::to_string(radii.r_max) +
-                                " must be >= r_min = " + std::to_string(radii.r_min));
+    throw_outside_range("n", n, "[0, 2^31 - 2]");
+  if (!(radii.r_min > 0.0)) throw_outside_range("r_min", radii.r_min, "(0, +inf)");
+  if (!(radii.r_max >= radii.r_min && std::isfinite(radii.r_max)))
+    throw_outside_range("r_max", radii.r_max,
+                        "[r_min, +inf) = [" + number(radii.r_min) + ", +inf)");
   SequentialDeposition engine(domain, radii.r_max, seed);
   Packing out;
   out.xyz.reserve(3 * static_cast<std::size_t>(n));
@@ -891,10 +883,9 @@ Packing deposit_packing(std::int64_t n, const RadiusDistribution &radii,
       ++unresolved;
     }
     if (o.z + r > domain.z_top + top_slack)
-      throw std::runtime_error("deposit_packing: sphere " + std::to_string(i) + " of " +
-                               std::to_string(n) + " rests with its top at z = " +
-                               std::to_string(o.z + r) + ", above the top limit z_top = " +
-                               std::to_string(domain.z_top) +
+      throw std::runtime_error("sphere " + std::to_string(i) + " of " + std::to_string(n) +
+                               " rests with its top at z = " + number(o.z + r) +
+                               ", above the top limit z_top = " + number(domain.z_top) +
                                ": the domain cannot hold the spheres");
     out.xyz.insert(out.xyz.end(), {o.x, o.y, o.z});
     out.radius.push_back(r);

@@ -1,6 +1,7 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 #include "tapmc_dilation.h"
 
+#include "tapmc_checks.h"
 #include "tapmc_defaults.h"
 #include "tapmc_math.h"
 
@@ -15,15 +16,12 @@ namespace tapmc {
 void validate(const DilationParams &params)
 {
   if (!(params.eps >= 0.0 && params.eps <= defaults::kMaxTapEps))
-    throw std::invalid_argument("eps = " + number(params.eps) + " must be in [0, " +
-                                number(defaults::kMaxTapEps) +
-                                "] (relative dilation of the heights above the floor; eps = " +
-                                number(defaults::kMaxTapEps) + " doubles them)");
-  if (params.every < 1)
-    throw std::invalid_argument("every = " + std::to_string(params.every) +
-                                " must be an integer >= 1");
-  if (!std::isfinite(params.z_floor))
-    throw std::invalid_argument("floor = " + number(params.z_floor) + " must be finite");
+    throw_outside_range("eps", params.eps,
+                        "[0, " + number(defaults::kMaxTapEps) +
+                            "] (relative dilation of the heights above the floor; eps = " +
+                            number(defaults::kMaxTapEps) + " doubles them)");
+  if (params.every < 1) throw_outside_range("every", params.every, "[1, +inf)");
+  if (!std::isfinite(params.z_floor)) throw_outside_range("floor", params.z_floor, "(finite)");
 }
 
 double dilate_about_floor(double *xyz, const int *mask, int groupbit, int n, double z_floor,

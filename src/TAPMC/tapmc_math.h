@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 
 namespace tapmc {
@@ -56,13 +57,19 @@ inline double wrap_periodic(double x, double lo, double hi)
 
 // A value as error messages quote it: the shortest decimal that reads back as the same double
 // (at most 17 significant digits), so messages quote "-0.1", as typed, and
-// still distinguish values that differ in the last bit.
+// still distinguish values that differ in the last bit. A whole number is written without an
+// exponent where that is shorter ("10", "1500", but "1e+06").
 inline std::string number(double value)
 {
   char buffer[64];
   for (int digits = 1; digits <= 17; ++digits) {
     std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
     if (std::strtod(buffer, nullptr) == value) break;
+  }
+  if (std::strchr(buffer, 'e') && std::fabs(value) < 1e17 && value == std::floor(value)) {
+    char whole[64];
+    std::snprintf(whole, sizeof whole, "%.0f", value);
+    if (std::strlen(whole) <= std::strlen(buffer)) return whole;
   }
   return buffer;
 }

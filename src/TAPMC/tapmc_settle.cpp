@@ -50,15 +50,18 @@ Settler::~Settler() = default;
 
 void Settler::validate(const SettleParams &p)
 {
-  if (!(p.d_max > 0.0 && std::isfinite(p.d_max))) bad("dmax", p.d_max, "(0, +inf)");
-  if (!(p.theta0 > 0.0 && p.theta0 <= 0.5 * kPi)) bad("theta0", p.theta0, "(0, pi/2]");
-  if (!(p.eta > 0.0 && p.eta < 1.0)) bad("eta", p.eta, "(0, 1) (relative change of <Z>)");
+  if (!(p.d_max > 0.0 && std::isfinite(p.d_max)))
+    throw_outside_range("dmax", p.d_max, "(0, +inf)");
+  if (!(p.theta0 > 0.0 && p.theta0 <= 0.5 * kPi))
+    throw_outside_range("theta0", p.theta0, "(0, pi/2]");
+  if (!(p.eta > 0.0 && p.eta < 1.0))
+    throw_outside_range("eta", p.eta, "(0, 1) (relative change of <Z>)");
   if (!(p.drift_window >= 2 && p.drift_window <= defaults::kSettleDriftWindowMax))
-    bad("window", static_cast<double>(p.drift_window),
-        "[2, " + std::to_string(defaults::kSettleDriftWindowMax) +
-            "] (checks averaged by 'stop drift')");
+    throw_outside_range("window", p.drift_window,
+                        "[2, " + std::to_string(defaults::kSettleDriftWindowMax) +
+                            "] (checks averaged by 'stop drift')");
   check_check_interval(p.check_interval);
-  if (p.max_checks < 1) bad("max_checks", static_cast<double>(p.max_checks), "[1, +inf)");
+  if (p.max_checks < 1) throw_outside_range("max_checks", p.max_checks, "[1, +inf)");
   check_contact_tol(p.contact_tol);
 }
 
@@ -70,7 +73,7 @@ long Settler::trials_per_check(long check_interval, long movable)
 ConvergenceCheck Settler::make_convergence_check(const SettleParams &params, long movable,
                                                  double mean_height_start)
 {
-  if (movable < 1) bad("movable", static_cast<double>(movable), "[1, +inf)");
+  if (movable < 1) throw_outside_range("movable", movable, "[1, +inf)");
   const long interval = trials_per_check(params.check_interval, movable);
   return ConvergenceCheck(params.stop, params.eta, params.max_checks, mean_height_start,
                           static_cast<double>(interval) / static_cast<double>(movable),
@@ -80,7 +83,7 @@ ConvergenceCheck Settler::make_convergence_check(const SettleParams &params, lon
 long Settler::max_checks_for_sweeps(long max_sweeps, long check_interval, long movable)
 {
   check_check_interval(check_interval);
-  if (max_sweeps < 1) bad("maxsweeps", static_cast<double>(max_sweeps), "[1, +inf)");
+  if (max_sweeps < 1) throw_outside_range("maxsweeps", max_sweeps, "[1, +inf)");
   const long interval = trials_per_check(check_interval, movable);
   return std::max(1L, (max_sweeps * movable + interval - 1) / interval);
 }
@@ -96,13 +99,14 @@ SettleResult Settler::settle(double *xyz, const double *radius, const unsigned c
                              int *image_shift_xy)
 {
   validate(params);
-  if (n < 0) bad("n", n, "[0, +inf)");
+  if (n < 0) throw_outside_range("n", n, "[0, +inf)");
   if (n > 0 && (!xyz || !radius))
     throw std::invalid_argument("xyz and radius must not be null when n > 0");
   const Scene scene = make_scene(radius, n, box, params.contact_tol);
   for (int d = 0; d < 2; ++d)
     if (scene.periodic[d] && !(params.d_max < scene.length[d]))
-      bad("dmax", params.d_max, "(0, periodic length) = (0, " + number(scene.length[d]) + ")");
+      throw_outside_range("dmax", params.d_max,
+                          "(0, periodic length) = (0, " + number(scene.length[d]) + ")");
 
   movable_ids_.clear();
   for (int i = 0; i < n; ++i)
@@ -112,7 +116,7 @@ SettleResult Settler::settle(double *xyz, const double *radius, const unsigned c
   result.movable = m;
   if (m == 0) return result;
   if (static_cast<std::uint64_t>(m) >= (std::uint64_t{1} << 32))
-    bad("number of movable spheres", static_cast<double>(m), "[0, 2^32)");
+    throw_outside_range("number of movable spheres", m, "[0, 2^32)");
 
   if (!sampler_ || sampler_->d_max() != params.d_max ||
       sampler_->theta_sampler().theta0() != params.theta0)
@@ -164,7 +168,7 @@ Violation Settler::find_violation(const double *xyz, const double *radius, int n
                                   const SettleBox &box, double contact_tol)
 {
   check_contact_tol(contact_tol);
-  if (n < 0) bad("n", n, "[0, +inf)");
+  if (n < 0) throw_outside_range("n", n, "[0, +inf)");
   Violation v;
   if (n == 0) return v;
   if (!xyz || !radius) throw std::invalid_argument("xyz and radius must not be null when n > 0");

@@ -6,6 +6,7 @@
 #define TAPMC_SETTLE_GEOMETRY_H
 
 #include "tapmc_cell_grid.h"
+#include "tapmc_checks.h"
 #include "tapmc_contact.h"
 #include "tapmc_defaults.h"
 #include "tapmc_math.h"
@@ -22,22 +23,18 @@ namespace tapmc {
 namespace settle_geometry {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-[[noreturn]] inline void bad(const std::string &name, double value, const std::string &range)
-{
-  throw std::invalid_argument(name + " = " + number(value) + " is outside the allowed range " +
-                              range);
-}
 
 inline void check_contact_tol(double contact_tol)
 {
   if (!(contact_tol >= 0.0 && contact_tol < defaults::kMaxContactTolerance))
-    bad("contact_tol", contact_tol, "[0, " + number(defaults::kMaxContactTolerance) + ")");
+    throw_outside_range("contact_tol", contact_tol,
+                        "[0, " + number(defaults::kMaxContactTolerance) + ")");
 }
 
 inline void check_check_interval(long check_interval)
 {
   if (check_interval < 0)
-    bad("check", static_cast<double>(check_interval), "[0, +inf) (0 = one sweep)");
+    throw_outside_range("check", check_interval, "[0, +inf) (0 = one sweep)");
 }
 
 // Wraps one trial step (|step| < L) into [lo, hi): at most one period (wrap_periodic of
@@ -76,13 +73,13 @@ inline Scene make_scene(const double *radius, int n, const SettleBox &box, doubl
   s.tol = contact_tol;
   s.one_minus_tol = 1.0 - contact_tol;
   s.floor_z = box.floor_z;
-  if (!std::isfinite(box.floor_z)) bad("floor_z", box.floor_z, "(finite)");
+  if (!std::isfinite(box.floor_z)) throw_outside_range("floor_z", box.floor_z, "(finite)");
   if (n > 0) {
     s.r_min = s.r_max = radius[0];
     for (int i = 0; i < n; ++i) {
       const double r = radius[i];
       if (!(r > 0.0 && std::isfinite(r)))
-        bad("radius[" + std::to_string(i) + "]", r, "(0, +inf)");
+        throw_outside_range("radius[" + std::to_string(i) + "]", r, "(0, +inf)");
       s.r_min = std::min(s.r_min, r);
       s.r_max = std::max(s.r_max, r);
     }
@@ -95,31 +92,35 @@ inline Scene make_scene(const double *radius, int n, const SettleBox &box, doubl
     s.lo[d] = box.lo[d];
     s.hi[d] = box.hi[d];
     if (box.periodic[d]) {
-      if (!(std::isfinite(box.lo[d]) && std::isfinite(box.hi[d]) && box.hi[d] > box.lo[d]))
-        throw std::invalid_argument(std::string("box ") + axis_name[d] + " bounds [" +
-                                    number(box.lo[d]) + ", " + number(box.hi[d]) +
-                                    ") of a periodic axis must be finite with lo < hi");
+      if (!std::isfinite(box.lo[d]))
+        throw_outside_range(std::string("periodic box lo[") + axis_name[d] + "]", box.lo[d],
+                            "(finite)");
+      if (!(std::isfinite(box.hi[d]) && box.hi[d] > box.lo[d]))
+        throw_outside_range(std::string("periodic box hi[") + axis_name[d] + "]", box.hi[d],
+                            "(lo, +inf) = (" + number(box.lo[d]) + ", +inf)");
       s.length[d] = box.hi[d] - box.lo[d];
       if (s.length[d] < 2.0 * s.r_max)
-        bad(std::string("periodic box length ") + axis_name[d], s.length[d],
-            "[2 R_max, +inf) = [" + number(2.0 * s.r_max) + ", +inf)");
+        throw_outside_range(std::string("periodic box length ") + axis_name[d], s.length[d],
+                            "[2 R_max, +inf) = [" + number(2.0 * s.r_max) + ", +inf)");
       if (box.wall_lo[d] || box.wall_hi[d])
         throw std::invalid_argument(std::string("wall_lo/wall_hi[") + axis_name[d] +
                                     "] set on a periodic axis: walls need a non-periodic axis");
     } else {
       if (box.wall_lo[d]) {
         if (!std::isfinite(box.wall_lo_pos[d]))
-          bad(std::string("wall_lo_pos[") + axis_name[d] + "]", box.wall_lo_pos[d], "(finite)");
+          throw_outside_range(std::string("wall_lo_pos[") + axis_name[d] + "]",
+                              box.wall_lo_pos[d], "(finite)");
         s.wall_lo[d] = box.wall_lo_pos[d];
       }
       if (box.wall_hi[d]) {
         if (!std::isfinite(box.wall_hi_pos[d]))
-          bad(std::string("wall_hi_pos[") + axis_name[d] + "]", box.wall_hi_pos[d], "(finite)");
+          throw_outside_range(std::string("wall_hi_pos[") + axis_name[d] + "]",
+                              box.wall_hi_pos[d], "(finite)");
         s.wall_hi[d] = box.wall_hi_pos[d];
       }
       if (box.wall_lo[d] && box.wall_hi[d] && !(box.wall_lo_pos[d] < box.wall_hi_pos[d]))
-        bad(std::string("wall_hi_pos[") + axis_name[d] + "]", box.wall_hi_pos[d],
-            "(wall_lo_pos, +inf) = (" + number(box.wall_lo_pos[d]) + ", +inf)");
+        throw_outside_range(std::string("wall_hi_pos[") + axis_name[d] + "]", box.wall_hi_pos[d],
+                            "(wall_lo_pos, +inf) = (" + number(box.wall_lo_pos[d]) + ", +inf)");
     }
   }
   return s;

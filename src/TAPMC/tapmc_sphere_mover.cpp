@@ -379,7 +379,7 @@ SphereMover::~SphereMover() = default;
 void SphereMover::set_skin(double skin_over_max_radius)
 {
   if (!(skin_over_max_radius > 0.0 && std::isfinite(skin_over_max_radius)))
-    bad("list skin (units of R_max)", skin_over_max_radius, "(0, +inf)");
+    throw_outside_range("list skin (units of R_max)", skin_over_max_radius, "(0, +inf)");
   state_->skin_over_max_radius = skin_over_max_radius;
 }
 
@@ -390,14 +390,15 @@ void SphereMover::reset(const double *xyz, const double *radius, int n, const Se
 {
   State &st = *state_;
   check_contact_tol(contact_tol);
-  if (n < 0) bad("n", n, "[0, +inf)");
+  if (n < 0) throw_outside_range("n", n, "[0, +inf)");
   if (n > 0 && (!xyz || !radius))
     throw std::invalid_argument("xyz and radius must not be null when n > 0");
-  if (!(d_max > 0.0 && std::isfinite(d_max))) bad("dmax", d_max, "(0, +inf)");
+  if (!(d_max > 0.0 && std::isfinite(d_max))) throw_outside_range("dmax", d_max, "(0, +inf)");
   Scene sc = make_scene(radius, n, box, contact_tol);
   for (int d = 0; d < 2; ++d)
     if (sc.periodic[d] && !(d_max < sc.length[d]))
-      bad("dmax", d_max, "(0, periodic length) = (0, " + number(sc.length[d]) + ")");
+      throw_outside_range("dmax", d_max,
+                          "(0, periodic length) = (0, " + number(sc.length[d]) + ")");
   sc.radius = nullptr;
   st.scene = sc;
   st.n = n;
@@ -420,9 +421,11 @@ void SphereMover::reset(const double *xyz, const double *radius, int n, const Se
 void SphereMover::set_position(int i, const double *xyz)
 {
   State &st = *state_;
-  if (!(i >= 0 && i < st.n)) bad("sphere index", i, "[0, " + std::to_string(st.n) + ")");
+  if (!(i >= 0 && i < st.n))
+    throw_outside_range("sphere index", i, "[0, " + std::to_string(st.n) + ")");
   for (int d = 0; d < 3; ++d)
-    if (!std::isfinite(xyz[d])) bad("position of sphere " + std::to_string(i), xyz[d], "(finite)");
+    if (!std::isfinite(xyz[d]))
+      throw_outside_range("position of sphere " + std::to_string(i), xyz[d], "(finite)");
   const Scene &sc = st.scene;
   const int s = st.spheres.slot_of[i];
   double *p = st.spheres.at(s);
@@ -651,11 +654,12 @@ void SphereMover::run(const int *candidates, long m, PickOrder order, long &swee
   State &st = *state_;
   if (trials <= 0) return;
   if (!(m >= 1 && static_cast<std::uint64_t>(m) < (std::uint64_t{1} << 32)))
-    bad("number of candidates", static_cast<double>(m), "[1, 2^32)");
+    throw_outside_range("number of candidates", m, "[1, 2^32)");
   if (!(sweep_cursor >= 0 && sweep_cursor < m))
-    bad("sweep_cursor", static_cast<double>(sweep_cursor), "[0, m)");
+    throw_outside_range("sweep_cursor", sweep_cursor, "[0, m)");
   if (sampler.d_max() > st.d_max)
-    bad("sampler d_max", sampler.d_max(), "(0, " + number(st.d_max) + "] (the d_max of reset)");
+    throw_outside_range("sampler d_max", sampler.d_max(),
+                        "(0, " + number(st.d_max) + "] (the d_max of reset)");
   // A block of at least half a sweep translates the candidates to slots once (one pass in
   // order), so a random pick costs one indirection instead of two dependent ones.
   const int *candidate_slots = nullptr;
@@ -664,7 +668,8 @@ void SphereMover::run(const int *candidates, long m, PickOrder order, long &swee
     for (long k = 0; k < m; ++k) {
       const int c = candidates[k];
       if (!(c >= 0 && c < st.n))
-        bad("candidates[" + std::to_string(k) + "]", c, "[0, " + std::to_string(st.n) + ")");
+        throw_outside_range("candidates[" + std::to_string(k) + "]", c,
+                            "[0, " + std::to_string(st.n) + ")");
       st.candidate_slots[k] = st.spheres.slot_of[c];
     }
     candidate_slots = st.candidate_slots.data();

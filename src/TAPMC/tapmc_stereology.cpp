@@ -2,6 +2,7 @@
 // Exact stereology kernels: closed-form sphere slab, disk band and two-plane sphere volumes.
 #include "tapmc_stereology.h"
 
+#include "tapmc_checks.h"
 #include "tapmc_defaults.h"
 #include "tapmc_math.h"
 
@@ -76,10 +77,6 @@ ImageRange image_range(bool periodic, double centre, double radius, double lo, d
           static_cast<int>(std::floor((hi - centre + radius) / period))};
 }
 
-void require(bool ok, const std::string &message)
-{
-  if (!ok) throw std::invalid_argument("stereology: " + message);
-}
 
 }  // namespace
 
@@ -201,15 +198,15 @@ double vertical_slab_volume(const Spheres &spheres, const Box &box, int axis, do
 
 void validate(const PlaneGrid &grid)
 {
-  require(grid.n >= 1, "planes n = " + std::to_string(grid.n) + " must be >= 1");
-  require(grid.lo < grid.hi,
-          "planes lo = " + number(grid.lo) + " must be < hi = " + number(grid.hi));
+  if (!(grid.n >= 1)) throw_outside_range("planes n", grid.n, "[1, +inf)");
+  if (!(grid.lo < grid.hi))
+    throw_outside_range("planes lo", grid.lo, "(-inf, hi) = (-inf, " + number(grid.hi) + ")");
 }
 
 void accumulate_profile(const Spheres &spheres, const Box &box, int axis, const PlaneGrid &grid,
                         double za, double zb, double *cut_area, double *bin_volume)
 {
-  require(axis >= 0 && axis <= 2, "axis = " + std::to_string(axis) + " must be 0, 1 or 2");
+  if (!(axis >= 0 && axis <= 2)) throw_outside_range("axis", axis, "{0, 1, 2}");
   validate(grid);
   const int n = grid.n;
   const double w = grid.bin_width();
@@ -276,11 +273,12 @@ int ColumnGrid::column_of(double x, double y) const
 
 ColumnGrid make_column_grid(const Box &box, double width)
 {
-  require(width > 0.0, "column width = " + std::to_string(width) + " must be > 0");
+  if (!(width > 0.0)) throw_outside_range("column width", width, "(0, +inf)");
   ColumnGrid g;
   for (int d = 0; d < 2; ++d) {
     const double length = box.length(d);
-    require(length > 0.0, "box length along " + std::to_string(d) + " must be > 0");
+    if (!(length > 0.0))
+      throw_outside_range(std::string("box length along ") + "xy"[d], length, "(0, +inf)");
     g.lo[d] = box.lo[d];
     g.n[d] = std::max(1, static_cast<int>(std::floor(length / width)));
     g.width[d] = length / g.n[d];
@@ -313,23 +311,23 @@ double surface_height(const double *tops, int ncolumns, double fallback)
 
 void validate(const SummarySettings &s)
 {
-  require(s.top_fraction > 0.0 && s.top_fraction <= 1.0,
-          "top_fraction = " + number(s.top_fraction) + " must be in (0, 1]");
-  require(s.wall_factor > 0.0, "wall_factor = " + number(s.wall_factor) + " must be > 0");
-  require(s.transverse_axis == 0 || s.transverse_axis == 1,
-          "transverse axis = " + std::to_string(s.transverse_axis) + " must be 0 (x) or 1 (y)");
+  if (!(s.top_fraction > 0.0 && s.top_fraction <= 1.0))
+    throw_outside_range("top_fraction", s.top_fraction, "(0, 1]");
+  if (!(s.wall_factor > 0.0)) throw_outside_range("wall_factor", s.wall_factor, "(0, +inf)");
+  if (!(s.transverse_axis == 0 || s.transverse_axis == 1))
+    throw_outside_range("transverse axis", s.transverse_axis, "{0 (x), 1 (y)}");
   auto positive = [](const std::optional<double> &v, const char *name) {
-    if (v) require(*v > 0.0, std::string(name) + " = " + number(*v) + " must be > 0");
+    if (v && !(*v > 0.0)) throw_outside_range(name, *v, "(0, +inf)");
   };
   positive(s.bulk_height, "bulk");
   positive(s.wall_band, "wall_band");
   positive(s.lateral_width, "lateral");
   positive(s.column_width, "column");
-  require(s.window_lo.has_value() == s.window_hi.has_value(),
-          "window needs both za and zb");
-  if (s.window_lo)
-    require(*s.window_lo < *s.window_hi, "window za = " + number(*s.window_lo) +
-                                             " must be < zb = " + number(*s.window_hi));
+  if (s.window_lo.has_value() != s.window_hi.has_value())
+    throw std::invalid_argument("window needs both za and zb");
+  if (s.window_lo && !(*s.window_lo < *s.window_hi))
+    throw_outside_range("window za", *s.window_lo,
+                        "(-inf, zb) = (-inf, " + number(*s.window_hi) + ")");
 }
 
 double resolved_column_width(const SummarySettings &settings, double mean_radius)

@@ -2,6 +2,7 @@
 // Trial displacement of the redeposition: strip tables of the theta sampler, the full draw.
 #include "tapmc_trial_move.h"
 
+#include "tapmc_checks.h"
 #include "tapmc_defaults.h"
 #include "tapmc_math.h"
 
@@ -16,8 +17,7 @@ namespace tapmc {
 ThetaSampler::ThetaSampler(double theta0) : theta0_(theta0)
 {
   if (!(theta0 > 0.0 && theta0 <= kThetaMax))
-    throw std::invalid_argument("theta0 = " + number(theta0) +
-                                " is outside the allowed range (0, pi/2]");
+    throw_outside_range("theta0", theta0, "(0, pi/2]");
   scaled_ = theta0 < kScaledBelow;
   inv_theta0_sq_ = 1.0 / (theta0 * theta0);
   norm_ = std::erf(kThetaMax / theta0);
@@ -110,8 +110,7 @@ TrialMoveSampler::TrialMoveSampler(double d_max, double theta0)
     : d_max_(d_max), theta_(theta0), phi_table_(kTwoPi), theta_table_(ThetaSampler::kThetaMax)
 {
   if (!(d_max > 0.0 && std::isfinite(d_max)))
-    throw std::invalid_argument("d_max = " + number(d_max) +
-                                " is outside the allowed range (0, +inf)");
+    throw_outside_range("d_max", d_max, "(0, +inf)");
 }
 
 namespace {
@@ -219,9 +218,7 @@ void TrialMoveSampler::draw_batch(const CounterRandom &rng, std::uint64_t first,
                                   std::uint32_t n_pick, TrialDraw *out) const
 {
   if (count < 0 || count > kBatchMax)
-    throw std::invalid_argument("draw_batch count = " + std::to_string(count) +
-                                " is outside the allowed range [0, " +
-                                std::to_string(kBatchMax) + "]");
+    throw_outside_range("draw_batch count", count, "[0, " + std::to_string(kBatchMax) + "]");
   std::uint64_t positions[2 * kBatchMax];
   RandomBlock blocks[2 * kBatchMax];
   for (int k = 0; k < count; ++k) {

@@ -23,18 +23,20 @@ def run_case(body, boundary="p p fm", extra=""):
 
 
 TAPDILATE_CASES = [
-    ("fix t all tapdilate -0.1", "eps = -0.1 must be in [0, 1]"),
-    ("fix t all tapdilate 1e6", "eps = 1e+06 must be in [0, 1]"),
-    ("fix t all tapdilate 1e300", "eps = 1e+300 must be in [0, 1]"),
-    ("variable e equal 5\nfix t all tapdilate v_e\nrun 1", "(variable 'e', step 1): eps = 5 must be in [0, 1]"),
+    ("fix t all tapdilate -0.1", "eps = -0.1 is outside the allowed range [0, 1]"),
+    ("fix t all tapdilate 1e6", "eps = 1e+06 is outside the allowed range [0, 1]"),
+    ("fix t all tapdilate 1e300", "eps = 1e+300 is outside the allowed range [0, 1]"),
+    ("variable e equal 5\nfix t all tapdilate v_e\nrun 1",
+     "(variable 'e', step 1): eps = 5 is outside the allowed range [0, 1]"),
     ("fix t all tapdilate abc", "abc"),
-    ("fix t all tapdilate 0.1 every 0", "every = 0 must be an integer >= 1"),
+    ("fix t all tapdilate 0.1 every 0", "every = 0 is outside the allowed range [1, +inf)"),
     ("fix t all tapdilate 0.1 floor", "keyword 'floor' needs 1 value(s)"),
     ("fix t all tapdilate 0.1 bogus 3", "unknown keyword 'bogus' (allowed: every, floor)"),
     ("fix t all tapdilate", "expected 'fix ID group tapdilate eps"),
     ("fix t all tapdilate v_nothere\nrun 1", "variable 'nothere' for eps does not exist"),
     ("variable e atom x\nfix t all tapdilate v_e\nrun 1", "variable 'e' for eps must be equal-style"),
-    ("variable e equal -0.5\nfix t all tapdilate v_e\nrun 1", "eps = -0.5 must be in [0, 1]"),
+    ("variable e equal -0.5\nfix t all tapdilate v_e\nrun 1",
+     "eps = -0.5 is outside the allowed range [0, 1]"),
     ("fix t all tapdilate 0.1 floor 3.0\nrun 1", "below the floor"),
 ]
 

@@ -81,7 +81,7 @@ def test_deposition_failing_on_rank_0_stops_every_rank_with_its_message():
     rc, out, _ = run_lammps(HEADER.format(boundary="p p ff", L=16, H=10, ntypes=1) +
                             "create_packing 380 1 1.0 5", nprocs=2, timeout=120)
     assert rc != 0
-    message = "rests with its top at z = 10.037706, above the top limit z_top = 10.000000"
+    message = "rests with its top at z = 10.037705508185672, above the top limit z_top = 10:"
     assert out.count(message) == 1, out
 
 
@@ -143,17 +143,22 @@ def test_polydisperse_and_existing_atoms():
 
 
 BAD_CASES = [
-    ("create_packing 0 1 1.0 5", "N = 0 must be"),
-    ("create_packing -5 1 1.0 5", "N = -5 must be"),
-    ("create_packing 10 1 0.0 5", "R = 0 must be a positive sphere radius"),
-    ("create_packing 10 1 -1 5", "R = -1 must be a positive sphere radius"),
+    ("create_packing 0 1 1.0 5",
+     "N = 0 is outside the allowed range [1, 2^31 - 2] (a number of spheres)"),
+    ("create_packing -5 1 1.0 5",
+     "N = -5 is outside the allowed range [1, 2^31 - 2] (a number of spheres)"),
+    ("create_packing 10 1 0.0 5",
+     "R = 0 is outside the allowed range (0, +inf) (the mean sphere radius)"),
+    ("create_packing 10 1 -1 5",
+     "R = -1 is outside the allowed range (0, +inf) (the mean sphere radius)"),
     ("create_packing 10 2 1.0 5", "type = 2 must be an atom type in [1, 1]"),
     ("create_packing 10 1 1.0 0", "seed = 0 must be a positive integer"),
     ("create_packing 10 1 1.0", "expected 'create_packing N type R seed"),
     ("create_packing 10 1 1.0 5 region nothere", "region ID 'nothere' does not exist"),
     ("create_packing 10 1 1.0 5 bogus 1", "unknown keyword 'bogus'"),
-    ("create_packing 10 1 1.0 5 dispersity 1.5", "dispersity = 1.5 must be in [0, 1)"),
-    ("create_packing 10 1 1.0 5 density 0", "density = 0 must be > 0"),
+    ("create_packing 10 1 1.0 5 dispersity 1.5",
+     "dispersity = 1.5 is outside the allowed range [0, 1)"),
+    ("create_packing 10 1 1.0 5 density 0", "density = 0 is outside the allowed range (0, +inf)"),
     ("create_packing 10 1 1.0 5 walls", "walls needs 'x', 'y', 'x y' or 'none'"),
     ("create_packing 10 1 1.0 5 floor -1", "floor = -1 is below the box bottom"),
     ("create_packing 10 1 20.0 5", "less than one sphere diameter"),

@@ -501,14 +501,19 @@ TEST(Deposition, PackingParamsValidation)
     return message_of<std::invalid_argument>([&] { tapmc::validate(p); });
   };
   EXPECT_EQ(message([](auto &p) { p.n = 0; }),
-            "N = 0 must be a number of spheres in [1, 2^31 - 2]");
+            "N = 0 is outside the allowed range [1, 2^31 - 2] (a number of spheres)");
   EXPECT_EQ(message([](auto &p) { p.n = 2147483647; }),
-            "N = 2147483647 must be a number of spheres in [1, 2^31 - 2]");
-  EXPECT_EQ(message([](auto &p) { p.radius = -0.5; }), "R = -0.5 must be a positive sphere radius");
-  EXPECT_EQ(message([](auto &p) { p.radius = INFINITY; }), "R = inf must be a positive sphere radius");
+            "N = 2147483647 is outside the allowed range [1, 2^31 - 2] "
+            "(a number of spheres)");
+  EXPECT_EQ(message([](auto &p) { p.radius = -0.5; }),
+            "R = -0.5 is outside the allowed range (0, +inf) (the mean sphere radius)");
+  EXPECT_EQ(message([](auto &p) { p.radius = INFINITY; }),
+            "R = inf is outside the allowed range (0, +inf) (the mean sphere radius)");
   EXPECT_EQ(message([](auto &p) { p.dispersity = 1.0; }),
-            "dispersity = 1 must be in [0, 1) (radii uniform in [R(1 - W), R(1 + W)])");
-  EXPECT_EQ(message([](auto &p) { p.density = 0.0; }), "density = 0 must be > 0");
+            "dispersity = 1 is outside the allowed range [0, 1) "
+            "(radii uniform in [R(1 - W), R(1 + W)])");
+  EXPECT_EQ(message([](auto &p) { p.density = 0.0; }),
+            "density = 0 is outside the allowed range (0, +inf)");
 }
 
 // ---- the paper's initial packing: N = 4096, L = 32R, PBC -------------------------------------

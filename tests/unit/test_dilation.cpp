@@ -39,14 +39,14 @@ TEST(Dilation, ParamsValidationNamesTheParameter)
   EXPECT_NO_THROW(tapmc::validate(good));
   tapmc::DilationParams p = good;
   p.eps = -0.1;
-  EXPECT_EQ(message_of(p), "eps = -0.1 must be in [0, 1] (relative dilation of the heights above "
-                           "the floor; eps = 1 doubles them)");
+  EXPECT_EQ(message_of(p), "eps = -0.1 is outside the allowed range [0, 1] (relative dilation of "
+                           "the heights above the floor; eps = 1 doubles them)");
   p.eps = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_NE(message_of(p).find("eps = nan must be in [0, 1]"), std::string::npos);
+  EXPECT_NE(message_of(p).find("eps = nan is outside the allowed range [0, 1]"), std::string::npos);
   p = good;
   p.every = 0;
-  EXPECT_EQ(message_of(p), "every = 0 must be an integer >= 1");
+  EXPECT_EQ(message_of(p), "every = 0 is outside the allowed range [1, +inf)");
   p = good;
   p.z_floor = INFINITY;
-  EXPECT_EQ(message_of(p), "floor = inf must be finite");
+  EXPECT_EQ(message_of(p), "floor = inf is outside the allowed range (finite)");
 }

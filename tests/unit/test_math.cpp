@@ -1,5 +1,6 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 // Tests of the shared periodic wrap: inside untouched, any distance, image counts, the seam.
+#include "tapmc_checks.h"
 #include "tapmc_math.h"
 
 #include <gtest/gtest.h>
@@ -43,4 +44,31 @@ TEST(Math, WrapAtTheSeamLandsOnLo)
   EXPECT_TRUE(wrapped >= lo && wrapped < hi) << wrapped;
   EXPECT_EQ(wrapped, lo);
   EXPECT_EQ(image, 0);
+}
+
+// Every kernel refuses a parameter in one phrase, quoting doubles in their shortest round-trip
+// form and integers exactly (also beyond 2^53, where a double would round them).
+TEST(Checks, OnePhraseAndOneWayToWriteValues)
+{
+  auto message = [](auto value) {
+    try {
+      tapmc::throw_outside_range("x", value, "(0, 1]");
+    } catch (const std::invalid_argument &e) {
+      return std::string(e.what());
+    }
+    return std::string("(no exception)");
+  };
+  EXPECT_EQ(message(-0.1), "x = -0.1 is outside the allowed range (0, 1]");
+  EXPECT_EQ(message(1e300), "x = 1e+300 is outside the allowed range (0, 1]");
+  EXPECT_EQ(message(std::nan("")), "x = nan is outside the allowed range (0, 1]");
+  EXPECT_EQ(message(0.1 + 0.2), "x = 0.30000000000000004 is outside the allowed range (0, 1]");
+  EXPECT_EQ(message(10.0), "x = 10 is outside the allowed range (0, 1]");  // not "1e+01"
+  EXPECT_EQ(message(1500.0), "x = 1500 is outside the allowed range (0, 1]");
+  EXPECT_EQ(message(1e6), "x = 1e+06 is outside the allowed range (0, 1]");
+  EXPECT_EQ(message(-0.0), "x = -0 is outside the allowed range (0, 1]");
+  EXPECT_EQ(message(-5), "x = -5 is outside the allowed range (0, 1]");
+  EXPECT_EQ(message(9007199254740993LL),
+            "x = 9007199254740993 is outside the allowed range (0, 1]");
+  EXPECT_EQ(tapmc::outside_range_message("seed", "1.5", "[1, 10]"),
+            "seed = 1.5 is outside the allowed range [1, 10]");
 }
