@@ -98,7 +98,7 @@ def thermo_steps(log):
     """Steps of the thermo rows of every run in the log."""
     steps, inside = [], False
     for line in log.splitlines():
-        if line.startswith("Step "):
+        if line.split()[:1] == ["Step"]:   # 2026 right-aligns the header
             inside = True
         elif line.startswith("Loop time"):
             inside = False
