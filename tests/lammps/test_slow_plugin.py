@@ -1,24 +1,22 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 # The plugin route (label "slow"): a LAMMPS built with the PLUGIN package and C++ exceptions
-# (tools/setup/build-lammps-plugin.sh, the same LAMMPS version as Debian's) loads TAPMC with
-# `plugin load`, from its own `lmp` and from its Python module; the paper's periodic example then
-# follows exactly the trajectory of lmp_tapmc (same kernels, same random streams), and in Python
-# a bad TAPMC input raises an exception carrying TAPMC's message while LAMMPS stays usable.
-# Skipped when that LAMMPS is not built, unless TAPMC_SLOW=1, which builds it (about 15 minutes on
-# two busy cores).
+# (tools/setup/build-lammps-plugin.sh: the same LAMMPS version as Debian's, and the current
+# release, 4 Jul 2026) loads TAPMC with `plugin load`, from its own `lmp` and from its Python
+# module; the paper's periodic example then follows exactly the trajectory of lmp_tapmc on
+# Debian's LAMMPS (same kernels, same random streams), and in Python a bad TAPMC input raises an
+# exception carrying TAPMC's message while LAMMPS stays usable. Each LAMMPS is skipped when it is
+# not built, unless TAPMC_SLOW=1, which builds it (lammps_builds.py).
 import json
 import os
-import subprocess
+import re
 
 import numpy as np
 import pytest
 
+from lammps_builds import LAMMPS_BUILDS, lammps_prefix, run, tapmc_against
 from lmprun import LMP, MPIRUN, read_dump
 from test_compaction import EXAMPLE, thermo_table
 
-SOURCE_DIR = os.path.abspath(os.environ.get("TAPMC_SOURCE_DIR", "../.."))
-BUILD_DIR = os.path.abspath(os.environ.get("TAPMC_BUILD_DIR", "../../build"))
-BUILD_SCRIPT = os.path.join(SOURCE_DIR, "tools", "setup", "build-lammps-plugin.sh")
 PYTHON = "/usr/bin/python3"
 TAPS = 3
 
@@ -33,7 +31,7 @@ import lammps
 lib, body = sys.argv[1], sys.argv[2]
 L = lammps.lammps(cmdargs=["-log", "log.lammps", "-screen", "none", "-nocite",
                            "-var", "taps", sys.argv[3]])
-out = {"module": lammps.__file__, "has_exceptions": L.has_exceptions}
+out = {"module": lammps.__file__, "has_exceptions": L.has_exceptions, "version": L.version()}
 L.command("plugin load " + lib)
 L.file(body)
 out["step_after_example"] = L.get_thermo("step")
@@ -52,7 +50,8 @@ L.commands_list(["unfix lonely", "run 1", "variable phi_b equal c_phi[1]"])
 out["step_after_errors"] = L.get_thermo("step")
 out["phi_after_errors"] = L.extract_variable("phi_b")
 
-# `clear` unloads the plugins: TAPMC styles are unknown until the next `plugin load`
+# `clear`: LAMMPS 2021 unloads the plugins (TAPMC styles are unknown until the next
+# `plugin load`); newer versions load them again by themselves
 L.command("clear")
 box = ["units lj", "atom_style sphere", "boundary p p fm", "region b block 0 4 0 4 0 4",
        "create_box 1 b"]
@@ -65,50 +64,12 @@ print("RESULT " + json.dumps(out))
 """
 
 
-def run(cmd, cwd, env=None, timeout=1800):
-    proc = subprocess.run(cmd, cwd=cwd, env=env, stdout=subprocess.PIPE,
-                          stderr=subprocess.STDOUT, text=True, timeout=timeout,
-                          stdin=subprocess.DEVNULL)
-    return proc.returncode, proc.stdout
-
-
-def cached_build_setting(name, default):
-    try:
-        with open(os.path.join(BUILD_DIR, "CMakeCache.txt")) as f:
-            for line in f:
-                if line.startswith(name + ":"):
-                    return line.split("=", 1)[1].strip()
-    except OSError:
-        pass
-    return default
-
-
-@pytest.fixture(scope="module")
-def plugin(tmp_path_factory):
-    """(prefix of the plugin LAMMPS, TAPMC plugin library compiled against it)."""
-    rc, out = run(["bash", BUILD_SCRIPT, "--print-prefix"], cwd=SOURCE_DIR)
-    assert rc == 0, out
-    prefix = out.strip()
-    if os.environ.get("TAPMC_SLOW") == "1":
-        rc, out = run(["bash", BUILD_SCRIPT], cwd=SOURCE_DIR, timeout=4 * 3600)
-        assert rc == 0, out
-    elif not os.path.exists(os.path.join(prefix, ".tapmc-lammps-plugin")):
-        pytest.skip(f"no LAMMPS with PLUGIN and exceptions in {prefix}: build it with "
-                    "tools/setup/build-lammps-plugin.sh (about 15 minutes on two busy cores), "
-                    "or run with TAPMC_SLOW=1 to let this test build it")
-    # TAPMC compiled against that LAMMPS (its headers, LAMMPS_EXCEPTIONS, its liblammps), with
-    # the compiler settings of the main build so that the kernels are the same machine code.
-    build = os.path.join(BUILD_DIR, "lammps-plugin")
-    configure = ["cmake", "-S", SOURCE_DIR, "-B", build,
-                 "-DLAMMPS_DIR=" + os.path.join(prefix, "lib", "cmake", "LAMMPS"),
-                 "-DCMAKE_BUILD_TYPE=" + cached_build_setting("CMAKE_BUILD_TYPE", "Release"),
-                 "-DTAPMC_NATIVE=" + cached_build_setting("TAPMC_NATIVE", "ON"),
-                 "-DTAPMC_BUILD_TESTS=OFF", "-DTAPMC_BUILD_PORES=OFF", "-DTAPMC_BUILD_BENCH=OFF"]
-    rc, out = run(configure, cwd=SOURCE_DIR)
-    assert rc == 0, out
-    rc, out = run(["cmake", "--build", build, "--target", "tapmc", "-j", "2"], cwd=SOURCE_DIR)
-    assert rc == 0, out
-    return prefix, os.path.join(build, "libtapmc.so")
+@pytest.fixture(scope="module", params=sorted(LAMMPS_BUILDS))
+def plugin(request):
+    """(prefix of the plugin LAMMPS, TAPMC plugin library compiled against it, its name)."""
+    prefix = lammps_prefix(request.param)
+    build = tapmc_against(request.param, prefix, ["tapmc"])
+    return prefix, os.path.join(build, "libtapmc.so"), request.param
 
 
 def write_inputs(workdir, lib):
@@ -152,7 +113,7 @@ def reference_two_ranks(tmp_path_factory):
 
 
 def test_plugin_lmp_follows_the_lmp_tapmc_trajectory(plugin, reference, tmp_path):
-    prefix, lib = plugin
+    prefix, lib, _ = plugin
     write_inputs(str(tmp_path), lib)
     rc, out = run([os.path.join(prefix, "bin", "lmp"), "-in", "in.plugin", "-var", "taps",
                    str(TAPS), "-log", "log.lammps", "-nocite"], cwd=str(tmp_path))
@@ -174,7 +135,7 @@ def test_plugin_lmp_under_mpirun(plugin, reference_two_ranks, tmp_path):
     forward communication of the moved spheres, the per-atom round that travels with migrating
     atoms) follows on the plugin LAMMPS exactly the 2-rank trajectory of lmp_tapmc (the printed
     measurements are sums over ranks, which may round differently in the last bits)."""
-    prefix, lib = plugin
+    prefix, lib, _ = plugin
     write_inputs(str(tmp_path), lib)
     rc, out = run(MPIRUN + ["-np", "2", os.path.join(prefix, "bin", "lmp"), "-in", "in.plugin",
                             "-var", "taps", str(TAPS), "-log", "log.lammps", "-nocite"],
@@ -189,7 +150,7 @@ def test_plugin_lmp_under_mpirun(plugin, reference_two_ranks, tmp_path):
 
 
 def test_python_module_raises_on_bad_input_and_keeps_going(plugin, reference, tmp_path):
-    prefix, lib = plugin
+    prefix, lib, _ = plugin
     write_inputs(str(tmp_path), lib)
     env = dict(os.environ, PYTHONPATH=os.path.join(prefix, "python"))
     driver = tmp_path / "driver.py"
@@ -219,7 +180,11 @@ def test_python_module_raises_on_bad_input_and_keeps_going(plugin, reference, tm
     bad = result["bad_in_run"]
     assert bad["raised"] is not None, result
     assert "fix mc/settle: group 'nobody' has no atoms" in bad["message"], bad
-    # (this version's Python module keeps the first 99 characters; the log has the whole line)
+    # (the Python module of LAMMPS 2021 keeps the first 99 characters; in 2026 the exception has
+    # the whole message, source location and input line; the log has the whole line)
+    if result["version"] >= 20260704:
+        assert re.search(r"\(0, \+inf\) \(\S+:\d+\)\nLast input line: fix bad all mc/settle "
+                         r"4928 dmax -1$", result["bad_argument"]["message"]), result
     with open(tmp_path / "log.lammps") as f:
         log = f.read()
     assert "ERROR: fix mc/settle: dmax = -1 is outside the allowed range (0, +inf) (" in log
@@ -227,6 +192,10 @@ def test_python_module_raises_on_bad_input_and_keeps_going(plugin, reference, tm
     assert result["step_after_errors"] == TAPS + 1
     assert 0.5 < result["phi_after_errors"] < 0.65
 
-    # `clear` unloads the plugin; loading it again brings the styles back
-    assert "Unrecognized fix style 'tapdilate'" in result["after_clear"]["message"], result
+    # `clear` unloads the plugin in LAMMPS 2021 (loading it again brings the styles back); later
+    # versions keep the loaded plugins through `clear`
+    if result["version"] < 20220324:
+        assert "Unrecognized fix style 'tapdilate'" in result["after_clear"]["message"], result
+    else:
+        assert result["after_clear"]["raised"] is None, result
     assert result["step_after_reload"] == 1
