@@ -106,7 +106,8 @@ bool ComputeStereoProfile::parse_keywords(int narg, char **arg)
        [&](char **v) {
          fixed_radius_ = number(v[0]);
          if (!(fixed_radius_ > 0.0))
-           error->all(FLERR, "compute stereo/profile: radius = {} must be > 0", fixed_radius_);
+           error->all(FLERR, "compute stereo/profile: {}",
+                      tapmc::outside_range_message("radius", v[0], "(0, +inf)"));
        }},
       {"axis", 1,
        [&](char **v) {

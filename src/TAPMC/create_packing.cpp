@@ -175,8 +175,9 @@ Request parse_request(LAMMPS *lmp, int narg, char **arg)
   parse_options(lmp, narg, arg, req);
   tapmc::guarded(lmp, "create_packing", true, [&] { tapmc::validate(req.params); });
   if (req.type < 1 || req.type > lmp->atom->ntypes)
-    lmp->error->all(FLERR, "create_packing: type = {} must be an atom type in [1, {}]", arg[1],
-                    lmp->atom->ntypes);
+    lmp->error->all(FLERR, "create_packing: {} (the atom types of the box)",
+                    tapmc::outside_range_message("type", arg[1],
+                                                 "[1, " + std::to_string(lmp->atom->ntypes) + "]"));
   return req;
 }
 

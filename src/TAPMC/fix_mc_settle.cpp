@@ -255,7 +255,8 @@ void FixMCSettle::parse_keywords(int narg, char **arg)
        [&](char **v) {
          const double d = number(v[0]);
          if (!(d > 0.0))
-           error->all(FLERR, "fix mc/settle: diameter = {} must be > 0", v[0]);
+           error->all(FLERR, "fix mc/settle: {}",
+                      tapmc::outside_range_message("diameter", v[0], "(0, +inf)"));
          fixed_radius = 0.5 * d;
        }},
       {"xwalls", 2, walls(0)},

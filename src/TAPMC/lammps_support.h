@@ -5,6 +5,8 @@
 #ifndef TAPMC_LAMMPS_SUPPORT_H
 #define TAPMC_LAMMPS_SUPPORT_H
 
+#include "tapmc_checks.h"
+
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
@@ -43,8 +45,8 @@ inline std::int64_t parse_seed(LAMMPS_NS::LAMMPS *lmp, const char *style, const 
     digits = errno == 0;
   }
   if (!digits || value < 1 || value > static_cast<unsigned long long>(kMaxSeed))
-    lmp->error->all(FLERR, "{}: {} = {} must be a positive integer in [1, {}]", style, name, s,
-                    kMaxSeed);
+    lmp->error->all(FLERR, "{}: {} (an integer)", style,
+                    outside_range_message(name, s, "[1, " + std::to_string(kMaxSeed) + "]"));
   return static_cast<std::int64_t>(value);
 }
 

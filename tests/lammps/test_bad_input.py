@@ -54,16 +54,18 @@ def test_tapdilate_fixed_top_with_room_is_fine():
     assert rc == 0, out
 
 
+SEED_RANGE = "is outside the allowed range [1, 9223372036854775807] (an integer)"
+
 MC_SETTLE_CASES = [
-    ("fix s all mc/settle 0", "seed = 0 must be a positive integer"),
-    ("fix s all mc/settle -5", "seed = -5 must be a positive integer"),
+    ("fix s all mc/settle 0", "seed = 0 " + SEED_RANGE),
+    ("fix s all mc/settle -5", "seed = -5 " + SEED_RANGE),
     ("fix s all mc/settle 99999999999999999999",
-     "seed = 99999999999999999999 must be a positive integer in [1, 9223372036854775807]"),
+     "seed = 99999999999999999999 is outside the allowed range [1, 9223372036854775807]"),
     ("fix s all mc/settle 9223372036854775808",
-     "seed = 9223372036854775808 must be a positive integer in [1, 9223372036854775807]"),
-    ("fix s all mc/settle 1.5", "seed = 1.5 must be a positive integer"),
+     "seed = 9223372036854775808 is outside the allowed range [1, 9223372036854775807]"),
+    ("fix s all mc/settle 1.5", "seed = 1.5 " + SEED_RANGE),
     ("create_packing 10 1 0.5 99999999999999999999",
-     "create_packing: seed = 99999999999999999999 must be a positive integer in [1, "),
+     "create_packing: seed = 99999999999999999999 is outside the allowed range [1, "),
     ("fix s all mc/settle 1 dmax 0", "dmax = 0 is outside the allowed range (0, +inf)"),
     ("fix s all mc/settle 1 dmax -0.1", "dmax = -0.1 is outside the allowed range (0, +inf)"),
     ("fix s all mc/settle 1 theta0 0", "theta0 = 0 is outside the allowed range (0, pi/2]"),
@@ -73,7 +75,8 @@ MC_SETTLE_CASES = [
     ("fix s all mc/settle 1 eta 1", "eta = 1 is outside the allowed range (0, 1)"),
     ("fix s all mc/settle 1 check -1", "check = -1 is outside the allowed range [0, +inf)"),
     ("fix s all mc/settle 1 maxsweeps 0", "maxsweeps = 0 is outside the allowed range [1, +inf)"),
-    ("fix s all mc/settle 1 diameter 0", "diameter = 0 must be > 0"),
+    ("fix s all mc/settle 1 diameter 0",
+     "fix mc/settle: diameter = 0 is outside the allowed range (0, +inf)"),
     ("fix s all mc/settle 1 order backwards", "order = backwards must be 'random'"),
     ("fix s all mc/settle 1 xwalls 0 8", "xwalls given but the x boundary is periodic"),
     ("fix s all mc/settle 1 ywalls 3 1", "ywalls lo = 3 must be below hi = 1"),

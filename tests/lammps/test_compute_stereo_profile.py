@@ -117,8 +117,10 @@ def test_same_numbers_on_one_and_two_ranks(boundary):
 
 
 BAD = [
-    ("compute s all stereo/profile radius 0", "radius = 0 must be > 0"),
-    ("compute s all stereo/profile radius -1.5", "radius = -1.5 must be > 0"),
+    ("compute s all stereo/profile radius 0",
+     "compute stereo/profile: radius = 0 is outside the allowed range (0, +inf)"),
+    ("compute s all stereo/profile radius -1.5",
+     "compute stereo/profile: radius = -1.5 is outside the allowed range (0, +inf)"),
     ("compute s all stereo/profile planes 0 10 0",
      "planes n = 0 is outside the allowed range [1, +inf)"),
     ("compute s all stereo/profile planes 5 5 10",

@@ -151,8 +151,10 @@ BAD_CASES = [
      "R = 0 is outside the allowed range (0, +inf) (the mean sphere radius)"),
     ("create_packing 10 1 -1 5",
      "R = -1 is outside the allowed range (0, +inf) (the mean sphere radius)"),
-    ("create_packing 10 2 1.0 5", "type = 2 must be an atom type in [1, 1]"),
-    ("create_packing 10 1 1.0 0", "seed = 0 must be a positive integer"),
+    ("create_packing 10 2 1.0 5",
+     "create_packing: type = 2 is outside the allowed range [1, 1] (the atom types of the box)"),
+    ("create_packing 10 1 1.0 0", "create_packing: seed = 0 is outside the allowed range "
+     "[1, 9223372036854775807] (an integer)"),
     ("create_packing 10 1 1.0", "expected 'create_packing N type R seed"),
     ("create_packing 10 1 1.0 5 region nothere", "region ID 'nothere' does not exist"),
     ("create_packing 10 1 1.0 5 bogus 1", "unknown keyword 'bogus'"),
