@@ -10,7 +10,6 @@
 # two runs).
 import gzip
 import os
-import subprocess
 import sys
 from pathlib import Path
 
@@ -21,6 +20,7 @@ HERE = Path(__file__).resolve().parent
 SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", HERE.parent.parent))
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
 
+from lammps_outputs import run_input  # noqa: E402
 from tapmc.readers import (TapmcFormatError, read_ave_time, read_dump,  # noqa: E402
                            read_fix_print, read_log)
 
@@ -58,24 +58,11 @@ run 2
 """
 
 
-def find_lmp():
-    lmp = os.environ.get("TAPMC_LMP")
-    if lmp:
-        return lmp
-    cand = Path(os.environ.get("TAPMC_BUILD_DIR", SOURCE / "build")) / "lmp_tapmc"
-    if cand.exists():
-        return str(cand)
-    pytest.skip("lmp_tapmc not found (set TAPMC_LMP)")
 
 
 @pytest.fixture(scope="module")
 def run_dir(tmp_path_factory):
-    d = tmp_path_factory.mktemp("tiny_run")
-    (d / "in.tiny").write_text(INPUT)
-    proc = subprocess.run([find_lmp(), "-in", "in.tiny", "-log", "log.lammps", "-screen",
-                           "none"], cwd=d, capture_output=True, text=True, timeout=120)
-    assert proc.returncode == 0, proc.stdout + proc.stderr
-    return d
+    return run_input(tmp_path_factory.mktemp("tiny_run"), INPUT, "in.tiny")
 
 
 def parse(reader, path):

@@ -3,7 +3,6 @@
 # with two `run` commands and a warning between them), cross-checked against each other and
 # against exact stereology recomputed from the dumps; and on broken files (file and line named).
 import os
-import subprocess
 import sys
 from pathlib import Path
 
@@ -14,19 +13,11 @@ HERE = Path(__file__).resolve().parent
 SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", HERE.parent.parent))
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
 
+from lammps_outputs import run_input  # noqa: E402
 from tapmc.readers import (TapmcFormatError, read_ave_time, read_dump,  # noqa: E402
                            read_fix_print, read_log)
 
 
-def find_lmp():
-    lmp = os.environ.get("TAPMC_LMP")
-    if lmp:
-        return lmp
-    for cand in (SOURCE / "build" / "lmp_tapmc",
-                 Path(os.environ.get("TAPMC_BUILD_DIR", SOURCE / "build")) / "lmp_tapmc"):
-        if cand.exists():
-            return str(cand)
-    pytest.skip("lmp_tapmc not found (set TAPMC_LMP)")
 
 
 # Box with a non-zero lower corner in every direction, so that a reader that shifts positions
@@ -66,12 +57,7 @@ run 2
 
 @pytest.fixture(scope="module")
 def run_dir(tmp_path_factory):
-    d = tmp_path_factory.mktemp("lammps_outputs")
-    (d / "in.small").write_text(INPUT)
-    proc = subprocess.run([find_lmp(), "-in", "in.small", "-log", "log.lammps", "-screen",
-                           "none"], cwd=d, capture_output=True, text=True, timeout=120)
-    assert proc.returncode == 0, proc.stdout + proc.stderr
-    return d
+    return run_input(tmp_path_factory.mktemp("lammps_outputs"), INPUT, "in.small")
 
 
 def test_log_runs_warnings_and_concatenation(run_dir):
