@@ -1,6 +1,6 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 // JSON writer of the pore tool: exact escaping and layout, non-finite numbers as null, and a
-// round trip of awkward strings and numbers through Python's json module (/usr/bin/python3).
+// round trip of awkward strings and numbers through Python's json module (the project's TAPMC_PYTHON).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -59,7 +59,7 @@ TEST(JsonWriter, NumbersCarryTwelveSignificantDigits) {
 // Every string and number written, read back by Python's json module: strings byte for byte (as
 // UTF-8, invalid bytes as U+FFFD), numbers to 12 digits, non-finite as None.
 TEST(JsonWriter, RoundTripsThroughPythonJson) {
-  const char* python = "/usr/bin/python3";
+  const char* python = TAPMC_PYTHON;  // the project's Python (CMake: TAPMC_PYTHON)
   if (std::FILE* probe = std::fopen(python, "r")) std::fclose(probe);
   else GTEST_SKIP() << python << " not found";
   std::vector<std::string> strings = {"", "plain", "quote \" backslash \\ slash /", "tab\tnew\nline\rcr",
