@@ -65,13 +65,19 @@ RUNS = {
 }
 
 
-def run(example, variables, workdir):
-    """Run lmp_tapmc on examples/<example> in `workdir`; returns (returncode, screen, log)."""
-    cmd = [LMP, "-in", str(EXAMPLES / example), "-log", "log.lammps", "-nocite"]
+def example_command(lmp, example, variables):
+    """The command line that runs examples/<example> with `variables` (a list value gives a
+    multi-valued -var) under the LAMMPS executable `lmp`, logging to log.lammps."""
+    cmd = [lmp, "-in", str(EXAMPLES / example), "-log", "log.lammps", "-nocite"]
     for name, value in variables.items():
         values = value if isinstance(value, list) else [value]
         cmd += ["-var", name] + [str(v) for v in values]
-    proc = subprocess.run(cmd, cwd=workdir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+    return cmd
+
+
+def run(example, variables, workdir):
+    """Run lmp_tapmc on examples/<example> in `workdir`; returns (returncode, screen, log)."""
+    proc = subprocess.run(example_command(LMP, example, variables), cwd=workdir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                           text=True, timeout=300, stdin=subprocess.DEVNULL)
     log = Path(workdir) / "log.lammps"
     return proc.returncode, proc.stdout, log.read_text() if log.exists() else ""

@@ -16,7 +16,7 @@ import pytest
 
 from lammps_builds import lammps_prefix, run, tapmc_against
 from lmprun import LMP
-from test_example_switches import EXAMPLES, RUNS
+from test_example_switches import RUNS, example_command
 
 NAME = "2026"
 
@@ -67,11 +67,7 @@ LAMMPS_WARNING_TAIL = re.compile(r"\.? \(src/[^ ]+:\d+\)$")
 def example_output(lmp, example, variables, workdir):
     """What an example prints that does not come from LAMMPS's own run report: the thermo
     output (the CPU column left out), TAPMC's messages, the input's print lines and warnings."""
-    cmd = [lmp, "-in", str(EXAMPLES / example), "-log", "log.lammps", "-nocite"]
-    for name, value in variables.items():
-        values = value if isinstance(value, list) else [value]
-        cmd += ["-var", name] + [str(v) for v in values]
-    proc = subprocess.run(cmd, cwd=workdir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+    proc = subprocess.run(example_command(lmp, example, variables), cwd=workdir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                           text=True, timeout=600, stdin=subprocess.DEVNULL)
     assert proc.returncode == 0, proc.stdout
     lines, header = [], None
