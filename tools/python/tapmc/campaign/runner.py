@@ -244,11 +244,13 @@ class Campaign:
         elif spec.taps is not None and run_folder.taps_done(run_dir / spec.taps_file) != spec.taps:
             error = (f"the per-tap file {spec.taps_file} ends at step "
                      f"{run_folder.taps_done(run_dir / spec.taps_file)}, expected {spec.taps}")
+        # Records change under the lock only: another thread may be writing the manifest.
         rec = self._records[spec.name]
-        rec["attempts"].append({"started": self._started.get(spec.name),
-                                "finished": provenance.now(), "wall_s": round(wall, 3),
-                                "returncode": returncode, "resumed_from_step": resumed_from,
-                                "error": error or None})
+        with self._lock:
+            rec["attempts"].append({"started": self._started.get(spec.name),
+                                    "finished": provenance.now(), "wall_s": round(wall, 3),
+                                    "returncode": returncode, "resumed_from_step": resumed_from,
+                                    "error": error or None})
         if not error:
             run_folder.merge_ave_time_parts(run_dir)
             run_folder.drop_repeated_titles(run_dir / spec.taps_file)
@@ -258,11 +260,13 @@ class Campaign:
                 error = (f"re-run after damage did not write {', '.join(missing)} again; the "
                          "damaged files are in its damagedK/ folder")
         if error:
-            rec["status"] = "failed"
+            with self._lock:
+                rec["status"] = "failed"
             return f"run {spec.name!r} failed: {error}\n    log: {log}"
         self._redo.pop(spec.name, None)
-        rec["status"] = "done"
-        rec["wall_s"] = round(sum(a.get("wall_s", 0) for a in rec["attempts"]), 3)
+        with self._lock:
+            rec["status"] = "done"
+            rec["wall_s"] = round(sum(a.get("wall_s", 0) for a in rec["attempts"]), 3)
         done = {"run": spec.describe(), "finished": provenance.now(), "wall_s": rec["wall_s"],
                 "attempts": len(rec["attempts"]),
                 "outputs": provenance.output_digests(run_dir, run_folder.output_files(run_dir))}
