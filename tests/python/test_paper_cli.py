@@ -382,3 +382,16 @@ def test_campaign_keeps_the_scale_it_started_with(tmp_path):
     (folder / "scale.json").write_text(json.dumps(dict(old, bogus=1)))
     bad = cli("campaign", "--dry-run", "--campaign", folder)
     assert bad.returncode == 2 and "not a Scale record of this TAPMC" in bad.stderr
+
+
+def test_output_closed_early_ends_quietly(tmp_path):
+    """`tapmc-paper ... --dry-run | head -1`: the reader of the output is gone; the command
+    stops without a traceback."""
+    env = dict(os.environ, PYTHONPATH=str(PYTHON_DIR), TAPMC_LMP=str(LMP))
+    proc = subprocess.Popen([sys.executable, "-m", "tapmc.paper", "campaign", "--tier", "3",
+                             "--dry-run", "--campaign", str(tmp_path / "c")], env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    proc.stdout.close()  # before Python has started: its first write meets a closed pipe
+    err = proc.stderr.read().decode()
+    assert proc.wait(timeout=120) in (0, 1)
+    assert "Traceback" not in err and "BrokenPipeError" not in err, err
