@@ -198,6 +198,31 @@ def write_scale(directory, scale):
     (directory / SCALE_FILE).write_text(json.dumps(scale.as_dict(), indent=1) + "\n")
 
 
+def recorded_scale(directory):
+    """The Scale recorded in a campaign folder (``scale.json``; fields added to Scale since it
+    was written take their defaults, what the code that wrote it used), or None when the
+    folder records none. A file that is no Scale record raises CampaignDirectoryError."""
+    from tapmc.campaign import CampaignDirectoryError
+
+    from .scales import Scale
+
+    path = Path(directory) / SCALE_FILE
+    if not path.exists():
+        return None
+    try:
+        recorded = json.loads(path.read_text())
+    except OSError as err:
+        raise CampaignDirectoryError(f"{path}: cannot be read ({err.strerror})") from None
+    except ValueError as err:
+        raise CampaignDirectoryError(f"{path}: not valid JSON ({err})") from None
+    if not isinstance(recorded, dict):
+        raise CampaignDirectoryError(f"{path}: not a Scale record (expected a JSON object)")
+    try:
+        return Scale(**recorded)
+    except (TypeError, ValueError) as err:
+        raise CampaignDirectoryError(f"{path}: not a Scale record of this TAPMC ({err})") from None
+
+
 def check_scale(directory, scale):
     """Raise :class:`tapmc.campaign.CampaignDirectoryError` when the campaign folder records
     (``scale.json``) another Scale than ``scale``: its runs, and the figures drawn from them
@@ -207,18 +232,11 @@ def check_scale(directory, scale):
 
     from .scales import SCALES
 
-    path = Path(directory) / SCALE_FILE
-    if not path.exists():
+    found = recorded_scale(directory)
+    if found is None:
         return
-    try:
-        recorded = json.loads(path.read_text())
-    except OSError as err:
-        raise CampaignDirectoryError(f"{path}: cannot be read ({err.strerror})") from None
-    except ValueError as err:
-        raise CampaignDirectoryError(f"{path}: not valid JSON ({err})") from None
-    if not isinstance(recorded, dict):
-        raise CampaignDirectoryError(f"{path}: not a Scale record (expected a JSON object)")
-    recorded = _with_defaults(recorded, path)
+    path = Path(directory) / SCALE_FILE
+    recorded = json.loads(json.dumps(found.as_dict()))
     asked = json.loads(json.dumps(scale.as_dict()))
     differ = [k for k in asked if recorded.get(k) != asked[k]]
     if not differ:
@@ -237,48 +255,12 @@ def check_scale(directory, scale):
                                  "--campaign")
 
 
-def _with_defaults(recorded, path):
-    """A recorded Scale as JSON data, with the fields added to Scale since it was written set
-    to their defaults (what the code that wrote it used)."""
-    from tapmc.campaign import CampaignDirectoryError
-
-    from .scales import Scale
-
-    try:
-        return json.loads(json.dumps(Scale(**recorded).as_dict()))
-    except (TypeError, ValueError) as err:
-        raise CampaignDirectoryError(f"{path}: not a Scale record of this TAPMC ({err})") from None
-
-
-def recorded_scale(directory):
-    """The Scale recorded in a campaign folder (``scale.json``; fields added since take their
-    defaults), or None when the folder records none."""
-    from tapmc.campaign import CampaignDirectoryError
-
-    from .scales import Scale
-
-    path = Path(directory) / SCALE_FILE
-    if not path.exists():
-        return None
-    try:
-        recorded = json.loads(path.read_text())
-    except (OSError, ValueError) as err:
-        raise CampaignDirectoryError(f"{path}: cannot be read as a Scale record ({err})") from None
-    if not isinstance(recorded, dict):
-        raise CampaignDirectoryError(f"{path}: not a Scale record (expected a JSON object)")
-    return Scale(**_with_defaults(recorded, path))
-
-
 def campaign_scale(campaign):
-    """The Scale of a campaign: the one recorded in its folder (``scale.json``, written by
-    :func:`write_scale`), else the preset of ``tapmc.paper.scales`` that its runs match, else
-    None (the runs themselves do not record the scale)."""
-    from .scales import Scale
-
-    path = Path(campaign.directory) / SCALE_FILE
-    if path.exists():
-        return Scale(**json.loads(path.read_text()))
-    return matching_scale(campaign.runs)
+    """The Scale of a campaign: the one recorded in its folder (:func:`recorded_scale`),
+    else the preset of ``tapmc.paper.scales`` that its runs match, else None (the runs
+    themselves do not record the scale)."""
+    found = recorded_scale(campaign.directory)
+    return found if found is not None else matching_scale(campaign.runs)
 
 
 def matching_scale(specs):
