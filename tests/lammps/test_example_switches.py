@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from lmprun import LMP, read_dump
+from lmprun import LMP, min_gap, read_dump
 
 EXAMPLES = Path(os.environ.get("TAPMC_SOURCE_DIR", Path(__file__).resolve().parents[2])) / \
     "examples"
@@ -36,6 +36,10 @@ CONSTANT_EPS_FRESH = dict(
 CONSTANT_EPS_RESUME = dict(CONSTANT_EPS_FRESH, eps=0.03, taps=3, resume="yes",
                            resume_file="restart.1")
 del CONSTANT_EPS_RESUME["sqrteps"]
+# the paper's F.B.C. start (section IV.A): periodic deposition, walls, lifted spheres, agitation
+CONSTANT_EPS_PAPER_START = dict(TINY, R=0.6, eps=0.05, taps=2, seed=7, pack_seed=9, bc="fbc",
+                                thermo_every=1, dump_ends="yes", fbc_start="paper",
+                                agitate_taps=2, agitate_eps=0.002)
 RAMP_FRESH = dict(TINY, R=0.6, sqrt0=0.1, dsqrt=0.05, nlev=2, P=1, seed=3, pack_seed=5,
                   bc="fbc", zbins_per_R=2, thermo_every=1, rsteps=2, taps_file="r.dat",
                   zprof_file="rz.dat")
@@ -54,7 +58,7 @@ TAPPING = dict(taps=1, eps=0.02, seed=11)   # these inputs fix N = 4096: one tap
 SCALE = dict(N=64, L=8, R=0.6, eps=0.02, eta=1e-5, taps=2, seed=5)
 
 RUNS = {
-    "paper/in.constant_eps": [CONSTANT_EPS_FRESH, CONSTANT_EPS_RESUME],
+    "paper/in.constant_eps": [CONSTANT_EPS_FRESH, CONSTANT_EPS_RESUME, CONSTANT_EPS_PAPER_START],
     "paper/in.ramp": [RAMP_FRESH, RAMP_RESUME],
     "paper/in.ageing": [AGEING_FRESH, AGEING_RESUME],
     "paper/in.pore_dumps": [PORES_FRESH, PORES_RESUME],
@@ -192,6 +196,37 @@ def test_constant_eps_every_switch(tmp_path):
     assert (tmp_path / "z.dat.from3").exists() and table(tmp_path / "t.dat")[-1, 0] == 4
 
 
+def test_constant_eps_paper_fbc_start(tmp_path):
+    """fbc_start = paper: a periodic deposition, then walls; the spheres crossing a wall are
+    re-deposited above the bed between the walls, agitate_taps taps at agitate_eps (own seed)
+    settle them, and the tapping sequence starts at t = 0 from a legal F.B.C. packing."""
+    v = CONSTANT_EPS_PAPER_START
+    log = run_ok("paper/in.constant_eps", v, tmp_path)
+    assert commands(log, "boundary") == ["boundary p p fm"]
+    assert "change_box all boundary f f fm" in commands(log, "change_box")
+    assert "create_packing 64 1 0.6 9 floor 0.0" in commands(log, "create_packing")
+    (lifted,) = re.findall(r"^Paper F.B.C. start: (\d+) of 64 spheres crossed a side wall", log,
+                           re.M)
+    assert 0 < int(lifted) < 64
+    assert f"create_packing {lifted} 1 0.6 1000012 region above_bed" in \
+        commands(log, "create_packing")
+    assert "fix agitate_tap all tapdilate 0.002 floor 0.0" in commands(log, "fix agitate_tap")
+    assert "fix agitate_settle all mc/settle 1000010 floor 0.0 eta 1e-05" in \
+        commands(log, "fix agitate_settle")
+    assert "fix settle all mc/settle 7 floor 0.0 eta 1e-05" in commands(log, "fix settle")
+    # the agitation's 2 taps (thermo at its ends), then the sequence from t = 0 again
+    assert thermo_steps(log) == [0, 2, 0, 1, 2]
+    assert list(table(tmp_path / "taps.dat")[:, 0]) == [0, 1, 2]
+    ((_, box, bounds, atoms),) = read_dump(tmp_path / "dump.0.lammpstrj")
+    assert bounds == ["ff", "ff", "fm"] and len(atoms["id"]) == 64
+    side = 8 * 0.6
+    for axis in ("x", "y"):   # every sphere between the walls at t = 0
+        assert np.all(atoms[axis] >= 0.6 - 1e-9) and np.all(atoms[axis] <= side - 0.6 + 1e-9)
+    xyz = np.column_stack([atoms["x"], atoms["y"], atoms["z"]])
+    gap, _, _ = min_gap(xyz, atoms["radius"], box, periodic_xy=(False, False), floor=0.0)
+    assert gap > -1e-9 * 1.2                                # no overlap, none below the floor
+
+
 def test_ramp_every_switch(tmp_path):
     v = RAMP_FRESH
     log = run_ok("paper/in.ramp", v, tmp_path)
@@ -276,6 +311,10 @@ def test_deposition_runs(tmp_path):
      "ERROR: resume = maybe; allowed values: no, yes"),
     ("paper/in.constant_eps", "dump_ends", "all",
      "ERROR: dump_ends = all; allowed values: yes, no"),
+    ("paper/in.constant_eps", "fbc_start", "xyz",
+     "ERROR: fbc_start = xyz; allowed values: walls, paper"),
+    ("paper/in.constant_eps", "fbc_start", "paper",
+     "ERROR: fbc_start = paper needs bc = fbc (bc = pbc)"),
     ("paper/in.ramp", "bc", "xyz", "ERROR: bc = xyz; allowed values: pbc, fbc"),
     ("paper/in.ramp", "resume", "maybe", "ERROR: resume = maybe; allowed values: no, yes"),
     ("paper/in.ramp", "nlev", "0", "ERROR: nlev = 0; allowed: an integer >= 1"),
