@@ -19,7 +19,7 @@ sys.path.insert(0, str(SOURCE_DIR / "tools" / "python"))
 
 from tapmc.campaign import Campaign  # noqa: E402
 from tapmc.paper import FIGURES, _plotting, _runs  # noqa: E402
-from tapmc.paper import validation  # noqa: E402
+from tapmc.paper import claims, validation  # noqa: E402
 from tapmc.paper.scales import QUICK  # noqa: E402
 
 import importlib  # noqa: E402
@@ -273,8 +273,12 @@ def test_validation_report(campaign, tmp_path):
         assert f".. image:: validation/{name}.png" in text
         check_png(tmp_path / "validation" / f"{name}.png")
         assert (tmp_path / "validation" / f"{name}.csv").exists()
-    for quantity in ("Initial <Phi^c> (P.B.C.)", "steady-state maximum", "Spectral slope",
-                     "Vertical gradient alpha", "Smallest pore xi_min", "small pores"):
+    # every claim of the register has its row, measured on the quick campaign's CSVs
+    for claim in claims.load_register():
+        assert claim.claim in text
+    for quantity in ("the initial P.B.C. packing has <Phi^c> = 58.4 %", "maximum between",
+                     "power law of slope", "negative gradient", "smaller than the tetrahedral",
+                     "small pores"):
         assert quantity in text
     assert "/tmp" not in text and str(campaign.directory) not in text
     verdicts = [line for line in text.splitlines() if line.strip().startswith("- ")

@@ -2,10 +2,12 @@
 """The validation report (``tapmc-paper report``): the numbers of Philippe & Bideau next to
 TAPMC's, computed from a campaign, written as ``validation.rst`` with the figures embedded.
 
-Every verdict is computed from the numbers by the rule printed next to it (:data:`RULES`);
-nothing is written by hand. A TAPMC number is the mean over seeds with its standard error
-(sem); the paper gives no error bars, so a value "agrees" with a paper number when the two
-differ by less than ``2 sem`` plus half a unit of the paper's last printed digit.
+The rows are the claims register (``tapmc/paper/claims.toml``, :mod:`tapmc.paper.claims`):
+every claim of the paper with the statistic that tests it, its rule, where its tolerance comes
+from and the runs that decide it. Every verdict is computed from the figure CSVs by the rule
+printed next to it (:data:`RULES`); nothing is written by hand. Verdicts use Student's t
+quantile for the measure's degrees of freedom (seeds - 1), so two seeds decide only large
+effects, and a claim the data cannot decide is reported "undecided", with the reason.
 """
 
 from __future__ import annotations
@@ -20,113 +22,26 @@ import numpy as np
 from . import FIGURES
 from . import _plotting as P
 from . import _runs
+from . import claims
+from .claims import fmt
 
-#: the paper's numbers (sections III-IV), with the rule used to compare.
-PAPER = {
-    "phi_initial": 0.584,      # initial <Phi^c>, P.B.C. (section IV.B, Fig. 9)
-    "phi_tapped": 0.606,       # <Phi^c> after 4000 taps, P.B.C. (section IV.B, Fig. 9)
-    "bell_range": (0.1, 0.2),  # sqrt(eps) of the steady-state maximum (section III.B)
-    "slope_range": (1.0, 1.5),  # |log-log slope| of the power spectrum of <Z> (section III.A)
-    "xi_T": P.XI_T,            # smallest pore: the tetrahedral site (section IV.B)
-}
-#: half a unit of the last digit of the paper's packing fractions (58.4 %, 60.6 %).
-PAPER_ROUNDING = 0.0005
-#: xi_min "equals" xi_T when no pore is smaller (beyond the dumps' rounding) and the smallest
-#: pore lies within this distance above xi_T (one bin of tapmc-pores' default histogram).
-XI_MIN_TOLERANCE = 0.01
-#: P0 "does not distinguish" the initial and the tapped packings when the curves differ by less
-#: than this everywhere (absolute probability).
-P0_TOLERANCE = 0.02
-
+#: the text of each rule of tapmc.paper.claims, as the report prints it.
 RULES = {
-    "value": "agrees when |TAPMC - paper| < 2 sem + 0.05 % (half a unit of the paper's last "
-             "digit)",
-    "range": "agrees when the value, within 2 sem, falls in the paper's range",
-    "sign": "agrees when the sign is the paper's and the value is more than 2 sem from 0",
-    "zero": "agrees when the value is within 2 sem of 0",
-    "less": "agrees when the first value is smaller than the second by more than 2 sem of "
-            "the difference, disagrees when larger by more than that",
-    "bound": "agrees when the number is below the bound given in the verdict",
-    "xi": f"agrees when no pore is below xi_T (beyond 1e-3) and xi_min - xi_T <= "
-          f"{XI_MIN_TOLERANCE}",
+    "value": "agrees when |TAPMC - paper| <= t sem + half a unit of the paper's last printed "
+             "digit, disagrees otherwise",
+    "range": "agrees when TAPMC ± t sem meets the paper's range, disagrees otherwise",
+    "sign": "agrees when the value has the paper's sign beyond t sem, disagrees when it has "
+            "the other sign beyond t sem, undecided in between",
+    "zero": "disagrees when |value| > t sem; agrees when |value| <= t sem and t sem is below "
+            "the effect the claim denies (given in the verdict when it is not); undecided "
+            "otherwise",
+    "fit": f"agrees when the fit's chi-square has a p-value of at least "
+           f"{claims.FIT_P_VALUE:g}, disagrees otherwise",
+    "check": "a check of the analysis tools (holds / fails), not counted as a reproduction",
+    "none": "no statistic yet: undecided, with the runs that would decide the claim",
 }
 
 FIG_DIR = "validation"
-
-
-def _fmt(value, err=None, pct=False, digits=3):
-    if value is None or not np.isfinite(value):
-        return "n/a"
-    if pct:
-        if err is None or not np.isfinite(err):
-            return f"{100 * value:.2f} %"
-        return f"{100 * value:.2f} ± {100 * err:.2f} %"
-    if err is None or not np.isfinite(err):
-        return f"{value:.{digits}g}"
-    return f"{value:.{digits}g} ± {err:.2g}"
-
-
-def _sem(err):
-    return 0.0 if err is None or not np.isfinite(err) else float(err)
-
-
-def verdict_value(value, err, paper):
-    if not np.isfinite(value):
-        return "not measured"
-    ok = abs(value - paper) < 2 * _sem(err) + PAPER_ROUNDING
-    return "agrees" if ok else "disagrees"
-
-
-def verdict_range(value, err, lo, hi):
-    if not np.isfinite(value):
-        return "not measured"
-    s = 2 * _sem(err)
-    return "agrees" if (value + s >= lo and value - s <= hi) else "disagrees"
-
-
-def verdict_sign(value, err, sign):
-    if not np.isfinite(value):
-        return "not measured"
-    if abs(value) <= 2 * _sem(err):
-        return "undecided (|value| < 2 sem)"
-    return "agrees" if np.sign(value) == sign else "disagrees"
-
-
-def verdict_zero(value, err):
-    if not np.isfinite(value):
-        return "not measured"
-    return "agrees" if abs(value) <= 2 * _sem(err) else "disagrees"
-
-
-def verdict_less(a, b, sa=None, sb=None):
-    if not (np.isfinite(a) and np.isfinite(b)):
-        return "not measured"
-    margin = 2 * math.hypot(_sem(sa), _sem(sb))
-    if abs(b - a) <= margin:
-        return "undecided (difference < 2 sem)"
-    return "agrees" if a < b else "disagrees"
-
-
-class _Csv:
-    """Access to one figure CSV: ``row(panel, series)`` -> (x, mean, sem, n) arrays."""
-
-    def __init__(self, path):
-        self.table = P.read_table(path)
-
-    def get(self, panel, series):
-        d = self.table.get((panel, series))
-        if d is None:
-            return None
-        return d["x"], d["mean"], d["sem"], d["n"]
-
-    def param(self, series):
-        d = self.get("params", series)
-        if d is None:
-            return np.nan, np.nan, 0
-        return float(d[1][0]), float(d[2][0]), int(d[3][0])
-
-    def series(self, panel):
-        return [s for (p, s) in self.table if p == panel]
 
 
 #: the campaign's facts the report needs beyond the figure CSVs, kept next to them so that the
@@ -217,207 +132,62 @@ def _collect(drawn, out_dir):
     return out
 
 
-def _initial_phi_row(summary):
-    """Initial <Phi^c> of the P.B.C. packings against the paper's 58.4 %."""
-    m, s, _ = (np.nan if v is None else v for v in summary["initial_phi_c"])
-    return ("Initial <Phi^c> (P.B.C.)", "58.4 %", _fmt(m, s, pct=True),
-            verdict_value(m, s, PAPER["phi_initial"]), "value")
-
-
-def _tapped_phi(c):
-    """Fig. 9 runs: <Phi^c> after the taps against the paper's 60.6 %."""
-    m, s, _ = c.param("phi_c_final")
-    return [("<Phi^c> after the taps (P.B.C., Fig. 9 runs)", "60.6 % (4000 taps)",
-             _fmt(m, s, pct=True), verdict_value(m, s, PAPER["phi_tapped"]), "value")], None
-
-
-def _steady_state(c):
-    """Fig. 4: the highest steady state, where it lies, the bell shape and the hysteresis."""
-    rows = []
-    m, s, _ = c.param("phi_c_max")
-    rows.append(("Highest steady-state <Phi^c> (Fig. 4 squares)", "60.6 % (after 4000 taps)",
-                 _fmt(m, s, pct=True), verdict_value(m, s, PAPER["phi_tapped"]), "value"))
-    m, s, _ = c.param("sqrt_eps_max")
-    lo, hi = PAPER["bell_range"]
-    rows.append(("sqrt(eps) of the steady-state maximum (bell)", "between 0.1 and 0.2",
-                 _fmt(m, s), verdict_range(m, s, lo, hi), "range"))
-    steady = c.get("a", "steady")
-    if steady is not None and len(steady[0]) >= 3:
-        mean, sem = steady[1], steady[2]
-        i = int(np.nanargmax(mean))
-        rows.append(("Bell: steady state at the largest sqrt(eps) below the maximum",
-                     "lower (bell shape)", f"{_fmt(mean[-1], sem[-1], pct=True)} vs "
-                     f"{_fmt(mean[i], sem[i], pct=True)}",
-                     verdict_less(mean[-1], mean[i], sem[-1], sem[i]), "less"))
-    note, row = _hysteresis(c)
-    if row is not None:
-        rows.append(row)
-    return rows, note
-
-
-def _fluctuations(c):
-    """Fig. 3: spectral slopes of <Z> and sigma_<Z> proportional to sqrt(eps)."""
-    rows = []
-    slopes = [(float(series.split("=")[1].split(":")[0]), *c.param(series))
-              for series in c.series("params") if series.endswith(":slope")]
-    lo, hi = PAPER["slope_range"]
-    for eps, m, s, _ in slopes:
-        rows.append((f"Spectral slope of <Z> (eps = {eps:g})", "-1 to -1.5", _fmt(m, s),
-                     verdict_range(-m, s, lo, hi), "range"))
-    m, s, _ = c.param("intercept")
-    k, ks, _ = c.param("k")
-    rows.append(("sigma_<Z> = k sqrt(eps): intercept of a free line", "0 (proportional)",
-                 _fmt(m, s), verdict_zero(m, s), "zero"))
-    note = (f"Proportional fit: k = {_fmt(k, ks)}; reduced chi2 "
-            f"{_fmt(c.param('k_reduced_chi2')[0])}.")
-    return rows, note
-
-
-def _vertical_gradient(c):
-    """Fig. 6: the sign of the vertical gradient alpha after the taps (eq. 7)."""
-    m, s, _ = c.param("final:alpha")
-    row = ("Vertical gradient alpha after the taps (Phi = Phi0 - alpha z/R)",
-           "alpha > 0 (density decreasing upwards)", _fmt(m, s), verdict_sign(m, s, +1), "sign")
-    mi, si, _ = c.param("initial:alpha")
-    lo, _, _ = c.param("window_lo")
-    hi, _, _ = c.param("window_hi")
-    note = (f"Gradient window {lo:.3g} <= z/R <= {hi:.3g}; initial packing: "
-            f"alpha = {_fmt(mi, si)}.")
-    return [row], note
-
-
-def _central_lateral(c):
-    """Fig. 8: the centre of an F.B.C. packing compacts less than its walls, per eps."""
-    rows = []
-    eps_list = sorted({float(x.split("=")[1].split(":")[0]) for x in c.series("params")})
-    for eps in eps_list:
-        lat = c.param(f"eps={P.fmt_eps(eps)}:final_lateral")
-        cen = c.param(f"eps={P.fmt_eps(eps)}:final_central")
-        rows.append((f"delta Phi_central < delta Phi_lateral (F.B.C., eps = {eps:g})",
-                     "central smaller", f"{_fmt(cen[0], cen[1])} vs {_fmt(lat[0], lat[1])}",
-                     verdict_less(cen[0], lat[0], cen[1], lat[1]), "less"))
-    return rows, None
-
-
-def _bounded(value):
-    """Verdict of a number that must stay below P0_TOLERANCE."""
-    return ("agrees" if value < P0_TOLERANCE else "disagrees") + f" (bound {P0_TOLERANCE})"
-
-
-def _contact_probability(c):
-    """Fig. 9: P0 barely changes with the taps and follows Percus-Yevick."""
-    d_if, _, _ = c.param("max_abs_diff_initial_final")
-    d_py, _, _ = c.param("max_abs_diff_final_py")
-    return [("max |P0(initial) - P0(tapped)|", "no significant difference", _fmt(d_if),
-             _bounded(d_if), "bound"),
-            ("max |P0(tapped) - Percus-Yevick|", "good agreement", _fmt(d_py),
-             _bounded(d_py), "bound")], None
-
-
-def _pores(c):
-    """Fig. 10: the smallest pore is the tetrahedral site; the taps shrink the large pores."""
-    rows = []
-    d = c.get("params", "xi_min")
-    if d is not None:
-        i = int(np.argmin(d[1]))
-        m, s = float(d[1][i]), float(d[2][i])
-        ok = m >= PAPER["xi_T"] - 1e-3 and m - PAPER["xi_T"] <= XI_MIN_TOLERANCE
-        rows.append(("Smallest pore xi_min", f"xi_T = {PAPER['xi_T']:.4f}",
-                     _fmt(m, s, digits=4), "agrees" if ok else "disagrees", "xi"))
-    small, _, _ = c.param("small_change")
-    large, _, _ = c.param("large_change")
-    rows.append(("Change of xi^3 P(xi), small pores [xi_T, xi_O] vs large (> xi_O)",
-                 "small pores invariant, tail shrinks", f"{_fmt(small)} vs {_fmt(large)}",
-                 verdict_less(small, large), "less"))
-    nu = c.get("params", "nu")
-    if nu is not None:
-        rows.append(("nu = <xi^3> from t = 0 to the last dump", "decreases",
-                     f"{_fmt(nu[1][0], nu[2][0], digits=4)} -> "
-                     f"{_fmt(nu[1][-1], nu[2][-1], digits=4)}",
-                     verdict_less(nu[1][-1], nu[1][0], nu[2][-1], nu[2][0]), "less"))
-    return rows, None
-
-
-def _ageing(c):
-    """Fig. 5: how well one eq. 6 collapses every waiting time (a note, no verdict)."""
-    chi, _, det = c.param("collapse:reduced_chi2")
-    return [], (f"One eq. 6 for all waiting times: reduced chi2 {_fmt(chi)}"
-                f"{'' if det else ' (parameters not determined)'}.")
-
-
-def _dynamics(c):
-    """Fig. 2: whether Phi_b increased (rows) and the eq. 3 parameters per eps (note)."""
-    rows, lines = [], []
-    eps_list = sorted({float(s.split("=")[1].split(":")[0]) for s in c.series("params")})
+def _eq3_note(fig):
+    """Fig. 2: the eq. 3 parameters per eps; an undetermined parameter is named, not given a
+    number with an error the fit did not measure."""
+    lines = []
+    eps_list = sorted({float(s.split("=")[1].split(":")[0]) for s in fig.series("params")})
     for eps in eps_list:
         tag = f"eps={P.fmt_eps(eps)}"
-        params = {name: c.param(f"{tag}:{name}") for name in ("X_inf", "dX_inf", "B", "tau")}
-        chi = c.param(f"{tag}:reduced_chi2")[0]
-        determined = all(p[2] for p in params.values())
-        lines.append(f"eps = {eps:g}: X_inf = {_fmt(*params['X_inf'][:2], digits=4)}, "
-                     f"dX_inf = {_fmt(*params['dX_inf'][:2])}, B = {_fmt(*params['B'][:2])}, "
-                     f"tau = {_fmt(*params['tau'][:2])}; reduced chi2 {_fmt(chi)}; "
-                     f"{'determined' if determined else 'parameters not determined'}")
-        data = c.get("a", tag)
-        if data is None:
-            continue
-        t, mean, sem, _ = data
-        q = max(len(t) // 4, 1)
-        gain = float(np.mean(mean[-q:]) - mean[0])
-        err = float(np.sqrt(np.nanmean(sem[-q:]) ** 2 + np.nan_to_num(sem[0]) ** 2))
-        rows.append((f"Phi_b(end) - Phi_b(0), F.B.C., eps = {eps:g}", "> 0 (compaction)",
-                     _fmt(gain, err), verdict_sign(gain, err, +1), "sign", (gain, err)))
-    gains = list(rows)
-    if len(gains) >= 2:
-        (g_lo, e_lo), (g_hi, e_hi) = gains[0][5], gains[-1][5]
-        rows.append((f"Compaction slower at small eps: gain at eps = {eps_list[0]:g} vs "
-                     f"{eps_list[-1]:g}", "smaller at small eps",
-                     f"{_fmt(g_lo, e_lo)} vs {_fmt(g_hi, e_hi)}",
-                     verdict_less(g_lo, g_hi, e_lo, e_hi), "less"))
-    return [r[:5] for r in rows], "\n".join(f"* {line}" for line in lines)
+        parts = []
+        for name in ("X_inf", "dX_inf", "B", "tau"):
+            value, err, determined = fig.param(f"{tag}:{name}")
+            parts.append(f"{name} = {fmt(value, err, digits=4)}" if determined
+                         else f"{name} undetermined")
+        chi = fig.param(f"{tag}:reduced_chi2")[0]
+        lines.append(f"* eps = {eps:g}: {', '.join(parts)}; reduced chi2 {fmt(chi)}")
+    return "Eq. 3 fits of the seed-averaged curves:\n\n" + "\n".join(lines) if lines else None
 
 
-def _hysteresis(c):
-    """(note, row) comparing the ramp's decreasing branch with its first increase."""
-    up1, down = c.get("a", "up1"), c.get("a", "down")
-    if up1 is None or down is None:
-        return "No ramp run in this campaign.", None
-    diffs, errs = [], []
-    for x, m, s in zip(down[0], down[1], down[2]):
-        match = np.isclose(up1[0], x)
-        if np.any(match):
-            diffs.append(m - up1[1][match][0])
-            errs.append(math.hypot(_sem(s), _sem(up1[2][match][0])))
-    if not diffs:
-        return "The ramp's branches share no sqrt(eps).", None
-    mean = float(np.mean(diffs))
-    err = float(math.sqrt(np.sum(np.square(errs))) / len(errs))
-    note = (f"Ramp: the decreasing branch lies above the first increase at "
-            f"{sum(d > 0 for d in diffs)} of {len(diffs)} common sqrt(eps).")
-    row = ("Ramp: decreasing branch minus first increase (mean over common sqrt(eps))",
-           "> 0 (hysteresis)", _fmt(mean, err), verdict_sign(mean, err, +1), "sign")
-    return note, row
+def _sigma_note(fig):
+    k, ks, _ = fig.param("k")
+    chi = fig.param("k_reduced_chi2")[0]
+    if not np.isfinite(k):
+        return None
+    return f"Proportional fit of sigma_<Z>: k = {fmt(k, ks)}; reduced chi2 {fmt(chi)}."
 
 
-#: (figure, comparison) in the order of the summary table; a comparison takes the figure's
-#: CSV and returns (rows, note or None).
-_COMPARISONS = (("fig9", _tapped_phi), ("fig4", _steady_state), ("fig3", _fluctuations),
-                ("fig2", _dynamics), ("fig6", _vertical_gradient),
-                ("fig8", _central_lateral), ("fig9", _contact_probability), ("fig10", _pores),
-                ("fig5", _ageing))
+def _gradient_note(fig):
+    lo, hi = fig.param("window_lo")[0], fig.param("window_hi")[0]
+    mi, si, _ = fig.param("initial:alpha")
+    if not np.isfinite(lo):
+        return None
+    return f"Gradient window {lo:.3g} <= z/R <= {hi:.3g}; initial packing: alpha = {fmt(mi, si)}."
 
 
-def _rows_and_sections(summary, files):
-    """The summary table rows (quantity, paper, TAPMC, verdict) and per-figure text."""
-    csv = {name: _Csv(paths[1]) for name, paths in files.items()}
-    rows, notes = [_initial_phi_row(summary)], {}
-    for name, compare in _COMPARISONS:
-        if name not in csv:
-            continue
-        new_rows, note = compare(csv[name])
-        rows += new_rows
-        if note is not None:
-            notes[name] = note
+def _ageing_note(fig):
+    chi, _, det = fig.param("collapse:reduced_chi2")
+    if not np.isfinite(chi):
+        return None
+    return (f"One eq. 6 for the unscaled curves of all waiting times: reduced chi2 {fmt(chi)}"
+            f"{'' if det else ' (parameters not determined)'}.")
+
+
+#: figure -> the note printed under it (facts of the figure that are no claim of their own).
+_NOTES = {"fig2": _eq3_note, "fig3": _sigma_note, "fig6": _gradient_note, "fig5": _ageing_note}
+
+
+def _rows_and_notes(summary, files):
+    """The register's rows evaluated on the figure CSVs (tapmc.paper.claims.evaluate) and the
+    note of each figure."""
+    data = claims.ReportData.from_files(summary, files)
+    rows = claims.evaluate(claims.load_register(), data)
+    notes = {}
+    for name, note in _NOTES.items():
+        fig = data.figure(name)
+        text = note(fig) if fig is not None else None
+        if text:
+            notes[name] = text
     return rows, notes
 
 
@@ -439,37 +209,76 @@ CAPTIONS = {
 }
 
 
+def _where(claim):
+    return f"{claim.section}" + (f", Fig. {claim.figure}" if claim.figure else "")
+
+
 def _rst_table(rows):
-    lines = [".. list-table::", "   :header-rows: 1", "   :widths: 40 20 25 15", "",
-             "   * - Quantity", "     - Paper", "     - TAPMC (mean ± sem over seeds)",
-             "     - Verdict"]
-    for quantity, paper, tapmc, verdict, rule in rows:
-        lines += [f"   * - {quantity}", f"     - {paper}", f"     - {tapmc}",
-                  f"     - {verdict} [{rule}]"]
+    """The answer to "how close is TAPMC to the paper": one row per measured claim."""
+    lines = [".. list-table::", "   :header-rows: 1", "   :widths: 8 30 14 20 8 20", "",
+             "   * - Where", "     - Claim", "     - Paper", "     - TAPMC", "     - Paper scale?",
+             "     - Verdict [rule]"]
+    for row in rows:
+        c = row.claim
+        claim = c.claim + (f" ({row.label})" if row.label else "")
+        scale = "yes" if not c.needs else ("no: " + ", ".join(row.missing_scale)
+                                           if row.missing_scale else "yes")
+        lines += [f"   * - {_where(c)}", f"     - {claim}", f"     - {c.paper}",
+                  f"     - {row.measure.text()}", f"     - {scale}",
+                  f"     - {row.verdict} [{c.rule}]"]
+    lines += ["", "Rules of the verdicts (t: the two-sided 95 % quantile of Student's t with "
+              "the measure's degrees of freedom, seeds - 1 for a mean over seeds):", ""]
     used = []
     for row in rows:
-        if row[4] not in used:
-            used.append(row[4])
-    lines += ["", "Rules of the verdicts (sem: standard error over seeds):", ""]
+        if row.claim.rule not in used:
+            used.append(row.claim.rule)
     lines += [f"* [{key}] {RULES[key]}" for key in used]
+    lines += ["", "\"Paper scale?\" says whether the campaign had what the claim needs of the "
+              "paper's scale (size: N = 4096 in a 32R box; taps: 4000 per run; ramp_taps: 4000 "
+              "per level; eta: 1e-7); without it the statistic is shown and the verdict is "
+              "undecided.", ""]
+    return lines
+
+
+def _register_table(rows):
+    """Where each claim's tolerance comes from and which runs decide it (one line a claim)."""
+    lines = [".. list-table::", "   :header-rows: 1", "   :widths: 14 8 22 28 28", "",
+             "   * - Claim", "     - Where", "     - Statistic", "     - Tolerance from",
+             "     - Decided by"]
+    seen = set()
+    for row in rows:
+        c = row.claim
+        if c.id in seen:
+            continue
+        seen.add(c.id)
+        lines += [f"   * - ``{c.id}``", f"     - {_where(c)}",
+                  f"     - ``{c.statistic}``" if c.statistic else "     - (none yet)",
+                  f"     - {c.tolerance}", f"     - {c.decided_by}"]
     return lines
 
 
 def render(summary, files):
     """The text of validation.rst from the campaign summary and the figure files (name ->
     (png, csv))."""
-    rows, notes = _rows_and_sections(summary, files)
-    undecided = sum(1 for r in rows if r[3].startswith("undecided"))
-    agree = sum(1 for r in rows if r[3].startswith("agrees"))
+    rows, notes = _rows_and_notes(summary, files)
+    model = [r for r in rows if r.claim.kind == "model"]
+    count = {o: sum(1 for r in model if r.outcome == o)
+             for o in ("agrees", "disagrees", "undecided")}
+    n_claims = len({r.claim.id for r in model})
     lines = [".. TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.", "",
              "Validation against Philippe & Bideau", "=" * 36, "",
              "This page is written by ``tapmc-paper report`` from one campaign: every number "
              "below is computed from the campaign's runs and every verdict from the numbers, "
-             "by the rule stated next to it. TAPMC values are means over seeds with their "
-             "standard errors (sem); the paper gives single runs without error bars.", "",
+             "by the rule stated next to it. The rows are the claims register "
+             "(``tools/python/tapmc/paper/claims.toml``): every claim of the paper, with the "
+             "statistic that tests it. TAPMC values are means over seeds with their standard "
+             "errors (sem); the paper gives single runs without error bars.", "",
              describe_scale(summary), "",
-             f"Summary: {agree} of {len(rows)} comparisons agree with the paper; "
-             f"{undecided} are undecided at this statistics.", ""]
+             f"Summary: {n_claims} claims of the paper in {len(model)} rows: "
+             f"{count['agrees']} agree, {count['disagrees']} disagree, {count['undecided']} "
+             "are undecided (the reason is in the verdict: too few seeds, a scale below the "
+             "paper's, or runs this campaign does not have).", "",
+             "How close is TAPMC to the paper", "-" * 31, ""]
     lines += _rst_table(rows)
     lines += ["", f"The numbers come from the figure CSVs and ``{FIG_DIR}/{SUMMARY_FILE}`` (the "
               "campaign's scale and initial packings), committed with this page; rewrite it "
@@ -482,7 +291,10 @@ def render(summary, files):
               "hours to days):", "",
               ".. snippet: skip runs a whole campaign",
               "", ".. code-block:: sh", "",
-              "   build/tapmc-paper report --quick --campaign tapmc-paper-quick --out doc", ""]
+              "   build/tapmc-paper report --quick --campaign tapmc-paper-quick --out doc", "",
+              "The claims register", "-" * 19, "",
+              "Where each claim's tolerance comes from and which runs decide it:", ""]
+    lines += _register_table(rows) + [""]
     for name in FIGURES:
         if name not in files:
             continue
@@ -560,4 +372,4 @@ def report(campaign, out_dir, drawn=None):
 
 
 __all__ = ["report", "regenerate", "render", "write_rst", "campaign_summary",
-           "committed_inputs", "PAPER", "RULES"]
+           "committed_inputs", "RULES"]

@@ -1,0 +1,339 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""The claims register and its verdicts: the register is valid; each rule decides known cases
+(Student's t for few seeds, undecided without an uncertainty); and every statistic a claim
+uses has a control: synthetic figure data on which it must agree and data on which it must
+not (time-reversed, swapped, flat, shifted), so that no row of the report cannot fail."""
+
+import math
+import os
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", Path(__file__).resolve().parents[2]))
+sys.path.insert(0, str(SOURCE / "tools" / "python"))
+
+from tapmc.paper import claims  # noqa: E402
+from tapmc.paper import _plotting as P  # noqa: E402
+from tapmc.pores import percus_yevick_p0  # noqa: E402
+
+REGISTER = claims.load_register()
+BY_ID = {c.id: c for c in REGISTER}
+SEEDS = 5  # realizations behind the synthetic means (dof = 4)
+
+
+# ---------------------------------------------------------------- the register
+
+
+def test_register_is_valid_and_covers_the_paper():
+    ids = [c.id for c in REGISTER]
+    assert len(ids) == len(set(ids))
+    sections = {c.section for c in REGISTER}
+    assert {"II", "III.A", "III.B", "III.C", "IV.A", "IV.B"} <= sections
+    for c in REGISTER:
+        assert c.tolerance.strip() and c.decided_by.strip()
+        if c.statistic:
+            assert c.statistic in claims.STATISTICS
+    # the rows of the issue's list of unanswered claims are all in the register
+    for needed in ("spectrum-high-frequency", "ramp-up-near-squares", "critical-sqrt-eps",
+                   "reversible-above", "irreversible-frozen", "gradient-bell",
+                   "gradient-no-hysteresis", "lateral-first-tap-jump", "pore-law-quadratic",
+                   "eq4-compatible", "b-exponential", "ageing-scaling", "eq3-triplet-range"):
+        assert needed in BY_ID
+
+
+def test_register_errors_name_the_field(tmp_path):
+    path = tmp_path / "claims.toml"
+    base = ('[[claim]]\nid = "x"\nsection = "II"\nfigure = ""\nclaim = "c"\npaper = "p"\n'
+            'kind = "model"\ntolerance = "t"\ndecided_by = "d"\n')
+    path.write_text(base + 'statistic = "nope"\nrule = "sign"\nsign = 1\n')
+    with pytest.raises(ValueError, match="statistic = 'nope'"):
+        claims.load_register(path)
+    path.write_text(base + 'statistic = "phi_b_gain"\nrule = "sign"\n')
+    with pytest.raises(ValueError, match="needs the field 'sign'"):
+        claims.load_register(path)
+    path.write_text(base + 'statistic = "phi_b_gain"\nrule = "sign"\nsign = 1\nneeds = ["big"]\n')
+    with pytest.raises(ValueError, match="needs = \\['big'\\]"):
+        claims.load_register(path)
+    path.write_text((base + 'statistic = ""\nrule = "none"\n') * 2)
+    with pytest.raises(ValueError, match="used twice"):
+        claims.load_register(path)
+
+
+# ---------------------------------------------------------------- the rules
+
+
+def test_value_rule_uses_student_t():
+    c = BY_ID["phi-tapped"]
+    # 0.606 vs 0.600 +- 0.002: 3 sem away; agrees with 2 seeds (t = 12.7), not with 30 seeds
+    assert claims.verdict(c, claims.Measure(0.600, 0.002, 1)) == "agrees"
+    assert claims.verdict(c, claims.Measure(0.600, 0.002, 29)) == "disagrees"
+    assert claims.verdict(c, claims.Measure(0.600, math.nan, None)).startswith("undecided")
+    assert claims.verdict(c, claims.Measure(0.6062, 0.0, 5)) == "agrees"  # paper's rounding
+
+
+def test_sign_zero_range_fit_check_rules():
+    sign = BY_ID["phi-b-rises"]
+    assert claims.verdict(sign, claims.Measure(1.0, 0.1, 4)) == "agrees"
+    assert claims.verdict(sign, claims.Measure(-1.0, 0.1, 4)) == "disagrees"
+    assert claims.verdict(sign, claims.Measure(0.1, 0.1, 4)).startswith("undecided")
+    zero = BY_ID["reversible-retraced"]
+    assert claims.verdict(zero, claims.Measure(0.01, 0.01, 4, effect=1.0)) == "agrees"
+    assert claims.verdict(zero, claims.Measure(1.0, 0.01, 4, effect=1.0)) == "disagrees"
+    # consistent with zero but too uncertain to tell it from the effect: undecided
+    assert claims.verdict(zero, claims.Measure(0.01, 1.0, 4, effect=0.1)).startswith("undecided")
+    assert claims.verdict(zero, claims.Measure(0.01, 0.01, 4)).startswith("undecided")
+    rng = BY_ID["bell-maximum"]
+    assert claims.verdict(rng, claims.Measure(0.15, 0.01, 10)) == "agrees"
+    assert claims.verdict(rng, claims.Measure(0.25, 0.01, 10)) == "disagrees"
+    assert claims.verdict(rng, claims.Measure(0.25, 0.1, 10)) == "agrees"
+    fit = BY_ID["eq3-compatible"]
+    assert claims.verdict(fit, claims.Measure(1.0, dof=100)).startswith("agrees")
+    assert claims.verdict(fit, claims.Measure(3.0, dof=100)).startswith("disagrees")
+    check = BY_ID["no-pore-below-xi-t"]
+    assert claims.verdict(check, claims.Measure(P.XI_T + 0.001)) == "holds"
+    assert claims.verdict(check, claims.Measure(P.XI_T - 0.01)) == "fails"
+
+
+def test_scale_aspects_and_scale_verdicts():
+    paper = {"sizes": [[4096, 32.0]], "eta": [1e-7], "preset": True, "scale": "full",
+             "fields": None}
+    assert claims.scale_aspects(paper) >= {"size", "eta", "taps"}
+    medium = {"sizes": [[1024, 16.0]], "eta": [1e-5], "preset": True, "scale": "medium",
+              "fields": None}
+    assert claims.scale_aspects(medium) == set()
+    data = claims.ReportData(dict(medium, initial_phi_c=[0.584, 0.001, 3]), {})
+    rows = claims.evaluate([BY_ID["phi-initial"]], data)
+    assert rows[0].missing_scale == ("size",)
+    assert rows[0].verdict.startswith("undecided (scale") and "agrees" in rows[0].verdict
+    data = claims.ReportData(dict(paper, initial_phi_c=[0.584, 0.001, 3]), {})
+    assert claims.evaluate([BY_ID["phi-initial"]], data)[0].verdict == "agrees"
+
+
+# ---------------------------------------------------------------- synthetic figure data
+
+
+class Table:
+    """A figure's data built in memory, as tapmc.paper._plotting.read_table returns it."""
+
+    def __init__(self):
+        self.table = {}
+
+    def add(self, panel, series, x, mean, sem=None, n=SEEDS):
+        x = np.atleast_1d(np.asarray(x, float))
+        mean = np.broadcast_to(np.asarray(mean, float), x.shape).copy()
+        sem = np.full(x.shape, np.nan) if sem is None else \
+            np.broadcast_to(np.asarray(sem, float), x.shape).copy()
+        self.table[(panel, series)] = {"x": x, "mean": mean, "sem": sem,
+                                       "n": np.full(x.shape, n)}
+        return self
+
+    def param(self, series, value, sem=None, n=SEEDS, x=0.0):
+        return self.add("params", series, x, value, sem, n)
+
+    def data(self):
+        return claims.FigureData(self.table)
+
+
+def report(summary=None, **figures):
+    base = {"sizes": [[4096, 32.0]], "eta": [1e-7], "preset": True, "scale": "full",
+            "fields": None, "initial_phi_c": [0.584, 0.001, SEEDS]}
+    base.update(summary or {})
+    return claims.ReportData(base, {k: v.data() for k, v in figures.items()})
+
+
+T = np.unique(np.round(np.geomspace(1, 4000, 120)))
+T = np.concatenate([[0.0], T])
+
+
+def fig2(curves):
+    tab = Table()
+    for eps, y in curves.items():
+        tab.add("a", f"eps={P.fmt_eps(eps)}", T, y, 0.0005)
+        tab.param(f"eps={P.fmt_eps(eps)}:reduced_chi2", 1.0, x=eps)
+    return tab
+
+
+def inverse_log(t, x_inf=0.62, dx=0.04, b=1.0, tau=10.0):
+    return x_inf - dx / (1 + b * np.log1p(t / tau))
+
+
+RISING = inverse_log(T)
+
+
+def fig3(spectra=None, slope=-1.2, intercept=0.001, intercept_sem=0.002):
+    tab = Table()
+    f = np.geomspace(1e-3, 0.5, 40)
+    for eps, scale in (spectra or {}).items():
+        tab.add("a", f"eps={P.fmt_eps(eps)}", f, scale(f), 0.02 * scale(f))
+    tab.param("eps=0.01:slope", slope, 0.05, x=0.01)
+    tab.param("intercept", intercept, intercept_sem)
+    tab.add("b", "sigma_Z", [0.05, 0.1, 0.15, 0.2, 0.3], [0.05, 0.1, 0.15, 0.2, 0.3], 0.003)
+    return tab
+
+
+X = np.round(np.arange(0.05, 0.40, 0.025), 4)
+
+
+def fig4(steady, up1=None, down=None, up2=None, low_up=None, low_down=None):
+    tab = Table().add("a", "steady", X, steady, 0.001)
+    for name, y in (("up1", up1), ("down", down), ("up2", up2), ("low:up1", low_up),
+                    ("low:down", low_down)):
+        if y is not None:
+            tab.add("a", name, X, y, 0.001)
+    return tab
+
+
+BELL = 0.60 - 2.0 * (X - 0.15) ** 2
+
+
+def fig9(diff=0.0, py_shift=0.0):
+    sigma = np.linspace(0.0, 2.0, 60)
+    final = percus_yevick_p0(sigma, 0.606) + py_shift
+    tab = Table().add("a", "final", sigma, final, 0.0005)
+    tab.add("a", "initial", sigma, final + diff, 0.0005)
+    tab.add("a", "percus_yevick", sigma, percus_yevick_p0(sigma, 0.606), None, 1)
+    tab.param("phi_initial", 0.584, 0.001).param("phi_final", 0.606, 0.001)
+    tab.param("phi_c_initial", 0.584, 0.001).param("phi_c_final", 0.606, 0.001)
+    return tab
+
+
+XI = np.linspace(0.2, 0.7, 51)
+
+
+def pore_curve(tail):
+    quad = np.where((XI > P.XI_T) & (XI <= P.XI_O), 40 * (XI - P.XI_T) ** 2, 0.0)
+    big = np.where(XI > P.XI_O, 40 * (P.XI_O - P.XI_T) ** 2 * np.exp(-(XI - P.XI_O) / tail), 0)
+    return quad + big
+
+
+def fig10(first=pore_curve(0.1), last=pore_curve(0.05), nu=(0.12, 0.10), tail_ratio=1.0,
+          xi_min=0.226):
+    tab = Table().add("a", "t=0", XI, first, 0.002).add("a", "t=4000", XI, last, 0.002)
+    tab.add("params", "nu", [0, 4000], list(nu), 0.001)
+    tab.add("params", "nu_tail", [0, 4000], [nu[0] * tail_ratio, nu[1] * tail_ratio], 0.001)
+    tab.add("params", "xi_min", [0, 4000], [xi_min, xi_min], 0.0001)
+    return tab
+
+
+def fig8(central, lateral, paper_first_tap=None):
+    tab = Table()
+    for eps in (0.005, 0.1):
+        tab.param(f"eps={P.fmt_eps(eps)}:final_central", central, 0.0005, x=eps)
+        tab.param(f"eps={P.fmt_eps(eps)}:final_lateral", lateral, 0.0005, x=eps)
+        tab.add("a", f"eps={P.fmt_eps(eps)}", [0, 1, 2], [0, -0.003, -0.002], 0.0003)
+        if paper_first_tap is not None:
+            tab.add("a", f"paper:eps={P.fmt_eps(eps)}", [0, 1, 2],
+                    [0, paper_first_tap, paper_first_tap], 0.0003)
+    return tab
+
+
+def _low_first(eps_curves):
+    return dict(sorted(eps_curves.items()))
+
+
+FROZEN = 0.58 + 0.02 * (1 - 1 / (1 + 0.3 * np.log1p(T)))    # slows down on ln t
+STEADY_LOG = 0.58 + 0.04 * np.log1p(T) / np.log(4001)       # keeps its rate on ln t
+
+
+#: statistic (or claim id, which comes first) -> (data on which its claims must agree, data on
+#: which they must not).
+CONTROLS = {
+    "initial_phi": (report(), report({"initial_phi_c": [0.570, 0.001, SEEDS]})),
+    "tapped_phi": (report(fig9=fig9()),
+                   report(fig9=fig9().param("phi_c_final", 0.593, 0.0005))),
+    "pbc_compaction": (report(fig9=fig9()),
+                       report(fig9=fig9().param("phi_c_final", 0.570, 0.001))),
+    "phi_b_gain": (report(fig2=fig2({0.05: RISING})),
+                   report(fig2=fig2({0.05: RISING[::-1]}))),  # time-reversed
+    "eq3_fit_quality": (report(fig2=fig2({0.05: RISING})),
+                        report(fig2=fig2({0.05: RISING}).param("eps=0.05:reduced_chi2", 5.0,
+                                                                  x=0.05))),
+    "log_time_slowing": (report(fig2=fig2(_low_first({0.005: FROZEN, 0.15: STEADY_LOG}))),
+                         report(fig2=fig2(_low_first({0.005: STEADY_LOG, 0.15: FROZEN})))),
+    "spectral_slopes": (report(fig3=fig3(slope=-1.2)), report(fig3=fig3(slope=-0.5))),
+    "spectrum_eps_spread": (
+        # spectra that coincide at low f and separate at high f, and the reverse
+        report(fig3=fig3({e: (lambda f, e=e: 1e-3 / f + 10 * e) for e in (0.01, 0.04, 0.09)})),
+        report(fig3=fig3({e: (lambda f, e=e: 1e-3 * e / f + 1.0) for e in (0.01, 0.04, 0.09)}))),
+    "sigma_intercept": (report(fig3=fig3()), report(fig3=fig3(intercept=0.05))),
+    "bell_maximum": (report(fig4=fig4(BELL)),
+                     report(fig4=fig4(0.60 - 2.0 * (X - 0.3) ** 2))),
+    "bell_side_slope": (report(fig4=fig4(BELL)), report(fig4=fig4(0.65 - BELL))),
+    # per claim where one statistic serves two claims: the side of the bell that must fail
+    "bell-rising": (report(fig4=fig4(BELL)), report(fig4=fig4(0.62 - 0.05 * X))),
+    "bell-falling": (report(fig4=fig4(BELL)), report(fig4=fig4(0.58 + 0.05 * X))),
+    "ramp_up_minus_steady": (report(fig4=fig4(BELL, up1=BELL, down=BELL + 0.01)),
+                             report(fig4=fig4(BELL, up1=BELL - 0.01, down=BELL + 0.01))),
+    "ramp_down_minus_up": (report(fig4=fig4(BELL, up1=BELL, down=BELL + 0.01)),
+                           report(fig4=fig4(BELL, up1=BELL, down=BELL - 0.01))),
+    "ramp_up2_minus_down": (report(fig4=fig4(BELL, up1=BELL, down=BELL + 0.01,
+                                             up2=BELL + 0.01)),
+                            report(fig4=fig4(BELL, up1=BELL, down=BELL + 0.01, up2=BELL))),
+    "low_ramp_down_minus_up": (
+        report(fig4=fig4(BELL, up1=BELL, down=BELL + 0.01, low_up=BELL, low_down=BELL)),
+        report(fig4=fig4(BELL, up1=BELL, down=BELL + 0.01, low_up=BELL,
+                         low_down=BELL + 0.01))),
+    "ramp_branch_slope": (report(fig4=fig4(BELL, down=0.62 - 0.1 * X)),
+                          report(fig4=fig4(BELL, down=0.58 + 0.1 * X))),
+    "final_alpha": (report(fig6=Table().param("final:alpha", 0.002, 0.0002)),
+                    report(fig6=Table().param("final:alpha", -0.002, 0.0002))),
+    "central_minus_lateral": (report(fig8=fig8(0.01, 0.02)), report(fig8=fig8(0.02, 0.01))),
+    "lateral_first_tap": (report(fig8=fig8(0.01, 0.02, paper_first_tap=0.01)),
+                          report(fig8=fig8(0.01, 0.02, paper_first_tap=-0.01))),
+    "p0_initial_minus_final": (report(fig9=fig9()), report(fig9=fig9(diff=0.05))),
+    "p0_final_minus_py": (report(fig9=fig9()), report(fig9=fig9(py_shift=0.05))),
+    "xi_min": (report(fig10=fig10()), report(fig10=fig10(xi_min=0.20))),
+    "pore_quadratic_fit": (report(fig10=fig10()),
+                           report(fig10=fig10(last=np.where(XI > P.XI_T, XI - P.XI_T, 0.0)))),
+    "pore_share_change": (
+        report(fig10=fig10()),
+        # small pores change as much as the tail, and the tail grows
+        report(fig10=fig10(first=pore_curve(0.05), last=1.5 * pore_curve(0.1)))),
+    "nu_tail_over_nu": (report(fig10=fig10()), report(fig10=fig10(tail_ratio=1.5))),
+    "nu_change": (report(fig10=fig10()), report(fig10=fig10(nu=(0.10, 0.12)))),
+}
+
+
+def _outcomes(claim, data):
+    return [claims.verdict(claim, m) for m in claims.STATISTICS[claim.statistic](data, claim)]
+
+
+def test_every_statistic_of_the_register_has_a_control():
+    used = {c.statistic for c in REGISTER if c.statistic}
+    missing = sorted(used - set(CONTROLS))
+    assert not missing, f"statistics without a control case: {missing}"
+
+
+@pytest.mark.parametrize("claim", [c for c in REGISTER if c.statistic in CONTROLS],
+                         ids=lambda c: c.id)
+def test_claim_agrees_on_its_control_and_fails_on_the_reverse(claim):
+    good, bad = CONTROLS.get(claim.id, CONTROLS[claim.statistic])
+    passing = "holds" if claim.rule == "check" else "agrees"
+    outcomes = _outcomes(claim, good)
+    assert outcomes and all(o.startswith(passing) for o in outcomes), outcomes
+    outcomes = _outcomes(claim, bad)
+    assert outcomes and not any(o.startswith(passing) for o in outcomes), outcomes
+
+
+def test_one_realization_is_never_agreed():
+    """Means of one seed carry no sem: every rule that needs one says undecided."""
+    tab = Table()
+    for eps in (0.005, 0.1):
+        tab.param(f"eps={P.fmt_eps(eps)}:final_central", 0.01, None, n=1, x=eps)
+        tab.param(f"eps={P.fmt_eps(eps)}:final_lateral", 0.02, None, n=1, x=eps)
+    data = report(fig8=tab)
+    outcomes = _outcomes(BY_ID["central-smaller"], data)
+    assert outcomes and all(o.startswith("undecided") for o in outcomes)
+
+
+def test_missing_figures_are_undecided_with_what_decides():
+    rows = claims.evaluate(REGISTER, report())
+    for row in rows:
+        if row.claim.id == "phi-initial":
+            continue
+        assert row.outcome == "undecided", (row.claim.id, row.verdict)
+    none = [r for r in rows if r.claim.rule == "none"]
+    assert none and all(r.claim.decided_by in r.verdict for r in none)

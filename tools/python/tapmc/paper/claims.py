@@ -1,0 +1,866 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""The claims register (``claims.toml``) and the statistics and rules that decide each claim.
+
+The register lists every claim of Philippe & Bideau (section, figure, meaning, the statistic
+that tests it, the rule, where its tolerance comes from, the scale it needs and the runs that
+decide it). A statistic reads the figure CSVs of a campaign (:class:`ReportData`) and returns
+one or more :class:`Measure` (a value, its standard error and the degrees of freedom of that
+error); a rule turns a measure into a verdict:
+
+* ``value``: agrees when |value - target| <= t * err + rounding, disagrees otherwise;
+* ``range``: agrees when [value - t err, value + t err] meets [lo, hi], disagrees otherwise;
+* ``sign``: agrees when sign * value > t * err, disagrees when sign * value < -t * err,
+  undecided in between;
+* ``zero``: disagrees when |value| > t * err; agrees (consistent with zero) when
+  |value| <= t * err and t * err is smaller than the measure's ``effect``, the size of the
+  effect the claim denies (e.g. the change Percus-Yevick predicts between the two packing
+  fractions); undecided when the data are too uncertain to tell zero from that effect;
+* ``fit``: agrees when the chi-square of the fit has a p-value of at least 1 %;
+* ``check``: a consistency check of the tools (holds / fails), never counted;
+* ``none``: no statistic yet: undecided, with the runs that would decide it.
+
+``t`` is the two-sided 95 % quantile of Student's t distribution with the measure's degrees
+of freedom (seeds - 1 for a mean over seeds): sound for the few realizations a campaign has.
+A measure without an uncertainty (one realization) is undecided, never agreed by default.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from scipy import stats
+
+from . import _plotting as P
+
+#: The register, next to this module.
+REGISTER = Path(__file__).with_name("claims.toml")
+#: Two-sided confidence level of every t-based rule.
+CONFIDENCE = 0.95
+#: p-value below which a fit's chi-square rejects the law (rule ``fit``).
+FIT_P_VALUE = 0.01
+#: Rounding of the pore dumps' coordinates, allowed below xi_T by the ``check`` rule.
+XI_CHECK_ROUNDING = 1e-3
+#: The paper's scale (section II): N, box side in R, taps per run and per ramp level, eta.
+PAPER_SCALE = {"N": 4096, "L": 32.0, "taps": 4000, "ramp_taps": 4000, "eta": 1e-7}
+
+KINDS = ("model", "check")
+RULE_NAMES = ("value", "range", "sign", "zero", "fit", "check", "none")
+ASPECTS = ("size", "taps", "ramp_taps", "eta")
+
+
+@dataclass(frozen=True)
+class Claim:
+    """One [[claim]] of the register (see the comments at the top of ``claims.toml``)."""
+
+    id: str
+    section: str
+    figure: str
+    claim: str
+    paper: str
+    kind: str
+    statistic: str
+    rule: str
+    tolerance: str
+    decided_by: str
+    needs: tuple = ()
+    target: float | None = None
+    lo: float | None = None
+    hi: float | None = None
+    sign: int | None = None
+    rounding: float = 0.0
+    params: dict = field(default_factory=dict)
+
+    def __post_init__(self):
+        where = f"claim {self.id!r}"
+        if self.kind not in KINDS:
+            raise ValueError(f"{where}: kind = {self.kind!r}: allowed values {KINDS}")
+        if self.rule not in RULE_NAMES:
+            raise ValueError(f"{where}: rule = {self.rule!r}: allowed values {RULE_NAMES}")
+        bad = [a for a in self.needs if a not in ASPECTS]
+        if bad:
+            raise ValueError(f"{where}: needs = {bad}: allowed values {ASPECTS}")
+        if self.statistic and self.statistic not in STATISTICS:
+            raise ValueError(f"{where}: statistic = {self.statistic!r} is not one of "
+                             f"tapmc.paper.claims.STATISTICS")
+        if (self.rule == "none") != (not self.statistic):
+            raise ValueError(f"{where}: rule 'none' goes with an empty statistic and only then")
+        required = {"value": ("target",), "range": ("lo", "hi"), "sign": ("sign",),
+                    "check": ("target",)}.get(self.rule, ())
+        for name in required:
+            if getattr(self, name) is None:
+                raise ValueError(f"{where}: rule {self.rule!r} needs the field {name!r}")
+        if self.sign not in (None, -1, 1):
+            raise ValueError(f"{where}: sign = {self.sign!r}: allowed values -1, 1")
+        if not self.tolerance.strip():
+            raise ValueError(f"{where}: a tolerance needs its source (field 'tolerance')")
+
+
+def load_register(path=REGISTER):
+    """The claims of the register at ``path``, in its order (validated; ids unique)."""
+    with open(path, "rb") as handle:
+        raw = tomllib.load(handle)
+    claims = []
+    for entry in raw.get("claim", []):
+        entry = dict(entry)
+        entry["needs"] = tuple(entry.get("needs", ()))
+        try:
+            claims.append(Claim(**entry))
+        except TypeError as err:
+            raise ValueError(f"{path}: claim {entry.get('id')!r}: {err}") from None
+    ids = [c.id for c in claims]
+    duplicates = sorted({i for i in ids if ids.count(i) > 1})
+    if duplicates:
+        raise ValueError(f"{path}: claim ids used twice: {duplicates}")
+    return claims
+
+
+# ---------------------------------------------------------------- measures and data
+
+
+@dataclass
+class Measure:
+    """What a statistic measured for one row: ``value`` with standard error ``err`` whose
+    degrees of freedom are ``dof``; ``shown`` replaces the default text of the value;
+    ``quantile`` replaces the t quantile (e.g. Bonferroni-corrected maxima); ``effect`` is the
+    size of the effect a ``zero`` claim denies (agreement needs an uncertainty below it);
+    ``undecided`` says why the data cannot decide (the value may still be shown)."""
+
+    value: float = math.nan
+    err: float = math.nan
+    dof: float | None = None
+    label: str = ""
+    shown: str | None = None
+    quantile: float | None = None
+    effect: float | None = None
+    undecided: str | None = None
+
+    def text(self):
+        if self.shown is not None:
+            return self.shown
+        return fmt(self.value, self.err)
+
+
+def fmt(value, err=None, pct=False, digits=3):
+    """A number with its error, as the report prints it ("n/a" when not finite)."""
+    if value is None or not np.isfinite(value):
+        return "n/a"
+    if pct:
+        if err is None or not np.isfinite(err):
+            return f"{100 * value:.2f} %"
+        return f"{100 * value:.2f} ± {100 * err:.2f} %"
+    if err is None or not np.isfinite(err):
+        return f"{value:.{digits}g}"
+    return f"{value:.{digits}g} ± {err:.2g}"
+
+
+class FigureData:
+    """One figure CSV: ``get(panel, series)`` -> (x, mean, sem, n) arrays or None."""
+
+    def __init__(self, table):
+        self.table = table
+
+    @classmethod
+    def read(cls, path):
+        return cls(P.read_table(path))
+
+    def get(self, panel, series):
+        d = self.table.get((panel, series))
+        if d is None:
+            return None
+        return (np.asarray(d["x"], float), np.asarray(d["mean"], float),
+                np.asarray(d["sem"], float), np.asarray(d["n"], float))
+
+    def param(self, series):
+        """(value, sem, n) of a one-row ``params`` series, NaNs when absent."""
+        d = self.get("params", series)
+        if d is None:
+            return math.nan, math.nan, 0
+        return float(d[1][0]), float(d[2][0]), int(d[3][0])
+
+    def series(self, panel):
+        return [s for (p, s) in self.table if p == panel]
+
+
+class ReportData:
+    """The inputs of the report: ``figures`` (name -> :class:`FigureData`) and the campaign
+    ``summary`` (tapmc.paper.validation.campaign_summary)."""
+
+    def __init__(self, summary, figures):
+        self.summary = summary
+        self.figures = figures
+
+    @classmethod
+    def from_files(cls, summary, files):
+        """``files``: name -> (png, csv) as the report collects them."""
+        return cls(summary, {name: FigureData.read(paths[1]) for name, paths in files.items()})
+
+    def figure(self, name):
+        return self.figures.get(name)
+
+
+def _dof(n):
+    """Degrees of freedom of a mean over n realizations (None when fewer than two)."""
+    n = int(np.nanmin(np.atleast_1d(n))) if np.size(n) else 0
+    return n - 1 if n >= 2 else None
+
+
+def _missing(what):
+    return [Measure(undecided=f"not in this campaign ({what})")]
+
+
+def _eps_of(series):
+    """eps of a series named 'eps=<eps>' or 'eps=<eps>:<name>'."""
+    return float(series.split("=")[1].split(":")[0])
+
+
+def _eps_series(fig, panel):
+    """Sorted (eps, series) of the data series 'eps=<eps>' of a panel (fits excluded)."""
+    out = [(_eps_of(s), s) for s in fig.series(panel) if s.startswith("eps=") and ":" not in s]
+    return sorted(out)
+
+
+def _weighted_line(x, y, err):
+    """Weighted straight line y = a + b x: (b, its standard error, dof); errors scaled by the
+    reduced chi2 when it exceeds 1 (the scatter is then larger than the error bars say)."""
+    x, y, err = map(np.asarray, (x, y, err))
+    ok = np.isfinite(x) & np.isfinite(y) & np.isfinite(err) & (err > 0)
+    x, y, err = x[ok], y[ok], err[ok]
+    if len(x) < 3:
+        return math.nan, math.nan, None
+    w = 1.0 / err**2
+    design = np.vstack([np.ones_like(x), x]).T
+    cov = np.linalg.inv(design.T @ (design * w[:, None]))
+    coef = cov @ (design.T @ (w * y))
+    dof = len(x) - 2
+    chi2 = float(np.sum(w * (y - design @ coef) ** 2))
+    scale = max(1.0, chi2 / dof)
+    return float(coef[1]), float(math.sqrt(cov[1, 1] * scale)), dof
+
+
+def _mean_difference(a, b):
+    """Mean over the common x of the curves a - b ((x, mean, sem, n) each), its error and dof;
+    None when they share no x."""
+    diffs, errs, ns = [], [], []
+    for x, m, s, n in zip(*a):
+        match = np.isclose(b[0], x)
+        if np.any(match):
+            k = int(np.argmax(match))
+            diffs.append(m - b[1][k])
+            errs.append(math.hypot(s, b[2][k]))
+            ns.append(min(n, b[3][k]))
+    if not diffs:
+        return None
+    errs = np.asarray(errs)
+    err = float(np.sqrt(np.sum(errs**2)) / len(errs)) if np.all(np.isfinite(errs)) else math.nan
+    return float(np.mean(diffs)), err, _dof(ns), len(diffs)
+
+
+# ---------------------------------------------------------------- statistics
+
+
+def initial_phi(data, claim):
+    m, s, n = (math.nan if v is None else v for v in data.summary["initial_phi_c"])
+    return [Measure(m, s, _dof(n), shown=fmt(m, s, pct=True))]
+
+
+def tapped_phi(data, claim):
+    fig = data.figure("fig9")
+    if fig is None:
+        return _missing("no Fig. 9 runs")
+    m, s, n = fig.param("phi_c_final")
+    return [Measure(m, s, _dof(n), shown=fmt(m, s, pct=True))]
+
+
+def pbc_compaction(data, claim):
+    fig = data.figure("fig9")
+    if fig is None:
+        return _missing("no Fig. 9 runs")
+    mi, si, ni = fig.param("phi_c_initial")
+    mf, sf, nf = fig.param("phi_c_final")
+    return [Measure(mf - mi, math.hypot(si, sf), _dof(min(ni, nf)),
+                    shown=f"{fmt(mi, si, pct=True)} -> {fmt(mf, sf, pct=True)}")]
+
+
+def phi_b_gain(data, claim):
+    fig = data.figure("fig2")
+    if fig is None:
+        return _missing("no Fig. 2 runs")
+    out = []
+    for eps, series in _eps_series(fig, "a"):
+        t, mean, sem, n = fig.get("a", series)
+        q = max(len(t) // 4, 1)
+        gain = float(np.mean(mean[-q:]) - mean[0])
+        err = float(math.sqrt(np.nanmean(sem[-q:]) ** 2 + sem[0] ** 2)) \
+            if np.isfinite(sem[0]) else math.nan
+        out.append(Measure(gain, err, _dof(n), label=f"eps = {eps:g}"))
+    return out or _missing("no F.B.C. curve in Fig. 2")
+
+
+def _fit_quality(fig, prefix, npoints, nparams, label):
+    chi, _, determined = fig.param(f"{prefix}reduced_chi2")
+    if not np.isfinite(chi):
+        return Measure(label=label, undecided="no fit in the figure data")
+    dof = npoints - nparams
+    shown = f"reduced chi2 {fmt(chi)} ({dof} dof)"
+    if dof < 1:
+        return Measure(chi, label=label, shown=shown, undecided="fewer points than parameters")
+    return Measure(chi, dof=dof, label=label, shown=shown)
+
+
+def eq3_fit_quality(data, claim):
+    fig = data.figure("fig2")
+    if fig is None:
+        return _missing("no Fig. 2 runs")
+    out = []
+    for eps, series in _eps_series(fig, "a"):
+        t, mean, sem, n = fig.get("a", series)
+        m = _fit_quality(fig, f"eps={P.fmt_eps(eps)}:", len(t), 4, f"eps = {eps:g}")
+        if _dof(n) is None and m.undecided is None:
+            m.undecided = "one realization: the fit had no error bars"
+        out.append(m)
+    return out or _missing("no F.B.C. curve in Fig. 2")
+
+
+#: Decades of the log-time slopes of ``log_time_slowing``: the first decade of taps (the last
+#: one is [T/10, T]).
+EARLY_DECADE = (1.0, 10.0)
+
+
+def _log_slope(t, mean, sem, lo, hi):
+    pick = (t >= lo) & (t <= hi) & (t > 0)
+    return _weighted_line(np.log(t[pick]), mean[pick], sem[pick])
+
+
+def log_time_slowing(data, claim):
+    """(late / early rate of Phi_b per unit ln t) at the smallest eps minus that at the
+    largest: negative when the slowing is strongest at small eps (section III.A)."""
+    fig = data.figure("fig2")
+    if fig is None:
+        return _missing("no Fig. 2 runs")
+    curves = _eps_series(fig, "a")
+    if len(curves) < 2:
+        return _missing("fewer than two eps in Fig. 2")
+    ratios = []
+    for eps, series in (curves[0], curves[-1]):
+        t, mean, sem, n = fig.get("a", series)
+        early, e_early, _ = _log_slope(t, mean, sem, *EARLY_DECADE)
+        late, e_late, _ = _log_slope(t, mean, sem, t[-1] / 10.0, t[-1])
+        if not (np.isfinite(early) and early > 2 * e_early):
+            return [Measure(undecided=f"no significant compaction in the first decade at "
+                                      f"eps = {eps:g} (rate {fmt(early, e_early)})")]
+        r = late / early
+        ratios.append((eps, r, abs(r) * math.hypot(e_late / late if late else math.inf,
+                                                    e_early / early), _dof(n)))
+    (e0, r0, s0, d0), (e1, r1, s1, d1) = ratios
+    dofs = [d for d in (d0, d1) if d is not None]
+    return [Measure(r0 - r1, math.hypot(s0, s1), min(dofs) if len(dofs) == 2 else None,
+                    shown=f"late/early rate {fmt(r0, s0)} (eps = {e0:g}) vs {fmt(r1, s1)} "
+                          f"(eps = {e1:g})")]
+
+
+def spectral_slopes(data, claim):
+    fig = data.figure("fig3")
+    if fig is None:
+        return _missing("no Fig. 3 runs")
+    out = []
+    for series in fig.series("params"):
+        if series.endswith(":slope"):
+            m, s, n = fig.param(series)
+            out.append((_eps_of(series),
+                        Measure(-m, s, _dof(n), label=f"eps = {_eps_of(series):g}",
+                                shown=fmt(m, s))))
+    return [m for _, m in sorted(out, key=lambda p: p[0])] or _missing("no spectrum")
+
+
+#: Fraction of the frequencies (lowest, highest) compared by ``spectrum_eps_spread``.
+SPECTRUM_BAND = 0.25
+#: Resamplings of the spectra that propagate their sem to ``spectrum_eps_spread``.
+SPECTRUM_RESAMPLINGS = 400
+
+
+def spectrum_eps_spread(data, claim):
+    """Spread over eps of log10 P(f) in the highest-frequency band minus that in the lowest
+    band (section III.A: eps is noticeable only at high frequencies)."""
+    fig = data.figure("fig3")
+    if fig is None:
+        return _missing("no Fig. 3 runs")
+    curves = [fig.get("a", s) for _, s in _eps_series(fig, "a")]
+    if len(curves) < 3:
+        return _missing("fewer than three spectra")
+    rng = np.random.default_rng(12345)
+
+    def spread(samples):
+        low, high = [], []
+        for f, logp in samples:
+            k = max(int(len(f) * SPECTRUM_BAND), 1)
+            order = np.argsort(f)
+            low.append(np.mean(logp[order[:k]]))
+            high.append(np.mean(logp[order[-k:]]))
+        return float(np.std(high, ddof=1) - np.std(low, ddof=1))
+
+    def logs(f, p):
+        ok = (f > 0) & (p > 0)
+        return f[ok], np.log10(p[ok])
+
+    base = spread([logs(f, p) for f, p, _, _ in curves])
+    if not all(np.all(np.isfinite(s[(f > 0) & (p > 0)])) for f, p, s, _ in curves):
+        return [Measure(base, undecided="one realization: the spectra have no error bars")]
+    draws = []
+    for _ in range(SPECTRUM_RESAMPLINGS):
+        sample = []
+        for f, p, s, _ in curves:
+            noisy = p + s * rng.standard_normal(p.shape)
+            sample.append(logs(f, np.where(noisy > 0, noisy, p)))
+        draws.append(spread(sample))
+    return [Measure(base, float(np.std(draws, ddof=1)), _dof(min(c[3].min() for c in curves)))]
+
+
+def sigma_intercept(data, claim):
+    fig = data.figure("fig3")
+    if fig is None:
+        return _missing("no Fig. 3 runs")
+    m, s, n = fig.param("intercept")
+    b = fig.get("b", "sigma_Z")
+    dof = len(b[0]) - 2 if b is not None else None
+    # a zero intercept means small against the smallest sigma measured
+    effect = float(np.nanmin(b[1])) if b is not None else None
+    return [Measure(m, s, dof if dof and dof >= 1 else None, effect=effect)]
+
+
+def _steady(data):
+    fig = data.figure("fig4")
+    return None if fig is None else fig.get("a", "steady")
+
+
+def bell_maximum(data, claim):
+    """Vertex of a weighted parabola through the largest steady state and its neighbours."""
+    steady = _steady(data)
+    if steady is None or len(steady[0]) < 3:
+        return _missing("fewer than three steady states")
+    x, y, s, n = steady
+    i = int(np.nanargmax(y))
+    lo, hi = max(0, i - 2), min(len(x), i + 3)
+    if hi - lo < 3:
+        lo, hi = max(0, hi - 3), max(hi, 3)
+    xs, ys, ss = x[lo:hi], y[lo:hi], s[lo:hi]
+    if not np.all(np.isfinite(ss)) or np.any(ss <= 0):
+        return [Measure(x[i], undecided="one realization: the steady states have no error bars",
+                        shown=f"largest at sqrt(eps) = {x[i]:g}")]
+    w = 1.0 / ss**2
+    design = np.vstack([np.ones_like(xs), xs, xs**2]).T
+    cov = np.linalg.inv(design.T @ (design * w[:, None]))
+    a0, b, c = cov @ (design.T @ (w * ys))
+    if not c < 0:
+        return [Measure(x[i], undecided="the points around the largest are not concave",
+                        shown=f"largest at sqrt(eps) = {x[i]:g}")]
+    vertex = -b / (2 * c)
+    grad = np.array([0.0, -1 / (2 * c), b / (2 * c**2)])
+    err = float(math.sqrt(grad @ cov @ grad))
+    dof = len(xs) - 3
+    return [Measure(float(vertex), err, dof if dof >= 1 else _dof(n[i]),
+                    shown=f"{fmt(vertex, err)} (parabola through {len(xs)} points)")]
+
+
+def bell_side_slope(data, claim):
+    steady = _steady(data)
+    if steady is None or len(steady[0]) < 3:
+        return _missing("fewer than three steady states")
+    x, y, s, n = steady
+    i = int(np.nanargmax(y))
+    pick = slice(0, i + 1) if claim.params.get("side") == "below" else slice(i, len(x))
+    if len(x[pick]) < 3:
+        return [Measure(undecided=f"fewer than three steady states {claim.params.get('side')} "
+                                  f"the largest (at sqrt(eps) = {x[i]:g})")]
+    slope, err, dof = _weighted_line(x[pick], y[pick], s[pick])
+    if not np.isfinite(slope):
+        return [Measure(undecided="one realization: the steady states have no error bars")]
+    return [Measure(slope, err, dof, shown=f"slope {fmt(slope, err)}")]
+
+
+def _ramp(data, name):
+    fig = data.figure("fig4")
+    return None if fig is None else fig.get("a", name)
+
+
+def _hysteresis_gap(data):
+    """Mean of the decreasing branch minus the first increase: the effect the "nearly the
+    same" claims of the ramp are measured against."""
+    down, up = _ramp(data, "down"), _ramp(data, "up1")
+    if down is None or up is None:
+        return None
+    d = _mean_difference(down, up)
+    return None if d is None else d[0]
+
+
+def _branch_difference(data, a, b, effect=None):
+    ca, cb = _ramp(data, a), _ramp(data, b)
+    if ca is None or cb is None:
+        return _missing(f"no ramp branches {a!r} and {b!r}")
+    d = _mean_difference(ca, cb)
+    if d is None:
+        return [Measure(undecided=f"the branches {a!r} and {b!r} share no sqrt(eps)")]
+    mean, err, dof, k = d
+    if not np.isfinite(err):
+        return [Measure(mean, undecided="one realization: the branches have no error bars")]
+    return [Measure(mean, err, dof, effect=effect,
+                    shown=f"{fmt(mean, err)} (mean of {k} common sqrt(eps))")]
+
+
+def ramp_up_minus_steady(data, claim):
+    return _branch_difference(data, "up1", "steady", _hysteresis_gap(data))
+
+
+def ramp_down_minus_up(data, claim):
+    return _branch_difference(data, "down", "up1")
+
+
+def ramp_up2_minus_down(data, claim):
+    return _branch_difference(data, "up2", "down", _hysteresis_gap(data))
+
+
+def low_ramp_down_minus_up(data, claim):
+    return _branch_difference(data, "low:down", "low:up1", _hysteresis_gap(data))
+
+
+def ramp_branch_slope(data, claim):
+    branch = _ramp(data, claim.params.get("branch", "down"))
+    if branch is None:
+        return _missing("no ramp")
+    slope, err, dof = _weighted_line(*branch[:3])
+    if not np.isfinite(slope):
+        return [Measure(undecided="fewer than three levels with error bars")]
+    return [Measure(slope, err, dof, shown=f"slope {fmt(slope, err)}")]
+
+
+def final_alpha(data, claim):
+    fig = data.figure("fig6")
+    if fig is None:
+        return _missing("no Fig. 6 runs")
+    m, s, n = fig.param("final:alpha")
+    return [Measure(m, s, _dof(n))]
+
+
+def central_minus_lateral(data, claim):
+    fig = data.figure("fig8")
+    if fig is None:
+        return _missing("no Fig. 8 runs")
+    out = []
+    for eps in sorted({_eps_of(s) for s in fig.series("params")}):
+        tag = f"eps={P.fmt_eps(eps)}"
+        cen = fig.param(f"{tag}:final_central")
+        lat = fig.param(f"{tag}:final_lateral")
+        out.append(Measure(cen[0] - lat[0], math.hypot(cen[1], lat[1]),
+                           _dof(min(cen[2], lat[2])), label=f"eps = {eps:g}",
+                           shown=f"{fmt(cen[0], cen[1])} vs {fmt(lat[0], lat[1])}"))
+    return out or _missing("no F.B.C. profile")
+
+
+def lateral_first_tap(data, claim):
+    fig = data.figure("fig8")
+    if fig is None:
+        return _missing("no Fig. 8 runs")
+    paper_start = [(e, s) for e, s in ((_eps_of(s), s) for s in fig.series("a")
+                                       if s.startswith("paper:eps="))]
+    if not paper_start:
+        values = []
+        for eps, series in _eps_series(fig, "a"):
+            t, mean, sem, n = fig.get("a", series)
+            if np.any(t == 1):
+                values.append(f"{fmt(mean[t == 1][0], sem[t == 1][0])} at eps = {eps:g}")
+        seen = "; with the start deposited between walls: " + ", ".join(values) if values else ""
+        return [Measure(undecided="no F.B.C. run from the paper's start" + seen)]
+    out = []
+    for eps, series in sorted(paper_start):
+        t, mean, sem, n = fig.get("a", series)
+        if not np.any(t == 1):
+            continue
+        k = int(np.argmax(t == 1))
+        out.append(Measure(mean[k], sem[k], _dof(n[k]), label=f"eps = {eps:g}"))
+    return out or _missing("no tap 1 in the paper-start curves")
+
+
+def _pointwise_zero(x, diff, err, n, what, effect):
+    """The largest standardized difference over the points, tested against the Bonferroni
+    corrected t quantile (so that many points do not make a disagreement by chance)."""
+    ok = np.isfinite(diff) & np.isfinite(err) & (err > 0)
+    if not np.any(ok):
+        k = int(np.nanargmax(np.abs(diff))) if np.any(np.isfinite(diff)) else 0
+        return [Measure(float(diff[k]) if len(diff) else math.nan,
+                        undecided="one realization: the curves have no error bars",
+                        shown=f"max |{what}| = {fmt(np.nanmax(np.abs(diff)))}")]
+    idx = np.flatnonzero(ok)
+    k = idx[int(np.argmax(np.abs(diff[idx]) / err[idx]))]
+    dof = _dof(n[k])
+    if dof is None:
+        return [Measure(float(diff[k]), undecided="one realization")]
+    quantile = float(stats.t.ppf(1 - (1 - CONFIDENCE) / (2 * len(idx)), dof))
+    return [Measure(float(diff[k]), float(err[k]), dof, quantile=quantile, effect=effect,
+                    shown=f"{fmt(diff[k], err[k])} at sigma = {x[k]:.3g} (largest of "
+                          f"{len(idx)} standardized differences)")]
+
+
+def _py_change(fig, sigma):
+    """Largest change over sigma of the Percus-Yevick P0 (eqs. 8-9) between the initial and
+    the tapped packing fractions: the effect a P0 claim is measured against (None when the
+    packing fractions are not in the data)."""
+    from tapmc.pores import percus_yevick_p0
+
+    phi_i, phi_f = fig.param("phi_initial")[0], fig.param("phi_final")[0]
+    if not (np.isfinite(phi_i) and np.isfinite(phi_f)):
+        return None
+    return float(np.max(np.abs(percus_yevick_p0(sigma, phi_f) -
+                               percus_yevick_p0(sigma, phi_i))))
+
+
+def p0_initial_minus_final(data, claim):
+    fig = data.figure("fig9")
+    if fig is None:
+        return _missing("no Fig. 9 runs")
+    a, b = fig.get("a", "initial"), fig.get("a", "final")
+    if a is None or b is None:
+        return _missing("no P0 curves")
+    x = b[0]
+    ai = np.interp(x, a[0], a[1])
+    si = np.interp(x, a[0], a[2])
+    return _pointwise_zero(x, ai - b[1], np.hypot(si, b[2]), np.minimum(b[3], a[3].min()),
+                           "P0(initial) - P0(tapped)", _py_change(fig, x))
+
+
+def p0_final_minus_py(data, claim):
+    fig = data.figure("fig9")
+    if fig is None:
+        return _missing("no Fig. 9 runs")
+    b, py = fig.get("a", "final"), fig.get("a", "percus_yevick")
+    if b is None or py is None:
+        return _missing("no P0 curves")
+    model = np.interp(b[0], py[0], py[1])
+    return _pointwise_zero(b[0], b[1] - model, b[2], b[3], "P0(tapped) - Percus-Yevick",
+                           _py_change(fig, b[0]))
+
+
+def xi_min(data, claim):
+    fig = data.figure("fig10")
+    if fig is None:
+        return _missing("no pore dumps")
+    d = fig.get("params", "xi_min")
+    if d is None:
+        return _missing("no xi_min")
+    i = int(np.argmin(d[1]))
+    return [Measure(float(d[1][i]), float(d[2][i]), _dof(d[3][i]),
+                    shown=fmt(d[1][i], d[2][i], digits=4))]
+
+
+def _pore_curves(data):
+    fig = data.figure("fig10")
+    if fig is None:
+        return None
+    curves = sorted((float(s.split("=")[1]), fig.get("a", s)) for s in fig.series("a")
+                    if s.startswith("t="))
+    return curves or None
+
+
+def _band_integral(x, y, s, lo, hi):
+    """Integral of a histogram curve over lo < x <= hi (bin width from the x spacing) and its
+    error (bins independent)."""
+    width = np.gradient(x) if len(x) > 1 else np.ones_like(x)
+    pick = (x > lo) & (x <= hi)
+    value = float(np.sum(y[pick] * width[pick]))
+    err = float(math.sqrt(np.sum((s[pick] * width[pick]) ** 2)))
+    return value, err
+
+
+def pore_share_change(data, claim):
+    """Change from t = 0 to the last dump of the integral of xi^3 P(xi) over the small pores
+    (xi_T, xi_O] or the large ones (> xi_O)."""
+    curves = _pore_curves(data)
+    if curves is None:
+        return _missing("no pore dumps")
+    (t0, first), (t1, last) = curves[0], curves[-1]
+    lo, hi = (P.XI_T, P.XI_O) if claim.params.get("range") == "small" else (P.XI_O, math.inf)
+    a, ea = _band_integral(*first[:3], lo, hi)
+    b, eb = _band_integral(*last[:3], lo, hi)
+    n = min(first[3].min(), last[3].min())
+    shown = f"{fmt(a, ea)} (t = {t0:g}) -> {fmt(b, eb)} (t = {t1:g})"
+    if not (np.isfinite(ea) and np.isfinite(eb)) or _dof(n) is None:
+        return [Measure(b - a, shown=shown, undecided="one realization: no error bars")]
+    # invariance of the small pores means small against the change of the large ones
+    la, _ = _band_integral(*first[:3], P.XI_O, math.inf)
+    lb, _ = _band_integral(*last[:3], P.XI_O, math.inf)
+    return [Measure(b - a, math.hypot(ea, eb), _dof(n), shown=shown, effect=abs(lb - la))]
+
+
+def pore_quadratic_fit(data, claim):
+    """Chi-square of xi^3 P(xi) = c (xi - xi_T)^2 over (xi_T, xi_O] at the last dump."""
+    curves = _pore_curves(data)
+    if curves is None:
+        return _missing("no pore dumps")
+    t, (x, y, s, n) = curves[-1]
+    pick = (x > P.XI_T) & (x <= P.XI_O) & np.isfinite(s) & (s > 0)
+    if pick.sum() < 3:
+        return [Measure(undecided="fewer than three histogram bins with error bars between "
+                                  "xi_T and xi_O")]
+    basis, yy, ss = (x[pick] - P.XI_T) ** 2, y[pick], s[pick]
+    w = 1 / ss**2
+    c = float(np.sum(w * basis * yy) / np.sum(w * basis**2))
+    dof = int(pick.sum()) - 1
+    chi = float(np.sum(w * (yy - c * basis) ** 2)) / dof
+    return [Measure(chi, dof=dof, shown=f"reduced chi2 {fmt(chi)} ({dof} dof, t = {t:g})")]
+
+
+def _pore_param(data, name):
+    fig = data.figure("fig10")
+    return None if fig is None else fig.get("params", name)
+
+
+def nu_tail_over_nu(data, claim):
+    nu, tail = _pore_param(data, "nu"), _pore_param(data, "nu_tail")
+    if nu is None or tail is None:
+        return _missing("no nu_tail")
+    m, s = tail[1][-1] / nu[1][-1], 0.0
+    ratio_err = abs(m) * math.hypot(tail[2][-1] / tail[1][-1], nu[2][-1] / nu[1][-1])
+    s = ratio_err if np.isfinite(ratio_err) else math.nan
+    return [Measure(float(m), float(s), _dof(min(nu[3][-1], tail[3][-1])),
+                    label=f"t = {nu[0][-1]:g}")]
+
+
+def nu_change(data, claim):
+    nu = _pore_param(data, "nu")
+    if nu is None:
+        return _missing("no nu")
+    x, m, s, n = nu
+    return [Measure(m[-1] - m[0], math.hypot(s[-1], s[0]), _dof(min(n[0], n[-1])),
+                    shown=f"{fmt(m[0], s[0], digits=4)} -> {fmt(m[-1], s[-1], digits=4)}")]
+
+
+STATISTICS = {f.__name__: f for f in (
+    initial_phi, tapped_phi, pbc_compaction, phi_b_gain, eq3_fit_quality,
+    log_time_slowing, spectral_slopes, spectrum_eps_spread,
+    sigma_intercept, bell_maximum, bell_side_slope, ramp_up_minus_steady, ramp_down_minus_up,
+    ramp_up2_minus_down, low_ramp_down_minus_up, ramp_branch_slope,
+    final_alpha, central_minus_lateral, lateral_first_tap, p0_initial_minus_final,
+    p0_final_minus_py, xi_min, pore_share_change, pore_quadratic_fit, nu_tail_over_nu,
+    nu_change)}
+
+
+# ---------------------------------------------------------------- rules
+
+
+def t_quantile(dof):
+    """Two-sided CONFIDENCE quantile of Student's t with dof degrees of freedom."""
+    return float(stats.t.ppf(0.5 + CONFIDENCE / 2, dof))
+
+
+def _decidable(m):
+    return m.dof is not None and m.dof >= 1 and np.isfinite(m.err)
+
+
+def verdict(claim, m):
+    """The verdict of one measure under the claim's rule: a text starting with "agrees",
+    "disagrees", "undecided", "holds" or "fails"."""
+    if m.undecided:
+        return f"undecided ({m.undecided})"
+    if not np.isfinite(m.value):
+        return "undecided (not measured)"
+    rule = claim.rule
+    if rule == "check":
+        ok = m.value >= claim.target - XI_CHECK_ROUNDING
+        return "holds" if ok else "fails"
+    if rule == "fit":
+        if m.dof is None or m.dof < 1:
+            return "undecided (no degrees of freedom)"
+        p = float(stats.chi2.sf(m.value * m.dof, m.dof))
+        return ("agrees" if p >= FIT_P_VALUE else "disagrees") + f" (p = {p:.2g})"
+    if not _decidable(m):
+        return "undecided (no uncertainty: one realization)"
+    t = m.quantile if m.quantile is not None else t_quantile(m.dof)
+    band = t * m.err
+    if rule == "value":
+        return "agrees" if abs(m.value - claim.target) <= band + claim.rounding else "disagrees"
+    if rule == "range":
+        return "agrees" if (m.value + band >= claim.lo and m.value - band <= claim.hi) \
+            else "disagrees"
+    if rule == "sign":
+        signed = claim.sign * m.value
+        if signed > band:
+            return "agrees"
+        if signed < -band:
+            return "disagrees"
+        return "undecided (within the uncertainty of zero)"
+    if rule == "zero":
+        if abs(m.value) > band:
+            return "disagrees"
+        if m.effect is None or not band < abs(m.effect):
+            scale = "" if m.effect is None else f" {fmt(abs(m.effect))}"
+            return f"undecided (uncertainty {fmt(band)} not below the effect{scale})"
+        return "agrees"
+    raise ValueError(f"rule {rule!r}")
+
+
+def scale_aspects(summary):
+    """The parts of the paper's scale (:data:`ASPECTS`) a campaign summary meets."""
+    from .scales import SCALES
+
+    met = set()
+    sizes = [tuple(s) for s in summary.get("sizes", [])]
+    if sizes and all(int(n) == PAPER_SCALE["N"] and float(l) == PAPER_SCALE["L"]
+                     for n, l in sizes):
+        met.add("size")
+    etas = summary.get("eta", [])
+    if etas and all(math.isclose(float(e), PAPER_SCALE["eta"]) for e in etas):
+        met.add("eta")
+    scale = None
+    if summary.get("preset") and summary.get("scale") in SCALES:
+        scale = SCALES[summary["scale"]]
+    fields = summary.get("fields") or {}
+    taps = scale.taps if scale is not None else fields.get("taps")
+    per_level = scale.ramp_taps_per_level if scale is not None else \
+        fields.get("ramp_taps_per_level")
+    if taps is not None and int(taps) >= PAPER_SCALE["taps"]:
+        met.add("taps")
+    if per_level is not None and int(per_level) >= PAPER_SCALE["ramp_taps"]:
+        met.add("ramp_taps")
+    return met
+
+
+@dataclass
+class Row:
+    """One row of the report: the claim, the label of its measure, the measure, the verdict
+    and whether the campaign had the scale the claim needs."""
+
+    claim: Claim
+    label: str
+    measure: Measure
+    verdict: str
+    missing_scale: tuple
+
+    @property
+    def outcome(self):
+        """agrees / disagrees / undecided / holds / fails (the verdict's first word)."""
+        return self.verdict.split(" ")[0]
+
+
+def evaluate(claims, data):
+    """The report rows of every claim (one per measure) for ``data`` (:class:`ReportData`)."""
+    met = scale_aspects(data.summary)
+    rows = []
+    for claim in claims:
+        missing = tuple(a for a in claim.needs if a not in met)
+        if not claim.statistic:
+            rows.append(Row(claim, "", Measure(), f"undecided (no statistic: decided by "
+                                                  f"{claim.decided_by})", missing))
+            continue
+        for m in STATISTICS[claim.statistic](data, claim):
+            text = verdict(claim, m)
+            if missing and not text.startswith("undecided") and claim.kind == "model":
+                text = (f"undecided (scale: needs the paper's {', '.join(missing)}; "
+                        f"at this scale it {text.split(' ')[0]})")
+            rows.append(Row(claim, m.label, m, text, missing))
+    return rows
+
+
+__all__ = ["Claim", "Measure", "ReportData", "FigureData", "Row", "load_register", "evaluate",
+           "verdict", "scale_aspects", "STATISTICS", "RULE_NAMES", "REGISTER"]
