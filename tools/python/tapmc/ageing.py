@@ -115,7 +115,7 @@ class Ageing:
                 rows = rng.integers(0, self.n_realizations, self.n_realizations)
                 _, ab, _ = self._curves(tws, rows)
                 fit_b = law.fit(t, ab[keep], model_sigma, p0=p0)
-                if not fit_b.note.startswith("fit did not converge"):
+                if fit_b.converged:
                     samples.append(list(fit_b.params.values()))
             lo, hi = (np.broadcast_to(v, (3,)).astype(float) for v in law.bounds(None, None))
             if len(samples) < max(10, bootstrap // 2):

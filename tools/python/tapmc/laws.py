@@ -25,18 +25,38 @@ then constrain only a combination of the parameters. A :class:`FitResult` has
 is singular or not finite, a parameter's 1-sigma error exceeds 100 % of its value, a parameter
 sits on a bound, or two parameters are correlated beyond ``CORRELATION_LIMIT``. The numbers are
 still returned: they describe the data, they are just not unique.
+
+**Honest uncertainties.** A curvature error (the covariance of the fit) is a statement about
+a parabola at the best fit; where the data fix only a combination of parameters it is
+meaningless (the first medium-scale Fig. 2 printed ``tau = 2.67e+05 +- 0.026``). Every
+:class:`FitResult` of :meth:`Law.fit` therefore has a profile likelihood per parameter
+(:attr:`FitResult.intervals`): the parameter is fixed on a walk across its allowed range
+(:meth:`Law.profile_limits`), the others are refitted, and the 68 % interval is where
+chi2 - chi2_min <= ``PROFILE_DELTA_CHI2`` (= 1, Wilks, one parameter), the chi2 rescaled by
+the reduced chi2 when that exceeds 1 (the scatter says the errors are too small or the law is
+not exact; an unweighted fit always uses the residual scatter). A parameter is *determined*
+(:attr:`FitResult.determined_params`) only when its interval closes on both sides inside its
+allowed range; otherwise the open side is ``nan`` and :attr:`FitResult.errors` shows ``nan``
+for it, never a curvature error. :func:`range_refits` refits a law over several tap ranges and
+compares the spread of each parameter with the profile intervals: the statistic of the paper's
+"depends strongly on the range of taps" (section III.B). :func:`exponential_dependence` tests
+"B is consistent with an exponential dependence on eps^(1/2)" (section III.A).
 """
 
 import warnings
 
 import numpy as np
-from scipy.optimize import OptimizeWarning, curve_fit
+from scipy.optimize import OptimizeWarning, curve_fit, least_squares
+from scipy.stats import chi2 as chi2_distribution
 
 from ._validate import as_1d, new_axis, same_length
 
 __all__ = ["FitResult", "Law", "InverseLogLaw", "ZLaw", "TwoExponentials", "AgeingLaw",
            "ProfileLaw", "StraightLine", "profile_gradient", "PROFILE_WINDOWS",
-           "CORRELATION_LIMIT", "RELATIVE_ERROR_LIMIT"]
+           "CORRELATION_LIMIT", "RELATIVE_ERROR_LIMIT", "PROFILE_DELTA_CHI2",
+           "POSITIVE_DECADES", "TIME_SCALE_DECADES", "UNBOUNDED_SPAN", "RANGE_Z_LIMIT",
+           "LINEARITY_P_MIN", "Interval", "RangeRefits", "range_refits", "default_tap_ranges",
+           "LogLinear", "ExponentialDependence", "exponential_dependence"]
 
 #: |correlation| between two parameters above which they are reported as not separately
 #: determined (the data fix only a combination of them).
@@ -45,25 +65,97 @@ CORRELATION_LIMIT = 0.999
 RELATIVE_ERROR_LIMIT = 1.0
 #: gradient windows of the paper (section IV.A), in units of R.
 PROFILE_WINDOWS = {"fbc": (5.0, 22.0), "pbc": (5.0, 26.0)}
+#: chi2 - chi2_min of the 68.3 % profile-likelihood interval of one parameter (Wilks' theorem,
+#: one degree of freedom).
+PROFILE_DELTA_CHI2 = 1.0
+#: allowed range of a positive parameter without a natural scale: this many decades either
+#: side of its best value (a profile still flat there constrains nothing measurable).
+POSITIVE_DECADES = 6.0
+#: allowed range of a time scale (tau of eqs. 3, 4, 6): from the first positive tap / 10^3 to
+#: the last tap x 10^3; beyond them the law is degenerate (a pure logarithm, resp. its linear
+#: start) and a flat profile there means the data do not see tau.
+TIME_SCALE_DECADES = 3.0
+#: allowed range of an unbounded parameter: best value +- this many times (|value| + the
+#: range of the data for an amplitude, or |value| + its curvature error otherwise).
+UNBOUNDED_SPAN = 100.0
+#: deviation of a sub-range fit from the full-range value, in standard deviations of the
+#: sub-range's profile (sqrt of its delta chi2 there), above which a parameter depends on the
+#: fitted range. For nested tap ranges and a correct law the full-range value is a draw
+#: within the sub-range's own scatter; 3 leaves room for the 4 ranges tested together.
+RANGE_Z_LIMIT = 3.0
+#: p-value of the chi2 of a straight line below which the line is rejected (5 % test).
+LINEARITY_P_MIN = 0.05
+#: steps of the profile walk grow by this factor (few refits to reach a far limit) ...
+_PROFILE_GROWTH = 2.0
+#: ... and the crossing of the threshold is refined by this many secant refits.
+_PROFILE_REFINE = 3
+#: a chi2 found by the profile below the fit's by more than this fraction of the threshold is
+#: reported as a local minimum of the fit (a smaller drop moves no interval end noticeably).
+_LOCAL_MINIMUM_TOLERANCE = 0.05
+
+
+class Interval:
+    """A 68 % profile-likelihood interval of one parameter: ``value`` (best fit), ``lo``,
+    ``hi`` (``nan`` on an open side: the chi2 stays within the threshold up to the limit of the
+    allowed range), ``limits`` (that allowed range), ``determined`` (closed on both sides),
+    ``method`` ('profile', or 'curvature' for a result built from a covariance found
+    otherwise, e.g. a generalised least-squares line) and, for a profile, ``grid`` and
+    ``delta_chi2`` (the walk: parameter values and chi2 - chi2_min, rescaled)."""
+
+    def __init__(self, value, lo, hi, limits, method, grid=None, delta_chi2=None):
+        self.value = float(value)
+        self.lo = float(lo) if lo is not None else np.nan
+        self.hi = float(hi) if hi is not None else np.nan
+        self.limits = (float(limits[0]), float(limits[1]))
+        self.method = method
+        self.grid = grid
+        self.delta_chi2 = delta_chi2
+
+    @property
+    def determined(self):
+        return bool(np.isfinite(self.lo) and np.isfinite(self.hi))
+
+    @property
+    def half_widths(self):
+        """(value - lo, hi - value); ``nan`` on an open side."""
+        return self.value - self.lo, self.hi - self.value
+
+    def __repr__(self):
+        lo = f"{self.lo:.4g}" if np.isfinite(self.lo) else f"open (limit {self.limits[0]:.3g})"
+        hi = f"{self.hi:.4g}" if np.isfinite(self.hi) else f"open (limit {self.limits[1]:.3g})"
+        return f"<Interval {self.value:.6g} in [{lo}, {hi}]>"
 
 
 class FitResult:
-    """Outcome of a fit: ``params`` and ``errors`` (1-sigma) as dicts, ``covariance``,
+    """Outcome of a fit: ``params`` (dict), ``intervals`` (dict of :class:`Interval`, the 68 %
+    profile-likelihood intervals), ``determined_params`` / ``undetermined_params`` (names whose
+    interval closes / does not close inside the allowed range), ``errors`` (1-sigma curvature
+    errors of the determined parameters, ``nan`` for the others), ``covariance``,
     ``correlation``, ``chi2``, ``dof``, ``reduced_chi2``, ``rms`` (residual root mean square),
-    ``determined`` and ``note``. ``result(x)`` evaluates the fitted law; ``plot(ax)`` draws data
-    and fit. With ``sigma`` given to the fit, errors are absolute (``chi2`` is the weighted sum
-    and ``reduced_chi2`` tests the model); without it the errors are scaled by the scatter of
-    the residuals and ``chi2`` is the plain sum of squared residuals."""
+    ``converged``, ``determined`` (the covariance verdict of :meth:`Law.assess` and every
+    parameter determined) and ``note`` (why not). ``result(x)`` evaluates the fitted law;
+    ``plot(ax)`` draws data and fit. With ``sigma`` given to the fit, errors are absolute
+    (``chi2`` is the weighted sum and ``reduced_chi2`` tests the model); without it the errors
+    are scaled by the scatter of the residuals and ``chi2`` is the plain sum of squared
+    residuals. The profiles are computed on first use of ``intervals``, ``errors``,
+    ``determined`` or ``note`` (a few tens of refits)."""
 
-    def __init__(self, law, names, popt, pcov, x, y, sigma, determined, note, weighted):
+    def __init__(self, law, names, popt, pcov, x, y, sigma, determined, note, weighted,
+                 bounds=None, converged=True):
         self.law = law
         self.names = list(names)
         self._popt = np.asarray(popt, dtype=float)
         self.covariance = np.asarray(pcov, dtype=float)
         self.x, self.y, self.sigma = x, y, sigma
-        self.determined = bool(determined)
-        self.note = note
+        self._verdict = bool(determined)
+        self._note = note
         self.weighted = weighted
+        #: (lo, hi) bounds of the fit: a result of Law.fit is profiled; one built from a
+        #: covariance found otherwise (bounds None) keeps curvature intervals.
+        self.bounds = bounds
+        self.converged = bool(converged)
+        self._intervals = None
+        self._profile_note = ""
         resid = y - self(x)
         self.residuals = resid
         self.chi2 = float(np.sum((resid / sigma) ** 2)) if weighted else float(np.sum(resid ** 2))
@@ -76,24 +168,111 @@ class FitResult:
         return dict(zip(self.names, self._popt))
 
     @property
-    def errors(self):
+    def curvature_errors(self):
+        """1-sigma errors from the covariance alone, for every parameter (also the
+        undetermined ones, where they mean nothing): for diagnostics, not for reporting."""
         diag = np.diag(self.covariance) if self.covariance.ndim == 2 else np.full(len(self.names), np.inf)
         with np.errstate(invalid="ignore"):
             return dict(zip(self.names, np.sqrt(np.abs(diag))))
 
     @property
-    def correlation(self):
-        d = np.sqrt(np.abs(np.diag(self.covariance)))
-        with np.errstate(invalid="ignore", divide="ignore"):
-            return self.covariance / np.outer(d, d)
+    def errors(self):
+        """1-sigma errors of the determined parameters (curvature, or the covariance set by
+        the caller, e.g. a bootstrap); ``nan`` for an undetermined parameter."""
+        determined = set(self.determined_params)
+        return {k: (v if k in determined else np.nan) for k, v in self.curvature_errors.items()}
+
+    @property
+    def intervals(self):
+        if self._intervals is None:
+            self._intervals = self._compute_intervals()
+        return self._intervals
+
+    @property
+    def determined_params(self):
+        return [k for k in self.names if self.intervals[k].determined]
+
+    @property
+    def undetermined_params(self):
+        return [k for k in self.names if not self.intervals[k].determined]
+
+    @property
+    def determined(self):
+        return self._verdict and not self.undetermined_params
+
+    @determined.setter
+    def determined(self, value):
+        self._verdict = bool(value)
+
+    @property
+    def note(self):
+        self.intervals
+        return "; ".join(filter(None, [self._note, self._profile_note]))
+
+    @note.setter
+    def note(self, value):
+        self._note = value
+
+    @property
+    def chi2_scale(self):
+        """The factor dividing chi2 differences in the profiles: the reduced chi2 when it
+        exceeds 1 (always, for an unweighted fit), else 1."""
+        scale = self.reduced_chi2
+        if not np.isfinite(scale) or scale <= 0:
+            return 1.0
+        return scale if not self.weighted else max(1.0, scale)
+
+    def profile_delta_chi2(self, name, value):
+        """(chi2 - chi2_min) / ``chi2_scale`` of the profile of parameter ``name`` at
+        ``value`` (the others refitted): 1 at the ends of the 68 % interval, its square root
+        the distance of ``value`` in standard deviations for a parabolic profile. nan for a
+        result that cannot be profiled."""
+        if name not in self.names:
+            raise ValueError(f"name = {name!r} must be one of the parameters {self.names}")
+        if self.bounds is None or not self.converged:
+            return np.nan
+        i = self.names.index(name)
+        lo, hi = (np.asarray(b, dtype=float) for b in self.bounds)
+        if not lo[i] <= value <= hi[i]:
+            return np.inf
+        c, _ = self.law._profile_point(self.x, self.y, self.sigma, i, float(value), self._popt,
+                                       lo, hi)
+        return max(0.0, c - self.chi2) / self.chi2_scale if np.isfinite(c) else np.nan
+
+    def _compute_intervals(self):
+        if self.bounds is not None and self.converged:
+            try:
+                out, note = self.law.profile(self)
+                self._profile_note = note
+                return out
+            except (ValueError, RuntimeError, np.linalg.LinAlgError) as exc:
+                self._profile_note = f"profile failed ({exc})"
+                return {k: Interval(v, None, None, (np.nan, np.nan), "profile")
+                        for k, v in self.params.items()}
+        if not self.converged:
+            self._profile_note = "no intervals: the fit did not converge"
+            return {k: Interval(v, None, None, (np.nan, np.nan), "profile")
+                    for k, v in self.params.items()}
+        err = self.curvature_errors
+        ok = self._verdict
+        return {k: Interval(v, v - err[k] if ok else None, v + err[k] if ok else None,
+                            (-np.inf, np.inf), "curvature") for k, v in self.params.items()}
 
     def __call__(self, x):
         return self.law.function(np.asarray(x, dtype=float), *self._popt)
 
     def __repr__(self):
-        parts = ", ".join(f"{k}={v:.6g}+-{self.errors[k]:.2g}" for k, v in self.params.items())
+        parts = []
+        for k, v in self.params.items():
+            iv = self.intervals[k]
+            if iv.determined:
+                parts.append(f"{k}={v:.6g} [{iv.lo:.4g}, {iv.hi:.4g}]")
+            else:
+                lo = f"{iv.lo:.4g}" if np.isfinite(iv.lo) else "open"
+                hi = f"{iv.hi:.4g}" if np.isfinite(iv.hi) else "open"
+                parts.append(f"{k}={v:.6g} (undetermined: [{lo}, {hi}])")
         flag = "determined" if self.determined else f"NOT determined ({self.note})"
-        return f"<FitResult {type(self.law).__name__}: {parts}; {flag}>"
+        return f"<FitResult {type(self.law).__name__}: {', '.join(parts)}; {flag}>"
 
     def plot(self, ax=None, logx=False, data_kw=None, **kw):
         """Data (points with error bars when sigma was given) and the fitted curve."""
@@ -122,6 +301,12 @@ class Law:
     names = ()
     #: parameters that may legitimately be zero (their relative error is not tested)
     may_vanish = ()
+    #: parameters with the units of x (time scales): allowed range ``TIME_SCALE_DECADES``
+    #: beyond the data in the profile (:meth:`profile_limits`)
+    time_scales = ()
+    #: parameters with the units of y (asymptotes, amplitudes): an unbounded one spans
+    #: ``UNBOUNDED_SPAN`` times the range of the data in the profile
+    amplitudes = ()
 
     @staticmethod
     def function(x, *p):
@@ -162,6 +347,7 @@ class Law:
             if np.isfinite(hi[i]) and start[i] >= hi[i]:
                 start[i] = hi[i] - 1e-9 * (1.0 + abs(hi[i]))
         notes = []
+        converged = True
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", OptimizeWarning)
             try:
@@ -172,11 +358,196 @@ class Law:
                 popt = start
                 pcov = np.full((len(start), len(start)), np.inf)
                 notes.append(f"fit did not converge ({exc})")
+                converged = False
         popt, pcov = self._canonical(popt, pcov)
         determined, more = self.assess(popt, pcov, lo, hi)
         notes += more
         return FitResult(self, self.names, popt, pcov, x, y, sigma, determined and not notes,
-                         "; ".join(notes), weighted)
+                         "; ".join(notes), weighted, bounds=(lo, hi), converged=converged)
+
+    def profile_limits(self, x, y, popt, lo, hi, errors):
+        """The allowed range of every parameter for its profile: a list of ``(low, high,
+        logarithmic)``. A finite bound is a limit; a time scale (``time_scales``) spans
+        ``TIME_SCALE_DECADES`` beyond the taps; another positive parameter
+        ``POSITIVE_DECADES`` either side of its value (walked in log); an unbounded one its
+        value +- ``UNBOUNDED_SPAN`` (|value| + data range) for an amplitude (``amplitudes``),
+        (|value| + curvature error) otherwise. The best value is always inside."""
+        out = []
+        xpos = x[x > 0]
+        for i, name in enumerate(self.names):
+            p = popt[i]
+            positive = lo[i] >= 0 and p > 0
+            if name in self.time_scales and positive and xpos.size:
+                a = max(xpos.min() * 10 ** -TIME_SCALE_DECADES, lo[i])
+                b = min(xpos.max() * 10 ** TIME_SCALE_DECADES, hi[i])
+                log = a > 0
+            elif positive and not np.isfinite(hi[i]):
+                a, b, log = p * 10 ** -POSITIVE_DECADES, p * 10 ** POSITIVE_DECADES, True
+            else:
+                extra = np.ptp(y) if name in self.amplitudes else errors[i]
+                scale = abs(p) + (extra if np.isfinite(extra) else 0.0)
+                scale = scale if scale > 0 else 1.0
+                a = lo[i] if np.isfinite(lo[i]) else p - UNBOUNDED_SPAN * scale
+                b = hi[i] if np.isfinite(hi[i]) else p + UNBOUNDED_SPAN * scale
+                log = False
+            out.append((min(a, p), max(b, p), log))
+        return out
+
+    def _profile_point(self, x, y, sigma, i, value, start, lo, hi):
+        """One point of a profile: the fit with parameter ``i`` fixed at ``value`` from the
+        previous point's parameters ``start``, and, when the law offers a global start for the
+        fixed problem (:meth:`_conditional_start`) whose chi2 is lower, from that start too
+        (a continuation alone can follow a local valley: a profile must be a global minimum
+        over the other parameters, or its interval closes too early). ``(chi2, params)``."""
+        c, q = self._fixed_fit(x, y, sigma, i, value, start, lo, hi)
+        alt = self._conditional_start(x, y, sigma, i, value)
+        if alt is not None:
+            with np.errstate(all="ignore"):
+                c_alt = float(np.sum(((self.function(x, *alt) - y) / sigma) ** 2))
+            if np.isfinite(c_alt) and not (c_alt >= c):
+                c2, q2 = self._fixed_fit(x, y, sigma, i, value, alt, lo, hi)
+                if np.isfinite(c2) and not (c2 >= c):
+                    return c2, q2
+        return c, q
+
+    def _conditional_start(self, x, y, sigma, i, value):
+        """A global starting point for the fit with parameter ``i`` fixed at ``value``, or
+        None (no such search for this law: the profile follows the previous point)."""
+        return None
+
+    def _fixed_fit(self, x, y, sigma, i, value, start, lo, hi):
+        """chi2 and parameters of the fit with parameter ``i`` fixed at ``value``."""
+        p = np.array(start, dtype=float)
+        p[i] = value
+        free = np.arange(len(p)) != i
+        if not free.any():
+            with np.errstate(all="ignore"):
+                r = (self.function(x, *p) - y) / sigma
+            return float(np.sum(r ** 2)), p
+        flo, fhi = lo[free], hi[free]
+        q0 = p[free].copy()
+        for j in range(len(q0)):  # strictly inside finite bounds (trust-region requirement)
+            if np.isfinite(flo[j]) and q0[j] <= flo[j]:
+                q0[j] = flo[j] + 1e-9 * (1.0 + abs(flo[j]))
+            if np.isfinite(fhi[j]) and q0[j] >= fhi[j]:
+                q0[j] = fhi[j] - 1e-9 * (1.0 + abs(fhi[j]))
+
+        def residuals(q):
+            full = p.copy()
+            full[free] = q
+            return (self.function(x, *full) - y) / sigma
+
+        with np.errstate(all="ignore"):
+            try:
+                fit = least_squares(residuals, q0, bounds=(flo, fhi), method="trf",
+                                    x_scale="jac", max_nfev=100 * len(p))
+            except ValueError:  # not finite at the start: this value is not allowed
+                return np.nan, p
+        p[free] = fit.x
+        return 2.0 * float(fit.cost), p
+
+    def profile(self, result):
+        """Profile likelihood of every parameter of ``result`` (a :class:`FitResult` of this
+        law): returns ``(intervals, note)``, ``intervals`` a dict of :class:`Interval`.
+
+        For each parameter, a walk from the best value towards each limit of
+        :meth:`profile_limits` (steps growing by a factor 2 from the curvature error, in log
+        for positive parameters) refits the others at every step, starting from the previous
+        step, until chi2 - chi2_min exceeds the threshold (then a few secant refits place the
+        crossing) or the limit is reached (that side is open). The threshold is
+        ``PROFILE_DELTA_CHI2`` times the reduced chi2 when that exceeds 1 (always, for an
+        unweighted fit): a law that does not describe the data within their errors widens
+        its intervals instead of narrowing them. A lower chi2 found on the way (the fit
+        stopped in a local minimum) becomes chi2_min and is reported in ``note``."""
+        x, y, sigma = result.x, result.y, result.sigma
+        lo, hi = (np.asarray(b, dtype=float) for b in result.bounds)
+        popt = result._popt
+        scale = result.chi2_scale
+        thr = PROFILE_DELTA_CHI2 * scale
+        chi2_min = result.chi2
+        err = np.array(list(result.curvature_errors.values()))
+        limits = self.profile_limits(x, y, popt, lo, hi, err)
+        samples = []
+        for i in range(len(popt)):
+            a, b, log = limits[i]
+            fwd = np.log if log else (lambda v: v)
+            back = np.exp if log else (lambda v: v)
+            u0, ua, ub = fwd(popt[i]), fwd(a), fwd(b)
+            pts = [(popt[i], chi2_min)]
+            span = ub - ua
+            if span > 0:
+                e = err[i] / popt[i] if log else err[i]
+                step0 = e if np.isfinite(e) and e > 0 else span / 100
+                step0 = float(np.clip(step0, span * 1e-4, span / 10))
+                for direction, limit in ((-1.0, ua), (1.0, ub)):
+                    if direction * (limit - u0) <= 0:
+                        continue
+                    u_prev, c_prev, q_prev, step = u0, chi2_min, popt, step0
+                    while True:
+                        u = u_prev + direction * step
+                        at_limit = direction * (u - limit) >= 0
+                        u = limit if at_limit else u
+                        c, q = self._profile_point(x, y, sigma, i, back(u), q_prev, lo, hi)
+                        if np.isfinite(c):
+                            pts.append((back(u), c))
+                        if np.isfinite(c) and c - chi2_min > thr:
+                            self._refine(x, y, sigma, i, back, lo, hi, chi2_min, thr, pts,
+                                         (u_prev, c_prev, q_prev), (u, c))
+                            break
+                        if at_limit:
+                            break
+                        if np.isfinite(c):
+                            u_prev, c_prev, q_prev = u, c, q
+                        step *= _PROFILE_GROWTH
+            samples.append((pts, limits[i]))
+        best = min(min(c for _, c in pts) for pts, _ in samples)
+        note = ""
+        if best < chi2_min - _LOCAL_MINIMUM_TOLERANCE * thr:
+            note = (f"the profile found a chi2 lower by {chi2_min - best:.3g} than the fit's: "
+                    "the fit stopped in a local minimum; intervals are about the lower one")
+        out = {}
+        for name, (pts, (a, b, log)) in zip(self.names, samples):
+            pts = sorted(pts)
+            v = np.array([q for q, _ in pts])
+            d = (np.array([c for _, c in pts]) - best) / scale
+            inside = np.flatnonzero(d <= PROFILE_DELTA_CHI2)
+            if inside.size == 0:  # a fit without residuals: only rounding left in d
+                inside = np.array([int(np.argmin(d))])
+            value = popt[self.names.index(name)]
+            ends = []
+            for k, outer in ((inside[0], inside[0] - 1), (inside[-1], inside[-1] + 1)):
+                if outer < 0 or outer >= len(v):
+                    ends.append(None)  # inside up to the last value walked: open
+                    continue
+                fwd = np.log if log else (lambda q: q)
+                back = np.exp if log else (lambda q: q)
+                r_in, r_out = np.sqrt(max(d[k], 0.0)), np.sqrt(d[outer])
+                frac = float(np.clip((1.0 - r_in) / (r_out - r_in), 0.0, 1.0)) if r_out > r_in else 0.0
+                ends.append(float(back(fwd(v[k]) + frac * (fwd(v[outer]) - fwd(v[k])))))
+            out[name] = Interval(value, ends[0], ends[1], (a, b), "profile", v, d)
+        return out, note
+
+    def _refine(self, x, y, sigma, i, back, lo, hi, chi2_min, thr, pts, inner, outer):
+        """Secant refits on sqrt(chi2 - chi2_min), linear in the parameter for a parabolic
+        profile, to place the threshold crossing between ``inner`` and ``outer``."""
+        u_in, c_in, q_in = inner
+        u_out, c_out = outer
+        target = np.sqrt(thr)
+        for _ in range(_PROFILE_REFINE):
+            r_in, r_out = np.sqrt(max(c_in - chi2_min, 0.0)), np.sqrt(c_out - chi2_min)
+            if r_out <= r_in:
+                return
+            u = u_in + (u_out - u_in) * (target - r_in) / (r_out - r_in)
+            c, q = self._profile_point(x, y, sigma, i, back(u), q_in, lo, hi)
+            if not np.isfinite(c):
+                return
+            pts.append((back(u), c))
+            if abs(c - chi2_min - thr) < 0.05 * thr:
+                return
+            if c - chi2_min > thr:
+                u_out, c_out = u, c
+            else:
+                u_in, c_in, q_in = u, c, q
 
     def _canonical(self, popt, pcov):
         return popt, pcov
@@ -211,7 +582,85 @@ class Law:
 
 
 class _TapsLaw(Law):
-    """A law of the number of taps t >= 0 (the logarithmic laws of eqs. 3, 4 and 6)."""
+    """A law of the number of taps t >= 0 (the logarithmic laws of eqs. 3, 4 and 6).
+
+    These laws are linear in their amplitudes once (B, tau) are fixed (eq. 4 in 1/<Z>): a
+    subclass names its (B, tau) parameters in ``_nonlinear`` and gives ``_basis(t, B, tau)``,
+    the columns multiplying its amplitudes ``_linear`` (in the space of ``_target``), which
+    gives the profile a global start at every point (:meth:`_conditional_start`)."""
+
+    _nonlinear = ("B", "tau")
+    _linear = ()
+    #: a coarse (B, tau) grid for the profile's global starts (refined by the refit)
+    _GRID_B = np.geomspace(1e-3, 1e3, 25)
+    _GRID_TAU_DECADES = (-2.0, 2.0, 25)
+
+    def _target(self, y, w):
+        """(data, weights) in the space where the amplitudes are linear."""
+        return y, w
+
+    def _amplitudes_to_params(self, a):
+        return a
+
+    def _params_to_amplitude(self, name, value):
+        return value
+
+    def _basis(self, t, B, tau):
+        raise NotImplementedError
+
+    def _conditional_start(self, x, y, sigma, i, value):
+        if not self._linear or np.any(x < 0):
+            return None
+        tpos = x[x > 0]
+        if tpos.size == 0:
+            return None
+        lo_d, hi_d, num = self._GRID_TAU_DECADES
+        taus = np.geomspace(tpos.min() * 10 ** lo_d, tpos.max() * 10 ** hi_d, num)
+        Bs = self._GRID_B
+        name = self.names[i]
+        iB, itau = (self.names.index(k) for k in self._nonlinear)
+        if name == self._nonlinear[0]:
+            Bs = np.array([value])
+        elif name == self._nonlinear[1]:
+            taus = np.array([value])
+        BB, TT = (a.ravel() for a in np.meshgrid(Bs, taus, indexing="ij"))
+        target, w = self._target(y, 1.0 / sigma ** 2)
+        with np.errstate(all="ignore"):
+            cols = self._basis(x[None, :], BB[:, None], TT[:, None])  # list of (nodes, n)
+            free = list(range(len(self._linear)))
+            if name in self._linear:
+                k = self._linear.index(name)
+                target = target[None, :] - self._params_to_amplitude(name, value) * cols[k]
+                free.remove(k)
+            else:
+                target = np.broadcast_to(target, cols[0].shape)
+            m = len(free)
+            coef = np.zeros((len(BB), len(self._linear)))
+            if m:
+                A = np.stack([cols[k] for k in free], axis=1)  # (nodes, m, n)
+                normal = np.einsum("kan,kbn,n->kab", A, A, w)
+                rhs = np.einsum("kan,kn,n->ka", A, target, w)
+                normal += np.eye(m)[None] * 1e-300
+                sol = np.linalg.solve(normal, rhs[..., None])[..., 0]
+                for j, k in enumerate(free):
+                    coef[:, k] = sol[:, j]
+                model = np.einsum("kan,ka->kn", A, sol)
+            else:
+                model = np.zeros_like(target)
+            sse = np.sum(w * (target - model) ** 2, axis=1)
+        sse = np.where(np.isfinite(sse), sse, np.inf)
+        best = int(np.argmin(sse))
+        if not np.isfinite(sse[best]):
+            return None
+        amps = coef[best]
+        if name in self._linear:
+            amps[self._linear.index(name)] = self._params_to_amplitude(name, value)
+        p = np.empty(len(self.names))
+        for k, v in zip(self._linear, self._amplitudes_to_params(amps)):
+            p[self.names.index(k)] = v
+        p[iB], p[itau] = BB[best], TT[best]
+        p[i] = value
+        return p if np.all(np.isfinite(p)) else None
 
     def _prepare(self, x, y, sigma):
         x, y, sigma, weighted = super()._prepare(x, y, sigma)
@@ -269,6 +718,8 @@ class InverseLogLaw(_TapsLaw):
     the result then says it is not determined (section III.B)."""
 
     names = ("X_inf", "dX_inf", "B", "tau")
+    time_scales = ("tau",)
+    amplitudes = ("X_inf", "dX_inf")
 
     @staticmethod
     def function(t, X_inf, dX_inf, B, tau):
@@ -276,6 +727,12 @@ class InverseLogLaw(_TapsLaw):
 
     def bounds(self, x, y):
         return ([-np.inf, -np.inf, 0.0, 0.0], [np.inf, np.inf, np.inf, np.inf])
+
+    _linear = ("X_inf", "dX_inf")
+
+    def _basis(self, t, B, tau):
+        g = 1.0 / (1.0 + _log_term(t, B, tau))
+        return [np.ones_like(g), -g]
 
     def initial_guess(self, t, y, w):
         B, tau, (c_inf, c_0) = _grid_inverse_log(t, y, w, 2)
@@ -288,6 +745,8 @@ class ZLaw(_TapsLaw):
     g = 1/(1 + B L), which gives the starting values."""
 
     names = ("Z_inf", "Z_0", "B", "tau")
+    time_scales = ("tau",)
+    amplitudes = ("Z_inf", "Z_0")
 
     @staticmethod
     def function(t, Z_inf, Z_0, B, tau):
@@ -296,6 +755,25 @@ class ZLaw(_TapsLaw):
 
     def bounds(self, x, y):
         return ([0.0, 0.0, 0.0, 0.0], [np.inf] * 4)
+
+    _linear = ("Z_inf", "Z_0")
+
+    def _target(self, y, w):
+        return 1.0 / y, w * y ** 4  # d(1/Z) = dZ / Z^2
+
+    def _params_to_amplitude(self, name, value):
+        return 1.0 / value
+
+    def _amplitudes_to_params(self, a):
+        with np.errstate(divide="ignore"):
+            return np.where(a > 0, 1.0 / a, np.nan)
+
+    def _basis(self, t, B, tau):
+        g = 1.0 / (1.0 + _log_term(t, B, tau))
+        return [1.0 - g, g]
+
+    def _conditional_start(self, x, y, sigma, i, value):
+        return None if np.any(y <= 0) else super()._conditional_start(x, y, sigma, i, value)
 
     def initial_guess(self, t, y, w):
         if np.any(y <= 0):
@@ -311,6 +789,7 @@ class AgeingLaw(_TapsLaw):
     ``A_inf, B_A, tau_A`` (all > 0)."""
 
     names = ("A_inf", "B_A", "tau_A")
+    time_scales = ("tau_A",)
 
     @staticmethod
     def function(t, A_inf, B_A, tau_A):
@@ -318,6 +797,12 @@ class AgeingLaw(_TapsLaw):
 
     def bounds(self, x, y):
         return ([0.0, 0.0, 0.0], [np.inf] * 3)
+
+    _nonlinear = ("B_A", "tau_A")
+    _linear = ("A_inf",)
+
+    def _basis(self, t, B, tau):
+        return [1.0 - 1.0 / (1.0 + _log_term(t, B, tau))]
 
     def initial_guess(self, t, y, w):
         B, tau, (a_inf,) = _grid_inverse_log(t, y, w, 1)
@@ -330,6 +815,8 @@ class TwoExponentials(Law):
 
     names = ("y_inf", "a1", "tau1", "a2", "tau2")
     may_vanish = ()
+    time_scales = ("tau1", "tau2")
+    amplitudes = ("y_inf", "a1", "a2")
 
     @staticmethod
     def function(t, y_inf, a1, tau1, a2, tau2):
@@ -460,3 +947,220 @@ class ProfileLaw(Law):
         beta = 2.0 * np.log(4.0) / max(width, 1e-3)
         return [intercept, -slope, beta, zb_star]
 
+
+
+def default_tap_ranges(t):
+    """The tap ranges of :func:`range_refits`: [1, T/4], [1, T/2], [1, T] and [T/10, T], T the
+    last tap: early and late parts of a run, as a user choosing "the range of taps over which
+    the data fitting is performed" (section III.B) would."""
+    T = float(np.max(t))
+    return [(1.0, T / 4), (1.0, T / 2), (1.0, T), (T / 10, T)]
+
+
+class RangeRefits:
+    """A law refitted over several tap ranges (:func:`range_refits`), the statistic of the
+    paper's "the triplet (X_inf, B, tau) ... depends strongly on the range of taps over which
+    the data fitting is performed" (section III.B).
+
+    Results: ``reference`` (the fit of all the data, with its profile intervals), ``ranges``
+    (list of (first, last) taps), ``fits`` (one :class:`FitResult` per range, None where the
+    range holds too few points), ``values`` (dict name -> array over ranges, nan where no fit),
+    ``spread`` (dict name -> max - min over the ranges), ``spread_ratio`` (spread / width of
+    the reference interval; nan when that interval is open), ``deviation`` (dict name -> the
+    largest over the ranges of sqrt(profile delta chi2 of the range's fit at the reference
+    value), :meth:`FitResult.profile_delta_chi2`: how many standard deviations each range puts
+    between its data and the value fitted on all of them; a likelihood ratio, valid also for
+    the skewed profiles of a degenerate law, and 0 for a range whose profile is flat there),
+    ``consistent`` (dict name -> deviation <= ``RANGE_Z_LIMIT``) and ``range_dependent`` (the
+    names that are not)."""
+
+    def __init__(self, law, reference, ranges, fits):
+        self.law = law
+        self.reference = reference
+        self.ranges = list(ranges)
+        self.fits = list(fits)
+        self._deviation = None
+
+    @property
+    def names(self):
+        return list(self.law.names)
+
+    @property
+    def values(self):
+        return {k: np.array([f.params[k] if f is not None else np.nan for f in self.fits])
+                for k in self.names}
+
+    @property
+    def spread(self):
+        out = {}
+        for k, v in self.values.items():
+            ok = v[np.isfinite(v)]
+            out[k] = float(np.ptp(ok)) if ok.size else np.nan
+        return out
+
+    @property
+    def spread_ratio(self):
+        out = {}
+        for k, s in self.spread.items():
+            iv = self.reference.intervals[k]
+            out[k] = s / (iv.hi - iv.lo) if iv.determined and iv.hi > iv.lo else np.nan
+        return out
+
+    @property
+    def deviation(self):
+        if self._deviation is None:
+            out = {}
+            for k in self.names:
+                ref = self.reference.params[k]
+                worst = 0.0
+                for f in self.fits:
+                    if f is None or not f.converged:
+                        continue
+                    d = f.profile_delta_chi2(k, ref)
+                    if np.isfinite(d) or d == np.inf:
+                        worst = max(worst, float(np.sqrt(d)))
+                out[k] = worst
+            self._deviation = out
+        return self._deviation
+
+    @property
+    def consistent(self):
+        return {k: bool(d <= RANGE_Z_LIMIT) for k, d in self.deviation.items()}
+
+    @property
+    def range_dependent(self):
+        return [k for k, ok in self.consistent.items() if not ok]
+
+    def __repr__(self):
+        dev = ", ".join(f"{k} {v:.3g}" for k, v in self.deviation.items())
+        return (f"<RangeRefits {type(self.law).__name__} over {len(self.ranges)} ranges: "
+                f"deviation {dev}; range dependent: {self.range_dependent or 'none'}>")
+
+
+def range_refits(law, t, y, sigma=None, ranges=None):
+    """Refit ``law`` to (t, y, sigma) over several tap ranges (default
+    :func:`default_tap_ranges`: [1, T/4], [1, T/2], [1, T], [T/10, T]) and compare each
+    parameter across them with the profile intervals: returns a :class:`RangeRefits`. A range
+    with fewer points than the law has parameters plus 2 gets no fit (None)."""
+    if not isinstance(law, Law):
+        raise ValueError(f"law = {law!r} must be a tapmc.laws.Law")
+    t = as_1d("t", t)
+    y = as_1d("y", y)
+    same_length("t", t, "y", y)
+    s = None if sigma is None else np.broadcast_to(np.asarray(sigma, dtype=float), t.shape)
+    ranges = default_tap_ranges(t) if ranges is None else [tuple(map(float, r)) for r in ranges]
+    for r in ranges:
+        if len(r) != 2 or not r[0] < r[1]:
+            raise ValueError(f"ranges entry {r!r} must be (first, last) with first < last")
+    reference = law.fit(t, y, s)
+    fits = []
+    for first, last in ranges:
+        keep = (t >= first) & (t <= last)
+        if keep.sum() < len(law.names) + 2:
+            fits.append(None)
+            continue
+        sk = None if s is None else s[keep]
+        # the law's own global start, and the reference values: the better of the two fits
+        own = law.fit(t[keep], y[keep], sk)
+        near = law.fit(t[keep], y[keep], sk, p0=list(reference.params.values()))
+        fits.append(near if near.converged and not (near.chi2 >= own.chi2) else own)
+    return RangeRefits(law, reference, ranges, fits)
+
+
+class LogLinear(Law):
+    """ln y = ln_y0 + slope x, fitted in ln y: the exponential dependence y = y0 exp(slope x)
+    of section III.A ("B is consistent with an exponential dependence on eps^(1/2)")."""
+
+    names = ("ln_y0", "slope")
+    may_vanish = ("ln_y0", "slope")
+
+    @staticmethod
+    def function(x, ln_y0, slope):
+        return ln_y0 + slope * x
+
+    def initial_guess(self, x, y, w):
+        slope, intercept = np.polyfit(x, y, 1, w=np.sqrt(w))
+        return [intercept, slope]
+
+
+class ExponentialDependence:
+    """Result of :func:`exponential_dependence`: ``fit`` (the :class:`LogLinear` FitResult of
+    ln B against sqrt(eps), None with fewer than 2 determined B), ``slope`` and
+    ``slope_interval`` (the 68 % profile :class:`Interval`, rescaled by the reduced chi2 when
+    that exceeds 1), ``reduced_chi2``, ``dof``, ``p_value`` (chi2 probability of the straight
+    line; nan with no degree of freedom), ``linear`` (p_value >= ``LINEARITY_P_MIN``; None when
+    not testable: fewer than 3 determined B), ``used`` and ``excluded`` (the sqrt(eps) whose B
+    is determined and enters the fit, and those whose B interval is open)."""
+
+    def __init__(self, fit, used, excluded):
+        self.fit = fit
+        self.used = np.asarray(used, dtype=float)
+        self.excluded = np.asarray(excluded, dtype=float)
+
+    @property
+    def slope(self):
+        return float(self.fit.params["slope"]) if self.fit is not None else np.nan
+
+    @property
+    def slope_interval(self):
+        return self.fit.intervals["slope"] if self.fit is not None else None
+
+    @property
+    def dof(self):
+        return self.fit.dof if self.fit is not None else 0
+
+    @property
+    def reduced_chi2(self):
+        return float(self.fit.reduced_chi2) if self.fit is not None and self.dof > 0 else np.nan
+
+    @property
+    def p_value(self):
+        if self.fit is None or self.dof <= 0:
+            return np.nan
+        return float(chi2_distribution.sf(self.fit.chi2, self.dof))
+
+    @property
+    def linear(self):
+        return None if not np.isfinite(self.p_value) else bool(self.p_value >= LINEARITY_P_MIN)
+
+    def __repr__(self):
+        if self.fit is None:
+            return (f"<ExponentialDependence: not testable, {self.used.size} determined B "
+                    f"(excluded sqrt(eps) {list(self.excluded)})>")
+        iv = self.slope_interval
+        return (f"<ExponentialDependence: slope {self.slope:.4g} [{iv.lo:.4g}, {iv.hi:.4g}], "
+                f"reduced chi2 {self.reduced_chi2:.3g} ({self.dof} dof), p {self.p_value:.3g}, "
+                f"linear {self.linear}>")
+
+
+def exponential_dependence(sqrt_eps, B, B_lo, B_hi):
+    """Test "B is consistent with an exponential dependence on eps^(1/2)" (section III.A): a
+    weighted straight line through ln B against sqrt(eps), the error of ln B being half the
+    width of its 68 % interval in log, (ln B_hi - ln B_lo) / 2 (the profile intervals of the
+    eq. 3 or eq. 4 fits, :attr:`FitResult.intervals`). Points whose interval is open (nan
+    bound: B undetermined) are left out and listed in ``excluded``; a B that is undetermined
+    carries no information on its eps dependence. Returns an :class:`ExponentialDependence`."""
+    x = as_1d("sqrt_eps", sqrt_eps)
+    b = as_1d("B", B, finite=False)
+    lo = as_1d("B_lo", B_lo, finite=False)
+    hi = as_1d("B_hi", B_hi, finite=False)
+    for name, arr in (("B", b), ("B_lo", lo), ("B_hi", hi)):
+        same_length("sqrt_eps", x, name, arr)
+    ok = np.isfinite(b) & np.isfinite(lo) & np.isfinite(hi) & (lo > 0) & (hi > lo) & (b > 0)
+    if ok.sum() < 2:
+        return ExponentialDependence(None, x[ok], x[~ok])
+    sig = 0.5 * (np.log(hi[ok]) - np.log(lo[ok]))
+    law = LogLinear()
+    if ok.sum() == 2:  # a line through two points: exact, no degree of freedom
+        x2, y2 = x[ok], np.log(b[ok])
+        slope = (y2[1] - y2[0]) / (x2[1] - x2[0])
+        err = np.hypot(sig[0], sig[1]) / abs(x2[1] - x2[0])
+        popt = [y2[0] - slope * x2[0], slope]
+        cov = np.full((2, 2), np.nan)
+        cov[1, 1] = err ** 2
+        res = FitResult(law, law.names, popt, cov, x2, y2, sig, True, "", True)
+        res._intervals = {"ln_y0": Interval(popt[0], None, None, (-np.inf, np.inf), "exact"),
+                          "slope": Interval(slope, slope - err, slope + err,
+                                            (-np.inf, np.inf), "curvature")}
+        return ExponentialDependence(res, x[ok], x[~ok])
+    return ExponentialDependence(law.fit(x[ok], np.log(b[ok]), sig), x[ok], x[~ok])

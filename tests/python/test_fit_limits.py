@@ -1,0 +1,157 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+# Fits that know their limits (tapmc.laws): profile-likelihood intervals that close around the
+# truth at their nominal rate when the data determine a parameter and stay open when they do
+# not (no curvature error shown then); refits over several tap ranges that agree for a correct
+# law and disagree for a wrong one (section III.B: "depends strongly on the range of taps");
+# the exponential dependence of B on sqrt(eps) (section III.A) accepted for a straight ln B and
+# rejected for a curved one. Synthetic data with known answers; a few seconds.
+import os
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+HERE = Path(__file__).resolve().parent
+SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", HERE.parent.parent))
+sys.path.insert(0, str(SOURCE / "tools" / "python"))
+
+from tapmc.laws import (AgeingLaw, InverseLogLaw, RANGE_Z_LIMIT, ZLaw,  # noqa: E402
+                        default_tap_ranges, exponential_dependence, range_refits)
+from tapmc.fluctuations import PowerSpectrum  # noqa: E402
+
+TAPS = np.unique(np.round(np.concatenate([[0], np.geomspace(1, 4000, 200)])))
+TRUE_EQ3 = np.array([0.64, 0.05, 0.4, 8.0])
+SEEDS = 30
+
+
+def test_profile_intervals_cover_the_truth_at_their_nominal_rate():
+    # 30 seeds: a 68.3 % interval holds the truth Binomial(30, 0.683) times (mean 20.5, sd 2.5,
+    # i.e. a fraction 0.683 +- 0.085); the four parameters move together, so their mean
+    # scatters almost as much: bounds about 3 sd away (150 seeds give 0.71, 0.71, 0.71, 0.67)
+    inside = np.zeros(4)
+    for seed in range(SEEDS):
+        rng = np.random.default_rng(2000 + seed)
+        y = InverseLogLaw.function(TAPS, *TRUE_EQ3) + rng.normal(0, 1e-3, TAPS.size)
+        res = InverseLogLaw().fit(TAPS, y, sigma=1e-3)
+        assert res.determined_params == list(res.names), (seed, res)
+        lo = np.array([res.intervals[k].lo for k in res.names])
+        hi = np.array([res.intervals[k].hi for k in res.names])
+        inside += (lo <= TRUE_EQ3) & (TRUE_EQ3 <= hi)
+    frac = inside / SEEDS
+    assert np.all(frac >= 0.4) and np.all(frac <= 0.95), frac
+    assert 0.45 <= frac.mean() <= 0.92, frac
+
+
+def test_short_range_leaves_tau_undetermined_and_shows_no_curvature_error():
+    # tau far beyond the data (the early regime of a slow run): only B/tau is seen
+    t = np.arange(0.0, 100.0)
+    rng = np.random.default_rng(7)
+    y = InverseLogLaw.function(t, 0.64, 0.06, 0.3, 1e4) + rng.normal(0, 1e-3, t.size)
+    res = InverseLogLaw().fit(t, y, sigma=1e-3)
+    tau = res.intervals["tau"]
+    assert not tau.determined and np.isnan(tau.hi)  # open above: any longer tau fits
+    assert "tau" in res.undetermined_params and not res.determined
+    assert np.isnan(res.errors["tau"]) and np.isfinite(res.curvature_errors["tau"])
+    assert "undetermined" in repr(res)
+    # the profile's chi2 stays within the threshold up to the allowed limit (last tap x 10^3)
+    assert tau.limits[1] == pytest.approx(99.0 * 1e3)
+    assert np.all(tau.delta_chi2[tau.grid >= tau.value] <= 1.0)
+
+
+def test_profile_rescaled_by_the_reduced_chi2():
+    # errors given 3x too small: the reduced chi2 (~9) widens the intervals back to the
+    # width of a fit with the right errors; an unweighted fit uses the residual scatter
+    rng = np.random.default_rng(11)
+    y = InverseLogLaw.function(TAPS, *TRUE_EQ3) + rng.normal(0, 3e-3, TAPS.size)
+    right = InverseLogLaw().fit(TAPS, y, sigma=3e-3)
+    small = InverseLogLaw().fit(TAPS, y, sigma=1e-3)
+    plain = InverseLogLaw().fit(TAPS, y)
+    assert small.reduced_chi2 > 5
+    for k in right.names:
+        w = right.intervals[k].hi - right.intervals[k].lo
+        for other in (small, plain):
+            assert other.intervals[k].hi - other.intervals[k].lo == pytest.approx(w, rel=0.15)
+
+
+@pytest.mark.parametrize("law,true,noise", [
+    (ZLaw(), [7.0, 7.4, 0.4, 3.0], 5e-3),
+    (AgeingLaw(), [0.02, 0.5, 10.0], 3e-4),
+])
+def test_every_law_gets_intervals(law, true, noise):
+    rng = np.random.default_rng(5)
+    y = law.function(TAPS, *true) + rng.normal(0, noise, TAPS.size)
+    res = law.fit(TAPS, y, sigma=noise)
+    for k, v in zip(res.names, true):
+        iv = res.intervals[k]
+        assert iv.method == "profile" and iv.determined
+        assert iv.lo < res.params[k] < iv.hi
+        # within 4 half-widths of the truth
+        assert abs(res.params[k] - v) < 4 * max(iv.hi - iv.value, iv.value - iv.lo)
+    assert res.profile_delta_chi2(res.names[0], res.intervals[res.names[0]].hi) == \
+        pytest.approx(1.0, abs=0.1)
+
+
+def test_results_built_from_a_covariance_keep_curvature_intervals():
+    rng = np.random.default_rng(0)
+    ps = PowerSpectrum(rng.normal(size=2000)).compute()
+    iv = ps.fit.intervals["slope"]
+    assert iv.method == "curvature" and iv.determined
+    assert iv.hi - iv.value == pytest.approx(ps.slope_error)
+
+
+def test_range_refits_consistent_for_the_right_law():
+    taps = np.arange(0.0, 4001.0)
+    assert default_tap_ranges(taps) == [(1.0, 1000.0), (1.0, 2000.0), (1.0, 4000.0),
+                                        (400.0, 4000.0)]
+    worst = []
+    for seed in range(4):
+        rng = np.random.default_rng(300 + seed)
+        y = InverseLogLaw.function(taps, *TRUE_EQ3) + rng.normal(0, 2e-3, taps.size)
+        r = range_refits(InverseLogLaw(), taps, y, 2e-3)
+        assert r.range_dependent == [], r
+        worst.append(max(r.deviation.values()))
+        assert all(np.isfinite(list(r.spread.values())))
+    assert max(worst) < RANGE_Z_LIMIT
+
+
+def test_range_refits_detect_a_wrong_law():
+    # a stretched exponential fitted by eq. 3: the full-range fit looks acceptable (reduced
+    # chi2 about 1.03 on 4000 points) but each tap range wants other parameters
+    taps = np.arange(0.0, 4001.0)
+    rng = np.random.default_rng(1)
+    y = 0.64 - 0.06 * np.exp(-np.sqrt(taps / 200.0)) + rng.normal(0, 2e-3, taps.size)
+    r = range_refits(InverseLogLaw(), taps, y, 2e-3)
+    assert r.reference.reduced_chi2 < 1.1
+    assert set(r.range_dependent) == set(InverseLogLaw.names), r
+    assert min(r.deviation.values()) > 2 * RANGE_Z_LIMIT
+
+
+def test_range_refits_validation():
+    with pytest.raises(ValueError, match="must be a tapmc.laws.Law"):
+        range_refits("eq3", TAPS, TAPS)
+    with pytest.raises(ValueError, match="first < last"):
+        range_refits(InverseLogLaw(), TAPS, TAPS, ranges=[(10, 1)])
+
+
+def test_exponential_dependence_of_b():
+    sqrt_eps = np.array([0.07, 0.12, 0.2, 0.3, 0.39])
+    rel = 0.1  # 10 % intervals on B
+    rng = np.random.default_rng(4)
+    # ln B linear in sqrt(eps): accepted, slope within its interval
+    B = np.exp(-1.0 + 8.0 * sqrt_eps + rng.normal(0, rel, sqrt_eps.size))
+    res = exponential_dependence(sqrt_eps, B, B * np.exp(-rel), B * np.exp(rel))
+    iv = res.slope_interval
+    assert res.linear and res.dof == 3 and iv.lo < 8.0 < iv.hi
+    # ln B quadratic in sqrt(eps): rejected
+    Bq = np.exp(-1.0 + 60.0 * (sqrt_eps - 0.2) ** 2)
+    bad = exponential_dependence(sqrt_eps, Bq, Bq * np.exp(-rel), Bq * np.exp(rel))
+    assert bad.linear is False and bad.p_value < 1e-6
+    # undetermined B (open interval) are left out; two points: a slope, no test
+    lo = B * np.exp(-rel)
+    lo[2:] = np.nan
+    two = exponential_dependence(sqrt_eps, B, lo, B * np.exp(rel))
+    assert list(two.excluded) == list(sqrt_eps[2:]) and two.linear is None
+    assert np.isfinite(two.slope) and two.slope_interval.determined
+    none = exponential_dependence(sqrt_eps[:1], B[:1], [np.nan], B[:1])
+    assert none.fit is None and np.isnan(none.slope) and "not testable" in repr(none)
