@@ -200,6 +200,24 @@ def fig9(diff=0.0, py_shift=0.0):
     return tab
 
 
+def one_run_fig9(steady, sem=0.0002, tap_sd=0.001):
+    """Fig. 9 data of one seed: no sem over seeds, the steady state with its within-run error."""
+    tab = fig9()
+    tab.param("phi_c_initial", 0.584, None, n=1)
+    tab.param("phi_c_steady", steady, sem, n=1).param("phi_c_tap_sd", tap_sd, None, n=1)
+    return tab
+
+
+def test_one_run_steady_state_is_decided_by_its_within_run_error():
+    m = claims.STATISTICS["tapped_phi"](report(fig9=one_run_fig9(0.6065)), BY_ID["phi-tapped"])
+    assert m[0].dof == claims.WITHIN_RUN_DOF
+    assert m[0].err == pytest.approx(math.hypot(0.0002, 0.001))
+    # the prediction interval of a single tap: 2.09 * 0.00102 = 0.0021 around the steady state
+    assert claims.verdict(BY_ID["phi-tapped"], m[0]) == "agrees"
+    far = claims.STATISTICS["tapped_phi"](report(fig9=one_run_fig9(0.603)), BY_ID["phi-tapped"])
+    assert claims.verdict(BY_ID["phi-tapped"], far[0]) == "disagrees"
+
+
 XI = np.linspace(0.2, 0.7, 51)
 
 
@@ -244,6 +262,10 @@ CONTROLS = {
     "initial_phi": (report(), report({"initial_phi_c": [0.570, 0.001, SEEDS]})),
     "tapped_phi": (report(fig9=fig9()),
                    report(fig9=fig9().param("phi_c_final", 0.593, 0.0005))),
+    # one run: the steady state's batch-means error and the spread of single taps decide
+    "phi-tapped": (report(fig9=one_run_fig9(0.6065)), report(fig9=one_run_fig9(0.600))),
+    "pbc-bulk-compacts": (report(fig9=one_run_fig9(0.6065)),
+                          report(fig9=one_run_fig9(0.5838))),
     "pbc_compaction": (report(fig9=fig9()),
                        report(fig9=fig9().param("phi_c_final", 0.570, 0.001))),
     "phi_b_gain": (report(fig2=fig2({0.05: RISING})),

@@ -19,14 +19,18 @@ sys.path.insert(0, str(PYTHON_DIR))
 from tapmc.paper import validation  # noqa: E402
 
 DOC = SOURCE / "doc"
+#: the committed reports: the medium campaign's and the paper-scale campaign's (under way)
+PAGES = [DOC, DOC / "paper_scale"]
 
 
-def test_committed_report_equals_its_regeneration():
-    summary, files = validation.committed_inputs(DOC)
-    committed = (DOC / "validation.rst").read_text()
+@pytest.mark.parametrize("page", PAGES, ids=lambda p: p.name)
+def test_committed_report_equals_its_regeneration(page):
+    summary, files = validation.committed_inputs(page)
+    committed = (page / "validation.rst").read_text()
     assert validation.render(summary, files) == committed, (
-        "doc/validation.rst differs from what its committed data give: run "
-        "'build/tapmc-paper report --from-data --out doc' and commit the result")
+        f"{page / 'validation.rst'} differs from what its committed data give: run "
+        f"'build/tapmc-paper report --from-data --out {page.relative_to(SOURCE)}' and commit "
+        "the result")
     for png, csv in files.values():  # every figure the page embeds is committed with it
         assert png.is_file() and csv.is_file()
         assert f".. image:: validation/{png.name}" in committed

@@ -34,6 +34,8 @@ from pathlib import Path
 import numpy as np
 from scipy import stats
 
+from tapmc.fluctuations import DEFAULT_BATCHES
+
 from . import _plotting as P
 
 #: The register, next to this module.
@@ -267,12 +269,36 @@ def initial_phi(data, claim):
     return [Measure(m, s, _dof(n), shown=fmt(m, s, pct=True))]
 
 
+#: Degrees of freedom of the batch-means error of one run's steady state (the batches of
+#: tapmc.fluctuations.SteadyState, minus one): the uncertainty of a figure value of one seed.
+WITHIN_RUN_DOF = DEFAULT_BATCHES - 1
+
+
+def _steady_dof(n, err):
+    """dof of a steady-state value: seeds - 1, or for one seed with a batch-means error
+    :data:`WITHIN_RUN_DOF`."""
+    if n >= 2:
+        return n - 1
+    return WITHIN_RUN_DOF if n == 1 and np.isfinite(err) else None
+
+
 def tapped_phi(data, claim):
+    """The steady <Phi^c> after the taps against the paper's value read at tap 4000: a single
+    tap's value, so the interval is the steady state's error combined with the spread of
+    single taps (a prediction interval). Without the steady state: the value at the end."""
     fig = data.figure("fig9")
     if fig is None:
         return _missing("no Fig. 9 runs")
-    m, s, n = fig.param("phi_c_final")
-    return [Measure(m, s, _dof(n), shown=fmt(m, s, pct=True))]
+    m, s, n = fig.param("phi_c_steady")
+    if not np.isfinite(m):
+        m, s, n = fig.param("phi_c_final")
+        return [Measure(m, s, _dof(n), shown=fmt(m, s, pct=True))]
+    sd = fig.param("phi_c_tap_sd")[0]
+    err = math.hypot(s, sd) if np.isfinite(s) else math.nan
+    return [Measure(m, err, _steady_dof(n, s),
+                    shown=f"{fmt(m, s, pct=True)} (steady state; single taps spread "
+                          f"{100 * sd:.2f} %" + ("; one seed: the spread between realizations "
+                                                 "is not included)" if n == 1 else ")"))]
 
 
 def pbc_compaction(data, claim):
@@ -280,8 +306,15 @@ def pbc_compaction(data, claim):
     if fig is None:
         return _missing("no Fig. 9 runs")
     mi, si, ni = fig.param("phi_c_initial")
-    mf, sf, nf = fig.param("phi_c_final")
-    return [Measure(mf - mi, math.hypot(si, sf), _dof(min(ni, nf)),
+    mf, sf, nf = fig.param("phi_c_steady")
+    if not np.isfinite(mf):
+        mf, sf, nf = fig.param("phi_c_final")
+        dof = _dof(min(ni, nf))
+    else:
+        dof = _steady_dof(min(ni, nf), sf)
+        if nf == 1:
+            si = 0.0  # one packing: its initial value is exact, the steady mean is not
+    return [Measure(mf - mi, math.hypot(si, sf), dof,
                     shown=f"{fmt(mi, si, pct=True)} -> {fmt(mf, sf, pct=True)}")]
 
 

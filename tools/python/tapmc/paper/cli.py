@@ -119,6 +119,10 @@ def build_parser():
                         help="rewrite OUT/validation.rst from the figure CSVs and report.json "
                              "already in OUT/validation (default OUT: the repository's doc/); "
                              "nothing is run or drawn")
+    report.add_argument("--finished-only", action="store_true",
+                        help="draw the figures and the report from the campaign's finished "
+                             "runs only, running nothing (a campaign under way); figures "
+                             "without their runs are left out and their claims undecided")
     plan = sub.add_parser("campaign", help="run the paper-scale campaign (tapmc.paper.plan) "
                                            "up to a tier, without drawing")
     common(plan)
@@ -259,6 +263,18 @@ def _report_from_data(args):
     return 0
 
 
+def _finished_view(campaign):
+    """The same campaign restricted to its finished runs (nothing is written or run)."""
+    from tapmc.campaign import Campaign
+
+    done = [spec for spec in campaign.runs if campaign.is_done(spec.name)]
+    if not done:
+        raise ValueError(f"campaign {campaign.directory}: none of its {len(campaign.runs)} runs "
+                         "has finished (--finished-only draws from finished runs)")
+    return Campaign(campaign.directory, done, lmp=campaign.lmp, jobs=campaign.jobs,
+                    mode=campaign.mode)
+
+
 def _list_runs(campaign, what):
     print(f"campaign {campaign.directory} ({what}, {len(campaign.runs)} runs):")
     for spec in campaign.runs:
@@ -303,17 +319,31 @@ def main(argv=None):
         return 2
     if args.dry_run:
         return _list_runs(campaign, args.scale)
-    status = _run_campaign(campaign, scale, args.quiet)
-    if status:
-        return status
+    planned = len(campaign.runs)
+    if getattr(args, "finished_only", False):
+        try:
+            campaign = _finished_view(campaign)
+        except ValueError as err:
+            print(f"tapmc-paper: {err}", file=sys.stderr)
+            return 2
+    else:
+        status = _run_campaign(campaign, scale, args.quiet)
+        if status:
+            return status
     try:
         drawn = {}
         for name, module in modules:
-            png, csv = module.draw(campaign, out)
+            try:
+                png, csv = module.draw(campaign, out)
+            except ValueError as err:
+                if not getattr(args, "finished_only", False):
+                    raise
+                print(f"{name}: left out ({err})")
+                continue
             drawn[name] = (Path(png), Path(csv))
             print(f"{name}: {png}  {csv}")
         if validation is not None:
-            report = validation.report(campaign, out, drawn)
+            report = validation.report(campaign, out, drawn, planned_runs=planned)
             print(f"report: {report}")
     except OSError as err:
         print(_os_message(err), file=sys.stderr)

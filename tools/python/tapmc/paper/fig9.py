@@ -12,15 +12,23 @@ tapped (60.6 %) packings.
 
 CSV panels: ``a`` (series ``final``, ``initial``, ``percus_yevick``; x = sigma), ``params``
 (``phi_initial``, ``phi_final`` seen by the random points; ``max_abs_diff_initial_final``,
-``max_abs_diff_final_py``; ``phi_c_initial``, ``phi_c_final`` of the stereology).
+``max_abs_diff_final_py``; ``phi_c_initial``, ``phi_c_final`` of the stereology at the two
+dumps; ``phi_c_steady``: the steady state of <Phi^c>, the mean over the last quarter of the
+taps (the paper's last 1000 of 4000), whose sem is over seeds, or for one seed (n = 1) the
+batch-means error of that mean (``tapmc.fluctuations.SteadyState``, successive taps being
+correlated); ``phi_c_tap_sd``: the standard deviation of single taps about it (the spread of a
+value read at one tap, as the paper's 60.6 % is)).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from tapmc.fluctuations import SteadyState
+
 from . import _plotting as P
 from . import _pores, _runs
+from ._steady_state import steady_last
 
 NAME = "fig9"
 BC = "pbc"
@@ -52,7 +60,7 @@ def p0_curves(campaign, bc=BC):
 
     _, specs = p0_runs(campaign, bc)
     out = {"initial": [None, [], []], "final": [None, [], []]}
-    phi_c = {"initial": [], "final": []}
+    phi_c = {"initial": [], "final": [], "steady": []}
     for spec in specs:
         files = _pores.dumps(_runs.run_dir(campaign, spec))
         first, last = min(files), max(files)
@@ -67,7 +75,20 @@ def p0_curves(campaign, bc=BC):
             out[key][2].append([float(pores.frames["phi_p0"][0])])
             row = np.searchsorted(tab["step"], step)
             phi_c[key].append([tab["phi_c"][row]])
+        series = np.asarray(tab["phi_c"], dtype=float)
+        phi_c["steady"].append(SteadyState(series, last=steady_last(len(series) - 1)).compute())
     return out, phi_c
+
+
+def steady_phi(states):
+    """(mean, sem, n, tap_sd) of the steady <Phi^c> over the runs' SteadyState results: sem
+    over seeds, or the batch-means error of one run's mean when there is one seed."""
+    means = [s.mean for s in states]
+    tap_sd = float(np.mean([s.std for s in states]))
+    if len(states) == 1:
+        return means[0], states[0].sem, 1, tap_sd
+    m, s, n = P.seed_stats([[v] for v in means])
+    return float(m[0]), float(s[0]), int(n[0]), tap_sd
 
 
 def draw(campaign, out_dir):
@@ -96,6 +117,9 @@ def draw(campaign, out_dir):
         else:
             ax.plot(sigma, mean, "-", lw=0.8, color="k",
                     label=f"initial packing ($\\Phi$ = {100 * pm[0]:.1f} %)")
+    m, s, n, tap_sd = steady_phi(phi_c["steady"])
+    table.add("params", "phi_c_steady", 0.0, m, s, n)
+    table.add("params", "phi_c_tap_sd", 0.0, tap_sd, None, n)
     sigma = stats["final"][0]
     theory = np.asarray(percus_yevick_p0(sigma, phi_final), dtype=float)
     ax.plot(sigma, theory, "-", lw=2.5, color="C1", alpha=0.7,

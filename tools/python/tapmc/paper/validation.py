@@ -93,6 +93,10 @@ def describe_scale(summary):
             f"{', '.join(map(str, summary['taps']))} taps; {summary['seeds']} seeds per point; "
             f"redeposition threshold eta = {', '.join(f'{e:g}' for e in summary['eta'])}). "
             "The paper used N = 4096, L = 32R, 4000 taps and 10 realizations.")
+    if summary.get("planned_runs"):
+        text += (f" The campaign is under way: {summary['runs']} of its "
+                 f"{summary['planned_runs']} runs have finished, and this page is drawn from "
+                 "them alone; the claims whose runs are missing are undecided.")
     if summary["fields"]:
         fields = {k: tuple(v) if isinstance(v, list) else v
                   for k, v in summary["fields"].items()}
@@ -349,11 +353,13 @@ def regenerate(out_dir):
 
 
 
-def report(campaign, out_dir, drawn=None):
+def report(campaign, out_dir, drawn=None, planned_runs=None):
     """Write ``out_dir/validation.rst`` and the figures it embeds under ``out_dir/validation/``.
 
     ``drawn``: name -> (png, csv) of figures already drawn (moved into ``out_dir/validation``);
-    the figures not given are drawn here. Returns the path of the rst."""
+    the figures not given are drawn here. ``planned_runs``: the number of runs of the whole
+    campaign when ``campaign`` holds only its finished ones (a campaign under way; the page
+    says how many are done). Returns the path of the rst."""
     from importlib import import_module
 
     out_dir = Path(out_dir)
@@ -368,7 +374,10 @@ def report(campaign, out_dir, drawn=None):
         except ValueError:
             continue  # this campaign has no run of that figure
     files = _collect(drawn, out_dir)
-    return write_rst(campaign_summary(campaign), files, out_dir)
+    summary = campaign_summary(campaign)
+    if planned_runs is not None and planned_runs > summary["runs"]:
+        summary["planned_runs"] = int(planned_runs)
+    return write_rst(summary, files, out_dir)
 
 
 __all__ = ["report", "regenerate", "render", "write_rst", "campaign_summary",
