@@ -22,7 +22,7 @@ import numpy as np
 from . import FIGURES
 from . import _plotting as P
 from . import _runs
-from . import claims
+from . import claims, questions
 from .claims import fmt
 
 #: the text of each rule of tapmc.paper.claims, as the report prints it.
@@ -192,7 +192,7 @@ def _rows_and_notes(summary, files):
         text = note(fig) if fig is not None else None
         if text:
             notes[name] = text
-    return rows, notes
+    return rows, notes, data.figures
 
 
 CAPTIONS = {
@@ -264,7 +264,7 @@ def _register_table(rows):
 def render(summary, files):
     """The text of validation.rst from the campaign summary and the figure files (name ->
     (png, csv))."""
-    rows, notes = _rows_and_notes(summary, files)
+    rows, notes, figures = _rows_and_notes(summary, files)
     model = [r for r in rows if r.claim.kind == "model"]
     count = {o: sum(1 for r in model if r.outcome == o)
              for o in ("agrees", "disagrees", "undecided")}
@@ -299,6 +299,9 @@ def render(summary, files):
               "The claims register", "-" * 19, "",
               "Where each claim's tolerance comes from and which runs decide it:", ""]
     lines += _register_table(rows) + [""]
+    if files:
+        folder = Path(next(iter(files.values()))[1]).parent / questions.FOLDER
+        lines += questions.render_section(folder, figures)
     for name in FIGURES:
         if name not in files:
             continue

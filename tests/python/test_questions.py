@@ -1,0 +1,47 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""The report's questions settled by measurement (tapmc.paper.questions): the conclusions are
+computed from the CSVs, and each can come out either way."""
+
+import os
+import sys
+from pathlib import Path
+
+SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", Path(__file__).resolve().parents[2]))
+sys.path.insert(0, str(SOURCE / "tools" / "python"))
+
+from tapmc.paper import claims, questions  # noqa: E402
+
+
+def first_tap_csv(folder, drop_loose, drop_tight):
+    lines = ["eps,eta,seed,phi_c_0,phi_c_1,Z_0,Z_1,sweeps_1"]
+    for eta, drop in ((1e-7, drop_loose), (1e-9, drop_tight)):
+        for seed, jitter in ((1, -0.0002), (2, 0.0), (3, 0.0002)):
+            lines.append(f"0.15,{eta:g},{seed},0.583,{0.583 + drop + jitter},7.3,7.4,5000")
+    (folder / "first_tap.csv").write_text("\n".join(lines) + "\n")
+
+
+def test_first_tap_drop_that_survives_a_tight_eta_is_the_model(tmp_path):
+    first_tap_csv(tmp_path, -0.012, -0.010)
+    text = "\n".join(questions.render_section(tmp_path))
+    assert "Questions settled by measurement" in text
+    assert "83 % of the change" in text and "a property of the model" in text
+
+
+def test_first_tap_drop_that_vanishes_is_the_stopping_rule(tmp_path):
+    first_tap_csv(tmp_path, -0.012, -0.0001)
+    text = "\n".join(questions.render_section(tmp_path))
+    assert "not distinguishable from an effect of the stopping rule" in text
+
+
+def test_noise_floor_against_fig3(tmp_path):
+    (tmp_path / "noise_floor.csv").write_text(
+        "quantity,value\nsigma_Z,0.001\nsigma_Z_detrended,0.0003\ndrift_per_tap,-6e-06\n"
+        "Z_first,6.94\nZ_last,6.934\ntaps,1000\nmean_sweeps,8.4\n")
+    fig3 = claims.FigureData({("params", "k"): {"x": [0.0], "mean": [0.05], "sem": [0.001],
+                                                "n": [5]}})
+    text = "\n".join(questions.render_section(tmp_path, {"fig3": fig3}))
+    assert "sigma_<Z> = 0.001" in text and "sqrt(eps) = 0.02" in text
+
+
+def test_nothing_to_render_without_the_csvs(tmp_path):
+    assert questions.render_section(tmp_path) == []
