@@ -173,8 +173,8 @@ def test_paper_scale_plan():
     assert {0.0707, 0.2236, 0.3873} <= set(sqrt_eps)
     assert {s.seed for s in tier1} == {1}
     assert all(s.variables["rsteps"] == FULL.restart_every for s in everything)
-    with pytest.raises(ValueError, match="tier = 4"):
-        plan.runs(4)
+    with pytest.raises(ValueError, match="tier = 5"):
+        plan.runs(5)
 
 
 def test_campaign_subcommand(tmp_path):

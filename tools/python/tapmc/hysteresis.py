@@ -2,14 +2,38 @@
 """Steady-state values along a ramp of the excitation, section III.B and Fig. 4 of Philippe &
 Bideau: sqrt(eps) raised by 0.025 every 4000 taps, then lowered, then raised again; the steady
 state of every level is the mean over its last 1000 taps, and the levels form the branches
-'up1', 'down' and 'up2' (the paper's "irreversible" first increase and "reversible" branch)."""
+'up1', 'down' and 'up2' (the paper's "irreversible" first increase and "reversible" branch).
+
+The claims of section III.B are decided on the branch data (per level: sqrt(eps), the mean over
+the last taps and its standard error) by :class:`RampBranches`:
+
+* a ramp that went beyond (sqrt eps)* ~ 0.15 (:data:`CRITICAL_SQRT_EPS`) comes back on the
+  *reversible* branch: the decreasing branch lies above the first increase
+  (``down_minus_up1`` > 0), <Phi^c> falls with sqrt(eps) on it (``down_slope`` < 0), and the
+  second increase retraces it (``up2_minus_down`` within noise);
+* a ramp that stayed below it comes back *irreversibly*: the decreasing branch is nearly frozen
+  at the value it had at the top of the ramp (``down_change`` within noise).
+
+"Within noise" and the signs are decided at :data:`Z_DECIDE` standard errors
+(:class:`BranchStatistic`)."""
+
+import math
+from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import as_1d, new_axis, positive_int, result, same_length
+from ._validate import (as_1d, in_range, new_axis, positive, positive_int, require, result,
+                        same_length)
 from .fluctuations import SteadyState
 
-__all__ = ["Hysteresis", "LEVEL_TOLERANCE"]
+__all__ = ["Hysteresis", "LEVEL_TOLERANCE", "CRITICAL_SQRT_EPS", "Z_DECIDE", "BranchData",
+           "BranchStatistic", "branch_difference", "branch_slope", "branch_change",
+           "RampBranches"]
+
+#: (sqrt eps)* ~ 0.15 of section III.B, between the irreversible and the reversible behaviour
+CRITICAL_SQRT_EPS = 0.15
+#: standard errors that decide a sign (|value| > Z_DECIDE sem) or count as noise (below)
+Z_DECIDE = 2.0
 
 #: sqrt(eps) values closer than this belong to one level (thermo prints 6 digits or more)
 LEVEL_TOLERANCE = 1e-6
@@ -94,6 +118,234 @@ class Hysteresis:
             if len(lv):
                 ax.errorbar(lv["sqrt_eps"], lv["mean"], yerr=lv["sem"], marker=marker,
                             color=color, ls="-", label=name, capsize=2)
+        ax.set_xlabel(r"$\varepsilon^{1/2}$")
+        ax.set_ylabel(ylabel)
+        ax.legend()
+        return ax
+
+
+@dataclass(frozen=True)
+class BranchData:
+    """One branch of a ramp: per level ``sqrt_eps``, the steady state ``mean`` (over the last
+    taps of the level, and over seeds) and its standard error ``sem`` (all of one length,
+    finite, sem > 0; levels in the order they were run)."""
+
+    sqrt_eps: np.ndarray
+    mean: np.ndarray
+    sem: np.ndarray
+
+    def __post_init__(self):
+        sq = as_1d("sqrt_eps", self.sqrt_eps)
+        mean = as_1d("mean", self.mean)
+        sem = as_1d("sem", self.sem)
+        same_length("sqrt_eps", sq, "mean", mean)
+        same_length("sqrt_eps", sq, "sem", sem)
+        if np.any(sem <= 0):
+            bad = int(np.flatnonzero(sem <= 0)[0])
+            raise ValueError(f"sem[{bad}] = {sem[bad]!r} must be > 0 (a level without an "
+                             "uncertainty decides nothing)")
+        for name, value in (("sqrt_eps", sq), ("mean", mean), ("sem", sem)):
+            object.__setattr__(self, name, value)
+
+    @classmethod
+    def from_levels(cls, levels):
+        """From levels of :meth:`Hysteresis.branch` (fields sqrt_eps, mean, sem)."""
+        return cls(levels["sqrt_eps"], levels["mean"], levels["sem"])
+
+    def __len__(self):
+        return len(self.sqrt_eps)
+
+
+@dataclass(frozen=True)
+class BranchStatistic:
+    """A statistic of branch data: ``value`` with its standard error ``sem`` over ``n`` levels.
+    ``z`` = value / sem; ``positive`` / ``negative``: beyond ``Z_DECIDE`` standard errors;
+    ``within_noise``: |z| < ``Z_DECIDE``."""
+
+    value: float
+    sem: float
+    n: int
+
+    @property
+    def z(self):
+        return self.value / self.sem if self.sem > 0 else math.copysign(math.inf, self.value)
+
+    @property
+    def positive(self):
+        return self.z > Z_DECIDE
+
+    @property
+    def negative(self):
+        return self.z < -Z_DECIDE
+
+    @property
+    def within_noise(self):
+        return abs(self.z) < Z_DECIDE
+
+
+def _common(a, b, tolerance=LEVEL_TOLERANCE):
+    """Index pairs (i, j) of the levels of a and b at the same sqrt(eps)."""
+    pairs = []
+    for i, x in enumerate(a.sqrt_eps):
+        match = np.flatnonzero(np.abs(b.sqrt_eps - x) <= tolerance)
+        if len(match):
+            pairs.append((i, int(match[0])))
+    return pairs
+
+
+def branch_difference(a, b):
+    """Mean over the sqrt(eps) common to branches ``a`` and ``b`` of a - b; its standard error
+    sqrt(sum(sem_a^2 + sem_b^2)) / k over the k common levels (independent levels).
+    ValueError when they share no sqrt(eps)."""
+    pairs = _common(a, b)
+    if not pairs:
+        raise ValueError(f"the branches share no sqrt(eps) (a: {list(a.sqrt_eps)}, b: "
+                         f"{list(b.sqrt_eps)})")
+    i, j = map(np.array, zip(*pairs))
+    diff = a.mean[i] - b.mean[j]
+    sem = math.sqrt(float(np.sum(a.sem[i] ** 2 + b.sem[j] ** 2))) / len(pairs)
+    return BranchStatistic(float(diff.mean()), sem, len(pairs))
+
+
+def branch_slope(branch):
+    """Slope d<X>/d sqrt(eps) of a weighted straight line through the levels of ``branch``
+    (weights 1/sem^2), with its standard error, scaled by sqrt(chi2/dof) when the scatter
+    exceeds the error bars; two levels give the line through them. ValueError for fewer than
+    two levels or a single sqrt(eps)."""
+    if len(branch) < 2 or np.ptp(branch.sqrt_eps) <= LEVEL_TOLERANCE:
+        raise ValueError(f"a slope needs two levels at different sqrt(eps), the branch has "
+                         f"sqrt(eps) = {list(branch.sqrt_eps)}")
+    w = 1.0 / branch.sem ** 2
+    design = np.vstack([np.ones_like(branch.sqrt_eps), branch.sqrt_eps]).T
+    cov = np.linalg.inv(design.T @ (design * w[:, None]))
+    coef = cov @ (design.T @ (w * branch.mean))
+    dof = len(branch) - 2
+    scale = 1.0
+    if dof > 0:
+        chi2 = float(np.sum(w * (branch.mean - design @ coef) ** 2))
+        scale = max(1.0, chi2 / dof)
+    return BranchStatistic(float(coef[1]), math.sqrt(cov[1, 1] * scale), len(branch))
+
+
+def branch_change(branch, start_mean, start_sem):
+    """Mean over the levels of ``branch`` of (level - start): how far the branch moved from a
+    starting value (e.g. the top level of the ramp); standard error
+    sqrt(sum(sem^2) / k^2 + start_sem^2) (the start is common to the k differences)."""
+    start_sem = positive("start_sem", start_sem)
+    k = len(branch)
+    sem = math.sqrt(float(np.sum(branch.sem ** 2)) / k ** 2 + start_sem ** 2)
+    return BranchStatistic(float(np.mean(branch.mean) - start_mean), sem, k)
+
+
+class RampBranches:
+    """The statistics that decide the claims of section III.B on one ramp's branches.
+
+    Parameters: ``up1``, ``down`` and ``up2`` (:class:`BranchData` or (sqrt_eps, mean, sem)
+    triples; ``up2`` may be None when the ramp did not go up again), ``critical`` ((sqrt
+    eps)*, default 0.15).
+
+    Results after ``compute()``:
+
+    * ``top_sqrt_eps`` (the highest sqrt(eps) of the first increase), ``went_above_critical``
+      (top_sqrt_eps > critical);
+    * ``down_minus_up1``: the decreasing branch minus the first increase, mean over their
+      common sqrt(eps) (:func:`branch_difference`); > 0 is the hysteresis of Fig. 4;
+    * ``down_slope``: the slope of the decreasing branch (:func:`branch_slope`; None with one
+      level): < 0 when <Phi^c> falls with sqrt(eps) on the reversible branch;
+    * ``up2_minus_down``: the second increase minus the decreasing branch (None without up2
+      or without a sqrt(eps) common to both);
+    * ``down_change``: the decreasing branch minus the top level of the first increase
+      (:func:`branch_change`), how far the packing moved once the excitation went down;
+    * verdicts at ``Z_DECIDE`` standard errors: ``reversible`` (went above and
+      down_minus_up1 positive), ``falls_with_sqrt_eps`` (down_slope negative), ``retraced``
+      (up2_minus_down within noise), ``frozen`` (stayed below and down_change within noise).
+    """
+
+    def __init__(self, up1, down, up2=None, critical=CRITICAL_SQRT_EPS):
+        self.up1 = self._branch("up1", up1)
+        self.down = self._branch("down", down)
+        self.up2 = None if up2 is None else self._branch("up2", up2)
+        self.critical = in_range("critical", critical, 0.0, 1.0, lo_open=True)
+        self._top = None
+
+    @staticmethod
+    def _branch(name, data):
+        if isinstance(data, BranchData):
+            return data
+        try:
+            sq, mean, sem = data
+        except (TypeError, ValueError):
+            raise ValueError(f"{name} must be BranchData or a (sqrt_eps, mean, sem) triple, "
+                             f"got {type(data).__name__}") from None
+        try:
+            return BranchData(sq, mean, sem)
+        except ValueError as err:
+            raise ValueError(f"{name}: {err}") from None
+
+    @classmethod
+    def from_hysteresis(cls, hysteresis, critical=CRITICAL_SQRT_EPS):
+        """From a computed :class:`Hysteresis` (one run; the sems are its batch-means
+        standard errors)."""
+        up2 = hysteresis.branch("up2")
+        return cls(BranchData.from_levels(hysteresis.branch("up1")),
+                   BranchData.from_levels(hysteresis.branch("down")),
+                   BranchData.from_levels(up2) if len(up2) else None, critical)
+
+    def compute(self):
+        top = int(np.argmax(self.up1.sqrt_eps))
+        self._top = float(self.up1.sqrt_eps[top])
+        self._down_minus_up1 = branch_difference(self.down, self.up1)
+        varied = np.ptp(self.down.sqrt_eps) > LEVEL_TOLERANCE
+        self._down_slope = branch_slope(self.down) if varied else None
+        self._up2_minus_down = (branch_difference(self.up2, self.down)
+                                if self.up2 is not None and _common(self.up2, self.down)
+                                else None)
+        self._down_change = branch_change(self.down, self.up1.mean[top], self.up1.sem[top])
+        return self
+
+    top_sqrt_eps = result("_top")
+    down_minus_up1 = result("_down_minus_up1")
+    down_change = result("_down_change")
+
+    @property
+    def went_above_critical(self):
+        return self.top_sqrt_eps > self.critical
+
+    @property
+    def down_slope(self):
+        require(self, "_top")
+        return self._down_slope
+
+    @property
+    def up2_minus_down(self):
+        require(self, "_top")
+        return self._up2_minus_down
+
+    @property
+    def reversible(self):
+        return self.went_above_critical and self.down_minus_up1.positive
+
+    @property
+    def falls_with_sqrt_eps(self):
+        return self.down_slope is not None and self.down_slope.negative
+
+    @property
+    def retraced(self):
+        return self.up2_minus_down is not None and self.up2_minus_down.within_noise
+
+    @property
+    def frozen(self):
+        return not self.went_above_critical and self.down_change.within_noise
+
+    def plot(self, ax=None, ylabel=r"$\langle\Phi^c\rangle$", label="", markers=("o", "^", "v")):
+        """The branches against sqrt(eps) (open symbols) and (sqrt eps)* (dotted line)."""
+        ax = new_axis(ax)
+        for branch, name, marker in zip((self.up1, self.down, self.up2),
+                                        ("up1", "down", "up2"), markers):
+            if branch is not None:
+                ax.errorbar(branch.sqrt_eps, branch.mean, yerr=branch.sem, marker=marker,
+                            mfc="none", ls="-", capsize=2, label=f"{label}{name}")
+        ax.axvline(self.critical, color="0.5", ls=":", lw=1)
         ax.set_xlabel(r"$\varepsilon^{1/2}$")
         ax.set_ylabel(ylabel)
         ax.legend()

@@ -1,7 +1,12 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 """The constant-eps F.B.C. runs of the packing-fraction profiles, shared by Figs. 6, 7 and 8
 (section IV.A): the runs (one per eps of ``scale.profile_eps`` and seed), the runs at the eps
-nearest to the paper's 0.1, and their stereo/profile profiles averaged over seeds."""
+nearest to the paper's 0.1, and their stereo/profile profiles averaged over seeds.
+
+The runs start from the F.B.C. packing of the scale (``Scale.fbc_start``): deposited between
+the walls (``walls``, the default) or the paper's periodic deposition adapted to the walls by a
+slight agitation (``paper``, section IV.A), whose under-populated walls make delta
+Phi_lateral jump at the first tap (Figs. 7b and 8)."""
 
 from __future__ import annotations
 
@@ -45,3 +50,16 @@ def profiles(campaign, specs, filename):
         init.append(blocks[0, :, 2])
         final.append(blocks[-1, :, 2])
     return (x, *P.seed_stats(init), *P.seed_stats(final))
+
+
+def fbc_start(specs):
+    """The F.B.C. start of the runs ``specs`` ('walls' or 'paper'; one start for all)."""
+    starts = {_runs.fbc_start_of(s) for s in specs}
+    if len(starts) != 1:
+        raise ValueError(f"runs {[s.name for s in specs]} mix the F.B.C. starts "
+                         f"{sorted(starts)}")
+    return starts.pop()
+
+
+#: legend words of each F.B.C. start.
+START_LABEL = {"walls": "F.B.C.", "paper": "F.B.C., the paper's start"}

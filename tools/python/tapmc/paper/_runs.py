@@ -61,21 +61,53 @@ def eps_tag(eps):
     return f"{float(eps):.6g}"
 
 
+#: Name tag of the F.B.C. constant-eps runs that start from the paper's packing (section IV.A).
+PAPER_START_TAG = "fbcpaper"
+
+
 def constant_eps_run(scale, bc, eps, seed, taps=None):
     """A constant-eps tapping sequence (in.constant_eps): taps.dat, profiles and packing dumps
-    at 0 and the end."""
+    at 0 and the end. F.B.C. runs of a scale with ``fbc_start = 'paper'`` start from the
+    paper's packing (``-var fbc_start paper``, section IV.A) and are named
+    ``const_fbcpaper_eps..._s...``; runs with the default start keep their variables and names
+    (``const_fbc_...``), so campaigns made before the option existed stay valid."""
     taps = int(scale.taps if taps is None else taps)
     variables = dict(_size(scale), eps=float(eps), taps=taps, bc=bc, pevery=taps,
                      dump_ends="yes")
-    return _RunSpec()(f"const_{bc}_eps{eps_tag(eps)}_s{seed}", _input(CONSTANT_EPS), variables,
+    tag = bc
+    if bc == "fbc" and scale.fbc_start == "paper":
+        variables["fbc_start"] = "paper"
+        tag = PAPER_START_TAG
+    return _RunSpec()(f"const_{tag}_eps{eps_tag(eps)}_s{seed}", _input(CONSTANT_EPS), variables,
                       int(seed))
 
 
+def fbc_start_of(spec):
+    """The F.B.C. start of a constant-eps run: its ``fbc_start`` variable, 'walls' without."""
+    return spec.variables.get("fbc_start", "walls")
+
+
 def ramp_run(scale, bc, seed):
+    """The ramp of Fig. 4 (in.ramp): sqrt(eps) up from ``ramp_sqrt0`` by ``ramp_dsqrt`` over
+    ``ramp_levels`` levels (beyond (sqrt eps)* ~ 0.15 in every preset), down and up again."""
     variables = dict(_size(scale), bc=bc, sqrt0=float(scale.ramp_sqrt0),
                      dsqrt=float(scale.ramp_dsqrt), nlev=int(scale.ramp_levels),
                      P=int(scale.ramp_taps_per_level))
     return _RunSpec()(f"ramp_{bc}_s{seed}", _input(RAMP), variables, int(seed))
+
+
+#: Name prefix of the ramp that stays below (sqrt eps)* (Fig. 4, section III.B).
+RAMP_BELOW_PREFIX = "ramplow_"
+
+
+def ramp_below_run(scale, bc, seed):
+    """The second ramp of Fig. 4 (in.ramp, section III.B): the same sqrt0, step and taps per
+    level, but up only to ``scale.ramp_below_top`` < (sqrt eps)* ~ 0.15, down and up again;
+    named ``ramplow_<bc>_s<seed>`` (``select(campaign, 'ramp_')`` does not see it)."""
+    variables = dict(_size(scale), bc=bc, sqrt0=float(scale.ramp_sqrt0),
+                     dsqrt=float(scale.ramp_dsqrt), nlev=int(scale.ramp_below_levels),
+                     P=int(scale.ramp_taps_per_level))
+    return _RunSpec()(f"{RAMP_BELOW_PREFIX}{bc}_s{seed}", _input(RAMP), variables, int(seed))
 
 
 def ageing_run(scale, bc, eps, seed, taps=None):
@@ -127,7 +159,13 @@ def constant_eps_groups(campaign, bc, eps_values=None):
     """The campaign's constant-eps runs with boundary ``bc``, grouped by eps (dict eps -> specs
     sorted by seed), restricted to ``eps_values`` when given (1e-9 relative); raises ValueError
     when none is left."""
-    groups = by_variable(select(campaign, "const_", bc=bc), "eps")
+    specs = select(campaign, "const_", bc=bc)
+    starts = sorted({fbc_start_of(s) for s in specs})
+    if len(starts) > 1:
+        raise ValueError(f"campaign {campaign.directory}: its constant-eps {bc} runs mix the "
+                         f"F.B.C. starts {', '.join(starts)}; draw each from a campaign of one "
+                         "start (Scale.fbc_start)")
+    groups = by_variable(specs, "eps")
     if eps_values is not None:
         groups = {e: g for e, g in groups.items()
                   if any(abs(e - v) <= 1e-9 * v for v in eps_values)}

@@ -24,7 +24,8 @@ import tempfile
 from pathlib import Path
 
 from . import FIGURES
-from .scales import get_scale
+from .plan import TIERS
+from .scales import FBC_STARTS, get_scale
 
 
 class FigureUnavailable(RuntimeError):
@@ -93,6 +94,12 @@ def build_parser():
                           help="the paper's scale: N = 4096, L = 32R, 4000 taps, 10 seeds "
                                "(hours to days)")
         p.set_defaults(scale="quick")
+        p.add_argument("--fbc-start", choices=FBC_STARTS, default=None,
+                       help="F.B.C. initial packing of the constant-eps runs (Figs. 2, 6-8): "
+                            "walls (deposited between the walls, the default) or paper (the "
+                            "paper's periodic deposition adapted to the walls by a slight "
+                            "agitation, section IV.A); default campaign folder "
+                            "./tapmc-paper-SCALE-fbc-paper")
         p.add_argument("--seeds", type=_positive_int, default=None, metavar="K",
                        help="number of seeds (realizations) per point; default: the scale's")
         p.add_argument("--jobs", type=_positive_int, default=None, metavar="J",
@@ -127,16 +134,30 @@ def build_parser():
                                            "up to a tier, without drawing")
     common(plan)
     plan.set_defaults(scale="full")
-    plan.add_argument("--tier", type=int, choices=(1, 2, 3), default=1,
+    plan.add_argument("--tier", type=int, choices=TIERS, default=1,
                       help="run tiers 1 .. TIER of the plan (default 1: the paper's one run "
                            "per point)")
     return parser
 
 
+def scale_of(args):
+    """The Scale of a command: the preset, with ``--fbc-start`` when given."""
+    scale = get_scale(args.scale)
+    if args.fbc_start is not None:
+        scale = scale.replace(fbc_start=args.fbc_start)
+    return scale
+
+
+def default_campaign_dir(scale):
+    """./tapmc-paper-SCALE, or ./tapmc-paper-SCALE-fbc-paper for the paper's F.B.C. start."""
+    suffix = "-fbc-paper" if scale.fbc_start == "paper" else ""
+    return Path(f"tapmc-paper-{scale.name}{suffix}")
+
+
 def _campaign_for(args, modules):
     from tapmc.campaign import Campaign
 
-    scale = get_scale(args.scale)
+    scale = scale_of(args)
     seeds = args.seeds if args.seeds is not None else scale.seeds
     runs, seen = [], {}
     for name, module in modules:
@@ -148,7 +169,7 @@ def _campaign_for(args, modules):
                 continue
             seen[spec.name] = spec
             runs.append(spec)
-    directory = args.campaign or Path(f"tapmc-paper-{scale.name}")
+    directory = args.campaign or default_campaign_dir(scale)
     return Campaign(directory, runs, lmp=args.lmp, jobs=args.jobs, mode=args.mode)
 
 
@@ -199,9 +220,9 @@ def _run_plan(args):
 
     from . import _runs, plan
 
-    if args.scale != "full" or args.seeds is not None:
-        print("tapmc-paper: campaign runs the paper-scale plan only (--full, no --seeds; the "
-              "plan fixes its seeds per tier)", file=sys.stderr)
+    if args.scale != "full" or args.seeds is not None or args.fbc_start is not None:
+        print("tapmc-paper: campaign runs the paper-scale plan only (--full, no --seeds or "
+              "--fbc-start; the plan fixes its seeds per tier)", file=sys.stderr)
         return 2
     scale = get_scale("full")
     directory = args.campaign or Path(f"tapmc-paper-{scale.name}")
@@ -305,7 +326,7 @@ def main(argv=None):
                 raise FigureUnavailable("report: the module tapmc.paper.validation is not "
                                         "installed in this TAPMC") from None
         campaign = _campaign_for(args, modules)
-        scale = get_scale(args.scale)
+        scale = scale_of(args)
         _runs.check_scale(campaign.directory, scale)
         out = args.out or campaign.directory / "figures"
         folders = ((campaign.directory, "campaign directory"),

@@ -5,13 +5,35 @@
 Solid black squares: the steady state of independent constant-eps runs from fresh packings
 (mean of <Phi^c> over the last quarter of the taps of each seed, paper: the last 1000 of
 4000), mean and standard error over seeds; the paper finds a bell with its maximum for
-sqrt(eps) between 0.1 and 0.2. Open symbols: one tapping sequence with sqrt(eps) going up by
-``dsqrt`` every P taps (circles), down again (up-triangles) and up again (down-triangles),
-each level's steady state from ``tapmc.hysteresis.Hysteresis``, averaged over seeds.
+sqrt(eps) between 0.1 and 0.2. Open symbols: the ramp pair of section III.B, each one tapping
+sequence with sqrt(eps) going up by ``dsqrt`` every P taps, down again and up again, each
+level's steady state from ``tapmc.hysteresis.Hysteresis``, averaged over seeds:
 
-CSV panels: ``a`` (series ``steady`` with x = sqrt(eps), and ``up1``, ``down``, ``up2``),
-``params`` (``sqrt_eps_max``: the sqrt(eps) of the highest steady-state square, sem = half
-the grid spacing there; ``phi_c_max`` the value there).
+* the ramp that goes beyond (sqrt eps)* ~ 0.15 (runs ``ramp_<bc>_s<seed>``, up to
+  ``Scale.ramp_top``): circles (increase), up-triangles (decrease), down-triangles (increase
+  again), the reversible branch;
+* the ramp that stays below it (runs ``ramplow_<bc>_s<seed>``, up to
+  ``Scale.ramp_below_top``): diamonds, left- and right-triangles, the irreversible branch.
+
+The dotted vertical line is (sqrt eps)* = 0.15.
+
+CSV panels: ``a`` (series ``steady`` with x = sqrt(eps); ``up1``, ``down``, ``up2`` of the
+ramp beyond (sqrt eps)*; ``low:up1``, ``low:down``, ``low:up2`` of the ramp below it; sem over
+seeds), ``params``:
+
+* ``sqrt_eps_max``: the sqrt(eps) of the highest steady-state square, sem = half the grid
+  spacing there; ``phi_c_max`` the value there;
+* ``critical_sqrt_eps``: (sqrt eps)* = 0.15 (x = 0);
+* per ramp, ``ramp:`` (beyond) and ``low:`` (below), the statistics of
+  ``tapmc.hysteresis.RampBranches`` on the branches averaged over seeds (per level: the mean
+  over seeds; its sem over seeds, or with one seed the level's batch-means standard error),
+  with x = the ramp's highest sqrt(eps), sem their standard error and n the seeds:
+  ``<ramp>:top_sqrt_eps`` (mean = the highest sqrt(eps)); ``<ramp>:down_minus_up1`` (decrease
+  minus first increase over their common sqrt(eps): > 0 on the reversible branch);
+  ``<ramp>:down_slope`` (d<Phi^c>/d sqrt(eps) on the decrease: < 0 on the reversible branch;
+  absent with a single decreasing level); ``<ramp>:up2_minus_down`` (second increase minus
+  decrease: within noise when it retraces it); ``<ramp>:down_change`` (decrease minus the top
+  level: within noise when the branch is frozen, the irreversible case).
 """
 
 from __future__ import annotations
@@ -21,20 +43,30 @@ from collections import defaultdict
 import numpy as np
 
 from tapmc.fluctuations import SteadyState
+from tapmc.hysteresis import CRITICAL_SQRT_EPS, BranchData, Hysteresis, RampBranches
 
 from . import _plotting as P
 from . import _runs, _steady_state
 from ._steady_state import BC, steady_last
 
 NAME = "fig4"
+#: (marker, label) of each branch of the ramp beyond (sqrt eps)* and of the ramp below it.
 BRANCH_STYLE = {"up1": ("o", "increase"), "down": ("^", "decrease"), "up2": ("v", "increase again")}
+LOW_BRANCH_STYLE = {"up1": ("D", "increase"), "down": ("<", "decrease"),
+                    "up2": (">", "increase again")}
+#: the ramps of the pair: (CSV tag, run name prefix, branch style, legend words).
+RAMPS = (("ramp", "ramp_", BRANCH_STYLE, "ramp beyond 0.15"),
+         ("low", _runs.RAMP_BELOW_PREFIX, LOW_BRANCH_STYLE, "ramp below 0.15"))
+BRANCHES = ("up1", "down", "up2")
 
 
 def runs(scale, seeds):
     """The constant-eps P.B.C. runs of ``scale.steady_eps`` (shared with Fig. 3:
-    ``_steady_state.runs``) and one ramp run per seed."""
+    ``_steady_state.runs``) and, per seed, the ramp beyond (sqrt eps)* and the one below it."""
+    seeds = _runs.seed_list(seeds)
     return (_steady_state.runs(scale, seeds)
-            + [_runs.ramp_run(scale, BC, s) for s in _runs.seed_list(seeds)])
+            + [_runs.ramp_run(scale, BC, s) for s in seeds]
+            + [_runs.ramp_below_run(scale, BC, s) for s in seeds])
 
 
 def steady_states(campaign, column="phi_c", bc=BC):
@@ -55,34 +87,61 @@ def steady_states(campaign, column="phi_c", bc=BC):
 
 
 def _level_records(levels):
-    """Hysteresis levels as a list of dicts (branch, sqrt_eps, mean)."""
+    """Hysteresis levels as a list of dicts (branch, sqrt_eps, mean, sem)."""
     if isinstance(levels, np.ndarray) and levels.dtype.names:
         return [{k: levels[k][i] for k in levels.dtype.names} for i in range(len(levels))]
     return [dict(level) for level in levels]
 
 
-def hysteresis_branches(campaign, column="phi_c", bc=BC):
-    """dict branch -> (sqrt_eps, mean, sem, n) over the seeds of the ramp runs."""
-    from tapmc.hysteresis import Hysteresis
-
-    specs = _runs.select(campaign, "ramp_", bc=bc)
+def _ramp_levels(campaign, column, bc, prefix):
+    """dict branch -> sqrt_eps -> [(mean, sem) per seed] of the ramps named ``prefix...``."""
     collected = defaultdict(lambda: defaultdict(list))
-    for spec in specs:
+    for spec in _runs.select(campaign, prefix, bc=bc):
         tab = _runs.taps_table(campaign, spec)
         per_level = int(spec.variables["P"])
-        last = steady_last(per_level)
         hyst = Hysteresis(tab["sqrt_eps"][1:], tab[column][1:], taps_per_level=per_level,
-                          last=last).compute()
+                          last=steady_last(per_level)).compute()
         for rec in _level_records(hyst.levels):
             key = round(float(rec["sqrt_eps"]), 9)
-            collected[str(rec["branch"])][key].append(float(rec["mean"]))
+            collected[str(rec["branch"])][key].append((float(rec["mean"]), float(rec["sem"])))
+    return collected
+
+
+def hysteresis_branches(campaign, column="phi_c", bc=BC, prefix="ramp_"):
+    """dict branch -> (sqrt_eps, mean, sem, n) over the seeds of the ramp runs named
+    ``prefix...`` (``ramp_``: beyond (sqrt eps)*; ``ramplow_``: below it); sem over seeds."""
     out = {}
-    for branch, by_sq in collected.items():
+    for branch, by_sq in _ramp_levels(campaign, column, bc, prefix).items():
         sq = np.array(sorted(by_sq))
-        stats = [P.seed_stats([[v] for v in by_sq[k]]) for k in sq]
+        stats = [P.seed_stats([[m] for m, _ in by_sq[k]]) for k in sq]
         out[branch] = (sq, np.array([s[0][0] for s in stats]), np.array([s[1][0] for s in stats]),
                        np.array([s[2][0] for s in stats]))
     return out
+
+
+def ramp_branches(campaign, column="phi_c", bc=BC, prefix="ramp_"):
+    """(RampBranches computed, seeds) of the ramp runs named ``prefix...``, per level the mean
+    over seeds with its sem over seeds (one seed: the level's batch-means sem); None when the
+    campaign has no such ramp, it has no decreasing level yet, or a level has no positive
+    standard error (a level that did not move at all decides nothing)."""
+    levels = _ramp_levels(campaign, column, bc, prefix)
+    if not levels.get("up1") or not levels.get("down"):
+        return None
+    data, seeds = {}, []
+    for branch, by_sq in levels.items():
+        sq, mean, sem = [], [], []
+        for key in sorted(by_sq):
+            values = by_sq[key]
+            m, s, n = P.seed_stats([[v] for v, _ in values])
+            sq.append(key)
+            mean.append(m[0])
+            sem.append(s[0] if n[0] >= 2 else values[0][1])
+            seeds.append(int(n[0]))
+        try:
+            data[branch] = BranchData(sq, mean, sem)
+        except ValueError:
+            return None
+    return RampBranches(data["up1"], data["down"], data.get("up2")).compute(), min(seeds)
 
 
 def bell_maximum(sq, mean):
@@ -104,12 +163,29 @@ def draw(campaign, out_dir):
     sq_max, half, phi_max = bell_maximum(sq, mean)
     table.add("params", "sqrt_eps_max", 0.0, sq_max, half, len(sq))
     table.add("params", "phi_c_max", sq_max, phi_max, sem[int(np.nanargmax(mean))], len(sq))
-    if _runs.select(campaign, "ramp_", bc=BC):
-        for branch, (bsq, bmean, bsem, bn) in hysteresis_branches(campaign).items():
-            marker, label = BRANCH_STYLE.get(branch, ("x", branch))
+    table.add("params", "critical_sqrt_eps", 0.0, CRITICAL_SQRT_EPS, None, 1)
+    ax.axvline(CRITICAL_SQRT_EPS, color="0.5", ls=":", lw=1,
+               label=r"$(\varepsilon^{1/2})^* = 0.15$")
+    for tag, prefix, style, words in RAMPS:
+        if not _runs.select(campaign, prefix, bc=BC):
+            continue
+        series = "" if tag == "ramp" else f"{tag}:"
+        for branch, (bsq, bmean, bsem, bn) in hysteresis_branches(campaign,
+                                                                  prefix=prefix).items():
+            marker, label = style.get(branch, ("x", branch))
             ax.errorbar(bsq, bmean, yerr=np.nan_to_num(bsem), marker=marker, mfc="none", ls="-",
-                        lw=0.6, capsize=2, label=f"ramp: {label}")
-            table.add("a", branch, bsq, bmean, bsem, bn)
+                        lw=0.6, capsize=2, label=f"{words}: {label}")
+            table.add("a", f"{series}{branch}", bsq, bmean, bsem, bn)
+        found = ramp_branches(campaign, prefix=prefix)
+        if found is None:
+            continue
+        stats, seeds = found
+        top = stats.top_sqrt_eps
+        table.add("params", f"{tag}:top_sqrt_eps", 0.0, top, None, seeds)
+        for name in ("down_minus_up1", "down_slope", "up2_minus_down", "down_change"):
+            value = getattr(stats, name)
+            if value is not None:
+                table.add("params", f"{tag}:{name}", top, value.value, value.sem, seeds)
     ax.set_xlabel(r"$\varepsilon^{1/2}$")
     ax.set_ylabel(r"steady state $\langle\Phi^c\rangle$")
     ax.legend(fontsize=7, title="P.B.C.", title_fontsize=7)

@@ -9,9 +9,16 @@ increase per seed minus its t = 0 value (``tapmc.profiles.ProfileIncrease``), me
 standard error over seeds. The paper finds delta Phi_central systematically below
 delta Phi_lateral and a nearly frozen dynamics at small eps.
 
-CSV panels: ``a`` (lateral) and ``b`` (central), series ``eps=<eps>``, x = t; ``params``
-(``eps=<eps>:final_lateral``, ``eps=<eps>:final_central``: mean over the last quarter of the
-taps, over seeds).
+The runs start from the scale's F.B.C. packing (``Scale.fbc_start``). From the paper's start
+(periodic deposition, walls, slight agitation: section IV.A) the walls are under-populated and
+delta Phi_lateral jumps at the first tap, as in the paper's Fig. 8; from the start deposited
+between walls it dips.
+
+CSV panels: ``a`` (lateral) and ``b`` (central), series ``eps=<eps>`` (start deposited between
+walls) or ``paper:eps=<eps>`` (the paper's start), x = t; ``params`` (whatever the start:
+``eps=<eps>:final_lateral``, ``eps=<eps>:final_central``: mean over the last quarter of the
+taps, over seeds; ``eps=<eps>:first_tap_lateral``, ``eps=<eps>:first_tap_central``: delta
+Phi after the first tap, over seeds; x = eps).
 """
 
 from __future__ import annotations
@@ -53,6 +60,11 @@ def increases(campaign, bc=BC, eps_values=None):
         finals = {zone: P.seed_stats([[x[length - last:].mean()] for x in per_seed])
                   for zone, per_seed in (("lateral", inc.delta_lateral_all),
                                          ("central", inc.delta_central_all))}
+        first = np.flatnonzero(t == 1)
+        if len(first):
+            finals.update({f"first_tap_{zone}": P.seed_stats([[x[first[0]]] for x in per_seed])
+                           for zone, per_seed in (("lateral", inc.delta_lateral_all),
+                                                  ("central", inc.delta_central_all))})
         out[eps] = (t, (np.asarray(inc.delta_lateral), np.asarray(inc.delta_lateral_sem), n),
                     (np.asarray(inc.delta_central), np.asarray(inc.delta_central_sem), n), finals)
     return out
@@ -61,6 +73,8 @@ def increases(campaign, bc=BC, eps_values=None):
 def draw(campaign, out_dir):
     png, csv = P.figure_paths(out_dir, NAME)
     data = increases(campaign)
+    start = _profile_runs.fbc_start(_runs.select(campaign, "const_", bc=BC))
+    prefix = "paper:" if start == "paper" else ""
     table = P.FigureTable()
     fig, (ax_l, ax_c) = P.new_figure(2, 1)
     for eps, (t, lat, cen, finals) in data.items():
@@ -68,15 +82,15 @@ def draw(campaign, out_dir):
         pos = t > 0
         line = P.errorbars(ax_l, t[pos], lat[0][pos], lat[1][pos], label=label)
         P.errorbars(ax_c, t[pos], cen[0][pos], cen[1][pos], label=label, color=line.get_color())
-        table.add("a", f"eps={P.fmt_eps(eps)}", t, *lat)
-        table.add("b", f"eps={P.fmt_eps(eps)}", t, *cen)
-        for zone in ("lateral", "central"):
-            m, s, n = finals[zone]
-            table.add("params", f"eps={P.fmt_eps(eps)}:final_{zone}", eps, m[0], s[0], n[0])
+        table.add("a", f"{prefix}eps={P.fmt_eps(eps)}", t, *lat)
+        table.add("b", f"{prefix}eps={P.fmt_eps(eps)}", t, *cen)
+        for name, (m, s, n) in finals.items():
+            name = name if name.startswith("first_tap") else f"final_{name}"
+            table.add("params", f"eps={P.fmt_eps(eps)}:{name}", eps, m[0], s[0], n[0])
     for ax, name in ((ax_l, "lateral"), (ax_c, "central")):
         ax.set_xscale("log")
         ax.axhline(0, color="0.7", lw=0.6)
         ax.set_xlabel("t (taps)")
         ax.set_ylabel(rf"$\delta\Phi_{{\rm {name}}}$")
-    ax_l.legend(fontsize=7, title="F.B.C.", title_fontsize=7)
+    ax_l.legend(fontsize=7, title=_profile_runs.START_LABEL[start], title_fontsize=7)
     return P.write_figure(fig, png, table, csv)

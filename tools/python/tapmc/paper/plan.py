@@ -13,7 +13,11 @@ runs come in tiers; each tier completes figures on its own:
 2. error bars where the bell's shape is decided: seeds 2 and 3 at both ends and at the top,
    and Fig. 8's fourth eps;
 3. the history-dependent protocols: the ramp (Fig. 4 open symbols) at 1000 taps per level
-   instead of the paper's 4000, and ageing (Fig. 5).
+   instead of the paper's 4000, and ageing (Fig. 5);
+4. the ramp pair of section III.B: the ramp that stays below (sqrt eps)* ~ 0.15 (up to
+   ``FULL.ramp_below_top`` = 0.125, down and up again; run ``ramplow_pbc_s1``) at tier 3's taps
+   per level, which with tier 3's ramp (up to 0.3) decides the reversible and irreversible
+   branches, then a second seed of both ramps for error bars over seeds.
 
 Within a tier the runs that settle the report's open questions first come first. Runs carry
 the names of the figure modules' runs (:mod:`tapmc.paper._runs`), so the figures find them.
@@ -38,11 +42,15 @@ TIER2_FBC_EPS = (0.02,)
 TIER3_RAMP_TAPS_PER_LEVEL = 1000
 TIER3_AGEING_SEEDS = (1, 2, 3, 4)
 
-TIERS = (1, 2, 3)
+#: Tier 4: seeds of the ramp pair (the ramp below (sqrt eps)* first: tier 3 ran the other one
+#: with seed 1).
+TIER4_SEEDS = (1, 2)
+
+TIERS = (1, 2, 3, 4)
 
 
 def tier_runs(tier, scale=FULL):
-    """The RunSpecs of one tier (1, 2 or 3), in running order."""
+    """The RunSpecs of one tier (1 to 4), in running order."""
     if tier == 1:
         pbc = [_runs.constant_eps_run(scale, "pbc", eps, 1) for eps in TIER1_PBC_EPS]
         fbc = [_runs.constant_eps_run(scale, "fbc", eps, 1) for eps in TIER1_FBC_EPS]
@@ -58,6 +66,14 @@ def tier_runs(tier, scale=FULL):
         return ([_runs.ramp_run(ramp_scale, "pbc", 1)]
                 + [_runs.ageing_run(scale, "pbc", scale.ageing_eps, s)
                    for s in TIER3_AGEING_SEEDS])
+    if tier == 4:
+        ramp_scale = scale.replace(ramp_taps_per_level=TIER3_RAMP_TAPS_PER_LEVEL)
+        pair = []
+        for seed in TIER4_SEEDS:
+            if seed != 1:   # tier 3 holds the ramp beyond (sqrt eps)* of seed 1
+                pair.append(_runs.ramp_run(ramp_scale, "pbc", seed))
+            pair.append(_runs.ramp_below_run(ramp_scale, "pbc", seed))
+        return sorted(pair, key=lambda spec: spec.seed)
     raise ValueError(f"tier = {tier!r}: allowed values are {', '.join(map(str, TIERS))}")
 
 

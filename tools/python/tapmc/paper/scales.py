@@ -13,7 +13,17 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass
 
-__all__ = ["Scale", "QUICK", "MEDIUM", "FULL", "SCALES", "get_scale"]
+__all__ = ["Scale", "QUICK", "MEDIUM", "FULL", "SCALES", "get_scale", "FBC_STARTS",
+           "CRITICAL_SQRT_EPS"]
+
+#: The F.B.C. initial packings of ``in.constant_eps`` (``-var fbc_start``): ``walls``, deposited
+#: directly between the side walls; ``paper``, the paper's (section IV.A): a periodic
+#: deposition, then the walls and a slight agitation (examples/paper/README.md).
+FBC_STARTS = ("walls", "paper")
+
+#: (sqrt eps)* ~ 0.15 of section III.B: a ramp that went beyond it comes back on the reversible
+#: branch, one that stayed below it on the irreversible (nearly frozen) one.
+CRITICAL_SQRT_EPS = 0.15
 
 
 def _sq(values):
@@ -46,6 +56,8 @@ class Scale:
     pore_bc: str = "fbc"              #: Fig. 10 boundary conditions
     restart_every: int = 500          #: taps between restart files (what a killed run loses)
     p0_eps: float = 0.0225            #: Fig. 9 eps (P.B.C. constant-eps run, dumped at both ends)
+    fbc_start: str = "walls"          #: F.B.C. initial packing of the constant-eps runs (FBC_STARTS)
+    ramp_below_top: float = 0.125     #: Fig. 4 second ramp: highest sqrt(eps), below CRITICAL_SQRT_EPS
 
     def __post_init__(self):
         for field in ("N", "taps", "seeds", "steady_last", "ramp_levels",
@@ -74,6 +86,25 @@ class Scale:
                              f"{self.taps}")
         if self.pore_bc not in ("pbc", "fbc"):
             raise ValueError(f"Scale.pore_bc = {self.pore_bc!r}: allowed values 'pbc', 'fbc'")
+        if self.fbc_start not in FBC_STARTS:
+            raise ValueError(f"Scale.fbc_start = {self.fbc_start!r}: allowed values "
+                             f"{', '.join(map(repr, FBC_STARTS))}")
+        if (not isinstance(self.ramp_below_top, (int, float))
+                or not self.ramp_sqrt0 <= self.ramp_below_top < CRITICAL_SQRT_EPS):
+            raise ValueError(f"Scale.ramp_below_top = {self.ramp_below_top!r}: must be in "
+                             f"[ramp_sqrt0, {CRITICAL_SQRT_EPS}) = [{self.ramp_sqrt0}, "
+                             f"{CRITICAL_SQRT_EPS}) (the ramp that stays below (sqrt eps)*)")
+
+    @property
+    def ramp_below_levels(self):
+        """Levels of the first increase of the ramp that stays below (sqrt eps)*: sqrt(eps) =
+        ramp_sqrt0 + k ramp_dsqrt up to ramp_below_top (1e-9 relative tolerance)."""
+        return int((self.ramp_below_top - self.ramp_sqrt0) / self.ramp_dsqrt * (1 + 1e-9)) + 1
+
+    @property
+    def ramp_top(self):
+        """Highest sqrt(eps) of the ramp of Fig. 4 (the one meant to go beyond (sqrt eps)*)."""
+        return self.ramp_sqrt0 + (self.ramp_levels - 1) * self.ramp_dsqrt
 
     def replace(self, **fields):
         """A copy with some fields changed (validated again)."""

@@ -1,0 +1,275 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+# The ramp pair of section III.B (Fig. 4): the statistics of tapmc.hysteresis that decide the
+# reversible and irreversible branches, each on synthetic branch data with a known answer and
+# on data where it must fail; the second ramp's run (Scale.ramp_below_top, its name, its
+# levels), Fig. 4's CSV rows from a written campaign, and tier 4 of the paper-scale plan.
+import csv
+import json
+import os
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+HERE = Path(__file__).resolve().parent
+SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", HERE.parent.parent))
+sys.path.insert(0, str(SOURCE / "tools" / "python"))
+
+from paper_fakes import FakeCampaign, write_ramp  # noqa: E402
+from tapmc.hysteresis import (CRITICAL_SQRT_EPS, Z_DECIDE, BranchData,  # noqa: E402
+                              BranchStatistic, Hysteresis, RampBranches, branch_change,
+                              branch_difference, branch_slope)
+from tapmc.paper import _runs, fig4, plan  # noqa: E402
+from tapmc.paper.scales import FULL, MEDIUM, QUICK, Scale  # noqa: E402
+
+SEM = 0.001
+
+
+def branch(sqrt_eps, mean, sem=SEM):
+    return BranchData(sqrt_eps, mean, np.full(len(sqrt_eps), sem))
+
+
+# -- the statistics, each with a known answer and a failure ---------------------------------
+
+def test_branch_difference_known_answer():
+    a = branch([0.05, 0.1, 0.15], [0.60, 0.61, 0.62])
+    b = branch([0.2, 0.15, 0.1, 0.05], [0.0, 0.615, 0.60, 0.59])
+    d = branch_difference(a, b)
+    # common sqrt(eps) 0.05, 0.1, 0.15: differences 0.01, 0.01, 0.005
+    assert d.value == pytest.approx(0.025 / 3) and d.n == 3
+    assert d.sem == pytest.approx(np.sqrt(6 * SEM**2) / 3)
+    assert d.positive and not d.within_noise
+    same = branch_difference(a, a)
+    assert same.value == 0 and same.within_noise and not same.positive
+    with pytest.raises(ValueError, match="share no sqrt"):
+        branch_difference(branch([0.3], [0.6]), a)
+
+
+def test_branch_slope_known_answer_and_scatter():
+    x = np.array([0.05, 0.1, 0.15, 0.2])
+    s = branch_slope(branch(x, 0.63 - 0.05 * x))
+    assert s.value == pytest.approx(-0.05) and s.n == 4
+    # exact line: the error bars alone; weighted least squares of equal weights
+    assert s.sem == pytest.approx(SEM / np.sqrt(np.sum((x - x.mean()) ** 2)))
+    assert s.negative
+    flat = branch_slope(branch(x, [0.6, 0.6005, 0.5995, 0.6]))
+    assert flat.within_noise and not flat.negative
+    # scatter beyond the error bars widens the error (reduced chi2 > 1)
+    wild = branch_slope(branch(x, 0.63 - 0.05 * x + np.array([0.02, -0.02, 0.02, -0.02])))
+    assert wild.sem > 10 * s.sem
+    two = branch_slope(branch([0.05, 0.1], [0.62, 0.61]))
+    assert two.value == pytest.approx(-0.2) and two.sem == pytest.approx(np.hypot(SEM, SEM) / 0.05)
+    with pytest.raises(ValueError, match="two levels"):
+        branch_slope(branch([0.05], [0.6]))
+
+
+def test_branch_change_known_answer():
+    c = branch_change(branch([0.1, 0.05], [0.604, 0.606]), 0.6, SEM)
+    assert c.value == pytest.approx(0.005) and c.n == 2
+    assert c.sem == pytest.approx(np.sqrt(2 * SEM**2 / 4 + SEM**2))
+    assert c.positive
+    assert branch_change(branch([0.1, 0.05], [0.6005, 0.5995]), 0.6, SEM).within_noise
+    with pytest.raises(ValueError, match="start_sem"):
+        branch_change(branch([0.1], [0.6]), 0.6, 0.0)
+
+
+def test_statistic_decisions_at_z_decide():
+    assert BranchStatistic(Z_DECIDE * 1.01, 1.0, 3).positive
+    assert BranchStatistic(Z_DECIDE * 0.99, 1.0, 3).within_noise
+    assert BranchStatistic(-Z_DECIDE * 1.01, 1.0, 3).negative
+
+
+def reversible_ramp(gap=0.02, slope=-0.05, retrace_offset=0.0):
+    """A ramp up to 0.2 > (sqrt eps)*: the first increase on the bell, the decrease `gap` above
+    it at its lowest point and falling with sqrt(eps) by `slope`, the second increase on the
+    decrease plus `retrace_offset`."""
+    up = np.array([0.05, 0.1, 0.15, 0.2])
+    down = up[-2::-1]
+    up1 = branch(up, 0.58 + 0.1 * up)
+    top = 0.58 + 0.1 * 0.2
+    down_mean = top + gap + slope * (down - 0.2)
+    return up1, branch(down, down_mean), branch(down[::-1][1:], (top + gap + slope * (
+        down[::-1][1:] - 0.2)) + retrace_offset)
+
+
+def test_reversible_branch_decided():
+    r = RampBranches(*reversible_ramp()).compute()
+    assert r.top_sqrt_eps == 0.2 and r.went_above_critical
+    assert r.reversible and r.falls_with_sqrt_eps and r.retraced and not r.frozen
+    assert r.down_slope.value == pytest.approx(-0.05)
+    assert r.up2_minus_down.value == pytest.approx(0.0, abs=1e-12)
+
+
+@pytest.mark.parametrize("kwargs, verdict", [
+    (dict(gap=-0.035), "reversible"),           # the decrease below the first increase
+    (dict(slope=+0.05), "falls_with_sqrt_eps"),  # <Phi^c> rises with sqrt(eps) on the decrease
+    (dict(retrace_offset=0.01), "retraced"),    # the second increase 10 sem above the decrease
+])
+def test_reversible_branch_failures(kwargs, verdict):
+    r = RampBranches(*reversible_ramp(**kwargs)).compute()
+    assert not getattr(r, verdict)
+
+
+def test_reversible_needs_the_ramp_above_critical():
+    up1, down, up2 = reversible_ramp()
+    r = RampBranches(up1, down, up2, critical=0.25).compute()
+    assert not r.went_above_critical and not r.reversible
+
+
+def test_irreversible_branch_frozen_and_not():
+    up1 = branch([0.05, 0.1], [0.58, 0.585])
+    frozen = RampBranches(up1, branch([0.05], [0.5853]), branch([0.1], [0.5851])).compute()
+    assert frozen.top_sqrt_eps == 0.1 and not frozen.went_above_critical
+    assert frozen.down_change.value == pytest.approx(0.0003) and frozen.frozen
+    assert frozen.down_slope is None           # one decreasing level
+    assert frozen.up2_minus_down is None       # no sqrt(eps) common to up2 and down
+    moved = RampBranches(up1, branch([0.05], [0.595])).compute()
+    assert moved.down_change.positive and not moved.frozen
+    # a ramp that went beyond (sqrt eps)* is never "frozen", however little it moved
+    above = RampBranches(branch([0.1, 0.2], [0.58, 0.585]), branch([0.1], [0.585])).compute()
+    assert above.down_change.within_noise and not above.frozen
+
+
+def test_ramp_branches_from_hysteresis():
+    """From the per-tap series of a ramp: the levels' means over their last taps and the
+    batch-means errors decide the same as the branch data."""
+    rng = np.random.default_rng(7)
+    levels = np.array([0.05, 0.1, 0.15, 0.2, 0.15, 0.1, 0.05, 0.1, 0.15, 0.2])
+    truth = np.array([0.585, 0.59, 0.595, 0.6, 0.61, 0.615, 0.62, 0.615, 0.61, 0.6])
+    per_level = 200
+    x = np.repeat(truth, per_level) + rng.normal(0, 1e-3, levels.size * per_level)
+    h = Hysteresis(np.repeat(levels, per_level), x, taps_per_level=per_level, last=100).compute()
+    r = RampBranches.from_hysteresis(h).compute()
+    assert r.down_minus_up1.value == pytest.approx(0.025, abs=1e-3)
+    assert r.down_slope.value == pytest.approx(-0.1, abs=0.02)
+    assert r.reversible and r.falls_with_sqrt_eps and r.retraced
+
+
+@pytest.mark.parametrize("args, message", [
+    (dict(up1=([0.05], [0.6], [0.0]), down=([0.05], [0.6], [SEM])), r"up1: sem\[0\] = 0.0"),
+    (dict(up1=42, down=([0.05], [0.6], [SEM])), "up1 must be BranchData"),
+    (dict(up1=([0.05], [0.6], [SEM]), down=([0.05, 0.1], [0.6], [SEM])), "down: sqrt_eps has 2"),
+    (dict(up1=([0.05], [0.6], [SEM]), down=([0.05], [0.6], [SEM]), critical=1.5),
+     r"critical = 1.5 must lie in \(0.0, 1.0\]"),
+])
+def test_ramp_branches_validation(args, message):
+    with pytest.raises(ValueError, match=message):
+        RampBranches(**args)
+
+
+def test_ramp_branches_results_need_compute():
+    from tapmc._validate import NotComputedError
+
+    r = RampBranches(*reversible_ramp())
+    for name in ("top_sqrt_eps", "down_minus_up1", "down_slope", "up2_minus_down",
+                 "down_change"):
+        with pytest.raises(NotComputedError, match="compute"):
+            getattr(r, name)
+    assert r.compute() is r
+
+
+def test_plot_marks_the_critical_value():
+    import matplotlib
+    matplotlib.use("Agg")
+    ax = RampBranches(*reversible_ramp()).compute().plot()
+    assert any(np.allclose(line.get_xdata(), CRITICAL_SQRT_EPS) for line in ax.get_lines())
+
+
+# -- the second ramp's run, Fig. 4's CSV rows, tier 4 ---------------------------------------
+
+def test_ramp_below_run_and_scale():
+    for scale in (QUICK, MEDIUM, FULL):
+        below = _runs.ramp_below_run(scale, "pbc", 3)
+        top = scale.ramp_sqrt0 + (below.variables["nlev"] - 1) * scale.ramp_dsqrt
+        assert below.name == "ramplow_pbc_s3" and below.seed == 3
+        assert top < CRITICAL_SQRT_EPS < scale.ramp_top
+        assert top + scale.ramp_dsqrt > scale.ramp_below_top   # the highest level below the top
+        assert below.taps == below.variables["P"] * (3 * below.variables["nlev"] - 2)
+    assert FULL.ramp_below_levels == 5 and QUICK.ramp_below_levels == 2
+    with pytest.raises(ValueError, match=r"Scale.ramp_below_top = 0.2: must be in \[ramp_sqrt0, 0.15\)"):
+        QUICK.replace(ramp_below_top=0.2)
+    with pytest.raises(ValueError, match=r"Scale.ramp_below_top = 0.01"):
+        QUICK.replace(ramp_below_top=0.01)
+    names = [s.name for s in fig4.runs(QUICK, 2)]
+    assert {"ramp_pbc_s1", "ramp_pbc_s2", "ramplow_pbc_s1", "ramplow_pbc_s2"} <= set(names)
+    # the prefix of the ramp beyond (sqrt eps)* does not select the one below it
+    camp = FakeCampaign("unused", fig4.runs(QUICK, 1))
+    assert [s.name for s in _runs.select(camp, "ramp_")] == ["ramp_pbc_s1"]
+
+
+def test_scale_record_without_the_new_fields_reads_with_defaults(tmp_path):
+    """A scale.json written before fbc_start and ramp_below_top existed is today's FULL."""
+    record = FULL.as_dict()
+    del record["fbc_start"], record["ramp_below_top"]
+    (tmp_path / "scale.json").write_text(json.dumps(record))
+    assert _runs.recorded_scale(tmp_path) == FULL
+    _runs.check_scale(tmp_path, FULL)
+
+
+def ramp_series(levels, truth, per_level, rng, noise=5e-4):
+    sq = np.repeat(levels, per_level)
+    return sq, np.repeat(truth, per_level) + rng.normal(0, noise, sq.size)
+
+
+def test_fig4_csv_of_the_pair(tmp_path):
+    """Fig. 4 from a written campaign: two seeds of each ramp with known level values; the
+    CSV holds both ramps' branches and the statistics with their known values."""
+    scale = Scale(**dict(QUICK.as_dict(), N=64, L=8.0, eta=1e-4, ramp_taps_per_level=40))
+    runs = fig4.runs(scale, 2)
+    camp = FakeCampaign(tmp_path, runs)
+    rng = np.random.default_rng(11)
+    for spec in runs:
+        if spec.name.startswith("const_"):
+            x = 0.58 + spec.variables["eps"] + rng.normal(0, 1e-4, scale.taps)
+            (camp.result(spec.name) / "taps.dat").write_text(
+                "# step phi_b phi_c Z z_top lateral central h_s sweeps accept capped\n"
+                + "".join(f"{t} 0.55 {v:.8f} 5 9 0.5 0.5 10 100 0.1 0\n"
+                          for t, v in enumerate(np.r_[0.55, x])))
+        elif spec.name.startswith("ramp_"):   # 0.05 .. 0.2: reversible
+            levels = np.array([0.05, 0.1, 0.15, 0.2, 0.15, 0.1, 0.05, 0.1, 0.15, 0.2])
+            truth = np.array([0.58, 0.585, 0.59, 0.595, 0.605, 0.61, 0.615, 0.61, 0.605, 0.595])
+            write_ramp(camp, spec, *ramp_series(levels, truth, 40, rng))
+        else:                                 # 0.05, 0.1: frozen
+            levels = np.array([0.05, 0.1, 0.05, 0.1])
+            truth = np.array([0.58, 0.585, 0.585, 0.585])
+            write_ramp(camp, spec, *ramp_series(levels, truth, 40, rng))
+    png, path = fig4.draw(camp, tmp_path / "figs")
+    rows = {(r["panel"], r["series"]): r for r in csv.DictReader(open(path))}
+    series = {s for p, s in rows if p == "a"}
+    assert {"steady", "up1", "down", "up2", "low:up1", "low:down", "low:up2"} <= series
+
+    def param(name):
+        r = rows[("params", name)]
+        return float(r["x"]), float(r["mean"]), float(r["sem"] or "nan"), int(r["n"])
+
+    assert param("critical_sqrt_eps")[1] == 0.15
+    assert param("ramp:top_sqrt_eps")[1] == pytest.approx(0.2)
+    assert param("low:top_sqrt_eps")[1] == pytest.approx(0.1)
+    x, gap, sem, n = param("ramp:down_minus_up1")
+    assert x == pytest.approx(0.2) and n == 2
+    assert gap == pytest.approx(np.mean([0.015, 0.025, 0.035]), abs=1e-3) and gap > 2 * sem
+    slope = param("ramp:down_slope")
+    assert slope[1] == pytest.approx(-0.1, abs=0.02) and slope[1] < -2 * slope[2]
+    retrace = param("ramp:up2_minus_down")
+    assert abs(retrace[1]) < 1e-3
+    low = param("low:down_change")
+    assert abs(low[1]) < 2 * low[2] + 1e-3 and low[1] == pytest.approx(0.0, abs=1e-3)
+    assert ("params", "low:down_slope") not in rows      # a single decreasing level
+    assert ("params", "low:up2_minus_down") not in rows  # up2 and down share no sqrt(eps)
+
+
+def test_plan_tier4_is_the_ramp_pair_and_tiers_1_to_3_unchanged():
+    tier3 = plan.runs(3)
+    assert not any(s.name.startswith("ramplow_") for s in tier3)
+    tier4 = plan.tier_runs(4)
+    assert [s.name for s in tier4] == ["ramplow_pbc_s1", "ramp_pbc_s2", "ramplow_pbc_s2"]
+    assert all(s.variables["P"] == plan.TIER3_RAMP_TAPS_PER_LEVEL for s in tier4)
+    (tier3_ramp,) = [s for s in tier3 if s.name == "ramp_pbc_s1"]
+    assert tier3_ramp.variables == dict(tier4[1].variables)          # the same ramp, seed 2
+    assert tier4[0].variables["nlev"] == 5                           # 0.025 .. 0.125
+    everything = [s.name for s in plan.runs(4)]
+    assert everything[:len(tier3)] == [s.name for s in tier3]
+    assert len(everything) == len(set(everything))
+    with pytest.raises(ValueError, match="tier = 5"):
+        plan.runs(5)
