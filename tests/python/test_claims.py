@@ -359,3 +359,24 @@ def test_missing_figures_are_undecided_with_what_decides():
         assert row.outcome == "undecided", (row.claim.id, row.verdict)
     none = [r for r in rows if r.claim.rule == "none"]
     assert none and all(r.claim.decided_by in r.verdict for r in none)
+
+
+def test_sigma_error_of_one_run_matches_the_spread_of_realizations():
+    """Fig. 3's error of sigma_<Z> for one run (batch means of squared deviations) against the
+    spread of sigma over 300 realizations of a correlated series (AR(1), correlation 0.8)."""
+    from tapmc.paper.fig3 import sigma_error_one_run
+
+    rng = np.random.default_rng(7)
+    sigmas, errors = [], []
+    for _ in range(300):
+        noise = rng.standard_normal(1200)
+        x = np.empty_like(noise)
+        x[0] = noise[0]
+        for i in range(1, len(x)):
+            x[i] = 0.8 * x[i - 1] + noise[i]
+        sigmas.append(np.std(x[-1000:]))
+        errors.append(sigma_error_one_run(x, 1000))
+    assert np.mean(errors) == pytest.approx(np.std(sigmas), rel=0.3)
+    # white noise has a smaller error than the correlated series: the estimate sees correlation
+    white = [sigma_error_one_run(rng.standard_normal(1200) * 1.6, 1000) for _ in range(50)]
+    assert np.mean(white) < 0.7 * np.mean(errors)

@@ -404,7 +404,7 @@ def spectral_slopes(data, claim):
         if series.endswith(":slope"):
             m, s, n = fig.param(series)
             out.append((_eps_of(series),
-                        Measure(-m, s, _dof(n), label=f"eps = {_eps_of(series):g}",
+                        Measure(-m, s, _steady_dof(n, s), label=f"eps = {_eps_of(series):g}",
                                 shown=fmt(m, s))))
     return [m for _, m in sorted(out, key=lambda p: p[0])] or _missing("no spectrum")
 

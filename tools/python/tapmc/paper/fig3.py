@@ -15,13 +15,18 @@ CSV panels: ``a`` (series ``eps=<eps>``: x = frequency, mean/sem of the power), 
 (series ``sigma_Z``: x = sqrt(eps); ``fit:k sqrt(eps)``), ``params`` (``eps=<eps>:slope``
 with x = eps; ``k`` and ``k_reduced_chi2`` of the proportional fit; ``intercept`` and
 ``intercept_error`` of a free straight line, which is zero for a proportional law).
+
+The sem columns are over seeds. For an eps with one seed (n = 1; the paper's protocol, one
+run per point) they are that run's own errors instead: the slope's error from the log-log fit
+of its spectrum, and sigma_<Z>'s from batch means of the squared deviations over the steady
+segment (successive taps are correlated), so that one run per eps still carries error bars.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from tapmc.fluctuations import PowerSpectrum, SteadyState, sigma_scaling
+from tapmc.fluctuations import DEFAULT_BATCHES, PowerSpectrum, SteadyState, sigma_scaling
 from tapmc.laws import StraightLine
 
 from . import _plotting as P
@@ -44,6 +49,20 @@ def series_by_eps(campaign, column, bc=BC):
             for eps, specs in groups.items()}
 
 
+def sigma_error_one_run(x, last, batches=DEFAULT_BATCHES):
+    """Error of sigma_X over the last ``last`` taps of one run: batch means of the squared
+    deviations from the segment's mean give the error of sigma_X^2, propagated to sigma_X."""
+    seg = np.asarray(x, dtype=float)[-last:]
+    dev2 = (seg - seg.mean()) ** 2
+    size = len(seg) // batches
+    if size < 1 or batches < 2:
+        return np.nan
+    means = dev2[: size * batches].reshape(batches, size).mean(axis=1)
+    var_err = float(np.std(means, ddof=1) / np.sqrt(batches))
+    sigma = float(np.sqrt(dev2.mean()))
+    return var_err / (2.0 * sigma) if sigma > 0 else np.nan
+
+
 def analyse(campaign, column="Z", bc=BC):
     """Spectra, slopes and sigma per eps: dict eps -> dict with 'frequency', 'power' (mean,
     sem), 'slope' (mean, sem, n), 'sigma' (mean, sem, n)."""
@@ -56,13 +75,15 @@ def analyse(campaign, column="Z", bc=BC):
         nbins = min(len(sp.frequency) for sp in spectra)
         freq = spectra[0].frequency[:nbins]
         pmean, psem, pn = P.seed_stats([sp.power[:nbins] for sp in spectra])
-        slope = P.seed_stats([[sp.slope] for sp in spectra])
-        sig = P.seed_stats([[SteadyState(s[:length], last=last).compute().std]
-                            for s in series])
+        slope = tuple(v[0] for v in P.seed_stats([[sp.slope] for sp in spectra]))
+        sig = tuple(v[0] for v in P.seed_stats(
+            [[SteadyState(s[:length], last=last).compute().std] for s in series]))
+        if len(series) == 1:  # one run: its own errors (module docstring)
+            slope = (slope[0], spectra[0].slope_error, 1)
+            sig = (sig[0], sigma_error_one_run(series[0][:length], last), 1)
         out[eps] = {"frequency": freq, "power": (pmean, psem, pn), "last": last,
-                    "slope": tuple(v[0] for v in slope),
-                    "slope_error_single": spectra[0].slope_error,
-                    "sigma": tuple(v[0] for v in sig)}
+                    "slope": slope, "slope_error_single": spectra[0].slope_error,
+                    "sigma": sig}
     return out
 
 
