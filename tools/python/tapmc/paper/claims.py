@@ -225,6 +225,16 @@ def _eps_series(fig, panel):
     return sorted(out)
 
 
+def _weighted_polyfit(x, y, err, degree):
+    """Weighted least squares of a polynomial (coefficients of x^0 .. x^degree): (coef, cov,
+    chi2)."""
+    w = 1.0 / np.asarray(err) ** 2
+    design = np.vander(np.asarray(x, dtype=float), degree + 1, increasing=True)
+    cov = np.linalg.inv(design.T @ (design * w[:, None]))
+    coef = cov @ (design.T @ (w * y))
+    return coef, cov, float(np.sum(w * (y - design @ coef) ** 2))
+
+
 def _weighted_line(x, y, err):
     """Weighted straight line y = a + b x: (b, its standard error, dof); errors scaled by the
     reduced chi2 when it exceeds 1 (the scatter is then larger than the error bars say)."""
@@ -233,12 +243,8 @@ def _weighted_line(x, y, err):
     x, y, err = x[ok], y[ok], err[ok]
     if len(x) < 3:
         return math.nan, math.nan, None
-    w = 1.0 / err**2
-    design = np.vstack([np.ones_like(x), x]).T
-    cov = np.linalg.inv(design.T @ (design * w[:, None]))
-    coef = cov @ (design.T @ (w * y))
+    coef, cov, chi2 = _weighted_polyfit(x, y, err, 1)
     dof = len(x) - 2
-    chi2 = float(np.sum(w * (y - design @ coef) ** 2))
     scale = max(1.0, chi2 / dof)
     return float(coef[1]), float(math.sqrt(cov[1, 1] * scale)), dof
 
@@ -318,19 +324,26 @@ def pbc_compaction(data, claim):
                     shown=f"{fmt(mi, si, pct=True)} -> {fmt(mf, sf, pct=True)}")]
 
 
-def phi_b_gain(data, claim):
-    fig = data.figure("fig2")
+def _per_curve(data, name, panel, measure):
+    """``measure(fig, eps, t, mean, sem, n)`` of every curve 'eps=<eps>' of a figure panel."""
+    fig = data.figure(name)
     if fig is None:
-        return _missing("no Fig. 2 runs")
-    out = []
-    for eps, series in _eps_series(fig, "a"):
-        t, mean, sem, n = fig.get("a", series)
-        q = max(len(t) // 4, 1)
-        gain = float(np.mean(mean[-q:]) - mean[0])
-        err = float(math.sqrt(np.nanmean(sem[-q:]) ** 2 + sem[0] ** 2)) \
-            if np.isfinite(sem[0]) else math.nan
-        out.append(Measure(gain, err, _dof(n), label=f"eps = {eps:g}"))
-    return out or _missing("no F.B.C. curve in Fig. 2")
+        return _missing(f"no Fig. {name[3:]} runs")
+    out = [measure(fig, eps, *fig.get(panel, series)) for eps, series in _eps_series(fig, panel)]
+    return out or _missing(f"no curve in panel {panel} of Fig. {name[3:]}")
+
+
+def _gain(fig, eps, t, mean, sem, n):
+    """Mean of the last quarter minus the first point."""
+    q = max(len(t) // 4, 1)
+    gain = float(np.mean(mean[-q:]) - mean[0])
+    err = float(math.sqrt(np.nanmean(sem[-q:]) ** 2 + sem[0] ** 2)) \
+        if np.isfinite(sem[0]) else math.nan
+    return Measure(gain, err, _dof(n), label=f"eps = {eps:g}")
+
+
+def phi_b_gain(data, claim):
+    return _per_curve(data, "fig2", "a", _gain)
 
 
 def _fit_quality(fig, prefix, npoints, nparams, label):
@@ -344,18 +357,15 @@ def _fit_quality(fig, prefix, npoints, nparams, label):
     return Measure(chi, dof=dof, label=label, shown=shown)
 
 
+def _eq3_quality(fig, eps, t, mean, sem, n):
+    m = _fit_quality(fig, f"eps={P.fmt_eps(eps)}:", len(t), 4, f"eps = {eps:g}")
+    if _dof(n) is None and m.undecided is None:
+        m.undecided = "one realization: the fit had no error bars"
+    return m
+
+
 def eq3_fit_quality(data, claim):
-    fig = data.figure("fig2")
-    if fig is None:
-        return _missing("no Fig. 2 runs")
-    out = []
-    for eps, series in _eps_series(fig, "a"):
-        t, mean, sem, n = fig.get("a", series)
-        m = _fit_quality(fig, f"eps={P.fmt_eps(eps)}:", len(t), 4, f"eps = {eps:g}")
-        if _dof(n) is None and m.undecided is None:
-            m.undecided = "one realization: the fit had no error bars"
-        out.append(m)
-    return out or _missing("no F.B.C. curve in Fig. 2")
+    return _per_curve(data, "fig2", "a", _eq3_quality)
 
 
 #: Decades of the log-time slopes of ``log_time_slowing``: the first decade of taps (the last
@@ -465,17 +475,21 @@ def sigma_intercept(data, claim):
 
 
 def _steady(data):
+    """(x, mean, sem, n, index of the largest) of Fig. 4's steady states, None when fewer
+    than three."""
     fig = data.figure("fig4")
-    return None if fig is None else fig.get("a", "steady")
+    steady = None if fig is None else fig.get("a", "steady")
+    if steady is None or len(steady[0]) < 3:
+        return None
+    return (*steady, int(np.nanargmax(steady[1])))
 
 
 def bell_maximum(data, claim):
     """Vertex of a weighted parabola through the largest steady state and its neighbours."""
     steady = _steady(data)
-    if steady is None or len(steady[0]) < 3:
+    if steady is None:
         return _missing("fewer than three steady states")
-    x, y, s, n = steady
-    i = int(np.nanargmax(y))
+    x, y, s, n, i = steady
     lo, hi = max(0, i - 2), min(len(x), i + 3)
     if hi - lo < 3:
         lo, hi = max(0, hi - 3), max(hi, 3)
@@ -483,10 +497,7 @@ def bell_maximum(data, claim):
     if not np.all(np.isfinite(ss)) or np.any(ss <= 0):
         return [Measure(x[i], undecided="one realization: the steady states have no error bars",
                         shown=f"largest at sqrt(eps) = {x[i]:g}")]
-    w = 1.0 / ss**2
-    design = np.vstack([np.ones_like(xs), xs, xs**2]).T
-    cov = np.linalg.inv(design.T @ (design * w[:, None]))
-    a0, b, c = cov @ (design.T @ (w * ys))
+    (a0, b, c), cov, _ = _weighted_polyfit(xs, ys, ss, 2)
     if not c < 0:
         return [Measure(x[i], undecided="the points around the largest are not concave",
                         shown=f"largest at sqrt(eps) = {x[i]:g}")]
@@ -500,10 +511,9 @@ def bell_maximum(data, claim):
 
 def bell_side_slope(data, claim):
     steady = _steady(data)
-    if steady is None or len(steady[0]) < 3:
+    if steady is None:
         return _missing("fewer than three steady states")
-    x, y, s, n = steady
-    i = int(np.nanargmax(y))
+    x, y, s, n, i = steady
     pick = slice(0, i + 1) if claim.params.get("side") == "below" else slice(i, len(x))
     if len(x[pick]) < 3:
         return [Measure(undecided=f"fewer than three steady states {claim.params.get('side')} "
@@ -649,30 +659,28 @@ def _py_change(fig, sigma):
                                percus_yevick_p0(sigma, phi_i))))
 
 
-def p0_initial_minus_final(data, claim):
+def _p0_difference(data, other, what):
+    """P0 of the tapped packing against the curve ``other`` of Fig. 9 (the initial packing's,
+    with its sem, or Percus-Yevick's, exact), sigma by sigma (:func:`_pointwise_zero`)."""
     fig = data.figure("fig9")
     if fig is None:
         return _missing("no Fig. 9 runs")
-    a, b = fig.get("a", "initial"), fig.get("a", "final")
-    if a is None or b is None:
+    final, ref = fig.get("a", "final"), fig.get("a", other)
+    if final is None or ref is None:
         return _missing("no P0 curves")
-    x = b[0]
-    ai = np.interp(x, a[0], a[1])
-    si = np.interp(x, a[0], a[2])
-    return _pointwise_zero(x, ai - b[1], np.hypot(si, b[2]), np.minimum(b[3], a[3].min()),
-                           "P0(initial) - P0(tapped)", _py_change(fig, x))
+    x = final[0]
+    ref_err = np.nan_to_num(np.interp(x, ref[0], ref[2]))  # Percus-Yevick: exact
+    n = final[3] if other == "percus_yevick" else np.minimum(final[3], ref[3].min())
+    return _pointwise_zero(x, np.interp(x, ref[0], ref[1]) - final[1],
+                           np.hypot(ref_err, final[2]), n, what, _py_change(fig, x))
+
+
+def p0_initial_minus_final(data, claim):
+    return _p0_difference(data, "initial", "P0(initial) - P0(tapped)")
 
 
 def p0_final_minus_py(data, claim):
-    fig = data.figure("fig9")
-    if fig is None:
-        return _missing("no Fig. 9 runs")
-    b, py = fig.get("a", "final"), fig.get("a", "percus_yevick")
-    if b is None or py is None:
-        return _missing("no P0 curves")
-    model = np.interp(b[0], py[0], py[1])
-    return _pointwise_zero(b[0], b[1] - model, b[2], b[3], "P0(tapped) - Percus-Yevick",
-                           _py_change(fig, b[0]))
+    return _p0_difference(data, "percus_yevick", "Percus-Yevick - P0(tapped)")
 
 
 def xi_min(data, claim):
