@@ -46,9 +46,11 @@
 #include "tapmc_defaults.h"
 #include "tapmc_memory.h"
 #include "tapmc_settle_geometry.h"
+#include "tapmc_thread_team.h"
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -216,6 +218,57 @@ struct MovedSlots {
   }
 };
 
+// A trial's owner thread (low bits) and whether its sphere lies next to another thread's
+// region (then it looks for earlier trials of other threads on its listed neighbours).
+constexpr unsigned char kOwnerBits = 0x7f, kBoundaryBit = 0x80;
+
+// The windowed executor's storage: per trial of the current chunk (draws, slots, owners, the
+// previous pick of the same sphere, results), per slot (the chunk's last pick of it), per grid
+// cell (owner and boundary bit), and the team.
+struct WindowExecutor {
+  std::unique_ptr<ThreadTeam> team;
+  int axis = 2;                          // axis of the owners' slabs of cells
+  std::vector<unsigned char> cell_role;  // per grid cell: owner | kBoundaryBit
+  // Per trial of the chunk (index t = trial - first trial of the chunk).
+  std::vector<TrialDraw> draw;
+  std::vector<int> slot, prev_pick, limit_pick;
+  std::vector<unsigned char> role, accepted;
+  std::vector<double> dz;
+  std::unique_ptr<std::atomic<std::uint64_t>[]> done;  // = window number once trial t is done
+  // Per slot: the chunk that last picked it (chunk_stamp) and its last pick in that chunk.
+  std::vector<std::uint64_t> chunk_stamp;
+  std::vector<int> last_pick;
+  std::uint64_t chunk_seq = 0, window_seq = 0;
+  // Per member, each on its own cache line: boundary trials and waits.
+  struct alignas(64) MemberStats {
+    long boundary_trials = 0, waits = 0;
+  };
+  std::vector<MemberStats> member_stats;
+  long windows = 0, trials = 0;
+
+  void allocate(int n, int threads)
+  {
+    const std::size_t c = static_cast<std::size_t>(defaults::kThreadChunkTrials);
+    draw.resize(c);
+    slot.resize(c);
+    prev_pick.resize(c);
+    limit_pick.resize(c);
+    role.resize(c);
+    accepted.resize(c);
+    dz.resize(c);
+    if (!done) {
+      done = std::make_unique<std::atomic<std::uint64_t>[]>(c);
+      for (std::size_t t = 0; t < c; ++t) done[t].store(0, std::memory_order_relaxed);
+    }
+    chunk_stamp.assign(static_cast<std::size_t>(n), 0);
+    last_pick.assign(static_cast<std::size_t>(n), -1);
+    chunk_seq = 0;
+    member_stats.assign(static_cast<std::size_t>(threads), MemberStats());
+    windows = trials = 0;
+    if (!team || team->size() != threads) team = std::make_unique<ThreadTeam>(threads);
+  }
+};
+
 }  // namespace
 
 // The engine's state: the scene, the parts above, and the upkeep of the lists (relist).
@@ -231,6 +284,9 @@ struct SphereMover::State {
   ReferenceGrid grid;
   MovedSlots moved;
   long full_builds = 0, local_updates = 0;
+  int threads = 1;              // of run(), from set_threads
+  bool windowed_lists = false;  // the lists have the window skin (built with threads > 1)
+  WindowExecutor window;
 
   // Scratch of reset / build, kept to avoid reallocation.
   std::vector<double> wrapped;
@@ -294,7 +350,52 @@ struct SphereMover::State {
   }
 
   void build(const double *xyz_wrapped, const double *radius, const int *image_in);
+  void assign_owners();
 };
+
+// Owners of the grid cells for `threads` threads: slabs of cell layers along the axis with the
+// fewest boundary layers per layer (a periodic axis has two per cut, a bounded one one), balanced
+// by the spheres binned there. A layer next to another owner's layer is a boundary layer. Only
+// speed depends on this: the executor orders every pair of trials that can interact.
+void SphereMover::State::assign_owners()
+{
+  const std::array<GridAxis, 3> &axes = grid.axes;
+  double best = 0.0;
+  for (int d = 0; d < 3; ++d) {
+    const double cuts = axes[d].periodic ? 2.0 * threads : 2.0 * (threads - 1);
+    const double fraction = cuts / axes[d].cells;
+    if (d == 0 || fraction < best) {
+      best = fraction;
+      window.axis = d;
+    }
+  }
+  const int axis = window.axis, layers = axes[axis].cells;
+  const int stride = axis == 0 ? 1 : (axis == 1 ? axes[0].cells : axes[0].cells * axes[1].cells);
+  auto layer_of = [&](int cell) { return (cell / stride) % layers; };
+  std::vector<long> per_layer(static_cast<std::size_t>(layers), 0);
+  for (int s = 0; s < n; ++s) ++per_layer[layer_of(grid.cell_of_slot[s])];
+  std::vector<unsigned char> owner(static_cast<std::size_t>(layers));
+  long before = 0;
+  for (int l = 0; l < layers; ++l) {  // owner of the layer holding the middle of its spheres
+    const double middle = before + 0.5 * per_layer[l];
+    owner[l] = static_cast<unsigned char>(
+        std::min<long>(threads - 1, static_cast<long>(middle * threads / std::max(1, n))));
+    before += per_layer[l];
+  }
+  const std::size_t n_cells = grid.cells.count();
+  window.cell_role.resize(n_cells);
+  for (std::size_t c = 0; c < n_cells; ++c) {
+    const int l = layer_of(static_cast<int>(c));
+    bool boundary = false;
+    for (int o = -1; o <= 1; o += 2) {
+      int k = l + o;
+      if (axes[axis].periodic) k = (k + layers) % layers;
+      else if (k < 0 || k >= layers) continue;
+      boundary = boundary || owner[k] != owner[l];
+    }
+    window.cell_role[c] = static_cast<unsigned char>(owner[l] | (boundary ? kBoundaryBit : 0));
+  }
+}
 
 // Sorts the spheres into cell order, bins them and makes every list (O(N)).
 void SphereMover::State::build(const double *xyz_wrapped, const double *radius,
@@ -304,7 +405,10 @@ void SphereMover::State::build(const double *xyz_wrapped, const double *radius,
   const double margin = rounding_margin(sc, xyz_wrapped, n);
   const double skin = skin_over_max_radius * sc.r_max;
   half_skin_sq = 0.25 * skin * skin;
-  list_extra = d_max + skin + margin;
+  // Windows (threads > 1) move a sphere up to kThreadWindowPicks times between list updates.
+  windowed_lists = threads > 1;
+  const double window_skin = windowed_lists ? 2.0 * defaults::kThreadWindowPicks * d_max : 0.0;
+  list_extra = d_max + skin + window_skin + margin;
   std::array<GridAxis, 3> &axes = grid.axes;
   axes = grid_axes(sc, xyz_wrapped, n, 2.0 * sc.r_max + list_extra + margin);
 
@@ -371,6 +475,10 @@ void SphereMover::State::build(const double *xyz_wrapped, const double *radius,
     b[++b[0]] = pairs[q];
   }
   ++full_builds;
+  if (windowed_lists) {
+    window.allocate(n, threads);
+    assign_owners();
+  }
 }
 
 SphereMover::SphereMover() : state_(std::make_unique<State>()) {}
@@ -384,6 +492,42 @@ void SphereMover::set_skin(double skin_over_max_radius)
 }
 
 double SphereMover::skin() const { return state_->skin_over_max_radius; }
+
+void SphereMover::set_threads(int threads)
+{
+  if (!(threads >= 1 && threads <= defaults::kMaxThreads))
+    throw_outside_range("threads", threads, "[1, " + std::to_string(defaults::kMaxThreads) + "]");
+  state_->threads = threads;
+}
+
+int SphereMover::threads() const { return state_->threads; }
+
+SphereMover::WindowStats SphereMover::window_stats() const
+{
+  const WindowExecutor &wx = state_->window;
+  WindowStats stats;
+  stats.windows = wx.windows;
+  stats.trials = wx.trials;
+  for (const WindowExecutor::MemberStats &m : wx.member_stats) {
+    stats.boundary_trials += m.boundary_trials;
+    stats.waits += m.waits;
+  }
+  return stats;
+}
+
+bool SphereMover::window_orders(int i, int j) const
+{
+  const State &st = *state_;
+  if (!st.windowed_lists) return true;  // one thread: every trial in order
+  const int a = st.spheres.slot_of[i], b = st.spheres.slot_of[j];
+  const unsigned char role_a = st.window.cell_role[st.grid.cell_of_slot[a]];
+  const unsigned char role_b = st.window.cell_role[st.grid.cell_of_slot[b]];
+  if (a == b || (role_a & kOwnerBits) == (role_b & kOwnerBits)) return true;
+  const int *row = st.lists.row(a);
+  bool listed = false;
+  for (int q = 1; q <= row[0]; ++q) listed = listed || row[q] == b;
+  return listed && (role_a & kBoundaryBit) && (role_b & kBoundaryBit);
+}
 
 void SphereMover::reset(const double *xyz, const double *radius, int n, const SettleBox &box,
                         double d_max, double contact_tol)
@@ -531,18 +675,53 @@ inline bool overlaps_listed(const SphereMover::State &st, const int *row, double
   return false;
 }
 
-// One block of trials, compiled per (mono/poly, periodic x, periodic y, region).
+// The acceptance rule of a trial (section II), compiled per (mono/poly, periodic x, periodic y,
+// region): the serial loop and the windowed executor share it.
+template <bool Mono, bool PeriodicX, bool PeriodicY, bool Region>
+struct TrialRule {
+  const SphereMover::State &st;
+  double r_mono, threshold_sq_mono, half_x, half_y;
+  MoveRegion region;
+
+  TrialRule(const SphereMover::State &state, const MoveRegion *move_region) :
+      st(state), r_mono(state.scene.r_mono),
+      threshold_sq_mono(overlap_threshold_sq(r_mono, r_mono, state.scene.one_minus_tol)),
+      half_x(0.5 * state.scene.length[0]), half_y(0.5 * state.scene.length[1]),
+      region(Region ? *move_region : MoveRegion{})
+  {
+  }
+
+  // Sphere at record p (slot s) moved by `move`: true when accepted, with the new centre
+  // (periodic axes wrapped, wraps counted) in x, y, z.
+  bool accepts(const double *p, int s, const Displacement &move, double &x, double &y, double &z,
+               int &wrap_x, int &wrap_y) const
+  {
+    const Scene &sc = st.scene;
+    const double r = Mono ? r_mono : p[3];
+    x = p[0] + move.dx;
+    y = p[1] + move.dy;
+    z = p[2] + move.dz;
+    wrap_x = wrap_y = 0;
+    if (PeriodicX) x = wrap_step(x, sc.lo[0], sc.hi[0], sc.length[0], wrap_x);
+    if (PeriodicY) y = wrap_step(y, sc.lo[1], sc.hi[1], sc.length[1], wrap_y);
+    if (Region && !(x >= region.lo[0] && x < region.hi[0] && y >= region.lo[1] &&
+                    y < region.hi[1] && z >= region.lo[2] && z < region.hi[2]))
+      return false;
+    double gap;
+    if (plane_violation<PeriodicX, PeriodicY>(sc, x, y, z, r, gap)) return false;
+    return !overlaps_listed<Mono, PeriodicX, PeriodicY>(st, st.lists.row(s), x, y, z, r,
+                                                        threshold_sq_mono, half_x, half_y);
+  }
+};
+
+// One block of trials on this thread, compiled per (mono/poly, periodic x, periodic y, region).
 template <bool Mono, bool PeriodicX, bool PeriodicY, bool Region>
 void run_trials(SphereMover::State &st, const RunArgs &a)
 {
-  const Scene &sc = st.scene;
   SlotRecords &spheres = st.spheres;
   const CountedRows &lists = st.lists;
-  const double r_mono = sc.r_mono;
-  const double threshold_sq_mono = overlap_threshold_sq(r_mono, r_mono, sc.one_minus_tol);
-  const double half_x = 0.5 * sc.length[0], half_y = 0.5 * sc.length[1];
+  const TrialRule<Mono, PeriodicX, PeriodicY, Region> rule(st, a.region);
   const std::uint32_t n_pick = a.random ? static_cast<std::uint32_t>(a.m) : 0u;
-  const MoveRegion region = Region ? *a.region : MoveRegion{};
   long accepted = 0;
   double sum_dz = a.tally->sum_dz;
   for (long done = 0; done < a.trials;) {
@@ -576,25 +755,12 @@ void run_trials(SphereMover::State &st, const RunArgs &a)
         for (int q = 1; q <= prefetched; ++q) prefetch(spheres.at(ahead[q]));
       }
       const int s = st.batch_slot[b];
-      const Displacement &move = st.batch[b].move;
       double *p = spheres.at(s);
-      const double r = Mono ? r_mono : p[3];
-      const double oz = p[2];
-      double x = p[0] + move.dx, y = p[1] + move.dy;
-      const double z = oz + move.dz;
-      int wrap_x = 0, wrap_y = 0;
-      if (PeriodicX) x = wrap_step(x, sc.lo[0], sc.hi[0], sc.length[0], wrap_x);
-      if (PeriodicY) y = wrap_step(y, sc.lo[1], sc.hi[1], sc.length[1], wrap_y);
-      if (Region && !(x >= region.lo[0] && x < region.hi[0] && y >= region.lo[1] &&
-                      y < region.hi[1] && z >= region.lo[2] && z < region.hi[2]))
-        continue;
-      double gap;
-      if (plane_violation<PeriodicX, PeriodicY>(sc, x, y, z, r, gap)) continue;
-      if (overlaps_listed<Mono, PeriodicX, PeriodicY>(st, lists.row(s), x, y, z, r,
-                                                     threshold_sq_mono, half_x, half_y))
-        continue;
+      double x, y, z;
+      int wrap_x, wrap_y;
+      if (!rule.accepts(p, s, st.batch[b].move, x, y, z, wrap_x, wrap_y)) continue;
       ++accepted;
-      sum_dz += z - oz;  // <Z> kept incrementally, in trial order (section II)
+      sum_dz += z - p[2];  // <Z> kept incrementally, in trial order (section II)
       p[0] = x;
       p[1] = y;
       p[2] = z;
@@ -609,13 +775,186 @@ void run_trials(SphereMover::State &st, const RunArgs &a)
   a.tally->sum_dz = sum_dz;
 }
 
+// ---- The windowed executor (threads > 1) -----------------------------------------------------
+// Trial t's pick and move depend only on (rng, t), so the trials of a block are known before
+// they run. They are drawn a chunk at a time (in parallel) and cut into windows: a window ends
+// before the first trial whose sphere it already holds kThreadWindowPicks times. During a window
+// the lists and the grid are not changed: the lists carry 2 kThreadWindowPicks d_max of extra
+// skin, so a sphere that starts the window within skin/2 of its reference stays within the
+// lists' reach (skin/2 + kThreadWindowPicks d_max), and every overlap stays listed (header).
+// A trial then reads its sphere's record and list row and its listed neighbours' positions,
+// and writes only its sphere's position and image counts. Two trials of one window interact
+// only if they move the same sphere or listed neighbours (the lists are symmetric); such pairs
+// must run in trial order, all others commute.
+// Owners: each trial runs on the thread owning its sphere's grid cell (slabs of cell layers,
+// assign_owners), in trial order within the thread, so trials of one sphere are ordered. A
+// listed neighbour's reference lies in the same or an adjacent cell, so a sphere whose layer and
+// both adjacent layers have one owner (interior) has all its neighbours on its own thread. A
+// boundary trial t looks through its row for neighbours picked earlier in the window by another
+// thread and waits (acquire) until the latest such trial has published (release) that it is
+// done; that trial's sphere is a boundary sphere too (its adjacent layer has another owner), so
+// it publishes. The later trial of every interacting pair waits for the earlier: reads and writes
+// happen in trial order, and the window's moves are the serial ones.
+// After the window, one thread adds the accepted z changes in trial order (so <Z> is bit-
+// identical), notes the moved spheres in trial order and updates the lists of those beyond
+// skin/2 (serially: list rows and grid cells may widen).
+
+// Spins until every earlier trial of this window by another thread on a listed neighbour of slot
+// s (trial t) is done. Returns the number of such trials still running when looked at.
+inline long wait_for_neighbours(const SphereMover::State &st, int s, long t, long window_first,
+                                int member, std::uint64_t window)
+{
+  const WindowExecutor &wx = st.window;
+  const int *row = st.lists.row(s);
+  long waits = 0;
+  for (int q = 1, end = row[0]; q <= end; ++q) {
+    const int j = row[q];
+    if (wx.chunk_stamp[j] != wx.chunk_seq) continue;
+    long u = wx.last_pick[j];
+    while (u >= t) u = wx.prev_pick[u];
+    if (u < window_first || (wx.role[u] & kOwnerBits) == member) continue;
+    if (wx.done[u].load(std::memory_order_acquire) == window) continue;
+    ++waits;
+    int spins = 0;
+    while (wx.done[u].load(std::memory_order_acquire) != window) spin_pause(spins);
+  }
+  return waits;
+}
+
+// Member `member`'s trials of the window [first, last) (chunk indices), in trial order.
+template <bool Mono, bool PeriodicX, bool PeriodicY, bool Region>
+void execute_window(SphereMover::State &st, const TrialRule<Mono, PeriodicX, PeriodicY, Region> &rule,
+                    long first, long last, int member)
+{
+  WindowExecutor &wx = st.window;
+  SlotRecords &spheres = st.spheres;
+  const std::uint64_t window = wx.window_seq;
+  long boundary = 0, waits = 0;
+  for (long t = first; t < last; ++t) {
+    const unsigned char role = wx.role[t];
+    if ((role & kOwnerBits) != member) continue;
+    const int s = wx.slot[t];
+    const bool on_boundary = role & kBoundaryBit;
+    if (on_boundary) {
+      ++boundary;
+      waits += wait_for_neighbours(st, s, t, first, member, window);
+    }
+    double *p = spheres.at(s);
+    double x, y, z;
+    int wrap_x, wrap_y;
+    const bool accepted = rule.accepts(p, s, wx.draw[t].move, x, y, z, wrap_x, wrap_y);
+    wx.accepted[t] = accepted;
+    if (accepted) {
+      wx.dz[t] = z - p[2];
+      p[0] = x;
+      p[1] = y;
+      p[2] = z;
+      if (PeriodicX && wrap_x) spheres.image[2 * s] += wrap_x;
+      if (PeriodicY && wrap_y) spheres.image[2 * s + 1] += wrap_y;
+    }
+    if (on_boundary) wx.done[t].store(window, std::memory_order_release);
+  }
+  wx.member_stats[member].boundary_trials += boundary;
+  wx.member_stats[member].waits += waits;
+}
+
+// One block of trials on the team (see above).
+template <bool Mono, bool PeriodicX, bool PeriodicY, bool Region>
+void run_windowed(SphereMover::State &st, const RunArgs &a)
+{
+  WindowExecutor &wx = st.window;
+  ThreadTeam &team = *wx.team;
+  const int members = team.size();
+  const TrialRule<Mono, PeriodicX, PeriodicY, Region> rule(st, a.region);
+  const std::uint32_t n_pick = a.random ? static_cast<std::uint32_t>(a.m) : 0u;
+  long accepted = 0;
+  double sum_dz = a.tally->sum_dz;
+  team.wake();
+  for (long chunk_first = 0; chunk_first < a.trials;) {
+    const long chunk = std::min(defaults::kThreadChunkTrials, a.trials - chunk_first);
+    const std::uint64_t first_trial = a.first_trial + static_cast<std::uint64_t>(chunk_first);
+    const long cursor = *a.sweep_cursor;
+    const std::uint64_t stamp = ++wx.chunk_seq;
+    // Draws, slots and owners, each member a slice of the chunk.
+    auto draw = [&](int member) {
+      const long lo = chunk * member / members, hi = chunk * (member + 1) / members;
+      for (long t = lo; t < hi; t += TrialMoveSampler::kBatchMax) {
+        const int count = static_cast<int>(std::min<long>(TrialMoveSampler::kBatchMax, hi - t));
+        a.sampler->draw_batch(*a.rng, first_trial + static_cast<std::uint64_t>(t), count, n_pick,
+                              &wx.draw[t]);
+        for (long u = t; u < t + count; ++u) {
+          const long k = a.random ? static_cast<long>(wx.draw[u].pick) : (cursor + u) % a.m;
+          const int s = a.candidate_slots ? a.candidate_slots[k] : st.spheres.slot_of[a.candidates[k]];
+          wx.slot[u] = s;
+          wx.role[u] = wx.cell_role[st.grid.cell_of_slot[s]];
+        }
+      }
+    };
+    team.run(draw);
+    // Each sphere's picks in the chunk, chained (member: the slots s with s % members == member).
+    auto chain = [&](int member) {
+      for (long t = 0; t < chunk; ++t) {
+        const int s = wx.slot[t];
+        if (s % members != member) continue;
+        const int before = wx.chunk_stamp[s] == stamp ? wx.last_pick[s] : -1;
+        wx.chunk_stamp[s] = stamp;
+        wx.last_pick[s] = static_cast<int>(t);
+        wx.prev_pick[t] = before;
+        int limit = before;  // the kThreadWindowPicks-th earlier pick of the same sphere
+        for (int k = 1; k < defaults::kThreadWindowPicks && limit >= 0; ++k) limit = wx.prev_pick[limit];
+        wx.limit_pick[t] = limit;
+      }
+    };
+    team.run(chain);
+    for (long first = 0; first < chunk;) {
+      long last = first + 1;
+      while (last < chunk && wx.limit_pick[last] < first) ++last;
+      ++wx.window_seq;
+      auto execute = [&](int member) { execute_window(st, rule, first, last, member); };
+      team.run(execute);
+      ++wx.windows;
+      // In trial order: <Z>, the moved spheres, the list updates.
+      bool rebinned = false;
+      for (long t = first; t < last; ++t) {
+        if (!wx.accepted[t]) continue;
+        const int s = wx.slot[t];
+        ++accepted;
+        sum_dz += wx.dz[t];
+        st.moved.note(s);
+        if (st.drift_sq<PeriodicX, PeriodicY>(s) > st.half_skin_sq) {
+          const int cell = st.grid.cell_of_slot[s];
+          st.relist(s);
+          rebinned = rebinned || st.grid.cell_of_slot[s] != cell;
+        }
+      }
+      if (rebinned)  // a sphere changed cell: the later trials' owners follow
+        for (long t = last; t < chunk; ++t) wx.role[t] = wx.cell_role[st.grid.cell_of_slot[wx.slot[t]]];
+      first = last;
+    }
+    if (!a.random) *a.sweep_cursor = (cursor + chunk) % a.m;
+    chunk_first += chunk;
+  }
+  team.sleep();
+  wx.trials += a.trials;
+  a.tally->trials += a.trials;
+  a.tally->accepted += accepted;
+  a.tally->sum_dz = sum_dz;
+}
+
 namespace {
 
 template <bool Mono, bool PeriodicX, bool PeriodicY>
 void dispatch_region(SphereMover::State &st, const RunArgs &a)
 {
-  if (a.region) run_trials<Mono, PeriodicX, PeriodicY, true>(st, a);
-  else run_trials<Mono, PeriodicX, PeriodicY, false>(st, a);
+  const bool windowed = st.windowed_lists && st.threads > 1 &&
+                        a.trials >= defaults::kThreadMinTrialsPerThread * st.threads;
+  if (windowed) {
+    if (a.region) run_windowed<Mono, PeriodicX, PeriodicY, true>(st, a);
+    else run_windowed<Mono, PeriodicX, PeriodicY, false>(st, a);
+  } else {
+    if (a.region) run_trials<Mono, PeriodicX, PeriodicY, true>(st, a);
+    else run_trials<Mono, PeriodicX, PeriodicY, false>(st, a);
+  }
 }
 
 template <bool Mono>

@@ -93,6 +93,28 @@ class SphereMover {
   void set_skin(double skin_over_max_radius);
   double skin() const;
 
+  // Threads of run() (default 1: the serial loop), used from the next reset. With threads > 1,
+  // blocks of trials run in windows on a persistent team of threads and make the same moves,
+  // bit for bit, as one thread: the same positions, image shifts, tallies (the accepted z
+  // changes are summed in trial order) and moved spheres in the same order; only the list
+  // diagnostics (local_updates, mean_list_length) differ (wider lists, updates between windows).
+  // Throws std::invalid_argument outside [1, defaults::kMaxThreads].
+  void set_threads(int threads);
+  int threads() const;
+
+  // The windowed executor since reset: windows run, trials in them, trials of spheres next to
+  // another thread's region (which look for earlier neighbours' trials of other threads) and
+  // the waits for such a trial still running.
+  struct WindowStats {
+    long windows = 0, trials = 0, boundary_trials = 0, waits = 0;
+  };
+  WindowStats window_stats() const;
+
+  // For tests of the conflict rule: whether trials of spheres i and j (caller indices) in one
+  // window would run in trial order (the same thread, or listed neighbours that both look for
+  // the other thread's trials). Meaningful after a reset with threads > 1.
+  bool window_orders(int i, int j) const;
+
   struct State;  // defined in tapmc_sphere_mover.cpp
 
  private:

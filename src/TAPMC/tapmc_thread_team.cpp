@@ -1,0 +1,93 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// The persistent thread team of the windowed trial executor (tapmc_thread_team.h).
+#include "tapmc_thread_team.h"
+
+#include "tapmc_defaults.h"
+
+namespace tapmc {
+
+void spin_pause(int &spins)
+{
+  if (++spins < defaults::kSpinsBeforeYield) {
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#endif
+    return;
+  }
+  spins = 0;
+  std::this_thread::yield();
+}
+
+ThreadTeam::ThreadTeam(int size) : size_(size < 1 ? 1 : size)
+{
+  threads_.reserve(static_cast<std::size_t>(size_ - 1));
+  for (int member = 1; member < size_; ++member)
+    threads_.emplace_back([this, member] { member_loop(member); });
+}
+
+ThreadTeam::~ThreadTeam()
+{
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_.store(true, std::memory_order_release);
+    generation_.fetch_add(1, std::memory_order_release);
+  }
+  wake_up_.notify_all();
+  for (std::thread &t : threads_) t.join();
+}
+
+void ThreadTeam::wake()
+{
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    awake_.store(true, std::memory_order_release);
+  }
+  wake_up_.notify_all();
+}
+
+void ThreadTeam::sleep()
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  awake_.store(false, std::memory_order_release);
+}
+
+void ThreadTeam::run_erased(JobFunction function, void *context)
+{
+  if (size_ == 1) {
+    function(context, 0);
+    return;
+  }
+  if (!awake_.load(std::memory_order_acquire)) wake();
+  function_ = function;
+  context_ = context;
+  finished_target_ += static_cast<std::uint64_t>(size_ - 1);
+  generation_.fetch_add(1, std::memory_order_release);
+  function(context, 0);
+  int spins = 0;
+  while (finished_.load(std::memory_order_acquire) < finished_target_) spin_pause(spins);
+}
+
+void ThreadTeam::member_loop(int member)
+{
+  std::uint64_t seen = 0;
+  for (;;) {
+    int spins = 0;
+    while (generation_.load(std::memory_order_acquire) == seen) {
+      if (awake_.load(std::memory_order_acquire)) {
+        spin_pause(spins);
+        continue;
+      }
+      std::unique_lock<std::mutex> lock(mutex_);
+      wake_up_.wait(lock, [&] {
+        return awake_.load(std::memory_order_acquire) ||
+               generation_.load(std::memory_order_acquire) != seen;
+      });
+    }
+    seen = generation_.load(std::memory_order_acquire);
+    if (stop_.load(std::memory_order_acquire)) return;
+    function_(context_, member);
+    finished_.fetch_add(1, std::memory_order_release);
+  }
+}
+
+}  // namespace tapmc
