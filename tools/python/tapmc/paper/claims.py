@@ -127,7 +127,8 @@ def load_register(path=REGISTER):
 class Measure:
     """What a statistic measured for one row: ``value`` with standard error ``err`` whose
     degrees of freedom are ``dof``; ``shown`` replaces the default text of the value;
-    ``quantile`` replaces the t quantile (e.g. Bonferroni-corrected maxima); ``effect`` is the
+    ``quantile`` replaces the t quantile (e.g. Bonferroni-corrected maxima); ``sign`` the
+    claim's expected sign (a claim measured twice, e.g. both sides of a bell); ``effect`` is the
     size of the effect a ``zero`` claim denies (agreement needs an uncertainty below it);
     ``undecided`` says why the data cannot decide (the value may still be shown)."""
 
@@ -138,6 +139,7 @@ class Measure:
     shown: str | None = None
     quantile: float | None = None
     effect: float | None = None
+    sign: int | None = None
     undecided: str | None = None
 
     def text(self):
@@ -509,19 +511,50 @@ def bell_maximum(data, claim):
                     shown=f"{fmt(vertex, err)} (parabola through {len(xs)} points)")]
 
 
+def _side_slope(x, y, s, i, side, what):
+    """Weighted straight line through the points of a bell below (``side`` "below") or above
+    its largest point i, largest included."""
+    pick = slice(0, i + 1) if side == "below" else slice(i, len(x))
+    if len(x[pick]) < 3:
+        return Measure(undecided=f"fewer than three {what} {side} the largest (at sqrt(eps) = "
+                                 f"{x[i]:g})", label=f"{side} the largest")
+    slope, err, dof = _weighted_line(x[pick], y[pick], s[pick])
+    if not np.isfinite(slope):
+        return Measure(undecided=f"no error bars on the {what}", label=f"{side} the largest")
+    return Measure(slope, err, dof, shown=f"slope {fmt(slope, err)}", label=f"{side} the largest",
+                   sign=1 if side == "below" else -1)
+
+
 def bell_side_slope(data, claim):
     steady = _steady(data)
     if steady is None:
         return _missing("fewer than three steady states")
     x, y, s, n, i = steady
-    pick = slice(0, i + 1) if claim.params.get("side") == "below" else slice(i, len(x))
-    if len(x[pick]) < 3:
-        return [Measure(undecided=f"fewer than three steady states {claim.params.get('side')} "
-                                  f"the largest (at sqrt(eps) = {x[i]:g})")]
-    slope, err, dof = _weighted_line(x[pick], y[pick], s[pick])
-    if not np.isfinite(slope):
-        return [Measure(undecided="one realization: the steady states have no error bars")]
-    return [Measure(slope, err, dof, shown=f"slope {fmt(slope, err)}")]
+    m = _side_slope(x, y, s, i, claim.params.get("side"), "steady states")
+    m.label = ""
+    return [m]
+
+
+def alpha_bell(data, claim):
+    """Both sides of alpha against sqrt(eps) (Fig. 6 bottom): rising below its largest value,
+    falling above it, as the steady states' bell; the weaker side is the measure (a bell needs
+    both)."""
+    fig = data.figure("fig6")
+    bell = None if fig is None else fig.get("b", "bell:alpha")
+    if bell is None or len(bell[0]) < 3:
+        return _missing("alpha of fewer than three runs of the bell")
+    x, y, s, n = bell
+    i = int(np.nanargmax(y))
+    sides = [_side_slope(x, y, s, i, side, "alphas") for side in ("below", "above")]
+    for m in sides:
+        if m.undecided:
+            m.label = ""
+            return [m]
+    # one row for the claim: the side that supports the bell less (its slope in units of its
+    # error, signed so that the bell's direction is positive) decides
+    weaker = min(sides, key=lambda m: m.sign * m.value / m.err)
+    shown = "; ".join(f"{m.label}: {m.text()}" for m in sides)
+    return [Measure(weaker.sign * weaker.value, weaker.err, weaker.dof, shown=shown)]
 
 
 def _ramp(data, name):
@@ -780,8 +813,8 @@ def nu_change(data, claim):
 STATISTICS = {f.__name__: f for f in (
     initial_phi, tapped_phi, pbc_compaction, phi_b_gain, eq3_fit_quality,
     log_time_slowing, spectral_slopes, spectrum_eps_spread,
-    sigma_intercept, bell_maximum, bell_side_slope, ramp_up_minus_steady, ramp_down_minus_up,
-    ramp_up2_minus_down, low_ramp_down_minus_up, ramp_branch_slope,
+    sigma_intercept, bell_maximum, bell_side_slope, alpha_bell, ramp_up_minus_steady,
+    ramp_down_minus_up, ramp_up2_minus_down, low_ramp_down_minus_up, ramp_branch_slope,
     final_alpha, central_minus_lateral, lateral_first_tap, p0_initial_minus_final,
     p0_final_minus_py, xi_min, pore_share_change, pore_quadratic_fit, nu_tail_over_nu,
     nu_change)}
@@ -825,7 +858,7 @@ def verdict(claim, m):
         return "agrees" if (m.value + band >= claim.lo and m.value - band <= claim.hi) \
             else "disagrees"
     if rule == "sign":
-        signed = claim.sign * m.value
+        signed = (m.sign if m.sign is not None else claim.sign) * m.value
         if signed > band:
             return "agrees"
         if signed < -band:

@@ -12,9 +12,16 @@ per seed in the paper's window 5 <= z/R <= 22 (F.B.C.), cut at 78 % of the packi
 (22R of the paper's 28R) when the packing is lower; alpha > 0 is the paper's "negative
 vertical gradient" (density decreasing with height).
 
+Bottom panel, when the campaign has the P.B.C. constant-eps runs of the bell (Figs. 3-4):
+alpha after the taps against sqrt(eps), the paper's "approximately the same kind of bell shape
+dependence as the other steady-state values" (section IV.A), fitted in the P.B.C. window
+5 <= z/R <= 26 cut as above; the sem is over seeds, or for one seed the straight line's own
+error. ``runs`` does not add those runs: ``tapmc-paper fig6`` alone draws the top panel, the
+report (every figure) both.
+
 CSV panels: ``a`` (series ``initial``, ``final``, ``fit:initial``, ``fit:final``; x = z/R),
-``params`` (``initial:alpha``, ``final:alpha`` over seeds; ``final:<eq. 7 parameter>``,
-``window_lo``, ``window_hi``, ``eps``).
+``b`` (series ``bell:alpha``: x = sqrt(eps)), ``params`` (``initial:alpha``, ``final:alpha``
+over seeds; ``final:<eq. 7 parameter>``, ``window_lo``, ``window_hi``, ``eps``).
 """
 
 from __future__ import annotations
@@ -24,7 +31,7 @@ import numpy as np
 from tapmc.laws import PROFILE_WINDOWS, ProfileLaw, profile_gradient
 
 from . import _plotting as P
-from . import _profile_runs, _runs
+from . import _profile_runs, _runs, _steady_state
 from ._profile_runs import BC, nearest_eps_runs, profiles, radius
 
 NAME = "fig6"
@@ -45,13 +52,47 @@ def gradient_window(campaign, specs, bc=BC):
     return lo, min(hi, WINDOW_TOP_FRACTION * float(np.min(heights)))
 
 
+def final_alpha(campaign, spec, window, bc):
+    """(alpha, its fit error) of the last profile of a run in ``window``."""
+    blocks = _runs.profile(campaign, spec, "profile_z.dat").blocks
+    z = blocks[-1, :, 0] / radius(spec)
+    fit = profile_gradient(z, blocks[-1, :, 2], window=window, boundary=bc)
+    return float(fit.params["alpha"]), float(fit.errors["alpha"])
+
+
+def alpha_bell(campaign, bc=_steady_state.BC):
+    """(sqrt_eps, mean, sem, n) of alpha after the taps of the constant-eps runs of the bell;
+    None when the campaign has none. One seed: the fit's own error (module docstring)."""
+    try:
+        groups = _runs.constant_eps_groups(campaign, bc)
+    except ValueError:
+        return None
+    rows = []
+    for eps, specs in groups.items():
+        window = gradient_window(campaign, specs, bc)
+        fits = [final_alpha(campaign, spec, window, bc) for spec in specs]
+        if len(fits) == 1:
+            rows.append((np.sqrt(eps), fits[0][0], fits[0][1], 1))
+        else:
+            m, s, n = P.seed_stats([[a] for a, _ in fits])
+            rows.append((np.sqrt(eps), m[0], s[0], n[0]))
+    return tuple(np.array(col, dtype=float) for col in zip(*rows))
+
+
 def draw(campaign, out_dir):
     png, csv = P.figure_paths(out_dir, NAME)
-    eps, specs = nearest_eps_runs(campaign)
+    bell = alpha_bell(campaign)
+    try:
+        eps, specs = nearest_eps_runs(campaign)
+    except ValueError:
+        if bell is None:
+            raise
+        return _draw_bell_only(bell, png, csv)
     window = gradient_window(campaign, specs)
     zb, im, isem, i_n, fm, fsem, f_n = profiles(campaign, specs, "profile_z.dat")
     table = P.FigureTable()
-    fig, (ax,) = P.new_figure(1, 1, height=4.0)
+    fig, axes = P.new_figure(2 if bell is not None else 1, 1, height=4.0)
+    ax = axes[0]
     ax.plot(zb, im, ":", color="k", label="initial packing")
     ax.plot(zb, fm, "-", color="C3", label=f"after {int(specs[0].variables['taps'])} taps")
     ax.fill_between(zb, fm - np.nan_to_num(fsem), fm + np.nan_to_num(fsem), color="C3",
@@ -89,4 +130,22 @@ def draw(campaign, out_dir):
     ax.set_ylim(bottom=0)
     ax.legend(fontsize=8, title=f"F.B.C., eps = {P.fmt_eps(eps)}; dashed: gradient window",
               title_fontsize=7)
+    if bell is not None:
+        _bell_panel(axes[1], bell, table)
+    return P.write_figure(fig, png, table, csv)
+
+
+def _bell_panel(ax, bell, table):
+    sq, mean, sem, n = bell
+    table.add("b", "bell:alpha", sq, mean, sem, n)
+    ax.errorbar(sq, mean, yerr=np.nan_to_num(sem), marker="s", ls="-", color="k", capsize=2)
+    ax.axhline(0.0, color="0.6", lw=0.6)
+    ax.set_xlabel(r"$\varepsilon^{1/2}$")
+    ax.set_ylabel(r"$\alpha$ after the taps (P.B.C.)")
+
+
+def _draw_bell_only(bell, png, csv):
+    table = P.FigureTable()
+    fig, (ax,) = P.new_figure(1, 1, height=4.0)
+    _bell_panel(ax, bell, table)
     return P.write_figure(fig, png, table, csv)
