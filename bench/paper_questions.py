@@ -10,7 +10,9 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
   noise-floor What is sigma_<Z> without any tap (eps = 0): the redeposition's own noise, the
               floor under Fig. 3's sigma_<Z> = k sqrt(eps)? 1000 taps at eps = 0 from the
               packing after 4000 taps at eps = 0.0225 (the paper-scale campaign's restart),
-              sigma_<Z> over them as Fig. 3 computes it, and the drift of <Z>.
+              sigma_<Z> over them as Fig. 3 computes it, the drift of <Z>, and the slope of
+              their power spectrum (Fig. 3's estimator): what a spectrum near the floor
+              tends to at small eps.
 
 Usage (from the repository; minutes on one core, run under nice):
 
@@ -33,6 +35,9 @@ from pathlib import Path
 import numpy as np
 
 SOURCE = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(SOURCE / "tools" / "python"))
+from tapmc.fluctuations import PowerSpectrum  # noqa: E402
+
 INPUT = SOURCE / "examples" / "paper" / "in.constant_eps"
 DEFAULT_OUT = SOURCE / "doc" / "paper_scale" / "validation" / "questions"
 CAMPAIGN_RUN = SOURCE / "doc" / "validation" / "data" / "full" / "runs" / "const_pbc_eps0.0225_s1"
@@ -108,6 +113,8 @@ def noise_floor(args):
             ["sigma_Z_detrended", f"{np.std(detrended, ddof=1):.8g}"],
             ["drift_per_tap", f"{slope:.8g}"],
             ["Z_first", f"{z[0]:.8f}"], ["Z_last", f"{z[-1]:.8f}"],
+            ["spectral_slope", f"{PowerSpectrum(z).compute().slope:.6g}"],
+            ["spectral_slope_detrended", f"{PowerSpectrum(detrended).compute().slope:.6g}"],
             ["taps", len(z)], ["mean_sweeps", f"{np.mean(taps[taps[:, 0] > NOISE_FROM_STEP, 8]):.4g}"]]
     for name, value in rows:
         print(f"{name} = {value}")

@@ -36,11 +36,13 @@ def test_first_tap_drop_that_vanishes_is_the_stopping_rule(tmp_path):
 def test_noise_floor_against_fig3(tmp_path):
     (tmp_path / "noise_floor.csv").write_text(
         "quantity,value\nsigma_Z,0.001\nsigma_Z_detrended,0.0003\ndrift_per_tap,-6e-06\n"
-        "Z_first,6.94\nZ_last,6.934\ntaps,1000\nmean_sweeps,8.4\n")
+        "Z_first,6.94\nZ_last,6.934\ntaps,1000\nmean_sweeps,8.4\nspectral_slope,-2.0\n"
+        "spectral_slope_detrended,-1.9\n")
     fig3 = claims.FigureData({("params", "k"): {"x": [0.0], "mean": [0.05], "sem": [0.001],
                                                 "n": [5]}})
     text = "\n".join(questions.render_section(tmp_path, {"fig3": fig3}))
     assert "sigma_<Z> = 0.001" in text and "sqrt(eps) = 0.02" in text
+    assert "slope -2.00 (-1.90 detrended): a slow creep" in text
 
 
 def test_nothing_to_render_without_the_csvs(tmp_path):

@@ -81,6 +81,14 @@ def _noise_floor(path, fig3=None):
              f"{fmt(sigma)} ({fmt(values['sigma_Z_detrended'])} about a straight line: <Z> keeps "
              f"settling by {fmt(values['drift_per_tap'])} per tap, "
              f"{values['mean_sweeps']:.3g} sweeps per tap)."]
+    if "spectral_slope" in values:
+        slope = values["spectral_slope"]
+        kind = ("a slow creep (a random walk's slope is -2), not white noise"
+                if slope < -1.5 else "close to white noise" if slope > -0.5 else
+                "between white noise and a random walk")
+        lines[-1] += (f" Its power spectrum falls with slope {slope:.2f} "
+                      f"({values.get('spectral_slope_detrended', math.nan):.2f} detrended): "
+                      f"{kind}.")
     if fig3 is not None:
         k, ks, _ = fig3.param("k")
         b, bs, _ = fig3.param("intercept")
