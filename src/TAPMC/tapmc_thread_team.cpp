@@ -4,7 +4,25 @@
 
 #include "tapmc_defaults.h"
 
+#if defined(__linux__)
+#include <sched.h>
+#endif
+
 namespace tapmc {
+
+int available_cores()
+{
+#if defined(__linux__)
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof(set), &set) == 0) {
+    const int count = CPU_COUNT(&set);
+    if (count > 0) return count;
+  }
+#endif
+  const unsigned hardware = std::thread::hardware_concurrency();
+  return hardware > 0 ? static_cast<int>(hardware) : 1;
+}
 
 void spin_pause(int &spins)
 {

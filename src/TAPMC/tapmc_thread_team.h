@@ -16,6 +16,9 @@
 
 namespace tapmc {
 
+// Cores this process may run on (its CPU affinity; the hardware's count where that is unknown).
+int available_cores();
+
 // One step of a busy wait: a pause instruction, and after kSpinsBeforeYield of them a yield of
 // the core (an oversubscribed waiter must let the thread it waits for run).
 void spin_pause(int &spins);

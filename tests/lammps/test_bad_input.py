@@ -86,6 +86,16 @@ MC_SETTLE_CASES = [
     ("fix s all mc/settle 1 floor 0.8\nrun 1", "below the floor"),
     ("create_atoms 1 single 2.5 2 1\nfix s all mc/settle 1\nrun 1", "overlap by 0.5"),
     ("set atom 1 diameter 0.0\nfix s all mc/settle 1\nrun 1", "every sphere needs a radius > 0"),
+    ("fix s all mc/settle 1 threads 0",
+     "threads = 0 is outside the allowed range [1, 64] or 'auto'"),
+    ("fix s all mc/settle 1 threads -2",
+     "threads = -2 is outside the allowed range [1, 64] or 'auto'"),
+    ("fix s all mc/settle 1 threads two",
+     "threads = two is outside the allowed range [1, 64] or 'auto'"),
+    ("fix s all mc/settle 1 threads 1.5",
+     "threads = 1.5 is outside the allowed range [1, 64] or 'auto'"),
+    ("fix s all mc/settle 1 threads 65",
+     "threads = 65 is outside the allowed range [1, 64] or 'auto'"),
 ]
 
 
