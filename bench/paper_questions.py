@@ -14,10 +14,17 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               their power spectrum (Fig. 3's estimator): what a spectrum near the floor
               tends to at small eps.
 
+  spectral-window
+              Does the slope of Fig. 3's spectrum depend on the length of the steady window
+              (the medium preset used 250 taps, the paper 1000)? The slope over the last 250,
+              500, 1000 and 2000 taps of every finished P.B.C. constant-eps run of the
+              paper-scale campaign (no simulation: its taps.dat files).
+
 Usage (from the repository; minutes on one core, run under nice):
 
     bench/paper_questions.py first-tap   [--out DIR] [--lmp EXE] [--seeds 1 2 3]
     bench/paper_questions.py noise-floor [--out DIR] [--lmp EXE] [--restart FILE]
+    bench/paper_questions.py spectral-window [--out DIR] [--campaign DIR]
 
 DIR defaults to doc/paper_scale/validation/questions (what the committed page reads).
 """
@@ -121,18 +128,43 @@ def noise_floor(args):
     write_csv(Path(args.out) / "noise_floor.csv", ["quantity", "value"], rows)
 
 
+SPECTRAL_WINDOWS = (250, 500, 1000, 2000)
+
+
+def spectral_window(args):
+    rows = []
+    for run_dir in sorted(Path(args.campaign, "runs").glob("const_pbc_eps*_s*")):
+        taps = run_dir / "taps.dat"
+        if not (run_dir / "DONE.json").is_file():
+            continue  # an unfinished run has no steady window yet
+        table = np.loadtxt(taps, ndmin=2)
+        z = table[table[:, 0] > 0, 3]
+        eps = float(run_dir.name.split("_eps")[1].split("_s")[0])
+        for window in SPECTRAL_WINDOWS:
+            if window <= len(z):
+                spectrum = PowerSpectrum(z[-window:]).compute()
+                rows.append([run_dir.name, eps, len(z), window, f"{spectrum.slope:.6g}",
+                             f"{spectrum.slope_error:.6g}"])
+                print(f"{run_dir.name} ({len(z)} taps): last {window}: slope "
+                      f"{spectrum.slope:.3f} +- {spectrum.slope_error:.3f}")
+    write_csv(Path(args.out) / "spectral_window.csv",
+              ["run", "eps", "taps", "window", "slope", "slope_error"], rows)
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
-    for name in ("first-tap", "noise-floor"):
+    for name in ("first-tap", "noise-floor", "spectral-window"):
         p = sub.add_parser(name)
         p.add_argument("--out", default=DEFAULT_OUT, type=Path)
         p.add_argument("--lmp", default=None)
     sub.choices["first-tap"].add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
     sub.choices["noise-floor"].add_argument("--restart", default=CAMPAIGN_RUN / "restart.4000")
+    sub.choices["spectral-window"].add_argument("--campaign", default=CAMPAIGN_RUN.parents[1])
     args = parser.parse_args(argv)
-    (first_tap if args.command == "first-tap" else noise_floor)(args)
+    {"first-tap": first_tap, "noise-floor": noise_floor,
+     "spectral-window": spectral_window}[args.command](args)
 
 
 if __name__ == "__main__":

@@ -45,5 +45,16 @@ def test_noise_floor_against_fig3(tmp_path):
     assert "slope -2.00 (-1.90 detrended): a slow creep" in text
 
 
+def test_spectral_window_says_whether_the_window_moves_the_slope(tmp_path):
+    (tmp_path / "spectral_window.csv").write_text(
+        "run,eps,taps,window,slope,slope_error\n"
+        "a,0.01,4000,250,-1.10,0.15\na,0.01,4000,1000,-1.12,0.10\n"
+        "b,0.1,4000,250,-0.70,0.05\nb,0.1,4000,1000,-1.30,0.05\n")
+    text = "\n".join(questions.render_section(tmp_path))
+    assert "eps = 0.01 (4000 taps): W = 250: -1.1 ± 0.15, W = 1000: -1.12 ± 0.1; the window " \
+           "moves it by less than twice its error." in text
+    assert "eps = 0.1 (4000 taps)" in text and "beyond twice its error" in text
+
+
 def test_nothing_to_render_without_the_csvs(tmp_path):
     assert questions.render_section(tmp_path) == []

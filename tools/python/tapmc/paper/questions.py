@@ -8,6 +8,9 @@ committed data.
   whether the drop of <Phi^c> at the first tap of P.B.C. runs survives a tighter redeposition.
 * ``noise_floor.csv``: sigma_<Z> of 1000 taps at eps = 0 from a tapped packing: the floor
   under Fig. 3's sigma_<Z> = k sqrt(eps).
+* ``spectral_window.csv``: the slope of Fig. 3's spectrum over steady windows of several
+  lengths, per run: whether the window (250 taps in the medium preset, 1000 in the paper)
+  moves it.
 """
 
 from __future__ import annotations
@@ -101,6 +104,26 @@ def _noise_floor(path, fig3=None):
     return lines + [""]
 
 
+def _spectral_window(path):
+    rows = _read(path)
+    runs = defaultdict(list)
+    for r in rows:
+        runs[(float(r["eps"]), r["run"], int(r["taps"]))].append(
+            (int(r["window"]), float(r["slope"]), float(r["slope_error"])))
+    lines = ["Fig. 3's spectral slope against the length of the steady window "
+             "(``spectral_window.csv``; the last W taps of each P.B.C. run of the campaign):", ""]
+    for (eps, run, taps), items in sorted(runs.items()):
+        slopes = np.array([v for _, v, _ in items])
+        errors = np.array([e for _, _, e in items])
+        spread = float(np.ptp(slopes))
+        moved = spread > 2 * float(np.max(errors))
+        text = ", ".join(f"W = {w}: {fmt(v, e)}" for w, v, e in items)
+        lines.append(f"* eps = {eps:g} ({taps} taps): {text}; the window "
+                     + ("moves the slope beyond twice its error." if moved else
+                        "moves it by less than twice its error."))
+    return lines + [""]
+
+
 def render_section(folder, figures=None):
     """The rst lines of the section, or [] when ``folder`` holds none of the CSVs.
     ``figures``: name -> tapmc.paper.claims.FigureData of the same report (Fig. 3's k)."""
@@ -110,11 +133,14 @@ def render_section(folder, figures=None):
         parts += _first_tap(folder / "first_tap.csv")
     if (folder / "noise_floor.csv").is_file():
         parts += _noise_floor(folder / "noise_floor.csv", (figures or {}).get("fig3"))
+    if (folder / "spectral_window.csv").is_file():
+        parts += _spectral_window(folder / "spectral_window.csv")
     if not parts:
         return []
     title = "Questions settled by measurement"
     return [title, "-" * len(title), "",
-            "Measured by ``bench/paper_questions.py`` (``first-tap``, ``noise-floor``), whose "
+            "Measured by ``bench/paper_questions.py`` (``first-tap``, ``noise-floor``, "
+            "``spectral-window``), whose "
             "CSVs are in ``validation/questions/``; the text below is computed from them.", ""] \
         + parts
 
