@@ -177,10 +177,9 @@ def fig3(spectra=None, slope=-1.2, intercept=0.001, intercept_sem=0.002):
 X = np.round(np.arange(0.05, 0.40, 0.025), 4)
 
 
-def fig4(steady, up1=None, down=None, up2=None, low_up=None, low_down=None):
+def fig4(steady, up1=None, down=None, up2=None):
     tab = Table().add("a", "steady", X, steady, 0.001)
-    for name, y in (("up1", up1), ("down", down), ("up2", up2), ("low:up1", low_up),
-                    ("low:down", low_down)):
+    for name, y in (("up1", up1), ("down", down), ("up2", up2)):
         if y is not None:
             tab.add("a", name, X, y, 0.001)
     return tab
@@ -294,10 +293,11 @@ CONTROLS = {
     "ramp_up2_minus_down": (report(fig4=fig4(BELL, up1=BELL, down=BELL + 0.01,
                                              up2=BELL + 0.01)),
                             report(fig4=fig4(BELL, up1=BELL, down=BELL + 0.01, up2=BELL))),
-    "low_ramp_down_minus_up": (
-        report(fig4=fig4(BELL, up1=BELL, down=BELL + 0.01, low_up=BELL, low_down=BELL)),
-        report(fig4=fig4(BELL, up1=BELL, down=BELL + 0.01, low_up=BELL,
-                         low_down=BELL + 0.01))),
+    "low_ramp_frozen": (
+        report(fig4=fig4(BELL).param("low:down_change", 0.0002, 0.0005)
+               .param("ramp:down_change", 0.01, 0.0005)),
+        report(fig4=fig4(BELL).param("low:down_change", 0.01, 0.0005)
+               .param("ramp:down_change", 0.01, 0.0005))),
     "ramp_branch_slope": (report(fig4=fig4(BELL, down=0.62 - 0.1 * X)),
                           report(fig4=fig4(BELL, down=0.58 + 0.1 * X))),
     "alpha_bell": (report(fig6=Table().add("b", "bell:alpha", X, 0.004 - 0.1 * (X - 0.15) ** 2,

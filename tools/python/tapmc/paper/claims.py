@@ -266,7 +266,7 @@ def _mean_difference(a, b):
         return None
     errs = np.asarray(errs)
     err = float(np.sqrt(np.sum(errs**2)) / len(errs)) if np.all(np.isfinite(errs)) else math.nan
-    return float(np.mean(diffs)), err, _dof(ns), len(diffs)
+    return float(np.mean(diffs)), err, _steady_dof(int(np.min(ns)), err), len(diffs)
 
 
 # ---------------------------------------------------------------- statistics
@@ -598,8 +598,20 @@ def ramp_up2_minus_down(data, claim):
     return _branch_difference(data, "up2", "down", _hysteresis_gap(data))
 
 
-def low_ramp_down_minus_up(data, claim):
-    return _branch_difference(data, "low:down", "low:up1", _hysteresis_gap(data))
+def low_ramp_frozen(data, claim):
+    """The ramp that stayed below (sqrt eps)*: its decreasing branch minus its top level
+    (Fig. 4 params ``low:down_change``), against the same change on the ramp that went beyond
+    it (``ramp:down_change``), the effect "nearly frozen" denies."""
+    fig = data.figure("fig4")
+    if fig is None:
+        return _missing("no ramp")
+    m, s, n = fig.param("low:down_change")
+    if not np.isfinite(m):
+        return _missing("no ramp that stays below (sqrt eps)*")
+    effect = fig.param("ramp:down_change")[0]
+    return [Measure(m, s, _steady_dof(n, s), effect=effect if np.isfinite(effect) else None,
+                    shown=f"{fmt(m, s)} (decrease minus top level; the ramp beyond (sqrt eps)* "
+                          f"changes by {fmt(effect)})")]
 
 
 def ramp_branch_slope(data, claim):
@@ -814,7 +826,7 @@ STATISTICS = {f.__name__: f for f in (
     initial_phi, tapped_phi, pbc_compaction, phi_b_gain, eq3_fit_quality,
     log_time_slowing, spectral_slopes, spectrum_eps_spread,
     sigma_intercept, bell_maximum, bell_side_slope, alpha_bell, ramp_up_minus_steady,
-    ramp_down_minus_up, ramp_up2_minus_down, low_ramp_down_minus_up, ramp_branch_slope,
+    ramp_down_minus_up, ramp_up2_minus_down, low_ramp_frozen, ramp_branch_slope,
     final_alpha, central_minus_lateral, lateral_first_tap, p0_initial_minus_final,
     p0_final_minus_py, xi_min, pore_share_change, pore_quadratic_fit, nu_tail_over_nu,
     nu_change)}
