@@ -269,6 +269,8 @@ CONTROLS = {
                        report(fig9=fig9().param("phi_c_final", 0.570, 0.001))),
     "phi_b_gain": (report(fig2=fig2({0.05: RISING})),
                    report(fig2=fig2({0.05: RISING[::-1]}))),  # time-reversed
+    "efficiency_decrease": (report(fig2=fig2({0.05: RISING})),
+                            report(fig2=fig2({0.05: 0.58 + 1e-5 * T}))),  # steady rate
     "eq3_fit_quality": (report(fig2=fig2({0.05: RISING})),
                         report(fig2=fig2({0.05: RISING}).param("eps=0.05:reduced_chi2", 5.0,
                                                                   x=0.05))),

@@ -380,6 +380,28 @@ def _log_slope(t, mean, sem, lo, hi):
     return _weighted_line(np.log(t[pick]), mean[pick], sem[pick])
 
 
+
+def _rate_change(fig, eps, t, mean, sem, n):
+    """Rate dPhi_b/dt over the last half of the taps minus that over the first decade."""
+    early, e_early, _ = _weighted_line_in(t, mean, sem, *EARLY_DECADE)
+    late, e_late, _ = _weighted_line_in(t, mean, sem, t[-1] / 2.0, t[-1])
+    label = f"eps = {eps:g}"
+    if not (np.isfinite(early) and np.isfinite(late)):
+        return Measure(label=label, undecided="no error bars on the curve")
+    return Measure(late - early, math.hypot(e_late, e_early), _dof(n), label=label,
+                   shown=f"{fmt(late, e_late)} vs {fmt(early, e_early)} per tap "
+                         f"(last half vs first decade)")
+
+
+def _weighted_line_in(t, mean, sem, lo, hi):
+    pick = (t >= lo) & (t <= hi)
+    return _weighted_line(t[pick], mean[pick], sem[pick])
+
+
+def efficiency_decrease(data, claim):
+    return _per_curve(data, "fig2", "a", _rate_change)
+
+
 def log_time_slowing(data, claim):
     """(late / early rate of Phi_b per unit ln t) at the smallest eps minus that at the
     largest: negative when the slowing is strongest at small eps (section III.A)."""
@@ -823,7 +845,7 @@ def nu_change(data, claim):
 
 
 STATISTICS = {f.__name__: f for f in (
-    initial_phi, tapped_phi, pbc_compaction, phi_b_gain, eq3_fit_quality,
+    initial_phi, tapped_phi, pbc_compaction, phi_b_gain, efficiency_decrease, eq3_fit_quality,
     log_time_slowing, spectral_slopes, spectrum_eps_spread,
     sigma_intercept, bell_maximum, bell_side_slope, alpha_bell, ramp_up_minus_steady,
     ramp_down_minus_up, ramp_up2_minus_down, low_ramp_frozen, ramp_branch_slope,
