@@ -13,6 +13,10 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass
 
+# (sqrt eps)* ~ 0.15 of section III.B: a ramp that went beyond it comes back on the reversible
+# branch, one that stayed below it on the irreversible (nearly frozen) one.
+from ..hysteresis import CRITICAL_SQRT_EPS
+
 __all__ = ["Scale", "QUICK", "MEDIUM", "FULL", "SCALES", "get_scale", "FBC_STARTS",
            "CRITICAL_SQRT_EPS"]
 
@@ -20,10 +24,6 @@ __all__ = ["Scale", "QUICK", "MEDIUM", "FULL", "SCALES", "get_scale", "FBC_START
 #: directly between the side walls; ``paper``, the paper's (section IV.A): a periodic
 #: deposition, then the walls and a slight agitation (examples/paper/README.md).
 FBC_STARTS = ("walls", "paper")
-
-#: (sqrt eps)* ~ 0.15 of section III.B: a ramp that went beyond it comes back on the reversible
-#: branch, one that stayed below it on the irreversible (nearly frozen) one.
-CRITICAL_SQRT_EPS = 0.15
 
 
 def _sq(values):
