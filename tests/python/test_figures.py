@@ -129,6 +129,18 @@ def test_fig2_phi_b_compaction(campaign, out_dir):
         assert np.all(np.isfinite(fit["mean"])) and fit["x"].min() >= 1
         for p in ("X_inf", "dX_inf", "B", "tau", "reduced_chi2"):
             assert ("params", f"{label}:{p}") in table
+        # what the fits can say: profile intervals, range refits, and <Z> with eq. 4
+        for p in ("X_inf", "dX_inf", "B", "tau"):
+            for suffix in ("lo", "hi", "range_deviation", "range_spread"):
+                assert ("params", f"{label}:{p}:{suffix}") in table
+            value, err, determined = param(table, f"{label}:{p}")
+            assert determined in (0, 1) and (determined or np.isnan(err))
+        z = table[("c", label)]
+        assert np.array_equal(z["x"], d["x"]) and np.all(z["mean"] > 0)
+        assert ("c", f"fit:{label}") in table and ("params", f"{label}:Z:B:lo") in table
+    for law in ("eq3", "eq4"):
+        assert len(table[("B", f"{law}:B")]["x"]) == len(data)
+        assert ("B", f"{law}:p_value") in table and ("B", f"{law}:reduced_chi2") in table
     # tapping compacts: Phi_b after the taps exceeds the initial value on average over eps
     assert np.mean(gains) > 0.005
 
@@ -176,6 +188,15 @@ def test_fig5_ageing(campaign, out_dir):
         assert np.all(d["mean"] >= 0) and np.all(d["n"] == SEEDS)
         grow.append(d["mean"][-10:].mean() - d["mean"][1:4].mean())
     assert np.mean(grow) > 0  # the packing drifts away from its state at t_W
+    # the scaling variable: exponents with their intervals, the collapse against no rescaling
+    for tag in ("scaling", "scaling_time"):
+        mu, _, _ = param(table, f"{tag}:mu")
+        assert np.isfinite(mu) and np.isfinite(param(table, f"{tag}:reduced_chi2")[0])
+        assert ("params", f"{tag}:mu:lo") in table and ("params", f"{tag}:mu:jackknife") in table
+    assert np.isfinite(param(table, "unscaled:reduced_chi2")[0])
+    rescaled = series(table, "b", "tw=")
+    assert sorted(rescaled) == sorted(s for s in curves if float(s[3:]) > 0)
+    assert np.all(np.isfinite(table[("b", "eq6")]["mean"]))
 
 
 def test_fig6_vertical_profiles(campaign, out_dir):

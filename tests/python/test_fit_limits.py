@@ -105,7 +105,7 @@ def test_range_refits_consistent_for_the_right_law():
     assert default_tap_ranges(taps) == [(1.0, 1000.0), (1.0, 2000.0), (1.0, 4000.0),
                                         (400.0, 4000.0)]
     worst = []
-    for seed in range(4):
+    for seed in range(2):
         rng = np.random.default_rng(300 + seed)
         y = InverseLogLaw.function(taps, *TRUE_EQ3) + rng.normal(0, 2e-3, taps.size)
         r = range_refits(InverseLogLaw(), taps, y, 2e-3)
@@ -155,3 +155,146 @@ def test_exponential_dependence_of_b():
     assert np.isfinite(two.slope) and two.slope_interval.determined
     none = exponential_dependence(sqrt_eps[:1], B[:1], [np.nan], B[:1])
     assert none.fit is None and np.isnan(none.slope) and "not testable" in repr(none)
+
+
+# ---- Fig. 2: every statistic from the figure's CSV alone -------------------------------------
+
+def _fig2_table(tmp_path, law_is_right=True):
+    """A Fig. 2 CSV written by FigureTable: Phi_b (eq. 3) and <Z> (eq. 4) at three eps, B
+    exponential in sqrt(eps), three seeds' standard errors."""
+    from tapmc.paper import _plotting as P
+
+    t = np.arange(0.0, 1001.0)
+    rng = np.random.default_rng(8)
+    table = P.FigureTable()
+    for eps in (0.005, 0.05, 0.15):
+        B = 0.1 * np.exp(5.0 * np.sqrt(eps))
+        phi = InverseLogLaw.function(t, 0.62, 0.05, B, 20.0)
+        z = ZLaw.function(t, 7.0, 7.4, B, 20.0)
+        for panel, y, noise in (("a", phi, 2e-3), ("c", z, 5e-3)):
+            sem = np.full(t.size, noise)
+            table.add(panel, f"eps={P.fmt_eps(eps)}", t, y + rng.normal(0, noise, t.size), sem, 3)
+    path = tmp_path / "fig2.csv"
+    table.write(path)
+    return P.read_table(path)
+
+
+def test_fig2_statistics_from_a_csv(tmp_path):
+    from tapmc.paper import fig2
+
+    stats = fig2.statistics(_fig2_table(tmp_path))
+    assert sorted(stats) == ["eq3", "eq4"]
+    for tag, truth in (("eq3", InverseLogLaw.names), ("eq4", ZLaw.names)):
+        for eps, refits in stats[tag]["curves"].items():
+            assert refits.reference.determined_params == list(truth), (tag, eps)
+            assert refits.range_dependent == [], (tag, eps, refits)
+        dep = stats[tag]["B"]
+        iv = dep.slope_interval
+        assert dep.linear and iv.lo - 3 * (iv.hi - iv.lo) < 5.0 < iv.hi + 3 * (iv.hi - iv.lo)
+
+
+def test_pooled_sem_tames_a_chance_agreement_of_the_seeds():
+    from tapmc.paper.fig2 import pooled_sem
+
+    sem = np.full(200, 1e-3)
+    sem[100] = 1e-7  # two seeds crossing at one tap
+    pooled = pooled_sem(sem, window=51)
+    assert pooled[100] == pytest.approx(1e-3, rel=0.02)
+    assert np.allclose(pooled[:75], 1e-3)  # beyond the half window of tap 100
+    assert pooled_sem(np.full(5, np.nan)) is None
+    with pytest.raises(ValueError, match="window"):
+        pooled_sem(sem, window=0)
+
+
+# ---- Fig. 5: the scaling variable of A(t, t_W) -------------------------------------------------
+
+WAITING = (10.0, 30.0, 100.0, 300.0)
+
+
+def _ageing_curves(mu, kappa, seed, shapes=None, rel=0.05):
+    """A(t, t_W) = r^kappa eq6(t / r^mu), r = t_W / t_ref, with 5 % noise; ``shapes`` (B_A
+    per curve) breaks the scaling."""
+    from tapmc.laws import AgeingLaw
+
+    t = np.arange(0.0, 751.0)
+    t_ref = np.exp(np.mean(np.log(WAITING)))
+    rng = np.random.default_rng(seed)
+    out = {}
+    for k, tw in enumerate(WAITING):
+        r = tw / t_ref
+        B = 0.5 if shapes is None else shapes[k]
+        A = r ** kappa * AgeingLaw.function(t / r ** mu, 0.02, B, 10.0)
+        sem = rel * A + 1e-12
+        out[tw] = (t, A + rng.normal(0, 1, t.size) * sem, sem)
+    return out
+
+
+def test_collapse_recovers_a_known_scaling_exponent():
+    from tapmc.ageing import scaling_collapse
+
+    hits = 0
+    for seed in range(3):
+        col = scaling_collapse(_ageing_curves(0.7, 0.3, seed))
+        mu, kappa = col.interval("mu"), col.interval("kappa")
+        assert mu.determined and kappa.determined
+        hits += mu.lo <= 0.7 <= mu.hi
+        assert abs(col.mu - 0.7) < 0.05 and abs(col.kappa - 0.3) < 0.05
+        assert col.reduced_chi2 < 2 and col.unscaled_reduced_chi2 > 10 * col.reduced_chi2
+        s, a = col.rescale(30.0, *_ageing_curves(0.7, 0.3, seed)[30.0][:2])
+        assert np.all(np.isfinite(s)) and np.all(np.isfinite(a))
+    assert hits >= 2
+    # time alone cannot absorb the amplitude factor: a worse collapse
+    only_time = scaling_collapse(_ageing_curves(0.7, 0.3, 0), fit_amplitude=False)
+    assert "kappa" not in only_time.fit.names and only_time.kappa == 0.0
+    assert only_time.reduced_chi2 > 5 * col.reduced_chi2
+
+
+def test_curves_without_a_scaling_collapse_poorly():
+    from tapmc.ageing import scaling_collapse
+
+    col = scaling_collapse(_ageing_curves(0.0, 0.0, 1, shapes=(0.05, 0.5, 5.0, 50.0)))
+    assert col.reduced_chi2 > 20
+
+
+def test_collapse_of_a_random_walk_keeps_mu_compatible_with_no_ageing():
+    # increments independent of the age: no ageing, mu = 0. The delays of a curve are
+    # correlated, so the profile alone is far too narrow (it misses 0 in 11 of 12 seeds);
+    # widened by the jackknife and the bootstrap over realizations it holds 0 at about its
+    # nominal rate (10 of 12 seeds; here 6 seeds, at least 4 expected for a 68 % interval)
+    from tapmc.ageing import Ageing
+
+    widened = profile = 0
+    for seed in range(6):
+        rng = np.random.default_rng(seed)
+        z = 7.3 + np.cumsum(rng.normal(0, 1e-3, (10, 501)), axis=1)
+        col = Ageing(z, [10, 30, 100]).compute().scaling(fit_amplitude=False, bootstrap=20)
+        assert col.bootstrap is not None and np.isfinite(col.bootstrap["mu"])
+        iv, bare = col.interval("mu"), col.fit.intervals["mu"]
+        widened += iv.lo <= 0.0 <= iv.hi
+        profile += bare.lo <= 0.0 <= bare.hi
+    assert widened >= 4 and profile <= 2, (widened, profile)
+
+
+def test_fig5_statistics_from_a_csv(tmp_path):
+    from tapmc.paper import _plotting as P
+    from tapmc.paper import fig5
+
+    table = P.FigureTable()
+    for tw, (t, a, sem) in _ageing_curves(0.7, 0.3, 4).items():
+        table.add("a", f"tw={tw:g}", t, a, sem, 10)
+    table.write(tmp_path / "fig5.csv")
+    curves = fig5.curves_from_table(P.read_table(tmp_path / "fig5.csv"))
+    assert sorted(curves) == list(WAITING)
+    stats = fig5.scaling_statistics(curves)
+    assert fig5.drawn_collapse(stats) is stats["scaling"]
+    assert stats["scaling"].interval("mu").lo <= 0.7 + 0.05
+
+
+def test_scaling_collapse_validation():
+    from tapmc.ageing import scaling_collapse
+
+    curves = _ageing_curves(0.5, 0.0, 0)
+    with pytest.raises(ValueError, match="at least 2"):
+        scaling_collapse({10.0: curves[10.0]})
+    with pytest.raises(ValueError, match="must be > 0"):
+        scaling_collapse({0.0: curves[10.0], 30.0: curves[30.0]})

@@ -12,14 +12,42 @@ delay and t_w the age of the packing:
 so A(0, t_w) = 0 for every t_w and the curves for different waiting times can collapse onto eq.
 6 as functions of t. This is the reading used here (eq. 5 with its two time symbols exchanged);
 t and t_w are counted in taps, index 0 of a series being the initial packing.
+
+The scaling variable. The paper sees "obviously a scaling law" in Fig. 5 and draws the curves
+collapsed on one eq. 6, without saying on which variable. :func:`scaling_collapse` searches it:
+A(t, t_w) = (t_w/t_ref)^kappa F(t / (t_w/t_ref)^mu) with F of eq. 6, i.e. one eq. 6 whose
+tau_A grows as t_w^mu and whose amplitude as t_w^kappa (t_ref the geometric mean of the
+waiting times, so A_inf and tau_A are those of a typical t_w): the usual ageing forms t/t_w
+(mu = 1, "simple ageing") and no ageing (mu = kappa = 0) are points of this family. mu and kappa
+are fitted with every parameter of eq. 6 by weighted least squares on all curves at once; the
+reduced chi2 of the collapse is compared with that of one eq. 6 in t itself (no rescaling).
+
+Their uncertainty. The delays of one curve come from the same realizations: A(t, t_w) and
+A(t + 1, t_w) share almost all their increments, so a chi2 that counts every delay as
+independent, and the profile-likelihood interval built on it (``tapmc.laws.FitResult.
+intervals``), are far too narrow (a random walk, which has no ageing, gives a "determined" mu
+several profile widths away from 0). :meth:`ScalingCollapse.interval` therefore widens the
+profile interval to the leave-one-curve-out jackknife standard error and, when the
+realizations are at hand (:meth:`Ageing.scaling` with ``bootstrap``), to the standard
+deviation over realizations resampled with replacement; a side that the profile leaves open
+stays open.
 """
 
 import numpy as np
 
 from ._validate import as_1d, as_2d, new_axis, require, result
-from .laws import AgeingLaw
+from .laws import AgeingLaw, Law
 
-__all__ = ["Ageing", "MIN_BOOTSTRAP_REALIZATIONS"]
+__all__ = ["Ageing", "MIN_BOOTSTRAP_REALIZATIONS", "ScaledAgeingLaw", "ScalingCollapse",
+           "scaling_collapse", "SCALING_EXPONENT_RANGE"]
+
+#: allowed range of the scaling exponents mu (time) and kappa (amplitude): beyond +-3 a
+#: factor 10 in t_w would rescale t by more than 10^3, far outside any run of the paper
+#: (waiting times 10 to 1000 taps in runs of 4000).
+SCALING_EXPONENT_RANGE = (-3.0, 3.0)
+#: log-spaced delays per curve for the grid search of the starting exponents (the final fit
+#: uses every delay).
+_START_POINTS_PER_CURVE = 40
 
 #: fewer realizations than this have too few distinct resamples for bootstrap errors (the
 #: paper averaged 10)
@@ -148,6 +176,37 @@ class Ageing:
             raise ValueError(f"t_w = {t_w!r} is not one of the waiting times {self.waiting_times}")
         return self._fit([t_w], bootstrap, seed)
 
+    def scaling(self, fit_amplitude=True, bootstrap=0, seed=0):
+        """:func:`scaling_collapse` of the curves of the waiting times > 0: the scaling
+        variable t / t_w^mu (and amplitude t_w^kappa) that collapses them on one eq. 6. With
+        ``bootstrap`` > 0 the collapse is refitted on that many resamples of the realizations
+        (with replacement) and ``bootstrap`` of the result holds each parameter's standard
+        deviation over them (at least ``MIN_BOOTSTRAP_REALIZATIONS`` realizations needed)."""
+        require(self, "_A")
+        bootstrap = int(bootstrap)
+        if bootstrap < 0:
+            raise ValueError(f"bootstrap = {bootstrap} must be >= 0 (0: no resampling)")
+        tws = [tw for tw in self.waiting_times if tw > 0]
+        curves = {tw: (self.t, self.A[tw], self.A_sem[tw]) for tw in tws}
+        res = scaling_collapse(curves, fit_amplitude)
+        if bootstrap and self.n_realizations >= MIN_BOOTSTRAP_REALIZATIONS:
+            rng = np.random.default_rng(seed)
+            t, _, sig, tw_pts = _stack(res._curves, res._sigma)
+            law = ScaledAgeingLaw(tw_pts, res.t_ref, fit_amplitude)
+            # the delays kept by the collapse (t > 0 with a standard error), per waiting time
+            delays = {tw: c[0].astype(int) for tw, c in res._curves.items()}
+            samples = []
+            for _ in range(bootstrap):
+                rows = self.z[rng.integers(0, self.n_realizations, self.n_realizations)]
+                a = np.concatenate([((rows[:, int(tw) + delays[tw]] - rows[:, [int(tw)]]) ** 2)
+                                    .mean(axis=0) for tw in res._curves])
+                fit_b = law.fit(t, a, sig, p0=list(res.fit.params.values()))
+                if fit_b.converged:
+                    samples.append(list(fit_b.params.values()))
+            if len(samples) >= 2:
+                res.bootstrap = dict(zip(res.fit.names, np.std(samples, axis=0, ddof=1)))
+        return res
+
     def collapse(self, bootstrap=100, seed=0):
         """Eq. 6 fitted to all waiting times together: one (A_inf, B_A, tau_A) for every t_w
         (the scaling of Fig. 5); errors as in :meth:`fit`."""
@@ -169,3 +228,232 @@ class Ageing:
         ax.set_ylabel(r"$A(t, t_w)$")
         ax.legend()
         return ax
+
+
+class ScaledAgeingLaw(Law):
+    """Eq. 6 on the rescaled variables (module text): A(t, t_w) = r^kappa A_inf (1 - 1/(1 +
+    B_A ln(1 + t/(tau_A r^mu)))), r = t_w/t_ref, for points (t, t_w) given as ``t`` and the
+    per-point waiting times ``t_w`` of the constructor. Parameters ``A_inf, B_A, tau_A, mu,
+    kappa`` (``kappa`` left out with ``fit_amplitude=False``: curves rescaled in time only)."""
+
+    time_scales = ("tau_A",)
+
+    def __init__(self, t_w, t_ref=None, fit_amplitude=True):
+        self.t_w = as_1d("t_w", t_w)
+        if np.any(self.t_w <= 0):
+            raise ValueError("t_w must be > 0 everywhere (a waiting time of 0 has no scale)")
+        self.t_ref = float(np.exp(np.mean(np.log(np.unique(self.t_w))))) if t_ref is None \
+            else float(t_ref)
+        if not (np.isfinite(self.t_ref) and self.t_ref > 0):
+            raise ValueError(f"t_ref = {t_ref!r} must be finite and > 0")
+        self.fit_amplitude = bool(fit_amplitude)
+        self.names = ("A_inf", "B_A", "tau_A", "mu", "kappa") if self.fit_amplitude \
+            else ("A_inf", "B_A", "tau_A", "mu")
+        self._log_r = np.log(self.t_w / self.t_ref)
+
+    def function(self, t, A_inf, B_A, tau_A, mu, kappa=0.0):
+        log_r = self._log_r if np.shape(t) == self._log_r.shape else 0.0
+        return np.exp(kappa * log_r) * AgeingLaw.function(t * np.exp(-mu * log_r), A_inf,
+                                                          B_A, tau_A)
+
+    def bounds(self, x, y):
+        lo, hi = SCALING_EXPONENT_RANGE
+        n = len(self.names) - 3
+        return ([0.0, 0.0, 0.0] + [lo] * n, [np.inf] * 3 + [hi] * n)
+
+    def initial_guess(self, t, y, w):
+        # a grid of exponents; at each, eq. 6's own global start on the rescaled curves, on a
+        # log-spaced subset of the delays of every curve
+        keep = np.zeros(t.size, dtype=bool)
+        for tw in np.unique(self.t_w):
+            idx = np.flatnonzero(self.t_w == tw)
+            order = idx[np.argsort(t[idx])]
+            pick = np.unique(np.round(np.geomspace(1, order.size, _START_POINTS_PER_CURVE)))
+            keep[order[pick.astype(int) - 1]] = True
+        ts, ys, ws, lr = t[keep], y[keep], w[keep], self._log_r[keep]
+        mus = np.linspace(-1.5, 1.5, 13)
+        kappas = np.linspace(-1.5, 1.5, 13) if self.fit_amplitude else np.array([0.0])
+        law = AgeingLaw()
+        best = (np.inf, None)
+        for mu in mus:
+            for kappa in kappas:
+                scale = np.exp(kappa * lr)
+                s, a, wa = ts * np.exp(-mu * lr), ys / scale, ws * scale ** 2
+                try:
+                    p = law.initial_guess(s, a, wa)
+                except ValueError:
+                    continue
+                sse = np.sum(wa * (law.function(s, *p) - a) ** 2)
+                if sse < best[0]:
+                    best = (sse, list(p) + [mu] + ([kappa] if self.fit_amplitude else []))
+        if best[1] is None:
+            raise ValueError("no starting point for the scaled eq. 6: check the curves")
+        return best[1]
+
+
+class ScalingCollapse:
+    """Result of :func:`scaling_collapse`. ``fit`` (the FitResult of :class:`ScaledAgeingLaw`:
+    profile ``intervals`` of ``mu``, ``kappa`` and of eq. 6's ``A_inf, B_A, tau_A`` at t_ref),
+    ``unscaled`` (one eq. 6 in t for every curve, the same points and weights), ``mu``,
+    ``kappa`` (0 without amplitude rescaling), ``t_ref``, ``reduced_chi2`` and
+    ``unscaled_reduced_chi2`` (the collapse against no rescaling), ``jackknife`` (dict name ->
+    leave-one-curve-out standard error; nan with fewer than 3 curves), ``waiting_times``,
+    ``rescale(t_w, t, A)`` -> (t / r^mu, A / r^kappa) with r = t_w/t_ref, ``master(s)`` (the
+    eq. 6 of the collapse on the rescaled variable) and ``plot(ax=None)``."""
+
+    def __init__(self, fit, unscaled, curves, sigma):
+        self.fit = fit
+        self.unscaled = unscaled
+        self._curves = curves
+        self._sigma = sigma  # dict t_w -> the weights of the fit (sigma per delay)
+        self._jackknife = None
+        #: dict name -> standard deviation over bootstrap resamples of the realizations
+        #: (:meth:`Ageing.scaling`), None when not computed
+        self.bootstrap = None
+
+    def interval(self, name):
+        """The 68 % interval of parameter ``name``: its profile interval, each side widened to
+        the jackknife standard error and the bootstrap standard deviation when larger (module
+        text); an open side stays open. A :class:`tapmc.laws.Interval`."""
+        from .laws import Interval
+
+        iv = self.fit.intervals[name]
+        spread = [self.jackknife.get(name, np.nan)]
+        if self.bootstrap is not None:
+            spread.append(self.bootstrap.get(name, np.nan))
+        spread = [v for v in spread if np.isfinite(v)]
+        width = max(spread) if spread else 0.0
+        lo = min(iv.lo, iv.value - width) if np.isfinite(iv.lo) else None
+        hi = max(iv.hi, iv.value + width) if np.isfinite(iv.hi) else None
+        return Interval(iv.value, lo, hi, iv.limits, "profile, jackknife, bootstrap")
+
+    @property
+    def waiting_times(self):
+        return sorted(self._curves)
+
+    @property
+    def t_ref(self):
+        return self.fit.law.t_ref
+
+    @property
+    def mu(self):
+        return float(self.fit.params["mu"])
+
+    @property
+    def kappa(self):
+        return float(self.fit.params.get("kappa", 0.0))
+
+    @property
+    def reduced_chi2(self):
+        return float(self.fit.reduced_chi2)
+
+    @property
+    def unscaled_reduced_chi2(self):
+        return float(self.unscaled.reduced_chi2)
+
+    def rescale(self, t_w, t, A):
+        r = float(t_w) / self.t_ref
+        return np.asarray(t, float) / r ** self.mu, np.asarray(A, float) / r ** self.kappa
+
+    def master(self, s):
+        p = self.fit.params
+        return AgeingLaw.function(np.asarray(s, float), p["A_inf"], p["B_A"], p["tau_A"])
+
+    @property
+    def jackknife(self):
+        if self._jackknife is None:
+            tws = self.waiting_times
+            names = self.fit.names
+            if len(tws) < 3:
+                self._jackknife = {k: np.nan for k in names}
+            else:
+                values = []
+                for drop in tws:
+                    sub = {tw: c for tw, c in self._curves.items() if tw != drop}
+                    t, a, sig, tw_pts = _stack(sub, self._sigma)
+                    law = ScaledAgeingLaw(tw_pts, self.t_ref, "kappa" in names)
+                    res = law.fit(t, a, sig, p0=list(self.fit.params.values()))
+                    values.append(list(res.params.values()))
+                values = np.array(values)
+                k = len(tws)
+                se = np.sqrt((k - 1) / k * np.sum((values - values.mean(0)) ** 2, axis=0))
+                self._jackknife = dict(zip(names, se))
+        return self._jackknife
+
+    def __repr__(self):
+        iv = self.interval("mu")
+        lo = f"{iv.lo:.3g}" if np.isfinite(iv.lo) else "open"
+        hi = f"{iv.hi:.3g}" if np.isfinite(iv.hi) else "open"
+        return (f"<ScalingCollapse mu = {self.mu:.3g} [{lo}, {hi}], kappa = {self.kappa:.3g}; "
+                f"reduced chi2 {self.reduced_chi2:.3g} (unscaled {self.unscaled_reduced_chi2:.3g})>")
+
+    def plot(self, ax=None):
+        """The rescaled curves and the eq. 6 of the collapse, in logarithmic time."""
+        ax = new_axis(ax)
+        smin, smax = np.inf, 0.0
+        for tw in self.waiting_times:
+            t, a, sem = self._curves[tw]
+            s, y = self.rescale(tw, t, a)
+            ax.plot(s, y, "o", ms=2, label=f"$t_W$ = {tw:g}")
+            smin, smax = min(smin, s.min()), max(smax, s.max())
+        ss = np.geomspace(smin, smax, 200)
+        ax.plot(ss, self.master(ss), "k:", lw=1.5, label="eq. 6 of the collapse")
+        ax.set_xscale("log")
+        ax.set_xlabel(rf"$t\,/\,(t_W/{self.t_ref:.3g})^{{{self.mu:.2f}}}$")
+        ax.set_ylabel(rf"$A\,/\,(t_W/{self.t_ref:.3g})^{{{self.kappa:.2f}}}$")
+        ax.legend(fontsize=7)
+        return ax
+
+
+def _clean_curves(curves):
+    out = {}
+    for tw, curve in curves.items():
+        t, a, sem = (np.asarray(v, dtype=float) for v in curve)
+        if not (t.shape == a.shape == sem.shape):
+            raise ValueError(f"curve t_w = {tw}: t, A and sem must have the same length")
+        keep = (t > 0) & np.isfinite(a) & np.isfinite(sem) & (sem > 0)
+        if keep.sum() < 3:
+            raise ValueError(f"curve t_w = {tw}: fewer than 3 delays t > 0 with a sem > 0")
+        out[float(tw)] = (t[keep], a[keep], sem[keep])
+    return out
+
+
+def _stack(curves, sigma=None):
+    """Stacked (t, A, sigma, t_w) of the curves (dict t_w -> (t, A, sem)); sigma the curves'
+    sem, or the dict t_w -> weights ``sigma``."""
+    t = np.concatenate([c[0] for c in curves.values()])
+    a = np.concatenate([c[1] for c in curves.values()])
+    tw = np.concatenate([np.full(c[0].size, k) for k, c in curves.items()])
+    sig = np.concatenate([c[2] if sigma is None else sigma[k] for k, c in curves.items()])
+    return t, a, sig, tw
+
+
+def scaling_collapse(curves, fit_amplitude=True):
+    """Search the scaling variable of Fig. 5 (module text) from ``curves``, a dict t_w -> (t,
+    A, sem) of the curves A(t, t_w) averaged over realizations (the CSV panel ``a`` of Fig. 5:
+    series ``tw=<t_W>``); t = 0 and points without a standard error are left out, t_w must be
+    > 0 and at least 2 curves are needed. Weights as in :meth:`Ageing.fit`: the standard
+    error of a mean of squares is proportional to its mean, so sigma = model(t) x median(sem /
+    A), the model being the collapse fitted first with the points' own sem (not each point's
+    noisy sem); the unscaled eq. 6 is fitted with the same weights, so that the two reduced
+    chi2 compare. Returns a :class:`ScalingCollapse`."""
+    if len(curves) < 2:
+        raise ValueError(f"curves has {len(curves)} waiting time(s); a collapse needs at least 2")
+    if any(float(tw) <= 0 for tw in curves):
+        raise ValueError(f"waiting times {sorted(curves)} must be > 0 (t_w = 0 has no scale)")
+    curves = _clean_curves(curves)
+    t, a, sem, tw = _stack(curves)
+    positive = a > 0
+    if not positive.any():
+        raise ValueError("every A(t, t_w) is 0: nothing to collapse")
+    ratio = float(np.median(sem[positive] / a[positive]))
+    law = ScaledAgeingLaw(tw, fit_amplitude=fit_amplitude)
+    first = law.fit(t, a, sem)
+    model = np.maximum(first(t), 1e-300) * ratio
+    sigma, start = {}, 0
+    for k, c in curves.items():
+        sigma[k] = model[start:start + c[0].size]
+        start += c[0].size
+    scaled = law.fit(t, a, model, p0=list(first.params.values())).improved()
+    unscaled = AgeingLaw().fit(t, a, model).improved()
+    return ScalingCollapse(scaled, unscaled, curves, sigma)

@@ -156,6 +156,7 @@ class FitResult:
         self.converged = bool(converged)
         self._intervals = None
         self._profile_note = ""
+        self._profile_best = None
         resid = y - self(x)
         self.residuals = resid
         self.chi2 = float(np.sum((resid / sigma) ** 2)) if weighted else float(np.sum(resid ** 2))
@@ -212,6 +213,27 @@ class FitResult:
     @note.setter
     def note(self, value):
         self._note = value
+
+    def improved(self, rounds=3):
+        """This fit, or a refit from the lowest chi2 that its profiles met when that is lower
+        by more than a small fraction of the profile threshold (the fit had stopped in a
+        local minimum or on a slope of a flat valley); repeated up to ``rounds`` times. The
+        profiles are computed (as for ``intervals``)."""
+        res = self
+        for _ in range(int(rounds)):
+            res.intervals
+            if res._profile_best is None or res._profile_best[1] is None:
+                return res
+            best, start = res._profile_best
+            if not best < res.chi2 - _LOCAL_MINIMUM_TOLERANCE * PROFILE_DELTA_CHI2 * \
+                    res.chi2_scale:
+                return res
+            new = res.law.fit(res.x, res.y, res.sigma if res.weighted else None,
+                              p0=list(start))
+            if not (new.converged and new.chi2 < res.chi2):
+                return res
+            res = new
+        return res
 
     @property
     def chi2_scale(self):
@@ -473,7 +495,7 @@ class Law:
             fwd = np.log if log else (lambda v: v)
             back = np.exp if log else (lambda v: v)
             u0, ua, ub = fwd(popt[i]), fwd(a), fwd(b)
-            pts = [(popt[i], chi2_min)]
+            pts = [(popt[i], chi2_min, popt)]
             span = ub - ua
             if span > 0:
                 e = err[i] / popt[i] if log else err[i]
@@ -489,7 +511,7 @@ class Law:
                         u = limit if at_limit else u
                         c, q = self._profile_point(x, y, sigma, i, back(u), q_prev, lo, hi)
                         if np.isfinite(c):
-                            pts.append((back(u), c))
+                            pts.append((back(u), c, q))
                         if np.isfinite(c) and c - chi2_min > thr:
                             self._refine(x, y, sigma, i, back, lo, hi, chi2_min, thr, pts,
                                          (u_prev, c_prev, q_prev), (u, c))
@@ -500,16 +522,22 @@ class Law:
                             u_prev, c_prev, q_prev = u, c, q
                         step *= _PROFILE_GROWTH
             samples.append((pts, limits[i]))
-        best = min(min(c for _, c in pts) for pts, _ in samples)
+        best, best_params = chi2_min, None
+        for pts, _ in samples:
+            for _, c, q in pts:
+                if c < best:
+                    best, best_params = c, q
+        result._profile_best = (best, best_params)
         note = ""
         if best < chi2_min - _LOCAL_MINIMUM_TOLERANCE * thr:
             note = (f"the profile found a chi2 lower by {chi2_min - best:.3g} than the fit's: "
-                    "the fit stopped in a local minimum; intervals are about the lower one")
+                    "the fit stopped in a local minimum (FitResult.improved() refits from there); "
+                    "intervals are about the lower one")
         out = {}
         for name, (pts, (a, b, log)) in zip(self.names, samples):
-            pts = sorted(pts)
-            v = np.array([q for q, _ in pts])
-            d = (np.array([c for _, c in pts]) - best) / scale
+            pts = sorted(pts, key=lambda point: point[0])
+            v = np.array([point[0] for point in pts])
+            d = (np.array([point[1] for point in pts]) - best) / scale
             inside = np.flatnonzero(d <= PROFILE_DELTA_CHI2)
             if inside.size == 0:  # a fit without residuals: only rounding left in d
                 inside = np.array([int(np.argmin(d))])
@@ -541,7 +569,7 @@ class Law:
             c, q = self._profile_point(x, y, sigma, i, back(u), q_in, lo, hi)
             if not np.isfinite(c):
                 return
-            pts.append((back(u), c))
+            pts.append((back(u), c, q))
             if abs(c - chi2_min - thr) < 0.05 * thr:
                 return
             if c - chi2_min > thr:
@@ -1052,7 +1080,7 @@ def range_refits(law, t, y, sigma=None, ranges=None):
     for r in ranges:
         if len(r) != 2 or not r[0] < r[1]:
             raise ValueError(f"ranges entry {r!r} must be (first, last) with first < last")
-    reference = law.fit(t, y, s)
+    reference = law.fit(t, y, s).improved()
     fits = []
     for first, last in ranges:
         keep = (t >= first) & (t <= last)

@@ -1,25 +1,49 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 """Fig. 5 of Philippe & Bideau: ageing of the time-correlation function A(t, t_W) of <Z>
-(section III.C, eqs. 5-6).
+(section III.C, eqs. 5-6), and the scaling variable that collapses it.
 
 P.B.C., ``scale.ageing_eps``; realizations share the initial packing and differ by the Monte
 Carlo seed (the paper averaged 10). Top: A(t, t_W) (``tapmc.ageing.Ageing``, averaged over the
 realizations, with its standard error) for the waiting times ``scale.ageing_waiting_times``.
-Bottom: the collapse: the same curves in logarithmic time with one eq. 6,
-A_inf (1 - 1/(1 + B_A ln(1 + t/tau_A))), fitted to all of them together (``Ageing.collapse``,
-dotted); its reduced chi2 measures the collapse. Each curve is also fitted alone
-(``Ageing.fit``).
+Bottom: the collapse, as the paper draws it: the curves rescaled, A / r^kappa against
+t / r^mu with r = t_W / t_ref (t_ref the geometric mean of the waiting times), and the one
+eq. 6, A_inf (1 - 1/(1 + B_A ln(1 + s/tau_A))), of the collapse (dotted). The paper sees
+"obviously a scaling law" without naming its variable: mu and kappa are fitted with eq. 6 on
+all curves at once (``tapmc.ageing.scaling_collapse``), with 68 % profile-likelihood intervals
+and a leave-one-curve-out jackknife, and the collapse is also searched in time alone (kappa =
+0). The reduced chi2 of the collapse is compared with that of one eq. 6 in t for every curve
+(no rescaling, ``Ageing.collapse``). The bottom panel draws the time-and-amplitude collapse,
+or the time-only one when the data do not determine mu with the amplitude free (the two
+exponents then trade off along one direction). :func:`scaling_statistics` recomputes every
+collapse statistic from the CSV's panel ``a``.
 
-CSV panels: ``a`` (series ``tw=<t_W>``, x = t; drawn on both panels), ``b`` (``eq6``, the
-common fit), ``params`` (``tw=<t_W>:<parameter>`` with x = t_W,
-sem = 1-sigma error, n = 1 when the fit is determined, 0 when not; ``collapse:<parameter>``
-and ``collapse:reduced_chi2`` of the common fit).
+CSV panels: ``a`` (series ``tw=<t_W>``: x = t, mean A, sem, n realizations; drawn on the top
+panel), ``b`` (the drawn collapse: ``tw=<t_W>`` with x = t / r^mu, mean = A / r^kappa, sem
+likewise, and ``eq6``, its eq. 6 on the rescaled variable), ``params``:
+
+* ``tw=<t_W>:<name>`` (x = t_W): eq. 6 fitted to one curve, mean = value, sem = 1-sigma error
+  when the parameter is determined (empty when not), n = 1 determined / 0 not; ``:lo`` and
+  ``:hi``: its 68 % profile interval (empty on an open side, n = 1 when that side closes);
+* ``collapse:<name>``, ``collapse:reduced_chi2`` (and the same number as
+  ``unscaled:reduced_chi2``): one eq. 6 in t for all waiting times, the curves unscaled;
+* ``scaling:<name>`` for A_inf, B_A, tau_A (at t_ref), mu and kappa (sem = the larger
+  half-width of the interval, n = 1 when the profile closes), with ``:lo``, ``:hi`` (the 68 %
+  interval of ``ScalingCollapse.interval``: the profile widened to the jackknife and
+  bootstrap errors, since the delays of a curve are correlated), ``:jackknife`` (the
+  leave-one-curve-out standard error) and ``:bootstrap`` (the standard deviation over
+  ``BOOTSTRAP_RESAMPLES`` resamples of the realizations; empty with fewer than
+  ``tapmc.ageing.MIN_BOOTSTRAP_REALIZATIONS``), ``scaling:t_ref``, ``scaling:reduced_chi2``:
+  the time-and-amplitude collapse; ``scaling_time:...`` the same for the collapse in time
+  alone (no kappa);
+* ``drawn:mu``, ``drawn:kappa``: the exponents of panel b (n = 1 for the time-and-amplitude
+  collapse, 0 for the time-only one).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from tapmc.ageing import scaling_collapse
 from tapmc.laws import AgeingLaw
 
 from . import _plotting as P
@@ -75,49 +99,137 @@ def _curves(result):
     return out
 
 
+def curves_from_table(table):
+    """dict t_W -> (t, A, sem) of the ``tw=<t_W>`` curves of a Fig. 5 CSV's panel ``a``
+    (``tapmc.paper._plotting.read_table``)."""
+    return {float(series[3:]): (d["x"], d["mean"], d["sem"])
+            for (panel, series), d in table.items()
+            if panel == "a" and series.startswith("tw=") and ":" not in series}
+
+
+def scaling_statistics(curves):
+    """The two collapses of the module text from a dict t_W -> (t, A, sem) (waiting times 0
+    are left out: they have no scale): dict "scaling" (time and amplitude) and
+    "scaling_time" (time only) -> ``tapmc.ageing.ScalingCollapse`` (intervals from the profile
+    and the jackknife over curves; no realizations, no bootstrap)."""
+    curves = {tw: c for tw, c in curves.items() if tw > 0}
+    return {"scaling": scaling_collapse(curves, fit_amplitude=True),
+            "scaling_time": scaling_collapse(curves, fit_amplitude=False)}
+
+
+#: resamples of the realizations for the bootstrap errors of the collapse exponents: a
+#: standard deviation from 40 resamples is known to 11 %, enough to widen an interval, and
+#: each resample refits the collapse on every delay of every curve.
+BOOTSTRAP_RESAMPLES = 40
+
+
+def _scaling_of(result):
+    """The collapses of an ``Ageing`` result, with bootstrap errors over its realizations."""
+    return {"scaling": result.scaling(True, bootstrap=BOOTSTRAP_RESAMPLES),
+            "scaling_time": result.scaling(False, bootstrap=BOOTSTRAP_RESAMPLES)}
+
+
+def drawn_collapse(stats):
+    """The collapse of the bottom panel: time and amplitude when mu is determined there,
+    else time only."""
+    full = stats["scaling"]
+    return full if full.interval("mu").determined else stats["scaling_time"]
+
+
+def _bound(value):
+    return (value, 1) if np.isfinite(value) else (np.nan, 0)
+
+
+def add_fit_rows(table, tag, x, fit, collapse=None):
+    """Rows ``<tag>:<name>`` (+ ``:lo``, ``:hi``) of a FitResult; for a ``ScalingCollapse``
+    the intervals are its widened ones and ``:jackknife``, ``:bootstrap`` follow."""
+    errors = fit.errors
+    for name, value in fit.params.items():
+        iv = fit.intervals[name] if collapse is None else collapse.interval(name)
+        half = max(iv.half_widths) if iv.determined else np.nan
+        err = errors[name] if collapse is None else half
+        table.add("params", f"{tag}:{name}", x, value, err, int(iv.determined))
+        for side, bound in (("lo", iv.lo), ("hi", iv.hi)):
+            b, closed = _bound(bound)
+            table.add("params", f"{tag}:{name}:{side}", x, b, None, closed)
+        if collapse is not None:
+            jk = collapse.jackknife[name]
+            bs = np.nan if collapse.bootstrap is None else collapse.bootstrap[name]
+            table.add("params", f"{tag}:{name}:jackknife", x, jk, None, int(np.isfinite(jk)))
+            table.add("params", f"{tag}:{name}:bootstrap", x, bs, None, int(np.isfinite(bs)))
+
+
 def draw(campaign, out_dir, waiting_times=None):
     png, csv = P.figure_paths(out_dir, NAME)
     result, nreal = ageing(campaign, waiting_times)
     table = P.FigureTable()
     fig, (ax_a, ax_c) = P.new_figure(2, 1)
+    colors = {}
+    curves = {}
     for tw, t, a, sem in _curves(result):
-        pos = t > 0
         line = P.errorbars(ax_a, t, a, sem, label=f"$t_W$ = {tw:g}")
-        ax_c.plot(t[pos], a[pos], "o", ms=2, color=line.get_color(), label=f"$t_W$ = {tw:g}")
+        colors[tw] = line.get_color()
         table.add("a", f"tw={tw:g}", t, a, sem, nreal)
+        curves[float(tw)] = (t, a, sem)
         try:
             fit = result.fit(tw)
         except (ValueError, RuntimeError):
             # too few realizations for the library's own error estimate: a direct eq. 6 fit
             # weighted by the standard errors where they exist
-            keep = pos & (np.nan_to_num(sem) > 0)
+            keep = (t > 0) & (np.nan_to_num(sem) > 0)
             try:
                 fit = AgeingLaw().fit(t[keep], a[keep], sigma=sem[keep])
             except (ValueError, RuntimeError):
                 continue
-        for name, value in fit.params.items():
-            table.add("params", f"tw={tw:g}:{name}", tw, value, fit.errors.get(name, np.nan),
-                      int(bool(fit.determined)))
+        add_fit_rows(table, f"tw={tw:g}", tw, fit)
     try:
         common = result.collapse()
     except (ValueError, RuntimeError):
         common = None
     if common is not None:
-        t = np.asarray(result.t, dtype=float)
-        ts = np.geomspace(max(t[t > 0].min(), 1.0), t.max(), 200)
-        ax_c.plot(ts, common(ts), "k:", lw=1.5,
-                  label="eq. 6" + ("" if common.determined else " (not determined)"))
-        table.add("b", "eq6", ts, common(ts), None, 0)
         table.add("params", "collapse:reduced_chi2", 0.0, common.reduced_chi2, None,
                   int(bool(common.determined)))
-        for name, value in common.params.items():
-            table.add("params", f"collapse:{name}", 0.0, value, common.errors.get(name, np.nan),
-                      int(bool(common.determined)))
+        add_fit_rows(table, "collapse", 0.0, common)
+    try:
+        stats = _scaling_of(result) if hasattr(result, "scaling") else \
+            scaling_statistics(curves)
+    except (ValueError, RuntimeError):
+        stats = None
+    if stats is not None:
+        table.add("params", "unscaled:reduced_chi2", 0.0,
+                  stats["scaling"].unscaled_reduced_chi2, None, 1)
+        for tag, col in stats.items():
+            table.add("params", f"{tag}:t_ref", 0.0, col.t_ref, None, 1)
+            table.add("params", f"{tag}:reduced_chi2", 0.0, col.reduced_chi2, None,
+                      int(not col.fit.undetermined_params))
+            add_fit_rows(table, tag, 0.0, col.fit, col)
+        shown = drawn_collapse(stats)
+        full = shown is stats["scaling"]
+        table.add("params", "drawn:mu", 0.0, shown.mu, None, int(full))
+        table.add("params", "drawn:kappa", 0.0, shown.kappa, None, int(full))
+        smin, smax = np.inf, 0.0
+        for tw, (t, a, sem) in curves.items():
+            if tw <= 0:
+                continue
+            s, y = shown.rescale(tw, t, a)
+            _, ys = shown.rescale(tw, t, sem)
+            table.add("b", f"tw={tw:g}", s, y, ys, nreal)
+            pos = s > 0
+            ax_c.plot(s[pos], y[pos], "o", ms=2, color=colors.get(tw), label=f"$t_W$ = {tw:g}")
+            smin, smax = min(smin, s[pos].min()), max(smax, s[pos].max())
+        ss = np.geomspace(smin, smax, 200)
+        iv = shown.interval("mu")
+        mu_text = (f"[{iv.lo:.2f}, {iv.hi:.2f}]" if iv.determined else "undetermined")
+        ax_c.plot(ss, shown.master(ss), "k:", lw=1.5,
+                  label=f"eq. 6; $\\mu$ = {shown.mu:.2f} {mu_text}, $\\kappa$ = "
+                        f"{shown.kappa:.2f}; red. $\\chi^2$ {shown.reduced_chi2:.3g} "
+                        f"(unscaled {shown.unscaled_reduced_chi2:.3g})")
+        table.add("b", "eq6", ss, shown.master(ss), None, 0)
+        ax_c.set_xlabel(rf"$t\,/\,(t_W/{shown.t_ref:.3g})^{{\mu}}$ (taps)")
+        ax_c.set_ylabel(rf"$A\,/\,(t_W/{shown.t_ref:.3g})^{{\kappa}}$")
     ax_a.set_xlabel("t (taps)")
     ax_a.set_ylabel(r"$A(t, t_W)$")
     ax_a.legend(fontsize=7, title=f"P.B.C., {nreal} realizations", title_fontsize=7)
     ax_c.set_xscale("log")
-    ax_c.set_xlabel("t (taps)")
-    ax_c.set_ylabel(r"$A(t, t_W)$")
-    ax_c.legend(fontsize=7)
+    ax_c.legend(fontsize=6)
     return P.write_figure(fig, png, table, csv)
