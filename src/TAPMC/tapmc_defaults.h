@@ -197,12 +197,17 @@ constexpr long kThreadChunkTrials = 4096;
 // A block of fewer trials than this per thread runs on the serial loop (same moves): a window
 // costs two hand-offs between threads (about a microsecond).
 constexpr long kThreadMinTrialsPerThread = 512;
+// The windowed executor prefetches the draws (made on other cores) this many trials ahead.
+constexpr int kThreadDrawPrefetchAhead = 32;
 // Largest 'threads' value: a trial's owner is stored in 7 bits.
 constexpr int kMaxThreads = 64;
-// A busy wait (thread team, trial dependencies) pauses this many times before yielding its core:
-// about a microsecond, longer than a typical wait for a neighbour's trial, shorter than a
-// time slice when there are more threads than cores.
-constexpr int kSpinsBeforeYield = 256;
+// A busy wait (thread team, trial dependencies) pauses this many times (about 0.1 ms) before
+// yielding its core: a yield on a busy machine can hand the core to another process for a whole
+// time slice (milliseconds), while a wait for a neighbour's trial or the next window is
+// microseconds. With more threads than cores a waiter must let the thread it waits for run:
+// it yields after kSpinsBeforeYieldOversubscribed pauses.
+constexpr int kSpinsBeforeYield = 4096;
+constexpr int kSpinsBeforeYieldOversubscribed = 16;
 
 // ---- domain-decomposed redeposition (tapmc_decomposition.h, lammps_domain_settle.h) ----------
 // Move margin e of the rounds' regions, in units of d_max: a sphere active in a round reaches its

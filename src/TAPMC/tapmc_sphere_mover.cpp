@@ -223,8 +223,8 @@ struct MovedSlots {
 constexpr unsigned char kOwnerBits = 0x7f, kBoundaryBit = 0x80;
 
 // The windowed executor's storage: per trial of the current chunk (draws, slots, owners, the
-// previous pick of the same sphere, results), per slot (the chunk's last pick of it), per grid
-// cell (owner and boundary bit), and the team.
+// previous pick of the same sphere), per slot (the chunk's last pick of it), per grid cell
+// (owner and boundary bit), per thread (progress, accepted trials), and the team.
 struct WindowExecutor {
   std::unique_ptr<ThreadTeam> team;
   int axis = 2;                          // axis of the owners' slabs of cells
@@ -232,18 +232,23 @@ struct WindowExecutor {
   // Per trial of the chunk (index t = trial - first trial of the chunk).
   std::vector<TrialDraw> draw;
   std::vector<int> slot, prev_pick, limit_pick;
-  std::vector<unsigned char> role, accepted;
-  std::vector<double> dz;
-  std::unique_ptr<std::atomic<std::uint64_t>[]> done;  // = window number once trial t is done
+  std::vector<unsigned char> role;
   // Per slot: the chunk that last picked it (chunk_stamp) and its last pick in that chunk.
   std::vector<std::uint64_t> chunk_stamp;
   std::vector<int> last_pick;
   std::uint64_t chunk_seq = 0, window_seq = 0;
-  // Per member, each on its own cache line: boundary trials and waits.
-  struct alignas(64) MemberStats {
+  // Per member, each on its own cache lines (trials of different members interleave: shared
+  // per-trial flags would bounce a line between cores at every trial): its progress in the
+  // window (window_seq << 32 | 1 + its last boundary trial done), its accepted trials in
+  // order with their z changes, and counts.
+  struct alignas(64) Member {
+    std::atomic<std::uint64_t> progress{0};
+    alignas(64) std::vector<int> accepted_trials;
+    std::vector<double> accepted_dz;
     long boundary_trials = 0, waits = 0;
   };
-  std::vector<MemberStats> member_stats;
+  std::unique_ptr<Member[]> members;
+  int member_count = 0;
   long windows = 0, trials = 0;
 
   void allocate(int n, int threads)
@@ -254,16 +259,15 @@ struct WindowExecutor {
     prev_pick.resize(c);
     limit_pick.resize(c);
     role.resize(c);
-    accepted.resize(c);
-    dz.resize(c);
-    if (!done) {
-      done = std::make_unique<std::atomic<std::uint64_t>[]>(c);
-      for (std::size_t t = 0; t < c; ++t) done[t].store(0, std::memory_order_relaxed);
-    }
     chunk_stamp.assign(static_cast<std::size_t>(n), 0);
     last_pick.assign(static_cast<std::size_t>(n), -1);
-    chunk_seq = 0;
-    member_stats.assign(static_cast<std::size_t>(threads), MemberStats());
+    chunk_seq = window_seq = 0;
+    members = std::make_unique<Member[]>(static_cast<std::size_t>(threads));
+    member_count = threads;
+    for (int m = 0; m < threads; ++m) {
+      members[m].accepted_trials.reserve(c);
+      members[m].accepted_dz.reserve(c);
+    }
     windows = trials = 0;
     if (!team || team->size() != threads) team = std::make_unique<ThreadTeam>(threads);
   }
@@ -508,9 +512,9 @@ SphereMover::WindowStats SphereMover::window_stats() const
   WindowStats stats;
   stats.windows = wx.windows;
   stats.trials = wx.trials;
-  for (const WindowExecutor::MemberStats &m : wx.member_stats) {
-    stats.boundary_trials += m.boundary_trials;
-    stats.waits += m.waits;
+  for (int m = 0; m < wx.member_count; ++m) {
+    stats.boundary_trials += wx.members[m].boundary_trials;
+    stats.waits += wx.members[m].waits;
   }
   return stats;
 }
@@ -791,32 +795,40 @@ void run_trials(SphereMover::State &st, const RunArgs &a)
 // listed neighbour's reference lies in the same or an adjacent cell, so a sphere whose layer and
 // both adjacent layers have one owner (interior) has all its neighbours on its own thread. A
 // boundary trial t looks through its row for neighbours picked earlier in the window by another
-// thread and waits (acquire) until the latest such trial has published (release) that it is
-// done; that trial's sphere is a boundary sphere too (its adjacent layer has another owner), so
-// it publishes. The later trial of every interacting pair waits for the earlier: reads and writes
-// happen in trial order, and the window's moves are the serial ones.
-// After the window, one thread adds the accepted z changes in trial order (so <Z> is bit-
-// identical), notes the moved spheres in trial order and updates the lists of those beyond
-// skin/2 (serially: list rows and grid cells may widen).
+// thread and waits (acquire) until that thread has published (release) progress past the latest
+// such trial; that trial's sphere is a boundary sphere too (its adjacent layer has another
+// owner), and every boundary trial publishes its thread's progress. The later trial of every
+// interacting pair waits for the earlier: reads and writes happen in trial order, and the
+// window's moves are the serial ones. Each thread keeps its accepted trials (index, z change)
+// to itself; after the window one thread merges them in trial order: it adds the z changes (so
+// <Z> is bit-identical), notes the moved spheres and updates the lists of those beyond skin/2
+// (serially: list rows and grid cells may widen). Per-trial words written by several threads
+// would bounce cache lines between cores at every trial, so the picks' chains (which window a
+// trial may join) are made by one thread too.
 
 // Spins until every earlier trial of this window by another thread on a listed neighbour of slot
 // s (trial t) is done. Returns the number of such trials still running when looked at.
 inline long wait_for_neighbours(const SphereMover::State &st, int s, long t, long window_first,
-                                int member, std::uint64_t window)
+                                int member)
 {
   const WindowExecutor &wx = st.window;
   const int *row = st.lists.row(s);
+  const std::uint64_t window = wx.window_seq << 32;
   long waits = 0;
   for (int q = 1, end = row[0]; q <= end; ++q) {
     const int j = row[q];
     if (wx.chunk_stamp[j] != wx.chunk_seq) continue;
     long u = wx.last_pick[j];
     while (u >= t) u = wx.prev_pick[u];
-    if (u < window_first || (wx.role[u] & kOwnerBits) == member) continue;
-    if (wx.done[u].load(std::memory_order_acquire) == window) continue;
+    const int owner = wx.role[u < 0 ? 0 : u] & kOwnerBits;
+    if (u < window_first || owner == member) continue;
+    const std::atomic<std::uint64_t> &progress = wx.members[owner].progress;
+    const std::uint64_t needed = window | static_cast<std::uint64_t>(u + 1);
+    if (progress.load(std::memory_order_acquire) >= needed) continue;
     ++waits;
     int spins = 0;
-    while (wx.done[u].load(std::memory_order_acquire) != window) spin_pause(spins);
+    while (progress.load(std::memory_order_acquire) < needed)
+      spin_pause(spins, wx.team->spins_before_yield());
   }
   return waits;
 }
@@ -827,35 +839,43 @@ void execute_window(SphereMover::State &st, const TrialRule<Mono, PeriodicX, Per
                     long first, long last, int member)
 {
   WindowExecutor &wx = st.window;
+  WindowExecutor::Member &me = wx.members[member];
   SlotRecords &spheres = st.spheres;
-  const std::uint64_t window = wx.window_seq;
+  const std::uint64_t window = wx.window_seq << 32;
+  me.accepted_trials.clear();
+  me.accepted_dz.clear();
   long boundary = 0, waits = 0;
   for (long t = first; t < last; ++t) {
+    // The draws were made on several cores: their lines are fetched well ahead.
+    if (t + defaults::kThreadDrawPrefetchAhead < last) {
+      prefetch(&wx.draw[t + defaults::kThreadDrawPrefetchAhead]);
+      prefetch(&wx.slot[t + defaults::kThreadDrawPrefetchAhead]);
+    }
     const unsigned char role = wx.role[t];
     if ((role & kOwnerBits) != member) continue;
     const int s = wx.slot[t];
     const bool on_boundary = role & kBoundaryBit;
     if (on_boundary) {
       ++boundary;
-      waits += wait_for_neighbours(st, s, t, first, member, window);
+      waits += wait_for_neighbours(st, s, t, first, member);
     }
     double *p = spheres.at(s);
     double x, y, z;
     int wrap_x, wrap_y;
-    const bool accepted = rule.accepts(p, s, wx.draw[t].move, x, y, z, wrap_x, wrap_y);
-    wx.accepted[t] = accepted;
-    if (accepted) {
-      wx.dz[t] = z - p[2];
+    if (rule.accepts(p, s, wx.draw[t].move, x, y, z, wrap_x, wrap_y)) {
+      me.accepted_trials.push_back(static_cast<int>(t));
+      me.accepted_dz.push_back(z - p[2]);
       p[0] = x;
       p[1] = y;
       p[2] = z;
       if (PeriodicX && wrap_x) spheres.image[2 * s] += wrap_x;
       if (PeriodicY && wrap_y) spheres.image[2 * s + 1] += wrap_y;
     }
-    if (on_boundary) wx.done[t].store(window, std::memory_order_release);
+    if (on_boundary)
+      me.progress.store(window | static_cast<std::uint64_t>(t + 1), std::memory_order_release);
   }
-  wx.member_stats[member].boundary_trials += boundary;
-  wx.member_stats[member].waits += waits;
+  me.boundary_trials += boundary;
+  me.waits += waits;
 }
 
 // One block of trials on the team (see above).
@@ -891,21 +911,18 @@ void run_windowed(SphereMover::State &st, const RunArgs &a)
       }
     };
     team.run(draw);
-    // Each sphere's picks in the chunk, chained (member: the slots s with s % members == member).
-    auto chain = [&](int member) {
-      for (long t = 0; t < chunk; ++t) {
-        const int s = wx.slot[t];
-        if (s % members != member) continue;
-        const int before = wx.chunk_stamp[s] == stamp ? wx.last_pick[s] : -1;
-        wx.chunk_stamp[s] = stamp;
-        wx.last_pick[s] = static_cast<int>(t);
-        wx.prev_pick[t] = before;
-        int limit = before;  // the kThreadWindowPicks-th earlier pick of the same sphere
-        for (int k = 1; k < defaults::kThreadWindowPicks && limit >= 0; ++k) limit = wx.prev_pick[limit];
-        wx.limit_pick[t] = limit;
-      }
-    };
-    team.run(chain);
+    // Each sphere's picks in the chunk, chained (on one thread: written by several, these
+    // per-trial and per-slot words would bounce between cores).
+    for (long t = 0; t < chunk; ++t) {
+      const int s = wx.slot[t];
+      const int before = wx.chunk_stamp[s] == stamp ? wx.last_pick[s] : -1;
+      wx.chunk_stamp[s] = stamp;
+      wx.last_pick[s] = static_cast<int>(t);
+      wx.prev_pick[t] = before;
+      int limit = before;  // the kThreadWindowPicks-th earlier pick of the same sphere
+      for (int k = 1; k < defaults::kThreadWindowPicks && limit >= 0; ++k) limit = wx.prev_pick[limit];
+      wx.limit_pick[t] = limit;
+    }
     for (long first = 0; first < chunk;) {
       long last = first + 1;
       while (last < chunk && wx.limit_pick[last] < first) ++last;
@@ -913,13 +930,25 @@ void run_windowed(SphereMover::State &st, const RunArgs &a)
       auto execute = [&](int member) { execute_window(st, rule, first, last, member); };
       team.run(execute);
       ++wx.windows;
-      // In trial order: <Z>, the moved spheres, the list updates.
+      // In trial order (a merge of the members' accepted trials): <Z>, the moved spheres, the
+      // list updates.
       bool rebinned = false;
-      for (long t = first; t < last; ++t) {
-        if (!wx.accepted[t]) continue;
+      std::array<std::size_t, defaults::kMaxThreads> next{};
+      for (;;) {
+        int from = -1;
+        long t = last;
+        for (int m = 0; m < members; ++m) {
+          const std::vector<int> &trials_of = wx.members[m].accepted_trials;
+          if (next[m] < trials_of.size() && trials_of[next[m]] < t) {
+            t = trials_of[next[m]];
+            from = m;
+          }
+        }
+        if (from < 0) break;
+        const double dz = wx.members[from].accepted_dz[next[from]++];
         const int s = wx.slot[t];
         ++accepted;
-        sum_dz += wx.dz[t];
+        sum_dz += dz;
         st.moved.note(s);
         if (st.drift_sq<PeriodicX, PeriodicY>(s) > st.half_skin_sq) {
           const int cell = st.grid.cell_of_slot[s];

@@ -24,9 +24,9 @@ int available_cores()
   return hardware > 0 ? static_cast<int>(hardware) : 1;
 }
 
-void spin_pause(int &spins)
+void spin_pause(int &spins, int limit)
 {
-  if (++spins < defaults::kSpinsBeforeYield) {
+  if (++spins < limit) {
 #if defined(__x86_64__) || defined(__i386__)
     __builtin_ia32_pause();
 #endif
@@ -38,6 +38,8 @@ void spin_pause(int &spins)
 
 ThreadTeam::ThreadTeam(int size) : size_(size < 1 ? 1 : size)
 {
+  spins_before_yield_ = size_ > available_cores() ? defaults::kSpinsBeforeYieldOversubscribed
+                                                  : defaults::kSpinsBeforeYield;
   threads_.reserve(static_cast<std::size_t>(size_ - 1));
   for (int member = 1; member < size_; ++member)
     threads_.emplace_back([this, member] { member_loop(member); });
@@ -82,7 +84,7 @@ void ThreadTeam::run_erased(JobFunction function, void *context)
   generation_.fetch_add(1, std::memory_order_release);
   function(context, 0);
   int spins = 0;
-  while (finished_.load(std::memory_order_acquire) < finished_target_) spin_pause(spins);
+  while (finished_.load(std::memory_order_acquire) < finished_target_) spin_pause(spins, spins_before_yield_);
 }
 
 void ThreadTeam::member_loop(int member)
@@ -92,7 +94,7 @@ void ThreadTeam::member_loop(int member)
     int spins = 0;
     while (generation_.load(std::memory_order_acquire) == seen) {
       if (awake_.load(std::memory_order_acquire)) {
-        spin_pause(spins);
+        spin_pause(spins, spins_before_yield_);
         continue;
       }
       std::unique_lock<std::mutex> lock(mutex_);

@@ -19,9 +19,8 @@ namespace tapmc {
 // Cores this process may run on (its CPU affinity; the hardware's count where that is unknown).
 int available_cores();
 
-// One step of a busy wait: a pause instruction, and after kSpinsBeforeYield of them a yield of
-// the core (an oversubscribed waiter must let the thread it waits for run).
-void spin_pause(int &spins);
+// One step of a busy wait: a pause instruction, and after `limit` of them a yield of the core.
+void spin_pause(int &spins, int limit);
 
 class ThreadTeam {
  public:
@@ -31,6 +30,9 @@ class ThreadTeam {
   ThreadTeam &operator=(const ThreadTeam &) = delete;
 
   int size() const { return size_; }
+  // Pauses of a busy wait before a yield: defaults::kSpinsBeforeYield, or
+  // kSpinsBeforeYieldOversubscribed when the team has more members than the process has cores.
+  int spins_before_yield() const { return spins_before_yield_; }
 
   // Members spin for the next job while awake, and sleep while not.
   void wake();
@@ -50,6 +52,7 @@ class ThreadTeam {
   void member_loop(int member);
 
   int size_;
+  int spins_before_yield_;
   std::vector<std::thread> threads_;
   JobFunction function_ = nullptr;  // written before generation_ is released
   void *context_ = nullptr;
