@@ -251,6 +251,31 @@ def _low_first(eps_curves):
     return dict(sorted(eps_curves.items()))
 
 
+def fig2_fits(unique_by_eps, chi2_eq4=1.0, b_chi2=1.0, b_dof=1):
+    """Fig. 2 data with the fits' intervals, range refits, eq. 4 and ln B(sqrt eps) rows."""
+    tab = fig2({eps: RISING for eps in unique_by_eps})
+    for eps, unique in unique_by_eps.items():
+        tag = f"eps={P.fmt_eps(eps)}"
+        tab.add("c", tag, T, 7.4 - (RISING - 0.58), 0.001)
+        tab.param(f"{tag}:Z:reduced_chi2", chi2_eq4, x=eps)
+        for name in ("X_inf", "B", "tau"):
+            tab.param(f"{tag}:{name}", 1.0, 0.1, n=1 if unique else 0, x=eps)
+            tab.param(f"{tag}:{name}:range_deviation", 1.0, None, n=1, x=eps)
+    for law in ("eq3", "eq4"):
+        tab.add("B", f"{law}:reduced_chi2", 0.0, b_chi2, None, b_dof)
+        tab.add("B", f"{law}:slope", 0.0, -3.0, 1.0, 1)
+    return tab
+
+
+def fig5_collapse(chi2):
+    tab = Table()
+    for tw in (10, 30, 100):
+        tab.add("b", f"tw={tw}", np.arange(1, 101), np.linspace(0, 1, 100), 0.01)
+    tab.param("drawn:mu", 1.0, None, n=1).param("scaling:reduced_chi2", chi2)
+    tab.param("scaling:mu", 1.0, 0.1, n=1).param("unscaled:reduced_chi2", 40.0)
+    return tab
+
+
 FROZEN = 0.58 + 0.02 * (1 - 1 / (1 + 0.3 * np.log1p(T)))    # slows down on ln t
 STEADY_LOG = 0.58 + 0.04 * np.log1p(T) / np.log(4001)       # keeps its rate on ln t
 
@@ -271,6 +296,13 @@ CONTROLS = {
                    report(fig2=fig2({0.05: RISING[::-1]}))),  # time-reversed
     "efficiency_decrease": (report(fig2=fig2({0.05: RISING})),
                             report(fig2=fig2({0.05: 0.58 + 1e-5 * T}))),  # steady rate
+    "eq3_triplet_pattern": (report(fig2=fig2_fits({0.005: False, 0.05: True, 0.15: True})),
+                            report(fig2=fig2_fits({0.005: False, 0.05: False, 0.15: False}))),
+    "eq4_fit_quality": (report(fig2=fig2_fits({0.05: True})),
+                        report(fig2=fig2_fits({0.05: True}, chi2_eq4=5.0))),
+    "b_exponential": (report(fig2=fig2_fits({0.05: True}, b_chi2=1.0, b_dof=3)),
+                      report(fig2=fig2_fits({0.05: True}, b_chi2=8.0, b_dof=3))),
+    "ageing_collapse": (report(fig5=fig5_collapse(1.0)), report(fig5=fig5_collapse(37.6))),
     "eq3_fit_quality": (report(fig2=fig2({0.05: RISING})),
                         report(fig2=fig2({0.05: RISING}).param("eps=0.05:reduced_chi2", 5.0,
                                                                   x=0.05))),

@@ -16,6 +16,9 @@ error); a rule turns a measure into a verdict:
   effect the claim denies (e.g. the change Percus-Yevick predicts between the two packing
   fractions); undecided when the data are too uncertain to tell zero from that effect;
 * ``fit``: agrees when the chi-square of the fit has a p-value of at least 1 %;
+* ``pattern``: a claim about several measures at once (e.g. "not unique at small eps, unique
+  at larger eps"), each decided by the fits' own intervals; the statistic gives 1 when the
+  pattern is the paper's and 0 when not;
 * ``check``: a consistency check of the tools (holds / fails), never counted;
 * ``none``: no statistic yet: undecided, with the runs that would decide it.
 
@@ -50,7 +53,7 @@ XI_CHECK_ROUNDING = 1e-3
 PAPER_SCALE = {"N": 4096, "L": 32.0, "taps": 4000, "ramp_taps": 4000, "eta": 1e-7}
 
 KINDS = ("model", "check")
-RULE_NAMES = ("value", "range", "sign", "zero", "fit", "check", "none")
+RULE_NAMES = ("value", "range", "sign", "zero", "fit", "pattern", "check", "none")
 ASPECTS = ("size", "taps", "ramp_taps", "eta")
 
 
@@ -368,6 +371,93 @@ def _eq3_quality(fig, eps, t, mean, sem, n):
 
 def eq3_fit_quality(data, claim):
     return _per_curve(data, "fig2", "a", _eq3_quality)
+
+
+#: Parameters of eq. 3 whose uniqueness section III.B discusses: the triplet (X_inf, B, tau).
+EQ3_TRIPLET = ("X_inf", "B", "tau")
+
+
+def _eq3_uniqueness(fig, eps):
+    """(unique, reason) of the eq. 3 triplet at one eps from Fig. 2's params: unique when
+    every parameter is determined (its profile interval closes) and consistent over the tap
+    ranges; None when the figure data have no intervals."""
+    tag = f"eps={P.fmt_eps(eps)}"
+    if fig.get("params", f"{tag}:tau:range_deviation") is None:
+        return None, ""
+    undetermined = [k for k in EQ3_TRIPLET if fig.param(f"{tag}:{k}")[2] != 1]
+    dependent = [k for k in EQ3_TRIPLET if fig.param(f"{tag}:{k}:range_deviation")[2] != 1]
+    reasons = ([f"{', '.join(undetermined)} undetermined"] if undetermined else []) + \
+        ([f"{', '.join(dependent)} range dependent"] if dependent else [])
+    return not reasons, "; ".join(reasons) or "unique"
+
+
+def eq3_triplet_pattern(data, claim):
+    """Section III.B: the triplet is not unique at the smallest eps and unique at some larger
+    eps (1), or not (0)."""
+    fig = data.figure("fig2")
+    if fig is None:
+        return _missing("no Fig. 2 runs")
+    eps_list = [e for e, _ in _eps_series(fig, "a")]
+    states = [(e, *_eq3_uniqueness(fig, e)) for e in eps_list]
+    if len(states) < 2 or any(u is None for _, u, _ in states):
+        return _missing("no profile intervals and range refits in the Fig. 2 data")
+    shown = "; ".join(f"eps = {e:g}: {why}" for e, _, why in states)
+    holds = (not states[0][1]) and any(u for _, u, _ in states[1:])
+    return [Measure(1.0 if holds else 0.0, shown=shown)]
+
+
+def _eq4_quality(fig, eps, t, mean, sem, n):
+    m = _fit_quality(fig, f"eps={P.fmt_eps(eps)}:Z:", len(t), 4, f"eps = {eps:g}")
+    if _dof(n) is None and m.undecided is None:
+        m.undecided = "one realization: the fit had no error bars"
+    return m
+
+
+def eq4_fit_quality(data, claim):
+    return _per_curve(data, "fig2", "c", _eq4_quality)
+
+
+def b_exponential(data, claim):
+    """ln B linear in sqrt(eps) (Fig. 2 panel B) for the B of eq. 3 and of eq. 4."""
+    fig = data.figure("fig2")
+    if fig is None:
+        return _missing("no Fig. 2 runs")
+    out = []
+    for law in ("eq3", "eq4"):
+        d = fig.get("B", f"{law}:reduced_chi2")
+        if d is None:
+            continue
+        chi, dof = float(d[1][0]), int(d[3][0])
+        slope = fig.get("B", f"{law}:slope")
+        text = "" if slope is None else f"d ln B / d sqrt(eps) = {fmt(slope[1][0], slope[2][0])}; "
+        label = f"B of {law.replace('eq', 'eq. ')}"
+        if dof < 1 or not np.isfinite(chi):
+            out.append(Measure(label=label, undecided="fewer than three eps with a determined B",
+                               shown=text.rstrip("; ") or None))
+        else:
+            out.append(Measure(chi, dof=dof, label=label,
+                               shown=f"{text}reduced chi2 {fmt(chi)} ({dof} dof)"))
+    return out or _missing("no B(sqrt(eps)) fit in the Fig. 2 data")
+
+
+def ageing_collapse(data, claim):
+    """Chi-square of one eq. 6 on the rescaled curves of every t_W (Fig. 5 bottom), with the
+    exponent mu of t / t_W^mu and the unscaled chi-square beside it."""
+    fig = data.figure("fig5")
+    if fig is None:
+        return _missing("no ageing runs")
+    drawn_mu = fig.param("drawn:mu")
+    if not np.isfinite(drawn_mu[0]):
+        return _missing("no rescaled collapse in the Fig. 5 data")
+    tag = "scaling" if drawn_mu[2] == 1 else "scaling_time"
+    chi = fig.param(f"{tag}:reduced_chi2")[0]
+    unscaled = fig.param("unscaled:reduced_chi2")[0]
+    points = sum(len(fig.get("b", s)[0]) for s in fig.series("b") if s.startswith("tw="))
+    dof = points - (5 if tag == "scaling" else 4)
+    mu, mu_err, mu_closed = fig.param(f"{tag}:mu")
+    mu_text = fmt(mu, mu_err) if mu_closed == 1 else f"{fmt(mu)} (undetermined)"
+    return [Measure(chi, dof=dof, shown=f"mu = {mu_text}; reduced chi2 {fmt(chi)} ({dof} dof; "
+                                        f"unscaled {fmt(unscaled)})")]
 
 
 #: Decades of the log-time slopes of ``log_time_slowing``: the first decade of taps (the last
@@ -846,6 +936,7 @@ def nu_change(data, claim):
 
 STATISTICS = {f.__name__: f for f in (
     initial_phi, tapped_phi, pbc_compaction, phi_b_gain, efficiency_decrease, eq3_fit_quality,
+    eq3_triplet_pattern, eq4_fit_quality, b_exponential, ageing_collapse,
     log_time_slowing, spectral_slopes, spectrum_eps_spread,
     sigma_intercept, bell_maximum, bell_side_slope, alpha_bell, ramp_up_minus_steady,
     ramp_down_minus_up, ramp_up2_minus_down, low_ramp_frozen, ramp_branch_slope,
@@ -877,6 +968,8 @@ def verdict(claim, m):
     if rule == "check":
         ok = m.value >= claim.target - XI_CHECK_ROUNDING
         return "holds" if ok else "fails"
+    if rule == "pattern":
+        return "agrees" if m.value == 1 else "disagrees"
     if rule == "fit":
         if m.dof is None or m.dof < 1:
             return "undecided (no degrees of freedom)"
