@@ -97,6 +97,12 @@ def test_sign_zero_range_fit_check_rules():
     assert claims.verdict(check, claims.Measure(P.XI_T - 0.01)) == "fails"
 
 
+def test_every_rule_is_explained_in_the_report():
+    from tapmc.paper import validation
+
+    assert set(validation.RULES) == set(claims.RULE_NAMES)
+
+
 def test_scale_aspects_and_scale_verdicts():
     paper = {"sizes": [[4096, 32.0]], "eta": [1e-7], "preset": True, "scale": "full",
              "fields": None}

@@ -37,6 +37,8 @@ RULES = {
             "otherwise",
     "fit": f"agrees when the fit's chi-square has a p-value of at least "
            f"{claims.FIT_P_VALUE:g}, disagrees otherwise",
+    "pattern": "agrees when the pattern over several measures (stated in the TAPMC column, "
+               "each decided by the fits' own intervals) is the paper's, disagrees otherwise",
     "check": "a check of the analysis tools (holds / fails), not counted as a reproduction",
     "none": "no statistic yet: undecided, with the runs that would decide the claim",
 }
