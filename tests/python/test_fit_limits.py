@@ -252,8 +252,12 @@ def test_collapse_recovers_a_known_scaling_exponent():
 def test_curves_without_a_scaling_collapse_poorly():
     from tapmc.ageing import scaling_collapse
 
+    # curves of different shapes (B_A from 0.05 to 50): no exponents make them one curve; the
+    # collapse stays far above the reduced chi2 of about 1 of curves that do scale, and mu
+    # runs to a limit of its allowed range (its interval stays open there)
     col = scaling_collapse(_ageing_curves(0.0, 0.0, 1, shapes=(0.05, 0.5, 5.0, 50.0)))
-    assert col.reduced_chi2 > 20
+    assert col.reduced_chi2 > 5
+    assert not col.interval("mu").determined
 
 
 def test_collapse_of_a_random_walk_keeps_mu_compatible_with_no_ageing():

@@ -45,6 +45,9 @@ __all__ = ["Ageing", "MIN_BOOTSTRAP_REALIZATIONS", "ScaledAgeingLaw", "ScalingCo
 #: factor 10 in t_w would rescale t by more than 10^3, far outside any run of the paper
 #: (waiting times 10 to 1000 taps in runs of 4000).
 SCALING_EXPONENT_RANGE = (-3.0, 3.0)
+#: half-width in ln t of the smoothing that gives a curve's level for the weights of the
+#: collapse (a factor 1.2 in t: 1 delay near t = 5, 37 near t = 200)
+_LEVEL_LOG_WINDOW = np.log(1.2)
 #: log-spaced delays per curve for the grid search of the starting exponents (the final fit
 #: uses every delay).
 _START_POINTS_PER_CURVE = 40
@@ -418,6 +421,19 @@ def _clean_curves(curves):
     return out
 
 
+def _log_window_mean(t, a):
+    """Mean of ``a`` over the points whose t lies within a factor exp(_LEVEL_LOG_WINDOW) of
+    each t (t > 0, sorted or not)."""
+    order = np.argsort(t)
+    lt = np.log(t[order])
+    c = np.concatenate([[0.0], np.cumsum(a[order])])
+    lo = np.searchsorted(lt, lt - _LEVEL_LOG_WINDOW, side="left")
+    hi = np.searchsorted(lt, lt + _LEVEL_LOG_WINDOW, side="right")
+    out = np.empty_like(a)
+    out[order] = (c[hi] - c[lo]) / (hi - lo)
+    return out
+
+
 def _stack(curves, sigma=None):
     """Stacked (t, A, sigma, t_w) of the curves (dict t_w -> (t, A, sem)); sigma the curves'
     sem, or the dict t_w -> weights ``sigma``."""
@@ -435,7 +451,8 @@ def scaling_collapse(curves, fit_amplitude=True):
     > 0 and at least 2 curves are needed. Weights as in :meth:`Ageing.fit`: the standard
     error of a mean of squares is proportional to its mean, so sigma = model(t) x median(sem /
     A), the model being the collapse fitted first with the points' own sem (not each point's
-    noisy sem); the unscaled eq. 6 is fitted with the same weights, so that the two reduced
+    noisy sem), or the curve smoothed over delays within a factor 1.2 where that is higher
+    (eq. 6 may not be the master curve); the unscaled eq. 6 is fitted with the same weights, so that the two reduced
     chi2 compare. Returns a :class:`ScalingCollapse`."""
     if len(curves) < 2:
         raise ValueError(f"curves has {len(curves)} waiting time(s); a collapse needs at least 2")
@@ -449,7 +466,11 @@ def scaling_collapse(curves, fit_amplitude=True):
     ratio = float(np.median(sem[positive] / a[positive]))
     law = ScaledAgeingLaw(tw, fit_amplitude=fit_amplitude)
     first = law.fit(t, a, sem)
-    model = np.maximum(first(t), 1e-300) * ratio
+    # where eq. 6 misses the data (the law is not the master curve), a model far below them
+    # would give their points weights without bound: never below the curve's own level,
+    # A smoothed over delays within a factor exp(_LEVEL_LOG_WINDOW)
+    level = np.concatenate([_log_window_mean(c[0], c[1]) for c in curves.values()])
+    model = np.maximum(np.maximum(first(t), level), 1e-300) * ratio
     sigma, start = {}, 0
     for k, c in curves.items():
         sigma[k] = model[start:start + c[0].size]

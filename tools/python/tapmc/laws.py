@@ -92,6 +92,9 @@ _PROFILE_REFINE = 3
 #: a chi2 found by the profile below the fit's by more than this fraction of the threshold is
 #: reported as a local minimum of the fit (a smaller drop moves no interval end noticeably).
 _LOCAL_MINIMUM_TOLERANCE = 0.05
+#: det / product of the diagonal of the normal equations of a grid node below which its
+#: amplitude columns count as collinear (the amplitudes are then not unique there).
+_COLLINEAR_TOLERANCE = 1e-10
 
 
 class Interval:
@@ -668,8 +671,14 @@ class _TapsLaw(Law):
                 A = np.stack([cols[k] for k in free], axis=1)  # (nodes, m, n)
                 normal = np.einsum("kan,kbn,n->kab", A, A, w)
                 rhs = np.einsum("kan,kn,n->ka", A, target, w)
-                normal += np.eye(m)[None] * 1e-300
-                sol = np.linalg.solve(normal, rhs[..., None])[..., 0]
+                # nodes where the columns are (nearly) collinear, e.g. g = 1 for a tau far
+                # beyond the data, have no unique amplitudes: left out (sse = inf)
+                diag = np.prod(np.diagonal(normal, axis1=1, axis2=2), axis=1)
+                det = np.linalg.det(normal)
+                ok = np.abs(det) > _COLLINEAR_TOLERANCE * np.abs(diag)
+                sol = np.full((len(BB), m), np.nan)
+                if ok.any():
+                    sol[ok] = np.linalg.solve(normal[ok], rhs[ok][..., None])[..., 0]
                 for j, k in enumerate(free):
                     coef[:, k] = sol[:, j]
                 model = np.einsum("kan,ka->kn", A, sol)
