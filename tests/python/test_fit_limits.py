@@ -243,6 +243,11 @@ def test_collapse_recovers_a_known_scaling_exponent():
         s, a = col.rescale(30.0, *_ageing_curves(0.7, 0.3, seed)[30.0][:2])
         assert np.all(np.isfinite(s)) and np.all(np.isfinite(a))
     assert hits >= 2
+    # the law-free dispersion agrees: about 1 at the exponents, large without rescaling, and
+    # its own minimum is at the exponents of the curves
+    assert col.dispersion() < 1.5 and col.dispersion(0.0, 0.0) > 10
+    mu_free, kappa_free = col.dispersion_exponents
+    assert abs(mu_free - 0.7) < 0.05 and abs(kappa_free - 0.3) < 0.05
     # time alone cannot absorb the amplitude factor: a worse collapse
     only_time = scaling_collapse(_ageing_curves(0.7, 0.3, 0), fit_amplitude=False)
     assert "kappa" not in only_time.fit.names and only_time.kappa == 0.0
@@ -258,6 +263,7 @@ def test_curves_without_a_scaling_collapse_poorly():
     col = scaling_collapse(_ageing_curves(0.0, 0.0, 1, shapes=(0.05, 0.5, 5.0, 50.0)))
     assert col.reduced_chi2 > 5
     assert not col.interval("mu").determined
+    assert col.dispersion(*col.dispersion_exponents) > 5
 
 
 def test_collapse_of_a_random_walk_keeps_mu_compatible_with_no_ageing():

@@ -39,7 +39,7 @@ from ._validate import as_1d, as_2d, new_axis, require, result
 from .laws import AgeingLaw, Law
 
 __all__ = ["Ageing", "MIN_BOOTSTRAP_REALIZATIONS", "ScaledAgeingLaw", "ScalingCollapse",
-           "scaling_collapse", "SCALING_EXPONENT_RANGE"]
+           "scaling_collapse", "collapse_dispersion", "SCALING_EXPONENT_RANGE"]
 
 #: allowed range of the scaling exponents mu (time) and kappa (amplitude): beyond +-3 a
 #: factor 10 in t_w would rescale t by more than 10^3, far outside any run of the paper
@@ -302,7 +302,9 @@ class ScalingCollapse:
     ``unscaled_reduced_chi2`` (the collapse against no rescaling), ``jackknife`` (dict name ->
     leave-one-curve-out standard error; nan with fewer than 3 curves), ``waiting_times``,
     ``rescale(t_w, t, A)`` -> (t / r^mu, A / r^kappa) with r = t_w/t_ref, ``master(s)`` (the
-    eq. 6 of the collapse on the rescaled variable) and ``plot(ax=None)``."""
+    eq. 6 of the collapse on the rescaled variable), ``dispersion(mu=None, kappa=None)`` and
+    ``dispersion_exponents`` (the law-free collapse, :func:`collapse_dispersion`) and
+    ``plot(ax=None)``."""
 
     def __init__(self, fit, unscaled, curves, sigma):
         self.fit = fit
@@ -361,6 +363,37 @@ class ScalingCollapse:
     def master(self, s):
         p = self.fit.params
         return AgeingLaw.function(np.asarray(s, float), p["A_inf"], p["B_A"], p["tau_A"])
+
+    def dispersion(self, mu=None, kappa=None):
+        """Law-free quality of the collapse at exponents ``mu``, ``kappa`` (default: the fitted
+        ones): :func:`collapse_dispersion` of the curves with the weights of the fit. Compare
+        ``dispersion()`` with ``dispersion(0, 0)`` (no rescaling): unlike the reduced chi2 it
+        does not depend on eq. 6 being the master curve."""
+        mu = self.mu if mu is None else mu
+        kappa = self.kappa if kappa is None else kappa
+        curves = {tw: (c[0], c[1], self._sigma[tw]) for tw, c in self._curves.items()}
+        return collapse_dispersion(curves, mu, kappa, self.t_ref)
+
+    @property
+    def dispersion_exponents(self):
+        """(mu, kappa) minimising :meth:`dispersion` (Nelder-Mead from the fitted exponents,
+        kappa held at 0 for a collapse in time alone): the scaling variable without eq. 6."""
+        from scipy.optimize import minimize
+
+        lo, hi = SCALING_EXPONENT_RANGE
+        amplitude = "kappa" in self.fit.names
+
+        def cost(v):
+            mu, kappa = (v[0], v[1]) if amplitude else (v[0], 0.0)
+            if not (lo <= mu <= hi and lo <= kappa <= hi):
+                return np.inf
+            d = self.dispersion(mu, kappa)
+            return d if np.isfinite(d) else np.inf
+
+        start = [self.mu, self.kappa] if amplitude else [self.mu]
+        res = minimize(cost, start, method="Nelder-Mead",
+                       options={"xatol": 1e-3, "fatol": 1e-6, "maxiter": 400})
+        return (float(res.x[0]), float(res.x[1]) if amplitude else 0.0)
 
     @property
     def jackknife(self):
@@ -432,6 +465,41 @@ def _log_window_mean(t, a):
     out = np.empty_like(a)
     out[order] = (c[hi] - c[lo]) / (hi - lo)
     return out
+
+
+def collapse_dispersion(curves, mu, kappa=0.0, t_ref=None):
+    """How far the curves are from one curve once rescaled, t / r^mu and A / r^kappa with r =
+    t_w / t_ref (default the geometric mean of the waiting times), whatever that curve is:
+    every point of each curve against every other curve interpolated (linearly in ln t) where
+    they overlap, residual over the two errors combined; returns the mean squared residual
+    (about 1 for curves that are one within their errors; nan when no two curves overlap).
+    ``curves``: dict t_w -> (t, A, sigma), t > 0. The points of a curve are correlated, so
+    compare values of it (at several exponents, or against no rescaling) rather than read it
+    as a chi2 with a known distribution."""
+    curves = {float(tw): tuple(np.asarray(v, dtype=float) for v in c) for tw, c in curves.items()}
+    if t_ref is None:
+        t_ref = float(np.exp(np.mean(np.log(list(curves)))))
+    scaled = {}
+    for tw, (t, a, sig) in curves.items():
+        r = tw / t_ref
+        keep = t > 0
+        order = np.argsort(t[keep])
+        scaled[tw] = (np.log(t[keep][order]) - mu * np.log(r), a[keep][order] / r ** kappa,
+                      sig[keep][order] / r ** kappa)
+    total, count = 0.0, 0
+    for ti, (li, ai, ei) in scaled.items():
+        for tj, (lj, aj, ej) in scaled.items():
+            if ti == tj:
+                continue
+            inside = (li >= lj[0]) & (li <= lj[-1])
+            if not inside.any():
+                continue
+            a_other = np.interp(li[inside], lj, aj)
+            e_other = np.interp(li[inside], lj, ej)
+            r = (ai[inside] - a_other) / np.sqrt(ei[inside] ** 2 + e_other ** 2)
+            total += float(np.sum(r ** 2))
+            count += int(inside.sum())
+    return total / count if count else np.nan
 
 
 def _stack(curves, sigma=None):

@@ -33,8 +33,12 @@ likewise, and ``eq6``, its eq. 6 on the rescaled variable), ``params``:
   leave-one-curve-out standard error) and ``:bootstrap`` (the standard deviation over
   ``BOOTSTRAP_RESAMPLES`` resamples of the realizations; empty with fewer than
   ``tapmc.ageing.MIN_BOOTSTRAP_REALIZATIONS``), ``scaling:t_ref``, ``scaling:reduced_chi2``:
-  the time-and-amplitude collapse; ``scaling_time:...`` the same for the collapse in time
-  alone (no kappa);
+  the time-and-amplitude collapse; ``scaling:dispersion`` (the law-free collapse quality,
+  ``tapmc.ageing.collapse_dispersion``, at the fitted exponents: about 1 for curves that are
+  one within their errors), ``scaling:dispersion_mu``, ``scaling:dispersion_kappa`` and
+  ``scaling:dispersion_min`` (the exponents that minimise it, and its value there);
+  ``scaling_time:...`` the same for the collapse in time alone (no kappa);
+  ``unscaled:dispersion`` the dispersion of the curves as they are;
 * ``drawn:mu``, ``drawn:kappa``: the exponents of panel b (n = 1 for the time-and-amplitude
   collapse, 0 for the time-only one).
 """
@@ -203,6 +207,14 @@ def draw(campaign, out_dir, waiting_times=None):
             table.add("params", f"{tag}:reduced_chi2", 0.0, col.reduced_chi2, None,
                       int(not col.fit.undetermined_params))
             add_fit_rows(table, tag, 0.0, col.fit, col)
+            mu_free, kappa_free = col.dispersion_exponents
+            table.add("params", f"{tag}:dispersion", 0.0, col.dispersion(), None, 1)
+            table.add("params", f"{tag}:dispersion_mu", 0.0, mu_free, None, 1)
+            table.add("params", f"{tag}:dispersion_kappa", 0.0, kappa_free, None, 1)
+            table.add("params", f"{tag}:dispersion_min", 0.0,
+                      col.dispersion(mu_free, kappa_free), None, 1)
+        table.add("params", "unscaled:dispersion", 0.0, stats["scaling"].dispersion(0.0, 0.0),
+                  None, 1)
         shown = drawn_collapse(stats)
         full = shown is stats["scaling"]
         table.add("params", "drawn:mu", 0.0, shown.mu, None, int(full))
