@@ -273,3 +273,25 @@ def test_plan_tier4_is_the_ramp_pair_and_tiers_1_to_3_unchanged():
     assert len(everything) == len(set(everything))
     with pytest.raises(ValueError, match="tier = 5"):
         plan.runs(5)
+
+
+def test_fig4_errors_survive_a_chance_agreement_of_the_seeds(tmp_path):
+    """Two seeds whose ramps are the same series (their sem over seeds is 0): the statistics
+    keep the error the levels' batch-means standard errors give, instead of vanishing (or of
+    leaving the ramp undecided)."""
+    scale = Scale(**dict(QUICK.as_dict(), N=64, L=8.0, eta=1e-4, ramp_taps_per_level=40))
+    runs = [_runs.ramp_below_run(scale, "pbc", s) for s in (1, 2)]
+    camp = FakeCampaign(tmp_path, runs)
+    levels = np.array([0.05, 0.1, 0.05, 0.1])
+    truth = np.array([0.58, 0.585, 0.585, 0.585])
+    for spec in runs:
+        write_ramp(camp, spec, *ramp_series(levels, truth, 40, np.random.default_rng(3),
+                                            noise=1e-3))
+    found = fig4.ramp_branches(camp, prefix=_runs.RAMP_BELOW_PREFIX)
+    assert found is not None
+    stats, seeds = found
+    assert seeds == 2
+    # one level's batch-means error is about 1e-3 / sqrt(10) per seed; over two identical
+    # seeds the error of the mean is that / sqrt(2), never 0
+    assert 1e-4 < stats.down_change.sem < 2e-3
+    assert stats.frozen

@@ -128,7 +128,7 @@ class Hysteresis:
 class BranchData:
     """One branch of a ramp: per level ``sqrt_eps``, the steady state ``mean`` (over the last
     taps of the level, and over seeds) and its standard error ``sem`` (all of one length,
-    finite, sem > 0; levels in the order they were run)."""
+    finite, sem > 0; any order)."""
 
     sqrt_eps: np.ndarray
     mean: np.ndarray

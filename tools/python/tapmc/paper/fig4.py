@@ -26,7 +26,8 @@ seeds), ``params``:
 * ``critical_sqrt_eps``: (sqrt eps)* = 0.15 (x = 0);
 * per ramp, ``ramp:`` (beyond) and ``low:`` (below), the statistics of
   ``tapmc.hysteresis.RampBranches`` on the branches averaged over seeds (per level: the mean
-  over seeds; its sem over seeds, or with one seed the level's batch-means standard error),
+  over seeds; its error the larger of the sem over seeds and the one the levels' batch-means
+  standard errors give the mean, which alone serves with one seed),
   with x = the ramp's highest sqrt(eps), sem their standard error and n the seeds:
   ``<ramp>:top_sqrt_eps`` (mean = the highest sqrt(eps)); ``<ramp>:down_minus_up1`` (decrease
   minus first increase over their common sqrt(eps): > 0 on the reversible branch);
@@ -120,10 +121,12 @@ def hysteresis_branches(campaign, column="phi_c", bc=BC, prefix="ramp_"):
 
 
 def ramp_branches(campaign, column="phi_c", bc=BC, prefix="ramp_"):
-    """(RampBranches computed, seeds) of the ramp runs named ``prefix...``, per level the mean
-    over seeds with its sem over seeds (one seed: the level's batch-means sem); None when the
-    campaign has no such ramp, it has no decreasing level yet, or a level has no positive
-    standard error (a level that did not move at all decides nothing)."""
+    """(RampBranches computed, seeds) of the ramp runs named ``prefix...``: per level the mean
+    over seeds, and as its error the larger of the sem over seeds and the error the levels'
+    own batch-means sems give the mean (sqrt(sum sem_i^2) / n), so that a chance agreement of
+    two seeds does not make the error vanish (one seed: the level's batch-means sem); None when
+    the campaign has no such ramp, it has no decreasing level yet, or a level has no positive
+    error (a level that did not move at all decides nothing)."""
     levels = _ramp_levels(campaign, column, bc, prefix)
     if not levels.get("up1") or not levels.get("down"):
         return None
@@ -135,7 +138,8 @@ def ramp_branches(campaign, column="phi_c", bc=BC, prefix="ramp_"):
             m, s, n = P.seed_stats([[v] for v, _ in values])
             sq.append(key)
             mean.append(m[0])
-            sem.append(s[0] if n[0] >= 2 else values[0][1])
+            within = np.sqrt(sum(e * e for _, e in values)) / len(values)
+            sem.append(max(s[0], within) if n[0] >= 2 else within)
             seeds.append(int(n[0]))
         try:
             data[branch] = BranchData(sq, mean, sem)
