@@ -51,6 +51,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -250,6 +251,7 @@ struct WindowExecutor {
   std::unique_ptr<Member[]> members;
   int member_count = 0;
   long windows = 0, trials = 0;
+  double phase_seconds[4] = {0, 0, 0, 0};  // draw, chain, execute, merge (WindowStats)
 
   void allocate(int n, int threads)
   {
@@ -269,6 +271,7 @@ struct WindowExecutor {
       members[m].accepted_dz.reserve(c);
     }
     windows = trials = 0;
+    std::fill(phase_seconds, phase_seconds + 4, 0.0);
     if (!team || team->size() != threads) team = std::make_unique<ThreadTeam>(threads);
   }
 };
@@ -512,6 +515,10 @@ SphereMover::WindowStats SphereMover::window_stats() const
   WindowStats stats;
   stats.windows = wx.windows;
   stats.trials = wx.trials;
+  stats.draw_seconds = wx.phase_seconds[0];
+  stats.chain_seconds = wx.phase_seconds[1];
+  stats.execute_seconds = wx.phase_seconds[2];
+  stats.merge_seconds = wx.phase_seconds[3];
   for (int m = 0; m < wx.member_count; ++m) {
     stats.boundary_trials += wx.members[m].boundary_trials;
     stats.waits += wx.members[m].waits;
@@ -910,7 +917,15 @@ void run_windowed(SphereMover::State &st, const RunArgs &a)
         }
       }
     };
+    using Clock = std::chrono::steady_clock;
+    Clock::time_point clock = Clock::now();
+    auto lap = [&](int phase) {
+      const Clock::time_point now = Clock::now();
+      wx.phase_seconds[phase] += std::chrono::duration<double>(now - clock).count();
+      clock = now;
+    };
     team.run(draw);
+    lap(0);
     // Each sphere's picks in the chunk, chained (on one thread: written by several, these
     // per-trial and per-slot words would bounce between cores).
     for (long t = 0; t < chunk; ++t) {
@@ -923,12 +938,14 @@ void run_windowed(SphereMover::State &st, const RunArgs &a)
       for (int k = 1; k < defaults::kThreadWindowPicks && limit >= 0; ++k) limit = wx.prev_pick[limit];
       wx.limit_pick[t] = limit;
     }
+    lap(1);
     for (long first = 0; first < chunk;) {
       long last = first + 1;
       while (last < chunk && wx.limit_pick[last] < first) ++last;
       ++wx.window_seq;
       auto execute = [&](int member) { execute_window(st, rule, first, last, member); };
       team.run(execute);
+      lap(2);
       ++wx.windows;
       // In trial order (a merge of the members' accepted trials): <Z>, the moved spheres, the
       // list updates.
@@ -958,6 +975,7 @@ void run_windowed(SphereMover::State &st, const RunArgs &a)
       }
       if (rebinned)  // a sphere changed cell: the later trials' owners follow
         for (long t = last; t < chunk; ++t) wx.role[t] = wx.cell_role[st.grid.cell_of_slot[wx.slot[t]]];
+      lap(3);
       first = last;
     }
     if (!a.random) *a.sweep_cursor = (cursor + chunk) % a.m;

@@ -107,6 +107,9 @@ class SphereMover {
   // the waits for such a trial still running.
   struct WindowStats {
     long windows = 0, trials = 0, boundary_trials = 0, waits = 0;
+    // Wall seconds of the calling thread in the phases: parallel draws (team), the picks'
+    // chains (one thread), the windows' trials (team), the merges and list updates (one thread).
+    double draw_seconds = 0, chain_seconds = 0, execute_seconds = 0, merge_seconds = 0;
   };
   WindowStats window_stats() const;
 
