@@ -423,3 +423,31 @@ def test_sigma_error_of_one_run_matches_the_spread_of_realizations():
     # white noise has a smaller error than the correlated series: the estimate sees correlation
     white = [sigma_error_one_run(rng.standard_normal(1200) * 1.6, 1000) for _ in range(50)]
     assert np.mean(white) < 0.7 * np.mean(errors)
+
+
+def test_fig4_steady_state_of_one_seed_carries_its_batch_means_error(tmp_path):
+    """The paper's protocol has one run per eps: Fig. 4's square then carries that run's own
+    (batch-means) error, which the bell's statistics use; two seeds give the error over seeds."""
+    sys.path.insert(0, str(Path(__file__).parent))
+    from paper_fakes import FakeCampaign
+    from tapmc.fluctuations import SteadyState
+    from tapmc.paper import _runs, fig4
+    from tapmc.paper.scales import QUICK
+
+    rng = np.random.default_rng(3)
+    specs = [_runs.constant_eps_run(QUICK, "pbc", eps, seed)
+             for eps, seeds in ((0.01, (1,)), (0.04, (1, 2))) for seed in seeds]
+    camp = FakeCampaign(tmp_path, specs)
+    series = {}
+    for spec in specs:
+        phi = 0.6 + 0.002 * rng.standard_normal(401)
+        series[spec.name] = phi
+        rows = ["# step phi_b phi_c Z z_top lateral central h_s sweeps accept capped"]
+        rows += [f"{t} 0.55 {p:.10f} 5.0 9.0 0.5 0.5 10.0 100 0.1 0" for t, p in enumerate(phi)]
+        (camp.result(spec.name) / "taps.dat").write_text("\n".join(rows) + "\n")
+    sq, mean, sem, n = fig4.steady_states(camp)
+    one = SteadyState(series[specs[0].name][1:], last=100).compute()
+    assert list(n) == [1, 2]
+    assert mean[0] == pytest.approx(one.mean) and sem[0] == pytest.approx(one.sem)
+    means = [SteadyState(series[s.name][1:], last=100).compute().mean for s in specs[1:]]
+    assert sem[1] == pytest.approx(np.std(means, ddof=1) / np.sqrt(2))

@@ -17,7 +17,8 @@ level's steady state from ``tapmc.hysteresis.Hysteresis``, averaged over seeds:
 
 The dotted vertical line is (sqrt eps)* = 0.15.
 
-CSV panels: ``a`` (series ``steady`` with x = sqrt(eps); ``up1``, ``down``, ``up2`` of the
+CSV panels: ``a`` (series ``steady`` with x = sqrt(eps), sem over seeds or, for an eps with
+one seed, that run's batch-means error; ``up1``, ``down``, ``up2`` of the
 ramp beyond (sqrt eps)*; ``low:up1``, ``low:down``, ``low:up2`` of the ramp below it; sem over
 seeds), ``params``:
 
@@ -71,15 +72,19 @@ def runs(scale, seeds):
 
 
 def steady_states(campaign, column="phi_c", bc=BC):
-    """(sqrt_eps, mean, sem, n) of the steady state of ``column`` over seeds, per eps."""
+    """(sqrt_eps, mean, sem, n) of the steady state of ``column`` over seeds, per eps; an eps
+    with one seed (the paper's protocol: one run per point) gets that run's batch-means
+    standard error (``SteadyState.sem``), n = 1."""
     groups = _runs.constant_eps_groups(campaign, bc)
     eps_list, means, sems, ns = [], [], [], []
     for eps, specs in groups.items():
-        values = []
+        states = []
         for spec in specs:
             x = _runs.taps_table(campaign, spec)[column][1:]
-            values.append([SteadyState(x, last=steady_last(len(x))).compute().mean])
-        m, s, n = P.seed_stats(values)
+            states.append(SteadyState(x, last=steady_last(len(x))).compute())
+        m, s, n = P.seed_stats([[st.mean] for st in states])
+        if len(states) == 1:
+            s = [states[0].sem]
         eps_list.append(eps)
         means.append(m[0])
         sems.append(s[0])
