@@ -308,3 +308,15 @@ def test_scaling_collapse_validation():
         scaling_collapse({10.0: curves[10.0]})
     with pytest.raises(ValueError, match="must be > 0"):
         scaling_collapse({0.0: curves[10.0], 30.0: curves[30.0]})
+
+
+def test_interval_widened_by_an_error_found_otherwise():
+    from tapmc.laws import Interval
+
+    iv = Interval(1.0, 0.9, 1.2, (0.0, 10.0), "profile")
+    wide = iv.widened(0.5)
+    assert (wide.lo, wide.hi) == (0.5, 1.5) and wide.determined
+    assert iv.widened(0.05).lo == 0.9 and iv.widened(0.05).hi == 1.2  # never narrowed
+    assert not iv.widened(2.0).determined and np.isnan(iv.widened(2.0).lo)  # below limit 0
+    opened = Interval(1.0, 0.9, None, (0.0, 10.0), "profile").widened(0.5)
+    assert np.isnan(opened.hi) and opened.lo == 0.5

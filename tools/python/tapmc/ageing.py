@@ -319,18 +319,14 @@ class ScalingCollapse:
     def interval(self, name):
         """The 68 % interval of parameter ``name``: its profile interval, each side widened to
         the jackknife standard error and the bootstrap standard deviation when larger (module
-        text); an open side stays open. A :class:`tapmc.laws.Interval`."""
-        from .laws import Interval
-
-        iv = self.fit.intervals[name]
+        text); an open side stays open, and a side widened beyond the allowed range opens
+        (``tapmc.laws.Interval.widened``). A :class:`tapmc.laws.Interval`."""
         spread = [self.jackknife.get(name, np.nan)]
         if self.bootstrap is not None:
             spread.append(self.bootstrap.get(name, np.nan))
         spread = [v for v in spread if np.isfinite(v)]
-        width = max(spread) if spread else 0.0
-        lo = min(iv.lo, iv.value - width) if np.isfinite(iv.lo) else None
-        hi = max(iv.hi, iv.value + width) if np.isfinite(iv.hi) else None
-        return Interval(iv.value, lo, hi, iv.limits, "profile, jackknife, bootstrap")
+        return self.fit.intervals[name].widened(max(spread) if spread else 0.0,
+                                                "profile, jackknife, bootstrap")
 
     @property
     def waiting_times(self):

@@ -118,6 +118,20 @@ class Interval:
     def determined(self):
         return bool(np.isfinite(self.lo) and np.isfinite(self.hi))
 
+    def widened(self, width, method=None):
+        """This interval with each closed side moved out to at least ``width`` from the value
+        (an error found otherwise, e.g. a bootstrap over realizations when the points of the
+        fit are correlated); a side pushed beyond the allowed ``limits`` becomes open."""
+        width = float(width) if np.isfinite(width) else 0.0
+        lo, hi = self.lo, self.hi
+        if np.isfinite(lo):
+            lo = min(lo, self.value - width)
+            lo = lo if lo > self.limits[0] else np.nan
+        if np.isfinite(hi):
+            hi = max(hi, self.value + width)
+            hi = hi if hi < self.limits[1] else np.nan
+        return Interval(self.value, lo, hi, self.limits, method or self.method)
+
     @property
     def half_widths(self):
         """(value - lo, hi - value); ``nan`` on an open side."""

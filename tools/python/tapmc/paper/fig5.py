@@ -22,8 +22,11 @@ panel), ``b`` (the drawn collapse: ``tw=<t_W>`` with x = t / r^mu, mean = A / r^
 likewise, and ``eq6``, its eq. 6 on the rescaled variable), ``params``:
 
 * ``tw=<t_W>:<name>`` (x = t_W): eq. 6 fitted to one curve, mean = value, sem = 1-sigma error
-  when the parameter is determined (empty when not), n = 1 determined / 0 not; ``:lo`` and
-  ``:hi``: its 68 % profile interval (empty on an open side, n = 1 when that side closes);
+  (bootstrap over realizations, ``Ageing.fit``) when the parameter is determined (empty when
+  not), n = 1 determined / 0 not; ``:lo`` and ``:hi``: its 68 % profile interval, each closed
+  side widened to that error (the delays of a curve are correlated: the profile alone is too
+  narrow; a side widened beyond the allowed range opens), empty on an open side (n = 1 when
+  that side closes); determined means both sides closed after widening;
 * ``collapse:<name>``, ``collapse:reduced_chi2`` (and the same number as
   ``unscaled:reduced_chi2``): one eq. 6 in t for all waiting times, the curves unscaled;
 * ``scaling:<name>`` for A_inf, B_A, tau_A (at t_ref), mu and kappa (sem = the larger
@@ -149,9 +152,15 @@ def add_fit_rows(table, tag, x, fit, collapse=None):
     the intervals are its widened ones and ``:jackknife``, ``:bootstrap`` follow."""
     errors = fit.errors
     for name, value in fit.params.items():
-        iv = fit.intervals[name] if collapse is None else collapse.interval(name)
-        half = max(iv.half_widths) if iv.determined else np.nan
-        err = errors[name] if collapse is None else half
+        if collapse is None:
+            # the delays of a curve are correlated: the profile alone is too narrow; each
+            # closed side widened to the error of the fit (bootstrap over realizations)
+            iv = fit.intervals[name].widened(errors[name])
+        else:
+            iv = collapse.interval(name)
+        err = max(iv.half_widths) if iv.determined else np.nan
+        if collapse is None and iv.determined:
+            err = errors[name] if np.isfinite(errors[name]) else err
         table.add("params", f"{tag}:{name}", x, value, err, int(iv.determined))
         for side, bound in (("lo", iv.lo), ("hi", iv.hi)):
             b, closed = _bound(bound)
