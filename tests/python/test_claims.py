@@ -451,3 +451,30 @@ def test_fig4_steady_state_of_one_seed_carries_its_batch_means_error(tmp_path):
     assert mean[0] == pytest.approx(one.mean) and sem[0] == pytest.approx(one.sem)
     means = [SteadyState(series[s.name][1:], last=100).compute().mean for s in specs[1:]]
     assert sem[1] == pytest.approx(np.std(means, ddof=1) / np.sqrt(2))
+
+
+def test_fig2_refit_table_recomputes_the_statistics_from_the_curves(tmp_path):
+    """``report --from-data --refit``: Fig. 2's intervals, range refits and fit curves come
+    from the CSV's own curves; the curves are kept as they are."""
+    from tapmc.paper import fig2
+
+    t = np.concatenate([[0.0], np.unique(np.round(np.geomspace(1, 1000, 150)))])
+    rng = np.random.default_rng(11)
+    table = Table()
+    for eps, (b, tau) in ((0.05, (0.3, 20.0)), (0.15, (0.2, 5.0))):
+        y = inverse_log(t, x_inf=0.62, dx=0.05, b=b, tau=tau) + 2e-4 * rng.standard_normal(t.size)
+        table.add("a", f"eps={P.fmt_eps(eps)}", t, y, 2e-4, 3)
+        table.add("a", f"fit:eps={P.fmt_eps(eps)}", t, np.full(t.size, 0.5), None, 0)
+        table.param(f"eps={P.fmt_eps(eps)}:tau", 2.67e5, 0.026, n=0, x=eps)  # a stale row
+    out = tmp_path / "fig2.csv"
+    fig2.refit_table(table.table).write(out)
+    new = P.read_table(out)
+    for eps in ("0.05", "0.15"):
+        assert np.allclose(new[("a", f"eps={eps}")]["mean"], table.table[("a", f"eps={eps}")]["mean"])
+        tau = new[("params", f"eps={eps}:tau")]
+        assert tau["n"][0] == 1 and 1.0 < tau["mean"][0] < 100.0  # determined, not 2.67e5
+        assert ("params", f"eps={eps}:tau:lo") in new
+        assert ("params", f"eps={eps}:X_inf:range_deviation") in new
+        fit = new[("a", f"fit:eps={eps}")]["mean"]
+        assert np.max(np.abs(fit - new[("a", f"eps={eps}")]["mean"])) < 0.002
+    assert ("B", "eq3:slope") in new

@@ -126,6 +126,10 @@ def build_parser():
                         help="rewrite OUT/validation.rst from the figure CSVs and report.json "
                              "already in OUT/validation (default OUT: the repository's doc/); "
                              "nothing is run or drawn")
+    report.add_argument("--refit", action="store_true",
+                        help="with --from-data: first recompute the statistics that a figure "
+                             "module can compute from its CSV's curves (Fig. 2's fit "
+                             "intervals, range refits and ln B), rewriting those CSVs")
     report.add_argument("--finished-only", action="store_true",
                         help="draw the figures and the report from the campaign's finished "
                              "runs only, running nothing (a campaign under way); figures "
@@ -276,6 +280,9 @@ def _report_from_data(args):
 
     out = args.out or _runs.SOURCE_DIR / "doc"
     try:
+        if args.refit:
+            for csv in validation.refit(out):
+                print(f"refit: {csv}")
         path = validation.regenerate(out)
     except (FileNotFoundError, ValueError) as err:
         print(f"tapmc-paper: {err}", file=sys.stderr)

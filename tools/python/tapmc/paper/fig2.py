@@ -145,6 +145,29 @@ def statistics(table):
     return out
 
 
+def refit_table(table):
+    """A ``FigureTable`` with the curves of ``table`` (a figure CSV read with
+    ``tapmc.paper._plotting.read_table``), their fit curves and every ``params`` and ``B`` row
+    recomputed from them by :func:`statistics`: a report drawn before these statistics existed gets them from
+    its own committed curves (``tapmc-paper report --from-data --refit``)."""
+    out = P.FigureTable()
+    stats = statistics(table)
+    fits = {(LAWS[tag][2], f"fit:eps={P.fmt_eps(eps)}"): refits.reference
+            for tag, st in stats.items() for eps, refits in st["curves"].items()}
+    for (panel, series), d in table.items():
+        if panel in ("params", "B"):
+            continue
+        fit = fits.get((panel, series))
+        mean = d["mean"] if fit is None else fit(d["x"])  # the fit curve of the new fit
+        out.add(panel, series, d["x"], mean, d["sem"], d["n"])
+    for tag, st in stats.items():
+        prefix = LAWS[tag][3]
+        for eps, refits in sorted(st["curves"].items()):
+            add_curve_rows(out, eps, refits, prefix)
+        add_b_rows(out, tag, st["curves"], st["B"])
+    return out
+
+
 def _bound(value):
     return (value, 1) if np.isfinite(value) else (np.nan, 0)
 
