@@ -478,3 +478,30 @@ def test_fig2_refit_table_recomputes_the_statistics_from_the_curves(tmp_path):
         fit = new[("a", f"fit:eps={eps}")]["mean"]
         assert np.max(np.abs(fit - new[("a", f"eps={eps}")]["mean"])) < 0.002
     assert ("B", "eq3:slope") in new
+
+
+def test_fig5_refit_table_finds_the_scaling_of_its_curves(tmp_path):
+    """``report --from-data --refit`` on Fig. 5: the collapse of the CSV's own curves (here
+    built with mu = 0.7, kappa = 0.3) replaces the rows of an older analysis, and the ageing
+    claim is decided from it."""
+    from test_fit_limits import _ageing_curves
+    from tapmc.paper import fig5
+
+    table = Table()
+    for tw, (t, a, sem) in _ageing_curves(0.7, 0.3, 1).items():
+        every = slice(0, None, 5)  # 151 delays per curve: enough, and fast
+        table.add("a", f"tw={tw:g}", t[every], a[every], sem[every], 4)
+        table.param(f"tw={tw:g}:A_inf", 0.02, 0.001, n=1, x=tw)
+    table.add("b", "tw=10", [1.0, 2.0], [0.0, 0.0])  # an unscaled panel b of an older analysis
+    table.param("collapse:reduced_chi2", 2.4e4)
+    out = tmp_path / "fig5.csv"
+    fig5.refit_table(table.table).write(out)
+    new = P.read_table(out)
+    assert new[("params", "scaling:mu")]["mean"][0] == pytest.approx(0.7, abs=0.05)
+    assert new[("params", "drawn:mu")]["n"][0] == 1
+    assert ("params", "tw=10:A_inf") in new and ("params", "collapse:reduced_chi2") in new
+    assert len(new[("b", "tw=10")]["x"]) == 151
+    refitted = Table()
+    refitted.table = new
+    outcome = _outcomes(BY_ID["ageing-scaling"], report(fig5=refitted))
+    assert outcome[0].startswith("agrees")

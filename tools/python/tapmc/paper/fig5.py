@@ -172,6 +172,65 @@ def add_fit_rows(table, tag, x, fit, collapse=None):
             table.add("params", f"{tag}:{name}:bootstrap", x, bs, None, int(np.isfinite(bs)))
 
 
+def add_scaling_rows(table, stats, curves, nreal):
+    """The collapse rows of the module text (``params`` ``unscaled:``, ``scaling:``,
+    ``scaling_time:``, ``drawn:``; panel ``b``'s rescaled curves) from
+    :func:`scaling_statistics` (or ``Ageing.scaling``) results; returns the drawn collapse and
+    dict t_W -> (rescaled t, rescaled A)."""
+    table.add("params", "unscaled:reduced_chi2", 0.0,
+              stats["scaling"].unscaled_reduced_chi2, None, 1)
+    for tag, col in stats.items():
+        table.add("params", f"{tag}:t_ref", 0.0, col.t_ref, None, 1)
+        table.add("params", f"{tag}:reduced_chi2", 0.0, col.reduced_chi2, None,
+                  int(not col.fit.undetermined_params))
+        add_fit_rows(table, tag, 0.0, col.fit, col)
+        mu_free, kappa_free = col.dispersion_exponents
+        table.add("params", f"{tag}:dispersion", 0.0, col.dispersion(), None, 1)
+        table.add("params", f"{tag}:dispersion_mu", 0.0, mu_free, None, 1)
+        table.add("params", f"{tag}:dispersion_kappa", 0.0, kappa_free, None, 1)
+        table.add("params", f"{tag}:dispersion_min", 0.0,
+                  col.dispersion(mu_free, kappa_free), None, 1)
+    table.add("params", "unscaled:dispersion", 0.0, stats["scaling"].dispersion(0.0, 0.0),
+              None, 1)
+    shown = drawn_collapse(stats)
+    full = shown is stats["scaling"]
+    table.add("params", "drawn:mu", 0.0, shown.mu, None, int(full))
+    table.add("params", "drawn:kappa", 0.0, shown.kappa, None, int(full))
+    rescaled = {}
+    for tw, (t, a, sem) in curves.items():
+        if tw <= 0:
+            continue
+        s, y = shown.rescale(tw, t, a)
+        _, ys = shown.rescale(tw, t, sem)
+        table.add("b", f"tw={tw:g}", s, y, ys, nreal)
+        rescaled[tw] = (s, y)
+    return shown, rescaled
+
+
+def refit_table(table):
+    """A ``FigureTable`` with the curves and per-curve rows of ``table`` (a Fig. 5 CSV read
+    with ``tapmc.paper._plotting.read_table``) and the collapse recomputed from its curves
+    (:func:`scaling_statistics`, no bootstrap: the realizations are not in a CSV): a report
+    drawn before the collapse existed gets it from its own committed curves
+    (``tapmc-paper report --from-data --refit``)."""
+    out = P.FigureTable()
+    collapse_tags = ("unscaled:", "scaling:", "scaling_time:", "drawn:")
+    for (panel, series), d in table.items():
+        if panel == "b" or (panel == "params" and series.startswith(collapse_tags)):
+            continue
+        out.add(panel, series, d["x"], d["mean"], d["sem"], d["n"])
+    curves = curves_from_table(table)
+    nreal = int(min(np.min(d["n"]) for (p, s), d in table.items()
+                    if p == "a" and s.startswith("tw=")))
+    shown, _ = add_scaling_rows(out, scaling_statistics(curves), curves, nreal)
+    rescaled = [s for tw, (t, a, sem) in curves.items() if tw > 0
+                for s in [shown.rescale(tw, t, a)[0]]]
+    ss = np.geomspace(min(s[s > 0].min() for s in rescaled),
+                      max(s[s > 0].max() for s in rescaled), 200)
+    out.add("b", "eq6", ss, shown.master(ss), None, 0)
+    return out
+
+
 def draw(campaign, out_dir, waiting_times=None):
     png, csv = P.figure_paths(out_dir, NAME)
     result, nreal = ageing(campaign, waiting_times)
@@ -209,32 +268,9 @@ def draw(campaign, out_dir, waiting_times=None):
     except (ValueError, RuntimeError):
         stats = None
     if stats is not None:
-        table.add("params", "unscaled:reduced_chi2", 0.0,
-                  stats["scaling"].unscaled_reduced_chi2, None, 1)
-        for tag, col in stats.items():
-            table.add("params", f"{tag}:t_ref", 0.0, col.t_ref, None, 1)
-            table.add("params", f"{tag}:reduced_chi2", 0.0, col.reduced_chi2, None,
-                      int(not col.fit.undetermined_params))
-            add_fit_rows(table, tag, 0.0, col.fit, col)
-            mu_free, kappa_free = col.dispersion_exponents
-            table.add("params", f"{tag}:dispersion", 0.0, col.dispersion(), None, 1)
-            table.add("params", f"{tag}:dispersion_mu", 0.0, mu_free, None, 1)
-            table.add("params", f"{tag}:dispersion_kappa", 0.0, kappa_free, None, 1)
-            table.add("params", f"{tag}:dispersion_min", 0.0,
-                      col.dispersion(mu_free, kappa_free), None, 1)
-        table.add("params", "unscaled:dispersion", 0.0, stats["scaling"].dispersion(0.0, 0.0),
-                  None, 1)
-        shown = drawn_collapse(stats)
-        full = shown is stats["scaling"]
-        table.add("params", "drawn:mu", 0.0, shown.mu, None, int(full))
-        table.add("params", "drawn:kappa", 0.0, shown.kappa, None, int(full))
+        shown, rescaled = add_scaling_rows(table, stats, curves, nreal)
         smin, smax = np.inf, 0.0
-        for tw, (t, a, sem) in curves.items():
-            if tw <= 0:
-                continue
-            s, y = shown.rescale(tw, t, a)
-            _, ys = shown.rescale(tw, t, sem)
-            table.add("b", f"tw={tw:g}", s, y, ys, nreal)
+        for tw, (s, y) in rescaled.items():
             pos = s > 0
             ax_c.plot(s[pos], y[pos], "o", ms=2, color=colors.get(tw), label=f"$t_W$ = {tw:g}")
             smin, smax = min(smin, s[pos].min()), max(smax, s[pos].max())
