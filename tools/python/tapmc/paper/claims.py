@@ -581,6 +581,8 @@ def sigma_intercept(data, claim):
     if fig is None:
         return _missing("no Fig. 3 runs")
     m, s, n = fig.param("intercept")
+    if not np.isfinite(m):
+        return _missing("fewer than three eps: no free straight line")
     b = fig.get("b", "sigma_Z")
     dof = len(b[0]) - 2 if b is not None else None
     # a zero intercept means small against the smallest sigma measured
@@ -741,6 +743,8 @@ def final_alpha(data, claim):
     if fig is None:
         return _missing("no Fig. 6 runs")
     m, s, n = fig.param("final:alpha")
+    if not np.isfinite(m):
+        return _missing("no F.B.C. profile runs")
     return [Measure(m, s, _dof(n))]
 
 
