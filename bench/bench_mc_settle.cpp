@@ -269,12 +269,12 @@ void threads_section(bool quick)
   const double per_window = static_cast<double>(w.trials) / w.windows;
   const double handoff2 = team_handoff_seconds(2);
   std::printf("  windows: %.0f trials each; boundary trials %.1f %%, of which %.2f %% waited;\n"
-              "  per window (us): draws %.1f, chains %.1f, trials %.1f, merge + list updates %.1f;\n"
+              "  per window (us): plans %.1f, trials %.1f, merge + list updates %.1f;\n"
               "  team hand-off %.2f us\n",
               per_window, 100.0 * w.boundary_trials / w.trials,
-              100.0 * w.waits / std::max(1L, w.boundary_trials), 1e6 * w.draw_seconds / w.windows,
-              1e6 * w.chain_seconds / w.windows, 1e6 * w.execute_seconds / w.windows,
-              1e6 * w.merge_seconds / w.windows, 1e6 * handoff2);
+              100.0 * w.waits / std::max(1L, w.boundary_trials), 1e6 * w.plan_seconds / w.windows,
+              1e6 * w.execute_seconds / w.windows, 1e6 * w.merge_seconds / w.windows,
+              1e6 * handoff2);
   // 16 threads on this scene: which trials are boundary trials and how often they wait (a short
   // run, oversubscribed here: only the counts are used).
   Settler sixteen;
@@ -286,25 +286,26 @@ void threads_section(bool quick)
     sixteen.settle(s.xyz.data(), s.radius.data(), nullptr, n, s.box, q);
   }
   const SphereMover::WindowStats w16 = sixteen.mover().window_stats();
-  // Model: the parallel phases (draws, trials) divide by the thread count at the per-trial cost
-  // measured with 2 threads (boundary scans and waits included, scaled to 16 threads' boundary
-  // fraction); the one-thread phases (chains, merges) stay; each window pays a hand-off that
+  // Model: every member plans the whole chunk (picks, chains: a cost per trial that does not
+  // divide) and draws its own moves (divides); the trials divide by the thread count at the
+  // per-trial cost measured with 2 threads (boundary scans and waits included, scaled to 16
+  // threads' boundary fraction); the merges stay on one thread; each window pays a hand-off that
   // grows with the members that report to the caller (one cache line transfer each, measured
   // as the 2-thread hand-off).
   const double windows_per_tap = per_window > 0 ? trials / per_window : 0.0;
-  const double draw_per_trial = 2.0 * w.draw_seconds / w.trials;
+  const double plan_per_trial = w.plan_seconds / w.trials;  // one member's plan of a trial
   const double boundary2 = static_cast<double>(w.boundary_trials) / w.trials;
   const double boundary16 = static_cast<double>(w16.boundary_trials) / std::max(1L, w16.trials);
   const double execute_per_trial = 2.0 * w.execute_seconds / w.trials;
-  const double serial_per_window = (w.chain_seconds + w.merge_seconds) / w.windows;
+  const double serial_per_window = w.merge_seconds / w.windows;
   const double boundary_extra = boundary2 > 0 ? (execute_per_trial - t1 / trials) / boundary2 : 0.0;
   const double execute16 = t1 / trials + std::max(0.0, boundary_extra) * boundary16;
-  const double model16 = trials * (draw_per_trial + execute16) / 16.0 +
+  const double model16 = trials * (plan_per_trial + execute16 / 16.0) +
                          windows_per_tap * (serial_per_window + 15.0 * handoff2);
   std::printf("  model for 16 threads (boundary trials %.0f %%, waits %.2f %% of them): %.3f s per "
               "tap, %.1f x one thread; the one-thread phases alone cap it at %.1f x\n",
               100.0 * boundary16, 100.0 * w16.waits / std::max(1L, w16.boundary_trials), model16,
-              t1 / model16, t1 / (windows_per_tap * serial_per_window));
+              t1 / model16, t1 / (windows_per_tap * serial_per_window + trials * plan_per_trial));
 }
 
 }  // namespace

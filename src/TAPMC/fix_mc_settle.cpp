@@ -9,6 +9,7 @@
 #include "fix_mc_settle.h"
 
 #include "lammps_box.h"
+#include "lammps_compat.h"
 #include "lammps_domain_settle.h"
 #include "lammps_keywords.h"
 #include "lammps_relocate.h"
@@ -382,8 +383,8 @@ void FixMCSettle::init()
 }
 
 // The threads of each rank's trial moves: 'threads N', 'threads auto' (OMP_NUM_THREADS, else
-// the cores this process may run on), or by default LAMMPS's OpenMP thread count ('package omp
-// N'; 1 without the OPENMP package). More threads than cores give the same moves, slowly: said.
+// the cores this process may run on), or by default the thread count of 'package omp N' (1
+// without it). More threads than cores give the same moves, slowly: said.
 void FixMCSettle::resolve_threads()
 {
   const int cores = tapmc::available_cores();
@@ -394,7 +395,9 @@ void FixMCSettle::resolve_threads()
     const long n = omp ? std::strtol(omp, &end, 10) : 0;
     wanted = omp && *end == '\0' && n >= 1 ? static_cast<int>(n) : cores;
   } else if (wanted == kThreadsDefault) {
-    wanted = comm->nthreads;
+    // LAMMPS's OpenMP threads count only once 'package omp' (fix package_omp) set them: an
+    // OMP_NUM_THREADS meant for other programs does not turn threads on.
+    wanted = tapmc::compat::find_fix(modify, "package_omp") ? comm->nthreads : 1;
   }
   threads = std::max(1, std::min(wanted, tapmc::defaults::kMaxThreads));
   if (threads > cores && comm->me == 0)

@@ -65,7 +65,7 @@ class FixMCSettle : public Fix {
   bool window_given = false;
   bool verify_ghosts = false; // 'verify': scheme domain checks every ghost after every round
   // 'threads': threads of each rank's trial moves (any value gives the same trajectory).
-  // kThreadsDefault: not given (LAMMPS's OpenMP thread count, 'package omp', else 1);
+  // kThreadsDefault: not given (the thread count of 'package omp N', else 1);
   // kThreadsAuto: OMP_NUM_THREADS, else the cores available to the process.
   static constexpr int kThreadsDefault = 0, kThreadsAuto = -1;
   int threads_setting = kThreadsDefault;

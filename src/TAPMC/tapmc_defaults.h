@@ -197,8 +197,6 @@ constexpr long kThreadChunkTrials = 4096;
 // A block of fewer trials than this per thread runs on the serial loop (same moves): a window
 // costs two hand-offs between threads (about a microsecond).
 constexpr long kThreadMinTrialsPerThread = 512;
-// The windowed executor prefetches the draws (made on other cores) this many trials ahead.
-constexpr int kThreadDrawPrefetchAhead = 32;
 // Largest 'threads' value: a trial's owner is stored in 7 bits.
 constexpr int kMaxThreads = 64;
 // A busy wait (thread team, trial dependencies) pauses this many times (about 0.1 ms) before

@@ -223,52 +223,57 @@ struct MovedSlots {
 // region (then it looks for earlier trials of other threads on its listed neighbours).
 constexpr unsigned char kOwnerBits = 0x7f, kBoundaryBit = 0x80;
 
-// The windowed executor's storage: per trial of the current chunk (draws, slots, owners, the
-// previous pick of the same sphere), per slot (the chunk's last pick of it), per grid cell
-// (owner and boundary bit), per thread (progress, accepted trials), and the team.
+// The windowed executor's storage: per grid cell the owner and boundary bit, and per thread
+// (member) everything it reads or writes during a window, on its own cache lines: a line
+// written on one core and read on another costs a transfer between cores (measured at about
+// 0.25-0.8 us on the shared test machine, where reading draws made on the other core cost more
+// than the trials). So each member makes for itself, from the read-only scene: the chunk's picks
+// and slots, the owners, the picks' chains; then draws the moves of its own trials only.
 struct WindowExecutor {
   std::unique_ptr<ThreadTeam> team;
   int axis = 2;                          // axis of the owners' slabs of cells
   std::vector<unsigned char> cell_role;  // per grid cell: owner | kBoundaryBit
-  // Per trial of the chunk (index t = trial - first trial of the chunk).
-  std::vector<TrialDraw> draw;
-  std::vector<int> slot, prev_pick, limit_pick;
-  std::vector<unsigned char> role;
-  // Per slot: the chunk that last picked it (chunk_stamp) and its last pick in that chunk.
-  std::vector<std::uint64_t> chunk_stamp;
-  std::vector<int> last_pick;
   std::uint64_t chunk_seq = 0, window_seq = 0;
-  // Per member, each on its own cache lines (trials of different members interleave: shared
-  // per-trial flags would bounce a line between cores at every trial): its progress in the
-  // window (window_seq << 32 | 1 + its last boundary trial done), its accepted trials in
-  // order with their z changes, and counts.
   struct alignas(64) Member {
-    std::atomic<std::uint64_t> progress{0};
-    alignas(64) std::vector<int> accepted_trials;
+    std::atomic<std::uint64_t> progress{0};  // window_seq << 32 | 1 + its last boundary trial done
+    // Per trial of the chunk (index t = trial - first trial of the chunk).
+    alignas(64) std::vector<int> slot, prev_pick, limit_pick;
+    std::vector<unsigned char> role;
+    // Per slot: the chunk that last picked it and its last pick there.
+    std::vector<std::uint64_t> chunk_stamp;
+    std::vector<int> last_pick;
+    // Its own trials from `planned_from` on, in order, their moves, and the next one to run.
+    std::vector<int> own;
+    std::vector<TrialDraw> own_draw;
+    std::size_t next = 0;
+    // Its accepted trials of the current window (chunk index, z change), in order.
+    std::vector<int> accepted_trials;
     std::vector<double> accepted_dz;
     long boundary_trials = 0, waits = 0;
   };
   std::unique_ptr<Member[]> members;
   int member_count = 0;
   long windows = 0, trials = 0;
-  double phase_seconds[4] = {0, 0, 0, 0};  // draw, chain, execute, merge (WindowStats)
+  double phase_seconds[4] = {0, 0, 0, 0};  // plan, chains (unused), execute, merge (WindowStats)
 
   void allocate(int n, int threads)
   {
     const std::size_t c = static_cast<std::size_t>(defaults::kThreadChunkTrials);
-    draw.resize(c);
-    slot.resize(c);
-    prev_pick.resize(c);
-    limit_pick.resize(c);
-    role.resize(c);
-    chunk_stamp.assign(static_cast<std::size_t>(n), 0);
-    last_pick.assign(static_cast<std::size_t>(n), -1);
     chunk_seq = window_seq = 0;
     members = std::make_unique<Member[]>(static_cast<std::size_t>(threads));
     member_count = threads;
     for (int m = 0; m < threads; ++m) {
-      members[m].accepted_trials.reserve(c);
-      members[m].accepted_dz.reserve(c);
+      Member &me = members[m];
+      me.slot.resize(c);
+      me.prev_pick.resize(c);
+      me.limit_pick.resize(c);
+      me.role.resize(c);
+      me.chunk_stamp.assign(static_cast<std::size_t>(n), 0);
+      me.last_pick.assign(static_cast<std::size_t>(n), -1);
+      me.own.reserve(c);
+      me.own_draw.reserve(c);
+      me.accepted_trials.reserve(c);
+      me.accepted_dz.reserve(c);
     }
     windows = trials = 0;
     std::fill(phase_seconds, phase_seconds + 4, 0.0);
@@ -515,8 +520,7 @@ SphereMover::WindowStats SphereMover::window_stats() const
   WindowStats stats;
   stats.windows = wx.windows;
   stats.trials = wx.trials;
-  stats.draw_seconds = wx.phase_seconds[0];
-  stats.chain_seconds = wx.phase_seconds[1];
+  stats.plan_seconds = wx.phase_seconds[0];
   stats.execute_seconds = wx.phase_seconds[2];
   stats.merge_seconds = wx.phase_seconds[3];
   for (int m = 0; m < wx.member_count; ++m) {
@@ -788,7 +792,7 @@ void run_trials(SphereMover::State &st, const RunArgs &a)
 
 // ---- The windowed executor (threads > 1) -----------------------------------------------------
 // Trial t's pick and move depend only on (rng, t), so the trials of a block are known before
-// they run. They are drawn a chunk at a time (in parallel) and cut into windows: a window ends
+// they run. They are planned a chunk at a time and cut into windows: a window ends
 // before the first trial whose sphere it already holds kThreadWindowPicks times. During a window
 // the lists and the grid are not changed: the lists carry 2 kThreadWindowPicks d_max of extra
 // skin, so a sphere that starts the window within skin/2 of its reference stays within the
@@ -809,14 +813,15 @@ void run_trials(SphereMover::State &st, const RunArgs &a)
 // window's moves are the serial ones. Each thread keeps its accepted trials (index, z change)
 // to itself; after the window one thread merges them in trial order: it adds the z changes (so
 // <Z> is bit-identical), notes the moved spheres and updates the lists of those beyond skin/2
-// (serially: list rows and grid cells may widen). Per-trial words written by several threads
-// would bounce cache lines between cores at every trial, so the picks' chains (which window a
-// trial may join) are made by one thread too.
+// (serially: list rows and grid cells may widen); when an update moved a sphere to another
+// cell, the owners of the chunk's later trials are redone before the next window. No per-trial
+// word is written on one core and read on another (see WindowExecutor): every member plans
+// the whole chunk's picks and chains for itself and draws only its own trials' moves.
 
 // Spins until every earlier trial of this window by another thread on a listed neighbour of slot
 // s (trial t) is done. Returns the number of such trials still running when looked at.
-inline long wait_for_neighbours(const SphereMover::State &st, int s, long t, long window_first,
-                                int member)
+inline long wait_for_neighbours(const SphereMover::State &st, const WindowExecutor::Member &me,
+                                int s, long t, long window_first, int member)
 {
   const WindowExecutor &wx = st.window;
   const int *row = st.lists.row(s);
@@ -824,11 +829,12 @@ inline long wait_for_neighbours(const SphereMover::State &st, int s, long t, lon
   long waits = 0;
   for (int q = 1, end = row[0]; q <= end; ++q) {
     const int j = row[q];
-    if (wx.chunk_stamp[j] != wx.chunk_seq) continue;
-    long u = wx.last_pick[j];
-    while (u >= t) u = wx.prev_pick[u];
-    const int owner = wx.role[u < 0 ? 0 : u] & kOwnerBits;
-    if (u < window_first || owner == member) continue;
+    if (me.chunk_stamp[j] != wx.chunk_seq) continue;
+    long u = me.last_pick[j];
+    while (u >= t) u = me.prev_pick[u];
+    if (u < window_first) continue;
+    const int owner = me.role[u] & kOwnerBits;
+    if (owner == member) continue;
     const std::atomic<std::uint64_t> &progress = wx.members[owner].progress;
     const std::uint64_t needed = window | static_cast<std::uint64_t>(u + 1);
     if (progress.load(std::memory_order_acquire) >= needed) continue;
@@ -848,28 +854,31 @@ void execute_window(SphereMover::State &st, const TrialRule<Mono, PeriodicX, Per
   WindowExecutor &wx = st.window;
   WindowExecutor::Member &me = wx.members[member];
   SlotRecords &spheres = st.spheres;
+  const CountedRows &lists = st.lists;
   const std::uint64_t window = wx.window_seq << 32;
   me.accepted_trials.clear();
   me.accepted_dz.clear();
   long boundary = 0, waits = 0;
-  for (long t = first; t < last; ++t) {
-    // The draws were made on several cores: their lines are fetched well ahead.
-    if (t + defaults::kThreadDrawPrefetchAhead < last) {
-      prefetch(&wx.draw[t + defaults::kThreadDrawPrefetchAhead]);
-      prefetch(&wx.slot[t + defaults::kThreadDrawPrefetchAhead]);
+  const std::size_t own_count = me.own.size();
+  for (; me.next < own_count && me.own[me.next] < last; ++me.next) {
+    const std::size_t i = me.next;
+    if (i + defaults::kOwnPrefetchAhead < own_count) {
+      const int later = me.slot[me.own[i + defaults::kOwnPrefetchAhead]];
+      prefetch(spheres.at(later));
+      prefetch(lists.row(later));
     }
-    const unsigned char role = wx.role[t];
-    if ((role & kOwnerBits) != member) continue;
-    const int s = wx.slot[t];
+    const long t = me.own[i];
+    const unsigned char role = me.role[t];
+    const int s = me.slot[t];
     const bool on_boundary = role & kBoundaryBit;
     if (on_boundary) {
       ++boundary;
-      waits += wait_for_neighbours(st, s, t, first, member);
+      waits += wait_for_neighbours(st, me, s, t, first, member);
     }
     double *p = spheres.at(s);
     double x, y, z;
     int wrap_x, wrap_y;
-    if (rule.accepts(p, s, wx.draw[t].move, x, y, z, wrap_x, wrap_y)) {
+    if (rule.accepts(p, s, me.own_draw[i].move, x, y, z, wrap_x, wrap_y)) {
       me.accepted_trials.push_back(static_cast<int>(t));
       me.accepted_dz.push_back(z - p[2]);
       p[0] = x;
@@ -885,6 +894,66 @@ void execute_window(SphereMover::State &st, const TrialRule<Mono, PeriodicX, Per
   me.waits += waits;
 }
 
+// The trials of a block a member runs, planned by the member itself (see WindowExecutor).
+struct ChunkPlan {
+  const RunArgs &a;
+  std::uint64_t first_trial;  // of the chunk
+  long chunk, cursor;         // trials in the chunk; sweep cursor at its start
+  std::uint32_t n_pick;
+
+  // The chunk's picks, slots, owners and chains, then the member's own trials and moves.
+  void plan(SphereMover::State &st, int member) const
+  {
+    WindowExecutor &wx = st.window;
+    WindowExecutor::Member &me = wx.members[member];
+    std::uint32_t picks[TrialMoveSampler::kBatchMax];
+    for (long t = 0; t < chunk; t += TrialMoveSampler::kBatchMax) {
+      const int count = static_cast<int>(std::min<long>(TrialMoveSampler::kBatchMax, chunk - t));
+      if (a.random)
+        a.sampler->pick_batch(*a.rng, first_trial + static_cast<std::uint64_t>(t), count, n_pick,
+                              picks);
+      for (long u = t; u < t + count; ++u) {
+        const long k = a.random ? static_cast<long>(picks[u - t]) : (cursor + u) % a.m;
+        me.slot[u] = a.candidate_slots ? a.candidate_slots[k] : st.spheres.slot_of[a.candidates[k]];
+      }
+    }
+    const std::uint64_t stamp = wx.chunk_seq;
+    for (long t = 0; t < chunk; ++t) {
+      const int s = me.slot[t];
+      const int before = me.chunk_stamp[s] == stamp ? me.last_pick[s] : -1;
+      me.chunk_stamp[s] = stamp;
+      me.last_pick[s] = static_cast<int>(t);
+      me.prev_pick[t] = before;
+      int limit = before;  // the kThreadWindowPicks-th earlier pick of the same sphere
+      for (int k = 1; k < defaults::kThreadWindowPicks && limit >= 0; ++k) limit = me.prev_pick[limit];
+      me.limit_pick[t] = limit;
+    }
+    plan_from(st, member, 0);
+  }
+
+  // Owners of trials [from, chunk) from the spheres' present cells, and the member's own trials
+  // among them with their moves (again after list updates moved spheres to other cells).
+  void plan_from(SphereMover::State &st, int member, long from) const
+  {
+    WindowExecutor &wx = st.window;
+    WindowExecutor::Member &me = wx.members[member];
+    for (long t = from; t < chunk; ++t) me.role[t] = wx.cell_role[st.grid.cell_of_slot[me.slot[t]]];
+    me.own.clear();
+    me.next = 0;
+    for (long t = from; t < chunk; ++t)
+      if ((me.role[t] & kOwnerBits) == member) me.own.push_back(static_cast<int>(t));
+    me.own_draw.resize(me.own.size());
+    std::uint64_t numbers[TrialMoveSampler::kBatchMax];
+    for (std::size_t i = 0; i < me.own.size(); i += TrialMoveSampler::kBatchMax) {
+      const int count = static_cast<int>(
+          std::min<std::size_t>(TrialMoveSampler::kBatchMax, me.own.size() - i));
+      for (int k = 0; k < count; ++k)
+        numbers[k] = first_trial + static_cast<std::uint64_t>(me.own[i + k]);
+      a.sampler->draw_trials(*a.rng, numbers, count, 0, &me.own_draw[i]);
+    }
+  }
+};
+
 // One block of trials on the team (see above).
 template <bool Mono, bool PeriodicX, bool PeriodicY, bool Region>
 void run_windowed(SphereMover::State &st, const RunArgs &a)
@@ -896,54 +965,33 @@ void run_windowed(SphereMover::State &st, const RunArgs &a)
   const std::uint32_t n_pick = a.random ? static_cast<std::uint32_t>(a.m) : 0u;
   long accepted = 0;
   double sum_dz = a.tally->sum_dz;
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point clock = Clock::now();
+  auto lap = [&](int phase) {
+    const Clock::time_point now = Clock::now();
+    wx.phase_seconds[phase] += std::chrono::duration<double>(now - clock).count();
+    clock = now;
+  };
   team.wake();
   for (long chunk_first = 0; chunk_first < a.trials;) {
     const long chunk = std::min(defaults::kThreadChunkTrials, a.trials - chunk_first);
-    const std::uint64_t first_trial = a.first_trial + static_cast<std::uint64_t>(chunk_first);
-    const long cursor = *a.sweep_cursor;
-    const std::uint64_t stamp = ++wx.chunk_seq;
-    // Draws, slots and owners, each member a slice of the chunk.
-    auto draw = [&](int member) {
-      const long lo = chunk * member / members, hi = chunk * (member + 1) / members;
-      for (long t = lo; t < hi; t += TrialMoveSampler::kBatchMax) {
-        const int count = static_cast<int>(std::min<long>(TrialMoveSampler::kBatchMax, hi - t));
-        a.sampler->draw_batch(*a.rng, first_trial + static_cast<std::uint64_t>(t), count, n_pick,
-                              &wx.draw[t]);
-        for (long u = t; u < t + count; ++u) {
-          const long k = a.random ? static_cast<long>(wx.draw[u].pick) : (cursor + u) % a.m;
-          const int s = a.candidate_slots ? a.candidate_slots[k] : st.spheres.slot_of[a.candidates[k]];
-          wx.slot[u] = s;
-          wx.role[u] = wx.cell_role[st.grid.cell_of_slot[s]];
-        }
-      }
-    };
-    using Clock = std::chrono::steady_clock;
-    Clock::time_point clock = Clock::now();
-    auto lap = [&](int phase) {
-      const Clock::time_point now = Clock::now();
-      wx.phase_seconds[phase] += std::chrono::duration<double>(now - clock).count();
-      clock = now;
-    };
-    team.run(draw);
+    const ChunkPlan plan{a, a.first_trial + static_cast<std::uint64_t>(chunk_first), chunk,
+                         *a.sweep_cursor, n_pick};
+    ++wx.chunk_seq;
+    auto make_plan = [&](int member) { plan.plan(st, member); };
+    team.run(make_plan);
     lap(0);
-    // Each sphere's picks in the chunk, chained (on one thread: written by several, these
-    // per-trial and per-slot words would bounce between cores).
-    for (long t = 0; t < chunk; ++t) {
-      const int s = wx.slot[t];
-      const int before = wx.chunk_stamp[s] == stamp ? wx.last_pick[s] : -1;
-      wx.chunk_stamp[s] = stamp;
-      wx.last_pick[s] = static_cast<int>(t);
-      wx.prev_pick[t] = before;
-      int limit = before;  // the kThreadWindowPicks-th earlier pick of the same sphere
-      for (int k = 1; k < defaults::kThreadWindowPicks && limit >= 0; ++k) limit = wx.prev_pick[limit];
-      wx.limit_pick[t] = limit;
-    }
-    lap(1);
+    const std::vector<int> &limit_pick = wx.members[0].limit_pick;
+    const std::vector<int> &slot = wx.members[0].slot;
+    long replan_from = -1;  // >= 0: spheres changed cells; owners of trials from here are stale
     for (long first = 0; first < chunk;) {
       long last = first + 1;
-      while (last < chunk && wx.limit_pick[last] < first) ++last;
+      while (last < chunk && limit_pick[last] < first) ++last;
       ++wx.window_seq;
-      auto execute = [&](int member) { execute_window(st, rule, first, last, member); };
+      auto execute = [&](int member) {
+        if (replan_from >= 0) plan.plan_from(st, member, replan_from);
+        execute_window(st, rule, first, last, member);
+      };
       team.run(execute);
       lap(2);
       ++wx.windows;
@@ -963,7 +1011,7 @@ void run_windowed(SphereMover::State &st, const RunArgs &a)
         }
         if (from < 0) break;
         const double dz = wx.members[from].accepted_dz[next[from]++];
-        const int s = wx.slot[t];
+        const int s = slot[t];
         ++accepted;
         sum_dz += dz;
         st.moved.note(s);
@@ -973,12 +1021,11 @@ void run_windowed(SphereMover::State &st, const RunArgs &a)
           rebinned = rebinned || st.grid.cell_of_slot[s] != cell;
         }
       }
-      if (rebinned)  // a sphere changed cell: the later trials' owners follow
-        for (long t = last; t < chunk; ++t) wx.role[t] = wx.cell_role[st.grid.cell_of_slot[wx.slot[t]]];
+      replan_from = rebinned ? last : -1;  // the members redo their owners from the next window
       lap(3);
       first = last;
     }
-    if (!a.random) *a.sweep_cursor = (cursor + chunk) % a.m;
+    if (!a.random) *a.sweep_cursor = (*a.sweep_cursor + chunk) % a.m;
     chunk_first += chunk;
   }
   team.sleep();

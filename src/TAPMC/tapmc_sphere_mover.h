@@ -3,7 +3,8 @@
 // n hard spheres, some of which may move, with neighbour lists kept up to date locally (only
 // what moved is rebuilt). The serial kernel (Settler) runs one redeposition on it; the
 // domain-decomposed fix mc/settle runs blocks of trials on each rank's own spheres, the
-// others (LAMMPS ghosts) being obstacles whose positions it refreshes between blocks.
+// others (LAMMPS ghosts) being obstacles whose positions it refreshes between blocks. With
+// set_threads(N > 1) it runs blocks of trials on N threads, with the same moves.
 #ifndef TAPMC_SPHERE_MOVER_H
 #define TAPMC_SPHERE_MOVER_H
 
@@ -107,9 +108,10 @@ class SphereMover {
   // the waits for such a trial still running.
   struct WindowStats {
     long windows = 0, trials = 0, boundary_trials = 0, waits = 0;
-    // Wall seconds of the calling thread in the phases: parallel draws (team), the picks'
-    // chains (one thread), the windows' trials (team), the merges and list updates (one thread).
-    double draw_seconds = 0, chain_seconds = 0, execute_seconds = 0, merge_seconds = 0;
+    // Wall seconds of the calling thread in the phases: the chunks' plans (team: picks, owners,
+    // chains, each member's own moves), the windows' trials (team), the merges and list updates
+    // (one thread).
+    double plan_seconds = 0, execute_seconds = 0, merge_seconds = 0;
   };
   WindowStats window_stats() const;
 

@@ -219,10 +219,32 @@ void TrialMoveSampler::draw_batch(const CounterRandom &rng, std::uint64_t first,
 {
   if (count < 0 || count > kBatchMax)
     throw_outside_range("draw_batch count", count, "[0, " + std::to_string(kBatchMax) + "]");
+  std::uint64_t trial[kBatchMax];
+  for (int k = 0; k < count; ++k) trial[k] = first + k;
+  draw_trials(rng, trial, count, n_pick, out);
+}
+
+void TrialMoveSampler::pick_batch(const CounterRandom &rng, std::uint64_t first, int count,
+                                  std::uint32_t n_pick, std::uint32_t *out) const
+{
+  if (count < 0 || count > kBatchMax)
+    throw_outside_range("pick_batch count", count, "[0, " + std::to_string(kBatchMax) + "]");
+  std::uint64_t positions[kBatchMax];
+  RandomBlock blocks[kBatchMax];
+  for (int k = 0; k < count; ++k) positions[k] = (first + k) * kDrawsPerTrial + kMainDraw;
+  rng.blocks(positions, count, blocks);
+  for (int k = 0; k < count; ++k) out[k] = sample_pick(rng, first + k, blocks[k][0], n_pick);
+}
+
+void TrialMoveSampler::draw_trials(const CounterRandom &rng, const std::uint64_t *trial,
+                                   int count, std::uint32_t n_pick, TrialDraw *out) const
+{
+  if (count < 0 || count > kBatchMax)
+    throw_outside_range("draw_trials count", count, "[0, " + std::to_string(kBatchMax) + "]");
   std::uint64_t positions[2 * kBatchMax];
   RandomBlock blocks[2 * kBatchMax];
   for (int k = 0; k < count; ++k) {
-    const std::uint64_t base = (first + k) * kDrawsPerTrial;
+    const std::uint64_t base = trial[k] * kDrawsPerTrial;
     positions[k] = base + kMainDraw;
     positions[count + k] = base + kFirstThetaDraw;
   }
@@ -249,7 +271,7 @@ void TrialMoveSampler::draw_batch(const CounterRandom &rng, std::uint64_t first,
     slow[k] = !(pick_done && theta_done) ? 1u : 0u;
   }
   for (int k = 0; k < count; ++k)
-    out[k] = slow[k] ? finish(rng, first + k, n_pick, blocks[k], blocks[count + k])
+    out[k] = slow[k] ? finish(rng, trial[k], n_pick, blocks[k], blocks[count + k])
                      : TrialDraw{static_cast<std::uint32_t>(pick[k]), {dx[k], dy[k], dz[k]}};
 }
 

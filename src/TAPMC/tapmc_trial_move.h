@@ -182,6 +182,14 @@ class TrialMoveSampler {
   void draw_batch(const CounterRandom &rng, std::uint64_t first, int count, std::uint32_t n_pick,
                   TrialDraw *out) const;
 
+  // The picks alone of trials first .. first + count - 1 (count <= kBatchMax, n_pick >= 1),
+  // the same as draw(...).pick.
+  void pick_batch(const CounterRandom &rng, std::uint64_t first, int count, std::uint32_t n_pick,
+                  std::uint32_t *out) const;
+  // Trials trial[0 .. count) (any numbers, count <= kBatchMax) at once, bit-identical to draw().
+  void draw_trials(const CounterRandom &rng, const std::uint64_t *trial, int count,
+                   std::uint32_t n_pick, TrialDraw *out) const;
+
   // The random words behind a draw's rejection steps, from positions of the trial's slice and,
   // past the slice, of the overflow rounds (never exhausted): the pair of theta attempt
   // `attempt` (attempts 0 and 1 share the first theta block), and extra pick word `index`.
