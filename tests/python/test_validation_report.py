@@ -77,3 +77,38 @@ def test_missing_data_is_named(tmp_path):
                          text=True, timeout=120)
     assert out.returncode == 2 and "no report summary" in out.stderr
     assert "Traceback" not in out.stderr
+
+
+def _have_pores():
+    from tapmc.paper import _runs
+
+    try:
+        _runs.pores_executable()
+        return True
+    except FileNotFoundError:
+        return False
+
+
+@pytest.mark.skipif(not _have_pores(), reason="tapmc-pores is not built: Figs. 9 and 10")
+def test_paper_scale_page_is_what_the_committed_campaign_gives(tmp_path):
+    """doc/paper_scale is 'report --full --finished-only' of the committed paper-scale
+    campaign: drawn anew from a copy of its finished runs, the page and its CSVs are the
+    committed ones (the questions folder comes from bench/paper_questions.py)."""
+    campaign = tmp_path / "full"
+    shutil.copytree(DOC / "validation" / "data" / "full", campaign,
+                    ignore=shutil.ignore_patterns("restart.*", "campaign.lock"))
+    out = tmp_path / "page"
+    shutil.copytree(DOC / "paper_scale" / "validation" / "questions",
+                    out / "validation" / "questions")
+    env = dict(os.environ, PYTHONPATH=str(PYTHON_DIR))
+    done = subprocess.run([sys.executable, "-m", "tapmc.paper", "report", "--full", "--seeds",
+                           "1", "--finished-only", "--campaign", str(campaign), "--out",
+                           str(out)], env=env, capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr
+    committed = DOC / "paper_scale"
+    assert (out / "validation.rst").read_text() == (committed / "validation.rst").read_text(), (
+        "doc/paper_scale/validation.rst is not what the committed campaign gives: run "
+        "'build/tapmc-paper report --full --seeds 1 --finished-only --campaign "
+        "doc/validation/data/full --out doc/paper_scale' and commit the result")
+    for csv in sorted((committed / "validation").glob("*.csv")):
+        assert (out / "validation" / csv.name).read_text() == csv.read_text(), csv.name

@@ -291,16 +291,21 @@ def _report_from_data(args):
     return 0
 
 
-def _finished_view(campaign):
-    """The same campaign restricted to its finished runs (nothing is written or run)."""
+def _finished_view(campaign, extra=()):
+    """(view, planned): the same campaign restricted to its finished runs (nothing is written
+    or run), with the finished runs of ``extra`` (e.g. the paper-scale plan's, whose ramps run
+    1000 taps per level where the figure modules' FULL asks 4000) that it does not already
+    hold; ``planned`` counts the runs of both."""
     from tapmc.campaign import Campaign
 
-    done = [spec for spec in campaign.runs if campaign.is_done(spec.name)]
+    names = {spec.name for spec in campaign.runs}
+    specs = list(campaign.runs) + [spec for spec in extra if spec.name not in names]
+    done = [spec for spec in specs if campaign.is_done(spec.name)]
     if not done:
         raise ValueError(f"campaign {campaign.directory}: none of its {len(campaign.runs)} runs "
                          "has finished (--finished-only draws from finished runs)")
     return Campaign(campaign.directory, done, lmp=campaign.lmp, jobs=campaign.jobs,
-                    mode=campaign.mode)
+                    mode=campaign.mode), len(specs)
 
 
 def _list_runs(campaign, what):
@@ -350,7 +355,10 @@ def main(argv=None):
     planned = len(campaign.runs)
     if getattr(args, "finished_only", False):
         try:
-            campaign = _finished_view(campaign)
+            from . import plan
+
+            extra = plan.runs(plan.TIERS[-1]) if scale.name == "full" else ()
+            campaign, planned = _finished_view(campaign, extra)
         except ValueError as err:
             print(f"tapmc-paper: {err}", file=sys.stderr)
             return 2
