@@ -9,7 +9,8 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               t = 1, and the sweeps the redeposition took.
   noise-floor What is sigma_<Z> without any tap (eps = 0): the redeposition's own noise, the
               floor under Fig. 3's sigma_<Z> = k sqrt(eps)? 1000 taps at eps = 0 from the
-              packing after 4000 taps at eps = 0.0225 (the paper-scale campaign's restart),
+              packing after 4000 taps at eps = 0.0225 (the paper-scale campaign's
+              restart.4000 of that run, committed as the input of this measurement),
               sigma_<Z> over them as Fig. 3 computes it, the drift of <Z>, and the slope of
               their power spectrum (Fig. 3's estimator): what a spectrum near the floor
               tends to at small eps.
