@@ -36,15 +36,7 @@ PNG_MIN_BYTES, PNG_MAX_BYTES = 10_000, 200_000
 MODULES = {name: importlib.import_module(f"tapmc.paper.{name}") for name in FIGURES}
 
 
-def _have_pores():
-    try:
-        _runs.pores_executable()
-        return True
-    except FileNotFoundError:
-        return False
-
-
-needs_pores = pytest.mark.skipif(not _have_pores(), reason="tapmc-pores is not built "
+needs_pores = pytest.mark.skipif(not _runs.pores_available(), reason="tapmc-pores is not built "
                                  "(TAPMC_BUILD_PORES=OFF): Figs. 9 and 10 need it")
 
 

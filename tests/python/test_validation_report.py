@@ -16,7 +16,7 @@ SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", Path(__file__).resolve().parent
 PYTHON_DIR = SOURCE / "tools" / "python"
 sys.path.insert(0, str(PYTHON_DIR))
 
-from tapmc.paper import validation  # noqa: E402
+from tapmc.paper import _runs, validation  # noqa: E402
 
 DOC = SOURCE / "doc"
 #: the committed reports: the medium campaign's and the paper-scale campaign's (under way)
@@ -79,17 +79,8 @@ def test_missing_data_is_named(tmp_path):
     assert "Traceback" not in out.stderr
 
 
-def _have_pores():
-    from tapmc.paper import _runs
-
-    try:
-        _runs.pores_executable()
-        return True
-    except FileNotFoundError:
-        return False
-
-
-@pytest.mark.skipif(not _have_pores(), reason="tapmc-pores is not built: Figs. 9 and 10")
+@pytest.mark.skipif(not _runs.pores_available(), reason="tapmc-pores is not built: Figs. 9 "
+                    "and 10")
 def test_paper_scale_page_is_what_the_committed_campaign_gives(tmp_path):
     """doc/paper_scale is 'report --full --finished-only' of the committed paper-scale
     campaign: drawn anew from a copy of its finished runs, the page and its CSVs are the

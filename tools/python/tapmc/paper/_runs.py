@@ -188,6 +188,15 @@ def profile(campaign, spec, name):
     return read_ave_time(run_dir(campaign, spec) / name)
 
 
+def pores_available():
+    """Whether :func:`pores_executable` finds tapmc-pores (Figs. 9 and 10 need it)."""
+    try:
+        pores_executable()
+        return True
+    except FileNotFoundError:
+        return False
+
+
 def pores_executable():
     """The tapmc-pores program: $TAPMC_PORES, else $TAPMC_BUILD_DIR/tools/pores/tapmc-pores,
     else build/tools/pores/tapmc-pores of the source tree, else tapmc-pores on PATH."""

@@ -329,6 +329,18 @@ def pbc_compaction(data, claim):
                     shown=f"{fmt(mi, si, pct=True)} -> {fmt(mf, sf, pct=True)}")]
 
 
+def _figure_param(data, name, series, absent):
+    """(fig, value, sem, n) of a one-row params series of figure ``name``, or (None,
+    undecided measures) naming what is missing (``absent``: why the series is not there)."""
+    fig = data.figure(name)
+    if fig is None:
+        return None, _missing(f"no Fig. {name[3:]} runs")
+    m, s, n = fig.param(series)
+    if not np.isfinite(m):
+        return None, _missing(absent)
+    return (fig, m, s, n), None
+
+
 def _per_curve(data, name, panel, measure):
     """``measure(fig, eps, t, mean, sem, n)`` of every curve 'eps=<eps>' of a figure panel."""
     fig = data.figure(name)
@@ -362,15 +374,19 @@ def _fit_quality(fig, prefix, npoints, nparams, label):
     return Measure(chi, dof=dof, label=label, shown=shown)
 
 
-def _eq3_quality(fig, eps, t, mean, sem, n):
-    m = _fit_quality(fig, f"eps={P.fmt_eps(eps)}:", len(t), 4, f"eps = {eps:g}")
-    if _dof(n) is None and m.undecided is None:
-        m.undecided = "one realization: the fit had no error bars"
-    return m
+def _law_quality(prefix):
+    """The per-curve chi-square measure of a 4-parameter law of Fig. 2 whose params rows are
+    named ``eps=<e>:<prefix>reduced_chi2`` (eq. 3: no prefix; eq. 4: ``Z:``)."""
+    def measure(fig, eps, t, mean, sem, n):
+        m = _fit_quality(fig, f"eps={P.fmt_eps(eps)}:{prefix}", len(t), 4, f"eps = {eps:g}")
+        if _dof(n) is None and m.undecided is None:
+            m.undecided = "one realization: the fit had no error bars"
+        return m
+    return measure
 
 
 def eq3_fit_quality(data, claim):
-    return _per_curve(data, "fig2", "a", _eq3_quality)
+    return _per_curve(data, "fig2", "a", _law_quality(""))
 
 
 #: Parameters of eq. 3 whose uniqueness section III.B discusses: the triplet (X_inf, B, tau).
@@ -406,15 +422,8 @@ def eq3_triplet_pattern(data, claim):
     return [Measure(1.0 if holds else 0.0, shown=shown)]
 
 
-def _eq4_quality(fig, eps, t, mean, sem, n):
-    m = _fit_quality(fig, f"eps={P.fmt_eps(eps)}:Z:", len(t), 4, f"eps = {eps:g}")
-    if _dof(n) is None and m.undecided is None:
-        m.undecided = "one realization: the fit had no error bars"
-    return m
-
-
 def eq4_fit_quality(data, claim):
-    return _per_curve(data, "fig2", "c", _eq4_quality)
+    return _per_curve(data, "fig2", "c", _law_quality("Z:"))
 
 
 def b_exponential(data, claim):
@@ -577,12 +586,11 @@ def spectrum_eps_spread(data, claim):
 
 
 def sigma_intercept(data, claim):
-    fig = data.figure("fig3")
-    if fig is None:
-        return _missing("no Fig. 3 runs")
-    m, s, n = fig.param("intercept")
-    if not np.isfinite(m):
-        return _missing("fewer than three eps: no free straight line")
+    found, missing = _figure_param(data, "fig3", "intercept",
+                                   "fewer than three eps: no free straight line")
+    if missing:
+        return missing
+    fig, m, s, n = found
     b = fig.get("b", "sigma_Z")
     dof = len(b[0]) - 2 if b is not None else None
     # a zero intercept means small against the smallest sigma measured
@@ -716,12 +724,11 @@ def low_ramp_frozen(data, claim):
     """The ramp that stayed below (sqrt eps)*: its decreasing branch minus its top level
     (Fig. 4 params ``low:down_change``), against the same change on the ramp that went beyond
     it (``ramp:down_change``), the effect "nearly frozen" denies."""
-    fig = data.figure("fig4")
-    if fig is None:
-        return _missing("no ramp")
-    m, s, n = fig.param("low:down_change")
-    if not np.isfinite(m):
-        return _missing("no ramp that stays below (sqrt eps)*")
+    found, missing = _figure_param(data, "fig4", "low:down_change",
+                                   "no ramp that stays below (sqrt eps)*")
+    if missing:
+        return missing
+    fig, m, s, n = found
     effect = fig.param("ramp:down_change")[0]
     return [Measure(m, s, _steady_dof(n, s), effect=effect if np.isfinite(effect) else None,
                     shown=f"{fmt(m, s)} (decrease minus top level; the ramp beyond (sqrt eps)* "
@@ -739,12 +746,10 @@ def ramp_branch_slope(data, claim):
 
 
 def final_alpha(data, claim):
-    fig = data.figure("fig6")
-    if fig is None:
-        return _missing("no Fig. 6 runs")
-    m, s, n = fig.param("final:alpha")
-    if not np.isfinite(m):
-        return _missing("no F.B.C. profile runs")
+    found, missing = _figure_param(data, "fig6", "final:alpha", "no F.B.C. profile runs")
+    if missing:
+        return missing
+    _, m, s, n = found
     return [Measure(m, s, _dof(n))]
 
 
