@@ -45,7 +45,7 @@ def campaign(tmp_path_factory):
     """Every figure's quick runs in one campaign folder."""
     runs, seen = [], set()
     for name, module in MODULES.items():
-        if name in ("fig9", "fig10") and not _have_pores():
+        if name in ("fig9", "fig10") and not _runs.pores_available():
             continue
         for spec in module.runs(QUICK, SEEDS):
             if spec.name not in seen:
