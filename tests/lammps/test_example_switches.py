@@ -11,6 +11,7 @@
 import math
 import os
 import re
+import shlex
 import subprocess
 from pathlib import Path
 
@@ -31,7 +32,8 @@ TINY = {"N": 64, "L": 8, "eta": 1e-5}
 CONSTANT_EPS_FRESH = dict(
     TINY, R=0.6, eps=0.05, sqrteps=0.15, taps=2, seed=7, pack_seed=9, bc="fbc", pevery=1,
     zbins_per_R=3, xbins_per_R=2, lateral_R=3, wfrac=0.7, thermo_every=1, rsteps=1,
-    taps_file="t.dat", zprof_file="z.dat", xprof_file="x.dat", dump_ends="yes")
+    taps_file="t.dat", zprof_file="z.dat", xprof_file="x.dat", dump_ends="yes",
+    settle_keys="dmax 0.12 stop drift")
 # eps without sqrteps takes effect: sqrteps = 0 is the default
 CONSTANT_EPS_RESUME = dict(CONSTANT_EPS_FRESH, eps=0.03, taps=3, resume="yes",
                            resume_file="restart.1")
@@ -153,7 +155,8 @@ def check_packing(log, v):
 def check_fresh_common(log, v, eps):
     check_packing(log, v)
     assert f"fix tap all tapdilate {eps} floor 0.0" in commands(log, "fix tap")
-    assert f"fix settle all mc/settle {v['seed']} floor 0.0 eta {v['eta']}" in \
+    keys = f" {v['settle_keys']}" if "settle_keys" in v else ""  # in.constant_eps only
+    assert f"fix settle all mc/settle {v['seed']} floor 0.0 eta {v['eta']}{keys}" in \
         commands(log, "fix settle")
     assert f"boundary {'f f' if v['bc'] == 'fbc' else 'p p'} fm" in commands(log, "boundary")
     assert thermo_steps(log) == list(range(v["taps"] + 1))   # thermo_every = 1
@@ -213,7 +216,7 @@ def test_constant_eps_paper_fbc_start(tmp_path):
     assert "fix agitate_tap all tapdilate 0.002 floor 0.0" in commands(log, "fix agitate_tap")
     assert "fix agitate_settle all mc/settle 1000010 floor 0.0 eta 1e-05" in \
         commands(log, "fix agitate_settle")
-    assert "fix settle all mc/settle 7 floor 0.0 eta 1e-05" in commands(log, "fix settle")
+    assert "fix settle all mc/settle 7 floor 0.0 eta 1e-05 check 0" in commands(log, "fix settle")
     # the agitation's 2 taps (thermo at its ends), then the sequence from t = 0 again
     assert thermo_steps(log) == [0, 2, 0, 1, 2]
     assert list(table(tmp_path / "taps.dat")[:, 0]) == [0, 1, 2]
@@ -352,7 +355,7 @@ def index_variables(example):
     for line in (EXAMPLES / example).read_text().splitlines():
         m = re.match(r"variable\s+(\w+)\s+index\s+([^#]*)", line)
         if m:
-            out[m.group(1)] = m.group(2).split()
+            out[m.group(1)] = shlex.split(m.group(2))  # "a b" is one value, as LAMMPS reads it
     return out
 
 

@@ -141,7 +141,26 @@ def build_parser():
     plan.add_argument("--tier", type=int, choices=TIERS, default=1,
                       help="run tiers 1 .. TIER of the plan (default 1: the paper's one run "
                            "per point)")
+    fr = sub.add_parser("front", help="the run-time-versus-error page of the redeposition "
+                                      "(doc/front.rst) from the runs of bench/paper_front.py")
+    fr.add_argument("--root", type=Path, default=None, metavar="DIR",
+                    help="repository whose doc/validation/front is read and whose doc/front.rst, "
+                         "figure and tools/python/tapmc/paper/front_summary.csv are written "
+                         "(default: this package's repository)")
     return parser
+
+
+def _front_page(args):
+    from . import _runs, front
+
+    root = args.root or _runs.SOURCE_DIR
+    try:
+        page = front.write_page(root)
+    except (FileNotFoundError, ValueError) as err:
+        print(f"tapmc-paper front: {err}", file=sys.stderr)
+        return 2
+    print(f"front: {page}")
+    return 0
 
 
 def scale_of(args):
@@ -323,6 +342,8 @@ def main(argv=None):
 
     if args.command == "campaign":
         return _run_plan(args)
+    if args.command == "front":
+        return _front_page(args)
     if args.command == "report" and args.from_data:
         return _report_from_data(args)
     figures = list(FIGURES) if args.command == "report" else [args.command]

@@ -1,0 +1,143 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""tapmc.paper.front: the paired bias of each setting against the reference, its 95 % bound,
+the recommended settings and the page, on synthetic runs whose answers are known; and the
+committed page equals what its committed runs give."""
+
+import csv
+import gzip
+import math
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+HERE = Path(__file__).resolve().parent
+SOURCE = HERE.parents[1]
+sys.path.insert(0, str(SOURCE / "tools" / "python"))
+
+from tapmc.paper import front  # noqa: E402
+
+# setting -> (offset of every observable against the reference, CPU s per tap)
+SYNTHETIC = {
+    front.REFERENCE: (0.0, 1.0),
+    "change 1e-5": (-0.01, 0.02),       # cheap and far off: smoke test only
+    "change 1e-6": (-0.002, 0.05),      # within the exploration tolerance, not publication
+    front.DEFAULT: (-0.0002, 0.1),      # within publication
+    "drift 3e-8": (0.0, 2.0),           # tighter than the reference: agrees
+    "dmax R/10": (-0.0005, 0.15),       # d_max: dearer and farther than R/5 (the default) ...
+    "dmax R/2": (-0.0001, 0.12),        # ... dearer and not closer by two standard errors
+}
+# per-seed scatter of the offsets (paired differences): known standard error
+JITTER = (-0.0001, 0.0, 0.0001)
+
+
+def _write_run(data, name, N, eps, seed, k, offset, cpu):
+    path = front.taps_path(str(data), name, N, eps, seed)
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with gzip.open(path, "wt") as f:
+        f.write("# " + " ".join(front.TAPS_COLUMNS) + "\n")
+        for t in range(front.TAPS + 1):
+            # a packing that compacts with t, differs from seed to seed, and is shifted by the
+            # setting's offset (+ its per-seed jitter, except for the reference)
+            base = 0.58 + 0.02 * (1 - math.exp(-t / 200.0)) + 0.003 * k
+            shift = offset + (JITTER[k] if name != front.REFERENCE else 0.0)
+            phi_c = base + shift
+            f.write(f"{t} {phi_c - 0.03} {phi_c} {7.0 + 10 * shift} 13 0.57 0.58 14 {1000} 0.02 0\n")
+    return {"setting": name, "N": N, "eps": "%g" % eps, "seed": seed, "taps": front.TAPS,
+            "eta": front.SETTINGS[name]["eta"], "settle_keys": front.settle_keys(name, N),
+            "cpu_s": cpu * front.TAPS, "wall_s": cpu * front.TAPS, "cpu_per_tap": cpu,
+            "sweeps_per_tap": 1000 * cpu, "capped_taps": 0}
+
+
+@pytest.fixture
+def data(tmp_path):
+    rows = []
+    for eps in front.EPS:
+        for k, seed in enumerate(front.seeds(3)):
+            for name, (offset, cpu) in SYNTHETIC.items():
+                rows.append(_write_run(tmp_path, name, 1024, eps, seed, k, offset, cpu))
+    with open(tmp_path / "runs.csv", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=front.RUN_FIELDS)
+        w.writeheader()
+        w.writerows(rows)
+    return tmp_path
+
+
+def test_paired_bias_and_its_bound(data):
+    fr = front.Front(data).compute()
+    row = fr.rows(N=1024, eps=0.0225, setting="change 1e-6")[0]
+    se = 0.0001 / math.sqrt(3)  # standard error of the mean of the jitter (sd 1e-4, 3 seeds)
+    for q in ("phi_c_t1", "phi_c_t1000", "phi_b_steady"):
+        assert row[q + "_bias"] == pytest.approx(-0.002, abs=1e-12)
+        assert row[q + "_bias_se"] == pytest.approx(se, rel=1e-6)
+        assert row[q + "_bias_bound"] == pytest.approx(0.002 + 4.302653 * se, rel=1e-5)
+    assert row["Z_steady_bias"] == pytest.approx(-0.02, abs=1e-9)
+    # the per-seed spread of the packings (0.003 per seed) is in the values, not in the bias
+    assert row["phi_c_t1000_se"] > 10 * row["phi_c_t1000_bias_se"]
+    assert row["cpu_per_tap"] == pytest.approx(0.05) and row["seeds"] == 3
+    ref = fr.rows(N=1024, eps=0.1, setting=front.REFERENCE)[0]
+    assert ref["phi_c_steady_bias"] == 0.0 and ref["phi_c_steady_bias_se"] == 0.0
+
+
+def test_recommendations_take_the_cheapest_setting_within_each_tolerance(data):
+    recs = front.Front(data).compute().recommendations(1024)
+    assert recs["publication"]["setting"] == front.DEFAULT
+    assert recs["exploration"]["setting"] == "change 1e-6"
+    assert recs["smoke test"]["setting"] == "change 1e-5"
+    assert recs["exploration"]["worst_bound"] <= 0.003 < 0.0032
+
+
+def test_reference_check_names_what_differs(data):
+    fr = front.Front(data).compute()
+    checks = fr.reference_check(1024)
+    assert {(c[0], c[1]) for c in checks} == {("drift 3e-8", e) for e in front.EPS}
+    assert all(c[3] == [] and c[2] == 3 for c in checks)  # zero offset: every quantity agrees
+
+
+def test_page_figure_summary_and_the_reports_sentence(data, tmp_path):
+    root = tmp_path / "repo"
+    (root / "doc").mkdir(parents=True)
+    (root / "tools" / "python" / "tapmc" / "paper").mkdir(parents=True)
+    page = front.write_page(root, data_dir=str(data))
+    text = Path(page).read_text()
+    assert "change 1e-6" in text and "-0.0020 +- 0.0001" in text
+    assert "all 15 agree with the reference" in text
+    assert "neither is both cheaper and closer to the reference" in text
+    assert "R/10 costs 1.50 times its CPU time per tap" in text
+    assert (data / "front.png").stat().st_size > 10000
+    summary = root / "tools" / "python" / "tapmc" / "paper" / "front_summary.csv"
+    sentence = front.bias_sentence(1e-6, path=str(summary))
+    assert "-0.0020 +- 0.0001 after 1000 taps" in sentence and "eps = 0.1" in sentence
+    assert "has not measured" in front.bias_sentence(3e-6, path=str(summary))
+
+
+def test_bad_data_is_refused_with_its_reason(tmp_path):
+    with pytest.raises(FileNotFoundError, match="runs.csv"):
+        front.Front(tmp_path)
+    (tmp_path / "runs.csv").write_text(",".join(front.RUN_FIELDS) + "\n"
+                                       + "no such setting,1024,0.1,1,1000,1e-7,,1,1,1,1,0\n")
+    with pytest.raises(ValueError, match="no such setting"):
+        front.Front(tmp_path)
+
+
+def test_committed_page_is_what_the_committed_runs_give(tmp_path):
+    """doc/front.rst and front_summary.csv are `tapmc-paper front` of doc/validation/front."""
+    data = SOURCE / front.DATA_DIR
+    if not (data / "runs.csv").is_file():
+        pytest.skip("no committed front data")
+    root = tmp_path / "repo"
+    shutil.copytree(data, root / front.DATA_DIR)
+    (root / "tools" / "python" / "tapmc" / "paper").mkdir(parents=True)
+    env = dict(os.environ, PYTHONPATH=str(SOURCE / "tools" / "python"))
+    done = subprocess.run([sys.executable, "-m", "tapmc.paper", "front", "--root", str(root)],
+                          env=env, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    hint = "run 'build/tapmc-paper front' and commit the result"
+    assert (root / front.PAGE).read_text() == (SOURCE / front.PAGE).read_text(), hint
+    name = os.path.basename(front.SUMMARY)
+    assert ((root / "tools" / "python" / "tapmc" / "paper" / name).read_text()
+            == Path(front.SUMMARY).read_text()), hint
+    assert (root / front.DATA_DIR / "front.csv").read_text() == (data / "front.csv").read_text(), hint
