@@ -411,3 +411,25 @@ def test_merge_ave_time_parts_reads_with_the_readers_parser(tmp_path):
     (tmp_path / "prof.dat.from10").write_text(header + "10 2\n1 3.5\n")
     with pytest.raises(TapmcFormatError, match=r"prof.dat.from10:4: truncated block"):
         merge_ave_time_parts(tmp_path)
+
+
+def test_merge_skips_the_empty_segment_of_a_run_killed_before_its_first_output(tmp_path):
+    """A resumed run killed before it wrote a profile leaves an empty X.from<step>: the merge
+    keeps the earlier blocks up to the next segment and removes it (a paper-scale run with
+    profiles at t = 0 and 4000 only was killed twice and met this); an empty last segment, the
+    output of the run that finished, is still an error."""
+    from tapmc.campaign import merge_ave_time_parts
+    from tapmc.readers import TapmcFormatError
+
+    header = "# Time-averaged data\n# TimeStep Number-of-rows\n# Row c_p[1]\n"
+    block = "{} 1\n1 {}.5\n"
+    (tmp_path / "prof.dat").write_text(header + block.format(0, 0) + block.format(20, 1))
+    (tmp_path / "prof.dat.from19").write_text("")
+    (tmp_path / "prof.dat.from29").write_text(header + block.format(40, 4))
+    assert merge_ave_time_parts(tmp_path) == ["prof.dat"]
+    assert (tmp_path / "prof.dat").read_text() == (header + block.format(0, 0) + block.format(20, 1)
+                                                   + block.format(40, 4))
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["prof.dat"]
+    (tmp_path / "prof.dat.from40").write_text("")
+    with pytest.raises(TapmcFormatError, match="empty file"):
+        merge_ave_time_parts(tmp_path)

@@ -93,6 +93,11 @@ def merge_ave_time_parts(run_dir):
         segs.sort()
         main = run_dir / base
         files = ([(0, main)] if main.exists() else []) + segs
+        # A run killed before its first output leaves an empty segment: it holds no block, and
+        # the blocks of the segment before it stay valid up to the next segment's start (a
+        # resumed run repeats the same trajectory from its restart).
+        files = [f for k, f in enumerate(files)
+                 if k + 1 == len(files) or f[1].stat().st_size > 0]
         header, blocks = None, []
         for k, (start, p) in enumerate(files):
             last = k + 1 == len(files)

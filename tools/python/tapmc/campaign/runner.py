@@ -13,6 +13,7 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 from . import launch, provenance, run_folder
+from ..readers import TapmcFormatError
 from .errors import CampaignDirectoryError, CampaignError
 from .spec import RunSpec
 
@@ -252,9 +253,12 @@ class Campaign:
                                     "returncode": returncode, "resumed_from_step": resumed_from,
                                     "error": error or None})
         if not error:
-            run_folder.merge_ave_time_parts(run_dir)
-            run_folder.drop_repeated_titles(run_dir / spec.taps_file)
-            run_folder.keep_latest_restart(run_dir)
+            try:  # a malformed output names itself; the run then fails instead of the pool
+                run_folder.merge_ave_time_parts(run_dir)
+                run_folder.drop_repeated_titles(run_dir / spec.taps_file)
+                run_folder.keep_latest_restart(run_dir)
+            except (TapmcFormatError, OSError) as err:
+                error = f"its outputs could not be put together: {err}"
             missing = [n for n in self._redo.get(spec.name, []) if not (run_dir / n).exists()]
             if missing:
                 error = (f"re-run after damage did not write {', '.join(missing)} again; the "
