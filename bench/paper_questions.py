@@ -21,11 +21,26 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               500, 1000 and 2000 taps of every finished P.B.C. constant-eps run of the
               paper-scale campaign (no simulation: its taps.dat files).
 
+  p0-fluid    Is a tapped packing expected to follow the Percus-Yevick P0(sigma) of Fig. 9
+              as closely as it does (max |P0 - PY| = 0.025 at Phi = 0.606)? PY is a theory of
+              the equilibrium hard-sphere fluid: P0 measured with the same tool and settings
+              (tapmc-pores --p0, Fig. 9's random point count) on equilibrium fluids at several
+              Phi (NVT Metropolis MC, bench/bench_hs_fluid.cpp: 4000 spheres in a periodic
+              cube, several configurations per Phi), with the contact value g(1+) against
+              Carnahan-Starling as the check of equilibrium: the baseline of the packing's
+              deviation, and a validation of the measurement where PY is accurate.
+
 Usage (from the repository; minutes on one core, run under nice):
 
     bench/paper_questions.py first-tap   [--out DIR] [--lmp EXE] [--seeds 1 2 3]
     bench/paper_questions.py noise-floor [--out DIR] [--lmp EXE] [--restart FILE]
     bench/paper_questions.py spectral-window [--out DIR] [--campaign DIR]
+    bench/paper_questions.py p0-fluid [--out DIR] [--phi 0.3 0.4 ...] [--configs C]
+                                      [--work DIR] [--mc EXE]
+
+p0-fluid keeps its configurations and tapmc-pores outputs in --work DIR when given (a re-run
+reuses them); the MC program is --mc EXE, else build/bench/bench_hs_fluid, else
+bench/bench_hs_fluid.cpp compiled with $CXX (default c++) into the work folder.
 
 DIR defaults to doc/paper_scale/validation/questions (what the committed page reads).
 """
@@ -152,20 +167,190 @@ def spectral_window(args):
               ["run", "eps", "taps", "window", "slope", "slope_error"], rows)
 
 
+#: Phi of the fluids: stable fluid up to freezing (0.494), then metastable ones (the 4000
+#: spheres do not crystallise within the runs at 0.54: g(1+) stays on the fluid's branch).
+P0_FLUID_PHI = (0.30, 0.40, 0.45, 0.49, 0.52, 0.54)
+#: FCC cells per side of the start lattice: 4 * 10^3 = 4000 spheres, near the paper's 4096.
+P0_FLUID_CELLS = 10
+#: configurations per Phi: the sem of max |P0 - PY| is then about 3e-4, a tenth of the
+#: smallest value measured (200000 random points give each configuration about 1e-3).
+P0_FLUID_CONFIGS = 8
+#: mean-square displacement (diameters^2) before the first configuration: every sphere has
+#: moved by about 1.4 diameters, far beyond the cage (a tenth of a diameter) that sets the
+#: local structure P0 measures.
+P0_FLUID_EQ_MSD = 2.0
+#: between configurations: beyond the structural relaxation (rms 0.7 diameter), so the
+#: configurations are independent samples of the local structure.
+P0_FLUID_SPACING_MSD = 0.5
+#: sweep bound per stage; a stage stopped by it is seen in the CSV (eq_msd, min_spacing_msd).
+P0_FLUID_MAX_SWEEPS = 400000
+MC_SOURCE = SOURCE / "bench" / "bench_hs_fluid.cpp"
+MC_FLAGS = ("-O2", "-std=c++17")
+
+
+def mc_command(exe, work):
+    """The hard-sphere MC program: --mc EXE, build/bench/bench_hs_fluid, else compiled."""
+    candidates = [Path(exe)] if exe else [
+        Path(os.environ.get("TAPMC_BUILD_DIR", SOURCE / "build")) / "bench" / "bench_hs_fluid"]
+    for path in candidates:
+        if path.is_file() and os.access(path, os.X_OK):
+            if path.stat().st_mtime < MC_SOURCE.stat().st_mtime:
+                print(f"paper_questions: warning: {path} is older than {MC_SOURCE}")
+            return ["nice", "-n", "2", str(path)]
+    if exe:
+        sys.exit(f"paper_questions: --mc {exe}: no such executable")
+    built = Path(work) / "bench_hs_fluid"
+    if not built.is_file() or built.stat().st_mtime < MC_SOURCE.stat().st_mtime:
+        cxx = os.environ.get("CXX", "c++")
+        done = subprocess.run([cxx, *MC_FLAGS, "-o", str(built), str(MC_SOURCE)],
+                              capture_output=True, text=True)
+        if done.returncode != 0:
+            sys.exit(f"paper_questions: compiling {MC_SOURCE} with {cxx} failed:\n"
+                     f"{done.stderr[-2000:]}")
+    return ["nice", "-n", "2", str(built)]
+
+
+def parse_mc(text):
+    """(dict of the 'key value' lines, list of per-configuration dicts) of bench_hs_fluid."""
+    values, configs = {}, []
+    for line in text.splitlines():
+        fields = line.split()
+        if fields and fields[0] == "config":
+            configs.append({fields[k]: float(fields[k + 1]) for k in range(0, len(fields), 2)})
+        elif len(fields) == 2:
+            values[fields[0]] = float(fields[1])
+    return values, configs
+
+
+def fluid_configurations(mc, folder, phi, args):
+    """Run the MC for ``phi`` into ``folder`` unless a finished run is there (mc.txt is written
+    last); returns (values, configs, dumps)."""
+    log = folder / "mc.txt"
+    dumps = [folder / f"fluid.{k}.lammpstrj" for k in range(1, args.configs + 1)]
+    if not (log.is_file() and all(d.is_file() for d in dumps)):
+        folder.mkdir(parents=True, exist_ok=True)
+        seed = args.seed * 1000 + round(1000 * phi)
+        cmd = [*mc, "--phi", f"{phi:g}", "--cells", str(args.cells), "--seed", str(seed),
+               "--configs", str(args.configs), "--eq-msd", f"{args.eq_msd:g}",
+               "--spacing-msd", f"{args.spacing_msd:g}", "--max-sweeps", str(args.max_sweeps),
+               "--prefix", str(folder / "fluid")]
+        done = subprocess.run(cmd, capture_output=True, text=True)
+        if done.returncode != 0:
+            sys.exit(f"paper_questions: {' '.join(cmd)} failed:\n{done.stderr[-2000:]}")
+        (folder / "mc.txt.partial").write_text(done.stdout)
+        (folder / "mc.txt.partial").rename(log)
+    values, configs = parse_mc(log.read_text())
+    if len(configs) != args.configs or int(values["N"]) != 4 * args.cells ** 3:
+        sys.exit(f"paper_questions: {log} is from other settings (remove {folder})")
+    return values, configs, dumps
+
+
+def p0_fluid(args):
+    from tapmc.paper._pores import P0_POINTS
+    from tapmc.paper._runs import pores_executable
+    from tapmc.pores import percus_yevick_p0, read_pores
+
+    with tempfile.TemporaryDirectory() as scratch:
+        work = Path(args.work) if args.work else Path(scratch)
+        work.mkdir(parents=True, exist_ok=True)
+        mc = mc_command(args.mc, work)
+        pores = ["nice", "-n", "2", pores_executable()]
+        rows, curves = [], []
+        for phi in args.phi:
+            folder = work / f"phi_{phi:g}"
+            values, configs, dumps = fluid_configurations(mc, folder, phi, args)
+            p0s, phis = [], []
+            for k, dump in enumerate(dumps, start=1):
+                prefix = folder / f"pores_{k}"
+                if not Path(str(prefix) + ".p0.csv").is_file():
+                    # Fig. 9's settings: P0_POINTS random points, one seed per configuration;
+                    # the box is triply periodic, so the selection is the whole box.
+                    cmd = [*pores, "-q", "--p0", str(P0_POINTS), "--seed", str(k),
+                           "-o", str(prefix), str(dump)]
+                    done = subprocess.run(cmd, capture_output=True, text=True)
+                    if done.returncode != 0:
+                        sys.exit(f"paper_questions: {' '.join(cmd)} failed:\n{done.stderr}")
+                result = read_pores(prefix)
+                sigma = np.asarray(result.p0["sigma"], dtype=float)
+                p0s.append(np.asarray(result.p0["P0_measured"], dtype=float))
+                phis.append(float(result.frames["phi_p0"][0]))
+            p0s, phis = np.array(p0s), np.array(phis)
+            n = len(p0s)
+            mean, sem = p0s.mean(axis=0), p0s.std(axis=0, ddof=1) / np.sqrt(n)
+            # as Fig. 9: each configuration against PY at the volume fraction its random points
+            # see (the same points, so their noise cancels in part); mean and sem of that
+            # difference over the configurations
+            theories = np.array([percus_yevick_p0(sigma, q) for q in phis], dtype=float)
+            diffs = p0s - theories
+            diff = diffs.mean(axis=0)
+            diff_sem = diffs.std(axis=0, ddof=1) / np.sqrt(n)
+            theory = theories.mean(axis=0)
+            phi_points = float(phis.mean())
+            at = int(np.argmax(np.abs(diff)))
+            singles = np.abs(diffs).max(axis=1)
+            exact = np.asarray(percus_yevick_p0(sigma, values["phi"]), dtype=float)
+            spacing = min(c["msd_spacing"] for c in configs)
+            rows.append([
+                f"{values['phi']:.6g}", int(values["N"]), n, f"{phi_points:.6g}",
+                f"{phis.std(ddof=1) / np.sqrt(n):.3g}", P0_POINTS,
+                f"{abs(diff[at]):.6g}", f"{diff_sem[at]:.3g}", f"{sigma[at]:.6g}",
+                f"{diff[at]:.6g}", f"{theory[at]:.6g}",
+                f"{np.mean(singles):.6g}", f"{np.std(singles, ddof=1) / np.sqrt(n):.3g}",
+                f"{np.max(np.abs(mean - exact)):.6g}", f"{values['acceptance']:.4g}",
+                f"{values['delta']:.4g}", int(values["eq_sweeps"]),
+                int(values["sample_sweeps"]), f"{values['eq_msd']:.4g}", f"{spacing:.4g}",
+                f"{values['g_contact']:.6g}", f"{values['g_contact_sem']:.3g}",
+                f"{values['g_contact_cs']:.6g}", f"{values['min_distance']:.9g}",
+                f"{values['seconds']:.4g}"])
+            curves += [[f"{values['phi']:.6g}", f"{s:.6g}", f"{m:.6g}", f"{e:.3g}", f"{t:.6g}",
+                        f"{d:.6g}", f"{de:.3g}"]
+                       for s, m, e, t, d, de in zip(sigma, mean, sem, theory, diff, diff_sem)]
+            print(f"Phi {values['phi']:.3f}: max |P0 - PY| = {abs(diff[at]):.4f} +- "
+                  f"{diff_sem[at]:.4f} at sigma = {sigma[at]:.3f}; g(1+) {values['g_contact']:.3f} "
+                  f"(CS {values['g_contact_cs']:.3f}); msd {values['eq_msd']:.2f}; "
+                  f"{values['seconds']:.0f} s", flush=True)
+        write_csv(Path(args.out) / "p0_fluid.csv",
+                  ["phi", "N", "configs", "phi_points", "phi_points_sem", "p0_points",
+                   "max_abs_diff", "max_abs_diff_sem", "sigma_at_max", "diff_at_max", "py_at_max",
+                   "max_abs_diff_per_config", "max_abs_diff_per_config_sem",
+                   "max_abs_diff_exact_phi", "acceptance", "delta", "eq_sweeps",
+                   "sample_sweeps", "eq_msd", "min_spacing_msd", "g_contact", "g_contact_sem",
+                   "g_contact_cs", "min_distance", "mc_seconds"], rows)
+        if args.work:
+            write_csv(work / "p0_fluid_curves.csv",
+                      ["phi", "sigma", "P0", "P0_sem", "PY", "P0_minus_PY", "P0_minus_PY_sem"],
+                      curves)
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
-    for name in ("first-tap", "noise-floor", "spectral-window"):
+    for name in ("first-tap", "noise-floor", "spectral-window", "p0-fluid"):
         p = sub.add_parser(name)
         p.add_argument("--out", default=DEFAULT_OUT, type=Path)
         p.add_argument("--lmp", default=None)
     sub.choices["first-tap"].add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
     sub.choices["noise-floor"].add_argument("--restart", default=CAMPAIGN_RUN / "restart.4000")
     sub.choices["spectral-window"].add_argument("--campaign", default=CAMPAIGN_RUN.parents[1])
+    fluid = sub.choices["p0-fluid"]
+    fluid.add_argument("--phi", type=float, nargs="+", default=list(P0_FLUID_PHI))
+    fluid.add_argument("--configs", type=int, default=P0_FLUID_CONFIGS)
+    fluid.add_argument("--cells", type=int, default=P0_FLUID_CELLS)
+    fluid.add_argument("--eq-msd", type=float, default=P0_FLUID_EQ_MSD)
+    fluid.add_argument("--spacing-msd", type=float, default=P0_FLUID_SPACING_MSD)
+    fluid.add_argument("--max-sweeps", type=int, default=P0_FLUID_MAX_SWEEPS)
+    fluid.add_argument("--seed", type=int, default=1)
+    fluid.add_argument("--work", default=None, type=Path)
+    fluid.add_argument("--mc", default=None)
     args = parser.parse_args(argv)
+    if args.command == "p0-fluid":
+        if args.configs < 2:
+            parser.error(f"--configs must be at least 2 (error bars), got {args.configs}")
+        if any(not 0.01 <= p <= 0.58 for p in args.phi):
+            parser.error(f"--phi values must be in [0.01, 0.58], got {args.phi}")
     {"first-tap": first_tap, "noise-floor": noise_floor,
-     "spectral-window": spectral_window}[args.command](args)
+     "spectral-window": spectral_window, "p0-fluid": p0_fluid}[args.command](args)
 
 
 if __name__ == "__main__":

@@ -11,6 +11,9 @@ committed data.
 * ``spectral_window.csv``: the slope of Fig. 3's spectrum over steady windows of several
   lengths, per run: whether the window (250 taps in the medium preset, 1000 in the paper)
   moves it.
+* ``p0_fluid.csv``: Gotoh's P0(sigma) of equilibrium hard-sphere fluids measured as Fig. 9
+  measures the packings, against Percus-Yevick: how closely PY describes an exact fluid, the
+  baseline of the packings' agreement with it (Fig. 9).
 """
 
 from __future__ import annotations
@@ -28,6 +31,14 @@ FOLDER = "questions"
 #: share of the first-tap drop at eta = 1e-7 that must remain at the tightest eta for the
 #: drop to be called a property of the model rather than of the stopping rule.
 MODEL_EFFECT_SHARE = 0.5
+#: relative departure of the measured contact value g(1+) from Carnahan-Starling allowed of an
+#: equilibrium fluid: CS is within 1 % of simulations up to Phi = 0.54, the extrapolation of
+#: g(r) to contact adds about as much; a crystallised or unrelaxed sample is off by more.
+CONTACT_TOLERANCE = 0.03
+#: the packing's max |P0 - PY| is called "of the fluid's size" when within this factor of the
+#: fluid's (at the highest Phi measured, or the fluid's trend carried to the packing's Phi when
+#: that is larger), and beyond it otherwise.
+BASELINE_FACTOR = 2.0
 
 
 def _read(path):
@@ -124,9 +135,124 @@ def _spectral_window(path):
     return lines + [""]
 
 
+def _packing_p0(fig9):
+    """(Phi, max |P0 - PY|, sigma of the max, P0 - PY there, PY there) of Fig. 9's tapped
+    packing, or None when the figure's data are absent."""
+    if fig9 is None:
+        return None
+    phi = fig9.param("phi_final")[0]
+    value = fig9.param("max_abs_diff_final_py")[0]
+    if not (np.isfinite(phi) and np.isfinite(value)):
+        return None
+    final, theory = fig9.get("a", "final"), fig9.get("a", "percus_yevick")
+    sigma = signed = py = math.nan
+    if final is not None and theory is not None and len(final[0]) == len(theory[0]):
+        diff = final[1] - theory[1]
+        at = int(np.nanargmax(np.abs(diff)))
+        sigma, signed, py = float(final[0][at]), float(diff[at]), float(theory[1][at])
+    return phi, value, sigma, signed, py
+
+
+def _p0_fluid(path, fig9=None):
+    rows = sorted(_read(path), key=lambda r: float(r["phi"]))
+    if not rows:
+        return []
+    f = {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+    lo_c, hi_c = int(f["configs"].min()), int(f["configs"].max())
+    configs = f"{lo_c}" if lo_c == hi_c else f"{lo_c} to {hi_c}"
+    lines = ["Is a tapped packing expected to follow the Percus-Yevick P0(sigma) as closely as "
+             "Fig. 9 shows? PY is a theory of the equilibrium hard-sphere fluid. The same "
+             f"measurement (tapmc-pores --p0, {int(f['p0_points'][0])} random points per "
+             "configuration, PY at the volume fraction seen by the points) on equilibrium "
+             f"hard-sphere fluids of N = {int(f['N'][0])} spheres in a periodic cube (NVT "
+             f"Monte Carlo, ``p0_fluid.csv``; mean ± sem over {configs} configurations per "
+             "Phi; the contact value g(1+) against Carnahan-Starling checks the equilibrium):",
+             "",
+             ".. list-table::", "   :header-rows: 1", "",
+             "   * - Phi", "     - max abs(P0 - PY)", "     - at sigma", "     - P0 - PY there",
+             "     - g(1+)", "     - Carnahan-Starling",
+             "     - MSD before sampling (diameters²)"]
+    for k in range(len(rows)):
+        lines += [f"   * - {f['phi'][k]:.3f}",
+                  f"     - {fmt(f['max_abs_diff'][k], f['max_abs_diff_sem'][k])}",
+                  f"     - {f['sigma_at_max'][k]:.3f}", f"     - {f['diff_at_max'][k]:+.4f}",
+                  f"     - {f['g_contact'][k]:.3f} ± {f['g_contact_sem'][k]:.3f}",
+                  f"     - {f['g_contact_cs'][k]:.3f}", f"     - {f['eq_msd'][k]:.2f}"]
+    lines.append("")
+    off = np.abs(f["g_contact"] / f["g_contact_cs"] - 1)
+    bad = [f"{p:.3f}" for p, o in zip(f["phi"], off) if not o <= CONTACT_TOLERANCE]
+    if bad:
+        lines.append(f"* g(1+) departs from Carnahan-Starling by more than "
+                     f"{100 * CONTACT_TOLERANCE:.0f} % at Phi = {', '.join(bad)}: those samples "
+                     "are not equilibrium fluids, and their rows say nothing about PY.")
+    else:
+        lines.append(f"* g(1+) is within {100 * off.max():.1f} % of Carnahan-Starling at every "
+                     "Phi: the samples are equilibrium fluids.")
+    ok = np.array([o <= CONTACT_TOLERANCE for o in off])
+    if not ok.any():
+        return lines + [""]
+    lo, hi = int(np.flatnonzero(ok)[0]), int(np.flatnonzero(ok)[-1])
+    def side(k):
+        return "above" if f["diff_at_max"][k] > 0 else "below"
+
+    text = (f"* At Phi = {f['phi'][lo]:.3f}, where PY is most accurate, the measured P0 departs "
+            f"from it by at most {fmt(f['max_abs_diff'][lo], f['max_abs_diff_sem'][lo])} (P0 "
+            f"{side(lo)} PY): the measurement agrees with the theory to that level where the "
+            "theory holds, which bounds the error of the tool.")
+    if hi != lo:
+        text += (f" At Phi = {f['phi'][hi]:.3f} the exact fluid departs from PY by "
+                 f"{fmt(f['max_abs_diff'][hi], f['max_abs_diff_sem'][hi])} (at sigma = "
+                 f"{f['sigma_at_max'][hi]:.2f}, P0 {side(hi)} PY).")
+    lines.append(text)
+    packing = _packing_p0(fig9)
+    if packing is None:
+        return lines + [""]
+    phi, value, sigma, signed, py = packing
+    baseline = f["max_abs_diff"][hi]
+    where = ""
+    if np.isfinite(sigma):
+        same = (signed > 0) == (f["diff_at_max"][hi] > 0)
+        where = (f" at sigma = {sigma:.2f}, P0 " + ("above" if signed > 0 else "below")
+                 + " PY (" + ("the fluid's direction" if same else "opposite to the fluid")
+                 + ")")
+    text = (f"* The tapped packing of Fig. 9 (Phi = {100 * phi:.1f} %) departs from PY by "
+            f"{fmt(value)}{where}: {value / baseline:.1f} times the equilibrium fluid's at "
+            f"Phi = {f['phi'][hi]:.3f}.")
+    valid = np.flatnonzero(ok)
+    if len(valid) >= 2 and phi > f["phi"][hi]:
+        # the packing is denser than any fluid measured: extend the fluid's trend to its Phi
+        # (a straight line through the valid rows) and compare with the larger of the two
+        slope, icpt = np.polyfit(f["phi"][valid], f["max_abs_diff"][valid], 1)
+        reach = slope * phi + icpt
+        text += (f" A straight line through the fluid's values (slope {slope:.3f} per unit of "
+                 f"Phi) reaches {reach:.4f} at the packing's Phi; the packing's is "
+                 f"{value / reach:.1f} times that.")
+        baseline = max(baseline, reach)
+    if np.isfinite(py) and py > 0 and "py_at_max" in f:
+        # P0 falls steeply with sigma: the deviation relative to PY where it is largest
+        fluid_rel = np.abs(f["diff_at_max"][valid]) / f["py_at_max"][valid]
+        trend = ""
+        if len(valid) >= 2:
+            rising = np.polyfit(f["phi"][valid], fluid_rel, 1)[0] > 0
+            trend = " (growing with Phi)" if rising else " (falling with Phi)"
+        text += (f" Relative to PY there, the packing departs by {100 * value / py:.0f} %, the "
+                 f"fluid by {100 * fluid_rel.min():.1f} to {100 * fluid_rel.max():.1f} %"
+                 f"{trend}.")
+    ratio = value / baseline
+    lines.append(text + " "
+                 + ("Its agreement with PY is of the size PY itself misses in an equilibrium "
+                    "fluid: as close as a fluid's, no closer."
+                    if ratio <= BASELINE_FACTOR else
+                    "The packing follows PY markedly less closely than an equilibrium fluid "
+                    "does: Fig. 9's agreement is approximate, a packing resembling a dense "
+                    "fluid, not the accuracy PY has for the fluid."))
+    return lines + [""]
+
+
 def render_section(folder, figures=None):
     """The rst lines of the section, or [] when ``folder`` holds none of the CSVs.
-    ``figures``: name -> tapmc.paper.claims.FigureData of the same report (Fig. 3's k)."""
+    ``figures``: name -> tapmc.paper.claims.FigureData of the same report (Fig. 3's k, Fig. 9's
+    packing)."""
     folder = Path(folder)
     parts = []
     if (folder / "first_tap.csv").is_file():
@@ -135,12 +261,16 @@ def render_section(folder, figures=None):
         parts += _noise_floor(folder / "noise_floor.csv", (figures or {}).get("fig3"))
     if (folder / "spectral_window.csv").is_file():
         parts += _spectral_window(folder / "spectral_window.csv")
+    if (folder / "p0_fluid.csv").is_file():
+        parts += _p0_fluid(folder / "p0_fluid.csv", (figures or {}).get("fig9"))
     if not parts:
         return []
     title = "Questions settled by measurement"
+    # the commands that made the CSVs (p0-fluid named only when its CSV is there)
+    commands = "``first-tap``, ``noise-floor``, ``spectral-window``" + (
+        ", ``p0-fluid``" if (folder / "p0_fluid.csv").is_file() else "")
     return [title, "-" * len(title), "",
-            "Measured by ``bench/paper_questions.py`` (``first-tap``, ``noise-floor``, "
-            "``spectral-window``), whose "
+            f"Measured by ``bench/paper_questions.py`` ({commands}), whose "
             "CSVs are in ``validation/questions/``; the text below is computed from them.", ""] \
         + parts
 
