@@ -288,8 +288,22 @@ STEADY_LOG = 0.58 + 0.04 * np.log1p(T) / np.log(4001)       # keeps its rate on 
 
 #: statistic (or claim id, which comes first) -> (data on which its claims must agree, data on
 #: which they must not).
+def front_report(r10_bias, r2_bias):
+    """A report whose front has d_max R/10, R/5 (the default) and R/2 at eps 0.0225, 4 seeds:
+    steady <Phi^c> biases against the reference as given (R/5: -0.002), se 0.0003 each."""
+    rows = [{"setting": name, "N": 1024.0, "eps": 0.0225, "phi_c_steady_bias": bias,
+             "phi_c_steady_bias_se": 0.0003, "paired_seeds": 4.0, "sweeps_per_tap": 1800.0}
+            for name, bias in (("change 1e-7 (default)", -0.002), ("dmax R/10", r10_bias),
+                               ("dmax R/2", r2_bias))]
+    data = report()
+    data.front = rows
+    return data
+
+
 CONTROLS = {
     "initial_phi": (report(), report({"initial_phi_c": [0.570, 0.001, SEEDS]})),
+    # both other d_max leave the packing looser (slower) / both leave it denser than R/5
+    "dmax_intermediate": (front_report(-0.005, -0.007), front_report(0.0, 0.0)),
     "tapped_phi": (report(fig9=fig9()),
                    report(fig9=fig9().param("phi_c_final", 0.593, 0.0005))),
     # one run: the steady state's batch-means error and the spread of single taps decide

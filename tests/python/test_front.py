@@ -110,7 +110,7 @@ def test_page_figure_summary_and_the_reports_sentence(data, tmp_path):
     assert (data / "front.png").stat().st_size > 10000
     summary = root / "tools" / "python" / "tapmc" / "paper" / "front_summary.csv"
     sentence = front.bias_sentence(1e-6, path=str(summary))
-    assert "-0.0020 +- 0.0001 after 1000 taps" in sentence and "eps = 0.1" in sentence
+    assert "-0.0020 +- 0.0001 over taps 900-1000" in sentence and "eps = 0.1" in sentence
     assert "has not measured" in front.bias_sentence(3e-6, path=str(summary))
 
 
@@ -141,3 +141,14 @@ def test_committed_page_is_what_the_committed_runs_give(tmp_path):
     assert ((root / "tools" / "python" / "tapmc" / "paper" / name).read_text()
             == Path(front.SUMMARY).read_text()), hint
     assert (root / front.DATA_DIR / "front.csv").read_text() == (data / "front.csv").read_text(), hint
+
+
+def test_every_preset_has_its_setting_on_the_front():
+    """The reports state the measured bias of their eta: each preset's must be a front setting,
+    and each preset is made for one of the front's purposes."""
+    from tapmc.paper.scales import SCALES
+
+    assert set(front.PRESET_PURPOSE) == set(SCALES)
+    assert set(front.PRESET_PURPOSE.values()) == {p for p, _ in front.PURPOSES}
+    for name, scale in SCALES.items():
+        assert front.setting_named(scale.eta) in front.SETTINGS, name

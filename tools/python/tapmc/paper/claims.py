@@ -193,17 +193,23 @@ class FigureData:
 
 
 class ReportData:
-    """The inputs of the report: ``figures`` (name -> :class:`FigureData`) and the campaign
-    ``summary`` (tapmc.paper.validation.campaign_summary)."""
+    """The inputs of the report: ``figures`` (name -> :class:`FigureData`), the campaign
+    ``summary`` (tapmc.paper.validation.campaign_summary) and ``front``, the rows of the
+    run-time-versus-error front (tapmc.paper.front.read_summary; empty: not measured)."""
 
-    def __init__(self, summary, figures):
+    def __init__(self, summary, figures, front=()):
         self.summary = summary
         self.figures = figures
+        self.front = list(front)
 
     @classmethod
     def from_files(cls, summary, files):
-        """``files``: name -> (png, csv) as the report collects them."""
-        return cls(summary, {name: FigureData.read(paths[1]) for name, paths in files.items()})
+        """``files``: name -> (png, csv) as the report collects them; the front from the
+        package's front_summary.csv."""
+        from .front import read_summary
+
+        return cls(summary, {name: FigureData.read(paths[1]) for name, paths in files.items()},
+                   read_summary())
 
     def figure(self, name):
         return self.figures.get(name)
@@ -943,8 +949,34 @@ def nu_change(data, claim):
                     shown=f"{fmt(m[0], s[0], digits=4)} -> {fmt(m[-1], s[-1], digits=4)}")]
 
 
+def dmax_intermediate(data, claim):
+    """d_max = R/5 against R/10 and R/2 on the front (same eta and stop rule, so about the same
+    sweeps per tap): steady <Phi^c> of R/5 minus that of the other d_max, from their paired
+    biases against the front's reference (error: both standard errors in quadrature, which
+    over-states it, the two sharing the reference). Positive: the other d_max leaves the packing
+    looser at the same cost, i.e. redeposits more slowly."""
+    from .front import DEFAULT
+
+    measures = []
+    eps_values = sorted({r["eps"] for r in data.front})
+    for eps in eps_values:
+        at = {r["setting"]: r for r in data.front if r["eps"] == eps}
+        base = at.get(DEFAULT)
+        for name in ("dmax R/10", "dmax R/2"):
+            other = at.get(name)
+            if base is None or other is None:
+                continue
+            d = base["phi_c_steady_bias"] - other["phi_c_steady_bias"]
+            se = math.hypot(base["phi_c_steady_bias_se"], other["phi_c_steady_bias_se"])
+            n = int(min(base["paired_seeds"], other["paired_seeds"]))
+            measures.append(Measure(d, se, _dof(n), label=(
+                f"eps = {eps:g}, N = {other['N']:.0f}: <Phi^c>(R/5) - <Phi^c>({name[5:]}), steady, "
+                f"at {base['sweeps_per_tap']:.0f} and {other['sweeps_per_tap']:.0f} sweeps per tap")))
+    return measures or [Measure(undecided="the front (doc/front.rst) has not measured d_max")]
+
+
 STATISTICS = {f.__name__: f for f in (
-    initial_phi, tapped_phi, pbc_compaction, phi_b_gain, efficiency_decrease, eq3_fit_quality,
+    initial_phi, dmax_intermediate, tapped_phi, pbc_compaction, phi_b_gain, efficiency_decrease, eq3_fit_quality,
     eq3_triplet_pattern, eq4_fit_quality, b_exponential, ageing_collapse,
     log_time_slowing, spectral_slopes, spectrum_eps_spread,
     sigma_intercept, bell_maximum, bell_side_slope, alpha_bell, ramp_up_minus_steady,

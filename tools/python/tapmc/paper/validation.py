@@ -105,6 +105,10 @@ def describe_scale(summary):
         text += (" Its fields (a ``Scale.replace`` of the quick preset, recorded in the "
                  "campaign's ``scale.json``): "
                  + "; ".join(f"{k} = {fields[k]}" for k in _SCALE_KEYS) + ".")
+    from .front import bias_sentence  # what the redeposition setting costs in accuracy
+
+    for eta in summary["eta"]:
+        text += " " + bias_sentence(eta)
     return text
 
 
