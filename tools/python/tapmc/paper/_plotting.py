@@ -80,6 +80,11 @@ class FigureTable:
     def __len__(self):
         return len(self._rows)
 
+    @property
+    def rows(self):
+        """The rows added so far: (panel, series, x, mean, sem, n) tuples, in order."""
+        return list(self._rows)
+
     def write(self, path):
         path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)

@@ -320,7 +320,7 @@ class Front:
             _, ax = new_figure(nrows=1, ncols=3, height=3.6, width=4.2)
         table = self.figure_table(N)
         by = {}
-        for panel, series, x, mean, sem, n in table._rows:
+        for panel, series, x, mean, sem, n in table.rows:
             by.setdefault((panel, series), []).append((x, mean, sem))
         names = list(SETTINGS)
         colors = {name: "C%d" % (i % 10) for i, name in enumerate(names)}
