@@ -55,7 +55,8 @@ def write_meta(out_dir, lmp, jobs, nice):
             cpu = next(l.split(":", 1)[1].strip() for l in f if l.startswith("model name"))
     except (OSError, StopIteration):
         pass
-    meta = {"commit": commit, "lmp": lmp, "machine": cpu, "cores": os.cpu_count(), "jobs": jobs,
+    # the executable's name only: the data must not carry one machine's paths
+    meta = {"commit": commit, "lmp": os.path.basename(lmp), "machine": cpu, "cores": os.cpu_count(), "jobs": jobs,
             "nice": nice, "started": time.strftime("%Y-%m-%d", time.gmtime())}
     os.makedirs(out_dir, exist_ok=True)
     with open(path, "w") as f:
