@@ -124,8 +124,6 @@ def run_key(row):
 
 #: observables compared (taps.dat columns) and their labels
 OBSERVABLES = (("phi_b", "Phi_b"), ("phi_c", "<Phi^c>"), ("Z", "<Z>"))
-#: confidence of every interval on this page (two-sided, Student's t over the seeds)
-CONFIDENCE = 0.95
 #: purposes, most demanding first: the largest bias of <Phi^c> (BOUNDED) whose 95 % bound a
 #: setting may have. Publication: 0.001, the last digit
 #: the paper quotes (60.6 %). Exploration: 0.003, a tenth of the rise of <Phi^c> over the
@@ -142,8 +140,9 @@ PRESET_PURPOSE = {"quick": "smoke test", "medium": "exploration", "full": "publi
 
 
 def _t95(n):
-    from scipy import stats
-    return float(stats.t.ppf(0.5 + CONFIDENCE / 2, n - 1)) if n > 1 else math.nan
+    """The report's t quantile (tapmc.paper.claims) for the mean of n seeds."""
+    from .claims import t_quantile
+    return t_quantile(n - 1) if n > 1 else math.nan
 
 
 def time_window(t, taps=TAPS):
@@ -354,6 +353,15 @@ class Front:
         return write_figure(fig, png, self.figure_table(N), csv_path)
 
 
+def worst_bound(name, rows):
+    """The largest 95 % bound (BOUNDED) of setting `name` over its `rows` (0 for the reference;
+    nan when a bound is missing or there are no rows)."""
+    if name == REFERENCE:
+        return 0.0
+    bounds = [r[q + "_bias_bound"] for r in rows for q in BOUNDED]
+    return max(bounds) if bounds and all(b == b for b in bounds) else math.nan
+
+
 def recommend(table, N):
     """purpose -> {setting, tolerance, worst_bound, cpu_per_tap} at N, from the rows of a Front's
     table (or of front_summary.csv): for each purpose the cheapest setting, run at every eps of
@@ -365,13 +373,8 @@ def recommend(table, N):
         rows = [r for r in rows_at if r["setting"] == name]
         if len(rows) != len(eps_all):
             continue
-        if name == REFERENCE:
-            worst = 0.0
-        else:
-            bounds = [r[q + "_bias_bound"] for r in rows for q in BOUNDED]
-            worst = max(bounds) if all(b == b for b in bounds) else math.nan
         cost = sum(r["cpu_per_tap"] for r in rows) / len(rows)
-        candidates.append((cost, name, worst))
+        candidates.append((cost, name, worst_bound(name, rows)))
     out = {}
     for purpose, tol in PURPOSES:
         ok = [c for c in candidates if tol is None or (c[2] == c[2] and c[2] <= tol)]
@@ -442,14 +445,6 @@ def _dmax_lines(front, N):
     return []
 
 
-def _worst_bound(front, N, name):
-    rows = front.rows(N=N, setting=name)
-    if name == REFERENCE:
-        return 0.0
-    bounds = [r[q + "_bias_bound"] for r in rows for q in BOUNDED]
-    return max(bounds) if bounds and all(b == b for b in bounds) else math.nan
-
-
 def _preset_lines(front, N, recs):
     """The presets of tapmc-paper, each made for a purpose: its setting, that setting's worst
     95 % bound here and the setting this front recommends for the purpose."""
@@ -458,7 +453,7 @@ def _preset_lines(front, N, recs):
     for preset, purpose in PRESET_PURPOSE.items():
         scale = SCALES[preset]
         name = setting_named(scale.eta)
-        worst = _worst_bound(front, N, name) if name else math.nan
+        worst = worst_bound(name, front.rows(N=N, setting=name)) if name else math.nan
         rec = recs.get(purpose, {}).get("setting", "none yet")
         body.append([preset, f"N = {scale.N}, {scale.taps} taps", purpose,
                      name or f"eta {scale.eta:g} (not on the front)",
