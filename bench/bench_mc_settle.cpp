@@ -2,7 +2,8 @@
 // Benchmark of the redeposition kernel: trial moves per second on the paper's scene, against a
 // naive all-pairs loop making the same moves; sweep order, poly, FBC; theta sampler cost;
 // sweeps per redeposition versus eta; scaling with N (4096, 32768, 262144) on a first and a
-// second tap, with list lengths, local list updates per sweep and peak memory; threads inside
+// second tap, with list lengths, local list updates per sweep and peak memory, and the locality
+// ceiling (the same sweeps in memory order); threads inside
 // one rank (one tap with 1 and 2 threads, the windows' figures, a model for 16 threads).
 //
 // Usage: bench_mc_settle [--quick] [--scaling | --threads]
@@ -26,6 +27,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <string>
 #include <sys/resource.h>
 #include <vector>
@@ -136,10 +138,11 @@ struct TapRate {
 // timed in CPU seconds of this thread (the machine is shared). The settled positions are left
 // in `out` when given.
 TapRate time_tap(Settler &settler, const Scene &start, double eta, long sweeps,
-                 std::uint64_t stream, Scene *out = nullptr)
+                 std::uint64_t stream, Scene *out = nullptr, PickOrder order = PickOrder::Random)
 {
   Scene s = start;
-  const SettleParams p = paper_params(1.0, 31, stream, eta > 0 ? eta : 1e-300, sweeps);
+  SettleParams p = paper_params(1.0, 31, stream, eta > 0 ? eta : 1e-300, sweeps);
+  p.order = order;
   const double t0 = thread_cpu_seconds();
   const SettleResult res =
       settler.settle(s.xyz.data(), s.radius.data(), nullptr, s.size(), s.box, p);
@@ -171,6 +174,7 @@ void scaling_section(bool quick)
   std::vector<int> sizes = {4096, 32768, 262144};
   if (quick) sizes = {4096, 262144};
   double rate_4096[4] = {0, 0, 0, 0};
+  std::map<int, std::pair<double, double>> locality;  // N -> (Random, Sweep) moves/s, first fixed
   for (int n : sizes) {
     const double side = 32.0 * std::sqrt(n / 4096.0);
     Scene first = deposited_bed(n, side, true, false, 7);
@@ -185,6 +189,10 @@ void scaling_section(bool quick)
     dilate(second, 0.01);
     rates[2] = time_tap(settler, second, 0.0, fixed, 502);
     rates[3] = time_tap(settler, second, 1e-5, 50000, 503);
+    // The locality ceiling: the same fixed sweeps in memory order (spheres are stored in
+    // cell order), the best order any reordering of the picks could reach.
+    locality[n] = {rates[0].moves_per_s,
+                   time_tap(settler, first, 0.0, fixed, 504, nullptr, PickOrder::Sweep).moves_per_s};
     const char *tap[4] = {"first", "first", "second", "second"};
     const char *run[4] = {"fixed", "eta", "fixed", "eta"};
     for (int k = 0; k < 4; ++k) {
@@ -198,6 +206,14 @@ void scaling_section(bool quick)
     }
     std::printf("%7s peak RSS so far: %.0f MB\n", "", peak_rss_mb());
   }
+  std::printf("\nlocality ceiling ('first', 'fixed'; Sweep order visits the spheres in memory order,\n"
+              "  which is cell order, so it bounds what processing picks in cell order could gain):\n");
+  std::printf("%7s %16s %15s %14s %18s %18s\n", "N", "Random M moves/s", "Sweep M moves/s",
+              "Sweep / Random", "Random / N = 4096", "Sweep / N = 4096");
+  const std::pair<double, double> base = locality[4096];
+  for (const auto &[n, rate] : locality)
+    std::printf("%7d %16.2f %15.2f %14.2f %18.2f %18.2f\n", n, rate.first / 1e6, rate.second / 1e6,
+                rate.second / rate.first, rate.first / base.first, rate.second / base.second);
 }
 
 // Wall seconds of one empty job of a team of `size` threads (median of many): the hand-off
