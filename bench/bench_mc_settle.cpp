@@ -3,8 +3,8 @@
 // naive all-pairs loop making the same moves; sweep order, poly, FBC; theta sampler cost;
 // sweeps per redeposition versus eta; scaling with N (4096, 32768, 262144) on a first and a
 // second tap, with list lengths, local list updates per sweep and peak memory, and the locality
-// ceiling (the same sweeps in memory order); threads inside
-// one rank (one tap with 1 and 2 threads, the windows' figures, a model for 16 threads).
+// ceiling (the same sweeps in memory order); threads inside one rank (one tap with 1 and 2
+// threads, the windows' figures, a model for 16 threads).
 //
 // Usage: bench_mc_settle [--quick] [--scaling | --threads]
 //   --quick:   fewer repeats and sweeps, scaling for N = 4096 and 262144 only (under 2 min)
