@@ -13,7 +13,9 @@ setting against the reference after 1, 10, 100 and 1000 taps and in the steady w
 recommended settings, the doc page and its figure) is tapmc.paper.front; this script only runs.
 
 Runs are independent and resumable: a finished run is never run again (its row is in runs.csv);
-a killed run starts again from its beginning. --jobs runs several at once (one core each).
+a run works in <out>/work/... with a restart file every 1/20 of its taps, and a stopped run
+(SIGTERM or Ctrl-C to this script) resumes from its latest restart, bit for bit the same taps,
+its CPU time counted for the taps it kept. --jobs runs several at once (one core each).
 
 Usage:
   /usr/bin/python3 bench/paper_front.py [--lmp build/lmp_tapmc] [--N 1024] [--taps 1000]
@@ -25,11 +27,12 @@ import argparse
 import concurrent.futures
 import csv
 import gzip
+import json
 import os
 import shutil
+import signal
 import subprocess
 import sys
-import tempfile
 import threading
 import time
 
@@ -38,11 +41,13 @@ sys.path.insert(0, os.path.join(ROOT, "tools", "python"))
 from tapmc.paper import front  # noqa: E402  (settings, file layout and the analysis)
 
 INPUT = os.path.join(ROOT, "examples", "paper", "in.constant_eps")
+WORK = "work"                # <out>/work/<N_eps>/<setting>_s<seed>/: a run until it ends
+ATTEMPTS = "attempts.json"   # per attempt: first and last tap, CPU and wall seconds, sweeps
+RESTARTS_PER_RUN = 20        # restart files per run (N = 4096, 1000 taps: one every 50 taps)
 
 
 def write_meta(out_dir, lmp, jobs, nice):
     """meta.json of the front (once, at its first run): what built the binary and where it ran."""
-    import json
     import platform
     path = os.path.join(out_dir, front.META)
     if os.path.exists(path):
@@ -64,47 +69,185 @@ def write_meta(out_dir, lmp, jobs, nice):
         f.write("\n")
 
 
-def run_one(lmp, setting, N, eps, taps, seed, out_dir, nice):
-    """Runs one setting for one seed; returns its runs.csv row (taps.dat gzipped into out_dir)."""
+def work_dir(out_dir, setting, N, eps, seed):
+    """The folder a run works in until it ends: restart files, taps.dat and its attempts."""
+    taps_gz = front.taps_path(out_dir, setting, N, eps, seed)
+    rel = os.path.relpath(taps_gz, os.path.join(out_dir, "taps"))
+    return os.path.join(out_dir, WORK, rel[:-len(".dat.gz")])
+
+
+def latest_restart(work):
+    """(step, file name) of the latest restart.<step> in `work`, or (0, None)."""
+    best = (0, None)
+    for name in os.listdir(work):
+        head, _, step = name.partition(".")
+        if head == "restart" and step.isdigit() and int(step) > best[0]:
+            best = (int(step), name)
+    return best
+
+
+def trim_taps(path, last_step):
+    """Keeps the complete rows of taps.dat up to `last_step`, each step once, under one header:
+    a killed attempt may have written taps past its last restart, and half a line; a resumed
+    attempt writes the header and the row of its restart step again (the same numbers)."""
+    kept, steps, header = [], set(), False
+    with open(path) as f:
+        for line in f:
+            if line.startswith("#"):
+                if not header:
+                    kept.append(line)
+                header = True
+                continue
+            words = line.split()
+            if len(words) != len(front.TAPS_COLUMNS) or not line.endswith("\n"):
+                continue  # half a row: the attempt was killed while writing it
+            step = int(float(words[0]))
+            if step <= last_step and step not in steps:
+                steps.add(step)
+                kept.append(line)
+    with open(path + ".part", "w") as f:
+        f.writelines(kept)
+    os.replace(path + ".part", path)
+
+
+def sweeps_between(path, first, last):
+    """Sum of the sweeps of the taps first < step <= last in taps.dat."""
+    if not os.path.exists(path):
+        return 0.0
+    return sum(r["sweeps"] for r in front.read_taps(path) if first < r["step"] <= last)
+
+
+def last_complete_step(path):
+    rows = front.read_taps(path) if os.path.exists(path) else []
+    return rows[-1]["step"] if rows else 0
+
+
+def load_attempts(work):
+    path = os.path.join(work, ATTEMPTS)
+    if not os.path.exists(path):
+        return []
+    with open(path) as f:
+        return json.load(f)
+
+
+def save_attempts(work, attempts):
+    path = os.path.join(work, ATTEMPTS)
+    with open(path + ".part", "w") as f:
+        json.dump(attempts, f, indent=1)
+        f.write("\n")
+    os.replace(path + ".part", path)
+
+
+def lmp_command(lmp, setting, N, eps, taps, seed, nice, resume_file=None):
     keys = front.settle_keys(setting, N)
-    eta = front.SETTINGS[setting]["eta"]
-    with tempfile.TemporaryDirectory(prefix="tapmc_front_") as tmp:
-        cmd = [lmp, "-in", INPUT, "-var", "N", str(N), "-var", "L", "%g" % front.box_side_R(N),
-               "-var", "eps", "%g" % eps, "-var", "taps", str(taps), "-var", "seed", str(seed),
-               "-var", "eta", eta, "-var", "settle_keys", keys, "-var", "rsteps", str(10 * taps),
-               "-var", "thermo_every", str(max(1, taps // 10)), "-log", "log.lammps",
-               "-screen", "none", "-echo", "none"]
-        if nice:
-            cmd = ["nice", "-n", str(nice)] + cmd
-        t0 = time.time()
-        proc = subprocess.Popen(cmd, cwd=tmp, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                                env=dict(os.environ, OMP_NUM_THREADS="1"))
-        # wait4: this child's own CPU time, whatever else runs at the same time
-        _, status, usage = os.wait4(proc.pid, 0)
-        err = proc.stderr.read().decode(errors="replace")
-        proc.stderr.close()
-        wall = time.time() - t0
-        rc = os.waitstatus_to_exitcode(status)
-        if rc != 0:
-            tail = err[-1500:]
-            logpath = os.path.join(tmp, "log.lammps")
-            if os.path.exists(logpath):
-                with open(logpath) as f:
-                    tail = f.read()[-1500:]
-            raise RuntimeError("lmp failed (rc %d): %s\n%s" % (rc, " ".join(cmd), tail))
-        table = front.read_taps(os.path.join(tmp, "taps.dat"))
-        if len(table) != taps or table[-1]["step"] != taps:
-            raise RuntimeError("%s: taps.dat has %d rows, expected %d" % (setting, len(table), taps))
-        dest = front.taps_path(out_dir, setting, N, eps, seed)
-        os.makedirs(os.path.dirname(dest), exist_ok=True)
-        with open(os.path.join(tmp, "taps.dat"), "rb") as src, gzip.open(dest + ".part", "wb") as gz:
-            shutil.copyfileobj(src, gz)
-        os.replace(dest + ".part", dest)
-    cpu = usage.ru_utime + usage.ru_stime
+    cmd = [lmp, "-in", INPUT, "-var", "N", str(N), "-var", "L", "%g" % front.box_side_R(N),
+           "-var", "eps", "%g" % eps, "-var", "taps", str(taps), "-var", "seed", str(seed),
+           "-var", "eta", front.SETTINGS[setting]["eta"], "-var", "settle_keys", keys,
+           "-var", "rsteps", str(restart_every(taps)),
+           "-var", "thermo_every", str(max(1, taps // 10)), "-log", "log.lammps",
+           "-screen", "none", "-echo", "none"]
+    if resume_file:
+        cmd += ["-var", "resume", "yes", "-var", "resume_file", resume_file]
+    if nice:
+        cmd = ["nice", "-n", str(nice)] + cmd
+    return cmd
+
+
+def restart_every(taps):
+    """Taps between restart files: RESTARTS_PER_RUN of them, so a killed run loses little."""
+    return max(1, taps // RESTARTS_PER_RUN)
+
+
+def run_attempt(lmp, setting, N, eps, taps, seed, work, nice, children=None):
+    """One attempt of a run in `work`: from its latest restart (rows past it trimmed and the
+    killed attempt's CPU cut to what it kept), or fresh. Records the attempt in attempts.json.
+    Returns True when the run reached `taps`."""
+    taps_dat = os.path.join(work, "taps.dat")
+    attempts = load_attempts(work)
+    step, restart = latest_restart(work)
+    if restart is None:
+        step = 0
+        attempts = []
+        if os.path.exists(taps_dat):
+            os.remove(taps_dat)
+    else:
+        trim_taps(taps_dat, step)
+        # the previous attempt keeps the CPU of the taps it kept, by their share of its sweeps
+        if attempts and "kept_cpu" not in attempts[-1]:
+            a = attempts[-1]
+            kept = sweeps_between(taps_dat, a["start"], min(step, a["end"]))
+            a["kept_sweeps"] = kept
+            a["kept_cpu"] = a["cpu"] * kept / a["sweeps"] if a["sweeps"] > 0 else 0.0
+    cmd = lmp_command(lmp, setting, N, eps, taps, seed, nice, restart)
+    t0 = time.time()
+    proc = subprocess.Popen(cmd, cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                            env=dict(os.environ, OMP_NUM_THREADS="1"))
+    if children is not None:
+        children.add(proc)
+    # wait4: this child's own CPU time, whatever else runs at the same time
+    _, status, usage = os.wait4(proc.pid, 0)
+    if children is not None:
+        children.discard(proc)
+    err = proc.stderr.read().decode(errors="replace")
+    proc.stderr.close()
+    rc = os.waitstatus_to_exitcode(status)
+    end = last_complete_step(taps_dat)
+    attempts.append({"start": step, "end": end, "cpu": usage.ru_utime + usage.ru_stime,
+                     "wall": time.time() - t0, "sweeps": sweeps_between(taps_dat, step, end),
+                     "rc": rc})
+    save_attempts(work, attempts)
+    if rc == 0:
+        return True
+    if rc < 0 or rc == 128 + 15:  # killed by a signal: resumable
+        return False
+    tail = err[-1500:]
+    logpath = os.path.join(work, "log.lammps")
+    if os.path.exists(logpath):
+        with open(logpath) as f:
+            tail = f.read()[-1500:]
+    raise RuntimeError("lmp failed (rc %d): %s\n%s" % (rc, " ".join(cmd), tail))
+
+
+def run_cpu_seconds(attempts, total_sweeps):
+    """CPU seconds of a run: every attempt's CPU for the taps it kept (the last one all of its
+    own), scaled to all the run's sweeps when an attempt's record is missing (a hard kill)."""
+    cpu = sweeps = 0.0
+    for a in attempts:
+        cpu += a.get("kept_cpu", a["cpu"])
+        sweeps += a.get("kept_sweeps", a["sweeps"])
+    return cpu * total_sweeps / sweeps if sweeps > 0 else cpu
+
+
+def run_one(lmp, setting, N, eps, taps, seed, out_dir, nice, children=None):
+    """Runs (or resumes) one setting for one seed; returns its runs.csv row (taps.dat gzipped
+    into out_dir), or None when the run was stopped before its end (resumable)."""
+    work = work_dir(out_dir, setting, N, eps, seed)
+    os.makedirs(work, exist_ok=True)
+    if not run_attempt(lmp, setting, N, eps, taps, seed, work, nice, children):
+        return None
+    taps_dat = os.path.join(work, "taps.dat")
+    trim_taps(taps_dat, taps)
+    table = front.read_taps(taps_dat)
+    if len(table) != taps or [r["step"] for r in table] != list(range(1, taps + 1)):
+        raise RuntimeError("%s: taps.dat has %d rows, expected steps 1..%d" % (setting, len(table), taps))
+    attempts = load_attempts(work)
+    dest = front.taps_path(out_dir, setting, N, eps, seed)
+    os.makedirs(os.path.dirname(dest), exist_ok=True)
+    with open(taps_dat, "rb") as src, gzip.open(dest + ".part", "wb") as gz:
+        shutil.copyfileobj(src, gz)
+    os.replace(dest + ".part", dest)
+    total_sweeps = sum(r["sweeps"] for r in table)
+    cpu = run_cpu_seconds(attempts, total_sweeps)
+    wall = sum(a["wall"] for a in attempts)
+    shutil.rmtree(work)
+    try:  # and its empty parents, up to <out>/work
+        os.removedirs(os.path.dirname(work))
+    except OSError:
+        pass
     return {"setting": setting, "N": N, "eps": "%g" % eps, "seed": seed, "taps": taps,
-            "eta": eta, "settle_keys": keys, "cpu_s": "%.2f" % cpu, "wall_s": "%.1f" % wall,
-            "cpu_per_tap": "%.5f" % (cpu / taps),
-            "sweeps_per_tap": "%.1f" % (sum(r["sweeps"] for r in table) / taps),
+            "eta": front.SETTINGS[setting]["eta"], "settle_keys": front.settle_keys(setting, N),
+            "cpu_s": "%.2f" % cpu, "wall_s": "%.1f" % wall, "cpu_per_tap": "%.5f" % (cpu / taps),
+            "sweeps_per_tap": "%.1f" % (total_sweeps / taps),
             "capped_taps": sum(1 for r in table if r["capped"] > 0)}
 
 
@@ -166,10 +309,31 @@ def main():
     lock = threading.Lock()
     start = time.time()
     finished = [0]
+    children = set()   # lmp processes running now
+    stopping = threading.Event()
+
+    def stop(signum, frame):
+        # SIGTERM / Ctrl-C: stop the lmp processes; each run keeps its taps up to its latest
+        # restart and the CPU they cost, and resumes from there next time
+        stopping.set()
+        for proc in list(children):
+            try:
+                proc.terminate()
+            except OSError:
+                pass
+
+    signal.signal(signal.SIGTERM, stop)
+    signal.signal(signal.SIGINT, stop)
 
     def job(key):
+        if stopping.is_set():
+            return
         name, N, eps, seed, taps = key
-        row = run_one(lmp, name, N, float(eps), taps, seed, args.out, args.nice)
+        row = run_one(lmp, name, N, float(eps), taps, seed, args.out, args.nice, children)
+        if row is None:
+            if not stopping.is_set():
+                raise RuntimeError("%s N %d eps %s seed %d: lmp was killed from outside" % key[:4])
+            return
         with lock:
             new = not os.path.exists(runs_csv)
             with open(runs_csv, "a", newline="") as f:
@@ -187,8 +351,16 @@ def main():
             sys.stdout.flush()
 
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
-        for fut in [pool.submit(job, key) for key in todo]:
+        futures = [pool.submit(job, key) for key in todo]
+        while not all(f.done() for f in futures):
+            # short waits, so that a signal is handled at once (in this thread)
+            concurrent.futures.wait(futures, timeout=1.0)
+        for fut in futures:
             fut.result()
+    if stopping.is_set():
+        print("paper_front: stopped; %d runs finished, the rest resume from their restart files"
+              % finished[0])
+        return 3
     return 0
 
 
