@@ -278,6 +278,11 @@ class Front:
                 out.append((name, row["eps"], row["paired_seeds"], off, compared))
         return out
 
+    @property
+    def compared_sizes(self):
+        """The N at which the reference has run: where biases (and a figure) exist."""
+        return sorted({r["N"] for r in self._need() if r["setting"] == REFERENCE})
+
     def recommendations(self, N):
         """purpose -> recommended setting at N (see :func:`recommend`)."""
         return recommend(self._need(), N)
@@ -445,24 +450,36 @@ def _dmax_lines(front, N):
     return []
 
 
-def _preset_lines(front, N, recs):
+def _preset_lines(front):
     """The presets of tapmc-paper, each made for a purpose: its setting, that setting's worst
-    95 % bound here and the setting this front recommends for the purpose."""
+    95 % bound and the setting this front recommends for the purpose, at the preset's own N
+    when the front has it, else at the nearest N it has."""
     from .scales import SCALES
     body = []
     for preset, purpose in PRESET_PURPOSE.items():
         scale = SCALES[preset]
+        N = min(front.compared_sizes or front.sizes, key=lambda n: (abs(math.log(n / scale.N)), n))
         name = setting_named(scale.eta)
-        worst = worst_bound(name, front.rows(N=N, setting=name)) if name else math.nan
-        rec = recs.get(purpose, {}).get("setting", "none yet")
-        body.append([preset, f"N = {scale.N}, {scale.taps} taps", purpose,
+        rows = front.rows(N=N, setting=name) if name else []
+        worst = worst_bound(name, rows) if name else math.nan
+        rec = front.recommendations(N).get(purpose, {})
+        ratio = (rec["cpu_per_tap"] / (sum(r["cpu_per_tap"] for r in rows) / len(rows))
+                 if rec and rows else math.nan)
+        body.append([preset, f"N = {scale.N}, {scale.taps} taps", f"N = {N}", purpose,
                      name or f"eta {scale.eta:g} (not on the front)",
-                     "n/a" if worst != worst else "%.4f" % worst, rec,
-                     "yes" if rec == name else "no"])
-    return [f"**The presets of tapmc-paper** (:doc:`tapmc-paper`) against the recommendations "
-            f"at N = {N}:", ""] + _grid(
-        ["preset", "scale", "purpose", "its setting", "its worst 95 % bound", "recommended",
-         "same"], body) + [""]
+                     "n/a" if worst != worst else "%.4f" % worst, rec.get("setting", "none yet"),
+                     "yes" if rec.get("setting") == name else "no",
+                     "n/a" if ratio != ratio else "%.1f" % ratio])
+    return ["**The presets of tapmc-paper** (:doc:`tapmc-paper`) against the recommendations, "
+            "at the preset's N or the nearest N measured (last column: the CPU time per tap of "
+            "the recommended setting over the preset's, mean over eps):", ""] + _grid(
+        ["preset", "scale", "front at", "purpose", "its setting", "its worst 95 % bound",
+         "recommended", "same", "CPU ratio"], body) + [""]
+
+
+def figure_name(N):
+    """File name (no extension) of the figure and CSV of the front at N."""
+    return FIGURE if N == SIZES[0] else f"{FIGURE}_N{N}"
 
 
 def render_rst(front, runs_note):
@@ -542,6 +559,10 @@ def render_rst(front, runs_note):
                              + (f"all {compared} agree with the reference." if not off else
                                 f"{len(off)} of {compared} differ: {', '.join(off)}."))
             lines.append("")
+        if N not in front.compared_sizes:
+            lines += [f"The reference has not run at N = {N} yet: no bias, recommendation or "
+                      "figure at this N.", ""]
+            continue
         recs = front.recommendations(N)
         if recs:
             lines += ["**Recommended settings** (the cheapest setting, run at every eps above, whose "
@@ -564,12 +585,12 @@ def render_rst(front, runs_note):
                              "%.3f" % rec["cpu_per_tap"]])
             lines += _grid(["purpose", "setting", "tolerance", "worst 95 % bound",
                             "CPU s/tap (mean over eps)"], body) + [""]
-        lines += _preset_lines(front, N, recs)
-        lines += [f".. image:: validation/front/{FIGURE}.png", "",
+        lines += [f".. image:: validation/front/{figure_name(N)}.png", "",
                   f"Left, middle: bias of the steady <Phi^c> (taps {TAPS - STEADY_LAST + 1}-{TAPS}) against the CPU time per tap "
                   f"(error bars: standard error of the paired bias). Right: the bias against the "
                   f"tap count at eps = {front.eps_values[0]:g} (the steady window at {2 * TAPS}). "
-                  f"Data: ``doc/validation/front/{FIGURE}.csv``.", ""]
+                  f"Data: ``doc/validation/front/{figure_name(N)}.csv``.", ""]
+    lines += _preset_lines(front)
     for N in SIZES:
         if N not in front.sizes:
             lines += [f"N = {N}: not measured yet (``bench/paper_front.py --N {N} --jobs 2``).", ""]
@@ -602,8 +623,9 @@ def write_page(root, data_dir=None):
     root = os.fspath(root)
     data = data_dir or os.path.join(root, DATA_DIR)
     fr = Front(data).compute()
-    N = fr.sizes[0]
-    fr.write_figure(N, os.path.join(data, FIGURE + ".png"), os.path.join(data, FIGURE + ".csv"))
+    for N in fr.compared_sizes:
+        name = figure_name(N)
+        fr.write_figure(N, os.path.join(data, name + ".png"), os.path.join(data, name + ".csv"))
     package = os.path.join(root, "tools", "python", "tapmc", "paper")
     os.makedirs(package, exist_ok=True)
     fr.write_csv(os.path.join(package, os.path.basename(SUMMARY)))
