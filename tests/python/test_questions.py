@@ -58,3 +58,34 @@ def test_spectral_window_says_whether_the_window_moves_the_slope(tmp_path):
 
 def test_nothing_to_render_without_the_csvs(tmp_path):
     assert questions.render_section(tmp_path) == []
+
+
+def _front_rows(biases):
+    """Rows of a front summary at N = 1024, eps = 0.0225: setting -> steady <Phi^c> bias."""
+    return [{"setting": name, "N": 1024.0, "eps": 0.0225, "phi_c_steady_bias": bias,
+             "phi_c_steady_bias_se": 0.0005, "cpu_per_tap": cpu, "paired_seeds": 4.0}
+            for cpu, (name, bias) in enumerate(biases.items(), start=1)]
+
+
+def _fig9(phi):
+    return claims.FigureData({("params", "phi_c_steady"): {"x": [0.0], "mean": [phi],
+                                                           "sem": [0.0002], "n": [1]}})
+
+
+def test_final_phi_c_carried_to_every_threshold_of_the_front(tmp_path):
+    first_tap_csv(tmp_path, -0.012, -0.010)
+    rows = _front_rows({"change 1e-5": -0.0124, "change 1e-7 (default)": -0.0044,
+                        "dmax R/2": -0.02, "drift 1e-7": 0.0})
+    text = "\n".join(questions.render_section(tmp_path, {"fig9": _fig9(0.6086)}, [1e-7], rows))
+    # 60.86 % at eta = 1e-7; eta = 1e-5 is 0.80 % lower, the reference 0.44 % higher
+    assert "60.06 ± 0.07 %" in text and "61.30 ± 0.07 %" in text
+    assert "lies inside the range the thresholds span" in text and "closest: change 1e-5" not in text
+    assert "dmax" not in text  # d_max is the model's parameter, not a threshold
+    # a paper value no threshold reaches
+    far = "\n".join(questions.render_section(tmp_path, {"fig9": _fig9(0.640)}, [1e-7], rows))
+    assert "lies outside the range" in far and "no redeposition threshold explains" in far
+    # nothing to say without the front, or for a campaign of several eta
+    assert "threshold" not in "\n".join(questions.render_section(tmp_path, {"fig9": _fig9(0.6)},
+                                                                  [1e-7], []))
+    assert "threshold" not in "\n".join(questions.render_section(tmp_path, {"fig9": _fig9(0.6)},
+                                                                  [1e-7, 1e-5], rows))

@@ -307,7 +307,9 @@ def render(summary, files):
     lines += _register_table(rows) + [""]
     if files:
         folder = Path(next(iter(files.values()))[1]).parent / questions.FOLDER
-        lines += questions.render_section(folder, figures)
+        from .front import read_summary
+
+        lines += questions.render_section(folder, figures, summary["eta"], read_summary())
     for name in FIGURES:
         if name not in files:
             continue
