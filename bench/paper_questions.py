@@ -30,11 +30,23 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               Carnahan-Starling as the check of equilibrium: the baseline of the packing's
               deviation, and a validation of the measurement where PY is accurate.
 
+  theta0      Does theta0 = pi/4 give the largest compaction rate, and does a much smaller
+              theta0 decompact (section II)? From the same fresh packings (N = 1024, the
+              paper's bed height on a 16R base, P.B.C., eps = 0.0225, the default eta) 100
+              taps at seven widths theta0 of the trial moves' angular distribution (eq. 1),
+              pi/16 to pi/2: <Phi^c> at t = 0 and its mean over taps 91-100 per seed.
+              --stop drift (with --eta, default 1e-7: the front's reference) repeats it
+              with a converged redeposition, into theta0_drift.csv: a wider theta0 takes more
+              sweeps before the paper's stopping rule ends a tap, so the default scan mixes
+              the width's effect with the redeposition's length.
+
 Usage (from the repository; minutes on one core, run under nice):
 
     bench/paper_questions.py first-tap   [--out DIR] [--lmp EXE] [--seeds 1 2 3]
     bench/paper_questions.py noise-floor [--out DIR] [--lmp EXE] [--restart FILE]
     bench/paper_questions.py spectral-window [--out DIR] [--campaign DIR]
+    bench/paper_questions.py theta0 [--out DIR] [--lmp EXE] [--seeds 1 2 3 4]
+                                    [--stop change|drift] [--eta 1e-7]
     bench/paper_questions.py p0-fluid [--out DIR] [--phi 0.3 0.4 ...] [--configs C]
                                       [--work DIR] [--mc EXE]
 
@@ -68,6 +80,12 @@ CAMPAIGN_RUN = SOURCE / "doc" / "validation" / "data" / "full" / "runs" / "const
 PAPER = {"N": 4096, "L": 32}
 FIRST_TAP_EPS = (0.0225, 0.15)
 FIRST_TAP_ETA = (1e-7, 1e-8, 1e-9)
+#: theta0 scan: widths (multiples of pi), its scale and taps; the window of taps averaged
+THETA0_PI = (1 / 16, 1 / 8, 1 / 6, 1 / 4, 1 / 3, 5 / 12, 1 / 2)
+THETA0_SCALE = {"N": 1024, "L": 16}
+THETA0_EPS = 0.0225
+THETA0_TAPS = 100
+THETA0_WINDOW = 10
 NOISE_TAPS = 1000
 NOISE_FROM_STEP = 4000
 
@@ -116,6 +134,32 @@ def first_tap(args):
                       f" ({int(t1[8])} sweeps)", flush=True)
     write_csv(Path(args.out) / "first_tap.csv",
               ["eps", "eta", "seed", "phi_c_0", "phi_c_1", "Z_0", "Z_1", "sweeps_1"], rows)
+
+
+def theta0_scan(args):
+    lmp = lmp_command(args.lmp)
+    rows = []
+    for seed in args.seeds:
+        for frac in THETA0_PI:
+            theta0 = np.pi * frac
+            with tempfile.TemporaryDirectory() as folder:
+                keys = f"theta0 {theta0!r}" + (" stop drift" if args.stop == "drift" else "")
+                taps = run(lmp, folder, dict(THETA0_SCALE, bc="pbc", eps=THETA0_EPS, seed=seed,
+                                             taps=THETA0_TAPS, rsteps=1000000, eta=args.eta,
+                                             settle_keys=keys))
+            # columns of taps.dat: step phi_b phi_c Z z_top lateral central h_s sweeps ...
+            last = taps[-THETA0_WINDOW:]
+            rows.append([f"{frac:.6f}", repr(theta0), seed, THETA0_SCALE["N"], THETA0_EPS,
+                         THETA0_TAPS, f"{args.eta:g}", args.stop,
+                         f"{taps[0, 2]:.8f}", f"{last[:, 2].mean():.8f}",
+                         f"{taps[1:, 8].mean():.1f}"])
+            print(f"seed {seed} theta0 = {frac:.4f} pi: <Phi^c> {taps[0, 2]:.4f} -> "
+                  f"{last[:, 2].mean():.4f} ({taps[1:, 8].mean():.0f} sweeps per tap)", flush=True)
+    name = "theta0.csv" if args.stop == "change" else f"theta0_{args.stop}.csv"
+    write_csv(Path(args.out) / name,
+              ["theta0_over_pi", "theta0", "seed", "N", "eps", "taps", "eta", "stop", "phi_c_0",
+               "phi_c_end",
+               "sweeps_per_tap"], rows)
 
 
 def noise_floor(args):
@@ -326,11 +370,14 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
-    for name in ("first-tap", "noise-floor", "spectral-window", "p0-fluid"):
+    for name in ("first-tap", "noise-floor", "spectral-window", "theta0", "p0-fluid"):
         p = sub.add_parser(name)
         p.add_argument("--out", default=DEFAULT_OUT, type=Path)
         p.add_argument("--lmp", default=None)
     sub.choices["first-tap"].add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
+    sub.choices["theta0"].add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3, 4])
+    sub.choices["theta0"].add_argument("--stop", choices=("change", "drift"), default="change")
+    sub.choices["theta0"].add_argument("--eta", type=float, default=1e-7)
     sub.choices["noise-floor"].add_argument("--restart", default=CAMPAIGN_RUN / "restart.4000")
     sub.choices["spectral-window"].add_argument("--campaign", default=CAMPAIGN_RUN.parents[1])
     fluid = sub.choices["p0-fluid"]
@@ -350,7 +397,8 @@ def main(argv=None):
         if any(not 0.01 <= p <= 0.58 for p in args.phi):
             parser.error(f"--phi values must be in [0.01, 0.58], got {args.phi}")
     {"first-tap": first_tap, "noise-floor": noise_floor,
-     "spectral-window": spectral_window, "p0-fluid": p0_fluid}[args.command](args)
+     "spectral-window": spectral_window, "theta0": theta0_scan,
+     "p0-fluid": p0_fluid}[args.command](args)
 
 
 if __name__ == "__main__":

@@ -300,8 +300,30 @@ def front_report(r10_bias, r2_bias):
     return data
 
 
+def theta0_report(gains):
+    """A report with a theta0 scan: theta0 / pi -> compaction over the taps; 4 seeds, each seed
+    shifting every theta0's gain alike (paired) plus a small jitter per theta0."""
+    rows = []
+    for seed, shift in zip(range(1, 5), (-0.002, -0.001, 0.001, 0.002)):
+        for k, (frac, gain) in enumerate(sorted(gains.items())):
+            jitter = 0.0002 * ((seed + k) % 3 - 1)
+            rows.append({"theta0_over_pi": f"{frac:.6f}", "seed": str(seed), "N": "1024",
+                         "eps": "0.0225", "taps": "100", "phi_c_0": "0.58",
+                         "phi_c_end": f"{0.58 + gain + shift + jitter:.8f}",
+                         "sweeps_per_tap": "1800"})
+    data = report()
+    data.theta0 = [rows]
+    return data
+
+
+#: the paper's pattern (pi/16 decompacts, pi/4 compacts most) and one where pi/3 compacts most
+THETA0_PAPER = {1 / 16: -0.02, 1 / 8: -0.01, 1 / 4: 0.010, 1 / 3: 0.009, 1 / 2: 0.004}
+THETA0_WIDER = {**THETA0_PAPER, 1 / 3: 0.016}
+
+
 CONTROLS = {
     "initial_phi": (report(), report({"initial_phi_c": [0.570, 0.001, SEEDS]})),
+    "theta0_optimum": (theta0_report(THETA0_PAPER), theta0_report(THETA0_WIDER)),
     # both other d_max leave the packing looser (slower) / both leave it denser than R/5
     "dmax_intermediate": (front_report(-0.005, -0.007), front_report(0.0, 0.0)),
     "tapped_phi": (report(fig9=fig9()),
@@ -519,3 +541,11 @@ def test_fig5_refit_table_finds_the_scaling_of_its_curves(tmp_path):
     refitted.table = new
     outcome = _outcomes(BY_ID["ageing-scaling"], report(fig5=refitted))
     assert outcome[0].startswith("agrees")
+
+
+def test_theta0_scan_within_noise_is_undecided():
+    # pi/2 compacts as much as pi/4 within the seeds' error: the pattern is not decided
+    m = claims.STATISTICS["theta0_optimum"](theta0_report({**THETA0_PAPER, 1 / 2: 0.0099}),
+                                             BY_ID["theta0-optimum"])[0]
+    assert m.undecided and "compacts less than pi/4" in m.undecided
+    assert "pi/16: -2.00 ± " in m.shown and "most: pi/4" in m.shown

@@ -89,3 +89,18 @@ def test_final_phi_c_carried_to_every_threshold_of_the_front(tmp_path):
                                                                   [1e-7], []))
     assert "threshold" not in "\n".join(questions.render_section(tmp_path, {"fig9": _fig9(0.6)},
                                                                   [1e-7, 1e-5], rows))
+
+
+def test_theta0_scan_table_and_verdict(tmp_path):
+    lines = ["theta0_over_pi,theta0,seed,N,eps,taps,phi_c_0,phi_c_end,sweeps_per_tap"]
+    for seed, shift in ((1, -0.001), (2, 0.0), (3, 0.001)):
+        for frac, gain, jitter in ((0.0625, -0.02, 0.0002), (0.25, 0.01, -0.0001),
+                                   (0.5, 0.004, 0.0001)):
+            lines.append(f"{frac},{frac * 3.14159},{seed},1024,0.0225,100,0.58,"
+                         f"{0.58 + gain + shift + jitter * seed},{1000 + 2000 * frac}")
+    (tmp_path / "theta0.csv").write_text("\n".join(lines) + "\n")
+    text = "\n".join(questions.render_section(tmp_path))
+    assert "``theta0``" in text and "   * - pi/16" in text and "   * - pi/2" in text
+    assert "-1.96 ± 0.07 %" in text          # pi/16: gain -0.02 + jitter 0.0002 x mean seed 2
+    assert "1125 at pi/16, 2000 at pi/2" in text
+    assert "Verdict of the claim (rule pattern, t sem with 3 seeds): agrees" in text

@@ -29,6 +29,7 @@ A measure without an uncertainty (one realization) is undecided, never agreed by
 
 from __future__ import annotations
 
+import csv
 import math
 import tomllib
 from dataclasses import dataclass, field
@@ -197,19 +198,26 @@ class ReportData:
     ``summary`` (tapmc.paper.validation.campaign_summary) and ``front``, the rows of the
     run-time-versus-error front (tapmc.paper.front.read_summary; empty: not measured)."""
 
-    def __init__(self, summary, figures, front=()):
+    def __init__(self, summary, figures, front=(), theta0=()):
+        """``theta0``: the theta0 scans, each a list of rows of a theta0*.csv."""
         self.summary = summary
         self.figures = figures
         self.front = list(front)
+        self.theta0 = list(theta0)
 
     @classmethod
     def from_files(cls, summary, files):
         """``files``: name -> (png, csv) as the report collects them; the front from the
-        package's front_summary.csv."""
+        package's front_summary.csv; the theta0 scan from ``questions/theta0.csv`` beside the
+        figure CSVs (bench/paper_questions.py theta0), when there."""
         from .front import read_summary
 
+        theta0 = []
+        if files:
+            folder = Path(next(iter(files.values()))[1]).parent / "questions"
+            theta0 = [read_theta0_scan(path) for path in sorted(folder.glob("theta0*.csv"))]
         return cls(summary, {name: FigureData.read(paths[1]) for name, paths in files.items()},
-                   read_summary())
+                   read_summary(), theta0)
 
     def figure(self, name):
         return self.figures.get(name)
@@ -975,8 +983,99 @@ def dmax_intermediate(data, claim):
     return measures or [Measure(undecided="the front (doc/front.rst) has not measured d_max")]
 
 
+def read_theta0_scan(path):
+    """Rows of a theta0 scan CSV (bench/paper_questions.py theta0)."""
+    with open(path, newline="") as handle:
+        return list(csv.DictReader(handle))
+
+
+def theta0_settings(rows):
+    """The redeposition setting of a scan, as the report writes it."""
+    r = rows[0]
+    return f"stop {r.get('stop', 'change')}, eta = {float(r.get('eta', 1e-7)):g}"
+
+
+def theta0_table(rows):
+    """Per theta0 of a scan (rows of theta0.csv): the compaction over the scan's taps,
+    <Phi^c>(end) - <Phi^c>(0), mean and standard error over seeds, and its paired difference
+    from theta0 = pi/4 on the same seeds (same initial packing). Sorted by theta0."""
+    by_theta = {}
+    for r in rows:
+        by_theta.setdefault(float(r["theta0_over_pi"]), {})[int(r["seed"])] = (
+            float(r["phi_c_end"]) - float(r["phi_c_0"]))
+    quarter = min(by_theta, key=lambda f: abs(f - 0.25)) if by_theta else None
+    out = []
+    for frac in sorted(by_theta):
+        gains = by_theta[frac]
+        seeds = sorted(set(gains) & set(by_theta[quarter]))
+        g = np.array([gains[k] for k in seeds])
+        d = np.array([gains[k] - by_theta[quarter][k] for k in seeds])
+        n = len(seeds)
+        sem = (lambda a: float(np.std(a, ddof=1) / math.sqrt(n)) if n > 1 else math.nan)
+        out.append({"theta0_over_pi": frac, "n": n, "gain": float(g.mean()) if n else math.nan,
+                    "gain_sem": sem(g), "vs_quarter": float(d.mean()) if n else math.nan,
+                    "vs_quarter_sem": 0.0 if frac == quarter else sem(d),
+                    "is_quarter": frac == quarter})
+    return out
+
+
+def _pi_fraction(frac):
+    """theta0 / pi as the report writes it (pi/4, 5pi/12, ...)."""
+    from fractions import Fraction
+
+    f = Fraction(frac).limit_denominator(48)
+    return ("pi" if f.numerator == 1 else f"{f.numerator}pi") + (
+        f"/{f.denominator}" if f.denominator != 1 else "")
+
+
+def theta0_optimum(data, claim):
+    """Section II: the paper's theta0 = pi/4 compacts most, a much smaller theta0 decompacts,
+    a large one compacts less. From the theta0 scan (same packings, taps at fixed eps): 1 when
+    no theta0 compacts more than pi/4 beyond t sem (paired), the smallest theta0 decompacts
+    (gain below zero beyond t sem) and the largest compacts less than pi/4 (beyond t sem); 0
+    when any of these is contradicted beyond t sem; undecided otherwise."""
+    measures = [_theta0_measure(rows) for rows in data.theta0 if rows]
+    return measures or [Measure(undecided="no theta0 scan (bench/paper_questions.py theta0)")]
+
+
+def _theta0_measure(rows):
+    table = theta0_table(rows)
+    first = rows[0]
+    label = (f"N = {first['N']}, eps = {float(first['eps']):g}, {theta0_settings(rows)}: "
+             f"<Phi^c> over taps {int(first['taps']) - 9}-{first['taps']} minus t = 0")
+    if len(table) < 3 or not any(r["is_quarter"] for r in table):
+        return Measure(label=label, undecided="fewer than three theta0, or no pi/4, in the scan")
+    n = min(r["n"] for r in table)
+    if n < 2:
+        return Measure(label=label, undecided="one seed per theta0")
+    t = t_quantile(n - 1)
+    label += f", {n} seeds"
+    shown = "; ".join(f"{_pi_fraction(r['theta0_over_pi'])}: {fmt(r['gain'], r['gain_sem'], True)}"
+                      for r in table)
+    others = [r for r in table if not r["is_quarter"]]
+    better = [r for r in others if r["vs_quarter"] > t * r["vs_quarter_sem"]]
+    small, large = table[0], table[-1]
+    checks = {
+        "no theta0 compacts more than pi/4": (not better, bool(better)),
+        f"{_pi_fraction(small['theta0_over_pi'])} decompacts":
+            (small["gain"] < -t * small["gain_sem"], small["gain"] > t * small["gain_sem"]),
+        f"{_pi_fraction(large['theta0_over_pi'])} compacts less than pi/4":
+            (large["vs_quarter"] < -t * large["vs_quarter_sem"],
+             large["vs_quarter"] > t * large["vs_quarter_sem"]),
+    }
+    best = max(table, key=lambda r: r["gain"])
+    shown += f"; most: {_pi_fraction(best['theta0_over_pi'])}"
+    contradicted = [k for k, (_, no) in checks.items() if no]
+    open_ = [k for k, (yes, no) in checks.items() if not yes and not no]
+    if contradicted:
+        return Measure(0.0, label=label, shown=shown + "; contradicted: " + ", ".join(contradicted))
+    if open_:
+        return Measure(label=label, shown=shown, undecided="within t sem: " + ", ".join(open_))
+    return Measure(1.0, label=label, shown=shown)
+
+
 STATISTICS = {f.__name__: f for f in (
-    initial_phi, dmax_intermediate, tapped_phi, pbc_compaction, phi_b_gain, efficiency_decrease, eq3_fit_quality,
+    initial_phi, dmax_intermediate, theta0_optimum, tapped_phi, pbc_compaction, phi_b_gain, efficiency_decrease, eq3_fit_quality,
     eq3_triplet_pattern, eq4_fit_quality, b_exponential, ageing_collapse,
     log_time_slowing, spectral_slopes, spectrum_eps_spread,
     sigma_intercept, bell_maximum, bell_side_slope, alpha_bell, ramp_up_minus_steady,

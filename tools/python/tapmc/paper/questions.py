@@ -14,6 +14,8 @@ committed data.
 * the final <Phi^c> of Fig. 9's run carried to every redeposition setting of the
   run-time-versus-error front (its ``front_summary.csv``): which thresholds the paper's 60.6 %
   fits.
+* ``theta0.csv``: the compaction over 100 taps from the same packings at several widths
+  theta0 of the trial moves' angular distribution: whether pi/4 compacts most (section II).
 * ``p0_fluid.csv``: Gotoh's P0(sigma) of equilibrium hard-sphere fluids measured as Fig. 9
   measures the packings, against Percus-Yevick: how closely PY describes an exact fluid, the
   baseline of the packings' agreement with it (Fig. 9).
@@ -252,6 +254,49 @@ def _p0_fluid(path, fig9=None):
     return lines + [""]
 
 
+def _theta0(path):
+    """A theta0 scan (section II: pi/4 compacts most, a much smaller theta0 decompacts)."""
+    from .claims import (ReportData, load_register, theta0_optimum, theta0_settings,
+                         theta0_table, verdict)
+
+    rows = _read(path)
+    table = theta0_table(rows)
+    if not table:
+        return []
+    first = rows[0]
+    sweeps = defaultdict(list)
+    for r in rows:
+        sweeps[float(r["theta0_over_pi"])].append(float(r["sweeps_per_tap"]))
+    lines = ["Does theta0 = pi/4, the width of the trial moves' angular distribution (eq. 1), give "
+             "the largest compaction rate, and does a much smaller theta0 decompact (section "
+             f"II)? {first['taps']} taps at eps = {float(first['eps']):g} from the same fresh "
+             f"packings (N = {first['N']}, P.B.C., {theta0_settings(rows)}) at each theta0 "
+             f"(``{Path(path).name}``; gain: <Phi^c> over the last 10 taps minus <Phi^c> at t = 0, mean "
+             "± sem over seeds; against pi/4: the paired difference on the same seeds):", "",
+             ".. list-table::", "   :header-rows: 1", "",
+             "   * - theta0", "     - gain of <Phi^c>", "     - against pi/4",
+             "     - sweeps per tap"]
+    from .claims import _pi_fraction
+
+    for r in table:
+        lines += [f"   * - {_pi_fraction(r['theta0_over_pi'])}",
+                  f"     - {fmt(r['gain'], r['gain_sem'], True)}",
+                  "     - 0" if r["is_quarter"] else
+                  f"     - {fmt(r['vs_quarter'], r['vs_quarter_sem'], True)}",
+                  f"     - {np.mean(sweeps[r['theta0_over_pi']]):.0f}"]
+    claim = next(c for c in load_register() if c.statistic == "theta0_optimum")
+    m = theta0_optimum(ReportData({}, {}, (), [rows]), claim)[0]
+    text = f"Verdict of the claim (rule pattern, t sem with {table[0]['n']} seeds): {verdict(claim, m)}."
+    lo, hi = table[0]["theta0_over_pi"], table[-1]["theta0_over_pi"]
+    s_lo, s_hi = np.mean(sweeps[lo]), np.mean(sweeps[hi])
+    if s_hi > 1.1 * s_lo:
+        text += (f" The sweeps per tap grow with theta0 at the same eta ({s_lo:.0f} at "
+                 f"{_pi_fraction(lo)}, {s_hi:.0f} at {_pi_fraction(hi)}): a wider distribution "
+                 "also redeposits longer before the stopping rule ends it, so the gain per tap "
+                 "mixes the width's effect with the redeposition's length.")
+    return lines + ["", text, ""]
+
+
 #: <Phi^c> the paper reports after 4000 taps (section IV.B, Fig. 9)
 PAPER_FINAL_PHI_C = 0.606
 
@@ -329,6 +374,8 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
         parts += _noise_floor(folder / "noise_floor.csv", (figures or {}).get("fig3"))
     if (folder / "spectral_window.csv").is_file():
         parts += _spectral_window(folder / "spectral_window.csv")
+    for scan in sorted(folder.glob("theta0*.csv")):
+        parts += _theta0(scan)
     if (folder / "p0_fluid.csv").is_file():
         parts += _p0_fluid(folder / "p0_fluid.csv", (figures or {}).get("fig9"))
     if parts:
@@ -338,6 +385,7 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
     title = "Questions settled by measurement"
     # the commands that made the CSVs (p0-fluid named only when its CSV is there)
     commands = "``first-tap``, ``noise-floor``, ``spectral-window``" + (
+        ", ``theta0``" if any(folder.glob("theta0*.csv")) else "") + (
         ", ``p0-fluid``" if (folder / "p0_fluid.csv").is_file() else "")
     return [title, "-" * len(title), "",
             f"Measured by ``bench/paper_questions.py`` ({commands}), whose "
