@@ -549,3 +549,14 @@ def test_theta0_scan_within_noise_is_undecided():
                                              BY_ID["theta0-optimum"])[0]
     assert m.undecided and "compacts less than pi/4" in m.undecided
     assert "pi/16: -2.00 ± " in m.shown and "most: pi/4" in m.shown
+
+
+def test_dmax_is_compared_within_one_N_of_the_front():
+    # a second N where only the default has run (no reference yet: no bias) changes nothing
+    data = front_report(-0.005, -0.007)
+    data.front.append({"setting": "change 1e-7 (default)", "N": 4096.0, "eps": 0.0225,
+                       "phi_c_steady_bias": float("nan"), "phi_c_steady_bias_se": float("nan"),
+                       "paired_seeds": 0.0, "sweeps_per_tap": 3700.0})
+    measures = claims.STATISTICS["dmax_intermediate"](data, BY_ID["dmax-intermediate"])
+    assert [round(m.value, 6) for m in measures] == [0.003, 0.005]
+    assert all("N = 1024" in m.label and "1800 and 1800 sweeps" in m.label for m in measures)

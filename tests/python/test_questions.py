@@ -102,5 +102,5 @@ def test_theta0_scan_table_and_verdict(tmp_path):
     text = "\n".join(questions.render_section(tmp_path))
     assert "``theta0``" in text and "   * - pi/16" in text and "   * - pi/2" in text
     assert "-1.96 ± 0.07 %" in text          # pi/16: gain -0.02 + jitter 0.0002 x mean seed 2
-    assert "1125 at pi/16, 2000 at pi/2" in text
+    assert "takes more sweeps" not in text    # pi/4 compacts most here: nothing to explain
     assert "Verdict of the claim (rule pattern, t sem with 3 seeds): agrees" in text

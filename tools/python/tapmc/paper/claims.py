@@ -966,9 +966,9 @@ def dmax_intermediate(data, claim):
     from .front import DEFAULT
 
     measures = []
-    eps_values = sorted({r["eps"] for r in data.front})
-    for eps in eps_values:
-        at = {r["setting"]: r for r in data.front if r["eps"] == eps}
+    # per N and eps of the front (the settings of one N and eps share their seeds)
+    for N, eps in sorted({(r["N"], r["eps"]) for r in data.front}):
+        at = {r["setting"]: r for r in data.front if r["N"] == N and r["eps"] == eps}
         base = at.get(DEFAULT)
         for name in ("dmax R/10", "dmax R/2"):
             other = at.get(name)
