@@ -40,6 +40,10 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               sweeps before the paper's stopping rule ends a tap, so the default scan mixes
               the width's effect with the redeposition's length.
 
+  dmax        Is d_max = R/5 an intermediate value, much smaller or larger steps slowing the
+              redeposition (section II)? The same scan as theta0 over seven d_max, R/50 to
+              R (dmax.csv; --stop drift: dmax_drift.csv).
+
 Usage (from the repository; minutes on one core, run under nice):
 
     bench/paper_questions.py first-tap   [--out DIR] [--lmp EXE] [--seeds 1 2 3]
@@ -47,6 +51,7 @@ Usage (from the repository; minutes on one core, run under nice):
     bench/paper_questions.py spectral-window [--out DIR] [--campaign DIR]
     bench/paper_questions.py theta0 [--out DIR] [--lmp EXE] [--seeds 1 2 3 4]
                                     [--stop change|drift] [--eta 1e-7]
+    bench/paper_questions.py dmax   (the same options as theta0)
     bench/paper_questions.py p0-fluid [--out DIR] [--phi 0.3 0.4 ...] [--configs C]
                                       [--work DIR] [--mc EXE]
 
@@ -86,6 +91,9 @@ THETA0_SCALE = {"N": 1024, "L": 16}
 THETA0_EPS = 0.0225
 THETA0_TAPS = 100
 THETA0_WINDOW = 10
+#: the sphere radius of in.constant_eps (distance units), and the dmax scan's values (over R)
+THETA0_RADIUS = 0.5
+DMAX_OVER_R = (1 / 50, 1 / 20, 1 / 10, 1 / 5, 1 / 3, 1 / 2, 1)
 NOISE_TAPS = 1000
 NOISE_FROM_STEP = 4000
 
@@ -136,30 +144,40 @@ def first_tap(args):
               ["eps", "eta", "seed", "phi_c_0", "phi_c_1", "Z_0", "Z_1", "sweeps_1"], rows)
 
 
-def theta0_scan(args):
+def knob_scan(args, column, values, keyword):
+    """Taps from the same fresh packings (THETA0_SCALE, P.B.C., THETA0_EPS) at every value of one
+    fix mc/settle keyword: <Phi^c> at t = 0 and over the last THETA0_WINDOW taps per seed. The
+    CSV is <column stem>.csv, or <stem>_drift.csv with --stop drift."""
     lmp = lmp_command(args.lmp)
     rows = []
     for seed in args.seeds:
-        for frac in THETA0_PI:
-            theta0 = np.pi * frac
+        for label, value in values:
             with tempfile.TemporaryDirectory() as folder:
-                keys = f"theta0 {theta0!r}" + (" stop drift" if args.stop == "drift" else "")
+                keys = f"{keyword} {value!r}" + (" stop drift" if args.stop == "drift" else "")
                 taps = run(lmp, folder, dict(THETA0_SCALE, bc="pbc", eps=THETA0_EPS, seed=seed,
                                              taps=THETA0_TAPS, rsteps=1000000, eta=args.eta,
                                              settle_keys=keys))
             # columns of taps.dat: step phi_b phi_c Z z_top lateral central h_s sweeps ...
             last = taps[-THETA0_WINDOW:]
-            rows.append([f"{frac:.6f}", repr(theta0), seed, THETA0_SCALE["N"], THETA0_EPS,
+            rows.append([f"{label:.6f}", repr(value), seed, THETA0_SCALE["N"], THETA0_EPS,
                          THETA0_TAPS, f"{args.eta:g}", args.stop,
                          f"{taps[0, 2]:.8f}", f"{last[:, 2].mean():.8f}",
                          f"{taps[1:, 8].mean():.1f}"])
-            print(f"seed {seed} theta0 = {frac:.4f} pi: <Phi^c> {taps[0, 2]:.4f} -> "
+            print(f"seed {seed} {column} = {label:.4f}: <Phi^c> {taps[0, 2]:.4f} -> "
                   f"{last[:, 2].mean():.4f} ({taps[1:, 8].mean():.0f} sweeps per tap)", flush=True)
-    name = "theta0.csv" if args.stop == "change" else f"theta0_{args.stop}.csv"
+    stem = column.split("_over_")[0]
+    name = f"{stem}.csv" if args.stop == "change" else f"{stem}_{args.stop}.csv"
     write_csv(Path(args.out) / name,
-              ["theta0_over_pi", "theta0", "seed", "N", "eps", "taps", "eta", "stop", "phi_c_0",
-               "phi_c_end",
+              [column, stem, "seed", "N", "eps", "taps", "eta", "stop", "phi_c_0", "phi_c_end",
                "sweeps_per_tap"], rows)
+
+
+def theta0_scan(args):
+    knob_scan(args, "theta0_over_pi", [(f, np.pi * f) for f in THETA0_PI], "theta0")
+
+
+def dmax_scan(args):
+    knob_scan(args, "dmax_over_R", [(f, f * THETA0_RADIUS) for f in DMAX_OVER_R], "dmax")
 
 
 def noise_floor(args):
@@ -370,14 +388,15 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
-    for name in ("first-tap", "noise-floor", "spectral-window", "theta0", "p0-fluid"):
+    for name in ("first-tap", "noise-floor", "spectral-window", "theta0", "dmax", "p0-fluid"):
         p = sub.add_parser(name)
         p.add_argument("--out", default=DEFAULT_OUT, type=Path)
         p.add_argument("--lmp", default=None)
     sub.choices["first-tap"].add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
-    sub.choices["theta0"].add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3, 4])
-    sub.choices["theta0"].add_argument("--stop", choices=("change", "drift"), default="change")
-    sub.choices["theta0"].add_argument("--eta", type=float, default=1e-7)
+    for name in ("theta0", "dmax"):
+        sub.choices[name].add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3, 4])
+        sub.choices[name].add_argument("--stop", choices=("change", "drift"), default="change")
+        sub.choices[name].add_argument("--eta", type=float, default=1e-7)
     sub.choices["noise-floor"].add_argument("--restart", default=CAMPAIGN_RUN / "restart.4000")
     sub.choices["spectral-window"].add_argument("--campaign", default=CAMPAIGN_RUN.parents[1])
     fluid = sub.choices["p0-fluid"]
@@ -397,7 +416,7 @@ def main(argv=None):
         if any(not 0.01 <= p <= 0.58 for p in args.phi):
             parser.error(f"--phi values must be in [0.01, 0.58], got {args.phi}")
     {"first-tap": first_tap, "noise-floor": noise_floor,
-     "spectral-window": spectral_window, "theta0": theta0_scan,
+     "spectral-window": spectral_window, "theta0": theta0_scan, "dmax": dmax_scan,
      "p0-fluid": p0_fluid}[args.command](args)
 
 

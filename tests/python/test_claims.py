@@ -312,7 +312,7 @@ def theta0_report(gains):
                          "phi_c_end": f"{0.58 + gain + shift + jitter:.8f}",
                          "sweeps_per_tap": "1800"})
     data = report()
-    data.theta0 = [rows]
+    data.scans["theta0"] = [rows]
     return data
 
 
@@ -560,3 +560,21 @@ def test_dmax_is_compared_within_one_N_of_the_front():
     measures = claims.STATISTICS["dmax_intermediate"](data, BY_ID["dmax-intermediate"])
     assert [round(m.value, 6) for m in measures] == [0.003, 0.005]
     assert all("N = 1024" in m.label and "1800 and 1800 sweeps" in m.label for m in measures)
+
+
+def test_dmax_scan_adds_both_ends_to_the_front():
+    rows = []
+    for seed, shift in zip(range(1, 5), (-0.002, -0.001, 0.001, 0.002)):
+        for k, (frac, gain) in enumerate(((0.02, 0.002), (0.2, 0.010), (1.0, 0.001))):
+            rows.append({"dmax_over_R": str(frac), "seed": str(seed), "N": "1024",
+                         "eps": "0.0225", "taps": "100", "eta": "1e-07", "stop": "change",
+                         "phi_c_0": "0.58", "sweeps_per_tap": "1800",
+                         "phi_c_end": f"{0.58 + gain + shift + 0.0002 * ((seed + k) % 3 - 1):.8f}"})
+    data = front_report(-0.005, -0.007)
+    data.scans["dmax"] = [rows]
+    claim = BY_ID["dmax-intermediate"]
+    measures = claims.STATISTICS["dmax_intermediate"](data, claim)
+    scan = [m for m in measures if m.label.startswith("d_max scan")]
+    assert [m.value for m in scan] == pytest.approx([0.008, 0.009], abs=2e-4)
+    assert "minus with R/50" in scan[0].label and "minus with R;" in scan[1].label
+    assert all(claims.verdict(claim, m).startswith("agrees") for m in measures)

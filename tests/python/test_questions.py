@@ -104,3 +104,18 @@ def test_theta0_scan_table_and_verdict(tmp_path):
     assert "-1.96 ± 0.07 %" in text          # pi/16: gain -0.02 + jitter 0.0002 x mean seed 2
     assert "takes more sweeps" not in text    # pi/4 compacts most here: nothing to explain
     assert "Verdict of the claim (rule pattern, t sem with 3 seeds): agrees" in text
+
+
+def test_dmax_scan_table_and_verdict(tmp_path):
+    lines = ["dmax_over_R,dmax,seed,N,eps,taps,eta,stop,phi_c_0,phi_c_end,sweeps_per_tap"]
+    for seed, shift in ((1, -0.001), (2, 0.0), (3, 0.001)):
+        for frac, gain, jitter in ((0.02, 0.001, 0.0002), (0.2, 0.01, -0.0001),
+                                   (1.0, 0.002, 0.0001)):
+            lines.append(f"{frac},{frac / 2},{seed},1024,0.0225,100,1e-7,drift,0.58,"
+                         f"{0.58 + gain + shift + jitter * seed},{1800 + 100 * frac}")
+    (tmp_path / "dmax_drift.csv").write_text("\n".join(lines) + "\n")
+    text = "\n".join(questions.render_section(tmp_path))
+    assert "``dmax``" in text and "``dmax_drift.csv``" in text and "stop drift, eta = 1e-07" in text
+    assert "   * - R/50" in text and "   * - R/5" in text and "   * - R\n" in text
+    # R/5 compacts more than both ends: both measures agree (rule sign)
+    assert "Verdict of the claim (rule sign, t sem with 3 seeds): agrees; agrees." in text

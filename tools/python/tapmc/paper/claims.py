@@ -198,26 +198,28 @@ class ReportData:
     ``summary`` (tapmc.paper.validation.campaign_summary) and ``front``, the rows of the
     run-time-versus-error front (tapmc.paper.front.read_summary; empty: not measured)."""
 
-    def __init__(self, summary, figures, front=(), theta0=()):
-        """``theta0``: the theta0 scans, each a list of rows of a theta0*.csv."""
+    def __init__(self, summary, figures, front=(), scans=None):
+        """``scans``: knob (``theta0``, ``dmax``) -> its scans, each the rows of one CSV of
+        bench/paper_questions.py (:data:`SCANS`)."""
         self.summary = summary
         self.figures = figures
         self.front = list(front)
-        self.theta0 = list(theta0)
+        self.scans = {knob: list((scans or {}).get(knob, ())) for knob in SCANS}
 
     @classmethod
     def from_files(cls, summary, files):
         """``files``: name -> (png, csv) as the report collects them; the front from the
-        package's front_summary.csv; the theta0 scan from ``questions/theta0.csv`` beside the
-        figure CSVs (bench/paper_questions.py theta0), when there."""
+        package's front_summary.csv; the knob scans from ``questions/<knob>*.csv`` beside the
+        figure CSVs (bench/paper_questions.py theta0 / dmax), when there."""
         from .front import read_summary
 
-        theta0 = []
+        scans = {}
         if files:
             folder = Path(next(iter(files.values()))[1]).parent / "questions"
-            theta0 = [read_theta0_scan(path) for path in sorted(folder.glob("theta0*.csv"))]
+            scans = {knob: [read_scan(path) for path in scan_files(folder, knob)]
+                     for knob in SCANS}
         return cls(summary, {name: FigureData.read(paths[1]) for name, paths in files.items()},
-                   read_summary(), theta0)
+                   read_summary(), scans)
 
     def figure(self, name):
         return self.figures.get(name)
@@ -980,43 +982,11 @@ def dmax_intermediate(data, claim):
             measures.append(Measure(d, se, _dof(n), label=(
                 f"eps = {eps:g}, N = {other['N']:.0f}: <Phi^c>(R/5) - <Phi^c>({name[5:]}), steady, "
                 f"at {base['sweeps_per_tap']:.0f} and {other['sweeps_per_tap']:.0f} sweeps per tap")))
-    return measures or [Measure(undecided="the front (doc/front.rst) has not measured d_max")]
-
-
-def read_theta0_scan(path):
-    """Rows of a theta0 scan CSV (bench/paper_questions.py theta0)."""
-    with open(path, newline="") as handle:
-        return list(csv.DictReader(handle))
-
-
-def theta0_settings(rows):
-    """The redeposition setting of a scan, as the report writes it."""
-    r = rows[0]
-    return f"stop {r.get('stop', 'change')}, eta = {float(r.get('eta', 1e-7)):g}"
-
-
-def theta0_table(rows):
-    """Per theta0 of a scan (rows of theta0.csv): the compaction over the scan's taps,
-    <Phi^c>(end) - <Phi^c>(0), mean and standard error over seeds, and its paired difference
-    from theta0 = pi/4 on the same seeds (same initial packing). Sorted by theta0."""
-    by_theta = {}
-    for r in rows:
-        by_theta.setdefault(float(r["theta0_over_pi"]), {})[int(r["seed"])] = (
-            float(r["phi_c_end"]) - float(r["phi_c_0"]))
-    quarter = min(by_theta, key=lambda f: abs(f - 0.25)) if by_theta else None
-    out = []
-    for frac in sorted(by_theta):
-        gains = by_theta[frac]
-        seeds = sorted(set(gains) & set(by_theta[quarter]))
-        g = np.array([gains[k] for k in seeds])
-        d = np.array([gains[k] - by_theta[quarter][k] for k in seeds])
-        n = len(seeds)
-        sem = (lambda a: float(np.std(a, ddof=1) / math.sqrt(n)) if n > 1 else math.nan)
-        out.append({"theta0_over_pi": frac, "n": n, "gain": float(g.mean()) if n else math.nan,
-                    "gain_sem": sem(g), "vs_quarter": float(d.mean()) if n else math.nan,
-                    "vs_quarter_sem": 0.0 if frac == quarter else sem(d),
-                    "is_quarter": frac == quarter})
-    return out
+    for rows in data.scans["dmax"]:
+        if rows:
+            measures += _dmax_scan_measures(rows)
+    return measures or [Measure(undecided="neither the front (doc/front.rst) nor a d_max scan "
+                                          "(bench/paper_questions.py dmax) has measured d_max")]
 
 
 def _pi_fraction(frac):
@@ -1028,43 +998,104 @@ def _pi_fraction(frac):
         f"/{f.denominator}" if f.denominator != 1 else "")
 
 
+def _r_fraction(frac):
+    """d_max / R as the report writes it (R/5, R/50, R, ...)."""
+    from fractions import Fraction
+
+    f = Fraction(frac).limit_denominator(100)
+    return ("R" if f.numerator == 1 else f"{f.numerator}R") + (
+        f"/{f.denominator}" if f.denominator != 1 else "")
+
+
+#: the knob scans of bench/paper_questions.py: CSV column of the value, the paper's value, how
+#: a value is written
+SCANS = {"theta0": {"column": "theta0_over_pi", "paper": 0.25, "name": _pi_fraction},
+         "dmax": {"column": "dmax_over_R", "paper": 0.2, "name": _r_fraction}}
+
+
+def scan_files(folder, knob):
+    """The CSVs of one knob's scans in ``folder``: <knob>.csv, <knob>_<stop>.csv."""
+    folder = Path(folder)
+    return sorted([p for p in folder.glob(f"{knob}*.csv")
+                   if p.stem == knob or p.stem.startswith(knob + "_")])
+
+
+def read_scan(path):
+    """Rows of a knob scan CSV (bench/paper_questions.py theta0 / dmax)."""
+    with open(path, newline="") as handle:
+        return list(csv.DictReader(handle))
+
+
+def scan_settings(rows):
+    """The redeposition setting of a scan, as the report writes it."""
+    r = rows[0]
+    return f"stop {r.get('stop', 'change')}, eta = {float(r.get('eta', 1e-7)):g}"
+
+
+def scan_table(rows, knob):
+    """Per value of a knob scan: the compaction over the scan's taps, <Phi^c>(end) -
+    <Phi^c>(0), mean and standard error over seeds, and its paired difference from the
+    paper's value on the same seeds (same initial packing). Sorted by value."""
+    spec = SCANS[knob]
+    by_value = {}
+    for r in rows:
+        by_value.setdefault(float(r[spec["column"]]), {})[int(r["seed"])] = (
+            float(r["phi_c_end"]) - float(r["phi_c_0"]))
+    paper = min(by_value, key=lambda f: abs(f - spec["paper"])) if by_value else None
+    out = []
+    for value in sorted(by_value):
+        gains = by_value[value]
+        seeds = sorted(set(gains) & set(by_value[paper]))
+        g = np.array([gains[k] for k in seeds])
+        d = np.array([gains[k] - by_value[paper][k] for k in seeds])
+        n = len(seeds)
+        sem = (lambda a: float(np.std(a, ddof=1) / math.sqrt(n)) if n > 1 else math.nan)
+        out.append({"value": value, "name": spec["name"](value), "n": n,
+                    "gain": float(g.mean()) if n else math.nan, "gain_sem": sem(g),
+                    "vs_paper": float(d.mean()) if n else math.nan,
+                    "vs_paper_sem": 0.0 if value == paper else sem(d), "is_paper": value == paper})
+    return out
+
+
+def _scan_label(rows, n=None):
+    first = rows[0]
+    return (f"N = {first['N']}, eps = {float(first['eps']):g}, {scan_settings(rows)}: <Phi^c> "
+            f"over taps {int(first['taps']) - 9}-{first['taps']} minus t = 0"
+            + (f", {n} seeds" if n else ""))
+
+
 def theta0_optimum(data, claim):
     """Section II: the paper's theta0 = pi/4 compacts most, a much smaller theta0 decompacts,
     a large one compacts less. From the theta0 scan (same packings, taps at fixed eps): 1 when
     no theta0 compacts more than pi/4 beyond t sem (paired), the smallest theta0 decompacts
     (gain below zero beyond t sem) and the largest compacts less than pi/4 (beyond t sem); 0
     when any of these is contradicted beyond t sem; undecided otherwise."""
-    measures = [_theta0_measure(rows) for rows in data.theta0 if rows]
+    measures = [_theta0_measure(rows) for rows in data.scans["theta0"] if rows]
     return measures or [Measure(undecided="no theta0 scan (bench/paper_questions.py theta0)")]
 
 
 def _theta0_measure(rows):
-    table = theta0_table(rows)
-    first = rows[0]
-    label = (f"N = {first['N']}, eps = {float(first['eps']):g}, {theta0_settings(rows)}: "
-             f"<Phi^c> over taps {int(first['taps']) - 9}-{first['taps']} minus t = 0")
-    if len(table) < 3 or not any(r["is_quarter"] for r in table):
+    table = scan_table(rows, "theta0")
+    label = _scan_label(rows)
+    if len(table) < 3 or not any(r["is_paper"] for r in table):
         return Measure(label=label, undecided="fewer than three theta0, or no pi/4, in the scan")
     n = min(r["n"] for r in table)
     if n < 2:
         return Measure(label=label, undecided="one seed per theta0")
     t = t_quantile(n - 1)
-    label += f", {n} seeds"
-    shown = "; ".join(f"{_pi_fraction(r['theta0_over_pi'])}: {fmt(r['gain'], r['gain_sem'], True)}"
-                      for r in table)
-    others = [r for r in table if not r["is_quarter"]]
-    better = [r for r in others if r["vs_quarter"] > t * r["vs_quarter_sem"]]
+    label = _scan_label(rows, n)
+    shown = "; ".join(f"{r['name']}: {fmt(r['gain'], r['gain_sem'], True)}" for r in table)
+    better = [r for r in table if not r["is_paper"] and r["vs_paper"] > t * r["vs_paper_sem"]]
     small, large = table[0], table[-1]
     checks = {
         "no theta0 compacts more than pi/4": (not better, bool(better)),
-        f"{_pi_fraction(small['theta0_over_pi'])} decompacts":
+        f"{small['name']} decompacts":
             (small["gain"] < -t * small["gain_sem"], small["gain"] > t * small["gain_sem"]),
-        f"{_pi_fraction(large['theta0_over_pi'])} compacts less than pi/4":
-            (large["vs_quarter"] < -t * large["vs_quarter_sem"],
-             large["vs_quarter"] > t * large["vs_quarter_sem"]),
+        f"{large['name']} compacts less than pi/4":
+            (large["vs_paper"] < -t * large["vs_paper_sem"],
+             large["vs_paper"] > t * large["vs_paper_sem"]),
     }
-    best = max(table, key=lambda r: r["gain"])
-    shown += f"; most: {_pi_fraction(best['theta0_over_pi'])}"
+    shown += f"; most: {max(table, key=lambda r: r['gain'])['name']}"
     contradicted = [k for k, (_, no) in checks.items() if no]
     open_ = [k for k, (yes, no) in checks.items() if not yes and not no]
     if contradicted:
@@ -1072,6 +1103,23 @@ def _theta0_measure(rows):
     if open_:
         return Measure(label=label, shown=shown, undecided="within t sem: " + ", ".join(open_))
     return Measure(1.0, label=label, shown=shown)
+
+
+def _dmax_scan_measures(rows):
+    """From a d_max scan: the compaction at R/5 minus that at the smallest and at the largest
+    d_max, paired over the seeds (sign +: those slow the redeposition down)."""
+    table = scan_table(rows, "dmax")
+    if len(table) < 3 or not any(r["is_paper"] for r in table):
+        return [Measure(label=_scan_label(rows), undecided="fewer than three d_max, or no R/5")]
+    n = min(r["n"] for r in table)
+    out = []
+    for other in (table[0], table[-1]):
+        if other["is_paper"]:
+            continue
+        out.append(Measure(-other["vs_paper"], other["vs_paper_sem"], _dof(n), label=(
+            f"d_max scan, {_scan_label(rows, n)}: compaction with R/5 minus with {other['name']}; "
+            f"most with {max(table, key=lambda r: r['gain'])['name']}")))
+    return out
 
 
 STATISTICS = {f.__name__: f for f in (

@@ -254,53 +254,60 @@ def _p0_fluid(path, fig9=None):
     return lines + [""]
 
 
-def _theta0(path):
-    """A theta0 scan (section II: pi/4 compacts most, a much smaller theta0 decompacts)."""
-    from .claims import (ReportData, load_register, theta0_optimum, theta0_settings,
-                         theta0_table, verdict)
+#: knob -> (the question, the knob's name, the paper's value as written, the claim's statistic)
+_SCAN_QUESTIONS = {
+    "theta0": ("Does theta0 = pi/4, the width of the trial moves' angular distribution (eq. 1), "
+               "give the largest compaction rate, and does a much smaller theta0 decompact "
+               "(section II)?", "theta0", "pi/4", "theta0_optimum"),
+    "dmax": ("Is d_max = R/5 an intermediate value, much smaller or larger steps slowing the "
+             "redeposition (section II)?", "d_max", "R/5", "dmax_intermediate"),
+}
+
+
+def _scan(path, knob):
+    """One knob scan of bench/paper_questions.py (theta0 or dmax): the table, the claim's
+    verdict on it and whether the value that compacts most just redeposits longer."""
+    from .claims import (SCANS, STATISTICS, ReportData, load_register, scan_settings,
+                         scan_table, verdict)
 
     rows = _read(path)
-    table = theta0_table(rows)
+    table = scan_table(rows, knob)
     if not table:
         return []
+    question, name, paper, statistic = _SCAN_QUESTIONS[knob]
     first = rows[0]
     sweeps = defaultdict(list)
     for r in rows:
-        sweeps[float(r["theta0_over_pi"])].append(float(r["sweeps_per_tap"]))
-    lines = ["Does theta0 = pi/4, the width of the trial moves' angular distribution (eq. 1), give "
-             "the largest compaction rate, and does a much smaller theta0 decompact (section "
-             f"II)? {first['taps']} taps at eps = {float(first['eps']):g} from the same fresh "
-             f"packings (N = {first['N']}, P.B.C., {theta0_settings(rows)}) at each theta0 "
-             f"(``{Path(path).name}``; gain: <Phi^c> over the last 10 taps minus <Phi^c> at t = 0, mean "
-             "± sem over seeds; against pi/4: the paired difference on the same seeds):", "",
+        sweeps[float(r[SCANS[knob]["column"]])].append(float(r["sweeps_per_tap"]))
+    lines = [f"{question} {first['taps']} taps at eps = {float(first['eps']):g} from the same "
+             f"fresh packings (N = {first['N']}, P.B.C., {scan_settings(rows)}) at each {name} "
+             f"(``{Path(path).name}``; gain: <Phi^c> over the last 10 taps minus <Phi^c> at "
+             f"t = 0, mean ± sem over seeds; against {paper}: the paired difference on the same "
+             "seeds):", "",
              ".. list-table::", "   :header-rows: 1", "",
-             "   * - theta0", "     - gain of <Phi^c>", "     - against pi/4",
+             f"   * - {name}", "     - gain of <Phi^c>", f"     - against {paper}",
              "     - sweeps per tap"]
-    from .claims import _pi_fraction
-
     for r in table:
-        lines += [f"   * - {_pi_fraction(r['theta0_over_pi'])}",
-                  f"     - {fmt(r['gain'], r['gain_sem'], True)}",
-                  "     - 0" if r["is_quarter"] else
-                  f"     - {fmt(r['vs_quarter'], r['vs_quarter_sem'], True)}",
-                  f"     - {np.mean(sweeps[r['theta0_over_pi']]):.0f}"]
-    claim = next(c for c in load_register() if c.statistic == "theta0_optimum")
-    m = theta0_optimum(ReportData({}, {}, (), [rows]), claim)[0]
-    text = f"Verdict of the claim (rule pattern, t sem with {table[0]['n']} seeds): {verdict(claim, m)}."
-    # does the theta0 that compacts most simply redeposit longer than pi/4?
-    quarter = next(r["theta0_over_pi"] for r in table if r["is_quarter"])
-    best = max(table, key=lambda r: r["gain"])["theta0_over_pi"]
-    s_q, s_b = np.mean(sweeps[quarter]), np.mean(sweeps[best])
-    if best != quarter:
+        lines += [f"   * - {r['name']}", f"     - {fmt(r['gain'], r['gain_sem'], True)}",
+                  "     - 0" if r["is_paper"] else f"     - {fmt(r['vs_paper'], r['vs_paper_sem'], True)}",
+                  f"     - {np.mean(sweeps[r['value']]):.0f}"]
+    claim = next(c for c in load_register() if c.statistic == statistic)
+    measures = STATISTICS[statistic](ReportData({}, {}, (), {knob: [rows]}), claim)
+    text = (f"Verdict of the claim (rule {claim.rule}, t sem with {table[0]['n']} seeds): "
+            + "; ".join(verdict(claim, m) for m in measures) + ".")
+    # does the value that compacts most simply redeposit longer than the paper's?
+    ref = next(r for r in table if r["is_paper"])
+    best = max(table, key=lambda r: r["gain"])
+    s_q, s_b = np.mean(sweeps[ref["value"]]), np.mean(sweeps[best["value"]])
+    if best is not ref:
         if s_b > 1.1 * s_q:
-            text += (f" {_pi_fraction(best)}, which compacts most, also takes more sweeps per "
-                     f"tap than pi/4 ({s_b:.0f} against {s_q:.0f}) before the stopping rule "
-                     "ends a tap: its gain mixes the width's effect with the redeposition's "
-                     "length.")
+            text += (f" {best['name']}, which compacts most, also takes more sweeps per tap than "
+                     f"{paper} ({s_b:.0f} against {s_q:.0f}) before the stopping rule ends a "
+                     f"tap: its gain mixes the effect of {name} with the redeposition's length.")
         else:
-            text += (f" {_pi_fraction(best)}, which compacts most, takes about as many sweeps "
-                     f"per tap as pi/4 ({s_b:.0f} against {s_q:.0f}): its gain is the width's "
-                     "own effect, not a longer redeposition.")
+            text += (f" {best['name']}, which compacts most, takes about as many sweeps per tap "
+                     f"as {paper} ({s_b:.0f} against {s_q:.0f}): its gain is the effect of "
+                     f"{name} itself, not of a longer redeposition.")
     return lines + ["", text, ""]
 
 
@@ -381,8 +388,11 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
         parts += _noise_floor(folder / "noise_floor.csv", (figures or {}).get("fig3"))
     if (folder / "spectral_window.csv").is_file():
         parts += _spectral_window(folder / "spectral_window.csv")
-    for scan in sorted(folder.glob("theta0*.csv")):
-        parts += _theta0(scan)
+    from .claims import SCANS, scan_files
+
+    for knob in SCANS:
+        for scan in scan_files(folder, knob):
+            parts += _scan(scan, knob)
     if (folder / "p0_fluid.csv").is_file():
         parts += _p0_fluid(folder / "p0_fluid.csv", (figures or {}).get("fig9"))
     if parts:
@@ -392,7 +402,7 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
     title = "Questions settled by measurement"
     # the commands that made the CSVs (p0-fluid named only when its CSV is there)
     commands = "``first-tap``, ``noise-floor``, ``spectral-window``" + (
-        ", ``theta0``" if any(folder.glob("theta0*.csv")) else "") + (
+        "".join(f", ``{k}``" for k in ("theta0", "dmax") if any(folder.glob(f"{k}*.csv")))) + (
         ", ``p0-fluid``" if (folder / "p0_fluid.csv").is_file() else "")
     return [title, "-" * len(title), "",
             f"Measured by ``bench/paper_questions.py`` ({commands}), whose "
