@@ -119,3 +119,17 @@ def test_dmax_scan_table_and_verdict(tmp_path):
     assert "   * - R/50" in text and "   * - R/5" in text and "   * - R\n" in text
     # R/5 compacts more than both ends: both measures agree (rule sign)
     assert "Verdict of the claim (rule sign, t sem with 3 seeds): agrees; agrees." in text
+
+
+def test_final_phi_c_uses_the_largest_N_with_error_bars(tmp_path):
+    first_tap_csv(tmp_path, -0.012, -0.010)
+    rows = _front_rows({"change 1e-5": -0.0124, "change 1e-7 (default)": -0.0044, "drift 1e-7": 0.0})
+    one_seed = [dict(r, N=4096.0, paired_seeds=1.0, phi_c_steady_bias_se=float("nan"))
+                for r in _front_rows({"change 1e-7 (default)": -0.0015, "drift 1e-7": 0.0})]
+    text = "\n".join(questions.render_section(tmp_path, {"fig9": _fig9(0.6086)}, [1e-7],
+                                              rows + one_seed))
+    assert "N = 1024, eps = 0.0225, steady window, 4 paired seeds" in text
+    # with two seeds at N = 4096 that N is taken
+    two = [dict(r, paired_seeds=2.0, phi_c_steady_bias_se=0.0005) for r in one_seed]
+    text = "\n".join(questions.render_section(tmp_path, {"fig9": _fig9(0.6086)}, [1e-7], rows + two))
+    assert "N = 4096, eps = 0.0225, steady window, 2 paired seeds" in text

@@ -329,7 +329,10 @@ def _final_phi_eta(fig9, etas, front_rows):
     sizes = sorted({r["N"] for r in front_rows if r["setting"] == REFERENCE})
     if not (np.isfinite(phi) and own and sizes):
         return []
-    N = sizes[-1]
+    # the largest N whose default row has error bars (two paired seeds or more), else the largest
+    with_errors = [n for n in sizes if any(r["N"] == n and r["setting"] == own
+                                           and r.get("paired_seeds", 0) >= 2 for r in front_rows)]
+    N = (with_errors or sizes)[-1]
     at = [r for r in front_rows if r["N"] == N]
     eps = min({r["eps"] for r in at}, key=lambda e: abs(e - 0.0225))
     # the redeposition's stopping settings only: d_max is a parameter of the model (R/5)
@@ -343,7 +346,7 @@ def _final_phi_eta(fig9, etas, front_rows):
              f"say with which redeposition threshold. Fig. 9's run (eta = {etas[0]:g}) gives "
              f"{fmt(phi, phi_se, True)} steady. The run-time-versus-error front "
              f"(``doc/front.rst``, N = {N:.0f}, eps = {eps:g}, steady window, "
-             f"{int(rows[own]['paired_seeds'])} paired seeds) measures how much each setting "
+             f"{int(rows[own]['paired_seeds'])} paired seed{'s' if rows[own]['paired_seeds'] != 1 else ''}) measures how much each setting "
              "moves the steady <Phi^c> (its stopping settings; d_max stays the paper's R/5); carried to Fig. 9's run, assuming the shifts hold at "
              "its N and tap count (value + shift; error: the two biases' standard errors "
              "combined):", "",
