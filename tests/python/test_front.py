@@ -141,6 +141,14 @@ def test_a_second_N_has_its_figure_and_the_presets_are_judged_at_their_own_N(dat
     assert "N = 512, 100 taps    N = 1024" in presets["quick"]
     # the same setting (ratio 1); medium's recommended change 1e-6 costs 0.05 / 0.02 CPU s per tap
     assert presets["full"].split()[-2:] == ["yes", "1.0"]
+    # a setting run where the reference has not: no bias stated for it
+    with open(data / "runs.csv", "a", newline="") as f:
+        csv.DictWriter(f, fieldnames=front.RUN_FIELDS).writerow(
+            _write_run(data, "change 1e-6", 2048, 0.0225, front.seeds(1)[0], 0, -0.002, 0.3))
+    front.write_page(root, data_dir=str(data))
+    sentence = front.bias_sentence(1e-6, path=str(root / "tools" / "python" / "tapmc" / "paper"
+                                                   / "front_summary.csv"))
+    assert "N = 2048" not in sentence and "N = 1024, eps = 0.0225" in sentence
     assert presets["medium"].split()[-2:] == ["no", "2.5"]
 
 

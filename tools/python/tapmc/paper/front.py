@@ -673,6 +673,8 @@ def bias_sentence(eta, stop="change", path=SUMMARY):
                 f"eta = {eta:g} (stop {stop}).")
     parts = []
     for r in sorted(rows, key=lambda r: (r["N"], r["eps"])):
+        if name != REFERENCE and not r.get("paired_seeds", 0) >= 1:
+            continue  # the reference has not run at this N and eps yet: no bias to state
         if name == REFERENCE:
             parts.append(f"N = {r['N']:.0f}, eps = {r['eps']:g}: the reference itself")
             continue
