@@ -91,14 +91,22 @@ def test_final_phi_c_carried_to_every_threshold_of_the_front(tmp_path):
                                                                   [1e-7, 1e-5], rows))
 
 
-def test_theta0_scan_table_and_verdict(tmp_path):
-    lines = ["theta0_over_pi,theta0,seed,N,eps,taps,phi_c_0,phi_c_end,sweeps_per_tap"]
+def scan_csv(path, column, values, settings, sweeps):
+    """A knob scan of 3 seeds: per value (value, scale of the knob, gain, jitter per seed); every
+    seed shifts all gains alike (paired); sweeps(value) per tap."""
+    lines = [f"{column},{column.split('_over_')[0]},seed,N,eps,taps,eta,stop,phi_c_0,phi_c_end,"
+             "sweeps_per_tap"]
     for seed, shift in ((1, -0.001), (2, 0.0), (3, 0.001)):
-        for frac, gain, jitter in ((0.0625, -0.02, 0.0002), (0.25, 0.01, -0.0001),
-                                   (0.5, 0.004, 0.0001)):
-            lines.append(f"{frac},{frac * 3.14159},{seed},1024,0.0225,100,0.58,"
-                         f"{0.58 + gain + shift + jitter * seed},{1000 + 2000 * frac}")
-    (tmp_path / "theta0.csv").write_text("\n".join(lines) + "\n")
+        for value, scale, gain, jitter in values:
+            lines.append(f"{value},{value * scale},{seed},1024,0.0225,100,{settings},0.58,"
+                         f"{0.58 + gain + shift + jitter * seed},{sweeps(value)}")
+    path.write_text("\n".join(lines) + "\n")
+
+
+def test_theta0_scan_table_and_verdict(tmp_path):
+    scan_csv(tmp_path / "theta0.csv", "theta0_over_pi",
+             ((0.0625, 3.14159, -0.02, 0.0002), (0.25, 3.14159, 0.01, -0.0001),
+              (0.5, 3.14159, 0.004, 0.0001)), "1e-7,change", lambda v: 1000 + 2000 * v)
     text = "\n".join(questions.render_section(tmp_path))
     assert "``theta0``" in text and "   * - pi/16" in text and "   * - pi/2" in text
     assert "-1.96 ± 0.07 %" in text          # pi/16: gain -0.02 + jitter 0.0002 x mean seed 2
@@ -107,13 +115,9 @@ def test_theta0_scan_table_and_verdict(tmp_path):
 
 
 def test_dmax_scan_table_and_verdict(tmp_path):
-    lines = ["dmax_over_R,dmax,seed,N,eps,taps,eta,stop,phi_c_0,phi_c_end,sweeps_per_tap"]
-    for seed, shift in ((1, -0.001), (2, 0.0), (3, 0.001)):
-        for frac, gain, jitter in ((0.02, 0.001, 0.0002), (0.2, 0.01, -0.0001),
-                                   (1.0, 0.002, 0.0001)):
-            lines.append(f"{frac},{frac / 2},{seed},1024,0.0225,100,1e-7,drift,0.58,"
-                         f"{0.58 + gain + shift + jitter * seed},{1800 + 100 * frac}")
-    (tmp_path / "dmax_drift.csv").write_text("\n".join(lines) + "\n")
+    scan_csv(tmp_path / "dmax_drift.csv", "dmax_over_R",
+             ((0.02, 0.5, 0.001, 0.0002), (0.2, 0.5, 0.01, -0.0001), (1.0, 0.5, 0.002, 0.0001)),
+             "1e-7,drift", lambda v: 1800 + 100 * v)
     text = "\n".join(questions.render_section(tmp_path))
     assert "``dmax``" in text and "``dmax_drift.csv``" in text and "stop drift, eta = 1e-07" in text
     assert "   * - R/50" in text and "   * - R/5" in text and "   * - R\n" in text
