@@ -35,6 +35,8 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               paper's bed height on a 16R base, P.B.C., eps = 0.0225, the default eta) 100
               taps at seven widths theta0 of the trial moves' angular distribution (eq. 1),
               pi/16 to pi/2: <Phi^c> at t = 0 and its mean over taps 91-100 per seed.
+              --N sets the spheres (box 32R sqrt(N/4096), the paper's bed height; the CSV
+              then ends in _N<N>); a scan started again skips the runs its CSV has.
               --stop drift (with --eta, default 1e-7: the front's reference) repeats it
               with a converged redeposition, into theta0_drift.csv: a wider theta0 takes more
               sweeps before the paper's stopping rule ends a tap, so the default scan mixes
@@ -50,7 +52,7 @@ Usage (from the repository; minutes on one core, run under nice):
     bench/paper_questions.py noise-floor [--out DIR] [--lmp EXE] [--restart FILE]
     bench/paper_questions.py spectral-window [--out DIR] [--campaign DIR]
     bench/paper_questions.py theta0 [--out DIR] [--lmp EXE] [--seeds 1 2 3 4]
-                                    [--stop change|drift] [--eta 1e-7]
+                                    [--stop change|drift] [--eta 1e-7] [--N 1024]
     bench/paper_questions.py dmax   (the same options as theta0)
     bench/paper_questions.py p0-fluid [--out DIR] [--phi 0.3 0.4 ...] [--configs C]
                                       [--work DIR] [--mc EXE]
@@ -144,32 +146,48 @@ def first_tap(args):
               ["eps", "eta", "seed", "phi_c_0", "phi_c_1", "Z_0", "Z_1", "sweeps_1"], rows)
 
 
+def scan_file_name(stem, stop, N):
+    """<stem>.csv for the default scan (stop change, N = 1024), else <stem>_<stop>[_N<N>].csv."""
+    tags = ([] if stop == "change" else [stop]) + ([] if N == THETA0_SCALE["N"] else [f"N{N}"])
+    return "_".join([stem] + tags) + ".csv"
+
+
 def knob_scan(args, column, values, keyword):
-    """Taps from the same fresh packings (THETA0_SCALE, P.B.C., THETA0_EPS) at every value of one
-    fix mc/settle keyword: <Phi^c> at t = 0 and over the last THETA0_WINDOW taps per seed. The
-    CSV is <column stem>.csv, or <stem>_drift.csv with --stop drift."""
+    """Taps from the same fresh packings (P.B.C., THETA0_EPS, N = --N at the paper's bed height)
+    at every value of one fix mc/settle keyword: <Phi^c> at t = 0 and over the last
+    THETA0_WINDOW taps per seed (scan_file_name). Each run's row is written when it ends, and a
+    scan started again skips the (seed, value) pairs its CSV already has."""
     lmp = lmp_command(args.lmp)
-    rows = []
+    stem = column.split("_over_")[0]
+    path = Path(args.out) / scan_file_name(stem, args.stop, args.N)
+    header = [column, stem, "seed", "N", "eps", "taps", "eta", "stop", "phi_c_0", "phi_c_end",
+              "sweeps_per_tap"]
+    done = set()
+    if path.is_file():
+        with open(path, newline="") as handle:
+            done = {(int(r["seed"]), f"{float(r[column]):.6f}") for r in csv.DictReader(handle)}
+    else:
+        write_csv(path, header, [])
+    scale = {"N": args.N, "L": 32 * np.sqrt(args.N / 4096)}
     for seed in args.seeds:
         for label, value in values:
+            if (seed, f"{label:.6f}") in done:
+                continue
             with tempfile.TemporaryDirectory() as folder:
                 keys = f"{keyword} {value!r}" + (" stop drift" if args.stop == "drift" else "")
-                taps = run(lmp, folder, dict(THETA0_SCALE, bc="pbc", eps=THETA0_EPS, seed=seed,
+                taps = run(lmp, folder, dict(scale, bc="pbc", eps=THETA0_EPS, seed=seed,
                                              taps=THETA0_TAPS, rsteps=1000000, eta=args.eta,
                                              settle_keys=keys))
             # columns of taps.dat: step phi_b phi_c Z z_top lateral central h_s sweeps ...
             last = taps[-THETA0_WINDOW:]
-            rows.append([f"{label:.6f}", repr(value), seed, THETA0_SCALE["N"], THETA0_EPS,
-                         THETA0_TAPS, f"{args.eta:g}", args.stop,
-                         f"{taps[0, 2]:.8f}", f"{last[:, 2].mean():.8f}",
-                         f"{taps[1:, 8].mean():.1f}"])
+            with open(path, "a", newline="") as handle:
+                csv.writer(handle).writerow(
+                    [f"{label:.6f}", repr(value), seed, args.N, THETA0_EPS, THETA0_TAPS,
+                     f"{args.eta:g}", args.stop, f"{taps[0, 2]:.8f}", f"{last[:, 2].mean():.8f}",
+                     f"{taps[1:, 8].mean():.1f}"])
             print(f"seed {seed} {column} = {label:.4f}: <Phi^c> {taps[0, 2]:.4f} -> "
                   f"{last[:, 2].mean():.4f} ({taps[1:, 8].mean():.0f} sweeps per tap)", flush=True)
-    stem = column.split("_over_")[0]
-    name = f"{stem}.csv" if args.stop == "change" else f"{stem}_{args.stop}.csv"
-    write_csv(Path(args.out) / name,
-              [column, stem, "seed", "N", "eps", "taps", "eta", "stop", "phi_c_0", "phi_c_end",
-               "sweeps_per_tap"], rows)
+    print(f"wrote {path}")
 
 
 def theta0_scan(args):
@@ -395,6 +413,7 @@ def main(argv=None):
     sub.choices["first-tap"].add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
     for name in ("theta0", "dmax"):
         sub.choices[name].add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3, 4])
+        sub.choices[name].add_argument("--N", type=int, default=THETA0_SCALE["N"])
         sub.choices[name].add_argument("--stop", choices=("change", "drift"), default="change")
         sub.choices[name].add_argument("--eta", type=float, default=1e-7)
     sub.choices["noise-floor"].add_argument("--restart", default=CAMPAIGN_RUN / "restart.4000")
