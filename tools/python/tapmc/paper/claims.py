@@ -989,22 +989,21 @@ def dmax_intermediate(data, claim):
                                           "(bench/paper_questions.py dmax) has measured d_max")]
 
 
-def _pi_fraction(frac):
-    """theta0 / pi as the report writes it (pi/4, 5pi/12, ...)."""
+def _fraction(frac, unit, limit):
+    """frac x unit as the report writes it (pi/4, 5pi/12, R/50, R)."""
     from fractions import Fraction
 
-    f = Fraction(frac).limit_denominator(48)
-    return ("pi" if f.numerator == 1 else f"{f.numerator}pi") + (
+    f = Fraction(frac).limit_denominator(limit)
+    return (unit if f.numerator == 1 else f"{f.numerator}{unit}") + (
         f"/{f.denominator}" if f.denominator != 1 else "")
+
+
+def _pi_fraction(frac):
+    return _fraction(frac, "pi", 48)
 
 
 def _r_fraction(frac):
-    """d_max / R as the report writes it (R/5, R/50, R, ...)."""
-    from fractions import Fraction
-
-    f = Fraction(frac).limit_denominator(100)
-    return ("R" if f.numerator == 1 else f"{f.numerator}R") + (
-        f"/{f.denominator}" if f.denominator != 1 else "")
+    return _fraction(frac, "R", 100)
 
 
 #: the knob scans of bench/paper_questions.py: CSV column of the value, the paper's value, how
