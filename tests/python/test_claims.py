@@ -578,3 +578,47 @@ def test_dmax_scan_adds_both_ends_to_the_front():
     assert [m.value for m in scan] == pytest.approx([0.008, 0.009], abs=2e-4)
     assert "minus with R/50" in scan[0].label and "minus with R;" in scan[1].label
     assert all(claims.verdict(claim, m).startswith("agrees") for m in measures)
+
+
+def test_one_seed_zones_are_decided_by_their_paired_error_within_the_run():
+    """The paper's protocol (one run per point): delta Phi_central - delta Phi_lateral of one
+    seed gets the batch-means error of its own difference series; a clear gap decides, no gap
+    stays undecided."""
+    from tapmc.paper import fig8 as fig8_module
+
+    rng = np.random.default_rng(7)
+    noise = 0.002 * rng.standard_normal(4000)
+    lateral = 0.02 + noise                     # the zones move together (same taps) ...
+    outcomes = {}
+    for gap, name in ((-0.01, "clear"), (0.0, "none")):
+        central = lateral + gap + 0.0005 * rng.standard_normal(4000)
+        stats = fig8_module.window_stats([central - lateral], 1000)
+        assert stats[2][0] == 1 and np.isfinite(stats[1][0])
+        # ... so the paired error is far below the zones' own errors combined
+        combined = math.hypot(fig8_module.window_stats([central], 1000)[1][0],
+                              fig8_module.window_stats([lateral], 1000)[1][0])
+        assert stats[1][0] < combined / 2
+        tab = Table()
+        for eps in (0.005, 0.1):
+            tag = f"eps={P.fmt_eps(eps)}"
+            tab.param(f"{tag}:final_central", 0.02 + gap, None, n=1, x=eps)
+            tab.param(f"{tag}:final_lateral", 0.02, None, n=1, x=eps)
+            tab.param(f"{tag}:final_central_minus_lateral", stats[0][0], stats[1][0], n=1, x=eps)
+        outcomes[name] = _outcomes(BY_ID["central-smaller"], report(fig8=tab))
+    assert outcomes["clear"] and all(o.startswith("agrees") for o in outcomes["clear"])
+    assert outcomes["none"] and all(o.startswith("undecided") for o in outcomes["none"])
+
+
+def test_bell_maximum_needs_more_than_three_steady_states():
+    """Three points fit any parabola exactly: the vertex would restate the largest point. The
+    paper-scale campaign's first runs (sqrt(eps) = 0.071, 0.15, 0.32, one seed each) must not
+    place the maximum; five points of the same bell do, with one seed's batch-means errors."""
+    x = np.array([0.0707, 0.15, 0.3162])
+    three = Table().add("a", "steady", x, 0.60 - 2.0 * (x - 0.15) ** 2, 0.0002, n=1)
+    (m,) = claims.bell_maximum(report(fig4=three), BY_ID["bell-maximum"])
+    assert m.undecided and "three" in m.undecided
+    x = np.array([0.05, 0.1, 0.15, 0.2, 0.25])
+    five = Table().add("a", "steady", x, 0.60 - 2.0 * (x - 0.14) ** 2, 0.0002, n=1)
+    (m,) = claims.bell_maximum(report(fig4=five), BY_ID["bell-maximum"])
+    assert m.dof == 2 and abs(m.value - 0.14) < 1e-6
+    assert claims.verdict(BY_ID["bell-maximum"], m) == "agrees"

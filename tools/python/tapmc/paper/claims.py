@@ -634,6 +634,12 @@ def bell_maximum(data, claim):
     if hi - lo < 3:
         lo, hi = max(0, hi - 3), max(hi, 3)
     xs, ys, ss = x[lo:hi], y[lo:hi], s[lo:hi]
+    if len(xs) < 4:
+        # three points always fit a parabola exactly: its vertex then only restates which
+        # point is largest, wherever the true maximum lies between the neighbours
+        return [Measure(x[i], undecided=f"{len(x)} steady states: a parabola through three "
+                                        "points is not tested by any",
+                        shown=f"largest at sqrt(eps) = {x[i]:g}")]
     if not np.all(np.isfinite(ss)) or np.any(ss <= 0):
         return [Measure(x[i], undecided="one realization: the steady states have no error bars",
                         shown=f"largest at sqrt(eps) = {x[i]:g}")]
@@ -644,8 +650,7 @@ def bell_maximum(data, claim):
     vertex = -b / (2 * c)
     grad = np.array([0.0, -1 / (2 * c), b / (2 * c**2)])
     err = float(math.sqrt(grad @ cov @ grad))
-    dof = len(xs) - 3
-    return [Measure(float(vertex), err, dof if dof >= 1 else _dof(n[i]),
+    return [Measure(float(vertex), err, len(xs) - 3,
                     shown=f"{fmt(vertex, err)} (parabola through {len(xs)} points)")]
 
 
@@ -778,9 +783,16 @@ def central_minus_lateral(data, claim):
         tag = f"eps={P.fmt_eps(eps)}"
         cen = fig.param(f"{tag}:final_central")
         lat = fig.param(f"{tag}:final_lateral")
-        out.append(Measure(cen[0] - lat[0], math.hypot(cen[1], lat[1]),
-                           _dof(min(cen[2], lat[2])), label=f"eps = {eps:g}",
-                           shown=f"{fmt(cen[0], cen[1])} vs {fmt(lat[0], lat[1])}"))
+        # the zones of one run move together: their difference per seed (paired) has the
+        # error; CSVs written before it was drawn fall back to the zones' errors combined
+        diff = fig.param(f"{tag}:final_central_minus_lateral")
+        if not np.isfinite(diff[0]):
+            diff = (cen[0] - lat[0], math.hypot(cen[1], lat[1]), min(cen[2], lat[2]))
+        value, err, n = diff
+        within = " (one seed: error within the run)" if n == 1 and np.isfinite(err) else ""
+        out.append(Measure(value, err, _steady_dof(n, err), label=f"eps = {eps:g}",
+                           shown=f"{fmt(cen[0], cen[1])} vs {fmt(lat[0], lat[1])}; "
+                                 f"difference {fmt(value, err)}{within}"))
     return out or _missing("no F.B.C. profile")
 
 

@@ -16,14 +16,17 @@ between walls it dips.
 
 CSV panels: ``a`` (lateral) and ``b`` (central), series ``eps=<eps>`` (start deposited between
 walls) or ``paper:eps=<eps>`` (the paper's start), x = t; ``params`` (whatever the start:
-``eps=<eps>:final_lateral``, ``eps=<eps>:final_central``: mean over the last quarter of the
-taps, over seeds; ``eps=<eps>:first_tap_lateral``, ``eps=<eps>:first_tap_central``: delta
-Phi after the first tap, over seeds; x = eps).
+``eps=<eps>:final_lateral``, ``eps=<eps>:final_central`` and, paired per seed,
+``eps=<eps>:final_central_minus_lateral``: mean over the last quarter of the taps, over seeds
+(one seed: that run's batch-means error); ``eps=<eps>:first_tap_lateral``,
+``eps=<eps>:first_tap_central``: delta Phi after the first tap, over seeds; x = eps).
 """
 
 from __future__ import annotations
 
 import numpy as np
+
+from tapmc.fluctuations import SteadyState
 
 from . import _plotting as P
 from . import _profile_runs, _runs
@@ -57,9 +60,11 @@ def increases(campaign, bc=BC, eps_values=None):
                               np.array([tab["central"][:length] for tab in tables])).compute()
         n = np.full(length, len(tables))
         last = max(length // 4, 1)
-        finals = {zone: P.seed_stats([[x[length - last:].mean()] for x in per_seed])
-                  for zone, per_seed in (("lateral", inc.delta_lateral_all),
-                                         ("central", inc.delta_central_all))}
+        lateral_all, central_all = inc.delta_lateral_all, inc.delta_central_all
+        finals = {zone: window_stats(per_seed, last)
+                  for zone, per_seed in (("lateral", lateral_all), ("central", central_all),
+                                         ("central_minus_lateral",
+                                          [c - lat for c, lat in zip(central_all, lateral_all)]))}
         first = np.flatnonzero(t == 1)
         if len(first):
             finals.update({f"first_tap_{zone}": P.seed_stats([[x[first[0]]] for x in per_seed])
@@ -68,6 +73,16 @@ def increases(campaign, bc=BC, eps_values=None):
         out[eps] = (t, (np.asarray(inc.delta_lateral), np.asarray(inc.delta_lateral_sem), n),
                     (np.asarray(inc.delta_central), np.asarray(inc.delta_central_sem), n), finals)
     return out
+
+
+def window_stats(per_seed, last):
+    """(mean, sem, n) of the mean over the last ``last`` taps of each seed's series: sem over
+    seeds; with one seed (the paper's protocol) that run's batch-means error over the window
+    (tapmc.fluctuations.SteadyState: successive taps are correlated), n = 1."""
+    m, s, n = P.seed_stats([[np.asarray(x)[-last:].mean()] for x in per_seed])
+    if len(per_seed) == 1 and last >= 2:
+        s = np.array([SteadyState(np.asarray(per_seed[0], float), last=last).compute().sem])
+    return m, s, n
 
 
 def draw(campaign, out_dir):
