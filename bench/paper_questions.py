@@ -21,6 +21,14 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               500, 1000 and 2000 taps of every finished P.B.C. constant-eps run of the
               paper-scale campaign (no simulation: its taps.dat files).
 
+  pbc-course  How long does the dip of <Phi^c> after the first taps last, and does the
+              packing loosen at strong taps (eps >= 0.09)? From every finished P.B.C.
+              constant-eps run of the paper-scale campaign (no simulation: its taps.dat):
+              <Phi^c> at t = 0, the lowest of the first taps and when, the first tap from which
+              a 10-tap running mean stays at or above the t = 0 value for 10 taps, and the
+              steady state (last 1000 taps, batch-means error) and the difference of its
+              two halves (is the packing still compacting at the end?).
+
   p0-fluid    Is a tapped packing expected to follow the Percus-Yevick P0(sigma) of Fig. 9
               as closely as it does (max |P0 - PY| = 0.025 at Phi = 0.606)? PY is a theory of
               the equilibrium hard-sphere fluid: P0 measured with the same tool and settings
@@ -51,6 +59,7 @@ Usage (from the repository; minutes on one core, run under nice):
     bench/paper_questions.py first-tap   [--out DIR] [--lmp EXE] [--seeds 1 2 3]
     bench/paper_questions.py noise-floor [--out DIR] [--lmp EXE] [--restart FILE]
     bench/paper_questions.py spectral-window [--out DIR] [--campaign DIR]
+    bench/paper_questions.py pbc-course [--out DIR] [--campaign DIR]
     bench/paper_questions.py theta0 [--out DIR] [--lmp EXE] [--seeds 1 2 3 4]
                                     [--stop change|drift] [--eta 1e-7] [--N 1024]
     bench/paper_questions.py dmax   (the same options as theta0)
@@ -78,7 +87,7 @@ import numpy as np
 
 SOURCE = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
-from tapmc.fluctuations import PowerSpectrum  # noqa: E402
+from tapmc.fluctuations import PowerSpectrum, SteadyState  # noqa: E402
 
 INPUT = SOURCE / "examples" / "paper" / "in.constant_eps"
 DEFAULT_OUT = SOURCE / "doc" / "paper_scale" / "validation" / "questions"
@@ -247,6 +256,59 @@ def spectral_window(args):
               ["run", "eps", "taps", "window", "slope", "slope_error"], rows)
 
 
+#: taps of the running mean that decides when <Phi^c> has regained its t = 0 value (the
+#: tap-to-tap spread at strong taps, 0.1 %, is a third of the dip's depth; ten taps average it
+#: down below a tenth of the dip) and that it must then stay there for.
+COURSE_SMOOTHING = 10
+#: first taps searched for the lowest <Phi^c> (the dip is over by tap 100 at every eps).
+COURSE_EARLY = 100
+
+
+def recovery_tap(t, phi, level, width=COURSE_SMOOTHING):
+    """First tap t_k (k >= 1) from which the running mean of ``width`` taps, phi[k..k+width),
+    is at least ``level`` for ``width`` consecutive starts: the end of the dip below the
+    initial packing; None when the series never regains it."""
+    if len(phi) < 2 * width:
+        return None
+    running = np.convolve(phi, np.ones(width) / width, mode="valid")
+    above = running >= level
+    for k in range(1, len(above) - width + 1):
+        if above[k:k + width].all():
+            return int(t[k])
+    return None
+
+
+def pbc_course(args):
+    rows = []
+    for run_dir in sorted(Path(args.campaign, "runs").glob("const_pbc_eps*_s*")):
+        if not (run_dir / "DONE.json").is_file():
+            continue  # an unfinished run has no steady window yet
+        table = np.loadtxt(run_dir / "taps.dat", ndmin=2)
+        t, phi = table[:, 0], table[:, 2]
+        eps = float(run_dir.name.split("_eps")[1].split("_s")[0])
+        seed = int(run_dir.name.rsplit("_s", 1)[1])
+        early = (t >= 1) & (t <= COURSE_EARLY)
+        k = int(np.flatnonzero(early)[np.argmin(phi[early])])
+        back = recovery_tap(t, phi, phi[0])
+        steady = SteadyState(phi[1:]).compute()
+        # still compacting? the second half of the steady window minus its first half,
+        # each half with its batch-means error
+        half = steady.last // 2
+        first, second = (SteadyState(part, last=half, batches=steady.batches // 2).compute()
+                         for part in (phi[-steady.last:-half], phi[-half:]))
+        drift, drift_se = second.mean - first.mean, float(np.hypot(first.sem, second.sem))
+        rows.append([run_dir.name, eps, seed, len(t) - 1, f"{phi[0]:.8f}", f"{phi[k]:.8f}",
+                     int(t[k]), "" if back is None else back, f"{steady.mean:.8f}",
+                     f"{steady.sem:.3g}", f"{steady.std:.3g}", f"{drift:.3g}", f"{drift_se:.3g}"])
+        print(f"{run_dir.name}: phi_c {phi[0]:.4f} -> min {phi[k]:.4f} at tap {int(t[k])}, "
+              f"back at tap {back}, steady {steady.mean:.4f} +- {steady.sem:.4f}, "
+              f"halves differ by {drift:+.4f} +- {drift_se:.4f}")
+    write_csv(Path(args.out) / "pbc_course.csv",
+              ["run", "eps", "seed", "taps", "phi_c_0", "phi_c_min", "tap_min", "tap_back",
+               "phi_c_steady", "phi_c_steady_sem", "phi_c_steady_sd", "steady_halves_diff",
+               "steady_halves_diff_sem"], rows)
+
+
 #: Phi of the fluids: stable fluid up to freezing (0.494), then metastable ones (the 4000
 #: spheres do not crystallise within the runs at 0.54: g(1+) stays on the fluid's branch).
 P0_FLUID_PHI = (0.30, 0.40, 0.45, 0.49, 0.52, 0.54)
@@ -406,7 +468,8 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
-    for name in ("first-tap", "noise-floor", "spectral-window", "theta0", "dmax", "p0-fluid"):
+    for name in ("first-tap", "noise-floor", "spectral-window", "pbc-course", "theta0", "dmax",
+                 "p0-fluid"):
         p = sub.add_parser(name)
         p.add_argument("--out", default=DEFAULT_OUT, type=Path)
         p.add_argument("--lmp", default=None)
@@ -417,7 +480,8 @@ def main(argv=None):
         sub.choices[name].add_argument("--stop", choices=("change", "drift"), default="change")
         sub.choices[name].add_argument("--eta", type=float, default=1e-7)
     sub.choices["noise-floor"].add_argument("--restart", default=CAMPAIGN_RUN / "restart.4000")
-    sub.choices["spectral-window"].add_argument("--campaign", default=CAMPAIGN_RUN.parents[1])
+    for name in ("spectral-window", "pbc-course"):
+        sub.choices[name].add_argument("--campaign", default=CAMPAIGN_RUN.parents[1])
     fluid = sub.choices["p0-fluid"]
     fluid.add_argument("--phi", type=float, nargs="+", default=list(P0_FLUID_PHI))
     fluid.add_argument("--configs", type=int, default=P0_FLUID_CONFIGS)
@@ -435,7 +499,7 @@ def main(argv=None):
         if any(not 0.01 <= p <= 0.58 for p in args.phi):
             parser.error(f"--phi values must be in [0.01, 0.58], got {args.phi}")
     {"first-tap": first_tap, "noise-floor": noise_floor,
-     "spectral-window": spectral_window, "theta0": theta0_scan, "dmax": dmax_scan,
+     "spectral-window": spectral_window, "pbc-course": pbc_course, "theta0": theta0_scan, "dmax": dmax_scan,
      "p0-fluid": p0_fluid}[args.command](args)
 
 

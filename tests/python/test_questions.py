@@ -137,3 +137,57 @@ def test_final_phi_c_uses_the_largest_N_with_error_bars(tmp_path):
     two = [dict(r, paired_seeds=2.0, phi_c_steady_bias_se=0.0005) for r in one_seed]
     text = "\n".join(questions.render_section(tmp_path, {"fig9": _fig9(0.6086)}, [1e-7], rows + two))
     assert "N = 4096, eps = 0.0225, steady window, 2 paired seeds" in text
+
+
+def _paper_questions():
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("paper_questions",
+                                                  SOURCE / "bench" / "paper_questions.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_recovery_tap_ignores_single_taps_above_the_start():
+    import numpy as np
+
+    pq = _paper_questions()
+    t = np.arange(200.0)
+    phi = np.full(200, 0.560)
+    phi[0] = 0.583
+    phi[30] = 0.590                       # one noisy tap above the start is no recovery
+    phi[120:] = 0.584                     # from tap 120 on it stays above
+    assert pq.recovery_tap(t, phi, phi[0]) == 120
+    assert pq.recovery_tap(t, np.minimum(phi, 0.58), phi[0]) is None
+
+
+def pbc_course_csv(folder, strong_gain, strong_back, strong_halves):
+    header = ("run,eps,seed,taps,phi_c_0,phi_c_min,tap_min,tap_back,phi_c_steady,"
+              "phi_c_steady_sem,phi_c_steady_sd,steady_halves_diff,steady_halves_diff_sem")
+    rows = ["a,0.005,1,4000,0.583,0.581,3,25,0.607,0.0002,0.001,0.0001,0.0003",
+            "b,0.0225,1,4000,0.583,0.580,2,40,0.609,0.0002,0.001,0.0,0.0003",
+            f"c,0.15,1,4000,0.583,0.568,4,{strong_back},{0.583 + strong_gain},0.0004,0.001,"
+            f"{strong_halves},0.0005"]
+    (folder / "pbc_course.csv").write_text("\n".join([header] + rows) + "\n")
+
+
+def test_pbc_course_transient_loosening_still_compacting(tmp_path):
+    pbc_course_csv(tmp_path, 0.004, 1391, 0.0032)
+    text = "\n".join(questions.render_section(tmp_path))
+    assert "``pbc-course``" in text
+    assert "eps = 0.15: 1.50 % below t = 0, regains it from tap 1391" in text
+    assert "The dip deepens and lengthens with eps." in text
+    assert "2.20 ± 0.04 % below the largest (eps = 0.0225)" in text
+    assert "still compacting at the end" in text
+    assert "the loosening at strong taps is transient" in text
+    assert "at eps = 0.15 part of the fall is a slower approach" in text
+
+
+def test_pbc_course_loosening_that_lasts(tmp_path):
+    pbc_course_csv(tmp_path, -0.002, "", 0.0)
+    text = "\n".join(questions.render_section(tmp_path))
+    assert "never regains it" in text and "does not lengthen steadily" in text
+    assert "ends below its initial packing" in text
+    assert "Its halves agree within their error: steady." in text
+    assert "not undone by the taps" in text
