@@ -622,3 +622,30 @@ def test_bell_maximum_needs_more_than_three_steady_states():
     (m,) = claims.bell_maximum(report(fig4=five), BY_ID["bell-maximum"])
     assert m.dof == 2 and abs(m.value - 0.14) < 1e-6
     assert claims.verdict(BY_ID["bell-maximum"], m) == "agrees"
+
+
+def test_one_run_spectra_are_decided_by_the_periodograms_own_errors():
+    """One run per eps (the paper's protocol): the spectra carry PowerSpectrum.power_error; the
+    spread rule resamples them as the Gamma means they are and decides with the normal
+    quantile. White noise of an eps-dependent level at high f over a common 1/f^2 part at low
+    f separates at high f (agrees); the same spectra without the separation stay undecided."""
+    from tapmc.fluctuations import PowerSpectrum
+
+    rng = np.random.default_rng(3)
+
+    def one_run_fig3(levels):
+        tab = Table()
+        for eps, level in levels.items():
+            walk = np.cumsum(rng.normal(size=4000)) * 0.01
+            sp = PowerSpectrum(walk + level * rng.normal(size=4000)).compute()
+            tab.add("a", f"eps={P.fmt_eps(eps)}", sp.frequency, sp.power, sp.power_error, n=1)
+        return report(fig3=tab)
+
+    claim = BY_ID["spectrum-high-frequency"]
+    separated = one_run_fig3({0.01: 0.02, 0.04: 0.08, 0.09: 0.3})
+    (m,) = claims.spectrum_eps_spread(separated, claim)
+    assert m.dof == math.inf and "periodogram's own errors" in m.text()
+    assert claims.verdict(claim, m) == "agrees"
+    same = one_run_fig3({0.01: 0.05, 0.04: 0.05, 0.09: 0.05})
+    (m,) = claims.spectrum_eps_spread(same, claim)
+    assert claims.verdict(claim, m).startswith("undecided")

@@ -120,3 +120,17 @@ def test_plots():
     assert len(ps.plot(raw=True).lines) == 3
     ss = SteadyState(rng.normal(size=2000)).compute()
     assert len(ss.plot().lines) >= 4
+
+
+def test_power_error_is_the_scatter_of_one_runs_spectrum():
+    """One run's bin errors (from the periodogram's statistics) match the scatter of the binned
+    power over independent runs: they stand in for a sem over seeds."""
+    rng = np.random.default_rng(11)
+    runs = [PowerSpectrum(rng.normal(size=1000)).compute() for _ in range(400)]
+    power = np.array([r.power for r in runs])
+    predicted = np.mean([r.power_error / r.power for r in runs], axis=0)
+    observed = power.std(axis=0, ddof=1) / power.mean(axis=0)
+    assert np.all(np.abs(observed / predicted - 1) < 0.2), (observed, predicted)
+    # bins of one ordinate: an exponential variable, relative error 1
+    one = runs[0].counts == 1
+    assert one.any() and np.allclose(predicted[one], 1.0)

@@ -122,7 +122,9 @@ class PowerSpectrum:
     realizations, e.g. seeds, whose periodograms are averaged, each about its own X_SS),
     ``steady_from`` (first sample of the segment, default 0), ``taps_per_sample`` (taps between samples, default 1: f in 1/taps),
     ``bins_per_decade``, ``fit_range`` ((f_min, f_max) in 1/taps or None).
-    Results: ``frequency`` and ``power`` (binned), ``counts`` (ordinates per bin),
+    Results: ``frequency`` and ``power`` (binned), ``power_error`` (the bin means' standard
+    error from the periodogram's own statistics, ordinate correlations included),
+    ``counts`` (ordinates per bin),
     ``raw_frequency`` and ``raw_power`` (the periodogram), ``slope``, ``slope_error``,
     ``fit`` (a :class:`tapmc.laws.FitResult` in log10-log10), ``x_ss``, ``sigma``.
     """
@@ -184,17 +186,19 @@ class PowerSpectrum:
         if use.sum() < 3:
             raise ValueError(f"only {use.sum()} spectrum bins in fit_range = {self.fit_range}; "
                              "at least 3 are needed for a slope")
-        self._fit = self._fit_slope(which, np.unique(which), use)
+        labels = np.unique(which)
+        relative = self._relative_covariance(which, labels)
+        # the bin means' own error: what one run's spectrum carries in place of a sem over
+        # realizations (a Gamma mean of m effective ordinates has relative error 1/sqrt(m))
+        self._power_error = self._power * np.sqrt(np.diag(relative))
+        self._fit = self._fit_slope(relative, use)
         return self
 
-    def _fit_slope(self, which, labels, use):
-        """Generalised least squares of log10 P against log10 f over the bins in ``use``.
-        The periodogram ordinates are exponential variables; those of a tapered series are
-        correlated with their neighbours (``ordinate_correlation``). The covariance of the bin
-        means follows from that (delta method), the exact variance of the log of a Gamma
-        variable (trigamma) replaces the delta-method diagonal, and the bias of that log,
-        ln(m) - digamma(m) for m effective ordinates, is removed (left in, it would flatten the
-        slope through the sparse low-frequency bins)."""
+    def _relative_covariance(self, which, labels):
+        """Relative covariance of the bin means (cov / (mean_i mean_j)): the periodogram
+        ordinates are exponential variables, those of a tapered series correlated with their
+        neighbours (``ordinate_correlation``); averaged over the n_series independent
+        periodograms."""
         rho = self.ordinate_correlation
         index = np.searchsorted(labels, which)  # bin of every ordinate, 0..nbins-1
         nbins = len(labels)
@@ -204,8 +208,17 @@ class PowerSpectrum:
             np.add.at(cov, (index[:-lag], index[lag:]), r)
             np.add.at(cov, (index[lag:], index[:-lag]), r)
         counts = np.bincount(index, minlength=nbins).astype(float)
-        # relative covariance of the bin means, over n_series independent periodograms
-        cov = (cov / np.outer(counts, counts))[np.ix_(use, use)] / self.x.shape[0]
+        return cov / np.outer(counts, counts) / self.x.shape[0]
+
+    def _fit_slope(self, relative, use):
+        """Generalised least squares of log10 P against log10 f over the bins in ``use``.
+        The periodogram ordinates are exponential variables; those of a tapered series are
+        correlated with their neighbours (``ordinate_correlation``). The covariance of the bin
+        means follows from that (delta method), the exact variance of the log of a Gamma
+        variable (trigamma) replaces the delta-method diagonal, and the bias of that log,
+        ln(m) - digamma(m) for m effective ordinates, is removed (left in, it would flatten the
+        slope through the sparse low-frequency bins)."""
+        cov = relative[np.ix_(use, use)]
         m_eff = 1.0 / np.diag(cov)
         ratio = special.polygamma(1, m_eff) * m_eff  # exact / delta-method variance of the log
         cov = cov * np.sqrt(np.outer(ratio, ratio)) / np.log(10) ** 2
@@ -229,6 +242,7 @@ class PowerSpectrum:
 
     frequency = result("_frequency")
     power = result("_power")
+    power_error = result("_power_error")
     counts = result("_counts")
     fit = result("_fit")
     slope = property(lambda self: float(self.fit.params["slope"]))

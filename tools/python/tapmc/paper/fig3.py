@@ -17,8 +17,9 @@ with x = eps; ``k`` and ``k_reduced_chi2`` of the proportional fit; ``intercept`
 ``intercept_error`` of a free straight line, which is zero for a proportional law).
 
 The sem columns are over seeds. For an eps with one seed (n = 1; the paper's protocol, one
-run per point) they are that run's own errors instead: the slope's error from the log-log fit
-of its spectrum, and sigma_<Z>'s from batch means of the squared deviations over the steady
+run per point) they are that run's own errors instead: the power's from the periodogram's
+statistics (``PowerSpectrum.power_error``), the slope's error from the log-log fit of its
+spectrum, and sigma_<Z>'s from batch means of the squared deviations over the steady
 segment (successive taps are correlated), so that one run per eps still carries error bars.
 """
 
@@ -79,6 +80,7 @@ def analyse(campaign, column="Z", bc=BC):
         sig = tuple(v[0] for v in P.seed_stats(
             [[SteadyState(s[:length], last=last).compute().std] for s in series]))
         if len(series) == 1:  # one run: its own errors (module docstring)
+            psem = spectra[0].power_error[:nbins]
             slope = (slope[0], spectra[0].slope_error, 1)
             sig = (sig[0], sigma_error_one_run(series[0][:length], last), 1)
         out[eps] = {"frequency": freq, "power": (pmean, psem, pn), "last": last,
