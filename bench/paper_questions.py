@@ -21,6 +21,13 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               500, 1000 and 2000 taps of every finished P.B.C. constant-eps run of the
               paper-scale campaign (no simulation: its taps.dat files).
 
+  initial-packing
+              Is the initial P.B.C. packing's <Phi^c> the paper's 58.4 % (section IV.B)? The
+              campaign starts every run from one packing (the paper's protocol); this
+              deposits the same packing (create_packing, N = 4096, L = 32R, P.B.C.) with
+              seeds 1..20 and measures it as the runs do at t = 0 (no tap): Phi_b, <Phi^c>
+              and <Z> per seed, the spread between depositions that one packing hides.
+
   pbc-course  How long does the dip of <Phi^c> after the first taps last, and does the
               packing loosen at strong taps (eps >= 0.09)? From every finished P.B.C.
               constant-eps run of the paper-scale campaign (no simulation: its taps.dat):
@@ -60,6 +67,7 @@ Usage (from the repository; minutes on one core, run under nice):
     bench/paper_questions.py noise-floor [--out DIR] [--lmp EXE] [--restart FILE]
     bench/paper_questions.py spectral-window [--out DIR] [--campaign DIR]
     bench/paper_questions.py pbc-course [--out DIR] [--campaign DIR]
+    bench/paper_questions.py initial-packing [--out DIR] [--lmp EXE] [--seeds 1 2 ...]
     bench/paper_questions.py theta0 [--out DIR] [--lmp EXE] [--seeds 1 2 3 4]
                                     [--stop change|drift] [--eta 1e-7] [--N 1024]
     bench/paper_questions.py dmax   (the same options as theta0)
@@ -153,6 +161,27 @@ def first_tap(args):
                       f" ({int(t1[8])} sweeps)", flush=True)
     write_csv(Path(args.out) / "first_tap.csv",
               ["eps", "eta", "seed", "phi_c_0", "phi_c_1", "Z_0", "Z_1", "sweeps_1"], rows)
+
+
+#: depositions measured by initial-packing: the sem of <Phi^c> over them is then about a
+#: tenth of a unit of the paper's last digit (0.1 %)
+INITIAL_SEEDS = tuple(range(1, 21))
+
+
+def initial_packing(args):
+    lmp = lmp_command(args.lmp)
+    rows = []
+    for seed in args.seeds:
+        with tempfile.TemporaryDirectory() as folder:
+            # taps = 0: the packing as deposited, measured by the runs' own computes
+            taps = run(lmp, folder, dict(PAPER, bc="pbc", seed=seed, taps=0, pevery=1,
+                                         rsteps=1000000))
+        t0 = taps[0]
+        rows.append([seed, PAPER["N"], PAPER["L"], "pbc", f"{t0[1]:.8f}", f"{t0[2]:.8f}",
+                     f"{t0[3]:.8f}"])
+        print(f"seed {seed}: Phi_b {t0[1]:.4f} <Phi^c> {t0[2]:.4f} <Z> {t0[3]:.3f}", flush=True)
+    write_csv(Path(args.out) / "initial_packing.csv",
+              ["seed", "N", "L", "bc", "phi_b", "phi_c", "Z"], rows)
 
 
 def scan_file_name(stem, stop, N):
@@ -468,12 +497,14 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
-    for name in ("first-tap", "noise-floor", "spectral-window", "pbc-course", "theta0", "dmax",
-                 "p0-fluid"):
+    for name in ("first-tap", "noise-floor", "spectral-window", "pbc-course", "initial-packing",
+                 "theta0", "dmax", "p0-fluid"):
         p = sub.add_parser(name)
         p.add_argument("--out", default=DEFAULT_OUT, type=Path)
         p.add_argument("--lmp", default=None)
     sub.choices["first-tap"].add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
+    sub.choices["initial-packing"].add_argument("--seeds", type=int, nargs="+",
+                                                default=list(INITIAL_SEEDS))
     for name in ("theta0", "dmax"):
         sub.choices[name].add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3, 4])
         sub.choices[name].add_argument("--N", type=int, default=THETA0_SCALE["N"])
@@ -499,7 +530,8 @@ def main(argv=None):
         if any(not 0.01 <= p <= 0.58 for p in args.phi):
             parser.error(f"--phi values must be in [0.01, 0.58], got {args.phi}")
     {"first-tap": first_tap, "noise-floor": noise_floor,
-     "spectral-window": spectral_window, "pbc-course": pbc_course, "theta0": theta0_scan, "dmax": dmax_scan,
+     "spectral-window": spectral_window, "pbc-course": pbc_course,
+     "initial-packing": initial_packing, "theta0": theta0_scan, "dmax": dmax_scan,
      "p0-fluid": p0_fluid}[args.command](args)
 
 

@@ -649,3 +649,28 @@ def test_one_run_spectra_are_decided_by_the_periodograms_own_errors():
     same = one_run_fig3({0.01: 0.05, 0.04: 0.05, 0.09: 0.05})
     (m,) = claims.spectrum_eps_spread(same, claim)
     assert claims.verdict(claim, m).startswith("undecided")
+
+
+def _packings(phis, N=4096, L=32):
+    return [{"seed": str(i + 1), "N": str(N), "L": str(L), "bc": "pbc", "phi_c": str(p)}
+            for i, p in enumerate(phis)]
+
+
+def test_one_initial_packing_is_decided_by_the_depositions_of_its_size():
+    """The campaign's runs share one packing (no error): depositions of the same size measured
+    at t = 0 decide the paper's single-packing value with a prediction interval; depositions
+    of another size are not used."""
+    paper = {"sizes": [[4096, 32.0]], "eta": [1e-7], "preset": True, "scale": "full",
+             "fields": None, "initial_phi_c": [0.5829, None, 1]}
+    claim = BY_ID["phi-initial"]
+    spread = 0.5827 + 0.0008 * np.linspace(-1.6, 1.6, 20)
+    data = claims.ReportData(paper, {}, initial_packings=_packings(spread))
+    (m,) = claims.initial_phi(data, claim)
+    assert m.dof == 19 and "over 20 depositions" in m.text() and "58.29 %" in m.text()
+    assert m.err > np.std(spread, ddof=1)           # one packing's spread is in the interval
+    assert claims.verdict(claim, m) == "agrees"     # 58.27 % vs 58.4 %: within one packing's spread
+    tight = claims.ReportData(paper, {}, initial_packings=_packings(0.5800 + 0.00005 * np.arange(20)))
+    assert claims.verdict(claim, claims.initial_phi(tight, claim)[0]) == "disagrees"
+    other = claims.ReportData(paper, {}, initial_packings=_packings(spread, N=1024, L=16))
+    (m,) = claims.initial_phi(other, claim)
+    assert claims.verdict(claim, m).startswith("undecided")

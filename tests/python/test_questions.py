@@ -191,3 +191,15 @@ def test_pbc_course_loosening_that_lasts(tmp_path):
     assert "ends below its initial packing" in text
     assert "Its halves agree within their error: steady." in text
     assert "not undone by the taps" in text
+
+
+def test_initial_packing_states_the_spread_one_packing_hides(tmp_path):
+    rows = ["seed,N,L,bc,phi_b,phi_c,Z"] + [
+        f"{s},4096,32,pbc,{0.542 + 0.001 * (s % 3)},{0.5827 + 0.0004 * (s % 5 - 2)},7.34"
+        for s in range(1, 11)]
+    (tmp_path / "initial_packing.csv").write_text("\n".join(rows) + "\n")
+    text = "\n".join(questions.render_section(tmp_path))
+    assert "``initial-packing``" in text
+    assert "over 10 depositions" in text and "N = 4096, L = 32R" in text
+    assert "<Phi^c> = 58.27 ± 0.02 % (one packing spreads 0.06 %)" in text
+    assert "range 58.19 % to 58.35 %" in text and "The paper's 58.4 % is one packing's, +2.2" in text

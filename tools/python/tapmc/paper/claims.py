@@ -198,13 +198,15 @@ class ReportData:
     ``summary`` (tapmc.paper.validation.campaign_summary) and ``front``, the rows of the
     run-time-versus-error front (tapmc.paper.front.read_summary; empty: not measured)."""
 
-    def __init__(self, summary, figures, front=(), scans=None):
+    def __init__(self, summary, figures, front=(), scans=None, initial_packings=()):
         """``scans``: knob (``theta0``, ``dmax``) -> its scans, each the rows of one CSV of
-        bench/paper_questions.py (:data:`SCANS`)."""
+        bench/paper_questions.py (:data:`SCANS`); ``initial_packings``: the rows of its
+        ``initial_packing.csv`` (depositions measured at t = 0)."""
         self.summary = summary
         self.figures = figures
         self.front = list(front)
         self.scans = {knob: list((scans or {}).get(knob, ())) for knob in SCANS}
+        self.initial_packings = list(initial_packings)
 
     @classmethod
     def from_files(cls, summary, files):
@@ -213,13 +215,15 @@ class ReportData:
         figure CSVs (bench/paper_questions.py theta0 / dmax), when there."""
         from .front import read_summary
 
-        scans = {}
+        scans, packings = {}, []
         if files:
             folder = Path(next(iter(files.values()))[1]).parent / "questions"
             scans = {knob: [read_scan(path) for path in scan_files(folder, knob)]
                      for knob in SCANS}
+            if (folder / INITIAL_PACKINGS).is_file():
+                packings = read_scan(folder / INITIAL_PACKINGS)
         return cls(summary, {name: FigureData.read(paths[1]) for name, paths in files.items()},
-                   read_summary(), scans)
+                   read_summary(), scans, packings)
 
     def figure(self, name):
         return self.figures.get(name)
@@ -291,8 +295,26 @@ def _mean_difference(a, b):
 # ---------------------------------------------------------------- statistics
 
 
+#: bench/paper_questions.py initial-packing's CSV, in the report's questions folder
+INITIAL_PACKINGS = "initial_packing.csv"
+
+
 def initial_phi(data, claim):
+    """<Phi^c> of the initial P.B.C. packing. A campaign with one packing (the paper's
+    protocol) is decided by the depositions of the same size measured at t = 0 (``initial-
+    packing``), when there: the paper's value is one packing's, so the interval is the mean's
+    error combined with the spread of single packings (a prediction interval)."""
     m, s, n = (math.nan if v is None else v for v in data.summary["initial_phi_c"])
+    sizes = {(int(N), float(L)) for N, L in data.summary.get("sizes") or ()}
+    phis = np.array([float(r["phi_c"]) for r in data.initial_packings
+                     if r["bc"] == "pbc" and (int(r["N"]), float(r["L"])) in sizes])
+    if len(phis) >= 2 and not (np.isfinite(n) and n >= len(phis)):
+        mean, sd = float(phis.mean()), float(phis.std(ddof=1))
+        sem = sd / math.sqrt(len(phis))
+        return [Measure(mean, math.hypot(sem, sd), len(phis) - 1,
+                        shown=f"{fmt(mean, sem, pct=True)} over {len(phis)} depositions (one "
+                              f"packing spreads {100 * sd:.2f} %; the campaign's: "
+                              f"{fmt(m, None, pct=True)})")]
     return [Measure(m, s, _dof(n), shown=fmt(m, s, pct=True))]
 
 
@@ -1048,7 +1070,8 @@ def scan_files(folder, knob):
 
 
 def read_scan(path):
-    """Rows of a knob scan CSV (bench/paper_questions.py theta0 / dmax)."""
+    """Rows of a CSV of bench/paper_questions.py (a knob scan: theta0 / dmax; the initial
+    packings)."""
     with open(path, newline="") as handle:
         return list(csv.DictReader(handle))
 

@@ -14,6 +14,8 @@ committed data.
 * ``pbc_course.csv``: the course of <Phi^c> in every P.B.C. run of the campaign: how deep
   and how long the dip after the first taps is, and whether strong taps (eps >= 0.09) leave
   the packing looser than it started or still compacting at the end.
+* ``initial_packing.csv``: the initial P.B.C. packing of several depositions at t = 0: the
+  spread between packings that a campaign started from one packing hides.
 * the final <Phi^c> of Fig. 9's run carried to every redeposition setting of the
   run-time-versus-error front (its ``front_summary.csv``): which thresholds the paper's 60.6 %
   fits.
@@ -149,6 +151,31 @@ def _spectral_window(path):
                      + ("moves the slope beyond twice its error." if moved else
                         "moves it by less than twice its error."))
     return lines + [""]
+
+
+def _initial_packing(path):
+    rows = _read(path)
+    if len(rows) < 2:
+        return []
+    col = {k: np.array([float(r[k]) for r in rows]) for k in ("phi_b", "phi_c", "Z")}
+    n = len(rows)
+    sizes = sorted({(int(r["N"]), float(r["L"])) for r in rows})
+    where = ", ".join(f"N = {N}, L = {L:g}R" for N, L in sizes)
+
+    def stat(x, pct):
+        sd = float(np.std(x, ddof=1))
+        spread = f"{100 * sd:.2f} %" if pct else f"{sd:.3g}"
+        return f"{fmt(float(np.mean(x)), sd / math.sqrt(n), pct)} (one packing spreads {spread})"
+
+    phi = col["phi_c"]
+    away = (PAPER_INITIAL_PHI_C - phi.mean()) / phi.std(ddof=1)
+    return [f"The initial P.B.C. packing over {n} depositions (``initial_packing.csv``; {where}, "
+            "measured as the runs measure it at t = 0): <Phi^c> = " + stat(phi, True)
+            + f", range {fmt(phi.min(), None, True)} to {fmt(phi.max(), None, True)}; "
+            f"Phi_b = {stat(col['phi_b'], True)}; <Z> = {stat(col['Z'], False)}. The paper's "
+            f"{100 * PAPER_INITIAL_PHI_C:.1f} % is one packing's, {away:+.1f} spreads of one "
+            "packing from the mean: the claim's row compares it with that prediction interval.",
+            ""]
 
 
 def _pbc_course(path):
@@ -424,6 +451,16 @@ def _scan(path, knob):
 PAPER_FINAL_PHI_C = 0.606
 
 
+def _register_target(claim_id):
+    from .claims import load_register
+
+    return next(c.target for c in load_register() if c.id == claim_id)
+
+
+#: <Phi^c> of the paper's initial P.B.C. packing (section IV.B): the register's target
+PAPER_INITIAL_PHI_C = _register_target("phi-initial")
+
+
 def _final_phi_eta(fig9, etas, front_rows):
     """Fig. 9's steady <Phi^c> carried to every redeposition setting of the front: the
     campaign's value plus (bias of the setting - bias of the campaign's eta) in the steady
@@ -502,6 +539,8 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
         parts += _spectral_window(folder / "spectral_window.csv")
     if (folder / "pbc_course.csv").is_file():
         parts += _pbc_course(folder / "pbc_course.csv")
+    if (folder / "initial_packing.csv").is_file():
+        parts += _initial_packing(folder / "initial_packing.csv")
     from .claims import SCANS, scan_files
 
     for knob in SCANS:
@@ -517,6 +556,7 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
     # the commands that made the CSVs (p0-fluid named only when its CSV is there)
     commands = "``first-tap``, ``noise-floor``, ``spectral-window``" + (
         ", ``pbc-course``" if (folder / "pbc_course.csv").is_file() else "") + (
+        ", ``initial-packing``" if (folder / "initial_packing.csv").is_file() else "") + (
         "".join(f", ``{k}``" for k in ("theta0", "dmax") if any(folder.glob(f"{k}*.csv")))) + (
         ", ``p0-fluid``" if (folder / "p0_fluid.csv").is_file() else "")
     return [title, "-" * len(title), "",
