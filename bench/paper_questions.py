@@ -28,6 +28,15 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               seeds 1..20 and measures it as the runs do at t = 0 (no tap): Phi_b, <Phi^c>
               and <Z> per seed, the spread between depositions that one packing hides.
 
+  p0-configs  Are Fig. 9's comparisons (P0 of the tapped packing against the initial packing's
+              and against Percus-Yevick) decided once the curves carry error bars? The
+              campaign has one packing of each (the paper's protocol). This measures P0 as
+              Fig. 9 does (tapmc-pores --p0, same window and point count) on 8 depositions
+              at t = 0 and on 8 configurations of the tapped packing: the campaign's run at
+              eps = 0.0225 continued from its restart.4000 at the same eps, one dump every
+              100 taps (taps 4100 to 4800). Mean, sem and n of P0(sigma) for both, and the
+              volume fraction the points see.
+
   pbc-course  How long does the dip of <Phi^c> after the first taps last, and does the
               packing loosen at strong taps (eps >= 0.09)? From every finished P.B.C.
               constant-eps run of the paper-scale campaign (no simulation: its taps.dat):
@@ -68,6 +77,7 @@ Usage (from the repository; minutes on one core, run under nice):
     bench/paper_questions.py spectral-window [--out DIR] [--campaign DIR]
     bench/paper_questions.py pbc-course [--out DIR] [--campaign DIR]
     bench/paper_questions.py initial-packing [--out DIR] [--lmp EXE] [--seeds 1 2 ...]
+    bench/paper_questions.py p0-configs [--out DIR] [--lmp EXE] [--restart FILE] [--work DIR]
     bench/paper_questions.py theta0 [--out DIR] [--lmp EXE] [--seeds 1 2 3 4]
                                     [--stop change|drift] [--eta 1e-7] [--N 1024]
     bench/paper_questions.py dmax   (the same options as theta0)
@@ -182,6 +192,90 @@ def initial_packing(args):
         print(f"seed {seed}: Phi_b {t0[1]:.4f} <Phi^c> {t0[2]:.4f} <Z> {t0[3]:.3f}", flush=True)
     write_csv(Path(args.out) / "initial_packing.csv",
               ["seed", "N", "L", "bc", "phi_b", "phi_c", "Z"], rows)
+
+
+#: configurations of each packing for p0-configs: depositions, and dumps of the tapped run
+P0_CONFIGS = 8
+#: taps between the tapped configurations: twice the batch length of the steady state's
+#: batch-means error (50 taps), beyond the correlation of successive taps
+P0_CONFIG_SPACING = 100
+#: eps of the continued run: that of the campaign's Fig. 9 run (CAMPAIGN_RUN)
+P0_CONFIG_EPS = 0.0225
+
+
+def _p0_of(dumps, seed, work):
+    """P0(sigma) and the volume fraction seen by the points of each dump, measured as Fig. 9
+    measures it (tapmc.paper._pores: the window from the floor + 2R to the lower of 20R and
+    0.8 of the highest centre)."""
+    from tapmc.paper import _pores, _runs
+    from tapmc.pores import read_pores
+
+    out = []
+    for k, dump in enumerate(dumps):
+        top = _pores.window_top(dump, 0.5)
+        prefix = Path(work) / f"p0_{Path(dump).parent.name}_{Path(dump).stem}"
+        _runs.run_pores([dump], prefix, ["--radii", "--z", f"{_pores.WINDOW_BOTTOM:g}:{top:.4f}",
+                                         "--p0", str(_pores.P0_POINTS), "--seed", str(seed + k)])
+        pores = read_pores(prefix)
+        out.append((np.asarray(pores.p0["sigma"]), np.asarray(pores.p0["P0_measured"]),
+                    float(pores.frames["phi_p0"][0])))
+    return out
+
+
+def p0_configs(args):
+    lmp = lmp_command(args.lmp)
+    restart = Path(args.restart).resolve()
+    if not restart.is_file():
+        sys.exit(f"paper_questions: restart file {restart} not found (--restart FILE: the "
+                 "packing after 4000 taps of the campaign's Fig. 9 run)")
+    keep = args.work is not None
+    work = Path(args.work) if keep else Path(tempfile.mkdtemp(prefix="p0_configs_"))
+    work.mkdir(parents=True, exist_ok=True)
+    initial = []
+    for seed in range(1, args.configs + 1):
+        folder = work / f"initial_s{seed}"
+        folder.mkdir(exist_ok=True)
+        if not (folder / "dump.0.lammpstrj").is_file():
+            run(lmp, folder, dict(PAPER, bc="pbc", seed=seed, taps=0, pevery=1,
+                                  rsteps=1000000, dump_ends="yes"))
+        initial.append(folder / "dump.0.lammpstrj")
+    tapped_dir = work / "tapped"
+    tapped_dir.mkdir(exist_ok=True)
+    start = NOISE_FROM_STEP
+    tapped, previous = [], restart
+    for k in range(1, args.configs + 1):
+        step = start + k * P0_CONFIG_SPACING
+        dump = tapped_dir / f"dump.{step}.lammpstrj"
+        if not dump.is_file():
+            run(lmp, tapped_dir, dict(PAPER, bc="pbc", eps=P0_CONFIG_EPS, eta=1e-7, seed=1,
+                                      resume="yes", resume_file=previous, taps=step,
+                                      rsteps=P0_CONFIG_SPACING, pevery=P0_CONFIG_SPACING,
+                                      dump_ends="yes"))
+            print(f"tapped configuration at tap {step}", flush=True)
+        tapped.append(dump)
+        previous = tapped_dir / f"restart.{step}"
+    curves = {"initial": _p0_of(initial, 1, work), "tapped": _p0_of(tapped, 101, work)}
+    sigma = curves["initial"][0][0]
+    columns, stats = [], {}
+    for key, items in curves.items():
+        p0 = np.array([c[1] for c in items])
+        phi = np.array([c[2] for c in items])
+        stats[key] = (p0.mean(axis=0), p0.std(axis=0, ddof=1) / np.sqrt(len(p0)), len(p0),
+                      phi.mean(), phi.std(ddof=1) / np.sqrt(len(phi)))
+        print(f"{key}: {len(p0)} configurations, phi seen by the points "
+              f"{phi.mean():.5f} +- {stats[key][4]:.5f}")
+    rows = [[f"{x:.6g}"] + sum(([f"{stats[k][0][i]:.8g}", f"{stats[k][1][i]:.3g}", stats[k][2]]
+                                for k in ("initial", "tapped")), [])
+            for i, x in enumerate(sigma)]
+    rows.append(["phi"] + sum(([f"{stats[k][3]:.8g}", f"{stats[k][4]:.3g}", stats[k][2]]
+                               for k in ("initial", "tapped")), []))
+    write_csv(Path(args.out) / "p0_configs.csv",
+              ["sigma", "initial", "initial_sem", "initial_n", "tapped", "tapped_sem",
+               "tapped_n"], rows)
+    if not keep:
+        import shutil
+
+        shutil.rmtree(work, ignore_errors=True)
 
 
 def scan_file_name(stem, stop, N):
@@ -498,7 +592,7 @@ def main(argv=None):
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
     for name in ("first-tap", "noise-floor", "spectral-window", "pbc-course", "initial-packing",
-                 "theta0", "dmax", "p0-fluid"):
+                 "p0-configs", "theta0", "dmax", "p0-fluid"):
         p = sub.add_parser(name)
         p.add_argument("--out", default=DEFAULT_OUT, type=Path)
         p.add_argument("--lmp", default=None)
@@ -510,7 +604,10 @@ def main(argv=None):
         sub.choices[name].add_argument("--N", type=int, default=THETA0_SCALE["N"])
         sub.choices[name].add_argument("--stop", choices=("change", "drift"), default="change")
         sub.choices[name].add_argument("--eta", type=float, default=1e-7)
-    sub.choices["noise-floor"].add_argument("--restart", default=CAMPAIGN_RUN / "restart.4000")
+    for name in ("noise-floor", "p0-configs"):
+        sub.choices[name].add_argument("--restart", default=CAMPAIGN_RUN / "restart.4000")
+    sub.choices["p0-configs"].add_argument("--configs", type=int, default=P0_CONFIGS)
+    sub.choices["p0-configs"].add_argument("--work", default=None, type=Path)
     for name in ("spectral-window", "pbc-course"):
         sub.choices[name].add_argument("--campaign", default=CAMPAIGN_RUN.parents[1])
     fluid = sub.choices["p0-fluid"]
@@ -531,7 +628,7 @@ def main(argv=None):
             parser.error(f"--phi values must be in [0.01, 0.58], got {args.phi}")
     {"first-tap": first_tap, "noise-floor": noise_floor,
      "spectral-window": spectral_window, "pbc-course": pbc_course,
-     "initial-packing": initial_packing, "theta0": theta0_scan, "dmax": dmax_scan,
+     "initial-packing": initial_packing, "p0-configs": p0_configs, "theta0": theta0_scan, "dmax": dmax_scan,
      "p0-fluid": p0_fluid}[args.command](args)
 
 

@@ -674,3 +674,57 @@ def test_one_initial_packing_is_decided_by_the_depositions_of_its_size():
     other = claims.ReportData(paper, {}, initial_packings=_packings(spread, N=1024, L=16))
     (m,) = claims.initial_phi(other, claim)
     assert claims.verdict(claim, m).startswith("undecided")
+
+
+def _p0_rows(initial, tapped, sem, phi_i=0.582, phi_t=0.604, n=8):
+    sigma = np.linspace(0.0, 2.0, 60)
+    rows = [{"sigma": f"{x}", "initial": f"{a}", "initial_sem": f"{sem}", "initial_n": f"{n}",
+             "tapped": f"{b}", "tapped_sem": f"{sem}", "tapped_n": f"{n}"}
+            for x, a, b in zip(sigma, initial(sigma), tapped(sigma))]
+    rows.append({"sigma": "phi", "initial": f"{phi_i}", "initial_sem": "0.0005",
+                 "initial_n": f"{n}", "tapped": f"{phi_t}", "tapped_sem": "0.0005",
+                 "tapped_n": f"{n}"})
+    return rows
+
+
+def test_one_realization_p0_curves_are_decided_over_configurations():
+    """Fig. 9 of one run (no error bars) is compared over the p0-configs configurations: the
+    same curve for both packings agrees with 'no significant difference', curves that follow
+    Percus-Yevick at their own Phi differ by PY's change and disagree; the tapped curve on PY
+    agrees with PY."""
+    py = lambda phi: (lambda s: np.asarray(percus_yevick_p0(s, phi), float))  # noqa: E731
+    one_run = Table()
+    sigma = np.linspace(0.0, 2.0, 60)
+    one_run.add("a", "final", sigma, py(0.604)(sigma), None, n=1)
+    one_run.add("a", "initial", sigma, py(0.582)(sigma), None, n=1)
+    one_run.add("a", "percus_yevick", sigma, py(0.604)(sigma), None, n=0)
+    same = claims.ReportData(report().summary, {"fig9": one_run.data()},
+                             p0_configs=_p0_rows(py(0.604), py(0.604), 1e-4))
+    (m,) = claims.p0_initial_minus_final(same, BY_ID["p0-insensitive"])
+    assert "8 depositions and 8 configurations" in m.text()
+    assert claims.verdict(BY_ID["p0-insensitive"], m) == "agrees"
+    own_phi = claims.ReportData(report().summary, {"fig9": one_run.data()},
+                                p0_configs=_p0_rows(py(0.582), py(0.604), 1e-4))
+    (m,) = claims.p0_initial_minus_final(own_phi, BY_ID["p0-insensitive"])
+    assert claims.verdict(BY_ID["p0-insensitive"], m) == "disagrees"
+    (m,) = claims.p0_final_minus_py(own_phi, BY_ID["p0-percus-yevick"])
+    assert claims.verdict(BY_ID["p0-percus-yevick"], m) == "agrees"
+    without = claims.ReportData(report().summary, {"fig9": one_run.data()})
+    (m,) = claims.p0_initial_minus_final(without, BY_ID["p0-insensitive"])
+    assert m.undecided
+
+
+def test_one_pore_dump_is_decided_by_its_jackknife_error():
+    """Fig. 10 of one run (the paper's protocol): values with the spatial jackknife's errors
+    (n = 1) are decided with blocks - 1 degrees of freedom; without errors they stay
+    undecided."""
+    from tapmc.pores import JACKKNIFE_BLOCKS
+
+    tab = Table()
+    tab.add("params", "nu", [0, 4000], [0.1208, 0.0913], [0.0018, 0.0012], n=1)
+    (m,) = claims.nu_change(report(fig10=tab), BY_ID["nu-decreases"])
+    assert m.dof == JACKKNIFE_BLOCKS ** 2 - 1
+    assert claims.verdict(BY_ID["nu-decreases"], m) == "agrees"
+    bare = Table().add("params", "nu", [0, 4000], [0.1208, 0.0913], None, n=1)
+    (m,) = claims.nu_change(report(fig10=bare), BY_ID["nu-decreases"])
+    assert claims.verdict(BY_ID["nu-decreases"], m).startswith("undecided")

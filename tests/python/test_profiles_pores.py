@@ -401,3 +401,44 @@ def test_plots():
     t = np.arange(1.0, 6.0)
     ax = ProfileIncrease(t, t * 0.01, t * 0.002).compute().plot()
     assert len(ax.containers) == 2
+
+
+@pytest.mark.skipif(_pores_binary() is None, reason="tapmc-pores not built")
+def test_spatial_jackknife_rebuilds_the_tools_histograms(tmp_path):
+    # The jackknife rebuilds each replicate's histograms from the selected pores (--pores) by
+    # tapmc-pores's own definitions: the columns of all blocks together equal the tool's, and
+    # a replicate that drops a block has the pores of the other blocks only.
+    from tapmc.pores import _histogram_columns, jackknife_error
+
+    dump = SOURCE / "tests" / "pores" / "data" / "small_tapped.dump.gz"
+    proc = subprocess.run([str(_pores_binary()), "-q", "--frame-hist", "--pores", "-o",
+                           str(tmp_path / "real"), str(dump)], capture_output=True, text=True,
+                          timeout=60)
+    assert proc.returncode == 0, proc.stderr
+    out = read_pores(tmp_path / "real")
+    full = out.distribution(20)
+    sel = (out.pores["timestep"] == 20) & (out.pores["selected"] == 1)
+    template = {c: getattr(full, c) for c in ("xi_lo", "xi_hi", "xi", "v_lo", "v_hi", "v")}
+    rebuilt = _histogram_columns(out.pores["xi"][sel], np.append(full.xi_lo, full.xi_hi[-1]),
+                                 np.append(full.v_lo, full.v_hi[-1]), template)
+    for name in ("count_xi", "P_xi", "xi3_P_xi", "count_v", "n_v", "rho_v"):
+        np.testing.assert_allclose(rebuilt[name], getattr(full, name), rtol=1e-9, atol=1e-12,
+                                   err_msg=name)
+    reps = out.jackknife(20, blocks=3)
+    assert len(reps) == 9
+    assert sum(full.selected - r.selected for r in reps) == full.selected  # each pore once
+    err = jackknife_error([r.nu for r in reps])
+    assert 0 < err < 0.1 * full.nu
+    with pytest.raises(ValueError, match="blocks = 1"):
+        out.jackknife(20, blocks=1)
+    with pytest.raises(ValueError, match="at least 2 replicates"):
+        jackknife_error([1.0])
+
+
+def test_jackknife_error_of_a_mean_is_its_standard_error():
+    # leave-one-out replicates of a mean: the jackknife reproduces std / sqrt(n) exactly
+    from tapmc.pores import jackknife_error
+
+    x = np.random.default_rng(5).normal(size=40)
+    reps = [(x.sum() - xi) / (len(x) - 1) for xi in x]
+    assert jackknife_error(reps) == pytest.approx(x.std(ddof=1) / np.sqrt(len(x)), rel=1e-12)

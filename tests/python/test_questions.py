@@ -203,3 +203,22 @@ def test_initial_packing_states_the_spread_one_packing_hides(tmp_path):
     assert "over 10 depositions" in text and "N = 4096, L = 32R" in text
     assert "<Phi^c> = 58.27 ± 0.02 % (one packing spreads 0.06 %)" in text
     assert "range 58.19 % to 58.35 %" in text and "The paper's 58.4 % is one packing's, +2.2" in text
+
+
+def _p0_configs_csv(folder, tapped_sem):
+    lines = ["sigma,initial,initial_sem,initial_n,tapped,tapped_sem,tapped_n"]
+    lines += [f"{0.1 * i:.1f},{1 - 0.1 * i},0.002,8,{1 - 0.1 * i},{tapped_sem},8"
+              for i in range(10)]
+    lines.append("phi,0.5826,0.0003,8,0.6038,0.0002,8")
+    (folder / "p0_configs.csv").write_text("\n".join(lines) + "\n")
+
+
+def test_p0_configs_says_whether_the_tapped_configurations_are_independent(tmp_path):
+    _p0_configs_csv(tmp_path, 0.0018)
+    text = "\n".join(questions.render_section(tmp_path))
+    assert "``p0-configs``" in text and "8 depositions at t = 0" in text
+    assert "(Phi seen by the points 58.26 ± 0.03 %)" in text
+    assert "0.90 times as much as one deposition" in text and "about as different" in text
+    _p0_configs_csv(tmp_path, 0.0004)
+    text = "\n".join(questions.render_section(tmp_path))
+    assert "0.20 times" in text and "the configurations are correlated" in text

@@ -41,6 +41,7 @@ from .laws import Law
 from .readers import TapmcFormatError
 
 __all__ = ["XI_T", "XI_O", "CsvTable", "PoreOutput", "PoreDistribution", "read_pores",
+           "JACKKNIFE_BLOCKS", "jackknife_error",
            "hist_is_current", "percus_yevick_p0", "TetrahedralLaw", "VolumeTail"]
 
 #: tetrahedral site, the smallest pore: sqrt(3/2) - 1 (section IV.B)
@@ -143,6 +144,39 @@ def hist_is_current(path):
     except OSError:
         return False
     return False
+
+
+#: lateral blocks per side of the spatial jackknife of one frame's distributions: 4 x 4 blocks
+#: of about 7R x 7R over the paper's statistics box (28R wide at L = 32R), each holding some
+#: 800 pores, far wider than the 2R over which neighbouring pores share spheres
+JACKKNIFE_BLOCKS = 4
+
+
+def jackknife_error(replicates):
+    """Standard error of a statistic from its leave-one-block-out replicates (B of them, first
+    axis): sqrt((B - 1) / B * sum (theta_k - mean theta)^2)."""
+    r = np.asarray(replicates, dtype=float)
+    b = r.shape[0]
+    if b < 2:
+        raise ValueError(f"a jackknife needs at least 2 replicates, got {b}")
+    return np.sqrt((b - 1) / b * np.sum((r - r.mean(axis=0)) ** 2, axis=0))
+
+
+def _histogram_columns(xi, xi_edges, v_edges, template):
+    """The histogram columns of tapmc-pores (its .hist.csv) from the selected pores' xi: counts
+    per bin, P(xi) = count / (N w), xi^3 P(xi) at the bin centre, n_v = count / (N w_v) and the
+    paper's rho_v = sum of v in the bin / (N w_v)."""
+    n = len(xi)
+    v = xi ** 3
+    w_xi, w_v = np.diff(xi_edges), np.diff(v_edges)
+    count_xi = np.histogram(xi, bins=xi_edges)[0].astype(float)
+    count_v = np.histogram(v, bins=v_edges)[0].astype(float)
+    sum_v = np.histogram(v, bins=v_edges, weights=v)[0]
+    out = {c: template[c] for c in ("xi_lo", "xi_hi", "xi", "v_lo", "v_hi", "v")}
+    out.update(count_xi=count_xi, P_xi=count_xi / (n * w_xi),
+               xi3_P_xi=count_xi * template["xi"] ** 3 / (n * w_xi), count_v=count_v,
+               n_v=count_v / (n * w_v), rho_v=sum_v / (n * w_v))
+    return out
 
 
 class PoreDistribution:
@@ -267,6 +301,41 @@ class PoreOutput:
                     combined[c] = values
         nu = sum(f[3] * f[2] for f in frames) / total
         return PoreDistribution(combined, nu, int(total), timestep)
+
+    def jackknife(self, timestep, blocks=JACKKNIFE_BLOCKS):
+        """Leave-one-block-out replicates of ``distribution(timestep)``: the selected pores of
+        the timestep's frames, split into ``blocks`` x ``blocks`` lateral blocks of the
+        statistics box (x, y of their centres), each replicate built without one block. The
+        spread of any statistic over them (:func:`jackknife_error`) is its error within one
+        packing, where seeds give none (the paper's protocol: one run). Needs ``--pores`` and
+        ``--frame-hist``."""
+        if self.pores is None:
+            raise ValueError(f"{self.prefix}.pores.csv is missing: run tapmc-pores with --pores "
+                             "for the spatial jackknife")
+        blocks = int(blocks)
+        if blocks < 2:
+            raise ValueError(f"blocks = {blocks}: at least 2 per side")
+        full = self.distribution(timestep)
+        pick = (self.pores["timestep"] == timestep) & (self.pores["selected"] == 1)
+        xi = self.pores["xi"][pick]
+        if len(xi) != full.selected:
+            raise ValueError(f"{self.prefix}.pores.csv holds {len(xi)} selected pores at "
+                             f"timestep {timestep}, the histograms {full.selected}")
+        label = np.zeros(len(xi), dtype=int)
+        for axis, scale in (("x", 1), ("y", blocks)):
+            c = self.pores[axis][pick]
+            edges = np.linspace(c.min(), c.max(), blocks + 1)
+            label += scale * np.clip(np.searchsorted(edges, c, side="right") - 1, 0, blocks - 1)
+        template = {c: getattr(full, c) for c in ("xi_lo", "xi_hi", "xi", "v_lo", "v_hi", "v")}
+        xi_edges = np.append(full.xi_lo, full.xi_hi[-1])
+        v_edges = np.append(full.v_lo, full.v_hi[-1])
+        replicates = []
+        for k in range(blocks * blocks):
+            keep = xi[label != k]
+            replicates.append(PoreDistribution(
+                _histogram_columns(keep, xi_edges, v_edges, template),
+                float(np.mean(keep ** 3)), len(keep), timestep))
+        return replicates
 
 
 def read_pores(path, prefix=None):

@@ -198,15 +198,18 @@ class ReportData:
     ``summary`` (tapmc.paper.validation.campaign_summary) and ``front``, the rows of the
     run-time-versus-error front (tapmc.paper.front.read_summary; empty: not measured)."""
 
-    def __init__(self, summary, figures, front=(), scans=None, initial_packings=()):
+    def __init__(self, summary, figures, front=(), scans=None, initial_packings=(),
+                 p0_configs=()):
         """``scans``: knob (``theta0``, ``dmax``) -> its scans, each the rows of one CSV of
         bench/paper_questions.py (:data:`SCANS`); ``initial_packings``: the rows of its
-        ``initial_packing.csv`` (depositions measured at t = 0)."""
+        ``initial_packing.csv`` (depositions measured at t = 0); ``p0_configs``: the rows of
+        its ``p0_configs.csv`` (P0 over several configurations of both packings)."""
         self.summary = summary
         self.figures = figures
         self.front = list(front)
         self.scans = {knob: list((scans or {}).get(knob, ())) for knob in SCANS}
         self.initial_packings = list(initial_packings)
+        self.p0_configs = list(p0_configs)
 
     @classmethod
     def from_files(cls, summary, files):
@@ -215,15 +218,16 @@ class ReportData:
         figure CSVs (bench/paper_questions.py theta0 / dmax), when there."""
         from .front import read_summary
 
-        scans, packings = {}, []
+        scans, extra = {}, {}
         if files:
             folder = Path(next(iter(files.values()))[1]).parent / "questions"
             scans = {knob: [read_scan(path) for path in scan_files(folder, knob)]
                      for knob in SCANS}
-            if (folder / INITIAL_PACKINGS).is_file():
-                packings = read_scan(folder / INITIAL_PACKINGS)
+            extra = {key: read_scan(folder / name) for key, name in
+                     (("initial_packings", INITIAL_PACKINGS), ("p0_configs", P0_CONFIGS))
+                     if (folder / name).is_file()}
         return cls(summary, {name: FigureData.read(paths[1]) for name, paths in files.items()},
-                   read_summary(), scans, packings)
+                   read_summary(), scans, **extra)
 
     def figure(self, name):
         return self.figures.get(name)
@@ -295,8 +299,10 @@ def _mean_difference(a, b):
 # ---------------------------------------------------------------- statistics
 
 
-#: bench/paper_questions.py initial-packing's CSV, in the report's questions folder
+#: bench/paper_questions.py initial-packing's and p0-configs' CSVs, in the report's questions
+#: folder
 INITIAL_PACKINGS = "initial_packing.csv"
+P0_CONFIGS = "p0_configs.csv"
 
 
 def initial_phi(data, claim):
@@ -891,15 +897,50 @@ def _py_change(fig, sigma):
                                percus_yevick_p0(sigma, phi_i))))
 
 
+def _p0_configurations(data, other, what):
+    """The comparison of :func:`_p0_difference` over the configurations of
+    bench/paper_questions.py p0-configs (depositions at t = 0, dumps of the continued Fig. 9
+    run), None when they are not there."""
+    from tapmc.pores import percus_yevick_p0
+
+    rows = [r for r in data.p0_configs if r["sigma"] != "phi"]
+    phi = [r for r in data.p0_configs if r["sigma"] == "phi"]
+    if len(rows) < 3 or not phi:
+        return None
+    col = {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+    phi_i, phi_t = float(phi[0]["initial"]), float(phi[0]["tapped"])
+    x = col["sigma"]
+    effect = float(np.max(np.abs(percus_yevick_p0(x, phi_t) - percus_yevick_p0(x, phi_i))))
+    if other == "initial":
+        diff, err = col["initial"] - col["tapped"], np.hypot(col["initial_sem"], col["tapped_sem"])
+        n = np.minimum(col["initial_n"], col["tapped_n"])
+    else:
+        diff = np.asarray(percus_yevick_p0(x, phi_t), float) - col["tapped"]
+        err, n = col["tapped_sem"], col["tapped_n"]
+    out = _pointwise_zero(x, diff, err, n, what, effect)
+    for m in out:
+        m.shown = (m.shown or m.text()) + (
+            f" (P0 over {int(col['initial_n'].min())} depositions and "
+            f"{int(col['tapped_n'].min())} configurations of the tapped packing: "
+            "bench/paper_questions.py p0-configs)")
+    return out
+
+
 def _p0_difference(data, other, what):
     """P0 of the tapped packing against the curve ``other`` of Fig. 9 (the initial packing's,
-    with its sem, or Percus-Yevick's, exact), sigma by sigma (:func:`_pointwise_zero`)."""
+    with its sem, or Percus-Yevick's, exact), sigma by sigma (:func:`_pointwise_zero`). Curves
+    of one realization (the paper's protocol) are compared over the configurations of
+    ``p0-configs`` instead, when there."""
     fig = data.figure("fig9")
     if fig is None:
         return _missing("no Fig. 9 runs")
     final, ref = fig.get("a", "final"), fig.get("a", other)
     if final is None or ref is None:
         return _missing("no P0 curves")
+    if np.nanmax(final[3]) < 2:
+        measured = _p0_configurations(data, other, what)
+        if measured is not None:
+            return measured
     x = final[0]
     ref_err = np.nan_to_num(np.interp(x, ref[0], ref[2]))  # Percus-Yevick: exact
     n = final[3] if other == "percus_yevick" else np.minimum(final[3], ref[3].min())
@@ -925,6 +966,17 @@ def xi_min(data, claim):
     i = int(np.argmin(d[1]))
     return [Measure(float(d[1][i]), float(d[2][i]), _dof(d[3][i]),
                     shown=fmt(d[1][i], d[2][i], digits=4))]
+
+
+def _pore_dof(n, err):
+    """dof of a Fig. 10 value: seeds - 1, or for one seed with its jackknife error the
+    blocks - 1."""
+    from tapmc.pores import JACKKNIFE_BLOCKS
+
+    n = int(np.nanmin(np.atleast_1d(n))) if np.size(n) else 0
+    if n >= 2:
+        return n - 1
+    return JACKKNIFE_BLOCKS ** 2 - 1 if n == 1 and np.all(np.isfinite(err)) else None
 
 
 def _pore_curves(data):
@@ -958,12 +1010,13 @@ def pore_share_change(data, claim):
     b, eb = _band_integral(*last[:3], lo, hi)
     n = min(first[3].min(), last[3].min())
     shown = f"{fmt(a, ea)} (t = {t0:g}) -> {fmt(b, eb)} (t = {t1:g})"
-    if not (np.isfinite(ea) and np.isfinite(eb)) or _dof(n) is None:
+    dof = _pore_dof(n, [ea, eb])
+    if dof is None:
         return [Measure(b - a, shown=shown, undecided="one realization: no error bars")]
     # invariance of the small pores means small against the change of the large ones
     la, _ = _band_integral(*first[:3], P.XI_O, math.inf)
     lb, _ = _band_integral(*last[:3], P.XI_O, math.inf)
-    return [Measure(b - a, math.hypot(ea, eb), _dof(n), shown=shown, effect=abs(lb - la))]
+    return [Measure(b - a, math.hypot(ea, eb), dof, shown=shown, effect=abs(lb - la))]
 
 
 def pore_quadratic_fit(data, claim):
@@ -996,7 +1049,7 @@ def nu_tail_over_nu(data, claim):
     m, s = tail[1][-1] / nu[1][-1], 0.0
     ratio_err = abs(m) * math.hypot(tail[2][-1] / tail[1][-1], nu[2][-1] / nu[1][-1])
     s = ratio_err if np.isfinite(ratio_err) else math.nan
-    return [Measure(float(m), float(s), _dof(min(nu[3][-1], tail[3][-1])),
+    return [Measure(float(m), float(s), _pore_dof(min(nu[3][-1], tail[3][-1]), s),
                     label=f"t = {nu[0][-1]:g}")]
 
 
@@ -1005,7 +1058,8 @@ def nu_change(data, claim):
     if nu is None:
         return _missing("no nu")
     x, m, s, n = nu
-    return [Measure(m[-1] - m[0], math.hypot(s[-1], s[0]), _dof(min(n[0], n[-1])),
+    err = math.hypot(s[-1], s[0])
+    return [Measure(m[-1] - m[0], err, _pore_dof(min(n[0], n[-1]), err),
                     shown=f"{fmt(m[0], s[0], digits=4)} -> {fmt(m[-1], s[-1], digits=4)}")]
 
 

@@ -6,7 +6,9 @@ F.B.C., eps = 2e-2 (``scale.pore_eps``, ``scale.pore_bc``); the packing dumped a
 10, 30, 100, 300, 1000 and 4000 taps (``scale.dump_times``). tapmc-pores gives, in a
 statistics box 2R above the floor and 2R from the walls, 18R high at most (lower when the
 packing is: 80 % of its highest centre), (a) rho_v(xi) = xi^3 P(xi) against xi = r/R and
-(b) rho_v(v) against v = xi^3, mean and standard error over seeds. rho_v(v) is the paper's
+(b) rho_v(v) against v = xi^3, mean and standard error over seeds; with one seed (the paper's
+protocol) the error within its dump from a spatial jackknife (4 x 4 lateral blocks of the
+statistics box, ``tapmc.pores.PoreOutput.jackknife``). rho_v(v) is the paper's
 (section IV.B): rho_v(v) = (xi/3) P(xi) = v n_v(v), with n_v the number density of v, so that
 rho_v(v) dv = xi^3 P(xi) dxi and its integral is nu, not 1 (``tapmc.pores``, module text).
 T and O mark the tetrahedral (xi_T = sqrt(3/2) - 1) and octahedral (xi_O = sqrt(2) - 1) sites.
@@ -43,10 +45,43 @@ def runs(scale, seeds):
             for s in _runs.seed_list(seeds)]
 
 
+def _fitted(fit, key):
+    try:
+        return fit().params[key]
+    except (ValueError, RuntimeError):
+        return None
+
+
+def _statistics(dist):
+    """The per-dump statistics of Fig. 10 of one distribution (a dump, or a jackknife
+    replicate of it): curves, nu, the fits' xi_T and nu_tail, the small and large shares."""
+    return {"xi3_P_xi": dist.xi3_P_xi, "rho_v": dist.rho_v, "nu": dist.nu,
+            "xi_T": _fitted(dist.tetrahedral_law, "xi_T"),
+            "nu_tail": _fitted(dist.volume_tail, "nu_tail"),
+            "small": _integral(dist.xi, dist.xi3_P_xi, P.XI_T, P.XI_O),
+            "large": _integral(dist.xi, dist.xi3_P_xi, P.XI_O, np.inf)}
+
+
+def _jackknife_errors(pores, step):
+    """Errors of :func:`_statistics` within one dump: the spatial jackknife of
+    ``tapmc.pores.PoreOutput.jackknife`` (a statistic a replicate's fit cannot give has none)."""
+    from tapmc.pores import jackknife_error
+
+    replicates = [_statistics(r) for r in pores.jackknife(step)]
+    errors = {}
+    for name in replicates[0]:
+        values = [r[name] for r in replicates]
+        if all(v is not None for v in values):
+            errors[name] = jackknife_error(values)
+    return errors
+
+
 def distributions(campaign, bc=None):
     """dict step -> lists over seeds of xi, xi3_P_xi, v, rho_v (the paper's rho_v(v) =
     v n_v(v)), nu, xi_min (smallest selected pore), xi_T (fitted by
-    ``tapmc.pores.TetrahedralLaw``) and nu_tail (``VolumeTail`` on rho_v)."""
+    ``tapmc.pores.TetrahedralLaw``) and nu_tail (``VolumeTail`` on rho_v); with one seed (the
+    paper's protocol) also ``errors``: name -> the error within the dump from the spatial
+    jackknife (:func:`_jackknife_errors`)."""
     from tapmc.pores import read_pores
 
     specs = _runs.select(campaign, KIND + "_", **({} if bc is None else {"bc": bc}))
@@ -64,12 +99,13 @@ def distributions(campaign, bc=None):
             d["nu"].append([dist.nu])
             sel = (pores.pores["timestep"] == step) & (pores.pores["selected"] == 1)
             d["xi_min"].append([float(pores.pores["xi"][sel].min())])
-            for name, fit, key in (("xi_T", dist.tetrahedral_law, "xi_T"),
-                                   ("nu_tail", dist.volume_tail, "nu_tail")):
-                try:
-                    d[name].append([fit().params[key]])
-                except (ValueError, RuntimeError):
-                    pass
+            for name in ("xi_T", "nu_tail"):
+                value = _fitted(getattr(dist, {"xi_T": "tetrahedral_law",
+                                               "nu_tail": "volume_tail"}[name]), name)
+                if value is not None:
+                    d[name].append([value])
+            if len(specs) == 1:
+                d["errors"] = _jackknife_errors(pores, step)
     return dict(sorted(out.items()))
 
 
@@ -89,8 +125,15 @@ def draw(campaign, out_dir):
     for (step, d), color in zip(data.items(), colors):
         xi = d["xi"][0]
         v = d["v"][0]
-        rxi = P.seed_stats(d["xi3_P_xi"])
-        rv = P.seed_stats(d["rho_v"])
+        errors = d.get("errors", {})
+
+        def stats(name, samples):
+            """mean, sem, n over seeds; one seed: the jackknife error within its dump"""
+            m, s, n = P.seed_stats(samples)
+            return (m, np.atleast_1d(errors[name]), n) if name in errors else (m, s, n)
+
+        rxi = stats("xi3_P_xi", d["xi3_P_xi"])
+        rv = stats("rho_v", d["rho_v"])
         means[step] = (xi, rxi[0])
         label = f"t = {step}"
         P.errorbars(ax_xi, xi, rxi[0], rxi[1], label=label, color=color, lw=0.9)
@@ -100,12 +143,11 @@ def draw(campaign, out_dir):
         for name in ("nu", "xi_min", "xi_T", "nu_tail"):
             if not d.get(name):
                 continue
-            m, s, n = P.seed_stats(d[name])
+            m, s, n = stats(name, d[name])
             table.add("params", name, step, m[0], s[0], n[0])
-        table.add("params", "small", step, _integral(xi, rxi[0], P.XI_T, P.XI_O), None,
-                  len(d["nu"]))
-        table.add("params", "large", step, _integral(xi, rxi[0], P.XI_O, np.inf), None,
-                  len(d["nu"]))
+        for name, lo, hi in (("small", P.XI_T, P.XI_O), ("large", P.XI_O, np.inf)):
+            table.add("params", name, step, _integral(xi, rxi[0], lo, hi), errors.get(name),
+                      len(d["nu"]))
     steps = list(means)
     xi, first = means[steps[0]]
     last = means[steps[-1]][1]

@@ -16,6 +16,8 @@ committed data.
   the packing looser than it started or still compacting at the end.
 * ``initial_packing.csv``: the initial P.B.C. packing of several depositions at t = 0: the
   spread between packings that a campaign started from one packing hides.
+* ``p0_configs.csv``: Fig. 9's P0(sigma) over several depositions and several configurations
+  of the tapped packing: the error bars that decide Fig. 9's two comparisons.
 * the final <Phi^c> of Fig. 9's run carried to every redeposition setting of the
   run-time-versus-error front (its ``front_summary.csv``): which thresholds the paper's 60.6 %
   fits.
@@ -176,6 +178,40 @@ def _initial_packing(path):
             f"{100 * PAPER_INITIAL_PHI_C:.1f} % is one packing's, {away:+.1f} spreads of one "
             "packing from the mean: the claim's row compares it with that prediction interval.",
             ""]
+
+
+#: the tapped configurations count as independent when their P0 scatter is at least this
+#: share of the independent depositions' (a smaller scatter means correlated configurations,
+#: and error bars too small by about the square root of the ratio)
+P0_INDEPENDENT_SHARE = 0.5
+
+
+def _p0_configs(path):
+    rows = _read(path)
+    data = [r for r in rows if r["sigma"] != "phi"]
+    phi = [r for r in rows if r["sigma"] == "phi"]
+    if len(data) < 3 or not phi:
+        return []
+    col = {k: np.array([float(r[k]) for r in data]) for k in data[0]}
+    n_i, n_t = int(col["initial_n"].min()), int(col["tapped_n"].min())
+    # scatter of one configuration about the mean, summed over sigma, tapped over initial
+    spread = {k: float(np.sqrt(np.sum((col[f"{k}_sem"] ** 2) * col[f"{k}_n"])))
+              for k in ("initial", "tapped")}
+    ratio = spread["tapped"] / spread["initial"] if spread["initial"] > 0 else math.nan
+    p = phi[0]
+    independent = ratio >= P0_INDEPENDENT_SHARE
+    return [f"Fig. 9's P0(sigma) with error bars (``p0_configs.csv``): {n_i} depositions at "
+            f"t = 0 (Phi seen by the points {fmt(float(p['initial']), float(p['initial_sem']), True)}"
+            f") and {n_t} configurations of the tapped packing, the Fig. 9 run continued at its "
+            f"eps one dump every 100 taps ({fmt(float(p['tapped']), float(p['tapped_sem']), True)}"
+            "). One tapped configuration scatters about the mean "
+            f"{ratio:.2f} times as much as one deposition: "
+            + ("the configurations are about as different as independent packings, and their "
+               "sem is the error of the tapped curve." if independent else
+               "the configurations are correlated; their sem underestimates the error of the "
+               "tapped curve, and a disagreement found with it is not conclusive."),
+            "The claims' rows of Fig. 9 compare the curves sigma by sigma with these errors "
+            "(Bonferroni-corrected t over the sigma points).", ""]
 
 
 def _pbc_course(path):
@@ -541,6 +577,8 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
         parts += _pbc_course(folder / "pbc_course.csv")
     if (folder / "initial_packing.csv").is_file():
         parts += _initial_packing(folder / "initial_packing.csv")
+    if (folder / "p0_configs.csv").is_file():
+        parts += _p0_configs(folder / "p0_configs.csv")
     from .claims import SCANS, scan_files
 
     for knob in SCANS:
@@ -557,6 +595,7 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
     commands = "``first-tap``, ``noise-floor``, ``spectral-window``" + (
         ", ``pbc-course``" if (folder / "pbc_course.csv").is_file() else "") + (
         ", ``initial-packing``" if (folder / "initial_packing.csv").is_file() else "") + (
+        ", ``p0-configs``" if (folder / "p0_configs.csv").is_file() else "") + (
         "".join(f", ``{k}``" for k in ("theta0", "dmax") if any(folder.glob(f"{k}*.csv")))) + (
         ", ``p0-fluid``" if (folder / "p0_fluid.csv").is_file() else "")
     return [title, "-" * len(title), "",
