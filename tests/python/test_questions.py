@@ -222,3 +222,34 @@ def test_p0_configs_says_whether_the_tapped_configurations_are_independent(tmp_p
     _p0_configs_csv(tmp_path, 0.0004)
     text = "\n".join(questions.render_section(tmp_path))
     assert "0.20 times" in text and "the configurations are correlated" in text
+
+
+def _fig10(small, large, power=2.0, xi_t_fit=(0.2166, 0.002)):
+    import numpy as np
+
+    xi = np.linspace(0.005, 0.995, 100)
+    curve = np.where(xi > claims.P.XI_T, np.abs(xi - claims.P.XI_T) ** power, 0.0) * 3.0
+    table = {("a", "t=0"): {"x": list(xi), "mean": list(curve), "sem": [0.003] * 100,
+                            "n": [1] * 100},
+             ("a", "t=4000"): {"x": list(xi), "mean": list(curve), "sem": [0.003] * 100,
+                               "n": [1] * 100}}
+    for name, (a, b) in (("small", small), ("large", large)):
+        table[("params", name)] = {"x": [0, 4000], "mean": [a, b], "sem": [0.0003, 0.0003],
+                                   "n": [1, 1]}
+    table[("params", "xi_T")] = {"x": [0, 4000], "mean": [xi_t_fit[0]] * 2,
+                                 "sem": [xi_t_fit[1]] * 2, "n": [1, 1]}
+    return claims.FigureData(table)
+
+
+def test_pores_small_against_large_and_the_quadratic_law(tmp_path):
+    first_tap_csv(tmp_path, -0.012, -0.010)      # the section needs one question CSV
+    text = "\n".join(questions.render_section(
+        tmp_path, {"fig10": _fig10((0.0151, 0.0193), (0.106, 0.072))}))
+    assert "Are the small pores (xi_T to xi_O) unaffected by the taps" in text
+    assert "moves 8.1 times less" in text and "about as much" in text
+    assert "departs from the histogram by 0.0 % rms" in text and "a fair description" in text
+    assert "4.1 errors below the tetrahedral site" in text
+    text = "\n".join(questions.render_section(
+        tmp_path, {"fig10": _fig10((0.0151, 0.0155), (0.106, 0.072), power=0.5)}))
+    assert "much less: the taps act on the large pores" in text
+    assert "not a fair description of the shape" in text

@@ -1019,22 +1019,53 @@ def pore_share_change(data, claim):
     return [Measure(b - a, math.hypot(ea, eb), dof, shown=shown, effect=abs(lb - la))]
 
 
+def _quadratic_law(x, y, s):
+    """Weighted fit of c (xi - xi_T)^2 to the bins of (xi_T, xi_O] with error bars: (pick,
+    basis, c), None when fewer than three such bins."""
+    pick = (x > P.XI_T) & (x <= P.XI_O) & np.isfinite(s) & (s > 0)
+    if pick.sum() < 3:
+        return None
+    basis = (x[pick] - P.XI_T) ** 2
+    w = 1 / s[pick] ** 2
+    return pick, basis, float(np.sum(w * basis * y[pick]) / np.sum(w * basis**2))
+
+
 def pore_quadratic_fit(data, claim):
     """Chi-square of xi^3 P(xi) = c (xi - xi_T)^2 over (xi_T, xi_O] at the last dump."""
     curves = _pore_curves(data)
     if curves is None:
         return _missing("no pore dumps")
     t, (x, y, s, n) = curves[-1]
-    pick = (x > P.XI_T) & (x <= P.XI_O) & np.isfinite(s) & (s > 0)
-    if pick.sum() < 3:
+    law = _quadratic_law(x, y, s)
+    if law is None:
         return [Measure(undecided="fewer than three histogram bins with error bars between "
                                   "xi_T and xi_O")]
-    basis, yy, ss = (x[pick] - P.XI_T) ** 2, y[pick], s[pick]
-    w = 1 / ss**2
-    c = float(np.sum(w * basis * yy) / np.sum(w * basis**2))
+    pick, basis, c = law
     dof = int(pick.sum()) - 1
-    chi = float(np.sum(w * (yy - c * basis) ** 2)) / dof
+    chi = float(np.sum((y[pick] - c * basis) ** 2 / s[pick] ** 2)) / dof
     return [Measure(chi, dof=dof, shown=f"reduced chi2 {fmt(chi)} ({dof} dof, t = {t:g})")]
+
+
+def pore_law_deviation(fig10):
+    """How far the fitted c (xi - xi_T)^2 departs from xi^3 P(xi) at the last dump, relative to
+    the histogram's largest value in (xi_T, xi_O] (the scale of the figure; bins near xi_T,
+    where the curve starts from zero, would make relative deviations meaningless): dict t,
+    bins, rms, max, at (xi of the largest), error (median bin error on the same scale); None
+    without bins with error bars."""
+    curves = None if fig10 is None else _pore_curves(ReportData({}, {"fig10": fig10}))
+    if not curves:
+        return None
+    t, (x, y, s, n) = curves[-1]
+    law = _quadratic_law(x, y, s)
+    if law is None:
+        return None
+    pick, basis, c = law
+    scale = float(np.max(y[pick]))
+    rel = (y[pick] - c * basis) / scale
+    k = int(np.argmax(np.abs(rel)))
+    return {"t": t, "bins": int(pick.sum()), "rms": float(np.sqrt(np.mean(rel**2))),
+            "max": float(np.abs(rel[k])), "at": float(x[pick][k]),
+            "error": float(np.median(s[pick]) / scale)}
 
 
 def _pore_param(data, name):
