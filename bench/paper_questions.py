@@ -37,6 +37,14 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               100 taps (taps 4100 to 4800). Mean, sem and n of P0(sigma) for both, and the
               volume fraction the points see.
 
+  lateral-first-tap
+              Does the first tap compact the lateral zone of the paper's F.B.C. start (section
+              IV.A, Fig. 8: delta Phi_lateral jumps at t = 1)? The campaign's F.B.C. runs start
+              from packings deposited between the walls; this builds the paper's start
+              (periodic deposition, walls, slight agitation: in.constant_eps fbc_start =
+              paper) at N = 4096, L = 32R for seeds 1-4 and taps it 5 times at each eps of
+              Fig. 8 (0.005, 0.02, 0.05, 0.1): the lateral and central zone means at t = 0..5.
+
   pbc-course  How long does the dip of <Phi^c> after the first taps last, and does the
               packing loosen at strong taps (eps >= 0.09)? From every finished P.B.C.
               constant-eps run of the paper-scale campaign (no simulation: its taps.dat):
@@ -78,6 +86,7 @@ Usage (from the repository; minutes on one core, run under nice):
     bench/paper_questions.py pbc-course [--out DIR] [--campaign DIR]
     bench/paper_questions.py initial-packing [--out DIR] [--lmp EXE] [--seeds 1 2 ...]
     bench/paper_questions.py p0-configs [--out DIR] [--lmp EXE] [--restart FILE] [--work DIR]
+    bench/paper_questions.py lateral-first-tap [--out DIR] [--lmp EXE] [--seeds 1 2 3 4]
     bench/paper_questions.py theta0 [--out DIR] [--lmp EXE] [--seeds 1 2 3 4]
                                     [--stop change|drift] [--eta 1e-7] [--N 1024]
     bench/paper_questions.py dmax   (the same options as theta0)
@@ -276,6 +285,30 @@ def p0_configs(args):
         import shutil
 
         shutil.rmtree(work, ignore_errors=True)
+
+
+#: Fig. 8's eps (the full scale's profile_eps) and the taps run from the paper's F.B.C. start
+LATERAL_EPS = (0.005, 0.02, 0.05, 0.1)
+LATERAL_TAPS = 5
+
+
+def lateral_first_tap(args):
+    lmp = lmp_command(args.lmp)
+    rows = []
+    for eps in LATERAL_EPS:
+        for seed in args.seeds:
+            with tempfile.TemporaryDirectory() as folder:
+                taps = run(lmp, folder, dict(PAPER, bc="fbc", fbc_start="paper", eps=eps,
+                                             seed=seed, taps=LATERAL_TAPS, rsteps=1000000))
+            # columns of taps.dat: step phi_b phi_c Z z_top lateral central h_s sweeps ...
+            for row in taps:
+                rows.append([eps, seed, int(row[0]), f"{row[5]:.8f}", f"{row[6]:.8f}",
+                             f"{row[2]:.8f}"])
+            print(f"eps {eps:g} seed {seed}: delta Phi_lateral at t = 1: "
+                  f"{taps[1, 5] - taps[0, 5]:+.4f}, central {taps[1, 6] - taps[0, 6]:+.4f}",
+                  flush=True)
+    write_csv(Path(args.out) / "lateral_first_tap.csv",
+              ["eps", "seed", "t", "lateral", "central", "phi_c"], rows)
 
 
 def scan_file_name(stem, stop, N):
@@ -592,11 +625,13 @@ def main(argv=None):
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
     for name in ("first-tap", "noise-floor", "spectral-window", "pbc-course", "initial-packing",
-                 "p0-configs", "theta0", "dmax", "p0-fluid"):
+                 "p0-configs", "lateral-first-tap", "theta0", "dmax", "p0-fluid"):
         p = sub.add_parser(name)
         p.add_argument("--out", default=DEFAULT_OUT, type=Path)
         p.add_argument("--lmp", default=None)
     sub.choices["first-tap"].add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
+    sub.choices["lateral-first-tap"].add_argument("--seeds", type=int, nargs="+",
+                                                  default=[1, 2, 3, 4])
     sub.choices["initial-packing"].add_argument("--seeds", type=int, nargs="+",
                                                 default=list(INITIAL_SEEDS))
     for name in ("theta0", "dmax"):
@@ -628,7 +663,8 @@ def main(argv=None):
             parser.error(f"--phi values must be in [0.01, 0.58], got {args.phi}")
     {"first-tap": first_tap, "noise-floor": noise_floor,
      "spectral-window": spectral_window, "pbc-course": pbc_course,
-     "initial-packing": initial_packing, "p0-configs": p0_configs, "theta0": theta0_scan, "dmax": dmax_scan,
+     "initial-packing": initial_packing, "p0-configs": p0_configs,
+     "lateral-first-tap": lateral_first_tap, "theta0": theta0_scan, "dmax": dmax_scan,
      "p0-fluid": p0_fluid}[args.command](args)
 
 

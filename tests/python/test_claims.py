@@ -664,14 +664,16 @@ def test_one_initial_packing_is_decided_by_the_depositions_of_its_size():
              "fields": None, "initial_phi_c": [0.5829, None, 1]}
     claim = BY_ID["phi-initial"]
     spread = 0.5827 + 0.0008 * np.linspace(-1.6, 1.6, 20)
-    data = claims.ReportData(paper, {}, initial_packings=_packings(spread))
+    data = claims.ReportData(paper, {}, questions={"initial_packing": _packings(spread)})
     (m,) = claims.initial_phi(data, claim)
     assert m.dof == 19 and "over 20 depositions" in m.text() and "58.29 %" in m.text()
     assert m.err > np.std(spread, ddof=1)           # one packing's spread is in the interval
     assert claims.verdict(claim, m) == "agrees"     # 58.27 % vs 58.4 %: within one packing's spread
-    tight = claims.ReportData(paper, {}, initial_packings=_packings(0.5800 + 0.00005 * np.arange(20)))
+    tight = claims.ReportData(
+        paper, {}, questions={"initial_packing": _packings(0.5800 + 0.00005 * np.arange(20))})
     assert claims.verdict(claim, claims.initial_phi(tight, claim)[0]) == "disagrees"
-    other = claims.ReportData(paper, {}, initial_packings=_packings(spread, N=1024, L=16))
+    other = claims.ReportData(
+        paper, {}, questions={"initial_packing": _packings(spread, N=1024, L=16)})
     (m,) = claims.initial_phi(other, claim)
     assert claims.verdict(claim, m).startswith("undecided")
 
@@ -699,12 +701,12 @@ def test_one_realization_p0_curves_are_decided_over_configurations():
     one_run.add("a", "initial", sigma, py(0.582)(sigma), None, n=1)
     one_run.add("a", "percus_yevick", sigma, py(0.604)(sigma), None, n=0)
     same = claims.ReportData(report().summary, {"fig9": one_run.data()},
-                             p0_configs=_p0_rows(py(0.604), py(0.604), 1e-4))
+                             questions={"p0_configs": _p0_rows(py(0.604), py(0.604), 1e-4)})
     (m,) = claims.p0_initial_minus_final(same, BY_ID["p0-insensitive"])
     assert "8 depositions and 8 configurations" in m.text()
     assert claims.verdict(BY_ID["p0-insensitive"], m) == "agrees"
     own_phi = claims.ReportData(report().summary, {"fig9": one_run.data()},
-                                p0_configs=_p0_rows(py(0.582), py(0.604), 1e-4))
+                                questions={"p0_configs": _p0_rows(py(0.582), py(0.604), 1e-4)})
     (m,) = claims.p0_initial_minus_final(own_phi, BY_ID["p0-insensitive"])
     assert claims.verdict(BY_ID["p0-insensitive"], m) == "disagrees"
     (m,) = claims.p0_final_minus_py(own_phi, BY_ID["p0-percus-yevick"])
@@ -728,3 +730,30 @@ def test_one_pore_dump_is_decided_by_its_jackknife_error():
     bare = Table().add("params", "nu", [0, 4000], [0.1208, 0.0913], None, n=1)
     (m,) = claims.nu_change(report(fig10=bare), BY_ID["nu-decreases"])
     assert claims.verdict(BY_ID["nu-decreases"], m).startswith("undecided")
+
+
+def test_lateral_first_tap_from_the_measured_paper_start():
+    """Without paper-start runs in the campaign, the first taps of lateral-first-tap decide
+    the jump of delta Phi_lateral at t = 1, per eps over its seeds."""
+    claim = BY_ID["lateral-first-tap-jump"]
+
+    def rows(jump):
+        out = []
+        for eps in (0.005, 0.1):
+            for seed, noise in ((1, -0.0004), (2, 0.0), (3, 0.0004)):
+                out += [{"eps": f"{eps}", "seed": f"{seed}", "t": "0", "lateral": "0.560"},
+                        {"eps": f"{eps}", "seed": f"{seed}", "t": "1",
+                         "lateral": f"{0.560 + jump + noise}"}]
+        return out
+
+    walls_only = fig8(0.01, 0.02)                 # the campaign's start, between walls
+    jumps = claims.ReportData(report().summary, {"fig8": walls_only.data()},
+                              questions={"lateral_first_tap": rows(0.01)})
+    measures = claims.lateral_first_tap(jumps, claim)
+    assert [m.label for m in measures] == ["eps = 0.005", "eps = 0.1"]
+    assert all(claims.verdict(claim, m) == "agrees" for m in measures)
+    assert "3 seeds: bench/paper_questions.py lateral-first-tap" in measures[0].text()
+    dips = claims.ReportData(report().summary, {"fig8": walls_only.data()},
+                             questions={"lateral_first_tap": rows(-0.01)})
+    assert all(claims.verdict(claim, m) == "disagrees"
+               for m in claims.lateral_first_tap(dips, claim))

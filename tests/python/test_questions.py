@@ -253,3 +253,32 @@ def test_pores_small_against_large_and_the_quadratic_law(tmp_path):
         tmp_path, {"fig10": _fig10((0.0151, 0.0155), (0.106, 0.072), power=0.5)}))
     assert "much less: the taps act on the large pores" in text
     assert "not a fair description of the shape" in text
+
+
+def test_p0_configs_compares_the_difference_with_percus_yevicks_change(tmp_path):
+    import numpy as np
+    from tapmc.pores import percus_yevick_p0
+
+    sigma = np.linspace(0, 2, 41)
+    for tapped_phi, words in ((0.604, "about as their packing fractions predict"),
+                              (0.583, "much less than their packing fractions predict")):
+        lines = ["sigma,initial,initial_sem,initial_n,tapped,tapped_sem,tapped_n"]
+        lines += [f"{x},{percus_yevick_p0(x, 0.582)},0.001,8,{percus_yevick_p0(x, tapped_phi)},"
+                  "0.001,8" for x in sigma]
+        lines.append("phi,0.582,0.0005,8,0.604,0.0005,8")
+        (tmp_path / "p0_configs.csv").write_text("\n".join(lines) + "\n")
+        text = "\n".join(questions.render_section(tmp_path))
+        assert words in text, text
+
+
+def test_lateral_first_tap_table_and_reading(tmp_path):
+    lines = ["eps,seed,t,lateral,central,phi_c"]
+    for eps in (0.005, 0.1):
+        for seed in (1, 2, 3):
+            for t, lat, cen in ((0, 0.550, 0.570), (1, 0.560, 0.571), (5, 0.562, 0.572)):
+                lines.append(f"{eps},{seed},{t},{lat + 0.0001 * seed},{cen},0.58")
+    (tmp_path / "lateral_first_tap.csv").write_text("\n".join(lines) + "\n")
+    text = "\n".join(questions.render_section(tmp_path))
+    assert "``lateral-first-tap``" in text and "tapped 5 times at each eps" in text
+    assert "gains at the first tap at every eps, more than the central zone" in text
+    assert "looser than the central zone by 1.98 %" in text

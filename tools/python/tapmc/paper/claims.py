@@ -193,23 +193,31 @@ class FigureData:
         return [s for (p, s) in self.table if p == panel]
 
 
+#: stems of the CSVs of bench/paper_questions.py (in the report's ``questions`` folder) that
+#: decide claims of one-run campaigns: depositions at t = 0 (initial-packing), P0 over several
+#: configurations (p0-configs), the first taps from the paper's F.B.C. start (lateral-first-tap)
+QUESTION_CSVS = ("initial_packing", "p0_configs", "lateral_first_tap")
+
+
 class ReportData:
     """The inputs of the report: ``figures`` (name -> :class:`FigureData`), the campaign
     ``summary`` (tapmc.paper.validation.campaign_summary) and ``front``, the rows of the
     run-time-versus-error front (tapmc.paper.front.read_summary; empty: not measured)."""
 
-    def __init__(self, summary, figures, front=(), scans=None, initial_packings=(),
-                 p0_configs=()):
+    def __init__(self, summary, figures, front=(), scans=None, questions=None):
         """``scans``: knob (``theta0``, ``dmax``) -> its scans, each the rows of one CSV of
-        bench/paper_questions.py (:data:`SCANS`); ``initial_packings``: the rows of its
-        ``initial_packing.csv`` (depositions measured at t = 0); ``p0_configs``: the rows of
-        its ``p0_configs.csv`` (P0 over several configurations of both packings)."""
+        bench/paper_questions.py (:data:`SCANS`); ``questions``: the rows of its other CSVs
+        that decide claims a campaign of one run per point cannot (:data:`QUESTION_CSVS`), by
+        file stem."""
         self.summary = summary
         self.figures = figures
         self.front = list(front)
         self.scans = {knob: list((scans or {}).get(knob, ())) for knob in SCANS}
-        self.initial_packings = list(initial_packings)
-        self.p0_configs = list(p0_configs)
+        self.questions = {stem: list(rows) for stem, rows in (questions or {}).items()}
+
+    def question(self, stem):
+        """The rows of bench/paper_questions.py's ``<stem>.csv`` ([] when not measured)."""
+        return self.questions.get(stem, [])
 
     @classmethod
     def from_files(cls, summary, files):
@@ -218,16 +226,15 @@ class ReportData:
         figure CSVs (bench/paper_questions.py theta0 / dmax), when there."""
         from .front import read_summary
 
-        scans, extra = {}, {}
+        scans, questions = {}, {}
         if files:
             folder = Path(next(iter(files.values()))[1]).parent / "questions"
             scans = {knob: [read_scan(path) for path in scan_files(folder, knob)]
                      for knob in SCANS}
-            extra = {key: read_scan(folder / name) for key, name in
-                     (("initial_packings", INITIAL_PACKINGS), ("p0_configs", P0_CONFIGS))
-                     if (folder / name).is_file()}
+            questions = {stem: read_scan(folder / f"{stem}.csv") for stem in QUESTION_CSVS
+                         if (folder / f"{stem}.csv").is_file()}
         return cls(summary, {name: FigureData.read(paths[1]) for name, paths in files.items()},
-                   read_summary(), scans, **extra)
+                   read_summary(), scans, questions)
 
     def figure(self, name):
         return self.figures.get(name)
@@ -299,10 +306,6 @@ def _mean_difference(a, b):
 # ---------------------------------------------------------------- statistics
 
 
-#: bench/paper_questions.py initial-packing's and p0-configs' CSVs, in the report's questions
-#: folder
-INITIAL_PACKINGS = "initial_packing.csv"
-P0_CONFIGS = "p0_configs.csv"
 
 
 def initial_phi(data, claim):
@@ -312,7 +315,7 @@ def initial_phi(data, claim):
     error combined with the spread of single packings (a prediction interval)."""
     m, s, n = (math.nan if v is None else v for v in data.summary["initial_phi_c"])
     sizes = {(int(N), float(L)) for N, L in data.summary.get("sizes") or ()}
-    phis = np.array([float(r["phi_c"]) for r in data.initial_packings
+    phis = np.array([float(r["phi_c"]) for r in data.question("initial_packing")
                      if r["bc"] == "pbc" and (int(r["N"]), float(r["L"])) in sizes])
     if len(phis) >= 2 and not (np.isfinite(n) and n >= len(phis)):
         mean, sd = float(phis.mean()), float(phis.std(ddof=1))
@@ -846,6 +849,8 @@ def lateral_first_tap(data, claim):
         return _missing("no Fig. 8 runs")
     paper_start = [(e, s) for e, s in ((_eps_of(s), s) for s in fig.series("a")
                                        if s.startswith("paper:eps="))]
+    if not paper_start and data.question("lateral_first_tap"):
+        return _lateral_first_tap_measured(data.question("lateral_first_tap"))
     if not paper_start:
         values = []
         for eps, series in _eps_series(fig, "a"):
@@ -862,6 +867,26 @@ def lateral_first_tap(data, claim):
         k = int(np.argmax(t == 1))
         out.append(Measure(mean[k], sem[k], _dof(n[k]), label=f"eps = {eps:g}"))
     return out or _missing("no tap 1 in the paper-start curves")
+
+
+def _lateral_first_tap_measured(rows):
+    """delta Phi_lateral at t = 1 per eps over the seeds of bench/paper_questions.py
+    lateral-first-tap (the paper's F.B.C. start, taps from t = 0)."""
+    per = {}
+    for r in rows:
+        per.setdefault(float(r["eps"]), {}).setdefault(int(r["seed"]), {})[int(r["t"])] = \
+            float(r["lateral"])
+    out = []
+    for eps, seeds in sorted(per.items()):
+        jumps = np.array([t[1] - t[0] for t in seeds.values() if 0 in t and 1 in t])
+        if len(jumps) == 0:
+            continue
+        sem = float(jumps.std(ddof=1) / math.sqrt(len(jumps))) if len(jumps) > 1 else math.nan
+        out.append(Measure(float(jumps.mean()), sem, _dof(len(jumps)), label=f"eps = {eps:g}",
+                           shown=f"{fmt(float(jumps.mean()), sem)} (the paper's start, "
+                                 f"{len(jumps)} seeds: bench/paper_questions.py "
+                                 "lateral-first-tap)"))
+    return out or _missing("no tap 1 from the paper's start")
 
 
 def _pointwise_zero(x, diff, err, n, what, effect):
@@ -903,8 +928,8 @@ def _p0_configurations(data, other, what):
     run), None when they are not there."""
     from tapmc.pores import percus_yevick_p0
 
-    rows = [r for r in data.p0_configs if r["sigma"] != "phi"]
-    phi = [r for r in data.p0_configs if r["sigma"] == "phi"]
+    rows = [r for r in data.question("p0_configs") if r["sigma"] != "phi"]
+    phi = [r for r in data.question("p0_configs") if r["sigma"] == "phi"]
     if len(rows) < 3 or not phi:
         return None
     col = {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}

@@ -18,6 +18,8 @@ committed data.
   spread between packings that a campaign started from one packing hides.
 * ``p0_configs.csv``: Fig. 9's P0(sigma) over several depositions and several configurations
   of the tapped packing: the error bars that decide Fig. 9's two comparisons.
+* ``lateral_first_tap.csv``: the first taps from the paper's F.B.C. start (periodic
+  deposition, walls, slight agitation), which the campaign's F.B.C. runs do not use.
 * Fig. 10's pores (its CSV, no measurement of its own): how much the small pores change
   against the large ones, and how closely (xi - xi_T)^2 follows xi^3 P(xi) between xi_T and
   xi_O, the two pore claims a precise single run rejects.
@@ -210,6 +212,13 @@ def _p0_configs(path):
     ratio = spread["tapped"] / spread["initial"] if spread["initial"] > 0 else math.nan
     p = phi[0]
     independent = ratio >= P0_INDEPENDENT_SHARE
+    from tapmc.pores import percus_yevick_p0
+
+    gap = np.abs(col["initial"] - col["tapped"])
+    k = int(np.argmax(gap))
+    diff = float(gap[k])
+    predicted = float(np.max(np.abs(percus_yevick_p0(col["sigma"], float(p["tapped"]))
+                                    - percus_yevick_p0(col["sigma"], float(p["initial"])))))
     return [f"Fig. 9's P0(sigma) with error bars (``p0_configs.csv``): {n_i} depositions at "
             f"t = 0 (Phi seen by the points {fmt(float(p['initial']), float(p['initial_sem']), True)}"
             f") and {n_t} configurations of the tapped packing, the Fig. 9 run continued at its "
@@ -221,7 +230,17 @@ def _p0_configs(path):
                "the configurations are correlated; their sem underestimates the error of the "
                "tapped curve, and a disagreement found with it is not conclusive."),
             "The claims' rows of Fig. 9 compare the curves sigma by sigma with these errors "
-            "(Bonferroni-corrected t over the sigma points).", ""]
+            "(Bonferroni-corrected t over the sigma points).",
+            f"The two packings' curves differ by at most {fmt(diff, None)} (sigma = "
+            f"{col['sigma'][k]:.3g}); Percus-Yevick predicts a change of at most "
+            f"{fmt(predicted, None)} between their Phi: the measured difference is "
+            f"{100 * diff / predicted:.0f} % of it. "
+            + ("The curves differ about as their packing fractions predict: at these errors "
+               "the paper's 'no significant difference' does not hold; the change is small "
+               "against P0 itself (a few % of it near sigma = 1), which a plot hardly shows."
+               if diff >= 0.5 * predicted else
+               "The curves differ much less than their packing fractions predict, as the paper "
+               "says."), ""]
 
 
 def _relative_change(a, ea, b, eb):
@@ -276,6 +295,57 @@ def _pores(fig10):
                      "but not the law of the data at their precision, which the fit rule "
                      "tests." if law["rms"] < LAW_FAIR_DEVIATION else
                      "not a fair description of the shape.") + onset, ""]
+    return lines
+
+
+def _lateral_first_tap(path, fig8=None):
+    rows = _read(path)
+    per = defaultdict(lambda: defaultdict(dict))
+    for r in rows:
+        per[float(r["eps"])][int(r["seed"])][int(r["t"])] = (float(r["lateral"]),
+                                                             float(r["central"]))
+    if not per:
+        return []
+    last = min(max(t) for seeds in per.values() for t in seeds.values())
+    lines = ["Does the first tap compact the lateral zone of the paper's F.B.C. start (Fig. 8)? "
+             "The campaign's F.B.C. runs start from packings deposited between the walls; the "
+             "paper's start (periodic deposition, then the walls and a slight agitation) tapped "
+             f"{last} times at each eps (``lateral_first_tap.csv``; delta Phi against t = 0, "
+             "mean ± sem over seeds):", "",
+             ".. list-table::", "   :header-rows: 1", "",
+             "   * - eps", "     - seeds", "     - delta Phi_lateral, t = 1",
+             "     - delta Phi_central, t = 1", f"     - delta Phi_lateral, t = {last}"]
+
+    def stat(values):
+        v = np.asarray(values)
+        return fmt(float(v.mean()), float(v.std(ddof=1) / math.sqrt(len(v)))
+                   if len(v) > 1 else None)
+
+    looser = float(np.mean([t[0][1] - t[0][0] for seeds in per.values()
+                            for t in seeds.values()]))
+    jumps, more = {}, True
+    for eps, seeds in sorted(per.items()):
+        lat1 = [t[1][0] - t[0][0] for t in seeds.values()]
+        jumps[eps] = float(np.mean(lat1))
+        more &= jumps[eps] > float(np.mean([t[1][1] - t[0][1] for t in seeds.values()]))
+        lines += [f"   * - {eps:g}", f"     - {len(seeds)}", f"     - {stat(lat1)}",
+                  f"     - {stat([t[1][1] - t[0][1] for t in seeds.values()])}",
+                  f"     - {stat([t[last][0] - t[0][0] for t in seeds.values()])}"]
+    walls = []
+    if fig8 is not None:
+        for s in fig8.series("a"):
+            if s.startswith("eps="):
+                t, mean, _, _ = fig8.get("a", s)
+                if np.any(t == 1):
+                    walls.append(f"{mean[t == 1][0]:+.4f} at eps = {s.split('=')[1]}")
+    lines += ["", "From the paper's start the lateral zone "
+              + ("gains at the first tap at every eps" if all(j > 0 for j in jumps.values())
+                 else "does not gain at the first tap at every eps")
+              + (", more than the central zone" if more else ", not more than the central zone")
+              + (f" (at t = 0 it is looser than the central zone by {fmt(looser, None, True)}: "
+                 "the start's walls are under-populated)" if looser > 0 else "")
+              + (f"; from the start deposited between the walls it changes by "
+                 f"{', '.join(walls)} instead" if walls else "") + ".", ""]
     return lines
 
 
@@ -644,6 +714,9 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
         parts += _initial_packing(folder / "initial_packing.csv")
     if (folder / "p0_configs.csv").is_file():
         parts += _p0_configs(folder / "p0_configs.csv")
+    if (folder / "lateral_first_tap.csv").is_file():
+        parts += _lateral_first_tap(folder / "lateral_first_tap.csv",
+                                    (figures or {}).get("fig8"))
     from .claims import SCANS, scan_files
 
     for knob in SCANS:
@@ -662,6 +735,7 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
         ", ``pbc-course``" if (folder / "pbc_course.csv").is_file() else "") + (
         ", ``initial-packing``" if (folder / "initial_packing.csv").is_file() else "") + (
         ", ``p0-configs``" if (folder / "p0_configs.csv").is_file() else "") + (
+        ", ``lateral-first-tap``" if (folder / "lateral_first_tap.csv").is_file() else "") + (
         "".join(f", ``{k}``" for k in ("theta0", "dmax") if any(folder.glob(f"{k}*.csv")))) + (
         ", ``p0-fluid``" if (folder / "p0_fluid.csv").is_file() else "")
     return [title, "-" * len(title), "",
