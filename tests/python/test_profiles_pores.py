@@ -442,3 +442,30 @@ def test_jackknife_error_of_a_mean_is_its_standard_error():
     x = np.random.default_rng(5).normal(size=40)
     reps = [(x.sum() - xi) / (len(x) - 1) for xi in x]
     assert jackknife_error(reps) == pytest.approx(x.std(ddof=1) / np.sqrt(len(x)), rel=1e-12)
+
+
+def test_slab_fractions_of_a_lattice_and_the_profile_jackknife():
+    # A simple cubic lattice of touching spheres (spacing 2R) fills pi/6 of space: every slab
+    # one period thick holds exactly that fraction, whatever its offset; the jackknife of a
+    # laterally uniform packing has replicates equal to the profile and zero error.
+    from tapmc.fluctuations import jackknife_error
+    from tapmc.profiles import slab_fractions, vertical_profile_jackknife
+
+    R, n = 0.5, 8
+    g = (np.arange(n) + 0.5) * 2 * R
+    x, y, z = np.meshgrid(g, g, g, indexing="ij")
+    pos = np.stack([x.ravel(), y.ravel(), z.ravel()], axis=1)
+    edges = np.array([1.0, 3.0, 5.0, 7.0]) + 0.37      # period-thick slabs, any offset
+    area = (n * 2 * R) ** 2
+    np.testing.assert_allclose(slab_fractions(pos[:, 2], R, edges, area), np.pi / 6, rtol=1e-12)
+    full, reps = vertical_profile_jackknife(pos, R, edges, [0, 0, 0], [n * 2 * R] * 3, blocks=4)
+    np.testing.assert_allclose(full, np.pi / 6, rtol=1e-12)
+    assert reps.shape == (16, 3)
+    np.testing.assert_allclose(reps, np.pi / 6, rtol=1e-12)
+    assert np.all(jackknife_error(reps) < 1e-12)
+    # one block emptied: the other replicates see a looser packing, the error is no longer 0
+    keep = ~((pos[:, 0] < 2.0) & (pos[:, 1] < 2.0))
+    _, reps = vertical_profile_jackknife(pos[keep], R, edges, [0, 0, 0], [n * 2 * R] * 3)
+    assert np.all(jackknife_error(reps) > 0.01)
+    with pytest.raises(ValueError, match="blocks = 1"):
+        vertical_profile_jackknife(pos, R, edges, [0, 0, 0], [8, 8, 8], blocks=1)

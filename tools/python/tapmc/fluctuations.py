@@ -17,7 +17,7 @@ from ._validate import as_1d, as_2d, new_axis, positive_int, result
 from .laws import FitResult, Law
 
 __all__ = ["SteadyState", "PowerSpectrum", "sigma_x", "sigma_scaling", "Proportional",
-           "DEFAULT_LAST", "DEFAULT_BATCHES", "DEFAULT_BINS_PER_DECADE"]
+           "DEFAULT_LAST", "DEFAULT_BATCHES", "DEFAULT_BINS_PER_DECADE", "jackknife_error"]
 
 #: taps averaged for the steady state (paper, section III.B: the last 1000 of 4000 taps)
 DEFAULT_LAST = 1000
@@ -31,6 +31,18 @@ DEFAULT_BINS_PER_DECADE = 10
 #: |sum_t w_t^2 exp(-2 pi i k t / N)|^2 / (sum_t w_t^2)^2; Hann: w^2 has Fourier weights
 #: 3/8, -1/4, 1/16, so (1, 4/9, 1/36); boxcar (no taper): independent ordinates
 WINDOW_CORRELATIONS = {"hann": (1.0, 4.0 / 9.0, 1.0 / 36.0), "boxcar": (1.0,)}
+
+
+def jackknife_error(replicates):
+    """Standard error of a statistic from its leave-one-block-out replicates (B of them, first
+    axis): sqrt((B - 1) / B * sum (theta_k - mean theta)^2). The blocks are spatial for one
+    packing (tapmc.pores.PoreOutput.jackknife, tapmc.profiles.vertical_profile_jackknife),
+    where seeds give no error."""
+    r = np.asarray(replicates, dtype=float)
+    b = r.shape[0]
+    if b < 2:
+        raise ValueError(f"a jackknife needs at least 2 replicates, got {b}")
+    return np.sqrt((b - 1) / b * np.sum((r - r.mean(axis=0)) ** 2, axis=0))
 
 
 def _batch_sem(x, batches):

@@ -37,6 +37,7 @@ import re
 import numpy as np
 
 from ._validate import as_1d, in_range, new_axis
+from .fluctuations import jackknife_error
 from .laws import Law
 from .readers import TapmcFormatError
 
@@ -149,17 +150,8 @@ def hist_is_current(path):
 #: lateral blocks per side of the spatial jackknife of one frame's distributions: 4 x 4 blocks
 #: of about 7R x 7R over the paper's statistics box (28R wide at L = 32R), each holding some
 #: 800 pores, far wider than the 2R over which neighbouring pores share spheres
+#: (tapmc.fluctuations.jackknife_error gives the error from the replicates)
 JACKKNIFE_BLOCKS = 4
-
-
-def jackknife_error(replicates):
-    """Standard error of a statistic from its leave-one-block-out replicates (B of them, first
-    axis): sqrt((B - 1) / B * sum (theta_k - mean theta)^2)."""
-    r = np.asarray(replicates, dtype=float)
-    b = r.shape[0]
-    if b < 2:
-        raise ValueError(f"a jackknife needs at least 2 replicates, got {b}")
-    return np.sqrt((b - 1) / b * np.sum((r - r.mean(axis=0)) ** 2, axis=0))
 
 
 def _histogram_columns(xi, xi_edges, v_edges, template):

@@ -8,6 +8,9 @@
 * :func:`vertical_profile` / :func:`transversal_profile`: (position / R, Phi) from the global
   array of compute stereo/profile written by ``fix ave/time ... mode vector`` (Figs. 6, 7),
   ready for :class:`tapmc.laws.ProfileLaw` (eq. 7) and :func:`tapmc.laws.profile_gradient`.
+* :func:`slab_fractions` / :func:`vertical_profile_jackknife`: the same exact slab means from
+  sphere positions (a dump), and their leave-one-block-out replicates over lateral blocks: the
+  error of a profile statistic (alpha) within one packing, where one run has no seeds.
 """
 
 import numpy as np
@@ -16,7 +19,13 @@ from ._validate import as_1d, new_axis, positive, result, same_length
 from .laws import PROFILE_WINDOWS, ProfileLaw, profile_gradient  # noqa: F401 (re-exported)
 
 __all__ = ["ProfileIncrease", "vertical_profile", "transversal_profile", "ProfileLaw",
-           "profile_gradient", "PROFILE_WINDOWS"]
+           "profile_gradient", "PROFILE_WINDOWS", "slab_fractions", "vertical_profile_jackknife",
+           "PROFILE_JACKKNIFE_BLOCKS"]
+
+#: lateral blocks per side of the jackknife of a vertical profile: 4 x 4 blocks of 8R x 8R at
+#: the paper's L = 32R (as the pores' jackknife), each a column of some 250 spheres, far wider
+#: than the 2R over which a sphere's sections reach
+PROFILE_JACKKNIFE_BLOCKS = 4
 
 
 def _series(name, values):
@@ -129,3 +138,46 @@ def transversal_profile(table, radius, wall=0.0, index=-1, value="bin"):
     """(x/R from the wall at ``wall``, Phi) of a transversal profile (compute stereo/profile
     with axis x or y), block ``index``."""
     return _profile(table, radius, float(wall), index, value)
+
+
+def slab_fractions(z, radius, edges, area):
+    """Exact mean solid fraction of each slab [edges[k], edges[k+1]) of the spheres of radius
+    ``radius`` at heights ``z`` over a base of ``area``: the sphere volume inside the slab over
+    its volume, what compute stereo/profile's bin means are (section IV.A's smoothing); no
+    sphere gives zeros."""
+    z = as_1d("z", z, min_len=0)
+    radius = positive("radius", radius)
+    edges = as_1d("edges", edges, min_len=2)
+    if np.any(np.diff(edges) <= 0):
+        raise ValueError("edges must increase")
+    u1 = np.clip(edges[None, :-1] - z[:, None], -radius, radius)
+    u2 = np.clip(edges[None, 1:] - z[:, None], -radius, radius)
+    inside = np.pi * (radius ** 2 * (u2 - u1) - (u2 ** 3 - u1 ** 3) / 3.0)
+    return inside.sum(axis=0) / (positive("area", area) * np.diff(edges))
+
+
+def vertical_profile_jackknife(positions, radius, edges, box_lo, box_hi,
+                               blocks=PROFILE_JACKKNIFE_BLOCKS):
+    """(profile, replicates): the exact slab fractions of the spheres at ``positions`` (n x 3)
+    between the lateral bounds box_lo[:2]..box_hi[:2], and blocks^2 replicates, each without
+    the spheres whose centres lie in one lateral block (its base area removed too). The spread
+    of a statistic of the replicates (tapmc.fluctuations.jackknife_error) is its error within
+    the packing."""
+    pos = np.asarray(positions, dtype=float)
+    if pos.ndim != 2 or pos.shape[1] != 3:
+        raise ValueError(f"positions must be (n, 3), got shape {pos.shape}")
+    blocks = int(blocks)
+    if blocks < 2:
+        raise ValueError(f"blocks = {blocks}: at least 2 per side")
+    lo, hi = np.asarray(box_lo, float)[:2], np.asarray(box_hi, float)[:2]
+    if np.any(hi <= lo):
+        raise ValueError(f"box_hi {list(hi)} must exceed box_lo {list(lo)} in x and y")
+    cell = np.clip(((pos[:, :2] - lo) / (hi - lo) * blocks).astype(int), 0, blocks - 1)
+    label = cell[:, 0] + blocks * cell[:, 1]
+    area = float(np.prod(hi - lo))
+    width = np.diff(np.asarray(edges, float))
+    per_block = np.array([slab_fractions(pos[label == k, 2], radius, edges, area) * area
+                          for k in range(blocks * blocks)]) * width  # sphere volume per slab
+    total = per_block.sum(axis=0)
+    rest = area * (1.0 - 1.0 / blocks ** 2)
+    return total / (area * width), (total - per_block) / (rest * width)

@@ -818,7 +818,11 @@ def final_alpha(data, claim):
     if missing:
         return missing
     _, m, s, n = found
-    return [Measure(m, s, _dof(n))]
+    from tapmc.profiles import PROFILE_JACKKNIFE_BLOCKS
+
+    within = " (one seed: lateral jackknife of its packing)" if n == 1 and np.isfinite(s) else ""
+    return [Measure(m, s, _jackknife_dof(n, s, PROFILE_JACKKNIFE_BLOCKS),
+                    shown=fmt(m, s) + within)]
 
 
 def central_minus_lateral(data, claim):
@@ -993,15 +997,20 @@ def xi_min(data, claim):
                     shown=fmt(d[1][i], d[2][i], digits=4))]
 
 
-def _pore_dof(n, err):
-    """dof of a Fig. 10 value: seeds - 1, or for one seed with its jackknife error the
-    blocks - 1."""
-    from tapmc.pores import JACKKNIFE_BLOCKS
-
+def _jackknife_dof(n, err, blocks_per_side):
+    """dof of a value of one packing or several: seeds - 1, or for one seed with the error of
+    a lateral jackknife over blocks_per_side^2 blocks, that number minus one."""
     n = int(np.nanmin(np.atleast_1d(n))) if np.size(n) else 0
     if n >= 2:
         return n - 1
-    return JACKKNIFE_BLOCKS ** 2 - 1 if n == 1 and np.all(np.isfinite(err)) else None
+    return blocks_per_side ** 2 - 1 if n == 1 and np.all(np.isfinite(err)) else None
+
+
+def _pore_dof(n, err):
+    """dof of a Fig. 10 value (tapmc.pores.PoreOutput.jackknife for one seed)."""
+    from tapmc.pores import JACKKNIFE_BLOCKS
+
+    return _jackknife_dof(n, err, JACKKNIFE_BLOCKS)
 
 
 def _pore_curves(data):

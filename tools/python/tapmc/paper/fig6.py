@@ -15,8 +15,10 @@ vertical gradient" (density decreasing with height).
 Bottom panel, when the campaign has the P.B.C. constant-eps runs of the bell (Figs. 3-4):
 alpha after the taps against sqrt(eps), the paper's "approximately the same kind of bell shape
 dependence as the other steady-state values" (section IV.A), fitted in the P.B.C. window
-5 <= z/R <= 26 cut as above; the sem is over seeds, or for one seed the straight line's own
-error. ``runs`` does not add those runs: ``tapmc-paper fig6`` alone draws the top panel, the
+5 <= z/R <= 26 cut as above; the sem is over seeds, or for one seed (the paper's protocol)
+the error within its packing: the lateral jackknife of the profile of the packing dumped after
+the last tap (4 x 4 blocks, ``tapmc.profiles.vertical_profile_jackknife``), as for
+``final:alpha``. ``runs`` does not add those runs: ``tapmc-paper fig6`` alone draws the top panel, the
 report (every figure) both.
 
 CSV panels: ``a`` (series ``initial``, ``final``, ``fit:initial``, ``fit:final``; x = z/R),
@@ -52,12 +54,38 @@ def gradient_window(campaign, specs, bc=BC):
     return lo, min(hi, WINDOW_TOP_FRACTION * float(np.min(heights)))
 
 
+def _alpha_jackknife(campaign, spec, centres, window, bc):
+    """Error of alpha within the packing after the last tap: the lateral jackknife of its
+    profile (``tapmc.profiles.vertical_profile_jackknife``) from the run's dump of that step;
+    None when the run has no such dump."""
+    from tapmc.fluctuations import jackknife_error
+    from tapmc.profiles import vertical_profile_jackknife
+    from tapmc.readers import read_dump
+
+    dump = _runs.run_dir(campaign, spec) / f"dump.{int(spec.variables['taps'])}.lammpstrj"
+    if not dump.is_file():
+        return None
+    frame = next(iter(read_dump(dump).frames))
+    width = (centres[-1] - centres[0]) / (len(centres) - 1)   # the compute's uniform bins
+    edges = np.append(centres - width / 2, centres[-1] + width / 2)
+    r = radius(spec)
+    _, replicates = vertical_profile_jackknife(frame.positions, r, edges, frame.box_lo,
+                                               frame.box_hi)
+    alphas = [profile_gradient(centres / r, rep, window=window, boundary=bc).params["alpha"]
+              for rep in replicates]
+    return float(jackknife_error(alphas))
+
+
 def final_alpha(campaign, spec, window, bc):
-    """(alpha, its fit error) of the last profile of a run in ``window``."""
+    """(alpha, its error) of the last profile of a run in ``window``. The error is the lateral
+    jackknife of the packing dumped after the last tap (the profile's bins share spheres, so
+    the straight line's own error is too small); the line's own error when there is no dump."""
     blocks = _runs.profile(campaign, spec, "profile_z.dat").blocks
     z = blocks[-1, :, 0] / radius(spec)
     fit = profile_gradient(z, blocks[-1, :, 2], window=window, boundary=bc)
-    return float(fit.params["alpha"]), float(fit.errors["alpha"])
+    within = _alpha_jackknife(campaign, spec, blocks[-1, :, 0], window, bc)
+    return float(fit.params["alpha"]), (float(fit.errors["alpha"]) if within is None
+                                        else within)
 
 
 def alpha_bell(campaign, bc=_steady_state.BC):
@@ -119,6 +147,9 @@ def draw(campaign, out_dir):
             alphas.append([profile_gradient(z, blocks[index, :, 2], window=window)
                            .params["alpha"]])
         m, s, n = P.seed_stats(alphas)
+        if tag == "final" and len(specs) == 1:   # one seed: the error within its packing
+            within = _alpha_jackknife(campaign, specs[0], blocks[-1, :, 0], window, BC)
+            s = [np.nan if within is None else within]
         table.add("params", f"{tag}:alpha", eps, m[0], s[0], n[0])
     table.add("params", "window_lo", eps, window[0], None, len(specs))
     table.add("params", "window_hi", eps, window[1], None, len(specs))
