@@ -231,12 +231,18 @@ def _p0_of(dumps, seed, work):
     return out
 
 
-def p0_configs(args):
-    lmp = lmp_command(args.lmp)
-    restart = Path(args.restart).resolve()
+def campaign_restart(path):
+    """The restart file of --restart, resolved; exits with a message when it is missing."""
+    restart = Path(path).resolve()
     if not restart.is_file():
         sys.exit(f"paper_questions: restart file {restart} not found (--restart FILE: the "
-                 "packing after 4000 taps of the campaign's Fig. 9 run)")
+                 "packing after 4000 taps of the paper-scale campaign's eps = 0.0225 run)")
+    return restart
+
+
+def p0_configs(args):
+    lmp = lmp_command(args.lmp)
+    restart = campaign_restart(args.restart)
     keep = args.work is not None
     work = Path(args.work) if keep else Path(tempfile.mkdtemp(prefix="p0_configs_"))
     work.mkdir(parents=True, exist_ok=True)
@@ -365,10 +371,7 @@ def dmax_scan(args):
 
 def noise_floor(args):
     lmp = lmp_command(args.lmp)
-    restart = Path(args.restart).resolve()
-    if not restart.is_file():
-        sys.exit(f"paper_questions: restart file {restart} not found (--restart FILE: a packing "
-                 "after 4000 taps of the paper-scale campaign)")
+    restart = campaign_restart(args.restart)
     with tempfile.TemporaryDirectory() as folder:
         taps = run(lmp, folder, dict(PAPER, bc="pbc", eps=0, eta=1e-7, seed=1, resume="yes",
                                      resume_file=restart,
