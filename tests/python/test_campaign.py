@@ -433,3 +433,21 @@ def test_merge_skips_the_empty_segment_of_a_run_killed_before_its_first_output(t
     (tmp_path / "prof.dat.from40").write_text("")
     with pytest.raises(TapmcFormatError, match="empty file"):
         merge_ave_time_parts(tmp_path)
+
+
+def test_finished_ramp_keeps_its_level_end_restarts(tmp_path):
+    """A finished run keeps only its latest restart file; a ramp (variables P and nlev of
+    in.ramp) also keeps those at its level ends, from which a level can be continued."""
+    from tapmc.campaign import run_folder
+
+    ramp = RunSpec("ramp", SOURCE / "examples" / "paper" / "in.ramp",
+                   dict(P=200, nlev=3, sqrt0=0.05, dsqrt=0.05), seed=1)
+    assert ramp.level_taps == 200 and ramp.taps == 200 * 7
+    assert RunSpec("c", CONSTANT_EPS, dict(TINY, taps=12)).level_taps is None
+    for step in range(100, 1401, 100):
+        (tmp_path / f"restart.{step}").write_bytes(b"x")
+    run_folder.keep_latest_restart(tmp_path, keep_every=ramp.level_taps)
+    kept = sorted(int(p.name.split(".")[1]) for p in tmp_path.glob("restart.*"))
+    assert kept == [200, 400, 600, 800, 1000, 1200, 1400]
+    run_folder.keep_latest_restart(tmp_path)
+    assert [p.name for p in tmp_path.glob("restart.*")] == ["restart.1400"]

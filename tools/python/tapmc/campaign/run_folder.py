@@ -28,12 +28,16 @@ def latest_restart(run_dir):
     return best
 
 
-def keep_latest_restart(run_dir):
-    """Delete every restart file but the latest: it continues the sequence."""
+def keep_latest_restart(run_dir, keep_every=None):
+    """Delete every restart file but the latest (it continues the sequence) and, with
+    ``keep_every``, those of the steps it divides (a ramp's level ends)."""
     last, _ = latest_restart(run_dir)
     for p in Path(run_dir).glob("restart.*"):
         m = re.fullmatch(r"restart\.(\d+)", p.name)
-        if m and int(m.group(1)) != last:
+        if not m:
+            continue
+        step = int(m.group(1))
+        if step != last and not (keep_every and step % keep_every == 0):
             p.unlink()
 
 

@@ -256,7 +256,7 @@ class Campaign:
             try:  # a malformed output names itself; the run then fails instead of the pool
                 run_folder.merge_ave_time_parts(run_dir)
                 run_folder.drop_repeated_titles(run_dir / spec.taps_file)
-                run_folder.keep_latest_restart(run_dir)
+                run_folder.keep_latest_restart(run_dir, keep_every=spec.level_taps)
             except (TapmcFormatError, OSError) as err:
                 error = f"its outputs could not be put together: {err}"
             missing = [n for n in self._redo.get(spec.name, []) if not (run_dir / n).exists()]

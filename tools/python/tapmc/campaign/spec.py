@@ -81,6 +81,15 @@ class RunSpec:
         self.taps = taps
 
     @property
+    def level_taps(self):
+        """Taps per level of a ramp run (variable ``P`` of ``examples/paper/in.ramp``), None
+        for the other protocols: a finished ramp keeps its restart files at the level ends,
+        from which a level can be continued to measure the effect of the taps per level."""
+        if "P" in self.variables and "nlev" in self.variables:
+            return int(self.variables["P"])
+        return None
+
+    @property
     def taps_file(self):
         """Name of the per-tap file (first column: the step) in the run folder."""
         return str(self.variables.get("taps_file", "taps.dat"))
