@@ -45,6 +45,14 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               paper) at N = 4096, L = 32R for seeds 1-4 and taps it 5 times at each eps of
               Fig. 8 (0.005, 0.02, 0.05, 0.1): the lateral and central zone means at t = 0..5.
 
+  ramp-levels What do the ramp's taps per level (the campaign's 1000, the paper's 4000)
+              change? A finished ramp keeps its restart files at the level ends; this
+              continues chosen levels from them at the level's sqrt(eps) (in.constant_eps,
+              the run's seed and eta) by --extend taps (default 3000: 4000 in all) and
+              compares <Phi^c> over the level's last quarter with that over the last quarter
+              of the longer level (batch-means errors). Default levels: the top of the first
+              increase, the middle of the decrease, the middle of the second increase.
+
   pbc-course  How long does the dip of <Phi^c> after the first taps last, and does the
               packing loosen at strong taps (eps >= 0.09)? From every finished P.B.C.
               constant-eps run of the paper-scale campaign (no simulation: its taps.dat):
@@ -87,6 +95,8 @@ Usage (from the repository; minutes on one core, run under nice):
     bench/paper_questions.py initial-packing [--out DIR] [--lmp EXE] [--seeds 1 2 ...]
     bench/paper_questions.py p0-configs [--out DIR] [--lmp EXE] [--restart FILE] [--work DIR]
     bench/paper_questions.py lateral-first-tap [--out DIR] [--lmp EXE] [--seeds 1 2 3 4]
+    bench/paper_questions.py ramp-levels [--out DIR] [--lmp EXE] [--campaign DIR]
+                                         [--run ramp_pbc_s1] [--levels K ...] [--extend 3000]
     bench/paper_questions.py theta0 [--out DIR] [--lmp EXE] [--seeds 1 2 3 4]
                                     [--stop change|drift] [--eta 1e-7] [--N 1024]
     bench/paper_questions.py dmax   (the same options as theta0)
@@ -315,6 +325,64 @@ def lateral_first_tap(args):
                   flush=True)
     write_csv(Path(args.out) / "lateral_first_tap.csv",
               ["eps", "seed", "t", "lateral", "central", "phi_c"], rows)
+
+
+#: taps added to a continued ramp level: the campaign's 1000 + 3000 = the paper's 4000
+RAMP_EXTEND = 3000
+
+
+def _manifest_run(campaign, name):
+    """(variables, seed) of run ``name`` in the campaign's manifest.json."""
+    import json
+
+    path = Path(campaign) / "manifest.json"
+    if not path.is_file():
+        sys.exit(f"paper_questions: {path} not found (--campaign DIR: a campaign folder)")
+    for run in json.loads(path.read_text())["runs"]:
+        if run["name"] == name:
+            return run["variables"], int(run["seed"])
+    sys.exit(f"paper_questions: no run {name!r} in {path}")
+
+
+def default_ramp_levels(nlev):
+    """The top of the first increase, the middle of the decrease and of the second increase
+    (level indices of in.ramp: 0 .. 3 nlev - 3)."""
+    top = nlev - 1
+    return [top, top + (nlev - 1) // 2, 2 * top + (nlev - 1) // 2]
+
+
+def ramp_levels(args):
+    from tapmc.paper._steady_state import steady_last
+
+    lmp = lmp_command(args.lmp)
+    variables, seed = _manifest_run(args.campaign, args.run)
+    P, nlev = int(variables["P"]), int(variables["nlev"])
+    run_dir = Path(args.campaign) / "runs" / args.run
+    table = np.loadtxt(run_dir / "taps.dat", ndmin=2)  # step level branch sqrt_eps Phi_b phi_c Z
+    size = {k: variables[k] for k in ("N", "L", "eta", "bc") if k in variables}
+    rows = []
+    for k in args.levels or default_ramp_levels(nlev):
+        end = (k + 1) * P
+        restart = run_dir / f"restart.{end}"
+        if not restart.is_file():
+            sys.exit(f"paper_questions: {restart} not found (a finished ramp keeps the restart "
+                     "files of its level ends; an unfinished one has them up to its last step)")
+        level = table[(table[:, 0] > end - P) & (table[:, 0] <= end)]
+        sq = float(level[-1, 3])
+        with tempfile.TemporaryDirectory() as folder:
+            more = run(lmp, folder, dict(size, sqrteps=sq, seed=seed, resume="yes",
+                                         resume_file=restart.resolve(), taps=end + args.extend,
+                                         rsteps=10 ** 9, pevery=end + args.extend))
+        longer = np.concatenate([level[:, 5], more[more[:, 0] > end, 2]])
+        short = SteadyState(level[:, 5], last=steady_last(P)).compute()
+        full = SteadyState(longer, last=steady_last(len(longer))).compute()
+        rows.append([k, int(level[-1, 2]), f"{sq:.6g}", P, len(longer), f"{short.mean:.8f}",
+                     f"{short.sem:.3g}", f"{full.mean:.8f}", f"{full.sem:.3g}"])
+        print(f"level {k} (branch {int(level[-1, 2])}, sqrt(eps) {sq:g}): <Phi^c> "
+              f"{short.mean:.4f} after {P} taps, {full.mean:.4f} after {len(longer)}", flush=True)
+    write_csv(Path(args.out) / "ramp_levels.csv",
+              ["level", "branch", "sqrt_eps", "taps", "taps_long", "phi_c", "phi_c_sem",
+               "phi_c_long", "phi_c_long_sem"], rows)
 
 
 def scan_file_name(stem, stop, N):
@@ -628,7 +696,8 @@ def main(argv=None):
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
     for name in ("first-tap", "noise-floor", "spectral-window", "pbc-course", "initial-packing",
-                 "p0-configs", "lateral-first-tap", "theta0", "dmax", "p0-fluid"):
+                 "p0-configs", "lateral-first-tap", "ramp-levels", "theta0", "dmax",
+                 "p0-fluid"):
         p = sub.add_parser(name)
         p.add_argument("--out", default=DEFAULT_OUT, type=Path)
         p.add_argument("--lmp", default=None)
@@ -646,8 +715,11 @@ def main(argv=None):
         sub.choices[name].add_argument("--restart", default=CAMPAIGN_RUN / "restart.4000")
     sub.choices["p0-configs"].add_argument("--configs", type=int, default=P0_CONFIGS)
     sub.choices["p0-configs"].add_argument("--work", default=None, type=Path)
-    for name in ("spectral-window", "pbc-course"):
+    for name in ("spectral-window", "pbc-course", "ramp-levels"):
         sub.choices[name].add_argument("--campaign", default=CAMPAIGN_RUN.parents[1])
+    sub.choices["ramp-levels"].add_argument("--run", default="ramp_pbc_s1")
+    sub.choices["ramp-levels"].add_argument("--levels", type=int, nargs="+", default=None)
+    sub.choices["ramp-levels"].add_argument("--extend", type=int, default=RAMP_EXTEND)
     fluid = sub.choices["p0-fluid"]
     fluid.add_argument("--phi", type=float, nargs="+", default=list(P0_FLUID_PHI))
     fluid.add_argument("--configs", type=int, default=P0_FLUID_CONFIGS)
@@ -667,7 +739,7 @@ def main(argv=None):
     {"first-tap": first_tap, "noise-floor": noise_floor,
      "spectral-window": spectral_window, "pbc-course": pbc_course,
      "initial-packing": initial_packing, "p0-configs": p0_configs,
-     "lateral-first-tap": lateral_first_tap, "theta0": theta0_scan, "dmax": dmax_scan,
+     "lateral-first-tap": lateral_first_tap, "ramp-levels": ramp_levels, "theta0": theta0_scan, "dmax": dmax_scan,
      "p0-fluid": p0_fluid}[args.command](args)
 
 

@@ -282,3 +282,20 @@ def test_lateral_first_tap_table_and_reading(tmp_path):
     assert "``lateral-first-tap``" in text and "tapped 5 times at each eps" in text
     assert "gains at the first tap at every eps, more than the central zone" in text
     assert "looser than the central zone by 1.98 %" in text
+
+
+def test_ramp_levels_against_the_hysteresis_gap(tmp_path):
+    (tmp_path / "ramp_levels.csv").write_text(
+        "level,branch,sqrt_eps,taps,taps_long,phi_c,phi_c_sem,phi_c_long,phi_c_long_sem\n"
+        "11,0,0.3,1000,4000,0.5950,0.0003,0.5960,0.0003\n"
+        "16,1,0.175,1000,4000,0.6080,0.0003,0.6081,0.0003\n")
+    x = [0.1, 0.2, 0.3]
+    fig4 = claims.FigureData({("a", "up1"): {"x": x, "mean": [0.600, 0.600, 0.595],
+                                             "sem": [0.0003] * 3, "n": [1] * 3},
+                              ("a", "down"): {"x": x, "mean": [0.620, 0.620, 0.615],
+                                              "sem": [0.0003] * 3, "n": [1] * 3}})
+    text = "\n".join(questions.render_section(tmp_path, {"fig4": fig4}))
+    assert "change against 4000 (the paper's)?" in text
+    assert "at most 0.10 ± 0.04 %; 1 of 2 beyond their error" in text
+    assert "gap (decrease minus first increase) is 2.00 %" in text
+    assert "by less than a tenth of it" in text

@@ -20,6 +20,8 @@ committed data.
   of the tapped packing: the error bars that decide Fig. 9's two comparisons.
 * ``lateral_first_tap.csv``: the first taps from the paper's F.B.C. start (periodic
   deposition, walls, slight agitation), which the campaign's F.B.C. runs do not use.
+* ``ramp_levels.csv``: ramp levels continued from their end to the paper's 4000 taps: what
+  the campaign's shorter levels change.
 * Fig. 10's pores (its CSV, no measurement of its own): how much the small pores change
   against the large ones, and how closely (xi - xi_T)^2 follows xi^3 P(xi) between xi_T and
   xi_O, the two pore claims a precise single run rejects.
@@ -347,6 +349,50 @@ def _lateral_first_tap(path, fig8=None):
               + (f"; from the start deposited between the walls it changes by "
                  f"{', '.join(walls)} instead" if walls else "") + ".", ""]
     return lines
+
+
+BRANCH_NAMES = ("first increase", "decrease", "second increase")
+#: taps per level of the paper's ramp (section III.B, Fig. 4)
+PAPER_RAMP_TAPS = 4000
+
+
+def _ramp_levels(path, fig4=None):
+    rows = _read(path)
+    if not rows:
+        return []
+    taps, longer = int(rows[0]["taps"]), int(rows[0]["taps_long"])
+    paper = " (the paper's)" if longer == PAPER_RAMP_TAPS else ""
+    lines = [f"What do the ramp's {taps} taps per level change against {longer}{paper}? "
+             f"Levels of the campaign's ramp continued from their end at the same sqrt(eps) to "
+             f"{longer} taps (``ramp_levels.csv``; <Phi^c> over the last quarter of the level, "
+             "batch-means errors):", "",
+             ".. list-table::", "   :header-rows: 1", "",
+             "   * - level (branch)", "     - sqrt(eps)", f"     - after {taps} taps",
+             f"     - after {longer} taps", "     - shift"]
+    shifts = []
+    for r in rows:
+        a, ea = float(r["phi_c"]), float(r["phi_c_sem"])
+        b, eb = float(r["phi_c_long"]), float(r["phi_c_long_sem"])
+        shifts.append((b - a, math.hypot(ea, eb)))
+        lines += [f"   * - {r['level']} ({BRANCH_NAMES[int(r['branch'])]})",
+                  f"     - {float(r['sqrt_eps']):g}", f"     - {fmt(a, ea, True)}",
+                  f"     - {fmt(b, eb, True)}", f"     - {fmt(b - a, math.hypot(ea, eb), True)}"]
+    largest = max(shifts, key=lambda d: abs(d[0]))
+    moved = [d for d in shifts if abs(d[0]) > t_quantile(HALVES_DOF) * d[1]]
+    gap = None
+    if fig4 is not None and fig4.get("a", "down") is not None and fig4.get("a", "up1") is not None:
+        from .claims import _mean_difference
+
+        d = _mean_difference(fig4.get("a", "down"), fig4.get("a", "up1"))
+        gap = None if d is None else d[0]
+    text = (f"The longer levels move <Phi^c> by at most {fmt(largest[0], largest[1], True)}; "
+            f"{len(moved)} of {len(shifts)} beyond their error.")
+    if gap is not None:
+        text += (f" The hysteresis gap (decrease minus first increase) is "
+                 f"{fmt(gap, None, True)}: the shorter levels "
+                 + ("change the branches by less than a tenth of it." if abs(largest[0])
+                    < 0.1 * abs(gap) else f"shift a level by {abs(largest[0] / gap):.0%} of it."))
+    return lines + ["", text, ""]
 
 
 def _pbc_course(path):
@@ -714,6 +760,8 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
         parts += _initial_packing(folder / "initial_packing.csv")
     if (folder / "p0_configs.csv").is_file():
         parts += _p0_configs(folder / "p0_configs.csv")
+    if (folder / "ramp_levels.csv").is_file():
+        parts += _ramp_levels(folder / "ramp_levels.csv", (figures or {}).get("fig4"))
     if (folder / "lateral_first_tap.csv").is_file():
         parts += _lateral_first_tap(folder / "lateral_first_tap.csv",
                                     (figures or {}).get("fig8"))
@@ -736,6 +784,7 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
         ", ``initial-packing``" if (folder / "initial_packing.csv").is_file() else "") + (
         ", ``p0-configs``" if (folder / "p0_configs.csv").is_file() else "") + (
         ", ``lateral-first-tap``" if (folder / "lateral_first_tap.csv").is_file() else "") + (
+        ", ``ramp-levels``" if (folder / "ramp_levels.csv").is_file() else "") + (
         "".join(f", ``{k}``" for k in ("theta0", "dmax") if any(folder.glob(f"{k}*.csv")))) + (
         ", ``p0-fluid``" if (folder / "p0_fluid.csv").is_file() else "")
     return [title, "-" * len(title), "",

@@ -1,0 +1,49 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+# bench/paper_questions.py ramp-levels on a tiny finished ramp: the campaign kept the restart
+# files of the level ends, the chosen levels are continued from them at their sqrt(eps), and
+# the CSV the report renders compares each level after its own taps and after the longer run.
+import csv
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+from lmprun import LMP
+
+SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", Path(__file__).resolve().parents[2]))
+sys.path.insert(0, str(SOURCE / "tools" / "python"))
+
+from tapmc.campaign import Campaign, RunSpec  # noqa: E402
+from tapmc.paper import questions  # noqa: E402
+
+# 64 spheres, 3 levels up (sqrt(eps) 0.05, 0.15, 0.25), down, up again: 7 levels of 10 taps
+RAMP = dict(N=64, L=8, eta=1e-5, rsteps=5, thermo_every=5, P=10, nlev=3, sqrt0=0.05,
+            dsqrt=0.1)
+
+
+def test_ramp_levels_continues_the_kept_level_ends(tmp_path):
+    spec = RunSpec("ramp_pbc_s1", SOURCE / "examples" / "paper" / "in.ramp", RAMP, seed=3)
+    Campaign(tmp_path / "c", [spec], lmp=str(LMP), jobs=1).run(progress=False)
+    kept = sorted(int(p.name.split(".")[1])
+                  for p in (tmp_path / "c" / "runs" / spec.name).glob("restart.*"))
+    assert kept == [10, 20, 30, 40, 50, 60, 70]
+    out = tmp_path / "q"
+    done = subprocess.run([sys.executable, str(SOURCE / "bench" / "paper_questions.py"),
+                           "ramp-levels", "--lmp", str(LMP), "--campaign", str(tmp_path / "c"),
+                           "--levels", "2", "3", "--extend", "20", "--out", str(out)],
+                          capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    with open(out / "ramp_levels.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert [(r["level"], r["branch"], r["sqrt_eps"]) for r in rows] == [
+        ("2", "0", "0.25"), ("3", "1", "0.15")]
+    assert all(r["taps"] == "10" and r["taps_long"] == "30" for r in rows)
+    text = "\n".join(questions.render_section(out))
+    assert "``ramp-levels``" in text and "change against 30?" in text
+    assert "2 (first increase)" in text and "3 (decrease)" in text
+    # a level whose restart was not kept names the file
+    bad = subprocess.run([sys.executable, str(SOURCE / "bench" / "paper_questions.py"),
+                          "ramp-levels", "--lmp", str(LMP), "--campaign", str(tmp_path / "c"),
+                          "--levels", "9", "--out", str(out)], capture_output=True, text=True,
+                         timeout=60)
+    assert bad.returncode != 0 and "restart.100 not found" in bad.stderr
