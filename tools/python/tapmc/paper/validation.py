@@ -19,6 +19,10 @@ from pathlib import Path
 
 import numpy as np
 
+from tapmc.fluctuations import DEFAULT_BATCHES
+from tapmc.pores import JACKKNIFE_BLOCKS
+from tapmc.profiles import PROFILE_JACKKNIFE_BLOCKS
+
 from . import FIGURES
 from . import _plotting as P
 from . import _runs
@@ -53,6 +57,22 @@ SUMMARY_FILE = "report.json"
 _SCALE_KEYS = ("taps", "steady_last", "fig2_eps", "steady sqrt(eps)", "ramp_sqrt0",
                "ramp_dsqrt", "ramp_levels", "ramp_taps_per_level", "ageing_eps",
                "ageing_taps", "ageing_waiting_times", "profile_eps", "pore_eps", "dump_times")
+
+
+#: how a value of one run per point (the paper's protocol) gets its error, stated under the rules
+ONE_RUN_ERRORS = (
+    "Errors of one run per point (the paper's protocol), where seeds give none: a time average "
+    f"(steady state, zone means, halves) has the batch-means error over its taps "
+    f"({DEFAULT_BATCHES} batches; t with {DEFAULT_BATCHES - 1} degrees of freedom); a quantity "
+    "of one packing has the spatial jackknife over lateral blocks of the packing (pores: "
+    f"{JACKKNIFE_BLOCKS} x {JACKKNIFE_BLOCKS} blocks, {JACKKNIFE_BLOCKS ** 2 - 1} degrees of "
+    f"freedom; the profile's gradient alpha: {PROFILE_JACKKNIFE_BLOCKS} x "
+    f"{PROFILE_JACKKNIFE_BLOCKS}, {PROFILE_JACKKNIFE_BLOCKS ** 2 - 1}); a spectrum has the "
+    "periodogram's own errors, known exactly "
+    "(the normal quantile); where one packing cannot give an error (P0, the initial packing, the "
+    "paper's F.B.C. start) the configurations of bench/paper_questions.py give it, as the row "
+    "says. These errors are within one realization: the spread between realizations is not in "
+    "them.")
 
 
 def campaign_summary(campaign):
@@ -243,6 +263,7 @@ def _rst_table(rows):
         if row.claim.rule not in used:
             used.append(row.claim.rule)
     lines += [f"* [{key}] {RULES[key]}" for key in used]
+    lines += ["", ONE_RUN_ERRORS]
     lines += ["", "\"Paper scale?\" says whether the campaign had what the claim needs of the "
               "paper's scale (size: N = 4096 in a 32R box; taps: 4000 per run; ramp_taps: 4000 "
               "per level; eta: 1e-7); without it the statistic is shown and the verdict is "
