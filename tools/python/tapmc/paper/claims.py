@@ -752,7 +752,7 @@ def _ramp(data, name):
     return None if fig is None else fig.get("a", name)
 
 
-def _hysteresis_gap(data):
+def hysteresis_gap(data):
     """Mean of the decreasing branch minus the first increase: the effect the "nearly the
     same" claims of the ramp are measured against."""
     down, up = _ramp(data, "down"), _ramp(data, "up1")
@@ -777,7 +777,7 @@ def _branch_difference(data, a, b, effect=None):
 
 
 def ramp_up_minus_steady(data, claim):
-    return _branch_difference(data, "up1", "steady", _hysteresis_gap(data))
+    return _branch_difference(data, "up1", "steady", hysteresis_gap(data))
 
 
 def ramp_down_minus_up(data, claim):
@@ -785,7 +785,7 @@ def ramp_down_minus_up(data, claim):
 
 
 def ramp_up2_minus_down(data, claim):
-    return _branch_difference(data, "up2", "down", _hysteresis_gap(data))
+    return _branch_difference(data, "up2", "down", hysteresis_gap(data))
 
 
 def low_ramp_frozen(data, claim):

@@ -379,12 +379,9 @@ def _ramp_levels(path, fig4=None):
                   f"     - {fmt(b, eb, True)}", f"     - {fmt(b - a, math.hypot(ea, eb), True)}"]
     largest = max(shifts, key=lambda d: abs(d[0]))
     moved = [d for d in shifts if abs(d[0]) > t_quantile(HALVES_DOF) * d[1]]
-    gap = None
-    if fig4 is not None and fig4.get("a", "down") is not None and fig4.get("a", "up1") is not None:
-        from .claims import _mean_difference
+    from .claims import ReportData, hysteresis_gap
 
-        d = _mean_difference(fig4.get("a", "down"), fig4.get("a", "up1"))
-        gap = None if d is None else d[0]
+    gap = None if fig4 is None else hysteresis_gap(ReportData({}, {"fig4": fig4}))
     text = (f"The longer levels move <Phi^c> by at most {fmt(largest[0], largest[1], True)}; "
             f"{len(moved)} of {len(shifts)} beyond their error.")
     if gap is not None:
