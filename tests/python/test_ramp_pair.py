@@ -20,7 +20,7 @@ from paper_fakes import FakeCampaign, write_ramp  # noqa: E402
 from tapmc.hysteresis import (CRITICAL_SQRT_EPS, Z_DECIDE, BranchData,  # noqa: E402
                               BranchStatistic, Hysteresis, RampBranches, branch_change,
                               branch_difference, branch_slope)
-from tapmc.paper import _runs, fig4, plan  # noqa: E402
+from tapmc.paper import _runs, claims, fig4, plan  # noqa: E402
 from tapmc.paper.scales import FULL, MEDIUM, QUICK, Scale  # noqa: E402
 
 SEM = 0.001
@@ -295,3 +295,28 @@ def test_fig4_errors_survive_a_chance_agreement_of_the_seeds(tmp_path):
     # seeds the error of the mean is that / sqrt(2), never 0
     assert 1e-4 < stats.down_change.sem < 2e-3
     assert stats.frozen
+
+
+def test_one_seed_ramp_branches_carry_the_levels_errors_and_decide(tmp_path):
+    """The campaign's ramp has one seed (tier 3): the branch series of Fig. 4 carry each
+    level's batch-means error (n = 1), so the branch claims are decided by the run's own
+    errors, not left without error bars."""
+    scale = Scale(**dict(QUICK.as_dict(), N=64, L=8.0, eta=1e-4, ramp_taps_per_level=40))
+    (spec,) = [_runs.ramp_run(scale, "pbc", 1)]
+    camp = FakeCampaign(tmp_path, [spec])
+    levels = np.array([0.05, 0.1, 0.15, 0.2, 0.15, 0.1, 0.05, 0.1, 0.15, 0.2])
+    truth = np.array([0.58, 0.585, 0.59, 0.595, 0.605, 0.61, 0.615, 0.61, 0.605, 0.595])
+    write_ramp(camp, spec, *ramp_series(levels, truth, 40, np.random.default_rng(5)))
+    branches = fig4.hysteresis_branches(camp)
+    for name in ("up1", "down", "up2"):
+        sq, mean, sem, n = branches[name]
+        assert np.all(n == 1) and np.all(np.isfinite(sem)) and np.all(sem > 0), name
+        assert np.all(sem < 1e-3)          # 5e-4 noise over the level's last 10 taps
+    table = claims.FigureData({("a", b): {"x": list(v[0]), "mean": list(v[1]),
+                                          "sem": list(v[2]), "n": list(v[3])}
+                               for b, v in branches.items()})
+    data = claims.ReportData({}, {"fig4": table})
+    BY_ID = {c.id: c for c in claims.load_register()}
+    (m,) = claims.ramp_down_minus_up(data, BY_ID["reversible-above"])
+    assert m.dof == claims.WITHIN_RUN_DOF and claims.verdict(BY_ID["reversible-above"],
+                                                             m) == "agrees"

@@ -115,12 +115,14 @@ def _ramp_levels(campaign, column, bc, prefix):
 
 def hysteresis_branches(campaign, column="phi_c", bc=BC, prefix="ramp_"):
     """dict branch -> (sqrt_eps, mean, sem, n) over the seeds of the ramp runs named
-    ``prefix...`` (``ramp_``: beyond (sqrt eps)*; ``ramplow_``: below it); sem over seeds."""
+    ``prefix...`` (``ramp_``: beyond (sqrt eps)*; ``ramplow_``: below it); sem over seeds, or
+    with one seed (the campaign's tier 3) the level's batch-means sem, n = 1."""
     out = {}
     for branch, by_sq in _ramp_levels(campaign, column, bc, prefix).items():
         sq = np.array(sorted(by_sq))
         stats = [P.seed_stats([[m] for m, _ in by_sq[k]]) for k in sq]
-        out[branch] = (sq, np.array([s[0][0] for s in stats]), np.array([s[1][0] for s in stats]),
+        sem = [s[1][0] if len(by_sq[k]) > 1 else by_sq[k][0][1] for k, s in zip(sq, stats)]
+        out[branch] = (sq, np.array([s[0][0] for s in stats]), np.array(sem, dtype=float),
                        np.array([s[2][0] for s in stats]))
     return out
 
