@@ -757,3 +757,21 @@ def test_lateral_first_tap_from_the_measured_paper_start():
                              questions={"lateral_first_tap": rows(-0.01)})
     assert all(claims.verdict(claim, m) == "disagrees"
                for m in claims.lateral_first_tap(dips, claim))
+
+
+def test_one_seed_phi_b_gain_has_the_batch_means_error_of_its_last_quarter():
+    """Fig. 2 of one run per eps: the gain of Phi_b (last quarter minus t = 0) is decided by
+    the run's own batch-means error; a run that does not compact stays undecided."""
+    rng = np.random.default_rng(2)
+    t = np.arange(4001.0)
+    tab = Table()
+    rising = 0.52 + 0.03 * np.log1p(t) / np.log(4001) + rng.normal(0, 0.002, t.size)
+    noise = rng.normal(0, 0.002, t.size)
+    flat = 0.52 + noise - noise[-1000:].mean()     # no gain over the last quarter
+    flat[0] = 0.52
+    tab.add("a", "eps=0.005", t, rising, None, n=1)
+    tab.add("a", "eps=0.15", t, flat, None, n=1)
+    m_rise, m_flat = claims.phi_b_gain(report(fig2=tab), BY_ID["phi-b-rises"])
+    assert m_rise.dof == claims.WITHIN_RUN_DOF and "error within the run" in m_rise.text()
+    assert claims.verdict(BY_ID["phi-b-rises"], m_rise) == "agrees"
+    assert claims.verdict(BY_ID["phi-b-rises"], m_flat).startswith("undecided")

@@ -398,9 +398,17 @@ def _per_curve(data, name, panel, measure):
 
 
 def _gain(fig, eps, t, mean, sem, n):
-    """Mean of the last quarter minus the first point."""
+    """Mean of the last quarter minus the first point. One seed (the paper's protocol): the
+    curve is the run itself, so the last quarter's mean has its batch-means error
+    (tapmc.fluctuations.SteadyState) and the start, the run's own packing, none."""
+    from tapmc.fluctuations import SteadyState
+
     q = max(len(t) // 4, 1)
     gain = float(np.mean(mean[-q:]) - mean[0])
+    if np.nanmax(n) == 1 and q >= 2 * DEFAULT_BATCHES:
+        err = SteadyState(mean, last=q).compute().sem
+        return Measure(gain, err, WITHIN_RUN_DOF, label=f"eps = {eps:g}",
+                       shown=f"{fmt(gain, err)} (one seed: error within the run)")
     err = float(math.sqrt(np.nanmean(sem[-q:]) ** 2 + sem[0] ** 2)) \
         if np.isfinite(sem[0]) else math.nan
     return Measure(gain, err, _dof(n), label=f"eps = {eps:g}")
