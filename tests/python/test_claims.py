@@ -775,3 +775,19 @@ def test_one_seed_phi_b_gain_has_the_batch_means_error_of_its_last_quarter():
     assert m_rise.dof == claims.WITHIN_RUN_DOF and "error within the run" in m_rise.text()
     assert claims.verdict(BY_ID["phi-b-rises"], m_rise) == "agrees"
     assert claims.verdict(BY_ID["phi-b-rises"], m_flat).startswith("undecided")
+
+
+def test_one_seed_efficiency_decrease_from_the_runs_own_windows():
+    """Fig. 2 of one run: a log-like compaction gains much more per tap in its first decade
+    than over its last half (agrees); a run that compacts at a constant rate does not."""
+    rng = np.random.default_rng(4)
+    t = np.arange(4001.0)
+    tab = Table()
+    tab.add("a", "eps=0.005", t, 0.52 + 0.004 * np.log1p(t) + rng.normal(0, 0.0005, t.size),
+            None, n=1)
+    tab.add("a", "eps=0.15", t, 0.52 + 2e-6 * t + rng.normal(0, 0.0005, t.size), None, n=1)
+    log_like, linear = claims.efficiency_decrease(report(fig2=tab),
+                                                  BY_ID["efficiency-decreases"])
+    assert "errors within the run" in log_like.text()
+    assert claims.verdict(BY_ID["efficiency-decreases"], log_like) == "agrees"
+    assert not claims.verdict(BY_ID["efficiency-decreases"], linear).startswith("agrees")

@@ -535,8 +535,32 @@ def _log_slope(t, mean, sem, lo, hi):
 
 
 
+def _rate_change_one_run(eps, t, x):
+    """:func:`_rate_change` of one run (the curve is the run): the late rate from the means of
+    its last two quarters (each with its batch-means error), the early rate from the mean of
+    the first decade's second half against the start (the run's own packing), with one tap's
+    spread about the steady state as its error (taps that close together are correlated, so
+    the spread is not divided by their number)."""
+    from tapmc.fluctuations import SteadyState
+
+    q = len(t) // 4
+    third, fourth = (SteadyState(x[:len(t) - k * q], last=q).compute() for k in (1, 0))
+    late = (fourth.mean - third.mean) / q
+    e_late = math.hypot(third.sem, fourth.sem) / q
+    pick = (t > EARLY_DECADE[1] / 2) & (t <= EARLY_DECADE[1])
+    centre = float(np.mean(t[pick]))
+    early = (float(np.mean(x[pick])) - x[0]) / centre
+    e_early = fourth.std / centre
+    return Measure(late - early, math.hypot(e_late, e_early), WITHIN_RUN_DOF,
+                   label=f"eps = {eps:g}",
+                   shown=f"{fmt(late, e_late)} vs {fmt(early, e_early)} per tap (last half vs "
+                         "first decade; one seed: errors within the run)")
+
+
 def _rate_change(fig, eps, t, mean, sem, n):
     """Rate dPhi_b/dt over the last half of the taps minus that over the first decade."""
+    if np.nanmax(n) == 1 and len(t) >= 8 * DEFAULT_BATCHES and t[-1] > 10 * EARLY_DECADE[1]:
+        return _rate_change_one_run(eps, t, mean)
     early, e_early, _ = _weighted_line_in(t, mean, sem, *EARLY_DECADE)
     late, e_late, _ = _weighted_line_in(t, mean, sem, t[-1] / 2.0, t[-1])
     label = f"eps = {eps:g}"
