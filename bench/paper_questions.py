@@ -327,6 +327,8 @@ def lateral_first_tap(args):
               ["eps", "seed", "t", "lateral", "central", "phi_c"], rows)
 
 
+#: sub-folder of --out where a knob scan writes its rows until every run is in
+PARTIAL = "partial"
 #: taps added to a continued ramp level: the campaign's 1000 + 3000 = the paper's 4000
 RAMP_EXTEND = 3000
 
@@ -395,10 +397,16 @@ def knob_scan(args, column, values, keyword):
     """Taps from the same fresh packings (P.B.C., THETA0_EPS, N = --N at the paper's bed height)
     at every value of one fix mc/settle keyword: <Phi^c> at t = 0 and over the last
     THETA0_WINDOW taps per seed (scan_file_name). Each run's row is written when it ends, and a
-    scan started again skips the (seed, value) pairs its CSV already has."""
+    scan started again skips the (seed, value) pairs its CSV already has. The rows go to
+    <out>/partial/ while the scan runs and its CSV moves to <out> when every run is in, so that
+    the report never reads half a scan."""
     lmp = lmp_command(args.lmp)
     stem = column.split("_over_")[0]
-    path = Path(args.out) / scan_file_name(stem, args.stop, args.N)
+    final = Path(args.out) / scan_file_name(stem, args.stop, args.N)
+    path = Path(args.out) / PARTIAL / final.name
+    path.parent.mkdir(parents=True, exist_ok=True)
+    if final.is_file() and not path.is_file():
+        final.replace(path)     # more seeds for a finished scan: it is partial again meanwhile
     header = [column, stem, "seed", "N", "eps", "taps", "eta", "stop", "phi_c_0", "phi_c_end",
               "sweeps_per_tap"]
     done = set()
@@ -426,7 +434,8 @@ def knob_scan(args, column, values, keyword):
                      f"{taps[1:, 8].mean():.1f}"])
             print(f"seed {seed} {column} = {label:.4f}: <Phi^c> {taps[0, 2]:.4f} -> "
                   f"{last[:, 2].mean():.4f} ({taps[1:, 8].mean():.0f} sweeps per tap)", flush=True)
-    print(f"wrote {path}")
+    path.replace(final)
+    print(f"wrote {final}")
 
 
 def theta0_scan(args):

@@ -791,3 +791,16 @@ def test_one_seed_efficiency_decrease_from_the_runs_own_windows():
     assert "errors within the run" in log_like.text()
     assert claims.verdict(BY_ID["efficiency-decreases"], log_like) == "agrees"
     assert not claims.verdict(BY_ID["efficiency-decreases"], linear).startswith("agrees")
+
+
+def test_a_scan_below_the_papers_N_is_undecided_by_scale():
+    """A knob scan is its own measurement: at N = 1024 its row lacks the paper's size (the
+    verdict is shown, not counted), at N = 4096 it is decided, whatever the campaign."""
+    data = theta0_report(THETA0_PAPER)
+    (row,) = claims.evaluate([BY_ID["theta0-optimum"]], data)
+    assert row.missing_scale == ("size",)
+    assert row.verdict == "undecided (scale: needs the paper's size; at this scale it agrees)"
+    for r in data.scans["theta0"][0]:
+        r["N"] = "4096"
+    (row,) = claims.evaluate([BY_ID["theta0-optimum"]], data)
+    assert row.missing_scale == () and row.verdict == "agrees"

@@ -122,7 +122,8 @@ def test_dmax_scan_table_and_verdict(tmp_path):
     assert "``dmax``" in text and "``dmax_drift.csv``" in text and "stop drift, eta = 1e-07" in text
     assert "   * - R/50" in text and "   * - R/5" in text and "   * - R\n" in text
     # R/5 compacts more than both ends: both measures agree (rule sign)
-    assert "Verdict of the claim (rule sign, t sem with 3 seeds): agrees; agrees." in text
+    assert ("Verdict of the claim (rule sign, t sem with 3 seeds): agrees; agrees at N = 1024, "
+            "below the paper's N") in text
 
 
 def test_final_phi_c_uses_the_largest_N_with_error_bars(tmp_path):

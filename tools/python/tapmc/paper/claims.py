@@ -134,7 +134,9 @@ class Measure:
     ``quantile`` replaces the t quantile (e.g. Bonferroni-corrected maxima); ``sign`` the
     claim's expected sign (a claim measured twice, e.g. both sides of a bell); ``effect`` is the
     size of the effect a ``zero`` claim denies (agreement needs an uncertainty below it);
-    ``undecided`` says why the data cannot decide (the value may still be shown)."""
+    ``undecided`` says why the data cannot decide (the value may still be shown); ``lacks``
+    the aspects of the paper's scale (:data:`ASPECTS`) this measure's own runs lack, when they
+    are not the campaign's (a scan at N = 1024)."""
 
     value: float = math.nan
     err: float = math.nan
@@ -145,6 +147,7 @@ class Measure:
     effect: float | None = None
     sign: int | None = None
     undecided: str | None = None
+    lacks: tuple = ()
 
     def text(self):
         if self.shown is not None:
@@ -1182,7 +1185,8 @@ def dmax_intermediate(data, claim):
             n = int(min(base["paired_seeds"], other["paired_seeds"]))
             measures.append(Measure(d, se, _dof(n), label=(
                 f"eps = {eps:g}, N = {other['N']:.0f}: <Phi^c>(R/5) - <Phi^c>({name[5:]}), steady, "
-                f"at {base['sweeps_per_tap']:.0f} and {other['sweeps_per_tap']:.0f} sweeps per tap")))
+                f"at {base['sweeps_per_tap']:.0f} and {other['sweeps_per_tap']:.0f} sweeps per tap"),
+                lacks=_size_lacking(N)))
     for rows in data.scans["dmax"]:
         if rows:
             measures += _dmax_scan_measures(rows)
@@ -1275,7 +1279,18 @@ def theta0_optimum(data, claim):
     return measures or [Measure(undecided="no theta0 scan (bench/paper_questions.py theta0)")]
 
 
+def _size_lacking(N):
+    """("size",) for runs of another N than the paper's, () for the paper's."""
+    return () if int(float(N)) == PAPER_SCALE["N"] else ("size",)
+
+
 def _theta0_measure(rows):
+    m = _theta0_verdict(rows)
+    m.lacks = _size_lacking(rows[0]["N"])
+    return m
+
+
+def _theta0_verdict(rows):
     table = scan_table(rows, "theta0")
     label = _scan_label(rows)
     if len(table) < 3 or not any(r["is_paper"] for r in table):
@@ -1319,7 +1334,8 @@ def _dmax_scan_measures(rows):
             continue
         out.append(Measure(-other["vs_paper"], other["vs_paper_sem"], _dof(n), label=(
             f"d_max scan, {_scan_label(rows, n)}: compaction with R/5 minus with {other['name']}; "
-            f"most with {max(table, key=lambda r: r['gain'])['name']}")))
+            f"most with {max(table, key=lambda r: r['gain'])['name']}"),
+            lacks=_size_lacking(rows[0]["N"])))
     return out
 
 
@@ -1445,10 +1461,11 @@ def evaluate(claims, data):
             continue
         for m in STATISTICS[claim.statistic](data, claim):
             text = verdict(claim, m)
-            if missing and not text.startswith("undecided") and claim.kind == "model":
-                text = (f"undecided (scale: needs the paper's {', '.join(missing)}; "
+            lacking = missing + tuple(a for a in m.lacks if a not in missing)
+            if lacking and not text.startswith("undecided") and claim.kind == "model":
+                text = (f"undecided (scale: needs the paper's {', '.join(lacking)}; "
                         f"at this scale it {text.split(' ')[0]})")
-            rows.append(Row(claim, m.label, m, text, missing))
+            rows.append(Row(claim, m.label, m, text, lacking))
     return rows
 
 

@@ -643,8 +643,11 @@ def _scan(path, knob):
                   f"     - {np.mean(sweeps[r['value']]):.0f}"]
     claim = next(c for c in load_register() if c.statistic == statistic)
     measures = STATISTICS[statistic](ReportData({}, {}, (), {knob: [rows]}), claim)
+    below = any(m.lacks for m in measures)
     text = (f"Verdict of the claim (rule {claim.rule}, t sem with {table[0]['n']} seeds): "
-            + "; ".join(verdict(claim, m) for m in measures) + ".")
+            + "; ".join(verdict(claim, m) for m in measures)
+            + (f" at N = {int(float(rows[0]['N']))}, below the paper's N (the claims' table "
+               "counts it undecided there)" if below else "") + ".")
     # does the value that compacts most simply redeposit longer than the paper's?
     ref = next(r for r in table if r["is_paper"])
     best = max(table, key=lambda r: r["gain"])

@@ -251,8 +251,7 @@ def _rst_table(rows):
     for row in rows:
         c = row.claim
         claim = c.claim + (f" ({row.label})" if row.label else "")
-        scale = "yes" if not c.needs else ("no: " + ", ".join(row.missing_scale)
-                                           if row.missing_scale else "yes")
+        scale = "no: " + ", ".join(row.missing_scale) if row.missing_scale else "yes"
         lines += [f"   * - {_where(c)}", f"     - {claim}", f"     - {c.paper}",
                   f"     - {row.measure.text()}", f"     - {scale}",
                   f"     - {row.verdict} [{c.rule}]"]
@@ -264,7 +263,8 @@ def _rst_table(rows):
             used.append(row.claim.rule)
     lines += [f"* [{key}] {RULES[key]}" for key in used]
     lines += ["", ONE_RUN_ERRORS]
-    lines += ["", "\"Paper scale?\" says whether the campaign had what the claim needs of the "
+    lines += ["", "\"Paper scale?\" says whether the campaign (or, for a measurement of its "
+              "own such as a knob scan, its runs) had what the claim needs of the "
               "paper's scale (size: N = 4096 in a 32R box; taps: 4000 per run; ramp_taps: 4000 "
               "per level; eta: 1e-7); without it the statistic is shown and the verdict is "
               "undecided.", ""]

@@ -1,0 +1,50 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+# bench/paper_questions.py knob scans (theta0, dmax) keep their rows in <out>/partial/ until
+# every run is in, so that the report never reads half a scan; a scan started again skips the
+# runs its CSV has (a finished scan is reopened, and published again when whole).
+import csv
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+from lmprun import LMP
+
+SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", Path(__file__).resolve().parents[2]))
+
+
+def scan(out, *seeds):
+    return subprocess.run([sys.executable, str(SOURCE / "bench" / "paper_questions.py"), "dmax",
+                           "--N", "64", "--lmp", str(LMP), "--out", str(out), "--seeds",
+                           *map(str, seeds)], capture_output=True, text=True, timeout=300)
+
+
+def rows(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def test_scan_is_published_whole_and_resumes(tmp_path):
+    partial = tmp_path / "partial" / "dmax_N64.csv"
+    done = scan(tmp_path, 1)
+    assert done.returncode == 0, done.stderr
+    first = rows(tmp_path / "dmax_N64.csv")
+    assert len(first) == 7 and not partial.exists()
+    # a scan stopped after two runs: its rows wait in partial/, the report folder has none
+    partial.parent.mkdir(exist_ok=True)
+    with open(partial, "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=list(first[0]))
+        writer.writeheader()
+        writer.writerows(first[:2])
+    (tmp_path / "dmax_N64.csv").unlink()
+    done = scan(tmp_path, 1)
+    assert done.returncode == 0, done.stderr
+    again = rows(tmp_path / "dmax_N64.csv")
+    assert again[:2] == first[:2] and len(again) == 7 and not partial.exists()
+    assert done.stdout.count("sweeps per tap") == 5          # only the missing runs ran
+    assert [r["phi_c_end"] for r in again] == [r["phi_c_end"] for r in first]  # same seed
+    # started again when whole: it reopens the finished scan, runs nothing, publishes it again
+    done = scan(tmp_path, 1)
+    assert done.returncode == 0, done.stderr
+    assert "sweeps per tap" not in done.stdout
+    assert rows(tmp_path / "dmax_N64.csv") == again and not partial.exists()
