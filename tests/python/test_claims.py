@@ -804,3 +804,23 @@ def test_a_scan_below_the_papers_N_is_undecided_by_scale():
         r["N"] = "4096"
     (row,) = claims.evaluate([BY_ID["theta0-optimum"]], data)
     assert row.missing_scale == () and row.verdict == "agrees"
+
+
+def test_one_seed_log_time_slowing_from_the_runs_own_windows():
+    """Fig. 2 of one run per eps: the late/early rates per unit ln t come from the means of
+    each decade's halves; a small-eps curve that flattens in log time against a large-eps one
+    that keeps its log rate agrees, the reverse disagrees."""
+    rng = np.random.default_rng(8)
+    t = np.arange(4001.0)
+    lt = np.log1p(t)
+    steady_log = 0.52 + 0.006 * lt + rng.normal(0, 0.0005, t.size)
+    flattening = 0.52 + 0.02 * (1 - np.exp(-lt / 2.0)) + rng.normal(0, 0.0005, t.size)
+    claim = BY_ID["slowing-small-eps"]
+    for small, large, expected in ((flattening, steady_log, "agrees"),
+                                   (steady_log, flattening, "disagrees")):
+        tab = Table()
+        tab.add("a", "eps=0.005", t, small, None, n=1)
+        tab.add("a", "eps=0.15", t, large, None, n=1)
+        (m,) = claims.log_time_slowing(report(fig2=tab), claim)
+        assert m.dof == claims.WITHIN_RUN_DOF
+        assert claims.verdict(claim, m) == expected, m

@@ -532,6 +532,30 @@ def ageing_collapse(data, claim):
 EARLY_DECADE = (1.0, 10.0)
 
 
+def _log_rates_one_run(t, x):
+    """Rates of Phi_b per unit ln t of one run (the curve is the run) over the first decade and
+    the last decade [T/10, T], each from the means of the decade's two halves in ln t: the
+    late halves with their batch-means errors (tapmc.fluctuations.SteadyState), the early ones
+    (a few taps each) with one tap's spread about the steady state (not divided by their
+    number: taps that close are correlated). ((early, error), (late, error))."""
+    from tapmc.fluctuations import SteadyState
+
+    spread = SteadyState(x, last=max(len(t) // 4, 2)).compute().std
+
+    def halves(lo, hi, batch_errors):
+        mid = math.sqrt(lo * hi)
+        parts = [(t >= lo) & (t < mid), (t >= mid) & (t <= hi)]
+        means = [float(np.mean(x[p])) for p in parts]
+        if batch_errors:
+            errs = [SteadyState(x[p], last=int(p.sum())).compute().sem for p in parts]
+        else:
+            errs = [spread, spread]
+        gap = float(np.mean(np.log(t[parts[1]])) - np.mean(np.log(t[parts[0]])))
+        return (means[1] - means[0]) / gap, math.hypot(*errs) / gap
+
+    return (halves(*EARLY_DECADE, False), halves(t[-1] / 10.0, t[-1], True))
+
+
 def _log_slope(t, mean, sem, lo, hi):
     pick = (t >= lo) & (t <= hi) & (t > 0)
     return _weighted_line(np.log(t[pick]), mean[pick], sem[pick])
@@ -595,14 +619,19 @@ def log_time_slowing(data, claim):
     ratios = []
     for eps, series in (curves[0], curves[-1]):
         t, mean, sem, n = fig.get("a", series)
-        early, e_early, _ = _log_slope(t, mean, sem, *EARLY_DECADE)
-        late, e_late, _ = _log_slope(t, mean, sem, t[-1] / 10.0, t[-1])
+        if np.nanmax(n) == 1 and t[-1] >= 100 * EARLY_DECADE[1]:
+            (early, e_early), (late, e_late) = _log_rates_one_run(t, mean)
+            dof = WITHIN_RUN_DOF
+        else:
+            early, e_early, _ = _log_slope(t, mean, sem, *EARLY_DECADE)
+            late, e_late, _ = _log_slope(t, mean, sem, t[-1] / 10.0, t[-1])
+            dof = _dof(n)
         if not (np.isfinite(early) and early > 2 * e_early):
             return [Measure(undecided=f"no significant compaction in the first decade at "
                                       f"eps = {eps:g} (rate {fmt(early, e_early)})")]
         r = late / early
         ratios.append((eps, r, abs(r) * math.hypot(e_late / late if late else math.inf,
-                                                    e_early / early), _dof(n)))
+                                                    e_early / early), dof))
     (e0, r0, s0, d0), (e1, r1, s1, d1) = ratios
     dofs = [d for d in (d0, d1) if d is not None]
     return [Measure(r0 - r1, math.hypot(s0, s1), min(dofs) if len(dofs) == 2 else None,
