@@ -824,3 +824,18 @@ def test_one_seed_log_time_slowing_from_the_runs_own_windows():
         (m,) = claims.log_time_slowing(report(fig2=tab), claim)
         assert m.dof == claims.WITHIN_RUN_DOF
         assert claims.verdict(claim, m) == expected, m
+
+
+def test_one_seed_fig2_fits_are_not_tested():
+    """One run per eps: the fits' chi-square and profile intervals would rest on the taps'
+    scatter, which is correlated; the claims that need them stay undecided and say why."""
+    t = np.arange(200.0)
+    tab = Table()
+    for eps in (0.005, 0.15):
+        tab.add("a", f"eps={P.fmt_eps(eps)}", t, 0.52 + 0.01 * np.log1p(t), None, n=1)
+        tab.param(f"eps={P.fmt_eps(eps)}:reduced_chi2", 2.5e-7, None, n=1, x=eps)
+    data = report(fig2=tab)
+    (m,) = claims.eq3_triplet_pattern(data, BY_ID["eq3-triplet-range"])
+    assert m.undecided and "correlation" in m.undecided
+    fits = claims.eq3_fit_quality(data, BY_ID["eq3-compatible"])
+    assert all(f.undecided and "rms residual 0.0005" in f.text() for f in fits)
