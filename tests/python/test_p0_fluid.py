@@ -137,8 +137,8 @@ def test_p0_fluid_rendering_against_the_packing(tmp_path):
     assert "within 0.7 % of Carnahan-Starling" in text
     assert ("At Phi = 0.300, where PY is most accurate, the measured P0 departs from it by at "
             "most 0.0034 ± 0.0004 (P0 above PY)") in text
-    assert ("(Phi = 60.6 %) departs from PY by 0.025 at sigma = 1.20, P0 below PY (opposite to "
-            "the fluid): 3.8 times") in text and "markedly less closely" in text
+    assert ("(Fig. 9's run; Phi = 60.6 %) departs from PY by 0.025 at sigma = 1.20, P0 below PY "
+            "(opposite to the fluid): 3.8 times") in text and "markedly less closely" in text
     close = "\n".join(questions.render_section(tmp_path, {"fig9": fig9(0.008)}))
     assert "1.2 times the equilibrium" in close and "as close as a fluid's" in close
     assert "reaches 0.0074 at the packing's Phi; the packing's is 3.4 times that" in text
@@ -182,3 +182,22 @@ def test_p0_fluid_question_end_to_end(mc, tmp_path):
     assert (tmp_path / "work" / "p0_fluid_curves.csv").is_file()
     text = "\n".join(questions.render_section(tmp_path))
     assert "N = 256 spheres" in text and "   * - 0.300" in text
+
+
+def test_p0_fluid_prefers_the_tapped_configurations(tmp_path):
+    """With p0_configs.csv beside it, the packing's departure from PY is that of the mean of
+    the tapped configurations (PY at their Phi), not of Fig. 9's single run."""
+    from tapmc.pores import percus_yevick_p0
+
+    p0_csv(tmp_path)
+    sig = [0.0, 1.0, 1.2, 1.4]
+    lines = ["sigma,initial,initial_sem,initial_n,tapped,tapped_sem,tapped_n"]
+    for x in sig:
+        py = float(percus_yevick_p0(x, 0.604))
+        tapped = py + (0.012 if x == 1.2 else 0.0)
+        lines.append(f"{x},{py},0.001,8,{tapped},0.0005,8")
+    lines.append("phi,0.582,0.0005,8,0.604,0.0005,8")
+    (tmp_path / "p0_configs.csv").write_text("\n".join(lines) + "\n")
+    text = "\n".join(questions.render_section(tmp_path, {"fig9": fig9(0.025)}))
+    assert ("(mean of 8 tapped configurations, ``p0_configs.csv``; Phi = 60.4 %) departs from "
+            "PY by 0.012 at sigma = 1.20, P0 above PY") in text

@@ -490,9 +490,23 @@ def _pbc_course(path):
     return lines + [""]
 
 
-def _packing_p0(fig9):
-    """(Phi, max |P0 - PY|, sigma of the max, P0 - PY there, PY there) of Fig. 9's tapped
-    packing, or None when the figure's data are absent."""
+def _packing_p0(fig9, configs=None):
+    """(Phi, max |P0 - PY|, sigma of the max, P0 - PY there, PY there, what) of Fig. 9's
+    tapped packing: over the tapped configurations of ``configs`` (p0_configs.csv) when given,
+    else Fig. 9's own curve; None when neither is there."""
+    if configs is not None and Path(configs).is_file():
+        from tapmc.pores import percus_yevick_p0
+
+        rows = _read(configs)
+        data = [r for r in rows if r["sigma"] != "phi"]
+        phi = float(next(r for r in rows if r["sigma"] == "phi")["tapped"])
+        sigma = np.array([float(r["sigma"]) for r in data])
+        final = np.array([float(r["tapped"]) for r in data])
+        theory = np.asarray(percus_yevick_p0(sigma, phi), dtype=float)
+        diff = final - theory
+        at = int(np.argmax(np.abs(diff)))
+        return (phi, float(abs(diff[at])), float(sigma[at]), float(diff[at]), float(theory[at]),
+                f"mean of {data[0]['tapped_n']} tapped configurations, ``p0_configs.csv``")
     if fig9 is None:
         return None
     phi = fig9.param("phi_final")[0]
@@ -505,7 +519,7 @@ def _packing_p0(fig9):
         diff = final[1] - theory[1]
         at = int(np.nanargmax(np.abs(diff)))
         sigma, signed, py = float(final[0][at]), float(diff[at]), float(theory[1][at])
-    return phi, value, sigma, signed, py
+    return phi, value, sigma, signed, py, "Fig. 9's run"
 
 
 def _p0_fluid(path, fig9=None):
@@ -559,10 +573,10 @@ def _p0_fluid(path, fig9=None):
                  f"{fmt(f['max_abs_diff'][hi], f['max_abs_diff_sem'][hi])} (at sigma = "
                  f"{f['sigma_at_max'][hi]:.2f}, P0 {side(hi)} PY).")
     lines.append(text)
-    packing = _packing_p0(fig9)
+    packing = _packing_p0(fig9, Path(path).with_name("p0_configs.csv"))
     if packing is None:
         return lines + [""]
-    phi, value, sigma, signed, py = packing
+    phi, value, sigma, signed, py, what = packing
     baseline = f["max_abs_diff"][hi]
     where = ""
     if np.isfinite(sigma):
@@ -570,7 +584,8 @@ def _p0_fluid(path, fig9=None):
         where = (f" at sigma = {sigma:.2f}, P0 " + ("above" if signed > 0 else "below")
                  + " PY (" + ("the fluid's direction" if same else "opposite to the fluid")
                  + ")")
-    text = (f"* The tapped packing of Fig. 9 (Phi = {100 * phi:.1f} %) departs from PY by "
+    text = (f"* The tapped packing of Fig. 9 ({what}; Phi = {100 * phi:.1f} %) departs from "
+            "PY by "
             f"{fmt(value)}{where}: {value / baseline:.1f} times the equilibrium fluid's at "
             f"Phi = {f['phi'][hi]:.3f}.")
     valid = np.flatnonzero(ok)
