@@ -839,3 +839,14 @@ def test_one_seed_fig2_fits_are_not_tested():
     assert m.undecided and "correlation" in m.undecided
     fits = claims.eq3_fit_quality(data, BY_ID["eq3-compatible"])
     assert all(f.undecided and "rms residual 0.0005" in f.text() for f in fits)
+
+
+def test_one_seed_b_dependence_is_not_tested():
+    t = np.arange(200.0)
+    tab = Table()
+    for eps in (0.005, 0.05, 0.15):
+        tab.add("a", f"eps={P.fmt_eps(eps)}", t, 0.52 + 0.01 * np.log1p(t), None, n=1)
+    tab.add("B", "eq3:reduced_chi2", [0.0], [0.8], None, n=1)
+    tab.add("B", "eq3:slope", [0.0], [3.0], [0.5], n=1)
+    (m,) = claims.b_exponential(report(fig2=tab), BY_ID["b-exponential"])
+    assert m.undecided == claims.ONE_RUN_FITS and "d ln B / d sqrt(eps) = 3" in m.text()

@@ -468,6 +468,18 @@ def _eq3_uniqueness(fig, eps):
     return not reasons, "; ".join(reasons) or "unique"
 
 
+#: why the fits of Fig. 2 decide nothing with one run per eps: their errors come from the
+#: scatter of the taps about the law, whose correlation (Fig. 3's spectrum) they ignore, so
+#: the intervals, the range tests and B's errors would be too narrow
+ONE_RUN_FITS = "one realization: the fits' intervals ignore the taps' correlation"
+
+
+def _one_run_fig2(fig):
+    """True when every curve of Fig. 2 is one run (n = 1)."""
+    series = _eps_series(fig, "a")
+    return bool(series) and max(np.nanmax(fig.get("a", name)[3]) for _, name in series) < 2
+
+
 def eq3_triplet_pattern(data, claim):
     """Section III.B: the triplet is not unique at the smallest eps and unique at some larger
     eps (1), or not (0)."""
@@ -477,12 +489,8 @@ def eq3_triplet_pattern(data, claim):
     series = _eps_series(fig, "a")
     if len(series) < 2:
         return _missing("fewer than two eps in Fig. 2")
-    if max(np.nanmax(fig.get("a", name)[3]) for _, name in series) < 2:
-        # one run per eps: the fits' errors come from the scatter of the taps about the law,
-        # whose correlation (Fig. 3's spectrum) they ignore, so the intervals and the range
-        # tests would be too narrow to call a parameter determined or range dependent
-        return [Measure(undecided="one realization: the fits' intervals ignore the taps' "
-                                  "correlation")]
+    if _one_run_fig2(fig):
+        return [Measure(undecided=ONE_RUN_FITS)]
     states = [(e, *_eq3_uniqueness(fig, e)) for e, _ in series]
     if any(u is None for _, u, _ in states):
         return _missing("no profile intervals and range refits in the Fig. 2 data")
@@ -500,6 +508,7 @@ def b_exponential(data, claim):
     fig = data.figure("fig2")
     if fig is None:
         return _missing("no Fig. 2 runs")
+    one_run = _one_run_fig2(fig)
     out = []
     for law in ("eq3", "eq4"):
         d = fig.get("B", f"{law}:reduced_chi2")
@@ -509,7 +518,10 @@ def b_exponential(data, claim):
         slope = fig.get("B", f"{law}:slope")
         text = "" if slope is None else f"d ln B / d sqrt(eps) = {fmt(slope[1][0], slope[2][0])}; "
         label = f"B of {law.replace('eq', 'eq. ')}"
-        if dof < 1 or not np.isfinite(chi):
+        if one_run:
+            out.append(Measure(label=label, undecided=ONE_RUN_FITS,
+                               shown=text.rstrip("; ") or None))
+        elif dof < 1 or not np.isfinite(chi):
             out.append(Measure(label=label, undecided="fewer than three eps with a determined B",
                                shown=text.rstrip("; ") or None))
         else:
