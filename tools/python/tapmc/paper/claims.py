@@ -587,20 +587,22 @@ def _log_slope(t, mean, sem, lo, hi):
 
 def _rate_change_one_run(eps, t, x):
     """:func:`_rate_change` of one run (the curve is the run): the late rate from the means of
-    its last two quarters (each with its batch-means error), the early rate from the mean of
-    the first decade's second half against the start (the run's own packing), with one tap's
-    spread about the steady state as its error (taps that close together are correlated, so
-    the spread is not divided by their number)."""
+    its last two quarters (each with its batch-means error), the early rate from the means of
+    the two halves of the first decade (taps 1-5 and 6-10, as the line over the decade for
+    several seeds), each with one tap's spread about the steady state as its error (taps that
+    close together are correlated, so the spread is not divided by their number)."""
     from tapmc.fluctuations import SteadyState
 
     q = len(t) // 4
     third, fourth = (SteadyState(x[:len(t) - k * q], last=q).compute() for k in (1, 0))
     late = (fourth.mean - third.mean) / q
     e_late = math.hypot(third.sem, fourth.sem) / q
-    pick = (t > EARLY_DECADE[1] / 2) & (t <= EARLY_DECADE[1])
-    centre = float(np.mean(t[pick]))
-    early = (float(np.mean(x[pick])) - x[0]) / centre
-    e_early = fourth.std / centre
+    lo, hi = EARLY_DECADE
+    first = (t >= lo) & (t <= hi / 2)
+    second = (t > hi / 2) & (t <= hi)
+    gap = float(np.mean(t[second]) - np.mean(t[first]))
+    early = (float(np.mean(x[second])) - float(np.mean(x[first]))) / gap
+    e_early = math.sqrt(2.0) * fourth.std / gap
     return Measure(late - early, math.hypot(e_late, e_early), WITHIN_RUN_DOF,
                    label=f"eps = {eps:g}",
                    shown=f"{fmt(late, e_late)} vs {fmt(early, e_early)} per tap (last half vs "
