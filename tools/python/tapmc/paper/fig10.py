@@ -99,11 +99,10 @@ def distributions(campaign, bc=None):
             d["nu"].append([dist.nu])
             sel = (pores.pores["timestep"] == step) & (pores.pores["selected"] == 1)
             d["xi_min"].append([float(pores.pores["xi"][sel].min())])
+            fitted = _statistics(dist)
             for name in ("xi_T", "nu_tail"):
-                value = _fitted(getattr(dist, {"xi_T": "tetrahedral_law",
-                                               "nu_tail": "volume_tail"}[name]), name)
-                if value is not None:
-                    d[name].append([value])
+                if fitted[name] is not None:
+                    d[name].append([fitted[name]])
             if len(specs) == 1:
                 d["errors"] = _jackknife_errors(pores, step)
     return dict(sorted(out.items()))
