@@ -584,7 +584,6 @@ def test_one_seed_zones_are_decided_by_their_paired_error_within_the_run():
     """The paper's protocol (one run per point): delta Phi_central - delta Phi_lateral of one
     seed gets the batch-means error of its own difference series; a clear gap decides, no gap
     stays undecided."""
-    from tapmc.paper import fig8 as fig8_module
 
     rng = np.random.default_rng(7)
     noise = 0.002 * rng.standard_normal(4000)
@@ -592,11 +591,11 @@ def test_one_seed_zones_are_decided_by_their_paired_error_within_the_run():
     outcomes = {}
     for gap, name in ((-0.01, "clear"), (0.0, "none")):
         central = lateral + gap + 0.0005 * rng.standard_normal(4000)
-        stats = fig8_module.window_stats([central - lateral], 1000)
+        stats = P.window_stats([central - lateral], 1000)
         assert stats[2][0] == 1 and np.isfinite(stats[1][0])
         # ... so the paired error is far below the zones' own errors combined
-        combined = math.hypot(fig8_module.window_stats([central], 1000)[1][0],
-                              fig8_module.window_stats([lateral], 1000)[1][0])
+        combined = math.hypot(P.window_stats([central], 1000)[1][0],
+                              P.window_stats([lateral], 1000)[1][0])
         assert stats[1][0] < combined / 2
         tab = Table()
         for eps in (0.005, 0.1):

@@ -44,7 +44,6 @@ from collections import defaultdict
 
 import numpy as np
 
-from tapmc.fluctuations import SteadyState
 from tapmc.hysteresis import CRITICAL_SQRT_EPS, BranchData, Hysteresis, RampBranches
 
 from . import _plotting as P
@@ -78,13 +77,8 @@ def steady_states(campaign, column="phi_c", bc=BC):
     groups = _runs.constant_eps_groups(campaign, bc)
     eps_list, means, sems, ns = [], [], [], []
     for eps, specs in groups.items():
-        states = []
-        for spec in specs:
-            x = _runs.taps_table(campaign, spec)[column][1:]
-            states.append(SteadyState(x, last=steady_last(len(x))).compute())
-        m, s, n = P.seed_stats([[st.mean] for st in states])
-        if len(states) == 1:
-            s = [states[0].sem]
+        series = [_runs.taps_table(campaign, spec)[column][1:] for spec in specs]
+        m, s, n = P.window_stats(series, steady_last(min(len(x) for x in series)))
         eps_list.append(eps)
         means.append(m[0])
         sems.append(s[0])

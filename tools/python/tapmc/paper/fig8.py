@@ -26,8 +26,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from tapmc.fluctuations import SteadyState
-
 from . import _plotting as P
 from . import _profile_runs, _runs
 from ._profile_runs import BC
@@ -61,7 +59,7 @@ def increases(campaign, bc=BC, eps_values=None):
         n = np.full(length, len(tables))
         last = max(length // 4, 1)
         lateral_all, central_all = inc.delta_lateral_all, inc.delta_central_all
-        finals = {zone: window_stats(per_seed, last)
+        finals = {zone: P.window_stats(per_seed, last)
                   for zone, per_seed in (("lateral", lateral_all), ("central", central_all),
                                          ("central_minus_lateral",
                                           [c - lat for c, lat in zip(central_all, lateral_all)]))}
@@ -73,16 +71,6 @@ def increases(campaign, bc=BC, eps_values=None):
         out[eps] = (t, (np.asarray(inc.delta_lateral), np.asarray(inc.delta_lateral_sem), n),
                     (np.asarray(inc.delta_central), np.asarray(inc.delta_central_sem), n), finals)
     return out
-
-
-def window_stats(per_seed, last):
-    """(mean, sem, n) of the mean over the last ``last`` taps of each seed's series: sem over
-    seeds; with one seed (the paper's protocol) that run's batch-means error over the window
-    (tapmc.fluctuations.SteadyState: successive taps are correlated), n = 1."""
-    m, s, n = P.seed_stats([[np.asarray(x)[-last:].mean()] for x in per_seed])
-    if len(per_seed) == 1 and last >= 2:
-        s = np.array([SteadyState(np.asarray(per_seed[0], float), last=last).compute().sem])
-    return m, s, n
 
 
 def draw(campaign, out_dir):
