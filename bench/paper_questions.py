@@ -61,6 +61,14 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               steady state (last 1000 taps, batch-means error) and the difference of its
               two halves (is the packing still compacting at the end?).
 
+  integrity   Do thousands of taps leave a legal hard-sphere packing, and do the numbers a
+              run prints describe the packing it dumps? Every dump of the paper-scale
+              campaign (no simulation: the t = 0 and final packings of every run, Fig. 10's
+              nine) checked offline (tapmc.packing.PackingCheck): spheres, the closest pair
+              (overlaps beyond the model's tolerance and the dump's rounding), the floor and
+              the side walls; and Phi_b, <Phi^c>, <Z>, z_top, h_s recomputed from the
+              positions against the run's taps.dat row of that tap.
+
   p0-fluid    Is a tapped packing expected to follow the Percus-Yevick P0(sigma) of Fig. 9
               as closely as it does (max |P0 - PY| = 0.025 at Phi = 0.606)? PY is a theory of
               the equilibrium hard-sphere fluid: P0 measured with the same tool and settings
@@ -92,6 +100,7 @@ Usage (from the repository; minutes on one core, run under nice):
     bench/paper_questions.py noise-floor [--out DIR] [--lmp EXE] [--restart FILE]
     bench/paper_questions.py spectral-window [--out DIR] [--campaign DIR]
     bench/paper_questions.py pbc-course [--out DIR] [--campaign DIR]
+    bench/paper_questions.py integrity [--out DIR] [--campaign DIR]
     bench/paper_questions.py initial-packing [--out DIR] [--lmp EXE] [--seeds 1 2 ...]
     bench/paper_questions.py p0-configs [--out DIR] [--lmp EXE] [--restart FILE] [--work DIR]
     bench/paper_questions.py lateral-first-tap [--out DIR] [--lmp EXE] [--seeds 1 2 3 4]
@@ -545,6 +554,73 @@ def pbc_course(args):
                "steady_halves_diff_sem"], rows)
 
 
+#: columns of a run's taps.dat that a dumped packing reproduces (tapmc.packing.PackingCheck)
+INTEGRITY_COLUMNS = ("phi_b", "phi_c", "Z", "z_top", "h_s")
+#: what the dump's rounding (%.10g: 5e-9 on a coordinate of the paper's box) can move a mean
+#: height, a slab fraction or the surface height by, at most (with a factor 2 of room)
+INTEGRITY_SLACK = 1e-8
+
+
+def _printed_rows(path):
+    """(column names, {step: the last row printed for it, as text fields}) of a taps.dat: a
+    resumed run prints the steps after its restart again, and the last print is the one of
+    the run that continued (and wrote the dumps from then on)."""
+    names, rows = None, {}
+    with open(path) as handle:
+        for line in handle:
+            if line.startswith("#"):
+                names = line[1:].split()
+            elif line.strip():
+                fields = line.split()
+                rows[int(float(fields[0]))] = fields
+    if names is None:
+        sys.exit(f"paper_questions: {path} has no '# step ...' header line")
+    return names, rows
+
+
+def integrity(args):
+    from tapmc.packing import PackingCheck
+    from tapmc.readers import read_dump
+
+    rows = []
+    runs = sorted(p for p in Path(args.campaign, "runs").iterdir() if p.is_dir())
+    for run_dir in runs:
+        dumps = sorted(run_dir.glob("dump.*.lammpstrj"),
+                       key=lambda p: int(p.name.split(".")[1]))
+        if not dumps or not (run_dir / "taps.dat").is_file():
+            continue
+        names, printed = _printed_rows(run_dir / "taps.dat")
+        for dump in dumps:
+            frame = read_dump(dump).frames[-1]
+            check = PackingCheck(frame).compute()
+            row = printed.get(frame.step)
+            worst, worst_name = 0.0, ""
+            for name in INTEGRITY_COLUMNS:
+                if row is None or name not in names:
+                    continue
+                text = row[names.index(name)]
+                decimals = len(text.split(".")[1]) if "." in text else 0
+                # the difference in units of what the print and the dump's rounding allow
+                allowed = 0.5 * 10.0 ** -decimals + INTEGRITY_SLACK
+                ratio = abs(check.scalars()[name] - float(text)) / allowed
+                if ratio >= worst:
+                    worst, worst_name = ratio, name
+            rows.append([run_dir.name, frame.step, check.n, f"{check.min_gap:.4g}",
+                         check.overlaps, f"{check.floor_gap:.4g}",
+                         "" if check.wall_gap is None else f"{check.wall_gap:.4g}",
+                         int(check.legal),
+                         f"{check.resolution / (2 * float(check.radii.min())):.3g}",
+                         f"{check.phi_c:.8f}", "" if row is None else f"{worst:.3g}",
+                         worst_name])
+            print(f"{run_dir.name} t = {frame.step}: {check!r}, printed scalars within "
+                  f"{worst:.2f} of their allowance ({worst_name})", flush=True)
+    if not rows:
+        sys.exit(f"paper_questions: no run of {args.campaign} has dumps and a taps.dat")
+    write_csv(Path(args.out) / "integrity.csv",
+              ["run", "tap", "n", "min_gap", "overlaps", "floor_gap", "wall_gap", "legal",
+               "resolution_rel", "phi_c", "scalars_worst", "scalars_worst_column"], rows)
+
+
 #: Phi of the fluids: stable fluid up to freezing (0.494), then metastable ones (the 4000
 #: spheres do not crystallise within the runs at 0.54: g(1+) stays on the fluid's branch).
 P0_FLUID_PHI = (0.30, 0.40, 0.45, 0.49, 0.52, 0.54)
@@ -704,8 +780,8 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
-    for name in ("first-tap", "noise-floor", "spectral-window", "pbc-course", "initial-packing",
-                 "p0-configs", "lateral-first-tap", "ramp-levels", "theta0", "dmax",
+    for name in ("first-tap", "noise-floor", "spectral-window", "pbc-course", "integrity",
+                 "initial-packing", "p0-configs", "lateral-first-tap", "ramp-levels", "theta0", "dmax",
                  "p0-fluid"):
         p = sub.add_parser(name)
         p.add_argument("--out", default=DEFAULT_OUT, type=Path)
@@ -724,7 +800,7 @@ def main(argv=None):
         sub.choices[name].add_argument("--restart", default=CAMPAIGN_RUN / "restart.4000")
     sub.choices["p0-configs"].add_argument("--configs", type=int, default=P0_CONFIGS)
     sub.choices["p0-configs"].add_argument("--work", default=None, type=Path)
-    for name in ("spectral-window", "pbc-course", "ramp-levels"):
+    for name in ("spectral-window", "pbc-course", "integrity", "ramp-levels"):
         sub.choices[name].add_argument("--campaign", default=CAMPAIGN_RUN.parents[1])
     sub.choices["ramp-levels"].add_argument("--run", default="ramp_pbc_s1")
     sub.choices["ramp-levels"].add_argument("--levels", type=int, nargs="+", default=None)
@@ -746,7 +822,7 @@ def main(argv=None):
         if any(not 0.01 <= p <= 0.58 for p in args.phi):
             parser.error(f"--phi values must be in [0.01, 0.58], got {args.phi}")
     {"first-tap": first_tap, "noise-floor": noise_floor,
-     "spectral-window": spectral_window, "pbc-course": pbc_course,
+     "spectral-window": spectral_window, "pbc-course": pbc_course, "integrity": integrity,
      "initial-packing": initial_packing, "p0-configs": p0_configs,
      "lateral-first-tap": lateral_first_tap, "ramp-levels": ramp_levels, "theta0": theta0_scan, "dmax": dmax_scan,
      "p0-fluid": p0_fluid}[args.command](args)

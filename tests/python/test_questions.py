@@ -300,3 +300,70 @@ def test_ramp_levels_against_the_hysteresis_gap(tmp_path):
     assert "at most 0.10 ± 0.04 %; 1 of 2 beyond their error" in text
     assert "gap (decrease minus first increase) is 2.00 %" in text
     assert "by less than a tenth of it" in text
+
+
+def integrity_csv(folder, overlaps=0, worst=0.9):
+    header = ("run,tap,n,min_gap,overlaps,floor_gap,wall_gap,legal,resolution_rel,phi_c,"
+              "scalars_worst,scalars_worst_column")
+    legal = 1 if overlaps == 0 else 0
+    rows = ["const_fbc_eps0.1_s1,0,4096,-1.05e-08,0,0,0,1,1.73e-08,0.5557,0.66,h_s",
+            f"const_fbc_eps0.1_s1,4000,4096,{-2e-6 if overlaps else 2.6e-08},{overlaps},"
+            f"8.4e-08,6.4e-07,{legal},1.73e-08,0.5767,{worst},h_s",
+            "const_pbc_eps0.1_s1,0,4096,-1.26e-08,0,0,,1,1.73e-08,0.5829,0.79,z_top",
+            "const_pbc_eps0.1_s1,4000,4096,4.2e-08,0,7e-08,,1,1.73e-08,0.6019,0.42,h_s"]
+    (folder / "integrity.csv").write_text("\n".join([header] + rows) + "\n")
+
+
+def test_integrity_of_legal_dumps_whose_scalars_match(tmp_path):
+    integrity_csv(tmp_path)
+    text = "\n".join(questions.render_section(tmp_path))
+    assert "``integrity``" in text
+    assert "4 dumps of 2 runs: every one holds 4096 spheres" in text
+    assert "every one is a legal hard-sphere packing" in text
+    assert "after taps the closest pair is 2.6e-08 of contact (const_fbc_eps0.1_s1, t = 4000)" \
+        in text
+    assert "largest: 0.90 of the allowance, h_s of const_fbc_eps0.1_s1 at t = 4000" in text
+    assert "     - periodic" in text
+
+
+def test_integrity_names_the_overlapping_dump_and_the_mismatched_print(tmp_path):
+    integrity_csv(tmp_path, overlaps=3, worst=12.5)
+    text = "\n".join(questions.render_section(tmp_path))
+    assert "NOT all are legal: const_fbc_eps0.1_s1 t = 4000 (3 overlaps" in text
+    assert "differ from the dumped packings' at const_fbc_eps0.1_s1 t = 4000 (h_s: 12.5 of " \
+           "the allowance)" in text
+
+
+def test_integrity_command_on_a_paper_scale_run_and_a_corrupted_copy(tmp_path):
+    """bench/paper_questions.py integrity on a committed run of the campaign (its t = 0 and
+    t = 4000 dumps and taps.dat), then on a copy with one sphere pushed into another."""
+    import shutil
+
+    import pytest
+
+    run = SOURCE / "doc" / "validation" / "data" / "full" / "runs" / "const_pbc_eps0.0225_s1"
+    if not (run / "dump.4000.lammpstrj").is_file():
+        pytest.skip("campaign data absent")
+    pq = _paper_questions()
+    for name, corrupt in (("good", False), ("bad", True)):
+        folder = tmp_path / name / "runs" / run.name
+        folder.mkdir(parents=True)
+        for f in ("dump.0.lammpstrj", "dump.4000.lammpstrj", "taps.dat"):
+            shutil.copy(run / f, folder / f)
+        if corrupt:   # sphere 2 onto sphere 1's centre, 0.1 above it
+            lines = (folder / "dump.4000.lammpstrj").read_text().splitlines()
+            first = next(k for k, line in enumerate(lines) if line.startswith("ITEM: ATOMS"))
+            one = lines[first + 1].split()
+            two = lines[first + 2].split()
+            two[1:4] = one[1], one[2], f"{float(one[3]) + 0.1:.10g}"
+            lines[first + 2] = " ".join(two)
+            (folder / "dump.4000.lammpstrj").write_text("\n".join(lines) + "\n")
+        pq.main(["integrity", "--campaign", str(tmp_path / name), "--out", str(tmp_path / name)])
+    good = questions._read(tmp_path / "good" / "integrity.csv")
+    bad = questions._read(tmp_path / "bad" / "integrity.csv")
+    assert [r["tap"] for r in good] == ["0", "4000"]
+    assert all(r["legal"] == "1" and r["n"] == "4096" for r in good)
+    assert all(float(r["scalars_worst"]) < 1 for r in good)
+    assert bad[1]["legal"] == "0" and int(bad[1]["overlaps"]) >= 1
+    assert float(bad[1]["min_gap"]) == pytest.approx(-0.9, abs=1e-6)
+    assert float(bad[1]["scalars_worst"]) >= 1     # the print no longer describes it

@@ -4,26 +4,30 @@
 Submodules: ``readers`` (LAMMPS logs, fix ave/time and fix print files, dumps), ``laws``
 (fits of eqs. 3, 4, 6, 7 and a sum of two exponentials), ``fluctuations`` (steady state,
 power spectrum, sigma_X), ``hysteresis`` (ramp runs of Fig. 4), ``ageing`` (eqs. 5, 6),
-``profiles`` (delta Phi_lateral / central, vertical profiles) and ``pores`` (tapmc-pores
-outputs, the tetrahedral law, the volume tail, Percus-Yevick P0). See doc/python_analysis.rst.
+``profiles`` (delta Phi_lateral / central, vertical profiles), ``pores`` (tapmc-pores
+outputs, the tetrahedral law, the volume tail, Percus-Yevick P0) and ``packing`` (one dumped
+packing checked offline: overlaps, floor, walls, the stereology scalars). See
+doc/python_analysis.rst.
 """
 
 __version__ = "0.1.0"
 
-from . import ageing, fluctuations, hysteresis, laws, pores, profiles, readers
+from . import ageing, fluctuations, hysteresis, laws, packing, pores, profiles, readers
 from .ageing import Ageing
 from .fluctuations import PowerSpectrum, SteadyState, sigma_scaling, sigma_x
 from .hysteresis import Hysteresis
 from .laws import (AgeingLaw, FitResult, InverseLogLaw, ProfileLaw, TwoExponentials,
                    ZLaw, profile_gradient)
+from .packing import PackingCheck
 from .pores import (TetrahedralLaw, VolumeTail, percus_yevick_p0, read_pores)
 from .profiles import ProfileIncrease, transversal_profile, vertical_profile
 from .readers import (TapmcFormatError, read_ave_time, read_dump, read_fix_print,
                       read_log)
 
-__all__ = ["ageing", "fluctuations", "hysteresis", "laws", "pores", "profiles", "readers",
-           "Ageing", "PowerSpectrum", "SteadyState", "sigma_scaling", "sigma_x", "Hysteresis",
-           "AgeingLaw", "FitResult", "InverseLogLaw", "ProfileLaw", "TwoExponentials", "ZLaw",
-           "profile_gradient", "TetrahedralLaw", "VolumeTail", "percus_yevick_p0", "read_pores",
+__all__ = ["ageing", "fluctuations", "hysteresis", "laws", "packing", "pores", "profiles",
+           "readers", "Ageing", "PowerSpectrum", "SteadyState", "sigma_scaling", "sigma_x",
+           "Hysteresis", "AgeingLaw", "FitResult", "InverseLogLaw", "ProfileLaw",
+           "TwoExponentials", "ZLaw", "profile_gradient", "PackingCheck", "TetrahedralLaw",
+           "VolumeTail", "percus_yevick_p0", "read_pores",
            "ProfileIncrease", "transversal_profile", "vertical_profile", "TapmcFormatError",
            "read_ave_time", "read_dump", "read_fix_print", "read_log"]

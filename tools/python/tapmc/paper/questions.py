@@ -14,6 +14,8 @@ committed data.
 * ``pbc_course.csv``: the course of <Phi^c> in every P.B.C. run of the campaign: how deep
   and how long the dip after the first taps is, and whether strong taps (eps >= 0.09) leave
   the packing looser than it started or still compacting at the end.
+* ``integrity.csv``: every dump of the campaign checked offline: overlaps, floor and walls,
+  and the printed scalars of that tap recomputed from the positions.
 * ``initial_packing.csv``: the initial P.B.C. packing of several depositions at t = 0: the
   spread between packings that a campaign started from one packing hides.
 * ``p0_configs.csv``: Fig. 9's P0(sigma) over several depositions and several configurations
@@ -167,6 +169,99 @@ def _spectral_window(path):
                      + ("moves the slope beyond twice its error." if moved else
                         "moves it by less than twice its error."))
     return lines + [""]
+
+
+def _integrity(path):
+    rows = _read(path)
+    if not rows:
+        return []
+    by_run = defaultdict(list)
+    for r in rows:
+        by_run[r["run"]].append(r)
+    lines = ["Do thousands of taps leave a legal hard-sphere packing, and do the numbers a run "
+             "prints describe the packing it dumps? Every dump of the campaign checked offline "
+             "(``integrity.csv``; ``tapmc.packing.PackingCheck``, numpy, no LAMMPS): the "
+             "spheres; the closest pair, |r_ij| - (R_i + R_j) over R_i + R_j, in the deposited "
+             "packing (t = 0) and after taps; the overlaps, pairs closer than contact by more "
+             "than the model's tolerance (1e-10) plus what the dump's rounding allows; the "
+             "lowest sphere's gap to the floor and the closest sphere's to a side wall (over "
+             "its diameter); and Phi_b, <Phi^c>, <Z>, z_top and h_s recomputed from the "
+             "positions against the run's printed row of that tap, as the largest difference "
+             "in units of what the print's last digit and the dump's rounding allow (below 1 "
+             "is agreement):", "",
+             ".. list-table::", "   :header-rows: 1", "",
+             "   * - run", "     - dumps at taps", "     - spheres",
+             "     - closest pair, t = 0", "     - closest pair after taps", "     - overlaps",
+             "     - floor gap", "     - wall gap", "     - printed scalars"]
+
+    def low(items, key):
+        values = [float(r[key]) for r in items if r[key] != ""]
+        return min(values) if values else None
+
+    def gap(value):
+        return "none" if value is None else fmt(value)
+
+    worst_all = (0.0, "", "", "")
+    for run, items in sorted(by_run.items()):
+        items.sort(key=lambda r: int(r["tap"]))
+        wall = low(items, "wall_gap")
+        printed = [r for r in items if r["scalars_worst"] != ""]
+        worst = max(printed, key=lambda r: float(r["scalars_worst"])) if printed else None
+        if worst is not None and float(worst["scalars_worst"]) >= worst_all[0]:
+            worst_all = (float(worst["scalars_worst"]), worst["scalars_worst_column"], run,
+                         worst["tap"])
+        counts = sorted({int(r["n"]) for r in items})
+        lines += [f"   * - {run}", f"     - {', '.join(r['tap'] for r in items)}",
+                  f"     - {', '.join(map(str, counts))}",
+                  f"     - {gap(low([r for r in items if r['tap'] == '0'], 'min_gap'))}",
+                  f"     - {gap(low([r for r in items if r['tap'] != '0'], 'min_gap'))}",
+                  f"     - {sum(int(r['overlaps']) for r in items)}",
+                  f"     - {fmt(low(items, 'floor_gap'))}",
+                  f"     - {'periodic' if wall is None else fmt(wall)}",
+                  "     - " + ("not printed" if worst is None else
+                               f"{float(worst['scalars_worst']):.2f} "
+                               f"({worst['scalars_worst_column']}, t = {worst['tap']})")]
+    illegal = [r for r in rows if r["legal"] != "1"]
+    counts = {int(r["n"]) for r in rows}
+    resolution = max(float(r["resolution_rel"]) for r in rows)
+    tapped = [r for r in rows if r["tap"] != "0"]
+    closest = min(tapped, key=lambda r: float(r["min_gap"])) if tapped else None
+    mismatched = [r for r in rows if r["scalars_worst"] != "" and float(r["scalars_worst"]) >= 1]
+    start = [float(r["min_gap"]) for r in rows if r["tap"] == "0"]
+    deposited = ("" if not start else
+                 "The deposited packings (t = 0) hold exact contacts: their closest pairs are "
+                 "within the resolution of zero" if max(abs(g) for g in start) <= resolution
+                 else f"The deposited packings' (t = 0) closest pair is {fmt(min(start))} of "
+                      "contact")
+    lines += ["", f"* {len(rows)} dumps of {len(by_run)} runs: "
+              + (f"every one holds {counts.pop()} spheres" if len(counts) == 1 else
+                 f"the sphere counts differ ({', '.join(map(str, sorted(counts)))})")
+              + "; " + ("every one is a legal hard-sphere packing: no overlap beyond the "
+                        "tolerance and the dumps' resolution (pair distances known to "
+                        f"{resolution:.2g} of contact), nothing below the floor or through a "
+                        "wall. " + deposited
+                        + ("" if closest is None else
+                           f"; after taps the closest pair is {fmt(float(closest['min_gap']))}"
+                           f" of contact ({closest['run']}, t = {closest['tap']}): thousands of "
+                           "taps of dilation and redeposition leave no rounding drift into "
+                           "overlap") + "."
+                        if not illegal else
+                        "NOT all are legal: " + "; ".join(
+                            f"{r['run']} t = {r['tap']} ({r['overlaps']} overlaps, floor gap "
+                            f"{r['floor_gap']}, wall gap {r['wall_gap'] or 'periodic'})"
+                            for r in illegal) + "."),
+              "* The printed scalars "
+              + ("are those of the dumped packings: recomputed from the positions alone, "
+                 "every one matches its print within the print's last digit (largest: "
+                 f"{worst_all[0]:.2f} of the allowance, {worst_all[1]} of {worst_all[2]} "
+                 f"at t = {worst_all[3]}), so the page's numbers, read from the prints, "
+                 "describe the packings the pore and P0 analyses read from the dumps."
+                 if not mismatched else
+                 "differ from the dumped packings' at " + "; ".join(
+                     f"{r['run']} t = {r['tap']} ({r['scalars_worst_column']}: "
+                     f"{float(r['scalars_worst']):.3g} of the allowance)" for r in mismatched)
+                 + "."), ""]
+    return lines
 
 
 def _initial_packing(path):
@@ -771,6 +866,8 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
         parts += _spectral_window(folder / "spectral_window.csv")
     if (folder / "pbc_course.csv").is_file():
         parts += _pbc_course(folder / "pbc_course.csv")
+    if (folder / "integrity.csv").is_file():
+        parts += _integrity(folder / "integrity.csv")
     if (folder / "initial_packing.csv").is_file():
         parts += _initial_packing(folder / "initial_packing.csv")
     if (folder / "p0_configs.csv").is_file():
@@ -796,6 +893,7 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
     # the commands that made the CSVs (p0-fluid named only when its CSV is there)
     commands = "``first-tap``, ``noise-floor``, ``spectral-window``" + (
         ", ``pbc-course``" if (folder / "pbc_course.csv").is_file() else "") + (
+        ", ``integrity``" if (folder / "integrity.csv").is_file() else "") + (
         ", ``initial-packing``" if (folder / "initial_packing.csv").is_file() else "") + (
         ", ``p0-configs``" if (folder / "p0_configs.csv").is_file() else "") + (
         ", ``lateral-first-tap``" if (folder / "lateral_first_tap.csv").is_file() else "") + (

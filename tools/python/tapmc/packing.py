@@ -1,0 +1,231 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""One packing checked offline: is it a legal hard-sphere packing (no overlaps, nothing below
+the floor or through a side wall, section II), and what are its stereology scalars, recomputed
+from the positions alone as ``compute stereo/profile`` defines them (doc/compute_stereo_profile.rst):
+Phi_b, <Phi^c> (with its data-defined window top and the 16/11 wall band), <Z>, the surface
+height h_s and the window top z_top.
+
+A run prints its scalars every tap and dumps a few packings; :class:`PackingCheck` on a dump
+reproduces the printed row of that tap independently of the compute (numpy, no LAMMPS), and
+tells whether thousands of taps left any overlap behind.
+
+Dumps round the positions: a dump written with ``%.10g`` (what the paper inputs write) knows a
+coordinate x to 0.5 * 10^(floor(log10 |x|) - 9). A pair's distance is then known to within
+``2 sqrt(3)`` times that, which :attr:`PackingCheck.resolution` gives in absolute units; a pair
+counts as overlapping only when it is closer than contact by more than the model's contact
+tolerance (1e-10 of R_i + R_j, src/TAPMC/tapmc_defaults.h) plus that resolution.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ._validate import in_range, positive, positive_int, result
+
+__all__ = ["PackingCheck", "CONTACT_TOLERANCE", "DUMP_DIGITS", "WALL_FACTOR", "TOP_FRACTION",
+           "BULK_OVER_R", "COLUMN_OVER_R", "WALL_BAND_OVER_R"]
+
+#: relative contact tolerance of the model: i and j overlap when |r_ij| < (R_i + R_j)(1 - tol)
+#: (src/TAPMC/tapmc_defaults.h, kContactTolerance)
+CONTACT_TOLERANCE = 1e-10
+#: significant digits of the coordinates in the paper inputs' dumps (``format float %.10g``)
+DUMP_DIGITS = 10
+#: compute stereo/profile's defaults (doc/compute_stereo_profile.rst): Phi_b slab 4R, surface
+#: columns 2R wide, the <Phi^c> window up to 90 % of the surface height, the wall band R with
+#: the perturbed-zone factor 16/11 (section III.A); R is the mean radius.
+BULK_OVER_R = 4.0
+COLUMN_OVER_R = 2.0
+TOP_FRACTION = 0.9
+WALL_BAND_OVER_R = 1.0
+WALL_FACTOR = 16.0 / 11.0
+
+
+def _slab_volume(z, r, lo, hi):
+    """Sphere volume of each sphere inside the slab lo <= z <= hi (exact: the integral of the
+    cut disks' areas)."""
+    a = np.clip(lo - z, -r, r)
+    b = np.clip(hi - z, -r, r)
+    return np.pi * (b - a) * (r * r - (a * a + a * b + b * b) / 3.0)
+
+
+class PackingCheck:
+    """Integrity and stereology scalars of one packing.
+
+    ``frame``: a :class:`tapmc.readers.Frame` with radii (a dump with a ``radius`` column, or
+    read with ``radius=``). ``floor``: height of the floor (default: the box's lower z bound,
+    as the compute's default). ``digits``: significant digits of the dump's coordinates
+    (``None``: exact positions, resolution 0). ``contact_tolerance``: the model's relative
+    tolerance.
+
+    After :meth:`compute`: ``n``; ``min_gap`` (the smallest |r_ij| - (R_i + R_j) over pairs,
+    relative to R_i + R_j: negative for an overlap) and ``closest_pair`` (the two atom ids);
+    ``overlaps`` (pairs closer than contact by more than tolerance and resolution);
+    ``floor_gap`` (lowest sphere bottom above the floor, over its diameter), ``wall_gap``
+    (closest sphere surface to a side wall along a non-periodic lateral axis, over its
+    diameter; None when both lateral axes are periodic); ``legal`` (no overlap and nothing
+    through the floor or a wall beyond the same allowances); the scalars ``phi_b``,
+    ``phi_c``, ``z_mean`` (<Z> above the floor), ``surface`` (h_s) and ``window_top``
+    (z_top)."""
+
+    def __init__(self, frame, floor=None, digits=DUMP_DIGITS,
+                 contact_tolerance=CONTACT_TOLERANCE):
+        if frame.radii is None:
+            raise ValueError("frame has no radii: read the dump with a radius column or "
+                             "with radius=R")
+        if frame.n_atoms < 1:
+            raise ValueError("frame holds no atoms")
+        self.frame = frame
+        self.positions = np.asarray(frame.positions, dtype=float)
+        self.radii = np.asarray(frame.radii, dtype=float)
+        if not np.all(np.isfinite(self.positions)):
+            raise ValueError("frame positions hold non-finite values")
+        if np.any(~(self.radii > 0)):
+            raise ValueError("every radius must be > 0")
+        self.floor = (float(frame.box_lo[2]) if floor is None
+                      else in_range("floor", floor, -math.inf, math.inf))
+        self.digits = None if digits is None else positive_int("digits", digits)
+        self.contact_tolerance = positive("contact_tolerance", contact_tolerance,
+                                          allow_zero=True)
+        self._n = None
+
+    @property
+    def resolution(self):
+        """Bound on the rounding error of one pair distance (absolute units; 0 for exact
+        positions): 2 sqrt(3) times the rounding of the largest coordinate."""
+        if self.digits is None:
+            return 0.0
+        largest = float(np.max(np.abs(self.positions)))
+        if largest == 0.0:
+            return 0.0
+        half_unit = 0.5 * 10.0 ** (math.floor(math.log10(largest)) + 1 - self.digits)
+        return 2.0 * math.sqrt(3.0) * half_unit
+
+    def compute(self):
+        self._geometry()
+        self._stereology()
+        self._n = self.frame.n_atoms
+        return self
+
+    # ---- geometry ----------------------------------------------------------------------------
+    def _geometry(self):
+        from scipy.spatial import cKDTree
+
+        pos, r = self.positions, self.radii
+        lo, hi = self.frame.box_lo, self.frame.box_hi
+        periodic = np.asarray(self.frame.periodic[:3], dtype=bool)
+        reach = 2.0 * float(r.max())
+        # cKDTree's boxsize wraps every axis: a non-periodic axis gets a period far beyond the
+        # packing, so no pair meets across it.
+        shifted = np.empty_like(pos)
+        boxsize = np.empty(3)
+        for d in range(3):
+            if periodic[d]:
+                length = float(hi[d] - lo[d])
+                x = np.mod(pos[:, d] - lo[d], length)
+                shifted[:, d] = np.where(x >= length, 0.0, x)
+                boxsize[d] = length
+            else:
+                base = float(pos[:, d].min()) - reach
+                shifted[:, d] = pos[:, d] - base
+                boxsize[d] = float(shifted[:, d].max()) + 4.0 * reach
+        tree = cKDTree(shifted, boxsize=boxsize)
+        pairs = tree.query_pairs(reach * (1.0 + 1e-6), output_type="ndarray")
+        allowance = self.contact_tolerance
+        if len(pairs):
+            i, j = pairs[:, 0], pairs[:, 1]
+            delta = shifted[i] - shifted[j]
+            for d in np.flatnonzero(periodic):
+                delta[:, d] -= boxsize[d] * np.round(delta[:, d] / boxsize[d])
+            contact = r[i] + r[j]
+            relative = (np.sqrt(np.einsum("ij,ij->i", delta, delta)) - contact) / contact
+            k = int(np.argmin(relative))
+            self._min_gap = float(relative[k])
+            self._closest = (int(self.frame.ids[i[k]]), int(self.frame.ids[j[k]]))
+            self._overlaps = int(np.count_nonzero(
+                relative < -(allowance + self.resolution / contact)))
+        else:
+            # no pair within reach: the nearest neighbour of each sphere gives the gap
+            dist, idx = tree.query(shifted, k=2)
+            m = int(np.argmin(dist[:, 1] - r - r[idx[:, 1]]))
+            contact = r[m] + r[idx[m, 1]]
+            self._min_gap = float((dist[m, 1] - contact) / contact)
+            self._closest = (int(self.frame.ids[m]), int(self.frame.ids[idx[m, 1]]))
+            self._overlaps = 0
+        floor_gaps = (pos[:, 2] - r - self.floor) / (2.0 * r)
+        self._floor_gap = float(floor_gaps.min())
+        walls = [d for d in (0, 1) if not periodic[d]]
+        if walls:
+            gaps = [np.minimum(pos[:, d] - r - lo[d], hi[d] - pos[:, d] - r) / (2.0 * r)
+                    for d in walls]
+            self._wall_gap = float(min(g.min() for g in gaps))
+        else:
+            self._wall_gap = None
+        slack = allowance + self.resolution / (2.0 * float(r.min()))
+        self._legal = (self._overlaps == 0 and self._floor_gap >= -slack
+                       and (self._wall_gap is None or self._wall_gap >= -slack))
+
+    # ---- stereology (compute stereo/profile's scalars) ---------------------------------------
+    def _stereology(self):
+        pos, r = self.positions, self.radii
+        lo, hi = self.frame.box_lo, self.frame.box_hi
+        periodic = np.asarray(self.frame.periodic[:2], dtype=bool)
+        mean_r = float(r.mean())
+        area = float((hi[0] - lo[0]) * (hi[1] - lo[1]))
+        z0, z = self.floor, pos[:, 2]
+        # h_s: the mean over occupied columns (2R wide, tiling the box) of the highest top
+        column = [0, 0]
+        ncol = [0, 0]
+        for d in (0, 1):
+            length = float(hi[d] - lo[d])
+            ncol[d] = max(1, int(math.floor(length / (COLUMN_OVER_R * mean_r))))
+            width = length / ncol[d]
+            c = np.floor((pos[:, d] - lo[d]) / width).astype(int)
+            column[d] = np.mod(c, ncol[d]) if periodic[d] else np.clip(c, 0, ncol[d] - 1)
+        tops = np.full(ncol[0] * ncol[1], -np.inf)
+        np.maximum.at(tops, column[0] + ncol[0] * column[1], z + r)
+        filled = tops[np.isfinite(tops)]
+        self._surface = float(filled.mean()) if filled.size else z0
+        self._window_top = z0 + TOP_FRACTION * max(0.0, self._surface - z0)
+        bulk_top = z0 + BULK_OVER_R * mean_r
+        self._phi_b = float(_slab_volume(z, r, z0, bulk_top).sum() / (area * (bulk_top - z0)))
+        band_top = min(z0 + WALL_BAND_OVER_R * mean_r, self._window_top)
+        height = self._window_top - z0
+        if height > 0:
+            band = _slab_volume(z, r, z0, band_top).sum()
+            rest = _slab_volume(z, r, band_top, self._window_top).sum()
+            self._phi_c = float((WALL_FACTOR * band + rest) / (area * height))
+        else:
+            self._phi_c = 0.0
+        self._z_mean = float(np.mean(z - z0))
+
+    n = result("_n")
+    min_gap = result("_min_gap")
+    closest_pair = result("_closest")
+    overlaps = result("_overlaps")
+    floor_gap = result("_floor_gap")
+    legal = result("_legal")
+    phi_b = result("_phi_b")
+    phi_c = result("_phi_c")
+    z_mean = result("_z_mean")
+    surface = result("_surface")
+    window_top = result("_window_top")
+
+    @property
+    def wall_gap(self):
+        if self._n is None:
+            return result("_n").fget(self)
+        return self._wall_gap
+
+    def scalars(self):
+        """The compute's scalars in the order of a paper input's taps.dat columns
+        (phi_b, phi_c, Z, z_top, h_s), as a dict."""
+        return {"phi_b": self.phi_b, "phi_c": self.phi_c, "Z": self.z_mean,
+                "z_top": self.window_top, "h_s": self.surface}
+
+    def __repr__(self):
+        if self._n is None:
+            return f"<PackingCheck of {self.frame!r}: not computed>"
+        return (f"<PackingCheck {self.n} spheres: min gap {self.min_gap:.3g}, "
+                f"{self.overlaps} overlaps, legal {self.legal}>")
