@@ -69,6 +69,15 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               the side walls; and Phi_b, <Phi^c>, <Z>, z_top, h_s recomputed from the
               positions against the run's taps.dat row of that tap.
 
+  early-taps  Does Phi_b compact faster per tap in the first decade than later (section III.A:
+              "as the packing progressively densifies, the compaction efficiency
+              decreases"), and is the slowing on a logarithmic time axis strongest at the
+              smallest eps? One run gives the first decade's rate with one tap's spread
+              as its error, too wide at weak taps. This taps the campaign's F.B.C. packing
+              (its pack_seed) 10 times at each eps of Fig. 2 with Monte Carlo seeds 2-9,
+              and adds the campaign's own run (seed 1) from its taps.dat: Phi_b, <Phi^c>
+              and <Z> at t = 0..10 per seed, whose rates have errors over realizations.
+
   p0-fluid    Is a tapped packing expected to follow the Percus-Yevick P0(sigma) of Fig. 9
               as closely as it does (max |P0 - PY| = 0.025 at Phi = 0.606)? PY is a theory of
               the equilibrium hard-sphere fluid: P0 measured with the same tool and settings
@@ -101,6 +110,7 @@ Usage (from the repository; minutes on one core, run under nice):
     bench/paper_questions.py spectral-window [--out DIR] [--campaign DIR]
     bench/paper_questions.py pbc-course [--out DIR] [--campaign DIR]
     bench/paper_questions.py integrity [--out DIR] [--campaign DIR]
+    bench/paper_questions.py early-taps [--out DIR] [--lmp EXE] [--campaign DIR] [--seeds 2 ...]
     bench/paper_questions.py initial-packing [--out DIR] [--lmp EXE] [--seeds 1 2 ...]
     bench/paper_questions.py p0-configs [--out DIR] [--lmp EXE] [--restart FILE] [--work DIR]
     bench/paper_questions.py lateral-first-tap [--out DIR] [--lmp EXE] [--seeds 1 2 3 4]
@@ -554,6 +564,44 @@ def pbc_course(args):
                "steady_halves_diff_sem"], rows)
 
 
+#: early-taps: the first decade of taps (tapmc.paper.claims.EARLY_DECADE) from the campaign's
+#: F.B.C. packing, with Monte Carlo seeds other than the campaign's (1): 8 more realizations
+#: make the first decade's rate an ensemble mean with an error over seeds (7 dof, t = 2.36).
+EARLY_TAPS = 10
+EARLY_SEEDS = tuple(range(2, 10))
+#: the campaign's seed: its pack_seed is the packing every F.B.C. run starts from
+CAMPAIGN_SEED = 1
+
+
+def early_taps(args):
+    from tapmc.paper.scales import FULL
+
+    lmp = lmp_command(args.lmp)
+    rows = []
+    for eps in FULL.fig2_eps:
+        own = Path(args.campaign, "runs", f"const_fbc_eps{eps:g}_s{CAMPAIGN_SEED}", "taps.dat")
+        if own.is_file():   # the campaign's own run is the realization of seed 1
+            names, printed = _printed_rows(own)
+            if all(t in printed for t in range(EARLY_TAPS + 1)):
+                for t in range(EARLY_TAPS + 1):
+                    row = printed[t]
+                    rows.append([eps, CAMPAIGN_SEED, t] + [row[names.index(c)]
+                                                         for c in ("phi_b", "phi_c", "Z")])
+        for seed in args.seeds:
+            with tempfile.TemporaryDirectory() as folder:
+                taps = run(lmp, folder, dict(PAPER, bc="fbc", eps=eps, seed=seed,
+                                             pack_seed=CAMPAIGN_SEED, taps=EARLY_TAPS,
+                                             rsteps=1000000))
+            # columns of taps.dat: step phi_b phi_c Z ...
+            for row in taps:
+                rows.append([eps, seed, int(row[0]), f"{row[1]:.8f}", f"{row[2]:.8f}",
+                             f"{row[3]:.8f}"])
+            print(f"eps {eps:g} seed {seed}: Phi_b {taps[0, 1]:.4f} -> {taps[-1, 1]:.4f} at "
+                  f"tap {int(taps[-1, 0])}", flush=True)
+    write_csv(Path(args.out) / "early_taps.csv", ["eps", "seed", "t", "phi_b", "phi_c", "Z"],
+              rows)
+
+
 #: columns of a run's taps.dat that a dumped packing reproduces (tapmc.packing.PackingCheck)
 INTEGRITY_COLUMNS = ("phi_b", "phi_c", "Z", "z_top", "h_s")
 #: what the dump's rounding (%.10g: 5e-9 on a coordinate of the paper's box) can move a mean
@@ -781,14 +829,16 @@ def main(argv=None):
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
     for name in ("first-tap", "noise-floor", "spectral-window", "pbc-course", "integrity",
-                 "initial-packing", "p0-configs", "lateral-first-tap", "ramp-levels", "theta0", "dmax",
-                 "p0-fluid"):
+                 "early-taps", "initial-packing", "p0-configs", "lateral-first-tap",
+                 "ramp-levels", "theta0", "dmax", "p0-fluid"):
         p = sub.add_parser(name)
         p.add_argument("--out", default=DEFAULT_OUT, type=Path)
         p.add_argument("--lmp", default=None)
     sub.choices["first-tap"].add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
     sub.choices["lateral-first-tap"].add_argument("--seeds", type=int, nargs="+",
                                                   default=[1, 2, 3, 4])
+    sub.choices["early-taps"].add_argument("--seeds", type=int, nargs="+",
+                                           default=list(EARLY_SEEDS))
     sub.choices["initial-packing"].add_argument("--seeds", type=int, nargs="+",
                                                 default=list(INITIAL_SEEDS))
     for name in ("theta0", "dmax"):
@@ -800,7 +850,7 @@ def main(argv=None):
         sub.choices[name].add_argument("--restart", default=CAMPAIGN_RUN / "restart.4000")
     sub.choices["p0-configs"].add_argument("--configs", type=int, default=P0_CONFIGS)
     sub.choices["p0-configs"].add_argument("--work", default=None, type=Path)
-    for name in ("spectral-window", "pbc-course", "integrity", "ramp-levels"):
+    for name in ("spectral-window", "pbc-course", "integrity", "early-taps", "ramp-levels"):
         sub.choices[name].add_argument("--campaign", default=CAMPAIGN_RUN.parents[1])
     sub.choices["ramp-levels"].add_argument("--run", default="ramp_pbc_s1")
     sub.choices["ramp-levels"].add_argument("--levels", type=int, nargs="+", default=None)
@@ -823,6 +873,7 @@ def main(argv=None):
             parser.error(f"--phi values must be in [0.01, 0.58], got {args.phi}")
     {"first-tap": first_tap, "noise-floor": noise_floor,
      "spectral-window": spectral_window, "pbc-course": pbc_course, "integrity": integrity,
+     "early-taps": early_taps,
      "initial-packing": initial_packing, "p0-configs": p0_configs,
      "lateral-first-tap": lateral_first_tap, "ramp-levels": ramp_levels, "theta0": theta0_scan, "dmax": dmax_scan,
      "p0-fluid": p0_fluid}[args.command](args)

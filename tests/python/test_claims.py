@@ -350,6 +350,9 @@ CONTROLS = {
                                                                   x=0.05))),
     "log_time_slowing": (report(fig2=fig2(_low_first({0.005: FROZEN, 0.15: STEADY_LOG}))),
                          report(fig2=fig2(_low_first({0.005: STEADY_LOG, 0.15: FROZEN})))),
+    # the curve that keeps its rate on ln t makes a larger share of its gain late
+    "late_gain_share": (report(fig2=fig2(_low_first({0.005: STEADY_LOG, 0.15: FROZEN}))),
+                        report(fig2=fig2(_low_first({0.005: FROZEN, 0.15: STEADY_LOG})))),
     "spectral_slopes": (report(fig3=fig3(slope=-1.2)), report(fig3=fig3(slope=-0.5))),
     "spectrum_eps_spread": (
         # spectra that coincide at low f and separate at high f, and the reverse
@@ -849,3 +852,71 @@ def test_one_seed_b_dependence_is_not_tested():
     tab.add("B", "eq3:slope", [0.0], [3.0], [0.5], n=1)
     (m,) = claims.b_exponential(report(fig2=tab), BY_ID["b-exponential"])
     assert m.undecided == claims.ONE_RUN_FITS and "d ln B / d sqrt(eps) = 3" in m.text()
+
+
+def early_rows(eps, rate, spread, seeds=range(1, 10), seed=11):
+    """early_taps.csv rows: Phi_b(t) = 0.52 + rate t at t = 0..10 plus a realization's own
+    offset and tap noise of ``spread``."""
+    rng = np.random.default_rng(seed)
+    rows = []
+    for s in seeds:
+        x = 0.52 + rate * np.arange(11.0) + rng.normal(0, spread, 11)
+        x[0] = 0.52                                       # the same packing
+        rows += [{"eps": str(eps), "seed": str(s), "t": str(k), "phi_b": f"{v:.8f}",
+                  "phi_c": "0.55", "Z": "7.5"} for k, v in enumerate(x)]
+    return rows
+
+
+def test_one_seed_first_decade_rates_over_realizations_of_early_taps():
+    """Fig. 2 of one run per eps whose first decade is within one tap's spread (the steady
+    state's, 0.002): undecided from the run alone; with 9 realizations of the first decade
+    (bench/paper_questions.py early-taps) whose taps scatter 1e-4, the early rate is known
+    and the efficiency decrease agrees; realizations that do not compact early leave it
+    undecided; fewer than EARLY_MIN_SEEDS are not used."""
+    rng = np.random.default_rng(6)
+    t = np.arange(4001.0)
+    tab = Table()
+    curve = 0.52 + 0.004 * np.log1p(t) * (t > 10) + rng.normal(0, 0.002, t.size) * (t > 10)
+    curve[:11] = 0.52 + 6e-5 * t[:11]
+    tab.add("a", "eps=0.005", t, curve, None, n=1)
+    claim = BY_ID["efficiency-decreases"]
+    (alone,) = claims.efficiency_decrease(report(fig2=tab), claim)
+    assert claims.verdict(claim, alone).startswith("undecided")
+
+    def with_rows(rows):
+        return claims.ReportData(report().summary, {"fig2": tab.data()},
+                                 questions={"early_taps": rows})
+
+    (m,) = claims.efficiency_decrease(with_rows(early_rows(0.005, 6e-5, 1e-4)), claim)
+    assert "first decade over 9 realizations from the same packing" in m.text()
+    assert m.dof == 8 and claims.verdict(claim, m) == "agrees"
+    (flat,) = claims.efficiency_decrease(with_rows(early_rows(0.005, 0.0, 1e-4)), claim)
+    assert not claims.verdict(claim, flat).startswith("agrees")
+    (few,) = claims.efficiency_decrease(
+        with_rows(early_rows(0.005, 6e-5, 1e-4, seeds=range(1, claims.EARLY_MIN_SEEDS))), claim)
+    assert "one seed" in few.text()
+    (other,) = claims.efficiency_decrease(with_rows(early_rows(0.05, 6e-5, 1e-4)), claim)
+    assert "one seed" in other.text()                     # rows of another eps are not used
+
+
+def test_one_seed_late_gain_share_from_the_runs_own_windows():
+    """Fig. 2 of one run per eps: the share of the gain over the last decade, from the means
+    of [0.9 T, T] and [0.09 T, 0.11 T] with batch-means errors; a curve that keeps rising on
+    ln t at the smallest eps against one that saturates at the largest agrees, the reverse
+    disagrees, and curves of the same shape are undecided."""
+    rng = np.random.default_rng(9)
+    t = np.arange(4001.0)
+    lt = np.log1p(t)
+    rising = 0.52 + 0.006 * lt + rng.normal(0, 0.0005, t.size)
+    saturating = 0.52 + 0.03 * (1 - np.exp(-lt / 1.5)) + rng.normal(0, 0.0005, t.size)
+    rising[0] = saturating[0] = 0.52
+    claim = BY_ID["unreached-small-eps"]
+    for small, large, expected in ((rising, saturating, "agrees"),
+                                   (saturating, rising, "disagrees"),
+                                   (rising, rising + rng.normal(0, 0.0005, t.size), "undecided")):
+        tab = Table()
+        tab.add("a", "eps=0.005", t, small, None, n=1)
+        tab.add("a", "eps=0.15", t, large, None, n=1)
+        (m,) = claims.late_gain_share(report(fig2=tab), claim)
+        assert m.dof == claims.SHORT_WINDOW_BATCHES - 1
+        assert claims.verdict(claim, m).startswith(expected), m

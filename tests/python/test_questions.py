@@ -367,3 +367,17 @@ def test_integrity_command_on_a_paper_scale_run_and_a_corrupted_copy(tmp_path):
     assert bad[1]["legal"] == "0" and int(bad[1]["overlaps"]) >= 1
     assert float(bad[1]["min_gap"]) == pytest.approx(-0.9, abs=1e-6)
     assert float(bad[1]["scalars_worst"]) >= 1     # the print no longer describes it
+
+
+def test_early_taps_table_gives_the_first_decade_over_realizations(tmp_path):
+    lines = ["eps,seed,t,phi_b,phi_c,Z"]
+    for seed, slope in ((1, 5e-5), (2, 6e-5), (3, 7e-5)):
+        for t in range(11):
+            lines.append(f"0.005,{seed},{t},{0.521 + slope * t:.8f},0.556,7.6")
+    (tmp_path / "early_taps.csv").write_text("\n".join(lines) + "\n")
+    text = "\n".join(questions.render_section(tmp_path))
+    assert "``early-taps``" in text
+    # the same packing at t = 0 (no error), per-tap rates 5e-5 .. 7e-5 (sem 5.8e-6)
+    assert "   * - 0.005\n     - 3\n     - 0.521\n" in text
+    assert "     - 6e-05 ± 5.8e-06" in text
+    assert "spread at t = 10" in text

@@ -199,7 +199,7 @@ class FigureData:
 #: stems of the CSVs of bench/paper_questions.py (in the report's ``questions`` folder) that
 #: decide claims of one-run campaigns: depositions at t = 0 (initial-packing), P0 over several
 #: configurations (p0-configs), the first taps from the paper's F.B.C. start (lateral-first-tap)
-QUESTION_CSVS = ("initial_packing", "p0_configs", "lateral_first_tap")
+QUESTION_CSVS = ("initial_packing", "p0_configs", "lateral_first_tap", "early_taps")
 
 
 class ReportData:
@@ -555,28 +555,73 @@ def ageing_collapse(data, claim):
 EARLY_DECADE = (1.0, 10.0)
 
 
-def _log_rates_one_run(t, x):
+def first_decade_rates(t, x):
+    """(rate per tap, rate per unit ln t) of one realization over the first decade
+    (:data:`EARLY_DECADE`), each from the means of the decade's two halves (per tap: taps 1-5
+    and 6-10; per ln t: split at sqrt(10)), and the two gaps between the halves (taps, ln t):
+    ((rate, gap), (log_rate, log_gap))."""
+    lo, hi = EARLY_DECADE
+    first, second = (t >= lo) & (t <= hi / 2), (t > hi / 2) & (t <= hi)
+    gap = float(np.mean(t[second]) - np.mean(t[first]))
+    rate = (float(np.mean(x[second])) - float(np.mean(x[first]))) / gap
+    mid = math.sqrt(lo * hi)
+    low, high = (t >= lo) & (t < mid), (t >= mid) & (t <= hi)
+    log_gap = float(np.mean(np.log(t[high])) - np.mean(np.log(t[low])))
+    log_rate = (float(np.mean(x[high])) - float(np.mean(x[low]))) / log_gap
+    return (rate, gap), (log_rate, log_gap)
+
+
+#: realizations of the first decade (bench/paper_questions.py early-taps) below which its
+#: rates keep one run's error (one tap's spread): the sem of fewer has too few degrees of
+#: freedom to decide anything
+EARLY_MIN_SEEDS = 4
+
+
+def _early_seeds(data, eps):
+    """The first decade's rates over the realizations of early_taps.csv at ``eps`` (the
+    campaign's run and more Monte Carlo seeds from the same packing): (per tap (mean, sem),
+    per ln t (mean, sem), seeds) or None when fewer than :data:`EARLY_MIN_SEEDS`."""
+    rows = [r for r in data.question("early_taps")
+            if math.isclose(float(r["eps"]), eps, rel_tol=1e-9)]
+    by_seed = {}
+    for r in rows:
+        by_seed.setdefault(int(r["seed"]), []).append((float(r["t"]), float(r["phi_b"])))
+    rates = []
+    for points in by_seed.values():
+        t, x = (np.array(v) for v in zip(*sorted(points)))
+        if np.all(np.isin(np.arange(EARLY_DECADE[0], EARLY_DECADE[1] + 1), t)):
+            (rate, _), (log_rate, _) = first_decade_rates(t, x)
+            rates.append((rate, log_rate))
+    if len(rates) < EARLY_MIN_SEEDS:
+        return None
+    values = np.array(rates)
+    sem = values.std(axis=0, ddof=1) / math.sqrt(len(values))
+    mean = values.mean(axis=0)
+    return (mean[0], sem[0]), (mean[1], sem[1]), len(values)
+
+
+def _log_rates_one_run(t, x, early_seeds=None):
     """Rates of Phi_b per unit ln t of one run (the curve is the run) over the first decade and
     the last decade [T/10, T], each from the means of the decade's two halves in ln t: the
     late halves with their batch-means errors (tapmc.fluctuations.SteadyState), the early ones
-    (a few taps each) with one tap's spread about the steady state (not divided by their
-    number: taps that close are correlated). ((early, error), (late, error))."""
+    with the error over realizations when ``early_seeds`` (:func:`_early_seeds`) has them,
+    else with one tap's spread about the steady state (not divided by their number: taps that
+    close are correlated). ((early, error), (late, error))."""
     from tapmc.fluctuations import SteadyState
 
-    spread = SteadyState(x, last=max(len(t) // 4, 2)).compute().std
-
-    def halves(lo, hi, batch_errors):
-        mid = math.sqrt(lo * hi)
-        parts = [(t >= lo) & (t < mid), (t >= mid) & (t <= hi)]
-        means = [float(np.mean(x[p])) for p in parts]
-        if batch_errors:
-            errs = [SteadyState(x[p], last=int(p.sum())).compute().sem for p in parts]
-        else:
-            errs = [spread, spread]
-        gap = float(np.mean(np.log(t[parts[1]])) - np.mean(np.log(t[parts[0]])))
-        return (means[1] - means[0]) / gap, math.hypot(*errs) / gap
-
-    return (halves(*EARLY_DECADE, False), halves(t[-1] / 10.0, t[-1], True))
+    if early_seeds is not None:
+        early = early_seeds[1]
+    else:
+        spread = SteadyState(x, last=max(len(t) // 4, 2)).compute().std
+        (_, _), (log_rate, log_gap) = first_decade_rates(t, x)
+        early = (log_rate, math.sqrt(2.0) * spread / log_gap)
+    lo, hi = t[-1] / 10.0, t[-1]
+    mid = math.sqrt(lo * hi)
+    parts = [(t >= lo) & (t < mid), (t >= mid) & (t <= hi)]
+    means = [float(np.mean(x[p])) for p in parts]
+    errs = [SteadyState(x[p], last=int(p.sum())).compute().sem for p in parts]
+    gap = float(np.mean(np.log(t[parts[1]])) - np.mean(np.log(t[parts[0]])))
+    return early, ((means[1] - means[0]) / gap, math.hypot(*errs) / gap)
 
 
 def _log_slope(t, mean, sem, lo, hi):
@@ -585,34 +630,39 @@ def _log_slope(t, mean, sem, lo, hi):
 
 
 
-def _rate_change_one_run(eps, t, x):
+def _rate_change_one_run(eps, t, x, early_seeds=None):
     """:func:`_rate_change` of one run (the curve is the run): the late rate from the means of
-    its last two quarters (each with its batch-means error), the early rate from the means of
+    its last two quarters (each with its batch-means error); the early rate from the means of
     the two halves of the first decade (taps 1-5 and 6-10, as the line over the decade for
-    several seeds), each with one tap's spread about the steady state as its error (taps that
-    close together are correlated, so the spread is not divided by their number)."""
+    several seeds): over the realizations of ``early_seeds`` (:func:`_early_seeds`) when
+    there, else the run's own, each half with one tap's spread about the steady state as its
+    error (taps that close together are correlated, so the spread is not divided by their
+    number)."""
     from tapmc.fluctuations import SteadyState
 
     q = len(t) // 4
     third, fourth = (SteadyState(x[:len(t) - k * q], last=q).compute() for k in (1, 0))
     late = (fourth.mean - third.mean) / q
     e_late = math.hypot(third.sem, fourth.sem) / q
-    lo, hi = EARLY_DECADE
-    first = (t >= lo) & (t <= hi / 2)
-    second = (t > hi / 2) & (t <= hi)
-    gap = float(np.mean(t[second]) - np.mean(t[first]))
-    early = (float(np.mean(x[second])) - float(np.mean(x[first]))) / gap
-    e_early = math.sqrt(2.0) * fourth.std / gap
-    return Measure(late - early, math.hypot(e_late, e_early), WITHIN_RUN_DOF,
+    if early_seeds is not None:
+        (early, e_early), _, seeds = early_seeds
+        dof = min(seeds - 1, WITHIN_RUN_DOF)
+        source = f"the first decade over {seeds} realizations from the same packing"
+    else:
+        (early, gap), _ = first_decade_rates(t, x)
+        e_early = math.sqrt(2.0) * fourth.std / gap
+        dof = WITHIN_RUN_DOF
+        source = "one seed: errors within the run"
+    return Measure(late - early, math.hypot(e_late, e_early), dof,
                    label=f"eps = {eps:g}",
                    shown=f"{fmt(late, e_late)} vs {fmt(early, e_early)} per tap (last half vs "
-                         "first decade; one seed: errors within the run)")
+                         f"first decade; {source})")
 
 
-def _rate_change(fig, eps, t, mean, sem, n):
+def _rate_change(fig, eps, t, mean, sem, n, early_seeds=None):
     """Rate dPhi_b/dt over the last half of the taps minus that over the first decade."""
     if np.nanmax(n) == 1 and len(t) >= 8 * DEFAULT_BATCHES and t[-1] > 10 * EARLY_DECADE[1]:
-        return _rate_change_one_run(eps, t, mean)
+        return _rate_change_one_run(eps, t, mean, early_seeds)
     early, e_early, _ = _weighted_line_in(t, mean, sem, *EARLY_DECADE)
     late, e_late, _ = _weighted_line_in(t, mean, sem, t[-1] / 2.0, t[-1])
     label = f"eps = {eps:g}"
@@ -629,7 +679,8 @@ def _weighted_line_in(t, mean, sem, lo, hi):
 
 
 def efficiency_decrease(data, claim):
-    return _per_curve(data, "fig2", "a", _rate_change)
+    return _per_curve(data, "fig2", "a", lambda fig, eps, *curve: _rate_change(
+        fig, eps, *curve, early_seeds=_early_seeds(data, eps)))
 
 
 def log_time_slowing(data, claim):
@@ -645,8 +696,9 @@ def log_time_slowing(data, claim):
     for eps, series in (curves[0], curves[-1]):
         t, mean, sem, n = fig.get("a", series)
         if np.nanmax(n) == 1 and t[-1] >= 100 * EARLY_DECADE[1]:
-            (early, e_early), (late, e_late) = _log_rates_one_run(t, mean)
-            dof = WITHIN_RUN_DOF
+            seeds = _early_seeds(data, eps)
+            (early, e_early), (late, e_late) = _log_rates_one_run(t, mean, seeds)
+            dof = WITHIN_RUN_DOF if seeds is None else min(seeds[2] - 1, WITHIN_RUN_DOF)
         else:
             early, e_early, _ = _log_slope(t, mean, sem, *EARLY_DECADE)
             late, e_late, _ = _log_slope(t, mean, sem, t[-1] / 10.0, t[-1])
@@ -659,9 +711,72 @@ def log_time_slowing(data, claim):
                                                     e_early / early), dof))
     (e0, r0, s0, d0), (e1, r1, s1, d1) = ratios
     dofs = [d for d in (d0, d1) if d is not None]
-    return [Measure(r0 - r1, math.hypot(s0, s1), min(dofs) if len(dofs) == 2 else None,
+    dof = min(dofs) if len(dofs) == 2 else None
+    # both ratios beyond 1 by t sem: the log-time rate grows at both eps, no slowing on ln t
+    speeding = dof is not None and all(r - t_quantile(dof) * s > 1
+                                       for r, s in ((r0, s0), (r1, s1)))
+    return [Measure(r0 - r1, math.hypot(s0, s1), dof,
                     shown=f"late/early rate {fmt(r0, s0)} (eps = {e0:g}) vs {fmt(r1, s1)} "
-                          f"(eps = {e1:g})")]
+                          f"(eps = {e1:g})" + (
+                              "; both above 1: per unit ln t neither run slows down within "
+                              "its taps (the first decade begins with the first taps' "
+                              "loosening), the weakest taps compacting latest" if speeding
+                              else ""))]
+
+
+#: late_gain_share: the windows, as fractions of the run's taps T, whose means give Phi_b at
+#: the end ([0.9 T, T]) and a decade before it ([0.09 T, 0.11 T]); batches of the earlier,
+#: shorter window (81 taps of 4000: batches of 8)
+LATE_WINDOW = (0.9, 1.0)
+DECADE_BEFORE_WINDOW = (0.09, 0.11)
+SHORT_WINDOW_BATCHES = 10
+
+
+def _late_share(t, mean, sem, n):
+    """(share of the gain X(T) - X(0) made over the last decade, its error, dof) of one
+    curve: X over [0.9 T, T] and over [0.09 T, 0.11 T] (one run: batch-means errors; several
+    seeds: the curve's sem averaged over each window, not reduced for the taps' correlation)."""
+    from tapmc.fluctuations import SteadyState
+
+    T = t[-1]
+    windows = [(t >= lo * T) & (t <= hi * T) for lo, hi in (LATE_WINDOW, DECADE_BEFORE_WINDOW)]
+    end, before = (float(np.mean(mean[w])) for w in windows)
+    if np.nanmax(n) == 1:
+        errs = [SteadyState(mean[w], last=int(w.sum()), batches=b).compute().sem
+                for w, b in zip(windows, (DEFAULT_BATCHES, SHORT_WINDOW_BATCHES))]
+        dof = min(DEFAULT_BATCHES, SHORT_WINDOW_BATCHES) - 1
+    else:
+        errs = [float(np.nanmean(sem[w])) for w in windows]
+        dof = _dof(n)
+    gain = end - mean[0]
+    share = (end - before) / gain
+    # d share / d end = (before - X0) / gain^2, d share / d before = -1 / gain
+    err = math.hypot((before - mean[0]) / gain ** 2 * errs[0], errs[1] / gain)
+    return share, err, dof
+
+
+def late_gain_share(data, claim):
+    """Share of Phi_b's gain made over the last decade at the smallest eps minus that at the
+    largest: positive when the smallest eps is farthest from its steady state at the end of
+    the run (section III.A: 'without never really reaching it', most of all at small eps)."""
+    fig = data.figure("fig2")
+    if fig is None:
+        return _missing("no Fig. 2 runs")
+    curves = _eps_series(fig, "a")
+    if len(curves) < 2:
+        return _missing("fewer than two eps in Fig. 2")
+    shares = []
+    for eps, series in (curves[0], curves[-1]):
+        t, mean, sem, n = fig.get("a", series)
+        if t[-1] < 10 * EARLY_DECADE[1] or (
+                np.nanmax(n) == 1 and np.sum(t >= LATE_WINDOW[0] * t[-1]) < 2 * DEFAULT_BATCHES):
+            return _missing("runs too short for a last decade of taps")
+        shares.append((eps, *_late_share(t, mean, sem, n)))
+    (e0, s0, d0, f0), (e1, s1, d1, f1) = shares
+    dofs = [d for d in (f0, f1) if d is not None]
+    return [Measure(s0 - s1, math.hypot(d0, d1), min(dofs) if len(dofs) == 2 else None,
+                    shown=f"share of the gain over the last decade {fmt(s0, d0)} "
+                          f"(eps = {e0:g}) vs {fmt(s1, d1)} (eps = {e1:g})")]
 
 
 def spectral_slopes(data, claim):
@@ -1396,7 +1511,7 @@ def _dmax_scan_measures(rows):
 STATISTICS = {f.__name__: f for f in (
     initial_phi, dmax_intermediate, theta0_optimum, tapped_phi, pbc_compaction, phi_b_gain, efficiency_decrease, eq3_fit_quality,
     eq3_triplet_pattern, eq4_fit_quality, b_exponential, ageing_collapse,
-    log_time_slowing, spectral_slopes, spectrum_eps_spread,
+    log_time_slowing, late_gain_share, spectral_slopes, spectrum_eps_spread,
     sigma_intercept, bell_maximum, bell_side_slope, alpha_bell, ramp_up_minus_steady,
     ramp_down_minus_up, ramp_up2_minus_down, low_ramp_frozen, ramp_branch_slope,
     final_alpha, central_minus_lateral, lateral_first_tap, p0_initial_minus_final,
