@@ -683,17 +683,26 @@ def efficiency_decrease(data, claim):
         fig, eps, *curve, early_seeds=_early_seeds(data, eps)))
 
 
+def _fig2_end_curves(data):
+    """(fig, [(eps, series) of the smallest and the largest eps]) of Fig. 2's panel a, or
+    (None, the missing-data measures) when there are not two eps."""
+    fig = data.figure("fig2")
+    if fig is None:
+        return None, _missing("no Fig. 2 runs")
+    curves = _eps_series(fig, "a")
+    if len(curves) < 2:
+        return None, _missing("fewer than two eps in Fig. 2")
+    return fig, [curves[0], curves[-1]]
+
+
 def log_time_slowing(data, claim):
     """(late / early rate of Phi_b per unit ln t) at the smallest eps minus that at the
     largest: negative when the slowing is strongest at small eps (section III.A)."""
-    fig = data.figure("fig2")
+    fig, ends = _fig2_end_curves(data)
     if fig is None:
-        return _missing("no Fig. 2 runs")
-    curves = _eps_series(fig, "a")
-    if len(curves) < 2:
-        return _missing("fewer than two eps in Fig. 2")
+        return ends
     ratios = []
-    for eps, series in (curves[0], curves[-1]):
+    for eps, series in ends:
         t, mean, sem, n = fig.get("a", series)
         if np.nanmax(n) == 1 and t[-1] >= 100 * EARLY_DECADE[1]:
             seeds = _early_seeds(data, eps)
@@ -759,14 +768,11 @@ def late_gain_share(data, claim):
     """Share of Phi_b's gain made over the last decade at the smallest eps minus that at the
     largest: positive when the smallest eps is farthest from its steady state at the end of
     the run (section III.A: 'without never really reaching it', most of all at small eps)."""
-    fig = data.figure("fig2")
+    fig, ends = _fig2_end_curves(data)
     if fig is None:
-        return _missing("no Fig. 2 runs")
-    curves = _eps_series(fig, "a")
-    if len(curves) < 2:
-        return _missing("fewer than two eps in Fig. 2")
+        return ends
     shares = []
-    for eps, series in (curves[0], curves[-1]):
+    for eps, series in ends:
         t, mean, sem, n = fig.get("a", series)
         if t[-1] < 10 * EARLY_DECADE[1] or (
                 np.nanmax(n) == 1 and np.sum(t >= LATE_WINDOW[0] * t[-1]) < 2 * DEFAULT_BATCHES):
