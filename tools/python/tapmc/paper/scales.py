@@ -125,7 +125,8 @@ QUICK = Scale(
     pore_eps=2e-2, dump_times=(1, 4, 10, 30, 100), p0_eps=0.04,
 )
 
-#: The paper's set-up (section II): 4096 spheres, L = 32R, 4000 taps, 10 realizations. The bell
+#: The paper's set-up (section II): 4096 spheres, L = 32R, 4000 taps; one run per point (section
+#: III.B), 10 realizations for the ageing (section III.C), the seeds here. The bell
 #: (Fig. 4 squares, steady_eps) spans sqrt(eps) = 0.05 to 0.387, dense around the maximum the
 #: paper places between 0.1 and 0.2, and holds Fig. 2's eps = 5e-3, 5e-2, 0.15 and Figs. 6-7's
 #: eps = 0.1 at P.B.C.

@@ -112,9 +112,12 @@ def describe_scale(summary):
     else:
         name = f"the scale ``{summary['scale']}``"
     text = (f"Scale: {name} ({size}; {summary['runs']} runs of "
-            f"{', '.join(map(str, summary['taps']))} taps; {summary['seeds']} seeds per point; "
+            f"{', '.join(map(str, summary['taps']))} taps; {summary['seeds']} "
+            f"{'seed' if summary['seeds'] == 1 else 'seeds'} per point; "
             f"redeposition threshold eta = {', '.join(f'{e:g}' for e in summary['eta'])}). "
-            "The paper used N = 4096, L = 32R, 4000 taps and 10 realizations.")
+            "The paper used N = 4096, L = 32R and 4000 taps, one run per point from the same "
+            "initial packing (section III.B), and 10 realizations for the ageing of Fig. 5 "
+            "(section III.C).")
     if summary.get("planned_runs"):
         text += (f" The campaign is under way: {summary['runs']} of its "
                  f"{summary['planned_runs']} runs have finished, and this page is drawn from "
