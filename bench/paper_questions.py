@@ -643,6 +643,7 @@ def integrity(args):
             frame = read_dump(dump).frames[-1]
             check = PackingCheck(frame).compute()
             row = printed.get(frame.step)
+            scalars = check.scalars()
             worst, worst_name = 0.0, ""
             for name in INTEGRITY_COLUMNS:
                 if row is None or name not in names:
@@ -651,7 +652,7 @@ def integrity(args):
                 decimals = len(text.split(".")[1]) if "." in text else 0
                 # the difference in units of what the print and the dump's rounding allow
                 allowed = 0.5 * 10.0 ** -decimals + INTEGRITY_SLACK
-                ratio = abs(check.scalars()[name] - float(text)) / allowed
+                ratio = abs(scalars[name] - float(text)) / allowed
                 if ratio >= worst:
                     worst, worst_name = ratio, name
             rows.append([run_dir.name, frame.step, check.n, f"{check.min_gap:.4g}",

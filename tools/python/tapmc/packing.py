@@ -1,9 +1,9 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 """One packing checked offline: is it a legal hard-sphere packing (no overlaps, nothing below
 the floor or through a side wall, section II), and what are its stereology scalars, recomputed
-from the positions alone as ``compute stereo/profile`` defines them (doc/compute_stereo_profile.rst):
-Phi_b, <Phi^c> (with its data-defined window top and the 16/11 wall band), <Z>, the surface
-height h_s and the window top z_top.
+from the positions alone as ``compute stereo/profile`` defines them
+(doc/compute_stereo_profile.rst): Phi_b, <Phi^c> (with its data-defined window top and the
+16/11 wall band), <Z>, the surface height h_s and the window top z_top.
 
 A run prints its scalars every tap and dumps a few packings; :class:`PackingCheck` on a dump
 reproduces the printed row of that tap independently of the compute (numpy, no LAMMPS), and
@@ -22,7 +22,8 @@ import math
 
 import numpy as np
 
-from ._validate import in_range, positive, positive_int, result
+from ._validate import in_range, positive, positive_int, require, result
+from .profiles import sphere_slab_volume
 
 __all__ = ["PackingCheck", "CONTACT_TOLERANCE", "DUMP_DIGITS", "WALL_FACTOR", "TOP_FRACTION",
            "BULK_OVER_R", "COLUMN_OVER_R", "WALL_BAND_OVER_R"]
@@ -40,14 +41,6 @@ COLUMN_OVER_R = 2.0
 TOP_FRACTION = 0.9
 WALL_BAND_OVER_R = 1.0
 WALL_FACTOR = 16.0 / 11.0
-
-
-def _slab_volume(z, r, lo, hi):
-    """Sphere volume of each sphere inside the slab lo <= z <= hi (exact: the integral of the
-    cut disks' areas)."""
-    a = np.clip(lo - z, -r, r)
-    b = np.clip(hi - z, -r, r)
-    return np.pi * (b - a) * (r * r - (a * a + a * b + b * b) / 3.0)
 
 
 class PackingCheck:
@@ -189,12 +182,13 @@ class PackingCheck:
         self._surface = float(filled.mean()) if filled.size else z0
         self._window_top = z0 + TOP_FRACTION * max(0.0, self._surface - z0)
         bulk_top = z0 + BULK_OVER_R * mean_r
-        self._phi_b = float(_slab_volume(z, r, z0, bulk_top).sum() / (area * (bulk_top - z0)))
+        bulk = sphere_slab_volume(z, r, z0, bulk_top).sum()
+        self._phi_b = float(bulk / (area * (bulk_top - z0)))
         band_top = min(z0 + WALL_BAND_OVER_R * mean_r, self._window_top)
         height = self._window_top - z0
         if height > 0:
-            band = _slab_volume(z, r, z0, band_top).sum()
-            rest = _slab_volume(z, r, band_top, self._window_top).sum()
+            band = sphere_slab_volume(z, r, z0, band_top).sum()
+            rest = sphere_slab_volume(z, r, band_top, self._window_top).sum()
             self._phi_c = float((WALL_FACTOR * band + rest) / (area * height))
         else:
             self._phi_c = 0.0
@@ -214,8 +208,7 @@ class PackingCheck:
 
     @property
     def wall_gap(self):
-        if self._n is None:
-            return result("_n").fget(self)
+        require(self, "_n")     # None is a result here (periodic sides), so check compute()
         return self._wall_gap
 
     def scalars(self):

@@ -19,7 +19,8 @@ from ._validate import as_1d, new_axis, positive, result, same_length
 from .laws import PROFILE_WINDOWS, ProfileLaw, profile_gradient  # noqa: F401 (re-exported)
 
 __all__ = ["ProfileIncrease", "vertical_profile", "transversal_profile", "ProfileLaw",
-           "profile_gradient", "PROFILE_WINDOWS", "slab_fractions", "vertical_profile_jackknife",
+           "profile_gradient", "PROFILE_WINDOWS", "sphere_slab_volume", "slab_fractions",
+           "vertical_profile_jackknife",
            "PROFILE_JACKKNIFE_BLOCKS"]
 
 #: lateral blocks per side of the jackknife of a vertical profile: 4 x 4 blocks of 8R x 8R at
@@ -140,6 +141,15 @@ def transversal_profile(table, radius, wall=0.0, index=-1, value="bin"):
     return _profile(table, radius, float(wall), index, value)
 
 
+def sphere_slab_volume(z, radius, lo, hi):
+    """Volume of each sphere (centre height ``z``, radius ``radius``) between the heights
+    ``lo`` and ``hi``, exact (the integral of its cut disks' areas); the arguments broadcast
+    (a radius per sphere, a pair of edges per slab)."""
+    a = np.clip(lo - z, -radius, radius)
+    b = np.clip(hi - z, -radius, radius)
+    return np.pi * (radius * radius * (b - a) - (b ** 3 - a ** 3) / 3.0)
+
+
 def slab_fractions(z, radius, edges, area):
     """Exact mean solid fraction of each slab [edges[k], edges[k+1]) of the spheres of radius
     ``radius`` at heights ``z`` over a base of ``area``: the sphere volume inside the slab over
@@ -150,9 +160,7 @@ def slab_fractions(z, radius, edges, area):
     edges = as_1d("edges", edges, min_len=2)
     if np.any(np.diff(edges) <= 0):
         raise ValueError("edges must increase")
-    u1 = np.clip(edges[None, :-1] - z[:, None], -radius, radius)
-    u2 = np.clip(edges[None, 1:] - z[:, None], -radius, radius)
-    inside = np.pi * (radius ** 2 * (u2 - u1) - (u2 ** 3 - u1 ** 3) / 3.0)
+    inside = sphere_slab_volume(z[:, None], radius, edges[None, :-1], edges[None, 1:])
     return inside.sum(axis=0) / (positive("area", area) * np.diff(edges))
 
 
