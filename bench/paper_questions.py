@@ -71,12 +71,14 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
 
   early-taps  Does Phi_b compact faster per tap in the first decade than later (section III.A:
               "as the packing progressively densifies, the compaction efficiency
-              decreases"), and is the slowing on a logarithmic time axis strongest at the
-              smallest eps? One run gives the first decade's rate with one tap's spread
-              as its error, too wide at weak taps. This taps the campaign's F.B.C. packing
-              (its pack_seed) 10 times at each eps of Fig. 2 with Monte Carlo seeds 2-9,
-              and adds the campaign's own run (seed 1) from its taps.dat: Phi_b, <Phi^c>
-              and <Z> at t = 0..10 per seed, whose rates have errors over realizations.
+              decreases"), is the slowing on a logarithmic time axis strongest at the
+              smallest eps, and are Phi_b(t) and <Z>(t) compatible with eqs. 3 and 4? One
+              run gives neither the first decade's rate nor a fit a trustworthy error: its
+              taps' scatter is correlated (Fig. 3). This taps the campaign's F.B.C. packing
+              (its pack_seed) 400 times at each eps of Fig. 2 with Monte Carlo seeds 2-9,
+              resumable from restart files in <out>/partial/early_taps/, and adds the
+              campaign's own run (seed 1) from its taps.dat: Phi_b, <Phi^c> and <Z> at
+              t = 0..400 per seed, whose rates and laws are tested across realizations.
 
   p0-fluid    Is a tapped packing expected to follow the Percus-Yevick P0(sigma) of Fig. 9
               as closely as it does (max |P0 - PY| = 0.025 at Phi = 0.606)? PY is a theory of
@@ -111,6 +113,7 @@ Usage (from the repository; minutes on one core, run under nice):
     bench/paper_questions.py pbc-course [--out DIR] [--campaign DIR]
     bench/paper_questions.py integrity [--out DIR] [--campaign DIR]
     bench/paper_questions.py early-taps [--out DIR] [--lmp EXE] [--campaign DIR] [--seeds 2 ...]
+                                        [--taps 400] [--work DIR]
     bench/paper_questions.py initial-packing [--out DIR] [--lmp EXE] [--seeds 1 2 ...]
     bench/paper_questions.py p0-configs [--out DIR] [--lmp EXE] [--restart FILE] [--work DIR]
     bench/paper_questions.py lateral-first-tap [--out DIR] [--lmp EXE] [--seeds 1 2 3 4]
@@ -137,6 +140,7 @@ import os
 import subprocess
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 import numpy as np
@@ -564,41 +568,69 @@ def pbc_course(args):
                "steady_halves_diff_sem"], rows)
 
 
-#: early-taps: the first decade of taps (tapmc.paper.claims.EARLY_DECADE) from the campaign's
-#: F.B.C. packing, with Monte Carlo seeds other than the campaign's (1): 8 more realizations, 9
-#: with the campaign's run, make the first decade's rate an ensemble mean with an error over
-#: seeds (8 dof, t = 2.31).
-EARLY_TAPS = 10
+#: early-taps: the first REALIZATION_TAPS taps from the campaign's F.B.C. packing, with Monte
+#: Carlo seeds other than the campaign's (1): 8 more realizations, 9 with the campaign's run,
+#: give the first decade's rate an error over seeds (8 dof, t = 2.31) and Fig. 2's laws a
+#: test whose covariance between times comes from independent runs
+#: (tapmc.laws.RealizationLawTest). 400 taps span 2.6 of the run's 3.6 decades for about a
+#: tenth of its cost (about 8 CPU-min per realization at eps = 0.005 to 0.15).
+REALIZATION_TAPS = 400
 EARLY_SEEDS = tuple(range(2, 10))
 #: the campaign's seed: its pack_seed is the packing every F.B.C. run starts from
 CAMPAIGN_SEED = 1
+#: taps between the restart files of a realization (a killed early-taps resumes from them)
+REALIZATION_RESTART_EVERY = 50
+
+
+def _latest_restart(folder):
+    steps = [int(f.name.split(".")[1]) for f in folder.glob("restart.*")
+             if f.name.split(".")[1].isdigit()]
+    return max(steps, default=None)
+
+
+def realization(lmp, folder, variables, taps):
+    """Rows (step, phi_b, phi_c, Z as text) of taps 0..taps of one run in ``folder``: kept
+    when the folder already holds them, otherwise run, or resumed from the folder's latest
+    restart file (the same taps bit for bit as one uninterrupted run)."""
+    folder.mkdir(parents=True, exist_ok=True)
+    out = folder / "taps.dat"
+    if not (out.is_file() and _has_taps(out, taps)):
+        step = _latest_restart(folder)
+        extra = {} if step is None else {"resume": "yes", "resume_file": f"restart.{step}"}
+        run(lmp, folder, dict(variables, taps=taps, rsteps=REALIZATION_RESTART_EVERY, **extra))
+    names, printed = _printed_rows(out)
+    return [[printed[t][names.index(c)] for c in ("step", "phi_b", "phi_c", "Z")]
+            for t in range(taps + 1)]
+
+
+def _has_taps(path, taps):
+    _, printed = _printed_rows(path)
+    return all(t in printed for t in range(taps + 1))
 
 
 def early_taps(args):
     from tapmc.paper.scales import FULL
 
     lmp = lmp_command(args.lmp)
+    work = Path(args.work) if args.work else Path(args.out) / PARTIAL / "early_taps"
     rows = []
     for eps in FULL.fig2_eps:
         own = Path(args.campaign, "runs", f"const_fbc_eps{eps:g}_s{CAMPAIGN_SEED}", "taps.dat")
-        if own.is_file():   # the campaign's own run is the realization of seed 1
+        if own.is_file() and _has_taps(own, args.taps):
+            # the campaign's own run is the realization of seed 1
             names, printed = _printed_rows(own)
-            if all(t in printed for t in range(EARLY_TAPS + 1)):
-                for t in range(EARLY_TAPS + 1):
-                    row = printed[t]
-                    rows.append([eps, CAMPAIGN_SEED, t] + [row[names.index(c)]
-                                                         for c in ("phi_b", "phi_c", "Z")])
+            rows += [[eps, CAMPAIGN_SEED, t] + [printed[t][names.index(c)]
+                                                for c in ("phi_b", "phi_c", "Z")]
+                     for t in range(args.taps + 1)]
         for seed in args.seeds:
-            with tempfile.TemporaryDirectory() as folder:
-                taps = run(lmp, folder, dict(PAPER, bc="fbc", eps=eps, seed=seed,
-                                             pack_seed=CAMPAIGN_SEED, taps=EARLY_TAPS,
-                                             rsteps=1000000))
-            # columns of taps.dat: step phi_b phi_c Z ...
-            for row in taps:
-                rows.append([eps, seed, int(row[0]), f"{row[1]:.8f}", f"{row[2]:.8f}",
-                             f"{row[3]:.8f}"])
-            print(f"eps {eps:g} seed {seed}: Phi_b {taps[0, 1]:.4f} -> {taps[-1, 1]:.4f} at "
-                  f"tap {int(taps[-1, 0])}", flush=True)
+            start = time.monotonic()
+            taps = realization(lmp, work / f"eps{eps:g}_s{seed}",
+                               dict(PAPER, bc="fbc", eps=eps, seed=seed,
+                                    pack_seed=CAMPAIGN_SEED), args.taps)
+            rows += [[eps, seed, int(float(r[0]))] + r[1:] for r in taps]
+            print(f"eps {eps:g} seed {seed}: Phi_b {float(taps[0][1]):.4f} -> "
+                  f"{float(taps[-1][1]):.4f} at tap {args.taps} "
+                  f"({time.monotonic() - start:.0f} s)", flush=True)
     write_csv(Path(args.out) / "early_taps.csv", ["eps", "seed", "t", "phi_b", "phi_c", "Z"],
               rows)
 
@@ -841,6 +873,8 @@ def main(argv=None):
                                                   default=[1, 2, 3, 4])
     sub.choices["early-taps"].add_argument("--seeds", type=int, nargs="+",
                                            default=list(EARLY_SEEDS))
+    sub.choices["early-taps"].add_argument("--taps", type=int, default=REALIZATION_TAPS)
+    sub.choices["early-taps"].add_argument("--work", default=None, type=Path)
     sub.choices["initial-packing"].add_argument("--seeds", type=int, nargs="+",
                                                 default=list(INITIAL_SEEDS))
     for name in ("theta0", "dmax"):

@@ -48,6 +48,7 @@ import warnings
 import numpy as np
 from scipy.optimize import OptimizeWarning, curve_fit, least_squares
 from scipy.stats import chi2 as chi2_distribution
+from scipy.stats import f as f_distribution
 
 from ._validate import as_1d, new_axis, same_length
 
@@ -56,7 +57,8 @@ __all__ = ["FitResult", "Law", "InverseLogLaw", "ZLaw", "TwoExponentials", "Agei
            "CORRELATION_LIMIT", "RELATIVE_ERROR_LIMIT", "PROFILE_DELTA_CHI2",
            "POSITIVE_DECADES", "TIME_SCALE_DECADES", "UNBOUNDED_SPAN", "RANGE_Z_LIMIT",
            "LINEARITY_P_MIN", "Interval", "RangeRefits", "range_refits", "default_tap_ranges",
-           "LogLinear", "ExponentialDependence", "exponential_dependence"]
+           "LogLinear", "ExponentialDependence", "exponential_dependence",
+           "RealizationLawTest", "REALIZATION_MAX_BINS", "REALIZATION_P_MIN"]
 
 #: |correlation| between two parameters above which they are reported as not separately
 #: determined (the data fix only a combination of them).
@@ -85,6 +87,12 @@ UNBOUNDED_SPAN = 100.0
 RANGE_Z_LIMIT = 3.0
 #: p-value of the chi2 of a straight line below which the line is rejected (5 % test).
 LINEARITY_P_MIN = 0.05
+#: at most this many log-spaced bins of taps in a :class:`RealizationLawTest`: each bin adds a
+#: dimension to the covariance that the realizations must estimate (it needs realizations >
+#: bins), and 8 bins over 2-4 decades resolve the curvature the laws describe.
+REALIZATION_MAX_BINS = 8
+#: p-value below which a :class:`RealizationLawTest` rejects the law (a 1 % test).
+REALIZATION_P_MIN = 0.01
 #: steps of the profile walk grow by this factor (few refits to reach a far limit) ...
 _PROFILE_GROWTH = 2.0
 #: ... and the crossing of the threshold is refined by this many secant refits.
@@ -1215,3 +1223,133 @@ def exponential_dependence(sqrt_eps, B, B_lo, B_hi):
                                             (-np.inf, np.inf), "curvature")}
         return ExponentialDependence(res, x[ok], x[~ok])
     return ExponentialDependence(law.fit(x[ok], np.log(b[ok]), sig), x[ok], x[~ok])
+
+
+class RealizationLawTest:
+    """Is a law compatible with the mean of independent realizations of the same process?
+
+    The taps of one run are correlated (their spectrum is a power law, Fig. 3), so a
+    chi-square over the taps of one run, or over the mean of a few runs with per-tap errors,
+    does not have its textbook distribution. Independent realizations give the covariance
+    between times instead. The taps ``t >= t_min`` are cut into ``bins`` log-spaced bins
+    (default: as many as the realizations allow, at most :data:`REALIZATION_MAX_BINS`); every
+    realization gives one mean per bin; their sample covariance S (n realizations) gives the
+    covariance S/n of the bins' means over realizations. The law, averaged over each bin's
+    taps, is fitted to those means by generalized least squares with that covariance (from the
+    law's own fit of the mean curve). Its minimum chi-square is Hotelling's T^2 in the
+    q = bins - parameters directions the law cannot absorb (exact for a law linear in its
+    parameters and Gaussian bin means, the usual linearisation otherwise), so
+    F = (n - q) T^2 / (q (n - 1)) follows F(q, n - q) when the law holds; ``p_value`` is its
+    upper tail. Needs n >= bins + 1 >= parameters + 2.
+
+    ``compute(t, curves)``: ``curves`` has one row per realization, one column per tap of
+    ``t``. Results: ``params`` (dict), ``errors`` (curvature errors of the GLS fit),
+    ``chi2`` (T^2), ``dof`` (q), ``F``, ``p_value``, ``compatible`` (p_value >=
+    :data:`REALIZATION_P_MIN`), ``realizations``, ``bin_edges``, ``bin_means``,
+    ``bin_sem``, ``bin_model``.
+    """
+
+    def __init__(self, law, bins=None, t_min=1.0):
+        if not isinstance(law, Law):
+            raise TypeError(f"law must be a tapmc.laws.Law, got {type(law).__name__}")
+        self.law = law
+        self.p = len(law.names)
+        if bins is not None and (int(bins) != bins or bins < self.p + 1):
+            raise ValueError(f"bins = {bins}: must be an integer >= {self.p + 1} (the law's "
+                             f"{self.p} parameters + 1)")
+        self.bins = None if bins is None else int(bins)
+        self.t_min = float(t_min)
+        self._result = None
+
+    def compute(self, t, curves):
+        t = as_1d("t", t)
+        curves = np.asarray(curves, dtype=float)
+        if curves.ndim != 2 or curves.shape[1] != t.size:
+            raise ValueError(f"curves must have shape (realizations, {t.size}), got "
+                             f"{curves.shape}")
+        if not np.all(np.isfinite(curves)):
+            raise ValueError("curves must be finite")
+        n = curves.shape[0]
+        bins = self.bins if self.bins is not None else min(REALIZATION_MAX_BINS, n - 1)
+        if n < bins + 1 or bins < self.p + 1:
+            raise ValueError(f"{n} realizations: a test of {self.p} parameters needs at least "
+                             f"{self.p + 2} (realizations > bins > parameters)")
+        keep = t >= self.t_min
+        t, curves = t[keep], curves[:, keep]
+        edges = np.unique(np.round(np.geomspace(t.min(), t.max() + 1, bins + 1)))
+        if edges.size != bins + 1:
+            raise ValueError(f"taps {t.min():g}-{t.max():g} are too few for {bins} "
+                             "log-spaced bins")
+        which = np.searchsorted(edges, t, side="right") - 1
+        members = [which == b for b in range(bins)]
+        if any(not m.any() for m in members):
+            raise ValueError(f"a log-spaced bin of taps {t.min():g}-{t.max():g} is empty")
+        per_run = np.stack([curves[:, m].mean(axis=1) for m in members], axis=1)
+        means = per_run.mean(axis=0)
+        cov = np.atleast_2d(np.cov(per_run, rowvar=False, ddof=1)) / n
+        try:
+            whiten = np.linalg.inv(np.linalg.cholesky(cov))
+        except np.linalg.LinAlgError:
+            raise ValueError("the realizations' bin means have a singular covariance "
+                             "(identical realizations?)") from None
+
+        def model(q):
+            values = self.law.function(t, *q)
+            return np.array([values[m].mean() for m in members])
+
+        def residual(q):
+            return whiten @ (means - model(q))
+
+        first = self.law.fit(t, curves.mean(axis=0)).params
+        start = np.array([first[k] for k in self.law.names], dtype=float)
+        lo, hi = self.law.bounds(t, means)
+        lo = np.broadcast_to(lo, (self.p,)).astype(float)
+        hi = np.broadcast_to(hi, (self.p,)).astype(float)
+        inside = 1e-9 * (1.0 + np.abs(np.where(np.isfinite(lo), lo, 0.0)))
+        start = np.where(np.isfinite(lo) & (start <= lo), lo + inside, start)
+        inside = 1e-9 * (1.0 + np.abs(np.where(np.isfinite(hi), hi, 0.0)))
+        start = np.where(np.isfinite(hi) & (start >= hi), hi - inside, start)
+        with np.errstate(all="ignore"):
+            fit = least_squares(residual, start, bounds=(lo, hi), method="trf",
+                                x_scale="jac", max_nfev=20000)
+        chi2 = float(np.sum(fit.fun ** 2))
+        q = bins - self.p
+        F = (n - q) * chi2 / (q * (n - 1))
+        with np.errstate(all="ignore"):
+            jtj = fit.jac.T @ fit.jac
+            errors = np.sqrt(np.diag(np.linalg.pinv(jtj)))
+        self._result = dict(params=dict(zip(self.law.names, map(float, fit.x))),
+                            errors=dict(zip(self.law.names, map(float, errors))),
+                            chi2=chi2, dof=q, F=float(F),
+                            p_value=float(f_distribution.sf(F, q, n - q)), realizations=n,
+                            bin_edges=edges, bin_means=means, bin_sem=np.sqrt(np.diag(cov)),
+                            bin_model=model(fit.x))
+        return self
+
+    def _get(self, key):
+        if self._result is None:
+            raise RuntimeError("call compute(t, curves) first")
+        return self._result[key]
+
+    params = property(lambda self: self._get("params"))
+    errors = property(lambda self: self._get("errors"))
+    chi2 = property(lambda self: self._get("chi2"))
+    dof = property(lambda self: self._get("dof"))
+    F = property(lambda self: self._get("F"))
+    p_value = property(lambda self: self._get("p_value"))
+    realizations = property(lambda self: self._get("realizations"))
+    bin_edges = property(lambda self: self._get("bin_edges"))
+    bin_means = property(lambda self: self._get("bin_means"))
+    bin_sem = property(lambda self: self._get("bin_sem"))
+    bin_model = property(lambda self: self._get("bin_model"))
+
+    @property
+    def compatible(self):
+        return bool(self.p_value >= REALIZATION_P_MIN)
+
+    def __repr__(self):
+        if self._result is None:
+            return f"<RealizationLawTest of {type(self.law).__name__}: not computed>"
+        return (f"<RealizationLawTest of {type(self.law).__name__}: T2 {self.chi2:.3g} "
+                f"({self.dof} dof, {self.realizations} realizations), F {self.F:.3g}, "
+                f"p {self.p_value:.3g}>")
