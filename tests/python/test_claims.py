@@ -920,3 +920,63 @@ def test_one_seed_late_gain_share_from_the_runs_own_windows():
         (m,) = claims.late_gain_share(report(fig2=tab), claim)
         assert m.dof == claims.SHORT_WINDOW_BATCHES - 1
         assert claims.verdict(claim, m).startswith(expected), m
+
+
+def realization_rows(eps, phi_b, Z, seeds=range(1, 10), taps=400, seed=13, spread=(2e-4, 2e-3)):
+    """early_taps.csv rows of realizations from the same packing: Phi_b = phi_b(t) and
+    <Z> = Z(t) plus each realization's AR(1) noise (correlation time ~20 taps)."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(taps + 1.0)
+    rows = []
+    for s in seeds:
+        noise = np.zeros((2, t.size))
+        for k in range(1, t.size):
+            noise[:, k] = 0.95 * noise[:, k - 1] + rng.normal(0, 0.31, 2) * np.array(spread)
+        x, z = phi_b(t) + noise[0], Z(t) + noise[1]
+        rows += [{"eps": str(eps), "seed": str(s), "t": str(int(k)), "phi_b": f"{a:.8f}",
+                  "phi_c": "0.55", "Z": f"{b:.8f}"} for k, a, b in zip(t, x, z)]
+    return rows
+
+
+def test_fig2_laws_across_realizations_of_early_taps():
+    """Fig. 2 of one run per eps decides nothing on eqs. 3 and 4 (the taps are correlated);
+    with 9 realizations of 400 taps from the same packing (early_taps.csv) the laws are tested
+    across them (tapmc.laws.RealizationLawTest): realizations that follow the laws agree,
+    realizations whose Phi_b grows as a power of t disagree with eq. 3, and realizations that
+    are too few or too short leave the figure's one-run verdict."""
+    from tapmc.laws import InverseLogLaw, ZLaw
+
+    t = np.arange(4001.0)
+    tab = Table()
+    for eps in (0.005, 0.15):
+        tab.add("a", f"eps={P.fmt_eps(eps)}", t, 0.52 + 0.01 * np.log1p(t), None, n=1)
+        tab.add("c", f"eps={P.fmt_eps(eps)}", t, 7.7 - 0.1 * np.log1p(t), None, n=1)
+        tab.add("params", f"eps={P.fmt_eps(eps)}:reduced_chi2", [0.0], [1e-6], None, n=1)
+        tab.add("params", f"eps={P.fmt_eps(eps)}:Z:reduced_chi2", [0.0], [1e-4], None, n=1)
+
+    def law_rows(eps, seed):
+        return realization_rows(eps, lambda t: InverseLogLaw.function(t, 0.6, 0.08, 0.3, 5.0),
+                                lambda t: ZLaw.function(t, 7.1, 7.6, 0.4, 3.0), seed=seed)
+
+    def data(rows):
+        return claims.ReportData(report().summary, {"fig2": tab.data()},
+                                 questions={"early_taps": rows})
+
+    eq3, eq4 = BY_ID["eq3-compatible"], BY_ID["eq4-compatible"]
+    both = data(law_rows(0.005, 1) + law_rows(0.15, 2))
+    for fits, claim in ((claims.eq3_fit_quality(both, eq3), eq3),
+                        (claims.eq4_fit_quality(both, eq4), eq4)):
+        assert len(fits) == 2
+        for m in fits:
+            assert "over taps 1-400 in 8 log bins, 9 realizations" in m.text(), m
+            assert m.dof == 4 and claims.verdict(claim, m).startswith("agrees (p = "), m
+    power = realization_rows(0.005, lambda t: 0.52 + 0.01 * t ** 0.3,
+                             lambda t: ZLaw.function(t, 7.1, 7.6, 0.4, 3.0))
+    (wrong, one_run) = claims.eq3_fit_quality(data(power), eq3)
+    assert claims.verdict(eq3, wrong).startswith("disagrees"), wrong
+    assert one_run.undecided and "rms residual" in one_run.text()   # eps = 0.15: no rows
+    few = law_rows(0.005, 1)[: (claims.REALIZATION_MIN_SEEDS - 1) * 401]
+    short = [r for r in law_rows(0.005, 1) if int(r["t"]) < claims.REALIZATION_MIN_TAPS]
+    for rows in (few, short):
+        (m, _) = claims.eq3_fit_quality(data(rows), eq3)
+        assert m.undecided and "one realization" in m.undecided, m

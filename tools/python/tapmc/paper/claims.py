@@ -136,7 +136,8 @@ class Measure:
     size of the effect a ``zero`` claim denies (agreement needs an uncertainty below it);
     ``undecided`` says why the data cannot decide (the value may still be shown); ``lacks``
     the aspects of the paper's scale (:data:`ASPECTS`) this measure's own runs lack, when they
-    are not the campaign's (a scan at N = 1024)."""
+    are not the campaign's (a scan at N = 1024); ``p_value`` is a fit test's own p-value (the
+    F of tapmc.laws.RealizationLawTest), which the fit rule uses instead of the chi-square's."""
 
     value: float = math.nan
     err: float = math.nan
@@ -148,6 +149,7 @@ class Measure:
     sign: int | None = None
     undecided: str | None = None
     lacks: tuple = ()
+    p_value: float | None = None
 
     def text(self):
         if self.shown is not None:
@@ -446,8 +448,64 @@ def _law_quality(prefix):
     return measure
 
 
+#: realizations (early_taps.csv) that test a law of Fig. 2 across runs: a 4-parameter law
+#: needs 6 (tapmc.laws.RealizationLawTest: realizations > bins > parameters) ...
+REALIZATION_MIN_SEEDS = 6
+#: ... spanning at least two decades of taps, over which the laws' curvature shows
+REALIZATION_MIN_TAPS = 100
+
+
+def realization_curves(data, eps, column):
+    """(t, curves) of ``column`` over the realizations of early_taps.csv at ``eps`` (one row
+    per seed, the taps 0..T every one of them has), or None when fewer than
+    :data:`REALIZATION_MIN_SEEDS` span :data:`REALIZATION_MIN_TAPS` taps."""
+    by_seed = {}
+    for r in data.question("early_taps"):
+        if math.isclose(float(r["eps"]), eps, rel_tol=1e-9):
+            by_seed.setdefault(int(r["seed"]), {})[int(float(r["t"]))] = float(r[column])
+    seeds = [s for s, v in by_seed.items() if max(v) >= REALIZATION_MIN_TAPS]
+    if len(seeds) < REALIZATION_MIN_SEEDS:
+        return None
+    last = min(max(by_seed[s]) for s in seeds)
+    t = np.arange(0, last + 1)
+    if not all(all(k in by_seed[s] for k in t) for s in seeds):
+        return None
+    return t.astype(float), np.array([[by_seed[s][k] for k in t] for s in sorted(seeds)])
+
+
+def _law_across_realizations(data, eps, law, column):
+    """Measure of one law of Fig. 2 tested across the realizations of early_taps.csv at
+    ``eps`` (tapmc.laws.RealizationLawTest), or None when they are too few."""
+    from tapmc.laws import RealizationLawTest
+
+    curves = realization_curves(data, eps, column)
+    if curves is None:
+        return None
+    test = RealizationLawTest(law).compute(*curves)
+    edges = test.bin_edges
+    return Measure(test.chi2, dof=test.dof, p_value=test.p_value, label=f"eps = {eps:g}",
+                   shown=f"T^2 {fmt(test.chi2)} ({test.dof} dof) over taps "
+                         f"{edges[0]:g}-{edges[-1] - 1:g} in {len(edges) - 1} log bins, "
+                         f"{test.realizations} realizations from the same packing")
+
+
+def _fig2_law_quality(data, law, column, panel, prefix):
+    """Per eps of Fig. 2: the law across realizations where early_taps.csv has them, else the
+    chi-square of the figure's own fit (:func:`_law_quality`)."""
+    fig = data.figure("fig2")
+    if fig is None:
+        return _missing("no Fig. 2 runs")
+    out = []
+    for eps, series in _eps_series(fig, panel):
+        m = _law_across_realizations(data, eps, law, column)
+        out.append(m if m is not None else _law_quality(prefix)(fig, eps, *fig.get(panel, series)))
+    return out or _missing(f"no curve in panel {panel} of Fig. 2")
+
+
 def eq3_fit_quality(data, claim):
-    return _per_curve(data, "fig2", "a", _law_quality(""))
+    from tapmc.laws import InverseLogLaw
+
+    return _fig2_law_quality(data, InverseLogLaw(), "phi_b", "a", "")
 
 
 #: Parameters of eq. 3 whose uniqueness section III.B discusses: the triplet (X_inf, B, tau).
@@ -500,7 +558,9 @@ def eq3_triplet_pattern(data, claim):
 
 
 def eq4_fit_quality(data, claim):
-    return _per_curve(data, "fig2", "c", _law_quality("Z:"))
+    from tapmc.laws import ZLaw
+
+    return _fig2_law_quality(data, ZLaw(), "Z", "c", "Z:")
 
 
 def b_exponential(data, claim):
@@ -1553,7 +1613,7 @@ def verdict(claim, m):
     if rule == "fit":
         if m.dof is None or m.dof < 1:
             return "undecided (no degrees of freedom)"
-        p = float(stats.chi2.sf(m.value * m.dof, m.dof))
+        p = m.p_value if m.p_value is not None else float(stats.chi2.sf(m.value * m.dof, m.dof))
         return ("agrees" if p >= FIT_P_VALUE else "disagrees") + f" (p = {p:.2g})"
     if not _decidable(m):
         return "undecided (no uncertainty: one realization)"

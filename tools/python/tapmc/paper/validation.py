@@ -39,8 +39,9 @@ RULES = {
     "zero": "disagrees when |value| > t sem; agrees when |value| <= t sem and t sem is below "
             "the effect the claim denies (given in the verdict when it is not); undecided "
             "otherwise",
-    "fit": f"agrees when the fit's chi-square has a p-value of at least "
-           f"{claims.FIT_P_VALUE:g}, disagrees otherwise",
+    "fit": f"agrees when the fit's test has a p-value of at least {claims.FIT_P_VALUE:g} "
+           "(its chi-square; across realizations, Hotelling's T^2 of the law over log-spaced "
+           "bins of taps with their covariance between realizations), disagrees otherwise",
     "pattern": "agrees when the pattern over several measures (stated in the TAPMC column, "
                "each decided by the fits' own intervals) is the paper's, disagrees otherwise",
     "check": "a check of the analysis tools (holds / fails), not counted as a reproduction",
