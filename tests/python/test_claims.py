@@ -983,15 +983,31 @@ def test_fig2_laws_across_realizations_of_early_taps():
     both = data(law_rows(0.005, 1) + law_rows(0.15, 2))
     for fits, claim in ((claims.eq3_fit_quality(both, eq3), eq3),
                         (claims.eq4_fit_quality(both, eq4), eq4)):
-        assert len(fits) == 2
-        for m in fits:
+        assert [m.label for m in fits] == [
+            f"eps = {e}, {part}" for e in (0.005, 0.15)
+            for part in ("every tap", "after the first taps' loosening")]
+        for m in fits:          # a rising Phi_b is never looser than at t = 0: both from tap 1
             assert "over taps 1-400 in 8 log bins, 9 realizations" in m.text(), m
             assert m.dof == 4 and claims.verdict(claim, m).startswith("agrees (p = "), m
     power = realization_rows(0.005, lambda t: 0.52 + 0.01 * t ** 0.3,
                              lambda t: ZLaw.function(t, 7.1, 7.6, 0.4, 3.0))
-    (wrong, one_run) = claims.eq3_fit_quality(data(power), eq3)
+    (wrong, _, one_run) = claims.eq3_fit_quality(data(power), eq3)
     assert claims.verdict(eq3, wrong).startswith("disagrees"), wrong
     assert one_run.undecided and "rms residual" in one_run.text()   # eps = 0.15: no rows
+    # the first three taps loosen the packing below its t = 0 value, then the law holds
+    loose = realization_rows(0.005, lambda t: np.where((t >= 1) & (t <= 3), 0.51,
+                                                       InverseLogLaw.function(t, 0.6, 0.08,
+                                                                              0.3, 5.0)),
+                             lambda t: ZLaw.function(t, 7.1, 7.6, 0.4, 3.0))
+    assert claims.loosening_end(data(loose), 0.005) == 4.0
+    (every, after, _) = claims.eq3_fit_quality(data(loose), eq3)
+    assert claims.verdict(eq3, every).startswith("disagrees"), every
+    assert "over taps 4-400" in after.text() and claims.verdict(eq3, after).startswith("agrees")
+    still = realization_rows(0.005, lambda t: np.where(t >= 1, 0.51, 0.52),
+                             lambda t: ZLaw.function(t, 7.1, 7.6, 0.4, 3.0))
+    assert claims.loosening_end(data(still), 0.005) is None
+    (_, never, _) = claims.eq3_fit_quality(data(still), eq3)
+    assert "still looser than at t = 0" in never.undecided
     few = law_rows(0.005, 1)[: (claims.REALIZATION_MIN_SEEDS - 1) * 401]
     short = [r for r in law_rows(0.005, 1) if int(r["t"]) < claims.REALIZATION_MIN_TAPS]
     for rows in (few, short):

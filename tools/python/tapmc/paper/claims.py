@@ -483,32 +483,58 @@ def realization_curves(data, eps, column):
     return t.astype(float), np.array([[by_seed[s][k] for k in t] for s in sorted(seeds)])
 
 
+def loosening_end(data, eps):
+    """The first tap at which the mean Phi_b over the realizations of early_taps.csv at
+    ``eps`` is back at its t = 0 value (the first taps loosen the deposited packing, which no
+    monotonic law follows), or None (too few realizations, or still loose at their last tap)."""
+    curves = realization_curves(data, eps, "phi_b")
+    if curves is None:
+        return None
+    t, mean = curves[0], curves[1].mean(axis=0)
+    back = np.flatnonzero((t >= 1) & (mean >= mean[0]))
+    return float(t[back[0]]) if back.size else None
+
+
 def _law_across_realizations(data, eps, law, column):
-    """Measure of one law of Fig. 2 tested across the realizations of early_taps.csv at
-    ``eps`` (tapmc.laws.RealizationLawTest), or None when they are too few."""
+    """Measures of one law of Fig. 2 tested across the realizations of early_taps.csv at
+    ``eps`` (tapmc.laws.RealizationLawTest): over every tap from the first, and from the end
+    of the first taps' loosening (:func:`loosening_end`); None when the realizations are too
+    few."""
     from tapmc.laws import RealizationLawTest
 
     curves = realization_curves(data, eps, column)
     if curves is None:
         return None
-    test = RealizationLawTest(law).compute(*curves)
-    edges = test.bin_edges
-    return Measure(test.chi2, dof=test.dof, p_value=test.p_value, label=f"eps = {eps:g}",
-                   shown=f"T^2 {fmt(test.chi2)} ({test.dof} dof) over taps "
-                         f"{edges[0]:g}-{edges[-1] - 1:g} in {len(edges) - 1} log bins, "
-                         f"{test.realizations} realizations from the same packing")
+    out = []
+    back = loosening_end(data, eps)
+    for t_min, part in ((1.0, "every tap"), (back, "after the first taps' loosening")):
+        label = f"eps = {eps:g}, {part}"
+        if t_min is None or t_min * 10 > curves[0][-1]:
+            out.append(Measure(label=label, undecided=(
+                "the packing is still looser than at t = 0 a decade before the "
+                "realizations' last tap")))
+            continue
+        test = RealizationLawTest(law, t_min=t_min).compute(*curves)
+        edges = test.bin_edges
+        out.append(Measure(test.chi2, dof=test.dof, p_value=test.p_value, label=label,
+                           shown=f"T^2 {fmt(test.chi2)} ({test.dof} dof) over taps "
+                                 f"{edges[0]:g}-{edges[-1] - 1:g} in {len(edges) - 1} log "
+                                 f"bins, {test.realizations} realizations from the same "
+                                 "packing"))
+    return out
 
 
 def _fig2_law_quality(data, law, column, panel, prefix):
-    """Per eps of Fig. 2: the law across realizations where early_taps.csv has them, else the
-    chi-square of the figure's own fit (:func:`_law_quality`)."""
+    """Per eps of Fig. 2: the law across realizations where early_taps.csv has them (two
+    measures: every tap, and after the first taps' loosening), else the chi-square of the
+    figure's own fit (:func:`_law_quality`)."""
     fig = data.figure("fig2")
     if fig is None:
         return _missing("no Fig. 2 runs")
     out = []
     for eps, series in _eps_series(fig, panel):
-        m = _law_across_realizations(data, eps, law, column)
-        out.append(m if m is not None else _law_quality(prefix)(fig, eps, *fig.get(panel, series)))
+        ms = _law_across_realizations(data, eps, law, column)
+        out += ms if ms is not None else [_law_quality(prefix)(fig, eps, *fig.get(panel, series))]
     return out or _missing(f"no curve in panel {panel} of Fig. 2")
 
 
