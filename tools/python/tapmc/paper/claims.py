@@ -488,10 +488,13 @@ def loosening_end(data, eps):
     ``eps`` is back at its t = 0 value (the first taps loosen the deposited packing, which no
     monotonic law follows), or None (too few realizations, or still loose at their last tap)."""
     curves = realization_curves(data, eps, "phi_b")
-    if curves is None:
-        return None
-    t, mean = curves[0], curves[1].mean(axis=0)
-    back = np.flatnonzero((t >= 1) & (mean >= mean[0]))
+    return None if curves is None else back_at_start(curves[0], curves[1].mean(axis=0))
+
+
+def back_at_start(t, mean):
+    """The first tap t >= 1 at which ``mean`` (Phi_b over realizations, t[0] = 0) is back at
+    its t = 0 value, or None."""
+    back = np.flatnonzero((np.asarray(t) >= 1) & (np.asarray(mean) >= mean[0]))
     return float(t[back[0]]) if back.size else None
 
 
