@@ -93,6 +93,10 @@ LINEARITY_P_MIN = 0.05
 REALIZATION_MAX_BINS = 8
 #: p-value below which a :class:`RealizationLawTest` rejects the law (a 1 % test).
 REALIZATION_P_MIN = 0.01
+#: best (B, tau) grid nodes from which a :class:`RealizationLawTest` refines its GLS fit,
+#: beside the law's own fit of the mean curve (the minimum chi-square decides the test: a
+#: local minimum would reject a law that holds).
+_GRID_STARTS = 4
 #: steps of the profile walk grow by this factor (few refits to reach a far limit) ...
 _PROFILE_GROWTH = 2.0
 #: ... and the crossing of the threshold is refined by this many secant refits.
@@ -1293,25 +1297,31 @@ class RealizationLawTest:
             raise ValueError("the realizations' bin means have a singular covariance "
                              "(identical realizations?)") from None
 
+        binning = np.stack([m / m.sum() for m in members])          # (bins, taps)
+
         def model(q):
-            values = self.law.function(t, *q)
-            return np.array([values[m].mean() for m in members])
+            return binning @ self.law.function(t, *q)
 
         def residual(q):
             return whiten @ (means - model(q))
 
         first = self.law.fit(t, curves.mean(axis=0)).params
-        start = np.array([first[k] for k in self.law.names], dtype=float)
+        starts = [np.array([first[k] for k in self.law.names], dtype=float)]
+        starts += self._grid_starts(t, binning, means, cov)
         lo, hi = self.law.bounds(t, means)
         lo = np.broadcast_to(lo, (self.p,)).astype(float)
         hi = np.broadcast_to(hi, (self.p,)).astype(float)
-        inside = 1e-9 * (1.0 + np.abs(np.where(np.isfinite(lo), lo, 0.0)))
-        start = np.where(np.isfinite(lo) & (start <= lo), lo + inside, start)
-        inside = 1e-9 * (1.0 + np.abs(np.where(np.isfinite(hi), hi, 0.0)))
-        start = np.where(np.isfinite(hi) & (start >= hi), hi - inside, start)
-        with np.errstate(all="ignore"):
-            fit = least_squares(residual, start, bounds=(lo, hi), method="trf",
-                                x_scale="jac", max_nfev=20000)
+        lo_in = lo + 1e-9 * (1.0 + np.abs(np.where(np.isfinite(lo), lo, 0.0)))
+        hi_in = hi - 1e-9 * (1.0 + np.abs(np.where(np.isfinite(hi), hi, 0.0)))
+        fit = None
+        for start in starts:
+            start = np.where(np.isfinite(lo) & (start <= lo), lo_in, start)
+            start = np.where(np.isfinite(hi) & (start >= hi), hi_in, start)
+            with np.errstate(all="ignore"):
+                trial = least_squares(residual, start, bounds=(lo, hi), method="trf",
+                                      x_scale="jac", max_nfev=20000)
+            if fit is None or trial.cost < fit.cost:
+                fit = trial
         chi2 = float(np.sum(fit.fun ** 2))
         q = bins - self.p
         F = (n - q) * chi2 / (q * (n - 1))
@@ -1325,6 +1335,51 @@ class RealizationLawTest:
                             bin_edges=edges, bin_means=means, bin_sem=np.sqrt(np.diag(cov)),
                             bin_model=model(fit.x))
         return self
+
+    def _grid_starts(self, t, binning, means, cov):
+        """Global starts of the GLS fit of a law of the taps that is linear in its amplitudes
+        once (B, tau) are fixed (:class:`_TapsLaw`): at every node of a (B, tau) grid the
+        amplitudes by GLS in the law's linear space (the bin means' covariance carried there
+        to first order), the :data:`_GRID_STARTS` best nodes returned. The law's own fit of
+        the mean curve weighs taps, not bins, and can sit in another minimum of the GLS."""
+        law = self.law
+        if not isinstance(law, _TapsLaw) or not law._linear or np.any(means <= 0):
+            return []
+        target, weight = law._target(means, np.ones_like(means))
+        scale = 1.0 / np.sqrt(weight)                  # |d target / d mean|
+        try:
+            whiten = np.linalg.inv(np.linalg.cholesky(cov * np.outer(scale, scale)))
+        except np.linalg.LinAlgError:
+            return []
+        iB, itau = (law.names.index(k) for k in law._nonlinear)
+        lo_d, hi_d, num = law._GRID_TAU_DECADES
+        taus = np.geomspace(t.min() * 10 ** lo_d, t.max() * 10 ** hi_d, num)
+        BB, TT = (a.ravel() for a in np.meshgrid(law._GRID_B, taus, indexing="ij"))
+        with np.errstate(all="ignore"):
+            columns = law._basis(t[None, :], BB[:, None], TT[:, None])
+            A = np.stack([np.broadcast_to(c, (BB.size, t.size)) @ binning.T @ whiten.T
+                          for c in columns], axis=2)                 # (nodes, bins, amps)
+            y = whiten @ target
+            normal = np.einsum("kba,kbc->kac", A, A)
+            rhs = np.einsum("kba,b->ka", A, y)
+            ok = np.abs(np.linalg.det(normal)) > _COLLINEAR_TOLERANCE * np.abs(
+                np.prod(np.diagonal(normal, axis1=1, axis2=2), axis=1))
+            amps = np.full(rhs.shape, np.nan)
+            if ok.any():
+                amps[ok] = np.linalg.solve(normal[ok], rhs[ok][..., None])[..., 0]
+            cost = np.sum((np.einsum("kba,ka->kb", A, amps) - y) ** 2, axis=1)
+        nodes = []
+        for k in np.argsort(np.where(np.isfinite(cost), cost, np.inf)):
+            if not np.isfinite(cost[k]) or len(nodes) == _GRID_STARTS:
+                break
+            p = np.empty(self.p)
+            for name, v in zip(law._linear, law._amplitudes_to_params(amps[k])):
+                p[law.names.index(name)] = v
+            p[iB], p[itau] = BB[k], TT[k]
+            if np.all(np.isfinite(p)):
+                nodes.append((cost[k], p))
+        nodes.sort(key=lambda node: node[0])
+        return [p for _, p in nodes[:_GRID_STARTS]]
 
     def _get(self, key):
         if self._result is None:
