@@ -113,7 +113,7 @@ Usage (from the repository; minutes on one core, run under nice):
     bench/paper_questions.py pbc-course [--out DIR] [--campaign DIR]
     bench/paper_questions.py integrity [--out DIR] [--campaign DIR]
     bench/paper_questions.py early-taps [--out DIR] [--lmp EXE] [--campaign DIR] [--seeds 2 ...]
-                                        [--taps 400] [--work DIR]
+                                        [--taps 400] [--work DIR] [--eps E ...]
     bench/paper_questions.py initial-packing [--out DIR] [--lmp EXE] [--seeds 1 2 ...]
     bench/paper_questions.py p0-configs [--out DIR] [--lmp EXE] [--restart FILE] [--work DIR]
     bench/paper_questions.py lateral-first-tap [--out DIR] [--lmp EXE] [--seeds 1 2 3 4]
@@ -614,7 +614,7 @@ def early_taps(args):
     lmp = lmp_command(args.lmp)
     work = Path(args.work) if args.work else Path(args.out) / PARTIAL / "early_taps"
     rows = []
-    for eps in FULL.fig2_eps:
+    for eps in args.eps or FULL.fig2_eps:
         own = Path(args.campaign, "runs", f"const_fbc_eps{eps:g}_s{CAMPAIGN_SEED}", "taps.dat")
         if own.is_file() and _has_taps(own, args.taps):
             # the campaign's own run is the realization of seed 1
@@ -874,6 +874,9 @@ def main(argv=None):
     sub.choices["early-taps"].add_argument("--seeds", type=int, nargs="+",
                                            default=list(EARLY_SEEDS))
     sub.choices["early-taps"].add_argument("--taps", type=int, default=REALIZATION_TAPS)
+    # one eps per process runs the realizations on several cores (each process writes the CSV
+    # of its own eps: a last run without --eps, every realization done, writes them all)
+    sub.choices["early-taps"].add_argument("--eps", type=float, nargs="+", default=None)
     sub.choices["early-taps"].add_argument("--work", default=None, type=Path)
     sub.choices["initial-packing"].add_argument("--seeds", type=int, nargs="+",
                                                 default=list(INITIAL_SEEDS))
