@@ -381,3 +381,19 @@ def test_early_taps_table_gives_the_first_decade_over_realizations(tmp_path):
     assert "   * - 0.005\n     - 3\n     - 0.521\n" in text
     assert "     - 6e-05 ± 5.8e-06" in text
     assert "spread at t = 10" in text
+    assert "     - 1\n" in text.split("rate per unit ln t")[1]      # rising from the first tap
+
+
+def test_early_taps_table_gives_the_tap_where_the_loosening_ends(tmp_path):
+    """The first taps loosen the packing: the table gives the first tap at which the mean
+    Phi_b over the realizations is back at its t = 0 value, or says it never is."""
+    lines = ["eps,seed,t,phi_b,phi_c,Z"]
+    for eps, dip in ((0.005, 4), (0.15, 99)):
+        for seed in (1, 2, 3):
+            for t in range(21):
+                phi = 0.521 - 1e-3 if 1 <= t < dip else 0.521 + 1e-5 * t + 1e-6 * seed
+                lines.append(f"{eps},{seed},{t},{phi:.8f},0.556,7.6")
+    (tmp_path / "early_taps.csv").write_text("\n".join(lines) + "\n")
+    rows = "\n".join(questions.render_section(tmp_path)).split("   * - ")
+    assert rows[-2].splitlines()[-1] == "     - 4"
+    assert rows[-1].splitlines()[8] == "     - - (not by tap 20)"
