@@ -135,6 +135,7 @@ DIR defaults to doc/paper_scale/validation/questions (what the committed page re
 from __future__ import annotations
 
 import argparse
+import contextlib
 import csv
 import os
 import subprocess
@@ -594,13 +595,45 @@ def realization(lmp, folder, variables, taps):
     restart file (the same taps bit for bit as one uninterrupted run)."""
     folder.mkdir(parents=True, exist_ok=True)
     out = folder / "taps.dat"
-    if not (out.is_file() and _has_taps(out, taps)):
-        step = _latest_restart(folder)
-        extra = {} if step is None else {"resume": "yes", "resume_file": f"restart.{step}"}
-        run(lmp, folder, dict(variables, taps=taps, rsteps=REALIZATION_RESTART_EVERY, **extra))
+    with _folder_lock(folder):
+        if not (out.is_file() and _has_taps(out, taps)):
+            step = _latest_restart(folder)
+            extra = {} if step is None else {"resume": "yes", "resume_file": f"restart.{step}"}
+            run(lmp, folder, dict(variables, taps=taps, rsteps=REALIZATION_RESTART_EVERY,
+                                  **extra))
     names, printed = _printed_rows(out)
     return [[printed[t][names.index(c)] for c in ("step", "phi_b", "phi_c", "Z")]
             for t in range(taps + 1)]
+
+
+@contextlib.contextmanager
+def _folder_lock(folder, poll=30.0):
+    """Hold ``folder`` for one process: several early-taps processes (one per eps, or
+    overlapping seed lists) then never run the same realization at once; a process that
+    finds the folder held waits for it, then finds the taps there. A lock whose process is
+    gone (killed) is taken over."""
+    lock = folder / "running.pid"
+    while True:
+        try:
+            handle = os.open(lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
+            os.write(handle, str(os.getpid()).encode())
+            os.close(handle)
+            break
+        except FileExistsError:
+            try:
+                holder = int(lock.read_text().strip())
+            except (FileNotFoundError, ValueError):   # released, or its pid not written yet
+                time.sleep(min(poll, 1.0))
+                continue
+            try:
+                os.kill(holder, 0)              # the holder is alive: wait for it
+                time.sleep(poll)
+            except ProcessLookupError:
+                lock.unlink(missing_ok=True)
+    try:
+        yield
+    finally:
+        lock.unlink(missing_ok=True)
 
 
 def _has_taps(path, taps):

@@ -397,3 +397,32 @@ def test_early_taps_table_gives_the_tap_where_the_loosening_ends(tmp_path):
     rows = "\n".join(questions.render_section(tmp_path)).split("   * - ")
     assert rows[-2].splitlines()[-1] == "     - 4"
     assert rows[-1].splitlines()[8] == "     - - (not by tap 20)"
+
+
+def test_early_taps_folder_lock_waits_for_its_holder_and_takes_over_a_dead_one(tmp_path):
+    """Two early-taps processes never run one realization at once: a held folder makes the
+    other wait until it is released; the lock of a killed process is taken over."""
+    import subprocess
+    import threading
+
+    pq = _paper_questions()
+    dead = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"],
+                          capture_output=True, text=True).stdout.strip()
+    (tmp_path / "running.pid").write_text(dead)
+    with pq._folder_lock(tmp_path, poll=0.01):            # a dead holder: taken over
+        assert (tmp_path / "running.pid").read_text() == str(os.getpid())
+    assert not (tmp_path / "running.pid").exists()
+    order = []
+
+    def second():
+        with pq._folder_lock(tmp_path, poll=0.01):
+            order.append("second")
+
+    with pq._folder_lock(tmp_path, poll=0.01):
+        other = threading.Thread(target=second)
+        other.start()
+        other.join(timeout=0.3)
+        assert other.is_alive() and order == []            # waits while the folder is held
+        order.append("first")
+    other.join(timeout=5)
+    assert order == ["first", "second"]
