@@ -148,6 +148,7 @@ import numpy as np
 
 SOURCE = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
+from tapmc.campaign.run_folder import latest_restart  # noqa: E402
 from tapmc.fluctuations import PowerSpectrum, SteadyState  # noqa: E402
 
 INPUT = SOURCE / "examples" / "paper" / "in.constant_eps"
@@ -574,19 +575,13 @@ def pbc_course(args):
 #: give the first decade's rate an error over seeds (8 dof, t = 2.31) and Fig. 2's laws a
 #: test whose covariance between times comes from independent runs
 #: (tapmc.laws.RealizationLawTest). 400 taps span 2.6 of the run's 3.6 decades for about a
-#: tenth of its cost (about 8 CPU-min per realization at eps = 0.005 to 0.15).
+#: tenth of its cost (3.4, 5.7 and 7.7 CPU-min per realization at eps = 0.005, 0.05, 0.15).
 REALIZATION_TAPS = 400
 EARLY_SEEDS = tuple(range(2, 10))
 #: the campaign's seed: its pack_seed is the packing every F.B.C. run starts from
 CAMPAIGN_SEED = 1
 #: taps between the restart files of a realization (a killed early-taps resumes from them)
 REALIZATION_RESTART_EVERY = 50
-
-
-def _latest_restart(folder):
-    steps = [int(f.name.split(".")[1]) for f in folder.glob("restart.*")
-             if f.name.split(".")[1].isdigit()]
-    return max(steps, default=None)
 
 
 def realization(lmp, folder, variables, taps):
@@ -597,8 +592,8 @@ def realization(lmp, folder, variables, taps):
     out = folder / "taps.dat"
     with _folder_lock(folder):
         if not (out.is_file() and _has_taps(out, taps)):
-            step = _latest_restart(folder)
-            extra = {} if step is None else {"resume": "yes", "resume_file": f"restart.{step}"}
+            step, restart = latest_restart(folder)
+            extra = {} if step is None else {"resume": "yes", "resume_file": restart.name}
             run(lmp, folder, dict(variables, taps=taps, rsteps=REALIZATION_RESTART_EVERY,
                                   **extra))
     names, printed = _printed_rows(out)
@@ -938,6 +933,12 @@ def main(argv=None):
     fluid.add_argument("--work", default=None, type=Path)
     fluid.add_argument("--mc", default=None)
     args = parser.parse_args(argv)
+    if args.command == "early-taps":
+        from tapmc.paper.claims import EARLY_DECADE
+
+        if args.taps < EARLY_DECADE[1]:
+            parser.error(f"--taps must be at least {EARLY_DECADE[1]:g} (the first decade), "
+                         f"got {args.taps}")
     if args.command == "p0-fluid":
         if args.configs < 2:
             parser.error(f"--configs must be at least 2 (error bars), got {args.configs}")
