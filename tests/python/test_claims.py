@@ -169,14 +169,17 @@ def inverse_log(t, x_inf=0.62, dx=0.04, b=1.0, tau=10.0):
 RISING = inverse_log(T)
 
 
-def fig3(spectra=None, slope=-1.2, intercept=0.001, intercept_sem=0.002):
+def fig3(spectra=None, slope=-1.2, intercept=0.001, intercept_sem=0.002,
+         intercept_detrended=0.001):
     tab = Table()
     f = np.geomspace(1e-3, 0.5, 40)
     for eps, scale in (spectra or {}).items():
         tab.add("a", f"eps={P.fmt_eps(eps)}", f, scale(f), 0.02 * scale(f))
     tab.param("eps=0.01:slope", slope, 0.05, x=0.01)
     tab.param("intercept", intercept, intercept_sem)
-    tab.add("b", "sigma_Z", [0.05, 0.1, 0.15, 0.2, 0.3], [0.05, 0.1, 0.15, 0.2, 0.3], 0.003)
+    tab.param("intercept_detrended", intercept_detrended, intercept_sem)
+    for series in ("sigma_Z", "sigma_Z_detrended"):
+        tab.add("b", series, [0.05, 0.1, 0.15, 0.2, 0.3], [0.05, 0.1, 0.15, 0.2, 0.3], 0.003)
     return tab
 
 
@@ -392,6 +395,9 @@ CONTROLS = {
         report(fig3=fig3({e: (lambda f, e=e: 1e-3 / f + 10 * e) for e in (0.01, 0.04, 0.09)})),
         report(fig3=fig3({e: (lambda f, e=e: 1e-3 * e / f + 1.0) for e in (0.01, 0.04, 0.09)}))),
     "sigma_intercept": (report(fig3=fig3()), report(fig3=fig3(intercept=0.05))),
+    # each row reads its own sigma: the other's intercept stays zero in the failing case
+    "sigma-proportional-detrended": (report(fig3=fig3(intercept=0.05)),
+                                     report(fig3=fig3(intercept_detrended=0.05))),
     "bell_maximum": (report(fig4=fig4(BELL)),
                      report(fig4=fig4(0.60 - 2.0 * (X - 0.3) ** 2))),
     "bell_side_slope": (report(fig4=fig4(BELL)), report(fig4=fig4(0.65 - BELL))),

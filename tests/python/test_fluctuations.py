@@ -96,6 +96,32 @@ def test_steady_state_mean_sigma_and_correlated_sem():
     assert ss.last_value == x[-1]
 
 
+def test_linear_detrend_separates_drift_from_fluctuations():
+    # white noise of sigma 1e-3 on a drift of 1e-5 per tap: over 1000 taps the drift alone
+    # spreads 1e-2 / sqrt(12) = 2.9e-3 about the mean, which the paper's sigma counts
+    rng = np.random.default_rng(11)
+    over_seeds = []
+    for _ in range(200):
+        x = 0.6 + 1e-5 * np.arange(3000) + rng.normal(0, 1e-3, 3000)
+        raw = SteadyState(x, last=1000).compute()
+        line = SteadyState(x, last=1000, detrend="linear").compute()
+        assert raw.std == pytest.approx(np.hypot(1e-3, 1e-2 / np.sqrt(12)), rel=0.08)
+        assert line.trend == pytest.approx(1e-5, abs=6 * np.sqrt(12) * 1e-3 / 1000 ** 1.5)
+        assert line.mean == raw.mean
+        over_seeds.append(line.std)
+        assert sigma_x(x, detrend="linear") == line.std
+    # ddof 2: the variance about the fitted line is unbiased
+    assert np.mean(np.square(over_seeds)) == pytest.approx(1e-6, rel=0.01)
+    # no drift: both agree to within the line's two fitted parameters
+    y = rng.normal(0, 1e-3, 1000)
+    assert SteadyState(y, detrend="linear").compute().std == pytest.approx(
+        SteadyState(y).compute().std, rel=0.01)
+    with pytest.raises(ValueError, match="detrend = 'quadratic'"):
+        SteadyState(y, detrend="quadratic")
+    with pytest.raises(ValueError, match="last >= 3"):
+        SteadyState(y, last=2, detrend="linear")
+
+
 def test_sigma_scaling_fit_and_validation():
     s = np.array([0.05, 0.1, 0.15, 0.2])
     res = sigma_scaling(s, 0.02 * s, 1e-4 * np.ones(4))

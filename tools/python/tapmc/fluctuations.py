@@ -57,31 +57,54 @@ class SteadyState:
     """Steady-state value of a series X(t), one value per tap (section III.B).
 
     Parameters: ``x`` (the series), ``last`` (taps averaged at the end, default 1000),
-    ``batches`` (batches for the standard error, default 20).
-    Results after ``compute()``: ``mean`` (X_SS), ``std`` (sigma_X over the window),
-    ``sem`` (batch-means standard error of X_SS: successive taps are correlated, so the naive
+    ``batches`` (batches for the standard error, default 20), ``detrend`` (what sigma_X is
+    measured about: ``"constant"``, X_SS, the paper's definition; or ``"linear"``, a straight
+    line fitted over the window, for a run still compacting at its end, whose drift would
+    otherwise count as fluctuation. A straight line also takes out part of the slowest
+    fluctuations, so the linear sigma_X is a lower estimate of the steady state's).
+    Results after ``compute()``: ``mean`` (X_SS), ``std`` (sigma_X over the window, about
+    ``detrend``), ``trend`` (slope per tap of the straight line over the window), ``sem`` (batch-means standard error of X_SS: successive taps are correlated, so the naive
     std/sqrt(n) underestimates it), ``sem_naive``, ``last_value`` (the paper's alternative
     estimate, "directly through the last value"), ``window`` (slice of the taps used)."""
 
-    def __init__(self, x, last=DEFAULT_LAST, batches=DEFAULT_BATCHES):
+    DETRENDS = ("constant", "linear")
+
+    def __init__(self, x, last=DEFAULT_LAST, batches=DEFAULT_BATCHES, detrend="constant"):
         self.x = as_1d("x", x, min_len=2)
         self.last = positive_int("last", last, minimum=2)
         if self.last > len(self.x):
             raise ValueError(f"last = {last} exceeds the series length {len(self.x)}")
         self.batches = positive_int("batches", batches, minimum=2)
+        if detrend not in self.DETRENDS:
+            raise ValueError(f"detrend = {detrend!r}: expected one of {self.DETRENDS}")
+        if detrend == "linear" and self.last < 3:
+            raise ValueError(f"detrend = 'linear' needs last >= 3 (two fitted parameters), "
+                             f"got last = {last}")
+        self.detrend = detrend
         self._mean = None
 
     def compute(self):
         seg = self.x[-self.last:]
         self.window = slice(len(self.x) - self.last, len(self.x))
         self._mean = float(seg.mean())
-        self._std = float(seg.std(ddof=1))
+        self._trend = float(np.polyfit(np.arange(len(seg)), seg, 1)[0])
+        self._std = float(np.std(self.deviations(), ddof=1 if self.detrend == "constant" else 2))
         self._sem = _batch_sem(seg, min(self.batches, self.last // 2))
         self._sem_naive = self._std / np.sqrt(len(seg))
         return self
 
+    def deviations(self):
+        """X - X_SS (``detrend`` constant) or X minus its straight line (linear) over the
+        window."""
+        seg = self.x[-self.last:]
+        if self.detrend == "constant":
+            return seg - seg.mean()
+        t = np.arange(len(seg))
+        return seg - np.polyval(np.polyfit(t, seg, 1), t)
+
     mean = result("_mean")
     std = result("_std")
+    trend = result("_trend")
     sem = result("_sem")
     sem_naive = result("_sem_naive")
     last_value = property(lambda self: float(self.x[-1]))
@@ -99,9 +122,10 @@ class SteadyState:
         return ax
 
 
-def sigma_x(x, last=DEFAULT_LAST):
-    """sigma_X = sqrt(<(X - X_SS)^2>) over the last ``last`` taps (section III.A, Fig. 3)."""
-    return SteadyState(x, last=last).compute().std
+def sigma_x(x, last=DEFAULT_LAST, detrend="constant"):
+    """sigma_X = sqrt(<(X - X_SS)^2>) over the last ``last`` taps (section III.A, Fig. 3);
+    ``detrend="linear"``: about the window's straight line instead (see SteadyState)."""
+    return SteadyState(x, last=last, detrend=detrend).compute().std
 
 
 class _LogLogLine(Law):

@@ -958,12 +958,20 @@ def spectrum_eps_spread(data, claim):
 
 
 def sigma_intercept(data, claim):
-    found, missing = _figure_param(data, "fig3", "intercept",
-                                   "fewer than three eps: no free straight line")
+    """Intercept of a free straight line through sigma_<Z> against sqrt(eps) (Fig. 3 bottom);
+    ``params.about = "line"``: sigma_<Z> about each run's straight line over its last taps
+    (fig3's detrended series) instead of the paper's X_SS."""
+    suffix = "_detrended" if claim.params.get("about") == "line" else ""
+    fig = data.figure("fig3")
+    absent = "fewer than three eps: no free straight line"
+    if suffix and fig is not None and fig.get("b", "sigma_Z_detrended") is None:
+        return [Measure(undecided="Fig. 3's CSV was drawn without the detrended sigma_<Z>: "
+                                  "draw Fig. 3 again from its runs")]
+    found, missing = _figure_param(data, "fig3", "intercept" + suffix, absent)
     if missing:
         return missing
     fig, m, s, n = found
-    b = fig.get("b", "sigma_Z")
+    b = fig.get("b", "sigma_Z" + suffix)
     dof = len(b[0]) - 2 if b is not None else None
     # a zero intercept means small against the smallest sigma measured
     effect = float(np.nanmin(b[1])) if b is not None else None

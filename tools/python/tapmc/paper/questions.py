@@ -151,6 +151,19 @@ def _noise_floor(path, fig3=None):
             if np.isfinite(b):
                 lines[-1] += f"; the free line's intercept is {fmt(b, bs)}"
             lines[-1] += "."
+        bd, bds, npoints = fig3.param("intercept_detrended")
+        floor = values["sigma_Z_detrended"]
+        if np.isfinite(bd) and bds > 0 and npoints > 2:
+            gap = (bd - floor) / bds
+            # the claims' rule: t quantile with the line's degrees of freedom
+            beyond = gap > t_quantile(npoints - 2)
+            lines[-1] += (f" About each run's straight line (the runs still compact at tap "
+                          f"4000), the free line's intercept is {fmt(bd, bds)}, "
+                          f"{abs(gap):.1f} of its standard errors "
+                          f"{'above' if gap > 0 else 'below'} the floor's detrended "
+                          f"{fmt(floor)}"
+                          + (": the settles' own noise does not account for it."
+                             if beyond else ": within the floor's reach."))
     return lines + [""]
 
 
