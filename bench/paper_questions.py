@@ -53,6 +53,14 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               of the longer level (batch-means errors). Default levels: the top of the first
               increase, the middle of the decrease, the middle of the second increase.
 
+  fit-surrogates
+              Does one 4000-tap run fix the triplet (X_inf, B, tau) of eq. 3 (and eq. 4's
+              parameters), and do they depend on the range of taps fitted (section III.B)?
+              Per finished F.B.C. constant-eps run of the campaign: tapmc.laws.SurrogateFits
+              (Fourier surrogates of the run's residuals, --surrogates, default 200; no
+              simulation). And, from early_taps.csv, the spread of the same fits over the
+              independent realizations of the first 400 taps.
+
   pbc-course  How long does the dip of <Phi^c> after the first taps last, and does the
               packing loosen at strong taps (eps >= 0.09)? From every finished P.B.C.
               constant-eps run of the paper-scale campaign (no simulation: its taps.dat):
@@ -663,6 +671,75 @@ def early_taps(args):
               rows)
 
 
+#: the laws of Fig. 2 and the column each describes
+FIT_LAWS = (("eq3", "phi_b"), ("eq4", "Z"))
+
+
+def _law(name):
+    from tapmc.laws import InverseLogLaw, ZLaw
+
+    return {"eq3": InverseLogLaw, "eq4": ZLaw}[name]()
+
+
+def fit_surrogates(args):
+    """Per finished F.B.C. constant-eps run of the campaign and law of Fig. 2: how well the
+    run fixes each parameter and whether it depends on the tap range (tapmc.laws.SurrogateFits,
+    from tap 1 as Fig. 2 is drawn); and, from early_taps.csv, the spread of the same fit over
+    independent realizations of the first taps (sample 16-84 % of the fitted values)."""
+    from tapmc.laws import SurrogateFits
+
+    header = ["source", "eps", "law", "taps", "parameter", "value", "low", "high",
+              "half_width", "log_scale", "determined", "range_p", "fits"]
+    rows = []
+    for run_dir in sorted(Path(args.campaign, "runs").glob("const_fbc_eps*_s1")):
+        if not (run_dir / "DONE.json").is_file():
+            continue
+        eps = float(run_dir.name.split("_eps")[1].split("_s")[0])
+        names, printed = _printed_rows(run_dir / "taps.dat")
+        t = np.array(sorted(printed), dtype=float)
+        for law_name, column in FIT_LAWS:
+            start = time.monotonic()
+            y = np.array([float(printed[int(k)][names.index(column)]) for k in t])
+            fits = SurrogateFits(_law(law_name), surrogates=args.surrogates,
+                                 seed=args.seed).compute(t, y)
+            for k in fits.params:
+                rows.append([run_dir.name, eps, law_name, int(t.max()), k,
+                             f"{fits.params[k]:.8g}", f"{fits.low[k]:.8g}", f"{fits.high[k]:.8g}",
+                             f"{fits.half_width[k]:.6g}", int(fits.log_scale[k]),
+                             int(fits.determined[k]), f"{fits.range_p[k]:.4g}", fits.used])
+            print(f"{run_dir.name} {law_name}: {fits} ({time.monotonic() - start:.0f} s)",
+                  flush=True)
+    early = Path(args.out) / "early_taps.csv"
+    if early.is_file():
+        curves = {}
+        with open(early) as handle:
+            for r in csv.DictReader(handle):
+                curves.setdefault(float(r["eps"]), {}).setdefault(int(r["seed"]), []).append(r)
+        for eps, by_seed in sorted(curves.items()):
+            for law_name, column in FIT_LAWS:
+                law = _law(law_name)
+                values = []
+                for seed_rows in by_seed.values():
+                    t = np.array([float(r["t"]) for r in seed_rows])
+                    y = np.array([float(r[column]) for r in seed_rows])
+                    keep = t >= 1
+                    values.append(law.fit(t[keep], y[keep]).params)
+                for k in law.names:
+                    v = np.array([p[k] for p in values])
+                    log = k in ("B", "tau") and np.all(v > 0)
+                    scaled = np.log(v) if log else v
+                    lo, mid, hi = np.percentile(scaled, [16.0, 50.0, 84.0])
+                    back = np.exp if log else float
+                    half = (hi - lo) / 2.0
+                    limit = np.log(2.0) if log else abs(mid)
+                    rows.append(["realizations", eps, law_name, int(t.max()), k,
+                                 f"{float(back(mid)):.8g}", f"{float(back(lo)):.8g}",
+                                 f"{float(back(hi)):.8g}", f"{half:.6g}", int(log),
+                                 int(half <= limit), "nan", len(values)])
+                print(f"realizations eps {eps:g} {law_name}: {len(values)} fits", flush=True)
+    write_csv(Path(args.out) / "fit_surrogates.csv", header, rows)
+
+
 #: columns of a run's taps.dat that a dumped packing reproduces (tapmc.packing.PackingCheck)
 INTEGRITY_COLUMNS = ("phi_b", "phi_c", "Z", "z_top", "h_s")
 #: what the dump's rounding (%.10g: 5e-9 on a coordinate of the paper's box) can move a mean
@@ -892,7 +969,7 @@ def main(argv=None):
     sub = parser.add_subparsers(dest="command", required=True)
     for name in ("first-tap", "noise-floor", "spectral-window", "pbc-course", "integrity",
                  "early-taps", "initial-packing", "p0-configs", "lateral-first-tap",
-                 "ramp-levels", "theta0", "dmax", "p0-fluid"):
+                 "ramp-levels", "theta0", "dmax", "p0-fluid", "fit-surrogates"):
         p = sub.add_parser(name)
         p.add_argument("--out", default=DEFAULT_OUT, type=Path)
         p.add_argument("--lmp", default=None)
@@ -917,7 +994,10 @@ def main(argv=None):
         sub.choices[name].add_argument("--restart", default=CAMPAIGN_RUN / "restart.4000")
     sub.choices["p0-configs"].add_argument("--configs", type=int, default=P0_CONFIGS)
     sub.choices["p0-configs"].add_argument("--work", default=None, type=Path)
-    for name in ("spectral-window", "pbc-course", "integrity", "early-taps", "ramp-levels"):
+    sub.choices["fit-surrogates"].add_argument("--surrogates", type=int, default=None)
+    sub.choices["fit-surrogates"].add_argument("--seed", type=int, default=1)
+    for name in ("spectral-window", "pbc-course", "integrity", "early-taps", "ramp-levels",
+                 "fit-surrogates"):
         sub.choices[name].add_argument("--campaign", default=CAMPAIGN_RUN.parents[1])
     sub.choices["ramp-levels"].add_argument("--run", default="ramp_pbc_s1")
     sub.choices["ramp-levels"].add_argument("--levels", type=int, nargs="+", default=None)
@@ -949,7 +1029,7 @@ def main(argv=None):
      "early-taps": early_taps,
      "initial-packing": initial_packing, "p0-configs": p0_configs,
      "lateral-first-tap": lateral_first_tap, "ramp-levels": ramp_levels, "theta0": theta0_scan, "dmax": dmax_scan,
-     "p0-fluid": p0_fluid}[args.command](args)
+     "p0-fluid": p0_fluid, "fit-surrogates": fit_surrogates}[args.command](args)
 
 
 if __name__ == "__main__":

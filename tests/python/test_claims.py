@@ -1023,3 +1023,59 @@ def test_fig2_laws_across_realizations_of_early_taps():
     (seeds,) = claims.eq3_fit_quality(report(fig2=fig2({0.05: RISING})), eq3)
     assert seeds.undecided.startswith("5 seeds: a chi-square over correlated taps")
     assert seeds.text().startswith("reduced chi2 1 ")
+
+
+def surrogate_rows(states, law="eq3", b_values=None):
+    """fit_surrogates.csv rows of one campaign run per eps: ``states`` eps -> (undetermined
+    parameters, range-dependent parameters); B = ``b_values[eps]`` with a 10 % band."""
+    names = {"eq3": ("X_inf", "dX_inf", "B", "tau"), "eq4": ("Z_inf", "Z_0", "B", "tau")}[law]
+    rows = []
+    for eps, (undetermined, dependent) in states.items():
+        for k in names:
+            value = (b_values or {}).get(eps, 0.5) if k == "B" else 1.0
+            rows.append({"source": f"const_fbc_eps{eps:g}_s1", "eps": f"{eps}", "law": law,
+                         "taps": "4000", "parameter": k, "value": f"{value}",
+                         "low": f"{value * 0.9}", "high": f"{value * 1.1}",
+                         "half_width": "0.1", "log_scale": str(int(k in ("B", "tau"))),
+                         "determined": "0" if k in undetermined else "1",
+                         "range_p": "0.001" if k in dependent else "0.4", "fits": "200"})
+    # the realizations' rows are another source: never read as a campaign run
+    rows.append(dict(rows[0], source="realizations", eps="0.005", determined="1"))
+    return rows
+
+
+def surrogate_report(rows):
+    return claims.ReportData(report().summary, {}, questions={"fit_surrogates": rows})
+
+
+def test_one_runs_surrogates_decide_only_what_they_can():
+    """Surrogate bands are too narrow (test_slow_surrogate_fits.py): a triplet that is not
+    unique at any eps disagrees with the paper's contrast; one that looks unique somewhere
+    stays undecided; B's dependence is tested only where B is determined, and agreement
+    decides while a rejection does not."""
+    claim = BY_ID["eq3-triplet-range"]
+    none_unique = surrogate_rows({0.005: (["B", "tau"], []), 0.05: (["B"], []),
+                                  0.15: ([], ["tau"])})
+    (m,) = claims.eq3_triplet_pattern(surrogate_report(none_unique), claim)
+    assert claims.verdict(claim, m) == "disagrees", m
+    assert "eps = 0.15: tau range dependent" in m.text()
+    paper_like = surrogate_rows({0.005: (["B", "tau"], []), 0.05: ([], []), 0.15: ([], [])})
+    (m,) = claims.eq3_triplet_pattern(surrogate_report(paper_like), claim)
+    assert m.undecided == claims.SURROGATES_UNIQUE
+
+    claim = BY_ID["b-exponential"]
+    eps = (0.005, 0.05, 0.15)
+    undetermined = surrogate_rows({0.005: (["B"], []), 0.05: ([], []), 0.15: ([], [])})
+    (m,) = claims.b_exponential(surrogate_report(undetermined), claim)
+    assert m.undecided and "B undetermined at eps = 0.005" in m.undecided
+    exponential = surrogate_rows({e: ([], []) for e in eps},
+                                 b_values={e: 0.2 * np.exp(3 * np.sqrt(e)) for e in eps})
+    (m,) = claims.b_exponential(surrogate_report(exponential), claim)
+    assert claims.verdict(claim, m).startswith("agrees"), m
+    bent = surrogate_rows({e: ([], []) for e in eps},
+                          b_values={0.005: 0.2, 0.05: 20.0, 0.15: 0.2})
+    (m,) = claims.b_exponential(surrogate_report(bent), claim)
+    assert m.undecided and "too narrow to reject" in m.undecided
+    both = claims.ReportData(report().summary, {}, questions={
+        "fit_surrogates": undetermined + surrogate_rows({e: (["B"], []) for e in eps}, "eq4")})
+    assert [x.label for x in claims.b_exponential(both, claim)] == ["B of eq. 3", "B of eq. 4"]

@@ -200,8 +200,10 @@ class FigureData:
 
 #: stems of the CSVs of bench/paper_questions.py (in the report's ``questions`` folder) that
 #: decide claims of one-run campaigns: depositions at t = 0 (initial-packing), P0 over several
-#: configurations (p0-configs), the first taps from the paper's F.B.C. start (lateral-first-tap)
-QUESTION_CSVS = ("initial_packing", "p0_configs", "lateral_first_tap", "early_taps")
+#: configurations (p0-configs), the first taps from the paper's F.B.C. start (lateral-first-tap),
+#: realizations of the first taps (early-taps), one run's surrogate fits (fit-surrogates)
+QUESTION_CSVS = ("initial_packing", "p0_configs", "lateral_first_tap", "early_taps",
+                 "fit_surrogates")
 
 
 class ReportData:
@@ -577,9 +579,51 @@ def _one_run_fig2(fig):
     return bool(series) and max(np.nanmax(fig.get("a", name)[3]) for _, name in series) < 2
 
 
+def surrogate_fits(data, law):
+    """eps -> {parameter: row} of fit_surrogates.csv for the campaign's runs (not the
+    realizations' rows) and ``law`` ('eq3', 'eq4')."""
+    out = {}
+    for r in data.question("fit_surrogates"):
+        if r["source"] != "realizations" and r["law"] == law:
+            out.setdefault(float(r["eps"]), {})[r["parameter"]] = r
+    return dict(sorted(out.items()))
+
+
+def _surrogate_uniqueness(params, names):
+    """(unique, reason) of one run's parameters ``names`` from its fit_surrogates rows."""
+    from tapmc.laws import SURROGATE_P_MIN
+
+    undetermined = [k for k in names if params[k]["determined"] != "1"]
+    dependent = [k for k in names if float(params[k]["range_p"]) < SURROGATE_P_MIN]
+    reasons = ([f"{', '.join(undetermined)} undetermined"] if undetermined else []) + \
+        ([f"{', '.join(dependent)} range dependent"] if dependent else [])
+    return not reasons, "; ".join(reasons) or "unique within the surrogates"
+
+
+#: why a "unique" triplet of one run decides nothing: the surrogates' bands are narrower than
+#: the spread of independent realizations (tests/python/test_slow_surrogate_fits.py)
+SURROGATES_UNIQUE = ("one run's surrogates show an upper bound of how well the triplet is "
+                     "fixed: 'unique' needs realizations")
+
+
+def _triplet_from_surrogates(rows):
+    """The pattern from one run per eps (fit_surrogates.csv): "not unique" is safe (the
+    surrogates' bands are too narrow, never too wide), "unique" is not."""
+    states = [(e, *_surrogate_uniqueness(p, EQ3_TRIPLET)) for e, p in rows.items()]
+    shown = "; ".join(f"eps = {e:g}: {why}" for e, _, why in states) + \
+        " (one run per eps, Fourier surrogates of its residuals: fit_surrogates.csv)"
+    if not any(u for _, u, _ in states):
+        # not unique at any eps, larger ones included: the contrast the paper draws is absent
+        return [Measure(0.0, shown=shown)]
+    return [Measure(undecided=SURROGATES_UNIQUE, shown=shown)]
+
+
 def eq3_triplet_pattern(data, claim):
     """Section III.B: the triplet is not unique at the smallest eps and unique at some larger
     eps (1), or not (0)."""
+    rows = surrogate_fits(data, "eq3")
+    if len(rows) >= 2:
+        return _triplet_from_surrogates(rows)
     fig = data.figure("fig2")
     if fig is None:
         return _missing("no Fig. 2 runs")
@@ -602,8 +646,44 @@ def eq4_fit_quality(data, claim):
     return _fig2_law_quality(data, ZLaw(), "Z", "c", "Z:")
 
 
+def _b_from_surrogates(rows, label):
+    """ln B against sqrt(eps) from one run per eps (fit_surrogates.csv): only where B is
+    determined (an undetermined B is safe, a determined one an upper bound), with the
+    surrogates' half widths as errors. Too narrow errors make a rejection unsafe and an
+    agreement safe, so only agreement decides."""
+    from scipy.stats import chi2 as chi2_distribution
+
+    determined = {e: p["B"] for e, p in rows.items() if p["B"]["determined"] == "1"}
+    text = "; ".join(f"eps = {e:g}: B {float(p['B']['value']):.3g} "
+                     f"({float(p['B']['low']):.3g}-{float(p['B']['high']):.3g})"
+                     for e, p in rows.items())
+    if len(determined) < 3:
+        missing = [f"{e:g}" for e in rows if e not in determined]
+        return Measure(label=label, shown=text,
+                       undecided=f"B undetermined at eps = {', '.join(missing)} (one run per "
+                                 "eps, Fourier surrogates): fewer than three eps with a "
+                                 "determined B")
+    x = np.sqrt(np.array(list(determined)))
+    y = np.log([float(p["value"]) for p in determined.values()])
+    err = np.array([float(p["half_width"]) for p in determined.values()])
+    coef = np.polyfit(x, y, 1, w=1.0 / err)
+    chi = float(np.sum(((y - np.polyval(coef, x)) / err) ** 2))
+    dof = len(x) - 2
+    p_value = float(chi2_distribution.sf(chi, dof))
+    shown = f"{text}; d ln B / d sqrt(eps) = {coef[0]:.3g}, chi2 {chi:.3g} ({dof} dof)"
+    if p_value >= 0.01:
+        return Measure(chi / dof, dof=dof, label=label, shown=shown, p_value=p_value)
+    return Measure(label=label, shown=shown,
+                   undecided=f"p = {p_value:.2g}, but one run's surrogate errors are too "
+                             "narrow to reject")
+
+
 def b_exponential(data, claim):
     """ln B linear in sqrt(eps) (Fig. 2 panel B) for the B of eq. 3 and of eq. 4."""
+    from_surrogates = [_b_from_surrogates(rows, f"B of {law.replace('eq', 'eq. ')}")
+                       for law in ("eq3", "eq4") if len(rows := surrogate_fits(data, law)) >= 1]
+    if from_surrogates:
+        return from_surrogates
     fig = data.figure("fig2")
     if fig is None:
         return _missing("no Fig. 2 runs")

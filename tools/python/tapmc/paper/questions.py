@@ -19,6 +19,9 @@ committed data.
 * ``early_taps.csv``: the first 400 taps from the campaign's F.B.C. packing over several
   realizations: the first-decade rates of the efficiency and slowing claims, and the test of
   eqs. 3 and 4 across realizations.
+* ``fit_surrogates.csv``: eqs. 3 and 4 fitted to each F.B.C. run with Fourier surrogates of
+  its residuals, and to each realization of the first taps: whether one run fixes the triplet
+  and whether it depends on the tap range (section III.B).
 * ``initial_packing.csv``: the initial P.B.C. packing of several depositions at t = 0: the
   spread between packings that a campaign started from one packing hides.
 * ``p0_configs.csv``: Fig. 9's P0(sigma) over several depositions and several configurations
@@ -329,6 +332,54 @@ def _early_taps(path):
                     "Eqs. 3 and 4 are tested across the realizations that span 100 taps or "
                     "more (tapmc.laws.RealizationLawTest), over every tap and from that tap on, "
                     "in the claims' table.", ""]
+
+
+def _fit_surrogates(path):
+    rows = _read(path)
+    if not rows:
+        return []
+    groups = defaultdict(list)
+    for r in rows:
+        groups[(r["source"] == "realizations", r["law"], float(r["eps"]), r["source"],
+                int(r["taps"]), int(r["fits"]))].append(r)
+    lines = ["Does one run fix the triplet (X_inf, B, tau) of eq. 3, and eq. 4's parameters, "
+             "and do they depend on the range of taps fitted (section III.B)? The fits' own "
+             "intervals treat correlated taps as independent. Here each F.B.C. run of the "
+             "campaign is fitted from tap 1, and its residuals give Fourier surrogates (the "
+             "same periodogram, random phases) added to the fitted curve, each fitted again "
+             "over all taps and over taps 1-T/4, 1-T/2 and T/10-T "
+             "(``fit_surrogates.csv``, tapmc.laws.SurrogateFits). Against independent "
+             "realizations of noise with the runs' spectrum, these bands are too narrow "
+             "(tests/python/test_slow_surrogate_fits.py): \"undetermined\" is safe, "
+             "\"determined\" only an upper bound. The last rows fit each realization of the "
+             "first taps (``early_taps.csv``) and give the spread of the fitted values over "
+             "them, which needs no such model. Value, 16-84 % band (B and tau judged in ln: "
+             "determined when the band is at most a factor 2 either side; the others when "
+             "its half width is at most the value), and the range test's p-value:", "",
+             ".. list-table::", "   :header-rows: 1", "",
+             "   * - source", "     - eps", "     - law", "     - taps", "     - fits",
+             "     - parameters (value, band, determined?, range p)"]
+    for (_, law, eps, source, taps, fits), group in sorted(groups.items()):
+        cells = []
+        for r in group:
+            p = r["range_p"]
+            cells.append(f"{r['parameter']} {float(r['value']):.3g} "
+                         f"({float(r['low']):.3g} to {float(r['high']):.3g}"
+                         f"{'' if r['determined'] == '1' else ', undetermined'}"
+                         f"{'' if p == 'nan' else f', range p {float(p):.2g}'})")
+        lines += [f"   * - {'realizations' if source == 'realizations' else 'campaign run'}",
+                  f"     - {eps:g}", f"     - {law.replace('eq', 'eq. ')}", f"     - {taps}",
+                  f"     - {fits}", f"     - {'; '.join(cells)}"]
+    b_rows = [(key, r) for key, group in groups.items() for r in group
+              if r["parameter"] == "B" and key[1] == "eq3"]
+    runs = [r for key, r in b_rows if not key[0]]
+    realized = [r for key, r in b_rows if key[0]]
+    lines += ["", "A row without a range p: a range fit of the run itself sits on the edge of "
+              "(B, tau)'s allowed range, where the parameters are not defined. "
+              f"Eq. 3's B is undetermined in {sum(r['determined'] != '1' for r in runs)} of "
+              f"{len(runs)} campaign runs and at {sum(r['determined'] != '1' for r in realized)}"
+              f" of {len(realized)} eps over the realizations of the first taps."]
+    return lines + [""]
 
 
 def _back_at_start(by_seed):
@@ -950,6 +1001,8 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
         parts += _integrity(folder / "integrity.csv")
     if (folder / "early_taps.csv").is_file():
         parts += _early_taps(folder / "early_taps.csv")
+    if (folder / "fit_surrogates.csv").is_file():
+        parts += _fit_surrogates(folder / "fit_surrogates.csv")
     if (folder / "initial_packing.csv").is_file():
         parts += _initial_packing(folder / "initial_packing.csv")
     if (folder / "p0_configs.csv").is_file():
@@ -977,6 +1030,7 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
         ", ``pbc-course``" if (folder / "pbc_course.csv").is_file() else "") + (
         ", ``integrity``" if (folder / "integrity.csv").is_file() else "") + (
         ", ``early-taps``" if (folder / "early_taps.csv").is_file() else "") + (
+        ", ``fit-surrogates``" if (folder / "fit_surrogates.csv").is_file() else "") + (
         ", ``initial-packing``" if (folder / "initial_packing.csv").is_file() else "") + (
         ", ``p0-configs``" if (folder / "p0_configs.csv").is_file() else "") + (
         ", ``lateral-first-tap``" if (folder / "lateral_first_tap.csv").is_file() else "") + (
