@@ -38,6 +38,8 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "tools", "python"))
+# the campaign runner's restart finder: it skips an empty file that a kill left behind
+from tapmc.campaign.run_folder import latest_restart  # noqa: E402
 from tapmc.paper import front  # noqa: E402  (settings, file layout and the analysis)
 
 INPUT = os.path.join(ROOT, "examples", "paper", "in.constant_eps")
@@ -74,16 +76,6 @@ def work_dir(out_dir, setting, N, eps, seed):
     taps_gz = front.taps_path(out_dir, setting, N, eps, seed)
     rel = os.path.relpath(taps_gz, os.path.join(out_dir, "taps"))
     return os.path.join(out_dir, WORK, rel[:-len(".dat.gz")])
-
-
-def latest_restart(work):
-    """(step, file name) of the latest restart.<step> in `work`, or (0, None)."""
-    best = (0, None)
-    for name in os.listdir(work):
-        head, _, step = name.partition(".")
-        if head == "restart" and step.isdigit() and int(step) > best[0]:
-            best = (int(step), name)
-    return best
 
 
 def trim_taps(path, last_step):
@@ -164,7 +156,8 @@ def run_attempt(lmp, setting, N, eps, taps, seed, work, nice, children=None):
     Returns True when the run reached `taps`."""
     taps_dat = os.path.join(work, "taps.dat")
     attempts = load_attempts(work)
-    step, restart = latest_restart(work)
+    step, path = latest_restart(work)
+    restart = None if path is None else path.name
     if restart is None:
         step = 0
         attempts = []

@@ -4,7 +4,6 @@
 # (and half a row) are dropped, and the run's CPU time counts each attempt for the taps it kept.
 import gzip
 import importlib.util
-import json
 import os
 import subprocess
 from pathlib import Path
@@ -78,4 +77,8 @@ def test_trim_taps_keeps_the_rows_up_to_the_restart(tmp_path):
     path.write_text("# header\n" + "".join(rows[:3]) + "# header\n" + "".join(rows[2:]) + "6 1 1")
     paper_front.trim_taps(str(path), 3)
     assert path.read_text() == "# header\n" + "".join(rows[:4])
-    assert json.loads(json.dumps(paper_front.latest_restart(str(tmp_path)))) == [0, None]
+    assert paper_front.latest_restart(str(tmp_path)) == (None, None)
+    # the restart a run resumes from: the latest that is not empty (a kill mid-write)
+    (tmp_path / "restart.50").write_bytes(b"written")
+    (tmp_path / "restart.100").touch()
+    assert paper_front.latest_restart(str(tmp_path)) == (50, tmp_path / "restart.50")
