@@ -175,6 +175,13 @@ def test_paper_scale_plan():
     assert all(s.variables["rsteps"] == FULL.restart_every for s in everything)
     with pytest.raises(ValueError, match="tier = 5"):
         plan.runs(5)
+    # two jobs: the longest run (the ramp, one process) first, the rest in the same order
+    two = [s.name for s in plan.runs(3, jobs=2)]
+    assert two[0] == "ramp_pbc_s1" and sorted(two) == sorted(names)
+    assert two[1:] == [n for n in names if n != "ramp_pbc_s1"]
+    assert [s.name for s in plan.runs(2, jobs=2)] == [s.name for s in plan.runs(2)]
+    with pytest.raises(ValueError, match="jobs = 0"):
+        plan.runs(3, jobs=0)
 
 
 def test_campaign_subcommand(tmp_path):
@@ -186,6 +193,8 @@ def test_campaign_subcommand(tmp_path):
     assert "full plan, tiers 1-2" in lines[0]
     assert len(lines) - 1 == len(plan.runs(2))
     assert all(line.endswith("to run]") for line in lines[1:])
+    two = cli("campaign", "--dry-run", "--tier", "3", "--jobs", "2", "--campaign", tmp_path / "c")
+    assert two.returncode == 0 and two.stdout.splitlines()[1].split()[0] == "ramp_pbc_s1"
     bad = cli("campaign", "--quick", "--dry-run", "--campaign", tmp_path / "c")
     assert bad.returncode == 2 and "paper-scale plan only" in bad.stderr
 

@@ -239,7 +239,7 @@ def _scale_before_run(campaign, scale):
 
 def _run_plan(args):
     """``tapmc-paper campaign``: the paper-scale plan's runs, resumable, nothing drawn."""
-    from tapmc.campaign import Campaign
+    from tapmc.campaign import Campaign, launch
 
     from . import _runs, plan
 
@@ -260,8 +260,11 @@ def _run_plan(args):
             print(f"[campaign] {directory}: keeps the Scale it started with ("
                   f"{', '.join(changed)} differ from this TAPMC's FULL)", flush=True)
             scale = recorded
-        campaign = Campaign(directory, plan.runs(args.tier, scale), lmp=args.lmp,
-                            jobs=args.jobs, mode=args.mode, pin_inputs=True)
+        # the jobs the Campaign would take by default (the paper-scale runs have one rank),
+        # which decide the plan's order
+        jobs = args.jobs if args.jobs is not None else max(1, launch.available_cores())
+        campaign = Campaign(directory, plan.runs(args.tier, scale, jobs=jobs), lmp=args.lmp,
+                            jobs=jobs, mode=args.mode, pin_inputs=True)
         _check_dir(campaign.directory, "campaign directory", create=not args.dry_run)
     except (ValueError, FileNotFoundError) as err:
         print(f"tapmc-paper: {err}", file=sys.stderr)

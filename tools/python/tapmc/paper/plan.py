@@ -13,7 +13,8 @@ runs come in tiers; each tier completes figures on its own:
 2. error bars where the bell's shape is decided: seeds 2 and 3 at both ends and at the top,
    and Fig. 8's fourth eps;
 3. the history-dependent protocols: the ramp (Fig. 4 open symbols) at 1000 taps per level
-   instead of the paper's 4000, and ageing (Fig. 5);
+   instead of the paper's 4000, and ageing (Fig. 5); with two jobs or more the ramp, the
+   longest run, starts first (:func:`runs`);
 4. the ramp pair of section III.B: the ramp that stays below (sqrt eps)* ~ 0.15 (up to
    ``FULL.ramp_below_top`` = 0.125, down and up again; run ``ramplow_pbc_s1``) at tier 3's taps
    per level, which with tier 3's ramp (up to 0.3) decides the reversible and irreversible
@@ -77,9 +78,20 @@ def tier_runs(tier, scale=FULL):
     raise ValueError(f"tier = {tier!r}: allowed values are {', '.join(map(str, TIERS))}")
 
 
-def runs(up_to_tier=TIERS[-1], scale=FULL):
-    """Every run of tiers 1 .. ``up_to_tier``, in running order."""
+def runs(up_to_tier=TIERS[-1], scale=FULL, jobs=1):
+    """Every run of tiers 1 .. ``up_to_tier``, in running order: the tiers in turn. With two
+    jobs or more, tier 3's ramp, when asked for, goes first: it is the campaign's longest run
+    and cannot be split (34 levels of 1000 taps, some 14 core-hours in one process, five
+    working sessions or more), so it takes one job from the start while the others go through
+    the tiers in order (longest first: the campaign ends when its last run does). With one
+    job the tiers keep their order, so that the figures fill first."""
     if up_to_tier not in TIERS:
         raise ValueError(f"tier = {up_to_tier!r}: allowed values are "
                          f"{', '.join(map(str, TIERS))}")
-    return [spec for tier in TIERS if tier <= up_to_tier for spec in tier_runs(tier, scale)]
+    if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
+        raise ValueError(f"jobs = {jobs!r}: must be an integer >= 1")
+    ordered = [spec for tier in TIERS if tier <= up_to_tier for spec in tier_runs(tier, scale)]
+    if up_to_tier < 3 or jobs < 2:
+        return ordered
+    longest = [spec for spec in ordered if spec.name == _runs.ramp_run(scale, "pbc", 1).name]
+    return longest + [spec for spec in ordered if spec not in longest]
