@@ -89,6 +89,8 @@ def test_bad_input_is_refused_with_the_argument_named():
         SurrogateFits(LAW, surrogates=10)
     with pytest.raises(ValueError, match="p_min = 0.7"):
         SurrogateFits(LAW, p_min=0.7)
+    with pytest.raises(ValueError, match="t_min = 0"):
+        SurrogateFits(LAW, t_min=0)
     with pytest.raises(ValueError, match="consecutive taps"):
         SurrogateFits(LAW, surrogates=20).compute(T[::2], y[::2])
     with pytest.raises(ValueError, match="needs at least 18"):

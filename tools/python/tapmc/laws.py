@@ -1449,7 +1449,8 @@ class SurrogateFits:
     * The residuals hold what the fit did not absorb: the part of the noise along the law's
       own directions is missing from them, and any misfit of the law is in them as if it were
       noise. Under noise with a power-law spectrum the 16-84 % band is therefore narrower
-      than the spread of independent realizations (test_slow_surrogate_fits.py), and a misfit
+      than the spread of independent realizations where they fix a parameter
+      (test_slow_surrogate_fits.py), and a misfit
       widens it instead of showing as a range dependence. "Undetermined" and "not unique"
       are the verdicts this test can give safely; "determined" is an upper bound on what
       one run shows.
@@ -1483,6 +1484,9 @@ class SurrogateFits:
                              "and 84 % points and a 5 % tail need that many)")
         if not 0.0 < p_min < 0.5:
             raise ValueError(f"p_min = {p_min}: must be in (0, 0.5)")
+        if not t_min > 0:
+            raise ValueError(f"t_min = {t_min}: must be > 0 (tau's allowed range starts "
+                             "from the first tap fitted)")
         self.law = law
         self.surrogates = int(surrogates)
         self.ranges = None if ranges is None else [tuple(map(float, r)) for r in ranges]
@@ -1587,12 +1591,15 @@ class SurrogateFits:
                         and ((t >= r[0]) & (t <= r[1])).sum() >= len(law.names) + 2]
         first = law.fit(t, y).params
         self._log = {k: k in law._nonlinear for k in law.names}
-        B0 = first[law._nonlinear[0]]
+        B0, tau0 = (first[k] for k in law._nonlinear)
+        if not (np.isfinite(B0) and B0 > 0 and np.isfinite(tau0) and tau0 > 0):
+            raise ValueError(f"the law's fit of this run has B = {B0:g}, tau = {tau0:g}: "
+                             "the logarithmic law does not describe it")
         self._bounds = (np.array([np.log(B0) - POSITIVE_DECADES * np.log(10.0),
                                   np.log(t.min()) - TIME_SCALE_DECADES * np.log(10.0)]),
                         np.array([np.log(B0) + POSITIVE_DECADES * np.log(10.0),
                                   np.log(t.max()) + TIME_SCALE_DECADES * np.log(10.0)]))
-        start = (B0, first[law._nonlinear[1]])
+        start = (B0, tau0)
         observed, observed_edge = self._fits(t, y, start)
         ref = observed[0]
         params = {k: float(np.exp(v) if self._log[k] else v) for k, v in zip(law.names, ref)}
