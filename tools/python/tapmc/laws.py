@@ -1617,8 +1617,8 @@ class SurrogateFits:
         runs = np.where(np.isfinite(runs) & ~edges[:, :, None], runs, np.inf)
         observed = np.where(observed_edge[:, None], np.nan, observed)
         full = runs[:, 0, :]
-        q16, q84 = np.percentile(full, [16.0, 84.0], axis=0)
-        with np.errstate(invalid="ignore"):
+        with np.errstate(invalid="ignore"):  # unbounded surrogates: inf, and inf - inf
+            q16, q84 = np.percentile(full, [16.0, 84.0], axis=0)
             half = (q84 - q16) / 2.0
         determined = {}
         for i, k in enumerate(law.names):
