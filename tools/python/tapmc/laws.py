@@ -39,8 +39,11 @@ not exact; an unweighted fit always uses the residual scatter). A parameter is *
 allowed range; otherwise the open side is ``nan`` and :attr:`FitResult.errors` shows ``nan``
 for it, never a curvature error. :func:`range_refits` refits a law over several tap ranges and
 compares the spread of each parameter with the profile intervals: the statistic of the paper's
-"depends strongly on the range of taps" (section III.B). :func:`exponential_dependence` tests
-"B is consistent with an exponential dependence on eps^(1/2)" (section III.A).
+"depends strongly on the range of taps" (section III.B); :class:`SurrogateFits` asks the same
+of one run with correlated taps, from Fourier surrogates of its residuals, and
+:class:`RealizationLawTest` tests a law across independent realizations.
+:func:`exponential_dependence` tests "B is consistent with an exponential dependence on
+eps^(1/2)" (section III.A).
 """
 
 import warnings
