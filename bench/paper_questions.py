@@ -686,7 +686,7 @@ def fit_surrogates(args):
     run fixes each parameter and whether it depends on the tap range (tapmc.laws.SurrogateFits,
     from tap 1 as Fig. 2 is drawn); and, from early_taps.csv, the spread of the same fit over
     independent realizations of the first taps (sample 16-84 % of the fitted values)."""
-    from tapmc.laws import SurrogateFits
+    from tapmc.laws import RELATIVE_ERROR_LIMIT, SurrogateFits
 
     header = ["source", "eps", "law", "taps", "parameter", "value", "low", "high",
               "half_width", "log_scale", "determined", "range_p", "fits"]
@@ -731,7 +731,8 @@ def fit_surrogates(args):
                     lo, mid, hi = np.percentile(scaled, [16.0, 50.0, 84.0])
                     back = np.exp if log else float
                     half = (hi - lo) / 2.0
-                    limit = np.log(2.0) if log else abs(mid)
+                    # the determination rule of SurrogateFits, over realizations
+                    limit = np.log(2.0) if log else RELATIVE_ERROR_LIMIT * abs(mid)
                     rows.append(["realizations", eps, law_name, int(t.max()), k,
                                  f"{float(back(mid)):.8g}", f"{float(back(lo)):.8g}",
                                  f"{float(back(hi)):.8g}", f"{half:.6g}", int(log),
