@@ -110,6 +110,9 @@ _EDGE_TOLERANCE = 1e-6
 #: beside the law's own fit of the mean curve (the minimum chi-square decides the test: a
 #: local minimum would reject a law that holds).
 _GRID_STARTS = 4
+#: ... of which this many (the best after the fit of (B, tau) alone) are polished by the fit
+#: of all parameters; two, because eq. 4's amplitudes are linear only to first order.
+_POLISHED_STARTS = 2
 #: steps of the profile walk grow by this factor (few refits to reach a far limit) ...
 _PROFILE_GROWTH = 2.0
 #: ... and the crossing of the threshold is refined by this many secant refits.
@@ -1252,10 +1255,11 @@ class RealizationLawTest:
     (default: as many as the realizations allow, at most :data:`REALIZATION_MAX_BINS`); every
     realization gives one mean per bin; their sample covariance S (n realizations) gives the
     covariance S/n of the bins' means over realizations. The law, averaged over each bin's
-    taps, is fitted to those means by generalized least squares with that covariance (from the
-    law's own fit of the mean curve and the best nodes of a (B, tau) grid). Its minimum chi-square is Hotelling's T^2 in the
-    q = bins - parameters directions the law cannot absorb (exact for a law linear in its
-    parameters and Gaussian bin means, the usual linearisation otherwise), so
+    taps, is fitted to those means by generalized least squares with that covariance (for
+    eqs. 3, 4 and 6 by variable projection: see :meth:`_profile_starts`). Its minimum
+    chi-square is Hotelling's T^2 in the q = bins - parameters directions the law cannot
+    absorb (exact for a law linear in its parameters and Gaussian bin means, the usual
+    linearisation otherwise), so
     F = (n - q) T^2 / (q (n - 1)) follows F(q, n - q) when the law holds; ``p_value`` is its
     upper tail. Needs n >= bins + 1 >= parameters + 2.
 
@@ -1321,8 +1325,8 @@ class RealizationLawTest:
             return whiten @ (means - model(q))
 
         first = self.law.fit(t, curves.mean(axis=0)).params
-        starts = [np.array([first[k] for k in self.law.names], dtype=float)]
-        starts += self._grid_starts(t, binning, means, cov)
+        first = np.array([first[k] for k in self.law.names], dtype=float)
+        starts = self._profile_starts(t, binning, means, cov, first) or [first]
         lo, hi = self.law.bounds(t, means)
         lo = np.broadcast_to(lo, (self.p,)).astype(float)
         hi = np.broadcast_to(hi, (self.p,)).astype(float)
@@ -1351,12 +1355,18 @@ class RealizationLawTest:
                             bin_model=model(fit.x))
         return self
 
-    def _grid_starts(self, t, binning, means, cov):
-        """Global starts of the GLS fit of a law of the taps that is linear in its amplitudes
-        once (B, tau) are fixed (:class:`_TapsLaw`): at every node of a (B, tau) grid the
-        amplitudes by GLS in the law's linear space (the bin means' covariance carried there
-        to first order), the :data:`_GRID_STARTS` best nodes returned. The law's own fit of
-        the mean curve weighs taps, not bins, and can sit in another minimum of the GLS."""
+    def _profile_starts(self, t, binning, means, cov, first):
+        """Starts of the GLS fit, best first, for a law of the taps that is linear in its
+        amplitudes once (B, tau) are fixed (:class:`_TapsLaw`); [] for another law.
+
+        The amplitudes are solved by GLS in the law's linear space (the bin means' covariance
+        carried there to first order) for every (B, tau), which leaves a fit of (ln B, ln tau)
+        alone (variable projection). It starts from the law's fit of the mean curve and from
+        the :data:`_GRID_STARTS` best nodes of a (B, tau) grid: the law's own fit weighs
+        taps, not bins, and can sit in another minimum of the GLS. The GLS of all parameters
+        then only polishes the best of them (exact for eq. 3, whose amplitudes are linear in
+        the data's own space), instead of wandering along the valley of (B, tau) from each
+        start."""
         law = self.law
         if not isinstance(law, _TapsLaw) or not law._linear or np.any(means <= 0):
             return []
@@ -1366,15 +1376,16 @@ class RealizationLawTest:
             whiten = np.linalg.inv(np.linalg.cholesky(cov * np.outer(scale, scale)))
         except np.linalg.LinAlgError:
             return []
+        y = whiten @ target
         iB, itau = (law.names.index(k) for k in law._nonlinear)
-        lo_d, hi_d, num = law._GRID_TAU_DECADES
-        taus = np.geomspace(t.min() * 10 ** lo_d, t.max() * 10 ** hi_d, num)
-        BB, TT = (a.ravel() for a in np.meshgrid(law._GRID_B, taus, indexing="ij"))
-        with np.errstate(all="ignore"):
-            columns = law._basis(t[None, :], BB[:, None], TT[:, None])
-            A = np.stack([np.broadcast_to(c, (BB.size, t.size)) @ binning.T @ whiten.T
-                          for c in columns], axis=2)                 # (nodes, bins, amps)
-            y = whiten @ target
+
+        def design(B, tau):                            # (..., bins, amplitudes)
+            columns = law._basis(t[None, :], np.atleast_1d(B)[:, None],
+                                 np.atleast_1d(tau)[:, None])
+            return np.stack([np.broadcast_to(c, (np.size(B), t.size)) @ binning.T @ whiten.T
+                             for c in columns], axis=2)
+
+        def amplitudes(A):
             normal = np.einsum("kba,kbc->kac", A, A)
             rhs = np.einsum("kba,b->ka", A, y)
             ok = np.abs(np.linalg.det(normal)) > _COLLINEAR_TOLERANCE * np.abs(
@@ -1382,19 +1393,45 @@ class RealizationLawTest:
             amps = np.full(rhs.shape, np.nan)
             if ok.any():
                 amps[ok] = np.linalg.solve(normal[ok], rhs[ok][..., None])[..., 0]
-            cost = np.sum((np.einsum("kba,ka->kb", A, amps) - y) ** 2, axis=1)
-        nodes = []
-        for k in np.argsort(np.where(np.isfinite(cost), cost, np.inf)):
-            if not np.isfinite(cost[k]) or len(nodes) == _GRID_STARTS:
-                break
+            return amps
+
+        lo_d, hi_d, num = law._GRID_TAU_DECADES
+        taus = np.geomspace(t.min() * 10 ** lo_d, t.max() * 10 ** hi_d, num)
+        BB, TT = (a.ravel() for a in np.meshgrid(law._GRID_B, taus, indexing="ij"))
+        with np.errstate(all="ignore"):
+            A = design(BB, TT)
+            cost = np.sum((np.einsum("kba,ka->kb", A, amplitudes(A)) - y) ** 2, axis=1)
+        cost = np.where(np.isfinite(cost), cost, np.inf)
+        nodes = [(first[iB], first[itau])] + [
+            (BB[k], TT[k]) for k in np.argsort(cost)[:_GRID_STARTS] if np.isfinite(cost[k])]
+        # ln B and ln tau stay within the grid widened by a decade each side; the polish
+        # that follows has the law's own bounds
+        lo = np.log([law._GRID_B[0] / 10.0, taus[0] / 10.0])
+        hi = np.log([law._GRID_B[-1] * 10.0, taus[-1] * 10.0])
+
+        def residual(u):
+            A = design(np.exp(u[0]), np.exp(u[1]))
+            r = (A @ amplitudes(A)[..., None])[0, :, 0] - y
+            return np.where(np.isfinite(r), r, 1e150)
+
+        found = []
+        for B, tau in nodes:
+            if not (np.isfinite(B) and np.isfinite(tau) and B > 0 and tau > 0):
+                continue
+            u0 = np.clip(np.log([B, tau]), lo + 1e-9, hi - 1e-9)
+            with np.errstate(all="ignore"):
+                fit = least_squares(residual, u0, bounds=(lo, hi), method="trf",
+                                    x_scale=1.0, max_nfev=400)
+                B, tau = np.exp(fit.x)
+                amps = amplitudes(design(B, tau))[0]
             p = np.empty(self.p)
-            for name, v in zip(law._linear, law._amplitudes_to_params(amps[k])):
+            for name, v in zip(law._linear, law._amplitudes_to_params(amps)):
                 p[law.names.index(name)] = v
-            p[iB], p[itau] = BB[k], TT[k]
+            p[iB], p[itau] = B, tau
             if np.all(np.isfinite(p)):
-                nodes.append((cost[k], p))
-        nodes.sort(key=lambda node: node[0])
-        return [p for _, p in nodes[:_GRID_STARTS]]
+                found.append((fit.cost, p))
+        found.sort(key=lambda node: node[0])
+        return [p for _, p in found[:_POLISHED_STARTS]]
 
     def _get(self, key):
         if self._result is None:
