@@ -51,7 +51,10 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               the run's seed and eta) by --extend taps (default 3000: 4000 in all) and
               compares <Phi^c> over the level's last quarter with that over the last quarter
               of the longer level (batch-means errors). Default levels: the top of the first
-              increase, the middle of the decrease, the middle of the second increase.
+              increase, the middle of the decrease, the middle of the second increase. Each
+              continuation runs in its own folder under --work DIR (default DIR/partial/
+              ramp_levels, DIR the --out folder) with restart files every 50 taps: a killed
+              ramp-levels resumes there, and a larger --extend continues it.
 
   fit-surrogates
               Does one 4000-tap run fix the triplet (X_inf, B, tau) of eq. 3 (and eq. 4's
@@ -127,6 +130,7 @@ Usage (from the repository; minutes on one core, run under nice):
     bench/paper_questions.py lateral-first-tap [--out DIR] [--lmp EXE] [--seeds 1 2 3 4]
     bench/paper_questions.py ramp-levels [--out DIR] [--lmp EXE] [--campaign DIR]
                                          [--run ramp_pbc_s1] [--levels K ...] [--extend 3000]
+                                         [--work DIR]
     bench/paper_questions.py theta0 [--out DIR] [--lmp EXE] [--seeds 1 2 3 4]
                                     [--stop change|drift] [--eta 1e-7] [--N 1024]
     bench/paper_questions.py dmax   (the same options as theta0)
@@ -145,18 +149,20 @@ from __future__ import annotations
 import argparse
 import contextlib
 import csv
+import math
 import os
 import subprocess
 import sys
 import tempfile
 import time
+import warnings
 from pathlib import Path
 
 import numpy as np
 
 SOURCE = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
-from tapmc.campaign.run_folder import latest_restart  # noqa: E402
+from tapmc.campaign.run_folder import keep_latest_restart, latest_restart  # noqa: E402
 from tapmc.fluctuations import PowerSpectrum, SteadyState  # noqa: E402
 
 INPUT = SOURCE / "examples" / "paper" / "in.constant_eps"
@@ -184,7 +190,7 @@ def lmp_command(exe):
     if not Path(exe).is_file():
         sys.exit(f"paper_questions: LAMMPS executable {exe} not found (--lmp EXE or "
                  "$TAPMC_LMP; tools/run-tests.sh builds build/lmp_tapmc)")
-    return ["nice", "-n", "10", str(exe)]
+    return ["nice", "-n", "10", str(Path(exe).resolve())]  # runs in other folders
 
 
 def run(lmp, folder, variables):
@@ -393,7 +399,11 @@ def ramp_levels(args):
     variables, seed = _manifest_run(args.campaign, args.run)
     P, nlev = int(variables["P"]), int(variables["nlev"])
     run_dir = Path(args.campaign) / "runs" / args.run
-    table = np.loadtxt(run_dir / "taps.dat", ndmin=2)  # step level branch sqrt_eps Phi_b phi_c Z
+    work = Path(args.work) if args.work else Path(args.out) / PARTIAL / "ramp_levels"
+    # step level branch sqrt_eps Phi_b phi_c Z; a running ramp may have half a last row
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        table = np.atleast_2d(np.genfromtxt(run_dir / "taps.dat", invalid_raise=False))
     size = {k: variables[k] for k in ("N", "L", "eta", "bc") if k in variables}
     rows = []
     for k in args.levels or default_ramp_levels(nlev):
@@ -404,11 +414,12 @@ def ramp_levels(args):
                      "files of its level ends; an unfinished one has them up to its last step)")
         level = table[(table[:, 0] > end - P) & (table[:, 0] <= end)]
         sq = float(level[-1, 3])
-        with tempfile.TemporaryDirectory() as folder:
-            more = run(lmp, folder, dict(size, sqrteps=sq, seed=seed, resume="yes",
-                                         resume_file=restart.resolve(), taps=end + args.extend,
-                                         rsteps=10 ** 9, pevery=end + args.extend))
-        longer = np.concatenate([level[:, 5], more[more[:, 0] > end, 2]])
+        # a continuation of its own folder: a killed ramp-levels resumes it, and a longer
+        # --extend continues it from its latest restart
+        more = realization(lmp, work / f"{args.run}_level{k}",
+                           dict(size, sqrteps=sq, seed=seed, pevery=end + args.extend),
+                           end + args.extend, start=restart, first=end + 1)
+        longer = np.concatenate([level[:, 5], [float(r[2]) for r in more]])
         short = SteadyState(level[:, 5], last=steady_last(P)).compute()
         full = SteadyState(longer, last=steady_last(len(longer))).compute()
         rows.append([k, int(level[-1, 2]), f"{sq:.6g}", P, len(longer), f"{short.mean:.8f}",
@@ -592,21 +603,30 @@ CAMPAIGN_SEED = 1
 REALIZATION_RESTART_EVERY = 50
 
 
-def realization(lmp, folder, variables, taps):
-    """Rows (step, phi_b, phi_c, Z as text) of taps 0..taps of one run in ``folder``: kept
+def realization(lmp, folder, variables, taps, start=None, first=0):
+    """Rows (step, phi_b, phi_c, Z as text) of taps first..taps of one run in ``folder``: kept
     when the folder already holds them, otherwise run, or resumed from the folder's latest
-    restart file (the same taps bit for bit as one uninterrupted run)."""
+    restart file (the same taps bit for bit as one uninterrupted run). ``start``: a restart
+    file the run continues (its step is ``first`` - 1) instead of a fresh packing."""
     folder.mkdir(parents=True, exist_ok=True)
     out = folder / "taps.dat"
     with _folder_lock(folder):
-        if not (out.is_file() and _has_taps(out, taps)):
+        if not (out.is_file() and _has_taps(out, taps, first)):
             step, restart = latest_restart(folder)
-            extra = {} if step is None else {"resume": "yes", "resume_file": restart.name}
-            run(lmp, folder, dict(variables, taps=taps, rsteps=REALIZATION_RESTART_EVERY,
-                                  **extra))
+            if step is not None:
+                extra = {"resume": "yes", "resume_file": restart.name}
+            elif start is not None:
+                extra = {"resume": "yes", "resume_file": Path(start).resolve()}
+            else:
+                extra = {}
+            # restart files at steps that include the last: a later call for more taps
+            # continues from it
+            every = math.gcd(REALIZATION_RESTART_EVERY, taps)
+            run(lmp, folder, dict(variables, taps=taps, rsteps=every, **extra))
+            keep_latest_restart(folder)   # it alone continues the run
     names, printed = _printed_rows(out)
     return [[printed[t][names.index(c)] for c in ("step", "phi_b", "phi_c", "Z")]
-            for t in range(taps + 1)]
+            for t in range(first, taps + 1)]
 
 
 @contextlib.contextmanager
@@ -639,9 +659,9 @@ def _folder_lock(folder, poll=30.0):
         lock.unlink(missing_ok=True)
 
 
-def _has_taps(path, taps):
+def _has_taps(path, taps, first=0):
     _, printed = _printed_rows(path)
-    return all(t in printed for t in range(taps + 1))
+    return all(t in printed for t in range(first, taps + 1))
 
 
 def early_taps(args):
@@ -1003,6 +1023,7 @@ def main(argv=None):
     sub.choices["ramp-levels"].add_argument("--run", default="ramp_pbc_s1")
     sub.choices["ramp-levels"].add_argument("--levels", type=int, nargs="+", default=None)
     sub.choices["ramp-levels"].add_argument("--extend", type=int, default=RAMP_EXTEND)
+    sub.choices["ramp-levels"].add_argument("--work", default=None, type=Path)
     fluid = sub.choices["p0-fluid"]
     fluid.add_argument("--phi", type=float, nargs="+", default=list(P0_FLUID_PHI))
     fluid.add_argument("--configs", type=int, default=P0_FLUID_CONFIGS)

@@ -41,6 +41,21 @@ def test_ramp_levels_continues_the_kept_level_ends(tmp_path):
     text = "\n".join(questions.render_section(out))
     assert "``ramp-levels``" in text and "change against 30?" in text
     assert "2 (first increase)" in text and "3 (decrease)" in text
+    # continued in its own folder: a longer --extend resumes it from its latest restart and
+    # gives the taps of one uninterrupted continuation, bit for bit
+    steps = []
+    for extend, work in ((10, "w1"), (20, "w1"), (20, "w2")):
+        again = subprocess.run([sys.executable, str(SOURCE / "bench" / "paper_questions.py"),
+                                "ramp-levels", "--lmp", str(LMP), "--campaign",
+                                str(tmp_path / "c"), "--levels", "2", "--extend", str(extend),
+                                "--work", str(tmp_path / work), "--out", str(tmp_path / work)],
+                               capture_output=True, text=True, timeout=300)
+        assert again.returncode == 0, again.stderr
+        steps.append(sorted(int(p.name.split(".")[1])
+                            for p in (tmp_path / work / "ramp_pbc_s1_level2").glob("restart.*")))
+    assert steps == [[40], [50], [50]]   # only the latest restart is kept
+    one, two = ((tmp_path / w / "ramp_levels.csv").read_text() for w in ("w1", "w2"))
+    assert one == two and ",10,30," in one
     # a level whose restart was not kept names the file
     bad = subprocess.run([sys.executable, str(SOURCE / "bench" / "paper_questions.py"),
                           "ramp-levels", "--lmp", str(LMP), "--campaign", str(tmp_path / "c"),
