@@ -699,20 +699,28 @@ class _TapsLaw(Law):
         BB, TT = (a.ravel() for a in np.meshgrid(Bs, taus, indexing="ij"))
         target, w = self._target(y, 1.0 / sigma ** 2)
         with np.errstate(all="ignore"):
-            cols = self._basis(x[None, :], BB[:, None], TT[:, None])  # list of (nodes, n)
+            cols = self._grid_basis(x, BB, TT)                  # list of (nodes, n)
             free = list(range(len(self._linear)))
             if name in self._linear:
+                # target - v c_k per node: only its products with w and the columns are needed
                 k = self._linear.index(name)
-                target = target[None, :] - self._params_to_amplitude(name, value) * cols[k]
+                v = self._params_to_amplitude(name, value)
                 free.remove(k)
+                tt = (np.sum(w * target ** 2) - 2.0 * v * (cols[k] @ (w * target))
+                      + v ** 2 * ((cols[k] ** 2) @ w))
+                rhs = np.stack([cols[j] @ (w * target) - v * ((cols[j] * cols[k]) @ w)
+                                for j in free], axis=1) if free else None
             else:
-                target = np.broadcast_to(target, cols[0].shape)
+                tt = np.full(len(BB), np.sum(w * target ** 2))
+                rhs = np.stack([cols[j] @ (w * target) for j in free], axis=1)
             m = len(free)
             coef = np.zeros((len(BB), len(self._linear)))
+            sse = tt
             if m:
-                A = np.stack([cols[k] for k in free], axis=1)  # (nodes, m, n)
-                normal = np.einsum("kan,kbn,n->kab", A, A, w)
-                rhs = np.einsum("kan,kn,n->ka", A, target, w)
+                normal = np.empty((len(BB), m, m))
+                for a, ja in enumerate(free):
+                    for b, jb in enumerate(free[a:], start=a):
+                        normal[:, a, b] = normal[:, b, a] = (cols[ja] * cols[jb]) @ w
                 # nodes where the columns are (nearly) collinear, e.g. g = 1 for a tau far
                 # beyond the data, have no unique amplitudes: left out (sse = inf)
                 diag = np.prod(np.diagonal(normal, axis1=1, axis2=2), axis=1)
@@ -723,10 +731,8 @@ class _TapsLaw(Law):
                     sol[ok] = np.linalg.solve(normal[ok], rhs[ok][..., None])[..., 0]
                 for j, k in enumerate(free):
                     coef[:, k] = sol[:, j]
-                model = np.einsum("kan,ka->kn", A, sol)
-            else:
-                model = np.zeros_like(target)
-            sse = np.sum(w * (target - model) ** 2, axis=1)
+                # |r|^2 = |t|^2 - rhs . sol at the least-squares amplitudes
+                sse = tt - np.sum(rhs * sol, axis=1)
         sse = np.where(np.isfinite(sse), sse, np.inf)
         best = int(np.argmin(sse))
         if not np.isfinite(sse[best]):
@@ -741,12 +747,29 @@ class _TapsLaw(Law):
         p[i] = value
         return p if np.all(np.isfinite(p)) else None
 
+    def _grid_basis(self, x, BB, TT):
+        """The basis columns at every (B, tau) node, kept for the next call on the same taps
+        and nodes: a profile fixes one parameter after another on the same data, and the
+        columns (a logarithm per tap and node) cost more than the fits they start."""
+        key = (type(self), x.tobytes(), BB.tobytes(), TT.tobytes())
+        entry = _GRID_BASIS_CACHE[0] if _GRID_BASIS_CACHE else None
+        if entry is None or entry[0] != key:
+            entry = (key, [np.ascontiguousarray(np.broadcast_to(c, (BB.size, x.size)))
+                           for c in self._basis(x[None, :], BB[:, None], TT[:, None])])
+            _GRID_BASIS_CACHE[:] = [entry]   # one entry, replaced whole (threads see either)
+        return entry[1]
+
     def _prepare(self, x, y, sigma):
         x, y, sigma, weighted = super()._prepare(x, y, sigma)
         if np.any(x < 0):
             bad = int(np.flatnonzero(x < 0)[0])
             raise ValueError(f"x[{bad}] = {x[bad]:g}: taps must be >= 0")
         return x, y, sigma, weighted
+
+
+#: the last grid of basis columns of :meth:`_TapsLaw._grid_basis`, as [(key, columns)] (one
+#: entry: a profile walks one data set at a time)
+_GRID_BASIS_CACHE = []
 
 
 def _log_term(t, B, tau):
