@@ -1279,7 +1279,7 @@ class RealizationLawTest:
     realization gives one mean per bin; their sample covariance S (n realizations) gives the
     covariance S/n of the bins' means over realizations. The law, averaged over each bin's
     taps, is fitted to those means by generalized least squares with that covariance (for
-    eqs. 3, 4 and 6 by variable projection: see :meth:`_profile_starts`). Its minimum
+    eqs. 3, 4 and 6 by variable projection: see :meth:`_projected_starts`). Its minimum
     chi-square is Hotelling's T^2 in the q = bins - parameters directions the law cannot
     absorb (exact for a law linear in its parameters and Gaussian bin means, the usual
     linearisation otherwise), so
@@ -1349,7 +1349,7 @@ class RealizationLawTest:
 
         first = self.law.fit(t, curves.mean(axis=0)).params
         first = np.array([first[k] for k in self.law.names], dtype=float)
-        starts = self._profile_starts(t, binning, means, cov, first) or [first]
+        starts = self._projected_starts(t, binning, means, cov, first) or [first]
         lo, hi = self.law.bounds(t, means)
         lo = np.broadcast_to(lo, (self.p,)).astype(float)
         hi = np.broadcast_to(hi, (self.p,)).astype(float)
@@ -1378,7 +1378,7 @@ class RealizationLawTest:
                             bin_model=model(fit.x))
         return self
 
-    def _profile_starts(self, t, binning, means, cov, first):
+    def _projected_starts(self, t, binning, means, cov, first):
         """Starts of the GLS fit, best first, for a law of the taps that is linear in its
         amplitudes once (B, tau) are fixed (:class:`_TapsLaw`); [] for another law.
 
