@@ -721,14 +721,7 @@ class _TapsLaw(Law):
                 for a, ja in enumerate(free):
                     for b, jb in enumerate(free[a:], start=a):
                         normal[:, a, b] = normal[:, b, a] = (cols[ja] * cols[jb]) @ w
-                # nodes where the columns are (nearly) collinear, e.g. g = 1 for a tau far
-                # beyond the data, have no unique amplitudes: left out (sse = inf)
-                diag = np.prod(np.diagonal(normal, axis1=1, axis2=2), axis=1)
-                det = np.linalg.det(normal)
-                ok = np.abs(det) > _COLLINEAR_TOLERANCE * np.abs(diag)
-                sol = np.full((len(BB), m), np.nan)
-                if ok.any():
-                    sol[ok] = np.linalg.solve(normal[ok], rhs[ok][..., None])[..., 0]
+                sol = _solve_nodes(normal, rhs)   # collinear nodes: nan, so sse = inf
                 for j, k in enumerate(free):
                     coef[:, k] = sol[:, j]
                 # |r|^2 = |t|^2 - rhs . sol at the least-squares amplitudes
@@ -765,6 +758,18 @@ class _TapsLaw(Law):
             bad = int(np.flatnonzero(x < 0)[0])
             raise ValueError(f"x[{bad}] = {x[bad]:g}: taps must be >= 0")
         return x, y, sigma, weighted
+
+
+def _solve_nodes(normal, rhs):
+    """Amplitudes at every grid node from its normal equations, (nodes, m, m) and (nodes, m):
+    nan at the nodes whose columns are (nearly) collinear, e.g. g = 1 for a tau far beyond
+    the data, which have no unique amplitudes."""
+    ok = np.abs(np.linalg.det(normal)) > _COLLINEAR_TOLERANCE * np.abs(
+        np.prod(np.diagonal(normal, axis1=1, axis2=2), axis=1))
+    sol = np.full(rhs.shape, np.nan)
+    if ok.any():
+        sol[ok] = np.linalg.solve(normal[ok], rhs[ok][..., None])[..., 0]
+    return sol
 
 
 #: the last grid of basis columns of :meth:`_TapsLaw._grid_basis`, as [(key, columns)] (one
@@ -1387,8 +1392,8 @@ class RealizationLawTest:
         alone (variable projection). It starts from the law's fit of the mean curve and from
         the :data:`_GRID_STARTS` best nodes of a (B, tau) grid: the law's own fit weighs
         taps, not bins, and can sit in another minimum of the GLS. The GLS of all parameters
-        then only polishes the best of them (exact for eq. 3, whose amplitudes are linear in
-        the data's own space), instead of wandering along the valley of (B, tau) from each
+        then only polishes the best of them (exact for eqs. 3 and 6, whose amplitudes are
+        linear in the data's own space), instead of wandering along the valley of (B, tau) from each
         start."""
         law = self.law
         if not isinstance(law, _TapsLaw) or not law._linear or np.any(means <= 0):
@@ -1409,14 +1414,7 @@ class RealizationLawTest:
                              for c in columns], axis=2)
 
         def amplitudes(A):
-            normal = np.einsum("kba,kbc->kac", A, A)
-            rhs = np.einsum("kba,b->ka", A, y)
-            ok = np.abs(np.linalg.det(normal)) > _COLLINEAR_TOLERANCE * np.abs(
-                np.prod(np.diagonal(normal, axis1=1, axis2=2), axis=1))
-            amps = np.full(rhs.shape, np.nan)
-            if ok.any():
-                amps[ok] = np.linalg.solve(normal[ok], rhs[ok][..., None])[..., 0]
-            return amps
+            return _solve_nodes(np.einsum("kba,kbc->kac", A, A), np.einsum("kba,b->ka", A, y))
 
         lo_d, hi_d, num = law._GRID_TAU_DECADES
         taus = np.geomspace(t.min() * 10 ** lo_d, t.max() * 10 ** hi_d, num)
@@ -1587,13 +1585,9 @@ class SurrogateFits:
                           for c in law._basis(t[None, :], BB[:, None], TT[:, None])], axis=1)
             normal = A @ A.transpose(0, 2, 1)                            # (nodes, amps, amps)
             rhs = A @ (target * sw)
-            ok = np.abs(np.linalg.det(normal)) > _COLLINEAR_TOLERANCE * np.abs(
-                np.prod(np.diagonal(normal, axis1=1, axis2=2), axis=1))
-            cost = np.full(BB.size, np.inf)
-            if ok.any():
-                coef = np.linalg.solve(normal[ok], rhs[ok][..., None])[..., 0]
-                # |r|^2 = |y|^2 - rhs . coef for the least-squares amplitudes
-                cost[ok] = np.sum((target * sw) ** 2) - np.sum(rhs[ok] * coef, axis=1)
+            # |r|^2 = |y|^2 - rhs . coef for the least-squares amplitudes (collinear: inf)
+            cost = np.sum((target * sw) ** 2) - np.sum(rhs * _solve_nodes(normal, rhs), axis=1)
+            cost = np.where(np.isfinite(cost), cost, np.inf)
         best = int(np.argmin(cost))
         starts = list(starts) + ([(BB[best], TT[best])] if np.isfinite(cost[best]) else [])
         lo, hi = self._bounds
