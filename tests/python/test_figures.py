@@ -6,6 +6,7 @@ axes that hold data), and the validation report built from the same campaign."""
 
 import math
 import os
+import shutil
 import sys
 import time
 from pathlib import Path
@@ -277,8 +278,15 @@ def test_fig10_pore_volume_distributions(campaign, out_dir):
 
 
 @needs_pores
-def test_validation_report(campaign, tmp_path):
-    rst = validation.report(campaign, tmp_path)
+def test_validation_report(campaign, out_dir, tmp_path):
+    # The figures the tests above drew are handed to the report (copies: report() moves
+    # them); one run alone (-k) has none and the report draws them all.
+    drawn = {}
+    for name in FIGURES:
+        png, csv = out_dir / f"{name}.png", out_dir / f"{name}.csv"
+        if png.exists() and csv.exists():
+            drawn[name] = tuple(Path(shutil.copy(f, tmp_path / f.name)) for f in (png, csv))
+    rst = validation.report(campaign, tmp_path, drawn=drawn)
     text = rst.read_text()
     assert text.startswith(".. TAPMC:")
     assert "the ``quick`` preset" in text and "N = 512" in text
