@@ -54,7 +54,9 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               increase, the middle of the decrease, the middle of the second increase. Each
               continuation runs in its own folder under --work DIR (default DIR/partial/
               ramp_levels, DIR the --out folder) with restart files every 50 taps: a killed
-              ramp-levels resumes there, and a larger --extend continues it.
+              ramp-levels resumes there, and a larger --extend continues it. The rows of
+              ramp_levels.csv for levels not listed are kept (a level measured in an
+              earlier session whose restart file is gone stays in the table).
 
   fit-surrogates
               Does one 4000-tap run fix the triplet (X_inf, B, tau) of eq. 3 (and eq. 4's
@@ -426,9 +428,16 @@ def ramp_levels(args):
                      f"{short.sem:.3g}", f"{full.mean:.8f}", f"{full.sem:.3g}"])
         print(f"level {k} (branch {int(level[-1, 2])}, sqrt(eps) {sq:g}): <Phi^c> "
               f"{short.mean:.4f} after {P} taps, {full.mean:.4f} after {len(longer)}", flush=True)
-    write_csv(Path(args.out) / "ramp_levels.csv",
-              ["level", "branch", "sqrt_eps", "taps", "taps_long", "phi_c", "phi_c_sem",
-               "phi_c_long", "phi_c_long_sem"], rows)
+    header = ["level", "branch", "sqrt_eps", "taps", "taps_long", "phi_c", "phi_c_sem",
+              "phi_c_long", "phi_c_long_sem"]
+    path = Path(args.out) / "ramp_levels.csv"
+    if path.is_file():  # keep the levels measured before and not listed now
+        with open(path, newline="") as handle:
+            table = list(csv.reader(handle))
+        if table and table[0] == header:
+            listed = {int(r[0]) for r in rows}
+            rows += [r for r in table[1:] if r and int(r[0]) not in listed]
+    write_csv(path, header, sorted(rows, key=lambda r: int(r[0])))
 
 
 def scan_file_name(stem, stop, N):

@@ -41,6 +41,14 @@ def test_ramp_levels_continues_the_kept_level_ends(tmp_path):
     text = "\n".join(questions.render_section(out))
     assert "``ramp-levels``" in text and "change against 30?" in text
     assert "2 (first increase)" in text and "3 (decrease)" in text
+    # a later call for one level keeps the other's row (its restart may be gone by then)
+    again = subprocess.run([sys.executable, str(SOURCE / "bench" / "paper_questions.py"),
+                            "ramp-levels", "--lmp", str(LMP), "--campaign", str(tmp_path / "c"),
+                            "--levels", "3", "--extend", "20", "--out", str(out)],
+                           capture_output=True, text=True, timeout=300)
+    assert again.returncode == 0, again.stderr
+    with open(out / "ramp_levels.csv", newline="") as f:
+        assert list(csv.DictReader(f)) == rows
     # continued in its own folder: a longer --extend resumes it from its latest restart and
     # gives the taps of one uninterrupted continuation, bit for bit
     steps = []
