@@ -197,6 +197,19 @@ def test_campaign_subcommand(tmp_path):
     assert two.returncode == 0 and two.stdout.splitlines()[1].split()[0] == "ramp_pbc_s1"
     bad = cli("campaign", "--quick", "--dry-run", "--campaign", tmp_path / "c")
     assert bad.returncode == 2 and "paper-scale plan only" in bad.stderr
+    # --first: the matching runs first, in the patterns' order, the rest as planned
+    names = [s.name for s in plan.runs(3, jobs=2)]
+    first = cli("campaign", "--dry-run", "--tier", "3", "--jobs", "2", "--campaign",
+                tmp_path / "c", "--first", "ageing_*_s2", "const_fbc_eps0.02_s1", "ageing_*")
+    assert first.returncode == 0, first.stderr
+    order = [line.split()[0] for line in first.stdout.splitlines()[1:]]
+    ageing = [n for n in names if n.startswith("ageing_")]
+    head = ["ageing_pbc_eps0.01_s2", "const_fbc_eps0.02_s1"] + [
+        n for n in ageing if n != "ageing_pbc_eps0.01_s2"]
+    assert order == head + [n for n in names if n not in head]
+    typo = cli("campaign", "--dry-run", "--tier", "3", "--campaign", tmp_path / "c",
+               "--first", "agieng_*")
+    assert typo.returncode == 2 and "--first 'agieng_*': matches no run" in typo.stderr
 
 
 def _one_line_error(out, rc=2):

@@ -141,6 +141,10 @@ def build_parser():
     plan.add_argument("--tier", type=int, choices=TIERS, default=1,
                       help="run tiers 1 .. TIER of the plan (default 1: the paper's one run "
                            "per point)")
+    plan.add_argument("--first", nargs="+", default=(), metavar="PATTERN",
+                      help="run the runs whose names match these shell-style patterns first "
+                           "(e.g. 'ageing_*'), in the patterns' order, then the rest in the "
+                           "plan's order")
     fr = sub.add_parser("front", help="the run-time-versus-error page of the redeposition "
                                       "(doc/front.rst) from the runs of bench/paper_front.py")
     fr.add_argument("--root", type=Path, default=None, metavar="DIR",
@@ -263,7 +267,8 @@ def _run_plan(args):
         # the jobs the Campaign would take by default (the paper-scale runs have one rank),
         # which decide the plan's order
         jobs = args.jobs if args.jobs is not None else max(1, launch.available_cores())
-        campaign = Campaign(directory, plan.runs(args.tier, scale, jobs=jobs), lmp=args.lmp,
+        specs = plan.first(plan.runs(args.tier, scale, jobs=jobs), args.first)
+        campaign = Campaign(directory, specs, lmp=args.lmp,
                             jobs=jobs, mode=args.mode, pin_inputs=True)
         _check_dir(campaign.directory, "campaign directory", create=not args.dry_run)
     except (ValueError, FileNotFoundError) as err:

@@ -26,6 +26,8 @@ the names of the figure modules' runs (:mod:`tapmc.paper._runs`), so the figures
 
 from __future__ import annotations
 
+from fnmatch import fnmatchcase
+
 from . import _runs
 from .scales import FULL
 
@@ -95,3 +97,19 @@ def runs(up_to_tier=TIERS[-1], scale=FULL, jobs=1):
         return ordered
     longest = [spec for spec in ordered if spec.name == _runs.ramp_run(scale, "pbc", 1).name]
     return longest + [spec for spec in ordered if spec not in longest]
+
+
+def first(specs, patterns):
+    """``specs`` with the runs whose names match ``patterns`` (shell-style: ``ageing_*``)
+    moved to the front, in the order of the patterns, the rest in their order: a campaign
+    under way can finish what a session needs first. A pattern that matches no run is refused
+    (a typo would otherwise silently change nothing)."""
+    specs = list(specs)
+    front = []
+    for pattern in patterns:
+        matched = [spec for spec in specs if fnmatchcase(spec.name, pattern)]
+        if not matched:
+            raise ValueError(f"--first {pattern!r}: matches no run of the plan (its runs: "
+                             f"{', '.join(spec.name for spec in specs)})")
+        front += [spec for spec in matched if spec not in front]
+    return front + [spec for spec in specs if spec not in front]
