@@ -90,7 +90,8 @@ def test_paper_scale_page_is_what_the_committed_campaign_gives(tmp_path):
                     ignore=shutil.ignore_patterns("restart.*", "campaign.lock"))
     out = tmp_path / "page"
     shutil.copytree(DOC / "paper_scale" / "validation" / "questions",
-                    out / "validation" / "questions")
+                    out / "validation" / "questions",
+                    ignore=shutil.ignore_patterns("partial"))  # local work folders
     env = dict(os.environ, PYTHONPATH=str(PYTHON_DIR))
     done = subprocess.run([sys.executable, "-m", "tapmc.paper", "report", "--full", "--seeds",
                            "1", "--finished-only", "--campaign", str(campaign), "--out",
