@@ -104,3 +104,19 @@ def test_paper_scale_page_is_what_the_committed_campaign_gives(tmp_path):
         "doc/validation/data/full --out doc/paper_scale' and commit the result")
     for csv in sorted((committed / "validation").glob("*.csv")):
         assert (out / "validation" / csv.name).read_text() == csv.read_text(), csv.name
+
+
+def test_seeds_per_point_counts_the_realizations_of_each_point():
+    """A campaign under way has more seeds at some points than at others: the scale line
+    gives the range, and a summary from before the count keeps its wording."""
+    from types import SimpleNamespace
+
+    specs = [SimpleNamespace(name=n) for n in ("const_pbc_eps0.0025_s1", "const_pbc_eps0.0025_s2",
+                                               "const_pbc_eps0.1_s1", "ramp_pbc_s1")]
+    assert validation._seeds_per_point(specs) == [1, 2]
+    base = {"scale": "full", "preset": True, "fields": None, "sizes": [(4096, 32.0)],
+            "runs": 4, "taps": [4000], "seeds": 2, "eta": [1e-7]}
+    for per_point, words in (([1, 2], "1 to 2 seeds per point"), ([1, 1], "1 seed per point"),
+                             ([2, 2], "2 seeds per point"), (None, "2 seeds per point")):
+        summary = dict(base) if per_point is None else dict(base, seeds_per_point=per_point)
+        assert f"taps; {words}; redeposition" in validation.describe_scale(summary)

@@ -14,7 +14,9 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import shutil
+from collections import Counter
 from pathlib import Path
 
 import numpy as np
@@ -98,9 +100,23 @@ def campaign_summary(campaign):
         "runs": len(specs),
         "taps": sorted({int(s.taps) for s in specs if s.taps is not None}),
         "seeds": len({s.seed for s in specs}),
+        "seeds_per_point": _seeds_per_point(specs),
         "eta": sorted({float(s.variables["eta"]) for s in specs if "eta" in s.variables}),
         "initial_phi_c": list(_initial_phi(campaign)),
     }
+
+
+def _seeds_per_point(specs):
+    """[fewest, most] realizations of one point: runs whose names differ only in their
+    ``_s<seed>`` ending are one point (a campaign under way has more seeds at some points)."""
+    counts = Counter(re.sub(r"_s\d+$", "", s.name) for s in specs)
+    return [min(counts.values()), max(counts.values())] if counts else [0, 0]
+
+
+def _seeds_text(summary):
+    low, high = summary.get("seeds_per_point") or (summary["seeds"], summary["seeds"])
+    seeds = f"{low}" if low == high else f"{low} to {high}"
+    return f"{seeds} {'seed' if high == 1 else 'seeds'} per point"
 
 
 def describe_scale(summary):
@@ -113,8 +129,7 @@ def describe_scale(summary):
     else:
         name = f"the scale ``{summary['scale']}``"
     text = (f"Scale: {name} ({size}; {summary['runs']} runs of "
-            f"{', '.join(map(str, summary['taps']))} taps; {summary['seeds']} "
-            f"{'seed' if summary['seeds'] == 1 else 'seeds'} per point; "
+            f"{', '.join(map(str, summary['taps']))} taps; {_seeds_text(summary)}; "
             f"redeposition threshold eta = {', '.join(f'{e:g}' for e in summary['eta'])}). "
             "The paper used N = 4096, L = 32R and 4000 taps, one run per point from the same "
             "initial packing (section III.B), and 10 realizations for the ageing of Fig. 5 "
