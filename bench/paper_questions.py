@@ -415,7 +415,8 @@ def ramp_levels(args):
             sys.exit(f"paper_questions: {restart} not found (a finished ramp keeps the restart "
                      "files of its level ends; an unfinished one has them up to its last step)")
         level = table[(table[:, 0] > end - P) & (table[:, 0] <= end)]
-        sq = float(level[-1, 3])
+        # the level's sqrt(eps); a row of a resume step may print 0 (_runs.ramp_sqrt_eps)
+        sq = float(np.median(level[level[:, 3] > 0, 3]))
         # a continuation of its own folder: a killed ramp-levels resumes it, and a longer
         # --extend continues it from its latest restart
         more = realization(lmp, work / f"{args.run}_level{k}",

@@ -9,6 +9,7 @@
 #include "tapmc_dilation.h"
 
 #include "atom.h"
+#include "comm.h"
 #include "domain.h"
 #include "error.h"
 #include "input.h"
@@ -59,6 +60,7 @@ FixTapDilate::FixTapDilate(LAMMPS *lmp, int narg, char **arg) :
   extscalar = 0;
   extvector = 0;
   global_freq = 1;
+  restart_global = 1;
 }
 
 int FixTapDilate::setmask()
@@ -177,4 +179,20 @@ double FixTapDilate::compute_scalar()
 double FixTapDilate::compute_vector(int n)
 {
   return n == 0 ? last_eps : std::sqrt(last_eps);
+}
+
+// The restart record is the eps of the latest tap (one double): a run resumed from the file
+// outputs it until its own first tap, as the run that wrote the file would have (fix print of
+// the restart step, thermo). A file without the record leaves 0, the value before any tap.
+void FixTapDilate::write_restart(FILE *fp)
+{
+  if (comm->me != 0) return;
+  const int size = sizeof(double);
+  fwrite(&size, sizeof(int), 1, fp);
+  fwrite(&last_eps, sizeof(double), 1, fp);
+}
+
+void FixTapDilate::restart(char *buf)
+{
+  std::memcpy(&last_eps, buf, sizeof(double));
 }

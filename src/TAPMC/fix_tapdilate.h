@@ -21,6 +21,8 @@ class FixTapDilate : public Fix, public tapmc::Tapper {
   void pre_exchange() override;
   double compute_scalar() override;
   double compute_vector(int) override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
 
   // tapmc::Tapper, for fix mc/settle (taps fall on the multiples of 'every').
   void tap_if_due() override;
@@ -30,7 +32,7 @@ class FixTapDilate : public Fix, public tapmc::Tapper {
   tapmc::DilationParams params;  // eps (when given as a number), every, floor
   std::string eps_variable; // name of the equal-style variable, else empty
   int eps_var_index;
-  double last_eps;          // eps of the most recent tap (thermo output)
+  double last_eps;          // eps of the most recent tap (outputs; kept in restart files)
   bigint tapped_step;       // timestep of the most recent tap (-1: none yet)
 
   double current_eps();

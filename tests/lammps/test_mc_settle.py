@@ -224,6 +224,31 @@ def test_restart_with_changed_settings_warns_naming_them():
     assert rc == 0 and "seed 11 -> 12" in out, out
 
 
+def test_tap_outputs_continue_across_a_restart():
+    # fix tapdilate keeps the eps of its latest tap in the restart file: a resumed run outputs
+    # it before its own first tap (fix print of the restart step, thermo), as an uninterrupted
+    # run would; a sequence whose eps varies (the ramp of Fig. 4) keeps its sqrt(eps) column.
+    base = SCENE.format(boundary="p p fm", zprocs=1)
+    fixes = ("variable e equal 0.01*step\n"
+             "fix tap all tapdilate v_e floor 0.0\n"
+             "fix settle all mc/settle 13 floor 0.0 eta 1e-3\n"
+             "thermo_style custom step f_tap[1] f_tap[2]\nthermo_modify format float %.17g\n")
+    rc, out, wd = run_lammps(base + fixes + "run 3\nwrite_restart a.restart\n")
+    assert rc == 0, out
+    assert last_thermo_row(out) == [0.03, np.sqrt(0.03)]
+    rc, out, _ = run_lammps("read_restart a.restart\n" + fixes + "run 0\n", workdir=wd)
+    assert rc == 0, out
+    assert last_thermo_row(out) == [0.03, np.sqrt(0.03)]
+    rc, out, _ = run_lammps("read_restart a.restart\n" + fixes + "run 1\n", workdir=wd)
+    assert rc == 0, out
+    assert last_thermo_row(out) == [0.04, 0.2]
+    # a fix of another ID does not take the record: before its first tap it outputs 0
+    rc, out, _ = run_lammps("read_restart a.restart\n" + fixes.replace("fix tap ", "fix tap2 ")
+                            .replace("f_tap[", "f_tap2[") + "run 0\n", workdir=wd)
+    assert rc == 0, out
+    assert last_thermo_row(out) == [0.0, 0.0]
+
+
 # The restart record of fix mc/settle (fix_mc_settle.cpp): an int byte count, then doubles:
 # layout -3 (today's): -3, seed as two 32-bit halves, dmax, theta0, eta, check, maxsweeps,
 # floor, diameter/2, order, xwalls lo hi, ywalls lo hi (NaN: none), stop, window, then the

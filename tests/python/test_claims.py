@@ -197,6 +197,41 @@ def fig4(steady, up1=None, down=None, up2=None):
 BELL = 0.60 - 2.0 * (X - 0.15) ** 2
 
 
+def fig6_ramp(gap):
+    """alpha at the end of the ramp's levels (Fig. 6 bottom, one seed): the decrease is the
+    first increase plus ``gap`` and a level-to-level scatter of 5e-5."""
+    alpha = 0.001 + 0.01 * X
+    jitter = 5e-5 * (-1.0) ** np.arange(len(X))
+    return (Table().add("b", "ramp:up1", X, alpha, 3e-4, 1)
+            .add("b", "ramp:down", X, alpha + gap + jitter, 3e-4, 1))
+
+
+def test_alpha_ramp_hysteresis_known_answer_and_too_few_levels():
+    claim = {c.id: c for c in REGISTER}["gradient-no-hysteresis"]
+    (m,) = claims.alpha_ramp_hysteresis(report(fig6=fig6_ramp(0.001)), claim)
+    k = len(X)
+    jitter = 5e-5 * (-1.0) ** np.arange(k)
+    assert m.value == pytest.approx(0.001 + jitter.mean())
+    assert m.err == pytest.approx(np.std(jitter, ddof=1) / np.sqrt(k)) and m.dof == k - 1
+    assert m.effect == pytest.approx(0.01 * np.ptp(X))
+    (m,) = claims.alpha_ramp_hysteresis(report(fig6=Table().add("b", "ramp:up1", X[:2], 0.001)
+                                               .add("b", "ramp:down", X[:2], 0.002)), claim)
+    assert m.undecided and "three" in m.undecided
+    (m,) = claims.alpha_ramp_hysteresis(report(fig6=Table().add("b", "bell:alpha", X, 0.001)),
+                                        claim)
+    assert m.undecided.startswith("not in this campaign")
+
+
+def test_the_ramps_own_taps_per_level_decide_the_ramp_taps_aspect():
+    """The paper-scale plan runs its ramp at fewer taps per level than the full preset: the
+    taps per level the campaign's ramps ran with decide, not the preset's."""
+    base = {"sizes": [[4096, 32.0]], "eta": [1e-7], "preset": True, "scale": "full"}
+    assert "ramp_taps" in claims.scale_aspects(base)
+    assert "ramp_taps" not in claims.scale_aspects(dict(base, ramp_taps_per_level=[1000]))
+    assert "ramp_taps" not in claims.scale_aspects(dict(base, ramp_taps_per_level=[1000, 4000]))
+    assert "ramp_taps" in claims.scale_aspects(dict(base, ramp_taps_per_level=[4000]))
+
+
 def fig9(diff=0.0, py_shift=0.0):
     sigma = np.linspace(0.0, 2.0, 60)
     final = percus_yevick_p0(sigma, 0.606) + py_shift
@@ -418,6 +453,7 @@ CONTROLS = {
                .param("ramp:down_change", 0.01, 0.0005))),
     "ramp_branch_slope": (report(fig4=fig4(BELL, down=0.62 - 0.1 * X)),
                           report(fig4=fig4(BELL, down=0.58 + 0.1 * X))),
+    "alpha_ramp_hysteresis": (report(fig6=fig6_ramp(0.0)), report(fig6=fig6_ramp(0.001))),
     "alpha_bell": (report(fig6=Table().add("b", "bell:alpha", X, 0.004 - 0.1 * (X - 0.15) ** 2,
                                           0.0002)),
                    report(fig6=Table().add("b", "bell:alpha", X, 0.001 + 0.01 * X, 0.0002))),

@@ -207,6 +207,14 @@ def test_fig6_vertical_profiles(campaign, out_dir):
         alpha, alpha_sem, n = param(table, f"{tag}:alpha")
         assert np.isfinite(alpha) and abs(alpha) < 0.05 and n == SEEDS
     assert ("a", "fit:final") in table
+    # open symbols: alpha at the end of every level of the ramp, per branch
+    ramps = [s for s in campaign.runs if s.name.startswith("ramp_")]
+    sq = QUICK.ramp_sqrt0 + QUICK.ramp_dsqrt * np.arange(QUICK.ramp_levels)
+    for branch, levels in (("up1", sq), ("down", sq[:-1]), ("up2", sq[1:])):
+        d = table[("b", f"ramp:{branch}")]
+        np.testing.assert_allclose(d["x"], levels)
+        assert np.all(np.abs(d["mean"]) < 0.05) and np.all(d["n"] == len(ramps))
+        assert np.all(np.isfinite(d["sem"]) & (d["sem"] > 0))
 
 
 def test_fig7_transversal_profiles(campaign, out_dir):

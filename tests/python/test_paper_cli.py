@@ -417,3 +417,27 @@ def test_output_closed_early_ends_quietly(tmp_path):
     err = proc.stderr.read().decode()
     assert proc.wait(timeout=120) in (0, 1)
     assert "Traceback" not in err and "BrokenPipeError" not in err, err
+
+
+def test_finished_view_reads_a_run_with_the_variables_it_ran_with(tmp_path):
+    """report --finished-only of a paper-scale campaign: the figure modules' FULL asks 4000
+    taps per ramp level, the plan ran 1000; the view takes the spec whose variables the run's
+    DONE.json records, so that Fig. 4 cuts the ramp into the levels it has."""
+    import json
+
+    from tapmc.campaign import Campaign
+    from tapmc.paper import _runs, cli
+
+    ran = _runs.ramp_run(FULL.replace(ramp_taps_per_level=1000), "pbc", 1)
+    preset = _runs.ramp_run(FULL, "pbc", 1)
+    assert ran.name == preset.name and ran.variables["P"] != preset.variables["P"]
+    folder = tmp_path / "runs" / ran.name
+    folder.mkdir(parents=True)
+    camp = Campaign(tmp_path, [preset], lmp=sys.executable)
+    for done, per_level in ((ran, 1000), (preset, 4000)):
+        (folder / "DONE.json").write_text(json.dumps({"run": done.describe()}))
+        view, planned = cli._finished_view(camp, [ran])
+        assert [s.variables["P"] for s in view.runs] == [per_level] and planned == 1
+    (folder / "DONE.json").write_text("{}")   # no record: the plan's spec (what campaign runs)
+    view, _ = cli._finished_view(camp, [ran])
+    assert view.runs[0].variables["P"] == 1000

@@ -320,3 +320,33 @@ def test_one_seed_ramp_branches_carry_the_levels_errors_and_decide(tmp_path):
     (m,) = claims.ramp_down_minus_up(data, BY_ID["reversible-above"])
     assert m.dof == claims.WITHIN_RUN_DOF and claims.verdict(BY_ID["reversible-above"],
                                                              m) == "agrees"
+
+
+def test_a_resumed_ramps_restart_step_row_takes_its_levels_sqrt_eps(tmp_path):
+    """A ramp resumed from a restart file without fix tapdilate's latest eps (TAPMC before the
+    fix kept it) printed sqrt(eps) = 0 in the row of the restart step, before its first tap;
+    that row takes its level's value, so Fig. 4's levels are those of an uninterrupted run
+    (the rows inside a level's averaging window would otherwise be refused)."""
+    scale = Scale(**dict(QUICK.as_dict(), N=64, L=8.0, eta=1e-4, ramp_taps_per_level=40))
+    spec = _runs.ramp_run(scale, "pbc", 1)
+    camp = FakeCampaign(tmp_path, [spec])
+    levels = np.array([0.05, 0.1, 0.15, 0.2, 0.15, 0.1, 0.05])
+    truth = np.array([0.58, 0.585, 0.59, 0.595, 0.605, 0.61, 0.615])
+    write_ramp(camp, spec, *ramp_series(levels, truth, 40, np.random.default_rng(7)))
+    before = fig4.hysteresis_branches(camp)
+    path = camp.result(spec.name) / "taps.dat"
+    lines = path.read_text().splitlines()
+    for step in (75, 200):   # inside level 1's window (taps 65..80); level 4's last tap
+        fields = lines[step + 1].split()
+        assert int(fields[0]) == step
+        lines[step + 1] = " ".join(fields[:3] + ["0.000000"] + fields[4:])
+    path.write_text("\n".join(lines) + "\n")
+    table = _runs.taps_table(camp, spec)
+    repaired = _runs.ramp_sqrt_eps(table)
+    assert repaired[0] == 0.0                      # step 0, before any tap, stays
+    np.testing.assert_allclose(repaired[1:], np.repeat(levels, 40))
+    after = fig4.hysteresis_branches(camp)
+    assert before.keys() == after.keys()
+    for name in before:
+        for a, b in zip(before[name], after[name]):
+            np.testing.assert_array_equal(a, b)

@@ -183,6 +183,23 @@ def taps_table(campaign, spec):
     return read_fix_print(run_dir(campaign, spec) / "taps.dat")
 
 
+def ramp_sqrt_eps(table):
+    """sqrt(eps) per row of a ramp's taps table (in.ramp: columns step, level, sqrt_eps).
+    A run resumed from a restart file that does not hold fix tapdilate's latest eps (files of
+    TAPMC before it kept it) prints 0 in the row of the restart step, before its first tap:
+    such a row (0 after step 0, in a level whose other rows are not 0) takes the value of its
+    level's other rows."""
+    sq = np.array(table["sqrt_eps"], dtype=float)
+    steps = np.asarray(table["step"], dtype=float)
+    levels = np.asarray(table["level"], dtype=float)
+    resumed = (sq == 0.0) & (steps > 0)
+    for i in np.flatnonzero(resumed):
+        same = (levels == levels[i]) & ~resumed
+        if same.any():
+            sq[i] = float(np.median(sq[same]))
+    return sq
+
+
 def profile(campaign, spec, name):
     """A vector-mode profile file (``profile_z.dat`` or ``profile_x.dat``) of a run."""
     return read_ave_time(run_dir(campaign, spec) / name)

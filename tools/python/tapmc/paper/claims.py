@@ -1144,6 +1144,44 @@ def alpha_bell(data, claim):
     return [Measure(weaker.sign * weaker.value, weaker.err, weaker.dof, shown=shown)]
 
 
+def _paired_levels(a, b):
+    """a - b at the sqrt(eps) common to the branch curves a and b ((x, mean, sem, n) each)."""
+    return np.array([m - b[1][int(np.argmax(np.isclose(b[0], x)))]
+                     for x, m in zip(a[0], a[1]) if np.any(np.isclose(b[0], x))])
+
+
+def alpha_ramp_hysteresis(data, claim):
+    """alpha on the decreasing branch of the ramp minus on the first increase, at their
+    common sqrt(eps) (Fig. 6 bottom panel, open symbols). One profile per level, whose
+    straight line's own error is too small (its bins share spheres): the error is the scatter
+    of the k level differences (t with k - 1 dof), which also holds any trend of the
+    difference with sqrt(eps). The effect a hysteresis would have is alpha's variation along
+    the first increase (<Phi^c>'s gap is as large as its own variation there); the same
+    ratio of <Phi^c> (Fig. 4) is shown beside it."""
+    fig = data.figure("fig6")
+    up = None if fig is None else fig.get("b", "ramp:up1")
+    down = None if fig is None else fig.get("b", "ramp:down")
+    if up is None or down is None:
+        return _missing("no ramp profiles on branches 'up1' and 'down'")
+    diffs = _paired_levels(down, up)
+    if len(diffs) < 3:
+        return [Measure(undecided=f"{len(diffs)} sqrt(eps) common to the first increase and "
+                                  "the decrease; the scatter needs three")]
+    value = float(np.mean(diffs))
+    err = float(np.std(diffs, ddof=1) / math.sqrt(len(diffs)))
+    variation = float(np.ptp(up[1]))
+    shown = (f"{fmt(value, err)} (decrease minus first increase, mean of {len(diffs)} common "
+             f"sqrt(eps); error from their scatter): {abs(value) / variation:.0%} of alpha's "
+             f"variation along the first increase ({fmt(variation)})")
+    phi_up, phi_down = _ramp(data, "up1"), _ramp(data, "down")
+    if phi_up is not None and phi_down is not None:
+        gap = _paired_levels(phi_down, phi_up)
+        if len(gap) and np.ptp(phi_up[1]) > 0:
+            shown += (f"; <Phi^c>: {abs(float(np.mean(gap))) / float(np.ptp(phi_up[1])):.0%} "
+                      "of its own")
+    return [Measure(value, err, len(diffs) - 1, effect=variation, shown=shown)]
+
+
 def _ramp(data, name):
     fig = data.figure("fig4")
     return None if fig is None else fig.get("a", name)
@@ -1705,7 +1743,8 @@ STATISTICS = {f.__name__: f for f in (
     initial_phi, dmax_intermediate, theta0_optimum, tapped_phi, pbc_compaction, phi_b_gain, efficiency_decrease, eq3_fit_quality,
     eq3_triplet_pattern, eq4_fit_quality, b_exponential, ageing_collapse,
     log_time_slowing, late_gain_share, spectral_slopes, spectrum_eps_spread,
-    sigma_intercept, bell_maximum, bell_side_slope, alpha_bell, ramp_up_minus_steady,
+    sigma_intercept, bell_maximum, bell_side_slope, alpha_bell, alpha_ramp_hysteresis,
+    ramp_up_minus_steady,
     ramp_down_minus_up, ramp_up2_minus_down, low_ramp_frozen, ramp_branch_slope,
     final_alpha, central_minus_lateral, lateral_first_tap, p0_initial_minus_final,
     p0_final_minus_py, xi_min, pore_share_change, pore_quadratic_fit, nu_tail_over_nu,
@@ -1789,6 +1828,8 @@ def scale_aspects(summary):
         fields.get("ramp_taps_per_level")
     if taps is not None and int(taps) >= PAPER_SCALE["taps"]:
         met.add("taps")
+    if summary.get("ramp_taps_per_level"):   # what the ramps ran with decides, not the preset
+        per_level = min(summary["ramp_taps_per_level"])
     if per_level is not None and int(per_level) >= PAPER_SCALE["ramp_taps"]:
         met.add("ramp_taps")
     return met

@@ -318,15 +318,35 @@ def _report_from_data(args):
     return 0
 
 
+def _recorded_variables(campaign, name):
+    """The variables a finished run ran with (its DONE.json), None when unreadable."""
+    import json
+
+    try:
+        done = json.loads((campaign.run_dir(name) / "DONE.json").read_text())
+        return done["run"]["variables"]
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+
+
 def _finished_view(campaign, extra=()):
     """(view, planned): the same campaign restricted to its finished runs (nothing is written
     or run), with the finished runs of ``extra`` (e.g. the paper-scale plan's, whose ramps run
-    1000 taps per level where the figure modules' FULL asks 4000) that it does not already
-    hold; ``planned`` counts the runs of both."""
+    1000 taps per level where the figure modules' FULL asks 4000); ``planned`` counts the runs
+    of both. Where both name one run, the spec whose variables are those the run ran with
+    (its DONE.json) is taken, else the one of ``extra``: the figures then read a ramp with
+    the taps per level it has."""
     from tapmc.campaign import Campaign
 
-    names = {spec.name for spec in campaign.runs}
-    specs = list(campaign.runs) + [spec for spec in extra if spec.name not in names]
+    extra_by_name = {spec.name: spec for spec in extra}
+    specs = []
+    for spec in campaign.runs:
+        other = extra_by_name.pop(spec.name, None)
+        if other is not None and other.variables != spec.variables:
+            ran = _recorded_variables(campaign, spec.name)
+            spec = spec if ran is not None and ran == spec.variables else other
+        specs.append(spec)
+    specs += list(extra_by_name.values())
     done = [spec for spec in specs if campaign.is_done(spec.name)]
     if not done:
         raise ValueError(f"campaign {campaign.directory}: none of its {len(campaign.runs)} runs "

@@ -99,8 +99,8 @@ def _ramp_levels(campaign, column, bc, prefix):
     for spec in _runs.select(campaign, prefix, bc=bc):
         tab = _runs.taps_table(campaign, spec)
         per_level = int(spec.variables["P"])
-        hyst = Hysteresis(tab["sqrt_eps"][1:], tab[column][1:], taps_per_level=per_level,
-                          last=steady_last(per_level)).compute()
+        hyst = Hysteresis(_runs.ramp_sqrt_eps(tab)[1:], tab[column][1:],
+                          taps_per_level=per_level, last=steady_last(per_level)).compute()
         for rec in _level_records(hyst.levels):
             key = round(float(rec["sqrt_eps"]), 9)
             collected[str(rec["branch"])][key].append((float(rec["mean"]), float(rec["sem"])))

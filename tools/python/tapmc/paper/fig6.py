@@ -21,12 +21,21 @@ the last tap (4 x 4 blocks, ``tapmc.profiles.vertical_profile_jackknife``), as f
 ``final:alpha``. ``runs`` does not add those runs: ``tapmc-paper fig6`` alone draws the top panel, the
 report (every figure) both.
 
+Open symbols in the bottom panel, when the campaign has the ramp of Fig. 4: alpha in the profile
+the ramp prints at the end of every level (``in.ramp``'s profile_z.dat), per branch (first
+increase, decrease, second increase), for the paper's "alpha presents no hysteresis effect"
+(section IV.A). The ramp prints no h_s, so its window is cut at WINDOW_TOP_FRACTION of the
+height of its initial profile (:func:`profile_height`); the error is over seeds, or for one
+seed the straight line's own (too small: the claim's statistic uses the scatter of the levels).
+
 CSV panels: ``a`` (series ``initial``, ``final``, ``fit:initial``, ``fit:final``; x = z/R),
-``b`` (series ``bell:alpha``: x = sqrt(eps)), ``params`` (``initial:alpha``, ``final:alpha``
+``b`` (series ``bell:alpha`` and ``ramp:up1``, ``ramp:down``, ``ramp:up2``: x = sqrt(eps)), ``params`` (``initial:alpha``, ``final:alpha``
 over seeds; ``final:<eq. 7 parameter>``, ``window_lo``, ``window_hi``, ``eps``).
 """
 
 from __future__ import annotations
+
+from collections import defaultdict
 
 import numpy as np
 
@@ -39,6 +48,10 @@ from ._profile_runs import BC, nearest_eps_runs, profiles, radius
 NAME = "fig6"
 #: upper end of the gradient window as a fraction of the packing height (22R of 28R).
 WINDOW_TOP_FRACTION = 22.0 / 28.0
+#: the ramp's branches (in.ramp's branch column 0, 1, 2), as Fig. 4 names them
+RAMP_BRANCHES = ("up1", "down", "up2")
+RAMP_STYLE = {"up1": ("o", "increase"), "down": ("^", "decrease"),
+              "up2": ("v", "increase again")}
 
 
 def runs(scale, seeds):
@@ -107,19 +120,78 @@ def alpha_bell(campaign, bc=_steady_state.BC):
     return tuple(np.array(col, dtype=float) for col in zip(*rows))
 
 
+def profile_height(zb, phi, window):
+    """Height (z/R) of a packing from its vertical profile: the first zb above the window's
+    bottom where Phi falls below half of its median inside the window. For a deposited
+    packing it matches the mean top of the columns, h_s of compute stereo/profile, to about
+    a bin (29.25R against 28.98R for the full preset's initial packing)."""
+    lo, hi = window
+    inside = (zb >= lo) & (zb <= hi)
+    if inside.sum() < 3:
+        raise ValueError(f"window = ({lo:g}, {hi:g}) holds {inside.sum()} profile points; "
+                         "at least 3 are needed")
+    level = 0.5 * float(np.median(phi[inside]))
+    below = np.flatnonzero((zb > lo) & (phi < level))
+    if not len(below):
+        raise ValueError("the profile does not fall below half of its median: the packing "
+                         "reaches the top of the profile, so its height is unknown")
+    return float(zb[below[0]])
+
+
+def ramp_alpha(campaign, bc=_steady_state.BC, prefix="ramp_"):
+    """dict branch ('up1', 'down', 'up2') -> (sqrt_eps, alpha, err, n): alpha of the profile
+    every ramp run named ``prefix...`` prints at the end of each level (in.ramp's
+    profile_z.dat; its branch column names the branch), averaged over seeds; the error is the
+    sem over seeds, or with one seed the straight line's own error. Empty when the campaign
+    has no such ramp."""
+    collected = defaultdict(lambda: defaultdict(list))
+    for spec in _runs.select(campaign, prefix, bc=bc):
+        prof = _runs.profile(campaign, spec, "profile_z.dat")
+        tab = _runs.taps_table(campaign, spec)
+        r = radius(spec)
+        lo, hi = PROFILE_WINDOWS[bc]
+        z0 = prof.blocks[0, :, 0] / r
+        height = profile_height(z0, prof.blocks[0, :, 2], (lo, hi))
+        window = (lo, min(hi, WINDOW_TOP_FRACTION * height))
+        steps = np.asarray(tab["step"], dtype=int)
+        sqrt_eps = _runs.ramp_sqrt_eps(tab)
+        for block, step in zip(prof.blocks, np.asarray(prof.steps, dtype=int)):
+            row = np.flatnonzero(steps == step)
+            if step == 0 or not len(row):
+                continue
+            fit = profile_gradient(block[:, 0] / r, block[:, 2], window=window, boundary=bc)
+            branch = RAMP_BRANCHES[int(tab["branch"][row[0]])]
+            key = round(float(sqrt_eps[row[0]]), 9)
+            collected[branch][key].append((float(fit.params["alpha"]),
+                                           float(fit.errors["alpha"])))
+    out = {}
+    for branch in RAMP_BRANCHES:
+        by_sq = collected.get(branch)
+        if not by_sq:
+            continue
+        sq = np.array(sorted(by_sq))
+        rows = []
+        for key in sq:
+            m, s, n = P.seed_stats([[a] for a, _ in by_sq[key]])
+            rows.append((m[0], s[0] if n[0] >= 2 else by_sq[key][0][1], n[0]))
+        out[branch] = (sq,) + tuple(np.array(col, dtype=float) for col in zip(*rows))
+    return out
+
+
 def draw(campaign, out_dir):
     png, csv = P.figure_paths(out_dir, NAME)
     bell = alpha_bell(campaign)
+    ramp = ramp_alpha(campaign)
     try:
         eps, specs = nearest_eps_runs(campaign)
     except ValueError:
-        if bell is None:
+        if bell is None and not ramp:
             raise
-        return _draw_bell_only(bell, png, csv)
+        return _draw_bell_only(bell, ramp, png, csv)
     window = gradient_window(campaign, specs)
     zb, im, isem, i_n, fm, fsem, f_n = profiles(campaign, specs, "profile_z.dat")
     table = P.FigureTable()
-    fig, axes = P.new_figure(2 if bell is not None else 1, 1, height=4.0)
+    fig, axes = P.new_figure(2 if bell is not None or ramp else 1, 1, height=4.0)
     ax = axes[0]
     ax.plot(zb, im, ":", color="k", label="initial packing")
     ax.plot(zb, fm, "-", color="C3", label=f"after {int(specs[0].variables['taps'])} taps")
@@ -161,22 +233,31 @@ def draw(campaign, out_dir):
     ax.set_ylim(bottom=0)
     ax.legend(fontsize=8, title=f"F.B.C., eps = {P.fmt_eps(eps)}; dashed: gradient window",
               title_fontsize=7)
-    if bell is not None:
-        _bell_panel(axes[1], bell, table)
+    if bell is not None or ramp:
+        _bell_panel(axes[1], bell, ramp, table)
     return P.write_figure(fig, png, table, csv)
 
 
-def _bell_panel(ax, bell, table):
-    sq, mean, sem, n = bell
-    table.add("b", "bell:alpha", sq, mean, sem, n)
-    ax.errorbar(sq, mean, yerr=np.nan_to_num(sem), marker="s", ls="-", color="k", capsize=2)
+def _bell_panel(ax, bell, ramp, table):
+    if bell is not None:
+        sq, mean, sem, n = bell
+        table.add("b", "bell:alpha", sq, mean, sem, n)
+        ax.errorbar(sq, mean, yerr=np.nan_to_num(sem), marker="s", ls="-", color="k",
+                    capsize=2, label="after the taps")
+    for branch, (sq, mean, sem, n) in ramp.items():
+        marker, label = RAMP_STYLE[branch]
+        table.add("b", f"ramp:{branch}", sq, mean, sem, n)
+        ax.errorbar(sq, mean, yerr=np.nan_to_num(sem), marker=marker, mfc="none", ls="-",
+                    lw=0.8, capsize=2, label=f"ramp: {label}")
     ax.axhline(0.0, color="0.6", lw=0.6)
     ax.set_xlabel(r"$\varepsilon^{1/2}$")
-    ax.set_ylabel(r"$\alpha$ after the taps (P.B.C.)")
+    ax.set_ylabel(r"$\alpha$ (P.B.C.)")
+    if ramp:
+        ax.legend(fontsize=7, title="open: end of every level of the ramp", title_fontsize=7)
 
 
-def _draw_bell_only(bell, png, csv):
+def _draw_bell_only(bell, ramp, png, csv):
     table = P.FigureTable()
     fig, (ax,) = P.new_figure(1, 1, height=4.0)
-    _bell_panel(ax, bell, table)
+    _bell_panel(ax, bell, ramp, table)
     return P.write_figure(fig, png, table, csv)

@@ -102,8 +102,16 @@ def campaign_summary(campaign):
         "seeds": len({s.seed for s in specs}),
         "seeds_per_point": _seeds_per_point(specs),
         "eta": sorted({float(s.variables["eta"]) for s in specs if "eta" in s.variables}),
+        "ramp_taps_per_level": _ramp_taps_per_level(specs),
         "initial_phi_c": list(_initial_phi(campaign)),
     }
+
+
+def _ramp_taps_per_level(specs):
+    """The taps per level of the campaign's ramps (in.ramp's P), sorted: what the ramp ran
+    with, which the paper-scale plan reduces below its preset's (``plan.py``)."""
+    return sorted({int(s.variables["P"]) for s in specs
+                   if s.input.name == "in.ramp" and "P" in s.variables})
 
 
 def _seeds_per_point(specs):
@@ -134,6 +142,10 @@ def describe_scale(summary):
             "The paper used N = 4096, L = 32R and 4000 taps, one run per point from the same "
             "initial packing (section III.B), and 10 realizations for the ageing of Fig. 5 "
             "(section III.C).")
+    per_level = summary.get("ramp_taps_per_level")
+    if per_level:
+        text += (f" The ramps of Fig. 4 have {', '.join(map(str, per_level))} taps per level "
+                 "(the paper: 4000).")
     if summary.get("planned_runs"):
         text += (f" The campaign is under way: {summary['runs']} of its "
                  f"{summary['planned_runs']} runs have finished, and this page is drawn from "
