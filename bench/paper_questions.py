@@ -56,7 +56,11 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               ramp_levels, DIR the --out folder) with restart files every 50 taps: a killed
               ramp-levels resumes there, and a larger --extend continues it. The rows of
               ramp_levels.csv for levels not listed are kept (a level measured in an
-              earlier session whose restart file is gone stays in the table).
+              earlier session whose restart file is gone stays in the table). --replay: a
+              level whose restart file is gone starts from a replay of the ramp up to its end
+              (in.ramp -var stop, in DIR/partial/ramp_levels/<run>_replay, a restart file at
+              every level end); its rows are compared with the campaign's (column start:
+              run, replay (identical) or replay (differs from step S)).
 
   fit-surrogates
               Does one 4000-tap run fix the triplet (X_inf, B, tau) of eq. 3 (and eq. 4's
@@ -132,7 +136,7 @@ Usage (from the repository; minutes on one core, run under nice):
     bench/paper_questions.py lateral-first-tap [--out DIR] [--lmp EXE] [--seeds 1 2 3 4]
     bench/paper_questions.py ramp-levels [--out DIR] [--lmp EXE] [--campaign DIR]
                                          [--run ramp_pbc_s1] [--levels K ...] [--extend 3000]
-                                         [--work DIR]
+                                         [--work DIR] [--replay]
     bench/paper_questions.py theta0 [--out DIR] [--lmp EXE] [--seeds 1 2 3 4]
                                     [--stop change|drift] [--eta 1e-7] [--N 1024]
     bench/paper_questions.py dmax   (the same options as theta0)
@@ -411,10 +415,16 @@ def ramp_levels(args):
     for k in args.levels or default_ramp_levels(nlev):
         end = (k + 1) * P
         restart = run_dir / f"restart.{end}"
-        if not restart.is_file():
-            sys.exit(f"paper_questions: {restart} not found (a finished ramp keeps the restart "
-                     "files of its level ends; an unfinished one has them up to its last step)")
+        start = "run"
         level = table[(table[:, 0] > end - P) & (table[:, 0] <= end)]
+        if not restart.is_file():
+            if not args.replay:
+                sys.exit(f"paper_questions: {restart} not found (a finished ramp keeps the "
+                         "restart files of its level ends; an unfinished one has them up to its "
+                         "last step; --replay runs the ramp again up to the level's end)")
+            restart, replayed, start = replay_ramp(lmp, args.run, variables, seed, end, work,
+                                                   table)
+            level = replayed[replayed[:, 0] > end - P]
         # the level's sqrt(eps); a row of a resume step may print 0 (_runs.ramp_sqrt_eps)
         sq = float(np.median(level[level[:, 3] > 0, 3]))
         # a continuation of its own folder: a killed ramp-levels resumes it, and a longer
@@ -426,19 +436,79 @@ def ramp_levels(args):
         short = SteadyState(level[:, 5], last=steady_last(P)).compute()
         full = SteadyState(longer, last=steady_last(len(longer))).compute()
         rows.append([k, int(level[-1, 2]), f"{sq:.6g}", P, len(longer), f"{short.mean:.8f}",
-                     f"{short.sem:.3g}", f"{full.mean:.8f}", f"{full.sem:.3g}"])
-        print(f"level {k} (branch {int(level[-1, 2])}, sqrt(eps) {sq:g}): <Phi^c> "
-              f"{short.mean:.4f} after {P} taps, {full.mean:.4f} after {len(longer)}", flush=True)
+                     f"{short.sem:.3g}", f"{full.mean:.8f}", f"{full.sem:.3g}", start])
+        print(f"level {k} (branch {int(level[-1, 2])}, sqrt(eps) {sq:g}, from the {start}): "
+              f"<Phi^c> {short.mean:.4f} after {P} taps, {full.mean:.4f} after {len(longer)}",
+              flush=True)
     header = ["level", "branch", "sqrt_eps", "taps", "taps_long", "phi_c", "phi_c_sem",
-              "phi_c_long", "phi_c_long_sem"]
+              "phi_c_long", "phi_c_long_sem", "start"]
     path = Path(args.out) / "ramp_levels.csv"
     if path.is_file():  # keep the levels measured before and not listed now
         with open(path, newline="") as handle:
             table = list(csv.reader(handle))
-        if table and table[0] == header:
+        if table and table[0] == header[:len(table[0])]:   # rows from before 'start': the run
             listed = {int(r[0]) for r in rows}
-            rows += [r for r in table[1:] if r and int(r[0]) not in listed]
+            rows += [r + ["run"] * (len(header) - len(r)) for r in table[1:]
+                     if r and int(r[0]) not in listed]
     write_csv(path, header, sorted(rows, key=lambda r: int(r[0])))
+
+
+RAMP_INPUT = SOURCE / "examples" / "paper" / "in.ramp"
+
+
+def replay_ramp(lmp, name, variables, seed, end, work, table):
+    """The ramp ``name`` run again from its start up to step ``end`` (in.ramp's ``stop``), for
+    a level whose restart file the campaign no longer has. The replay keeps a restart file at
+    every level end in ``work``/<name>_replay: a killed replay resumes from its latest below
+    ``end``, and a later call for a later level continues it. Returns (the restart file at
+    ``end``, the replay's taps rows 1..end, how they compare with the campaign's rows
+    ``table``: 'replay (identical)' when every common row holds the same numbers, bit for bit
+    as printed (a restart-step row that printed sqrt(eps) = 0 aside), else 'replay (differs
+    from step S)')."""
+    from tapmc.campaign.run_folder import trim_rows
+
+    folder = work / f"{name}_replay"
+    folder.mkdir(parents=True, exist_ok=True)
+    P = int(variables["P"])
+    target = folder / f"restart.{end}"
+    with _folder_lock(folder):
+        if not target.is_file():
+            below = sorted(int(p.name.split(".")[1]) for p in folder.glob("restart.*")
+                           if p.name.split(".")[1].isdigit() and int(p.name.split(".")[1]) < end)
+            extra = {}
+            if below:
+                trim_rows(folder / "taps.dat", below[-1])
+                extra = {"resume": "yes", "resume_file": f"restart.{below[-1]}"}
+            print(f"replaying {name} from step {below[-1] if below else 0} to {end}", flush=True)
+            cmd = [*lmp, "-in", str(RAMP_INPUT), "-log", "log.lammps", "-screen", "none"]
+            for key, value in dict(variables, seed=seed, rsteps=P, stop=end, **extra).items():
+                cmd += ["-var", key, str(value)]
+            done = subprocess.run(cmd, cwd=folder, capture_output=True, text=True)
+            if done.returncode != 0 or not target.is_file():
+                sys.exit(f"paper_questions: {' '.join(cmd)} failed in {folder}:\n"
+                         f"{done.stderr[-2000:]}")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        replayed = np.atleast_2d(np.genfromtxt(folder / "taps.dat", invalid_raise=False))
+    replayed = replayed[(replayed[:, 0] >= 1) & (replayed[:, 0] <= end)]
+    return target, replayed, "replay (" + _replay_agreement(replayed, table) + ")"
+
+
+def _replay_agreement(replayed, table):
+    """'identical' when the rows of the same steps hold the same numbers (sqrt(eps) compared
+    where neither is 0: a resumed run's restart-step row may print 0), else 'differs from
+    step S'."""
+    steps = np.intersect1d(replayed[:, 0], table[:, 0])
+    a = replayed[np.isin(replayed[:, 0], steps)]
+    b = table[np.isin(table[:, 0], steps)]
+    a, b = a[np.argsort(a[:, 0])], b[np.argsort(b[:, 0])]
+    if len(a) == 0 or a.shape[1] != b.shape[1]:
+        return "no common rows"
+    same = np.all(np.delete(a, 3, axis=1) == np.delete(b, 3, axis=1), axis=1)
+    same &= (a[:, 3] == b[:, 3]) | (a[:, 3] == 0) | (b[:, 3] == 0)
+    if same.all():
+        return "identical"
+    return f"differs from step {int(a[np.argmin(same), 0])}"
 
 
 def scan_file_name(stem, stop, N):
@@ -1034,6 +1104,7 @@ def main(argv=None):
     sub.choices["ramp-levels"].add_argument("--levels", type=int, nargs="+", default=None)
     sub.choices["ramp-levels"].add_argument("--extend", type=int, default=RAMP_EXTEND)
     sub.choices["ramp-levels"].add_argument("--work", default=None, type=Path)
+    sub.choices["ramp-levels"].add_argument("--replay", action="store_true")
     fluid = sub.choices["p0-fluid"]
     fluid.add_argument("--phi", type=float, nargs="+", default=list(P0_FLUID_PHI))
     fluid.add_argument("--configs", type=int, default=P0_FLUID_CONFIGS)

@@ -46,6 +46,7 @@ RAMP_FRESH = dict(TINY, R=0.6, sqrt0=0.1, dsqrt=0.05, nlev=2, P=1, seed=3, pack_
                   bc="fbc", zbins_per_R=2, thermo_every=1, rsteps=2, taps_file="r.dat",
                   zprof_file="rz.dat")
 RAMP_RESUME = dict(RAMP_FRESH, resume="yes", resume_file="restart.2")
+RAMP_STOP = dict(RAMP_FRESH, stop=3, rsteps=3)
 AGEING_FRESH = dict(TINY, R=0.6, sqrteps=0.2, taps=2, seed=3, pack_seed=6, bc="fbc",
                     thermo_every=1, rsteps=1, taps_file="a.dat")
 AGEING_RESUME = dict(AGEING_FRESH, eps=0.03, taps=3, resume="yes", resume_file="restart.1")
@@ -61,7 +62,7 @@ SCALE = dict(N=64, L=8, R=0.6, eps=0.02, eta=1e-5, taps=2, seed=5)
 
 RUNS = {
     "paper/in.constant_eps": [CONSTANT_EPS_FRESH, CONSTANT_EPS_RESUME, CONSTANT_EPS_PAPER_START],
-    "paper/in.ramp": [RAMP_FRESH, RAMP_RESUME],
+    "paper/in.ramp": [RAMP_FRESH, RAMP_RESUME, RAMP_STOP],
     "paper/in.ageing": [AGEING_FRESH, AGEING_RESUME],
     "paper/in.pore_dumps": [PORES_FRESH, PORES_RESUME],
     "tapping/in.tapping_pbc": [TAPPING],
@@ -250,6 +251,14 @@ def test_ramp_every_switch(tmp_path):
     assert sorted(ave_time_blocks(tmp_path / "rz.dat.from2")) == [2, 3, 4]
     assert table(tmp_path / "r.dat")[-1, 0] == 4
 
+    # stop: the same ramp ended after step 3 (a replay of its first levels), tap for tap
+    replay = tmp_path / "replay"
+    replay.mkdir()
+    run_ok("paper/in.ramp", RAMP_STOP, replay)
+    assert (replay / "r.dat").read_text() == \
+        "".join((tmp_path / "r.dat").read_text().splitlines(keepends=True)[:5])
+    assert {p.name for p in replay.glob("restart.*")} == {"restart.3"}
+
 
 def test_ageing_every_switch(tmp_path):
     v = AGEING_FRESH
@@ -324,6 +333,12 @@ def test_deposition_runs(tmp_path):
     ("paper/in.ramp", "P", "0", "ERROR: P = 0; allowed: an integer >= 1"),
     ("paper/in.ramp", "nlev", "1.5", "ERROR: nlev = 1.5; allowed: an integer >= 1"),
     ("paper/in.ramp", "P", "2.5", "ERROR: P = 2.5; allowed: an integer >= 1"),
+    ("paper/in.ramp", "stop", "-1",
+     "ERROR: stop = -1; allowed: an integer from 0 (the whole ramp) to 136000"),
+    ("paper/in.ramp", "stop", "136001",
+     "ERROR: stop = 136001; allowed: an integer from 0 (the whole ramp) to 136000"),
+    ("paper/in.ramp", "stop", "2.5",
+     "ERROR: stop = 2.5; allowed: an integer from 0 (the whole ramp) to 136000"),
     ("paper/in.ageing", "bc", "xyz", "ERROR: bc = xyz; allowed values: pbc, fbc"),
     ("paper/in.ageing", "resume", "maybe", "ERROR: resume = maybe; allowed values: no, yes"),
     ("paper/in.pore_dumps", "bc", "xyz", "ERROR: bc = xyz; allowed values: pbc, fbc"),

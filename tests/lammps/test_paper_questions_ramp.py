@@ -37,7 +37,8 @@ def test_ramp_levels_continues_the_kept_level_ends(tmp_path):
         rows = list(csv.DictReader(f))
     assert [(r["level"], r["branch"], r["sqrt_eps"]) for r in rows] == [
         ("2", "0", "0.25"), ("3", "1", "0.15")]
-    assert all(r["taps"] == "10" and r["taps_long"] == "30" for r in rows)
+    assert all(r["taps"] == "10" and r["taps_long"] == "30" and r["start"] == "run"
+               for r in rows)
     text = "\n".join(questions.render_section(out))
     assert "``ramp-levels``" in text and "change against 30?" in text
     assert "2 (first increase)" in text and "3 (decrease)" in text
@@ -70,3 +71,32 @@ def test_ramp_levels_continues_the_kept_level_ends(tmp_path):
                           "--levels", "9", "--out", str(out)], capture_output=True, text=True,
                          timeout=60)
     assert bad.returncode != 0 and "restart.100 not found" in bad.stderr
+
+    # a level whose restart file is gone: --replay runs the ramp again up to the level's end
+    # (in.ramp -var stop); the replay reproduces the campaign's rows bit for bit, and the
+    # level's row is the one the kept file gave
+    def levels_csv(out, *extra):
+        done = subprocess.run([sys.executable, str(SOURCE / "bench" / "paper_questions.py"),
+                               "ramp-levels", "--lmp", str(LMP), "--campaign",
+                               str(tmp_path / "c"), "--levels", "1", "--extend", "20",
+                               "--out", str(out), *extra], capture_output=True, text=True,
+                              timeout=300)
+        return done, (list(csv.DictReader(open(out / "ramp_levels.csv", newline="")))
+                      if done.returncode == 0 else None)
+
+    done, (kept,) = levels_csv(tmp_path / "k")
+    assert done.returncode == 0, done.stderr
+    assert kept["start"] == "run"
+    (tmp_path / "c" / "runs" / spec.name / "restart.20").unlink()
+    done, _ = levels_csv(tmp_path / "r")
+    assert done.returncode != 0 and "--replay" in done.stderr
+    done, (replayed,) = levels_csv(tmp_path / "r", "--replay")
+    assert done.returncode == 0, done.stderr
+    assert replayed.pop("start") == "replay (identical)"
+    kept.pop("start")
+    assert replayed == kept
+    replay = tmp_path / "r" / "partial" / "ramp_levels" / "ramp_pbc_s1_replay"
+    assert sorted(p.name for p in replay.glob("restart.*")) == ["restart.10", "restart.20"]
+    text = "\n".join(questions.render_section(tmp_path / "r"))
+    assert "1 (first increase; replayed)" in text
+    assert "the replay's taps against the campaign's: identical." in text

@@ -601,7 +601,9 @@ def _ramp_levels(path, fig4=None):
         a, ea = float(r["phi_c"]), float(r["phi_c_sem"])
         b, eb = float(r["phi_c_long"]), float(r["phi_c_long_sem"])
         shifts.append((b - a, math.hypot(ea, eb)))
-        lines += [f"   * - {r['level']} ({BRANCH_NAMES[int(r['branch'])]})",
+        start = r.get("start") or "run"
+        mark = "; replayed" if start.startswith("replay") else ""
+        lines += [f"   * - {r['level']} ({BRANCH_NAMES[int(r['branch'])]}{mark})",
                   f"     - {float(r['sqrt_eps']):g}", f"     - {fmt(a, ea, True)}",
                   f"     - {fmt(b, eb, True)}", f"     - {fmt(b - a, math.hypot(ea, eb), True)}"]
     largest = max(shifts, key=lambda d: abs(d[0]))
@@ -611,6 +613,12 @@ def _ramp_levels(path, fig4=None):
     gap = None if fig4 is None else hysteresis_gap(ReportData({}, {"fig4": fig4}))
     text = (f"The longer levels move <Phi^c> by at most {fmt(largest[0], largest[1], True)}; "
             f"{len(moved)} of {len(shifts)} beyond their error.")
+    replays = sorted({(r.get("start") or "run")[len("replay ("):-1] for r in rows
+                      if (r.get("start") or "").startswith("replay")})
+    if replays:
+        text += (" The levels marked replayed start from the ramp run again up to their end "
+                 "(``--replay``: the campaign's restart file of that level end was gone); the "
+                 "replay's taps against the campaign's: " + ", ".join(replays) + ".")
     if gap is not None:
         text += (f" The hysteresis gap (decrease minus first increase) is "
                  f"{fmt(gap, None, True)}: the shorter levels "
