@@ -1115,3 +1115,50 @@ def test_one_runs_surrogates_decide_only_what_they_can():
     both = claims.ReportData(report().summary, {}, questions={
         "fit_surrogates": undetermined + surrogate_rows({e: (["B"], []) for e in eps}, "eq4")})
     assert [x.label for x in claims.b_exponential(both, claim)] == ["B of eq. 3", "B of eq. 4"]
+
+
+def _ramp_levels_rows(shifts):
+    """ramp_levels.csv rows: (level, branch, shift of <Phi^c> from 1000 to 4000 taps), each
+    with batch-means errors of 1e-4."""
+    return [{"level": str(k), "branch": str(b), "sqrt_eps": "0.1", "taps": "1000",
+             "taps_long": "4000", "phi_c": "0.60", "phi_c_sem": "1e-4",
+             "phi_c_long": f"{0.60 + d:.6f}", "phi_c_long_sem": "1e-4"}
+            for k, b, d in shifts]
+
+
+def test_ramp_reduction_decides_only_the_verdicts_it_cannot_change():
+    """The campaign's ramp has 1000 taps per level: its claims are undecided for the scale,
+    unless ramp-levels measured the shift to 4000 taps on every branch the measure reads (two
+    levels each) and the verdict stays the same anywhere within it."""
+    by_id = {c.id: c for c in REGISTER}
+    summary = {"ramp_taps_per_level": [1000]}
+    fig = fig4(BELL, up1=BELL, down=BELL + 0.01, up2=BELL + 0.01)
+    small = _ramp_levels_rows([(1, 0, 0.001), (5, 0, 0.0005), (15, 1, 0.0002), (20, 1, 0.0)])
+
+    def outcome(claim_id, rows):
+        data = claims.ReportData(dict(report().summary, **summary), {"fig4": fig.data()},
+                                 questions={"ramp_levels": rows})
+        (row,) = claims.evaluate([by_id[claim_id]], data)
+        return row.verdict
+
+    # down - up1 = 0.01 against shifts of at most 0.001 + 0.0002 (+ t err): decided
+    text = outcome("reversible-above", small)
+    assert text.startswith("agrees (at 1000 taps per level") and "up1: levels 1, 5" in text
+    assert outcome("reversible-falls", small).startswith("agrees (at 1000 taps per level")
+    # a shift as large as the gap could undo it: undecided, and says by how much
+    large = _ramp_levels_rows([(1, 0, 0.02), (5, 0, 0.0), (15, 1, 0.0), (20, 1, 0.0)])
+    text = outcome("reversible-above", large)
+    assert text.startswith("undecided (scale: needs the paper's ramp_taps; at this scale it "
+                           "agrees; the paper's 4000 could move it by 0.02")
+    # one measured level of a branch bounds nothing; up2 was not measured at all
+    assert outcome("reversible-above", small[1:]).startswith("undecided (scale")
+    assert outcome("reversible-retraced", small).startswith("undecided (scale")
+    # a zero claim that disagrees at this scale is not decided when the interval reaches zero
+    near = claims.ReportData(dict(report().summary, **summary),
+                             {"fig4": fig4(BELL, up1=BELL - 0.0005, down=BELL + 0.01).data()},
+                             questions={"ramp_levels": small})
+    (row,) = claims.evaluate([by_id["ramp-up-near-squares"]], near)
+    assert row.verdict.startswith("undecided (scale")
+    # the alpha claim has no bound in <Phi^c>: it stays undecided at this scale
+    assert claims.ramp_reduction_shift(by_id["gradient-no-hysteresis"], near,
+                                       claims.ramp_reduction_bounds(near)) is None

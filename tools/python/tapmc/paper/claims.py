@@ -30,6 +30,7 @@ A measure without an uncertainty (one realization) is undecided, never agreed by
 from __future__ import annotations
 
 import csv
+import dataclasses
 import math
 import tomllib
 from dataclasses import dataclass, field
@@ -203,7 +204,7 @@ class FigureData:
 #: configurations (p0-configs), the first taps from the paper's F.B.C. start (lateral-first-tap),
 #: realizations of the first taps (early-taps), one run's surrogate fits (fit-surrogates)
 QUESTION_CSVS = ("initial_packing", "p0_configs", "lateral_first_tap", "early_taps",
-                 "fit_surrogates")
+                 "fit_surrogates", "ramp_levels")
 
 
 class ReportData:
@@ -1852,9 +1853,81 @@ class Row:
         return self.verdict.split(" ")[0]
 
 
+#: the ramp's branches as ramp_levels.csv numbers them (in.ramp's branch column)
+RAMP_LEVEL_BRANCHES = ("up1", "down", "up2")
+#: the ramp statistics made of <Phi^c> of the branches, and the branches each reads: what a
+#: shift of the levels (the campaign's taps per level against the paper's) can move
+RAMP_REDUCTION_BRANCHES = {"ramp_down_minus_up": ("down", "up1"),
+                           "ramp_up2_minus_down": ("up2", "down"),
+                           "ramp_up_minus_steady": ("up1",),
+                           "ramp_branch_slope": ("down",)}
+#: levels of a branch measured at the paper's taps per level before their largest shift
+#: stands for the whole branch (one level says nothing of how the shift varies along it)
+RAMP_REDUCTION_MIN_LEVELS = 2
+
+
+def ramp_reduction_bounds(data):
+    """branch -> (bound, levels): per branch of the ramp, the largest shift of a level's
+    <Phi^c> from the campaign's taps per level to the paper's 4000, |shift| + t err, over the
+    levels bench/paper_questions.py ramp-levels measured (ramp_levels.csv); only branches
+    with RAMP_REDUCTION_MIN_LEVELS measured levels or more."""
+    found = {}
+    for r in data.question("ramp_levels"):
+        if int(float(r["taps_long"])) < PAPER_SCALE["ramp_taps"]:
+            continue
+        shift = float(r["phi_c_long"]) - float(r["phi_c"])
+        err = math.hypot(float(r["phi_c_sem"]), float(r["phi_c_long_sem"]))
+        branch = RAMP_LEVEL_BRANCHES[int(float(r["branch"]))]
+        found.setdefault(branch, []).append((abs(shift) + t_quantile(WITHIN_RUN_DOF) * err,
+                                             int(float(r["level"]))))
+    return {b: (max(v)[0], sorted(level for _, level in v)) for b, v in found.items()
+            if len(v) >= RAMP_REDUCTION_MIN_LEVELS}
+
+
+def ramp_reduction_shift(claim, data, bounds):
+    """How far the paper's taps per level could move the measure of a ramp claim, from the
+    branches' bounds (:func:`ramp_reduction_bounds`): a difference of two branches by the sum
+    of their bounds, a branch against the constant-eps runs by its own, the decreasing
+    branch's weighted slope by the largest slope shifts within the bound give,
+    bound * sum w|x - xw| / sum w (x - xw)^2. None when a branch it reads has no bound."""
+    branches = RAMP_REDUCTION_BRANCHES.get(claim.statistic)
+    if not branches or any(b not in bounds for b in branches):
+        return None
+    if claim.statistic == "ramp_branch_slope":
+        curve = _ramp(data, claim.params.get("branch", "down"))
+        if curve is None:
+            return None
+        x, _, err = (np.asarray(v, float) for v in curve[:3])
+        w = 1.0 / err ** 2
+        dx = x - np.sum(w * x) / np.sum(w)
+        return bounds[branches[0]][0] * float(np.sum(w * np.abs(dx)) / np.sum(w * dx ** 2))
+    return float(sum(bounds[b][0] for b in branches))
+
+
+def _robust_to(claim, m, shift, text):
+    """Whether the verdict ``text`` of ``m`` stays the same with the value moved anywhere
+    within +-shift: tried at both ends and at the points of the interval nearest zero and the
+    claim's target (a zero or value rule turns there, not at the ends)."""
+    word = text.split(" ")[0]
+    lo, hi = m.value - shift, m.value + shift
+    turns = [0.0] + ([float(claim.target)] if getattr(claim, "target", None) is not None
+                     and np.isfinite(claim.target) else [])
+    values = [lo, hi] + [min(max(t, lo), hi) for t in turns]
+    return all(verdict(claim, dataclasses.replace(m, value=v)).split(" ")[0] == word
+               for v in values)
+
+
 def evaluate(claims, data):
-    """The report rows of every claim (one per measure) for ``data`` (:class:`ReportData`)."""
+    """The report rows of every claim (one per measure) for ``data`` (:class:`ReportData`).
+
+    A model claim the campaign lacks part of the paper's scale for is undecided, with one
+    exception: the ramp at fewer taps per level than the paper's, when ramp-levels measured
+    the levels' shift to 4000 taps on every branch the measure reads and the verdict stays
+    the same with the measure moved by the largest shift either way
+    (:func:`ramp_reduction_shift`)."""
     met = scale_aspects(data.summary)
+    bounds = ramp_reduction_bounds(data)
+    per_level = ", ".join(map(str, data.summary.get("ramp_taps_per_level") or []))
     rows = []
     for claim in claims:
         missing = tuple(a for a in claim.needs if a not in met)
@@ -1866,8 +1939,21 @@ def evaluate(claims, data):
             text = verdict(claim, m)
             lacking = missing + tuple(a for a in m.lacks if a not in missing)
             if lacking and not text.startswith("undecided") and claim.kind == "model":
-                text = (f"undecided (scale: needs the paper's {', '.join(lacking)}; "
-                        f"at this scale it {text.split(' ')[0]})")
+                shift = (ramp_reduction_shift(claim, data, bounds) if lacking == ("ramp_taps",)
+                         else None)
+                word = text.split(" ")[0]
+                if shift is not None and _robust_to(claim, m, shift, text):
+                    levels = "; ".join(
+                        f"{b}: levels {', '.join(map(str, bounds[b][1]))}"
+                        for b in RAMP_REDUCTION_BRANCHES[claim.statistic])
+                    text = (f"{word} (at {per_level or 'fewer'} taps per level; the paper's "
+                            f"4000 would move it by at most {fmt(shift)} (ramp-levels, {levels}), "
+                            "which leaves the verdict)")
+                else:
+                    reach = ("" if shift is None else
+                             f"; the paper's 4000 could move it by {fmt(shift)}")
+                    text = (f"undecided (scale: needs the paper's {', '.join(lacking)}; "
+                            f"at this scale it {word}{reach})")
             rows.append(Row(claim, m.label, m, text, lacking))
     return rows
 

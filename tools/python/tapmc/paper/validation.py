@@ -307,7 +307,11 @@ def _rst_table(rows):
               "own such as a knob scan, its runs) had what the claim needs of the "
               "paper's scale (size: N = 4096 in a 32R box; taps: 4000 per run; ramp_taps: 4000 "
               "per level; eta: 1e-7); without it the statistic is shown and the verdict is "
-              "undecided.", ""]
+              "undecided. One exception: a ramp of fewer taps per level decides a claim of "
+              "<Phi^c> on its branches when ``bench/paper_questions.py ramp-levels`` measured "
+              "how far 4000 taps per level move the levels (two levels or more of every branch "
+              "the claim reads; the largest shift plus its t error bounds the branch) and the "
+              "verdict is the same anywhere within that bound; the verdict says so.", ""]
     return lines
 
 
