@@ -50,8 +50,9 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               continues chosen levels from them at the level's sqrt(eps) (in.constant_eps,
               the run's seed and eta) by --extend taps (default 3000: 4000 in all) and
               compares <Phi^c> over the level's last quarter with that over the last quarter
-              of the longer level (batch-means errors). Default levels: the top of the first
-              increase, the middle of the decrease, the middle of the second increase. Each
+              of the longer level (batch-means errors). Default levels: two of every branch
+              (a quarter of the way up the first increase and its top, the middle and the
+              bottom of the decrease, the middle and the top of the second increase). Each
               continuation runs in its own folder under --work DIR (default DIR/partial/
               ramp_levels, DIR the --out folder) with restart files every 50 taps: a killed
               ramp-levels resumes there, and a larger --extend continues it. The rows of
@@ -392,10 +393,13 @@ def _manifest_run(campaign, name):
 
 
 def default_ramp_levels(nlev):
-    """The top of the first increase, the middle of the decrease and of the second increase
-    (level indices of in.ramp: 0 .. 3 nlev - 3)."""
+    """Two levels of every branch, as the report needs to bound the branch's shift
+    (tapmc.paper.claims.RAMP_REDUCTION_MIN_LEVELS): a quarter of the way up the first
+    increase and its top, the middle and the bottom of the decrease, the middle and the top
+    of the second increase (level indices of in.ramp: 0 .. 3 nlev - 3)."""
     top = nlev - 1
-    return [top, top + (nlev - 1) // 2, 2 * top + (nlev - 1) // 2]
+    half = (nlev - 1) // 2
+    return sorted({top // 4, top, top + half, 2 * top, 2 * top + half, 3 * top})
 
 
 def ramp_levels(args):
