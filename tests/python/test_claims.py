@@ -791,6 +791,17 @@ def test_one_realization_p0_curves_are_decided_over_configurations():
     without = claims.ReportData(report().summary, {"fig9": one_run.data()})
     (m,) = claims.p0_initial_minus_final(without, BY_ID["p0-insensitive"])
     assert m.undecided
+    # two seeds (a campaign under way): the 8 configurations still decide; as many seeds
+    # as configurations: the seeds do
+    for seeds, configs in ((2, True), (8, False)):
+        runs = Table()
+        for name, phi in (("final", 0.604), ("initial", 0.604)):
+            runs.add("a", name, sigma, py(phi)(sigma), 1e-3, n=seeds)
+        runs.add("a", "percus_yevick", sigma, py(0.604)(sigma), None, n=0)
+        data = claims.ReportData(report().summary, {"fig9": runs.data()},
+                                 questions={"p0_configs": _p0_rows(py(0.582), py(0.604), 1e-4)})
+        (m,) = claims.p0_initial_minus_final(data, BY_ID["p0-insensitive"])
+        assert ("configurations of the tapped packing" in m.text()) == configs
 
 
 def test_one_pore_dump_is_decided_by_its_jackknife_error():

@@ -1362,10 +1362,10 @@ def _py_change(fig, sigma):
                                percus_yevick_p0(sigma, phi_i))))
 
 
-def _p0_configurations(data, other, what):
+def _p0_configurations(data, other, what, more_than=1):
     """The comparison of :func:`_p0_difference` over the configurations of
     bench/paper_questions.py p0-configs (depositions at t = 0, dumps of the continued Fig. 9
-    run), None when they are not there."""
+    run), None when they are not there or are not more than ``more_than`` of each kind."""
     from tapmc.pores import percus_yevick_p0
 
     rows = [r for r in data.question("p0_configs") if r["sigma"] != "phi"]
@@ -1373,6 +1373,8 @@ def _p0_configurations(data, other, what):
     if len(rows) < 3 or not phi:
         return None
     col = {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+    if min(col["initial_n"].min(), col["tapped_n"].min()) <= more_than:
+        return None
     phi_i, phi_t = float(phi[0]["initial"]), float(phi[0]["tapped"])
     x = col["sigma"]
     effect = float(np.max(np.abs(percus_yevick_p0(x, phi_t) - percus_yevick_p0(x, phi_i))))
@@ -1394,18 +1396,18 @@ def _p0_configurations(data, other, what):
 def _p0_difference(data, other, what):
     """P0 of the tapped packing against the curve ``other`` of Fig. 9 (the initial packing's,
     with its sem, or Percus-Yevick's, exact), sigma by sigma (:func:`_pointwise_zero`). Curves
-    of one realization (the paper's protocol) are compared over the configurations of
-    ``p0-configs`` instead, when there."""
+    of fewer realizations than ``p0-configs`` has configurations (one run per point, the
+    paper's protocol, or a campaign under way with two seeds, whose sem over two is itself
+    hardly known) are compared over those configurations instead, when there."""
     fig = data.figure("fig9")
     if fig is None:
         return _missing("no Fig. 9 runs")
     final, ref = fig.get("a", "final"), fig.get("a", other)
     if final is None or ref is None:
         return _missing("no P0 curves")
-    if np.nanmax(final[3]) < 2:
-        measured = _p0_configurations(data, other, what)
-        if measured is not None:
-            return measured
+    measured = _p0_configurations(data, other, what, more_than=int(np.nanmax(final[3])))
+    if measured is not None:
+        return measured
     x = final[0]
     ref_err = np.nan_to_num(np.interp(x, ref[0], ref[2]))  # Percus-Yevick: exact
     n = final[3] if other == "percus_yevick" else np.minimum(final[3], ref[3].min())
