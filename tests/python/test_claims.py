@@ -4,6 +4,7 @@
 uses has a control: synthetic figure data on which it must agree and data on which it must
 not (time-reversed, swapped, flat, shifted), so that no row of the report cannot fail."""
 
+import dataclasses
 import math
 import os
 import sys
@@ -439,13 +440,14 @@ CONTROLS = {
     # per claim where one statistic serves two claims: the side of the bell that must fail
     "bell-rising": (report(fig4=fig4(BELL)), report(fig4=fig4(0.62 - 0.05 * X))),
     "bell-falling": (report(fig4=fig4(BELL)), report(fig4=fig4(0.58 + 0.05 * X))),
-    "ramp_up_minus_steady": (report(fig4=fig4(BELL, up1=BELL, down=BELL + 0.01)),
+    # rule near: within a tenth of the gap (0.003 here), beyond it
+    "ramp_up_minus_steady": (report(fig4=fig4(BELL, up1=BELL, down=BELL + 0.03)),
                              report(fig4=fig4(BELL, up1=BELL - 0.01, down=BELL + 0.01))),
     "ramp_down_minus_up": (report(fig4=fig4(BELL, up1=BELL, down=BELL + 0.01)),
                            report(fig4=fig4(BELL, up1=BELL, down=BELL - 0.01))),
-    "ramp_up2_minus_down": (report(fig4=fig4(BELL, up1=BELL, down=BELL + 0.01,
-                                             up2=BELL + 0.01)),
-                            report(fig4=fig4(BELL, up1=BELL, down=BELL + 0.01, up2=BELL))),
+    "ramp_up2_minus_down": (report(fig4=fig4(BELL, up1=BELL, down=BELL + 0.03,
+                                             up2=BELL + 0.03)),
+                            report(fig4=fig4(BELL, up1=BELL, down=BELL + 0.03, up2=BELL))),
     "low_ramp_frozen": (
         report(fig4=fig4(BELL).param("low:down_change", 0.0002, 0.0005)
                .param("ramp:down_change", 0.01, 0.0005)),
@@ -1143,7 +1145,7 @@ def test_ramp_reduction_decides_only_the_verdicts_it_cannot_change():
     levels each) and the verdict stays the same anywhere within it."""
     by_id = {c.id: c for c in REGISTER}
     summary = {"ramp_taps_per_level": [1000]}
-    fig = fig4(BELL, up1=BELL, down=BELL + 0.01, up2=BELL + 0.01)
+    fig = fig4(BELL, up1=BELL, down=BELL + 0.03, up2=BELL + 0.03)
     small = _ramp_levels_rows([(1, 0, 0.001), (5, 0, 0.0005), (15, 1, 0.0002), (20, 1, 0.0)])
 
     def outcome(claim_id, rows):
@@ -1152,24 +1154,47 @@ def test_ramp_reduction_decides_only_the_verdicts_it_cannot_change():
         (row,) = claims.evaluate([by_id[claim_id]], data)
         return row.verdict
 
-    # down - up1 = 0.01 against shifts of at most 0.001 + 0.0002 (+ t err): decided
+    # down - up1 = 0.03 against shifts of at most 0.001 + 0.0002 (+ t err): decided
     text = outcome("reversible-above", small)
     assert text.startswith("agrees (at 1000 taps per level") and "up1: levels 1, 5" in text
     assert outcome("reversible-falls", small).startswith("agrees (at 1000 taps per level")
     # a shift as large as the gap could undo it: undecided, and says by how much
-    large = _ramp_levels_rows([(1, 0, 0.02), (5, 0, 0.0), (15, 1, 0.0), (20, 1, 0.0)])
+    large = _ramp_levels_rows([(1, 0, 0.04), (5, 0, 0.0), (15, 1, 0.0), (20, 1, 0.0)])
     text = outcome("reversible-above", large)
     assert text.startswith("undecided (scale: needs the paper's ramp_taps; at this scale it "
-                           "agrees; the paper's 4000 could move it by 0.02")
+                           "agrees; the paper's 4000 could move it by 0.04")
     # one measured level of a branch bounds nothing; up2 was not measured at all
     assert outcome("reversible-above", small[1:]).startswith("undecided (scale")
     assert outcome("reversible-retraced", small).startswith("undecided (scale")
-    # a zero claim that disagrees at this scale is not decided when the interval reaches zero
+    # "nearly the same" disagrees at this scale at both ends of the interval the shift
+    # allows (|0.006 +- 0.012| beyond a tenth of the gap, 0.0024) but agrees at zero, inside
+    # it: not decided
+    wide = _ramp_levels_rows([(1, 0, 0.012), (5, 0, 0.0), (15, 1, 0.0), (20, 1, 0.0)])
     near = claims.ReportData(dict(report().summary, **summary),
-                             {"fig4": fig4(BELL, up1=BELL - 0.0005, down=BELL + 0.01).data()},
-                             questions={"ramp_levels": small})
+                             {"fig4": fig4(BELL, up1=BELL + 0.006, down=BELL + 0.03).data()},
+                             questions={"ramp_levels": wide})
     (row,) = claims.evaluate([by_id["ramp-up-near-squares"]], near)
-    assert row.verdict.startswith("undecided (scale")
+    assert row.verdict.startswith("undecided (scale: needs the paper's ramp_taps; at this "
+                                  "scale it disagrees")
     # the alpha claim has no bound in <Phi^c>: it stays undecided at this scale
     assert claims.ramp_reduction_shift(by_id["gradient-no-hysteresis"], near,
                                        claims.ramp_reduction_bounds(near)) is None
+
+
+def test_near_rule_agrees_within_a_tenth_of_the_effect_and_says_when_it_cannot_tell():
+    """'Nearly the same': a real but small difference agrees (the strict zero rule would call
+    it a disagreement), one beyond a tenth of the effect disagrees, and a band that straddles
+    the tenth, or a measure without an effect, is undecided."""
+    claim = {c.id: c for c in REGISTER}["reversible-retraced"]
+    assert claim.rule == "near"
+    tenth = claims.NEAR_FRACTION * 0.02
+    band = claims.t_quantile(9)
+    small = claims.Measure(0.0002, 0.0001 / band, 9, effect=0.02)   # |v| + band = 3e-4 < 2e-3
+    assert claims.verdict(claim, small) == "agrees"
+    assert claims.verdict(dataclasses.replace(claim, rule="zero"), small) == "disagrees"
+    assert claims.verdict(claim, claims.Measure(0.005, 0.001 / band, 9, effect=0.02)) == \
+        "disagrees"
+    straddle = claims.Measure(tenth, 0.0005 / band, 9, effect=0.02)
+    assert claims.verdict(claim, straddle).startswith("undecided (|value| +- t sem")
+    assert claims.verdict(claim, claims.Measure(0.0, 1e-5, 9)).startswith(
+        "undecided (no effect")

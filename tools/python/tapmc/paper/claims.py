@@ -15,6 +15,10 @@ error); a rule turns a measure into a verdict:
   |value| <= t * err and t * err is smaller than the measure's ``effect``, the size of the
   effect the claim denies (e.g. the change Percus-Yevick predicts between the two packing
   fractions); undecided when the data are too uncertain to tell zero from that effect;
+* ``near``: for the paper's "nearly" / "approximately the same": agrees when
+  |value| + t * err is within NEAR_FRACTION (a tenth) of the measure's ``effect`` (e.g. the
+  hysteresis gap the two branches are compared against), disagrees when |value| - t * err
+  exceeds it, undecided in between (a difference can be real and still small);
 * ``fit``: agrees when the chi-square of the fit has a p-value of at least 1 %;
 * ``pattern``: a claim about several measures at once (e.g. "not unique at small eps, unique
   at larger eps"), each decided by the fits' own intervals; the statistic gives 1 when the
@@ -55,7 +59,10 @@ XI_CHECK_ROUNDING = 1e-3
 PAPER_SCALE = {"N": 4096, "L": 32.0, "taps": 4000, "ramp_taps": 4000, "eta": 1e-7}
 
 KINDS = ("model", "check")
-RULE_NAMES = ("value", "range", "sign", "zero", "fit", "pattern", "check", "none")
+RULE_NAMES = ("value", "range", "sign", "zero", "near", "fit", "pattern", "check", "none")
+#: "nearly the same" (rule ``near``): within a tenth of the effect the claim is measured
+#: against, the share below which the ramp-levels text also calls a shift negligible
+NEAR_FRACTION = 0.1
 ASPECTS = ("size", "taps", "ramp_taps", "eta")
 
 
@@ -1800,6 +1807,16 @@ def verdict(claim, m):
         if signed < -band:
             return "disagrees"
         return "undecided (within the uncertainty of zero)"
+    if rule == "near":
+        if m.effect is None or not np.isfinite(m.effect) or m.effect == 0:
+            return "undecided (no effect to compare the difference with)"
+        tolerance = NEAR_FRACTION * abs(m.effect)
+        if abs(m.value) + band <= tolerance:
+            return "agrees"
+        if abs(m.value) - band > tolerance:
+            return "disagrees"
+        return (f"undecided (|value| +- t sem {fmt(band)} straddles a tenth of the effect, "
+                f"{fmt(tolerance)})")
     if rule == "zero":
         if abs(m.value) > band:
             return "disagrees"

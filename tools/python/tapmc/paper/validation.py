@@ -41,6 +41,10 @@ RULES = {
     "zero": "disagrees when |value| > t sem; agrees when |value| <= t sem and t sem is below "
             "the effect the claim denies (given in the verdict when it is not); undecided "
             "otherwise",
+    "near": "for the paper's 'nearly' or 'approximately the same': agrees when |value| + t "
+            f"sem is within {claims.NEAR_FRACTION:g} times the effect the claim is measured "
+            f"against (given in the tolerance), disagrees when |value| - t sem exceeds "
+            "it, undecided in between",
     "fit": f"agrees when the fit's test has a p-value of at least {claims.FIT_P_VALUE:g} "
            "(its chi-square; across realizations, Hotelling's T^2 of the law over log-spaced "
            "bins of taps with their covariance between realizations), disagrees otherwise",
