@@ -444,13 +444,23 @@ def ramp_levels(args):
         print(f"level {k} (branch {int(level[-1, 2])}, sqrt(eps) {sq:g}, from the {start}): "
               f"<Phi^c> {short.mean:.4f} after {P} taps, {full.mean:.4f} after {len(longer)}",
               flush=True)
-    header = ["level", "branch", "sqrt_eps", "taps", "taps_long", "phi_c", "phi_c_sem",
-              "phi_c_long", "phi_c_long_sem", "start"]
-    path = Path(args.out) / "ramp_levels.csv"
-    if path.is_file():  # keep the levels measured before and not listed now
+        # after every level: a session that ends before the last level keeps the others
+        write_ramp_levels(Path(args.out) / "ramp_levels.csv", rows)
+
+
+RAMP_LEVELS_HEADER = ["level", "branch", "sqrt_eps", "taps", "taps_long", "phi_c", "phi_c_sem",
+                      "phi_c_long", "phi_c_long_sem", "start"]
+
+
+def write_ramp_levels(path, rows):
+    """ramp_levels.csv with ``rows`` and the rows of the levels measured before and not in
+    ``rows`` (rows written before the column 'start' existed came from the run)."""
+    header = RAMP_LEVELS_HEADER
+    rows = list(rows)
+    if path.is_file():
         with open(path, newline="") as handle:
             table = list(csv.reader(handle))
-        if table and table[0] == header[:len(table[0])]:   # rows from before 'start': the run
+        if table and table[0] == header[:len(table[0])]:
             listed = {int(r[0]) for r in rows}
             rows += [r + ["run"] * (len(header) - len(r)) for r in table[1:]
                      if r and int(r[0]) not in listed]
