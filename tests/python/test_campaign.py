@@ -180,6 +180,22 @@ def test_bad_input_names_run_and_log(tmp_path):
         campaign.result("bad_bc")
 
 
+def test_run_stopped_by_a_signal_says_so(tmp_path):
+    """A LAMMPS stopped from outside (SIGTERM) is named as such, not by a line of its echoed
+    input that happens to mention ERROR (in.ramp's check of bc)."""
+    fake = tmp_path / "lmp_stopped"
+    fake.write_text("#!/bin/sh\ncat > log.lammps <<'EOF'\n"
+                    "if \"${bc} != pbc\" then \"print 'ERROR: bc'\" \"quit 2\"\nEOF\n"
+                    "kill -TERM $$\n")
+    fake.chmod(0o755)
+    spec = RunSpec("stopped", CONSTANT_EPS, dict(TINY, taps=3), seed=1)
+    campaign = Campaign(tmp_path / "c", [spec], lmp=str(fake), jobs=1)
+    with pytest.raises(CampaignError) as err:
+        campaign.run(progress=False)
+    assert "run 'stopped' failed: LAMMPS was stopped by signal SIGTERM" in str(err.value)
+    assert "ERROR: bc" in (tmp_path / "c" / "runs" / "stopped" / "log.lammps").read_text()
+
+
 def test_runspec_and_campaign_validation(tmp_path):
     with pytest.raises(ValueError, match="name = 'a b'"):
         RunSpec("a b", CONSTANT_EPS)

@@ -6,6 +6,7 @@ decides what runs and when; starting processes is :mod:`.launch`'s job, repairin
 import json
 import os
 import platform
+import signal
 import sys
 import threading
 import time
@@ -240,8 +241,14 @@ class Campaign:
         text = log.read_text(errors="replace") if log.exists() else ""
         error = ""
         if returncode != 0 or "Total wall time" not in text:
-            error = (run_folder.log_error(log) or run_folder.log_error(run_dir / "screen.txt")
-                     or f"LAMMPS exited with code {returncode}")
+            own = run_folder.log_error(log) or run_folder.log_error(run_dir / "screen.txt")
+            if returncode is not None and returncode < 0 and not own.startswith("ERROR"):
+                # stopped from outside: a line of the echoed input that mentions ERROR is no
+                # error of the run
+                error = (f"LAMMPS was stopped by signal {_signal_name(-returncode)} (the run "
+                         "resumes from its latest restart file when the campaign runs again)")
+            else:
+                error = own or f"LAMMPS exited with code {returncode}"
         elif spec.taps is not None and run_folder.taps_done(run_dir / spec.taps_file) != spec.taps:
             error = (f"the per-tap file {spec.taps_file} ends at step "
                      f"{run_folder.taps_done(run_dir / spec.taps_file)}, expected {spec.taps}")
@@ -431,3 +438,10 @@ class Campaign:
             raise CampaignError(f"{len(errors)} of {len(pending)} runs failed:\n  "
                                 + "\n  ".join(errors))
         return self
+
+
+def _signal_name(number):
+    try:
+        return signal.Signals(number).name
+    except ValueError:
+        return str(number)
