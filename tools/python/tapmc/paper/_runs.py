@@ -96,6 +96,12 @@ def ramp_run(scale, bc, seed):
     return _RunSpec()(f"ramp_{bc}_s{seed}", _input(RAMP), variables, int(seed))
 
 
+#: The ramp's branches in the order of in.ramp's branch column (0, 1, 2).
+RAMP_BRANCHES = ("up1", "down", "up2")
+#: (marker, legend words) of each branch of the ramp beyond (sqrt eps)* (Figs. 4 and 6).
+RAMP_BRANCH_STYLE = {"up1": ("o", "increase"), "down": ("^", "decrease"),
+                     "up2": ("v", "increase again")}
+
 #: Name prefix of the ramp that stays below (sqrt eps)* (Fig. 4, section III.B).
 RAMP_BELOW_PREFIX = "ramplow_"
 

@@ -52,13 +52,13 @@ from ._steady_state import BC, steady_last
 
 NAME = "fig4"
 #: (marker, label) of each branch of the ramp beyond (sqrt eps)* and of the ramp below it.
-BRANCH_STYLE = {"up1": ("o", "increase"), "down": ("^", "decrease"), "up2": ("v", "increase again")}
+BRANCH_STYLE = _runs.RAMP_BRANCH_STYLE
 LOW_BRANCH_STYLE = {"up1": ("D", "increase"), "down": ("<", "decrease"),
                     "up2": (">", "increase again")}
 #: the ramps of the pair: (CSV tag, run name prefix, branch style, legend words).
 RAMPS = (("ramp", "ramp_", BRANCH_STYLE, "ramp beyond 0.15"),
          ("low", _runs.RAMP_BELOW_PREFIX, LOW_BRANCH_STYLE, "ramp below 0.15"))
-BRANCHES = ("up1", "down", "up2")
+BRANCHES = _runs.RAMP_BRANCHES
 
 
 def runs(scale, seeds):

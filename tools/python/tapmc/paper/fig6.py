@@ -29,7 +29,8 @@ height of its initial profile (:func:`profile_height`); the error is over seeds,
 seed the straight line's own (too small: the claim's statistic uses the scatter of the levels).
 
 CSV panels: ``a`` (series ``initial``, ``final``, ``fit:initial``, ``fit:final``; x = z/R),
-``b`` (series ``bell:alpha`` and ``ramp:up1``, ``ramp:down``, ``ramp:up2``: x = sqrt(eps)), ``params`` (``initial:alpha``, ``final:alpha``
+``b`` (series ``bell:alpha`` and ``ramp:up1``, ``ramp:down``, ``ramp:up2``: x = sqrt(eps)),
+``params`` (``initial:alpha``, ``final:alpha``
 over seeds; ``final:<eq. 7 parameter>``, ``window_lo``, ``window_hi``, ``eps``).
 """
 
@@ -48,10 +49,7 @@ from ._profile_runs import BC, nearest_eps_runs, profiles, radius
 NAME = "fig6"
 #: upper end of the gradient window as a fraction of the packing height (22R of 28R).
 WINDOW_TOP_FRACTION = 22.0 / 28.0
-#: the ramp's branches (in.ramp's branch column 0, 1, 2), as Fig. 4 names them
-RAMP_BRANCHES = ("up1", "down", "up2")
-RAMP_STYLE = {"up1": ("o", "increase"), "down": ("^", "decrease"),
-              "up2": ("v", "increase again")}
+RAMP_BRANCHES, RAMP_STYLE = _runs.RAMP_BRANCHES, _runs.RAMP_BRANCH_STYLE
 
 
 def runs(scale, seeds):
