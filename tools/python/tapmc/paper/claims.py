@@ -46,6 +46,7 @@ from scipy import stats
 from tapmc.fluctuations import DEFAULT_BATCHES
 
 from . import _plotting as P
+from ._runs import RAMP_BRANCHES
 
 #: The register, next to this module.
 REGISTER = Path(__file__).with_name("claims.toml")
@@ -300,20 +301,25 @@ def _weighted_line(x, y, err):
     return float(coef[1]), float(math.sqrt(cov[1, 1] * scale)), dof
 
 
+def _common_x(a, b):
+    """Index pairs (i, k) of the x common to the curves a and b ((x, mean, sem, n) each)."""
+    pairs = []
+    for i, x in enumerate(a[0]):
+        match = np.isclose(b[0], x)
+        if np.any(match):
+            pairs.append((i, int(np.argmax(match))))
+    return pairs
+
+
 def _mean_difference(a, b):
     """Mean over the common x of the curves a - b ((x, mean, sem, n) each), its error and dof;
     None when they share no x."""
-    diffs, errs, ns = [], [], []
-    for x, m, s, n in zip(*a):
-        match = np.isclose(b[0], x)
-        if np.any(match):
-            k = int(np.argmax(match))
-            diffs.append(m - b[1][k])
-            errs.append(math.hypot(s, b[2][k]))
-            ns.append(min(n, b[3][k]))
-    if not diffs:
+    pairs = _common_x(a, b)
+    if not pairs:
         return None
-    errs = np.asarray(errs)
+    diffs = [a[1][i] - b[1][k] for i, k in pairs]
+    errs = np.array([math.hypot(a[2][i], b[2][k]) for i, k in pairs])
+    ns = [min(a[3][i], b[3][k]) for i, k in pairs]
     err = float(np.sqrt(np.sum(errs**2)) / len(errs)) if np.all(np.isfinite(errs)) else math.nan
     return float(np.mean(diffs)), err, _steady_dof(int(np.min(ns)), err), len(diffs)
 
@@ -1154,8 +1160,7 @@ def alpha_bell(data, claim):
 
 def _paired_levels(a, b):
     """a - b at the sqrt(eps) common to the branch curves a and b ((x, mean, sem, n) each)."""
-    return np.array([m - b[1][int(np.argmax(np.isclose(b[0], x)))]
-                     for x, m in zip(a[0], a[1]) if np.any(np.isclose(b[0], x))])
+    return np.array([a[1][i] - b[1][k] for i, k in _common_x(a, b)])
 
 
 def alpha_ramp_hysteresis(data, claim):
@@ -1872,8 +1877,6 @@ class Row:
         return self.verdict.split(" ")[0]
 
 
-#: the ramp's branches as ramp_levels.csv numbers them (in.ramp's branch column)
-RAMP_LEVEL_BRANCHES = ("up1", "down", "up2")
 #: the ramp statistics made of <Phi^c> of the branches, and the branches each reads: what a
 #: shift of the levels (the campaign's taps per level against the paper's) can move
 RAMP_REDUCTION_BRANCHES = {"ramp_down_minus_up": ("down", "up1"),
@@ -1896,7 +1899,7 @@ def ramp_reduction_bounds(data):
             continue
         shift = float(r["phi_c_long"]) - float(r["phi_c"])
         err = math.hypot(float(r["phi_c_sem"]), float(r["phi_c_long_sem"]))
-        branch = RAMP_LEVEL_BRANCHES[int(float(r["branch"]))]
+        branch = RAMP_BRANCHES[int(float(r["branch"]))]   # in.ramp's branch column
         found.setdefault(branch, []).append((abs(shift) + t_quantile(WITHIN_RUN_DOF) * err,
                                              int(float(r["level"]))))
     return {b: (max(v)[0], sorted(level for _, level in v)) for b, v in found.items()

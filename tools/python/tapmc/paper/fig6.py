@@ -49,7 +49,6 @@ from ._profile_runs import BC, nearest_eps_runs, profiles, radius
 NAME = "fig6"
 #: upper end of the gradient window as a fraction of the packing height (22R of 28R).
 WINDOW_TOP_FRACTION = 22.0 / 28.0
-RAMP_BRANCHES, RAMP_STYLE = _runs.RAMP_BRANCHES, _runs.RAMP_BRANCH_STYLE
 
 
 def runs(scale, seeds):
@@ -158,12 +157,12 @@ def ramp_alpha(campaign, bc=_steady_state.BC, prefix="ramp_"):
             if step == 0 or not len(row):
                 continue
             fit = profile_gradient(block[:, 0] / r, block[:, 2], window=window, boundary=bc)
-            branch = RAMP_BRANCHES[int(tab["branch"][row[0]])]
+            branch = _runs.RAMP_BRANCHES[int(tab["branch"][row[0]])]
             key = round(float(sqrt_eps[row[0]]), 9)
             collected[branch][key].append((float(fit.params["alpha"]),
                                            float(fit.errors["alpha"])))
     out = {}
-    for branch in RAMP_BRANCHES:
+    for branch in _runs.RAMP_BRANCHES:
         by_sq = collected.get(branch)
         if not by_sq:
             continue
@@ -243,7 +242,7 @@ def _bell_panel(ax, bell, ramp, table):
         ax.errorbar(sq, mean, yerr=np.nan_to_num(sem), marker="s", ls="-", color="k",
                     capsize=2, label="after the taps")
     for branch, (sq, mean, sem, n) in ramp.items():
-        marker, label = RAMP_STYLE[branch]
+        marker, label = _runs.RAMP_BRANCH_STYLE[branch]
         table.add("b", f"ramp:{branch}", sq, mean, sem, n)
         ax.errorbar(sq, mean, yerr=np.nan_to_num(sem), marker=marker, mfc="none", ls="-",
                     lw=0.8, capsize=2, label=f"ramp: {label}")
