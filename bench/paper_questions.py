@@ -63,6 +63,15 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               every level end); its rows are compared with the campaign's (column start:
               run, replay (identical) or replay (differs from step S)).
 
+  ramp-pores  Does nu, the mean normalised pore volume, have the reversible-irreversible
+              behaviour of <Phi^c> (section IV.B)? The packing at the end of every level of
+              the ramp whose restart file is kept (the run's folder, and the level ends of a
+              replay in DIR/partial/ramp_levels/<run>_replay; --replay runs the ramp again up
+              to the ends of --levels that have neither) is dumped and analysed as Fig. 10
+              does (tapmc-pores, the same statistics box): nu per level with the spatial
+              jackknife over 4 x 4 lateral blocks (ramp_pores.csv; a level measured before
+              keeps its row).
+
   fit-surrogates
               Does one 4000-tap run fix the triplet (X_inf, B, tau) of eq. 3 (and eq. 4's
               parameters), and do they depend on the range of taps fitted (section III.B)?
@@ -138,6 +147,9 @@ Usage (from the repository; minutes on one core, run under nice):
     bench/paper_questions.py ramp-levels [--out DIR] [--lmp EXE] [--campaign DIR]
                                          [--run ramp_pbc_s1] [--levels K ...] [--extend 3000]
                                          [--work DIR] [--replay]
+    bench/paper_questions.py ramp-pores  [--out DIR] [--lmp EXE] [--campaign DIR]
+                                         [--run ramp_pbc_s1] [--levels K ...] [--work DIR]
+                                         [--replay]
     bench/paper_questions.py theta0 [--out DIR] [--lmp EXE] [--seeds 1 2 3 4]
                                     [--stop change|drift] [--eta 1e-7] [--N 1024]
     bench/paper_questions.py dmax   (the same options as theta0)
@@ -523,6 +535,114 @@ def _replay_agreement(replayed, table):
     if same.all():
         return "identical"
     return f"differs from step {int(a[np.argmin(same), 0])}"
+
+
+RAMP_PORES_HEADER = ["level", "branch", "sqrt_eps", "step", "nu", "nu_sem", "window_top",
+                     "source"]
+#: writes the packing of a restart file as the pore-dump runs write theirs (id x y z radius)
+DUMP_OF_RESTART = ("read_restart ${restart}\n"
+                   "write_dump all custom dump.$(step).lammpstrj id x y z radius "
+                   "modify format float %.10g\n")
+
+
+def _level_restarts(folder, P):
+    """dict level -> restart file at its end (restart.<(level + 1) P>) in ``folder``."""
+    out = {}
+    for path in Path(folder).glob("restart.*"):
+        step = path.name.split(".", 1)[1]
+        if step.isdigit() and int(step) > 0 and int(step) % P == 0:
+            out[int(step) // P - 1] = path
+    return out
+
+
+def ramp_pores(args):
+    from tapmc.paper import _pores, _runs
+    from tapmc.pores import jackknife_error, read_pores
+
+    lmp = lmp_command(args.lmp)
+    variables, seed = _manifest_run(args.campaign, args.run)
+    P, nlev = int(variables["P"]), int(variables["nlev"])
+    sqrt0, dsqrt = float(variables["sqrt0"]), float(variables["dsqrt"])
+    run_dir = Path(args.campaign) / "runs" / args.run
+    work = Path(args.work) if args.work else Path(args.out) / PARTIAL / "ramp_levels"
+    folder = work / f"{args.run}_pores"
+    csv_path = Path(args.out) / "ramp_pores.csv"
+    # where each level's packing comes from: a dump made before (its source as the CSV
+    # recorded it), else a restart file at its end, the run's before a replay's
+    recorded = {}
+    if csv_path.is_file():
+        with open(csv_path, newline="") as handle:
+            recorded = {int(r["level"]): r["source"] for r in csv.DictReader(handle)}
+    sources = {k: (path, "replay") for k, path in
+               _level_restarts(work / f"{args.run}_replay", P).items()}
+    sources.update({k: (path, "run") for k, path in _level_restarts(run_dir, P).items()})
+    for path in folder.glob("dump.*.lammpstrj"):
+        step = path.name.split(".")[1]
+        if step.isdigit() and int(step) % P == 0 and int(step) // P - 1 not in sources:
+            sources[int(step) // P - 1] = (None, recorded.get(int(step) // P - 1, "run"))
+    last = 3 * nlev - 3
+    for k in args.levels or ():
+        if not 0 <= k <= last:
+            sys.exit(f"paper_questions: --levels {k}: allowed levels of {args.run} are 0 .. "
+                     f"{last}")
+    missing = sorted(k for k in args.levels or () if k not in sources)
+    if missing and not args.replay:
+        sys.exit(f"paper_questions: no restart file at the end of levels {missing} of "
+                 f"{args.run} (--replay runs the ramp again up to them)")
+    if missing:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            table = np.atleast_2d(np.genfromtxt(run_dir / "taps.dat", invalid_raise=False))
+        for k in missing:
+            restart, _, start = replay_ramp(lmp, args.run, variables, seed, (k + 1) * P, work,
+                                            table)
+            sources[k] = (restart, start)
+    if not sources:
+        sys.exit(f"paper_questions: no level-end restart file of {args.run} in {run_dir} or "
+                 f"{work / (args.run + '_replay')} (--levels K --replay runs the ramp again)")
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / "in.dump").write_text(DUMP_OF_RESTART)
+    dumps = {}
+    for k, (restart, _) in sorted(sources.items()):
+        dump = folder / f"dump.{(k + 1) * P}.lammpstrj"
+        if not dump.is_file():
+            done = subprocess.run([*lmp, "-log", "none", "-screen", "none", "-in", "in.dump",
+                                   "-var", "restart", str(Path(restart).resolve())],
+                                  cwd=folder, capture_output=True, text=True)
+            if done.returncode != 0 or not dump.is_file():
+                sys.exit(f"paper_questions: dumping {restart} failed:\n{done.stdout[-1500:]}"
+                         f"{done.stderr[-1500:]}")
+        dumps[k] = dump
+    # every level dumped so far in one analysis with one statistics box, as Fig. 10 takes one
+    # box for every dump of its run: a level measured later gets the same box as the others
+    top = min(_pores.window_top(d, float(variables.get("R", 0.5))) for d in dumps.values())
+    prefix = _runs.run_pores(list(dumps.values()), folder / "pores",
+                             ["--radii", "--z", f"{_pores.WINDOW_BOTTOM:g}:{top:.4f}",
+                              "--frame-hist", "--pores"])
+    pores = read_pores(prefix)
+    rows = []
+    for k in sorted(dumps):
+        step = (k + 1) * P
+        branch, sq = _runs.ramp_level(k, nlev, sqrt0, dsqrt)
+        nu = pores.distribution(step).nu
+        sem = jackknife_error([r.nu for r in pores.jackknife(step)])
+        rows.append([k, branch, f"{sq:.6g}", step, f"{nu:.8f}", f"{sem:.3g}", f"{top:.4f}",
+                     sources[k][1]])
+        print(f"level {k} (branch {branch}, sqrt(eps) {sq:g}): nu = {nu:.5f} +- {sem:.5f}",
+              flush=True)
+    write_ramp_pores(csv_path, rows)
+
+
+def write_ramp_pores(path, rows):
+    """ramp_pores.csv with ``rows`` and the rows of earlier levels not in ``rows``."""
+    rows = list(rows)
+    if path.is_file():
+        with open(path, newline="") as handle:
+            table = list(csv.reader(handle))
+        if table and table[0] == RAMP_PORES_HEADER:
+            listed = {int(r[0]) for r in rows}
+            rows += [r for r in table[1:] if r and int(r[0]) not in listed]
+    write_csv(path, RAMP_PORES_HEADER, sorted(rows, key=lambda r: int(r[0])))
 
 
 def scan_file_name(stem, stop, N):
@@ -1084,7 +1204,7 @@ def main(argv=None):
     sub = parser.add_subparsers(dest="command", required=True)
     for name in ("first-tap", "noise-floor", "spectral-window", "pbc-course", "integrity",
                  "early-taps", "initial-packing", "p0-configs", "lateral-first-tap",
-                 "ramp-levels", "theta0", "dmax", "p0-fluid", "fit-surrogates"):
+                 "ramp-levels", "ramp-pores", "theta0", "dmax", "p0-fluid", "fit-surrogates"):
         p = sub.add_parser(name)
         p.add_argument("--out", default=DEFAULT_OUT, type=Path)
         p.add_argument("--lmp", default=None)
@@ -1112,13 +1232,17 @@ def main(argv=None):
     sub.choices["fit-surrogates"].add_argument("--surrogates", type=int, default=None)
     sub.choices["fit-surrogates"].add_argument("--seed", type=int, default=1)
     for name in ("spectral-window", "pbc-course", "integrity", "early-taps", "ramp-levels",
-                 "fit-surrogates"):
+                 "ramp-pores", "fit-surrogates"):
         sub.choices[name].add_argument("--campaign", default=CAMPAIGN_RUN.parents[1])
     sub.choices["ramp-levels"].add_argument("--run", default="ramp_pbc_s1")
     sub.choices["ramp-levels"].add_argument("--levels", type=int, nargs="+", default=None)
     sub.choices["ramp-levels"].add_argument("--extend", type=int, default=RAMP_EXTEND)
     sub.choices["ramp-levels"].add_argument("--work", default=None, type=Path)
     sub.choices["ramp-levels"].add_argument("--replay", action="store_true")
+    sub.choices["ramp-pores"].add_argument("--run", default="ramp_pbc_s1")
+    sub.choices["ramp-pores"].add_argument("--levels", type=int, nargs="+", default=None)
+    sub.choices["ramp-pores"].add_argument("--work", default=None, type=Path)
+    sub.choices["ramp-pores"].add_argument("--replay", action="store_true")
     fluid = sub.choices["p0-fluid"]
     fluid.add_argument("--phi", type=float, nargs="+", default=list(P0_FLUID_PHI))
     fluid.add_argument("--configs", type=int, default=P0_FLUID_CONFIGS)
@@ -1145,7 +1269,8 @@ def main(argv=None):
      "spectral-window": spectral_window, "pbc-course": pbc_course, "integrity": integrity,
      "early-taps": early_taps,
      "initial-packing": initial_packing, "p0-configs": p0_configs,
-     "lateral-first-tap": lateral_first_tap, "ramp-levels": ramp_levels, "theta0": theta0_scan, "dmax": dmax_scan,
+     "lateral-first-tap": lateral_first_tap, "ramp-levels": ramp_levels,
+     "ramp-pores": ramp_pores, "theta0": theta0_scan, "dmax": dmax_scan,
      "p0-fluid": p0_fluid, "fit-surrogates": fit_surrogates}[args.command](args)
 
 

@@ -100,3 +100,56 @@ def test_ramp_levels_continues_the_kept_level_ends(tmp_path):
     text = "\n".join(questions.render_section(tmp_path / "r"))
     assert "1 (first increase; replayed)" in text
     assert "the replay's taps against the campaign's: identical." in text
+
+
+def test_ramp_pores_measures_nu_at_the_kept_level_ends(tmp_path):
+    """bench/paper_questions.py ramp-pores on a tiny finished ramp: nu at every kept level end
+    (the pore analysis of Fig. 10 on the packing of the restart file), level, branch and
+    sqrt(eps) as in.ramp numbers them; a level with no restart file is refused naming it, and a
+    later call for some levels keeps the rows of the others."""
+    spec = RunSpec("ramp_pbc_s1", SOURCE / "examples" / "paper" / "in.ramp", RAMP, seed=3)
+    Campaign(tmp_path / "c", [spec], lmp=str(LMP), jobs=1).run(progress=False)
+    out = tmp_path / "q"
+
+    def ramp_pores(*extra):
+        return subprocess.run([sys.executable, str(SOURCE / "bench" / "paper_questions.py"),
+                               "ramp-pores", "--lmp", str(LMP), "--campaign", str(tmp_path / "c"),
+                               "--work", str(tmp_path / "w"), "--out", str(out), *extra],
+                              capture_output=True, text=True, timeout=300)
+
+    done = ramp_pores()
+    assert done.returncode == 0, done.stderr
+    with open(out / "ramp_pores.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    # 3 levels up (0.05, 0.15, 0.25), down (0.15, 0.05), up again (0.15, 0.25)
+    assert [(r["level"], r["branch"], r["sqrt_eps"], r["step"]) for r in rows] == [
+        ("0", "0", "0.05", "10"), ("1", "0", "0.15", "20"), ("2", "0", "0.25", "30"),
+        ("3", "1", "0.15", "40"), ("4", "1", "0.05", "50"), ("5", "2", "0.15", "60"),
+        ("6", "2", "0.25", "70")]
+    nus = [float(r["nu"]) for r in rows]
+    assert all(0.01 < nu < 0.5 for nu in nus) and len(set(nus)) > 1
+    assert all(float(r["nu_sem"]) > 0 and r["source"] == "run" for r in rows)
+    text = "\n".join(questions.render_section(out))
+    assert "``ramp-pores``" in text and "0 (first increase)" in text and "4 (decrease)" in text
+    refused = ramp_pores("--levels", "9")
+    assert refused.returncode != 0 and "--levels 9" in refused.stderr and "0 .. 6" in refused.stderr
+    # a level whose restart file is gone: measured again from its dump, the same row
+    (tmp_path / "c" / "runs" / spec.name / "restart.20").unlink()
+    again = ramp_pores("--levels", "1")
+    assert again.returncode == 0, again.stderr
+    with open(out / "ramp_pores.csv", newline="") as f:
+        assert list(csv.DictReader(f)) == rows
+    # neither restart file nor dump (a new work folder): refused, naming the way out; the
+    # levels still there are measured, the row of the gone one kept
+    gone = subprocess.run([sys.executable, str(SOURCE / "bench" / "paper_questions.py"),
+                           "ramp-pores", "--lmp", str(LMP), "--campaign", str(tmp_path / "c"),
+                           "--work", str(tmp_path / "w2"), "--out", str(out), "--levels", "1"],
+                          capture_output=True, text=True, timeout=300)
+    assert gone.returncode != 0 and "levels [1]" in gone.stderr and "--replay" in gone.stderr
+    kept = subprocess.run([sys.executable, str(SOURCE / "bench" / "paper_questions.py"),
+                           "ramp-pores", "--lmp", str(LMP), "--campaign", str(tmp_path / "c"),
+                           "--work", str(tmp_path / "w2"), "--out", str(out)],
+                          capture_output=True, text=True, timeout=300)
+    assert kept.returncode == 0, kept.stderr
+    with open(out / "ramp_pores.csv", newline="") as f:
+        assert [r["level"] for r in csv.DictReader(f)] == [r["level"] for r in rows]

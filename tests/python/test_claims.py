@@ -198,6 +198,66 @@ def fig4(steady, up1=None, down=None, up2=None):
 BELL = 0.60 - 2.0 * (X - 0.15) ** 2
 
 
+def ramp_pores(gap, slope, sem=0.001, levels=(0.025, 0.05, 0.075, 0.1, 0.125)):
+    """bench/paper_questions.py ramp-pores rows of a ramp beyond (sqrt eps)*: nu on the first
+    increase 0.1 - 0.05 sqrt(eps), the decrease ``gap`` away at 0.1 with ``slope``."""
+    rows = []
+    for branch, nus in ((0, [0.1 - 0.05 * x for x in levels]),
+                        (1, [0.1 + gap + slope * (x - 0.1) for x in levels])):
+        rows += [{"branch": str(branch), "sqrt_eps": f"{x:g}", "nu": f"{nu:.8f}",
+                  "nu_sem": f"{sem:g}"} for x, nu in zip(levels, nus)]
+    return claims.ReportData(report().summary, {}, questions={"ramp_pores": rows})
+
+
+def test_nu_ramp_hysteresis_known_answer():
+    claim = BY_ID["nu-hysteresis"]
+    below, rises = claims.nu_ramp_hysteresis(ramp_pores(gap=-0.02, slope=0.05), claim)
+    # gap + slope (x - 0.1) + 0.05 x averaged over x (mean 0.075)
+    assert below.value == pytest.approx(-0.02 + 0.05 * (0.075 - 0.1) + 0.05 * 0.075)
+    # five levels, each 1e-3: the mean difference's error sqrt(2 * 5) 1e-3 / 5
+    assert below.err == pytest.approx(np.sqrt(10) * 1e-3 / 5)
+    assert below.dof == 15 and below.sign == -1 and rises.sign == 1
+    assert rises.value == pytest.approx(0.05)
+    # no ramp-pores rows: what decides it
+    (m,) = claims.nu_ramp_hysteresis(report(), claim)
+    assert "ramp-pores" in claims.verdict(claim, m)
+
+
+def ramps_turning(down_changes, sem=0.0005, n=SEEDS):
+    """Fig. 4 params of ramps turning at each sqrt(eps) of ``down_changes`` (top -> the
+    decrease minus the top level), one CSV tag per ramp."""
+    tab = fig4(BELL).param("critical_sqrt_eps", 0.15, None, 1)
+    for i, (top, change) in enumerate(sorted(down_changes.items())):
+        tab.param(f"r{i}:top_sqrt_eps", top, None, n)
+        tab.param(f"r{i}:down_change", change, sem, n, x=top)
+    return tab
+
+
+def _critical(down_changes, **kw):
+    (m,) = claims.critical_separation(report(fig4=ramps_turning(down_changes, **kw)),
+                                      BY_ID["critical-sqrt-eps"])
+    return m, claims.verdict(BY_ID["critical-sqrt-eps"], m)
+
+
+def test_critical_separation_needs_a_ramp_on_each_side_near_the_critical_value():
+    # the campaign's pair: frozen at 0.125, compacting at 0.3 -> bracket too wide to locate 0.15
+    m, v = _critical({0.125: 0.0002, 0.3: 0.018})
+    assert v.startswith("undecided") and "(0.125, 0.3]" in v and "(0.15, 0.2]" in v
+    # only the ramp beyond: no side below
+    m, v = _critical({0.3: 0.018})
+    assert v.startswith("undecided") and "no ramp turning below 0.15" in v
+    # a frozen-looking change with errors as large as the other ramp's change: within errors
+    m, v = _critical({0.125: 0.0002, 0.175: 0.002}, sem=0.001)
+    assert v.startswith("undecided") and "within the errors" in v
+    # a ramp beyond 0.15 that decompacts on the way down contradicts the paper
+    m, v = _critical({0.125: 0.0002, 0.175: -0.01})
+    assert v == "disagrees" and "does not compact on the way down" in m.shown
+    # located: (0.125, 0.175], within two ramp steps of 0.15; with one seed the batch-means
+    # error (WITHIN_RUN_DOF) decides
+    m, v = _critical({0.1: 0.0001, 0.125: 0.0002, 0.175: 0.01, 0.3: 0.018}, n=1)
+    assert v == "agrees" and "(0.125, 0.175]" in m.shown
+
+
 def fig6_ramp(gap):
     """alpha at the end of the ramp's levels (Fig. 6 bottom, one seed): the decrease is the
     first increase plus ``gap`` and a level-to-level scatter of 5e-5."""
@@ -453,6 +513,11 @@ CONTROLS = {
                .param("ramp:down_change", 0.01, 0.0005)),
         report(fig4=fig4(BELL).param("low:down_change", 0.01, 0.0005)
                .param("ramp:down_change", 0.01, 0.0005))),
+    # turning at 0.125 (frozen) and 0.175 (compacts on the way down), and the reverse
+    "critical_separation": (report(fig4=ramps_turning({0.125: 0.0002, 0.175: 0.01})),
+                            report(fig4=ramps_turning({0.125: 0.01, 0.175: 0.0002}))),
+    # nu: below its first increase on the way down and rising with sqrt(eps); the reverse
+    "nu_ramp_hysteresis": (ramp_pores(gap=-0.02, slope=0.05), ramp_pores(gap=0.02, slope=-0.05)),
     "ramp_branch_slope": (report(fig4=fig4(BELL, down=0.62 - 0.1 * X)),
                           report(fig4=fig4(BELL, down=0.58 + 0.1 * X))),
     "alpha_ramp_hysteresis": (report(fig6=fig6_ramp(0.0)), report(fig6=fig6_ramp(0.001))),
@@ -516,8 +581,10 @@ def test_missing_figures_are_undecided_with_what_decides():
         if row.claim.id == "phi-initial":
             continue
         assert row.outcome == "undecided", (row.claim.id, row.verdict)
-    none = [r for r in rows if r.claim.rule == "none"]
-    assert none and all(r.claim.decided_by in r.verdict for r in none)
+    # a claim without a statistic yet names the runs that would decide it
+    pending = dataclasses.replace(BY_ID["nu-hysteresis"], statistic="", rule="none")
+    (row,) = claims.evaluate([pending], report())
+    assert row.outcome == "undecided" and pending.decided_by in row.verdict
 
 
 def test_sigma_error_of_one_run_matches_the_spread_of_realizations():

@@ -198,6 +198,24 @@ def test_ramp_below_run_and_scale():
     assert [s.name for s in _runs.select(camp, "ramp_")] == ["ramp_pbc_s1"]
 
 
+def test_ramp_near_run_turns_at_the_first_level_beyond_critical():
+    for scale in (QUICK, MEDIUM, FULL):
+        near = _runs.ramp_near_run(scale, "pbc", 2)
+        top = scale.ramp_sqrt0 + (near.variables["nlev"] - 1) * scale.ramp_dsqrt
+        assert near.name == "rampnear_pbc_s2" and near.seed == 2
+        assert CRITICAL_SQRT_EPS < top <= CRITICAL_SQRT_EPS + scale.ramp_dsqrt + 1e-12
+        assert {k: v for k, v in near.variables.items() if k != "nlev"} == \
+            {k: v for k, v in _runs.ramp_run(scale, "pbc", 2).variables.items() if k != "nlev"}
+    assert FULL.ramp_near_levels == 7
+    # a level exactly at (sqrt eps)* is not beyond it; a grid that straddles it takes the next
+    assert FULL.replace(ramp_sqrt0=0.05, ramp_dsqrt=0.05).ramp_near_levels == 4     # 0.2
+    assert FULL.replace(ramp_sqrt0=0.04, ramp_dsqrt=0.05).ramp_near_levels == 4     # 0.19
+    # the prefix of the ramp beyond (sqrt eps)* does not select it
+    camp = FakeCampaign("unused", [_runs.ramp_near_run(QUICK, "pbc", 1),
+                                   _runs.ramp_run(QUICK, "pbc", 1)])
+    assert [s.name for s in _runs.select(camp, "ramp_")] == ["ramp_pbc_s1"]
+
+
 def test_scale_record_without_the_new_fields_reads_with_defaults(tmp_path):
     """A scale.json written before fbc_start and ramp_below_top existed is today's FULL."""
     record = FULL.as_dict()
@@ -216,7 +234,7 @@ def test_fig4_csv_of_the_pair(tmp_path):
     """Fig. 4 from a written campaign: two seeds of each ramp with known level values; the
     CSV holds both ramps' branches and the statistics with their known values."""
     scale = Scale(**dict(QUICK.as_dict(), N=64, L=8.0, eta=1e-4, ramp_taps_per_level=40))
-    runs = fig4.runs(scale, 2)
+    runs = fig4.runs(scale, 2) + [_runs.ramp_near_run(scale, "pbc", 1)]
     camp = FakeCampaign(tmp_path, runs)
     rng = np.random.default_rng(11)
     for spec in runs:
@@ -226,7 +244,7 @@ def test_fig4_csv_of_the_pair(tmp_path):
                 "# step phi_b phi_c Z z_top lateral central h_s sweeps accept capped\n"
                 + "".join(f"{t} 0.55 {v:.8f} 5 9 0.5 0.5 10 100 0.1 0\n"
                           for t, v in enumerate(np.r_[0.55, x])))
-        elif spec.name.startswith("ramp_"):   # 0.05 .. 0.2: reversible
+        elif spec.name.startswith(("ramp_", "rampnear_")):   # 0.05 .. 0.2: reversible
             levels = np.array([0.05, 0.1, 0.15, 0.2, 0.15, 0.1, 0.05, 0.1, 0.15, 0.2])
             truth = np.array([0.58, 0.585, 0.59, 0.595, 0.605, 0.61, 0.615, 0.61, 0.605, 0.595])
             write_ramp(camp, spec, *ramp_series(levels, truth, 40, rng))
@@ -257,17 +275,27 @@ def test_fig4_csv_of_the_pair(tmp_path):
     assert abs(low[1]) < 2 * low[2] + 1e-3 and low[1] == pytest.approx(0.0, abs=1e-3)
     assert ("params", "low:down_slope") not in rows      # a single decreasing level
     assert ("params", "low:up2_minus_down") not in rows  # up2 and down share no sqrt(eps)
+    # the ramp just beyond (sqrt eps)* (one seed; QUICK's first level beyond 0.15 is 0.2) and
+    # the claim it decides with the ramp below, read from the CSV as the report reads it
+    assert {"near:up1", "near:down", "near:up2"} <= series
+    assert param("near:top_sqrt_eps")[1] == pytest.approx(0.2)
+    data = claims.ReportData({}, {"fig4": claims.FigureData.read(path)})
+    claim = {c.id: c for c in claims.load_register()}["critical-sqrt-eps"]
+    (m,) = claims.critical_separation(data, claim)
+    assert claims.verdict(claim, m) == "agrees" and "(0.1, 0.2]" in m.shown
 
 
 def test_plan_tier4_is_the_ramp_pair_and_tiers_1_to_3_unchanged():
     tier3 = plan.runs(3)
     assert not any(s.name.startswith("ramplow_") for s in tier3)
     tier4 = plan.tier_runs(4)
-    assert [s.name for s in tier4] == ["ramplow_pbc_s1", "ramp_pbc_s2", "ramplow_pbc_s2"]
+    assert [s.name for s in tier4] == ["ramplow_pbc_s1", "rampnear_pbc_s1", "ramp_pbc_s2",
+                                       "ramplow_pbc_s2"]
     assert all(s.variables["P"] == plan.TIER3_RAMP_TAPS_PER_LEVEL for s in tier4)
     (tier3_ramp,) = [s for s in tier3 if s.name == "ramp_pbc_s1"]
-    assert tier3_ramp.variables == dict(tier4[1].variables)          # the same ramp, seed 2
+    assert tier3_ramp.variables == dict(tier4[2].variables)          # the same ramp, seed 2
     assert tier4[0].variables["nlev"] == 5                           # 0.025 .. 0.125
+    assert tier4[1].variables["nlev"] == 7                           # 0.025 .. 0.175
     everything = [s.name for s in plan.runs(4)]
     assert everything[:len(tier3)] == [s.name for s in tier3]
     assert len(everything) == len(set(everything))

@@ -116,6 +116,22 @@ def ramp_below_run(scale, bc, seed):
     return _RunSpec()(f"{RAMP_BELOW_PREFIX}{bc}_s{seed}", _input(RAMP), variables, int(seed))
 
 
+#: Name prefix of the ramp that turns at the first level beyond (sqrt eps)* (section III.B).
+RAMP_NEAR_PREFIX = "rampnear_"
+
+
+def ramp_near_run(scale, bc, seed):
+    """The ramp that turns just beyond (sqrt eps)* (in.ramp, section III.B): the same sqrt0,
+    step and taps per level, up to the first level above 0.15 (``scale.ramp_near_levels``),
+    down and up again; named ``rampnear_<bc>_s<seed>``. With the ramp below (sqrt eps)* it
+    locates the separation of the two behaviours within one step; with the same seed its
+    first increase is the ramp beyond's first levels, tap for tap."""
+    variables = dict(_size(scale), bc=bc, sqrt0=float(scale.ramp_sqrt0),
+                     dsqrt=float(scale.ramp_dsqrt), nlev=int(scale.ramp_near_levels),
+                     P=int(scale.ramp_taps_per_level))
+    return _RunSpec()(f"{RAMP_NEAR_PREFIX}{bc}_s{seed}", _input(RAMP), variables, int(seed))
+
+
 def ageing_run(scale, bc, eps, seed, taps=None):
     taps = int(scale.ageing_taps if taps is None else taps)
     variables = dict(_size(scale), eps=float(eps), taps=taps, bc=bc)
@@ -204,6 +220,19 @@ def ramp_sqrt_eps(table):
         if same.any():
             sq[i] = float(np.median(sq[same]))
     return sq
+
+
+def ramp_level(level, nlev, sqrt0, dsqrt):
+    """(branch, sqrt(eps)) of level ``level`` (0 .. 3 nlev - 3) of in.ramp: branch 0 up the
+    first nlev levels, 1 down to sqrt0, 2 up again; sqrt(eps) = sqrt0 + dsqrt * rung, the rung
+    k, 2m - k, k - 2m on the three branches (m = nlev - 1), as in.ramp computes it."""
+    m = int(nlev) - 1
+    k = int(level)
+    if not 0 <= k <= 3 * m:
+        raise ValueError(f"level = {level!r}: allowed levels are 0 .. {3 * m} (nlev = {nlev})")
+    branch = int(k > m) + int(k > 2 * m)
+    rung = (k, 2 * m - k, k - 2 * m)[branch]
+    return branch, float(sqrt0) + float(dsqrt) * rung
 
 
 def profile(campaign, spec, name):

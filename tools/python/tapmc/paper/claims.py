@@ -21,8 +21,9 @@ error); a rule turns a measure into a verdict:
   exceeds it, undecided in between (a difference can be real and still small);
 * ``fit``: agrees when the chi-square of the fit has a p-value of at least 1 %;
 * ``pattern``: a claim about several measures at once (e.g. "not unique at small eps, unique
-  at larger eps"), each decided by the fits' own intervals; the statistic gives 1 when the
-  pattern is the paper's and 0 when not;
+  at larger eps"), each decided by its own uncertainty (the fits' intervals, t sem); the
+  statistic gives 1 when the pattern is the paper's, 0 when a measure contradicts it beyond
+  its uncertainty, and says why when it cannot decide;
 * ``check``: a consistency check of the tools (holds / fails), never counted;
 * ``none``: no statistic yet: undecided, with the runs that would decide it.
 
@@ -44,6 +45,7 @@ import numpy as np
 from scipy import stats
 
 from tapmc.fluctuations import DEFAULT_BATCHES
+from tapmc.hysteresis import CRITICAL_SQRT_EPS, LEVEL_TOLERANCE
 
 from . import _plotting as P
 from ._runs import RAMP_BRANCHES
@@ -210,9 +212,10 @@ class FigureData:
 #: stems of the CSVs of bench/paper_questions.py (in the report's ``questions`` folder) that
 #: decide claims of one-run campaigns: depositions at t = 0 (initial-packing), P0 over several
 #: configurations (p0-configs), the first taps from the paper's F.B.C. start (lateral-first-tap),
-#: realizations of the first taps (early-taps), one run's surrogate fits (fit-surrogates)
+#: realizations of the first taps (early-taps), one run's surrogate fits (fit-surrogates), the
+#: ramp's levels continued (ramp-levels) and nu at its level ends (ramp-pores)
 QUESTION_CSVS = ("initial_packing", "p0_configs", "lateral_first_tap", "early_taps",
-                 "fit_surrogates", "ramp_levels")
+                 "fit_surrogates", "ramp_levels", "ramp_pores")
 
 
 class ReportData:
@@ -1251,6 +1254,86 @@ def low_ramp_frozen(data, claim):
                           f"changes by {fmt(effect)})")]
 
 
+#: The paper's "(sqrt eps)* ~ 0.15": a separation located within two of its ramp steps
+#: (dsqrt = 0.025) of 0.15 agrees; a bracket of turning points wider than that cannot tell
+#: 0.15 from its neighbours.
+CRITICAL_BRACKET_HALF_WIDTH = 0.05
+
+
+def _ramp_turning_behaviour(fig, tag, effect):
+    """(top, behaviour, text) of the ramp ``tag`` of Fig. 4: behaviour ``compacts`` when its
+    decreasing branch rose above its top level beyond t sem (the reversible case), ``frozen``
+    when it stayed within t sem of it and t sem is below ``effect`` (the change of the ramps
+    that compact), ``decompacts`` when it fell below beyond t sem, None otherwise."""
+    top = fig.param(f"{tag}:top_sqrt_eps")[0]
+    m, s, n = fig.param(f"{tag}:down_change")
+    dof = _steady_dof(n, s)
+    if not np.isfinite(m) or dof is None:
+        return top, None, f"top {top:g}: no error on its decrease"
+    band = t_quantile(dof) * s
+    text = f"top {top:g}: decrease minus top level {fmt(m, s)}"
+    if m > band:
+        return top, "compacts", text
+    if m < -band:
+        return top, "decompacts", text
+    if effect is not None and band < effect:
+        return top, "frozen", text
+    return top, None, text
+
+
+def critical_separation(data, claim):
+    """Section III.B: (sqrt eps)* ~ 0.15 separates a ramp whose decreasing branch compacts on
+    the way down (the reversible branch) from one whose decreasing branch stays frozen at its
+    top level. From every ramp of Fig. 4 (params ``<tag>:top_sqrt_eps`` and
+    ``<tag>:down_change``): 1 when each ramp turning above 0.15 compacts, each turning below
+    is frozen (within t sem, below the change of the ramps that compact) and the highest frozen
+    and lowest compacting turning points lie within :data:`CRITICAL_BRACKET_HALF_WIDTH` of
+    0.15; 0 when a ramp turning above 0.15 does not compact on the way down or one turning
+    below moves beyond t sem; undecided otherwise (a side without a ramp, a behaviour within
+    the errors, or a bracket too wide to locate 0.15)."""
+    fig = data.figure("fig4")
+    tags = [] if fig is None else sorted(s[:-len(":top_sqrt_eps")] for s in fig.series("params")
+                                         if s.endswith(":top_sqrt_eps"))
+    if not tags:
+        return _missing("no ramp with a decreasing branch")
+    critical = fig.param("critical_sqrt_eps")[0]
+    critical = critical if np.isfinite(critical) else CRITICAL_SQRT_EPS
+    changes = [fig.param(f"{t}:down_change") for t in tags]
+    # the frozen side's bar: the smallest change the compacting ramps surely have
+    compacting = [m - t_quantile(_steady_dof(n, s)) * s for m, s, n in changes
+                  if np.isfinite(m) and _steady_dof(n, s) is not None]
+    effect = max(compacting) if compacting and max(compacting) > 0 else None
+    ramps = sorted(_ramp_turning_behaviour(fig, t, effect) for t in tags)
+    words = {"compacts": "compacts on the way down", "frozen": "frozen",
+             "decompacts": "decompacts on the way down", None: "within the errors"}
+    shown = "; ".join(f"{text} ({words[behaviour]})" for _, behaviour, text in ramps)
+    contradicted = [f"top {top:g} " + ("does not compact on the way down" if top > critical
+                                       else "moves on the way down")
+                    for top, behaviour, _ in ramps
+                    if (top > critical and behaviour in ("frozen", "decompacts"))
+                    or (top <= critical and behaviour in ("compacts", "decompacts"))]
+    if contradicted:
+        return [Measure(0.0, shown=shown + "; contradicted: " + ", ".join(contradicted))]
+    if any(behaviour is None for _, behaviour, _ in ramps):
+        return [Measure(shown=shown, undecided="a ramp's decrease is within the errors of "
+                                                "both behaviours")]
+    frozen = [top for top, behaviour, _ in ramps if behaviour == "frozen"]
+    compacts = [top for top, behaviour, _ in ramps if behaviour == "compacts"]
+    if not frozen or not compacts:
+        side = "below" if not frozen else "above"
+        return [Measure(shown=shown, undecided=f"no ramp turning {side} {critical:g}: the "
+                                               "separation needs one on each side")]
+    lo, hi = max(frozen), min(compacts)
+    shown += f"; (sqrt eps)* in ({lo:g}, {hi:g}]"
+    reach = CRITICAL_BRACKET_HALF_WIDTH + LEVEL_TOLERANCE    # levels on a grid of 0.025
+    if critical - lo > reach or hi - critical > reach:
+        return [Measure(shown=shown, undecided=(
+            f"the turning points bracket (sqrt eps)* in ({lo:g}, {hi:g}], wider than "
+            f"{critical:g} +- {CRITICAL_BRACKET_HALF_WIDTH:g}: a ramp turning in "
+            f"({critical:g}, {critical + CRITICAL_BRACKET_HALF_WIDTH:g}] would locate it"))]
+    return [Measure(1.0, shown=shown)]
+
+
 def ramp_branch_slope(data, claim):
     branch = _ramp(data, claim.params.get("branch", "down"))
     if branch is None:
@@ -1461,6 +1544,50 @@ def _pore_dof(n, err):
     from tapmc.pores import JACKKNIFE_BLOCKS
 
     return _jackknife_dof(n, err, JACKKNIFE_BLOCKS)
+
+
+def nu_ramp_hysteresis(data, claim):
+    """Section IV.B: nu has the reversible-irreversible behaviour of <Phi^c> (section III.B).
+    From nu at the level ends of the ramp beyond (sqrt eps)* (bench/paper_questions.py
+    ramp-pores: one packing per level, the spatial jackknife's error), the two signs that
+    make <Phi^c>'s reversible branch, with nu's sign reversed (more pore volume, less
+    packing): the decreasing branch lies below the first increase (mean of the differences at
+    their common sqrt(eps), the levels' errors combined), and on it nu rises with sqrt(eps)
+    (weighted straight line)."""
+    rows = data.question("ramp_pores")
+    if not rows:
+        return _missing("no nu at the ramp's level ends (bench/paper_questions.py ramp-pores)")
+    branches = {}
+    for name, index in zip(RAMP_BRANCHES, range(3)):
+        picked = sorted((float(r["sqrt_eps"]), float(r["nu"]), float(r["nu_sem"]))
+                        for r in rows if int(r["branch"]) == index)
+        if picked:
+            x, y, e = map(np.array, zip(*picked))
+            branches[name] = (x, y, e, np.ones(len(x), int))
+    dof = _pore_dof(1, 0.0)
+    out = []
+    up, down = branches.get("up1"), branches.get("down")
+    pairs = [] if up is None or down is None else _common_x(down, up)
+    label = "decrease minus first increase"
+    if pairs:
+        diffs = [down[1][i] - up[1][k] for i, k in pairs]
+        err = math.sqrt(sum(down[2][i] ** 2 + up[2][k] ** 2 for i, k in pairs)) / len(pairs)
+        value = float(np.mean(diffs))
+        out.append(Measure(value, err, dof, label=label, sign=-1, shown=(
+            f"{fmt(value, err)} (mean of {len(pairs)} common sqrt(eps); one packing per level, "
+            "lateral jackknife)")))
+    else:
+        out.append(Measure(label=label, undecided="no level of the first increase at a "
+                                                  "sqrt(eps) of the decrease"))
+    label = "slope on the decrease"
+    if down is not None:
+        slope, err, line_dof = _weighted_line(*down[:3])
+        if np.isfinite(slope):
+            out.append(Measure(slope, err, line_dof, label=label, sign=1,
+                               shown=f"slope {fmt(slope, err)} over {len(down[0])} levels"))
+            return out
+    out.append(Measure(label=label, undecided="fewer than three levels of the decrease"))
+    return out
 
 
 def _pore_curves(data):
@@ -1761,9 +1888,10 @@ STATISTICS = {f.__name__: f for f in (
     sigma_intercept, bell_maximum, bell_side_slope, alpha_bell, alpha_ramp_hysteresis,
     ramp_up_minus_steady,
     ramp_down_minus_up, ramp_up2_minus_down, low_ramp_frozen, ramp_branch_slope,
+    critical_separation,
     final_alpha, central_minus_lateral, lateral_first_tap, p0_initial_minus_final,
     p0_final_minus_py, xi_min, pore_share_change, pore_quadratic_fit, nu_tail_over_nu,
-    nu_change)}
+    nu_change, nu_ramp_hysteresis)}
 
 
 # ---------------------------------------------------------------- rules

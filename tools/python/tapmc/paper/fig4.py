@@ -13,19 +13,23 @@ level's steady state from ``tapmc.hysteresis.Hysteresis``, averaged over seeds:
   ``Scale.ramp_top``): circles (increase), up-triangles (decrease), down-triangles (increase
   again), the reversible branch;
 * the ramp that stays below it (runs ``ramplow_<bc>_s<seed>``, up to
-  ``Scale.ramp_below_top``): diamonds, left- and right-triangles, the irreversible branch.
+  ``Scale.ramp_below_top``): diamonds, left- and right-triangles, the irreversible branch;
+* where the campaign has it, the ramp that turns at the first level beyond it (runs
+  ``rampnear_<bc>_s<seed>``, ``Scale.ramp_near_levels``; the full plan's tier 4, not among
+  this module's own runs): pentagons, hexagons, stars. With the ramp below it, it locates
+  (sqrt eps)* within one step.
 
 The dotted vertical line is (sqrt eps)* = 0.15.
 
 CSV panels: ``a`` (series ``steady`` with x = sqrt(eps), sem over seeds or, for an eps with
 one seed, that run's batch-means error; ``up1``, ``down``, ``up2`` of the
-ramp beyond (sqrt eps)*; ``low:up1``, ``low:down``, ``low:up2`` of the ramp below it; sem over
-seeds), ``params``:
+ramp beyond (sqrt eps)*; ``low:up1``, ``low:down``, ``low:up2`` of the ramp below it, ``near:...``
+of the ramp just beyond it; sem over seeds), ``params``:
 
 * ``sqrt_eps_max``: the sqrt(eps) of the highest steady-state square, sem = half the grid
   spacing there; ``phi_c_max`` the value there;
 * ``critical_sqrt_eps``: (sqrt eps)* = 0.15 (x = 0);
-* per ramp, ``ramp:`` (beyond) and ``low:`` (below), the statistics of
+* per ramp, ``ramp:`` (beyond), ``low:`` (below) and ``near:`` (just beyond), the statistics of
   ``tapmc.hysteresis.RampBranches`` on the branches averaged over seeds (per level: the mean
   over seeds; its error the larger of the sem over seeds and the one the levels' batch-means
   standard errors give the mean, which alone serves with one seed),
@@ -55,9 +59,12 @@ NAME = "fig4"
 BRANCH_STYLE = _runs.RAMP_BRANCH_STYLE
 LOW_BRANCH_STYLE = {"up1": ("D", "increase"), "down": ("<", "decrease"),
                     "up2": (">", "increase again")}
+NEAR_BRANCH_STYLE = {"up1": ("p", "increase"), "down": ("h", "decrease"),
+                     "up2": ("*", "increase again")}
 #: the ramps of the pair: (CSV tag, run name prefix, branch style, legend words).
 RAMPS = (("ramp", "ramp_", BRANCH_STYLE, "ramp beyond 0.15"),
-         ("low", _runs.RAMP_BELOW_PREFIX, LOW_BRANCH_STYLE, "ramp below 0.15"))
+         ("low", _runs.RAMP_BELOW_PREFIX, LOW_BRANCH_STYLE, "ramp below 0.15"),
+         ("near", _runs.RAMP_NEAR_PREFIX, NEAR_BRANCH_STYLE, "ramp just beyond 0.15"))
 BRANCHES = _runs.RAMP_BRANCHES
 
 

@@ -18,7 +18,9 @@ runs come in tiers; each tier completes figures on its own:
 4. the ramp pair of section III.B: the ramp that stays below (sqrt eps)* ~ 0.15 (up to
    ``FULL.ramp_below_top`` = 0.125, down and up again; run ``ramplow_pbc_s1``) at tier 3's taps
    per level, which with tier 3's ramp (up to 0.3) decides the reversible and irreversible
-   branches, then a second seed of both ramps for error bars over seeds.
+   branches; the ramp that turns at the first level beyond 0.15 (0.175, ``rampnear_pbc_s1``),
+   which locates (sqrt eps)* between 0.125 and 0.175; then a second seed of the pair for
+   error bars over seeds.
 
 Within a tier the runs that settle the report's open questions first come first. Runs carry
 the names of the figure modules' runs (:mod:`tapmc.paper._runs`), so the figures find them.
@@ -76,6 +78,8 @@ def tier_runs(tier, scale=FULL):
             if seed != 1:   # tier 3 holds the ramp beyond (sqrt eps)* of seed 1
                 pair.append(_runs.ramp_run(ramp_scale, "pbc", seed))
             pair.append(_runs.ramp_below_run(ramp_scale, "pbc", seed))
+            if seed == 1:   # one seed locates (sqrt eps)*; error bars come from the pair
+                pair.append(_runs.ramp_near_run(ramp_scale, "pbc", seed))
         return sorted(pair, key=lambda spec: spec.seed)
     raise ValueError(f"tier = {tier!r}: allowed values are {', '.join(map(str, TIERS))}")
 

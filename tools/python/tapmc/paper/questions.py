@@ -627,6 +627,29 @@ def _ramp_levels(path, fig4=None):
     return lines + ["", text, ""]
 
 
+def _ramp_pores(path):
+    rows = _read(path)
+    if not rows:
+        return []
+    lines = ["Does nu, the mean normalised pore volume, follow <Phi^c> around the ramp (section "
+             "IV.B: the same reversible-irreversible behaviour)? The packings at the level ends "
+             "of the campaign's ramp analysed as Fig. 10's dumps are (``ramp_pores.csv``: one "
+             "packing per level, the statistics box from 2R to "
+             f"{float(rows[0]['window_top']):g}R above the floor, the error the lateral "
+             "jackknife over 4 x 4 blocks):", "",
+             ".. list-table::", "   :header-rows: 1", "",
+             "   * - level (branch)", "     - sqrt(eps)", "     - nu"]
+    for r in rows:
+        mark = "; replayed" if r["source"].startswith("replay") else ""
+        lines += [f"   * - {r['level']} ({BRANCH_NAMES[int(r['branch'])]}{mark})",
+                  f"     - {float(r['sqrt_eps']):g}",
+                  f"     - {fmt(float(r['nu']), float(r['nu_sem']))}"]
+    text = ("The levels marked replayed are the ends of a replay of the ramp (``--replay``, "
+            "bit for bit the campaign's taps) where the campaign's restart file was gone; the "
+            "claims table reads the signs (``nu-hysteresis``).")
+    return lines + ["", text, ""]
+
+
 def _pbc_course(path):
     rows = _read(path)
     if not rows:
@@ -1018,6 +1041,8 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
         parts += _p0_configs(folder / "p0_configs.csv")
     if (folder / "ramp_levels.csv").is_file():
         parts += _ramp_levels(folder / "ramp_levels.csv", (figures or {}).get("fig4"))
+    if (folder / "ramp_pores.csv").is_file():
+        parts += _ramp_pores(folder / "ramp_pores.csv")
     if (folder / "lateral_first_tap.csv").is_file():
         parts += _lateral_first_tap(folder / "lateral_first_tap.csv",
                                     (figures or {}).get("fig8"))
@@ -1044,6 +1069,7 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
         ", ``p0-configs``" if (folder / "p0_configs.csv").is_file() else "") + (
         ", ``lateral-first-tap``" if (folder / "lateral_first_tap.csv").is_file() else "") + (
         ", ``ramp-levels``" if (folder / "ramp_levels.csv").is_file() else "") + (
+        ", ``ramp-pores``" if (folder / "ramp_pores.csv").is_file() else "") + (
         "".join(f", ``{k}``" for k in ("theta0", "dmax") if any(folder.glob(f"{k}*.csv")))) + (
         ", ``p0-fluid``" if (folder / "p0_fluid.csv").is_file() else "")
     return [title, "-" * len(title), "",

@@ -102,6 +102,14 @@ class Scale:
         return int((self.ramp_below_top - self.ramp_sqrt0) / self.ramp_dsqrt * (1 + 1e-9)) + 1
 
     @property
+    def ramp_near_levels(self):
+        """Levels of the first increase of the ramp that turns at the first level beyond
+        (sqrt eps)*: the smallest k with ramp_sqrt0 + (k - 1) ramp_dsqrt > CRITICAL_SQRT_EPS
+        (FULL: 7, up to 0.175), which with the ramp below it brackets (sqrt eps)* within one
+        step of the ramp."""
+        return max(1, int((CRITICAL_SQRT_EPS - self.ramp_sqrt0) / self.ramp_dsqrt * (1 + 1e-9)) + 2)
+
+    @property
     def ramp_top(self):
         """Highest sqrt(eps) of the ramp of Fig. 4 (the one meant to go beyond (sqrt eps)*)."""
         return self.ramp_sqrt0 + (self.ramp_levels - 1) * self.ramp_dsqrt

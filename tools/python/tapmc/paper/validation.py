@@ -49,7 +49,9 @@ RULES = {
            "(its chi-square; across realizations, Hotelling's T^2 of the law over log-spaced "
            "bins of taps with their covariance between realizations), disagrees otherwise",
     "pattern": "agrees when the pattern over several measures (stated in the TAPMC column, "
-               "each decided by the fits' own intervals) is the paper's, disagrees otherwise",
+               "each decided by its own uncertainty: the fits' intervals or t sem) is the "
+               "paper's, disagrees when a measure contradicts it beyond its uncertainty, "
+               "undecided otherwise",
     "check": "a check of the analysis tools (holds / fails), not counted as a reproduction",
     "none": "no statistic yet: undecided, with the runs that would decide the claim",
 }
