@@ -249,6 +249,12 @@ def test_critical_separation_needs_a_ramp_on_each_side_near_the_critical_value()
     # a frozen-looking change with errors as large as the other ramp's change: within errors
     m, v = _critical({0.125: 0.0002, 0.175: 0.002}, sem=0.001)
     assert v.startswith("undecided") and "within the errors" in v
+    # two ramps turning at the same sqrt(eps), one without an error: undecided, no TypeError
+    tab = ramps_turning({0.125: 0.0002, 0.175: 0.01})
+    tab.param("r9:top_sqrt_eps", 0.175, None, SEEDS).param("r9:down_change", 0.0, None, SEEDS,
+                                                           x=0.175)
+    (m,) = claims.critical_separation(report(fig4=tab), BY_ID["critical-sqrt-eps"])
+    assert claims.verdict(BY_ID["critical-sqrt-eps"], m).startswith("undecided")
     # a ramp beyond 0.15 that decompacts on the way down contradicts the paper
     m, v = _critical({0.125: 0.0002, 0.175: -0.01})
     assert v == "disagrees" and "does not compact on the way down" in m.shown

@@ -1303,7 +1303,7 @@ def critical_separation(data, claim):
     compacting = [m - t_quantile(_steady_dof(n, s)) * s for m, s, n in changes
                   if np.isfinite(m) and _steady_dof(n, s) is not None]
     effect = max(compacting) if compacting and max(compacting) > 0 else None
-    ramps = sorted(_ramp_turning_behaviour(fig, t, effect) for t in tags)
+    ramps = sorted((_ramp_turning_behaviour(fig, t, effect) for t in tags), key=lambda r: r[0])
     words = {"compacts": "compacts on the way down", "frozen": "frozen",
              "decompacts": "decompacts on the way down", None: "within the errors"}
     shown = "; ".join(f"{text} ({words[behaviour]})" for _, behaviour, text in ramps)
