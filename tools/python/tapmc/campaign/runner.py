@@ -33,6 +33,67 @@ def _fmt_seconds(s):
     return f"{h}h{m:02d}m{sec:02d}s" if h else (f"{m}m{sec:02d}s" if m else f"{sec}s")
 
 
+def _sibling_key(describe):
+    """What makes two runs cost the same per tap: their input, variables and ranks (the seed
+    and the name aside)."""
+    return (describe["input"], json.dumps(describe["variables"], sort_keys=True),
+            describe.get("nprocs", 1))
+
+
+def past_seconds_per_tap(records):
+    """Wall seconds per tap of the finished attempts in manifest ``records`` (name -> record):
+    dict name -> s per tap, from the attempts that ended with returncode 0 (taps = the run's
+    taps - the step it resumed from; attempts of no tap aside)."""
+    out = {}
+    for name, rec in records.items():
+        wall = taps = 0.0
+        for attempt in rec.get("attempts", []):
+            if attempt.get("returncode") != 0 or not attempt.get("wall_s") or not rec.get("taps"):
+                continue
+            covered = rec["taps"] - (attempt.get("resumed_from_step") or 0)
+            if covered > 0:
+                wall += attempt["wall_s"]
+                taps += covered
+        if taps:
+            out[name] = wall / taps
+    return out
+
+
+def estimate_seconds_left(left, records, running, jobs, session_rate):
+    """Wall seconds until the last run ends, from what each run costs per tap rather than
+    from the campaign's mean rate (taps of different runs differ several times in cost: a
+    weak tap settles in fewer sweeps than a strong one).
+
+    ``left``: name -> taps still to run (unfinished runs); ``records``: the manifest's records
+    (name -> describe() plus attempts); ``running``: name -> this session's measured s per tap
+    of a running run; ``jobs``: runs at a time; ``session_rate``: taps per second of the whole
+    session, or 0. Each run's s per tap: its own rate when running, else the mean of finished
+    runs that differ from it only by seed, else of finished runs of the same input, else the
+    session's (jobs / session_rate). The sum over the runs is divided by ``jobs``. None when
+    some run has no estimate."""
+    past = past_seconds_per_tap(records)
+    siblings, inputs = {}, {}
+    for name, spt in past.items():
+        rec = records[name]
+        siblings.setdefault(_sibling_key(rec), []).append(spt)
+        inputs.setdefault(rec["input"], []).append(spt)
+    fallback = jobs / session_rate if session_rate > 0 else None
+    total = 0.0
+    for name, taps in left.items():
+        if taps <= 0:
+            continue
+        rec = records.get(name, {})
+        spt = running.get(name)
+        if spt is None and rec:
+            similar = siblings.get(_sibling_key(rec)) or inputs.get(rec.get("input"))
+            spt = sum(similar) / len(similar) if similar else None
+        spt = fallback if spt is None else spt
+        if spt is None:
+            return None
+        total += taps * spt
+    return total / jobs
+
+
 class Campaign:
     """An ensemble of runs in one folder, resumable; see :mod:`tapmc.campaign`.
 
@@ -342,25 +403,29 @@ class Campaign:
     def _report(self, session_start, final=False):
         now = time.time()
         lines = []
-        total_left, done_session = 0, 0
+        left, spt_running, done_session = {}, {}, 0
         with self._lock:
             running = dict(self._t0)
             done0 = dict(self._done0)
+            records = {name: dict(rec) for name, rec in self._records.items()}
         for name, n, total, finished in self.progress():
             if total is not None and not finished:
-                total_left += max(0, total - n)
+                left[name] = max(0, total - n)
             if name in done0:
                 done_session += max(0, n - done0[name])
             if name in running and not final:
                 rate = (n - done0.get(name, 0)) / max(now - running[name], 1e-9)
                 eta = (total - n) / rate if (total is not None and rate > 0) else None
+                if rate > 0:
+                    spt_running[name] = 1.0 / rate
                 pct = f" ({100.0 * n / total:.0f}%)" if total else ""
                 lines.append(f"[campaign]   {name}: {n}/{total if total is not None else '?'} "
                              f"taps{pct}, ETA {_fmt_seconds(eta)}")
         finished = sum(1 for r in self.runs if self.is_done(r.name))
         elapsed = now - session_start
         rate = done_session / elapsed if elapsed > 0 else 0
-        eta = total_left / rate if rate > 0 else (0 if total_left == 0 else None)
+        eta = estimate_seconds_left(left, records, spt_running, self.jobs, rate) \
+            if any(left.values()) else 0
         lines.append(f"[campaign] {finished}/{len(self.runs)} runs done, elapsed "
                      f"{_fmt_seconds(elapsed)}, ETA {_fmt_seconds(eta)}")
         print("\n".join(lines), file=self.stream, flush=True)
