@@ -67,10 +67,12 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               behaviour of <Phi^c> (section IV.B)? The packing at the end of every level of
               the ramp whose restart file is kept (the run's folder, and the level ends of a
               replay in DIR/partial/ramp_levels/<run>_replay; --replay runs the ramp again up
-              to the ends of --levels that have neither) is dumped and analysed as Fig. 10
-              does (tapmc-pores, the same statistics box): nu per level with the spatial
-              jackknife over 4 x 4 lateral blocks (ramp_pores.csv; a level measured before
-              keeps its row).
+              to the ends of --levels that have neither) is dumped into
+              DIR/partial/ramp_levels/<run>_pores, and every level dumped there is analysed
+              as Fig. 10 analyses its run's dumps (tapmc-pores, one statistics box for all):
+              nu per level with the spatial jackknife over 4 x 4 lateral blocks
+              (ramp_pores.csv, one row per run and level: --run ramplow_pbc_s1 adds the ramp
+              below (sqrt eps)*; a level whose packing is gone keeps its row).
 
   fit-surrogates
               Does one 4000-tap run fix the triplet (X_inf, B, tau) of eq. 3 (and eq. 4's
@@ -537,8 +539,8 @@ def _replay_agreement(replayed, table):
     return f"differs from step {int(a[np.argmin(same), 0])}"
 
 
-RAMP_PORES_HEADER = ["level", "branch", "sqrt_eps", "step", "nu", "nu_sem", "window_top",
-                     "source"]
+RAMP_PORES_HEADER = ["run", "level", "branch", "sqrt_eps", "step", "nu", "nu_sem",
+                     "window_top", "source"]
 #: writes the packing of a restart file as the pore-dump runs write theirs (id x y z radius)
 DUMP_OF_RESTART = ("read_restart ${restart}\n"
                    "write_dump all custom dump.$(step).lammpstrj id x y z radius "
@@ -572,7 +574,8 @@ def ramp_pores(args):
     recorded = {}
     if csv_path.is_file():
         with open(csv_path, newline="") as handle:
-            recorded = {int(r["level"]): r["source"] for r in csv.DictReader(handle)}
+            recorded = {int(r["level"]): r["source"] for r in csv.DictReader(handle)
+                        if r.get("run") == args.run}
     sources = {k: (path, "replay") for k, path in
                _level_restarts(work / f"{args.run}_replay", P).items()}
     sources.update({k: (path, "run") for k, path in _level_restarts(run_dir, P).items()})
@@ -626,23 +629,24 @@ def ramp_pores(args):
         branch, sq = _runs.ramp_level(k, nlev, sqrt0, dsqrt)
         nu = pores.distribution(step).nu
         sem = jackknife_error([r.nu for r in pores.jackknife(step)])
-        rows.append([k, branch, f"{sq:.6g}", step, f"{nu:.8f}", f"{sem:.3g}", f"{top:.4f}",
-                     sources[k][1]])
+        rows.append([args.run, k, branch, f"{sq:.6g}", step, f"{nu:.8f}", f"{sem:.3g}",
+                     f"{top:.4f}", sources[k][1]])
         print(f"level {k} (branch {branch}, sqrt(eps) {sq:g}): nu = {nu:.5f} +- {sem:.5f}",
               flush=True)
     write_ramp_pores(csv_path, rows)
 
 
 def write_ramp_pores(path, rows):
-    """ramp_pores.csv with ``rows`` and the rows of earlier levels not in ``rows``."""
+    """ramp_pores.csv with ``rows`` and the rows (of any ramp) of the levels not in ``rows``:
+    one table for every ramp measured (the one beyond (sqrt eps)* and the one below it)."""
     rows = list(rows)
     if path.is_file():
         with open(path, newline="") as handle:
             table = list(csv.reader(handle))
         if table and table[0] == RAMP_PORES_HEADER:
-            listed = {int(r[0]) for r in rows}
-            rows += [r for r in table[1:] if r and int(r[0]) not in listed]
-    write_csv(path, RAMP_PORES_HEADER, sorted(rows, key=lambda r: int(r[0])))
+            listed = {(r[0], int(r[1])) for r in rows}
+            rows += [r for r in table[1:] if r and (r[0], int(r[1])) not in listed]
+    write_csv(path, RAMP_PORES_HEADER, sorted(rows, key=lambda r: (r[0], int(r[1]))))
 
 
 def scan_file_name(stem, stop, N):

@@ -122,6 +122,7 @@ def test_ramp_pores_measures_nu_at_the_kept_level_ends(tmp_path):
     with open(out / "ramp_pores.csv", newline="") as f:
         rows = list(csv.DictReader(f))
     # 3 levels up (0.05, 0.15, 0.25), down (0.15, 0.05), up again (0.15, 0.25)
+    assert {r["run"] for r in rows} == {"ramp_pbc_s1"}
     assert [(r["level"], r["branch"], r["sqrt_eps"], r["step"]) for r in rows] == [
         ("0", "0", "0.05", "10"), ("1", "0", "0.15", "20"), ("2", "0", "0.25", "30"),
         ("3", "1", "0.15", "40"), ("4", "1", "0.05", "50"), ("5", "2", "0.15", "60"),

@@ -204,8 +204,11 @@ def ramp_pores(gap, slope, sem=0.001, levels=(0.025, 0.05, 0.075, 0.1, 0.125)):
     rows = []
     for branch, nus in ((0, [0.1 - 0.05 * x for x in levels]),
                         (1, [0.1 + gap + slope * (x - 0.1) for x in levels])):
-        rows += [{"branch": str(branch), "sqrt_eps": f"{x:g}", "nu": f"{nu:.8f}",
-                  "nu_sem": f"{sem:g}"} for x, nu in zip(levels, nus)]
+        rows += [{"run": "ramp_pbc_s1", "branch": str(branch), "sqrt_eps": f"{x:g}",
+                  "nu": f"{nu:.8f}", "nu_sem": f"{sem:g}"} for x, nu in zip(levels, nus)]
+    # the ramp below (sqrt eps)* in the same table is not read for the ramp beyond's signs
+    rows += [{"run": "ramplow_pbc_s1", "branch": str(b), "sqrt_eps": "0.05", "nu": "0.5",
+              "nu_sem": f"{sem:g}"} for b in (0, 1)]
     return claims.ReportData(report().summary, {}, questions={"ramp_pores": rows})
 
 

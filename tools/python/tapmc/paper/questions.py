@@ -638,10 +638,11 @@ def _ramp_pores(path):
              f"{float(rows[0]['window_top']):g}R above the floor, the error the lateral "
              "jackknife over 4 x 4 blocks):", "",
              ".. list-table::", "   :header-rows: 1", "",
-             "   * - level (branch)", "     - sqrt(eps)", "     - nu"]
+             "   * - run", "     - level (branch)", "     - sqrt(eps)", "     - nu"]
     for r in rows:
         mark = "; replayed" if r["source"].startswith("replay") else ""
-        lines += [f"   * - {r['level']} ({BRANCH_NAMES[int(r['branch'])]}{mark})",
+        lines += [f"   * - {r['run']}",
+                  f"     - {r['level']} ({BRANCH_NAMES[int(r['branch'])]}{mark})",
                   f"     - {float(r['sqrt_eps']):g}",
                   f"     - {fmt(float(r['nu']), float(r['nu_sem']))}"]
     text = ("The levels marked replayed are the ends of a replay of the ramp (``--replay``, "
