@@ -1560,7 +1560,7 @@ def nu_ramp_hysteresis(data, claim):
         return _missing("no nu at the level ends of the ramp beyond (sqrt eps)* "
                         "(bench/paper_questions.py ramp-pores)")
     branches = {}
-    for name, index in zip(RAMP_BRANCHES, range(3)):
+    for index, name in enumerate(RAMP_BRANCHES):   # in.ramp's branch column
         picked = sorted((float(r["sqrt_eps"]), float(r["nu"]), float(r["nu_sem"]))
                         for r in rows if int(r["branch"]) == index)
         if picked:
@@ -1572,7 +1572,7 @@ def nu_ramp_hysteresis(data, claim):
     pairs = [] if up is None or down is None else _common_x(down, up)
     label = "decrease minus first increase"
     if pairs:
-        diffs = [down[1][i] - up[1][k] for i, k in pairs]
+        diffs = _paired_levels(down, up)
         err = math.sqrt(sum(down[2][i] ** 2 + up[2][k] ** 2 for i, k in pairs)) / len(pairs)
         value = float(np.mean(diffs))
         out.append(Measure(value, err, dof, label=label, sign=-1, shown=(
