@@ -285,10 +285,18 @@ def test_fig4_csv_of_the_pair(tmp_path):
     assert claims.verdict(claim, m) == "agrees" and "(0.1, 0.2]" in m.shown
 
 
-def test_plan_tier4_is_the_ramp_pair_and_tiers_1_to_3_unchanged():
+def test_plan_tier4_completes_ageing_then_the_ramp_pair_and_tiers_1_to_3_unchanged():
     tier3 = plan.runs(3)
     assert not any(s.name.startswith("ramplow_") for s in tier3)
-    tier4 = plan.tier_runs(4)
+    everything = plan.tier_runs(4)
+    ageing = [s for s in everything if s.name.startswith("ageing_")]
+    # the paper's 10 realizations (section III.C) with tier 3's four, from the same packing
+    assert [s.seed for s in ageing] == [5, 6, 7, 8, 9, 10]
+    all_ageing = [s for s in plan.runs(4) if s.name.startswith("ageing_")]
+    assert len({s.name for s in all_ageing}) == 10
+    assert len({tuple(sorted(s.variables.items())) for s in all_ageing}) == 1
+    tier4 = everything[len(ageing):]
+    assert everything[:len(ageing)] == ageing
     assert [s.name for s in tier4] == ["ramplow_pbc_s1", "rampnear_pbc_s1", "ramp_pbc_s2",
                                        "ramplow_pbc_s2"]
     assert all(s.variables["P"] == plan.TIER3_RAMP_TAPS_PER_LEVEL for s in tier4)

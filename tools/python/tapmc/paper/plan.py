@@ -15,7 +15,10 @@ runs come in tiers; each tier completes figures on its own:
 3. the history-dependent protocols: the ramp (Fig. 4 open symbols) at 1000 taps per level
    instead of the paper's 4000, and ageing (Fig. 5); with two jobs or more the ramp, the
    longest run, starts first (:func:`runs`);
-4. the ramp pair of section III.B: the ramp that stays below (sqrt eps)* ~ 0.15 (up to
+4. the paper's 10 ageing realizations (section III.C: seeds 5 to 10 join tier 3's four; a test
+   of the collapse across realizations needs more realizations than bins of delays, and the
+   runs cost about half a core-hour each), then the ramp pair of section III.B: the ramp that
+   stays below (sqrt eps)* ~ 0.15 (up to
    ``FULL.ramp_below_top`` = 0.125, down and up again; run ``ramplow_pbc_s1``) at tier 3's taps
    per level, which with tier 3's ramp (up to 0.3) decides the reversible and irreversible
    branches; the ramp that turns at the first level beyond 0.15 (0.175, ``rampnear_pbc_s1``),
@@ -47,6 +50,8 @@ TIER2_FBC_EPS = (0.02,)
 TIER3_RAMP_TAPS_PER_LEVEL = 1000
 TIER3_AGEING_SEEDS = (1, 2, 3, 4)
 
+#: Tier 4: the ageing realizations that complete the paper's 10 (section III.C).
+TIER4_AGEING_SEEDS = (5, 6, 7, 8, 9, 10)
 #: Tier 4: seeds of the ramp pair (the ramp below (sqrt eps)* first: tier 3 ran the other one
 #: with seed 1).
 TIER4_SEEDS = (1, 2)
@@ -80,7 +85,9 @@ def tier_runs(tier, scale=FULL):
             pair.append(_runs.ramp_below_run(ramp_scale, "pbc", seed))
             if seed == 1:   # one seed locates (sqrt eps)*; error bars come from the pair
                 pair.append(_runs.ramp_near_run(ramp_scale, "pbc", seed))
-        return sorted(pair, key=lambda spec: spec.seed)
+        ageing = [_runs.ageing_run(scale, "pbc", scale.ageing_eps, s)
+                  for s in TIER4_AGEING_SEEDS]
+        return ageing + sorted(pair, key=lambda spec: spec.seed)
     raise ValueError(f"tier = {tier!r}: allowed values are {', '.join(map(str, TIERS))}")
 
 
