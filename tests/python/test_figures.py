@@ -190,6 +190,11 @@ def test_fig5_ageing(campaign, out_dir):
     rescaled = series(table, "b", "tw=")
     assert sorted(rescaled) == sorted(s for s in curves if float(s[3:]) > 0)
     assert np.all(np.isfinite(table[("b", "eq6")]["mean"]))
+    # the test across realizations: the realizations it needs, tested when there are enough
+    full = param(table, "drawn:mu")[2] == 1
+    needed = param(table, "scaling_test:needed")[0]
+    assert needed == max(len(curves), (5 if full else 4) + 1) + 1   # bins >= curves, > params
+    assert (("params", "scaling_test:T2") in table) == (SEEDS >= needed)
 
 
 def test_fig6_vertical_profiles(campaign, out_dir):

@@ -300,6 +300,35 @@ def test_fig5_statistics_from_a_csv(tmp_path):
     assert stats["scaling"].interval("mu").lo <= 0.7 + 0.05
 
 
+def test_fig5_test_rows_from_the_realizations(tmp_path):
+    # the rows the claim ageing-scaling reads: the drawn collapse tested across 10
+    # realizations of curves that collapse (eq. 6 for every t_w), and the threshold alone
+    # with fewer realizations than the test needs
+    from tapmc.ageing import Ageing
+    from tapmc.paper import _plotting as P
+    from tapmc.paper import fig5
+
+    n = 401
+    lag = np.abs(np.subtract.outer(np.arange(n), np.arange(n)))
+    cov = 0.5 * 4e-3 / (1 + 0.6 * np.log1p(lag / 5.0))
+    rng = np.random.default_rng(0)
+    z = 7.0 + (np.linalg.cholesky(cov + 1e-12 * np.eye(n)) @ rng.normal(size=(n, 10))).T
+    for realizations, tested in ((10, True), (6, False)):
+        result = Ageing(z[:realizations], [10, 30, 100]).compute()
+        stats = {"scaling": result.scaling(True), "scaling_time": result.scaling(False)}
+        table = P.FigureTable()
+        test = fig5.add_test_rows(table, result, stats["scaling"], True)
+        table.write(tmp_path / "fig5.csv")
+        rows = P.read_table(tmp_path / "fig5.csv")
+        assert rows[("params", "scaling_test:needed")]["mean"][0] == 7
+        assert (("params", "scaling_test:T2") in rows) == tested
+        if tested:
+            assert rows[("params", "scaling_test:p_value")]["mean"][0] == pytest.approx(
+                test.p_value) and test.compatible
+            assert rows[("params", "scaling_test:bins")]["mean"][0] == 9
+            assert rows[("params", "scaling_test:dof")]["mean"][0] == 4
+
+
 def test_scaling_collapse_validation():
     from tapmc.ageing import scaling_collapse
 

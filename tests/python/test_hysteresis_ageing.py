@@ -14,7 +14,7 @@ HERE = Path(__file__).resolve().parent
 SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", HERE.parent.parent))
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
 
-from tapmc.ageing import Ageing  # noqa: E402
+from tapmc.ageing import Ageing, ScalingRealizationTest  # noqa: E402
 from tapmc.hysteresis import Hysteresis  # noqa: E402
 from tapmc.laws import AgeingLaw  # noqa: E402
 
@@ -129,3 +129,38 @@ def test_ageing_undetermined_cases_are_reported():
     assert "too few" in ag.collapse(bootstrap=12).note
     with pytest.raises(ValueError, match="bootstrap"):
         ag.fit(1, bootstrap=-1)
+
+
+def stationary_realizations(rng, realizations, taps=400, A_inf=4e-3, B=0.6, tau=5.0):
+    """Realizations of <Z> whose A(t, t_w) is exactly eq. 6 for every t_w (the stationary
+    Gaussian process of test_ageing_collapse_recovers_eq6): curves that collapse."""
+    lag = np.abs(np.subtract.outer(np.arange(taps + 1), np.arange(taps + 1)))
+    cov = 0.5 * A_inf / (1.0 + B * np.log1p(lag / tau))
+    chol = np.linalg.cholesky(cov + 1e-12 * np.eye(taps + 1))
+    return 7.0 + (chol @ rng.normal(size=(taps + 1, realizations))).T
+
+
+def test_scaling_test_accepts_curves_that_collapse_and_rejects_a_ramp():
+    z = stationary_realizations(np.random.default_rng(0), 10)
+    test = Ageing(z, [0, 10, 30, 100]).compute().scaling_test(True)
+    # 10 realizations: 9 bins of delays shared by the three curves, 5 parameters
+    assert test.realizations == 10 and test.bins == {10: 3, 30: 3, 100: 3} and test.dof == 4
+    assert test.compatible, test
+    # a compaction that stops at tap 200 whatever the age: the curves of different t_w
+    # have different shapes, which no rescaling of t and A makes one
+    ramp = -0.3 * np.minimum(np.arange(401.0), 200) / 200
+    bent = Ageing(z + ramp, [10, 30, 100]).compute().scaling_test(True)
+    assert bent.p_value < 1e-3 and not bent.compatible, bent
+
+
+def test_scaling_test_names_what_it_needs():
+    z = stationary_realizations(np.random.default_rng(1), 6)
+    with pytest.raises(ValueError, match="6 realizations: the test of the collapse of 3 curves "
+                                         "needs at least 7"):
+        Ageing(z, [10, 30, 100]).compute().scaling_test(True)
+    in_time = Ageing(z, [10, 30, 100]).compute().scaling_test(False)   # 4 parameters: 6 do
+    assert in_time.dof == 1 and sum(in_time.bins.values()) == 5
+    with pytest.raises(ValueError, match="must be integers > 0"):
+        ScalingRealizationTest().compute(z, [0, 10])
+    with pytest.raises(RuntimeError, match="compute"):
+        ScalingRealizationTest().p_value

@@ -31,15 +31,27 @@ profile interval to the leave-one-curve-out jackknife standard error and, when t
 realizations are at hand (:meth:`Ageing.scaling` with ``bootstrap``), to the standard
 deviation over realizations resampled with replacement; a side that the profile leaves open
 stays open.
+
+Its test. Whether one rescaling collapses the curves within their errors is a question for the
+realizations, not for the delays: :class:`ScalingRealizationTest` cuts every curve into
+log-spaced bins of delays, takes each realization's mean of (<Z>(t_w + t) - <Z>(t_w))^2 per
+bin, and fits the collapse to the bins' means by generalized least squares with their
+covariance between realizations (``tapmc.laws.hotelling_gls``): Hotelling's T^2, whose
+p-values are uniform for 10 realizations of curves that collapse (the slow test
+tests/python/test_slow_ageing_scaling_test.py), where the reduced chi2 of the fit, a sum over
+correlated delays each weighted by an error estimated from the same few realizations, has no
+known distribution.
 """
 
 import numpy as np
 
 from ._validate import as_1d, as_2d, new_axis, require, result
-from .laws import AgeingLaw, Law
+from .laws import (REALIZATION_MAX_BINS, REALIZATION_P_MIN, AgeingLaw, Law, hotelling_gls,
+                   realization_bin_covariance)
 
 __all__ = ["Ageing", "MIN_BOOTSTRAP_REALIZATIONS", "ScaledAgeingLaw", "ScalingCollapse",
-           "scaling_collapse", "collapse_dispersion", "SCALING_EXPONENT_RANGE"]
+           "ScalingRealizationTest", "scaling_collapse", "scaling_test_min_realizations",
+           "collapse_dispersion", "SCALING_EXPONENT_RANGE"]
 
 #: allowed range of the scaling exponents mu (time) and kappa (amplitude): beyond +-3 a
 #: factor 10 in t_w would rescale t by more than 10^3, far outside any run of the paper
@@ -209,6 +221,14 @@ class Ageing:
             if len(samples) >= 2:
                 res.bootstrap = dict(zip(res.fit.names, np.std(samples, axis=0, ddof=1)))
         return res
+
+    def scaling_test(self, fit_amplitude=True, start=None):
+        """:class:`ScalingRealizationTest` of the collapse of the curves of the waiting times
+        > 0 (time and amplitude, or time alone), started from ``start`` (dict of the
+        :class:`ScaledAgeingLaw` parameters; default the collapse of the mean curves)."""
+        require(self, "_A")
+        tws = [tw for tw in self.waiting_times if tw > 0]
+        return ScalingRealizationTest(fit_amplitude).compute(self.z, tws, self._t_in, start)
 
     def collapse(self, bootstrap=100, seed=0):
         """Eq. 6 fitted to all waiting times together: one (A_inf, B_A, tau_A) for every t_w
@@ -435,6 +455,160 @@ class ScalingCollapse:
         ax.set_ylabel(rf"$A\,/\,(t_W/{self.t_ref:.3g})^{{{self.kappa:.2f}}}$")
         ax.legend(fontsize=7)
         return ax
+
+
+def scaling_test_min_realizations(curves, fit_amplitude=True):
+    """The fewest realizations with which :class:`ScalingRealizationTest` can test the
+    collapse of ``curves`` waiting times: bins >= curves and > parameters, realizations >
+    bins."""
+    parameters = 5 if fit_amplitude else 4
+    return max(int(curves), parameters + 1) + 1
+
+
+#: exponents (mu, and kappa with the amplitude) of the grid of starts of
+#: :class:`ScalingRealizationTest` (within SCALING_EXPONENT_RANGE), and how many of its best
+#: nodes are polished besides the collapse of the mean curves
+_TEST_GRID_EXPONENTS = (-1.5, -1.0, -0.5, 0.0, 0.5, 1.0, 1.5, 2.0)
+_TEST_GRID_STARTS = 4
+
+
+class ScalingRealizationTest:
+    """Is the collapse of Fig. 5 (:class:`ScaledAgeingLaw`: one eq. 6 on t / r^mu, amplitude
+    r^kappa, r = t_w / t_ref) compatible with the curves of independent realizations?
+
+    Every curve (delays t >= 1 of one waiting time) is cut into log-spaced bins of delays: n -
+    1 bins in all for n realizations (at most :data:`tapmc.laws.REALIZATION_MAX_BINS` per
+    curve), shared evenly, the remainder going to the shortest waiting times (their curves
+    change most over the delays). Each realization gives one mean of (<Z>(t_w + t) -
+    <Z>(t_w))^2 per bin; the collapse, averaged over each bin's delays, is fitted to the bins'
+    means by GLS with their covariance over realizations, and its minimum chi-square is
+    Hotelling's T^2 with q = bins - parameters (``tapmc.laws.hotelling_gls``): F = (n - q) T^2
+    / (q (n - 1)) follows F(q, n - q) when the collapse holds. Needs
+    :func:`scaling_test_min_realizations` realizations (7 for five waiting times with the
+    amplitude, 6 in time alone).
+
+    ``compute(z, waiting_times, t=None, start=None)``: ``z`` as :class:`Ageing`'s
+    ``z_series``; ``t`` the delays (default every delay the series leaves after the longest
+    waiting time); ``start`` a dict of the law's parameters (default: the
+    :func:`scaling_collapse` of the mean curves). Results: ``params``, ``chi2`` (T^2),
+    ``dof`` (q), ``F``, ``p_value``, ``compatible`` (p_value >=
+    :data:`tapmc.laws.REALIZATION_P_MIN`), ``realizations``, ``bins`` (dict t_w -> bins of
+    its curve), ``t_ref``."""
+
+    def __init__(self, fit_amplitude=True):
+        self.fit_amplitude = bool(fit_amplitude)
+        self._result = None
+
+    def compute(self, z, waiting_times, t=None, start=None):
+        z = as_2d("z", z, min_rows=2, min_cols=2)
+        tws = sorted({int(v) for v in np.atleast_1d(waiting_times)})
+        if not tws or tws[0] <= 0:
+            raise ValueError(f"waiting_times = {waiting_times!r} must be integers > 0 (a "
+                             "waiting time of 0 has no scale)")
+        n, taps = z.shape[0], z.shape[1] - 1
+        t = np.arange(1, taps - tws[-1] + 1) if t is None else as_1d("t", t)
+        t = t[t >= 1].astype(int)
+        if t.size == 0 or t.max() + tws[-1] > taps:
+            raise ValueError(f"delays up to {t.max() if t.size else 0} and t_w = {tws[-1]} "
+                             f"need more than the {taps} taps of the series")
+        needed = scaling_test_min_realizations(len(tws), self.fit_amplitude)
+        if n < needed:
+            raise ValueError(f"{n} realizations: the test of the collapse of {len(tws)} "
+                             f"curves needs at least {needed}")
+        total = min(n - 1, REALIZATION_MAX_BINS * len(tws))
+        share = [total // len(tws) + (k < total % len(tws)) for k in range(len(tws))]
+        per_run, rows, points_t, points_tw, bins = [], [], [], [], {}
+        for tw, nbins in zip(tws, share):
+            edges = np.unique(np.round(np.geomspace(t.min(), t.max() + 1, nbins + 1)))
+            if edges.size != nbins + 1:
+                raise ValueError(f"delays {t.min()}-{t.max()} are too few for {nbins} "
+                                 "log-spaced bins")
+            which = np.searchsorted(edges, t, side="right") - 1
+            d2 = (z[:, tw + t] - z[:, [tw]]) ** 2              # (realizations, delays)
+            for b in range(nbins):
+                member = which == b
+                per_run.append(d2[:, member].mean(axis=1))
+                row = np.zeros(t.size * len(tws))
+                row[len(points_t) * t.size + np.flatnonzero(member)] = 1.0 / member.sum()
+                rows.append(row)
+            points_t.append(t.astype(float))
+            points_tw.append(np.full(t.size, float(tw)))
+            bins[tw] = nbins
+        per_run = np.array(per_run).T                               # (realizations, bins)
+        binning = np.array(rows)                                    # (bins, points)
+        law = ScaledAgeingLaw(np.concatenate(points_tw), fit_amplitude=self.fit_amplitude)
+        t_all = np.concatenate(points_t)
+        means, cov, whiten = realization_bin_covariance(per_run)
+        if start is None:
+            mean_curves = {}
+            for tw in tws:
+                d2 = (z[:, tw + t] - z[:, [tw]]) ** 2
+                mean_curves[tw] = (t.astype(float), d2.mean(axis=0),
+                                   d2.std(axis=0, ddof=1) / np.sqrt(n))
+            start = scaling_collapse(mean_curves, self.fit_amplitude).fit.params
+        x0 = np.array([float(start[k]) for k in law.names])
+        lo, hi = law.bounds(None, None)
+
+        def model(x):
+            return binning @ law.function(t_all, *x)
+
+        starts = [x0] + self._grid_starts(binning, t_all, law, means, whiten, model)
+        fit = hotelling_gls(means, whiten, model, starts, lo, hi, n)
+        self._result = dict(fit, params=dict(zip(law.names, fit["x"])), bins=bins,
+                            t_ref=law.t_ref)
+        return self
+
+    def _grid_starts(self, binning, t_all, law, means, whiten, model):
+        """The :data:`_TEST_GRID_STARTS` best nodes of a grid of exponents (mu, and kappa with
+        the amplitude), eq. 6's own start on the rescaled bin means at each, by their GLS
+        chi-square: the minimum T^2 needs the GLS's global minimum, and the collapse of the
+        mean curves, weighted per delay, can start it in another valley (a T^2 too large,
+        a test too liberal)."""
+        delay = binning @ t_all                    # mean delay of each bin
+        log_r = binning @ law._log_r               # ln(t_w / t_ref) of each bin's curve
+        kappas = _TEST_GRID_EXPONENTS if self.fit_amplitude else (0.0,)
+        eq6 = AgeingLaw()
+        nodes = []
+        for mu in _TEST_GRID_EXPONENTS:
+            for kappa in kappas:
+                scale = np.exp(kappa * log_r)
+                try:
+                    p = eq6.initial_guess(delay * np.exp(-mu * log_r), means / scale,
+                                          np.ones_like(means))
+                except ValueError:
+                    continue
+                x = np.array(list(p) + [mu] + ([kappa] if self.fit_amplitude else []))
+                with np.errstate(all="ignore"):
+                    cost = float(np.sum((whiten @ (means - model(x))) ** 2))
+                if np.isfinite(cost):
+                    nodes.append((cost, x))
+        nodes.sort(key=lambda node: node[0])
+        return [x for _, x in nodes[:_TEST_GRID_STARTS]]
+
+    def _get(self, key):
+        if self._result is None:
+            raise RuntimeError("call compute(z, waiting_times) first")
+        return self._result[key]
+
+    params = property(lambda self: self._get("params"))
+    chi2 = property(lambda self: self._get("chi2"))
+    dof = property(lambda self: self._get("dof"))
+    F = property(lambda self: self._get("F"))
+    p_value = property(lambda self: self._get("p_value"))
+    realizations = property(lambda self: self._get("realizations"))
+    bins = property(lambda self: self._get("bins"))
+    t_ref = property(lambda self: self._get("t_ref"))
+
+    @property
+    def compatible(self):
+        return bool(self.p_value >= REALIZATION_P_MIN)
+
+    def __repr__(self):
+        if self._result is None:
+            return "<ScalingRealizationTest: not computed>"
+        return (f"<ScalingRealizationTest: T2 {self.chi2:.3g} ({self.dof} dof, "
+                f"{self.realizations} realizations, {sum(self.bins.values())} bins), "
+                f"p {self.p_value:.3g}>")
 
 
 def _clean_curves(curves):

@@ -61,7 +61,8 @@ __all__ = ["FitResult", "Law", "InverseLogLaw", "ZLaw", "TwoExponentials", "Agei
            "POSITIVE_DECADES", "TIME_SCALE_DECADES", "UNBOUNDED_SPAN", "RANGE_Z_LIMIT",
            "LINEARITY_P_MIN", "Interval", "RangeRefits", "range_refits", "default_tap_ranges",
            "LogLinear", "ExponentialDependence", "exponential_dependence",
-           "RealizationLawTest", "REALIZATION_MAX_BINS", "REALIZATION_P_MIN",
+           "RealizationLawTest", "realization_bin_covariance", "hotelling_gls",
+           "REALIZATION_MAX_BINS", "REALIZATION_P_MIN",
            "SurrogateFits", "SURROGATES", "SURROGATE_P_MIN"]
 
 #: |correlation| between two parameters above which they are reported as not separately
@@ -1273,6 +1274,65 @@ def exponential_dependence(sqrt_eps, B, B_lo, B_hi):
     return ExponentialDependence(law.fit(x[ok], np.log(b[ok]), sig), x[ok], x[~ok])
 
 
+def realization_bin_covariance(per_run):
+    """(means, covariance of the means, whitening matrix) of bin means over independent
+    realizations: ``per_run`` has one row per realization, one column per bin; the covariance
+    is the sample covariance over the n realizations divided by n, and the whitening matrix
+    W has W^T W = its inverse."""
+    per_run = np.asarray(per_run, dtype=float)
+    n = per_run.shape[0]
+    means = per_run.mean(axis=0)
+    cov = np.atleast_2d(np.cov(per_run, rowvar=False, ddof=1)) / n
+    try:
+        whiten = np.linalg.inv(np.linalg.cholesky(cov))
+    except np.linalg.LinAlgError:
+        raise ValueError("the realizations' bin means have a singular covariance "
+                         "(identical realizations?)") from None
+    return means, cov, whiten
+
+
+def hotelling_gls(means, whiten, model, starts, lo, hi, realizations):
+    """GLS fit of ``model(q)`` (one value per bin) to the bin means of ``realizations``
+    independent realizations (:func:`realization_bin_covariance`), from each of ``starts``
+    within the bounds (lo, hi), the best kept. Its minimum chi-square is Hotelling's T^2 in
+    the q = bins - parameters directions the model cannot absorb, so F = (n - q) T^2 / (q (n -
+    1)) follows F(q, n - q) when the model holds (exact for a model linear in its parameters
+    and Gaussian bin means, the usual linearisation otherwise). Returns dict ``x`` (best
+    parameters), ``errors`` (curvature errors, diagnostics only), ``chi2`` (T^2), ``dof`` (q),
+    ``F``, ``p_value``, ``realizations``, ``bin_model``."""
+    n, bins = int(realizations), len(means)
+    starts = [np.asarray(s, dtype=float) for s in starts]
+    p = starts[0].size
+    q = bins - p
+    if q < 1 or n <= q:
+        raise ValueError(f"{bins} bins, {p} parameters and {n} realizations: the test needs "
+                         "realizations > bins > parameters")
+
+    def residual(x):
+        return whiten @ (means - model(x))
+
+    lo = np.broadcast_to(lo, (p,)).astype(float)
+    hi = np.broadcast_to(hi, (p,)).astype(float)
+    lo_in = lo + 1e-9 * (1.0 + np.abs(np.where(np.isfinite(lo), lo, 0.0)))
+    hi_in = hi - 1e-9 * (1.0 + np.abs(np.where(np.isfinite(hi), hi, 0.0)))
+    fit = None
+    for start in starts:
+        start = np.where(np.isfinite(lo) & (start <= lo), lo_in, start)
+        start = np.where(np.isfinite(hi) & (start >= hi), hi_in, start)
+        with np.errstate(all="ignore"):
+            trial = least_squares(residual, start, bounds=(lo, hi), method="trf",
+                                  x_scale="jac", max_nfev=20000)
+        if fit is None or trial.cost < fit.cost:
+            fit = trial
+    chi2 = float(np.sum(fit.fun ** 2))
+    F = (n - q) * chi2 / (q * (n - 1))
+    with np.errstate(all="ignore"):
+        errors = np.sqrt(np.diag(np.linalg.pinv(fit.jac.T @ fit.jac)))
+    return dict(x=[float(v) for v in fit.x], errors=[float(v) for v in errors], chi2=chi2,
+                dof=q, F=float(F), p_value=float(f_distribution.sf(F, q, n - q)),
+                realizations=n, bin_model=model(fit.x))
+
+
 class RealizationLawTest:
     """Is a law compatible with the mean of independent realizations of the same process?
 
@@ -1336,51 +1396,20 @@ class RealizationLawTest:
         if any(not m.any() for m in members):
             raise ValueError(f"a log-spaced bin of taps {t.min():g}-{t.max():g} is empty")
         per_run = np.stack([curves[:, m].mean(axis=1) for m in members], axis=1)
-        means = per_run.mean(axis=0)
-        cov = np.atleast_2d(np.cov(per_run, rowvar=False, ddof=1)) / n
-        try:
-            whiten = np.linalg.inv(np.linalg.cholesky(cov))
-        except np.linalg.LinAlgError:
-            raise ValueError("the realizations' bin means have a singular covariance "
-                             "(identical realizations?)") from None
-
+        means, cov, whiten = realization_bin_covariance(per_run)
         binning = np.stack([m / m.sum() for m in members])          # (bins, taps)
 
         def model(q):
             return binning @ self.law.function(t, *q)
 
-        def residual(q):
-            return whiten @ (means - model(q))
-
         first = self.law.fit(t, curves.mean(axis=0)).params
         first = np.array([first[k] for k in self.law.names], dtype=float)
         starts = self._projected_starts(t, binning, means, cov, first) or [first]
         lo, hi = self.law.bounds(t, means)
-        lo = np.broadcast_to(lo, (self.p,)).astype(float)
-        hi = np.broadcast_to(hi, (self.p,)).astype(float)
-        lo_in = lo + 1e-9 * (1.0 + np.abs(np.where(np.isfinite(lo), lo, 0.0)))
-        hi_in = hi - 1e-9 * (1.0 + np.abs(np.where(np.isfinite(hi), hi, 0.0)))
-        fit = None
-        for start in starts:
-            start = np.where(np.isfinite(lo) & (start <= lo), lo_in, start)
-            start = np.where(np.isfinite(hi) & (start >= hi), hi_in, start)
-            with np.errstate(all="ignore"):
-                trial = least_squares(residual, start, bounds=(lo, hi), method="trf",
-                                      x_scale="jac", max_nfev=20000)
-            if fit is None or trial.cost < fit.cost:
-                fit = trial
-        chi2 = float(np.sum(fit.fun ** 2))
-        q = bins - self.p
-        F = (n - q) * chi2 / (q * (n - 1))
-        with np.errstate(all="ignore"):
-            jtj = fit.jac.T @ fit.jac
-            errors = np.sqrt(np.diag(np.linalg.pinv(jtj)))
-        self._result = dict(params=dict(zip(self.law.names, map(float, fit.x))),
-                            errors=dict(zip(self.law.names, map(float, errors))),
-                            chi2=chi2, dof=q, F=float(F),
-                            p_value=float(f_distribution.sf(F, q, n - q)), realizations=n,
-                            bin_edges=edges, bin_means=means, bin_sem=np.sqrt(np.diag(cov)),
-                            bin_model=model(fit.x))
+        fit = hotelling_gls(means, whiten, model, starts, lo, hi, n)
+        self._result = dict(fit, params=dict(zip(self.law.names, fit["x"])),
+                            errors=dict(zip(self.law.names, fit["errors"])),
+                            bin_edges=edges, bin_means=means, bin_sem=np.sqrt(np.diag(cov)))
         return self
 
     def _projected_starts(self, t, binning, means, cov, first):

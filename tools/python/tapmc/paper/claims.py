@@ -727,8 +727,10 @@ def b_exponential(data, claim):
 
 
 def ageing_collapse(data, claim):
-    """Chi-square of one eq. 6 on the rescaled curves of every t_W (Fig. 5 bottom), with the
-    exponent mu of t / t_W^mu and the unscaled chi-square beside it."""
+    """Hotelling's T^2 of the drawn collapse of Fig. 5 across the realizations
+    (``scaling_test:`` rows, tapmc.ageing.ScalingRealizationTest), with mu and the reduced
+    chi2 over the correlated delays beside it (which decides nothing: its delays share their
+    realizations and their errors come from the same few of them)."""
     fig = data.figure("fig5")
     if fig is None:
         return _missing("no ageing runs")
@@ -737,13 +739,29 @@ def ageing_collapse(data, claim):
         return _missing("no rescaled collapse in the Fig. 5 data")
     tag = "scaling" if drawn_mu[2] == 1 else "scaling_time"
     chi = fig.param(f"{tag}:reduced_chi2")[0]
-    unscaled = fig.param("unscaled:reduced_chi2")[0]
-    points = sum(len(fig.get("b", s)[0]) for s in fig.series("b") if s.startswith("tw="))
-    dof = points - (5 if tag == "scaling" else 4)
     mu, mu_err, mu_closed = fig.param(f"{tag}:mu")
     mu_text = fmt(mu, mu_err) if mu_closed == 1 else f"{fmt(mu)} (undetermined)"
-    return [Measure(chi, dof=dof, shown=f"mu = {mu_text}; reduced chi2 {fmt(chi)} ({dof} dof; "
-                                        f"unscaled {fmt(unscaled)})")]
+    shown = f"mu = {mu_text}; reduced chi2 over the correlated delays {fmt(chi)}"
+    curves = [s for s in fig.series("a") if s.startswith("tw=") and float(s[3:]) > 0]
+    realizations = int(min(np.min(fig.get("a", s)[3]) for s in curves)) if curves else 0
+    needed = fig.param("scaling_test:needed")[0]
+    if not np.isfinite(needed):
+        from tapmc.ageing import scaling_test_min_realizations
+        needed = scaling_test_min_realizations(len(curves), drawn_mu[2] == 1)
+    if realizations < needed:
+        return [Measure(shown=shown, undecided=(
+            f"{realizations} realizations: the test of the collapse across realizations needs "
+            f"at least {int(needed)} (the paper averaged 10)"))]
+    T2 = fig.param("scaling_test:T2")[0]
+    if not np.isfinite(T2):
+        return [Measure(shown=shown, undecided=(
+            "the Fig. 5 data have no test across realizations (drawn before it existed: "
+            "draw Fig. 5 again from its runs)"))]
+    dof = int(fig.param("scaling_test:dof")[0])
+    bins = int(fig.param("scaling_test:bins")[0])
+    return [Measure(T2, dof=dof, p_value=fig.param("scaling_test:p_value")[0],
+                    shown=f"T^2 {fmt(T2)} ({dof} dof) over {bins} log bins of delays, "
+                          f"{realizations} realizations; {shown} (decides nothing)")]
 
 
 #: Decades of the log-time slopes of ``log_time_slowing``: the first decade of taps (the last

@@ -43,7 +43,12 @@ likewise, and ``eq6``, its eq. 6 on the rescaled variable), ``params``:
   ``scaling_time:...`` the same for the collapse in time alone (no kappa);
   ``unscaled:dispersion`` the dispersion of the curves as they are;
 * ``drawn:mu``, ``drawn:kappa``: the exponents of panel b (n = 1 for the time-and-amplitude
-  collapse, 0 for the time-only one).
+  collapse, 0 for the time-only one);
+* ``scaling_test:needed``: the realizations the test of the drawn collapse across
+  realizations needs (``tapmc.ageing.ScalingRealizationTest``); with that many or more,
+  ``scaling_test:T2`` (Hotelling's T^2), ``:dof``, ``:p_value``, ``:bins`` (of delays, over
+  all curves) and ``:realizations``. The test needs the realizations themselves, so a report
+  refitted from a CSV keeps these rows as drawn.
 """
 
 from __future__ import annotations
@@ -207,6 +212,24 @@ def add_scaling_rows(table, stats, curves, nreal):
     return shown, rescaled
 
 
+def add_test_rows(table, result, shown, full):
+    """The ``scaling_test:`` rows of the module text: the drawn collapse ``shown`` (time and
+    amplitude when ``full``) tested across the realizations of the ``Ageing`` ``result``,
+    started from its fit."""
+    from tapmc.ageing import scaling_test_min_realizations
+
+    curves = [tw for tw in result.waiting_times if tw > 0]
+    needed = scaling_test_min_realizations(len(curves), full)
+    table.add("params", "scaling_test:needed", 0.0, needed, None, 1)
+    if result.n_realizations < needed:
+        return None
+    test = result.scaling_test(full, start=shown.fit.params)
+    for name, value in (("T2", test.chi2), ("dof", test.dof), ("p_value", test.p_value),
+                        ("bins", sum(test.bins.values())), ("realizations", test.realizations)):
+        table.add("params", f"scaling_test:{name}", 0.0, value, None, 1)
+    return test
+
+
 def refit_table(table):
     """A ``FigureTable`` with the curves and per-curve rows of ``table`` (a Fig. 5 CSV read
     with ``tapmc.paper._plotting.read_table``) and the collapse recomputed from its curves
@@ -269,6 +292,8 @@ def draw(campaign, out_dir, waiting_times=None):
         stats = None
     if stats is not None:
         shown, rescaled = add_scaling_rows(table, stats, curves, nreal)
+        if hasattr(result, "scaling_test"):
+            add_test_rows(table, result, shown, shown is stats["scaling"])
         smin, smax = np.inf, 0.0
         for tw, (s, y) in rescaled.items():
             pos = s > 0
