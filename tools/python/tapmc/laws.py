@@ -1304,7 +1304,7 @@ def hotelling_gls(means, whiten, model, starts, lo, hi, realizations):
     starts = [np.asarray(s, dtype=float) for s in starts]
     p = starts[0].size
     q = bins - p
-    if q < 1 or n <= q:
+    if q < 1 or n <= bins:
         raise ValueError(f"{bins} bins, {p} parameters and {n} realizations: the test needs "
                          "realizations > bins > parameters")
 
