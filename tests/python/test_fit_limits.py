@@ -308,11 +308,10 @@ def test_fig5_test_rows_from_the_realizations(tmp_path):
     from tapmc.paper import _plotting as P
     from tapmc.paper import fig5
 
-    n = 401
-    lag = np.abs(np.subtract.outer(np.arange(n), np.arange(n)))
-    cov = 0.5 * 4e-3 / (1 + 0.6 * np.log1p(lag / 5.0))
-    rng = np.random.default_rng(0)
-    z = 7.0 + (np.linalg.cholesky(cov + 1e-12 * np.eye(n)) @ rng.normal(size=(n, 10))).T
+    sys.path.insert(0, str(HERE))
+    from test_hysteresis_ageing import stationary_realizations
+
+    z = stationary_realizations(np.random.default_rng(0), 10)
     for realizations, tested in ((10, True), (6, False)):
         result = Ageing(z[:realizations], [10, 30, 100]).compute()
         stats = {"scaling": result.scaling(True), "scaling_time": result.scaling(False)}

@@ -517,14 +517,14 @@ class ScalingRealizationTest:
                              f"curves needs at least {needed}")
         total = min(n - 1, REALIZATION_MAX_BINS * len(tws))
         share = [total // len(tws) + (k < total % len(tws)) for k in range(len(tws))]
-        per_run, rows, points_t, points_tw, bins = [], [], [], [], {}
+        per_run, rows, points_t, points_tw, bins, squares = [], [], [], [], {}, {}
         for tw, nbins in zip(tws, share):
             edges = np.unique(np.round(np.geomspace(t.min(), t.max() + 1, nbins + 1)))
             if edges.size != nbins + 1:
                 raise ValueError(f"delays {t.min()}-{t.max()} are too few for {nbins} "
                                  "log-spaced bins")
             which = np.searchsorted(edges, t, side="right") - 1
-            d2 = (z[:, tw + t] - z[:, [tw]]) ** 2              # (realizations, delays)
+            d2 = squares[tw] = (z[:, tw + t] - z[:, [tw]]) ** 2   # (realizations, delays)
             for b in range(nbins):
                 member = which == b
                 per_run.append(d2[:, member].mean(axis=1))
@@ -540,11 +540,9 @@ class ScalingRealizationTest:
         t_all = np.concatenate(points_t)
         means, cov, whiten = realization_bin_covariance(per_run)
         if start is None:
-            mean_curves = {}
-            for tw in tws:
-                d2 = (z[:, tw + t] - z[:, [tw]]) ** 2
-                mean_curves[tw] = (t.astype(float), d2.mean(axis=0),
-                                   d2.std(axis=0, ddof=1) / np.sqrt(n))
+            mean_curves = {tw: (t.astype(float), d2.mean(axis=0),
+                                d2.std(axis=0, ddof=1) / np.sqrt(n))
+                           for tw, d2 in squares.items()}
             start = scaling_collapse(mean_curves, self.fit_amplitude).fit.params
         x0 = np.array([float(start[k]) for k in law.names])
         lo, hi = law.bounds(None, None)
