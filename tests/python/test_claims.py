@@ -431,6 +431,20 @@ def fig5_collapse(p_value, realizations=10, tested=True):
     return tab
 
 
+def fig5_eq6(p_value, realizations=10, tested=True):
+    """Fig. 5 data whose curves have eq. 6's test across ``realizations``, every curve with
+    the p-value ``p_value``."""
+    tab = fig5_collapse(0.3, realizations)
+    tab.param("eq6_test:needed", 5)
+    if tested and realizations >= 5:
+        for tw in (10, 30, 100):
+            tab.param(f"eq6_test:tw={tw}:T2", 4.0).param(f"eq6_test:tw={tw}:dof", 5)
+            tab.param(f"eq6_test:tw={tw}:p_value", p_value).param(f"eq6_test:tw={tw}:bins", 8)
+            tab.param(f"drift_share:tw={tw}", 0.97)
+            tab.param(f"eq6_test_long:tw={tw}:p_value", 0.4)
+    return tab
+
+
 FROZEN = 0.58 + 0.02 * (1 - 1 / (1 + 0.3 * np.log1p(T)))    # slows down on ln t
 STEADY_LOG = 0.58 + 0.04 * np.log1p(T) / np.log(4001)       # keeps its rate on ln t
 
@@ -496,6 +510,7 @@ CONTROLS = {
                       report(fig2=fig2_fits({0.05: True}, b_chi2=8.0, b_dof=3))),
     # the test across realizations decides, not the reduced chi2 over correlated delays
     "ageing_collapse": (report(fig5=fig5_collapse(0.3)), report(fig5=fig5_collapse(0.002))),
+    "ageing_eq6": (report(fig5=fig5_eq6(0.3)), report(fig5=fig5_eq6(0.002))),
     "eq3_fit_quality": (realized(eq3_law, eq4_law),
                         realized(lambda t: 0.52 + 0.01 * t ** 0.3, eq4_law)),
     "log_time_slowing": (report(fig2=fig2(_low_first({0.005: FROZEN, 0.15: STEADY_LOG}))),
@@ -719,6 +734,22 @@ def test_ageing_collapse_is_undecided_without_its_test():
     m = claims.STATISTICS["ageing_collapse"](report(fig5=fig5_collapse(0.3)), claim)[0]
     assert m.text().startswith("T^2 10 (3 dof) over 8 log bins of delays, 10 realizations; "
                                "mu = 1 ± 0.1; reduced chi2 over the correlated delays 37.6")
+
+
+def test_ageing_eq6_rows_per_curve_and_undecided_without_its_test():
+    claim = BY_ID["ageing-eq6"]
+    rows = claims.STATISTICS["ageing_eq6"](report(fig5=fig5_eq6(0.3)), claim)
+    assert [m.label for m in rows] == ["t_W = 10", "t_W = 30", "t_W = 100"]
+    assert rows[0].text() == ("T^2 4 (5 dof) over 8 log bins of delays, 10 realizations; the "
+                              "mean displacement's square is 97.00 % of A; over the delays "
+                              ">= 100 alone (a linear axis of t, as the paper draws it): p = "
+                              "0.4")
+    few = _outcomes(claim, report(fig5=fig5_eq6(0.3, realizations=4)))
+    assert len(few) == 3 and all(o.startswith(
+        "undecided (4 realizations: eq. 6's test across realizations needs at least 5") for o in few)
+    assert all("draw Fig. 5 again" in o
+               for o in _outcomes(claim, report(fig5=fig5_eq6(0.3, tested=False))))
+    assert _outcomes(claim, report())[0].startswith("undecided (not in this campaign")
 
 
 def test_theta0_scan_within_noise_is_undecided():

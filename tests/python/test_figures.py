@@ -195,6 +195,14 @@ def test_fig5_ageing(campaign, out_dir):
     needed = param(table, "scaling_test:needed")[0]
     assert needed == max(len(curves), (5 if full else 4) + 1) + 1   # bins >= curves, > params
     assert (("params", "scaling_test:T2") in table) == (SEEDS >= needed)
+    # eq. 6 on each curve alone, across realizations, with the share of A that is drift
+    assert param(table, "eq6_test:needed")[0] == 5
+    for name in curves:
+        tw = float(name[3:])
+        if tw > 0:
+            assert (("params", f"eq6_test:tw={tw:g}:p_value") in table) == (SEEDS >= 5)
+            assert (("params", f"drift_share:tw={tw:g}") in table) == (SEEDS >= 5)
+            assert (("params", f"eq6_test_long:tw={tw:g}:p_value") in table) == (SEEDS >= 5)
 
 
 def test_fig6_vertical_profiles(campaign, out_dir):

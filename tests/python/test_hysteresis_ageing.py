@@ -153,6 +153,27 @@ def test_scaling_test_accepts_curves_that_collapse_and_rejects_a_ramp():
     assert bent.p_value < 1e-3 and not bent.compatible, bent
 
 
+def test_eq6_test_and_drift_share_tell_fluctuations_from_a_drift():
+    # fluctuations whose A is eq. 6 exactly: eq. 6 compatible, no drift
+    z = stationary_realizations(np.random.default_rng(2), 7)
+    ageing = Ageing(z, [10, 100]).compute()
+    for tw in (10, 100):
+        test = ageing.eq6_test(tw)
+        assert test.realizations == 7 and test.dof == 3 and test.compatible, test
+        assert abs(ageing.drift_share(tw)) < 0.25
+    # the same plus a compaction that goes on at a constant rate: A is the drift's square, t^2
+    # at every delay, which eq. 6 (linear in t at short delays, then slower) cannot follow
+    drifting = Ageing(z - 2e-3 * np.arange(401.0), [10, 100]).compute()
+    for tw in (10, 100):
+        assert drifting.drift_share(tw) > 0.95
+        assert drifting.eq6_test(tw).p_value < 1e-3
+    # a drift alone, the same in every realization: its share is 1 exactly
+    same = Ageing(np.tile(-1e-3 * np.arange(401.0), (5, 1)) + 1e-9 * z[:5], [10]).compute()
+    assert same.drift_share(10) == pytest.approx(1.0, abs=1e-6)
+    with pytest.raises(ValueError, match="t_w = 30 is not one of the waiting times"):
+        ageing.eq6_test(30)
+
+
 def test_scaling_test_names_what_it_needs():
     z = stationary_realizations(np.random.default_rng(1), 6)
     with pytest.raises(ValueError, match="6 realizations: the test of the collapse of 3 curves "

@@ -40,14 +40,18 @@ covariance between realizations (``tapmc.laws.hotelling_gls``): Hotelling's T^2,
 p-values are uniform for 10 realizations of curves that collapse (the slow test
 tests/python/test_slow_ageing_scaling_test.py), where the reduced chi2 of the fit, a sum over
 correlated delays each weighted by an error estimated from the same few realizations, has no
-known distribution.
+known distribution. The collapse is tested with eq. 6 as its master curve, so a curve that
+eq. 6 itself does not follow fails it too: :meth:`Ageing.eq6_test` tests eq. 6 on one curve
+alone, the same way. Where the packing still compacts, A is mostly the square of the mean
+displacement (:meth:`Ageing.drift_share`), which starts as t^2 (a drift) where eq. 6 starts
+linear in t.
 """
 
 import numpy as np
 
 from ._validate import as_1d, as_2d, new_axis, require, result
-from .laws import (REALIZATION_MAX_BINS, REALIZATION_P_MIN, AgeingLaw, Law, hotelling_gls,
-                   realization_bin_covariance)
+from .laws import (REALIZATION_MAX_BINS, REALIZATION_P_MIN, AgeingLaw, Law,
+                   RealizationLawTest, hotelling_gls, realization_bin_covariance)
 
 __all__ = ["Ageing", "MIN_BOOTSTRAP_REALIZATIONS", "ScaledAgeingLaw", "ScalingCollapse",
            "ScalingRealizationTest", "scaling_collapse", "scaling_test_min_realizations",
@@ -80,7 +84,10 @@ class Ageing:
     (dict t_w -> standard error over realizations), ``n_realizations``. ``fit(t_w)`` fits eq. 6
     to one curve, ``collapse()`` fits eq. 6 to all curves at once (the scaling of Fig. 5) and
     returns a :class:`tapmc.laws.FitResult` whose reduced chi2 measures how well the curves for
-    different t_w collapse; ``plot(ax)`` draws the curves and the collapse fit."""
+    different t_w collapse; ``eq6_test(t_w)`` tests eq. 6 on one curve across the
+    realizations; ``drift_share(t_w)`` is the share of A that the mean compaction makes (the
+    square of the mean displacement), not the realizations' spread; ``plot(ax)`` draws the
+    curves and the collapse fit."""
 
     def __init__(self, z_series, waiting_times, t=None):
         self.z = as_2d("z_series", z_series, min_rows=2, min_cols=2)
@@ -229,6 +236,37 @@ class Ageing:
         require(self, "_A")
         tws = [tw for tw in self.waiting_times if tw > 0]
         return ScalingRealizationTest(fit_amplitude).compute(self.z, tws, self._t_in, start)
+
+    def _displacements(self, t_w):
+        """(delays t > 0, (<Z>(t_w + t) - <Z>(t_w)) per realization and delay)."""
+        require(self, "_A")
+        if t_w not in self.A:
+            raise ValueError(f"t_w = {t_w!r} is not one of the waiting times {self.waiting_times}")
+        t = self._t_in[self._t_in > 0]
+        return t, self.z[:, t_w + t] - self.z[:, [t_w]]
+
+    def drift_share(self, t_w):
+        """The share of A(t, t_w), summed over the delays t > 0, that is the square of the mean
+        displacement (the drift of the mean compaction, the same in every realization) rather
+        than their spread: A = mean(d)^2 + var(d) over realizations; the square of the mean is
+        corrected for its own noise, var(d) / (n - 1), so that pure fluctuations give about 0
+        and a drift without fluctuations gives 1."""
+        _, d = self._displacements(t_w)
+        n = self.n_realizations
+        spread = d.var(axis=0)                                  # over realizations, ddof = 0
+        drift = d.mean(axis=0) ** 2 - spread / (n - 1)
+        total = float(np.sum((d ** 2).mean(axis=0)))
+        return float(np.sum(drift)) / total if total > 0 else np.nan
+
+    def eq6_test(self, t_w, bins=None, t_min=1):
+        """Is eq. 6 compatible with the curve of one waiting time across the realizations?
+        :class:`tapmc.laws.RealizationLawTest` of :class:`tapmc.laws.AgeingLaw` on each
+        realization's (<Z>(t_w + t) - <Z>(t_w))^2 over the delays t >= ``t_min``, in
+        log-spaced bins (default as many as the realizations allow): Hotelling's T^2. Needs 5
+        realizations (bins > the law's 3 parameters, realizations > bins)."""
+        t, d = self._displacements(t_w)
+        return RealizationLawTest(AgeingLaw(), bins=bins, t_min=t_min).compute(
+            t.astype(float), d ** 2)
 
     def collapse(self, bootstrap=100, seed=0):
         """Eq. 6 fitted to all waiting times together: one (A_inf, B_A, tau_A) for every t_w

@@ -764,6 +764,52 @@ def ageing_collapse(data, claim):
                           f"{realizations} realizations; {shown} (decides nothing)")]
 
 
+def ageing_eq6(data, claim):
+    """Eq. 6 on each curve of Fig. 5 alone, tested across the realizations (``eq6_test:``
+    rows, tapmc.ageing.Ageing.eq6_test), one row per waiting time, with the share of the curve
+    that is the square of the mean displacement (``drift_share:``)."""
+    fig = data.figure("fig5")
+    if fig is None:
+        return _missing("no ageing runs")
+    curves = sorted((float(s[3:]), s) for s in fig.series("a")
+                    if s.startswith("tw=") and float(s[3:]) > 0)
+    if not curves:
+        return _missing("no curve A(t, t_W) with t_W > 0 in the Fig. 5 data")
+    from tapmc.paper.fig5 import EQ6_LONG_DELAYS, EQ6_TEST_MIN_REALIZATIONS
+
+    needed = fig.param("eq6_test:needed")[0]
+    if not np.isfinite(needed):                     # drawn before the rows existed
+        needed = EQ6_TEST_MIN_REALIZATIONS
+    out = []
+    for tw, series in curves:
+        label = f"t_W = {tw:g}"
+        realizations = int(np.min(fig.get("a", series)[3]))
+        if realizations < needed:
+            out.append(Measure(label=label, undecided=(
+                f"{realizations} realizations: eq. 6's test across realizations needs at "
+                f"least {int(needed)} (the paper averaged 10)")))
+            continue
+        T2, _, _ = fig.param(f"eq6_test:tw={tw:g}:T2")
+        if not np.isfinite(T2):
+            out.append(Measure(label=label, undecided=(
+                "the Fig. 5 data have no test of eq. 6 across realizations (drawn before it "
+                "existed: draw Fig. 5 again from its runs)")))
+            continue
+        dof = int(fig.param(f"eq6_test:tw={tw:g}:dof")[0])
+        bins = int(fig.param(f"eq6_test:tw={tw:g}:bins")[0])
+        share = fig.param(f"drift_share:tw={tw:g}")[0]
+        long_p = fig.param(f"eq6_test_long:tw={tw:g}:p_value")[0]
+        long_text = "" if not np.isfinite(long_p) else (
+            f"; over the delays >= {EQ6_LONG_DELAYS} alone (a linear axis of t, as the paper "
+            f"draws it): p = {fmt(long_p, digits=2)}")
+        out.append(Measure(T2, dof=dof, p_value=fig.param(f"eq6_test:tw={tw:g}:p_value")[0],
+                           label=label,
+                           shown=(f"T^2 {fmt(T2)} ({dof} dof) over {bins} log bins of delays, "
+                                  f"{realizations} realizations; the mean displacement's "
+                                  f"square is {fmt(share, pct=True)} of A{long_text}")))
+    return out
+
+
 #: Decades of the log-time slopes of ``log_time_slowing``: the first decade of taps (the last
 #: one is [T/10, T]).
 EARLY_DECADE = (1.0, 10.0)
@@ -1903,7 +1949,7 @@ def _dmax_scan_measures(rows):
 
 STATISTICS = {f.__name__: f for f in (
     initial_phi, dmax_intermediate, theta0_optimum, tapped_phi, pbc_compaction, phi_b_gain, efficiency_decrease, eq3_fit_quality,
-    eq3_triplet_pattern, eq4_fit_quality, b_exponential, ageing_collapse,
+    eq3_triplet_pattern, eq4_fit_quality, b_exponential, ageing_collapse, ageing_eq6,
     log_time_slowing, late_gain_share, spectral_slopes, spectrum_eps_spread,
     sigma_intercept, bell_maximum, bell_side_slope, alpha_bell, alpha_ramp_hysteresis,
     ramp_up_minus_steady,

@@ -48,7 +48,14 @@ likewise, and ``eq6``, its eq. 6 on the rescaled variable), ``params``:
   realizations needs (``tapmc.ageing.ScalingRealizationTest``); with that many or more,
   ``scaling_test:T2`` (Hotelling's T^2), ``:dof``, ``:p_value``, ``:bins`` (of delays, over
   all curves) and ``:realizations``. The test needs the realizations themselves, so a report
-  refitted from a CSV keeps these rows as drawn.
+  refitted from a CSV keeps these rows as drawn;
+* ``eq6_test:needed`` (x = 0): the realizations eq. 6's test on one curve needs; with that
+  many, per waiting time (x = t_W) ``eq6_test:tw=<t_W>:T2``, ``:dof``, ``:p_value``,
+  ``:bins``: eq. 6 on that curve alone tested across the realizations
+  (``Ageing.eq6_test``, every delay), ``eq6_test_long:tw=<t_W>:...`` the same over the delays
+  t >= ``EQ6_LONG_DELAYS`` only, and ``drift_share:tw=<t_W>``: the share of the curve that
+  is the square of the mean displacement (``Ageing.drift_share``); a refit keeps them as
+  drawn.
 """
 
 from __future__ import annotations
@@ -230,6 +237,33 @@ def add_test_rows(table, result, shown, full):
     return test
 
 
+#: realizations eq. 6's test on one curve needs (tapmc.laws.RealizationLawTest: bins > its
+#: 3 parameters, realizations > bins)
+EQ6_TEST_MIN_REALIZATIONS = 5
+#: the first delay of eq. 6's test over long delays: the paper's Fig. 5 draws t on a linear
+#: axis to 3000 taps, where the delays below 100 fill 3 % of its width
+EQ6_LONG_DELAYS = 100
+
+
+def add_eq6_rows(table, result):
+    """The ``eq6_test:`` and ``drift_share:`` rows of the module text for every waiting time
+    > 0 of the ``Ageing`` ``result``."""
+    table.add("params", "eq6_test:needed", 0.0, EQ6_TEST_MIN_REALIZATIONS, None, 1)
+    if result.n_realizations < EQ6_TEST_MIN_REALIZATIONS:
+        return
+    for tw in result.waiting_times:
+        if tw <= 0:
+            continue
+        table.add("params", f"drift_share:tw={tw:g}", float(tw), result.drift_share(tw),
+                  None, result.n_realizations)
+        for tag, t_min in (("eq6_test", 1), ("eq6_test_long", EQ6_LONG_DELAYS)):
+            test = result.eq6_test(tw, t_min=t_min)
+            for name, value in (("T2", test.chi2), ("dof", test.dof),
+                                ("p_value", test.p_value), ("bins", len(test.bin_edges) - 1)):
+                table.add("params", f"{tag}:tw={tw:g}:{name}", float(tw), value, None,
+                          test.realizations)
+
+
 def refit_table(table):
     """A ``FigureTable`` with the curves and per-curve rows of ``table`` (a Fig. 5 CSV read
     with ``tapmc.paper._plotting.read_table``) and the collapse recomputed from its curves
@@ -294,6 +328,8 @@ def draw(campaign, out_dir, waiting_times=None):
         shown, rescaled = add_scaling_rows(table, stats, curves, nreal)
         if hasattr(result, "scaling_test"):
             add_test_rows(table, result, shown, shown is stats["scaling"])
+    if hasattr(result, "eq6_test"):
+        add_eq6_rows(table, result)
         smin, smax = np.inf, 0.0
         for tw, (s, y) in rescaled.items():
             pos = s > 0
