@@ -329,7 +329,8 @@ def draw(campaign, out_dir, waiting_times=None):
         if hasattr(result, "scaling_test"):
             add_test_rows(table, result, shown, shown is stats["scaling"])
     if hasattr(result, "eq6_test"):
-        add_eq6_rows(table, result)
+        add_eq6_rows(table, result)               # each curve alone: with or without a collapse
+    if stats is not None:
         smin, smax = np.inf, 0.0
         for tw, (s, y) in rescaled.items():
             pos = s > 0
