@@ -229,13 +229,15 @@ class Ageing:
                 res.bootstrap = dict(zip(res.fit.names, np.std(samples, axis=0, ddof=1)))
         return res
 
-    def scaling_test(self, fit_amplitude=True, start=None):
+    def scaling_test(self, fit_amplitude=True, start=None, t_min=1):
         """:class:`ScalingRealizationTest` of the collapse of the curves of the waiting times
-        > 0 (time and amplitude, or time alone), started from ``start`` (dict of the
-        :class:`ScaledAgeingLaw` parameters; default the collapse of the mean curves)."""
+        > 0 (time and amplitude, or time alone) over the delays t >= ``t_min``, started from
+        ``start`` (dict of the :class:`ScaledAgeingLaw` parameters; default the collapse of
+        the mean curves)."""
         require(self, "_A")
         tws = [tw for tw in self.waiting_times if tw > 0]
-        return ScalingRealizationTest(fit_amplitude).compute(self.z, tws, self._t_in, start)
+        t = self._t_in[self._t_in >= max(int(t_min), 1)]
+        return ScalingRealizationTest(fit_amplitude).compute(self.z, tws, t, start)
 
     def _displacements(self, t_w):
         """(delays t > 0, (<Z>(t_w + t) - <Z>(t_w)) per realization and delay)."""

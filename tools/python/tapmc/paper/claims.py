@@ -741,7 +741,8 @@ def ageing_collapse(data, claim):
     chi = fig.param(f"{tag}:reduced_chi2")[0]
     mu, mu_err, mu_closed = fig.param(f"{tag}:mu")
     mu_text = fmt(mu, mu_err) if mu_closed == 1 else f"{fmt(mu)} (undetermined)"
-    shown = f"mu = {mu_text}; reduced chi2 over the correlated delays {fmt(chi)}"
+    shown = (f"mu = {mu_text}; reduced chi2 over the correlated delays {fmt(chi)} (decides "
+             "nothing)")
     curves = [s for s in fig.series("a") if s.startswith("tw=") and float(s[3:]) > 0]
     realizations = int(min(np.min(fig.get("a", s)[3]) for s in curves)) if curves else 0
     needed = fig.param("scaling_test:needed")[0]
@@ -759,9 +760,14 @@ def ageing_collapse(data, claim):
             "draw Fig. 5 again from its runs)"))]
     dof = int(fig.param("scaling_test:dof")[0])
     bins = int(fig.param("scaling_test:bins")[0])
+    long_p = fig.param("scaling_test_long:p_value")[0]
+    if np.isfinite(long_p):
+        from tapmc.paper.fig5 import LONG_DELAYS
+        shown += (f"; the test over the delays >= {LONG_DELAYS} alone (a linear axis of t, "
+                  f"as the paper draws it): p = {fmt(long_p, digits=2)}")
     return [Measure(T2, dof=dof, p_value=fig.param("scaling_test:p_value")[0],
                     shown=f"T^2 {fmt(T2)} ({dof} dof) over {bins} log bins of delays, "
-                          f"{realizations} realizations; {shown} (decides nothing)")]
+                          f"{realizations} realizations; {shown}")]
 
 
 def ageing_eq6(data, claim):
@@ -775,7 +781,7 @@ def ageing_eq6(data, claim):
                     if s.startswith("tw=") and float(s[3:]) > 0)
     if not curves:
         return _missing("no curve A(t, t_W) with t_W > 0 in the Fig. 5 data")
-    from tapmc.paper.fig5 import EQ6_LONG_DELAYS, EQ6_TEST_MIN_REALIZATIONS
+    from tapmc.paper.fig5 import EQ6_TEST_MIN_REALIZATIONS, LONG_DELAYS
 
     needed = fig.param("eq6_test:needed")[0]
     if not np.isfinite(needed):                     # drawn before the rows existed
@@ -800,7 +806,7 @@ def ageing_eq6(data, claim):
         share = fig.param(f"drift_share:tw={tw:g}")[0]
         long_p = fig.param(f"eq6_test_long:tw={tw:g}:p_value")[0]
         long_text = "" if not np.isfinite(long_p) else (
-            f"; over the delays >= {EQ6_LONG_DELAYS} alone (a linear axis of t, as the paper "
+            f"; over the delays >= {LONG_DELAYS} alone (a linear axis of t, as the paper "
             f"draws it): p = {fmt(long_p, digits=2)}")
         out.append(Measure(T2, dof=dof, p_value=fig.param(f"eq6_test:tw={tw:g}:p_value")[0],
                            label=label,
