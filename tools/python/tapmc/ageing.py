@@ -254,10 +254,9 @@ class Ageing:
         corrected for its own noise, var(d) / (n - 1), so that pure fluctuations give about 0
         and a drift without fluctuations gives 1."""
         _, d = self._displacements(t_w)
-        n = self.n_realizations
         spread = d.var(axis=0)                                  # over realizations, ddof = 0
-        drift = d.mean(axis=0) ** 2 - spread / (n - 1)
-        total = float(np.sum((d ** 2).mean(axis=0)))
+        drift = d.mean(axis=0) ** 2 - spread / (self.n_realizations - 1)
+        total = float(np.sum(self.A[t_w][self._t_in > 0]))     # A = mean(d)^2 + spread
         return float(np.sum(drift)) / total if total > 0 else np.nan
 
     def eq6_test(self, t_w, bins=None, t_min=1):

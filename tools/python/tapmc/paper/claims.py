@@ -760,14 +760,21 @@ def ageing_collapse(data, claim):
             "draw Fig. 5 again from its runs)"))]
     dof = int(fig.param("scaling_test:dof")[0])
     bins = int(fig.param("scaling_test:bins")[0])
-    long_p = fig.param("scaling_test_long:p_value")[0]
-    if np.isfinite(long_p):
-        from tapmc.paper.fig5 import LONG_DELAYS
-        shown += (f"; the test over the delays >= {LONG_DELAYS} alone (a linear axis of t, "
-                  f"as the paper draws it): p = {fmt(long_p, digits=2)}")
+    shown += _long_delays_text("; the test", fig.param("scaling_test_long:p_value")[0])
     return [Measure(T2, dof=dof, p_value=fig.param("scaling_test:p_value")[0],
                     shown=f"T^2 {fmt(T2)} ({dof} dof) over {bins} log bins of delays, "
                           f"{realizations} realizations; {shown}")]
+
+
+def _long_delays_text(lead, p_value):
+    """``lead`` and the p-value of a Fig. 5 test over the long delays alone (``""`` when the
+    figure data have none)."""
+    from tapmc.paper.fig5 import LONG_DELAYS
+
+    if not np.isfinite(p_value):
+        return ""
+    return (f"{lead} over the delays >= {LONG_DELAYS} alone (a linear axis of t, as the paper "
+            f"draws it): p = {fmt(p_value, digits=2)}")
 
 
 def ageing_eq6(data, claim):
@@ -781,7 +788,7 @@ def ageing_eq6(data, claim):
                     if s.startswith("tw=") and float(s[3:]) > 0)
     if not curves:
         return _missing("no curve A(t, t_W) with t_W > 0 in the Fig. 5 data")
-    from tapmc.paper.fig5 import EQ6_TEST_MIN_REALIZATIONS, LONG_DELAYS
+    from tapmc.paper.fig5 import EQ6_TEST_MIN_REALIZATIONS
 
     needed = fig.param("eq6_test:needed")[0]
     if not np.isfinite(needed):                     # drawn before the rows existed
@@ -804,10 +811,7 @@ def ageing_eq6(data, claim):
         dof = int(fig.param(f"eq6_test:tw={tw:g}:dof")[0])
         bins = int(fig.param(f"eq6_test:tw={tw:g}:bins")[0])
         share = fig.param(f"drift_share:tw={tw:g}")[0]
-        long_p = fig.param(f"eq6_test_long:tw={tw:g}:p_value")[0]
-        long_text = "" if not np.isfinite(long_p) else (
-            f"; over the delays >= {LONG_DELAYS} alone (a linear axis of t, as the paper "
-            f"draws it): p = {fmt(long_p, digits=2)}")
+        long_text = _long_delays_text(";", fig.param(f"eq6_test_long:tw={tw:g}:p_value")[0])
         out.append(Measure(T2, dof=dof, p_value=fig.param(f"eq6_test:tw={tw:g}:p_value")[0],
                            label=label,
                            shown=(f"T^2 {fmt(T2)} ({dof} dof) over {bins} log bins of delays, "

@@ -251,8 +251,8 @@ def add_test_rows(table, result, shown, full):
 
 
 #: realizations eq. 6's test on one curve needs (tapmc.laws.RealizationLawTest: bins > its
-#: 3 parameters, realizations > bins)
-EQ6_TEST_MIN_REALIZATIONS = 5
+#: parameters, realizations > bins)
+EQ6_TEST_MIN_REALIZATIONS = len(AgeingLaw.names) + 2
 
 
 def add_eq6_rows(table, result):
