@@ -90,6 +90,17 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               steady state (last 1000 taps, batch-means error) and the difference of its
               two halves (is the packing still compacting at the end?).
 
+  realization-scatter
+              Does the error one run gives its steady state (batch means over its last 1000
+              taps, the error of every one-seed point of the report) tell how far another
+              realization lands? Every group of finished P.B.C. runs that differ only in
+              their seed (the constant-eps points with several seeds, the ageing runs: ten
+              streams from one packing), no simulation: per run and per Phi_b, <Phi^c>, <Z>,
+              the window mean and its batch-means error, the value at t = 0 (whether
+              the realizations share their packing), and the difference of the window's
+              halves with its error (pbc-course's test of a run still compacting). The report compares the realizations'
+              spread with their errors (tapmc.fluctuations.ErrorCalibration).
+
   integrity   Do thousands of taps leave a legal hard-sphere packing, and do the numbers a
               run prints describe the packing it dumps? Every dump of the paper-scale
               campaign (no simulation: the t = 0 and final packings of every run, Fig. 10's
@@ -184,7 +195,7 @@ import numpy as np
 SOURCE = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
 from tapmc.campaign.run_folder import keep_latest_restart, latest_restart  # noqa: E402
-from tapmc.fluctuations import PowerSpectrum, SteadyState  # noqa: E402
+from tapmc.fluctuations import DEFAULT_BATCHES, PowerSpectrum, SteadyState  # noqa: E402
 
 INPUT = SOURCE / "examples" / "paper" / "in.constant_eps"
 DEFAULT_OUT = SOURCE / "doc" / "paper_scale" / "validation" / "questions"
@@ -807,6 +818,66 @@ def pbc_course(args):
                "steady_halves_diff_sem"], rows)
 
 
+#: the scalars of taps.dat whose steady state the report quotes with one run's error
+SCATTER_COLUMNS = ("phi_b", "phi_c", "Z")
+
+
+def _seed_groups(campaign):
+    """dict group -> [(seed, run folder)] of the finished P.B.C. constant-eps and ageing runs
+    (``<kind>_pbc_eps<eps>_s<seed>``) with at least two seeds and the same number of taps."""
+    groups = {}
+    for run_dir in sorted(Path(campaign, "runs").glob("*_pbc_eps*_s*")):
+        if not run_dir.name.startswith(("const_", "ageing_")):
+            continue
+        if not (run_dir / "DONE.json").is_file():
+            continue  # an unfinished run has no steady window yet
+        group, seed = run_dir.name.rsplit("_s", 1)
+        groups.setdefault(group, []).append((int(seed), run_dir))
+    return {g: sorted(runs) for g, runs in groups.items() if len(runs) >= 2}
+
+
+def realization_scatter(args):
+    rows = []
+    for group, runs in _seed_groups(args.campaign).items():
+        tables = {seed: _named_columns(run_dir / "taps.dat") for seed, run_dir in runs}
+        taps = {len(t["step"]) for t in tables.values()}
+        if len(taps) != 1:
+            print(f"{group}: seeds of different lengths {sorted(taps)}: skipped")
+            continue
+        for seed, run_dir in runs:
+            table = tables[seed]
+            keep = table["step"] > 0
+            for column in SCATTER_COLUMNS:
+                x = table[column][keep]
+                steady = SteadyState(x).compute()
+                rows.append([group, run_dir.name, seed, int(keep.sum()), column,
+                             f"{table[column][0]:.8g}", f"{steady.mean:.8g}",
+                             f"{steady.sem:.4g}", steady.last,
+                             min(DEFAULT_BATCHES, steady.last // 2) - 1])
+                # the steady window's second half minus its first (pbc-course's test of a
+                # run still compacting), each half with half the batches
+                half = steady.last // 2
+                first, second = (SteadyState(part, last=half, batches=DEFAULT_BATCHES // 2)
+                                 .compute() for part in (x[-steady.last:-half], x[-half:]))
+                rows.append([group, run_dir.name, seed, int(keep.sum()), f"{column}:halves",
+                             "", f"{second.mean - first.mean:.6g}",
+                             f"{math.hypot(first.sem, second.sem):.4g}", steady.last,
+                             2 * (min(DEFAULT_BATCHES // 2, half // 2) - 1)])
+            print(f"{run_dir.name}: " + ", ".join(
+                f"{r[4]} {float(r[6]):.5f} +- {float(r[7]):.5f}" for r in rows[-6:]))
+    write_csv(Path(args.out) / "realization_scatter.csv",
+              ["group", "run", "seed", "taps", "column", "start", "mean", "sem", "last",
+               "sem_dof"], rows)
+
+
+def _named_columns(path):
+    """Columns of a taps.dat by the names of its '# step ...' header line."""
+    with open(path) as f:
+        names = f.readline().lstrip("#").split()
+    table = np.loadtxt(path, ndmin=2)
+    return {name: table[:, i] for i, name in enumerate(names)}
+
+
 #: early-taps: the first REALIZATION_TAPS taps from the campaign's F.B.C. packing, with Monte
 #: Carlo seeds other than the campaign's (1): 8 more realizations, 9 with the campaign's run,
 #: give the first decade's rate an error over seeds (8 dof, t = 2.31) and Fig. 2's laws a
@@ -1207,6 +1278,7 @@ def main(argv=None):
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
     for name in ("first-tap", "noise-floor", "spectral-window", "pbc-course", "integrity",
+                 "realization-scatter",
                  "early-taps", "initial-packing", "p0-configs", "lateral-first-tap",
                  "ramp-levels", "ramp-pores", "theta0", "dmax", "p0-fluid", "fit-surrogates"):
         p = sub.add_parser(name)
@@ -1236,6 +1308,7 @@ def main(argv=None):
     sub.choices["fit-surrogates"].add_argument("--surrogates", type=int, default=None)
     sub.choices["fit-surrogates"].add_argument("--seed", type=int, default=1)
     for name in ("spectral-window", "pbc-course", "integrity", "early-taps", "ramp-levels",
+                 "realization-scatter",
                  "ramp-pores", "fit-surrogates"):
         sub.choices[name].add_argument("--campaign", default=CAMPAIGN_RUN.parents[1])
     sub.choices["ramp-levels"].add_argument("--run", default="ramp_pbc_s1")
@@ -1271,6 +1344,7 @@ def main(argv=None):
             parser.error(f"--phi values must be in [0.01, 0.58], got {args.phi}")
     {"first-tap": first_tap, "noise-floor": noise_floor,
      "spectral-window": spectral_window, "pbc-course": pbc_course, "integrity": integrity,
+     "realization-scatter": realization_scatter,
      "early-taps": early_taps,
      "initial-packing": initial_packing, "p0-configs": p0_configs,
      "lateral-first-tap": lateral_first_tap, "ramp-levels": ramp_levels,

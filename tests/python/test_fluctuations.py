@@ -1,7 +1,8 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 # tapmc.fluctuations: the spectral slope is recovered from synthetic 1/f^beta noise (spectral
 # synthesis, beta in [0.5, 2]) within its reported error over seeds; steady-state mean, sigma_X
-# and the batch-means standard error on series with known statistics.
+# and the batch-means standard error on series with known statistics; ErrorCalibration's
+# factor against known realization spreads (calibrated, offsets, slow 1/f noise).
 import os
 import sys
 from pathlib import Path
@@ -14,7 +15,8 @@ SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", HERE.parent.parent))
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
 
 from tapmc._validate import NotComputedError  # noqa: E402
-from tapmc.fluctuations import PowerSpectrum, SteadyState, sigma_scaling, sigma_x  # noqa: E402
+from tapmc.fluctuations import (ErrorCalibration, PowerSpectrum, SteadyState,  # noqa: E402
+                                sigma_scaling, sigma_x)
 
 
 def powerlaw_noise(n, beta, rng, pad=4):
@@ -160,3 +162,83 @@ def test_power_error_is_the_scatter_of_one_runs_spectrum():
     # bins of one ordinate: an exponential variable, relative error 1
     one = runs[0].counts == 1
     assert one.any() and np.allclose(predicted[one], 1.0)
+
+
+def _calibration(rng, groups, runs, taps, offset=0.0, make=None):
+    """ErrorCalibration of ``groups`` x ``runs`` series of ``taps`` taps: white noise of unit
+    variance plus, per realization, a constant offset of standard deviation ``offset``
+    (``make(rng)`` replaces the white noise when given)."""
+    series = {f"g{g}": [(make(rng) if make else rng.normal(size=taps))
+                        + offset * rng.normal() for _ in range(runs)] for g in range(groups)}
+    return ErrorCalibration.from_series(series, last=taps).compute()
+
+
+def test_error_calibration_is_calibrated_for_white_noise():
+    # batch means are exact for uncorrelated taps: k = 1 within its interval 95 % of the time
+    # and the p-value of k = 1 uniform (about 5 % below 0.05)
+    rng = np.random.default_rng(11)
+    trials = [_calibration(rng, 3, 4, 400) for _ in range(200)]
+    rejected = np.mean([c.p_value < 0.05 for c in trials])
+    covered = np.mean([c.interval()[0] <= 1.0 <= c.interval()[1] for c in trials])
+    assert 0.01 <= rejected <= 0.10
+    assert covered >= 0.88
+    assert 0.9 < np.median([c.factor for c in trials]) < 1.1
+
+
+def test_error_calibration_recovers_a_known_realization_spread():
+    # an offset per realization of sd 0.1 over 400 white taps (window mean's error 1/20):
+    # another realization lands sqrt(1 + 0.1^2 * 400) = sqrt(5) within-run errors away
+    rng = np.random.default_rng(12)
+    truth = np.sqrt(1 + 0.1 ** 2 * 400)
+    trials = [_calibration(rng, 6, 5, 400, offset=0.1) for _ in range(100)]
+    assert abs(np.median([c.factor for c in trials]) / truth - 1) < 0.1
+    covered = np.mean([c.interval()[0] <= truth <= c.interval()[1] for c in trials])
+    assert covered >= 0.85
+    assert np.mean([c.p_value < 1e-3 for c in trials]) > 0.95
+
+
+def test_error_calibration_sees_slow_noise_that_batch_means_miss():
+    # short correlations (AR(1), 3 taps, against batches of 20) leave k near 1; a spectrum
+    # falling as f^-1.4 (Fig. 3's slopes) puts power below a batch's frequency, so the runs
+    # scatter several within-run errors apart
+    rng = np.random.default_rng(13)
+
+    def ar1(rng, n=400, phi=0.5):
+        x = np.empty(n)
+        x[0] = rng.normal()
+        for i in range(1, n):
+            x[i] = phi * x[i - 1] + rng.normal()
+        return x
+
+    short = [_calibration(rng, 4, 4, 400, make=ar1).factor for _ in range(40)]
+    assert 0.85 < np.median(short) < 1.25
+    slow = _calibration(rng, 6, 5, 1000, make=lambda r: powerlaw_noise(1000, 1.4, r))
+    assert slow.factor > 2 and slow.p_value < 1e-6
+
+
+def test_error_calibration_results_plot_and_validation():
+    import matplotlib
+    matplotlib.use("Agg")
+    means = {"a": ([1.0, 1.2, 0.8], [0.1, 0.1, 0.1]), "b": ([2.0, 2.1], [0.05, 0.05])}
+    calib = ErrorCalibration(means, within_dof=19)
+    with pytest.raises(NotComputedError):
+        calib.factor
+    calib.compute()
+    # group a: s = 0.2, e = 0.1 (ratio 2, 2 dof); b: s = 0.0707, e = 0.05 (ratio sqrt 2, 1 dof)
+    assert calib.ratios["a"] == pytest.approx(2.0)
+    assert calib.ratios["b"] == pytest.approx(np.sqrt(2.0))
+    assert calib.factor == pytest.approx(np.sqrt((2 * 4 + 1 * 2) / 3))
+    assert calib.dof == 3 and calib.within_dof_total == 5 * 19
+    low, high = calib.interval(0.68)
+    assert low < calib.factor < high
+    assert len(calib.plot().lines) == 3
+    with pytest.raises(ValueError, match="group 'x' means"):
+        ErrorCalibration({"x": ([1.0], [0.1])})
+    with pytest.raises(ValueError, match="group 'x': within-run errors must be > 0"):
+        ErrorCalibration({"x": ([1.0, 2.0], [0.1, 0.0])})
+    with pytest.raises(ValueError, match="group 'x': 2 means but 3 sems"):
+        ErrorCalibration({"x": ([1.0, 2.0], [0.1, 0.1, 0.1])})
+    with pytest.raises(ValueError, match="level = 1.5"):
+        calib.interval(1.5)
+    with pytest.raises(ValueError, match="groups"):
+        ErrorCalibration({})

@@ -426,3 +426,97 @@ def test_early_taps_folder_lock_waits_for_its_holder_and_takes_over_a_dead_one(t
         order.append("first")
     other.join(timeout=5)
     assert order == ["first", "second"]
+
+
+def _scatter_campaign(root, rng):
+    """A campaign folder whose finished P.B.C. runs differ only in their seed: <Phi^c> of
+    each realization shifted by an offset of sd 0.0005 over white taps of sd 0.001 (the
+    window mean's own error 0.001 / sqrt(1000): another realization lands about
+    sqrt(1 + 0.5^2 * 1000) = 15.8 errors away), Phi_b and <Z> without one. Two column orders
+    (the constant-eps and the ageing inputs write different ones); one unfinished run and one
+    single-seed group, which the measurement skips."""
+    import numpy as np
+
+    taps = 1200
+    runs = {**{f"const_pbc_eps0.05_s{s}": "step phi_b phi_c Z" for s in (1, 2, 3, 4)},
+            **{f"ageing_pbc_eps0.01_s{s}": "step Z phi_b phi_c" for s in range(1, 7)},
+            "const_pbc_eps0.1_s1": "step phi_b phi_c Z",
+            "const_pbc_eps0.2_s1": "step phi_b phi_c Z",
+            "const_pbc_eps0.2_s2": "step phi_b phi_c Z"}
+    for name, header in runs.items():
+        folder = root / "runs" / name
+        folder.mkdir(parents=True)
+        values = {"step": np.arange(taps + 1.0),
+                  "phi_b": 0.59 + 0.001 * rng.normal(size=taps + 1),
+                  "phi_c": 0.60 + 0.0005 * rng.normal() + 0.001 * rng.normal(size=taps + 1),
+                  "Z": 7.0 + 0.01 * rng.normal(size=taps + 1)}
+        if name.startswith("ageing"):
+            values["phi_c"][0] = 0.583   # the ageing runs start from one packing
+        table = np.column_stack([values[c] for c in header.split()])
+        np.savetxt(folder / "taps.dat", table, header=header, comments="# ")
+        if name != "const_pbc_eps0.2_s2":
+            (folder / "DONE.json").write_text("{}")
+
+
+def test_realization_scatter_measures_the_factor_and_the_report_uses_it(tmp_path):
+    import numpy as np
+
+    pq = _paper_questions()
+    _scatter_campaign(tmp_path / "campaign", np.random.default_rng(5))
+    out = tmp_path / "questions"
+    pq.main(["realization-scatter", "--campaign", str(tmp_path / "campaign"), "--out", str(out)])
+    rows = claims.read_scan(out / "realization_scatter.csv")
+    assert {r["group"] for r in rows} == {"const_pbc_eps0.05", "ageing_pbc_eps0.01"}
+    # header names, not positions: <Phi^c> starts near 0.60 in both column orders
+    assert all(abs(float(r["mean"]) - 0.60) < 0.01 for r in rows if r["column"] == "phi_c")
+    calib = claims.realization_calibrations(rows)
+    assert 8 < calib["phi_c"].factor < 30 and calib["phi_c"].dof == 3 + 5
+    factors = claims.realization_factors(rows)
+    # white taps: the batch-means errors are calibrated, no factor; the offset rejects them
+    assert "phi_b" not in factors and "Z" not in factors
+    assert factors["phi_c"][0] == calib["phi_c"].factor
+    text = "\n".join(questions.render_section(out))
+    assert "``realization-scatter``" in text
+    assert "     - 6 (one packing)" in text
+    assert f"<Phi^c> steady state: k = {calib['phi_c'].factor:.2f}" in text
+    assert f"the one-run errors are too small (window means: <Phi^c> " \
+           f"{calib['phi_c'].factor:.1f})" in text
+    # the report: one-run rows (n = 1) of Fig. 4 take the factor, rows over seeds do not
+    fig4 = claims.FigureData({("a", "steady"): {"x": np.array([0.1, 0.2]),
+                                                "mean": np.array([0.60, 0.61]),
+                                                "sem": np.array([0.001, 0.002]),
+                                                "n": np.array([1, 3])}})
+    data = claims.ReportData({}, {"fig4": fig4}, questions={"realization_scatter": rows})
+    k = calib["phi_c"].factor
+    np.testing.assert_allclose(data.figure("fig4").get("a", "steady")[2], [0.001 * k, 0.002])
+    assert data.run_error(None) == factors["phi_c"]   # the largest measured
+    assert data.run_error("phi_b") == (1.0, None)
+    assert f"<Phi^c> x {k:.1f}" in data.run_error_note()
+    # without the measurement nothing changes
+    plain = claims.ReportData({}, {"fig4": fig4})
+    assert plain.figure("fig4") is fig4 and plain.run_error_note() == ""
+
+
+def test_realization_scatter_calibrated_errors_change_nothing(tmp_path):
+    rows = ["group,run,seed,taps,column,start,mean,sem,last,sem_dof"]
+    for g, means in (("a", (0.600, 0.6002, 0.5999)), ("b", (0.610, 0.6101, 0.6098))):
+        for s, m in enumerate(means, 1):
+            rows.append(f"{g},{g}_s{s},{s},4000,phi_c,0.58,{m},0.0002,1000,19")
+    (tmp_path / "realization_scatter.csv").write_text("\n".join(rows) + "\n")
+    text = "\n".join(questions.render_section(tmp_path))
+    assert "the one-run errors are compatible with the realizations' spread" in text
+    assert claims.realization_factors(claims.read_scan(tmp_path / "realization_scatter.csv")) \
+        == {}
+
+
+def test_pbc_course_reads_the_halves_with_the_realizations_factor(tmp_path):
+    # the strong run's halves differ by 0.0032 +- 0.0005: compacting with the run's own
+    # error, within the error of a realization when that is 10 times larger
+    pbc_course_csv(tmp_path, 0.004, 1391, 0.0032)
+    own = "\n".join(questions._pbc_course(tmp_path / "pbc_course.csv"))
+    scaled = "\n".join(questions._pbc_course(tmp_path / "pbc_course.csv",
+                                             {"phi_c": (2.0, 15), "phi_c:halves": (10.0, 15)}))
+    assert "still compacting at the end" in own
+    assert "Its halves agree within their error: steady." in scaled
+    assert "both errors times the realizations' factor, 2.0 and 10.0" in scaled
+    assert "2.20 ± 0.09 % below the largest" in scaled

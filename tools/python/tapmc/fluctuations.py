@@ -8,15 +8,17 @@ section III.A-B and Fig. 3 of Philippe & Bideau.
 * :class:`PowerSpectrum`: the power spectrum of X - X_SS against the frequency 1/taps and its
   log-log slope with an uncertainty.
 * :func:`sigma_x` and :func:`sigma_scaling` (sigma_X proportional to sqrt(eps), Fig. 3).
+* :class:`ErrorCalibration`: whether one run's own (batch-means) error tells how far another
+  realization of the same settings lands, and by which factor it falls short.
 """
 
 import numpy as np
-from scipy import signal, special
+from scipy import signal, special, stats
 
 from ._validate import as_1d, as_2d, new_axis, positive_int, result
 from .laws import FitResult, Law
 
-__all__ = ["SteadyState", "PowerSpectrum", "sigma_x", "sigma_scaling", "Proportional",
+__all__ = ["SteadyState", "ErrorCalibration", "PowerSpectrum", "sigma_x", "sigma_scaling", "Proportional",
            "DEFAULT_LAST", "DEFAULT_BATCHES", "DEFAULT_BINS_PER_DECADE", "jackknife_error"]
 
 #: taps averaged for the steady state (paper, section III.B: the last 1000 of 4000 taps)
@@ -119,6 +121,109 @@ class SteadyState:
         ax.axhline(self.mean + self.std, color="k", ls=":")
         ax.axhline(self.mean - self.std, color="k", ls=":")
         ax.set_xlabel("taps")
+        return ax
+
+
+class ErrorCalibration:
+    """Does the error one run gives itself tell how far another realization lands?
+
+    ``SteadyState.sem`` is the batch-means error of one run's time average: its error given
+    that run's own history. Fluctuations slower than a batch (Fig. 3: spectra falling as f^-1
+    to f^-1.5) escape it, and independent realizations of the same settings then scatter more
+    than their errors say. Over groups of realizations that share their settings this compares
+    the realizations' spread of the window mean with their own errors:
+
+        k^2 = sum_g (n_g - 1) s_g^2 / e_g^2 / sum_g (n_g - 1)
+
+    s_g: standard deviation of group g's n_g window means; e_g^2: their mean squared
+    within-run error. k = 1 when the within-run errors are calibrated; otherwise one run's
+    error times k is the error of a realization. With calibrated errors k^2 follows about an
+    F distribution with sum (n_g - 1) and sum n_g * within_dof degrees of freedom (each
+    within-run variance has within_dof; exact for one group), which gives k's interval and the
+    p-value of k = 1 (one-sided: a spread too large for the errors).
+
+    Parameters: ``groups`` (dict name -> (means, sems): a group's window means and their
+    within-run errors, at least two realizations each), ``within_dof`` (degrees of freedom of
+    one within-run error: batches - 1). Results after ``compute()``: ``factor`` (k), ``dof``
+    (sum n_g - 1), ``within_dof_total``, ``p_value``, ``spreads`` / ``errors`` / ``ratios``
+    (dict name -> s_g, e_g, s_g / e_g); :meth:`interval` (k's confidence interval).
+    :meth:`from_series` measures the groups from the series themselves."""
+
+    def __init__(self, groups, within_dof=DEFAULT_BATCHES - 1):
+        if not isinstance(groups, dict) or not groups:
+            raise ValueError("groups: expected a non-empty dict name -> (means, sems)")
+        self.groups = {}
+        for name, pair in groups.items():
+            if len(pair) != 2:
+                raise ValueError(f"group {name!r}: expected (means, sems), got {len(pair)} "
+                                 "arrays")
+            means = as_1d(f"group {name!r} means", pair[0], min_len=2)
+            sems = as_1d(f"group {name!r} sems", pair[1], min_len=2)
+            if len(means) != len(sems):
+                raise ValueError(f"group {name!r}: {len(means)} means but {len(sems)} sems")
+            if np.any(sems <= 0):
+                raise ValueError(f"group {name!r}: within-run errors must be > 0, got "
+                                 f"min {sems.min():g}")
+            self.groups[name] = (means, sems)
+        self.within_dof = positive_int("within_dof", within_dof)
+        self._factor = None
+
+    @classmethod
+    def from_series(cls, groups, last=DEFAULT_LAST, batches=DEFAULT_BATCHES):
+        """From ``groups``: dict name -> list of series (one per realization); each series'
+        window mean and batch-means error over its last ``last`` taps (SteadyState)."""
+        pairs = {}
+        for name, series in groups.items():
+            states = [SteadyState(x, last=last, batches=batches).compute() for x in series]
+            pairs[name] = ([s.mean for s in states], [s.sem for s in states])
+        return cls(pairs, within_dof=min(batches, last // 2) - 1)
+
+    def compute(self):
+        self._spreads, self._errors, self._ratios = {}, {}, {}
+        pooled, dof, within = 0.0, 0, 0
+        for name, (means, sems) in self.groups.items():
+            spread = float(np.std(means, ddof=1))
+            error = float(np.sqrt(np.mean(sems ** 2)))
+            self._spreads[name], self._errors[name] = spread, error
+            self._ratios[name] = spread / error
+            pooled += (len(means) - 1) * (spread / error) ** 2
+            dof += len(means) - 1
+            within += len(means) * self.within_dof
+        self._dof, self._within_total = dof, within
+        self._factor = float(np.sqrt(pooled / dof))
+        self._p_value = float(stats.f.sf(self._factor ** 2, dof, within))
+        return self
+
+    factor = result("_factor")
+    dof = result("_dof")
+    within_dof_total = result("_within_total")
+    p_value = result("_p_value")
+    spreads = result("_spreads")
+    errors = result("_errors")
+    ratios = result("_ratios")
+
+    def interval(self, level=0.95):
+        """(low, high) of k at confidence ``level``: k^2 / F quantiles."""
+        if not 0 < level < 1:
+            raise ValueError(f"level = {level}: expected 0 < level < 1")
+        k2 = self.factor ** 2
+        tail = (1 - level) / 2
+        hi_q, lo_q = (stats.f.ppf(q, self.dof, self.within_dof_total) for q in (1 - tail, tail))
+        return float(np.sqrt(k2 / hi_q)), float(np.sqrt(k2 / lo_q))
+
+    def plot(self, ax=None, **kw):
+        """Each group's spread over its within-run error, and the pooled k with its 95 %
+        interval (1: calibrated)."""
+        ax = new_axis(ax)
+        names = list(self.ratios)
+        ax.plot(range(len(names)), [self.ratios[n] for n in names], "o", **kw)
+        low, high = self.interval()
+        ax.axhspan(low, high, color="0.85")
+        ax.axhline(self.factor, color="k")
+        ax.axhline(1.0, color="k", ls=":")
+        ax.set_xticks(range(len(names)))
+        ax.set_xticklabels(names, rotation=30, ha="right")
+        ax.set_ylabel("realizations' spread / within-run error")
         return ax
 
 

@@ -44,7 +44,7 @@ from pathlib import Path
 import numpy as np
 from scipy import stats
 
-from tapmc.fluctuations import DEFAULT_BATCHES
+from tapmc.fluctuations import DEFAULT_BATCHES, ErrorCalibration
 from tapmc.hysteresis import CRITICAL_SQRT_EPS, LEVEL_TOLERANCE
 
 from . import _plotting as P
@@ -191,6 +191,18 @@ class FigureData:
     def read(cls, path):
         return cls(P.read_table(path))
 
+    def scaled_one_run_errors(self, factor, chosen):
+        """A copy whose rows with n = 1 in the series for which ``chosen(panel, series)``
+        holds have their sem times ``factor``."""
+        table = {}
+        for (panel, series), d in self.table.items():
+            d = dict(d)
+            if chosen(panel, series):
+                one = np.asarray(d["n"]) == 1
+                d["sem"] = np.where(one, np.asarray(d["sem"], float) * factor, d["sem"])
+            table[(panel, series)] = d
+        return FigureData(table)
+
     def get(self, panel, series):
         d = self.table.get((panel, series))
         if d is None:
@@ -215,7 +227,7 @@ class FigureData:
 #: realizations of the first taps (early-taps), one run's surrogate fits (fit-surrogates), the
 #: ramp's levels continued (ramp-levels) and nu at its level ends (ramp-pores)
 QUESTION_CSVS = ("initial_packing", "p0_configs", "lateral_first_tap", "early_taps",
-                 "fit_surrogates", "ramp_levels", "ramp_pores")
+                 "fit_surrogates", "ramp_levels", "ramp_pores", "realization_scatter")
 
 
 class ReportData:
@@ -256,7 +268,98 @@ class ReportData:
                    read_summary(), scans, questions)
 
     def figure(self, name):
-        return self.figures.get(name)
+        """Figure ``name``'s data, the error of each of its one-run rows that is a window
+        mean's batch-means error (:data:`ONE_RUN_WINDOW_ROWS`) times the realizations' factor
+        (:meth:`run_error`)."""
+        fig = self.figures.get(name)
+        if fig is None or name not in ONE_RUN_WINDOW_ROWS:
+            return fig
+        quantity, chosen = ONE_RUN_WINDOW_ROWS[name]
+        factor = self.run_error(quantity)[0]
+        return fig if factor == 1.0 else fig.scaled_one_run_errors(factor, chosen)
+
+    def run_error_note(self):
+        """The sentence that says which one-run errors were scaled to realizations and by
+        how much ("" when realization_scatter.csv rejects no one-run error)."""
+        factors = realization_factors(self.question("realization_scatter"))
+        if not factors:
+            return ""
+        names = {"phi_b": "Phi_b", "phi_c": "<Phi^c>", "Z": "<Z>"}
+        parts = [f"{names[q.split(':')[0]]}{' halves' if ':' in q else ''} x {k:.1f}"
+                 for q, (k, _) in sorted(factors.items(), key=lambda item: (
+                     RUN_ERROR_QUANTITIES.index(item[0].split(":")[0]), item[0]))]
+        return ("The campaign's groups of runs that differ only in their seed show that "
+                "realizations spread beyond these errors (``realization-scatter`` below): the "
+                "time averages of one run that decide a row (Fig. 2's windows and halves, "
+                "Fig. 4's steady states and ramp levels, Fig. 8's zones, Fig. 9's steady "
+                "state) carry the batch-means error times the factor measured on the P.B.C. "
+                "groups (F.B.C. runs, which have no group, take the same) ("
+                + ", ".join(parts) + "; a profile's zones the largest).")
+
+    def run_error(self, quantity):
+        """(factor, dof) that turn one run's batch-means error of ``quantity`` ('phi_b',
+        'phi_c', 'Z'; '<name>:halves' for a difference of two parts of one run; None: the
+        largest factor of the three window means, for a quantity no group measures) into the
+        error of a realization: the campaign's :func:`realization_factors` where they reject
+        calibrated errors, else (1, None) (the one-run error and its own dof)."""
+        factors = realization_factors(self.question("realization_scatter"))
+        if quantity is None:
+            means = [factors[k] for k in RUN_ERROR_QUANTITIES if k in factors]
+            return max(means, default=(1.0, None))
+        return factors.get(quantity, (1.0, None))
+
+
+#: the window means whose one-run error realization_scatter.csv calibrates
+RUN_ERROR_QUANTITIES = ("phi_b", "phi_c", "Z")
+#: one-sided significance below which the realizations' spread rejects one run's own error
+CALIBRATION_ALPHA = 0.01
+
+
+#: figure -> (quantity, chosen(panel, series)): the rows of a figure CSV whose one-run error
+#: is a window mean's batch-means error, and the quantity whose realization factor it takes
+#: (None: the largest factor, for the profile's zones, which no group of runs measures)
+ONE_RUN_WINDOW_ROWS = {
+    "fig4": ("phi_c", lambda panel, series: panel == "a" or series == "phi_c_max"
+             or series.endswith((":down_change", ":down_minus_up1", ":up2_minus_down"))),
+    "fig8": (None, lambda panel, series: panel == "params" and series.endswith(
+        (":final_central", ":final_lateral", ":final_central_minus_lateral"))),
+    "fig9": ("phi_c", lambda panel, series: series == "phi_c_steady"),
+}
+
+
+def realization_factors(rows):
+    """dict quantity -> (k, dof) from the rows of bench/paper_questions.py's
+    realization_scatter.csv: the factor by which the realizations of a group of runs that
+    differ only in their seed spread beyond their batch-means errors
+    (tapmc.fluctuations.ErrorCalibration, pooled over the groups), for the quantities where
+    it rejects k = 1 at :data:`CALIBRATION_ALPHA`; dof: the pooled realizations' dof."""
+    return {q: (c.factor, c.dof) for q, c in realization_calibrations(rows).items()
+            if c.p_value < CALIBRATION_ALPHA and c.factor > 1}
+
+
+def realization_calibrations(rows):
+    """dict quantity -> computed ErrorCalibration of realization_scatter.csv's rows (groups of
+    at least two runs)."""
+    by, dof = {}, {}
+    for r in rows:
+        by.setdefault(r["column"], {}).setdefault(r["group"], []).append(
+            (float(r["mean"]), float(r["sem"])))
+        dof[r["column"]] = int(r["sem_dof"])
+    out = {}
+    for quantity, groups in by.items():
+        pairs = {g: ([m for m, _ in v], [e for _, e in v]) for g, v in groups.items()
+                 if len(v) >= 2}
+        if pairs:
+            out[quantity] = ErrorCalibration(pairs, within_dof=dof[quantity]).compute()
+    return out
+
+
+def _run_error_text(factor):
+    """What a one-seed value's error is, as its TAPMC column says it."""
+    if factor == 1.0:
+        return "one seed: error within the run"
+    return (f"one seed: error within the run x {factor:.1f}, the spread of realizations "
+            "measured by realization-scatter")
 
 
 def _dof(n):
@@ -379,8 +482,15 @@ def tapped_phi(data, claim):
     err = math.hypot(s, sd) if np.isfinite(s) else math.nan
     return [Measure(m, err, _steady_dof(n, s),
                     shown=f"{fmt(m, s, pct=True)} (steady state; single taps spread "
-                          f"{100 * sd:.2f} %" + ("; one seed: the spread between realizations "
-                                                 "is not included)" if n == 1 else ")"))]
+                          f"{100 * sd:.2f} %" + (f"; {_tapped_one_seed(data)})" if n == 1
+                                                 else ")"))]
+
+
+def _tapped_one_seed(data):
+    factor = data.run_error("phi_c")[0]
+    if factor == 1.0:
+        return "one seed: the spread between realizations is not included"
+    return _run_error_text(factor)
 
 
 def pbc_compaction(data, claim):
@@ -421,7 +531,7 @@ def _per_curve(data, name, panel, measure):
     return out or _missing(f"no curve in panel {panel} of Fig. {name[3:]}")
 
 
-def _gain(fig, eps, t, mean, sem, n):
+def _gain(fig, eps, t, mean, sem, n, run_error=(1.0, None)):
     """Mean of the last quarter minus the first point. One seed (the paper's protocol): the
     curve is the run itself, so the last quarter's mean has its batch-means error
     (tapmc.fluctuations.SteadyState) and the start, the run's own packing, none."""
@@ -430,16 +540,17 @@ def _gain(fig, eps, t, mean, sem, n):
     q = max(len(t) // 4, 1)
     gain = float(np.mean(mean[-q:]) - mean[0])
     if np.nanmax(n) == 1 and q >= 2 * DEFAULT_BATCHES:
-        err = SteadyState(mean, last=q).compute().sem
+        err = SteadyState(mean, last=q).compute().sem * run_error[0]
         return Measure(gain, err, WITHIN_RUN_DOF, label=f"eps = {eps:g}",
-                       shown=f"{fmt(gain, err)} (one seed: error within the run)")
+                       shown=f"{fmt(gain, err)} ({_run_error_text(run_error[0])})")
     err = float(math.sqrt(np.nanmean(sem[-q:]) ** 2 + sem[0] ** 2)) \
         if np.isfinite(sem[0]) else math.nan
     return Measure(gain, err, _dof(n), label=f"eps = {eps:g}")
 
 
 def phi_b_gain(data, claim):
-    return _per_curve(data, "fig2", "a", _gain)
+    return _per_curve(data, "fig2", "a",
+                      lambda *curve: _gain(*curve, run_error=data.run_error("phi_b")))
 
 
 def _fit_quality(fig, prefix, npoints, nparams, label):
@@ -870,13 +981,14 @@ def _early_seeds(data, eps):
     return (mean[0], sem[0]), (mean[1], sem[1]), len(values)
 
 
-def _log_rates_one_run(t, x, early_seeds=None):
+def _log_rates_one_run(t, x, early_seeds=None, halves_factor=1.0):
     """Rates of Phi_b per unit ln t of one run (the curve is the run) over the first decade and
     the last decade [T/10, T], each from the means of the decade's two halves in ln t: the
     late halves with their batch-means errors (tapmc.fluctuations.SteadyState), the early ones
     with the error over realizations when ``early_seeds`` (:func:`_early_seeds`) has them,
     else with one tap's spread about the steady state (not divided by their number: taps that
-    close are correlated). ((early, error), (late, error))."""
+    close are correlated); ``halves_factor`` scales the late error to a realization's
+    (:meth:`ReportData.run_error` of 'phi_b:halves'). ((early, error), (late, error))."""
     from tapmc.fluctuations import SteadyState
 
     if early_seeds is not None:
@@ -891,7 +1003,7 @@ def _log_rates_one_run(t, x, early_seeds=None):
     means = [float(np.mean(x[p])) for p in parts]
     errs = [SteadyState(x[p], last=int(p.sum())).compute().sem for p in parts]
     gap = float(np.mean(np.log(t[parts[1]])) - np.mean(np.log(t[parts[0]])))
-    return early, ((means[1] - means[0]) / gap, math.hypot(*errs) / gap)
+    return early, ((means[1] - means[0]) / gap, halves_factor * math.hypot(*errs) / gap)
 
 
 def _log_slope(t, mean, sem, lo, hi):
@@ -900,20 +1012,20 @@ def _log_slope(t, mean, sem, lo, hi):
 
 
 
-def _rate_change_one_run(eps, t, x, early_seeds=None):
+def _rate_change_one_run(eps, t, x, early_seeds=None, halves_factor=1.0):
     """:func:`_rate_change` of one run (the curve is the run): the late rate from the means of
     its last two quarters (each with its batch-means error); the early rate from the means of
     the two halves of the first decade (taps 1-5 and 6-10, as the line over the decade for
     several seeds): over the realizations of ``early_seeds`` (:func:`_early_seeds`) when
     there, else the run's own, each half with one tap's spread about the steady state as its
     error (taps that close together are correlated, so the spread is not divided by their
-    number)."""
+    number). ``halves_factor``: as in :func:`_log_rates_one_run`."""
     from tapmc.fluctuations import SteadyState
 
     q = len(t) // 4
     third, fourth = (SteadyState(x[:len(t) - k * q], last=q).compute() for k in (1, 0))
     late = (fourth.mean - third.mean) / q
-    e_late = math.hypot(third.sem, fourth.sem) / q
+    e_late = halves_factor * math.hypot(third.sem, fourth.sem) / q
     if early_seeds is not None:
         (early, e_early), _, seeds = early_seeds
         dof = min(seeds - 1, WITHIN_RUN_DOF)
@@ -923,16 +1035,18 @@ def _rate_change_one_run(eps, t, x, early_seeds=None):
         e_early = math.sqrt(2.0) * fourth.std / gap
         dof = WITHIN_RUN_DOF
         source = "one seed: errors within the run"
+    if halves_factor != 1.0:
+        source += f"; the last half's error x {halves_factor:.1f} (realization-scatter)"
     return Measure(late - early, math.hypot(e_late, e_early), dof,
                    label=f"eps = {eps:g}",
                    shown=f"{fmt(late, e_late)} vs {fmt(early, e_early)} per tap (last half vs "
                          f"first decade; {source})")
 
 
-def _rate_change(fig, eps, t, mean, sem, n, early_seeds=None):
+def _rate_change(fig, eps, t, mean, sem, n, early_seeds=None, halves_factor=1.0):
     """Rate dPhi_b/dt over the last half of the taps minus that over the first decade."""
     if np.nanmax(n) == 1 and len(t) >= 8 * DEFAULT_BATCHES and t[-1] > 10 * EARLY_DECADE[1]:
-        return _rate_change_one_run(eps, t, mean, early_seeds)
+        return _rate_change_one_run(eps, t, mean, early_seeds, halves_factor)
     early, e_early, _ = _weighted_line_in(t, mean, sem, *EARLY_DECADE)
     late, e_late, _ = _weighted_line_in(t, mean, sem, t[-1] / 2.0, t[-1])
     label = f"eps = {eps:g}"
@@ -950,7 +1064,8 @@ def _weighted_line_in(t, mean, sem, lo, hi):
 
 def efficiency_decrease(data, claim):
     return _per_curve(data, "fig2", "a", lambda fig, eps, *curve: _rate_change(
-        fig, eps, *curve, early_seeds=_early_seeds(data, eps)))
+        fig, eps, *curve, early_seeds=_early_seeds(data, eps),
+        halves_factor=data.run_error("phi_b:halves")[0]))
 
 
 def _fig2_end_curves(data):
@@ -976,7 +1091,8 @@ def log_time_slowing(data, claim):
         t, mean, sem, n = fig.get("a", series)
         if np.nanmax(n) == 1 and t[-1] >= 100 * EARLY_DECADE[1]:
             seeds = _early_seeds(data, eps)
-            (early, e_early), (late, e_late) = _log_rates_one_run(t, mean, seeds)
+            (early, e_early), (late, e_late) = _log_rates_one_run(
+                t, mean, seeds, data.run_error("phi_b:halves")[0])
             dof = WITHIN_RUN_DOF if seeds is None else min(seeds[2] - 1, WITHIN_RUN_DOF)
         else:
             early, e_early, _ = _log_slope(t, mean, sem, *EARLY_DECADE)
@@ -1011,9 +1127,10 @@ DECADE_BEFORE_WINDOW = (0.09, 0.11)
 SHORT_WINDOW_BATCHES = 10
 
 
-def _late_share(t, mean, sem, n):
+def _late_share(t, mean, sem, n, factor=1.0):
     """(share of the gain X(T) - X(0) made over the last decade, its error, dof) of one
-    curve: X over [0.9 T, T] and over [0.09 T, 0.11 T] (one run: batch-means errors; several
+    curve: X over [0.9 T, T] and over [0.09 T, 0.11 T] (one run: batch-means errors times
+    ``factor``, :meth:`ReportData.run_error`; several
     seeds: the curve's sem averaged over each window, not reduced for the taps' correlation)."""
     from tapmc.fluctuations import SteadyState
 
@@ -1021,7 +1138,7 @@ def _late_share(t, mean, sem, n):
     windows = [(t >= lo * T) & (t <= hi * T) for lo, hi in (LATE_WINDOW, DECADE_BEFORE_WINDOW)]
     end, before = (float(np.mean(mean[w])) for w in windows)
     if np.nanmax(n) == 1:
-        errs = [SteadyState(mean[w], last=int(w.sum()), batches=b).compute().sem
+        errs = [factor * SteadyState(mean[w], last=int(w.sum()), batches=b).compute().sem
                 for w, b in zip(windows, (DEFAULT_BATCHES, SHORT_WINDOW_BATCHES))]
         dof = min(DEFAULT_BATCHES, SHORT_WINDOW_BATCHES) - 1
     else:
@@ -1047,7 +1164,7 @@ def late_gain_share(data, claim):
         if t[-1] < 10 * EARLY_DECADE[1] or (
                 np.nanmax(n) == 1 and np.sum(t >= LATE_WINDOW[0] * t[-1]) < 2 * DEFAULT_BATCHES):
             return _missing("runs too short for a last decade of taps")
-        shares.append((eps, *_late_share(t, mean, sem, n)))
+        shares.append((eps, *_late_share(t, mean, sem, n, data.run_error("phi_b")[0])))
     (e0, s0, d0, f0), (e1, s1, d1, f1) = shares
     dofs = [d for d in (f0, f1) if d is not None]
     return [Measure(s0 - s1, math.hypot(d0, d1), min(dofs) if len(dofs) == 2 else None,
@@ -1445,7 +1562,8 @@ def central_minus_lateral(data, claim):
         if not np.isfinite(diff[0]):
             diff = (cen[0] - lat[0], math.hypot(cen[1], lat[1]), min(cen[2], lat[2]))
         value, err, n = diff
-        within = " (one seed: error within the run)" if n == 1 and np.isfinite(err) else ""
+        within = (f" ({_run_error_text(data.run_error(None)[0])})"
+                  if n == 1 and np.isfinite(err) else "")
         out.append(Measure(value, err, _steady_dof(n, err), label=f"eps = {eps:g}",
                            shown=f"{fmt(cen[0], cen[1])} vs {fmt(lat[0], lat[1])}; "
                                  f"difference {fmt(value, err)}{within}"))
@@ -2096,13 +2214,16 @@ def ramp_reduction_bounds(data):
     """branch -> (bound, levels): per branch of the ramp, the largest shift of a level's
     <Phi^c> from the campaign's taps per level to the paper's 4000, |shift| + t err, over the
     levels bench/paper_questions.py ramp-levels measured (ramp_levels.csv); only branches
-    with RAMP_REDUCTION_MIN_LEVELS measured levels or more."""
+    with RAMP_REDUCTION_MIN_LEVELS measured levels or more. The shift compares two windows of
+    one run, so its batch-means error takes the realizations' factor of such a difference
+    (:meth:`ReportData.run_error` of 'phi_c:halves')."""
+    factor = data.run_error("phi_c:halves")[0]
     found = {}
     for r in data.question("ramp_levels"):
         if int(float(r["taps_long"])) < PAPER_SCALE["ramp_taps"]:
             continue
         shift = float(r["phi_c_long"]) - float(r["phi_c"])
-        err = math.hypot(float(r["phi_c_sem"]), float(r["phi_c_long_sem"]))
+        err = factor * math.hypot(float(r["phi_c_sem"]), float(r["phi_c_long_sem"]))
         branch = RAMP_BRANCHES[int(float(r["branch"]))]   # in.ramp's branch column
         found.setdefault(branch, []).append((abs(shift) + t_quantile(WITHIN_RUN_DOF) * err,
                                              int(float(r["level"]))))

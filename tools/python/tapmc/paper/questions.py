@@ -14,6 +14,9 @@ committed data.
 * ``pbc_course.csv``: the course of <Phi^c> in every P.B.C. run of the campaign: how deep
   and how long the dip after the first taps is, and whether strong taps (eps >= 0.09) leave
   the packing looser than it started or still compacting at the end.
+* ``realization_scatter.csv``: the steady state of every group of runs that differ only in
+  their seed: whether one run's batch-means error tells how far another realization lands,
+  and the factor it falls short by (tapmc.fluctuations.ErrorCalibration).
 * ``integrity.csv``: every dump of the campaign checked offline: overlaps, floor and walls,
   and the printed scalars of that tap recomputed from the positions.
 * ``early_taps.csv``: the first 400 taps from the campaign's F.B.C. packing over several
@@ -56,7 +59,8 @@ from tapmc.fluctuations import DEFAULT_BATCHES
 
 from tapmc.pores import XI_T
 
-from .claims import fmt, t_quantile
+from .claims import (CALIBRATION_ALPHA, fmt, realization_calibrations,
+                     realization_factors, t_quantile)
 
 FOLDER = "questions"
 #: share of the first-tap drop at eta = 1e-7 that must remain at the tightest eta for the
@@ -583,8 +587,11 @@ BRANCH_NAMES = ("first increase", "decrease", "second increase")
 PAPER_RAMP_TAPS = 4000
 
 
-def _ramp_levels(path, fig4=None):
+def _ramp_levels(path, fig4=None, factors=None):
+    """``factors``: as in :func:`_pbc_course`; a level's shift compares two windows of one
+    run, so its error takes the factor of <Phi^c>'s halves."""
     rows = _read(path)
+    k = (factors or {}).get("phi_c:halves", (1.0, None))[0]
     if not rows:
         return []
     taps, longer = int(rows[0]["taps"]), int(rows[0]["taps_long"])
@@ -592,7 +599,9 @@ def _ramp_levels(path, fig4=None):
     lines = [f"What do the ramp's {taps} taps per level change against {longer}{paper}? "
              f"Levels of the campaign's ramp continued from their end at the same sqrt(eps) to "
              f"{longer} taps (``ramp_levels.csv``; <Phi^c> over the last quarter of the level, "
-             "batch-means errors):", "",
+             "batch-means errors" + (f"; the shift's error times {k:.1f}, the realizations' "
+                                     "factor of a difference of two windows of one run "
+                                     "(realization-scatter)" if k != 1.0 else "") + "):", "",
              ".. list-table::", "   :header-rows: 1", "",
              "   * - level (branch)", "     - sqrt(eps)", f"     - after {taps} taps",
              f"     - after {longer} taps", "     - shift"]
@@ -600,12 +609,12 @@ def _ramp_levels(path, fig4=None):
     for r in rows:
         a, ea = float(r["phi_c"]), float(r["phi_c_sem"])
         b, eb = float(r["phi_c_long"]), float(r["phi_c_long_sem"])
-        shifts.append((b - a, math.hypot(ea, eb)))
+        shifts.append((b - a, k * math.hypot(ea, eb)))
         start = r.get("start") or "run"
         mark = "; replayed" if start.startswith("replay") else ""
         lines += [f"   * - {r['level']} ({BRANCH_NAMES[int(r['branch'])]}{mark})",
                   f"     - {float(r['sqrt_eps']):g}", f"     - {fmt(a, ea, True)}",
-                  f"     - {fmt(b, eb, True)}", f"     - {fmt(b - a, math.hypot(ea, eb), True)}"]
+                  f"     - {fmt(b, eb, True)}", f"     - {fmt(*shifts[-1], True)}"]
     largest = max(shifts, key=lambda d: abs(d[0]))
     moved = [d for d in shifts if abs(d[0]) > t_quantile(HALVES_DOF) * d[1]]
     from .claims import ReportData, hysteresis_gap
@@ -651,8 +660,12 @@ def _ramp_pores(path):
     return lines + ["", text, ""]
 
 
-def _pbc_course(path):
+def _pbc_course(path, factors=None):
+    """``factors``: realization factors (tapmc.paper.claims.realization_factors) that turn
+    the runs' batch-means errors of <Phi^c>'s steady state and halves into a realization's."""
     rows = _read(path)
+    steady_k = (factors or {}).get("phi_c", (1.0, None))[0]
+    halves_k = (factors or {}).get("phi_c:halves", (1.0, None))[0]
     if not rows:
         return []
     by_eps = defaultdict(list)
@@ -663,7 +676,10 @@ def _pbc_course(path):
              "P.B.C. run of the campaign (``pbc_course.csv``; back from: the first tap from "
              "which a 10-tap running mean stays at or above the t = 0 value for 10 taps; "
              "steady: the last 1000 taps, batch-means error; halves: the steady window's "
-             "second half minus its first):", "",
+             "second half minus its first" + (
+                 f"; both errors times the realizations' factor, {steady_k:.1f} and "
+                 f"{halves_k:.1f} (realization-scatter)" if (steady_k, halves_k) != (1.0, 1.0)
+                 else "") + "):", "",
              ".. list-table::", "   :header-rows: 1", "",
              "   * - eps", "     - seed", "     - <Phi^c> at t = 0", "     - lowest (tap)",
              "     - back from tap", "     - steady", "     - halves"]
@@ -676,11 +692,13 @@ def _pbc_course(path):
                       f"     - {fmt(float(r['phi_c_0']), None, True)}",
                       f"     - {fmt(float(r['phi_c_min']), None, True)} ({r['tap_min']})",
                       f"     - {back}",
-                      f"     - {fmt(float(r['phi_c_steady']), float(r['phi_c_steady_sem']), True)}",
-                      f"     - {fmt(float(r['steady_halves_diff']), float(r['steady_halves_diff_sem']), True)}"]
+                      f"     - {fmt(float(r['phi_c_steady']), steady_k * float(r['phi_c_steady_sem']), True)}",
+                      f"     - {fmt(float(r['steady_halves_diff']), halves_k * float(r['steady_halves_diff_sem']), True)}"]
         col = {k: np.array([float(r[k]) if r[k] != "" else math.nan for r in group])
                for k in ("phi_c_0", "phi_c_min", "tap_back", "phi_c_steady", "phi_c_steady_sem",
                          "steady_halves_diff", "steady_halves_diff_sem")}
+        col["phi_c_steady_sem"] = col["phi_c_steady_sem"] * steady_k
+        col["steady_halves_diff_sem"] = col["steady_halves_diff_sem"] * halves_k
         n = len(group)
         summary[eps] = {"depth": float(np.mean(col["phi_c_0"] - col["phi_c_min"])),
                         "back": col["tap_back"],
@@ -747,6 +765,69 @@ def _pbc_course(path):
            "not undone by the taps at every strong eps (see above): a difference from the "
            "paper's Fig. 4, whose squares all lie above the initial packing."))
     return lines + [""]
+
+
+#: names of taps.dat's scalars in the text
+SCALAR_NAMES = {"phi_b": "Phi_b", "phi_c": "<Phi^c>", "Z": "<Z>"}
+def _realization_scatter(path):
+    rows = _read(path)
+    calib = realization_calibrations(rows)
+    if not rows or not calib:
+        return []
+    starts = defaultdict(set)
+    for r in rows:
+        if r["column"] == "phi_c":
+            starts[r["group"]].add(r["start"])
+    lines = ["Does the error one run gives its steady state tell how far another realization "
+             "lands? Every one-seed point of this page (the paper's protocol: one run per "
+             "point) carries its run's batch-means error (last 1000 taps, "
+             f"{DEFAULT_BATCHES} batches). The campaign's groups of runs that differ only in "
+             "their seed (``realization_scatter.csv``) measure it: the spread of their steady "
+             "states against their own errors (tapmc.fluctuations.ErrorCalibration; 1 when the "
+             "errors are calibrated):", "",
+             ".. list-table::", "   :header-rows: 1", "",
+             "   * - runs", "     - realizations", "     - quantity",
+             "     - spread between realizations", "     - rms error within a run",
+             "     - ratio"]
+    for column in (c for c in SCALAR_NAMES if c in calib):
+        c = calib[column]
+        for group in c.ratios:
+            n = len(c.groups[group][0])
+            same = ("one packing" if len(starts[group]) == 1 else
+                    f"{len(starts[group])} packings")
+            lines += [f"   * - {group}", f"     - {n} ({same})",
+                      f"     - {SCALAR_NAMES[column]}", f"     - {c.spreads[group]:.3g}",
+                      f"     - {c.errors[group]:.3g}", f"     - {c.ratios[group]:.2f}"]
+    lines.append("")
+    pooled = []
+    for column in (c for c in SCALAR_NAMES if c in calib):
+        for key, what in ((column, "steady state"), (f"{column}:halves", "halves' difference")):
+            if key not in calib:
+                continue
+            c = calib[key]
+            low, high = c.interval()
+            pooled.append(f"{SCALAR_NAMES[column]} {what}: k = {c.factor:.2f} (95 %: "
+                          f"{low:.2f} to {high:.2f}; {c.dof} dof, p of k = 1: {c.p_value:.2g})")
+    lines.append("* Pooled over the groups: " + "; ".join(pooled) + ".")
+    short = {k: c for k, c in calib.items() if c.p_value < CALIBRATION_ALPHA}
+    if not short:
+        lines += ["* Verdict: the one-run errors are compatible with the realizations' spread "
+                  f"(no p below {CALIBRATION_ALPHA:g}): a one-seed error bar is the error of "
+                  "the model's steady state.", ""]
+        return lines
+    means = [k for k in SCALAR_NAMES if k in short]
+    text = ", ".join(f"{SCALAR_NAMES[k]} {short[k].factor:.1f}" for k in means)
+    lines += [
+        "* Verdict: the one-run errors are too small" + (f" (window means: {text})" if text
+                                                         else "")
+        + ": fluctuations slower than a batch (Fig. 3's spectra fall as f^-1 to f^-1.5) move "
+        "a run's whole window, so a one-seed error bar is the error of that run's time "
+        "average, not of the model's steady state, and another realization lands about k of "
+        "them away. Where a row of the claims' table or a measurement below rests on one "
+        "run's time average, its error is the batch-means error times the factor of its "
+        "quantity (the note under the claims' rules lists them; a difference of two windows "
+        "of one run takes the halves' factor).", ""]
+    return lines
 
 
 def _packing_p0(fig9, configs=None):
@@ -1028,8 +1109,12 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
         parts += _noise_floor(folder / "noise_floor.csv", (figures or {}).get("fig3"))
     if (folder / "spectral_window.csv").is_file():
         parts += _spectral_window(folder / "spectral_window.csv")
+    factors = realization_factors(_read(folder / "realization_scatter.csv")) \
+        if (folder / "realization_scatter.csv").is_file() else {}
+    if (folder / "realization_scatter.csv").is_file():
+        parts += _realization_scatter(folder / "realization_scatter.csv")
     if (folder / "pbc_course.csv").is_file():
-        parts += _pbc_course(folder / "pbc_course.csv")
+        parts += _pbc_course(folder / "pbc_course.csv", factors)
     if (folder / "integrity.csv").is_file():
         parts += _integrity(folder / "integrity.csv")
     if (folder / "early_taps.csv").is_file():
@@ -1041,7 +1126,7 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
     if (folder / "p0_configs.csv").is_file():
         parts += _p0_configs(folder / "p0_configs.csv")
     if (folder / "ramp_levels.csv").is_file():
-        parts += _ramp_levels(folder / "ramp_levels.csv", (figures or {}).get("fig4"))
+        parts += _ramp_levels(folder / "ramp_levels.csv", (figures or {}).get("fig4"), factors)
     if (folder / "ramp_pores.csv").is_file():
         parts += _ramp_pores(folder / "ramp_pores.csv")
     if (folder / "lateral_first_tap.csv").is_file():
@@ -1062,6 +1147,8 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
     title = "Questions settled by measurement"
     # the commands that made the CSVs (p0-fluid named only when its CSV is there)
     commands = "``first-tap``, ``noise-floor``, ``spectral-window``" + (
+        ", ``realization-scatter``" if (folder / "realization_scatter.csv").is_file()
+        else "") + (
         ", ``pbc-course``" if (folder / "pbc_course.csv").is_file() else "") + (
         ", ``integrity``" if (folder / "integrity.csv").is_file() else "") + (
         ", ``early-taps``" if (folder / "early_taps.csv").is_file() else "") + (

@@ -264,7 +264,7 @@ def _rows_and_notes(summary, files):
         text = note(fig) if fig is not None else None
         if text:
             notes[name] = text
-    return rows, notes, data.figures
+    return rows, notes, data.figures, data.run_error_note()
 
 
 CAPTIONS = {
@@ -289,8 +289,9 @@ def _where(claim):
     return f"{claim.section}" + (f", Fig. {claim.figure}" if claim.figure else "")
 
 
-def _rst_table(rows):
-    """The answer to "how close is TAPMC to the paper": one row per measured claim."""
+def _rst_table(rows, run_note=""):
+    """The answer to "how close is TAPMC to the paper": one row per measured claim;
+    ``run_note``: how the one-run errors were scaled to realizations (none: not measured)."""
     lines = [".. list-table::", "   :header-rows: 1", "   :widths: 8 30 14 20 8 20", "",
              "   * - Where", "     - Claim", "     - Paper", "     - TAPMC", "     - Paper scale?",
              "     - Verdict [rule]"]
@@ -308,7 +309,7 @@ def _rst_table(rows):
         if row.claim.rule not in used:
             used.append(row.claim.rule)
     lines += [f"* [{key}] {RULES[key]}" for key in used]
-    lines += ["", ONE_RUN_ERRORS]
+    lines += ["", ONE_RUN_ERRORS + (" " + run_note if run_note else "")]
     lines += ["", "\"Paper scale?\" says whether the campaign (or, for a measurement of its "
               "own such as a knob scan, its runs) had what the claim needs of the "
               "paper's scale (size: N = 4096 in a 32R box; taps: 4000 per run; ramp_taps: 4000 "
@@ -341,7 +342,7 @@ def _register_table(rows):
 def render(summary, files):
     """The text of validation.rst from the campaign summary and the figure files (name ->
     (png, csv))."""
-    rows, notes, figures = _rows_and_notes(summary, files)
+    rows, notes, figures, run_note = _rows_and_notes(summary, files)
     model = [r for r in rows if r.claim.kind == "model"]
     count = {o: sum(1 for r in model if r.outcome == o)
              for o in ("agrees", "disagrees", "undecided")}
@@ -360,7 +361,7 @@ def render(summary, files):
              "are undecided (the reason is in the verdict: too few seeds, a scale below the "
              "paper's, or runs this campaign does not have).", "",
              "How close is TAPMC to the paper", "-" * 31, ""]
-    lines += _rst_table(rows)
+    lines += _rst_table(rows, run_note)
     lines += ["", f"The numbers come from the figure CSVs and ``{FIG_DIR}/{SUMMARY_FILE}`` (the "
               "campaign's scale and initial packings), committed with this page; rewrite it "
               "from them (a test checks that this gives the committed page):", "",
