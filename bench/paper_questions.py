@@ -97,8 +97,9 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               their seed (the constant-eps points with several seeds, the ageing runs: ten
               streams from one packing), no simulation: per run and per Phi_b, <Phi^c>, <Z>,
               the window mean and its batch-means error, the value at t = 0 (whether
-              the realizations share their packing), and the difference of the window's
-              halves with its error (pbc-course's test of a run still compacting). The report compares the realizations'
+              the realizations share their packing), the difference of the window's
+              halves with its error (pbc-course's test of a run still compacting), and
+              Fig. 3's sigma_<Z> with its one-run error. The report compares the realizations'
               spread with their errors (tapmc.fluctuations.ErrorCalibration).
 
   integrity   Do thousands of taps leave a legal hard-sphere packing, and do the numbers a
@@ -837,6 +838,8 @@ def _seed_groups(campaign):
 
 
 def realization_scatter(args):
+    from tapmc.paper.fig3 import sigma_error_one_run
+
     rows = []
     for group, runs in _seed_groups(args.campaign).items():
         tables = {seed: _named_columns(run_dir / "taps.dat") for seed, run_dir in runs}
@@ -863,8 +866,17 @@ def realization_scatter(args):
                              "", f"{second.mean - first.mean:.6g}",
                              f"{math.hypot(first.sem, second.sem):.4g}", steady.last,
                              2 * (min(DEFAULT_BATCHES // 2, half // 2) - 1)])
+            # Fig. 3's sigma_<Z> (about X_SS and about the window's straight line) with its
+            # one-run error (batch means of the squared deviations)
+            z = table["Z"][keep]
+            for detrend, suffix in (("constant", ""), ("linear", "_detrended")):
+                steady = SteadyState(z, detrend=detrend).compute()
+                rows.append([group, run_dir.name, seed, int(keep.sum()), f"Z:sigma{suffix}",
+                             "", f"{steady.std:.6g}",
+                             f"{sigma_error_one_run(z, steady.last, detrend=detrend):.4g}",
+                             steady.last, min(DEFAULT_BATCHES, steady.last // 2) - 1])
             print(f"{run_dir.name}: " + ", ".join(
-                f"{r[4]} {float(r[6]):.5f} +- {float(r[7]):.5f}" for r in rows[-6:]))
+                f"{r[4]} {float(r[6]):.5f} +- {float(r[7]):.5f}" for r in rows[-8:]))
     write_csv(Path(args.out) / "realization_scatter.csv",
               ["group", "run", "seed", "taps", "column", "start", "mean", "sem", "last",
                "sem_dof"], rows)

@@ -1330,3 +1330,36 @@ def test_near_rule_agrees_within_a_tenth_of_the_effect_and_says_when_it_cannot_t
     assert claims.verdict(claim, straddle).startswith("undecided (|value| +- t sem")
     assert claims.verdict(claim, claims.Measure(0.0, 1e-5, 9)).startswith(
         "undecided (no effect")
+
+
+def _scatter_rows(quantity, spread, error, groups=2, runs=4):
+    """realization_scatter.csv rows of ``quantity`` whose realizations spread ``spread``
+    against their own errors ``error`` (exactly: means at +-spread * sqrt((n-1)/n))."""
+    offsets = np.array([1.0, -1.0] * (runs // 2)) * spread * np.sqrt((runs - 1) / runs)
+    return [{"group": f"g{g}", "column": quantity, "mean": str(0.6 + o), "sem": str(error),
+             "sem_dof": "19"} for g in range(groups) for o in offsets]
+
+
+def test_one_run_errors_take_the_realizations_factor():
+    """A calibration that rejects the one-run errors scales them where a row rests on one
+    run (Fig. 3's one-run sigmas refitted, Fig. 2's gain), and only there; one that does not
+    reject them changes nothing."""
+    rows = _scatter_rows("Z:sigma", 0.004, 0.001) + _scatter_rows("phi_b", 0.0021, 0.002)
+    factors = claims.realization_factors(rows)
+    assert factors["Z:sigma"][0] == pytest.approx(4.0) and "phi_b" not in factors
+    line = Table()
+    sq = np.array([0.05, 0.1, 0.15, 0.2, 0.3])
+    line.add("b", "sigma_Z", sq, 0.002 + 0.05 * sq, [0.001, 0.0003, 0.001, 0.001, 0.001],
+             n=np.array([1, 3, 1, 1, 1]))
+    line.param("intercept", 0.002, 0.0005, n=5)
+    claim = next(c for c in REGISTER if c.statistic == "sigma_intercept"
+                 and c.params.get("about") != "line")
+    own = claims.sigma_intercept(report(fig3=line), claim)[0]
+    data = report(fig3=line)
+    data.questions["realization_scatter"] = rows
+    scaled = claims.sigma_intercept(data, claim)[0]
+    assert own.err == 0.0005 and scaled.value == pytest.approx(0.002)
+    # the one seed-averaged point keeps its error: the intercept's error grows by less than 4
+    assert 1.5 * own.err < scaled.err < 4 * own.err
+    assert "error within the run x 4.0" in scaled.text()
+    assert data.run_error("phi_b") == (1.0, None)

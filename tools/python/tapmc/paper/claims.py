@@ -284,15 +284,14 @@ class ReportData:
         factors = realization_factors(self.question("realization_scatter"))
         if not factors:
             return ""
-        names = {"phi_b": "Phi_b", "phi_c": "<Phi^c>", "Z": "<Z>"}
-        parts = [f"{names[q.split(':')[0]]}{' halves' if ':' in q else ''} x {k:.1f}"
-                 for q, (k, _) in sorted(factors.items(), key=lambda item: (
-                     RUN_ERROR_QUANTITIES.index(item[0].split(":")[0]), item[0]))]
+        parts = [f"{label} x {factors[q][0]:.1f}" for q, label in RUN_ERROR_LABELS.items()
+                 if q in factors]
         return ("The campaign's groups of runs that differ only in their seed show that "
                 "realizations spread beyond these errors (``realization-scatter`` below): the "
                 "time averages of one run that decide a row (Fig. 2's windows and halves, "
                 "Fig. 4's steady states and ramp levels, Fig. 8's zones, Fig. 9's steady "
-                "state) carry the batch-means error times the factor measured on the P.B.C. "
+                "state, Fig. 3's sigma_<Z>) carry the batch-means error times the factor "
+                "measured on the P.B.C. "
                 "groups (F.B.C. runs, which have no group, take the same) ("
                 + ", ".join(parts) + "; a profile's zones the largest).")
 
@@ -311,6 +310,12 @@ class ReportData:
 
 #: the window means whose one-run error realization_scatter.csv calibrates
 RUN_ERROR_QUANTITIES = ("phi_b", "phi_c", "Z")
+#: the quantities of realization_scatter.csv, as the page names them: a window mean, the
+#: difference of its halves, and Fig. 3's sigma_<Z> about X_SS and about the window's line
+RUN_ERROR_LABELS = {"phi_b": "Phi_b", "phi_b:halves": "Phi_b halves",
+                    "phi_c": "<Phi^c>", "phi_c:halves": "<Phi^c> halves",
+                    "Z": "<Z>", "Z:halves": "<Z> halves", "Z:sigma": "sigma_<Z>",
+                    "Z:sigma_detrended": "sigma_<Z> about the window's line"}
 #: one-sided significance below which the realizations' spread rejects one run's own error
 CALIBRATION_ALPHA = 0.01
 
@@ -1263,7 +1268,15 @@ def sigma_intercept(data, claim):
     dof = len(b[0]) - 2 if b is not None else None
     # a zero intercept means small against the smallest sigma measured
     effect = float(np.nanmin(b[1])) if b is not None else None
-    return [Measure(m, s, dof if dof and dof >= 1 else None, effect=effect)]
+    shown = None
+    factor = data.run_error("Z:sigma" + suffix)[0]
+    if factor != 1.0 and b is not None and np.all(np.isfinite(b[2])) and np.all(b[2] > 0):
+        # the same weighted line, one-run sigmas with a realization's error
+        sem = np.where(b[3] == 1, b[2] * factor, b[2])
+        coef, cov, _ = _weighted_polyfit(b[0], b[1], sem, 1)
+        m, s = float(coef[0]), float(math.sqrt(cov[0, 0]))
+        shown = f"{fmt(m, s)} ({_run_error_text(factor)})"
+    return [Measure(m, s, dof if dof and dof >= 1 else None, effect=effect, shown=shown)]
 
 
 def _steady(data):

@@ -59,7 +59,7 @@ from tapmc.fluctuations import DEFAULT_BATCHES
 
 from tapmc.pores import XI_T
 
-from .claims import (CALIBRATION_ALPHA, fmt, realization_calibrations,
+from .claims import (CALIBRATION_ALPHA, RUN_ERROR_LABELS, fmt, realization_calibrations,
                      realization_factors, t_quantile)
 
 FOLDER = "questions"
@@ -800,14 +800,15 @@ def _realization_scatter(path):
                       f"     - {c.errors[group]:.3g}", f"     - {c.ratios[group]:.2f}"]
     lines.append("")
     pooled = []
-    for column in (c for c in SCALAR_NAMES if c in calib):
-        for key, what in ((column, "steady state"), (f"{column}:halves", "halves' difference")):
-            if key not in calib:
-                continue
-            c = calib[key]
-            low, high = c.interval()
-            pooled.append(f"{SCALAR_NAMES[column]} {what}: k = {c.factor:.2f} (95 %: "
-                          f"{low:.2f} to {high:.2f}; {c.dof} dof, p of k = 1: {c.p_value:.2g})")
+    for key, label in RUN_ERROR_LABELS.items():
+        if key not in calib:
+            continue
+        c = calib[key]
+        low, high = c.interval()
+        what = {"": " steady state", "halves": ", halves' difference"}.get(
+            key.partition(":")[2], "")
+        pooled.append(f"{label.removesuffix(' halves')}{what}: k = {c.factor:.2f} (95 %: "
+                      f"{low:.2f} to {high:.2f}; {c.dof} dof, p of k = 1: {c.p_value:.2g})")
     lines.append("* Pooled over the groups: " + "; ".join(pooled) + ".")
     short = {k: c for k, c in calib.items() if c.p_value < CALIBRATION_ALPHA}
     if not short:
