@@ -767,9 +767,13 @@ def _pbc_course(path, factors=None):
     return lines + [""]
 
 
-#: names of taps.dat's scalars in the text
-SCALAR_NAMES = {"phi_b": "Phi_b", "phi_c": "<Phi^c>", "Z": "<Z>"}
+#: the window means of realization_scatter.csv, as the page names them
+SCALAR_NAMES = {q: label for q, label in RUN_ERROR_LABELS.items() if ":" not in q}
+
+
 def _realization_scatter(path):
+    """The table of each group's spread against its runs' own errors and the pooled factors
+    (tapmc.paper.claims.realization_calibrations), with the verdict."""
     rows = _read(path)
     calib = realization_calibrations(rows)
     if not rows or not calib:
