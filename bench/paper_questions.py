@@ -196,6 +196,7 @@ import numpy as np
 SOURCE = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
 from tapmc.campaign.run_folder import keep_latest_restart, latest_restart  # noqa: E402
+from tapmc.paper.claims import RAMP_LEVELS_DEFAULT_RUN  # noqa: E402
 from tapmc.fluctuations import DEFAULT_BATCHES, PowerSpectrum, SteadyState  # noqa: E402
 
 INPUT = SOURCE / "examples" / "paper" / "in.constant_eps"
@@ -466,7 +467,8 @@ def ramp_levels(args):
         short = SteadyState(level[:, 5], last=steady_last(P)).compute()
         full = SteadyState(longer, last=steady_last(len(longer))).compute()
         rows.append([k, int(level[-1, 2]), f"{sq:.6g}", P, len(longer), f"{short.mean:.8f}",
-                     f"{short.sem:.3g}", f"{full.mean:.8f}", f"{full.sem:.3g}", start])
+                     f"{short.sem:.3g}", f"{full.mean:.8f}", f"{full.sem:.3g}", start,
+                     args.run])
         print(f"level {k} (branch {int(level[-1, 2])}, sqrt(eps) {sq:g}, from the {start}): "
               f"<Phi^c> {short.mean:.4f} after {P} taps, {full.mean:.4f} after {len(longer)}",
               flush=True)
@@ -475,22 +477,26 @@ def ramp_levels(args):
 
 
 RAMP_LEVELS_HEADER = ["level", "branch", "sqrt_eps", "taps", "taps_long", "phi_c", "phi_c_sem",
-                      "phi_c_long", "phi_c_long_sem", "start"]
+                      "phi_c_long", "phi_c_long_sem", "start", "ramp"]
+#: what the columns added to ramp_levels.csv hold in rows written before them: the levels
+#: came from the run itself, of the ramp beyond (sqrt eps)* (tapmc.paper.claims)
+RAMP_LEVELS_LATER_COLUMNS = {"start": "run", "ramp": RAMP_LEVELS_DEFAULT_RUN}
 
 
 def write_ramp_levels(path, rows):
-    """ramp_levels.csv with ``rows`` and the rows of the levels measured before and not in
-    ``rows`` (rows written before the column 'start' existed came from the run)."""
+    """ramp_levels.csv with ``rows`` and the rows of the (ramp, level) pairs measured before
+    and not in ``rows``."""
     header = RAMP_LEVELS_HEADER
     rows = list(rows)
     if path.is_file():
         with open(path, newline="") as handle:
             table = list(csv.reader(handle))
         if table and table[0] == header[:len(table[0])]:
-            listed = {int(r[0]) for r in rows}
-            rows += [r + ["run"] * (len(header) - len(r)) for r in table[1:]
-                     if r and int(r[0]) not in listed]
-    write_csv(path, header, sorted(rows, key=lambda r: int(r[0])))
+            missing = [RAMP_LEVELS_LATER_COLUMNS[c] for c in header[len(table[0]):]]
+            listed = {(r[-1], int(r[0])) for r in rows}
+            old = [r + missing for r in table[1:] if r]
+            rows += [r for r in old if (r[-1], int(r[0])) not in listed]
+    write_csv(path, header, sorted(rows, key=lambda r: (r[-1], int(r[0]))))
 
 
 RAMP_INPUT = SOURCE / "examples" / "paper" / "in.ramp"

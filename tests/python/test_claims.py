@@ -1310,7 +1310,7 @@ def test_ramp_reduction_decides_only_the_verdicts_it_cannot_change():
                                   "scale it disagrees")
     # the alpha claim has no bound in <Phi^c>: it stays undecided at this scale
     assert claims.ramp_reduction_shift(by_id["gradient-no-hysteresis"], near,
-                                       claims.ramp_reduction_bounds(near)) is None
+                                       {"ramp": claims.ramp_reduction_bounds(near)}) is None
 
 
 def test_near_rule_agrees_within_a_tenth_of_the_effect_and_says_when_it_cannot_tell():
@@ -1363,3 +1363,37 @@ def test_one_run_errors_take_the_realizations_factor():
     assert 1.5 * own.err < scaled.err < 4 * own.err
     assert "error within the run x 4.0" in scaled.text()
     assert data.run_error("phi_b") == (1.0, None)
+
+
+def test_low_ramp_frozen_is_decided_by_its_own_levels():
+    """The ramp below (sqrt eps)* changes on the way down by 0.01 (beyond t sem): at 1000 taps
+    per level that stays undecided until ramp-levels measured that ramp's turning level and
+    two levels of its decrease; shifts that small leave 'disagrees', the other ramp's levels
+    do not count, and a turning level that moves as much as the change leaves it undecided."""
+    claim = next(c for c in REGISTER if c.statistic == "low_ramp_frozen")
+    fig = (fig4(BELL).param("low:down_change", 0.01, 0.0005, n=1)
+           .param("ramp:down_change", 0.02, 0.0005, n=1).param("low:top_sqrt_eps", 0.125, n=1))
+
+    def outcome(rows):
+        data = claims.ReportData(dict(report().summary, ramp_taps_per_level=[1000]),
+                                 {"fig4": fig.data()}, questions={"ramp_levels": rows})
+        (row,) = claims.evaluate([claim], data)
+        return row.verdict
+
+    def low(shifts, ramp="ramplow_pbc_s1"):
+        rows = _ramp_levels_rows(shifts)
+        for r, (k, _, _) in zip(rows, shifts):
+            r.update(ramp=ramp, sqrt_eps="0.125" if k == 4 else "0.05")
+        return rows
+
+    assert outcome([]).startswith("undecided (scale: needs the paper's ramp_taps; at this "
+                                  "scale it disagrees")
+    small = low([(4, 0, 0.001), (5, 1, 0.0005), (8, 1, 0.0)])
+    text = outcome(small)
+    assert text.startswith("disagrees (at 1000 taps per level") and \
+        "low ramp, down: levels 5, 8; top: level 4" in text
+    assert outcome(low([(4, 0, 0.001), (5, 1, 0.0005), (8, 1, 0.0)], "ramp_pbc_s1")) \
+        .startswith("undecided (scale")
+    assert outcome(low([(4, 0, 0.009), (5, 1, 0.0005), (8, 1, 0.0)])).startswith(
+        "undecided (scale: needs the paper's ramp_taps; at this scale it disagrees; the "
+        "paper's 4000 could move it by 0.0")

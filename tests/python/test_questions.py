@@ -297,9 +297,43 @@ def test_ramp_levels_against_the_hysteresis_gap(tmp_path):
                                               "sem": [0.0003] * 3, "n": [1] * 3}})
     text = "\n".join(questions.render_section(tmp_path, {"fig4": fig4}))
     assert "change against 4000 (the paper's)?" in text
-    assert "at most 0.10 ± 0.04 %; 1 of 2 beyond their error" in text
-    assert "gap (decrease minus first increase) is 2.00 %" in text
+    assert "ramp_pbc_s1: the longer levels move <Phi^c> by at most 0.10 ± 0.04 %; 1 of 2 " \
+           "beyond their error" in text
+    assert "gap of ramp_pbc_s1 (decrease minus first increase) is 2.00 %" in text
     assert "by less than a tenth of it" in text
+
+
+def test_ramp_levels_of_two_ramps_bound_each_its_own_claims(tmp_path):
+    """Rows of the ramp below (sqrt eps)* (column 'ramp') beside rows written before the
+    column existed (the ramp beyond it): each ramp's summary and bounds read its own rows; the
+    low ramp's turning level is the pseudo-branch 'top' of its frozen claim."""
+    import numpy as np
+
+    header = "level,branch,sqrt_eps,taps,taps_long,phi_c,phi_c_sem,phi_c_long,phi_c_long_sem"
+    (tmp_path / "ramp_levels.csv").write_text(
+        header + "\n11,0,0.3,1000,4000,0.5950,0.0003,0.5960,0.0003\n"
+        "16,1,0.175,1000,4000,0.6080,0.0003,0.6081,0.0003\n")
+    pq = _paper_questions()
+    pq.write_ramp_levels(tmp_path / "ramp_levels.csv", [
+        [4, 0, "0.125", 1000, 4000, "0.6073", "0.0001", "0.6103", "0.0001", "run",
+         "ramplow_pbc_s1"],
+        [5, 1, "0.1", 1000, 4000, "0.6104", "0.0001", "0.6110", "0.0001", "run",
+         "ramplow_pbc_s1"],
+        [8, 1, "0.025", 1000, 4000, "0.6150", "0.0001", "0.6152", "0.0001", "run",
+         "ramplow_pbc_s1"]])
+    rows = claims.read_scan(tmp_path / "ramp_levels.csv")
+    assert [(r["ramp"], r["level"], r["start"]) for r in rows][:2] == [
+        ("ramp_pbc_s1", "11", "run"), ("ramp_pbc_s1", "16", "run")]
+    text = "\n".join(questions.render_section(tmp_path))
+    assert "ramplow_pbc_s1: the longer levels move <Phi^c> by at most 0.30 ± 0.01 %" in text
+    fig4 = claims.FigureData({("params", "low:top_sqrt_eps"): {
+        "x": np.array([0.0]), "mean": np.array([0.125]), "sem": np.array([np.nan]),
+        "n": np.array([1])}})
+    data = claims.ReportData({}, {"fig4": fig4}, questions={"ramp_levels": rows})
+    low = claims.ramp_reduction_bounds(data, "low")
+    assert low["top"][1] == [4] and low["down"][1] == [5, 8] and "up1" not in low
+    assert low["top"][0] > 0.003 and 0.0006 < low["down"][0] < 0.001
+    assert set(claims.ramp_reduction_bounds(data, "ramp")) == set()   # one level a branch
 
 
 def integrity_csv(folder, overlaps=0, worst=0.9):

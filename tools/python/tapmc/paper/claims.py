@@ -2217,40 +2217,68 @@ class Row:
 RAMP_REDUCTION_BRANCHES = {"ramp_down_minus_up": ("down", "up1"),
                            "ramp_up2_minus_down": ("up2", "down"),
                            "ramp_up_minus_steady": ("up1",),
-                           "ramp_branch_slope": ("down",)}
+                           "ramp_branch_slope": ("down",),
+                           "low_ramp_frozen": ("down", "top")}
+#: the ramp (Fig. 4's tag) whose levels bound a statistic's shift; "ramp" when not listed
+RAMP_REDUCTION_TAGS = {"low_ramp_frozen": "low"}
+#: the ramp of ramp_levels.csv's rows written before its column 'ramp' existed
+RAMP_LEVELS_DEFAULT_RUN = "ramp_pbc_s1"
 #: levels of a branch measured at the paper's taps per level before their largest shift
 #: stands for the whole branch (one level says nothing of how the shift varies along it)
 RAMP_REDUCTION_MIN_LEVELS = 2
 
 
-def ramp_reduction_bounds(data):
-    """branch -> (bound, levels): per branch of the ramp, the largest shift of a level's
-    <Phi^c> from the campaign's taps per level to the paper's 4000, |shift| + t err, over the
-    levels bench/paper_questions.py ramp-levels measured (ramp_levels.csv); only branches
-    with RAMP_REDUCTION_MIN_LEVELS measured levels or more. The shift compares two windows of
-    one run, so its batch-means error takes the realizations' factor of such a difference
-    (:meth:`ReportData.run_error` of 'phi_c:halves')."""
+def ramp_tag(run):
+    """Fig. 4's tag of a ramp run (tapmc.paper.fig4.RAMPS), from its name."""
+    from ._runs import RAMP_BELOW_PREFIX, RAMP_NEAR_PREFIX
+
+    if run.startswith(RAMP_NEAR_PREFIX):
+        return "near"
+    return "low" if run.startswith(RAMP_BELOW_PREFIX) else "ramp"
+
+
+def ramp_reduction_bounds(data, tag="ramp"):
+    """branch -> (bound, levels): per branch of the ramp ``tag`` (Fig. 4's), the largest
+    shift of a level's <Phi^c> from the campaign's taps per level to the paper's 4000,
+    |shift| + t err, over the levels bench/paper_questions.py ramp-levels measured
+    (ramp_levels.csv); only branches with RAMP_REDUCTION_MIN_LEVELS measured levels or more.
+    The pseudo-branch "top" is the ramp's turning level alone (the first increase's highest
+    sqrt(eps)), which a change on the way down is measured from. The shift compares two
+    windows of one run, so its batch-means error takes the realizations' factor of such a
+    difference (:meth:`ReportData.run_error` of 'phi_c:halves')."""
     factor = data.run_error("phi_c:halves")[0]
-    found = {}
+    found, top = {}, []
     for r in data.question("ramp_levels"):
         if int(float(r["taps_long"])) < PAPER_SCALE["ramp_taps"]:
+            continue
+        if ramp_tag(r.get("ramp") or RAMP_LEVELS_DEFAULT_RUN) != tag:
             continue
         shift = float(r["phi_c_long"]) - float(r["phi_c"])
         err = factor * math.hypot(float(r["phi_c_sem"]), float(r["phi_c_long_sem"]))
         branch = RAMP_BRANCHES[int(float(r["branch"]))]   # in.ramp's branch column
-        found.setdefault(branch, []).append((abs(shift) + t_quantile(WITHIN_RUN_DOF) * err,
-                                             int(float(r["level"]))))
-    return {b: (max(v)[0], sorted(level for _, level in v)) for b, v in found.items()
-            if len(v) >= RAMP_REDUCTION_MIN_LEVELS}
+        bound = (abs(shift) + t_quantile(WITHIN_RUN_DOF) * err, int(float(r["level"])))
+        found.setdefault(branch, []).append(bound)
+        if branch == "up1":
+            top.append((float(r["sqrt_eps"]), bound))
+    out = {b: (max(v)[0], sorted(level for _, level in v)) for b, v in found.items()
+           if len(v) >= RAMP_REDUCTION_MIN_LEVELS}
+    fig = data.figure("fig4")
+    turn = math.nan if fig is None else fig.param(f"{tag}:top_sqrt_eps")[0]
+    at_top = [b for sq, b in top if abs(sq - turn) < LEVEL_TOLERANCE]
+    if at_top:
+        out["top"] = (at_top[0][0], [at_top[0][1]])
+    return out
 
 
 def ramp_reduction_shift(claim, data, bounds):
     """How far the paper's taps per level could move the measure of a ramp claim, from the
-    branches' bounds (:func:`ramp_reduction_bounds`): a difference of two branches by the sum
+    branches' bounds of its ramp (``bounds``: Fig. 4's tag -> :func:`ramp_reduction_bounds`;
+    the ramp of :data:`RAMP_REDUCTION_TAGS`): a difference of two branches by the sum
     of their bounds, a branch against the constant-eps runs by its own, the decreasing
     branch's weighted slope by the largest slope shifts within the bound give,
     bound * sum w|x - xw| / sum w (x - xw)^2. None when a branch it reads has no bound."""
     branches = RAMP_REDUCTION_BRANCHES.get(claim.statistic)
+    bounds = bounds.get(RAMP_REDUCTION_TAGS.get(claim.statistic, "ramp"), {})
     if not branches or any(b not in bounds for b in branches):
         return None
     if claim.statistic == "ramp_branch_slope":
@@ -2286,7 +2314,7 @@ def evaluate(claims, data):
     the same with the measure moved by the largest shift either way
     (:func:`ramp_reduction_shift`)."""
     met = scale_aspects(data.summary)
-    bounds = ramp_reduction_bounds(data)
+    bounds = {tag: ramp_reduction_bounds(data, tag) for tag in ("ramp", "low", "near")}
     per_level = ", ".join(map(str, data.summary.get("ramp_taps_per_level") or []))
     rows = []
     for claim in claims:
@@ -2303,9 +2331,13 @@ def evaluate(claims, data):
                          else None)
                 word = text.split(" ")[0]
                 if shift is not None and _robust_to(claim, m, shift, text):
+                    tag = RAMP_REDUCTION_TAGS.get(claim.statistic, "ramp")
                     levels = "; ".join(
-                        f"{b}: levels {', '.join(map(str, bounds[b][1]))}"
+                        f"{b}: level{'s' if len(bounds[tag][b][1]) > 1 else ''} "
+                        f"{', '.join(map(str, bounds[tag][b][1]))}"
                         for b in RAMP_REDUCTION_BRANCHES[claim.statistic])
+                    if tag != "ramp":
+                        levels = f"{tag} ramp, {levels}"
                     text = (f"{word} (at {per_level or 'fewer'} taps per level; the paper's "
                             f"4000 would move it by at most {fmt(shift)} (ramp-levels, {levels}), "
                             "which leaves the verdict)")

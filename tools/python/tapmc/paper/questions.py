@@ -59,7 +59,8 @@ from tapmc.fluctuations import DEFAULT_BATCHES
 
 from tapmc.pores import XI_T
 
-from .claims import (CALIBRATION_ALPHA, RUN_ERROR_LABELS, fmt, realization_calibrations,
+from .claims import (CALIBRATION_ALPHA, RAMP_LEVELS_DEFAULT_RUN, RUN_ERROR_LABELS, fmt,
+                     realization_calibrations,
                      realization_factors, t_quantile)
 
 FOLDER = "questions"
@@ -603,25 +604,31 @@ def _ramp_levels(path, fig4=None, factors=None):
                                      "factor of a difference of two windows of one run "
                                      "(realization-scatter)" if k != 1.0 else "") + "):", "",
              ".. list-table::", "   :header-rows: 1", "",
-             "   * - level (branch)", "     - sqrt(eps)", f"     - after {taps} taps",
-             f"     - after {longer} taps", "     - shift"]
-    shifts = []
+             "   * - ramp", "     - level (branch)", "     - sqrt(eps)",
+             f"     - after {taps} taps", f"     - after {longer} taps", "     - shift"]
+    shifts = defaultdict(list)
     for r in rows:
+        ramp = r.get("ramp") or RAMP_LEVELS_DEFAULT_RUN
         a, ea = float(r["phi_c"]), float(r["phi_c_sem"])
         b, eb = float(r["phi_c_long"]), float(r["phi_c_long_sem"])
-        shifts.append((b - a, k * math.hypot(ea, eb)))
+        shifts[ramp].append((b - a, k * math.hypot(ea, eb)))
         start = r.get("start") or "run"
         mark = "; replayed" if start.startswith("replay") else ""
-        lines += [f"   * - {r['level']} ({BRANCH_NAMES[int(r['branch'])]}{mark})",
+        lines += [f"   * - {ramp}", f"     - {r['level']} ({BRANCH_NAMES[int(r['branch'])]}{mark})",
                   f"     - {float(r['sqrt_eps']):g}", f"     - {fmt(a, ea, True)}",
-                  f"     - {fmt(b, eb, True)}", f"     - {fmt(*shifts[-1], True)}"]
-    largest = max(shifts, key=lambda d: abs(d[0]))
-    moved = [d for d in shifts if abs(d[0]) > t_quantile(HALVES_DOF) * d[1]]
+                  f"     - {fmt(b, eb, True)}", f"     - {fmt(*shifts[ramp][-1], True)}"]
     from .claims import ReportData, hysteresis_gap
 
     gap = None if fig4 is None else hysteresis_gap(ReportData({}, {"fig4": fig4}))
-    text = (f"The longer levels move <Phi^c> by at most {fmt(largest[0], largest[1], True)}; "
-            f"{len(moved)} of {len(shifts)} beyond their error.")
+    texts = []
+    for ramp, moves in shifts.items():
+        largest = max(moves, key=lambda d: abs(d[0]))
+        moved = [d for d in moves if abs(d[0]) > t_quantile(HALVES_DOF) * d[1]]
+        texts.append(f"{ramp}: the longer levels move <Phi^c> by at most "
+                     f"{fmt(largest[0], largest[1], True)}; {len(moved)} of {len(moves)} beyond "
+                     "their error")
+    largest = max(shifts.get(RAMP_LEVELS_DEFAULT_RUN) or [(0.0, 0.0)], key=lambda d: abs(d[0]))
+    text = "; ".join(texts) + "."
     replays = sorted({(r.get("start") or "run")[len("replay ("):-1] for r in rows
                       if (r.get("start") or "").startswith("replay")})
     if replays:
@@ -629,8 +636,8 @@ def _ramp_levels(path, fig4=None, factors=None):
                  "(``--replay``: the campaign's restart file of that level end was gone); the "
                  "replay's taps against the campaign's: " + ", ".join(replays) + ".")
     if gap is not None:
-        text += (f" The hysteresis gap (decrease minus first increase) is "
-                 f"{fmt(gap, None, True)}: the shorter levels "
+        text += (f" The hysteresis gap of {RAMP_LEVELS_DEFAULT_RUN} (decrease minus first "
+                 f"increase) is {fmt(gap, None, True)}: its shorter levels "
                  + ("change the branches by less than a tenth of it." if abs(largest[0])
                     < 0.1 * abs(gap) else f"shift a level by {abs(largest[0] / gap):.0%} of it."))
     return lines + ["", text, ""]
