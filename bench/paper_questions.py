@@ -61,7 +61,9 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               level whose restart file is gone starts from a replay of the ramp up to its end
               (in.ramp -var stop, in DIR/partial/ramp_levels/<run>_replay, a restart file at
               every level end); its rows are compared with the campaign's (column start:
-              run, replay (identical) or replay (differs from step S)).
+              run, replay (identical) or replay (differs from step S)). Column ramp: the
+              run (--run); --run ramplow_pbc_s1 measures the ramp below (sqrt eps)*, whose
+              turning level and decrease bound its "nearly frozen" claim.
 
   ramp-pores  Does nu, the mean normalised pore volume, have the reversible-irreversible
               behaviour of <Phi^c> (section IV.B)? The packing at the end of every level of
