@@ -101,7 +101,8 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               the window mean and its batch-means error, the value at t = 0 (whether
               the realizations share their packing), the difference of the window's
               halves with its error (pbc-course's test of a run still compacting), and
-              Fig. 3's sigma_<Z> with its one-run error. The report compares the realizations'
+              Fig. 3's sigma_<Z> and spectral slope with their one-run errors (sem_dof
+              empty: the slope's error is known exactly). The report compares the realizations'
               spread with their errors (tapmc.fluctuations.ErrorCalibration).
 
   integrity   Do thousands of taps leave a legal hard-sphere packing, and do the numbers a
@@ -883,8 +884,13 @@ def realization_scatter(args):
                              "", f"{steady.std:.6g}",
                              f"{sigma_error_one_run(z, steady.last, detrend=detrend):.4g}",
                              steady.last, min(DEFAULT_BATCHES, steady.last // 2) - 1])
+            # Fig. 3's spectral slope over the same window, with the periodogram's error
+            spectrum = PowerSpectrum(z, steady_from=len(z) - steady.last).compute()
+            rows.append([group, run_dir.name, seed, int(keep.sum()), "Z:slope", "",
+                         f"{spectrum.slope:.6g}", f"{spectrum.slope_error:.4g}", steady.last,
+                         ""])
             print(f"{run_dir.name}: " + ", ".join(
-                f"{r[4]} {float(r[6]):.5f} +- {float(r[7]):.5f}" for r in rows[-8:]))
+                f"{r[4]} {float(r[6]):.5f} +- {float(r[7]):.5f}" for r in rows[-9:]))
     write_csv(Path(args.out) / "realization_scatter.csv",
               ["group", "run", "seed", "taps", "column", "start", "mean", "sem", "last",
                "sem_dof"], rows)

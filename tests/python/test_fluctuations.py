@@ -242,3 +242,8 @@ def test_error_calibration_results_plot_and_validation():
         calib.interval(1.5)
     with pytest.raises(ValueError, match="groups"):
         ErrorCalibration({})
+    # errors known exactly: chi2(3) / 3 instead of F(3, 95)
+    exact = ErrorCalibration(means, within_dof=None).compute()
+    assert exact.factor == calib.factor and exact.within_dof_total is None
+    from scipy import stats
+    assert exact.p_value == pytest.approx(stats.chi2.sf(3 * calib.factor ** 2, 3))

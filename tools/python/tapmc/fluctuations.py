@@ -15,7 +15,7 @@ section III.A-B and Fig. 3 of Philippe & Bideau.
 import numpy as np
 from scipy import signal, special, stats
 
-from ._validate import as_1d, as_2d, new_axis, positive_int, result
+from ._validate import as_1d, as_2d, new_axis, positive_int, require, result
 from .laws import FitResult, Law
 
 __all__ = ["SteadyState", "ErrorCalibration", "PowerSpectrum", "sigma_x", "sigma_scaling", "Proportional",
@@ -139,13 +139,15 @@ class ErrorCalibration:
     within-run error. k = 1 when the within-run errors are calibrated; otherwise one run's
     error times k is the error of a realization. With calibrated errors k^2 follows about an
     F distribution with sum (n_g - 1) and sum n_g * within_dof degrees of freedom (each
-    within-run variance has within_dof; exact for one group), which gives k's interval and the
-    p-value of k = 1 (one-sided: a spread too large for the errors).
+    within-run variance has within_dof; exact for one group), or chi2(dof) / dof for errors
+    known exactly (a spectral slope's, from the periodogram's statistics), which gives k's
+    interval and the p-value of k = 1 (one-sided: a spread too large for the errors).
 
     Parameters: ``groups`` (dict name -> (means, sems): a group's window means and their
     within-run errors, at least two realizations each), ``within_dof`` (degrees of freedom of
-    one within-run error: batches - 1). Results after ``compute()``: ``factor`` (k), ``dof``
-    (sum n_g - 1), ``within_dof_total``, ``p_value``, ``spreads`` / ``errors`` / ``ratios``
+    one within-run error: batches - 1; None: known exactly). Results after ``compute()``:
+    ``factor`` (k), ``dof`` (sum n_g - 1), ``within_dof_total`` (None for exact errors),
+    ``p_value``, ``spreads`` / ``errors`` / ``ratios``
     (dict name -> s_g, e_g, s_g / e_g); :meth:`interval` (k's confidence interval).
     :meth:`from_series` measures the groups from the series themselves."""
 
@@ -165,7 +167,8 @@ class ErrorCalibration:
                 raise ValueError(f"group {name!r}: within-run errors must be > 0, got "
                                  f"min {sems.min():g}")
             self.groups[name] = (means, sems)
-        self.within_dof = positive_int("within_dof", within_dof)
+        self.within_dof = None if within_dof is None else positive_int("within_dof",
+                                                                        within_dof)
         self._factor = None
 
     @classmethod
@@ -188,15 +191,26 @@ class ErrorCalibration:
             self._ratios[name] = spread / error
             pooled += (len(means) - 1) * (spread / error) ** 2
             dof += len(means) - 1
-            within += len(means) * self.within_dof
-        self._dof, self._within_total = dof, within
+            within += len(means) * (self.within_dof or 0)
+        self._dof = dof
+        self._within_total = within if self.within_dof is not None else None
         self._factor = float(np.sqrt(pooled / dof))
-        self._p_value = float(stats.f.sf(self._factor ** 2, dof, within))
+        self._p_value = float(self._null().sf(self._factor ** 2))
         return self
+
+    def _null(self):
+        """Distribution of k^2 with calibrated errors."""
+        if self._within_total is None:
+            return stats.chi2(self.dof, scale=1.0 / self.dof)
+        return stats.f(self.dof, self._within_total)
 
     factor = result("_factor")
     dof = result("_dof")
-    within_dof_total = result("_within_total")
+    @property
+    def within_dof_total(self):
+        """Degrees of freedom of the pooled within-run errors; None for exact errors."""
+        require(self, "_factor")
+        return self._within_total
     p_value = result("_p_value")
     spreads = result("_spreads")
     errors = result("_errors")
@@ -208,7 +222,7 @@ class ErrorCalibration:
             raise ValueError(f"level = {level}: expected 0 < level < 1")
         k2 = self.factor ** 2
         tail = (1 - level) / 2
-        hi_q, lo_q = (stats.f.ppf(q, self.dof, self.within_dof_total) for q in (1 - tail, tail))
+        hi_q, lo_q = (self._null().ppf(q) for q in (1 - tail, tail))
         return float(np.sqrt(k2 / hi_q)), float(np.sqrt(k2 / lo_q))
 
     def plot(self, ax=None, **kw):

@@ -268,8 +268,8 @@ class ReportData:
                    read_summary(), scans, questions)
 
     def figure(self, name):
-        """Figure ``name``'s data, the error of each of its one-run rows that is a window
-        mean's batch-means error (:data:`ONE_RUN_WINDOW_ROWS`) times the realizations' factor
+        """Figure ``name``'s data, the error of each of its one-run rows that is a window's
+        own error (:data:`ONE_RUN_WINDOW_ROWS`) times the realizations' factor
         (:meth:`run_error`)."""
         fig = self.figures.get(name)
         if fig is None or name not in ONE_RUN_WINDOW_ROWS:
@@ -311,19 +311,23 @@ class ReportData:
 #: the window means whose one-run error realization_scatter.csv calibrates
 RUN_ERROR_QUANTITIES = ("phi_b", "phi_c", "Z")
 #: the quantities of realization_scatter.csv, as the page names them: a window mean, the
-#: difference of its halves, and Fig. 3's sigma_<Z> about X_SS and about the window's line
+#: difference of its halves, Fig. 3's sigma_<Z> about X_SS and about the window's line, and
+#: its spectral slope
 RUN_ERROR_LABELS = {"phi_b": "Phi_b", "phi_b:halves": "Phi_b halves",
                     "phi_c": "<Phi^c>", "phi_c:halves": "<Phi^c> halves",
                     "Z": "<Z>", "Z:halves": "<Z> halves", "Z:sigma": "sigma_<Z>",
-                    "Z:sigma_detrended": "sigma_<Z> about the window's line"}
+                    "Z:sigma_detrended": "sigma_<Z> about the window's line",
+                    "Z:slope": "the spectral slope of <Z>"}
 #: one-sided significance below which the realizations' spread rejects one run's own error
 CALIBRATION_ALPHA = 0.01
 
 
 #: figure -> (quantity, chosen(panel, series)): the rows of a figure CSV whose one-run error
-#: is a window mean's batch-means error, and the quantity whose realization factor it takes
+#: is a window's own error (batch means; the periodogram's for a spectral slope), and the
+#: quantity whose realization factor it takes
 #: (None: the largest factor, for the profile's zones, which no group of runs measures)
 ONE_RUN_WINDOW_ROWS = {
+    "fig3": ("Z:slope", lambda panel, series: panel == "params" and series.endswith(":slope")),
     "fig4": ("phi_c", lambda panel, series: panel == "a" or series == "phi_c_max"
              or series.endswith((":down_change", ":down_minus_up1", ":up2_minus_down"))),
     "fig8": (None, lambda panel, series: panel == "params" and series.endswith(
@@ -349,7 +353,7 @@ def realization_calibrations(rows):
     for r in rows:
         by.setdefault(r["column"], {}).setdefault(r["group"], []).append(
             (float(r["mean"]), float(r["sem"])))
-        dof[r["column"]] = int(r["sem_dof"])
+        dof[r["column"]] = int(r["sem_dof"]) if r["sem_dof"] else None   # None: exact
     out = {}
     for quantity, groups in by.items():
         pairs = {g: ([m for m, _ in v], [e for _, e in v]) for g, v in groups.items()

@@ -838,7 +838,11 @@ def _realization_scatter(path):
         "them away. Where a row of the claims' table or a measurement below rests on one "
         "run's time average, its error is the batch-means error times the factor of its "
         "quantity (the note under the claims' rules lists them; a difference of two windows "
-        "of one run takes the halves' factor).", ""]
+        "of one run takes the halves' factor)."
+        + (" The realizations' spread does not reject the errors of "
+           + ", ".join(f"{RUN_ERROR_LABELS[k]} (k = {calib[k].factor:.2f})"
+                       for k in RUN_ERROR_LABELS if k in calib and k not in short)
+           + ": those stand as they are." if set(calib) - set(short) else ""), ""]
     return lines
 
 
