@@ -278,10 +278,16 @@ class ReportData:
         factor = self.run_error(quantity)[0]
         return fig if factor == 1.0 else fig.scaled_one_run_errors(factor, chosen)
 
+    def _realization_factors(self):
+        """realization_factors of the campaign's realization_scatter.csv, computed once."""
+        if getattr(self, "_factors", None) is None:
+            self._factors = realization_factors(self.question("realization_scatter"))
+        return self._factors
+
     def run_error_note(self):
         """The sentence that says which one-run errors were scaled to realizations and by
         how much ("" when realization_scatter.csv rejects no one-run error)."""
-        factors = realization_factors(self.question("realization_scatter"))
+        factors = self._realization_factors()
         if not factors:
             return ""
         parts = [f"{label} x {factors[q][0]:.1f}" for q, label in RUN_ERROR_LABELS.items()
@@ -301,7 +307,7 @@ class ReportData:
         largest factor of the three window means, for a quantity no group measures) into the
         error of a realization: the campaign's :func:`realization_factors` where they reject
         calibrated errors, else (1, None) (the one-run error and its own dof)."""
-        factors = realization_factors(self.question("realization_scatter"))
+        factors = self._realization_factors()
         if quantity is None:
             means = [factors[k] for k in RUN_ERROR_QUANTITIES if k in factors]
             return max(means, default=(1.0, None))
