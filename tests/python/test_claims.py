@@ -1294,20 +1294,28 @@ def test_ramp_reduction_decides_only_the_verdicts_it_cannot_change():
     large = _ramp_levels_rows([(1, 0, 0.04), (5, 0, 0.0), (15, 1, 0.0), (20, 1, 0.0)])
     text = outcome("reversible-above", large)
     assert text.startswith("undecided (scale: needs the paper's ramp_taps; at this scale it "
-                           "agrees; the paper's 4000 could move it by 0.04")
+                           "agrees; the paper's 4000 could move it by -0.04")
+    # down - up1: up1's shift (+0.04) lowers the difference; down's (0, 0.0002) barely raises it
+    assert text.endswith("to 0.000592)")
     # one measured level of a branch bounds nothing; up2 was not measured at all
     assert outcome("reversible-above", small[1:]).startswith("undecided (scale")
     assert outcome("reversible-retraced", small).startswith("undecided (scale")
     # "nearly the same" disagrees at this scale at both ends of the interval the shift
-    # allows (|0.006 +- 0.012| beyond a tenth of the gap, 0.0024) but agrees at zero, inside
-    # it: not decided
-    wide = _ramp_levels_rows([(1, 0, 0.012), (5, 0, 0.0), (15, 1, 0.0), (20, 1, 0.0)])
+    # allows (0.006 - 0.012 and 0.006, beyond a tenth of the gap, 0.0024) but agrees at zero,
+    # inside it: not decided
+    wide = _ramp_levels_rows([(1, 0, -0.012), (5, 0, 0.0), (15, 1, 0.0), (20, 1, 0.0)])
     near = claims.ReportData(dict(report().summary, **summary),
                              {"fig4": fig4(BELL, up1=BELL + 0.006, down=BELL + 0.03).data()},
                              questions={"ramp_levels": wide})
     (row,) = claims.evaluate([by_id["ramp-up-near-squares"]], near)
     assert row.verdict.startswith("undecided (scale: needs the paper's ramp_taps; at this "
                                   "scale it disagrees")
+    # the same shift upwards only moves the first increase farther from the squares: decided
+    away = _ramp_levels_rows([(1, 0, 0.012), (5, 0, 0.0), (15, 1, 0.0), (20, 1, 0.0)])
+    (row,) = claims.evaluate([by_id["ramp-up-near-squares"]],
+                             claims.ReportData(near.summary, near.figures,
+                                               questions={"ramp_levels": away}))
+    assert row.verdict.startswith("disagrees (at 1000 taps per level")
     # the alpha claim has no bound in <Phi^c>: it stays undecided at this scale
     assert claims.ramp_reduction_shift(by_id["gradient-no-hysteresis"], near,
                                        {"ramp": claims.ramp_reduction_bounds(near)}) is None
@@ -1396,4 +1404,4 @@ def test_low_ramp_frozen_is_decided_by_its_own_levels():
         .startswith("undecided (scale")
     assert outcome(low([(4, 0, 0.009), (5, 1, 0.0005), (8, 1, 0.0)])).startswith(
         "undecided (scale: needs the paper's ramp_taps; at this scale it disagrees; the "
-        "paper's 4000 could move it by 0.0")
+        "paper's 4000 could move it by -0.0")

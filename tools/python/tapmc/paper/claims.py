@@ -2248,10 +2248,11 @@ def ramp_tag(run):
 
 
 def ramp_reduction_bounds(data, tag="ramp"):
-    """branch -> (bound, levels): per branch of the ramp ``tag`` (Fig. 4's), the largest
-    shift of a level's <Phi^c> from the campaign's taps per level to the paper's 4000,
+    """branch -> (bound, levels, low, high): per branch of the ramp ``tag`` (Fig. 4's), the
+    largest shift of a level's <Phi^c> from the campaign's taps per level to the paper's 4000,
     |shift| + t err, over the levels bench/paper_questions.py ramp-levels measured
-    (ramp_levels.csv); only branches with RAMP_REDUCTION_MIN_LEVELS measured levels or more.
+    (ramp_levels.csv), and the signed range the shifts span, min(shift - t err) to
+    max(shift + t err); only branches with RAMP_REDUCTION_MIN_LEVELS measured levels or more.
     The pseudo-branch "top" is the ramp's turning level alone (the first increase's highest
     sqrt(eps)), which a change on the way down is measured from. The shift compares two
     windows of one run, so its batch-means error takes the realizations' factor of such a
@@ -2266,27 +2267,35 @@ def ramp_reduction_bounds(data, tag="ramp"):
         shift = float(r["phi_c_long"]) - float(r["phi_c"])
         err = factor * math.hypot(float(r["phi_c_sem"]), float(r["phi_c_long_sem"]))
         branch = RAMP_BRANCHES[int(float(r["branch"]))]   # in.ramp's branch column
-        bound = (abs(shift) + t_quantile(WITHIN_RUN_DOF) * err, int(float(r["level"])))
-        found.setdefault(branch, []).append(bound)
+        reach = t_quantile(WITHIN_RUN_DOF) * err
+        level = (shift - reach, shift + reach, int(float(r["level"])))
+        found.setdefault(branch, []).append(level)
         if branch == "up1":
-            top.append((float(r["sqrt_eps"]), bound))
-    out = {b: (max(v)[0], sorted(level for _, level in v)) for b, v in found.items()
-           if len(v) >= RAMP_REDUCTION_MIN_LEVELS}
+            top.append((float(r["sqrt_eps"]), level))
+
+    def summary(levels):
+        return (max(max(abs(lo), abs(hi)) for lo, hi, _ in levels),
+                sorted(k for _, _, k in levels), min(lo for lo, _, _ in levels),
+                max(hi for _, hi, _ in levels))
+
+    out = {b: summary(v) for b, v in found.items() if len(v) >= RAMP_REDUCTION_MIN_LEVELS}
     fig = data.figure("fig4")
     turn = math.nan if fig is None else fig.param(f"{tag}:top_sqrt_eps")[0]
-    at_top = [b for sq, b in top if abs(sq - turn) < LEVEL_TOLERANCE]
+    at_top = [level for sq, level in top if abs(sq - turn) < LEVEL_TOLERANCE]
     if at_top:
-        out["top"] = (at_top[0][0], [at_top[0][1]])
+        out["top"] = summary(at_top[:1])
     return out
 
 
 def ramp_reduction_shift(claim, data, bounds):
-    """How far the paper's taps per level could move the measure of a ramp claim, from the
-    branches' bounds of its ramp (``bounds``: Fig. 4's tag -> :func:`ramp_reduction_bounds`;
-    the ramp of :data:`RAMP_REDUCTION_TAGS`): a difference of two branches by the sum
-    of their bounds, a branch against the constant-eps runs by its own, the decreasing
-    branch's weighted slope by the largest slope shifts within the bound give,
-    bound * sum w|x - xw| / sum w (x - xw)^2. None when a branch it reads has no bound."""
+    """(low, high): how far the paper's taps per level could move the measure of a ramp
+    claim, from the branches' shifts on its ramp (``bounds``: Fig. 4's tag ->
+    :func:`ramp_reduction_bounds`; the ramp of :data:`RAMP_REDUCTION_TAGS`): a difference of
+    two branches a - b (:data:`RAMP_REDUCTION_BRANCHES` in that order) by low_a - high_b to
+    high_a - low_b (branches that shift alike move their difference less than either), a
+    branch against the constant-eps runs by its own range, the decreasing branch's weighted
+    slope by +- the largest slope shifts within the bound give, bound * sum w|x - xw| /
+    sum w (x - xw)^2. None when a branch it reads has no bound."""
     branches = RAMP_REDUCTION_BRANCHES.get(claim.statistic)
     bounds = bounds.get(RAMP_REDUCTION_TAGS.get(claim.statistic, "ramp"), {})
     if not branches or any(b not in bounds for b in branches):
@@ -2298,16 +2307,28 @@ def ramp_reduction_shift(claim, data, bounds):
         x, _, err = (np.asarray(v, float) for v in curve[:3])
         w = 1.0 / err ** 2
         dx = x - np.sum(w * x) / np.sum(w)
-        return bounds[branches[0]][0] * float(np.sum(w * np.abs(dx)) / np.sum(w * dx ** 2))
-    return float(sum(bounds[b][0] for b in branches))
+        reach = bounds[branches[0]][0] * float(np.sum(w * np.abs(dx)) / np.sum(w * dx ** 2))
+        return -reach, reach
+    if len(branches) == 1:
+        return bounds[branches[0]][2], bounds[branches[0]][3]
+    (_, _, lo_a, hi_a), (_, _, lo_b, hi_b) = (bounds[b] for b in branches)
+    return lo_a - hi_b, hi_a - lo_b
+
+
+def _shift_text(shift):
+    """A shift range (low, high) as the verdicts write it."""
+    lo, hi = shift
+    if math.isclose(lo, -hi):
+        return f"at most {fmt(hi)}"
+    return f"{fmt(lo)} to {fmt(hi)}"
 
 
 def _robust_to(claim, m, shift, text):
     """Whether the verdict ``text`` of ``m`` stays the same with the value moved anywhere
-    within +-shift: tried at both ends and at the points of the interval nearest zero and the
-    claim's target (a zero or value rule turns there, not at the ends)."""
+    within ``shift`` = (low, high): tried at both ends and at the points of the interval
+    nearest zero and the claim's target (a zero or value rule turns there, not at the ends)."""
     word = text.split(" ")[0]
-    lo, hi = m.value - shift, m.value + shift
+    lo, hi = m.value + shift[0], m.value + shift[1]
     turns = [0.0] + ([float(claim.target)] if getattr(claim, "target", None) is not None
                      and np.isfinite(claim.target) else [])
     values = [lo, hi] + [min(max(t, lo), hi) for t in turns]
@@ -2349,11 +2370,11 @@ def evaluate(claims, data):
                     if tag != "ramp":
                         levels = f"{tag} ramp, {levels}"
                     text = (f"{word} (at {per_level or 'fewer'} taps per level; the paper's "
-                            f"4000 would move it by at most {fmt(shift)} (ramp-levels, {levels}), "
-                            "which leaves the verdict)")
+                            f"4000 would move it by {_shift_text(shift)} (ramp-levels, "
+                            f"{levels}), which leaves the verdict)")
                 else:
                     reach = ("" if shift is None else
-                             f"; the paper's 4000 could move it by {fmt(shift)}")
+                             f"; the paper's 4000 could move it by {_shift_text(shift)}")
                     text = (f"undecided (scale: needs the paper's {', '.join(lacking)}; "
                             f"at this scale it {word}{reach})")
             rows.append(Row(claim, m.label, m, text, lacking))

@@ -317,8 +317,10 @@ def _rst_table(rows, run_note=""):
               "undecided. One exception: a ramp of fewer taps per level decides a claim of "
               "<Phi^c> on its branches when ``bench/paper_questions.py ramp-levels`` measured "
               "how far 4000 taps per level move the levels (two levels or more of every branch "
-              "the claim reads; the largest shift plus its t error bounds the branch) and the "
-              "verdict is the same anywhere within that bound; the verdict says so.", ""]
+              "the claim reads, of the ramp the claim reads; the shifts +- their t error span "
+              "a branch's range; a difference of two branches moves by the difference of their "
+              "ranges; a ramp's turning level counts alone) and the verdict is the same "
+              "anywhere within that range; the verdict says so.", ""]
     return lines
 
 
