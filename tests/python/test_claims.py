@@ -1405,3 +1405,36 @@ def test_low_ramp_frozen_is_decided_by_its_own_levels():
     assert outcome(low([(4, 0, 0.009), (5, 1, 0.0005), (8, 1, 0.0)])).startswith(
         "undecided (scale: needs the paper's ramp_taps; at this scale it disagrees; the "
         "paper's 4000 could move it by -0.0")
+
+
+def test_critical_separation_is_decided_by_each_ramps_own_levels():
+    """At 1000 taps per level the ramp turning at 0.125 compacts on the way down (0.005, a
+    contradiction of the paper's frozen branch), the ramp turning at 0.3 too: 'disagrees' at
+    this scale, undecided at the paper's. Each ramp's decrease and turning level measured at
+    4000 taps decide it when the contradiction survives every end of the ramps' ranges, and
+    not when the low ramp's turning level could rise as much as its change."""
+    claim = BY_ID["critical-sqrt-eps"]
+    tab = fig4(BELL).param("critical_sqrt_eps", 0.15, None, 1)
+    for tag, top, change in (("low", 0.125, 0.005), ("ramp", 0.3, 0.018)):
+        tab.param(f"{tag}:top_sqrt_eps", top, None, 1)
+        tab.param(f"{tag}:down_change", change, 0.0002, 1, x=top)
+
+    def outcome(low_top_shift):
+        rows = []
+        for run, top, levels in (("ramplow_pbc_s1", 0.125, ((4, 0, low_top_shift),
+                                                            (5, 1, 0.001), (8, 1, 0.0))),
+                                 ("ramp_pbc_s1", 0.3, ((11, 0, 0.001), (17, 1, 0.0),
+                                                       (22, 1, 0.0005)))):
+            for r, (k, b, _) in zip(_ramp_levels_rows(levels), levels):
+                r.update(ramp=run, sqrt_eps=str(top) if b == 0 else "0.1")
+                rows.append(r)
+        data = claims.ReportData(dict(report().summary, ramp_taps_per_level=[1000]),
+                                 {"fig4": tab.data()}, questions={"ramp_levels": rows})
+        (row,) = claims.evaluate([claim], data)
+        return row.verdict
+
+    assert outcome(0.002).startswith("disagrees (at 1000 taps per level; the paper's 4000 "
+                                     "would move the changes on the way down, top 0.125 by")
+    assert "top 0.3 by" in outcome(0.002)
+    assert outcome(0.006) == ("undecided (scale: needs the paper's ramp_taps; at this scale "
+                              "it disagrees)")

@@ -319,7 +319,8 @@ def _rst_table(rows, run_note=""):
               "how far 4000 taps per level move the levels (two levels or more of every branch "
               "the claim reads, of the ramp the claim reads; the shifts +- their t error span "
               "a branch's range; a difference of two branches moves by the difference of their "
-              "ranges; a ramp's turning level counts alone) and the verdict is the same "
+              "ranges; a ramp's turning level counts alone; the critical (sqrt eps)*: every "
+              "ramp's change on the way down within its own range) and the verdict is the same "
               "anywhere within that range; the verdict says so.", ""]
     return lines
 
