@@ -2375,14 +2375,45 @@ def _robust_to(claim, m, shift, text):
                for v in values)
 
 
+def _reduced_ramp_verdict(claim, m, text, data, bounds, per_level):
+    """(the verdict ``text`` of a ramp claim measured at fewer taps per level than the
+    paper's, kept and saying why when the levels' measured shifts (``bounds``: Fig. 4's tag ->
+    :func:`ramp_reduction_bounds`) cannot change it, else None; what the shifts could do, for
+    the undecided verdict). The critical (sqrt eps)* pattern moves each ramp's change on the
+    way down within its own range (:func:`_turning_ramps_shifted`); a measure, its value
+    within :func:`ramp_reduction_shift`."""
+    word = text.split(" ")[0]
+    taps = f"at {per_level or 'fewer'} taps per level"
+    if claim.statistic == "critical_separation":
+        found, ranges = _turning_ramps_shifted(claim, data, bounds)
+        if found != word:
+            return None, ""
+        moves = "; ".join(f"top {top:g} by {_shift_text(r)}" for top, r in ranges)
+        return (f"{word} ({taps}; the paper's 4000 would move the changes on the way down, "
+                f"{moves} (ramp-levels: each ramp's decrease and turning level), which leaves "
+                "the verdict)"), ""
+    shift = ramp_reduction_shift(claim, data, bounds)
+    if shift is None:
+        return None, ""
+    if not _robust_to(claim, m, shift, text):
+        return None, f"; the paper's 4000 could move it by {_shift_text(shift)}"
+    tag = RAMP_REDUCTION_TAGS.get(claim.statistic, "ramp")
+    levels = "; ".join(f"{b}: level{'s' if len(bounds[tag][b][1]) > 1 else ''} "
+                       f"{', '.join(map(str, bounds[tag][b][1]))}"
+                       for b in RAMP_REDUCTION_BRANCHES[claim.statistic])
+    if tag != "ramp":
+        levels = f"{tag} ramp, {levels}"
+    return (f"{word} ({taps}; the paper's 4000 would move it by {_shift_text(shift)} "
+            f"(ramp-levels, {levels}), which leaves the verdict)"), ""
+
+
 def evaluate(claims, data):
     """The report rows of every claim (one per measure) for ``data`` (:class:`ReportData`).
 
     A model claim the campaign lacks part of the paper's scale for is undecided, with one
     exception: the ramp at fewer taps per level than the paper's, when ramp-levels measured
     the levels' shift to 4000 taps on every branch the measure reads and the verdict stays
-    the same with the measure moved by the largest shift either way
-    (:func:`ramp_reduction_shift`)."""
+    the same anywhere within the range the shifts give (:func:`_reduced_ramp_verdict`)."""
     met = scale_aspects(data.summary)
     bounds = {tag: ramp_reduction_bounds(data, tag) for tag in ("ramp", "low", "near")}
     per_level = ", ".join(map(str, data.summary.get("ramp_taps_per_level") or []))
@@ -2396,37 +2427,11 @@ def evaluate(claims, data):
         for m in STATISTICS[claim.statistic](data, claim):
             text = verdict(claim, m)
             lacking = missing + tuple(a for a in m.lacks if a not in missing)
-            if (lacking == ("ramp_taps",) and claim.statistic == "critical_separation"
-                    and not text.startswith("undecided") and claim.kind == "model"):
-                word, ranges = _turning_ramps_shifted(claim, data, bounds)
-                if word == text.split(" ")[0]:
-                    moves = "; ".join(f"top {top:g} by {_shift_text(r)}" for top, r in ranges)
-                    rows.append(Row(claim, m.label, m, (
-                        f"{word} (at {per_level or 'fewer'} taps per level; the paper's 4000 "
-                        f"would move the changes on the way down, {moves} (ramp-levels: each "
-                        "ramp's decrease and turning level), which leaves the verdict)"),
-                        lacking))
-                    continue
             if lacking and not text.startswith("undecided") and claim.kind == "model":
-                shift = (ramp_reduction_shift(claim, data, bounds) if lacking == ("ramp_taps",)
-                         else None)
-                word = text.split(" ")[0]
-                if shift is not None and _robust_to(claim, m, shift, text):
-                    tag = RAMP_REDUCTION_TAGS.get(claim.statistic, "ramp")
-                    levels = "; ".join(
-                        f"{b}: level{'s' if len(bounds[tag][b][1]) > 1 else ''} "
-                        f"{', '.join(map(str, bounds[tag][b][1]))}"
-                        for b in RAMP_REDUCTION_BRANCHES[claim.statistic])
-                    if tag != "ramp":
-                        levels = f"{tag} ramp, {levels}"
-                    text = (f"{word} (at {per_level or 'fewer'} taps per level; the paper's "
-                            f"4000 would move it by {_shift_text(shift)} (ramp-levels, "
-                            f"{levels}), which leaves the verdict)")
-                else:
-                    reach = ("" if shift is None else
-                             f"; the paper's 4000 could move it by {_shift_text(shift)}")
-                    text = (f"undecided (scale: needs the paper's {', '.join(lacking)}; "
-                            f"at this scale it {word}{reach})")
+                decided, reach = (_reduced_ramp_verdict(claim, m, text, data, bounds, per_level)
+                                  if lacking == ("ramp_taps",) else (None, ""))
+                text = decided or (f"undecided (scale: needs the paper's {', '.join(lacking)}; "
+                                   f"at this scale it {text.split(' ')[0]}{reach})")
             rows.append(Row(claim, m.label, m, text, lacking))
     return rows
 
