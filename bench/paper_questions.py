@@ -200,6 +200,7 @@ SOURCE = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
 from tapmc.campaign.run_folder import keep_latest_restart, latest_restart  # noqa: E402
 from tapmc.paper.claims import RAMP_LEVELS_DEFAULT_RUN  # noqa: E402
+from tapmc.readers import read_fix_print  # noqa: E402
 from tapmc.fluctuations import DEFAULT_BATCHES, PowerSpectrum, SteadyState  # noqa: E402
 
 INPUT = SOURCE / "examples" / "paper" / "in.constant_eps"
@@ -797,6 +798,17 @@ def recovery_tap(t, phi, level, width=COURSE_SMOOTHING):
     return None
 
 
+def steady_halves(x, steady):
+    """(second half minus first half of the steady window, its error, its dof): each half
+    with its batch-means error over half the batches (is the run still compacting?)."""
+    half = steady.last // 2
+    batches = steady.batches // 2
+    first, second = (SteadyState(part, last=half, batches=batches).compute()
+                     for part in (x[-steady.last:-half], x[-half:]))
+    return (second.mean - first.mean, float(np.hypot(first.sem, second.sem)),
+            2 * (min(batches, half // 2) - 1))
+
+
 def pbc_course(args):
     rows = []
     for run_dir in sorted(Path(args.campaign, "runs").glob("const_pbc_eps*_s*")):
@@ -810,12 +822,8 @@ def pbc_course(args):
         k = int(np.flatnonzero(early)[np.argmin(phi[early])])
         back = recovery_tap(t, phi, phi[0])
         steady = SteadyState(phi[1:]).compute()
-        # still compacting? the second half of the steady window minus its first half,
-        # each half with its batch-means error
-        half = steady.last // 2
-        first, second = (SteadyState(part, last=half, batches=steady.batches // 2).compute()
-                         for part in (phi[-steady.last:-half], phi[-half:]))
-        drift, drift_se = second.mean - first.mean, float(np.hypot(first.sem, second.sem))
+        # still compacting? the second half of the steady window minus its first half
+        drift, drift_se, _ = steady_halves(phi, steady)
         rows.append([run_dir.name, eps, seed, len(t) - 1, f"{phi[0]:.8f}", f"{phi[k]:.8f}",
                      int(t[k]), "" if back is None else back, f"{steady.mean:.8f}",
                      f"{steady.sem:.3g}", f"{steady.std:.3g}", f"{drift:.3g}", f"{drift_se:.3g}"])
@@ -851,7 +859,7 @@ def realization_scatter(args):
 
     rows = []
     for group, runs in _seed_groups(args.campaign).items():
-        tables = {seed: _named_columns(run_dir / "taps.dat") for seed, run_dir in runs}
+        tables = {seed: read_fix_print(run_dir / "taps.dat") for seed, run_dir in runs}
         taps = {len(t["step"]) for t in tables.values()}
         if len(taps) != 1:
             print(f"{group}: seeds of different lengths {sorted(taps)}: skipped")
@@ -866,15 +874,10 @@ def realization_scatter(args):
                              f"{table[column][0]:.8g}", f"{steady.mean:.8g}",
                              f"{steady.sem:.4g}", steady.last,
                              min(DEFAULT_BATCHES, steady.last // 2) - 1])
-                # the steady window's second half minus its first (pbc-course's test of a
-                # run still compacting), each half with half the batches
-                half = steady.last // 2
-                first, second = (SteadyState(part, last=half, batches=DEFAULT_BATCHES // 2)
-                                 .compute() for part in (x[-steady.last:-half], x[-half:]))
+                # pbc-course's test of a run still compacting, as it computes it
+                drift, drift_se, dof = steady_halves(x, steady)
                 rows.append([group, run_dir.name, seed, int(keep.sum()), f"{column}:halves",
-                             "", f"{second.mean - first.mean:.6g}",
-                             f"{math.hypot(first.sem, second.sem):.4g}", steady.last,
-                             2 * (min(DEFAULT_BATCHES // 2, half // 2) - 1)])
+                             "", f"{drift:.6g}", f"{drift_se:.4g}", steady.last, dof])
             # Fig. 3's sigma_<Z> (about X_SS and about the window's straight line) with its
             # one-run error (batch means of the squared deviations)
             z = table["Z"][keep]
@@ -894,14 +897,6 @@ def realization_scatter(args):
     write_csv(Path(args.out) / "realization_scatter.csv",
               ["group", "run", "seed", "taps", "column", "start", "mean", "sem", "last",
                "sem_dof"], rows)
-
-
-def _named_columns(path):
-    """Columns of a taps.dat by the names of its '# step ...' header line."""
-    with open(path) as f:
-        names = f.readline().lstrip("#").split()
-    table = np.loadtxt(path, ndmin=2)
-    return {name: table[:, i] for i, name in enumerate(names)}
 
 
 #: early-taps: the first REALIZATION_TAPS taps from the campaign's F.B.C. packing, with Monte
