@@ -2239,12 +2239,11 @@ RAMP_REDUCTION_MIN_LEVELS = 2
 
 
 def ramp_tag(run):
-    """Fig. 4's tag of a ramp run (tapmc.paper.fig4.RAMPS), from its name."""
-    from ._runs import RAMP_BELOW_PREFIX, RAMP_NEAR_PREFIX
+    """Fig. 4's tag of a ramp run, from its name's prefix (tapmc.paper.fig4.RAMPS); None
+    for a run of no ramp."""
+    from .fig4 import RAMPS
 
-    if run.startswith(RAMP_NEAR_PREFIX):
-        return "near"
-    return "low" if run.startswith(RAMP_BELOW_PREFIX) else "ramp"
+    return next((tag for tag, prefix, *_ in RAMPS if run.startswith(prefix)), None)
 
 
 def ramp_reduction_bounds(data, tag="ramp"):
@@ -2415,7 +2414,9 @@ def evaluate(claims, data):
     the levels' shift to 4000 taps on every branch the measure reads and the verdict stays
     the same anywhere within the range the shifts give (:func:`_reduced_ramp_verdict`)."""
     met = scale_aspects(data.summary)
-    bounds = {tag: ramp_reduction_bounds(data, tag) for tag in ("ramp", "low", "near")}
+    from .fig4 import RAMPS
+
+    bounds = {tag: ramp_reduction_bounds(data, tag) for tag, *_ in RAMPS}
     per_level = ", ".join(map(str, data.summary.get("ramp_taps_per_level") or []))
     rows = []
     for claim in claims:
