@@ -314,8 +314,6 @@ class ReportData:
         return factors.get(quantity, (1.0, None))
 
 
-#: the window means whose one-run error realization_scatter.csv calibrates
-RUN_ERROR_QUANTITIES = ("phi_b", "phi_c", "Z")
 #: the quantities of realization_scatter.csv, as the page names them: a window mean, the
 #: difference of its halves, Fig. 3's sigma_<Z> about X_SS and about the window's line, and
 #: its spectral slope
@@ -324,6 +322,8 @@ RUN_ERROR_LABELS = {"phi_b": "Phi_b", "phi_b:halves": "Phi_b halves",
                     "Z": "<Z>", "Z:halves": "<Z> halves", "Z:sigma": "sigma_<Z>",
                     "Z:sigma_detrended": "sigma_<Z> about the window's line",
                     "Z:slope": "the spectral slope of <Z>"}
+#: the window means whose one-run error realization_scatter.csv calibrates
+RUN_ERROR_QUANTITIES = tuple(q for q in RUN_ERROR_LABELS if ":" not in q)
 #: one-sided significance below which the realizations' spread rejects one run's own error
 CALIBRATION_ALPHA = 0.01
 

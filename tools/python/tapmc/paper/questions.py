@@ -59,7 +59,8 @@ from tapmc.fluctuations import DEFAULT_BATCHES
 
 from tapmc.pores import XI_T
 
-from .claims import (CALIBRATION_ALPHA, RAMP_LEVELS_DEFAULT_RUN, RUN_ERROR_LABELS, fmt,
+from .claims import (CALIBRATION_ALPHA, RAMP_LEVELS_DEFAULT_RUN, RUN_ERROR_LABELS,
+                     RUN_ERROR_QUANTITIES, fmt,
                      realization_calibrations,
                      realization_factors, t_quantile)
 
@@ -775,7 +776,7 @@ def _pbc_course(path, factors=None):
 
 
 #: the window means of realization_scatter.csv, as the page names them
-SCALAR_NAMES = {q: label for q, label in RUN_ERROR_LABELS.items() if ":" not in q}
+SCALAR_NAMES = {q: RUN_ERROR_LABELS[q] for q in RUN_ERROR_QUANTITIES}
 
 
 def _realization_scatter(path):
