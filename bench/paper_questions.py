@@ -95,15 +95,17 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
   realization-scatter
               Does the error one run gives its steady state (batch means over its last 1000
               taps, the error of every one-seed point of the report) tell how far another
-              realization lands? Every group of finished P.B.C. runs that differ only in
-              their seed (the constant-eps points with several seeds, the ageing runs: ten
-              streams from one packing), no simulation: per run and per Phi_b, <Phi^c>, <Z>,
+              realization lands? Every group of finished runs that differ only in their
+              seed (the constant-eps points with several seeds, P.B.C. and F.B.C.; the
+              ageing runs: ten streams from one packing), no simulation: per run and per
+              Phi_b, <Phi^c>, <Z>,
               the window mean and its batch-means error, the value at t = 0 (whether
               the realizations share their packing), the difference of the window's
               halves with its error (pbc-course's test of a run still compacting), and
               Fig. 3's sigma_<Z> and spectral slope with their one-run errors (sem_dof
               empty: the slope's error is known exactly). The report compares the realizations'
-              spread with their errors (tapmc.fluctuations.ErrorCalibration).
+              spread with their errors (tapmc.fluctuations.ErrorCalibration), per
+              boundary condition, and tests whether the two share one factor.
 
   integrity   Do thousands of taps leave a legal hard-sphere packing, and do the numbers a
               run prints describe the packing it dumps? Every dump of the paper-scale
@@ -841,10 +843,10 @@ SCATTER_COLUMNS = ("phi_b", "phi_c", "Z")
 
 
 def _seed_groups(campaign):
-    """dict group -> [(seed, run folder)] of the finished P.B.C. constant-eps and ageing runs
-    (``<kind>_pbc_eps<eps>_s<seed>``) with at least two seeds and the same number of taps."""
+    """dict group -> [(seed, run folder)] of the finished constant-eps and ageing runs
+    (``<kind>_<bc>_eps<eps>_s<seed>``, P.B.C. and F.B.C.) with at least two seeds."""
     groups = {}
-    for run_dir in sorted(Path(campaign, "runs").glob("*_pbc_eps*_s*")):
+    for run_dir in sorted(Path(campaign, "runs").glob("*_eps*_s*")):
         if not run_dir.name.startswith(("const_", "ageing_")):
             continue
         if not (run_dir / "DONE.json").is_file():

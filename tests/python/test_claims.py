@@ -1340,12 +1340,40 @@ def test_near_rule_agrees_within_a_tenth_of_the_effect_and_says_when_it_cannot_t
         "undecided (no effect")
 
 
-def _scatter_rows(quantity, spread, error, groups=2, runs=4):
+def _scatter_rows(quantity, spread, error, groups=2, runs=4, prefix="g"):
     """realization_scatter.csv rows of ``quantity`` whose realizations spread ``spread``
-    against their own errors ``error`` (exactly: means at +-spread * sqrt((n-1)/n))."""
+    against their own errors ``error`` (exactly: means at +-spread * sqrt((n-1)/n)); groups
+    named ``<prefix><g>``."""
     offsets = np.array([1.0, -1.0] * (runs // 2)) * spread * np.sqrt((runs - 1) / runs)
-    return [{"group": f"g{g}", "column": quantity, "mean": str(0.6 + o), "sem": str(error),
-             "sem_dof": "19"} for g in range(groups) for o in offsets]
+    return [{"group": f"{prefix}{g}", "column": quantity, "mean": str(0.6 + o),
+             "sem": str(error), "sem_dof": "19"} for g in range(groups) for o in offsets]
+
+
+def test_fbc_runs_share_the_pbc_factor_unless_their_own_groups_reject_it():
+    """F.B.C. runs without a group of their own borrow the P.B.C. factor; F.B.C. groups that
+    spread alike join the P.B.C. groups in one pooled factor for both; F.B.C. groups that
+    spread far more (an F test of the two k^2 below CALIBRATION_ALPHA) give the F.B.C. runs
+    their own factor and leave the P.B.C. runs theirs."""
+    pbc = _scatter_rows("phi_c", 0.004, 0.001, groups=3, prefix="const_pbc_eps0.0")
+    borrowed = claims.ReportData({}, {}, questions={"realization_scatter": pbc})
+    assert borrowed.run_error("phi_c", "fbc") == borrowed.run_error("phi_c") == (
+        pytest.approx(4.0), 9)
+    assert "F.B.C. runs, which have no group, take the same" in borrowed.run_error_note()
+    alike = pbc + _scatter_rows("phi_c", 0.004, 0.001, groups=1, prefix="const_fbc_eps0.02_")
+    assert claims.realization_sharing(alike)["phi_c"] > 0.5      # equal k: F(3, 9) at 1
+    data = claims.ReportData({}, {}, questions={"realization_scatter": alike})
+    assert data.run_error("phi_c", "fbc") == data.run_error("phi_c") == (pytest.approx(4.0), 12)
+    assert "both boundary conditions, which share one factor" in data.run_error_note()
+    apart = pbc + _scatter_rows("phi_c", 0.04, 0.001, groups=1, prefix="const_fbc_eps0.02_")
+    assert claims.realization_sharing(apart)["phi_c"] < 1e-4
+    data = claims.ReportData({}, {}, questions={"realization_scatter": apart})
+    assert data.run_error("phi_c") == (pytest.approx(4.0), 9)
+    assert data.run_error("phi_c", "fbc") == (pytest.approx(40.0), 3)
+    assert "<Phi^c> x 4.0 (P.B.C.), x 40.0 (F.B.C.)" in data.run_error_note()
+    # the profile's zones (F.B.C., no group measures them) take the F.B.C. runs' largest
+    assert data.run_error(None, "fbc")[0] == pytest.approx(40.0)
+    with pytest.raises(ValueError, match="bc = 'wall'"):
+        claims.realization_calibrations(apart, "wall")
 
 
 def test_one_run_errors_take_the_realizations_factor():

@@ -216,6 +216,27 @@ def test_error_calibration_sees_slow_noise_that_batch_means_miss():
     assert slow.factor > 2 and slow.p_value < 1e-6
 
 
+def test_error_calibration_same_factor_p_is_uniform_under_one_factor_and_rejects_two():
+    # two sets of groups with one realization offset (k = sqrt 5 both): the p-value is about
+    # uniform (5 % below 0.05); sets whose offsets differ (k = sqrt 5 against sqrt 37 over 400
+    # white taps) are told apart by the larger set of groups
+    rng = np.random.default_rng(14)
+    same = [_calibration(rng, 4, 5, 400, offset=0.1).same_factor_p(
+        _calibration(rng, 1, 3, 400, offset=0.1)) for _ in range(300)]
+    assert 0.02 <= np.mean(np.less(same, 0.05)) <= 0.09
+    assert 0.4 < np.median(same) < 0.6
+    apart = [_calibration(rng, 4, 5, 400, offset=0.1).same_factor_p(
+        _calibration(rng, 2, 5, 400, offset=0.3)) for _ in range(100)]
+    assert np.mean(np.less(apart, 0.05)) > 0.8   # F(8, 16) at a ratio of 7.4: power 0.89
+    # symmetric in its two arguments
+    a, b = _calibration(rng, 3, 4, 400), _calibration(rng, 2, 3, 400, offset=0.1)
+    assert a.same_factor_p(b) == pytest.approx(b.same_factor_p(a))
+    with pytest.raises(ValueError, match="other: expected an ErrorCalibration"):
+        a.same_factor_p(2.0)
+    with pytest.raises(NotComputedError):
+        a.same_factor_p(ErrorCalibration({"x": ([1.0, 2.0], [0.1, 0.1])}))
+
+
 def test_error_calibration_results_plot_and_validation():
     import matplotlib
     matplotlib.use("Agg")

@@ -307,8 +307,21 @@ def test_plan_tier4_completes_ageing_then_the_ramp_pair_and_tiers_1_to_3_unchang
     everything = [s.name for s in plan.runs(4)]
     assert everything[:len(tier3)] == [s.name for s in tier3]
     assert len(everything) == len(set(everything))
-    with pytest.raises(ValueError, match="tier = 5"):
-        plan.runs(5)
+
+
+def test_plan_tier5_adds_fbc_seeds_that_group_with_tier2s_fbc_run():
+    """Tier 5: seeds 2 and 3 of the F.B.C. run at eps = 0.02 that tier 2 runs with seed 1, the
+    same run but its seed, so that realization-scatter finds a group of three F.B.C.
+    realizations; tiers 1 to 4 unchanged."""
+    tier5 = plan.tier_runs(5)
+    assert [s.name for s in tier5] == ["const_fbc_eps0.02_s2", "const_fbc_eps0.02_s3"]
+    (seed1,) = [s for s in plan.tier_runs(2) if s.name == "const_fbc_eps0.02_s1"]
+    for spec in tier5:
+        assert dict(spec.variables) == dict(seed1.variables) and spec.taps == seed1.taps
+    everything = [s.name for s in plan.runs(5)]
+    assert everything == [s.name for s in plan.runs(4)] + [s.name for s in tier5]
+    with pytest.raises(ValueError, match="tier = 6"):
+        plan.runs(6)
 
 
 def test_fig4_errors_survive_a_chance_agreement_of_the_seeds(tmp_path):

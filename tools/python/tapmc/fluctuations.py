@@ -148,7 +148,8 @@ class ErrorCalibration:
     one within-run error: batches - 1; None: known exactly). Results after ``compute()``:
     ``factor`` (k), ``dof`` (sum n_g - 1), ``within_dof_total`` (None for exact errors),
     ``p_value``, ``spreads`` / ``errors`` / ``ratios``
-    (dict name -> s_g, e_g, s_g / e_g); :meth:`interval` (k's confidence interval).
+    (dict name -> s_g, e_g, s_g / e_g); :meth:`interval` (k's confidence interval);
+    :meth:`same_factor_p` (do two sets of groups, e.g. two boundary conditions, share one k?).
     :meth:`from_series` measures the groups from the series themselves."""
 
     def __init__(self, groups, within_dof=DEFAULT_BATCHES - 1):
@@ -224,6 +225,18 @@ class ErrorCalibration:
         tail = (1 - level) / 2
         hi_q, lo_q = (self._null().ppf(q) for q in (1 - tail, tail))
         return float(np.sqrt(k2 / hi_q)), float(np.sqrt(k2 / lo_q))
+
+    def same_factor_p(self, other):
+        """Two-sided p-value of the hypothesis that ``other`` (a computed ErrorCalibration
+        of other groups) has the same factor k: the ratio of the two k^2 follows
+        F(dof, other.dof). The within-run errors' own scatter is neglected next to the
+        realizations' (their dof are the batches' times the runs': 19 per run by default)."""
+        if not isinstance(other, ErrorCalibration):
+            raise ValueError(f"other: expected an ErrorCalibration, got {type(other).__name__}")
+        require(other, "_factor")
+        ratio = stats.f(self.dof, other.dof)
+        tail = ratio.sf((self.factor / other.factor) ** 2)
+        return float(min(1.0, 2 * min(tail, 1 - tail)))
 
     def plot(self, ax=None, **kw):
         """Each group's spread over its within-run error, and the pooled k with its 95 %

@@ -274,40 +274,56 @@ class ReportData:
         fig = self.figures.get(name)
         if fig is None or name not in ONE_RUN_WINDOW_ROWS:
             return fig
-        quantity, chosen = ONE_RUN_WINDOW_ROWS[name]
-        factor = self.run_error(quantity)[0]
+        quantity, bc, chosen = ONE_RUN_WINDOW_ROWS[name]
+        factor = self.run_error(quantity, bc)[0]
         return fig if factor == 1.0 else fig.scaled_one_run_errors(factor, chosen)
 
-    def _realization_factors(self):
-        """realization_factors of the campaign's realization_scatter.csv, computed once."""
-        if getattr(self, "_factors", None) is None:
-            self._factors = realization_factors(self.question("realization_scatter"))
-        return self._factors
+    def _realization_factors(self, bc="pbc"):
+        """realization_factors of the campaign's realization_scatter.csv for runs of ``bc``,
+        computed once."""
+        cache = self.__dict__.setdefault("_factors", {})
+        if bc not in cache:
+            cache[bc] = realization_factors(self.question("realization_scatter"), bc)
+        return cache[bc]
 
     def run_error_note(self):
         """The sentence that says which one-run errors were scaled to realizations and by
         how much ("" when realization_scatter.csv rejects no one-run error)."""
-        factors = self._realization_factors()
-        if not factors:
+        pbc, fbc = self._realization_factors("pbc"), self._realization_factors("fbc")
+        if not pbc and not fbc:
             return ""
-        parts = [f"{label} x {factors[q][0]:.1f}" for q, label in RUN_ERROR_LABELS.items()
-                 if q in factors]
+        parts = []
+        for q, label in RUN_ERROR_LABELS.items():
+            kp, kf = (f.get(q, (1.0, None))[0] for f in (pbc, fbc))
+            if q in pbc or q in fbc:
+                parts.append(f"{label} x {kp:.1f}" if kp == kf else
+                             f"{label} x {kp:.1f} (P.B.C.), x {kf:.1f} (F.B.C.)")
+        rows = self.question("realization_scatter")
+        measured = {_group_bc(r["group"]) for r in rows}
+        if measured == {"pbc"}:
+            where = ("measured on the P.B.C. groups (F.B.C. runs, which have no group, take "
+                     "the same)")
+        elif any(p < CALIBRATION_ALPHA for p in realization_sharing(rows).values()):
+            where = ("pooled over the groups of both boundary conditions where they share "
+                     "one factor, and each boundary condition's own where they do not")
+        else:
+            where = ("pooled over the groups of both boundary conditions, which share one "
+                     "factor")
         return ("The campaign's groups of runs that differ only in their seed show that "
                 "realizations spread beyond these errors (``realization-scatter`` below): the "
                 "time averages of one run that decide a row (Fig. 2's windows and halves, "
                 "Fig. 4's steady states and ramp levels, Fig. 8's zones, Fig. 9's steady "
                 "state, Fig. 3's sigma_<Z>) carry the batch-means error times the factor "
-                "measured on the P.B.C. "
-                "groups (F.B.C. runs, which have no group, take the same) ("
-                + ", ".join(parts) + "; a profile's zones the largest).")
+                f"{where} (" + ", ".join(parts) + "; a profile's zones the largest).")
 
-    def run_error(self, quantity):
+    def run_error(self, quantity, bc="pbc"):
         """(factor, dof) that turn one run's batch-means error of ``quantity`` ('phi_b',
         'phi_c', 'Z'; '<name>:halves' for a difference of two parts of one run; None: the
         largest factor of the three window means, for a quantity no group measures) into the
-        error of a realization: the campaign's :func:`realization_factors` where they reject
-        calibrated errors, else (1, None) (the one-run error and its own dof)."""
-        factors = self._realization_factors()
+        error of a realization of a run of boundary condition ``bc`` ('pbc', 'fbc'): the
+        campaign's :func:`realization_factors` where they reject calibrated errors, else
+        (1, None) (the one-run error and its own dof)."""
+        factors = self._realization_factors(bc)
         if quantity is None:
             means = [factors[k] for k in RUN_ERROR_QUANTITIES if k in factors]
             return max(means, default=(1.0, None))
@@ -328,35 +344,66 @@ RUN_ERROR_QUANTITIES = tuple(q for q in RUN_ERROR_LABELS if ":" not in q)
 CALIBRATION_ALPHA = 0.01
 
 
-#: figure -> (quantity, chosen(panel, series)): the rows of a figure CSV whose one-run error
-#: is a window's own error (batch means; the periodogram's for a spectral slope), and the
-#: quantity whose realization factor it takes
-#: (None: the largest factor, for the profile's zones, which no group of runs measures)
+#: figure -> (quantity, bc, chosen(panel, series)): the rows of a figure CSV whose one-run
+#: error is a window's own error (batch means; the periodogram's for a spectral slope), the
+#: quantity whose realization factor it takes (None: the largest factor, for the profile's
+#: zones, which no group of runs measures) and the boundary condition of the figure's runs
 ONE_RUN_WINDOW_ROWS = {
-    "fig3": ("Z:slope", lambda panel, series: panel == "params" and series.endswith(":slope")),
-    "fig4": ("phi_c", lambda panel, series: panel == "a" or series == "phi_c_max"
+    "fig3": ("Z:slope", "pbc",
+             lambda panel, series: panel == "params" and series.endswith(":slope")),
+    "fig4": ("phi_c", "pbc", lambda panel, series: panel == "a" or series == "phi_c_max"
              or series.endswith((":down_change", ":down_minus_up1", ":up2_minus_down"))),
-    "fig8": (None, lambda panel, series: panel == "params" and series.endswith(
+    "fig8": (None, "fbc", lambda panel, series: panel == "params" and series.endswith(
         (":final_central", ":final_lateral", ":final_central_minus_lateral"))),
-    "fig9": ("phi_c", lambda panel, series: series == "phi_c_steady"),
+    "fig9": ("phi_c", "pbc", lambda panel, series: series == "phi_c_steady"),
 }
 
 
-def realization_factors(rows):
+def _group_bc(group):
+    """Boundary condition of a group of realization_scatter.csv: 'fbc' for F.B.C. runs
+    (``<kind>_fbc..._eps<eps>``), 'pbc' for every other group."""
+    parts = group.split("_")
+    return "fbc" if len(parts) > 1 and parts[1].startswith("fbc") else "pbc"
+
+
+def realization_factors(rows, bc="pbc"):
     """dict quantity -> (k, dof) from the rows of bench/paper_questions.py's
-    realization_scatter.csv: the factor by which the realizations of a group of runs that
-    differ only in their seed spread beyond their batch-means errors
-    (tapmc.fluctuations.ErrorCalibration, pooled over the groups), for the quantities where
-    it rejects k = 1 at :data:`CALIBRATION_ALPHA`; dof: the pooled realizations' dof."""
-    return {q: (c.factor, c.dof) for q, c in realization_calibrations(rows).items()
-            if c.p_value < CALIBRATION_ALPHA and c.factor > 1}
+    realization_scatter.csv for runs of boundary condition ``bc``: the factor by which the
+    realizations of a group of runs that differ only in their seed spread beyond their
+    batch-means errors (tapmc.fluctuations.ErrorCalibration, pooled over the groups), for
+    the quantities where it rejects k = 1 at :data:`CALIBRATION_ALPHA`; dof: the pooled
+    realizations' dof. The groups of both boundary conditions are pooled unless their
+    factors differ (:func:`realization_sharing` below CALIBRATION_ALPHA): then ``bc``'s
+    groups alone. A boundary condition without groups takes the other's."""
+    every = realization_calibrations(rows)
+    own = realization_calibrations(rows, bc)
+    sharing = realization_sharing(rows)
+    out = {}
+    for q, c in every.items():
+        if sharing.get(q, 1.0) < CALIBRATION_ALPHA:
+            c = own[q]
+        if c.p_value < CALIBRATION_ALPHA and c.factor > 1:
+            out[q] = (c.factor, c.dof)
+    return out
 
 
-def realization_calibrations(rows):
+def realization_sharing(rows):
+    """dict quantity -> two-sided p-value that the P.B.C. and the F.B.C. groups of
+    realization_scatter.csv share one factor (ErrorCalibration.same_factor_p), for the
+    quantities both measure."""
+    pbc, fbc = realization_calibrations(rows, "pbc"), realization_calibrations(rows, "fbc")
+    return {q: pbc[q].same_factor_p(fbc[q]) for q in pbc if q in fbc}
+
+
+def realization_calibrations(rows, bc=None):
     """dict quantity -> computed ErrorCalibration of realization_scatter.csv's rows (groups of
-    at least two runs)."""
+    at least two runs) of boundary condition ``bc`` ('pbc', 'fbc'; None: every group)."""
+    if bc not in (None, "pbc", "fbc"):
+        raise ValueError(f"bc = {bc!r}: allowed values are None, 'pbc', 'fbc'")
     by, dof = {}, {}
     for r in rows:
+        if bc is not None and _group_bc(r["group"]) != bc:
+            continue
         by.setdefault(r["column"], {}).setdefault(r["group"], []).append(
             (float(r["mean"]), float(r["sem"])))
         dof[r["column"]] = int(r["sem_dof"]) if r["sem_dof"] else None   # None: exact
@@ -565,7 +612,7 @@ def _gain(fig, eps, t, mean, sem, n, run_error=(1.0, None)):
 
 def phi_b_gain(data, claim):
     return _per_curve(data, "fig2", "a",
-                      lambda *curve: _gain(*curve, run_error=data.run_error("phi_b")))
+                      lambda *curve: _gain(*curve, run_error=data.run_error("phi_b", "fbc")))
 
 
 def _fit_quality(fig, prefix, npoints, nparams, label):
@@ -1080,7 +1127,7 @@ def _weighted_line_in(t, mean, sem, lo, hi):
 def efficiency_decrease(data, claim):
     return _per_curve(data, "fig2", "a", lambda fig, eps, *curve: _rate_change(
         fig, eps, *curve, early_seeds=_early_seeds(data, eps),
-        halves_factor=data.run_error("phi_b:halves")[0]))
+        halves_factor=data.run_error("phi_b:halves", "fbc")[0]))
 
 
 def _fig2_end_curves(data):
@@ -1107,7 +1154,7 @@ def log_time_slowing(data, claim):
         if np.nanmax(n) == 1 and t[-1] >= 100 * EARLY_DECADE[1]:
             seeds = _early_seeds(data, eps)
             (early, e_early), (late, e_late) = _log_rates_one_run(
-                t, mean, seeds, data.run_error("phi_b:halves")[0])
+                t, mean, seeds, data.run_error("phi_b:halves", "fbc")[0])
             dof = WITHIN_RUN_DOF if seeds is None else min(seeds[2] - 1, WITHIN_RUN_DOF)
         else:
             early, e_early, _ = _log_slope(t, mean, sem, *EARLY_DECADE)
@@ -1179,7 +1226,7 @@ def late_gain_share(data, claim):
         if t[-1] < 10 * EARLY_DECADE[1] or (
                 np.nanmax(n) == 1 and np.sum(t >= LATE_WINDOW[0] * t[-1]) < 2 * DEFAULT_BATCHES):
             return _missing("runs too short for a last decade of taps")
-        shares.append((eps, *_late_share(t, mean, sem, n, data.run_error("phi_b")[0])))
+        shares.append((eps, *_late_share(t, mean, sem, n, data.run_error("phi_b", "fbc")[0])))
     (e0, s0, d0, f0), (e1, s1, d1, f1) = shares
     dofs = [d for d in (f0, f1) if d is not None]
     return [Measure(s0 - s1, math.hypot(d0, d1), min(dofs) if len(dofs) == 2 else None,
@@ -1585,7 +1632,7 @@ def central_minus_lateral(data, claim):
         if not np.isfinite(diff[0]):
             diff = (cen[0] - lat[0], math.hypot(cen[1], lat[1]), min(cen[2], lat[2]))
         value, err, n = diff
-        within = (f" ({_run_error_text(data.run_error(None)[0])})"
+        within = (f" ({_run_error_text(data.run_error(None, 'fbc')[0])})"
                   if n == 1 and np.isfinite(err) else "")
         out.append(Measure(value, err, _steady_dof(n, err), label=f"eps = {eps:g}",
                            shown=f"{fmt(cen[0], cen[1])} vs {fmt(lat[0], lat[1])}; "

@@ -23,7 +23,11 @@ runs come in tiers; each tier completes figures on its own:
    per level, which with tier 3's ramp (up to 0.3) decides the reversible and irreversible
    branches; the ramp that turns at the first level beyond 0.15 (0.175, ``rampnear_pbc_s1``),
    which locates (sqrt eps)* between 0.125 and 0.175; then a second seed of the pair for
-   error bars over seeds.
+   error bars over seeds;
+5. the F.B.C. realizations: seeds 2 and 3 at ``TIER5_FBC_EPS`` = 0.02 (Fig. 8's and Fig. 10's
+   eps, the cheapest F.B.C. run), so that the spread of F.B.C. realizations is measured
+   (``bench/paper_questions.py realization-scatter``) instead of borrowed from the P.B.C.
+   groups of tier 2 and the ageing runs: the F.B.C. figures (2, 6, 8) have one run per eps.
 
 Within a tier the runs that settle the report's open questions first come first. Runs carry
 the names of the figure modules' runs (:mod:`tapmc.paper._runs`), so the figures find them.
@@ -55,12 +59,15 @@ TIER4_AGEING_SEEDS = (5, 6, 7, 8, 9, 10)
 #: Tier 4: seeds of the ramp pair (the ramp below (sqrt eps)* first: tier 3 ran the other one
 #: with seed 1).
 TIER4_SEEDS = (1, 2)
+#: Tier 5: the F.B.C. eps and seeds that join tier 2's seed 1 in a group of realizations.
+TIER5_FBC_EPS = (0.02,)
+TIER5_FBC_SEEDS = (2, 3)
 
-TIERS = (1, 2, 3, 4)
+TIERS = (1, 2, 3, 4, 5)
 
 
 def tier_runs(tier, scale=FULL):
-    """The RunSpecs of one tier (1 to 4), in running order."""
+    """The RunSpecs of one tier (1 to 5), in running order."""
     if tier == 1:
         pbc = [_runs.constant_eps_run(scale, "pbc", eps, 1) for eps in TIER1_PBC_EPS]
         fbc = [_runs.constant_eps_run(scale, "fbc", eps, 1) for eps in TIER1_FBC_EPS]
@@ -88,6 +95,9 @@ def tier_runs(tier, scale=FULL):
         ageing = [_runs.ageing_run(scale, "pbc", scale.ageing_eps, s)
                   for s in TIER4_AGEING_SEEDS]
         return ageing + sorted(pair, key=lambda spec: spec.seed)
+    if tier == 5:
+        return [_runs.constant_eps_run(scale, "fbc", eps, s)
+                for s in TIER5_FBC_SEEDS for eps in TIER5_FBC_EPS]
     raise ValueError(f"tier = {tier!r}: allowed values are {', '.join(map(str, TIERS))}")
 
 

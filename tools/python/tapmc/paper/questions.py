@@ -62,7 +62,7 @@ from tapmc.pores import XI_T
 from .claims import (CALIBRATION_ALPHA, RAMP_LEVELS_DEFAULT_RUN, RUN_ERROR_LABELS,
                      RUN_ERROR_QUANTITIES, fmt,
                      realization_calibrations,
-                     realization_factors, t_quantile)
+                     realization_factors, realization_sharing, t_quantile)
 
 FOLDER = "questions"
 #: share of the first-tap drop at eta = 1e-7 that must remain at the tightest eta for the
@@ -812,16 +812,15 @@ def _realization_scatter(path):
                       f"     - {c.errors[group]:.3g}", f"     - {c.ratios[group]:.2f}"]
     lines.append("")
     pooled = []
-    for key, label in RUN_ERROR_LABELS.items():
+    for key in RUN_ERROR_LABELS:
         if key not in calib:
             continue
         c = calib[key]
         low, high = c.interval()
-        what = {"": " steady state", "halves": ", halves' difference"}.get(
-            key.partition(":")[2], "")
-        pooled.append(f"{label.removesuffix(' halves')}{what}: k = {c.factor:.2f} (95 %: "
+        pooled.append(f"{_scatter_quantity(key)}: k = {c.factor:.2f} (95 %: "
                       f"{low:.2f} to {high:.2f}; {c.dof} dof, p of k = 1: {c.p_value:.2g})")
     lines.append("* Pooled over the groups: " + "; ".join(pooled) + ".")
+    lines += _scatter_by_bc(rows)
     short = {k: c for k, c in calib.items() if c.p_value < CALIBRATION_ALPHA}
     if not short:
         lines += ["* Verdict: the one-run errors are compatible with the realizations' spread "
@@ -845,6 +844,35 @@ def _realization_scatter(path):
                        for k in RUN_ERROR_LABELS if k in calib and k not in short)
            + ": those stand as they are." if set(calib) - set(short) else ""), ""]
     return lines
+
+
+def _scatter_quantity(key):
+    """How the realization-scatter section names a quantity of realization_scatter.csv."""
+    what = {"": " steady state", "halves": ", halves' difference"}.get(
+        key.partition(":")[2], "")
+    return RUN_ERROR_LABELS[key].removesuffix(" halves") + what
+
+
+def _scatter_by_bc(rows):
+    """The line that compares the P.B.C. and F.B.C. groups' factors (none without groups of
+    both)."""
+    sharing = realization_sharing(rows)
+    if not sharing:
+        return []
+    by_bc = {bc: realization_calibrations(rows, bc) for bc in ("pbc", "fbc")}
+    items = [f"{_scatter_quantity(key)}: P.B.C. k = {by_bc['pbc'][key].factor:.2f} "
+             f"({by_bc['pbc'][key].dof} dof), F.B.C. k = {by_bc['fbc'][key].factor:.2f} "
+             f"({by_bc['fbc'][key].dof} dof), p = {sharing[key]:.2g}"
+             for key in RUN_ERROR_LABELS if key in sharing]
+    apart = [_scatter_quantity(k) for k in RUN_ERROR_LABELS
+             if sharing.get(k, 1.0) < CALIBRATION_ALPHA]
+    return ["* By boundary condition (does one factor serve both? two-sided F test of the "
+            "ratio of their k^2): " + "; ".join(items) + ". " + (
+                "No quantity rejects one shared factor: the pooled k above serves the runs of "
+                "both." if not apart else
+                f"{', '.join(apart)}: the factors differ (p < {CALIBRATION_ALPHA:g}), so the "
+                "runs of each boundary condition take their own groups' k there; the other "
+                "quantities take the pooled k.")]
 
 
 def _packing_p0(fig9, configs=None):
