@@ -103,9 +103,21 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               the realizations share their packing), the difference of the window's
               halves with its error (pbc-course's test of a run still compacting), and
               Fig. 3's sigma_<Z> and spectral slope with their one-run errors (sem_dof
-              empty: the slope's error is known exactly). The report compares the realizations'
-              spread with their errors (tapmc.fluctuations.ErrorCalibration), per
-              boundary condition, and tests whether the two share one factor.
+              empty: the slope's error is known exactly), and Fig. 8's final zone means
+              (lateral, central, their difference: the last quarter of the taps). The
+              report compares the realizations' spread with their errors
+              (tapmc.fluctuations.ErrorCalibration), per boundary condition, and tests
+              whether the two share one factor.
+
+  packing-scatter
+              Does the spatial jackknife of one packing (4 x 4 lateral blocks), the error
+              of nu (pores, Fig. 10) and of alpha (the profile's gradient, Fig. 6) wherever
+              one run gives a point, tell how far another realization lands? The final
+              packings (dump.<taps>) of every group of finished constant-eps runs that
+              differ only in their seed, and the distinct initial packings (dump.0) of each
+              boundary condition, no simulation (tapmc-pores in Fig. 10's statistics box,
+              a few seconds per packing; alpha in Fig. 6's window): per packing nu and
+              alpha with their jackknife errors, in realization_scatter.csv's columns.
 
   integrity   Do thousands of taps leave a legal hard-sphere packing, and do the numbers a
               run prints describe the packing it dumps? Every dump of the paper-scale
@@ -187,6 +199,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import csv
+import json
 import math
 import os
 import subprocess
@@ -840,6 +853,9 @@ def pbc_course(args):
 
 #: the scalars of taps.dat whose steady state the report quotes with one run's error
 SCATTER_COLUMNS = ("phi_b", "phi_c", "Z")
+#: the zone means of taps.dat (compute stereo/profile's lateral and central zones) whose final
+#: window Fig. 8 quotes, and their difference per run
+ZONE_COLUMNS = ("lateral", "central")
 
 
 def _seed_groups(campaign):
@@ -894,9 +910,105 @@ def realization_scatter(args):
             rows.append([group, run_dir.name, seed, int(keep.sum()), "Z:slope", "",
                          f"{spectrum.slope:.6g}", f"{spectrum.slope_error:.4g}", steady.last,
                          ""])
+            # Fig. 8's final zone means and their difference, as fig8 takes them (the last
+            # quarter of the taps, batch means)
+            if all(c in table for c in ZONE_COLUMNS):
+                zones = {c: table[c][keep] for c in ZONE_COLUMNS}
+                zones["central_minus_lateral"] = zones["central"] - zones["lateral"]
+                last = max(int(keep.sum()) // 4, 1)
+                for name, x in zones.items():
+                    steady = SteadyState(x, last=last).compute()
+                    rows.append([group, run_dir.name, seed, int(keep.sum()), f"zone:{name}",
+                                 f"{table[name][0]:.8g}" if name in table else "",
+                                 f"{steady.mean:.8g}", f"{steady.sem:.4g}", steady.last,
+                                 min(DEFAULT_BATCHES, steady.last // 2) - 1])
+            mine = [r for r in rows if r[1] == run_dir.name]
             print(f"{run_dir.name}: " + ", ".join(
-                f"{r[4]} {float(r[6]):.5f} +- {float(r[7]):.5f}" for r in rows[-9:]))
+                f"{r[4]} {float(r[6]):.5f} +- {float(r[7]):.5f}" for r in mine))
     write_csv(Path(args.out) / "realization_scatter.csv",
+              ["group", "run", "seed", "taps", "column", "start", "mean", "sem", "last",
+               "sem_dof"], rows)
+
+
+#: packing-scatter's quantities of one packing, as realization_scatter.csv names columns
+PACKING_NU, PACKING_ALPHA = "packing:nu", "packing:alpha"
+#: blocks of the spatial jackknifes (tapmc.pores.PoreOutput.jackknife: 4 x 4 lateral blocks;
+#: tapmc.profiles.PROFILE_JACKKNIFE_BLOCKS per side for alpha): their dof
+PACKING_JACKKNIFE_DOF = 4 * 4 - 1
+
+
+def _run_radius(run_dir):
+    """The sphere radius R a finished run ran with (its DONE.json's variables; 0.5, the
+    inputs' default, when it sets none)."""
+    done = json.loads((Path(run_dir) / "DONE.json").read_text() or "{}")
+    return float(done.get("run", {}).get("variables", {}).get("R", 0.5))
+
+
+def _packing_nu(dump, work, radius):
+    """(nu, its spatial jackknife error) of one dump in Fig. 10's statistics box (2R above
+    the floor to 20R or SURFACE_FRACTION of the highest centre), tapmc-pores' outputs kept in
+    ``work`` under the dump's run folder name (one analysis per dump: dumps of different runs
+    share their step)."""
+    from tapmc.paper import _pores, _runs
+    from tapmc.pores import jackknife_error, read_pores
+
+    dump = Path(dump)
+    step = int(dump.name.split(".")[1])
+    top = _pores.window_top(dump, radius)
+    prefix = _runs.run_pores([dump], Path(work) / f"{dump.parent.name}_t{step}",
+                             ["--radii", "--z", f"{_pores.WINDOW_BOTTOM:g}:{top:.4f}",
+                              "--frame-hist", "--pores"])
+    pores = read_pores(prefix)
+    return (pores.distribution(step).nu,
+            jackknife_error([r.nu for r in pores.jackknife(step)]))
+
+
+def packing_scatter(args):
+    from tapmc.paper import fig6
+    from tapmc.profiles import PROFILE_JACKKNIFE_BLOCKS
+
+    work = Path(args.work) if args.work else Path(args.out) / PARTIAL / "packing_scatter"
+    work.mkdir(parents=True, exist_ok=True)
+    alpha_dof = PROFILE_JACKKNIFE_BLOCKS ** 2 - 1
+    rows, initial = [], {}
+    for group, runs in _seed_groups(args.campaign).items():
+        if not group.startswith("const_"):
+            continue      # the ageing runs dump no packing
+        bc = group.split("_")[1]
+        bc = "fbc" if bc.startswith("fbc") else "pbc"
+        tables = {seed: read_fix_print(run_dir / "taps.dat") for seed, run_dir in runs}
+        taps = {int(t["step"][-1]) for t in tables.values()}
+        if len(taps) != 1:
+            print(f"{group}: seeds of different lengths {sorted(taps)}: skipped")
+            continue
+        last = taps.pop()
+        radii = {seed: _run_radius(run_dir) for seed, run_dir in runs}
+        window = fig6.window_below([t["h_s"][0] / radii[seed] for seed, t in tables.items()],
+                                   bc)
+        for seed, run_dir in runs:
+            start = tables[seed]["phi_c"][0]
+            nu, nu_err = _packing_nu(run_dir / f"dump.{last}.lammpstrj", work, radii[seed])
+            alpha, alpha_err = fig6.run_alpha(run_dir, last, radii[seed], window, bc)
+            rows.append([group, run_dir.name, seed, last, PACKING_NU, f"{start:.8g}",
+                         f"{nu:.8g}", f"{nu_err:.4g}", "", PACKING_JACKKNIFE_DOF])
+            rows.append([group, run_dir.name, seed, last, PACKING_ALPHA, f"{start:.8g}",
+                         f"{alpha:.8g}", f"{alpha_err:.4g}", "", alpha_dof])
+            print(f"{run_dir.name}: nu {nu:.5f} +- {nu_err:.5f}, alpha {alpha:.5f} +- "
+                  f"{alpha_err:.5f}", flush=True)
+            # the initial packings: one per seed and boundary condition (every eps of a seed
+            # starts from it), told apart by their <Phi^c>
+            initial.setdefault(bc, {}).setdefault(f"{start:.8f}", (seed, run_dir))
+    for bc, packings in sorted(initial.items()):
+        if len(packings) < 2:
+            continue
+        for seed, run_dir in sorted(packings.values()):
+            nu, nu_err = _packing_nu(run_dir / "dump.0.lammpstrj", work,
+                                     _run_radius(run_dir))
+            rows.append([f"initial_{bc}", run_dir.name, seed, 0, PACKING_NU,
+                         f"{read_fix_print(run_dir / 'taps.dat')['phi_c'][0]:.8g}",
+                         f"{nu:.8g}", f"{nu_err:.4g}", "", PACKING_JACKKNIFE_DOF])
+            print(f"{run_dir.name} at t = 0: nu {nu:.5f} +- {nu_err:.5f}", flush=True)
+    write_csv(Path(args.out) / "packing_scatter.csv",
               ["group", "run", "seed", "taps", "column", "start", "mean", "sem", "last",
                "sem_dof"], rows)
 
@@ -1301,7 +1413,7 @@ def main(argv=None):
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
     for name in ("first-tap", "noise-floor", "spectral-window", "pbc-course", "integrity",
-                 "realization-scatter",
+                 "realization-scatter", "packing-scatter",
                  "early-taps", "initial-packing", "p0-configs", "lateral-first-tap",
                  "ramp-levels", "ramp-pores", "theta0", "dmax", "p0-fluid", "fit-surrogates"):
         p = sub.add_parser(name)
@@ -1331,9 +1443,10 @@ def main(argv=None):
     sub.choices["fit-surrogates"].add_argument("--surrogates", type=int, default=None)
     sub.choices["fit-surrogates"].add_argument("--seed", type=int, default=1)
     for name in ("spectral-window", "pbc-course", "integrity", "early-taps", "ramp-levels",
-                 "realization-scatter",
+                 "realization-scatter", "packing-scatter",
                  "ramp-pores", "fit-surrogates"):
         sub.choices[name].add_argument("--campaign", default=CAMPAIGN_RUN.parents[1])
+    sub.choices["packing-scatter"].add_argument("--work", default=None, type=Path)
     sub.choices["ramp-levels"].add_argument("--run", default="ramp_pbc_s1")
     sub.choices["ramp-levels"].add_argument("--levels", type=int, nargs="+", default=None)
     sub.choices["ramp-levels"].add_argument("--extend", type=int, default=RAMP_EXTEND)
@@ -1367,7 +1480,7 @@ def main(argv=None):
             parser.error(f"--phi values must be in [0.01, 0.58], got {args.phi}")
     {"first-tap": first_tap, "noise-floor": noise_floor,
      "spectral-window": spectral_window, "pbc-course": pbc_course, "integrity": integrity,
-     "realization-scatter": realization_scatter,
+     "realization-scatter": realization_scatter, "packing-scatter": packing_scatter,
      "early-taps": early_taps,
      "initial-packing": initial_packing, "p0-configs": p0_configs,
      "lateral-first-tap": lateral_first_tap, "ramp-levels": ramp_levels,

@@ -1401,6 +1401,62 @@ def test_one_run_errors_take_the_realizations_factor():
     assert data.run_error("phi_b") == (1.0, None)
 
 
+def test_fig8_zones_take_their_own_measured_factor_or_else_the_largest():
+    """Fig. 8's final zone means and their paired difference (one run each, F.B.C.) take the
+    factor realization-scatter measured for that zone; without zone rows (a CSV from before
+    they were measured) the largest factor of the window means, as the page says."""
+    tab = Table()
+    tag = "eps=0.1"
+    tab.param(f"{tag}:final_central", 0.01, 0.001, n=1, x=0.1)
+    tab.param(f"{tag}:final_lateral", 0.02, 0.001, n=1, x=0.1)
+    tab.param(f"{tag}:final_central_minus_lateral", -0.01, 0.001, n=1, x=0.1)
+    means = _scatter_rows("phi_b", 0.008, 0.001) + _scatter_rows("phi_c", 0.004, 0.001)
+    zones = (_scatter_rows("zone:central", 0.003, 0.001)
+             + _scatter_rows("zone:lateral", 0.005, 0.001)
+             + _scatter_rows("zone:central_minus_lateral", 0.002, 0.001))
+
+    def scaled(rows):
+        data = report(fig8=tab)
+        data.questions["realization_scatter"] = rows
+        fig = data.figure("fig8")
+        errors = [fig.param(f"{tag}:final_{z}")[1] for z in
+                  ("central", "lateral", "central_minus_lateral")]
+        (m,) = claims.central_minus_lateral(data, BY_ID["central-smaller"])
+        return errors, m, data.run_error_note()
+
+    errors, m, note = scaled(means + zones)
+    assert errors == pytest.approx([0.003, 0.005, 0.002])
+    assert m.err == pytest.approx(0.002) and "error within the run x 2.0" in m.text()
+    assert "central minus lateral zone x 2.0" in note and "zones the largest" not in note
+    errors, m, note = scaled(means)
+    assert errors == pytest.approx([0.008] * 3) and "x 8.0" in m.text()
+    assert "a profile's zones the largest" in note
+
+
+def test_a_packing_jackknife_takes_its_factor_only_where_realizations_reject_it():
+    """nu of Fig. 10 and alpha of Fig. 6 from one packing (n = 1) carry the spatial
+    jackknife; packing_scatter.csv rows that reject it (k = 3) scale those rows and only
+    those, rows that find it conservative (k < 1) leave every error as it is."""
+    tab10 = Table()
+    tab10.add("params", "nu", [0, 4000], [0.12, 0.09], [0.001, 0.001], n=np.array([1, 1]))
+    tab6 = Table().param("final:alpha", 0.003, 0.0005, n=1)
+    tab6.add("b", "bell:alpha", [0.1, 0.2], [0.002, 0.003], [0.0004, 0.0004],
+             n=np.array([1, 3]))
+    for spread, factor in ((0.003, 3.0), (0.0003, 1.0)):
+        rows = [dict(r, group=r["group"].replace("g", "const_fbc_eps0.0")) for r in
+                _scatter_rows("packing:nu", spread, 0.001)
+                + _scatter_rows("packing:alpha", spread / 2, 0.0005)]
+        data = report(fig10=tab10, fig6=tab6)
+        data.questions["packing_scatter"] = rows
+        nu = data.figure("fig10").get("params", "nu")[2]
+        np.testing.assert_allclose(nu, [0.001 * factor] * 2)
+        fig6 = data.figure("fig6")
+        assert fig6.param("final:alpha")[1] == pytest.approx(0.0005 * factor)
+        # bell:alpha of P.B.C. runs borrows the F.B.C. groups' factor; the 3-seed point keeps
+        # its error over seeds
+        np.testing.assert_allclose(fig6.get("b", "bell:alpha")[2], [0.0004 * factor, 0.0004])
+
+
 def test_low_ramp_frozen_is_decided_by_its_own_levels():
     """The ramp below (sqrt eps)* changes on the way down by 0.01 (beyond t sem): at 1000 taps
     per level that stays undecided until ramp-levels measured that ramp's turning level and

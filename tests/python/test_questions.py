@@ -463,27 +463,32 @@ def test_early_taps_folder_lock_waits_for_its_holder_and_takes_over_a_dead_one(t
 
 
 def _scatter_campaign(root, rng):
-    """A campaign folder whose finished P.B.C. runs differ only in their seed: <Phi^c> of
-    each realization shifted by an offset of sd 0.0005 over white taps of sd 0.001 (the
-    window mean's own error 0.001 / sqrt(1000): another realization lands about
-    sqrt(1 + 0.5^2 * 1000) = 15.8 errors away), Phi_b and <Z> without one. Two column orders
-    (the constant-eps and the ageing inputs write different ones); one unfinished run and one
+    """A campaign folder whose finished runs differ only in their seed: <Phi^c> and the
+    central zone of each realization shifted by an offset of sd 0.0005 over white taps of sd
+    0.001 (the window mean's own error 0.001 / sqrt(1000): another realization lands about
+    sqrt(1 + 0.5^2 * 1000) = 15.8 errors away), Phi_b, <Z> and the lateral zone without one.
+    Two column orders (the constant-eps and the ageing inputs write different ones; the
+    ageing input has no zones); a group of F.B.C. runs; one unfinished run and one
     single-seed group, which the measurement skips."""
     import numpy as np
 
     taps = 1200
-    runs = {**{f"const_pbc_eps0.05_s{s}": "step phi_b phi_c Z" for s in (1, 2, 3, 4)},
+    const = "step phi_b phi_c Z lateral central"
+    runs = {**{f"const_pbc_eps0.05_s{s}": const for s in (1, 2, 3, 4)},
             **{f"ageing_pbc_eps0.01_s{s}": "step Z phi_b phi_c" for s in range(1, 7)},
-            "const_pbc_eps0.1_s1": "step phi_b phi_c Z",
-            "const_pbc_eps0.2_s1": "step phi_b phi_c Z",
-            "const_pbc_eps0.2_s2": "step phi_b phi_c Z"}
+            **{f"const_fbc_eps0.02_s{s}": const for s in (1, 2, 3)},
+            "const_pbc_eps0.1_s1": const,
+            "const_pbc_eps0.2_s1": const,
+            "const_pbc_eps0.2_s2": const}
     for name, header in runs.items():
         folder = root / "runs" / name
         folder.mkdir(parents=True)
         values = {"step": np.arange(taps + 1.0),
                   "phi_b": 0.59 + 0.001 * rng.normal(size=taps + 1),
                   "phi_c": 0.60 + 0.0005 * rng.normal() + 0.001 * rng.normal(size=taps + 1),
-                  "Z": 7.0 + 0.01 * rng.normal(size=taps + 1)}
+                  "Z": 7.0 + 0.01 * rng.normal(size=taps + 1),
+                  "lateral": 0.58 + 0.001 * rng.normal(size=taps + 1),
+                  "central": 0.59 + 0.0005 * rng.normal() + 0.001 * rng.normal(size=taps + 1)}
         if name.startswith("ageing"):
             values["phi_c"][0] = 0.583   # the ageing runs start from one packing
         table = np.column_stack([values[c] for c in header.split()])
@@ -500,19 +505,32 @@ def test_realization_scatter_measures_the_factor_and_the_report_uses_it(tmp_path
     out = tmp_path / "questions"
     pq.main(["realization-scatter", "--campaign", str(tmp_path / "campaign"), "--out", str(out)])
     rows = claims.read_scan(out / "realization_scatter.csv")
-    assert {r["group"] for r in rows} == {"const_pbc_eps0.05", "ageing_pbc_eps0.01"}
+    assert {r["group"] for r in rows} == {"const_pbc_eps0.05", "ageing_pbc_eps0.01",
+                                          "const_fbc_eps0.02"}
     # header names, not positions: <Phi^c> starts near 0.60 in both column orders
     assert all(abs(float(r["mean"]) - 0.60) < 0.01 for r in rows if r["column"] == "phi_c")
+    # Fig. 8's zones over the last quarter of the taps, where the input writes them
+    zone_rows = [r for r in rows if r["column"].startswith("zone:")]
+    assert {r["group"] for r in zone_rows} == {"const_pbc_eps0.05", "const_fbc_eps0.02"}
+    assert {r["column"] for r in zone_rows} == set(claims.ZONE_QUANTITIES)
+    assert {r["last"] for r in zone_rows} == {"300"}
     calib = claims.realization_calibrations(rows)
-    assert 8 < calib["phi_c"].factor < 30 and calib["phi_c"].dof == 3 + 5
+    assert 8 < calib["phi_c"].factor < 30 and calib["phi_c"].dof == 3 + 5 + 2
+    assert claims.realization_calibrations(rows, "pbc")["phi_c"].dof == 3 + 5
     factors = claims.realization_factors(rows)
     # white taps: the batch-means errors are calibrated, no factor; the offset rejects them
-    assert "phi_b" not in factors and "Z" not in factors
+    assert "phi_b" not in factors and "Z" not in factors and "zone:lateral" not in factors
+    assert factors["zone:central"][0] > 4
+    # one offset for both boundary conditions: the F test keeps one pooled factor
+    assert claims.realization_sharing(rows)["phi_c"] > claims.CALIBRATION_ALPHA
     assert factors["phi_c"][0] == calib["phi_c"].factor
     text = "\n".join(questions.render_section(out))
     assert "``realization-scatter``" in text
     assert "     - 6 (one packing)" in text
     assert f"<Phi^c> steady state: k = {calib['phi_c'].factor:.2f}" in text
+    assert "     - the central zone" in text
+    assert "* By boundary condition (does one factor serve both?" in text
+    assert "No quantity rejects one shared factor" in text
     assert f"the one-run errors are too small (window means: <Phi^c> " \
            f"{calib['phi_c'].factor:.1f})" in text
     # the report: one-run rows (n = 1) of Fig. 4 take the factor, rows over seeds do not
@@ -554,3 +572,73 @@ def test_pbc_course_reads_the_halves_with_the_realizations_factor(tmp_path):
     assert "Its halves agree within their error: steady." in scaled
     assert "both errors times the realizations' factor, 2.0 and 10.0" in scaled
     assert "2.20 ± 0.09 % below the largest" in scaled
+
+
+def _packing_campaign(root):
+    """Three finished P.B.C. runs of one eps that differ only in their seed, each with the
+    reference tapped packing of the pore tests (512 spheres) as its t = 0 and final dumps,
+    shifted laterally by a seed's own amount (periodic: the same packing, other jackknife
+    blocks), a profile_z.dat and the taps.dat columns packing-scatter reads."""
+    import gzip
+
+    import numpy as np
+
+    text = gzip.decompress((SOURCE / "tests" / "pores" / "data" / "small_tapped.dump.gz")
+                           .read_bytes()).decode().splitlines()
+    head, atoms = text[:9], [line.split() for line in text[9:]]
+    z = np.arange(0.25, 8.0, 0.25)
+    for seed in (1, 2, 3):
+        folder = root / "runs" / f"const_pbc_eps0.05_s{seed}"
+        folder.mkdir(parents=True)
+        for step in (0, 20):
+            moved = [f"{a[0]} {a[1]} {(float(a[2]) + 1.7 * seed) % 8.0:.9f} {a[3]} {a[4]} {a[5]}"
+                     for a in atoms]
+            lines = head[:1] + [str(step)] + head[2:] + moved
+            (folder / f"dump.{step}.lammpstrj").write_text("\n".join(lines) + "\n")
+        rows = ["# step phi_b phi_c Z z_top lateral central h_s sweeps accept capped"]
+        rows += [f"{t} 0.55 {0.58 + 0.001 * seed} 5.0 8.0 0.56 0.57 8.0 100 0.1 0"
+                 for t in range(21)]
+        (folder / "taps.dat").write_text("\n".join(rows) + "\n")
+        profile = ["# Time-averaged data for fix zprof", "# TimeStep Number-of-rows",
+                   "# Row c_zprof[1] c_zprof[2] c_zprof[3]"]
+        for step in (0, 20):
+            profile.append(f"{step} {len(z)}")
+            profile += [f"{i + 1} {zi:.4f} {0.6 - 0.002 * zi:.6f} {0.6 - 0.002 * zi:.6f}"
+                        for i, zi in enumerate(z)]
+        (folder / "profile_z.dat").write_text("\n".join(profile) + "\n")
+        (folder / "DONE.json").write_text("{}")
+
+
+def test_packing_scatter_measures_the_jackknife_against_realizations(tmp_path):
+    """packing-scatter on three seeds of one packing that differ only by a lateral shift:
+    nu and alpha per final packing with their 4 x 4 jackknife errors (15 dof), the distinct
+    initial packings as their own group, and a page section whose verdict reads k < 1 (the
+    realizations agree far better than the jackknife says) as an upper bound kept."""
+    import pytest
+
+    from tapmc.paper import _runs
+
+    if not _runs.pores_available():
+        pytest.skip("tapmc-pores not built")
+    pq = _paper_questions()
+    _packing_campaign(tmp_path / "campaign")
+    out = tmp_path / "questions"
+    pq.main(["packing-scatter", "--campaign", str(tmp_path / "campaign"), "--out", str(out)])
+    rows = claims.read_scan(out / "packing_scatter.csv")
+    assert {(r["group"], r["column"]) for r in rows} == {
+        ("const_pbc_eps0.05", "packing:nu"), ("const_pbc_eps0.05", "packing:alpha"),
+        ("initial_pbc", "packing:nu")}
+    nu = [r for r in rows if r["column"] == "packing:nu"]
+    assert len(nu) == 6 and {r["sem_dof"] for r in rows} == {"15"}
+    assert all(0.08 < float(r["mean"]) < 0.16 and float(r["sem"]) > 0 for r in nu)
+    # one packing shifted: the same nu, other blocks
+    assert max(float(r["mean"]) for r in nu) - min(float(r["mean"]) for r in nu) < 1e-6
+    assert len({r["sem"] for r in nu}) > 1
+    calib = claims.realization_calibrations(rows)
+    assert calib["packing:nu"].factor < 0.01 and calib["packing:nu"].dof == 2 + 2
+    text = "\n".join(questions.render_section(out))
+    assert "``packing-scatter``" in text and "     - 3 (t = 0)" in text
+    assert "the page keeps the jackknife error, an upper bound" in text
+    # the report keeps one run's jackknife: k < 1 never shrinks an error
+    data = claims.ReportData({}, {}, questions={"packing_scatter": rows})
+    assert data.run_error("packing:nu") == (1.0, None)

@@ -227,7 +227,8 @@ class FigureData:
 #: realizations of the first taps (early-taps), one run's surrogate fits (fit-surrogates), the
 #: ramp's levels continued (ramp-levels) and nu at its level ends (ramp-pores)
 QUESTION_CSVS = ("initial_packing", "p0_configs", "lateral_first_tap", "early_taps",
-                 "fit_surrogates", "ramp_levels", "ramp_pores", "realization_scatter")
+                 "fit_surrogates", "ramp_levels", "ramp_pores", "realization_scatter",
+                 "packing_scatter")
 
 
 class ReportData:
@@ -272,19 +273,26 @@ class ReportData:
         own error (:data:`ONE_RUN_WINDOW_ROWS`) times the realizations' factor
         (:meth:`run_error`)."""
         fig = self.figures.get(name)
-        if fig is None or name not in ONE_RUN_WINDOW_ROWS:
+        if fig is None:
             return fig
-        quantity, bc, chosen = ONE_RUN_WINDOW_ROWS[name]
-        factor = self.run_error(quantity, bc)[0]
-        return fig if factor == 1.0 else fig.scaled_one_run_errors(factor, chosen)
+        for quantity, bc, chosen in ONE_RUN_WINDOW_ROWS.get(name, ()):
+            factor = self.run_error(quantity, bc)[0]
+            if factor != 1.0:
+                fig = fig.scaled_one_run_errors(factor, chosen)
+        return fig
 
     def _realization_factors(self, bc="pbc"):
         """realization_factors of the campaign's realization_scatter.csv for runs of ``bc``,
         computed once."""
         cache = self.__dict__.setdefault("_factors", {})
         if bc not in cache:
-            cache[bc] = realization_factors(self.question("realization_scatter"), bc)
+            cache[bc] = realization_factors(self.scatter_rows(), bc)
         return cache[bc]
+
+    def scatter_rows(self):
+        """The rows of realization_scatter.csv (time averages) and packing_scatter.csv
+        (quantities of one packing), one table of groups of realizations."""
+        return self.question("realization_scatter") + self.question("packing_scatter")
 
     def run_error_note(self):
         """The sentence that says which one-run errors were scaled to realizations and by
@@ -298,7 +306,7 @@ class ReportData:
             if q in pbc or q in fbc:
                 parts.append(f"{label} x {kp:.1f}" if kp == kf else
                              f"{label} x {kp:.1f} (P.B.C.), x {kf:.1f} (F.B.C.)")
-        rows = self.question("realization_scatter")
+        rows = self.scatter_rows()
         measured = {_group_bc(r["group"]) for r in rows}
         if measured == {"pbc"}:
             where = ("measured on the P.B.C. groups (F.B.C. runs, which have no group, take "
@@ -314,7 +322,13 @@ class ReportData:
                 "time averages of one run that decide a row (Fig. 2's windows and halves, "
                 "Fig. 4's steady states and ramp levels, Fig. 8's zones, Fig. 9's steady "
                 "state, Fig. 3's sigma_<Z>) carry the batch-means error times the factor "
-                f"{where} (" + ", ".join(parts) + "; a profile's zones the largest).")
+                f"{where} (" + ", ".join(parts)
+                + ("" if any(q in self._measured() for q in ZONE_QUANTITIES)
+                   else "; a profile's zones the largest") + ").")
+
+    def _measured(self):
+        """The quantities realization_scatter.csv measures, rejected or not."""
+        return {r["column"] for r in self.scatter_rows()}
 
     def run_error(self, quantity, bc="pbc"):
         """(factor, dof) that turn one run's batch-means error of ``quantity`` ('phi_b',
@@ -322,8 +336,12 @@ class ReportData:
         largest factor of the three window means, for a quantity no group measures) into the
         error of a realization of a run of boundary condition ``bc`` ('pbc', 'fbc'): the
         campaign's :func:`realization_factors` where they reject calibrated errors, else
-        (1, None) (the one-run error and its own dof)."""
+        (1, None) (the one-run error and its own dof). A profile's zone
+        (:data:`ZONE_QUANTITIES`) that realization_scatter.csv does not measure takes the
+        largest factor, as None does."""
         factors = self._realization_factors(bc)
+        if quantity in ZONE_QUANTITIES and quantity not in self._measured():
+            quantity = None
         if quantity is None:
             means = [factors[k] for k in RUN_ERROR_QUANTITIES if k in factors]
             return max(means, default=(1.0, None))
@@ -337,25 +355,39 @@ RUN_ERROR_LABELS = {"phi_b": "Phi_b", "phi_b:halves": "Phi_b halves",
                     "phi_c": "<Phi^c>", "phi_c:halves": "<Phi^c> halves",
                     "Z": "<Z>", "Z:halves": "<Z> halves", "Z:sigma": "sigma_<Z>",
                     "Z:sigma_detrended": "sigma_<Z> about the window's line",
-                    "Z:slope": "the spectral slope of <Z>"}
+                    "Z:slope": "the spectral slope of <Z>",
+                    "zone:lateral": "the lateral zone", "zone:central": "the central zone",
+                    "zone:central_minus_lateral": "central minus lateral zone",
+                    "packing:nu": "nu of a packing", "packing:alpha": "alpha of a packing"}
+#: a profile's zone means (compute stereo/profile's, taps.dat ``lateral`` and ``central``) and
+#: their difference per run, Fig. 8's final values
+ZONE_QUANTITIES = ("zone:lateral", "zone:central", "zone:central_minus_lateral")
 #: the window means whose one-run error realization_scatter.csv calibrates
 RUN_ERROR_QUANTITIES = tuple(q for q in RUN_ERROR_LABELS if ":" not in q)
 #: one-sided significance below which the realizations' spread rejects one run's own error
 CALIBRATION_ALPHA = 0.01
 
 
-#: figure -> (quantity, bc, chosen(panel, series)): the rows of a figure CSV whose one-run
-#: error is a window's own error (batch means; the periodogram's for a spectral slope), the
-#: quantity whose realization factor it takes (None: the largest factor, for the profile's
-#: zones, which no group of runs measures) and the boundary condition of the figure's runs
+def _final_zone(name):
+    """chosen(panel, series) of Fig. 8's final value of zone ``name``."""
+    return lambda panel, series: panel == "params" and series.endswith(f":final_{name}")
+
+
+#: figure -> [(quantity, bc, chosen(panel, series))]: the rows of a figure CSV whose one-run
+#: error is within one realization (a window's batch means, a spectral slope's periodogram, a
+#: packing's spatial jackknife), the quantity whose realization factor they take and the
+#: boundary condition of the figure's runs
 ONE_RUN_WINDOW_ROWS = {
-    "fig3": ("Z:slope", "pbc",
-             lambda panel, series: panel == "params" and series.endswith(":slope")),
-    "fig4": ("phi_c", "pbc", lambda panel, series: panel == "a" or series == "phi_c_max"
-             or series.endswith((":down_change", ":down_minus_up1", ":up2_minus_down"))),
-    "fig8": (None, "fbc", lambda panel, series: panel == "params" and series.endswith(
-        (":final_central", ":final_lateral", ":final_central_minus_lateral"))),
-    "fig9": ("phi_c", "pbc", lambda panel, series: series == "phi_c_steady"),
+    "fig3": [("Z:slope", "pbc",
+              lambda panel, series: panel == "params" and series.endswith(":slope"))],
+    "fig4": [("phi_c", "pbc", lambda panel, series: panel == "a" or series == "phi_c_max"
+              or series.endswith((":down_change", ":down_minus_up1", ":up2_minus_down")))],
+    "fig8": [(zone, "fbc", _final_zone(zone.partition(":")[2])) for zone in ZONE_QUANTITIES],
+    "fig9": [("phi_c", "pbc", lambda panel, series: series == "phi_c_steady")],
+    "fig6": [("packing:alpha", "fbc", lambda panel, series: series == "final:alpha"),
+             ("packing:alpha", "pbc", lambda panel, series: series == "bell:alpha")],
+    "fig10": [("packing:nu", "fbc",
+               lambda panel, series: panel == "params" and series == "nu")],
 }
 
 
@@ -1632,8 +1664,8 @@ def central_minus_lateral(data, claim):
         if not np.isfinite(diff[0]):
             diff = (cen[0] - lat[0], math.hypot(cen[1], lat[1]), min(cen[2], lat[2]))
         value, err, n = diff
-        within = (f" ({_run_error_text(data.run_error(None, 'fbc')[0])})"
-                  if n == 1 and np.isfinite(err) else "")
+        factor = data.run_error("zone:central_minus_lateral", "fbc")[0]
+        within = (f" ({_run_error_text(factor)})" if n == 1 and np.isfinite(err) else "")
         out.append(Measure(value, err, _steady_dof(n, err), label=f"eps = {eps:g}",
                            shown=f"{fmt(cen[0], cen[1])} vs {fmt(lat[0], lat[1])}; "
                                  f"difference {fmt(value, err)}{within}"))
@@ -1823,7 +1855,8 @@ def nu_ramp_hysteresis(data, claim):
                         "(bench/paper_questions.py ramp-pores)")
     branches = {}
     for index, name in enumerate(RAMP_BRANCHES):   # in.ramp's branch column
-        picked = sorted((float(r["sqrt_eps"]), float(r["nu"]), float(r["nu_sem"]))
+        picked = sorted((float(r["sqrt_eps"]), float(r["nu"]),
+                         float(r["nu_sem"]) * data.run_error("packing:nu")[0])
                         for r in rows if int(r["branch"]) == index)
         if picked:
             x, y, e = map(np.array, zip(*picked))

@@ -38,6 +38,8 @@ from __future__ import annotations
 
 from collections import defaultdict
 
+from pathlib import Path
+
 import numpy as np
 
 from tapmc.laws import PROFILE_WINDOWS, ProfileLaw, profile_gradient
@@ -59,12 +61,18 @@ def runs(scale, seeds):
 
 def gradient_window(campaign, specs, bc=BC):
     """The paper's gradient window, cut at WINDOW_TOP_FRACTION of the initial packing height."""
+    return window_below([_runs.taps_table(campaign, s)["h_s"][0] / radius(s) for s in specs],
+                        bc)
+
+
+def window_below(heights, bc=BC):
+    """The paper's gradient window for ``bc``, cut at WINDOW_TOP_FRACTION of the lowest of
+    the initial packing heights ``heights`` (in R)."""
     lo, hi = PROFILE_WINDOWS[bc]
-    heights = [_runs.taps_table(campaign, s)["h_s"][0] / radius(s) for s in specs]
     return lo, min(hi, WINDOW_TOP_FRACTION * float(np.min(heights)))
 
 
-def _alpha_jackknife(campaign, spec, centres, window, bc):
+def _alpha_jackknife(dump, r, centres, window, bc):
     """Error of alpha within the packing after the last tap: the lateral jackknife of its
     profile (``tapmc.profiles.vertical_profile_jackknife``) from the run's dump of that step;
     None when the run has no such dump."""
@@ -72,13 +80,11 @@ def _alpha_jackknife(campaign, spec, centres, window, bc):
     from tapmc.profiles import vertical_profile_jackknife
     from tapmc.readers import read_dump
 
-    dump = _runs.run_dir(campaign, spec) / f"dump.{int(spec.variables['taps'])}.lammpstrj"
     if not dump.is_file():
         return None
     frame = next(iter(read_dump(dump).frames))
     width = (centres[-1] - centres[0]) / (len(centres) - 1)   # the compute's uniform bins
     edges = np.append(centres - width / 2, centres[-1] + width / 2)
-    r = radius(spec)
     _, replicates = vertical_profile_jackknife(frame.positions, r, edges, frame.box_lo,
                                                frame.box_hi)
     alphas = [profile_gradient(centres / r, rep, window=window, boundary=bc).params["alpha"]
@@ -87,13 +93,24 @@ def _alpha_jackknife(campaign, spec, centres, window, bc):
 
 
 def final_alpha(campaign, spec, window, bc):
-    """(alpha, its error) of the last profile of a run in ``window``. The error is the lateral
-    jackknife of the packing dumped after the last tap (the profile's bins share spheres, so
-    the straight line's own error is too small); the line's own error when there is no dump."""
-    blocks = _runs.profile(campaign, spec, "profile_z.dat").blocks
-    z = blocks[-1, :, 0] / radius(spec)
-    fit = profile_gradient(z, blocks[-1, :, 2], window=window, boundary=bc)
-    within = _alpha_jackknife(campaign, spec, blocks[-1, :, 0], window, bc)
+    """(alpha, its error) of the last profile of a run in ``window`` (:func:`run_alpha`)."""
+    return run_alpha(_runs.run_dir(campaign, spec), int(spec.variables["taps"]), radius(spec),
+                     window, bc)
+
+
+def run_alpha(folder, taps, r, window, bc):
+    """(alpha, its error) of the last profile (``profile_z.dat``) of the run in ``folder``
+    (``taps`` taps, sphere radius ``r``) in ``window``. The error is the lateral jackknife of
+    the packing dumped after the last tap (``dump.<taps>.lammpstrj``: the profile's bins share
+    spheres, so the straight line's own error is too small); the line's own error when there
+    is no dump."""
+    from tapmc.readers import read_ave_time
+
+    folder = Path(folder)
+    blocks = read_ave_time(folder / "profile_z.dat").blocks
+    fit = profile_gradient(blocks[-1, :, 0] / r, blocks[-1, :, 2], window=window, boundary=bc)
+    within = _alpha_jackknife(folder / f"dump.{int(taps)}.lammpstrj", r, blocks[-1, :, 0],
+                              window, bc)
     return float(fit.params["alpha"]), (float(fit.errors["alpha"]) if within is None
                                         else within)
 
@@ -217,7 +234,9 @@ def draw(campaign, out_dir):
                            .params["alpha"]])
         m, s, n = P.seed_stats(alphas)
         if tag == "final" and len(specs) == 1:   # one seed: the error within its packing
-            within = _alpha_jackknife(campaign, specs[0], blocks[-1, :, 0], window, BC)
+            dump = _runs.run_dir(campaign, specs[0]) / \
+                f"dump.{int(specs[0].variables['taps'])}.lammpstrj"
+            within = _alpha_jackknife(dump, radius(specs[0]), blocks[-1, :, 0], window, BC)
             s = [np.nan if within is None else within]
         table.add("params", f"{tag}:alpha", eps, m[0], s[0], n[0])
     table.add("params", "window_lo", eps, window[0], None, len(specs))

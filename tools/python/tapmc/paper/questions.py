@@ -17,6 +17,8 @@ committed data.
 * ``realization_scatter.csv``: the steady state of every group of runs that differ only in
   their seed: whether one run's batch-means error tells how far another realization lands,
   and the factor it falls short by (tapmc.fluctuations.ErrorCalibration).
+* ``packing_scatter.csv``: the same question for the spatial jackknife of one packing (nu of
+  the pores, alpha of the profile) over the final and the initial packings of those groups.
 * ``integrity.csv``: every dump of the campaign checked offline: overlaps, floor and walls,
   and the printed scalars of that tap recomputed from the positions.
 * ``early_taps.csv``: the first 400 taps from the campaign's F.B.C. packing over several
@@ -60,7 +62,7 @@ from tapmc.fluctuations import DEFAULT_BATCHES
 from tapmc.pores import XI_T
 
 from .claims import (CALIBRATION_ALPHA, RAMP_LEVELS_DEFAULT_RUN, RUN_ERROR_LABELS,
-                     RUN_ERROR_QUANTITIES, fmt,
+                     RUN_ERROR_QUANTITIES, ZONE_QUANTITIES, fmt,
                      realization_calibrations,
                      realization_factors, realization_sharing, t_quantile)
 
@@ -777,6 +779,8 @@ def _pbc_course(path, factors=None):
 
 #: the window means of realization_scatter.csv, as the page names them
 SCALAR_NAMES = {q: RUN_ERROR_LABELS[q] for q in RUN_ERROR_QUANTITIES}
+#: the rows of the realization-scatter table: the window means and Fig. 8's zones
+TABLE_NAMES = {**SCALAR_NAMES, **{q: RUN_ERROR_LABELS[q] for q in ZONE_QUANTITIES}}
 
 
 def _realization_scatter(path):
@@ -801,14 +805,14 @@ def _realization_scatter(path):
              "   * - runs", "     - realizations", "     - quantity",
              "     - spread between realizations", "     - rms error within a run",
              "     - ratio"]
-    for column in (c for c in SCALAR_NAMES if c in calib):
+    for column in (c for c in TABLE_NAMES if c in calib):
         c = calib[column]
         for group in c.ratios:
             n = len(c.groups[group][0])
             same = ("one packing" if len(starts[group]) == 1 else
                     f"{len(starts[group])} packings")
             lines += [f"   * - {group}", f"     - {n} ({same})",
-                      f"     - {SCALAR_NAMES[column]}", f"     - {c.spreads[group]:.3g}",
+                      f"     - {TABLE_NAMES[column]}", f"     - {c.spreads[group]:.3g}",
                       f"     - {c.errors[group]:.3g}", f"     - {c.ratios[group]:.2f}"]
     lines.append("")
     pooled = []
@@ -844,6 +848,65 @@ def _realization_scatter(path):
                        for k in RUN_ERROR_LABELS if k in calib and k not in short)
            + ": those stand as they are." if set(calib) - set(short) else ""), ""]
     return lines
+
+
+#: the quantities of packing_scatter.csv, as the page names them
+PACKING_NAMES = {"packing:nu": "nu (pores)", "packing:alpha": "alpha (the profile's gradient)"}
+
+
+def _packing_scatter(path):
+    """The table of each group's spread of a packing's nu and alpha against their spatial
+    jackknife errors, the pooled factors and the verdict."""
+    rows = _read(path)
+    calib = realization_calibrations(rows)
+    if not rows or not calib:
+        return []
+    lines = ["Does the spatial jackknife of one packing (4 x 4 lateral blocks: the error of "
+             "nu and of alpha wherever one run gives a point) tell how far another "
+             "realization lands? The final packings of the campaign's groups of runs that "
+             "differ only in their seed, and their distinct initial packings "
+             "(``packing_scatter.csv``, ``bench/paper_questions.py packing-scatter``: "
+             "tapmc-pores in Fig. 10's statistics box; alpha in Fig. 6's window):", "",
+             ".. list-table::", "   :header-rows: 1", "",
+             "   * - packings", "     - realizations", "     - quantity",
+             "     - spread between realizations", "     - rms jackknife error",
+             "     - ratio"]
+    for column in (c for c in PACKING_NAMES if c in calib):
+        c = calib[column]
+        for group in c.ratios:
+            what = ("t = 0" if group.startswith("initial_") else "after the taps")
+            lines += [f"   * - {group}", f"     - {len(c.groups[group][0])} ({what})",
+                      f"     - {PACKING_NAMES[column]}", f"     - {c.spreads[group]:.3g}",
+                      f"     - {c.errors[group]:.3g}", f"     - {c.ratios[group]:.2f}"]
+    lines.append("")
+    pooled = []
+    for key in (k for k in PACKING_NAMES if k in calib):
+        c = calib[key]
+        low, high = c.interval()
+        pooled.append(f"{PACKING_NAMES[key]}: k = {c.factor:.2f} (95 %: {low:.2f} to "
+                      f"{high:.2f}; {c.dof} dof, p of k = 1: {c.p_value:.2g})")
+    lines.append("* Pooled over the groups: " + "; ".join(pooled) + ".")
+    lines += _scatter_by_bc(rows)
+    short = [k for k in PACKING_NAMES if k in calib and calib[k].p_value < CALIBRATION_ALPHA]
+    wide = [k for k in PACKING_NAMES if k in calib and calib[k].interval()[1] < 1]
+    verdict = []
+    if short:
+        verdict.append(", ".join(PACKING_NAMES[k] for k in short) + ": the jackknife is too "
+                       "small; a one-run value carries its jackknife error times k.")
+    if wide:
+        verdict.append(", ".join(PACKING_NAMES[k] for k in wide) + ": the jackknife is "
+                       "larger than the spread of realizations (k below 1 at 95 %), as it is "
+                       "when the blocks of one packing are anticorrelated (the statistics "
+                       "box holds a nearly fixed number of spheres) where the jackknife "
+                       "takes them as independent; the page keeps the jackknife error, an "
+                       "upper bound of a realization's.")
+    fine = [k for k in PACKING_NAMES if k in calib and k not in short and k not in wide]
+    if fine:
+        verdict.append(", ".join(f"{PACKING_NAMES[k]} (k = {calib[k].factor:.2f})"
+                                 for k in fine)
+                       + ": the jackknife is compatible with the realizations' spread: a "
+                       "one-seed error bar is the error of a realization.")
+    return lines + ["* Verdict: " + " ".join(verdict), ""]
 
 
 def _scatter_quantity(key):
@@ -1158,6 +1221,8 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
         if (folder / "realization_scatter.csv").is_file() else {}
     if (folder / "realization_scatter.csv").is_file():
         parts += _realization_scatter(folder / "realization_scatter.csv")
+    if (folder / "packing_scatter.csv").is_file():
+        parts += _packing_scatter(folder / "packing_scatter.csv")
     if (folder / "pbc_course.csv").is_file():
         parts += _pbc_course(folder / "pbc_course.csv", factors)
     if (folder / "integrity.csv").is_file():
@@ -1194,6 +1259,7 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
     commands = "``first-tap``, ``noise-floor``, ``spectral-window``" + (
         ", ``realization-scatter``" if (folder / "realization_scatter.csv").is_file()
         else "") + (
+        ", ``packing-scatter``" if (folder / "packing_scatter.csv").is_file() else "") + (
         ", ``pbc-course``" if (folder / "pbc_course.csv").is_file() else "") + (
         ", ``integrity``" if (folder / "integrity.csv").is_file() else "") + (
         ", ``early-taps``" if (folder / "early_taps.csv").is_file() else "") + (
