@@ -800,30 +800,12 @@ def _realization_scatter(path):
              f"{DEFAULT_BATCHES} batches). The campaign's groups of runs that differ only in "
              "their seed (``realization_scatter.csv``) measure it: the spread of their steady "
              "states against their own errors (tapmc.fluctuations.ErrorCalibration; 1 when the "
-             "errors are calibrated):", "",
-             ".. list-table::", "   :header-rows: 1", "",
-             "   * - runs", "     - realizations", "     - quantity",
-             "     - spread between realizations", "     - rms error within a run",
-             "     - ratio"]
-    for column in (c for c in TABLE_NAMES if c in calib):
-        c = calib[column]
-        for group in c.ratios:
-            n = len(c.groups[group][0])
-            same = ("one packing" if len(starts[group]) == 1 else
-                    f"{len(starts[group])} packings")
-            lines += [f"   * - {group}", f"     - {n} ({same})",
-                      f"     - {TABLE_NAMES[column]}", f"     - {c.spreads[group]:.3g}",
-                      f"     - {c.errors[group]:.3g}", f"     - {c.ratios[group]:.2f}"]
-    lines.append("")
-    pooled = []
-    for key in RUN_ERROR_LABELS:
-        if key not in calib:
-            continue
-        c = calib[key]
-        low, high = c.interval()
-        pooled.append(f"{_scatter_quantity(key)}: k = {c.factor:.2f} (95 %: "
-                      f"{low:.2f} to {high:.2f}; {c.dof} dof, p of k = 1: {c.p_value:.2g})")
-    lines.append("* Pooled over the groups: " + "; ".join(pooled) + ".")
+             "errors are calibrated):", ""]
+    lines += _calibration_table(
+        calib, TABLE_NAMES, {k: _scatter_quantity(k) for k in RUN_ERROR_LABELS},
+        ("runs", "rms error within a run"),
+        lambda group, n: f"{n} (" + ("one packing" if len(starts[group]) == 1 else
+                                     f"{len(starts[group])} packings") + ")")
     lines += _scatter_by_bc(rows)
     short = {k: c for k, c in calib.items() if c.p_value < CALIBRATION_ALPHA}
     if not short:
@@ -866,26 +848,11 @@ def _packing_scatter(path):
              "realization lands? The final packings of the campaign's groups of runs that "
              "differ only in their seed, and their distinct initial packings "
              "(``packing_scatter.csv``, ``bench/paper_questions.py packing-scatter``: "
-             "tapmc-pores in Fig. 10's statistics box; alpha in Fig. 6's window):", "",
-             ".. list-table::", "   :header-rows: 1", "",
-             "   * - packings", "     - realizations", "     - quantity",
-             "     - spread between realizations", "     - rms jackknife error",
-             "     - ratio"]
-    for column in (c for c in PACKING_NAMES if c in calib):
-        c = calib[column]
-        for group in c.ratios:
-            what = ("t = 0" if group.startswith("initial_") else "after the taps")
-            lines += [f"   * - {group}", f"     - {len(c.groups[group][0])} ({what})",
-                      f"     - {PACKING_NAMES[column]}", f"     - {c.spreads[group]:.3g}",
-                      f"     - {c.errors[group]:.3g}", f"     - {c.ratios[group]:.2f}"]
-    lines.append("")
-    pooled = []
-    for key in (k for k in PACKING_NAMES if k in calib):
-        c = calib[key]
-        low, high = c.interval()
-        pooled.append(f"{PACKING_NAMES[key]}: k = {c.factor:.2f} (95 %: {low:.2f} to "
-                      f"{high:.2f}; {c.dof} dof, p of k = 1: {c.p_value:.2g})")
-    lines.append("* Pooled over the groups: " + "; ".join(pooled) + ".")
+             "tapmc-pores in Fig. 10's statistics box; alpha in Fig. 6's window):", ""]
+    lines += _calibration_table(
+        calib, PACKING_NAMES, PACKING_NAMES, ("packings", "rms jackknife error"),
+        lambda group, n: f"{n} (" + ("t = 0" if group.startswith("initial_")
+                                     else "after the taps") + ")")
     lines += _scatter_by_bc(rows)
     short = [k for k in PACKING_NAMES if k in calib and calib[k].p_value < CALIBRATION_ALPHA]
     wide = [k for k in PACKING_NAMES if k in calib and calib[k].interval()[1] < 1]
@@ -907,6 +874,29 @@ def _packing_scatter(path):
                        + ": the jackknife is compatible with the realizations' spread: a "
                        "one-seed error bar is the error of a realization.")
     return lines + ["* Verdict: " + " ".join(verdict), ""]
+
+
+def _calibration_table(calib, table_names, pooled_names, headers, realizations):
+    """The list-table of every group's spread against its own errors for the quantities of
+    ``table_names`` (key -> name) and the line of the factors pooled over the groups for
+    those of ``pooled_names``; ``headers``: (the groups' column, the errors' column);
+    ``realizations(group, n)``: the text of a group's realizations cell."""
+    lines = [".. list-table::", "   :header-rows: 1", "",
+             f"   * - {headers[0]}", "     - realizations", "     - quantity",
+             "     - spread between realizations", f"     - {headers[1]}", "     - ratio"]
+    for column in (c for c in table_names if c in calib):
+        c = calib[column]
+        for group in c.ratios:
+            lines += [f"   * - {group}", f"     - {realizations(group, len(c.groups[group][0]))}",
+                      f"     - {table_names[column]}", f"     - {c.spreads[group]:.3g}",
+                      f"     - {c.errors[group]:.3g}", f"     - {c.ratios[group]:.2f}"]
+    pooled = []
+    for key in (k for k in pooled_names if k in calib):
+        c = calib[key]
+        low, high = c.interval()
+        pooled.append(f"{pooled_names[key]}: k = {c.factor:.2f} (95 %: {low:.2f} to "
+                      f"{high:.2f}; {c.dof} dof, p of k = 1: {c.p_value:.2g})")
+    return lines + ["", "* Pooled over the groups: " + "; ".join(pooled) + "."]
 
 
 def _scatter_quantity(key):
