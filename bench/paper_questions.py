@@ -932,9 +932,6 @@ def realization_scatter(args):
 
 #: packing-scatter's quantities of one packing, as realization_scatter.csv names columns
 PACKING_NU, PACKING_ALPHA = "packing:nu", "packing:alpha"
-#: blocks of the spatial jackknifes (tapmc.pores.PoreOutput.jackknife: 4 x 4 lateral blocks;
-#: tapmc.profiles.PROFILE_JACKKNIFE_BLOCKS per side for alpha): their dof
-PACKING_JACKKNIFE_DOF = 4 * 4 - 1
 
 
 def _run_radius(run_dir):
@@ -965,17 +962,19 @@ def _packing_nu(dump, work, radius):
 
 def packing_scatter(args):
     from tapmc.paper import fig6
+    from tapmc.paper.claims import group_bc
+    from tapmc.pores import JACKKNIFE_BLOCKS
     from tapmc.profiles import PROFILE_JACKKNIFE_BLOCKS
 
     work = Path(args.work) if args.work else Path(args.out) / PARTIAL / "packing_scatter"
     work.mkdir(parents=True, exist_ok=True)
-    alpha_dof = PROFILE_JACKKNIFE_BLOCKS ** 2 - 1
+    # the jackknifes' dof: their blocks (lateral, per side) squared, minus one
+    nu_dof, alpha_dof = JACKKNIFE_BLOCKS ** 2 - 1, PROFILE_JACKKNIFE_BLOCKS ** 2 - 1
     rows, initial = [], {}
     for group, runs in _seed_groups(args.campaign).items():
         if not group.startswith("const_"):
             continue      # the ageing runs dump no packing
-        bc = group.split("_")[1]
-        bc = "fbc" if bc.startswith("fbc") else "pbc"
+        bc = group_bc(group)
         tables = {seed: read_fix_print(run_dir / "taps.dat") for seed, run_dir in runs}
         taps = {int(t["step"][-1]) for t in tables.values()}
         if len(taps) != 1:
@@ -990,7 +989,7 @@ def packing_scatter(args):
             nu, nu_err = _packing_nu(run_dir / f"dump.{last}.lammpstrj", work, radii[seed])
             alpha, alpha_err = fig6.run_alpha(run_dir, last, radii[seed], window, bc)
             rows.append([group, run_dir.name, seed, last, PACKING_NU, f"{start:.8g}",
-                         f"{nu:.8g}", f"{nu_err:.4g}", "", PACKING_JACKKNIFE_DOF])
+                         f"{nu:.8g}", f"{nu_err:.4g}", "", nu_dof])
             rows.append([group, run_dir.name, seed, last, PACKING_ALPHA, f"{start:.8g}",
                          f"{alpha:.8g}", f"{alpha_err:.4g}", "", alpha_dof])
             print(f"{run_dir.name}: nu {nu:.5f} +- {nu_err:.5f}, alpha {alpha:.5f} +- "
@@ -1006,7 +1005,7 @@ def packing_scatter(args):
                                      _run_radius(run_dir))
             rows.append([f"initial_{bc}", run_dir.name, seed, 0, PACKING_NU,
                          f"{read_fix_print(run_dir / 'taps.dat')['phi_c'][0]:.8g}",
-                         f"{nu:.8g}", f"{nu_err:.4g}", "", PACKING_JACKKNIFE_DOF])
+                         f"{nu:.8g}", f"{nu_err:.4g}", "", nu_dof])
             print(f"{run_dir.name} at t = 0: nu {nu:.5f} +- {nu_err:.5f}", flush=True)
     write_csv(Path(args.out) / "packing_scatter.csv",
               ["group", "run", "seed", "taps", "column", "start", "mean", "sem", "last",

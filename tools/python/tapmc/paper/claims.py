@@ -282,8 +282,8 @@ class ReportData:
         return fig
 
     def _realization_factors(self, bc="pbc"):
-        """realization_factors of the campaign's realization_scatter.csv for runs of ``bc``,
-        computed once."""
+        """realization_factors of the campaign's groups of realizations (:meth:`scatter_rows`)
+        for runs of ``bc``, computed once."""
         cache = self.__dict__.setdefault("_factors", {})
         if bc not in cache:
             cache[bc] = realization_factors(self.scatter_rows(), bc)
@@ -307,7 +307,7 @@ class ReportData:
                 parts.append(f"{label} x {kp:.1f}" if kp == kf else
                              f"{label} x {kp:.1f} (P.B.C.), x {kf:.1f} (F.B.C.)")
         rows = self.scatter_rows()
-        measured = {_group_bc(r["group"]) for r in rows}
+        measured = {group_bc(r["group"]) for r in rows}
         if measured == {"pbc"}:
             where = ("measured on the P.B.C. groups (F.B.C. runs, which have no group, take "
                      "the same)")
@@ -327,7 +327,8 @@ class ReportData:
                    else "; a profile's zones the largest") + ").")
 
     def _measured(self):
-        """The quantities realization_scatter.csv measures, rejected or not."""
+        """The quantities the groups of realizations measure (:meth:`scatter_rows`),
+        rejected or not."""
         return {r["column"] for r in self.scatter_rows()}
 
     def run_error(self, quantity, bc="pbc"):
@@ -391,7 +392,7 @@ ONE_RUN_WINDOW_ROWS = {
 }
 
 
-def _group_bc(group):
+def group_bc(group):
     """Boundary condition of a group of realization_scatter.csv: 'fbc' for F.B.C. runs
     (``<kind>_fbc..._eps<eps>``), 'pbc' for every other group."""
     parts = group.split("_")
@@ -434,7 +435,7 @@ def realization_calibrations(rows, bc=None):
         raise ValueError(f"bc = {bc!r}: allowed values are None, 'pbc', 'fbc'")
     by, dof = {}, {}
     for r in rows:
-        if bc is not None and _group_bc(r["group"]) != bc:
+        if bc is not None and group_bc(r["group"]) != bc:
             continue
         by.setdefault(r["column"], {}).setdefault(r["group"], []).append(
             (float(r["mean"]), float(r["sem"])))
