@@ -986,7 +986,7 @@ def packing_scatter(args):
                                    bc)
         for seed, run_dir in runs:
             start = tables[seed]["phi_c"][0]
-            nu, nu_err = _packing_nu(run_dir / f"dump.{last}.lammpstrj", work, radii[seed])
+            nu, nu_err = _packing_nu(fig6.final_dump(run_dir, last), work, radii[seed])
             alpha, alpha_err = fig6.run_alpha(run_dir, last, radii[seed], window, bc)
             rows.append([group, run_dir.name, seed, last, PACKING_NU, f"{start:.8g}",
                          f"{nu:.8g}", f"{nu_err:.4g}", "", nu_dof])

@@ -1854,10 +1854,11 @@ def nu_ramp_hysteresis(data, claim):
     if not rows:
         return _missing("no nu at the level ends of the ramp beyond (sqrt eps)* "
                         "(bench/paper_questions.py ramp-pores)")
+    # one packing per level: its jackknife times the packings' factor where they reject it
+    factor = data.run_error("packing:nu")[0]
     branches = {}
     for index, name in enumerate(RAMP_BRANCHES):   # in.ramp's branch column
-        picked = sorted((float(r["sqrt_eps"]), float(r["nu"]),
-                         float(r["nu_sem"]) * data.run_error("packing:nu")[0])
+        picked = sorted((float(r["sqrt_eps"]), float(r["nu"]), float(r["nu_sem"]) * factor)
                         for r in rows if int(r["branch"]) == index)
         if picked:
             x, y, e = map(np.array, zip(*picked))

@@ -72,6 +72,11 @@ def window_below(heights, bc=BC):
     return lo, min(hi, WINDOW_TOP_FRACTION * float(np.min(heights)))
 
 
+def final_dump(folder, taps):
+    """The packing a constant-eps run dumps after its last tap (``dump_ends``)."""
+    return Path(folder) / f"dump.{int(taps)}.lammpstrj"
+
+
 def _alpha_jackknife(dump, r, centres, window, bc):
     """Error of alpha within the packing after the last tap: the lateral jackknife of its
     profile (``tapmc.profiles.vertical_profile_jackknife``) from the run's dump of that step;
@@ -109,8 +114,7 @@ def run_alpha(folder, taps, r, window, bc):
     folder = Path(folder)
     blocks = read_ave_time(folder / "profile_z.dat").blocks
     fit = profile_gradient(blocks[-1, :, 0] / r, blocks[-1, :, 2], window=window, boundary=bc)
-    within = _alpha_jackknife(folder / f"dump.{int(taps)}.lammpstrj", r, blocks[-1, :, 0],
-                              window, bc)
+    within = _alpha_jackknife(final_dump(folder, taps), r, blocks[-1, :, 0], window, bc)
     return float(fit.params["alpha"]), (float(fit.errors["alpha"]) if within is None
                                         else within)
 
@@ -234,8 +238,7 @@ def draw(campaign, out_dir):
                            .params["alpha"]])
         m, s, n = P.seed_stats(alphas)
         if tag == "final" and len(specs) == 1:   # one seed: the error within its packing
-            dump = _runs.run_dir(campaign, specs[0]) / \
-                f"dump.{int(specs[0].variables['taps'])}.lammpstrj"
+            dump = final_dump(_runs.run_dir(campaign, specs[0]), specs[0].variables["taps"])
             within = _alpha_jackknife(dump, radius(specs[0]), blocks[-1, :, 0], window, BC)
             s = [np.nan if within is None else within]
         table.add("params", f"{tag}:alpha", eps, m[0], s[0], n[0])
