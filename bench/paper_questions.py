@@ -84,6 +84,15 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               simulation). And, from early_taps.csv, the spread of the same fits over the
               independent realizations of the first 400 taps.
 
+  seed-fits   Do independent realizations fix the triplet (X_inf, B, tau) of eq. 3 (and
+              eq. 4's parameters) over a whole run, and do they depend on the range of taps
+              fitted (section III.B)? Every group of finished constant-eps and ageing runs
+              that differ only in their seed (realization-scatter's groups): each run fitted
+              from tap 1 over all its taps and over taps 1-T/4, 1-T/2 and T/10-T, the spread
+              of each parameter over the runs with its 95 % chi-square interval, and the
+              paired t-test of each range against all taps (tapmc.laws.RealizationFits; no
+              simulation, seconds).
+
   pbc-course  How long does the dip of <Phi^c> after the first taps last, and does the
               packing loosen at strong taps (eps >= 0.09)? From every finished P.B.C.
               constant-eps run of the paper-scale campaign (no simulation: its taps.dat):
@@ -1184,6 +1193,41 @@ def fit_surrogates(args):
     write_csv(Path(args.out) / "fit_surrogates.csv", header, rows)
 
 
+#: the header of seed_fits.csv (values: each run's fit in the comparison scale, ln for B and
+#: tau; determined: 1, 0, or empty when the realizations cannot tell)
+SEED_FITS_HEADER = ["group", "bc", "eps", "law", "taps", "realizations", "parameter", "values",
+                    "mean", "spread", "spread_low", "spread_high", "limit", "log_scale",
+                    "determined", "range_shift", "range_bound", "range_p"]
+
+
+def seed_fits(args):
+    """Per group of realizations (_seed_groups) and law of Fig. 2: tapmc.laws.RealizationFits
+    over the taps every run has, from tap 1."""
+    from tapmc.laws import RealizationFits
+
+    rows = []
+    for group, runs in _seed_groups(args.campaign).items():
+        printed = [_printed_rows(run_dir / "taps.dat") for _, run_dir in runs]
+        last = min(max(p) for _, p in printed)
+        t = np.arange(1, last + 1, dtype=float)
+        bc = group.split("_")[1]
+        eps = float(group.split("_eps")[1])
+        for law_name, column in FIT_LAWS:
+            curves = [[float(p[int(k)][names.index(column)]) for k in t] for names, p in printed]
+            fits = RealizationFits(_law(law_name)).compute(t, curves)
+            for k in fits.law.names:
+                d = fits.determined[k]
+                rows.append([group, bc, eps, law_name, last, fits.realizations, k,
+                             ";".join(f"{v:.6g}" for v in fits.values[k]),
+                             f"{fits.mean[k]:.8g}", f"{fits.spread[k]:.6g}",
+                             f"{fits.spread_low[k]:.6g}", f"{fits.spread_high[k]:.6g}",
+                             f"{fits.limit[k]:.6g}", int(fits.log_scale[k]),
+                             "" if d is None else int(d), f"{fits.range_shift[k]:.6g}",
+                             f"{fits.range_bound[k]:.6g}", f"{fits.range_p[k]:.4g}"])
+            print(f"{group} {law_name}: {fits}", flush=True)
+    write_csv(Path(args.out) / "seed_fits.csv", SEED_FITS_HEADER, rows)
+
+
 #: columns of a run's taps.dat that a dumped packing reproduces (tapmc.packing.PackingCheck)
 INTEGRITY_COLUMNS = ("phi_b", "phi_c", "Z", "z_top", "h_s")
 #: what the dump's rounding (%.10g: 5e-9 on a coordinate of the paper's box) can move a mean
@@ -1414,7 +1458,8 @@ def main(argv=None):
     for name in ("first-tap", "noise-floor", "spectral-window", "pbc-course", "integrity",
                  "realization-scatter", "packing-scatter",
                  "early-taps", "initial-packing", "p0-configs", "lateral-first-tap",
-                 "ramp-levels", "ramp-pores", "theta0", "dmax", "p0-fluid", "fit-surrogates"):
+                 "ramp-levels", "ramp-pores", "theta0", "dmax", "p0-fluid", "fit-surrogates",
+                 "seed-fits"):
         p = sub.add_parser(name)
         p.add_argument("--out", default=DEFAULT_OUT, type=Path)
         p.add_argument("--lmp", default=None)
@@ -1443,7 +1488,7 @@ def main(argv=None):
     sub.choices["fit-surrogates"].add_argument("--seed", type=int, default=1)
     for name in ("spectral-window", "pbc-course", "integrity", "early-taps", "ramp-levels",
                  "realization-scatter", "packing-scatter",
-                 "ramp-pores", "fit-surrogates"):
+                 "ramp-pores", "fit-surrogates", "seed-fits"):
         sub.choices[name].add_argument("--campaign", default=CAMPAIGN_RUN.parents[1])
     sub.choices["packing-scatter"].add_argument("--work", default=None, type=Path)
     sub.choices["ramp-levels"].add_argument("--run", default="ramp_pbc_s1")
@@ -1484,7 +1529,8 @@ def main(argv=None):
      "initial-packing": initial_packing, "p0-configs": p0_configs,
      "lateral-first-tap": lateral_first_tap, "ramp-levels": ramp_levels,
      "ramp-pores": ramp_pores, "theta0": theta0_scan, "dmax": dmax_scan,
-     "p0-fluid": p0_fluid, "fit-surrogates": fit_surrogates}[args.command](args)
+     "p0-fluid": p0_fluid, "fit-surrogates": fit_surrogates,
+     "seed-fits": seed_fits}[args.command](args)
 
 
 if __name__ == "__main__":

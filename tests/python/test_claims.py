@@ -1262,6 +1262,82 @@ def test_one_runs_surrogates_decide_only_what_they_can():
     assert [x.label for x in claims.b_exponential(both, claim)] == ["B of eq. 3", "B of eq. 4"]
 
 
+def seed_fit_rows(states, bc="fbc", law="eq3", realizations=3, group=None):
+    """seed_fits.csv rows of one group of realizations per eps: ``states`` eps -> (undetermined
+    parameters, parameters the realizations cannot tell, range-dependent parameters)."""
+    names = {"eq3": ("X_inf", "dX_inf", "B", "tau"), "eq4": ("Z_inf", "Z_0", "B", "tau")}[law]
+    rows = []
+    for eps, (undetermined, unsure, dependent) in states.items():
+        for k in names:
+            rows.append({"group": group or f"const_{bc}_eps{eps:g}", "bc": bc, "eps": f"{eps}",
+                         "law": law, "taps": "4000", "realizations": str(realizations),
+                         "parameter": k, "values": "1;2;3", "mean": "0.5", "spread": "0.3",
+                         "spread_low": "0.15", "spread_high": "1.9", "limit": "0.69",
+                         "log_scale": str(int(k in ("B", "tau"))),
+                         "determined": "0" if k in undetermined else "" if k in unsure else "1",
+                         "range_shift": "0.1", "range_bound": "0.5",
+                         "range_p": "0.001" if k in dependent else "0.4"})
+    return rows
+
+
+def test_realizations_of_whole_runs_decide_the_triplet_both_ways():
+    """Where the campaign has realizations of a whole run (seed_fits.csv), their spread
+    replaces the run's surrogates in both directions; where they cannot tell, a run's "not
+    unique" still decides and its "unique" still does not. The P.B.C. groups give a row of
+    their own."""
+    claim = BY_ID["eq3-triplet-range"]
+    runs = surrogate_rows({0.005: (["B", "tau"], []), 0.02: ([], []), 0.15: (["B"], [])})
+
+    def rows_of(seed_rows):
+        data = claims.ReportData(report().summary, {}, questions={
+            "fit_surrogates": runs, "seed_fits": seed_rows})
+        return claims.eq3_triplet_pattern(data, claim)
+
+    # the run's surrogates alone: "unique" at 0.02 is only an upper bound
+    (m,) = rows_of([])
+    assert m.undecided == claims.SURROGATES_UNIQUE
+    # three realizations at 0.02 find B undetermined: no eps is unique
+    (m,) = rows_of(seed_fit_rows({0.02: (["B"], [], [])}))
+    assert claims.verdict(claim, m) == "disagrees", m
+    assert "eps = 0.02: 3 realizations: B undetermined (sd of ln B 0.3" in m.text()
+    assert "(the run's surrogates: unique within the surrogates)" in m.text()
+    # ... or range dependent: the same
+    (m,) = rows_of(seed_fit_rows({0.02: ([], [], ["tau"])}))
+    assert claims.verdict(claim, m) == "disagrees" and "tau range dependent" in m.text()
+    # they fix it: the paper's contrast holds
+    (m,) = rows_of(seed_fit_rows({0.02: ([], [], [])}))
+    assert claims.verdict(claim, m) == "agrees", m
+    # they cannot tell: undecided, and says where
+    (m,) = rows_of(seed_fit_rows({0.02: ([], ["B", "tau"], [])}))
+    assert m.undecided.startswith("the realizations cannot tell whether the triplet is fixed "
+                                  "at eps = 0.02"), m
+    # realizations that cannot tell leave a run's "not unique" standing (0.15), and
+    # realizations that fix the smallest eps contradict the paper
+    (m,) = rows_of(seed_fit_rows({0.02: (["B"], [], []), 0.15: ([], ["B"], [])}))
+    assert claims.verdict(claim, m) == "disagrees", m
+    (m,) = rows_of(seed_fit_rows({0.005: ([], [], [])}))
+    assert claims.verdict(claim, m) == "disagrees", m
+    # P.B.C. groups at two eps or more: a second row, decided by them alone
+    pbc = seed_fit_rows({0.0025: (["B"], [], []), 0.0225: ([], [], [])}, bc="pbc")
+    fbc_row, pbc_row = rows_of(seed_fit_rows({0.02: ([], ["B"], [])}) + pbc)
+    assert fbc_row.label == "F.B.C., Fig. 2's runs" and fbc_row.undecided
+    assert pbc_row.label == "P.B.C. realizations"
+    assert claims.verdict(claim, pbc_row) == "agrees", pbc_row
+    pbc = seed_fit_rows({0.0025: (["B"], [], []), 0.0225: ([], ["tau"], [])}, bc="pbc")
+    _, pbc_row = rows_of(pbc)
+    assert pbc_row.undecided.endswith("at eps = 0.0225: their spread's 95 % interval "
+                                      "straddles the limit")
+    # two groups at one eps (ten ageing streams, three constant-eps seeds): the larger decides
+    both = seed_fit_rows({0.01: (["B"], [], [])}, bc="pbc", realizations=10,
+                         group="ageing_pbc_eps0.01") + \
+        seed_fit_rows({0.01: ([], [], [])}, bc="pbc")
+    for order in (both, both[::-1]):
+        data = claims.ReportData(report().summary, {}, questions={"seed_fits": order})
+        picked = claims.realization_fits(data, "eq3", "pbc")[0.01]
+        assert {r["group"] for r in picked.values()} == {"ageing_pbc_eps0.01"}
+        assert len(picked) == 4
+
+
 def _ramp_levels_rows(shifts):
     """ramp_levels.csv rows: (level, branch, shift of <Phi^c> from 1000 to 4000 taps), each
     with batch-means errors of 1e-4."""

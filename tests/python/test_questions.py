@@ -642,3 +642,50 @@ def test_packing_scatter_measures_the_jackknife_against_realizations(tmp_path):
     # the report keeps one run's jackknife: k < 1 never shrinks an error
     data = claims.ReportData({}, {}, questions={"packing_scatter": rows})
     assert data.run_error("packing:nu") == (1.0, None)
+
+
+def test_seed_fits_fits_every_group_of_realizations_and_the_page_shows_it(tmp_path):
+    """seed-fits on realization-scatter's groups: one row per group, law and parameter, each
+    run's fit listed. Taps without any compaction (white noise about a constant) fix no B:
+    every group finds it undetermined, and the F.B.C. group's realizations overrule the
+    run's surrogates' "unique" (test_claims covers the other outcomes)."""
+    import numpy as np
+
+    pq = _paper_questions()
+    _scatter_campaign(tmp_path / "campaign", np.random.default_rng(5))
+    out = tmp_path / "questions"
+    pq.main(["seed-fits", "--campaign", str(tmp_path / "campaign"), "--out", str(out)])
+    rows = claims.read_scan(out / "seed_fits.csv")
+    groups = {r["group"]: r["realizations"] for r in rows}
+    assert groups == {"const_pbc_eps0.05": "4", "ageing_pbc_eps0.01": "6",
+                      "const_fbc_eps0.02": "3"}
+    assert len(rows) == 3 * 2 * 4          # groups x laws (eqs. 3, 4) x parameters
+    assert all(len(r["values"].split(";")) == int(r["realizations"]) for r in rows)
+    assert all(r["taps"] == "1200" and r["bc"] in ("pbc", "fbc") for r in rows)
+    for group in groups:
+        scales = [r["determined"] for r in rows if r["group"] == group and r["law"] == "eq3"
+                  and r["parameter"] in ("B", "tau")]
+        assert "0" in scales and "1" not in scales, (group, scales)
+    assert all(float(r["spread_low"]) <= float(r["spread"]) <= float(r["spread_high"])
+               for r in rows if np.isfinite(float(r["spread"])))
+    text = "\n".join(questions.render_section(out))
+    assert "``seed-fits``" in text and "tapmc.laws.RealizationFits" in text
+    assert "   * - const_fbc_eps0.02\n     - eq. 3\n     - 3\n     - 1200" in text
+    data = claims.ReportData({}, {}, questions={
+        "seed_fits": rows, "fit_surrogates": [
+            dict(r, source=f"const_fbc_eps{e}_s1", eps=str(e),
+                 determined="0" if e == 0.005 and r["parameter"] == "B" else "1")
+            for e in (0.005, 0.02) for r in _surrogate_rows_unique()]})
+    claim = {c.id: c for c in claims.load_register()}["eq3-triplet-range"]
+    fbc, pbc = claims.eq3_triplet_pattern(data, claim)
+    assert claims.verdict(claim, fbc) == "disagrees", fbc
+    assert pbc.label == "P.B.C. realizations" and claims.verdict(claim, pbc) == "disagrees"
+
+
+def _surrogate_rows_unique():
+    """fit_surrogates.csv rows of one run whose surrogates find eq. 3's triplet unique (the
+    test marks B undetermined at the smallest eps, as the campaign's run finds it)."""
+    return [{"law": "eq3", "taps": "1200", "parameter": k, "value": "0.5", "low": "0.4",
+             "high": "0.6", "half_width": "0.1", "log_scale": str(int(k in ("B", "tau"))),
+             "determined": "1", "range_p": "0.4", "fits": "200"}
+            for k in ("X_inf", "dX_inf", "B", "tau")]

@@ -63,7 +63,8 @@ __all__ = ["FitResult", "Law", "InverseLogLaw", "ZLaw", "TwoExponentials", "Agei
            "LogLinear", "ExponentialDependence", "exponential_dependence",
            "RealizationLawTest", "realization_bin_covariance", "hotelling_gls",
            "REALIZATION_MAX_BINS", "REALIZATION_P_MIN",
-           "SurrogateFits", "SURROGATES", "SURROGATE_P_MIN"]
+           "SurrogateFits", "SURROGATES", "SURROGATE_P_MIN", "RealizationFits",
+           "spread_interval", "spread_verdict"]
 
 #: |correlation| between two parameters above which they are reported as not separately
 #: determined (the data fix only a combination of them).
@@ -1766,3 +1767,205 @@ class SurrogateFits:
         return (f"<SurrogateFits of {type(self.law).__name__} over {self.used} surrogates: "
                 f"undetermined {undetermined or 'none'}; range dependent "
                 f"{self.range_dependent or 'none'}>")
+
+
+def spread_interval(values, level=0.95):
+    """(sd, low, high): the sample standard deviation of ``values`` (n >= 2, normal) and its
+    two-sided chi-square confidence interval at ``level`` (n - 1 dof)."""
+    values = as_1d("values", values)
+    if values.size < 2:
+        raise ValueError(f"{values.size} value(s): a spread needs at least 2")
+    if not 0.0 < level < 1.0:
+        raise ValueError(f"level = {level}: must be in (0, 1)")
+    dof = values.size - 1
+    tail = (1.0 - level) / 2.0
+    sd = float(np.std(values, ddof=1))
+    return (sd, sd * float(np.sqrt(dof / chi2_distribution.ppf(1.0 - tail, dof))),
+            sd * float(np.sqrt(dof / chi2_distribution.ppf(tail, dof))))
+
+
+def spread_verdict(low, high, limit):
+    """Is a spread with confidence interval (low, high) within ``limit``? True when all of
+    the interval is, False when none of it is, None when the data cannot tell."""
+    if low > limit:
+        return False
+    return True if high <= limit else None
+
+
+class RealizationFits:
+    """Do independent realizations fix a law's parameters, and do they depend on the range of
+    taps fitted? The question :class:`SurrogateFits` answers from one run (safely only for
+    "undetermined"), answered from a few realizations of the same process.
+
+    Every realization is fitted on its own (the law's :meth:`Law.fit`) over all taps and over
+    each tap range; B and tau are compared in ln, the amplitudes as they are.
+
+    * A parameter's *spread* is the sample standard deviation of its fitted values over the
+      realizations (for normal values half the 16-84 % width, the quantity
+      :class:`SurrogateFits` bounds). With few realizations it carries the chi-square interval
+      of ``level`` (n - 1 dof, :func:`spread_interval`): the parameter is *determined* (True,
+      :func:`spread_verdict`) when the upper end is at
+      most ln 2 (B, tau) or :data:`RELATIVE_ERROR_LIMIT` times |mean| (amplitudes),
+      *undetermined* (False) when the lower end exceeds that limit, and None (the
+      realizations cannot tell) in between. A realization whose fit is not finite, or not
+      positive for a parameter compared in ln, fixes nothing: spread infinite.
+    * A range *shifts* a parameter by the mean over realizations of (range fit - all-taps
+      fit), with its t interval (n - 1 dof). The parameter *depends on the range* when the
+      smallest two-sided t-test p over the ranges, times their number (Bonferroni), is below
+      ``p_min`` (:data:`SURROGATE_P_MIN`, the surrogates' level). ``range_bound``, the
+      largest |shift| + t sem, is shown, not used: a range that starts after the law's
+      curvature (T/10 to T) leaves tau free in every realization, so it bounds nothing even
+      where the law holds.
+    * ``unique`` (as :class:`SurrogateFits` defines it): True when every parameter is
+      determined and none range dependent, False when one is undetermined or range
+      dependent, None otherwise.
+
+    ``compute(t, curves)``: one row per realization (n >= 2), one column per tap of ``t``;
+    taps below ``t_min`` are left out. Results: ``values`` (name -> fitted values over the
+    realizations, comparison scale), ``mean`` (back in the parameter's units), ``spread``,
+    ``spread_low``, ``spread_high``, ``limit`` (comparison scale), ``determined``,
+    ``range_shift`` (name -> largest |shift|), ``range_bound`` (name -> largest
+    |shift| + t sem), ``range_p``, ``range_dependent`` (names), ``unique``, ``log_scale``,
+    ``realizations``, ``fitted_ranges``."""
+
+    def __init__(self, law, ranges=None, t_min=1.0, level=0.95, p_min=None):
+        if not isinstance(law, _TapsLaw) or not law._linear:
+            raise TypeError(f"law must be a law of the taps with (B, tau) (InverseLogLaw, ZLaw, "
+                            f"AgeingLaw), got {type(law).__name__}")
+        p_min = SURROGATE_P_MIN if p_min is None else p_min
+        if not 0.0 < level < 1.0:
+            raise ValueError(f"level = {level}: must be in (0, 1)")
+        if not 0.0 < p_min < 0.5:
+            raise ValueError(f"p_min = {p_min}: must be in (0, 0.5)")
+        if not t_min > 0:
+            raise ValueError(f"t_min = {t_min}: must be > 0")
+        self.law = law
+        self.ranges = None if ranges is None else [tuple(map(float, r)) for r in ranges]
+        self.t_min = float(t_min)
+        self.level = float(level)
+        self.p_min = float(p_min)
+        self._result = None
+
+    def _comparison(self, params):
+        """Fitted values in the comparison scale (ln for B and tau; nan where undefined)."""
+        out = []
+        for k in self.law.names:
+            v = float(params[k])
+            if k in self.law._nonlinear:
+                v = np.log(v) if np.isfinite(v) and v > 0 else np.nan
+            out.append(v if np.isfinite(v) else np.nan)
+        return np.array(out)
+
+    def compute(self, t, curves):
+        from scipy.stats import t as t_distribution
+
+        law = self.law
+        t = as_1d("t", t)
+        curves = np.asarray(curves, dtype=float)
+        if curves.ndim != 2 or curves.shape[1] != t.size:
+            raise ValueError(f"curves must have shape (realizations, {t.size}), got "
+                             f"{curves.shape}")
+        n = curves.shape[0]
+        if n < 2:
+            raise ValueError(f"{n} realization(s): a spread needs at least 2")
+        if not np.all(np.isfinite(curves)):
+            raise ValueError("curves must be finite at every tap")
+        keep = t >= self.t_min
+        t, curves = t[keep], curves[:, keep]
+        need = len(law.names) + 2
+        if t.size < need:
+            raise ValueError(f"{t.size} taps from t_min = {self.t_min:g}: a fit of "
+                             f"{len(law.names)} parameters needs at least {need}")
+        ranges = default_tap_ranges(t) if self.ranges is None else self.ranges
+        ranges = [r for r in ranges if not (r[0] <= t.min() and r[1] >= t.max())
+                  and ((t >= r[0]) & (t <= r[1])).sum() >= need]
+        fits = np.empty((n, 1 + len(ranges), len(law.names)))
+        for i, y in enumerate(curves):
+            fits[i, 0] = self._comparison(law.fit(t, y).params)
+            for j, (first, last) in enumerate(ranges):
+                inside = (t >= first) & (t <= last)
+                fits[i, j + 1] = self._comparison(law.fit(t[inside], y[inside]).params)
+        full = fits[:, 0, :]
+        dof = n - 1
+        tail = (1.0 - self.level) / 2.0
+        t_quantile = float(t_distribution.ppf(1.0 - tail, dof))
+        res = {key: {} for key in ("values", "mean", "spread", "spread_low", "spread_high",
+                                   "limit", "determined", "range_shift", "range_bound",
+                                   "range_p")}
+        for i, k in enumerate(law.names):
+            log = k in law._nonlinear
+            v = full[:, i]
+            finite = bool(np.all(np.isfinite(v)))
+            mean = float(np.mean(v)) if finite else np.nan
+            limit = np.log(2.0) if log else (RELATIVE_ERROR_LIMIT * abs(mean) if finite
+                                             else np.nan)
+            if finite:
+                spread, low, high = spread_interval(v, self.level)
+                determined = spread_verdict(low, high, limit)
+            else:
+                spread, low, high, determined = np.inf, np.inf, np.inf, False
+            shifts, bounds, ps = [], [], []
+            for j in range(len(ranges)):
+                d = fits[:, j + 1, i] - full[:, i]
+                if not np.all(np.isfinite(d)):
+                    shifts.append(np.inf)
+                    bounds.append(np.inf)
+                    continue
+                m, sem = float(np.mean(d)), float(np.std(d, ddof=1) / np.sqrt(n))
+                shifts.append(abs(m))
+                bounds.append(abs(m) + t_quantile * sem)
+                if sem > 0:
+                    ps.append(2.0 * float(t_distribution.sf(abs(m) / sem, dof)))
+                else:
+                    ps.append(0.0 if m != 0 else 1.0)
+            res["values"][k] = v
+            res["mean"][k] = float(np.exp(mean)) if log else mean
+            res["spread"][k] = spread
+            res["spread_low"][k] = float(low)
+            res["spread_high"][k] = float(high)
+            res["limit"][k] = float(limit)
+            res["determined"][k] = determined
+            res["range_shift"][k] = float(max(shifts)) if shifts else np.nan
+            res["range_bound"][k] = float(max(bounds)) if bounds else np.nan
+            res["range_p"][k] = (float(min(1.0, len(ranges) * min(ps))) if ps else np.nan)
+        self._result = dict(res, log_scale={k: k in law._nonlinear for k in law.names},
+                            realizations=n, ranges=list(ranges))
+        return self
+
+    def _get(self, key):
+        if self._result is None:
+            raise RuntimeError("call compute(t, curves) first")
+        return self._result[key]
+
+    values = property(lambda self: self._get("values"))
+    mean = property(lambda self: self._get("mean"))
+    spread = property(lambda self: self._get("spread"))
+    spread_low = property(lambda self: self._get("spread_low"))
+    spread_high = property(lambda self: self._get("spread_high"))
+    limit = property(lambda self: self._get("limit"))
+    determined = property(lambda self: self._get("determined"))
+    range_shift = property(lambda self: self._get("range_shift"))
+    range_bound = property(lambda self: self._get("range_bound"))
+    range_p = property(lambda self: self._get("range_p"))
+    log_scale = property(lambda self: self._get("log_scale"))
+    realizations = property(lambda self: self._get("realizations"))
+    fitted_ranges = property(lambda self: self._get("ranges"))
+
+    @property
+    def range_dependent(self):
+        return [k for k, p in self.range_p.items() if np.isfinite(p) and p < self.p_min]
+
+    @property
+    def unique(self):
+        if any(d is False for d in self.determined.values()) or self.range_dependent:
+            return False
+        return True if all(d is True for d in self.determined.values()) else None
+
+    def __repr__(self):
+        if self._result is None:
+            return f"<RealizationFits of {type(self.law).__name__}: not computed>"
+        states = {True: "determined", False: "undetermined", None: "cannot tell"}
+        text = ", ".join(f"{k} {states[d]}" for k, d in self.determined.items())
+        return (f"<RealizationFits of {type(self.law).__name__} over {self.realizations} "
+                f"realizations: {text}; range dependent {self.range_dependent or 'none'}; "
+                f"unique {self.unique}>")

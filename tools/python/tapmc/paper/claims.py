@@ -225,10 +225,11 @@ class FigureData:
 #: decide claims of one-run campaigns: depositions at t = 0 (initial-packing), P0 over several
 #: configurations (p0-configs), the first taps from the paper's F.B.C. start (lateral-first-tap),
 #: realizations of the first taps (early-taps), one run's surrogate fits (fit-surrogates), the
-#: ramp's levels continued (ramp-levels) and nu at its level ends (ramp-pores)
+#: fits of whole runs over realizations (seed-fits), the ramp's levels continued (ramp-levels)
+#: and nu at its level ends (ramp-pores)
 QUESTION_CSVS = ("initial_packing", "p0_configs", "lateral_first_tap", "early_taps",
                  "fit_surrogates", "ramp_levels", "ramp_pores", "realization_scatter",
-                 "packing_scatter")
+                 "packing_scatter", "seed_fits")
 
 
 class ReportData:
@@ -829,24 +830,123 @@ SURROGATES_UNIQUE = ("one run's surrogates show an upper bound of how well the t
                      "fixed: 'unique' needs realizations")
 
 
-def _triplet_from_surrogates(rows):
-    """The pattern from one run per eps (fit_surrogates.csv): "not unique" is safe (the
-    surrogates' bands are too narrow, never too wide), "unique" is not."""
-    states = [(e, *_surrogate_uniqueness(p, EQ3_TRIPLET)) for e, p in rows.items()]
-    shown = "; ".join(f"eps = {e:g}: {why}" for e, _, why in states) + \
-        " (one run per eps, Fourier surrogates of its residuals: fit_surrogates.csv)"
-    if not any(u for _, u, _ in states):
-        # not unique at any eps, larger ones included: the contrast the paper draws is absent
+def realization_fits(data, law, bc):
+    """eps -> {parameter: row} of seed_fits.csv (bench/paper_questions.py seed-fits: whole runs
+    fitted over realizations, tapmc.laws.RealizationFits) for ``law`` ('eq3', 'eq4') and
+    boundary condition ``bc``; at an eps with several groups, the one of most realizations."""
+    out = {}
+    for r in data.question("seed_fits"):
+        if r["law"] != law or r["bc"] != bc:
+            continue
+        group = out.setdefault(float(r["eps"]), {})
+        if group and int(next(iter(group.values()))["realizations"]) > int(r["realizations"]):
+            continue
+        if group and next(iter(group.values()))["group"] != r["group"]:
+            group.clear()
+        group[r["parameter"]] = r
+    return dict(sorted(out.items()))
+
+
+def _realization_uniqueness(params, names):
+    """(unique: True, False or None, reason) of the triplet ``names`` from one group's
+    seed_fits rows: the spread over realizations decides "determined" both ways (its
+    chi-square interval), a paired t-test over the ranges "range dependent"."""
+    from tapmc.laws import SURROGATE_P_MIN
+
+    def spread(k):
+        r = params[k]
+        unit = "ln " if r["log_scale"] == "1" else ""
+        return (f"sd of {unit}{k} {float(r['spread']):.2g} (95 %: {float(r['spread_low']):.2g} "
+                f"to {float(r['spread_high']):.2g}; limit {float(r['limit']):.2g})")
+
+    undetermined = [k for k in names if params[k]["determined"] == "0"]
+    open_ = [k for k in names if params[k]["determined"] == ""]
+    dependent = [k for k in names if float(params[k]["range_p"]) < SURROGATE_P_MIN]
+    n = params[names[0]]["realizations"]
+    reasons = ([f"{', '.join(undetermined)} undetermined ({'; '.join(map(spread, undetermined))})"]
+               if undetermined else []) + \
+        ([f"{', '.join(dependent)} range dependent"] if dependent else [])
+    if reasons:
+        return False, f"{n} realizations: " + "; ".join(reasons)
+    if open_:
+        return None, (f"{n} realizations cannot tell whether {', '.join(open_)} "
+                      f"{'is' if len(open_) == 1 else 'are'} fixed "
+                      f"({'; '.join(map(spread, open_))})")
+    return True, f"{n} realizations: unique"
+
+
+def _triplet_pattern(states, shown):
+    """The pattern over ``states`` [(eps, unique: True/False/None, reason)], by eps: holds
+    (1) when the smallest eps is not unique and a larger one is, contradicted (0) when the
+    smallest is unique or none is, undecided otherwise."""
+    first = states[0][1]
+    if first is True or all(u is False for _, u, _ in states):
         return [Measure(0.0, shown=shown)]
-    return [Measure(undecided=SURROGATES_UNIQUE, shown=shown)]
+    if first is False and any(u is True for _, u, _ in states[1:]):
+        return [Measure(1.0, shown=shown)]
+    return None
+
+
+def _triplet_from_surrogates(rows, realized=None):
+    """The pattern from one run per eps (fit_surrogates.csv): "not unique" is safe (the
+    surrogates' bands are too narrow, never too wide), "unique" is not. Where realizations
+    of whole runs (``realized``: seed_fits rows by eps) decide, they replace the run's
+    verdict; where they cannot tell, a run's "not unique" still decides."""
+    realized = realized or {}
+    states = []
+    for e in sorted(set(rows) | set(realized)):
+        one = _surrogate_uniqueness(rows[e], EQ3_TRIPLET) if e in rows else None
+        many = _realization_uniqueness(realized[e], EQ3_TRIPLET) if e in realized else None
+        if many is not None and (many[0] is not None or one is None or one[0]):
+            unique = many[0]
+            why = many[1] + (f" (the run's surrogates: {one[1]})" if one else "")
+        else:
+            unique = False if not one[0] else None
+            why = one[1] + (f" ({many[1]})" if many else "")
+        states.append((e, unique, why))
+    shown = "; ".join(f"eps = {e:g}: {why}" for e, _, why in states) + \
+        " (one run per eps, Fourier surrogates of its residuals: fit_surrogates.csv" + \
+        ("; realizations of whole runs: seed_fits.csv)" if realized else ")")
+    decided = _triplet_pattern(states, shown)
+    if decided is not None:
+        return decided
+    unsure = [e for e, u, _ in states if u is None]
+    if all(e not in realized for e in unsure):
+        return [Measure(undecided=SURROGATES_UNIQUE, shown=shown)]
+    return [Measure(undecided=_REALIZATIONS_UNSURE.format(", ".join(f"{e:g}" for e in unsure)),
+                    shown=shown)]
+
+
+#: why realizations of whole runs leave the pattern open (they decide "fixed" both ways)
+_REALIZATIONS_UNSURE = ("the realizations cannot tell whether the triplet is fixed at eps = {}: "
+                        "their spread's 95 % interval straddles the limit")
+
+
+def _triplet_from_realizations(realized, label):
+    """The pattern from realizations of whole runs alone (seed_fits.csv rows by eps)."""
+    states = [(e, *_realization_uniqueness(p, EQ3_TRIPLET)) for e, p in realized.items()]
+    shown = "; ".join(f"eps = {e:g}: {why}" for e, _, why in states) + \
+        " (realizations of whole runs: seed_fits.csv)"
+    decided = _triplet_pattern(states, shown)
+    if decided is not None:
+        return [Measure(decided[0].value, label=label, shown=shown)]
+    unsure = ", ".join(f"{e:g}" for e, u, _ in states if u is None)
+    return [Measure(undecided=_REALIZATIONS_UNSURE.format(unsure), label=label, shown=shown)]
 
 
 def eq3_triplet_pattern(data, claim):
     """Section III.B: the triplet is not unique at the smallest eps and unique at some larger
-    eps (1), or not (0)."""
+    eps (1), or not (0). Fig. 2's F.B.C. runs (their surrogates, and realizations of whole
+    runs where the campaign has them); a second row from the P.B.C. groups of realizations
+    when there are two eps or more."""
     rows = surrogate_fits(data, "eq3")
     if len(rows) >= 2:
-        return _triplet_from_surrogates(rows)
+        out = _triplet_from_surrogates(rows, realization_fits(data, "eq3", "fbc"))
+        pbc = realization_fits(data, "eq3", "pbc")
+        if len(pbc) >= 2:
+            out = [dataclasses.replace(out[0], label="F.B.C., Fig. 2's runs")] + \
+                _triplet_from_realizations(pbc, "P.B.C. realizations")
+        return out
     fig = data.figure("fig2")
     if fig is None:
         return _missing("no Fig. 2 runs")
