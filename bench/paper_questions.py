@@ -79,7 +79,8 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
   fit-surrogates
               Does one 4000-tap run fix the triplet (X_inf, B, tau) of eq. 3 (and eq. 4's
               parameters), and do they depend on the range of taps fitted (section III.B)?
-              Per finished F.B.C. constant-eps run of the campaign: tapmc.laws.SurrogateFits
+              Per finished F.B.C. constant-eps run of the campaign (every seed; the claims
+              read the first of each eps): tapmc.laws.SurrogateFits
               (Fourier surrogates of the run's residuals, --surrogates, default 200; no
               simulation). And, from early_taps.csv, the spread of the same fits over the
               independent realizations of the first 400 taps.
@@ -1134,16 +1135,18 @@ def _law(name):
 
 
 def fit_surrogates(args):
-    """Per finished F.B.C. constant-eps run of the campaign and law of Fig. 2: how well the
-    run fixes each parameter and whether it depends on the tap range (tapmc.laws.SurrogateFits,
-    from tap 1 as Fig. 2 is drawn); and, from early_taps.csv, the spread of the same fit over
-    independent realizations of the first taps (sample 16-84 % of the fitted values)."""
+    """Per finished F.B.C. constant-eps run of the campaign (every seed: the claims read the
+    first, the others show how the surrogates' verdict varies between realizations) and law
+    of Fig. 2: how well the run fixes each parameter and whether it depends on the tap range
+    (tapmc.laws.SurrogateFits, from tap 1 as Fig. 2 is drawn); and, from early_taps.csv, the
+    spread of the same fit over independent realizations of the first taps (sample 16-84 % of
+    the fitted values)."""
     from tapmc.laws import RELATIVE_ERROR_LIMIT, SurrogateFits
 
     header = ["source", "eps", "law", "taps", "parameter", "value", "low", "high",
               "half_width", "log_scale", "determined", "range_p", "fits"]
     rows = []
-    for run_dir in sorted(Path(args.campaign, "runs").glob("const_fbc_eps*_s1")):
+    for run_dir in sorted(Path(args.campaign, "runs").glob("const_fbc_eps*_s*")):
         if not (run_dir / "DONE.json").is_file():
             continue
         eps = float(run_dir.name.split("_eps")[1].split("_s")[0])

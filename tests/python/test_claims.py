@@ -556,8 +556,9 @@ CONTROLS = {
                           report(fig4=fig4(BELL, down=0.58 + 0.1 * X))),
     "alpha_ramp_hysteresis": (report(fig6=fig6_ramp(0.0)), report(fig6=fig6_ramp(0.001))),
     "alpha_bell": (report(fig6=Table().add("b", "bell:alpha", X, 0.004 - 0.1 * (X - 0.15) ** 2,
-                                          0.0002)),
-                   report(fig6=Table().add("b", "bell:alpha", X, 0.001 + 0.01 * X, 0.0002))),
+                                          0.0002), fig4=fig4(BELL)),
+                   report(fig6=Table().add("b", "bell:alpha", X, 0.001 + 0.01 * X, 0.0002),
+                          fig4=fig4(BELL))),
     "final_alpha": (report(fig6=Table().param("final:alpha", 0.002, 0.0002)),
                     report(fig6=Table().param("final:alpha", -0.002, 0.0002))),
     "central_minus_lateral": (report(fig8=fig8(0.01, 0.02)), report(fig8=fig8(0.02, 0.01))),
@@ -575,6 +576,36 @@ CONTROLS = {
     "nu_tail_over_nu": (report(fig10=fig10()), report(fig10=fig10(tail_ratio=1.5))),
     "nu_change": (report(fig10=fig10()), report(fig10=fig10(nu=(0.10, 0.12)))),
 }
+
+
+def test_alpha_bell_reads_the_steady_states_maximum_too():
+    """The gradient's bell, two readings: about alpha's own largest value, and "the same kind
+    of bell as the steady states" (falling above Fig. 4's maximum). An alpha that peaks late
+    (a tent at the steady states' maximum + 0.225) agrees with the first and contradicts the
+    second; without Fig. 4 the second row is not there."""
+    claim = BY_ID["gradient-bell"]
+    wide = np.round(np.arange(0.05, 0.49, 0.025), 4)   # the paper's range and beyond
+    late = Table().add("b", "bell:alpha", wide, 0.004 - 0.02 * abs(wide - 0.375), 0.0001)
+    own, steady = claims.alpha_bell(report(fig6=late, fig4=fig4(BELL)), claim)
+    assert own.label == "about its own largest value"
+    assert claims.verdict(claim, own) == "agrees", own
+    assert steady.label == claims.ALPHA_ABOVE_STEADY
+    assert claims.verdict(claim, steady) == "disagrees", steady
+    # Fig. 4's parabola vertex, 0.15, sets where "above" starts
+    assert "sqrt(eps) >= 0.15 (Fig. 4's maximum)" in steady.text()
+    (alone,) = claims.alpha_bell(report(fig6=late), claim)
+    assert alone.label == "" and claims.verdict(claim, alone) == "agrees"
+    # alpha rising over the whole range: its own side above is missing (undecided), the
+    # steady states' reading decides
+    rising = Table().add("b", "bell:alpha", X, 0.001 + 0.01 * X, 0.0002)
+    own, steady = claims.alpha_bell(report(fig6=rising, fig4=fig4(BELL)), claim)
+    assert own.undecided.startswith("fewer than three alphas above the largest")
+    assert claims.verdict(claim, steady) == "disagrees"
+    # fewer than three alphas above the steady states' maximum: undecided
+    few = Table().add("b", "bell:alpha", X[:6], 0.001 + 0.01 * X[:6], 0.0002)
+    _, steady = claims.alpha_bell(report(fig6=few, fig4=fig4(BELL)), claim)
+    assert steady.undecided.startswith("fewer than three alphas above the steady states' "
+                                       "maximum")
 
 
 def _outcomes(claim, data):
@@ -1296,6 +1327,14 @@ def test_realizations_of_whole_runs_decide_the_triplet_both_ways():
     # the run's surrogates alone: "unique" at 0.02 is only an upper bound
     (m,) = rows_of([])
     assert m.undecided == claims.SURROGATES_UNIQUE
+    # other seeds' surrogates are shown on the page, not read: the first seed is the run of
+    # the paper's protocol, whichever order the rows come in
+    other = [dict(r, source=r["source"].replace("_s1", "_s12"), determined="0")
+             for r in runs if r["eps"] == "0.02"]
+    for rows in (runs + other, other + runs):
+        data = claims.ReportData(report().summary, {}, questions={"fit_surrogates": rows})
+        picked = claims.surrogate_fits(data, "eq3")[0.02]
+        assert {r["source"] for r in picked.values()} == {"const_fbc_eps0.02_s1"}
     # three realizations at 0.02 find B undetermined: no eps is unique
     (m,) = rows_of(seed_fit_rows({0.02: (["B"], [], [])}))
     assert claims.verdict(claim, m) == "disagrees", m

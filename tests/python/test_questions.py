@@ -682,6 +682,34 @@ def test_seed_fits_fits_every_group_of_realizations_and_the_page_shows_it(tmp_pa
     assert pbc.label == "P.B.C. realizations" and claims.verdict(claim, pbc) == "disagrees"
 
 
+def test_surrogates_of_several_seeds_are_set_against_the_realizations(tmp_path):
+    """fit_surrogates.csv with three runs of one eps and seed_fits.csv with their group: the
+    page lists each run and compares its half width of ln B with the realizations' spread."""
+    header = ("source,eps,law,taps,parameter,value,low,high,half_width,log_scale,determined,"
+              "range_p,fits")
+    lines = [header]
+    for seed, half, det in ((1, 0.4, 1), (2, 0.76, 0), (3, 0.5, 1)):
+        lines.append(f"const_fbc_eps0.02_s{seed},0.02,eq3,4000,B,0.3,0.2,0.45,{half},1,{det},"
+                     "0.5,200")
+    (tmp_path / "fit_surrogates.csv").write_text("\n".join(lines) + "\n")
+    seed_rows = _seed_fit_csv_row(spread=1.5, low=0.8, high=9.4)
+    (tmp_path / "seed_fits.csv").write_text(seed_rows)
+    text = "\n".join(questions.render_section(tmp_path))
+    assert "   * - campaign run s2\n     - 0.02" in text
+    assert ("At eps = 0.02, 3 runs: their surrogates give ln B (eq. 3) half widths of 0.4 (s1), "
+            "0.76 (s2, undetermined), 0.5 (s3), against a spread over the 3 realizations "
+            "(seed-fits) of 1.5 (95 %: 0.8 to 9.4): the surrogates' verdict on B differs "
+            "between the runs; every run's half width is below the realizations' spread.") in text
+    assert "``seed-fits``" in text
+
+
+def _seed_fit_csv_row(spread, low, high):
+    head = ("group,bc,eps,law,taps,realizations,parameter,values,mean,spread,spread_low,"
+            "spread_high,limit,log_scale,determined,range_shift,range_bound,range_p")
+    return (f"{head}\nconst_fbc_eps0.02,fbc,0.02,eq3,4000,3,B,-1;0;1,0.3,{spread},{low},{high},"
+            "0.693,1,0,0.5,3,0.4\n")
+
+
 def _surrogate_rows_unique():
     """fit_surrogates.csv rows of one run whose surrogates find eq. 3's triplet unique (the
     test marks B undetermined at the smallest eps, as the campaign's run finds it)."""

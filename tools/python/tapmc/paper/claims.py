@@ -803,12 +803,23 @@ def _one_run_fig2(fig):
     return bool(series) and max(np.nanmax(fig.get("a", name)[3]) for _, name in series) < 2
 
 
+def _run_seed(name):
+    """The seed of a campaign run's folder name (``..._s<seed>``)."""
+    return int(name.rsplit("_s", 1)[1])
+
+
 def surrogate_fits(data, law):
-    """eps -> {parameter: row} of fit_surrogates.csv for the campaign's runs (not the
-    realizations' rows) and ``law`` ('eq3', 'eq4')."""
-    out = {}
+    """eps -> {parameter: row} of fit_surrogates.csv for ``law`` ('eq3', 'eq4') and the
+    campaign's run of the paper's protocol at each eps: the first seed (the other seeds'
+    rows, and the realizations of the first taps, are shown beside it, not read here)."""
+    first = {}
     for r in data.question("fit_surrogates"):
         if r["source"] != "realizations" and r["law"] == law:
+            e = float(r["eps"])
+            first[e] = min(first.get(e, r["source"]), r["source"], key=_run_seed)
+    out = {}
+    for r in data.question("fit_surrogates"):
+        if r["law"] == law and first.get(float(r["eps"])) == r["source"]:
             out.setdefault(float(r["eps"]), {})[r["parameter"]] = r
     return dict(sorted(out.items()))
 
@@ -1544,15 +1555,44 @@ def alpha_bell(data, claim):
     x, y, s, n = bell
     i = int(np.nanargmax(y))
     sides = [_side_slope(x, y, s, i, side, "alphas") for side in ("below", "above")]
-    for m in sides:
-        if m.undecided:
-            m.label = ""
-            return [m]
-    # one row for the claim: the side that supports the bell less (its slope in units of its
-    # error, signed so that the bell's direction is positive) decides
-    weaker = min(sides, key=lambda m: m.sign * m.value / m.err)
-    shown = "; ".join(f"{m.label}: {m.text()}" for m in sides)
-    return [Measure(weaker.sign * weaker.value, weaker.err, weaker.dof, shown=shown)]
+    own = next((m for m in sides if m.undecided), None)
+    if own is None:
+        # the side that supports the bell less (its slope in units of its error, signed so
+        # that the bell's direction is positive) decides
+        weaker = min(sides, key=lambda m: m.sign * m.value / m.err)
+        own = Measure(weaker.sign * weaker.value, weaker.err, weaker.dof,
+                      shown="; ".join(f"{m.label}: {m.text()}" for m in sides))
+    own.label = ""
+    steady = _alpha_above_steady_maximum(data, x, y, s)
+    if steady is None:
+        return [own]
+    own.label = "about its own largest value"
+    return [own, steady]
+
+
+#: the row of the gradient's bell read as "the same kind of bell as the steady states"
+ALPHA_ABOVE_STEADY = "above the steady states' maximum"
+
+
+def _alpha_above_steady_maximum(data, x, y, s):
+    """The paper's "approximately the same kind of bell shape dependence as the other
+    steady-state values" read literally: above the steady states' maximum (Fig. 4's parabola
+    vertex, or its largest point when that is undecided) alpha falls as they do. A weighted
+    straight line through the alphas there, its slope negated (falling is positive). None
+    without Fig. 4."""
+    if _steady(data) is None:
+        return None
+    top = float(bell_maximum(data, None)[0].value)
+    pick = x >= top
+    if pick.sum() < 3:
+        return Measure(undecided=f"fewer than three alphas above the steady states' maximum "
+                                 f"(sqrt(eps) = {top:.3g})", label=ALPHA_ABOVE_STEADY)
+    slope, err, dof = _weighted_line(x[pick], y[pick], s[pick])
+    if not np.isfinite(slope):
+        return Measure(undecided="no error bars on the alphas", label=ALPHA_ABOVE_STEADY)
+    return Measure(-slope, err, dof, label=ALPHA_ABOVE_STEADY,
+                   shown=f"slope {fmt(slope, err)} through the {int(pick.sum())} alphas at "
+                         f"sqrt(eps) >= {top:.3g} (Fig. 4's maximum)")
 
 
 def _paired_levels(a, b):

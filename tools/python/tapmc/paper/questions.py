@@ -344,7 +344,7 @@ def _early_taps(path):
                     "in the claims' table.", ""]
 
 
-def _fit_surrogates(path):
+def _fit_surrogates(path, seed_rows=None):
     rows = _read(path)
     if not rows:
         return []
@@ -378,7 +378,9 @@ def _fit_surrogates(path):
                          f"({float(r['low']):.3g} to {float(r['high']):.3g}"
                          f"{'' if r['determined'] == '1' else ', undetermined'}"
                          f"{'' if p == 'nan' else f', range p {float(p):.2g}'})")
-        lines += [f"   * - {'realizations' if source == 'realizations' else 'campaign run'}",
+        name = "realizations" if source == "realizations" else \
+            f"campaign run {source.rsplit('_', 1)[1]}"
+        lines += [f"   * - {name}",
                   f"     - {eps:g}", f"     - {law.replace('eq', 'eq. ')}", f"     - {taps}",
                   f"     - {fits}", f"     - {'; '.join(cells)}"]
     b_rows = [(key, r) for key, group in groups.items() for r in group
@@ -390,7 +392,42 @@ def _fit_surrogates(path):
               f"Eq. 3's B is undetermined in {sum(r['determined'] != '1' for r in runs)} of "
               f"{len(runs)} campaign runs and at {sum(r['determined'] != '1' for r in realized)}"
               f" of {len(realized)} eps over the realizations of the first taps."]
-    return lines + [""]
+    return lines + _surrogates_against_seeds(b_rows, seed_rows or []) + [""]
+
+
+def _surrogates_against_seeds(b_rows, seed_rows):
+    """Where several seeds of one eps were fitted with surrogates and seed-fits has their
+    group: each run's half width of ln B (eq. 3) against the realizations' sd of ln B, the
+    quantity it estimates (the calibration of tests/python/test_slow_surrogate_fits.py, on the
+    campaign's own runs)."""
+    runs = defaultdict(list)
+    for key, r in b_rows:
+        if not key[0]:
+            runs[key[2]].append(r)
+    spread = {float(r["eps"]): r for r in seed_rows
+              if r["law"] == "eq3" and r["parameter"] == "B" and r["bc"] == "fbc"}
+    out = []
+    for eps, rows in sorted(runs.items()):
+        if len(rows) < 2 or eps not in spread:
+            continue
+        sd = spread[eps]
+        each = ", ".join(f"{float(r['half_width']):.2g} ({r['source'].rsplit('_', 1)[1]}"
+                         f"{'' if r['determined'] == '1' else ', undetermined'})"
+                         for r in sorted(rows, key=lambda r: r["source"]))
+        halves = [float(r["half_width"]) for r in rows]
+        verdicts = {r["determined"] == "1" for r in rows}
+        low, high = float(sd["spread_low"]), float(sd["spread_high"])
+        found = (["the surrogates' verdict on B differs between the runs"]
+                 if len(verdicts) > 1 else []) + \
+            (["every run's half width is below the realizations' spread"]
+             if max(halves) < low else []) + \
+            (["every run's half width is within the realizations' spread"]
+             if low <= min(halves) and max(halves) <= high else [])
+        out.append(f"At eps = {eps:g}, {len(rows)} runs: their surrogates give ln B (eq. 3) "
+                   f"half widths of {each}, against a spread over the {sd['realizations']} "
+                   f"realizations (seed-fits) of {float(sd['spread']):.2g} (95 %: "
+                   f"{low:.2g} to {high:.2g})" + (f": {'; '.join(found)}." if found else "."))
+    return ["", " ".join(out)] if out else []
 
 
 def _seed_fits(path):
@@ -1259,7 +1296,9 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
     if (folder / "early_taps.csv").is_file():
         parts += _early_taps(folder / "early_taps.csv")
     if (folder / "fit_surrogates.csv").is_file():
-        parts += _fit_surrogates(folder / "fit_surrogates.csv")
+        parts += _fit_surrogates(folder / "fit_surrogates.csv",
+                                 _read(folder / "seed_fits.csv")
+                                 if (folder / "seed_fits.csv").is_file() else [])
     if (folder / "seed_fits.csv").is_file():
         parts += _seed_fits(folder / "seed_fits.csv")
     if (folder / "initial_packing.csv").is_file():
