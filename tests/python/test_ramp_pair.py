@@ -320,8 +320,20 @@ def test_plan_tier5_adds_fbc_seeds_that_group_with_tier2s_fbc_run():
         assert dict(spec.variables) == dict(seed1.variables) and spec.taps == seed1.taps
     everything = [s.name for s in plan.runs(5)]
     assert everything == [s.name for s in plan.runs(4)] + [s.name for s in tier5]
-    with pytest.raises(ValueError, match="tier = 6"):
-        plan.runs(6)
+
+
+def test_plan_tier6_adds_fbc_seeds_at_the_profiles_eps():
+    """Tier 6: seeds 2 and 3 of tier 1's F.B.C. run at eps = 0.1 (Figs. 6-7), the same run
+    but its seed; tiers 1 to 5 unchanged, and no tier beyond."""
+    tier6 = plan.tier_runs(6)
+    assert [s.name for s in tier6] == ["const_fbc_eps0.1_s2", "const_fbc_eps0.1_s3"]
+    (seed1,) = [s for s in plan.tier_runs(1) if s.name == "const_fbc_eps0.1_s1"]
+    for spec in tier6:
+        assert dict(spec.variables) == dict(seed1.variables) and spec.taps == seed1.taps
+    everything = [s.name for s in plan.runs(6)]
+    assert everything == [s.name for s in plan.runs(5)] + [s.name for s in tier6]
+    with pytest.raises(ValueError, match="tier = 7"):
+        plan.runs(7)
 
 
 def test_fig4_errors_survive_a_chance_agreement_of_the_seeds(tmp_path):

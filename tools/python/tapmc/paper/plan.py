@@ -27,7 +27,11 @@ runs come in tiers; each tier completes figures on its own:
 5. the F.B.C. realizations: seeds 2 and 3 at ``TIER5_FBC_EPS`` = 0.02 (Fig. 8's and Fig. 10's
    eps, the cheapest F.B.C. run), so that the spread of F.B.C. realizations is measured
    (``bench/paper_questions.py realization-scatter``) instead of borrowed from the P.B.C.
-   groups of tier 2 and the ageing runs: the F.B.C. figures (2, 6, 8) have one run per eps.
+   groups of tier 2 and the ageing runs: the F.B.C. figures (2, 6, 8) have one run per eps;
+6. seeds 2 and 3 at ``TIER6_FBC_EPS`` = 0.1, the eps of Figs. 6-7 and Fig. 8's strongest: the
+   F.B.C. profiles, alpha and zones of the paper's central eps over realizations, and a
+   second F.B.C. group for the factors of realization-scatter and packing-scatter (about
+   1.5 core-hours each).
 
 Within a tier the runs that settle the report's open questions first come first. Runs carry
 the names of the figure modules' runs (:mod:`tapmc.paper._runs`), so the figures find them.
@@ -62,12 +66,15 @@ TIER4_SEEDS = (1, 2)
 #: Tier 5: the F.B.C. eps and seeds that join tier 2's seed 1 in a group of realizations.
 TIER5_FBC_EPS = (0.02,)
 TIER5_FBC_SEEDS = (2, 3)
+#: Tier 6: the same for the F.B.C. run of Figs. 6-7 (eps = 0.1, tier 1's seed 1).
+TIER6_FBC_EPS = (0.1,)
+TIER6_FBC_SEEDS = (2, 3)
 
-TIERS = (1, 2, 3, 4, 5)
+TIERS = (1, 2, 3, 4, 5, 6)
 
 
 def tier_runs(tier, scale=FULL):
-    """The RunSpecs of one tier (1 to 5), in running order."""
+    """The RunSpecs of one tier (1 to 6), in running order."""
     if tier == 1:
         pbc = [_runs.constant_eps_run(scale, "pbc", eps, 1) for eps in TIER1_PBC_EPS]
         fbc = [_runs.constant_eps_run(scale, "fbc", eps, 1) for eps in TIER1_FBC_EPS]
@@ -98,6 +105,9 @@ def tier_runs(tier, scale=FULL):
     if tier == 5:
         return [_runs.constant_eps_run(scale, "fbc", eps, s)
                 for s in TIER5_FBC_SEEDS for eps in TIER5_FBC_EPS]
+    if tier == 6:
+        return [_runs.constant_eps_run(scale, "fbc", eps, s)
+                for s in TIER6_FBC_SEEDS for eps in TIER6_FBC_EPS]
     raise ValueError(f"tier = {tier!r}: allowed values are {', '.join(map(str, TIERS))}")
 
 
