@@ -309,31 +309,21 @@ def test_plan_tier4_completes_ageing_then_the_ramp_pair_and_tiers_1_to_3_unchang
     assert len(everything) == len(set(everything))
 
 
-def test_plan_tier5_adds_fbc_seeds_that_group_with_tier2s_fbc_run():
-    """Tier 5: seeds 2 and 3 of the F.B.C. run at eps = 0.02 that tier 2 runs with seed 1, the
-    same run but its seed, so that realization-scatter finds a group of three F.B.C.
-    realizations; tiers 1 to 4 unchanged."""
-    tier5 = plan.tier_runs(5)
-    assert [s.name for s in tier5] == ["const_fbc_eps0.02_s2", "const_fbc_eps0.02_s3"]
-    (seed1,) = [s for s in plan.tier_runs(2) if s.name == "const_fbc_eps0.02_s1"]
-    for spec in tier5:
+@pytest.mark.parametrize("tier, eps, seed1_tier", [(5, "0.02", 2), (6, "0.1", 1)])
+def test_plan_fbc_tiers_add_seeds_that_group_with_seed_1(tier, eps, seed1_tier):
+    """Tiers 5 and 6: seeds 2 and 3 of an F.B.C. constant-eps run whose seed 1 an earlier tier
+    runs (Fig. 8's eps = 0.02, Figs. 6-7's eps = 0.1), the same run but its seed, so that
+    realization-scatter finds a group of three F.B.C. realizations; the tiers before unchanged,
+    and none beyond the last."""
+    added = plan.tier_runs(tier)
+    assert [s.name for s in added] == [f"const_fbc_eps{eps}_s2", f"const_fbc_eps{eps}_s3"]
+    (seed1,) = [s for s in plan.tier_runs(seed1_tier) if s.name == f"const_fbc_eps{eps}_s1"]
+    for spec in added:
         assert dict(spec.variables) == dict(seed1.variables) and spec.taps == seed1.taps
-    everything = [s.name for s in plan.runs(5)]
-    assert everything == [s.name for s in plan.runs(4)] + [s.name for s in tier5]
-
-
-def test_plan_tier6_adds_fbc_seeds_at_the_profiles_eps():
-    """Tier 6: seeds 2 and 3 of tier 1's F.B.C. run at eps = 0.1 (Figs. 6-7), the same run
-    but its seed; tiers 1 to 5 unchanged, and no tier beyond."""
-    tier6 = plan.tier_runs(6)
-    assert [s.name for s in tier6] == ["const_fbc_eps0.1_s2", "const_fbc_eps0.1_s3"]
-    (seed1,) = [s for s in plan.tier_runs(1) if s.name == "const_fbc_eps0.1_s1"]
-    for spec in tier6:
-        assert dict(spec.variables) == dict(seed1.variables) and spec.taps == seed1.taps
-    everything = [s.name for s in plan.runs(6)]
-    assert everything == [s.name for s in plan.runs(5)] + [s.name for s in tier6]
-    with pytest.raises(ValueError, match="tier = 7"):
-        plan.runs(7)
+    everything = [s.name for s in plan.runs(tier)]
+    assert everything == [s.name for s in plan.runs(tier - 1)] + [s.name for s in added]
+    with pytest.raises(ValueError, match=f"tier = {plan.TIERS[-1] + 1}"):
+        plan.runs(plan.TIERS[-1] + 1)
 
 
 def test_fig4_errors_survive_a_chance_agreement_of_the_seeds(tmp_path):

@@ -1334,7 +1334,26 @@ def hotelling_gls(means, whiten, model, starts, lo, hi, realizations):
                 realizations=n, bin_model=model(fit.x))
 
 
-class RealizationLawTest:
+class _Computed:
+    """Results that exist once ``compute`` has run: ``_result`` (a dict) is None before, and
+    every result property (:func:`_result_property`) says which call fills it."""
+
+    #: the call that fills the results, as the error before it names it
+    _compute_call = "compute(...)"
+    _result = None
+
+    def _get(self, key):
+        if self._result is None:
+            raise RuntimeError(f"call {self._compute_call} first")
+        return self._result[key]
+
+
+def _result_property(key):
+    """A read-only property returning the computed result ``key`` of a :class:`_Computed`."""
+    return property(lambda self: self._get(key))
+
+
+class RealizationLawTest(_Computed):
     """Is a law compatible with the mean of independent realizations of the same process?
 
     The taps of one run are correlated (their spectrum is a power law, Fig. 3), so a
@@ -1484,22 +1503,19 @@ class RealizationLawTest:
         found.sort(key=lambda node: node[0])
         return [p for _, p in found[:_POLISHED_STARTS]]
 
-    def _get(self, key):
-        if self._result is None:
-            raise RuntimeError("call compute(t, curves) first")
-        return self._result[key]
+    _compute_call = "compute(t, curves)"
 
-    params = property(lambda self: self._get("params"))
-    errors = property(lambda self: self._get("errors"))
-    chi2 = property(lambda self: self._get("chi2"))
-    dof = property(lambda self: self._get("dof"))
-    F = property(lambda self: self._get("F"))
-    p_value = property(lambda self: self._get("p_value"))
-    realizations = property(lambda self: self._get("realizations"))
-    bin_edges = property(lambda self: self._get("bin_edges"))
-    bin_means = property(lambda self: self._get("bin_means"))
-    bin_sem = property(lambda self: self._get("bin_sem"))
-    bin_model = property(lambda self: self._get("bin_model"))
+    params = _result_property("params")
+    errors = _result_property("errors")
+    chi2 = _result_property("chi2")
+    dof = _result_property("dof")
+    F = _result_property("F")
+    p_value = _result_property("p_value")
+    realizations = _result_property("realizations")
+    bin_edges = _result_property("bin_edges")
+    bin_means = _result_property("bin_means")
+    bin_sem = _result_property("bin_sem")
+    bin_model = _result_property("bin_model")
 
     @property
     def compatible(self):
@@ -1513,7 +1529,7 @@ class RealizationLawTest:
                 f"p {self.p_value:.3g}>")
 
 
-class SurrogateFits:
+class SurrogateFits(_Computed):
     """How well does one run fix a law's parameters, and do they depend on the fitted range?
 
     One run's taps are correlated (their spectrum is a power law, Fig. 3), so the profile
@@ -1736,21 +1752,18 @@ class SurrogateFits:
             log_scale=dict(self._log), ranges=list(self._ranges))
         return self
 
-    def _get(self, key):
-        if self._result is None:
-            raise RuntimeError("call compute(t, y) first")
-        return self._result[key]
+    _compute_call = "compute(t, y)"
 
-    params = property(lambda self: self._get("params"))
-    samples = property(lambda self: self._get("samples"))
-    low = property(lambda self: self._get("low"))
-    high = property(lambda self: self._get("high"))
-    half_width = property(lambda self: self._get("half_width"))
-    determined = property(lambda self: self._get("determined"))
-    range_p = property(lambda self: self._get("range_p"))
-    used = property(lambda self: self._get("used"))
-    log_scale = property(lambda self: self._get("log_scale"))
-    fitted_ranges = property(lambda self: self._get("ranges"))
+    params = _result_property("params")
+    samples = _result_property("samples")
+    low = _result_property("low")
+    high = _result_property("high")
+    half_width = _result_property("half_width")
+    determined = _result_property("determined")
+    range_p = _result_property("range_p")
+    used = _result_property("used")
+    log_scale = _result_property("log_scale")
+    fitted_ranges = _result_property("ranges")
 
     @property
     def range_dependent(self):
@@ -1792,7 +1805,7 @@ def spread_verdict(low, high, limit):
     return True if high <= limit else None
 
 
-class RealizationFits:
+class RealizationFits(_Computed):
     """Do independent realizations fix a law's parameters, and do they depend on the range of
     taps fitted? The question :class:`SurrogateFits` answers from one run (safely only for
     "undetermined"), answered from a few realizations of the same process.
@@ -1932,24 +1945,21 @@ class RealizationFits:
                             realizations=n, ranges=list(ranges))
         return self
 
-    def _get(self, key):
-        if self._result is None:
-            raise RuntimeError("call compute(t, curves) first")
-        return self._result[key]
+    _compute_call = "compute(t, curves)"
 
-    values = property(lambda self: self._get("values"))
-    mean = property(lambda self: self._get("mean"))
-    spread = property(lambda self: self._get("spread"))
-    spread_low = property(lambda self: self._get("spread_low"))
-    spread_high = property(lambda self: self._get("spread_high"))
-    limit = property(lambda self: self._get("limit"))
-    determined = property(lambda self: self._get("determined"))
-    range_shift = property(lambda self: self._get("range_shift"))
-    range_bound = property(lambda self: self._get("range_bound"))
-    range_p = property(lambda self: self._get("range_p"))
-    log_scale = property(lambda self: self._get("log_scale"))
-    realizations = property(lambda self: self._get("realizations"))
-    fitted_ranges = property(lambda self: self._get("ranges"))
+    values = _result_property("values")
+    mean = _result_property("mean")
+    spread = _result_property("spread")
+    spread_low = _result_property("spread_low")
+    spread_high = _result_property("spread_high")
+    limit = _result_property("limit")
+    determined = _result_property("determined")
+    range_shift = _result_property("range_shift")
+    range_bound = _result_property("range_bound")
+    range_p = _result_property("range_p")
+    log_scale = _result_property("log_scale")
+    realizations = _result_property("realizations")
+    fitted_ranges = _result_property("ranges")
 
     @property
     def range_dependent(self):
