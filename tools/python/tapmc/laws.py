@@ -1529,7 +1529,16 @@ class RealizationLawTest(_Computed):
                 f"p {self.p_value:.3g}>")
 
 
-class SurrogateFits(_Computed):
+class _RangeTested(_Computed):
+    """Fits over tap ranges with a p-value per parameter (``range_p``) and a level ``p_min``."""
+
+    @property
+    def range_dependent(self):
+        """The parameters whose range test rejects one value over the ranges."""
+        return [k for k, p in self.range_p.items() if np.isfinite(p) and p < self.p_min]
+
+
+class SurrogateFits(_RangeTested):
     """How well does one run fix a law's parameters, and do they depend on the fitted range?
 
     One run's taps are correlated (their spectrum is a power law, Fig. 3), so the profile
@@ -1766,10 +1775,6 @@ class SurrogateFits(_Computed):
     fitted_ranges = _result_property("ranges")
 
     @property
-    def range_dependent(self):
-        return [k for k, p in self.range_p.items() if np.isfinite(p) and p < self.p_min]
-
-    @property
     def unique(self):
         return all(self.determined.values()) and not self.range_dependent
 
@@ -1805,7 +1810,7 @@ def spread_verdict(low, high, limit):
     return True if high <= limit else None
 
 
-class RealizationFits(_Computed):
+class RealizationFits(_RangeTested):
     """Do independent realizations fix a law's parameters, and do they depend on the range of
     taps fitted? The question :class:`SurrogateFits` answers from one run (safely only for
     "undetermined"), answered from a few realizations of the same process.
@@ -1960,10 +1965,6 @@ class RealizationFits(_Computed):
     log_scale = _result_property("log_scale")
     realizations = _result_property("realizations")
     fitted_ranges = _result_property("ranges")
-
-    @property
-    def range_dependent(self):
-        return [k for k, p in self.range_p.items() if np.isfinite(p) and p < self.p_min]
 
     @property
     def unique(self):
