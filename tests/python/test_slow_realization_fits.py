@@ -23,20 +23,12 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools" / "python"))
 
 from tapmc.laws import InverseLogLaw, spread_interval, spread_verdict  # noqa: E402
+from test_slow_surrogate_fits import power_law_noise  # noqa: E402  (the same noise)
 
 LAW = InverseLogLaw()
 TRUTH = dict(X_inf=0.60, dX_inf=0.04, B=0.3, tau=5.0)
 TAPS = 2000
 REALIZATIONS = 30
-
-
-def power_law_noise(n, slope, rng):
-    f = np.fft.rfftfreq(2 * n)
-    amplitude = np.zeros_like(f)
-    amplitude[1:] = f[1:] ** (slope / 2.0)
-    x = np.fft.irfft(amplitude * (rng.standard_normal(f.size) + 1j * rng.standard_normal(f.size)),
-                     n=2 * n)[:n]
-    return x / x.std()
 
 
 def fitted_ln_b(rms, seed):
