@@ -1831,9 +1831,9 @@ class RealizationFits(_RangeTested):
       fit), with its t interval (n - 1 dof). The parameter *depends on the range* when the
       smallest two-sided t-test p over the ranges, times their number (Bonferroni), is below
       ``p_min`` (:data:`SURROGATE_P_MIN`, the surrogates' level). ``range_bound``, the
-      largest |shift| + t sem, is shown, not used: a range that starts after the law's
-      curvature (T/10 to T) leaves tau free in every realization, so it bounds nothing even
-      where the law holds.
+      largest |shift| + t sem, is reported (seed-fits writes it), not used by the verdict: a
+      range that starts after the law's curvature (T/10 to T) leaves tau free in every
+      realization, so it bounds nothing even where the law holds.
     * ``unique`` (as :class:`SurrogateFits` defines it): True when every parameter is
       determined and none range dependent, False when one is undetermined or range
       dependent, None otherwise.
