@@ -1606,6 +1606,77 @@ def test_low_ramp_frozen_is_decided_by_its_own_levels():
         "paper's 4000 could move it by -0.0")
 
 
+def test_a_mean_of_two_seeds_is_judged_with_the_groups_of_realizations():
+    """Two seeds of a statistic, each with its batch-means error: their group joins the
+    campaign's groups (k = 4 on 6 dof) in one ErrorCalibration, so the error is the pooled
+    k' times sqrt(e1^2 + e2^2) / 2 on 7 dof, worked out by hand; seeds that spread far more
+    than the groups allow (F test), or a campaign without groups, leave the seeds alone."""
+    rows = _scatter_rows("phi_c", 0.004, 0.001)                  # 2 groups x 4 runs: k = 4
+    data = claims.ReportData({}, {}, questions={"realization_scatter": rows})
+    values, errors = [0.0054, 0.0047], [0.0002, 0.0001]
+    ratio2 = (np.std(values, ddof=1) / np.sqrt(np.mean(np.square(errors)))) ** 2
+    k = np.sqrt((6 * 16.0 + 1 * ratio2) / 7)
+    err, dof, factor = data.seed_mean_error("phi_c", values, errors)
+    assert factor == pytest.approx(k) and dof == 7
+    assert err == pytest.approx(k * np.hypot(*errors) / 2)
+    assert data.seed_mean_error("phi_c", [0.005, 0.205], errors) is None     # F test
+    assert data.seed_mean_error("phi_b", values, errors) is None             # no groups
+    assert data.seed_mean_error("phi_c", values[:1], errors[:1]) is None
+    assert data.seed_mean_error("phi_c", values, [0.0002, 0.0]) is None
+    # groups that find the errors conservative do not shrink them: k' at least 1
+    calm = claims.ReportData({}, {}, questions={
+        "realization_scatter": _scatter_rows("phi_c", 0.0002, 0.001)})
+    assert calm.seed_mean_error("phi_c", [0.0050, 0.005045], errors)[2] == 1.0
+
+
+def test_low_ramp_frozen_with_two_seeds_takes_the_groups_dof():
+    """The low ramp's change on the way down, 0.005 over two seeds: by the seeds alone (t
+    with 1 dof, 12.7) 0.005 +- 0.0004 is swallowed by a band of 0.0051 and the row agrees;
+    judged with the groups of realizations (k = 2 on 6 + 1 dof) it is a change: the row
+    disagrees, and says how its error was obtained."""
+    claim = next(c for c in REGISTER if c.statistic == "low_ramp_frozen")
+    tab = (fig4(BELL).param("low:down_change", 0.005, 0.0004, n=2, x=0.125)
+           .param("ramp:down_change", 0.018, 0.0002, n=1).param("low:top_sqrt_eps", 0.125, n=2))
+    alone = report(fig4=tab)
+    (m,) = claims.low_ramp_frozen(alone, claim)
+    assert m.dof == 1 and claims.verdict(claim, m) == "agrees"
+    tab.add("params", "low:down_change:seeds", [0.125, 0.125], [0.0054, 0.0046],
+            [0.0002, 0.0002], n=1)
+    pooled = report(fig4=tab)
+    pooled.questions["realization_scatter"] = _scatter_rows("phi_c", 0.002, 0.001)
+    (m,) = claims.low_ramp_frozen(pooled, claim)
+    assert m.dof == 7 and 2.0 < m.err / (np.hypot(0.0002, 0.0002) / 2) < 2.2
+    assert claims.verdict(claim, m).startswith("disagrees")
+    assert "2 seeds: their errors within the run x 2.1, pooled with the groups of " \
+        "realizations (7 dof)" in m.text()
+    # the same seeds beside groups they do not resemble: the seeds alone again
+    pooled.questions["realization_scatter"] = _scatter_rows("phi_c", 0.00001, 0.001)
+    (m,) = claims.low_ramp_frozen(pooled, claim)
+    assert m.dof == 1 and "their own spread, which differs" in m.text()
+
+
+def test_ramp_branch_differences_of_two_seeds_take_the_groups_dof():
+    """The reversible ramp's decrease minus its first increase over two seeds: the curves'
+    own sem over seeds gives 1 dof; with each seed's difference (``ramp:down_minus_up1:seeds``)
+    the error is pooled with the groups of realizations, the value stays the curves' mean."""
+    claim = BY_ID["reversible-above"]
+    tab = Table()
+    tab.add("a", "up1", X, 0.59, 0.0002, n=2).add("a", "down", X, 0.6, 0.0002, n=2)
+    data = report(fig4=tab)
+    (alone,) = claims.ramp_down_minus_up(data, claim)
+    assert alone.dof == 1 and alone.value == pytest.approx(0.01)
+    tab.param("ramp:down_minus_up1", 0.01, 0.0001, n=2, x=0.3)
+    tab.add("params", "ramp:down_minus_up1:seeds", [0.3, 0.3], [0.0099, 0.0101],
+            [0.0001, 0.0001], n=1)
+    data = report(fig4=tab)
+    data.questions["realization_scatter"] = _scatter_rows("phi_c", 0.002, 0.001)
+    (m,) = claims.ramp_down_minus_up(data, claim)
+    assert m.dof == 7 and m.value == pytest.approx(0.01)
+    # k'^2 = (6 x 2^2 + 1 x (1.41e-4 / 1e-4)^2) / 7
+    assert m.err == pytest.approx(np.sqrt(26 / 7) * np.hypot(1e-4, 1e-4) / 2)
+    assert "x 1.9, pooled with the groups of realizations (7 dof)" in m.text()
+
+
 def test_critical_separation_is_decided_by_each_ramps_own_levels():
     """At 1000 taps per level the ramp turning at 0.125 compacts on the way down (0.005, a
     contradiction of the paper's frozen branch), the ramp turning at 0.3 too: 'disagrees' at

@@ -275,6 +275,18 @@ def test_fig4_csv_of_the_pair(tmp_path):
     assert abs(low[1]) < 2 * low[2] + 1e-3 and low[1] == pytest.approx(0.0, abs=1e-3)
     assert ("params", "low:down_slope") not in rows      # a single decreasing level
     assert ("params", "low:up2_minus_down") not in rows  # up2 and down share no sqrt(eps)
+    # each seed's own differences of levels, whose mean is the statistic of the mean levels
+    # (levels shared by the seeds), with the error that seed's levels give it
+    table = claims.FigureData.read(path)
+    for name in ("ramp:down_minus_up1", "ramp:up2_minus_down", "ramp:down_change",
+                 "low:down_change"):
+        x, values, errors, n = table.get("params", f"{name}:seeds")
+        assert len(values) == 2 and np.all(n == 1) and np.all(errors > 0), name
+        assert np.mean(values) == pytest.approx(param(name)[1], abs=1e-9), name
+    one = fig4.per_seed_ramp_branches(camp, prefix=_runs.RAMP_BELOW_PREFIX)[0]
+    assert table.get("params", "low:down_change:seeds")[2][0] == pytest.approx(one.down_change.sem)
+    assert ("params", "ramp:down_slope:seeds") not in rows          # not a mean of levels
+    assert ("params", "near:down_change:seeds") not in rows         # one seed
     # the ramp just beyond (sqrt eps)* (one seed; QUICK's first level beyond 0.15 is 0.2) and
     # the claim it decides with the ramp below, read from the CSV as the report reads it
     assert {"near:up1", "near:down", "near:up2"} <= series

@@ -325,12 +325,58 @@ class ReportData:
                 "state, Fig. 3's sigma_<Z>) carry the batch-means error times the factor "
                 f"{where} (" + ", ".join(parts)
                 + ("" if any(q in self._measured() for q in ZONE_QUANTITIES)
-                   else "; a profile's zones the largest") + ").")
+                   else "; a profile's zones the largest") + "). "
+                "A mean of a ramp's few seeds (Fig. 4's differences of levels) is judged the "
+                "same way: its seeds join the groups as one more group, and the error of the "
+                "mean is their own errors times the factor so pooled, with the pooled degrees "
+                "of freedom, rather than the spread of two seeds with one degree of freedom; "
+                "seeds that spread unlike the groups (F test, two-sided, below "
+                f"{CALIBRATION_ALPHA:g}) are judged by their own spread.")
 
     def _measured(self):
         """The quantities the groups of realizations measure (:meth:`scatter_rows`),
         rejected or not."""
         return {r["column"] for r in self.scatter_rows()}
+
+    def seed_mean_error(self, quantity, values, errors, bc="pbc"):
+        """(error, dof, factor) of the mean of a few realizations ``values`` of ``quantity``
+        (e.g. two seeds of a ramp), each with its own batch-means error ``errors``: their
+        group joins the campaign's groups of realizations of ``quantity`` (the ones
+        :func:`realization_factors` pools for ``bc``) in one tapmc.fluctuations.
+        ErrorCalibration, whose factor k (at least 1) times the error the runs' own errors
+        give the mean, sqrt(sum e_i^2) / n, is the error, with the pooled dof. Two seeds
+        alone give their spread 1 dof (a t quantile of 12.7); the groups give the same
+        spread some 17. None (judge the seeds alone) when the campaign has no such groups,
+        fewer than two values are given, or their spread differs from the groups' (the F
+        test of ErrorCalibration.same_factor_p below :data:`CALIBRATION_ALPHA`)."""
+        values = np.asarray(values, dtype=float)
+        errors = np.asarray(errors, dtype=float)
+        if (len(values) < 2 or len(errors) != len(values) or not np.all(np.isfinite(values))
+                or not np.all(np.isfinite(errors)) or np.any(errors <= 0)):
+            return None
+        pooled = self._pooled_calibration(quantity, bc)
+        if pooled is None:
+            return None
+        own = ErrorCalibration({SEEDS_GROUP: (values, errors)},
+                               within_dof=pooled.within_dof).compute()
+        if own.same_factor_p(pooled) < CALIBRATION_ALPHA:
+            return None
+        joined = ErrorCalibration({**pooled.groups, SEEDS_GROUP: (values, errors)},
+                                  within_dof=pooled.within_dof).compute()
+        factor = max(1.0, joined.factor)
+        error = factor * float(np.sqrt(np.sum(errors ** 2))) / len(values)
+        return error, joined.dof, factor
+
+    def _pooled_calibration(self, quantity, bc):
+        """The ErrorCalibration of ``quantity`` that :func:`realization_factors` reads for
+        ``bc`` (both boundary conditions' groups unless they differ), or None."""
+        rows = self.scatter_rows()
+        every = realization_calibrations(rows)
+        if quantity not in every:
+            return None
+        if realization_sharing(rows).get(quantity, 1.0) < CALIBRATION_ALPHA:
+            return realization_calibrations(rows, bc).get(quantity)
+        return every[quantity]
 
     def run_error(self, quantity, bc="pbc"):
         """(factor, dof) that turn one run's batch-means error of ``quantity`` ('phi_b',
@@ -368,6 +414,9 @@ ZONE_QUANTITIES = ("zone:lateral", "zone:central", "zone:central_minus_lateral")
 RUN_ERROR_QUANTITIES = tuple(q for q in RUN_ERROR_LABELS if ":" not in q)
 #: one-sided significance below which the realizations' spread rejects one run's own error
 CALIBRATION_ALPHA = 0.01
+#: the name under which a statistic's few seeds join the campaign's groups of realizations
+#: (ReportData.seed_mean_error); no run of a campaign is named so
+SEEDS_GROUP = "<the statistic's seeds>"
 
 
 def _final_zone(name):
@@ -1647,7 +1696,11 @@ def hysteresis_gap(data):
     return None if d is None else d[0]
 
 
-def _branch_difference(data, a, b, effect=None):
+def _branch_difference(data, a, b, effect=None, statistic=None):
+    """Branch ``a`` minus branch ``b`` of Fig. 4's ramp beyond (sqrt eps)*, mean over their
+    common sqrt(eps). With several seeds of the ramp and their own values of that difference
+    (Fig. 4 params ``ramp:<statistic>:seeds``) the error of the mean is judged with the
+    campaign's groups of realizations (:func:`_seed_mean`)."""
     ca, cb = _ramp(data, a), _ramp(data, b)
     if ca is None or cb is None:
         return _missing(f"no ramp branches {a!r} and {b!r}")
@@ -1655,10 +1708,16 @@ def _branch_difference(data, a, b, effect=None):
     if d is None:
         return [Measure(undecided=f"the branches {a!r} and {b!r} share no sqrt(eps)")]
     mean, err, dof, k = d
+    how = ""
+    if statistic is not None and dof is not None and dof >= 1:
+        fig = data.figure("fig4")
+        if fig.get("params", f"ramp:{statistic}:seeds") is not None:
+            _, err, dof, how = _seed_mean(data, fig, f"ramp:{statistic}", "phi_c")
     if not np.isfinite(err):
         return [Measure(mean, undecided="one realization: the branches have no error bars")]
     return [Measure(mean, err, dof, effect=effect,
-                    shown=f"{fmt(mean, err)} (mean of {k} common sqrt(eps))")]
+                    shown=f"{fmt(mean, err)} (mean of {k} common sqrt(eps)"
+                          + (f"; {how})" if how else ")"))]
 
 
 def ramp_up_minus_steady(data, claim):
@@ -1666,26 +1725,50 @@ def ramp_up_minus_steady(data, claim):
 
 
 def ramp_down_minus_up(data, claim):
-    return _branch_difference(data, "down", "up1")
+    return _branch_difference(data, "down", "up1", statistic="down_minus_up1")
 
 
 def ramp_up2_minus_down(data, claim):
-    return _branch_difference(data, "up2", "down", hysteresis_gap(data))
+    return _branch_difference(data, "up2", "down", hysteresis_gap(data),
+                              statistic="up2_minus_down")
+
+
+def _seed_mean(data, fig, series, quantity, bc="pbc"):
+    """(value, error, dof, text) of the params row ``series`` of ``fig``: with two seeds or
+    more and their own values (``<series>:seeds``, e.g. Fig. 4's ramp statistics) the error of
+    their mean judged with the campaign's groups of realizations of ``quantity``
+    (ReportData.seed_mean_error); otherwise the row's own error (the sem over seeds, or
+    one seed's batch-means error) with :func:`_steady_dof`. ``text``: how the error was
+    obtained ("" for the row's own)."""
+    m, s, n = fig.param(series)
+    seeds = fig.get("params", f"{series}:seeds")
+    if n >= 2 and seeds is not None:
+        found = data.seed_mean_error(quantity, seeds[1], seeds[2], bc)
+        if found is not None:
+            err, dof, factor = found
+            return m, err, dof, (f"{len(seeds[1])} seeds: their errors within the run x "
+                                 f"{factor:.1f}, pooled with the groups of realizations "
+                                 f"({dof} dof)")
+        return m, s, _steady_dof(n, s), (f"{n} seeds: their own spread, which differs from "
+                                         "the groups of realizations")
+    return m, s, _steady_dof(n, s), ""
 
 
 def low_ramp_frozen(data, claim):
     """The ramp that stayed below (sqrt eps)*: its decreasing branch minus its top level
     (Fig. 4 params ``low:down_change``), against the same change on the ramp that went beyond
-    it (``ramp:down_change``), the effect "nearly frozen" denies."""
+    it (``ramp:down_change``), the effect "nearly frozen" denies. With several seeds the error
+    of their mean is judged with the campaign's groups of realizations (:func:`_seed_mean`)."""
     found, missing = _figure_param(data, "fig4", "low:down_change",
                                    "no ramp that stays below (sqrt eps)*")
     if missing:
         return missing
-    fig, m, s, n = found
+    fig = found[0]
+    m, s, dof, how = _seed_mean(data, fig, "low:down_change", "phi_c")
     effect = fig.param("ramp:down_change")[0]
-    return [Measure(m, s, _steady_dof(n, s), effect=effect if np.isfinite(effect) else None,
+    return [Measure(m, s, dof, effect=effect if np.isfinite(effect) else None,
                     shown=f"{fmt(m, s)} (decrease minus top level; the ramp beyond (sqrt eps)* "
-                          f"changes by {fmt(effect)})")]
+                          f"changes by {fmt(effect)}" + (f"; {how})" if how else ")"))]
 
 
 #: The paper's "(sqrt eps)* ~ 0.15": a separation located within two of its ramp steps
@@ -1694,14 +1777,14 @@ def low_ramp_frozen(data, claim):
 CRITICAL_BRACKET_HALF_WIDTH = 0.05
 
 
-def _ramp_turning_behaviour(fig, tag, effect):
+def _ramp_turning_behaviour(data, fig, tag, effect):
     """(top, behaviour, text) of the ramp ``tag`` of Fig. 4: behaviour ``compacts`` when its
     decreasing branch rose above its top level beyond t sem (the reversible case), ``frozen``
     when it stayed within t sem of it and t sem is below ``effect`` (the change of the ramps
-    that compact), ``decompacts`` when it fell below beyond t sem, None otherwise."""
+    that compact), ``decompacts`` when it fell below beyond t sem, None otherwise. The error
+    of a mean of several seeds: :func:`_seed_mean`."""
     top = fig.param(f"{tag}:top_sqrt_eps")[0]
-    m, s, n = fig.param(f"{tag}:down_change")
-    dof = _steady_dof(n, s)
+    m, s, dof, _ = _seed_mean(data, fig, f"{tag}:down_change", "phi_c")
     if not np.isfinite(m) or dof is None:
         return top, None, f"top {top:g}: no error on its decrease"
     band = t_quantile(dof) * s
@@ -1732,12 +1815,13 @@ def critical_separation(data, claim):
         return _missing("no ramp with a decreasing branch")
     critical = fig.param("critical_sqrt_eps")[0]
     critical = critical if np.isfinite(critical) else CRITICAL_SQRT_EPS
-    changes = [fig.param(f"{t}:down_change") for t in tags]
+    changes = [_seed_mean(data, fig, f"{t}:down_change", "phi_c")[:3] for t in tags]
     # the frozen side's bar: the smallest change the compacting ramps surely have
-    compacting = [m - t_quantile(_steady_dof(n, s)) * s for m, s, n in changes
-                  if np.isfinite(m) and _steady_dof(n, s) is not None]
+    compacting = [m - t_quantile(dof) * s for m, s, dof in changes
+                  if np.isfinite(m) and dof is not None]
     effect = max(compacting) if compacting and max(compacting) > 0 else None
-    ramps = sorted((_ramp_turning_behaviour(fig, t, effect) for t in tags), key=lambda r: r[0])
+    ramps = sorted((_ramp_turning_behaviour(data, fig, t, effect) for t in tags),
+                   key=lambda r: r[0])
     words = {"compacts": "compacts on the way down", "frozen": "frozen",
              "decompacts": "decompacts on the way down", None: "within the errors"}
     shown = "; ".join(f"{text} ({words[behaviour]})" for _, behaviour, text in ramps)

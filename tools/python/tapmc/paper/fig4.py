@@ -39,7 +39,11 @@ of the ramp just beyond it; sem over seeds), ``params``:
   ``<ramp>:down_slope`` (d<Phi^c>/d sqrt(eps) on the decrease: < 0 on the reversible branch;
   absent with a single decreasing level); ``<ramp>:up2_minus_down`` (second increase minus
   decrease: within noise when it retraces it); ``<ramp>:down_change`` (decrease minus the top
-  level: within noise when the branch is frozen, the irreversible case).
+  level: within noise when the branch is frozen, the irreversible case);
+* with two seeds or more, ``<ramp>:<name>:seeds`` for the three differences of levels (one row
+  per seed, n = 1: that seed's value and the error its levels' batch-means errors give it),
+  so that the error of their mean can be judged against the campaign's groups of
+  realizations rather than by the spread of two or three seeds alone.
 """
 
 from __future__ import annotations
@@ -66,6 +70,10 @@ RAMPS = (("ramp", "ramp_", BRANCH_STYLE, "ramp beyond 0.15"),
          ("low", _runs.RAMP_BELOW_PREFIX, LOW_BRANCH_STYLE, "ramp below 0.15"),
          ("near", _runs.RAMP_NEAR_PREFIX, NEAR_BRANCH_STYLE, "ramp just beyond 0.15"))
 BRANCHES = _runs.RAMP_BRANCHES
+#: the ramp statistics that are means of level differences, so that the mean over seeds of
+#: each seed's value is the statistic of the levels averaged over seeds: each seed's value
+#: and its batch-means error are written too (``<ramp>:<name>:seeds``)
+SEED_STATISTICS = ("down_minus_up1", "up2_minus_down", "down_change")
 
 
 def runs(scale, seeds):
@@ -100,18 +108,56 @@ def _level_records(levels):
     return [dict(level) for level in levels]
 
 
-def _ramp_levels(campaign, column, bc, prefix):
-    """dict branch -> sqrt_eps -> [(mean, sem) per seed] of the ramps named ``prefix...``."""
-    collected = defaultdict(lambda: defaultdict(list))
+def _ramp_levels_per_run(campaign, column, bc, prefix):
+    """[dict branch -> sqrt_eps -> (mean, sem)], one per ramp run named ``prefix...``."""
+    out = []
     for spec in _runs.select(campaign, prefix, bc=bc):
         tab = _runs.taps_table(campaign, spec)
         per_level = int(spec.variables["P"])
         hyst = Hysteresis(_runs.ramp_sqrt_eps(tab)[1:], tab[column][1:],
                           taps_per_level=per_level, last=steady_last(per_level)).compute()
+        run = defaultdict(dict)
         for rec in _level_records(hyst.levels):
-            key = round(float(rec["sqrt_eps"]), 9)
-            collected[str(rec["branch"])][key].append((float(rec["mean"]), float(rec["sem"])))
+            run[str(rec["branch"])][round(float(rec["sqrt_eps"]), 9)] = (float(rec["mean"]),
+                                                                         float(rec["sem"]))
+        out.append(run)
+    return out
+
+
+def _ramp_levels(campaign, column, bc, prefix):
+    """dict branch -> sqrt_eps -> [(mean, sem) per seed] of the ramps named ``prefix...``."""
+    collected = defaultdict(lambda: defaultdict(list))
+    for run in _ramp_levels_per_run(campaign, column, bc, prefix):
+        for branch, by_sq in run.items():
+            for key, level in by_sq.items():
+                collected[branch][key].append(level)
     return collected
+
+
+def _one_run_branches(run):
+    """RampBranches computed from one ramp run's levels (their batch-means errors); None
+    when it has no decreasing level yet or a level without a positive error."""
+    if not run.get("up1") or not run.get("down"):
+        return None
+    try:
+        data = {b: BranchData(sorted(by_sq), [by_sq[k][0] for k in sorted(by_sq)],
+                              [by_sq[k][1] for k in sorted(by_sq)])
+                for b, by_sq in run.items()}
+    except ValueError:
+        return None
+    return RampBranches(data["up1"], data["down"], data.get("up2")).compute()
+
+
+def per_seed_ramp_branches(campaign, column="phi_c", bc=BC, prefix="ramp_"):
+    """RampBranches of each ramp run named ``prefix...`` from its own levels and their
+    batch-means errors, for the runs whose branches are complete (the same levels as every
+    other such run): the realizations that the claims pool with the campaign's groups of
+    realizations (tapmc.paper.claims.ReportData.seed_mean_error)."""
+    runs = _ramp_levels_per_run(campaign, column, bc, prefix)
+    shapes = [{b: sorted(v) for b, v in run.items()} for run in runs]
+    full = max(shapes, key=lambda s: sum(len(v) for v in s.values()), default=None)
+    return [stats for run, shape in zip(runs, shapes) if shape == full
+            for stats in [_one_run_branches(run)] if stats is not None]
 
 
 def hysteresis_branches(campaign, column="phi_c", bc=BC, prefix="ramp_"):
@@ -194,10 +240,16 @@ def draw(campaign, out_dir):
         stats, seeds = found
         top = stats.top_sqrt_eps
         table.add("params", f"{tag}:top_sqrt_eps", 0.0, top, None, seeds)
+        per_seed = per_seed_ramp_branches(campaign, prefix=prefix) if seeds >= 2 else []
         for name in ("down_minus_up1", "down_slope", "up2_minus_down", "down_change"):
             value = getattr(stats, name)
-            if value is not None:
-                table.add("params", f"{tag}:{name}", top, value.value, value.sem, seeds)
+            if value is None:
+                continue
+            table.add("params", f"{tag}:{name}", top, value.value, value.sem, seeds)
+            if name in SEED_STATISTICS and len(per_seed) >= 2:
+                table.add("params", f"{tag}:{name}:seeds", [top] * len(per_seed),
+                          [getattr(r, name).value for r in per_seed],
+                          [getattr(r, name).sem for r in per_seed], 1)
     ax.set_xlabel(r"$\varepsilon^{1/2}$")
     ax.set_ylabel(r"steady state $\langle\Phi^c\rangle$")
     ax.legend(fontsize=7, title="P.B.C.", title_fontsize=7)
