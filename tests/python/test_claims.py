@@ -1647,8 +1647,8 @@ def test_low_ramp_frozen_with_two_seeds_takes_the_groups_dof():
     (m,) = claims.low_ramp_frozen(pooled, claim)
     assert m.dof == 7 and 2.0 < m.err / (np.hypot(0.0002, 0.0002) / 2) < 2.2
     assert claims.verdict(claim, m).startswith("disagrees")
-    assert "2 seeds: their errors within the run x 2.1, pooled with the groups of " \
-        "realizations (7 dof)" in m.text()
+    assert "2 seeds: their own errors x 2.1, pooled with the groups of realizations " \
+        "(7 dof)" in m.text()
     # the same seeds beside groups they do not resemble: the seeds alone again
     pooled.questions["realization_scatter"] = _scatter_rows("phi_c", 0.00001, 0.001)
     (m,) = claims.low_ramp_frozen(pooled, claim)
@@ -1675,6 +1675,54 @@ def test_ramp_branch_differences_of_two_seeds_take_the_groups_dof():
     # k'^2 = (6 x 2^2 + 1 x (1.41e-4 / 1e-4)^2) / 7
     assert m.err == pytest.approx(np.sqrt(26 / 7) * np.hypot(1e-4, 1e-4) / 2)
     assert "x 1.9, pooled with the groups of realizations (7 dof)" in m.text()
+
+
+def test_fbc_few_seed_values_of_figs_6_and_8_are_pooled_with_their_groups():
+    """Fig. 8's central minus lateral zone and Fig. 6's final alpha over two seeds: with each
+    seed's own value and error they take the F.B.C. groups' factor of that quantity and its
+    pooled dof; without the seeds' rows the sem over seeds with 1 dof, as before."""
+    tag = "eps=0.1"
+    tab8 = Table()
+    tab8.param(f"{tag}:final_central", 0.011, 0.001, n=2, x=0.1)
+    tab8.param(f"{tag}:final_lateral", 0.023, 0.001, n=2, x=0.1)
+    tab8.param(f"{tag}:final_central_minus_lateral", -0.012, 0.0004, n=2, x=0.1)
+    tab6 = Table().param("final:alpha", 0.0024, 0.0002, n=2)
+    data = report(fig8=tab8, fig6=tab6)
+    (cml,) = claims.central_minus_lateral(data, BY_ID["central-smaller"])
+    alpha = next(c for c in REGISTER if c.statistic == "final_alpha")
+    (a,) = claims.final_alpha(data, alpha)
+    assert cml.dof == 1 and a.dof == 1 and cml.err == 0.0004 and a.err == 0.0002
+    tab8.add("params", f"{tag}:final_central_minus_lateral:seeds", [0.1, 0.1],
+             [-0.0124, -0.0116], [0.0002, 0.0002], n=1)
+    tab6.add("params", "final:alpha:seeds", [0.1, 0.1], [0.0022, 0.0026], [0.0001, 0.0001],
+             n=1)
+    data = report(fig8=tab8, fig6=tab6)
+    rows = [dict(r, group=r["group"].replace("g", "const_fbc_eps0.0"))
+            for r in _scatter_rows("zone:central_minus_lateral", 0.006, 0.001)
+            + _scatter_rows("packing:alpha", 0.003, 0.001)]
+    data.questions["realization_scatter"] = rows[:8]
+    data.questions["packing_scatter"] = rows[8:]
+    (cml,) = claims.central_minus_lateral(data, BY_ID["central-smaller"])
+    (a,) = claims.final_alpha(data, alpha)
+    # k^2 = (6 x 36 + 1 x (5.66e-4 / 2e-4)^2) / 7 and (6 x 9 + 1 x (2.83e-4 / 1e-4)^2) / 7
+    assert cml.dof == 7 and cml.err == pytest.approx(np.sqrt(224 / 7) * 0.0002 / np.sqrt(2))
+    assert a.dof == 7 and a.err == pytest.approx(np.sqrt(62 / 7) * 0.0001 / np.sqrt(2))
+    assert cml.value == -0.012 and a.value == 0.0024
+    assert "pooled with the groups of realizations (7 dof)" in cml.text() + a.text()
+    # the same seeds as one of the groups (realization-scatter's const_fbc_eps0.1): they do
+    # not count twice, the groups' own k = 6 and 3 on 6 dof serve
+    rows = [dict(r, group=r["group"].replace("g0", "const_fbc_eps0.1").replace(
+        "g1", "const_fbc_eps0.02")) for r in _scatter_rows("zone:central_minus_lateral",
+                                                           0.006, 0.001)
+            + _scatter_rows("packing:alpha", 0.003, 0.001)]
+    tab6.param("eps", 0.1, n=2, x=0.1)
+    data = report(fig8=tab8, fig6=tab6)
+    data.questions["realization_scatter"] = rows[:8]
+    data.questions["packing_scatter"] = rows[8:]
+    (cml,) = claims.central_minus_lateral(data, BY_ID["central-smaller"])
+    (a,) = claims.final_alpha(data, alpha)
+    assert cml.dof == 6 and cml.err == pytest.approx(6.0 * 0.0002 / np.sqrt(2))
+    assert a.dof == 6 and a.err == pytest.approx(3.0 * 0.0001 / np.sqrt(2))
 
 
 def test_critical_separation_is_decided_by_each_ramps_own_levels():

@@ -19,7 +19,7 @@ PYTHON_DIR = SOURCE / "tools" / "python"
 sys.path.insert(0, str(PYTHON_DIR))
 
 from paper_fakes import FakeCampaign, write_constant_eps, write_profile_x  # noqa: E402
-from tapmc.paper import _profile_runs, _runs, fig7, fig8  # noqa: E402
+from tapmc.paper import _profile_runs, _runs, claims, fig7, fig8  # noqa: E402
 from tapmc.paper.scales import FULL, QUICK, Scale  # noqa: E402
 
 #: a scale of no preset (the figures then use every eps of the runs)
@@ -70,23 +70,23 @@ def test_zone_means_known_answer():
     assert flat["within_2R"] == flat["2R_to_7R"] == flat["central"] == 0.55
 
 
-def fbc_campaign(tmp_path, start, first_tap_lateral, wall_phi0):
-    """Written F.B.C. runs of TINY (two seeds, eps 0.02 and 0.1): delta Phi_lateral after the
-    first tap is first_tap_lateral + 0.001 (seed - 1.5) (mean first_tap_lateral, sem 0.0005),
-    delta Phi_central 0.002; the initial profile is wall_phi0 within 2R of the walls and 0.55
-    beyond, the final one 0.5 and 0.58."""
-    scale = TINY.replace(fbc_start=start)
+def fbc_campaign(tmp_path, start, first_tap_lateral, wall_phi0, taps=TINY.taps):
+    """Written F.B.C. runs of TINY (two seeds, eps 0.02 and 0.1; ``taps`` taps):
+    delta Phi_lateral after the first tap is first_tap_lateral + 0.001 (seed - 1.5) (mean
+    first_tap_lateral, sem 0.0005), delta Phi_central 0.002; the initial profile is wall_phi0
+    within 2R of the walls and 0.55 beyond, the final one 0.5 and 0.58."""
+    scale = TINY.replace(fbc_start=start, taps=taps)
     runs = fig8.runs(scale, 2)
     camp = FakeCampaign(tmp_path / start, runs)
     x = np.arange(0.05, 8.0, 0.1)               # bins of R/5 in distance units (R = 0.5)
     dist = np.minimum(x, 8.0 - x) / 0.5
     for spec in runs:
         jump = first_tap_lateral + 0.001 * (spec.seed - 1.5)
-        lateral = [0.5, 0.5 + jump] + [0.5 + jump + 0.001 * k for k in range(1, TINY.taps)]
-        central = [0.55, 0.552] + [0.552 + 0.0005 * k for k in range(1, TINY.taps)]
+        lateral = [0.5, 0.5 + jump] + [0.5 + jump + 0.001 * k for k in range(1, taps)]
+        central = [0.55, 0.552] + [0.552 + 0.0005 * k for k in range(1, taps)]
         write_constant_eps(camp, spec, lateral, central)
         write_profile_x(camp, spec, x, np.where(dist < 2, wall_phi0, 0.55),
-                        np.where(dist < 2, 0.5, 0.58), TINY.taps)
+                        np.where(dist < 2, 0.5, 0.58), taps)
     return camp
 
 
@@ -101,9 +101,28 @@ def test_fig8_first_tap_jump_of_the_paper_start(tmp_path):
     assert float(jump["sem"]) == pytest.approx(0.0005) and int(jump["n"]) == 2
     assert float(rows[("params", "eps=0.1:first_tap_central")]["mean"]) == pytest.approx(0.002)
     assert ("params", "eps=0.1:final_lateral") in rows        # the report's rows stay
+    # a window of 2 taps has no batch-means error: no seeds' rows
+    assert not any(s.endswith(":seeds") for _, s in rows)
     # every params series parses as 'eps=<eps>:<name>' (the report reads them so)
     assert all(float(s.split("=")[1].split(":")[0]) in (0.02, 0.1)
                for p, s in rows if p == "params")
+
+
+def test_fig8_writes_each_seeds_final_zones_for_the_report_to_pool(tmp_path):
+    """Two seeds of 80 taps (a window of 20): each seed's window mean of every final zone and
+    its batch-means error (tapmc.fluctuations.SteadyState), whose mean is the row's value."""
+    camp = fbc_campaign(tmp_path, "walls", first_tap_lateral=-0.01, wall_phi0=0.45, taps=80)
+    _, path = fig8.draw(camp, tmp_path / "figs_seeds")
+    table = claims.FigureData.read(path)
+    for zone in ("lateral", "central", "central_minus_lateral"):
+        x, values, errors, n = table.get("params", f"eps=0.1:final_{zone}:seeds")
+        assert len(values) == 2 and np.all(n == 1) and np.all(errors > 0), zone
+        assert np.mean(values) == pytest.approx(table.param(f"eps=0.1:final_{zone}")[0],
+                                                abs=1e-9), zone
+    # the seeds of this fake differ by a constant: their paired difference is one value
+    assert np.ptp(table.get("params", "eps=0.1:final_central_minus_lateral:seeds")[1]) \
+        == pytest.approx(0.001)
+    assert table.get("params", "eps=0.1:first_tap_lateral:seeds") is None
 
 
 def test_fig8_of_the_start_between_walls_dips(tmp_path):

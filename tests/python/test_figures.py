@@ -219,6 +219,12 @@ def test_fig6_vertical_profiles(campaign, out_dir):
     for tag in ("initial", "final"):
         alpha, alpha_sem, n = param(table, f"{tag}:alpha")
         assert np.isfinite(alpha) and abs(alpha) < 0.05 and n == SEEDS
+    # each seed's final alpha with the lateral jackknife of its own packing
+    seeds = table[("params", "final:alpha:seeds")]
+    assert len(seeds["mean"]) == SEEDS >= 2 and np.all(seeds["n"] == 1)
+    assert np.mean(seeds["mean"]) == pytest.approx(param(table, "final:alpha")[0], abs=1e-9)
+    assert np.all(np.isfinite(seeds["sem"]) & (seeds["sem"] > 0))
+    assert ("params", "initial:alpha:seeds") not in table
     assert ("a", "fit:final") in table
     # open symbols: alpha at the end of every level of the ramp, per branch
     ramps = [s for s in campaign.runs if s.name.startswith("ramp_")]

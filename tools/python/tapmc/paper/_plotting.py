@@ -58,6 +58,20 @@ def seed_stats(samples):
     return mean, sem, n
 
 
+def window_seeds(per_seed, last):
+    """(values, errors): each seed's mean over its last ``last`` taps and that mean's
+    batch-means error (tapmc.fluctuations.SteadyState), the realizations behind
+    :func:`window_stats` that a figure writes as ``<series>:seeds`` rows (errors NaN for a
+    window too short for two batches)."""
+    from tapmc.fluctuations import SteadyState
+
+    if last < 4:      # fewer than two batches of two taps: a mean, but no batch-means error
+        return (np.array([np.asarray(x, float)[-last:].mean() for x in per_seed]),
+                np.full(len(per_seed), np.nan))
+    states = [SteadyState(np.asarray(x, float), last=last).compute() for x in per_seed]
+    return np.array([s.mean for s in states]), np.array([s.sem for s in states])
+
+
 def window_stats(per_seed, last):
     """(mean, sem, n) of the mean over the last ``last`` taps of each seed's series: sem over
     seeds; with one seed (the paper's protocol) that run's batch-means error over the window

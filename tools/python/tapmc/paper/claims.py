@@ -326,19 +326,20 @@ class ReportData:
                 f"{where} (" + ", ".join(parts)
                 + ("" if any(q in self._measured() for q in ZONE_QUANTITIES)
                    else "; a profile's zones the largest") + "). "
-                "A mean of a ramp's few seeds (Fig. 4's differences of levels) is judged the "
-                "same way: its seeds join the groups as one more group, and the error of the "
-                "mean is their own errors times the factor so pooled, with the pooled degrees "
-                "of freedom, rather than the spread of two seeds with one degree of freedom; "
-                "seeds that spread unlike the groups (F test, two-sided, below "
-                f"{CALIBRATION_ALPHA:g}) are judged by their own spread.")
+                "A mean of a few seeds (Fig. 4's differences of a ramp's levels, Fig. 8's final "
+                "zones, Fig. 6's final alpha) is judged the same way: its seeds join the "
+                "groups as one more group (unless they are one of them already), and the "
+                "error of the mean is their own errors times the factor so pooled, with the "
+                "pooled degrees of freedom, rather than the spread of two seeds with one "
+                "degree of freedom; seeds that spread unlike the groups (F test, two-sided, "
+                f"below {CALIBRATION_ALPHA:g}) are judged by their own spread.")
 
     def _measured(self):
         """The quantities the groups of realizations measure (:meth:`scatter_rows`),
         rejected or not."""
         return {r["column"] for r in self.scatter_rows()}
 
-    def seed_mean_error(self, quantity, values, errors, bc="pbc"):
+    def seed_mean_error(self, quantity, values, errors, bc="pbc", groups=()):
         """(error, dof, factor) of the mean of a few realizations ``values`` of ``quantity``
         (e.g. two seeds of a ramp), each with its own batch-means error ``errors``: their
         group joins the campaign's groups of realizations of ``quantity`` (the ones
@@ -348,7 +349,10 @@ class ReportData:
         alone give their spread 1 dof (a t quantile of 12.7); the groups give the same
         spread some 17. None (judge the seeds alone) when the campaign has no such groups,
         fewer than two values are given, or their spread differs from the groups' (the F
-        test of ErrorCalibration.same_factor_p below :data:`CALIBRATION_ALPHA`)."""
+        test of ErrorCalibration.same_factor_p below :data:`CALIBRATION_ALPHA`). When the
+        seeds are already one of the groups (their name among ``groups``, e.g. Fig. 8's
+        F.B.C. runs at eps = 0.02, ``const_fbc_eps0.02``) the groups' own factor and dof
+        serve: the seeds do not count twice."""
         values = np.asarray(values, dtype=float)
         errors = np.asarray(errors, dtype=float)
         if (len(values) < 2 or len(errors) != len(values) or not np.all(np.isfinite(values))
@@ -357,6 +361,10 @@ class ReportData:
         pooled = self._pooled_calibration(quantity, bc)
         if pooled is None:
             return None
+        if any(g in pooled.groups for g in groups):
+            factor = max(1.0, pooled.factor)
+            return (factor * float(np.sqrt(np.sum(errors ** 2))) / len(values), pooled.dof,
+                    factor)
         own = ErrorCalibration({SEEDS_GROUP: (values, errors)},
                                within_dof=pooled.within_dof).compute()
         if own.same_factor_p(pooled) < CALIBRATION_ALPHA:
@@ -1733,22 +1741,23 @@ def ramp_up2_minus_down(data, claim):
                               statistic="up2_minus_down")
 
 
-def _seed_mean(data, fig, series, quantity, bc="pbc"):
+def _seed_mean(data, fig, series, quantity, bc="pbc", groups=()):
     """(value, error, dof, text) of the params row ``series`` of ``fig``: with two seeds or
-    more and their own values (``<series>:seeds``, e.g. Fig. 4's ramp statistics) the error of
-    their mean judged with the campaign's groups of realizations of ``quantity``
+    more and their own values (``<series>:seeds``: Fig. 4's ramp statistics, Fig. 8's final
+    zones, Fig. 6's final alpha) the error of their mean judged with the campaign's groups
+    of realizations of ``quantity``
     (ReportData.seed_mean_error); otherwise the row's own error (the sem over seeds, or
     one seed's batch-means error) with :func:`_steady_dof`. ``text``: how the error was
-    obtained ("" for the row's own)."""
+    obtained ("" for the row's own). ``groups``: the names the seeds have as a group of
+    realizations (ReportData.seed_mean_error)."""
     m, s, n = fig.param(series)
     seeds = fig.get("params", f"{series}:seeds")
     if n >= 2 and seeds is not None:
-        found = data.seed_mean_error(quantity, seeds[1], seeds[2], bc)
+        found = data.seed_mean_error(quantity, seeds[1], seeds[2], bc, groups)
         if found is not None:
             err, dof, factor = found
-            return m, err, dof, (f"{len(seeds[1])} seeds: their errors within the run x "
-                                 f"{factor:.1f}, pooled with the groups of realizations "
-                                 f"({dof} dof)")
+            return m, err, dof, (f"{len(seeds[1])} seeds: their own errors x {factor:.1f}, "
+                                 f"pooled with the groups of realizations ({dof} dof)")
         return m, s, _steady_dof(n, s), (f"{n} seeds: their own spread, which differs from "
                                          "the groups of realizations")
     return m, s, _steady_dof(n, s), ""
@@ -1862,13 +1871,27 @@ def ramp_branch_slope(data, claim):
     return [Measure(slope, err, dof, shown=f"slope {fmt(slope, err)}")]
 
 
+def _fbc_group_names(eps):
+    """The names realization-scatter gives the group of the F.B.C. constant-eps runs at
+    ``eps`` (either start: tapmc.paper._runs.constant_eps_run); () without an eps."""
+    if not np.isfinite(eps):
+        return ()
+    from ._runs import PAPER_START_TAG, eps_tag
+
+    return tuple(f"const_{tag}_eps{eps_tag(eps)}" for tag in ("fbc", PAPER_START_TAG))
+
+
 def final_alpha(data, claim):
     found, missing = _figure_param(data, "fig6", "final:alpha", "no F.B.C. profile runs")
     if missing:
         return missing
-    _, m, s, n = found
+    fig, m, s, n = found
     from tapmc.profiles import PROFILE_JACKKNIFE_BLOCKS
 
+    if n >= 2:
+        m, s, dof, how = _seed_mean(data, fig, "final:alpha", "packing:alpha", "fbc",
+                                    _fbc_group_names(fig.param("eps")[0]))
+        return [Measure(m, s, dof, shown=fmt(m, s) + (f" ({how})" if how else ""))]
     within = " (one seed: lateral jackknife of its packing)" if n == 1 and np.isfinite(s) else ""
     return [Measure(m, s, _jackknife_dof(n, s, PROFILE_JACKKNIFE_BLOCKS),
                     shown=fmt(m, s) + within)]
@@ -1891,7 +1914,13 @@ def central_minus_lateral(data, claim):
         value, err, n = diff
         factor = data.run_error("zone:central_minus_lateral", "fbc")[0]
         within = (f" ({_run_error_text(factor)})" if n == 1 and np.isfinite(err) else "")
-        out.append(Measure(value, err, _steady_dof(n, err), label=f"eps = {eps:g}",
+        dof = _steady_dof(n, err)
+        if n >= 2 and fig.get("params", f"{tag}:final_central_minus_lateral:seeds") is not None:
+            _, err, dof, how = _seed_mean(data, fig, f"{tag}:final_central_minus_lateral",
+                                          "zone:central_minus_lateral", "fbc",
+                                          _fbc_group_names(eps))
+            within = f" ({how})"
+        out.append(Measure(value, err, dof, label=f"eps = {eps:g}",
                            shown=f"{fmt(cen[0], cen[1])} vs {fmt(lat[0], lat[1])}; "
                                  f"difference {fmt(value, err)}{within}"))
     return out or _missing("no F.B.C. profile")

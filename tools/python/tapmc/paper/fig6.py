@@ -31,7 +31,9 @@ seed the straight line's own (too small: the claim's statistic uses the scatter 
 CSV panels: ``a`` (series ``initial``, ``final``, ``fit:initial``, ``fit:final``; x = z/R),
 ``b`` (series ``bell:alpha`` and ``ramp:up1``, ``ramp:down``, ``ramp:up2``: x = sqrt(eps)),
 ``params`` (``initial:alpha``, ``final:alpha``
-over seeds; ``final:<eq. 7 parameter>``, ``window_lo``, ``window_hi``, ``eps``).
+over seeds; with two seeds or more ``final:alpha:seeds``, one row per seed: its alpha and the
+lateral jackknife of its packing; ``final:<eq. 7 parameter>``, ``window_lo``, ``window_hi``,
+``eps``).
 """
 
 from __future__ import annotations
@@ -230,18 +232,23 @@ def draw(campaign, out_dir):
             table.add("params", f"{tag}:eq7_{name}", eps, value, fit.errors.get(name, np.nan),
                       int(bool(fit.determined)))
     for tag, index in (("initial", 0), ("final", -1)):
-        alphas = []
+        alphas, withins = [], []
         for spec in specs:
             blocks = _runs.profile(campaign, spec, "profile_z.dat").blocks
             z = blocks[index, :, 0] / radius(spec)
             alphas.append([profile_gradient(z, blocks[index, :, 2], window=window)
                            .params["alpha"]])
+            if tag == "final":                   # the error within each seed's packing
+                dump = final_dump(_runs.run_dir(campaign, spec), spec.variables["taps"])
+                withins.append(_alpha_jackknife(dump, radius(spec), blocks[-1, :, 0], window,
+                                                BC))
         m, s, n = P.seed_stats(alphas)
         if tag == "final" and len(specs) == 1:   # one seed: the error within its packing
-            dump = final_dump(_runs.run_dir(campaign, specs[0]), specs[0].variables["taps"])
-            within = _alpha_jackknife(dump, radius(specs[0]), blocks[-1, :, 0], window, BC)
-            s = [np.nan if within is None else within]
+            s = [np.nan if withins[0] is None else withins[0]]
         table.add("params", f"{tag}:alpha", eps, m[0], s[0], n[0])
+        if tag == "final" and len(specs) >= 2 and all(w is not None for w in withins):
+            table.add("params", "final:alpha:seeds", [eps] * len(specs),
+                      [a[0] for a in alphas], withins, 1)
     table.add("params", "window_lo", eps, window[0], None, len(specs))
     table.add("params", "window_hi", eps, window[1], None, len(specs))
     table.add("params", "eps", eps, eps, None, len(specs))

@@ -18,7 +18,9 @@ CSV panels: ``a`` (lateral) and ``b`` (central), series ``eps=<eps>`` (start dep
 walls) or ``paper:eps=<eps>`` (the paper's start), x = t; ``params`` (whatever the start:
 ``eps=<eps>:final_lateral``, ``eps=<eps>:final_central`` and, paired per seed,
 ``eps=<eps>:final_central_minus_lateral``: mean over the last quarter of the taps, over seeds
-(one seed: that run's batch-means error); ``eps=<eps>:first_tap_lateral``,
+(one seed: that run's batch-means error; with two seeds or more also
+``eps=<eps>:final_<zone>:seeds``, one row per seed: its window mean and batch-means error);
+``eps=<eps>:first_tap_lateral``,
 ``eps=<eps>:first_tap_central``: delta Phi after the first tap, over seeds; x = eps).
 """
 
@@ -59,10 +61,14 @@ def increases(campaign, bc=BC, eps_values=None):
         n = np.full(length, len(tables))
         last = max(length // 4, 1)
         lateral_all, central_all = inc.delta_lateral_all, inc.delta_central_all
-        finals = {zone: P.window_stats(per_seed, last)
-                  for zone, per_seed in (("lateral", lateral_all), ("central", central_all),
-                                         ("central_minus_lateral",
-                                          [c - lat for c, lat in zip(central_all, lateral_all)]))}
+        zones = (("lateral", lateral_all), ("central", central_all),
+                 ("central_minus_lateral", [c - lat for c, lat in zip(central_all, lateral_all)]))
+        finals = {zone: P.window_stats(per_seed, last) for zone, per_seed in zones}
+        if len(tables) >= 2:
+            for zone, per_seed in zones:
+                values, errors = P.window_seeds(per_seed, last)
+                if np.all(np.isfinite(errors) & (errors > 0)):   # a window of batches
+                    finals[f"{zone}:seeds"] = (values, errors)
         first = np.flatnonzero(t == 1)
         if len(first):
             finals.update({f"first_tap_{zone}": P.seed_stats([[x[first[0]]] for x in per_seed])
@@ -87,8 +93,14 @@ def draw(campaign, out_dir):
         P.errorbars(ax_c, t[pos], cen[0][pos], cen[1][pos], label=label, color=line.get_color())
         table.add("a", f"{prefix}eps={P.fmt_eps(eps)}", t, *lat)
         table.add("b", f"{prefix}eps={P.fmt_eps(eps)}", t, *cen)
-        for name, (m, s, n) in finals.items():
+        for name, stats in finals.items():
             name = name if name.startswith("first_tap") else f"final_{name}"
+            if name.endswith(":seeds"):       # each seed's window mean and its own error
+                values, errors = stats
+                table.add("params", f"eps={P.fmt_eps(eps)}:{name}", [eps] * len(values),
+                          values, errors, 1)
+                continue
+            m, s, n = stats
             table.add("params", f"eps={P.fmt_eps(eps)}:{name}", eps, m[0], s[0], n[0])
     for ax, name in ((ax_l, "lateral"), (ax_c, "central")):
         ax.set_xscale("log")
