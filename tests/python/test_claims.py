@@ -1642,6 +1642,8 @@ def test_low_ramp_frozen_with_two_seeds_takes_the_groups_dof():
     assert m.dof == 1 and claims.verdict(claim, m) == "agrees"
     tab.add("params", "low:down_change:seeds", [0.125, 0.125], [0.0054, 0.0046],
             [0.0002, 0.0002], n=1)
+    (m,) = claims.low_ramp_frozen(report(fig4=tab), claim)     # no groups: the seeds alone
+    assert m.dof == 1 and "seeds" not in m.text()
     pooled = report(fig4=tab)
     pooled.questions["realization_scatter"] = _scatter_rows("phi_c", 0.002, 0.001)
     (m,) = claims.low_ramp_frozen(pooled, claim)

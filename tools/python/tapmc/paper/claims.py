@@ -1758,8 +1758,9 @@ def _seed_mean(data, fig, series, quantity, bc="pbc", groups=()):
             err, dof, factor = found
             return m, err, dof, (f"{len(seeds[1])} seeds: their own errors x {factor:.1f}, "
                                  f"pooled with the groups of realizations ({dof} dof)")
-        return m, s, _steady_dof(n, s), (f"{n} seeds: their own spread, which differs from "
-                                         "the groups of realizations")
+        if data._pooled_calibration(quantity, bc) is not None:
+            return m, s, _steady_dof(n, s), (f"{n} seeds: their own spread, which differs "
+                                             "from the groups of realizations")
     return m, s, _steady_dof(n, s), ""
 
 
