@@ -76,11 +76,9 @@ def window_stats(per_seed, last):
     """(mean, sem, n) of the mean over the last ``last`` taps of each seed's series: sem over
     seeds; with one seed (the paper's protocol) that run's batch-means error over the window
     (tapmc.fluctuations.SteadyState: successive taps are correlated), n = 1."""
-    from tapmc.fluctuations import SteadyState
-
     m, s, n = seed_stats([[np.asarray(x)[-last:].mean()] for x in per_seed])
-    if len(per_seed) == 1 and last >= 2:
-        s = np.array([SteadyState(np.asarray(per_seed[0], float), last=last).compute().sem])
+    if len(per_seed) == 1:
+        s = window_seeds(per_seed, last)[1]
     return m, s, n
 
 

@@ -361,19 +361,17 @@ class ReportData:
         pooled = self._pooled_calibration(quantity, bc)
         if pooled is None:
             return None
-        if any(g in pooled.groups for g in groups):
-            factor = max(1.0, pooled.factor)
-            return (factor * float(np.sqrt(np.sum(errors ** 2))) / len(values), pooled.dof,
-                    factor)
-        own = ErrorCalibration({SEEDS_GROUP: (values, errors)},
-                               within_dof=pooled.within_dof).compute()
-        if own.same_factor_p(pooled) < CALIBRATION_ALPHA:
-            return None
-        joined = ErrorCalibration({**pooled.groups, SEEDS_GROUP: (values, errors)},
-                                  within_dof=pooled.within_dof).compute()
-        factor = max(1.0, joined.factor)
-        error = factor * float(np.sqrt(np.sum(errors ** 2))) / len(values)
-        return error, joined.dof, factor
+        calibration = pooled
+        if not any(g in pooled.groups for g in groups):
+            own = ErrorCalibration({SEEDS_GROUP: (values, errors)},
+                                   within_dof=pooled.within_dof).compute()
+            if own.same_factor_p(pooled) < CALIBRATION_ALPHA:
+                return None
+            calibration = ErrorCalibration({**pooled.groups, SEEDS_GROUP: (values, errors)},
+                                           within_dof=pooled.within_dof).compute()
+        factor = max(1.0, calibration.factor)
+        return (factor * float(np.sqrt(np.sum(errors ** 2))) / len(values), calibration.dof,
+                factor)
 
     def _pooled_calibration(self, quantity, bc):
         """The ErrorCalibration of ``quantity`` that :func:`realization_factors` reads for
