@@ -1679,6 +1679,49 @@ def test_ramp_branch_differences_of_two_seeds_take_the_groups_dof():
     assert "x 1.9, pooled with the groups of realizations (7 dof)" in m.text()
 
 
+def test_ramp_first_increase_of_two_seeds_against_the_squares_adds_the_squares_once():
+    """The first increase minus the steady squares with two seeds of the ramp: each seed's
+    mean of up1 at the squares' sqrt(eps) (``ramp:up1_at_steady:seeds``) is pooled with the
+    groups of realizations; the squares (one run per sqrt(eps), common to both seeds, their
+    one-run errors times the factor) are added once, with the Welch-Satterthwaite dof."""
+    claim = BY_ID["ramp-up-near-squares"]
+    tab = Table()
+    tab.add("a", "steady", X, 0.599, 0.0002, n=1).add("a", "up1", X, 0.6, 0.0002, n=2)
+    tab.add("a", "down", X, 0.61, 0.0002, n=2)
+    tab.add("params", "ramp:up1_at_steady:seeds", [0.3, 0.3], [0.5998, 0.6002],
+            [0.0001, 0.0001], n=1)
+    data = report(fig4=tab)
+    data.questions["realization_scatter"] = _scatter_rows("phi_c", 0.002, 0.001)
+    assert data.run_error("phi_c")[0] == pytest.approx(2.0)      # the squares' factor
+    (m,) = claims.ramp_up_minus_steady(data, claim)
+    assert m.value == pytest.approx(0.001)
+    # k'^2 = (6 x 2^2 + 1 x (2.83e-4 / 1e-4)^2) / 7: the seeds' part
+    seeds = np.sqrt(32 / 7) * np.hypot(1e-4, 1e-4) / 2
+    squares = 2 * 0.0002 / np.sqrt(len(X))                       # sqrt(sum (2 sem)^2) / k
+    assert m.err == pytest.approx(np.hypot(seeds, squares))
+    parts = np.r_[seeds ** 2, np.full(len(X), (2 * 0.0002 / len(X)) ** 2)]
+    dofs = np.r_[7, np.full(len(X), claims.WITHIN_RUN_DOF)]
+    assert m.dof == int(parts.sum() ** 2 / np.sum(parts ** 2 / dofs))
+    assert "2 seeds: their own errors x 2.1, pooled" in m.text() and "squares' own" in m.text()
+    # seeds that spread far beyond the groups are judged by their own spread (its 1 dof
+    # dominates the Welch-Satterthwaite sum)
+    tab.add("params", "ramp:up1_at_steady:seeds", [0.3, 0.3], [0.59, 0.61],
+            [0.0001, 0.0001], n=1)
+    (wide,) = claims.ramp_up_minus_steady(_with_scatter(tab), claim)
+    assert wide.err == pytest.approx(np.hypot(0.01, squares)) and wide.dof == 1
+    assert "their own spread" in wide.text()
+    # without the seeds' row: the curves' errors, as with one seed
+    del tab.table[("params", "ramp:up1_at_steady:seeds")]
+    (curves,) = claims.ramp_up_minus_steady(_with_scatter(tab), claim)
+    assert "seeds" not in curves.text() and curves.value == pytest.approx(0.001)
+
+
+def _with_scatter(tab):
+    data = report(fig4=tab)
+    data.questions["realization_scatter"] = _scatter_rows("phi_c", 0.002, 0.001)
+    return data
+
+
 def test_fbc_few_seed_values_of_figs_6_and_8_are_pooled_with_their_groups():
     """Fig. 8's central minus lateral zone and Fig. 6's final alpha over two seeds: with each
     seed's own value and error they take the F.B.C. groups' factor of that quantity and its

@@ -286,6 +286,15 @@ def test_fig4_csv_of_the_pair(tmp_path):
     one = fig4.per_seed_ramp_branches(camp, prefix=_runs.RAMP_BELOW_PREFIX)[0]
     assert table.get("params", "low:down_change:seeds")[2][0] == pytest.approx(one.down_change.sem)
     assert ("params", "ramp:down_slope:seeds") not in rows          # not a mean of levels
+    # each seed's first increase at the steady squares' sqrt(eps) (0.05, 0.1, 0.2 of QUICK):
+    # their mean is the up1 curve's mean there, near the true 0.58667
+    x, values, errors, n = table.get("params", "ramp:up1_at_steady:seeds")
+    up_sq, up_mean = table.get("a", "up1")[:2]
+    at = np.isin(np.round(up_sq, 9), [0.05, 0.1, 0.2])
+    assert len(values) == 2 and np.all(errors > 0) and np.all(errors < 2e-4)
+    assert np.mean(values) == pytest.approx(np.mean(up_mean[at]), abs=1e-12)
+    assert np.mean(values) == pytest.approx(np.mean([0.58, 0.585, 0.595]), abs=3e-4)
+    assert ("params", "low:up1_at_steady:seeds") not in rows        # the squares' claim: ramp
     assert ("params", "near:down_change:seeds") not in rows         # one seed
     # the ramp just beyond (sqrt eps)* (one seed; QUICK's first level beyond 0.15 is 0.2) and
     # the claim it decides with the ramp below, read from the CSV as the report reads it

@@ -1726,8 +1726,55 @@ def _branch_difference(data, a, b, effect=None, statistic=None):
                           + (f"; {how})" if how else ")"))]
 
 
+def welch_dof(variances, dofs):
+    """Welch-Satterthwaite dof of a sum of independent variance estimates ``variances`` with
+    ``dofs`` each: (sum v)^2 / sum(v^2 / dof), rounded down, at least 1."""
+    v = np.asarray(variances, dtype=float)
+    d = np.asarray(dofs, dtype=float)
+    denominator = float(np.sum(v ** 2 / d))
+    if denominator <= 0:
+        return int(np.min(d))
+    return max(1, int(float(np.sum(v)) ** 2 / denominator))
+
+
 def ramp_up_minus_steady(data, claim):
-    return _branch_difference(data, "up1", "steady", hysteresis_gap(data))
+    """The ramp's first increase minus the steady squares, mean over their common sqrt(eps).
+    With several seeds of the ramp and each seed's mean of the first increase there (Fig. 4
+    params ``ramp:up1_at_steady:seeds``), the error has two independent parts: the seeds'
+    mean, judged with the campaign's groups of realizations (:func:`_seed_mean`'s pooling),
+    and the squares' own errors (other runs, one per sqrt(eps), shared by every seed),
+    combined with the Welch-Satterthwaite dof. Otherwise the curves' errors
+    (:func:`_branch_difference`)."""
+    effect = hysteresis_gap(data)
+    fig = data.figure("fig4")
+    up, steady = _ramp(data, "up1"), _ramp(data, "steady")
+    seeds = None if fig is None else fig.get("params", "ramp:up1_at_steady:seeds")
+    pairs = [] if up is None or steady is None else _common_x(up, steady)
+    if seeds is None or len(seeds[1]) < 2 or not pairs:
+        return _branch_difference(data, "up1", "steady", effect)
+    values, errors = seeds[1], seeds[2]
+    k = len(pairs)
+    squares = np.array([steady[1][j] for _, j in pairs])
+    square_sems = np.array([steady[2][j] for _, j in pairs])
+    square_dofs = [_steady_dof(int(steady[3][j]), steady[2][j]) for _, j in pairs]
+    if not np.all(np.isfinite(square_sems)) or None in square_dofs:
+        return _branch_difference(data, "up1", "steady", effect)
+    found = data.seed_mean_error("phi_c", values, errors)
+    if found is not None:
+        seed_err, seed_dof, factor = found
+        how = (f"{len(values)} seeds: their own errors x {factor:.1f}, pooled with the groups "
+               f"of realizations ({seed_dof} dof)")
+    else:
+        seed_err = float(np.std(values, ddof=1) / math.sqrt(len(values)))
+        seed_dof = len(values) - 1
+        how = f"{len(values)} seeds: their own spread"
+    value = float(np.mean(values) - np.mean(squares))
+    square_parts = square_sems ** 2 / k ** 2
+    err = math.sqrt(seed_err ** 2 + float(np.sum(square_parts)))
+    dof = welch_dof(np.r_[seed_err ** 2, square_parts], [seed_dof, *square_dofs])
+    return [Measure(value, err, dof, effect=effect,
+                    shown=f"{fmt(value, err)} (mean of {k} common sqrt(eps); {how}; the "
+                          f"squares' own errors added, {dof} dof)")]
 
 
 def ramp_down_minus_up(data, claim):

@@ -43,7 +43,11 @@ of the ramp just beyond it; sem over seeds), ``params``:
 * with two seeds or more, ``<ramp>:<name>:seeds`` for the three differences of levels (one row
   per seed, n = 1: that seed's value and the error its levels' batch-means errors give it),
   so that the error of their mean can be judged against the campaign's groups of
-  realizations rather than by the spread of two or three seeds alone.
+  realizations rather than by the spread of two or three seeds alone;
+* with two seeds or more of the ramp beyond (sqrt eps)*, ``ramp:up1_at_steady:seeds``: each
+  seed's mean of its first increase at the sqrt(eps) it shares with the steady squares, with
+  the error its levels' batch-means errors give it (one row per seed, n = 1), for the claim
+  that the first increase is nearly the steady curve: the squares are common to every seed.
 """
 
 from __future__ import annotations
@@ -148,16 +152,43 @@ def _one_run_branches(run):
     return RampBranches(data["up1"], data["down"], data.get("up2")).compute()
 
 
+def _complete_runs(runs):
+    """The runs (levels of :func:`_ramp_levels_per_run`) whose branches hold the same levels
+    as the fullest run: a ramp still running is left out of the per-seed statistics."""
+    shapes = [{b: sorted(v) for b, v in run.items()} for run in runs]
+    full = max(shapes, key=lambda s: sum(len(v) for v in s.values()), default=None)
+    return [run for run, shape in zip(runs, shapes) if shape == full]
+
+
 def per_seed_ramp_branches(campaign, column="phi_c", bc=BC, prefix="ramp_"):
     """RampBranches of each ramp run named ``prefix...`` from its own levels and their
     batch-means errors, for the runs whose branches are complete (the same levels as every
     other such run): the realizations that the claims pool with the campaign's groups of
     realizations (tapmc.paper.claims.ReportData.seed_mean_error)."""
-    runs = _ramp_levels_per_run(campaign, column, bc, prefix)
-    shapes = [{b: sorted(v) for b, v in run.items()} for run in runs]
-    full = max(shapes, key=lambda s: sum(len(v) for v in s.values()), default=None)
-    return [stats for run, shape in zip(runs, shapes) if shape == full
-            for stats in [_one_run_branches(run)] if stats is not None]
+    runs = _complete_runs(_ramp_levels_per_run(campaign, column, bc, prefix))
+    return [stats for run in runs for stats in [_one_run_branches(run)] if stats is not None]
+
+
+def per_seed_branch_mean(campaign, sqrt_eps, branch="up1", column="phi_c", bc=BC,
+                         prefix="ramp_"):
+    """(values, errors): per complete ramp run named ``prefix...``, the mean of its
+    ``branch`` levels at the given ``sqrt_eps`` (Fig. 4's steady squares that the branch
+    shares) and the error the levels' batch-means errors give it, sqrt(sum sem^2) / k.
+    The squares are other runs, common to every seed: what differs between seeds is this
+    mean, so the claim "the first increase is nearly the steady curve" judges its spread
+    with the campaign's groups of realizations and adds the squares' own error once. Runs
+    whose branch misses one of ``sqrt_eps`` are left out."""
+    values, errors = [], []
+    for run in _complete_runs(_ramp_levels_per_run(campaign, column, bc, prefix)):
+        levels = run.get(branch, {})
+        keys = np.array(sorted(levels))
+        picked = [levels[keys[np.isclose(keys, x)][0]] for x in sqrt_eps
+                  if np.any(np.isclose(keys, x))]
+        if not picked or len(picked) != len(sqrt_eps):
+            continue
+        values.append(float(np.mean([m for m, _ in picked])))
+        errors.append(float(np.sqrt(sum(e * e for _, e in picked)) / len(picked)))
+    return np.array(values), np.array(errors)
 
 
 def hysteresis_branches(campaign, column="phi_c", bc=BC, prefix="ramp_"):
@@ -228,8 +259,8 @@ def draw(campaign, out_dir):
         if not _runs.select(campaign, prefix, bc=BC):
             continue
         series = "" if tag == "ramp" else f"{tag}:"
-        for branch, (bsq, bmean, bsem, bn) in hysteresis_branches(campaign,
-                                                                  prefix=prefix).items():
+        branches = hysteresis_branches(campaign, prefix=prefix)
+        for branch, (bsq, bmean, bsem, bn) in branches.items():
             marker, label = style.get(branch, ("x", branch))
             ax.errorbar(bsq, bmean, yerr=np.nan_to_num(bsem), marker=marker, mfc="none", ls="-",
                         lw=0.6, capsize=2, label=f"{words}: {label}")
@@ -250,6 +281,13 @@ def draw(campaign, out_dir):
                 table.add("params", f"{tag}:{name}:seeds", [top] * len(per_seed),
                           [getattr(r, name).value for r in per_seed],
                           [getattr(r, name).sem for r in per_seed], 1)
+        if tag == "ramp" and seeds >= 2:
+            up1 = branches.get("up1")
+            common = [x for x in sq if up1 is not None and np.any(np.isclose(up1[0], x))]
+            values, errors = per_seed_branch_mean(campaign, common, prefix=prefix)
+            if common and len(values) >= 2:
+                table.add("params", f"{tag}:up1_at_steady:seeds", [top] * len(values), values,
+                          errors, 1)
     ax.set_xlabel(r"$\varepsilon^{1/2}$")
     ax.set_ylabel(r"steady state $\langle\Phi^c\rangle$")
     ax.legend(fontsize=7, title="P.B.C.", title_fontsize=7)
