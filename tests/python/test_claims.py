@@ -1716,6 +1716,31 @@ def test_ramp_first_increase_of_two_seeds_against_the_squares_adds_the_squares_o
     assert "seeds" not in curves.text() and curves.value == pytest.approx(0.001)
 
 
+def test_steady_squares_of_several_seeds_take_at_least_the_pooled_error():
+    """Fig. 4's steady squares of three seeds: a sem over seeds below what the groups of
+    realizations give their mean (the seeds are the group const_pbc_eps<eps> of
+    realization_scatter.csv) is raised to it; a larger sem stays; a square whose group does not
+    match its mean, or has another number of runs, keeps its own error."""
+    x = np.array([0.05, 0.1, 0.15, 0.2])
+    tab = Table().add("a", "steady", x, [0.605, 0.607, 0.59, 0.604], [0.0001, 0.0002, 0.01,
+                                                                         0.0001], n=3)
+    data = report(fig4=tab)
+    rows = _scatter_rows("phi_c", 0.002, 0.001)
+    for eps, means in ((0.0025, (0.6049, 0.605, 0.6051)), (0.0225, (0.5899, 0.59, 0.5901)),
+                       (0.04, (0.6029, 0.603, 0.6031))):     # eps = 0.04: another mean
+        rows += [{"group": f"const_pbc_eps{eps:g}", "column": "phi_c", "mean": str(m),
+                  "sem": "0.0002", "sem_dof": "19"} for m in means]
+    data.questions["realization_scatter"] = rows
+    sem = data.figure("fig4").get("a", "steady")[2]
+    # the groups g0, g1 (k = 2, 3 dof each) and the three of three seeds (sd 1e-4 against
+    # errors 2e-4: k^2 = 1/4, 2 dof each) pool to k^2 = (6 x 4 + 3 x 2 / 4) / 12
+    assert sem[0] == pytest.approx(np.sqrt(25.5 / 12) * 0.0002 / np.sqrt(3))
+    assert sem[1] == 0.0002             # no group of realizations at eps = 0.01
+    assert sem[2] == 0.01               # the seeds' own spread is the larger
+    assert sem[3] == 0.0001             # the group's mean is not this square's
+    assert report(fig4=tab).figure("fig4").get("a", "steady")[2][0] == 0.0001   # no groups
+
+
 def _with_scatter(tab):
     data = report(fig4=tab)
     data.questions["realization_scatter"] = _scatter_rows("phi_c", 0.002, 0.001)

@@ -280,7 +280,40 @@ class ReportData:
             factor = self.run_error(quantity, bc)[0]
             if factor != 1.0:
                 fig = fig.scaled_one_run_errors(factor, chosen)
+        if name == "fig4":
+            fig = self._calibrated_steady_squares(fig)
         return fig
+
+    def _calibrated_steady_squares(self, fig):
+        """Fig. 4's steady squares of several seeds with the error of their mean no smaller
+        than the groups of realizations give it: those seeds are a group of
+        realization_scatter.csv (``const_pbc_eps<eps>``, the same window of the last 1000
+        taps), whose own errors times the pooled factor (:meth:`seed_mean_error`) replace
+        the sem over seeds when larger. A sem of three seeds has 2 dof and can be small by
+        chance; one-seed squares already carry the factor, so every square is weighed alike
+        in the bell's fits. The seeds' own spread stays when it is the larger."""
+        steady = fig.table.get(("a", "steady"))
+        if steady is None or not np.any(np.asarray(steady["n"]) >= 2):
+            return fig
+        from ._runs import eps_tag
+
+        rows = [r for r in self.question("realization_scatter") if r["column"] == "phi_c"]
+        sem = np.array(steady["sem"], dtype=float)
+        for i, (x, mean, n) in enumerate(zip(steady["x"], steady["mean"], steady["n"])):
+            group = f"const_pbc_eps{eps_tag(float(x) ** 2)}"
+            runs = [r for r in rows if r["group"] == group]
+            if n < 2 or len(runs) != n:
+                continue
+            values = np.array([float(r["mean"]) for r in runs])
+            if not math.isclose(float(np.mean(values)), float(mean), abs_tol=1e-8):
+                continue    # not the same window or seeds: leave the square's own error
+            found = self.seed_mean_error("phi_c", values, [float(r["sem"]) for r in runs],
+                                         "pbc", groups=(group,))
+            if found is not None and not found[0] <= sem[i]:
+                sem[i] = found[0]
+        table = dict(fig.table)
+        table[("a", "steady")] = {**steady, "sem": sem}
+        return FigureData(table)
 
     def _realization_factors(self, bc="pbc"):
         """realization_factors of the campaign's groups of realizations (:meth:`scatter_rows`)
@@ -327,12 +360,15 @@ class ReportData:
                 + ("" if any(q in self._measured() for q in ZONE_QUANTITIES)
                    else "; a profile's zones the largest") + "). "
                 "A mean of a few seeds (Fig. 4's differences of a ramp's levels, Fig. 8's final "
-                "zones, Fig. 6's final alpha) is judged the same way: its seeds join the "
+                "zones, Fig. 6's final alpha, Fig. 4's first increase against the steady "
+                "squares) is judged the same way: its seeds join the "
                 "groups as one more group (unless they are one of them already), and the "
                 "error of the mean is their own errors times the factor so pooled, with the "
                 "pooled degrees of freedom, rather than the spread of two seeds with one "
                 "degree of freedom; seeds that spread unlike the groups (F test, two-sided, "
-                f"below {CALIBRATION_ALPHA:g}) are judged by their own spread.")
+                f"below {CALIBRATION_ALPHA:g}) are judged by their own spread. A steady "
+                "square of Fig. 4 with several seeds has the larger of their sem and the "
+                "error so pooled.")
 
     def _measured(self):
         """The quantities the groups of realizations measure (:meth:`scatter_rows`),
