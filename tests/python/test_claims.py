@@ -1654,7 +1654,18 @@ def test_low_ramp_frozen_with_two_seeds_takes_the_groups_dof():
     # the same seeds beside groups they do not resemble: the seeds alone again
     pooled.questions["realization_scatter"] = _scatter_rows("phi_c", 0.00001, 0.001)
     (m,) = claims.low_ramp_frozen(pooled, claim)
-    assert m.dof == 1 and "their own spread, which differs" in m.text()
+    assert m.dof == 1 and "2 seeds (0.0054, 0.0046): the spread of their own values, " \
+        "which differs" in m.text()
+    # seeds that differ more than the row's error says (a row that combines the levels'
+    # sems as independent): the sem of the seeds' values, 0.0015, with 1 dof
+    tab.add("params", "low:down_change:seeds", [0.125, 0.125], [0.0065, 0.0035],
+            [0.0002, 0.0002], n=1)
+    for groups in (0.00001, None):
+        data = report(fig4=tab)
+        if groups:
+            data.questions["realization_scatter"] = _scatter_rows("phi_c", groups, 0.001)
+        (m,) = claims.low_ramp_frozen(data, claim)
+        assert m.dof == 1 and m.err == pytest.approx(0.0015) and m.value == 0.005
 
 
 def test_ramp_branch_differences_of_two_seeds_take_the_groups_dof():

@@ -1830,7 +1830,10 @@ def _seed_mean(data, fig, series, quantity, bc="pbc", groups=()):
     (ReportData.seed_mean_error); otherwise the row's own error (the sem over seeds, or
     one seed's batch-means error) with :func:`_steady_dof`. ``text``: how the error was
     obtained ("" for the row's own). ``groups``: the names the seeds have as a group of
-    realizations (ReportData.seed_mean_error)."""
+    realizations (ReportData.seed_mean_error). Seeds judged alone (no groups, or a spread
+    unlike theirs) take at least the sem of their own values with n - 1 dof: a row that
+    combines the levels' sems over seeds as independent understates the spread of seeds
+    that differ at every level alike."""
     m, s, n = fig.param(series)
     seeds = fig.get("params", f"{series}:seeds")
     if n >= 2 and seeds is not None:
@@ -1839,9 +1842,14 @@ def _seed_mean(data, fig, series, quantity, bc="pbc", groups=()):
             err, dof, factor = found
             return m, err, dof, (f"{len(seeds[1])} seeds: their own errors x {factor:.1f}, "
                                  f"pooled with the groups of realizations ({dof} dof)")
+        values = np.asarray(seeds[1], dtype=float)
+        if len(values) >= 2:
+            s = max(s, float(np.std(values, ddof=1) / math.sqrt(len(values))))
+            n = len(values)
         if data._pooled_calibration(quantity, bc) is not None:
-            return m, s, _steady_dof(n, s), (f"{n} seeds: their own spread, which differs "
-                                             "from the groups of realizations")
+            listed = ", ".join(fmt(v) for v in values)
+            return m, s, n - 1, (f"{n} seeds ({listed}): the spread of their own values, "
+                                 "which differs from the groups of realizations")
     return m, s, _steady_dof(n, s), ""
 
 
