@@ -1720,7 +1720,7 @@ def test_ramp_first_increase_of_two_seeds_against_the_squares_adds_the_squares_o
             [0.0001, 0.0001], n=1)
     (wide,) = claims.ramp_up_minus_steady(_with_scatter(tab), claim)
     assert wide.err == pytest.approx(np.hypot(0.01, squares)) and wide.dof == 1
-    assert "their own spread" in wide.text()
+    assert "2 seeds (0.59, 0.61): the spread of their own values, which differs" in wide.text()
     # without the seeds' row: the curves' errors, as with one seed
     del tab.table[("params", "ramp:up1_at_steady:seeds")]
     (curves,) = claims.ramp_up_minus_steady(_with_scatter(tab), claim)

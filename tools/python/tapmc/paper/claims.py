@@ -1801,9 +1801,8 @@ def ramp_up_minus_steady(data, claim):
         how = (f"{len(values)} seeds: their own errors x {factor:.1f}, pooled with the groups "
                f"of realizations ({seed_dof} dof)")
     else:
-        seed_err = float(np.std(values, ddof=1) / math.sqrt(len(values)))
-        seed_dof = len(values) - 1
-        how = f"{len(values)} seeds: their own spread"
+        seed_err, seed_dof, how = _own_spread(data, values, "phi_c")
+        how = how or f"{len(values)} seeds: the spread of their own values"
     value = float(np.mean(values) - np.mean(squares))
     square_parts = square_sems ** 2 / k ** 2
     err = math.sqrt(seed_err ** 2 + float(np.sum(square_parts)))
@@ -1836,21 +1835,28 @@ def _seed_mean(data, fig, series, quantity, bc="pbc", groups=()):
     that differ at every level alike."""
     m, s, n = fig.param(series)
     seeds = fig.get("params", f"{series}:seeds")
-    if n >= 2 and seeds is not None:
+    if n >= 2 and seeds is not None and len(seeds[1]) >= 2:
         found = data.seed_mean_error(quantity, seeds[1], seeds[2], bc, groups)
         if found is not None:
             err, dof, factor = found
             return m, err, dof, (f"{len(seeds[1])} seeds: their own errors x {factor:.1f}, "
                                  f"pooled with the groups of realizations ({dof} dof)")
-        values = np.asarray(seeds[1], dtype=float)
-        if len(values) >= 2:
-            s = max(s, float(np.std(values, ddof=1) / math.sqrt(len(values))))
-            n = len(values)
-        if data._pooled_calibration(quantity, bc) is not None:
-            listed = ", ".join(fmt(v) for v in values)
-            return m, s, n - 1, (f"{n} seeds ({listed}): the spread of their own values, "
-                                 "which differs from the groups of realizations")
+        own, dof, text = _own_spread(data, seeds[1], quantity, bc)
+        return m, max(s, own), dof, text
     return m, s, _steady_dof(n, s), ""
+
+
+def _own_spread(data, values, quantity, bc="pbc"):
+    """(sem, dof, text) of a mean of seeds judged alone: the sem of their own values with
+    n - 1 dof; ``text`` lists the values and says why ("" when the campaign has no groups
+    of realizations of ``quantity`` to judge them with)."""
+    values = np.asarray(values, dtype=float)
+    sem = float(np.std(values, ddof=1) / math.sqrt(len(values)))
+    if data._pooled_calibration(quantity, bc) is None:
+        return sem, len(values) - 1, ""
+    listed = ", ".join(fmt(v) for v in values)
+    return sem, len(values) - 1, (f"{len(values)} seeds ({listed}): the spread of their own "
+                                  "values, which differs from the groups of realizations")
 
 
 def low_ramp_frozen(data, claim):
