@@ -311,6 +311,8 @@ class ReportData:
                                          "pbc", groups=(group,))
             if found is not None and not found[0] <= sem[i]:
                 sem[i] = found[0]
+        if np.array_equal(sem, np.asarray(steady["sem"], dtype=float), equal_nan=True):
+            return fig
         table = dict(fig.table)
         table[("a", "steady")] = {**steady, "sem": sem}
         return FigureData(table)
