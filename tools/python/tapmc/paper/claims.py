@@ -1800,8 +1800,7 @@ def ramp_up_minus_steady(data, claim):
     found = data.seed_mean_error("phi_c", values, errors)
     if found is not None:
         seed_err, seed_dof, factor = found
-        how = (f"{len(values)} seeds: their own errors x {factor:.1f}, pooled with the groups "
-               f"of realizations ({seed_dof} dof)")
+        how = _pooled_text(len(values), factor, seed_dof)
     else:
         seed_err, seed_dof, how = _own_spread(data, values, "phi_c")
         how = how or f"{len(values)} seeds: the spread of their own values"
@@ -1841,11 +1840,17 @@ def _seed_mean(data, fig, series, quantity, bc="pbc", groups=()):
         found = data.seed_mean_error(quantity, seeds[1], seeds[2], bc, groups)
         if found is not None:
             err, dof, factor = found
-            return m, err, dof, (f"{len(seeds[1])} seeds: their own errors x {factor:.1f}, "
-                                 f"pooled with the groups of realizations ({dof} dof)")
+            return m, err, dof, _pooled_text(len(seeds[1]), factor, dof)
         own, dof, text = _own_spread(data, seeds[1], quantity, bc)
         return m, max(s, own), dof, text
     return m, s, _steady_dof(n, s), ""
+
+
+def _pooled_text(seeds, factor, dof):
+    """How the error of a mean of ``seeds`` pooled with the groups of realizations was
+    obtained (ReportData.seed_mean_error's factor and dof)."""
+    return (f"{seeds} seeds: their own errors x {factor:.1f}, pooled with the groups of "
+            f"realizations ({dof} dof)")
 
 
 def _own_spread(data, values, quantity, bc="pbc"):
