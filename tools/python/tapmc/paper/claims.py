@@ -1797,13 +1797,8 @@ def ramp_up_minus_steady(data, claim):
     square_dofs = [_steady_dof(int(steady[3][j]), steady[2][j]) for _, j in pairs]
     if not np.all(np.isfinite(square_sems)) or None in square_dofs:
         return _branch_difference(data, "up1", "steady", effect)
-    found = data.seed_mean_error("phi_c", values, errors)
-    if found is not None:
-        seed_err, seed_dof, factor = found
-        how = _pooled_text(len(values), factor, seed_dof)
-    else:
-        seed_err, seed_dof, how = _own_spread(data, values, "phi_c")
-        how = how or f"{len(values)} seeds: the spread of their own values"
+    seed_err, seed_dof, how, _ = _seeds_error(data, values, errors, "phi_c")
+    how = how or f"{len(values)} seeds: the spread of their own values"
     value = float(np.mean(values) - np.mean(squares))
     square_parts = square_sems ** 2 / k ** 2
     err = math.sqrt(seed_err ** 2 + float(np.sum(square_parts)))
@@ -1837,33 +1832,30 @@ def _seed_mean(data, fig, series, quantity, bc="pbc", groups=()):
     m, s, n = fig.param(series)
     seeds = fig.get("params", f"{series}:seeds")
     if n >= 2 and seeds is not None and len(seeds[1]) >= 2:
-        found = data.seed_mean_error(quantity, seeds[1], seeds[2], bc, groups)
-        if found is not None:
-            err, dof, factor = found
-            return m, err, dof, _pooled_text(len(seeds[1]), factor, dof)
-        own, dof, text = _own_spread(data, seeds[1], quantity, bc)
-        return m, max(s, own), dof, text
+        err, dof, text, pooled = _seeds_error(data, seeds[1], seeds[2], quantity, bc, groups)
+        return m, err if pooled else max(s, err), dof, text
     return m, s, _steady_dof(n, s), ""
 
 
-def _pooled_text(seeds, factor, dof):
-    """How the error of a mean of ``seeds`` pooled with the groups of realizations was
-    obtained (ReportData.seed_mean_error's factor and dof)."""
-    return (f"{seeds} seeds: their own errors x {factor:.1f}, pooled with the groups of "
-            f"realizations ({dof} dof)")
-
-
-def _own_spread(data, values, quantity, bc="pbc"):
-    """(sem, dof, text) of a mean of seeds judged alone: the sem of their own values with
-    n - 1 dof; ``text`` lists the values and says why ("" when the campaign has no groups
-    of realizations of ``quantity`` to judge them with)."""
+def _seeds_error(data, values, errors, quantity, bc="pbc", groups=()):
+    """(error, dof, text, pooled) of the mean of a few seeds ``values`` of ``quantity``, each
+    with its own error ``errors``: pooled with the campaign's groups of realizations
+    (ReportData.seed_mean_error: their own errors times the pooled factor, the pooled dof),
+    or, judged alone (no groups, or a spread unlike theirs), the sem of their own values
+    with n - 1 dof. ``text`` says how ("" for seeds alone in a campaign without groups)."""
+    found = data.seed_mean_error(quantity, values, errors, bc, groups)
+    if found is not None:
+        err, dof, factor = found
+        return err, dof, (f"{len(values)} seeds: their own errors x {factor:.1f}, pooled "
+                          f"with the groups of realizations ({dof} dof)"), True
     values = np.asarray(values, dtype=float)
     sem = float(np.std(values, ddof=1) / math.sqrt(len(values)))
-    if data._pooled_calibration(quantity, bc) is None:
-        return sem, len(values) - 1, ""
-    listed = ", ".join(fmt(v) for v in values)
-    return sem, len(values) - 1, (f"{len(values)} seeds ({listed}): the spread of their own "
-                                  "values, which differs from the groups of realizations")
+    text = ""
+    if data._pooled_calibration(quantity, bc) is not None:
+        listed = ", ".join(fmt(v) for v in values)
+        text = (f"{len(values)} seeds ({listed}): the spread of their own values, which "
+                "differs from the groups of realizations")
+    return sem, len(values) - 1, text, False
 
 
 def low_ramp_frozen(data, claim):

@@ -184,7 +184,7 @@ def per_seed_branch_mean(campaign, sqrt_eps, branch="up1", column="phi_c", bc=BC
         keys = np.array(sorted(levels))
         picked = [levels[keys[np.isclose(keys, x)][0]] for x in sqrt_eps
                   if np.any(np.isclose(keys, x))]
-        if not picked or len(picked) != len(sqrt_eps):
+        if len(sqrt_eps) == 0 or len(picked) != len(sqrt_eps):
             continue
         values.append(float(np.mean([m for m, _ in picked])))
         errors.append(float(np.sqrt(sum(e * e for _, e in picked)) / len(picked)))
@@ -284,8 +284,9 @@ def draw(campaign, out_dir):
         if tag == "ramp" and seeds >= 2:
             up1 = branches.get("up1")
             common = [x for x in sq if up1 is not None and np.any(np.isclose(up1[0], x))]
-            values, errors = per_seed_branch_mean(campaign, common, prefix=prefix)
-            if common and len(values) >= 2:
+            values, errors = (per_seed_branch_mean(campaign, common, prefix=prefix) if common
+                              else ([], []))
+            if len(values) >= 2:
                 table.add("params", f"{tag}:up1_at_steady:seeds", [top] * len(values), values,
                           errors, 1)
     ax.set_xlabel(r"$\varepsilon^{1/2}$")
