@@ -132,6 +132,29 @@ def ramp_near_run(scale, bc, seed):
     return _RunSpec()(f"{RAMP_NEAR_PREFIX}{bc}_s{seed}", _input(RAMP), variables, int(seed))
 
 
+#: Name prefix of the ramps at the paper's own protocol (section III.B: 4000 taps per level),
+#: apart from the campaign's 1000-tap ramps (``ramp_``, ``ramplow_``, ``rampnear_``) so that
+#: no figure mixes the two protocols: ``paperramp<top>_<bc>[_eta<eta>]_s<seed>``.
+PAPER_RAMP_PREFIX = "paperramp"
+
+
+def paper_ramp_run(scale, bc, seed, top, eta=None):
+    """A ramp of Fig. 4 (in.ramp) at ``scale.ramp_taps_per_level`` taps per level that turns
+    at sqrt(eps) = ``top`` (a level of the ramp's grid from ``ramp_sqrt0`` by ``ramp_dsqrt``),
+    down and up again, at the redeposition threshold ``eta`` (default: the scale's, and then
+    no eta in the name)."""
+    levels = (top - scale.ramp_sqrt0) / scale.ramp_dsqrt
+    if abs(levels - round(levels)) > 1e-9 or round(levels) < 0:
+        raise ValueError(f"top = {top!r}: must be ramp_sqrt0 + k ramp_dsqrt (k >= 0) = "
+                         f"{scale.ramp_sqrt0} + k {scale.ramp_dsqrt}")
+    size = _size(scale if eta is None else scale.replace(eta=float(eta)))
+    variables = dict(size, bc=bc, sqrt0=float(scale.ramp_sqrt0), dsqrt=float(scale.ramp_dsqrt),
+                     nlev=int(round(levels)) + 1, P=int(scale.ramp_taps_per_level))
+    eta_tag = "" if eta is None else f"_eta{float(eta):g}"
+    return _RunSpec()(f"{PAPER_RAMP_PREFIX}{float(top):g}_{bc}{eta_tag}_s{seed}", _input(RAMP),
+                      variables, int(seed))
+
+
 def ageing_run(scale, bc, eps, seed, taps=None):
     taps = int(scale.ageing_taps if taps is None else taps)
     variables = dict(_size(scale), eps=float(eps), taps=taps, bc=bc)

@@ -31,7 +31,13 @@ runs come in tiers; each tier completes figures on its own:
 6. seeds 2 and 3 at ``TIER6_FBC_EPS`` = 0.1, the eps of Figs. 6-7 and Fig. 8's strongest: the
    F.B.C. profiles, alpha and zones of the paper's central eps over realizations, and a
    second F.B.C. group for the factors of realization-scatter and packing-scatter (about
-   1.5 core-hours each).
+   1.5 core-hours each);
+7. section III.B's question at the paper's own protocol (4000 taps per level, ``paperramp*``
+   runs, apart from the 1000-tap ramps the figures draw): the ramp that turns at 0.125 below
+   (sqrt eps)* (2 seeds) and one that turns at 0.2 beyond it, at the scale's eta; then the
+   ramp below at looser redeposition thresholds (eta = 1e-5, 1e-6; 2 seeds each), which asks
+   whether an under-settled redeposition freezes the small taps. 52 000 taps for a ramp
+   below, 88 000 beyond: serial chains of 8 to 20 core-hours each at eta = 1e-7.
 
 Within a tier the runs that settle the report's open questions first come first. Runs carry
 the names of the figure modules' runs (:mod:`tapmc.paper._runs`), so the figures find them.
@@ -70,7 +76,16 @@ TIER5_FBC_SEEDS = (2, 3)
 TIER6_FBC_EPS = (0.1,)
 TIER6_FBC_SEEDS = (2, 3)
 
-TIERS = (1, 2, 3, 4, 5, 6)
+#: Tier 7: the paper's taps per level (section III.B), the ramps' turning points and seeds,
+#: and the looser thresholds of the ramp below (sqrt eps)* (the cheapest first).
+TIER7_RAMP_TAPS_PER_LEVEL = 4000
+TIER7_BELOW_SEEDS = (1, 2)
+TIER7_BEYOND_TOP = 0.2
+TIER7_BEYOND_SEEDS = (1,)
+TIER7_LOOSE_ETAS = (1e-5, 1e-6)
+TIER7_LOOSE_SEEDS = (1, 2)
+
+TIERS = (1, 2, 3, 4, 5, 6, 7)
 
 
 def tier_runs(tier, scale=FULL):
@@ -108,6 +123,16 @@ def tier_runs(tier, scale=FULL):
     if tier == 6:
         return [_runs.constant_eps_run(scale, "fbc", eps, s)
                 for s in TIER6_FBC_SEEDS for eps in TIER6_FBC_EPS]
+    if tier == 7:
+        paper = scale.replace(ramp_taps_per_level=TIER7_RAMP_TAPS_PER_LEVEL)
+        below = [_runs.paper_ramp_run(paper, "pbc", s, paper.ramp_below_top)
+                 for s in TIER7_BELOW_SEEDS]
+        beyond = [_runs.paper_ramp_run(paper, "pbc", s, TIER7_BEYOND_TOP)
+                  for s in TIER7_BEYOND_SEEDS]
+        loose = [_runs.paper_ramp_run(paper, "pbc", s, paper.ramp_below_top, eta=eta)
+                 for eta in TIER7_LOOSE_ETAS for s in TIER7_LOOSE_SEEDS]
+        return [below[0], *loose[:len(TIER7_LOOSE_SEEDS)], *below[1:], *beyond,
+                *loose[len(TIER7_LOOSE_SEEDS):]]
     raise ValueError(f"tier = {tier!r}: allowed values are {', '.join(map(str, TIERS))}")
 
 
