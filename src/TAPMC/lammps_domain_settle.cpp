@@ -35,6 +35,7 @@
 #include <algorithm>
 #include <unordered_map>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -205,6 +206,13 @@ void DomainSettle::load(const DomainSettleSetup &setup, double d_max, double con
     for (int d = 0; d < 3; ++d) tag_xyz_[3 * j + d] = x[i][d];
   }
   max_shift_sq_ = 0.0;
+  left_home_ = false;
+  const double slack = defaults::kDomainFaceSlackOverStep * d_max;
+  for (int d = 0; d < 3; ++d) {
+    const bool split = comm->procgrid[d] > 1;
+    home_lo_[d] = split ? domain->sublo[d] - slack : -std::numeric_limits<double>::infinity();
+    home_hi_[d] = split ? domain->subhi[d] + slack : std::numeric_limits<double>::infinity();
+  }
 }
 
 namespace {
@@ -280,8 +288,9 @@ const int *DomainSettle::members(int round) const
 // After a round: the spheres that moved to LAMMPS, their ghost copies refreshed everywhere (only
 // theirs: the forward communication of the owner fix carries the moved spheres), the refreshed
 // ghosts to the mover. Returns whether some sphere has moved more than the ghost skin since
-// borders() (ghosts must then be rebuilt): on all ranks when `vote` (one non-blocking reduction,
-// overlapped with the forward communication), else on this rank only.
+// borders() or left its sub-domain by more than the face slack (ghosts must then be rebuilt and
+// atoms migrate): on all ranks when `vote` (one non-blocking reduction, overlapped with the
+// forward communication), else on this rank only.
 bool DomainSettle::publish_round(double ghost_skin, bool vote)
 {
   double **x = atom->x;
@@ -298,11 +307,13 @@ bool DomainSettle::publish_round(double ghost_skin, bool vote)
       d2 += (v - o.x_at_borders[d]) * (v - o.x_at_borders[d]);
     }
     max_shift_sq_ = std::max(max_shift_sq_, d2);
+    for (int d = 0; d < 3; ++d)
+      left_home_ = left_home_ || m.x[d] < home_lo_[d] || m.x[d] > home_hi_[d];
     fresh_[i] = 1;
     double *t = &tag_xyz_[3 * static_cast<std::size_t>(o.tag_slot)];  // moved: movable
     for (int d = 0; d < 3; ++d) t[d] = x[i][d];
   }
-  int need = max_shift_sq_ > ghost_skin * ghost_skin ? 1 : 0, any = need;
+  int need = max_shift_sq_ > ghost_skin * ghost_skin || left_home_ ? 1 : 0, any = need;
   MPI_Request request;
   if (vote) MPI_Iallreduce(&need, &any, 1, MPI_INT, MPI_MAX, world, &request);
   compat::forward_comm_fix(comm, owner_);
@@ -388,6 +399,31 @@ void DomainSettle::verify_ghosts()
   }
 }
 
+// Before a round: the rounds are laid out on LAMMPS's present sub-domains, and every active
+// sphere lies within the face slack of its rank's sub-domain (the kernel's coordinates equal
+// LAMMPS's along split axes): else a sub-domain face could refuse its steps.
+void DomainSettle::verify_round_start(const RoundSchedule &schedule, int round) const
+{
+  for (int d = 0; d < 3; ++d) {
+    const DecomposedAxis &a = schedule.axis(d);
+    if (a.split && (a.lo != domain->sublo[d] || a.hi != domain->subhi[d]))
+      error->one(FLERR, "fix mc/settle verify: before round {} the rounds of rank {} are laid "
+                 "out on the sub-domain [{}, {}) along {}, LAMMPS's is [{}, {})", rounds_,
+                 comm->me, a.lo, a.hi, "xyz"[d], domain->sublo[d], domain->subhi[d]);
+  }
+  const int *active = members(round);
+  for (long j = 0; j < round_size_[round]; ++j) {
+    const double *p = mover_->position(active[j]);
+    for (int d = 0; d < 3; ++d)
+      if (p[d] < home_lo_[d] || p[d] > home_hi_[d])
+        error->one(FLERR, "fix mc/settle verify: before round {} atom {} on rank {} is at {} "
+                   "{} {}, beyond its sub-domain [{}, {}] along {} by more than the face slack "
+                   "{} (it should have migrated)", rounds_, atom->tag[active[j]], comm->me,
+                   p[0], p[1], p[2], domain->sublo[d], domain->subhi[d], "xyz"[d],
+                   home_hi_[d] - domain->subhi[d]);
+  }
+}
+
 std::array<DecomposedAxis, 3> DomainSettle::decomposed_axes() const
 {
   std::array<DecomposedAxis, 3> axes;
@@ -432,6 +468,8 @@ struct DomainSettle::Run {
   long movable_total;
   double ghost_skin = 0.0;
   std::unique_ptr<RoundSchedule> schedule;
+  double contact = 0.0, margin = 0.0;  // of the schedule: 2 R_max and the move margin e
+  std::array<double, 3> cuts_uniform{};  // this cycle's draws of the cuts
   CounterRandom trial_stream{0, 0}, cut_stream{0, 0};
   long interval = 0;
   TrialTally tally;
@@ -462,17 +500,9 @@ void DomainSettle::prepare(Run &run)
   load(run.setup, params.d_max, params.contact_tol);
   run.mark(timing_.rebuilds);
 
-  const double margin = defaults::kDomainMoveMarginOverStep * params.d_max;
-  guarded(lmp, "fix mc/settle", true, [&] {
-    try {
-      run.schedule = std::make_unique<RoundSchedule>(decomposed_axes(), 2.0 * r_max, margin);
-    } catch (const std::invalid_argument &e) {  // sub-domains too narrow for the rounds
-      throw std::invalid_argument(std::string(e.what()) +
-                                  "; 'scheme gather' runs the same input on this processor grid "
-                                  "(every rank redeposits all spheres), or use fewer ranks along "
-                                  "that axis");
-    }
-  });
+  run.contact = 2.0 * r_max;
+  run.margin = defaults::kDomainMoveMarginOverStep * params.d_max;
+  lay_out_rounds(run);
   if (!sampler_ || sampler_->d_max() != params.d_max ||
       sampler_->theta_sampler().theta0() != params.theta0)
     sampler_ = std::make_unique<TrialMoveSampler>(params.d_max, params.theta0);
@@ -482,25 +512,49 @@ void DomainSettle::prepare(Run &run)
   run.interval = Settler::trials_per_check(params.check_interval, run.movable_total);
 }
 
+// The rounds laid out on the sub-domains as they are now (collective). A migration can move
+// them: a shrink-wrapped box top ('m' or 's') follows the bed, which falls during the
+// redeposition, and the sub-domains of a z split follow the box. Rounds laid out on the old
+// sub-domains would keep the old faces as the edges of the regions, faces that atoms
+// no longer cross to migrate: the bed would hang on them.
+void DomainSettle::lay_out_rounds(Run &run)
+{
+  guarded(lmp, "fix mc/settle", true, [&] {
+    try {
+      run.schedule = std::make_unique<RoundSchedule>(decomposed_axes(), run.contact, run.margin);
+    } catch (const std::invalid_argument &e) {  // sub-domains too narrow for the rounds
+      throw std::invalid_argument(std::string(e.what()) +
+                                  "; 'scheme gather' runs the same input on this processor grid "
+                                  "(every rank redeposits all spheres), or use fewer ranks along "
+                                  "that axis");
+    }
+  });
+}
+
 // One cycle of rounds (one check interval): new cuts, then each round's trials on every rank,
 // each followed by the refresh of the ghosts (and a ghost rebuild where one is due).
 void DomainSettle::run_cycle(Run &run)
 {
-  RoundSchedule &schedule = *run.schedule;
   const std::uint64_t c = run.cycle++;
-  schedule.start_cycle({run.cut_stream.uniform(3 * c), run.cut_stream.uniform(3 * c + 1),
-                        run.cut_stream.uniform(3 * c + 2)});
-  partition(schedule);
-  for (int r = 0; r < schedule.rounds(); ++r) {
+  run.cuts_uniform = {run.cut_stream.uniform(3 * c), run.cut_stream.uniform(3 * c + 1),
+                      run.cut_stream.uniform(3 * c + 2)};
+  run.schedule->start_cycle(run.cuts_uniform);
+  partition(*run.schedule);
+  for (int r = 0; r < run.schedule->rounds(); ++r) {
     if (run.rebuild_pending) {  // collective: decided by the reduction after the last round
       hand_rounds_to_atoms();
       distribute();
       load(run.setup, run.params.d_max, run.params.contact_tol);
+      // the same cuts' draws on the sub-domains after the migration; each sphere keeps its round
+      lay_out_rounds(run);
+      run.schedule->start_cycle(run.cuts_uniform);
       repartition_after_rebuild(r);
       ++ghost_rebuilds_;
       run.rebuild_pending = false;
       run.mark(timing_.rebuilds);
     }
+    const RoundSchedule &schedule = *run.schedule;
+    if (verify_) verify_round_start(schedule, r);
     const long m = round_size_[r];
     const long trials = round_trials(m, run.interval, run.movable_total);
     const MoveRegion region = schedule.region(r);

@@ -48,8 +48,10 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
   void unpack_moved(int n, int first, const double *buf);
 
   // After every round, also compare each ghost the kernel sees with its owner's position (a full
-  // forward communication) and stop with an error on any difference: a check of the refresh, for
-  // tests and debugging ('verify yes' of fix mc/settle).
+  // forward communication), and before every round check that each active sphere lies within
+  // the face slack of this rank's sub-domain (no sub-domain face can refuse its next step); stop
+  // with an error on any difference: checks of the scheme, for tests and debugging ('verify
+  // yes' of fix mc/settle).
   void set_verify(bool on) { verify_ = on; }
 
   // Threads of this rank's trial moves (SphereMover::set_threads): the same moves on any count.
@@ -132,10 +134,15 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
   long ghost_rebuilds_ = 0, rounds_ = 0;
   Timing timing_;
   double max_shift_sq_ = 0.0;  // largest squared displacement of an owned sphere since borders
+  // This rank's sub-domain widened by the face slack (kDomainFaceSlackOverStep d_max) along the
+  // split axes, unbounded along the others: an owned sphere beyond it must migrate.
+  double home_lo_[3] = {0, 0, 0}, home_hi_[3] = {0, 0, 0};
+  bool left_home_ = false;  // an owned sphere moved beyond home_lo_ / home_hi_ since borders
 
   struct Run;
   void prepare(Run &run);
   void run_cycle(Run &run);
+  void lay_out_rounds(Run &run);
   void set_kernel_axes();
   void select_ghosts();
   void index_ghosts();
@@ -148,6 +155,7 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
   const int *members(int round) const;
   bool publish_round(double ghost_skin, bool vote);
   void verify_ghosts();
+  void verify_round_start(const RoundSchedule &schedule, int round) const;
   std::array<DecomposedAxis, 3> decomposed_axes() const;
   double largest_radius(const DomainSettleSetup &setup) const;
 };

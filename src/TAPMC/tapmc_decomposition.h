@@ -76,6 +76,9 @@ class RoundSchedule {
   MoveRegion region(int round) const;
 
   double cut(int axis) const { return cut_[axis]; }
+  // The sub-domain the rounds were laid out on (rebuild the schedule when it changes, e.g. a
+  // shrink-wrapped box top that moved at a migration).
+  const DecomposedAxis &axis(int d) const { return axes_[d]; }
 
  private:
   std::array<DecomposedAxis, 3> axes_;

@@ -213,6 +213,14 @@ constexpr int kSpinsBeforeYieldOversubscribed = 16;
 // scheme's one artefact). The narrowest sub-domain is 2 contact distances + 4 e (7.2 R at the
 // default d_max = R/5), so 4 ranks along the paper's L = 32 R still fit.
 constexpr double kDomainMoveMarginOverStep = 4.0;
+// A sphere that has left its rank's sub-domain by more than e - d_max (3 d_max) along a split
+// axis calls for a migration before its next round: until it migrates, its round's region ends
+// e beyond the sub-domain face, a face that does not move between rebuilds (unlike the cuts,
+// drawn anew each cycle), so its trials past the face would be refused cycle after cycle and,
+// under the moves' downward bias, a bed split along z would hang on the face. Within e - d_max
+// of its sub-domain a sphere has at least one whole step before the face's region edge.
+constexpr double kDomainFaceSlackOverStep = kDomainMoveMarginOverStep - 1.0;
+static_assert(kDomainFaceSlackOverStep >= 0.0, "the move margin must be at least one step");
 // Ghost skin in units of R_max: atoms migrate and ghosts are rebuilt (exchange + borders) once a
 // sphere has moved this far since the last build. Larger: more ghosts refreshed every round;
 // smaller: more rebuilds. The ghost cutoff is 2 R_max + e + skin.

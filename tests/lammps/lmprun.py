@@ -81,3 +81,27 @@ def min_gap(xyz, radius, box, periodic_xy, floor=None):
         if fg[i] < best[0]:
             best = (float(fg[i]), i, -1)
     return best
+
+
+def free_drops(xyz, radius, box, periodic_xy, floor):
+    """How far each sphere could fall straight down before it touches another sphere or the
+    floor (brute force over all pairs, minimum image in periodic x / y): a redeposited bed
+    leaves no sphere with room beneath it for another sphere (a drop of a diameter or more
+    means a sphere hangs over a hole). Returns an array, one drop per sphere."""
+    xyz = np.asarray(xyz, dtype=float)
+    radius = np.asarray(radius, dtype=float)
+    lengths = box[:, 1] - box[:, 0]
+    drops = xyz[:, 2] - radius - floor
+    for i in range(len(xyz)):
+        d = xyz - xyz[i]
+        for dim in range(2):
+            if periodic_xy[dim]:
+                d[:, dim] -= lengths[dim] * np.round(d[:, dim] / lengths[dim])
+        reach = radius + radius[i]
+        horizontal2 = d[:, 0] ** 2 + d[:, 1] ** 2
+        below = (d[:, 2] < 0) & (horizontal2 < reach ** 2)
+        below[i] = False
+        if below.any():
+            gaps = -d[below, 2] - np.sqrt(reach[below] ** 2 - horizontal2[below])
+            drops[i] = min(drops[i], gaps.min())
+    return drops
