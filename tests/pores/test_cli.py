@@ -29,6 +29,24 @@ def test_usage_errors():
     assert result.returncode == 1 and "unknown option" in result.stderr
 
 
+def test_bins_beyond_the_limit_is_a_usage_error():
+    # --bins 10^15 used to reach the allocation of the histograms: "internal error:
+    # std::bad_alloc", exit code 3. The limit is kMaxBins of pores_config.h, quoted by --help.
+    source = os.environ.get("TAPMC_SOURCE_DIR", ".")
+    config = open(os.path.join(source, "tools/pores/include/tapmc_pores/pores_config.h")).read()
+    limit = int(re.search(r"constexpr std::size_t kMaxBins = (\d+);", config).group(1))
+    for value in ("1000000000000000", str(limit + 1), "0", "99999999999999999999999"):
+        result = run("-q", "--bins", value, "x.dump")
+        assert result.returncode == 1, result.stderr
+        assert f"tapmc-pores: --bins = {value}: allowed range [1, {limit}]" in result.stderr, result.stderr
+        assert "internal error" not in result.stderr
+    # The limit itself is accepted (with --help: parsed, nothing analysed).
+    assert run("--bins", limit, "--help").returncode == 0
+    assert run("--bins", limit + 1, "--help").returncode == 1
+    help_line = next(l for l in run("--help").stdout.split("\n  -")[1:] if l.startswith("-bins"))
+    assert f"at most {limit}" in help_line, help_line
+
+
 def test_many_files_and_frames_aggregate(tmp_path):
     packings = [random_packing(150, 7.0, [True, True, False], s) for s in range(4)]
     a = write(tmp_path / "a.dump.gz", dump_text(packings[0], 7.0, [1, 1, 0], 0) + dump_text(packings[1], 7.0, [1, 1, 0], 100))
@@ -125,6 +143,9 @@ BAD = {
     "triclinic": (_frame("1", ["1 1 1 1 0.5"], flags="xy xz yz pp pp pp", bounds=("0 7 0", "0 7 0", "0 7 0")), 5, "triclinic"),
     "overlap": (_frame("2", ["1 1 1 1 0.5", "2 1.5 1 1 0.5"]), 10, "overlap"),
     "polydisperse": (_frame("2", ["1 1 1 1 0.5", "2 3 3 3 0.6"]), 11, "polydisperse"),
+    "radius_diameter": (_frame("2", ["1 1 1 1 0.5 1", "2 3 3 3 0.5 1.2"], columns="id x y z radius diameter"), 11,
+                        "atom 2: the radius and diameter columns disagree: radius 0.5, diameter 1.2 "
+                        "(|diameter - 2 radius| / diameter = 0.167, allowed range [0, 2e-05])"),
 }
 
 
@@ -136,8 +157,9 @@ def test_bad_input_is_refused_with_file_frame_and_line(tmp_path, name):
     result = run("-q", "-o", tmp_path / "out", good, bad)
     assert result.returncode == 2, result.stderr
     message = result.stderr
-    assert f"{name}.dump.gz:{line}:" in message, message
-    assert "frame 1" in message and fragment in message, message
+    # One form for every located message, from the reader as from the analysis.
+    assert f"{name}.dump.gz:{line}: frame 1 (timestep 0): " in message, message
+    assert fragment in message and "frame 1: (timestep" not in message, message
     assert "Traceback" not in message and "internal error" not in message
 
 
@@ -212,6 +234,31 @@ def test_overlap_message_names_deepest_pair_threshold_and_option(tmp_path):
     # The suggested tolerance accepts the frame; a slightly smaller one does not.
     assert run("-q", "--overlap-tol", tolerance, "-o", tmp_path / "out", dem).returncode == 0
     assert run("-q", "--overlap-tol", depth - 1e-4, "-o", tmp_path / "out2", dem).returncode == 2
+
+
+def test_a_duplicated_sphere_is_refused_like_a_near_one(tmp_path):
+    # A copy of atom 100 as atom 513 at exactly its position: CGAL's Delaunay merged the two
+    # points, and the run gave the pores of 512 spheres with exit code 0.
+    centres, bounds, periodic, text = read_dump_frame(DATA)
+    lines = text.splitlines()
+    copy = lines[9 + 99].split()
+    assert copy[0] == "100"
+
+    def with_copy(name, x):
+        head = lines[:3] + ["513"] + lines[4:9 + 512]
+        return write(tmp_path / name, "\n".join(head + [" ".join(["513", copy[1], x, *copy[3:]])]) + "\n")
+
+    position = ", ".join(f"{float(v):.10g}" for v in copy[2:5])
+    family = "dump:109: frame 1 (timestep 20): spheres 100 and 513 overlap by 100 % of a diameter (centre distance "
+    result = run("-q", "-o", tmp_path / "out", with_copy("duplicate.dump", copy[2]))
+    assert result.returncode == 2, result.stderr
+    assert f"duplicate.{family}0, 2R = 1): both are at ({position}); pairs closer than 2R (1 - 0.001) = 0.999 " \
+           "are refused" in result.stderr, result.stderr
+    assert "(atom lines 109 and 522). The centres coincide" in result.stderr, result.stderr
+    assert "no output written" in result.stderr and not list(tmp_path.glob("out*"))
+    result = run("-q", "-o", tmp_path / "out", with_copy("near.dump", repr(float(copy[2]) + 1e-9)))
+    assert result.returncode == 2, result.stderr
+    assert f"near.{family}1e-09, 2R = 1)" in result.stderr, result.stderr
 
 
 def test_a_refused_run_writes_no_file(tmp_path):

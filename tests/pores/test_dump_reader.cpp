@@ -5,6 +5,7 @@
 #include <zlib.h>
 
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include "tapmc_pores/dump_reader.h"
@@ -153,6 +154,48 @@ TEST(PoreDumpReader, ErrorsReportTheFrameNumber) {
     EXPECT_EQ(e.line(), 30u);
     EXPECT_NE(std::string(e.what()).find("timestep 20"), std::string::npos) << e.what();
   }
+}
+
+TEST(PoreDumpReader, ErrorsNameFrameAndTimestepInTheToolsOneForm) {
+  // "FILE:LINE: frame N (timestep T): ", as the tool's other located messages; this used to be
+  // "FILE:LINE: frame N: (timestep T) ".
+  const std::string good = frame_text(0, "pp pp pp", "id x y z", {"1 1 1 1"});
+  DumpReader reader = DumpReader::from_memory(good + good + frame_text(20, "pp pp pp", "id x y z", {"1 1 x 1"}), "f.dump");
+  Frame f;
+  try {
+    while (reader.next(f)) {
+    }
+    FAIL();
+  } catch (const DumpError& e) {
+    EXPECT_EQ(std::string(e.what()), "f.dump:30: frame 3 (timestep 20): non-numeric coordinate field 'x'");
+    EXPECT_EQ(e.timestep(), std::optional<long long>(20));
+  }
+  // Before the frame's TIMESTEP item the timestep is unknown: "frame N: " alone.
+  try {
+    DumpReader early = DumpReader::from_memory(good + "garbage\n", "g.dump");
+    while (early.next(f)) {
+    }
+    FAIL();
+  } catch (const DumpError& e) {
+    EXPECT_EQ(std::string(e.what()), "g.dump:11: frame 2: expected an 'ITEM:' line, found 'garbage'");
+    EXPECT_FALSE(e.timestep().has_value());
+  }
+}
+
+TEST(PoreDumpReader, RadiusAndDiameterColumnsMustAgree) {
+  // Both columns: the radius is used, so a diameter that is not twice it is refused (it was
+  // accepted silently), naming the atom and both values as written.
+  const std::string columns = "id x y z radius diameter";
+  expect_error(frame_text(0, "pp pp pp", columns, {"1 1 1 1 0.5 1", "7 3 3 3 0.5 1.2"}), 11,
+               "frame 1 (timestep 0): atom 7: the radius and diameter columns disagree: radius 0.5, diameter 1.2 "
+               "(|diameter - 2 radius| / diameter = 0.167, allowed range [0, 2e-05])");
+  expect_error(frame_text(0, "pp pp pp", "diameter radius id x y z", {"0.5 0.5 3 1 1 1"}), 10,
+               "atom 3: the radius and diameter columns disagree: radius 0.5, diameter 0.5 ");
+  expect_error(frame_text(0, "pp pp pp", columns, {"1 1 1 1 0.5 0"}), 10, "radius 0.5, diameter 0 (");
+  expect_error(frame_text(0, "pp pp pp", columns, {"1 1 1 1 0.5 nan"}), 10, "non-finite diameter value 'nan'");
+  // Agreement up to the rounding of 6 printed digits (LAMMPS's %g) is accepted.
+  const Frame f = read_one(frame_text(0, "pp pp pp", columns, {"1 1 1 1 0.333333 0.666667", "2 3 3 3 0.5 1"}));
+  EXPECT_EQ(f.radius, (std::vector<double>{0.333333, 0.5}));
 }
 
 // The message of a DumpError raised at the first frame, or "" when the input reads cleanly.

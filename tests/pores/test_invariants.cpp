@@ -7,6 +7,8 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <sstream>
+#include <string>
 #include <tuple>
 
 #include "pores_test_util.h"
@@ -227,6 +229,59 @@ TEST(PoreInvariants, OverlapRefusalNamesTheDeepestPairAndTheThreshold) {
     o.overlap_tolerance = 0.049;
     EXPECT_THROW(Tessellation(q.box, q.xyz, q.ids, o), OverlapError);
   }
+}
+
+// The refusal of the pair {a, b} (input positions) at `distance`; a failure when accepted.
+std::string overlap_refusal(const Packing& p, std::size_t a, std::size_t b, double distance) {
+  try {
+    const Tessellation t(p.box, p.xyz, p.ids, options_for(p));
+  } catch (const OverlapError& e) {
+    EXPECT_EQ(std::set<std::size_t>({e.index_a, e.index_b}), std::set<std::size_t>({a, b})) << e.what();
+    EXPECT_NEAR(e.distance, distance, 1e-6 * distance) << e.what();
+    EXPECT_NEAR(e.depth, 1.0, 1e-8);
+    return e.what();
+  }
+  ADD_FAILURE() << "spheres " << p.ids[a] << " and " << p.ids[b] << " at distance " << distance << " accepted";
+  return "";
+}
+
+TEST(PoreInvariants, ADuplicatedSphereIsRefusedLikeANearOne) {
+  // 4096 spheres (simple cubic, triply periodic) and a copy of sphere 1000 as atom 4097. CGAL's
+  // Delaunay merges coincident points: the copy vanished and the pores were those of 4096.
+  Packing p = pores_test::simple_cubic(16, 0.5);
+  const std::size_t copied = 999;
+  p.add(p.xyz[3 * copied], p.xyz[3 * copied + 1], p.xyz[3 * copied + 2]);
+  ASSERT_EQ(p.size(), 4097u);
+  std::ostringstream at;
+  at.precision(10);
+  at << "both are at (" << p.xyz[3 * copied] << ", " << p.xyz[3 * copied + 1] << ", " << p.xyz[3 * copied + 2] << ")";
+  const std::string duplicate = overlap_refusal(p, copied, 4096, 0.0);
+  EXPECT_NE(duplicate.find("spheres 1000 and 4097 overlap by 100 % of a diameter (centre distance 0, 2R = 1): " + at.str() +
+                           "; pairs closer than 2R (1 - 0.001) = 0.999 are refused"),
+            std::string::npos)
+      << duplicate;
+  // The same copy 1e-9 away: the same pair, the same message family.
+  p.xyz[3 * 4096] += 1e-9;
+  const std::string near = overlap_refusal(p, copied, 4096, p.xyz[3 * 4096] - p.xyz[3 * copied]);
+  EXPECT_NE(near.find("spheres 1000 and 4097 overlap by 100 % of a diameter (centre distance 1e-09, 2R = 1)"),
+            std::string::npos)
+      << near;
+  // Two spheres copied in a slab (walls in z), the one nearest a periodic face (its images are
+  // copied too) then sphere 5: the lowest pair is named, with the count of coinciding pairs.
+  Packing slab = pores_test::random_packing(150, 7.0, {true, true, false}, 3);
+  std::size_t edge = 0;
+  for (std::size_t i = 0; i < slab.size(); ++i)
+    if (slab.xyz[3 * i] < slab.xyz[3 * edge]) edge = i;
+  ASSERT_NE(edge, 5u);
+  for (std::size_t copy : {edge, std::size_t{5}})
+    slab.add(slab.xyz[3 * copy], slab.xyz[3 * copy + 1], slab.xyz[3 * copy + 2]);
+  const auto [a, b] = edge < 5 ? std::pair<std::size_t, std::size_t>{edge, 150} : std::pair<std::size_t, std::size_t>{5, 151};
+  const std::string two = overlap_refusal(slab, a, b, 0.0);
+  EXPECT_NE(two.find("spheres " + std::to_string(a + 1) + " and " + std::to_string(b + 1) +
+                     " overlap by 100 % of a diameter (centre distance 0"),
+            std::string::npos)
+      << two;
+  EXPECT_NE(two.find("the first of 2 coinciding pairs"), std::string::npos) << two;
 }
 
 TEST(PoreInvariants, ContactWithinToleranceIsAccepted) {

@@ -54,7 +54,8 @@ Selection of pores (by the position of the pore centre; z is the vertical)
   --paper-window       the paper's statistics box (section IV.B): 2R from the side walls,
                        height 18R from 2R above the floor (same as --radii --z 2:20)
 Histograms
-  --bins N             bins of xi on [0, XI_MAX) and of v = xi^3 on [0, XI_MAX^3) (default 150)
+  --bins N             bins of xi on [0, XI_MAX) and of v = xi^3 on [0, XI_MAX^3) (default 150,
+                       at most 1000000)
   --xi-max X           (default 1.5)
 Outputs (files PREFIX.*)
   -o, --output PREFIX  default "pores". Always: PREFIX.hist.csv (over all analysed frames: P(xi),
@@ -127,6 +128,22 @@ std::size_t to_count(const std::string& option, const std::string& text, std::si
   return static_cast<std::size_t>(value);
 }
 
+// An integer in [minimum, maximum]; a value out of range, beyond 64 bits included, is named with
+// the range, so that no huge value reaches an allocation (std::bad_alloc, exit code 3).
+std::size_t to_count_in_range(const std::string& option, const std::string& text, std::size_t minimum,
+                              std::size_t maximum) {
+  const std::string range = "[" + std::to_string(minimum) + ", " + std::to_string(maximum) + "]";
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos)
+    throw UsageError(option + " expects an integer in " + range + ", got '" + text + "'");
+  // Digits only: more significant digits than the maximum is out of range without converting.
+  const std::size_t first = text.find_first_not_of('0');
+  const bool too_long = first != std::string::npos && text.size() - first > std::to_string(maximum).size();
+  const std::size_t value = too_long ? 0 : static_cast<std::size_t>(std::stoull(text));
+  if (too_long || value < minimum || value > maximum)
+    throw UsageError(option + " = " + text + ": allowed range " + range);
+  return value;
+}
+
 // The value of the option being parsed (the next argument); UsageError when there is none.
 using NextValue = std::function<const std::string&()>;
 
@@ -185,7 +202,7 @@ bool set_input_option(Options& o, const std::string& a, const NextValue& value) 
 
 // Options of the analysis and of the outputs; false when `a` is none of them.
 bool set_analysis_option(Options& o, const std::string& a, const NextValue& value) {
-  if (a == "--bins") o.histogram.bins = to_count(a, value(), 1);
+  if (a == "--bins") o.histogram.bins = to_count_in_range(a, value(), 1, config::kMaxBins);
   else if (a == "--xi-max") {
     o.histogram.xi_max = to_double(a, value());
     if (!(o.histogram.xi_max > 0)) throw UsageError("--xi-max must be positive");
@@ -387,8 +404,10 @@ std::string overlap_message(const Frame& frame, const OverlapError& e) {
     what << "To accept overlapping spheres (e.g. a DEM dump), give --overlap-tol above the deepest overlap, "
             "here --overlap-tol "
          << tolerance << " (pores whose empty sphere is squeezed by overlaps get xi < 0, counted below range).";
-  else
+  else if (e.distance > 0)
     what << "The centres nearly coincide: this is not a packing of spheres.";
+  else
+    what << "The centres coincide (a sphere written twice?): this is not a packing of spheres.";
   return what.str();
 }
 
@@ -473,21 +492,22 @@ void PoreRun::warn(const std::string& kind, const std::string& location, const s
 
 void PoreRun::analyse_file(const std::string& path) {
   if (analysed_ >= o_.max_frames) return;  // the files after the last frame wanted are not opened
-  std::size_t current_frame = 0;
+  Frame frame;  // outside the try: an unforeseen error names the frame being analysed
+  bool analysing = false;
   try {
     DumpReader reader = DumpReader::open(path, o_.reader);
-    Frame frame;
     std::size_t seen = 0;
     while (analysed_ < o_.max_frames && reader.next(frame)) {
-      current_frame = frame.index;
       ++seen;
       if (seen <= o_.skip || (seen - o_.skip - 1) % o_.every != 0) continue;
+      analysing = true;
       analyse_frame(frame);
+      analysing = false;
     }
   } catch (const RunRefused&) {
     throw;
-  } catch (const std::exception& e) {  // unforeseen: still say where
-    throw InputError(path + ": frame " + std::to_string(current_frame) + ": " + e.what());
+  } catch (const std::exception& e) {  // unforeseen: still say where, as located messages do
+    throw InputError((analysing ? where(frame, frame.first_line) : path + ": ") + e.what());
   }
 }
 

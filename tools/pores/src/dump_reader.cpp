@@ -18,19 +18,24 @@ namespace tapmc {
 namespace pores {
 
 DumpError::DumpError(const std::string& file, std::size_t frame, std::size_t line,
-                     const std::string& what)
+                     const std::string& what, std::optional<long long> timestep)
     : InputError([&] {
         std::ostringstream out;
         out << file;
         if (line > 0) out << ":" << line;
         out << ": ";
-        if (frame > 0) out << "frame " << frame << ": ";
+        if (frame > 0) {
+          out << "frame " << frame;
+          if (timestep) out << " (timestep " << *timestep << ")";
+          out << ": ";
+        }
         out << what;
         return out.str();
       }()),
       file_(file),
       frame_(frame),
-      line_(line) {}
+      line_(line),
+      timestep_(timestep) {}
 
 // ---- byte sources ---------------------------------------------------------------------------
 class ByteSource {
@@ -181,9 +186,8 @@ DumpReader DumpReader::from_memory(std::string data, const std::string& name,
 }
 
 void DumpReader::fail(std::size_t line, const std::string& what) const {
-  std::string message = what;
-  if (have_timestep_) message = "(timestep " + std::to_string(current_timestep_) + ") " + message;
-  throw DumpError(name_, frames_read_ + 1, line, message);
+  throw DumpError(name_, frames_read_ + 1, line, what,
+                  have_timestep_ ? std::optional<long long>(current_timestep_) : std::nullopt);
 }
 
 bool DumpReader::next_line(std::string_view& line) {
@@ -354,6 +358,20 @@ void DumpReader::read_atom(const std::vector<std::string_view>& fields, const Co
   else if (columns.diameter >= 0) frame.radius.push_back(0.5 * field_number(fields[columns.diameter], "diameter"));
   if (!frame.radius.empty() && !(frame.radius.back() > 0))
     fail(line_number_, "radius must be positive, found " + std::to_string(frame.radius.back()));
+  // With both columns the radius is used: a diameter that is not twice it means the dump does
+  // not say which size the spheres have.
+  if (columns.radius >= 0 && columns.diameter >= 0) {
+    const double diameter = field_number(fields[columns.diameter], "diameter"), radius = frame.radius.back();
+    const double mismatch = std::abs(diameter - 2.0 * radius) / std::abs(diameter);
+    if (!(mismatch <= config::kRadiusDiameterTolerance)) {
+      std::ostringstream what;
+      what.precision(3);
+      what << "atom " << frame.ids.back() << ": the radius and diameter columns disagree: radius "
+           << fields[columns.radius] << ", diameter " << fields[columns.diameter] << " (|diameter - 2 radius| / diameter = "
+           << mismatch << ", allowed range [0, " << config::kRadiusDiameterTolerance << "])";
+      fail(line_number_, what.str());
+    }
+  }
 }
 
 // Coordinate `value` along `d` in box units: wrapped into a periodic box, checked against the

@@ -18,6 +18,7 @@
 #include <numeric>
 #include <set>
 #include <sstream>
+#include <tuple>
 #include <utility>
 
 namespace tapmc {
@@ -123,6 +124,8 @@ struct Tessellation::Impl {
     return true;
   }
   void build(const std::vector<double>& xyz, double padding, double previous);
+  // Throws OverlapError for centres (or images) at one position, which the triangulation merges.
+  void refuse_coincident(const std::vector<double>& xyz, const std::vector<std::pair<Point, std::uint32_t>>& points) const;
   // Closest pair of centres seen on the Delaunay edges of the current attempt (padded indices).
   struct ClosestPair {
     double d2 = std::numeric_limits<double>::infinity();
@@ -192,7 +195,54 @@ void Tessellation::Impl::build(const std::vector<double>& xyz, double padding, d
   }
   if (origin.size() >= std::numeric_limits<std::uint32_t>::max())
     throw std::invalid_argument("too many centres with their periodic images (" + std::to_string(origin.size()) + ")");
+  const std::size_t vertices = triangulation.number_of_vertices();
   triangulation.insert(points.begin(), points.end());  // spatially sorted insertion
+  // CGAL keeps one vertex per position: a centre at exactly another's position would vanish
+  // silently, where one 1e-9 away is refused as an overlap.
+  if (triangulation.number_of_vertices() - vertices < points.size()) refuse_coincident(xyz, points);
+}
+
+void Tessellation::Impl::refuse_coincident(const std::vector<double>& xyz,
+                                           const std::vector<std::pair<Point, std::uint32_t>>& points) const {
+  std::vector<std::uint8_t> has_vertex(origin.size(), 0);
+  for (auto v = triangulation.finite_vertices_begin(); v != triangulation.finite_vertices_end(); ++v)
+    has_vertex[v->info()] = 1;
+  // The inputs of each coinciding pair, reported for the lowest pair, preferably two centres
+  // rather than images only (a duplicated sphere also duplicates its images).
+  std::set<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  bool found = false;
+  std::tuple<bool, std::uint32_t, std::uint32_t> first{};  // (images only, ia, ib) of the lowest
+  std::array<double, 3> position{};
+  for (const auto& [point, index] : points) {
+    if (has_vertex[index]) continue;
+    const std::uint32_t other = triangulation.nearest_vertex(point)->info();  // at the same position
+    const std::uint32_t a = std::min(origin[index], origin[other]), b = std::max(origin[index], origin[other]);
+    pairs.emplace(a, b);
+    const bool images_only = !primary[index] && !primary[other];
+    const std::tuple<bool, std::uint32_t, std::uint32_t> key{images_only, a, b};
+    if (found && !(key < first)) continue;
+    found = true;
+    first = key;
+    const std::uint32_t centre = primary[index] ? origin[index] : origin[other];
+    position = images_only ? wrapped(point.x(), point.y(), point.z())
+                           : std::array<double, 3>{{xyz[3 * centre], xyz[3 * centre + 1], xyz[3 * centre + 2]}};
+  }
+  const auto [images_only, ia, ib] = first;
+  const double diameter = 2.0 * options.radius, contact = diameter * (1.0 - options.overlap_tolerance);
+  std::ostringstream what;
+  what.precision(10);
+  if (ia == ib) {
+    what << "sphere " << ids[ia] << " coincides with its own periodic image at (" << position[0] << ", " << position[1]
+         << ", " << position[2] << "): a periodic box length vanishes next to the coordinates";
+  } else {
+    what << "spheres " << ids[ia] << " and " << ids[ib] << " overlap by 100 % of a diameter (centre distance 0, 2R = "
+         << diameter << "): both " << (images_only ? "have a periodic image" : "are") << " at (" << position[0] << ", "
+         << position[1] << ", " << position[2] << ")";
+    if (pairs.size() > 1) what << ", the first of " << pairs.size() << " coinciding pairs";
+    what << "; pairs closer than 2R (1 - " << options.overlap_tolerance << ") = " << contact
+         << " are refused: the pore of a tangent empty sphere needs hard spheres";
+  }
+  throw OverlapError(what.str(), ia, ib, 0.0, contact, 1.0, pairs.size());
 }
 
 void Tessellation::Impl::check_overlaps(const CellHandle& c, double contact2) {

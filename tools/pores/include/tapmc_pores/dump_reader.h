@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -41,18 +42,23 @@ struct Frame {
   std::size_t size() const { return ids.size(); }
 };
 
-// An input error, with the place where it was found (file, frame, line; 0 when unknown).
+// An input error, with the place where it was found (file, frame, line; 0 when unknown; the
+// frame's timestep once read). The message starts "FILE:LINE: frame N (timestep T): ", the form
+// of every located message of the tool.
 class DumpError : public InputError {
  public:
-  DumpError(const std::string& file, std::size_t frame, std::size_t line, const std::string& what);
+  DumpError(const std::string& file, std::size_t frame, std::size_t line, const std::string& what,
+            std::optional<long long> timestep = std::nullopt);
   const std::string& file() const { return file_; }
   std::size_t frame() const { return frame_; }
   std::size_t line() const { return line_; }
+  const std::optional<long long>& timestep() const { return timestep_; }
 
  private:
   std::string file_;
   std::size_t frame_;
   std::size_t line_;
+  std::optional<long long> timestep_;
 };
 
 struct ReaderOptions {

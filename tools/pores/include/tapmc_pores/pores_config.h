@@ -1,5 +1,6 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-// Every tolerance and default of the pore tool (tapmc-pores), named, with the reason for its value.
+// Every tolerance, default and limit of the pore tool (tapmc-pores), named, with the reason for
+// its value.
 // doc/tapmc-pores.rst quotes these values; change both together.
 #ifndef TAPMC_PORES_CONFIG_H
 #define TAPMC_PORES_CONFIG_H
@@ -64,6 +65,12 @@ constexpr double kOverlapTolerance = 1e-3;
 // rounding of a printed radius (6 digits) and far below any physical size dispersion.
 constexpr double kPolydisperseTolerance = 1e-6;
 
+// A dump with both a radius and a diameter column is refused when |diameter - 2 radius| exceeds
+// kRadiusDiameterTolerance times the diameter. Each column printed with 6 significant digits
+// (LAMMPS's default %g) is off by up to 5e-6 relative, so the two can disagree by up to 1e-5;
+// twice that is still far below a real mismatch (a column written from another variable).
+constexpr double kRadiusDiameterTolerance = 2e-5;
+
 // A centre is outside a non-periodic box side when it lies beyond the bound by more than
 // kBoxTolerance times the box length (room for the rounding of printed bounds only).
 constexpr double kBoxTolerance = 1e-9;
@@ -93,6 +100,12 @@ constexpr double kDefaultSurfaceGap = 4.0;
 // 1.5 covers every interior pore of a hard-sphere packing (Bernal's largest hole: 0.645).
 constexpr double kDefaultXiMax = 1.5;
 constexpr std::size_t kDefaultBins = 150;
+// --bins above kMaxBins is a usage error. 10^6 bins are 1.5e-6 wide at the default --xi-max, far
+// below the ~1e-4 to which 6-digit dumps fix xi, and outnumber the pores of most frames (6.5
+// per sphere), so more only costs memory: 32 bytes per bin (counts and sums of xi and v) for each
+// histogram held, one per frame with --json, and a CSV row per bin (per frame with --frame-hist).
+// Without a limit, --bins 1e15 ended in std::bad_alloc.
+constexpr std::size_t kMaxBins = 1000000;
 // Gotoh's P0(sigma) is tabulated on [0, kDefaultSigmaMax] with kDefaultSigmaBins steps.
 constexpr double kDefaultSigmaMax = 2.0;
 constexpr std::size_t kDefaultSigmaBins = 200;
