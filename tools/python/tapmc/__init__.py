@@ -6,16 +6,19 @@ Submodules: ``readers`` (LAMMPS logs, fix ave/time and fix print files, dumps), 
 power spectrum, sigma_X), ``hysteresis`` (ramp runs of Fig. 4), ``ageing`` (eqs. 5, 6),
 ``connected_ageing`` (the drift-free two-time function and a collapse without a law),
 ``profiles`` (delta Phi_lateral / central, vertical profiles), ``pores`` (tapmc-pores
-outputs, the tetrahedral law, the volume tail, Percus-Yevick P0) and ``packing`` (one dumped
-packing checked offline: overlaps, floor, walls, the stereology scalars). See
-doc/python_analysis.rst.
+outputs, the tetrahedral law, the volume tail, Percus-Yevick P0), ``packing`` (one dumped
+packing checked offline: overlaps, floor, walls, the stereology scalars) and ``crystallinity``
+(Steinhardt q4, q6 and the ten Wolde-Frenkel crystalline spheres of a packing, per zone and
+height band). See doc/python_analysis.rst.
 """
 
 __version__ = "0.1.0"
 
-from . import ageing, connected_ageing, fluctuations, hysteresis, laws, packing, pores, profiles, readers
+from . import (ageing, connected_ageing, crystallinity, fluctuations, hysteresis, laws, packing,
+               pores, profiles, readers)
 from .ageing import Ageing
 from .connected_ageing import ConnectedAgeing
+from .crystallinity import Crystallinity
 from .fluctuations import PowerSpectrum, SteadyState, sigma_scaling, sigma_x
 from .hysteresis import Hysteresis
 from .laws import (AgeingLaw, FitResult, InverseLogLaw, ProfileLaw, TwoExponentials,
@@ -26,8 +29,9 @@ from .profiles import ProfileIncrease, transversal_profile, vertical_profile
 from .readers import (TapmcFormatError, read_ave_time, read_dump, read_fix_print,
                       read_log)
 
-__all__ = ["ageing", "connected_ageing", "fluctuations", "hysteresis", "laws", "packing", "pores", "profiles",
-           "readers", "Ageing", "ConnectedAgeing", "PowerSpectrum", "SteadyState", "sigma_scaling", "sigma_x",
+__all__ = ["ageing", "connected_ageing", "crystallinity", "fluctuations", "hysteresis", "laws",
+           "packing", "pores", "profiles", "readers", "Ageing", "ConnectedAgeing", "Crystallinity",
+           "PowerSpectrum", "SteadyState", "sigma_scaling", "sigma_x",
            "Hysteresis", "AgeingLaw", "FitResult", "InverseLogLaw", "ProfileLaw",
            "TwoExponentials", "ZLaw", "profile_gradient", "PackingCheck", "TetrahedralLaw",
            "VolumeTail", "percus_yevick_p0", "read_pores",
