@@ -173,8 +173,8 @@ def test_paper_scale_plan():
     assert {0.0707, 0.2236, 0.3873} <= set(sqrt_eps)
     assert {s.seed for s in tier1} == {1}
     assert all(s.variables["rsteps"] == FULL.restart_every for s in everything)
-    with pytest.raises(ValueError, match="tier = 8"):
-        plan.runs(8)
+    with pytest.raises(ValueError, match="tier = 9"):
+        plan.runs(9)
     # two jobs: the longest run (the ramp, one process) first, the rest in the same order
     two = [s.name for s in plan.runs(3, jobs=2)]
     assert two[0] == "ramp_pbc_s1" and sorted(two) == sorted(names)

@@ -155,6 +155,18 @@ def paper_ramp_run(scale, bc, seed, top, eta=None):
                       variables, int(seed))
 
 
+#: Name prefix of the constant-eps runs at another redeposition threshold than the scale's,
+#: apart from ``const_`` so that no figure mixes thresholds: ``consteta_<bc>_eps<eps>_eta<eta>_s<seed>``.
+CONSTANT_ETA_PREFIX = "consteta_"
+
+
+def constant_eps_eta_run(scale, bc, eps, seed, eta):
+    """The constant-eps run of :func:`constant_eps_run` at the threshold ``eta``."""
+    spec = constant_eps_run(scale.replace(eta=float(eta)), bc, eps, seed)
+    return _RunSpec()(f"{CONSTANT_ETA_PREFIX}{bc}_eps{eps_tag(eps)}_eta{float(eta):g}_s{seed}",
+                      spec.input, spec.variables, int(seed))
+
+
 def ageing_run(scale, bc, eps, seed, taps=None):
     taps = int(scale.ageing_taps if taps is None else taps)
     variables = dict(_size(scale), eps=float(eps), taps=taps, bc=bc)

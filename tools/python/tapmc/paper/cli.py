@@ -406,7 +406,7 @@ def main(argv=None):
         try:
             from . import plan
 
-            extra = plan.runs(plan.TIERS[-1]) if scale.name == "full" else ()
+            extra = plan.runs(plan.DRAWN_TIERS[-1]) if scale.name == "full" else ()
             campaign, planned = _finished_view(campaign, extra)
         except ValueError as err:
             print(f"tapmc-paper: {err}", file=sys.stderr)

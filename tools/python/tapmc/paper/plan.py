@@ -37,7 +37,11 @@ runs come in tiers; each tier completes figures on its own:
    (sqrt eps)* (2 seeds) and one that turns at 0.2 beyond it, at the scale's eta; then the
    ramp below at looser redeposition thresholds (eta = 1e-5, 1e-6; 2 seeds each), which asks
    whether an under-settled redeposition freezes the small taps. 52 000 taps for a ramp
-   below, 88 000 beyond: serial chains of 8 to 20 core-hours each at eta = 1e-7.
+   below, 88 000 beyond: serial chains of 8 to 20 core-hours each at eta = 1e-7;
+8. sigma_<Z> against the threshold (section III.B: sigma_<Z> ~ sqrt(eps) or an offset from
+   settling noise?): the steady state at four sqrt(eps) of the bell (0.05, 0.1, 0.15, 0.3) at
+   eta = 1e-6 and 1e-8 (``consteta_*`` runs, 2 seeds each), then the default-eta seeds that
+   give every square of the bell 3 seeds.
 
 Within a tier the runs that settle the report's open questions first come first. Runs carry
 the names of the figure modules' runs (:mod:`tapmc.paper._runs`), so the figures find them.
@@ -85,7 +89,18 @@ TIER7_BEYOND_SEEDS = (1,)
 TIER7_LOOSE_ETAS = (1e-5, 1e-6)
 TIER7_LOOSE_SEEDS = (1, 2)
 
-TIERS = (1, 2, 3, 4, 5, 6, 7)
+#: Tier 8: sigma_<Z> against eta at four eps of the bell, and the bell's missing seeds (their
+#: const_* runs join the figures once DRAWN_TIERS holds 8).
+TIER8_EPS = (0.0025, 0.01, 0.0225, 0.09)
+TIER8_ETAS = (1e-6, 1e-8)
+TIER8_SEEDS = (1, 2)
+TIER8_BELL_SEEDS = (2, 3)
+
+TIERS = (1, 2, 3, 4, 5, 6, 7, 8)
+#: The tiers whose runs the figures and the validation report draw (``report --finished-only``
+#: counts their runs as planned). Tier 7's ``paperramp*`` runs are read apart from the page
+#: until Fig. 4's rows are decided at the paper's taps per level.
+DRAWN_TIERS = (1, 2, 3, 4, 5, 6)
 
 
 def tier_runs(tier, scale=FULL):
@@ -133,6 +148,13 @@ def tier_runs(tier, scale=FULL):
                  for eta in TIER7_LOOSE_ETAS for s in TIER7_LOOSE_SEEDS]
         return [below[0], *loose[:len(TIER7_LOOSE_SEEDS)], *below[1:], *beyond,
                 *loose[len(TIER7_LOOSE_SEEDS):]]
+    if tier == 8:
+        thresholds = [_runs.constant_eps_eta_run(scale, "pbc", eps, s, eta)
+                      for eta in TIER8_ETAS for s in TIER8_SEEDS for eps in TIER8_EPS]
+        have = {(eps, s) for eps in TIER2_PBC_EPS for s in TIER2_SEEDS}
+        bell = [_runs.constant_eps_run(scale, "pbc", eps, s)
+                for s in TIER8_BELL_SEEDS for eps in scale.steady_eps if (eps, s) not in have]
+        return thresholds + bell
     raise ValueError(f"tier = {tier!r}: allowed values are {', '.join(map(str, TIERS))}")
 
 
