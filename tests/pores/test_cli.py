@@ -47,6 +47,69 @@ def test_bins_beyond_the_limit_is_a_usage_error():
     assert f"at most {limit}" in help_line, help_line
 
 
+def _config_limit(name):
+    """The value of the constant `name` of pores_config.h."""
+    source = os.environ.get("TAPMC_SOURCE_DIR", ".")
+    config = open(os.path.join(source, "tools/pores/include/tapmc_pores/pores_config.h")).read()
+    return re.search(rf"constexpr (?:std::size_t|double) {name} = ([0-9.e+]+);", config).group(1)
+
+
+def _help_entry(option):
+    """The --help entry of `option`, continuation lines included, on one line."""
+    entry = next(e for e in run("--help").stdout.split("\n  -")[1:] if e.startswith(option[1:] + " "))
+    return " ".join(entry.split())
+
+
+def test_sigma_steps_and_p0_beyond_their_limits_are_usage_errors(tmp_path):
+    # --sigma-steps 10^15 ended in "internal error: std::bad_alloc" (exit code 3), --p0 10^15 in
+    # "FILE:1: frame 1 (timestep 20): std::bad_alloc" (exit code 2) once the frame was
+    # triangulated. The limits are kMaxSigmaSteps and kMaxP0Samples of pores_config.h.
+    steps, samples = int(_config_limit("kMaxSigmaSteps")), int(_config_limit("kMaxP0Samples"))
+    for option, minimum, limit in (("--sigma-steps", 2, steps), ("--p0", 1, samples)):
+        for value in ("1000000000000000", str(limit + 1), str(minimum - 1), "99999999999999999999999"):
+            result = run("-q", "--p0", 100, option, value, "-o", tmp_path / "out", DATA)
+            assert result.returncode == 1, result.stderr
+            assert f"tapmc-pores: {option} = {value}: allowed range [{minimum}, {limit}]" in result.stderr, result.stderr
+            assert "internal error" not in result.stderr and "bad_alloc" not in result.stderr
+            assert not list(tmp_path.iterdir())
+        # The limit itself is parsed (with --help: nothing analysed), limit + 1 is not.
+        assert run(option, limit, "--help").returncode == 0
+        assert run(option, limit + 1, "--help").returncode == 1
+    assert f"at most {samples}" in _help_entry("--p0")
+    assert f"--sigma-steps K steps (default 200, at most {steps})" in _help_entry("--sigma-max")
+    # The largest grid is cheap to run: one frame, 100 points, a CSV row per step.
+    result = run("-q", "--p0", 100, "--sigma-steps", steps, "-o", tmp_path / "fine", DATA)
+    assert result.returncode == 0, result.stderr
+    p0 = read_csv(tmp_path / "fine.p0.csv")
+    assert len(p0["sigma"]) == steps and p0["sigma"][-1] == 2.0
+    assert np.all(np.diff(p0["P0_measured"]) <= 0) and p0["P0_measured"][0] == 1.0
+
+
+def test_padding_beyond_its_limit_is_a_usage_error(tmp_path):
+    # --padding sizes the periodic images: --padding 1000 ran over two minutes on this 512-sphere dump,
+    # and --padding 1e15 overflowed the count of images and ended with exit code 0 ("no pore in
+    # the selection"). The limit is kMaxPaddingOverRadius of pores_config.h, in R.
+    limit = float(_config_limit("kMaxPaddingOverRadius"))
+    for value in ("1e15", "1000", f"{limit + 1:g}", f"{limit * (1 + 1e-12)!r}", "1.5"):
+        result = run("-q", "--padding", value, "-o", tmp_path / "out", DATA)
+        assert result.returncode == 1, result.stderr
+        assert f"tapmc-pores: --padding = {value}: allowed range [2, {limit:g}], in R" in result.stderr, result.stderr
+        assert not list(tmp_path.iterdir())
+    assert f"at most {limit:g};" in _help_entry("--padding")
+    # The limit itself runs (this slab, periodic in x and y: 25 times the centres) and selects the
+    # pores of the default padding; only hull cells above the free surface are resolved in addition.
+    frames, hist = {}, {}
+    for padding in (f"{limit:g}", "4"):
+        result = run("-q", "--padding", padding, "-o", tmp_path / padding, DATA)
+        assert result.returncode == 0, result.stderr
+        frames[padding] = read_csv(tmp_path / f"{padding}.frames.csv")
+        hist[padding] = read_csv(tmp_path / f"{padding}.hist.csv")
+    wide, default = f"{limit:g}", "4"
+    assert frames[wide]["selected"][0] == frames[default]["selected"][0] > 1000
+    assert frames[wide]["unresolved"][0] <= frames[default]["unresolved"][0]
+    assert np.array_equal(hist[wide]["count_xi"], hist[default]["count_xi"])
+
+
 def test_many_files_and_frames_aggregate(tmp_path):
     packings = [random_packing(150, 7.0, [True, True, False], s) for s in range(4)]
     a = write(tmp_path / "a.dump.gz", dump_text(packings[0], 7.0, [1, 1, 0], 0) + dump_text(packings[1], 7.0, [1, 1, 0], 100))

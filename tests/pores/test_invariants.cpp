@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -297,6 +298,24 @@ TEST(PoreInvariants, BadArgumentsThrow) {
   EXPECT_THROW(Tessellation(p.box, p.xyz, p.ids, o), std::invalid_argument);
   std::vector<double> short_xyz(p.xyz.begin(), p.xyz.end() - 1);
   EXPECT_THROW(Tessellation(p.box, short_xyz, p.ids, options_for(p)), std::invalid_argument);
+}
+
+TEST(PoreInvariants, APaddingOfTooManyBoxLengthsIsRefusedWhateverItsSize) {
+  // The count of image layers was converted to int before it was checked: a padding of 1e15 R
+  // wrapped around, and the tool answered with the pores of a wrong triangulation (exit code 0).
+  const Packing p = pores_test::fcc(2, 0.5);
+  for (double padding : {1e3, 1e15, 1e300, std::numeric_limits<double>::infinity()}) {
+    PoreOptions o = options_for(p);
+    o.padding_over_radius = padding;
+    try {
+      const Tessellation t(p.box, p.xyz, p.ids, o);
+      ADD_FAILURE() << "padding " << padding << " R accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("is over 100 box lengths: the periodic box is far too small for R"),
+                std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 TEST(PoreInvariants, NearestCentreDistancesMatchBruteForce) {

@@ -65,17 +65,18 @@ Outputs (files PREFIX.*)
   --frame-hist         also PREFIX.frame_hist.csv, the histograms of every frame
   --pores              also PREFIX.pores.csv, every pore (centre, xi, four atom ids, selected)
   --json               also PREFIX.json with the same content for Python
-  --p0 N               sample N random points per frame in the selection: PREFIX.p0.csv with the
-                       measured P0(sigma) next to Gotoh's Percus-Yevick P0 (eq. 8 for sigma <= 1;
-                       for sigma > 1 the scaled-particle form that replaces the printed eq. 9,
-                       see doc/tapmc-pores.rst), e.g. --p0 100000
-  --sigma-max S        P0 grid 0..S (default 2) in --sigma-steps K steps (default 200)
+  --p0 N               sample N random points per frame in the selection (at most 100000000):
+                       PREFIX.p0.csv with the measured P0(sigma) next to Gotoh's Percus-Yevick P0
+                       (eq. 8 for sigma <= 1; for sigma > 1 the scaled-particle form that
+                       replaces the printed eq. 9, see doc/tapmc-pores.rst), e.g. --p0 100000
+  --sigma-max S        P0 grid 0..S (default 2) in --sigma-steps K steps (default 200,
+                       at most 100000)
   --seed S             seed of the P0 sampling (default 1)
 Tolerances
   --overlap-tol T      spheres closer than 2R (1 - T) are refused (default 1e-3); overlapping
                        inputs such as DEM dumps need T above their deepest overlap
   --merge-tol T        circumcentres closer than T R are one pore (default 1e-8)
-  --padding P          periodic image padding in R (default 4; grown automatically)
+  --padding P          periodic image padding in R (default 4, at most 32; grown automatically)
 Other
   -q, --quiet          no progress lines on stderr (warnings and errors still)
   -h, --help           this text
@@ -144,6 +145,16 @@ std::size_t to_count_in_range(const std::string& option, const std::string& text
   return value;
 }
 
+// A number in [minimum, maximum]; a value outside is named with the range (and `unit`, e.g. ", in R").
+double to_double_in_range(const std::string& option, const std::string& text, double minimum, double maximum,
+                          const std::string& unit = "") {
+  const double value = to_double(option, text);
+  if (!(value >= minimum && value <= maximum))
+    throw UsageError(option + " = " + text + ": allowed range [" + number_text(minimum) + ", " + number_text(maximum) +
+                     "]" + unit);
+  return value;
+}
+
 // The value of the option being parsed (the next argument); UsageError when there is none.
 using NextValue = std::function<const std::string&()>;
 
@@ -207,11 +218,11 @@ bool set_analysis_option(Options& o, const std::string& a, const NextValue& valu
     o.histogram.xi_max = to_double(a, value());
     if (!(o.histogram.xi_max > 0)) throw UsageError("--xi-max must be positive");
   } else if (a == "-o" || a == "--output") o.prefix = value();
-  else if (a == "--p0") o.p0_samples = to_count(a, value(), 1);
+  else if (a == "--p0") o.p0_samples = to_count_in_range(a, value(), 1, config::kMaxP0Samples);
   else if (a == "--sigma-max") {
     o.sigma_max = to_double(a, value());
     if (!(o.sigma_max > 1)) throw UsageError("--sigma-max must exceed 1");
-  } else if (a == "--sigma-steps") o.sigma_steps = to_count(a, value(), 2);
+  } else if (a == "--sigma-steps") o.sigma_steps = to_count_in_range(a, value(), 2, config::kMaxSigmaSteps);
   else if (a == "--seed") o.seed = to_count(a, value(), 0);
   else if (a == "--overlap-tol") {
     o.pores.overlap_tolerance = to_double(a, value());
@@ -219,10 +230,9 @@ bool set_analysis_option(Options& o, const std::string& a, const NextValue& valu
   } else if (a == "--merge-tol") {
     o.pores.merge_tolerance = to_double(a, value());
     if (!(o.pores.merge_tolerance >= 0 && o.pores.merge_tolerance < 0.1)) throw UsageError("--merge-tol must be in [0, 0.1)");
-  } else if (a == "--padding") {
-    o.pores.padding_over_radius = to_double(a, value());
-    if (!(o.pores.padding_over_radius >= 2)) throw UsageError("--padding must be >= 2 (in R)");
-  } else return false;
+  } else if (a == "--padding")
+    o.pores.padding_over_radius = to_double_in_range(a, value(), 2.0, config::kMaxPaddingOverRadius, ", in R");
+  else return false;
   return true;
 }
 

@@ -159,11 +159,15 @@ struct Tessellation::Impl {
 void Tessellation::Impl::build(const std::vector<double>& xyz, double padding, double previous) {
   const std::size_t n = xyz.size() / 3;
   std::array<int, 3> images{{0, 0, 0}};
-  for (int d = 0; d < 3; ++d)
-    if (box.periodic[d]) images[d] = static_cast<int>(std::ceil(padding / box.length(d)));
-  if (std::max({images[0], images[1], images[2]}) > 100)
-    throw std::invalid_argument("padding " + std::to_string(padding) +
-                                " is over 100 box lengths: the periodic box is far too small for R");
+  for (int d = 0; d < 3; ++d) {
+    if (!box.periodic[d]) continue;
+    // Compared before the conversion: a count beyond int (padding 1e15) used to wrap around.
+    const double layers = std::ceil(padding / box.length(d));
+    if (!(layers <= 100))
+      throw std::invalid_argument("padding " + std::to_string(padding) +
+                                  " is over 100 box lengths: the periodic box is far too small for R");
+    images[d] = static_cast<int>(layers);
+  }
   const bool fresh = previous < 0;
   if (fresh) {
     origin.clear();

@@ -40,6 +40,16 @@ constexpr double kSliverRelativeVolume = 1e-6;
 // never silently kept (an error when triply periodic).
 constexpr double kPaddingOverRadius = 4.0;
 constexpr int kMaxPaddingRetries = 2;
+// --padding above kMaxPaddingOverRadius (in R) is a usage error. 32 R resolves at the first
+// attempt every pore whose circumsphere has a radius up to 16 R (xi up to 15), up to 64 R after
+// the retries: far beyond the interior pores of any packing (xi < 1), and beyond the need of
+// gases (30 random spheres at phi = 0.016, periodic, are resolved by the default). The images
+// cost (1 + 2 P / L)^k times the centres (k periodic directions, L in R), some 600 bytes per
+// point triangulated: in the paper's 32 R box, 9x (periodic x, y) or 27x (triply periodic:
+// 0.07 GB for 4096 spheres), 81x or 729x (2 GB) if retries reach 128 R. Without a limit,
+// --padding 1000 ran for over two minutes on 512 spheres, and --padding 1e15 overflowed the
+// count of images and ended with exit code 0.
+constexpr double kMaxPaddingOverRadius = 32.0;
 // A retry pads to at least kRetryPaddingMargin times the widest padding a pore asked for: the
 // relative margin 1e-4 lies far above the rounding of the circumradius (~1e-15) and far below
 // a layer of images, so the pore surely fits next time at no visible cost.
@@ -109,6 +119,22 @@ constexpr std::size_t kMaxBins = 1000000;
 // Gotoh's P0(sigma) is tabulated on [0, kDefaultSigmaMax] with kDefaultSigmaBins steps.
 constexpr double kDefaultSigmaMax = 2.0;
 constexpr std::size_t kDefaultSigmaBins = 200;
+// --sigma-steps above kMaxSigmaSteps is a usage error. 10^5 steps are 2e-5 R apart at the
+// default --sigma-max, 500 times finer than the default grid and about the precision to which
+// 6-digit dumps fix a distance; P0 is smooth, so more steps only cost: 8 bytes per step for each
+// of the two P0 curves held (frame, total), 24 more with --json, a CSV row per step, and time, as
+// each sample point counts in every step below its distance (~samples x steps / 2 increments per
+// frame: 1 s for 10^5 points at 10^5 steps, 25 s at 10^6). Without a limit, --sigma-steps 1e15
+// ended in std::bad_alloc.
+constexpr std::size_t kMaxSigmaSteps = 100000;
+// --p0 above kMaxP0Samples (random points per frame) is a usage error. The statistical error of
+// the measured P0 is sqrt(P0 (1 - P0) / N) per frame: 5e-5 at 10^8 points, 500 times the 2e5
+// per frame of the Fig. 9 command (tapmc.paper), and frames add up. Every point of a frame is
+// held at once, 48 bytes each (its coordinates, its distance, its place in the query order):
+// 4.8 GB at the limit (measured on 512 spheres), ~1.7 us each (3 min per frame). The query order
+// numbers the points in 32 bits: the limit must stay below 2^32. Without a limit, --p0 1e15
+// ended in std::bad_alloc.
+constexpr std::size_t kMaxP0Samples = 100000000;
 
 // ---- warnings (stderr, exit code still 0) ----------------------------------------------------
 // Selected pores with xi >= --xi-max are counted in the normalisation of P(xi) but fall outside
