@@ -43,7 +43,7 @@ constexpr int kArrayColumns = 3;
 
 ComputeStereoProfile::ComputeStereoProfile(LAMMPS *lmp, int narg, char **arg) :
     Compute(lmp, narg, arg), axis_(2), fixed_radius_(0.0), mean_radius_(0.0), group_count_(0.0), radius_ready_(false),
-    floor_warned_(false)
+    floor_warned_(false), central_warned_(false)
 {
   tapmc::require_box_with_floor(lmp, "compute stereo/profile");
 
@@ -152,6 +152,13 @@ void ComputeStereoProfile::init()
   tapmc::request_ghost_depth(lmp, 2.0 * tapmc::largest_radius(lmp));
   update_mean_radius();
   floor_warned_ = false;
+  // warn about an empty central zone here, before the run's output starts (its width depends
+  // on the box and R only); compute_vector checks again (box changes, library use before a run)
+  if (group_count_ > 0.0) {
+    const stereo::Box box = current_box();
+    warn_empty_central_zone(stereo::resolve_windows(settings_, box, mean_radius_, settings_.floor),
+                            box);
+  }
 }
 
 // An empty group (now): mean radius 0 after a fresh look at the group. Collective.
@@ -195,6 +202,28 @@ void ComputeStereoProfile::warn_below_floor()
                    "below the floor z0 = {}: heights, <Z> and the wall correction are measured "
                    "from the floor; set 'floor' at or below the bottom of the packing",
                    tag, group->names[igroup], bottom, settings_.floor);
+}
+
+// The lateral zones meet at the middle of the box: no central zone, so vector entry 6 is NaN
+// (the kernel's finish_summary). One warning per compute (named by its ID), with the widths and
+// what would give a central zone. The windows are the same on every rank (reduced data); rank 0
+// writes. Called at init (so that the warning comes before the run's thermo output) and on
+// every vector invocation.
+void ComputeStereoProfile::warn_empty_central_zone(const stereo::Windows &w, const stereo::Box &box)
+{
+  if (central_warned_ || w.central_width() > 0.0) return;
+  central_warned_ = true;
+  if (comm->me != 0) return;
+  const int a = w.transverse_axis;
+  const char axis = "xy"[a];
+  const double length = box.length(a);
+  error->warning(FLERR,
+                 "compute stereo/profile {}: no central zone: the lateral zones (lateral = {:.6g} "
+                 "from both {} faces) cover the whole box width {:.6g} along {}, so the central "
+                 "mean (vector entry 6) is NaN; a central zone needs lateral < {:.6g} (half the "
+                 "box width) or a box wider than {:.6g} (2 lateral) along {}",
+                 id, w.lateral_width, axis, length, axis, 0.5 * length, 2.0 * w.lateral_width,
+                 axis);
 }
 
 // The radius R behind every default (bulk 4R, lateral 7R, columns 2R, ...): the fixed radius, or
@@ -298,6 +327,7 @@ void ComputeStereoProfile::compute_vector_guarded()
   stereo::accumulate_summary(spheres, box, windows, sums);
   MPI_Allreduce(MPI_IN_PLACE, sums, stereo::kNumSummarySums, MPI_DOUBLE, MPI_SUM, world);
   const stereo::Summary s = stereo::finish_summary(sums, box, windows);
+  warn_empty_central_zone(windows, box);
 
   vector[kPhiBulk] = s.phi_bulk;
   vector[kPhiCorrected] = s.phi_corrected;

@@ -29,6 +29,7 @@ class ComputeStereoProfile : public Compute {
   double group_count_;        // atoms in the group when mean_radius_ was computed
   bool radius_ready_;         // mean_radius_ computed (init, or first use before any run)
   bool floor_warned_;         // the below-the-floor warning was given in this run
+  bool central_warned_;       // the empty-central-zone warning was given (once per compute)
   std::vector<int> selected_; // owned atoms of the group, rebuilt per invocation
   std::vector<double> buffer_;
 
@@ -36,6 +37,7 @@ class ComputeStereoProfile : public Compute {
   void update_mean_radius();
   bool group_is_empty();
   void warn_below_floor();
+  void warn_empty_central_zone(const tapmc::stereo::Windows &, const tapmc::stereo::Box &);
   bool ready_to_measure();
   void compute_vector_guarded();
   void compute_array_guarded();

@@ -335,6 +335,11 @@ double resolved_column_width(const SummarySettings &settings, double mean_radius
   return settings.column_width.value_or(defaults::kSurfaceColumnOverRadius * mean_radius);
 }
 
+double resolved_lateral_width(const SummarySettings &settings, double mean_radius)
+{
+  return settings.lateral_width.value_or(defaults::kLateralWidthOverRadius * mean_radius);
+}
+
 Windows resolve_windows(const SummarySettings &s, const Box &box, double mean_radius,
                         double surface)
 {
@@ -350,7 +355,8 @@ Windows resolve_windows(const SummarySettings &s, const Box &box, double mean_ra
   default_vertical_window(s, w, mean_radius, w.window_lo, w.window_hi);
   // lateral zones of width `lateral` at both faces, never overlapping (clipped at the middle)
   const int a = s.transverse_axis;
-  const double lateral = s.lateral_width.value_or(defaults::kLateralWidthOverRadius * mean_radius);
+  const double lateral = resolved_lateral_width(s, mean_radius);
+  w.lateral_width = lateral;
   const double middle = 0.5 * (box.lo[a] + box.hi[a]);
   w.lateral_lo_end = std::min(box.lo[a] + lateral, middle);
   w.lateral_hi_start = std::max(box.hi[a] - lateral, middle);
@@ -407,7 +413,7 @@ Summary finish_summary(const double *sums, const Box &box, const Windows &w)
   const double other = box.length(1 - a);
   const double window = std::max(0.0, w.window_hi - w.window_lo);
   const double lateral_length = (w.lateral_lo_end - box.lo[a]) + (box.hi[a] - w.lateral_hi_start);
-  const double central_length = w.lateral_hi_start - w.lateral_lo_end;
+  const double central_length = w.central_width();
 
   Summary out;
   out.sphere_count = sums[kSphereCount];
@@ -418,7 +424,10 @@ Summary finish_summary(const double *sums, const Box &box, const Windows &w)
   out.top = w.top;
   out.surface = w.surface;
   out.phi_lateral = ratio(sums[kLateralVolume], lateral_length * other * window);
-  out.phi_central = ratio(sums[kCentralVolume], central_length * other * window);
+  // an empty central zone has no packing fraction: NaN, not a 0 that reads as a measurement
+  out.phi_central = central_length > 0.0
+                        ? ratio(sums[kCentralVolume], central_length * other * window)
+                        : std::numeric_limits<double>::quiet_NaN();
   return out;
 }
 

@@ -130,11 +130,16 @@ struct Windows {
   double window_hi = 0.0;
   double lateral_lo_end = 0.0;  // lateral zones [box lo, lateral_lo_end], [lateral_hi_start,
   double lateral_hi_start = 0.0;//   box hi] along transverse_axis, central zone in between
+  double lateral_width = 0.0;   // the lateral setting resolved (before clipping at the middle)
+  // Width of the central zone along transverse_axis: 0 when the lateral zones meet at the
+  // middle of the box (lateral_width >= half the box length).
+  double central_width() const { return lateral_hi_start - lateral_lo_end; }
 };
 
 // Throws std::invalid_argument if a setting is outside its range (naming it).
 void validate(const SummarySettings &settings);
 double resolved_column_width(const SummarySettings &settings, double mean_radius);
+double resolved_lateral_width(const SummarySettings &settings, double mean_radius);
 Windows resolve_windows(const SummarySettings &settings, const Box &box, double mean_radius,
                         double surface);
 // The default z-window of the vertical cuts (also used by the profile along x or y).
@@ -160,7 +165,8 @@ struct Summary {
   double mean_height = 0.0;      // <Z>
   double top = 0.0;              // z_top
   double phi_lateral = 0.0;      // lateral zone volume fraction
-  double phi_central = 0.0;      // central zone volume fraction
+  double phi_central = 0.0;      // central zone volume fraction; NaN when the zone is empty
+                                 // (Windows::central_width() == 0: no measurement)
   double surface = 0.0;          // h_s
   double sphere_count = 0.0;
 };

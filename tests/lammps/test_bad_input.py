@@ -2,11 +2,14 @@
 # Every invalid argument of fix tapdilate and fix mc/settle stops lmp_tapmc with a non-zero
 # exit and a message naming the argument and the allowed range (LAMMPS errors end the process,
 # so each case is a child process).
+import os
 import re
+import struct
+from pathlib import Path
 
 import pytest
 
-from lmprun import run_lammps
+from lmprun import LMP, run_lammps
 
 BOX = """units lj
 atom_style sphere
@@ -206,7 +209,9 @@ def test_fixes_of_one_style_on_disjoint_groups_run():
 
 @pytest.mark.parametrize("styles", [
     "fix tap all tapdilate 0.01",
-    "compute phi all stereo/profile\nthermo_style custom step c_phi[1]",
+    # lateral 1.0: a central zone in this box 4 wide (the default 7R = 3.5 leaves none, which
+    # the compute warns about)
+    "compute phi all stereo/profile lateral 1.0\nthermo_style custom step c_phi[1]",
     "fix tap all tapdilate 0.01\nfix s all mc/settle 5 eta 1e-3",
 ])
 @pytest.mark.parametrize("nprocs", [1, 2])
@@ -221,3 +226,66 @@ def test_no_warning_without_a_pair_style(styles, nprocs):
     warnings = [line for line in out.splitlines() if "WARNING" in line]
     assert all(re.search(r"WARNING: No fixes (defined|with time integration), atoms won't move",
                          w) for w in warnings), out
+
+
+# ---- where a message comes from: src/TAPMC/<file>:<line> -------------------------------------
+# LAMMPS ends every error and warning with (FILE:LINE) from FLERR = __FILE__, __LINE__, cut at
+# the first "src/" of the path. The TAPMC sources are compiled with __FILE__ relative to the
+# source tree (CMakeLists.txt, -fmacro-prefix-map), so the location reads src/TAPMC/<file>
+# wherever the checkout lives; with absolute paths a checkout under a folder named src (e.g.
+# /home/u/src) cited src/src/TAPMC/... or src/<checkout>/src/TAPMC/...
+
+SOURCE_DIR = Path(os.environ.get("TAPMC_SOURCE_DIR", Path(__file__).resolve().parents[2]))
+LIB = os.environ.get("TAPMC_LIB", os.path.join(os.path.dirname(os.path.abspath(LMP)),
+                                               "libtapmc.so"))
+TAPMC_LOCATION = re.compile(r"^(?:ERROR|WARNING)\b.*\((\S*TAPMC/[\w.]+):(\d+)\)$", re.M)
+
+
+@pytest.mark.parametrize("body,source", [
+    ("fix s all mc/settle 1 xwalls 1 7", "src/TAPMC/fix_mc_settle.cpp"),     # error->all
+    ("fix t all tapdilate -0.1", "src/TAPMC/lammps_support.h"),             # FLERR in a header
+    ("compute c all stereo/profile floor 3.0\nthermo_style custom step c_c[1]\nrun 0",
+     "src/TAPMC/compute_stereo_profile.cpp"),                               # a warning
+])
+def test_messages_cite_src_tapmc_file_and_line(body, source):
+    rc, out = run_case(body)
+    found = TAPMC_LOCATION.findall(out)
+    assert found, out
+    for path, line in found:
+        assert path == source, out
+        # the line is the FLERR of the call that wrote the message
+        assert "FLERR" in (SOURCE_DIR / path).read_text().splitlines()[int(line) - 1], (path, line)
+
+
+def read_sections(path, prefix):
+    """Bytes of every section of the ELF file `path` whose name starts with `prefix`."""
+    data = Path(path).read_bytes()
+    assert data[:4] == b"\x7fELF" and data[4] == 2, path     # 64-bit ELF
+    order = "<" if data[5] == 1 else ">"
+    shoff, = struct.unpack_from(order + "Q", data, 0x28)
+    shentsize, shnum, shstrndx = struct.unpack_from(order + "HHH", data, 0x3A)
+
+    def header(i):  # (name offset, file offset, size)
+        base = shoff + i * shentsize
+        name, = struct.unpack_from(order + "I", data, base)
+        offset, size = struct.unpack_from(order + "QQ", data, base + 0x18)
+        return name, offset, size
+
+    _, names_at, _ = header(shstrndx)
+    out = []
+    for i in range(shnum):
+        name, offset, size = header(i)
+        label = data[names_at + name:data.index(b"\0", names_at + name)].decode()
+        if label.startswith(prefix):
+            out.append(data[offset:offset + size])
+    return out
+
+
+def test_library_holds_source_paths_relative_to_the_source_tree():
+    """The FLERR file names compiled into libtapmc.so are src/TAPMC/<file>, never the absolute
+    path of the checkout (which LAMMPS would cut at its first "src/")."""
+    rodata = b"\0".join(read_sections(LIB, ".rodata"))
+    assert b"\0src/TAPMC/fix_mc_settle.cpp\0" in rodata, LIB
+    assert b"\0src/TAPMC/lammps_support.h\0" in rodata, LIB
+    absolute = sorted(set(re.findall(rb"[^\0]*/src/TAPMC/\w+\.(?:cpp|h)", rodata)))
+    assert not absolute, absolute

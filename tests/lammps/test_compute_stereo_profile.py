@@ -217,3 +217,41 @@ run 0
     rows = ave_time_rows(os.path.join(wd, "p.dat"))
     np.testing.assert_array_equal(rows[:, 1], [1, 3, 5, 7])
     np.testing.assert_array_equal(rows[:, [2, 3, 5, 6]], 0.0)
+
+
+@pytest.mark.parametrize("nprocs", [1, 2])
+def test_empty_central_zone_is_nan_with_one_warning(nprocs):
+    """Lateral zones that reach the middle of the box (lateral >= half the box width, as the
+    default 7R in the paper inputs' 12R reference box) leave no central zone: vector entry 6 is
+    NaN (printed nan), not a 0 that reads as a measurement, and each such compute warns once
+    (over every invocation and run), naming itself, the zone width, the box width and what
+    would give a central zone. The lateral mean is then the mean over the whole width; a
+    compute with a central zone is unchanged and silent."""
+    script = lattice() + """
+compute narrow all stereo/profile floor 0.5 axis x lateral 4.5 window 2.0 10.0
+compute half all stereo/profile floor 0.5 lateral 4.0 window 2.0 10.0
+compute wide all stereo/profile floor 0.5 axis x lateral 1.5 window 2.0 10.0
+thermo_style custom step c_narrow[5] c_narrow[6] c_half[6] c_wide[6]
+thermo 1
+run 2
+run 1
+""" + VECTOR_PRINT.format(id="narrow") + VECTOR_PRINT.format(id="wide").replace("VEC", "WIDE") \
+        + VECTOR_PRINT.format(id="half").replace("VEC", "HALF")
+    rc, out, _ = run_lammps(script, nprocs=nprocs)
+    assert rc == 0, out[-2000:]
+    narrow, wide, half = printed(out, "VEC"), printed(out, "WIDE"), printed(out, "HALF")
+    assert math.isnan(narrow[5]) and math.isnan(half[5]), (narrow, half)
+    vec_line = [l for l in out.splitlines() if l.startswith("VEC ")][-1]
+    assert vec_line.split()[6] == "nan", vec_line
+    assert np.all(np.isfinite(np.delete(narrow, 5))) and np.all(np.isfinite(wide))
+    # whole-width mean = lateral (2 x 1.5) and central (5) means of the same window, weighted
+    assert narrow[4] == pytest.approx((3.0 * wide[4] + 5.0 * wide[5]) / 8.0, rel=1e-12)
+    assert wide[5] > 0.3 and narrow[[0, 1, 2, 3, 6]] == pytest.approx(wide[[0, 1, 2, 3, 6]])
+    warning = ("WARNING: compute stereo/profile {}: no central zone: the lateral zones "
+               "(lateral = {} from both x faces) cover the whole box width 8 along x, so the "
+               "central mean (vector entry 6) is NaN; a central zone needs lateral < 4 (half "
+               "the box width) or a box wider than {} (2 lateral) along x")
+    assert out.count(warning.format("narrow", 4.5, 9)) == 1, out[-3000:]
+    assert out.count(warning.format("half", 4, 8)) == 1, out[-3000:]
+    assert "compute stereo/profile wide" not in out
+    assert out.count("no central zone") == 2, out[-3000:]

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -319,6 +320,57 @@ TEST(StereologyLattice, FccVerticalZonesWithPeriodicImages)
   }
 }
 
+TEST(StereologyLattice, EmptyCentralZoneIsNaNNotZero)
+{
+  // Lateral zones that reach the middle of the box leave no central zone: its mean is NaN (no
+  // measurement), not 0; the lateral mean is then the mean over the whole width. A central zone
+  // of any width is measured as before.
+  const double a = 1.0;
+  const double r = a / (2.0 * std::sqrt(2.0));
+  const Packing p = fcc(a, 4, 6);
+  for (bool periodic : {true, false}) {
+    const Box box = make_box(4 * a, 4 * a, 0.0, 6 * a, periodic);
+    SummarySettings set;
+    set.floor = 0.0;
+    set.window_lo = 1.5 * a;
+    set.window_hi = 3.5 * a;
+    for (int axis : {0, 1}) {
+      set.transverse_axis = axis;
+      // lateral = half the box, more than half, and the default 7 R = 2.47 a of a box 4 a wide
+      for (std::optional<double> lateral : {std::optional<double>(2.0 * a),
+                                            std::optional<double>(3.0 * a),
+                                            std::optional<double>()}) {
+        set.lateral_width = lateral;
+        const Summary s = summarize(p.view(), box, set);
+        EXPECT_TRUE(std::isnan(s.phi_central)) << periodic << axis << s.phi_central;
+        EXPECT_TRUE(std::isfinite(s.phi_lateral)) << periodic << axis;
+        EXPECT_TRUE(std::isfinite(s.phi_bulk) && std::isfinite(s.phi_corrected));
+        // the whole width: the volume fraction of the box slab in the window
+        const double whole = vertical_slab_volume(p.view(), box, axis, 0.0, 4 * a, 1.5 * a,
+                                                  3.5 * a) / (4 * a * 4 * a * 2 * a);
+        EXPECT_NEAR(s.phi_lateral, whole, 1e-12) << periodic << axis;
+      }
+      // a central zone just wider than nothing, and the default in a box wide enough for it
+      set.lateral_width = 1.9 * a;
+      const Summary narrow = summarize(p.view(), box, set);
+      EXPECT_TRUE(std::isfinite(narrow.phi_central)) << periodic << axis;
+      EXPECT_GT(narrow.phi_central, 0.0) << periodic << axis;
+      if (periodic) {
+        set.lateral_width = a;
+        EXPECT_NEAR(summarize(p.view(), box, set).phi_central, kFccFraction, 1e-12) << axis;
+      }
+    }
+  }
+  // the default lateral 7 R with a box wider than 14 R: a central zone again
+  const Packing wide = fcc(a, 6, 6);
+  const Box box = make_box(6 * a, 6 * a, 0.0, 6 * a, true);
+  ASSERT_GT(6 * a, 14.0 * r);
+  SummarySettings set;
+  set.window_lo = 1.5 * a;
+  set.window_hi = 3.5 * a;
+  EXPECT_TRUE(std::isfinite(summarize(wide.view(), box, set).phi_central));
+}
+
 TEST(StereologyLattice, FccSummaryOnWholePeriods)
 {
   const double a = 1.0;
@@ -587,6 +639,7 @@ TEST(StereologyLayout, IndexListAndUniformRadiusAgreeWithPlainArrays)
   Spheres sel = p.view();
   sel.index = even.data();
   sel.count = static_cast<int>(even.size());
+  set.lateral_width = 1.5;  // a central zone (the default 7 R = 4.2 leaves none in a box 5 wide)
   const Summary a = summarize(sel, box, set), b = summarize(half.view(), box, set);
   EXPECT_DOUBLE_EQ(a.phi_bulk, b.phi_bulk);
   EXPECT_DOUBLE_EQ(a.mean_height, b.mean_height);
