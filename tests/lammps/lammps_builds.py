@@ -72,11 +72,9 @@ def tapmc_against(name, prefix, targets):
     configure = ["cmake", "-S", SOURCE_DIR, "-B", build,
                  "-DLAMMPS_DIR=" + os.path.join(prefix, "lib", "cmake", "LAMMPS"),
                  "-DCMAKE_BUILD_TYPE=" + cached_build_setting("CMAKE_BUILD_TYPE", "Release"),
-                 "-DTAPMC_NATIVE=" + cached_build_setting("TAPMC_NATIVE", "ON"),
+                 "-DTAPMC_NATIVE=" + cached_build_setting("TAPMC_NATIVE", "OFF"),
                  "-DTAPMC_BUILD_TESTS=" + ("ON" if tests else "OFF"),
-                 "-DTAPMC_BUILD_PORES=OFF", "-DTAPMC_BUILD_BENCH=OFF",
-                 # the main build's tapmc.pth in the user site stays as it is
-                 "-DTAPMC_PYTHON_USER_SITE=OFF"]
+                 "-DTAPMC_BUILD_PORES=OFF", "-DTAPMC_BUILD_BENCH=OFF"]
     rc, out = run(configure, cwd=SOURCE_DIR)
     assert rc == 0, out
     rc, out = run(["cmake", "--build", build, "--target"] + targets + ["-j", "2"],

@@ -19,14 +19,25 @@ def test_help():
     result = run("--help")
     assert result.returncode == 0
     assert "Usage: tapmc-pores" in result.stdout
+    assert "2 usage error" in result.stdout and "--version" in result.stdout
+
+
+def test_version():
+    # the one version of TAPMC: __version__ of tools/python/tapmc/__init__.py
+    source = os.environ.get("TAPMC_SOURCE_DIR", ".")
+    init = open(os.path.join(source, "tools/python/tapmc/__init__.py")).read()
+    version = re.search(r'^__version__ = "([0-9.]+)"$', init, re.M).group(1)
+    result = run("--version")
+    assert result.returncode == 0 and result.stdout == f"tapmc-pores {version}\n", result
 
 
 def test_usage_errors():
-    assert run().returncode == 1
+    # exit code 2, as for tapmc-paper (argparse); bad input gives 2 as well
+    assert run().returncode == 2
     result = run("--bins", "zero", "x.dump")
-    assert result.returncode == 1 and "--bins" in result.stderr
+    assert result.returncode == 2 and "--bins" in result.stderr
     result = run("--frobnicate", "x.dump")
-    assert result.returncode == 1 and "unknown option" in result.stderr
+    assert result.returncode == 2 and "unknown option" in result.stderr
 
 
 def test_bins_beyond_the_limit_is_a_usage_error():
@@ -37,12 +48,12 @@ def test_bins_beyond_the_limit_is_a_usage_error():
     limit = int(re.search(r"constexpr std::size_t kMaxBins = (\d+);", config).group(1))
     for value in ("1000000000000000", str(limit + 1), "0", "99999999999999999999999"):
         result = run("-q", "--bins", value, "x.dump")
-        assert result.returncode == 1, result.stderr
+        assert result.returncode == 2, result.stderr
         assert f"tapmc-pores: --bins = {value}: allowed range [1, {limit}]" in result.stderr, result.stderr
         assert "internal error" not in result.stderr
     # The limit itself is accepted (with --help: parsed, nothing analysed).
     assert run("--bins", limit, "--help").returncode == 0
-    assert run("--bins", limit + 1, "--help").returncode == 1
+    assert run("--bins", limit + 1, "--help").returncode == 2
     help_line = next(l for l in run("--help").stdout.split("\n  -")[1:] if l.startswith("-bins"))
     assert f"at most {limit}" in help_line, help_line
 
@@ -68,13 +79,13 @@ def test_sigma_steps_and_p0_beyond_their_limits_are_usage_errors(tmp_path):
     for option, minimum, limit in (("--sigma-steps", 2, steps), ("--p0", 1, samples)):
         for value in ("1000000000000000", str(limit + 1), str(minimum - 1), "99999999999999999999999"):
             result = run("-q", "--p0", 100, option, value, "-o", tmp_path / "out", DATA)
-            assert result.returncode == 1, result.stderr
+            assert result.returncode == 2, result.stderr
             assert f"tapmc-pores: {option} = {value}: allowed range [{minimum}, {limit}]" in result.stderr, result.stderr
             assert "internal error" not in result.stderr and "bad_alloc" not in result.stderr
             assert not list(tmp_path.iterdir())
         # The limit itself is parsed (with --help: nothing analysed), limit + 1 is not.
         assert run(option, limit, "--help").returncode == 0
-        assert run(option, limit + 1, "--help").returncode == 1
+        assert run(option, limit + 1, "--help").returncode == 2
     assert f"at most {samples}" in _help_entry("--p0")
     assert f"--sigma-steps K steps (default 200, at most {steps})" in _help_entry("--sigma-max")
     # The largest grid is cheap to run: one frame, 100 points, a CSV row per step.
@@ -92,7 +103,7 @@ def test_padding_beyond_its_limit_is_a_usage_error(tmp_path):
     limit = float(_config_limit("kMaxPaddingOverRadius"))
     for value in ("1e15", "1000", f"{limit + 1:g}", f"{limit * (1 + 1e-12)!r}", "1.5"):
         result = run("-q", "--padding", value, "-o", tmp_path / "out", DATA)
-        assert result.returncode == 1, result.stderr
+        assert result.returncode == 2, result.stderr
         assert f"tapmc-pores: --padding = {value}: allowed range [2, {limit:g}], in R" in result.stderr, result.stderr
         assert not list(tmp_path.iterdir())
     assert f"at most {limit:g};" in _help_entry("--padding")

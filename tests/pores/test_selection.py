@@ -100,8 +100,8 @@ def test_floor_option(tmp_path):
     # Usage errors name the option.
     for option in ("--floor", "--surface-gap"):
         result = run(option, "x", DATA)
-        assert result.returncode == 1 and option in result.stderr
-    assert run("--surface-gap", "-1", DATA).returncode == 1
+        assert result.returncode == 2 and option in result.stderr
+    assert run("--surface-gap", "-1", DATA).returncode == 2
 
 
 def test_surface_gap_option(tmp_path):

@@ -80,10 +80,12 @@ Tolerances
 Other
   -q, --quiet          no progress lines on stderr (warnings and errors still)
   -h, --help           this text
+  --version            print "tapmc-pores VERSION" and exit
 
 Outputs are written only when every frame was analysed; warnings (stderr, exit code 0) flag a
 selection without pores, with unresolved or out-of-range pores, or reaching the free surface.
-Exit codes: 0 success, 1 usage error, 2 bad input (the message names file, frame and line).
+Exit codes: 0 success; 2 usage error (as for tapmc-paper; the message points to --help) or bad
+input (the message names file, frame and line), nothing written; 3 internal error.
 Documentation: doc/tapmc-pores.rst.
 )";
 
@@ -96,7 +98,7 @@ struct Options {
   double floor = std::numeric_limits<double>::quiet_NaN();  // NaN: the lowest sphere bottom
   HistogramSpec histogram;
   std::string prefix = "pores";
-  bool help = false, frame_hist = false, pore_list = false, json = false, quiet = false;
+  bool help = false, version = false, frame_hist = false, pore_list = false, json = false, quiet = false;
   std::size_t p0_samples = 0;
   double sigma_max = config::kDefaultSigmaMax;
   std::size_t sigma_steps = config::kDefaultSigmaBins;
@@ -172,6 +174,7 @@ void set_range(RegionSpec& region, int d, const std::string& option, const std::
 // Options without a value; false when `a` is none of them.
 bool set_flag(Options& o, const std::string& a) {
   if (a == "-h" || a == "--help") o.help = true;
+  else if (a == "--version") o.version = true;
   else if (a == "--radii") o.region.units.fill(RegionSpec::Units::kRadiiFromLo);
   else if (a == "--paper-window") {
     o.region.units.fill(RegionSpec::Units::kRadiiFromLo);
@@ -248,7 +251,7 @@ Options parse(const std::vector<std::string>& args) {
     if (a.size() > 1 && a[0] == '-') throw UsageError("unknown option '" + a + "'");
     o.files.push_back(a);
   }
-  if (o.help) return o;
+  if (o.help || o.version) return o;
   if (o.files.empty()) throw UsageError("no dump file given");
   try {
     (void)PoreStatistics(o.histogram);  // validates the bins
@@ -712,6 +715,10 @@ void run_cli(const std::vector<std::string>& arguments, std::ostream& out, std::
   const Options o = parse(arguments);
   if (o.help) {
     out << kUsage;
+    return;
+  }
+  if (o.version) {
+    out << "tapmc-pores " << TAPMC_VERSION << "\n";
     return;
   }
   PoreRun run(o, err);

@@ -1,5 +1,6 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-// tapmc-pores: entry point; maps every kind of error to its exit code (library code never exits).
+// tapmc-pores: entry point; maps every kind of error to its exit code (library code never exits):
+// 2 for a usage error or a refused run (bad input), as for tapmc-paper, 3 for an internal error.
 #include <exception>
 #include <iostream>
 
@@ -13,7 +14,7 @@ int main(int argc, char** argv) {
     return 0;
   } catch (const UsageError& error) {
     std::cerr << "tapmc-pores: " << error.what() << " (see tapmc-pores --help)\n";
-    return 1;
+    return 2;
   } catch (const RunRefused& error) {
     std::cerr << "tapmc-pores: error: " << error.what() << "\ntapmc-pores: no output written\n";
     return 2;

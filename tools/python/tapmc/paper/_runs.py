@@ -28,6 +28,9 @@ PORE_DUMPS = "examples/paper/in.pore_dumps"
 
 #: Repository root (tools/python/tapmc/paper -> four levels up).
 SOURCE_DIR = Path(__file__).resolve().parents[4]
+#: Where the inputs above are: $TAPMC_DATA_DIR when set (the installed tapmc-paper sets it to
+#: PREFIX/share/tapmc, which holds examples/), else the repository root.
+DATA_DIR = Path(os.environ["TAPMC_DATA_DIR"]) if os.environ.get("TAPMC_DATA_DIR") else SOURCE_DIR
 
 
 def seed_list(seeds):
@@ -43,7 +46,7 @@ def seed_list(seeds):
 
 
 def _input(path):
-    return str(SOURCE_DIR / path)
+    return str(DATA_DIR / path)
 
 
 def _size(scale):

@@ -23,6 +23,7 @@ import sys
 import tempfile
 from pathlib import Path
 
+from .. import __version__
 from . import FIGURES
 from .plan import TIERS
 from .scales import FBC_STARTS, get_scale
@@ -79,6 +80,8 @@ def build_parser():
                     "figure as a PNG with a CSV of every plotted number.",
         epilog="Example: tapmc-paper fig2 --quick --jobs 2   (writes tapmc-paper-quick/"
                "figures/fig2.png and fig2.csv)")
+    parser.add_argument("--version", action="version", version=f"tapmc-paper {__version__}",
+                        help="print the version of TAPMC (of the tapmc package that runs) and exit")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
 
