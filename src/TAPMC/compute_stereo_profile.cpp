@@ -5,6 +5,7 @@
 #include "compute_stereo_profile.h"
 
 #include "lammps_box.h"
+#include "lammps_citation.h"
 #include "lammps_keywords.h"
 #include "lammps_support.h"
 #include "atom.h"
@@ -45,6 +46,7 @@ ComputeStereoProfile::ComputeStereoProfile(LAMMPS *lmp, int narg, char **arg) :
     Compute(lmp, narg, arg), axis_(2), fixed_radius_(0.0), mean_radius_(0.0), group_count_(0.0), radius_ready_(false),
     floor_warned_(false), central_warned_(false)
 {
+  tapmc::cite_paper(lmp);
   tapmc::require_box_with_floor(lmp, "compute stereo/profile");
 
   settings_.floor = domain->boxlo[2];

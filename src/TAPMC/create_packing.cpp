@@ -3,6 +3,7 @@
 #include "create_packing.h"
 
 #include "lammps_box.h"
+#include "lammps_citation.h"
 #include "lammps_compat.h"
 #include "lammps_support.h"
 #include "tapmc_defaults.h"
@@ -415,27 +416,63 @@ void create_own_atoms(LAMMPS *lmp, const Request &req, const tapmc::Packing &pac
   }
 }
 
+// compute stereo/profile's global measures of the new spheres with its default settings and the
+// floor of the deposition, over the deposition area (the whole box without a region): Phi_b,
+// <Phi^c>, <Z> and h_s, exactly as that compute reports them for a group of these spheres.
+std::string stereo_profile_text(const Plan &plan, const tapmc::Packing &packing)
+{
+  namespace stereo = tapmc::stereo;
+  const stereo::Spheres spheres{packing.xyz.data(), packing.radius.data(), 0.0, nullptr,
+                                static_cast<int>(packing.radius.size())};
+  stereo::Box box;
+  box.lo[0] = plan.dd.xlo;
+  box.hi[0] = plan.dd.xhi;
+  box.lo[1] = plan.dd.ylo;
+  box.hi[1] = plan.dd.yhi;
+  box.periodic[0] = plan.dd.periodic_x;
+  box.periodic[1] = plan.dd.periodic_y;
+  stereo::SummarySettings settings;
+  settings.floor = plan.dd.z_floor;
+  const stereo::Summary s = stereo::summarize(spheres, box, settings);
+  const double bulk_top =
+      plan.dd.z_floor + tapmc::defaults::kBulkHeightOverRadius * stereo::mean_radius(spheres);
+  return fmt::format("compute stereo/profile (defaults): Phi_b {:.4f} ({:.4g} <= z <= {:.4g}), "
+                     "<Phi^c> {:.4f} ({:.4g} <= z <= {:.4g}), <Z> {:.4f}, h_s {:.4g}",
+                     s.phi_bulk, plan.dd.z_floor, bulk_top, s.phi_corrected, plan.dd.z_floor,
+                     s.top, s.mean_height, s.surface);
+}
+
+// The volume fraction of the packing's interior: the slab from kDepositionBulkMarginOverRadius
+// R above the floor to as much below 2 <z - z_floor> (the height of a uniform bed with the same
+// mean centre height), away from the floor layers and the rough top.
+std::string interior_text(const Request &req, const Plan &plan, const tapmc::Packing &packing)
+{
+  const double margin = tapmc::defaults::kDepositionBulkMarginOverRadius;
+  double z0 = 0.0, z1 = 0.0;
+  tapmc::bulk_window(packing, plan.dd, margin * req.params.radius, z0, z1);
+  const std::string definition = fmt::format("{:g}R above the floor to {:g}R below twice the "
+                                             "mean centre height", margin, margin);
+  if (!(z1 - z0 > 2.0 * req.params.radius))
+    return "interior volume fraction: none, the slab " + definition + " is thinner than 2R";
+  return fmt::format("interior volume fraction {:.4f} ({:.4g} <= z <= {:.4g}: {})",
+                     tapmc::slab_volume_fraction(packing, plan.dd, z0, z1), z0, z1, definition);
+}
+
 void report(LAMMPS *lmp, const Request &req, const Plan &plan, const tapmc::Packing &packing,
             double zmax, double t_deposit)
 {
   if (lmp->comm->me == 0) {
-    double z0 = 0.0, z1 = 0.0;
-    std::string phi_text = "bulk window too thin for a packing fraction";
-    const double radius = req.params.radius;
-    tapmc::bulk_window(packing, plan.dd,
-                       tapmc::defaults::kDepositionBulkMarginOverRadius * radius, z0, z1);
-    if (z1 - z0 > 2.0 * radius)
-      phi_text = fmt::format("bulk packing fraction {:.4f} (exact stereology, {:.4g} <= z <= "
-                             "{:.4g})", tapmc::slab_volume_fraction(packing, plan.dd, z0, z1), z0, z1);
     utils::logmesg(lmp,
                    "Created {} spheres by sequential deposition (Jullien-Meakin), sides: x {}, "
                    "y {}; floor z = {}\n"
+                   "  {}\n"
                    "  {}\n"
                    "  highest centre z = {:.6g}; path segments {}, unstable equilibria left {}, "
                    "re-drops {}, unresolved {}\n"
                    "  create_packing CPU = {:.3f} seconds\n",
                    req.params.n, plan.walls[0] ? "walls" : "periodic",
-                   plan.walls[1] ? "walls" : "periodic", plan.dd.z_floor, phi_text, zmax,
+                   plan.walls[1] ? "walls" : "periodic", plan.dd.z_floor,
+                   stereo_profile_text(plan, packing), interior_text(req, plan, packing), zmax,
                    packing.stats.segments, packing.stats.perturbations, packing.stats.redrops,
                    packing.stats.unresolved, t_deposit);
   }
@@ -452,6 +489,7 @@ void report(LAMMPS *lmp, const Request &req, const Plan &plan, const tapmc::Pack
 // report.
 void CreatePacking::command(int narg, char **arg)
 {
+  tapmc::cite_paper(lmp);
   const Request req = parse_request(lmp, narg, arg);
   const Plan plan = plan_domain(lmp, req);
   check_room(lmp, req, plan);

@@ -9,6 +9,7 @@
 #include "fix_mc_settle.h"
 
 #include "lammps_box.h"
+#include "lammps_citation.h"
 #include "lammps_compat.h"
 #include "lammps_domain_settle.h"
 #include "lammps_keywords.h"
@@ -124,6 +125,7 @@ FixMCSettle::FixMCSettle(LAMMPS *lmp, int narg, char **arg) :
     scheme(Scheme::Auto), last_sweeps(0),
     last_acceptance(0), last_mean_z(0), last_hit_cap(0), last_trials(0), last_mean_z0(0)
 {
+  tapmc::cite_paper(lmp);
   if (narg < 4)
     error->all(FLERR, "fix mc/settle: expected 'fix ID group mc/settle seed [keyword value ...]',"
                " got {} argument(s)", narg);

@@ -3,6 +3,7 @@
 #include "fix_tapdilate.h"
 
 #include "lammps_box.h"
+#include "lammps_citation.h"
 #include "lammps_keywords.h"
 #include "lammps_relocate.h"
 #include "lammps_support.h"
@@ -29,6 +30,7 @@ using namespace FixConst;
 FixTapDilate::FixTapDilate(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), eps_var_index(-1), last_eps(0.0), tapped_step(-1)
 {
+  tapmc::cite_paper(lmp);
   if (narg < 4)
     error->all(FLERR, "fix tapdilate: expected 'fix ID group tapdilate eps [every N] "
                "[floor z0]', got {} argument(s)", narg);

@@ -9,6 +9,8 @@
 #include "lammps.h"
 #include "modify.h"
 
+#include <cstdio>
+#include <cstring>
 #include <map>
 #include <string>
 
@@ -87,9 +89,42 @@ template <int I> Command *box_command_creator(LAMMPS *lmp)
 const Input::CommandCreator kBoxWrappers[] = {&box_command_creator<0>, &box_command_creator<1>,
                                               &box_command_creator<2>};
 
+// One category of the help: the names in columns of 16 characters (wider names take 32, 48 ...),
+// at most 80 characters a line, the layout of LAMMPS's own style lists.
+template <typename Entry, std::size_t N>
+void print_category(std::FILE *out, const char *category, const Entry (&entries)[N])
+{
+  std::fprintf(out, "\n* %s styles (TAPMC)\n\n", category);
+  int pos = 0;
+  for (const auto &e : entries) {
+    const int width = 16 * (static_cast<int>(std::strlen(e.name)) / 16 + 1);
+    if (pos > 0 && pos + width > 80) {
+      std::fprintf(out, "\n");
+      pos = 0;
+    }
+    std::fprintf(out, "%-*s", width, e.name);
+    pos += width;
+  }
+  std::fprintf(out, "\n");
+}
+
 }  // namespace
 
 namespace tapmc {
+
+void print_styles_help(std::FILE *out)
+{
+  std::fprintf(out, "TAPMC styles (registered by lmp_tapmc at start-up, not in the lists "
+                    "above):\n");
+  print_category(out, "Fix", kFixes);
+  print_category(out, "Compute", kComputes);
+  print_category(out, "Command", kCommands);
+  std::fprintf(out, "\n");
+  for (const auto &f : kFixes) std::fprintf(out, "  fix %-20s %s\n", f.name, f.info);
+  for (const auto &c : kComputes) std::fprintf(out, "  compute %-16s %s\n", c.name, c.info);
+  for (const auto &c : kCommands) std::fprintf(out, "  command %-16s %s\n", c.name, c.info);
+  std::fprintf(out, "\n");
+}
 
 void register_styles(LAMMPS *lmp)
 {

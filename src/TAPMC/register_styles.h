@@ -3,6 +3,8 @@
 #ifndef TAPMC_REGISTER_STYLES_H
 #define TAPMC_REGISTER_STYLES_H
 
+#include <cstdio>
+
 namespace LAMMPS_NS {
 class LAMMPS;
 }
@@ -12,6 +14,9 @@ namespace tapmc {
 // box-creating commands (create_box, read_data, read_restart) so that the styles are inserted
 // again after a `clear` (which rebuilds Modify and forgets them). Idempotent.
 void register_styles(LAMMPS_NS::LAMMPS *lmp);
+// Writes the "TAPMC styles" section of `lmp_tapmc -h`: the TAPMC styles by category, in the
+// columns of LAMMPS's own help, then one line per style with what it does.
+void print_styles_help(std::FILE *out);
 }  // namespace tapmc
 
 extern "C" {

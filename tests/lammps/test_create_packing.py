@@ -91,8 +91,49 @@ def test_periodic_packing_is_valid_and_reports_phi():
     np.testing.assert_array_equal(cols["id"], np.arange(1, 1025))
     check_geometry(cols, box, (True, True), floor=0.0)
     assert "Created 1024 spheres by sequential deposition" in out
-    phi = float(out.split("bulk packing fraction")[1].split()[0])
+    phi = float(out.split("interior volume fraction")[1].split()[0])
     assert 0.55 < phi < 0.62, out
+
+
+def printed_measures(out):
+    """Phi_b, <Phi^c>, <Z> and h_s from create_packing's line of compute stereo/profile's
+    measures."""
+    line = next(ln for ln in out.splitlines()
+                if ln.startswith("  compute stereo/profile (defaults): Phi_b "))
+    words = line.replace(",", "").split()
+    return [float(words[words.index(name) + 1]) for name in ("Phi_b", "<Phi^c>", "<Z>", "h_s")]
+
+
+STEREO_AFTER = """compute phi all stereo/profile floor {floor}
+thermo_style custom step c_phi[1] c_phi[2] c_phi[3] c_phi[4]
+thermo_modify format float %.10f
+run 0
+"""
+
+
+@pytest.mark.parametrize("boundary,args,floor", [
+    ("p p fm", "floor 0.0", 0.0),                          # the README's quick start set-up
+    ("f f fm", "floor 1.5 dispersity 0.2", 1.5),           # walls, mixed radii, raised floor
+])
+def test_printed_packing_fractions_are_compute_stereo_profiles(boundary, args, floor):
+    # create_packing prints Phi_b, <Phi^c>, <Z> and h_s with compute stereo/profile's names,
+    # definitions and defaults: a compute on the new packing reports the same numbers (the
+    # quick-start packing: Phi_b 0.5429, where the line used to read "bulk packing fraction
+    # 0.5830", a slab far from the floor, under a name that read as Phi_b).
+    script = (HEADER.format(boundary=boundary, L=16, H=40, ntypes=1) +
+              f"create_packing 4096 1 0.5 4928 {args}\n" + STEREO_AFTER.format(floor=floor))
+    rc, out, _ = run_lammps(script)
+    assert rc == 0, out
+    lines = out.splitlines()
+    header = next(k for k, ln in enumerate(lines) if ln.split()[:1] == ["Step"])
+    phi_b, phi_c, mean_z, top = (float(v) for v in lines[header + 1].split()[1:])
+    printed = printed_measures(out)
+    np.testing.assert_allclose(printed[:3], [phi_b, phi_c, mean_z], atol=6e-5)
+    # c_phi[4] is z_top = floor + 0.9 (h_s - floor)
+    np.testing.assert_allclose(floor + 0.9 * (printed[3] - floor), top, rtol=1e-3)
+    assert "bulk packing fraction" not in out
+    interior = next(ln for ln in lines if ln.startswith("  interior volume fraction "))
+    assert "6R above the floor to 6R below twice the mean centre height" in interior
 
 
 def test_walls_in_nonperiodic_box():
@@ -231,12 +272,17 @@ def test_example_runs_and_matches_its_log():
     with open(os.path.join(example, logs[0])) as f:
         log = f.read()
 
-    def phi_line(text):
-        return next(line for line in text.splitlines() if line.startswith("  bulk packing fraction"))
+    def phi_lines(text):
+        return [line for line in text.splitlines()
+                if line.startswith(("  compute stereo/profile (defaults): Phi_b ",
+                                    "  interior volume fraction "))]
 
-    assert phi_line(out) == phi_line(log)
-    phi = float(phi_line(out).split("bulk packing fraction")[1].split()[0])
+    assert len(phi_lines(out)) == 2
+    assert phi_lines(out) == phi_lines(log)
+    phi = float(phi_lines(out)[1].split("interior volume fraction")[1].split()[0])
     assert 0.56 <= phi <= 0.61
+    # R = 1: Phi_b is the slab of 4R above the floor, with the floor's loose first layer
+    assert 0.52 <= printed_measures(out)[0] <= 0.56
     assert "Initial packing: N = 4096" in out
 
 

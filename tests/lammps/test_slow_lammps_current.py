@@ -62,11 +62,13 @@ LAMMPS_REPORT = re.compile("|".join([
 # wording change with the version ("... full system init. (src/write_dump.cpp:84)" in 2021,
 # "... full system init (src/write_dump.cpp:87)" in 2026).
 LAMMPS_WARNING_TAIL = re.compile(r"\.? \(src/[^ ]+:\d+\)$")
+# Thermo columns that are timings (thermo keywords cpu and cpuremain), different run to run.
+TIMING_COLUMNS = ("CPU", "CPULeft")
 
 
 def example_output(lmp, example, variables, workdir):
     """What an example prints that does not come from LAMMPS's own run report: the thermo
-    output (the CPU column left out), TAPMC's messages, the input's print lines and warnings."""
+    output (the CPU / CPULeft columns left out), TAPMC's messages, the input's print lines and warnings."""
     proc = subprocess.run(example_command(lmp, example, variables), cwd=workdir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                           text=True, timeout=600, stdin=subprocess.DEVNULL)
     assert proc.returncode == 0, proc.stdout
@@ -75,9 +77,9 @@ def example_output(lmp, example, variables, workdir):
         words = line.split()
         if words[:1] == ["Step"]:
             header = words
-            lines.append(" ".join(w for w in words if w != "CPU"))
+            lines.append(" ".join(w for w in words if w not in TIMING_COLUMNS))
         elif header is not None and len(words) == len(header) and words[0].isdigit():
-            lines.append(" ".join(w for w, h in zip(words, header) if h != "CPU"))
+            lines.append(" ".join(w for w, h in zip(words, header) if h not in TIMING_COLUMNS))
         else:
             header = None
             if line.startswith("WARNING:"):

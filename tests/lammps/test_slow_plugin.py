@@ -85,9 +85,9 @@ def final_state(workdir):
 
 
 def measurements(log_text):
-    """Thermo rows without the CPU column (time differs run to run)."""
+    """Thermo rows without the timing columns (cpu, cpuremain: they differ run to run)."""
     names, table = thermo_table(log_text)
-    keep = [k for k, name in enumerate(names) if name != "CPU"]
+    keep = [k for k, name in enumerate(names) if name not in ("CPU", "CPULeft")]
     return [names[k] for k in keep], table[:, keep]
 
 
