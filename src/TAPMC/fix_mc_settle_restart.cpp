@@ -1,0 +1,117 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// fix mc/settle's restart record: the settings that shape the trajectory and the last
+// diagnostics, written by write_restart() and compared by restart() (fix_mc_settle.cpp runs the
+// redeposition).
+#include "fix_mc_settle.h"
+
+#include "tapmc_defaults.h"
+
+#include "comm.h"
+#include "error.h"
+#include "utils.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+using namespace LAMMPS_NS;
+
+// Random numbers are keyed by (seed, timestep, trial): the run continues exactly from a restart
+// without stored generator state. The restart record keeps every setting that shapes the
+// trajectory (compared after read_restart: a change gives one warning naming old and new values)
+// and the last diagnostics [1]-[6]. Its layouts, told apart by the first double:
+// - kLayoutSettings (today's): the marker, the seed as two exact 32-bit halves, the values of
+//   restart_settings() in its order, the diagnostics in the order of restart_diagnostics();
+// - kLayoutSettingsNoStop (written before 'stop' and 'window' existed): the same without the
+//   settings that came with the stop rule; such runs had 'stop change' and the default window;
+// - seed only (the first runs; the first double is the seed itself, >= 1): seed, diagnostics.
+// Files of all three are read: no release has been cut yet, but runs of every layout may exist.
+namespace {
+constexpr double kLayoutSettings = -3.0;  // negative: cannot be the seed of the seed-only layout
+constexpr double kLayoutSettingsNoStop = -2.0;
+}  // namespace
+
+// One setting in the restart record: its name in the changed-settings warning, this fix's value
+// and, for the settings that came with the stop rule, the value a file of the older layout
+// without them implies.
+struct FixMCSettle::RestartSetting {
+  const char *name;
+  double value;
+  bool added_with_stop_rule = false;
+  double before_stop_rule = 0.0;
+};
+
+std::vector<FixMCSettle::RestartSetting> FixMCSettle::restart_settings() const
+{
+  auto wall = [this](int dim, int side) { return walls_given[dim] ? wall_pos[dim][side] : NAN; };
+  return {
+      {"dmax (0 = default R/5)", d_max},
+      {"theta0", theta0},
+      {"eta", eta},
+      {"check", static_cast<double>(check_interval)},
+      {"maxsweeps", static_cast<double>(max_sweeps)},
+      {"floor", z_floor},
+      {"diameter/2 (0 = per-atom radii)", fixed_radius},
+      {"order (0 random, 1 sweep)", sweep_order ? 1.0 : 0.0},
+      {"xwalls lo", wall(0, 0)},  // NaN: no walls given
+      {"xwalls hi", wall(0, 1)},
+      {"ywalls lo", wall(1, 0)},
+      {"ywalls hi", wall(1, 1)},
+      {"stop (0 change, 1 drift)", stop_drift ? 1.0 : 0.0, true, 0.0},
+      {"window", static_cast<double>(drift_window), true,
+       static_cast<double>(tapmc::defaults::kSettleDriftWindow)},
+  };
+}
+
+// The diagnostics kept in the record: the output vector's [1]-[6].
+std::array<double *, 6> FixMCSettle::restart_diagnostics()
+{
+  return {&last_sweeps, &last_acceptance, &last_mean_z, &last_hit_cap, &last_trials,
+          &last_mean_z0};
+}
+
+void FixMCSettle::write_restart(FILE *fp)
+{
+  if (comm->me != 0) return;
+  const auto useed = static_cast<std::uint64_t>(seed);
+  std::vector<double> record = {kLayoutSettings, static_cast<double>(useed >> 32),
+                                static_cast<double>(useed & 0xFFFFFFFFu)};
+  for (const RestartSetting &setting : restart_settings()) record.push_back(setting.value);
+  for (const double *diagnostic : restart_diagnostics()) record.push_back(*diagnostic);
+  const int size = static_cast<int>(record.size() * sizeof(double));
+  fwrite(&size, sizeof(int), 1, fp);
+  fwrite(record.data(), sizeof(double), record.size(), fp);
+}
+
+void FixMCSettle::restart(char *buf)
+{
+  const auto *next = reinterpret_cast<const double *>(buf);
+  const double layout = *next++;
+  auto text = [](double v) { return std::isnan(v) ? std::string("none") : fmt::format("{}", v); };
+  std::string changed;
+  auto compare = [&](const char *name, double old_value, double new_value) {
+    const bool same = old_value == new_value || (std::isnan(old_value) && std::isnan(new_value));
+    if (!same)
+      changed += fmt::format("{}{} {} -> {}", changed.empty() ? "" : ", ", name, text(old_value),
+                             text(new_value));
+  };
+  if (layout == kLayoutSettings || layout == kLayoutSettingsNoStop) {
+    const auto old_seed = static_cast<std::int64_t>((static_cast<std::uint64_t>(next[0]) << 32) |
+                                                    static_cast<std::uint64_t>(next[1]));
+    next += 2;
+    if (old_seed != seed) changed += fmt::format("seed {} -> {}", old_seed, seed);
+    for (const RestartSetting &setting : restart_settings()) {
+      const bool stored = layout == kLayoutSettings || !setting.added_with_stop_rule;
+      compare(setting.name, stored ? *next++ : setting.before_stop_rule, setting.value);
+    }
+  } else {
+    const auto old_seed = static_cast<std::int64_t>(layout);
+    if (old_seed != seed) changed += fmt::format("seed {} -> {}", old_seed, seed);
+  }
+  if (!changed.empty() && comm->me == 0)
+    error->warning(FLERR, "fix mc/settle: settings differ from the restart file (restart -> now): "
+                   "{}; the run will not continue the original trajectory", changed);
+  for (double *diagnostic : restart_diagnostics()) *diagnostic = *next++;
+}
