@@ -58,6 +58,7 @@ PORES_RESUME = dict(PORES_FRESH, eps=0.03, taps=3, dump_times=[2, 3], resume="ye
                     resume_file="restart.1")
 del PORES_RESUME["sqrteps"]
 TAPPING = dict(taps=1, eps=0.02, seed=11)   # these inputs fix N = 4096: one tap, ~2 s
+QUICKSTART = dict(taps=12, eps=0.03, seed=5)   # N = 1024: ~2 s
 SCALE = dict(N=64, L=8, R=0.6, eps=0.02, eta=1e-5, taps=2, seed=5)
 
 RUNS = {
@@ -67,6 +68,7 @@ RUNS = {
     "paper/in.pore_dumps": [PORES_FRESH, PORES_RESUME],
     "tapping/in.tapping_pbc": [TAPPING],
     "tapping/in.tapping_fbc": [TAPPING],
+    "quickstart/in.quickstart": [QUICKSTART],
     "scale/in.paper_x100": [SCALE],
     "deposition/in.deposition": [{}],
 }
@@ -300,6 +302,34 @@ def test_tapping_switches(tmp_path, example):
     assert "fix tap all tapdilate 0.02 floor 0.0" in commands(log, "fix tap")
     assert "fix settle all mc/settle 11 floor 0.0" in commands(log, "fix settle")
     assert thermo_steps(log) == [0, 1]
+
+
+def test_quickstart_switches_and_its_plot(tmp_path):
+    """in.quickstart writes one line per tap (tap 0 included) to taps.dat; plot_compaction.py
+    draws it and names the run's settings, read back from the log."""
+    log = run_ok("quickstart/in.quickstart", QUICKSTART, tmp_path)
+    assert "create_packing 1024 1 0.5 5 floor 0.0" in commands(log, "create_packing")
+    assert "fix tap all tapdilate 0.03 floor 0.0" in commands(log, "fix tap")
+    assert "fix settle all mc/settle 5 floor 0.0" in commands(log, "fix settle")
+    taps = table(tmp_path / "taps.dat")
+    assert taps[:, 0].tolist() == list(range(13))
+    assert np.all((taps[:, 1:3] > 0.5) & (taps[:, 1:3] < 0.65))
+    env = dict(os.environ, PYTHONPATH=str(EXAMPLES.parent / "tools" / "python"))
+    plot = subprocess.run(["/usr/bin/python3", str(EXAMPLES / "quickstart" / "plot_compaction.py")],
+                          cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120)
+    assert plot.returncode == 0, plot.stderr
+    assert "N = 1024, eps = 0.03, eta = 1e-7, seed = 5, 12 taps" in plot.stdout
+    assert (tmp_path / "compaction.png").stat().st_size > 10000
+    rows = np.loadtxt(tmp_path / "compaction.csv", delimiter=",", skiprows=1)
+    assert np.allclose(rows[:, :4], taps[:, :4])
+
+
+def test_quickstart_plot_names_a_bad_file(tmp_path):
+    (tmp_path / "taps.dat").write_text("# tap Phi_b Phi_c Z sweeps\n0 0.5 0.5\n")
+    env = dict(os.environ, PYTHONPATH=str(EXAMPLES.parent / "tools" / "python"))
+    plot = subprocess.run(["/usr/bin/python3", str(EXAMPLES / "quickstart" / "plot_compaction.py")],
+                          cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120)
+    assert plot.returncode != 0 and "taps.dat" in plot.stderr and "Traceback" not in plot.stderr
 
 
 def test_scale_switches(tmp_path):
