@@ -103,7 +103,9 @@ def test_figure_end_to_end_with_stub(package_copy, tmp_path):
     dry = cli("fig3", "--dry-run", "--seeds", "2", "--campaign", campaign,
               pythonpath=package_copy)
     assert dry.returncode == 0, dry.stderr
-    assert "stub_s1  [in.constant_eps, taps 4, to run]" in dry.stdout
+    # the stub's variables carry no eps: listed without a CPU-hour estimate, saying why
+    assert "stub_s1  [in.constant_eps, taps 4, cost unknown, to run]" in dry.stdout
+    assert "2 runs without an estimate: stub_s1 has no 'eps' variable" in dry.stdout
     assert not (campaign / "runs").exists()
     out = cli("fig3", "--quick", "--seeds", "2", "--jobs", "2", "--campaign", campaign,
               "--out", out_dir, "--quiet", pythonpath=package_copy)
@@ -115,7 +117,7 @@ def test_figure_end_to_end_with_stub(package_copy, tmp_path):
     assert (campaign / "manifest.json").exists()
     again = cli("fig3", "--dry-run", "--seeds", "2", "--campaign", campaign,
                 pythonpath=package_copy)
-    assert "stub_s2  [in.constant_eps, taps 4, done]" in again.stdout
+    assert "stub_s2  [in.constant_eps, taps 4, cost unknown, done]" in again.stdout
 
 
 def test_scales():
@@ -191,8 +193,9 @@ def test_campaign_subcommand(tmp_path):
     assert out.returncode == 0, out.stderr
     lines = out.stdout.splitlines()
     assert "full plan, tiers 1-2" in lines[0]
-    assert len(lines) - 1 == len(plan.runs(2))
-    assert all(line.endswith("to run]") for line in lines[1:])
+    assert len(lines) - 2 == len(plan.runs(2))   # the header, the runs, the CPU hours left
+    assert all(line.endswith("CPU h, to run]") for line in lines[1:-1])
+    assert lines[-1].startswith("left to run: about ")
     two = cli("campaign", "--dry-run", "--tier", "3", "--jobs", "2", "--campaign", tmp_path / "c")
     assert two.returncode == 0 and two.stdout.splitlines()[1].split()[0] == "ramp_pbc_s1"
     bad = cli("campaign", "--quick", "--dry-run", "--campaign", tmp_path / "c")
@@ -202,7 +205,7 @@ def test_campaign_subcommand(tmp_path):
     first = cli("campaign", "--dry-run", "--tier", "3", "--jobs", "2", "--campaign",
                 tmp_path / "c", "--first", "ageing_*_s2", "const_fbc_eps0.02_s1", "ageing_*")
     assert first.returncode == 0, first.stderr
-    order = [line.split()[0] for line in first.stdout.splitlines()[1:]]
+    order = [line.split()[0] for line in first.stdout.splitlines()[1:-1]]
     ageing = [n for n in names if n.startswith("ageing_")]
     head = ["ageing_pbc_eps0.01_s2", "const_fbc_eps0.02_s1"] + [
         n for n in ageing if n != "ageing_pbc_eps0.01_s2"]

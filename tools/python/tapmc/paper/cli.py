@@ -148,6 +148,20 @@ def build_parser():
                       help="run the runs whose names match these shell-style patterns first "
                            "(e.g. 'ageing_*'), in the patterns' order, then the rest in the "
                            "plan's order")
+    cp = sub.add_parser("plan", help="the CPU time of runs before they run (the cost rule of "
+                                     "tapmc.paper.cost, from the front's measurements)")
+    cp.add_argument("--N", type=_positive_int, required=True, help="spheres per run")
+    cp.add_argument("--taps", type=_positive_int, required=True, help="taps per run")
+    cp.add_argument("--eps", type=float, nargs="+", required=True, metavar="EPS",
+                    help="tap strengths (eps, not sqrt(eps)); one row each")
+    cp.add_argument("--setting", nargs="+", default=None, metavar="NAME",
+                    help="purposes (publication, exploration, smoke: the setting doc/front.rst "
+                         "recommends for each at the nearest N measured) or fix mc/settle "
+                         "settings ('change 1e-6', 'drift 1e-7'); default: the three purposes")
+    cp.add_argument("--seeds", type=_positive_int, default=1, metavar="K",
+                    help="runs (seeds) per eps and setting (default 1)")
+    cp.add_argument("--jobs", type=_positive_int, default=None, metavar="J",
+                    help="runs at a time, for the wall time (default: the cores this process may use)")
     fr = sub.add_parser("front", help="the run-time-versus-error page of the redeposition "
                                       "(doc/front.rst) from the runs of bench/paper_front.py")
     fr.add_argument("--root", type=Path, default=None, metavar="DIR",
@@ -359,10 +373,74 @@ def _finished_view(campaign, extra=()):
 
 
 def _list_runs(campaign, what):
+    """The runs of a dry run, each with its CPU hours by the cost rule, and the total left."""
+    from tapmc.campaign import launch
+
+    from . import cost
+
     print(f"campaign {campaign.directory} ({what}, {len(campaign.runs)} runs):")
+    why = None  # the first reason a run has no estimate
+    try:
+        rule = cost.CostRule.from_summary()
+    except cost.CostError as err:
+        rule, why = None, str(err)
+    left, unknown = 0.0, 0
     for spec in campaign.runs:
-        state = "done" if campaign.is_done(spec.name) else "to run"
-        print(f"  {spec.name}  [{spec.input.name}, taps {spec.taps}, {state}]")
+        done = campaign.is_done(spec.name)
+        hours = None
+        try:
+            hours = cost.run_cost(spec, rule) if rule else None
+        except KeyError as err:
+            why = why or f"{spec.name} has no {err.args[0]!r} variable"
+        except (cost.CostError, ValueError) as err:
+            why = why or str(err)
+        price = f"{hours:.3g} CPU h" if hours is not None else "cost unknown"
+        print(f"  {spec.name}  [{spec.input.name}, taps {spec.taps}, {price}, "
+              f"{'done' if done else 'to run'}]")
+        if not done:
+            if hours is None:
+                unknown += 1
+            else:
+                left += hours * spec.nprocs
+    jobs = max(1, launch.available_cores())
+    print(f"left to run: about {left:.1f} CPU hours (the cost rule of tapmc-paper plan; "
+          f"{left / jobs:.1f} h of wall time on {jobs} cores)"
+          + (f"; {unknown} runs without an estimate: {why}" if unknown else ""))
+    return 0
+
+
+def _plan_cost(args):
+    """``tapmc-paper plan``: CPU hours per run and in all, for every eps and setting asked."""
+    from tapmc.campaign import launch
+
+    from . import cost
+
+    try:
+        rule = cost.CostRule.from_summary()
+        settings = [(name, cost.tier_setting(name, rule, args.N))
+                    for name in (args.setting or list(cost.TIERS))]
+        rows = [(label, name, eps, rule.sweeps_per_tap(args.N, eps, name),
+                 rule.seconds_per_tap(args.N, eps, name),
+                 rule.cpu_hours(args.N, args.taps, eps, name))
+                for label, name in settings for eps in args.eps]
+    except cost.CostError as err:
+        print(f"tapmc-paper plan: {err}", file=sys.stderr)
+        return 2
+    jobs = args.jobs or max(1, launch.available_cores())
+    print(f"N = {args.N}, {args.taps} taps per run, {args.seeds} run(s) per eps and setting; "
+          f"cost rule: {rule.describe()} (one core of the front's machine; scale by your "
+          "core's speed)")
+    header = ("setting", "eps", "sweeps/tap", "CPU s/tap", "CPU h/run", "CPU h")
+    print("  %-36s %8s %10s %9s %9s %9s" % header)
+    total = 0.0
+    for label, name, eps, sweeps, per_tap, hours in rows:
+        shown = name if label == name else f"{label}: {name}"
+        print("  %-36s %8g %10.0f %9.3f %9.2f %9.2f" % (shown, eps, sweeps, per_tap, hours,
+                                                       hours * args.seeds))
+        total += hours * args.seeds
+    print(f"total: {total:.1f} CPU hours, about {total / jobs:.1f} h of wall time on {jobs} cores")
+    for label, name in settings:
+        print(f"  {label}: {cost.lammps_line(name, args.N)}")
     return 0
 
 
@@ -375,6 +453,8 @@ def main(argv=None):
         return _run_plan(args)
     if args.command == "front":
         return _front_page(args)
+    if args.command == "plan":
+        return _plan_cost(args)
     if args.command == "report" and args.from_data:
         return _report_from_data(args)
     figures = list(FIGURES) if args.command == "report" else [args.command]
