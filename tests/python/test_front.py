@@ -23,8 +23,10 @@ from tapmc.paper import front  # noqa: E402
 # setting -> (offset of every observable against the reference, CPU s per tap)
 SYNTHETIC = {
     front.REFERENCE: (0.0, 1.0),
-    "change 1e-5": (-0.01, 0.02),       # cheap and far off: smoke test only
-    "change 1e-6": (-0.002, 0.05),      # within the exploration tolerance, not publication
+    # cheap, far off and more so at the larger eps: smoke test only
+    "change 1e-5": ({0.0225: -0.01, 0.1: -0.02}, 0.02),
+    # off by more than publication allows, alike at every eps and tap: exploration
+    "change 1e-6": (-0.002, 0.05),
     front.DEFAULT: (-0.0002, 0.1),      # within publication
     "drift 3e-8": (0.0, 2.0),           # tighter than the reference: agrees
     "dmax R/10": (-0.0005, 0.15),       # d_max: dearer and farther than R/5 (the default) ...
@@ -34,7 +36,10 @@ SYNTHETIC = {
 JITTER = (-0.0001, 0.0, 0.0001)
 
 
-def _write_run(data, name, N, eps, seed, k, offset, cpu):
+def _write_run(data, name, N, eps, seed, k, offset, cpu, drift=0.0):
+    """One synthetic run: the setting's offset (a number, or eps -> number) plus `drift` x t /
+    TAPS (a bias that grows with the tap count)."""
+    offset = offset[eps] if isinstance(offset, dict) else offset
     path = front.taps_path(str(data), name, N, eps, seed)
     os.makedirs(os.path.dirname(path), exist_ok=True)
     with gzip.open(path, "wt") as f:
@@ -43,7 +48,7 @@ def _write_run(data, name, N, eps, seed, k, offset, cpu):
             # a packing that compacts with t, differs from seed to seed, and is shifted by the
             # setting's offset (+ its per-seed jitter, except for the reference)
             base = 0.58 + 0.02 * (1 - math.exp(-t / 200.0)) + 0.003 * k
-            shift = offset + (JITTER[k] if name != front.REFERENCE else 0.0)
+            shift = offset + drift * t / front.TAPS + (JITTER[k] if name != front.REFERENCE else 0.0)
             phi_c = base + shift
             f.write(f"{t} {phi_c - 0.03} {phi_c} {7.0 + 10 * shift} 13 0.57 0.58 14 {1000} 0.02 0\n")
     return {"setting": name, "N": N, "eps": "%g" % eps, "seed": seed, "taps": front.TAPS,
@@ -88,6 +93,39 @@ def test_recommendations_take_the_cheapest_setting_within_each_tolerance(data):
     assert recs["exploration"]["setting"] == "change 1e-6"
     assert recs["smoke test"]["setting"] == "change 1e-5"
     assert recs["exploration"]["worst_bound"] <= 0.003 < 0.0032
+
+
+def test_exploration_bounds_the_change_of_the_bias_not_the_bias(data):
+    """A bias alike at every eps and tap passes exploration however large (it shifts every
+    curve alike) and is stated; one that changes with eps or grows with the taps does not."""
+    fr = front.Front(data).compute()
+    same = fr.rows(N=1024, setting="change 1e-6")
+    se = 0.0001 / math.sqrt(3)
+    assert all(r["phi_c_steady_trend_bound"] < 4.31 * 2 * se for r in same)
+    recs = fr.recommendations(1024)
+    assert recs["exploration"]["worst_bias"] == pytest.approx(-0.002, abs=1e-9)
+    assert recs["exploration"]["criterion"] == "trend"
+    # change 1e-5 is -0.01 at eps 0.0225 and -0.02 at 0.1: its change is 0.01 at least
+    assert front.worst_trend("change 1e-5", fr.rows(N=1024, setting="change 1e-5")) >= 0.01
+    # a bias that grows by 0.01 over the run moves between tap 100 and the steady window
+    rows = []
+    for eps in front.EPS:
+        for k, seed in enumerate(front.seeds(3)):
+            rows.append(_write_run(data, "change 1e-8", 1024, eps, seed, k, 0.0, 0.04, drift=-0.01))
+    with open(data / "runs.csv", "a", newline="") as f:
+        csv.DictWriter(f, fieldnames=front.RUN_FIELDS).writerows(rows)
+    fr = front.Front(data).compute()
+    drifting = fr.rows(N=1024, setting="change 1e-8")
+    assert front.worst_trend("change 1e-8", drifting) > 0.006
+    assert fr.recommendations(1024)["exploration"]["setting"] == "change 1e-6"
+
+
+def test_lammps_line_of_each_setting():
+    assert front.lammps_line(front.REFERENCE) == "fix settle all mc/settle SEED floor 0.0 stop drift"
+    assert front.lammps_line(front.DEFAULT) == "fix settle all mc/settle SEED floor 0.0"
+    assert front.lammps_line("change 1e-5") == "fix settle all mc/settle SEED floor 0.0 eta 1e-5"
+    assert front.lammps_line("check 10 sweeps, 1e-6", 1024) == \
+        "fix settle all mc/settle SEED floor 0.0 check 10240 eta 1e-6"
 
 
 def test_reference_check_names_what_differs(data):
@@ -188,6 +226,6 @@ def test_every_preset_has_its_setting_on_the_front():
     from tapmc.paper.scales import SCALES
 
     assert set(front.PRESET_PURPOSE) == set(SCALES)
-    assert set(front.PRESET_PURPOSE.values()) == {p for p, _ in front.PURPOSES}
+    assert set(front.PRESET_PURPOSE.values()) == {p for p, _, _ in front.PURPOSES}
     for name, scale in SCALES.items():
         assert front.setting_named(scale.eta) in front.SETTINGS, name
