@@ -9,10 +9,11 @@
 namespace tapmc {
 
 // LAMMPS's citation format: one line (what the terse reminder on the screen shows), a blank
-// line, then the BibTeX entry (what the log file and log.cite get). All four styles add the same
+// line, then the BibTeX entry (what the log file and log.cite get). All five styles add the same
 // text, so a run that uses several of them lists the paper once.
 inline constexpr char kPaperCitation[] =
-    "TAPMC package (fix tapdilate, fix mc/settle, compute stereo/profile, create_packing): "
+    "TAPMC package (fix tapdilate, fix mc/settle, compute stereo/profile, compute contacts, "
+    "create_packing): "
     "doi:10.1103/PhysRevE.63.051304\n\n"
     "@Article{Philippe01,\n"
     " author = {P. Philippe and D. Bideau},\n"

@@ -14,6 +14,7 @@
 #include <map>
 #include <string>
 
+#include "compute_contacts.h"
 #include "compute_stereo_profile.h"
 #include "create_packing.h"
 #include "fix_mc_settle.h"
@@ -59,6 +60,8 @@ const FixEntry kFixes[] = {
 const ComputeEntry kComputes[] = {
     {"stereo/profile", &compute_creator<ComputeStereoProfile>,
      "exact stereological packing-fraction profiles"},
+    {"contacts", &compute_creator<ComputeContacts>,
+     "coordination numbers within a gap, their mean and distribution"},
 };
 const CommandEntry kCommands[] = {
     {"create_packing", &command_creator<CreatePacking>,

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstddef>
+#include <type_traits>
 #include <vector>
 
 namespace tapmc {
@@ -58,10 +59,14 @@ class CellGrid {
   // Calls visit(j, pj, shift_x, shift_y) for every sphere j binned in the 27 cells around
   // (x, y, z), cell by cell (z, then y, then x offset from -1 to +1), where pj points to x, y, z,
   // R of j and shift_x / shift_y is the image shift of j's cell (0 or +-L). The action returns
-  // true to stop the search; visit_neighbours then returns true.
+  // true to stop the search; visit_neighbours then returns true. An action taking a fifth
+  // argument also gets shift_z, the image shift along a periodic z (the contact counter's fully
+  // periodic boxes, tapmc_contacts.h); the packing kernels never make z periodic.
   template <class Visit>
   bool visit_neighbours(double x, double y, double z, Visit &&visit) const
   {
+    constexpr bool with_z = std::is_invocable_v<Visit &, int, const double *, double, double,
+                                                 double>;
     const GridAxis &ax = axes_[0], &ay = axes_[1], &az = axes_[2];
     const int px = ax.cells + 2, py = ay.cells + 2;
     const int ix = 3 * ax.cell_of(x), iy = 3 * ay.cell_of(y), iz = 3 * az.cell_of(z);
@@ -74,8 +79,13 @@ class CellGrid {
                         ax.neighbour[ix + kx];
           const double shift_x = ax.shift[ix + kx], shift_y = ay.shift[iy + ky];
           const int q1 = cell_start_[c + 1];
-          for (int q = cell_start_[c]; q < q1; ++q)
-            if (visit(binned[q], xyzr + 4 * q, shift_x, shift_y)) return true;
+          for (int q = cell_start_[c]; q < q1; ++q) {
+            if constexpr (with_z) {
+              if (visit(binned[q], xyzr + 4 * q, shift_x, shift_y, az.shift[iz + kz])) return true;
+            } else {
+              if (visit(binned[q], xyzr + 4 * q, shift_x, shift_y)) return true;
+            }
+          }
         }
     return false;
   }

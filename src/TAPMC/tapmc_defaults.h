@@ -62,6 +62,29 @@ constexpr double kVerticalWindowBottomOverRadius = 2.0;
 // Default number of cut planes of the profile array (bins of about 0.3R for a 32R box).
 constexpr int kProfilePlanes = 100;
 
+// ---- contacts: compute contacts and tapmc.contacts (tapmc_contacts.h) -----------------------
+// Spheres i and j are in contact when |r_ij| <= (R_i + R_j)(1 + g + tol), a sphere and the floor
+// when z_i - R_i - z0 <= (g + tol) 2 R_i, with tol = kContactsGapTolerance: the model's contact
+// tolerance, so that g = 0 counts what the model takes as touching (exact lattices built with
+// rounding, the analytic contacts of create_packing, within ~1e-15; pairs overlapping within the
+// hard-sphere tolerance). It is far below any gap a user can resolve, and the gaps of a Monte
+// Carlo packing are continuous: no pair of one sits within it of a chosen threshold.
+constexpr double kContactsGapTolerance = kContactTolerance;
+// Largest gap g: at g = 1 the centres of a "contact" are two contact distances apart; beyond
+// that the count is a neighbour shell, not contacts (compute coord/atom counts neighbours within
+// any cutoff). It also bounds the ghost shell the compute asks for, 2 R_max (1 + g).
+constexpr double kContactsMaxGap = 1.0;
+// Vector entry 3 of compute contacts is the fraction of spheres with fewer contacts than this:
+// in three dimensions a frictionless sphere needs d + 1 = 4 contacts to be locally jammed (the
+// usual definition of a rattler has fewer; under gravity a sphere can rest on 3).
+constexpr int kContactsFewBelow = 4;
+// The distribution P(Z) has rows Z = 0 .. kContactsMaxZ, the last one holding every Z >=
+// kContactsMaxZ, so that its length is fixed (fix ave/time averages it row by row). 24 is twice
+// the kissing number 12 of equal spheres: equal spheres stay below it at every gap up to
+// sqrt(3) - 1 (FCC: 12 contacts up to sqrt(2) - 1, then 18); only larger gaps or very unequal
+// radii reach the last row (vector entry 5 gives the largest Z).
+constexpr int kContactsMaxZ = 24;
+
 // ---- initial packing: create_packing, sequential deposition (Jullien & Meakin 1987) ---------
 // A sphere or plane counts as touching (a possible support) when its gap is below this fraction
 // of the contact distance: well above the ~1e-15 rounding of analytically computed contact

@@ -51,12 +51,12 @@ def test_help_lists_the_tapmc_styles_after_lammps_own():
         assert start > lines.index("* Command styles")
         section = lines[start:]
         for category, names in (("Fix", ["tapdilate", "mc/settle"]),
-                                ("Compute", ["stereo/profile"]),
+                                ("Compute", ["stereo/profile", "contacts"]),
                                 ("Command", ["create_packing"])):
             k = section.index(f"* {category} styles (TAPMC)")
             assert section[k + 2].split() == names, section
         for style in ("fix tapdilate", "fix mc/settle", "compute stereo/profile",
-                      "command create_packing"):
+                      "compute contacts", "command create_packing"):
             assert any(line.split()[:2] == style.split() for line in section), style
 
 
@@ -72,12 +72,14 @@ def test_help_section_once_on_several_ranks_and_never_after_an_error():
     assert rc == 0 and "TAPMC styles" not in out
 
 
-CITATION = "TAPMC package (fix tapdilate, fix mc/settle, compute stereo/profile, create_packing)"
+CITATION = ("TAPMC package (fix tapdilate, fix mc/settle, compute stereo/profile, "
+            "compute contacts, create_packing)")
 PAPER = "title = {Numerical model for granular compaction under vertical tapping}"
 ONE_ATOM = "create_atoms 1 single 1 1 0.5\nset group all diameter 1.0\n"
 CITED_STYLES = {
     "create_packing": "create_packing 20 1 0.5 7\n",
     "compute stereo/profile": ONE_ATOM + "compute phi all stereo/profile\nrun 0\n",
+    "compute contacts": ONE_ATOM + "compute z all contacts 0.01\nrun 0\n",
     "fix tapdilate": ONE_ATOM + "fix tap all tapdilate 0.01\nrun 0\n",
     "fix mc/settle": ONE_ATOM + "fix settle all mc/settle 7\nrun 0\n",
 }
@@ -106,7 +108,7 @@ def test_each_style_cites_the_paper_once():
         assert "CITE-CITE-CITE" in screen, style
         assert screen.count(CITATION) == 1, (style, screen)
         assert PAPER in log and "doi = {10.1103/PhysRevE.63.051304}" in log, style
-    # all four in one run: listed once
+    # all five in one run: listed once
     screen, log, _ = run_cited("".join(CITED_STYLES.values()).replace(ONE_ATOM, ""))
     assert screen.count(CITATION) == 1 and log.count(PAPER) == 1
 

@@ -7,17 +7,19 @@ power spectrum, sigma_X), ``hysteresis`` (ramp runs of Fig. 4), ``ageing`` (eqs.
 ``connected_ageing`` (the drift-free two-time function and a collapse without a law),
 ``profiles`` (delta Phi_lateral / central, vertical profiles), ``pores`` (tapmc-pores
 outputs, the tetrahedral law, the volume tail, Percus-Yevick P0), ``packing`` (one dumped
-packing checked offline: overlaps, floor, walls, the stereology scalars) and ``crystallinity``
+packing checked offline: overlaps, floor, walls, the stereology scalars), ``crystallinity``
 (Steinhardt q4, q6 and the ten Wolde-Frenkel crystalline spheres of a packing, per zone and
-height band). See doc/python_analysis.rst.
+height band) and ``contacts`` (coordination numbers within a gap and their distribution, as
+compute contacts counts them). See doc/python_analysis.rst.
 """
 
 __version__ = "0.1.0"
 
-from . import (ageing, connected_ageing, crystallinity, fluctuations, hysteresis, laws, packing,
-               pores, profiles, readers)
+from . import (ageing, connected_ageing, contacts, crystallinity, fluctuations, hysteresis, laws,
+               packing, pores, profiles, readers)
 from .ageing import Ageing
 from .connected_ageing import ConnectedAgeing
+from .contacts import Contacts
 from .crystallinity import Crystallinity
 from .fluctuations import PowerSpectrum, SteadyState, sigma_scaling, sigma_x
 from .hysteresis import Hysteresis
@@ -29,8 +31,9 @@ from .profiles import ProfileIncrease, transversal_profile, vertical_profile
 from .readers import (TapmcFormatError, read_ave_time, read_dump, read_fix_print,
                       read_log)
 
-__all__ = ["ageing", "connected_ageing", "crystallinity", "fluctuations", "hysteresis", "laws",
-           "packing", "pores", "profiles", "readers", "Ageing", "ConnectedAgeing", "Crystallinity",
+__all__ = ["ageing", "connected_ageing", "contacts", "crystallinity", "fluctuations", "hysteresis",
+           "laws", "packing", "pores", "profiles", "readers", "Ageing", "ConnectedAgeing",
+           "Contacts", "Crystallinity",
            "PowerSpectrum", "SteadyState", "sigma_scaling", "sigma_x",
            "Hysteresis", "AgeingLaw", "FitResult", "InverseLogLaw", "ProfileLaw",
            "TwoExponentials", "ZLaw", "profile_gradient", "PackingCheck", "TetrahedralLaw",

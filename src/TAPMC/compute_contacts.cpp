@@ -1,0 +1,267 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// compute contacts: LAMMPS front end of the contact counter (tapmc_contacts.h). Each rank counts
+// the contacts of its owned atoms of the group against its owned and ghost atoms of the group
+// (the ghosts are the periodic images and the neighbouring sub-domains' spheres, so no axis is
+// periodic for the counter): every owned atom gets its full count, and the global sums run over
+// owned atoms only, one MPI_Allreduce of a packed buffer (plus one MAX of the largest count).
+#include "compute_contacts.h"
+
+#include "lammps_citation.h"
+#include "lammps_keywords.h"
+#include "lammps_support.h"
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "group.h"
+#include "memory.h"
+#include "neighbor.h"
+#include "update.h"
+
+#include "tapmc_checks.h"
+#include "tapmc_defaults.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <limits>
+#include <mpi.h>
+#include <string>
+
+using namespace LAMMPS_NS;
+namespace contacts = tapmc::contacts;
+
+namespace {
+// Output vector layout (documented in doc/compute_contacts.rst).
+enum VectorEntry { kMean, kFractionNone, kFractionFew, kFractionFloor, kLargest, kVectorSize };
+constexpr int kArrayColumns = 2;  // Z, P(Z)
+constexpr const char *kStyle = "compute contacts";
+constexpr const char *kUsage = "compute ID group-ID contacts g [floor z0] [radius R]";
+
+const std::string kGapRange = "[0, " + tapmc::number(tapmc::defaults::kContactsMaxGap) + "]";
+
+// A number from its text, all of it; anything else stops with a message naming the argument,
+// its text and the allowed range.
+double parse_number(LAMMPS *lmp, const char *name, const char *text, const std::string &range)
+{
+  const std::string s = text;
+  char *end = nullptr;
+  const double value = std::strtod(s.c_str(), &end);
+  if (s.empty() || end != s.c_str() + s.size())
+    lmp->error->all(FLERR, "{}: {} = {} is not a number (allowed range {})", kStyle, name, s,
+                    range);
+  return value;
+}
+}  // namespace
+
+ComputeContacts::ComputeContacts(LAMMPS *lmp, int narg, char **arg) :
+    Compute(lmp, narg, arg), fixed_radius_(0.0), nmax_(0)
+{
+  tapmc::cite_paper(lmp);
+  if (domain->triclinic)
+    error->all(FLERR, "{}: triclinic boxes are not supported; use an orthogonal box", kStyle);
+  parse_arguments(narg, arg);
+  if (!fixed_radius_ && !atom->radius_flag)
+    error->all(FLERR, "{}: radius keyword required: atom style {} has no per-atom radius",
+               kStyle, atom->atom_style);
+
+  peratom_flag = 1;
+  size_peratom_cols = 0;
+  vector_flag = 1;
+  size_vector = kVectorSize;
+  extvector = 0;
+  array_flag = 1;
+  size_array_rows = contacts::kHistogramRows;
+  size_array_cols = kArrayColumns;
+  extarray = 0;
+
+  vector = new double[kVectorSize];
+  for (int i = 0; i < kVectorSize; ++i) vector[i] = 0.0;
+  memory->create(array, contacts::kHistogramRows, kArrayColumns, "contacts:array");
+  for (int z = 0; z < contacts::kHistogramRows; ++z) {
+    array[z][0] = z;
+    array[z][1] = 0.0;
+  }
+}
+
+// compute ID group contacts g [floor z0] [radius R]
+void ComputeContacts::parse_arguments(int narg, char **arg)
+{
+  if (narg < 4)
+    error->all(FLERR, "{}: the gap g is missing (relative to the contact distance R_i + R_j, in "
+               "{}): {}", kStyle, kGapRange, kUsage);
+  settings_.gap = parse_number(lmp, "gap", arg[3], kGapRange);
+  if (!(settings_.gap >= 0.0 && settings_.gap <= tapmc::defaults::kContactsMaxGap))
+    error->all(FLERR, "{}: {} (relative to the contact distance R_i + R_j)", kStyle,
+               tapmc::outside_range_message("gap", arg[3], kGapRange));
+
+  using tapmc::Keyword;
+  const Keyword table[] = {
+      {"floor", 1,
+       [&](char **v) {
+         settings_.floor = true;
+         settings_.floor_z = parse_number(lmp, "floor", v[0], "(finite)");
+       }},
+      {"radius", 1,
+       [&](char **v) {
+         fixed_radius_ = parse_number(lmp, "radius", v[0], "(0, +inf)");
+         if (!(fixed_radius_ > 0.0 && fixed_radius_ < std::numeric_limits<double>::infinity()))
+           error->all(FLERR, "{}: {}", kStyle,
+                      tapmc::outside_range_message("radius", v[0], "(0, +inf)"));
+       }},
+  };
+  tapmc::parse_keywords(lmp, kStyle, table, 4, narg, arg);
+  if (settings_.floor && domain->zperiodic)
+    error->all(FLERR, "{}: the floor keyword needs a non-periodic z boundary (the box is "
+               "periodic along z); use e.g. 'boundary p p fm'", kStyle);
+  // the kernel's one validation of the settings (ranges named there)
+  tapmc::guarded(lmp, kStyle, true, [&] { contacts::validate(settings_); });
+}
+
+ComputeContacts::~ComputeContacts()
+{
+  delete[] vector;
+  memory->destroy(array);
+  memory->destroy(vector_atom);
+}
+
+void ComputeContacts::init()
+{
+  if (domain->triclinic)
+    error->all(FLERR, "{}: triclinic boxes are not supported; use an orthogonal box", kStyle);
+  tapmc::quiet_sorting_without_pair_style(lmp);
+  // Ghosts deep enough for every contact, plus the neighbour skin: in a run that moves atoms
+  // between reneighbourings, an atom moves up to skin/2 before LAMMPS rebuilds the ghosts.
+  tapmc::request_ghost_depth(lmp, ghost_depth_needed(group_radius_max()) + neighbor->skin);
+}
+
+// Largest radius of the group's atoms (collective); stops when one has no positive radius.
+double ComputeContacts::group_radius_max()
+{
+  if (fixed_radius_ > 0.0) return fixed_radius_;
+  const int *mask = atom->mask;
+  const double *radius = atom->radius;
+  double local[2] = {0.0, -std::numeric_limits<double>::infinity()};  // max R, -min R
+  for (int i = 0; i < atom->nlocal; ++i) {
+    if (!(mask[i] & groupbit)) continue;
+    local[0] = std::max(local[0], radius[i]);
+    local[1] = std::max(local[1], -radius[i]);
+  }
+  double global[2];
+  MPI_Allreduce(local, global, 2, MPI_DOUBLE, MPI_MAX, world);
+  if (!(-global[1] > 0.0) && global[1] != -std::numeric_limits<double>::infinity())
+    error->all(FLERR, "{}: per-atom radius must be > 0 (an atom of group {} has radius {})",
+               kStyle, group->names[igroup], -global[1]);
+  return global[0];
+}
+
+// The centre distance of the farthest possible contact: two spheres of the largest radius.
+double ComputeContacts::ghost_depth_needed(double r_max) const
+{
+  return 2.0 * r_max * contacts::reach_factor(settings_.gap);
+}
+
+// The ghost shell LAMMPS built at the last set-up must hold every partner of every owned atom.
+void ComputeContacts::check_ghost_shell(double r_max)
+{
+  if (!update->first_update)
+    error->all(FLERR, "{} {}: invoked before the first run: it counts the contacts across "
+               "sub-domain and periodic boundaries with ghost atoms, which exist once a run has "
+               "set the system up; give 'run 0' first", kStyle, id);
+  const double need = ghost_depth_needed(r_max);
+  const double have = std::min({comm->cutghost[0], comm->cutghost[1], comm->cutghost[2]});
+  if (have < need)
+    error->all(FLERR, "{} {}: the ghost atoms reach {} beyond each sub-domain, but a contact "
+               "within gap {} of spheres of radius up to {} reaches {}: set 'comm_modify cutoff "
+               "{}' (or larger) and run again", kStyle, id, have, settings_.gap, r_max, need,
+               need);
+}
+
+// counts_ and on_floor_ for the owned atoms of the group (owned_). Collective.
+void ComputeContacts::count()
+{
+  const double r_max = group_radius_max();
+  check_ghost_shell(r_max);
+  const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
+  const int *mask = atom->mask;
+  double **x = atom->x;
+  owned_.clear();
+  xyz_.clear();
+  radius_.clear();
+  auto take = [&](int i) {
+    xyz_.insert(xyz_.end(), {x[i][0], x[i][1], x[i][2]});
+    radius_.push_back(fixed_radius_ > 0.0 ? fixed_radius_ : atom->radius[i]);
+  };
+  for (int i = 0; i < nlocal; ++i)
+    if (mask[i] & groupbit) {
+      owned_.push_back(i);
+      take(i);
+    }
+  for (int i = nlocal; i < nall; ++i)
+    if (mask[i] & groupbit) take(i);
+
+  contacts::Spheres spheres;
+  spheres.xyz = xyz_.data();
+  spheres.radius = radius_.data();
+  spheres.count = static_cast<int>(radius_.size());
+  const int centres = static_cast<int>(owned_.size());
+  counts_.assign(centres, 0);
+  on_floor_.assign(centres, 0);
+  const contacts::Box no_periodic_axis;  // the ghosts are the images
+  tapmc::guarded(lmp, kStyle, false, [&] {
+    counter_.count(spheres, centres, no_periodic_axis, settings_, counts_.data(),
+                   on_floor_.data());
+  });
+}
+
+void ComputeContacts::compute_peratom()
+{
+  invoked_peratom = update->ntimestep;
+  if (atom->nmax > nmax_) {
+    memory->destroy(vector_atom);
+    nmax_ = atom->nmax;
+    memory->create(vector_atom, nmax_, "contacts:vector_atom");
+  }
+  count();
+  for (int i = 0; i < atom->nlocal; ++i) vector_atom[i] = 0.0;
+  for (std::size_t k = 0; k < owned_.size(); ++k) vector_atom[owned_[k]] = counts_[k];
+}
+
+// The vector and the distribution from the owned atoms' counts: one sum and one max reduction.
+void ComputeContacts::summarize()
+{
+  double sums[contacts::kNumSums] = {};
+  const int local_max = contacts::accumulate(counts_.data(), on_floor_.data(), nullptr,
+                                             static_cast<int>(counts_.size()), sums);
+  MPI_Allreduce(MPI_IN_PLACE, sums, contacts::kNumSums, MPI_DOUBLE, MPI_SUM, world);
+  int largest = 0;
+  MPI_Allreduce(&local_max, &largest, 1, MPI_INT, MPI_MAX, world);
+  const contacts::Distribution d = contacts::finish(sums, largest);
+  vector[kMean] = d.mean;
+  vector[kFractionNone] = d.fraction_none;
+  vector[kFractionFew] = d.fraction_few;
+  vector[kFractionFloor] = d.fraction_floor;
+  vector[kLargest] = d.max;
+  for (int z = 0; z < contacts::kHistogramRows; ++z) array[z][1] = d.fraction[z];
+}
+
+void ComputeContacts::compute_vector()
+{
+  invoked_vector = update->ntimestep;
+  count();
+  summarize();
+}
+
+void ComputeContacts::compute_array()
+{
+  invoked_array = update->ntimestep;
+  count();
+  summarize();
+}
+
+double ComputeContacts::memory_usage()
+{
+  return static_cast<double>(nmax_) * sizeof(double) +
+         static_cast<double>(xyz_.capacity() + radius_.capacity()) * sizeof(double) +
+         static_cast<double>(owned_.capacity() + counts_.capacity()) * sizeof(int) +
+         static_cast<double>(on_floor_.capacity());
+}
