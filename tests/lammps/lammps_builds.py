@@ -3,8 +3,10 @@
 # built by tools/setup/build-lammps-plugin.sh from a Debian source package into the user's cache
 # (PLUGIN, exceptions, MPI, shared library), and TAPMC is compiled against it in a directory of
 # the test build. A test skips (with the command to run) when the LAMMPS is not built, unless
-# TAPMC_SLOW=1, which builds it.
+# TAPMC_SLOW=1, which builds it. Also the environment of a user of route 1 of doc/install.rst
+# (your own LAMMPS): a PATH without Debian's tools and an empty HOME.
 import os
+import shutil
 import subprocess
 
 import pytest
@@ -30,6 +32,42 @@ def run(cmd, cwd, env=None, timeout=1800):
                           stderr=subprocess.STDOUT, text=True, timeout=timeout,
                           stdin=subprocess.DEVNULL)
     return proc.returncode, proc.stdout
+
+
+# What configuring and building TAPMC runs by name (found on PATH): CMake, the compilers, make,
+# the binutils (the assembler and linker the compiler driver calls; ar and ranlib, which CMake
+# looks for beside the compiler and on PATH only) and the MPI wrappers FindMPI asks. No apt, dpkg
+# or sudo: route 1 of doc/install.rst must work without Debian's tools.
+TOOLCHAIN = ("cmake", "cc", "c++", "gcc", "g++", "make", "gmake", "as", "ld", "ar", "ranlib",
+             "nm", "strip", "objdump", "objcopy", "readelf", "addr2line", "gcc-ar", "gcc-ranlib",
+             "gcc-nm", "mpicxx", "mpicc", "mpiexec")
+TOOLCHAIN_REQUIRED = ("cmake", "cc", "c++", "make", "as", "ld", "ar", "ranlib")
+DEBIAN_TOOLS = ("apt", "apt-get", "apt-cache", "dpkg", "dpkg-query", "sudo")
+
+
+def toolchain_only_path(directory):
+    """A directory holding symbolic links to the TOOLCHAIN programs found on PATH, and nothing
+    else: a PATH of a machine without Debian's package tools. Returns the directory."""
+    os.makedirs(directory, exist_ok=True)
+    for tool in TOOLCHAIN:
+        found = shutil.which(tool)
+        if found:
+            os.symlink(found, os.path.join(directory, tool))
+        elif tool in TOOLCHAIN_REQUIRED:
+            pytest.fail(f"'{tool}' is not on PATH: TAPMC cannot be configured without it")
+    assert not set(os.listdir(directory)) & set(DEBIAN_TOOLS)
+    return directory
+
+
+def user_environment(home, path):
+    """The environment of a user of route 1: HOME an empty directory (no cache of TAPMC or CMake
+    in it), PATH as given, nothing of the test build (no TAPMC_*, PYTHONPATH, LD_LIBRARY_PATH) and
+    no XDG_CACHE_HOME or CMake hints."""
+    drop = ("XDG_CACHE_HOME", "PYTHONPATH", "LD_LIBRARY_PATH", "CMAKE_PREFIX_PATH", "LAMMPS_DIR",
+            "CC", "CXX", "CMAKE_GENERATOR")
+    env = {k: v for k, v in os.environ.items() if not k.startswith("TAPMC_") and k not in drop}
+    env.update(HOME=str(home), PATH=str(path))
+    return env
 
 
 def cached_build_setting(name, default):
