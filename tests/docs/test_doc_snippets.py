@@ -80,6 +80,14 @@ PAGE_OUTPUTS = {
                   "late.frames.csv", "deep_box.hist.csv", "fig10.png", "fig9.png"),
         "printed": "nu over all frames:",
     },
+    os.path.join("doc", "tutorial.rst"): {
+        "blocks": {"lammps": 1, "sh": 2, "python": 2},
+        "folder": "",
+        "files": ("tutorial.log", "tutorial.taps.dat", "tutorial.profile.dat", "tutorial.0.dump",
+                  "tutorial.compaction.png", "tutorial.compaction.csv",
+                  "tutorial.profile.png", "tutorial.pores.hist.csv", "tutorial.pores.png"),
+        "printed": "mean normalised pore volume nu:",
+    },
 }
 
 RUNNABLE = {"lammps": "lammps", "python": "python", "python3": "python", "sh": "sh",

@@ -210,7 +210,7 @@ def _integrity(path):
     lines = ["Do thousands of taps leave a legal hard-sphere packing, and do the numbers a run "
              "prints describe the packing it dumps? Every dump of the campaign checked offline "
              "(``integrity.csv``; ``tapmc.packing.PackingCheck``, numpy, no LAMMPS): the "
-             "spheres; the closest pair, |r_ij| - (R_i + R_j) over R_i + R_j, in the deposited "
+             "spheres; the closest pair, \\|r_ij\\| - (R_i + R_j) over R_i + R_j, in the deposited "
              "packing (t = 0) and after taps; the overlaps, pairs closer than contact by more "
              "than the model's tolerance (1e-10) plus what the dump's rounding allows; the "
              "lowest sphere's gap to the floor and the closest sphere's to a side wall (over "

@@ -289,6 +289,11 @@ def _where(claim):
     return f"{claim.section}" + (f", Fig. {claim.figure}" if claim.figure else "")
 
 
+def _escape_bars(text):
+    """Text with its | escaped for reStructuredText (|value| is no substitution)."""
+    return text.replace("|", "\\|")
+
+
 def _rst_table(rows, run_note=""):
     """The answer to "how close is TAPMC to the paper": one row per measured claim;
     ``run_note``: how the one-run errors were scaled to realizations (none: not measured)."""
@@ -301,14 +306,14 @@ def _rst_table(rows, run_note=""):
         scale = "no: " + ", ".join(row.missing_scale) if row.missing_scale else "yes"
         lines += [f"   * - {_where(c)}", f"     - {claim}", f"     - {c.paper}",
                   f"     - {row.measure.text()}", f"     - {scale}",
-                  f"     - {row.verdict} [{c.rule}]"]
+                  f"     - {_escape_bars(row.verdict)} [{c.rule}]"]
     lines += ["", "Rules of the verdicts (t: the two-sided 95 % quantile of Student's t with "
               "the measure's degrees of freedom, seeds - 1 for a mean over seeds):", ""]
     used = []
     for row in rows:
         if row.claim.rule not in used:
             used.append(row.claim.rule)
-    lines += [f"* [{key}] {RULES[key]}" for key in used]
+    lines += [f"* [{key}] {_escape_bars(RULES[key])}" for key in used]
     lines += ["", ONE_RUN_ERRORS + (" " + run_note if run_note else "")]
     lines += ["", "\"Paper scale?\" says whether the campaign (or, for a measurement of its "
               "own such as a knob scan, its runs) had what the claim needs of the "
