@@ -1,6 +1,7 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 # Helpers for process-level tests: run lmp_tapmc (optionally under mpirun) on an input text,
-# read dumps and check hard-sphere geometry with an independent all-pairs oracle.
+# read dumps and check hard-sphere geometry with an independent all-pairs oracle; an FCC lattice
+# input and readers of print lines and fix ave/time files for the compute tests.
 import os
 import subprocess
 import tempfile
@@ -105,3 +106,44 @@ def free_drops(xyz, radius, box, periodic_xy, floor):
             gaps = -d[below, 2] - np.sqrt(reach[below] ** 2 - horizontal2[below])
             drops[i] = min(drops[i], gaps.min())
     return drops
+
+
+# A 4 x 4 x 8 FCC lattice of cells of side 2 (spheres at contact, R = 1/sqrt(2)), layers
+# z = 0 .. 15 (region "0 4 0 4 0 7.9", in lattice units) in a box 8 x 8 x 20; the region may
+# shift the lattice points off the box faces. Used by the compute tests (stereo/profile,
+# contacts).
+FCC_LATTICE = """units metal
+atom_style sphere
+boundary {boundary}
+lattice fcc 2.0
+region box block 0 4 0 4 0 10
+create_box 1 box
+region latt block {region}
+create_atoms 1 region latt
+set group all diameter 1.4142135623730951
+set group all density 1.0
+"""
+
+
+def fcc_lattice(boundary="p p f", region="0 4 0 4 0 7.9"):
+    """The LAMMPS commands of FCC_LATTICE with the given boundary and region."""
+    return FCC_LATTICE.format(boundary=boundary, region=region)
+
+
+def printed(out, tag):
+    """Numbers of the last line `tag v1 v2 ...` that LAMMPS's `print` wrote to `out`."""
+    lines = [l for l in out.splitlines() if l.startswith(tag + " ")]
+    assert lines, out[-2000:]
+    return np.array([float(v) for v in lines[-1].split()[1:]])
+
+
+def ave_time_rows(path):
+    """Last block of a fix ave/time mode vector file: rows of (index, c1, c2, ...)."""
+    with open(path) as f:
+        lines = [l for l in f.read().splitlines() if not l.startswith("#")]
+    blocks, k = [], 0
+    while k < len(lines):
+        step, nrows = (int(v) for v in lines[k].split())
+        blocks.append(np.array([[float(v) for v in l.split()] for l in lines[k + 1:k + 1 + nrows]]))
+        k += 1 + nrows
+    return blocks[-1]

@@ -15,49 +15,13 @@ import textwrap
 import numpy as np
 import pytest
 
-from lmprun import LMP, read_dump, run_lammps
+from lmprun import LMP, ave_time_rows, fcc_lattice, printed, read_dump, run_lammps
 
 SOURCE = os.environ.get("TAPMC_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
 sys.path.insert(0, os.path.join(SOURCE, "tools", "python"))
 
 from tapmc.contacts import GAP_TOLERANCE, MAX_Z, Contacts  # noqa: E402
 from tapmc.readers import read_dump as tapmc_read_dump  # noqa: E402
-
-# 4 x 4 x 8 FCC cells of side 2 (spheres at contact, R = 1/sqrt 2, layers z = 0 .. 15) in a box
-# 8 x 8 x 20, periodic sides.
-LATTICE = """units metal
-atom_style sphere
-boundary {boundary}
-lattice fcc 2.0
-region box block 0 4 0 4 0 10
-create_box 1 box
-region latt block {region}
-create_atoms 1 region latt
-set group all diameter 1.4142135623730951
-set group all density 1.0
-"""
-
-
-def lattice(boundary="p p f", region="0 4 0 4 0 7.9"):
-    return LATTICE.format(boundary=boundary, region=region)
-
-
-def printed(out, tag):
-    lines = [l for l in out.splitlines() if l.startswith(tag + " ")]
-    assert lines, out[-2000:]
-    return np.array([float(v) for v in lines[-1].split()[1:]])
-
-
-def ave_time_rows(path):
-    """Last block of a fix ave/time mode vector file: rows of (index, c1, c2, ...)."""
-    with open(path) as f:
-        lines = [l for l in f.read().splitlines() if not l.startswith("#")]
-    blocks, k = [], 0
-    while k < len(lines):
-        step, nrows = (int(v) for v in lines[k].split())
-        blocks.append(np.array([[float(v) for v in l.split()] for l in lines[k + 1:k + 1 + nrows]]))
-        k += 1 + nrows
-    return blocks[-1]
 
 
 VECTOR_PRINT = 'print "{tag} ' + " ".join("$(c_{id}[%d]:%%.17g)" % i for i in range(1, 6)) + '"\n'
@@ -89,7 +53,7 @@ def brute_force(xyz, radius, box, periodic, gap, floor=None):
 def test_thermo_dump_and_time_average_on_fcc():
     """16 layers: the bottom and top layers have 8 contacts, the 14 others 12 (<Z> = 11.5); with
     the floor under the bottom layer, its spheres have 9."""
-    script = lattice() + """
+    script = fcc_lattice() + """
 compute z all contacts 0.01
 compute zf all contacts 0.01 floor -0.70710678118654752
 thermo_style custom step c_z[1] c_zf[1] c_zf[4]
@@ -137,7 +101,7 @@ run 0
 
 @pytest.mark.parametrize("boundary", ["p p f", "f f f"])
 def test_same_numbers_on_one_and_two_ranks(boundary):
-    body = lattice(boundary, "0.1 3.9 0.1 3.9 0.1 7.9") + PERTURBED
+    body = fcc_lattice(boundary, "0.1 3.9 0.1 3.9 0.1 7.9") + PERTURBED
     tail = vector_print("a", "VEC") + vector_print("l", "LOW")
     results = []
     for nprocs, grid in [(1, "* * *"), (2, "2 1 1"), (2, "1 1 2")]:
@@ -254,22 +218,22 @@ BAD = [
 
 @pytest.mark.parametrize("body,message", BAD)
 def test_bad_argument(body, message):
-    rc, out, _ = run_lammps(lattice() + body)
+    rc, out, _ = run_lammps(fcc_lattice() + body)
     assert rc != 0
     assert "ERROR" in out and message in out, out[-1500:]
     assert "Illegal compute command" not in out
 
 
 def test_box_restrictions_and_missing_radius():
-    rc, out, _ = run_lammps(lattice("p p p") + "compute c all contacts 0.01 floor 0.0\n")
+    rc, out, _ = run_lammps(fcc_lattice("p p p") + "compute c all contacts 0.01 floor 0.0\n")
     assert rc != 0 and "the floor keyword needs a non-periodic z boundary" in out, out[-1500:]
-    rc, out, _ = run_lammps(lattice("p p p") + "compute c all contacts 0.01\n"
+    rc, out, _ = run_lammps(fcc_lattice("p p p") + "compute c all contacts 0.01\n"
                             "thermo_style custom step c_c[1]\nrun 0\n")
     assert rc == 0, out[-1500:]                   # no floor: any boundary
-    tri = lattice().replace("region box block 0 4 0 4 0 10", "region box prism 0 4 0 4 0 10 1 0 0")
+    tri = fcc_lattice().replace("region box block 0 4 0 4 0 10", "region box prism 0 4 0 4 0 10 1 0 0")
     rc, out, _ = run_lammps(tri + "compute c all contacts 0.01\n")
     assert rc != 0 and "compute contacts: triclinic boxes are not supported" in out, out[-1500:]
-    atomic = lattice().replace("atom_style sphere", "atom_style atomic").replace(
+    atomic = fcc_lattice().replace("atom_style sphere", "atom_style atomic").replace(
         "set group all diameter 1.4142135623730951\nset group all density 1.0\n", "mass 1 1.0\n")
     rc, out, _ = run_lammps(atomic + "compute c all contacts 0.01\n")
     assert rc != 0 and "compute contacts: radius keyword required: atom style atomic has no " \
@@ -282,7 +246,7 @@ def test_box_restrictions_and_missing_radius():
 
 @pytest.mark.parametrize("nprocs", [1, 2])
 def test_empty_group_gives_zeros(nprocs):
-    script = lattice() + """group none empty
+    script = fcc_lattice() + """group none empty
 compute c none contacts 0.01 floor 0.0
 fix av all ave/time 1 1 1 c_c[*] mode vector file p.dat
 thermo_style custom step c_c[1]
@@ -322,13 +286,13 @@ def run_library(setup):
 def test_library_use_before_a_run_and_with_thin_ghosts():
     """Through the library interface the compute can be invoked when LAMMPS has built no ghost
     atoms (before any run) or built them for smaller spheres: it stops and says what to do."""
-    rc, out = run_library(lattice() + "compute c all contacts 0.01\n")
+    rc, out = run_library(fcc_lattice() + "compute c all contacts 0.01\n")
     assert rc != 0 and "EXTRACTING" in out, out[-1500:]
     assert "compute contacts c: invoked before the first run" in out and "'run 0'" in out, out
-    rc, out = run_library(lattice() + "compute c all contacts 0.01\nrun 0\n")
+    rc, out = run_library(fcc_lattice() + "compute c all contacts 0.01\nrun 0\n")
     assert rc == 0 and "MEAN 11.5" in out, out[-1500:]
     # spheres grown after the run: their contacts reach beyond the ghosts of that run
-    rc, out = run_library(lattice() + "compute c all contacts 0.01\nrun 0\n"
+    rc, out = run_library(fcc_lattice() + "compute c all contacts 0.01\nrun 0\n"
                           "set group all diameter 4.0\n")
     assert rc != 0, out[-1500:]
     need = 4.0 * (1 + 0.01 + GAP_TOLERANCE)
@@ -339,7 +303,7 @@ def test_library_use_before_a_run_and_with_thin_ghosts():
     assert float(m.group(2)) == pytest.approx(need) and float(m.group(3)) == pytest.approx(need)
     assert float(m.group(1)) < need
     # and a run re-made the ghosts: the new spheres overlap everything within 4 * 1.01
-    rc, out = run_library(lattice() + "compute c all contacts 0.01\nrun 0\n"
+    rc, out = run_library(fcc_lattice() + "compute c all contacts 0.01\nrun 0\n"
                           "set group all diameter 4.0\nrun 0\n")
     assert rc == 0, out[-1500:]
     assert float(re.search(r"MEAN (\S+)", out).group(1)) > 12
@@ -352,6 +316,6 @@ def test_doc_examples_run():
     block = text.split("Examples\n\"\"\"\"\"\"\"\"")[1].split("Description\n")[0]
     commands = [l.strip() for l in block.splitlines() if l.startswith("   ") and l.strip()]
     assert len(commands) >= 4 and any("contacts" in c for c in commands)
-    rc, out, wd = run_lammps(lattice() + "\n".join(commands) + "\nrun 0\n")
+    rc, out, wd = run_lammps(fcc_lattice() + "\n".join(commands) + "\nrun 0\n")
     assert rc == 0, out[-1500:]
     assert "WARNING" not in out, out[-1500:]

@@ -8,53 +8,16 @@ import re
 import numpy as np
 import pytest
 
-from lmprun import run_lammps
+from lmprun import ave_time_rows, fcc_lattice, printed, run_lammps
 
 FCC = math.pi / (3.0 * math.sqrt(2.0))
-
-# 4 x 4 x 8 FCC cells of side 2 (spheres at contact, R = 1/sqrt(2)), layers z = 0.2 .. 15.2 when
-# shifted; lattice points kept off the box faces so that random displacements lose no atom.
-LATTICE = """units metal
-atom_style sphere
-boundary {boundary}
-lattice fcc 2.0
-region box block 0 4 0 4 0 10
-create_box 1 box
-region latt block {region}
-create_atoms 1 region latt
-set group all diameter 1.4142135623730951
-set group all density 1.0
-"""
-
-
-def lattice(boundary="p p f", region="0 4 0 4 0 7.9"):
-    return LATTICE.format(boundary=boundary, region=region)
-
-
-def printed(out, tag):
-    """Numbers of the line `tag v1 v2 ...` written by `print`."""
-    lines = [l for l in out.splitlines() if l.startswith(tag + " ")]
-    assert lines, out[-2000:]
-    return np.array([float(v) for v in lines[-1].split()[1:]])
-
-
-def ave_time_rows(path):
-    """Last block of a fix ave/time mode vector file: rows of (index, c1, c2, ...)."""
-    with open(path) as f:
-        lines = [l for l in f.read().splitlines() if not l.startswith("#")]
-    blocks, k = [], 0
-    while k < len(lines):
-        step, nrows = (int(v) for v in lines[k].split())
-        blocks.append(np.array([[float(v) for v in l.split()] for l in lines[k + 1:k + 1 + nrows]]))
-        k += 1 + nrows
-    return blocks[-1]
 
 
 VECTOR_PRINT = 'print "VEC ' + " ".join("$(c_{id}[%d]:%%.17g)" % i for i in range(1, 8)) + '"\n'
 
 
 def test_thermo_print_and_time_average_on_fcc():
-    script = lattice() + """
+    script = fcc_lattice() + """
 compute phi all stereo/profile floor 2.0 bulk 4.0 column 2.0
 compute pz all stereo/profile planes 2.0 10.0 4
 thermo_style custom step c_phi[1] c_phi[3]
@@ -99,7 +62,7 @@ run 0
 
 @pytest.mark.parametrize("boundary", ["p p f", "f f f"])
 def test_same_numbers_on_one_and_two_ranks(boundary):
-    body = lattice(boundary, "0.1 3.9 0.1 3.9 0.1 7.9") + PERTURBED
+    body = fcc_lattice(boundary, "0.1 3.9 0.1 3.9 0.1 7.9") + PERTURBED
     tail = VECTOR_PRINT.format(id="phi") + VECTOR_PRINT.format(id="low").replace("VEC", "LOW")
     results = []
     for nprocs, grid in [(1, "* * *"), (2, "2 1 1"), (2, "1 1 2")]:
@@ -158,13 +121,13 @@ BAD = [
 
 @pytest.mark.parametrize("body,message", BAD)
 def test_bad_argument(body, message):
-    rc, out, _ = run_lammps(lattice() + body)
+    rc, out, _ = run_lammps(fcc_lattice() + body)
     assert rc != 0
     assert "ERROR" in out and message in out, out[-1500:]
 
 
 def test_missing_radius_with_atom_style_atomic():
-    script = lattice().replace("atom_style sphere", "atom_style atomic").replace(
+    script = fcc_lattice().replace("atom_style sphere", "atom_style atomic").replace(
         "set group all diameter 1.4142135623730951\nset group all density 1.0\n", "mass 1 1.0\n")
     rc, out, _ = run_lammps(script + "compute s all stereo/profile\n")
     assert rc != 0 and "radius keyword required: atom style atomic" in out, out[-1500:]
@@ -177,7 +140,7 @@ def test_missing_radius_with_atom_style_atomic():
 
 
 def test_periodic_z_is_rejected():
-    rc, out, _ = run_lammps(lattice("p p p") + "compute s all stereo/profile\n")
+    rc, out, _ = run_lammps(fcc_lattice("p p p") + "compute s all stereo/profile\n")
     assert rc != 0 and "z boundary is periodic" in out, out[-1500:]
 
 
@@ -190,7 +153,7 @@ def test_doc_examples_run():
     block = text.split("Examples\n\"\"\"\"\"\"\"\"")[1].split("Description\n")[0]
     commands = [l.strip() for l in block.splitlines() if l.startswith("   ") and l.strip()]
     assert len(commands) >= 5 and all("stereo/profile" in c or "c_" in c for c in commands)
-    rc, out, wd = run_lammps(lattice() + "\n".join(commands) + "\nrun 0\n")
+    rc, out, wd = run_lammps(fcc_lattice() + "\n".join(commands) + "\nrun 0\n")
     assert rc == 0, out[-1500:]
     for name in ("profile_z.dat", "profile_x.dat"):
         assert os.path.getsize(os.path.join(wd, name)) > 0
@@ -200,7 +163,7 @@ def test_doc_examples_run():
 def test_empty_group_gives_zero_fractions(nprocs):
     """An empty group is no error: every fraction and <Z> are 0, z_top = h_s = the floor, the
     profile rows keep their plane positions (doc page, "Window top"); serial and under mpirun."""
-    script = lattice() + """group none empty
+    script = fcc_lattice() + """group none empty
 compute s none stereo/profile floor 1.5
 compute r none stereo/profile floor 0.5 radius 0.7
 compute p none stereo/profile planes 0.0 8.0 4
@@ -227,7 +190,7 @@ def test_empty_central_zone_is_nan_with_one_warning(nprocs):
     (over every invocation and run), naming itself, the zone width, the box width and what
     would give a central zone. The lateral mean is then the mean over the whole width; a
     compute with a central zone is unchanged and silent."""
-    script = lattice() + """
+    script = fcc_lattice() + """
 compute narrow all stereo/profile floor 0.5 axis x lateral 4.5 window 2.0 10.0
 compute half all stereo/profile floor 0.5 lateral 4.0 window 2.0 10.0
 compute wide all stereo/profile floor 0.5 axis x lateral 1.5 window 2.0 10.0
