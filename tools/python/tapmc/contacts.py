@@ -34,6 +34,7 @@ from collections import namedtuple
 
 import numpy as np
 
+from ._geometry import near_pairs, validated_box, validated_spheres
 from ._validate import as_1d, choice, in_range, new_axis, require, result
 
 __all__ = ["Contacts", "ContactSummary", "GapSweep", "GAP_TOLERANCE", "MAX_GAP", "FEW_BELOW",
@@ -90,33 +91,9 @@ class Contacts:
 
     def __init__(self, positions, radii, box_lo, box_hi, periodic=(True, True, False), gap=0.0,
                  floor=None):
-        pos = np.asarray(positions, dtype=float)
-        if pos.ndim != 2 or pos.shape[1] != 3:
-            raise ValueError(f"positions must have shape (N, 3), got {pos.shape}")
-        if not np.all(np.isfinite(pos)):
-            bad = int(np.flatnonzero(~np.all(np.isfinite(pos), axis=1))[0])
-            raise ValueError(f"positions[{bad}] = {pos[bad]} is not finite (all must be)")
-        self.positions = pos
-        n = pos.shape[0]
-        r = np.asarray(radii, dtype=float)
-        if r.ndim == 0:
-            r = np.full(n, float(r))
-        r = as_1d("radii", r, min_len=0)
-        if r.size != n:
-            raise ValueError(f"radii has {r.size} values but positions has {n} spheres")
-        if np.any(~(r > 0)):
-            bad = int(np.flatnonzero(~(r > 0))[0])
-            raise ValueError(f"radii[{bad}] = {r[bad]} must be > 0")
-        self.radii = r
-        self.box_lo = as_1d("box_lo", box_lo)
-        self.box_hi = as_1d("box_hi", box_hi)
-        for name, v in (("box_lo", self.box_lo), ("box_hi", self.box_hi)):
-            if v.size != 3:
-                raise ValueError(f"{name} = {list(v)} must hold 3 values (x, y, z)")
-        per = np.asarray(periodic)
-        if per.shape != (3,) or per.dtype != bool:
-            raise ValueError(f"periodic = {periodic!r} must be 3 booleans (x, y, z)")
-        self.periodic = per.copy()
+        self.positions, self.radii = validated_spheres(positions, radii)
+        self.box_lo, self.box_hi, per = validated_box(box_lo, box_hi, periodic)
+        self.periodic = per
         self.gap = in_range("gap", gap, 0.0, MAX_GAP)
         self.floor = None if floor is None else in_range("floor", floor, -math.inf, math.inf,
                                                          lo_open=True, hi_open=True)
@@ -166,44 +143,13 @@ class Contacts:
     def _candidates(self, gap):
         """Pairs i < j within the largest reach at ``gap`` (a superset of the contacts) and
         their separations at the nearest image."""
-        from scipy.spatial import cKDTree
-
         pos, r = self.positions, self.radii
-        n = pos.shape[0]
-        if n < 2:
+        if pos.shape[0] < 2:
             return np.empty((0, 2), dtype=np.intp), np.empty((0, 3))
         reach = 2.0 * float(r.max()) * (1.0 + gap + GAP_TOLERANCE)
         # separations as the compute's counter takes them: coordinates wrapped into the box along
         # periodic axes (unchanged when inside), x_j - x_i, then the image shift
-        wrapped = pos.copy()
-        shifted = np.empty_like(pos)
-        boxsize = np.empty(3)
-        for d in range(3):
-            if self.periodic[d]:
-                lo, hi = float(self.box_lo[d]), float(self.box_hi[d])
-                length = hi - lo
-                x = pos[:, d]
-                outside = (x < lo) | (x >= hi)
-                w = x - np.floor((x - lo) / length) * length
-                w = np.where(w >= hi, w - length, np.where(w < lo, w + length, w))
-                wrapped[:, d] = np.where(outside, np.clip(w, lo, np.nextafter(hi, lo)), x)
-                t = wrapped[:, d] - lo
-                shifted[:, d] = np.where(t >= length, 0.0, t)
-                boxsize[d] = length
-            else:
-                # cKDTree wraps every axis of a boxsize: a period beyond the extent plus twice
-                # the reach never connects two spheres across a non-periodic axis
-                base = float(pos[:, d].min()) - reach
-                shifted[:, d] = pos[:, d] - base
-                boxsize[d] = float(shifted[:, d].max()) + 4.0 * reach
-        tree = cKDTree(shifted, boxsize=boxsize)
-        # a hair beyond the reach: the exact rule below decides
-        pairs = tree.query_pairs(reach * (1.0 + 1e-9), output_type="ndarray")
-        pairs = np.sort(np.asarray(pairs, dtype=np.intp).reshape(-1, 2), axis=1)
-        pairs = pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))]
-        delta = wrapped[pairs[:, 1]] - wrapped[pairs[:, 0]]
-        for d in np.flatnonzero(self.periodic):
-            delta[:, d] -= boxsize[d] * np.round(delta[:, d] / boxsize[d])
+        pairs, delta = near_pairs(pos, self.box_lo, self.box_hi, self.periodic, reach)
         return pairs, delta
 
     def _counts(self, pairs, dist2, gap):

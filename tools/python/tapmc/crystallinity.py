@@ -50,6 +50,7 @@ from collections import namedtuple
 
 import numpy as np
 
+from ._geometry import near_pairs, validated_box, validated_spheres
 from ._validate import as_1d, choice, in_range, new_axis, positive, positive_int, require, result
 
 __all__ = ["Crystallinity", "ZoneSummary", "CrystallinityProfile", "spherical_harmonics",
@@ -157,38 +158,10 @@ class Crystallinity:
     def __init__(self, positions, radii, box_lo, box_hi, periodic=(True, True, False),
                  floor=None, cutoff=None, l=DEFAULT_L, bond_threshold=SOLID_BOND_THRESHOLD,
                  min_solid_bonds=MIN_SOLID_BONDS):
-        pos = np.asarray(positions, dtype=float)
-        if pos.ndim != 2 or pos.shape[1] != 3:
-            raise ValueError(f"positions must have shape (N, 3), got {pos.shape}")
-        if pos.shape[0] < 2:
-            raise ValueError(f"positions holds {pos.shape[0]} sphere(s); needs at least 2")
-        if not np.all(np.isfinite(pos)):
-            bad = int(np.flatnonzero(~np.all(np.isfinite(pos), axis=1))[0])
-            raise ValueError(f"positions[{bad}] = {pos[bad]} is not finite (all must be)")
-        self.positions = pos
-        n = pos.shape[0]
-        r = np.asarray(radii, dtype=float)
-        if r.ndim == 0:
-            r = np.full(n, float(r))
-        r = as_1d("radii", r)
-        if r.size != n:
-            raise ValueError(f"radii has {r.size} values but positions has {n} spheres")
-        if np.any(~(r > 0)):
-            bad = int(np.flatnonzero(~(r > 0))[0])
-            raise ValueError(f"radii[{bad}] = {r[bad]} must be > 0")
+        self.positions, r = validated_spheres(positions, radii, min_count=2)
         self.radii = r
-        self.box_lo = as_1d("box_lo", box_lo)
-        self.box_hi = as_1d("box_hi", box_hi)
-        for name, v in (("box_lo", self.box_lo), ("box_hi", self.box_hi)):
-            if v.size != 3:
-                raise ValueError(f"{name} = {list(v)} must hold 3 values (x, y, z)")
-        if np.any(self.box_hi <= self.box_lo):
-            raise ValueError(f"box_hi = {list(self.box_hi)} must exceed box_lo = "
-                             f"{list(self.box_lo)} along every axis")
-        per = np.asarray(periodic)
-        if per.shape != (3,) or per.dtype != bool:
-            raise ValueError(f"periodic = {periodic!r} must be 3 booleans (x, y, z)")
-        self.periodic = per.copy()
+        self.box_lo, self.box_hi, per = validated_box(box_lo, box_hi, periodic)
+        self.periodic = per
         self.floor = None if floor is None else in_range("floor", floor, -math.inf, math.inf)
         if self.floor is not None and self.periodic[2]:
             raise ValueError(f"floor = {floor!r} given but z is periodic: a floor needs a "
@@ -282,30 +255,11 @@ class Crystallinity:
     def _bonds(self):
         """Bonds i < j within the cutoff (nearest image along periodic axes) and their unit
         vectors from i to j."""
-        from scipy.spatial import cKDTree
-
-        pos, rc = self.positions, self.cutoff
-        shifted = np.empty_like(pos)
-        boxsize = np.empty(3)
-        for d in range(3):
-            if self.periodic[d]:
-                length = float(self.box_hi[d] - self.box_lo[d])
-                x = np.mod(pos[:, d] - self.box_lo[d], length)
-                shifted[:, d] = np.where(x >= length, 0.0, x)
-                boxsize[d] = length
-            else:
-                # cKDTree wraps every axis of a boxsize: a period longer than the extent plus
-                # twice the cutoff never connects two spheres across a non-periodic axis
-                shifted[:, d] = pos[:, d] - float(pos[:, d].min())
-                boxsize[d] = float(shifted[:, d].max()) + 2.0 * rc + 1.0
-        tree = cKDTree(shifted, boxsize=boxsize)
-        pairs = tree.query_pairs(rc, output_type="ndarray").astype(np.intp).reshape(-1, 2)
-        pairs.sort(axis=1)
-        pairs = pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))]
-        delta = shifted[pairs[:, 1]] - shifted[pairs[:, 0]]
-        for d in np.flatnonzero(self.periodic):
-            delta[:, d] -= boxsize[d] * np.round(delta[:, d] / boxsize[d])
+        rc = self.cutoff
+        pairs, delta = near_pairs(self.positions, self.box_lo, self.box_hi, self.periodic, rc)
         dist = np.sqrt(np.einsum("ij,ij->i", delta, delta))
+        within = dist <= rc   # the query's slack keeps a hair more
+        pairs, delta, dist = pairs[within], delta[within], dist[within]
         if np.any(dist == 0.0):
             k = int(np.flatnonzero(dist == 0.0)[0])
             raise ValueError(f"positions[{pairs[k, 0]}] and positions[{pairs[k, 1]}] coincide: "

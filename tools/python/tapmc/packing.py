@@ -22,6 +22,7 @@ import math
 
 import numpy as np
 
+from ._geometry import near_pairs
 from ._validate import in_range, positive, positive_int, require, result
 from .profiles import sphere_slab_volume
 
@@ -103,34 +104,20 @@ class PackingCheck:
 
     # ---- geometry ----------------------------------------------------------------------------
     def _geometry(self):
-        from scipy.spatial import cKDTree
-
         pos, r = self.positions, self.radii
         lo, hi = self.frame.box_lo, self.frame.box_hi
         periodic = np.asarray(self.frame.periodic[:3], dtype=bool)
         reach = 2.0 * float(r.max())
-        # cKDTree's boxsize wraps every axis: a non-periodic axis gets a period far beyond the
-        # packing, so no pair meets across it.
-        shifted = np.empty_like(pos)
-        boxsize = np.empty(3)
-        for d in range(3):
-            if periodic[d]:
-                length = float(hi[d] - lo[d])
-                x = np.mod(pos[:, d] - lo[d], length)
-                shifted[:, d] = np.where(x >= length, 0.0, x)
-                boxsize[d] = length
-            else:
-                base = float(pos[:, d].min()) - reach
-                shifted[:, d] = pos[:, d] - base
-                boxsize[d] = float(shifted[:, d].max()) + 4.0 * reach
-        tree = cKDTree(shifted, boxsize=boxsize)
-        pairs = tree.query_pairs(reach * (1.0 + 1e-6), output_type="ndarray")
+        radius = reach * (1.0 + 1e-6)
+        pairs, delta = near_pairs(pos, lo, hi, periodic, radius)
+        # no pair within reach: widen the search until the nearest pair is in it
+        span = 2.0 * (float(np.ptp(pos, axis=0).max()) + reach)
+        while not len(pairs) and len(pos) > 1 and radius < span:
+            radius *= 2.0
+            pairs, delta = near_pairs(pos, lo, hi, periodic, radius)
         allowance = self.contact_tolerance
         if len(pairs):
             i, j = pairs[:, 0], pairs[:, 1]
-            delta = shifted[i] - shifted[j]
-            for d in np.flatnonzero(periodic):
-                delta[:, d] -= boxsize[d] * np.round(delta[:, d] / boxsize[d])
             contact = r[i] + r[j]
             relative = (np.sqrt(np.einsum("ij,ij->i", delta, delta)) - contact) / contact
             k = int(np.argmin(relative))
@@ -138,14 +125,8 @@ class PackingCheck:
             self._closest = (int(self.frame.ids[i[k]]), int(self.frame.ids[j[k]]))
             self._overlaps = int(np.count_nonzero(
                 relative < -(allowance + self.resolution / contact)))
-        else:
-            # no pair within reach: the nearest neighbour of each sphere gives the gap
-            dist, idx = tree.query(shifted, k=2)
-            m = int(np.argmin(dist[:, 1] - r - r[idx[:, 1]]))
-            contact = r[m] + r[idx[m, 1]]
-            self._min_gap = float((dist[m, 1] - contact) / contact)
-            self._closest = (int(self.frame.ids[m]), int(self.frame.ids[idx[m, 1]]))
-            self._overlaps = 0
+        else:  # a single sphere: no pair
+            self._min_gap, self._closest, self._overlaps = math.inf, None, 0
         floor_gaps = (pos[:, 2] - r - self.floor) / (2.0 * r)
         self._floor_gap = float(floor_gaps.min())
         walls = [d for d in (0, 1) if not periodic[d]]
