@@ -131,3 +131,15 @@ def test_plot_draws_data_and_fit():
     ax = res.plot(logx=True)
     assert len(ax.lines) >= 2
 
+
+def test_fit_plot_labels_its_axes_and_has_a_legend():
+    """FitResult.plot names x and y after the law (or as asked) and draws a legend."""
+    import matplotlib
+    matplotlib.use("Agg")
+    t = np.arange(1.0, 300.0)
+    y = 0.6 - 0.02 / (1 + 0.3 * np.log(1 + t / 5)) + np.random.default_rng(3).normal(0, 1e-4, t.size)
+    ax = InverseLogLaw().fit(t, y).plot(logx=True)
+    assert (ax.get_xlabel(), ax.get_ylabel()) == ("tap t", "X (Phi_b or <Phi^c>)")
+    assert {x.get_text() for x in ax.get_legend().get_texts()} >= {"data", "InverseLogLaw"}
+    ax = InverseLogLaw().fit(t, y).plot(ylabel="<Phi^c>")
+    assert ax.get_ylabel() == "<Phi^c>"

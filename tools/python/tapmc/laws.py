@@ -343,8 +343,10 @@ class FitResult:
         flag = "determined" if self.determined else f"NOT determined ({self.note})"
         return f"<FitResult {type(self.law).__name__}: {', '.join(parts)}; {flag}>"
 
-    def plot(self, ax=None, logx=False, data_kw=None, **kw):
-        """Data (points with error bars when sigma was given) and the fitted curve."""
+    def plot(self, ax=None, logx=False, data_kw=None, xlabel=None, ylabel=None, **kw):
+        """Data (points with error bars when sigma was given) and the fitted curve, with a
+        legend; the axes are labelled ``xlabel`` / ``ylabel``, by default with the law's
+        ``x_label`` / ``y_label`` where the axis has no label yet."""
         ax = new_axis(ax)
         data_kw = dict({"fmt": ".", "ms": 3, "alpha": 0.6, "label": "data"}, **(data_kw or {}))
         ax.errorbar(self.x, self.y, yerr=self.sigma if self.weighted else None, **data_kw)
@@ -357,6 +359,11 @@ class FitResult:
         kw.setdefault("label", type(self.law).__name__ + ("" if self.determined
                                                           else " (not determined)"))
         ax.plot(xs, self(xs), **kw)
+        if xlabel is not None or not ax.get_xlabel():
+            ax.set_xlabel(xlabel if xlabel is not None else self.law.x_label)
+        if ylabel is not None or not ax.get_ylabel():
+            ax.set_ylabel(ylabel if ylabel is not None else self.law.y_label)
+        ax.legend(fontsize=8)
         return ax
 
 
@@ -376,6 +383,9 @@ class Law:
     #: parameters with the units of y (asymptotes, amplitudes): an unbounded one spans
     #: ``UNBOUNDED_SPAN`` times the range of the data in the profile
     amplitudes = ()
+    #: axis labels of :meth:`FitResult.plot` (what x and y are for this law)
+    x_label = "x"
+    y_label = "y"
 
     @staticmethod
     def function(x, *p):
@@ -664,6 +674,9 @@ class _TapsLaw(Law):
     the columns multiplying its amplitudes ``_linear`` (in the space of ``_target``), which
     gives the profile a global start at every point (:meth:`_conditional_start`)."""
 
+    x_label = "tap t"
+    y_label = "X"
+
     _nonlinear = ("B", "tau")
     _linear = ()
     #: a coarse (B, tau) grid for the profile's global starts (refined by the refit)
@@ -826,6 +839,9 @@ class InverseLogLaw(_TapsLaw):
     for a decompaction). At small eps the data often fix only a combination of (X_inf, B, tau):
     the result then says it is not determined (section III.B)."""
 
+    x_label = "tap t"
+    y_label = "X (Phi_b or <Phi^c>)"
+
     names = ("X_inf", "dX_inf", "B", "tau")
     time_scales = ("tau",)
     amplitudes = ("X_inf", "dX_inf")
@@ -852,6 +868,9 @@ class ZLaw(_TapsLaw):
     """Eq. 4 (section III.A): <Z>(t) = Z_inf (1 + B L) / (Z_inf/Z_0 + B L), L = ln(1 + t/tau).
     Parameters ``Z_inf, Z_0, B, tau`` (all > 0). Equivalently 1/<Z> = g/Z_0 + (1 - g)/Z_inf with
     g = 1/(1 + B L), which gives the starting values."""
+
+    x_label = "tap t"
+    y_label = "<Z>"
 
     names = ("Z_inf", "Z_0", "B", "tau")
     time_scales = ("tau",)
@@ -897,6 +916,9 @@ class AgeingLaw(_TapsLaw):
     """Eq. 6 (section III.C): A(t) = A_inf (1 - 1/(1 + B_A ln(1 + t/tau_A))). Parameters
     ``A_inf, B_A, tau_A`` (all > 0)."""
 
+    x_label = "t (taps after the waiting time)"
+    y_label = "A(t)"
+
     names = ("A_inf", "B_A", "tau_A")
     time_scales = ("tau_A",)
 
@@ -921,6 +943,9 @@ class AgeingLaw(_TapsLaw):
 class TwoExponentials(Law):
     """y(t) = y_inf + a1 exp(-t/tau1) + a2 exp(-t/tau2) with 0 < tau1 <= tau2 (the labels are
     ordered after the fit). Parameters ``y_inf, a1, tau1, a2, tau2``."""
+
+    x_label = "tap t"
+    y_label = "<Z>"
 
     names = ("y_inf", "a1", "tau1", "a2", "tau2")
     may_vanish = ()
@@ -1012,6 +1037,9 @@ class ProfileLaw(Law):
     window (default 5..22 for ``boundary='fbc'``, 5..26 for 'pbc') also sets the starting
     values of (Phi0, alpha) by :func:`profile_gradient`. A negative gradient in the paper's
     wording means the density decreases with height, i.e. alpha > 0 here."""
+
+    x_label = "z/R"
+    y_label = "Phi(z)"
 
     names = ("Phi0", "alpha", "beta", "zb_star")
     may_vanish = ("alpha",)

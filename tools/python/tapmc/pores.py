@@ -368,6 +368,9 @@ class TetrahedralLaw(Law):
     ``xi_range`` (default (0.15, xi_O)) selects the bins; below xi_T they hold no pore and fix
     xi_T."""
 
+    x_label = "xi = r/R"
+    y_label = "xi^3 P(xi)"
+
     def __init__(self, xi_range=None, fit_xi_t=True):
         lo, hi = xi_range if xi_range is not None else (0.15, XI_O)
         if not (0 <= lo < hi):
@@ -408,6 +411,9 @@ class VolumeTail(Law):
     defaults to (xi_O^3, largest non-empty v). With ``counts`` (the counts of v, ``count_v``)
     the errors are Poisson: sigma of a bin about v sqrt(count) / (N w). Compare ``nu_tail``
     with the distribution's ``nu``."""
+
+    x_label = "v = xi^3"
+    y_label = "rho_v(v)"
 
     names = ("c", "nu_tail")
 

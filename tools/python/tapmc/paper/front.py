@@ -365,7 +365,9 @@ class Front:
         ax[2].set_ylabel("bias of <Phi^c>")
         for a in ax:
             a.axhline(0.0, color="k", lw=0.5)
-        ax[2].legend(fontsize=6, loc="lower right")
+        for a in ax:  # where it covers the fewest points
+            if a.get_legend_handles_labels()[0]:
+                a.legend(fontsize=6, loc="best")
         return ax
 
     def write_figure(self, N, png, csv_path):
