@@ -256,6 +256,14 @@ void FixMCSettle::parse_keywords(int narg, char **arg)
          dmax_given = true;
        }},
       {"theta0", 1, [&](char **v) { theta0 = number(v[0]); }},
+      {"theta_law", 1,
+       [&](char **v) {
+         const std::string law = v[0];
+         if (law != "angle" && law != "solid")
+           error->all(FLERR, "fix mc/settle: theta_law = {} must be 'angle' (P(theta) of eq. 1 "
+                      "per unit angle, the default) or 'solid' (per unit solid angle)", law);
+         solid_law = law == "solid";
+       }},
       {"eta", 1, [&](char **v) { eta = number(v[0]); }},
       {"check", 1, [&](char **v) { check_interval = integer(v[0]); }},
       {"maxsweeps", 1, [&](char **v) { max_sweeps = integer(v[0]); }},
@@ -333,6 +341,7 @@ tapmc::SettleParams FixMCSettle::make_params(double step, long movable) const
   tapmc::SettleParams params;
   params.d_max = step;
   params.theta0 = theta0;
+  params.theta_law = solid_law ? tapmc::ThetaLaw::Solid : tapmc::ThetaLaw::Angle;
   params.eta = eta;
   params.check_interval = check_interval;
   params.max_checks = tapmc::Settler::max_checks_for_sweeps(max_sweeps, check_interval, movable);

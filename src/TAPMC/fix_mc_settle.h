@@ -60,6 +60,7 @@ class FixMCSettle : public Fix {
   // the rank count); domain = the decomposed redeposition (lammps_domain_settle.h); auto =
   // gather on one rank, domain on several.
   enum class Scheme { Auto, Gather, Domain } scheme;
+  bool solid_law = false;     // 'theta_law solid': P(theta) per unit solid angle (else angle)
   bool stop_drift = false;    // 'stop drift': the windowed drift rule (tapmc_stop_rule.h)
   long drift_window = 0;      // 'window': checks averaged by 'stop drift' (kSettleDriftWindow)
   bool window_given = false;

@@ -24,23 +24,29 @@ using namespace LAMMPS_NS;
 // and the last diagnostics [1]-[6]. Its layouts, told apart by the first double:
 // - kLayoutSettings (today's): the marker, the seed as two exact 32-bit halves, the values of
 //   restart_settings() in its order, the diagnostics in the order of restart_diagnostics();
+// - kLayoutSettingsNoLaw (written before 'theta_law' existed): the same without theta_law; such
+//   runs had 'theta_law angle';
 // - kLayoutSettingsNoStop (written before 'stop' and 'window' existed): the same without the
-//   settings that came with the stop rule; such runs had 'stop change' and the default window;
+//   settings that came with the stop rule and theta_law; such runs had 'stop change' and the
+//   default window;
 // - seed only (the first runs; the first double is the seed itself, >= 1): seed, diagnostics.
-// Files of all three are read: no release has been cut yet, but runs of every layout may exist.
+// Files of all four are read: no release has been cut yet, but runs of every layout may exist.
+// Markers are negative (they cannot be the seed of the seed-only layout) and decrease with each
+// new layout, so that a setting added with layout m is stored in every layout <= m.
 namespace {
-constexpr double kLayoutSettings = -3.0;  // negative: cannot be the seed of the seed-only layout
+constexpr double kLayoutSettings = -4.0;
+constexpr double kLayoutSettingsNoLaw = -3.0;
 constexpr double kLayoutSettingsNoStop = -2.0;
 }  // namespace
 
 // One setting in the restart record: its name in the changed-settings warning, this fix's value
-// and, for the settings that came with the stop rule, the value a file of the older layout
-// without them implies.
+// and, for a setting added after the first settings layout, the layout that added it and the
+// value a file of an older layout (without it) implies.
 struct FixMCSettle::RestartSetting {
   const char *name;
   double value;
-  bool added_with_stop_rule = false;
-  double before_stop_rule = 0.0;
+  double added_in_layout = kLayoutSettingsNoStop;
+  double implied_before = 0.0;
 };
 
 std::vector<FixMCSettle::RestartSetting> FixMCSettle::restart_settings() const
@@ -59,9 +65,10 @@ std::vector<FixMCSettle::RestartSetting> FixMCSettle::restart_settings() const
       {"xwalls hi", wall(0, 1)},
       {"ywalls lo", wall(1, 0)},
       {"ywalls hi", wall(1, 1)},
-      {"stop (0 change, 1 drift)", stop_drift ? 1.0 : 0.0, true, 0.0},
-      {"window", static_cast<double>(drift_window), true,
+      {"stop (0 change, 1 drift)", stop_drift ? 1.0 : 0.0, kLayoutSettingsNoLaw, 0.0},
+      {"window", static_cast<double>(drift_window), kLayoutSettingsNoLaw,
        static_cast<double>(tapmc::defaults::kSettleDriftWindow)},
+      {"theta_law (0 angle, 1 solid)", solid_law ? 1.0 : 0.0, kLayoutSettings, 0.0},
   };
 }
 
@@ -97,14 +104,15 @@ void FixMCSettle::restart(char *buf)
       changed += fmt::format("{}{} {} -> {}", changed.empty() ? "" : ", ", name, text(old_value),
                              text(new_value));
   };
-  if (layout == kLayoutSettings || layout == kLayoutSettingsNoStop) {
+  if (layout == kLayoutSettings || layout == kLayoutSettingsNoLaw ||
+      layout == kLayoutSettingsNoStop) {
     const auto old_seed = static_cast<std::int64_t>((static_cast<std::uint64_t>(next[0]) << 32) |
                                                     static_cast<std::uint64_t>(next[1]));
     next += 2;
     if (old_seed != seed) changed += fmt::format("seed {} -> {}", old_seed, seed);
     for (const RestartSetting &setting : restart_settings()) {
-      const bool stored = layout == kLayoutSettings || !setting.added_with_stop_rule;
-      compare(setting.name, stored ? *next++ : setting.before_stop_rule, setting.value);
+      const bool stored = layout <= setting.added_in_layout;
+      compare(setting.name, stored ? *next++ : setting.implied_before, setting.value);
     }
   } else {
     const auto old_seed = static_cast<std::int64_t>(layout);

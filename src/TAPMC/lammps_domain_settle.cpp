@@ -504,8 +504,9 @@ void DomainSettle::prepare(Run &run)
   run.margin = defaults::kDomainMoveMarginOverStep * params.d_max;
   lay_out_rounds(run);
   if (!sampler_ || sampler_->d_max() != params.d_max ||
-      sampler_->theta_sampler().theta0() != params.theta0)
-    sampler_ = std::make_unique<TrialMoveSampler>(params.d_max, params.theta0);
+      sampler_->theta_sampler().theta0() != params.theta0 ||
+      sampler_->theta_sampler().law() != params.theta_law)
+    sampler_ = std::make_unique<TrialMoveSampler>(params.d_max, params.theta0, params.theta_law);
   run.trial_stream = CounterRandom(params.seed, RandomPurpose::kDomainSettleMoves, params.stream)
                          .round(rank_key_index(comm->me));
   run.cut_stream = CounterRandom(params.seed, RandomPurpose::kDomainSettleCuts, params.stream);

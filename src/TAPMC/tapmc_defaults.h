@@ -33,6 +33,14 @@ constexpr double kMaxStepOverRadius = 0.2;
 // theta0 = pi/4: width of P(theta) = A exp(-(theta/theta0)^2) (eq. 1), the paper's value
 // giving the maximal compaction rate.
 constexpr double kThetaWidth = 0.25 * kPi;
+// Largest theta0 accepted (radians). theta0 above pi/2 is allowed so that the flat limit of
+// eq. 1 (theta uniform on [0, pi/2]; with theta_law solid, directions uniform on the downward
+// hemisphere) can be tested; the paper stops at the truncation pi/2. At theta0 = 1e3 the law
+// departs from that limit by 2.5e-6 of the density (1 - exp(-(pi/2 / theta0)^2)), beyond what
+// any run resolves (1e10 draws resolve ~1e-5): larger values would add nothing, so they are
+// refused as likely typos. The samplers stay exact and accept > 99 % of their proposals there.
+constexpr double kThetaWidthMax = 1e3;
+constexpr const char *kThetaWidthRange = "(0, 1000] (radians)";
 // Exact theta sampler (tapmc_trial_move.h): a strip whose flat envelope would accept fewer than
 // this fraction of its proposals uses the tangent exponential envelope instead (one log per
 // proposal, acceptance >= 0.74 in the tail strips). Speed only: both envelopes are exact. At

@@ -55,8 +55,8 @@ void Settler::validate(const SettleParams &p)
 {
   if (!(p.d_max > 0.0 && std::isfinite(p.d_max)))
     throw_outside_range("dmax", p.d_max, "(0, +inf)");
-  if (!(p.theta0 > 0.0 && p.theta0 <= 0.5 * kPi))
-    throw_outside_range("theta0", p.theta0, "(0, pi/2]");
+  if (!(p.theta0 > 0.0 && p.theta0 <= defaults::kThetaWidthMax))
+    throw_outside_range("theta0", p.theta0, defaults::kThetaWidthRange);
   if (!(p.eta > 0.0 && p.eta < 1.0))
     throw_outside_range("eta", p.eta, "(0, 1) (relative change of <Z>)");
   if (!(p.drift_window >= 2 && p.drift_window <= defaults::kSettleDriftWindowMax))
@@ -122,8 +122,9 @@ SettleResult Settler::settle(double *xyz, const double *radius, const unsigned c
     throw_outside_range("number of movable spheres", m, "[0, 2^32)");
 
   if (!sampler_ || sampler_->d_max() != params.d_max ||
-      sampler_->theta_sampler().theta0() != params.theta0)
-    sampler_ = std::make_unique<TrialMoveSampler>(params.d_max, params.theta0);
+      sampler_->theta_sampler().theta0() != params.theta0 ||
+      sampler_->theta_sampler().law() != params.theta_law)
+    sampler_ = std::make_unique<TrialMoveSampler>(params.d_max, params.theta0, params.theta_law);
   mover_->reset(xyz, radius, n, box, params.d_max, params.contact_tol);
 
   TrialTally tally;  // sum_dz starts at the sum of the heights: it then holds the sum of <Z>

@@ -21,7 +21,8 @@ class SphereMover;
 
 struct SettleParams {
   double d_max;            // absolute step length bound, > 0
-  double theta0;           // width of P(theta), in (0, pi/2]
+  double theta0;           // width of P(theta), in (0, defaults::kThetaWidthMax]
+  ThetaLaw theta_law = ThetaLaw::Angle;  // P(theta) per unit theta or per unit solid angle
   double eta;              // stop when |<Z>_now - <Z>_before| / <Z>_before < eta, in (0, 1), and
                            // the packing is no longer in free fall (kSettleFreeFallAcceptance)
   long check_interval = 0; // trials between <Z> checks; 0 = number of movable spheres (1 sweep)
@@ -117,7 +118,7 @@ class Settler {
   const SphereMover &mover() const { return *mover_; }
 
  private:
-  std::unique_ptr<TrialMoveSampler> sampler_;  // cached while (d_max, theta0) stay the same
+  std::unique_ptr<TrialMoveSampler> sampler_;  // cached while (d_max, theta0, law) stay
   std::unique_ptr<SphereMover> mover_;  // the trial-move engine, storage reused between calls
   std::vector<int> movable_ids_;
   double skin_over_max_radius_;

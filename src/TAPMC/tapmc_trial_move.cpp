@@ -14,12 +14,16 @@
 namespace tapmc {
 
 
-ThetaSampler::ThetaSampler(double theta0) : theta0_(theta0)
+ThetaSampler::ThetaSampler(double theta0, ThetaLaw law) : law_(law), theta0_(theta0)
 {
-  if (!(theta0 > 0.0 && theta0 <= kThetaMax))
-    throw_outside_range("theta0", theta0, "(0, pi/2]");
+  if (!(theta0 > 0.0 && theta0 <= defaults::kThetaWidthMax))
+    throw_outside_range("theta0", theta0, defaults::kThetaWidthRange);
   scaled_ = theta0 < kScaledBelow;
   inv_theta0_sq_ = 1.0 / (theta0 * theta0);
+  if (law == ThetaLaw::Solid) {
+    build_solid();
+    return;
+  }
   norm_ = std::erf(kThetaMax / theta0);
   // Equal-probability strip edges: cdf(edge_k) = k / kStrips, by bisection (cdf is strictly
   // increasing). The loop stops at the double resolution of the edge, which takes at most
@@ -63,9 +67,110 @@ ThetaSampler::ThetaSampler(double theta0) : theta0_(theta0)
   }
 }
 
+namespace {
+
+// 8-point Gauss-Legendre rule on [-1, 1] (nodes +-kGaussNode[k], weights kGaussWeight[k]).
+constexpr double kGaussNode[4] = {0.18343464249564978, 0.52553240991632899,
+                                  0.79666647741362673, 0.96028985649753618};
+constexpr double kGaussWeight[4] = {0.36268378337836177, 0.31370664587788705,
+                                    0.22238103445337434, 0.10122853629037669};
+// Solid law: beyond x = theta / theta0 = kSolidCut, exp(-x^2) < 1e-695: no mass left.
+constexpr double kSolidCut = 40.0;
+
+}  // namespace
+
+double ThetaSampler::solid_sin_over(double x) const
+{
+  const double t = theta0_ * x;
+  if (t < 1e-4) {  // series: the quotient of tiny (or subnormal) values would lose digits
+    const double t2 = t * t;
+    return x * (1.0 - t2 / 6.0 * (1.0 - t2 / 20.0));
+  }
+  return std::sin(t) / theta0_;
+}
+
+double ThetaSampler::solid_g(double x) const { return std::exp(-x * x) * solid_sin_over(x); }
+
+double ThetaSampler::solid_integral(double x) const
+{
+  if (x <= 0.0) return 0.0;
+  if (x >= x_cut_) return solid_cum_[kSolidPanels];
+  const int j = std::min(kSolidPanels - 1, static_cast<int>(x / panel_));
+  const double a = j * panel_, half = 0.5 * (x - a), mid = a + half;
+  double sum = 0.0;
+  for (int k = 0; k < 4; ++k)
+    sum += kGaussWeight[k] * (solid_g(mid - half * kGaussNode[k]) + solid_g(mid + half * kGaussNode[k]));
+  return solid_cum_[j] + half * sum;
+}
+
+// Tables of the solid-angle law (class comment), in units x = theta / theta0.
+void ThetaSampler::build_solid()
+{
+  const double x_top = kThetaMax / theta0_;
+  x_cut_ = std::min(x_top, kSolidCut);
+  panel_ = x_cut_ / kSolidPanels;
+  solid_cum_[0] = 0.0;
+  for (int j = 0; j < kSolidPanels; ++j) {
+    const double half = 0.5 * panel_, mid = (j + 0.5) * panel_;
+    double sum = 0.0;
+    for (int k = 0; k < 4; ++k)
+      sum += kGaussWeight[k] *
+             (solid_g(mid - half * kGaussNode[k]) + solid_g(mid + half * kGaussNode[k]));
+    solid_cum_[j + 1] = solid_cum_[j] + half * sum;
+  }
+  norm_ = solid_cum_[kSolidPanels];
+  // the mode: d ln g / dx = cos(theta0 x) / (sin(theta0 x) / theta0) - 2x decreases from +inf
+  // to -2 x_top < 0 at pi/2, and is <= 1/x - 2x: the root lies in (0, 1/sqrt(2)]
+  double lo = 0.0, hi = std::min(x_top, 1.0);
+  for (int it = 0; it < 200 && hi - lo > 0.0; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid <= lo || mid >= hi) break;
+    (std::cos(theta0_ * mid) / solid_sin_over(mid) - 2.0 * mid > 0.0 ? lo : hi) = mid;
+  }
+  const double x_mode = 0.5 * (lo + hi);
+  constexpr int kMaxHalvings = 1200;  // as for the angle law
+  edge_[0] = 0.0;
+  edge_[kStrips] = kThetaMax;
+  for (int k = 1; k < kStrips; ++k) {
+    const double target = static_cast<double>(k) / kStrips;
+    double a = edge_[k - 1], b = kThetaMax;
+    for (int it = 0; it < kMaxHalvings && b - a > 0.0; ++it) {
+      const double mid = 0.5 * (a + b);
+      if (mid <= a || mid >= b) break;
+      (cdf(mid) < target ? a : b) = mid;
+    }
+    edge_[k] = 0.5 * (a + b);
+  }
+  for (int k = 0; k < kStrips; ++k) {
+    const double l = edge_[k], r = edge_[k + 1];
+    width_[k] = r - l;
+    const double xl = l / theta0_, xr = r / theta0_, xw = width_[k] / theta0_;
+    // log-concave: the maximum on the strip is at the mode or at the edge nearer to it, the
+    // minimum at an edge
+    const double xp = x_mode < xl ? xl : (x_mode > xr ? xr : x_mode);
+    peak_[k] = x_mode < xl ? l : (x_mode > xr ? r : theta0_ * x_mode);
+    const double g_peak = solid_g(xp), g_left = solid_g(xl), g_right = solid_g(xr);
+    squeeze_[k] = std::min(g_left, g_right) / g_peak;
+    const double mass = solid_integral(xr) - solid_integral(xl);
+    const double flat_acceptance = xw > 0.0 ? mass / (g_peak * xw) : 1.0;
+    // tangent of ln g at the left edge (strips past the mode): slope -rate
+    const double cot_term = xl > 0.0 ? std::cos(theta0_ * xl) / solid_sin_over(xl) : 0.0;
+    rate_[k] = x_mode < xl ? 2.0 * xl - cot_term : 0.0;
+    span_[k] = -std::expm1(-rate_[k] * xw);
+    const double tail_acceptance = rate_[k] > 0.0 ? mass * rate_[k] / (g_left * span_[k]) : 0.0;
+    tail_[k] = flat_acceptance < defaults::kThetaFlatMinAcceptance && rate_[k] > 0.0 &&
+               tail_acceptance > flat_acceptance;
+    theta0_cot_left_[k] = cot_term;
+    inv_sin_ref_[k] = 1.0 / std::sin(tail_[k] ? l : peak_[k]);
+    acceptance_[k] = std::min(1.0, tail_[k] ? tail_acceptance : flat_acceptance);
+    first_squeeze_[k] = tail_[k] ? -1.0 : squeeze_[k];
+  }
+}
+
 double ThetaSampler::density(double theta) const
 {
   if (theta < 0.0 || theta > kThetaMax) return 0.0;
+  if (law_ == ThetaLaw::Solid) return solid_g(theta / theta0_) / (theta0_ * norm_);
   // A = 2 / (sqrt(pi) theta0 erf(pi / (2 theta0))) normalises eq. 1 on [0, pi/2].
   const double x = theta / theta0_;
   return 2.0 / (kSqrtPi * theta0_ * norm_) * std::exp(-x * x);
@@ -75,15 +180,18 @@ double ThetaSampler::cdf(double theta) const
 {
   if (theta <= 0.0) return 0.0;
   if (theta >= kThetaMax) return 1.0;
+  if (law_ == ThetaLaw::Solid) return solid_integral(theta / theta0_) / norm_;
   return std::erf(theta / theta0_) / norm_;
 }
 
 double ThetaSampler::exp_fraction() const
 {
-  // flat strips: 1 - squeeze; tail strips: P(u > 1 - s^2) <= E[s^2] <= 2 / rate^2
+  // flat strips: 1 - squeeze; tail strips: P(u > 1 - s^2) <= E[s^2] <= 2 / rate^2 (angle),
+  // every point (solid)
   double sum = 0.0;
   for (int k = 0; k < kStrips; ++k)
-    sum += tail_[k] ? std::min(1.0, 2.0 / (rate_[k] * rate_[k])) : 1.0 - squeeze_[k];
+    sum += tail_[k] ? (law_ == ThetaLaw::Solid ? 1.0 : std::min(1.0, 2.0 / (rate_[k] * rate_[k])))
+                    : 1.0 - squeeze_[k];
   return sum / kStrips;
 }
 
@@ -106,8 +214,9 @@ SinCosTable::SinCosTable(double range) : step_(range / kNodes), inv_step_(kNodes
   }
 }
 
-TrialMoveSampler::TrialMoveSampler(double d_max, double theta0)
-    : d_max_(d_max), theta_(theta0), phi_table_(kTwoPi), theta_table_(ThetaSampler::kThetaMax)
+TrialMoveSampler::TrialMoveSampler(double d_max, double theta0, ThetaLaw law)
+    : d_max_(d_max), theta_(theta0, law), phi_table_(kTwoPi),
+      theta_table_(ThetaSampler::kThetaMax)
 {
   if (!(d_max > 0.0 && std::isfinite(d_max)))
     throw_outside_range("d_max", d_max, "(0, +inf)");

@@ -14,8 +14,19 @@
 
 namespace tapmc {
 
+// How P(theta) of eq. 1 is read ('theta_law' of fix mc/settle). The paper (section II) gives
+// P(theta) = A exp(-(theta/theta0)^2) without saying per what measure:
+//  - Angle (the default): a density in theta, theta has density A exp(-(theta/theta0)^2);
+//  - Solid: a density per unit solid angle, so theta has density A' exp(-(theta/theta0)^2)
+//    sin(theta) (dOmega = sin(theta) dtheta dphi); very large theta0 then gives directions
+//    uniform on the downward hemisphere, where Angle gives theta uniform.
+// phi is uniform under both.
+enum class ThetaLaw { Angle, Solid };
+
 // theta from P(theta) = A exp(-(theta/theta0)^2) on [0, pi/2] (eq. 1; theta from the downward
-// vertical), sampled exactly for every theta0 in (0, pi/2]: [0, pi/2] is cut into kStrips
+// vertical), sampled exactly for every theta0 in (0, defaults::kThetaWidthMax] (the strips below
+// were designed for theta0 <= pi/2; above it P is flatter still, every strip is flat and accepts
+// nearly all its points: min_acceptance() > 0.99 from theta0 = 3 on): [0, pi/2] is cut into kStrips
 // strips of equal probability (edges from the inverse of the erf-based CDF, computed once), a
 // strip is picked uniformly, and a point of the strip is drawn by rejection from an envelope of
 // P on the strip:
@@ -30,15 +41,24 @@ namespace tapmc {
 // Every strip accepts at least ~3/4 of its proposals (min_acceptance()) for any theta0 above the
 // subnormal range.
 // The result is exact up to double rounding of the strip edges.
+// ThetaLaw::Solid uses the same strips and the same random words per attempt (so the same keying
+// and the same lane-parallel first attempt, from its own tables), for the density
+// f(theta) ~ exp(-(theta/theta0)^2) sin(theta), which is log-concave (both factors are) with
+// its mode inside (0, pi/2): flat strips use the envelope max f on the strip (at the mode or an
+// edge) and the squeeze min f (an edge), tail strips (past the mode) the tangent exponential of
+// ln f at the left edge, lambda = 2 left / theta0^2 - cot(left). The edges come from the CDF by
+// Gauss-Legendre quadrature (no closed form), accurate to ~1e-15. Every strip accepts at least
+// ~1/2 of its proposals (the first strip, where f rises from 0 at theta = 0).
 class ThetaSampler {
  public:
   static constexpr int kStrips = 256;
   static constexpr double kThetaMax = 0.5 * kPi;  // exact: halving does not round
 
-  // theta0 in (0, pi/2]; throws std::invalid_argument otherwise.
-  explicit ThetaSampler(double theta0);
+  // theta0 in (0, defaults::kThetaWidthMax]; throws std::invalid_argument otherwise.
+  explicit ThetaSampler(double theta0, ThetaLaw law = ThetaLaw::Angle);
 
   double theta0() const { return theta0_; }
+  ThetaLaw law() const { return law_; }
 
   // Normalised density P(theta) and its CDF on [0, pi/2] (for tests and tools).
   double density(double theta) const;
@@ -47,9 +67,12 @@ class ThetaSampler {
   // One exact sample. `strip_word` chooses the strip (its top 8 bits); `next_pair(u0, u1)`
   // supplies fresh independent 32-bit words (position within the strip, acceptance test) as
   // often as the rejection step needs them (on average at most 1 / min_acceptance() pairs).
+  // The law is fixed at construction; sample() is only reached by draws whose first attempt
+  // was not accepted by the branch-free first_attempt() (the few per cent that need exp).
   template <class NextPair>
   double sample(std::uint32_t strip_word, NextPair &&next_pair) const
   {
+    if (law_ == ThetaLaw::Solid) return sample_solid(strip_word, next_pair);
     const unsigned strip = strip_word >> 24;
     const double left = edge_[strip];
     if (tail_[strip]) {
@@ -91,6 +114,43 @@ class ThetaSampler {
     return uniform_open_from_u32(w_accept) <= first_squeeze_[strip];
   }
 
+  // ThetaLaw::Solid: the same strips (tables of the solid law), acceptance of a point by
+  // f(theta) / envelope (see the class comment).
+  template <class NextPair>
+  double sample_solid(std::uint32_t strip_word, NextPair &&next_pair) const
+  {
+    const unsigned strip = strip_word >> 24;
+    const double left = edge_[strip];
+    if (tail_[strip]) {
+      // theta = left + theta0 s, s ~ truncated Exp(rate) on [0, width / theta0] (inversion);
+      // f / envelope = exp(-s^2 - theta0 s cot(left)) sin(theta) / sin(left) <= 1
+      const double rate = rate_[strip], span = span_[strip];
+      const double right = std::min(edge_[strip + 1], kThetaMax);
+      for (;;) {
+        std::uint32_t w_pos, w_accept;
+        next_pair(w_pos, w_accept);
+        const double s = -std::log1p(-span * uniform_open_from_u32(w_pos)) / rate;
+        const double theta = std::min(left + theta0_ * s, right);
+        const double u = uniform_open_from_u32(w_accept);
+        if (u <= std::exp(-s * (s + theta0_cot_left_[strip])) * sin_ratio(theta, strip))
+          return theta;
+      }
+    }
+    const double width = width_[strip];
+    for (;;) {
+      std::uint32_t w_pos, w_accept;
+      next_pair(w_pos, w_accept);
+      const double theta = std::min(left + width * uniform_open_from_u32(w_pos), kThetaMax);
+      const double u = uniform_open_from_u32(w_accept);
+      if (u <= squeeze_[strip]) return theta;  // below the strip's lowest density: accept
+      // f(theta) / f(peak)
+      const double p = peak_[strip];
+      if (u <= std::exp(-((theta - p) / theta0_) * ((theta + p) / theta0_)) *
+                   sin_ratio(theta, strip))
+        return theta;
+    }
+  }
+
   // Fraction of first attempts that need exp (diagnostic of the squeeze efficiency).
   double exp_fraction() const;
   // Smallest acceptance probability of a proposal over the strips (exact, from the CDF).
@@ -108,8 +168,27 @@ class ThetaSampler {
     return (theta - left) * (theta + left) * inv_theta0_sq_;
   }
 
+  // sin(theta) / sin(reference of the strip: its peak (flat) or left edge (tail)), Solid only.
+  double sin_ratio(double theta, unsigned strip) const
+  {
+    return std::sin(theta) * inv_sin_ref_[strip];
+  }
+  // ThetaLaw::Solid, in units x = theta / theta0: g(x) = exp(-x^2) sin(theta0 x) / theta0 (the
+  // density up to a constant, finite for every theta0), its integral from 0 by composite
+  // Gauss-Legendre quadrature, and the strip tables.
+  double solid_sin_over(double x) const;
+  double solid_g(double x) const;
+  double solid_integral(double x) const;  // int_0^x g
+  void build_solid();
+
+  ThetaLaw law_;
   double theta0_, inv_theta0_sq_, norm_;
   bool scaled_;
+  // Solid: panels of the quadrature on [0, x_cut_], cumulative integrals at their edges
+  static constexpr int kSolidPanels = 1024;
+  double x_cut_ = 0.0, panel_ = 0.0;
+  std::array<double, kSolidPanels + 1> solid_cum_{};
+  std::array<double, kStrips> peak_{}, inv_sin_ref_{}, theta0_cot_left_{};
   std::array<double, kStrips + 1> edge_{};
   std::array<double, kStrips> width_{}, squeeze_{}, rate_{}, span_{}, acceptance_{};
   std::array<double, kStrips> first_squeeze_{};  // squeeze_ of flat strips, -1 for tail strips
@@ -166,8 +245,9 @@ class TrialMoveSampler {
  public:
   static constexpr std::uint64_t kDrawsPerTrial = 256;
 
-  // d_max > 0 and finite, theta0 in (0, pi/2]; throws std::invalid_argument otherwise.
-  TrialMoveSampler(double d_max, double theta0);
+  // d_max > 0 and finite, theta0 in (0, defaults::kThetaWidthMax]; throws
+  // std::invalid_argument otherwise.
+  TrialMoveSampler(double d_max, double theta0, ThetaLaw law = ThetaLaw::Angle);
 
   double d_max() const { return d_max_; }
   const ThetaSampler &theta_sampler() const { return theta_; }

@@ -90,6 +90,7 @@ FINAL_DUMP = ("write_dump all custom final.dump id x y z ix iy iz modify sort id
 @pytest.mark.parametrize("nprocs,grid,scheme,eps,seed,taps", [
     pytest.param(1, "* * 1", "", 0.05, 11, 12, id="serial"),
     pytest.param(2, "2 1 1", " scheme domain", 0.02, 31, 6, id="domain_2_ranks"),
+    pytest.param(1, "* * 1", " theta_law solid theta0 3", 0.05, 11, 12, id="serial_solid_law"),
 ])
 def test_restart_round_trip_is_exact(tmp_path, nprocs, grid, scheme, eps, seed, taps):
     # Uninterrupted: `taps` taps. Interrupted: half of them, write_restart, then a new process
@@ -250,16 +251,17 @@ def test_tap_outputs_continue_across_a_restart():
 
 
 # The restart record of fix mc/settle (fix_mc_settle.cpp): an int byte count, then doubles:
-# layout -3 (today's): -3, seed as two 32-bit halves, dmax, theta0, eta, check, maxsweeps,
-# floor, diameter/2, order, xwalls lo hi, ywalls lo hi (NaN: none), stop, window, then the
-# diagnostics [1]-[6]; layout -2 (before 'stop' and 'window'): the same without those two;
-# seed only (the first runs): seed, diagnostics.
-RECORD_DOUBLES = 1 + 2 + 14 + 6
+# layout -4 (today's): -4, seed as two 32-bit halves, dmax, theta0, eta, check, maxsweeps,
+# floor, diameter/2, order, xwalls lo hi, ywalls lo hi (NaN: none), stop, window, theta_law,
+# then the diagnostics [1]-[6]; layout -3 (before 'theta_law'): the same without it; layout -2
+# (before 'stop' and 'window'): the same without those three; seed only (the first runs): seed,
+# diagnostics.
+RECORD_DOUBLES = 1 + 2 + 15 + 6
 
 
 def restart_record(data):
     """(offset of the byte count, the doubles) of the fix mc/settle record in restart bytes."""
-    head = struct.pack("<i", 8 * RECORD_DOUBLES) + struct.pack("<d", -3.0)
+    head = struct.pack("<i", 8 * RECORD_DOUBLES) + struct.pack("<d", -4.0)
     at = data.find(head)
     assert at >= 0 and data.find(head, at + 1) < 0
     return at, struct.unpack_from(f"<{RECORD_DOUBLES}d", data, at + 4)
@@ -286,9 +288,10 @@ def last_thermo_row(out):
 
 def test_restart_record_layout_and_older_layouts_are_read():
     # Today's record holds exactly the documented fields, so files stay byte for byte what the
-    # layout says; records of the two older layouts (written here from today's by dropping
+    # layout says; records of the three older layouts (written here from today's by dropping
     # fields, as those versions wrote them) are read: the diagnostics come back, the settings
-    # they did not store are taken as those versions ran them ('stop change', window 32).
+    # they did not store are taken as those versions ran them ('theta_law angle',
+    # 'stop change', window 32).
     base = SCENE.format(boundary="f p fm", zprocs=1)
     settle = ("fix tap all tapdilate 0.05 floor 0.0\n"
               "fix settle all mc/settle 8589934597 floor 0.0 eta 1e-3 xwalls 0 10 check 700\n"
@@ -300,16 +303,17 @@ def test_restart_record_layout_and_older_layouts_are_read():
         data = f.read()
     at, record = restart_record(data)
     settings = [0.0, np.pi / 4, 1e-3, 700, 50000, 0.0, 0.0, 0, 0.0, 10.0]
-    assert record[:3] == (-3.0, 2.0, 5.0)  # 8589934597 = 2 * 2^32 + 5
+    assert record[:3] == (-4.0, 2.0, 5.0)  # 8589934597 = 2 * 2^32 + 5
     assert list(record[3:13]) == settings
     assert np.isnan(record[13:15]).all()  # no ywalls
     assert record[15:17] == (0.0, 32.0)   # stop change, window 32
-    assert list(record[17:]) == diagnostics
+    assert record[17] == 0.0              # theta_law angle
+    assert list(record[18:]) == diagnostics
 
-    no_stop = record[:15] + record[17:]
-    no_stop = (-2.0,) + no_stop[1:]
-    seed_only = (float(8589934597),) + record[17:]
-    for name, values in (("no_stop", no_stop), ("seed_only", seed_only)):
+    no_law = (-3.0,) + record[1:17] + record[18:]
+    no_stop = (-2.0,) + record[1:15] + record[18:]
+    seed_only = (float(8589934597),) + record[18:]
+    for name, values in (("no_law", no_law), ("no_stop", no_stop), ("seed_only", seed_only)):
         with open(os.path.join(wd, name + ".restart"), "wb") as f:
             f.write(with_record(data, at, values))
         again = (f"read_restart {name}.restart\n" + settle + "run 0\n")
@@ -317,6 +321,12 @@ def test_restart_record_layout_and_older_layouts_are_read():
         assert rc == 0, out
         assert "differ from the restart file" not in out, out
         assert last_thermo_row(out) == diagnostics, name
+    for name in ("a", "no_law", "no_stop"):
+        rc, out, _ = run_lammps(f"read_restart {name}.restart\n" + settle.replace(
+            "check 700", "check 700 theta_law solid") + "run 0\n", workdir=wd)
+        assert rc == 0, out
+        assert "settings differ from the restart file (restart -> now): theta_law (0 angle, " \
+               "1 solid) 0 -> 1;" in out, (name, out)
     rc, out, _ = run_lammps("read_restart no_stop.restart\n" + settle.replace(
         "check 700", "check 700 stop drift") + "run 0\n", workdir=wd)
     assert rc == 0, out
@@ -327,3 +337,35 @@ def test_restart_record_layout_and_older_layouts_are_read():
     assert rc == 0, out
     assert "settings differ from the restart file (restart -> now): seed 8589934597 -> 7;" \
         in out, out
+    # a solid-law record read back with the solid law: nothing differs
+    rc, out, wd2 = run_lammps(base + settle.replace("check 700", "check 700 theta_law solid") +
+                              "run 1\nwrite_restart s.restart\n")
+    assert rc == 0, out
+    assert restart_record(open(os.path.join(wd2, "s.restart"), "rb").read())[1][17] == 1.0
+    rc, out, _ = run_lammps("read_restart s.restart\n" + settle.replace(
+        "check 700", "check 700 theta_law solid") + "run 0\n", workdir=wd2)
+    assert rc == 0 and "differ from the restart file" not in out, out
+
+
+# A restart file of layout -3 (before 'theta_law') written by a real campaign run and kept in
+# the repository (tests/python/data/campaign_before_checksums: seed 1, eta 1e-5, the default
+# theta0): read today, it implies 'theta_law angle' and gives back its diagnostics.
+OLD_LAYOUT_RESTART = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python",
+                                  "data", "campaign_before_checksums", "runs", "pbc_s1",
+                                  "restart.2")
+
+
+def test_committed_restart_of_the_layout_before_theta_law_is_read():
+    settle = ("fix settle all mc/settle 1 floor 0.0 eta 1e-5{}\n"
+              f"thermo_style custom step {DIAGNOSTICS}\nthermo_modify format float %.17g\n"
+              "run 0\n")
+    read = f"read_restart {os.path.abspath(OLD_LAYOUT_RESTART)}\n"
+    rc, out, _ = run_lammps(read + settle.format(""))
+    assert rc == 0, out
+    assert "differ from the restart file" not in out, out
+    assert last_thermo_row(out) == [12.0, 0.057291666666666664, 2.064252000189685, 0.0, 768.0,
+                                    2.066831549236659]
+    rc, out, _ = run_lammps(read + settle.format(" theta_law solid"))
+    assert rc == 0, out
+    assert "settings differ from the restart file (restart -> now): theta_law (0 angle, " \
+           "1 solid) 0 -> 1;" in out, out

@@ -514,7 +514,7 @@ TEST(Settle, BadParametersThrowNamingTheParameter)
   p.d_max = 7.0;  // longer than the periodic box
   expect_throw(p, "dmax");
   p = good;
-  p.theta0 = 2.0;
+  p.theta0 = 1001.0;  // above defaults::kThetaWidthMax (theta0 may exceed pi/2)
   expect_throw(p, "theta0");
   p = good;
   p.theta0 = 0.0;
