@@ -168,6 +168,9 @@ P.B.C.); each writes one CSV that the paper-scale report renders (tapmc.paper.qu
               with a converged redeposition, into theta0_drift.csv: a wider theta0 takes more
               sweeps before the paper's stopping rule ends a tap, so the default scan mixes
               the width's effect with the redeposition's length.
+              --theta-law solid reads P(theta) of eq. 1 per unit solid angle (fix mc/settle
+              theta_law solid; CSV tag _solid); --wide scans instead the widths beyond the
+              paper's truncation pi/2 (3/4 pi, pi, 30 pi: the flat limit; CSV tag _wide).
 
   dmax        Is d_max = R/5 an intermediate value, much smaller or larger steps slowing the
               redeposition (section II)? The same scan as theta0 over seven d_max, R/50 to
@@ -193,6 +196,7 @@ Usage (from the repository; minutes on one core, run under nice):
                                          [--replay]
     bench/paper_questions.py theta0 [--out DIR] [--lmp EXE] [--seeds 1 2 3 4]
                                     [--stop change|drift] [--eta 1e-7] [--N 1024]
+                                    [--theta-law angle|solid] [--wide]
     bench/paper_questions.py dmax   (the same options as theta0)
     bench/paper_questions.py p0-fluid [--out DIR] [--phi 0.3 0.4 ...] [--configs C]
                                       [--work DIR] [--mc EXE]
@@ -237,6 +241,8 @@ FIRST_TAP_EPS = (0.0225, 0.15)
 FIRST_TAP_ETA = (1e-7, 1e-8, 1e-9)
 #: theta0 scan: widths (multiples of pi), its scale and taps; the window of taps averaged
 THETA0_PI = (1 / 16, 1 / 8, 1 / 6, 1 / 4, 1 / 3, 5 / 12, 1 / 2)
+#: theta0 --wide: widths beyond the truncation pi/2 (30 pi: within 3e-4 of the flat limit)
+THETA0_WIDE_PI = (3 / 4, 1, 30)
 THETA0_SCALE = {"N": 1024, "L": 16}
 THETA0_EPS = 0.0225
 THETA0_TAPS = 100
@@ -696,22 +702,25 @@ def write_ramp_pores(path, rows):
     write_csv(path, RAMP_PORES_HEADER, sorted(rows, key=lambda r: (r[0], int(r[1]))))
 
 
-def scan_file_name(stem, stop, N):
-    """<stem>.csv for the default scan (stop change, N = 1024), else <stem>_<stop>[_N<N>].csv."""
-    tags = ([] if stop == "change" else [stop]) + ([] if N == THETA0_SCALE["N"] else [f"N{N}"])
+def scan_file_name(stem, stop, N, extra=()):
+    """<stem>.csv for the default scan (stop change, N = 1024), else
+    <stem>[_<extra>...][_<stop>][_N<N>].csv (extra: e.g. the theta law "solid", "wide")."""
+    tags = (list(extra) + ([] if stop == "change" else [stop]) +
+            ([] if N == THETA0_SCALE["N"] else [f"N{N}"]))
     return "_".join([stem] + tags) + ".csv"
 
 
-def knob_scan(args, column, values, keyword):
+def knob_scan(args, column, values, keyword, extra_keys="", extra_tags=()):
     """Taps from the same fresh packings (P.B.C., THETA0_EPS, N = --N at the paper's bed height)
     at every value of one fix mc/settle keyword: <Phi^c> at t = 0 and over the last
     THETA0_WINDOW taps per seed (scan_file_name). Each run's row is written when it ends, and a
     scan started again skips the (seed, value) pairs its CSV already has. The rows go to
     <out>/partial/ while the scan runs and its CSV moves to <out> when every run is in, so that
-    the report never reads half a scan."""
+    the report never reads half a scan. extra_keys are added to every run's fix mc/settle
+    keywords (e.g. "theta_law solid"), extra_tags to the CSV name."""
     lmp = lmp_command(args.lmp)
     stem = column.split("_over_")[0]
-    final = Path(args.out) / scan_file_name(stem, args.stop, args.N)
+    final = Path(args.out) / scan_file_name(stem, args.stop, args.N, extra_tags)
     path = Path(args.out) / PARTIAL / final.name
     path.parent.mkdir(parents=True, exist_ok=True)
     if final.is_file() and not path.is_file():
@@ -730,7 +739,8 @@ def knob_scan(args, column, values, keyword):
             if (seed, f"{label:.6f}") in done:
                 continue
             with tempfile.TemporaryDirectory() as folder:
-                keys = f"{keyword} {value!r}" + (" stop drift" if args.stop == "drift" else "")
+                keys = (f"{keyword} {value!r}" + (f" {extra_keys}" if extra_keys else "") +
+                        (" stop drift" if args.stop == "drift" else ""))
                 taps = run(lmp, folder, dict(scale, bc="pbc", eps=THETA0_EPS, seed=seed,
                                              taps=THETA0_TAPS, rsteps=1000000, eta=args.eta,
                                              settle_keys=keys))
@@ -748,7 +758,12 @@ def knob_scan(args, column, values, keyword):
 
 
 def theta0_scan(args):
-    knob_scan(args, "theta0_over_pi", [(f, np.pi * f) for f in THETA0_PI], "theta0")
+    law = getattr(args, "theta_law", "angle")
+    wide = getattr(args, "wide", False)
+    tags = ([law] if law != "angle" else []) + (["wide"] if wide else [])
+    knob_scan(args, "theta0_over_pi",
+              [(f, np.pi * f) for f in (THETA0_WIDE_PI if wide else THETA0_PI)], "theta0",
+              extra_keys=f"theta_law {law}" if law != "angle" else "", extra_tags=tags)
 
 
 def dmax_scan(args):
@@ -1483,6 +1498,9 @@ def main(argv=None):
         sub.choices[name].add_argument("--N", type=int, default=THETA0_SCALE["N"])
         sub.choices[name].add_argument("--stop", choices=("change", "drift"), default="change")
         sub.choices[name].add_argument("--eta", type=float, default=1e-7)
+    sub.choices["theta0"].add_argument("--theta-law", choices=("angle", "solid"),
+                                       default="angle")
+    sub.choices["theta0"].add_argument("--wide", action="store_true")
     for name in ("noise-floor", "p0-configs"):
         sub.choices[name].add_argument("--restart", default=CAMPAIGN_RUN / "restart.4000")
     sub.choices["p0-configs"].add_argument("--configs", type=int, default=P0_CONFIGS)

@@ -48,3 +48,20 @@ def test_scan_is_published_whole_and_resumes(tmp_path):
     assert done.returncode == 0, done.stderr
     assert "sweeps per tap" not in done.stdout
     assert rows(tmp_path / "dmax_N64.csv") == again and not partial.exists()
+
+
+def test_theta0_scan_of_the_solid_law_beyond_pi_over_2(tmp_path):
+    # --theta-law solid --wide: the widths beyond the paper's truncation, fix mc/settle
+    # theta_law solid, into their own CSV (tags solid, wide), which the claims leave out (they
+    # test another reading of eq. 1, not the paper's claim).
+    done = subprocess.run([sys.executable, str(SOURCE / "bench" / "paper_questions.py"), "theta0",
+                           "--N", "64", "--lmp", str(LMP), "--out", str(tmp_path), "--seeds", "1",
+                           "--theta-law", "solid", "--wide"],
+                          capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    table = rows(tmp_path / "theta0_solid_wide_N64.csv")
+    assert [float(r["theta0_over_pi"]) for r in table] == [0.75, 1.0, 30.0]
+    sys.path.insert(0, str(SOURCE / "tools" / "python"))
+    from tapmc.paper.claims import scan_files
+    (tmp_path / "theta0_N64.csv").write_text("")
+    assert [p.name for p in scan_files(tmp_path, "theta0")] == ["theta0_N64.csv"]

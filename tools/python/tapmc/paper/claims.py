@@ -2406,11 +2406,19 @@ SCANS = {"theta0": {"column": "theta0_over_pi", "paper": 0.25, "name": _pi_fract
          "dmax": {"column": "dmax_over_R", "paper": 0.2, "name": _r_fraction}}
 
 
+#: tags of scans that test another reading of the model, not the paper's claim (theta0
+#: --theta-law solid: P(theta) per unit solid angle; --wide: theta0 beyond the paper's pi/2):
+#: measured in doc/measurements.rst, left out of the claims
+OTHER_READING_TAGS = ("solid", "wide")
+
+
 def scan_files(folder, knob):
-    """The CSVs of one knob's scans in ``folder``: <knob>.csv, <knob>_<stop>.csv."""
+    """The CSVs of one knob's scans in ``folder``: <knob>.csv, <knob>_<stop>.csv (not those
+    tagged with :data:`OTHER_READING_TAGS`)."""
     folder = Path(folder)
     return sorted([p for p in folder.glob(f"{knob}*.csv")
-                   if p.stem == knob or p.stem.startswith(knob + "_")])
+                   if (p.stem == knob or p.stem.startswith(knob + "_")) and
+                   not set(p.stem.split("_")[1:]) & set(OTHER_READING_TAGS)])
 
 
 def read_scan(path):
