@@ -3,22 +3,17 @@
 // naive all-pairs loop making the same moves; sweep order, poly, FBC; theta sampler cost;
 // sweeps per redeposition versus eta; scaling with N (4096, 32768, 262144) on a first and a
 // second tap, with list lengths, local list updates per sweep and peak memory, and the locality
-// ceiling (the same sweeps in memory order); threads inside one rank (one tap with 1 and 2
-// threads, the windows' figures, a model for 16 threads).
+// ceiling (the same sweeps in memory order).
 //
-// Usage: bench_mc_settle [--quick] [--scaling | --threads]
+// Usage: bench_mc_settle [--quick] [--scaling]
 //   --quick:   fewer repeats and sweeps, scaling for N = 4096 and 262144 only (under 2 min)
 //   --scaling: only the scaling section
-//   --threads: only the threads section: one tap at N = 4096 with 1 and 2 threads (ratio), the
-//              windows' figures, a model for 16 threads
 #include "bench_common.h"
 #include "../tests/unit/settle_test_scenes.h"
 #include "tapmc_contact.h"
 #include "tapmc_defaults.h"
 #include "tapmc_deposition.h"
 #include "tapmc_settle.h"
-#include "tapmc_sphere_mover.h"
-#include "tapmc_thread_team.h"
 #include "tapmc_trial_move.h"
 
 #include <algorithm>
@@ -216,143 +211,21 @@ void scaling_section(bool quick)
                 rate.second / rate.first, rate.first / base.first, rate.second / base.second);
 }
 
-// Wall seconds of one empty job of a team of `size` threads (median of many): the hand-off
-// between threads that each window of the windowed executor costs.
-double team_handoff_seconds(int size)
-{
-  ThreadTeam team(size);
-  team.wake();
-  long sink = 0;
-  auto job = [&](int member) { sink += member == 0; };
-  std::vector<double> times;
-  for (int k = 0; k < 20000; ++k) {
-    const Clock::time_point t0 = Clock::now();
-    team.run(job);
-    times.push_back(seconds_since(t0));
-  }
-  team.sleep();
-  return median(times);
-}
-
-// Threads inside one rank (Settler::set_threads): one tap of the paper's scene (N = 4096, PBC,
-// the deposited bed tapped with eps = 0.01, settled to eta = 1e-5, tapped again) at the default
-// eta, wall seconds with 1 and 2 threads alternating (median over repeats), the trajectories
-// compared bit for bit; then the windows' figures, a model for 16 threads built from them and the
-// bound of the design for 2 threads on a machine with free core-to-core transfers.
-void threads_section(bool quick)
-{
-  const int n = 4096, repeats = quick ? 3 : 5;
-  Scene first = deposited_bed(n, 32.0, true, false, 7);
-  dilate(first, 0.01);
-  Scene settled;
-  {
-    Settler settler;
-    time_tap(settler, first, 1e-5, 50000, 501, &settled);
-  }
-  Scene second = settled;
-  dilate(second, 0.01);
-  std::printf("\nthreads (N = 4096, PBC, one tap eps = 0.01 of a settled bed, eta = %.0e; wall\n"
-              "  seconds, median of %d alternating runs; the machine's other load is not controlled):\n",
-              defaults::kSettleEta, repeats);
-  Settler one, two;
-  two.set_threads(2);
-  const SettleParams p = paper_params(1.0, 31, 502, defaults::kSettleEta, 50000);
-  std::vector<double> seconds[2];
-  SettleResult results[2];
-  long differ = 0;
-  for (int r = 0; r < repeats; ++r) {
-    Scene ends[2];
-    for (int k = 0; k < 2; ++k) {
-      Settler &settler = k == 0 ? one : two;
-      ends[k] = second;
-      const Clock::time_point t0 = Clock::now();
-      results[k] = settler.settle(ends[k].xyz.data(), ends[k].radius.data(), nullptr, n,
-                                  ends[k].box, p);
-      seconds[k].push_back(seconds_since(t0));
-    }
-    for (std::size_t q = 0; q < ends[0].xyz.size(); ++q) differ += ends[0].xyz[q] != ends[1].xyz[q];
-    differ += results[0].checks != results[1].checks;
-  }
-  const double t1 = median(seconds[0]), t2 = median(seconds[1]);
-  const double trials = static_cast<double>(results[0].trials);
-  std::printf("  1 thread : %7.3f s per tap (%ld sweeps), %6.2f M moves/s\n", t1,
-              results[0].checks, trials / t1 / 1e6);
-  std::printf("  2 threads: %7.3f s per tap, %6.2f M moves/s   ratio to 1 thread: %.2f x   (%s)\n",
-              t2, trials / t2 / 1e6, t1 / t2,
-              differ == 0 ? "same trajectory, bit for bit" : "TRAJECTORIES DIFFER");
-
-  // The windows of the 2-thread runs (all repeats) and the model for 16 threads.
-  const SphereMover::WindowStats w = two.mover().window_stats();
-  const double per_window = static_cast<double>(w.trials) / w.windows;
-  const double handoff2 = team_handoff_seconds(2);
-  std::printf("  windows: %.0f trials each; boundary trials %.1f %%, of which %.2f %% waited;\n"
-              "  per window (us): plans %.1f, trials %.1f, merge + list updates %.1f;\n"
-              "  team hand-off %.2f us\n",
-              per_window, 100.0 * w.boundary_trials / w.trials,
-              100.0 * w.waits / std::max(1L, w.boundary_trials), 1e6 * w.plan_seconds / w.windows,
-              1e6 * w.execute_seconds / w.windows, 1e6 * w.merge_seconds / w.windows,
-              1e6 * handoff2);
-  // 16 threads on this scene: which trials are boundary trials and how often they wait (a short
-  // run, oversubscribed here: only the counts are used).
-  Settler sixteen;
-  sixteen.set_threads(16);
-  {
-    Scene s = second;
-    SettleParams q = paper_params(1.0, 31, 502, 1e-300, 4);
-    q.check_interval = 16 * defaults::kThreadMinTrialsPerThread;
-    sixteen.settle(s.xyz.data(), s.radius.data(), nullptr, n, s.box, q);
-  }
-  const SphereMover::WindowStats w16 = sixteen.mover().window_stats();
-  // Model: every member plans the whole chunk (picks, chains: a cost per trial that does not
-  // divide) and draws its own moves (divides); the trials divide by the thread count at the
-  // per-trial cost measured with 2 threads (boundary scans and waits included, scaled to 16
-  // threads' boundary fraction); the merges stay on one thread; each window pays a hand-off that
-  // grows with the members that report to the caller (one cache line transfer each, measured
-  // as the 2-thread hand-off).
-  const double windows_per_tap = per_window > 0 ? trials / per_window : 0.0;
-  const double plan_per_trial = w.plan_seconds / w.trials;  // one member's plan of a trial
-  const double boundary2 = static_cast<double>(w.boundary_trials) / w.trials;
-  const double boundary16 = static_cast<double>(w16.boundary_trials) / std::max(1L, w16.trials);
-  const double execute_per_trial = 2.0 * w.execute_seconds / w.trials;
-  const double serial_per_window = w.merge_seconds / w.windows;
-  const double boundary_extra = boundary2 > 0 ? (execute_per_trial - t1 / trials) / boundary2 : 0.0;
-  const double execute16 = t1 / trials + std::max(0.0, boundary_extra) * boundary16;
-  const double model16 = trials * (plan_per_trial + execute16 / 16.0) +
-                         windows_per_tap * (serial_per_window + 15.0 * handoff2);
-  std::printf("  model for 16 threads (boundary trials %.0f %%, waits %.2f %% of them): %.3f s per "
-              "tap, %.1f x one thread; the one-thread phases alone cap it at %.1f x\n",
-              100.0 * boundary16, 100.0 * w16.waits / std::max(1L, w16.boundary_trials), model16,
-              t1 / model16, t1 / (windows_per_tap * serial_per_window + trials * plan_per_trial));
-  // The design's own bound for 2 threads: trials at the one-thread cost, halved, as on a machine
-  // whose core-to-core transfers and hand-offs were free; the plans and merges as measured.
-  const double ideal2 = trials * (plan_per_trial + 0.5 * t1 / trials) +
-                        windows_per_tap * serial_per_window;
-  std::printf("  2 threads with free core-to-core transfers (trials at half the one-thread cost, "
-              "plans and merges as measured): %.2f x one thread\n", t1 / ideal2);
-}
-
 }  // namespace
 
 int main(int argc, char **argv)
 {
-  bool quick = false, scaling_only = false, threads_only = false;
+  bool quick = false, scaling_only = false;
   for (int a = 1; a < argc; ++a) {
     if (std::strcmp(argv[a], "--quick") == 0) quick = true;
     else if (std::strcmp(argv[a], "--scaling") == 0) scaling_only = true;
-    else if (std::strcmp(argv[a], "--threads") == 0) threads_only = true;
     else {
-      std::fprintf(stderr, "bench_mc_settle: unknown argument '%s' (allowed: --quick, --scaling, "
-                   "--threads)\n", argv[a]);
+      std::fprintf(stderr, "bench_mc_settle: unknown argument '%s' (allowed: --quick, "
+                   "--scaling)\n", argv[a]);
       return 2;
     }
   }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress visible when redirected
-  if (threads_only) {
-    std::printf("bench_mc_settle: TAPMC redeposition kernel\nmachine: %s, %d cores available\n",
-                cpu_model().c_str(), available_cores());
-    threads_section(quick);
-    return 0;
-  }
   if (scaling_only) {
     std::printf("bench_mc_settle: TAPMC redeposition kernel\nmachine: %s (one core)\n",
                 cpu_model().c_str());

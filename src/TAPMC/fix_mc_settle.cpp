@@ -19,7 +19,6 @@
 #include "tapmc_contact.h"
 #include "tapmc_defaults.h"
 #include "tapmc_settle.h"
-#include "tapmc_thread_team.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -32,7 +31,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
@@ -63,8 +61,6 @@ class FixMCSettle::Redeposition {
   // One redeposition; the atoms end where LAMMPS's exchange and borders of this step expect
   // them (collective).
   virtual tapmc::SettleResult settle() = 0;
-  // Threads of the trial moves from the next settle() on (the same moves on any count).
-  virtual void set_threads(int threads) = 0;
   // Output vector [7]-[12] after settle(): zeros unless the scheme is decomposed.
   virtual std::array<double, 6> parallel_diagnostics() const { return {}; }
 };
@@ -81,7 +77,6 @@ class FixMCSettle::GatheredRedeposition : public FixMCSettle::Redeposition,
   double ghost_depth(double r_max) override { return 2.0 * r_max; }  // one contact
   void check_start() override;
   tapmc::SettleResult settle() override;
-  void set_threads(int threads) override { settler->set_threads(threads); }
 
  private:
   FixMCSettle &fix;
@@ -110,7 +105,6 @@ class FixMCSettle::DecomposedRedeposition : public FixMCSettle::Redeposition,
   void check_start() override;
   tapmc::SettleResult settle() override;
   std::array<double, 6> parallel_diagnostics() const override;
-  void set_threads(int threads) override { kernel().set_threads(threads); }
 
  private:
   FixMCSettle &fix;
@@ -308,22 +302,6 @@ void FixMCSettle::parse_keywords(int narg, char **arg)
          drift_window = integer(v[0]);
          window_given = true;
        }},
-      {"threads", 1,
-       [&](char **v) {
-         const std::string value = v[0];
-         const std::string range = "[1, " + std::to_string(tapmc::defaults::kMaxThreads) +
-                                   "] or 'auto'";
-         if (value == "auto") {
-           threads_setting = kThreadsAuto;
-           return;
-         }
-         char *end = nullptr;
-         const long n = std::strtol(value.c_str(), &end, 10);
-         if (value.empty() || *end != '\0' || n < 1 || n > tapmc::defaults::kMaxThreads)
-           error->all(FLERR, "fix mc/settle: {}",
-                      tapmc::outside_range_message("threads", value, range));
-         threads_setting = static_cast<int>(n);
-       }},
       {"verify", 1,
        [&](char **v) {
          const std::string value = v[0];
@@ -390,31 +368,6 @@ void FixMCSettle::init()
     error->warning(FLERR, "fix mc/settle moves atoms during minimization; use 'run' instead");
 
   tapmc::request_ghost_depth(lmp, redeposition->ghost_depth(group_radius_extreme(true)));
-  resolve_threads();
-}
-
-// The threads of each rank's trial moves: 'threads N', 'threads auto' (OMP_NUM_THREADS, else
-// the cores this process may run on), or by default the thread count of 'package omp N' (1
-// without it). More threads than cores give the same moves, slowly: said.
-void FixMCSettle::resolve_threads()
-{
-  const int cores = tapmc::available_cores();
-  int wanted = threads_setting;
-  if (wanted == kThreadsAuto) {
-    const char *omp = std::getenv("OMP_NUM_THREADS");
-    char *end = nullptr;
-    const long n = omp ? std::strtol(omp, &end, 10) : 0;
-    wanted = omp && *end == '\0' && n >= 1 ? static_cast<int>(n) : cores;
-  } else if (wanted == kThreadsDefault) {
-    // LAMMPS's OpenMP threads count only once 'package omp' (fix package_omp) set them: an
-    // OMP_NUM_THREADS meant for other programs does not turn threads on.
-    wanted = tapmc::compat::find_fix(modify, "package_omp") ? comm->nthreads : 1;
-  }
-  threads = std::max(1, std::min(wanted, tapmc::defaults::kMaxThreads));
-  if (threads > cores && comm->me == 0)
-    error->warning(FLERR, "fix mc/settle: threads = {} is more than the {} core(s) this process "
-                   "may run on; the moves are the same, but slower", threads, cores);
-  redeposition->set_threads(threads);
 }
 
 // Ghosts as deep as the scheme needs: a contact, its move margin and the ghost skin.

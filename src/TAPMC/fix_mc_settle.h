@@ -65,12 +65,6 @@ class FixMCSettle : public Fix {
   long drift_window = 0;      // 'window': checks averaged by 'stop drift' (kSettleDriftWindow)
   bool window_given = false;
   bool verify_ghosts = false; // 'verify': scheme domain checks every ghost after every round
-  // 'threads': threads of each rank's trial moves (any value gives the same trajectory).
-  // kThreadsDefault: not given (the thread count of 'package omp N', else 1);
-  // kThreadsAuto: OMP_NUM_THREADS, else the cores available to the process.
-  static constexpr int kThreadsDefault = 0, kThreadsAuto = -1;
-  int threads_setting = kThreadsDefault;
-  int threads = 1;            // resolved in init()
 
   // per-tap diagnostics (global vector)
   double last_sweeps, last_acceptance, last_mean_z, last_hit_cap, last_trials, last_mean_z0;
@@ -108,7 +102,6 @@ class FixMCSettle : public Fix {
   long count_movable() const;
   std::string violation_message(const tapmc::Violation &v, tagint tag_i, tagint tag_j) const;
   void store_diagnostics(const tapmc::SettleResult &result);
-  void resolve_threads();
 };
 
 }  // namespace LAMMPS_NS

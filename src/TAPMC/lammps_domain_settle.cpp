@@ -165,8 +165,6 @@ int DomainSettle::lammps_index(int k) const
   return k < nlocal ? k : ghost_index_[k - nlocal];
 }
 
-void DomainSettle::set_threads(int threads) { mover_->set_threads(threads); }
-
 // The mover takes this rank's spheres and the selected ghosts (periodicity is in the ghosts, or
 // in the kernel along kernel-periodic axes); the movable owned spheres are listed in tag order,
 // so the picks do not depend on LAMMPS's memory order (restarts, sorting).

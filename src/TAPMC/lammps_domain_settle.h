@@ -54,9 +54,6 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
   // yes' of fix mc/settle).
   void set_verify(bool on) { verify_ = on; }
 
-  // Threads of this rank's trial moves (SphereMover::set_threads): the same moves on any count.
-  void set_threads(int threads);
-
   // Per-atom state that travels with the atoms when they migrate (the owner fix's grow_arrays,
   // copy_arrays, pack_exchange and unpack_exchange call these): the round of the current cycle
   // in which the sphere is active.

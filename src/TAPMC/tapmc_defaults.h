@@ -213,31 +213,6 @@ constexpr int kOwnPrefetchAhead = 16;
 constexpr int kNeighbourPrefetchAhead = 8;
 constexpr int kNeighbourPrefetchCount = 4;
 
-// ---- threads inside one rank: the windowed trial executor (tapmc_sphere_mover.cpp) ---------
-// With threads > 1 the trials run in windows during which the neighbour lists are not changed:
-// no sphere is picked more than kThreadWindowPicks times in a window, and the lists get
-// 2 kThreadWindowPicks d_max more skin, so that a sphere starting a window within skin/2 of its
-// reference stays inside the lists' reach for the whole window (the lists are exact whatever the
-// skin: the moves do not change). 2 picks: windows of about (6 N^2)^(1/3) trials (465 at
-// N = 4096; 1 pick: 80, too short to pay for the hand-offs) at lists of 15.9 instead of 8.3
-// entries (skin 1.0 R instead of 0.2 R at d_max = R/5), which cost 10-20 % per trial on one
-// core (bench_mc_settle --threads; bench/README.md).
-constexpr int kThreadWindowPicks = 2;
-// Trials drawn at once by the team (in parallel) and cut into windows: also the longest window.
-constexpr long kThreadChunkTrials = 4096;
-// A block of fewer trials than this per thread runs on the serial loop (same moves): a window
-// costs two hand-offs between threads (about a microsecond).
-constexpr long kThreadMinTrialsPerThread = 512;
-// Largest 'threads' value: a trial's owner is stored in 7 bits.
-constexpr int kMaxThreads = 64;
-// A busy wait (thread team, trial dependencies) pauses this many times (about 0.1 ms) before
-// yielding its core: a yield on a busy machine can hand the core to another process for a whole
-// time slice (milliseconds), while a wait for a neighbour's trial or the next window is
-// microseconds. With more threads than cores a waiter must let the thread it waits for run:
-// it yields after kSpinsBeforeYieldOversubscribed pauses.
-constexpr int kSpinsBeforeYield = 4096;
-constexpr int kSpinsBeforeYieldOversubscribed = 16;
-
 // ---- domain-decomposed redeposition (tapmc_decomposition.h, lammps_domain_settle.h) ----------
 // Move margin e of the rounds' regions, in units of d_max: a sphere active in a round reaches its
 // region's edge only by travelling e within that round (the trials rejected there are the

@@ -48,9 +48,6 @@ void Settler::set_verlet_skin(double skin_over_max_radius)
 
 Settler::~Settler() = default;
 
-void Settler::set_threads(int threads) { mover_->set_threads(threads); }
-int Settler::threads() const { return mover_->threads(); }
-
 void Settler::validate(const SettleParams &p)
 {
   if (!(p.d_max > 0.0 && std::isfinite(p.d_max)))

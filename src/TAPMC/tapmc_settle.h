@@ -108,15 +108,6 @@ class Settler {
   void set_verlet_skin(double skin_over_max_radius);
   double verlet_skin() const { return skin_over_max_radius_; }
 
-  // Threads of the trial moves (default 1; tapmc_sphere_mover.h): any value gives bit-identical
-  // results (positions, image shifts, trials, checks, <Z>); only the speed and the list
-  // diagnostics of SettleResult change. Throws std::invalid_argument outside
-  // [1, defaults::kMaxThreads].
-  void set_threads(int threads);
-  int threads() const;
-  // The trial-move engine, for its diagnostics (window_stats).
-  const SphereMover &mover() const { return *mover_; }
-
  private:
   std::unique_ptr<TrialMoveSampler> sampler_;  // cached while (d_max, theta0, law) stay
   std::unique_ptr<SphereMover> mover_;  // the trial-move engine, storage reused between calls

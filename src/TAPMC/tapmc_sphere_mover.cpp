@@ -46,12 +46,9 @@
 #include "tapmc_defaults.h"
 #include "tapmc_memory.h"
 #include "tapmc_settle_geometry.h"
-#include "tapmc_thread_team.h"
 
 #include <algorithm>
 #include <array>
-#include <atomic>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -219,68 +216,6 @@ struct MovedSlots {
   }
 };
 
-// A trial's owner thread (low bits) and whether its sphere lies next to another thread's
-// region (then it looks for earlier trials of other threads on its listed neighbours).
-constexpr unsigned char kOwnerBits = 0x7f, kBoundaryBit = 0x80;
-
-// The windowed executor's storage: per grid cell the owner and boundary bit, and per thread
-// (member) everything it reads or writes during a window, on its own cache lines: a line
-// written on one core and read on another costs a transfer between cores (measured at about
-// 0.25-0.8 us on the shared test machine, where reading draws made on the other core cost more
-// than the trials). So each member makes for itself, from the read-only scene: the chunk's picks
-// and slots, the owners, the picks' chains; then draws the moves of its own trials only.
-struct WindowExecutor {
-  std::unique_ptr<ThreadTeam> team;
-  int axis = 2;                          // axis of the owners' slabs of cells
-  std::vector<unsigned char> cell_role;  // per grid cell: owner | kBoundaryBit
-  std::uint64_t chunk_seq = 0, window_seq = 0;
-  struct alignas(64) Member {
-    std::atomic<std::uint64_t> progress{0};  // window_seq << 32 | 1 + its last boundary trial done
-    // Per trial of the chunk (index t = trial - first trial of the chunk).
-    alignas(64) std::vector<int> slot, prev_pick, limit_pick;
-    std::vector<unsigned char> role;
-    // Per slot: the chunk that last picked it and its last pick there.
-    std::vector<std::uint64_t> chunk_stamp;
-    std::vector<int> last_pick;
-    // Its own trials from `planned_from` on, in order, their moves, and the next one to run.
-    std::vector<int> own;
-    std::vector<TrialDraw> own_draw;
-    std::size_t next = 0;
-    // Its accepted trials of the current window (chunk index, z change), in order.
-    std::vector<int> accepted_trials;
-    std::vector<double> accepted_dz;
-    long boundary_trials = 0, waits = 0;
-  };
-  std::unique_ptr<Member[]> members;
-  int member_count = 0;
-  long windows = 0, trials = 0;
-  double phase_seconds[4] = {0, 0, 0, 0};  // plan, chains (unused), execute, merge (WindowStats)
-
-  void allocate(int n, int threads)
-  {
-    const std::size_t c = static_cast<std::size_t>(defaults::kThreadChunkTrials);
-    chunk_seq = window_seq = 0;
-    members = std::make_unique<Member[]>(static_cast<std::size_t>(threads));
-    member_count = threads;
-    for (int m = 0; m < threads; ++m) {
-      Member &me = members[m];
-      me.slot.resize(c);
-      me.prev_pick.resize(c);
-      me.limit_pick.resize(c);
-      me.role.resize(c);
-      me.chunk_stamp.assign(static_cast<std::size_t>(n), 0);
-      me.last_pick.assign(static_cast<std::size_t>(n), -1);
-      me.own.reserve(c);
-      me.own_draw.reserve(c);
-      me.accepted_trials.reserve(c);
-      me.accepted_dz.reserve(c);
-    }
-    windows = trials = 0;
-    std::fill(phase_seconds, phase_seconds + 4, 0.0);
-    if (!team || team->size() != threads) team = std::make_unique<ThreadTeam>(threads);
-  }
-};
-
 }  // namespace
 
 // The engine's state: the scene, the parts above, and the upkeep of the lists (relist).
@@ -296,9 +231,6 @@ struct SphereMover::State {
   ReferenceGrid grid;
   MovedSlots moved;
   long full_builds = 0, local_updates = 0;
-  int threads = 1;              // of run(), from set_threads
-  bool windowed_lists = false;  // the lists have the window skin (built with threads > 1)
-  WindowExecutor window;
 
   // Scratch of reset / build, kept to avoid reallocation.
   std::vector<double> wrapped;
@@ -362,52 +294,7 @@ struct SphereMover::State {
   }
 
   void build(const double *xyz_wrapped, const double *radius, const int *image_in);
-  void assign_owners();
 };
-
-// Owners of the grid cells for `threads` threads: slabs of cell layers along the axis with the
-// fewest boundary layers per layer (a periodic axis has two per cut, a bounded one one), balanced
-// by the spheres binned there. A layer next to another owner's layer is a boundary layer. Only
-// speed depends on this: the executor orders every pair of trials that can interact.
-void SphereMover::State::assign_owners()
-{
-  const std::array<GridAxis, 3> &axes = grid.axes;
-  double best = 0.0;
-  for (int d = 0; d < 3; ++d) {
-    const double cuts = axes[d].periodic ? 2.0 * threads : 2.0 * (threads - 1);
-    const double fraction = cuts / axes[d].cells;
-    if (d == 0 || fraction < best) {
-      best = fraction;
-      window.axis = d;
-    }
-  }
-  const int axis = window.axis, layers = axes[axis].cells;
-  const int stride = axis == 0 ? 1 : (axis == 1 ? axes[0].cells : axes[0].cells * axes[1].cells);
-  auto layer_of = [&](int cell) { return (cell / stride) % layers; };
-  std::vector<long> per_layer(static_cast<std::size_t>(layers), 0);
-  for (int s = 0; s < n; ++s) ++per_layer[layer_of(grid.cell_of_slot[s])];
-  std::vector<unsigned char> owner(static_cast<std::size_t>(layers));
-  long before = 0;
-  for (int l = 0; l < layers; ++l) {  // owner of the layer holding the middle of its spheres
-    const double middle = before + 0.5 * per_layer[l];
-    owner[l] = static_cast<unsigned char>(
-        std::min<long>(threads - 1, static_cast<long>(middle * threads / std::max(1, n))));
-    before += per_layer[l];
-  }
-  const std::size_t n_cells = grid.cells.count();
-  window.cell_role.resize(n_cells);
-  for (std::size_t c = 0; c < n_cells; ++c) {
-    const int l = layer_of(static_cast<int>(c));
-    bool boundary = false;
-    for (int o = -1; o <= 1; o += 2) {
-      int k = l + o;
-      if (axes[axis].periodic) k = (k + layers) % layers;
-      else if (k < 0 || k >= layers) continue;
-      boundary = boundary || owner[k] != owner[l];
-    }
-    window.cell_role[c] = static_cast<unsigned char>(owner[l] | (boundary ? kBoundaryBit : 0));
-  }
-}
 
 // Sorts the spheres into cell order, bins them and makes every list (O(N)).
 void SphereMover::State::build(const double *xyz_wrapped, const double *radius,
@@ -417,10 +304,7 @@ void SphereMover::State::build(const double *xyz_wrapped, const double *radius,
   const double margin = rounding_margin(sc, xyz_wrapped, n);
   const double skin = skin_over_max_radius * sc.r_max;
   half_skin_sq = 0.25 * skin * skin;
-  // Windows (threads > 1) move a sphere up to kThreadWindowPicks times between list updates.
-  windowed_lists = threads > 1;
-  const double window_skin = windowed_lists ? 2.0 * defaults::kThreadWindowPicks * d_max : 0.0;
-  list_extra = d_max + skin + window_skin + margin;
+  list_extra = d_max + skin + margin;
   std::array<GridAxis, 3> &axes = grid.axes;
   axes = grid_axes(sc, xyz_wrapped, n, 2.0 * sc.r_max + list_extra + margin);
 
@@ -487,10 +371,6 @@ void SphereMover::State::build(const double *xyz_wrapped, const double *radius,
     b[++b[0]] = pairs[q];
   }
   ++full_builds;
-  if (windowed_lists) {
-    window.allocate(n, threads);
-    assign_owners();
-  }
 }
 
 SphereMover::SphereMover() : state_(std::make_unique<State>()) {}
@@ -504,45 +384,6 @@ void SphereMover::set_skin(double skin_over_max_radius)
 }
 
 double SphereMover::skin() const { return state_->skin_over_max_radius; }
-
-void SphereMover::set_threads(int threads)
-{
-  if (!(threads >= 1 && threads <= defaults::kMaxThreads))
-    throw_outside_range("threads", threads, "[1, " + std::to_string(defaults::kMaxThreads) + "]");
-  state_->threads = threads;
-}
-
-int SphereMover::threads() const { return state_->threads; }
-
-SphereMover::WindowStats SphereMover::window_stats() const
-{
-  const WindowExecutor &wx = state_->window;
-  WindowStats stats;
-  stats.windows = wx.windows;
-  stats.trials = wx.trials;
-  stats.plan_seconds = wx.phase_seconds[0];
-  stats.execute_seconds = wx.phase_seconds[2];
-  stats.merge_seconds = wx.phase_seconds[3];
-  for (int m = 0; m < wx.member_count; ++m) {
-    stats.boundary_trials += wx.members[m].boundary_trials;
-    stats.waits += wx.members[m].waits;
-  }
-  return stats;
-}
-
-bool SphereMover::window_orders(int i, int j) const
-{
-  const State &st = *state_;
-  if (!st.windowed_lists) return true;  // one thread: every trial in order
-  const int a = st.spheres.slot_of[i], b = st.spheres.slot_of[j];
-  const unsigned char role_a = st.window.cell_role[st.grid.cell_of_slot[a]];
-  const unsigned char role_b = st.window.cell_role[st.grid.cell_of_slot[b]];
-  if (a == b || (role_a & kOwnerBits) == (role_b & kOwnerBits)) return true;
-  const int *row = st.lists.row(a);
-  bool listed = false;
-  for (int q = 1; q <= row[0]; ++q) listed = listed || row[q] == b;
-  return listed && (role_a & kBoundaryBit) && (role_b & kBoundaryBit);
-}
 
 void SphereMover::reset(const double *xyz, const double *radius, int n, const SettleBox &box,
                         double d_max, double contact_tol)
@@ -691,7 +532,7 @@ inline bool overlaps_listed(const SphereMover::State &st, const int *row, double
 }
 
 // The acceptance rule of a trial (section II), compiled per (mono/poly, periodic x, periodic y,
-// region): the serial loop and the windowed executor share it.
+// region).
 template <bool Mono, bool PeriodicX, bool PeriodicY, bool Region>
 struct TrialRule {
   const SphereMover::State &st;
@@ -729,7 +570,7 @@ struct TrialRule {
   }
 };
 
-// One block of trials on this thread, compiled per (mono/poly, periodic x, periodic y, region).
+// One block of trials, compiled per (mono/poly, periodic x, periodic y, region).
 template <bool Mono, bool PeriodicX, bool PeriodicY, bool Region>
 void run_trials(SphereMover::State &st, const RunArgs &a)
 {
@@ -790,265 +631,13 @@ void run_trials(SphereMover::State &st, const RunArgs &a)
   a.tally->sum_dz = sum_dz;
 }
 
-// ---- The windowed executor (threads > 1) -----------------------------------------------------
-// Trial t's pick and move depend only on (rng, t), so the trials of a block are known before
-// they run. They are planned a chunk at a time and cut into windows: a window ends
-// before the first trial whose sphere it already holds kThreadWindowPicks times. During a window
-// the lists and the grid are not changed: the lists carry 2 kThreadWindowPicks d_max of extra
-// skin, so a sphere that starts the window within skin/2 of its reference stays within the
-// lists' reach (skin/2 + kThreadWindowPicks d_max), and every overlap stays listed (header).
-// A trial then reads its sphere's record and list row and its listed neighbours' positions,
-// and writes only its sphere's position and image counts. Two trials of one window interact
-// only if they move the same sphere or listed neighbours (the lists are symmetric); such pairs
-// must run in trial order, all others commute.
-// Owners: each trial runs on the thread owning its sphere's grid cell (slabs of cell layers,
-// assign_owners), in trial order within the thread, so trials of one sphere are ordered. A
-// listed neighbour's reference lies in the same or an adjacent cell, so a sphere whose layer and
-// both adjacent layers have one owner (interior) has all its neighbours on its own thread. A
-// boundary trial t looks through its row for neighbours picked earlier in the window by another
-// thread and waits (acquire) until that thread has published (release) progress past the latest
-// such trial; that trial's sphere is a boundary sphere too (its adjacent layer has another
-// owner), and every boundary trial publishes its thread's progress. The later trial of every
-// interacting pair waits for the earlier: reads and writes happen in trial order, and the
-// window's moves are the serial ones. Each thread keeps its accepted trials (index, z change)
-// to itself; after the window one thread merges them in trial order: it adds the z changes (so
-// <Z> is bit-identical), notes the moved spheres and updates the lists of those beyond skin/2
-// (serially: list rows and grid cells may widen); when an update moved a sphere to another
-// cell, the owners of the chunk's later trials are redone before the next window. No per-trial
-// word is written on one core and read on another (see WindowExecutor): every member plans
-// the whole chunk's picks and chains for itself and draws only its own trials' moves.
-
-// Spins until every earlier trial of this window by another thread on a listed neighbour of slot
-// s (trial t) is done. Returns the number of such trials still running when looked at.
-inline long wait_for_neighbours(const SphereMover::State &st, const WindowExecutor::Member &me,
-                                int s, long t, long window_first, int member)
-{
-  const WindowExecutor &wx = st.window;
-  const int *row = st.lists.row(s);
-  const std::uint64_t window = wx.window_seq << 32;
-  long waits = 0;
-  for (int q = 1, end = row[0]; q <= end; ++q) {
-    const int j = row[q];
-    if (me.chunk_stamp[j] != wx.chunk_seq) continue;
-    long u = me.last_pick[j];
-    while (u >= t) u = me.prev_pick[u];
-    if (u < window_first) continue;
-    const int owner = me.role[u] & kOwnerBits;
-    if (owner == member) continue;
-    const std::atomic<std::uint64_t> &progress = wx.members[owner].progress;
-    const std::uint64_t needed = window | static_cast<std::uint64_t>(u + 1);
-    if (progress.load(std::memory_order_acquire) >= needed) continue;
-    ++waits;
-    int spins = 0;
-    while (progress.load(std::memory_order_acquire) < needed)
-      spin_pause(spins, wx.team->spins_before_yield());
-  }
-  return waits;
-}
-
-// Member `member`'s trials of the window [first, last) (chunk indices), in trial order.
-template <bool Mono, bool PeriodicX, bool PeriodicY, bool Region>
-void execute_window(SphereMover::State &st, const TrialRule<Mono, PeriodicX, PeriodicY, Region> &rule,
-                    long first, long last, int member)
-{
-  WindowExecutor &wx = st.window;
-  WindowExecutor::Member &me = wx.members[member];
-  SlotRecords &spheres = st.spheres;
-  const CountedRows &lists = st.lists;
-  const std::uint64_t window = wx.window_seq << 32;
-  me.accepted_trials.clear();
-  me.accepted_dz.clear();
-  long boundary = 0, waits = 0;
-  const std::size_t own_count = me.own.size();
-  for (; me.next < own_count && me.own[me.next] < last; ++me.next) {
-    const std::size_t i = me.next;
-    if (i + defaults::kOwnPrefetchAhead < own_count) {
-      const int later = me.slot[me.own[i + defaults::kOwnPrefetchAhead]];
-      prefetch(spheres.at(later));
-      prefetch(lists.row(later));
-    }
-    const long t = me.own[i];
-    const unsigned char role = me.role[t];
-    const int s = me.slot[t];
-    const bool on_boundary = role & kBoundaryBit;
-    if (on_boundary) {
-      ++boundary;
-      waits += wait_for_neighbours(st, me, s, t, first, member);
-    }
-    double *p = spheres.at(s);
-    double x, y, z;
-    int wrap_x, wrap_y;
-    if (rule.accepts(p, s, me.own_draw[i].move, x, y, z, wrap_x, wrap_y)) {
-      me.accepted_trials.push_back(static_cast<int>(t));
-      me.accepted_dz.push_back(z - p[2]);
-      p[0] = x;
-      p[1] = y;
-      p[2] = z;
-      if (PeriodicX && wrap_x) spheres.image[2 * s] += wrap_x;
-      if (PeriodicY && wrap_y) spheres.image[2 * s + 1] += wrap_y;
-    }
-    if (on_boundary)
-      me.progress.store(window | static_cast<std::uint64_t>(t + 1), std::memory_order_release);
-  }
-  me.boundary_trials += boundary;
-  me.waits += waits;
-}
-
-// The trials of a block a member runs, planned by the member itself (see WindowExecutor).
-struct ChunkPlan {
-  const RunArgs &a;
-  std::uint64_t first_trial;  // of the chunk
-  long chunk, cursor;         // trials in the chunk; sweep cursor at its start
-  std::uint32_t n_pick;
-
-  // The chunk's picks, slots, owners and chains, then the member's own trials and moves.
-  void plan(SphereMover::State &st, int member) const
-  {
-    WindowExecutor &wx = st.window;
-    WindowExecutor::Member &me = wx.members[member];
-    std::uint32_t picks[TrialMoveSampler::kBatchMax];
-    for (long t = 0; t < chunk; t += TrialMoveSampler::kBatchMax) {
-      const int count = static_cast<int>(std::min<long>(TrialMoveSampler::kBatchMax, chunk - t));
-      if (a.random)
-        a.sampler->pick_batch(*a.rng, first_trial + static_cast<std::uint64_t>(t), count, n_pick,
-                              picks);
-      for (long u = t; u < t + count; ++u) {
-        const long k = a.random ? static_cast<long>(picks[u - t]) : (cursor + u) % a.m;
-        me.slot[u] = a.candidate_slots ? a.candidate_slots[k] : st.spheres.slot_of[a.candidates[k]];
-      }
-    }
-    const std::uint64_t stamp = wx.chunk_seq;
-    for (long t = 0; t < chunk; ++t) {
-      const int s = me.slot[t];
-      const int before = me.chunk_stamp[s] == stamp ? me.last_pick[s] : -1;
-      me.chunk_stamp[s] = stamp;
-      me.last_pick[s] = static_cast<int>(t);
-      me.prev_pick[t] = before;
-      int limit = before;  // the kThreadWindowPicks-th earlier pick of the same sphere
-      for (int k = 1; k < defaults::kThreadWindowPicks && limit >= 0; ++k) limit = me.prev_pick[limit];
-      me.limit_pick[t] = limit;
-    }
-    plan_from(st, member, 0);
-  }
-
-  // Owners of trials [from, chunk) from the spheres' present cells, and the member's own trials
-  // among them with their moves (again after list updates moved spheres to other cells).
-  void plan_from(SphereMover::State &st, int member, long from) const
-  {
-    WindowExecutor &wx = st.window;
-    WindowExecutor::Member &me = wx.members[member];
-    for (long t = from; t < chunk; ++t) me.role[t] = wx.cell_role[st.grid.cell_of_slot[me.slot[t]]];
-    me.own.clear();
-    me.next = 0;
-    for (long t = from; t < chunk; ++t)
-      if ((me.role[t] & kOwnerBits) == member) me.own.push_back(static_cast<int>(t));
-    me.own_draw.resize(me.own.size());
-    std::uint64_t numbers[TrialMoveSampler::kBatchMax];
-    for (std::size_t i = 0; i < me.own.size(); i += TrialMoveSampler::kBatchMax) {
-      const int count = static_cast<int>(
-          std::min<std::size_t>(TrialMoveSampler::kBatchMax, me.own.size() - i));
-      for (int k = 0; k < count; ++k)
-        numbers[k] = first_trial + static_cast<std::uint64_t>(me.own[i + k]);
-      a.sampler->draw_trials(*a.rng, numbers, count, 0, &me.own_draw[i]);
-    }
-  }
-};
-
-// One block of trials on the team (see above).
-template <bool Mono, bool PeriodicX, bool PeriodicY, bool Region>
-void run_windowed(SphereMover::State &st, const RunArgs &a)
-{
-  WindowExecutor &wx = st.window;
-  ThreadTeam &team = *wx.team;
-  const int members = team.size();
-  const TrialRule<Mono, PeriodicX, PeriodicY, Region> rule(st, a.region);
-  const std::uint32_t n_pick = a.random ? static_cast<std::uint32_t>(a.m) : 0u;
-  long accepted = 0;
-  double sum_dz = a.tally->sum_dz;
-  using Clock = std::chrono::steady_clock;
-  Clock::time_point clock = Clock::now();
-  auto lap = [&](int phase) {
-    const Clock::time_point now = Clock::now();
-    wx.phase_seconds[phase] += std::chrono::duration<double>(now - clock).count();
-    clock = now;
-  };
-  team.wake();
-  for (long chunk_first = 0; chunk_first < a.trials;) {
-    const long chunk = std::min(defaults::kThreadChunkTrials, a.trials - chunk_first);
-    const ChunkPlan plan{a, a.first_trial + static_cast<std::uint64_t>(chunk_first), chunk,
-                         *a.sweep_cursor, n_pick};
-    ++wx.chunk_seq;
-    auto make_plan = [&](int member) { plan.plan(st, member); };
-    team.run(make_plan);
-    lap(0);
-    const std::vector<int> &limit_pick = wx.members[0].limit_pick;
-    const std::vector<int> &slot = wx.members[0].slot;
-    long replan_from = -1;  // >= 0: spheres changed cells; owners of trials from here are stale
-    for (long first = 0; first < chunk;) {
-      long last = first + 1;
-      while (last < chunk && limit_pick[last] < first) ++last;
-      ++wx.window_seq;
-      auto execute = [&](int member) {
-        if (replan_from >= 0) plan.plan_from(st, member, replan_from);
-        execute_window(st, rule, first, last, member);
-      };
-      team.run(execute);
-      lap(2);
-      ++wx.windows;
-      // In trial order (a merge of the members' accepted trials): <Z>, the moved spheres, the
-      // list updates.
-      bool rebinned = false;
-      std::array<std::size_t, defaults::kMaxThreads> next{};
-      for (;;) {
-        int from = -1;
-        long t = last;
-        for (int m = 0; m < members; ++m) {
-          const std::vector<int> &trials_of = wx.members[m].accepted_trials;
-          if (next[m] < trials_of.size() && trials_of[next[m]] < t) {
-            t = trials_of[next[m]];
-            from = m;
-          }
-        }
-        if (from < 0) break;
-        const double dz = wx.members[from].accepted_dz[next[from]++];
-        const int s = slot[t];
-        ++accepted;
-        sum_dz += dz;
-        st.moved.note(s);
-        if (st.drift_sq<PeriodicX, PeriodicY>(s) > st.half_skin_sq) {
-          const int cell = st.grid.cell_of_slot[s];
-          st.relist(s);
-          rebinned = rebinned || st.grid.cell_of_slot[s] != cell;
-        }
-      }
-      replan_from = rebinned ? last : -1;  // the members redo their owners from the next window
-      lap(3);
-      first = last;
-    }
-    if (!a.random) *a.sweep_cursor = (*a.sweep_cursor + chunk) % a.m;
-    chunk_first += chunk;
-  }
-  team.sleep();
-  wx.trials += a.trials;
-  a.tally->trials += a.trials;
-  a.tally->accepted += accepted;
-  a.tally->sum_dz = sum_dz;
-}
-
 namespace {
 
 template <bool Mono, bool PeriodicX, bool PeriodicY>
 void dispatch_region(SphereMover::State &st, const RunArgs &a)
 {
-  const bool windowed = st.windowed_lists && st.threads > 1 &&
-                        a.trials >= defaults::kThreadMinTrialsPerThread * st.threads;
-  if (windowed) {
-    if (a.region) run_windowed<Mono, PeriodicX, PeriodicY, true>(st, a);
-    else run_windowed<Mono, PeriodicX, PeriodicY, false>(st, a);
-  } else {
-    if (a.region) run_trials<Mono, PeriodicX, PeriodicY, true>(st, a);
-    else run_trials<Mono, PeriodicX, PeriodicY, false>(st, a);
-  }
+  if (a.region) run_trials<Mono, PeriodicX, PeriodicY, true>(st, a);
+  else run_trials<Mono, PeriodicX, PeriodicY, false>(st, a);
 }
 
 template <bool Mono>

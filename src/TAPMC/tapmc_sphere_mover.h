@@ -3,8 +3,7 @@
 // n hard spheres, some of which may move, with neighbour lists kept up to date locally (only
 // what moved is rebuilt). The serial kernel (Settler) runs one redeposition on it; the
 // domain-decomposed fix mc/settle runs blocks of trials on each rank's own spheres, the
-// others (LAMMPS ghosts) being obstacles whose positions it refreshes between blocks. With
-// set_threads(N > 1) it runs blocks of trials on N threads, with the same moves.
+// others (LAMMPS ghosts) being obstacles whose positions it refreshes between blocks.
 #ifndef TAPMC_SPHERE_MOVER_H
 #define TAPMC_SPHERE_MOVER_H
 
@@ -93,32 +92,6 @@ class SphereMover {
   // only the speed changes. Throws std::invalid_argument outside (0, +inf).
   void set_skin(double skin_over_max_radius);
   double skin() const;
-
-  // Threads of run() (default 1: the serial loop), used from the next reset. With threads > 1,
-  // blocks of trials run in windows on a persistent team of threads and make the same moves,
-  // bit for bit, as one thread: the same positions, image shifts, tallies (the accepted z
-  // changes are summed in trial order) and moved spheres in the same order; only the list
-  // diagnostics (local_updates, mean_list_length) differ (wider lists, updates between windows).
-  // Throws std::invalid_argument outside [1, defaults::kMaxThreads].
-  void set_threads(int threads);
-  int threads() const;
-
-  // The windowed executor since reset: windows run, trials in them, trials of spheres next to
-  // another thread's region (which look for earlier neighbours' trials of other threads) and
-  // the waits for such a trial still running.
-  struct WindowStats {
-    long windows = 0, trials = 0, boundary_trials = 0, waits = 0;
-    // Wall seconds of the calling thread in the phases: the chunks' plans (team: picks, owners,
-    // chains, each member's own moves), the windows' trials (team), the merges and list updates
-    // (one thread).
-    double plan_seconds = 0, execute_seconds = 0, merge_seconds = 0;
-  };
-  WindowStats window_stats() const;
-
-  // For tests of the conflict rule: whether trials of spheres i and j (caller indices) in one
-  // window would run in trial order (the same thread, or listed neighbours that both look for
-  // the other thread's trials). Meaningful after a reset with threads > 1.
-  bool window_orders(int i, int j) const;
 
   struct State;  // defined in tapmc_sphere_mover.cpp
 

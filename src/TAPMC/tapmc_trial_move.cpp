@@ -333,18 +333,6 @@ void TrialMoveSampler::draw_batch(const CounterRandom &rng, std::uint64_t first,
   draw_trials(rng, trial, count, n_pick, out);
 }
 
-void TrialMoveSampler::pick_batch(const CounterRandom &rng, std::uint64_t first, int count,
-                                  std::uint32_t n_pick, std::uint32_t *out) const
-{
-  if (count < 0 || count > kBatchMax)
-    throw_outside_range("pick_batch count", count, "[0, " + std::to_string(kBatchMax) + "]");
-  std::uint64_t positions[kBatchMax];
-  RandomBlock blocks[kBatchMax];
-  for (int k = 0; k < count; ++k) positions[k] = (first + k) * kDrawsPerTrial + kMainDraw;
-  rng.blocks(positions, count, blocks);
-  for (int k = 0; k < count; ++k) out[k] = sample_pick(rng, first + k, blocks[k][0], n_pick);
-}
-
 void TrialMoveSampler::draw_trials(const CounterRandom &rng, const std::uint64_t *trial,
                                    int count, std::uint32_t n_pick, TrialDraw *out) const
 {

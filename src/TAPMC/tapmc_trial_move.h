@@ -262,10 +262,6 @@ class TrialMoveSampler {
   void draw_batch(const CounterRandom &rng, std::uint64_t first, int count, std::uint32_t n_pick,
                   TrialDraw *out) const;
 
-  // The picks alone of trials first .. first + count - 1 (count <= kBatchMax, n_pick >= 1),
-  // the same as draw(...).pick.
-  void pick_batch(const CounterRandom &rng, std::uint64_t first, int count, std::uint32_t n_pick,
-                  std::uint32_t *out) const;
   // Trials trial[0 .. count) (any numbers, count <= kBatchMax) at once, bit-identical to draw().
   void draw_trials(const CounterRandom &rng, const std::uint64_t *trial, int count,
                    std::uint32_t n_pick, TrialDraw *out) const;
