@@ -70,6 +70,23 @@ constexpr double kVerticalWindowBottomOverRadius = 2.0;
 // Default number of cut planes of the profile array (bins of about 0.3R for a 32R box).
 constexpr int kProfilePlanes = 100;
 
+// ---- a cylindrical container (tapmc_cylinder.h) -------------------------------------------
+// The wall zone of a tube is the annulus within kLateralWidthOverRadius (7R) of the wall, the
+// box's lateral zone of FIG. 8 bent round; the core is the disk inside it.
+// The volume of a sphere inside a coaxial cylinder is the integral over z of a lens area,
+// computed by Gauss-Legendre with this many nodes on each of at most six pieces between the
+// kinks of the lens (tapmc_cylinder.cpp). Worst error against a 30-digit quadrature over 130
+// random and adversarial cases (kinks at the poles and at the equator, within 1e-9 R of them):
+// 3e-9 R^3 with 12 nodes, 8e-14 with 16, 1e-14 with 20, 2e-15 with 24; 20 costs about 120 lens
+// areas per sphere and cylinder. The surface areas (the derivative in the cylinder's radius)
+// use the same nodes: ~1e-15 R^2 in general, up to 4e-8 R^2 where a kink lies within 1e-7 R
+// of a pole cut by the slab or of the equator (an arc behaves like a square root there).
+constexpr int kCylinderQuadratureNodes = 20;
+// Circular segments of a lens (tapmc_cylinder.cpp) take phi - sin(phi) (phi: the chord's full
+// angle) from its Taylor series below this angle, where the difference loses more than two
+// digits; its six terms through phi^13 are exact to 1e-18 relative at the threshold.
+constexpr double kLensSeriesAngle = 0.25;
+
 // ---- contacts: compute contacts and tapmc.contacts (tapmc_contacts.h) -----------------------
 // Spheres i and j are in contact when |r_ij| <= (R_i + R_j)(1 + g + tol), a sphere and the floor
 // when z_i - R_i - z0 <= (g + tol) 2 R_i, with tol = kContactsGapTolerance: the model's contact

@@ -1,5 +1,5 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-// Exact stereology kernels: closed-form sphere slab, disk band and two-plane sphere volumes.
+// Exact stereology kernels: closed-form sphere volumes and their sums in a box or a cylinder.
 #include "tapmc_stereology.h"
 
 #include "tapmc_checks.h"
@@ -478,6 +478,190 @@ std::vector<double> profile(const Spheres &spheres, const Box &box, int axis,
   accumulate_profile(spheres, box, axis, grid, za, zb, cut.data(), volume.data());
   finish_profile(cut.data(), volume.data(), box, axis, grid, za, zb, rows.data());
   return rows;
+}
+
+// ---- a cylindrical container ----------------------------------------------------------------
+
+namespace {
+double axis_distance(const Cylinder &c, double x, double y)
+{
+  const double dx = x - c.cx, dy = y - c.cy;
+  return std::sqrt(dx * dx + dy * dy);
+}
+
+// Area of the horizontal cut at height u above the centre of a sphere of radius r whose centre
+// is d from the container's axis, inside the container's disk.
+double cut_in_disk(double r, double d, double u, double radius)
+{
+  if (!(std::fabs(u) < r)) return 0.0;
+  const double a2 = (r - u) * (r + u);
+  if (d + r <= radius) return kPi * a2;  // wholly inside: the closed form, as for the box
+  return disk_lens_area(std::sqrt(a2), radius, d);
+}
+}  // namespace
+
+double cylinder_cut_area(const Spheres &spheres, const Cylinder &cylinder, double z)
+{
+  double area = 0.0;
+  for_each_sphere(spheres, [&](double x, double y, double zc, double r) {
+    area += cut_in_disk(r, axis_distance(cylinder, x, y), z - zc, cylinder.radius);
+  });
+  return area;
+}
+
+double cylinder_slab_volume(const Spheres &spheres, const Cylinder &cylinder, double z0,
+                            double z1)
+{
+  double volume = 0.0;
+  for_each_sphere(spheres, [&](double x, double y, double zc, double r) {
+    volume += sphere_cylinder_slab_volume(r, axis_distance(cylinder, x, y), cylinder.radius,
+                                          z0 - zc, z1 - zc);
+  });
+  return volume;
+}
+
+void accumulate_cylinder_profile(const Spheres &spheres, const Cylinder &cylinder,
+                                 const PlaneGrid &grid, double *cut_area, double *bin_volume)
+{
+  validate(grid);
+  const int n = grid.n;
+  const double w = grid.bin_width();
+  const double inv_w = 1.0 / w;
+  for_each_sphere(spheres, [&](double x, double y, double zc, double r) {
+    const double d = axis_distance(cylinder, x, y);
+    if (d >= cylinder.radius + r) return;  // wholly outside the container
+    const int first = std::max(0, static_cast<int>(std::floor((zc - r - grid.lo) * inv_w)));
+    const int last = std::min(n - 1, static_cast<int>(std::floor((zc + r - grid.lo) * inv_w)));
+    for (int k = first; k <= last; ++k) {
+      cut_area[k] += cut_in_disk(r, d, grid.position(k) - zc, cylinder.radius);
+      const double edge = grid.lo + k * w - zc;
+      bin_volume[k] += sphere_cylinder_slab_volume(r, d, cylinder.radius, edge, edge + w);
+    }
+  });
+}
+
+void finish_cylinder_profile(const double *cut_area, const double *bin_volume,
+                             const Cylinder &cylinder, const PlaneGrid &grid, double *rows)
+{
+  const double inv_area = 1.0 / (kPi * cylinder.radius * cylinder.radius);
+  const double inv_bin = inv_area / grid.bin_width();
+  for (int k = 0; k < grid.n; ++k) {
+    rows[3 * k] = grid.position(k);
+    rows[3 * k + 1] = cut_area[k] * inv_area;
+    rows[3 * k + 2] = bin_volume[k] * inv_bin;
+  }
+}
+
+std::vector<double> cylinder_profile(const Spheres &spheres, const Cylinder &cylinder,
+                                     const PlaneGrid &grid)
+{
+  validate(cylinder);
+  std::vector<double> cut(grid.n, 0.0), volume(grid.n, 0.0), rows(3 * grid.n);
+  accumulate_cylinder_profile(spheres, cylinder, grid, cut.data(), volume.data());
+  finish_cylinder_profile(cut.data(), volume.data(), cylinder, grid, rows.data());
+  return rows;
+}
+
+void accumulate_radial_profile(const Spheres &spheres, const Cylinder &cylinder,
+                               const PlaneGrid &radii, double za, double zb, double *cut_area,
+                               double *bin_volume)
+{
+  validate(radii);
+  if (!(radii.lo >= 0.0)) throw_outside_range("radial bins lo", radii.lo, "[0, hi)");
+  if (!(za < zb)) return;
+  const int n = radii.n;
+  const double w = radii.bin_width();
+  const double inv_w = 1.0 / w;
+  for_each_sphere(spheres, [&](double x, double y, double zc, double r) {
+    if (za - zc >= r || zb - zc <= -r) return;  // the sphere misses the z-window
+    const double d = axis_distance(cylinder, x, y);
+    const double lo = za - zc, hi = zb - zc;
+    // annulus k holds V(r_k+1) - V(r_k), V(rho) the volume inside the coaxial cylinder of radius
+    // rho; V is 0 below d - r and constant above d + r, so only the bins reaching
+    // [d - r, d + r] change, and consecutive bins share their boundary's V
+    const int first = std::max(0, static_cast<int>(std::floor((d - r - radii.lo) * inv_w)));
+    const int last = std::min(n - 1, static_cast<int>(std::floor((d + r - radii.lo) * inv_w)));
+    if (first > last) return;
+    double v_below = sphere_cylinder_slab_volume(r, d, radii.lo + first * w, lo, hi);
+    for (int k = first; k <= last; ++k) {
+      const double v_above = sphere_cylinder_slab_volume(r, d, radii.lo + (k + 1) * w, lo, hi);
+      bin_volume[k] += v_above - v_below;
+      v_below = v_above;
+      cut_area[k] += sphere_cylinder_surface_area(r, d, radii.position(k), lo, hi);
+    }
+  });
+}
+
+void finish_radial_profile(const double *cut_area, const double *bin_volume,
+                           const PlaneGrid &radii, double za, double zb, double *rows)
+{
+  const double height = std::max(0.0, zb - za);
+  const double w = radii.bin_width();
+  for (int k = 0; k < radii.n; ++k) {
+    const double r_mid = radii.position(k);
+    const double r0 = radii.lo + k * w, r1 = r0 + w;
+    const double surface = kTwoPi * r_mid * height;
+    const double annulus = kPi * (r1 - r0) * (r1 + r0) * height;
+    rows[3 * k] = r_mid;
+    rows[3 * k + 1] = surface > 0.0 ? cut_area[k] / surface : 0.0;
+    rows[3 * k + 2] = annulus > 0.0 ? bin_volume[k] / annulus : 0.0;
+  }
+}
+
+std::vector<double> radial_profile(const Spheres &spheres, const Cylinder &cylinder,
+                                   const PlaneGrid &radii, double za, double zb)
+{
+  validate(cylinder);
+  std::vector<double> cut(radii.n, 0.0), volume(radii.n, 0.0), rows(3 * radii.n);
+  accumulate_radial_profile(spheres, cylinder, radii, za, zb, cut.data(), volume.data());
+  finish_radial_profile(cut.data(), volume.data(), radii, za, zb, rows.data());
+  return rows;
+}
+
+void accumulate_cylinder_zones(const Spheres &spheres, const Cylinder &cylinder,
+                               double wall_width, double za, double zb, double *sums)
+{
+  if (!(wall_width > 0.0)) throw_outside_range("wall zone width", wall_width, "(0, +inf)");
+  if (!(za < zb)) return;
+  const double core = std::max(0.0, cylinder.radius - wall_width);
+  double wall_volume = 0.0, core_volume = 0.0;
+  for_each_sphere(spheres, [&](double x, double y, double zc, double r) {
+    if (za - zc >= r || zb - zc <= -r) return;
+    const double d = axis_distance(cylinder, x, y);
+    const double v_core = sphere_cylinder_slab_volume(r, d, core, za - zc, zb - zc);
+    const double v_all = sphere_cylinder_slab_volume(r, d, cylinder.radius, za - zc, zb - zc);
+    core_volume += v_core;
+    wall_volume += v_all - v_core;
+  });
+  sums[kCylinderWallVolume] += wall_volume;
+  sums[kCylinderCoreVolume] += core_volume;
+}
+
+CylinderZones finish_cylinder_zones(const double *sums, const Cylinder &cylinder,
+                                    double wall_width, double za, double zb)
+{
+  CylinderZones out;
+  const double height = std::max(0.0, zb - za);
+  const double radius = cylinder.radius;
+  out.core_radius = std::max(0.0, radius - wall_width);
+  const double core = out.core_radius;
+  const double wall_area = kPi * (radius - core) * (radius + core);
+  const double core_area = kPi * core * core;
+  out.phi_wall = wall_area * height > 0.0 ? sums[kCylinderWallVolume] / (wall_area * height) : 0.0;
+  // no core: NaN, not a 0 that reads as a measurement (as Summary::phi_central)
+  out.phi_core = core > 0.0 ? (height > 0.0 ? sums[kCylinderCoreVolume] / (core_area * height)
+                                            : 0.0)
+                            : std::numeric_limits<double>::quiet_NaN();
+  return out;
+}
+
+CylinderZones cylinder_zones(const Spheres &spheres, const Cylinder &cylinder,
+                             double wall_width, double za, double zb)
+{
+  validate(cylinder);
+  double sums[kNumCylinderZoneSums] = {};
+  accumulate_cylinder_zones(spheres, cylinder, wall_width, za, zb, sums);
+  return finish_cylinder_zones(sums, cylinder, wall_width, za, zb);
 }
 
 }  // namespace stereo

@@ -12,6 +12,7 @@
 #ifndef TAPMC_STEREOLOGY_H
 #define TAPMC_STEREOLOGY_H
 
+#include "tapmc_cylinder.h"
 #include "tapmc_defaults.h"
 
 #include <optional>
@@ -184,6 +185,62 @@ void finish_profile(const double *cut_area, const double *bin_volume, const Box 
                     const PlaneGrid &grid, double za, double zb, double *rows);
 std::vector<double> profile(const Spheres &spheres, const Box &box, int axis,
                             const PlaneGrid &grid, double za, double zb);
+
+// ---- a cylindrical container (tapmc_cylinder.h) ---------------------------------------------
+// Every measure counts only the sphere material inside the container's disk (or inside the
+// coaxial cylinder of a radial bin): exact for any input, also for a sphere poking through the
+// wall of an invalid packing. A sphere wholly inside takes the closed forms above; one cut by a
+// cylinder takes sphere_cylinder_slab_volume (tapmc_cylinder.h, quadrature to ~1e-15 R^3).
+
+// Phi(z) over the disk (the horizontal cuts of the tube, paper section III): sum of the areas of
+// the cut disks inside the container's disk at height z, and the sphere volume inside the
+// container in z0 <= z <= z1. Divide by pi radius^2 (and z1 - z0).
+double cylinder_cut_area(const Spheres &spheres, const Cylinder &cylinder, double z);
+double cylinder_slab_volume(const Spheres &spheres, const Cylinder &cylinder, double z0,
+                            double z1);
+// Adds, for every horizontal plane k of the grid (along z), the cut area inside the disk at the
+// plane to cut_area[k] and the volume inside the container in its bin to bin_volume[k].
+void accumulate_cylinder_profile(const Spheres &spheres, const Cylinder &cylinder,
+                                 const PlaneGrid &grid, double *cut_area, double *bin_volume);
+// rows[3 k + 0] plane height, rows[3 k + 1] Phi at the plane, rows[3 k + 2] exact mean of Phi
+// over bin k (the layout of finish_profile), over the disk's area pi radius^2.
+void finish_cylinder_profile(const double *cut_area, const double *bin_volume,
+                             const Cylinder &cylinder, const PlaneGrid &grid, double *rows);
+std::vector<double> cylinder_profile(const Spheres &spheres, const Cylinder &cylinder,
+                                     const PlaneGrid &grid);
+
+// The radial profile, the tube's transversal profile: the grid's bins are coaxial annuli
+// [r_k, r_k+1] (radii from the container's axis, grid.lo >= 0) restricted to za <= z <= zb, its
+// planes the coaxial cylindrical surfaces at the bin centres. Adds the sphere area on surface k
+// (within the z-window) to cut_area[k] and the sphere volume in annulus k to bin_volume[k].
+// Throws std::invalid_argument for a grid with lo < 0 (as validate(PlaneGrid)).
+void accumulate_radial_profile(const Spheres &spheres, const Cylinder &cylinder,
+                               const PlaneGrid &radii, double za, double zb, double *cut_area,
+                               double *bin_volume);
+// rows[3 k + 0] radius of surface k, rows[3 k + 1] Phi on it (area / (2 pi r (zb - za))),
+// rows[3 k + 2] the volume fraction of annulus k (volume / (pi (r_k+1^2 - r_k^2) (zb - za)));
+// zeros if zb <= za.
+void finish_radial_profile(const double *cut_area, const double *bin_volume,
+                           const PlaneGrid &radii, double za, double zb, double *rows);
+std::vector<double> radial_profile(const Spheres &spheres, const Cylinder &cylinder,
+                                   const PlaneGrid &radii, double za, double zb);
+
+// The wall zone of the tube (FIG. 8's zone within 7R of the side walls, here the annulus within
+// wall_width of the wall: radius - wall_width <= r <= radius) and the core inside it, over the
+// z-window [za, zb]. Sums to add up over ranks:
+enum CylinderZoneSum { kCylinderWallVolume, kCylinderCoreVolume, kNumCylinderZoneSums };
+// Throws std::invalid_argument unless wall_width > 0 (naming it).
+void accumulate_cylinder_zones(const Spheres &spheres, const Cylinder &cylinder,
+                               double wall_width, double za, double zb, double *sums);
+struct CylinderZones {
+  double phi_wall = 0.0;     // volume fraction of the wall annulus
+  double phi_core = 0.0;     // of the core; NaN when the wall zone covers the disk (no core)
+  double core_radius = 0.0;  // max(0, radius - wall_width)
+};
+CylinderZones finish_cylinder_zones(const double *sums, const Cylinder &cylinder,
+                                    double wall_width, double za, double zb);
+CylinderZones cylinder_zones(const Spheres &spheres, const Cylinder &cylinder,
+                             double wall_width, double za, double zb);
 
 }  // namespace stereo
 }  // namespace tapmc
