@@ -5,8 +5,11 @@
 // second tap, with list lengths, local list updates per sweep and peak memory, and the locality
 // ceiling (the same sweeps in memory order).
 //
-// Usage: bench_mc_settle [--quick] [--scaling]
+// Usage: bench_mc_settle [--quick] [--scaling | --kernel]
 //   --quick:   fewer repeats and sweeps, scaling for N = 4096 and 262144 only (under 2 min)
+//   --kernel:  only the kernel rows, one line each (the rows bench/ab_mc_settle.py alternates
+//              with a reference commit): N = 4096 Random / Sweep / poly / FBC and a tap until
+//              eta = 1e-6 (about 3 s); with --large also the first tap of N = 262144 (+ 10 s)
 //   --scaling: only the scaling section
 #include "bench_common.h"
 #include "../tests/unit/settle_test_scenes.h"
@@ -211,21 +214,68 @@ void scaling_section(bool quick)
                 rate.second / rate.first, rate.first / base.first, rate.second / base.second);
 }
 
+// The kernel rows alone, one "label  value M moves/s" line each, medians of CPU-timed repeats
+// (bench/ab_mc_settle.py reads them).
+void kernel_section(bool large)
+{
+  // 100 sweeps a repeat: the list build of each call stays near 1 % of the row
+  const int repeats = 3;
+  const long sweeps = 100;
+  const Scene deposited = deposited_bed(4096, 32.0, true, false, 7);
+  Scene bed = deposited;
+  dilate(bed, 0.01);
+  Scene poly = deposited_bed(4096, 32.0, true, true, 7);
+  dilate(poly, 0.01);
+  Scene walls = deposited_bed(4096, 32.0, false, false, 7);
+  dilate(walls, 0.01);
+  Settler settler;
+  auto row = [&](const char *label, const Scene &start, double eta, long max_sweeps,
+                 PickOrder order) {
+    std::vector<double> rates;
+    time_tap(settler, start, 0.0, 1, 99, nullptr, order);  // warm-up: storage and caches
+    for (int r = 0; r < repeats; ++r)
+      rates.push_back(time_tap(settler, start, eta, max_sweeps, 100 + r, nullptr, order).moves_per_s);
+    std::printf("%-44s %10.3f M moves/s\n", label, median(rates) / 1e6);
+  };
+  row("N = 4096, Random order (paper)", bed, 0.0, sweeps, PickOrder::Random);
+  row("N = 4096, Sweep order", bed, 0.0, sweeps, PickOrder::Sweep);
+  row("N = 4096, polydisperse R in [0.8, 1]", poly, 0.0, sweeps, PickOrder::Random);
+  row("N = 4096, FBC (walls)", walls, 0.0, sweeps, PickOrder::Random);
+  row("N = 4096, a tap until eta = 1e-6", bed, 1e-6, 100000, PickOrder::Random);
+  if (!large) return;
+  Scene bed_large = deposited_bed(262144, 256.0, true, false, 7);
+  dilate(bed_large, 0.01);
+  Settler large_settler;
+  std::vector<double> rates;
+  time_tap(large_settler, bed_large, 0.0, 1, 99);
+  for (int r = 0; r < 3; ++r)
+    rates.push_back(time_tap(large_settler, bed_large, 0.0, 20, 100 + r).moves_per_s);
+  std::printf("%-44s %10.3f M moves/s\n", "N = 262144, Random order, first tap", median(rates) / 1e6);
+}
+
 }  // namespace
 
 int main(int argc, char **argv)
 {
-  bool quick = false, scaling_only = false;
+  bool quick = false, scaling_only = false, kernel_only = false, large = false;
   for (int a = 1; a < argc; ++a) {
     if (std::strcmp(argv[a], "--quick") == 0) quick = true;
     else if (std::strcmp(argv[a], "--scaling") == 0) scaling_only = true;
+    else if (std::strcmp(argv[a], "--kernel") == 0) kernel_only = true;
+    else if (std::strcmp(argv[a], "--large") == 0) large = true;
     else {
       std::fprintf(stderr, "bench_mc_settle: unknown argument '%s' (allowed: --quick, "
-                   "--scaling)\n", argv[a]);
+                   "--scaling, --kernel [--large])\n", argv[a]);
       return 2;
     }
   }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress visible when redirected
+  if (kernel_only) {
+    std::printf("bench_mc_settle: TAPMC redeposition kernel\nmachine: %s (one core)\n",
+                cpu_model().c_str());
+    kernel_section(large);
+    return 0;
+  }
   if (scaling_only) {
     std::printf("bench_mc_settle: TAPMC redeposition kernel\nmachine: %s (one core)\n",
                 cpu_model().c_str());
