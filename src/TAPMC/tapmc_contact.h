@@ -44,6 +44,7 @@ enum PlaneId : int {
   kWallXhi = -3,     // x = high x wall
   kWallYlo = -4,     // y = low y wall (non-periodic y)
   kWallYhi = -5,     // y = high y wall
+  kCylinderWall = -6,  // the wall of a cylindrical container (tapmc_cylinder.h)
 };
 // The two side walls of axis 0 (x) or 1 (y).
 inline PlaneId low_wall(int axis) { return axis == 0 ? kWallXlo : kWallYlo; }
@@ -57,6 +58,7 @@ inline const char *plane_name(PlaneId plane)
     case kWallXhi: return "the high x wall";
     case kWallYlo: return "the low y wall";
     case kWallYhi: return "the high y wall";
+    case kCylinderWall: return "the cylinder wall";
   }
   return "an unknown plane";
 }

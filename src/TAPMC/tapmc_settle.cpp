@@ -192,7 +192,9 @@ Violation Settler::find_violation(const double *xyz, const double *radius, int n
     const double x = wrapped[3 * i], y = wrapped[3 * i + 1], z = wrapped[3 * i + 2];
     const double r = radius[i];
     double gap;
-    if (const int code = plane_violation<false, false>(sc, x, y, z, r, gap)) {
+    int code = plane_violation<false, false>(sc, x, y, z, r, gap);
+    if (!code) code = container_violation(sc, x, y, r, gap);
+    if (code) {
       v.i = i;
       v.j = code;
       v.gap = gap;

@@ -8,6 +8,7 @@
 #include "tapmc_cell_grid.h"
 #include "tapmc_checks.h"
 #include "tapmc_contact.h"
+#include "tapmc_cylinder.h"
 #include "tapmc_defaults.h"
 #include "tapmc_math.h"
 #include "tapmc_settle_types.h"
@@ -64,6 +65,11 @@ struct Scene {
   // Side planes; -inf / +inf where there is none, so the plane tests never fire.
   double wall_lo[2] = {-kInf, -kInf}, wall_hi[2] = {kInf, kInf};
   double floor_z = 0.0;
+  // The cylindrical container, if any (then x and y are not periodic), and the squared reach
+  // of a sphere of radius r_mono (the monodisperse loop's one number).
+  bool cylinder = false;
+  CylinderWall wall;
+  double cylinder_reach_sq_mono = 0.0;
 };
 
 inline Scene make_scene(const double *radius, int n, const SettleBox &box, double contact_tol)
@@ -123,6 +129,22 @@ inline Scene make_scene(const double *radius, int n, const SettleBox &box, doubl
                             "(wall_lo_pos, +inf) = (" + number(box.wall_lo_pos[d]) + ", +inf)");
     }
   }
+  if (box.cylinder) {
+    if (box.periodic[0] || box.periodic[1])
+      throw std::invalid_argument(
+          "a cylindrical container needs non-periodic x and y (periodic x: " +
+          std::string(box.periodic[0] ? "yes" : "no") +
+          ", periodic y: " + std::string(box.periodic[1] ? "yes" : "no") + ")");
+    const Cylinder cylinder{box.cylinder_cx, box.cylinder_cy, box.cylinder_radius};
+    if (n > 0) {
+      s.wall = make_cylinder_wall(cylinder, s.r_max, contact_tol);
+    } else {
+      validate(cylinder);
+      s.wall = CylinderWall{cylinder.cx, cylinder.cy, cylinder.radius, contact_tol};
+    }
+    s.cylinder = true;
+    s.cylinder_reach_sq_mono = s.wall.reach_sq(s.r_mono);
+  }
   return s;
 }
 
@@ -143,6 +165,15 @@ inline int plane_violation(const Scene &s, double x, double y, double z, double 
   if (!PeriodicY)
     if (const int wall = side_wall_violation(1, y, r, s.wall_lo[1], s.wall_hi[1], s.tol, gap))
       return wall;
+  return 0;
+}
+
+// The container's wall: kCylinderWall with its gap when the sphere is not inside it, else 0
+// (also 0 without a container). The hot loop tests the wall itself, compiled only where there is
+// one (tapmc_sphere_mover.cpp).
+inline int container_violation(const Scene &s, double x, double y, double r, double &gap)
+{
+  if (s.cylinder && cylinder_violation(s.wall, x, y, r, gap)) return kCylinderWall;
   return 0;
 }
 
@@ -186,6 +217,13 @@ inline std::array<GridAxis, 3> grid_axes(const Scene &s, const double *xyz, int 
   for (int d = 0; d < 2; ++d) {
     if (std::isfinite(s.wall_lo[d])) mn[d] = std::min(mn[d], s.wall_lo[d]);
     if (std::isfinite(s.wall_hi[d])) mx[d] = std::max(mx[d], s.wall_hi[d]);
+  }
+  if (s.cylinder) {  // the spheres move anywhere inside the disk
+    const double centre[2] = {s.wall.cx, s.wall.cy};
+    for (int d = 0; d < 2; ++d) {
+      mn[d] = std::min(mn[d], centre[d] - s.wall.radius);
+      mx[d] = std::max(mx[d], centre[d] + s.wall.radius);
+    }
   }
   mn[2] = std::min(mn[2], s.floor_z);
   std::array<GridAxis, 3> axes;

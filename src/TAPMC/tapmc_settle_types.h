@@ -14,6 +14,10 @@ struct SettleBox {
   bool wall_lo[2], wall_hi[2];  // impassable side planes in non-periodic x / y
   double wall_lo_pos[2], wall_hi_pos[2];  // their positions (sphere needs x - R >= wall_lo_pos)
   double floor_z;               // impassable bottom plane: needs z - R >= floor_z
+  // A vertical cylindrical container (tapmc_cylinder.h), with non-periodic x and y only: the
+  // centre must stay within cylinder_radius - R of the axis through (cylinder_cx, cylinder_cy).
+  bool cylinder = false;
+  double cylinder_cx = 0.0, cylinder_cy = 0.0, cylinder_radius = 0.0;
 };
 
 enum class PickOrder { Random, Sweep };  // Random: the paper (uniform pick); Sweep: memory order

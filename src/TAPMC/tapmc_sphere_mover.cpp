@@ -33,11 +33,14 @@
 //
 // Hot loop. Picks are drawn a batch ahead (TrialMoveSampler::draw_batch); the picked spheres'
 // records and rows are prefetched 16 trials ahead, the records of the first few entries of their
-// lists 8 trials ahead (the test exits at the first overlap, after 2.2 entries on average).
+// lists 8 trials ahead (the test exits at the first overlap, after 2.2 entries on average; the
+// entry that blocked a trial moves to the front of its row, so that the next trial of that
+// sphere checks it first).
 // Records, rows and cells live in large-page storage (tapmc_memory.h): with 4 KiB pages the
 // random picks of a 262144-sphere bed miss the TLB, and huge pages made that bed 1.3-2.3 times
 // faster (bench_mc_settle --scaling, alternating runs). The loop is compiled once per
-// combination of mono/poly, periodic axes and region (dispatched once per call), with the
+// combination of mono/poly, periodic axes, region and cylindrical container (dispatched once
+// per call), with the
 // overlap arithmetic of tapmc_contact.h and tapmc_settle_geometry.h.
 #include "tapmc_sphere_mover.h"
 
@@ -539,8 +542,8 @@ inline bool overlaps_listed(const SphereMover::State &st, int *row, double x, do
 }
 
 // The acceptance rule of a trial (section II), compiled per (mono/poly, periodic x, periodic y,
-// region).
-template <bool Mono, bool PeriodicX, bool PeriodicY, bool Region>
+// region, cylindrical container).
+template <bool Mono, bool PeriodicX, bool PeriodicY, bool Region, bool Cylinder>
 struct TrialRule {
   SphereMover::State &st;
   double r_mono, threshold_sq_mono, half_x, half_y;
@@ -572,18 +575,21 @@ struct TrialRule {
       return false;
     double gap;
     if (plane_violation<PeriodicX, PeriodicY>(sc, x, y, z, r, gap)) return false;
+    if (Cylinder &&
+        !sc.wall.contains(x, y, Mono ? sc.cylinder_reach_sq_mono : sc.wall.reach_sq(r)))
+      return false;
     return !overlaps_listed<Mono, PeriodicX, PeriodicY>(st, st.lists.row(s), x, y, z, r,
                                                         threshold_sq_mono, half_x, half_y);
   }
 };
 
-// One block of trials, compiled per (mono/poly, periodic x, periodic y, region).
-template <bool Mono, bool PeriodicX, bool PeriodicY, bool Region>
+// One block of trials, compiled per (mono/poly, periodic x, periodic y, region, cylinder).
+template <bool Mono, bool PeriodicX, bool PeriodicY, bool Region, bool Cylinder>
 void run_trials(SphereMover::State &st, const RunArgs &a)
 {
   SlotRecords &spheres = st.spheres;
   const CountedRows &lists = st.lists;
-  const TrialRule<Mono, PeriodicX, PeriodicY, Region> rule(st, a.region);
+  const TrialRule<Mono, PeriodicX, PeriodicY, Region, Cylinder> rule(st, a.region);
   const std::uint32_t n_pick = a.random ? static_cast<std::uint32_t>(a.m) : 0u;
   long accepted = 0;
   double sum_dz = a.tally->sum_dz;
@@ -640,21 +646,23 @@ void run_trials(SphereMover::State &st, const RunArgs &a)
 
 namespace {
 
-template <bool Mono, bool PeriodicX, bool PeriodicY>
+template <bool Mono, bool PeriodicX, bool PeriodicY, bool Cylinder>
 void dispatch_region(SphereMover::State &st, const RunArgs &a)
 {
-  if (a.region) run_trials<Mono, PeriodicX, PeriodicY, true>(st, a);
-  else run_trials<Mono, PeriodicX, PeriodicY, false>(st, a);
+  if (a.region) run_trials<Mono, PeriodicX, PeriodicY, true, Cylinder>(st, a);
+  else run_trials<Mono, PeriodicX, PeriodicY, false, Cylinder>(st, a);
 }
 
+// A cylindrical container comes only with non-periodic x and y (make_scene).
 template <bool Mono>
 void dispatch_axes(SphereMover::State &st, const RunArgs &a)
 {
   const bool px = st.scene.periodic[0], py = st.scene.periodic[1];
-  if (px && py) dispatch_region<Mono, true, true>(st, a);
-  else if (px) dispatch_region<Mono, true, false>(st, a);
-  else if (py) dispatch_region<Mono, false, true>(st, a);
-  else dispatch_region<Mono, false, false>(st, a);
+  if (px && py) dispatch_region<Mono, true, true, false>(st, a);
+  else if (px) dispatch_region<Mono, true, false, false>(st, a);
+  else if (py) dispatch_region<Mono, false, true, false>(st, a);
+  else if (st.scene.cylinder) dispatch_region<Mono, false, false, true>(st, a);
+  else dispatch_region<Mono, false, false, false>(st, a);
 }
 
 }  // namespace

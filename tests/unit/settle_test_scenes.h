@@ -200,6 +200,28 @@ inline double slab_fraction(const Scene &s, double z0, double z1)
   return volume / (area * (z1 - z0));
 }
 
+// The spheres of `s` (a scene in a square box with walls) whose centres lie within
+// cylinder_radius - r of the vertical axis through the middle of the box, in a vertical
+// cylindrical container of that radius instead of the flat walls.
+inline Scene in_cylinder(const Scene &s, double cylinder_radius)
+{
+  Scene out;
+  out.box = s.box;
+  for (int d = 0; d < 2; ++d) out.box.wall_lo[d] = out.box.wall_hi[d] = false;
+  out.box.cylinder = true;
+  out.box.cylinder_cx = 0.5 * (s.box.lo[0] + s.box.hi[0]);
+  out.box.cylinder_cy = 0.5 * (s.box.lo[1] + s.box.hi[1]);
+  out.box.cylinder_radius = cylinder_radius;
+  for (int i = 0; i < s.size(); ++i) {
+    const double dx = s.xyz[3 * i] - out.box.cylinder_cx, dy = s.xyz[3 * i + 1] - out.box.cylinder_cy;
+    const double reach = cylinder_radius - s.radius[i];
+    if (reach < 0 || dx * dx + dy * dy > reach * reach) continue;
+    out.xyz.insert(out.xyz.end(), &s.xyz[3 * i], &s.xyz[3 * i] + 3);
+    out.radius.push_back(s.radius[i]);
+  }
+  return out;
+}
+
 // Independent oracle: every pair and every periodic image (shifts -1, 0, +1 periods), plain
 // arithmetic. Counts overlaps |r_ij| < (R_i + R_j)(1 - tol) and plane violations.
 struct OracleReport {
@@ -224,6 +246,16 @@ inline OracleReport brute_force_check(const double *xyz, const double *radius, i
         ++rep.plane_violations;
         rep.worst_gap = std::min(rep.worst_gap, g);
       }
+    if (box.cylinder) {
+      // the radial gap with a square root (the kernels compare squares); 1e-12 of the radius
+      // absorbs the rounding of a centre accepted exactly at its reach
+      const double dx = xyz[3 * i] - box.cylinder_cx, dy = xyz[3 * i + 1] - box.cylinder_cy;
+      const double g = (box.cylinder_radius - r) - std::sqrt(dx * dx + dy * dy);
+      if (g < -tol * 2 * r - 1e-12 * box.cylinder_radius) {
+        ++rep.plane_violations;
+        rep.worst_gap = std::min(rep.worst_gap, g);
+      }
+    }
     for (int j = i + 1; j < n; ++j) {
       const double contact = (r + radius[j]) * (1 - tol);
       for (int sx = -1; sx <= 1; ++sx) {

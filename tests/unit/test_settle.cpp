@@ -1,6 +1,7 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 // Tests of the redeposition kernel (Settler): exact geometry, invariants, brute-force oracles.
 #include "settle_test_scenes.h"
+#include "tapmc_contact.h"
 #include "tapmc_defaults.h"
 #include "tapmc_settle.h"
 
@@ -551,4 +552,30 @@ TEST(Settle, SweepCapInChecks)
   EXPECT_EQ(Settler::max_checks_for_sweeps(1, 1000, 37), 1);  // never below one check
   EXPECT_THROW(Settler::max_checks_for_sweeps(0, 0, 37), std::invalid_argument);
   EXPECT_THROW(Settler::max_checks_for_sweeps(1, -1, 37), std::invalid_argument);
+}
+
+// In a cylinder: a redeposition after a tap leaves every sphere inside the wall (all-pairs
+// check), and a sphere pushed across the wall is found as a violation of kCylinderWall with
+// its radial gap.
+TEST(Settle, CylinderRedepositionAndViolation)
+{
+  Scene s = in_cylinder(random_loose(400, 8.0, 0.5, false, true, 21, 0.3), 4.0);
+  Settler settler;
+  const SettleResult res = settler.settle(s.xyz.data(), s.radius.data(), nullptr, s.size(), s.box,
+                                          paper_params(0.5, 5, 1, 1e-6, 2000));
+  EXPECT_LT(res.mean_height, res.mean_height_start);
+  expect_valid(s, "cylinder poly");
+  // push sphere 0 radially 1e-3 beyond its reach
+  const double dx = s.xyz[0] - s.box.cylinder_cx, dy = s.xyz[1] - s.box.cylinder_cy;
+  const double d = std::sqrt(dx * dx + dy * dy), reach = s.box.cylinder_radius - s.radius[0];
+  const double out = (reach + 1e-3) / std::max(d, 1e-9);
+  s.xyz[0] = s.box.cylinder_cx + (d > 1e-9 ? dx * out : reach + 1e-3);
+  s.xyz[1] = s.box.cylinder_cy + (d > 1e-9 ? dy * out : 0.0);
+  const Violation v = Settler::find_violation(s.xyz.data(), s.radius.data(), s.size(), s.box, kTol);
+  if (v.j == kCylinderWall) {
+    EXPECT_EQ(v.i, 0);
+    EXPECT_NEAR(v.gap, -1e-3, 1e-9);
+  } else {
+    EXPECT_GE(v.j, 0) << "sphere 0 pushed out must be reported (a sphere or the wall)";
+  }
 }

@@ -5,6 +5,7 @@
 // (many local list updates).
 #include "settle_test_scenes.h"
 #include "tapmc_contact.h"
+#include "tapmc_cylinder.h"
 #include "tapmc_defaults.h"
 #include "tapmc_math.h"
 #include "tapmc_memory.h"
@@ -77,6 +78,10 @@ class AllPairsMover {
         return false;
       if (box_.wall_hi[d] && gap_violates(high_wall_gap(p[d], r, box_.wall_hi_pos[d]), r, kTol))
         return false;
+    }
+    if (box_.cylinder) {  // the wall test of tapmc_cylinder.h (the kernel's arithmetic)
+      const CylinderWall wall{box_.cylinder_cx, box_.cylinder_cy, box_.cylinder_radius, kTol};
+      if (!wall.contains_sphere(p[0], p[1], r)) return false;
     }
     for (int j = 0; j < static_cast<int>(radius_.size()); ++j) {
       if (j == i) continue;
@@ -159,11 +164,12 @@ struct Block {
 // Blocks of one trial compare every single decision.
 long run_against_oracle(const Scene &s, const std::vector<int> &candidates, double d_max,
                         const std::vector<Block> &blocks, const MoveRegion *region,
-                        std::uint64_t seed, const std::string &what, SphereMover &mover)
+                        std::uint64_t seed, const std::string &what, SphereMover &mover,
+                        double theta0 = defaults::kThetaWidth)
 {
   mover.reset(s.xyz.data(), s.radius.data(), s.size(), s.box, d_max, kTol);
   AllPairsMover oracle(s, d_max);
-  const TrialMoveSampler sampler(d_max, defaults::kThetaWidth);
+  const TrialMoveSampler sampler(d_max, theta0);
   const CounterRandom rng(seed, 17);
   TrialTally tally;
   long cursor_mover = 0, cursor_oracle = 0, accepted_oracle = 0;
@@ -271,6 +277,31 @@ TEST(SphereMover, MatchesAllPairsOracleOnBedsAndNarrowBoxes)
           << c.name;
     }
   }
+}
+
+// A cylindrical container: from loose starts (mono and poly, many moves reach the wall) and at
+// extreme settings (theta0 = pi/2, steps of half a radius), every decision and the final state
+// are the all-pairs oracle's, and no centre leaves the wall's reach.
+TEST(SphereMover, MatchesAllPairsOracleInACylinder)
+{
+  for (int poly = 0; poly < 2; ++poly)
+    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+      const Scene s = in_cylinder(random_loose(260, 8.0, 0.5, false, poly, seed, 0.25), 4.0);
+      const std::string what = std::string("cylinder ") + (poly ? "poly" : "mono") + " seed " +
+                               std::to_string(seed);
+      ASSERT_GT(s.size(), 150) << what;
+      std::vector<Block> blocks;
+      for (int k = 0; k < 300; ++k) blocks.push_back({1, PickOrder::Random});
+      blocks.push_back({40 * s.size(), PickOrder::Random});
+      blocks.push_back({5 * s.size(), PickOrder::Sweep});
+      for (double theta0 : {defaults::kThetaWidth, 0.5 * kPi}) {
+        SphereMover mover;
+        EXPECT_GT(run_against_oracle(s, all_of(s.size()), theta0 > 1 ? 0.25 : 0.1, blocks, nullptr,
+                                     seed, what, mover, theta0),
+                  1000)
+            << what;
+      }
+    }
 }
 
 // A move region: no accepted centre ever leaves it; decisions as the oracle's; the spheres
@@ -474,3 +505,65 @@ TEST(LargePageAllocator, LargeBlocksStartOnALargePageAndBehaveAsVectors)
   EXPECT_EQ(small.size(), 10u);
 }
 
+
+// The stress case: a tight tube of 4 diameters, theta0 = pi/2 (moves down to
+// horizontal) and steps up to a radius, 10^7 trials in blocks with a tap between blocks (the
+// heights dilated 20 %, so that moves keep being accepted): after every block the independent
+// all-pairs check (square roots, no lists) finds no overlap and no centre beyond the wall.
+TEST(SphereMover, TightTubeTenMillionTrialsNeverCrossTheWall)
+{
+  Scene s = in_cylinder(random_loose(120, 4.0, 0.5, false, false, 11, 0.25), 2.0);
+  ASSERT_GT(s.size(), 60);
+  const double d_max = 0.5;
+  const TrialMoveSampler sampler(d_max, 0.5 * kPi);
+  const std::vector<int> ids = all_of(s.size());
+  long cursor = 0, accepted = 0, at_wall = 0;
+  for (int block = 0; block < 10; ++block) {
+    SphereMover mover;
+    mover.reset(s.xyz.data(), s.radius.data(), s.size(), s.box, d_max, kTol);
+    const CounterRandom rng(77, static_cast<std::uint64_t>(block));
+    TrialTally tally;
+    mover.run(ids.data(), s.size(), PickOrder::Random, cursor, sampler, rng, 0, 1000000, nullptr,
+              tally);
+    accepted += tally.accepted;
+    for (int i = 0; i < s.size(); ++i)
+      for (int d = 0; d < 3; ++d) s.xyz[3 * i + d] = mover.position(i)[d];
+    const OracleReport rep = brute_force_check(s.xyz.data(), s.radius.data(), s.size(), s.box, kTol);
+    ASSERT_EQ(rep.pair_overlaps, 0) << "block " << block << " worst gap " << rep.worst_gap;
+    ASSERT_EQ(rep.plane_violations, 0) << "block " << block << " worst gap " << rep.worst_gap;
+    EXPECT_EQ(mover.check_lists(), "") << "block " << block;
+    for (int i = 0; i < s.size(); ++i) {
+      const double dx = s.xyz[3 * i] - s.box.cylinder_cx, dy = s.xyz[3 * i + 1] - s.box.cylinder_cy;
+      at_wall += (s.box.cylinder_radius - s.radius[i]) - std::sqrt(dx * dx + dy * dy) < 1e-2;
+    }
+    dilate(s, 0.2);
+  }
+  // the wall was tested by moves, not by a frozen packing: tens of thousands of accepted moves,
+  // and spheres within 1 % of a radius of the wall after the blocks
+  EXPECT_GT(accepted, 30000);
+  EXPECT_GT(at_wall, 10);
+}
+
+// A container needs non-periodic sides and room for its largest sphere; the messages name the
+// argument and its value.
+TEST(SphereMover, CylinderArgumentsAreChecked)
+{
+  Scene s = in_cylinder(random_loose(60, 4.0, 0.5, false, false, 3, 0.25), 2.0);
+  SphereMover mover;
+  SettleBox periodic = s.box;
+  periodic.periodic[0] = true;
+  try {
+    mover.reset(s.xyz.data(), s.radius.data(), s.size(), periodic, 0.1, kTol);
+    FAIL() << "a periodic axis with a cylinder was accepted";
+  } catch (const std::invalid_argument &e) {
+    EXPECT_NE(std::string(e.what()).find("non-periodic x and y"), std::string::npos) << e.what();
+  }
+  SettleBox narrow = s.box;
+  narrow.cylinder_radius = 0.4;
+  try {
+    mover.reset(s.xyz.data(), s.radius.data(), s.size(), narrow, 0.1, kTol);
+    FAIL() << "a cylinder narrower than a sphere was accepted";
+  } catch (const std::invalid_argument &e) {
+    EXPECT_NE(std::string(e.what()).find("cylinder radius = 0.4"), std::string::npos) << e.what();
+  }
+}
