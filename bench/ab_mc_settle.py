@@ -34,9 +34,10 @@ import tempfile
 import time
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-#: Files of the benchmark program copied onto the reference tree (--ref-bench current).
-BENCH_FILES = ("bench/bench_mc_settle.cpp", "bench/bench_common.h",
-               "tests/unit/settle_test_scenes.h")
+#: Files of the benchmark program copied onto the reference tree (--ref-bench current); the
+#: scenes it includes (tests/unit/settle_test_scenes.h) stay the reference's own, which follow
+#: that commit's types.
+BENCH_FILES = ("bench/bench_mc_settle.cpp", "bench/bench_common.h")
 #: A row of bench_mc_settle: label, value, unit.
 ROW = re.compile(r"^(\S.*?)\s{2,}([0-9.]+) (M moves/s|s per tap)")
 
@@ -134,13 +135,20 @@ def tap_rows(lmp, taps, work, label):
     return {"s per tap (loop)": loop / taps, "CPU s per process": cpu}, (last[1], last[3])
 
 
+#: Rows that are times (lower is better); every other row is a rate.
+TIME_ROWS = ("s per tap (loop)", "CPU s per process")
+
+
 def summarize(label, ref_values, new_values):
-    ratios = [b / a for a, b in zip(ref_values, new_values)]
-    return {"row": label, "ref_median": statistics.median(ref_values),
-            "new_median": statistics.median(new_values),
-            "ratio_of_medians": statistics.median(new_values) / statistics.median(ref_values),
-            "pair_ratio_median": statistics.median(ratios), "pair_ratio_min": min(ratios),
-            "pair_ratio_max": max(ratios), "pairs": len(ratios)}
+    """Medians and the speed-up of the working tree (> 1: faster), overall and pair by pair."""
+    speedups = [(a / b if label in TIME_ROWS else b / a) for a, b in zip(ref_values, new_values)]
+    ref_median, new_median = statistics.median(ref_values), statistics.median(new_values)
+    return {"row": label, "ref_median": ref_median, "new_median": new_median,
+            "speedup_of_medians": (ref_median / new_median if label in TIME_ROWS
+                                   else new_median / ref_median),
+            "pair_speedup_median": statistics.median(speedups),
+            "pair_speedup_min": min(speedups), "pair_speedup_max": max(speedups),
+            "pairs": len(speedups)}
 
 
 def main():
@@ -201,12 +209,13 @@ def main():
     rows = [summarize(label, values["ref"][label], values["new"][label])
             for label in values["new"] if label in values["ref"]]
     print(f"\nload average at end {os.getloadavg()[0]:.2f}; {args.pairs} pairs, reference "
-          f"{args.ref} (ratio > 1: the working tree is faster for rates, slower for times)")
-    print(f"{'row':46s} {'ref':>9s} {'new':>9s} {'ratio':>7s} {'pairs: median [min, max]':>26s}")
+          f"{args.ref}; speed-up of the working tree (> 1: faster; rates new / ref, times "
+          f"ref / new)")
+    print(f"{'row':46s} {'ref':>9s} {'new':>9s} {'speed-up':>8s} {'pairs: median [min, max]':>26s}")
     for r in rows:
         print(f"{r['row']:46s} {r['ref_median']:9.3f} {r['new_median']:9.3f} "
-              f"{r['ratio_of_medians']:7.3f}   {r['pair_ratio_median']:.3f} "
-              f"[{r['pair_ratio_min']:.3f}, {r['pair_ratio_max']:.3f}]")
+              f"{r['speedup_of_medians']:8.3f}   {r['pair_speedup_median']:.3f} "
+              f"[{r['pair_speedup_min']:.3f}, {r['pair_speedup_max']:.3f}]")
     if args.lmp:
         same = finals["ref"] == finals["new"] and len(finals["new"]) == 1
         print(f"last tap (Phi_b, <Z>): ref {sorted(finals['ref'])}, new {sorted(finals['new'])}: "
