@@ -1,10 +1,14 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 // Benchmark of the sequential deposition (create_packing's kernel): time for N = 4096, 1e5 and
 // 1e6 monodisperse spheres at the paper's height (box side 32R sqrt(N / 4096), PBC), time per
-// sphere to show the linear growth, and a naive O(N)-per-drop scan as the reference.
+// sphere to show the linear growth, and a naive O(N)-per-drop scan as the reference; then
+// N = 4096 in a tube 10 diameters wide (radius 10R, the Knight / Nowak aspect ratio), whose
+// curved wall adds the sphere-cylinder paths, against the box's time per sphere.
 // Usage: bench_deposition [--quick]   (--quick skips N = 1e6)
 #include "bench_common.h"
 #include "tapmc_deposition.h"
+#include "tapmc_math.h"
+#include "tapmc_stereology.h"
 
 #include <algorithm>
 #include <chrono>
@@ -92,6 +96,37 @@ int main(int argc, char **argv)
     if (n != 4096)
       std::printf("%10s time per sphere / N=4096's: %.2f (1 = linear growth; cache misses grow "
                   "it at large N)\n", "", per_sphere / per_sphere_small);
+  }
+  {
+    const long n = 4096;
+    const int repeats = 9;
+    tapmc::DepositionDomain d;
+    d.xlo = d.ylo = -10.0;
+    d.xhi = d.yhi = 10.0;
+    d.periodic_x = d.periodic_y = false;
+    d.has_cylinder = true;
+    d.cylinder = {0.0, 0.0, 10.0};
+    std::vector<double> times;
+    tapmc::Packing p;
+    for (int k = 0; k < repeats; ++k) {
+      const auto t0 = std::chrono::steady_clock::now();
+      p = tapmc::deposit_packing(n, tapmc::RadiusDistribution::monodisperse(1.0), d, 1 + k);
+      times.push_back(seconds_since(t0));
+    }
+    const double med = median(times);
+    double z0, z1;
+    tapmc::bulk_window(p, d, 6.0, z0, z1);
+    const tapmc::stereo::Spheres spheres{p.xyz.data(), p.radius.data(), 0.0, nullptr,
+                                         static_cast<int>(n)};
+    const double phi = tapmc::stereo::cylinder_slab_volume(spheres, d.cylinder, z0, z1) /
+                       (tapmc::kPi * 100.0 * (z1 - z0));
+    const auto zones = tapmc::stereo::cylinder_zones(spheres, d.cylinder, 7.0, z0, z1);
+    std::printf("\nTube of radius 10R (no flat walls), N = %ld, %d repeats: median %.4f s, %.2f us "
+                "per sphere (%.2f x the box's at N = 4096),\n  %.2f segments per sphere, %.3f wall "
+                "rolls per sphere, phi_bulk %.4f over the tube, %.4f in the core (r < R_c - 7R)\n",
+                n, repeats, med, med / n * 1e6, med / n * 1e6 / per_sphere_small,
+                static_cast<double>(p.stats.segments) / n,
+                static_cast<double>(p.stats.wall_rolls) / n, phi, zones.phi_core);
   }
   const double naive = naive_scan_time(reference, sink);
   std::printf("\nReference, N = 4096: a naive scan of all earlier spheres per drop (first contact "

@@ -16,10 +16,26 @@
 // contact function and each support force is K + P cos t + Q sin t, so the next event (a new
 // contact, a support force reaching zero, the lowest point) is found in closed form.
 //
+// A vertical cylindrical container (axis A, radius R_c) adds the constraint
+// |p_xy - A| <= R_c - r, with the horizontal normal -(p_xy - A) / |p_xy - A|. Along a circle
+// its contact function is quadratic in (cos t, sin t) (a trigonometric polynomial of degree 2),
+// and so is every contact function along the one new path, the roll on one sphere j along the
+// wall: with the azimuth psi(t) = psi0 + t about the axis, p_xy = A + rho u(psi) and
+// p_z = z_j + Z, Z^2 = D_j^2 - |p_xy - c_j,xy|^2 is K + P cos t + Q sin t, and the contact
+// function of a sphere k, L(t) + 2 (z_j - z_k) Z with L of degree 1, vanishes only where
+// L^2 - 4 (z_j - z_k)^2 Z^2 (degree 2) does. The roots of a degree-2 polynomial (at most 4 a
+// turn) come from a quartic in tan(u / 2) on each quarter turn; they split the path into pieces
+// on which a contact function keeps its sign, sampled on the true function (not the squared
+// one), and the entry found is refined by bisection on the true function. On that path the
+// support of j vanishes at the height of c_j (Z = 0, in closed form), the wall's never vanishes
+// (it grows as the sphere moves away from j), and the lowest point, where the sphere, the axis
+// and c_j lie in one vertical plane with c_j beyond the axis, is a true rest on two supports.
+//
 // In this file, in order: the layered grid; the deposited spheres (storage and planes); the
 // descent at a point (from the touching constraints alone); the searches of the deposited spheres
 // (contacts, start of a drop, next event of a fall or a roll); the random numbers of unstable
-// equilibria; the roll of one segment; and the engine (Impl) that drops a sphere with them.
+// equilibria; the roll of one segment; the roll along the cylinder wall; and the engine (Impl)
+// that drops a sphere with them.
 #include "tapmc_deposition.h"
 
 #include "tapmc_checks.h"
@@ -82,19 +98,38 @@ struct Constraint {
   std::int64_t id;   // sphere index, or a PlaneId (tapmc_contact.h)
   int image_x = 0;   // periodic image of a sphere (box lengths added to its stored centre)
   int image_y = 0;
-  Vec3 c;            // sphere: image centre; plane: unit normal pointing into the allowed side
-  double dist;       // sphere: contact distance r + r_k; plane: offset (allowed: n.p >= offset)
+  Vec3 c;            // sphere: image centre; plane: unit normal pointing into the allowed side;
+                     // cylinder: a point of its axis at z = 0
+  double dist;       // sphere: contact distance r + r_k; plane: offset (allowed: n.p >= offset);
+                     // cylinder: the largest distance R_c - r of the centre from the axis
+  bool is_cylinder = false;  // the cylinder wall (is_sphere false, id kCylinderWall)
   bool same(const Constraint &o) const
   {
     return is_sphere == o.is_sphere && id == o.id && image_x == o.image_x && image_y == o.image_y;
   }
 };
 
+// The id of the cylinder wall: not a PlaneId (tapmc_contact.h numbers the flat planes only), so
+// kept far below them.
+constexpr std::int64_t kCylinderWall = -1000;
+
+inline double axis_distance(const Constraint &k, Vec3 p)
+{
+  return std::hypot(p.x - k.c.x, p.y - k.c.y);
+}
 inline double gap_of(const Constraint &k, Vec3 p)
 {
+  if (k.is_cylinder) return k.dist - axis_distance(k, p);
   return k.is_sphere ? norm(p - k.c) - k.dist : dot(k.c, p) - k.dist;
 }
-inline Vec3 normal_of(const Constraint &k, Vec3 p) { return k.is_sphere ? unit(p - k.c) : k.c; }
+inline Vec3 normal_of(const Constraint &k, Vec3 p)
+{
+  if (k.is_cylinder) {
+    const double h = axis_distance(k, p);
+    return {(k.c.x - p.x) / h, (k.c.y - p.y) / h, 0.0};
+  }
+  return k.is_sphere ? unit(p - k.c) : k.c;
+}
 
 // First t in [0, t_max] at which f(t) = K + P cos t + Q sin t enters f < 0, or +inf.
 // `entering_now` is set when f is negative just after t = 0 (a touching constraint that the
@@ -125,6 +160,144 @@ double first_entry(double K, double P, double Q, double t_max, bool &entering_no
     }
   }
   return start <= t_max ? start : kInf;
+}
+
+// A trigonometric polynomial of degree 2: a0 + a1 cos t + b1 sin t + a2 cos 2t + b2 sin 2t.
+struct Trig2 {
+  double a0 = 0, a1 = 0, b1 = 0, a2 = 0, b2 = 0;
+  // (K + P cos t + Q sin t)^2
+  static Trig2 square(double K, double P, double Q)
+  {
+    return {K * K + 0.5 * (P * P + Q * Q), 2.0 * K * P, 2.0 * K * Q, 0.5 * (P * P - Q * Q),
+            P * Q};
+  }
+  // A lower bound of its minimum (each harmonic at its own minimum).
+  double lower_bound() const { return a0 - std::hypot(a1, b1) - std::hypot(a2, b2); }
+};
+
+inline double horner(const double *c, int deg, double x)
+{
+  double v = c[deg];
+  for (int i = deg - 1; i >= 0; --i) v = v * x + c[i];
+  return v;
+}
+
+// Where the polynomial c[0] + c[1] x + ... + c[deg] x^deg changes sign in [lo, hi], ascending
+// (at most deg points). Its critical points (the same search on the derivative) split [lo, hi]
+// into monotone pieces, each holding at most one sign change, found by bisection to the last
+// bit: close pairs of roots are separated whatever their distance.
+int polynomial_sign_changes(const double *c, int deg, double lo, double hi, double *roots)
+{
+  if (deg <= 0) return 0;
+  double dc[4];
+  for (int i = 1; i <= deg; ++i) dc[i - 1] = i * c[i];
+  double ends[6];
+  int n_ends = 0;
+  ends[n_ends++] = lo;
+  n_ends += polynomial_sign_changes(dc, deg - 1, lo, hi, ends + 1);
+  ends[n_ends++] = hi;
+  int n = 0;
+  double a = ends[0], fa = horner(c, deg, a);
+  for (int q = 1; q < n_ends; ++q) {
+    const double b = ends[q], fb = horner(c, deg, b);
+    if ((fa < 0.0) != (fb < 0.0)) {
+      double x0 = a, x1 = b;
+      const bool negative_at_x0 = fa < 0.0;
+      for (;;) {
+        const double mid = 0.5 * (x0 + x1);
+        if (!(mid > x0 && mid < x1)) break;
+        if ((horner(c, deg, mid) < 0.0) == negative_at_x0) {
+          x0 = mid;
+        } else {
+          x1 = mid;
+        }
+      }
+      roots[n++] = x0;
+    }
+    a = b;
+    fa = fb;
+  }
+  return n;
+}
+
+// Where f changes sign in [0, t_max] (t_max <= 2 pi), ascending, at most 4 a quarter turn (the
+// array holds 16). On the quarter turn t = s + u, u in [0, pi / 2], f (1 + x^2)^2 with
+// x = tan(u / 2) in [0, 1] is a quartic in x of the same sign as f.
+int trig2_sign_changes(const Trig2 &f, double t_max, double *roots)
+{
+  static constexpr double kCos[4] = {1, 0, -1, 0}, kSin[4] = {0, 1, 0, -1};
+  int n = 0;
+  for (int k = 0; k < 4; ++k) {
+    const double s = k * (0.5 * kPi);
+    if (s >= t_max) break;
+    const double a1 = f.a1 * kCos[k] + f.b1 * kSin[k], b1 = f.b1 * kCos[k] - f.a1 * kSin[k];
+    const double c2 = kCos[(2 * k) % 4], s2 = kSin[(2 * k) % 4];
+    const double a2 = f.a2 * c2 + f.b2 * s2, b2 = f.b2 * c2 - f.a2 * s2;
+    const double c[5] = {f.a0 + a1 + a2, 2.0 * b1 + 4.0 * b2, 2.0 * f.a0 - 6.0 * a2,
+                         2.0 * b1 - 4.0 * b2, f.a0 - a1 + a2};
+    const double x_max = std::min(1.0, std::tan(0.5 * (t_max - s)));
+    double x[4];
+    const int m = polynomial_sign_changes(c, 4, 0.0, x_max, x);
+    for (int q = 0; q < m; ++q) roots[n++] = std::min(t_max, s + 2.0 * std::atan(x[q]));
+  }
+  return n;
+}
+
+// First entry into gap < 0 along a path t in [0, t_max], for a contact function `gap` (a length:
+// > 0 free, < 0 overlap) that keeps its sign between the sorted `breaks` in (0, t_max) (the
+// roots of a polynomial that vanishes wherever gap does). Each piece between breaks is sampled
+// on gap itself; a piece counts as entered when a sample lies deeper than `grazing` (the
+// grazing convention of first_entry). A constraint touching at t = 0 (gap(0) <= touch) whose
+// negative arc reaches beyond kDepositionAngleTolerance is entered now (returns 0 with
+// `entering_now`); one whose negative arc ends before is being left, not an event. Otherwise the
+// entry is refined by bisection on gap and the last point outside is returned; +inf if none.
+template <class Gap>
+double first_entry_scan(const Gap &gap, double *breaks, int n_breaks, double t_max,
+                        double grazing, double touch, bool &entering_now)
+{
+  entering_now = false;
+  std::sort(breaks, breaks + n_breaks);
+  const bool touching = gap(0.0) <= touch;
+  // A touching constraint: its breaks within the angle tolerance belong to the start.
+  int first = 0;
+  while (touching && first < n_breaks && breaks[first] <= kDepositionAngleTolerance) ++first;
+  double lo = touching ? std::min(kDepositionAngleTolerance, t_max) : 0.0;
+  double outside = 0.0;   // last sample point not entered
+  bool seen_outside = !touching;
+  constexpr int samples = defaults::kDepositionPieceSamples;
+  for (int q = first; q <= n_breaks; ++q) {
+    const double hi = q < n_breaks ? std::min(breaks[q], t_max) : t_max;
+    if (hi > lo) {
+      for (int k = 1; k <= samples; ++k) {
+        const double t = lo + (hi - lo) * k / (samples + 1);
+        const double g = gap(t);
+        if (g >= -grazing) {
+          outside = t;
+          seen_outside = true;
+          continue;
+        }
+        if (!seen_outside) {  // negative from the start beyond the angle tolerance
+          entering_now = true;
+          return 0.0;
+        }
+        const double g_out = gap(outside);
+        const double target = std::min(0.0, 0.5 * g_out);
+        double t0 = outside, t1 = t;
+        for (;;) {
+          const double mid = 0.5 * (t0 + t1);
+          if (!(mid > t0 && mid < t1)) break;
+          if (gap(mid) >= target) {
+            t0 = mid;
+          } else {
+            t1 = mid;
+          }
+        }
+        return t0;
+      }
+    }
+    lo = std::max(lo, hi);
+  }
+  return kInf;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -308,10 +481,12 @@ struct DepositedSpheres {
     grid.insert(index, p.x, p.y, p.z, r);
   }
 
-  // The planes a sphere of radius r must respect: the floor, and the walls of non-periodic sides.
+  // The planes a sphere of radius r must respect: the floor, and the walls of non-periodic sides
+  // (none in a cylinder: its disk lies inside the box, so they are never reached).
   template <class F> void for_each_plane(double r, F &&f) const
   {
     f(Constraint{false, kFloorPlane, 0, 0, {0, 0, 1}, domain.z_floor + r});
+    if (domain.has_cylinder) return;
     if (!domain.periodic_x) {
       f(Constraint{false, kWallXlo, 0, 0, {1, 0, 0}, domain.xlo + r});
       f(Constraint{false, kWallXhi, 0, 0, {-1, 0, 0}, -(domain.xhi - r)});
@@ -320,6 +495,15 @@ struct DepositedSpheres {
       f(Constraint{false, kWallYlo, 0, 0, {0, 1, 0}, domain.ylo + r});
       f(Constraint{false, kWallYhi, 0, 0, {0, -1, 0}, -(domain.yhi - r)});
     }
+  }
+
+  // The cylinder wall for a sphere of radius r (domain.has_cylinder).
+  Constraint cylinder_wall(double r) const
+  {
+    Constraint k{false, kCylinderWall, 0, 0, {domain.cylinder.cx, domain.cylinder.cy, 0.0},
+                 domain.cylinder.radius - r};
+    k.is_cylinder = true;
+    return k;
   }
 };
 
@@ -447,6 +631,10 @@ void collect_touching(const DepositedSpheres &packing, Vec3 p, double r, Contact
   packing.for_each_plane(r, [&](const Constraint &k) {
     if (gap_of(k, p) <= kDepositionSupportTolerance * 2.0 * r) touching.push_back(k);
   });
+  if (packing.domain.has_cylinder) {
+    const Constraint wall = packing.cylinder_wall(r);
+    if (gap_of(wall, p) <= kDepositionSupportTolerance * 2.0 * r) touching.push_back(wall);
+  }
   for (const auto &k : touching) contacts.normals.push_back(normal_of(k, p));
 }
 
@@ -504,6 +692,27 @@ double fall_event(const DepositedSpheres &packing, Vec3 p, double r,
   return best;
 }
 
+// Where a circle first enters the cylinder wall (t <= t_max, or +inf; `now` as first_entry):
+// (R_c - r)^2 - |m_xy - A + rho (cos t e1_xy + sin t e2_xy)|^2 is of degree 2 in (cos t, sin t).
+double circle_wall_entry(const Circle &path, const Constraint &wall, double r, double t_max,
+                         bool &now)
+{
+  now = false;
+  const double vx = path.m.x - wall.c.x, vy = path.m.y - wall.c.y;
+  const double ax = path.rho * path.e1.x, ay = path.rho * path.e1.y;
+  const double bx = path.rho * path.e2.x, by = path.rho * path.e2.y;
+  const double aa = ax * ax + ay * ay, bb = bx * bx + by * by, ab = ax * bx + ay * by;
+  const Trig2 f{wall.dist * wall.dist - (vx * vx + vy * vy) - 0.5 * (aa + bb),
+                -2.0 * (vx * ax + vy * ay), -2.0 * (vx * bx + vy * by), -0.5 * (aa - bb), -ab};
+  const double grazing = kDepositionGrazingDepth * 2.0 * r;
+  // f is about 2 (R_c - r) times the gap: never deeper than the grazing depth, never entered
+  if (f.lower_bound() > -grazing * 2.0 * wall.dist) return kInf;
+  double breaks[16];
+  const int n = trig2_sign_changes(f, t_max, breaks);
+  return first_entry_scan([&](double t) { return gap_of(wall, path.at(t)); }, breaks, n, t_max,
+                          grazing, kDepositionSupportTolerance * 2.0 * r, now);
+}
+
 // Roll along circle `path` (constraints `active` kept): the first event parameter; `hit` is
 // the constraint entered, if the event is a new contact.
 double roll_event(const DepositedSpheres &packing, const Circle &path, double r,
@@ -520,9 +729,7 @@ double roll_event(const DepositedSpheres &packing, const Circle &path, double r,
     const double t = first_entry(forces[a].K, forces[a].P, forces[a].Q, best, now);
     if (!now && t < best) best = t;
   }
-  auto consider = [&](const Constraint &k, double K, double P, double Q) {
-    bool now;
-    const double t = first_entry(K, P, Q, best, now);
+  auto take = [&](const Constraint &k, double t, bool now) {
     if (t < best || (now && !entering_now)) {
       best = std::min(best, t);
       hit = k;
@@ -530,12 +737,27 @@ double roll_event(const DepositedSpheres &packing, const Circle &path, double r,
       entering_now = now;
     }
   };
+  auto consider = [&](const Constraint &k, double K, double P, double Q) {
+    bool now;
+    const double t = first_entry(K, P, Q, best, now);
+    take(k, t, now);
+  };
   // Planes: f / rho = (n.m - offset) / rho + n.e1 cos t + n.e2 sin t.
   packing.for_each_plane(r, [&](const Constraint &k) {
     for (const auto &a : active)
       if (a.same(k)) return;
     consider(k, (dot(k.c, path.m) - k.dist) / path.rho, dot(k.c, path.e1), dot(k.c, path.e2));
   });
+  if (packing.domain.has_cylinder) {
+    const Constraint wall = packing.cylinder_wall(r);
+    bool wall_active = false;
+    for (const auto &a : active) wall_active = wall_active || a.same(wall);
+    if (!wall_active) {
+      bool now;
+      const double t = circle_wall_entry(path, wall, r, best, now);
+      take(wall, t, now);
+    }
+  }
   // Spheres: (|p - c|^2 - D^2) / (2 rho D) = K + P cos t + Q sin t.
   const Vec3 axis = cross(path.e1, path.e2);
   const double reach = r + packing.r_max;
@@ -671,6 +893,162 @@ RollSetup make_roll(Vec3 p, const ContactSet &contacts, const Descent &descent, 
   return RollSetup::Ok;
 }
 
+// ---------------------------------------------------------------------------------------------
+// The roll on one sphere j along the cylinder wall (the active set {j, wall}). The centre keeps
+// its distance rho from the axis and its distance D from c_j (their values at the start, equal
+// to R_c - r and r + r_j within the contact tolerance, so the path never deepens an overlap), and
+// its azimuth turns by t from u0 towards v0:
+//   p_xy(t) = A + rho (cos t u0 + sin t v0),  p_z(t) = z_j + Z(t),  Z^2 = D^2 - h2(t),
+// h2 = |p_xy - c_j,xy|^2 = hK + hP cos t + hQ sin t. The descent turns away from c_j (h2 grows,
+// Z falls) down to the lowest point, where h2 is largest.
+struct WallRoll {
+  Vec3 axis;    // (A_x, A_y, 0)
+  Vec3 u0, v0;  // horizontal unit vectors: the start's radial direction and the way it turns
+  double rho;
+  Vec3 cj;      // centre of the supporting sphere
+  double D2;
+  double hK, hP, hQ;
+  double t_end;  // the lowest point
+
+  Vec3 xy(double t) const
+  {
+    return axis + rho * (std::cos(t) * u0 + std::sin(t) * v0);
+  }
+  Vec3 at(double t) const
+  {
+    Vec3 q = xy(t);
+    const double dx = q.x - cj.x, dy = q.y - cj.y;
+    q.z = cj.z + std::sqrt(std::max(0.0, D2 - (dx * dx + dy * dy)));
+    return q;
+  }
+};
+
+// At an equilibrium on sphere j and the wall (the sphere, the wall's normal and the vertical in
+// one plane): a rest when the sphere lies on the far side of the axis from c_j (the lowest point
+// of the path: it rises both ways), or when c_j is on the axis (the path is level); on the near
+// side it is the highest point, left in a random direction.
+bool wall_pair_rests(Vec3 p, const Constraint &j, const Constraint &wall)
+{
+  return (p.x - wall.c.x) * (j.c.x - wall.c.x) + (p.y - wall.c.y) * (j.c.y - wall.c.y) <= 0.0;
+}
+
+RollSetup make_wall_roll(Vec3 p, const Constraint &j, const Constraint &wall,
+                         const ContactSet &contacts, const Descent &descent, bool equilibrium,
+                         EquilibriumDraws &draws, WallRoll &path)
+{
+  path.axis = {wall.c.x, wall.c.y, 0.0};
+  const double hx = p.x - wall.c.x, hy = p.y - wall.c.y;
+  path.rho = std::hypot(hx, hy);
+  // the support of j holds only from above its centre (KKT: mu_j = n_j,z / (1 - (n_j.n_w)^2))
+  if (!(path.rho > 0.0) || !(p.z > j.c.z)) return RollSetup::Degenerate;
+  path.u0 = {hx / path.rho, hy / path.rho, 0.0};
+  Vec3 v{-path.u0.y, path.u0.x, 0.0};
+  if (equilibrium) {  // the highest point: the path is level there, both ways descend
+    if (draws.sign()) v = -1.0 * v;
+    if (blocked(v, contacts, descent)) v = -1.0 * v;
+    if (blocked(v, contacts, descent)) return RollSetup::Wedged;
+  } else if (dot(v, descent.d) < 0.0) {
+    v = -1.0 * v;
+  }
+  path.v0 = v;
+  path.cj = j.c;
+  const Vec3 q = path.xy(0.0);
+  const double dx = q.x - j.c.x, dy = q.y - j.c.y, dz = p.z - j.c.z;
+  path.D2 = dx * dx + dy * dy + dz * dz;
+  const double wx = path.axis.x - j.c.x, wy = path.axis.y - j.c.y;
+  path.hK = wx * wx + wy * wy + path.rho * path.rho;
+  path.hP = 2.0 * path.rho * (wx * path.u0.x + wy * path.u0.y);
+  path.hQ = 2.0 * path.rho * (wx * path.v0.x + wy * path.v0.y);
+  path.t_end = wrap_angle(std::atan2(path.hQ, path.hP));
+  // h2 already at its largest (a rounding-level negative slope): no way down
+  if (path.t_end > kPi) path.t_end = path.hP > 0.0 ? 0.0 : kPi;
+  return RollSetup::Ok;
+}
+
+// The first event of a wall roll: a new contact (`hit`, `is_contact`, `entering_now` as in
+// roll_event), the support of j lost where the centre reaches the height of c_j (`support_lost`),
+// or the lowest point.
+double wall_roll_event(const DepositedSpheres &packing, const WallRoll &path, double r,
+                       const std::vector<Constraint> &active, Constraint &hit, bool &is_contact,
+                       bool &entering_now, bool &support_lost)
+{
+  double best = path.t_end;
+  is_contact = false;
+  entering_now = false;
+  support_lost = false;
+  const double D = std::sqrt(path.D2);
+  const double scale = 1.0 / (2.0 * path.rho * D);
+  // Z^2 = D^2 - h2 reaching zero
+  {
+    bool now;
+    const double t = first_entry((path.D2 - path.hK) * scale, -path.hP * scale,
+                                 -path.hQ * scale, best, now);
+    if (!now && t < best) {
+      best = t;
+      support_lost = true;
+    }
+  }
+  auto take = [&](const Constraint &k, double t, bool now) {
+    if (t < best || (now && !entering_now)) {
+      best = std::min(best, t);
+      hit = k;
+      is_contact = true;
+      entering_now = now;
+      support_lost = false;
+    }
+  };
+  // The floor, only below c_j's height z_j: Z^2 - (z_floor + r - z_j)^2 reaching zero.
+  const double H = packing.domain.z_floor + r - path.cj.z;
+  if (H > 0.0) {
+    bool now;
+    const double t = first_entry((path.D2 - H * H - path.hK) * scale, -path.hP * scale,
+                                 -path.hQ * scale, best, now);
+    take(Constraint{false, kFloorPlane, 0, 0, {0, 0, 1}, packing.domain.z_floor + r}, t, now);
+  }
+  // Spheres k: |p - c_k|^2 - D_k^2 = L(t) + 2 (z_j - z_k) Z(t), L = H_k + (z_j - z_k)^2 + Z^2
+  // - D_k^2 with H_k = |p_xy - c_k,xy|^2, both of degree 1; it vanishes only where
+  // L^2 - 4 (z_j - z_k)^2 Z^2 does. The path stays within D of c_j.
+  const LayeredGrid &grid = packing.grid;
+  const double reach = D + r + packing.r_max;
+  const double grazing = kDepositionGrazingDepth * 2.0 * r;
+  const double z_start = path.at(0.0).z;
+  grid.visit(path.cj.x - reach, path.cj.x + reach, path.cj.y - reach, path.cj.y + reach,
+             grid.layer_of(path.cj.z - reach), grid.layer_of(path.cj.z + reach),
+             [&](std::int32_t i, double, double, int, int) {
+               const Constraint k{true, i, 0, 0, packing.centre_of(i), r + packing.radii[i]};
+               const Vec3 jk = k.c - path.cj;
+               if (dot(jk, jk) >= (D + k.dist) * (D + k.dist)) return;
+               const double wx = path.axis.x - k.c.x, wy = path.axis.y - k.c.y;
+               const double s_k = std::hypot(wx, wy);
+               if (std::fabs(s_k - path.rho) >= k.dist) return;  // never within D_k of the path
+               for (const auto &a : active)
+                 if (a.same(k)) return;
+               const double delta = path.cj.z - k.c.z;
+               const double lK = wx * wx + wy * wy + path.rho * path.rho + delta * delta +
+                                 path.D2 - path.hK - k.dist * k.dist;
+               const double lP = 2.0 * path.rho * (wx * path.u0.x + wy * path.u0.y) - path.hP;
+               const double lQ = 2.0 * path.rho * (wx * path.v0.x + wy * path.v0.y) - path.hQ;
+               // lower bound of L + 2 delta Z with 0 <= Z <= Z(0)
+               const double low = lK - std::hypot(lP, lQ) +
+                                  std::min(0.0, 2.0 * delta * (z_start - path.cj.z));
+               if (low > -grazing * 2.0 * k.dist) return;
+               Trig2 f = Trig2::square(lK, lP, lQ);
+               const double d4 = 4.0 * delta * delta;
+               f.a0 -= d4 * (path.D2 - path.hK);
+               f.a1 += d4 * path.hP;
+               f.b1 += d4 * path.hQ;
+               double breaks[32];
+               int n = trig2_sign_changes(f, best, breaks);
+               n += trig2_sign_changes(Trig2{lK, lP, lQ, 0.0, 0.0}, best, breaks + n);
+               bool now;
+               const double t = first_entry_scan(
+                   [&](double u) { return norm(path.at(u) - k.c) - k.dist; }, breaks, n, best,
+                   grazing, kDepositionSupportTolerance * k.dist, now);
+               take(k, t, now);
+             });
+  return best;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
@@ -715,14 +1093,20 @@ struct SequentialDeposition::Impl {
       active.clear();
       bool on_floor = false;
       int n_spheres = 0;
+      const Constraint *wall = nullptr, *sphere = nullptr;
       for (int a = 0; a < descent.n_active; ++a) {
         const Constraint &k = contacts.constraints[descent.active[a]];
         active.push_back(k);
         on_floor = on_floor || (!k.is_sphere && k.id == kFloorPlane);
         n_spheres += k.is_sphere ? 1 : 0;
+        if (k.is_cylinder) wall = &k;
+        if (k.is_sphere) sphere = &k;
       }
+      // on one sphere along the cylinder wall (the only active pair that is not a circle)
+      const bool wall_pair = wall != nullptr && n_spheres == 1 && descent.n_active == 2;
       const bool equilibrium = norm(descent.d) < kDepositionEquilibriumTolerance;
-      if (equilibrium && (on_floor || descent.n_active == 3))
+      if (equilibrium &&
+          (on_floor || descent.n_active == 3 || (wall_pair && wall_pair_rests(p, *sphere, *wall))))
         return {p.x, p.y, p.z, on_floor ? RestingOn::Floor : RestingOn::Supports, segment + 1};
       if (equilibrium) ++stats.perturbations;
 
@@ -736,6 +1120,30 @@ struct SequentialDeposition::Impl {
         } else {
           forced.clear();
         }
+        continue;
+      }
+      if (wall_pair) {
+        ++stats.wall_rolls;
+        WallRoll path;
+        const RollSetup setup = make_wall_roll(p, *sphere, *wall, contacts, descent, equilibrium,
+                                               equilibrium_draws, path);
+        if (setup == RollSetup::Wedged) return {p.x, p.y, p.z, RestingOn::Supports, segment + 1};
+        if (setup == RollSetup::Degenerate) break;
+        bool is_contact = false, support_lost = false;
+        const double t = wall_roll_event(packing, path, r, active, hit, is_contact, entering_now,
+                                         support_lost);
+        if (is_contact && entering_now) {
+          bool known = false;
+          for (const auto &f : forced) known = known || f.same(hit);
+          if (!known) forced.push_back(hit);
+          continue;
+        }
+        forced.clear();
+        p = path.at(t);
+        // Heights set exactly where the event fixes them: level with c_j (its support is lost;
+        // the next segment falls clear of it) or on the floor.
+        if (support_lost) p.z = path.cj.z;
+        if (is_contact && !hit.is_sphere) p.z = packing.domain.z_floor + r;
         continue;
       }
       // Roll on one sphere, or on two constraints with at least one sphere.
@@ -768,6 +1176,34 @@ void check_radius(double radius, double max_radius)
   if (!(radius > 0.0) || radius > max_radius)
     throw_outside_range("radius", radius, "(0, max_radius] = (0, " + number(max_radius) + "]");
 }
+
+// A tube needs walls in x and y, room for the largest sphere, and its disk inside the box (the
+// box bounds the search grid).
+void check_cylinder(const DepositionDomain &domain, double max_radius)
+{
+  const char *why = "{false} (a cylindrical container needs walls in x and y)";
+  if (domain.periodic_x)
+    throw std::invalid_argument(outside_range_message("periodic_x", "true", why));
+  if (domain.periodic_y)
+    throw std::invalid_argument(outside_range_message("periodic_y", "true", why));
+  const Cylinder &c = domain.cylinder;
+  validate(c, max_radius);
+  const double half = 0.5 * std::min(domain.xhi - domain.xlo, domain.yhi - domain.ylo);
+  if (!(c.radius <= half))
+    throw_outside_range("cylinder radius", c.radius,
+                        "(max_radius, min(xhi - xlo, yhi - ylo) / 2] = (" + number(max_radius) +
+                            ", " + number(half) + "] (the disk must lie inside the box)");
+  if (!(c.cx >= domain.xlo + c.radius && c.cx <= domain.xhi - c.radius))
+    throw_outside_range("cylinder cx", c.cx,
+                        "[xlo + radius, xhi - radius] = [" + number(domain.xlo + c.radius) +
+                            ", " + number(domain.xhi - c.radius) +
+                            "] (the disk must lie inside the box)");
+  if (!(c.cy >= domain.ylo + c.radius && c.cy <= domain.yhi - c.radius))
+    throw_outside_range("cylinder cy", c.cy,
+                        "[ylo + radius, yhi - radius] = [" + number(domain.ylo + c.radius) +
+                            ", " + number(domain.yhi - c.radius) +
+                            "] (the disk must lie inside the box)");
+}
 }  // namespace
 
 SequentialDeposition::SequentialDeposition(const DepositionDomain &domain, double max_radius,
@@ -783,6 +1219,7 @@ SequentialDeposition::SequentialDeposition(const DepositionDomain &domain, doubl
   if (!(domain.yhi - domain.ylo >= diameter))
     throw_outside_range("y extent yhi - ylo", domain.yhi - domain.ylo, one_diameter);
   if (!std::isfinite(domain.z_floor)) throw_outside_range("z_floor", domain.z_floor, "(finite)");
+  if (domain.has_cylinder) check_cylinder(domain, max_radius);
   DepositedSpheres &packing = impl_->packing;
   packing.domain = domain;
   packing.r_max = max_radius;
@@ -809,6 +1246,13 @@ DropOutcome SequentialDeposition::drop(double x, double y, double radius)
   const DepositionDomain &domain = s.packing.domain;
   check_radius(radius, s.packing.r_max);
   const double slack = kDepositionSupportTolerance * radius;
+  if (domain.has_cylinder) {
+    const Cylinder &c = domain.cylinder;
+    const double h = std::hypot(x - c.cx, y - c.cy);
+    if (!(h <= c.radius - radius + slack))
+      throw_outside_range("drop point distance from the cylinder axis", h,
+                          "[0, cylinder radius - r] = [0, " + number(c.radius - radius) + "]");
+  }
   if (!domain.periodic_x && (x < domain.xlo + radius - slack || x > domain.xhi - radius + slack))
     throw_outside_range("drop point x", x,
                         "[xlo + r, xhi - r] = [" + number(domain.xlo + radius) + ", " +
@@ -872,8 +1316,15 @@ Packing deposit_packing(std::int64_t n, const RadiusDistribution &radii,
     DropOutcome o{};
     for (int attempt = 0; attempt < defaults::kDepositionMaxAttempts; ++attempt) {
       const RandomBlock point = draws.block(1 + static_cast<std::uint64_t>(attempt));
-      const double x = x_lo + x_span * uniform_from_u64(join_u32(point[0], point[1]));
-      const double y = y_lo + y_span * uniform_from_u64(join_u32(point[2], point[3]));
+      const double u = uniform_from_u64(join_u32(point[0], point[1]));
+      const double v = uniform_from_u64(join_u32(point[2], point[3]));
+      double x = x_lo + x_span * u, y = y_lo + y_span * v;
+      if (domain.has_cylinder) {  // uniform on the disk of radius R_c - r about the axis
+        const Cylinder &c = domain.cylinder;
+        const double h = (c.radius - r) * std::sqrt(u), angle = kTwoPi * v;
+        x = c.cx + h * std::cos(angle);
+        y = c.cy + h * std::sin(angle);
+      }
       o = engine.drop(x, y, r);
       if (o.rest != RestingOn::Unresolved) break;
       ++redrops;
@@ -893,6 +1344,21 @@ Packing deposit_packing(std::int64_t n, const RadiusDistribution &radii,
   out.stats = engine.stats();
   out.stats.redrops = redrops;
   out.stats.unresolved = unresolved;
+  return out;
+}
+
+std::vector<std::uint8_t> cylinder_wall_contacts(const Packing &packing,
+                                                 const DepositionDomain &domain)
+{
+  const std::size_t n = packing.radius.size();
+  std::vector<std::uint8_t> out(n, 0);
+  if (!domain.has_cylinder) return out;
+  const Cylinder &c = domain.cylinder;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double r = packing.radius[i];
+    const double h = std::hypot(packing.xyz[3 * i] - c.cx, packing.xyz[3 * i + 1] - c.cy);
+    out[i] = (c.radius - r) - h <= kDepositionSupportTolerance * 2.0 * r ? 1 : 0;
+  }
   return out;
 }
 

@@ -4,6 +4,7 @@
 #ifndef TAPMC_DEPOSITION_H
 #define TAPMC_DEPOSITION_H
 
+#include "tapmc_cylinder.h"
 #include "tapmc_defaults.h"
 
 #include <cstdint>
@@ -16,12 +17,18 @@ namespace tapmc {
 // Where spheres are deposited. Sphere centres stay in z >= z_floor + r (impassable floor); in a
 // direction with walls the centres stay in [lo + r, hi - r] (impassable vertical planes, FBC);
 // a periodic direction wraps centres into [lo, hi).
+// With has_cylinder, the container is the vertical tube `cylinder` instead: centres stay within
+// cylinder.radius - r of its axis (its wall is one more support). The tube needs walls in x and y
+// (periodic_x = periodic_y = false) and its disk inside [xlo, xhi] x [ylo, yhi], which then only
+// bounds the search grid: the flat walls lie outside the tube and are never touched.
 struct DepositionDomain {
   double xlo = 0.0, xhi = 1.0;
   double ylo = 0.0, yhi = 1.0;
   bool periodic_x = true;
   bool periodic_y = true;
   double z_floor = 0.0;
+  bool has_cylinder = false;
+  Cylinder cylinder;
   // deposit_packing() throws std::runtime_error when a sphere comes to rest with its top
   // above z_top (the region or box cannot hold the spheres).
   double z_top = std::numeric_limits<double>::infinity();
@@ -45,6 +52,7 @@ struct DepositionStats {
                                    // restarted from a fresh random (x, y)
   std::int64_t unresolved = 0;     // spheres left, non-overlapping but not proven stable, where
                                    // the last of kDepositionMaxAttempts drops stopped
+  std::int64_t wall_rolls = 0;     // of the segments, rolls on one sphere along a cylinder wall
 };
 
 enum class RestingOn { Floor, Supports, Unresolved };
@@ -69,7 +77,8 @@ struct DropOutcome {
 class SequentialDeposition {
  public:
   // max_radius bounds every radius ever added (sets the grid spacing). Throws
-  // std::invalid_argument naming the offending value (extent below one diameter, radius <= 0).
+  // std::invalid_argument naming the offending value (extent below one diameter, radius <= 0; a
+  // cylinder with a periodic side, not wider than max_radius, or not inside the box).
   SequentialDeposition(const DepositionDomain &domain, double max_radius, std::uint64_t seed);
   ~SequentialDeposition();
   SequentialDeposition(SequentialDeposition &&) noexcept;
@@ -81,7 +90,10 @@ class SequentialDeposition {
   // Drop a sphere of the given radius vertically at (x, y) from above everything it could touch,
   // then follow steepest descent: vertical fall, rolling on one support, rolling on two, until it
   // rests on the floor or on three supports (spheres or walls) that balance gravity, i.e. its
-  // centre's vertical projection lies inside the triangle of its supports. The sphere joins the
+  // centre's vertical projection lies inside the triangle of its supports. In a cylinder, the
+  // curved wall also holds a sphere with one sphere alone at the lowest point of their common
+  // path (the sphere, the wall's normal and the vertical in one plane, the sphere on the far
+  // side of the axis from the supporting sphere's centre). The sphere joins the
   // packing when the outcome is stable (rest != Unresolved). The random directions used to leave
   // an unstable equilibrium are the stream size() of purpose kDepositionEquilibria under the
   // seed (tapmc_random.h), so a drop is reproducible.
@@ -121,7 +133,8 @@ struct Packing {
 };
 
 // The Jullien-Meakin packing: n spheres with radii drawn from `radii`, each dropped at a uniform
-// random (x, y) (in [lo + r, hi - r] along wall directions). Deterministic in (n, radii, domain,
+// random (x, y) (in [lo + r, hi - r] along wall directions; in a cylinder, uniform on the disk of
+// radius cylinder.radius - r about its axis). Deterministic in (n, radii, domain,
 // seed): sphere i draws its radius and drop points from the counter-based stream i of purpose
 // kDepositionDrops under the seed (tapmc_random.h), so the result does not depend on how many
 // processes compute it.
@@ -129,6 +142,12 @@ struct Packing {
 // one diameter) and std::runtime_error when a sphere's top ends above domain.z_top.
 Packing deposit_packing(std::int64_t n, const RadiusDistribution &radii,
                         const DepositionDomain &domain, std::uint64_t seed);
+
+// Which spheres touch the domain's cylinder wall (1) or not (0), with the deposition's support
+// tolerance (gap below kDepositionSupportTolerance of the diameter): the spheres the wall holds.
+// All 0 without a cylinder.
+std::vector<std::uint8_t> cylinder_wall_contacts(const Packing &packing,
+                                                 const DepositionDomain &domain);
 
 // The bulk window of a deposit, away from the floor and from the rough top:
 // [z_floor + margin, z_floor + 2 <z - z_floor> - margin], where 2 <z - z_floor> (twice the
