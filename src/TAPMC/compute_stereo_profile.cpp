@@ -1,11 +1,15 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 // compute stereo/profile: LAMMPS front end of the exact stereology kernel (tapmc_stereology.h).
 // Each rank sums over its owned atoms; one MPI_Allreduce of a packed buffer per output (plus one
-// MAX reduction of the surface columns when the window top must be read from the data).
+// MAX reduction of the surface columns when the window top must be read from the data). With
+// 'container' the same measures are taken in a vertical cylinder (tapmc_cylinder.h): the disk
+// replaces the box's cross-section, the radial profile and the wall zone replace the vertical
+// cuts and the lateral zones.
 #include "compute_stereo_profile.h"
 
 #include "lammps_box.h"
 #include "lammps_citation.h"
+#include "lammps_container.h"
 #include "lammps_keywords.h"
 #include "lammps_support.h"
 #include "atom.h"
@@ -18,7 +22,9 @@
 #include "utils.h"
 
 #include "tapmc_defaults.h"
+#include "tapmc_math.h"
 
+#include <algorithm>
 #include <limits>
 #include <mpi.h>
 #include <stdexcept>
@@ -40,6 +46,8 @@ enum VectorEntry {
   kVectorSize
 };
 constexpr int kArrayColumns = 3;
+// axis_ of the radial profile (axis r): coaxial cylindrical cuts of the container.
+constexpr int kRadialAxis = 3;
 }  // namespace
 
 ComputeStereoProfile::ComputeStereoProfile(LAMMPS *lmp, int narg, char **arg) :
@@ -58,15 +66,24 @@ ComputeStereoProfile::ComputeStereoProfile(LAMMPS *lmp, int narg, char **arg) :
                "compute stereo/profile: radius keyword required: atom style {} has no per-atom "
                "radius",
                atom->atom_style);
+  if (has_container()) resolve_container();
+  check_axis();
 
-  // Vertical cuts are perpendicular to the profile axis, or to x when the profile is vertical.
-  settings_.transverse_axis = axis_ == 2 ? 0 : axis_;
+  // Vertical cuts are perpendicular to the profile axis, or to x when the profile is vertical
+  // (the setting is unused in a container, whose zones are annuli).
+  settings_.transverse_axis = axis_ == 0 || axis_ == 1 ? axis_ : 0;
 
   // Default plane range, fixed when the compute is defined (so that array rows keep their
-  // positions for time averages): floor .. box zhi along z, the box along x or y.
+  // positions for time averages): floor .. box zhi along z, the box along x or y, the axis to
+  // the wall along r.
   if (!planes_given) {
-    planes_.lo = axis_ == 2 ? settings_.floor : domain->boxlo[axis_];
-    planes_.hi = domain->boxhi[axis_];
+    if (axis_ == kRadialAxis) {
+      planes_.lo = 0.0;
+      planes_.hi = cylinder_.radius;
+    } else {
+      planes_.lo = axis_ == 2 ? settings_.floor : domain->boxlo[axis_];
+      planes_.hi = domain->boxhi[axis_];
+    }
     if (!(planes_.lo < planes_.hi))
       error->all(FLERR,
                  "compute stereo/profile: default planes {} .. {} are empty (floor above the box "
@@ -78,6 +95,10 @@ ComputeStereoProfile::ComputeStereoProfile(LAMMPS *lmp, int narg, char **arg) :
     stereo::validate(settings_);
     stereo::validate(planes_);
   });
+  if (axis_ == kRadialAxis && !(planes_.lo >= 0.0))
+    error->all(FLERR, "compute stereo/profile: {} for axis r (radii from the container's axis)",
+               tapmc::outside_range_message("planes lo", tapmc::number(planes_.lo),
+                                            "[0, hi) = [0, " + tapmc::number(planes_.hi) + ")"));
   const int nplanes = planes_.n;
 
   vector_flag = 1;
@@ -114,8 +135,15 @@ bool ComputeStereoProfile::parse_keywords(int narg, char **arg)
       {"axis", 1,
        [&](char **v) {
          const std::string axis = v[0];
+         if (axis == "r") {
+           axis_ = kRadialAxis;
+           return;
+         }
          if (axis != "x" && axis != "y" && axis != "z")
-           error->all(FLERR, "compute stereo/profile: axis = {} must be x, y or z", axis);
+           error->all(FLERR,
+                      "compute stereo/profile: axis = {} must be x, y or z (or r with a "
+                      "container)",
+                      axis);
          axis_ = axis[0] - 'x';
        }},
       {"planes", 3,
@@ -136,9 +164,40 @@ bool ComputeStereoProfile::parse_keywords(int narg, char **arg)
       {"column", 1, [&](char **v) { settings_.column_width = number(v[0]); }},
       {"wall_band", 1, [&](char **v) { settings_.wall_band = number(v[0]); }},
       {"wall_factor", 1, [&](char **v) { settings_.wall_factor = number(v[0]); }},
+      {tapmc::kContainerKeyword, 1, [&](char **v) { container_id_ = v[0]; }},
   };
   tapmc::parse_keywords(lmp, "compute stereo/profile", table, 3, narg, arg);
   return planes_given;
+}
+
+// The container's cylinder from its region, checked against the box and against the largest
+// sphere of the group (or the radius keyword): at definition and in init(), since the region,
+// the box and the radii may change in between. Collective.
+void ComputeStereoProfile::resolve_container()
+{
+  double r_max = fixed_radius_;
+  if (!(r_max > 0.0)) {
+    double local = 0.0;
+    for (int i = 0; i < atom->nlocal; ++i)
+      if (atom->mask[i] & groupbit) local = std::max(local, atom->radius[i]);
+    MPI_Allreduce(&local, &r_max, 1, MPI_DOUBLE, MPI_MAX, world);
+  }
+  cylinder_ = tapmc::resolve_container(lmp, "compute stereo/profile", container_id_, r_max);
+}
+
+// Which profiles exist where: vertical planes x = c or y = c in a box, coaxial surfaces (axis r)
+// in a container; horizontal planes (axis z) in both.
+void ComputeStereoProfile::check_axis()
+{
+  if (axis_ == kRadialAxis && !has_container())
+    error->all(FLERR,
+               "compute stereo/profile: axis = r (the radial profile) needs a cylindrical "
+               "container: add 'container REGION-ID'");
+  if (has_container() && (axis_ == 0 || axis_ == 1))
+    error->all(FLERR,
+               "compute stereo/profile: axis = {} is not available with container = {}; allowed: "
+               "z (Phi(z) over the disk) or r (the radial profile)",
+               "xy"[axis_], container_id_);
 }
 
 ComputeStereoProfile::~ComputeStereoProfile()
@@ -150,6 +209,7 @@ ComputeStereoProfile::~ComputeStereoProfile()
 void ComputeStereoProfile::init()
 {
   tapmc::require_box_with_floor(lmp, "compute stereo/profile");
+  if (has_container()) resolve_container();
   tapmc::quiet_sorting_without_pair_style(lmp);
   tapmc::request_ghost_depth(lmp, 2.0 * tapmc::largest_radius(lmp));
   update_mean_radius();
@@ -157,7 +217,7 @@ void ComputeStereoProfile::init()
   // warn about an empty central zone here, before the run's output starts (its width depends
   // on the box and R only); compute_vector checks again (box changes, library use before a run)
   if (group_count_ > 0.0) {
-    const stereo::Box box = current_box();
+    const stereo::Box box = measure_box();
     warn_empty_central_zone(stereo::resolve_windows(settings_, box, mean_radius_, settings_.floor),
                             box);
   }
@@ -213,6 +273,10 @@ void ComputeStereoProfile::warn_below_floor()
 // every vector invocation.
 void ComputeStereoProfile::warn_empty_central_zone(const stereo::Windows &w, const stereo::Box &box)
 {
+  if (has_container()) {
+    warn_empty_core(w);
+    return;
+  }
   if (central_warned_ || w.central_width() > 0.0) return;
   central_warned_ = true;
   if (comm->me != 0) return;
@@ -226,6 +290,22 @@ void ComputeStereoProfile::warn_empty_central_zone(const stereo::Windows &w, con
                  "box width) or a box wider than {:.6g} (2 lateral) along {}",
                  id, w.lateral_width, axis, length, axis, 0.5 * length, 2.0 * w.lateral_width,
                  axis);
+}
+
+// In a container the central zone is the core, inside the wall zone (lateral = w from the wall):
+// none when w reaches the axis (finish_cylinder_zones gives NaN). Once per compute, as above.
+void ComputeStereoProfile::warn_empty_core(const stereo::Windows &w)
+{
+  if (central_warned_ || cylinder_.radius - w.lateral_width > 0.0) return;
+  central_warned_ = true;
+  if (comm->me != 0) return;
+  error->warning(FLERR,
+                 "compute stereo/profile {}: no core: the wall zone (lateral = {:.6g} from the "
+                 "wall of container {}) covers the whole container radius {:.6g}, so the core "
+                 "mean (vector entry 6) is NaN; a core needs lateral < {:.6g} (the container "
+                 "radius) or a container radius above {:.6g}",
+                 id, w.lateral_width, container_id_, cylinder_.radius, cylinder_.radius,
+                 w.lateral_width);
 }
 
 // The radius R behind every default (bulk 4R, lateral 7R, columns 2R, ...): the fixed radius, or
@@ -285,6 +365,14 @@ stereo::Box ComputeStereoProfile::current_box() const
   return box;
 }
 
+// The horizontal extent the measures use: the box, or the container's bounding square (its
+// columns define h_s; its lateral zones are unused, the zones are annuli of the cylinder).
+stereo::Box ComputeStereoProfile::measure_box() const
+{
+  if (!has_container()) return current_box();
+  return stereo::bounding_box(cylinder_, domain->boxlo[2], domain->boxhi[2]);
+}
+
 // h_s: every rank marks the highest sphere top per column, one MAX reduction, then the mean.
 double ComputeStereoProfile::reduce_surface_height(const stereo::Spheres &spheres,
                                                    const stereo::Box &box)
@@ -321,14 +409,19 @@ void ComputeStereoProfile::compute_vector()
 void ComputeStereoProfile::compute_vector_guarded()
 {
   const stereo::Spheres spheres = select_spheres();
-  const stereo::Box box = current_box();
+  const stereo::Box box = measure_box();
   const double surface = reduce_surface_height(spheres, box);
   const stereo::Windows windows = stereo::resolve_windows(settings_, box, mean_radius_, surface);
 
   double sums[stereo::kNumSummarySums] = {};
-  stereo::accumulate_summary(spheres, box, windows, sums);
+  if (has_container())
+    stereo::accumulate_cylinder_summary(spheres, cylinder_, windows, sums);
+  else
+    stereo::accumulate_summary(spheres, box, windows, sums);
   MPI_Allreduce(MPI_IN_PLACE, sums, stereo::kNumSummarySums, MPI_DOUBLE, MPI_SUM, world);
-  const stereo::Summary s = stereo::finish_summary(sums, box, windows);
+  const stereo::Summary s = has_container()
+                                ? stereo::finish_cylinder_summary(sums, cylinder_, windows)
+                                : stereo::finish_summary(sums, box, windows);
   warn_empty_central_zone(windows, box);
 
   vector[kPhiBulk] = s.phi_bulk;
@@ -357,9 +450,9 @@ void ComputeStereoProfile::compute_array()
 void ComputeStereoProfile::compute_array_guarded()
 {
   const stereo::Spheres spheres = select_spheres();
-  const stereo::Box box = current_box();
+  const stereo::Box box = measure_box();
 
-  // z-window of vertical cuts: only the default top needs the data (h_s)
+  // z-window of vertical (or coaxial) cuts: only the default top needs the data (h_s)
   double za = 0.0, zb = 0.0;
   if (axis_ != 2) {
     stereo::Windows windows;
@@ -372,11 +465,20 @@ void ComputeStereoProfile::compute_array_guarded()
 
   const int n = planes_.n;
   buffer_.assign(2 * n, 0.0);  // cut areas, then bin volumes
-  stereo::accumulate_profile(spheres, box, axis_, planes_, za, zb, buffer_.data(),
-                             buffer_.data() + n);
+  double *cut = buffer_.data(), *volume = buffer_.data() + n;
+  if (axis_ == kRadialAxis)
+    stereo::accumulate_radial_profile(spheres, cylinder_, planes_, za, zb, cut, volume);
+  else if (has_container())
+    stereo::accumulate_cylinder_profile(spheres, cylinder_, planes_, cut, volume);
+  else
+    stereo::accumulate_profile(spheres, box, axis_, planes_, za, zb, cut, volume);
   MPI_Allreduce(MPI_IN_PLACE, buffer_.data(), 2 * n, MPI_DOUBLE, MPI_SUM, world);
-  stereo::finish_profile(buffer_.data(), buffer_.data() + n, box, axis_, planes_, za, zb,
-                         array[0]);
+  if (axis_ == kRadialAxis)
+    stereo::finish_radial_profile(cut, volume, planes_, za, zb, array[0]);
+  else if (has_container())
+    stereo::finish_cylinder_profile(cut, volume, cylinder_, planes_, array[0]);
+  else
+    stereo::finish_profile(cut, volume, box, axis_, planes_, za, zb, array[0]);
 }
 
 double ComputeStereoProfile::memory_usage()

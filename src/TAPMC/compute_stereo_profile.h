@@ -5,8 +5,10 @@
 
 #include "compute.h"
 
+#include "tapmc_cylinder.h"
 #include "tapmc_stereology.h"
 
+#include <string>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -23,7 +25,7 @@ class ComputeStereoProfile : public Compute {
  private:
   tapmc::stereo::SummarySettings settings_;
   tapmc::stereo::PlaneGrid planes_;
-  int axis_;                  // profile direction: 0 x, 1 y, 2 z
+  int axis_;                  // profile direction: 0 x, 1 y, 2 z, 3 r (radial: with a container)
   double fixed_radius_;       // radius keyword (> 0), or 0: per-atom radius
   double mean_radius_;        // R used by the defaults (fixed radius or group mean at init)
   double group_count_;        // atoms in the group when mean_radius_ was computed
@@ -32,17 +34,24 @@ class ComputeStereoProfile : public Compute {
   bool central_warned_;       // the empty-central-zone warning was given (once per compute)
   std::vector<int> selected_; // owned atoms of the group, rebuilt per invocation
   std::vector<double> buffer_;
+  std::string container_id_;  // 'container' region ID; empty: the box is the container
+  tapmc::Cylinder cylinder_;  // the container, resolved at definition and in init()
 
   bool parse_keywords(int narg, char **arg);
+  bool has_container() const { return !container_id_.empty(); }
+  void resolve_container();
+  void check_axis();
   void update_mean_radius();
   bool group_is_empty();
   void warn_below_floor();
   void warn_empty_central_zone(const tapmc::stereo::Windows &, const tapmc::stereo::Box &);
+  void warn_empty_core(const tapmc::stereo::Windows &);
   bool ready_to_measure();
   void compute_vector_guarded();
   void compute_array_guarded();
   tapmc::stereo::Spheres select_spheres();
   tapmc::stereo::Box current_box() const;
+  tapmc::stereo::Box measure_box() const;
   double reduce_surface_height(const tapmc::stereo::Spheres &, const tapmc::stereo::Box &);
 };
 

@@ -5,6 +5,7 @@
 #include "lammps_box.h"
 #include "lammps_citation.h"
 #include "lammps_compat.h"
+#include "lammps_container.h"
 #include "lammps_support.h"
 #include "tapmc_defaults.h"
 #include "tapmc_deposition.h"
@@ -45,6 +46,7 @@ struct Options {
   double floor_z = 0.0;
   bool floor_given = false;
   std::string region_id;
+  std::string container_id;  // 'container REGION-ID': a vertical cylinder (lammps_container.h)
   bool walls_given = false;
   bool walls_x = false, walls_y = false;
 };
@@ -97,14 +99,16 @@ struct Plan {
   bool walls[2] = {false, false};
   bool top_fixed = false;
   std::string top_name;  // "" for an open top
-  std::string where;     // "the box" or "region 'ID'"
+  std::string where;     // "the box", "region 'ID'" or "container 'ID'"
+  bool has_cylinder = false;
+  tapmc::Cylinder cylinder;
   double r_min = 0.0, r_max = 0.0;
 };
 
 void check_preconditions(LAMMPS *lmp, int narg)
 {
   const char *usage = "create_packing N type R seed [floor z0] [region ID] "
-                      "[walls x y|x|y|none] [dispersity W] [density rho]";
+                      "[walls x y|x|y|none] [container ID] [dispersity W] [density rho]";
   Error *error = lmp->error;
   if (!lmp->domain->box_exist)
     error->all(FLERR, "create_packing: no simulation box yet; define one with create_box or "
@@ -153,13 +157,15 @@ void parse_options(LAMMPS *lmp, int narg, char **arg, Request &req)
       opt.floor_given = true;
     } else if (key == "region") {
       opt.region_id = value;
+    } else if (key == tapmc::kContainerKeyword) {
+      opt.container_id = value;
     } else if (key == "dispersity") {
       req.params.dispersity = utils::numeric(FLERR, value, false, lmp);
     } else if (key == "density") {
       req.params.density = utils::numeric(FLERR, value, false, lmp);
     } else {
       error->all(FLERR, "create_packing: unknown keyword '{}' (allowed: floor, region, walls, "
-                 "dispersity, density)", key);
+                 "container, dispersity, density)", key);
     }
     iarg += 2;
   }
@@ -214,7 +220,17 @@ Plan plan_domain(LAMMPS *lmp, const Request &req)
     }
   }
   const bool periodic_box[2] = {domain->xperiodic != 0, domain->yperiodic != 0};
-  for (int d = 0; d < 2; ++d) {
+  if (!opt.container_id.empty()) {
+    // the tube replaces the side conditions: its wall is the only side support
+    if (opt.walls_given || !opt.region_id.empty())
+      error->all(FLERR, "create_packing: container {} and {} both given; a container is the "
+                 "whole deposition domain in x and y: give one of them", opt.container_id,
+                 opt.walls_given ? "walls" : "region " + opt.region_id);
+    plan.has_cylinder = true;
+    plan.cylinder = tapmc::resolve_container(lmp, "create_packing", opt.container_id,
+                                             req.params.radii().r_max);
+  }
+  for (int d = 0; d < 2 && !plan.has_cylinder; ++d) {
     const bool can_wrap = periodic_box[d] && spans[d];
     const bool asked = d == 0 ? opt.walls_x : opt.walls_y;
     plan.walls[d] = opt.walls_given ? asked : !can_wrap;
@@ -242,6 +258,12 @@ Plan plan_domain(LAMMPS *lmp, const Request &req)
   dd.z_floor = z_floor;
   dd.z_top = z_top;
   plan.where = opt.region_id.empty() ? std::string("the box") : "region '" + opt.region_id + "'";
+  if (plan.has_cylinder) {
+    dd.periodic_x = dd.periodic_y = false;
+    dd.has_cylinder = true;
+    dd.cylinder = plan.cylinder;
+    plan.where = "container '" + opt.container_id + "'";
+  }
   return plan;
 }
 
@@ -261,7 +283,9 @@ void check_room(LAMMPS *lmp, const Request &req, const Plan &plan)
   const double mean_r3 = radius * radius * radius * (1.0 + w * w);
   const double packing = tapmc::defaults::kRandomClosePacking;
   const double need = req.params.n * (4.0 / 3.0) * tapmc::kPi * mean_r3 / packing;
-  const double room = width[0] * width[1] * (dd.z_top - dd.z_floor);
+  const double area = plan.has_cylinder ? tapmc::kPi * plan.cylinder.radius * plan.cylinder.radius
+                                        : width[0] * width[1];
+  const double room = area * (dd.z_top - dd.z_floor);
   if (need > room)
     lmp->error->all(FLERR, "create_packing: {} cannot hold N = {} spheres of radius {}: they need "
                     "at least {:.6g} of volume (at packing fraction {}), {} offers {:.6g} between "
@@ -417,7 +441,8 @@ void create_own_atoms(LAMMPS *lmp, const Request &req, const tapmc::Packing &pac
 }
 
 // compute stereo/profile's global measures of the new spheres with its default settings and the
-// floor of the deposition, over the deposition area (the whole box without a region): Phi_b,
+// floor of the deposition, over the deposition area (the whole box without a region, the disk
+// of a container): Phi_b,
 // <Phi^c>, <Z> and h_s, exactly as that compute reports them for a group of these spheres.
 std::string stereo_profile_text(const Plan &plan, const tapmc::Packing &packing)
 {
@@ -433,7 +458,10 @@ std::string stereo_profile_text(const Plan &plan, const tapmc::Packing &packing)
   box.periodic[1] = plan.dd.periodic_y;
   stereo::SummarySettings settings;
   settings.floor = plan.dd.z_floor;
-  const stereo::Summary s = stereo::summarize(spheres, box, settings);
+  // in a tube, over the disk (compute stereo/profile with the same container)
+  const stereo::Summary s = plan.has_cylinder
+                                ? stereo::summarize_cylinder(spheres, plan.cylinder, settings)
+                                : stereo::summarize(spheres, box, settings);
   const double bulk_top =
       plan.dd.z_floor + tapmc::defaults::kBulkHeightOverRadius * stereo::mean_radius(spheres);
   return fmt::format("compute stereo/profile (defaults): Phi_b {:.4f} ({:.4g} <= z <= {:.4g}), "
@@ -458,20 +486,29 @@ std::string interior_text(const Request &req, const Plan &plan, const tapmc::Pac
                      tapmc::slab_volume_fraction(packing, plan.dd, z0, z1), z0, z1, definition);
 }
 
+// "x walls, y periodic", or the container's wall.
+std::string sides_text(const Plan &plan)
+{
+  if (plan.has_cylinder)
+    return fmt::format("the wall of {} (radius {}, axis x = {}, y = {})", plan.where,
+                       plan.cylinder.radius, plan.cylinder.cx, plan.cylinder.cy);
+  return fmt::format("x {}, y {}", plan.walls[0] ? "walls" : "periodic",
+                     plan.walls[1] ? "walls" : "periodic");
+}
+
 void report(LAMMPS *lmp, const Request &req, const Plan &plan, const tapmc::Packing &packing,
             double zmax, double t_deposit)
 {
   if (lmp->comm->me == 0) {
     utils::logmesg(lmp,
-                   "Created {} spheres by sequential deposition (Jullien-Meakin), sides: x {}, "
-                   "y {}; floor z = {}\n"
+                   "Created {} spheres by sequential deposition (Jullien-Meakin), sides: {}; "
+                   "floor z = {}\n"
                    "  {}\n"
                    "  {}\n"
                    "  highest centre z = {:.6g}; path segments {}, unstable equilibria left {}, "
                    "re-drops {}, unresolved {}\n"
                    "  create_packing CPU = {:.3f} seconds\n",
-                   req.params.n, plan.walls[0] ? "walls" : "periodic",
-                   plan.walls[1] ? "walls" : "periodic", plan.dd.z_floor,
+                   req.params.n, sides_text(plan), plan.dd.z_floor,
                    stereo_profile_text(plan, packing), interior_text(req, plan, packing), zmax,
                    packing.stats.segments, packing.stats.perturbations, packing.stats.redrops,
                    packing.stats.unresolved, t_deposit);

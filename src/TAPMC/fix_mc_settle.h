@@ -6,6 +6,7 @@
 
 #include "fix.h"
 #include "lmptype.h"
+#include "tapmc_cylinder.h"
 
 #include <array>
 #include <cstdint>
@@ -61,6 +62,10 @@ class FixMCSettle : public Fix {
   // gather on one rank, domain on several.
   enum class Scheme { Auto, Gather, Domain } scheme;
   bool solid_law = false;     // 'theta_law solid': P(theta) per unit solid angle (else angle)
+  // 'container REGION-ID': a vertical cylindrical container (lammps_container.h) replacing the
+  // side walls; empty without one. Resolved when the fix is defined and again in init().
+  std::string container_region;
+  tapmc::Cylinder container{};
   bool stop_drift = false;    // 'stop drift': the windowed drift rule (tapmc_stop_rule.h)
   long drift_window = 0;      // 'window': checks averaged by 'stop drift' (kSettleDriftWindow)
   bool window_given = false;

@@ -1378,7 +1378,10 @@ double slab_volume_fraction(const Packing &packing, const DepositionDomain &doma
 {
   const stereo::Spheres spheres{packing.xyz.data(), packing.radius.data(), 0.0, nullptr,
                                 static_cast<int>(packing.radius.size())};
-  const double area = (domain.xhi - domain.xlo) * (domain.yhi - domain.ylo);
+  // in a tube every sphere lies inside the disk, whose area normalises the slab
+  const double area = domain.has_cylinder
+                          ? kPi * domain.cylinder.radius * domain.cylinder.radius
+                          : (domain.xhi - domain.xlo) * (domain.yhi - domain.ylo);
   return stereo::horizontal_slab_volume(spheres, z0, z1) / (area * (z1 - z0));
 }
 

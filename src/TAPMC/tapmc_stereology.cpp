@@ -405,16 +405,13 @@ void accumulate_summary(const Spheres &spheres, const Box &box, const Windows &w
   sums[kCentralVolume] += central;
 }
 
-Summary finish_summary(const double *sums, const Box &box, const Windows &w)
-{
-  auto ratio = [](double num, double den) { return den > 0.0 ? num / den : 0.0; };
-  const double area = box.horizontal_area();
-  const int a = w.transverse_axis;
-  const double other = box.length(1 - a);
-  const double window = std::max(0.0, w.window_hi - w.window_lo);
-  const double lateral_length = (w.lateral_lo_end - box.lo[a]) + (box.hi[a] - w.lateral_hi_start);
-  const double central_length = w.central_width();
+namespace {
+double ratio(double num, double den) { return den > 0.0 ? num / den : 0.0; }
 
+// The horizontal-cut measures of a Summary (count, <Z>, Phi_b, <Phi^c>, heights) over the
+// cross-section `area`: the box's L_x L_y or the tube's disk.
+Summary finish_horizontal(const double *sums, double area, const Windows &w)
+{
   Summary out;
   out.sphere_count = sums[kSphereCount];
   out.mean_height = ratio(sums[kHeightSum], sums[kSphereCount]);
@@ -423,6 +420,19 @@ Summary finish_summary(const double *sums, const Box &box, const Windows &w)
                             area * (w.top - w.floor));
   out.top = w.top;
   out.surface = w.surface;
+  return out;
+}
+}  // namespace
+
+Summary finish_summary(const double *sums, const Box &box, const Windows &w)
+{
+  const int a = w.transverse_axis;
+  const double other = box.length(1 - a);
+  const double window = std::max(0.0, w.window_hi - w.window_lo);
+  const double lateral_length = (w.lateral_lo_end - box.lo[a]) + (box.hi[a] - w.lateral_hi_start);
+  const double central_length = w.central_width();
+
+  Summary out = finish_horizontal(sums, box.horizontal_area(), w);
   out.phi_lateral = ratio(sums[kLateralVolume], lateral_length * other * window);
   // an empty central zone has no packing fraction: NaN, not a 0 that reads as a measurement
   out.phi_central = central_length > 0.0
@@ -662,6 +672,74 @@ CylinderZones cylinder_zones(const Spheres &spheres, const Cylinder &cylinder,
   double sums[kNumCylinderZoneSums] = {};
   accumulate_cylinder_zones(spheres, cylinder, wall_width, za, zb, sums);
   return finish_cylinder_zones(sums, cylinder, wall_width, za, zb);
+}
+
+void accumulate_cylinder_summary(const Spheres &spheres, const Cylinder &cylinder,
+                                 const Windows &w, double *sums)
+{
+  const double rc = cylinder.radius;
+  double count = 0.0, heights = 0.0, bulk = 0.0, band = 0.0, upper = 0.0;
+  for_each_sphere(spheres, [&](double x, double y, double zc, double r) {
+    count += 1.0;
+    heights += zc - w.floor;
+    const double d = axis_distance(cylinder, x, y);
+    bulk += sphere_cylinder_slab_volume(r, d, rc, w.floor - zc, w.bulk_top - zc);
+    band += sphere_cylinder_slab_volume(r, d, rc, w.floor - zc, w.wall_band_top - zc);
+    upper += sphere_cylinder_slab_volume(r, d, rc, w.wall_band_top - zc, w.top - zc);
+  });
+  // the wall zone and the core: the zones' own pass (FIG. 8 in the tube), one traversal each
+  double zones[kNumCylinderZoneSums] = {};
+  accumulate_cylinder_zones(spheres, cylinder, w.lateral_width, w.window_lo, w.window_hi, zones);
+  sums[kSphereCount] += count;
+  sums[kHeightSum] += heights;
+  sums[kBulkVolume] += bulk;
+  sums[kWallBandVolume] += band;
+  sums[kUpperVolume] += upper;
+  sums[kLateralVolume] += zones[kCylinderWallVolume];
+  sums[kCentralVolume] += zones[kCylinderCoreVolume];
+}
+
+Summary finish_cylinder_summary(const double *sums, const Cylinder &cylinder, const Windows &w)
+{
+  Summary out = finish_horizontal(sums, kPi * cylinder.radius * cylinder.radius, w);
+  double zones[kNumCylinderZoneSums];
+  zones[kCylinderWallVolume] = sums[kLateralVolume];
+  zones[kCylinderCoreVolume] = sums[kCentralVolume];
+  const CylinderZones z =
+      finish_cylinder_zones(zones, cylinder, w.lateral_width, w.window_lo, w.window_hi);
+  out.phi_lateral = z.phi_wall;
+  out.phi_central = z.phi_core;
+  return out;
+}
+
+Box bounding_box(const Cylinder &cylinder, double zlo, double zhi)
+{
+  Box box;
+  box.lo[0] = cylinder.cx - cylinder.radius;
+  box.hi[0] = cylinder.cx + cylinder.radius;
+  box.lo[1] = cylinder.cy - cylinder.radius;
+  box.hi[1] = cylinder.cy + cylinder.radius;
+  box.lo[2] = zlo;
+  box.hi[2] = zhi;
+  box.periodic[0] = box.periodic[1] = false;
+  return box;
+}
+
+Summary summarize_cylinder(const Spheres &spheres, const Cylinder &cylinder,
+                           const SummarySettings &settings)
+{
+  validate(settings);
+  validate(cylinder);
+  const double radius = mean_radius(spheres);
+  const Box box = bounding_box(cylinder, settings.floor, settings.floor + 1.0);
+  const ColumnGrid grid = make_column_grid(box, resolved_column_width(settings, radius));
+  std::vector<double> tops(grid.size(), -std::numeric_limits<double>::infinity());
+  accumulate_column_tops(spheres, grid, tops.data());
+  const double surface = surface_height(tops.data(), grid.size(), settings.floor);
+  const Windows w = resolve_windows(settings, box, radius, surface);
+  double sums[kNumSummarySums] = {};
+  accumulate_cylinder_summary(spheres, cylinder, w, sums);
+  return finish_cylinder_summary(sums, cylinder, w);
 }
 
 }  // namespace stereo

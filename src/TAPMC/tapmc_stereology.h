@@ -242,6 +242,25 @@ CylinderZones finish_cylinder_zones(const double *sums, const Cylinder &cylinder
 CylinderZones cylinder_zones(const Spheres &spheres, const Cylinder &cylinder,
                              double wall_width, double za, double zb);
 
+// The global measures in the tube (compute stereo/profile with a container): the Summary of the
+// box with the container's disk, pi radius^2, in place of the box's cross-section, and FIG. 8's
+// wall zone and core in place of the lateral and central zones. The windows come from
+// resolve_windows over the container's bounding box (column grid of h_s, heights); the wall
+// zone is the annulus within w.lateral_width of the wall. The sums keep the SummarySum layout:
+// kBulkVolume, kWallBandVolume and kUpperVolume count only material inside the container,
+// kLateralVolume is the wall zone's and kCentralVolume the core's, over [window_lo, window_hi].
+// Throws std::invalid_argument unless w.lateral_width > 0.
+void accumulate_cylinder_summary(const Spheres &spheres, const Cylinder &cylinder,
+                                 const Windows &w, double *sums);
+// phi_lateral is the wall zone's volume fraction, phi_central the core's (NaN without a core:
+// lateral_width >= radius).
+Summary finish_cylinder_summary(const double *sums, const Cylinder &cylinder, const Windows &w);
+// The container's horizontal bounding square (non-periodic): the column grid of h_s in the tube.
+Box bounding_box(const Cylinder &cylinder, double zlo, double zhi);
+// Serial convenience: the whole chain in the tube (summarize's steps with the container).
+Summary summarize_cylinder(const Spheres &spheres, const Cylinder &cylinder,
+                           const SummarySettings &settings);
+
 }  // namespace stereo
 }  // namespace tapmc
 

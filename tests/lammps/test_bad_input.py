@@ -101,7 +101,8 @@ MC_SETTLE_CASES = [
     # work); an input that still asks for threads stops, naming it and the allowed keywords.
     ("fix s all mc/settle 1 threads 2",
      "fix mc/settle: unknown keyword 'threads' (allowed: dmax, theta0, theta_law, eta, check, "
-     "maxsweeps, floor, diameter, xwalls, ywalls, order, scheme, stop, window, verify)"),
+     "maxsweeps, floor, diameter, xwalls, ywalls, order, scheme, stop, window, container, "
+     "verify)"),
 ]
 
 

@@ -237,3 +237,42 @@ TEST(ComputeStereoProfile, ThermoAndTimeAverageSeeTheOutputs)
     lammps_free(value);
   }
 }
+
+TEST(ComputeStereoProfile, ContainerMatchesTheCylinderKernel)
+{
+  // A jostled simple-cubic bed in a tube (some spheres poke through the wall by up to ~0.1):
+  // the vector, Phi(z) over the disk and the radial profile equal the kernel's on the same
+  // positions, with the container recovered from the region as typed.
+  auto lmp = tapmc_test::make_lammps();
+  tapmc_test::run_lines(
+      lmp.get(), {"units lj", "atom_style sphere", "boundary f f fm",
+                  "region box block 0 12 0 12 0 14", "create_box 1 box",
+                  "region tube cylinder z 6.25 5.75 5.5 EDGE EDGE units box",
+                  "region inner cylinder z 6 6 5.0 0.5 8.5 units box", "lattice sc 1.0",
+                  "create_atoms 1 region inner", "set group all diameter 1.0",
+                  "displace_atoms all random 0.05 0.05 0.05 4711 units box",
+                  "compute phi all stereo/profile container tube floor 0.0",
+                  "compute pz all stereo/profile container tube planes 0.0 10.0 40",
+                  "compute pr all stereo/profile container tube axis r planes 0.0 5.5 22",
+                  "run 0"});
+  const Snapshot snap = snapshot(lmp.get(), false);
+  const tapmc::Cylinder tube{6.25, 5.75, 5.5};
+  tapmc::stereo::SummarySettings set;
+  set.floor = 0.0;
+  const tapmc::stereo::Summary s = tapmc::stereo::summarize_cylinder(snap.spheres(), tube, set);
+  const std::vector<double> v = vector_of(lmp.get(), "phi");
+  expect_vector_matches(v, s);
+  for (int i : {0, 1, 4, 5}) EXPECT_GT(v[i], 0.3) << i;
+  // the material beyond the wall is not counted: below the box's whole-sphere value over the disk
+  EXPECT_LT(v[0], tapmc::stereo::horizontal_slab_volume(snap.spheres(), 0.0, 2.0) /
+                      (kPi * 5.5 * 5.5 * 2.0));
+
+  const std::vector<double> z =
+      tapmc::stereo::cylinder_profile(snap.spheres(), tube, {0.0, 10.0, 40});
+  const std::vector<double> pz = array_of(lmp.get(), "pz", 40);
+  for (size_t i = 0; i < z.size(); ++i) EXPECT_NEAR(pz[i], z[i], 1e-12) << i;
+  const std::vector<double> r =
+      tapmc::stereo::radial_profile(snap.spheres(), tube, {0.0, 5.5, 22}, 1.0, s.top);
+  const std::vector<double> pr = array_of(lmp.get(), "pr", 22);
+  for (size_t i = 0; i < r.size(); ++i) EXPECT_NEAR(pr[i], r[i], 1e-12) << i;
+}

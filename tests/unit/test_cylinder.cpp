@@ -587,3 +587,95 @@ TEST(CylinderStereology, RadialSurfaceCutsAverageToTheAnnulus)
   const double phi = vol / (kPi * (9.0 - 1.0) * (zb - za));
   EXPECT_NEAR(phi, coarse[2], 1e-4);
 }
+
+TEST(CylinderStereology, SummaryOverTheDiskAndTheWallZone)
+{
+  // The global measures in the tube (compute stereo/profile with a container): with every
+  // sphere inside, Phi_b and <Phi^c> are the box's closed-form slab volumes over pi Rc^2; the
+  // wall zone and the core are cylinder_zones over the window; h_s is the mean column top over
+  // the container's bounding square.
+  const Cylinder c{0.5, -1.0, 4.5};
+  const Packing p = random_packing(47, c, 150, 9.0);
+  const Spheres s = p.view();
+  stereo::SummarySettings set;
+  set.floor = 0.0;
+  set.column_width = 1.5;
+  const stereo::Summary sum = stereo::summarize_cylinder(s, c, set);
+  const double R = stereo::mean_radius(s);
+  const double area = kPi * c.radius * c.radius;
+
+  // h_s by hand: 6 x 6 columns of 1.5 over [cx - Rc, cx + Rc] x [cy - Rc, cy + Rc]
+  std::vector<double> tops(36, -std::numeric_limits<double>::infinity());
+  for (size_t i = 0; i < p.radius.size(); ++i) {
+    const int ix = std::clamp(static_cast<int>((p.xyz[3 * i] - (c.cx - c.radius)) / 1.5), 0, 5);
+    const int iy =
+        std::clamp(static_cast<int>((p.xyz[3 * i + 1] - (c.cy - c.radius)) / 1.5), 0, 5);
+    tops[6 * iy + ix] = std::max(tops[6 * iy + ix], p.xyz[3 * i + 2] + p.radius[i]);
+  }
+  double top_sum = 0.0;
+  int filled = 0;
+  for (double t : tops)
+    if (std::isfinite(t)) top_sum += t, ++filled;
+  EXPECT_NEAR(sum.surface, top_sum / filled, 1e-13);
+  EXPECT_NEAR(sum.top, 0.9 * sum.surface, 1e-13);
+
+  EXPECT_NEAR(sum.phi_bulk, stereo::horizontal_slab_volume(s, 0.0, 4.0 * R) / (area * 4.0 * R),
+              1e-14);
+  const double corrected = (16.0 / 11.0 * stereo::horizontal_slab_volume(s, 0.0, R) +
+                            stereo::horizontal_slab_volume(s, R, sum.top)) /
+                           (area * sum.top);
+  EXPECT_NEAR(sum.phi_corrected, corrected, 1e-14);
+  double height = 0.0;
+  for (size_t i = 0; i < p.radius.size(); ++i) height += p.xyz[3 * i + 2];
+  EXPECT_NEAR(sum.mean_height, height / p.radius.size(), 1e-13);
+  const stereo::CylinderZones z = stereo::cylinder_zones(s, c, 7.0 * R, 2.0 * R, sum.top);
+  EXPECT_GT(z.phi_wall, 0.1);  // both zones hold material
+  EXPECT_GT(z.phi_core, 0.1);
+  EXPECT_NEAR(sum.phi_lateral, z.phi_wall, 1e-14);
+  EXPECT_NEAR(sum.phi_central, z.phi_core, 1e-14);
+
+  // the sums add up over parts of the packing (what the MPI reduction relies on)
+  const stereo::Box box = stereo::bounding_box(c, 0.0, 9.0);
+  const stereo::Windows w = stereo::resolve_windows(set, box, R, sum.surface);
+  std::vector<int> even, odd;
+  for (int i = 0; i < s.count; ++i) (i % 2 ? odd : even).push_back(i);
+  double whole[stereo::kNumSummarySums] = {}, parts[stereo::kNumSummarySums] = {};
+  stereo::accumulate_cylinder_summary(s, c, w, whole);
+  for (const std::vector<int> *part : {&even, &odd}) {
+    Spheres q = s;
+    q.index = part->data();
+    q.count = static_cast<int>(part->size());
+    stereo::accumulate_cylinder_summary(q, c, w, parts);
+  }
+  for (int k = 0; k < stereo::kNumSummarySums; ++k)
+    EXPECT_NEAR(parts[k], whole[k], 1e-12 * (1.0 + std::fabs(whole[k]))) << k;
+
+  // a wall zone reaching the axis leaves no core: NaN, and the wall zone is the whole disk
+  set.lateral_width = c.radius;
+  const stereo::Summary all = stereo::summarize_cylinder(s, c, set);
+  EXPECT_TRUE(std::isnan(all.phi_central));
+  EXPECT_NEAR(all.phi_lateral,
+              stereo::horizontal_slab_volume(s, 2.0 * R, all.top) /
+                  (area * (all.top - 2.0 * R)),
+              1e-13);
+}
+
+TEST(CylinderStereology, SummaryCountsOnlyWhatIsInsideTheContainer)
+{
+  // Spheres poking through the wall: Phi_b is the volume inside the container over the disk.
+  const Cylinder c{0.0, 0.0, 3.0};
+  Packing p;
+  std::mt19937_64 rng(53);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int i = 0; i < 80; ++i) {
+    const double angle = 2.0 * kPi * u(rng), dist = (c.radius + 0.4) * std::sqrt(u(rng));
+    p.add(dist * std::cos(angle), dist * std::sin(angle), 0.5 + 5.0 * u(rng), 0.5);
+  }
+  const Spheres s = p.view();
+  stereo::SummarySettings set;
+  set.floor = 0.0;
+  const stereo::Summary sum = stereo::summarize_cylinder(s, c, set);
+  const double inside = stereo::cylinder_slab_volume(s, c, 0.0, 2.0);
+  EXPECT_NEAR(sum.phi_bulk, inside / (kPi * 9.0 * 2.0), 1e-14);
+  EXPECT_LT(inside, stereo::horizontal_slab_volume(s, 0.0, 2.0) - 0.05);
+}

@@ -1,0 +1,52 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// The keyword 'container REGION-ID' of the TAPMC styles: a LAMMPS region resolved into the
+// vertical cylinder of tapmc_cylinder.h, and its checks against the spheres and the box.
+//
+// The paper taps in a box (section II); a tube is the other container of compaction
+// experiments. Its wall is taken from a region so that the input names the container once, in
+// LAMMPS' own terms ('region tube cylinder z c1 c2 radius lo hi'), and every style reads the
+// same wall. Only what the TAPMC kernels compute exactly is accepted: an interior cylinder with
+// axis z, fixed in time. Its end caps (lo, hi; INF or EDGE allowed) play no part: the floor is
+// the styles' own 'floor', the top is open.
+#ifndef TAPMC_LAMMPS_CONTAINER_H
+#define TAPMC_LAMMPS_CONTAINER_H
+
+#include "tapmc_cylinder.h"
+
+#include "lammps.h"
+
+#include <string>
+
+namespace tapmc {
+
+// The keyword's name, as every style spells it in its table and its messages.
+constexpr const char *kContainerKeyword = "container";
+
+// The cylinder of region `region_id`. Stops (error->all, collective: every rank sees the same
+// regions) with a message naming `style`, the keyword, the value and what is allowed, when the
+// region does not exist, is not style cylinder, has an axis other than z, is 'side out', has an
+// open curved wall ('open 3'), moves or rotates, or has a variable centre or radius.
+Cylinder container_cylinder(LAMMPS_NS::LAMMPS *lmp, const char *style,
+                            const std::string &region_id);
+
+// The container and the box agree: x and y are not periodic (the wall replaces the periodic
+// sides), and the cylinder lies within the box's x and y ranges (to rounding). Stops naming
+// both otherwise.
+void require_container_in_box(LAMMPS_NS::LAMMPS *lmp, const char *style,
+                              const std::string &region_id, const Cylinder &cylinder);
+
+// The container is wider than its largest sphere (tapmc::validate(cylinder, r_max)); stops
+// naming the region and both radii otherwise. r_max must be > 0.
+void require_container_fits(LAMMPS_NS::LAMMPS *lmp, const char *style,
+                            const std::string &region_id, const Cylinder &cylinder,
+                            double max_sphere_radius);
+
+// All three, in that order: what a style calls when it is defined and again in init() (the
+// region may have been deleted or redefined, the box changed, the radii set). max_sphere_radius
+// <= 0 (no spheres yet) skips the last check.
+Cylinder resolve_container(LAMMPS_NS::LAMMPS *lmp, const char *style,
+                           const std::string &region_id, double max_sphere_radius);
+
+}  // namespace tapmc
+
+#endif
