@@ -60,6 +60,7 @@ del PORES_RESUME["sqrteps"]
 TAPPING = dict(taps=1, eps=0.02, seed=11)   # these inputs fix N = 4096: one tap, ~2 s
 QUICKSTART = dict(taps=12, eps=0.03, seed=5)   # N = 1024: ~2 s
 SCALE = dict(N=64, L=8, R=0.6, eps=0.02, eta=1e-5, taps=2, seed=5)
+CYLINDER = dict(N=300, R=0.6, tube_d=6, eps=0.03, taps=3, eta=1e-5, seed=5)   # ~1 s
 
 RUNS = {
     "paper/in.constant_eps": [CONSTANT_EPS_FRESH, CONSTANT_EPS_RESUME, CONSTANT_EPS_PAPER_START],
@@ -71,6 +72,7 @@ RUNS = {
     "quickstart/in.quickstart": [QUICKSTART],
     "scale/in.paper_x100": [SCALE],
     "deposition/in.deposition": [{}],
+    "cylinder/in.cylinder": [CYLINDER],
 }
 
 
@@ -417,3 +419,20 @@ def test_every_switch_is_exercised():
             values = [[str(x) for x in (v[name] if isinstance(v[name], list) else [v[name]])]
                       for v in runs if name in v]
             assert any(val != default for val in values), (example, name, default)
+
+
+def test_cylinder_example_taps_in_its_tube(tmp_path):
+    """in.cylinder deposits and taps inside one tube: a row per tap (tap 0 included) with Phi_b,
+    <Phi^c>, <Z>, the wall zone and the core, every sphere inside the wall after the taps, and the
+    radial profile at t = 0 and at the end over the annuli 0 .. Rc."""
+    log = run_ok("cylinder/in.cylinder", CYLINDER, tmp_path)
+    rows = table(tmp_path / "taps.dat")
+    assert rows.shape == (CYLINDER["taps"] + 1, 7)
+    assert np.all((rows[:, 1:3] > 0.3) & (rows[:, 1:3] < 0.7))
+    assert np.all(rows[1:, 6] > 0)  # every tap ran a redeposition
+    assert "container 'tube'" in log
+    blocks = ave_time_blocks(tmp_path / "profile_r.dat")
+    assert sorted(blocks) == [0, CYLINDER["taps"]]
+    radii = [float(line.split()[1]) for line in blocks[CYLINDER["taps"]]]
+    rc = CYLINDER["tube_d"] * CYLINDER["R"]
+    assert len(radii) == 20 and 0 < radii[0] < radii[-1] < rc
