@@ -168,7 +168,32 @@ def build_parser():
                     help="repository whose doc/validation/front is read and whose doc/front.rst, "
                          "figure and tools/python/tapmc/paper/front_summary.csv are written "
                          "(default: this package's repository)")
+    pr = sub.add_parser("paper-ramp", help="section III.B's question at the paper's ramp "
+                                           "protocol: the campaign's paperramp* runs judged "
+                                           "(frozen or not), written to the report's "
+                                           "questions/paper_ramp.csv")
+    pr.add_argument("--campaign", type=Path, required=True, metavar="DIR",
+                    help="campaign directory holding runs/paperramp*")
+    pr.add_argument("--out", type=Path, default=Path("doc/paper_scale"), metavar="DIR",
+                    help="report directory (default doc/paper_scale): writes "
+                         "DIR/validation/questions/paper_ramp.csv")
     return parser
+
+
+def _paper_ramp(args):
+    from . import paper_ramp
+    from .scales import FULL
+    from .validation import FIG_DIR
+
+    if not (args.campaign / "runs").is_dir():
+        print(f"tapmc-paper paper-ramp: --campaign {args.campaign} has no runs/ folder",
+              file=sys.stderr)
+        return 2
+    rows = paper_ramp.analyse(args.campaign, FULL.eta)
+    path = paper_ramp.write_csv(rows, args.out / FIG_DIR / "questions" / paper_ramp.CSV_NAME)
+    print(paper_ramp.finding_text(rows, FULL.eta))
+    print(f"paper-ramp: {path} ({len(rows)} runs)")
+    return 0
 
 
 def _front_page(args):
@@ -453,6 +478,8 @@ def main(argv=None):
         return _run_plan(args)
     if args.command == "front":
         return _front_page(args)
+    if args.command == "paper-ramp":
+        return _paper_ramp(args)
     if args.command == "plan":
         return _plan_cost(args)
     if args.command == "report" and args.from_data:

@@ -347,6 +347,21 @@ def _register_table(rows):
     return lines
 
 
+def _paper_ramp_finding(files, summary):
+    """The finding about the irreversible branch at the paper's ramp protocol, from
+    questions/paper_ramp.csv next to the figures (``tapmc-paper paper-ramp``), or ""."""
+    from . import paper_ramp
+
+    if not files:
+        return ""
+    path = Path(next(iter(files.values()))[1]).parent / questions.FOLDER / paper_ramp.CSV_NAME
+    if not path.exists():
+        return ""
+    text = paper_ramp.finding_text(paper_ramp.read_csv(path), summary["eta"])
+    return text + (" Per run: ``" + str(Path(FIG_DIR) / questions.FOLDER / paper_ramp.CSV_NAME)
+                   + "`` (``tapmc-paper paper-ramp``).")
+
+
 def render(summary, files):
     """The text of validation.rst from the campaign summary and the figure files (name ->
     (png, csv))."""
@@ -367,8 +382,11 @@ def render(summary, files):
              f"Summary: {n_claims} claims of the paper in {len(model)} rows: "
              f"{count['agrees']} agree, {count['disagrees']} disagree, {count['undecided']} "
              "are undecided (the reason is in the verdict: too few seeds, a scale below the "
-             "paper's, or runs this campaign does not have).", "",
-             "How close is TAPMC to the paper", "-" * 31, ""]
+             "paper's, or runs this campaign does not have).", ""]
+    finding = _paper_ramp_finding(files, summary)
+    if finding:
+        lines += [finding, ""]
+    lines += ["How close is TAPMC to the paper", "-" * 31, ""]
     lines += _rst_table(rows, run_note)
     lines += ["", f"The numbers come from the figure CSVs and ``{FIG_DIR}/{SUMMARY_FILE}`` (the "
               "campaign's scale and initial packings), committed with this page; rewrite it "

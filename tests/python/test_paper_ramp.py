@@ -1,0 +1,66 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""tapmc.paper.paper_ramp: the paper-protocol ramps judged from their taps.dat (a frozen
+descending branch, a compacting one, a run still going up), the CSV round trip and the finding
+of the report's first screen."""
+import numpy as np
+import pytest
+
+from tapmc.paper import paper_ramp
+
+LEVELS = [0.025, 0.05, 0.075, 0.1, 0.125, 0.1, 0.075, 0.05, 0.025]
+
+
+def write_run(campaign, name, phi_of_level, levels=LEVELS, taps_per_level=4000, seed=1,
+              done=False, repeat_from=None):
+    """A synthetic ramp: <Phi^c> = phi_of_level[k] + white noise (sigma 1e-3) in level k; a
+    resumed run (repeat_from) writes the taps after that step twice, the first copy wrong."""
+    rng = np.random.default_rng(seed)
+    run = campaign / "runs" / name
+    run.mkdir(parents=True)
+    rows = ["# step level branch sqrt_eps phi_b phi_c Z", "0 -1 0 0.0 0.5 0.58 7.3"]
+    for k, (sq, phi) in enumerate(zip(levels, phi_of_level)):
+        for t in range(taps_per_level):
+            step = k * taps_per_level + t + 1
+            value = phi + 1e-3 * rng.standard_normal()
+            if repeat_from is not None and step > repeat_from and k == len(levels) - 1:
+                rows.append(f"{step} {k} 0 {sq} 0.5 {value + 0.01:.8f} 7.0")
+            rows.append(f"{step} {k} 0 {sq} 0.5 {value:.8f} 7.0")
+    (run / "taps.dat").write_text("\n".join(rows) + "\n")
+    if done:
+        (run / "DONE.json").write_text("{}\n")
+    return run
+
+
+def test_frozen_compacting_and_running_ramps(tmp_path):
+    up = [0.590, 0.595, 0.598, 0.600, 0.600]
+    write_run(tmp_path, "paperramp0.125_pbc_s1", up + [0.600] * 4, done=True)
+    write_run(tmp_path, "paperramp0.125_pbc_eta1e-05_s1",
+              up + [0.601, 0.602, 0.603, 0.604], seed=2, repeat_from=34000)
+    write_run(tmp_path, "paperramp0.125_pbc_eta1e-06_s2", up[:3], levels=LEVELS[:3], seed=3)
+    rows = {r.run: r for r in paper_ramp.analyse(tmp_path, 1e-7)}
+    frozen = rows["paperramp0.125_pbc_s1"]
+    assert frozen.verdict == "frozen" and frozen.eta == 1e-7 and frozen.finished
+    assert abs(frozen.down_change) < 3 * frozen.down_change_sem
+    compacting = rows["paperramp0.125_pbc_eta1e-05_s1"]
+    assert compacting.verdict == "compacts" and compacting.eta == 1e-5
+    assert compacting.down_change == pytest.approx(0.0025, abs=2e-4)
+    assert compacting.down_rise == pytest.approx(0.003, abs=2e-4)  # the repeated taps count once
+    assert compacting.taps_done == 36000
+    running = rows["paperramp0.125_pbc_eta1e-06_s2"]
+    assert running.verdict == "running" and running.taps_done == 12000
+
+    # the CSV keeps every field, and the finding names each eta's verdict
+    back = paper_ramp.read_csv(paper_ramp.write_csv(list(rows.values()), tmp_path / "p.csv"))
+    assert [r.run for r in back] == list(rows)
+    assert back[0] == list(rows.values())[0]
+    text = paper_ramp.finding_text(back, 1e-7)
+    assert "At eta = 1e-7 (the default), the model has an irreversible (frozen) branch" in text
+    assert "At eta = 1e-5, the model has no irreversible branch: the descending branch compacts" in text
+    assert "At eta = 1e-6 the ramp is still going up (seed 2 at tap 12000): undecided." in text
+
+
+def test_a_directory_that_is_not_a_paper_ramp_is_refused(tmp_path):
+    run = write_run(tmp_path, "ramp_pbc_s1", [0.6] * 9)
+    with pytest.raises(ValueError, match="ramp_pbc_s1"):
+        paper_ramp.analyse_run(run, 1e-7)
+    assert paper_ramp.analyse(tmp_path, 1e-7) == []

@@ -1,0 +1,170 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""Section III.B's question at the paper's own ramp protocol: is the branch below (sqrt eps)*
+irreversible (frozen)?
+
+The campaign's ``paperramp*`` runs (tier 7 of :mod:`tapmc.paper.plan`) ramp sqrt(eps) up to a
+turning level below (sqrt eps)* ~ 0.15 and back down at 4000 taps per level, at the default
+redeposition threshold and at looser ones. Each run is read from its taps.dat (finished or not:
+the levels done so far count), cut into levels by :class:`tapmc.hysteresis.Hysteresis` (the
+last 1000 taps of each level) and judged by :class:`tapmc.hysteresis.RampBranches`: the branch
+is *frozen* when the descending levels stay within noise of the turning level
+(``down_change`` within ``Z_DECIDE`` standard errors), and *compacts* when they rise beyond it.
+The per-run table is written to ``paper_ramp.csv`` of the report's questions folder, and the
+report's first screen states the finding from it (:func:`finding_text`).
+
+  /usr/bin/python3 -m tapmc.paper paper-ramp --campaign DIR --out doc/paper_scale
+"""
+
+from __future__ import annotations
+
+import csv
+import re
+from dataclasses import asdict, dataclass, fields
+from pathlib import Path
+
+import numpy as np
+
+from ..hysteresis import Hysteresis, RampBranches
+from . import _runs
+
+#: Taps per level of the paper's protocol, and the taps averaged at the end of each level.
+TAPS_PER_LEVEL = 4000
+LAST_TAPS = 1000
+CSV_NAME = "paper_ramp.csv"
+#: The name of a run: paperramp<top>_<bc>[_eta<eta>]_s<seed> (tapmc.paper._runs).
+NAME = re.compile(rf"^{_runs.PAPER_RAMP_PREFIX}(?P<top>[0-9.]+)_(?P<bc>pbc|fbc)"
+                  r"(?:_eta(?P<eta>[0-9.e+-]+))?_s(?P<seed>\d+)$")
+
+
+@dataclass(frozen=True)
+class PaperRampRun:
+    """One ramp run: its settings, how far it got, and (once its descending branch has two
+    levels) the change of that branch from the turning level with its standard error, the rise
+    along it (last level minus first) and the verdict (frozen, compacts, loosens)."""
+
+    run: str
+    top: float
+    eta: float
+    seed: int
+    taps_done: int
+    finished: bool
+    down_levels: int
+    down_first: float   # sqrt(eps) of the first and last descending levels
+    down_last: float
+    down_change: float  # mean of the descending levels minus the turning level
+    down_change_sem: float
+    down_rise: float    # last descending level minus the first
+    down_rise_sem: float
+    verdict: str        # "frozen", "compacts", "loosens" or "running" (fewer than 2 levels down)
+
+
+def read_taps(path):
+    """(sqrt_eps, <Phi^c>) per tap of a ramp's taps.dat (columns step level branch sqrt_eps
+    phi_b phi_c Z), tap 0 left out; a tap written twice (a run resumed from a restart) counts
+    once, with its last row."""
+    data = np.loadtxt(path, comments="#", ndmin=2)
+    data = data[data[:, 0] > 0]
+    steps = data[:, 0]
+    last = len(steps) - 1 - np.unique(steps[::-1], return_index=True)[1]
+    data = data[np.sort(last)]
+    return data[:, 3], data[:, 5], int(data[-1, 0]) if len(data) else 0
+
+
+def analyse_run(run_dir, default_eta):
+    """The :class:`PaperRampRun` of one run directory (name ``paperramp...``)."""
+    run_dir = Path(run_dir)
+    m = NAME.match(run_dir.name)
+    if not m:
+        raise ValueError(f"run directory {run_dir.name!r} is not a paper ramp "
+                         f"({_runs.PAPER_RAMP_PREFIX}<top>_<bc>[_eta<eta>]_s<seed>)")
+    sqrt_eps, phi_c, taps_done = read_taps(run_dir / "taps.dat")
+    eta = float(m.group("eta")) if m.group("eta") else float(default_eta)
+    base = dict(run=run_dir.name, top=float(m.group("top")), eta=eta, seed=int(m.group("seed")),
+                taps_done=taps_done, finished=(run_dir / "DONE.json").exists())
+    hysteresis = Hysteresis(sqrt_eps, phi_c, TAPS_PER_LEVEL, LAST_TAPS).compute()
+    down = hysteresis.branch("down")
+    if len(down) < 2:
+        nan = float("nan")
+        return PaperRampRun(**base, down_levels=len(down), down_first=nan, down_last=nan,
+                            down_change=nan, down_change_sem=nan, down_rise=nan,
+                            down_rise_sem=nan, verdict="running")
+    branches = RampBranches.from_hysteresis(hysteresis).compute()
+    change = branches.down_change
+    rise = float(down["mean"][-1] - down["mean"][0])
+    rise_sem = float(np.hypot(down["sem"][-1], down["sem"][0]))
+    verdict = ("frozen" if change.within_noise
+               else "compacts" if change.positive else "loosens")
+    return PaperRampRun(**base, down_levels=len(down), down_first=float(down["sqrt_eps"][0]),
+                        down_last=float(down["sqrt_eps"][-1]), down_change=change.value,
+                        down_change_sem=change.sem, down_rise=rise, down_rise_sem=rise_sem,
+                        verdict=verdict)
+
+
+def analyse(campaign, default_eta):
+    """Every ``paperramp*`` run of the campaign directory (its ``runs/`` folder) that has a
+    taps.dat, sorted by eta, top and seed."""
+    runs_dir = Path(campaign) / "runs"
+    found = [analyse_run(d, default_eta) for d in sorted(runs_dir.glob(
+        f"{_runs.PAPER_RAMP_PREFIX}*")) if (d / "taps.dat").exists()]
+    return sorted(found, key=lambda r: (-r.eta, r.top, r.seed))
+
+
+def write_csv(rows, path):
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=[fl.name for fl in fields(PaperRampRun)])
+        w.writeheader()
+        for r in rows:
+            w.writerow(asdict(r))
+    return path
+
+
+def read_csv(path):
+    """The rows of :func:`write_csv` as :class:`PaperRampRun` (types restored)."""
+    kinds = {fl.name: fl.type for fl in fields(PaperRampRun)}
+    convert = {"str": str, "float": float, "int": int, "bool": lambda v: v == "True"}
+    with open(path) as f:
+        return [PaperRampRun(**{k: convert[kinds[k]](v) for k, v in row.items()})
+                for row in csv.DictReader(f)]
+
+
+def _eta_text(eta):
+    return f"{eta:.0e}".replace("e-0", "e-")
+
+
+def finding_text(rows, default_eta):
+    """The finding of the report's first screen: per eta, whether the model has an irreversible
+    branch below (sqrt eps)* at the paper's ramp protocol, with each seed's numbers; the runs
+    still running are named with how far they got."""
+    if not rows:
+        return ""
+    parts = []
+    for eta in sorted({r.eta for r in rows}, reverse=True):
+        group = [r for r in rows if r.eta == eta]
+        decided = [r for r in group if r.verdict != "running"]
+        label = f"eta = {_eta_text(eta)}" + (" (the default)" if eta == default_eta else "")
+        if not decided:
+            running = ", ".join(f"seed {r.seed} at tap {r.taps_done}" for r in group)
+            parts.append(f"at {label} the ramp is still going up ({running}): undecided.")
+            continue
+        verdicts = {r.verdict for r in decided}
+        seeds = "; ".join(
+            f"seed {r.seed}: {r.down_change:+.4f} +- {r.down_change_sem:.4f} from the turning "
+            f"level at {r.top:g}, {r.down_rise:+.4f} +- {r.down_rise_sem:.4f} from "
+            f"{r.down_first:g} to {r.down_last:g}" for r in decided)
+        if verdicts == {"frozen"}:
+            head = "the model has an irreversible (frozen) branch"
+        elif "frozen" in verdicts:
+            head = "the seeds disagree about a frozen branch"
+        elif verdicts == {"compacts"}:
+            head = "the model has no irreversible branch: the descending branch compacts"
+        else:
+            head = "the model has no frozen branch: the descending branch moves"
+        parts.append(f"at {label}, {head} ({len(decided)} seed{'s' if len(decided) > 1 else ''};"
+                     f" <Phi^c> of the descending levels, {seeds})")
+    return ("Section III.B's question at the paper's own ramp protocol (N = 4096, L = 32R, "
+            f"P.B.C., {TAPS_PER_LEVEL} taps per level, steps of 0.025 in sqrt(eps), turning "
+            "below (sqrt eps)* ~ 0.15; means of the last "
+            f"{LAST_TAPS} taps of each level): " + " ".join(
+                p[0].upper() + p[1:] + ("" if p.endswith(".") else ".") for p in parts))
