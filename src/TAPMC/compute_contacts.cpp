@@ -7,6 +7,7 @@
 #include "compute_contacts.h"
 
 #include "lammps_citation.h"
+#include "lammps_container.h"
 #include "lammps_keywords.h"
 #include "lammps_support.h"
 #include "atom.h"
@@ -32,10 +33,20 @@ namespace contacts = tapmc::contacts;
 
 namespace {
 // Output vector layout (documented in doc/compute_contacts.rst).
-enum VectorEntry { kMean, kFractionNone, kFractionFew, kFractionFloor, kLargest, kVectorSize };
+// (The wall fraction came last, so that the entries before it kept their indices.)
+enum VectorEntry {
+  kMean,
+  kFractionNone,
+  kFractionFew,
+  kFractionFloor,
+  kLargest,
+  kFractionWall,
+  kVectorSize
+};
 constexpr int kArrayColumns = 2;  // Z, P(Z)
 constexpr const char *kStyle = "compute contacts";
-constexpr const char *kUsage = "compute ID group-ID contacts g [floor z0] [radius R]";
+constexpr const char *kUsage =
+    "compute ID group-ID contacts g [floor z0] [radius R] [container region-ID]";
 
 const std::string kGapRange = "[0, " + tapmc::number(tapmc::defaults::kContactsMaxGap) + "]";
 
@@ -108,13 +119,27 @@ void ComputeContacts::parse_arguments(int narg, char **arg)
            error->all(FLERR, "{}: {}", kStyle,
                       tapmc::outside_range_message("radius", v[0], "(0, +inf)"));
        }},
+      {tapmc::kContainerKeyword, 1, [&](char **v) { container_id_ = v[0]; }},
   };
   tapmc::parse_keywords(lmp, kStyle, table, 4, narg, arg);
   if (settings_.floor && domain->zperiodic)
     error->all(FLERR, "{}: the floor keyword needs a non-periodic z boundary (the box is "
                "periodic along z); use e.g. 'boundary p p fm'", kStyle);
+  // the radii may not be set yet: init() checks them against the container
+  resolve_container(0.0);
   // the kernel's one validation of the settings (ranges named there)
   tapmc::guarded(lmp, kStyle, true, [&] { contacts::validate(settings_); });
+}
+
+// The container's wall into the settings, checked against the box and (max_sphere_radius > 0)
+// the largest sphere of the group: at definition and in init(), since the region, the box and
+// the radii may change in between. Collective.
+void ComputeContacts::resolve_container(double max_sphere_radius)
+{
+  settings_.wall = !container_id_.empty();
+  if (settings_.wall)
+    settings_.cylinder =
+        tapmc::resolve_container(lmp, kStyle, container_id_, max_sphere_radius);
 }
 
 ComputeContacts::~ComputeContacts()
@@ -129,9 +154,11 @@ void ComputeContacts::init()
   if (domain->triclinic)
     error->all(FLERR, "{}: triclinic boxes are not supported; use an orthogonal box", kStyle);
   tapmc::quiet_sorting_without_pair_style(lmp);
+  const double r_max = group_radius_max();
+  resolve_container(r_max);
   // Ghosts deep enough for every contact, plus the neighbour skin: in a run that moves atoms
   // between reneighbourings, an atom moves up to skin/2 before LAMMPS rebuilds the ghosts.
-  tapmc::request_ghost_depth(lmp, ghost_depth_needed(group_radius_max()) + neighbor->skin);
+  tapmc::request_ghost_depth(lmp, ghost_depth_needed(r_max) + neighbor->skin);
 }
 
 // Largest radius of the group's atoms (collective); stops when one has no positive radius.
@@ -176,7 +203,7 @@ void ComputeContacts::check_ghost_shell(double r_max)
                need);
 }
 
-// counts_ and on_floor_ for the owned atoms of the group (owned_). Collective.
+// counts_, on_floor_ and on_wall_ for the owned atoms of the group (owned_). Collective.
 void ComputeContacts::count()
 {
   const double r_max = group_radius_max();
@@ -206,10 +233,11 @@ void ComputeContacts::count()
   const int centres = static_cast<int>(owned_.size());
   counts_.assign(centres, 0);
   on_floor_.assign(centres, 0);
+  on_wall_.assign(centres, 0);
   const contacts::Box no_periodic_axis;  // the ghosts are the images
   tapmc::guarded(lmp, kStyle, false, [&] {
     counter_.count(spheres, centres, no_periodic_axis, settings_, counts_.data(),
-                   on_floor_.data());
+                   on_floor_.data(), on_wall_.data());
   });
 }
 
@@ -230,8 +258,8 @@ void ComputeContacts::compute_peratom()
 void ComputeContacts::summarize()
 {
   double sums[contacts::kNumSums] = {};
-  const int local_max = contacts::accumulate(counts_.data(), on_floor_.data(), nullptr,
-                                             static_cast<int>(counts_.size()), sums);
+  const int local_max = contacts::accumulate(counts_.data(), on_floor_.data(), on_wall_.data(),
+                                             nullptr, static_cast<int>(counts_.size()), sums);
   MPI_Allreduce(MPI_IN_PLACE, sums, contacts::kNumSums, MPI_DOUBLE, MPI_SUM, world);
   int largest = 0;
   MPI_Allreduce(&local_max, &largest, 1, MPI_INT, MPI_MAX, world);
@@ -241,6 +269,7 @@ void ComputeContacts::summarize()
   vector[kFractionFew] = d.fraction_few;
   vector[kFractionFloor] = d.fraction_floor;
   vector[kLargest] = d.max;
+  vector[kFractionWall] = d.fraction_wall;
   for (int z = 0; z < contacts::kHistogramRows; ++z) array[z][1] = d.fraction[z];
 }
 
@@ -263,5 +292,5 @@ double ComputeContacts::memory_usage()
   return static_cast<double>(nmax_) * sizeof(double) +
          static_cast<double>(xyz_.capacity() + radius_.capacity()) * sizeof(double) +
          static_cast<double>(owned_.capacity() + counts_.capacity()) * sizeof(int) +
-         static_cast<double>(on_floor_.capacity());
+         static_cast<double>(on_floor_.capacity() + on_wall_.capacity());
 }

@@ -5,13 +5,15 @@
 
 #include "compute.h"
 
+#include "lammps_container.h"
 #include "tapmc_contacts.h"
 
+#include <string>
 #include <vector>
 
 namespace LAMMPS_NS {
 
-class ComputeContacts : public Compute {
+class ComputeContacts : public Compute, public tapmc::ContainerHolder {
  public:
   ComputeContacts(class LAMMPS *, int, char **);
   ~ComputeContacts() override;
@@ -20,6 +22,11 @@ class ComputeContacts : public Compute {
   void compute_vector() override;
   void compute_array() override;
   double memory_usage() override;
+  // tapmc::ContainerHolder, for fix mc/settle's check of one container per run. Without
+  // 'container' the compute counts contacts between spheres only, in a tube too (as without
+  // 'floor' it leaves out the floor): a choice, not a mismatch.
+  const std::string &container_region() const override { return container_id_; }
+  bool container_optional() const override { return true; }
 
  private:
   tapmc::contacts::Settings settings_;
@@ -30,8 +37,11 @@ class ComputeContacts : public Compute {
   std::vector<double> xyz_, radius_;       // owned atoms of the group, then ghosts of the group
   std::vector<int> counts_;                // per owned atom of the group
   std::vector<unsigned char> on_floor_;    // per owned atom of the group
+  std::vector<unsigned char> on_wall_;     // per owned atom of the group
+  std::string container_id_;               // 'container' region ID; empty: no wall counted
 
   void parse_arguments(int narg, char **arg);
+  void resolve_container(double max_sphere_radius);
   double group_radius_max();
   double ghost_depth_needed(double r_max) const;
   void check_ghost_shell(double r_max);

@@ -5,6 +5,7 @@
 
 #include "compute.h"
 
+#include "lammps_container.h"
 #include "tapmc_cylinder.h"
 #include "tapmc_stereology.h"
 
@@ -13,7 +14,7 @@
 
 namespace LAMMPS_NS {
 
-class ComputeStereoProfile : public Compute {
+class ComputeStereoProfile : public Compute, public tapmc::ContainerHolder {
  public:
   ComputeStereoProfile(class LAMMPS *, int, char **);
   ~ComputeStereoProfile() override;
@@ -21,6 +22,8 @@ class ComputeStereoProfile : public Compute {
   void compute_vector() override;
   void compute_array() override;
   double memory_usage() override;
+  // tapmc::ContainerHolder, for fix mc/settle's check of one container per run.
+  const std::string &container_region() const override { return container_id_; }
 
  private:
   tapmc::stereo::SummarySettings settings_;

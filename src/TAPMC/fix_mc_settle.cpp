@@ -135,17 +135,17 @@ FixMCSettle::FixMCSettle(LAMMPS *lmp, int narg, char **arg) :
                  [&] { tapmc::Settler::validate(make_params(step, 1)); });
 
   tapmc::require_box_with_floor(lmp, "fix mc/settle");
-  if (!container_region.empty()) {
+  if (!container_region_id.empty()) {
     // the cylinder replaces the side walls: x and y not periodic (checked by the resolution),
     // no flat walls inside the box
     if (walls_given[0] || walls_given[1])
       error->all(FLERR, "fix mc/settle: {}walls and container {} both given; a container "
                  "replaces the side walls: give one of them", walls_given[0] ? "x" : "y",
-                 container_region);
-    container = tapmc::resolve_container(lmp, "fix mc/settle", container_region, 0.0);
+                 container_region_id);
+    container = tapmc::resolve_container(lmp, "fix mc/settle", container_region_id, 0.0);
   }
   for (int dim = 0; dim < 2; ++dim) {
-    if (domain->periodicity[dim] || !container_region.empty()) {
+    if (domain->periodicity[dim] || !container_region_id.empty()) {
       if (walls_given[dim])
         error->all(FLERR, "fix mc/settle: {}walls given but the {} boundary is periodic; side "
                    "walls exist only in non-periodic directions", kAxisName[dim], kAxisName[dim]);
@@ -312,7 +312,7 @@ void FixMCSettle::parse_keywords(int narg, char **arg)
          drift_window = integer(v[0]);
          window_given = true;
        }},
-      {tapmc::kContainerKeyword, 1, [&](char **v) { container_region = v[0]; }},
+      {tapmc::kContainerKeyword, 1, [&](char **v) { container_region_id = v[0]; }},
       {"verify", 1,
        [&](char **v) {
          const std::string value = v[0];
@@ -371,10 +371,12 @@ void FixMCSettle::init()
   tapmc::quiet_sorting_without_pair_style(lmp);
   tapmc::forbid_same_style_on_shared_atoms(lmp, this);
   check_walls_inside_fixed_box();
-  if (!container_region.empty()) {  // the region may have been redefined, the radii set
+  if (!container_region_id.empty()) {  // the region may have been redefined, the radii set
     const double r_max = count_movable() > 0 ? group_radius_extreme(true) : 0.0;
-    container = tapmc::resolve_container(lmp, "fix mc/settle", container_region, r_max);
+    container = tapmc::resolve_container(lmp, "fix mc/settle", container_region_id, r_max);
   }
+  // every TAPMC style of the run in the same container, or all in the box
+  tapmc::require_one_container(lmp, "fix", id, style, *this);
   tappers.clear();
   for (int i = 0; i < modify->nfix; ++i)
     if (auto *tapper = dynamic_cast<tapmc::Tapper *>(modify->fix[i])) tappers.push_back(tapper);
@@ -437,12 +439,12 @@ tapmc::SettleBox FixMCSettle::make_box() const
   }
   for (int dim = 0; dim < 2; ++dim) {
     box.periodic[dim] = domain->periodicity[dim] != 0;
-    box.wall_lo[dim] = box.wall_hi[dim] = !box.periodic[dim] && container_region.empty();
+    box.wall_lo[dim] = box.wall_hi[dim] = !box.periodic[dim] && container_region_id.empty();
     box.wall_lo_pos[dim] = wall_pos[dim][0];
     box.wall_hi_pos[dim] = wall_pos[dim][1];
   }
   box.floor_z = z_floor;
-  if (!container_region.empty()) {
+  if (!container_region_id.empty()) {
     box.cylinder = true;
     box.cylinder_cx = container.cx;
     box.cylinder_cy = container.cy;
@@ -579,7 +581,7 @@ std::string FixMCSettle::violation_message(const tapmc::Violation &v, tagint tag
   if (v.j == tapmc::kCylinderWall)
     return fmt::format("fix mc/settle: atom {} crosses the wall of container {} by {} (its centre "
                        "must be within the container radius {} minus its own radius of the axis "
-                       "x = {}, y = {})", tag_i, container_region, -v.gap, container.radius,
+                       "x = {}, y = {})", tag_i, container_region_id, -v.gap, container.radius,
                        container.cx, container.cy);
   const bool x_wall = v.j == tapmc::kWallXlo || v.j == tapmc::kWallXhi;
   return fmt::format("fix mc/settle: atom {} crosses a side wall in {} by {} ({})", tag_i,

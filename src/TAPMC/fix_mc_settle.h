@@ -5,6 +5,7 @@
 #define LMP_FIX_MC_SETTLE_H
 
 #include "fix.h"
+#include "lammps_container.h"
 #include "lmptype.h"
 #include "tapmc_cylinder.h"
 
@@ -26,7 +27,7 @@ class Tapper;
 
 namespace LAMMPS_NS {
 
-class FixMCSettle : public Fix {
+class FixMCSettle : public Fix, public tapmc::ContainerHolder {
  public:
   FixMCSettle(class LAMMPS *, int, char **);
   ~FixMCSettle() override;
@@ -43,6 +44,9 @@ class FixMCSettle : public Fix {
   int pack_exchange(int, double *) override;
   int unpack_exchange(int, double *) override;
   void unpack_forward_comm(int, int, double *) override;
+
+  // tapmc::ContainerHolder: the styles of a run share one container (checked in init()).
+  const std::string &container_region() const override { return container_region_id; }
 
  private:
   // user settings (defaults in tapmc_defaults.h)
@@ -64,7 +68,7 @@ class FixMCSettle : public Fix {
   bool solid_law = false;     // 'theta_law solid': P(theta) per unit solid angle (else angle)
   // 'container REGION-ID': a vertical cylindrical container (lammps_container.h) replacing the
   // side walls; empty without one. Resolved when the fix is defined and again in init().
-  std::string container_region;
+  std::string container_region_id;
   tapmc::Cylinder container{};
   bool stop_drift = false;    // 'stop drift': the windowed drift rule (tapmc_stop_rule.h)
   long drift_window = 0;      // 'window': checks averaged by 'stop drift' (kSettleDriftWindow)

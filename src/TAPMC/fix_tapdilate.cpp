@@ -4,6 +4,7 @@
 
 #include "lammps_box.h"
 #include "lammps_citation.h"
+#include "lammps_container.h"
 #include "lammps_keywords.h"
 #include "lammps_relocate.h"
 #include "lammps_support.h"
@@ -33,7 +34,7 @@ FixTapDilate::FixTapDilate(LAMMPS *lmp, int narg, char **arg) :
   tapmc::cite_paper(lmp);
   if (narg < 4)
     error->all(FLERR, "fix tapdilate: expected 'fix ID group tapdilate eps [every N] "
-               "[floor z0]', got {} argument(s)", narg);
+               "[floor z0] [container region-ID]', got {} argument(s)", narg);
 
   params.z_floor = domain->boxlo[2];
   if (std::strncmp(arg[3], "v_", 2) == 0)
@@ -44,11 +45,13 @@ FixTapDilate::FixTapDilate(LAMMPS *lmp, int narg, char **arg) :
   const tapmc::Keyword table[] = {
       {"every", 1, [&](char **v) { params.every = utils::inumeric(FLERR, v[0], false, lmp); }},
       {"floor", 1, [&](char **v) { params.z_floor = utils::numeric(FLERR, v[0], false, lmp); }},
+      {tapmc::kContainerKeyword, 1, [&](char **v) { container_region_id = v[0]; }},
   };
   tapmc::parse_keywords(lmp, "fix tapdilate", table, 4, narg, arg);
   tapmc::guarded(lmp, "fix tapdilate", true, [&] { tapmc::validate(params); });
 
   tapmc::require_box_with_floor(lmp, "fix tapdilate");
+  resolve_container(0.0);  // the radii may not be set yet: init() checks them
 
   // Moves happen in pre_exchange() of steps on which this fix forces reneighbouring.
   force_reneighbor = 1;
@@ -75,6 +78,8 @@ void FixTapDilate::init()
   tapmc::quiet_sorting_without_pair_style(lmp);
   tapmc::request_ghost_depth(lmp, 2.0 * tapmc::largest_radius(lmp));
   tapmc::forbid_same_style_on_shared_atoms(lmp, this);
+  // the region may have been deleted or redefined, the box changed, the radii set
+  resolve_container(atom->radius_flag ? tapmc::largest_radius(lmp) : 0.0);
   if (!eps_variable.empty()) {
     eps_var_index = input->variable->find(eps_variable.c_str());
     if (eps_var_index < 0)
@@ -83,6 +88,14 @@ void FixTapDilate::init()
       error->all(FLERR, "fix tapdilate: variable '{}' for eps must be equal-style",
                  eps_variable);
   }
+}
+
+// The container, checked as every TAPMC style checks it (lammps_container.h); the tap itself
+// never reads it. max_sphere_radius <= 0 skips the check of the spheres' size. Collective.
+void FixTapDilate::resolve_container(double max_sphere_radius)
+{
+  if (!container_region_id.empty())
+    tapmc::resolve_container(lmp, "fix tapdilate", container_region_id, max_sphere_radius);
 }
 
 void FixTapDilate::schedule_next_tap()

@@ -4,6 +4,7 @@
 #define LMP_FIX_TAPDILATE_H
 
 #include "fix.h"
+#include "lammps_container.h"
 #include "lammps_tapper.h"
 #include "lmptype.h"
 #include "tapmc_dilation.h"
@@ -12,7 +13,7 @@
 
 namespace LAMMPS_NS {
 
-class FixTapDilate : public Fix, public tapmc::Tapper {
+class FixTapDilate : public Fix, public tapmc::Tapper, public tapmc::ContainerHolder {
  public:
   FixTapDilate(class LAMMPS *, int, char **);
   int setmask() override;
@@ -27,6 +28,8 @@ class FixTapDilate : public Fix, public tapmc::Tapper {
   // tapmc::Tapper, for fix mc/settle (taps fall on the multiples of 'every').
   void tap_if_due() override;
   bigint next_tap_after(bigint step) const override;
+  // tapmc::ContainerHolder, for fix mc/settle's check of one container per run.
+  const std::string &container_region() const override { return container_region_id; }
 
  private:
   tapmc::DilationParams params;  // eps (when given as a number), every, floor
@@ -34,11 +37,16 @@ class FixTapDilate : public Fix, public tapmc::Tapper {
   int eps_var_index;
   double last_eps;          // eps of the most recent tap (outputs; kept in restart files)
   bigint tapped_step;       // timestep of the most recent tap (-1: none yet)
+  // 'container REGION-ID', or empty. The tap moves spheres along z only, so a sphere inside a
+  // vertical cylinder stays inside: the container changes no tap, it is resolved (at
+  // definition and in init()) to check it as the other styles do and to compare it with theirs.
+  std::string container_region_id;
 
   double current_eps();
   bool tapped_this_step() const;  // this fix tapped on the current step (also with eps = 0)
   void schedule_next_tap();
   void check_geometry();
+  void resolve_container(double max_sphere_radius);
 };
 
 }  // namespace LAMMPS_NS

@@ -12,8 +12,11 @@
 
 #include "lammps_compat.h"
 
+#include "compute.h"
 #include "domain.h"
 #include "error.h"
+#include "fix.h"
+#include "modify.h"
 #include "region.h"
 
 #include "tapmc_math.h"
@@ -77,6 +80,18 @@ double typed_value(double value, double bound)
     if (std::fabs(candidate - value) <= bound) return candidate;
   }
   return value;
+}
+
+// The styles that take 'container', as the mismatch message lists them.
+constexpr const char *kContainerStyles =
+    "fix tapdilate, fix mc/settle, compute stereo/profile; compute contacts counts the wall with "
+    "it";
+
+std::string holding(const char *kind, const char *id, const char *style,
+                    const std::string &region)
+{
+  return std::string(kind) + " " + id + " (" + style + ") has " +
+         (region.empty() ? std::string("no container") : kContainerKeyword + (" " + region));
 }
 
 }  // namespace
@@ -193,6 +208,44 @@ Cylinder resolve_container(LAMMPS *lmp, const char *style, const std::string &id
   require_container_in_box(lmp, style, id, c);
   if (max_sphere_radius > 0.0) require_container_fits(lmp, style, id, c, max_sphere_radius);
   return c;
+}
+
+void require_one_container(LAMMPS *lmp, const char *kind, const char *id, const char *style,
+                           const ContainerHolder &self)
+{
+  const std::string &mine = self.container_region();
+  auto compare = [&](const char *other_kind, const char *other_id, const char *other_style,
+                     const ContainerHolder *other) {
+    if (!other || other == &self) return;
+    const std::string &theirs = other->container_region();
+    if (theirs == mine) return;
+    const bool one_missing = mine.empty() || theirs.empty();
+    const ContainerHolder &without = mine.empty() ? self : *other;
+    if (one_missing && without.container_optional()) return;
+    const std::string pair = holding(kind, id, style, mine) + ", " +
+                             holding(other_kind, other_id, other_style, theirs);
+    if (one_missing)
+      lmp->error->all(FLERR,
+                      "{} {}: container missing on one of the styles of a run: {} (a style "
+                      "without it takes the box for the container); give the same '{} {}' to "
+                      "every TAPMC style of the run ({})",
+                      kind, style, pair, kContainerKeyword, mine.empty() ? theirs : mine,
+                      kContainerStyles);
+    lmp->error->all(FLERR,
+                    "{} {}: two different containers in one run: {}; give the same '{} ID' ({} "
+                    "or {}) to every TAPMC style of the run ({})",
+                    kind, style, pair, kContainerKeyword, mine, theirs, kContainerStyles);
+  };
+  LAMMPS_NS::Modify *modify = lmp->modify;
+  for (int i = 0; i < modify->nfix; ++i) {
+    LAMMPS_NS::Fix *fix = modify->fix[i];
+    compare("fix", fix->id, fix->style, dynamic_cast<const ContainerHolder *>(fix));
+  }
+  for (int i = 0; i < modify->ncompute; ++i) {
+    LAMMPS_NS::Compute *compute = modify->compute[i];
+    compare("compute", compute->id, compute->style,
+            dynamic_cast<const ContainerHolder *>(compute));
+  }
 }
 
 }  // namespace tapmc

@@ -1,6 +1,7 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 // The keyword 'container REGION-ID' of the TAPMC styles: a LAMMPS region resolved into the
-// vertical cylinder of tapmc_cylinder.h, and its checks against the spheres and the box.
+// vertical cylinder of tapmc_cylinder.h, its checks against the spheres and the box, and one
+// container for all the styles of a run.
 //
 // The paper taps in a box (section II); a tube is the other container of compaction
 // experiments. Its wall is taken from a region so that the input names the container once, in
@@ -46,6 +47,36 @@ void require_container_fits(LAMMPS_NS::LAMMPS *lmp, const char *style,
 // <= 0 (no spheres yet) skips the last check.
 Cylinder resolve_container(LAMMPS_NS::LAMMPS *lmp, const char *style,
                            const std::string &region_id, double max_sphere_radius);
+
+// ---- one container per run ----------------------------------------------------------------------
+// A TAPMC style that takes 'container' (fix tapdilate, fix mc/settle, compute stereo/profile,
+// compute contacts) says which region it was given, so that the styles of a run can be compared
+// (require_one_container): each resolves its own container and cannot see that another style
+// of the run has none, or another one, while each alone is valid. A compute stereo/profile
+// without the container of the run's fix mc/settle would divide by the box's area instead of
+// the disk's, silently.
+class ContainerHolder {
+ public:
+  // The region ID given with 'container', or empty: the box is the container.
+  virtual const std::string &container_region() const = 0;
+  // Whether this style may leave out the run's container: true when without it the style
+  // measures something else rather than something wrong (compute contacts without 'container'
+  // counts contacts between spheres only, as it leaves out the floor without 'floor'). Its
+  // container, when it has one, must still be the run's.
+  virtual bool container_optional() const { return false; }
+
+ protected:
+  ~ContainerHolder() = default;  // never deleted through this interface: LAMMPS owns the style
+};
+
+// Compares the container of `self` (the style `kind` ("fix" or "compute") `id` of style
+// `style`) with that of every other fix and compute of the run that is a ContainerHolder, and
+// stops (error->all: every rank holds the same styles) naming both styles, their regions (or
+// "no container") and what to do when one has a container and the other none (unless that one
+// is optional), or the two have different regions. fix mc/settle calls it in init(): every
+// tapping run has one.
+void require_one_container(LAMMPS_NS::LAMMPS *lmp, const char *kind, const char *id,
+                           const char *style, const ContainerHolder &self);
 
 }  // namespace tapmc
 

@@ -24,6 +24,7 @@ void validate(const Settings &s)
   if (!(s.gap >= 0.0 && s.gap <= defaults::kContactsMaxGap))
     throw_outside_range("gap", s.gap, "[0, " + number(defaults::kContactsMaxGap) + "]");
   if (s.floor && !std::isfinite(s.floor_z)) throw_outside_range("floor", s.floor_z, "(finite)");
+  if (s.wall) tapmc::validate(s.cylinder);
 }
 
 double Counter::load(const Spheres &spheres, const Box &box)
@@ -86,13 +87,18 @@ void Counter::bin(const Box &box, double reach)
 }
 
 void Counter::count(const Spheres &spheres, int centres, const Box &box, const Settings &settings,
-                    int *counts, unsigned char *on_floor)
+                    int *counts, unsigned char *on_floor, unsigned char *on_wall)
 {
   validate(settings);
   if (!(centres >= 0 && centres <= spheres.count))
     throw_outside_range("centres", centres, "[0, " + std::to_string(spheres.count) + "]");
   if (settings.floor && box.periodic[2])
     throw std::invalid_argument("a floor needs a non-periodic z (the box is periodic along z)");
+  if (settings.wall && (box.periodic[0] || box.periodic[1]))
+    throw std::invalid_argument("a container wall needs non-periodic x and y (the box is "
+                                "periodic along " +
+                                std::string(box.periodic[0] ? "x" : "y") +
+                                "): the wall replaces the periodic sides");
   const double r_max = load(spheres, box);
   const double factor = reach_factor(settings.gap);
   const double reach = 2.0 * r_max * factor;  // largest centre distance of a contact
@@ -125,8 +131,10 @@ void Counter::count(const Spheres &spheres, int centres, const Box &box, const S
                              return false;
                            });
     const bool floor = settings.floor && touches_floor(zi, ri, settings);
-    counts[i] = z + (floor ? 1 : 0);
+    const bool wall = settings.wall && touches_wall(xi, yi, ri, settings);
+    counts[i] = z + (floor ? 1 : 0) + (wall ? 1 : 0);
     if (on_floor) on_floor[i] = floor ? 1 : 0;
+    if (on_wall) on_wall[i] = wall ? 1 : 0;
   }
 }
 
@@ -139,8 +147,8 @@ std::vector<int> count_contacts(const Spheres &spheres, int centres, const Box &
   return counts;
 }
 
-int accumulate(const int *counts, const unsigned char *on_floor, const int *index, int n,
-               double *sums)
+int accumulate(const int *counts, const unsigned char *on_floor, const unsigned char *on_wall,
+               const int *index, int n, double *sums)
 {
   int largest = 0;
   for (int k = 0; k < n; ++k) {
@@ -152,6 +160,7 @@ int accumulate(const int *counts, const unsigned char *on_floor, const int *inde
     sums[kSumNone] += z == 0 ? 1.0 : 0.0;
     sums[kSumFew] += z < defaults::kContactsFewBelow ? 1.0 : 0.0;
     sums[kSumFloor] += on_floor && on_floor[m] ? 1.0 : 0.0;
+    sums[kSumWall] += on_wall && on_wall[m] ? 1.0 : 0.0;
     sums[kSumHistogram + std::min(z, defaults::kContactsMaxZ)] += 1.0;
   }
   return largest;
@@ -168,6 +177,7 @@ Distribution finish(const double *sums, int max_count)
   d.fraction_none = sums[kSumNone] * inv;
   d.fraction_few = sums[kSumFew] * inv;
   d.fraction_floor = sums[kSumFloor] * inv;
+  d.fraction_wall = sums[kSumWall] * inv;
   d.max = max_count;
   for (int z = 0; z < kHistogramRows; ++z) d.fraction[z] = sums[kSumHistogram + z] * inv;
   return d;

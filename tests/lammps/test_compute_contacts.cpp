@@ -41,7 +41,7 @@ std::vector<double> vector_of(LAMMPS_NS::LAMMPS *lmp, const char *id)
 {
   auto *v = static_cast<double *>(
       lammps_extract_compute(lmp, const_cast<char *>(id), LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR));
-  return std::vector<double>(v, v + 5);
+  return std::vector<double>(v, v + 6);
 }
 
 std::vector<double> distribution_of(LAMMPS_NS::LAMMPS *lmp, const char *id)
@@ -84,7 +84,8 @@ TEST(MpiComputeContacts, FccLatticeHasTwelveThenEighteen)
     const int expected = std::string(id) == "second" ? 18 : 12;
     for (const auto &tc : owned_counts(lmp.get(), id)) ASSERT_EQ(tc.second, expected) << id;
     const std::vector<double> v = vector_of(lmp.get(), id);
-    EXPECT_EQ(v, (std::vector<double>{double(expected), 0.0, 0.0, 0.0, double(expected)})) << id;
+    EXPECT_EQ(v, (std::vector<double>{double(expected), 0.0, 0.0, 0.0, double(expected), 0.0}))
+        << id;
     std::vector<double> p(contacts::kHistogramRows, 0.0);
     p[expected] = 1.0;
     EXPECT_EQ(distribution_of(lmp.get(), id), p) << id;
@@ -159,7 +160,7 @@ TEST(MpiComputeContacts, MatchesTheCounterOnTheGatheredPacking)
 
     double sums[contacts::kNumSums] = {};
     const int largest =
-        contacts::accumulate(expected.data(), floor.data(), nullptr, s.count, sums);
+        contacts::accumulate(expected.data(), floor.data(), nullptr, nullptr, s.count, sums);
     const contacts::Distribution d = contacts::finish(sums, largest);
     const std::vector<double> v = vector_of(lmp.get(), c.id);
     EXPECT_NEAR(v[0], d.mean, 1e-12) << c.id;
@@ -167,6 +168,7 @@ TEST(MpiComputeContacts, MatchesTheCounterOnTheGatheredPacking)
     EXPECT_NEAR(v[2], d.fraction_few, 1e-14) << c.id;
     EXPECT_NEAR(v[3], d.fraction_floor, 1e-14) << c.id;
     EXPECT_EQ(v[4], d.max) << c.id;
+    EXPECT_EQ(v[5], 0.0) << c.id;  // no container: no wall contact
     const std::vector<double> p = distribution_of(lmp.get(), c.id);
     for (int z = 0; z < contacts::kHistogramRows; ++z)
       EXPECT_NEAR(p[z], d.fraction[z], 1e-14) << c.id << " Z = " << z;

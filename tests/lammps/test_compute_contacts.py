@@ -191,7 +191,7 @@ def test_counts_after_taps_equal_an_all_pairs_count_and_python(nprocs):
 BAD = [
     ("compute c all contacts",
      "compute contacts: the gap g is missing (relative to the contact distance R_i + R_j, in "
-     "[0, 1]): compute ID group-ID contacts g [floor z0] [radius R]"),
+     "[0, 1]): compute ID group-ID contacts g [floor z0] [radius R] [container region-ID]"),
     ("compute c all contacts -0.1",
      "compute contacts: gap = -0.1 is outside the allowed range [0, 1] (relative to the contact "
      "distance R_i + R_j)"),
@@ -210,7 +210,7 @@ BAD = [
     ("compute c all contacts 0.01 radius -1",
      "compute contacts: radius = -1 is outside the allowed range (0, +inf)"),
     ("compute c all contacts 0.01 bogus 1",
-     "compute contacts: unknown keyword 'bogus' (allowed: floor, radius)"),
+     "compute contacts: unknown keyword 'bogus' (allowed: floor, radius, container)"),
     ("set group all diameter 0.0\ncompute c all contacts 0.01\nrun 0",
      "compute contacts: per-atom radius must be > 0 (an atom of group all has radius 0)"),
 ]

@@ -28,7 +28,7 @@ reset_atom_ids sort yes
 set group all diameter 1.0
 """
 
-TAPPING = """fix tap all tapdilate {eps} floor 0.0
+TAPPING = """fix tap all tapdilate {eps} floor 0.0 container tube
 fix settle all mc/settle 4928 floor 0.0 eta 1e-3 container tube scheme {scheme}
 thermo_style custom step atoms f_settle[1] f_settle[2]
 thermo 10
@@ -88,7 +88,7 @@ def test_restart_round_trip_in_a_tube(tmp_path):
     assert rc == 0, out
     second = """read_restart tube.restart
 region tube cylinder z 5 5 4.5 INF INF
-fix tap all tapdilate 0.05 floor 0.0
+fix tap all tapdilate 0.05 floor 0.0 container tube
 fix settle all mc/settle 4928 floor 0.0 eta 1e-3 container tube
 run 3
 write_dump all custom final.dump id x y z modify sort id format float %.17g
@@ -104,8 +104,8 @@ write_dump all custom final.dump id x y z modify sort id format float %.17g
     ("region tube cylinder z 5 5 4.5 INF INF|region tube block 0.5 9.5 0.5 9.5 INF INF", "cylinder"),
     ("region tube cylinder z 5 5 4.5 INF INF|region tube cylinder x 5 5 4.5 INF INF", "axis"),
     ("region tube cylinder z 5 5 4.5 INF INF|region tube cylinder z 5 5 0.4 INF INF", "0.4"),
-    ("container tube|container nowhere", "nowhere"),
-    ("container tube|container tube xwalls 0 10", "xwalls"),
+    ("container tube scheme|container nowhere scheme", "fix mc/settle: container = nowhere"),
+    ("container tube scheme|container tube xwalls 0 10 scheme", "fix mc/settle: xwalls"),
 ])
 def test_bad_container_input_names_the_argument(change, message):
     old, new = change.split("|")

@@ -1,9 +1,10 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 // Unit tests of the contact counter: exact lattices (FCC shells over a gap sweep, simple cubic),
-// blocks with free faces, the floor, polydisperse spheres, explicit images against periodic
-// axes, random packings against an all-pairs minimum-image oracle, the distribution sums and
-// the refusals.
+// blocks with free faces, the floor, the wall of a cylindrical container, polydisperse spheres,
+// explicit images against periodic axes, random packings against an all-pairs minimum-image
+// oracle, the distribution sums and the refusals.
 #include "tapmc_contacts.h"
+#include "tapmc_math.h"
 
 #include <gtest/gtest.h>
 
@@ -87,6 +88,12 @@ std::vector<int> brute_force(const Packing &p, const Settings &s)
     }
     if (s.floor && p.xyz[3 * i + 2] - p.radius[i] - s.floor_z <= (s.gap + kTol) * 2.0 * p.radius[i])
       ++counts[i];
+    if (s.wall) {
+      const double axis =
+          std::hypot(p.xyz[3 * i] - s.cylinder.cx, p.xyz[3 * i + 1] - s.cylinder.cy);
+      if ((s.cylinder.radius - p.radius[i]) - axis <= (s.gap + kTol) * 2.0 * p.radius[i])
+        ++counts[i];
+    }
   }
   return counts;
 }
@@ -214,6 +221,123 @@ TEST(Contacts, FloorContactIsRelativeToTheDiameter)
   EXPECT_EQ(count_all(p, s), (std::vector<int>{0, 0, 0, 0}));
 }
 
+// The wall of a tube of radius 5.5 about (1, 2): spheres of radius 1/2 around it, far apart, at
+// wall gaps (in diameters) 0 (centre exactly at the reach Rc - r = 5, a 3-4-5 triangle from the
+// axis: exact), 0.0099, 0.0101 and -0.01 (beyond the wall), and one on the axis; a sphere of
+// radius 1 at 0.015 of its own diameter; the floor under the first two.
+TEST(Contacts, WallContactIsRelativeToTheDiameter)
+{
+  Packing p;
+  const double cx = 1.0, cy = 2.0, rc = 5.5, r = 0.5;
+  auto at_gap = [&](double angle, double gap, double radius, double z) {
+    const double d = (rc - radius) - gap * 2.0 * radius;
+    p.xyz.insert(p.xyz.end(), {cx + d * std::cos(angle), cy + d * std::sin(angle), z});
+    p.radius.push_back(radius);
+  };
+  p.xyz = {cx + 3.0, cy + 4.0, r};  // the exact one, on the floor
+  p.radius = {r};
+  at_gap(2.0, 0.0099, r, r);
+  at_gap(3.0, 0.0101, r, 5.0);
+  at_gap(4.0, -0.01, r, 10.0);
+  p.xyz.insert(p.xyz.end(), {cx, cy, 15.0});
+  p.radius.push_back(r);
+  at_gap(5.0, 0.015, 1.0, 20.0);
+  Settings s = with_gap(0.01);
+  s.wall = true;
+  s.cylinder = {cx, cy, rc};
+  std::vector<int> counts(p.size());
+  std::vector<unsigned char> on_floor(p.size()), on_wall(p.size());
+  Counter counter;
+  counter.count(p.spheres(), p.size(), p.box, s, counts.data(), on_floor.data(), on_wall.data());
+  EXPECT_EQ(counts, (std::vector<int>{1, 1, 0, 1, 0, 0}));
+  EXPECT_EQ(on_wall, (std::vector<unsigned char>{1, 1, 0, 1, 0, 0}));
+  EXPECT_EQ(on_floor, (std::vector<unsigned char>(p.size(), 0)));
+  s.gap = 0.0;
+  EXPECT_EQ(count_all(p, s), (std::vector<int>{1, 0, 0, 1, 0, 0}));
+  s.gap = 0.02;
+  EXPECT_EQ(count_all(p, s), (std::vector<int>{1, 1, 1, 1, 0, 1}));
+  // the floor and the wall are two contacts of a sphere that touches both
+  s.gap = 0.01;
+  s.floor = true;
+  counter.count(p.spheres(), p.size(), p.box, s, counts.data(), on_floor.data(), on_wall.data());
+  EXPECT_EQ(counts, (std::vector<int>{2, 2, 0, 1, 0, 0}));
+  EXPECT_EQ(on_floor, (std::vector<unsigned char>{1, 1, 0, 0, 0, 0}));
+  s.wall = false;
+  EXPECT_EQ(count_all(p, s), (std::vector<int>{1, 1, 0, 0, 0, 0}));
+}
+
+// A gap sweep: 40 spheres of radius 1/2 round the wall at gaps 0.0025, 0.0075, ... (in
+// diameters, halfway between the thresholds), each at its own height; at g = 0.01 k exactly the
+// first k touch, and the counter's flags say which.
+TEST(Contacts, WallGapSweep)
+{
+  Packing p;
+  const double rc = 6.0, r = 0.5;
+  const int n = 40;
+  for (int k = 0; k < n; ++k) {
+    const double gap = 0.005 * k + 0.0025, d = (rc - r) - gap * 2.0 * r, angle = 0.7 * k;
+    p.xyz.insert(p.xyz.end(), {d * std::cos(angle), d * std::sin(angle), 2.0 * k});
+    p.radius.push_back(r);
+  }
+  Settings s;
+  s.wall = true;
+  s.cylinder = {0.0, 0.0, rc};
+  Counter counter;
+  std::vector<int> counts(n);
+  std::vector<unsigned char> on_wall(n);
+  for (int step = 0; step <= 21; ++step) {
+    s.gap = 0.01 * step;
+    counter.count(p.spheres(), n, p.box, s, counts.data(), nullptr, on_wall.data());
+    for (int k = 0; k < n; ++k) {
+      const int expected = k < 2 * step ? 1 : 0;
+      ASSERT_EQ(counts[k], expected) << "g = " << s.gap << ", sphere " << k;
+      ASSERT_EQ(on_wall[k], expected) << "g = " << s.gap << ", sphere " << k;
+    }
+    EXPECT_EQ(counts, brute_force(p, s)) << "g = " << s.gap;
+  }
+}
+
+// Random mixed spheres in a tube (many touching each other, a third near the wall, some beyond
+// it) with a floor, against the all-pairs oracle with the wall rule, over gaps and seeds.
+TEST(Contacts, RandomTubePackingsMatchTheOracle)
+{
+  for (unsigned seed = 1; seed <= 4; ++seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const double rc = 4.0, cx = 0.5, cy = -1.5;
+    Packing p;
+    for (int i = 0; i < 300; ++i) {
+      const double radius = 0.3 + 0.3 * unit(rng);
+      // one in three near the wall, at wall gaps from -0.02 to 0.12 diameters
+      const double rho = i % 3 == 0 ? (rc - radius) - (0.14 * unit(rng) - 0.02) * 2.0 * radius
+                                    : (rc - radius) * std::sqrt(unit(rng));
+      const double angle = tapmc::kTwoPi * unit(rng);
+      p.xyz.insert(p.xyz.end(),
+                   {cx + rho * std::cos(angle), cy + rho * std::sin(angle), 12.0 * unit(rng)});
+      p.radius.push_back(radius);
+    }
+    for (double g : {0.0, 0.001, 0.01, 0.05, 0.1}) {
+      Settings s = with_gap(g);
+      s.wall = true;
+      s.cylinder = {cx, cy, rc};
+      s.floor = true;
+      s.floor_z = 0.3;
+      std::vector<int> counts(p.size());
+      std::vector<unsigned char> on_wall(p.size());
+      Counter().count(p.spheres(), p.size(), p.box, s, counts.data(), nullptr, on_wall.data());
+      EXPECT_EQ(counts, brute_force(p, s)) << "seed " << seed << " g " << g;
+      s.wall = false;
+      const std::vector<int> without = count_all(p, s);
+      int touching = 0;
+      for (int i = 0; i < p.size(); ++i) {
+        ASSERT_EQ(counts[i] - without[i], on_wall[i]) << i;
+        touching += on_wall[i];
+      }
+      EXPECT_GT(touching, 3) << "seed " << seed << " g " << g;  // about 14 at g = 0
+    }
+  }
+}
+
 // One sphere of radius 2 touched by six of radius 1/2 along the axes, at the pair gaps 0, 0.5 %,
 // 1 %, 2 %, 5 %, 10 % of the contact distance 2.5; the small ones are far apart.
 TEST(Contacts, PolydisperseGapsUseEachPairsContactDistance)
@@ -325,17 +449,19 @@ TEST(Contacts, DistributionSumsAndFractions)
 {
   const std::vector<int> counts = {0, 1, 3, 4, 12, 30, 4, 0};
   const std::vector<unsigned char> floor = {0, 1, 1, 0, 0, 0, 0, 0};
+  const std::vector<unsigned char> wall = {0, 0, 1, 1, 0, 0, 1, 0};
   double sums[kNumSums] = {};
   // two halves, as two ranks would add them, then combined
   const int first[] = {0, 1, 2, 3}, second[] = {4, 5, 6, 7};
-  const int m1 = accumulate(counts.data(), floor.data(), first, 4, sums);
-  const int m2 = accumulate(counts.data(), floor.data(), second, 4, sums);
+  const int m1 = accumulate(counts.data(), floor.data(), wall.data(), first, 4, sums);
+  const int m2 = accumulate(counts.data(), floor.data(), wall.data(), second, 4, sums);
   const Distribution d = finish(sums, std::max(m1, m2));
   EXPECT_EQ(d.spheres, 8.0);
   EXPECT_DOUBLE_EQ(d.mean, 54.0 / 8.0);
   EXPECT_DOUBLE_EQ(d.fraction_none, 2.0 / 8.0);
   EXPECT_DOUBLE_EQ(d.fraction_few, 4.0 / 8.0);
   EXPECT_DOUBLE_EQ(d.fraction_floor, 2.0 / 8.0);
+  EXPECT_DOUBLE_EQ(d.fraction_wall, 3.0 / 8.0);
   EXPECT_EQ(d.max, 30);
   ASSERT_EQ(static_cast<int>(d.fraction.size()), tapmc::defaults::kContactsMaxZ + 1);
   EXPECT_DOUBLE_EQ(d.fraction[0], 0.25);
@@ -347,9 +473,10 @@ TEST(Contacts, DistributionSumsAndFractions)
   EXPECT_DOUBLE_EQ(total, 1.0);
 
   double empty[kNumSums] = {};
-  EXPECT_EQ(accumulate(counts.data(), nullptr, nullptr, 0, empty), 0);
+  EXPECT_EQ(accumulate(counts.data(), nullptr, nullptr, nullptr, 0, empty), 0);
   const Distribution z = finish(empty, 0);
   EXPECT_EQ(z.spheres, 0.0);
+  EXPECT_EQ(z.fraction_wall, 0.0);
   EXPECT_EQ(z.mean, 0.0);
   EXPECT_EQ(z.fraction, std::vector<double>(tapmc::defaults::kContactsMaxZ + 1, 0.0));
 }
@@ -375,6 +502,15 @@ TEST(Contacts, RefusesInvalidInputNamingIt)
   Settings floor = with_gap(0.0);
   floor.floor = true;
   EXPECT_NE(message(p, floor, 1).find("a floor needs a non-periodic z"), std::string::npos);
+  Settings wall = with_gap(0.0);
+  wall.wall = true;
+  wall.cylinder = {0.0, 0.0, 0.0};
+  EXPECT_EQ(message(p, wall, 1), "cylinder radius = 0 is outside the allowed range (0, +inf)");
+  wall.cylinder = {NAN, 0.0, 3.0};
+  EXPECT_EQ(message(p, wall, 1), "cylinder cx = nan is outside the allowed range (finite)");
+  wall.cylinder = {0.0, 0.0, 3.0};
+  EXPECT_EQ(message(p, wall, 1), "a container wall needs non-periodic x and y (the box is "
+                                 "periodic along x): the wall replaces the periodic sides");
   EXPECT_EQ(message(p, with_gap(0.0), -1), "centres = -1 is outside the allowed range [0, 108]");
   EXPECT_EQ(message(p, with_gap(0.0), 109), "centres = 109 is outside the allowed range [0, 108]");
   Packing bad = p;
