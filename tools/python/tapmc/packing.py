@@ -9,6 +9,11 @@ A run prints its scalars every tap and dumps a few packings; :class:`PackingChec
 reproduces the printed row of that tap independently of the compute (numpy, no LAMMPS), and
 tells whether thousands of taps left any overlap behind.
 
+In a tube (``cylinder=``, a :class:`tapmc.cylinder.Cylinder`: the run's ``container``), the
+side wall is the cylinder's (``wall_gap`` is the radial gap) and the scalars are those of
+compute stereo/profile with that container (:class:`tapmc.tube.TubeStereology`), with the wall
+zone and the core beside them.
+
 Dumps round the positions: a dump written with ``%.10g`` (what the paper inputs write) knows a
 coordinate x to 0.5 * 10^(floor(log10 |x|) - 9). A pair's distance is then known to within
 ``2 sqrt(3)`` times that, which :attr:`PackingCheck.resolution` gives in absolute units; a pair
@@ -24,6 +29,7 @@ import numpy as np
 
 from ._geometry import near_pairs
 from ._validate import in_range, positive, positive_int, require, result
+from .cylinder import Cylinder
 from .profiles import sphere_slab_volume
 
 __all__ = ["PackingCheck", "CONTACT_TOLERANCE", "DUMP_DIGITS", "WALL_FACTOR", "TOP_FRACTION",
@@ -51,20 +57,22 @@ class PackingCheck:
     read with ``radius=``). ``floor``: height of the floor (default: the box's lower z bound,
     as the compute's default). ``digits``: significant digits of the dump's coordinates
     (``None``: exact positions, resolution 0). ``contact_tolerance``: the model's relative
-    tolerance.
+    tolerance. ``cylinder``: the container of a tube run (a :class:`tapmc.cylinder.Cylinder`
+    wider than the largest sphere), None for a box.
 
     After :meth:`compute`: ``n``; ``min_gap`` (the smallest |r_ij| - (R_i + R_j) over pairs,
     relative to R_i + R_j: negative for an overlap) and ``closest_pair`` (the two atom ids);
     ``overlaps`` (pairs closer than contact by more than tolerance and resolution);
     ``floor_gap`` (lowest sphere bottom above the floor, over its diameter), ``wall_gap``
-    (closest sphere surface to a side wall along a non-periodic lateral axis, over its
-    diameter; None when both lateral axes are periodic); ``legal`` (no overlap and nothing
-    through the floor or a wall beyond the same allowances); the scalars ``phi_b``,
+    (closest sphere surface to a side wall along a non-periodic lateral axis, or to the
+    cylinder's wall, over its diameter; None when both lateral axes are periodic);
+    ``legal`` (no overlap and nothing through the floor or a wall beyond the same
+    allowances); the scalars ``phi_b``,
     ``phi_c``, ``z_mean`` (<Z> above the floor), ``surface`` (h_s) and ``window_top``
-    (z_top)."""
+    (z_top); in a tube (``cylinder``) also ``phi_wall`` and ``phi_core``."""
 
     def __init__(self, frame, floor=None, digits=DUMP_DIGITS,
-                 contact_tolerance=CONTACT_TOLERANCE):
+                 contact_tolerance=CONTACT_TOLERANCE, cylinder=None):
         if frame.radii is None:
             raise ValueError("frame has no radii: read the dump with a radius column or "
                              "with radius=R")
@@ -82,6 +90,9 @@ class PackingCheck:
         self.digits = None if digits is None else positive_int("digits", digits)
         self.contact_tolerance = positive("contact_tolerance", contact_tolerance,
                                           allow_zero=True)
+        if cylinder is not None and not isinstance(cylinder, Cylinder):
+            raise ValueError(f"cylinder = {cylinder!r} must be a tapmc.cylinder.Cylinder")
+        self.cylinder = None if cylinder is None else cylinder.check_spheres(self.radii)
         self._n = None
 
     @property
@@ -130,7 +141,9 @@ class PackingCheck:
         floor_gaps = (pos[:, 2] - r - self.floor) / (2.0 * r)
         self._floor_gap = float(floor_gaps.min())
         walls = [d for d in (0, 1) if not periodic[d]]
-        if walls:
+        if self.cylinder is not None:
+            self._wall_gap = float(np.min(self.cylinder.wall_gap(pos, r) / (2.0 * r)))
+        elif walls:
             gaps = [np.minimum(pos[:, d] - r - lo[d], hi[d] - pos[:, d] - r) / (2.0 * r)
                     for d in walls]
             self._wall_gap = float(min(g.min() for g in gaps))
@@ -142,6 +155,14 @@ class PackingCheck:
 
     # ---- stereology (compute stereo/profile's scalars) ---------------------------------------
     def _stereology(self):
+        if self.cylinder is not None:
+            from .tube import TubeStereology    # tube imports this module's defaults
+
+            tube = TubeStereology(self.positions, self.radii, self.cylinder,
+                                  floor=self.floor).compute()
+            (self._phi_b, self._phi_c, self._z_mean, self._window_top, self._phi_wall,
+             self._phi_core, self._surface) = (float(v) for v in tube.vector)
+            return
         pos, r = self.positions, self.radii
         lo, hi = self.frame.box_lo, self.frame.box_hi
         periodic = np.asarray(self.frame.periodic[:2], dtype=bool)
@@ -188,15 +209,30 @@ class PackingCheck:
     window_top = result("_window_top")
 
     @property
+    def phi_wall(self):
+        """In a tube: the wall zone's volume fraction (within 7R of the wall); else None."""
+        require(self, "_n")
+        return self._phi_wall if self.cylinder is not None else None
+
+    @property
+    def phi_core(self):
+        """In a tube: the core's volume fraction (NaN without a core); else None."""
+        require(self, "_n")
+        return self._phi_core if self.cylinder is not None else None
+
+    @property
     def wall_gap(self):
         require(self, "_n")     # None is a result here (periodic sides), so check compute()
         return self._wall_gap
 
     def scalars(self):
         """The compute's scalars in the order of a paper input's taps.dat columns
-        (phi_b, phi_c, Z, z_top, h_s), as a dict."""
-        return {"phi_b": self.phi_b, "phi_c": self.phi_c, "Z": self.z_mean,
-                "z_top": self.window_top, "h_s": self.surface}
+        (phi_b, phi_c, Z, z_top, h_s), as a dict; in a tube phi_wall and phi_core follow."""
+        out = {"phi_b": self.phi_b, "phi_c": self.phi_c, "Z": self.z_mean,
+               "z_top": self.window_top, "h_s": self.surface}
+        if self.cylinder is not None:
+            out.update(phi_wall=self.phi_wall, phi_core=self.phi_core)
+        return out
 
     def __repr__(self):
         if self._n is None:
