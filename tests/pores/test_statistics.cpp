@@ -206,6 +206,45 @@ TEST(PoreSelection, ExplicitBoundsAreClippedToTheBox) {
   EXPECT_THROW(make_region(box, packing, 0.5, spec), std::invalid_argument);
 }
 
+// --cylinder: the disk RC - wall_gap R about the axis in x and y (the side-wall rule measured
+// radially), z by its own rule; its volume, its random points, and the refused tubes.
+TEST(PoreSelection, CylinderSelectsTheDiskInsideTheTube) {
+  Box box;
+  box.lo = {0, 0, 0};
+  box.hi = {10, 10, 30};
+  box.periodic = {false, false, false};
+  PackingBounds packing;
+  packing.lo = {0, 0, 0};
+  packing.hi = {10, 10, 20};
+  packing.free_surface = true;
+  RegionSpec spec;
+  spec.cylinder.given = true;
+  spec.cylinder.centre_x = 5;
+  spec.cylinder.centre_y = 5;
+  spec.cylinder.radius = 5;
+  spec.cylinder.text = "5:5:5";
+  const Region r = make_region(box, packing, 0.5, spec);
+  ASSERT_TRUE(r.disk);
+  EXPECT_DOUBLE_EQ(r.disk_radius, 4.0);
+  EXPECT_EQ(r.lo, (std::array<double, 3>{1, 1, 1}));
+  EXPECT_EQ(r.hi, (std::array<double, 3>{9, 9, 18}));
+  EXPECT_TRUE(r.contains({5.0 + 3.99, 5.0, 5.0}));
+  EXPECT_FALSE(r.contains({8.5, 8.5, 5.0}));  // a corner of the bounding square: outside the disk
+  EXPECT_NEAR(r.volume(), 3.14159265358979 * 16.0 * 17.0, 1e-9);
+  for (std::size_t i = 0, n = 2000; i < n; ++i) {
+    const auto points = random_points(r, 1, 7, i);
+    EXPECT_TRUE(r.contains({points[0], points[1], points[2]})) << points[0] << " " << points[1];
+  }
+  spec.cylinder.centre_x = 6;  // the tube leaves the box
+  EXPECT_THROW(make_region(box, packing, 0.5, spec), std::invalid_argument);
+  spec.cylinder.centre_x = 5;
+  spec.cylinder.radius = 1;  // not more than the wall gap 2R
+  EXPECT_THROW(make_region(box, packing, 0.5, spec), std::invalid_argument);
+  spec.cylinder.radius = 5;
+  box.periodic[1] = true;
+  EXPECT_THROW(make_region(box, packing, 0.5, spec), std::invalid_argument);
+}
+
 TEST(PoreStatistics, GotohPercusYevick) {
   for (double phi : {0.584, 0.606}) {
     EXPECT_DOUBLE_EQ(gotoh_p0(0.0, phi), 1.0);

@@ -3,6 +3,7 @@
 // nu, Gotoh's P0 measured and in Percus-Yevick form.
 #include "tapmc_pores/analysis.h"
 
+#include "tapmc_math.h"
 #include "tapmc_random.h"
 
 #include <algorithm>
@@ -82,9 +83,52 @@ PackingBounds find_packing(const Box& box, const std::vector<double>& xyz, doubl
   return packing;
 }
 
+double Region::volume() const {
+  const double base = disk ? kPi * disk_radius * disk_radius : (hi[0] - lo[0]) * (hi[1] - lo[1]);
+  return base * (hi[2] - lo[2]);
+}
+
+namespace {
+// x and y of the selection in a tube: the disk RC - wall_gap R about the axis (the side-wall
+// rule, measured radially from the tube's wall), its bounding square in lo/hi.
+void set_disk(Region& region, const Box& box, double radius, const RegionSpec& spec) {
+  const RegionSpec::Cylinder& tube = spec.cylinder;
+  const std::string option = "--cylinder " + tube.text;
+  for (int d = 0; d < 2; ++d)
+    if (box.periodic[d])
+      throw std::invalid_argument(option + ": a tube needs non-periodic x and y, but the dump's " + "xy"[d] +
+                                  " is periodic (a tube's walls are not: check the dump's BOX BOUNDS flags, or --boundary)");
+  const std::array<double, 2> centre{tube.centre_x, tube.centre_y};
+  for (int d = 0; d < 2; ++d) {
+    const double slack = config::kBoxTolerance * (box.hi[d] - box.lo[d]);
+    if (centre[d] - tube.radius < box.lo[d] - slack || centre[d] + tube.radius > box.hi[d] + slack) {
+      std::ostringstream what;
+      what << option << ": the tube spans " << "xy"[d] << " in [" << centre[d] - tube.radius << ", "
+           << centre[d] + tube.radius << "], outside the box [" << box.lo[d] << ", " << box.hi[d]
+           << "]; with RC = " << tube.radius << ", C" << "XY"[d] << " must lie in [" << box.lo[d] + tube.radius << ", "
+           << box.hi[d] - tube.radius << "] (RC at most half the box, " << 0.5 * (box.hi[d] - box.lo[d]) << ")";
+      throw std::invalid_argument(what.str());
+    }
+  }
+  const double margin = spec.wall_gap_over_radius * radius;
+  if (!(tube.radius - margin > 0)) {
+    std::ostringstream what;
+    what << option << ": empty selection, the radius RC = " << tube.radius << " is not more than the --wall-gap "
+         << spec.wall_gap_over_radius << " R = " << margin << " kept from the tube wall (R = " << radius << ")";
+    throw std::invalid_argument(what.str());
+  }
+  region.disk = true;
+  region.centre_x = centre[0];
+  region.centre_y = centre[1];
+  region.disk_radius = tube.radius - margin;
+  for (int d = 0; d < 2; ++d) region.lo[d] = centre[d] - region.disk_radius, region.hi[d] = centre[d] + region.disk_radius;
+}
+}  // namespace
+
 Region make_region(const Box& box, const PackingBounds& packing, double radius, const RegionSpec& spec) {
   Region region;
-  for (int d = 0; d < 3; ++d) {
+  if (spec.cylinder.given) set_disk(region, box, radius, spec);
+  for (int d = spec.cylinder.given ? 2 : 0; d < 3; ++d) {
     const double gap_lo = box.periodic[d] ? 0.0 : spec.wall_gap_over_radius * radius;
     const double gap_hi = box.periodic[d] ? 0.0
                           : (d == 2 && packing.free_surface ? spec.surface_gap_over_radius : spec.wall_gap_over_radius) * radius;
@@ -234,6 +278,11 @@ std::vector<double> random_points(const Region& region, std::size_t count, std::
     const double u[3] = {uniform_from_u64(join_u32(xy[0], xy[1])), uniform_from_u64(join_u32(xy[2], xy[3])),
                          draws.uniform(2 * static_cast<std::uint64_t>(i) + 1)};
     for (int d = 0; d < 3; ++d) points[3 * i + d] = region.lo[d] + u[d] * (region.hi[d] - region.lo[d]);
+    if (region.disk) {  // uniform in the disk: area up to distance s grows as s^2
+      const double s = region.disk_radius * std::sqrt(u[0]), angle = kTwoPi * u[1];
+      points[3 * i] = region.centre_x + s * std::cos(angle);
+      points[3 * i + 1] = region.centre_y + s * std::sin(angle);
+    }
   }
   return points;
 }

@@ -53,6 +53,9 @@ Selection of pores (by the position of the pore centre; z is the vertical)
   --surface-gap G      default distance below the free surface h_s, in R (default 4)
   --paper-window       the paper's statistics box (section IV.B): 2R from the side walls,
                        height 18R from 2R above the floor (same as --radii --z 2:20)
+  --cylinder CX:CY:RC  a vertical tube of radius RC about (CX, CY) (region cylinder z): x and y
+                       of the selection are the disk of radius RC - 2R (--wall-gap) about the
+                       axis; needs non-periodic x and y; not with --x, --y
 Histograms
   --bins N             bins of xi on [0, XI_MAX) and of v = xi^3 on [0, XI_MAX^3) (default 150,
                        at most 1000000)
@@ -171,6 +174,24 @@ void set_range(RegionSpec& region, int d, const std::string& option, const std::
     throw UsageError(option + " needs LO < HI, got '" + text + "'");
 }
 
+// `text` as CX:CY:RC, a vertical tube (the selection in x and y is a disk inside it).
+void set_cylinder(RegionSpec& region, const std::string& option, const std::string& text) {
+  std::vector<std::string> parts(1);
+  for (char c : text) {
+    if (c == ':') parts.emplace_back();
+    else parts.back() += c;
+  }
+  if (parts.size() != 3 || parts[0].empty() || parts[1].empty() || parts[2].empty())
+    throw UsageError(option + " expects CX:CY:RC (axis and radius of the tube), got '" + text + "'");
+  RegionSpec::Cylinder& tube = region.cylinder;
+  tube.given = true;
+  tube.text = text;
+  tube.centre_x = to_double(option, parts[0]);
+  tube.centre_y = to_double(option, parts[1]);
+  tube.radius = to_double(option, parts[2]);
+  if (!(tube.radius > 0)) throw UsageError(option + " = " + text + ": the radius RC = " + parts[2] + " must be > 0");
+}
+
 // Options without a value; false when `a` is none of them.
 bool set_flag(Options& o, const std::string& a) {
   if (a == "-h" || a == "--help") o.help = true;
@@ -203,6 +224,7 @@ bool set_input_option(Options& o, const std::string& a, const NextValue& value) 
   else if (a == "--every") o.every = to_count(a, value(), 1);
   else if (a == "--max-frames") o.max_frames = to_count(a, value(), 1);
   else if (a == "--x" || a == "--y" || a == "--z") set_range(o.region, a[2] - 'x', a, value());
+  else if (a == "--cylinder") set_cylinder(o.region, a, value());
   else if (a == "--wall-gap") {
     o.region.wall_gap_over_radius = to_double(a, value());
     if (o.region.wall_gap_over_radius < 0) throw UsageError("--wall-gap must be >= 0");
@@ -253,6 +275,10 @@ Options parse(const std::vector<std::string>& args) {
   }
   if (o.help || o.version) return o;
   if (o.files.empty()) throw UsageError("no dump file given");
+  for (int d = 0; d < 2; ++d)
+    if (o.region.cylinder.given && (!std::isnan(o.region.lo[d]) || !std::isnan(o.region.hi[d])))
+      throw UsageError(std::string("--cylinder ") + o.region.cylinder.text + " sets the selection in x and y: --" +
+                       "xy"[d] + " cannot be given with it (use --z for the height)");
   try {
     (void)PoreStatistics(o.histogram);  // validates the bins
   } catch (const std::invalid_argument& e) {
@@ -427,6 +453,11 @@ std::string overlap_message(const Frame& frame, const OverlapError& e) {
 std::string region_text(const Region& region) {
   std::ostringstream text;
   text.precision(6);
+  if (region.disk) {
+    text << "disk of radius " << region.disk_radius << " about (" << region.centre_x << ", " << region.centre_y
+         << ") x [" << region.lo[2] << ", " << region.hi[2] << ")";
+    return text.str();
+  }
   text << "[" << region.lo[0] << ", " << region.hi[0] << ") x [" << region.lo[1] << ", " << region.hi[1] << ") x ["
        << region.lo[2] << ", " << region.hi[2] << ")";
   return text.str();
@@ -524,6 +555,22 @@ void PoreRun::analyse_file(const std::string& path) {
   }
 }
 
+// Every centre inside the tube: a centre beyond RC from the axis means the wrong --cylinder.
+void check_tube(const Frame& frame, const RegionSpec::Cylinder& tube) {
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    const double dx = frame.xyz[3 * i] - tube.centre_x, dy = frame.xyz[3 * i + 1] - tube.centre_y;
+    const double distance = std::sqrt(dx * dx + dy * dy);
+    if (distance > tube.radius) {
+      std::ostringstream what;
+      what.precision(10);
+      what << where(frame, frame.first_atom_line + i) << "--cylinder " << tube.text << ": atom " << frame.ids[i]
+           << " is centred " << distance << " from the axis, outside the tube of radius " << tube.radius
+           << " (is the axis or the radius wrong?)";
+      throw InputError(what.str());
+    }
+  }
+}
+
 Selection PoreRun::select(const Frame& frame) {
   Selection selection;
   try {
@@ -537,6 +584,7 @@ Selection PoreRun::select(const Frame& frame) {
   } catch (const std::invalid_argument& e) {
     throw InputError(where(frame, frame.first_line) + e.what());
   }
+  if (o_.region.cylinder.given) check_tube(frame, o_.region.cylinder);
   return selection;
 }
 

@@ -19,13 +19,20 @@
 namespace tapmc {
 namespace pores {
 
-// Selection sub-box (pores are selected by the position of their centre).
+// Selection sub-box (pores are selected by the position of their centre). With a tube
+// (--cylinder), also the disk of radius disk_radius about (centre_x, centre_y): lo and hi then
+// bound that disk in x and y, and the selection is the upright cylinder between lo[2] and hi[2].
 struct Region {
   std::array<double, 3> lo{}, hi{};
+  bool disk = false;
+  double centre_x = 0.0, centre_y = 0.0, disk_radius = 0.0;
   bool contains(const std::array<double, 3>& p) const {
-    return p[0] >= lo[0] && p[0] < hi[0] && p[1] >= lo[1] && p[1] < hi[1] && p[2] >= lo[2] && p[2] < hi[2];
+    if (!(p[0] >= lo[0] && p[0] < hi[0] && p[1] >= lo[1] && p[1] < hi[1] && p[2] >= lo[2] && p[2] < hi[2]))
+      return false;
+    const double dx = p[0] - centre_x, dy = p[1] - centre_y;
+    return !disk || dx * dx + dy * dy < disk_radius * disk_radius;
   }
-  double volume() const { return (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]); }
+  double volume() const;
 };
 
 // Where the packing is, found from the frame's data (z is the vertical; doc/tapmc-pores.rst,
@@ -65,9 +72,17 @@ struct RegionSpec {
   std::array<Units, 3> units{{Units::kAbsolute, Units::kAbsolute, Units::kAbsolute}};
   double wall_gap_over_radius = config::kDefaultWallGap;
   double surface_gap_over_radius = config::kDefaultSurfaceGap;
+  // A vertical tube (--cylinder CX:CY:RC, box coordinates): x and y of the selection are the disk
+  // of radius RC - wall_gap R about (CX, CY), the side-wall rule measured radially from the tube.
+  struct Cylinder {
+    bool given = false;
+    double centre_x = 0.0, centre_y = 0.0, radius = 0.0;
+    std::string text;  // as given, for messages
+  } cylinder;
 };
 
-// The sub-box, clipped to the box. Throws std::invalid_argument if it is empty.
+// The sub-box, clipped to the box. Throws std::invalid_argument if it is empty, or, with a
+// cylinder, if x or y is periodic or the tube leaves the box.
 Region make_region(const Box& box, const PackingBounds& packing, double radius, const RegionSpec& spec);
 
 // Fixed-bin histogram on [lo, hi) with under/overflow counts, and the sum of the values that fell
@@ -149,7 +164,8 @@ struct P0Statistics {
   std::uint64_t samples = 0, inside = 0;
 };
 
-// Uniform random points in the region (3 count coordinates), reproducible from (seed, stream).
+// Uniform random points in the region (3 count coordinates; in its disk with a cylinder),
+// reproducible from (seed, stream).
 std::vector<double> random_points(const Region& region, std::size_t count, std::uint64_t seed, std::uint64_t stream);
 
 // Radius of a monodisperse frame: the radius column's common value, or `fallback` (> 0) when the
