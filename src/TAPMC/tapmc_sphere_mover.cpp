@@ -21,8 +21,8 @@
 // length), never O(N). Positions stay wrapped into the box along periodic axes and every test
 // takes the nearest image, so crossing a periodic side needs no update.
 //
-// Storage. Each sphere has a 64-byte record (one cache line: x, y, z, R and its reference
-// position), its image counts and a list row, all kept in an internal spatial order (cell order
+// Storage. Each sphere has a 32-byte record (x, y, z, R: two to a cache line), its reference
+// position apart, its image counts and a list row, all kept in an internal spatial order (cell order
 // at reset), so the neighbours of a sphere lie close in memory; the caller's indices map to
 // internal slots. The picks draw candidates[k] by the same random numbers whatever the internal
 // order: results do not depend on it. A list row has a fixed capacity (the count, then the
@@ -80,8 +80,8 @@ int neighbour_cells(const GridAxis &axis, int c, int out[3])
 
 inline void prefetch(const void *p) { __builtin_prefetch(p, 0, 3); }
 
-// Sphere records: kRecord doubles, the reference position from kRef.
-constexpr int kRecord = 8, kRef = 4;
+// Sphere records: kRecord doubles (x, y, z, R); reference positions kRecord doubles apart.
+constexpr int kRecord = 4;
 
 // Grid cells hold a count and their spheres' slots in rows a multiple of this many ints wide.
 constexpr int kCellCapacityStep = 4;
@@ -138,26 +138,34 @@ struct CountedRows {
   }
 };
 
-// Per internal slot: one 64-byte record (one cache line) of x, y, z, R, then the reference
-// position (wrapped into the box), so a trial reads the picked sphere's line only and the
-// neighbours' first four doubles; the periods each sphere was wrapped by; the maps between the
-// caller's indices and the slots.
+// Per internal slot: one 32-byte record of x, y, z, R (half a cache line), which is all a trial
+// reads of the picked sphere and of its neighbours; apart from it, the reference position
+// (wrapped into the box), read only by the list upkeep of an accepted move; the periods each
+// sphere was wrapped by; the maps between the caller's indices and the slots.
 struct SlotRecords {
-  LargeVector<double> storage;
-  double *records = nullptr;  // storage aligned to 64 bytes
+  LargeVector<double> storage, ref_storage;
+  double *records = nullptr;  // storage aligned to a record (never across a cache line)
+  double *refs = nullptr;     // the reference positions, same layout
   std::vector<int> image;     // periods wrapped along x, y: image[2 s + axis]
   std::vector<int> slot_of, external_of;
 
+  static double *aligned(LargeVector<double> &v, int n)
+  {
+    v.resize(static_cast<std::size_t>(n) * kRecord + kRecord);
+    double *p = v.data();
+    while (reinterpret_cast<std::uintptr_t>(p) % (kRecord * sizeof(double)) != 0) ++p;
+    return p;
+  }
   void allocate(int n)
   {
-    storage.resize(static_cast<std::size_t>(n) * kRecord + kRecord);
-    records = storage.data();
-    while (reinterpret_cast<std::uintptr_t>(records) % (kRecord * sizeof(double)) != 0) ++records;
+    records = aligned(storage, n);
+    refs = aligned(ref_storage, n);
     image.resize(2 * static_cast<std::size_t>(n));
   }
   double *at(int s) { return records + static_cast<std::size_t>(s) * kRecord; }
   const double *at(int s) const { return records + static_cast<std::size_t>(s) * kRecord; }
-  const double *ref(int s) const { return at(s) + kRef; }
+  double *ref(int s) { return refs + static_cast<std::size_t>(s) * kRecord; }
+  const double *ref(int s) const { return refs + static_cast<std::size_t>(s) * kRecord; }
 };
 
 // The grid of the reference positions: cell c = cells.row(c): count, then the slots binned there.
@@ -265,10 +273,11 @@ struct SphereMover::State {
     int *r = lists.row(s);
     for (int q = 1; q <= r[0]; ++q) CountedRows::remove(lists.row(r[q]), s);
     r[0] = 0;
-    double *p = spheres.at(s);
-    for (int d = 0; d < 3; ++d) p[kRef + d] = p[d];
-    grid.rebin(s, p + kRef);
-    grid.for_each_around(p + kRef, [&](int j) {
+    const double *p = spheres.at(s);
+    double *q = spheres.ref(s);
+    for (int d = 0; d < 3; ++d) q[d] = p[d];
+    grid.rebin(s, q);
+    grid.for_each_around(q, [&](int j) {
       if (j != s && in_reach(s, j)) {
         lists.append(s, j);
         lists.append(j, s);
@@ -281,7 +290,7 @@ struct SphereMover::State {
   template <bool PeriodicX, bool PeriodicY>
   double drift_sq(int s) const
   {
-    const double *p = spheres.at(s), *q = p + kRef;
+    const double *p = spheres.at(s), *q = spheres.ref(s);
     const Scene &sc = scene;
     return distance_sq(axis_separation<PeriodicX>(p[0], q[0], sc.length[0], 0.5 * sc.length[0]),
                        axis_separation<PeriodicY>(p[1], q[1], sc.length[1], 0.5 * sc.length[1]),
@@ -339,10 +348,9 @@ void SphereMover::State::build(const double *xyz_wrapped, const double *radius,
       kCellCapacityStep);
   for (int s = 0; s < n; ++s) {
     const int i = spheres.external_of[s];
-    double *p = spheres.at(s);
-    for (int d = 0; d < 3; ++d) p[d] = p[kRef + d] = xyz_wrapped[3 * i + d];
+    double *p = spheres.at(s), *q = spheres.ref(s);
+    for (int d = 0; d < 3; ++d) p[d] = q[d] = xyz_wrapped[3 * i + d];
     p[3] = radius[i];
-    p[kRecord - 1] = 0.0;
     spheres.image[2 * s] = image_in[2 * i];
     spheres.image[2 * s + 1] = image_in[2 * i + 1];
     grid.cell_of_slot[s] = cell_ext[i];
