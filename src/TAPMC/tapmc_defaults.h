@@ -222,8 +222,8 @@ constexpr int kListCapacityStep = 16;
 constexpr int kListSlack = 2;
 // The trial loop prefetches a picked sphere's record and list row kOwnPrefetchAhead trials
 // ahead, and the records of the first kNeighbourPrefetchCount entries of its list
-// kNeighbourPrefetchAhead trials ahead: at large N (N = 262144: 96 bytes per sphere, beyond the
-// caches) each trial would otherwise wait for memory, and the overlap test exits at its first
+// kNeighbourPrefetchAhead trials ahead: at large N (N = 262144: trials read 96 bytes a sphere,
+// beyond the caches) each trial would otherwise wait for memory, and the overlap test exits at its first
 // overlap after 2.2 entries on average (lists of 8.4; entries roughly in order of height, lowest
 // first), so the other entries are rarely read. Measured on one core (M moves/s): N = 262144,
 // neighbours none / all / first 4: 8.7 / 12.4-12.7 / 12.9-13.7; neighbours 2 / 4 / 8 / 16
