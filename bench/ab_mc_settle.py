@@ -20,11 +20,12 @@ Run on quiet cores: pause background runs (kill -STOP) and do not build meanwhil
 average of the start and the end is printed.
 
   /usr/bin/python3 bench/ab_mc_settle.py [--ref df91a11] [--build build] [--pairs 9] [--large] [--lmp]
-      [--taps 5] [--work /tmp/tapmc-ab] [--ref-bench current|own] [--csv FILE]
+      [--taps 5] [--work DIR] [--ref-bench current|own] [--csv FILE]
 """
 import argparse
 import csv
 import os
+import platform
 import re
 import shutil
 import statistics
@@ -184,7 +185,7 @@ def main():
     programs = {"ref": ref_build, "new": build}
     own = args.ref_bench == "own"
 
-    print(f"machine: {open('/proc/cpuinfo').read().split('model name')[1].split(':')[1].splitlines()[0].strip()}"
+    print(f"machine: {platform.processor() or platform.machine()}"
           f", TAPMC_NATIVE={cache_value(build, 'TAPMC_NATIVE', 'OFF')}, "
           f"load average at start {os.getloadavg()[0]:.2f}", flush=True)
     values = {"ref": {}, "new": {}}
