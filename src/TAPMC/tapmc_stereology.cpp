@@ -448,15 +448,26 @@ double mean_radius(const Spheres &spheres)
   return spheres.count > 0 ? sum / spheres.count : 0.0;
 }
 
-Summary summarize(const Spheres &spheres, const Box &box, const SummarySettings &settings)
+namespace {
+
+// The windows of a serial summary: the surface height from the columns tiling `box` (the box, or
+// a container's bounding square), then the windows it sets. settings must be valid.
+Windows serial_windows(const Spheres &spheres, const Box &box, const SummarySettings &settings)
 {
-  validate(settings);
   const double radius = mean_radius(spheres);
   const ColumnGrid grid = make_column_grid(box, resolved_column_width(settings, radius));
   std::vector<double> tops(grid.size(), -std::numeric_limits<double>::infinity());
   accumulate_column_tops(spheres, grid, tops.data());
   const double surface = surface_height(tops.data(), grid.size(), settings.floor);
-  const Windows w = resolve_windows(settings, box, radius, surface);
+  return resolve_windows(settings, box, radius, surface);
+}
+
+}  // namespace
+
+Summary summarize(const Spheres &spheres, const Box &box, const SummarySettings &settings)
+{
+  validate(settings);
+  const Windows w = serial_windows(spheres, box, settings);
   double sums[kNumSummarySums] = {};
   accumulate_summary(spheres, box, w, sums);
   return finish_summary(sums, box, w);
@@ -730,13 +741,8 @@ Summary summarize_cylinder(const Spheres &spheres, const Cylinder &cylinder,
 {
   validate(settings);
   validate(cylinder);
-  const double radius = mean_radius(spheres);
   const Box box = bounding_box(cylinder, settings.floor, settings.floor + 1.0);
-  const ColumnGrid grid = make_column_grid(box, resolved_column_width(settings, radius));
-  std::vector<double> tops(grid.size(), -std::numeric_limits<double>::infinity());
-  accumulate_column_tops(spheres, grid, tops.data());
-  const double surface = surface_height(tops.data(), grid.size(), settings.floor);
-  const Windows w = resolve_windows(settings, box, radius, surface);
+  const Windows w = serial_windows(spheres, box, settings);
   double sums[kNumSummarySums] = {};
   accumulate_cylinder_summary(spheres, cylinder, w, sums);
   return finish_cylinder_summary(sums, cylinder, w);
