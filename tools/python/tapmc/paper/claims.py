@@ -45,6 +45,9 @@ import numpy as np
 from scipy import stats
 
 from tapmc.fluctuations import DEFAULT_BATCHES, ErrorCalibration
+from tapmc.stats import (CONFIDENCE, bonferroni_t_quantile, mean_dof as _dof, t_quantile,
+                         weighted_line as _weighted_line,
+                         weighted_polyfit as _weighted_polyfit, welch_dof)
 from tapmc.hysteresis import CRITICAL_SQRT_EPS, LEVEL_TOLERANCE
 
 from . import _plotting as P
@@ -52,8 +55,6 @@ from ._runs import RAMP_BRANCHES
 
 #: The register, next to this module.
 REGISTER = Path(__file__).with_name("claims.toml")
-#: Two-sided confidence level of every t-based rule.
-CONFIDENCE = 0.95
 #: p-value below which a fit's chi-square rejects the law (rule ``fit``).
 FIT_P_VALUE = 0.01
 #: Rounding of the pore dumps' coordinates, allowed below xi_T by the ``check`` rule.
@@ -551,12 +552,6 @@ def _run_error_text(factor):
             "measured by realization-scatter")
 
 
-def _dof(n):
-    """Degrees of freedom of a mean over n realizations (None when fewer than two)."""
-    n = int(np.nanmin(np.atleast_1d(n))) if np.size(n) else 0
-    return n - 1 if n >= 2 else None
-
-
 def _missing(what):
     return [Measure(undecided=f"not in this campaign ({what})")]
 
@@ -570,30 +565,6 @@ def _eps_series(fig, panel):
     """Sorted (eps, series) of the data series 'eps=<eps>' of a panel (fits excluded)."""
     out = [(_eps_of(s), s) for s in fig.series(panel) if s.startswith("eps=") and ":" not in s]
     return sorted(out)
-
-
-def _weighted_polyfit(x, y, err, degree):
-    """Weighted least squares of a polynomial (coefficients of x^0 .. x^degree): (coef, cov,
-    chi2)."""
-    w = 1.0 / np.asarray(err) ** 2
-    design = np.vander(np.asarray(x, dtype=float), degree + 1, increasing=True)
-    cov = np.linalg.inv(design.T @ (design * w[:, None]))
-    coef = cov @ (design.T @ (w * y))
-    return coef, cov, float(np.sum(w * (y - design @ coef) ** 2))
-
-
-def _weighted_line(x, y, err):
-    """Weighted straight line y = a + b x: (b, its standard error, dof); errors scaled by the
-    reduced chi2 when it exceeds 1 (the scatter is then larger than the error bars say)."""
-    x, y, err = map(np.asarray, (x, y, err))
-    ok = np.isfinite(x) & np.isfinite(y) & np.isfinite(err) & (err > 0)
-    x, y, err = x[ok], y[ok], err[ok]
-    if len(x) < 3:
-        return math.nan, math.nan, None
-    coef, cov, chi2 = _weighted_polyfit(x, y, err, 1)
-    dof = len(x) - 2
-    scale = max(1.0, chi2 / dof)
-    return float(coef[1]), float(math.sqrt(cov[1, 1] * scale)), dof
 
 
 def _common_x(a, b):
@@ -1764,17 +1735,6 @@ def _branch_difference(data, a, b, effect=None, statistic=None):
                           + (f"; {how})" if how else ")"))]
 
 
-def welch_dof(variances, dofs):
-    """Welch-Satterthwaite dof of a sum of independent variance estimates ``variances`` with
-    ``dofs`` each: (sum v)^2 / sum(v^2 / dof), rounded down, at least 1."""
-    v = np.asarray(variances, dtype=float)
-    d = np.asarray(dofs, dtype=float)
-    denominator = float(np.sum(v ** 2 / d))
-    if denominator <= 0:
-        return int(np.min(d))
-    return max(1, int(float(np.sum(v)) ** 2 / denominator))
-
-
 def ramp_up_minus_steady(data, claim):
     """The ramp's first increase minus the steady squares, mean over their common sqrt(eps).
     With several seeds of the ramp and each seed's mean of the first increase there (Fig. 4
@@ -2081,7 +2041,7 @@ def _pointwise_zero(x, diff, err, n, what, effect):
     dof = _dof(n[k])
     if dof is None:
         return [Measure(float(diff[k]), undecided="one realization")]
-    quantile = float(stats.t.ppf(1 - (1 - CONFIDENCE) / (2 * len(idx)), dof))
+    quantile = bonferroni_t_quantile(dof, len(idx))
     return [Measure(float(diff[k]), float(err[k]), dof, quantile=quantile, effect=effect,
                     shown=f"{fmt(diff[k], err[k])} at sigma = {x[k]:.3g} (largest of "
                           f"{len(idx)} standardized differences)")]
@@ -2550,11 +2510,6 @@ STATISTICS = {f.__name__: f for f in (
 
 
 # ---------------------------------------------------------------- rules
-
-
-def t_quantile(dof):
-    """Two-sided CONFIDENCE quantile of Student's t with dof degrees of freedom."""
-    return float(stats.t.ppf(0.5 + CONFIDENCE / 2, dof))
 
 
 def _decidable(m):

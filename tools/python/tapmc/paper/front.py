@@ -19,6 +19,8 @@ import gzip
 import math
 import os
 
+from tapmc.stats import t_quantile_of_mean
+
 #: where bench/paper_front.py writes (relative to the repository) and this module reads
 DATA_DIR = os.path.join("doc", "validation", "front")
 #: taps of every run: the medium preset's run length (the paper's is 4000)
@@ -144,10 +146,7 @@ BOUNDED = ("phi_c_t100", "phi_c_steady")
 PRESET_PURPOSE = {"quick": "smoke test", "medium": "exploration", "full": "publication"}
 
 
-def _t95(n):
-    """The report's t quantile (tapmc.paper.claims) for the mean of n seeds."""
-    from .claims import t_quantile
-    return t_quantile(n - 1) if n > 1 else math.nan
+_t95 = t_quantile_of_mean  # the report's t quantile (tapmc.stats) for the mean of n seeds
 
 
 def time_window(t, taps=TAPS):
