@@ -38,9 +38,6 @@ using namespace LAMMPS_NS;
 
 namespace {
 
-// Boundary codes of Domain::boundary[dim][side].
-constexpr int kBoundaryFixed = 1;
-
 // Where to deposit: the keywords floor, region and walls.
 struct Options {
   double floor_z = 0.0;
@@ -197,7 +194,7 @@ Plan plan_domain(LAMMPS *lmp, const Request &req)
   Plan plan;
   double lo[3] = {domain->boxlo[0], domain->boxlo[1], domain->boxlo[2]};
   double hi[3] = {domain->boxhi[0], domain->boxhi[1], domain->boxhi[2]};
-  plan.top_fixed = domain->boundary[2][1] == kBoundaryFixed;
+  plan.top_fixed = domain->boundary[2][1] == tapmc::kBoundaryFixed;
   double z_top = plan.top_fixed ? domain->boxhi[2] : std::numeric_limits<double>::infinity();
   plan.top_name = plan.top_fixed ? "the fixed box top" : "";
   bool spans[2] = {true, true};
