@@ -37,6 +37,8 @@ def test_frozen_compacting_and_running_ramps(tmp_path):
     write_run(tmp_path, "paperramp0.125_pbc_eta1e-05_s1",
               up + [0.601, 0.602, 0.603, 0.604], seed=2, repeat_from=34000)
     write_run(tmp_path, "paperramp0.125_pbc_eta1e-06_s2", up[:3], levels=LEVELS[:3], seed=3)
+    # a run just started: fewer taps than one level (no level mean yet) is running, no error
+    write_run(tmp_path, "paperramp0.125_pbc_s2", up[:1], levels=LEVELS[:1], taps_per_level=161)
     rows = {r.run: r for r in paper_ramp.analyse(tmp_path, 1e-7)}
     frozen = rows["paperramp0.125_pbc_s1"]
     assert frozen.verdict == "frozen" and frozen.eta == 1e-7 and frozen.finished
@@ -48,6 +50,8 @@ def test_frozen_compacting_and_running_ramps(tmp_path):
     assert compacting.taps_done == 36000
     running = rows["paperramp0.125_pbc_eta1e-06_s2"]
     assert running.verdict == "running" and running.taps_done == 12000
+    started = rows["paperramp0.125_pbc_s2"]
+    assert started.verdict == "running" and started.taps_done == 161 and started.down_levels == 0
 
     # the CSV keeps every field, and the finding names each eta's verdict
     back = paper_ramp.read_csv(paper_ramp.write_csv(list(rows.values()), tmp_path / "p.csv"))

@@ -70,6 +70,14 @@ def read_taps(path):
     return data[:, 3], data[:, 5], int(data[-1, 0]) if len(data) else 0
 
 
+def _running(base, down_levels):
+    """The row of a ramp that has not yet come down two levels: no answer yet."""
+    nan = float("nan")
+    return PaperRampRun(**base, down_levels=down_levels, down_first=nan, down_last=nan,
+                        down_change=nan, down_change_sem=nan, down_rise=nan, down_rise_sem=nan,
+                        verdict="running")
+
+
 def analyse_run(run_dir, default_eta):
     """The :class:`PaperRampRun` of one run directory (name ``paperramp...``)."""
     run_dir = Path(run_dir)
@@ -81,13 +89,12 @@ def analyse_run(run_dir, default_eta):
     eta = float(m.group("eta")) if m.group("eta") else float(default_eta)
     base = dict(run=run_dir.name, top=float(m.group("top")), eta=eta, seed=int(m.group("seed")),
                 taps_done=taps_done, finished=(run_dir / "DONE.json").exists())
+    if len(phi_c) < TAPS_PER_LEVEL:  # a run just started: not one whole level yet
+        return _running(base, 0)
     hysteresis = Hysteresis(sqrt_eps, phi_c, TAPS_PER_LEVEL, LAST_TAPS).compute()
     down = hysteresis.branch("down")
     if len(down) < 2:
-        nan = float("nan")
-        return PaperRampRun(**base, down_levels=len(down), down_first=nan, down_last=nan,
-                            down_change=nan, down_change_sem=nan, down_rise=nan,
-                            down_rise_sem=nan, verdict="running")
+        return _running(base, len(down))
     branches = RampBranches.from_hysteresis(hysteresis).compute()
     change = branches.down_change
     rise = float(down["mean"][-1] - down["mean"][0])
