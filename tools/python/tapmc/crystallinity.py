@@ -52,6 +52,8 @@ import numpy as np
 
 from ._geometry import near_pairs, validated_box, validated_spheres
 from ._validate import as_1d, choice, in_range, new_axis, positive, positive_int, require, result
+from .packing import PackingCheck
+from .readers import Frame
 
 __all__ = ["Crystallinity", "ZoneSummary", "CrystallinityProfile", "spherical_harmonics",
            "CUTOFF_OVER_DIAMETER", "SOLID_BOND_THRESHOLD", "MIN_SOLID_BONDS", "CRYSTAL_L",
@@ -347,9 +349,6 @@ class Crystallinity:
         if self.floor is None:
             return None
         if self._surface is None:
-            from .packing import PackingCheck
-            from .readers import Frame
-
             n = self.positions.shape[0]
             frame = Frame(0, self.box_lo, self.box_hi, self.periodic, np.arange(1, n + 1),
                           self.positions, self.radii)

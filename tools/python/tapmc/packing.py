@@ -28,9 +28,12 @@ import math
 import numpy as np
 
 from ._geometry import near_pairs
+from ._stereo_defaults import (BULK_OVER_R, COLUMN_OVER_R, TOP_FRACTION, WALL_BAND_OVER_R,
+                               WALL_FACTOR)
 from ._validate import in_range, positive, positive_int, require, result
 from .cylinder import Cylinder
 from .profiles import sphere_slab_volume
+from .tube import TubeStereology
 
 __all__ = ["PackingCheck", "CONTACT_TOLERANCE", "DUMP_DIGITS", "WALL_FACTOR", "TOP_FRACTION",
            "BULK_OVER_R", "COLUMN_OVER_R", "WALL_BAND_OVER_R"]
@@ -40,14 +43,6 @@ __all__ = ["PackingCheck", "CONTACT_TOLERANCE", "DUMP_DIGITS", "WALL_FACTOR", "T
 CONTACT_TOLERANCE = 1e-10
 #: significant digits of the coordinates in the paper inputs' dumps (``format float %.10g``)
 DUMP_DIGITS = 10
-#: compute stereo/profile's defaults (doc/compute_stereo_profile.rst): Phi_b slab 4R, surface
-#: columns 2R wide, the <Phi^c> window up to 90 % of the surface height, the wall band R with
-#: the perturbed-zone factor 16/11 (section III.A); R is the mean radius.
-BULK_OVER_R = 4.0
-COLUMN_OVER_R = 2.0
-TOP_FRACTION = 0.9
-WALL_BAND_OVER_R = 1.0
-WALL_FACTOR = 16.0 / 11.0
 
 
 class PackingCheck:
@@ -156,8 +151,6 @@ class PackingCheck:
     # ---- stereology (compute stereo/profile's scalars) ---------------------------------------
     def _stereology(self):
         if self.cylinder is not None:
-            from .tube import TubeStereology    # tube imports this module's defaults
-
             tube = TubeStereology(self.positions, self.radii, self.cylinder,
                                   floor=self.floor).compute()
             (self._phi_b, self._phi_c, self._z_mean, self._window_top, self._phi_wall,

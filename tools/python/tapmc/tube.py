@@ -33,8 +33,8 @@ from ._geometry import validated_spheres
 from ._validate import in_range, new_axis, positive, positive_int, require, result
 from .cylinder import (Cylinder, disk_lens_area, sphere_cylinder_surface_area,
                        sphere_cylinder_volume)
-from .packing import (BULK_OVER_R, COLUMN_OVER_R, TOP_FRACTION, WALL_BAND_OVER_R,
-                      WALL_FACTOR)
+from ._stereo_defaults import (BULK_OVER_R, COLUMN_OVER_R, TOP_FRACTION, WALL_BAND_OVER_R,
+                               WALL_FACTOR)
 
 __all__ = ["TubeStereology", "TubeProfile", "as_cylinder", "WALL_ZONE_OVER_R",
            "WINDOW_BOTTOM_OVER_R", "PROFILE_BINS"]
