@@ -13,6 +13,7 @@
 #include "tapmc_math.h"
 #include "tapmc_random.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -204,6 +205,40 @@ struct WallRoll {
     return q;
   }
 };
+
+// ---------------------------------------------------------------------------------------------
+// The functions that one file of the deposition defines and another calls.
+
+struct DepositedSpheres;  // tapmc_deposition_grid.h
+
+// The descent at a point (tapmc_deposition_paths.cpp).
+Descent solve_descent(const ContactSet &contacts, const std::vector<int> &forced);
+bool blocked(Vec3 dir, const ContactSet &contacts, const Descent &descent);
+
+// The searches of the deposited spheres (tapmc_deposition_paths.cpp).
+void collect_touching(const DepositedSpheres &packing, Vec3 p, double r, ContactSet &contacts);
+double start_height(const DepositedSpheres &packing, double x, double y, double r);
+double fall_event(const DepositedSpheres &packing, Vec3 p, double r,
+                  const std::vector<Constraint> &active, Constraint &hit, bool &entering_now);
+double roll_event(const DepositedSpheres &packing, const Circle &path, double r,
+                  const std::vector<Constraint> &active, const ForceLaw *forces, int n_forces,
+                  Constraint &hit, bool &is_contact, bool &entering_now);
+
+// The roll of one segment (tapmc_deposition_paths.cpp).
+RollSetup make_roll(Vec3 p, const ContactSet &contacts, const Descent &descent, bool equilibrium,
+                    EquilibriumDraws &draws, Circle &path, ForceLaw *forces);
+
+// The cylinder wall (tapmc_deposition_cylinder.cpp).
+double circle_wall_entry(const Circle &path, const Constraint &wall, double r, double t_max,
+                         bool &now);
+bool wall_pair_rests(Vec3 p, const Constraint &j, const Constraint &wall);
+RollSetup make_wall_roll(Vec3 p, const Constraint &j, const Constraint &wall,
+                         const ContactSet &contacts, const Descent &descent, bool equilibrium,
+                         EquilibriumDraws &draws, WallRoll &path);
+double wall_roll_event(const DepositedSpheres &packing, const WallRoll &path, double r,
+                       const std::vector<Constraint> &active, Constraint &hit, bool &is_contact,
+                       bool &entering_now, bool &support_lost);
+void check_cylinder(const DepositionDomain &domain, double max_radius);
 
 }  // namespace deposition_detail
 }  // namespace tapmc

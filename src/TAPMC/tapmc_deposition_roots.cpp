@@ -1,8 +1,7 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-// The closed-form root finding of the deposition's events (tapmc_deposition_roots.h): the first
-// entry of K + P cos t + Q sin t below zero, and the sign changes of a trigonometric polynomial of
-// degree 2 (a quartic in tan(u / 2) on each quarter turn, its roots separated by those of its
-// derivatives and found by bisection).
+// The closed-form root finding of the deposition's events (tapmc_deposition_roots.h): the sign
+// changes of a trigonometric polynomial of degree 2 (a quartic in tan(u / 2) on each quarter
+// turn, its roots separated by those of its derivatives and found by bisection).
 #include "tapmc_deposition_roots.h"
 
 #include "tapmc_defaults.h"
@@ -61,37 +60,6 @@ int polynomial_sign_changes(const double *c, int deg, double lo, double hi, doub
   return n;
 }
 }  // namespace
-
-// First t in [0, t_max] at which f(t) = K + P cos t + Q sin t enters f < 0, or +inf.
-// `entering_now` is set when f is negative just after t = 0 (a touching constraint that the
-// path enters immediately, to first or second order); a touching constraint being left (its
-// negative arc ends within kDepositionAngleTolerance after 0) is not an event.
-double first_entry(double K, double P, double Q, double t_max, bool &entering_now)
-{
-  entering_now = false;
-  const double A = std::hypot(P, Q);
-  // Never deeper than kDepositionGrazingDepth below zero anywhere on the circle (a constraint
-  // tangent to the whole path, e.g. a wall containing the rolling plane): not an event.
-  if (K - A > -kDepositionGrazingDepth) return kInf;
-  const double kappa = -K / A;  // f < 0  <=>  cos(t - beta) < kappa
-  if (kappa <= -1.0) return kInf;
-  if (kappa >= 1.0) {  // f <= 0 on the whole circle: only possible when touching at its maximum
-    entering_now = true;
-    return 0.0;
-  }
-  const double beta = std::atan2(Q, P);
-  const double w = std::acos(kappa);
-  const double start = wrap_angle(beta + w);  // negative arc: [start, start + length]
-  const double length = kTwoPi - 2.0 * w;
-  if (start + length > kTwoPi) {  // the negative arc contains t = 0
-    const double remaining = start + length - kTwoPi;
-    if (remaining > kDepositionAngleTolerance) {
-      entering_now = true;
-      return 0.0;
-    }
-  }
-  return start <= t_max ? start : kInf;
-}
 
 // Where f changes sign in [0, t_max] (t_max <= 2 pi), ascending, at most 4 a quarter turn (the
 // array holds 16). On the quarter turn t = s + u, u in [0, pi / 2], f (1 + x^2)^2 with
