@@ -144,8 +144,9 @@ constexpr double kDepositionZeroLength = 1e-300;
 // that a touching contact blocks is rejected) before the roll is declared degenerate.
 constexpr int kDepositionLeaveAttempts = 8;
 // Samples of a contact function on each piece of a path between the roots that bound its sign
-// changes (the cylinder wall's paths, tapmc_deposition.cpp): one would give the sign; three also
-// see the depth of a piece (the grazing rule) and guard against a root lost to rounding.
+// changes (the cylinder wall's paths, tapmc_deposition_cylinder.cpp): one would give the sign;
+// three also see the depth of a piece (the grazing rule) and guard against a root lost to
+// rounding.
 constexpr int kDepositionPieceSamples = 3;
 // create_packing refuses at once a region whose volume could not hold the spheres even at
 // random close packing (packing fraction ~0.64): a cheap, safe bound on what deposition can do.

@@ -73,7 +73,7 @@ struct DropOutcome {
 // cost up to 0.1 ms a drop at N = 4096 and 4-10 ms at N = 1e5 (N^2 in all), against 35-70 us
 // for a whole drop today, and its cells made wide enough for a roll hold 8 times the spheres per
 // search (229 instead of 29). The kernels have no shared 3-vector type (they read interleaved
-// x, y, z arrays), so the Vec3 of tapmc_deposition.cpp stays private.
+// x, y, z arrays), so the Vec3 of tapmc_deposition_detail.h stays private to the deposition.
 class SequentialDeposition {
  public:
   // max_radius bounds every radius ever added (sets the grid spacing). Throws
