@@ -6,7 +6,6 @@
 
 #include "comm.h"
 #include "domain.h"
-#include "modify.h"
 #include "neighbor.h"
 
 #include <string>
@@ -27,17 +26,6 @@ inline void forward_comm_fix(LAMMPS_NS::Comm *comm, LAMMPS_NS::Fix *fix)
   comm->forward_comm(fix);
 #else
   comm->forward_comm_fix(fix);
-#endif
-}
-
-// Look up a fix by ID; nullptr when absent.
-inline LAMMPS_NS::Fix *find_fix(LAMMPS_NS::Modify *modify, const std::string &id)
-{
-#if TAPMC_LAMMPS_NEW_API
-  return modify->get_fix_by_id(id);
-#else
-  int ifix = modify->find_fix(id);
-  return ifix < 0 ? nullptr : modify->fix[ifix];
 #endif
 }
 
