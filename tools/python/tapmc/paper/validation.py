@@ -599,8 +599,8 @@ def report(campaign, out_dir, drawn=None, planned_runs=None):
             raise  # a damaged output of a run: never a figure left out
         except ValueError:
             continue  # this campaign has no run of that figure
+    summary = campaign_summary(campaign)  # reads runs: before any committed file is replaced
     files = _collect(drawn, out_dir)
-    summary = campaign_summary(campaign)
     if planned_runs is not None and planned_runs > summary["runs"]:
         summary["planned_runs"] = int(planned_runs)
     return write_rst(summary, files, out_dir)
