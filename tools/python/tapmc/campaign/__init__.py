@@ -21,6 +21,8 @@ continue from one with ``-var resume yes -var resume_file restart.<step>``. A ca
 killed continues every unfinished run from its latest restart file (trimming the per-tap rows
 written after it and merging the profile files of the two segments) and skips finished runs,
 after checking their outputs: a finished run whose outputs were damaged since runs again.
+What reads a campaign without running it checks each finished run it reads with
+:func:`verify_finished_run` (DONE.json readable and complete, every output it lists intact).
 
 Modules, one job each: :mod:`.spec` (RunSpec), :mod:`.launch` (processes, the lock,
 ``-partition``), :mod:`.run_folder` (a run's files and their repair for a resume),
@@ -29,10 +31,11 @@ Modules, one job each: :mod:`.spec` (RunSpec), :mod:`.launch` (processes, the lo
 
 from .errors import CampaignDirectoryError, CampaignError
 from .launch import available_cores, find_lmp
-from .provenance import MANIFEST_FORMAT
+from .provenance import MANIFEST_FORMAT, verify_finished_run
 from .run_folder import merge_ave_time_parts
 from .runner import PROGRESS_INTERVAL, Campaign
 from .spec import RunSpec
 
 __all__ = ["RunSpec", "Campaign", "CampaignError", "CampaignDirectoryError", "find_lmp",
-           "merge_ave_time_parts", "MANIFEST_FORMAT", "PROGRESS_INTERVAL", "available_cores"]
+           "merge_ave_time_parts", "MANIFEST_FORMAT", "PROGRESS_INTERVAL", "available_cores",
+           "verify_finished_run"]

@@ -12,11 +12,11 @@ import subprocess
 import time
 from pathlib import Path
 
-from .errors import CampaignDirectoryError
+from .errors import CampaignDirectoryError, CampaignError
 
 __all__ = ["MANIFEST_FORMAT", "sha256", "now", "portable_paths", "read_manifest",
            "write_manifest", "lammps_version", "tapmc_version", "copy_inputs", "read_done",
-           "write_done", "output_digests", "damaged_outputs"]
+           "write_done", "output_digests", "damaged_outputs", "verify_finished_run"]
 
 _REPO = Path(__file__).resolve().parents[4]
 #: Layout of a campaign folder (manifest keys, inputs/, runs/NAME/DONE.json) that this package
@@ -208,3 +208,56 @@ def damaged_outputs(run_dir, recorded):
         elif sha256(path) != digest["sha256"]:
             damaged[name] = "sha256 differs from the one recorded when the run finished"
     return damaged
+
+
+def _recorded_taps_file(run, done_file):
+    """The per-tap file a DONE.json's "run" names (its ``taps_file`` variable, else
+    taps.dat, as RunSpec.taps_file)."""
+    variables = run.get("variables", {})
+    if not isinstance(variables, dict):
+        raise CampaignDirectoryError(f"{done_file}: 'run.variables' is "
+                                     f"{type(variables).__name__}, not an object")
+    return str(variables.get("taps_file", "taps.dat"))
+
+
+def verify_finished_run(run_dir, spec=None):
+    """Check that the finished run in ``run_dir`` can be read as it is, and return its
+    record (DONE.json as a dict). What reads a campaign without running it (``tapmc-paper
+    report --finished-only``) calls this first, for every finished run it reads.
+
+    CampaignDirectoryError, naming DONE.json and what is wrong, when the record is missing,
+    cannot be read (cut, not JSON, not an object with "run"), names another run than its
+    folder's, or records other parameters than ``spec`` (a RunSpec, when given), or lists
+    outputs without the run's per-tap file (an incomplete record). CampaignError, naming
+    each damaged file and what differs, when an output it lists is missing or its size or
+    sha256 differ from the record (:func:`damaged_outputs`): the run changed since it
+    finished, and only a campaign run (``Campaign.run``) may run it again. A DONE.json
+    written before TAPMC recorded the outputs has no checksums and is trusted as it is, as
+    ``Campaign.run`` trusts it."""
+    run_dir = Path(run_dir)
+    done_file = run_dir / "DONE.json"
+    if not done_file.is_file():
+        raise CampaignDirectoryError(f"{done_file}: missing; the run {run_dir.name!r} has not "
+                                     "finished")
+    done = read_done(done_file)
+    run = done["run"]
+    if run.get("name") != run_dir.name:
+        raise CampaignDirectoryError(f"{done_file}: records the run {run.get('name')!r}, not "
+                                     f"{run_dir.name!r} of its folder")
+    if spec is not None and run != json.loads(json.dumps(spec.describe())):
+        raise CampaignDirectoryError(f"{done_file}: records other parameters ({run}) than the "
+                                     f"run {spec.name!r} asked for ({spec.describe()})")
+    recorded = done.get("outputs")
+    if recorded is None:
+        return done
+    taps_file = _recorded_taps_file(run, done_file)
+    if taps_file not in recorded:
+        raise CampaignDirectoryError(f"{done_file}: its outputs do not list the per-tap file "
+                                     f"{taps_file}; an incomplete record of a finished run")
+    damaged = damaged_outputs(run_dir, recorded)
+    if damaged:
+        files = "; ".join(f"{run_dir / name}: {what}" for name, what in sorted(damaged.items()))
+        raise CampaignError(f"run {run_dir.name!r} changed since it finished ({done_file} "
+                            f"records its outputs): {files}; running the campaign again "
+                            "redoes it")
+    return done

@@ -26,6 +26,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from tapmc.readers import TapmcFormatError  # noqa: E402
+
 #: Column names of every figure CSV.
 CSV_COLUMNS = ("panel", "series", "x", "mean", "sem", "n")
 
@@ -125,15 +127,66 @@ def _fmt(value):
 
 
 def read_table(path):
-    """Read a figure CSV back: dict (panel, series) -> dict of arrays x, mean, sem, n."""
+    """Read a figure CSV back: dict (panel, series) -> dict of arrays x, mean, sem, n.
+
+    The whole file is checked first, so that nothing is drawn or judged from part of it: a
+    file that is empty, cut short (its last line without the end-of-line that every row of
+    :meth:`FigureTable.write` has), without the header of :data:`CSV_COLUMNS`, without a row,
+    or with a row of another number of fields, a non-numeric x, mean or sem (empty is NaN) or
+    a non-integer n raises :class:`tapmc.readers.TapmcFormatError` naming the file, the line
+    and what is wrong."""
     out = defaultdict(lambda: {"x": [], "mean": [], "sem": [], "n": []})
-    with open(path, newline="") as handle:
-        for row in csv.DictReader(handle):
-            cur = out[(row["panel"], row["series"])]
-            for key in ("x", "mean", "sem"):
-                cur[key].append(float(row[key]) if row[key] != "" else np.nan)
-            cur["n"].append(int(row["n"]))
+    for lineno, panel, series, x, mean, sem, n in _csv_rows(path):
+        cur = out[(panel, series)]
+        for key, value in (("x", x), ("mean", mean), ("sem", sem)):
+            cur[key].append(_csv_float(path, lineno, key, value))
+        cur["n"].append(_csv_int(path, lineno, n))
     return {k: {c: np.asarray(v) for c, v in d.items()} for k, d in out.items()}
+
+
+def _csv_rows(path):
+    """(line, panel, series, x, mean, sem, n) of each row of a whole figure CSV, as text."""
+    try:
+        text = Path(path).read_bytes().decode()
+    except UnicodeDecodeError as err:
+        raise TapmcFormatError(path, None, f"not a text file ({err.reason})") from None
+    if not text:
+        raise TapmcFormatError(path, None, "empty file (a figure CSV has the header "
+                               f"{','.join(CSV_COLUMNS)} and one row per plotted number)")
+    if not text.endswith("\n"):
+        raise TapmcFormatError(path, text.count("\n") + 1, "cut short: the last line has no "
+                               "end-of-line")
+    reader = csv.reader(text.splitlines(keepends=True))
+    header = next(reader)
+    if tuple(header) != CSV_COLUMNS:
+        raise TapmcFormatError(path, 1, f"header {','.join(header)!r}, expected "
+                               f"{','.join(CSV_COLUMNS)!r}")
+    rows = []
+    for fields in reader:
+        if len(fields) != len(CSV_COLUMNS):
+            raise TapmcFormatError(path, reader.line_num, f"{len(fields)} fields, expected "
+                                   f"{len(CSV_COLUMNS)} ({','.join(CSV_COLUMNS)})")
+        rows.append((reader.line_num, *fields))
+    if not rows:
+        raise TapmcFormatError(path, None, "no row after the header (a figure CSV has one "
+                               "row per plotted number)")
+    return rows
+
+
+def _csv_float(path, lineno, column, text):
+    if text == "":
+        return np.nan
+    try:
+        return float(text)
+    except ValueError:
+        raise TapmcFormatError(path, lineno, f"{column} = {text!r} is not a number") from None
+
+
+def _csv_int(path, lineno, text):
+    try:
+        return int(text)
+    except ValueError:
+        raise TapmcFormatError(path, lineno, f"n = {text!r} is not an integer") from None
 
 
 def new_figure(nrows=2, ncols=1, height=3.0, width=5.0):

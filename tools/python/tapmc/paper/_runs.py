@@ -17,8 +17,11 @@ from pathlib import Path
 
 import numpy as np
 
+from tapmc.campaign import CampaignDirectoryError, RunSpec, verify_finished_run
 from tapmc.pores import hist_is_current
-from tapmc.readers import read_ave_time, read_fix_print
+from tapmc.readers import TapmcFormatError, read_ave_time, read_fix_print
+
+from .scales import SCALES, Scale
 
 #: Inputs of the paper's protocols, relative to the repository root.
 CONSTANT_EPS = "examples/paper/in.constant_eps"
@@ -54,12 +57,6 @@ def _size(scale):
             "rsteps": int(scale.restart_every)}
 
 
-def _RunSpec():
-    from tapmc.campaign import RunSpec
-
-    return RunSpec
-
-
 def eps_tag(eps):
     return f"{float(eps):.6g}"
 
@@ -81,7 +78,7 @@ def constant_eps_run(scale, bc, eps, seed, taps=None):
     if bc == "fbc" and scale.fbc_start == "paper":
         variables["fbc_start"] = "paper"
         tag = PAPER_START_TAG
-    return _RunSpec()(f"const_{tag}_eps{eps_tag(eps)}_s{seed}", _input(CONSTANT_EPS), variables,
+    return RunSpec(f"const_{tag}_eps{eps_tag(eps)}_s{seed}", _input(CONSTANT_EPS), variables,
                       int(seed))
 
 
@@ -96,7 +93,7 @@ def ramp_run(scale, bc, seed):
     variables = dict(_size(scale), bc=bc, sqrt0=float(scale.ramp_sqrt0),
                      dsqrt=float(scale.ramp_dsqrt), nlev=int(scale.ramp_levels),
                      P=int(scale.ramp_taps_per_level))
-    return _RunSpec()(f"ramp_{bc}_s{seed}", _input(RAMP), variables, int(seed))
+    return RunSpec(f"ramp_{bc}_s{seed}", _input(RAMP), variables, int(seed))
 
 
 #: The ramp's branches in the order of in.ramp's branch column (0, 1, 2).
@@ -116,7 +113,7 @@ def ramp_below_run(scale, bc, seed):
     variables = dict(_size(scale), bc=bc, sqrt0=float(scale.ramp_sqrt0),
                      dsqrt=float(scale.ramp_dsqrt), nlev=int(scale.ramp_below_levels),
                      P=int(scale.ramp_taps_per_level))
-    return _RunSpec()(f"{RAMP_BELOW_PREFIX}{bc}_s{seed}", _input(RAMP), variables, int(seed))
+    return RunSpec(f"{RAMP_BELOW_PREFIX}{bc}_s{seed}", _input(RAMP), variables, int(seed))
 
 
 #: Name prefix of the ramp that turns at the first level beyond (sqrt eps)* (section III.B).
@@ -132,7 +129,7 @@ def ramp_near_run(scale, bc, seed):
     variables = dict(_size(scale), bc=bc, sqrt0=float(scale.ramp_sqrt0),
                      dsqrt=float(scale.ramp_dsqrt), nlev=int(scale.ramp_near_levels),
                      P=int(scale.ramp_taps_per_level))
-    return _RunSpec()(f"{RAMP_NEAR_PREFIX}{bc}_s{seed}", _input(RAMP), variables, int(seed))
+    return RunSpec(f"{RAMP_NEAR_PREFIX}{bc}_s{seed}", _input(RAMP), variables, int(seed))
 
 
 #: Name prefix of the ramps at the paper's own protocol (section III.B: 4000 taps per level),
@@ -154,7 +151,7 @@ def paper_ramp_run(scale, bc, seed, top, eta=None):
     variables = dict(size, bc=bc, sqrt0=float(scale.ramp_sqrt0), dsqrt=float(scale.ramp_dsqrt),
                      nlev=int(round(levels)) + 1, P=int(scale.ramp_taps_per_level))
     eta_tag = "" if eta is None else f"_eta{float(eta):g}"
-    return _RunSpec()(f"{PAPER_RAMP_PREFIX}{float(top):g}_{bc}{eta_tag}_s{seed}", _input(RAMP),
+    return RunSpec(f"{PAPER_RAMP_PREFIX}{float(top):g}_{bc}{eta_tag}_s{seed}", _input(RAMP),
                       variables, int(seed))
 
 
@@ -166,14 +163,14 @@ CONSTANT_ETA_PREFIX = "consteta_"
 def constant_eps_eta_run(scale, bc, eps, seed, eta):
     """The constant-eps run of :func:`constant_eps_run` at the threshold ``eta``."""
     spec = constant_eps_run(scale.replace(eta=float(eta)), bc, eps, seed)
-    return _RunSpec()(f"{CONSTANT_ETA_PREFIX}{bc}_eps{eps_tag(eps)}_eta{float(eta):g}_s{seed}",
+    return RunSpec(f"{CONSTANT_ETA_PREFIX}{bc}_eps{eps_tag(eps)}_eta{float(eta):g}_s{seed}",
                       spec.input, spec.variables, int(seed))
 
 
 def ageing_run(scale, bc, eps, seed, taps=None):
     taps = int(scale.ageing_taps if taps is None else taps)
     variables = dict(_size(scale), eps=float(eps), taps=taps, bc=bc)
-    return _RunSpec()(f"ageing_{bc}_eps{eps_tag(eps)}_s{seed}", _input(AGEING), variables,
+    return RunSpec(f"ageing_{bc}_eps{eps_tag(eps)}_s{seed}", _input(AGEING), variables,
                       int(seed))
 
 
@@ -182,7 +179,7 @@ def pore_run(scale, bc, eps, seed, dump_times, taps=None, kind="pores"):
     taps = int(times[-1] if taps is None else taps)
     variables = dict(_size(scale), eps=float(eps), taps=taps, bc=bc,
                      dump_times=times)
-    return _RunSpec()(f"{kind}_{bc}_eps{eps_tag(eps)}_t{taps}_s{seed}", _input(PORE_DUMPS),
+    return RunSpec(f"{kind}_{bc}_eps{eps_tag(eps)}_t{taps}_s{seed}", _input(PORE_DUMPS),
                       variables, int(seed))
 
 
@@ -238,9 +235,42 @@ def run_dir(campaign, spec):
     return Path(campaign.result(spec.name))
 
 
+def check_finished_runs(campaign):
+    """Check every finished run of ``campaign`` against its DONE.json before anything reads
+    it (:func:`tapmc.campaign.verify_finished_run`): what draws from a campaign without
+    running it (``report --finished-only``, the questions) calls this first. Raises
+    CampaignDirectoryError (a DONE.json missing, cut or incomplete) or CampaignError (an
+    output changed since the run finished), naming the file and what is wrong."""
+    for spec in campaign.runs:
+        if campaign.is_done(spec.name):
+            verify_finished_run(campaign.run_dir(spec.name), spec)
+
+
 def taps_table(campaign, spec):
-    """The per-tap table (``taps.dat``) of a run: ``Table`` with named columns."""
-    return read_fix_print(run_dir(campaign, spec) / "taps.dat")
+    """The per-tap table (``taps.dat``) of a run: ``Table`` with named columns. A file cut
+    short raises TapmcFormatError naming it and its line (:func:`_check_not_cut_short`)."""
+    path = run_dir(campaign, spec) / spec.taps_file
+    table = read_fix_print(path)
+    _check_not_cut_short(path, table, spec)
+    return table
+
+
+def _check_not_cut_short(path, table, spec):
+    """Refuse a per-tap file cut short: a last line without its end-of-line (which
+    read_fix_print leaves out, as in a killed run), or, in a finished run's folder (with its
+    DONE.json, which the campaign writes only when the file reaches the last tap), a last
+    step before the run's last tap."""
+    data = Path(path).read_bytes()
+    complete_lines = data.count(b"\n")
+    if data and not data.endswith(b"\n"):
+        raise TapmcFormatError(path, complete_lines + 1, "cut short: the last line has no "
+                               "end-of-line (a finished run's per-tap file ends with a "
+                               "complete row)")
+    last = float(table.data[-1, 0])
+    finished = (Path(path).parent / "DONE.json").is_file()
+    if finished and spec.taps is not None and last < spec.taps:
+        raise TapmcFormatError(path, complete_lines, f"cut short: ends at step {last:g}, "
+                               f"before the last tap {spec.taps} of the run {spec.name!r}")
 
 
 def ramp_sqrt_eps(table):
@@ -339,10 +369,6 @@ def recorded_scale(directory):
     """The Scale recorded in a campaign folder (``scale.json``; fields added to Scale since it
     was written take their defaults, what the code that wrote it used), or None when the
     folder records none. A file that is no Scale record raises CampaignDirectoryError."""
-    from tapmc.campaign import CampaignDirectoryError
-
-    from .scales import Scale
-
     path = Path(directory) / SCALE_FILE
     if not path.exists():
         return None
@@ -365,10 +391,6 @@ def check_scale(directory, scale):
     (``scale.json``) another Scale than ``scale``: its runs, and the figures drawn from them
     (:func:`campaign_scale`), belong to the recorded one. Every field counts, so a preset
     edited since the campaign started is refused too. A folder without the file passes."""
-    from tapmc.campaign import CampaignDirectoryError
-
-    from .scales import SCALES
-
     found = recorded_scale(directory)
     if found is None:
         return
@@ -403,8 +425,6 @@ def campaign_scale(campaign):
 def matching_scale(specs):
     """The preset of ``tapmc.paper.scales`` whose N, L and eta are those of ``specs`` (the
     runs do not record their scale), or None."""
-    from .scales import SCALES
-
     for scale in SCALES.values():
         if all(int(s.variables.get("N", -1)) == scale.N
                and float(s.variables.get("L", -1)) == float(scale.L)

@@ -8,11 +8,13 @@ figures, so runs common to several figures run once) and draws the PNG and the C
 plotted number into the output folder. ``tapmc-paper report`` does this for every figure and
 writes the validation report (``tapmc.paper.validation``).
 
-Exit status: 0 on success, 1 when a run failed (the message names the run and its log),
-2 on a usage error, a figure that this installation does not provide, or a path that cannot be
+Exit status: 0 on success, 1 when a run failed (the message names the run and its log) or,
+with ``report --finished-only``, a finished run's outputs changed since it finished, 2 on a
+usage error, a figure that this installation does not provide, or a path that cannot be
 used (a campaign folder that is not a directory, cannot be created, read or written, has a
 damaged manifest or one of another format, or was made with another Scale; an ``--out`` that
-cannot be created or written): one line naming the path and what is wrong, no traceback.
+cannot be created or written), or a damaged input (a DONE.json, a per-tap file, report.json
+or a figure CSV): one line naming the path (and line) and what is wrong, no traceback.
 """
 
 from __future__ import annotations
@@ -23,8 +25,11 @@ import sys
 import tempfile
 from pathlib import Path
 
+from tapmc.campaign import CampaignError
+from tapmc.readers import TapmcFormatError
+
 from .. import __version__
-from . import FIGURES
+from . import FIGURES, _runs, plan
 from .plan import TIERS
 from .scales import FBC_STARTS, get_scale
 
@@ -353,8 +358,11 @@ def _report_from_data(args):
             for csv in validation.refit(out):
                 print(f"refit: {csv}")
         path = validation.regenerate(out)
-    except (FileNotFoundError, ValueError) as err:
+    except (FileNotFoundError, ValueError) as err:  # also TapmcFormatError: a damaged input
         print(f"tapmc-paper: {err}", file=sys.stderr)
+        return 2
+    except OSError as err:
+        print(_os_message(err), file=sys.stderr)
         return 2
     print(f"report: {path}")
     return 0
@@ -482,6 +490,9 @@ def main(argv=None):
         return _paper_ramp(args)
     if args.command == "plan":
         return _plan_cost(args)
+    if args.command == "report" and args.refit and not args.from_data:
+        parser.error("report: --refit rewrites the committed figure CSVs of --from-data and "
+                     "works with --from-data only")
     if args.command == "report" and args.from_data:
         return _report_from_data(args)
     figures = list(FIGURES) if args.command == "report" else [args.command]
@@ -514,22 +525,33 @@ def main(argv=None):
     planned = len(campaign.runs)
     if getattr(args, "finished_only", False):
         try:
-            from . import plan
-
             extra = plan.runs(plan.DRAWN_TIERS[-1]) if scale.name == "full" else ()
             campaign, planned = _finished_view(campaign, extra)
-        except ValueError as err:
+            _runs.check_finished_runs(campaign)  # nothing is drawn from a damaged run
+        except ValueError as err:  # also CampaignDirectoryError: a DONE.json cut or incomplete
             print(f"tapmc-paper: {err}", file=sys.stderr)
             return 2
+        except CampaignError as err:  # an output changed since its run finished
+            print(f"tapmc-paper: {err}", file=sys.stderr)
+            return 1
     else:
         status = _run_campaign(campaign, scale, args.quiet)
         if status:
             return status
+    return _draw_and_report(args, campaign, modules, validation, out, planned)
+
+
+def _draw_and_report(args, campaign, modules, validation, out, planned):
+    """Draw every figure of ``modules`` from the campaign and, with ``validation``, write the
+    report; returns the exit status. With --finished-only a figure whose runs have not
+    finished is left out (its ValueError), but a damaged file of a run stops the command."""
     try:
         drawn = {}
         for name, module in modules:
             try:
                 png, csv = module.draw(campaign, out)
+            except TapmcFormatError:
+                raise
             except ValueError as err:
                 if not getattr(args, "finished_only", False):
                     raise
@@ -540,6 +562,9 @@ def main(argv=None):
         if validation is not None:
             report = validation.report(campaign, out, drawn, planned_runs=planned)
             print(f"report: {report}")
+    except TapmcFormatError as err:  # a run's output damaged: named, never left out
+        print(f"tapmc-paper: {err}", file=sys.stderr)
+        return 2
     except OSError as err:
         print(_os_message(err), file=sys.stderr)
         return 2

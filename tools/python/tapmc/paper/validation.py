@@ -17,6 +17,7 @@ import math
 import re
 import shutil
 from collections import Counter
+from importlib import import_module
 from pathlib import Path
 
 import numpy as np
@@ -24,6 +25,7 @@ import numpy as np
 from tapmc.fluctuations import DEFAULT_BATCHES
 from tapmc.pores import JACKKNIFE_BLOCKS
 from tapmc.profiles import PROFILE_JACKKNIFE_BLOCKS
+from tapmc.readers import TapmcFormatError
 
 from . import FIGURES
 from . import _plotting as P
@@ -425,29 +427,106 @@ def render(summary, files):
 
 def write_rst(summary, files, out_dir):
     """Write out_dir/validation.rst (:func:`render`) and the summary as
-    out_dir/validation/report.json; returns the path of the rst."""
+    out_dir/validation/report.json, each whole or not at all (the page is rendered before
+    either is written); returns the path of the rst."""
     out_dir = Path(out_dir)
+    page = render(summary, files)
     (out_dir / FIG_DIR).mkdir(parents=True, exist_ok=True)
-    (out_dir / FIG_DIR / SUMMARY_FILE).write_text(json.dumps(summary, indent=1) + "\n")
-    path = out_dir / "validation.rst"
-    path.write_text(render(summary, files))
-    return path
+    _write_whole(out_dir / FIG_DIR / SUMMARY_FILE, json.dumps(summary, indent=1) + "\n")
+    return _write_whole(out_dir / "validation.rst", page)
 
 
 def committed_inputs(out_dir):
     """(summary, files) of a report already written to out_dir: report.json and the figure
-    PNG/CSV pairs in out_dir/validation. Raises FileNotFoundError naming what is missing."""
+    PNG/CSV pairs in out_dir/validation. Raises FileNotFoundError naming what is missing, and
+    TapmcFormatError naming the file (and line) when report.json (:func:`read_summary`) or a
+    figure CSV (``_plotting.read_table``) is damaged: every input is checked before anything
+    is rendered."""
     folder = Path(out_dir) / FIG_DIR
     path = folder / SUMMARY_FILE
     if not path.is_file():
         raise FileNotFoundError(f"{path}: no report summary (written by 'tapmc-paper report' "
                                 "from a campaign)")
-    summary = json.loads(path.read_text())
     files = {name: (folder / f"{name}.png", folder / f"{name}.csv") for name in FIGURES
              if (folder / f"{name}.csv").is_file()}
     if not files:
         raise FileNotFoundError(f"{folder}: no figure CSV (fig2.csv ... fig10.csv)")
+    summary = read_summary(path)
+    for _, csv in files.values():
+        P.read_table(csv)
     return summary, files
+
+
+def _is_int(value):
+    return isinstance(value, int) and not isinstance(value, bool)
+
+
+def _is_number(value):
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def _list_of(check, length=None):
+    return lambda value: (isinstance(value, list) and length in (None, len(value))
+                          and all(check(v) for v in value))
+
+
+#: report.json's fields (:func:`campaign_summary`): name -> (the type the page needs, its test)
+SUMMARY_FIELDS = {
+    "scale": ("a string or null", lambda v: v is None or isinstance(v, str)),
+    "preset": ("true or false", lambda v: isinstance(v, bool)),
+    "fields": ("null or an object with the fields " + ", ".join(_SCALE_KEYS),
+               lambda v: v is None or (isinstance(v, dict) and all(k in v for k in _SCALE_KEYS))),
+    "sizes": ("a list of [N, L] pairs (an integer and a number)",
+              _list_of(lambda v: _list_of(_is_number, 2)(v) and _is_int(v[0]))),
+    "runs": ("an integer", _is_int),
+    "taps": ("a list of integers", _list_of(_is_int)),
+    "seeds": ("an integer", _is_int),
+    "eta": ("a list of numbers", _list_of(_is_number)),
+    "initial_phi_c": ("a list [mean, sem, n] of numbers or nulls",
+                      _list_of(lambda v: v is None or _is_number(v), 3)),
+}
+#: fields of report.json that a summary written before them lacks
+OPTIONAL_SUMMARY_FIELDS = {
+    "seeds_per_point": ("a list [fewest, most] of integers", _list_of(_is_int, 2)),
+    "ramp_taps_per_level": ("a list of integers", _list_of(_is_int)),
+    "planned_runs": ("an integer", _is_int),
+}
+
+
+def read_summary(path):
+    """report.json as a dict, checked field by field (:data:`SUMMARY_FIELDS`): a file that is
+    not JSON, not an object, lacks a field or has one of another type raises TapmcFormatError
+    naming the file, the field and the type expected, before anything of it is printed."""
+    try:
+        summary = json.loads(Path(path).read_bytes())
+    except ValueError as err:  # also UnicodeDecodeError
+        raise TapmcFormatError(path, getattr(err, "lineno", None),
+                               f"not valid JSON ({err})") from None
+    if not isinstance(summary, dict):
+        raise TapmcFormatError(path, None, f"a JSON {type(summary).__name__}, expected an "
+                               "object (the report summary written by 'tapmc-paper report')")
+    for name, (expected, valid) in {**SUMMARY_FIELDS, **OPTIONAL_SUMMARY_FIELDS}.items():
+        if name not in summary and name in OPTIONAL_SUMMARY_FIELDS:
+            continue
+        if name not in summary:
+            raise TapmcFormatError(path, None, f"no field {name!r} ({expected})")
+        if not valid(summary[name]):
+            raise TapmcFormatError(path, None, f"field {name!r} is {summary[name]!r}, "
+                                   f"expected {expected}")
+    return summary
+
+
+def _write_whole(path, text):
+    """Write ``text`` to ``path`` through a temporary file renamed when complete: a kill or
+    a full disk never leaves part of a page or CSV in place of the committed one."""
+    path = Path(path)
+    tmp = path.with_name(path.name + ".tmp")
+    try:
+        tmp.write_text(text)
+        tmp.replace(path)
+    finally:
+        tmp.unlink(missing_ok=True)
+    return path
 
 
 #: figure -> the function that recomputes its statistics from its own curves (module docs).
@@ -457,30 +536,47 @@ _REFITS = {"fig2": "refit_table", "fig5": "refit_table"}
 def refit(out_dir):
     """Recompute, from the curves of the figure CSVs in out_dir/validation, the statistics
     their figure modules can compute from a CSV alone (:data:`_REFITS`), rewriting those
-    CSVs (curves kept, PNGs untouched). Returns the rewritten paths."""
-    from importlib import import_module
-
+    CSVs (curves kept, PNGs untouched). Every input is checked first
+    (:func:`committed_inputs`); a CSV is replaced only by a complete, non-empty refit
+    (:func:`_replace_csv`). Returns the rewritten paths."""
     _, files = committed_inputs(out_dir)
     done = []
     for name, function in _REFITS.items():
         if name in files:
             csv = Path(files[name][1])
             module = import_module(f"{__package__}.{name}")
-            getattr(module, function)(P.read_table(csv)).write(csv)
-            done.append(csv)
+            try:
+                table = getattr(module, function)(P.read_table(csv))
+            except TapmcFormatError:
+                raise
+            except (ValueError, IndexError, KeyError) as err:
+                raise ValueError(f"{csv}: cannot be refitted ({err}); left as it is") from None
+            done.append(_replace_csv(table, csv))
     return done
+
+
+def _replace_csv(table, csv):
+    """Replace ``csv`` by ``table`` (a FigureTable) through a temporary file, renamed only
+    when it holds rows and reads back as a whole figure CSV; else ``csv`` stays as it is."""
+    csv = Path(csv)
+    if not len(table):
+        raise ValueError(f"{csv}: the refit gives no row; left as it is")
+    tmp = csv.with_name(csv.name + ".tmp")
+    try:
+        table.write(tmp)
+        P.read_table(tmp)
+        tmp.replace(csv)
+    finally:
+        tmp.unlink(missing_ok=True)
+    return csv
 
 
 def regenerate(out_dir):
     """Rewrite out_dir/validation.rst from the committed data alone (report.json and the
-    figure CSVs in out_dir/validation); nothing is run or drawn. Returns its path."""
+    figure CSVs in out_dir/validation, checked first by :func:`committed_inputs`); nothing is
+    run or drawn. Returns its path."""
     summary, files = committed_inputs(out_dir)
-    path = Path(out_dir) / "validation.rst"
-    path.write_text(render(summary, files))
-    return path
-
-
-
+    return _write_whole(Path(out_dir) / "validation.rst", render(summary, files))
 
 
 def report(campaign, out_dir, drawn=None, planned_runs=None):
@@ -490,8 +586,6 @@ def report(campaign, out_dir, drawn=None, planned_runs=None):
     the figures not given are drawn here. ``planned_runs``: the number of runs of the whole
     campaign when ``campaign`` holds only its finished ones (a campaign under way; the page
     says how many are done). Returns the path of the rst."""
-    from importlib import import_module
-
     out_dir = Path(out_dir)
     drawn = dict(drawn or {})
     target = out_dir / FIG_DIR
@@ -501,14 +595,16 @@ def report(campaign, out_dir, drawn=None, planned_runs=None):
         module = import_module(f"{__package__}.{name}")
         try:
             drawn[name] = module.draw(campaign, target)
+        except TapmcFormatError:
+            raise  # a damaged output of a run: never a figure left out
         except ValueError:
             continue  # this campaign has no run of that figure
+    summary = campaign_summary(campaign)  # reads runs: before any committed file is replaced
     files = _collect(drawn, out_dir)
-    summary = campaign_summary(campaign)
     if planned_runs is not None and planned_runs > summary["runs"]:
         summary["planned_runs"] = int(planned_runs)
     return write_rst(summary, files, out_dir)
 
 
 __all__ = ["report", "regenerate", "refit", "render", "write_rst", "campaign_summary",
-           "committed_inputs", "RULES"]
+           "committed_inputs", "read_summary", "RULES"]
