@@ -350,4 +350,4 @@ def tier_setting(name, rule, N):
     recommended = front.recommend(rule.summary_rows, nearest).get(purpose)
     if recommended is None:
         raise CostError(f"{rule.source}: no setting meets the {purpose} tolerance at N = {nearest}")
-    return recommended["setting"]
+    return recommended.setting
