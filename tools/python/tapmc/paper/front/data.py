@@ -10,7 +10,6 @@ that a kill or an error never leaves a committed file empty or cut short.
 """
 
 import csv
-import dataclasses
 import json
 import os
 from dataclasses import dataclass
@@ -239,7 +238,3 @@ def read_meta(data_dir):
                              f"{', '.join(META_KEYS)}, as 'tapmc-paper front run' writes them)")
     return meta
 
-
-def replace_row(row, **changes):
-    """A RunRow with some fields changed."""
-    return dataclasses.replace(row, **changes)
