@@ -80,15 +80,15 @@ def test_paired_bias_and_its_bound(data):
     row = fr.rows(N=1024, eps=0.0225, setting="change 1e-6")[0]
     se = 0.0001 / math.sqrt(3)  # standard error of the mean of the jitter (sd 1e-4, 3 seeds)
     for q in ("phi_c_t1", "phi_c_t1000", "phi_b_steady"):
-        assert row[q + "_bias"] == pytest.approx(-0.002, abs=1e-12)
-        assert row[q + "_bias_se"] == pytest.approx(se, rel=1e-6)
-        assert row[q + "_bias_bound"] == pytest.approx(0.002 + 4.302653 * se, rel=1e-5)
-    assert row["Z_steady_bias"] == pytest.approx(-0.02, abs=1e-9)
+        assert row.biases[q].mean == pytest.approx(-0.002, abs=1e-12)
+        assert row.biases[q].se == pytest.approx(se, rel=1e-6)
+        assert row.biases[q].bound == pytest.approx(0.002 + 4.302653 * se, rel=1e-5)
+    assert row.biases["Z_steady"].mean == pytest.approx(-0.02, abs=1e-9)
     # the per-seed spread of the packings (0.003 per seed) is in the values, not in the bias
-    assert row["phi_c_t1000_se"] > 10 * row["phi_c_t1000_bias_se"]
-    assert row["cpu_per_tap"] == pytest.approx(0.05) and row["seeds"] == 3
+    assert row.values["phi_c_t1000"].se > 10 * row.biases["phi_c_t1000"].se
+    assert row.cpu_per_tap.mean == pytest.approx(0.05) and row.seeds == 3
     ref = fr.rows(N=1024, eps=0.1, setting=front.REFERENCE)[0]
-    assert ref["phi_c_steady_bias"] == 0.0 and ref["phi_c_steady_bias_se"] == 0.0
+    assert ref.biases["phi_c_steady"].mean == 0.0 and ref.biases["phi_c_steady"].se == 0.0
 
 
 def test_recommendations_take_the_cheapest_setting_within_each_tolerance(data):
@@ -105,7 +105,7 @@ def test_exploration_bounds_the_change_of_the_bias_not_the_bias(data):
     fr = front.Front(data).compute()
     same = fr.rows(N=1024, setting="change 1e-6")
     se = 0.0001 / math.sqrt(3)
-    assert all(r["phi_c_steady_trend_bound"] < 4.31 * 2 * se for r in same)
+    assert all(r.trend_bounds["phi_c_steady"] < 4.31 * 2 * se for r in same)
     recs = fr.recommendations(1024)
     assert recs["exploration"].worst_bias == pytest.approx(-0.002, abs=1e-9)
     assert recs["exploration"].criterion == "trend"

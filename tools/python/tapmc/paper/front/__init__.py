@@ -18,7 +18,8 @@ This package re-exports the names the rest of tapmc.paper reads (the page and th
 imported from their modules: they bring matplotlib and tapmc.campaign).
 """
 
-from .analysis import (Front, Recommendation, ReferenceCheck, quantities, recommend,
+from .analysis import (Estimate, Front, PairedBias, Recommendation, ReferenceCheck,
+                       SettingResult, quantities, recommend,
                        worst_bias, worst_bound, worst_trend)
 from .data import DATA_DIR, RUN_FIELDS, FrontDataError, read_runs, read_taps, taps_path
 from .settings import (BOUNDED, DEFAULT, EPS, OBSERVABLES, PRESET_PURPOSE, PURPOSES,
@@ -27,7 +28,8 @@ from .settings import (BOUNDED, DEFAULT, EPS, OBSERVABLES, PRESET_PURPOSE, PURPO
                        time_window, wanted)
 from .summary import SUMMARY, bias_sentence, read_summary
 
-__all__ = ["Front", "Recommendation", "ReferenceCheck", "quantities", "recommend", "worst_bias",
+__all__ = ["Estimate", "Front", "PairedBias", "Recommendation", "ReferenceCheck", "SettingResult",
+           "quantities", "recommend", "worst_bias",
            "worst_bound", "worst_trend", "DATA_DIR", "RUN_FIELDS", "FrontDataError",
            "read_runs", "read_taps", "taps_path", "BOUNDED", "DEFAULT", "EPS", "OBSERVABLES",
            "PRESET_PURPOSE", "PURPOSES", "QUANTITY_NAMES", "REFERENCE", "SETTINGS", "SIZES",

@@ -14,7 +14,7 @@ converged when the still tighter settings (``TIGHTER``) agree with it within the
 
 import math
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from ...stats import beyond, t_quantile_of_mean
 from . import data
@@ -58,6 +58,60 @@ def mean_se(values):
 
 
 @dataclass(frozen=True)
+class Estimate:
+    """A mean over seeds and its standard error (nan where undefined)."""
+    mean: float
+    se: float
+
+
+@dataclass(frozen=True)
+class PairedBias:
+    """The mean over the paired seeds of (setting - reference) on the same seed, its standard
+    error and its 95 % bound |mean| + t x se (nan below two paired seeds)."""
+    mean: float
+    se: float
+    bound: float
+
+
+@dataclass
+class SettingResult:
+    """One setting at one N and eps: its cost, its values and its paired biases against the
+    reference (quantity names: settings.QUANTITY_NAMES), and the trend bounds of BOUNDED (how
+    much its bias changes between eps and windows). ``summary_row()`` is its row of
+    front_summary.csv."""
+    N: int
+    eps: float
+    setting: str
+    eta: str
+    settle_keys: str
+    seeds: int
+    cpu_per_tap: Estimate
+    sweeps_per_tap: float
+    capped_taps: int
+    paired_seeds: int
+    rise: Estimate            # <Phi^c>: steady window minus the window before it
+    values: dict              # quantity -> Estimate
+    biases: dict              # quantity -> PairedBias
+    trend_bounds: dict = field(default_factory=dict)   # BOUNDED quantity -> 95 % bound
+
+    def summary_row(self):
+        """The row of front_summary.csv (its columns in their order)."""
+        row = {"N": self.N, "eps": self.eps, "setting": self.setting, "eta": self.eta,
+               "settle_keys": self.settle_keys, "seeds": self.seeds,
+               "cpu_per_tap": self.cpu_per_tap.mean, "cpu_per_tap_se": self.cpu_per_tap.se,
+               "sweeps_per_tap": self.sweeps_per_tap, "capped_taps": self.capped_taps,
+               "paired_seeds": self.paired_seeds, "phi_c_rise": self.rise.mean,
+               "phi_c_rise_se": self.rise.se}
+        for q in QUANTITY_NAMES:
+            value, bias = self.values[q], self.biases[q]
+            row.update({q: value.mean, q + "_se": value.se, q + "_bias": bias.mean,
+                        q + "_bias_se": bias.se, q + "_bias_bound": bias.bound})
+        for q in BOUNDED:
+            row[q + "_trend_bound"] = self.trend_bounds[q]
+        return row
+
+
+@dataclass(frozen=True)
 class Recommendation:
     """The cheapest setting, run at every eps of the front, that meets a purpose at one N."""
     purpose: str
@@ -83,8 +137,8 @@ class ReferenceCheck:
 
 class Front:
     """The front measured in ``data_dir`` (runs.csv and taps/): ``compute()`` returns self;
-    ``table`` (one dict per N, eps and setting: a row of front_summary.csv),
-    ``recommendations(N)``, ``reference_check(N)``. FrontDataError names a damaged file."""
+    ``table`` (one SettingResult per N, eps and setting), ``summary_rows()`` (the rows of
+    front_summary.csv), ``recommendations(N)``, ``reference_check(N)``. FrontDataError names a damaged file."""
 
     def __init__(self, data_dir):
         self.data_dir = os.fspath(data_dir)
@@ -118,8 +172,8 @@ class Front:
                     table.append(_setting_row(N, eps, name, mine, ref, paired))
         for row in table:
             for q in BOUNDED:
-                row[q + "_trend_bound"] = _trend_bound(paired.get((row["N"], row["setting"]), {}),
-                                                       (q, row["eps"]))
+                row.trend_bounds[q] = _trend_bound(paired.get((row.N, row.setting), {}),
+                                                   (q, row.eps))
         self._table = table
         return self
 
@@ -133,69 +187,71 @@ class Front:
         return self._need()
 
     def rows(self, N=None, eps=None, setting=None):
-        return [r for r in self._need() if (N is None or r["N"] == N)
-                and (eps is None or abs(r["eps"] - eps) < EPS_MATCH)
-                and (setting is None or r["setting"] == setting)]
+        """The SettingResults at N, eps and setting (each None: all)."""
+        return [r for r in self._need() if (N is None or r.N == N)
+                and (eps is None or abs(r.eps - eps) < EPS_MATCH)
+                and (setting is None or r.setting == setting)]
+
+    def summary_rows(self):
+        """The rows of front_summary.csv."""
+        return [r.summary_row() for r in self._need()]
 
     @property
     def sizes(self):
-        return sorted({r["N"] for r in self._need()})
+        return sorted({r.N for r in self._need()})
 
     @property
     def eps_values(self):
-        return sorted({r["eps"] for r in self._need()})
+        return sorted({r.eps for r in self._need()})
 
     @property
     def compared_sizes(self):
         """The N at which the reference has run: where biases (and a figure) exist."""
-        return sorted({r["N"] for r in self._need() if r["setting"] == REFERENCE})
+        return sorted({r.N for r in self._need() if r.setting == REFERENCE})
 
     def reference_check(self, N):
         """A ReferenceCheck for each tighter setting and eps at N with two paired seeds."""
         out = []
         for name in TIGHTER:
             for row in self.rows(N=N, setting=name):
-                n = row["paired_seeds"]
+                n = row.paired_seeds
                 if n < 2:
                     continue
-                compared = [q for q in QUANTITY_NAMES
-                            if row[q + "_bias_bound"] == row[q + "_bias_bound"]]
-                off = [q for q in compared if beyond(row[q + "_bias"], row[q + "_bias_se"], n - 1)]
-                out.append(ReferenceCheck(name, row["eps"], n, off, len(compared)))
+                compared = [q for q in QUANTITY_NAMES if row.biases[q].bound == row.biases[q].bound]
+                off = [q for q in compared if beyond(row.biases[q].mean, row.biases[q].se, n - 1)]
+                out.append(ReferenceCheck(name, row.eps, n, off, len(compared)))
         return out
 
     def recommendations(self, N):
         """purpose -> Recommendation at N (see :func:`recommend`)."""
-        return recommend(self._need(), N)
+        return recommend(self.summary_rows(), N)
 
 
 def _setting_row(N, eps, name, mine, ref, paired):
-    """The table row of setting `name` at N and eps from its runs `mine` (seed -> (RunRow,
+    """The SettingResult of setting `name` at N and eps from its runs `mine` (seed -> (RunRow,
     quantities)) and the reference's quantities `ref` (seed -> quantities); records the
     per-seed biases of BOUNDED in `paired`."""
     seeds_ = sorted(mine)
-    row = {"N": N, "eps": eps, "setting": name, "eta": SETTINGS[name]["eta"],
-           "settle_keys": mine[seeds_[0]][0].settle_keys, "seeds": len(seeds_)}
-    row["cpu_per_tap"], row["cpu_per_tap_se"] = mean_se(
-        [float(mine[s][0].cpu_per_tap) for s in seeds_])
-    row["sweeps_per_tap"], _ = mean_se([float(mine[s][0].sweeps_per_tap) for s in seeds_])
-    row["capped_taps"] = sum(mine[s][0].capped_taps for s in seeds_)
     common = [s for s in seeds_ if s in ref]
-    row["paired_seeds"] = len(common)
-    row["phi_c_rise"], row["phi_c_rise_se"] = mean_se(
-        [mine[s][1]["phi_c_rise"] for s in seeds_ if "phi_c_rise" in mine[s][1]])
     t95 = t_quantile_of_mean(len(common))
+    values, biases = {}, {}
     for q in QUANTITY_NAMES:
-        row[q], row[q + "_se"] = mean_se([mine[s][1][q] for s in seeds_ if q in mine[s][1]])
+        values[q] = Estimate(*mean_se([mine[s][1][q] for s in seeds_ if q in mine[s][1]]))
         by_seed = {s: mine[s][1][q] - ref[s][q] for s in common
                    if q in mine[s][1] and q in ref[s]}
         if q in BOUNDED:
             paired.setdefault((N, name), {})[(q, eps)] = by_seed
-        diffs = list(by_seed.values())
-        d, se = mean_se(diffs)
-        row[q + "_bias"], row[q + "_bias_se"] = d, se
-        row[q + "_bias_bound"] = abs(d) + t95 * se if len(diffs) > 1 else math.nan
-    return row
+        d, se = mean_se(list(by_seed.values()))
+        biases[q] = PairedBias(d, se, abs(d) + t95 * se if len(by_seed) > 1 else math.nan)
+    return SettingResult(
+        N=N, eps=eps, setting=name, eta=SETTINGS[name]["eta"],
+        settle_keys=mine[seeds_[0]][0].settle_keys, seeds=len(seeds_),
+        cpu_per_tap=Estimate(*mean_se([float(mine[s][0].cpu_per_tap) for s in seeds_])),
+        sweeps_per_tap=mean_se([float(mine[s][0].sweeps_per_tap) for s in seeds_])[0],
+        capped_taps=sum(mine[s][0].capped_taps for s in seeds_), paired_seeds=len(common),
+        rise=Estimate(*mean_se([mine[s][1]["phi_c_rise"] for s in seeds_
+                                if "phi_c_rise" in mine[s][1]])),
+        values=values, biases=biases)
 
 
 def _trend_bound(biases, here):
@@ -218,18 +274,23 @@ def _trend_bound(biases, here):
     return max(bounds) if bounds else math.nan
 
 
+def _summary(rows):
+    """Rows of front_summary.csv from SettingResults or summary rows (the rows cost.py reads)."""
+    return [r.summary_row() if isinstance(r, SettingResult) else r for r in rows]
+
+
 def worst_trend(name, rows):
     """The largest trend bound (BOUNDED, see _trend_bound) of setting `name` over its `rows`
-    (0 for the reference; nan when one is missing)."""
+    (SettingResults or summary rows; 0 for the reference; nan when one is missing)."""
     if name == REFERENCE:
         return 0.0
-    bounds = [float(r.get(q + "_trend_bound", math.nan)) for r in rows for q in BOUNDED]
+    bounds = [float(r.get(q + "_trend_bound", math.nan)) for r in _summary(rows) for q in BOUNDED]
     return max(bounds) if bounds and all(b == b for b in bounds) else math.nan
 
 
 def worst_bias(name, rows):
     """The largest |bias| of <Phi^c> (BOUNDED) of setting `name` over its `rows`, signed."""
-    biases = [float(r[q + "_bias"]) for r in rows for q in BOUNDED]
+    biases = [float(r[q + "_bias"]) for r in _summary(rows) for q in BOUNDED]
     return max(biases, key=abs) if biases else math.nan
 
 
@@ -238,15 +299,15 @@ def worst_bound(name, rows):
     nan when a bound is missing or there are no rows)."""
     if name == REFERENCE:
         return 0.0
-    bounds = [r[q + "_bias_bound"] for r in rows for q in BOUNDED]
+    bounds = [r[q + "_bias_bound"] for r in _summary(rows) for q in BOUNDED]
     return max(bounds) if bounds and all(b == b for b in bounds) else math.nan
 
 
 def recommend(table, N):
-    """purpose -> Recommendation at N, from the rows of a Front's table (or of
+    """purpose -> Recommendation at N, from the SettingResults of a Front (or the rows of
     front_summary.csv): for each purpose the cheapest setting, run at every eps of the front,
     whose 95 % bounds (BOUNDED) meet the purpose's tolerance at every eps."""
-    rows_at = [r for r in table if r["N"] == N]
+    rows_at = [r for r in _summary(table) if r["N"] == N]
     eps_all = sorted({r["eps"] for r in rows_at})
     candidates = []
     for name in SETTINGS:

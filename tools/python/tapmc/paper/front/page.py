@@ -32,15 +32,15 @@ def figure_table(front, N):
     table = FigureTable()
     for panel, eps in zip("ab", front.eps_values):
         for r in front.rows(N=N, eps=eps):
-            table.add(panel, r["setting"], r["cpu_per_tap"], r["phi_c_steady_bias"],
-                      r["phi_c_steady_bias_se"], r["paired_seeds"])
+            table.add(panel, r.setting, r.cpu_per_tap.mean, r.biases["phi_c_steady"].mean,
+                      r.biases["phi_c_steady"].se, r.paired_seeds)
     first = front.eps_values[0]
     for r in front.rows(N=N, eps=first):
         xs = list(TIMES) + [2 * TAPS]
-        table.add("c", r["setting"], xs,
-                  [r[f"phi_c_t{t}_bias"] for t in TIMES] + [r["phi_c_steady_bias"]],
-                  [r[f"phi_c_t{t}_bias_se"] for t in TIMES] + [r["phi_c_steady_bias_se"]],
-                  r["paired_seeds"])
+        table.add("c", r.setting, xs,
+                  [r.biases[f"phi_c_t{t}"].mean for t in TIMES] + [r.biases["phi_c_steady"].mean],
+                  [r.biases[f"phi_c_t{t}"].se for t in TIMES] + [r.biases["phi_c_steady"].se],
+                  r.paired_seeds)
     return table
 
 
@@ -102,21 +102,21 @@ def _dmax_lines(front, N):
         b = base[0]
         parts, beaten = [], []
         for (a,) in alts:
-            ratio = a["cpu_per_tap"] / b["cpu_per_tap"]
-            parts.append(f"{a['setting'][5:]} costs {ratio:.2f} times its CPU time per tap "
-                         f"({a['sweeps_per_tap']:.0f} sweeps) and leaves <Phi^c> "
-                         f"{plus_minus(a['phi_c_steady_bias'], a['phi_c_steady_bias_se'])} steady")
-            se = math.hypot(a["phi_c_steady_bias_se"], b["phi_c_steady_bias_se"])
-            closer = abs(b["phi_c_steady_bias"]) - abs(a["phi_c_steady_bias"]) > DMAX_CLOSER_SE * se
+            ratio = a.cpu_per_tap.mean / b.cpu_per_tap.mean
+            parts.append(f"{a.setting[5:]} costs {ratio:.2f} times its CPU time per tap "
+                         f"({a.sweeps_per_tap:.0f} sweeps) and leaves <Phi^c> "
+                         f"{plus_minus(a.biases['phi_c_steady'].mean, a.biases['phi_c_steady'].se)} steady")
+            se = math.hypot(a.biases["phi_c_steady"].se, b.biases["phi_c_steady"].se)
+            closer = abs(b.biases["phi_c_steady"].mean) - abs(a.biases["phi_c_steady"].mean) > DMAX_CLOSER_SE * se
             if ratio <= 1.0 and closer:
-                beaten.append(a["setting"][5:])
+                beaten.append(a.setting[5:])
         verdict = ("so a d_max of " + " and ".join(beaten) + " redeposits better at no more cost "
                    "than the paper's R/5" if beaten else
                    "neither is both cheaper and closer to the reference (by two standard errors) "
                    "than the paper's R/5")
         return [f"**d_max** (section II: R/5 is \"an intermediate value\"), at eps = {eps:g} and "
-                f"eta = {b['eta']}: against R/5 ({b['sweeps_per_tap']:.0f} sweeps per tap, "
-                f"<Phi^c> {plus_minus(b['phi_c_steady_bias'], b['phi_c_steady_bias_se'])} steady), " + "; ".join(parts) + f": {verdict}.", ""]
+                f"eta = {b.eta}: against R/5 ({b.sweeps_per_tap:.0f} sweeps per tap, "
+                f"<Phi^c> {plus_minus(b.biases['phi_c_steady'].mean, b.biases['phi_c_steady'].se)} steady), " + "; ".join(parts) + f": {verdict}.", ""]
     return []
 
 
@@ -127,7 +127,7 @@ def _default_lines(front, N, recs):
     if not rows or any(r.setting == DEFAULT for r in recs.values()) or "publication" not in recs:
         return []
     bound, trend = worst_bound(DEFAULT, rows), worst_trend(DEFAULT, rows)
-    cpu = sum(r["cpu_per_tap"] for r in rows) / len(rows)
+    cpu = sum(r.cpu_per_tap.mean for r in rows) / len(rows)
     return [f"The package default, *{DEFAULT}*, is recommended for no purpose at N = {N}: its "
             f"worst bias of <Phi^c> is {worst_bias(DEFAULT, rows):+.4f}, its 95 % bounds are "
             f"{bound:.4f} on the bias and {trend:.4f} on its change with eps and taps "
@@ -149,7 +149,7 @@ def _preset_lines(front):
         worst = worst_bound(name, rows) if name else math.nan
         rec = front.recommendations(N).get(purpose)
         recommended = rec.setting if rec else None
-        ratio = (rec.cpu_per_tap / (sum(r["cpu_per_tap"] for r in rows) / len(rows))
+        ratio = (rec.cpu_per_tap / (sum(r.cpu_per_tap.mean for r in rows) / len(rows))
                  if rec and rows else math.nan)
         body.append([preset, f"N = {scale.N}, {scale.taps} taps", f"N = {N}", purpose,
                      name or f"eta {scale.eta:g} (not on the front)",
@@ -190,8 +190,8 @@ def _intro_lines(runs_note):
 
 def _eps_table_lines(rows):
     """The table of every setting at one N and eps: cost and paired biases."""
-    seeds_ = max(r["seeds"] for r in rows)
-    lines = [f"eps = {rows[0]['eps']:g} ({seeds_text(seeds_)}; bias of each quantity against "
+    seeds_ = max(r.seeds for r in rows)
+    lines = [f"eps = {rows[0].eps:g} ({seeds_text(seeds_)}; bias of each quantity against "
              f"*{REFERENCE}*, mean +- standard error):", ""]
     w100, w1000 = time_window(100), time_window(TAPS)
     header = ["setting", "sweeps/tap", "CPU s/tap", "<Phi^c> t=1",
@@ -200,41 +200,41 @@ def _eps_table_lines(rows):
               "95 % bound"]
     body = []
     for r in rows:
-        bound = max((r[q + "_bias_bound"] for q in BOUNDED), default=math.nan)
-        body.append([r["setting"] + (f" ({seeds_text(r['seeds'])})" if r["seeds"] != seeds_ else ""),
-                     "%.0f" % r["sweeps_per_tap"], "%.3f" % r["cpu_per_tap"],
-                     plus_minus(r["phi_c_t1_bias"], r["phi_c_t1_bias_se"]),
-                     plus_minus(r["phi_c_t100_bias"], r["phi_c_t100_bias_se"]),
-                     plus_minus(r["phi_c_t1000_bias"], r["phi_c_t1000_bias_se"]),
-                     plus_minus(r["phi_c_steady_bias"], r["phi_c_steady_bias_se"]),
-                     plus_minus(r["phi_b_steady_bias"], r["phi_b_steady_bias_se"]),
-                     plus_minus(r["Z_steady_bias"], r["Z_steady_bias_se"], digits=3),
-                     "reference" if r["setting"] == REFERENCE else
+        bound = max((r.biases[q].bound for q in BOUNDED), default=math.nan)
+        body.append([r.setting + (f" ({seeds_text(r.seeds)})" if r.seeds != seeds_ else ""),
+                     "%.0f" % r.sweeps_per_tap, "%.3f" % r.cpu_per_tap.mean,
+                     plus_minus(r.biases["phi_c_t1"].mean, r.biases["phi_c_t1"].se),
+                     plus_minus(r.biases["phi_c_t100"].mean, r.biases["phi_c_t100"].se),
+                     plus_minus(r.biases["phi_c_t1000"].mean, r.biases["phi_c_t1000"].se),
+                     plus_minus(r.biases["phi_c_steady"].mean, r.biases["phi_c_steady"].se),
+                     plus_minus(r.biases["phi_b_steady"].mean, r.biases["phi_b_steady"].se),
+                     plus_minus(r.biases["Z_steady"].mean, r.biases["Z_steady"].se, digits=3),
+                     "reference" if r.setting == REFERENCE else
                      ("n/a" if bound != bound else "%.4f" % bound)])
     return lines + rst_table(header, body) + [""]
 
 
 def _still_moves(r):
     """Whether the reference's <Phi^c> still moves into the steady window, as a clause."""
-    if r["seeds"] < 2:
+    if r.seeds < 2:
         return "one seed cannot say whether it still moves."
-    if not beyond(r["phi_c_rise"], r["phi_c_rise_se"], r["seeds"] - 1):
+    if not beyond(r.rise.mean, r.rise.se, r.seeds - 1):
         return (f"no change resolved at 95 % confidence "
-                f"(t = {t_quantile_of_mean(r['seeds']):.3g}).")
+                f"(t = {t_quantile_of_mean(r.seeds):.3g}).")
     return "the packing still compacts, so the steady column is the mean of that window, not a limit."
 
 
 def _reference_lines(r):
     """The reference's own values at one N and eps."""
-    return [f"Reference values (mean +- standard error over {seeds_text(r['seeds'])}): "
-            f"<Phi^c> = {plus_minus(r['phi_c_t1'], r['phi_c_t1_se'], sign=False)} after one tap, "
-            f"{plus_minus(r['phi_c_t1000'], r['phi_c_t1000_se'], sign=False)} over taps "
+    return [f"Reference values (mean +- standard error over {seeds_text(r.seeds)}): "
+            f"<Phi^c> = {plus_minus(r.values['phi_c_t1'].mean, r.values['phi_c_t1'].se, sign=False)} after one tap, "
+            f"{plus_minus(r.values['phi_c_t1000'].mean, r.values['phi_c_t1000'].se, sign=False)} over taps "
             "%d-%d, " % time_window(TAPS) +
-            f"{plus_minus(r['phi_c_steady'], r['phi_c_steady_se'], sign=False)} steady; "
-            f"Phi_b = {plus_minus(r['phi_b_steady'], r['phi_b_steady_se'], sign=False)} steady; "
-            f"<Z> = {plus_minus(r['Z_steady'], r['Z_steady_se'], digits=3, sign=False)} steady. "
+            f"{plus_minus(r.values['phi_c_steady'].mean, r.values['phi_c_steady'].se, sign=False)} steady; "
+            f"Phi_b = {plus_minus(r.values['phi_b_steady'].mean, r.values['phi_b_steady'].se, sign=False)} steady; "
+            f"<Z> = {plus_minus(r.values['Z_steady'].mean, r.values['Z_steady'].se, digits=3, sign=False)} steady. "
             f"From taps {TAPS - 2 * STEADY_LAST + 1}-{TAPS - STEADY_LAST} to the steady "
-            f"window <Phi^c> changes by {plus_minus(r['phi_c_rise'], r['phi_c_rise_se'])}: "
+            f"window <Phi^c> changes by {plus_minus(r.rise.mean, r.rise.se)}: "
             + _still_moves(r), ""]
 
 
@@ -387,7 +387,7 @@ def write_page(root, data_dir=None):
     fr = Front(data_dir).compute()
     note = runs_note(data_dir)
     page_text = render_rst(fr, note)
-    summary = summary_text(fr.table)
+    summary = summary_text(fr.summary_rows())
     for N in fr.compared_sizes:
         name = figure_name(N)
         paths = [os.path.join(data_dir, name + ext) for ext in (".png", ".csv")]

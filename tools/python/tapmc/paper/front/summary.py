@@ -17,12 +17,13 @@ SUMMARY = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 TEXT_COLUMNS = ("setting", "eta", "settle_keys")
 
 
-def summary_text(table):
-    """The CSV text of a Front's table (floats with 6 significant digits)."""
+def summary_text(rows):
+    """The CSV text of the summary rows (``Front.summary_rows()``; floats with 6 significant
+    digits)."""
     out = io.StringIO()
-    w = csv.DictWriter(out, fieldnames=list(table[0].keys()))
+    w = csv.DictWriter(out, fieldnames=list(rows[0].keys()))
     w.writeheader()
-    for r in table:
+    for r in rows:
         w.writerow({k: (("%.6g" % v) if isinstance(v, float) else v) for k, v in r.items()})
     return out.getvalue()
 
