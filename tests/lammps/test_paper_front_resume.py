@@ -102,3 +102,23 @@ def test_the_campaign_trims_the_rows_after_the_restart(tmp_path):
     (tmp_path / "restart.50").write_bytes(b"written")
     (tmp_path / "restart.100").touch()
     assert run_folder.latest_restart(str(tmp_path)) == (50, tmp_path / "restart.50")
+
+
+def test_front_run_adds_the_missing_runs_once(tmp_path):
+    """`tapmc-paper front run` runs what runs.csv lacks, records it, and has nothing left to do
+    the second time; --list runs nothing."""
+    out = tmp_path / "front"
+    args = [sys.executable, "-m", "tapmc.paper", "front", "run", "--lmp", str(LMP), "--N", str(N),
+            "--taps", "3", "--seeds", "1", "--settings", SETTING, "--eps", "%g" % EPS,
+            "--out", str(out)]
+    env = dict(os.environ, PYTHONPATH=str(SOURCE / "tools" / "python"))
+    listed = subprocess.run(args + ["--list"], env=env, capture_output=True, text=True, timeout=60)
+    assert listed.returncode == 0 and "1 runs to do" in listed.stdout and not out.exists()
+    first = subprocess.run(args, env=env, capture_output=True, text=True, timeout=300)
+    assert first.returncode == 0, first.stderr
+    assert "1 runs added" in first.stdout
+    (row,) = data.read_runs(out / data.RUNS_CSV)
+    assert row.key == (SETTING, N, "%g" % EPS, SEED, 3) and float(row.cpu_s) > 0
+    assert data.read_meta(str(out))["lmp"] == os.path.basename(LMP)
+    again = subprocess.run(args, env=env, capture_output=True, text=True, timeout=60)
+    assert again.returncode == 0 and "0 runs to do" in again.stdout
