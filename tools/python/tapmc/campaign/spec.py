@@ -37,7 +37,8 @@ class RunSpec:
     input : path
         the LAMMPS input (e.g. ``examples/paper/in.constant_eps``).
     variables : dict
-        ``-var`` values (numbers or strings; a list or tuple gives a multi-valued index
+        ``-var`` values (numbers or strings without spaces; :class:`Words` for one value of
+        several words, e.g. ``settle_keys``; a list or tuple gives a multi-valued index
         variable, e.g. ``dump_times``). ``seed``, ``resume`` and ``resume_file`` are set by
         the campaign.
     seed : int
