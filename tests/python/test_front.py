@@ -271,7 +271,9 @@ def test_a_runs_csv_cut_mid_row_is_named_with_its_line(data, tmp_path, capsys):
     runs_csv.write_text("".join(lines[:5]) + lines[5][:20])
     _front_fails(root, capsys, f"{runs_csv}:6: ", "cut short")
     runs_csv.write_text("".join(lines[:5]) + lines[5][:20] + "\n" + "".join(lines[6:]))
-    _front_fails(root, capsys, f"{runs_csv}:6: ", "fields, expected 12")
+    _front_fails(root, capsys, f"{runs_csv}:6: ", "fields, expected 12 (a row cut short?)")
+    runs_csv.write_text("".join(lines[:5]) + lines[5].rstrip("\r\n") + ",1,2\r\n")
+    _front_fails(root, capsys, f"{runs_csv}:6: 14 fields, expected 12")
 
 
 def test_a_runs_csv_missing_a_column_is_named(data, tmp_path, capsys):

@@ -73,9 +73,11 @@ _NUMBERS = ("eps", "cpu_s", "wall_s", "cpu_per_tap", "sweeps_per_tap")
 
 def _run_row(path, line, raw):
     """A RunRow from one csv.DictReader row, or FrontDataError naming the line."""
-    if None in raw or any(v is None for v in raw.values()):
-        raise FrontDataError(path, line, f"{len([v for v in raw.values() if v is not None])} "
-                             f"fields, expected {len(RUN_FIELDS)} (a row cut short?)")
+    extra = raw.pop(None, None) or []
+    found = len([v for v in raw.values() if v is not None]) + len(extra)
+    if found != len(RUN_FIELDS):
+        why = " (a row cut short?)" if found < len(RUN_FIELDS) else ""
+        raise FrontDataError(path, line, f"{found} fields, expected {len(RUN_FIELDS)}{why}")
     values = {}
     for field in RUN_FIELDS:
         text = raw[field].strip()
