@@ -29,6 +29,10 @@ Two modes:
 
 Each finished run is appended to <csv>.runs.csv at once; --summarize re-reads it.
 
+A benchmark of the redeposition's cost against N (no tapmc module): it is the measurement
+behind the engine's ``stop drift`` rule, not a claim of the paper; the run-time-versus-error
+trade-off of the settings on the paper's protocol is ``tapmc-paper front`` (doc/front.rst).
+
 Usage:
   /usr/bin/python3 bench/stop_rule_scaling.py [--lmp build/lmp_tapmc] [--sizes 1024,4096,16384]
         [--taps 5] [--seeds 2] [--settings "change 1e-5,change 1e-6,change 1e-7,drift 3e-7"]

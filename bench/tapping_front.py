@@ -16,6 +16,12 @@ per-seed differences over its standard error) is printed as well.
 Runs go seed by seed (every setting once per seed), each finished run is appended to
 <csv>.runs.csv at once, so an interrupted run still gives a table: --summarize re-reads it.
 
+A benchmark of the kernel's knobs (it reads lmp's CPU time and thermo output, no tapmc module):
+the trade-off on the paper's protocol, over 1000 taps at two eps and two N against a converged
+reference, with the setting to use for each purpose, is ``tapmc-paper front`` (doc/front.rst);
+this one stays for what the front does not vary (the pick order) and for the short-run table of
+doc/measurements.rst.
+
 Usage:
   /usr/bin/python3 bench/tapping_front.py [--lmp build/lmp_tapmc] [--taps 100] [--seeds 3]
         [--quick] [--knobs eta,check,dmax,order] [--csv tapping_front.csv] [--summarize]

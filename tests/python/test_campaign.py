@@ -22,7 +22,7 @@ LMP = Path(os.environ.get("TAPMC_LMP", BUILD / "lmp_tapmc"))
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
 
 from tapmc.campaign import (Campaign, CampaignDirectoryError, CampaignError,  # noqa: E402
-                            MANIFEST_FORMAT, RunSpec)
+                            MANIFEST_FORMAT, RunSpec, Words, launch)
 
 CONSTANT_EPS = SOURCE / "examples" / "paper" / "in.constant_eps"
 TINY = dict(N=64, L=8, eta=1e-5, rsteps=5, thermo_every=5)
@@ -503,3 +503,32 @@ def test_eta_counts_what_each_run_costs_per_tap():
     assert eta == pytest.approx((10 * 2.0 + 100 * 2 / 0.5) / 2)
     # nothing to go on: no estimate
     assert estimate_seconds_left({"ageing_s1": 100}, records, {}, 2, 0.0) is None
+
+
+def test_words_pass_several_words_as_one_value(tmp_path):
+    """Words (e.g. fix mc/settle keywords) is one -var value with spaces; a plain string with
+    spaces is still refused, and the partition driver quotes Words as one world value."""
+    keys = Words("dmax 0.05 stop drift")
+    spec = RunSpec("a", CONSTANT_EPS, {"settle_keys": keys, "taps": 2})
+    args = spec.var_args()
+    assert args[args.index("settle_keys") + 1] == "dmax 0.05 stop drift"
+    assert json.loads(json.dumps(spec.describe()))["variables"]["settle_keys"] == keys
+    for bad in ("", " stop drift", 'stop "drift"', "stop\ndrift"):
+        with pytest.raises(ValueError, match="Words"):
+            Words(bad)
+    with pytest.raises(ValueError, match="strings without spaces"):
+        RunSpec("a", CONSTANT_EPS, {"settle_keys": "stop drift"})
+    other = RunSpec("b", CONSTANT_EPS, {"settle_keys": Words("check 0"), "taps": 2})
+    resume = {"resume": "no", "resume_file": "restart.*"}
+    driver = launch.partition_driver([spec, other], {"a": tmp_path / "a", "b": tmp_path / "b"},
+                                     {"a": resume, "b": resume}, CONSTANT_EPS)
+    assert 'variable settle_keys world "dmax 0.05 stop drift" "check 0"' in driver
+
+
+def test_an_attempt_records_its_cpu_time_and_last_step(tmp_path):
+    spec = RunSpec("tiny", CONSTANT_EPS, dict(TINY, taps=3), seed=4928)
+    Campaign(tmp_path / "c", [spec], lmp=LMP, jobs=1).run(progress=False)
+    (record,) = json.loads((tmp_path / "c" / "manifest.json").read_text())["runs"]
+    (attempt,) = record["attempts"]
+    assert attempt["end_step"] == 3 and attempt["resumed_from_step"] is None
+    assert 0 < attempt["cpu_s"] <= attempt["wall_s"] + 1  # one serial process: about its wall

@@ -114,8 +114,8 @@ def test_the_front_recommendation_is_the_setting_of_a_purpose():
     rule = cost.CostRule.from_summary()
     recs = front.recommend(rule.summary_rows, 4096)
     for purpose in cost.TIERS:
-        assert cost.tier_setting(purpose, rule, 3000) == recs[purpose]["setting"]
-    assert cost.tier_setting("smoke", rule, 4096) == recs["smoke test"]["setting"]
+        assert cost.tier_setting(purpose, rule, 3000) == recs[purpose].setting
+    assert cost.tier_setting("smoke", rule, 4096) == recs["smoke test"].setting
     assert cost.tier_setting("change 1e-6", rule, 4096) == "change 1e-6"
 
 

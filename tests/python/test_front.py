@@ -19,6 +19,10 @@ SOURCE = HERE.parents[1]
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
 
 from tapmc.paper import front  # noqa: E402
+from tapmc.paper.front import page  # noqa: E402
+
+#: the title line of examples/paper/in.constant_eps's taps.dat
+TAPS_TITLE = "# step phi_b phi_c Z z_top lateral central h_s sweeps accept capped\n"
 
 # setting -> (offset of every observable against the reference, CPU s per tap)
 SYNTHETIC = {
@@ -43,7 +47,7 @@ def _write_run(data, name, N, eps, seed, k, offset, cpu, drift=0.0):
     path = front.taps_path(str(data), name, N, eps, seed)
     os.makedirs(os.path.dirname(path), exist_ok=True)
     with gzip.open(path, "wt") as f:
-        f.write("# " + " ".join(front.TAPS_COLUMNS) + "\n")
+        f.write(TAPS_TITLE)
         for t in range(front.TAPS + 1):
             # a packing that compacts with t, differs from seed to seed, and is shifted by the
             # setting's offset (+ its per-seed jitter, except for the reference)
@@ -76,23 +80,23 @@ def test_paired_bias_and_its_bound(data):
     row = fr.rows(N=1024, eps=0.0225, setting="change 1e-6")[0]
     se = 0.0001 / math.sqrt(3)  # standard error of the mean of the jitter (sd 1e-4, 3 seeds)
     for q in ("phi_c_t1", "phi_c_t1000", "phi_b_steady"):
-        assert row[q + "_bias"] == pytest.approx(-0.002, abs=1e-12)
-        assert row[q + "_bias_se"] == pytest.approx(se, rel=1e-6)
-        assert row[q + "_bias_bound"] == pytest.approx(0.002 + 4.302653 * se, rel=1e-5)
-    assert row["Z_steady_bias"] == pytest.approx(-0.02, abs=1e-9)
+        assert row.biases[q].mean == pytest.approx(-0.002, abs=1e-12)
+        assert row.biases[q].se == pytest.approx(se, rel=1e-6)
+        assert row.biases[q].bound == pytest.approx(0.002 + 4.302653 * se, rel=1e-5)
+    assert row.biases["Z_steady"].mean == pytest.approx(-0.02, abs=1e-9)
     # the per-seed spread of the packings (0.003 per seed) is in the values, not in the bias
-    assert row["phi_c_t1000_se"] > 10 * row["phi_c_t1000_bias_se"]
-    assert row["cpu_per_tap"] == pytest.approx(0.05) and row["seeds"] == 3
+    assert row.values["phi_c_t1000"].se > 10 * row.biases["phi_c_t1000"].se
+    assert row.cpu_per_tap.mean == pytest.approx(0.05) and row.seeds == 3
     ref = fr.rows(N=1024, eps=0.1, setting=front.REFERENCE)[0]
-    assert ref["phi_c_steady_bias"] == 0.0 and ref["phi_c_steady_bias_se"] == 0.0
+    assert ref.biases["phi_c_steady"].mean == 0.0 and ref.biases["phi_c_steady"].se == 0.0
 
 
 def test_recommendations_take_the_cheapest_setting_within_each_tolerance(data):
     recs = front.Front(data).compute().recommendations(1024)
-    assert recs["publication"]["setting"] == front.DEFAULT
-    assert recs["exploration"]["setting"] == "change 1e-6"
-    assert recs["smoke test"]["setting"] == "change 1e-5"
-    assert recs["exploration"]["worst_bound"] <= 0.003 < 0.0032
+    assert recs["publication"].setting == front.DEFAULT
+    assert recs["exploration"].setting == "change 1e-6"
+    assert recs["smoke test"].setting == "change 1e-5"
+    assert recs["exploration"].worst_bound <= 0.003 < 0.0032
 
 
 def test_exploration_bounds_the_change_of_the_bias_not_the_bias(data):
@@ -101,10 +105,10 @@ def test_exploration_bounds_the_change_of_the_bias_not_the_bias(data):
     fr = front.Front(data).compute()
     same = fr.rows(N=1024, setting="change 1e-6")
     se = 0.0001 / math.sqrt(3)
-    assert all(r["phi_c_steady_trend_bound"] < 4.31 * 2 * se for r in same)
+    assert all(r.trend_bounds["phi_c_steady"] < 4.31 * 2 * se for r in same)
     recs = fr.recommendations(1024)
-    assert recs["exploration"]["worst_bias"] == pytest.approx(-0.002, abs=1e-9)
-    assert recs["exploration"]["criterion"] == "trend"
+    assert recs["exploration"].worst_bias == pytest.approx(-0.002, abs=1e-9)
+    assert recs["exploration"].criterion == "trend"
     # change 1e-5 is -0.01 at eps 0.0225 and -0.02 at 0.1: its change is 0.01 at least
     assert front.worst_trend("change 1e-5", fr.rows(N=1024, setting="change 1e-5")) >= 0.01
     # a bias that grows by 0.01 over the run moves between tap 100 and the steady window
@@ -117,7 +121,7 @@ def test_exploration_bounds_the_change_of_the_bias_not_the_bias(data):
     fr = front.Front(data).compute()
     drifting = fr.rows(N=1024, setting="change 1e-8")
     assert front.worst_trend("change 1e-8", drifting) > 0.006
-    assert fr.recommendations(1024)["exploration"]["setting"] == "change 1e-6"
+    assert fr.recommendations(1024)["exploration"].setting == "change 1e-6"
 
 
 def test_lammps_line_of_each_setting():
@@ -131,16 +135,16 @@ def test_lammps_line_of_each_setting():
 def test_reference_check_names_what_differs(data):
     fr = front.Front(data).compute()
     checks = fr.reference_check(1024)
-    assert {(c[0], c[1]) for c in checks} == {("drift 3e-8", e) for e in front.EPS}
-    assert all(c[3] == [] and c[2] == 3 for c in checks)  # zero offset: every quantity agrees
+    assert {(c.setting, c.eps) for c in checks} == {("drift 3e-8", e) for e in front.EPS}
+    assert all(c.differing == [] and c.paired_seeds == 3 for c in checks)  # zero offset: every quantity agrees
 
 
 def test_page_figure_summary_and_the_reports_sentence(data, tmp_path):
     root = tmp_path / "repo"
     (root / "doc").mkdir(parents=True)
     (root / "tools" / "python" / "tapmc" / "paper").mkdir(parents=True)
-    page = front.write_page(root, data_dir=str(data))
-    text = Path(page).read_text()
+    written = page.write_page(root, data_dir=str(data))
+    text = Path(written).read_text()
     assert "change 1e-6" in text and "-0.0020 +- 0.0001" in text
     assert "all 15 agree with the reference" in text
     assert "neither is both cheaper and closer to the reference" in text
@@ -165,7 +169,7 @@ def test_a_second_N_has_its_figure_and_the_presets_are_judged_at_their_own_N(dat
     root = tmp_path / "repo"
     (root / "doc").mkdir(parents=True)
     (root / "tools" / "python" / "tapmc" / "paper").mkdir(parents=True)
-    text = Path(front.write_page(root, data_dir=str(data))).read_text()
+    text = Path(page.write_page(root, data_dir=str(data))).read_text()
     assert (data / "front.png").stat().st_size > 10000
     assert (data / "front_N4096.png").stat().st_size > 10000
     assert "validation/front/front_N4096.png" in text and "N = 4096 (box 32R x 32R)" in text
@@ -183,7 +187,7 @@ def test_a_second_N_has_its_figure_and_the_presets_are_judged_at_their_own_N(dat
     with open(data / "runs.csv", "a", newline="") as f:
         csv.DictWriter(f, fieldnames=front.RUN_FIELDS).writerow(
             _write_run(data, "change 1e-6", 2048, 0.0225, front.seeds(1)[0], 0, -0.002, 0.3))
-    front.write_page(root, data_dir=str(data))
+    page.write_page(root, data_dir=str(data))
     sentence = front.bias_sentence(1e-6, path=str(root / "tools" / "python" / "tapmc" / "paper"
                                                    / "front_summary.csv"))
     assert "N = 2048" not in sentence and "N = 1024, eps = 0.0225" in sentence
@@ -191,11 +195,11 @@ def test_a_second_N_has_its_figure_and_the_presets_are_judged_at_their_own_N(dat
 
 
 def test_bad_data_is_refused_with_its_reason(tmp_path):
-    with pytest.raises(FileNotFoundError, match="runs.csv"):
+    with pytest.raises(front.FrontDataError, match="runs.csv: no such file"):
         front.Front(tmp_path)
     (tmp_path / "runs.csv").write_text(",".join(front.RUN_FIELDS) + "\n"
                                        + "no such setting,1024,0.1,1,1000,1e-7,,1,1,1,1,0\n")
-    with pytest.raises(ValueError, match="no such setting"):
+    with pytest.raises(ValueError, match="runs.csv:2: setting 'no such setting'"):
         front.Front(tmp_path)
 
 
@@ -212,7 +216,7 @@ def test_committed_page_is_what_the_committed_runs_give(tmp_path):
                           env=env, capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr
     hint = "run 'build/tapmc-paper front' and commit the result"
-    assert (root / front.PAGE).read_text() == (SOURCE / front.PAGE).read_text(), hint
+    assert (root / page.PAGE).read_text() == (SOURCE / page.PAGE).read_text(), hint
     name = os.path.basename(front.SUMMARY)
     assert ((root / "tools" / "python" / "tapmc" / "paper" / name).read_text()
             == Path(front.SUMMARY).read_text()), hint
@@ -229,3 +233,93 @@ def test_every_preset_has_its_setting_on_the_front():
     assert set(front.PRESET_PURPOSE.values()) == {p for p, _, _ in front.PURPOSES}
     for name, scale in SCALES.items():
         assert front.setting_named(scale.eta) in front.SETTINGS, name
+
+
+# ---- bad input: `tapmc-paper front` names the file (and line), exits 2, writes nothing ----------
+
+def _repo_with_front(data, tmp_path):
+    """A repository whose doc/validation/front is `data`, with a committed page and summary."""
+    root = tmp_path / "repo"
+    shutil.copytree(data, root / front.DATA_DIR)
+    (root / "doc" / "front.rst").write_text("committed page\n")
+    package = root / "tools" / "python" / "tapmc" / "paper"
+    package.mkdir(parents=True)
+    (package / "front_summary.csv").write_text("committed summary\n")
+    return root
+
+
+def _front_fails(root, capsys, *where):
+    from tapmc.paper import cli
+
+    assert cli.main(["front", "--root", str(root)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("tapmc-paper front: ") and "Traceback" not in err
+    for text in where:
+        assert text in err, err
+    assert (root / "doc" / "front.rst").read_text() == "committed page\n"
+    assert (root / "tools" / "python" / "tapmc" / "paper" / "front_summary.csv").read_text() \
+        == "committed summary\n"
+    assert not list((root / front.DATA_DIR).glob("front*"))  # no figure either
+    return err
+
+
+def test_a_runs_csv_cut_mid_row_is_named_with_its_line(data, tmp_path, capsys):
+    root = _repo_with_front(data, tmp_path)
+    runs_csv = root / front.DATA_DIR / "runs.csv"
+    text = runs_csv.read_text()
+    lines = text.splitlines(keepends=True)
+    runs_csv.write_text("".join(lines[:5]) + lines[5][:20])
+    _front_fails(root, capsys, f"{runs_csv}:6: ", "cut short")
+    runs_csv.write_text("".join(lines[:5]) + lines[5][:20] + "\n" + "".join(lines[6:]))
+    _front_fails(root, capsys, f"{runs_csv}:6: ", "fields, expected 12 (a row cut short?)")
+    runs_csv.write_text("".join(lines[:5]) + lines[5].rstrip("\r\n") + ",1,2\r\n")
+    _front_fails(root, capsys, f"{runs_csv}:6: 14 fields, expected 12")
+
+
+def test_a_runs_csv_missing_a_column_is_named(data, tmp_path, capsys):
+    root = _repo_with_front(data, tmp_path)
+    runs_csv = root / front.DATA_DIR / "runs.csv"
+    with open(runs_csv, newline="") as f:
+        rows = list(csv.DictReader(f))
+    with open(runs_csv, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=[c for c in front.RUN_FIELDS if c != "cpu_per_tap"],
+                           extrasaction="ignore")
+        w.writeheader()
+        w.writerows(rows)
+    _front_fails(root, capsys, f"{runs_csv}:1: no column cpu_per_tap")
+    runs_csv.write_text("")
+    _front_fails(root, capsys, f"{runs_csv}:1: no column setting")
+    (root / front.DATA_DIR / "runs.csv").unlink()
+    _front_fails(root, capsys, f"{runs_csv}: no such file")
+
+
+def test_a_meta_json_without_its_keys_is_named(data, tmp_path, capsys):
+    root = _repo_with_front(data, tmp_path)
+    meta = root / front.DATA_DIR / "meta.json"
+    for text, what in (("{}", "no commit, machine"), ("[1]", "expected a JSON object"),
+                       ('{"commit": ', "not readable JSON")):
+        meta.write_text(text)
+        _front_fails(root, capsys, f"{meta}: {what}")
+
+
+def test_a_cut_or_short_taps_file_is_named(data, tmp_path, capsys):
+    root = _repo_with_front(data, tmp_path)
+    taps = Path(front.taps_path(str(root / front.DATA_DIR), "change 1e-6", 1024, 0.1,
+                                front.seeds(1)[0]))
+    whole = taps.read_bytes()
+    taps.write_bytes(whole[:len(whole) // 2])
+    _front_fails(root, capsys, f"{taps}: damaged gzip file")
+    with gzip.open(taps, "wt") as f:
+        f.write(TAPS_TITLE + "0 0.55 0.58 7 13 0.57 0.58 14 0 0 0\n1 0.55 0.58 7 13 0.57 0.58 14 9 0 0\n")
+    _front_fails(root, capsys, f"{taps}: 1 taps (steps 1 to 1), expected steps 1 to {front.TAPS}")
+    taps.unlink()
+    _front_fails(root, capsys, f"{taps}")
+
+
+def test_front_run_refuses_a_damaged_runs_csv_before_running(data, capsys):
+    from tapmc.paper import cli
+
+    runs_csv = data / "runs.csv"
+    runs_csv.write_text(runs_csv.read_text()[:-3])
+    assert cli.main(["front", "run", "--list", "--out", str(data)]) == 2
+    assert f"{runs_csv}:" in capsys.readouterr().err

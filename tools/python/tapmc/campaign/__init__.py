@@ -34,8 +34,8 @@ from .launch import available_cores, find_lmp
 from .provenance import MANIFEST_FORMAT, verify_finished_run
 from .run_folder import merge_ave_time_parts
 from .runner import PROGRESS_INTERVAL, Campaign
-from .spec import RunSpec
+from .spec import RunSpec, Words
 
-__all__ = ["RunSpec", "Campaign", "CampaignError", "CampaignDirectoryError", "find_lmp",
+__all__ = ["RunSpec", "Words", "Campaign", "CampaignError", "CampaignDirectoryError", "find_lmp",
            "merge_ave_time_parts", "MANIFEST_FORMAT", "PROGRESS_INTERVAL", "available_cores",
            "verify_finished_run"]

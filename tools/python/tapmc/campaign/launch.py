@@ -14,7 +14,8 @@ from pathlib import Path
 
 from .errors import CampaignDirectoryError, CampaignError
 
-__all__ = ["find_lmp", "available_cores", "campaign_lock", "run_child", "mpirun_prefix",
+__all__ = ["find_lmp", "available_cores", "campaign_lock", "run_child", "run_child_timed",
+           "mpirun_prefix",
            "lammps_command", "partition_batches", "partition_driver", "partition_command"]
 
 _REPO = Path(__file__).resolve().parents[4]
@@ -78,9 +79,24 @@ def _die_with_parent():
 def run_child(cmd, cwd, screen):
     """Run ``cmd`` in ``cwd`` with its output in the file ``screen``, as a child that dies with
     this process; returns its exit status."""
+    return run_child_timed(cmd, cwd, screen)[0]
+
+
+def run_child_timed(cmd, cwd, screen):
+    """:func:`run_child`, returning (exit status, CPU seconds of the child: user + system).
+    The CPU time is the child's own (wait4), whatever else runs at the same time: what a run
+    costs on one core (tapmc.paper.front prices its settings by it)."""
     with open(screen, "w") as out:
-        return subprocess.run(cmd, cwd=cwd, stdin=subprocess.DEVNULL, stdout=out,
-                              stderr=subprocess.STDOUT, preexec_fn=_die_with_parent).returncode
+        proc = subprocess.Popen(cmd, cwd=cwd, stdin=subprocess.DEVNULL, stdout=out,
+                                stderr=subprocess.STDOUT, preexec_fn=_die_with_parent)
+        try:
+            _, status, usage = os.wait4(proc.pid, 0)
+        except BaseException:
+            proc.kill()
+            proc.wait()
+            raise
+        proc.returncode = os.waitstatus_to_exitcode(status)
+    return proc.returncode, usage.ru_utime + usage.ru_stime
 
 
 def mpirun_prefix(nprocs):
@@ -142,7 +158,8 @@ def partition_driver(batch, run_dirs, resumes, input_copy):
             elif key in ("resume", "resume_file"):
                 values.append(str(resumes[s.name][key]))
             else:
-                values.append(str(s.variables[key]))
+                value = str(s.variables[key])
+                values.append(f'"{value}"' if " " in value else value)  # Words: one value
         lines.append(f"variable {key} world " + " ".join(values))
     lines.append(f"include {input_copy}")
     return "\n".join(lines) + "\n"

@@ -295,8 +295,10 @@ class Campaign:
         self._done0[spec.name] = (run_folder.taps_done(self.run_dir(spec.name) / spec.taps_file)
                                   if step else 0)
 
-    def _finish(self, spec, returncode, wall, resumed_from):
-        """Check a run that ended; write DONE.json on success, return an error or ''."""
+    def _finish(self, spec, returncode, wall, resumed_from, cpu=None):
+        """Check a run that ended; write DONE.json on success, return an error or ''. The
+        attempt's record holds its wall time, the step it resumed from and the last step it
+        wrote (``end_step``), and in pool mode its CPU seconds (``cpu_s``)."""
         run_dir = self.run_dir(spec.name)
         log = run_dir / "log.lammps"
         text = log.read_text(errors="replace") if log.exists() else ""
@@ -315,11 +317,14 @@ class Campaign:
                      f"{run_folder.taps_done(run_dir / spec.taps_file)}, expected {spec.taps}")
         # Records change under the lock only: another thread may be writing the manifest.
         rec = self._records[spec.name]
+        attempt = {"started": self._started.get(spec.name), "finished": provenance.now(),
+                   "wall_s": round(wall, 3), "returncode": returncode,
+                   "resumed_from_step": resumed_from, "error": error or None,
+                   "end_step": run_folder.taps_done(run_dir / spec.taps_file)}
+        if cpu is not None:
+            attempt["cpu_s"] = round(cpu, 3)
         with self._lock:
-            rec["attempts"].append({"started": self._started.get(spec.name),
-                                    "finished": provenance.now(), "wall_s": round(wall, 3),
-                                    "returncode": returncode, "resumed_from_step": resumed_from,
-                                    "error": error or None})
+            rec["attempts"].append(attempt)
         if not error:
             try:  # a malformed output names itself; the run then fails instead of the pool
                 run_folder.merge_ave_time_parts(run_dir)
@@ -353,8 +358,8 @@ class Campaign:
             self._started_run(spec, cmd, step)
         self._write_manifest()
         t0 = time.time()
-        returncode = launch.run_child(cmd, run_dir, run_dir / "screen.txt")
-        error = self._finish(spec, returncode, time.time() - t0, step)
+        returncode, cpu = launch.run_child_timed(cmd, run_dir, run_dir / "screen.txt")
+        error = self._finish(spec, returncode, time.time() - t0, step, cpu)
         with self._lock:
             self._t0.pop(spec.name, None)
         self._write_manifest()

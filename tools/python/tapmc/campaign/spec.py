@@ -4,12 +4,26 @@
 import re
 from pathlib import Path
 
-__all__ = ["RunSpec", "RESERVED_VARIABLES"]
+__all__ = ["RunSpec", "Words", "RESERVED_VARIABLES"]
 
 _NAME_RE = re.compile(r"^[A-Za-z0-9_.+-]+$")
 _VAR_RE = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 #: variables the campaign sets itself (seed from RunSpec.seed, resume from the restart files)
 RESERVED_VARIABLES = ("seed", "resume", "resume_file")
+
+
+class Words(str):
+    """A variable value of several words given to LAMMPS as one ``-var`` value (e.g. the
+    fix mc/settle keywords ``"dmax 0.05 stop drift"`` of in.constant_eps's ``settle_keys``);
+    a plain string may not hold spaces, so that a value split by mistake is caught. No quote
+    and no line break: the partition driver quotes it."""
+
+    def __new__(cls, text):
+        text = str(text)
+        if not text.strip() or any(c in text for c in "\"'\n\r") or text != text.strip():
+            raise ValueError(f"Words({text!r}): words separated by spaces, without quotes, "
+                             "line breaks or surrounding spaces")
+        return super().__new__(cls, text)
 
 
 class RunSpec:
@@ -23,7 +37,8 @@ class RunSpec:
     input : path
         the LAMMPS input (e.g. ``examples/paper/in.constant_eps``).
     variables : dict
-        ``-var`` values (numbers or strings; a list or tuple gives a multi-valued index
+        ``-var`` values (numbers or strings without spaces; :class:`Words` for one value of
+        several words, e.g. ``settle_keys``; a list or tuple gives a multi-valued index
         variable, e.g. ``dump_times``). ``seed``, ``resume`` and ``resume_file`` are set by
         the campaign.
     seed : int
@@ -55,9 +70,11 @@ class RunSpec:
                 raise ValueError(f"variables[{key!r}] = {value!r}: empty list")
             for v in values:
                 if not isinstance(v, (int, float, str)) or isinstance(v, bool) or \
-                        (isinstance(v, str) and (not v or any(c.isspace() for c in v))):
+                        (isinstance(v, str) and not isinstance(v, Words)
+                         and (not v or any(c.isspace() for c in v))):
                     raise ValueError(f"variables[{key!r}] = {value!r}: allowed values are "
-                                     "numbers and strings without spaces (or a list of them)")
+                                     "numbers and strings without spaces, Words (or a list of "
+                                     "them)")
         if isinstance(seed, bool) or not isinstance(seed, int) or seed < 1:
             raise ValueError(f"seed = {seed!r}: must be an integer >= 1")
         if isinstance(nprocs, bool) or not isinstance(nprocs, int) or nprocs < 1:

@@ -30,6 +30,7 @@ from tapmc.readers import TapmcFormatError
 
 from .. import __version__
 from . import FIGURES, _runs, plan
+from .front import command as front_command
 from .plan import TIERS
 from .scales import FBC_STARTS, get_scale
 
@@ -167,12 +168,7 @@ def build_parser():
                     help="runs (seeds) per eps and setting (default 1)")
     cp.add_argument("--jobs", type=_positive_int, default=None, metavar="J",
                     help="runs at a time, for the wall time (default: the cores this process may use)")
-    fr = sub.add_parser("front", help="the run-time-versus-error page of the redeposition "
-                                      "(doc/front.rst) from the runs of bench/paper_front.py")
-    fr.add_argument("--root", type=Path, default=None, metavar="DIR",
-                    help="repository whose doc/validation/front is read and whose doc/front.rst, "
-                         "figure and tools/python/tapmc/paper/front_summary.csv are written "
-                         "(default: this package's repository)")
+    front_command.add_parser(sub)
     pr = sub.add_parser("paper-ramp", help="section III.B's question at the paper's ramp "
                                            "protocol: the campaign's paperramp* runs judged "
                                            "(frozen or not), written to the report's "
@@ -198,19 +194,6 @@ def _paper_ramp(args):
     path = paper_ramp.write_csv(rows, args.out / FIG_DIR / "questions" / paper_ramp.CSV_NAME)
     print(paper_ramp.finding_text(rows, FULL.eta))
     print(f"paper-ramp: {path} ({len(rows)} runs)")
-    return 0
-
-
-def _front_page(args):
-    from . import _runs, front
-
-    root = args.root or _runs.SOURCE_DIR
-    try:
-        page = front.write_page(root)
-    except (FileNotFoundError, ValueError) as err:
-        print(f"tapmc-paper front: {err}", file=sys.stderr)
-        return 2
-    print(f"front: {page}")
     return 0
 
 
@@ -485,7 +468,7 @@ def main(argv=None):
     if args.command == "campaign":
         return _run_plan(args)
     if args.command == "front":
-        return _front_page(args)
+        return front_command.main(args)
     if args.command == "paper-ramp":
         return _paper_ramp(args)
     if args.command == "plan":

@@ -21,7 +21,6 @@ exponents are measured between N = 1024 and 4096 and eps = 0.0225 and 0.1; beyon
 extrapolates, and :func:`campaign_check` measures how well it does on a campaign's runs.
 """
 
-import csv
 import json
 import math
 import re
@@ -99,11 +98,12 @@ class CostRule:
     @classmethod
     def from_summary(cls, path=None):
         path = Path(path or front.SUMMARY)
-        try:
-            with open(path, newline="") as f:
-                rows = list(csv.DictReader(f))
-        except OSError as err:
-            raise CostError(f"{path}: {err.strerror}") from None
+        if not path.is_file():
+            raise CostError(f"{path}: no such file")
+        try:  # the summary's schema belongs to tapmc.paper.front.summary
+            rows = front.read_summary(path)
+        except (OSError, UnicodeDecodeError) as err:
+            raise CostError(f"{path}: {err}") from None
         return cls(rows, source=str(path))
 
     @staticmethod
@@ -350,4 +350,4 @@ def tier_setting(name, rule, N):
     recommended = front.recommend(rule.summary_rows, nearest).get(purpose)
     if recommended is None:
         raise CostError(f"{rule.source}: no setting meets the {purpose} tolerance at N = {nearest}")
-    return recommended["setting"]
+    return recommended.setting
