@@ -125,7 +125,8 @@ def test_the_committed_campaign_is_predicted_within_a_tenth():
     (eps 0.0025 to 0.15, ramps level by level): within 10 % each, 3 % in the median. The loose
     threshold of the eta = 1e-5 ramp is extrapolated badly far below the front's eps (its
     sweeps fall much faster there: tapmc-paper.rst), but its CPU time per tap, where the
-    per-tap overhead weighs more, still within 10 %."""
+    per-tap overhead weighs more, still within 10 %, on the runs whose logs time at least
+    MIN_CPU_COVERAGE of their taps."""
     campaign = SOURCE / "doc" / "validation" / "data" / "full"
     if not (campaign / "runs").is_dir():
         pytest.skip("no committed campaign")
@@ -135,8 +136,10 @@ def test_the_committed_campaign_is_predicted_within_a_tenth():
     ratios = np.array([r["sweeps_predicted"] / r["sweeps"] for r in default])
     assert np.all(np.abs(ratios - 1) < 0.10), [(r["run"], round(x, 3)) for r, x in zip(default, ratios)]
     assert abs(np.median(ratios) - 1) < 0.03
-    assert all(r["cpu_per_tap"] > 0 for r in rows)
-    for r in rows:
+    measured = [r for r in rows if np.isfinite(r["cpu_per_tap"])]
+    assert len(measured) >= 25 and all(r["cpu_per_tap"] > 0 for r in measured)
+    assert any(r["setting"] == "change 1e-5" for r in measured)
+    for r in measured:
         if r["setting"] == "change 1e-5":
             assert abs(r["cpu_per_tap_predicted"] / r["cpu_per_tap"] - 1) < 0.10, r
 

@@ -39,6 +39,10 @@ EPS0 = 0.0225
 #: the short names the command line also takes
 TIERS = tuple(p for p, _, _ in front.PURPOSES)
 TIER_ALIASES = {"smoke": "smoke test"}
+#: a run's CPU seconds come from the loops its logs report (an attempt killed before its end
+#: reports none); below this share of the run's taps the sample is a short stretch of one
+#: level, run beside whatever else the machine did then, not the run's cost
+MIN_CPU_COVERAGE = 0.25
 
 
 class CostError(ValueError):
@@ -295,7 +299,8 @@ def campaign_check(directory, rule):
     """The rule against a campaign's finished runs (folders with DONE.json): one dict per run
     with its N, setting, mean eps, the sweeps per tap its thermo rows show and the rule's
     prediction at the same taps, and the CPU seconds per tap (each log's loop time times its
-    CPU use) with the rule's prediction."""
+    CPU use; NaN when the logs cover less than :data:`MIN_CPU_COVERAGE` of its taps) with the
+    rule's prediction."""
     out = []
     for done in sorted(Path(directory, "runs").glob("*/DONE.json")):
         run = json.loads(done.read_text())["run"]
@@ -309,7 +314,9 @@ def campaign_check(directory, rule):
         out.append({"run": run["name"], "N": N, "setting": setting, "eps": float(np.mean(eps)),
                     "sweeps": float(np.mean(sweeps)), "samples": int(len(sweeps)),
                     "sweeps_predicted": float(np.mean([rule.sweeps_per_tap(N, e, setting) for e in at])),
-                    "cpu_per_tap": cpu / cpu_taps if cpu_taps else math.nan,
+                    "cpu_taps": cpu_taps,
+                    "cpu_per_tap": (cpu / cpu_taps if cpu_taps >= MIN_CPU_COVERAGE * taps
+                                    else math.nan),
                     "cpu_per_tap_predicted": run_cost(run_spec_like(run), rule) * 3600.0 / taps})
     return out
 
