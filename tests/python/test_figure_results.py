@@ -1,0 +1,116 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+# The typed results of the figure modules (tapmc.paper.figN.FigNResult): each committed figure
+# CSV loads into its result and saves back to the same bytes; each analysis on a small written
+# campaign gives the numbers the test chose; plot() draws a result without error (Agg); a CSV
+# that is not a figure's is refused with its file named.
+import filecmp
+import os
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+HERE = Path(__file__).resolve().parent
+SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", HERE.parent.parent))
+sys.path.insert(0, str(SOURCE / "tools" / "python"))
+
+import matplotlib  # noqa: E402
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from paper_fakes import FakeCampaign, write_constant_eps, write_profile_x  # noqa: E402
+from tapmc.paper import _runs, fig7  # noqa: E402
+from tapmc.paper._results import CsvRows, FigureCsvError, Value, save_rows  # noqa: E402
+from tapmc.paper.scales import QUICK, Scale  # noqa: E402
+
+#: the figures whose analysis returns a typed result
+TYPED = ("fig7",)
+#: the folders of committed figure CSVs (quick campaign, paper-scale campaign)
+COMMITTED = ("doc/validation", "doc/paper_scale/validation")
+#: a scale of no preset, as in test_fbc_start.py
+TINY = Scale(**dict(QUICK.as_dict(), N=64, L=16.0, eta=1e-4, taps=8, steady_last=2,
+                     profile_eps=(0.02, 0.1)))
+
+
+def result_class(name):
+    module = __import__(f"tapmc.paper.{name}", fromlist=["_"])
+    return module, getattr(module, name.capitalize() + "Result")
+
+
+@pytest.mark.parametrize("folder", COMMITTED)
+@pytest.mark.parametrize("name", TYPED)
+def test_committed_csv_round_trips_to_the_same_bytes(name, folder, tmp_path):
+    module, cls = result_class(name)
+    committed = SOURCE / folder / f"{name}.csv"
+    result = cls.load(committed)
+    saved = result.save(tmp_path / f"{name}.csv")
+    assert filecmp.cmp(committed, saved, shallow=False)
+    plt.close(module.plot(result))          # a loaded result draws
+
+
+def test_a_csv_with_rows_of_no_field_is_refused(tmp_path):
+    path = tmp_path / "fig7.csv"
+    text = (SOURCE / "doc/validation/fig7.csv").read_text()
+    path.write_text(text + "params,surprise,0,1,,1\n")
+    with pytest.raises(FigureCsvError, match=r"fig7.csv: rows of no field.*params/surprise"):
+        fig7.Fig7Result.load(path)
+    path.write_text(text.replace("params,eps,", "params,eps,zero,", 1))
+    with pytest.raises(FigureCsvError, match=r"fig7.csv:\d+: "):
+        fig7.Fig7Result.load(path)
+    path.write_text("")
+    with pytest.raises(FigureCsvError, match=r"fig7.csv:1: header"):
+        fig7.Fig7Result.load(path)
+
+
+def test_save_never_leaves_an_empty_file(tmp_path):
+    path = tmp_path / "fig7.csv"
+    path.write_text("kept\n")
+    with pytest.raises(FigureCsvError, match="fig7.csv: a figure result without rows"):
+        save_rows(path, [])
+    assert path.read_text() == "kept\n" and list(tmp_path.iterdir()) == [path]
+
+
+def test_rows_group_by_series_in_file_order(tmp_path):
+    path = tmp_path / "t.csv"
+    path.write_text("panel,series,x,mean,sem,n\na,s,1,2,,3\nparams,v,0,5,0.5,2\na,s,2,4,1,3\n")
+    rows = CsvRows(path)
+    assert rows.keys() == [("a", "s"), ("params", "v")]
+    s = rows.take("a", "s")
+    np.testing.assert_array_equal(s.x, [1, 2])
+    assert np.isnan(s.err[0]) and s.err[1] == 1 and list(s.n) == [3, 3]
+    assert rows.take_value("params", "v") == Value(0.0, 5.0, 0.5, 2)
+    rows.finish()
+
+
+def fbc_campaign(tmp_path, start, wall_phi0, taps=8):
+    """Two seeds of the profile runs at eps 0.02 and 0.1, walls at Phi ``wall_phi0`` within 2R
+    of either wall initially and 0.5 finally, 0.55 and 0.58 elsewhere (test_fbc_start.py)."""
+    runs = fig7.runs(TINY.replace(fbc_start=start, taps=taps), 2)
+    camp = FakeCampaign(tmp_path / start, runs)
+    x = np.arange(0.05, 8.0, 0.1)               # bins of R/5 in distance units (R = 0.5)
+    dist = np.minimum(x, 8.0 - x) / 0.5
+    for spec in runs:
+        lateral = [0.5 + 0.001 * k for k in range(taps + 1)]
+        central = [0.55 + 0.0005 * k for k in range(taps + 1)]
+        write_constant_eps(camp, spec, lateral, central)
+        write_profile_x(camp, spec, x, np.where(dist < 2, wall_phi0, 0.55),
+                        np.where(dist < 2, 0.5, 0.58), taps)
+    return camp
+
+
+def test_fig7_analysis_of_known_profiles(tmp_path):
+    result = fig7.analyse(fbc_campaign(tmp_path, "paper", wall_phi0=0.35))
+    assert result.eps == 0.1 and result.seeds == 2 and result.paper_start is True
+    assert result.frontiers == (7.0, 9.0) and result.side == 16.0 and result.taps == 8
+    within = result.zones[("initial", "within_2R")]
+    assert within.value == pytest.approx(0.35) and within.n == 2
+    assert result.zones[("final", "central")].value == pytest.approx(0.58)
+    assert result.zones[("final", "2R_to_7R")].value == pytest.approx(0.58)
+    assert np.all(result.initial.n == 2) and result.initial.x[0] == pytest.approx(0.1)
+    saved = result.save(tmp_path / "fig7.csv")
+    again = fig7.Fig7Result.load(saved).save(tmp_path / "again.csv")
+    assert filecmp.cmp(saved, again, shallow=False)
+    plt.close(fig7.plot(result))
+    assert _runs.fbc_start_of(fig7.runs(TINY.replace(fbc_start="paper"), 1)[0]) == "paper"
