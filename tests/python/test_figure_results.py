@@ -21,12 +21,14 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from paper_fakes import FakeCampaign, write_constant_eps, write_profile_x  # noqa: E402
-from tapmc.paper import _runs, fig7  # noqa: E402
+from tapmc.fluctuations import SteadyState  # noqa: E402
+from tapmc.paper import _runs, fig7, fig9  # noqa: E402
+from tapmc.pores import percus_yevick_p0  # noqa: E402
 from tapmc.paper._results import CsvRows, FigureCsvError, Value, save_rows  # noqa: E402
 from tapmc.paper.scales import QUICK, Scale  # noqa: E402
 
 #: the figures whose analysis returns a typed result
-TYPED = ("fig7",)
+TYPED = ("fig7", "fig9")
 #: the folders of committed figure CSVs (quick campaign, paper-scale campaign)
 COMMITTED = ("doc/validation", "doc/paper_scale/validation")
 #: a scale of no preset, as in test_fbc_start.py
@@ -114,3 +116,25 @@ def test_fig7_analysis_of_known_profiles(tmp_path):
     assert filecmp.cmp(saved, again, shallow=False)
     plt.close(fig7.plot(result))
     assert _runs.fbc_start_of(fig7.runs(TINY.replace(fbc_start="paper"), 1)[0]) == "paper"
+
+
+def test_fig9_analysis_of_known_curves(monkeypatch):
+    """Two seeds whose P0 curves are exp(-k sigma) with k = 3, 5 (final) and 2, 4 (initial):
+    the means, the phi of the random points and the Percus-Yevick curve at the final phi."""
+    sigma = np.linspace(0.0, 1.0, 11)
+    curves = {"final": [sigma, [np.exp(-3 * sigma), np.exp(-5 * sigma)], [[0.60], [0.62]]],
+              "initial": [sigma, [np.exp(-2 * sigma), np.exp(-4 * sigma)], [[0.58], [0.58]]]}
+    steady = [SteadyState(np.full(40, v) + 1e-4 * np.sin(np.arange(40)), last=20).compute()
+              for v in (0.605, 0.607)]
+    phi_c = {"final": [[0.606], [0.608]], "initial": [[0.583], [0.585]], "steady": steady}
+    monkeypatch.setattr(fig9, "p0_curves", lambda campaign: (curves, phi_c))
+    result = fig9.analyse(None)
+    final = (np.exp(-3 * sigma) + np.exp(-5 * sigma)) / 2
+    np.testing.assert_allclose(result.p0["final"].mean, final)
+    assert result.phi["final"] == fig9.Value(0.0, pytest.approx(0.61), pytest.approx(0.01), 2)
+    assert result.phi_c["initial"].value == pytest.approx(0.584)
+    assert result.phi_c_steady.value == pytest.approx(0.606, abs=1e-4)
+    np.testing.assert_allclose(result.percus_yevick.mean, percus_yevick_p0(sigma, 0.61))
+    initial = (np.exp(-2 * sigma) + np.exp(-4 * sigma)) / 2
+    assert result.max_abs_diff_initial_final.value == pytest.approx(np.max(initial - final))
+    plt.close(fig9.plot(result))

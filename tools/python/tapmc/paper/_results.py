@@ -66,6 +66,13 @@ class Value:
     n: int = 1
 
     @classmethod
+    def of_stats(cls, x, stats):
+        """The value at ``x`` of a (mean, sem, n) triple of scalars or of one-point arrays
+        (``_plotting.seed_stats``)."""
+        mean, err, n = (np.atleast_1d(np.asarray(v))[0] for v in stats)
+        return cls(float(x), float(mean), float(err), int(n))
+
+    @classmethod
     def of_series(cls, series, index=0):
         return cls(float(series.x[index]), float(series.mean[index]), float(series.err[index]),
                    int(series.n[index]))
