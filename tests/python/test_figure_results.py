@@ -22,13 +22,13 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 from paper_fakes import FakeCampaign, write_constant_eps, write_profile_x  # noqa: E402
 from tapmc.fluctuations import SteadyState  # noqa: E402
-from tapmc.paper import _runs, fig7, fig9  # noqa: E402
+from tapmc.paper import _runs, fig7, fig8, fig9  # noqa: E402
 from tapmc.pores import percus_yevick_p0  # noqa: E402
 from tapmc.paper._results import CsvRows, FigureCsvError, Value, save_rows  # noqa: E402
 from tapmc.paper.scales import QUICK, Scale  # noqa: E402
 
 #: the figures whose analysis returns a typed result
-TYPED = ("fig7", "fig9")
+TYPED = ("fig7", "fig8", "fig9")
 #: the folders of committed figure CSVs (quick campaign, paper-scale campaign)
 COMMITTED = ("doc/validation", "doc/paper_scale/validation")
 #: a scale of no preset, as in test_fbc_start.py
@@ -138,3 +138,21 @@ def test_fig9_analysis_of_known_curves(monkeypatch):
     initial = (np.exp(-2 * sigma) + np.exp(-4 * sigma)) / 2
     assert result.max_abs_diff_initial_final.value == pytest.approx(np.max(initial - final))
     plt.close(fig9.plot(result))
+
+
+def test_fig8_analysis_of_known_increases(tmp_path):
+    """Lateral 0.5 + 0.001 t and central 0.55 + 0.0005 t for both seeds, 8 taps: the window
+    of the last quarter (t = 7, 8) has the mean increases 0.0075 and 0.00375."""
+    result = fig8.analyse(fbc_campaign(tmp_path, "paper", wall_phi0=0.35))
+    assert result.paper_start is True and sorted(result.increases) == [0.02, 0.1]
+    inc = result.increases[0.1]
+    np.testing.assert_allclose(inc.lateral.mean, 0.001 * np.arange(9), atol=1e-12)
+    assert inc.final["lateral"].value == pytest.approx(0.0075)
+    assert inc.final["central_minus_lateral"].value == pytest.approx(-0.00375)
+    assert inc.first_tap["central"] == fig8.Value(0.1, pytest.approx(0.0005), 0.0, 2)
+    assert not inc.final_seeds             # a window of two taps has no batch-means error
+    saved = result.save(tmp_path / "fig8.csv")
+    assert "paper:eps=0.1" in saved.read_text()
+    again = fig8.Fig8Result.load(saved).save(tmp_path / "again.csv")
+    assert filecmp.cmp(saved, again, shallow=False)
+    plt.close(fig8.plot(result))
