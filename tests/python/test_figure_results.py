@@ -22,13 +22,13 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 from paper_fakes import FakeCampaign, write_constant_eps, write_profile_x  # noqa: E402
 from tapmc.fluctuations import SteadyState  # noqa: E402
-from tapmc.paper import _runs, fig7, fig8, fig9  # noqa: E402
+from tapmc.paper import _runs, fig3, fig7, fig8, fig9  # noqa: E402
 from tapmc.pores import percus_yevick_p0  # noqa: E402
 from tapmc.paper._results import CsvRows, FigureCsvError, Value, save_rows  # noqa: E402
 from tapmc.paper.scales import QUICK, Scale  # noqa: E402
 
 #: the figures whose analysis returns a typed result
-TYPED = ("fig7", "fig8", "fig9")
+TYPED = ("fig3", "fig7", "fig8", "fig9")
 #: the folders of committed figure CSVs (quick campaign, paper-scale campaign)
 COMMITTED = ("doc/validation", "doc/paper_scale/validation")
 #: a scale of no preset, as in test_fbc_start.py
@@ -156,3 +156,24 @@ def test_fig8_analysis_of_known_increases(tmp_path):
     again = fig8.Fig8Result.load(saved).save(tmp_path / "again.csv")
     assert filecmp.cmp(saved, again, shallow=False)
     plt.close(fig8.plot(result))
+
+
+def test_fig3_analysis_of_a_known_proportional_law(monkeypatch):
+    """sigma_<Z> = 0.3 sqrt(eps) with 2 % errors at three eps: k = 0.3, intercepts 0."""
+    freq = np.array([0.01, 0.02, 0.04])
+
+    def one(eps):
+        sigma = (0.3 * np.sqrt(eps), 0.006 * np.sqrt(eps), 2)
+        return {"frequency": freq, "power": (1 / freq, 0.1 / freq, np.full(3, 2)),
+                "slope": (-1.2, 0.1, 2), "sigma": sigma, "sigma_detrended": sigma}
+
+    monkeypatch.setattr(fig3, "per_eps", lambda campaign, column, bc: {
+        e: one(e) for e in (0.01, 0.04, 0.09)})
+    result = fig3.analyse(None)
+    assert result.k.value == pytest.approx(0.3) and result.k.n == 3
+    assert result.intercept.value == pytest.approx(0.0, abs=1e-9)
+    assert result.intercept_detrended.value == pytest.approx(0.0, abs=1e-9)
+    assert result.spectra[0.04].slope == fig3.Value(0.04, -1.2, 0.1, 2)
+    np.testing.assert_allclose(result.sigma.x, [0.1, 0.2, 0.3])
+    np.testing.assert_allclose(result.law_curve.mean, 0.3 * result.law_curve.x)
+    plt.close(fig3.plot(result))
