@@ -22,13 +22,13 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 from paper_fakes import FakeCampaign, write_constant_eps, write_profile_x  # noqa: E402
 from tapmc.fluctuations import SteadyState  # noqa: E402
-from tapmc.paper import _runs, fig3, fig7, fig8, fig9  # noqa: E402
+from tapmc.paper import _runs, fig3, fig7, fig8, fig9, fig10  # noqa: E402
 from tapmc.pores import percus_yevick_p0  # noqa: E402
 from tapmc.paper._results import CsvRows, FigureCsvError, Value, save_rows  # noqa: E402
 from tapmc.paper.scales import QUICK, Scale  # noqa: E402
 
 #: the figures whose analysis returns a typed result
-TYPED = ("fig3", "fig7", "fig8", "fig9")
+TYPED = ("fig3", "fig7", "fig8", "fig9", "fig10")
 #: the folders of committed figure CSVs (quick campaign, paper-scale campaign)
 COMMITTED = ("doc/validation", "doc/paper_scale/validation")
 #: a scale of no preset, as in test_fbc_start.py
@@ -177,3 +177,25 @@ def test_fig3_analysis_of_a_known_proportional_law(monkeypatch):
     np.testing.assert_allclose(result.sigma.x, [0.1, 0.2, 0.3])
     np.testing.assert_allclose(result.law_curve.mean, 0.3 * result.law_curve.x)
     plt.close(fig3.plot(result))
+
+
+def test_fig10_analysis_of_known_distributions(monkeypatch):
+    """Two seeds with xi^3 P(xi) = 1 at t = 0 and 1.5 at t = 10 on a fine grid: the shares
+    are the widths of their ranges (times 1.5 at t = 10) and both change by half."""
+    xi = np.linspace(0.0, 1.0, 1001)
+
+    def dump(level):
+        return {"xi": [xi, xi], "xi3_P_xi": [np.full(xi.size, level)] * 2, "v": [xi ** 3] * 2,
+                "rho_v": [np.full(xi.size, level / 3)] * 2, "nu": [[0.5], [0.52]],
+                "xi_min": [[0.1], [0.12]], "xi_T": [[0.22], [0.24]], "nu_tail": []}
+
+    monkeypatch.setattr(fig10, "distributions", lambda campaign, bc: {0: dump(1.0),
+                                                                      10: dump(1.5)})
+    result = fig10.analyse(None)
+    late = result.dumps[10].statistics
+    assert "nu_tail" not in late and late["nu"] == fig10.Value(10, 0.51, pytest.approx(0.01), 2)
+    width = fig10.P.XI_O - fig10.P.XI_T
+    assert late["small"].value == pytest.approx(1.5 * width, abs=2e-3)
+    assert result.small_change.value == pytest.approx(0.5)
+    assert result.large_change.value == pytest.approx(0.5) and result.large_change.x == 10
+    plt.close(fig10.plot(result))
