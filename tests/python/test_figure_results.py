@@ -22,13 +22,13 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 from paper_fakes import FakeCampaign, write_constant_eps, write_profile_x  # noqa: E402
 from tapmc.fluctuations import SteadyState  # noqa: E402
-from tapmc.paper import _runs, fig3, fig7, fig8, fig9, fig10  # noqa: E402
+from tapmc.paper import _runs, fig3, fig6, fig7, fig8, fig9, fig10  # noqa: E402
 from tapmc.pores import percus_yevick_p0  # noqa: E402
 from tapmc.paper._results import CsvRows, FigureCsvError, Value, save_rows  # noqa: E402
 from tapmc.paper.scales import QUICK, Scale  # noqa: E402
 
 #: the figures whose analysis returns a typed result
-TYPED = ("fig3", "fig7", "fig8", "fig9", "fig10")
+TYPED = ("fig3", "fig6", "fig7", "fig8", "fig9", "fig10")
 #: the folders of committed figure CSVs (quick campaign, paper-scale campaign)
 COMMITTED = ("doc/validation", "doc/paper_scale/validation")
 #: a scale of no preset, as in test_fbc_start.py
@@ -199,3 +199,44 @@ def test_fig10_analysis_of_known_distributions(monkeypatch):
     assert result.small_change.value == pytest.approx(0.5)
     assert result.large_change.value == pytest.approx(0.5) and result.large_change.x == 10
     plt.close(fig10.plot(result))
+
+
+def test_fig6_analysis_of_a_known_gradient(tmp_path):
+    """Straight vertical profiles Phi = 0.6 - alpha z/R below 20R (h_s = 10 distance units,
+    R = 0.5), alpha = 0.001 initially and 0.002 finally: the window is cut at 22/28 of 20R and
+    the gradients are found; no P.B.C. run, so no bottom panel."""
+    camp = fbc_campaign(tmp_path, "walls", wall_phi0=0.45)
+    z = np.arange(0.05, 15.0, 0.1)
+    for spec in camp.runs:
+        write_profile_x(camp, spec, z, np.where(z < 10, 0.6 - 0.001 * z / 0.5, 0.0),
+                        np.where(z < 10, 0.6 - 0.002 * z / 0.5, 0.0), 8)
+        folder = camp.result(spec.name)
+        (folder / "profile_x.dat").rename(folder / "profile_z.dat")
+    result = fig6.analyse(camp)
+    top = result.profiles
+    assert result.bell is None and result.ramp == {} and top.eps == 0.1 and top.seeds == 2
+    assert top.window == pytest.approx((5.0, 20.0 * 22.0 / 28.0))
+    assert top.alpha["initial"].value == pytest.approx(0.001)
+    assert top.alpha["final"] == fig6.Value(0.1, pytest.approx(0.002), pytest.approx(0.0), 2)
+    assert top.alpha_seeds is None          # no dump after the last tap: no jackknife
+    saved = result.save(tmp_path / "fig6.csv")
+    again = fig6.Fig6Result.load(saved).save(tmp_path / "again.csv")
+    assert filecmp.cmp(saved, again, shallow=False)
+    plt.close(fig6.plot(result))
+
+
+def test_fig6_bottom_panel_alone(tmp_path, monkeypatch):
+    """A campaign with the bell's runs but no F.B.C. run: one panel, the bell alone."""
+    monkeypatch.setattr(fig6, "alpha_bell", lambda campaign: (np.array([0.1, 0.2]),
+                                                               np.array([1e-3, 2e-3]),
+                                                               np.array([1e-4, 1e-4]),
+                                                               np.array([2, 2])))
+    monkeypatch.setattr(fig6, "ramp_alpha", lambda campaign: {})
+    result = fig6.analyse(FakeCampaign(tmp_path, []))
+    assert result.profiles is None and list(result.bell.mean) == [1e-3, 2e-3]
+    saved = result.save(tmp_path / "fig6.csv")
+    assert saved.read_text().splitlines()[1] == "b,bell:alpha,0.1,0.001,0.0001,2"
+    loaded = fig6.Fig6Result.load(saved)
+    fig = fig6.plot(loaded)
+    assert loaded.profiles is None and len(fig.axes) == 1
+    plt.close(fig)
