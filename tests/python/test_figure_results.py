@@ -22,13 +22,13 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 from paper_fakes import FakeCampaign, write_constant_eps, write_profile_x  # noqa: E402
 from tapmc.fluctuations import SteadyState  # noqa: E402
-from tapmc.paper import _runs, fig3, fig6, fig7, fig8, fig9, fig10  # noqa: E402
+from tapmc.paper import _runs, fig3, fig4, fig6, fig7, fig8, fig9, fig10  # noqa: E402
 from tapmc.pores import percus_yevick_p0  # noqa: E402
 from tapmc.paper._results import CsvRows, FigureCsvError, Value, save_rows  # noqa: E402
 from tapmc.paper.scales import QUICK, Scale  # noqa: E402
 
 #: the figures whose analysis returns a typed result
-TYPED = ("fig3", "fig6", "fig7", "fig8", "fig9", "fig10")
+TYPED = ("fig3", "fig4", "fig6", "fig7", "fig8", "fig9", "fig10")
 #: the folders of committed figure CSVs (quick campaign, paper-scale campaign)
 COMMITTED = ("doc/validation", "doc/paper_scale/validation")
 #: a scale of no preset, as in test_fbc_start.py
@@ -240,3 +240,27 @@ def test_fig6_bottom_panel_alone(tmp_path, monkeypatch):
     fig = fig6.plot(loaded)
     assert loaded.profiles is None and len(fig.axes) == 1
     plt.close(fig)
+
+
+def test_fig4_analysis_of_a_known_bell(tmp_path):
+    """Constant-eps runs whose <Phi^c> is 0.6 - (sqrt(eps) - 0.2)^2 at every tap, two seeds,
+    no ramp: the steady squares, the highest at sqrt(eps) = 0.2 with half the grid spacing."""
+    scale = Scale(**dict(QUICK.as_dict(), N=64, L=8.0, eta=1e-4, taps=40,
+                         steady_eps=(0.01, 0.04, 0.09)))
+    runs = [r for r in fig4.runs(scale, 2) if r.name.startswith("const_")]
+    camp = FakeCampaign(tmp_path, runs)
+    for spec in runs:
+        phi = 0.6 - (np.sqrt(spec.variables["eps"]) - 0.2) ** 2
+        (camp.result(spec.name) / "taps.dat").write_text(
+            "# step phi_b phi_c Z z_top lateral central h_s sweeps accept capped\n"
+            + "".join(f"{t} 0.55 {phi:.8f} 5 9 0.5 0.5 10 100 0.1 0\n" for t in range(41)))
+    result = fig4.analyse(camp)
+    np.testing.assert_allclose(result.steady.x, [0.1, 0.2, 0.3])
+    np.testing.assert_allclose(result.steady.mean, [0.59, 0.6, 0.59])
+    assert result.sqrt_eps_max == fig4.Value(0.0, pytest.approx(0.2), pytest.approx(0.05), 3)
+    assert result.phi_c_max.value == pytest.approx(0.6) and result.ramps == {}
+    assert result.critical_sqrt_eps.value == 0.15
+    saved = result.save(tmp_path / "fig4.csv")
+    again = fig4.Fig4Result.load(saved).save(tmp_path / "again.csv")
+    assert filecmp.cmp(saved, again, shallow=False)
+    plt.close(fig4.plot(result))
