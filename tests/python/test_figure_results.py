@@ -21,14 +21,15 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from paper_fakes import FakeCampaign, write_constant_eps, write_profile_x  # noqa: E402
+from tapmc.ageing import Ageing  # noqa: E402
 from tapmc.fluctuations import SteadyState  # noqa: E402
-from tapmc.paper import _runs, fig3, fig4, fig6, fig7, fig8, fig9, fig10  # noqa: E402
+from tapmc.paper import _runs, fig3, fig4, fig5, fig6, fig7, fig8, fig9, fig10  # noqa: E402
 from tapmc.pores import percus_yevick_p0  # noqa: E402
 from tapmc.paper._results import CsvRows, FigureCsvError, Value, save_rows  # noqa: E402
 from tapmc.paper.scales import QUICK, Scale  # noqa: E402
 
 #: the figures whose analysis returns a typed result
-TYPED = ("fig3", "fig4", "fig6", "fig7", "fig8", "fig9", "fig10")
+TYPED = ("fig3", "fig4", "fig5", "fig6", "fig7", "fig8", "fig9", "fig10")
 #: the folders of committed figure CSVs (quick campaign, paper-scale campaign)
 COMMITTED = ("doc/validation", "doc/paper_scale/validation")
 #: a scale of no preset, as in test_fbc_start.py
@@ -264,3 +265,25 @@ def test_fig4_analysis_of_a_known_bell(tmp_path):
     again = fig4.Fig4Result.load(saved).save(tmp_path / "again.csv")
     assert filecmp.cmp(saved, again, shallow=False)
     plt.close(fig4.plot(result))
+
+
+def test_fig5_analysis_of_a_known_drift(monkeypatch, tmp_path):
+    """Four realizations of <Z> = 5 + 0.01 t with a noise of 1e-4: A(t, t_W) = (0.01 t)^2 for
+    every waiting time; whatever the fits give, the result saves, loads and draws."""
+    rng = np.random.default_rng(5)
+    t = np.arange(61)
+    z = np.array([5 + 0.01 * t + rng.normal(0, 1e-4, t.size) for _ in range(4)])
+    monkeypatch.setattr(fig5, "ageing", lambda campaign, waiting_times: (
+        Ageing(z, [2, 5]).compute(), 4))
+    monkeypatch.setattr(fig5, "BOOTSTRAP_RESAMPLES", 3)      # the numbers are not tested
+    result = fig5.analyse(None)
+    assert sorted(result.curves) == [2.0, 5.0] and result.realizations == 4
+    for curve in result.curves.values():
+        np.testing.assert_allclose(curve.A.mean, 1e-4 * curve.A.x ** 2, rtol=0.02, atol=1e-6)
+        assert np.all(curve.A.n == 4)
+    assert result.eq6_test_needed.value == fig5.EQ6_TEST_MIN_REALIZATIONS
+    assert result.eq6_tests == {}             # four realizations are too few for the test
+    saved = result.save(tmp_path / "fig5.csv")
+    again = fig5.Fig5Result.load(saved).save(tmp_path / "again.csv")
+    assert filecmp.cmp(saved, again, shallow=False)
+    plt.close(fig5.plot(result))

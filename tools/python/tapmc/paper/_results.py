@@ -81,6 +81,44 @@ class Value:
         return Series.of(self.x, self.value, self.err, self.n)
 
 
+@dataclass(frozen=True)
+class Estimate:
+    """A fitted parameter: its :class:`Value` (best value, error, n = 1 determined / 0 not)
+    and the rows that qualify it, by suffix in the CSV's order (e.g. ``lo``, ``hi``: the
+    68 % interval, NaN on an open side; ``jackknife``; ``range_deviation``)."""
+
+    value: Value
+    parts: dict
+
+    def part(self, suffix):
+        """The :class:`Value` of one qualifying row (None when the CSV has none)."""
+        return self.parts.get(suffix)
+
+    def rows(self, panel, key):
+        return [(panel, key, self.value)] + [(panel, f"{key}:{suffix}", v)
+                                             for suffix, v in self.parts.items()]
+
+    @classmethod
+    def from_rows(cls, rows, panel, key, suffixes):
+        """The estimate of rows ``key`` and ``key:<suffix>`` (those of ``suffixes`` the CSV
+        has)."""
+        value = rows.take_value(panel, key)
+        return cls(value, {s: rows.take_value(panel, f"{key}:{s}") for s in suffixes
+                           if rows.has(panel, f"{key}:{s}")})
+
+
+def estimates(rows, panel, prefix, names, suffixes):
+    """name -> :class:`Estimate` of the rows ``<prefix><name>`` the CSV has, for ``names``."""
+    return {name: Estimate.from_rows(rows, panel, prefix + name, suffixes) for name in names
+            if rows.has(panel, prefix + name)}
+
+
+def values(rows, panel, prefix, names):
+    """name -> :class:`Value` of the one-row groups ``<prefix><name>`` the CSV has."""
+    return {name: rows.take_value(panel, prefix + name) for name in names
+            if rows.has(panel, prefix + name)}
+
+
 class CsvRows:
     """The rows of one figure CSV grouped by (panel, series), in the order of first
     appearance; :meth:`take` hands each group to its result once, :meth:`finish` refuses rows
@@ -152,7 +190,11 @@ class CsvRows:
 
 def table_of(rows):
     """A ``FigureTable`` of (panel, series, Series or Value) triples, in order."""
-    table = FigureTable()
+    return add_rows(FigureTable(), rows)
+
+
+def add_rows(table, rows):
+    """Add (panel, series, Series or Value) triples to a ``FigureTable``; returns it."""
     for panel, series, data in rows:
         if isinstance(data, Value):
             data = data.series()
