@@ -23,13 +23,14 @@ import matplotlib.pyplot as plt  # noqa: E402
 from paper_fakes import FakeCampaign, write_constant_eps, write_profile_x  # noqa: E402
 from tapmc.ageing import Ageing  # noqa: E402
 from tapmc.fluctuations import SteadyState  # noqa: E402
-from tapmc.paper import _runs, fig3, fig4, fig5, fig6, fig7, fig8, fig9, fig10  # noqa: E402
+from tapmc.paper import _runs, fig2, fig3, fig4, fig5, fig6, fig7, fig8, fig9, fig10  # noqa: E402
+from tapmc.laws import InverseLogLaw, ZLaw  # noqa: E402
 from tapmc.pores import percus_yevick_p0  # noqa: E402
 from tapmc.paper._results import CsvRows, FigureCsvError, Value, save_rows  # noqa: E402
 from tapmc.paper.scales import QUICK, Scale  # noqa: E402
 
 #: the figures whose analysis returns a typed result
-TYPED = ("fig3", "fig4", "fig5", "fig6", "fig7", "fig8", "fig9", "fig10")
+TYPED = ("fig2", "fig3", "fig4", "fig5", "fig6", "fig7", "fig8", "fig9", "fig10")
 #: the folders of committed figure CSVs (quick campaign, paper-scale campaign)
 COMMITTED = ("doc/validation", "doc/paper_scale/validation")
 #: a scale of no preset, as in test_fbc_start.py
@@ -287,3 +288,33 @@ def test_fig5_analysis_of_a_known_drift(monkeypatch, tmp_path):
     again = fig5.Fig5Result.load(saved).save(tmp_path / "again.csv")
     assert filecmp.cmp(saved, again, shallow=False)
     plt.close(fig5.plot(result))
+
+
+def test_fig2_analysis_of_known_laws(tmp_path):
+    """Phi_b on eq. 3 and <Z> on eq. 4 with known parameters, two seeds a little apart, at
+    two eps: each fit finds its parameters and the B panel holds one B per eps."""
+    scale = Scale(**dict(QUICK.as_dict(), taps=400, fig2_eps=(0.01, 0.1)))
+    runs = fig2.runs(scale, 2)
+    camp = FakeCampaign(tmp_path, runs)
+    t = np.arange(401.0)
+    for spec in runs:
+        b = 2.0 if spec.variables["eps"] == 0.01 else 5.0
+        offset = 2e-4 * (spec.seed - 1.5)
+        phi = InverseLogLaw.function(t, 0.62, 0.06, b, 3.0) + offset
+        z = ZLaw.function(t, 6.0, 5.0, b, 3.0) + offset
+        (camp.result(spec.name) / "taps.dat").write_text(
+            "# step phi_b phi_c Z z_top lateral central h_s sweeps accept capped\n"
+            + "".join(f"{k} {p:.10f} 0.56 {zz:.10f} 9 0.5 0.5 10 100 0.1 0\n"
+                      for k, (p, zz) in enumerate(zip(phi, z))))
+    result = fig2.analyse(camp, eps_values=(0.01, 0.1))
+    assert sorted(result.laws) == ["eq3", "eq4"]
+    eq3 = result.laws["eq3"].curves[0.1]
+    assert eq3.params["X_inf"].value.value == pytest.approx(0.62, rel=1e-3)
+    assert eq3.params["B"].value.value == pytest.approx(5.0, rel=0.05)
+    assert result.laws["eq4"].curves[0.01].params["B"].value.value == pytest.approx(2.0,
+                                                                                    rel=0.05)
+    np.testing.assert_allclose(result.laws["eq3"].B.B.x, np.sqrt([0.01, 0.1]))
+    saved = result.save(tmp_path / "fig2.csv")
+    again = fig2.Fig2Result.load(saved).save(tmp_path / "again.csv")
+    assert filecmp.cmp(saved, again, shallow=False)
+    plt.close(fig2.plot(result))

@@ -172,6 +172,13 @@ def errorbars(ax, x, mean, sem, label=None, **kw):
     return line
 
 
+def legend(ax, **kw):
+    """A legend placed off the data (``loc="best"`` unless given), only when the axis has
+    labelled artists."""
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(**{"loc": "best", **kw})
+
+
 def fmt_eps(eps):
     """Compact label of an eps value (5e-3 -> '0.005')."""
     return f"{eps:.4g}"
