@@ -23,6 +23,8 @@ import numpy as np
 
 import matplotlib
 
+from tapmc.fluctuations import SteadyState
+
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
@@ -63,8 +65,6 @@ def window_seeds(per_seed, last):
     batch-means error (tapmc.fluctuations.SteadyState), the realizations behind
     :func:`window_stats` that a figure writes as ``<series>:seeds`` rows (errors NaN for a
     window too short for two batches)."""
-    from tapmc.fluctuations import SteadyState
-
     if last < 4:      # fewer than two batches of two taps: a mean, but no batch-means error
         return (np.array([np.asarray(x, float)[-last:].mean() for x in per_seed]),
                 np.full(len(per_seed), np.nan))

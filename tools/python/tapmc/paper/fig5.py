@@ -591,6 +591,8 @@ def plot(result):
     ax_a.set_ylabel(r"$A(t, t_W)$")
     ax_a.legend(fontsize=7, loc="best", title=f"P.B.C., {result.realizations} realizations",
                 title_fontsize=7)
+    ax_c.set_xlabel(r"$t\,/\,(t_W/t_{\rm ref})^{\mu}$ (taps)")
+    ax_c.set_ylabel(r"$A\,/\,(t_W/t_{\rm ref})^{\kappa}$")
     if result.scaling is not None and result.master is not None:
         _collapse_panel(ax_c, result.scaling, result.master, colors)
     ax_c.set_xscale("log")
