@@ -4,6 +4,7 @@ shared by all figures (runs common to several figures run once), then one test p
 the numbers of its CSV (ranges, and the trends the model guarantees) and on its PNG (size, and
 axes that hold data), and the validation report built from the same campaign."""
 
+import filecmp
 import math
 import os
 import shutil
@@ -69,7 +70,17 @@ def draw(campaign, out_dir, name):
     png, csv = MODULES[name].draw(campaign, out_dir)
     assert Path(png).name == f"{name}.png" and Path(csv).name == f"{name}.csv"
     check_png(png)
+    check_round_trip(name, csv)
     return _plotting.read_table(csv)
+
+
+def check_round_trip(name, csv):
+    """The figure's CSV is its typed result saved: loading it and saving it again gives the
+    same bytes."""
+    result = getattr(MODULES[name], name.capitalize() + "Result").load(csv)
+    again = result.save(Path(csv).with_suffix(".again.csv"))
+    assert filecmp.cmp(csv, again, shallow=False), f"{csv}: the result does not round-trip"
+    again.unlink()
 
 
 def check_png(path):

@@ -23,6 +23,8 @@ import numpy as np
 
 import matplotlib
 
+from tapmc.fluctuations import SteadyState
+
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
@@ -65,8 +67,6 @@ def window_seeds(per_seed, last):
     batch-means error (tapmc.fluctuations.SteadyState), the realizations behind
     :func:`window_stats` that a figure writes as ``<series>:seeds`` rows (errors NaN for a
     window too short for two batches)."""
-    from tapmc.fluctuations import SteadyState
-
     if last < 4:      # fewer than two batches of two taps: a mean, but no batch-means error
         return (np.array([np.asarray(x, float)[-last:].mean() for x in per_seed]),
                 np.full(len(per_seed), np.nan))
@@ -223,6 +223,13 @@ def errorbars(ax, x, mean, sem, label=None, **kw):
     if np.any(sem > 0):
         ax.fill_between(x, mean - sem, mean + sem, color=line.get_color(), alpha=0.25, lw=0)
     return line
+
+
+def legend(ax, **kw):
+    """A legend placed off the data (``loc="best"`` unless given), only when the axis has
+    labelled artists."""
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(**{"loc": "best", **kw})
 
 
 def fmt_eps(eps):

@@ -22,16 +22,24 @@ paper's rho_v(v), ``tapmc.pores.VolumeTail``; the paper: close to nu), ``small``
 xi^3 P(xi) over [xi_T, xi_O]), ``large`` (over [xi_O, inf)); ``small_change`` and
 ``large_change`` (integral of |rho_v(t_last) - rho_v(0)| over each range, relative to the
 initial integral: the paper finds the small-pore part invariant).
+
+:func:`analyse` returns a :class:`Fig10Result` (its ``save``/``load`` are the CSV),
+:func:`plot` draws one, :func:`draw` does both into a folder.
 """
 
 from __future__ import annotations
 
 from collections import defaultdict
+from dataclasses import dataclass
 
 import numpy as np
+from matplotlib import colormaps
+
+from tapmc.pores import jackknife_error, read_pores
 
 from . import _plotting as P
 from . import _pores, _runs
+from ._results import FigureResult, Series, Value
 
 NAME = "fig10"
 #: run-name prefix of the Fig. 10 runs.
@@ -65,8 +73,6 @@ def _statistics(dist):
 def _jackknife_errors(pores, step):
     """Errors of :func:`_statistics` within one dump: the spatial jackknife of
     ``tapmc.pores.PoreOutput.jackknife`` (a statistic a replicate's fit cannot give has none)."""
-    from tapmc.pores import jackknife_error
-
     replicates = [_statistics(r) for r in pores.jackknife(step)]
     errors = {}
     for name in replicates[0]:
@@ -82,8 +88,6 @@ def distributions(campaign, bc=None):
     ``tapmc.pores.TetrahedralLaw``) and nu_tail (``VolumeTail`` on rho_v); with one seed (the
     paper's protocol) also ``errors``: name -> the error within the dump from the spatial
     jackknife (:func:`_jackknife_errors`)."""
-    from tapmc.pores import read_pores
-
     specs = _runs.select(campaign, KIND + "_", **({} if bc is None else {"bc": bc}))
     if not specs:
         raise ValueError(f"campaign {campaign.directory} has no pore-dump run")
@@ -114,46 +118,95 @@ def _integral(x, y, lo, hi):
     return float(np.sum(y[keep] * edges_w[keep]))
 
 
-def draw(campaign, out_dir):
-    png, csv = P.figure_paths(out_dir, NAME)
-    data = distributions(campaign)
-    table = P.FigureTable()
+#: the statistics of each dump (params rows, x = t), in the CSV's order
+DUMP_STATISTICS = ("nu", "xi_min", "xi_T", "nu_tail", "small", "large")
+#: the pore-size ranges of the small and large shares: tetrahedral to octahedral sites, beyond
+SHARES = (("small", P.XI_T, P.XI_O), ("large", P.XI_O, np.inf))
+
+
+@dataclass(frozen=True)
+class PoreDump:
+    """The distributions of one dump (t taps) and its statistics."""
+
+    step: int
+    #: xi^3 P(xi) against xi (panel a) and rho_v(v) against v (panel b)
+    xi3_P_xi: Series
+    rho_v: Series
+    #: name (DUMP_STATISTICS) -> Value at x = t; a fit that failed is absent
+    statistics: dict
+
+
+@dataclass(frozen=True)
+class Fig10Result(FigureResult):
+    """The numbers of Fig. 10 (CSV schema: module text)."""
+
+    #: t -> :class:`PoreDump`
+    dumps: dict
+    #: integral of |rho_v(t_last) - rho_v(0)| over each share, relative to the initial one
+    small_change: Value
+    large_change: Value
+
+    def rows(self):
+        out = []
+        for dump in self.dumps.values():
+            out += [("a", f"t={dump.step}", dump.xi3_P_xi), ("b", f"t={dump.step}", dump.rho_v)]
+            out += [("params", name, value) for name, value in dump.statistics.items()]
+        return out + [("params", "small_change", self.small_change),
+                      ("params", "large_change", self.large_change)]
+
+    @classmethod
+    def from_rows(cls, rows):
+        by_step = {name: rows.take("params", name) for name in DUMP_STATISTICS
+                   if rows.has("params", name)}
+        dumps = {}
+        for _, label in rows.keys("a"):
+            step = int(label[len("t="):])
+            stats = {name: Value.of_series(series, i) for name, series in by_step.items()
+                     for i in np.flatnonzero(series.x == step)}
+            dumps[step] = PoreDump(step, rows.take("a", label), rows.take("b", label), stats)
+        return cls(dumps, rows.take_value("params", "small_change"),
+                   rows.take_value("params", "large_change"))
+
+
+def _dump(step, d):
+    """The :class:`PoreDump` of one step of :func:`distributions`: means over seeds, or with
+    one seed the jackknife errors within its dump."""
+    errors = d.get("errors", {})
+
+    def stats(name, samples):
+        m, s, n = P.seed_stats(samples)
+        return (m, np.atleast_1d(errors[name]), n) if name in errors else (m, s, n)
+
+    xi3 = Series.of(d["xi"][0], *stats("xi3_P_xi", d["xi3_P_xi"]))
+    values = {name: Value.of_stats(step, stats(name, d[name]))
+              for name in DUMP_STATISTICS[:4] if d.get(name)}
+    for name, lo, hi in SHARES:
+        values[name] = Value(step, _integral(xi3.x, xi3.mean, lo, hi),
+                             errors.get(name, np.nan), len(d["nu"]))
+    return PoreDump(step, xi3, Series.of(d["v"][0], *stats("rho_v", d["rho_v"])), values)
+
+
+def analyse(campaign, bc=None):
+    """Fig. 10 from the campaign's pore-dump runs (:func:`distributions`)."""
+    dumps = {step: _dump(step, d) for step, d in distributions(campaign, bc).items()}
+    first, last = dumps[min(dumps)].xi3_P_xi, dumps[max(dumps)].xi3_P_xi
+    changes = []
+    for _, lo, hi in SHARES:
+        base = _integral(first.x, first.mean, lo, hi)
+        change = (_integral(first.x, np.abs(last.mean - first.mean), lo, hi) / base
+                  if base > 0 else np.nan)
+        changes.append(Value(max(dumps), change, np.nan, 1))
+    return Fig10Result(dumps, *changes)
+
+
+def plot(result):
+    """The figure of a :class:`Fig10Result` (drawing only)."""
     fig, (ax_xi, ax_v) = P.new_figure(2, 1)
-    colors = matplotlib_colors(len(data))
-    means = {}
-    for (step, d), color in zip(data.items(), colors):
-        xi = d["xi"][0]
-        v = d["v"][0]
-        errors = d.get("errors", {})
-
-        def stats(name, samples):
-            """mean, sem, n over seeds; one seed: the jackknife error within its dump"""
-            m, s, n = P.seed_stats(samples)
-            return (m, np.atleast_1d(errors[name]), n) if name in errors else (m, s, n)
-
-        rxi = stats("xi3_P_xi", d["xi3_P_xi"])
-        rv = stats("rho_v", d["rho_v"])
-        means[step] = (xi, rxi[0])
-        label = f"t = {step}"
-        P.errorbars(ax_xi, xi, rxi[0], rxi[1], label=label, color=color, lw=0.9)
-        P.errorbars(ax_v, v, rv[0], rv[1], label=label, color=color, lw=0.9)
-        table.add("a", f"t={step}", xi, *rxi)
-        table.add("b", f"t={step}", v, *rv)
-        for name in ("nu", "xi_min", "xi_T", "nu_tail"):
-            if not d.get(name):
-                continue
-            m, s, n = stats(name, d[name])
-            table.add("params", name, step, m[0], s[0], n[0])
-        for name, lo, hi in (("small", P.XI_T, P.XI_O), ("large", P.XI_O, np.inf)):
-            table.add("params", name, step, _integral(xi, rxi[0], lo, hi), errors.get(name),
-                      len(d["nu"]))
-    steps = list(means)
-    xi, first = means[steps[0]]
-    last = means[steps[-1]][1]
-    for name, lo, hi in (("small_change", P.XI_T, P.XI_O), ("large_change", P.XI_O, np.inf)):
-        base = _integral(xi, first, lo, hi)
-        change = _integral(xi, np.abs(last - first), lo, hi) / base if base > 0 else np.nan
-        table.add("params", name, steps[-1], change, None, 1)
+    for dump, color in zip(result.dumps.values(), matplotlib_colors(len(result.dumps))):
+        label = f"t = {dump.step}"
+        for ax, series in ((ax_xi, dump.xi3_P_xi), (ax_v, dump.rho_v)):
+            P.errorbars(ax, series.x, series.mean, series.err, label=label, color=color,
+                        lw=0.9)
     for ax, marks, xlabel, ylabel in (
             (ax_xi, (P.XI_T, P.XI_O), r"$\xi = r/R$", r"$\rho_v(\xi) = \xi^3 P(\xi)$"),
             (ax_v, (P.XI_T ** 3, P.XI_O ** 3), r"$v = \xi^3$", r"$\rho_v(v)$")):
@@ -164,14 +217,21 @@ def draw(campaign, out_dir):
         ax.set_xlabel(xlabel)
         ax.set_ylabel(ylabel)
         ax.set_ylim(bottom=0)
+        ax.legend(fontsize=6, ncol=2, loc="best")
     ax_xi.set_xlim(0, 1.0)
     ax_v.set_xlim(0, 0.6)
-    ax_xi.legend(fontsize=6, ncol=2)
-    return P.write_figure(fig, png, table, csv)
+    return fig
+
+
+def draw(campaign, out_dir):
+    """Fig. 10's PNG and CSV in ``out_dir``; returns their paths."""
+    png, csv = P.figure_paths(out_dir, NAME)
+    result = analyse(campaign)
+    P.save_figure(plot(result), png)
+    return png, result.save(csv)
 
 
 def matplotlib_colors(n):
-    from matplotlib import colormaps
-
+    """``n`` colours of the viridis map, early to late dumps."""
     cmap = colormaps["viridis"]
     return [cmap(x) for x in np.linspace(0.0, 0.9, max(n, 1))]

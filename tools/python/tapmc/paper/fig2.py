@@ -44,9 +44,15 @@ CSV panels:
   ``<law>:reduced_chi2`` (n = its degrees of freedom) and ``<law>:p_value`` (chi2 probability
   of the straight line; n = 1 when it passes, ``tapmc.laws.LINEARITY_P_MIN``, 0 when it fails
   or cannot be tested: fewer than three determined B, then empty).
+
+:func:`analyse` returns a :class:`Fig2Result` (its ``save``/``load`` are the CSV), :func:`plot`
+draws one, :func:`draw` does both into a folder; :func:`refit_table` gives the result
+recomputed from a CSV's curves, every curve first.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -54,6 +60,7 @@ from tapmc.laws import (InverseLogLaw, ZLaw, exponential_dependence, range_refit
 
 from . import _plotting as P
 from . import _runs
+from ._results import Estimate, FigureResult, Series, Value, add_rows, estimates
 
 NAME = "fig2"
 #: Boundary conditions of the paper's Fig. 2.
@@ -145,75 +152,245 @@ def statistics(table):
     return out
 
 
-def refit_table(table):
-    """A ``FigureTable`` with the curves of ``table`` (a figure CSV read with
-    ``tapmc.paper._plotting.read_table``), their fit curves and every ``params`` and ``B`` row
-    recomputed from them by :func:`statistics`: a report drawn before these statistics existed gets them from
-    its own committed curves (``tapmc-paper report --from-data --refit``)."""
-    out = P.FigureTable()
-    stats = statistics(table)
-    fits = {(LAWS[tag][2], f"fit:eps={P.fmt_eps(eps)}"): refits.reference
-            for tag, st in stats.items() for eps, refits in st["curves"].items()}
-    for (panel, series), d in table.items():
-        if panel in ("params", "B"):
-            continue
-        fit = fits.get((panel, series))
-        mean = d["mean"] if fit is None else fit(d["x"])  # the fit curve of the new fit
-        out.add(panel, series, d["x"], mean, d["sem"], d["n"])
-    for tag, st in stats.items():
-        prefix = LAWS[tag][3]
-        for eps, refits in sorted(st["curves"].items()):
-            add_curve_rows(out, eps, refits, prefix)
-        add_b_rows(out, tag, st["curves"], st["B"])
-    return out
-
-
 def _bound(value):
     return (value, 1) if np.isfinite(value) else (np.nan, 0)
 
 
+def _sides(x, iv):
+    """{'lo': Value, 'hi': Value} of an Interval at ``x`` (empty on an open side, n = 1 when
+    that side closes)."""
+    out = {}
+    for side, bound in (("lo", iv.lo), ("hi", iv.hi)):
+        b, closed = _bound(bound)
+        out[side] = Value(x, b, np.nan, closed)
+    return out
+
+
+#: the rows that qualify each parameter of a curve's fit, in the CSV's order
+CURVE_PARTS = ("lo", "hi", "range_deviation", "range_spread")
+
+
+@dataclass(frozen=True)
+class CurveFit:
+    """One seed-averaged curve at one eps, its fitted law and what the fit can say."""
+
+    eps: float
+    data: Series
+    #: the law fitted to all taps, evaluated for the figure
+    curve: Series
+    #: name -> Estimate (value, curvature error, n = 1 determined) with CURVE_PARTS
+    params: dict
+    #: n = 1 when every parameter is determined
+    reduced_chi2: Value
+
+    @property
+    def label(self):
+        return f"eps={P.fmt_eps(self.eps)}"
+
+    def curve_rows(self, panel):
+        return [(panel, self.label, self.data), (panel, f"fit:{self.label}", self.curve)]
+
+    def param_rows(self, prefix):
+        tag = f"{self.label}:{prefix}"
+        return ([row for name, est in self.params.items()
+                 for row in est.rows("params", tag + name)]
+                + [("params", f"{tag}reduced_chi2", self.reduced_chi2)])
+
+    @classmethod
+    def from_rows(cls, rows, panel, label, law, prefix):
+        data, curve = rows.take(panel, label), rows.take(panel, f"fit:{label}")
+        params = estimates(rows, "params", f"{label}:{prefix}", law.names, CURVE_PARTS)
+        chi2 = rows.take_value("params", f"{label}:{prefix}reduced_chi2")
+        return cls(chi2.x, data, curve, params, chi2)
+
+    @classmethod
+    def of(cls, eps, data, curve, refits):
+        """From a ``RangeRefits`` (:func:`analyse_curve`)."""
+        fit = refits.reference
+        deviation, consistent, spread = refits.deviation, refits.consistent, refits.spread
+        params = {}
+        for name, value in fit.params.items():
+            iv = fit.intervals[name]
+            parts = _sides(eps, iv)
+            parts["range_deviation"] = Value(eps, deviation[name], np.nan,
+                                             int(consistent[name]))
+            parts["range_spread"] = Value(eps, spread[name], np.nan,
+                                          sum(f is not None for f in refits.fits))
+            params[name] = Estimate(Value(eps, value, fit.errors[name], int(iv.determined)),
+                                    parts)
+        return cls(eps, data, curve, params, Value(eps, fit.reduced_chi2, np.nan,
+                                                   int(not fit.undetermined_params)))
+
+
+@dataclass(frozen=True)
+class BDependence:
+    """ln B against sqrt(eps) for one law (panel ``B``, module text)."""
+
+    tag: str
+    #: B per eps against sqrt(eps) (n = 1 determined) and its interval's sides
+    B: Series
+    B_lo: Series
+    B_hi: Series
+    #: d ln B / d sqrt(eps) with its interval (None: fewer than two determined B)
+    slope: Estimate
+    reduced_chi2: Value
+    p_value: Value
+
+    def rows(self):
+        out = []
+        for i in range(len(self.B)):
+            out += [("B", f"{self.tag}:B", Value.of_series(self.B, i)),
+                    ("B", f"{self.tag}:B:lo", Value.of_series(self.B_lo, i)),
+                    ("B", f"{self.tag}:B:hi", Value.of_series(self.B_hi, i))]
+        if self.slope is not None:
+            out += self.slope.rows("B", f"{self.tag}:slope")
+        return out + [("B", f"{self.tag}:reduced_chi2", self.reduced_chi2),
+                      ("B", f"{self.tag}:p_value", self.p_value)]
+
+    @classmethod
+    def from_rows(cls, rows, tag):
+        slope = (Estimate.from_rows(rows, "B", f"{tag}:slope", ("lo", "hi"))
+                 if rows.has("B", f"{tag}:slope") else None)
+        return cls(tag, rows.take("B", f"{tag}:B"), rows.take("B", f"{tag}:B:lo"),
+                   rows.take("B", f"{tag}:B:hi"), slope,
+                   rows.take_value("B", f"{tag}:reduced_chi2"),
+                   rows.take_value("B", f"{tag}:p_value"))
+
+    @classmethod
+    def of(cls, tag, refits, dependence):
+        """From a dict eps -> RangeRefits and its ``ExponentialDependence``."""
+        eps = sorted(refits)
+        intervals = [refits[e].reference.intervals["B"] for e in eps]
+        x = np.sqrt(eps)
+        columns = [Series.of(x, [iv.value for iv in intervals], None,
+                             [int(iv.determined) for iv in intervals])]
+        for side in ("lo", "hi"):
+            sides = [_sides(0.0, iv)[side] for iv in intervals]
+            columns.append(Series.of(x, [v.value for v in sides], None, [v.n for v in sides]))
+        iv = dependence.slope_interval
+        slope = None
+        if iv is not None:
+            err = float(np.sqrt(dependence.fit.covariance[1, 1]))
+            slope = Estimate(Value(0.0, iv.value, err if iv.determined else np.nan,
+                                   int(iv.determined)), _sides(0.0, iv))
+        return cls(tag, *columns, slope,
+                   Value(0.0, dependence.reduced_chi2, np.nan, dependence.dof),
+                   Value(0.0, dependence.p_value, np.nan, int(bool(dependence.linear))))
+
+
+@dataclass(frozen=True)
+class LawFits:
+    """One law of the figure (``eq3`` for Phi_b, ``eq4`` for <Z>) on every eps."""
+
+    tag: str
+    #: eps -> :class:`CurveFit`
+    curves: dict
+    B: BDependence
+
+    @property
+    def panel(self):
+        return LAWS[self.tag][2]
+
+    @property
+    def prefix(self):
+        return LAWS[self.tag][3]
+
+
+@dataclass(frozen=True)
+class Fig2Result(FigureResult):
+    """The numbers of Fig. 2 (CSV schema: module text)."""
+
+    #: tag ('eq3', 'eq4') -> :class:`LawFits` of the laws whose curves the figure has
+    laws: dict
+    #: the layout of a refitted CSV (:func:`refit_table`): every curve first, then the
+    #: statistics; a drawn CSV has each curve's statistics after it
+    curves_first: bool = False
+
+    def rows(self):
+        laws = self.laws.values()
+        if self.curves_first:
+            return ([row for law in laws for c in law.curves.values()
+                     for row in c.curve_rows(law.panel)]
+                    + [row for law in laws for row in
+                       [r for c in law.curves.values() for r in c.param_rows(law.prefix)]
+                       + law.B.rows()])
+        return [row for law in laws for row in
+                [r for c in law.curves.values()
+                 for r in c.curve_rows(law.panel) + c.param_rows(law.prefix)]
+                + law.B.rows()]
+
+    @classmethod
+    def from_rows(cls, rows):
+        order = [panel for panel, _ in rows.keys()]
+        curves_first = "params" in order and order.index("params") > 2
+        laws = {}
+        for tag, (law, _, panel, prefix) in LAWS.items():
+            labels = [s for _, s in rows.keys(panel) if not s.startswith("fit:")]
+            if not labels:
+                continue
+            fits = [CurveFit.from_rows(rows, panel, label, law, prefix) for label in labels]
+            laws[tag] = LawFits(tag, {c.eps: c for c in fits}, BDependence.from_rows(rows, tag))
+        return cls(laws, curves_first)
+
+
+def _fit_curve_points(t):
+    """Taps at which a fitted law is drawn: 200 log-spaced from 1 to the last tap, and the
+    first tap > 0."""
+    return np.unique(np.concatenate([np.geomspace(1, max(t[-1], 1), 200), t[t > 0][:1]]))
+
+
+def analyse(campaign, eps_values=None):
+    """Fig. 2 from the campaign's F.B.C. constant-eps runs: those of ``eps_values``, by
+    default the campaign's ``fig2_eps`` when its scale is known
+    (``tapmc.paper._runs.campaign_scale``), else the eps nearest to the paper's 5e-3, 5e-2
+    and 0.15."""
+    specs = _runs.select(campaign, "const_", bc=BC)
+    available = {s.variables["eps"] for s in specs}
+    if eps_values is None and available:
+        scale = _runs.campaign_scale(campaign)
+        eps_values = scale.fig2_eps if scale is not None else paper_eps(available)
+    laws = {}
+    for tag, (law, column, _, _) in LAWS.items():
+        refits, fits = {}, {}
+        for eps, (t, mean, sem, n) in curves(campaign, column, BC, eps_values).items():
+            refits[eps] = analyse_curve(t, mean, sem, law())
+            tfit = _fit_curve_points(t)
+            fits[eps] = CurveFit.of(eps, Series.of(t, mean, sem, n),
+                                    Series.of(tfit, refits[eps].reference(tfit), None, 0),
+                                    refits[eps])
+        if refits:
+            laws[tag] = LawFits(tag, fits, BDependence.of(tag, refits, b_dependence(refits)))
+    return Fig2Result(laws)
+
+
+def refit_table(table):
+    """A ``FigureTable`` with the curves of ``table`` (a figure CSV read with
+    ``tapmc.paper._plotting.read_table``), their fit curves and every ``params`` and ``B`` row
+    recomputed from them by :func:`statistics`: a report drawn before these statistics existed
+    gets them from its own committed curves (``tapmc-paper report --from-data --refit``)."""
+    laws = {}
+    for tag, st in statistics(table).items():
+        panel = LAWS[tag][2]
+        fits = {}
+        for eps, refits in sorted(st["curves"].items()):
+            label = f"eps={P.fmt_eps(eps)}"
+            data, old = table[(panel, label)], table[(panel, f"fit:{label}")]
+            fits[eps] = CurveFit.of(
+                eps, Series.of(data["x"], data["mean"], data["sem"], data["n"]),
+                Series.of(old["x"], refits.reference(old["x"]), old["sem"], old["n"]), refits)
+        laws[tag] = LawFits(tag, fits, BDependence.of(tag, st["curves"], st["B"]))
+    return Fig2Result(laws, curves_first=True).table()
+
+
 def add_curve_rows(table, eps, refits, prefix=""):
     """The params rows of one fitted curve (module text) into a ``FigureTable``."""
-    fit = refits.reference
-    tag = f"eps={P.fmt_eps(eps)}:{prefix}"
-    errors = fit.errors
-    deviation, consistent, spread = refits.deviation, refits.consistent, refits.spread
-    for name, value in fit.params.items():
-        iv = fit.intervals[name]
-        table.add("params", f"{tag}{name}", eps, value, errors[name], int(iv.determined))
-        for side, bound in (("lo", iv.lo), ("hi", iv.hi)):
-            b, closed = _bound(bound)
-            table.add("params", f"{tag}{name}:{side}", eps, b, None, closed)
-        table.add("params", f"{tag}{name}:range_deviation", eps, deviation[name], None,
-                  int(consistent[name]))
-        table.add("params", f"{tag}{name}:range_spread", eps, spread[name], None,
-                  sum(f is not None for f in refits.fits))
-    table.add("params", f"{tag}reduced_chi2", eps, fit.reduced_chi2, None,
-              int(not fit.undetermined_params))
+    fit = CurveFit.of(eps, None, None, refits)
+    add_rows(table, fit.param_rows(prefix))
 
 
 def add_b_rows(table, tag, refits, dependence):
     """The ``B`` panel rows of one law (module text) into a ``FigureTable``."""
-    for eps in sorted(refits):
-        fit = refits[eps].reference
-        iv = fit.intervals["B"]
-        x = float(np.sqrt(eps))
-        table.add("B", f"{tag}:B", x, iv.value, None, int(iv.determined))
-        for side, bound in (("lo", iv.lo), ("hi", iv.hi)):
-            b, closed = _bound(bound)
-            table.add("B", f"{tag}:B:{side}", x, b, None, closed)
-    iv = dependence.slope_interval
-    if iv is not None:
-        err = float(np.sqrt(dependence.fit.covariance[1, 1]))
-        table.add("B", f"{tag}:slope", 0.0, iv.value, err if iv.determined else np.nan,
-                  int(iv.determined))
-        for side, bound in (("lo", iv.lo), ("hi", iv.hi)):
-            b, closed = _bound(bound)
-            table.add("B", f"{tag}:slope:{side}", 0.0, b, None, closed)
-    table.add("B", f"{tag}:reduced_chi2", 0.0, dependence.reduced_chi2, None,
-              dependence.dof)
-    table.add("B", f"{tag}:p_value", 0.0, dependence.p_value, None,
-              int(bool(dependence.linear)))
+    add_rows(table, BDependence.of(tag, refits, dependence).rows())
 
 
 def paper_eps(available, targets=PAPER_EPS):
@@ -224,48 +401,24 @@ def paper_eps(available, targets=PAPER_EPS):
 
 
 def _fit_label(fit):
-    missing = fit.undetermined_params
+    missing = [name for name, est in fit.params.items() if not est.value.n]
     return "" if not missing else f" ({', '.join(missing)} undetermined)"
 
 
-def draw(campaign, out_dir, eps_values=None):
-    """Draw Fig. 2 from the campaign's F.B.C. constant-eps runs: those of ``eps_values``, by
-    default the campaign's ``fig2_eps`` when its scale is known
-    (``tapmc.paper._runs.campaign_scale``), else the eps nearest to the paper's 5e-3, 5e-2
-    and 0.15."""
-    png, csv = P.figure_paths(out_dir, NAME)
-    specs = _runs.select(campaign, "const_", bc=BC)
-    available = {s.variables["eps"] for s in specs}
-    if eps_values is None and available:
-        scale = _runs.campaign_scale(campaign)
-        eps_values = scale.fig2_eps if scale is not None else paper_eps(available)
-    table = P.FigureTable()
+def plot(result):
+    """The figure of a :class:`Fig2Result` (drawing only)."""
     fig, (ax_log, ax_lin, ax_z) = P.new_figure(3, 1)
     colors = {}
-    for tag, (law, column, panel, prefix) in LAWS.items():
-        data = curves(campaign, column, BC, eps_values)
-        refits = {}
-        for eps, (t, mean, sem, n) in data.items():
-            label = f"eps = {P.fmt_eps(eps)}"
-            refits[eps] = analyse_curve(t, mean, sem, law())
-            fit = refits[eps].reference
-            table.add(panel, f"eps={P.fmt_eps(eps)}", t, mean, sem, n)
-            tfit = np.unique(np.concatenate([np.geomspace(1, max(t[-1], 1), 200),
-                                             t[t > 0][:1]]))
-            yfit = fit(tfit)
-            table.add(panel, f"fit:eps={P.fmt_eps(eps)}", tfit, yfit, None, 0)
-            add_curve_rows(table, eps, refits[eps], prefix)
-            pos = t > 0
-            axes = (ax_log, ax_lin) if tag == "eq3" else (ax_z,)
-            for ax in axes:
-                x = t[pos] if ax is not ax_lin else t
-                line = P.errorbars(ax, x, mean[pos] if ax is not ax_lin else mean,
-                                   sem[pos] if ax is not ax_lin else sem,
-                                   label=label + _fit_label(fit), color=colors.get(eps))
+    for tag, law in result.laws.items():
+        for eps, fit in law.curves.items():
+            label = f"eps = {P.fmt_eps(eps)}" + _fit_label(fit)
+            t, pos = fit.data.x, fit.data.x > 0
+            for ax in ((ax_log, ax_lin) if tag == "eq3" else (ax_z,)):
+                keep = slice(None) if ax is ax_lin else pos
+                line = P.errorbars(ax, t[keep], fit.data.mean[keep], fit.data.err[keep],
+                                   label=label, color=colors.get(eps))
                 colors.setdefault(eps, line.get_color())
-                ax.plot(tfit, yfit, ":", color=colors[eps])
-        if refits:
-            add_b_rows(table, tag, refits, b_dependence(refits))
+                ax.plot(fit.curve.x, fit.curve.mean, ":", color=colors[eps])
     for ax in (ax_log, ax_z):
         ax.set_xscale("log")
     for ax in (ax_log, ax_lin, ax_z):
@@ -273,6 +426,15 @@ def draw(campaign, out_dir, eps_values=None):
     ax_log.set_ylabel(r"$\Phi_b$")
     ax_lin.set_ylabel(r"$\Phi_b$")
     ax_z.set_ylabel(r"$\langle Z\rangle$")
-    ax_log.legend(fontsize=7, title="F.B.C.; dotted: eq. 3 fits", title_fontsize=7)
-    ax_z.legend(fontsize=7, title="dotted: eq. 4 fits", title_fontsize=7)
-    return P.write_figure(fig, png, table, csv)
+    for ax in (ax_log, ax_lin):
+        P.legend(ax, fontsize=7, title="F.B.C.; dotted: eq. 3 fits", title_fontsize=7)
+    P.legend(ax_z, fontsize=7, title="dotted: eq. 4 fits", title_fontsize=7)
+    return fig
+
+
+def draw(campaign, out_dir, eps_values=None):
+    """Fig. 2's PNG and CSV in ``out_dir`` (:func:`analyse`); returns their paths."""
+    png, csv = P.figure_paths(out_dir, NAME)
+    result = analyse(campaign, eps_values)
+    P.save_figure(plot(result), png)
+    return png, result.save(csv)

@@ -24,9 +24,14 @@ run per point) they are that run's own errors instead: the power's from the peri
 statistics (``PowerSpectrum.power_error``), the slope's error from the log-log fit of its
 spectrum, and sigma_<Z>'s from batch means of the squared deviations over the steady
 segment (successive taps are correlated), so that one run per eps still carries error bars.
+
+:func:`analyse` returns a :class:`Fig3Result` (its ``save``/``load`` are the CSV), :func:`plot`
+draws one, :func:`draw` does both into a folder.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -35,6 +40,7 @@ from tapmc.laws import StraightLine
 
 from . import _plotting as P
 from . import _runs, _steady_state
+from ._results import FigureResult, Series, Value
 from ._steady_state import BC, steady_last
 
 NAME = "fig3"
@@ -67,7 +73,7 @@ def sigma_error_one_run(x, last, batches=DEFAULT_BATCHES, detrend="constant"):
     return var_err / (2.0 * sigma) if sigma > 0 else np.nan
 
 
-def analyse(campaign, column="Z", bc=BC):
+def per_eps(campaign, column="Z", bc=BC):
     """Spectra, slopes and sigma per eps: dict eps -> dict with 'frequency', 'power' (mean,
     sem), 'slope' (mean, sem, n), 'sigma' and 'sigma_detrended' (mean, sem, n)."""
     out = {}
@@ -96,55 +102,133 @@ def analyse(campaign, column="Z", bc=BC):
     return out
 
 
-def draw(campaign, out_dir):
-    png, csv = P.figure_paths(out_dir, NAME)
-    data = analyse(campaign)
-    table = P.FigureTable()
+#: the sigma series of panel b: (result field, CSV series, suffix of its intercept row)
+SIGMA_SERIES = (("sigma", "sigma_Z", ""), ("sigma_detrended", "sigma_Z_detrended", "_detrended"))
+
+
+@dataclass(frozen=True)
+class Spectrum:
+    """The power spectrum of one eps (panel a) and its log-log slope."""
+
+    eps: float
+    power: Series
+    slope: Value
+
+
+@dataclass(frozen=True)
+class Fig3Result(FigureResult):
+    """The numbers of Fig. 3 (CSV schema: module text)."""
+
+    #: eps -> :class:`Spectrum`
+    spectra: dict
+    #: sigma_<Z> against sqrt(eps), and about each run's straight line (None in CSVs drawn
+    #: before it)
+    sigma: Series
+    sigma_detrended: Series = None
+    #: the proportional law k sqrt(eps) (two eps or more): its curve, k, its reduced chi2
+    law_curve: Series = None
+    k: Value = None
+    k_reduced_chi2: Value = None
+    #: intercepts of a free straight line through each sigma series (three eps or more)
+    intercept: Value = None
+    intercept_detrended: Value = None
+
+    def rows(self):
+        out = []
+        for sp in self.spectra.values():
+            label = f"eps={P.fmt_eps(sp.eps)}"
+            out += [("a", label, sp.power), ("params", f"{label}:slope", sp.slope)]
+        for field, series, suffix in SIGMA_SERIES:
+            if getattr(self, field) is None:
+                continue
+            out.append(("b", series, getattr(self, field)))
+            if field == "sigma" and self.k is not None:
+                out += [("b", "fit:k sqrt(eps)", self.law_curve), ("params", "k", self.k),
+                        ("params", "k_reduced_chi2", self.k_reduced_chi2)]
+            if getattr(self, "intercept" + suffix) is not None:
+                out.append(("params", "intercept" + suffix, getattr(self, "intercept" + suffix)))
+        return out
+
+    @classmethod
+    def from_rows(cls, rows):
+        spectra = {}
+        for _, label in rows.keys("a"):
+            slope = rows.take_value("params", f"{label}:slope")
+            spectra[slope.x] = Spectrum(slope.x, rows.take("a", label), slope)
+        sigma = rows.take("b", "sigma_Z")
+        optional = {name: rows.take_value("params", name)
+                    for name in ("k", "k_reduced_chi2", "intercept", "intercept_detrended")
+                    if rows.has("params", name)}
+        return cls(spectra, sigma, rows.take_optional("b", "sigma_Z_detrended"),
+                   rows.take_optional("b", "fit:k sqrt(eps)"), **optional)
+
+
+def _sigma_weights(sigma):
+    """Fit weights of a sigma series: its errors when every point has one, else None."""
+    return sigma.err if np.all(np.isfinite(sigma.err)) and np.all(sigma.err > 0) else None
+
+
+def analyse(campaign, column="Z", bc=BC):
+    """Fig. 3 from the campaign's constant-eps runs of ``bc`` (:func:`per_eps`), with the
+    proportional law and the free lines' intercepts of panel b."""
+    data = per_eps(campaign, column, bc)
+    spectra = {eps: Spectrum(eps, Series.of(d["frequency"], *d["power"]),
+                             Value.of_stats(eps, d["slope"])) for eps, d in data.items()}
+    eps = np.array(sorted(data))
+    sq = np.sqrt(eps)
+    sigma = {field: Series.of(sq, *(np.array([data[e][field][i] for e in eps]) for i in range(3)))
+             for field, _, _ in SIGMA_SERIES}
+    fitted = {}
+    if len(eps) >= 2:
+        law = sigma_scaling(sq, sigma["sigma"].mean, _sigma_weights(sigma["sigma"]))
+        xs = np.linspace(0, sq.max() * 1.05, 50)
+        fitted.update(law_curve=Series.of(xs, law(xs), None, 0),
+                      k=Value(0.0, law.params["k"], law.errors["k"], len(eps)),
+                      k_reduced_chi2=Value(0.0, law.reduced_chi2, np.nan, len(eps)))
+    if len(eps) >= 3:
+        for field, _, suffix in SIGMA_SERIES:
+            line = StraightLine().fit(sq, sigma[field].mean, _sigma_weights(sigma[field]))
+            name = list(line.params)[0]
+            fitted["intercept" + suffix] = Value(0.0, line.params[name], line.errors[name],
+                                                 len(eps))
+    return Fig3Result(spectra, sigma["sigma"], sigma["sigma_detrended"], **fitted)
+
+
+def plot(result):
+    """The figure of a :class:`Fig3Result` (drawing only)."""
     fig, (ax_s, ax_sig) = P.new_figure(2, 1)
-    for eps, d in data.items():
-        pmean, psem, pn = d["power"]
-        s_mean, s_sem, s_n = d["slope"]
-        label = f"eps = {P.fmt_eps(eps)}, slope {s_mean:.2f}"
-        ax_s.errorbar(d["frequency"], pmean, yerr=np.nan_to_num(psem), marker="o", ms=3,
-                      ls="-", lw=0.8, capsize=0, label=label)
-        table.add("a", f"eps={P.fmt_eps(eps)}", d["frequency"], pmean, psem, pn)
-        table.add("params", f"eps={P.fmt_eps(eps)}:slope", eps, s_mean, s_sem, s_n)
+    for eps, sp in result.spectra.items():
+        ax_s.errorbar(sp.power.x, sp.power.mean, yerr=np.nan_to_num(sp.power.err), marker="o",
+                      ms=3, ls="-", lw=0.8, capsize=0,
+                      label=f"eps = {P.fmt_eps(eps)}, slope {sp.slope.value:.2f}")
     ax_s.set_xscale("log")
     ax_s.set_yscale("log")
     ax_s.set_xlabel("frequency (1/taps)")
     ax_s.set_ylabel(r"power of $\langle Z\rangle - \langle Z\rangle_{SS}$")
-    ax_s.legend(fontsize=7, title="P.B.C.", title_fontsize=7)
-
-    eps = np.array(sorted(data))
-    sq = np.sqrt(eps)
-    for key, series, marker, label in (
-            ("sigma", "sigma_Z", "s", r"$\sigma_{\langle Z\rangle}$"),
-            ("sigma_detrended", "sigma_Z_detrended", "s",
-             r"$\sigma_{\langle Z\rangle}$ about each run's straight line")):
-        smean = np.array([data[e][key][0] for e in eps])
-        ssem = np.array([data[e][key][1] for e in eps])
-        sn = np.array([data[e][key][2] for e in eps])
-        table.add("b", series, sq, smean, ssem, sn)
-        weights = ssem if np.all(np.isfinite(ssem)) and np.all(ssem > 0) else None
-        ax_sig.errorbar(sq, smean, yerr=np.nan_to_num(ssem), marker=marker, ls="none",
-                        color="k", capsize=2, label=label,
-                        mfc="k" if key == "sigma" else "none")
-        suffix = "" if key == "sigma" else "_detrended"
-        if key == "sigma" and len(eps) >= 2:
-            prop = sigma_scaling(sq, smean, weights)
-            xs = np.linspace(0, sq.max() * 1.05, 50)
-            ax_sig.plot(xs, prop(xs), "k:", label=r"$k\,\varepsilon^{1/2}$")
-            table.add("b", "fit:k sqrt(eps)", xs, prop(xs), None, 0)
-            table.add("params", "k", 0.0, prop.params["k"], prop.errors["k"], len(eps))
-            table.add("params", "k_reduced_chi2", 0.0, prop.reduced_chi2, None, len(eps))
-        if len(eps) >= 3:
-            line = StraightLine().fit(sq, smean, weights)
-            intercept = list(line.params)[0]
-            table.add("params", "intercept" + suffix, 0.0, line.params[intercept],
-                      line.errors[intercept], len(eps))
+    ax_s.legend(fontsize=7, loc="best", title="P.B.C.", title_fontsize=7)
+    for field, label in (("sigma", r"$\sigma_{\langle Z\rangle}$"),
+                         ("sigma_detrended",
+                          r"$\sigma_{\langle Z\rangle}$ about each run's straight line")):
+        sigma = getattr(result, field)
+        if sigma is None:
+            continue
+        ax_sig.errorbar(sigma.x, sigma.mean, yerr=np.nan_to_num(sigma.err), marker="s",
+                        ls="none", color="k", capsize=2, label=label,
+                        mfc="k" if field == "sigma" else "none")
+        if field == "sigma" and result.law_curve is not None:
+            ax_sig.plot(result.law_curve.x, result.law_curve.mean, "k:",
+                        label=r"$k\,\varepsilon^{1/2}$")
     ax_sig.set_xlim(left=0)
     ax_sig.set_ylim(bottom=0)
     ax_sig.set_xlabel(r"$\varepsilon^{1/2}$")
     ax_sig.set_ylabel(r"$\sigma_{\langle Z\rangle}$")
-    ax_sig.legend(fontsize=8)
-    return P.write_figure(fig, png, table, csv)
+    ax_sig.legend(fontsize=8, loc="best")
+    return fig
+
+
+def draw(campaign, out_dir):
+    """Fig. 3's PNG and CSV in ``out_dir``; returns their paths."""
+    png, csv = P.figure_paths(out_dir, NAME)
+    result = analyse(campaign)
+    P.save_figure(plot(result), png)
+    return png, result.save(csv)

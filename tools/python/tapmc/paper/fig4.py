@@ -53,6 +53,7 @@ of the ramp just beyond it; sem over seeds), ``params``:
 from __future__ import annotations
 
 from collections import defaultdict
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -60,6 +61,7 @@ from tapmc.hysteresis import CRITICAL_SQRT_EPS, BranchData, Hysteresis, RampBran
 
 from . import _plotting as P
 from . import _runs, _steady_state
+from ._results import FigureResult, Series, Value
 from ._steady_state import BC, steady_last
 
 NAME = "fig4"
@@ -241,55 +243,160 @@ def bell_maximum(sq, mean):
     return sq[i], half, mean[i]
 
 
-def draw(campaign, out_dir):
-    png, csv = P.figure_paths(out_dir, NAME)
-    table = P.FigureTable()
-    fig, (ax,) = P.new_figure(1, 1, height=4.0)
+#: the statistics of ``tapmc.hysteresis.RampBranches`` a ramp's params rows hold, in order
+RAMP_STATISTICS = ("down_minus_up1", "down_slope", "up2_minus_down", "down_change")
+
+
+@dataclass(frozen=True)
+class RampResult:
+    """One ramp of the pair (CSV tag ``ramp``, ``low`` or ``near``): its branches averaged
+    over seeds and the statistics of their levels."""
+
+    tag: str
+    #: branch ('up1', 'down', 'up2') -> steady state per level against sqrt(eps)
+    branches: dict
+    #: the highest sqrt(eps) (None: no decreasing level yet, no statistics)
+    top_sqrt_eps: Value = None
+    #: name (RAMP_STATISTICS) -> Value at x = the top; a statistic the ramp cannot give is absent
+    statistics: dict = None
+    #: name (SEED_STATISTICS) -> each seed's value and error (two seeds or more)
+    seeds: dict = None
+    #: each seed's first increase at the steady squares' sqrt(eps) (ramp beyond only)
+    up1_at_steady_seeds: Series = None
+
+    @property
+    def series_prefix(self):
+        return "" if self.tag == "ramp" else f"{self.tag}:"
+
+    def rows(self):
+        out = [("a", self.series_prefix + branch, s) for branch, s in self.branches.items()]
+        if self.top_sqrt_eps is None:
+            return out
+        out.append(("params", f"{self.tag}:top_sqrt_eps", self.top_sqrt_eps))
+        for name, value in self.statistics.items():
+            out.append(("params", f"{self.tag}:{name}", value))
+            if name in self.seeds:
+                out.append(("params", f"{self.tag}:{name}:seeds", self.seeds[name]))
+        if self.up1_at_steady_seeds is not None:
+            out.append(("params", f"{self.tag}:up1_at_steady:seeds", self.up1_at_steady_seeds))
+        return out
+
+    @classmethod
+    def from_rows(cls, rows, tag):
+        prefix = "" if tag == "ramp" else f"{tag}:"
+        branches = {b: rows.take("a", prefix + b) for b in BRANCHES if rows.has("a", prefix + b)}
+        if not branches:
+            return None
+        if not rows.has("params", f"{tag}:top_sqrt_eps"):
+            return cls(tag, branches)
+        top = rows.take_value("params", f"{tag}:top_sqrt_eps")
+        stats = {name: rows.take_value("params", f"{tag}:{name}") for name in RAMP_STATISTICS
+                 if rows.has("params", f"{tag}:{name}")}
+        seeds = {name: rows.take("params", f"{tag}:{name}:seeds") for name in SEED_STATISTICS
+                 if rows.has("params", f"{tag}:{name}:seeds")}
+        return cls(tag, branches, top, stats, seeds,
+                   rows.take_optional("params", f"{tag}:up1_at_steady:seeds"))
+
+
+@dataclass(frozen=True)
+class Fig4Result(FigureResult):
+    """The numbers of Fig. 4 (CSV schema: module text)."""
+
+    #: steady state of the constant-eps runs against sqrt(eps)
+    steady: Series
+    #: the highest square (grid point: :func:`bell_maximum`) and the value there
+    sqrt_eps_max: Value
+    phi_c_max: Value
+    #: tag -> :class:`RampResult` of the ramps the campaign has
+    ramps: dict
+    #: (sqrt eps)* (None in CSVs drawn before it was written)
+    critical_sqrt_eps: Value = None
+
+    def rows(self):
+        out = [("a", "steady", self.steady), ("params", "sqrt_eps_max", self.sqrt_eps_max),
+               ("params", "phi_c_max", self.phi_c_max)]
+        if self.critical_sqrt_eps is not None:
+            out.append(("params", "critical_sqrt_eps", self.critical_sqrt_eps))
+        return out + [row for ramp in self.ramps.values() for row in ramp.rows()]
+
+    @classmethod
+    def from_rows(cls, rows):
+        steady = rows.take("a", "steady")
+        top, phi = rows.take_value("params", "sqrt_eps_max"), rows.take_value("params",
+                                                                              "phi_c_max")
+        critical = (rows.take_value("params", "critical_sqrt_eps")
+                    if rows.has("params", "critical_sqrt_eps") else None)
+        ramps = {tag: RampResult.from_rows(rows, tag) for tag, _, _, _ in RAMPS}
+        return cls(steady, top, phi, {t: r for t, r in ramps.items() if r is not None},
+                   critical)
+
+
+def _ramp_result(campaign, tag, prefix, steady_sqrt_eps):
+    """The :class:`RampResult` of the ramp runs named ``prefix...`` (module text)."""
+    branches = {branch: Series.of(*columns)
+                for branch, columns in hysteresis_branches(campaign, prefix=prefix).items()}
+    found = ramp_branches(campaign, prefix=prefix)
+    if found is None:
+        return RampResult(tag, branches)
+    stats, seeds = found
+    top = stats.top_sqrt_eps
+    per_seed = per_seed_ramp_branches(campaign, prefix=prefix) if seeds >= 2 else []
+    values, seed_rows = {}, {}
+    for name in RAMP_STATISTICS:
+        value = getattr(stats, name)
+        if value is None:
+            continue
+        values[name] = Value(top, value.value, value.sem, seeds)
+        if name in SEED_STATISTICS and len(per_seed) >= 2:
+            seed_rows[name] = Series.of([top] * len(per_seed),
+                                        [getattr(r, name).value for r in per_seed],
+                                        [getattr(r, name).sem for r in per_seed], 1)
+    at_steady = None
+    if tag == "ramp" and seeds >= 2:
+        up1 = branches.get("up1")
+        common = [x for x in steady_sqrt_eps if up1 is not None and np.any(np.isclose(up1.x, x))]
+        found_values, errors = (per_seed_branch_mean(campaign, common, prefix=prefix)
+                                if common else ([], []))
+        if len(found_values) >= 2:
+            at_steady = Series.of([top] * len(found_values), found_values, errors, 1)
+    return RampResult(tag, branches, Value(0.0, top, np.nan, seeds), values, seed_rows,
+                      at_steady)
+
+
+def analyse(campaign):
+    """Fig. 4 from the campaign's constant-eps P.B.C. runs and its ramps."""
     sq, mean, sem, n = steady_states(campaign)
-    ax.errorbar(sq, mean, yerr=np.nan_to_num(sem), marker="s", color="k", ls="none", capsize=2,
-                label="after the run at constant eps")
-    table.add("a", "steady", sq, mean, sem, n)
     sq_max, half, phi_max = bell_maximum(sq, mean)
-    table.add("params", "sqrt_eps_max", 0.0, sq_max, half, len(sq))
-    table.add("params", "phi_c_max", sq_max, phi_max, sem[int(np.nanargmax(mean))], len(sq))
-    table.add("params", "critical_sqrt_eps", 0.0, CRITICAL_SQRT_EPS, None, 1)
+    ramps = {tag: _ramp_result(campaign, tag, prefix, sq) for tag, prefix, _, _ in RAMPS
+             if _runs.select(campaign, prefix, bc=BC)}
+    return Fig4Result(Series.of(sq, mean, sem, n), Value(0.0, sq_max, half, len(sq)),
+                      Value(sq_max, phi_max, sem[int(np.nanargmax(mean))], len(sq)), ramps,
+                      Value(0.0, CRITICAL_SQRT_EPS, np.nan, 1))
+
+
+def plot(result):
+    """The figure of a :class:`Fig4Result` (drawing only)."""
+    fig, (ax,) = P.new_figure(1, 1, height=4.0)
+    steady = result.steady
+    ax.errorbar(steady.x, steady.mean, yerr=np.nan_to_num(steady.err), marker="s", color="k",
+                ls="none", capsize=2, label="after the run at constant eps")
     ax.axvline(CRITICAL_SQRT_EPS, color="0.5", ls=":", lw=1,
                label=r"$(\varepsilon^{1/2})^* = 0.15$")
-    for tag, prefix, style, words in RAMPS:
-        if not _runs.select(campaign, prefix, bc=BC):
-            continue
-        series = "" if tag == "ramp" else f"{tag}:"
-        branches = hysteresis_branches(campaign, prefix=prefix)
-        for branch, (bsq, bmean, bsem, bn) in branches.items():
+    for tag, _, style, words in RAMPS:
+        branches = result.ramps[tag].branches if tag in result.ramps else {}
+        for branch, s in branches.items():
             marker, label = style.get(branch, ("x", branch))
-            ax.errorbar(bsq, bmean, yerr=np.nan_to_num(bsem), marker=marker, mfc="none", ls="-",
-                        lw=0.6, capsize=2, label=f"{words}: {label}")
-            table.add("a", f"{series}{branch}", bsq, bmean, bsem, bn)
-        found = ramp_branches(campaign, prefix=prefix)
-        if found is None:
-            continue
-        stats, seeds = found
-        top = stats.top_sqrt_eps
-        table.add("params", f"{tag}:top_sqrt_eps", 0.0, top, None, seeds)
-        per_seed = per_seed_ramp_branches(campaign, prefix=prefix) if seeds >= 2 else []
-        for name in ("down_minus_up1", "down_slope", "up2_minus_down", "down_change"):
-            value = getattr(stats, name)
-            if value is None:
-                continue
-            table.add("params", f"{tag}:{name}", top, value.value, value.sem, seeds)
-            if name in SEED_STATISTICS and len(per_seed) >= 2:
-                table.add("params", f"{tag}:{name}:seeds", [top] * len(per_seed),
-                          [getattr(r, name).value for r in per_seed],
-                          [getattr(r, name).sem for r in per_seed], 1)
-        if tag == "ramp" and seeds >= 2:
-            up1 = branches.get("up1")
-            common = [x for x in sq if up1 is not None and np.any(np.isclose(up1[0], x))]
-            values, errors = (per_seed_branch_mean(campaign, common, prefix=prefix) if common
-                              else ([], []))
-            if len(values) >= 2:
-                table.add("params", f"{tag}:up1_at_steady:seeds", [top] * len(values), values,
-                          errors, 1)
+            ax.errorbar(s.x, s.mean, yerr=np.nan_to_num(s.err), marker=marker, mfc="none",
+                        ls="-", lw=0.6, capsize=2, label=f"{words}: {label}")
     ax.set_xlabel(r"$\varepsilon^{1/2}$")
     ax.set_ylabel(r"steady state $\langle\Phi^c\rangle$")
-    ax.legend(fontsize=7, title="P.B.C.", title_fontsize=7)
-    return P.write_figure(fig, png, table, csv)
+    ax.legend(fontsize=7, loc="best", title="P.B.C.", title_fontsize=7)
+    return fig
+
+
+def draw(campaign, out_dir):
+    """Fig. 4's PNG and CSV in ``out_dir``; returns their paths."""
+    png, csv = P.figure_paths(out_dir, NAME)
+    result = analyse(campaign)
+    P.save_figure(plot(result), png)
+    return png, result.save(csv)

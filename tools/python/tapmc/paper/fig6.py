@@ -34,21 +34,28 @@ CSV panels: ``a`` (series ``initial``, ``final``, ``fit:initial``, ``fit:final``
 over seeds; with two seeds or more ``final:alpha:seeds``, one row per seed: its alpha and the
 lateral jackknife of its packing; ``final:<eq. 7 parameter>``, ``window_lo``, ``window_hi``,
 ``eps``).
+
+:func:`analyse` returns a :class:`Fig6Result` (its ``save``/``load`` are the CSV), :func:`plot`
+draws one, :func:`draw` does both into a folder.
 """
 
 from __future__ import annotations
 
 from collections import defaultdict
-
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from tapmc.fluctuations import jackknife_error
 from tapmc.laws import PROFILE_WINDOWS, ProfileLaw, profile_gradient
+from tapmc.profiles import vertical_profile_jackknife
+from tapmc.readers import read_ave_time, read_dump
 
 from . import _plotting as P
 from . import _profile_runs, _runs, _steady_state
 from ._profile_runs import BC, nearest_eps_runs, profiles, radius
+from ._results import FigureResult, Series, Value
 
 NAME = "fig6"
 #: upper end of the gradient window as a fraction of the packing height (22R of 28R).
@@ -83,10 +90,6 @@ def _alpha_jackknife(dump, r, centres, window, bc):
     """Error of alpha within the packing after the last tap: the lateral jackknife of its
     profile (``tapmc.profiles.vertical_profile_jackknife``) from the run's dump of that step;
     None when the run has no such dump."""
-    from tapmc.fluctuations import jackknife_error
-    from tapmc.profiles import vertical_profile_jackknife
-    from tapmc.readers import read_dump
-
     if not dump.is_file():
         return None
     frame = next(iter(read_dump(dump).frames))
@@ -111,8 +114,6 @@ def run_alpha(folder, taps, r, window, bc):
     the packing dumped after the last tap (``dump.<taps>.lammpstrj``: the profile's bins share
     spheres, so the straight line's own error is too small); the line's own error when there
     is no dump."""
-    from tapmc.readers import read_ave_time
-
     folder = Path(folder)
     blocks = read_ave_time(folder / "profile_z.dat").blocks
     fit = profile_gradient(blocks[-1, :, 0] / r, blocks[-1, :, 2], window=window, boundary=bc)
@@ -198,40 +199,110 @@ def ramp_alpha(campaign, bc=_steady_state.BC, prefix="ramp_"):
     return out
 
 
-def draw(campaign, out_dir):
-    png, csv = P.figure_paths(out_dir, NAME)
-    bell = alpha_bell(campaign)
-    ramp = ramp_alpha(campaign)
-    try:
-        eps, specs = nearest_eps_runs(campaign)
-    except ValueError:
-        if bell is None and not ramp:
-            raise
-        return _draw_bell_only(bell, ramp, png, csv)
-    window = gradient_window(campaign, specs)
-    zb, im, isem, i_n, fm, fsem, f_n = profiles(campaign, specs, "profile_z.dat")
-    table = P.FigureTable()
-    fig, axes = P.new_figure(2 if bell is not None or ramp else 1, 1, height=4.0)
-    ax = axes[0]
-    ax.plot(zb, im, ":", color="k", label="initial packing")
-    ax.plot(zb, fm, "-", color="C3", label=f"after {int(specs[0].variables['taps'])} taps")
-    ax.fill_between(zb, fm - np.nan_to_num(fsem), fm + np.nan_to_num(fsem), color="C3",
-                    alpha=0.25, lw=0)
-    table.add("a", "initial", zb, im, isem, i_n)
-    table.add("a", "final", zb, fm, fsem, f_n)
+#: the two packings of the top panel: (tag, index of its profile block)
+PACKINGS = (("initial", 0), ("final", -1))
+
+
+@dataclass(frozen=True)
+class VerticalProfiles:
+    """The top panel: the profiles at one eps, their eq. 7 fits and their gradients alpha."""
+
+    eps: float
+    seeds: int
+    initial: Series
+    final: Series
+    #: (lo, hi) of the gradient window, in R
+    window: tuple
+    #: tag ('initial', 'final') -> the eq. 7 curve over z >= the window's bottom; a failed fit
+    #: is absent
+    law_curves: dict
+    #: tag -> eq. 7 parameter name -> Value (n = 1 determined, 0 not)
+    eq7: dict
+    #: tag -> alpha over seeds ('final': one seed, the error within its packing)
+    alpha: dict
+    #: each seed's final alpha and its lateral jackknife (two seeds or more, else None)
+    alpha_seeds: Series = None
+    #: taps of the runs (legend only; not in the CSV, None when loaded)
+    taps: int = None
+
+    def rows(self):
+        out = [("a", "initial", self.initial), ("a", "final", self.final)]
+        for tag, curve in self.law_curves.items():
+            out.append(("a", f"fit:{tag}", curve))
+            out += [("params", f"{tag}:eq7_{name}", v) for name, v in self.eq7[tag].items()]
+        out += [("params", f"{tag}:alpha", v) for tag, v in self.alpha.items()]
+        if self.alpha_seeds is not None:
+            out.append(("params", "final:alpha:seeds", self.alpha_seeds))
+        x, n = self.eps, self.seeds
+        return out + [("params", "window_lo", Value(x, self.window[0], np.nan, n)),
+                      ("params", "window_hi", Value(x, self.window[1], np.nan, n)),
+                      ("params", "eps", Value(x, self.eps, np.nan, n))]
+
+    @classmethod
+    def from_rows(cls, rows):
+        initial, final = rows.take("a", "initial"), rows.take("a", "final")
+        curves, eq7 = {}, {}
+        for tag, _ in PACKINGS:
+            if rows.has("a", f"fit:{tag}"):
+                curves[tag] = rows.take("a", f"fit:{tag}")
+                eq7[tag] = {name: rows.take_value("params", f"{tag}:eq7_{name}")
+                            for name in ProfileLaw.names}
+        alpha = {tag: rows.take_value("params", f"{tag}:alpha") for tag, _ in PACKINGS}
+        seeds = rows.take_optional("params", "final:alpha:seeds")
+        lo, hi = rows.take_value("params", "window_lo"), rows.take_value("params", "window_hi")
+        eps = rows.take_value("params", "eps")
+        return cls(eps.value, eps.n, initial, final, (lo.value, hi.value), curves, eq7, alpha,
+                   seeds)
+
+
+@dataclass(frozen=True)
+class Fig6Result(FigureResult):
+    """The numbers of Fig. 6 (CSV schema: module text)."""
+
+    #: the top panel; None when the campaign has no F.B.C. constant-eps run
+    profiles: VerticalProfiles
+    #: alpha after the taps of the bell's runs against sqrt(eps) (None: no such runs)
+    bell: Series = None
+    #: branch -> alpha at the end of every level of the ramp against sqrt(eps)
+    ramp: dict = None
+
+    def rows(self):
+        out = [] if self.profiles is None else self.profiles.rows()
+        if self.bell is not None:
+            out.append(("b", "bell:alpha", self.bell))
+        return out + [("b", f"ramp:{branch}", s) for branch, s in (self.ramp or {}).items()]
+
+    @classmethod
+    def from_rows(cls, rows):
+        profiles = VerticalProfiles.from_rows(rows) if rows.has("a", "initial") else None
+        ramp = {branch: rows.take("b", f"ramp:{branch}") for branch in _runs.RAMP_BRANCHES
+                if rows.has("b", f"ramp:{branch}")}
+        return cls(profiles, rows.take_optional("b", "bell:alpha"), ramp)
+
+
+def _eq7_fits(zb, means, window, eps):
+    """(curves, parameters) of eq. 7 fitted to each seed-averaged profile of ``means`` (tag ->
+    mean profile); a profile the law cannot fit is left out."""
     law = ProfileLaw(window=window)
-    for tag, mean, color in (("initial", im, "k"), ("final", fm, "C3")):
+    curves, params = {}, {}
+    for tag, mean in means.items():
         try:
             fit = law.fit(zb, mean)
         except (ValueError, RuntimeError):
             continue
         keep = zb >= window[0]
-        ax.plot(zb[keep], fit(zb[keep]), "-", lw=0.6, color=color, alpha=0.7)
-        table.add("a", f"fit:{tag}", zb[keep], fit(zb[keep]), None, 0)
-        for name, value in fit.params.items():
-            table.add("params", f"{tag}:eq7_{name}", eps, value, fit.errors.get(name, np.nan),
-                      int(bool(fit.determined)))
-    for tag, index in (("initial", 0), ("final", -1)):
+        curves[tag] = Series.of(zb[keep], fit(zb[keep]), None, 0)
+        params[tag] = {name: Value(eps, value, fit.errors.get(name, np.nan),
+                                   int(bool(fit.determined)))
+                       for name, value in fit.params.items()}
+    return curves, params
+
+
+def _alphas(campaign, specs, window, eps):
+    """(tag -> alpha over seeds, each seed's final alpha with its jackknife or None): the
+    gradient of each seed's initial and final profile in ``window``."""
+    alpha, seeds = {}, None
+    for tag, index in PACKINGS:
         alphas, withins = [], []
         for spec in specs:
             blocks = _runs.profile(campaign, spec, "profile_z.dat").blocks
@@ -245,45 +316,91 @@ def draw(campaign, out_dir):
         m, s, n = P.seed_stats(alphas)
         if tag == "final" and len(specs) == 1:   # one seed: the error within its packing
             s = [np.nan if withins[0] is None else withins[0]]
-        table.add("params", f"{tag}:alpha", eps, m[0], s[0], n[0])
+        alpha[tag] = Value.of_stats(eps, (m, s, n))
         if tag == "final" and len(specs) >= 2 and all(w is not None for w in withins):
-            table.add("params", "final:alpha:seeds", [eps] * len(specs),
-                      [a[0] for a in alphas], withins, 1)
-    table.add("params", "window_lo", eps, window[0], None, len(specs))
-    table.add("params", "window_hi", eps, window[1], None, len(specs))
-    table.add("params", "eps", eps, eps, None, len(specs))
-    for edge in window:
+            seeds = Series.of([eps] * len(specs), [a[0] for a in alphas], withins, 1)
+    return alpha, seeds
+
+
+def vertical_profiles(campaign):
+    """The top panel (:class:`VerticalProfiles`) at the eps nearest to the paper's 0.1;
+    ValueError when the campaign has no F.B.C. constant-eps run."""
+    eps, specs = nearest_eps_runs(campaign)
+    window = gradient_window(campaign, specs)
+    zb, im, isem, i_n, fm, fsem, f_n = profiles(campaign, specs, "profile_z.dat")
+    curves, eq7 = _eq7_fits(zb, {"initial": im, "final": fm}, window, eps)
+    alpha, seeds = _alphas(campaign, specs, window, eps)
+    return VerticalProfiles(eps, len(specs), Series.of(zb, im, isem, i_n),
+                            Series.of(zb, fm, fsem, f_n), window, curves, eq7, alpha, seeds,
+                            int(specs[0].variables["taps"]))
+
+
+def analyse(campaign):
+    """Fig. 6 from the campaign: the top panel when it has the F.B.C. runs, the bottom one
+    when it has the bell's runs or the ramp."""
+    bell = alpha_bell(campaign)
+    ramp = ramp_alpha(campaign)
+    try:
+        top = vertical_profiles(campaign)
+    except ValueError:
+        if bell is None and not ramp:
+            raise
+        top = None
+    return Fig6Result(top, None if bell is None else Series.of(*bell),
+                      {branch: Series.of(*columns) for branch, columns in ramp.items()})
+
+
+def plot(result):
+    """The figure of a :class:`Fig6Result` (drawing only)."""
+    bottom = result.bell is not None or bool(result.ramp)
+    fig, axes = P.new_figure((result.profiles is not None) + bottom, 1, height=4.0)
+    if result.profiles is not None:
+        _profile_panel(axes[0], result.profiles)
+    if bottom:
+        _bell_panel(axes[-1], result.bell, result.ramp or {})
+    return fig
+
+
+def _profile_panel(ax, top):
+    final = "after the taps" if top.taps is None else f"after {top.taps} taps"
+    ax.plot(top.initial.x, top.initial.mean, ":", color="k", label="initial packing")
+    ax.plot(top.final.x, top.final.mean, "-", color="C3", label=final)
+    err = np.nan_to_num(top.final.err)
+    ax.fill_between(top.final.x, top.final.mean - err, top.final.mean + err, color="C3",
+                    alpha=0.25, lw=0)
+    for tag, color in (("initial", "k"), ("final", "C3")):
+        if tag in top.law_curves:
+            curve = top.law_curves[tag]
+            ax.plot(curve.x, curve.mean, "-", lw=0.6, color=color, alpha=0.7)
+    for edge in top.window:
         ax.axvline(edge, color="0.6", lw=0.6, ls="--")
     ax.set_xlabel("z/R")
     ax.set_ylabel(r"$\Phi$")
     ax.set_ylim(bottom=0)
-    ax.legend(fontsize=8, title=f"F.B.C., eps = {P.fmt_eps(eps)}; dashed: gradient window",
+    ax.legend(fontsize=8, loc="best",
+              title=f"F.B.C., eps = {P.fmt_eps(top.eps)}; dashed: gradient window",
               title_fontsize=7)
-    if bell is not None or ramp:
-        _bell_panel(axes[1], bell, ramp, table)
-    return P.write_figure(fig, png, table, csv)
 
 
-def _bell_panel(ax, bell, ramp, table):
+def _bell_panel(ax, bell, ramp):
     if bell is not None:
-        sq, mean, sem, n = bell
-        table.add("b", "bell:alpha", sq, mean, sem, n)
-        ax.errorbar(sq, mean, yerr=np.nan_to_num(sem), marker="s", ls="-", color="k",
-                    capsize=2, label="after the taps")
-    for branch, (sq, mean, sem, n) in ramp.items():
+        ax.errorbar(bell.x, bell.mean, yerr=np.nan_to_num(bell.err), marker="s", ls="-",
+                    color="k", capsize=2, label="after the taps")
+    for branch, series in ramp.items():
         marker, label = _runs.RAMP_BRANCH_STYLE[branch]
-        table.add("b", f"ramp:{branch}", sq, mean, sem, n)
-        ax.errorbar(sq, mean, yerr=np.nan_to_num(sem), marker=marker, mfc="none", ls="-",
-                    lw=0.8, capsize=2, label=f"ramp: {label}")
+        ax.errorbar(series.x, series.mean, yerr=np.nan_to_num(series.err), marker=marker,
+                    mfc="none", ls="-", lw=0.8, capsize=2, label=f"ramp: {label}")
     ax.axhline(0.0, color="0.6", lw=0.6)
     ax.set_xlabel(r"$\varepsilon^{1/2}$")
     ax.set_ylabel(r"$\alpha$ (P.B.C.)")
     if ramp:
-        ax.legend(fontsize=7, title="open: end of every level of the ramp", title_fontsize=7)
+        ax.legend(fontsize=7, loc="best", title="open: end of every level of the ramp",
+                  title_fontsize=7)
 
 
-def _draw_bell_only(bell, ramp, png, csv):
-    table = P.FigureTable()
-    fig, (ax,) = P.new_figure(1, 1, height=4.0)
-    _bell_panel(ax, bell, ramp, table)
-    return P.write_figure(fig, png, table, csv)
+def draw(campaign, out_dir):
+    """Fig. 6's PNG and CSV in ``out_dir``; returns their paths."""
+    png, csv = P.figure_paths(out_dir, NAME)
+    result = analyse(campaign)
+    P.save_figure(plot(result), png)
+    return png, result.save(csv)

@@ -22,15 +22,23 @@ walls) or ``paper:eps=<eps>`` (the paper's start), x = t; ``params`` (whatever t
 ``eps=<eps>:final_<zone>:seeds``, one row per seed: its window mean and batch-means error);
 ``eps=<eps>:first_tap_lateral``,
 ``eps=<eps>:first_tap_central``: delta Phi after the first tap, over seeds; x = eps).
+
+:func:`analyse` returns a :class:`Fig8Result` (its ``save``/``load`` are the CSV), :func:`plot`
+draws one, :func:`draw` does both into a folder.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
+
+from tapmc.profiles import ProfileIncrease
 
 from . import _plotting as P
 from . import _profile_runs, _runs
 from ._profile_runs import BC
+from ._results import FigureResult, Series, Value
 
 NAME = "fig8"
 
@@ -45,8 +53,6 @@ def increases(campaign, bc=BC, eps_values=None):
     ``eps_values`` (default: the campaign's ``profile_eps`` when its scale is known
     (``tapmc.paper._runs.campaign_scale``), else every eps of the campaign's ``bc``
     constant-eps runs)."""
-    from tapmc.profiles import ProfileIncrease
-
     if eps_values is None:
         scale = _runs.campaign_scale(campaign)
         eps_values = scale.profile_eps if scale is not None else None
@@ -79,33 +85,109 @@ def increases(campaign, bc=BC, eps_values=None):
     return out
 
 
-def draw(campaign, out_dir):
-    png, csv = P.figure_paths(out_dir, NAME)
-    data = increases(campaign)
+#: the zones of the final window means, in the CSV's order
+FINAL_ZONES = ("lateral", "central", "central_minus_lateral")
+#: the zones of the first tap's increase, in the CSV's order
+FIRST_TAP_ZONES = ("lateral", "central")
+
+
+@dataclass(frozen=True)
+class ZoneIncreases:
+    """delta Phi_lateral(t) and delta Phi_central(t) at one eps with their statistics."""
+
+    eps: float
+    lateral: Series
+    central: Series
+    #: zone (FINAL_ZONES) -> mean over the last quarter of the taps
+    final: dict
+    #: zone -> each seed's window mean and its batch-means error (two seeds or more)
+    final_seeds: dict
+    #: zone (FIRST_TAP_ZONES) -> delta Phi after the first tap
+    first_tap: dict
+
+    def rows(self, prefix):
+        label = f"eps={P.fmt_eps(self.eps)}"
+        return ([("a", prefix + label, self.lateral), ("b", prefix + label, self.central)]
+                + [("params", f"{label}:final_{zone}", v) for zone, v in self.final.items()]
+                + [("params", f"{label}:final_{zone}:seeds", v)
+                   for zone, v in self.final_seeds.items()]
+                + [("params", f"{label}:first_tap_{zone}", v)
+                   for zone, v in self.first_tap.items()])
+
+    @classmethod
+    def from_rows(cls, rows, prefix, label):
+        def zones(names, form, take):
+            return {zone: take("params", f"{label}:{form.format(zone)}") for zone in names
+                    if rows.has("params", f"{label}:{form.format(zone)}")}
+
+        return cls(float(label[len("eps="):]), rows.take("a", prefix + label),
+                   rows.take("b", prefix + label),
+                   zones(FINAL_ZONES, "final_{}", rows.take_value),
+                   zones(FINAL_ZONES, "final_{}:seeds", rows.take),
+                   zones(FIRST_TAP_ZONES, "first_tap_{}", rows.take_value))
+
+
+@dataclass(frozen=True)
+class Fig8Result(FigureResult):
+    """The numbers of Fig. 8 (CSV schema: module text)."""
+
+    #: True when the runs start from the paper's packing (series ``paper:eps=...``)
+    paper_start: bool
+    #: eps -> :class:`ZoneIncreases`
+    increases: dict
+
+    def rows(self):
+        prefix = "paper:" if self.paper_start else ""
+        return [row for inc in self.increases.values() for row in inc.rows(prefix)]
+
+    @classmethod
+    def from_rows(cls, rows):
+        series = [s for _, s in rows.keys("a")]
+        paper_start = bool(series) and series[0].startswith("paper:")
+        prefix = "paper:" if paper_start else ""
+        increases = [ZoneIncreases.from_rows(rows, prefix, s[len(prefix):]) for s in series]
+        return cls(paper_start, {inc.eps: inc for inc in increases})
+
+
+def analyse(campaign):
+    """Fig. 8 from the campaign's F.B.C. constant-eps runs (:func:`increases`)."""
     start = _profile_runs.fbc_start(_runs.select(campaign, "const_", bc=BC))
-    prefix = "paper:" if start == "paper" else ""
-    table = P.FigureTable()
+    out = {}
+    for eps, (t, lat, cen, finals) in increases(campaign).items():
+        final = {z: Value.of_stats(eps, finals[z]) for z in FINAL_ZONES}
+        seeds = {z: Series.of([eps] * len(finals[f"{z}:seeds"][0]), *finals[f"{z}:seeds"], 1)
+                 for z in FINAL_ZONES if f"{z}:seeds" in finals}
+        first = {z: Value.of_stats(eps, finals[f"first_tap_{z}"]) for z in FIRST_TAP_ZONES
+                 if f"first_tap_{z}" in finals}
+        out[eps] = ZoneIncreases(eps, Series.of(t, *lat), Series.of(t, *cen), final, seeds,
+                                 first)
+    return Fig8Result(start == "paper", out)
+
+
+def plot(result):
+    """The figure of a :class:`Fig8Result` (drawing only)."""
     fig, (ax_l, ax_c) = P.new_figure(2, 1)
-    for eps, (t, lat, cen, finals) in data.items():
+    for eps, inc in result.increases.items():
         label = f"eps = {P.fmt_eps(eps)}"
-        pos = t > 0
-        line = P.errorbars(ax_l, t[pos], lat[0][pos], lat[1][pos], label=label)
-        P.errorbars(ax_c, t[pos], cen[0][pos], cen[1][pos], label=label, color=line.get_color())
-        table.add("a", f"{prefix}eps={P.fmt_eps(eps)}", t, *lat)
-        table.add("b", f"{prefix}eps={P.fmt_eps(eps)}", t, *cen)
-        for name, stats in finals.items():
-            name = name if name.startswith("first_tap") else f"final_{name}"
-            if name.endswith(":seeds"):       # each seed's window mean and its own error
-                values, errors = stats
-                table.add("params", f"eps={P.fmt_eps(eps)}:{name}", [eps] * len(values),
-                          values, errors, 1)
-                continue
-            m, s, n = stats
-            table.add("params", f"eps={P.fmt_eps(eps)}:{name}", eps, m[0], s[0], n[0])
+        pos = inc.lateral.x > 0
+        line = P.errorbars(ax_l, inc.lateral.x[pos], inc.lateral.mean[pos],
+                           inc.lateral.err[pos], label=label)
+        P.errorbars(ax_c, inc.central.x[pos], inc.central.mean[pos], inc.central.err[pos],
+                    label=label, color=line.get_color())
+    start = "paper" if result.paper_start else "walls"
     for ax, name in ((ax_l, "lateral"), (ax_c, "central")):
         ax.set_xscale("log")
         ax.axhline(0, color="0.7", lw=0.6)
         ax.set_xlabel("t (taps)")
         ax.set_ylabel(rf"$\delta\Phi_{{\rm {name}}}$")
-    ax_l.legend(fontsize=7, title=_profile_runs.START_LABEL[start], title_fontsize=7)
-    return P.write_figure(fig, png, table, csv)
+        ax.legend(fontsize=7, loc="best", title=_profile_runs.START_LABEL[start],
+                  title_fontsize=7)
+    return fig
+
+
+def draw(campaign, out_dir):
+    """Fig. 8's PNG and CSV in ``out_dir``; returns their paths."""
+    png, csv = P.figure_paths(out_dir, NAME)
+    result = analyse(campaign)
+    P.save_figure(plot(result), png)
+    return png, result.save(csv)

@@ -18,16 +18,23 @@ taps (the paper's last 1000 of 4000), whose sem is over seeds, or for one seed (
 batch-means error of that mean (``tapmc.fluctuations.SteadyState``, successive taps being
 correlated); ``phi_c_tap_sd``: the standard deviation of single taps about it (the spread of a
 value read at one tap, as the paper's 60.6 % is)).
+
+:func:`analyse` returns a :class:`Fig9Result` (its ``save``/``load`` are the CSV), :func:`plot`
+draws one, :func:`draw` does both into a folder.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from tapmc.fluctuations import SteadyState
+from tapmc.pores import percus_yevick_p0, read_pores
 
 from . import _plotting as P
 from . import _pores, _runs
+from ._results import FigureResult, Series, Value
 from ._steady_state import steady_last
 
 NAME = "fig9"
@@ -56,8 +63,6 @@ def p0_runs(campaign, bc=BC):
 def p0_curves(campaign, bc=BC):
     """dict 'initial'/'final' -> (sigma, list of P0 per seed, list of phi per seed) and the
     stereological <Phi^c> at both ends, over the runs of :func:`p0_runs`."""
-    from tapmc.pores import read_pores
-
     _, specs = p0_runs(campaign, bc)
     out = {"initial": [None, [], []], "final": [None, [], []]}
     phi_c = {"initial": [], "final": [], "steady": []}
@@ -91,47 +96,98 @@ def steady_phi(states):
     return float(m[0]), float(s[0]), int(n[0]), tap_sd
 
 
-def draw(campaign, out_dir):
-    from tapmc.pores import percus_yevick_p0
+#: the packings of panel a, in the CSV's order
+STATES = ("final", "initial")
 
-    png, csv = P.figure_paths(out_dir, NAME)
+
+@dataclass(frozen=True)
+class Fig9Result(FigureResult):
+    """The numbers of Fig. 9 (CSV schema: module text)."""
+
+    #: state ('final', 'initial') -> P0(sigma) over seeds
+    p0: dict
+    #: state -> the volume fraction the random points see
+    phi: dict
+    #: state -> the stereological <Phi^c> at that dump
+    phi_c: dict
+    #: Percus-Yevick P0 at the final packings' volume fraction
+    percus_yevick: Series
+    max_abs_diff_initial_final: Value
+    max_abs_diff_final_py: Value
+    #: steady <Phi^c> and the spread of single taps about it (None in CSVs drawn before them)
+    phi_c_steady: Value = None
+    phi_c_tap_sd: Value = None
+
+    def rows(self):
+        out = []
+        for state in STATES:
+            out += [("a", state, self.p0[state]), ("params", f"phi_{state}", self.phi[state]),
+                    ("params", f"phi_c_{state}", self.phi_c[state])]
+        for name in ("phi_c_steady", "phi_c_tap_sd"):
+            if getattr(self, name) is not None:
+                out.append(("params", name, getattr(self, name)))
+        return out + [("a", "percus_yevick", self.percus_yevick),
+                      ("params", "max_abs_diff_initial_final", self.max_abs_diff_initial_final),
+                      ("params", "max_abs_diff_final_py", self.max_abs_diff_final_py)]
+
+    @classmethod
+    def from_rows(cls, rows):
+        def each(panel, name):
+            return {state: (rows.take(panel, state) if panel == "a"
+                            else rows.take_value(panel, name.format(state)))
+                    for state in STATES}
+
+        optional = {name: rows.take_value("params", name) for name in ("phi_c_steady",
+                                                                        "phi_c_tap_sd")
+                    if rows.has("params", name)}
+        return cls(each("a", "{}"), each("params", "phi_{}"), each("params", "phi_c_{}"),
+                   rows.take("a", "percus_yevick"),
+                   rows.take_value("params", "max_abs_diff_initial_final"),
+                   rows.take_value("params", "max_abs_diff_final_py"), **optional)
+
+
+def analyse(campaign):
+    """Fig. 9 from the campaign's P.B.C. runs at its scale's ``p0_eps`` (:func:`p0_runs`)."""
     curves, phi_c = p0_curves(campaign)
-    table = P.FigureTable()
-    fig, (ax,) = P.new_figure(1, 1, height=4.0)
-    stats = {}
-    for key in ("final", "initial"):
-        sigma, p0s, phis = curves[key]
-        mean, sem, n = P.seed_stats(p0s)
-        stats[key] = (sigma, mean)
-        pm, ps, pn = P.seed_stats(phis)
-        table.add("a", key, sigma, mean, sem, n)
-        table.add("params", f"phi_{key}", 0.0, pm[0], ps[0], pn[0])
-        cm, cs, cn = P.seed_stats(phi_c[key])
-        table.add("params", f"phi_c_{key}", 0.0, cm[0], cs[0], cn[0])
-        if key == "final":
-            phi_final = pm[0]
-            every = max(len(sigma) // 40, 1)
-            ax.errorbar(sigma[::every], mean[::every], yerr=np.nan_to_num(sem[::every]),
-                        marker="o", mfc="none", ls="none", color="C0", capsize=1,
-                        label=f"after the taps ($\\Phi$ = {100 * pm[0]:.1f} %)")
-        else:
-            ax.plot(sigma, mean, "-", lw=0.8, color="k",
-                    label=f"initial packing ($\\Phi$ = {100 * pm[0]:.1f} %)")
+    p0, phi, phi_c_ends = {}, {}, {}
+    for state in STATES:
+        sigma, p0s, phis = curves[state]
+        p0[state] = Series.of(sigma, *P.seed_stats(p0s))
+        phi[state] = Value.of_stats(0.0, P.seed_stats(phis))
+        phi_c_ends[state] = Value.of_stats(0.0, P.seed_stats(phi_c[state]))
     m, s, n, tap_sd = steady_phi(phi_c["steady"])
-    table.add("params", "phi_c_steady", 0.0, m, s, n)
-    table.add("params", "phi_c_tap_sd", 0.0, tap_sd, None, n)
-    sigma = stats["final"][0]
-    theory = np.asarray(percus_yevick_p0(sigma, phi_final), dtype=float)
-    ax.plot(sigma, theory, "-", lw=2.5, color="C1", alpha=0.7,
-            label=f"Percus-Yevick, $\\Phi$ = {100 * phi_final:.1f} %")
-    table.add("a", "percus_yevick", sigma, theory, None, 0)
-    table.add("params", "max_abs_diff_initial_final", 0.0,
-              float(np.max(np.abs(stats["final"][1] - stats["initial"][1]))), None, 1)
-    table.add("params", "max_abs_diff_final_py", 0.0,
-              float(np.max(np.abs(stats["final"][1] - theory))), None, 1)
+    sigma, final, initial = p0["final"].x, p0["final"].mean, p0["initial"].mean
+    theory = np.asarray(percus_yevick_p0(sigma, phi["final"].value), dtype=float)
+    return Fig9Result(
+        p0, phi, phi_c_ends, Series.of(sigma, theory, None, 0),
+        Value(0.0, float(np.max(np.abs(final - initial)))),
+        Value(0.0, float(np.max(np.abs(final - theory)))),
+        Value(0.0, m, s, n), Value(0.0, tap_sd, np.nan, n))
+
+
+def plot(result):
+    """The figure of a :class:`Fig9Result` (drawing only)."""
+    fig, (ax,) = P.new_figure(1, 1, height=4.0)
+    final, initial, theory = result.p0["final"], result.p0["initial"], result.percus_yevick
+    every = max(len(final.x) // 40, 1)
+    ax.errorbar(final.x[::every], final.mean[::every], yerr=np.nan_to_num(final.err[::every]),
+                marker="o", mfc="none", ls="none", color="C0", capsize=1,
+                label=f"after the taps ($\\Phi$ = {100 * result.phi['final'].value:.1f} %)")
+    ax.plot(initial.x, initial.mean, "-", lw=0.8, color="k",
+            label=f"initial packing ($\\Phi$ = {100 * result.phi['initial'].value:.1f} %)")
+    ax.plot(theory.x, theory.mean, "-", lw=2.5, color="C1", alpha=0.7,
+            label=f"Percus-Yevick, $\\Phi$ = {100 * result.phi['final'].value:.1f} %")
     ax.set_yscale("log")
-    ax.set_ylim(max(1e-5, float(np.nanmin(stats["final"][1][stats["final"][1] > 0])) / 2), 1.2)
+    ax.set_ylim(max(1e-5, float(np.nanmin(final.mean[final.mean > 0])) / 2), 1.2)
     ax.set_xlabel(r"$\sigma = r'/R$")
     ax.set_ylabel(r"$P_0(\sigma)$")
-    ax.legend(fontsize=7, title="P.B.C.", title_fontsize=7)
-    return P.write_figure(fig, png, table, csv)
+    ax.legend(fontsize=7, loc="best", title="P.B.C.", title_fontsize=7)
+    return fig
+
+
+def draw(campaign, out_dir):
+    """Fig. 9's PNG and CSV in ``out_dir``; returns their paths."""
+    png, csv = P.figure_paths(out_dir, NAME)
+    result = analyse(campaign)
+    P.save_figure(plot(result), png)
+    return png, result.save(csv)
