@@ -678,8 +678,8 @@ def test_seed_fits_fits_every_group_of_realizations_and_the_page_shows_it(tmp_pa
             for e in (0.005, 0.02) for r in _surrogate_rows_unique()]})
     claim = {c.id: c for c in claims.load_register()}["eq3-triplet-range"]
     fbc, pbc = claims.eq3_triplet_pattern(data, claim)
-    assert claims.verdict(claim, fbc) == "disagrees", fbc
-    assert pbc.label == "P.B.C. realizations" and claims.verdict(claim, pbc) == "disagrees"
+    assert str(claims.verdict(claim, fbc)) == "disagrees", fbc
+    assert pbc.label == "P.B.C. realizations" and str(claims.verdict(claim, pbc)) == "disagrees"
 
 
 def test_surrogates_of_several_seeds_are_set_against_the_realizations(tmp_path):

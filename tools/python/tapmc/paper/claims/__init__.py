@@ -56,7 +56,8 @@ from .reduced_ramps import (RAMP_LEVELS_DEFAULT_RUN, RAMP_REDUCTION_BRANCHES,
                             ramp_reduction_shift, ramp_tag)
 from .register import ASPECTS, KINDS, PAPER_SCALE, REGISTER, Claim, load_register
 from .registry import STATISTICS, statistic
-from .rules import FIT_P_VALUE, NEAR_FRACTION, RULE_NAMES, XI_CHECK_ROUNDING, verdict
+from .rules import (FIT_P_VALUE, NEAR_FRACTION, RULE_NAMES, RULES, XI_CHECK_ROUNDING, Outcome,
+                    Rule, Verdict, verdict)
 from .scan_tables import (OTHER_READING_TAGS, SCANS, read_scan, scan_files, scan_settings,
                           scan_table)
 from .scans import dmax_intermediate, theta0_optimum

@@ -13,8 +13,8 @@ import numpy as np
 from tapmc.hysteresis import CRITICAL_SQRT_EPS, LEVEL_TOLERANCE
 from tapmc.stats import t_quantile, weighted_line, weighted_polyfit, welch_dof
 
-from .common import (common_x, figure_param, mean_difference, not_in_campaign, paired_levels,
-                     seed_mean, seeds_error, steady_dof)
+from .common import (above, below, common_x, figure_param, mean_difference, not_in_campaign,
+                     paired_levels, seed_mean, seeds_error, steady_dof)
 from .measure import Measure, fmt
 from .registry import statistic
 
@@ -288,13 +288,12 @@ def _ramp_turning_behaviour(data, fig, tag, effect):
     m, s, dof, _ = seed_mean(data, fig, f"{tag}:down_change", "phi_c")
     if not np.isfinite(m) or dof is None:
         return top, None, f"top {top:g}: no error on its decrease"
-    band = t_quantile(dof) * s
     text = f"top {top:g}: decrease minus top level {fmt(m, s)}"
-    if m > band:
+    if above(m, s, dof):
         return top, "compacts", text
-    if m < -band:
+    if below(m, s, dof):
         return top, "decompacts", text
-    if effect is not None and band < effect:
+    if effect is not None and t_quantile(dof) * s < effect:
         return top, "frozen", text
     return top, None, text
 

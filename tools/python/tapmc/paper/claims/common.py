@@ -10,8 +10,19 @@ import math
 import numpy as np
 
 from tapmc.fluctuations import DEFAULT_BATCHES
+from tapmc.stats import beyond
 
 from .measure import Measure, fmt
+
+
+def above(value, err, dof, reference=0.0):
+    """``value`` above ``reference`` beyond t err (tapmc.stats.beyond, one side)."""
+    return value > reference and beyond(value, err, dof, reference)
+
+
+def below(value, err, dof, reference=0.0):
+    """``value`` below ``reference`` beyond t err (tapmc.stats.beyond, one side)."""
+    return value < reference and beyond(value, err, dof, reference)
 
 
 def one_seed_error_text(factor):

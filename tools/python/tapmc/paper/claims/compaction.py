@@ -10,10 +10,10 @@ import math
 import numpy as np
 
 from tapmc.fluctuations import DEFAULT_BATCHES, SteadyState
-from tapmc.stats import mean_dof, t_quantile, weighted_line
+from tapmc.stats import mean_dof, weighted_line
 
-from .common import (WITHIN_RUN_DOF, eps_series, not_in_campaign, one_seed_error_text, per_curve,
-                     steady_dof)
+from .common import (WITHIN_RUN_DOF, above, eps_series, not_in_campaign, one_seed_error_text,
+                     per_curve, steady_dof)
 from .measure import Measure, fmt
 from .registry import statistic
 
@@ -278,8 +278,7 @@ def log_time_slowing(data, claim):
     dofs = [d for d in (d0, d1) if d is not None]
     dof = min(dofs) if len(dofs) == 2 else None
     # both ratios beyond 1 by t sem: the log-time rate grows at both eps, no slowing on ln t
-    speeding = dof is not None and all(r - t_quantile(dof) * s > 1
-                                       for r, s in ((r0, s0), (r1, s1)))
+    speeding = all(above(r, s, dof, reference=1.0) for r, s in ((r0, s0), (r1, s1)))
     return [Measure(r0 - r1, math.hypot(s0, s1), dof,
                     shown=f"late/early rate {fmt(r0, s0)} (eps = {e0:g}) vs {fmt(r1, s1)} "
                           f"(eps = {e1:g})" + (

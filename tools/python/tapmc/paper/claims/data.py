@@ -73,9 +73,12 @@ QUESTION_CSVS = ("initial_packing", "p0_configs", "lateral_first_tap", "early_ta
 
 
 class ReportData:
-    """The inputs of the report: ``figures`` (name -> :class:`FigureData`), the campaign
-    ``summary`` (tapmc.paper.validation.campaign_summary) and ``front``, the rows of the
-    run-time-versus-error front (tapmc.paper.front.read_summary; empty: not measured)."""
+    """The inputs of the report: ``figures`` (name -> :class:`FigureData`, the figure CSVs
+    with the realizations' calibration applied, the one view the statistics read), the
+    campaign ``summary`` (tapmc.paper.validation.campaign_summary) and ``front``, the rows of
+    the run-time-versus-error front (tapmc.paper.front.read_summary; empty: not measured).
+    ``written`` keeps the figure CSVs as the figures wrote them, for the page's measurements
+    that print the CSVs' own numbers and for a copy of the data with some of them changed."""
 
     def __init__(self, summary, figures, front=(), scans=None, questions=None):
         """``scans``: knob (``theta0``, ``dmax``) -> its scans, each the rows of one CSV of
@@ -83,10 +86,20 @@ class ReportData:
         that decide claims a campaign of one run per point cannot (:data:`QUESTION_CSVS`), by
         file stem."""
         self.summary = summary
-        self.figures = figures
         self.front = list(front)
         self.scans = {knob: list((scans or {}).get(knob, ())) for knob in SCANS}
         self.questions = {stem: list(rows) for stem, rows in (questions or {}).items()}
+        self.written = dict(figures)
+        self._figures = None
+
+    @property
+    def figures(self):
+        """name -> the figure's calibrated data (:meth:`_calibrated`), computed once, when
+        the statistics first read them (after the questions' groups of realizations)."""
+        if self._figures is None:
+            self._figures = {name: self._calibrated(name, fig)
+                             for name, fig in self.written.items()}
+        return self._figures
 
     def question(self, stem):
         """The rows of bench/paper_questions.py's ``<stem>.csv`` ([] when not measured)."""
@@ -108,12 +121,14 @@ class ReportData:
                    read_summary(), scans, questions)
 
     def figure(self, name):
-        """Figure ``name``'s data, the error of each of its one-run rows that is a window's
-        own error (:data:`ONE_RUN_WINDOW_ROWS`) times the realizations' factor
-        (:meth:`run_error`)."""
-        fig = self.figures.get(name)
-        if fig is None:
-            return fig
+        """Figure ``name``'s calibrated data (:attr:`figures`), None when not in the report."""
+        return self.figures.get(name)
+
+    def _calibrated(self, name, fig):
+        """Figure ``name``'s data ``fig``, the error of each of its one-run rows that is a
+        window's own error (:data:`ONE_RUN_WINDOW_ROWS`) times the realizations' factor
+        (:meth:`run_error`); Fig. 4's steady squares of several seeds with the groups' error
+        (:meth:`_calibrated_steady_squares`)."""
         for quantity, bc, chosen in ONE_RUN_WINDOW_ROWS.get(name, ()):
             factor = self.run_error(quantity, bc)[0]
             if factor != 1.0:

@@ -13,7 +13,7 @@ from .measure import Measure
 from .reduced_ramps import reduced_ramp_verdict, ramp_reduction_bounds
 from .register import Claim, PAPER_SCALE
 from .registry import STATISTICS
-from .rules import verdict
+from .rules import Outcome, Verdict, undecided, verdict
 
 
 def scale_aspects(summary):
@@ -50,13 +50,13 @@ class Row:
     claim: Claim
     label: str
     measure: Measure
-    verdict: str
+    verdict: Verdict
     missing_scale: tuple
 
     @property
     def outcome(self):
-        """agrees / disagrees / undecided / holds / fails (the verdict's first word)."""
-        return self.verdict.split(" ")[0]
+        """The verdict's :class:`Outcome`."""
+        return self.verdict.outcome
 
 
 def evaluate(claims, data):
@@ -73,16 +73,15 @@ def evaluate(claims, data):
     for claim in claims:
         missing = tuple(a for a in claim.needs if a not in met)
         if not claim.statistic:
-            rows.append(Row(claim, "", Measure(), f"undecided (no statistic: decided by "
-                                                  f"{claim.decided_by})", missing))
+            rows.append(Row(claim, "", Measure(), verdict(claim, Measure()), missing))
             continue
         for m in STATISTICS[claim.statistic](data, claim):
-            text = verdict(claim, m)
+            found = verdict(claim, m)
             lacking = missing + tuple(a for a in m.lacks if a not in missing)
-            if lacking and not text.startswith("undecided") and claim.kind == "model":
-                decided, reach = (reduced_ramp_verdict(claim, m, text, data, bounds, per_level)
+            if lacking and found.outcome != Outcome.UNDECIDED and claim.kind == "model":
+                decided, reach = (reduced_ramp_verdict(claim, m, found, data, bounds, per_level)
                                   if lacking == ("ramp_taps",) else (None, ""))
-                text = decided or (f"undecided (scale: needs the paper's {', '.join(lacking)}; "
-                                   f"at this scale it {text.split(' ')[0]}{reach})")
-            rows.append(Row(claim, m.label, m, text, lacking))
+                found = decided or undecided(f"scale: needs the paper's {', '.join(lacking)}; "
+                                             f"at this scale it {found.outcome}{reach}")
+            rows.append(Row(claim, m.label, m, found, lacking))
     return rows

@@ -1,5 +1,6 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-"""What a statistic measures (:class:`Measure`) and how the report prints a number (:func:`fmt`)."""
+"""What a statistic measures (:class:`Measure`) and how the report prints a number
+(:func:`fmt`)."""
 
 from __future__ import annotations
 

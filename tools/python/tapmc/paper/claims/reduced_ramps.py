@@ -22,7 +22,7 @@ from .data import FigureData, ReportData
 from .measure import fmt
 from .register import PAPER_SCALE
 from .registry import STATISTICS
-from .rules import verdict
+from .rules import Verdict, verdict
 
 
 #: the ramp statistics made of <Phi^c> of the branches, and the branches each reads: what a
@@ -122,13 +122,14 @@ def ramp_reduction_shift(claim, data, bounds):
 
 
 def _turning_ramps_shifted(claim, data, bounds):
-    """The verdict word of ``claim`` (critical_separation) that holds with every ramp's
+    """The outcome of ``claim`` (critical_separation) that holds with every ramp's
     decrease-minus-top change (Fig. 4 params ``<tag>:down_change``) moved anywhere within the
     range its own levels give (branches "down" and "top" of :func:`ramp_reduction_bounds`),
-    with the ramps' (turning sqrt(eps), (low, high)); (None, ramps) when a ramp lacks a range or the word
-    differs between the ends (every combination is tried of each ramp's ends and, inside its
-    range, the shift that brings its change to zero, where its behaviour turns)."""
-    fig = data.figures.get("fig4")
+    with the ramps' (turning sqrt(eps), (low, high)); (None, ramps) when a ramp lacks a range
+    or the outcome differs between the ends (every combination is tried of each ramp's ends
+    and, inside its range, the shift that brings its change to zero, where its behaviour
+    turns)."""
+    fig = data.written.get("fig4")
     if fig is None:
         return None, []
     tags = sorted(s[:-len(":top_sqrt_eps")] for s in fig.series("params")
@@ -143,18 +144,18 @@ def _turning_ramps_shifted(claim, data, bounds):
     changes = [fig.param(f"{tag}:down_change")[0] for tag, _ in ranges]
     candidates = [[lo, hi] + ([-change] if lo < -change < hi else [])
                   for (_, (lo, hi)), change in zip(ranges, changes)]
-    words = set()
+    outcomes = set()
     for ends in itertools.product(*candidates):
         table = dict(fig.table)
         for (tag, _), shift in zip(ranges, ends):
             d = dict(table[("params", f"{tag}:down_change")])
             d["mean"] = np.asarray(d["mean"], float) + shift
             table[("params", f"{tag}:down_change")] = d
-        moved = ReportData(data.summary, dict(data.figures, fig4=FigureData(table)),
+        moved = ReportData(data.summary, dict(data.written, fig4=FigureData(table)),
                            data.front, data.scans, data.questions)
-        words |= {verdict(claim, m).split(" ")[0]
-                  for m in STATISTICS[claim.statistic](moved, claim)}
-    return (words.pop() if len(words) == 1 else None), [(top, r) for top, (_, r)
+        outcomes |= {verdict(claim, m).outcome
+                     for m in STATISTICS[claim.statistic](moved, claim)}
+    return (outcomes.pop() if len(outcomes) == 1 else None), [(top, r) for top, (_, r)
                                                          in zip(tops, ranges)]
 
 
@@ -166,40 +167,39 @@ def _shift_text(shift):
     return f"{fmt(lo)} to {fmt(hi)}"
 
 
-def _robust_to(claim, m, shift, text):
-    """Whether the verdict ``text`` of ``m`` stays the same with the value moved anywhere
-    within ``shift`` = (low, high): tried at both ends and at the points of the interval
+def _robust_to(claim, m, shift, found):
+    """Whether the outcome of the verdict ``found`` of ``m`` stays the same with the value moved
+    anywhere within ``shift`` = (low, high): tried at both ends and at the points of the interval
     nearest zero and the claim's target (a zero or value rule turns there, not at the ends)."""
-    word = text.split(" ")[0]
     lo, hi = m.value + shift[0], m.value + shift[1]
     turns = [0.0] + ([float(claim.target)] if getattr(claim, "target", None) is not None
                      and np.isfinite(claim.target) else [])
     values = [lo, hi] + [min(max(t, lo), hi) for t in turns]
-    return all(verdict(claim, dataclasses.replace(m, value=v)).split(" ")[0] == word
+    return all(verdict(claim, dataclasses.replace(m, value=v)).outcome == found.outcome
                for v in values)
 
 
-def reduced_ramp_verdict(claim, m, text, data, bounds, per_level):
-    """(the verdict ``text`` of a ramp claim measured at fewer taps per level than the
+def reduced_ramp_verdict(claim, m, found, data, bounds, per_level):
+    """(the verdict ``found`` of a ramp claim measured at fewer taps per level than the
     paper's, kept and saying why when the levels' measured shifts (``bounds``: Fig. 4's tag ->
     :func:`ramp_reduction_bounds`) cannot change it, else None; what the shifts could do, for
     the undecided verdict). The critical (sqrt eps)* pattern moves each ramp's change on the
     way down within its own range (:func:`_turning_ramps_shifted`); a measure, its value
     within :func:`ramp_reduction_shift`."""
-    word = text.split(" ")[0]
+    word = found.outcome
     taps = f"at {per_level or 'fewer'} taps per level"
     if claim.statistic == "critical_separation":
-        found, ranges = _turning_ramps_shifted(claim, data, bounds)
-        if found != word:
+        shifted, ranges = _turning_ramps_shifted(claim, data, bounds)
+        if shifted != word:
             return None, ""
         moves = "; ".join(f"top {top:g} by {_shift_text(r)}" for top, r in ranges)
-        return (f"{word} ({taps}; the paper's 4000 would move the changes on the way down, "
-                f"{moves} (ramp-levels: each ramp's decrease and turning level), which leaves "
-                "the verdict)"), ""
+        return Verdict(word, f"{taps}; the paper's 4000 would move the changes on the way "
+                             f"down, {moves} (ramp-levels: each ramp's decrease and turning "
+                             "level), which leaves the verdict"), ""
     shift = ramp_reduction_shift(claim, data, bounds)
     if shift is None:
         return None, ""
-    if not _robust_to(claim, m, shift, text):
+    if not _robust_to(claim, m, shift, found):
         return None, f"; the paper's 4000 could move it by {_shift_text(shift)}"
     tag = RAMP_REDUCTION_TAGS.get(claim.statistic, "ramp")
     levels = "; ".join(f"{b}: level{'s' if len(bounds[tag][b][1]) > 1 else ''} "
@@ -207,5 +207,5 @@ def reduced_ramp_verdict(claim, m, text, data, bounds, per_level):
                        for b in RAMP_REDUCTION_BRANCHES[claim.statistic])
     if tag != "ramp":
         levels = f"{tag} ramp, {levels}"
-    return (f"{word} ({taps}; the paper's 4000 would move it by {_shift_text(shift)} "
-            f"(ramp-levels, {levels}), which leaves the verdict)"), ""
+    return Verdict(word, f"{taps}; the paper's 4000 would move it by {_shift_text(shift)} "
+                         f"(ramp-levels, {levels}), which leaves the verdict"), ""

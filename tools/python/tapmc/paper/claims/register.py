@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .registry import STATISTICS
-from .rules import RULE_NAMES
+from .rules import RULE_NAMES, RULES
 
 
 #: The register, in tapmc/paper beside this package.
@@ -62,9 +62,7 @@ class Claim:
                              f"tapmc.paper.claims.STATISTICS")
         if (self.rule == "none") != (not self.statistic):
             raise ValueError(f"{where}: rule 'none' goes with an empty statistic and only then")
-        required = {"value": ("target",), "range": ("lo", "hi"), "sign": ("sign",),
-                    "check": ("target",)}.get(self.rule, ())
-        for name in required:
+        for name in RULES[self.rule].fields:
             if getattr(self, name) is None:
                 raise ValueError(f"{where}: rule {self.rule!r} needs the field {name!r}")
         if self.sign not in (None, -1, 1):

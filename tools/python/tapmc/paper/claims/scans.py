@@ -6,9 +6,10 @@ from __future__ import annotations
 
 import math
 
-from tapmc.stats import mean_dof, t_quantile
+from tapmc.stats import mean_dof
 
 from ..front import DEFAULT as FRONT_DEFAULT_SETTING
+from .common import above, below
 from .measure import Measure, fmt
 from .register import PAPER_SCALE
 from .registry import statistic
@@ -82,18 +83,20 @@ def _theta0_verdict(rows):
     n = min(r["n"] for r in table)
     if n < 2:
         return Measure(label=label, undecided="one seed per theta0")
-    t = t_quantile(n - 1)
+    dof = n - 1
     label = _scan_label(rows, n)
     shown = "; ".join(f"{r['name']}: {fmt(r['gain'], r['gain_sem'], True)}" for r in table)
-    better = [r for r in table if not r["is_paper"] and r["vs_paper"] > t * r["vs_paper_sem"]]
+    better = [r for r in table
+              if not r["is_paper"] and above(r["vs_paper"], r["vs_paper_sem"], dof)]
     small, large = table[0], table[-1]
     checks = {
         "no theta0 compacts more than pi/4": (not better, bool(better)),
         f"{small['name']} decompacts":
-            (small["gain"] < -t * small["gain_sem"], small["gain"] > t * small["gain_sem"]),
+            (below(small["gain"], small["gain_sem"], dof),
+             above(small["gain"], small["gain_sem"], dof)),
         f"{large['name']} compacts less than pi/4":
-            (large["vs_paper"] < -t * large["vs_paper_sem"],
-             large["vs_paper"] > t * large["vs_paper_sem"]),
+            (below(large["vs_paper"], large["vs_paper_sem"], dof),
+             above(large["vs_paper"], large["vs_paper_sem"], dof)),
     }
     shown += f"; most: {max(table, key=lambda r: r['gain'])['name']}"
     contradicted = [k for k, (_, no) in checks.items() if no]
