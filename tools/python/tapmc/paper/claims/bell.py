@@ -278,14 +278,21 @@ def low_ramp_frozen(data, claim):
 CRITICAL_BRACKET_HALF_WIDTH = 0.05
 
 
-def _ramp_turning_behaviour(data, fig, tag, effect):
-    """(top, behaviour, text) of the ramp ``tag`` of Fig. 4: behaviour ``compacts`` when its
-    decreasing branch rose above its top level beyond t sem (the reversible case), ``frozen``
-    when it stayed within t sem of it and t sem is below ``effect`` (the change of the ramps
-    that compact), ``decompacts`` when it fell below beyond t sem, None otherwise. The error
-    of a mean of several seeds: :func:`seed_mean`."""
+def turning_ramps(fig):
+    """Fig. 4's tags of the ramps that turned and came down (params ``<tag>:top_sqrt_eps``),
+    sorted."""
+    return sorted(s[:-len(":top_sqrt_eps")] for s in fig.series("params")
+                  if s.endswith(":top_sqrt_eps"))
+
+
+def _ramp_turning_behaviour(fig, tag, change, effect):
+    """(top, behaviour, text) of the ramp ``tag`` of Fig. 4 whose decrease minus top level is
+    ``change`` = (value, error, dof): behaviour ``compacts`` when its decreasing branch rose
+    above its top level beyond t sem (the reversible case), ``frozen`` when it stayed within
+    t sem of it and t sem is below ``effect`` (the change of the ramps that compact),
+    ``decompacts`` when it fell below beyond t sem, None otherwise."""
     top = fig.param(f"{tag}:top_sqrt_eps")[0]
-    m, s, dof, _ = seed_mean(data, fig, f"{tag}:down_change", "phi_c")
+    m, s, dof = change
     if not np.isfinite(m) or dof is None:
         return top, None, f"top {top:g}: no error on its decrease"
     text = f"top {top:g}: decrease minus top level {fmt(m, s)}"
@@ -299,7 +306,7 @@ def _ramp_turning_behaviour(data, fig, tag, effect):
 
 
 @statistic("critical_separation")
-def critical_separation(data, claim):
+def critical_separation(data, claim, shifts=None):
     """Section III.B: (sqrt eps)* ~ 0.15 separates a ramp whose decreasing branch compacts on
     the way down (the reversible branch) from one whose decreasing branch stays frozen at its
     top level. From every ramp of Fig. 4 (params ``<tag>:top_sqrt_eps`` and
@@ -308,20 +315,23 @@ def critical_separation(data, claim):
     and lowest compacting turning points lie within :data:`CRITICAL_BRACKET_HALF_WIDTH` of
     0.15; 0 when a ramp turning above 0.15 does not compact on the way down or one turning
     below moves beyond t sem; undecided otherwise (a side without a ramp, a behaviour within
-    the errors, or a bracket too wide to locate 0.15)."""
+    the errors, or a bracket too wide to locate 0.15). ``shifts``: Fig. 4's tag -> a shift
+    of that ramp's change on the way down (a systematic band: :mod:`.reduced_ramps`). The error
+    of a mean of several seeds: :func:`seed_mean`."""
     fig = data.figure("fig4")
-    tags = [] if fig is None else sorted(s[:-len(":top_sqrt_eps")] for s in fig.series("params")
-                                         if s.endswith(":top_sqrt_eps"))
+    tags = [] if fig is None else turning_ramps(fig)
     if not tags:
         return not_in_campaign("no ramp with a decreasing branch")
     critical = fig.param("critical_sqrt_eps")[0]
     critical = critical if np.isfinite(critical) else CRITICAL_SQRT_EPS
     changes = [seed_mean(data, fig, f"{t}:down_change", "phi_c")[:3] for t in tags]
+    if shifts:
+        changes = [(m + shifts[t], s, dof) for t, (m, s, dof) in zip(tags, changes)]
     # the frozen side's bar: the smallest change the compacting ramps surely have
     compacting = [m - t_quantile(dof) * s for m, s, dof in changes
                   if np.isfinite(m) and dof is not None]
     effect = max(compacting) if compacting and max(compacting) > 0 else None
-    ramps = sorted((_ramp_turning_behaviour(data, fig, t, effect) for t in tags),
+    ramps = sorted((_ramp_turning_behaviour(fig, t, c, effect) for t, c in zip(tags, changes)),
                    key=lambda r: r[0])
     words = {"compacts": "compacts on the way down", "frozen": "frozen",
              "decompacts": "decompacts on the way down", None: "within the errors"}

@@ -20,7 +20,10 @@ class Measure:
     ``undecided`` says why the data cannot decide (the value may still be shown); ``lacks``
     the aspects of the paper's scale (:data:`ASPECTS`) this measure's own runs lack, when they
     are not the campaign's (a scan at N = 1024); ``p_value`` is a fit test's own p-value (the
-    F of tapmc.laws.RealizationLawTest), which the fit rule uses instead of the chi-square's."""
+    F of tapmc.laws.RealizationLawTest), which the fit rule uses instead of the chi-square's;
+    ``systematic`` = (low, high) how far a bias the measure does not sample could move the
+    value (a ramp's levels at fewer taps than the paper's: :mod:`.reduced_ramps`), on top of
+    its error: the rule then decides only where its verdict is the same anywhere within it."""
 
     value: float = math.nan
     err: float = math.nan
@@ -33,6 +36,7 @@ class Measure:
     undecided: str | None = None
     lacks: tuple = ()
     p_value: float | None = None
+    systematic: tuple | None = None
 
     def text(self):
         if self.shown is not None:

@@ -16,12 +16,10 @@ from tapmc.stats import t_quantile
 
 from .._runs import RAMP_BRANCHES
 from ..fig4 import RAMPS
-from .bell import ramp_branch
+from .bell import critical_separation, ramp_branch, turning_ramps
 from .common import WITHIN_RUN_DOF
-from .data import FigureData, ReportData
 from .measure import fmt
 from .register import PAPER_SCALE
-from .registry import STATISTICS
 from .rules import Verdict, verdict
 
 
@@ -129,11 +127,10 @@ def _turning_ramps_shifted(claim, data, bounds):
     or the outcome differs between the ends (every combination is tried of each ramp's ends
     and, inside its range, the shift that brings its change to zero, where its behaviour
     turns)."""
-    fig = data.written.get("fig4")
+    fig = data.figure("fig4")
     if fig is None:
         return None, []
-    tags = sorted(s[:-len(":top_sqrt_eps")] for s in fig.series("params")
-                  if s.endswith(":top_sqrt_eps"))
+    tags = turning_ramps(fig)
     ranges = []
     for tag in tags:
         b = bounds.get(tag, {})
@@ -146,15 +143,9 @@ def _turning_ramps_shifted(claim, data, bounds):
                   for (_, (lo, hi)), change in zip(ranges, changes)]
     outcomes = set()
     for ends in itertools.product(*candidates):
-        table = dict(fig.table)
-        for (tag, _), shift in zip(ranges, ends):
-            d = dict(table[("params", f"{tag}:down_change")])
-            d["mean"] = np.asarray(d["mean"], float) + shift
-            table[("params", f"{tag}:down_change")] = d
-        moved = ReportData(data.summary, dict(data.written, fig4=FigureData(table)),
-                           data.front, data.scans, data.questions)
+        shifts = {tag: shift for (tag, _), shift in zip(ranges, ends)}
         outcomes |= {verdict(claim, m).outcome
-                     for m in STATISTICS[claim.statistic](moved, claim)}
+                     for m in critical_separation(data, claim, shifts)}
     return (outcomes.pop() if len(outcomes) == 1 else None), [(top, r) for top, (_, r)
                                                          in zip(tops, ranges)]
 
@@ -165,18 +156,6 @@ def _shift_text(shift):
     if math.isclose(lo, -hi):
         return f"at most {fmt(hi)}"
     return f"{fmt(lo)} to {fmt(hi)}"
-
-
-def _robust_to(claim, m, shift, found):
-    """Whether the outcome of the verdict ``found`` of ``m`` stays the same with the value moved
-    anywhere within ``shift`` = (low, high): tried at both ends and at the points of the interval
-    nearest zero and the claim's target (a zero or value rule turns there, not at the ends)."""
-    lo, hi = m.value + shift[0], m.value + shift[1]
-    turns = [0.0] + ([float(claim.target)] if getattr(claim, "target", None) is not None
-                     and np.isfinite(claim.target) else [])
-    values = [lo, hi] + [min(max(t, lo), hi) for t in turns]
-    return all(verdict(claim, dataclasses.replace(m, value=v)).outcome == found.outcome
-               for v in values)
 
 
 def reduced_ramp_verdict(claim, m, found, data, bounds, per_level):
@@ -199,7 +178,8 @@ def reduced_ramp_verdict(claim, m, found, data, bounds, per_level):
     shift = ramp_reduction_shift(claim, data, bounds)
     if shift is None:
         return None, ""
-    if not _robust_to(claim, m, shift, found):
+    # the same rule, with the shift as a systematic band on the measure
+    if verdict(claim, dataclasses.replace(m, systematic=shift)).outcome != word:
         return None, f"; the paper's 4000 could move it by {_shift_text(shift)}"
     tag = RAMP_REDUCTION_TAGS.get(claim.statistic, "ramp")
     levels = "; ".join(f"{b}: level{'s' if len(bounds[tag][b][1]) > 1 else ''} "

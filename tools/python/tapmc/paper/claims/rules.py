@@ -11,6 +11,7 @@ The rules (their text as the report prints it):
 
 from __future__ import annotations
 
+import dataclasses
 import enum
 from dataclasses import dataclass
 
@@ -213,7 +214,9 @@ def _decidable(m):
 
 
 def verdict(claim, m):
-    """The :class:`Verdict` of measure ``m`` under the claim's rule (:data:`RULES`)."""
+    """The :class:`Verdict` of measure ``m`` under the claim's rule (:data:`RULES`); with a
+    systematic band on the measure, undecided unless the rule's outcome is the same anywhere
+    within it (:func:`_same_within_systematic`)."""
     rule = RULES[claim.rule]
     if isinstance(rule, NoRule):
         return rule.decide(claim, m)
@@ -223,4 +226,20 @@ def verdict(claim, m):
         return undecided("not measured")
     if rule.needs_error and not _decidable(m):
         return undecided("no uncertainty: one realization")
-    return rule.decide(claim, m)
+    found = rule.decide(claim, m)
+    if m.systematic is None or _same_within_systematic(rule, claim, m, found.outcome):
+        return found
+    return undecided(f"a systematic shift of {fmt(m.systematic[0])} to {fmt(m.systematic[1])} "
+                     "could change it")
+
+
+def _same_within_systematic(rule, claim, m, outcome):
+    """Whether ``rule`` gives ``outcome`` with the value of ``m`` moved anywhere within its
+    systematic band (low, high): tried at both ends and at the points of the band nearest
+    zero and the claim's target (a zero, sign or value rule turns there, not at the ends)."""
+    lo, hi = m.value + m.systematic[0], m.value + m.systematic[1]
+    target = getattr(claim, "target", None)
+    turns = [0.0] + ([float(target)] if target is not None and np.isfinite(target) else [])
+    values = [lo, hi] + [min(max(t, lo), hi) for t in turns]
+    return all(rule.decide(claim, dataclasses.replace(m, value=v, systematic=None)).outcome
+               == outcome for v in values)
