@@ -9,7 +9,7 @@ from pathlib import Path
 SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", Path(__file__).resolve().parents[2]))
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
 
-from tapmc.paper import claims, questions  # noqa: E402
+from tapmc.paper import _plotting, claims, questions  # noqa: E402
 
 
 def first_tap_csv(folder, drop_loose, drop_tight):
@@ -229,7 +229,7 @@ def _fig10(small, large, power=2.0, xi_t_fit=(0.2166, 0.002)):
     import numpy as np
 
     xi = np.linspace(0.005, 0.995, 100)
-    curve = np.where(xi > claims.P.XI_T, np.abs(xi - claims.P.XI_T) ** power, 0.0) * 3.0
+    curve = np.where(xi > _plotting.XI_T, np.abs(xi - _plotting.XI_T) ** power, 0.0) * 3.0
     table = {("a", "t=0"): {"x": list(xi), "mean": list(curve), "sem": [0.003] * 100,
                             "n": [1] * 100},
              ("a", "t=4000"): {"x": list(xi), "mean": list(curve), "sem": [0.003] * 100,
@@ -678,8 +678,8 @@ def test_seed_fits_fits_every_group_of_realizations_and_the_page_shows_it(tmp_pa
             for e in (0.005, 0.02) for r in _surrogate_rows_unique()]})
     claim = {c.id: c for c in claims.load_register()}["eq3-triplet-range"]
     fbc, pbc = claims.eq3_triplet_pattern(data, claim)
-    assert claims.verdict(claim, fbc) == "disagrees", fbc
-    assert pbc.label == "P.B.C. realizations" and claims.verdict(claim, pbc) == "disagrees"
+    assert str(claims.verdict(claim, fbc)) == "disagrees", fbc
+    assert pbc.label == "P.B.C. realizations" and str(claims.verdict(claim, pbc)) == "disagrees"
 
 
 def test_surrogates_of_several_seeds_are_set_against_the_realizations(tmp_path):

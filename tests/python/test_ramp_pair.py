@@ -303,7 +303,7 @@ def test_fig4_csv_of_the_pair(tmp_path):
     data = claims.ReportData({}, {"fig4": claims.FigureData.read(path)})
     claim = {c.id: c for c in claims.load_register()}["critical-sqrt-eps"]
     (m,) = claims.critical_separation(data, claim)
-    assert claims.verdict(claim, m) == "agrees" and "(0.1, 0.2]" in m.shown
+    assert str(claims.verdict(claim, m)) == "agrees" and "(0.1, 0.2]" in m.shown
 
 
 def test_plan_tier4_completes_ageing_then_the_ramp_pair_and_tiers_1_to_3_unchanged():
@@ -390,8 +390,8 @@ def test_one_seed_ramp_branches_carry_the_levels_errors_and_decide(tmp_path):
     data = claims.ReportData({}, {"fig4": table})
     BY_ID = {c.id: c for c in claims.load_register()}
     (m,) = claims.ramp_down_minus_up(data, BY_ID["reversible-above"])
-    assert m.dof == claims.WITHIN_RUN_DOF and claims.verdict(BY_ID["reversible-above"],
-                                                             m) == "agrees"
+    assert m.dof == claims.WITHIN_RUN_DOF and str(claims.verdict(BY_ID["reversible-above"],
+                                                             m)) == "agrees"
 
 
 def test_a_resumed_ramps_restart_step_row_takes_its_levels_sqrt_eps(tmp_path):

@@ -1174,7 +1174,7 @@ def _scan(path, knob):
     measures = STATISTICS[statistic](ReportData({}, {}, (), {knob: [rows]}), claim)
     below = any(m.lacks for m in measures)
     text = (f"Verdict of the claim (rule {claim.rule}, t sem with {table[0]['n']} seeds): "
-            + "; ".join(verdict(claim, m) for m in measures)
+            + "; ".join(str(verdict(claim, m)) for m in measures)
             + (f" at N = {int(float(rows[0]['N']))}, below the paper's N (the claims' table "
                "counts it undecided there)" if below else "") + ".")
     # does the value that compacts most simply redeposit longer than the paper's?

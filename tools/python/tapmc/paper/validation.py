@@ -33,30 +33,9 @@ from . import _runs
 from . import claims, questions
 from .claims import fmt
 
-#: the text of each rule of tapmc.paper.claims, as the report prints it.
-RULES = {
-    "value": "agrees when |TAPMC - paper| <= t sem + half a unit of the paper's last printed "
-             "digit, disagrees otherwise",
-    "range": "agrees when TAPMC ± t sem meets the paper's range, disagrees otherwise",
-    "sign": "agrees when the value has the paper's sign beyond t sem, disagrees when it has "
-            "the other sign beyond t sem, undecided in between",
-    "zero": "disagrees when |value| > t sem; agrees when |value| <= t sem and t sem is below "
-            "the effect the claim denies (given in the verdict when it is not); undecided "
-            "otherwise",
-    "near": "for the paper's 'nearly' or 'approximately the same': agrees when |value| + t "
-            f"sem is within {claims.NEAR_FRACTION:g} times the effect the claim is measured "
-            f"against (given in the tolerance), disagrees when |value| - t sem exceeds "
-            "it, undecided in between",
-    "fit": f"agrees when the fit's test has a p-value of at least {claims.FIT_P_VALUE:g} "
-           "(its chi-square; across realizations, Hotelling's T^2 of the law over log-spaced "
-           "bins of taps with their covariance between realizations), disagrees otherwise",
-    "pattern": "agrees when the pattern over several measures (stated in the TAPMC column, "
-               "each decided by its own uncertainty: the fits' intervals or t sem) is the "
-               "paper's, disagrees when a measure contradicts it beyond its uncertainty, "
-               "undecided otherwise",
-    "check": "a check of the analysis tools (holds / fails), not counted as a reproduction",
-    "none": "no statistic yet: undecided, with the runs that would decide the claim",
-}
+#: the text of each rule of tapmc.paper.claims, as the report prints it (each rule's own
+#: text: tapmc.paper.claims.rules).
+RULES = {name: rule.text for name, rule in claims.RULES.items()}
 
 FIG_DIR = "validation"
 
@@ -266,7 +245,7 @@ def _rows_and_notes(summary, files):
         text = note(fig) if fig is not None else None
         if text:
             notes[name] = text
-    return rows, notes, data.figures, data.run_error_note()
+    return rows, notes, data.written, data.run_error_note()
 
 
 CAPTIONS = {
@@ -308,7 +287,7 @@ def _rst_table(rows, run_note=""):
         scale = "no: " + ", ".join(row.missing_scale) if row.missing_scale else "yes"
         lines += [f"   * - {_where(c)}", f"     - {claim}", f"     - {c.paper}",
                   f"     - {row.measure.text()}", f"     - {scale}",
-                  f"     - {_escape_bars(row.verdict)} [{c.rule}]"]
+                  f"     - {_escape_bars(str(row.verdict))} [{c.rule}]"]
     lines += ["", "Rules of the verdicts (t: the two-sided 95 % quantile of Student's t with "
               "the measure's degrees of freedom, seeds - 1 for a mean over seeds):", ""]
     used = []

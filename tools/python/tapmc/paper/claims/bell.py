@@ -1,0 +1,374 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""Statistics of the bell and the ramps (section III.B, Fig. 4; alpha's bell of Fig. 6): the
+steady states' maximum and sides, the ramp's branches against each other and against the
+steady states, the frozen low ramp and the critical (sqrt eps)* where the ramp's behaviour
+turns."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from tapmc.hysteresis import CRITICAL_SQRT_EPS, LEVEL_TOLERANCE
+from tapmc.stats import t_quantile, weighted_line, weighted_polyfit, welch_dof
+
+from .common import (above, below, common_x, figure_param, mean_difference, not_in_campaign,
+                     paired_levels, seed_mean, seeds_error, steady_dof)
+from .measure import Measure, fmt
+from .registry import statistic
+
+
+def _steady(data):
+    """(x, mean, sem, n, index of the largest) of Fig. 4's steady states, None when fewer
+    than three."""
+    fig = data.figure("fig4")
+    steady = None if fig is None else fig.get("a", "steady")
+    if steady is None or len(steady[0]) < 3:
+        return None
+    return (*steady, int(np.nanargmax(steady[1])))
+
+
+@statistic("bell_maximum")
+def bell_maximum(data, claim):
+    """Vertex of a weighted parabola through the largest steady state and its neighbours."""
+    steady = _steady(data)
+    if steady is None:
+        return not_in_campaign("fewer than three steady states")
+    x, y, s, n, i = steady
+    lo, hi = max(0, i - 2), min(len(x), i + 3)
+    if hi - lo < 3:
+        lo, hi = max(0, hi - 3), max(hi, 3)
+    xs, ys, ss = x[lo:hi], y[lo:hi], s[lo:hi]
+    if len(xs) < 4:
+        # three points always fit a parabola exactly: its vertex then only restates which
+        # point is largest, wherever the true maximum lies between the neighbours
+        return [Measure(x[i], undecided=f"{len(x)} steady states: a parabola through three "
+                                        "points is not tested by any",
+                        shown=f"largest at sqrt(eps) = {x[i]:g}")]
+    if not np.all(np.isfinite(ss)) or np.any(ss <= 0):
+        return [Measure(x[i], undecided="one realization: the steady states have no error bars",
+                        shown=f"largest at sqrt(eps) = {x[i]:g}")]
+    (a0, b, c), cov, _ = weighted_polyfit(xs, ys, ss, 2)
+    if not c < 0:
+        return [Measure(x[i], undecided="the points around the largest are not concave",
+                        shown=f"largest at sqrt(eps) = {x[i]:g}")]
+    vertex = -b / (2 * c)
+    grad = np.array([0.0, -1 / (2 * c), b / (2 * c**2)])
+    err = float(math.sqrt(grad @ cov @ grad))
+    return [Measure(float(vertex), err, len(xs) - 3,
+                    shown=f"{fmt(vertex, err)} (parabola through {len(xs)} points)")]
+
+
+def _side_slope(x, y, s, i, side, what):
+    """Weighted straight line through the points of a bell below (``side`` "below") or above
+    its largest point i, largest included."""
+    pick = slice(0, i + 1) if side == "below" else slice(i, len(x))
+    if len(x[pick]) < 3:
+        return Measure(undecided=f"fewer than three {what} {side} the largest (at sqrt(eps) = "
+                                 f"{x[i]:g})", label=f"{side} the largest")
+    slope, err, dof = weighted_line(x[pick], y[pick], s[pick])
+    if not np.isfinite(slope):
+        return Measure(undecided=f"no error bars on the {what}", label=f"{side} the largest")
+    return Measure(slope, err, dof, shown=f"slope {fmt(slope, err)}", label=f"{side} the largest",
+                   sign=1 if side == "below" else -1)
+
+
+@statistic("bell_side_slope")
+def bell_side_slope(data, claim):
+    steady = _steady(data)
+    if steady is None:
+        return not_in_campaign("fewer than three steady states")
+    x, y, s, n, i = steady
+    m = _side_slope(x, y, s, i, claim.params.get("side"), "steady states")
+    m.label = ""
+    return [m]
+
+
+@statistic("alpha_bell")
+def alpha_bell(data, claim):
+    """Both sides of alpha against sqrt(eps) (Fig. 6 bottom): rising below its largest value,
+    falling above it, as the steady states' bell; the weaker side is the measure (a bell needs
+    both)."""
+    fig = data.figure("fig6")
+    bell = None if fig is None else fig.get("b", "bell:alpha")
+    if bell is None or len(bell[0]) < 3:
+        return not_in_campaign("alpha of fewer than three runs of the bell")
+    x, y, s, n = bell
+    i = int(np.nanargmax(y))
+    sides = [_side_slope(x, y, s, i, side, "alphas") for side in ("below", "above")]
+    own = next((m for m in sides if m.undecided), None)
+    if own is None:
+        # the side that supports the bell less (its slope in units of its error, signed so
+        # that the bell's direction is positive) decides
+        weaker = min(sides, key=lambda m: m.sign * m.value / m.err)
+        own = Measure(weaker.sign * weaker.value, weaker.err, weaker.dof,
+                      shown="; ".join(f"{m.label}: {m.text()}" for m in sides))
+    own.label = ""
+    steady = _alpha_above_steady_maximum(data, x, y, s)
+    if steady is None:
+        return [own]
+    own.label = "about its own largest value"
+    return [own, steady]
+
+
+#: the row of the gradient's bell read as "the same kind of bell as the steady states"
+ALPHA_ABOVE_STEADY = "above the steady states' maximum"
+
+
+def _alpha_above_steady_maximum(data, x, y, s):
+    """The paper's "approximately the same kind of bell shape dependence as the other
+    steady-state values" read literally: above the steady states' maximum (Fig. 4's parabola
+    vertex, or its largest point when that is undecided) alpha falls as they do. A weighted
+    straight line through the alphas there, its slope negated (falling is positive). None
+    without Fig. 4."""
+    if _steady(data) is None:
+        return None
+    top = float(bell_maximum(data, None)[0].value)
+    pick = x >= top
+    if pick.sum() < 3:
+        return Measure(undecided=f"fewer than three alphas above the steady states' maximum "
+                                 f"(sqrt(eps) = {top:.3g})", label=ALPHA_ABOVE_STEADY)
+    slope, err, dof = weighted_line(x[pick], y[pick], s[pick])
+    if not np.isfinite(slope):
+        return Measure(undecided="no error bars on the alphas", label=ALPHA_ABOVE_STEADY)
+    return Measure(-slope, err, dof, label=ALPHA_ABOVE_STEADY,
+                   shown=f"slope {fmt(slope, err)} through the {int(pick.sum())} alphas at "
+                         f"sqrt(eps) >= {top:.3g} (Fig. 4's maximum)")
+
+
+@statistic("alpha_ramp_hysteresis")
+def alpha_ramp_hysteresis(data, claim):
+    """alpha on the decreasing branch of the ramp minus on the first increase, at their
+    common sqrt(eps) (Fig. 6 bottom panel, open symbols). One profile per level, whose
+    straight line's own error is too small (its bins share spheres): the error is the scatter
+    of the k level differences (t with k - 1 dof), which also holds any trend of the
+    difference with sqrt(eps). The effect a hysteresis would have is alpha's variation along
+    the first increase (<Phi^c>'s gap is as large as its own variation there); the same
+    ratio of <Phi^c> (Fig. 4) is shown beside it."""
+    fig = data.figure("fig6")
+    up = None if fig is None else fig.get("b", "ramp:up1")
+    down = None if fig is None else fig.get("b", "ramp:down")
+    if up is None or down is None:
+        return not_in_campaign("no ramp profiles on branches 'up1' and 'down'")
+    diffs = paired_levels(down, up)
+    if len(diffs) < 3:
+        return [Measure(undecided=f"{len(diffs)} sqrt(eps) common to the first increase and "
+                                  "the decrease; the scatter needs three")]
+    value = float(np.mean(diffs))
+    err = float(np.std(diffs, ddof=1) / math.sqrt(len(diffs)))
+    variation = float(np.ptp(up[1]))
+    shown = (f"{fmt(value, err)} (decrease minus first increase, mean of {len(diffs)} common "
+             f"sqrt(eps); error from their scatter): {abs(value) / variation:.0%} of alpha's "
+             f"variation along the first increase ({fmt(variation)})")
+    phi_up, phi_down = ramp_branch(data, "up1"), ramp_branch(data, "down")
+    if phi_up is not None and phi_down is not None:
+        gap = paired_levels(phi_down, phi_up)
+        if len(gap) and np.ptp(phi_up[1]) > 0:
+            shown += (f"; <Phi^c>: {abs(float(np.mean(gap))) / float(np.ptp(phi_up[1])):.0%} "
+                      "of its own")
+    return [Measure(value, err, len(diffs) - 1, effect=variation, shown=shown)]
+
+
+def ramp_branch(data, name):
+    fig = data.figure("fig4")
+    return None if fig is None else fig.get("a", name)
+
+
+def hysteresis_gap(data):
+    """Mean of the decreasing branch minus the first increase: the effect the "nearly the
+    same" claims of the ramp are measured against."""
+    down, up = ramp_branch(data, "down"), ramp_branch(data, "up1")
+    if down is None or up is None:
+        return None
+    d = mean_difference(down, up)
+    return None if d is None else d[0]
+
+
+def _branch_difference(data, a, b, effect=None, statistic=None):
+    """Branch ``a`` minus branch ``b`` of Fig. 4's ramp beyond (sqrt eps)*, mean over their
+    common sqrt(eps). With several seeds of the ramp and their own values of that difference
+    (Fig. 4 params ``ramp:<statistic>:seeds``) the error of the mean is judged with the
+    campaign's groups of realizations (:func:`seed_mean`)."""
+    ca, cb = ramp_branch(data, a), ramp_branch(data, b)
+    if ca is None or cb is None:
+        return not_in_campaign(f"no ramp branches {a!r} and {b!r}")
+    d = mean_difference(ca, cb)
+    if d is None:
+        return [Measure(undecided=f"the branches {a!r} and {b!r} share no sqrt(eps)")]
+    mean, err, dof, k = d
+    how = ""
+    if statistic is not None and dof is not None and dof >= 1:
+        fig = data.figure("fig4")
+        if fig.get("params", f"ramp:{statistic}:seeds") is not None:
+            _, err, dof, how = seed_mean(data, fig, f"ramp:{statistic}", "phi_c")
+    if not np.isfinite(err):
+        return [Measure(mean, undecided="one realization: the branches have no error bars")]
+    return [Measure(mean, err, dof, effect=effect,
+                    shown=f"{fmt(mean, err)} (mean of {k} common sqrt(eps)"
+                          + (f"; {how})" if how else ")"))]
+
+
+@statistic("ramp_up_minus_steady")
+def ramp_up_minus_steady(data, claim):
+    """The ramp's first increase minus the steady squares, mean over their common sqrt(eps).
+    With several seeds of the ramp and each seed's mean of the first increase there (Fig. 4
+    params ``ramp:up1_at_steady:seeds``), the error has two independent parts: the seeds'
+    mean, judged with the campaign's groups of realizations (:func:`seed_mean`'s pooling),
+    and the squares' own errors (other runs, one per sqrt(eps), shared by every seed),
+    combined with the Welch-Satterthwaite dof. Otherwise the curves' errors
+    (:func:`_branch_difference`)."""
+    effect = hysteresis_gap(data)
+    fig = data.figure("fig4")
+    up, steady = ramp_branch(data, "up1"), ramp_branch(data, "steady")
+    seeds = None if fig is None else fig.get("params", "ramp:up1_at_steady:seeds")
+    pairs = [] if up is None or steady is None else common_x(up, steady)
+    if seeds is None or len(seeds[1]) < 2 or not pairs:
+        return _branch_difference(data, "up1", "steady", effect)
+    values, errors = seeds[1], seeds[2]
+    k = len(pairs)
+    squares = np.array([steady[1][j] for _, j in pairs])
+    square_sems = np.array([steady[2][j] for _, j in pairs])
+    square_dofs = [steady_dof(int(steady[3][j]), steady[2][j]) for _, j in pairs]
+    if not np.all(np.isfinite(square_sems)) or None in square_dofs:
+        return _branch_difference(data, "up1", "steady", effect)
+    seed_err, seed_dof, how, _ = seeds_error(data, values, errors, "phi_c")
+    how = how or f"{len(values)} seeds: the spread of their own values"
+    value = float(np.mean(values) - np.mean(squares))
+    square_parts = square_sems ** 2 / k ** 2
+    err = math.sqrt(seed_err ** 2 + float(np.sum(square_parts)))
+    dof = welch_dof(np.r_[seed_err ** 2, square_parts], [seed_dof, *square_dofs])
+    return [Measure(value, err, dof, effect=effect,
+                    shown=f"{fmt(value, err)} (mean of {k} common sqrt(eps); {how}; the "
+                          f"squares' own errors added, {dof} dof)")]
+
+
+@statistic("ramp_down_minus_up")
+def ramp_down_minus_up(data, claim):
+    return _branch_difference(data, "down", "up1", statistic="down_minus_up1")
+
+
+@statistic("ramp_up2_minus_down")
+def ramp_up2_minus_down(data, claim):
+    return _branch_difference(data, "up2", "down", hysteresis_gap(data),
+                              statistic="up2_minus_down")
+
+
+@statistic("low_ramp_frozen")
+def low_ramp_frozen(data, claim):
+    """The ramp that stayed below (sqrt eps)*: its decreasing branch minus its top level
+    (Fig. 4 params ``low:down_change``), against the same change on the ramp that went beyond
+    it (``ramp:down_change``), the effect "nearly frozen" denies. With several seeds the error
+    of their mean is judged with the campaign's groups of realizations (:func:`seed_mean`)."""
+    found, missing = figure_param(data, "fig4", "low:down_change",
+                                   "no ramp that stays below (sqrt eps)*")
+    if missing:
+        return missing
+    fig = found[0]
+    m, s, dof, how = seed_mean(data, fig, "low:down_change", "phi_c")
+    effect = fig.param("ramp:down_change")[0]
+    return [Measure(m, s, dof, effect=effect if np.isfinite(effect) else None,
+                    shown=f"{fmt(m, s)} (decrease minus top level; the ramp beyond (sqrt eps)* "
+                          f"changes by {fmt(effect)}" + (f"; {how})" if how else ")"))]
+
+
+#: The paper's "(sqrt eps)* ~ 0.15": a separation located within two of its ramp steps
+#: (dsqrt = 0.025) of 0.15 agrees; a bracket of turning points wider than that cannot tell
+#: 0.15 from its neighbours.
+CRITICAL_BRACKET_HALF_WIDTH = 0.05
+
+
+def turning_ramps(fig):
+    """Fig. 4's tags of the ramps that turned and came down (params ``<tag>:top_sqrt_eps``),
+    sorted."""
+    return sorted(s[:-len(":top_sqrt_eps")] for s in fig.series("params")
+                  if s.endswith(":top_sqrt_eps"))
+
+
+def _ramp_turning_behaviour(fig, tag, change, effect):
+    """(top, behaviour, text) of the ramp ``tag`` of Fig. 4 whose decrease minus top level is
+    ``change`` = (value, error, dof): behaviour ``compacts`` when its decreasing branch rose
+    above its top level beyond t sem (the reversible case), ``frozen`` when it stayed within
+    t sem of it and t sem is below ``effect`` (the change of the ramps that compact),
+    ``decompacts`` when it fell below beyond t sem, None otherwise."""
+    top = fig.param(f"{tag}:top_sqrt_eps")[0]
+    m, s, dof = change
+    if not np.isfinite(m) or dof is None:
+        return top, None, f"top {top:g}: no error on its decrease"
+    text = f"top {top:g}: decrease minus top level {fmt(m, s)}"
+    if above(m, s, dof):
+        return top, "compacts", text
+    if below(m, s, dof):
+        return top, "decompacts", text
+    if effect is not None and t_quantile(dof) * s < effect:
+        return top, "frozen", text
+    return top, None, text
+
+
+@statistic("critical_separation")
+def critical_separation(data, claim, shifts=None):
+    """Section III.B: (sqrt eps)* ~ 0.15 separates a ramp whose decreasing branch compacts on
+    the way down (the reversible branch) from one whose decreasing branch stays frozen at its
+    top level. From every ramp of Fig. 4 (params ``<tag>:top_sqrt_eps`` and
+    ``<tag>:down_change``): 1 when each ramp turning above 0.15 compacts, each turning below
+    is frozen (within t sem, below the change of the ramps that compact) and the highest frozen
+    and lowest compacting turning points lie within :data:`CRITICAL_BRACKET_HALF_WIDTH` of
+    0.15; 0 when a ramp turning above 0.15 does not compact on the way down or one turning
+    below moves beyond t sem; undecided otherwise (a side without a ramp, a behaviour within
+    the errors, or a bracket too wide to locate 0.15). ``shifts``: Fig. 4's tag -> a shift
+    of that ramp's change on the way down (a systematic band: :mod:`.reduced_ramps`). The error
+    of a mean of several seeds: :func:`seed_mean`."""
+    fig = data.figure("fig4")
+    tags = [] if fig is None else turning_ramps(fig)
+    if not tags:
+        return not_in_campaign("no ramp with a decreasing branch")
+    critical = fig.param("critical_sqrt_eps")[0]
+    critical = critical if np.isfinite(critical) else CRITICAL_SQRT_EPS
+    changes = [seed_mean(data, fig, f"{t}:down_change", "phi_c")[:3] for t in tags]
+    if shifts:
+        changes = [(m + shifts[t], s, dof) for t, (m, s, dof) in zip(tags, changes)]
+    # the frozen side's bar: the smallest change the compacting ramps surely have
+    compacting = [m - t_quantile(dof) * s for m, s, dof in changes
+                  if np.isfinite(m) and dof is not None]
+    effect = max(compacting) if compacting and max(compacting) > 0 else None
+    ramps = sorted((_ramp_turning_behaviour(fig, t, c, effect) for t, c in zip(tags, changes)),
+                   key=lambda r: r[0])
+    words = {"compacts": "compacts on the way down", "frozen": "frozen",
+             "decompacts": "decompacts on the way down", None: "within the errors"}
+    shown = "; ".join(f"{text} ({words[behaviour]})" for _, behaviour, text in ramps)
+    contradicted = [f"top {top:g} " + ("does not compact on the way down" if top > critical
+                                       else "moves on the way down")
+                    for top, behaviour, _ in ramps
+                    if (top > critical and behaviour in ("frozen", "decompacts"))
+                    or (top <= critical and behaviour in ("compacts", "decompacts"))]
+    if contradicted:
+        return [Measure(0.0, shown=shown + "; contradicted: " + ", ".join(contradicted))]
+    if any(behaviour is None for _, behaviour, _ in ramps):
+        return [Measure(shown=shown, undecided="a ramp's decrease is within the errors of "
+                                                "both behaviours")]
+    frozen = [top for top, behaviour, _ in ramps if behaviour == "frozen"]
+    compacts = [top for top, behaviour, _ in ramps if behaviour == "compacts"]
+    if not frozen or not compacts:
+        side = "below" if not frozen else "above"
+        return [Measure(shown=shown, undecided=f"no ramp turning {side} {critical:g}: the "
+                                               "separation needs one on each side")]
+    lo, hi = max(frozen), min(compacts)
+    shown += f"; (sqrt eps)* in ({lo:g}, {hi:g}]"
+    reach = CRITICAL_BRACKET_HALF_WIDTH + LEVEL_TOLERANCE    # levels on a grid of 0.025
+    if critical - lo > reach or hi - critical > reach:
+        return [Measure(shown=shown, undecided=(
+            f"the turning points bracket (sqrt eps)* in ({lo:g}, {hi:g}], wider than "
+            f"{critical:g} +- {CRITICAL_BRACKET_HALF_WIDTH:g}: a ramp turning in "
+            f"({critical:g}, {critical + CRITICAL_BRACKET_HALF_WIDTH:g}] would locate it"))]
+    return [Measure(1.0, shown=shown)]
+
+
+@statistic("ramp_branch_slope")
+def ramp_branch_slope(data, claim):
+    branch = ramp_branch(data, claim.params.get("branch", "down"))
+    if branch is None:
+        return not_in_campaign("no ramp")
+    slope, err, dof = weighted_line(*branch[:3])
+    if not np.isfinite(slope):
+        return [Measure(undecided="fewer than three levels with error bars")]
+    return [Measure(slope, err, dof, shown=f"slope {fmt(slope, err)}")]

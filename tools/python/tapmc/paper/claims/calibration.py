@@ -1,0 +1,120 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""The realizations' calibration of one-run errors: groups of runs that differ only in their
+seed (realization_scatter.csv, packing_scatter.csv) give the factor by which realizations
+spread beyond one run's batch-means error (tapmc.fluctuations.ErrorCalibration), and the
+rows of each figure CSV that take it."""
+
+from __future__ import annotations
+
+from tapmc.fluctuations import ErrorCalibration
+
+
+#: the quantities of realization_scatter.csv, as the page names them: a window mean, the
+#: difference of its halves, Fig. 3's sigma_<Z> about X_SS and about the window's line, and
+#: its spectral slope
+RUN_ERROR_LABELS = {"phi_b": "Phi_b", "phi_b:halves": "Phi_b halves",
+                    "phi_c": "<Phi^c>", "phi_c:halves": "<Phi^c> halves",
+                    "Z": "<Z>", "Z:halves": "<Z> halves", "Z:sigma": "sigma_<Z>",
+                    "Z:sigma_detrended": "sigma_<Z> about the window's line",
+                    "Z:slope": "the spectral slope of <Z>",
+                    "zone:lateral": "the lateral zone", "zone:central": "the central zone",
+                    "zone:central_minus_lateral": "central minus lateral zone",
+                    "packing:nu": "nu of a packing", "packing:alpha": "alpha of a packing"}
+
+
+#: a profile's zone means (compute stereo/profile's, taps.dat ``lateral`` and ``central``) and
+#: their difference per run, Fig. 8's final values
+ZONE_QUANTITIES = ("zone:lateral", "zone:central", "zone:central_minus_lateral")
+
+
+#: the window means whose one-run error realization_scatter.csv calibrates
+RUN_ERROR_QUANTITIES = tuple(q for q in RUN_ERROR_LABELS if ":" not in q)
+
+
+#: one-sided significance below which the realizations' spread rejects one run's own error
+CALIBRATION_ALPHA = 0.01
+
+
+#: the name under which a statistic's few seeds join the campaign's groups of realizations
+#: (ReportData.seed_mean_error); no run of a campaign is named so
+SEEDS_GROUP = "<the statistic's seeds>"
+
+
+def _final_zone(name):
+    """chosen(panel, series) of Fig. 8's final value of zone ``name``."""
+    return lambda panel, series: panel == "params" and series.endswith(f":final_{name}")
+
+
+#: figure -> [(quantity, bc, chosen(panel, series))]: the rows of a figure CSV whose one-run
+#: error is within one realization (a window's batch means, a spectral slope's periodogram, a
+#: packing's spatial jackknife), the quantity whose realization factor they take and the
+#: boundary condition of the figure's runs
+ONE_RUN_WINDOW_ROWS = {
+    "fig3": [("Z:slope", "pbc",
+              lambda panel, series: panel == "params" and series.endswith(":slope"))],
+    "fig4": [("phi_c", "pbc", lambda panel, series: panel == "a" or series == "phi_c_max"
+              or series.endswith((":down_change", ":down_minus_up1", ":up2_minus_down")))],
+    "fig8": [(zone, "fbc", _final_zone(zone.partition(":")[2])) for zone in ZONE_QUANTITIES],
+    "fig9": [("phi_c", "pbc", lambda panel, series: series == "phi_c_steady")],
+    "fig6": [("packing:alpha", "fbc", lambda panel, series: series == "final:alpha"),
+             ("packing:alpha", "pbc", lambda panel, series: series == "bell:alpha")],
+    "fig10": [("packing:nu", "fbc",
+               lambda panel, series: panel == "params" and series == "nu")],
+}
+
+
+def group_bc(group):
+    """Boundary condition of a group of realization_scatter.csv: 'fbc' for F.B.C. runs
+    (``<kind>_fbc..._eps<eps>``), 'pbc' for every other group."""
+    parts = group.split("_")
+    return "fbc" if len(parts) > 1 and parts[1].startswith("fbc") else "pbc"
+
+
+def realization_factors(rows, bc="pbc"):
+    """dict quantity -> (k, dof) from the rows of bench/paper_questions.py's
+    realization_scatter.csv for runs of boundary condition ``bc``: the factor by which the
+    realizations of a group of runs that differ only in their seed spread beyond their
+    batch-means errors (tapmc.fluctuations.ErrorCalibration, pooled over the groups), for
+    the quantities where it rejects k = 1 at :data:`CALIBRATION_ALPHA`; dof: the pooled
+    realizations' dof. The groups of both boundary conditions are pooled unless their
+    factors differ (:func:`realization_sharing` below CALIBRATION_ALPHA): then ``bc``'s
+    groups alone. A boundary condition without groups takes the other's."""
+    every = realization_calibrations(rows)
+    own = realization_calibrations(rows, bc)
+    sharing = realization_sharing(rows)
+    out = {}
+    for q, c in every.items():
+        if sharing.get(q, 1.0) < CALIBRATION_ALPHA:
+            c = own[q]
+        if c.p_value < CALIBRATION_ALPHA and c.factor > 1:
+            out[q] = (c.factor, c.dof)
+    return out
+
+
+def realization_sharing(rows):
+    """dict quantity -> two-sided p-value that the P.B.C. and the F.B.C. groups of
+    realization_scatter.csv share one factor (ErrorCalibration.same_factor_p), for the
+    quantities both measure."""
+    pbc, fbc = realization_calibrations(rows, "pbc"), realization_calibrations(rows, "fbc")
+    return {q: pbc[q].same_factor_p(fbc[q]) for q in pbc if q in fbc}
+
+
+def realization_calibrations(rows, bc=None):
+    """dict quantity -> computed ErrorCalibration of realization_scatter.csv's rows (groups of
+    at least two runs) of boundary condition ``bc`` ('pbc', 'fbc'; None: every group)."""
+    if bc not in (None, "pbc", "fbc"):
+        raise ValueError(f"bc = {bc!r}: allowed values are None, 'pbc', 'fbc'")
+    by, dof = {}, {}
+    for r in rows:
+        if bc is not None and group_bc(r["group"]) != bc:
+            continue
+        by.setdefault(r["column"], {}).setdefault(r["group"], []).append(
+            (float(r["mean"]), float(r["sem"])))
+        dof[r["column"]] = int(r["sem_dof"]) if r["sem_dof"] else None   # None: exact
+    out = {}
+    for quantity, groups in by.items():
+        pairs = {g: ([m for m, _ in v], [e for _, e in v]) for g, v in groups.items()
+                 if len(v) >= 2}
+        if pairs:
+            out[quantity] = ErrorCalibration(pairs, within_dof=dof[quantity]).compute()
+    return out

@@ -1,0 +1,160 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""Pieces the statistics of several sections share: reading series of a figure CSV, the mean
+difference of two curves, the degrees of freedom of a steady mean, and the error of a mean of
+a few seeds judged with the campaign's groups of realizations."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from tapmc.fluctuations import DEFAULT_BATCHES
+from tapmc.stats import beyond
+
+from .measure import Measure, fmt
+
+
+def above(value, err, dof, reference=0.0):
+    """``value`` above ``reference`` beyond t err (tapmc.stats.beyond, one side)."""
+    return value > reference and beyond(value, err, dof, reference)
+
+
+def below(value, err, dof, reference=0.0):
+    """``value`` below ``reference`` beyond t err (tapmc.stats.beyond, one side)."""
+    return value < reference and beyond(value, err, dof, reference)
+
+
+def one_seed_error_text(factor):
+    """What a one-seed value's error is, as its TAPMC column says it."""
+    if factor == 1.0:
+        return "one seed: error within the run"
+    return (f"one seed: error within the run x {factor:.1f}, the spread of realizations "
+            "measured by realization-scatter")
+
+
+def not_in_campaign(what):
+    return [Measure(undecided=f"not in this campaign ({what})")]
+
+
+def eps_of(series):
+    """eps of a series named 'eps=<eps>' or 'eps=<eps>:<name>'."""
+    return float(series.split("=")[1].split(":")[0])
+
+
+def eps_series(fig, panel):
+    """Sorted (eps, series) of the data series 'eps=<eps>' of a panel (fits excluded)."""
+    out = [(eps_of(s), s) for s in fig.series(panel) if s.startswith("eps=") and ":" not in s]
+    return sorted(out)
+
+
+def common_x(a, b):
+    """Index pairs (i, k) of the x common to the curves a and b ((x, mean, sem, n) each)."""
+    pairs = []
+    for i, x in enumerate(a[0]):
+        match = np.isclose(b[0], x)
+        if np.any(match):
+            pairs.append((i, int(np.argmax(match))))
+    return pairs
+
+
+def mean_difference(a, b):
+    """Mean over the common x of the curves a - b ((x, mean, sem, n) each), its error and dof;
+    None when they share no x."""
+    pairs = common_x(a, b)
+    if not pairs:
+        return None
+    diffs = [a[1][i] - b[1][k] for i, k in pairs]
+    errs = np.array([math.hypot(a[2][i], b[2][k]) for i, k in pairs])
+    ns = [min(a[3][i], b[3][k]) for i, k in pairs]
+    err = float(np.sqrt(np.sum(errs**2)) / len(errs)) if np.all(np.isfinite(errs)) else math.nan
+    return float(np.mean(diffs)), err, steady_dof(int(np.min(ns)), err), len(diffs)
+
+
+#: Degrees of freedom of the batch-means error of one run's steady state (the batches of
+#: tapmc.fluctuations.SteadyState, minus one): the uncertainty of a figure value of one seed.
+WITHIN_RUN_DOF = DEFAULT_BATCHES - 1
+
+
+def steady_dof(n, err):
+    """dof of a steady-state value: seeds - 1, or for one seed with a batch-means error
+    :data:`WITHIN_RUN_DOF`."""
+    if n >= 2:
+        return n - 1
+    return WITHIN_RUN_DOF if n == 1 and np.isfinite(err) else None
+
+
+def figure_param(data, name, series, absent):
+    """(fig, value, sem, n) of a one-row params series of figure ``name``, or (None,
+    undecided measures) naming what is missing (``absent``: why the series is not there)."""
+    fig = data.figure(name)
+    if fig is None:
+        return None, not_in_campaign(f"no Fig. {name[3:]} runs")
+    m, s, n = fig.param(series)
+    if not np.isfinite(m):
+        return None, not_in_campaign(absent)
+    return (fig, m, s, n), None
+
+
+def per_curve(data, name, panel, measure):
+    """``measure(fig, eps, t, mean, sem, n)`` of every curve 'eps=<eps>' of a figure panel."""
+    fig = data.figure(name)
+    if fig is None:
+        return not_in_campaign(f"no Fig. {name[3:]} runs")
+    out = [measure(fig, eps, *fig.get(panel, series)) for eps, series in eps_series(fig, panel)]
+    return out or not_in_campaign(f"no curve in panel {panel} of Fig. {name[3:]}")
+
+
+def paired_levels(a, b):
+    """a - b at the sqrt(eps) common to the branch curves a and b ((x, mean, sem, n) each)."""
+    return np.array([a[1][i] - b[1][k] for i, k in common_x(a, b)])
+
+
+def seed_mean(data, fig, series, quantity, bc="pbc", groups=()):
+    """(value, error, dof, text) of the params row ``series`` of ``fig``: with two seeds or
+    more and their own values (``<series>:seeds``: Fig. 4's ramp statistics, Fig. 8's final
+    zones, Fig. 6's final alpha) the error of their mean judged with the campaign's groups
+    of realizations of ``quantity``
+    (ReportData.seed_mean_error); otherwise the row's own error (the sem over seeds, or
+    one seed's batch-means error) with :func:`steady_dof`. ``text``: how the error was
+    obtained ("" for the row's own). ``groups``: the names the seeds have as a group of
+    realizations (ReportData.seed_mean_error). Seeds judged alone (no groups, or a spread
+    unlike theirs) take at least the sem of their own values with n - 1 dof: a row that
+    combines the levels' sems over seeds as independent understates the spread of seeds
+    that differ at every level alike."""
+    m, s, n = fig.param(series)
+    seeds = fig.get("params", f"{series}:seeds")
+    if n >= 2 and seeds is not None and len(seeds[1]) >= 2:
+        err, dof, text, pooled = seeds_error(data, seeds[1], seeds[2], quantity, bc, groups)
+        return m, err if pooled else max(s, err), dof, text
+    return m, s, steady_dof(n, s), ""
+
+
+def seeds_error(data, values, errors, quantity, bc="pbc", groups=()):
+    """(error, dof, text, pooled) of the mean of a few seeds ``values`` of ``quantity``, each
+    with its own error ``errors``: pooled with the campaign's groups of realizations
+    (ReportData.seed_mean_error: their own errors times the pooled factor, the pooled dof),
+    or, judged alone (no groups, or a spread unlike theirs), the sem of their own values
+    with n - 1 dof. ``text`` says how ("" for seeds alone in a campaign without groups)."""
+    found = data.seed_mean_error(quantity, values, errors, bc, groups)
+    if found is not None:
+        err, dof, factor = found
+        return err, dof, (f"{len(values)} seeds: their own errors x {factor:.1f}, pooled "
+                          f"with the groups of realizations ({dof} dof)"), True
+    values = np.asarray(values, dtype=float)
+    sem = float(np.std(values, ddof=1) / math.sqrt(len(values)))
+    text = ""
+    if data.pooled_calibration(quantity, bc) is not None:
+        listed = ", ".join(fmt(v) for v in values)
+        text = (f"{len(values)} seeds ({listed}): the spread of their own values, which "
+                "differs from the groups of realizations")
+    return sem, len(values) - 1, text, False
+
+
+def jackknife_dof(n, err, blocks_per_side):
+    """dof of a value of one packing or several: seeds - 1, or for one seed with the error of
+    a lateral jackknife over blocks_per_side^2 blocks, that number minus one."""
+    n = int(np.nanmin(np.atleast_1d(n))) if np.size(n) else 0
+    if n >= 2:
+        return n - 1
+    return blocks_per_side ** 2 - 1 if n == 1 and np.all(np.isfinite(err)) else None

@@ -1,0 +1,344 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""Statistics of the initial packing and of the compaction curves (section III.A, Fig. 2; the
+steady states of Fig. 9): the packing fractions, the gain in Phi_b, the efficiency that
+decreases over the first decade, the slowing in log time and the late share of the gain."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from tapmc.fluctuations import DEFAULT_BATCHES, SteadyState
+from tapmc.stats import mean_dof, weighted_line
+
+from .common import (WITHIN_RUN_DOF, above, eps_series, not_in_campaign, one_seed_error_text,
+                     per_curve, steady_dof)
+from .measure import Measure, fmt
+from .registry import statistic
+
+
+@statistic("initial_phi")
+def initial_phi(data, claim):
+    """<Phi^c> of the initial P.B.C. packing. A campaign with one packing (the paper's
+    protocol) is decided by the depositions of the same size measured at t = 0 (``initial-
+    packing``), when there: the paper's value is one packing's, so the interval is the mean's
+    error combined with the spread of single packings (a prediction interval)."""
+    m, s, n = (math.nan if v is None else v for v in data.summary["initial_phi_c"])
+    sizes = {(int(N), float(L)) for N, L in data.summary.get("sizes") or ()}
+    phis = np.array([float(r["phi_c"]) for r in data.question("initial_packing")
+                     if r["bc"] == "pbc" and (int(r["N"]), float(r["L"])) in sizes])
+    if len(phis) >= 2 and not (np.isfinite(n) and n >= len(phis)):
+        mean, sd = float(phis.mean()), float(phis.std(ddof=1))
+        sem = sd / math.sqrt(len(phis))
+        return [Measure(mean, math.hypot(sem, sd), len(phis) - 1,
+                        shown=f"{fmt(mean, sem, pct=True)} over {len(phis)} depositions (one "
+                              f"packing spreads {100 * sd:.2f} %; the campaign's: "
+                              f"{fmt(m, None, pct=True)})")]
+    return [Measure(m, s, mean_dof(n), shown=fmt(m, s, pct=True))]
+
+
+@statistic("tapped_phi")
+def tapped_phi(data, claim):
+    """The steady <Phi^c> after the taps against the paper's value read at tap 4000: a single
+    tap's value, so the interval is the steady state's error combined with the spread of
+    single taps (a prediction interval). Without the steady state: the value at the end."""
+    fig = data.figure("fig9")
+    if fig is None:
+        return not_in_campaign("no Fig. 9 runs")
+    m, s, n = fig.param("phi_c_steady")
+    if not np.isfinite(m):
+        m, s, n = fig.param("phi_c_final")
+        return [Measure(m, s, mean_dof(n), shown=fmt(m, s, pct=True))]
+    sd = fig.param("phi_c_tap_sd")[0]
+    err = math.hypot(s, sd) if np.isfinite(s) else math.nan
+    return [Measure(m, err, steady_dof(n, s),
+                    shown=f"{fmt(m, s, pct=True)} (steady state; single taps spread "
+                          f"{100 * sd:.2f} %" + (f"; {_tapped_one_seed(data)})" if n == 1
+                                                 else ")"))]
+
+
+def _tapped_one_seed(data):
+    factor = data.run_error("phi_c")[0]
+    if factor == 1.0:
+        return "one seed: the spread between realizations is not included"
+    return one_seed_error_text(factor)
+
+
+@statistic("pbc_compaction")
+def pbc_compaction(data, claim):
+    fig = data.figure("fig9")
+    if fig is None:
+        return not_in_campaign("no Fig. 9 runs")
+    mi, si, ni = fig.param("phi_c_initial")
+    mf, sf, nf = fig.param("phi_c_steady")
+    if not np.isfinite(mf):
+        mf, sf, nf = fig.param("phi_c_final")
+        dof = mean_dof(min(ni, nf))
+    else:
+        dof = steady_dof(min(ni, nf), sf)
+        if nf == 1:
+            si = 0.0  # one packing: its initial value is exact, the steady mean is not
+    return [Measure(mf - mi, math.hypot(si, sf), dof,
+                    shown=f"{fmt(mi, si, pct=True)} -> {fmt(mf, sf, pct=True)}")]
+
+
+def _gain(fig, eps, t, mean, sem, n, run_error=(1.0, None)):
+    """Mean of the last quarter minus the first point. One seed (the paper's protocol): the
+    curve is the run itself, so the last quarter's mean has its batch-means error
+    (tapmc.fluctuations.SteadyState) and the start, the run's own packing, none."""
+    q = max(len(t) // 4, 1)
+    gain = float(np.mean(mean[-q:]) - mean[0])
+    if np.nanmax(n) == 1 and q >= 2 * DEFAULT_BATCHES:
+        err = SteadyState(mean, last=q).compute().sem * run_error[0]
+        return Measure(gain, err, WITHIN_RUN_DOF, label=f"eps = {eps:g}",
+                       shown=f"{fmt(gain, err)} ({one_seed_error_text(run_error[0])})")
+    err = float(math.sqrt(np.nanmean(sem[-q:]) ** 2 + sem[0] ** 2)) \
+        if np.isfinite(sem[0]) else math.nan
+    return Measure(gain, err, mean_dof(n), label=f"eps = {eps:g}")
+
+
+@statistic("phi_b_gain")
+def phi_b_gain(data, claim):
+    return per_curve(data, "fig2", "a",
+                      lambda *curve: _gain(*curve, run_error=data.run_error("phi_b", "fbc")))
+
+
+#: Decades of the log-time slopes of ``log_time_slowing``: the first decade of taps (the last
+#: one is [T/10, T]).
+EARLY_DECADE = (1.0, 10.0)
+
+
+def first_decade_rates(t, x):
+    """(rate per tap, rate per unit ln t) of one realization over the first decade
+    (:data:`EARLY_DECADE`), each from the means of the decade's two halves (per tap: taps 1-5
+    and 6-10; per ln t: split at sqrt(10)), and the two gaps between the halves (taps, ln t):
+    ((rate, gap), (log_rate, log_gap))."""
+    lo, hi = EARLY_DECADE
+    first, second = (t >= lo) & (t <= hi / 2), (t > hi / 2) & (t <= hi)
+    gap = float(np.mean(t[second]) - np.mean(t[first]))
+    rate = (float(np.mean(x[second])) - float(np.mean(x[first]))) / gap
+    mid = math.sqrt(lo * hi)
+    low, high = (t >= lo) & (t < mid), (t >= mid) & (t <= hi)
+    log_gap = float(np.mean(np.log(t[high])) - np.mean(np.log(t[low])))
+    log_rate = (float(np.mean(x[high])) - float(np.mean(x[low]))) / log_gap
+    return (rate, gap), (log_rate, log_gap)
+
+
+#: realizations of the first decade (bench/paper_questions.py early-taps) below which its
+#: rates keep one run's error (one tap's spread): the sem of fewer has too few degrees of
+#: freedom to decide anything
+EARLY_MIN_SEEDS = 4
+
+
+def _early_seeds(data, eps):
+    """The first decade's rates over the realizations of early_taps.csv at ``eps`` (the
+    campaign's run and more Monte Carlo seeds from the same packing): (per tap (mean, sem),
+    per ln t (mean, sem), seeds) or None when fewer than :data:`EARLY_MIN_SEEDS`."""
+    rows = [r for r in data.question("early_taps")
+            if math.isclose(float(r["eps"]), eps, rel_tol=1e-9)]
+    by_seed = {}
+    for r in rows:
+        by_seed.setdefault(int(r["seed"]), []).append((float(r["t"]), float(r["phi_b"])))
+    rates = []
+    for points in by_seed.values():
+        t, x = (np.array(v) for v in zip(*sorted(points)))
+        if np.all(np.isin(np.arange(EARLY_DECADE[0], EARLY_DECADE[1] + 1), t)):
+            (rate, _), (log_rate, _) = first_decade_rates(t, x)
+            rates.append((rate, log_rate))
+    if len(rates) < EARLY_MIN_SEEDS:
+        return None
+    values = np.array(rates)
+    sem = values.std(axis=0, ddof=1) / math.sqrt(len(values))
+    mean = values.mean(axis=0)
+    return (mean[0], sem[0]), (mean[1], sem[1]), len(values)
+
+
+def _log_rates_one_run(t, x, early_seeds=None, halves_factor=1.0):
+    """Rates of Phi_b per unit ln t of one run (the curve is the run) over the first decade and
+    the last decade [T/10, T], each from the means of the decade's two halves in ln t: the
+    late halves with their batch-means errors (tapmc.fluctuations.SteadyState), the early ones
+    with the error over realizations when ``early_seeds`` (:func:`_early_seeds`) has them,
+    else with one tap's spread about the steady state (not divided by their number: taps that
+    close are correlated); ``halves_factor`` scales the late error to a realization's
+    (:meth:`ReportData.run_error` of 'phi_b:halves'). ((early, error), (late, error))."""
+    if early_seeds is not None:
+        early = early_seeds[1]
+    else:
+        spread = SteadyState(x, last=max(len(t) // 4, 2)).compute().std
+        (_, _), (log_rate, log_gap) = first_decade_rates(t, x)
+        early = (log_rate, math.sqrt(2.0) * spread / log_gap)
+    lo, hi = t[-1] / 10.0, t[-1]
+    mid = math.sqrt(lo * hi)
+    parts = [(t >= lo) & (t < mid), (t >= mid) & (t <= hi)]
+    means = [float(np.mean(x[p])) for p in parts]
+    errs = [SteadyState(x[p], last=int(p.sum())).compute().sem for p in parts]
+    gap = float(np.mean(np.log(t[parts[1]])) - np.mean(np.log(t[parts[0]])))
+    return early, ((means[1] - means[0]) / gap, halves_factor * math.hypot(*errs) / gap)
+
+
+def _log_slope(t, mean, sem, lo, hi):
+    pick = (t >= lo) & (t <= hi) & (t > 0)
+    return weighted_line(np.log(t[pick]), mean[pick], sem[pick])
+
+
+def _rate_change_one_run(eps, t, x, early_seeds=None, halves_factor=1.0):
+    """:func:`_rate_change` of one run (the curve is the run): the late rate from the means of
+    its last two quarters (each with its batch-means error); the early rate from the means of
+    the two halves of the first decade (taps 1-5 and 6-10, as the line over the decade for
+    several seeds): over the realizations of ``early_seeds`` (:func:`_early_seeds`) when
+    there, else the run's own, each half with one tap's spread about the steady state as its
+    error (taps that close together are correlated, so the spread is not divided by their
+    number). ``halves_factor``: as in :func:`_log_rates_one_run`."""
+    q = len(t) // 4
+    third, fourth = (SteadyState(x[:len(t) - k * q], last=q).compute() for k in (1, 0))
+    late = (fourth.mean - third.mean) / q
+    e_late = halves_factor * math.hypot(third.sem, fourth.sem) / q
+    if early_seeds is not None:
+        (early, e_early), _, seeds = early_seeds
+        dof = min(seeds - 1, WITHIN_RUN_DOF)
+        source = f"the first decade over {seeds} realizations from the same packing"
+    else:
+        (early, gap), _ = first_decade_rates(t, x)
+        e_early = math.sqrt(2.0) * fourth.std / gap
+        dof = WITHIN_RUN_DOF
+        source = "one seed: errors within the run"
+    if halves_factor != 1.0:
+        source += f"; the last half's error x {halves_factor:.1f} (realization-scatter)"
+    return Measure(late - early, math.hypot(e_late, e_early), dof,
+                   label=f"eps = {eps:g}",
+                   shown=f"{fmt(late, e_late)} vs {fmt(early, e_early)} per tap (last half vs "
+                         f"first decade; {source})")
+
+
+def _rate_change(fig, eps, t, mean, sem, n, early_seeds=None, halves_factor=1.0):
+    """Rate dPhi_b/dt over the last half of the taps minus that over the first decade."""
+    if np.nanmax(n) == 1 and len(t) >= 8 * DEFAULT_BATCHES and t[-1] > 10 * EARLY_DECADE[1]:
+        return _rate_change_one_run(eps, t, mean, early_seeds, halves_factor)
+    early, e_early, _ = _weighted_line_in(t, mean, sem, *EARLY_DECADE)
+    late, e_late, _ = _weighted_line_in(t, mean, sem, t[-1] / 2.0, t[-1])
+    label = f"eps = {eps:g}"
+    if not (np.isfinite(early) and np.isfinite(late)):
+        return Measure(label=label, undecided="no error bars on the curve")
+    return Measure(late - early, math.hypot(e_late, e_early), mean_dof(n), label=label,
+                   shown=f"{fmt(late, e_late)} vs {fmt(early, e_early)} per tap "
+                         f"(last half vs first decade)")
+
+
+def _weighted_line_in(t, mean, sem, lo, hi):
+    pick = (t >= lo) & (t <= hi)
+    return weighted_line(t[pick], mean[pick], sem[pick])
+
+
+@statistic("efficiency_decrease")
+def efficiency_decrease(data, claim):
+    return per_curve(data, "fig2", "a", lambda fig, eps, *curve: _rate_change(
+        fig, eps, *curve, early_seeds=_early_seeds(data, eps),
+        halves_factor=data.run_error("phi_b:halves", "fbc")[0]))
+
+
+def _fig2_end_curves(data):
+    """(fig, [(eps, series) of the smallest and the largest eps]) of Fig. 2's panel a, or
+    (None, the missing-data measures) when there are not two eps."""
+    fig = data.figure("fig2")
+    if fig is None:
+        return None, not_in_campaign("no Fig. 2 runs")
+    curves = eps_series(fig, "a")
+    if len(curves) < 2:
+        return None, not_in_campaign("fewer than two eps in Fig. 2")
+    return fig, [curves[0], curves[-1]]
+
+
+@statistic("log_time_slowing")
+def log_time_slowing(data, claim):
+    """(late / early rate of Phi_b per unit ln t) at the smallest eps minus that at the
+    largest: negative when the slowing is strongest at small eps (section III.A)."""
+    fig, ends = _fig2_end_curves(data)
+    if fig is None:
+        return ends
+    ratios = []
+    for eps, series in ends:
+        t, mean, sem, n = fig.get("a", series)
+        if np.nanmax(n) == 1 and t[-1] >= 100 * EARLY_DECADE[1]:
+            seeds = _early_seeds(data, eps)
+            (early, e_early), (late, e_late) = _log_rates_one_run(
+                t, mean, seeds, data.run_error("phi_b:halves", "fbc")[0])
+            dof = WITHIN_RUN_DOF if seeds is None else min(seeds[2] - 1, WITHIN_RUN_DOF)
+        else:
+            early, e_early, _ = _log_slope(t, mean, sem, *EARLY_DECADE)
+            late, e_late, _ = _log_slope(t, mean, sem, t[-1] / 10.0, t[-1])
+            dof = mean_dof(n)
+        if not (np.isfinite(early) and early > 2 * e_early):
+            return [Measure(undecided=f"no significant compaction in the first decade at "
+                                      f"eps = {eps:g} (rate {fmt(early, e_early)})")]
+        r = late / early
+        ratios.append((eps, r, abs(r) * math.hypot(e_late / late if late else math.inf,
+                                                    e_early / early), dof))
+    (e0, r0, s0, d0), (e1, r1, s1, d1) = ratios
+    dofs = [d for d in (d0, d1) if d is not None]
+    dof = min(dofs) if len(dofs) == 2 else None
+    # both ratios beyond 1 by t sem: the log-time rate grows at both eps, no slowing on ln t
+    speeding = all(above(r, s, dof, reference=1.0) for r, s in ((r0, s0), (r1, s1)))
+    return [Measure(r0 - r1, math.hypot(s0, s1), dof,
+                    shown=f"late/early rate {fmt(r0, s0)} (eps = {e0:g}) vs {fmt(r1, s1)} "
+                          f"(eps = {e1:g})" + (
+                              "; both above 1: per unit ln t neither run slows down within "
+                              "its taps (the first decade begins with the first taps' "
+                              "loosening), the weakest taps compacting latest" if speeding
+                              else ""))]
+
+
+#: late_gain_share: the windows, as fractions of the run's taps T, whose means give Phi_b at
+#: the end ([0.9 T, T]) and a decade before it ([0.09 T, 0.11 T]); batches of the earlier,
+#: shorter window (81 taps of 4000: batches of 8)
+LATE_WINDOW = (0.9, 1.0)
+
+
+DECADE_BEFORE_WINDOW = (0.09, 0.11)
+
+
+SHORT_WINDOW_BATCHES = 10
+
+
+def _late_share(t, mean, sem, n, factor=1.0):
+    """(share of the gain X(T) - X(0) made over the last decade, its error, dof) of one
+    curve: X over [0.9 T, T] and over [0.09 T, 0.11 T] (one run: batch-means errors times
+    ``factor``, :meth:`ReportData.run_error`; several
+    seeds: the curve's sem averaged over each window, not reduced for the taps' correlation)."""
+    T = t[-1]
+    windows = [(t >= lo * T) & (t <= hi * T) for lo, hi in (LATE_WINDOW, DECADE_BEFORE_WINDOW)]
+    end, before = (float(np.mean(mean[w])) for w in windows)
+    if np.nanmax(n) == 1:
+        errs = [factor * SteadyState(mean[w], last=int(w.sum()), batches=b).compute().sem
+                for w, b in zip(windows, (DEFAULT_BATCHES, SHORT_WINDOW_BATCHES))]
+        dof = min(DEFAULT_BATCHES, SHORT_WINDOW_BATCHES) - 1
+    else:
+        errs = [float(np.nanmean(sem[w])) for w in windows]
+        dof = mean_dof(n)
+    gain = end - mean[0]
+    share = (end - before) / gain
+    # d share / d end = (before - X0) / gain^2, d share / d before = -1 / gain
+    err = math.hypot((before - mean[0]) / gain ** 2 * errs[0], errs[1] / gain)
+    return share, err, dof
+
+
+@statistic("late_gain_share")
+def late_gain_share(data, claim):
+    """Share of Phi_b's gain made over the last decade at the smallest eps minus that at the
+    largest: positive when the smallest eps is farthest from its steady state at the end of
+    the run (section III.A: 'without never really reaching it', most of all at small eps)."""
+    fig, ends = _fig2_end_curves(data)
+    if fig is None:
+        return ends
+    shares = []
+    for eps, series in ends:
+        t, mean, sem, n = fig.get("a", series)
+        if t[-1] < 10 * EARLY_DECADE[1] or (
+                np.nanmax(n) == 1 and np.sum(t >= LATE_WINDOW[0] * t[-1]) < 2 * DEFAULT_BATCHES):
+            return not_in_campaign("runs too short for a last decade of taps")
+        shares.append((eps, *_late_share(t, mean, sem, n, data.run_error("phi_b", "fbc")[0])))
+    (e0, s0, d0, f0), (e1, s1, d1, f1) = shares
+    dofs = [d for d in (f0, f1) if d is not None]
+    return [Measure(s0 - s1, math.hypot(d0, d1), min(dofs) if len(dofs) == 2 else None,
+                    shown=f"share of the gain over the last decade {fmt(s0, d0)} "
+                          f"(eps = {e0:g}) vs {fmt(s1, d1)} (eps = {e1:g})")]

@@ -1,0 +1,291 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""What the report measures from (:class:`ReportData`): the figure CSVs (:class:`FigureData`),
+with the realizations' calibration (:mod:`.calibration`) applied once where they load, the
+campaign summary, the front's rows and the CSVs of the paper's questions."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from tapmc.fluctuations import ErrorCalibration
+
+from .. import _plotting as P
+from .._runs import eps_tag
+from ..front import read_summary
+from .calibration import (CALIBRATION_ALPHA, ONE_RUN_WINDOW_ROWS, RUN_ERROR_LABELS,
+                          RUN_ERROR_QUANTITIES, SEEDS_GROUP, ZONE_QUANTITIES, group_bc,
+                          realization_calibrations, realization_factors, realization_sharing)
+from .scan_tables import SCANS, read_scan, scan_files
+
+
+class FigureData:
+    """One figure CSV: ``get(panel, series)`` -> (x, mean, sem, n) arrays or None."""
+
+    def __init__(self, table):
+        self.table = table
+
+    @classmethod
+    def read(cls, path):
+        return cls(P.read_table(path))
+
+    def scaled_one_run_errors(self, factor, chosen):
+        """A copy whose rows with n = 1 in the series for which ``chosen(panel, series)``
+        holds have their sem times ``factor``."""
+        table = {}
+        for (panel, series), d in self.table.items():
+            d = dict(d)
+            if chosen(panel, series):
+                one = np.asarray(d["n"]) == 1
+                d["sem"] = np.where(one, np.asarray(d["sem"], float) * factor, d["sem"])
+            table[(panel, series)] = d
+        return FigureData(table)
+
+    def get(self, panel, series):
+        d = self.table.get((panel, series))
+        if d is None:
+            return None
+        return (np.asarray(d["x"], float), np.asarray(d["mean"], float),
+                np.asarray(d["sem"], float), np.asarray(d["n"], float))
+
+    def param(self, series):
+        """(value, sem, n) of a one-row ``params`` series, NaNs when absent."""
+        d = self.get("params", series)
+        if d is None:
+            return math.nan, math.nan, 0
+        return float(d[1][0]), float(d[2][0]), int(d[3][0])
+
+    def series(self, panel):
+        return [s for (p, s) in self.table if p == panel]
+
+
+#: stems of the CSVs of bench/paper_questions.py (in the report's ``questions`` folder) that
+#: decide claims of one-run campaigns: depositions at t = 0 (initial-packing), P0 over several
+#: configurations (p0-configs), the first taps from the paper's F.B.C. start (lateral-first-tap),
+#: realizations of the first taps (early-taps), one run's surrogate fits (fit-surrogates), the
+#: fits of whole runs over realizations (seed-fits), the ramp's levels continued (ramp-levels)
+#: and nu at its level ends (ramp-pores)
+QUESTION_CSVS = ("initial_packing", "p0_configs", "lateral_first_tap", "early_taps",
+                 "fit_surrogates", "ramp_levels", "ramp_pores", "realization_scatter",
+                 "packing_scatter", "seed_fits")
+
+
+class ReportData:
+    """The inputs of the report: ``figures`` (name -> :class:`FigureData`, the figure CSVs
+    with the realizations' calibration applied, the one view the statistics read), the
+    campaign ``summary`` (tapmc.paper.validation.campaign_summary) and ``front``, the rows of
+    the run-time-versus-error front (tapmc.paper.front.read_summary; empty: not measured).
+    ``written`` keeps the figure CSVs as the figures wrote them, for the page's measurements
+    that print the CSVs' own numbers and for a copy of the data with some of them changed."""
+
+    def __init__(self, summary, figures, front=(), scans=None, questions=None):
+        """``scans``: knob (``theta0``, ``dmax``) -> its scans, each the rows of one CSV of
+        bench/paper_questions.py (:data:`SCANS`); ``questions``: the rows of its other CSVs
+        that decide claims a campaign of one run per point cannot (:data:`QUESTION_CSVS`), by
+        file stem."""
+        self.summary = summary
+        self.front = list(front)
+        self.scans = {knob: list((scans or {}).get(knob, ())) for knob in SCANS}
+        self.questions = {stem: list(rows) for stem, rows in (questions or {}).items()}
+        self.written = dict(figures)
+        self._figures = None
+
+    @property
+    def figures(self):
+        """name -> the figure's calibrated data (:meth:`_calibrated`), computed once, when
+        the statistics first read them (after the questions' groups of realizations)."""
+        if self._figures is None:
+            self._figures = {name: self._calibrated(name, fig)
+                             for name, fig in self.written.items()}
+        return self._figures
+
+    def question(self, stem):
+        """The rows of bench/paper_questions.py's ``<stem>.csv`` ([] when not measured)."""
+        return self.questions.get(stem, [])
+
+    @classmethod
+    def from_files(cls, summary, files):
+        """``files``: name -> (png, csv) as the report collects them; the front from the
+        package's front_summary.csv; the knob scans from ``questions/<knob>*.csv`` beside the
+        figure CSVs (bench/paper_questions.py theta0 / dmax), when there."""
+        scans, questions = {}, {}
+        if files:
+            folder = Path(next(iter(files.values()))[1]).parent / "questions"
+            scans = {knob: [read_scan(path) for path in scan_files(folder, knob)]
+                     for knob in SCANS}
+            questions = {stem: read_scan(folder / f"{stem}.csv") for stem in QUESTION_CSVS
+                         if (folder / f"{stem}.csv").is_file()}
+        return cls(summary, {name: FigureData.read(paths[1]) for name, paths in files.items()},
+                   read_summary(), scans, questions)
+
+    def figure(self, name):
+        """Figure ``name``'s calibrated data (:attr:`figures`), None when not in the report."""
+        return self.figures.get(name)
+
+    def _calibrated(self, name, fig):
+        """Figure ``name``'s data ``fig``, the error of each of its one-run rows that is a
+        window's own error (:data:`ONE_RUN_WINDOW_ROWS`) times the realizations' factor
+        (:meth:`run_error`); Fig. 4's steady squares of several seeds with the groups' error
+        (:meth:`_calibrated_steady_squares`)."""
+        for quantity, bc, chosen in ONE_RUN_WINDOW_ROWS.get(name, ()):
+            factor = self.run_error(quantity, bc)[0]
+            if factor != 1.0:
+                fig = fig.scaled_one_run_errors(factor, chosen)
+        if name == "fig4":
+            fig = self._calibrated_steady_squares(fig)
+        return fig
+
+    def _calibrated_steady_squares(self, fig):
+        """Fig. 4's steady squares of several seeds with the error of their mean no smaller
+        than the groups of realizations give it: those seeds are a group of
+        realization_scatter.csv (``const_pbc_eps<eps>``, the same window of the last 1000
+        taps), whose own errors times the pooled factor (:meth:`seed_mean_error`) replace
+        the sem over seeds when larger. A sem of three seeds has 2 dof and can be small by
+        chance; one-seed squares already carry the factor, so every square is weighed alike
+        in the bell's fits. The seeds' own spread stays when it is the larger."""
+        steady = fig.table.get(("a", "steady"))
+        if steady is None or not np.any(np.asarray(steady["n"]) >= 2):
+            return fig
+        rows = [r for r in self.question("realization_scatter") if r["column"] == "phi_c"]
+        sem = np.array(steady["sem"], dtype=float)
+        for i, (x, mean, n) in enumerate(zip(steady["x"], steady["mean"], steady["n"])):
+            group = f"const_pbc_eps{eps_tag(float(x) ** 2)}"
+            runs = [r for r in rows if r["group"] == group]
+            if n < 2 or len(runs) != n:
+                continue
+            values = np.array([float(r["mean"]) for r in runs])
+            if not math.isclose(float(np.mean(values)), float(mean), abs_tol=1e-8):
+                continue    # not the same window or seeds: leave the square's own error
+            found = self.seed_mean_error("phi_c", values, [float(r["sem"]) for r in runs],
+                                         "pbc", groups=(group,))
+            if found is not None and not found[0] <= sem[i]:
+                sem[i] = found[0]
+        if np.array_equal(sem, np.asarray(steady["sem"], dtype=float), equal_nan=True):
+            return fig
+        table = dict(fig.table)
+        table[("a", "steady")] = {**steady, "sem": sem}
+        return FigureData(table)
+
+    def _realization_factors(self, bc="pbc"):
+        """realization_factors of the campaign's groups of realizations (:meth:`scatter_rows`)
+        for runs of ``bc``, computed once."""
+        cache = self.__dict__.setdefault("_factors", {})
+        if bc not in cache:
+            cache[bc] = realization_factors(self.scatter_rows(), bc)
+        return cache[bc]
+
+    def scatter_rows(self):
+        """The rows of realization_scatter.csv (time averages) and packing_scatter.csv
+        (quantities of one packing), one table of groups of realizations."""
+        return self.question("realization_scatter") + self.question("packing_scatter")
+
+    def run_error_note(self):
+        """The sentence that says which one-run errors were scaled to realizations and by
+        how much ("" when realization_scatter.csv rejects no one-run error)."""
+        pbc, fbc = self._realization_factors("pbc"), self._realization_factors("fbc")
+        if not pbc and not fbc:
+            return ""
+        parts = []
+        for q, label in RUN_ERROR_LABELS.items():
+            kp, kf = (f.get(q, (1.0, None))[0] for f in (pbc, fbc))
+            if q in pbc or q in fbc:
+                parts.append(f"{label} x {kp:.1f}" if kp == kf else
+                             f"{label} x {kp:.1f} (P.B.C.), x {kf:.1f} (F.B.C.)")
+        rows = self.scatter_rows()
+        measured = {group_bc(r["group"]) for r in rows}
+        if measured == {"pbc"}:
+            where = ("measured on the P.B.C. groups (F.B.C. runs, which have no group, take "
+                     "the same)")
+        elif any(p < CALIBRATION_ALPHA for p in realization_sharing(rows).values()):
+            where = ("pooled over the groups of both boundary conditions where they share "
+                     "one factor, and each boundary condition's own where they do not")
+        else:
+            where = ("pooled over the groups of both boundary conditions, which share one "
+                     "factor")
+        return ("The campaign's groups of runs that differ only in their seed show that "
+                "realizations spread beyond these errors (``realization-scatter`` below): the "
+                "time averages of one run that decide a row (Fig. 2's windows and halves, "
+                "Fig. 4's steady states and ramp levels, Fig. 8's zones, Fig. 9's steady "
+                "state, Fig. 3's sigma_<Z>) carry the batch-means error times the factor "
+                f"{where} (" + ", ".join(parts)
+                + ("" if any(q in self._measured() for q in ZONE_QUANTITIES)
+                   else "; a profile's zones the largest") + "). "
+                "A mean of a few seeds (Fig. 4's differences of a ramp's levels, Fig. 8's final "
+                "zones, Fig. 6's final alpha, Fig. 4's first increase against the steady "
+                "squares) is judged the same way: its seeds join the "
+                "groups as one more group (unless they are one of them already), and the "
+                "error of the mean is their own errors times the factor so pooled, with the "
+                "pooled degrees of freedom, rather than the spread of two seeds with one "
+                "degree of freedom; seeds that spread unlike the groups (F test, two-sided, "
+                f"below {CALIBRATION_ALPHA:g}) are judged by their own spread. A steady "
+                "square of Fig. 4 with several seeds has the larger of their sem and the "
+                "error so pooled.")
+
+    def _measured(self):
+        """The quantities the groups of realizations measure (:meth:`scatter_rows`),
+        rejected or not."""
+        return {r["column"] for r in self.scatter_rows()}
+
+    def seed_mean_error(self, quantity, values, errors, bc="pbc", groups=()):
+        """(error, dof, factor) of the mean of a few realizations ``values`` of ``quantity``
+        (e.g. two seeds of a ramp), each with its own batch-means error ``errors``: their
+        group joins the campaign's groups of realizations of ``quantity`` (the ones
+        :func:`realization_factors` pools for ``bc``) in one tapmc.fluctuations.
+        ErrorCalibration, whose factor k (at least 1) times the error the runs' own errors
+        give the mean, sqrt(sum e_i^2) / n, is the error, with the pooled dof. Two seeds
+        alone give their spread 1 dof (a t quantile of 12.7); the groups give the same
+        spread some 17. None (judge the seeds alone) when the campaign has no such groups,
+        fewer than two values are given, or their spread differs from the groups' (the F
+        test of ErrorCalibration.same_factor_p below :data:`CALIBRATION_ALPHA`). When the
+        seeds are already one of the groups (their name among ``groups``, e.g. Fig. 8's
+        F.B.C. runs at eps = 0.02, ``const_fbc_eps0.02``) the groups' own factor and dof
+        serve: the seeds do not count twice."""
+        values = np.asarray(values, dtype=float)
+        errors = np.asarray(errors, dtype=float)
+        if (len(values) < 2 or len(errors) != len(values) or not np.all(np.isfinite(values))
+                or not np.all(np.isfinite(errors)) or np.any(errors <= 0)):
+            return None
+        pooled = self.pooled_calibration(quantity, bc)
+        if pooled is None:
+            return None
+        calibration = pooled
+        if not any(g in pooled.groups for g in groups):
+            own = ErrorCalibration({SEEDS_GROUP: (values, errors)},
+                                   within_dof=pooled.within_dof).compute()
+            if own.same_factor_p(pooled) < CALIBRATION_ALPHA:
+                return None
+            calibration = ErrorCalibration({**pooled.groups, SEEDS_GROUP: (values, errors)},
+                                           within_dof=pooled.within_dof).compute()
+        factor = max(1.0, calibration.factor)
+        return (factor * float(np.sqrt(np.sum(errors ** 2))) / len(values), calibration.dof,
+                factor)
+
+    def pooled_calibration(self, quantity, bc):
+        """The ErrorCalibration of ``quantity`` that :func:`realization_factors` reads for
+        ``bc`` (both boundary conditions' groups unless they differ), or None."""
+        rows = self.scatter_rows()
+        every = realization_calibrations(rows)
+        if quantity not in every:
+            return None
+        if realization_sharing(rows).get(quantity, 1.0) < CALIBRATION_ALPHA:
+            return realization_calibrations(rows, bc).get(quantity)
+        return every[quantity]
+
+    def run_error(self, quantity, bc="pbc"):
+        """(factor, dof) that turn one run's batch-means error of ``quantity`` ('phi_b',
+        'phi_c', 'Z'; '<name>:halves' for a difference of two parts of one run; None: the
+        largest factor of the three window means, for a quantity no group measures) into the
+        error of a realization of a run of boundary condition ``bc`` ('pbc', 'fbc'): the
+        campaign's :func:`realization_factors` where they reject calibrated errors, else
+        (1, None) (the one-run error and its own dof). A profile's zone
+        (:data:`ZONE_QUANTITIES`) that realization_scatter.csv does not measure takes the
+        largest factor, as None does."""
+        factors = self._realization_factors(bc)
+        if quantity in ZONE_QUANTITIES and quantity not in self._measured():
+            quantity = None
+        if quantity is None:
+            means = [factors[k] for k in RUN_ERROR_QUANTITIES if k in factors]
+            return max(means, default=(1.0, None))
+        return factors.get(quantity, (1.0, None))

@@ -1,0 +1,408 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""Statistics of the compaction laws (eq. 3, the inverse-log law, and eq. 4, Z's law; Fig. 2):
+the fits' quality over realizations, whether eq. 3's triplet is fixed, and B's exponential
+dependence on eps."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+from scipy.stats import chi2 as chi2_distribution
+
+from tapmc.laws import InverseLogLaw, RealizationLawTest, SURROGATE_P_MIN, ZLaw
+from tapmc.stats import mean_dof
+
+from .. import _plotting as P
+from .common import eps_series, not_in_campaign
+from .measure import Measure, fmt
+from .registry import statistic
+
+
+def _fit_quality(fig, prefix, npoints, nparams, label):
+    chi, _, determined = fig.param(f"{prefix}reduced_chi2")
+    if not np.isfinite(chi):
+        return Measure(label=label, undecided="no fit in the figure data")
+    dof = npoints - nparams
+    shown = f"reduced chi2 {fmt(chi)} ({dof} dof)"
+    if dof < 1:
+        return Measure(chi, label=label, shown=shown, undecided="fewer points than parameters")
+    return Measure(chi, dof=dof, label=label, shown=shown)
+
+
+def _law_quality(prefix):
+    """The per-curve chi-square of a 4-parameter law of Fig. 2 whose params rows are named
+    ``eps=<e>:<prefix>reduced_chi2`` (eq. 3: no prefix; eq. 4: ``Z:``), shown but undecided:
+    the taps of a run are correlated (Fig. 3), so a chi-square over them with per-tap errors
+    has no known distribution, whatever the number of seeds (with two seeds the medium
+    preset's eq. 3 fits had reduced chi2 0.03: a test that cannot fail). The laws are decided
+    across realizations (:func:`_law_across_realizations`)."""
+    def measure(fig, eps, t, mean, sem, n):
+        m = _fit_quality(fig, f"eps={P.fmt_eps(eps)}:{prefix}", len(t), 4, f"eps = {eps:g}")
+        if m.undecided is None:
+            seeds = mean_dof(n)
+            if seeds is None:
+                # without error bars the fit's "reduced chi2" is its mean squared residual
+                m.shown = f"rms residual {fmt(math.sqrt(m.value))}"
+                m.undecided = ("one realization: no error bars for a chi-square (the taps' "
+                               "scatter is correlated)")
+            else:
+                m.undecided = (f"{seeds + 1} seeds: a chi-square over correlated taps has no "
+                               f"known distribution; needs {REALIZATION_MIN_SEEDS} "
+                               "realizations (bench/paper_questions.py early-taps)")
+        return m
+    return measure
+
+
+#: realizations (early_taps.csv) that test a law of Fig. 2 across runs: a 4-parameter law
+#: needs 6 (tapmc.laws.RealizationLawTest: realizations > bins > parameters) ...
+REALIZATION_MIN_SEEDS = 6
+
+
+#: ... spanning at least two decades of taps, over which the laws' curvature shows
+REALIZATION_MIN_TAPS = 100
+
+
+def realization_curves(data, eps, column):
+    """(t, curves) of ``column`` over the realizations of early_taps.csv at ``eps`` (one row
+    per seed, the taps 0..T every one of them has), or None when fewer than
+    :data:`REALIZATION_MIN_SEEDS` span :data:`REALIZATION_MIN_TAPS` taps."""
+    by_seed = {}
+    for r in data.question("early_taps"):
+        if math.isclose(float(r["eps"]), eps, rel_tol=1e-9):
+            by_seed.setdefault(int(r["seed"]), {})[int(float(r["t"]))] = float(r[column])
+    seeds = [s for s, v in by_seed.items() if max(v) >= REALIZATION_MIN_TAPS]
+    if len(seeds) < REALIZATION_MIN_SEEDS:
+        return None
+    last = min(max(by_seed[s]) for s in seeds)
+    t = np.arange(0, last + 1)
+    if not all(all(k in by_seed[s] for k in t) for s in seeds):
+        return None
+    return t.astype(float), np.array([[by_seed[s][k] for k in t] for s in sorted(seeds)])
+
+
+def loosening_end(data, eps):
+    """The first tap at which the mean Phi_b over the realizations of early_taps.csv at
+    ``eps`` is back at its t = 0 value (the first taps loosen the deposited packing, which no
+    monotonic law follows), or None (too few realizations, or still loose at their last tap)."""
+    curves = realization_curves(data, eps, "phi_b")
+    return None if curves is None else back_at_start(curves[0], curves[1].mean(axis=0))
+
+
+def back_at_start(t, mean):
+    """The first tap t >= 1 at which ``mean`` (Phi_b over realizations, t[0] = 0) is back at
+    its t = 0 value, or None."""
+    back = np.flatnonzero((np.asarray(t) >= 1) & (np.asarray(mean) >= mean[0]))
+    return float(t[back[0]]) if back.size else None
+
+
+def _law_across_realizations(data, eps, law, column):
+    """Measures of one law of Fig. 2 tested across the realizations of early_taps.csv at
+    ``eps`` (tapmc.laws.RealizationLawTest): over every tap from the first, and from the end
+    of the first taps' loosening (:func:`loosening_end`); None when the realizations are too
+    few."""
+    curves = realization_curves(data, eps, column)
+    if curves is None:
+        return None
+    out = []
+    back = loosening_end(data, eps)
+    for t_min, part in ((1.0, "every tap"), (back, "after the first taps' loosening")):
+        label = f"eps = {eps:g}, {part}"
+        if t_min is None or t_min * 10 > curves[0][-1]:
+            out.append(Measure(label=label, undecided=(
+                "the packing is still looser than at t = 0 a decade before the "
+                "realizations' last tap")))
+            continue
+        test = RealizationLawTest(law, t_min=t_min).compute(*curves)
+        edges = test.bin_edges
+        out.append(Measure(test.chi2, dof=test.dof, p_value=test.p_value, label=label,
+                           shown=f"T^2 {fmt(test.chi2)} ({test.dof} dof) over taps "
+                                 f"{edges[0]:g}-{edges[-1] - 1:g} in {len(edges) - 1} log "
+                                 f"bins, {test.realizations} realizations from the same "
+                                 "packing"))
+    return out
+
+
+def _fig2_law_quality(data, law, column, panel, prefix):
+    """Per eps of Fig. 2: the law across realizations where early_taps.csv has them (two
+    measures: every tap, and after the first taps' loosening), else the chi-square of the
+    figure's own fit (:func:`_law_quality`)."""
+    fig = data.figure("fig2")
+    if fig is None:
+        return not_in_campaign("no Fig. 2 runs")
+    out = []
+    for eps, series in eps_series(fig, panel):
+        ms = _law_across_realizations(data, eps, law, column)
+        out += ms if ms is not None else [_law_quality(prefix)(fig, eps, *fig.get(panel, series))]
+    return out or not_in_campaign(f"no curve in panel {panel} of Fig. 2")
+
+
+@statistic("eq3_fit_quality")
+def eq3_fit_quality(data, claim):
+    return _fig2_law_quality(data, InverseLogLaw(), "phi_b", "a", "")
+
+
+#: Parameters of eq. 3 whose uniqueness section III.B discusses: the triplet (X_inf, B, tau).
+EQ3_TRIPLET = ("X_inf", "B", "tau")
+
+
+def _eq3_uniqueness(fig, eps):
+    """(unique, reason) of the eq. 3 triplet at one eps from Fig. 2's params: unique when
+    every parameter is determined (its profile interval closes) and consistent over the tap
+    ranges; None when the figure data have no intervals."""
+    tag = f"eps={P.fmt_eps(eps)}"
+    if fig.get("params", f"{tag}:tau:range_deviation") is None:
+        return None, ""
+    undetermined = [k for k in EQ3_TRIPLET if fig.param(f"{tag}:{k}")[2] != 1]
+    dependent = [k for k in EQ3_TRIPLET if fig.param(f"{tag}:{k}:range_deviation")[2] != 1]
+    reasons = ([f"{', '.join(undetermined)} undetermined"] if undetermined else []) + \
+        ([f"{', '.join(dependent)} range dependent"] if dependent else [])
+    return not reasons, "; ".join(reasons) or "unique"
+
+
+#: why the fits of Fig. 2 decide nothing with one run per eps: their errors come from the
+#: scatter of the taps about the law, whose correlation (Fig. 3's spectrum) they ignore, so
+#: the intervals, the range tests and B's errors would be too narrow
+ONE_RUN_FITS = "one realization: the fits' intervals ignore the taps' correlation"
+
+
+def _one_run_fig2(fig):
+    """True when every curve of Fig. 2 is one run (n = 1)."""
+    series = eps_series(fig, "a")
+    return bool(series) and max(np.nanmax(fig.get("a", name)[3]) for _, name in series) < 2
+
+
+def _run_seed(name):
+    """The seed of a campaign run's folder name (``..._s<seed>``)."""
+    return int(name.rsplit("_s", 1)[1])
+
+
+def surrogate_fits(data, law):
+    """eps -> {parameter: row} of fit_surrogates.csv for ``law`` ('eq3', 'eq4') and the
+    campaign's run of the paper's protocol at each eps: the first seed (the other seeds'
+    rows, and the realizations of the first taps, are shown beside it, not read here)."""
+    first = {}
+    for r in data.question("fit_surrogates"):
+        if r["source"] != "realizations" and r["law"] == law:
+            e = float(r["eps"])
+            first[e] = min(first.get(e, r["source"]), r["source"], key=_run_seed)
+    out = {}
+    for r in data.question("fit_surrogates"):
+        if r["law"] == law and first.get(float(r["eps"])) == r["source"]:
+            out.setdefault(float(r["eps"]), {})[r["parameter"]] = r
+    return dict(sorted(out.items()))
+
+
+def _surrogate_uniqueness(params, names):
+    """(unique, reason) of one run's parameters ``names`` from its fit_surrogates rows."""
+    undetermined = [k for k in names if params[k]["determined"] != "1"]
+    dependent = [k for k in names if float(params[k]["range_p"]) < SURROGATE_P_MIN]
+    reasons = ([f"{', '.join(undetermined)} undetermined"] if undetermined else []) + \
+        ([f"{', '.join(dependent)} range dependent"] if dependent else [])
+    return not reasons, "; ".join(reasons) or "unique within the surrogates"
+
+
+#: why a "unique" triplet of one run decides nothing: the surrogates' bands are narrower than
+#: the spread of independent realizations (tests/python/test_slow_surrogate_fits.py)
+SURROGATES_UNIQUE = ("one run's surrogates show an upper bound of how well the triplet is "
+                     "fixed: 'unique' needs realizations")
+
+
+def realization_fits(data, law, bc):
+    """eps -> {parameter: row} of seed_fits.csv (bench/paper_questions.py seed-fits: whole runs
+    fitted over realizations, tapmc.laws.RealizationFits) for ``law`` ('eq3', 'eq4') and
+    boundary condition ``bc``; at an eps with several groups, the one of most realizations."""
+    out = {}
+    for r in data.question("seed_fits"):
+        if r["law"] != law or r["bc"] != bc:
+            continue
+        group = out.setdefault(float(r["eps"]), {})
+        if group and int(next(iter(group.values()))["realizations"]) > int(r["realizations"]):
+            continue
+        if group and next(iter(group.values()))["group"] != r["group"]:
+            group.clear()
+        group[r["parameter"]] = r
+    return dict(sorted(out.items()))
+
+
+def _realization_uniqueness(params, names):
+    """(unique: True, False or None, reason) of the triplet ``names`` from one group's
+    seed_fits rows: the spread over realizations decides "determined" both ways (its
+    chi-square interval), a paired t-test over the ranges "range dependent"."""
+    def spread(k):
+        r = params[k]
+        unit = "ln " if r["log_scale"] == "1" else ""
+        return (f"sd of {unit}{k} {float(r['spread']):.2g} (95 %: {float(r['spread_low']):.2g} "
+                f"to {float(r['spread_high']):.2g}; limit {float(r['limit']):.2g})")
+
+    undetermined = [k for k in names if params[k]["determined"] == "0"]
+    open_ = [k for k in names if params[k]["determined"] == ""]
+    dependent = [k for k in names if float(params[k]["range_p"]) < SURROGATE_P_MIN]
+    n = params[names[0]]["realizations"]
+    reasons = ([f"{', '.join(undetermined)} undetermined ({'; '.join(map(spread, undetermined))})"]
+               if undetermined else []) + \
+        ([f"{', '.join(dependent)} range dependent"] if dependent else [])
+    if reasons:
+        return False, f"{n} realizations: " + "; ".join(reasons)
+    if open_:
+        return None, (f"{n} realizations cannot tell whether {', '.join(open_)} "
+                      f"{'is' if len(open_) == 1 else 'are'} fixed "
+                      f"({'; '.join(map(spread, open_))})")
+    return True, f"{n} realizations: unique"
+
+
+def _triplet_pattern(states, shown):
+    """The pattern over ``states`` [(eps, unique: True/False/None, reason)], by eps: holds
+    (1) when the smallest eps is not unique and a larger one is, contradicted (0) when the
+    smallest is unique or none is, undecided otherwise."""
+    first = states[0][1]
+    if first is True or all(u is False for _, u, _ in states):
+        return [Measure(0.0, shown=shown)]
+    if first is False and any(u is True for _, u, _ in states[1:]):
+        return [Measure(1.0, shown=shown)]
+    return None
+
+
+def _triplet_from_surrogates(rows, realized=None):
+    """The pattern from one run per eps (fit_surrogates.csv): "not unique" is safe (the
+    surrogates' bands are too narrow, never too wide), "unique" is not. Where realizations
+    of whole runs (``realized``: seed_fits rows by eps) decide, they replace the run's
+    verdict; where they cannot tell, a run's "not unique" still decides."""
+    realized = realized or {}
+    states = []
+    for e in sorted(set(rows) | set(realized)):
+        one = _surrogate_uniqueness(rows[e], EQ3_TRIPLET) if e in rows else None
+        many = _realization_uniqueness(realized[e], EQ3_TRIPLET) if e in realized else None
+        if many is not None and (many[0] is not None or one is None or one[0]):
+            unique = many[0]
+            why = many[1] + (f" (the run's surrogates: {one[1]})" if one else "")
+        else:
+            unique = False if not one[0] else None
+            why = one[1] + (f" ({many[1]})" if many else "")
+        states.append((e, unique, why))
+    shown = "; ".join(f"eps = {e:g}: {why}" for e, _, why in states) + \
+        " (one run per eps, Fourier surrogates of its residuals: fit_surrogates.csv" + \
+        ("; realizations of whole runs: seed_fits.csv)" if realized else ")")
+    decided = _triplet_pattern(states, shown)
+    if decided is not None:
+        return decided
+    unsure = [e for e, u, _ in states if u is None]
+    if all(e not in realized for e in unsure):
+        return [Measure(undecided=SURROGATES_UNIQUE, shown=shown)]
+    return [Measure(undecided=_REALIZATIONS_UNSURE.format(", ".join(f"{e:g}" for e in unsure)),
+                    shown=shown)]
+
+
+#: why realizations of whole runs leave the pattern open (they decide "fixed" both ways)
+_REALIZATIONS_UNSURE = ("the realizations cannot tell whether the triplet is fixed at eps = {}: "
+                        "their spread's 95 % interval straddles the limit")
+
+
+def _triplet_from_realizations(realized, label):
+    """The pattern from realizations of whole runs alone (seed_fits.csv rows by eps)."""
+    states = [(e, *_realization_uniqueness(p, EQ3_TRIPLET)) for e, p in realized.items()]
+    shown = "; ".join(f"eps = {e:g}: {why}" for e, _, why in states) + \
+        " (realizations of whole runs: seed_fits.csv)"
+    decided = _triplet_pattern(states, shown)
+    if decided is not None:
+        return [Measure(decided[0].value, label=label, shown=shown)]
+    unsure = ", ".join(f"{e:g}" for e, u, _ in states if u is None)
+    return [Measure(undecided=_REALIZATIONS_UNSURE.format(unsure), label=label, shown=shown)]
+
+
+@statistic("eq3_triplet_pattern")
+def eq3_triplet_pattern(data, claim):
+    """Section III.B: the triplet is not unique at the smallest eps and unique at some larger
+    eps (1), or not (0). Fig. 2's F.B.C. runs (their surrogates, and realizations of whole
+    runs where the campaign has them); a second row from the P.B.C. groups of realizations
+    when there are two eps or more."""
+    rows = surrogate_fits(data, "eq3")
+    if len(rows) >= 2:
+        out = _triplet_from_surrogates(rows, realization_fits(data, "eq3", "fbc"))
+        pbc = realization_fits(data, "eq3", "pbc")
+        if len(pbc) >= 2:
+            out = [dataclasses.replace(out[0], label="F.B.C., Fig. 2's runs")] + \
+                _triplet_from_realizations(pbc, "P.B.C. realizations")
+        return out
+    fig = data.figure("fig2")
+    if fig is None:
+        return not_in_campaign("no Fig. 2 runs")
+    series = eps_series(fig, "a")
+    if len(series) < 2:
+        return not_in_campaign("fewer than two eps in Fig. 2")
+    if _one_run_fig2(fig):
+        return [Measure(undecided=ONE_RUN_FITS)]
+    states = [(e, *_eq3_uniqueness(fig, e)) for e, _ in series]
+    if any(u is None for _, u, _ in states):
+        return not_in_campaign("no profile intervals and range refits in the Fig. 2 data")
+    shown = "; ".join(f"eps = {e:g}: {why}" for e, _, why in states)
+    holds = (not states[0][1]) and any(u for _, u, _ in states[1:])
+    return [Measure(1.0 if holds else 0.0, shown=shown)]
+
+
+@statistic("eq4_fit_quality")
+def eq4_fit_quality(data, claim):
+    return _fig2_law_quality(data, ZLaw(), "Z", "c", "Z:")
+
+
+def _b_from_surrogates(rows, label):
+    """ln B against sqrt(eps) from one run per eps (fit_surrogates.csv): only where B is
+    determined (an undetermined B is safe, a determined one an upper bound), with the
+    surrogates' half widths as errors. Too narrow errors make a rejection unsafe and an
+    agreement safe, so only agreement decides."""
+    determined = {e: p["B"] for e, p in rows.items() if p["B"]["determined"] == "1"}
+    text = "; ".join(f"eps = {e:g}: B {float(p['B']['value']):.3g} "
+                     f"({float(p['B']['low']):.3g}-{float(p['B']['high']):.3g})"
+                     for e, p in rows.items())
+    if len(determined) < 3:
+        missing = [f"{e:g}" for e in rows if e not in determined]
+        return Measure(label=label, shown=text,
+                       undecided=f"B undetermined at eps = {', '.join(missing)} (one run per "
+                                 "eps, Fourier surrogates): fewer than three eps with a "
+                                 "determined B")
+    x = np.sqrt(np.array(list(determined)))
+    y = np.log([float(p["value"]) for p in determined.values()])
+    err = np.array([float(p["half_width"]) for p in determined.values()])
+    coef = np.polyfit(x, y, 1, w=1.0 / err)
+    chi = float(np.sum(((y - np.polyval(coef, x)) / err) ** 2))
+    dof = len(x) - 2
+    p_value = float(chi2_distribution.sf(chi, dof))
+    shown = f"{text}; d ln B / d sqrt(eps) = {coef[0]:.3g}, chi2 {chi:.3g} ({dof} dof)"
+    if p_value >= 0.01:
+        return Measure(chi / dof, dof=dof, label=label, shown=shown, p_value=p_value)
+    return Measure(label=label, shown=shown,
+                   undecided=f"p = {p_value:.2g}, but one run's surrogate errors are too "
+                             "narrow to reject")
+
+
+@statistic("b_exponential")
+def b_exponential(data, claim):
+    """ln B linear in sqrt(eps) (Fig. 2 panel B) for the B of eq. 3 and of eq. 4."""
+    from_surrogates = [_b_from_surrogates(rows, f"B of {law.replace('eq', 'eq. ')}")
+                       for law in ("eq3", "eq4") if len(rows := surrogate_fits(data, law)) >= 1]
+    if from_surrogates:
+        return from_surrogates
+    fig = data.figure("fig2")
+    if fig is None:
+        return not_in_campaign("no Fig. 2 runs")
+    one_run = _one_run_fig2(fig)
+    out = []
+    for law in ("eq3", "eq4"):
+        d = fig.get("B", f"{law}:reduced_chi2")
+        if d is None:
+            continue
+        chi, dof = float(d[1][0]), int(d[3][0])
+        slope = fig.get("B", f"{law}:slope")
+        text = "" if slope is None else f"d ln B / d sqrt(eps) = {fmt(slope[1][0], slope[2][0])}; "
+        label = f"B of {law.replace('eq', 'eq. ')}"
+        if one_run:
+            out.append(Measure(label=label, undecided=ONE_RUN_FITS,
+                               shown=text.rstrip("; ") or None))
+        elif dof < 1 or not np.isfinite(chi):
+            out.append(Measure(label=label, undecided="fewer than three eps with a determined B",
+                               shown=text.rstrip("; ") or None))
+        else:
+            out.append(Measure(chi, dof=dof, label=label,
+                               shown=f"{text}reduced chi2 {fmt(chi)} ({dof} dof)"))
+    return out or not_in_campaign("no B(sqrt(eps)) fit in the Fig. 2 data")

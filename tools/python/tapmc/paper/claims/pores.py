@@ -1,0 +1,298 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""Statistics of the pores (section IV, Figs. 9-10): P0 against the configurations and
+Percus-Yevick, xi_min, nu and its hysteresis along the ramp, and the pore distribution's
+quadratic law."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from tapmc.pores import JACKKNIFE_BLOCKS, percus_yevick_p0
+from tapmc.stats import bonferroni_t_quantile, mean_dof, weighted_line
+
+from .. import _plotting as P
+from .._runs import RAMP_BRANCHES
+from .common import common_x, jackknife_dof, not_in_campaign, paired_levels
+from .data import ReportData
+from .measure import Measure, fmt
+from .registry import statistic
+
+
+def _pointwise_zero(x, diff, err, n, what, effect):
+    """The largest standardized difference over the points, tested against the Bonferroni
+    corrected t quantile (so that many points do not make a disagreement by chance)."""
+    ok = np.isfinite(diff) & np.isfinite(err) & (err > 0)
+    if not np.any(ok):
+        k = int(np.nanargmax(np.abs(diff))) if np.any(np.isfinite(diff)) else 0
+        return [Measure(float(diff[k]) if len(diff) else math.nan,
+                        undecided="one realization: the curves have no error bars",
+                        shown=f"max |{what}| = {fmt(np.nanmax(np.abs(diff)))}")]
+    idx = np.flatnonzero(ok)
+    k = idx[int(np.argmax(np.abs(diff[idx]) / err[idx]))]
+    dof = mean_dof(n[k])
+    if dof is None:
+        return [Measure(float(diff[k]), undecided="one realization")]
+    quantile = bonferroni_t_quantile(dof, len(idx))
+    return [Measure(float(diff[k]), float(err[k]), dof, quantile=quantile, effect=effect,
+                    shown=f"{fmt(diff[k], err[k])} at sigma = {x[k]:.3g} (largest of "
+                          f"{len(idx)} standardized differences)")]
+
+
+def _py_change(fig, sigma):
+    """Largest change over sigma of the Percus-Yevick P0 (eqs. 8-9) between the initial and
+    the tapped packing fractions: the effect a P0 claim is measured against (None when the
+    packing fractions are not in the data)."""
+    phi_i, phi_f = fig.param("phi_initial")[0], fig.param("phi_final")[0]
+    if not (np.isfinite(phi_i) and np.isfinite(phi_f)):
+        return None
+    return float(np.max(np.abs(percus_yevick_p0(sigma, phi_f) -
+                               percus_yevick_p0(sigma, phi_i))))
+
+
+def _p0_configurations(data, other, what, more_than=1):
+    """The comparison of :func:`_p0_difference` over the configurations of
+    bench/paper_questions.py p0-configs (depositions at t = 0, dumps of the continued Fig. 9
+    run), None when they are not there or are not more than ``more_than`` of each kind."""
+    rows = [r for r in data.question("p0_configs") if r["sigma"] != "phi"]
+    phi = [r for r in data.question("p0_configs") if r["sigma"] == "phi"]
+    if len(rows) < 3 or not phi:
+        return None
+    col = {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+    if min(col["initial_n"].min(), col["tapped_n"].min()) <= more_than:
+        return None
+    phi_i, phi_t = float(phi[0]["initial"]), float(phi[0]["tapped"])
+    x = col["sigma"]
+    effect = float(np.max(np.abs(percus_yevick_p0(x, phi_t) - percus_yevick_p0(x, phi_i))))
+    if other == "initial":
+        diff, err = col["initial"] - col["tapped"], np.hypot(col["initial_sem"], col["tapped_sem"])
+        n = np.minimum(col["initial_n"], col["tapped_n"])
+    else:
+        diff = np.asarray(percus_yevick_p0(x, phi_t), float) - col["tapped"]
+        err, n = col["tapped_sem"], col["tapped_n"]
+    out = _pointwise_zero(x, diff, err, n, what, effect)
+    for m in out:
+        m.shown = (m.shown or m.text()) + (
+            f" (P0 over {int(col['initial_n'].min())} depositions and "
+            f"{int(col['tapped_n'].min())} configurations of the tapped packing: "
+            "bench/paper_questions.py p0-configs)")
+    return out
+
+
+def _p0_difference(data, other, what):
+    """P0 of the tapped packing against the curve ``other`` of Fig. 9 (the initial packing's,
+    with its sem, or Percus-Yevick's, exact), sigma by sigma (:func:`_pointwise_zero`). Curves
+    of fewer realizations than ``p0-configs`` has configurations (one run per point, the
+    paper's protocol, or a campaign under way with two seeds, whose sem over two is itself
+    hardly known) are compared over those configurations instead, when there."""
+    fig = data.figure("fig9")
+    if fig is None:
+        return not_in_campaign("no Fig. 9 runs")
+    final, ref = fig.get("a", "final"), fig.get("a", other)
+    if final is None or ref is None:
+        return not_in_campaign("no P0 curves")
+    measured = _p0_configurations(data, other, what, more_than=int(np.nanmax(final[3])))
+    if measured is not None:
+        return measured
+    x = final[0]
+    ref_err = np.nan_to_num(np.interp(x, ref[0], ref[2]))  # Percus-Yevick: exact
+    n = final[3] if other == "percus_yevick" else np.minimum(final[3], ref[3].min())
+    return _pointwise_zero(x, np.interp(x, ref[0], ref[1]) - final[1],
+                           np.hypot(ref_err, final[2]), n, what, _py_change(fig, x))
+
+
+@statistic("p0_initial_minus_final")
+def p0_initial_minus_final(data, claim):
+    return _p0_difference(data, "initial", "P0(initial) - P0(tapped)")
+
+
+@statistic("p0_final_minus_py")
+def p0_final_minus_py(data, claim):
+    return _p0_difference(data, "percus_yevick", "Percus-Yevick - P0(tapped)")
+
+
+@statistic("xi_min")
+def xi_min(data, claim):
+    fig = data.figure("fig10")
+    if fig is None:
+        return not_in_campaign("no pore dumps")
+    d = fig.get("params", "xi_min")
+    if d is None:
+        return not_in_campaign("no xi_min")
+    i = int(np.argmin(d[1]))
+    return [Measure(float(d[1][i]), float(d[2][i]), mean_dof(d[3][i]),
+                    shown=fmt(d[1][i], d[2][i], digits=4))]
+
+
+def _pore_dof(n, err):
+    """dof of a Fig. 10 value (tapmc.pores.PoreOutput.jackknife for one seed)."""
+    return jackknife_dof(n, err, JACKKNIFE_BLOCKS)
+
+
+@statistic("nu_ramp_hysteresis")
+def nu_ramp_hysteresis(data, claim):
+    """Section IV.B: nu has the reversible-irreversible behaviour of <Phi^c> (section III.B).
+    From nu at the level ends of the ramp beyond (sqrt eps)* (bench/paper_questions.py
+    ramp-pores: one packing per level, the spatial jackknife's error), the two signs that
+    make <Phi^c>'s reversible branch, with nu's sign reversed (more pore volume, less
+    packing): the decreasing branch lies below the first increase (mean of the differences at
+    their common sqrt(eps), the levels' errors combined), and on it nu rises with sqrt(eps)
+    (weighted straight line)."""
+    # the ramp beyond (sqrt eps)* (runs ramp_<bc>_s<seed>; ramplow_ and rampnear_ are others)
+    rows = [r for r in data.question("ramp_pores") if r["run"].startswith("ramp_")]
+    if not rows:
+        return not_in_campaign("no nu at the level ends of the ramp beyond (sqrt eps)* "
+                        "(bench/paper_questions.py ramp-pores)")
+    # one packing per level: its jackknife times the packings' factor where they reject it
+    factor = data.run_error("packing:nu")[0]
+    branches = {}
+    for index, name in enumerate(RAMP_BRANCHES):   # in.ramp's branch column
+        picked = sorted((float(r["sqrt_eps"]), float(r["nu"]), float(r["nu_sem"]) * factor)
+                        for r in rows if int(r["branch"]) == index)
+        if picked:
+            x, y, e = map(np.array, zip(*picked))
+            branches[name] = (x, y, e, np.ones(len(x), int))
+    dof = _pore_dof(1, 0.0)
+    out = []
+    up, down = branches.get("up1"), branches.get("down")
+    pairs = [] if up is None or down is None else common_x(down, up)
+    label = "decrease minus first increase"
+    if pairs:
+        diffs = paired_levels(down, up)
+        err = math.sqrt(sum(down[2][i] ** 2 + up[2][k] ** 2 for i, k in pairs)) / len(pairs)
+        value = float(np.mean(diffs))
+        out.append(Measure(value, err, dof, label=label, sign=-1, shown=(
+            f"{fmt(value, err)} (mean of {len(pairs)} common sqrt(eps); one packing per level, "
+            "lateral jackknife)")))
+    else:
+        out.append(Measure(label=label, undecided="no level of the first increase at a "
+                                                  "sqrt(eps) of the decrease"))
+    label = "slope on the decrease"
+    if down is not None:
+        slope, err, line_dof = weighted_line(*down[:3])
+        if np.isfinite(slope):
+            out.append(Measure(slope, err, line_dof, label=label, sign=1,
+                               shown=f"slope {fmt(slope, err)} over {len(down[0])} levels"))
+            return out
+    out.append(Measure(label=label, undecided="fewer than three levels of the decrease"))
+    return out
+
+
+def _pore_curves(data):
+    fig = data.figure("fig10")
+    if fig is None:
+        return None
+    curves = sorted((float(s.split("=")[1]), fig.get("a", s)) for s in fig.series("a")
+                    if s.startswith("t="))
+    return curves or None
+
+
+def _band_integral(x, y, s, lo, hi):
+    """Integral of a histogram curve over lo < x <= hi (bin width from the x spacing) and its
+    error (bins independent)."""
+    width = np.gradient(x) if len(x) > 1 else np.ones_like(x)
+    pick = (x > lo) & (x <= hi)
+    value = float(np.sum(y[pick] * width[pick]))
+    err = float(math.sqrt(np.sum((s[pick] * width[pick]) ** 2)))
+    return value, err
+
+
+@statistic("pore_share_change")
+def pore_share_change(data, claim):
+    """Change from t = 0 to the last dump of the integral of xi^3 P(xi) over the small pores
+    (xi_T, xi_O] or the large ones (> xi_O)."""
+    curves = _pore_curves(data)
+    if curves is None:
+        return not_in_campaign("no pore dumps")
+    (t0, first), (t1, last) = curves[0], curves[-1]
+    lo, hi = (P.XI_T, P.XI_O) if claim.params.get("range") == "small" else (P.XI_O, math.inf)
+    a, ea = _band_integral(*first[:3], lo, hi)
+    b, eb = _band_integral(*last[:3], lo, hi)
+    n = min(first[3].min(), last[3].min())
+    shown = f"{fmt(a, ea)} (t = {t0:g}) -> {fmt(b, eb)} (t = {t1:g})"
+    dof = _pore_dof(n, [ea, eb])
+    if dof is None:
+        return [Measure(b - a, shown=shown, undecided="one realization: no error bars")]
+    # invariance of the small pores means small against the change of the large ones
+    la, _ = _band_integral(*first[:3], P.XI_O, math.inf)
+    lb, _ = _band_integral(*last[:3], P.XI_O, math.inf)
+    return [Measure(b - a, math.hypot(ea, eb), dof, shown=shown, effect=abs(lb - la))]
+
+
+def _quadratic_law(x, y, s):
+    """Weighted fit of c (xi - xi_T)^2 to the bins of (xi_T, xi_O] with error bars: (pick,
+    basis, c), None when fewer than three such bins."""
+    pick = (x > P.XI_T) & (x <= P.XI_O) & np.isfinite(s) & (s > 0)
+    if pick.sum() < 3:
+        return None
+    basis = (x[pick] - P.XI_T) ** 2
+    w = 1 / s[pick] ** 2
+    return pick, basis, float(np.sum(w * basis * y[pick]) / np.sum(w * basis**2))
+
+
+@statistic("pore_quadratic_fit")
+def pore_quadratic_fit(data, claim):
+    """Chi-square of xi^3 P(xi) = c (xi - xi_T)^2 over (xi_T, xi_O] at the last dump."""
+    curves = _pore_curves(data)
+    if curves is None:
+        return not_in_campaign("no pore dumps")
+    t, (x, y, s, n) = curves[-1]
+    law = _quadratic_law(x, y, s)
+    if law is None:
+        return [Measure(undecided="fewer than three histogram bins with error bars between "
+                                  "xi_T and xi_O")]
+    pick, basis, c = law
+    dof = int(pick.sum()) - 1
+    chi = float(np.sum((y[pick] - c * basis) ** 2 / s[pick] ** 2)) / dof
+    return [Measure(chi, dof=dof, shown=f"reduced chi2 {fmt(chi)} ({dof} dof, t = {t:g})")]
+
+
+def pore_law_deviation(fig10):
+    """How far the fitted c (xi - xi_T)^2 departs from xi^3 P(xi) at the last dump, relative to
+    the histogram's largest value in (xi_T, xi_O] (the scale of the figure; bins near xi_T,
+    where the curve starts from zero, would make relative deviations meaningless): dict t,
+    bins, rms, max, at (xi of the largest), error (median bin error on the same scale); None
+    without bins with error bars."""
+    curves = None if fig10 is None else _pore_curves(ReportData({}, {"fig10": fig10}))
+    if not curves:
+        return None
+    t, (x, y, s, n) = curves[-1]
+    law = _quadratic_law(x, y, s)
+    if law is None:
+        return None
+    pick, basis, c = law
+    scale = float(np.max(y[pick]))
+    rel = (y[pick] - c * basis) / scale
+    k = int(np.argmax(np.abs(rel)))
+    return {"t": t, "bins": int(pick.sum()), "rms": float(np.sqrt(np.mean(rel**2))),
+            "max": float(np.abs(rel[k])), "at": float(x[pick][k]),
+            "error": float(np.median(s[pick]) / scale)}
+
+
+def _pore_param(data, name):
+    fig = data.figure("fig10")
+    return None if fig is None else fig.get("params", name)
+
+
+@statistic("nu_tail_over_nu")
+def nu_tail_over_nu(data, claim):
+    nu, tail = _pore_param(data, "nu"), _pore_param(data, "nu_tail")
+    if nu is None or tail is None:
+        return not_in_campaign("no nu_tail")
+    m, s = tail[1][-1] / nu[1][-1], 0.0
+    ratio_err = abs(m) * math.hypot(tail[2][-1] / tail[1][-1], nu[2][-1] / nu[1][-1])
+    s = ratio_err if np.isfinite(ratio_err) else math.nan
+    return [Measure(float(m), float(s), _pore_dof(min(nu[3][-1], tail[3][-1]), s),
+                    label=f"t = {nu[0][-1]:g}")]
+
+
+@statistic("nu_change")
+def nu_change(data, claim):
+    nu = _pore_param(data, "nu")
+    if nu is None:
+        return not_in_campaign("no nu")
+    x, m, s, n = nu
+    err = math.hypot(s[-1], s[0])
+    return [Measure(m[-1] - m[0], err, _pore_dof(min(n[0], n[-1]), err),
+                    shown=f"{fmt(m[0], s[0], digits=4)} -> {fmt(m[-1], s[-1], digits=4)}")]

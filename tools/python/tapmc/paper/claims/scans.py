@@ -1,0 +1,126 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""Statistics of the model's knobs (section II): theta0 = pi/4 and d_max = R/5, from the knob
+scans and the run-time-versus-error front."""
+
+from __future__ import annotations
+
+import math
+
+from tapmc.stats import mean_dof
+
+from ..front import DEFAULT as FRONT_DEFAULT_SETTING
+from .common import above, below
+from .measure import Measure, fmt
+from .register import PAPER_SCALE
+from .registry import statistic
+from .scan_tables import scan_settings, scan_table
+
+
+@statistic("dmax_intermediate")
+def dmax_intermediate(data, claim):
+    """d_max = R/5 against R/10 and R/2 on the front (same eta and stop rule, so about the same
+    sweeps per tap): steady <Phi^c> of R/5 minus that of the other d_max, from their paired
+    biases against the front's reference (error: both standard errors in quadrature, which
+    over-states it, the two sharing the reference). Positive: the other d_max leaves the packing
+    looser at the same cost, i.e. redeposits more slowly."""
+    measures = []
+    # per N and eps of the front (the settings of one N and eps share their seeds)
+    for N, eps in sorted({(r["N"], r["eps"]) for r in data.front}):
+        at = {r["setting"]: r for r in data.front if r["N"] == N and r["eps"] == eps}
+        base = at.get(FRONT_DEFAULT_SETTING)
+        for name in ("dmax R/10", "dmax R/2"):
+            other = at.get(name)
+            if base is None or other is None:
+                continue
+            d = base["phi_c_steady_bias"] - other["phi_c_steady_bias"]
+            se = math.hypot(base["phi_c_steady_bias_se"], other["phi_c_steady_bias_se"])
+            n = int(min(base["paired_seeds"], other["paired_seeds"]))
+            measures.append(Measure(d, se, mean_dof(n), label=(
+                f"eps = {eps:g}, N = {other['N']:.0f}: <Phi^c>(R/5) - <Phi^c>({name[5:]}), steady, "
+                f"at {base['sweeps_per_tap']:.0f} and {other['sweeps_per_tap']:.0f} sweeps per tap"),
+                lacks=_size_lacking(N)))
+    for rows in data.scans["dmax"]:
+        if rows:
+            measures += _dmax_scan_measures(rows)
+    return measures or [Measure(undecided="neither the front (doc/front.rst) nor a d_max scan "
+                                          "(bench/paper_questions.py dmax) has measured d_max")]
+
+
+def _scan_label(rows, n=None):
+    first = rows[0]
+    return (f"N = {first['N']}, eps = {float(first['eps']):g}, {scan_settings(rows)}: <Phi^c> "
+            f"over taps {int(first['taps']) - 9}-{first['taps']} minus t = 0"
+            + (f", {n} seeds" if n else ""))
+
+
+@statistic("theta0_optimum")
+def theta0_optimum(data, claim):
+    """Section II: the paper's theta0 = pi/4 compacts most, a much smaller theta0 decompacts,
+    a large one compacts less. From the theta0 scan (same packings, taps at fixed eps): 1 when
+    no theta0 compacts more than pi/4 beyond t sem (paired), the smallest theta0 decompacts
+    (gain below zero beyond t sem) and the largest compacts less than pi/4 (beyond t sem); 0
+    when any of these is contradicted beyond t sem; undecided otherwise."""
+    measures = [_theta0_measure(rows) for rows in data.scans["theta0"] if rows]
+    return measures or [Measure(undecided="no theta0 scan (bench/paper_questions.py theta0)")]
+
+
+def _size_lacking(N):
+    """("size",) for runs of another N than the paper's, () for the paper's."""
+    return () if int(float(N)) == PAPER_SCALE["N"] else ("size",)
+
+
+def _theta0_measure(rows):
+    m = _theta0_verdict(rows)
+    m.lacks = _size_lacking(rows[0]["N"])
+    return m
+
+
+def _theta0_verdict(rows):
+    table = scan_table(rows, "theta0")
+    label = _scan_label(rows)
+    if len(table) < 3 or not any(r["is_paper"] for r in table):
+        return Measure(label=label, undecided="fewer than three theta0, or no pi/4, in the scan")
+    n = min(r["n"] for r in table)
+    if n < 2:
+        return Measure(label=label, undecided="one seed per theta0")
+    dof = n - 1
+    label = _scan_label(rows, n)
+    shown = "; ".join(f"{r['name']}: {fmt(r['gain'], r['gain_sem'], True)}" for r in table)
+    better = [r for r in table
+              if not r["is_paper"] and above(r["vs_paper"], r["vs_paper_sem"], dof)]
+    small, large = table[0], table[-1]
+    checks = {
+        "no theta0 compacts more than pi/4": (not better, bool(better)),
+        f"{small['name']} decompacts":
+            (below(small["gain"], small["gain_sem"], dof),
+             above(small["gain"], small["gain_sem"], dof)),
+        f"{large['name']} compacts less than pi/4":
+            (below(large["vs_paper"], large["vs_paper_sem"], dof),
+             above(large["vs_paper"], large["vs_paper_sem"], dof)),
+    }
+    shown += f"; most: {max(table, key=lambda r: r['gain'])['name']}"
+    contradicted = [k for k, (_, no) in checks.items() if no]
+    open_ = [k for k, (yes, no) in checks.items() if not yes and not no]
+    if contradicted:
+        return Measure(0.0, label=label, shown=shown + "; contradicted: " + ", ".join(contradicted))
+    if open_:
+        return Measure(label=label, shown=shown, undecided="within t sem: " + ", ".join(open_))
+    return Measure(1.0, label=label, shown=shown)
+
+
+def _dmax_scan_measures(rows):
+    """From a d_max scan: the compaction at R/5 minus that at the smallest and at the largest
+    d_max, paired over the seeds (sign +: those slow the redeposition down)."""
+    table = scan_table(rows, "dmax")
+    if len(table) < 3 or not any(r["is_paper"] for r in table):
+        return [Measure(label=_scan_label(rows), undecided="fewer than three d_max, or no R/5")]
+    n = min(r["n"] for r in table)
+    out = []
+    for other in (table[0], table[-1]):
+        if other["is_paper"]:
+            continue
+        out.append(Measure(-other["vs_paper"], other["vs_paper_sem"], mean_dof(n), label=(
+            f"d_max scan, {_scan_label(rows, n)}: compaction with R/5 minus with {other['name']}; "
+            f"most with {max(table, key=lambda r: r['gain'])['name']}"),
+            lacks=_size_lacking(rows[0]["N"])))
+    return out

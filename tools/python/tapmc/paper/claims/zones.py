@@ -1,0 +1,119 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""Statistics of the profiles and zones (Figs. 6-8): the final alpha, the central zone against
+the lateral one, and the lateral zone over the first taps from the paper's F.B.C. start."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from tapmc.profiles import PROFILE_JACKKNIFE_BLOCKS
+from tapmc.stats import mean_dof
+
+from .. import _plotting as P
+from .._runs import PAPER_START_TAG, eps_tag
+from .common import (eps_of, eps_series, figure_param, jackknife_dof, not_in_campaign,
+                     one_seed_error_text, seed_mean, steady_dof)
+from .measure import Measure, fmt
+from .registry import statistic
+
+
+def _fbc_group_names(eps):
+    """The names realization-scatter gives the group of the F.B.C. constant-eps runs at
+    ``eps`` (either start: tapmc.paper._runs.constant_eps_run); () without an eps."""
+    if not np.isfinite(eps):
+        return ()
+    return tuple(f"const_{tag}_eps{eps_tag(eps)}" for tag in ("fbc", PAPER_START_TAG))
+
+
+@statistic("final_alpha")
+def final_alpha(data, claim):
+    found, missing = figure_param(data, "fig6", "final:alpha", "no F.B.C. profile runs")
+    if missing:
+        return missing
+    fig, m, s, n = found
+    if n >= 2:
+        m, s, dof, how = seed_mean(data, fig, "final:alpha", "packing:alpha", "fbc",
+                                    _fbc_group_names(fig.param("eps")[0]))
+        return [Measure(m, s, dof, shown=fmt(m, s) + (f" ({how})" if how else ""))]
+    within = " (one seed: lateral jackknife of its packing)" if n == 1 and np.isfinite(s) else ""
+    return [Measure(m, s, jackknife_dof(n, s, PROFILE_JACKKNIFE_BLOCKS),
+                    shown=fmt(m, s) + within)]
+
+
+@statistic("central_minus_lateral")
+def central_minus_lateral(data, claim):
+    fig = data.figure("fig8")
+    if fig is None:
+        return not_in_campaign("no Fig. 8 runs")
+    out = []
+    for eps in sorted({eps_of(s) for s in fig.series("params")}):
+        tag = f"eps={P.fmt_eps(eps)}"
+        cen = fig.param(f"{tag}:final_central")
+        lat = fig.param(f"{tag}:final_lateral")
+        # the zones of one run move together: their difference per seed (paired) has the
+        # error; CSVs written before it was drawn fall back to the zones' errors combined
+        diff = fig.param(f"{tag}:final_central_minus_lateral")
+        if not np.isfinite(diff[0]):
+            diff = (cen[0] - lat[0], math.hypot(cen[1], lat[1]), min(cen[2], lat[2]))
+        value, err, n = diff
+        factor = data.run_error("zone:central_minus_lateral", "fbc")[0]
+        within = (f" ({one_seed_error_text(factor)})" if n == 1 and np.isfinite(err) else "")
+        dof = steady_dof(n, err)
+        if n >= 2 and fig.get("params", f"{tag}:final_central_minus_lateral:seeds") is not None:
+            _, err, dof, how = seed_mean(data, fig, f"{tag}:final_central_minus_lateral",
+                                          "zone:central_minus_lateral", "fbc",
+                                          _fbc_group_names(eps))
+            within = f" ({how})"
+        out.append(Measure(value, err, dof, label=f"eps = {eps:g}",
+                           shown=f"{fmt(cen[0], cen[1])} vs {fmt(lat[0], lat[1])}; "
+                                 f"difference {fmt(value, err)}{within}"))
+    return out or not_in_campaign("no F.B.C. profile")
+
+
+@statistic("lateral_first_tap")
+def lateral_first_tap(data, claim):
+    fig = data.figure("fig8")
+    if fig is None:
+        return not_in_campaign("no Fig. 8 runs")
+    paper_start = [(e, s) for e, s in ((eps_of(s), s) for s in fig.series("a")
+                                       if s.startswith("paper:eps="))]
+    if not paper_start and data.question("lateral_first_tap"):
+        return _lateral_first_tap_measured(data.question("lateral_first_tap"))
+    if not paper_start:
+        values = []
+        for eps, series in eps_series(fig, "a"):
+            t, mean, sem, n = fig.get("a", series)
+            if np.any(t == 1):
+                values.append(f"{fmt(mean[t == 1][0], sem[t == 1][0])} at eps = {eps:g}")
+        seen = "; with the start deposited between walls: " + ", ".join(values) if values else ""
+        return [Measure(undecided="no F.B.C. run from the paper's start" + seen)]
+    out = []
+    for eps, series in sorted(paper_start):
+        t, mean, sem, n = fig.get("a", series)
+        if not np.any(t == 1):
+            continue
+        k = int(np.argmax(t == 1))
+        out.append(Measure(mean[k], sem[k], mean_dof(n[k]), label=f"eps = {eps:g}"))
+    return out or not_in_campaign("no tap 1 in the paper-start curves")
+
+
+def _lateral_first_tap_measured(rows):
+    """delta Phi_lateral at t = 1 per eps over the seeds of bench/paper_questions.py
+    lateral-first-tap (the paper's F.B.C. start, taps from t = 0)."""
+    per = {}
+    for r in rows:
+        per.setdefault(float(r["eps"]), {}).setdefault(int(r["seed"]), {})[int(r["t"])] = \
+            float(r["lateral"])
+    out = []
+    for eps, seeds in sorted(per.items()):
+        jumps = np.array([t[1] - t[0] for t in seeds.values() if 0 in t and 1 in t])
+        if len(jumps) == 0:
+            continue
+        sem = float(jumps.std(ddof=1) / math.sqrt(len(jumps))) if len(jumps) > 1 else math.nan
+        out.append(Measure(float(jumps.mean()), sem, mean_dof(len(jumps)), label=f"eps = {eps:g}",
+                           shown=f"{fmt(float(jumps.mean()), sem)} (the paper's start, "
+                                 f"{len(jumps)} seeds: bench/paper_questions.py "
+                                 "lateral-first-tap)"))
+    return out or not_in_campaign("no tap 1 from the paper's start")
