@@ -30,8 +30,11 @@ from tapmc.readers import TapmcFormatError
 from . import FIGURES
 from . import _plotting as P
 from . import _runs
-from . import claims, questions
+from . import claims, paper_ramp, questions
 from .claims import fmt
+from .front import bias_sentence  # what the redeposition setting costs in accuracy
+from .front import read_summary as read_front_summary
+from .scales import SCALES
 
 #: the text of each rule of tapmc.paper.claims, as the report prints it (each rule's own
 #: text: tapmc.paper.claims.rules).
@@ -68,8 +71,6 @@ ONE_RUN_ERRORS = (
 def campaign_summary(campaign):
     """What the report says of the campaign itself (a JSON-ready dict): its scale, sizes,
     runs, taps, seeds, eta, and the initial <Phi^c> of its P.B.C. packings."""
-    from .scales import SCALES
-
     specs = campaign.runs
     scale = _runs.campaign_scale(campaign)
     preset = scale is not None and scale.name in SCALES and SCALES[scale.name] == scale
@@ -143,7 +144,6 @@ def describe_scale(summary):
         text += (" Its fields (a ``Scale.replace`` of the quick preset, recorded in the "
                  "campaign's ``scale.json``): "
                  + "; ".join(f"{k} = {fields[k]}" for k in _SCALE_KEYS) + ".")
-    from .front import bias_sentence  # what the redeposition setting costs in accuracy
 
     for eta in summary["eta"]:
         text += " " + bias_sentence(eta)
@@ -331,8 +331,6 @@ def _register_table(rows):
 def _paper_ramp_finding(files, summary):
     """The finding about the irreversible branch at the paper's ramp protocol, from
     questions/paper_ramp.csv next to the figures (``tapmc-paper paper-ramp``), or ""."""
-    from . import paper_ramp
-
     if not files:
         return ""
     path = Path(next(iter(files.values()))[1]).parent / questions.FOLDER / paper_ramp.CSV_NAME
@@ -386,9 +384,8 @@ def render(summary, files):
     lines += _register_table(rows) + [""]
     if files:
         folder = Path(next(iter(files.values()))[1]).parent / questions.FOLDER
-        from .front import read_summary
 
-        lines += questions.render_section(folder, figures, summary["eta"], read_summary())
+        lines += questions.render_section(folder, figures, summary["eta"], read_front_summary())
     for name in FIGURES:
         if name not in files:
             continue
