@@ -173,6 +173,14 @@ def test_list_names_every_question(capsys):
     assert listed == list(QUESTIONS) and len(listed) == 18
 
 
+def test_help_lists_every_question(capsys):
+    with pytest.raises(SystemExit) as stop:
+        cli.main(["question", "--help"])
+    assert stop.value.code == 0
+    text = capsys.readouterr().out
+    assert all(name in text for name in QUESTIONS) and "58.3 % -> 57.1 %" in text
+
+
 @pytest.mark.parametrize("name", list(QUESTIONS))
 def test_help_of_every_question(capsys, name):
     with pytest.raises(SystemExit) as stop:

@@ -31,7 +31,8 @@ def add_parser(parser):
     parser.add_argument("--list", action="store_true", help="list the questions and exit")
     sub = parser.add_subparsers(dest="question", metavar="NAME")
     for name, module in QUESTIONS.items():
-        p = sub.add_parser(name, help=_summary(module), description=module.__doc__,
+        p = sub.add_parser(name, help=_summary(module).replace("%", "%%"),  # argparse formats it
+                           description=module.__doc__,
                            formatter_class=argparse.RawDescriptionHelpFormatter)
         p.add_argument("--out", type=Path, default=DEFAULT_OUT, metavar="DIR",
                        help="where the CSV goes (default: the committed page's "
