@@ -44,7 +44,9 @@ def add_arguments(parser):
     parser.add_argument("--seeds", type=int, nargs="+", default=list(EARLY_SEEDS))
     parser.add_argument("--taps", type=int, default=REALIZATION_TAPS)
     parser.add_argument("--eps", type=float, nargs="+", default=None,
-                        help="the eps measured (default: Fig. 2's)")
+                        help="the eps measured (default: Fig. 2's); the CSV then holds those "
+                             "only. The realizations of one --work folder run in one process "
+                             "(its campaign.lock): use --jobs J for several cores")
     parser.add_argument("--work", default=None, type=Path,
                         help="the realizations' campaign folder (default OUT/partial/"
                              "early_taps)")
@@ -148,7 +150,6 @@ def render(path):
                     "Eqs. 3 and 4 are tested across the realizations that span 100 taps or "
                     "more (tapmc.laws.RealizationLawTest), over every tap and from that tap on, "
                     "in the claims' table.", ""]
-
 
 
 def back_at_start_text(by_seed):

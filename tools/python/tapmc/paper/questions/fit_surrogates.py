@@ -168,7 +168,6 @@ def render(path, seed_rows=None):
     return lines + surrogates_against_seeds(b_rows, seed_rows or []) + [""]
 
 
-
 def surrogates_against_seeds(b_rows, seed_rows):
     """Where several seeds of one eps were fitted with surrogates and seed-fits has their
     group: each run's half width of ln B (eq. 3) against the realizations' sd of ln B, the

@@ -29,8 +29,8 @@ THETA0_WINDOW = 10
 #: the sphere radius of in.constant_eps (distance units), and the dmax scan's values (over R)
 THETA0_RADIUS = 0.5
 DMAX_OVER_R = (1 / 50, 1 / 20, 1 / 10, 1 / 5, 1 / 3, 1 / 2, 1)
-#: the value that compacts most "redeposits longer" when it takes more than this share more
-#: sweeps per tap than the paper's value
+#: the value that compacts most "redeposits longer" when it takes more than this factor times
+#: the paper's value's sweeps per tap
 SWEEPS_SHARE = 1.1
 
 
@@ -47,7 +47,6 @@ def scan_file_name(stem, stop, N, extra=()):
     tags = (list(extra) + ([] if stop == "change" else [stop]) +
             ([] if N == THETA0_SCALE["N"] else [f"N{N}"]))
     return "_".join([stem] + tags) + ".csv"
-
 
 
 def _scan_header(column, stem):
@@ -123,7 +122,6 @@ SCAN_QUESTIONS = {
     "dmax": ("Is d_max = R/5 an intermediate value, much smaller or larger steps slowing the "
              "redeposition (section II)?", "d_max", "R/5", "dmax_intermediate"),
 }
-
 
 
 def render(path, knob):

@@ -145,7 +145,6 @@ def fluid_configurations(mc, folder, phi, args):
     return values, configs, dumps
 
 
-
 def measured_p0(pores, folder, dumps):
     """(sigma, P0 per configuration, Phi seen by each configuration's points): tapmc-pores
     with Fig. 9's settings (P0_POINTS random points, one seed per configuration; the box is
@@ -258,7 +257,6 @@ def packing_p0(fig9, configs=None):
         at = int(np.nanargmax(np.abs(diff)))
         sigma, signed, py = float(final[0][at]), float(diff[at]), float(theory[1][at])
     return phi, value, sigma, signed, py, "Fig. 9's run"
-
 
 
 def render(path, fig9=None):

@@ -68,8 +68,6 @@ def steady_halves(x, steady):
             2 * (min(batches, half // 2) - 1))
 
 
-
-
 def analyse(campaign):
     """The rows of pbc_course.csv, one per finished P.B.C. constant-eps run."""
     rows = []

@@ -34,7 +34,6 @@ DUMP_OF_RESTART = ("read_restart ${restart}\n"
                    "modify format float %.10g\n")
 
 
-
 def add_arguments(parser):
     parser.add_argument("--run", default="ramp_pbc_s1")
     parser.add_argument("--levels", type=int, nargs="+", default=None)
