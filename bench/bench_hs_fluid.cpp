@@ -1,6 +1,6 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 // Equilibrium hard-sphere fluid by NVT Metropolis Monte Carlo in a periodic cube: the reference
-// against which bench/paper_questions.py p0-fluid reads Gotoh's P0(sigma) of the tapped packings
+// against which tapmc-paper question p0-fluid reads Gotoh's P0(sigma) of the tapped packings
 // (Fig. 9) and the Percus-Yevick form. Diameter 1 (the dumps carry radius 0.5).
 //
 //   start      FCC lattice of 4 K^3 spheres at min(phi, --start-phi), melted by MC sweeps;

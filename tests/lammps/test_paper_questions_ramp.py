@@ -1,5 +1,5 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-# bench/paper_questions.py ramp-levels on a tiny finished ramp: the campaign kept the restart
+# tapmc-paper question ramp-levels on a tiny finished ramp: the campaign kept the restart
 # files of the level ends, the chosen levels are continued from them at their sqrt(eps), and
 # the CSV the report renders compares each level after its own taps and after the longer run.
 import csv
@@ -11,6 +11,10 @@ from pathlib import Path
 from lmprun import LMP
 
 SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", Path(__file__).resolve().parents[2]))
+#: ``tapmc-paper question`` of this source tree
+QUESTION = [sys.executable, "-c", "import sys; sys.path.insert(0, sys.argv.pop(1)); "
+            "from tapmc.paper.cli import main; sys.exit(main())", str(SOURCE / "tools" / "python"),
+            "question"]
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
 
 from tapmc.campaign import Campaign, RunSpec  # noqa: E402
@@ -28,7 +32,7 @@ def test_ramp_levels_continues_the_kept_level_ends(tmp_path):
                   for p in (tmp_path / "c" / "runs" / spec.name).glob("restart.*"))
     assert kept == [10, 20, 30, 40, 50, 60, 70]
     out = tmp_path / "q"
-    done = subprocess.run([sys.executable, str(SOURCE / "bench" / "paper_questions.py"),
+    done = subprocess.run([*QUESTION,
                            "ramp-levels", "--lmp", str(LMP), "--campaign", str(tmp_path / "c"),
                            "--levels", "2", "3", "--extend", "20", "--out", str(out)],
                           capture_output=True, text=True, timeout=300)
@@ -43,7 +47,7 @@ def test_ramp_levels_continues_the_kept_level_ends(tmp_path):
     assert "``ramp-levels``" in text and "change against 30?" in text
     assert "2 (first increase)" in text and "3 (decrease)" in text
     # a later call for one level keeps the other's row (its restart may be gone by then)
-    again = subprocess.run([sys.executable, str(SOURCE / "bench" / "paper_questions.py"),
+    again = subprocess.run([*QUESTION,
                             "ramp-levels", "--lmp", str(LMP), "--campaign", str(tmp_path / "c"),
                             "--levels", "3", "--extend", "20", "--out", str(out)],
                            capture_output=True, text=True, timeout=300)
@@ -54,19 +58,20 @@ def test_ramp_levels_continues_the_kept_level_ends(tmp_path):
     # gives the taps of one uninterrupted continuation, bit for bit
     steps = []
     for extend, work in ((10, "w1"), (20, "w1"), (20, "w2")):
-        again = subprocess.run([sys.executable, str(SOURCE / "bench" / "paper_questions.py"),
+        again = subprocess.run([*QUESTION,
                                 "ramp-levels", "--lmp", str(LMP), "--campaign",
                                 str(tmp_path / "c"), "--levels", "2", "--extend", str(extend),
                                 "--work", str(tmp_path / work), "--out", str(tmp_path / work)],
                                capture_output=True, text=True, timeout=300)
         assert again.returncode == 0, again.stderr
         steps.append(sorted(int(p.name.split(".")[1])
-                            for p in (tmp_path / work / "ramp_pbc_s1_level2").glob("restart.*")))
+                            for p in (tmp_path / work / "runs" / "ramp_pbc_s1_level2")
+                            .glob("restart.*")))
     assert steps == [[40], [50], [50]]   # only the latest restart is kept
     one, two = ((tmp_path / w / "ramp_levels.csv").read_text() for w in ("w1", "w2"))
     assert one == two and ",10,30," in one
     # a level whose restart was not kept names the file
-    bad = subprocess.run([sys.executable, str(SOURCE / "bench" / "paper_questions.py"),
+    bad = subprocess.run([*QUESTION,
                           "ramp-levels", "--lmp", str(LMP), "--campaign", str(tmp_path / "c"),
                           "--levels", "9", "--out", str(out)], capture_output=True, text=True,
                          timeout=60)
@@ -76,7 +81,7 @@ def test_ramp_levels_continues_the_kept_level_ends(tmp_path):
     # (in.ramp -var stop); the replay reproduces the campaign's rows bit for bit, and the
     # level's row is the one the kept file gave
     def levels_csv(out, *extra):
-        done = subprocess.run([sys.executable, str(SOURCE / "bench" / "paper_questions.py"),
+        done = subprocess.run([*QUESTION,
                                "ramp-levels", "--lmp", str(LMP), "--campaign",
                                str(tmp_path / "c"), "--levels", "1", "--extend", "20",
                                "--out", str(out), *extra], capture_output=True, text=True,
@@ -95,7 +100,8 @@ def test_ramp_levels_continues_the_kept_level_ends(tmp_path):
     assert replayed.pop("start") == "replay (identical)"
     kept.pop("start")
     assert replayed == kept
-    replay = tmp_path / "r" / "partial" / "ramp_levels" / "ramp_pbc_s1_replay"
+    replay = (tmp_path / "r" / "partial" / "ramp_levels" / "replays" / "runs"
+              / "ramp_pbc_s1_replay")
     assert sorted(p.name for p in replay.glob("restart.*")) == ["restart.10", "restart.20"]
     text = "\n".join(questions.render_section(tmp_path / "r"))
     assert "1 (first increase; replayed)" in text
@@ -103,7 +109,7 @@ def test_ramp_levels_continues_the_kept_level_ends(tmp_path):
 
 
 def test_ramp_pores_measures_nu_at_the_kept_level_ends(tmp_path):
-    """bench/paper_questions.py ramp-pores on a tiny finished ramp: nu at every kept level end
+    """tapmc-paper question ramp-pores on a tiny finished ramp: nu at every kept level end
     (the pore analysis of Fig. 10 on the packing of the restart file), level, branch and
     sqrt(eps) as in.ramp numbers them; a level with no restart file is refused naming it, and a
     later call for some levels keeps the rows of the others."""
@@ -112,7 +118,7 @@ def test_ramp_pores_measures_nu_at_the_kept_level_ends(tmp_path):
     out = tmp_path / "q"
 
     def ramp_pores(*extra):
-        return subprocess.run([sys.executable, str(SOURCE / "bench" / "paper_questions.py"),
+        return subprocess.run([*QUESTION,
                                "ramp-pores", "--lmp", str(LMP), "--campaign", str(tmp_path / "c"),
                                "--work", str(tmp_path / "w"), "--out", str(out), *extra],
                               capture_output=True, text=True, timeout=300)
@@ -142,12 +148,12 @@ def test_ramp_pores_measures_nu_at_the_kept_level_ends(tmp_path):
         assert list(csv.DictReader(f)) == rows
     # neither restart file nor dump (a new work folder): refused, naming the way out; the
     # levels still there are measured, the row of the gone one kept
-    gone = subprocess.run([sys.executable, str(SOURCE / "bench" / "paper_questions.py"),
+    gone = subprocess.run([*QUESTION,
                            "ramp-pores", "--lmp", str(LMP), "--campaign", str(tmp_path / "c"),
                            "--work", str(tmp_path / "w2"), "--out", str(out), "--levels", "1"],
                           capture_output=True, text=True, timeout=300)
     assert gone.returncode != 0 and "levels [1]" in gone.stderr and "--replay" in gone.stderr
-    kept = subprocess.run([sys.executable, str(SOURCE / "bench" / "paper_questions.py"),
+    kept = subprocess.run([*QUESTION,
                            "ramp-pores", "--lmp", str(LMP), "--campaign", str(tmp_path / "c"),
                            "--work", str(tmp_path / "w2"), "--out", str(out)],
                           capture_output=True, text=True, timeout=300)

@@ -1,5 +1,5 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-# bench/paper_questions.py knob scans (theta0, dmax) keep their rows in <out>/partial/ until
+# tapmc-paper question knob scans (theta0, dmax) keep their rows in <out>/partial/ until
 # every run is in, so that the report never reads half a scan; a scan started again skips the
 # runs its CSV has (a finished scan is reopened, and published again when whole).
 import csv
@@ -11,10 +11,14 @@ from pathlib import Path
 from lmprun import LMP
 
 SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", Path(__file__).resolve().parents[2]))
+#: ``tapmc-paper question`` of this source tree
+QUESTION = [sys.executable, "-c", "import sys; sys.path.insert(0, sys.argv.pop(1)); "
+            "from tapmc.paper.cli import main; sys.exit(main())", str(SOURCE / "tools" / "python"),
+            "question"]
 
 
 def scan(out, *seeds):
-    return subprocess.run([sys.executable, str(SOURCE / "bench" / "paper_questions.py"), "dmax",
+    return subprocess.run([*QUESTION, "dmax",
                            "--N", "64", "--lmp", str(LMP), "--out", str(out), "--seeds",
                            *map(str, seeds)], capture_output=True, text=True, timeout=300)
 
@@ -54,7 +58,7 @@ def test_theta0_scan_of_the_solid_law_beyond_pi_over_2(tmp_path):
     # --theta-law solid --wide: the widths beyond the paper's truncation, fix mc/settle
     # theta_law solid, into their own CSV (tags solid, wide), which the claims leave out (they
     # test another reading of eq. 1, not the paper's claim).
-    done = subprocess.run([sys.executable, str(SOURCE / "bench" / "paper_questions.py"), "theta0",
+    done = subprocess.run([*QUESTION, "theta0",
                            "--N", "64", "--lmp", str(LMP), "--out", str(tmp_path), "--seeds", "1",
                            "--theta-law", "solid", "--wide"],
                           capture_output=True, text=True, timeout=300)
@@ -65,3 +69,32 @@ def test_theta0_scan_of_the_solid_law_beyond_pi_over_2(tmp_path):
     from tapmc.paper.claims import scan_files
     (tmp_path / "theta0_N64.csv").write_text("")
     assert [p.name for p in scan_files(tmp_path, "theta0")] == ["theta0_N64.csv"]
+
+
+def test_killed_scan_resumes_where_it_stopped(tmp_path):
+    """A scan killed midway (its LAMMPS run dies with it) is started again: the rows written
+    before the kill stay as they were, the runs finished before it are not run again (their
+    campaign folder keeps them), and the CSV is published whole."""
+    import signal
+    import time
+
+    partial = tmp_path / "partial" / "dmax_N64.csv"
+    command = [*QUESTION, "dmax", "--N", "64", "--lmp", str(LMP), "--out", str(tmp_path),
+               "--seeds", "1", "2"]
+    running = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                               text=True)
+    deadline = time.monotonic() + 240
+    while time.monotonic() < deadline and running.poll() is None:
+        if partial.is_file() and len(rows(partial)) >= 2:
+            break
+        time.sleep(0.2)
+    assert running.poll() is None, running.communicate()
+    running.send_signal(signal.SIGKILL)
+    running.communicate()
+    before = rows(partial)
+    assert 2 <= len(before) < 14 and not (tmp_path / "dmax_N64.csv").exists()
+    done = subprocess.run(command, capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr
+    table = rows(tmp_path / "dmax_N64.csv")
+    assert len(table) == 14 and table[:len(before)] == before and not partial.exists()
+    assert done.stdout.count("sweeps per tap") == 14 - len(before)

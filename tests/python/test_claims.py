@@ -200,7 +200,7 @@ BELL = 0.60 - 2.0 * (X - 0.15) ** 2
 
 
 def ramp_pores(gap, slope, sem=0.001, levels=(0.025, 0.05, 0.075, 0.1, 0.125)):
-    """bench/paper_questions.py ramp-pores rows of a ramp beyond (sqrt eps)*: nu on the first
+    """tapmc-paper question ramp-pores rows of a ramp beyond (sqrt eps)*: nu on the first
     increase 0.1 - 0.05 sqrt(eps), the decrease ``gap`` away at 0.1 with ``slope``."""
     rows = []
     for branch, nus in ((0, [0.1 - 0.05 * x for x in levels]),
@@ -1123,7 +1123,7 @@ def early_rows(eps, rate, spread, seeds=range(1, 10), seed=11):
 def test_one_seed_first_decade_rates_over_realizations_of_early_taps():
     """Fig. 2 of one run per eps whose first decade is within one tap's spread (the steady
     state's, 0.002): undecided from the run alone; with 9 realizations of the first decade
-    (bench/paper_questions.py early-taps) whose taps scatter 1e-4, the early rate is known
+    (tapmc-paper question early-taps) whose taps scatter 1e-4, the early rate is known
     and the efficiency decrease agrees; realizations that do not compact early leave it
     undecided; fewer than EARLY_MIN_SEEDS are not used."""
     rng = np.random.default_rng(6)

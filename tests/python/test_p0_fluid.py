@@ -4,7 +4,6 @@ it keeps N spheres without overlap in the periodic box at the asked Phi and is a
 fluid (contact value against Carnahan-Starling); and the rendering of p0_fluid.csv into the
 report's questions section (tapmc.paper.questions)."""
 
-import importlib.util
 import os
 import shutil
 import subprocess
@@ -18,6 +17,7 @@ SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", Path(__file__).resolve().parent
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
 
 from tapmc.paper import claims, questions  # noqa: E402
+from tapmc.paper.questions import p0_fluid  # noqa: E402
 
 MC_SOURCE = SOURCE / "bench" / "bench_hs_fluid.cpp"
 #: a small fluid: 4 * 6^3 = 864 spheres, enough for g(1+) to a few per cent in a second.
@@ -43,11 +43,7 @@ def run_mc(exe, folder, *args):
 
 
 def parse(text):
-    spec = importlib.util.spec_from_file_location("paper_questions",
-                                                  SOURCE / "bench" / "paper_questions.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module.parse_mc(text)
+    return p0_fluid.parse_mc(text)
 
 
 def read_dump(path):
@@ -166,16 +162,17 @@ def test_section_without_p0_fluid_is_unchanged(tmp_path):
 
 
 def test_p0_fluid_question_end_to_end(mc, tmp_path):
-    """bench/paper_questions.py p0-fluid on a tiny fluid writes the CSV the page renders."""
+    """tapmc-paper question p0-fluid on a tiny fluid writes the CSV the page renders."""
     from tapmc.paper import _runs
 
     if not _runs.pores_available():
         pytest.skip("tapmc-pores is not built")
     done = subprocess.run(
-        [sys.executable, str(SOURCE / "bench" / "paper_questions.py"), "p0-fluid", "--phi", "0.3",
+        [sys.executable, "-m", "tapmc.paper", "question", "p0-fluid", "--phi", "0.3",
          "--configs", "2", "--cells", "4", "--eq-msd", "0.2", "--spacing-msd", "0.1",
          "--mc", str(mc), "--out", str(tmp_path), "--work", str(tmp_path / "work")],
-        capture_output=True, text=True, timeout=120)
+        capture_output=True, text=True, timeout=120,
+        env=dict(os.environ, PYTHONPATH=str(SOURCE / "tools" / "python")))
     assert done.returncode == 0, done.stderr
     rows = (tmp_path / "p0_fluid.csv").read_text().splitlines()
     assert rows[0] == P0_HEADER and len(rows) == 2 and rows[1].startswith("0.3,256,2,")

@@ -9,7 +9,13 @@ from pathlib import Path
 SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", Path(__file__).resolve().parents[2]))
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
 
-from tapmc.paper import _plotting, claims, questions  # noqa: E402
+from tapmc.paper import _plotting, claims, cli, questions  # noqa: E402
+from tapmc.paper.questions import common, launch, pbc_course, ramp_levels  # noqa: E402
+
+
+def question(*argv):
+    """``tapmc-paper question ARGV``, asserted to succeed."""
+    assert cli.main(["question", *map(str, argv)]) == 0
 
 
 def first_tap_csv(folder, drop_loose, drop_tight):
@@ -140,27 +146,16 @@ def test_final_phi_c_uses_the_largest_N_with_error_bars(tmp_path):
     assert "N = 4096, eps = 0.0225, steady window, 2 paired seeds" in text
 
 
-def _paper_questions():
-    import importlib.util
-
-    spec = importlib.util.spec_from_file_location("paper_questions",
-                                                  SOURCE / "bench" / "paper_questions.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
 def test_recovery_tap_ignores_single_taps_above_the_start():
     import numpy as np
 
-    pq = _paper_questions()
     t = np.arange(200.0)
     phi = np.full(200, 0.560)
     phi[0] = 0.583
     phi[30] = 0.590                       # one noisy tap above the start is no recovery
     phi[120:] = 0.584                     # from tap 120 on it stays above
-    assert pq.recovery_tap(t, phi, phi[0]) == 120
-    assert pq.recovery_tap(t, np.minimum(phi, 0.58), phi[0]) is None
+    assert pbc_course.recovery_tap(t, phi, phi[0]) == 120
+    assert pbc_course.recovery_tap(t, np.minimum(phi, 0.58), phi[0]) is None
 
 
 def pbc_course_csv(folder, strong_gain, strong_back, strong_halves):
@@ -313,8 +308,7 @@ def test_ramp_levels_of_two_ramps_bound_each_its_own_claims(tmp_path):
     (tmp_path / "ramp_levels.csv").write_text(
         header + "\n11,0,0.3,1000,4000,0.5950,0.0003,0.5960,0.0003\n"
         "16,1,0.175,1000,4000,0.6080,0.0003,0.6081,0.0003\n")
-    pq = _paper_questions()
-    pq.write_ramp_levels(tmp_path / "ramp_levels.csv", [
+    ramp_levels.save(tmp_path / "ramp_levels.csv", [
         [4, 0, "0.125", 1000, 4000, "0.6073", "0.0001", "0.6103", "0.0001", "run",
          "ramplow_pbc_s1"],
         [5, 1, "0.1", 1000, 4000, "0.6104", "0.0001", "0.6110", "0.0001", "run",
@@ -369,7 +363,7 @@ def test_integrity_names_the_overlapping_dump_and_the_mismatched_print(tmp_path)
 
 
 def test_integrity_command_on_a_paper_scale_run_and_a_corrupted_copy(tmp_path):
-    """bench/paper_questions.py integrity on a committed run of the campaign (its t = 0 and
+    """tapmc-paper question integrity on a committed run of the campaign (its t = 0 and
     t = 4000 dumps and taps.dat), then on a copy with one sphere pushed into another."""
     import shutil
 
@@ -378,7 +372,6 @@ def test_integrity_command_on_a_paper_scale_run_and_a_corrupted_copy(tmp_path):
     run = SOURCE / "doc" / "validation" / "data" / "full" / "runs" / "const_pbc_eps0.0225_s1"
     if not (run / "dump.4000.lammpstrj").is_file():
         pytest.skip("campaign data absent")
-    pq = _paper_questions()
     for name, corrupt in (("good", False), ("bad", True)):
         folder = tmp_path / name / "runs" / run.name
         folder.mkdir(parents=True)
@@ -392,9 +385,9 @@ def test_integrity_command_on_a_paper_scale_run_and_a_corrupted_copy(tmp_path):
             two[1:4] = one[1], one[2], f"{float(one[3]) + 0.1:.10g}"
             lines[first + 2] = " ".join(two)
             (folder / "dump.4000.lammpstrj").write_text("\n".join(lines) + "\n")
-        pq.main(["integrity", "--campaign", str(tmp_path / name), "--out", str(tmp_path / name)])
-    good = questions._read(tmp_path / "good" / "integrity.csv")
-    bad = questions._read(tmp_path / "bad" / "integrity.csv")
+        question("integrity", "--campaign", tmp_path / name, "--out", tmp_path / name)
+    good = common.read_csv(tmp_path / "good" / "integrity.csv")
+    bad = common.read_csv(tmp_path / "bad" / "integrity.csv")
     assert [r["tap"] for r in good] == ["0", "4000"]
     assert all(r["legal"] == "1" and r["n"] == "4096" for r in good)
     assert all(float(r["scalars_worst"]) < 1 for r in good)
@@ -433,33 +426,31 @@ def test_early_taps_table_gives_the_tap_where_the_loosening_ends(tmp_path):
     assert rows[-1].splitlines()[8] == "     - - (not by tap 20)"
 
 
-def test_early_taps_folder_lock_waits_for_its_holder_and_takes_over_a_dead_one(tmp_path):
-    """Two early-taps processes never run one realization at once: a held folder makes the
-    other wait until it is released; the lock of a killed process is taken over."""
+def test_question_runs_hold_the_campaign_lock_and_a_dead_holder_frees_it(tmp_path):
+    """Two processes never run one question's runs at once: the runs are a tapmc.campaign
+    folder, and a second runner of a held folder stops with a message naming campaign.lock
+    (it does not wait, nor run the same realization twice); the lock of a killed process is
+    free again (an flock dies with its holder)."""
     import subprocess
-    import threading
 
-    pq = _paper_questions()
-    dead = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"],
-                          capture_output=True, text=True).stdout.strip()
-    (tmp_path / "running.pid").write_text(dead)
-    with pq._folder_lock(tmp_path, poll=0.01):            # a dead holder: taken over
-        assert (tmp_path / "running.pid").read_text() == str(os.getpid())
-    assert not (tmp_path / "running.pid").exists()
-    order = []
+    import pytest
 
-    def second():
-        with pq._folder_lock(tmp_path, poll=0.01):
-            order.append("second")
+    from tapmc.campaign.launch import campaign_lock
 
-    with pq._folder_lock(tmp_path, poll=0.01):
-        other = threading.Thread(target=second)
-        other.start()
-        other.join(timeout=0.3)
-        assert other.is_alive() and order == []            # waits while the folder is held
-        order.append("first")
-    other.join(timeout=5)
-    assert order == ["first", "second"]
+    fake = tmp_path / "lmp"
+    fake.write_text("#!/bin/sh\nexit 0\n")
+    fake.chmod(0o755)
+    work = tmp_path / "work"
+    run = launch.spec("eps0.005_s2", {"N": 64, "L": 4, "eps": 0.005, "taps": 1, "seed": 2})
+    held = ("import sys; sys.path.insert(0, sys.argv[1]); "
+            "from tapmc.campaign.launch import campaign_lock\n"
+            "with campaign_lock(sys.argv[2]): pass")
+    done = subprocess.run([sys.executable, "-c", held, str(SOURCE / "tools" / "python"),
+                           str(work)], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    with campaign_lock(work):          # the dead process's lock is free: taken here
+        with pytest.raises(common.QuestionError, match="campaign.lock is held"):
+            launch.run_all(work, [run], fake)
 
 
 def _scatter_campaign(root, rng):
@@ -500,10 +491,9 @@ def _scatter_campaign(root, rng):
 def test_realization_scatter_measures_the_factor_and_the_report_uses_it(tmp_path):
     import numpy as np
 
-    pq = _paper_questions()
     _scatter_campaign(tmp_path / "campaign", np.random.default_rng(5))
     out = tmp_path / "questions"
-    pq.main(["realization-scatter", "--campaign", str(tmp_path / "campaign"), "--out", str(out)])
+    question("realization-scatter", "--campaign", tmp_path / "campaign", "--out", out)
     rows = claims.read_scan(out / "realization_scatter.csv")
     assert {r["group"] for r in rows} == {"const_pbc_eps0.05", "ageing_pbc_eps0.01",
                                           "const_fbc_eps0.02"}
@@ -565,8 +555,8 @@ def test_pbc_course_reads_the_halves_with_the_realizations_factor(tmp_path):
     # the strong run's halves differ by 0.0032 +- 0.0005: compacting with the run's own
     # error, within the error of a realization when that is 10 times larger
     pbc_course_csv(tmp_path, 0.004, 1391, 0.0032)
-    own = "\n".join(questions._pbc_course(tmp_path / "pbc_course.csv"))
-    scaled = "\n".join(questions._pbc_course(tmp_path / "pbc_course.csv",
+    own = "\n".join(pbc_course.render(tmp_path / "pbc_course.csv"))
+    scaled = "\n".join(pbc_course.render(tmp_path / "pbc_course.csv",
                                              {"phi_c": (2.0, 15), "phi_c:halves": (10.0, 15)}))
     assert "still compacting at the end" in own
     assert "Its halves agree within their error: steady." in scaled
@@ -620,10 +610,9 @@ def test_packing_scatter_measures_the_jackknife_against_realizations(tmp_path):
 
     if not _runs.pores_available():
         pytest.skip("tapmc-pores not built")
-    pq = _paper_questions()
     _packing_campaign(tmp_path / "campaign")
     out = tmp_path / "questions"
-    pq.main(["packing-scatter", "--campaign", str(tmp_path / "campaign"), "--out", str(out)])
+    question("packing-scatter", "--campaign", tmp_path / "campaign", "--out", out)
     rows = claims.read_scan(out / "packing_scatter.csv")
     assert {(r["group"], r["column"]) for r in rows} == {
         ("const_pbc_eps0.05", "packing:nu"), ("const_pbc_eps0.05", "packing:alpha"),
@@ -651,10 +640,9 @@ def test_seed_fits_fits_every_group_of_realizations_and_the_page_shows_it(tmp_pa
     run's surrogates' "unique" (test_claims covers the other outcomes)."""
     import numpy as np
 
-    pq = _paper_questions()
     _scatter_campaign(tmp_path / "campaign", np.random.default_rng(5))
     out = tmp_path / "questions"
-    pq.main(["seed-fits", "--campaign", str(tmp_path / "campaign"), "--out", str(out)])
+    question("seed-fits", "--campaign", tmp_path / "campaign", "--out", out)
     rows = claims.read_scan(out / "seed_fits.csv")
     groups = {r["group"]: r["realizations"] for r in rows}
     assert groups == {"const_pbc_eps0.05": "4", "ageing_pbc_eps0.01": "6",

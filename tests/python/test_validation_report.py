@@ -84,7 +84,7 @@ def test_missing_data_is_named(tmp_path):
 def test_paper_scale_page_is_what_the_committed_campaign_gives(tmp_path):
     """doc/paper_scale is 'report --full --finished-only' of the committed paper-scale
     campaign: drawn anew from a copy of its finished runs, the page and its CSVs are the
-    committed ones (the questions folder comes from bench/paper_questions.py)."""
+    committed ones (the questions folder comes from tapmc-paper question)."""
     campaign = tmp_path / "full"
     shutil.copytree(DOC / "validation" / "data" / "full", campaign,
                     ignore=shutil.ignore_patterns("restart.*", "campaign.lock"))

@@ -6,7 +6,8 @@ builds the runs of Fig. N at the chosen scale (:mod:`tapmc.paper.scales`), runs 
 ones in the campaign folder (:class:`tapmc.campaign.Campaign`: resumable, shared by all
 figures, so runs common to several figures run once) and draws the PNG and the CSV of every
 plotted number into the output folder. ``tapmc-paper report`` does this for every figure and
-writes the validation report (``tapmc.paper.validation``).
+writes the validation report (``tapmc.paper.validation``). ``tapmc-paper question NAME`` runs
+one question of the validation settled by a measurement (``tapmc.paper.questions``).
 
 Exit status: 0 on success, 1 when a run failed (the message names the run and its log) or,
 with ``report --finished-only``, a finished run's outputs changed since it finished, 2 on a
@@ -33,6 +34,12 @@ from . import FIGURES, _runs, plan
 from .front import command as front_command
 from .plan import TIERS
 from .scales import FBC_STARTS, get_scale
+
+try:
+    from .questions import command as question_command
+    QUESTIONS_MISSING = None
+except ImportError as err:  # a question reads a figure module this installation lacks
+    question_command, QUESTIONS_MISSING = None, str(err)
 
 
 class FigureUnavailable(RuntimeError):
@@ -178,6 +185,11 @@ def build_parser():
     pr.add_argument("--out", type=Path, default=Path("doc/paper_scale"), metavar="DIR",
                     help="report directory (default doc/paper_scale): writes "
                          "DIR/validation/questions/paper_ramp.csv")
+    question = sub.add_parser("question", help="one question of the validation settled by a "
+                                               "measurement (tapmc.paper.questions; --list "
+                                               "lists them)")
+    if question_command is not None:
+        question_command.add_parser(question)
     return parser
 
 
@@ -465,6 +477,12 @@ def main(argv=None):
     args = parser.parse_args(argv)
     from . import _runs
 
+    if args.command == "question":
+        if question_command is None:
+            print(f"tapmc-paper question: not available in this installation "
+                  f"({QUESTIONS_MISSING})", file=sys.stderr)
+            return 2
+        return question_command.run(args, parser)
     if args.command == "campaign":
         return _run_plan(args)
     if args.command == "front":

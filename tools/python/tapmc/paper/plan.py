@@ -26,7 +26,7 @@ runs come in tiers; each tier completes figures on its own:
    error bars over seeds;
 5. the F.B.C. realizations: seeds 2 and 3 at ``TIER5_FBC_EPS`` = 0.02 (Fig. 8's and Fig. 10's
    eps, the cheapest F.B.C. run), so that the spread of F.B.C. realizations is measured
-   (``bench/paper_questions.py realization-scatter``) instead of borrowed from the P.B.C.
+   (``tapmc-paper question realization-scatter``) instead of borrowed from the P.B.C.
    groups of tier 2 and the ageing runs: the F.B.C. figures (2, 6, 8) have one run per eps;
 6. seeds 2 and 3 at ``TIER6_FBC_EPS`` = 0.1, the eps of Figs. 6-7 and Fig. 8's strongest: the
    F.B.C. profiles, alpha and zones of the paper's central eps over realizations, and a

@@ -63,7 +63,7 @@ ONE_RUN_ERRORS = (
     f"{PROFILE_JACKKNIFE_BLOCKS}, {PROFILE_JACKKNIFE_BLOCKS ** 2 - 1}); a spectrum has the "
     "periodogram's own errors, known exactly "
     "(the normal quantile); where one packing cannot give an error (P0, the initial packing, the "
-    "paper's F.B.C. start) the configurations of bench/paper_questions.py give it, as the row "
+    "paper's F.B.C. start) the configurations of tapmc-paper question give it, as the row "
     "says. These errors are within one realization: the spread between realizations is not in "
     "them.")
 
@@ -301,7 +301,7 @@ def _rst_table(rows, run_note=""):
               "paper's scale (size: N = 4096 in a 32R box; taps: 4000 per run; ramp_taps: 4000 "
               "per level; eta: 1e-7); without it the statistic is shown and the verdict is "
               "undecided. One exception: a ramp of fewer taps per level decides a claim of "
-              "<Phi^c> on its branches when ``bench/paper_questions.py ramp-levels`` measured "
+              "<Phi^c> on its branches when ``tapmc-paper question ramp-levels`` measured "
               "how far 4000 taps per level move the levels (two levels or more of every branch "
               "the claim reads, of the ramp the claim reads; the shifts +- their t error span "
               "a branch's range; a difference of two branches moves by the difference of their "

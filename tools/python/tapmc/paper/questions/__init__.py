@@ -1,0 +1,131 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""Questions of the validation settled by a measurement: one module per question, each the
+one owner of its CSV (its header, ``save`` and ``load``), its measurement (``measure(args)``:
+LAMMPS runs through tapmc.campaign, see :mod:`.launch`, or a re-analysis of the campaign's
+finished runs, ``analyse``) and its page text (``render``). :data:`QUESTIONS` lists them;
+``tapmc-paper question NAME`` runs one (:mod:`.command`), and :func:`render_section` writes
+the page's section from the CSVs in ``<report>/validation/questions/``: every number and
+every conclusion there is computed from those files, so the report can be rewritten from
+committed data.
+
+* first-tap (``first_tap.csv``): <Phi^c> before and after one tap from fresh packings, at
+  several eta: whether the drop of <Phi^c> at the first tap of P.B.C. runs survives a tighter
+  redeposition.
+* noise-floor (``noise_floor.csv``): sigma_<Z> of 1000 taps at eps = 0 from a tapped packing:
+  the floor under Fig. 3's sigma_<Z> = k sqrt(eps).
+* spectral-window (``spectral_window.csv``): the slope of Fig. 3's spectrum over steady
+  windows of several lengths, per run.
+* pbc-course (``pbc_course.csv``): the course of <Phi^c> in every P.B.C. run of the campaign:
+  how deep and how long the dip after the first taps is, and whether strong taps (eps >= 0.09)
+  leave the packing looser than it started or still compacting at the end.
+* realization-scatter (``realization_scatter.csv``): whether one run's batch-means error tells
+  how far another realization lands, and the factor it falls short by.
+* packing-scatter (``packing_scatter.csv``): the same question for the spatial jackknife of
+  one packing (nu of the pores, alpha of the profile).
+* integrity (``integrity.csv``): every dump of the campaign checked offline.
+* early-taps (``early_taps.csv``): the first 400 taps from the campaign's F.B.C. packing over
+  several realizations.
+* fit-surrogates (``fit_surrogates.csv``) and seed-fits (``seed_fits.csv``): eqs. 3 and 4
+  fitted to each F.B.C. run with Fourier surrogates, and over realizations of whole runs.
+* initial-packing (``initial_packing.csv``), p0-configs (``p0_configs.csv``),
+  lateral-first-tap (``lateral_first_tap.csv``), ramp-levels (``ramp_levels.csv``),
+  ramp-pores (``ramp_pores.csv``), theta0 and dmax (``theta0*.csv``, ``dmax*.csv``), p0-fluid
+  (``p0_fluid.csv``): see each module.
+* Fig. 10's pores (:mod:`.pore_shares`) and the final <Phi^c> carried to the front's settings
+  (:mod:`.final_phi`): sections computed from other CSVs, without a command.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from ..claims import SCANS, realization_factors, scan_files
+from . import (dmax, early_taps, final_phi, first_tap, fit_surrogates, integrity,
+               initial_packing, knob_scan, lateral_first_tap, noise_floor, p0_configs, p0_fluid,
+               packing_scatter, pbc_course, pore_shares, ramp_levels, ramp_pores,
+               realization_scatter, seed_fits, spectral_window, theta0)
+from .calibration import load as load_scatter
+from .common import QuestionError
+
+FOLDER = "questions"
+#: every question with a command: name -> its module (NAME, add_arguments, measure; the
+#: modules with a CSV of their own also CSV, save, load and render)
+QUESTIONS = {m.NAME: m for m in (
+    first_tap, noise_floor, spectral_window, pbc_course, integrity, realization_scatter,
+    packing_scatter, early_taps, initial_packing, p0_configs, lateral_first_tap, ramp_levels,
+    ramp_pores, theta0, dmax, p0_fluid, fit_surrogates, seed_fits)}
+#: the questions whose measurement reads the campaign's runs (--campaign)
+CAMPAIGN_QUESTIONS = ("spectral-window", "pbc-course", "integrity", "early-taps",
+                      "ramp-levels", "realization-scatter", "packing-scatter", "ramp-pores",
+                      "fit-surrogates", "seed-fits")
+#: the page's section title
+TITLE = "Questions settled by measurement"
+#: the commands named under the title, in the page's order, with the CSV that shows each was
+#: run (first-tap, noise-floor and spectral-window are always named)
+NAMED = (("realization-scatter", "realization_scatter.csv"),
+         ("packing-scatter", "packing_scatter.csv"), ("pbc-course", "pbc_course.csv"),
+         ("integrity", "integrity.csv"), ("early-taps", "early_taps.csv"),
+         ("fit-surrogates", "fit_surrogates.csv"), ("seed-fits", "seed_fits.csv"),
+         ("initial-packing", "initial_packing.csv"), ("p0-configs", "p0_configs.csv"),
+         ("lateral-first-tap", "lateral_first_tap.csv"), ("ramp-levels", "ramp_levels.csv"),
+         ("ramp-pores", "ramp_pores.csv"))
+
+
+def _commands(folder):
+    """The commands that made the CSVs of ``folder``, as the page names them."""
+    names = ["first-tap", "noise-floor", "spectral-window"]
+    names += [name for name, csv in NAMED if (folder / csv).is_file()]
+    names += [k for k in ("theta0", "dmax") if any(folder.glob(f"{k}*.csv"))]
+    names += ["p0-fluid"] if (folder / p0_fluid.CSV).is_file() else []
+    return ", ".join(f"``{n}``" for n in names)
+
+
+def _measured(folder, figures, factors):
+    """The sections of the questions with a CSV, in the page's order."""
+    def there(module):
+        return (folder / module.CSV).is_file()
+
+    parts = []
+    for module, extra in ((first_tap, ()), (noise_floor, (figures.get("fig3"),)),
+                          (spectral_window, ()), (realization_scatter, ()),
+                          (packing_scatter, ()), (pbc_course, (factors,)), (integrity, ()),
+                          (early_taps, ())):
+        if there(module):
+            parts += module.render(folder / module.CSV, *extra)
+    if there(fit_surrogates):
+        seeds = seed_fits.load(folder / seed_fits.CSV) if there(seed_fits) else []
+        parts += fit_surrogates.render(folder / fit_surrogates.CSV, seeds)
+    for module, extra in ((seed_fits, ()), (initial_packing, ()), (p0_configs, ()),
+                          (ramp_levels, (figures.get("fig4"), factors)), (ramp_pores, ()),
+                          (lateral_first_tap, (figures.get("fig8"),))):
+        if there(module):
+            parts += module.render(folder / module.CSV, *extra)
+    for knob in SCANS:
+        for scan in scan_files(folder, knob):
+            parts += knob_scan.render(scan, knob)
+    if there(p0_fluid):
+        parts += p0_fluid.render(folder / p0_fluid.CSV, figures.get("fig9"))
+    return parts
+
+
+def render_section(folder, figures=None, etas=(), front_rows=None):
+    """The rst lines of the section, or [] when ``folder`` holds none of the CSVs.
+    ``figures``: name -> tapmc.paper.claims.FigureData of the same report (Fig. 3's k, Fig. 9's
+    packing)."""
+    folder = Path(folder)
+    figures = figures or {}
+    scatter = folder / realization_scatter.CSV
+    factors = realization_factors(load_scatter(scatter)) if scatter.is_file() else {}
+    parts = _measured(folder, figures, factors)
+    parts += pore_shares.render(figures.get("fig10")) if parts else []
+    if parts:
+        parts += final_phi.render(figures.get("fig9"), list(etas), front_rows or [])
+    if not parts:
+        return []
+    return [TITLE, "-" * len(TITLE), "",
+            f"Measured by ``tapmc-paper question NAME`` ({_commands(folder)}), whose "
+            "CSVs are in ``validation/questions/``; the text below is computed from them.", ""] \
+        + parts
+
+
+__all__ = ["render_section", "FOLDER", "QUESTIONS", "QuestionError"]
