@@ -1007,7 +1007,7 @@ def test_lateral_first_tap_from_the_measured_paper_start():
     measures = claims.lateral_first_tap(jumps, claim)
     assert [m.label for m in measures] == ["eps = 0.005", "eps = 0.1"]
     assert all(str(claims.verdict(claim, m)) == "agrees" for m in measures)
-    assert "3 seeds: bench/paper_questions.py lateral-first-tap" in measures[0].text()
+    assert "3 seeds: tapmc-paper question lateral-first-tap" in measures[0].text()
     dips = claims.ReportData(report().summary, {"fig8": walls_only.data()},
                              questions={"lateral_first_tap": rows(-0.01)})
     assert all(str(claims.verdict(claim, m)) == "disagrees"

@@ -71,7 +71,7 @@ def group_bc(group):
 
 
 def realization_factors(rows, bc="pbc"):
-    """dict quantity -> (k, dof) from the rows of bench/paper_questions.py's
+    """dict quantity -> (k, dof) from the rows of the questions'
     realization_scatter.csv for runs of boundary condition ``bc``: the factor by which the
     realizations of a group of runs that differ only in their seed spread beyond their
     batch-means errors (tapmc.fluctuations.ErrorCalibration, pooled over the groups), for

@@ -125,7 +125,7 @@ def first_decade_rates(t, x):
     return (rate, gap), (log_rate, log_gap)
 
 
-#: realizations of the first decade (bench/paper_questions.py early-taps) below which its
+#: realizations of the first decade (tapmc-paper question early-taps) below which its
 #: rates keep one run's error (one tap's spread): the sem of fewer has too few degrees of
 #: freedom to decide anything
 EARLY_MIN_SEEDS = 4

@@ -61,7 +61,7 @@ class FigureData:
         return [s for (p, s) in self.table if p == panel]
 
 
-#: stems of the CSVs of bench/paper_questions.py (in the report's ``questions`` folder) that
+#: stems of the CSVs of tapmc-paper question (in the report's ``questions`` folder) that
 #: decide claims of one-run campaigns: depositions at t = 0 (initial-packing), P0 over several
 #: configurations (p0-configs), the first taps from the paper's F.B.C. start (lateral-first-tap),
 #: realizations of the first taps (early-taps), one run's surrogate fits (fit-surrogates), the
@@ -82,7 +82,7 @@ class ReportData:
 
     def __init__(self, summary, figures, front=(), scans=None, questions=None):
         """``scans``: knob (``theta0``, ``dmax``) -> its scans, each the rows of one CSV of
-        bench/paper_questions.py (:data:`SCANS`); ``questions``: the rows of its other CSVs
+        tapmc-paper question (:data:`SCANS`); ``questions``: the rows of its other CSVs
         that decide claims a campaign of one run per point cannot (:data:`QUESTION_CSVS`), by
         file stem."""
         self.summary = summary
@@ -102,14 +102,14 @@ class ReportData:
         return self._figures
 
     def question(self, stem):
-        """The rows of bench/paper_questions.py's ``<stem>.csv`` ([] when not measured)."""
+        """The rows of tapmc-paper question's ``<stem>.csv`` ([] when not measured)."""
         return self.questions.get(stem, [])
 
     @classmethod
     def from_files(cls, summary, files):
         """``files``: name -> (png, csv) as the report collects them; the front from the
         package's front_summary.csv; the knob scans from ``questions/<knob>*.csv`` beside the
-        figure CSVs (bench/paper_questions.py theta0 / dmax), when there."""
+        figure CSVs (tapmc-paper question theta0 / dmax), when there."""
         scans, questions = {}, {}
         if files:
             folder = Path(next(iter(files.values()))[1]).parent / "questions"

@@ -50,7 +50,7 @@ def _law_quality(prefix):
             else:
                 m.undecided = (f"{seeds + 1} seeds: a chi-square over correlated taps has no "
                                f"known distribution; needs {REALIZATION_MIN_SEEDS} "
-                               "realizations (bench/paper_questions.py early-taps)")
+                               "realizations (tapmc-paper question early-taps)")
         return m
     return measure
 
@@ -210,7 +210,7 @@ SURROGATES_UNIQUE = ("one run's surrogates show an upper bound of how well the t
 
 
 def realization_fits(data, law, bc):
-    """eps -> {parameter: row} of seed_fits.csv (bench/paper_questions.py seed-fits: whole runs
+    """eps -> {parameter: row} of seed_fits.csv (tapmc-paper question seed-fits: whole runs
     fitted over realizations, tapmc.laws.RealizationFits) for ``law`` ('eq3', 'eq4') and
     boundary condition ``bc``; at an eps with several groups, the one of most realizations."""
     out = {}

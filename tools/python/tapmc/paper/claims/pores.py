@@ -53,7 +53,7 @@ def _py_change(fig, sigma):
 
 def _p0_configurations(data, other, what, more_than=1):
     """The comparison of :func:`_p0_difference` over the configurations of
-    bench/paper_questions.py p0-configs (depositions at t = 0, dumps of the continued Fig. 9
+    tapmc-paper question p0-configs (depositions at t = 0, dumps of the continued Fig. 9
     run), None when they are not there or are not more than ``more_than`` of each kind."""
     rows = [r for r in data.question("p0_configs") if r["sigma"] != "phi"]
     phi = [r for r in data.question("p0_configs") if r["sigma"] == "phi"]
@@ -76,7 +76,7 @@ def _p0_configurations(data, other, what, more_than=1):
         m.shown = (m.shown or m.text()) + (
             f" (P0 over {int(col['initial_n'].min())} depositions and "
             f"{int(col['tapped_n'].min())} configurations of the tapped packing: "
-            "bench/paper_questions.py p0-configs)")
+            "tapmc-paper question p0-configs)")
     return out
 
 
@@ -133,7 +133,7 @@ def _pore_dof(n, err):
 @statistic("nu_ramp_hysteresis")
 def nu_ramp_hysteresis(data, claim):
     """Section IV.B: nu has the reversible-irreversible behaviour of <Phi^c> (section III.B).
-    From nu at the level ends of the ramp beyond (sqrt eps)* (bench/paper_questions.py
+    From nu at the level ends of the ramp beyond (sqrt eps)* (tapmc-paper question
     ramp-pores: one packing per level, the spatial jackknife's error), the two signs that
     make <Phi^c>'s reversible branch, with nu's sign reversed (more pore volume, less
     packing): the decreasing branch lies below the first increase (mean of the differences at
@@ -143,7 +143,7 @@ def nu_ramp_hysteresis(data, claim):
     rows = [r for r in data.question("ramp_pores") if r["run"].startswith("ramp_")]
     if not rows:
         return not_in_campaign("no nu at the level ends of the ramp beyond (sqrt eps)* "
-                        "(bench/paper_questions.py ramp-pores)")
+                        "(tapmc-paper question ramp-pores)")
     # one packing per level: its jackknife times the packings' factor where they reject it
     factor = data.run_error("packing:nu")[0]
     branches = {}

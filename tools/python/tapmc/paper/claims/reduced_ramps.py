@@ -1,6 +1,6 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 """Ramps at fewer taps per level than the paper's 4000 (section III.B): the shift of each
-branch's levels to 4000 taps that bench/paper_questions.py ramp-levels measured, and whether
+branch's levels to 4000 taps that tapmc-paper question ramp-levels measured, and whether
 a ramp claim's verdict survives that shift."""
 
 from __future__ import annotations
@@ -54,7 +54,7 @@ def ramp_tag(run):
 def ramp_reduction_bounds(data, tag="ramp"):
     """branch -> (bound, levels, low, high): per branch of the ramp ``tag`` (Fig. 4's), the
     largest shift of a level's <Phi^c> from the campaign's taps per level to the paper's 4000,
-    |shift| + t err, over the levels bench/paper_questions.py ramp-levels measured
+    |shift| + t err, over the levels tapmc-paper question ramp-levels measured
     (ramp_levels.csv), and the signed range the shifts span, min(shift - t err) to
     max(shift + t err); only branches with RAMP_REDUCTION_MIN_LEVELS measured levels or more.
     The pseudo-branch "top" is the ramp's turning level alone (the first increase's highest

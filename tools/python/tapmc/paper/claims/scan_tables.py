@@ -1,5 +1,5 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-"""The knob scans of bench/paper_questions.py (theta0, d_max): where their CSVs are, how a
+"""The knob scans of tapmc-paper question (theta0, d_max): where their CSVs are, how a
 scan's values are written and the table of compaction per value."""
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ def _r_fraction(frac):
     return _fraction(frac, "R", 100)
 
 
-#: the knob scans of bench/paper_questions.py: CSV column of the value, the paper's value, how
+#: the knob scans of tapmc-paper question: CSV column of the value, the paper's value, how
 #: a value is written
 SCANS = {"theta0": {"column": "theta0_over_pi", "paper": 0.25, "name": _pi_fraction},
          "dmax": {"column": "dmax_over_R", "paper": 0.2, "name": _r_fraction}}
@@ -49,7 +49,7 @@ def scan_files(folder, knob):
 
 
 def read_scan(path):
-    """Rows of a CSV of bench/paper_questions.py (a knob scan: theta0 / dmax; the initial
+    """Rows of a CSV of tapmc-paper question (a knob scan: theta0 / dmax; the initial
     packings)."""
     with open(path, newline="") as handle:
         return list(csv.DictReader(handle))

@@ -43,7 +43,7 @@ def dmax_intermediate(data, claim):
         if rows:
             measures += _dmax_scan_measures(rows)
     return measures or [Measure(undecided="neither the front (doc/front.rst) nor a d_max scan "
-                                          "(bench/paper_questions.py dmax) has measured d_max")]
+                                          "(tapmc-paper question dmax) has measured d_max")]
 
 
 def _scan_label(rows, n=None):
@@ -61,7 +61,7 @@ def theta0_optimum(data, claim):
     (gain below zero beyond t sem) and the largest compacts less than pi/4 (beyond t sem); 0
     when any of these is contradicted beyond t sem; undecided otherwise."""
     measures = [_theta0_measure(rows) for rows in data.scans["theta0"] if rows]
-    return measures or [Measure(undecided="no theta0 scan (bench/paper_questions.py theta0)")]
+    return measures or [Measure(undecided="no theta0 scan (tapmc-paper question theta0)")]
 
 
 def _size_lacking(N):

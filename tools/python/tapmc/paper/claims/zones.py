@@ -100,7 +100,7 @@ def lateral_first_tap(data, claim):
 
 
 def _lateral_first_tap_measured(rows):
-    """delta Phi_lateral at t = 1 per eps over the seeds of bench/paper_questions.py
+    """delta Phi_lateral at t = 1 per eps over the seeds of tapmc-paper question
     lateral-first-tap (the paper's F.B.C. start, taps from t = 0)."""
     per = {}
     for r in rows:
@@ -114,6 +114,6 @@ def _lateral_first_tap_measured(rows):
         sem = float(jumps.std(ddof=1) / math.sqrt(len(jumps))) if len(jumps) > 1 else math.nan
         out.append(Measure(float(jumps.mean()), sem, mean_dof(len(jumps)), label=f"eps = {eps:g}",
                            shown=f"{fmt(float(jumps.mean()), sem)} (the paper's start, "
-                                 f"{len(jumps)} seeds: bench/paper_questions.py "
+                                 f"{len(jumps)} seeds: tapmc-paper question "
                                  "lateral-first-tap)"))
     return out or not_in_campaign("no tap 1 from the paper's start")
