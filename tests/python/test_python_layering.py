@@ -215,3 +215,106 @@ ALLOWED = [
 @pytest.mark.parametrize("module,source", ALLOWED)
 def test_the_checker_lets_the_allowed_uses_pass(module, source):
     assert layering_problems(module, source) == []
+
+
+# ---------------------------------------------------------------- imports at module level only
+# A function-local import of a package module hides an import circle that no arrow of the
+# module's header shows (issue 41); every import of the package is at module level. bench/ is
+# performance only and stands on the C++ build, never on the Python package.
+BENCH = SOURCE / "bench"
+#: the paper wing's size limits (issue 41): a module past them is split by concern
+MAX_PAPER_MODULE_LINES = 800
+MAX_PAPER_FUNCTION_LINES = 80
+
+
+def local_package_imports(importer, source, filename="<source>"):
+    """'file:line: what' for every import of a package module inside a function body."""
+    problems = []
+    for func in ast.walk(ast.parse(source, filename)):
+        if not isinstance(func, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            continue
+        for node in ast.walk(func):
+            if isinstance(node, ast.ImportFrom):
+                targets = [absolute(importer, node)]
+            elif isinstance(node, ast.Import):
+                targets = [a.name for a in node.names]
+            else:
+                continue
+            for target in targets:
+                if ours(target):
+                    problems.append(f"{filename}:{node.lineno}: {func.name}() imports {target} "
+                                    "inside the function: import it at module level")
+    return problems
+
+
+@pytest.mark.parametrize("module", sorted(MODULES))
+def test_no_function_imports_a_package_module(module):
+    path = MODULES[module]
+    problems = local_package_imports(module, path.read_text(), str(path.relative_to(SOURCE)))
+    assert not problems, "\n".join(problems)
+
+
+def package_imports_of(source, filename="<source>"):
+    """The package modules a script imports anywhere (its top level or its functions)."""
+    found = []
+    for node in ast.walk(ast.parse(source, filename)):
+        if isinstance(node, ast.ImportFrom) and not node.level and ours(node.module or ""):
+            found.append(f"{filename}:{node.lineno}: imports {node.module}")
+        elif isinstance(node, ast.Import):
+            found += [f"{filename}:{node.lineno}: imports {a.name}" for a in node.names
+                      if ours(a.name)]
+    return found
+
+
+def test_bench_is_performance_only_and_imports_no_package_module():
+    scripts = sorted(BENCH.rglob("*.py"))
+    assert scripts, "no bench script found"
+    problems = [p for s in scripts for p in package_imports_of(s.read_text(),
+                                                                 str(s.relative_to(SOURCE)))]
+    assert not problems, "\n".join(problems)
+
+
+def oversized(source, filename, max_module=MAX_PAPER_MODULE_LINES,
+              max_function=MAX_PAPER_FUNCTION_LINES):
+    """'file: what' for a module or a function longer than the limits."""
+    lines = source.count("\n")
+    problems = [f"{filename}: {lines} lines (limit {max_module})"] if lines > max_module else []
+    for node in ast.walk(ast.parse(source, filename)):
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            length = node.end_lineno - node.lineno + 1
+            if length > max_function:
+                problems.append(f"{filename}:{node.lineno}: {node.name}() has {length} lines "
+                                f"(limit {max_function})")
+    return problems
+
+
+PAPER_MODULES = sorted(m for m in MODULES if m.startswith("tapmc.paper"))
+
+
+@pytest.mark.parametrize("module", PAPER_MODULES)
+def test_paper_wing_modules_and_functions_stay_small(module):
+    path = MODULES[module]
+    problems = oversized(path.read_text(), str(path.relative_to(SOURCE)))
+    assert not problems, "\n".join(problems)
+
+
+@pytest.mark.parametrize("checker,source,expected", [
+    (lambda s: local_package_imports("tapmc.paper.fig3", s),
+     "def f():\n    from . import _runs\n", "f() imports tapmc.paper"),
+    (lambda s: local_package_imports("tapmc.paper.fig3", s),
+     "def f():\n    import tapmc.laws\n", "f() imports tapmc.laws"),
+    (lambda s: package_imports_of(s), "def main():\n    from tapmc.paper import front\n",
+     "imports tapmc.paper"),
+    (lambda s: oversized(s, "m.py", 5, 3), "def f():\n    a = 1\n    b = 2\n    return a\n",
+     "f() has 4 lines"),
+    (lambda s: oversized(s, "m.py", 2, 80), "a = 1\nb = 2\nc = 3\n", "3 lines (limit 2)"),
+])
+def test_the_import_and_size_checkers_can_fail(checker, source, expected):
+    problems = checker(source)
+    assert len(problems) == 1 and expected in problems[0], problems
+
+
+def test_the_import_checkers_let_module_level_and_stdlib_imports_pass():
+    assert local_package_imports("tapmc.paper.fig3",
+                                 "from . import _runs\ndef f():\n    import json\n") == []
+    assert package_imports_of("import numpy\nimport tapmcx\n") == []

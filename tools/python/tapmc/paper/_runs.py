@@ -97,6 +97,10 @@ def ramp_run(scale, bc, seed):
 
 
 #: The ramp's branches in the order of in.ramp's branch column (0, 1, 2).
+#: the report's folder of figures, their CSVs, report.json and the questions' CSVs, inside
+#: the report's output folder (doc/validation, doc/paper_scale/validation)
+FIG_DIR = "validation"
+
 RAMP_BRANCHES = ("up1", "down", "up2")
 #: (marker, legend words) of each branch of the ramp beyond (sqrt eps)* (Figs. 4 and 6).
 RAMP_BRANCH_STYLE = {"up1": ("o", "increase"), "down": ("^", "decrease"),

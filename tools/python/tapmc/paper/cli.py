@@ -22,18 +22,19 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import json
 import sys
 import tempfile
 from pathlib import Path
 
-from tapmc.campaign import CampaignError
+from tapmc.campaign import Campaign, CampaignDirectoryError, CampaignError, launch
 from tapmc.readers import TapmcFormatError
 
 from .. import __version__
-from . import FIGURES, _runs, plan
+from . import FIGURES, _runs, cost, paper_ramp, plan
 from .front import command as front_command
 from .plan import TIERS
-from .scales import FBC_STARTS, get_scale
+from .scales import FBC_STARTS, FULL, get_scale
 
 try:
     from .questions import command as question_command
@@ -44,6 +45,20 @@ except ImportError as err:  # a question reads a figure module this installation
 
 class FigureUnavailable(RuntimeError):
     """A figure module (tapmc.paper.figN) is missing or lacks runs()/draw()."""
+
+
+def load_validation():
+    """The module ``tapmc.paper.validation`` (the report), loaded like a figure module: it
+    reads the figure modules, which an installation may lack; FigureUnavailable if it is not
+    installed."""
+    modname = f"{__package__}.validation"
+    try:
+        return importlib.import_module(modname)
+    except ModuleNotFoundError as err:
+        if err.name != modname:
+            raise
+        raise FigureUnavailable("report: the module tapmc.paper.validation is not installed in "
+                                "this TAPMC") from None
 
 
 def load_figure(name):
@@ -85,6 +100,45 @@ def _positive_int(text):
     return value
 
 
+def _add_scale_options(p):
+    """The options every figure, report and campaign command shares: scale, seeds, jobs,
+    folders, launcher."""
+    size = p.add_mutually_exclusive_group()
+    size.add_argument("--quick", dest="scale", action="store_const", const="quick",
+                      help="small packings and few taps, about a minute per figure on "
+                           "2 cores (the default)")
+    size.add_argument("--medium", dest="scale", action="store_const", const="medium",
+                      help="N = 1024, L = 16R, 1000 taps, 2 seeds: about 25 minutes for "
+                           "every figure on 2 cores (doc/validation.rst)")
+    size.add_argument("--full", dest="scale", action="store_const", const="full",
+                      help="the paper's scale: N = 4096, L = 32R, 4000 taps, 10 seeds "
+                           "(hours to days)")
+    p.set_defaults(scale="quick")
+    p.add_argument("--fbc-start", choices=FBC_STARTS, default=None,
+                   help="F.B.C. initial packing of the constant-eps runs (Figs. 2, 6-8): "
+                        "walls (deposited between the walls, the default) or paper (the "
+                        "paper's periodic deposition adapted to the walls by a slight "
+                        "agitation, section IV.A); default campaign folder "
+                        "./tapmc-paper-SCALE-fbc-paper")
+    p.add_argument("--seeds", type=_positive_int, default=None, metavar="K",
+                   help="number of seeds (realizations) per point; default: the scale's")
+    p.add_argument("--jobs", type=_positive_int, default=None, metavar="J",
+                   help="runs at a time (default: the cores this process may use)")
+    p.add_argument("--campaign", type=Path, default=None, metavar="DIR",
+                   help="campaign folder, shared by the figures and resumable "
+                        "(default: ./tapmc-paper-SCALE)")
+    p.add_argument("--out", type=Path, default=None, metavar="DIR",
+                   help="where PNG and CSV files go (default: CAMPAIGN/figures)")
+    p.add_argument("--mode", choices=("pool", "partition"), default="pool",
+                   help="pool: a process pool on this machine; partition: LAMMPS "
+                        "-partition under mpirun (multi-node)")
+    p.add_argument("--lmp", type=Path, default=None, metavar="EXE",
+                   help="LAMMPS executable (default: $TAPMC_LMP, build/lmp_tapmc)")
+    p.add_argument("--dry-run", action="store_true",
+                   help="list the runs and exit without running anything")
+    p.add_argument("--quiet", action="store_true", help="no progress report")
+
+
 def build_parser():
     parser = argparse.ArgumentParser(
         prog="tapmc-paper",
@@ -98,46 +152,19 @@ def build_parser():
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
 
-    def common(p):
-        size = p.add_mutually_exclusive_group()
-        size.add_argument("--quick", dest="scale", action="store_const", const="quick",
-                          help="small packings and few taps, about a minute per figure on "
-                               "2 cores (the default)")
-        size.add_argument("--medium", dest="scale", action="store_const", const="medium",
-                          help="N = 1024, L = 16R, 1000 taps, 2 seeds: about 25 minutes for "
-                               "every figure on 2 cores (doc/validation.rst)")
-        size.add_argument("--full", dest="scale", action="store_const", const="full",
-                          help="the paper's scale: N = 4096, L = 32R, 4000 taps, 10 seeds "
-                               "(hours to days)")
-        p.set_defaults(scale="quick")
-        p.add_argument("--fbc-start", choices=FBC_STARTS, default=None,
-                       help="F.B.C. initial packing of the constant-eps runs (Figs. 2, 6-8): "
-                            "walls (deposited between the walls, the default) or paper (the "
-                            "paper's periodic deposition adapted to the walls by a slight "
-                            "agitation, section IV.A); default campaign folder "
-                            "./tapmc-paper-SCALE-fbc-paper")
-        p.add_argument("--seeds", type=_positive_int, default=None, metavar="K",
-                       help="number of seeds (realizations) per point; default: the scale's")
-        p.add_argument("--jobs", type=_positive_int, default=None, metavar="J",
-                       help="runs at a time (default: the cores this process may use)")
-        p.add_argument("--campaign", type=Path, default=None, metavar="DIR",
-                       help="campaign folder, shared by the figures and resumable "
-                            "(default: ./tapmc-paper-SCALE)")
-        p.add_argument("--out", type=Path, default=None, metavar="DIR",
-                       help="where PNG and CSV files go (default: CAMPAIGN/figures)")
-        p.add_argument("--mode", choices=("pool", "partition"), default="pool",
-                       help="pool: a process pool on this machine; partition: LAMMPS "
-                            "-partition under mpirun (multi-node)")
-        p.add_argument("--lmp", type=Path, default=None, metavar="EXE",
-                       help="LAMMPS executable (default: $TAPMC_LMP, build/lmp_tapmc)")
-        p.add_argument("--dry-run", action="store_true",
-                       help="list the runs and exit without running anything")
-        p.add_argument("--quiet", action="store_true", help="no progress report")
-
     for fig in FIGURES:
-        common(sub.add_parser(fig, help=f"Fig. {fig[3:]} of the paper"))
+        _add_scale_options(sub.add_parser(fig, help=f"Fig. {fig[3:]} of the paper"))
+    _add_report_parser(sub)
+    _add_campaign_and_plan_parsers(sub)
+    front_command.add_parser(sub)
+    _add_paper_ramp_and_question_parsers(sub)
+    return parser
+
+
+def _add_report_parser(sub):
+    """``report``: every figure, then the validation page."""
     report = sub.add_parser("report", help="every figure, then the validation report")
-    common(report)
+    _add_scale_options(report)
     report.add_argument("--from-data", action="store_true",
                         help="rewrite OUT/validation.rst from the figure CSVs and report.json "
                              "already in OUT/validation (default OUT: the repository's doc/); "
@@ -150,9 +177,13 @@ def build_parser():
                         help="draw the figures and the report from the campaign's finished "
                              "runs only, running nothing (a campaign under way); figures "
                              "without their runs are left out and their claims undecided")
+
+
+def _add_campaign_and_plan_parsers(sub):
+    """``campaign`` (the paper-scale plan's runs) and ``plan`` (their CPU time first)."""
     plan = sub.add_parser("campaign", help="run the paper-scale campaign (tapmc.paper.plan) "
                                            "up to a tier, without drawing")
-    common(plan)
+    _add_scale_options(plan)
     plan.set_defaults(scale="full")
     plan.add_argument("--tier", type=int, choices=TIERS, default=1,
                       help="run tiers 1 .. TIER of the plan (default 1: the paper's one run "
@@ -175,7 +206,10 @@ def build_parser():
                     help="runs (seeds) per eps and setting (default 1)")
     cp.add_argument("--jobs", type=_positive_int, default=None, metavar="J",
                     help="runs at a time, for the wall time (default: the cores this process may use)")
-    front_command.add_parser(sub)
+
+
+def _add_paper_ramp_and_question_parsers(sub):
+    """``paper-ramp`` (section III.B at the paper's ramp protocol) and ``question NAME``."""
     pr = sub.add_parser("paper-ramp", help="section III.B's question at the paper's ramp "
                                            "protocol: the campaign's paperramp* runs judged "
                                            "(frozen or not), written to the report's "
@@ -190,20 +224,16 @@ def build_parser():
                                                "lists them)")
     if question_command is not None:
         question_command.add_parser(question)
-    return parser
 
 
 def _paper_ramp(args):
-    from . import paper_ramp
-    from .scales import FULL
-    from .validation import FIG_DIR
-
     if not (args.campaign / "runs").is_dir():
         print(f"tapmc-paper paper-ramp: --campaign {args.campaign} has no runs/ folder",
               file=sys.stderr)
         return 2
     rows = paper_ramp.analyse(args.campaign, FULL.eta)
-    path = paper_ramp.write_csv(rows, args.out / FIG_DIR / "questions" / paper_ramp.CSV_NAME)
+    path = paper_ramp.write_csv(
+        rows, args.out / _runs.FIG_DIR / "questions" / paper_ramp.CSV_NAME)
     print(paper_ramp.finding_text(rows, FULL.eta))
     print(f"paper-ramp: {path} ({len(rows)} runs)")
     return 0
@@ -224,8 +254,6 @@ def default_campaign_dir(scale):
 
 
 def _campaign_for(args, modules):
-    from tapmc.campaign import Campaign
-
     scale = scale_of(args)
     seeds = args.seeds if args.seeds is not None else scale.seeds
     runs, seen = [], {}
@@ -277,18 +305,12 @@ def _scale_before_run(campaign, scale):
     command with another scale is refused (_runs.check_scale) before it could resume these
     runs with other sizes. A folder made before scale.json existed gets it after a run that
     succeeded (see _run_campaign): only then do its finished runs match the scale."""
-    from . import _runs
-
     if not (campaign.directory / "manifest.json").exists():
         _runs.write_scale(campaign.directory, scale)
 
 
 def _run_plan(args):
     """``tapmc-paper campaign``: the paper-scale plan's runs, resumable, nothing drawn."""
-    from tapmc.campaign import Campaign, launch
-
-    from . import _runs, plan
-
     if args.scale != "full" or args.seeds is not None or args.fbc_start is not None:
         print("tapmc-paper: campaign runs the paper-scale plan only (--full, no --seeds or "
               "--fbc-start; the plan fixes its seeds per tier)", file=sys.stderr)
@@ -323,10 +345,6 @@ def _run_plan(args):
 
 def _run_campaign(campaign, scale, quiet):
     """Run the campaign; the exit status: 0, 1 (a run failed) or 2 (the folder is unusable)."""
-    from tapmc.campaign import CampaignDirectoryError, CampaignError
-
-    from . import _runs
-
     try:
         _scale_before_run(campaign, scale)
         campaign.run(progress=not quiet)
@@ -345,15 +363,14 @@ def _run_campaign(campaign, scale, quiet):
 
 def _report_from_data(args):
     """``tapmc-paper report --from-data``: the report rewritten from committed data."""
-    from . import _runs, validation
-
     out = args.out or _runs.SOURCE_DIR / "doc"
     try:
+        validation = load_validation()
         if args.refit:
             for csv in validation.refit(out):
                 print(f"refit: {csv}")
         path = validation.regenerate(out)
-    except (FileNotFoundError, ValueError) as err:  # also TapmcFormatError: a damaged input
+    except (FigureUnavailable, FileNotFoundError, ValueError) as err:  # also TapmcFormatError
         print(f"tapmc-paper: {err}", file=sys.stderr)
         return 2
     except OSError as err:
@@ -365,8 +382,6 @@ def _report_from_data(args):
 
 def _recorded_variables(campaign, name):
     """The variables a finished run ran with (its DONE.json), None when unreadable."""
-    import json
-
     try:
         done = json.loads((campaign.run_dir(name) / "DONE.json").read_text())
         return done["run"]["variables"]
@@ -381,8 +396,6 @@ def _finished_view(campaign, extra=()):
     of both. Where both name one run, the spec whose variables are those the run ran with
     (its DONE.json) is taken, else the one of ``extra``: the figures then read a ramp with
     the taps per level it has."""
-    from tapmc.campaign import Campaign
-
     extra_by_name = {spec.name: spec for spec in extra}
     specs = []
     for spec in campaign.runs:
@@ -402,10 +415,6 @@ def _finished_view(campaign, extra=()):
 
 def _list_runs(campaign, what):
     """The runs of a dry run, each with its CPU hours by the cost rule, and the total left."""
-    from tapmc.campaign import launch
-
-    from . import cost
-
     print(f"campaign {campaign.directory} ({what}, {len(campaign.runs)} runs):")
     why = None  # the first reason a run has no estimate
     try:
@@ -439,10 +448,6 @@ def _list_runs(campaign, what):
 
 def _plan_cost(args):
     """``tapmc-paper plan``: CPU hours per run and in all, for every eps and setting asked."""
-    from tapmc.campaign import launch
-
-    from . import cost
-
     try:
         rule = cost.CostRule.from_summary()
         settings = [(name, cost.tier_setting(name, rule, args.N))
@@ -475,8 +480,6 @@ def _plan_cost(args):
 def main(argv=None):
     parser = build_parser()
     args = parser.parse_args(argv)
-    from . import _runs
-
     if args.command == "question":
         if question_command is None:
             print(f"tapmc-paper question: not available in this installation "
@@ -499,15 +502,7 @@ def main(argv=None):
     figures = list(FIGURES) if args.command == "report" else [args.command]
     try:
         modules = [(f, load_figure(f)) for f in figures]
-        validation = None
-        if args.command == "report":
-            try:
-                validation = importlib.import_module(f"{__package__}.validation")
-            except ModuleNotFoundError as err:
-                if err.name != f"{__package__}.validation":
-                    raise
-                raise FigureUnavailable("report: the module tapmc.paper.validation is not "
-                                        "installed in this TAPMC") from None
+        validation = load_validation() if args.command == "report" else None
         campaign = _campaign_for(args, modules)
         scale = scale_of(args)
         _runs.check_scale(campaign.directory, scale)

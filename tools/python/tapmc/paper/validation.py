@@ -40,7 +40,7 @@ from .scales import SCALES
 #: text: tapmc.paper.claims.rules).
 RULES = {name: rule.text for name, rule in claims.RULES.items()}
 
-FIG_DIR = "validation"
+FIG_DIR = _runs.FIG_DIR
 
 
 #: the campaign's facts the report needs beyond the figure CSVs, kept next to them so that the
