@@ -64,6 +64,9 @@ def test_a_csv_with_rows_of_no_field_is_refused(tmp_path):
     with pytest.raises(FigureCsvError, match=r"fig7.csv:\d+: "):
         fig7.Fig7Result.load(path)
     path.write_text("")
+    with pytest.raises(FigureCsvError, match=r"fig7.csv: empty file"):
+        fig7.Fig7Result.load(path)
+    path.write_text("panel,series\n")
     with pytest.raises(FigureCsvError, match=r"fig7.csv:1: header"):
         fig7.Fig7Result.load(path)
 

@@ -126,22 +126,35 @@ def _fmt(value):
     return "" if not np.isfinite(value) else f"{value:.10g}"
 
 
-def read_table(path):
-    """Read a figure CSV back: dict (panel, series) -> dict of arrays x, mean, sem, n.
+class FigureCsvError(TapmcFormatError):
+    """A figure CSV that cannot be read whole (the message names the file and line)."""
 
-    The whole file is checked first, so that nothing is drawn or judged from part of it: a
-    file that is empty, cut short (its last line without the end-of-line that every row of
+
+def read_table(path):
+    """Read a figure CSV back: dict (panel, series) -> dict of arrays x, mean, sem, n, from
+    :func:`figure_csv_rows` (the whole file checked first)."""
+    out = defaultdict(lambda: {"x": [], "mean": [], "sem": [], "n": []})
+    for _, panel, series, x, mean, sem, n in figure_csv_rows(path):
+        cur = out[(panel, series)]
+        for key, value in (("x", x), ("mean", mean), ("sem", sem), ("n", n)):
+            cur[key].append(value)
+    return {k: {c: np.asarray(v) for c, v in d.items()} for k, d in out.items()}
+
+
+def figure_csv_rows(path):
+    """(line, panel, series, x, mean, sem, n) of every row of a figure CSV, numbers parsed.
+
+    The one reader of the figure CSVs (the report's tables and the figures' typed results):
+    the whole file is checked first, so that nothing is drawn or judged from part of it. A file
+    that is empty, cut short (its last line without the end-of-line that every row of
     :meth:`FigureTable.write` has), without the header of :data:`CSV_COLUMNS`, without a row,
     or with a row of another number of fields, a non-numeric x, mean or sem (empty is NaN) or
-    a non-integer n raises :class:`tapmc.readers.TapmcFormatError` naming the file, the line
-    and what is wrong."""
-    out = defaultdict(lambda: {"x": [], "mean": [], "sem": [], "n": []})
-    for lineno, panel, series, x, mean, sem, n in _csv_rows(path):
-        cur = out[(panel, series)]
-        for key, value in (("x", x), ("mean", mean), ("sem", sem)):
-            cur[key].append(_csv_float(path, lineno, key, value))
-        cur["n"].append(_csv_int(path, lineno, n))
-    return {k: {c: np.asarray(v) for c, v in d.items()} for k, d in out.items()}
+    a non-integer n raises :class:`FigureCsvError` (a :class:`tapmc.readers.TapmcFormatError`)
+    naming the file, the line and what is wrong."""
+    return [(lineno, panel, series, _csv_float(path, lineno, "x", x),
+             _csv_float(path, lineno, "mean", mean), _csv_float(path, lineno, "sem", sem),
+             _csv_int(path, lineno, n))
+            for lineno, panel, series, x, mean, sem, n in _csv_rows(path)]
 
 
 def _csv_rows(path):
@@ -149,27 +162,27 @@ def _csv_rows(path):
     try:
         text = Path(path).read_bytes().decode()
     except UnicodeDecodeError as err:
-        raise TapmcFormatError(path, None, f"not a text file ({err.reason})") from None
+        raise FigureCsvError(path, None, f"not a text file ({err.reason})") from None
     if not text:
-        raise TapmcFormatError(path, None, "empty file (a figure CSV has the header "
-                               f"{','.join(CSV_COLUMNS)} and one row per plotted number)")
+        raise FigureCsvError(path, None, "empty file (a figure CSV has the header "
+                             f"{','.join(CSV_COLUMNS)} and one row per plotted number)")
     if not text.endswith("\n"):
-        raise TapmcFormatError(path, text.count("\n") + 1, "cut short: the last line has no "
-                               "end-of-line")
+        raise FigureCsvError(path, text.count("\n") + 1, "cut short: the last line has no "
+                             "end-of-line")
     reader = csv.reader(text.splitlines(keepends=True))
     header = next(reader)
     if tuple(header) != CSV_COLUMNS:
-        raise TapmcFormatError(path, 1, f"header {','.join(header)!r}, expected "
-                               f"{','.join(CSV_COLUMNS)!r}")
+        raise FigureCsvError(path, 1, f"header {','.join(header)!r}, expected "
+                             f"{','.join(CSV_COLUMNS)!r}")
     rows = []
     for fields in reader:
         if len(fields) != len(CSV_COLUMNS):
-            raise TapmcFormatError(path, reader.line_num, f"{len(fields)} fields, expected "
-                                   f"{len(CSV_COLUMNS)} ({','.join(CSV_COLUMNS)})")
+            raise FigureCsvError(path, reader.line_num, f"{len(fields)} fields, expected "
+                                 f"{len(CSV_COLUMNS)} ({','.join(CSV_COLUMNS)})")
         rows.append((reader.line_num, *fields))
     if not rows:
-        raise TapmcFormatError(path, None, "no row after the header (a figure CSV has one "
-                               "row per plotted number)")
+        raise FigureCsvError(path, None, "no row after the header (a figure CSV has one "
+                             "row per plotted number)")
     return rows
 
 
@@ -179,14 +192,14 @@ def _csv_float(path, lineno, column, text):
     try:
         return float(text)
     except ValueError:
-        raise TapmcFormatError(path, lineno, f"{column} = {text!r} is not a number") from None
+        raise FigureCsvError(path, lineno, f"{column} = {text!r} is not a number") from None
 
 
 def _csv_int(path, lineno, text):
     try:
         return int(text)
     except ValueError:
-        raise TapmcFormatError(path, lineno, f"n = {text!r} is not an integer") from None
+        raise FigureCsvError(path, lineno, f"n = {text!r} is not an integer") from None
 
 
 def new_figure(nrows=2, ncols=1, height=3.0, width=5.0):

@@ -13,7 +13,6 @@ here only groups the rows and refuses a file it cannot read, naming it.
 
 from __future__ import annotations
 
-import csv
 import os
 import tempfile
 from dataclasses import dataclass
@@ -21,11 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ._plotting import CSV_COLUMNS, FigureTable
-
-
-class FigureCsvError(ValueError):
-    """A figure CSV that its result cannot read (the message names the file and line)."""
+from ._plotting import FigureCsvError, FigureTable, figure_csv_rows
 
 
 @dataclass(frozen=True, eq=False)
@@ -128,30 +123,14 @@ class CsvRows:
         self.path = Path(path)
         self._groups = {}
         try:
-            with open(self.path, newline="") as handle:
-                reader = csv.reader(handle)
-                header = next(reader, None)
-                if tuple(header or ()) != CSV_COLUMNS:
-                    raise FigureCsvError(f"{self.path}:1: header {header} is not "
-                                         f"{','.join(CSV_COLUMNS)}")
-                for line, row in enumerate(reader, start=2):
-                    self._add(line, row)
+            rows = figure_csv_rows(self.path)
         except OSError as err:
-            raise FigureCsvError(f"{self.path}: cannot read the figure CSV ({err})") from err
-
-    def _add(self, line, row):
-        if len(row) != len(CSV_COLUMNS):
-            raise FigureCsvError(f"{self.path}:{line}: {len(row)} fields, expected "
-                                 f"{len(CSV_COLUMNS)}")
-        panel, series, *numbers = row
-        try:
-            x, mean, err = (float(v) if v != "" else np.nan for v in numbers[:3])
-            n = int(numbers[3])
-        except ValueError as err:
-            raise FigureCsvError(f"{self.path}:{line}: not a number ({err})") from err
-        group = self._groups.setdefault((panel, series), ([], [], [], []))
-        for column, value in zip(group, (x, mean, err, n)):
-            column.append(value)
+            raise FigureCsvError(self.path, None,
+                                 f"cannot read the figure CSV ({err.strerror or err})") from err
+        for _, panel, series, x, mean, err, n in rows:
+            group = self._groups.setdefault((panel, series), ([], [], [], []))
+            for column, value in zip(group, (x, mean, err, n)):
+                column.append(value)
 
     def keys(self, panel=None):
         """The (panel, series) keys not yet taken, in file order (of ``panel`` only)."""
@@ -165,7 +144,7 @@ class CsvRows:
         try:
             x, mean, err, n = self._groups.pop((panel, series))
         except KeyError:
-            raise FigureCsvError(f"{self.path}: no rows of panel {panel!r}, series "
+            raise FigureCsvError(self.path, None, f"no rows of panel {panel!r}, series "
                                  f"{series!r}") from None
         return Series(np.array(x), np.array(mean), np.array(err), np.array(n, dtype=int))
 
@@ -173,7 +152,7 @@ class CsvRows:
         """The :class:`Value` of a one-row group."""
         s = self.take(panel, series)
         if len(s) != 1:
-            raise FigureCsvError(f"{self.path}: panel {panel!r}, series {series!r} has "
+            raise FigureCsvError(self.path, None, f"panel {panel!r}, series {series!r} has "
                                  f"{len(s)} rows, expected one")
         return Value.of_series(s)
 
@@ -184,7 +163,7 @@ class CsvRows:
         """Refuse the rows no field took."""
         if self._groups:
             left = ", ".join(f"{p}/{s}" for p, s in list(self._groups)[:5])
-            raise FigureCsvError(f"{self.path}: rows of no field of the figure's result: "
+            raise FigureCsvError(self.path, None, f"rows of no field of the figure's result: "
                                  f"{left}")
 
 
@@ -207,7 +186,7 @@ def save_rows(path, rows):
     all: written beside it and renamed, never left empty or cut."""
     table = table_of(rows)
     if not len(table):
-        raise FigureCsvError(f"{path}: a figure result without rows is not written")
+        raise FigureCsvError(path, None, "a figure result without rows is not written")
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     handle, temporary = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
