@@ -20,7 +20,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ._plotting import FigureCsvError, FigureTable, figure_csv_rows
+from ._plotting import (FigureCsvError, FigureTable, figure_csv_rows, figure_paths,
+                        save_figure)
 
 
 @dataclass(frozen=True, eq=False)
@@ -214,6 +215,13 @@ class FigureResult:
     def save(self, path):
         """Write the figure CSV; returns its path."""
         return save_rows(path, self.rows())
+
+    def save_with_png(self, plot, out_dir, name):
+        """The figure's PNG (``plot(self)``) and CSV in ``out_dir``, named ``name``; returns
+        their paths (what every figure module's ``draw`` returns)."""
+        png, csv = figure_paths(out_dir, name)
+        save_figure(plot(self), png)
+        return png, self.save(csv)
 
     @classmethod
     def load(cls, path):

@@ -434,7 +434,4 @@ def plot(result):
 
 def draw(campaign, out_dir, eps_values=None):
     """Fig. 2's PNG and CSV in ``out_dir`` (:func:`analyse`); returns their paths."""
-    png, csv = P.figure_paths(out_dir, NAME)
-    result = analyse(campaign, eps_values)
-    P.save_figure(plot(result), png)
-    return png, result.save(csv)
+    return analyse(campaign, eps_values).save_with_png(plot, out_dir, NAME)

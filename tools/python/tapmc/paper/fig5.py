@@ -620,7 +620,4 @@ def _collapse_panel(ax, scaling, master, colors):
 
 def draw(campaign, out_dir, waiting_times=None):
     """Fig. 5's PNG and CSV in ``out_dir``; returns their paths."""
-    png, csv = P.figure_paths(out_dir, NAME)
-    result = analyse(campaign, waiting_times)
-    P.save_figure(plot(result), png)
-    return png, result.save(csv)
+    return analyse(campaign, waiting_times).save_with_png(plot, out_dir, NAME)

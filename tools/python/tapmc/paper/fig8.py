@@ -187,7 +187,4 @@ def plot(result):
 
 def draw(campaign, out_dir):
     """Fig. 8's PNG and CSV in ``out_dir``; returns their paths."""
-    png, csv = P.figure_paths(out_dir, NAME)
-    result = analyse(campaign)
-    P.save_figure(plot(result), png)
-    return png, result.save(csv)
+    return analyse(campaign).save_with_png(plot, out_dir, NAME)
