@@ -33,7 +33,7 @@ SCREEN_TITLE = "Does TAPMC reproduce the paper?"
 TOPICS = {
     "II": "the model's parameters theta0 and d_max",
     "2": "compaction laws (eq. 3, eq. 4)",
-    "3": "fluctuations of <Z>",
+    "3": "fluctuations (spectrum, sigma)",
     "4": "bell curve and hysteresis",
     "5": "ageing",
     "6": "vertical profiles",
@@ -229,7 +229,7 @@ def screen_rst(entries, finding=""):
 def readme_lines(entries):
     """The three lines of README.md's "What the validation found" (from the paper-scale
     page's entries): the counts, the open questions, the link."""
-    open_titles = [f"{e.title} ({', '.join(e.disagreeing)})" for e in entries
+    open_titles = [f"{e.title}, {e.topic} ({', '.join(e.disagreeing)})" for e in entries
                    if e.disagreeing]
     return [count_sentence(entries),
             "Open questions, where rows disagree: " + ("; ".join(open_titles) or "none") + ".",
