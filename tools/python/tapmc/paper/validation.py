@@ -31,6 +31,7 @@ from . import FIGURES
 from . import _plotting as P
 from . import _runs
 from . import claims, paper_ramp, questions
+from . import summary as summary_screen
 from .claims import fmt
 from .front import bias_sentence  # what the redeposition setting costs in accuracy
 from .front import read_summary as read_front_summary
@@ -357,14 +358,13 @@ def render(summary, files):
              "(``tools/python/tapmc/paper/claims.toml``): every claim of the paper, with the "
              "statistic that tests it. TAPMC values are means over seeds with their standard "
              "errors (sem); the paper gives single runs without error bars.", "",
-             describe_scale(summary), "",
-             f"Summary: {n_claims} claims of the paper in {len(model)} rows: "
+             describe_scale(summary), ""]
+    lines += summary_screen.screen_rst(summary_screen.summarise(rows, files),
+                                       _paper_ramp_finding(files, summary))
+    lines += [f"Summary: {n_claims} claims of the paper in {len(model)} rows: "
              f"{count['agrees']} agree, {count['disagrees']} disagree, {count['undecided']} "
              "are undecided (the reason is in the verdict: too few seeds, a scale below the "
              "paper's, or runs this campaign does not have).", ""]
-    finding = _paper_ramp_finding(files, summary)
-    if finding:
-        lines += [finding, ""]
     lines += ["How close is TAPMC to the paper", "-" * 31, ""]
     lines += _rst_table(rows, run_note)
     lines += ["", f"The numbers come from the figure CSVs and ``{FIG_DIR}/{SUMMARY_FILE}`` (the "

@@ -47,6 +47,7 @@ class Claim:
     sign: int | None = None
     rounding: float = 0.0
     params: dict = field(default_factory=dict)
+    headline: bool | str = False
 
     def __post_init__(self):
         where = f"claim {self.id!r}"
@@ -67,6 +68,9 @@ class Claim:
                 raise ValueError(f"{where}: rule {self.rule!r} needs the field {name!r}")
         if self.sign not in (None, -1, 1):
             raise ValueError(f"{where}: sign = {self.sign!r}: allowed values -1, 1")
+        if not isinstance(self.headline, (bool, str)):
+            raise ValueError(f"{where}: headline = {self.headline!r}: true, false or the label "
+                             "of the row to show")
         if not self.tolerance.strip():
             raise ValueError(f"{where}: a tolerance needs its source (field 'tolerance')")
 

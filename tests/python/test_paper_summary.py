@@ -1,0 +1,123 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""The answer on one screen (tapmc.paper.summary): each figure's outcome follows from its rows
+by the stated rule (synthetic rows with a known answer for every outcome, and controls that
+must not pass), the committed pages answer within their first 80 lines with a figure within
+150, and README.md's "What the validation found" is what the paper-scale page's data give."""
+
+import os
+import sys
+from pathlib import Path
+
+import pytest
+
+SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", Path(__file__).resolve().parents[2]))
+sys.path.insert(0, str(SOURCE / "tools" / "python"))
+
+from tapmc.paper import claims, summary, validation  # noqa: E402
+from tapmc.paper.claims import Claim, Measure, Row, Verdict  # noqa: E402
+from tapmc.paper.claims.rules import Outcome  # noqa: E402
+from tapmc.paper.summary import FigureOutcome  # noqa: E402
+
+DOC = SOURCE / "doc"
+PAGES = [DOC, DOC / "paper_scale"]
+#: "the first screen" of a page and where its first figure must be (issue 42)
+FIRST_SCREEN_LINES = 80
+FIRST_FIGURE_LINE = 150
+
+
+def _claim(figure="2", section="III.A", kind="model", ident="c", headline=False):
+    return Claim(id=ident, section=section, figure=figure, claim="a claim", paper="paper",
+                 kind=kind, statistic="", rule="none", tolerance="a source", decided_by="",
+                 headline=headline)
+
+
+def _rows(*outcomes, figure="2", kind="model", scale=()):
+    """One row per outcome (an Outcome), all of one figure."""
+    claim = _claim(figure=figure, kind=kind)
+    return [Row(claim, f"row {i}", Measure(value=1.0, err=0.1), Verdict(o), scale)
+            for i, o in enumerate(outcomes)]
+
+
+A, D, U = Outcome.AGREES, Outcome.DISAGREES, Outcome.UNDECIDED
+
+
+@pytest.mark.parametrize("outcomes, scale, expected", [
+    ((A, A, A), (), FigureOutcome.REPRODUCED),
+    ((A, U), (), FigureOutcome.REPRODUCED),            # undecided for want of seeds only
+    ((A, A, D), (), FigureOutcome.CAVEAT),
+    ((A, U), ("size",), FigureOutcome.CAVEAT),          # undecided for scale
+    ((A, D), (), FigureOutcome.NOT_REPRODUCED),         # a tie is no reproduction
+    ((D, D, A), (), FigureOutcome.NOT_REPRODUCED),
+    ((U, U), (), FigureOutcome.NOT_TESTED),
+    ((U,), ("taps",), FigureOutcome.NOT_TESTED),
+])
+def test_figure_outcome_follows_the_rule(outcomes, scale, expected):
+    assert summary.figure_outcome(_rows(*outcomes, scale=scale))[0] == expected
+
+
+@pytest.mark.parametrize("n", [1, 2, 5])
+def test_control_a_figure_whose_rows_all_disagree_is_never_reproduced(n):
+    outcome, reason = summary.figure_outcome(_rows(*[D] * n))
+    assert outcome == FigureOutcome.NOT_REPRODUCED
+    assert f"{n} disagree" in reason
+
+
+def test_checks_are_never_counted():
+    """A figure's check rows (the tools' consistency) neither make nor change its outcome."""
+    checks = _rows(Outcome.FAILS, Outcome.HOLDS, figure="10", kind="check")
+    assert summary.summarise(checks, {}) == []
+    entries = summary.summarise(_rows(A, figure="10") + checks, {})
+    assert [e.outcome for e in entries] == [FigureOutcome.REPRODUCED]
+    assert entries[0].reason.startswith("1 of 1 rows agree")
+
+
+def test_entries_follow_the_paper_order_with_thumbnails_and_headlines():
+    text = _claim(figure="", section="II", ident="text-claim")
+    later = _claim(figure="10", section="IV.B", ident="pores")
+    head = _claim(figure="2", section="III.A", ident="eq3", headline="eps = 0.05")
+    rows = [Row(text, "", Measure(), Verdict(U), ()),     # the register's order of sections
+            Row(_claim(figure="3", ident="third"), "", Measure(), Verdict(A), ()),
+            Row(_claim(ident="first"), "", Measure(value=3.0, err=1.0), Verdict(A), ()),
+            Row(head, "eps = 0.005", Measure(value=4.0, err=1.0), Verdict(A), ()),
+            Row(head, "eps = 0.05, after", Measure(value=5.0, err=1.0), Verdict(A), ()),
+            Row(later, "", Measure(value=2.0, err=0.5), Verdict(D), ())]
+    files = {"fig2": (Path("x/fig2.png"), Path("x/fig2.csv"))}
+    entries = summary.summarise(rows, files)
+    assert [e.key for e in entries] == ["II", "2", "3", "10"]   # figures by number
+    assert [e.png for e in entries] == ["", "validation/fig2.png", "", ""]
+    assert entries[1].headline == "eq3 (eps = 0.05): 5 ± 1"
+    assert entries[3].disagreeing == ("pores",)
+    rst = "\n".join(summary.screen_rst(entries, "a finding."))
+    assert ".. image:: validation/fig2.png" in rst and summary.OUTCOME_RULE in rst
+    assert "* a finding." in rst
+    assert "Fig. 10 (pore distributions; not reproduced): pores disagrees" in rst
+
+
+def _entries(page):
+    summary_json, files = validation.committed_inputs(page)
+    data = claims.ReportData.from_files(summary_json, files)
+    return summary.summarise(claims.evaluate(claims.load_register(), data), files)
+
+
+@pytest.mark.parametrize("page", PAGES, ids=lambda p: p.name)
+def test_the_page_answers_on_its_first_screen(page):
+    lines = (page / "validation.rst").read_text().splitlines()
+    title = lines.index(summary.SCREEN_TITLE) + 1
+    table = next(i for i, line in enumerate(lines, 1)
+                 if i > title and line.startswith(".. list-table::"))
+    counts = next(i for i, line in enumerate(lines, 1) if line.startswith("Of the paper's "))
+    image = next(i for i, line in enumerate(lines, 1) if ".. image::" in line)
+    assert max(title, counts, table) <= FIRST_SCREEN_LINES, (title, counts, table)
+    assert image <= FIRST_FIGURE_LINE, image
+    assert lines[counts - 1] == summary.count_sentence(_entries(page))
+
+
+def test_readme_says_what_the_paper_scale_page_found():
+    expected = summary.readme_lines(_entries(DOC / "paper_scale"))
+    readme = (SOURCE / "README.md").read_text().splitlines()
+    start = readme.index("## What the validation found")
+    section = readme[start:start + 10]
+    assert all(line in section for line in expected), (
+        "README.md's 'What the validation found' differs from tapmc.paper.summary.readme_lines "
+        "of doc/paper_scale: replace its lines by:\n" + "\n".join(expected))
+    assert "[doc/paper_scale/validation.rst](doc/paper_scale/validation.rst)" in expected[-1]

@@ -1,0 +1,240 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""The answer on one screen: does TAPMC reproduce Philippe & Bideau, figure by figure.
+
+One :class:`FigureEntry` per figure of the paper (claims of the register without a figure are
+grouped by their section), in the register's order. Its outcome follows from the verdicts of
+the figure's model rows by :func:`figure_outcome` (the rule :data:`OUTCOME_RULE` states); rows
+of kind "check" (the tools' consistency) are never counted. Its key number is the measure of
+the claim marked ``headline`` in the register (``claims.toml``), beside the paper's value.
+:func:`screen_rst` writes the screen at the top of the validation pages and
+:func:`readme_lines` the three lines of README.md's "What the validation found", from the same
+entries, so the README cannot drift from the page (tests/python/test_paper_summary.py).
+"""
+
+from __future__ import annotations
+
+import enum
+import math
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+from .claims.rules import Outcome
+
+#: the committed paper-scale page, which README.md's lines summarise and link
+PAPER_SCALE_PAGE = "doc/paper_scale/validation.rst"
+#: width of a figure's thumbnail in the screen's table: small enough for twelve rows on a
+#: screen, large enough to recognise the paper's figure
+THUMBNAIL_WIDTH = "160px"
+#: the screen's section title (tests find the table by it)
+SCREEN_TITLE = "Does TAPMC reproduce the paper?"
+
+#: what each figure (or section, for the claims the text alone makes) of the paper is about
+TOPICS = {
+    "II": "the model's parameters theta0 and d_max",
+    "2": "compaction laws (eq. 3, eq. 4)",
+    "3": "fluctuations (spectrum, sigma)",
+    "4": "bell curve and hysteresis",
+    "5": "ageing",
+    "6": "vertical profiles",
+    "7": "transversal profiles",
+    "8": "lateral and central zones",
+    "9": "P0 and the packing fractions",
+    "10": "pore distributions",
+    "IV.A": "hysteresis of the gradient",
+    "IV.B": "hysteresis of the pore density",
+}
+
+
+class FigureOutcome(enum.StrEnum):
+    """What the screen says of one figure of the paper."""
+
+    REPRODUCED = "reproduced"
+    CAVEAT = "reproduced with a caveat"
+    NOT_REPRODUCED = "not reproduced"
+    NOT_TESTED = "not tested"
+
+
+#: the rule of :func:`figure_outcome`, as the page prints it under the table
+OUTCOME_RULE = (
+    "A figure's outcome follows from the verdicts of its model rows in the table below (checks "
+    "of the tools are not counted): not tested when no row is decided; not reproduced when "
+    "the disagreeing rows are at least as many as the agreeing ones; reproduced when every "
+    "decided row agrees and no row is undecided for want of the paper's scale; reproduced "
+    "with a caveat otherwise (some rows disagree, or some are undecided for scale).")
+
+
+@dataclass(frozen=True)
+class FigureEntry:
+    """One figure (or section) of the paper on the screen: ``key`` its figure number or
+    section, ``title`` ("Fig. 2" or "Section II"), ``outcome`` and ``reason`` (the counts it
+    follows from), ``headline`` (the key number, TAPMC's), ``paper`` (the paper's value beside
+    it), ``png`` (the thumbnail, relative to the page; "" without a figure) and
+    ``disagreeing`` (the ids of the claims with a disagreeing row)."""
+
+    key: str
+    title: str
+    topic: str
+    outcome: FigureOutcome
+    reason: str
+    headline: str
+    paper: str
+    png: str
+    disagreeing: tuple = ()
+
+
+def _key(claim):
+    """The screen entry a claim belongs to: its figure, or its section when the text alone
+    makes it."""
+    return claim.figure or claim.section
+
+
+def group_rows(rows):
+    """The model rows grouped by figure (or section), in the paper's order: by the section
+    of a group's first claim (in the register's order of sections), then by figure number,
+    a section's text-only claims after its figures. key -> list of rows; rows of kind
+    "check" are left out."""
+    groups, sections = {}, {}
+    for row in rows:
+        sections.setdefault(row.claim.section, len(sections))
+        if row.claim.kind == "model":
+            groups.setdefault(_key(row.claim), []).append(row)
+
+    def order(item):
+        key, group = item
+        return sections[group[0].claim.section], int(key) if key.isdigit() else math.inf
+
+    return dict(sorted(groups.items(), key=order))
+
+
+def _undecided_for_scale(row):
+    return row.outcome == Outcome.UNDECIDED and bool(row.missing_scale)
+
+
+def figure_outcome(rows):
+    """(FigureOutcome, reason) of one figure's model rows by :data:`OUTCOME_RULE`."""
+    agree = sum(1 for r in rows if r.outcome == Outcome.AGREES)
+    disagree = sum(1 for r in rows if r.outcome == Outcome.DISAGREES)
+    scale = sum(1 for r in rows if _undecided_for_scale(r))
+    other = len(rows) - agree - disagree
+    reason = f"{agree} of {len(rows)} rows agree, {disagree} disagree, {other} undecided"
+    if scale:
+        reason += f" ({scale} for scale)"
+    if agree + disagree == 0:
+        return FigureOutcome.NOT_TESTED, reason
+    if disagree >= agree:
+        return FigureOutcome.NOT_REPRODUCED, reason
+    if disagree == 0 and not scale:
+        return FigureOutcome.REPRODUCED, reason
+    return FigureOutcome.CAVEAT, reason
+
+
+def _short(text):
+    """A measure's text up to its first explanation ("; ", " over ", or a parenthesis other
+    than the degrees of freedom): the full text is in the table of the page."""
+    for mark in ("; ", " over "):
+        text = text.split(mark)[0]
+    return re.sub(r" \((?!\d+ dof\)).*", "", text)
+
+
+def headline_row(rows):
+    """The row whose measure is a figure's key number: of the claim marked ``headline`` in
+    the register (else the first claim), the first row whose label starts with the headline's
+    text (when it is one), preferring a row at the paper's scale; None without rows."""
+    marked = [r for r in rows if r.claim.headline]
+    if not marked:
+        marked = [r for r in rows if r.claim.id == rows[0].claim.id] if rows else []
+    if not marked:
+        return None
+    prefix = marked[0].claim.headline
+    if isinstance(prefix, str):
+        marked = [r for r in marked if r.label.startswith(prefix)] or marked
+    return next((r for r in marked if not r.missing_scale), marked[0])
+
+
+def _headline_text(row):
+    if row is None:
+        return "n/a"
+    label = row.claim.headline if isinstance(row.claim.headline, str) else ""
+    if label and not row.label.startswith(label):
+        label = ""
+    value = _short(row.measure.text())
+    return f"{row.claim.id}{' (' + label + ')' if label else ''}: {value}"
+
+
+def summarise(rows, files):
+    """The screen's entries (:class:`FigureEntry`) from the evaluated rows
+    (:func:`tapmc.paper.claims.evaluate`) and the figure files of the page (name -> (png,
+    csv))."""
+    entries = []
+    for key, group in group_rows(rows).items():
+        outcome, reason = figure_outcome(group)
+        head = headline_row(group)
+        png = files.get(f"fig{key}", ("",))[0]
+        disagreeing = tuple(dict.fromkeys(r.claim.id for r in group
+                                          if r.outcome == Outcome.DISAGREES))
+        entries.append(FigureEntry(
+            key=key, title=f"Fig. {key}" if key.isdigit() else f"Section {key}",
+            topic=TOPICS.get(key, group[0].claim.claim), outcome=outcome, reason=reason,
+            headline=_headline_text(head), paper=head.claim.paper if head else "",
+            png=f"validation/{Path(png).name}" if png else "", disagreeing=disagreeing))
+    return entries
+
+
+def counts(entries):
+    """FigureOutcome -> the number of entries with it, in the enum's order."""
+    return {o: sum(1 for e in entries if e.outcome == o) for o in FigureOutcome}
+
+
+def count_sentence(entries):
+    """"Of N figures and sections of the paper: a reproduced, b with a caveat, ..."."""
+    n = counts(entries)
+    return (f"Of the paper's {len(entries)} figures and sections tested by the register: "
+            f"{n[FigureOutcome.REPRODUCED]} reproduced, {n[FigureOutcome.CAVEAT]} reproduced "
+            f"with a caveat, {n[FigureOutcome.NOT_REPRODUCED]} not reproduced, "
+            f"{n[FigureOutcome.NOT_TESTED]} not tested.")
+
+
+def open_questions(entries):
+    """One sentence per figure with disagreeing rows: the claims that disagree."""
+    return [f"{e.title} ({e.topic}; {e.outcome}): {', '.join(e.disagreeing)} "
+            f"{'disagrees' if len(e.disagreeing) == 1 else 'disagree'} with the paper."
+            for e in entries if e.disagreeing]
+
+
+def _entry_rows(entry):
+    image = (f".. image:: {entry.png}\n         :width: {THUMBNAIL_WIDTH}\n"
+             f"         :alt: {entry.title}") if entry.png else "(text)"
+    return [f"   * - {entry.title}: {entry.topic}", f"     - **{entry.outcome}** "
+            f"({entry.reason})", f"     - {entry.headline}", f"     - {entry.paper}",
+            f"     - {image}"]
+
+
+def screen_rst(entries, finding=""):
+    """The one screen, as rst lines: the counts, one table row per entry (outcome, key
+    number, the paper's value, thumbnail), the rule, and the open questions (``finding``: the
+    irreversible-branch finding of section III.B, first of them when given)."""
+    lines = [SCREEN_TITLE, "-" * len(SCREEN_TITLE), "", count_sentence(entries), "",
+             ".. list-table::", "   :header-rows: 1", "   :widths: 18 22 26 16 18", "",
+             "   * - Figure", "     - Outcome", "     - Key number (TAPMC)", "     - Paper",
+             "     - Figure"]
+    for entry in entries:
+        lines += _entry_rows(entry)
+    lines += ["", OUTCOME_RULE, "", "Open questions:", ""]
+    questions = ([finding] if finding else []) + open_questions(entries)
+    lines += [f"* {q}" for q in questions] or ["* none"]
+    return lines + [""]
+
+
+def readme_lines(entries):
+    """The three lines of README.md's "What the validation found" (from the paper-scale
+    page's entries): the counts, the open questions, the link."""
+    open_titles = [f"{e.title}, {e.topic} ({', '.join(e.disagreeing)})" for e in entries
+                   if e.disagreeing]
+    return [count_sentence(entries),
+            "Open questions, where rows disagree: " + ("; ".join(open_titles) or "none") + ".",
+            f"Every figure, row and rule: [{PAPER_SCALE_PAGE}]({PAPER_SCALE_PAGE})."]
+
+
+__all__ = ["FigureEntry", "FigureOutcome", "OUTCOME_RULE", "summarise", "figure_outcome",
+           "screen_rst", "readme_lines", "open_questions", "counts"]
