@@ -303,6 +303,19 @@ def test_the_ramps_own_taps_per_level_decide_the_ramp_taps_aspect():
     assert "ramp_taps" in claims.scale_aspects(dict(base, ramp_taps_per_level=[4000]))
 
 
+#: the one-row params of Fig. 9's typed result (tapmc.paper.fig9.Fig9Result) besides its curves
+FIG9_PARAMS = ("phi_initial", "phi_final", "phi_c_initial", "phi_c_final",
+               "max_abs_diff_initial_final", "max_abs_diff_final_py")
+
+
+def with_fig9_params(tab):
+    """``tab`` with every param of Fig. 9's result, NaN (not measured) where it has none."""
+    for name in FIG9_PARAMS:
+        if ("params", name) not in tab.table:
+            tab.param(name, math.nan, None, n=1)
+    return tab
+
+
 def fig9(diff=0.0, py_shift=0.0):
     sigma = np.linspace(0.0, 2.0, 60)
     final = percus_yevick_p0(sigma, 0.606) + py_shift
@@ -311,7 +324,7 @@ def fig9(diff=0.0, py_shift=0.0):
     tab.add("a", "percus_yevick", sigma, percus_yevick_p0(sigma, 0.606), None, 1)
     tab.param("phi_initial", 0.584, 0.001).param("phi_final", 0.606, 0.001)
     tab.param("phi_c_initial", 0.584, 0.001).param("phi_c_final", 0.606, 0.001)
-    return tab
+    return with_fig9_params(tab)
 
 
 def one_run_fig9(steady, sem=0.0002, tap_sd=0.001):
@@ -944,6 +957,7 @@ def test_one_realization_p0_curves_are_decided_over_configurations():
     one_run.add("a", "final", sigma, py(0.604)(sigma), None, n=1)
     one_run.add("a", "initial", sigma, py(0.582)(sigma), None, n=1)
     one_run.add("a", "percus_yevick", sigma, py(0.604)(sigma), None, n=0)
+    with_fig9_params(one_run)
     same = claims.ReportData(report().summary, {"fig9": one_run.data()},
                              questions={"p0_configs": _p0_rows(py(0.604), py(0.604), 1e-4)})
     (m,) = claims.p0_initial_minus_final(same, BY_ID["p0-insensitive"])
@@ -965,6 +979,7 @@ def test_one_realization_p0_curves_are_decided_over_configurations():
         for name, phi in (("final", 0.604), ("initial", 0.604)):
             runs.add("a", name, sigma, py(phi)(sigma), 1e-3, n=seeds)
         runs.add("a", "percus_yevick", sigma, py(0.604)(sigma), None, n=0)
+        with_fig9_params(runs)
         data = claims.ReportData(report().summary, {"fig9": runs.data()},
                                  questions={"p0_configs": _p0_rows(py(0.582), py(0.604), 1e-4)})
         (m,) = claims.p0_initial_minus_final(data, BY_ID["p0-insensitive"])

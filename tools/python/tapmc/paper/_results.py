@@ -132,6 +132,17 @@ class CsvRows:
             for column, value in zip(group, (x, mean, err, n)):
                 column.append(value)
 
+    @classmethod
+    def of_table(cls, path, table):
+        """The rows of a table already read, ``(panel, series) -> {"x", "mean", "sem", "n"}``
+        (``_plotting.read_table``'s form, e.g. a figure's table after the report's realization
+        calibration); ``path`` names their file in errors."""
+        rows = cls.__new__(cls)
+        rows.path = Path(path)
+        rows._groups = {key: tuple(list(np.atleast_1d(d[c])) for c in ("x", "mean", "sem", "n"))
+                        for key, d in table.items()}
+        return rows
+
     def keys(self, panel=None):
         """The (panel, series) keys not yet taken, in file order (of ``panel`` only)."""
         return [k for k in self._groups if panel is None or k[0] == panel]
@@ -218,7 +229,21 @@ class FigureResult:
     @classmethod
     def load(cls, path):
         """Read a figure CSV written by :meth:`save` back into the result."""
-        rows = CsvRows(path)
+        return cls.of_rows(CsvRows(path))
+
+    @classmethod
+    def of_rows(cls, rows):
+        """The result of :class:`CsvRows` (a file's or a table's), every row taken."""
         result = cls.from_rows(rows)
         rows.finish()
         return result
+
+    def table_dict(self):
+        """The result's rows as ``_plotting.read_table`` reads its CSV: ``(panel, series) ->
+        {"x", "mean", "sem", "n"}`` arrays."""
+        out = {}
+        for panel, series, x, mean, sem, n in self.table().rows:
+            d = out.setdefault((panel, series), {"x": [], "mean": [], "sem": [], "n": []})
+            for key, value in (("x", x), ("mean", mean), ("sem", sem), ("n", n)):
+                d[key].append(value)
+        return {k: {c: np.asarray(v) for c, v in d.items()} for k, d in out.items()}

@@ -43,19 +43,25 @@ def tapped_phi(data, claim):
     """The steady <Phi^c> after the taps against the paper's value read at tap 4000: a single
     tap's value, so the interval is the steady state's error combined with the spread of
     single taps (a prediction interval). Without the steady state: the value at the end."""
-    fig = data.figure("fig9")
-    if fig is None:
+    fig9 = data.result("fig9")
+    if fig9 is None:
         return not_in_campaign("no Fig. 9 runs")
-    m, s, n = fig.param("phi_c_steady")
+    m, s, n = _value_triple(fig9.phi_c_steady)
     if not np.isfinite(m):
-        m, s, n = fig.param("phi_c_final")
+        m, s, n = _value_triple(fig9.phi_c["final"])
         return [Measure(m, s, mean_dof(n), shown=fmt(m, s, pct=True))]
-    sd = fig.param("phi_c_tap_sd")[0]
+    sd = _value_triple(fig9.phi_c_tap_sd)[0]
     err = math.hypot(s, sd) if np.isfinite(s) else math.nan
     return [Measure(m, err, steady_dof(n, s),
                     shown=f"{fmt(m, s, pct=True)} (steady state; single taps spread "
                           f"{100 * sd:.2f} %" + (f"; {_tapped_one_seed(data)})" if n == 1
                                                  else ")"))]
+
+
+def _value_triple(value):
+    """(value, err, n) of a Fig. 9 :class:`Value`; NaNs for one its CSV does not have (drawn
+    before the steady state was)."""
+    return (math.nan, math.nan, 0) if value is None else (value.value, value.err, value.n)
 
 
 def _tapped_one_seed(data):
@@ -67,13 +73,13 @@ def _tapped_one_seed(data):
 
 @statistic("pbc_compaction")
 def pbc_compaction(data, claim):
-    fig = data.figure("fig9")
-    if fig is None:
+    fig9 = data.result("fig9")
+    if fig9 is None:
         return not_in_campaign("no Fig. 9 runs")
-    mi, si, ni = fig.param("phi_c_initial")
-    mf, sf, nf = fig.param("phi_c_steady")
+    mi, si, ni = _value_triple(fig9.phi_c["initial"])
+    mf, sf, nf = _value_triple(fig9.phi_c_steady)
     if not np.isfinite(mf):
-        mf, sf, nf = fig.param("phi_c_final")
+        mf, sf, nf = _value_triple(fig9.phi_c["final"])
         dof = mean_dof(min(ni, nf))
     else:
         dof = steady_dof(min(ni, nf), sf)

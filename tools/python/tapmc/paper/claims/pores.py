@@ -40,11 +40,11 @@ def _pointwise_zero(x, diff, err, n, what, effect):
                           f"{len(idx)} standardized differences)")]
 
 
-def _py_change(fig, sigma):
+def _py_change(fig9, sigma):
     """Largest change over sigma of the Percus-Yevick P0 (eqs. 8-9) between the initial and
-    the tapped packing fractions: the effect a P0 claim is measured against (None when the
-    packing fractions are not in the data)."""
-    phi_i, phi_f = fig.param("phi_initial")[0], fig.param("phi_final")[0]
+    the tapped packing fractions of Fig. 9's result: the effect a P0 claim is measured against
+    (None when the packing fractions are not in the data)."""
+    phi_i, phi_f = fig9.phi["initial"].value, fig9.phi["final"].value
     if not (np.isfinite(phi_i) and np.isfinite(phi_f)):
         return None
     return float(np.max(np.abs(percus_yevick_p0(sigma, phi_f) -
@@ -86,20 +86,19 @@ def _p0_difference(data, other, what):
     of fewer realizations than ``p0-configs`` has configurations (one run per point, the
     paper's protocol, or a campaign under way with two seeds, whose sem over two is itself
     hardly known) are compared over those configurations instead, when there."""
-    fig = data.figure("fig9")
-    if fig is None:
+    fig9 = data.result("fig9")
+    if fig9 is None:
         return not_in_campaign("no Fig. 9 runs")
-    final, ref = fig.get("a", "final"), fig.get("a", other)
-    if final is None or ref is None:
-        return not_in_campaign("no P0 curves")
-    measured = _p0_configurations(data, other, what, more_than=int(np.nanmax(final[3])))
+    final = fig9.p0["final"]
+    ref = fig9.percus_yevick if other == "percus_yevick" else fig9.p0[other]
+    measured = _p0_configurations(data, other, what, more_than=int(np.nanmax(final.n)))
     if measured is not None:
         return measured
-    x = final[0]
-    ref_err = np.nan_to_num(np.interp(x, ref[0], ref[2]))  # Percus-Yevick: exact
-    n = final[3] if other == "percus_yevick" else np.minimum(final[3], ref[3].min())
-    return _pointwise_zero(x, np.interp(x, ref[0], ref[1]) - final[1],
-                           np.hypot(ref_err, final[2]), n, what, _py_change(fig, x))
+    x = final.x
+    ref_err = np.nan_to_num(np.interp(x, ref.x, ref.err))  # Percus-Yevick: exact
+    n = final.n if other == "percus_yevick" else np.minimum(final.n, ref.n.min())
+    return _pointwise_zero(x, np.interp(x, ref.x, ref.mean) - final.mean,
+                           np.hypot(ref_err, final.err), n, what, _py_change(fig9, x))
 
 
 @statistic("p0_initial_minus_final")
