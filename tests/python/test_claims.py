@@ -149,7 +149,8 @@ def report(summary=None, **figures):
     base = {"sizes": [[4096, 32.0]], "eta": [1e-7], "preset": True, "scale": "full",
             "fields": None, "initial_phi_c": [0.584, 0.001, SEEDS]}
     base.update(summary or {})
-    return claims.ReportData(base, {k: v.data() for k, v in figures.items()})
+    return claims.ReportData(base, {k: COMPLETE_ROWS.get(k, lambda tab: tab)(v).data()
+                                    for k, v in figures.items()})
 
 
 T = np.unique(np.round(np.geomspace(1, 4000, 120)))
@@ -380,15 +381,37 @@ def fig10(first=pore_curve(0.1), last=pore_curve(0.05), nu=(0.12, 0.10), tail_ra
 
 
 def fig8(central, lateral, paper_first_tap=None):
+    """Fig. 8's zones at two eps, the runs from the walls' start or, with ``paper_first_tap``,
+    from the paper's start."""
     tab = Table()
     for eps in (0.005, 0.1):
         tab.param(f"eps={P.fmt_eps(eps)}:final_central", central, 0.0005, x=eps)
         tab.param(f"eps={P.fmt_eps(eps)}:final_lateral", lateral, 0.0005, x=eps)
-        tab.add("a", f"eps={P.fmt_eps(eps)}", [0, 1, 2], [0, -0.003, -0.002], 0.0003)
-        if paper_first_tap is not None:
+        if paper_first_tap is None:
+            tab.add("a", f"eps={P.fmt_eps(eps)}", [0, 1, 2], [0, -0.003, -0.002], 0.0003)
+        else:
             tab.add("a", f"paper:eps={P.fmt_eps(eps)}", [0, 1, 2],
                     [0, paper_first_tap, paper_first_tap], 0.0003)
+    return with_fig8_rows(tab)
+
+
+def with_fig8_rows(tab):
+    """``tab`` with every row of Fig. 8's typed result (tapmc.paper.fig8.Fig8Result): the
+    lateral (a) and central (b) curves of each eps its params name (one NaN point where it has
+    none), from the start its curves name."""
+    prefix = "paper:" if any(series.startswith("paper:") for panel, series in tab.table
+                             if panel == "a") else ""
+    labels = {series.split(":")[0] for panel, series in tab.table if panel == "params"}
+    labels |= {series[len(prefix):] for panel, series in tab.table if panel == "a"}
+    for label in sorted(labels, key=lambda label: float(label[len("eps="):])):
+        for panel in ("a", "b"):
+            if (panel, prefix + label) not in tab.table:
+                tab.add(panel, prefix + label, [math.nan], [math.nan], None, n=1)
     return tab
+
+
+#: figure -> what completes a test's table into every row of the figure's typed result
+COMPLETE_ROWS = {"fig8": with_fig8_rows}
 
 
 def _low_first(eps_curves):

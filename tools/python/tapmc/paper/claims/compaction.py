@@ -13,7 +13,7 @@ from tapmc.fluctuations import DEFAULT_BATCHES, SteadyState
 from tapmc.stats import mean_dof, weighted_line
 
 from .common import (WITHIN_RUN_DOF, above, eps_series, not_in_campaign, one_seed_error_text,
-                     per_curve, steady_dof)
+                     per_curve, steady_dof, value_triple)
 from .measure import Measure, fmt
 from .registry import statistic
 
@@ -46,22 +46,16 @@ def tapped_phi(data, claim):
     fig9 = data.result("fig9")
     if fig9 is None:
         return not_in_campaign("no Fig. 9 runs")
-    m, s, n = _value_triple(fig9.phi_c_steady)
+    m, s, n = value_triple(fig9.phi_c_steady)
     if not np.isfinite(m):
-        m, s, n = _value_triple(fig9.phi_c["final"])
+        m, s, n = value_triple(fig9.phi_c["final"])
         return [Measure(m, s, mean_dof(n), shown=fmt(m, s, pct=True))]
-    sd = _value_triple(fig9.phi_c_tap_sd)[0]
+    sd = value_triple(fig9.phi_c_tap_sd)[0]
     err = math.hypot(s, sd) if np.isfinite(s) else math.nan
     return [Measure(m, err, steady_dof(n, s),
                     shown=f"{fmt(m, s, pct=True)} (steady state; single taps spread "
                           f"{100 * sd:.2f} %" + (f"; {_tapped_one_seed(data)})" if n == 1
                                                  else ")"))]
-
-
-def _value_triple(value):
-    """(value, err, n) of a Fig. 9 :class:`Value`; NaNs for one its CSV does not have (drawn
-    before the steady state was)."""
-    return (math.nan, math.nan, 0) if value is None else (value.value, value.err, value.n)
 
 
 def _tapped_one_seed(data):
@@ -76,10 +70,10 @@ def pbc_compaction(data, claim):
     fig9 = data.result("fig9")
     if fig9 is None:
         return not_in_campaign("no Fig. 9 runs")
-    mi, si, ni = _value_triple(fig9.phi_c["initial"])
-    mf, sf, nf = _value_triple(fig9.phi_c_steady)
+    mi, si, ni = value_triple(fig9.phi_c["initial"])
+    mf, sf, nf = value_triple(fig9.phi_c_steady)
     if not np.isfinite(mf):
-        mf, sf, nf = _value_triple(fig9.phi_c["final"])
+        mf, sf, nf = value_triple(fig9.phi_c["final"])
         dof = mean_dof(min(ni, nf))
     else:
         dof = steady_dof(min(ni, nf), sf)
