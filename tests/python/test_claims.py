@@ -410,8 +410,23 @@ def with_fig8_rows(tab):
     return tab
 
 
+def with_fig3_rows(tab):
+    """``tab`` with every row of Fig. 3's typed result (tapmc.paper.fig3.Fig3Result): a slope
+    for each spectrum and a spectrum for each slope, and sigma_<Z> (NaN where it has none)."""
+    spectra = {series for panel, series in tab.table if panel == "a"}
+    slopes = {series[:-len(":slope")] for panel, series in tab.table
+              if panel == "params" and series.endswith(":slope")}
+    for label in sorted(spectra - slopes):
+        tab.param(f"{label}:slope", math.nan, None, n=1, x=float(label[len("eps="):]))
+    for label in sorted(slopes - spectra):
+        tab.add("a", label, [math.nan], [math.nan], None, n=1)
+    if ("b", "sigma_Z") not in tab.table:
+        tab.add("b", "sigma_Z", [math.nan], [math.nan], None, n=1)
+    return tab
+
+
 #: figure -> what completes a test's table into every row of the figure's typed result
-COMPLETE_ROWS = {"fig8": with_fig8_rows}
+COMPLETE_ROWS = {"fig3": with_fig3_rows, "fig8": with_fig8_rows}
 
 
 def _low_first(eps_curves):
