@@ -425,8 +425,29 @@ def with_fig3_rows(tab):
     return tab
 
 
+#: the rows of Fig. 6's top panel (tapmc.paper.fig6.VerticalProfiles): its curves, its params
+FIG6_PROFILE_CURVES = ("initial", "final")
+FIG6_PROFILE_PARAMS = ("initial:alpha", "final:alpha", "window_lo", "window_hi", "eps")
+
+
+def with_fig6_rows(tab):
+    """``tab`` with every row of Fig. 6's typed result (tapmc.paper.fig6.Fig6Result): a table
+    with any row of the top panel has all of them (NaN where it has none)."""
+    top = ([("a", c) for c in FIG6_PROFILE_CURVES]
+           + [("params", name) for name in FIG6_PROFILE_PARAMS + ("final:alpha:seeds",)])
+    if not any(key in tab.table for key in top):
+        return tab
+    for curve in FIG6_PROFILE_CURVES:
+        if ("a", curve) not in tab.table:
+            tab.add("a", curve, [math.nan], [math.nan], None, n=1)
+    for name in FIG6_PROFILE_PARAMS:
+        if ("params", name) not in tab.table:
+            tab.param(name, math.nan, None, n=1)
+    return tab
+
+
 #: figure -> what completes a test's table into every row of the figure's typed result
-COMPLETE_ROWS = {"fig3": with_fig3_rows, "fig8": with_fig8_rows}
+COMPLETE_ROWS = {"fig3": with_fig3_rows, "fig6": with_fig6_rows, "fig8": with_fig8_rows}
 
 
 def _low_first(eps_curves):

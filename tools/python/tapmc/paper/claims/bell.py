@@ -13,7 +13,7 @@ import numpy as np
 from tapmc.hysteresis import CRITICAL_SQRT_EPS, LEVEL_TOLERANCE
 from tapmc.stats import t_quantile, weighted_line, weighted_polyfit, welch_dof
 
-from .common import (above, below, common_x, figure_param, mean_difference, not_in_campaign,
+from .common import (above, below, common_x, curve_of, figure_param, mean_difference, not_in_campaign,
                      paired_levels, seed_mean, seeds_error, steady_dof)
 from .measure import Measure, fmt
 from .registry import statistic
@@ -90,11 +90,11 @@ def alpha_bell(data, claim):
     """Both sides of alpha against sqrt(eps) (Fig. 6 bottom): rising below its largest value,
     falling above it, as the steady states' bell; the weaker side is the measure (a bell needs
     both)."""
-    fig = data.figure("fig6")
-    bell = None if fig is None else fig.get("b", "bell:alpha")
-    if bell is None or len(bell[0]) < 3:
+    fig6 = data.result("fig6")
+    bell = None if fig6 is None else fig6.bell
+    if bell is None or len(bell) < 3:
         return not_in_campaign("alpha of fewer than three runs of the bell")
-    x, y, s, n = bell
+    x, y, s = bell.x, bell.mean, bell.err
     i = int(np.nanargmax(y))
     sides = [_side_slope(x, y, s, i, side, "alphas") for side in ("below", "above")]
     own = next((m for m in sides if m.undecided), None)
@@ -146,9 +146,9 @@ def alpha_ramp_hysteresis(data, claim):
     difference with sqrt(eps). The effect a hysteresis would have is alpha's variation along
     the first increase (<Phi^c>'s gap is as large as its own variation there); the same
     ratio of <Phi^c> (Fig. 4) is shown beside it."""
-    fig = data.figure("fig6")
-    up = None if fig is None else fig.get("b", "ramp:up1")
-    down = None if fig is None else fig.get("b", "ramp:down")
+    fig6 = data.result("fig6")
+    up, down = (None, None) if fig6 is None else (curve_of((fig6.ramp or {}).get(branch))
+                                                  for branch in ("up1", "down"))
     if up is None or down is None:
         return not_in_campaign("no ramp profiles on branches 'up1' and 'down'")
     diffs = paired_levels(down, up)

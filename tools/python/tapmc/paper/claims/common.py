@@ -111,6 +111,12 @@ def paired_levels(a, b):
     return np.array([a[1][i] - b[1][k] for i, k in common_x(a, b)])
 
 
+def curve_of(series):
+    """(x, mean, sem, n) of a figure result's Series (None: None), the curves' form of
+    :func:`common_x` and :func:`paired_levels`."""
+    return None if series is None else (series.x, series.mean, series.err, series.n)
+
+
 def value_triple(value):
     """(value, err, n) of a figure result's Value; NaNs and n = 0 for one the CSV does not
     have (None: drawn before it was)."""

@@ -12,8 +12,8 @@ from tapmc.profiles import PROFILE_JACKKNIFE_BLOCKS
 from tapmc.stats import mean_dof
 
 from .._runs import PAPER_START_TAG, eps_tag
-from .common import (figure_param, jackknife_dof, not_in_campaign,
-                     one_seed_error_text, seed_mean, seed_mean_of, steady_dof, value_triple)
+from .common import (jackknife_dof, not_in_campaign, one_seed_error_text, seed_mean_of,
+                     steady_dof, value_triple)
 from .measure import Measure, fmt
 from .registry import statistic
 
@@ -28,13 +28,16 @@ def _fbc_group_names(eps):
 
 @statistic("final_alpha")
 def final_alpha(data, claim):
-    found, missing = figure_param(data, "fig6", "final:alpha", "no F.B.C. profile runs")
-    if missing:
-        return missing
-    fig, m, s, n = found
+    fig6 = data.result("fig6")
+    if fig6 is None:
+        return not_in_campaign("no Fig. 6 runs")
+    profiles = fig6.profiles
+    m, s, n = value_triple(None if profiles is None else profiles.alpha["final"])
+    if not np.isfinite(m):
+        return not_in_campaign("no F.B.C. profile runs")
     if n >= 2:
-        m, s, dof, how = seed_mean(data, fig, "final:alpha", "packing:alpha", "fbc",
-                                    _fbc_group_names(fig.param("eps")[0]))
+        m, s, dof, how = seed_mean_of(data, profiles.alpha["final"], profiles.alpha_seeds,
+                                      "packing:alpha", "fbc", _fbc_group_names(profiles.eps))
         return [Measure(m, s, dof, shown=fmt(m, s) + (f" ({how})" if how else ""))]
     within = " (one seed: lateral jackknife of its packing)" if n == 1 and np.isfinite(s) else ""
     return [Measure(m, s, jackknife_dof(n, s, PROFILE_JACKKNIFE_BLOCKS),
