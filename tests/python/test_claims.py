@@ -232,9 +232,9 @@ def ramps_turning(down_changes, sem=0.0005, n=SEEDS):
     """Fig. 4 params of ramps turning at each sqrt(eps) of ``down_changes`` (top -> the
     decrease minus the top level), one CSV tag per ramp."""
     tab = fig4(BELL).param("critical_sqrt_eps", 0.15, None, 1)
-    for i, (top, change) in enumerate(sorted(down_changes.items())):
-        tab.param(f"r{i}:top_sqrt_eps", top, None, n)
-        tab.param(f"r{i}:down_change", change, sem, n, x=top)
+    for tag, (top, change) in zip(FIG4_RAMP_TAGS, sorted(down_changes.items())):
+        tab.param(f"{tag}:top_sqrt_eps", top, None, n)
+        tab.param(f"{tag}:down_change", change, sem, n, x=top)
     return tab
 
 
@@ -256,8 +256,8 @@ def test_critical_separation_needs_a_ramp_on_each_side_near_the_critical_value()
     assert v.startswith("undecided") and "within the errors" in v
     # two ramps turning at the same sqrt(eps), one without an error: undecided, no TypeError
     tab = ramps_turning({0.125: 0.0002, 0.175: 0.01})
-    tab.param("r9:top_sqrt_eps", 0.175, None, SEEDS).param("r9:down_change", 0.0, None, SEEDS,
-                                                           x=0.175)
+    tab.param("ramp:top_sqrt_eps", 0.175, None, SEEDS).param("ramp:down_change", 0.0, None,
+                                                             SEEDS, x=0.175)
     (m,) = claims.critical_separation(report(fig4=tab), BY_ID["critical-sqrt-eps"])
     assert str(claims.verdict(BY_ID["critical-sqrt-eps"], m)).startswith("undecided")
     # a ramp beyond 0.15 that decompacts on the way down contradicts the paper
@@ -446,8 +446,34 @@ def with_fig6_rows(tab):
     return tab
 
 
+#: the ramps of Fig. 4's typed result (tapmc.paper.fig4.RAMPS), by CSV tag
+FIG4_RAMP_TAGS = ("low", "near", "ramp")
+
+
+def with_fig4_rows(tab):
+    """``tab`` with every row of Fig. 4's typed result (tapmc.paper.fig4.Fig4Result): the
+    highest square's params, and for a ramp with params a branch and a top (NaN where it has
+    none)."""
+    if ("a", "steady") not in tab.table:
+        tab.add("a", "steady", [math.nan], [math.nan], None, n=1)
+    for name in ("sqrt_eps_max", "phi_c_max"):
+        if ("params", name) not in tab.table:
+            tab.param(name, math.nan, None, n=1)
+    for tag in FIG4_RAMP_TAGS:
+        prefix = "" if tag == "ramp" else f"{tag}:"
+        if not any(panel == "params" and series.startswith(f"{tag}:")
+                   for panel, series in tab.table):
+            continue
+        if not any(("a", prefix + branch) in tab.table for branch in ("up1", "down", "up2")):
+            tab.add("a", prefix + "up1", [math.nan], [math.nan], None, n=1)
+        if ("params", f"{tag}:top_sqrt_eps") not in tab.table:
+            tab.param(f"{tag}:top_sqrt_eps", math.nan, None, n=1)
+    return tab
+
+
 #: figure -> what completes a test's table into every row of the figure's typed result
-COMPLETE_ROWS = {"fig3": with_fig3_rows, "fig6": with_fig6_rows, "fig8": with_fig8_rows}
+COMPLETE_ROWS = {"fig3": with_fig3_rows, "fig4": with_fig4_rows, "fig6": with_fig6_rows,
+                 "fig8": with_fig8_rows}
 
 
 def _low_first(eps_curves):
@@ -1489,7 +1515,8 @@ def test_ramp_reduction_decides_only_the_verdicts_it_cannot_change():
     small = _ramp_levels_rows([(1, 0, 0.001), (5, 0, 0.0005), (15, 1, 0.0002), (20, 1, 0.0)])
 
     def outcome(claim_id, rows):
-        data = claims.ReportData(dict(report().summary, **summary), {"fig4": fig.data()},
+        data = claims.ReportData(dict(report().summary, **summary),
+                                 {"fig4": with_fig4_rows(fig).data()},
                                  questions={"ramp_levels": rows})
         (row,) = claims.evaluate([by_id[claim_id]], data)
         return str(row.verdict)
@@ -1513,7 +1540,8 @@ def test_ramp_reduction_decides_only_the_verdicts_it_cannot_change():
     # inside it: not decided
     wide = _ramp_levels_rows([(1, 0, -0.012), (5, 0, 0.0), (15, 1, 0.0), (20, 1, 0.0)])
     near = claims.ReportData(dict(report().summary, **summary),
-                             {"fig4": fig4(BELL, up1=BELL + 0.006, down=BELL + 0.03).data()},
+                             {"fig4": with_fig4_rows(fig4(BELL, up1=BELL + 0.006,
+                                                         down=BELL + 0.03)).data()},
                              questions={"ramp_levels": wide})
     (row,) = claims.evaluate([by_id["ramp-up-near-squares"]], near)
     assert str(row.verdict).startswith("undecided (scale: needs the paper's ramp_taps; at this "
@@ -1676,7 +1704,8 @@ def test_low_ramp_frozen_is_decided_by_its_own_levels():
 
     def outcome(rows):
         data = claims.ReportData(dict(report().summary, ramp_taps_per_level=[1000]),
-                                 {"fig4": fig.data()}, questions={"ramp_levels": rows})
+                                 {"fig4": with_fig4_rows(fig).data()},
+                                 questions={"ramp_levels": rows})
         (row,) = claims.evaluate([claim], data)
         return str(row.verdict)
 
@@ -1921,7 +1950,8 @@ def test_critical_separation_is_decided_by_each_ramps_own_levels():
                 r.update(ramp=run, sqrt_eps=str(top) if b == 0 else "0.1")
                 rows.append(r)
         data = claims.ReportData(dict(report().summary, ramp_taps_per_level=[1000]),
-                                 {"fig4": tab.data()}, questions={"ramp_levels": rows})
+                                 {"fig4": with_fig4_rows(tab).data()},
+                                 questions={"ramp_levels": rows})
         (row,) = claims.evaluate([claim], data)
         return str(row.verdict)
 
