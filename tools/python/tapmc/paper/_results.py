@@ -133,11 +133,14 @@ class CsvRows:
                 column.append(value)
 
     @classmethod
-    def of_table(cls, path, table):
+    def of_table(cls, path, table, partial=False):
         """The rows of a table already read, ``(panel, series) -> {"x", "mean", "sem", "n"}``
         (``_plotting.read_table``'s form, e.g. a figure's table after the report's realization
-        calibration); ``path`` names their file in errors."""
-        rows = cls.__new__(cls)
+        calibration); ``path`` names their file in errors. ``partial``: rows of some fields
+        only (a table built in memory, never a file): a field without rows is empty (a
+        :class:`Series` of no point, a :class:`Value` of NaN with n = 0) and rows of no field
+        are left."""
+        rows = (_PartialRows if partial else cls).__new__(_PartialRows if partial else cls)
         rows.path = Path(path)
         rows._groups = {key: tuple(list(np.atleast_1d(d[c])) for c in ("x", "mean", "sem", "n"))
                         for key, d in table.items()}
@@ -176,6 +179,23 @@ class CsvRows:
             left = ", ".join(f"{p}/{s}" for p, s in list(self._groups)[:5])
             raise FigureCsvError(self.path, None, f"rows of no field of the figure's result: "
                                  f"{left}")
+
+
+class _PartialRows(CsvRows):
+    """:class:`CsvRows` of a table with some fields only (:meth:`CsvRows.of_table`)."""
+
+    def take(self, panel, series):
+        if not self.has(panel, series):
+            return Series.of([], [])
+        return super().take(panel, series)
+
+    def take_value(self, panel, series):
+        if not self.has(panel, series):
+            return Value(0.0, np.nan, np.nan, 0)
+        return super().take_value(panel, series)
+
+    def finish(self):
+        """Rows of no field are left: a table in memory may hold others."""
 
 
 def table_of(rows):

@@ -11,7 +11,9 @@ import math
 import numpy as np
 
 from tapmc.hysteresis import CRITICAL_SQRT_EPS, LEVEL_TOLERANCE
-from tapmc.stats import t_quantile, weighted_line, weighted_polyfit, welch_dof
+from tapmc.stats import t_quantile, weighted_line, welch_dof
+
+from .. import fig4
 
 from .common import (above, below, common_x, curve_of, mean_difference, not_in_campaign,
                      paired_levels, seed_mean_of, seeds_error, steady_dof, value_triple)
@@ -30,33 +32,19 @@ def _steady(data):
 
 @statistic("bell_maximum")
 def bell_maximum(data, claim):
-    """Vertex of a weighted parabola through the largest steady state and its neighbours."""
+    """The bell's maximum as Fig. 4 fits it (tapmc.paper.fig4.bell_maximum: the vertex of a
+    weighted parabola through the largest steady square and its neighbours), from Fig. 4's
+    result with the realizations' calibration applied."""
     steady = _steady(data)
     if steady is None:
         return not_in_campaign("fewer than three steady states")
-    x, y, s, n, i = steady
-    lo, hi = max(0, i - 2), min(len(x), i + 3)
-    if hi - lo < 3:
-        lo, hi = max(0, hi - 3), max(hi, 3)
-    xs, ys, ss = x[lo:hi], y[lo:hi], s[lo:hi]
-    if len(xs) < 4:
-        # three points always fit a parabola exactly: its vertex then only restates which
-        # point is largest, wherever the true maximum lies between the neighbours
-        return [Measure(x[i], undecided=f"{len(x)} steady states: a parabola through three "
-                                        "points is not tested by any",
-                        shown=f"largest at sqrt(eps) = {x[i]:g}")]
-    if not np.all(np.isfinite(ss)) or np.any(ss <= 0):
-        return [Measure(x[i], undecided="one realization: the steady states have no error bars",
-                        shown=f"largest at sqrt(eps) = {x[i]:g}")]
-    (a0, b, c), cov, _ = weighted_polyfit(xs, ys, ss, 2)
-    if not c < 0:
-        return [Measure(x[i], undecided="the points around the largest are not concave",
-                        shown=f"largest at sqrt(eps) = {x[i]:g}")]
-    vertex = -b / (2 * c)
-    grad = np.array([0.0, -1 / (2 * c), b / (2 * c**2)])
-    err = float(math.sqrt(grad @ cov @ grad))
-    return [Measure(float(vertex), err, len(xs) - 3,
-                    shown=f"{fmt(vertex, err)} (parabola through {len(xs)} points)")]
+    x, _, _, _, i = steady
+    top = data.result("fig4").sqrt_eps_max
+    if not np.isfinite(top.err):
+        why = fig4.bell_maximum(data.result("fig4").steady)[1]
+        return [Measure(x[i], undecided=why, shown=f"largest at sqrt(eps) = {x[i]:g}")]
+    return [Measure(top.value, top.err, top.n - 3,
+                    shown=f"{fmt(top.value, top.err)} (parabola through {top.n} points)")]
 
 
 def _side_slope(x, y, s, i, side, what):

@@ -132,7 +132,8 @@ class ReportData:
         """Figure ``name``'s typed result (tapmc.paper.figN's FigNResult) with the
         realizations' calibration applied (:meth:`_calibrated`), built once from the calibrated
         rows; None when the figure is not in the report. A figure given as bare rows
-        (:class:`FigureData`) must hold every row of its result's schema."""
+        (:class:`FigureData`: a test's or a question's table) may hold some of its result's
+        fields only: the others are empty."""
         if name not in self._results:
             calibrated = self.figures.get(name)
             written = self._written_results.get(name)
@@ -141,8 +142,11 @@ class ReportData:
             elif written is not None and calibrated is self.written[name]:
                 result = written        # nothing calibrated: the result as loaded
             else:
-                result = FIGURE_RESULTS[name].of_rows(CsvRows.of_table(f"{name}.csv",
-                                                                       calibrated.table))
+                # rows given in memory (no typed result) may hold some fields only
+                result = FIGURE_RESULTS[name].of_rows(CsvRows.of_table(
+                    f"{name}.csv", calibrated.table, partial=written is None))
+                if name == "fig4":      # the bell's maximum weighs the calibrated squares
+                    result = fig4.with_bell_maximum(result)
             self._results[name] = result
         return self._results[name]
 
