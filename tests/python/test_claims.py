@@ -149,7 +149,8 @@ def report(summary=None, **figures):
     base = {"sizes": [[4096, 32.0]], "eta": [1e-7], "preset": True, "scale": "full",
             "fields": None, "initial_phi_c": [0.584, 0.001, SEEDS]}
     base.update(summary or {})
-    return claims.ReportData(base, {k: v.data() for k, v in figures.items()})
+    return claims.ReportData(base, {k: COMPLETE_ROWS.get(k, lambda tab: tab)(v).data()
+                                    for k, v in figures.items()})
 
 
 T = np.unique(np.round(np.geomspace(1, 4000, 120)))
@@ -231,9 +232,9 @@ def ramps_turning(down_changes, sem=0.0005, n=SEEDS):
     """Fig. 4 params of ramps turning at each sqrt(eps) of ``down_changes`` (top -> the
     decrease minus the top level), one CSV tag per ramp."""
     tab = fig4(BELL).param("critical_sqrt_eps", 0.15, None, 1)
-    for i, (top, change) in enumerate(sorted(down_changes.items())):
-        tab.param(f"r{i}:top_sqrt_eps", top, None, n)
-        tab.param(f"r{i}:down_change", change, sem, n, x=top)
+    for tag, (top, change) in zip(FIG4_RAMP_TAGS, sorted(down_changes.items())):
+        tab.param(f"{tag}:top_sqrt_eps", top, None, n)
+        tab.param(f"{tag}:down_change", change, sem, n, x=top)
     return tab
 
 
@@ -255,8 +256,8 @@ def test_critical_separation_needs_a_ramp_on_each_side_near_the_critical_value()
     assert v.startswith("undecided") and "within the errors" in v
     # two ramps turning at the same sqrt(eps), one without an error: undecided, no TypeError
     tab = ramps_turning({0.125: 0.0002, 0.175: 0.01})
-    tab.param("r9:top_sqrt_eps", 0.175, None, SEEDS).param("r9:down_change", 0.0, None, SEEDS,
-                                                           x=0.175)
+    tab.param("ramp:top_sqrt_eps", 0.175, None, SEEDS).param("ramp:down_change", 0.0, None,
+                                                             SEEDS, x=0.175)
     (m,) = claims.critical_separation(report(fig4=tab), BY_ID["critical-sqrt-eps"])
     assert str(claims.verdict(BY_ID["critical-sqrt-eps"], m)).startswith("undecided")
     # a ramp beyond 0.15 that decompacts on the way down contradicts the paper
@@ -303,6 +304,19 @@ def test_the_ramps_own_taps_per_level_decide_the_ramp_taps_aspect():
     assert "ramp_taps" in claims.scale_aspects(dict(base, ramp_taps_per_level=[4000]))
 
 
+#: the one-row params of Fig. 9's typed result (tapmc.paper.fig9.Fig9Result) besides its curves
+FIG9_PARAMS = ("phi_initial", "phi_final", "phi_c_initial", "phi_c_final",
+               "max_abs_diff_initial_final", "max_abs_diff_final_py")
+
+
+def with_fig9_params(tab):
+    """``tab`` with every param of Fig. 9's result, NaN (not measured) where it has none."""
+    for name in FIG9_PARAMS:
+        if ("params", name) not in tab.table:
+            tab.param(name, math.nan, None, n=1)
+    return tab
+
+
 def fig9(diff=0.0, py_shift=0.0):
     sigma = np.linspace(0.0, 2.0, 60)
     final = percus_yevick_p0(sigma, 0.606) + py_shift
@@ -311,7 +325,7 @@ def fig9(diff=0.0, py_shift=0.0):
     tab.add("a", "percus_yevick", sigma, percus_yevick_p0(sigma, 0.606), None, 1)
     tab.param("phi_initial", 0.584, 0.001).param("phi_final", 0.606, 0.001)
     tab.param("phi_c_initial", 0.584, 0.001).param("phi_c_final", 0.606, 0.001)
-    return tab
+    return with_fig9_params(tab)
 
 
 def one_run_fig9(steady, sem=0.0002, tap_sd=0.001):
@@ -341,25 +355,125 @@ def pore_curve(tail):
     return quad + big
 
 
+def with_fig10_rows(tab):
+    """``tab`` with every row of Fig. 10's typed result (tapmc.paper.fig10.Fig10Result): the
+    distributions of each dump its params name (one NaN point where it has none) and the
+    shares' changes (NaN: not measured)."""
+    steps = sorted({float(x) for (panel, _), d in tab.table.items() if panel == "params"
+                    for x in d["x"]})
+    for step in steps:
+        for panel in ("a", "b"):
+            if (panel, f"t={step:g}") not in tab.table:
+                tab.add(panel, f"t={step:g}", [math.nan], [math.nan], None, n=1)
+    for name in ("small_change", "large_change"):
+        if ("params", name) not in tab.table:
+            tab.param(name, math.nan, None, n=1, x=max(steps, default=0.0))
+    return tab
+
+
 def fig10(first=pore_curve(0.1), last=pore_curve(0.05), nu=(0.12, 0.10), tail_ratio=1.0,
           xi_min=0.226):
     tab = Table().add("a", "t=0", XI, first, 0.002).add("a", "t=4000", XI, last, 0.002)
     tab.add("params", "nu", [0, 4000], list(nu), 0.001)
     tab.add("params", "nu_tail", [0, 4000], [nu[0] * tail_ratio, nu[1] * tail_ratio], 0.001)
     tab.add("params", "xi_min", [0, 4000], [xi_min, xi_min], 0.0001)
-    return tab
+    return with_fig10_rows(tab)
 
 
 def fig8(central, lateral, paper_first_tap=None):
+    """Fig. 8's zones at two eps, the runs from the walls' start or, with ``paper_first_tap``,
+    from the paper's start."""
     tab = Table()
     for eps in (0.005, 0.1):
         tab.param(f"eps={P.fmt_eps(eps)}:final_central", central, 0.0005, x=eps)
         tab.param(f"eps={P.fmt_eps(eps)}:final_lateral", lateral, 0.0005, x=eps)
-        tab.add("a", f"eps={P.fmt_eps(eps)}", [0, 1, 2], [0, -0.003, -0.002], 0.0003)
-        if paper_first_tap is not None:
+        if paper_first_tap is None:
+            tab.add("a", f"eps={P.fmt_eps(eps)}", [0, 1, 2], [0, -0.003, -0.002], 0.0003)
+        else:
             tab.add("a", f"paper:eps={P.fmt_eps(eps)}", [0, 1, 2],
                     [0, paper_first_tap, paper_first_tap], 0.0003)
+    return with_fig8_rows(tab)
+
+
+def with_fig8_rows(tab):
+    """``tab`` with every row of Fig. 8's typed result (tapmc.paper.fig8.Fig8Result): the
+    lateral (a) and central (b) curves of each eps its params name (one NaN point where it has
+    none), from the start its curves name."""
+    prefix = "paper:" if any(series.startswith("paper:") for panel, series in tab.table
+                             if panel == "a") else ""
+    labels = {series.split(":")[0] for panel, series in tab.table if panel == "params"}
+    labels |= {series[len(prefix):] for panel, series in tab.table if panel == "a"}
+    for label in sorted(labels, key=lambda label: float(label[len("eps="):])):
+        for panel in ("a", "b"):
+            if (panel, prefix + label) not in tab.table:
+                tab.add(panel, prefix + label, [math.nan], [math.nan], None, n=1)
     return tab
+
+
+def with_fig3_rows(tab):
+    """``tab`` with every row of Fig. 3's typed result (tapmc.paper.fig3.Fig3Result): a slope
+    for each spectrum and a spectrum for each slope, and sigma_<Z> (NaN where it has none)."""
+    spectra = {series for panel, series in tab.table if panel == "a"}
+    slopes = {series[:-len(":slope")] for panel, series in tab.table
+              if panel == "params" and series.endswith(":slope")}
+    for label in sorted(spectra - slopes):
+        tab.param(f"{label}:slope", math.nan, None, n=1, x=float(label[len("eps="):]))
+    for label in sorted(slopes - spectra):
+        tab.add("a", label, [math.nan], [math.nan], None, n=1)
+    if ("b", "sigma_Z") not in tab.table:
+        tab.add("b", "sigma_Z", [math.nan], [math.nan], None, n=1)
+    return tab
+
+
+#: the rows of Fig. 6's top panel (tapmc.paper.fig6.VerticalProfiles): its curves, its params
+FIG6_PROFILE_CURVES = ("initial", "final")
+FIG6_PROFILE_PARAMS = ("initial:alpha", "final:alpha", "window_lo", "window_hi", "eps")
+
+
+def with_fig6_rows(tab):
+    """``tab`` with every row of Fig. 6's typed result (tapmc.paper.fig6.Fig6Result): a table
+    with any row of the top panel has all of them (NaN where it has none)."""
+    top = ([("a", c) for c in FIG6_PROFILE_CURVES]
+           + [("params", name) for name in FIG6_PROFILE_PARAMS + ("final:alpha:seeds",)])
+    if not any(key in tab.table for key in top):
+        return tab
+    for curve in FIG6_PROFILE_CURVES:
+        if ("a", curve) not in tab.table:
+            tab.add("a", curve, [math.nan], [math.nan], None, n=1)
+    for name in FIG6_PROFILE_PARAMS:
+        if ("params", name) not in tab.table:
+            tab.param(name, math.nan, None, n=1)
+    return tab
+
+
+#: the ramps of Fig. 4's typed result (tapmc.paper.fig4.RAMPS), by CSV tag
+FIG4_RAMP_TAGS = ("low", "near", "ramp")
+
+
+def with_fig4_rows(tab):
+    """``tab`` with every row of Fig. 4's typed result (tapmc.paper.fig4.Fig4Result): the
+    highest square's params, and for a ramp with params a branch and a top (NaN where it has
+    none)."""
+    if ("a", "steady") not in tab.table:
+        tab.add("a", "steady", [math.nan], [math.nan], None, n=1)
+    for name in ("sqrt_eps_max", "phi_c_max"):
+        if ("params", name) not in tab.table:
+            tab.param(name, math.nan, None, n=1)
+    for tag in FIG4_RAMP_TAGS:
+        prefix = "" if tag == "ramp" else f"{tag}:"
+        if not any(panel == "params" and series.startswith(f"{tag}:")
+                   for panel, series in tab.table):
+            continue
+        if not any(("a", prefix + branch) in tab.table for branch in ("up1", "down", "up2")):
+            tab.add("a", prefix + "up1", [math.nan], [math.nan], None, n=1)
+        if ("params", f"{tag}:top_sqrt_eps") not in tab.table:
+            tab.param(f"{tag}:top_sqrt_eps", math.nan, None, n=1)
+    return tab
+
+
+#: figure -> what completes a test's table into every row of the figure's typed result
+COMPLETE_ROWS = {"fig3": with_fig3_rows, "fig4": with_fig4_rows, "fig6": with_fig6_rows,
+                 "fig8": with_fig8_rows}
 
 
 def _low_first(eps_curves):
@@ -944,6 +1058,7 @@ def test_one_realization_p0_curves_are_decided_over_configurations():
     one_run.add("a", "final", sigma, py(0.604)(sigma), None, n=1)
     one_run.add("a", "initial", sigma, py(0.582)(sigma), None, n=1)
     one_run.add("a", "percus_yevick", sigma, py(0.604)(sigma), None, n=0)
+    with_fig9_params(one_run)
     same = claims.ReportData(report().summary, {"fig9": one_run.data()},
                              questions={"p0_configs": _p0_rows(py(0.604), py(0.604), 1e-4)})
     (m,) = claims.p0_initial_minus_final(same, BY_ID["p0-insensitive"])
@@ -965,6 +1080,7 @@ def test_one_realization_p0_curves_are_decided_over_configurations():
         for name, phi in (("final", 0.604), ("initial", 0.604)):
             runs.add("a", name, sigma, py(phi)(sigma), 1e-3, n=seeds)
         runs.add("a", "percus_yevick", sigma, py(0.604)(sigma), None, n=0)
+        with_fig9_params(runs)
         data = claims.ReportData(report().summary, {"fig9": runs.data()},
                                  questions={"p0_configs": _p0_rows(py(0.582), py(0.604), 1e-4)})
         (m,) = claims.p0_initial_minus_final(data, BY_ID["p0-insensitive"])
@@ -979,11 +1095,11 @@ def test_one_pore_dump_is_decided_by_its_jackknife_error():
 
     tab = Table()
     tab.add("params", "nu", [0, 4000], [0.1208, 0.0913], [0.0018, 0.0012], n=1)
-    (m,) = claims.nu_change(report(fig10=tab), BY_ID["nu-decreases"])
+    (m,) = claims.nu_change(report(fig10=with_fig10_rows(tab)), BY_ID["nu-decreases"])
     assert m.dof == JACKKNIFE_BLOCKS ** 2 - 1
     assert str(claims.verdict(BY_ID["nu-decreases"], m)) == "agrees"
     bare = Table().add("params", "nu", [0, 4000], [0.1208, 0.0913], None, n=1)
-    (m,) = claims.nu_change(report(fig10=bare), BY_ID["nu-decreases"])
+    (m,) = claims.nu_change(report(fig10=with_fig10_rows(bare)), BY_ID["nu-decreases"])
     assert str(claims.verdict(BY_ID["nu-decreases"], m)).startswith("undecided")
 
 
@@ -1399,7 +1515,8 @@ def test_ramp_reduction_decides_only_the_verdicts_it_cannot_change():
     small = _ramp_levels_rows([(1, 0, 0.001), (5, 0, 0.0005), (15, 1, 0.0002), (20, 1, 0.0)])
 
     def outcome(claim_id, rows):
-        data = claims.ReportData(dict(report().summary, **summary), {"fig4": fig.data()},
+        data = claims.ReportData(dict(report().summary, **summary),
+                                 {"fig4": with_fig4_rows(fig).data()},
                                  questions={"ramp_levels": rows})
         (row,) = claims.evaluate([by_id[claim_id]], data)
         return str(row.verdict)
@@ -1423,7 +1540,8 @@ def test_ramp_reduction_decides_only_the_verdicts_it_cannot_change():
     # inside it: not decided
     wide = _ramp_levels_rows([(1, 0, -0.012), (5, 0, 0.0), (15, 1, 0.0), (20, 1, 0.0)])
     near = claims.ReportData(dict(report().summary, **summary),
-                             {"fig4": fig4(BELL, up1=BELL + 0.006, down=BELL + 0.03).data()},
+                             {"fig4": with_fig4_rows(fig4(BELL, up1=BELL + 0.006,
+                                                         down=BELL + 0.03)).data()},
                              questions={"ramp_levels": wide})
     (row,) = claims.evaluate([by_id["ramp-up-near-squares"]], near)
     assert str(row.verdict).startswith("undecided (scale: needs the paper's ramp_taps; at this "
@@ -1586,7 +1704,8 @@ def test_low_ramp_frozen_is_decided_by_its_own_levels():
 
     def outcome(rows):
         data = claims.ReportData(dict(report().summary, ramp_taps_per_level=[1000]),
-                                 {"fig4": fig.data()}, questions={"ramp_levels": rows})
+                                 {"fig4": with_fig4_rows(fig).data()},
+                                 questions={"ramp_levels": rows})
         (row,) = claims.evaluate([claim], data)
         return str(row.verdict)
 
@@ -1831,7 +1950,8 @@ def test_critical_separation_is_decided_by_each_ramps_own_levels():
                 r.update(ramp=run, sqrt_eps=str(top) if b == 0 else "0.1")
                 rows.append(r)
         data = claims.ReportData(dict(report().summary, ramp_taps_per_level=[1000]),
-                                 {"fig4": tab.data()}, questions={"ramp_levels": rows})
+                                 {"fig4": with_fig4_rows(tab).data()},
+                                 questions={"ramp_levels": rows})
         (row,) = claims.evaluate([claim], data)
         return str(row.verdict)
 

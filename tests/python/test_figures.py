@@ -178,8 +178,10 @@ def test_fig4_steady_state_and_hysteresis(campaign, out_dir):
     assert np.allclose(down["x"], levels[:-1]) and np.allclose(up2["x"], levels[1:])
     for d in (up1, down, up2):
         assert np.all((d["mean"] > 0.55) & (d["mean"] < 0.65)) and np.all(d["n"] == SEEDS)
-    sq_max, half, _ = param(table, "sqrt_eps_max")
-    assert sq_max in steady["x"] and half > 0
+    # the bell's maximum: a parabola's vertex with its error, or, untested, the highest square
+    top, err, _ = param(table, "sqrt_eps_max")
+    assert steady["x"].min() <= top <= steady["x"].max()
+    assert np.isfinite(err) or top in steady["x"]
 
 
 def test_fig5_ageing(campaign, out_dir):

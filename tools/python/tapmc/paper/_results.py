@@ -133,6 +133,20 @@ class CsvRows:
             for column, value in zip(group, (x, mean, err, n)):
                 column.append(value)
 
+    @classmethod
+    def of_table(cls, path, table, partial=False):
+        """The rows of a table already read, ``(panel, series) -> {"x", "mean", "sem", "n"}``
+        (``_plotting.read_table``'s form, e.g. a figure's table after the report's realization
+        calibration); ``path`` names their file in errors. ``partial``: rows of some fields
+        only (a table built in memory, never a file): a field without rows is empty (a
+        :class:`Series` of no point, a :class:`Value` of NaN with n = 0) and rows of no field
+        are left."""
+        rows = (_PartialRows if partial else cls).__new__(_PartialRows if partial else cls)
+        rows.path = Path(path)
+        rows._groups = {key: tuple(list(np.atleast_1d(d[c])) for c in ("x", "mean", "sem", "n"))
+                        for key, d in table.items()}
+        return rows
+
     def keys(self, panel=None):
         """The (panel, series) keys not yet taken, in file order (of ``panel`` only)."""
         return [k for k in self._groups if panel is None or k[0] == panel]
@@ -166,6 +180,23 @@ class CsvRows:
             left = ", ".join(f"{p}/{s}" for p, s in list(self._groups)[:5])
             raise FigureCsvError(self.path, None, f"rows of no field of the figure's result: "
                                  f"{left}")
+
+
+class _PartialRows(CsvRows):
+    """:class:`CsvRows` of a table with some fields only (:meth:`CsvRows.of_table`)."""
+
+    def take(self, panel, series):
+        if not self.has(panel, series):
+            return Series.of([], [])
+        return super().take(panel, series)
+
+    def take_value(self, panel, series):
+        if not self.has(panel, series):
+            return Value(0.0, np.nan, np.nan, 0)
+        return super().take_value(panel, series)
+
+    def finish(self):
+        """Rows of no field are left: a table in memory may hold others."""
 
 
 def table_of(rows):
@@ -226,7 +257,21 @@ class FigureResult:
     @classmethod
     def load(cls, path):
         """Read a figure CSV written by :meth:`save` back into the result."""
-        rows = CsvRows(path)
+        return cls.of_rows(CsvRows(path))
+
+    @classmethod
+    def of_rows(cls, rows):
+        """The result of :class:`CsvRows` (a file's or a table's), every row taken."""
         result = cls.from_rows(rows)
         rows.finish()
         return result
+
+    def table_dict(self):
+        """The result's rows as ``_plotting.read_table`` reads its CSV: ``(panel, series) ->
+        {"x", "mean", "sem", "n"}`` arrays."""
+        out = {}
+        for panel, series, x, mean, sem, n in self.table().rows:
+            d = out.setdefault((panel, series), {"x": [], "mean": [], "sem": [], "n": []})
+            for key, value in (("x", x), ("mean", mean), ("sem", sem), ("n", n)):
+                d[key].append(value)
+        return {k: {c: np.asarray(v) for c, v in d.items()} for k, d in out.items()}

@@ -26,8 +26,11 @@ one seed, that run's batch-means error; ``up1``, ``down``, ``up2`` of the
 ramp beyond (sqrt eps)*; ``low:up1``, ``low:down``, ``low:up2`` of the ramp below it, ``near:...``
 of the ramp just beyond it; sem over seeds), ``params``:
 
-* ``sqrt_eps_max``: the sqrt(eps) of the highest steady-state square, sem = half the grid
-  spacing there; ``phi_c_max`` the value there;
+* ``sqrt_eps_max``: the bell's maximum, the vertex of a weighted parabola through the highest
+  steady-state square and up to two neighbours on each side (:func:`bell_maximum`, what the
+  claim ``bell-maximum`` is judged on), sem its error, n the parabola's points; the highest
+  square's sqrt(eps) with no sem when the parabola is not tested (three points, no error
+  bars, not concave); ``phi_c_max`` the highest square's value (x = its sqrt(eps));
 * ``critical_sqrt_eps``: (sqrt eps)* = 0.15 (x = 0);
 * per ramp, ``ramp:`` (beyond), ``low:`` (below) and ``near:`` (just beyond), the statistics of
   ``tapmc.hysteresis.RampBranches`` on the branches averaged over seeds (per level: the mean
@@ -53,15 +56,16 @@ of the ramp just beyond it; sem over seeds), ``params``:
 from __future__ import annotations
 
 from collections import defaultdict
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from tapmc.hysteresis import CRITICAL_SQRT_EPS, BranchData, Hysteresis, RampBranches
+from tapmc.stats import weighted_polyfit
 
 from . import _plotting as P
 from . import _runs, _steady_state
-from ._results import FigureResult, Series, Value
+from ._results import CsvRows, FigureResult, Series, Value
 from ._steady_state import BC, steady_last
 
 NAME = "fig4"
@@ -235,12 +239,64 @@ def ramp_branches(campaign, column="phi_c", bc=BC, prefix="ramp_"):
     return RampBranches(data["up1"], data["down"], data.get("up2")).compute(), min(seeds)
 
 
-def bell_maximum(sq, mean):
-    """sqrt(eps) of the highest steady state and half the grid spacing around it."""
-    i = int(np.nanargmax(mean))
-    spacing = np.diff(sq)
-    half = 0.5 * (spacing[max(i - 1, 0)] if i > 0 else spacing[0]) if len(sq) > 1 else np.nan
-    return sq[i], half, mean[i]
+#: fewest squares that test a parabola about the largest one: three points always fit one
+#: exactly, and its vertex then only restates which point is largest
+BELL_FIT_MIN_POINTS = 4
+
+
+def bell_maximum(steady):
+    """The bell's maximum (section III.B: between sqrt(eps) = 0.1 and 0.2): the vertex of a
+    weighted parabola through the largest steady square and up to two neighbours on each
+    side, as ``(Value(0, vertex, its error, points of the parabola), "")``. When the parabola
+    is not tested (fewer than :data:`BELL_FIT_MIN_POINTS` points), its points have no error
+    bars or are not concave: ``(Value(0, sqrt(eps) of the largest square, NaN, points), why)``."""
+    x, y, s = steady.x, steady.mean, steady.err
+    if not np.any(np.isfinite(y)):
+        return Value(0.0, np.nan, np.nan, 0), "no steady state"
+    i = int(np.nanargmax(y))
+    lo, hi = max(0, i - 2), min(len(x), i + 3)
+    if hi - lo < 3:
+        lo, hi = max(0, hi - 3), max(hi, 3)
+    xs, ys, ss = x[lo:hi], y[lo:hi], s[lo:hi]
+    largest = Value(0.0, float(x[i]), np.nan, len(xs))
+    if len(xs) < BELL_FIT_MIN_POINTS:
+        return largest, (f"{len(x)} steady states: a parabola through three points is not "
+                         "tested by any")
+    if not np.all(np.isfinite(ss)) or np.any(ss <= 0):
+        return largest, "one realization: the steady states have no error bars"
+    (_, b, c), cov, _ = weighted_polyfit(xs, ys, ss, 2)
+    if not c < 0:
+        return largest, "the points around the largest are not concave"
+    vertex = -b / (2 * c)
+    grad = np.array([0.0, -1 / (2 * c), b / (2 * c**2)])
+    return Value(0.0, float(vertex), float(np.sqrt(grad @ cov @ grad)), len(xs)), ""
+
+
+#: significant digits of a number in a figure CSV (tapmc.paper._plotting.FigureTable.write)
+CSV_DIGITS = 10
+
+
+def _as_written(series):
+    """``series`` as its CSV rows hold it (:data:`CSV_DIGITS`): the bell's maximum is fitted
+    to the squares the CSV keeps, so that a refit from the CSV (:func:`refit_table`, the
+    report's calibrated result) gives the same number."""
+    def rounded(values):
+        return np.array([float(f"{v:.{CSV_DIGITS}g}") for v in values])
+
+    return Series(rounded(series.x), rounded(series.mean), rounded(series.err), series.n)
+
+
+def with_bell_maximum(result):
+    """``result`` (a :class:`Fig4Result`) with its bell maximum fitted again from its steady
+    squares (:func:`bell_maximum`): after their errors change (the report's realization
+    calibration) or for a CSV written before the maximum was the parabola's vertex."""
+    return replace(result, sqrt_eps_max=bell_maximum(result.steady)[0])
+
+
+def refit_table(table):
+    """A ``FigureTable`` of a Fig. 4 CSV (``tapmc.paper._plotting.read_table``'s ``table``) with
+    its bell maximum fitted again from its own steady squares (:func:`with_bell_maximum`)."""
+    return with_bell_maximum(Fig4Result.of_rows(CsvRows.of_table("fig4.csv", table))).table()
 
 
 #: the statistics of ``tapmc.hysteresis.RampBranches`` a ramp's params rows hold, in order
@@ -285,7 +341,7 @@ class RampResult:
     def from_rows(cls, rows, tag):
         prefix = "" if tag == "ramp" else f"{tag}:"
         branches = {b: rows.take("a", prefix + b) for b in BRANCHES if rows.has("a", prefix + b)}
-        if not branches:
+        if not branches and not rows.has("params", f"{tag}:top_sqrt_eps"):
             return None
         if not rows.has("params", f"{tag}:top_sqrt_eps"):
             return cls(tag, branches)
@@ -304,7 +360,8 @@ class Fig4Result(FigureResult):
 
     #: steady state of the constant-eps runs against sqrt(eps)
     steady: Series
-    #: the highest square (grid point: :func:`bell_maximum`) and the value there
+    #: the bell's maximum (:func:`bell_maximum`: the parabola's vertex, its error and points)
+    #: and the highest square's value
     sqrt_eps_max: Value
     phi_c_max: Value
     #: tag -> :class:`RampResult` of the ramps the campaign has
@@ -366,11 +423,12 @@ def _ramp_result(campaign, tag, prefix, steady_sqrt_eps):
 def analyse(campaign):
     """Fig. 4 from the campaign's constant-eps P.B.C. runs and its ramps."""
     sq, mean, sem, n = steady_states(campaign)
-    sq_max, half, phi_max = bell_maximum(sq, mean)
+    steady = Series.of(sq, mean, sem, n)
     ramps = {tag: _ramp_result(campaign, tag, prefix, sq) for tag, prefix, _, _ in RAMPS
              if _runs.select(campaign, prefix, bc=BC)}
-    return Fig4Result(Series.of(sq, mean, sem, n), Value(0.0, sq_max, half, len(sq)),
-                      Value(sq_max, phi_max, sem[int(np.nanargmax(mean))], len(sq)), ramps,
+    top = int(np.nanargmax(mean))
+    return Fig4Result(steady, bell_maximum(_as_written(steady))[0],
+                      Value(sq[top], mean[top], sem[top], len(sq)), ramps,
                       Value(0.0, CRITICAL_SQRT_EPS, np.nan, 1))
 
 

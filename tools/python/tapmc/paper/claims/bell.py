@@ -11,10 +11,12 @@ import math
 import numpy as np
 
 from tapmc.hysteresis import CRITICAL_SQRT_EPS, LEVEL_TOLERANCE
-from tapmc.stats import t_quantile, weighted_line, weighted_polyfit, welch_dof
+from tapmc.stats import t_quantile, weighted_line, welch_dof
 
-from .common import (above, below, common_x, figure_param, mean_difference, not_in_campaign,
-                     paired_levels, seed_mean, seeds_error, steady_dof)
+from .. import fig4
+
+from .common import (above, below, common_x, curve_of, mean_difference, not_in_campaign,
+                     paired_levels, seed_mean_of, seeds_error, steady_dof, value_triple)
 from .measure import Measure, fmt
 from .registry import statistic
 
@@ -22,42 +24,27 @@ from .registry import statistic
 def _steady(data):
     """(x, mean, sem, n, index of the largest) of Fig. 4's steady states, None when fewer
     than three."""
-    fig = data.figure("fig4")
-    steady = None if fig is None else fig.get("a", "steady")
-    if steady is None or len(steady[0]) < 3:
+    fig4 = data.result("fig4")
+    if fig4 is None or len(fig4.steady) < 3:
         return None
-    return (*steady, int(np.nanargmax(steady[1])))
+    return (*curve_of(fig4.steady), int(np.nanargmax(fig4.steady.mean)))
 
 
 @statistic("bell_maximum")
 def bell_maximum(data, claim):
-    """Vertex of a weighted parabola through the largest steady state and its neighbours."""
+    """The bell's maximum as Fig. 4 fits it (tapmc.paper.fig4.bell_maximum: the vertex of a
+    weighted parabola through the largest steady square and its neighbours), from Fig. 4's
+    result with the realizations' calibration applied."""
     steady = _steady(data)
     if steady is None:
         return not_in_campaign("fewer than three steady states")
-    x, y, s, n, i = steady
-    lo, hi = max(0, i - 2), min(len(x), i + 3)
-    if hi - lo < 3:
-        lo, hi = max(0, hi - 3), max(hi, 3)
-    xs, ys, ss = x[lo:hi], y[lo:hi], s[lo:hi]
-    if len(xs) < 4:
-        # three points always fit a parabola exactly: its vertex then only restates which
-        # point is largest, wherever the true maximum lies between the neighbours
-        return [Measure(x[i], undecided=f"{len(x)} steady states: a parabola through three "
-                                        "points is not tested by any",
-                        shown=f"largest at sqrt(eps) = {x[i]:g}")]
-    if not np.all(np.isfinite(ss)) or np.any(ss <= 0):
-        return [Measure(x[i], undecided="one realization: the steady states have no error bars",
-                        shown=f"largest at sqrt(eps) = {x[i]:g}")]
-    (a0, b, c), cov, _ = weighted_polyfit(xs, ys, ss, 2)
-    if not c < 0:
-        return [Measure(x[i], undecided="the points around the largest are not concave",
-                        shown=f"largest at sqrt(eps) = {x[i]:g}")]
-    vertex = -b / (2 * c)
-    grad = np.array([0.0, -1 / (2 * c), b / (2 * c**2)])
-    err = float(math.sqrt(grad @ cov @ grad))
-    return [Measure(float(vertex), err, len(xs) - 3,
-                    shown=f"{fmt(vertex, err)} (parabola through {len(xs)} points)")]
+    x, _, _, _, i = steady
+    top = data.result("fig4").sqrt_eps_max
+    if not np.isfinite(top.err):
+        why = fig4.bell_maximum(data.result("fig4").steady)[1]
+        return [Measure(x[i], undecided=why, shown=f"largest at sqrt(eps) = {x[i]:g}")]
+    return [Measure(top.value, top.err, top.n - 3,
+                    shown=f"{fmt(top.value, top.err)} (parabola through {top.n} points)")]
 
 
 def _side_slope(x, y, s, i, side, what):
@@ -90,11 +77,11 @@ def alpha_bell(data, claim):
     """Both sides of alpha against sqrt(eps) (Fig. 6 bottom): rising below its largest value,
     falling above it, as the steady states' bell; the weaker side is the measure (a bell needs
     both)."""
-    fig = data.figure("fig6")
-    bell = None if fig is None else fig.get("b", "bell:alpha")
-    if bell is None or len(bell[0]) < 3:
+    fig6 = data.result("fig6")
+    bell = None if fig6 is None else fig6.bell
+    if bell is None or len(bell) < 3:
         return not_in_campaign("alpha of fewer than three runs of the bell")
-    x, y, s, n = bell
+    x, y, s = bell.x, bell.mean, bell.err
     i = int(np.nanargmax(y))
     sides = [_side_slope(x, y, s, i, side, "alphas") for side in ("below", "above")]
     own = next((m for m in sides if m.undecided), None)
@@ -146,9 +133,9 @@ def alpha_ramp_hysteresis(data, claim):
     difference with sqrt(eps). The effect a hysteresis would have is alpha's variation along
     the first increase (<Phi^c>'s gap is as large as its own variation there); the same
     ratio of <Phi^c> (Fig. 4) is shown beside it."""
-    fig = data.figure("fig6")
-    up = None if fig is None else fig.get("b", "ramp:up1")
-    down = None if fig is None else fig.get("b", "ramp:down")
+    fig6 = data.result("fig6")
+    up, down = (None, None) if fig6 is None else (curve_of((fig6.ramp or {}).get(branch))
+                                                  for branch in ("up1", "down"))
     if up is None or down is None:
         return not_in_campaign("no ramp profiles on branches 'up1' and 'down'")
     diffs = paired_levels(down, up)
@@ -171,8 +158,28 @@ def alpha_ramp_hysteresis(data, claim):
 
 
 def ramp_branch(data, name):
-    fig = data.figure("fig4")
-    return None if fig is None else fig.get("a", name)
+    """Fig. 4's curve ``name`` ((x, mean, sem, n) or None): ``steady``, a branch of the ramp
+    beyond (sqrt eps)* (``up1``, ``down``, ``up2``) or ``<tag>:<branch>`` of another ramp."""
+    fig4 = data.result("fig4")
+    if fig4 is None:
+        return None
+    if name == "steady":
+        return curve_of(fig4.steady)
+    tag, _, branch = name.rpartition(":")
+    ramp = fig4.ramps.get(tag or "ramp")
+    return None if ramp is None else curve_of(ramp.branches.get(branch))
+
+
+def _ramp(data, tag="ramp"):
+    """Fig. 4's RampResult ``tag`` (None without it)."""
+    fig4 = data.result("fig4")
+    return None if fig4 is None else fig4.ramps.get(tag)
+
+
+def _ramp_seed_mean(data, ramp, statistic):
+    """:func:`seed_mean_of` of a ramp's statistic and its seeds' values (phi_c's groups)."""
+    return seed_mean_of(data, (ramp.statistics or {}).get(statistic),
+                        (ramp.seeds or {}).get(statistic), "phi_c")
 
 
 def hysteresis_gap(data):
@@ -199,9 +206,9 @@ def _branch_difference(data, a, b, effect=None, statistic=None):
     mean, err, dof, k = d
     how = ""
     if statistic is not None and dof is not None and dof >= 1:
-        fig = data.figure("fig4")
-        if fig.get("params", f"ramp:{statistic}:seeds") is not None:
-            _, err, dof, how = seed_mean(data, fig, f"ramp:{statistic}", "phi_c")
+        ramp = _ramp(data)
+        if ramp is not None and statistic in (ramp.seeds or {}):
+            _, err, dof, how = _ramp_seed_mean(data, ramp, statistic)
     if not np.isfinite(err):
         return [Measure(mean, undecided="one realization: the branches have no error bars")]
     return [Measure(mean, err, dof, effect=effect,
@@ -219,13 +226,13 @@ def ramp_up_minus_steady(data, claim):
     combined with the Welch-Satterthwaite dof. Otherwise the curves' errors
     (:func:`_branch_difference`)."""
     effect = hysteresis_gap(data)
-    fig = data.figure("fig4")
+    ramp = _ramp(data)
     up, steady = ramp_branch(data, "up1"), ramp_branch(data, "steady")
-    seeds = None if fig is None else fig.get("params", "ramp:up1_at_steady:seeds")
+    seeds = None if ramp is None else ramp.up1_at_steady_seeds
     pairs = [] if up is None or steady is None else common_x(up, steady)
-    if seeds is None or len(seeds[1]) < 2 or not pairs:
+    if seeds is None or len(seeds) < 2 or not pairs:
         return _branch_difference(data, "up1", "steady", effect)
-    values, errors = seeds[1], seeds[2]
+    values, errors = seeds.mean, seeds.err
     k = len(pairs)
     squares = np.array([steady[1][j] for _, j in pairs])
     square_sems = np.array([steady[2][j] for _, j in pairs])
@@ -260,13 +267,15 @@ def low_ramp_frozen(data, claim):
     (Fig. 4 params ``low:down_change``), against the same change on the ramp that went beyond
     it (``ramp:down_change``), the effect "nearly frozen" denies. With several seeds the error
     of their mean is judged with the campaign's groups of realizations (:func:`seed_mean`)."""
-    found, missing = figure_param(data, "fig4", "low:down_change",
-                                   "no ramp that stays below (sqrt eps)*")
-    if missing:
-        return missing
-    fig = found[0]
-    m, s, dof, how = seed_mean(data, fig, "low:down_change", "phi_c")
-    effect = fig.param("ramp:down_change")[0]
+    if data.result("fig4") is None:
+        return not_in_campaign("no Fig. 4 runs")
+    low = _ramp(data, "low")
+    if low is None or not np.isfinite(value_triple((low.statistics or {}).get("down_change"))[0]):
+        return not_in_campaign("no ramp that stays below (sqrt eps)*")
+    m, s, dof, how = _ramp_seed_mean(data, low, "down_change")
+    beyond = _ramp(data)
+    effect = value_triple(None if beyond is None
+                          else (beyond.statistics or {}).get("down_change"))[0]
     return [Measure(m, s, dof, effect=effect if np.isfinite(effect) else None,
                     shown=f"{fmt(m, s)} (decrease minus top level; the ramp beyond (sqrt eps)* "
                           f"changes by {fmt(effect)}" + (f"; {how})" if how else ")"))]
@@ -278,20 +287,25 @@ def low_ramp_frozen(data, claim):
 CRITICAL_BRACKET_HALF_WIDTH = 0.05
 
 
-def turning_ramps(fig):
-    """Fig. 4's tags of the ramps that turned and came down (params ``<tag>:top_sqrt_eps``),
+def turning_ramps(fig4):
+    """The tags of Fig. 4's result's ramps that turned and came down (a top sqrt(eps)),
     sorted."""
-    return sorted(s[:-len(":top_sqrt_eps")] for s in fig.series("params")
-                  if s.endswith(":top_sqrt_eps"))
+    return sorted(tag for tag, ramp in fig4.ramps.items() if ramp.top_sqrt_eps is not None)
 
 
-def _ramp_turning_behaviour(fig, tag, change, effect):
+def turning_top(fig4, tag):
+    """The top sqrt(eps) of Fig. 4's ramp ``tag`` (NaN when it has none)."""
+    ramp = fig4.ramps.get(tag)
+    return value_triple(None if ramp is None else ramp.top_sqrt_eps)[0]
+
+
+def _ramp_turning_behaviour(fig4, tag, change, effect):
     """(top, behaviour, text) of the ramp ``tag`` of Fig. 4 whose decrease minus top level is
     ``change`` = (value, error, dof): behaviour ``compacts`` when its decreasing branch rose
     above its top level beyond t sem (the reversible case), ``frozen`` when it stayed within
     t sem of it and t sem is below ``effect`` (the change of the ramps that compact),
     ``decompacts`` when it fell below beyond t sem, None otherwise."""
-    top = fig.param(f"{tag}:top_sqrt_eps")[0]
+    top = turning_top(fig4, tag)
     m, s, dof = change
     if not np.isfinite(m) or dof is None:
         return top, None, f"top {top:g}: no error on its decrease"
@@ -318,20 +332,20 @@ def critical_separation(data, claim, shifts=None):
     the errors, or a bracket too wide to locate 0.15). ``shifts``: Fig. 4's tag -> a shift
     of that ramp's change on the way down (a systematic band: :mod:`.reduced_ramps`). The error
     of a mean of several seeds: :func:`seed_mean`."""
-    fig = data.figure("fig4")
-    tags = [] if fig is None else turning_ramps(fig)
+    fig4 = data.result("fig4")
+    tags = [] if fig4 is None else turning_ramps(fig4)
     if not tags:
         return not_in_campaign("no ramp with a decreasing branch")
-    critical = fig.param("critical_sqrt_eps")[0]
+    critical = value_triple(fig4.critical_sqrt_eps)[0]
     critical = critical if np.isfinite(critical) else CRITICAL_SQRT_EPS
-    changes = [seed_mean(data, fig, f"{t}:down_change", "phi_c")[:3] for t in tags]
+    changes = [_ramp_seed_mean(data, fig4.ramps[t], "down_change")[:3] for t in tags]
     if shifts:
         changes = [(m + shifts[t], s, dof) for t, (m, s, dof) in zip(tags, changes)]
     # the frozen side's bar: the smallest change the compacting ramps surely have
     compacting = [m - t_quantile(dof) * s for m, s, dof in changes
                   if np.isfinite(m) and dof is not None]
     effect = max(compacting) if compacting and max(compacting) > 0 else None
-    ramps = sorted((_ramp_turning_behaviour(fig, t, c, effect) for t, c in zip(tags, changes)),
+    ramps = sorted((_ramp_turning_behaviour(fig4, t, c, effect) for t, c in zip(tags, changes)),
                    key=lambda r: r[0])
     words = {"compacts": "compacts on the way down", "frozen": "frozen",
              "decompacts": "decompacts on the way down", None: "within the errors"}

@@ -12,6 +12,7 @@ import numpy as np
 from tapmc.fluctuations import DEFAULT_BATCHES
 from tapmc.stats import beyond
 
+from .._results import Series, Value
 from .measure import Measure, fmt
 
 
@@ -110,9 +111,30 @@ def paired_levels(a, b):
     return np.array([a[1][i] - b[1][k] for i, k in common_x(a, b)])
 
 
+def curve_of(series):
+    """(x, mean, sem, n) of a figure result's Series (None: None), the curves' form of
+    :func:`common_x` and :func:`paired_levels`."""
+    return None if series is None else (series.x, series.mean, series.err, series.n)
+
+
+def value_triple(value):
+    """(value, err, n) of a figure result's Value; NaNs and n = 0 for one the CSV does not
+    have (None: drawn before it was)."""
+    return (math.nan, math.nan, 0) if value is None else (value.value, value.err, value.n)
+
+
 def seed_mean(data, fig, series, quantity, bc="pbc", groups=()):
-    """(value, error, dof, text) of the params row ``series`` of ``fig``: with two seeds or
-    more and their own values (``<series>:seeds``: Fig. 4's ramp statistics, Fig. 8's final
+    """:func:`seed_mean_of` the params row ``series`` of ``fig`` (rows by panel and series)
+    and its ``<series>:seeds`` row."""
+    seeds = fig.get("params", f"{series}:seeds")
+    seeds = None if seeds is None else Series(*seeds)
+    m, s, n = fig.param(series)
+    return seed_mean_of(data, Value(0.0, m, s, n), seeds, quantity, bc, groups)
+
+
+def seed_mean_of(data, value, seeds, quantity, bc="pbc", groups=()):
+    """(value, error, dof, text) of a figure's :class:`Value` ``value``: with two seeds or
+    more and their own values ``seeds`` (a :class:`Series`; Fig. 4's ramp statistics, Fig. 8's final
     zones, Fig. 6's final alpha) the error of their mean judged with the campaign's groups
     of realizations of ``quantity``
     (ReportData.seed_mean_error); otherwise the row's own error (the sem over seeds, or
@@ -122,10 +144,9 @@ def seed_mean(data, fig, series, quantity, bc="pbc", groups=()):
     unlike theirs) take at least the sem of their own values with n - 1 dof: a row that
     combines the levels' sems over seeds as independent understates the spread of seeds
     that differ at every level alike."""
-    m, s, n = fig.param(series)
-    seeds = fig.get("params", f"{series}:seeds")
-    if n >= 2 and seeds is not None and len(seeds[1]) >= 2:
-        err, dof, text, pooled = seeds_error(data, seeds[1], seeds[2], quantity, bc, groups)
+    m, s, n = value_triple(value)
+    if n >= 2 and seeds is not None and len(seeds) >= 2:
+        err, dof, text, pooled = seeds_error(data, seeds.mean, seeds.err, quantity, bc, groups)
         return m, err if pooled else max(s, err), dof, text
     return m, s, steady_dof(n, s), ""
 

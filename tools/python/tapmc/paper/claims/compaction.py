@@ -13,7 +13,7 @@ from tapmc.fluctuations import DEFAULT_BATCHES, SteadyState
 from tapmc.stats import mean_dof, weighted_line
 
 from .common import (WITHIN_RUN_DOF, above, eps_series, not_in_campaign, one_seed_error_text,
-                     per_curve, steady_dof)
+                     per_curve, steady_dof, value_triple)
 from .measure import Measure, fmt
 from .registry import statistic
 
@@ -43,14 +43,14 @@ def tapped_phi(data, claim):
     """The steady <Phi^c> after the taps against the paper's value read at tap 4000: a single
     tap's value, so the interval is the steady state's error combined with the spread of
     single taps (a prediction interval). Without the steady state: the value at the end."""
-    fig = data.figure("fig9")
-    if fig is None:
+    fig9 = data.result("fig9")
+    if fig9 is None:
         return not_in_campaign("no Fig. 9 runs")
-    m, s, n = fig.param("phi_c_steady")
+    m, s, n = value_triple(fig9.phi_c_steady)
     if not np.isfinite(m):
-        m, s, n = fig.param("phi_c_final")
+        m, s, n = value_triple(fig9.phi_c["final"])
         return [Measure(m, s, mean_dof(n), shown=fmt(m, s, pct=True))]
-    sd = fig.param("phi_c_tap_sd")[0]
+    sd = value_triple(fig9.phi_c_tap_sd)[0]
     err = math.hypot(s, sd) if np.isfinite(s) else math.nan
     return [Measure(m, err, steady_dof(n, s),
                     shown=f"{fmt(m, s, pct=True)} (steady state; single taps spread "
@@ -67,13 +67,13 @@ def _tapped_one_seed(data):
 
 @statistic("pbc_compaction")
 def pbc_compaction(data, claim):
-    fig = data.figure("fig9")
-    if fig is None:
+    fig9 = data.result("fig9")
+    if fig9 is None:
         return not_in_campaign("no Fig. 9 runs")
-    mi, si, ni = fig.param("phi_c_initial")
-    mf, sf, nf = fig.param("phi_c_steady")
+    mi, si, ni = value_triple(fig9.phi_c["initial"])
+    mf, sf, nf = value_triple(fig9.phi_c_steady)
     if not np.isfinite(mf):
-        mf, sf, nf = fig.param("phi_c_final")
+        mf, sf, nf = value_triple(fig9.phi_c["final"])
         dof = mean_dof(min(ni, nf))
     else:
         dof = steady_dof(min(ni, nf), sf)

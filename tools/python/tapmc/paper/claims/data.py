@@ -13,6 +13,8 @@ import numpy as np
 from tapmc.fluctuations import ErrorCalibration
 
 from .. import _plotting as P
+from .. import fig2, fig3, fig4, fig5, fig6, fig7, fig8, fig9, fig10
+from .._results import CsvRows, FigureResult
 from .._runs import eps_tag
 from ..front import read_summary
 from .calibration import (CALIBRATION_ALPHA, ONE_RUN_WINDOW_ROWS, RUN_ERROR_LABELS,
@@ -21,8 +23,22 @@ from .calibration import (CALIBRATION_ALPHA, ONE_RUN_WINDOW_ROWS, RUN_ERROR_LABE
 from .scan_tables import SCANS, read_scan, scan_files
 
 
+#: figure name -> its typed result (tapmc.paper.figN), what the report loads its CSV with
+FIGURE_RESULTS = {"fig2": fig2.Fig2Result, "fig3": fig3.Fig3Result, "fig4": fig4.Fig4Result,
+                  "fig5": fig5.Fig5Result, "fig6": fig6.Fig6Result, "fig7": fig7.Fig7Result,
+                  "fig8": fig8.Fig8Result, "fig9": fig9.Fig9Result, "fig10": fig10.Fig10Result}
+
+
+def load_figure(name, path):
+    """Figure ``name``'s CSV ``path``: its typed result (:data:`FIGURE_RESULTS`), or the
+    table of a figure without one."""
+    result = FIGURE_RESULTS.get(name)
+    return FigureData.read(path) if result is None else result.load(path)
+
+
 class FigureData:
-    """One figure CSV: ``get(panel, series)`` -> (x, mean, sem, n) arrays or None."""
+    """One figure's rows by panel and series: ``get(panel, series)`` -> (x, mean, sem, n)
+    arrays or None; the view of the statistics not yet reading the typed results."""
 
     def __init__(self, table):
         self.table = table
@@ -30,6 +46,11 @@ class FigureData:
     @classmethod
     def read(cls, path):
         return cls(P.read_table(path))
+
+    @classmethod
+    def of_result(cls, result):
+        """The rows of a typed figure result (those its CSV has)."""
+        return cls(result.table_dict())
 
     def scaled_one_run_errors(self, factor, chosen):
         """A copy whose rows with n = 1 in the series for which ``chosen(panel, series)``
@@ -73,8 +94,10 @@ QUESTION_CSVS = ("initial_packing", "p0_configs", "lateral_first_tap", "early_ta
 
 
 class ReportData:
-    """The inputs of the report: ``figures`` (name -> :class:`FigureData`, the figure CSVs
-    with the realizations' calibration applied, the one view the statistics read), the
+    """The inputs of the report: each figure CSV loaded once as its typed result
+    (:data:`FIGURE_RESULTS`), read by the statistics with the realizations' calibration
+    applied (:meth:`result`; :attr:`figures`, the same rows by panel and series, for the
+    statistics that still read those), the
     campaign ``summary`` (tapmc.paper.validation.campaign_summary) and ``front``, the rows of
     the run-time-versus-error front (tapmc.paper.front.read_summary; empty: not measured).
     ``written`` keeps the figure CSVs as the figures wrote them, for the page's measurements
@@ -89,8 +112,12 @@ class ReportData:
         self.front = list(front)
         self.scans = {knob: list((scans or {}).get(knob, ())) for knob in SCANS}
         self.questions = {stem: list(rows) for stem, rows in (questions or {}).items()}
-        self.written = dict(figures)
+        self._written_results = {name: fig for name, fig in figures.items()
+                                 if isinstance(fig, FigureResult)}
+        self.written = {name: FigureData.of_result(fig) if isinstance(fig, FigureResult)
+                        else fig for name, fig in figures.items()}
         self._figures = None
+        self._results = {}
 
     @property
     def figures(self):
@@ -100,6 +127,28 @@ class ReportData:
             self._figures = {name: self._calibrated(name, fig)
                              for name, fig in self.written.items()}
         return self._figures
+
+    def result(self, name):
+        """Figure ``name``'s typed result (tapmc.paper.figN's FigNResult) with the
+        realizations' calibration applied (:meth:`_calibrated`), built once from the calibrated
+        rows; None when the figure is not in the report. A figure given as bare rows
+        (:class:`FigureData`: a test's or a question's table) may hold some of its result's
+        fields only: the others are empty."""
+        if name not in self._results:
+            calibrated = self.figures.get(name)
+            written = self._written_results.get(name)
+            if calibrated is None or name not in FIGURE_RESULTS:
+                result = written
+            elif written is not None and calibrated is self.written[name]:
+                result = written        # nothing calibrated: the result as loaded
+            else:
+                # rows given in memory (no typed result) may hold some fields only
+                result = FIGURE_RESULTS[name].of_rows(CsvRows.of_table(
+                    f"{name}.csv", calibrated.table, partial=written is None))
+                if name == "fig4":      # the bell's maximum weighs the calibrated squares
+                    result = fig4.with_bell_maximum(result)
+            self._results[name] = result
+        return self._results[name]
 
     def question(self, stem):
         """The rows of tapmc-paper question's ``<stem>.csv`` ([] when not measured)."""
@@ -117,7 +166,7 @@ class ReportData:
                      for knob in SCANS}
             questions = {stem: read_scan(folder / f"{stem}.csv") for stem in QUESTION_CSVS
                          if (folder / f"{stem}.csv").is_file()}
-        return cls(summary, {name: FigureData.read(paths[1]) for name, paths in files.items()},
+        return cls(summary, {name: load_figure(name, paths[1]) for name, paths in files.items()},
                    read_summary(), scans, questions)
 
     def figure(self, name):

@@ -10,25 +10,28 @@ import numpy as np
 
 from tapmc.stats import mean_dof, weighted_polyfit
 
-from .common import (eps_of, eps_series, figure_param, not_in_campaign, one_seed_error_text,
-                     steady_dof)
+from .. import _plotting as P
+from .common import not_in_campaign, one_seed_error_text, steady_dof, value_triple
 from .measure import Measure, fmt
 from .registry import statistic
 
 
 @statistic("spectral_slopes")
 def spectral_slopes(data, claim):
-    fig = data.figure("fig3")
-    if fig is None:
+    fig3 = data.result("fig3")
+    if fig3 is None:
         return not_in_campaign("no Fig. 3 runs")
     out = []
-    for series in fig.series("params"):
-        if series.endswith(":slope"):
-            m, s, n = fig.param(series)
-            out.append((eps_of(series),
-                        Measure(-m, s, steady_dof(n, s), label=f"eps = {eps_of(series):g}",
-                                shown=fmt(m, s))))
-    return [m for _, m in sorted(out, key=lambda p: p[0])] or not_in_campaign("no spectrum")
+    for eps, spectrum in _spectra(fig3):
+        m, s, n = value_triple(spectrum.slope)
+        out.append(Measure(-m, s, steady_dof(n, s), label=f"eps = {eps:g}", shown=fmt(m, s)))
+    return out or not_in_campaign("no spectrum")
+
+
+def _spectra(fig3):
+    """(eps, Spectrum) of Fig. 3's result by eps, eps as the figure labels it (the CSV's
+    ``eps=<eps>``, four digits: the page's labels)."""
+    return sorted((float(P.fmt_eps(eps)), spectrum) for eps, spectrum in fig3.spectra.items())
 
 
 #: Fraction of the frequencies (lowest, highest) compared by ``spectrum_eps_spread``.
@@ -43,10 +46,10 @@ SPECTRUM_RESAMPLINGS = 400
 def spectrum_eps_spread(data, claim):
     """Spread over eps of log10 P(f) in the highest-frequency band minus that in the lowest
     band (section III.A: eps is noticeable only at high frequencies)."""
-    fig = data.figure("fig3")
-    if fig is None:
+    fig3 = data.result("fig3")
+    if fig3 is None:
         return not_in_campaign("no Fig. 3 runs")
-    curves = [fig.get("a", s) for _, s in eps_series(fig, "a")]
+    curves = [(sp.power.x, sp.power.mean, sp.power.err, sp.power.n) for _, sp in _spectra(fig3)]
     if len(curves) < 3:
         return not_in_campaign("fewer than three spectra")
     rng = np.random.default_rng(12345)
@@ -99,25 +102,25 @@ def sigma_intercept(data, claim):
     ``params.about = "line"``: sigma_<Z> about each run's straight line over its last taps
     (fig3's detrended series) instead of the paper's X_SS."""
     suffix = "_detrended" if claim.params.get("about") == "line" else ""
-    fig = data.figure("fig3")
-    absent = "fewer than three eps: no free straight line"
-    if suffix and fig is not None and fig.get("b", "sigma_Z_detrended") is None:
+    fig3 = data.result("fig3")
+    if fig3 is None:
+        return not_in_campaign("no Fig. 3 runs")
+    b = fig3.sigma_detrended if suffix else fig3.sigma
+    if b is None:
         return [Measure(undecided="Fig. 3's CSV was drawn without the detrended sigma_<Z>: "
                                   "draw Fig. 3 again from its runs")]
-    found, missing = figure_param(data, "fig3", "intercept" + suffix, absent)
-    if missing:
-        return missing
-    fig, m, s, n = found
-    b = fig.get("b", "sigma_Z" + suffix)
-    dof = len(b[0]) - 2 if b is not None else None
+    m, s, n = value_triple(getattr(fig3, "intercept" + suffix))
+    if not np.isfinite(m):
+        return not_in_campaign("fewer than three eps: no free straight line")
+    dof = len(b) - 2
     # a zero intercept means small against the smallest sigma measured
-    effect = float(np.nanmin(b[1])) if b is not None else None
+    effect = float(np.nanmin(b.mean))
     shown = None
     factor = data.run_error("Z:sigma" + suffix)[0]
-    if factor != 1.0 and b is not None and np.all(np.isfinite(b[2])) and np.all(b[2] > 0):
+    if factor != 1.0 and np.all(np.isfinite(b.err)) and np.all(b.err > 0):
         # the same weighted line, one-run sigmas with a realization's error
-        sem = np.where(b[3] == 1, b[2] * factor, b[2])
-        coef, cov, _ = weighted_polyfit(b[0], b[1], sem, 1)
+        sem = np.where(b.n == 1, b.err * factor, b.err)
+        coef, cov, _ = weighted_polyfit(b.x, b.mean, sem, 1)
         m, s = float(coef[0]), float(math.sqrt(cov[0, 0]))
         shown = f"{fmt(m, s)} ({one_seed_error_text(factor)})"
     return [Measure(m, s, dof if dof and dof >= 1 else None, effect=effect, shown=shown)]

@@ -40,11 +40,11 @@ def _pointwise_zero(x, diff, err, n, what, effect):
                           f"{len(idx)} standardized differences)")]
 
 
-def _py_change(fig, sigma):
+def _py_change(fig9, sigma):
     """Largest change over sigma of the Percus-Yevick P0 (eqs. 8-9) between the initial and
-    the tapped packing fractions: the effect a P0 claim is measured against (None when the
-    packing fractions are not in the data)."""
-    phi_i, phi_f = fig.param("phi_initial")[0], fig.param("phi_final")[0]
+    the tapped packing fractions of Fig. 9's result: the effect a P0 claim is measured against
+    (None when the packing fractions are not in the data)."""
+    phi_i, phi_f = fig9.phi["initial"].value, fig9.phi["final"].value
     if not (np.isfinite(phi_i) and np.isfinite(phi_f)):
         return None
     return float(np.max(np.abs(percus_yevick_p0(sigma, phi_f) -
@@ -86,20 +86,19 @@ def _p0_difference(data, other, what):
     of fewer realizations than ``p0-configs`` has configurations (one run per point, the
     paper's protocol, or a campaign under way with two seeds, whose sem over two is itself
     hardly known) are compared over those configurations instead, when there."""
-    fig = data.figure("fig9")
-    if fig is None:
+    fig9 = data.result("fig9")
+    if fig9 is None:
         return not_in_campaign("no Fig. 9 runs")
-    final, ref = fig.get("a", "final"), fig.get("a", other)
-    if final is None or ref is None:
-        return not_in_campaign("no P0 curves")
-    measured = _p0_configurations(data, other, what, more_than=int(np.nanmax(final[3])))
+    final = fig9.p0["final"]
+    ref = fig9.percus_yevick if other == "percus_yevick" else fig9.p0[other]
+    measured = _p0_configurations(data, other, what, more_than=int(np.nanmax(final.n)))
     if measured is not None:
         return measured
-    x = final[0]
-    ref_err = np.nan_to_num(np.interp(x, ref[0], ref[2]))  # Percus-Yevick: exact
-    n = final[3] if other == "percus_yevick" else np.minimum(final[3], ref[3].min())
-    return _pointwise_zero(x, np.interp(x, ref[0], ref[1]) - final[1],
-                           np.hypot(ref_err, final[2]), n, what, _py_change(fig, x))
+    x = final.x
+    ref_err = np.nan_to_num(np.interp(x, ref.x, ref.err))  # Percus-Yevick: exact
+    n = final.n if other == "percus_yevick" else np.minimum(final.n, ref.n.min())
+    return _pointwise_zero(x, np.interp(x, ref.x, ref.mean) - final.mean,
+                           np.hypot(ref_err, final.err), n, what, _py_change(fig9, x))
 
 
 @statistic("p0_initial_minus_final")
@@ -114,15 +113,13 @@ def p0_final_minus_py(data, claim):
 
 @statistic("xi_min")
 def xi_min(data, claim):
-    fig = data.figure("fig10")
-    if fig is None:
+    if data.result("fig10") is None:
         return not_in_campaign("no pore dumps")
-    d = fig.get("params", "xi_min")
-    if d is None:
+    values = _pore_values(data, "xi_min")
+    if not values:
         return not_in_campaign("no xi_min")
-    i = int(np.argmin(d[1]))
-    return [Measure(float(d[1][i]), float(d[2][i]), mean_dof(d[3][i]),
-                    shown=fmt(d[1][i], d[2][i], digits=4))]
+    low = min(values, key=lambda v: v.value)
+    return [Measure(low.value, low.err, mean_dof(low.n), shown=fmt(low.value, low.err, digits=4))]
 
 
 def _pore_dof(n, err):
@@ -180,11 +177,11 @@ def nu_ramp_hysteresis(data, claim):
 
 
 def _pore_curves(data):
-    fig = data.figure("fig10")
-    if fig is None:
+    """[(t, xi^3 P(xi) at t)] of Fig. 10's dumps by t, None without them."""
+    fig10 = data.result("fig10")
+    if fig10 is None:
         return None
-    curves = sorted((float(s.split("=")[1]), fig.get("a", s)) for s in fig.series("a")
-                    if s.startswith("t="))
+    curves = sorted((float(step), dump.xi3_P_xi) for step, dump in fig10.dumps.items())
     return curves or None
 
 
@@ -207,16 +204,16 @@ def pore_share_change(data, claim):
         return not_in_campaign("no pore dumps")
     (t0, first), (t1, last) = curves[0], curves[-1]
     lo, hi = (P.XI_T, P.XI_O) if claim.params.get("range") == "small" else (P.XI_O, math.inf)
-    a, ea = _band_integral(*first[:3], lo, hi)
-    b, eb = _band_integral(*last[:3], lo, hi)
-    n = min(first[3].min(), last[3].min())
+    a, ea = _band_integral(first.x, first.mean, first.err, lo, hi)
+    b, eb = _band_integral(last.x, last.mean, last.err, lo, hi)
+    n = min(first.n.min(), last.n.min())
     shown = f"{fmt(a, ea)} (t = {t0:g}) -> {fmt(b, eb)} (t = {t1:g})"
     dof = _pore_dof(n, [ea, eb])
     if dof is None:
         return [Measure(b - a, shown=shown, undecided="one realization: no error bars")]
     # invariance of the small pores means small against the change of the large ones
-    la, _ = _band_integral(*first[:3], P.XI_O, math.inf)
-    lb, _ = _band_integral(*last[:3], P.XI_O, math.inf)
+    la, _ = _band_integral(first.x, first.mean, first.err, P.XI_O, math.inf)
+    lb, _ = _band_integral(last.x, last.mean, last.err, P.XI_O, math.inf)
     return [Measure(b - a, math.hypot(ea, eb), dof, shown=shown, effect=abs(lb - la))]
 
 
@@ -237,7 +234,8 @@ def pore_quadratic_fit(data, claim):
     curves = _pore_curves(data)
     if curves is None:
         return not_in_campaign("no pore dumps")
-    t, (x, y, s, n) = curves[-1]
+    t, last = curves[-1]
+    x, y, s = last.x, last.mean, last.err
     law = _quadratic_law(x, y, s)
     if law is None:
         return [Measure(undecided="fewer than three histogram bins with error bars between "
@@ -257,7 +255,8 @@ def pore_law_deviation(fig10):
     curves = None if fig10 is None else _pore_curves(ReportData({}, {"fig10": fig10}))
     if not curves:
         return None
-    t, (x, y, s, n) = curves[-1]
+    t, last = curves[-1]
+    x, y, s = last.x, last.mean, last.err
     law = _quadratic_law(x, y, s)
     if law is None:
         return None
@@ -270,29 +269,34 @@ def pore_law_deviation(fig10):
             "error": float(np.median(s[pick]) / scale)}
 
 
-def _pore_param(data, name):
-    fig = data.figure("fig10")
-    return None if fig is None else fig.get("params", name)
+def _pore_values(data, name):
+    """The Values of statistic ``name`` of Fig. 10's dumps that have it, in the CSV's order
+    ([] without Fig. 10)."""
+    fig10 = data.result("fig10")
+    return [] if fig10 is None else [dump.statistics[name] for dump in fig10.dumps.values()
+                                     if name in dump.statistics]
 
 
 @statistic("nu_tail_over_nu")
 def nu_tail_over_nu(data, claim):
-    nu, tail = _pore_param(data, "nu"), _pore_param(data, "nu_tail")
-    if nu is None or tail is None:
+    nu, tail = _pore_values(data, "nu"), _pore_values(data, "nu_tail")
+    if not nu or not tail:
         return not_in_campaign("no nu_tail")
-    m, s = tail[1][-1] / nu[1][-1], 0.0
-    ratio_err = abs(m) * math.hypot(tail[2][-1] / tail[1][-1], nu[2][-1] / nu[1][-1])
+    nu, tail = nu[-1], tail[-1]
+    m = tail.value / nu.value
+    ratio_err = abs(m) * math.hypot(tail.err / tail.value, nu.err / nu.value)
     s = ratio_err if np.isfinite(ratio_err) else math.nan
-    return [Measure(float(m), float(s), _pore_dof(min(nu[3][-1], tail[3][-1]), s),
-                    label=f"t = {nu[0][-1]:g}")]
+    return [Measure(float(m), float(s), _pore_dof(min(nu.n, tail.n), s),
+                    label=f"t = {nu.x:g}")]
 
 
 @statistic("nu_change")
 def nu_change(data, claim):
-    nu = _pore_param(data, "nu")
-    if nu is None:
+    nu = _pore_values(data, "nu")
+    if not nu:
         return not_in_campaign("no nu")
-    x, m, s, n = nu
-    err = math.hypot(s[-1], s[0])
-    return [Measure(m[-1] - m[0], err, _pore_dof(min(n[0], n[-1]), err),
-                    shown=f"{fmt(m[0], s[0], digits=4)} -> {fmt(m[-1], s[-1], digits=4)}")]
+    first, last = nu[0], nu[-1]
+    err = math.hypot(last.err, first.err)
+    return [Measure(last.value - first.value, err, _pore_dof(min(first.n, last.n), err),
+                    shown=f"{fmt(first.value, first.err, digits=4)} -> "
+                          f"{fmt(last.value, last.err, digits=4)}")]

@@ -16,8 +16,8 @@ from tapmc.stats import t_quantile
 
 from .._runs import RAMP_BRANCHES
 from ..fig4 import RAMPS
-from .bell import critical_separation, ramp_branch, turning_ramps
-from .common import WITHIN_RUN_DOF
+from .bell import critical_separation, ramp_branch, turning_ramps, turning_top
+from .common import WITHIN_RUN_DOF, value_triple
 from .measure import fmt
 from .register import PAPER_SCALE
 from .rules import Verdict, verdict
@@ -83,8 +83,8 @@ def ramp_reduction_bounds(data, tag="ramp"):
                 max(hi for _, hi, _ in levels))
 
     out = {b: summary(v) for b, v in found.items() if len(v) >= RAMP_REDUCTION_MIN_LEVELS}
-    fig = data.figure("fig4")
-    turn = math.nan if fig is None else fig.param(f"{tag}:top_sqrt_eps")[0]
+    fig4 = data.result("fig4")
+    turn = math.nan if fig4 is None else turning_top(fig4, tag)
     at_top = [level for sq, level in top if abs(sq - turn) < LEVEL_TOLERANCE]
     if at_top:
         out["top"] = summary(at_top[:1])
@@ -127,18 +127,19 @@ def _turning_ramps_shifted(claim, data, bounds):
     or the outcome differs between the ends (every combination is tried of each ramp's ends
     and, inside its range, the shift that brings its change to zero, where its behaviour
     turns)."""
-    fig = data.figure("fig4")
-    if fig is None:
+    fig4 = data.result("fig4")
+    if fig4 is None:
         return None, []
-    tags = turning_ramps(fig)
+    tags = turning_ramps(fig4)
     ranges = []
     for tag in tags:
         b = bounds.get(tag, {})
         if "down" not in b or "top" not in b:
             return None, []
         ranges.append((tag, (b["down"][2] - b["top"][3], b["down"][3] - b["top"][2])))
-    tops = [fig.param(f"{tag}:top_sqrt_eps")[0] for tag, _ in ranges]
-    changes = [fig.param(f"{tag}:down_change")[0] for tag, _ in ranges]
+    tops = [turning_top(fig4, tag) for tag, _ in ranges]
+    changes = [value_triple((fig4.ramps[tag].statistics or {}).get("down_change"))[0]
+               for tag, _ in ranges]
     candidates = [[lo, hi] + ([-change] if lo < -change < hi else [])
                   for (_, (lo, hi)), change in zip(ranges, changes)]
     outcomes = set()

@@ -11,10 +11,9 @@ import numpy as np
 from tapmc.profiles import PROFILE_JACKKNIFE_BLOCKS
 from tapmc.stats import mean_dof
 
-from .. import _plotting as P
 from .._runs import PAPER_START_TAG, eps_tag
-from .common import (eps_of, eps_series, figure_param, jackknife_dof, not_in_campaign,
-                     one_seed_error_text, seed_mean, steady_dof)
+from .common import (jackknife_dof, not_in_campaign, one_seed_error_text, seed_mean_of,
+                     steady_dof, value_triple)
 from .measure import Measure, fmt
 from .registry import statistic
 
@@ -29,13 +28,16 @@ def _fbc_group_names(eps):
 
 @statistic("final_alpha")
 def final_alpha(data, claim):
-    found, missing = figure_param(data, "fig6", "final:alpha", "no F.B.C. profile runs")
-    if missing:
-        return missing
-    fig, m, s, n = found
+    fig6 = data.result("fig6")
+    if fig6 is None:
+        return not_in_campaign("no Fig. 6 runs")
+    profiles = fig6.profiles
+    m, s, n = value_triple(None if profiles is None else profiles.alpha["final"])
+    if not np.isfinite(m):
+        return not_in_campaign("no F.B.C. profile runs")
     if n >= 2:
-        m, s, dof, how = seed_mean(data, fig, "final:alpha", "packing:alpha", "fbc",
-                                    _fbc_group_names(fig.param("eps")[0]))
+        m, s, dof, how = seed_mean_of(data, profiles.alpha["final"], profiles.alpha_seeds,
+                                      "packing:alpha", "fbc", _fbc_group_names(profiles.eps))
         return [Measure(m, s, dof, shown=fmt(m, s) + (f" ({how})" if how else ""))]
     within = " (one seed: lateral jackknife of its packing)" if n == 1 and np.isfinite(s) else ""
     return [Measure(m, s, jackknife_dof(n, s, PROFILE_JACKKNIFE_BLOCKS),
@@ -44,27 +46,29 @@ def final_alpha(data, claim):
 
 @statistic("central_minus_lateral")
 def central_minus_lateral(data, claim):
-    fig = data.figure("fig8")
-    if fig is None:
+    fig8 = data.result("fig8")
+    if fig8 is None:
         return not_in_campaign("no Fig. 8 runs")
     out = []
-    for eps in sorted({eps_of(s) for s in fig.series("params")}):
-        tag = f"eps={P.fmt_eps(eps)}"
-        cen = fig.param(f"{tag}:final_central")
-        lat = fig.param(f"{tag}:final_lateral")
+    for eps, zones in sorted(fig8.increases.items()):
+        if not (zones.final or zones.final_seeds or zones.first_tap):
+            continue    # no statistics at this eps
+        cen = value_triple(zones.final.get("central"))
+        lat = value_triple(zones.final.get("lateral"))
         # the zones of one run move together: their difference per seed (paired) has the
         # error; CSVs written before it was drawn fall back to the zones' errors combined
-        diff = fig.param(f"{tag}:final_central_minus_lateral")
+        diff = value_triple(zones.final.get("central_minus_lateral"))
         if not np.isfinite(diff[0]):
             diff = (cen[0] - lat[0], math.hypot(cen[1], lat[1]), min(cen[2], lat[2]))
         value, err, n = diff
         factor = data.run_error("zone:central_minus_lateral", "fbc")[0]
         within = (f" ({one_seed_error_text(factor)})" if n == 1 and np.isfinite(err) else "")
         dof = steady_dof(n, err)
-        if n >= 2 and fig.get("params", f"{tag}:final_central_minus_lateral:seeds") is not None:
-            _, err, dof, how = seed_mean(data, fig, f"{tag}:final_central_minus_lateral",
-                                          "zone:central_minus_lateral", "fbc",
-                                          _fbc_group_names(eps))
+        seeds = zones.final_seeds.get("central_minus_lateral")
+        if n >= 2 and seeds is not None:
+            _, err, dof, how = seed_mean_of(data, zones.final["central_minus_lateral"], seeds,
+                                            "zone:central_minus_lateral", "fbc",
+                                            _fbc_group_names(eps))
             within = f" ({how})"
         out.append(Measure(value, err, dof, label=f"eps = {eps:g}",
                            shown=f"{fmt(cen[0], cen[1])} vs {fmt(lat[0], lat[1])}; "
@@ -74,28 +78,24 @@ def central_minus_lateral(data, claim):
 
 @statistic("lateral_first_tap")
 def lateral_first_tap(data, claim):
-    fig = data.figure("fig8")
-    if fig is None:
+    fig8 = data.result("fig8")
+    if fig8 is None:
         return not_in_campaign("no Fig. 8 runs")
-    paper_start = [(e, s) for e, s in ((eps_of(s), s) for s in fig.series("a")
-                                       if s.startswith("paper:eps="))]
-    if not paper_start and data.question("lateral_first_tap"):
+    lateral = sorted((eps, zones.lateral) for eps, zones in fig8.increases.items())
+    if not fig8.paper_start and data.question("lateral_first_tap"):
         return _lateral_first_tap_measured(data.question("lateral_first_tap"))
-    if not paper_start:
-        values = []
-        for eps, series in eps_series(fig, "a"):
-            t, mean, sem, n = fig.get("a", series)
-            if np.any(t == 1):
-                values.append(f"{fmt(mean[t == 1][0], sem[t == 1][0])} at eps = {eps:g}")
+    if not fig8.paper_start:
+        values = [f"{fmt(c.mean[c.x == 1][0], c.err[c.x == 1][0])} at eps = {eps:g}"
+                  for eps, c in lateral if np.any(c.x == 1)]
         seen = "; with the start deposited between walls: " + ", ".join(values) if values else ""
         return [Measure(undecided="no F.B.C. run from the paper's start" + seen)]
     out = []
-    for eps, series in sorted(paper_start):
-        t, mean, sem, n = fig.get("a", series)
-        if not np.any(t == 1):
+    for eps, curve in lateral:
+        if not np.any(curve.x == 1):
             continue
-        k = int(np.argmax(t == 1))
-        out.append(Measure(mean[k], sem[k], mean_dof(n[k]), label=f"eps = {eps:g}"))
+        k = int(np.argmax(curve.x == 1))
+        out.append(Measure(curve.mean[k], curve.err[k], mean_dof(curve.n[k]),
+                           label=f"eps = {eps:g}"))
     return out or not_in_campaign("no tap 1 in the paper-start curves")
 
 
