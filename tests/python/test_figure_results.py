@@ -324,3 +324,20 @@ def test_fig2_analysis_of_known_laws(tmp_path):
     again = fig2.Fig2Result.load(saved).save(tmp_path / "again.csv")
     assert filecmp.cmp(saved, again, shallow=False)
     plt.close(fig2.plot(result))
+
+
+@pytest.mark.parametrize("folder", ["doc/validation", "doc/paper_scale/validation"])
+def test_fig4_refit_of_a_committed_csv_gives_it_back_and_moves_a_shifted_maximum(folder, tmp_path):
+    """``report --from-data --refit`` on Fig. 4: the bell maximum fitted again from the CSV's
+    own steady squares is the committed one, byte for byte; a maximum written wrong comes
+    back to the vertex."""
+    committed = SOURCE / folder / "fig4.csv"
+    out = tmp_path / "fig4.csv"
+    fig4.refit_table(fig4.P.read_table(committed)).write(out)
+    assert filecmp.cmp(committed, out, shallow=False)
+    result = fig4.Fig4Result.load(committed)
+    wrong = fig4.replace(result, sqrt_eps_max=fig4.replace(result.sqrt_eps_max, value=0.3))
+    wrong.save(tmp_path / "wrong.csv")
+    again = fig4.refit_table(fig4.P.read_table(tmp_path / "wrong.csv"))
+    again.write(tmp_path / "again.csv")
+    assert filecmp.cmp(committed, tmp_path / "again.csv", shallow=False)

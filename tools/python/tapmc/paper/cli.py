@@ -172,7 +172,8 @@ def _add_report_parser(sub):
     report.add_argument("--refit", action="store_true",
                         help="with --from-data: first recompute the statistics that a figure "
                              "module can compute from its CSV's curves (Fig. 2's fit "
-                             "intervals, range refits and ln B), rewriting those CSVs")
+                             "intervals, range refits and ln B; Fig. 4's bell maximum; Fig. "
+                             "5's collapse), rewriting those CSVs")
     report.add_argument("--finished-only", action="store_true",
                         help="draw the figures and the report from the campaign's finished "
                              "runs only, running nothing (a campaign under way); figures "

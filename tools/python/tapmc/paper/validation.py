@@ -506,7 +506,7 @@ def _write_whole(path, text):
 
 
 #: figure -> the function that recomputes its statistics from its own curves (module docs).
-_REFITS = {"fig2": "refit_table", "fig5": "refit_table"}
+_REFITS = {"fig2": "refit_table", "fig4": "refit_table", "fig5": "refit_table"}
 
 
 def refit(out_dir):
