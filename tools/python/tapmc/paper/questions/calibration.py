@@ -8,19 +8,14 @@ from __future__ import annotations
 
 from ..claims import (CALIBRATION_ALPHA, RUN_ERROR_LABELS, realization_calibrations,
                       realization_sharing)
-from .common import read_csv, write_csv
+from .common import csv_schema
 
 #: the columns of realization_scatter.csv and packing_scatter.csv
 SCATTER_HEADER = ["group", "run", "seed", "taps", "column", "start", "mean", "sem", "last",
                   "sem_dof"]
 
 
-def save(path, rows):
-    return write_csv(path, SCATTER_HEADER, rows)
-
-
-def load(path):
-    return read_csv(path)
+save, load = csv_schema(SCATTER_HEADER)
 
 
 def calibration_table(calib, table_names, pooled_names, headers, realizations):

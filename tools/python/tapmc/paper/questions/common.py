@@ -72,6 +72,14 @@ def read_csv(path):
         return list(csv.DictReader(handle))
 
 
+def csv_schema(header):
+    """The ``save(path, rows)`` and ``load(path)`` of a question's CSV of columns ``header``:
+    its one schema, written whole (:func:`write_csv`) and read back as dicts (:func:`read_csv`)."""
+    def save(path, rows):
+        return write_csv(path, header, rows)
+    return save, read_csv
+
+
 def runs_folder(campaign):
     """<campaign>/runs, or QuestionError naming the path when ``campaign`` is no campaign."""
     campaign = Path(campaign)

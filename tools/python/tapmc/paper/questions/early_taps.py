@@ -20,8 +20,7 @@ import numpy as np
 from ..claims import EARLY_DECADE, back_at_start, first_decade_rates, fmt
 from ..scales import FULL
 from . import launch
-from .common import (PAPER, QuestionError, last_rows, read_csv, taps_table, work_folder,
-                     write_csv)
+from .common import PAPER, QuestionError, csv_schema, last_rows, taps_table, work_folder
 
 NAME = "early-taps"
 CSV = "early_taps.csv"
@@ -95,12 +94,7 @@ def measure(args):
     save(args.out / CSV, rows)
 
 
-def save(path, rows):
-    return write_csv(path, HEADER, rows)
-
-
-def load(path):
-    return read_csv(path)
+save, load = csv_schema(HEADER)
 
 
 def render(path):

@@ -15,7 +15,7 @@ import numpy as np
 
 from tapmc.laws import RELATIVE_ERROR_LIMIT, InverseLogLaw, SurrogateFits, ZLaw
 
-from .common import eps_of, finished_runs, last_rows, read_csv, taps_table, write_csv
+from .common import csv_schema, eps_of, finished_runs, last_rows, taps_table
 from .early_taps import CSV as EARLY_CSV, load as load_early
 
 NAME = "fit-surrogates"
@@ -109,12 +109,7 @@ def measure(args):
     save(args.out / CSV, rows)
 
 
-def save(path, rows):
-    return write_csv(path, HEADER, rows)
-
-
-def load(path):
-    return read_csv(path)
+save, load = csv_schema(HEADER)
 
 
 def render(path, seed_rows=None):

@@ -13,7 +13,7 @@ import numpy as np
 
 from ..claims import fmt, load_register
 from . import launch
-from .common import PAPER, read_csv, work_folder, write_csv
+from .common import PAPER, csv_schema, work_folder
 
 NAME = "initial-packing"
 CSV = "initial_packing.csv"
@@ -47,12 +47,7 @@ def measure(args):
     save(args.out / CSV, rows)
 
 
-def save(path, rows):
-    return write_csv(path, HEADER, rows)
-
-
-def load(path):
-    return read_csv(path)
+save, load = csv_schema(HEADER)
 
 
 def render(path):

@@ -15,7 +15,7 @@ from tapmc.packing import PackingCheck
 from tapmc.readers import TapmcFormatError, read_dump
 
 from ..claims import fmt
-from .common import QuestionError, last_rows, read_csv, runs_folder, taps_table, write_csv
+from .common import QuestionError, csv_schema, last_rows, runs_folder, taps_table
 
 NAME = "integrity"
 CSV = "integrity.csv"
@@ -113,12 +113,7 @@ def measure(args):
     save(args.out / CSV, analyse(args.campaign))
 
 
-def save(path, rows):
-    return write_csv(path, HEADER, rows)
-
-
-def load(path):
-    return read_csv(path)
+save, load = csv_schema(HEADER)
 
 
 def render(path):

@@ -15,7 +15,7 @@ import numpy as np
 
 from ..claims import fmt
 from . import launch
-from .common import PAPER, read_csv, work_folder, write_csv
+from .common import PAPER, csv_schema, work_folder
 
 NAME = "lateral-first-tap"
 CSV = "lateral_first_tap.csv"
@@ -50,12 +50,7 @@ def measure(args):
     save(args.out / CSV, rows)
 
 
-def save(path, rows):
-    return write_csv(path, HEADER, rows)
-
-
-def load(path):
-    return read_csv(path)
+save, load = csv_schema(HEADER)
 
 
 def render(path, fig8=None):

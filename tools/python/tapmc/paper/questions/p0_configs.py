@@ -19,7 +19,7 @@ from tapmc.pores import percus_yevick_p0, read_pores
 from .. import _pores, _runs
 from ..claims import fmt
 from . import launch
-from .common import PAPER, read_csv, work_folder, write_csv
+from .common import PAPER, csv_schema, work_folder
 from .noise_floor import NOISE_FROM_STEP, add_arguments as restart_argument, campaign_restart
 
 NAME = "p0-configs"
@@ -113,12 +113,7 @@ def measure(args):
     save(args.out / CSV, rows)
 
 
-def save(path, rows):
-    return write_csv(path, HEADER, rows)
-
-
-def load(path):
-    return read_csv(path)
+save, load = csv_schema(HEADER)
 
 
 def render(path):

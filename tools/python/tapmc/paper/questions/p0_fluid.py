@@ -25,7 +25,7 @@ from tapmc.pores import percus_yevick_p0, read_pores
 from .. import _runs
 from .._pores import P0_POINTS
 from ..claims import fmt
-from .common import QuestionError, read_csv, write_csv
+from .common import QuestionError, csv_schema, write_csv
 
 NAME = "p0-fluid"
 CSV = "p0_fluid.csv"
@@ -221,12 +221,7 @@ def measure(args):
             write_csv(work / "p0_fluid_curves.csv", CURVES_HEADER, curves)
 
 
-def save(path, rows):
-    return write_csv(path, HEADER, rows)
-
-
-def load(path):
-    return read_csv(path)
+save, load = csv_schema(HEADER)
 
 
 def packing_p0(fig9, configs=None):

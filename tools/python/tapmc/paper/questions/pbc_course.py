@@ -17,7 +17,7 @@ from tapmc.fluctuations import DEFAULT_BATCHES, SteadyState
 from tapmc.stats import beyond
 
 from ..claims import fmt
-from .common import eps_of, finished_runs, read_csv, taps_table, write_csv
+from .common import csv_schema, eps_of, finished_runs, taps_table
 
 NAME = "pbc-course"
 CSV = "pbc_course.csv"
@@ -95,12 +95,7 @@ def measure(args):
     save(args.out / CSV, analyse(args.campaign))
 
 
-def save(path, rows):
-    return write_csv(path, HEADER, rows)
-
-
-def load(path):
-    return read_csv(path)
+save, load = csv_schema(HEADER)
 
 
 def render(path, factors=None):

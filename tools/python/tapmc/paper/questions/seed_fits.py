@@ -15,7 +15,7 @@ import numpy as np
 
 from tapmc.laws import RealizationFits
 
-from .common import last_rows, read_csv, seed_groups, taps_table, write_csv
+from .common import csv_schema, last_rows, seed_groups, taps_table
 from .fit_surrogates import FIT_LAWS, law as fit_law
 
 NAME = "seed-fits"
@@ -67,12 +67,7 @@ def measure(args):
     save(args.out / CSV, analyse(args.campaign))
 
 
-def save(path, rows):
-    return write_csv(path, SEED_FITS_HEADER, rows)
-
-
-def load(path):
-    return read_csv(path)
+save, load = csv_schema(SEED_FITS_HEADER)
 
 
 def render(path):

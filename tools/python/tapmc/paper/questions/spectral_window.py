@@ -13,7 +13,7 @@ import numpy as np
 from tapmc.fluctuations import PowerSpectrum
 
 from ..claims import fmt
-from .common import eps_of, finished_runs, read_csv, taps_table, write_csv
+from .common import csv_schema, eps_of, finished_runs, taps_table
 
 NAME = "spectral-window"
 CSV = "spectral_window.csv"
@@ -49,12 +49,7 @@ def measure(args):
     save(args.out / CSV, analyse(args.campaign))
 
 
-def save(path, rows):
-    return write_csv(path, HEADER, rows)
-
-
-def load(path):
-    return read_csv(path)
+save, load = csv_schema(HEADER)
 
 
 def render(path):
