@@ -48,6 +48,7 @@ class Claim:
     rounding: float = 0.0
     params: dict = field(default_factory=dict)
     headline: bool | str = False
+    could_fail: bool = True
 
     def __post_init__(self):
         where = f"claim {self.id!r}"
@@ -71,6 +72,8 @@ class Claim:
         if not isinstance(self.headline, (bool, str)):
             raise ValueError(f"{where}: headline = {self.headline!r}: true, false or the label "
                              "of the row to show")
+        if not isinstance(self.could_fail, bool):
+            raise ValueError(f"{where}: could_fail = {self.could_fail!r}: true or false")
         if not self.tolerance.strip():
             raise ValueError(f"{where}: a tolerance needs its source (field 'tolerance')")
 

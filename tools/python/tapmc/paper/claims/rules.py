@@ -35,6 +35,9 @@ class Outcome(enum.StrEnum):
     """What a verdict says of a claim (a check of the tools holds or fails)."""
 
     AGREES = "agrees"
+    #: a law the paper calls "reasonably well" or "nearly similar": within the paper's own
+    #: stated precision, though our error bars reject it
+    AGREES_AT_PAPER_PRECISION = "agrees at the paper's precision, not at ours"
     DISAGREES = "disagrees"
     UNDECIDED = "undecided"
     HOLDS = "holds"
