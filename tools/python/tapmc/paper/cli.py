@@ -31,7 +31,7 @@ from tapmc.campaign import Campaign, CampaignDirectoryError, CampaignError, laun
 from tapmc.readers import TapmcFormatError
 
 from .. import __version__
-from . import FIGURES, _runs, cost, paper_ramp, plan
+from . import FIGURES, _runs, cost, paper_ramp, plan, sigma_eta
 from .front import command as front_command
 from .plan import TIERS
 from .scales import FBC_STARTS, FULL, get_scale
@@ -220,6 +220,15 @@ def _add_paper_ramp_and_question_parsers(sub):
     pr.add_argument("--out", type=Path, default=Path("doc/paper_scale"), metavar="DIR",
                     help="report directory (default doc/paper_scale): writes "
                          "DIR/validation/questions/paper_ramp.csv")
+    se = sub.add_parser("sigma-eta", help="sigma_<Z> and the bell's top against the "
+                                          "redeposition threshold: the campaign's const_* and "
+                                          "consteta_* P.B.C. runs, written to the report's "
+                                          "questions/sigma_eta.csv")
+    se.add_argument("--campaign", type=Path, required=True, metavar="DIR",
+                    help="campaign directory holding runs/const_* and runs/consteta_*")
+    se.add_argument("--out", type=Path, default=Path("doc/paper_scale"), metavar="DIR",
+                    help="report directory (default doc/paper_scale): writes "
+                         "DIR/validation/questions/sigma_eta.csv")
     question = sub.add_parser("question", help="one question of the validation settled by a "
                                                "measurement (tapmc.paper.questions; --list "
                                                "lists them)")
@@ -237,6 +246,23 @@ def _paper_ramp(args):
         rows, args.out / _runs.FIG_DIR / "questions" / paper_ramp.CSV_NAME)
     print(paper_ramp.finding_text(rows, FULL.eta))
     print(f"paper-ramp: {path} ({len(rows)} runs)")
+    return 0
+
+
+def _sigma_eta(args):
+    if not (args.campaign / "runs").is_dir():
+        print(f"tapmc-paper sigma-eta: --campaign {args.campaign} has no runs/ folder",
+              file=sys.stderr)
+        return 2
+    points = sigma_eta.analyse(args.campaign, FULL.eta)
+    if not points:
+        print(f"tapmc-paper sigma-eta: --campaign {args.campaign} has no constant-eps P.B.C. "
+              f"run with {sigma_eta.MIN_STEADY_TAPS} steady taps", file=sys.stderr)
+        return 2
+    path = sigma_eta.write_csv(
+        points, args.out / _runs.FIG_DIR / "questions" / sigma_eta.CSV_NAME)
+    print(sigma_eta.finding_text(points, FULL.eta))
+    print(f"sigma-eta: {path} ({len(points)} points)")
     return 0
 
 
@@ -493,6 +519,8 @@ def main(argv=None):
         return front_command.main(args)
     if args.command == "paper-ramp":
         return _paper_ramp(args)
+    if args.command == "sigma-eta":
+        return _sigma_eta(args)
     if args.command == "plan":
         return _plan_cost(args)
     if args.command == "report" and args.refit and not args.from_data:

@@ -1,0 +1,318 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""sigma_<Z> and the steady packing against the redeposition threshold eta.
+
+Fig. 3 (section III.B) has sigma_<Z> proportional to sqrt(eps). The campaign at the default
+threshold finds it nearly flat with an offset (sigma_<Z> = offset + slope sqrt(eps), offset
+> 0). Two readings: the offset is the model's, or it is settling noise that a tighter
+redeposition removes. The paper gives no threshold, so the question is decided by measurement:
+the same constant-eps runs at other thresholds (``consteta_*`` runs, tier 8 of
+:mod:`tapmc.paper.plan`) beside the default ones (``const_*``), and per eta:
+
+- sigma_<Z> and <Phi^c> of the steady state (the last quarter of each run, as Figs. 3 and 4)
+  per eps, mean and standard error over seeds (one seed: batch means of the run itself);
+- the straight line sigma_<Z> = offset + slope sqrt(eps) through them (weighted; errors
+  scaled by the reduced chi-square when the scatter exceeds them);
+- the largest steady <Phi^c> over the eps (the bell's top), against the paper's 60.6 %
+  (section III.D, after 4000 taps).
+
+The answer (:func:`finding_text`): whether the offset shrinks as eta tightens (the tightest
+threshold's offset below the loosest one's beyond t times their combined error), and which
+eta's bell top meets 60.6 %. Runs still going count with the taps they have once their steady
+window holds ``MIN_STEADY_TAPS`` taps; the table says how many taps each point had.
+
+  /usr/bin/python3 -m tapmc.paper sigma-eta --campaign DIR --out doc/paper_scale
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import re
+from dataclasses import asdict, dataclass, fields
+from pathlib import Path
+
+import numpy as np
+
+from tapmc.fluctuations import SteadyState
+from tapmc.stats import beyond, t_quantile, t_quantile_of_mean, weighted_polyfit
+
+from . import _runs
+from ._steady_state import BC, steady_last
+from .fig3 import sigma_error_one_run
+
+CSV_NAME = "sigma_eta.csv"
+#: The paper's steady packing fraction after 4000 taps (section III.D, Fig. 9), in percent.
+PAPER_PHI_PERCENT = 60.6
+#: A run counts once its steady window (the last quarter) holds this many taps: the batch
+#: means of a shorter window have too few taps per batch to stand for a correlated series
+#: (the campaign's runs decorrelate within tens of taps, Fig. 3's spectra).
+MIN_STEADY_TAPS = 250
+#: Columns of taps.dat read here (tapmc.paper runs: step phi_b phi_c Z ...).
+STEP, PHI_C, Z = 0, 2, 3
+NAME = re.compile(rf"^(?:{re.escape(_runs.CONSTANT_ETA_PREFIX)}(?P<bc1>pbc|fbc)_eps"
+                  r"(?P<eps1>[0-9.e+-]+)_eta(?P<eta>[0-9.e+-]+)|const_(?P<bc0>pbc|fbc)_eps"
+                  r"(?P<eps0>[0-9.e+-]+))_s(?P<seed>\d+)$")
+
+
+@dataclass(frozen=True)
+class RunSteady:
+    """The steady state of one run: sigma_<Z> (about the window's mean, the paper's
+    definition) with its batch-means error, and <Phi^c> with its batch-means error."""
+
+    run: str
+    eta: float
+    eps: float
+    seed: int
+    taps: int
+    finished: bool
+    sigma: float
+    sigma_err: float
+    phi_c: float
+    phi_c_err: float
+
+
+@dataclass(frozen=True)
+class EtaPoint:
+    """One (eta, eps): means over the seeds' runs (one run: its own batch-means errors)."""
+
+    eta: float
+    eps: float
+    seeds: int
+    taps: int  # the fewest taps among the runs (a run still going has fewer than planned)
+    finished: bool
+    sigma: float
+    sigma_sem: float
+    phi_c: float
+    phi_c_sem: float
+
+    @property
+    def sqrt_eps(self):
+        return math.sqrt(self.eps)
+
+
+@dataclass(frozen=True)
+class EtaLine:
+    """sigma_<Z> = offset + slope sqrt(eps) at one eta (None when fewer than 3 eps), and
+    the bell's top: the largest steady <Phi^c> over the eps, at ``top_eps``."""
+
+    eta: float
+    eps_count: int
+    offset: float
+    offset_err: float
+    slope: float
+    slope_err: float
+    dof: int | None
+    top_eps: float
+    top_phi_c: float
+    top_phi_c_sem: float
+
+
+def read_run(run_dir, default_eta):
+    """The :class:`RunSteady` of one ``const_*`` / ``consteta_*`` run directory, or None when
+    its steady window is still shorter than ``MIN_STEADY_TAPS``. A tap written twice (a run
+    resumed from a restart) counts once, with its last row."""
+    run_dir = Path(run_dir)
+    m = NAME.match(run_dir.name)
+    if not m:
+        raise ValueError(f"run directory {run_dir.name!r} is not a constant-eps run "
+                         f"(const_<bc>_eps<eps>_s<seed> or "
+                         f"{_runs.CONSTANT_ETA_PREFIX}<bc>_eps<eps>_eta<eta>_s<seed>)")
+    data = np.loadtxt(run_dir / "taps.dat", comments="#", ndmin=2)
+    data = data[data[:, STEP] > 0]
+    if len(data):
+        steps = data[:, STEP]
+        last = len(steps) - 1 - np.unique(steps[::-1], return_index=True)[1]
+        data = data[np.sort(last)]
+    taps = len(data)
+    window = steady_last(taps) if taps else 0
+    if window < MIN_STEADY_TAPS:
+        return None
+    z, phi_c = data[:, Z], data[:, PHI_C]
+    sigma = SteadyState(z, last=window).compute().std
+    packing = SteadyState(phi_c, last=window).compute()
+    eta = float(m.group("eta")) if m.group("eta") else float(default_eta)
+    return RunSteady(run=run_dir.name, eta=eta, eps=float(m.group("eps0") or m.group("eps1")),
+                     seed=int(m.group("seed")), taps=taps,
+                     finished=(run_dir / "DONE.json").exists(), sigma=sigma,
+                     sigma_err=sigma_error_one_run(z, window), phi_c=packing.mean,
+                     phi_c_err=packing.sem)
+
+
+def _mean_sem(values, own_err):
+    """Mean over the seeds and its standard error; one seed: its own error. With a few seeds
+    the spread can fall far below the runs' own batch-means errors by chance (3 seeds: 1 time
+    in 20 below a third of it), so the error is never below their root mean square over
+    sqrt(seeds), the same variance measured inside the runs."""
+    values, own_err = np.asarray(values, dtype=float), np.asarray(own_err, dtype=float)
+    if len(values) == 1:
+        return float(values[0]), float(own_err[0])
+    spread = float(values.std(ddof=1) / math.sqrt(len(values)))
+    inside = float(np.sqrt(np.mean(own_err ** 2)) / math.sqrt(len(values)))
+    return float(values.mean()), max(spread, inside) if np.isfinite(inside) else spread
+
+
+def points(runs):
+    """The :class:`EtaPoint` of every (eta, eps) of ``runs``, sorted by eta (loosest first)
+    then eps."""
+    groups = {}
+    for r in runs:
+        groups.setdefault((r.eta, r.eps), []).append(r)
+    out = []
+    for (eta, eps), group in groups.items():
+        sigma, sigma_sem = _mean_sem([r.sigma for r in group], [r.sigma_err for r in group])
+        phi, phi_sem = _mean_sem([r.phi_c for r in group], [r.phi_c_err for r in group])
+        out.append(EtaPoint(eta=eta, eps=eps, seeds=len(group), taps=min(r.taps for r in group),
+                            finished=all(r.finished for r in group), sigma=sigma,
+                            sigma_sem=sigma_sem, phi_c=phi, phi_c_sem=phi_sem))
+    return sorted(out, key=lambda p: (-p.eta, p.eps))
+
+
+def analyse(campaign, default_eta, bc=BC):
+    """The points of every constant-eps run of ``bc`` in the campaign directory (its runs/
+    folder) with a steady window long enough, at every eta."""
+    runs_dir = Path(campaign) / "runs"
+    found = []
+    for d in sorted(runs_dir.glob(f"*_{bc}_eps*_s*")):
+        if not NAME.match(d.name) or not (d / "taps.dat").exists():
+            continue
+        run = read_run(d, default_eta)
+        if run is not None:
+            found.append(run)
+    return points(found)
+
+
+def line(eta_points):
+    """The :class:`EtaLine` of the points of one eta."""
+    eta = eta_points[0].eta
+    if any(p.eta != eta for p in eta_points):
+        raise ValueError("line(): the points must share one eta")
+    top = max(eta_points, key=lambda p: p.phi_c)
+    offset = offset_err = slope = slope_err = math.nan
+    dof = None
+    usable = [p for p in eta_points if np.isfinite(p.sigma_sem) and p.sigma_sem > 0]
+    if len(usable) >= 3:
+        x = np.array([p.sqrt_eps for p in usable])
+        coef, cov, chi2 = weighted_polyfit(x, np.array([p.sigma for p in usable]),
+                                           np.array([p.sigma_sem for p in usable]), 1)
+        dof = len(usable) - 2
+        scale = max(1.0, chi2 / dof)  # scatter beyond the error bars widens the errors
+        offset, slope = float(coef[0]), float(coef[1])
+        offset_err = float(math.sqrt(cov[0, 0] * scale))
+        slope_err = float(math.sqrt(cov[1, 1] * scale))
+    return EtaLine(eta=eta, eps_count=len(eta_points), offset=offset, offset_err=offset_err,
+                   slope=slope, slope_err=slope_err, dof=dof, top_eps=top.eps,
+                   top_phi_c=top.phi_c, top_phi_c_sem=top.phi_c_sem)
+
+
+def lines(all_points):
+    """One :class:`EtaLine` per eta, loosest threshold first."""
+    etas = sorted({p.eta for p in all_points}, reverse=True)
+    return [line([p for p in all_points if p.eta == eta]) for eta in etas]
+
+
+@dataclass(frozen=True)
+class OffsetTrend:
+    """The offset of the loosest and of the tightest threshold and their difference (loosest
+    minus tightest) with its error; ``shrinks`` when the difference is positive beyond t times
+    its error (dof: the smaller of the two fits'), ``grows`` when negative beyond it."""
+
+    loose_eta: float
+    tight_eta: float
+    change: float
+    change_err: float
+    dof: int | None
+
+    @property
+    def shrinks(self):
+        return self.change > 0 and beyond(self.change, self.change_err, self.dof)
+
+    @property
+    def grows(self):
+        return self.change < 0 and beyond(self.change, self.change_err, self.dof)
+
+
+def offset_trend(eta_lines):
+    """The :class:`OffsetTrend` between the loosest and the tightest eta whose lines were
+    fitted, or None with fewer than two such etas."""
+    fitted = [ln for ln in eta_lines if ln.dof is not None]
+    if len(fitted) < 2:
+        return None
+    loose, tight = max(fitted, key=lambda ln: ln.eta), min(fitted, key=lambda ln: ln.eta)
+    return OffsetTrend(loose_eta=loose.eta, tight_eta=tight.eta,
+                       change=loose.offset - tight.offset,
+                       change_err=math.hypot(loose.offset_err, tight.offset_err),
+                       dof=min(loose.dof, tight.dof))
+
+
+def meets_paper_phi(eta_line, eta_points):
+    """Whether the bell's top of one eta meets the paper's 60.6 %: within t times its error
+    (t of the seeds' mean; one seed: of its batch means, taken as 19 dof, 20 batches) plus
+    half a unit of the paper's last digit (0.05 %)."""
+    top = next(p for p in eta_points if p.eta == eta_line.eta and p.eps == eta_line.top_eps)
+    t = t_quantile_of_mean(top.seeds) if top.seeds > 1 else t_quantile(19)
+    band = t * 100.0 * eta_line.top_phi_c_sem + 0.05
+    return abs(100.0 * eta_line.top_phi_c - PAPER_PHI_PERCENT) <= band
+
+
+def write_csv(rows, path):
+    """The points, one row each, written whole to a temporary file and renamed."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_suffix(path.suffix + ".tmp")
+    with open(tmp, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=[fl.name for fl in fields(EtaPoint)])
+        w.writeheader()
+        for r in rows:
+            w.writerow(asdict(r))
+    tmp.replace(path)
+    return path
+
+
+def read_csv(path):
+    """The rows of :func:`write_csv` as :class:`EtaPoint` (types restored); a file whose
+    header is not :class:`EtaPoint`'s fields raises ValueError naming the file."""
+    kinds = {fl.name: fl.type for fl in fields(EtaPoint)}
+    convert = {"float": float, "int": int, "bool": lambda v: v == "True"}
+    with open(path) as f:
+        reader = csv.DictReader(f)
+        if reader.fieldnames != list(kinds):
+            raise ValueError(f"{path}: header {reader.fieldnames} is not {list(kinds)}")
+        return [EtaPoint(**{k: convert[kinds[k]](v) for k, v in row.items()}) for row in reader]
+
+
+def _eta_text(eta):
+    return f"{eta:.0e}".replace("e-0", "e-")
+
+
+def finding_text(all_points, default_eta):
+    """One paragraph: per eta, the line through sigma_<Z> and the bell's top; then whether the
+    offset shrinks as eta tightens and which eta meets the paper's 60.6 %."""
+    if not all_points:
+        return ""
+    eta_lines = lines(all_points)
+    parts = []
+    for ln in eta_lines:
+        label = f"eta = {_eta_text(ln.eta)}" + (" (the default)" if ln.eta == default_eta
+                                                  else "")
+        fit = (f"sigma_<Z> = {ln.offset:.4f} +- {ln.offset_err:.4f} + ({ln.slope:.4f} +- "
+               f"{ln.slope_err:.4f}) sqrt(eps) over {ln.eps_count} eps"
+               if ln.dof is not None else f"{ln.eps_count} eps (too few for a line)")
+        top = (f"bell top <Phi^c> = {100 * ln.top_phi_c:.2f} +- {100 * ln.top_phi_c_sem:.2f} % "
+               f"at eps = {ln.top_eps:g}"
+               + (" (meets 60.6 %)" if meets_paper_phi(ln, all_points) else ""))
+        parts.append(f"{label}: {fit}; {top}")
+    trend = offset_trend(eta_lines)
+    if trend is None:
+        verdict = "the offset's trend needs fitted lines at two thresholds: undecided."
+    else:
+        how = ("shrinks" if trend.shrinks else "grows" if trend.grows
+               else "does not change beyond its error")
+        verdict = (f"from eta = {_eta_text(trend.loose_eta)} to {_eta_text(trend.tight_eta)} the "
+                   f"offset {how} ({trend.change:+.4f} +- {trend.change_err:.4f}).")
+    meeting = [ln.eta for ln in eta_lines if meets_paper_phi(ln, all_points)]
+    paper = (f"The bell's top meets the paper's {PAPER_PHI_PERCENT} % at eta = "
+             + ", ".join(_eta_text(e) for e in meeting) if meeting
+             else f"No threshold's bell top meets the paper's {PAPER_PHI_PERCENT} %")
+    return ("sigma_<Z> against the redeposition threshold (P.B.C. constant-eps runs, steady "
+            "state over the last quarter; mean +- sem over seeds): " + "; ".join(parts)
+            + ". Trend: " + verdict + " " + paper + ".")
