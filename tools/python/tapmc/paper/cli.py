@@ -166,7 +166,8 @@ def _add_report_parser(sub):
     report = sub.add_parser("report", help="every figure, then the validation report")
     _add_scale_options(report)
     report.add_argument("--from-data", action="store_true",
-                        help="rewrite OUT/validation.rst from the figure CSVs and report.json "
+                        help="rewrite OUT/validation.rst and its appendix pages "
+                             "(OUT/validation_*.rst) from the figure CSVs and report.json "
                              "already in OUT/validation (default OUT: the repository's doc/); "
                              "nothing is run or drawn")
     report.add_argument("--refit", action="store_true",
