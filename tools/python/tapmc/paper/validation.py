@@ -260,6 +260,22 @@ PAPER_SCALE_DOC = "/paper_scale/validation"
 SMOKE_TEST_DOC = "/validation"
 
 
+#: longest TAPMC cell of the main table, in characters: about five lines of its column on a
+#: screen (issue 42 found cells of 600 characters); a longer measure is cut at a "; " and the
+#: cell links the whole text on the claims' appendix
+MAIN_CELL_CHARS = 240
+
+
+def _brief(text):
+    """``text`` cut after its last "; " within :data:`MAIN_CELL_CHARS` (at that length when it
+    has none), "..." marking the cut; (text, whether it was cut)."""
+    if len(text) <= MAIN_CELL_CHARS:
+        return text, False
+    head = text[:MAIN_CELL_CHARS]
+    cut = head.rfind("; ")
+    return (head[:cut] if cut > 0 else head).rstrip() + " ...", True
+
+
 def _claims_table(verdicts, prefix):
     """The answer to "how close is TAPMC to the paper": one row per claim, with the verdict
     its rows give it (:mod:`tapmc.paper.claims.aggregate`); a claim of several rows shows
@@ -269,13 +285,19 @@ def _claims_table(verdicts, prefix):
              "     - Verdict [rule]"]
     for verdict in verdicts:
         c, shown = verdict.claim, verdict.shown_row()
-        measure = escape_bars(shown.measure.text())
         claim = f"``{c.id}``: {escape_bars(c.claim)}"
-        if len(verdict.rows) > 1:
-            measure = (f"{escape_bars(shown.label)}: {measure}" if shown.label else measure) + \
-                (f" (:ref:`all {len(verdict.rows)} rows <{claim_label(prefix, c.id)}>`)")
+        measure = shown.measure.text()
+        if len(verdict.rows) > 1 and shown.label:
+            measure = f"{shown.label}: {measure}"
         elif shown.label:
             claim += f" ({escape_bars(shown.label)})"
+        measure, cut = _brief(measure)
+        measure = escape_bars(measure)
+        link = claim_label(prefix, c.id)
+        if len(verdict.rows) > 1:
+            measure += f" (:ref:`all {len(verdict.rows)} rows <{link}>`)"
+        elif cut:
+            measure += f" (:ref:`in full <{link}>`)"
         if not c.could_fail:
             claim += " [could not fail for any compaction model]"
         lines += [f"   * - {where(c)}", f"     - {claim}", f"     - {escape_bars(c.paper)}",
