@@ -183,3 +183,15 @@ def test_seeds_per_point_counts_the_realizations_of_each_point():
                              ([2, 2], "2 seeds per point"), (None, "2 seeds per point")):
         summary = dict(base) if per_point is None else dict(base, seeds_per_point=per_point)
         assert f"taps; {words}; redeposition" in validation.describe_scale(summary)
+
+
+def test_a_long_measure_is_cut_at_a_clause_and_a_short_one_kept():
+    """The main table's TAPMC cells stay short; the whole text is on the claims' appendix."""
+    short = "1.2 ± 0.1"
+    assert validation._brief(short) == (short, False)
+    clauses = "; ".join(f"eps = {i}: {i}.5 ± 0.1" for i in range(40))
+    text, cut = validation._brief(clauses)
+    assert cut and text.endswith(" ...") and len(text) <= validation.MAIN_CELL_CHARS + 4
+    assert clauses.startswith(text[:-4]) and clauses[len(text) - 4:].startswith("; ")
+    text, cut = validation._brief("x" * 500)   # no clause to cut at: cut at the length
+    assert cut and text == "x" * validation.MAIN_CELL_CHARS + " ..."
