@@ -1,7 +1,7 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-"""The answer on one screen (tapmc.paper.summary): each figure's outcome follows from its rows
-by the stated rule (synthetic rows with a known answer for every outcome, and controls that
-must not pass), the committed pages answer within their first 80 lines with a figure within
+"""The answer on one screen (tapmc.paper.summary): each figure's outcome follows from its
+claims' verdicts (one per claim, from its rows) by the stated rule (synthetic rows with a
+known answer for every outcome, and controls that must not pass), the committed pages answer within their first 80 lines with a figure within
 150, and README.md's "What the validation found" is what the paper-scale page's data give."""
 
 import os
@@ -15,6 +15,7 @@ sys.path.insert(0, str(SOURCE / "tools" / "python"))
 
 from tapmc.paper import claims, summary, validation  # noqa: E402
 from tapmc.paper.claims import Claim, Measure, Row, Verdict  # noqa: E402
+from tapmc.paper.claims.aggregate import claim_verdicts  # noqa: E402
 from tapmc.paper.claims.rules import Outcome  # noqa: E402
 from tapmc.paper.summary import FigureOutcome  # noqa: E402
 
@@ -25,26 +26,36 @@ FIRST_SCREEN_LINES = 80
 FIRST_FIGURE_LINE = 150
 
 
-def _claim(figure="2", section="III.A", kind="model", ident="c", headline=False):
+def _claim(figure="2", section="III.A", kind="model", ident="c", headline=False,
+           could_fail=True):
     return Claim(id=ident, section=section, figure=figure, claim="a claim", paper="paper",
                  kind=kind, statistic="", rule="none", tolerance="a source", decided_by="",
-                 headline=headline)
+                 headline=headline, could_fail=could_fail)
 
 
-def _rows(*outcomes, figure="2", kind="model", scale=()):
-    """One row per outcome (an Outcome), all of one figure."""
-    claim = _claim(figure=figure, kind=kind)
+def _rows(*outcomes, figure="2", kind="model", scale=(), ident="c", could_fail=True):
+    """One row per outcome (an Outcome), all of one claim of one figure."""
+    claim = _claim(figure=figure, kind=kind, ident=ident, could_fail=could_fail)
     return [Row(claim, f"row {i}", Measure(value=1.0, err=0.1), Verdict(o), scale)
             for i, o in enumerate(outcomes)]
 
 
+def _verdicts(*outcomes, scale=(), could_fail=True):
+    """One claim of one row per outcome: the figure's claims' verdicts."""
+    rows = [row for i, o in enumerate(outcomes)
+            for row in _rows(o, ident=f"claim{i}", scale=scale, could_fail=could_fail)]
+    return claim_verdicts(rows)
+
+
 A, D, U = Outcome.AGREES, Outcome.DISAGREES, Outcome.UNDECIDED
+P = Outcome.AGREES_AT_PAPER_PRECISION
 
 
 @pytest.mark.parametrize("outcomes, scale, expected", [
     ((A, A, A), (), FigureOutcome.REPRODUCED),
     ((A, U), (), FigureOutcome.REPRODUCED),            # undecided for want of seeds only
     ((A, A, D), (), FigureOutcome.CAVEAT),
+    ((A, P), (), FigureOutcome.CAVEAT),                 # agrees only at the paper's precision
     ((A, U), ("size",), FigureOutcome.CAVEAT),          # undecided for scale
     ((A, D), (), FigureOutcome.NOT_REPRODUCED),         # a tie is no reproduction
     ((D, D, A), (), FigureOutcome.NOT_REPRODUCED),
@@ -52,23 +63,43 @@ A, D, U = Outcome.AGREES, Outcome.DISAGREES, Outcome.UNDECIDED
     ((U,), ("taps",), FigureOutcome.NOT_TESTED),
 ])
 def test_figure_outcome_follows_the_rule(outcomes, scale, expected):
-    assert summary.figure_outcome(_rows(*outcomes, scale=scale))[0] == expected
+    assert summary.figure_outcome(_verdicts(*outcomes, scale=scale))[0] == expected
 
 
 @pytest.mark.parametrize("n", [1, 2, 5])
-def test_control_a_figure_whose_rows_all_disagree_is_never_reproduced(n):
-    outcome, reason = summary.figure_outcome(_rows(*[D] * n))
+def test_control_a_figure_whose_claims_all_disagree_is_never_reproduced(n):
+    outcome, reason = summary.figure_outcome(_verdicts(*[D] * n))
     assert outcome == FigureOutcome.NOT_REPRODUCED
-    assert f"{n} disagree" in reason
+    assert f"{n} {'disagrees' if n == 1 else 'disagree'}" in reason
+
+
+def test_a_figure_counts_claims_not_rows():
+    """Ten agreeing rows of one claim weigh as much as the one row of another claim: one
+    claim each, so one agreeing and one disagreeing claim are a tie, not reproduced."""
+    rows = _rows(*[A] * 10, ident="many") + _rows(D, ident="one")
+    entries = summary.summarise(rows, {})
+    assert entries[0].outcome == FigureOutcome.NOT_REPRODUCED
+    assert entries[0].reason.startswith("1 of 2 claims agree, 1 disagrees")
+
+
+def test_claims_that_could_not_fail_are_never_counted_as_agreeing():
+    """A claim any compaction model satisfies is no reproduction: a figure of such claims
+    alone is not tested, and they do not outweigh a disagreeing claim."""
+    assert summary.figure_outcome(_verdicts(A, A, could_fail=False))[0] == \
+        FigureOutcome.NOT_TESTED
+    rows = _rows(A, ident="built", could_fail=False) + _rows(A, ident="built2", could_fail=False)
+    rows += _rows(D, ident="physics") + _rows(A, ident="physics2")
+    outcome, reason = summary.figure_outcome(claim_verdicts(rows))
+    assert outcome == FigureOutcome.NOT_REPRODUCED and "2 could not fail" in reason
 
 
 def test_checks_are_never_counted():
     """A figure's check rows (the tools' consistency) neither make nor change its outcome."""
-    checks = _rows(Outcome.FAILS, Outcome.HOLDS, figure="10", kind="check")
+    checks = _rows(Outcome.FAILS, Outcome.HOLDS, figure="10", kind="check", ident="check")
     assert summary.summarise(checks, {}) == []
     entries = summary.summarise(_rows(A, figure="10") + checks, {})
     assert [e.outcome for e in entries] == [FigureOutcome.REPRODUCED]
-    assert entries[0].reason.startswith("1 of 1 rows agree")
+    assert entries[0].reason.startswith("1 of 1 claims agree")
 
 
 def test_entries_follow_the_paper_order_with_thumbnails_and_headlines():
@@ -109,7 +140,9 @@ def test_the_page_answers_on_its_first_screen(page):
     image = next(i for i, line in enumerate(lines, 1) if ".. image::" in line)
     assert max(title, counts, table) <= FIRST_SCREEN_LINES, (title, counts, table)
     assert image <= FIRST_FIGURE_LINE, image
-    assert lines[counts - 1] == summary.count_sentence(_entries(page))
+    entries = _entries(page)
+    assert lines[counts - 1] == summary.count_sentence(entries)
+    assert lines.index(summary.claims_sentence(entries)) + 1 <= FIRST_SCREEN_LINES
 
 
 def test_readme_says_what_the_paper_scale_page_found():

@@ -109,7 +109,7 @@ def _add_scale_options(p):
                            "2 cores (the default)")
     size.add_argument("--medium", dest="scale", action="store_const", const="medium",
                       help="N = 1024, L = 16R, 1000 taps, 2 seeds: about 25 minutes for "
-                           "every figure on 2 cores (doc/validation.rst)")
+                           "every figure on 2 cores (the smoke test doc/validation.rst)")
     size.add_argument("--full", dest="scale", action="store_const", const="full",
                       help="the paper's scale: N = 4096, L = 32R, 4000 taps, 10 seeds "
                            "(hours to days)")
@@ -166,7 +166,8 @@ def _add_report_parser(sub):
     report = sub.add_parser("report", help="every figure, then the validation report")
     _add_scale_options(report)
     report.add_argument("--from-data", action="store_true",
-                        help="rewrite OUT/validation.rst from the figure CSVs and report.json "
+                        help="rewrite OUT/validation.rst and its appendix pages "
+                             "(OUT/validation_*.rst) from the figure CSVs and report.json "
                              "already in OUT/validation (default OUT: the repository's doc/); "
                              "nothing is run or drawn")
     report.add_argument("--refit", action="store_true",

@@ -149,7 +149,8 @@ FULL = Scale(
 )
 
 #: Between the two: 1024 spheres (the paper's bed height on a 16R x 16R base), 1000 taps, two
-#: seeds; about 25 minutes on 2 cores. doc/validation.rst is made from this preset.
+#: seeds; about 25 minutes on 2 cores. The smoke test doc/validation.rst is made from this
+#: preset.
 MEDIUM = Scale(
     name="medium", N=1024, L=16.0, eta=1e-5, taps=1000, seeds=2, steady_last=250,
     fig2_eps=(5e-3, 5e-2, 0.15),

@@ -3,8 +3,10 @@
 
 One :class:`FigureEntry` per figure of the paper (claims of the register without a figure are
 grouped by their section), in the register's order. Its outcome follows from the verdicts of
-the figure's model rows by :func:`figure_outcome` (the rule :data:`OUTCOME_RULE` states); rows
-of kind "check" (the tools' consistency) are never counted. Its key number is the measure of
+the figure's model claims (one per claim, from its rows: :mod:`tapmc.paper.claims.aggregate`)
+by :func:`figure_outcome` (the rule :data:`OUTCOME_RULE` states); claims of kind "check" (the
+tools' consistency) are never counted, and a claim that could not fail for any compaction
+model (``could_fail = false``) never counts as agreeing. Its key number is the measure of
 the claim marked ``headline`` in the register (``claims.toml``), beside the paper's value.
 :func:`screen_rst` writes the screen at the top of the validation pages and
 :func:`readme_lines` the three lines of README.md's "What the validation found", from the same
@@ -19,6 +21,8 @@ import re
 from dataclasses import dataclass
 from pathlib import Path
 
+from .claims.aggregate import claim_verdicts
+from .claims.aggregate import count_sentence as claim_count_sentence
 from .claims.rules import Outcome
 
 #: the committed paper-scale page, which README.md's lines summarise and link
@@ -57,11 +61,17 @@ class FigureOutcome(enum.StrEnum):
 
 #: the rule of :func:`figure_outcome`, as the page prints it under the table
 OUTCOME_RULE = (
-    "A figure's outcome follows from the verdicts of its model rows in the table below (checks "
-    "of the tools are not counted): not tested when no row is decided; not reproduced when "
-    "the disagreeing rows are at least as many as the agreeing ones; reproduced when every "
-    "decided row agrees and no row is undecided for want of the paper's scale; reproduced "
-    "with a caveat otherwise (some rows disagree, or some are undecided for scale).")
+    "A figure's outcome follows from the verdicts of its claims about the model (one verdict "
+    "per claim, from its rows; checks of the tools are not counted, and a claim that could "
+    "not fail for any compaction model counts when it disagrees, never when it agrees): not "
+    "tested when no claim is decided; not reproduced when the disagreeing claims are at least "
+    "as many as the agreeing ones; reproduced when every decided claim agrees at our "
+    "precision and no claim is undecided for want of the paper's scale; reproduced with a "
+    "caveat otherwise (some claims disagree, agree only at the paper's precision, or are "
+    "undecided for scale).")
+
+#: the outcomes of a claim that count as agreeing with the paper
+AGREEING = (Outcome.AGREES, Outcome.AGREES_AT_PAPER_PRECISION)
 
 
 @dataclass(frozen=True)
@@ -70,7 +80,8 @@ class FigureEntry:
     section, ``title`` ("Fig. 2" or "Section II"), ``outcome`` and ``reason`` (the counts it
     follows from), ``headline`` (the key number, TAPMC's), ``paper`` (the paper's value beside
     it), ``png`` (the thumbnail, relative to the page; "" without a figure) and
-    ``disagreeing`` (the ids of the claims with a disagreeing row)."""
+    ``disagreeing`` (the ids of the claims that disagree) and ``claims`` (the verdicts of its
+    claims, :class:`~tapmc.paper.claims.aggregate.ClaimVerdict`)."""
 
     key: str
     title: str
@@ -81,6 +92,7 @@ class FigureEntry:
     paper: str
     png: str
     disagreeing: tuple = ()
+    claims: tuple = ()
 
 
 def _key(claim):
@@ -107,24 +119,27 @@ def group_rows(rows):
     return dict(sorted(groups.items(), key=order))
 
 
-def _undecided_for_scale(row):
-    return row.outcome == Outcome.UNDECIDED and bool(row.missing_scale)
-
-
-def figure_outcome(rows):
-    """(FigureOutcome, reason) of one figure's model rows by :data:`OUTCOME_RULE`."""
-    agree = sum(1 for r in rows if r.outcome == Outcome.AGREES)
-    disagree = sum(1 for r in rows if r.outcome == Outcome.DISAGREES)
-    scale = sum(1 for r in rows if _undecided_for_scale(r))
-    other = len(rows) - agree - disagree
-    reason = f"{agree} of {len(rows)} rows agree, {disagree} disagree, {other} undecided"
-    if scale:
-        reason += f" ({scale} for scale)"
+def figure_outcome(verdicts):
+    """(FigureOutcome, reason) of one figure's model claims (their
+    :class:`~tapmc.paper.claims.aggregate.ClaimVerdict`) by :data:`OUTCOME_RULE`."""
+    agreeing = [v for v in verdicts if v.outcome in AGREEING and v.claim.could_fail]
+    loose = sum(1 for v in agreeing if v.outcome != Outcome.AGREES)
+    disagree = sum(1 for v in verdicts if v.outcome == Outcome.DISAGREES)
+    scale = sum(1 for v in verdicts if v.undecided_for_scale)
+    constructed = sum(1 for v in verdicts if v.outcome in AGREEING and not v.claim.could_fail)
+    undecided = len(verdicts) - len(agreeing) - disagree - constructed
+    agree = len(agreeing)
+    reason = (f"{agree} of {len(verdicts)} claims agree"
+              + (f" ({loose} at the paper's precision only)" if loose else "")
+              + f", {disagree} {'disagrees' if disagree == 1 else 'disagree'}, "
+              f"{undecided} undecided" + (f" ({scale} for scale)" if scale else ""))
+    if constructed:
+        reason += f", {constructed} could not fail"
     if agree + disagree == 0:
         return FigureOutcome.NOT_TESTED, reason
     if disagree >= agree:
         return FigureOutcome.NOT_REPRODUCED, reason
-    if disagree == 0 and not scale:
+    if disagree == 0 and not scale and not loose:
         return FigureOutcome.REPRODUCED, reason
     return FigureOutcome.CAVEAT, reason
 
@@ -168,16 +183,17 @@ def summarise(rows, files):
     csv))."""
     entries = []
     for key, group in group_rows(rows).items():
-        outcome, reason = figure_outcome(group)
+        verdicts = claim_verdicts(group)
+        outcome, reason = figure_outcome(verdicts)
         head = headline_row(group)
         png = files.get(f"fig{key}", ("",))[0]
-        disagreeing = tuple(dict.fromkeys(r.claim.id for r in group
-                                          if r.outcome == Outcome.DISAGREES))
+        disagreeing = tuple(v.claim.id for v in verdicts if v.outcome == Outcome.DISAGREES)
         entries.append(FigureEntry(
             key=key, title=f"Fig. {key}" if key.isdigit() else f"Section {key}",
             topic=TOPICS.get(key, group[0].claim.claim), outcome=outcome, reason=reason,
             headline=_headline_text(head), paper=head.claim.paper if head else "",
-            png=f"validation/{Path(png).name}" if png else "", disagreeing=disagreeing))
+            png=f"validation/{Path(png).name}" if png else "", disagreeing=disagreeing,
+            claims=tuple(verdicts)))
     return entries
 
 
@@ -193,6 +209,13 @@ def count_sentence(entries):
             f"{n[FigureOutcome.REPRODUCED]} reproduced, {n[FigureOutcome.CAVEAT]} reproduced "
             f"with a caveat, {n[FigureOutcome.NOT_REPRODUCED]} not reproduced, "
             f"{n[FigureOutcome.NOT_TESTED]} not tested.")
+
+
+def claims_sentence(entries):
+    """The claim counts of the entries' model claims
+    (:func:`tapmc.paper.claims.aggregate.count_sentence`): reproduced physics apart from
+    claims that could not fail, every outcome counted."""
+    return claim_count_sentence([v for e in entries for v in e.claims])
 
 
 def open_questions(entries):
@@ -215,6 +238,7 @@ def screen_rst(entries, finding=""):
     number, the paper's value, thumbnail), the rule, and the open questions (``finding``: the
     irreversible-branch finding of section III.B, first of them when given)."""
     lines = [SCREEN_TITLE, "-" * len(SCREEN_TITLE), "", count_sentence(entries), "",
+             claims_sentence(entries), "",
              ".. list-table::", "   :header-rows: 1", "   :widths: 18 22 26 16 18", "",
              "   * - Figure", "     - Outcome", "     - Key number (TAPMC)", "     - Paper",
              "     - Figure"]
@@ -227,14 +251,14 @@ def screen_rst(entries, finding=""):
 
 
 def readme_lines(entries):
-    """The three lines of README.md's "What the validation found" (from the paper-scale
-    page's entries): the counts, the open questions, the link."""
+    """The lines of README.md's "What the validation found" (from the paper-scale page's
+    entries): the figures' counts, the claims' counts, the open questions, the link."""
     open_titles = [f"{e.title}, {e.topic} ({', '.join(e.disagreeing)})" for e in entries
                    if e.disagreeing]
-    return [count_sentence(entries),
-            "Open questions, where rows disagree: " + ("; ".join(open_titles) or "none") + ".",
+    return [count_sentence(entries), claims_sentence(entries),
+            "Open questions, where claims disagree: " + ("; ".join(open_titles) or "none") + ".",
             f"Every figure, row and rule: [{PAPER_SCALE_PAGE}]({PAPER_SCALE_PAGE})."]
 
 
 __all__ = ["FigureEntry", "FigureOutcome", "OUTCOME_RULE", "summarise", "figure_outcome",
-           "screen_rst", "readme_lines", "open_questions", "counts"]
+           "screen_rst", "readme_lines", "open_questions", "counts", "claims_sentence"]

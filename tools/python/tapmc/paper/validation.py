@@ -1,13 +1,17 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 """The validation report (``tapmc-paper report``): the numbers of Philippe & Bideau next to
-TAPMC's, computed from a campaign, written as ``validation.rst`` with the figures embedded.
+TAPMC's, computed from a campaign, written as ``validation.rst`` with the figures embedded,
+and its appendix pages beside it (:mod:`tapmc.paper.validation_appendix`).
 
 The rows are the claims register (``tapmc/paper/claims.toml``, :mod:`tapmc.paper.claims`):
 every claim of the paper with the statistic that tests it, its rule, where its tolerance comes
 from and the runs that decide it. Every verdict is computed from the figure CSVs by the rule
-printed next to it (:data:`RULES`); nothing is written by hand. Verdicts use Student's t
+of its appendix (:data:`RULES`); nothing is written by hand. Verdicts use Student's t
 quantile for the measure's degrees of freedom (seeds - 1), so two seeds decide only large
-effects, and a claim the data cannot decide is reported "undecided", with the reason.
+effects, and a claim the data cannot decide is reported "undecided", with the reason. The main
+page shows the answer on one screen (:mod:`tapmc.paper.summary`), then one row per claim, its
+verdict following from its rows (:mod:`tapmc.paper.claims.aggregate`), then the figures; a
+campaign below the paper's size gives a smoke test of the same claims.
 """
 
 from __future__ import annotations
@@ -22,9 +26,6 @@ from pathlib import Path
 
 import numpy as np
 
-from tapmc.fluctuations import DEFAULT_BATCHES
-from tapmc.pores import JACKKNIFE_BLOCKS
-from tapmc.profiles import PROFILE_JACKKNIFE_BLOCKS
 from tapmc.readers import TapmcFormatError
 
 from . import FIGURES
@@ -32,10 +33,13 @@ from . import _plotting as P
 from . import _runs
 from . import claims, paper_ramp, questions
 from . import summary as summary_screen
-from .claims import fmt
+from .claims import fmt, scale_aspects
+from .claims.aggregate import AGGREGATION_SENTENCE, claim_verdicts
 from .front import bias_sentence  # what the redeposition setting costs in accuracy
 from .front import read_summary as read_front_summary
 from .scales import SCALES
+from .validation_appendix import (APPENDICES, claim_label, escape_bars, render_appendices,
+                                  scale_text, where)
 
 #: the text of each rule of tapmc.paper.claims, as the report prints it (each rule's own
 #: text: tapmc.paper.claims.rules).
@@ -51,22 +55,6 @@ SUMMARY_FILE = "report.json"
 _SCALE_KEYS = ("taps", "steady_last", "fig2_eps", "steady sqrt(eps)", "ramp_sqrt0",
                "ramp_dsqrt", "ramp_levels", "ramp_taps_per_level", "ageing_eps",
                "ageing_taps", "ageing_waiting_times", "profile_eps", "pore_eps", "dump_times")
-
-
-#: how a value of one run per point (the paper's protocol) gets its error, stated under the rules
-ONE_RUN_ERRORS = (
-    "Errors of one run per point (the paper's protocol), where seeds give none: a time average "
-    f"(steady state, zone means, halves) has the batch-means error over its taps "
-    f"({DEFAULT_BATCHES} batches; t with {DEFAULT_BATCHES - 1} degrees of freedom); a quantity "
-    "of one packing has the spatial jackknife over lateral blocks of the packing (pores: "
-    f"{JACKKNIFE_BLOCKS} x {JACKKNIFE_BLOCKS} blocks, {JACKKNIFE_BLOCKS ** 2 - 1} degrees of "
-    f"freedom; the profile's gradient alpha: {PROFILE_JACKKNIFE_BLOCKS} x "
-    f"{PROFILE_JACKKNIFE_BLOCKS}, {PROFILE_JACKKNIFE_BLOCKS ** 2 - 1}); a spectrum has the "
-    "periodogram's own errors, known exactly "
-    "(the normal quantile); where one packing cannot give an error (P0, the initial packing, the "
-    "paper's F.B.C. start) the configurations of tapmc-paper question give it, as the row "
-    "says. These errors are within one realization: the spread between realizations is not in "
-    "them.")
 
 
 def campaign_summary(campaign):
@@ -267,66 +255,85 @@ CAPTIONS = {
 }
 
 
-def _where(claim):
-    return f"{claim.section}" + (f", Fig. {claim.figure}" if claim.figure else "")
+#: the pages of the two reports, as documents of the documentation (the two link each other)
+PAPER_SCALE_DOC = "/paper_scale/validation"
+SMOKE_TEST_DOC = "/validation"
 
 
-def _escape_bars(text):
-    """Text with its | escaped for reStructuredText (|value| is no substitution)."""
-    return text.replace("|", "\\|")
+#: longest TAPMC cell of the main table, in characters: about five lines of its column on a
+#: screen (issue 42 found cells of 600 characters); a longer measure is cut at a "; " and the
+#: cell links the whole text on the claims' appendix
+MAIN_CELL_CHARS = 240
 
 
-def _rst_table(rows, run_note=""):
-    """The answer to "how close is TAPMC to the paper": one row per measured claim;
-    ``run_note``: how the one-run errors were scaled to realizations (none: not measured)."""
+def _brief(text):
+    """``text`` cut after its last "; " within :data:`MAIN_CELL_CHARS` (at that length when it
+    has none), "..." marking the cut; (text, whether it was cut)."""
+    if len(text) <= MAIN_CELL_CHARS:
+        return text, False
+    head = text[:MAIN_CELL_CHARS]
+    cut = head.rfind("; ")
+    return (head[:cut] if cut > 0 else head).rstrip() + " ...", True
+
+
+def _claims_table(verdicts, prefix):
+    """The answer to "how close is TAPMC to the paper": one row per claim, with the verdict
+    its rows give it (:mod:`tapmc.paper.claims.aggregate`); a claim of several rows shows
+    the row its verdict rests on and links the table of all of them."""
     lines = [".. list-table::", "   :header-rows: 1", "   :widths: 8 30 14 20 8 20", "",
              "   * - Where", "     - Claim", "     - Paper", "     - TAPMC", "     - Paper scale?",
              "     - Verdict [rule]"]
-    for row in rows:
-        c = row.claim
-        claim = c.claim + (f" ({row.label})" if row.label else "")
-        scale = "no: " + ", ".join(row.missing_scale) if row.missing_scale else "yes"
-        lines += [f"   * - {_where(c)}", f"     - {claim}", f"     - {c.paper}",
-                  f"     - {row.measure.text()}", f"     - {scale}",
-                  f"     - {_escape_bars(str(row.verdict))} [{c.rule}]"]
-    lines += ["", "Rules of the verdicts (t: the two-sided 95 % quantile of Student's t with "
-              "the measure's degrees of freedom, seeds - 1 for a mean over seeds):", ""]
-    used = []
-    for row in rows:
-        if row.claim.rule not in used:
-            used.append(row.claim.rule)
-    lines += [f"* [{key}] {_escape_bars(RULES[key])}" for key in used]
-    lines += ["", ONE_RUN_ERRORS + (" " + run_note if run_note else "")]
-    lines += ["", "\"Paper scale?\" says whether the campaign (or, for a measurement of its "
-              "own such as a knob scan, its runs) had what the claim needs of the "
-              "paper's scale (size: N = 4096 in a 32R box; taps: 4000 per run; ramp_taps: 4000 "
-              "per level; eta: 1e-7); without it the statistic is shown and the verdict is "
-              "undecided. One exception: a ramp of fewer taps per level decides a claim of "
-              "<Phi^c> on its branches when ``tapmc-paper question ramp-levels`` measured "
-              "how far 4000 taps per level move the levels (two levels or more of every branch "
-              "the claim reads, of the ramp the claim reads; the shifts +- their t error span "
-              "a branch's range; a difference of two branches moves by the difference of their "
-              "ranges; a ramp's turning level counts alone; the critical (sqrt eps)*: every "
-              "ramp's change on the way down within its own range) and the verdict is the same "
-              "anywhere within that range; the verdict says so.", ""]
+    for verdict in verdicts:
+        c, shown = verdict.claim, verdict.shown_row()
+        claim = f"``{c.id}``: {escape_bars(c.claim)}"
+        measure = shown.measure.text()
+        if len(verdict.rows) > 1 and shown.label:
+            measure = f"{shown.label}: {measure}"
+        elif shown.label:
+            claim += f" ({escape_bars(shown.label)})"
+        measure, cut = _brief(measure)
+        measure = escape_bars(measure)
+        link = claim_label(prefix, c.id)
+        if len(verdict.rows) > 1:
+            measure += f" (:ref:`all {len(verdict.rows)} rows <{link}>`)"
+        elif cut:
+            measure += f" (:ref:`in full <{link}>`)"
+        if not c.could_fail:
+            claim += " [could not fail for any compaction model]"
+        lines += [f"   * - {where(c)}", f"     - {claim}", f"     - {escape_bars(c.paper)}",
+                  f"     - {measure}", f"     - {scale_text(verdict.rows)}",
+                  f"     - {escape_bars(verdict.text())} [{c.rule}]"]
     return lines
 
 
-def _register_table(rows):
-    """Where each claim's tolerance comes from and which runs decide it (one line a claim)."""
-    lines = [".. list-table::", "   :header-rows: 1", "   :widths: 14 8 22 28 28", "",
-             "   * - Claim", "     - Where", "     - Statistic", "     - Tolerance from",
-             "     - Decided by"]
-    seen = set()
-    for row in rows:
-        c = row.claim
-        if c.id in seen:
-            continue
-        seen.add(c.id)
-        lines += [f"   * - ``{c.id}``", f"     - {_where(c)}",
-                  f"     - ``{c.statistic}``" if c.statistic else "     - (none yet)",
-                  f"     - {c.tolerance}", f"     - {c.decided_by}"]
-    return lines
+def _label_prefix(summary):
+    """The prefix of the claims' labels: the campaign's scale (the two reports of one
+    documentation have two)."""
+    return summary.get("scale") or "campaign"
+
+
+def _is_paper_scale(summary):
+    """Whether the campaign has the paper's size (else its page is a smoke test)."""
+    return "size" in scale_aspects(summary)
+
+
+def _title_and_intro(summary):
+    """The page's title and its first paragraph: the validation at the paper's size, else a
+    smoke test of the same claims."""
+    common = ("This page is written by ``tapmc-paper report`` from one campaign: every number "
+              "below is computed from the campaign's runs and every verdict from the numbers, "
+              "by the rules of its appendix. The rows are the claims register "
+              "(``tools/python/tapmc/paper/claims.toml``): every claim of the paper, with the "
+              "statistic that tests it. TAPMC values are means over seeds with their standard "
+              "errors (sem); the paper gives single runs without error bars.")
+    if _is_paper_scale(summary):
+        return ("Validation against Philippe & Bideau", common + " The smoke test "
+                f"(:doc:`{SMOKE_TEST_DOC}`) runs the same claims on a campaign below the "
+                "paper's size.")
+    return ("Smoke test against Philippe & Bideau",
+            "This page is a smoke test: a campaign below the paper's size, run through the "
+            "same claims to show that the pipeline works; its verdicts are not the validation, "
+            f"which is on the paper-scale page (:doc:`{PAPER_SCALE_DOC}`). " + common)
 
 
 def _paper_ramp_finding(files, summary):
@@ -342,50 +349,28 @@ def _paper_ramp_finding(files, summary):
                    + "`` (``tapmc-paper paper-ramp``).")
 
 
-def render(summary, files):
-    """The text of validation.rst from the campaign summary and the figure files (name ->
-    (png, csv))."""
-    rows, notes, figures, run_note = _rows_and_notes(summary, files)
-    model = [r for r in rows if r.claim.kind == "model"]
-    count = {o: sum(1 for r in model if r.outcome == o)
-             for o in ("agrees", "disagrees", "undecided")}
-    n_claims = len({r.claim.id for r in model})
-    lines = [".. TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.", "",
-             "Validation against Philippe & Bideau", "=" * 36, "",
-             "This page is written by ``tapmc-paper report`` from one campaign: every number "
-             "below is computed from the campaign's runs and every verdict from the numbers, "
-             "by the rule stated next to it. The rows are the claims register "
-             "(``tools/python/tapmc/paper/claims.toml``): every claim of the paper, with the "
-             "statistic that tests it. TAPMC values are means over seeds with their standard "
-             "errors (sem); the paper gives single runs without error bars.", "",
-             describe_scale(summary), ""]
-    lines += summary_screen.screen_rst(summary_screen.summarise(rows, files),
-                                       _paper_ramp_finding(files, summary))
-    lines += [f"Summary: {n_claims} claims of the paper in {len(model)} rows: "
-             f"{count['agrees']} agree, {count['disagrees']} disagree, {count['undecided']} "
-             "are undecided (the reason is in the verdict: too few seeds, a scale below the "
-             "paper's, or runs this campaign does not have).", ""]
-    lines += ["How close is TAPMC to the paper", "-" * 31, ""]
-    lines += _rst_table(rows, run_note)
-    lines += ["", f"The numbers come from the figure CSVs and ``{FIG_DIR}/{SUMMARY_FILE}`` (the "
-              "campaign's scale and initial packings), committed with this page; rewrite it "
-              "from them (a test checks that this gives the committed page):", "",
-              ".. snippet: skip rewrites this page; tests/python/test_validation_report.py "
-              "checks that it gives the committed text", "",
-              ".. code-block:: sh", "",
-              "   build/tapmc-paper report --from-data --out doc", "",
-              "or run a campaign and draw everything anew (``--full`` for the paper's scale, "
-              "hours to days):", "",
-              ".. snippet: skip runs a whole campaign",
-              "", ".. code-block:: sh", "",
-              "   build/tapmc-paper report --quick --campaign tapmc-paper-quick --out doc", "",
-              "The claims register", "-" * 19, "",
-              "Where each claim's tolerance comes from and which runs decide it:", ""]
-    lines += _register_table(rows) + [""]
-    if files:
-        folder = Path(next(iter(files.values()))[1]).parent / questions.FOLDER
+def _appendix_line():
+    return ["Appendices: " + "; ".join(f":doc:`{title.lower()} <{name}>`"
+                                       for name, title in APPENDICES.items()) + ".", ""]
 
-        lines += questions.render_section(folder, figures, summary["eta"], read_front_summary())
+
+def _rewrite_lines():
+    return [f"The numbers come from the figure CSVs and ``{FIG_DIR}/{SUMMARY_FILE}`` (the "
+            "campaign's scale and initial packings), committed with this page; rewrite it and "
+            "its appendices from them (a test checks that this gives the committed pages):", "",
+            ".. snippet: skip rewrites this page; tests/python/test_validation_report.py "
+            "checks that it gives the committed text", "",
+            ".. code-block:: sh", "",
+            "   build/tapmc-paper report --from-data --out doc", "",
+            "or run a campaign and draw everything anew (``--full`` for the paper's scale, "
+            "hours to days):", "",
+            ".. snippet: skip runs a whole campaign",
+            "", ".. code-block:: sh", "",
+            "   build/tapmc-paper report --quick --campaign tapmc-paper-quick --out doc", ""]
+
+
+def _figure_lines(files, notes):
+    lines = []
     for name in FIGURES:
         if name not in files:
             continue
@@ -398,18 +383,66 @@ def render(summary, files):
                   "n).", ""]
         if name in notes:
             lines += [notes[name], ""]
+    return lines
+
+
+def _main_page(summary, files, rows, verdicts, notes, prefix):
+    """The text of validation.rst: the answer on one screen, one row per claim, the figures."""
+    title, intro = _title_and_intro(summary)
+    lines = [".. TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.", "",
+             title, "=" * len(title), "", intro, "", describe_scale(summary), ""]
+    lines += _appendix_line()
+    lines += summary_screen.screen_rst(summary_screen.summarise(rows, files),
+                                       _paper_ramp_finding(files, summary))
+    lines += ["How close is TAPMC to the paper", "-" * 31, "",
+              AGGREGATION_SENTENCE + " The rules of "
+              "the rows' verdicts, the errors of one run and what \"Paper scale?\" means: "
+              ":doc:`validation_rules`.", ""]
+    lines += _claims_table(verdicts, prefix) + [""]
+    lines += _rewrite_lines()
+    lines += _figure_lines(files, notes)
     return "\n".join(lines).rstrip() + "\n"
 
 
+def render_pages(summary, files):
+    """file name -> text of every page of the report: validation.rst (:func:`render`) and
+    its appendices (:data:`~tapmc.paper.validation_appendix.APPENDICES`), from one evaluation
+    of the register on the campaign summary and the figure files (name -> (png, csv))."""
+    rows, notes, figures, run_note = _rows_and_notes(summary, files)
+    verdicts = claim_verdicts(rows)
+    prefix = _label_prefix(summary)
+    folder, groups = None, {}
+    if files:
+        folder = Path(next(iter(files.values()))[1]).parent / questions.FOLDER
+        groups = questions.render_parts(folder, figures, summary["eta"], read_front_summary())
+    pages = {"validation": _main_page(summary, files, rows, verdicts, notes, prefix)}
+    pages.update(render_appendices(verdicts, run_note, prefix, folder, groups))
+    return {f"{name}.rst": text for name, text in pages.items()}
+
+
+def render(summary, files):
+    """The text of validation.rst from the campaign summary and the figure files (name ->
+    (png, csv))."""
+    return render_pages(summary, files)["validation.rst"]
+
+
 def write_rst(summary, files, out_dir):
-    """Write out_dir/validation.rst (:func:`render`) and the summary as
-    out_dir/validation/report.json, each whole or not at all (the page is rendered before
-    either is written); returns the path of the rst."""
+    """Write out_dir/validation.rst and its appendix pages (:func:`render_pages`) and the
+    summary as out_dir/validation/report.json, each whole or not at all (every page is
+    rendered before any file is written); returns the path of validation.rst."""
     out_dir = Path(out_dir)
-    page = render(summary, files)
+    pages = render_pages(summary, files)
     (out_dir / FIG_DIR).mkdir(parents=True, exist_ok=True)
     _write_whole(out_dir / FIG_DIR / SUMMARY_FILE, json.dumps(summary, indent=1) + "\n")
-    return _write_whole(out_dir / "validation.rst", page)
+    return _write_pages(out_dir, pages)
+
+
+def _write_pages(out_dir, pages):
+    """Write every page of ``pages`` (file name -> text) into out_dir, each whole; returns
+    the path of validation.rst."""
+    for name, text in pages.items():
+        _write_whole(Path(out_dir) / name, text)
+    return Path(out_dir) / "validation.rst"
 
 
 def committed_inputs(out_dir):
@@ -548,15 +581,16 @@ def _replace_csv(table, csv):
 
 
 def regenerate(out_dir):
-    """Rewrite out_dir/validation.rst from the committed data alone (report.json and the
-    figure CSVs in out_dir/validation, checked first by :func:`committed_inputs`); nothing is
-    run or drawn. Returns its path."""
+    """Rewrite out_dir/validation.rst and its appendix pages from the committed data alone
+    (report.json and the figure CSVs in out_dir/validation, checked first by
+    :func:`committed_inputs`); nothing is run or drawn. Returns the path of validation.rst."""
     summary, files = committed_inputs(out_dir)
-    return _write_whole(Path(out_dir) / "validation.rst", render(summary, files))
+    return _write_pages(out_dir, render_pages(summary, files))
 
 
 def report(campaign, out_dir, drawn=None, planned_runs=None):
-    """Write ``out_dir/validation.rst`` and the figures it embeds under ``out_dir/validation/``.
+    """Write ``out_dir/validation.rst``, its appendix pages and the figures it embeds under
+    ``out_dir/validation/``.
 
     ``drawn``: name -> (png, csv) of figures already drawn (moved into ``out_dir/validation``);
     the figures not given are drawn here. ``planned_runs``: the number of runs of the whole
@@ -582,5 +616,6 @@ def report(campaign, out_dir, drawn=None, planned_runs=None):
     return write_rst(summary, files, out_dir)
 
 
-__all__ = ["report", "regenerate", "refit", "render", "write_rst", "campaign_summary",
+__all__ = ["report", "regenerate", "refit", "render", "render_pages", "write_rst",
+           "campaign_summary",
            "committed_inputs", "read_summary", "RULES"]

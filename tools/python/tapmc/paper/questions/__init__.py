@@ -3,10 +3,10 @@
 one owner of its CSV (its header, ``save`` and ``load``), its measurement (``measure(args)``:
 LAMMPS runs through tapmc.campaign, see :mod:`.launch`, or a re-analysis of the campaign's
 finished runs, ``analyse``) and its page text (``render``). :data:`QUESTIONS` lists them;
-``tapmc-paper question NAME`` runs one (:mod:`.command`), and :func:`render_section` writes
-the page's section from the CSVs in ``<report>/validation/questions/``: every number and
-every conclusion there is computed from those files, so the report can be rewritten from
-committed data.
+``tapmc-paper question NAME`` runs one (:mod:`.command`), and :func:`render_parts` writes
+the sections of the validation's appendix pages from the CSVs in
+``<report>/validation/questions/``: every number and every conclusion there is computed from
+those files, so the report can be rewritten from committed data.
 
 * first-tap (``first_tap.csv``): <Phi^c> before and after one tap from fresh packings, at
   several eta: whether the drop of <Phi^c> at the first tap of P.B.C. runs survives a tighter
@@ -80,8 +80,39 @@ def _commands(folder):
     return ", ".join(f"``{n}``" for n in names)
 
 
+#: the heading of each question's section on the appendix pages
+HEADINGS = {
+    first_tap: "The first tap (first-tap)", noise_floor: "The noise floor (noise-floor)",
+    spectral_window: "The spectrum's window (spectral-window)",
+    realization_scatter: "Errors of one run against realizations (realization-scatter)",
+    packing_scatter: "Errors of one packing against realizations (packing-scatter)",
+    pbc_course: "The course of P.B.C. runs (pbc-course)", integrity: "Integrity (integrity)",
+    early_taps: "The early taps (early-taps)",
+    fit_surrogates: "Eq. 3 and eq. 4 fitted run by run (fit-surrogates)",
+    seed_fits: "Eq. 3 and eq. 4 fitted over realizations (seed-fits)",
+    initial_packing: "The initial packing (initial-packing)",
+    p0_configs: "P0 over configurations (p0-configs)",
+    ramp_levels: "Taps per ramp level (ramp-levels)", ramp_pores: "Pores of the ramp (ramp-pores)",
+    lateral_first_tap: "The lateral zone's first tap (lateral-first-tap)",
+    p0_fluid: "P0 of an equilibrium fluid (p0-fluid)", pore_shares: "Fig. 10's pores",
+    final_phi: "The final <Phi^c> at the front's settings"}
+#: the calibrations of the errors and the integrity check: their own appendix page (the
+#: other questions are on the questions' page)
+CHECKS = (realization_scatter, packing_scatter, integrity)
+#: the groups of :func:`render_parts`
+GROUPS = ("checks", "questions")
+
+
+def _section(module, lines):
+    """A question's lines under its heading ([] when it has none)."""
+    if not lines:
+        return []
+    title = HEADINGS[module]
+    return [title, "~" * len(title), ""] + lines
+
+
 def _measured(folder, figures, factors):
-    """The sections of the questions with a CSV, in the page's order."""
+    """(module, lines) of the questions with a CSV, in the page's order."""
     def there(module):
         return (folder / module.CSV).is_file()
 
@@ -91,41 +122,69 @@ def _measured(folder, figures, factors):
                           (packing_scatter, ()), (pbc_course, (factors,)), (integrity, ()),
                           (early_taps, ())):
         if there(module):
-            parts += module.render(folder / module.CSV, *extra)
+            parts.append((module, module.render(folder / module.CSV, *extra)))
     if there(fit_surrogates):
         seeds = seed_fits.load(folder / seed_fits.CSV) if there(seed_fits) else []
-        parts += fit_surrogates.render(folder / fit_surrogates.CSV, seeds)
+        parts.append((fit_surrogates, fit_surrogates.render(folder / fit_surrogates.CSV, seeds)))
     for module, extra in ((seed_fits, ()), (initial_packing, ()), (p0_configs, ()),
                           (ramp_levels, (figures.get("fig4"), factors)), (ramp_pores, ()),
                           (lateral_first_tap, (figures.get("fig8"),))):
         if there(module):
-            parts += module.render(folder / module.CSV, *extra)
+            parts.append((module, module.render(folder / module.CSV, *extra)))
     for knob in SCANS:
         for scan in scan_files(folder, knob):
-            parts += knob_scan.render(scan, knob)
+            title = f"The {knob} scan ({Path(scan).name})"
+            parts.append((None, [title, "~" * len(title), ""] + knob_scan.render(scan, knob)))
     if there(p0_fluid):
-        parts += p0_fluid.render(folder / p0_fluid.CSV, figures.get("fig9"))
+        parts.append((p0_fluid, p0_fluid.render(folder / p0_fluid.CSV, figures.get("fig9"))))
     return parts
 
 
-def render_section(folder, figures=None, etas=(), front_rows=None):
-    """The rst lines of the section, or [] when ``folder`` holds none of the CSVs.
-    ``figures``: name -> tapmc.paper.claims.FigureData of the same report (Fig. 3's k, Fig. 9's
-    packing)."""
+def _sections(folder, figures, etas, front_rows):
+    """(group, lines) of every question with a CSV in ``folder``, each under its heading, in
+    the page's order: "checks" for :data:`CHECKS`, "questions" for the others."""
     folder = Path(folder)
     figures = figures or {}
     scatter = folder / realization_scatter.CSV
     factors = realization_factors(load_scatter(scatter)) if scatter.is_file() else {}
-    parts = _measured(folder, figures, factors)
-    parts += pore_shares.render(figures.get("fig10")) if parts else []
-    if parts:
-        parts += final_phi.render(figures.get("fig9"), list(etas), front_rows or [])
+    measured = _measured(folder, figures, factors)
+    if not measured:
+        return []
+    measured.append((pore_shares, pore_shares.render(figures.get("fig10"))))
+    measured.append((final_phi, final_phi.render(figures.get("fig9"), list(etas),
+                                                 front_rows or [])))
+    return [("checks" if module in CHECKS else "questions",
+             _section(module, lines) if module is not None else lines)
+            for module, lines in measured]
+
+
+def render_parts(folder, figures=None, etas=(), front_rows=None):
+    """The rst lines of the questions by group (:data:`GROUPS`): "checks" (the calibrations
+    of the errors and the integrity check, :data:`CHECKS`) and "questions" (the others), each
+    question under its heading; every group [] when ``folder`` holds none of the CSVs.
+    ``figures``: name -> tapmc.paper.claims.FigureData of the same report (Fig. 3's k, Fig. 9's
+    packing)."""
+    groups = {name: [] for name in GROUPS}
+    for group, lines in _sections(folder, figures, etas, front_rows):
+        groups[group] += lines
+    return groups
+
+
+def introduction(folder):
+    """The sentence that names the commands behind the questions' CSVs in ``folder``."""
+    return (f"Measured by ``tapmc-paper question NAME`` ({_commands(Path(folder))}), whose "
+            "CSVs are in ``validation/questions/``; the text below is computed from them.")
+
+
+def render_section(folder, figures=None, etas=(), front_rows=None):
+    """The rst lines of every question (:func:`render_parts`), in the page's order, under one
+    title, or [] when ``folder`` holds none of the CSVs."""
+    parts = [line for _, lines in _sections(folder, figures, etas, front_rows)
+             for line in lines]
     if not parts:
         return []
-    return [TITLE, "-" * len(TITLE), "",
-            f"Measured by ``tapmc-paper question NAME`` ({_commands(folder)}), whose "
-            "CSVs are in ``validation/questions/``; the text below is computed from them.", ""] \
-        + parts
+    return [TITLE, "-" * len(TITLE), "", introduction(folder), ""] + parts
 
 
-__all__ = ["render_section", "FOLDER", "QUESTIONS", "QuestionError"]
+__all__ = ["render_section", "render_parts", "introduction", "FOLDER", "QUESTIONS", "GROUPS",
+           "QuestionError"]
