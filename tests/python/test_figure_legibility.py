@@ -16,6 +16,8 @@ cannot pass by sharing a mistake with its check; the fraction is the one placeme
 
 import math
 import os
+import shutil
+import subprocess
 import sys
 from pathlib import Path
 
@@ -41,12 +43,14 @@ from tapmc.cylinder import Cylinder  # noqa: E402
 from tapmc.fluctuations import ErrorCalibration, PowerSpectrum, SteadyState  # noqa: E402
 from tapmc.hysteresis import BranchData, Hysteresis, RampBranches  # noqa: E402
 from tapmc.laws import InverseLogLaw  # noqa: E402
-from tapmc.paper import front, redraw  # noqa: E402
+from tapmc.paper import _plotting as P  # noqa: E402
+from tapmc.paper import fig8, front, redraw  # noqa: E402
 from tapmc.paper.front import page as front_page  # noqa: E402
 from tapmc.pores import PoreDistribution  # noqa: E402
 from tapmc.profiles import ProfileIncrease  # noqa: E402
 from tapmc.tube import TubeProfile  # noqa: E402
 from tapmc.tube_runs import RadialProfiles, TubeCompaction, TubeSettings  # noqa: E402
+from test_figure_results import fbc_campaign  # noqa: E402
 
 #: the folders of committed figures: the medium smoke test's and the paper-scale campaign's
 COMMITTED = ("doc/validation", "doc/paper_scale/validation")
@@ -156,6 +160,42 @@ def test_front_figures_are_readable(computed_front):
             assert states_settings(fig, ("N = ", "box", "taps", "seeds")), fig._suptitle
         finally:
             plt.close(fig)
+
+
+def test_a_figure_drawn_from_a_campaign_states_its_runs_settings(tmp_path):
+    """draw(campaign, out) states the settings of the campaign's runs (here the tiny scale of
+    test_figure_results.py: N = 64, L = 16R, eta = 1e-4, 8 taps, two seeds) and the seeds
+    behind the figure's own points."""
+    campaign = fbc_campaign(tmp_path, "walls", wall_phi0=0.35)
+    settings = P.run_settings(campaign.runs)
+    assert settings["sizes"] == [(64, 16.0)] and settings["seeds_per_point"] == [2, 2]
+    fig = fig8.plot(fig8.analyse(campaign), settings)
+    try:
+        assert fig._suptitle.get_text() == ("N = 64, box 16R x 16R; eta = 0.0001; 8 taps per "
+                                            "run; 2 seeds per point")
+        assert legend_problems(fig, "fig8 of a campaign") == []
+    finally:
+        plt.close(fig)
+    png, csv = fig8.draw(campaign, tmp_path / "figures")
+    assert png.is_file() and csv.is_file()
+
+
+def test_redraw_writes_the_png_of_each_committed_csv_and_no_csv(tmp_path):
+    """report --from-data --redraw (tapmc.paper.redraw.redraw): a PNG for each figure CSV of
+    OUT/validation, drawn with report.json's settings; the CSV is left as it was. Without
+    --from-data the option is a usage error (exit 2)."""
+    folder = tmp_path / "validation"
+    folder.mkdir()
+    for name in ("fig4.csv", "report.json"):
+        shutil.copy(SOURCE / COMMITTED[1] / name, folder / name)
+    before = (folder / "fig4.csv").read_bytes()
+    assert redraw.redraw(tmp_path) == [folder / "fig4.png"]
+    assert (folder / "fig4.png").stat().st_size > 0
+    assert (folder / "fig4.csv").read_bytes() == before
+    env = dict(os.environ, PYTHONPATH=str(SOURCE / "tools" / "python"))
+    out = subprocess.run([sys.executable, "-m", "tapmc.paper", "report", "--redraw"], env=env,
+                         capture_output=True, text=True, timeout=120)
+    assert out.returncode == 2 and "--redraw" in out.stderr
 
 
 def test_the_check_finds_a_legend_on_the_data_and_a_missing_label():

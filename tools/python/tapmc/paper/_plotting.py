@@ -239,8 +239,9 @@ def finish_figure(fig, settings=None, seeds=None):
     """``fig`` with its settings stated on top and laid out, its legends placed off the data
     for the final size of its axes (:func:`tapmc._legends.replace_legends`); returns it.
     ``settings``: the campaign's settings (:func:`run_settings`, or the report's report.json),
-    or the line itself (a string), None when not known; ``seeds``: the (fewest, most) seeds behind the figure's points
-    (:func:`plotted_seeds`), which the line states instead of the campaign's."""
+    or the line itself (a string), None when not known; ``seeds``: the (fewest, most) seeds
+    behind the figure's points (:func:`plotted_seeds`), which the line states instead of the
+    campaign's."""
     if settings:
         text = settings if isinstance(settings, str) else settings_text(settings, seeds)
         fig.suptitle(textwrap.fill(text, int(SETTINGS_CHARS_PER_INCH * fig.get_figwidth())),
