@@ -6,7 +6,7 @@ simulated), the front's figure from its committed runs, and every analysis class
 
 * both axes labelled;
 * a legend where the axes has two labelled series or more (lines and collections whose label
-  does not start with '_');
+  does not start with '_'), and where it has two data series or more, labelled or not;
 * no legend of the figure covers more than LEGEND_MAX_HIDDEN_FRACTION of the plotted points
   of any series of any of its axes (its window extent after ``fig.canvas.draw()``);
 * a paper-wing figure states its settings (N, the box, eta, taps, seeds) on top.
@@ -17,7 +17,6 @@ cannot pass by sharing a mistake with its check; the fraction is the one placeme
 import math
 import os
 import shutil
-import subprocess
 import sys
 from pathlib import Path
 
@@ -44,7 +43,7 @@ from tapmc.fluctuations import ErrorCalibration, PowerSpectrum, SteadyState  # n
 from tapmc.hysteresis import BranchData, Hysteresis, RampBranches  # noqa: E402
 from tapmc.laws import InverseLogLaw  # noqa: E402
 from tapmc.paper import _plotting as P  # noqa: E402
-from tapmc.paper import fig8, front, redraw  # noqa: E402
+from tapmc.paper import cli, fig8, front, redraw  # noqa: E402
 from tapmc.paper.front import page as front_page  # noqa: E402
 from tapmc.pores import PoreDistribution  # noqa: E402
 from tapmc.profiles import ProfileIncrease  # noqa: E402
@@ -110,6 +109,9 @@ def legend_problems(fig, where):
         labels = labelled_series(ax)
         if len(labels) >= 2 and ax.get_legend() is None:
             problems.append(f"{name}: {len(labels)} labelled series and no legend")
+        series = plotted_points(ax)
+        if len(series) >= 2 and ax.get_legend() is None:   # several curves, none named
+            problems.append(f"{name}: {len(series)} data series and no legend")
         for legend in legends:
             box = legend.get_window_extent(renderer)
             for label, p in plotted_points(ax):
@@ -180,7 +182,7 @@ def test_a_figure_drawn_from_a_campaign_states_its_runs_settings(tmp_path):
     assert png.is_file() and csv.is_file()
 
 
-def test_redraw_writes_the_png_of_each_committed_csv_and_no_csv(tmp_path):
+def test_redraw_writes_the_png_of_each_committed_csv_and_no_csv(tmp_path, capsys):
     """report --from-data --redraw (tapmc.paper.redraw.redraw): a PNG for each figure CSV of
     OUT/validation, drawn with report.json's settings; the CSV is left as it was. Without
     --from-data the option is a usage error (exit 2)."""
@@ -192,10 +194,9 @@ def test_redraw_writes_the_png_of_each_committed_csv_and_no_csv(tmp_path):
     assert redraw.redraw(tmp_path) == [folder / "fig4.png"]
     assert (folder / "fig4.png").stat().st_size > 0
     assert (folder / "fig4.csv").read_bytes() == before
-    env = dict(os.environ, PYTHONPATH=str(SOURCE / "tools" / "python"))
-    out = subprocess.run([sys.executable, "-m", "tapmc.paper", "report", "--redraw"], env=env,
-                         capture_output=True, text=True, timeout=120)
-    assert out.returncode == 2 and "--redraw" in out.stderr
+    with pytest.raises(SystemExit) as stop:
+        cli.main(["report", "--redraw"])
+    assert stop.value.code == 2 and "--redraw" in capsys.readouterr().err
 
 
 def test_the_check_finds_a_legend_on_the_data_and_a_missing_label():
@@ -216,6 +217,14 @@ def test_the_check_finds_a_legend_on_the_data_and_a_missing_label():
     assert any("axes 0: axis label missing" in p for p in problems)
     assert any("axes 0: a legend hides" in p for p in problems)
     assert any("axes 1: 2 labelled series and no legend" in p for p in problems)
+    fig, ax = plt.subplots()
+    ax.plot(x, x)
+    ax.plot(x, x ** 2)
+    ax.set_xlabel("x")
+    ax.set_ylabel("y")
+    problems = legend_problems(fig, "unnamed")
+    plt.close(fig)
+    assert problems == ["unnamed, axes 0: 2 data series and no legend"]
 
 
 # --- the analysis classes' plot(ax=None) on synthetic data -----------------------------------

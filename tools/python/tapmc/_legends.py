@@ -4,9 +4,10 @@ figures of :mod:`tapmc.paper`.
 
 A legend may hide at most :data:`LEGEND_MAX_HIDDEN_FRACTION` of the plotted points of any one
 series (:func:`hidden_points`). :func:`place_legend` tries the corners and edges of the axes
-in a fixed order and keeps the first location that hides no more (else the one that hides
-least); where every location inside hides data, the legend goes beside the axes, on the right.
-No matplotlib import here: the functions work on the axes they are given.
+in a fixed order and keeps the first location that hides no point, else the one that hides
+fewest within that allowance; where every location inside hides more, the legend goes beside
+the axes, on the right, and :func:`replace_legends` widens the figure for it. No matplotlib
+import here: the functions work on the axes they are given.
 """
 
 import math
@@ -17,8 +18,8 @@ import numpy as np
 #: The largest fraction of one series' plotted points that its axes' legend may cover. A
 #: series of fewer than 50 points (each sqrt(eps) of a bell, each frequency of a spectrum,
 #: each level of a ramp) is a set of measured numbers: none of them may be hidden. A time
-#: series of thousands of taps may brush a legend's corner with a few taps (2 % of 4000 is
-#: 80 taps, a tenth of a decade at the right of a log axis) without hiding its course.
+#: series of thousands of taps may brush a legend's corner with a few of its taps (80 of
+#: 4000) without hiding its course.
 LEGEND_MAX_HIDDEN_FRACTION = 0.02
 
 #: where a legend may sit inside the axes, in the order tried (matplotlib's location names)
@@ -109,18 +110,21 @@ def _cost(ax, legend, renderer):
     return over, sum(h / n for h, n in counts)
 
 
-def place_legend(ax, **kw):
+def place_legend(ax, later=False, **kw):
     """Draw the legend of ``ax`` (when it has labelled artists) where it hides no data:
     ``outside=True`` puts it beside the axes at once; otherwise the first location of
     :data:`INSIDE_LOCATIONS` that hides no point, else the one that hides fewest while
     covering no series beyond :data:`LEGEND_MAX_HIDDEN_FRACTION`, else beside the axes. The
     choice is made for the axes' present size: :func:`replace_legends` chooses again after a
-    layout change. Returns the legend."""
+    layout change; ``later=True`` leaves the choice to it (a figure laid out afterwards),
+    the legend drawn meanwhile at the first location. Returns the legend."""
     if not ax.get_legend_handles_labels()[0]:
         return None
     _REQUESTED[ax] = dict(kw)
     kw = dict(kw)
     kw.pop("loc", None)
+    if later:
+        return ax.legend(loc=INSIDE_LOCATIONS[0], **kw)
     if kw.pop("outside", False) or ax in _OUTSIDE:
         _OUTSIDE.add(ax)
         return ax.legend(**{**kw, **OUTSIDE})

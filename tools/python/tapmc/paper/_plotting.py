@@ -321,9 +321,10 @@ def errorbars(ax, x, mean, sem, label=None, **kw):
 
 
 def legend(ax, **kw):
-    """The legend of ``ax`` placed off the data (:func:`tapmc._legends.place_legend`:
-    ``outside=True`` beside the axes), only when the axis has labelled artists."""
-    return place_legend(ax, **kw)
+    """The legend of ``ax``, only when the axis has labelled artists, placed off the data
+    (:func:`tapmc._legends.place_legend`; ``outside=True`` beside the axes) once the figure
+    is laid out (:func:`finish_figure`, :func:`save_figure`)."""
+    return place_legend(ax, later=True, **kw)
 
 
 def fmt_eps(eps):

@@ -46,7 +46,8 @@ def figure_table(front, N):
 
 def plot(front, N, ax=None):
     """Panels a, b (bias against cost at each eps) and c (bias against taps); `ax`: three
-    axes, or None for a new figure. Returns the axes."""
+    axes, or None for a new figure. Returns the axes; their legends find their places off
+    the data when the figure is laid out (:func:`figure`, _plotting.finish_figure)."""
     if ax is None:
         _, ax = new_figure(nrows=1, ncols=3, height=3.6, width=4.2)
     table = figure_table(front, N)
