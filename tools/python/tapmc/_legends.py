@@ -96,13 +96,6 @@ def allowed_hidden(plotted, fraction=LEGEND_MAX_HIDDEN_FRACTION):
     return math.floor(fraction * plotted)
 
 
-def covered_series(ax, legend, renderer):
-    """The series (hidden, plotted) of ``ax`` that ``legend`` covers beyond
-    :data:`LEGEND_MAX_HIDDEN_FRACTION`."""
-    bbox = legend.get_window_extent(renderer)
-    return [(h, n) for h, n in hidden_points(ax, bbox) if h > allowed_hidden(n)]
-
-
 def _cost(ax, legend, renderer):
     """(series covered beyond the allowance, fraction of all points hidden): less is better."""
     counts = hidden_points(ax, legend.get_window_extent(renderer))
