@@ -259,14 +259,15 @@ def plotted_seeds(result):
     return (min(counts), max(counts)) if counts else None
 
 
-def run_settings(specs):
+def run_settings(specs, figure_runs=()):
     """The settings of a campaign's runs (``tapmc.campaign.RunSpec``s) in the fields of the
     report's report.json that :func:`settings_text` states: sizes [(N, L)], eta, taps,
     seeds_per_point [fewest, most] (runs whose names differ only in ``_s<seed>`` are one
-    point) and ramp_taps_per_level."""
+    point) and ramp_taps_per_level; with ``figure_runs`` (the runs of a figure whose result
+    does not record its eps: Figs. 5, 9, 10) also their ``eps`` and ``bc``."""
     specs = list(specs)
     points = Counter(re.sub(r"_s\d+$", "", s.name) for s in specs)
-    return {
+    out = {
         "sizes": sorted({(int(s.variables["N"]), float(s.variables["L"])) for s in specs
                          if "N" in s.variables}),
         "eta": sorted({float(s.variables["eta"]) for s in specs if "eta" in s.variables}),
@@ -276,14 +277,27 @@ def run_settings(specs):
         "ramp_taps_per_level": sorted({int(s.variables["P"]) for s in specs
                                        if s.input.name == "in.ramp" and "P" in s.variables}),
     }
+    if figure_runs:
+        out["eps"] = sorted({float(s.variables["eps"]) for s in figure_runs})
+        out["bc"] = sorted({str(s.variables["bc"]) for s in figure_runs})
+    return out
+
+
+#: how the settings line names the boundary conditions
+BC_LABEL = {"pbc": "P.B.C.", "fbc": "F.B.C."}
 
 
 def settings_text(summary, seeds=None):
     """One line stating a campaign's settings from :func:`run_settings` or report.json:
     sphere count and box (side L in sphere radii R), redeposition threshold eta, taps per run
-    (and per level of a ramp), seeds per point (``seeds``: the figure's own (fewest, most)).
-    A figure states its eps itself (legend or axis)."""
+    (and per level of a ramp), seeds per point (``seeds``: the figure's own (fewest, most)),
+    and the figure's boundary conditions and eps where given (``bc``, ``eps``: a figure that
+    does not state them in its legends or on its axis)."""
     parts = [f"N = {n}, box {l:g}R x {l:g}R" for n, l in summary["sizes"]]
+    if summary.get("eps"):
+        bc = ", ".join(BC_LABEL.get(b, b) for b in summary.get("bc", ()))
+        parts.append((f"{bc}, " if bc else "") + "eps = "
+                     + ", ".join(fmt_eps(e) for e in summary["eps"]))
     if summary.get("eta"):
         parts.append("eta = " + ", ".join(f"{e:g}" for e in summary["eta"]))
     taps = summary.get("taps") or []

@@ -225,8 +225,8 @@ def plot(result, settings=None):
 
 def draw(campaign, out_dir):
     """Fig. 10's PNG and CSV in ``out_dir``; returns their paths."""
-    return analyse(campaign).save_with_png(
-        plot, out_dir, NAME, P.run_settings(campaign.runs))
+    settings = P.run_settings(campaign.runs, _runs.select(campaign, KIND + "_"))
+    return analyse(campaign).save_with_png(plot, out_dir, NAME, settings)
 
 
 def matplotlib_colors(n):

@@ -620,5 +620,5 @@ def _collapse_panel(ax, scaling, master, colors):
 
 def draw(campaign, out_dir, waiting_times=None):
     """Fig. 5's PNG and CSV in ``out_dir``; returns their paths."""
-    return analyse(campaign, waiting_times).save_with_png(
-        plot, out_dir, NAME, P.run_settings(campaign.runs))
+    settings = P.run_settings(campaign.runs, _runs.select(campaign, "ageing_", bc=BC))
+    return analyse(campaign, waiting_times).save_with_png(plot, out_dir, NAME, settings)

@@ -187,5 +187,5 @@ def plot(result, settings=None):
 
 def draw(campaign, out_dir):
     """Fig. 9's PNG and CSV in ``out_dir``; returns their paths."""
-    return analyse(campaign).save_with_png(
-        plot, out_dir, NAME, P.run_settings(campaign.runs))
+    settings = P.run_settings(campaign.runs, p0_runs(campaign)[1])
+    return analyse(campaign).save_with_png(plot, out_dir, NAME, settings)
