@@ -244,10 +244,24 @@ def finish_figure(fig, settings=None, seeds=None):
     campaign's."""
     if settings:
         text = settings if isinstance(settings, str) else settings_text(settings, seeds)
-        fig.suptitle(textwrap.fill(text, int(SETTINGS_CHARS_PER_INCH * fig.get_figwidth())),
+        fig.suptitle(wrap_settings(text, int(SETTINGS_CHARS_PER_INCH * fig.get_figwidth())),
                      fontsize=SETTINGS_FONTSIZE)
     replace_legends(fig, fig.tight_layout)
     return fig
+
+
+def wrap_settings(text, width):
+    """The settings line in lines of at most ``width`` characters, broken between its parts
+    ("; "), a part longer than a line broken between words."""
+    lines = []
+    for part in text.split("; "):
+        if lines and len(lines[-1]) + 2 + len(part) <= width:
+            lines[-1] += "; " + part
+        else:
+            if lines:
+                lines[-1] += ";"
+            lines.extend(textwrap.wrap(part, width) or [""])
+    return "\n".join(lines)
 
 
 def plotted_seeds(result):
