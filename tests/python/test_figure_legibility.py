@@ -201,6 +201,28 @@ def test_redraw_writes_the_png_of_each_committed_csv_and_no_csv(tmp_path, capsys
     assert stop.value.code == 2 and "--redraw" in capsys.readouterr().err
 
 
+def test_a_legend_asked_beside_its_axes_widens_the_figure():
+    """legend(ax, outside=True): the legend beside the axes, placed once the figure is laid
+    out, and the figure wider by it, so that the axes keep their width."""
+    fig, axes = P.new_figure(1, 1)
+    x = np.linspace(0, 1, 40)
+    for k in range(3):
+        axes[0].plot(x, x ** (k + 1), label=f"x^{k + 1}")
+    axes[0].set_xlabel("x")
+    axes[0].set_ylabel("y")
+    P.legend(axes[0], outside=True, fontsize=7)
+    width = fig.get_figwidth()
+    P.finish_figure(fig)
+    try:
+        fig.canvas.draw()
+        legend = axes[0].get_legend().get_window_extent()
+        assert legend.x0 > axes[0].get_window_extent().x1
+        assert fig.get_figwidth() > width
+        assert legend_problems(fig, "outside") == []
+    finally:
+        plt.close(fig)
+
+
 def test_the_check_finds_a_legend_on_the_data_and_a_missing_label():
     """The check can fail: a legend pinned over the data, an unlabelled axis, two labelled
     series without a legend."""

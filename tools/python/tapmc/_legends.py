@@ -116,9 +116,10 @@ def place_legend(ax, later=False, **kw):
     _REQUESTED[ax] = dict(kw)
     kw = dict(kw)
     kw.pop("loc", None)
+    outside = kw.pop("outside", False)
     if later:
         return ax.legend(loc=INSIDE_LOCATIONS[0], **kw)
-    if kw.pop("outside", False) or ax in _OUTSIDE:
+    if outside or ax in _OUTSIDE:
         _OUTSIDE.add(ax)
         return ax.legend(**{**kw, **OUTSIDE})
     ax.get_xlim(), ax.get_ylim()      # the view limits the placement depends on, up to date
