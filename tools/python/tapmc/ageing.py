@@ -49,6 +49,7 @@ linear in t.
 
 import numpy as np
 
+from ._legends import place_legend
 from ._validate import as_1d, as_2d, new_axis, require, result
 from .laws import (REALIZATION_MAX_BINS, REALIZATION_P_MIN, AgeingLaw, Law,
                    RealizationLawTest, hotelling_gls, realization_bin_covariance)
@@ -288,7 +289,7 @@ class Ageing:
         ax.set_xscale("log")
         ax.set_xlabel("t (taps)")
         ax.set_ylabel(r"$A(t, t_w)$")
-        ax.legend()
+        place_legend(ax)
         return ax
 
 
@@ -492,7 +493,7 @@ class ScalingCollapse:
         ax.set_xscale("log")
         ax.set_xlabel(rf"$t\,/\,(t_W/{self.t_ref:.3g})^{{{self.mu:.2f}}}$")
         ax.set_ylabel(rf"$A\,/\,(t_W/{self.t_ref:.3g})^{{{self.kappa:.2f}}}$")
-        ax.legend(fontsize=7)
+        place_legend(ax, fontsize=7)
         return ax
 
 

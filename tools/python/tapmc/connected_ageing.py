@@ -25,7 +25,8 @@ recomputed), not from the dispersion's curvature.
 
 import numpy as np
 
-from ._validate import as_2d, require, result
+from ._legends import place_legend
+from ._validate import as_2d, new_axis, require, result
 from .ageing import SCALING_EXPONENT_RANGE, collapse_dispersion
 
 __all__ = ["ConnectedAgeing", "LawFreeCollapse", "connected_curves"]
@@ -104,9 +105,8 @@ class ConnectedAgeing:
         return LawFreeCollapse(fit_amplitude, groups).compute(self)
 
     def plot(self, ax=None):
-        import matplotlib.pyplot as plt
-
-        ax = ax or plt.gca()
+        """C(t, t_W) against the delay, one curve per t_W with its error as a band."""
+        ax = new_axis(ax)
         for tw in self.waiting_times:
             c, err = self.C[tw], self.C_error[tw]
             line, = ax.plot(self.t, c, lw=1, label=f"$t_W$ = {tw}")
@@ -114,7 +114,7 @@ class ConnectedAgeing:
         ax.set_xscale("log")
         ax.set_xlabel("delay t (taps)")
         ax.set_ylabel(r"$C(t, t_W)$ = var $[\langle Z\rangle(t_W+t) - \langle Z\rangle(t_W)]$")
-        ax.legend(fontsize="small")
+        place_legend(ax, fontsize="small")
         return ax
 
 

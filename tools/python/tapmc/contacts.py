@@ -35,6 +35,7 @@ from collections import namedtuple
 import numpy as np
 
 from ._geometry import near_pairs, validated_box, validated_spheres
+from ._legends import place_legend
 from ._validate import as_1d, choice, in_range, new_axis, require, result
 
 __all__ = ["Contacts", "ContactSummary", "GapSweep", "GAP_TOLERANCE", "MAX_GAP", "FEW_BELOW",
@@ -244,7 +245,7 @@ class Contacts:
         ax.axvline(self.mean, color="k", lw=0.8, ls="--", label=f"<Z> = {self.mean:.3f}")
         ax.set_xlabel("contacts Z")
         ax.set_ylabel("P(Z)")
-        ax.legend(fontsize="small")
+        place_legend(ax, fontsize="small")
         return ax
 
     def __repr__(self):

@@ -51,6 +51,7 @@ from collections import namedtuple
 import numpy as np
 
 from ._geometry import near_pairs, validated_box, validated_spheres
+from ._legends import place_legend
 from ._validate import as_1d, choice, in_range, new_axis, positive, positive_int, require, result
 from .packing import PackingCheck
 from .readers import Frame
@@ -395,7 +396,7 @@ class Crystallinity:
                            label=f"{name.upper()} {LATTICE_Q[name][l]:.3f}")
         ax.set_xlabel("height of the centre / R" if self.floor is not None else "z / R")
         ax.set_ylabel(f"$q_{l}(i)$")
-        ax.legend(fontsize="small")
+        place_legend(ax, fontsize="small")
         return ax
 
     def __repr__(self):

@@ -15,6 +15,7 @@ section III.A-B and Fig. 3 of Philippe & Bideau.
 import numpy as np
 from scipy import signal, special, stats
 
+from ._legends import place_legend
 from ._validate import as_1d, as_2d, new_axis, positive_int, require, result
 from .laws import FitResult, Law
 
@@ -111,11 +112,12 @@ class SteadyState:
     sem_naive = result("_sem_naive")
     last_value = property(lambda self: float(self.x[-1]))
 
-    def plot(self, ax=None, **kw):
-        """The series, the averaging window and X_SS +- sigma_X."""
+    def plot(self, ax=None, ylabel="X (the series, per tap)", **kw):
+        """The series, the averaging window (grey) and X_SS +- sigma_X (solid, dotted)."""
         ax = new_axis(ax)
         t = np.arange(len(self.x))
         ax.plot(t, self.x, lw=0.7, **kw)
+        ax.set_ylabel(ylabel)
         ax.axvspan(self.window.start, len(self.x) - 1, color="0.9")
         ax.axhline(self.mean, color="k")
         ax.axhline(self.mean + self.std, color="k", ls=":")
@@ -250,6 +252,7 @@ class ErrorCalibration:
         ax.axhline(1.0, color="k", ls=":")
         ax.set_xticks(range(len(names)))
         ax.set_xticklabels(names, rotation=30, ha="right")
+        ax.set_xlabel("group of realizations")
         ax.set_ylabel("realizations' spread / within-run error")
         return ax
 
@@ -420,15 +423,18 @@ class PowerSpectrum:
         """Binned spectrum (points) and the fitted power law, log-log."""
         ax = new_axis(ax)
         if raw:
-            ax.loglog(self.raw_frequency, self.raw_power, color="0.8", lw=0.5)
+            ax.loglog(self.raw_frequency, self.raw_power, color="0.8", lw=0.5,
+                      label="periodogram")
         kw.setdefault("marker", "o")
         kw.setdefault("ls", "none")
+        kw.setdefault("label", "binned")
         ax.loglog(self.frequency, self.power, **kw)
         fx = 10 ** self.fit.x
         ax.loglog(fx, 10 ** self.fit(self.fit.x), "k-",
                   label=f"slope {self.slope:.2f} $\\pm$ {self.slope_error:.2f}")
         ax.set_xlabel("frequency (1/taps)")
         ax.set_ylabel("power")
+        place_legend(ax, fontsize=8)
         return ax
 
 

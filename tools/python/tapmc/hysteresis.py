@@ -22,6 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._legends import place_legend
 from ._validate import (as_1d, in_range, new_axis, positive, positive_int, require, result,
                         same_length)
 from .fluctuations import SteadyState
@@ -120,7 +121,7 @@ class Hysteresis:
                             color=color, ls="-", label=name, capsize=2)
         ax.set_xlabel(r"$\varepsilon^{1/2}$")
         ax.set_ylabel(ylabel)
-        ax.legend()
+        place_legend(ax)
         return ax
 
 
@@ -348,5 +349,5 @@ class RampBranches:
         ax.axvline(self.critical, color="0.5", ls=":", lw=1)
         ax.set_xlabel(r"$\varepsilon^{1/2}$")
         ax.set_ylabel(ylabel)
-        ax.legend()
+        place_legend(ax)
         return ax

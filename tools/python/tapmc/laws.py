@@ -53,6 +53,7 @@ from scipy.optimize import OptimizeWarning, curve_fit, least_squares
 from scipy.stats import chi2 as chi2_distribution
 from scipy.stats import f as f_distribution
 
+from ._legends import place_legend
 from ._validate import as_1d, new_axis, same_length
 
 __all__ = ["FitResult", "Law", "InverseLogLaw", "ZLaw", "TwoExponentials", "AgeingLaw",
@@ -363,7 +364,7 @@ class FitResult:
             ax.set_xlabel(xlabel if xlabel is not None else self.law.x_label)
         if ylabel is not None or not ax.get_ylabel():
             ax.set_ylabel(ylabel if ylabel is not None else self.law.y_label)
-        ax.legend(fontsize=8)
+        place_legend(ax, fontsize=8)
         return ax
 
 

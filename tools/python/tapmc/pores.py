@@ -36,6 +36,7 @@ import re
 
 import numpy as np
 
+from ._legends import place_legend
 from ._validate import as_1d, in_range, new_axis
 from .fluctuations import jackknife_error
 from .laws import Law
@@ -212,6 +213,8 @@ class PoreDistribution:
             ax.set_ylabel(r"$\rho_v(v)$")
         else:
             raise ValueError(f"kind = {kind!r} must be 'xi3P' or 'rho_v'")
+        if len(ax.get_legend_handles_labels()[0]) > 1:   # several distributions drawn here
+            place_legend(ax, fontsize=8)
         return ax
 
 

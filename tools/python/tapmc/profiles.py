@@ -15,6 +15,7 @@
 
 import numpy as np
 
+from ._legends import place_legend
 from ._validate import as_1d, new_axis, positive, result, same_length
 from .laws import PROFILE_WINDOWS, ProfileLaw, profile_gradient  # noqa: F401 (re-exported)
 
@@ -107,7 +108,8 @@ class ProfileIncrease:
         if logx:
             ax.set_xscale("log")
         ax.set_xlabel("taps")
-        ax.legend()
+        ax.set_ylabel(r"$\delta\Phi$ (against the initial packing)")
+        place_legend(ax)
         return ax
 
 

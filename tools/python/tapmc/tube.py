@@ -30,6 +30,7 @@ from typing import Optional
 import numpy as np
 
 from ._geometry import validated_spheres
+from ._legends import place_legend
 from ._validate import in_range, new_axis, positive, positive_int, require, result
 from .cylinder import (Cylinder, disk_lens_area, sphere_cylinder_surface_area,
                        sphere_cylinder_volume)
@@ -120,7 +121,7 @@ class TubeProfile:
             ax.set_title(settings if isinstance(settings, str) else settings.describe(),
                          fontsize=8)
         if label or step:
-            ax.legend(fontsize=8)
+            place_legend(ax, fontsize=8)
         return ax
 
 

@@ -25,6 +25,7 @@ from typing import Optional
 
 import numpy as np
 
+from ._legends import place_legend
 from ._validate import as_1d, new_axis, require, result, same_length
 from .cylinder import Cylinder
 from .laws import InverseLogLaw
@@ -236,7 +237,7 @@ class TubeCompaction:
         ax.set_xlabel("tap t")
         ax.set_ylabel("packing fraction")
         ax.set_title(self.settings.describe(), fontsize=8)
-        ax.legend(fontsize=7)
+        place_legend(ax, fontsize=7)
         return ax
 
     def plot_height(self, ax=None, logx=True):

@@ -10,19 +10,26 @@ number::
 curve (e.g. ``eps=0.05``, ``fit:eps=0.05``), ``x`` the abscissa, ``mean`` the mean over seeds
 (or realizations), ``sem`` its standard error (sample standard deviation / sqrt(n), empty when
 n < 2 or for a fitted curve) and ``n`` the number of seeds behind the mean.
+
+Every PNG states its settings on top (:func:`finish_figure`, :func:`settings_text`: N, the box,
+eta, taps, seeds) and has its legends placed off the data (:func:`legend`, through
+:mod:`tapmc._legends`).
 """
 
 from __future__ import annotations
 
 import csv
 import math
-from collections import defaultdict
+import re
+import textwrap
+from collections import Counter, defaultdict
 from pathlib import Path
 
 import numpy as np
 
 import matplotlib
 
+from tapmc._legends import laid_out, place_legend, replace_legends
 from tapmc.fluctuations import SteadyState
 
 matplotlib.use("Agg")
@@ -209,13 +216,116 @@ def new_figure(nrows=2, ncols=1, height=3.0, width=5.0):
 
 
 def save_figure(fig, path):
-    """Save ``fig`` as a PNG (small: :data:`PNG_DPI`) and close it; returns the path."""
+    """Save ``fig`` as a PNG (small: :data:`PNG_DPI`) and close it; returns the path. A
+    figure not yet laid out (:func:`finish_figure`) is laid out and its legends placed off
+    the data first."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.tight_layout()
+    if not laid_out(fig):
+        replace_legends(fig, fig.tight_layout)
     fig.savefig(path, dpi=PNG_DPI)
     plt.close(fig)
     return path
+
+
+#: font size of the settings line on top of a figure (smaller than the legends' 7 points)
+SETTINGS_FONTSIZE = 7
+#: characters of that font per inch of the figure's width: where its line wraps (measured
+#: on the figures: 90 characters fill the 5-inch panels)
+SETTINGS_CHARS_PER_INCH = 18
+
+
+def finish_figure(fig, settings=None, seeds=None):
+    """``fig`` with its settings stated on top and laid out, its legends placed off the data
+    for the final size of its axes (:func:`tapmc._legends.replace_legends`); returns it.
+    ``settings``: the campaign's settings (:func:`run_settings`, or the report's report.json),
+    or the line itself (a string), None when not known; ``seeds``: the (fewest, most) seeds
+    behind the figure's points (:func:`plotted_seeds`), which the line states instead of the
+    campaign's."""
+    if settings:
+        text = settings if isinstance(settings, str) else settings_text(settings, seeds)
+        fig.suptitle(wrap_settings(text, int(SETTINGS_CHARS_PER_INCH * fig.get_figwidth())),
+                     fontsize=SETTINGS_FONTSIZE)
+    replace_legends(fig, fig.tight_layout)
+    return fig
+
+
+def wrap_settings(text, width):
+    """The settings line in lines of at most ``width`` characters, broken between its parts
+    ("; "), a part longer than a line broken between words."""
+    lines = []
+    for part in text.split("; "):
+        if lines and len(lines[-1]) + 2 + len(part) <= width:
+            lines[-1] += "; " + part
+        else:
+            if lines:
+                lines[-1] += ";"
+            lines.extend(textwrap.wrap(part, width) or [""])
+    return "\n".join(lines)
+
+
+def plotted_seeds(result):
+    """(fewest, most) seeds behind the plotted points of a figure result (the ``n`` of its
+    curves; the ``params`` panel's rows are statistics, a fitted curve has n = 0), None when
+    it has none."""
+    counts = {int(n) for panel, _, data in result.rows() if panel != "params"
+              for n in np.atleast_1d(data.n) if n > 0}
+    return (min(counts), max(counts)) if counts else None
+
+
+def run_settings(specs, figure_runs=()):
+    """The settings of a campaign's runs (``tapmc.campaign.RunSpec``s) in the fields of the
+    report's report.json that :func:`settings_text` states: sizes [(N, L)], eta, taps,
+    seeds_per_point [fewest, most] (runs whose names differ only in ``_s<seed>`` are one
+    point) and ramp_taps_per_level; with ``figure_runs`` (the runs of a figure whose result
+    does not record its eps: Figs. 5, 9, 10) also their ``eps`` and ``bc``."""
+    specs = list(specs)
+    points = Counter(re.sub(r"_s\d+$", "", s.name) for s in specs)
+    out = {
+        "sizes": sorted({(int(s.variables["N"]), float(s.variables["L"])) for s in specs
+                         if "N" in s.variables}),
+        "eta": sorted({float(s.variables["eta"]) for s in specs if "eta" in s.variables}),
+        "taps": sorted({int(s.taps) for s in specs if s.taps is not None}),
+        "seeds_per_point": ([min(points.values()), max(points.values())] if points
+                            else [0, 0]),
+        "ramp_taps_per_level": sorted({int(s.variables["P"]) for s in specs
+                                       if s.input.name == "in.ramp" and "P" in s.variables}),
+    }
+    if figure_runs:
+        out["eps"] = sorted({float(s.variables["eps"]) for s in figure_runs})
+        out["bc"] = sorted({str(s.variables["bc"]) for s in figure_runs})
+    return out
+
+
+#: how the settings line names the boundary conditions
+BC_LABEL = {"pbc": "P.B.C.", "fbc": "F.B.C."}
+
+
+def settings_text(summary, seeds=None):
+    """One line stating a campaign's settings from :func:`run_settings` or report.json:
+    sphere count and box (side L in sphere radii R), redeposition threshold eta, taps per run
+    (and per level of a ramp), seeds per point (``seeds``: the figure's own (fewest, most)),
+    and the figure's boundary conditions and eps where given (``bc``, ``eps``: a figure that
+    does not state them in its legends or on its axis)."""
+    parts = [f"N = {n}, box {l:g}R x {l:g}R" for n, l in summary["sizes"]]
+    if summary.get("eps"):
+        bc = ", ".join(BC_LABEL.get(b, b) for b in summary.get("bc", ()))
+        parts.append((f"{bc}, " if bc else "") + "eps = "
+                     + ", ".join(fmt_eps(e) for e in summary["eps"]))
+    if summary.get("eta"):
+        parts.append("eta = " + ", ".join(f"{e:g}" for e in summary["eta"]))
+    taps = summary.get("taps") or []
+    if taps:
+        span = f"{taps[0]}" if len(taps) == 1 else f"{taps[0]} to {taps[-1]}"
+        per_level = summary.get("ramp_taps_per_level")
+        ramps = (f" (ramps: {', '.join(map(str, per_level))} per level)" if per_level
+                 else "")
+        parts.append(f"{span} taps per run{ramps}")
+    low, high = seeds or summary.get("seeds_per_point") or (summary.get("seeds"),) * 2
+    if high:
+        seeds = f"{low}" if low == high else f"{low} to {high}"
+        parts.append(f"{seeds} {'seed' if high == 1 else 'seeds'} per point")
+    return "; ".join(parts)
 
 
 def write_figure(fig, png, table, csv):
@@ -239,10 +349,10 @@ def errorbars(ax, x, mean, sem, label=None, **kw):
 
 
 def legend(ax, **kw):
-    """A legend placed off the data (``loc="best"`` unless given), only when the axis has
-    labelled artists."""
-    if ax.get_legend_handles_labels()[0]:
-        ax.legend(**{"loc": "best", **kw})
+    """The legend of ``ax``, only when the axis has labelled artists, placed off the data
+    (:func:`tapmc._legends.place_legend`; ``outside=True`` beside the axes) once the figure
+    is laid out (:func:`finish_figure`, :func:`save_figure`)."""
+    return place_legend(ax, later=True, **kw)
 
 
 def fmt_eps(eps):

@@ -247,11 +247,12 @@ class FigureResult:
         """Write the figure CSV; returns its path."""
         return save_rows(path, self.rows())
 
-    def save_with_png(self, plot, out_dir, name):
-        """The figure's PNG (``plot(self)``) and CSV in ``out_dir``, named ``name``; returns
-        their paths (what every figure module's ``draw`` returns)."""
+    def save_with_png(self, plot, out_dir, name, settings=None):
+        """The figure's PNG (``plot(self, settings)``: ``settings`` the campaign's settings
+        that it states, ``_plotting.run_settings``) and CSV in ``out_dir``, named ``name``;
+        returns their paths (what every figure module's ``draw`` returns)."""
         png, csv = figure_paths(out_dir, name)
-        save_figure(plot(self), png)
+        save_figure(plot(self, settings), png)
         return png, self.save(csv)
 
     @classmethod

@@ -175,6 +175,10 @@ def _add_report_parser(sub):
                              "module can compute from its CSV's curves (Fig. 2's fit "
                              "intervals, range refits and ln B; Fig. 4's bell maximum; Fig. "
                              "5's collapse), rewriting those CSVs")
+    report.add_argument("--redraw", action="store_true",
+                        help="with --from-data: first draw every figure's PNG again from its "
+                             "committed CSV (its typed result) and report.json, after a change "
+                             "of drawing alone; no CSV is written")
     report.add_argument("--finished-only", action="store_true",
                         help="draw the figures and the report from the campaign's finished "
                              "runs only, running nothing (a campaign under way); figures "
@@ -397,6 +401,9 @@ def _report_from_data(args):
         if args.refit:
             for csv in validation.refit(out):
                 print(f"refit: {csv}")
+        if args.redraw:
+            for png in importlib.import_module(f"{__package__}.redraw").redraw(out):
+                print(f"redraw: {png}")
         path = validation.regenerate(out)
     except (FigureUnavailable, FileNotFoundError, ValueError) as err:  # also TapmcFormatError
         print(f"tapmc-paper: {err}", file=sys.stderr)
@@ -526,6 +533,9 @@ def main(argv=None):
         return _plan_cost(args)
     if args.command == "report" and args.refit and not args.from_data:
         parser.error("report: --refit rewrites the committed figure CSVs of --from-data and "
+                     "works with --from-data only")
+    if args.command == "report" and args.redraw and not args.from_data:
+        parser.error("report: --redraw draws the committed figures of --from-data again and "
                      "works with --from-data only")
     if args.command == "report" and args.from_data:
         return _report_from_data(args)

@@ -199,7 +199,7 @@ def analyse(campaign, bc=None):
     return Fig10Result(dumps, *changes)
 
 
-def plot(result):
+def plot(result, settings=None):
     """The figure of a :class:`Fig10Result` (drawing only)."""
     fig, (ax_xi, ax_v) = P.new_figure(2, 1)
     for dump, color in zip(result.dumps.values(), matplotlib_colors(len(result.dumps))):
@@ -217,15 +217,16 @@ def plot(result):
         ax.set_xlabel(xlabel)
         ax.set_ylabel(ylabel)
         ax.set_ylim(bottom=0)
-        ax.legend(fontsize=6, ncol=2, loc="best")
+        P.legend(ax, fontsize=6, ncol=2)
     ax_xi.set_xlim(0, 1.0)
     ax_v.set_xlim(0, 0.6)
-    return fig
+    return P.finish_figure(fig, settings, P.plotted_seeds(result))
 
 
 def draw(campaign, out_dir):
     """Fig. 10's PNG and CSV in ``out_dir``; returns their paths."""
-    return analyse(campaign).save_with_png(plot, out_dir, NAME)
+    settings = P.run_settings(campaign.runs, _runs.select(campaign, KIND + "_"))
+    return analyse(campaign).save_with_png(plot, out_dir, NAME, settings)
 
 
 def matplotlib_colors(n):

@@ -405,33 +405,39 @@ def _fit_label(fit):
     return "" if not missing else f" ({', '.join(missing)} undetermined)"
 
 
-def plot(result):
-    """The figure of a :class:`Fig2Result` (drawing only)."""
-    fig, (ax_log, ax_lin, ax_z) = P.new_figure(3, 1)
+def plot(result, settings=None):
+    """The figure of a :class:`Fig2Result` (drawing only): Phi_b on logarithmic and linear
+    time, and <Z> (eq. 4) where the result has its curves."""
+    has_z = any(law.curves for tag, law in result.laws.items() if tag != "eq3")
+    fig, axes = P.new_figure(2 + has_z, 1)
+    ax_log, ax_lin = axes[:2]
+    panels = {"eq3": (ax_log, ax_lin), "other": tuple(axes[2:])}
     colors = {}
     for tag, law in result.laws.items():
         for eps, fit in law.curves.items():
             label = f"eps = {P.fmt_eps(eps)}" + _fit_label(fit)
             t, pos = fit.data.x, fit.data.x > 0
-            for ax in ((ax_log, ax_lin) if tag == "eq3" else (ax_z,)):
+            for ax in panels["eq3" if tag == "eq3" else "other"]:
                 keep = slice(None) if ax is ax_lin else pos
                 line = P.errorbars(ax, t[keep], fit.data.mean[keep], fit.data.err[keep],
                                    label=label, color=colors.get(eps))
                 colors.setdefault(eps, line.get_color())
                 ax.plot(fit.curve.x, fit.curve.mean, ":", color=colors[eps])
-    for ax in (ax_log, ax_z):
-        ax.set_xscale("log")
-    for ax in (ax_log, ax_lin, ax_z):
+    for ax in axes:
         ax.set_xlabel("t (taps)")
+        if ax is not ax_lin:
+            ax.set_xscale("log")
     ax_log.set_ylabel(r"$\Phi_b$")
     ax_lin.set_ylabel(r"$\Phi_b$")
-    ax_z.set_ylabel(r"$\langle Z\rangle$")
     for ax in (ax_log, ax_lin):
         P.legend(ax, fontsize=7, title="F.B.C.; dotted: eq. 3 fits", title_fontsize=7)
-    P.legend(ax_z, fontsize=7, title="dotted: eq. 4 fits", title_fontsize=7)
-    return fig
+    for ax in panels["other"]:
+        ax.set_ylabel(r"$\langle Z\rangle$")
+        P.legend(ax, fontsize=7, title="F.B.C.; dotted: eq. 4 fits", title_fontsize=7)
+    return P.finish_figure(fig, settings, P.plotted_seeds(result))
 
 
 def draw(campaign, out_dir, eps_values=None):
     """Fig. 2's PNG and CSV in ``out_dir`` (:func:`analyse`); returns their paths."""
-    return analyse(campaign, eps_values).save_with_png(plot, out_dir, NAME)
+    return analyse(campaign, eps_values).save_with_png(
+        plot, out_dir, NAME, P.run_settings(campaign.runs))

@@ -194,7 +194,7 @@ def analyse(campaign, column="Z", bc=BC):
     return Fig3Result(spectra, sigma["sigma"], sigma["sigma_detrended"], **fitted)
 
 
-def plot(result):
+def plot(result, settings=None):
     """The figure of a :class:`Fig3Result` (drawing only)."""
     fig, (ax_s, ax_sig) = P.new_figure(2, 1)
     for eps, sp in result.spectra.items():
@@ -205,7 +205,7 @@ def plot(result):
     ax_s.set_yscale("log")
     ax_s.set_xlabel("frequency (1/taps)")
     ax_s.set_ylabel(r"power of $\langle Z\rangle - \langle Z\rangle_{SS}$")
-    ax_s.legend(fontsize=7, loc="best", title="P.B.C.", title_fontsize=7)
+    P.legend(ax_s, fontsize=7, title="P.B.C.", title_fontsize=7)
     for field, label in (("sigma", r"$\sigma_{\langle Z\rangle}$"),
                          ("sigma_detrended",
                           r"$\sigma_{\langle Z\rangle}$ about each run's straight line")):
@@ -222,10 +222,11 @@ def plot(result):
     ax_sig.set_ylim(bottom=0)
     ax_sig.set_xlabel(r"$\varepsilon^{1/2}$")
     ax_sig.set_ylabel(r"$\sigma_{\langle Z\rangle}$")
-    ax_sig.legend(fontsize=8, loc="best")
-    return fig
+    P.legend(ax_sig, fontsize=8)
+    return P.finish_figure(fig, settings, P.plotted_seeds(result))
 
 
 def draw(campaign, out_dir):
     """Fig. 3's PNG and CSV in ``out_dir``; returns their paths."""
-    return analyse(campaign).save_with_png(plot, out_dir, NAME)
+    return analyse(campaign).save_with_png(
+        plot, out_dir, NAME, P.run_settings(campaign.runs))

@@ -432,7 +432,7 @@ def analyse(campaign):
                       Value(0.0, CRITICAL_SQRT_EPS, np.nan, 1))
 
 
-def plot(result):
+def plot(result, settings=None):
     """The figure of a :class:`Fig4Result` (drawing only)."""
     fig, (ax,) = P.new_figure(1, 1, height=4.0)
     steady = result.steady
@@ -448,10 +448,11 @@ def plot(result):
                         ls="-", lw=0.6, capsize=2, label=f"{words}: {label}")
     ax.set_xlabel(r"$\varepsilon^{1/2}$")
     ax.set_ylabel(r"steady state $\langle\Phi^c\rangle$")
-    ax.legend(fontsize=7, loc="best", title="P.B.C.", title_fontsize=7)
-    return fig
+    P.legend(ax, fontsize=7, title="P.B.C.", title_fontsize=7)
+    return P.finish_figure(fig, settings, P.plotted_seeds(result))
 
 
 def draw(campaign, out_dir):
     """Fig. 4's PNG and CSV in ``out_dir``; returns their paths."""
-    return analyse(campaign).save_with_png(plot, out_dir, NAME)
+    return analyse(campaign).save_with_png(
+        plot, out_dir, NAME, P.run_settings(campaign.runs))

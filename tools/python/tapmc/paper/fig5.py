@@ -580,7 +580,7 @@ def analyse(campaign, waiting_times=None):
     return Fig5Result(curves, **parts)
 
 
-def plot(result):
+def plot(result, settings=None):
     """The figure of a :class:`Fig5Result` (drawing only)."""
     fig, (ax_a, ax_c) = P.new_figure(2, 1)
     colors = {}
@@ -589,14 +589,14 @@ def plot(result):
         colors[tw] = line.get_color()
     ax_a.set_xlabel("t (taps)")
     ax_a.set_ylabel(r"$A(t, t_W)$")
-    ax_a.legend(fontsize=7, loc="best", title=f"P.B.C., {result.realizations} realizations",
+    P.legend(ax_a, fontsize=7, title=f"P.B.C., {result.realizations} realizations",
                 title_fontsize=7)
     ax_c.set_xlabel(r"$t\,/\,(t_W/t_{\rm ref})^{\mu}$ (taps)")
     ax_c.set_ylabel(r"$A\,/\,(t_W/t_{\rm ref})^{\kappa}$")
     if result.scaling is not None and result.master is not None:
         _collapse_panel(ax_c, result.scaling, result.master, colors)
     ax_c.set_xscale("log")
-    return fig
+    return P.finish_figure(fig, settings, P.plotted_seeds(result))
 
 
 def _collapse_panel(ax, scaling, master, colors):
@@ -615,9 +615,10 @@ def _collapse_panel(ax, scaling, master, colors):
     t_ref = drawn.t_ref.value
     ax.set_xlabel(rf"$t\,/\,(t_W/{t_ref:.3g})^{{\mu}}$ (taps)")
     ax.set_ylabel(rf"$A\,/\,(t_W/{t_ref:.3g})^{{\kappa}}$")
-    ax.legend(fontsize=6, loc="best")
+    P.legend(ax, fontsize=6)
 
 
 def draw(campaign, out_dir, waiting_times=None):
     """Fig. 5's PNG and CSV in ``out_dir``; returns their paths."""
-    return analyse(campaign, waiting_times).save_with_png(plot, out_dir, NAME)
+    settings = P.run_settings(campaign.runs, _runs.select(campaign, "ageing_", bc=BC))
+    return analyse(campaign, waiting_times).save_with_png(plot, out_dir, NAME, settings)

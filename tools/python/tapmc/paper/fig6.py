@@ -350,7 +350,7 @@ def analyse(campaign):
                       {branch: Series.of(*columns) for branch, columns in ramp.items()})
 
 
-def plot(result):
+def plot(result, settings=None):
     """The figure of a :class:`Fig6Result` (drawing only)."""
     bottom = result.bell is not None or bool(result.ramp)
     fig, axes = P.new_figure((result.profiles is not None) + bottom, 1, height=4.0)
@@ -358,7 +358,7 @@ def plot(result):
         _profile_panel(axes[0], result.profiles)
     if bottom:
         _bell_panel(axes[-1], result.bell, result.ramp or {})
-    return fig
+    return P.finish_figure(fig, settings, P.plotted_seeds(result))
 
 
 def _profile_panel(ax, top):
@@ -377,7 +377,7 @@ def _profile_panel(ax, top):
     ax.set_xlabel("z/R")
     ax.set_ylabel(r"$\Phi$")
     ax.set_ylim(bottom=0)
-    ax.legend(fontsize=8, loc="best",
+    P.legend(ax, fontsize=8,
               title=f"F.B.C., eps = {P.fmt_eps(top.eps)}; dashed: gradient window",
               title_fontsize=7)
 
@@ -394,10 +394,11 @@ def _bell_panel(ax, bell, ramp):
     ax.set_xlabel(r"$\varepsilon^{1/2}$")
     ax.set_ylabel(r"$\alpha$ (P.B.C.)")
     if ramp:
-        ax.legend(fontsize=7, loc="best", title="open: end of every level of the ramp",
+        P.legend(ax, fontsize=7, title="open: end of every level of the ramp",
                   title_fontsize=7)
 
 
 def draw(campaign, out_dir):
     """Fig. 6's PNG and CSV in ``out_dir``; returns their paths."""
-    return analyse(campaign).save_with_png(plot, out_dir, NAME)
+    return analyse(campaign).save_with_png(
+        plot, out_dir, NAME, P.run_settings(campaign.runs))

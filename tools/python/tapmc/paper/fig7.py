@@ -134,7 +134,7 @@ def analyse(campaign):
                       Series.of(xb, fm, fsem, f_n), zones, int(specs[0].variables["taps"]))
 
 
-def plot(result):
+def plot(result, settings=None):
     """The figure of a :class:`Fig7Result` (drawing only)."""
     fig, (ax,) = P.new_figure(1, 1, height=4.0)
     final = "after the taps" if result.taps is None else f"after {result.taps} taps"
@@ -148,12 +148,13 @@ def plot(result):
     ax.set_ylabel(r"$\Phi$")
     ax.set_xlim(0, result.side)
     start = "paper" if result.paper_start else "walls"
-    ax.legend(fontsize=8, loc="best",
+    P.legend(ax, fontsize=8,
               title=f"{_profile_runs.START_LABEL[start]}, eps = {P.fmt_eps(result.eps)}",
               title_fontsize=7)
-    return fig
+    return P.finish_figure(fig, settings, P.plotted_seeds(result))
 
 
 def draw(campaign, out_dir):
     """Fig. 7's PNG and CSV in ``out_dir``; returns their paths."""
-    return analyse(campaign).save_with_png(plot, out_dir, NAME)
+    return analyse(campaign).save_with_png(
+        plot, out_dir, NAME, P.run_settings(campaign.runs))

@@ -164,7 +164,7 @@ def analyse(campaign):
     return Fig8Result(start == "paper", out)
 
 
-def plot(result):
+def plot(result, settings=None):
     """The figure of a :class:`Fig8Result` (drawing only)."""
     fig, (ax_l, ax_c) = P.new_figure(2, 1)
     for eps, inc in result.increases.items():
@@ -180,11 +180,12 @@ def plot(result):
         ax.axhline(0, color="0.7", lw=0.6)
         ax.set_xlabel("t (taps)")
         ax.set_ylabel(rf"$\delta\Phi_{{\rm {name}}}$")
-        ax.legend(fontsize=7, loc="best", title=_profile_runs.START_LABEL[start],
+        P.legend(ax, fontsize=7, title=_profile_runs.START_LABEL[start],
                   title_fontsize=7)
-    return fig
+    return P.finish_figure(fig, settings, P.plotted_seeds(result))
 
 
 def draw(campaign, out_dir):
     """Fig. 8's PNG and CSV in ``out_dir``; returns their paths."""
-    return analyse(campaign).save_with_png(plot, out_dir, NAME)
+    return analyse(campaign).save_with_png(
+        plot, out_dir, NAME, P.run_settings(campaign.runs))

@@ -165,7 +165,7 @@ def analyse(campaign):
         Value(0.0, m, s, n), Value(0.0, tap_sd, np.nan, n))
 
 
-def plot(result):
+def plot(result, settings=None):
     """The figure of a :class:`Fig9Result` (drawing only)."""
     fig, (ax,) = P.new_figure(1, 1, height=4.0)
     final, initial, theory = result.p0["final"], result.p0["initial"], result.percus_yevick
@@ -181,10 +181,11 @@ def plot(result):
     ax.set_ylim(max(1e-5, float(np.nanmin(final.mean[final.mean > 0])) / 2), 1.2)
     ax.set_xlabel(r"$\sigma = r'/R$")
     ax.set_ylabel(r"$P_0(\sigma)$")
-    ax.legend(fontsize=7, loc="best", title="P.B.C.", title_fontsize=7)
-    return fig
+    P.legend(ax, fontsize=7, title="P.B.C.", title_fontsize=7)
+    return P.finish_figure(fig, settings, P.plotted_seeds(result))
 
 
 def draw(campaign, out_dir):
     """Fig. 9's PNG and CSV in ``out_dir``; returns their paths."""
-    return analyse(campaign).save_with_png(plot, out_dir, NAME)
+    settings = P.run_settings(campaign.runs, p0_runs(campaign)[1])
+    return analyse(campaign).save_with_png(plot, out_dir, NAME, settings)

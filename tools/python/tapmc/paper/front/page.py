@@ -7,7 +7,7 @@ each through a temporary file: an error leaves every committed file as it was.""
 import math
 import os
 
-from .._plotting import FigureTable, new_figure, write_figure
+from .._plotting import FigureTable, finish_figure, legend, new_figure, write_figure
 from ..scales import SCALES
 from . import data
 from .analysis import Front, worst_bias, worst_bound, worst_trend
@@ -46,7 +46,8 @@ def figure_table(front, N):
 
 def plot(front, N, ax=None):
     """Panels a, b (bias against cost at each eps) and c (bias against taps); `ax`: three
-    axes, or None for a new figure. Returns the axes."""
+    axes, or None for a new figure. Returns the axes; their legends find their places off
+    the data when the figure is laid out (:func:`figure`, _plotting.finish_figure)."""
     if ax is None:
         _, ax = new_figure(nrows=1, ncols=3, height=3.6, width=4.2)
     table = figure_table(front, N)
@@ -78,17 +79,33 @@ def plot(front, N, ax=None):
     ax[2].set_ylabel("bias of <Phi^c>")
     for a in ax:
         a.axhline(0.0, color="k", lw=0.5)
-    for a in ax:  # where it covers the fewest points
-        if a.get_legend_handles_labels()[0]:
-            a.legend(fontsize=6, loc="best")
+    for a in ax:  # off the data, beside the axes where no place inside is free
+        legend(a, fontsize=6, title="redeposition setting", title_fontsize=6)
     return ax
 
 
+def settings_line(front, N):
+    """The settings every panel shares (the figure's top line): N, the box, the taps and the
+    seeds; eps is in each panel's title, eta and the stop rule are the series."""
+    seeds = sorted({int(n) for *_, n in figure_table(front, N).rows})
+    counted = (seeds_text(seeds[0]) if seeds[0] == seeds[-1]
+               else f"{seeds[0]} to {seeds_text(seeds[-1])}")
+    side = box_side_R(N)
+    return (f"N = {N}, box {side:g}R x {side:g}R; {TAPS} taps per run; {counted} per "
+            f"setting, paired with those of the reference {REFERENCE}")
 
-def _write_figure(front, N, png, csv_path):
+
+
+def figure(front, N):
+    """The front's figure at N (:func:`plot`), its settings on top and its legends placed off
+    the data: a matplotlib figure, not saved."""
     fig, ax = new_figure(nrows=1, ncols=3, height=3.6, width=4.2)
     plot(front, N, ax=ax)
-    return write_figure(fig, png, figure_table(front, N), csv_path)
+    return finish_figure(fig, settings_line(front, N))
+
+
+def _write_figure(front, N, png, csv_path):
+    return write_figure(figure(front, N), png, figure_table(front, N), csv_path)
 
 
 def _dmax_lines(front, N):
