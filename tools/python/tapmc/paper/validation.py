@@ -382,6 +382,7 @@ def render(summary, files):
               "The claims register", "-" * 19, "",
               "Where each claim's tolerance comes from and which runs decide it:", ""]
     lines += _register_table(rows) + [""]
+    lines += claims.tolerance_table(rows)
     if files:
         folder = Path(next(iter(files.values()))[1]).parent / questions.FOLDER
 
