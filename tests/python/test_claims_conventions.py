@@ -233,3 +233,26 @@ def test_a_factor_that_grows_with_eps_is_taken_at_each_rows_eps():
     assert claims.calibration.factor_heterogeneity(
         claims.realization_calibrations(alike)["phi_c"]) > 0.01
     assert claims.calibration.realization_trends(alike) == {}
+
+
+def test_a_convention_reaches_the_claims_of_every_module_that_binds_it():
+    """FIT_P_VALUE is bound by the rules (every claim of rule fit: the measures re-decided)
+    and by the laws' statistics (their claims measured afresh); SPECTRUM_BAND by one
+    statistic module (its claims only); CONFIDENCE by tapmc.stats (every claim afresh)."""
+    measures = {c.id: [] for c in REGISTER if c.statistic}
+
+    def reach(name):
+        value = getattr(conventions, name)
+        return sensitivity._reached(sensitivity.binding_modules(name, value), REGISTER,
+                                    measures)
+
+    claims_, reused, recalibrate = reach("FIT_P_VALUE")
+    assert len(claims_) == len(REGISTER) and not recalibrate
+    assert "eq3-compatible" not in reused and "ageing-scaling" in reused
+    claims_, reused, _ = reach("SPECTRUM_BAND")
+    assert {c.id for c in claims_} == {c.id for c in REGISTER
+                                       if c.statistic.startswith(("spectr", "sigma"))}
+    assert reused == {}
+    claims_, reused, _ = reach("CONFIDENCE")
+    assert len(claims_) == len(REGISTER) and reused == {}
+    assert reach("CALIBRATION_ALPHA")[2]          # the calibration binds it: calibrated anew

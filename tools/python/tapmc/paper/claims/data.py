@@ -22,8 +22,8 @@ from .calibration import (CALIBRATION_ALPHA, ONE_RUN_WINDOW_ROWS, RUN_ERROR_LABE
                           ROW_EPS, factor_heterogeneity, measured_factor,
                           realization_calibrations, realization_factors, realization_sharing,
                           realization_trends)
+from . import conventions
 from .common import steady_dof
-from .conventions import PAIRED_MIN_LEVELS
 from .scan_tables import SCANS, read_scan, scan_files
 
 
@@ -363,7 +363,8 @@ class ReportData:
                 "degree of freedom; seeds that spread unlike the groups (F test, two-sided, "
                 f"below {CALIBRATION_ALPHA:g}) are judged by their own spread, never below "
                 "the groups' realization error of such a mean, and a ramp's difference of "
-                f"{PAIRED_MIN_LEVELS} common levels or more by the paired test over its "
+                f"{conventions.PAIRED_MIN_LEVELS} common levels or more by the paired "
+                "test over its "
                 "levels (their scatter, levels - 1 degrees of freedom), not by t with the "
                 "seeds' one. A figure's value whose seeds are one of the groups (Fig. 4's "
                 "steady squares, Fig. 3's spectral slopes, Fig. 9's steady state, Fig. 6's "

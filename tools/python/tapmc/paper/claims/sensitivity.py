@@ -94,36 +94,41 @@ def changed(before, after):
     return out
 
 
-def _reached(modules, register):
-    """(claims to evaluate again, whether the measures may be reused, whether the data must
-    be calibrated anew) for a convention the ``modules`` bind."""
-    # a library module outside the register's package (tapmc.laws' SurrogateFits) binds a
-    # convention for its own computations, which the report reads from the CSVs
-    names = {m.__name__ for m in modules
-             if m.__name__.startswith(_CLAIMS) or m.__name__ in _SHARED_MODULES}
-    if names <= _RULE_MODULES:
-        return list(register), True, False
+def _reached(modules, register, measures):
+    """(claims to evaluate again, the measures they may reuse, whether the data must be
+    calibrated anew) for a convention the ``modules`` bind: a module of the rules reaches
+    every claim, whose measures are reused but for the claims of a statistic module that
+    binds it too; statistic modules alone reach their own claims; any other module of the
+    register (the shared statistics, the calibration) or tapmc.stats every claim afresh."""
+    # the package re-exports the conventions; a library module outside the register's
+    # package (tapmc.laws' SurrogateFits) binds one for its own computations, which the
+    # report reads from the CSVs
+    names = {m.__name__ for m in modules if m.__name__ != _CLAIMS
+             and (m.__name__.startswith(_CLAIMS + ".") or m.__name__ in _SHARED_MODULES)}
     statistic_modules = {f.__module__ for f in STATISTICS.values()}
-    if names - _RULE_MODULES <= statistic_modules:
-        return [c for c in register if c.statistic
-                and STATISTICS[c.statistic].__module__ in names], False, False
-    return list(register), False, bool(names & _CALIBRATION_MODULES)
+    own = [c for c in register if c.statistic and STATISTICS[c.statistic].__module__ in names]
+    if names - _RULE_MODULES - statistic_modules:
+        return list(register), {}, bool(names & _CALIBRATION_MODULES)
+    if names & _RULE_MODULES - {f"{_CLAIMS}.conventions"}:
+        fresh = {c.id for c in own}
+        return list(register), {k: v for k, v in measures.items() if k not in fresh}, False
+    return own, {}, False
 
 
 def convention_changes(convention, factor, rows, measures):
     """The rows of ``rows`` (:class:`.evaluate.Rows` of the first evaluation) whose outcome
     changes with ``convention`` scaled by ``factor`` (:meth:`Convention.varied`); None when
     the convention is not varied. ``measures``: the first evaluation's measures by claim id
-    (reused by a convention of the rules alone)."""
+    (reused where the convention cannot change them, :func:`_reached`)."""
     new = convention.varied(factor)
     if new is None:
         return None
     with patched(convention.name, convention.value, new) as modules:
-        claims, reuse, recalibrate = _reached(modules, rows.register)
+        claims, reused, recalibrate = _reached(modules, rows.register, measures)
         if not claims:
             return []
         data = rows.data.recalibrated() if recalibrate else rows.data
-        again = evaluate(claims, data, measures if reuse else None)
+        again = evaluate(claims, data, reused)
     ids = {c.id for c in claims}
     return changed(_outcomes([r for r in rows if r.claim.id in ids]), _outcomes(again))
 
@@ -170,5 +175,5 @@ def tolerance_table(rows, conventions=CONVENTIONS):
                   f"     - {source}",
                   f"     - {'-' if s.halved is None else s.halved}",
                   f"     - {'-' if s.doubled is None else s.doubled}",
-                  f"     - {', '.join(s.claims) if s.claims else 'none'}"]
+                  f"     - {', '.join(s.claims) or ('none' if s.halved is not None else '-')}"]
     return lines + [""]
