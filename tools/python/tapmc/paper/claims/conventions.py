@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from tapmc.laws import RANGE_Z_LIMIT, RELATIVE_ERROR_LIMIT, SURROGATE_P_MIN
+from tapmc.laws import DETERMINED_FACTOR, RANGE_Z_LIMIT, RELATIVE_ERROR_LIMIT, SURROGATE_P_MIN
 from tapmc.stats import CONFIDENCE
 
 from ..fig6 import WINDOW_TOP_FRACTION
@@ -141,10 +141,12 @@ CONVENTIONS = (
     Convention("WINDOW_TOP_FRACTION", "the top of the gradient alpha's window (Figs. 6, 8), "
                "as a fraction of the packing height", "the paper's 5R to 22R of a 28R packing "
                "(section IV.A)", vary="", where="tapmc.paper.fig6, when the figure is drawn"),
-    Convention("RELATIVE_ERROR_LIMIT", "a parameter 'determined' (eq. 3's triplet): an "
-               "amplitude's band within its value, B and tau within a factor 2",
-               "convention", vary="", where="tapmc.laws, when fit-surrogates and seed-fits "
-               "ran"),
+    Convention("RELATIVE_ERROR_LIMIT", "an amplitude of eq. 3 or 4 'determined': its band "
+               "within this share of its value", "convention", vary="",
+               where="tapmc.laws, when fit-surrogates and seed-fits ran"),
+    Convention("DETERMINED_FACTOR", "B or tau of eq. 3 or 4 'determined': its band within "
+               "this factor", "convention: a scale known to a factor 2 is known to its "
+               "order", vary="", where="tapmc.laws, when fit-surrogates and seed-fits ran"),
     Convention("RANGE_Z_LIMIT", "a fitted parameter 'dependent on the range of taps'",
                "convention: 3 standard deviations for 4 ranges tested together", vary="",
                where="tapmc.laws, when the figure is drawn"),
