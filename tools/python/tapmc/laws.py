@@ -58,7 +58,8 @@ from ._validate import as_1d, new_axis, same_length
 
 __all__ = ["FitResult", "Law", "InverseLogLaw", "ZLaw", "TwoExponentials", "AgeingLaw",
            "ProfileLaw", "StraightLine", "profile_gradient", "PROFILE_WINDOWS",
-           "CORRELATION_LIMIT", "RELATIVE_ERROR_LIMIT", "PROFILE_DELTA_CHI2",
+           "CORRELATION_LIMIT", "RELATIVE_ERROR_LIMIT", "DETERMINED_FACTOR",
+           "PROFILE_DELTA_CHI2",
            "POSITIVE_DECADES", "TIME_SCALE_DECADES", "UNBOUNDED_SPAN", "RANGE_Z_LIMIT",
            "LINEARITY_P_MIN", "Interval", "RangeRefits", "range_refits", "default_tap_ranges",
            "LogLinear", "ExponentialDependence", "exponential_dependence",
@@ -72,6 +73,10 @@ __all__ = ["FitResult", "Law", "InverseLogLaw", "ZLaw", "TwoExponentials", "Agei
 CORRELATION_LIMIT = 0.999
 #: relative 1-sigma error above which a parameter is reported as not determined (100 %).
 RELATIVE_ERROR_LIMIT = 1.0
+#: factor within which a positive scale (B, tau of eqs. 3 and 4, compared in ln) is
+#: determined by :class:`SurrogateFits` and :class:`RealizationFits`: half the band's width
+#: at most ln 2 (convention: a scale known to a factor 2 is known to its order)
+DETERMINED_FACTOR = 2.0
 #: gradient windows of the paper (section IV.A), in units of R.
 PROFILE_WINDOWS = {"fbc": (5.0, 22.0), "pbc": (5.0, 26.0)}
 #: chi2 - chi2_min of the 68.3 % profile-likelihood interval of one parameter (Wilks' theorem,
@@ -1588,9 +1593,10 @@ class SurrogateFits(_RangeTested):
     in ln, the amplitudes as they are.
 
     * A parameter is *determined* when half the 16-84 % width of its surrogate values is at
-      most :data:`RELATIVE_ERROR_LIMIT` of its fitted value (in ln: at most ln 2, a factor of
-      2); a fit whose (B, tau) sits on the edge of its allowed range counts as unbounded, and
-      the run's own fit there leaves every parameter undetermined.
+      most :data:`RELATIVE_ERROR_LIMIT` of its fitted value (in ln: at most
+      ln :data:`DETERMINED_FACTOR`, a factor of 2); a fit whose (B, tau) sits on the edge of
+      its allowed range counts as unbounded, and the run's own fit there leaves every
+      parameter undetermined.
     * The residuals hold what the fit did not absorb: the part of the noise along the law's
       own directions is missing from them, and any misfit of the law is in them as if it were
       noise. Under noise with a power-law spectrum the 16-84 % band is therefore narrower
@@ -1763,7 +1769,8 @@ class SurrogateFits(_RangeTested):
             half = (q84 - q16) / 2.0
         determined = {}
         for i, k in enumerate(law.names):
-            limit = np.log(2.0) if self._log[k] else RELATIVE_ERROR_LIMIT * abs(ref[i])
+            limit = (np.log(DETERMINED_FACTOR) if self._log[k]
+                     else RELATIVE_ERROR_LIMIT * abs(ref[i]))
             determined[k] = bool(np.isfinite(half[i]) and half[i] <= limit
                                  and not observed_edge[0])
         range_p = {k: np.nan for k in law.names}
@@ -1852,7 +1859,8 @@ class RealizationFits(_RangeTested):
       :class:`SurrogateFits` bounds). With few realizations it carries the chi-square interval
       of ``level`` (n - 1 dof, :func:`spread_interval`): the parameter is *determined* (True,
       :func:`spread_verdict`) when the upper end is at
-      most ln 2 (B, tau) or :data:`RELATIVE_ERROR_LIMIT` times |mean| (amplitudes),
+      most ln :data:`DETERMINED_FACTOR` (B, tau) or :data:`RELATIVE_ERROR_LIMIT` times |mean|
+      (amplitudes),
       *undetermined* (False) when the lower end exceeds that limit, and None (the
       realizations cannot tell) in between. A realization whose fit is not finite, or not
       positive for a parameter compared in ln, fixes nothing: spread infinite.
@@ -1944,8 +1952,8 @@ class RealizationFits(_RangeTested):
             v = full[:, i]
             finite = bool(np.all(np.isfinite(v)))
             mean = float(np.mean(v)) if finite else np.nan
-            limit = np.log(2.0) if log else (RELATIVE_ERROR_LIMIT * abs(mean) if finite
-                                             else np.nan)
+            limit = np.log(DETERMINED_FACTOR) if log else (
+                RELATIVE_ERROR_LIMIT * abs(mean) if finite else np.nan)
             if finite:
                 spread, low, high = spread_interval(v, self.level)
                 determined = spread_verdict(low, high, limit)

@@ -15,26 +15,34 @@ import math
 import numpy as np
 from scipy import stats as _scipy_stats
 
-#: Two-sided confidence level of every t-based decision of the package.
+#: Two-sided confidence level of every t-based decision of the package (a statistical
+#: standard; listed with the report's other conventions in tapmc.paper.claims.conventions).
+#: The functions below read it when called (``confidence=None``), so that the report's table
+#: of tolerances can vary it.
 CONFIDENCE = 0.95
 
 
-def t_quantile(dof, confidence=CONFIDENCE):
-    """Two-sided ``confidence`` quantile of Student's t with ``dof`` degrees of freedom."""
-    return float(_scipy_stats.t.ppf(0.5 + confidence / 2, dof))
+def _level(confidence):
+    return CONFIDENCE if confidence is None else confidence
 
 
-def t_quantile_of_mean(n, confidence=CONFIDENCE):
+def t_quantile(dof, confidence=None):
+    """Two-sided ``confidence`` quantile (default :data:`CONFIDENCE`) of Student's t with
+    ``dof`` degrees of freedom."""
+    return float(_scipy_stats.t.ppf(0.5 + _level(confidence) / 2, dof))
+
+
+def t_quantile_of_mean(n, confidence=None):
     """The t quantile of a mean over ``n`` realizations (dof n - 1); NaN below two."""
     return t_quantile(n - 1, confidence) if n > 1 else math.nan
 
 
-def bonferroni_t_quantile(dof, tests, confidence=CONFIDENCE):
+def bonferroni_t_quantile(dof, tests, confidence=None):
     """The t quantile that keeps the family-wise ``confidence`` over ``tests`` tests."""
-    return float(_scipy_stats.t.ppf(1 - (1 - confidence) / (2 * tests), dof))
+    return float(_scipy_stats.t.ppf(1 - (1 - _level(confidence)) / (2 * tests), dof))
 
 
-def beyond(value, err, dof, reference=0.0, confidence=CONFIDENCE):
+def beyond(value, err, dof, reference=0.0, confidence=None):
     """True when ``value`` lies further than t * ``err`` from ``reference`` (t: the two-sided
     ``confidence`` quantile with ``dof`` degrees of freedom). False when it does not, or when
     the error cannot decide (no dof, a non-finite or absent error)."""

@@ -416,7 +416,8 @@ def render_pages(summary, files):
         folder = Path(next(iter(files.values()))[1]).parent / questions.FOLDER
         groups = questions.render_parts(folder, figures, summary["eta"], read_front_summary())
     pages = {"validation": _main_page(summary, files, rows, verdicts, notes, prefix)}
-    pages.update(render_appendices(verdicts, run_note, prefix, folder, groups))
+    pages.update(render_appendices(verdicts, run_note, prefix, folder, groups,
+                                    tolerances=claims.tolerance_table(rows)))
     return {f"{name}.rst": text for name, text in pages.items()}
 
 

@@ -132,16 +132,20 @@ def register_page(verdicts, main):
     return _page("validation_register", lines)
 
 
-def rules_page(verdicts, run_note, main):
+def rules_page(verdicts, run_note, main, tolerances=()):
     """How a claim's verdict follows from its rows, the rules of the rows' verdicts (those
-    the claims use), the errors of one run and what "Paper scale?" means."""
+    the claims use), the errors of one run, what "Paper scale?" means, and the table of the
+    conventions with their sources and sensitivities (``tolerances``: rst lines of
+    :func:`tapmc.paper.claims.tolerance_table`)."""
     used = list(dict.fromkeys(v.claim.rule for v in verdicts))
     lines = _back(main) + [
         AGGREGATION_RULE, "",
         "Rules of the rows' verdicts (t: the two-sided 95 % quantile of Student's t with the "
         "measure's degrees of freedom, seeds - 1 for a mean over seeds):", ""]
     lines += [f"* [{key}] {escape_bars(claims.RULES[key].text)}" for key in used]
-    lines += ["", ONE_RUN_ERRORS + (" " + run_note if run_note else ""), "", PAPER_SCALE_NOTE]
+    lines += ["", ONE_RUN_ERRORS + (" " + run_note if run_note else ""), "", PAPER_SCALE_NOTE,
+              ""]
+    lines += list(tolerances)
     return _page("validation_rules", lines)
 
 
@@ -156,14 +160,16 @@ def questions_page(name, folder, groups, main):
     return _page(name, _back(main) + [questions.introduction(folder), ""] + body)
 
 
-def render_appendices(verdicts, run_note, prefix, folder, groups, main="validation"):
+def render_appendices(verdicts, run_note, prefix, folder, groups, main="validation",
+                      tolerances=()):
     """name -> the text of every appendix page (:data:`APPENDICES`): ``verdicts`` the claims'
     verdicts, ``run_note`` how one-run errors were scaled, ``prefix`` the claims' label
     prefix, ``folder`` the questions' CSV folder (None without one) and ``groups`` its rendered
-    groups (:func:`tapmc.paper.questions.render_parts`)."""
+    groups (:func:`tapmc.paper.questions.render_parts`), ``tolerances`` the conventions'
+    table for the rules page."""
     pages = {"validation_claims": claims_page(verdicts, prefix, main),
              "validation_register": register_page(verdicts, main),
-             "validation_rules": rules_page(verdicts, run_note, main)}
+             "validation_rules": rules_page(verdicts, run_note, main, tolerances)}
     for name in ("validation_checks", "validation_questions"):
         pages[name] = questions_page(name, folder, groups, main)
     return pages

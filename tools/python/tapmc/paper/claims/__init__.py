@@ -19,7 +19,10 @@ needs and the runs that decide it). Follow a row from the register:
 * :mod:`.rules`: each rule of the register, its decision and its text in one object, and the
   verdict it gives a measure;
 * :mod:`.evaluate`: the rows of the report, with the scale each claim needs
-  (:mod:`.reduced_ramps` for ramps at fewer taps per level than the paper's).
+  (:mod:`.reduced_ramps` for ramps at fewer taps per level than the paper's);
+* :mod:`.conventions`: every hand-typed number that decides a verdict, with its source;
+  :mod:`.sensitivity` the verdicts that change when each is halved or doubled (the page's
+  table of tolerances).
 """
 
 from __future__ import annotations
@@ -33,14 +36,16 @@ from .bell import (ALPHA_ABOVE_STEADY, CRITICAL_BRACKET_HALF_WIDTH, alpha_bell,
                    ramp_up2_minus_down, ramp_up_minus_steady)
 from .calibration import (CALIBRATION_ALPHA, ONE_RUN_WINDOW_ROWS, RUN_ERROR_LABELS,
                           RUN_ERROR_QUANTITIES, SEEDS_GROUP, ZONE_QUANTITIES, group_bc,
-                          realization_calibrations, realization_factors, realization_sharing)
+                          measured_factor, realization_calibrations, realization_factors,
+                          realization_sharing)
 from .common import WITHIN_RUN_DOF
+from .conventions import CONVENTIONS, PAIRED_MIN_LEVELS, Convention
 from .compaction import (DECADE_BEFORE_WINDOW, EARLY_DECADE, EARLY_MIN_SEEDS, LATE_WINDOW,
                          SHORT_WINDOW_BATCHES, efficiency_decrease, first_decade_rates,
                          initial_phi, late_gain_share, log_time_slowing, pbc_compaction,
                          phi_b_gain, tapped_phi)
 from .data import QUESTION_CSVS, FigureData, ReportData
-from .evaluate import Row, evaluate, scale_aspects
+from .evaluate import Row, Rows, evaluate, scale_aspects
 from .fluctuations import (SPECTRUM_BAND, SPECTRUM_RESAMPLINGS, sigma_intercept,
                            spectral_slopes, spectrum_eps_spread)
 from .laws import (EQ3_TRIPLET, ONE_RUN_FITS, REALIZATION_MIN_SEEDS, REALIZATION_MIN_TAPS,
@@ -61,9 +66,10 @@ from .rules import (FIT_P_VALUE, NEAR_FRACTION, RULE_NAMES, RULES, XI_CHECK_ROUN
 from .scan_tables import (OTHER_READING_TAGS, SCANS, read_scan, scan_files, scan_settings,
                           scan_table)
 from .scans import dmax_intermediate, theta0_optimum
+from .sensitivity import Sensitivity, convention_changes, sensitivities, tolerance_table
 from .zones import central_minus_lateral, final_alpha, lateral_first_tap
 from tapmc.stats import t_quantile  # noqa: F401  (named here by older callers)
 
 __all__ = [name for name in dir() if not name.startswith("_")
            and name not in ("annotations", "ageing", "bell", "compaction", "fluctuations",
-                            "laws", "pores", "scans", "zones")]
+                            "laws", "pores", "scans", "zones", "conventions", "sensitivity")]

@@ -17,6 +17,7 @@ from .. import fig4
 
 from .common import (above, below, common_x, curve_of, mean_difference, not_in_campaign,
                      paired_levels, seed_mean_of, seeds_error, steady_dof, value_triple)
+from .conventions import CRITICAL_BRACKET_HALF_WIDTH
 from .measure import Measure, fmt
 from .registry import statistic
 
@@ -176,10 +177,10 @@ def _ramp(data, tag="ramp"):
     return None if fig4 is None else fig4.ramps.get(tag)
 
 
-def _ramp_seed_mean(data, ramp, statistic):
+def _ramp_seed_mean(data, ramp, statistic, levels=None):
     """:func:`seed_mean_of` of a ramp's statistic and its seeds' values (phi_c's groups)."""
     return seed_mean_of(data, (ramp.statistics or {}).get(statistic),
-                        (ramp.seeds or {}).get(statistic), "phi_c")
+                        (ramp.seeds or {}).get(statistic), "phi_c", levels=levels)
 
 
 def hysteresis_gap(data):
@@ -208,7 +209,7 @@ def _branch_difference(data, a, b, effect=None, statistic=None):
     if statistic is not None and dof is not None and dof >= 1:
         ramp = _ramp(data)
         if ramp is not None and statistic in (ramp.seeds or {}):
-            _, err, dof, how = _ramp_seed_mean(data, ramp, statistic)
+            _, err, dof, how = _ramp_seed_mean(data, ramp, statistic, paired_levels(ca, cb))
     if not np.isfinite(err):
         return [Measure(mean, undecided="one realization: the branches have no error bars")]
     return [Measure(mean, err, dof, effect=effect,
@@ -279,12 +280,6 @@ def low_ramp_frozen(data, claim):
     return [Measure(m, s, dof, effect=effect if np.isfinite(effect) else None,
                     shown=f"{fmt(m, s)} (decrease minus top level; the ramp beyond (sqrt eps)* "
                           f"changes by {fmt(effect)}" + (f"; {how})" if how else ")"))]
-
-
-#: The paper's "(sqrt eps)* ~ 0.15": a separation located within two of its ramp steps
-#: (dsqrt = 0.025) of 0.15 agrees; a bracket of turning points wider than that cannot tell
-#: 0.15 from its neighbours.
-CRITICAL_BRACKET_HALF_WIDTH = 0.05
 
 
 def turning_ramps(fig4):

@@ -6,7 +6,17 @@ rows of each figure CSV that take it."""
 
 from __future__ import annotations
 
+import math
+import re
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import stats
+
 from tapmc.fluctuations import ErrorCalibration
+from tapmc.stats import t_quantile
+
+from .conventions import CALIBRATION_ALPHA
 
 
 #: the quantities of realization_scatter.csv, as the page names them: a window mean, the
@@ -31,10 +41,6 @@ ZONE_QUANTITIES = ("zone:lateral", "zone:central", "zone:central_minus_lateral")
 RUN_ERROR_QUANTITIES = tuple(q for q in RUN_ERROR_LABELS if ":" not in q)
 
 
-#: one-sided significance below which the realizations' spread rejects one run's own error
-CALIBRATION_ALPHA = 0.01
-
-
 #: the name under which a statistic's few seeds join the campaign's groups of realizations
 #: (ReportData.seed_mean_error); no run of a campaign is named so
 SEEDS_GROUP = "<the statistic's seeds>"
@@ -43,6 +49,12 @@ SEEDS_GROUP = "<the statistic's seeds>"
 def _final_zone(name):
     """chosen(panel, series) of Fig. 8's final value of zone ``name``."""
     return lambda panel, series: panel == "params" and series.endswith(f":final_{name}")
+
+
+#: figure -> eps of a row's x, for the figures whose rows of :data:`ONE_RUN_WINDOW_ROWS`
+#: are at one eps each (Fig. 3's params at x = eps, Fig. 4's curves at x = sqrt(eps)): where
+#: the realization factor depends on eps (:func:`realization_trends`) they take it there
+ROW_EPS = {"fig3": lambda x: x, "fig4": lambda x: x * x}
 
 
 #: figure -> [(quantity, bc, chosen(panel, series))]: the rows of a figure CSV whose one-run
@@ -88,6 +100,98 @@ def realization_factors(rows, bc="pbc"):
             c = own[q]
         if c.p_value < CALIBRATION_ALPHA and c.factor > 1:
             out[q] = (c.factor, c.dof)
+    return out
+
+
+def measured_factor(calibration):
+    """The factor a computed ErrorCalibration measures, k, where it rejects k = 1 on either
+    side at :data:`CALIBRATION_ALPHA` (realizations spreading beyond their own errors, or
+    measurably within them: a spectral slope's periodogram errors), else 1: what the error
+    of a mean of a few realizations is floored at (:meth:`ReportData.realization_floor`)."""
+    upper = calibration.p_value
+    if upper < CALIBRATION_ALPHA or 1.0 - upper < CALIBRATION_ALPHA:
+        return calibration.factor
+    return 1.0
+
+
+def group_eps(group):
+    """eps of a group of realization_scatter.csv named ``<kind>_<bc>_eps<eps>`` (None for
+    a group of no single eps, e.g. the initial packings)."""
+    found = re.search(r"_eps([0-9.]+[0-9])", group)
+    return float(found.group(1)) if found else None
+
+
+def factor_heterogeneity(calibration):
+    """Two-sided p-value that the groups of a computed ErrorCalibration share one factor:
+    Bartlett's test of their k_g^2 = s_g^2 / e_g^2, each with n_g - 1 dof (the within-run
+    errors' own scatter neglected, as in ErrorCalibration.same_factor_p). Groups of three
+    runs give k_g^2 2 dof each: a range of k_g from 1 to 7 can be chance."""
+    dofs = np.array([len(calibration.groups[g][0]) - 1 for g in calibration.ratios], float)
+    k2 = np.array([calibration.ratios[g] ** 2 for g in calibration.ratios])
+    if len(dofs) < 2 or np.any(k2 <= 0):
+        return 1.0
+    total = dofs.sum()
+    pooled = float(np.sum(dofs * k2) / total)
+    statistic = total * math.log(pooled) - float(np.sum(dofs * np.log(k2)))
+    correction = 1 + (np.sum(1 / dofs) - 1 / total) / (3 * (len(dofs) - 1))
+    return float(stats.chi2.sf(statistic / correction, len(dofs) - 1))
+
+
+@dataclass(frozen=True)
+class FactorTrend:
+    """The realization factor's trend in eps: ln k^2 = a + b sqrt(eps), a weighted straight
+    line through the groups' ln k_g^2 (weights (n_g - 1) / 2, the inverse variance of the
+    logarithm of a variance with n_g - 1 dof); ``dof``: the pooled realizations' minus the
+    line's second parameter."""
+
+    a: float
+    b: float
+    b_err: float
+    dof: int
+    heterogeneity_p: float
+
+    def factor(self, eps):
+        """k at ``eps``."""
+        return math.exp((self.a + self.b * math.sqrt(eps)) / 2)
+
+
+def factor_trend(calibration):
+    """The :class:`FactorTrend` of a computed ErrorCalibration where its factor measurably
+    depends on eps: the groups differ beyond chance (:func:`factor_heterogeneity` below
+    :data:`CALIBRATION_ALPHA`) and the line's slope is beyond t times its error, over three
+    groups or more of one eps each; None otherwise (one pooled factor serves)."""
+    p = factor_heterogeneity(calibration)
+    picked = [(group_eps(g), g) for g in calibration.ratios if group_eps(g) is not None]
+    if p >= CALIBRATION_ALPHA or len(picked) < 3:
+        return None
+    x = np.sqrt([e for e, _ in picked])
+    y = np.log([calibration.ratios[g] ** 2 for _, g in picked])
+    w = np.array([(len(calibration.groups[g][0]) - 1) / 2 for _, g in picked], dtype=float)
+    design = np.vstack([np.ones_like(x), x]).T
+    cov = np.linalg.inv(design.T @ (design * w[:, None]))
+    a, b = cov @ (design.T @ (w * y))
+    trend = FactorTrend(float(a), float(b), float(math.sqrt(cov[1, 1])),
+                        calibration.dof - 1, p)
+    if abs(trend.b) <= t_quantile(trend.dof) * trend.b_err:
+        return None
+    return trend
+
+
+def realization_trends(rows, bc="pbc"):
+    """dict quantity -> :class:`FactorTrend` of the groups :func:`realization_factors`
+    pools for ``bc``, for the quantities whose factor measurably depends on eps
+    (:func:`factor_trend`): their one-run rows of a known eps take the trend's factor
+    there instead of the pooled one."""
+    every = realization_calibrations(rows)
+    own = realization_calibrations(rows, bc)
+    sharing = realization_sharing(rows)
+    out = {}
+    for q, c in every.items():
+        if sharing.get(q, 1.0) < CALIBRATION_ALPHA:
+            c = own[q]
+        trend = factor_trend(c)
+        if trend is not None:
+            out[q] = trend
     return out
 
 

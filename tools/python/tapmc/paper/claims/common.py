@@ -13,6 +13,7 @@ from tapmc.fluctuations import DEFAULT_BATCHES
 from tapmc.stats import beyond
 
 from .._results import Series, Value
+from .conventions import PAIRED_MIN_LEVELS
 from .measure import Measure, fmt
 
 
@@ -132,7 +133,7 @@ def seed_mean(data, fig, series, quantity, bc="pbc", groups=()):
     return seed_mean_of(data, Value(0.0, m, s, n), seeds, quantity, bc, groups)
 
 
-def seed_mean_of(data, value, seeds, quantity, bc="pbc", groups=()):
+def seed_mean_of(data, value, seeds, quantity, bc="pbc", groups=(), levels=None):
     """(value, error, dof, text) of a figure's :class:`Value` ``value``: with two seeds or
     more and their own values ``seeds`` (a :class:`Series`; Fig. 4's ramp statistics, Fig. 8's final
     zones, Fig. 6's final alpha) the error of their mean judged with the campaign's groups
@@ -141,22 +142,31 @@ def seed_mean_of(data, value, seeds, quantity, bc="pbc", groups=()):
     one seed's batch-means error) with :func:`steady_dof`. ``text``: how the error was
     obtained ("" for the row's own). ``groups``: the names the seeds have as a group of
     realizations (ReportData.seed_mean_error). Seeds judged alone (no groups, or a spread
-    unlike theirs) take at least the sem of their own values with n - 1 dof: a row that
-    combines the levels' sems over seeds as independent understates the spread of seeds
-    that differ at every level alike."""
+    unlike theirs) take at least the sem of their own values: a row that combines the
+    levels' sems over seeds as independent understates the spread of seeds that differ at
+    every level alike. ``levels``: the value's paired differences at each level common to
+    the branches it compares (a ramp's), which decide seeds judged alone
+    (:func:`seeds_error`)."""
     m, s, n = value_triple(value)
     if n >= 2 and seeds is not None and len(seeds) >= 2:
-        err, dof, text, pooled = seeds_error(data, seeds.mean, seeds.err, quantity, bc, groups)
+        err, dof, text, pooled = seeds_error(data, seeds.mean, seeds.err, quantity, bc, groups,
+                                             levels)
         return m, err if pooled else max(s, err), dof, text
     return m, s, steady_dof(n, s), ""
 
 
-def seeds_error(data, values, errors, quantity, bc="pbc", groups=()):
+def seeds_error(data, values, errors, quantity, bc="pbc", groups=(), levels=None):
     """(error, dof, text, pooled) of the mean of a few seeds ``values`` of ``quantity``, each
     with its own error ``errors``: pooled with the campaign's groups of realizations
     (ReportData.seed_mean_error: their own errors times the pooled factor, the pooled dof),
-    or, judged alone (no groups, or a spread unlike theirs), the sem of their own values
-    with n - 1 dof. ``text`` says how ("" for seeds alone in a campaign without groups)."""
+    or judged alone (no groups, or a spread unlike theirs). Seeds judged alone take the sem
+    of their own values, never less than the groups' realization error of such a mean
+    (ReportData.realization_floor), with n - 1 dof; but two seeds have one (t = 12.7), so a
+    value made of :data:`PAIRED_MIN_LEVELS` paired levels or more (``levels``: its paired
+    differences, mean over the seeds, at each level) is decided by the paired test over
+    them: the error is at least their scatter over the levels, sd / sqrt(levels), with
+    levels - 1 dof, and no smaller than the seeds' own spread or the groups' floor. ``text``
+    says how ("" for seeds alone in a campaign without groups)."""
     found = data.seed_mean_error(quantity, values, errors, bc, groups)
     if found is not None:
         err, dof, factor = found
@@ -164,12 +174,22 @@ def seeds_error(data, values, errors, quantity, bc="pbc", groups=()):
                           f"with the groups of realizations ({dof} dof)"), True
     values = np.asarray(values, dtype=float)
     sem = float(np.std(values, ddof=1) / math.sqrt(len(values)))
+    floor = data.realization_floor(quantity, errors, bc)
+    err, dof = max(sem, floor or 0.0), len(values) - 1
+    listed = ", ".join(fmt(v) for v in values)
     text = ""
-    if data.pooled_calibration(quantity, bc) is not None:
-        listed = ", ".join(fmt(v) for v in values)
+    if floor is not None:
         text = (f"{len(values)} seeds ({listed}): the spread of their own values, which "
                 "differs from the groups of realizations")
-    return sem, len(values) - 1, text, False
+    paired = None if levels is None else np.asarray(levels, dtype=float)
+    if paired is not None and len(paired) >= PAIRED_MIN_LEVELS and np.all(np.isfinite(paired)):
+        scatter = float(np.std(paired, ddof=1) / math.sqrt(len(paired)))
+        err, dof = max(err, scatter), len(paired) - 1
+        text = (f"{len(values)} seeds ({listed}) judged alone: the paired test over the "
+                f"{len(paired)} common levels (their scatter {fmt(scatter)}, {dof} dof), the "
+                f"error no smaller than the seeds' own spread {fmt(sem)}"
+                + ("" if floor is None else f" or the groups' realization error {fmt(floor)}"))
+    return err, dof, text, False
 
 
 def jackknife_dof(n, err, blocks_per_side):

@@ -14,6 +14,7 @@ from tapmc.stats import mean_dof, weighted_line
 
 from .common import (WITHIN_RUN_DOF, above, eps_series, not_in_campaign, one_seed_error_text,
                      per_curve, steady_dof, value_triple)
+from .conventions import EARLY_MIN_SEEDS
 from .measure import Measure, fmt
 from .registry import statistic
 
@@ -123,12 +124,6 @@ def first_decade_rates(t, x):
     log_gap = float(np.mean(np.log(t[high])) - np.mean(np.log(t[low])))
     log_rate = (float(np.mean(x[high])) - float(np.mean(x[low]))) / log_gap
     return (rate, gap), (log_rate, log_gap)
-
-
-#: realizations of the first decade (tapmc-paper question early-taps) below which its
-#: rates keep one run's error (one tap's spread): the sem of fewer has too few degrees of
-#: freedom to decide anything
-EARLY_MIN_SEEDS = 4
 
 
 def _early_seeds(data, eps):

@@ -19,7 +19,11 @@ from .._runs import eps_tag
 from ..front import read_summary
 from .calibration import (CALIBRATION_ALPHA, ONE_RUN_WINDOW_ROWS, RUN_ERROR_LABELS,
                           RUN_ERROR_QUANTITIES, SEEDS_GROUP, ZONE_QUANTITIES, group_bc,
-                          realization_calibrations, realization_factors, realization_sharing)
+                          ROW_EPS, factor_heterogeneity, measured_factor,
+                          realization_calibrations, realization_factors, realization_sharing,
+                          realization_trends)
+from . import conventions
+from .common import steady_dof
 from .scan_tables import SCANS, read_scan, scan_files
 
 
@@ -54,13 +58,15 @@ class FigureData:
 
     def scaled_one_run_errors(self, factor, chosen):
         """A copy whose rows with n = 1 in the series for which ``chosen(panel, series)``
-        holds have their sem times ``factor``."""
+        holds have their sem times ``factor`` (a number, or a function of the row's x)."""
         table = {}
         for (panel, series), d in self.table.items():
             d = dict(d)
             if chosen(panel, series):
                 one = np.asarray(d["n"]) == 1
-                d["sem"] = np.where(one, np.asarray(d["sem"], float) * factor, d["sem"])
+                scale = (np.array([factor(float(x)) for x in d["x"]]) if callable(factor)
+                         else factor)
+                d["sem"] = np.where(one, np.asarray(d["sem"], float) * scale, d["sem"])
             table[(panel, series)] = d
         return FigureData(table)
 
@@ -82,6 +88,23 @@ class FigureData:
         return [s for (p, s) in self.table if p == panel]
 
 
+def _group_of(calibration, mean, n):
+    """The group of a computed ErrorCalibration with ``n`` realizations whose mean is
+    ``mean`` (a figure's row over the same runs), or None."""
+    for group, (means, _) in calibration.groups.items():
+        # realization_scatter.csv prints 6 digits, the figure's CSV 10
+        if len(means) == n and math.isclose(float(np.mean(means)), mean, rel_tol=1e-5,
+                                            abs_tol=1e-10):
+            return group
+    return None
+
+
+def _point_key(name, x, value):
+    """The key of a figure's value in ReportData's recorded dof (rounded: the calibrated
+    result's numbers are the CSV's)."""
+    return name, round(float(x), 12), round(float(value), 9)
+
+
 #: stems of the CSVs of tapmc-paper question (in the report's ``questions`` folder) that
 #: decide claims of one-run campaigns: depositions at t = 0 (initial-packing), P0 over several
 #: configurations (p0-configs), the first taps from the paper's F.B.C. start (lateral-first-tap),
@@ -91,6 +114,10 @@ class FigureData:
 QUESTION_CSVS = ("initial_packing", "p0_configs", "lateral_first_tap", "early_taps",
                  "fit_surrogates", "ramp_levels", "ramp_pores", "realization_scatter",
                  "packing_scatter", "seed_fits")
+
+
+#: the question CSVs whose rows are groups of realizations (:meth:`ReportData.scatter_rows`)
+SCATTER_CSVS = ("realization_scatter", "packing_scatter")
 
 
 class ReportData:
@@ -118,15 +145,18 @@ class ReportData:
                         else fig for name, fig in figures.items()}
         self._figures = None
         self._results = {}
+        self._point_dofs = {}
 
     @property
     def figures(self):
         """name -> the figure's calibrated data (:meth:`_calibrated`), computed once, when
         the statistics first read them (after the questions' groups of realizations)."""
         if self._figures is None:
-            self._figures = {name: self._calibrated(name, fig)
-                             for name, fig in self.written.items()}
+            self._calibrate_figures()
         return self._figures
+
+    def _calibrate_figures(self):
+        self._figures = {name: self._calibrated(name, fig) for name, fig in self.written.items()}
 
     def result(self, name):
         """Figure ``name``'s typed result (tapmc.paper.figN's FigNResult) with the
@@ -180,11 +210,67 @@ class ReportData:
         (:meth:`_calibrated_steady_squares`)."""
         for quantity, bc, chosen in ONE_RUN_WINDOW_ROWS.get(name, ()):
             factor = self.run_error(quantity, bc)[0]
-            if factor != 1.0:
+            trend = self._realization_trends(bc).get(quantity) if name in ROW_EPS else None
+            if trend is not None:       # a factor that depends on eps: the row's own
+                fig = fig.scaled_one_run_errors(
+                    lambda x, eps=ROW_EPS[name], bc=bc, q=quantity:
+                    self.run_error(q, bc, eps(x))[0], chosen)
+            elif factor != 1.0:
                 fig = fig.scaled_one_run_errors(factor, chosen)
         if name == "fig4":
             fig = self._calibrated_steady_squares(fig)
+        for quantity, bc, chosen in ONE_RUN_WINDOW_ROWS.get(name, ()):
+            fig = self._floored_seed_rows(name, fig, quantity, bc, chosen)
         return fig
+
+    def _floored_seed_rows(self, name, fig, quantity, bc, chosen):
+        """Figure ``name``'s rows of several seeds (in the series ``chosen(panel, series)``
+        holds for) that are a group of realization_scatter.csv of ``quantity`` (the same
+        runs: as many, the same mean) with their sem no smaller than the groups' realization
+        error of such a mean (:meth:`realization_floor`), and that error's degrees of
+        freedom, the pooled ones, recorded for :meth:`point_dof`: a sem of three seeds has
+        2 dof (t = 4.3) and can be small by chance, while the groups measure the spread of
+        realizations on many more."""
+        pooled = self.pooled_calibration(quantity, bc)
+        if pooled is None:
+            return fig
+        table, changed = dict(fig.table), False
+        for (panel, series), d in fig.table.items():
+            if not chosen(panel, series):
+                continue
+            sem = np.array(d["sem"], dtype=float)
+            for i, (x, mean, n) in enumerate(zip(d["x"], d["mean"], d["n"])):
+                group = _group_of(pooled, float(mean), int(n)) if n >= 2 else None
+                if group is None:
+                    continue
+                floor = self.realization_floor(quantity, pooled.groups[group][1], bc)
+                self._point_dofs[_point_key(name, x, mean)] = pooled.dof
+                if floor is not None and not floor <= sem[i]:
+                    sem[i], changed = floor, True
+            table[(panel, series)] = {**d, "sem": sem}
+        return FigureData(table) if changed else fig
+
+    def realization_floor(self, quantity, errors, bc="pbc"):
+        """The realization error of a mean of a few realizations of ``quantity`` with their
+        own errors ``errors``: the groups' measured factor (calibration.measured_factor)
+        times sqrt(sum e_i^2) / n; None without groups of ``quantity``. No mean of a few
+        seeds has a smaller error than this: their own spread, with n - 1 dof, can be
+        small by chance."""
+        pooled = self.pooled_calibration(quantity, bc)
+        errors = np.asarray(errors, dtype=float)
+        if pooled is None or len(errors) == 0 or not np.all(np.isfinite(errors)):
+            return None
+        return measured_factor(pooled) * float(np.sqrt(np.sum(errors ** 2))) / len(errors)
+
+    def point_dof(self, name, value):
+        """Degrees of freedom of figure ``name``'s :class:`Value` ``value`` (of its calibrated
+        result): the pooled ones of the groups of realizations when its seeds are one of them
+        (:meth:`_floored_seed_rows`), else :func:`.common.steady_dof` (seeds - 1, or one
+        run's batch-means dof)."""
+        if self._figures is None:
+            self._calibrate_figures()      # which records the pooled dof
+        found = self._point_dofs.get(_point_key(name, value.x, value.value))
+        return found if found is not None else steady_dof(value.n, value.err)
 
     def _calibrated_steady_squares(self, fig):
         """Fig. 4's steady squares of several seeds with the error of their mean no smaller
@@ -217,6 +303,13 @@ class ReportData:
         table[("a", "steady")] = {**steady, "sem": sem}
         return FigureData(table)
 
+    def _realization_trends(self, bc="pbc"):
+        """realization_trends of the campaign's groups for runs of ``bc``, computed once."""
+        cache = self.__dict__.setdefault("_trends", {})
+        if bc not in cache:
+            cache[bc] = realization_trends(self.scatter_rows(), bc)
+        return cache[bc]
+
     def _realization_factors(self, bc="pbc"):
         """realization_factors of the campaign's groups of realizations (:meth:`scatter_rows`)
         for runs of ``bc``, computed once."""
@@ -228,7 +321,7 @@ class ReportData:
     def scatter_rows(self):
         """The rows of realization_scatter.csv (time averages) and packing_scatter.csv
         (quantities of one packing), one table of groups of realizations."""
-        return self.question("realization_scatter") + self.question("packing_scatter")
+        return [r for stem in SCATTER_CSVS for r in self.question(stem)]
 
     def run_error_note(self):
         """The sentence that says which one-run errors were scaled to realizations and by
@@ -268,9 +361,34 @@ class ReportData:
                 "error of the mean is their own errors times the factor so pooled, with the "
                 "pooled degrees of freedom, rather than the spread of two seeds with one "
                 "degree of freedom; seeds that spread unlike the groups (F test, two-sided, "
-                f"below {CALIBRATION_ALPHA:g}) are judged by their own spread. A steady "
-                "square of Fig. 4 with several seeds has the larger of their sem and the "
-                "error so pooled.")
+                f"below {CALIBRATION_ALPHA:g}) are judged by their own spread, never below "
+                "the groups' realization error of such a mean, and a ramp's difference of "
+                f"{conventions.PAIRED_MIN_LEVELS} common levels or more by the paired "
+                "test over its "
+                "levels (their scatter, levels - 1 degrees of freedom), not by t with the "
+                "seeds' one. A figure's value whose seeds are one of the groups (Fig. 4's "
+                "steady squares, Fig. 3's spectral slopes, Fig. 9's steady state, Fig. 6's "
+                "alphas) has the larger of their sem and the groups' error of such a mean "
+                "(Fig. 3's spectral slopes with the pooled degrees of freedom rather than the "
+                "seeds' two). "
+                + self._factor_dependence_note())
+
+    def _factor_dependence_note(self):
+        """Whether the groups' factors depend on the group (eps) beyond chance."""
+        every, _, _ = self._calibrations()
+        differ = {q: factor_heterogeneity(c) for q, c in every.items()}
+        differ = {q: p for q, p in differ.items() if p < CALIBRATION_ALPHA}
+        trends = {**self._realization_trends("fbc"), **self._realization_trends("pbc")}
+        text = ("Whether the factor depends on eps is tested over the groups (Bartlett's "
+                f"test of their k_g^2, two-sided, at {CALIBRATION_ALPHA:g}): ")
+        if not differ:
+            return text + "no quantity's groups differ beyond chance, so one factor serves."
+        listed = ", ".join(f"{RUN_ERROR_LABELS.get(q, q)} (p = {p:.2g}"
+                           + (", a trend in sqrt(eps): each figure row of a known eps takes "
+                              "the factor there)" if q in trends else
+                              ", without a trend in sqrt(eps) beyond its error: the pooled "
+                              "factor serves)") for q, p in differ.items())
+        return text + f"the groups differ for {listed}."
 
     def _measured(self):
         """The quantities the groups of realizations measure (:meth:`scatter_rows`),
@@ -314,15 +432,40 @@ class ReportData:
     def pooled_calibration(self, quantity, bc):
         """The ErrorCalibration of ``quantity`` that :func:`realization_factors` reads for
         ``bc`` (both boundary conditions' groups unless they differ), or None."""
-        rows = self.scatter_rows()
-        every = realization_calibrations(rows)
+        every, by_bc, sharing = self._calibrations()
         if quantity not in every:
             return None
-        if realization_sharing(rows).get(quantity, 1.0) < CALIBRATION_ALPHA:
-            return realization_calibrations(rows, bc).get(quantity)
+        if sharing.get(quantity, 1.0) < CALIBRATION_ALPHA:
+            return by_bc[bc].get(quantity)
         return every[quantity]
 
-    def run_error(self, quantity, bc="pbc"):
+    def _calibrations(self):
+        """(every group's, bc -> its groups', P.B.C.-F.B.C. sharing p-values) of
+        :func:`realization_calibrations` of :meth:`scatter_rows`, computed once (they
+        depend on the rows alone, not on any convention)."""
+        # keyed by the question tables read (a test may give the data new ones)
+        key = tuple(id(self.questions.get(stem)) for stem in SCATTER_CSVS)
+        cached = self.__dict__.get("_calibration_sets")
+        if cached is None or cached[0] != key:
+            rows = self.scatter_rows()
+            cached = self._calibration_sets = (key, (
+                realization_calibrations(rows),
+                {bc: realization_calibrations(rows, bc) for bc in ("pbc", "fbc")},
+                realization_sharing(rows)))
+        return cached[1]
+
+    def recalibrated(self):
+        """A copy sharing the loaded inputs, with nothing derived from them yet (the
+        calibrated figures and results, the realization factors): what a report evaluated
+        with another convention of the calibration reads (:mod:`.sensitivity`)."""
+        copy = object.__new__(ReportData)
+        kept = ("summary", "front", "scans", "questions", "_written_results", "written",
+                "_calibration_sets")
+        copy.__dict__.update({k: v for k, v in self.__dict__.items() if k in kept})
+        copy._figures, copy._results, copy._point_dofs = None, {}, {}
+        return copy
+
+    def run_error(self, quantity, bc="pbc", eps=None):
         """(factor, dof) that turn one run's batch-means error of ``quantity`` ('phi_b',
         'phi_c', 'Z'; '<name>:halves' for a difference of two parts of one run; None: the
         largest factor of the three window means, for a quantity no group measures) into the
@@ -330,7 +473,11 @@ class ReportData:
         campaign's :func:`realization_factors` where they reject calibrated errors, else
         (1, None) (the one-run error and its own dof). A profile's zone
         (:data:`ZONE_QUANTITIES`) that realization_scatter.csv does not measure takes the
-        largest factor, as None does."""
+        largest factor, as None does. ``eps``: the run's eps, at which a factor that depends
+        on eps (:func:`realization_trends`) is taken (at least 1, as a pooled factor)."""
+        trend = None if eps is None else self._realization_trends(bc).get(quantity)
+        if trend is not None:
+            return max(1.0, trend.factor(eps)), trend.dof
         factors = self._realization_factors(bc)
         if quantity in ZONE_QUANTITIES and quantity not in self._measured():
             quantity = None

@@ -59,23 +59,43 @@ class Row:
         return self.verdict.outcome
 
 
-def evaluate(claims, data):
-    """The report rows of every claim (one per measure) for ``data`` (:class:`ReportData`).
+class Rows(list):
+    """The rows of one evaluation (:func:`evaluate`), with what they were evaluated from:
+    ``register`` (the claims) and ``data`` (the :class:`ReportData`), so that the table of
+    tolerances (:mod:`.sensitivity`) re-evaluates them without loading the data again."""
+
+    def __init__(self, rows=(), register=(), data=None):
+        super().__init__(rows)
+        self.register = list(register)
+        self.data = data
+
+
+def evaluate(claims, data, measures=None):
+    """The report rows (:class:`Rows`) of every claim (one per measure) for ``data``
+    (:class:`ReportData`).
 
     A model claim the campaign lacks part of the paper's scale for is undecided, with one
     exception: the ramp at fewer taps per level than the paper's, when ramp-levels measured
     the levels' shift to 4000 taps on every branch the measure reads and the verdict stays
-    the same anywhere within the range the shifts give (:func:`reduced_ramp_verdict`)."""
+    the same anywhere within the range the shifts give (:func:`reduced_ramp_verdict`).
+    ``measures``: claim id -> its statistic's measures, filled by the statistics the first
+    time and read the next (a convention of the rules alone re-decides the same measures)."""
     met = scale_aspects(data.summary)
     bounds = {tag: ramp_reduction_bounds(data, tag) for tag, *_ in RAMPS}
     per_level = ", ".join(map(str, data.summary.get("ramp_taps_per_level") or []))
-    rows = []
+    rows = Rows(register=claims, data=data)
     for claim in claims:
         missing = tuple(a for a in claim.needs if a not in met)
         if not claim.statistic:
             rows.append(Row(claim, "", Measure(), verdict(claim, Measure()), missing))
             continue
-        for m in STATISTICS[claim.statistic](data, claim):
+        if measures is None or claim.id not in measures:
+            found_measures = STATISTICS[claim.statistic](data, claim)
+            if measures is not None:
+                measures[claim.id] = found_measures
+        else:
+            found_measures = measures[claim.id]
+        for m in found_measures:
             found = verdict(claim, m)
             lacking = missing + tuple(a for a in m.lacks if a not in missing)
             if lacking and found.outcome != Outcome.UNDECIDED and claim.kind == "model":

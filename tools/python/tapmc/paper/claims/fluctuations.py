@@ -11,7 +11,8 @@ import numpy as np
 from tapmc.stats import mean_dof, weighted_polyfit
 
 from .. import _plotting as P
-from .common import not_in_campaign, one_seed_error_text, steady_dof, value_triple
+from .common import not_in_campaign, one_seed_error_text, value_triple
+from .conventions import SPECTRUM_BAND
 from .measure import Measure, fmt
 from .registry import statistic
 
@@ -24,7 +25,8 @@ def spectral_slopes(data, claim):
     out = []
     for eps, spectrum in _spectra(fig3):
         m, s, n = value_triple(spectrum.slope)
-        out.append(Measure(-m, s, steady_dof(n, s), label=f"eps = {eps:g}", shown=fmt(m, s)))
+        out.append(Measure(-m, s, data.point_dof("fig3", spectrum.slope), label=f"eps = {eps:g}",
+                           shown=fmt(m, s)))
     return out or not_in_campaign("no spectrum")
 
 
@@ -32,10 +34,6 @@ def _spectra(fig3):
     """(eps, Spectrum) of Fig. 3's result by eps, eps as the figure labels it (the CSV's
     ``eps=<eps>``, four digits: the page's labels)."""
     return sorted((float(P.fmt_eps(eps)), spectrum) for eps, spectrum in fig3.spectra.items())
-
-
-#: Fraction of the frequencies (lowest, highest) compared by ``spectrum_eps_spread``.
-SPECTRUM_BAND = 0.25
 
 
 #: Resamplings of the spectra that propagate their sem to ``spectrum_eps_spread``.

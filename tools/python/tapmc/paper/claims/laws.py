@@ -16,6 +16,7 @@ from tapmc.stats import mean_dof
 
 from .. import _plotting as P
 from .common import eps_series, not_in_campaign
+from .conventions import FIT_P_VALUE, REALIZATION_MIN_SEEDS, REALIZATION_MIN_TAPS
 from .measure import Measure, fmt
 from .registry import statistic
 
@@ -53,15 +54,6 @@ def _law_quality(prefix):
                                "realizations (tapmc-paper question early-taps)")
         return m
     return measure
-
-
-#: realizations (early_taps.csv) that test a law of Fig. 2 across runs: a 4-parameter law
-#: needs 6 (tapmc.laws.RealizationLawTest: realizations > bins > parameters) ...
-REALIZATION_MIN_SEEDS = 6
-
-
-#: ... spanning at least two decades of taps, over which the laws' curvature shows
-REALIZATION_MIN_TAPS = 100
 
 
 def realization_curves(data, eps, column):
@@ -369,7 +361,7 @@ def _b_from_surrogates(rows, label):
     dof = len(x) - 2
     p_value = float(chi2_distribution.sf(chi, dof))
     shown = f"{text}; d ln B / d sqrt(eps) = {coef[0]:.3g}, chi2 {chi:.3g} ({dof} dof)"
-    if p_value >= 0.01:
+    if p_value >= FIT_P_VALUE:
         return Measure(chi / dof, dof=dof, label=label, shown=shown, p_value=p_value)
     return Measure(label=label, shown=shown,
                    undecided=f"p = {p_value:.2g}, but one run's surrogate errors are too "

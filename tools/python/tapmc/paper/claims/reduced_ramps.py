@@ -18,6 +18,7 @@ from .._runs import RAMP_BRANCHES
 from ..fig4 import RAMPS
 from .bell import critical_separation, ramp_branch, turning_ramps, turning_top
 from .common import WITHIN_RUN_DOF, value_triple
+from .conventions import RAMP_REDUCTION_MIN_LEVELS
 from .measure import fmt
 from .register import PAPER_SCALE
 from .rules import Verdict, verdict
@@ -38,11 +39,6 @@ RAMP_REDUCTION_TAGS = {"low_ramp_frozen": "low"}
 
 #: the ramp of ramp_levels.csv's rows written before its column 'ramp' existed
 RAMP_LEVELS_DEFAULT_RUN = "ramp_pbc_s1"
-
-
-#: levels of a branch measured at the paper's taps per level before their largest shift
-#: stands for the whole branch (one level says nothing of how the shift varies along it)
-RAMP_REDUCTION_MIN_LEVELS = 2
 
 
 def ramp_tag(run):

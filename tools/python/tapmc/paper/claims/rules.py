@@ -20,15 +20,8 @@ from scipy import stats
 
 from tapmc.stats import t_quantile
 
+from .conventions import FIT_P_VALUE, NEAR_FRACTION, XI_CHECK_ROUNDING
 from .measure import fmt
-
-#: p-value below which a fit's chi-square rejects the law (rule ``fit``).
-FIT_P_VALUE = 0.01
-#: Rounding of the pore dumps' coordinates, allowed below xi_T by the ``check`` rule.
-XI_CHECK_ROUNDING = 1e-3
-#: "nearly the same" (rule ``near``): within a tenth of the effect the claim is measured
-#: against, the share below which the ramp-levels text also calls a shift negligible
-NEAR_FRACTION = 0.1
 
 
 class Outcome(enum.StrEnum):

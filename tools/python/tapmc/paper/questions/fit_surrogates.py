@@ -13,7 +13,8 @@ from collections import defaultdict
 
 import numpy as np
 
-from tapmc.laws import RELATIVE_ERROR_LIMIT, InverseLogLaw, SurrogateFits, ZLaw
+from tapmc.laws import (DETERMINED_FACTOR, RELATIVE_ERROR_LIMIT, InverseLogLaw, SurrogateFits,
+                        ZLaw)
 
 from .common import csv_schema, eps_of, finished_runs, last_rows, taps_table
 from .early_taps import CSV as EARLY_CSV, load as load_early
@@ -75,7 +76,7 @@ def _spread_row(eps, law_name, name, values, taps):
     lo, mid, hi = np.percentile(scaled, BAND_PERCENTILES)
     back = np.exp if log else float
     half = (hi - lo) / 2.0
-    limit = np.log(2.0) if log else RELATIVE_ERROR_LIMIT * abs(mid)
+    limit = np.log(DETERMINED_FACTOR) if log else RELATIVE_ERROR_LIMIT * abs(mid)
     return ["realizations", eps, law_name, taps, name, f"{float(back(mid)):.8g}",
             f"{float(back(lo)):.8g}", f"{float(back(hi)):.8g}", f"{half:.6g}", int(log),
             int(half <= limit), "nan", len(values)]

@@ -1,0 +1,158 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""Every hand-typed number that decides a verdict of the register, in one place: each a named
+constant with what it decides and where it comes from (the paper's section, a statistical
+standard, or "convention" with the reason for its value). The rules and statistics import
+them from here; :data:`CONVENTIONS` lists them for the page's table of tolerances, which
+says how many verdicts change when each is halved or doubled (:mod:`.sensitivity`).
+
+A few conventions act before the report: they were applied when a figure or a question of
+``tapmc-paper`` wrote its CSV (a gradient window, the limit of a "determined" parameter), so
+the committed CSVs cannot be re-evaluated with another value; they are listed with their
+source and marked so.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from tapmc.laws import DETERMINED_FACTOR, RANGE_Z_LIMIT, RELATIVE_ERROR_LIMIT, SURROGATE_P_MIN
+from tapmc.stats import CONFIDENCE
+
+from ..fig6 import WINDOW_TOP_FRACTION
+
+#: p-value below which a fit's test rejects the law (rule ``fit``; B's exponential
+#: dependence): a 1 % test, stricter than the 5 % of a sign because a law is tested at many
+#: eps and tap ranges at once (convention)
+FIT_P_VALUE = 0.01
+
+#: "nearly" / "approximately the same" (rule ``near``): within a tenth of the effect the claim
+#: is measured against, the share below which the ramp-levels text also calls a shift
+#: negligible (convention: the paper gives no precision for "approximately")
+NEAR_FRACTION = 0.1
+
+#: rounding of the pore dumps' coordinates (6 printed digits of lengths ~1), allowed below
+#: xi_T by the ``check`` rule
+XI_CHECK_ROUNDING = 1e-3
+
+#: one-sided significance below which the realizations' spread rejects one run's own error,
+#: and two-sided significance below which two sets of groups (or a statistic's few seeds and
+#: the groups, or the groups at different eps) do not share one factor (convention: a 1 %
+#: test, as the fits')
+CALIBRATION_ALPHA = 0.01
+
+#: the paper's "(sqrt eps)* ~ 0.15" (section III.B): a separation located within two of its
+#: ramp steps (dsqrt = 0.025) of 0.15 agrees; a bracket of turning points wider than that
+#: cannot tell 0.15 from its neighbours
+CRITICAL_BRACKET_HALF_WIDTH = 0.05
+
+#: fraction of the frequencies (lowest, highest) compared by ``spectrum_eps_spread``
+#: (section III.A, "eps is noticeable only at high frequencies"; convention: a quarter of
+#: the band at each end, the paper names no frequency)
+SPECTRUM_BAND = 0.25
+
+#: realizations of the first decade (tapmc-paper question early-taps) below which its rates
+#: keep one run's error (one tap's spread): the sem of fewer has too few degrees of freedom
+#: to decide anything (convention)
+EARLY_MIN_SEEDS = 4
+
+#: realizations (early_taps.csv) that test a law of Fig. 2 across runs: a 4-parameter law
+#: needs 6 (tapmc.laws.RealizationLawTest: realizations > bins > parameters) ...
+REALIZATION_MIN_SEEDS = 6
+
+#: ... spanning at least two decades of taps, over which the laws' curvature shows
+#: (convention)
+REALIZATION_MIN_TAPS = 100
+
+#: levels of a branch measured at the paper's taps per level before their largest shift
+#: stands for the whole branch (one level says nothing of how the shift varies along it)
+RAMP_REDUCTION_MIN_LEVELS = 2
+
+#: levels of a ramp's branch (common to the two branches a difference reads) from which the
+#: difference of a few seeds judged alone is decided by the paired test over the levels
+#: rather than by the seeds' own spread (at least this many levels give the test 2 dof)
+PAIRED_MIN_LEVELS = 3
+
+
+@dataclass(frozen=True)
+class Convention:
+    """One convention: the constant ``name`` (of this module, or of the module ``where``
+    when it acts before the report), what it decides, its source, and how the table of
+    tolerances varies it: ``vary`` "value" (halved and doubled), "tail" (a confidence level:
+    its tail 1 - value halved and doubled), "integer" (halved and doubled, rounded, at least
+    1) or "" (acts before the report: not re-evaluated)."""
+
+    name: str
+    decides: str
+    source: str
+    vary: str = "value"
+    where: str = ""
+
+    @property
+    def value(self):
+        return _VALUES[self.name]
+
+    def varied(self, factor):
+        """The value with the convention scaled by ``factor`` (0.5: halved, 2: doubled), as
+        :attr:`vary` says; None when it is not varied."""
+        if self.vary == "value":
+            return self.value * factor
+        if self.vary == "tail":
+            return 1.0 - (1.0 - self.value) * factor
+        if self.vary == "integer":
+            return max(1, int(round(self.value * factor)))
+        return None
+
+
+#: the conventions of the table of tolerances, in the order of the register's rules, then the
+#: statistics by section of the paper, then those applied before the report
+CONVENTIONS = (
+    Convention("CONFIDENCE", "the t quantile of every sign, zero, range, value and near rule "
+               "and of every one-sided test of the statistics",
+               "statistical standard: a two-sided 95 % interval", vary="tail"),
+    Convention("FIT_P_VALUE", "the p-value a law's fit needs (rule fit; B's exponential "
+               "dependence)", "convention: a 1 % test, the laws being tested many times"),
+    Convention("NEAR_FRACTION", "'nearly' / 'approximately the same' (rule near): the share "
+               "of the effect a difference may reach",
+               "convention: the paper gives no precision; a tenth of the hysteresis gap"),
+    Convention("XI_CHECK_ROUNDING", "the pore analysis check's allowance below xi_T",
+               "the dumps' printed precision"),
+    Convention("CALIBRATION_ALPHA", "when the realizations' spread rejects one run's error, "
+               "and when groups (boundary conditions, a statistic's seeds, eps) share one factor",
+               "convention: a 1 % test, as the fits'"),
+    Convention("PAIRED_MIN_LEVELS", "levels from which a ramp difference of seeds judged alone "
+               "is decided by the paired test over its levels", "convention: 2 dof at least",
+               vary="integer"),
+    Convention("RAMP_REDUCTION_MIN_LEVELS", "levels of a branch measured at 4000 taps before "
+               "its largest shift stands for the branch (ramps at fewer taps per level)",
+               "convention: one level says nothing of the variation along the branch",
+               vary="integer"),
+    Convention("CRITICAL_BRACKET_HALF_WIDTH", "how far from 0.15 the turning ramps may "
+               "locate (sqrt eps)*", "the paper's ramp step: two steps of 0.025 in sqrt(eps) "
+               "(section III.B)"),
+    Convention("SPECTRUM_BAND", "the low- and high-frequency bands whose spread over eps is "
+               "compared (eps 'noticeable only at high frequencies')",
+               "convention: a quarter of the frequencies at each end; the paper names none"),
+    Convention("EARLY_MIN_SEEDS", "realizations of the first decade below which its rates "
+               "keep one run's error", "convention", vary="integer"),
+    Convention("REALIZATION_MIN_SEEDS", "realizations that test a law of Fig. 2 across runs",
+               "RealizationLawTest: realizations > bins > parameters", vary="integer"),
+    Convention("REALIZATION_MIN_TAPS", "taps the realizations of a law's test must span",
+               "convention: two decades of taps", vary="integer"),
+    Convention("WINDOW_TOP_FRACTION", "the top of the gradient alpha's window (Figs. 6, 8), "
+               "as a fraction of the packing height", "the paper's 5R to 22R of a 28R packing "
+               "(section IV.A)", vary="", where="tapmc.paper.fig6, when the figure is drawn"),
+    Convention("RELATIVE_ERROR_LIMIT", "an amplitude of eq. 3 or 4 'determined': its band "
+               "within this share of its value", "convention", vary="",
+               where="tapmc.laws, when fit-surrogates and seed-fits ran"),
+    Convention("DETERMINED_FACTOR", "B or tau of eq. 3 or 4 'determined': its band within "
+               "this factor", "convention: a scale known to a factor 2 is known to its "
+               "order", vary="", where="tapmc.laws, when fit-surrogates and seed-fits ran"),
+    Convention("RANGE_Z_LIMIT", "a fitted parameter 'dependent on the range of taps'",
+               "convention: 3 standard deviations for 4 ranges tested together", vary="",
+               where="tapmc.laws, when the figure is drawn"),
+    Convention("SURROGATE_P_MIN", "a parameter range dependent in one run's surrogate fits "
+               "(eq. 3's triplet)", "convention: a 1 % test, as the fits'"),
+)
+
+
+_VALUES = {name: value for name, value in globals().items() if name.isupper()}
