@@ -253,6 +253,20 @@ def with_fig3_rows(tab):
     return tab
 
 
+def with_fig2_rows(tab):
+    """``tab`` with the row of Fig. 2's typed result (tapmc.paper.fig2.Fig2Result) that gives
+    each curve its eps: the fit's reduced chi2 of every curve of panel a (eq. 3) and c (eq. 4),
+    NaN where the table has none."""
+    for (panel, series) in list(tab.table):
+        prefix = {"a": "", "c": "Z:"}.get(panel)
+        if prefix is None or not series.startswith("eps=") or ":" in series:
+            continue
+        if ("params", f"{series}:{prefix}reduced_chi2") not in tab.table:
+            tab.param(f"{series}:{prefix}reduced_chi2", math.nan, None, n=0,
+                      x=float(series[len("eps="):]))
+    return tab
+
+
 #: the rows of Fig. 6's top panel (tapmc.paper.fig6.VerticalProfiles): its curves, its params
 FIG6_PROFILE_CURVES = ("initial", "final")
 
@@ -302,7 +316,7 @@ def with_fig4_rows(tab):
 
 
 #: figure -> what completes a test's table into every row of the figure's typed result
-COMPLETE_ROWS = {"fig3": with_fig3_rows, "fig4": with_fig4_rows, "fig6": with_fig6_rows,
+COMPLETE_ROWS = {"fig2": with_fig2_rows, "fig3": with_fig3_rows, "fig4": with_fig4_rows, "fig6": with_fig6_rows,
                  "fig8": with_fig8_rows}
 
 
@@ -630,7 +644,7 @@ __all__ = ['os', 'sys', 'Path', 'SOURCE', 'REGISTER', 'BY_ID', 'SEEDS', 'claims'
            'fig2', 'inverse_log', 'RISING', 'fig3', 'X', 'fig4', 'BELL', 'ramp_pores',
            'ramps_turning', '_critical', 'fig6_ramp', 'FIG9_PARAMS', 'with_fig9_params', 'fig9',
            'one_run_fig9', 'XI', 'pore_curve', 'with_fig10_rows', 'fig10', 'fig8',
-           'with_fig8_rows', 'with_fig3_rows', 'FIG6_PROFILE_CURVES', 'FIG6_PROFILE_PARAMS',
+           'with_fig8_rows', 'with_fig2_rows', 'with_fig3_rows', 'FIG6_PROFILE_CURVES', 'FIG6_PROFILE_PARAMS',
            'with_fig6_rows', 'FIG4_RAMP_TAGS', 'with_fig4_rows', 'COMPLETE_ROWS', '_low_first',
            'fig2_fits', 'realization_rows', 'realized', 'eq3_law', 'eq4_law', 'fig5_collapse',
            'fig5_eq6', 'FROZEN', 'STEADY_LOG', 'front_report', 'theta0_report', 'THETA0_PAPER',

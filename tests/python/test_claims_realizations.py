@@ -19,8 +19,9 @@ def test_fig2_laws_across_realizations_of_early_taps():
     for eps in (0.005, 0.15):
         tab.add("a", f"eps={P.fmt_eps(eps)}", t, 0.52 + 0.01 * np.log1p(t), None, n=1)
         tab.add("c", f"eps={P.fmt_eps(eps)}", t, 7.7 - 0.1 * np.log1p(t), None, n=1)
-        tab.add("params", f"eps={P.fmt_eps(eps)}:reduced_chi2", [0.0], [1e-6], None, n=1)
-        tab.add("params", f"eps={P.fmt_eps(eps)}:Z:reduced_chi2", [0.0], [1e-4], None, n=1)
+        # x = eps, as Fig. 2's CSV has it (the typed result reads each curve's eps there)
+        tab.add("params", f"eps={P.fmt_eps(eps)}:reduced_chi2", [eps], [1e-6], None, n=1)
+        tab.add("params", f"eps={P.fmt_eps(eps)}:Z:reduced_chi2", [eps], [1e-4], None, n=1)
 
     def law_rows(eps, seed):
         return realization_rows(eps, lambda t: InverseLogLaw.function(t, 0.6, 0.08, 0.3, 5.0),

@@ -4,14 +4,27 @@ response curves and eq. 6's law over the waiting times."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from tapmc.ageing import scaling_test_min_realizations
 
 from ..fig5 import EQ6_TEST_MIN_REALIZATIONS, LONG_DELAYS
-from .common import not_in_campaign
+from .common import not_in_campaign, value_triple
 from .measure import Measure, fmt
 from .registry import statistic
+
+
+def _value(values, name):
+    """The number of row ``name`` of a Fig. 5 dict of Values (NaN when absent)."""
+    value = (values or {}).get(name)
+    return math.nan if value is None else value.value
+
+
+def _waiting_curves(fig5):
+    """(t_W, AgeingCurve) of Fig. 5's curves with t_W > 0, by t_W."""
+    return sorted((tw, c) for tw, c in fig5.curves.items() if tw > 0)
 
 
 @statistic("ageing_collapse")
@@ -20,36 +33,38 @@ def ageing_collapse(data, claim):
     (``scaling_test:`` rows, tapmc.ageing.ScalingRealizationTest), with mu and the reduced
     chi2 over the correlated delays beside it (which decides nothing: its delays share their
     realizations and their errors come from the same few of them)."""
-    fig = data.figure("fig5")
-    if fig is None:
+    fig5 = data.result("fig5")
+    if fig5 is None:
         return not_in_campaign("no ageing runs")
-    drawn_mu = fig.param("drawn:mu")
-    if not np.isfinite(drawn_mu[0]):
+    scaling = fig5.scaling
+    if scaling is None or not np.isfinite(scaling.drawn_mu.value):
         return not_in_campaign("no rescaled collapse in the Fig. 5 data")
-    tag = "scaling" if drawn_mu[2] == 1 else "scaling_time"
-    chi = fig.param(f"{tag}:reduced_chi2")[0]
-    mu, mu_err, mu_closed = fig.param(f"{tag}:mu")
+    full = scaling.drawn_mu.n == 1
+    drawn = scaling.drawn
+    chi = drawn.reduced_chi2.value
+    mu = drawn.params.get("mu")
+    mu, mu_err, mu_closed = value_triple(None if mu is None else mu.value)
     mu_text = fmt(mu, mu_err) if mu_closed == 1 else f"{fmt(mu)} (undetermined)"
     shown = (f"mu = {mu_text}; reduced chi2 over the correlated delays {fmt(chi)} (decides "
              "nothing)")
-    curves = [s for s in fig.series("a") if s.startswith("tw=") and float(s[3:]) > 0]
-    realizations = int(min(np.min(fig.get("a", s)[3]) for s in curves)) if curves else 0
-    needed = fig.param("scaling_test:needed")[0]
+    curves = _waiting_curves(fig5)
+    realizations = int(min(np.min(c.A.n) for _, c in curves)) if curves else 0
+    needed = _value(fig5.scaling_test, "needed")
     if not np.isfinite(needed):
-        needed = scaling_test_min_realizations(len(curves), drawn_mu[2] == 1)
+        needed = scaling_test_min_realizations(len(curves), full)
     if realizations < needed:
         return [Measure(shown=shown, undecided=(
             f"{realizations} realizations: the test of the collapse across realizations needs "
             f"at least {int(needed)} (the paper averaged 10)"))]
-    T2 = fig.param("scaling_test:T2")[0]
+    T2 = _value(fig5.scaling_test, "T2")
     if not np.isfinite(T2):
         return [Measure(shown=shown, undecided=(
             "the Fig. 5 data have no test across realizations (drawn before it existed: "
             "draw Fig. 5 again from its runs)"))]
-    dof = int(fig.param("scaling_test:dof")[0])
-    bins = int(fig.param("scaling_test:bins")[0])
-    shown += _long_delays_text("; the test", fig.param("scaling_test_long:p_value")[0])
-    return [Measure(T2, dof=dof, p_value=fig.param("scaling_test:p_value")[0],
+    dof = int(_value(fig5.scaling_test, "dof"))
+    bins = int(_value(fig5.scaling_test, "bins"))
+    shown += _long_delays_text("; the test", _value(fig5.scaling_test_long, "p_value"))
+    return [Measure(T2, dof=dof, p_value=_value(fig5.scaling_test, "p_value"),
                     shown=f"T^2 {fmt(T2)} ({dof} dof) over {bins} log bins of delays, "
                           f"{realizations} realizations; {shown}")]
 
@@ -68,36 +83,36 @@ def ageing_eq6(data, claim):
     """Eq. 6 on each curve of Fig. 5 alone, tested across the realizations (``eq6_test:``
     rows, tapmc.ageing.Ageing.eq6_test), one row per waiting time, with the share of the curve
     that is the square of the mean displacement (``drift_share:``)."""
-    fig = data.figure("fig5")
-    if fig is None:
+    fig5 = data.result("fig5")
+    if fig5 is None:
         return not_in_campaign("no ageing runs")
-    curves = sorted((float(s[3:]), s) for s in fig.series("a")
-                    if s.startswith("tw=") and float(s[3:]) > 0)
+    curves = _waiting_curves(fig5)
     if not curves:
         return not_in_campaign("no curve A(t, t_W) with t_W > 0 in the Fig. 5 data")
-    needed = fig.param("eq6_test:needed")[0]
+    needed = math.nan if fig5.eq6_test_needed is None else fig5.eq6_test_needed.value
     if not np.isfinite(needed):                     # drawn before the rows existed
         needed = EQ6_TEST_MIN_REALIZATIONS
     out = []
-    for tw, series in curves:
+    for tw, curve in curves:
         label = f"t_W = {tw:g}"
-        realizations = int(np.min(fig.get("a", series)[3]))
+        realizations = int(np.min(curve.A.n))
         if realizations < needed:
             out.append(Measure(label=label, undecided=(
                 f"{realizations} realizations: eq. 6's test across realizations needs at "
                 f"least {int(needed)} (the paper averaged 10)")))
             continue
-        T2, _, _ = fig.param(f"eq6_test:tw={tw:g}:T2")
+        test = (fig5.eq6_tests or {}).get(tw)
+        T2 = math.nan if test is None else _value(test.every_delay, "T2")
         if not np.isfinite(T2):
             out.append(Measure(label=label, undecided=(
                 "the Fig. 5 data have no test of eq. 6 across realizations (drawn before it "
                 "existed: draw Fig. 5 again from its runs)")))
             continue
-        dof = int(fig.param(f"eq6_test:tw={tw:g}:dof")[0])
-        bins = int(fig.param(f"eq6_test:tw={tw:g}:bins")[0])
-        share = fig.param(f"drift_share:tw={tw:g}")[0]
-        long_text = _long_delays_text(";", fig.param(f"eq6_test_long:tw={tw:g}:p_value")[0])
-        out.append(Measure(T2, dof=dof, p_value=fig.param(f"eq6_test:tw={tw:g}:p_value")[0],
+        dof = int(_value(test.every_delay, "dof"))
+        bins = int(_value(test.every_delay, "bins"))
+        share = test.drift_share.value
+        long_text = _long_delays_text(";", _value(test.long_delays, "p_value"))
+        out.append(Measure(T2, dof=dof, p_value=_value(test.every_delay, "p_value"),
                            label=label,
                            shown=(f"T^2 {fmt(T2)} ({dof} dof) over {bins} log bins of delays, "
                                   f"{realizations} realizations; the mean displacement's "

@@ -12,8 +12,8 @@ import numpy as np
 from tapmc.fluctuations import DEFAULT_BATCHES, SteadyState
 from tapmc.stats import mean_dof, weighted_line
 
-from .common import (WITHIN_RUN_DOF, above, eps_series, not_in_campaign, one_seed_error_text,
-                     per_curve, steady_dof, value_triple)
+from .common import (WITHIN_RUN_DOF, above, curve_arrays, fig2_curves, not_in_campaign,
+                     one_seed_error_text, per_fig2_curve, steady_dof, value_triple)
 from .measure import Measure, fmt
 from .registry import statistic
 
@@ -83,7 +83,7 @@ def pbc_compaction(data, claim):
                     shown=f"{fmt(mi, si, pct=True)} -> {fmt(mf, sf, pct=True)}")]
 
 
-def _gain(fig, eps, t, mean, sem, n, run_error=(1.0, None)):
+def _gain(eps, t, mean, sem, n, run_error=(1.0, None)):
     """Mean of the last quarter minus the first point. One seed (the paper's protocol): the
     curve is the run itself, so the last quarter's mean has its batch-means error
     (tapmc.fluctuations.SteadyState) and the start, the run's own packing, none."""
@@ -100,8 +100,8 @@ def _gain(fig, eps, t, mean, sem, n, run_error=(1.0, None)):
 
 @statistic("phi_b_gain")
 def phi_b_gain(data, claim):
-    return per_curve(data, "fig2", "a",
-                      lambda *curve: _gain(*curve, run_error=data.run_error("phi_b", "fbc")))
+    return per_fig2_curve(data, lambda *curve: _gain(*curve,
+                                                     run_error=data.run_error("phi_b", "fbc")))
 
 
 #: Decades of the log-time slopes of ``log_time_slowing``: the first decade of taps (the last
@@ -211,7 +211,7 @@ def _rate_change_one_run(eps, t, x, early_seeds=None, halves_factor=1.0):
                          f"first decade; {source})")
 
 
-def _rate_change(fig, eps, t, mean, sem, n, early_seeds=None, halves_factor=1.0):
+def _rate_change(eps, t, mean, sem, n, early_seeds=None, halves_factor=1.0):
     """Rate dPhi_b/dt over the last half of the taps minus that over the first decade."""
     if np.nanmax(n) == 1 and len(t) >= 8 * DEFAULT_BATCHES and t[-1] > 10 * EARLY_DECADE[1]:
         return _rate_change_one_run(eps, t, mean, early_seeds, halves_factor)
@@ -232,33 +232,31 @@ def _weighted_line_in(t, mean, sem, lo, hi):
 
 @statistic("efficiency_decrease")
 def efficiency_decrease(data, claim):
-    return per_curve(data, "fig2", "a", lambda fig, eps, *curve: _rate_change(
-        fig, eps, *curve, early_seeds=_early_seeds(data, eps),
+    return per_fig2_curve(data, lambda eps, *curve: _rate_change(
+        eps, *curve, early_seeds=_early_seeds(data, eps),
         halves_factor=data.run_error("phi_b:halves", "fbc")[0]))
 
 
 def _fig2_end_curves(data):
-    """(fig, [(eps, series) of the smallest and the largest eps]) of Fig. 2's panel a, or
-    (None, the missing-data measures) when there are not two eps."""
-    fig = data.figure("fig2")
-    if fig is None:
+    """([(eps, (t, mean, sem, n)) of the smallest and the largest eps of Fig. 2's Phi_b], None),
+    or (None, the missing-data measures) when there are not two eps."""
+    if data.result("fig2") is None:
         return None, not_in_campaign("no Fig. 2 runs")
-    curves = eps_series(fig, "a")
-    if len(curves) < 2:
+    curves, _ = fig2_curves(data)
+    if curves is None or len(curves) < 2:
         return None, not_in_campaign("fewer than two eps in Fig. 2")
-    return fig, [curves[0], curves[-1]]
+    return [(eps, curve_arrays(c)) for eps, c in (curves[0], curves[-1])], None
 
 
 @statistic("log_time_slowing")
 def log_time_slowing(data, claim):
     """(late / early rate of Phi_b per unit ln t) at the smallest eps minus that at the
     largest: negative when the slowing is strongest at small eps (section III.A)."""
-    fig, ends = _fig2_end_curves(data)
-    if fig is None:
-        return ends
+    ends, missing = _fig2_end_curves(data)
+    if ends is None:
+        return missing
     ratios = []
-    for eps, series in ends:
-        t, mean, sem, n = fig.get("a", series)
+    for eps, (t, mean, sem, n) in ends:
         if np.nanmax(n) == 1 and t[-1] >= 100 * EARLY_DECADE[1]:
             seeds = _early_seeds(data, eps)
             (early, e_early), (late, e_late) = _log_rates_one_run(
@@ -327,12 +325,11 @@ def late_gain_share(data, claim):
     """Share of Phi_b's gain made over the last decade at the smallest eps minus that at the
     largest: positive when the smallest eps is farthest from its steady state at the end of
     the run (section III.A: 'without never really reaching it', most of all at small eps)."""
-    fig, ends = _fig2_end_curves(data)
-    if fig is None:
-        return ends
+    ends, missing = _fig2_end_curves(data)
+    if ends is None:
+        return missing
     shares = []
-    for eps, series in ends:
-        t, mean, sem, n = fig.get("a", series)
+    for eps, (t, mean, sem, n) in ends:
         if t[-1] < 10 * EARLY_DECADE[1] or (
                 np.nanmax(n) == 1 and np.sum(t >= LATE_WINDOW[0] * t[-1]) < 2 * DEFAULT_BATCHES):
             return not_in_campaign("runs too short for a last decade of taps")

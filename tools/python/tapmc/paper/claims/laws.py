@@ -14,14 +14,14 @@ from scipy.stats import chi2 as chi2_distribution
 from tapmc.laws import InverseLogLaw, RealizationLawTest, SURROGATE_P_MIN, ZLaw
 from tapmc.stats import mean_dof
 
-from .. import _plotting as P
-from .common import eps_series, not_in_campaign
+from .common import curve_arrays, fig2_curves, not_in_campaign
 from .measure import Measure, fmt
 from .registry import statistic
 
 
-def _fit_quality(fig, prefix, npoints, nparams, label):
-    chi, _, determined = fig.param(f"{prefix}reduced_chi2")
+def _fit_quality(curve, npoints, nparams, label):
+    """The reduced chi-square of the figure's own fit of one curve (a Fig. 2 CurveFit)."""
+    chi = curve.reduced_chi2.value
     if not np.isfinite(chi):
         return Measure(label=label, undecided="no fit in the figure data")
     dof = npoints - nparams
@@ -31,28 +31,27 @@ def _fit_quality(fig, prefix, npoints, nparams, label):
     return Measure(chi, dof=dof, label=label, shown=shown)
 
 
-def _law_quality(prefix):
-    """The per-curve chi-square of a 4-parameter law of Fig. 2 whose params rows are named
-    ``eps=<e>:<prefix>reduced_chi2`` (eq. 3: no prefix; eq. 4: ``Z:``), shown but undecided:
+def _law_quality(eps, curve):
+    """The chi-square of a 4-parameter law of Fig. 2 on one curve (a CurveFit, the figure's
+    ``eps=<e>:<prefix>reduced_chi2``; eq. 3: no prefix; eq. 4: ``Z:``), shown but undecided:
     the taps of a run are correlated (Fig. 3), so a chi-square over them with per-tap errors
     has no known distribution, whatever the number of seeds (with two seeds the medium
     preset's eq. 3 fits had reduced chi2 0.03: a test that cannot fail). The laws are decided
     across realizations (:func:`_law_across_realizations`)."""
-    def measure(fig, eps, t, mean, sem, n):
-        m = _fit_quality(fig, f"eps={P.fmt_eps(eps)}:{prefix}", len(t), 4, f"eps = {eps:g}")
-        if m.undecided is None:
-            seeds = mean_dof(n)
-            if seeds is None:
-                # without error bars the fit's "reduced chi2" is its mean squared residual
-                m.shown = f"rms residual {fmt(math.sqrt(m.value))}"
-                m.undecided = ("one realization: no error bars for a chi-square (the taps' "
-                               "scatter is correlated)")
-            else:
-                m.undecided = (f"{seeds + 1} seeds: a chi-square over correlated taps has no "
-                               f"known distribution; needs {REALIZATION_MIN_SEEDS} "
-                               "realizations (tapmc-paper question early-taps)")
-        return m
-    return measure
+    t, _, _, n = curve_arrays(curve)
+    m = _fit_quality(curve, len(t), 4, f"eps = {eps:g}")
+    if m.undecided is None:
+        seeds = mean_dof(n)
+        if seeds is None:
+            # without error bars the fit's "reduced chi2" is its mean squared residual
+            m.shown = f"rms residual {fmt(math.sqrt(m.value))}"
+            m.undecided = ("one realization: no error bars for a chi-square (the taps' "
+                           "scatter is correlated)")
+        else:
+            m.undecided = (f"{seeds + 1} seeds: a chi-square over correlated taps has no "
+                           f"known distribution; needs {REALIZATION_MIN_SEEDS} "
+                           "realizations (tapmc-paper question early-taps)")
+    return m
 
 
 #: realizations (early_taps.csv) that test a law of Fig. 2 across runs: a 4-parameter law
@@ -124,38 +123,48 @@ def _law_across_realizations(data, eps, law, column):
     return out
 
 
-def _fig2_law_quality(data, law, column, panel, prefix):
-    """Per eps of Fig. 2: the law across realizations where early_taps.csv has them (two
-    measures: every tap, and after the first taps' loosening), else the chi-square of the
-    figure's own fit (:func:`_law_quality`)."""
-    fig = data.figure("fig2")
-    if fig is None:
-        return not_in_campaign("no Fig. 2 runs")
+def _fig2_law_quality(data, law, column, tag):
+    """Per eps of Fig. 2's curves of law ``tag``: the law across realizations where
+    early_taps.csv has them (two measures: every tap, and after the first taps' loosening),
+    else the chi-square of the figure's own fit (:func:`_law_quality`)."""
+    curves, missing = fig2_curves(data, tag)
+    if curves is None:
+        return missing
     out = []
-    for eps, series in eps_series(fig, panel):
+    for eps, curve in curves:
         ms = _law_across_realizations(data, eps, law, column)
-        out += ms if ms is not None else [_law_quality(prefix)(fig, eps, *fig.get(panel, series))]
-    return out or not_in_campaign(f"no curve in panel {panel} of Fig. 2")
+        out += ms if ms is not None else [_law_quality(eps, curve)]
+    return out
 
 
 @statistic("eq3_fit_quality")
 def eq3_fit_quality(data, claim):
-    return _fig2_law_quality(data, InverseLogLaw(), "phi_b", "a", "")
+    return _fig2_law_quality(data, InverseLogLaw(), "phi_b", "eq3")
 
 
 #: Parameters of eq. 3 whose uniqueness section III.B discusses: the triplet (X_inf, B, tau).
 EQ3_TRIPLET = ("X_inf", "B", "tau")
 
 
-def _eq3_uniqueness(fig, eps):
-    """(unique, reason) of the eq. 3 triplet at one eps from Fig. 2's params: unique when
-    every parameter is determined (its profile interval closes) and consistent over the tap
-    ranges; None when the figure data have no intervals."""
-    tag = f"eps={P.fmt_eps(eps)}"
-    if fig.get("params", f"{tag}:tau:range_deviation") is None:
+def _estimate_flag(curve, name, part=None):
+    """The n (flag) of a fitted parameter of a Fig. 2 CurveFit, or of its qualifying row
+    ``part``; 0 when the figure data have none."""
+    estimate = curve.params.get(name)
+    value = None if estimate is None else (
+        estimate.value if part is None else estimate.part(part))
+    return 0 if value is None else value.n
+
+
+def _eq3_uniqueness(curve):
+    """(unique, reason) of the eq. 3 triplet of one curve of Fig. 2 (a CurveFit): unique
+    when every parameter is determined (its profile interval closes) and consistent over the
+    tap ranges; None when the figure data have no intervals."""
+    tau = curve.params.get("tau")
+    if tau is None or tau.part("range_deviation") is None:
         return None, ""
-    undetermined = [k for k in EQ3_TRIPLET if fig.param(f"{tag}:{k}")[2] != 1]
-    dependent = [k for k in EQ3_TRIPLET if fig.param(f"{tag}:{k}:range_deviation")[2] != 1]
+    undetermined = [k for k in EQ3_TRIPLET if _estimate_flag(curve, k) != 1]
+    dependent = [k for k in EQ3_TRIPLET
+                 if _estimate_flag(curve, k, "range_deviation") != 1]
     reasons = ([f"{', '.join(undetermined)} undetermined"] if undetermined else []) + \
         ([f"{', '.join(dependent)} range dependent"] if dependent else [])
     return not reasons, "; ".join(reasons) or "unique"
@@ -167,10 +176,9 @@ def _eq3_uniqueness(fig, eps):
 ONE_RUN_FITS = "one realization: the fits' intervals ignore the taps' correlation"
 
 
-def _one_run_fig2(fig):
-    """True when every curve of Fig. 2 is one run (n = 1)."""
-    series = eps_series(fig, "a")
-    return bool(series) and max(np.nanmax(fig.get("a", name)[3]) for _, name in series) < 2
+def _one_run_fig2(curves):
+    """True when every curve of Fig. 2 (``curves``: [(eps, CurveFit)]) is one run (n = 1)."""
+    return bool(curves) and max(np.nanmax(c.data.n) for _, c in curves) < 2
 
 
 def _run_seed(name):
@@ -325,15 +333,14 @@ def eq3_triplet_pattern(data, claim):
             out = [dataclasses.replace(out[0], label="F.B.C., Fig. 2's runs")] + \
                 _triplet_from_realizations(pbc, "P.B.C. realizations")
         return out
-    fig = data.figure("fig2")
-    if fig is None:
+    if data.result("fig2") is None:
         return not_in_campaign("no Fig. 2 runs")
-    series = eps_series(fig, "a")
-    if len(series) < 2:
+    curves = fig2_curves(data)[0] or []
+    if len(curves) < 2:
         return not_in_campaign("fewer than two eps in Fig. 2")
-    if _one_run_fig2(fig):
+    if _one_run_fig2(curves):
         return [Measure(undecided=ONE_RUN_FITS)]
-    states = [(e, *_eq3_uniqueness(fig, e)) for e, _ in series]
+    states = [(e, *_eq3_uniqueness(c)) for e, c in curves]
     if any(u is None for _, u, _ in states):
         return not_in_campaign("no profile intervals and range refits in the Fig. 2 data")
     shown = "; ".join(f"eps = {e:g}: {why}" for e, _, why in states)
@@ -343,7 +350,7 @@ def eq3_triplet_pattern(data, claim):
 
 @statistic("eq4_fit_quality")
 def eq4_fit_quality(data, claim):
-    return _fig2_law_quality(data, ZLaw(), "Z", "c", "Z:")
+    return _fig2_law_quality(data, ZLaw(), "Z", "eq4")
 
 
 def _b_from_surrogates(rows, label):
@@ -376,6 +383,14 @@ def _b_from_surrogates(rows, label):
                              "narrow to reject")
 
 
+def _has_b_fit(dependence):
+    """Whether Fig. 2's data have the straight line of ln B in sqrt(eps) of a law (its
+    ``<law>:reduced_chi2`` row; a table built in memory may lack it: NaN with n = 0 and no
+    B rows)."""
+    chi2 = dependence.reduced_chi2
+    return np.isfinite(chi2.value) or chi2.n != 0 or len(dependence.B) > 0
+
+
 @statistic("b_exponential")
 def b_exponential(data, claim):
     """ln B linear in sqrt(eps) (Fig. 2 panel B) for the B of eq. 3 and of eq. 4."""
@@ -383,18 +398,19 @@ def b_exponential(data, claim):
                        for law in ("eq3", "eq4") if len(rows := surrogate_fits(data, law)) >= 1]
     if from_surrogates:
         return from_surrogates
-    fig = data.figure("fig2")
-    if fig is None:
+    fig2 = data.result("fig2")
+    if fig2 is None:
         return not_in_campaign("no Fig. 2 runs")
-    one_run = _one_run_fig2(fig)
+    one_run = _one_run_fig2(fig2_curves(data)[0] or [])
     out = []
     for law in ("eq3", "eq4"):
-        d = fig.get("B", f"{law}:reduced_chi2")
-        if d is None:
+        dependence = fig2.laws[law].B if law in fig2.laws else None
+        if dependence is None or not _has_b_fit(dependence):
             continue
-        chi, dof = float(d[1][0]), int(d[3][0])
-        slope = fig.get("B", f"{law}:slope")
-        text = "" if slope is None else f"d ln B / d sqrt(eps) = {fmt(slope[1][0], slope[2][0])}; "
+        chi, dof = dependence.reduced_chi2.value, dependence.reduced_chi2.n
+        slope = dependence.slope
+        text = "" if slope is None else \
+            f"d ln B / d sqrt(eps) = {fmt(slope.value.value, slope.value.err)}; "
         label = f"B of {law.replace('eq', 'eq. ')}"
         if one_run:
             out.append(Measure(label=label, undecided=ONE_RUN_FITS,
