@@ -37,7 +37,7 @@ from .calibration import (CALIBRATION_ALPHA, ONE_RUN_WINDOW_ROWS, RUN_ERROR_LABE
 from .common import WITHIN_RUN_DOF
 from .compaction import (DECADE_BEFORE_WINDOW, EARLY_DECADE, EARLY_MIN_SEEDS, LATE_WINDOW,
                          SHORT_WINDOW_BATCHES, efficiency_decrease, first_decade_rates,
-                         initial_phi, late_gain_share, log_time_slowing, pbc_compaction,
+                         initial_phi, late_gain_share, pbc_compaction,
                          phi_b_gain, tapped_phi)
 from .data import QUESTION_CSVS, FigureData, ReportData
 from .evaluate import Row, evaluate, scale_aspects

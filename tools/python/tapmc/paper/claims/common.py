@@ -18,6 +18,21 @@ from ..fig2 import LAWS as FIG2_LAWS
 from .measure import Measure, fmt
 
 
+#: Half a unit of the last digit the paper prints of a packing fraction (58.4 %, 60.6 %,
+#: section IV.B): the precision at which the paper can tell a law from its curves of Phi
+#: (eq. 3 "compatible" with Fig. 2, section III.A), the register's ``rounding`` of a value
+PACKING_FRACTION_PRECISION = 0.0005
+
+
+def paper_precision(deviation, precision):
+    """A law's largest departure from the data, ``deviation``, in units of the paper's
+    ``precision`` for it: at most 1 when the paper could not tell the law from the data;
+    None when either is not a positive finite number."""
+    if not (np.isfinite(deviation) and np.isfinite(precision) and precision > 0):
+        return None
+    return float(deviation / precision)
+
+
 def above(value, err, dof, reference=0.0):
     """``value`` above ``reference`` beyond t err (tapmc.stats.beyond, one side)."""
     return value > reference and beyond(value, err, dof, reference)

@@ -1,7 +1,8 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 """Statistics of the initial packing and of the compaction curves (section III.A, Fig. 2; the
 steady states of Fig. 9): the packing fractions, the gain in Phi_b, the efficiency that
-decreases over the first decade, the slowing in log time and the late share of the gain."""
+decreases over the first decade, and the late share of the gain (the slowing strongest at
+small eps)."""
 
 from __future__ import annotations
 
@@ -12,7 +13,7 @@ import numpy as np
 from tapmc.fluctuations import DEFAULT_BATCHES, SteadyState
 from tapmc.stats import mean_dof, weighted_line
 
-from .common import (WITHIN_RUN_DOF, above, curve_arrays, fig2_curves, not_in_campaign,
+from .common import (WITHIN_RUN_DOF, curve_arrays, fig2_curves, not_in_campaign,
                      one_seed_error_text, per_fig2_curve, steady_dof, value_triple)
 from .measure import Measure, fmt
 from .registry import statistic
@@ -104,8 +105,7 @@ def phi_b_gain(data, claim):
                                                      run_error=data.run_error("phi_b", "fbc")))
 
 
-#: Decades of the log-time slopes of ``log_time_slowing``: the first decade of taps (the last
-#: one is [T/10, T]).
+#: The first decade of taps, whose rate ``efficiency_decrease`` compares with the last half's.
 EARLY_DECADE = (1.0, 10.0)
 
 
@@ -152,34 +152,6 @@ def _early_seeds(data, eps):
     sem = values.std(axis=0, ddof=1) / math.sqrt(len(values))
     mean = values.mean(axis=0)
     return (mean[0], sem[0]), (mean[1], sem[1]), len(values)
-
-
-def _log_rates_one_run(t, x, early_seeds=None, halves_factor=1.0):
-    """Rates of Phi_b per unit ln t of one run (the curve is the run) over the first decade and
-    the last decade [T/10, T], each from the means of the decade's two halves in ln t: the
-    late halves with their batch-means errors (tapmc.fluctuations.SteadyState), the early ones
-    with the error over realizations when ``early_seeds`` (:func:`_early_seeds`) has them,
-    else with one tap's spread about the steady state (not divided by their number: taps that
-    close are correlated); ``halves_factor`` scales the late error to a realization's
-    (:meth:`ReportData.run_error` of 'phi_b:halves'). ((early, error), (late, error))."""
-    if early_seeds is not None:
-        early = early_seeds[1]
-    else:
-        spread = SteadyState(x, last=max(len(t) // 4, 2)).compute().std
-        (_, _), (log_rate, log_gap) = first_decade_rates(t, x)
-        early = (log_rate, math.sqrt(2.0) * spread / log_gap)
-    lo, hi = t[-1] / 10.0, t[-1]
-    mid = math.sqrt(lo * hi)
-    parts = [(t >= lo) & (t < mid), (t >= mid) & (t <= hi)]
-    means = [float(np.mean(x[p])) for p in parts]
-    errs = [SteadyState(x[p], last=int(p.sum())).compute().sem for p in parts]
-    gap = float(np.mean(np.log(t[parts[1]])) - np.mean(np.log(t[parts[0]])))
-    return early, ((means[1] - means[0]) / gap, halves_factor * math.hypot(*errs) / gap)
-
-
-def _log_slope(t, mean, sem, lo, hi):
-    pick = (t >= lo) & (t <= hi) & (t > 0)
-    return weighted_line(np.log(t[pick]), mean[pick], sem[pick])
 
 
 def _rate_change_one_run(eps, t, x, early_seeds=None, halves_factor=1.0):
@@ -246,44 +218,6 @@ def _fig2_end_curves(data):
     if curves is None or len(curves) < 2:
         return None, not_in_campaign("fewer than two eps in Fig. 2")
     return [(eps, curve_arrays(c)) for eps, c in (curves[0], curves[-1])], None
-
-
-@statistic("log_time_slowing")
-def log_time_slowing(data, claim):
-    """(late / early rate of Phi_b per unit ln t) at the smallest eps minus that at the
-    largest: negative when the slowing is strongest at small eps (section III.A)."""
-    ends, missing = _fig2_end_curves(data)
-    if ends is None:
-        return missing
-    ratios = []
-    for eps, (t, mean, sem, n) in ends:
-        if np.nanmax(n) == 1 and t[-1] >= 100 * EARLY_DECADE[1]:
-            seeds = _early_seeds(data, eps)
-            (early, e_early), (late, e_late) = _log_rates_one_run(
-                t, mean, seeds, data.run_error("phi_b:halves", "fbc")[0])
-            dof = WITHIN_RUN_DOF if seeds is None else min(seeds[2] - 1, WITHIN_RUN_DOF)
-        else:
-            early, e_early, _ = _log_slope(t, mean, sem, *EARLY_DECADE)
-            late, e_late, _ = _log_slope(t, mean, sem, t[-1] / 10.0, t[-1])
-            dof = mean_dof(n)
-        if not (np.isfinite(early) and early > 2 * e_early):
-            return [Measure(undecided=f"no significant compaction in the first decade at "
-                                      f"eps = {eps:g} (rate {fmt(early, e_early)})")]
-        r = late / early
-        ratios.append((eps, r, abs(r) * math.hypot(e_late / late if late else math.inf,
-                                                    e_early / early), dof))
-    (e0, r0, s0, d0), (e1, r1, s1, d1) = ratios
-    dofs = [d for d in (d0, d1) if d is not None]
-    dof = min(dofs) if len(dofs) == 2 else None
-    # both ratios beyond 1 by t sem: the log-time rate grows at both eps, no slowing on ln t
-    speeding = all(above(r, s, dof, reference=1.0) for r, s in ((r0, s0), (r1, s1)))
-    return [Measure(r0 - r1, math.hypot(s0, s1), dof,
-                    shown=f"late/early rate {fmt(r0, s0)} (eps = {e0:g}) vs {fmt(r1, s1)} "
-                          f"(eps = {e1:g})" + (
-                              "; both above 1: per unit ln t neither run slows down within "
-                              "its taps (the first decade begins with the first taps' "
-                              "loosening), the weakest taps compacting latest" if speeding
-                              else ""))]
 
 
 #: late_gain_share: the windows, as fractions of the run's taps T, whose means give Phi_b at

@@ -14,7 +14,8 @@ from scipy.stats import chi2 as chi2_distribution
 from tapmc.laws import InverseLogLaw, RealizationLawTest, SURROGATE_P_MIN, ZLaw
 from tapmc.stats import mean_dof
 
-from .common import curve_arrays, fig2_curves, not_in_campaign
+from .common import (PACKING_FRACTION_PRECISION, curve_arrays, fig2_curves, not_in_campaign,
+                     paper_precision)
 from .measure import Measure, fmt
 from .registry import statistic
 
@@ -97,36 +98,60 @@ def back_at_start(t, mean):
 
 
 def _law_across_realizations(data, eps, law, column):
-    """Measures of one law of Fig. 2 tested across the realizations of early_taps.csv at
-    ``eps`` (tapmc.laws.RealizationLawTest): over every tap from the first, and from the end
-    of the first taps' loosening (:func:`loosening_end`); None when the realizations are too
-    few."""
+    """One measure per eps of a law of Fig. 2 tested across the realizations of
+    early_taps.csv at ``eps`` (tapmc.laws.RealizationLawTest) from the end of the first taps'
+    loosening (:func:`loosening_end`): the first taps loosen the deposited packing below its
+    t = 0 value, which no monotonic law follows, so the law is tested where the compaction
+    has begun; the test over every tap is shown beside it and decides nothing. With the
+    largest departure of the law from the bins' means against the paper's precision
+    (:func:`_law_precision`). None when the realizations are too few."""
     curves = realization_curves(data, eps, column)
     if curves is None:
         return None
-    out = []
+    label = f"eps = {eps:g}"
     back = loosening_end(data, eps)
-    for t_min, part in ((1.0, "every tap"), (back, "after the first taps' loosening")):
-        label = f"eps = {eps:g}, {part}"
-        if t_min is None or t_min * 10 > curves[0][-1]:
-            out.append(Measure(label=label, undecided=(
-                "the packing is still looser than at t = 0 a decade before the "
-                "realizations' last tap")))
-            continue
-        test = RealizationLawTest(law, t_min=t_min).compute(*curves)
-        edges = test.bin_edges
-        out.append(Measure(test.chi2, dof=test.dof, p_value=test.p_value, label=label,
-                           shown=f"T^2 {fmt(test.chi2)} ({test.dof} dof) over taps "
-                                 f"{edges[0]:g}-{edges[-1] - 1:g} in {len(edges) - 1} log "
-                                 f"bins, {test.realizations} realizations from the same "
-                                 "packing"))
-    return out
+    if back is None or back * 10 > curves[0][-1]:
+        return [Measure(label=label, undecided=(
+            "the packing is still looser than at t = 0 a decade before the realizations' "
+            "last tap"))]
+    test = RealizationLawTest(law, t_min=back).compute(*curves)
+    edges = test.bin_edges
+    shown = (f"T^2 {fmt(test.chi2)} ({test.dof} dof) over taps {edges[0]:g}-{edges[-1] - 1:g} "
+             f"in {len(edges) - 1} log bins, {test.realizations} realizations from the same "
+             f"packing; {_deviation_text(test, column)}")
+    if back > 1.0:
+        every = RealizationLawTest(law, t_min=1.0).compute(*curves)
+        shown += (f"; from tap 1, the loosening included (decides nothing): T^2 "
+                  f"{fmt(every.chi2)}, p = {every.p_value:.2g}")
+    return [Measure(test.chi2, dof=test.dof, p_value=test.p_value, label=label, shown=shown,
+                    paper_precision=_law_precision(test, column))]
+
+
+def _law_precision(test, column):
+    """The largest departure of a RealizationLawTest's law from the bins' means in units of
+    the paper's precision: for Phi_b, half a unit of the last digit the paper prints of a
+    packing fraction (:data:`PACKING_FRACTION_PRECISION`); None for <Z>, of which the paper
+    prints no value."""
+    if column != "phi_b":
+        return None
+    return paper_precision(_largest_deviation(test), PACKING_FRACTION_PRECISION)
+
+
+def _largest_deviation(test):
+    return float(np.max(np.abs(np.asarray(test.bin_means, dtype=float) - test.bin_model)))
+
+
+def _deviation_text(test, column):
+    text = f"the law departs from the bins' means by at most {fmt(_largest_deviation(test))}"
+    if column != "phi_b":
+        return text
+    return text + f" (the paper's precision: {fmt(PACKING_FRACTION_PRECISION)})"
 
 
 def _fig2_law_quality(data, law, column, tag):
     """Per eps of Fig. 2's curves of law ``tag``: the law across realizations where
-    early_taps.csv has them (two measures: every tap, and after the first taps' loosening),
-    else the chi-square of the figure's own fit (:func:`_law_quality`)."""
+    early_taps.csv has them (from the end of the first taps' loosening), else the chi-square
+    of the figure's own fit (:func:`_law_quality`)."""
     curves, missing = fig2_curves(data, tag)
     if curves is None:
         return missing

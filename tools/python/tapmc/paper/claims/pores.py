@@ -14,7 +14,8 @@ from tapmc.stats import bonferroni_t_quantile, mean_dof, weighted_line
 
 from .. import _plotting as P
 from .._runs import RAMP_BRANCHES
-from .common import common_x, jackknife_dof, not_in_campaign, paired_levels
+from .common import (common_x, jackknife_dof, not_in_campaign,
+                     paired_levels, paper_precision)
 from .data import ReportData
 from .measure import Measure, fmt
 from .registry import statistic
@@ -243,7 +244,27 @@ def pore_quadratic_fit(data, claim):
     pick, basis, c = law
     dof = int(pick.sum()) - 1
     chi = float(np.sum((y[pick] - c * basis) ** 2 / s[pick] ** 2)) / dof
-    return [Measure(chi, dof=dof, shown=f"reduced chi2 {fmt(chi)} ({dof} dof, t = {t:g})")]
+    precision = _superimposed_spread(curves, pick, x)
+    deviation = float(np.max(np.abs(y[pick] - c * basis)))
+    shown = f"reduced chi2 {fmt(chi)} ({dof} dof, t = {t:g})"
+    if precision is not None:
+        shown += (f"; the law departs from the histogram by at most {fmt(deviation)}, the "
+                  f"curves of t = {curves[0][0]:g} to {t:g} by up to {fmt(precision)} (which "
+                  "the paper calls superimposed)")
+    return [Measure(chi, dof=dof, shown=shown, paper_precision=None if precision is None
+                    else paper_precision(deviation, precision))]
+
+
+def _superimposed_spread(curves, pick, x):
+    """The paper's precision for a law of the small pores of Fig. 10a: it calls its curves of
+    every t "superimposed for the small pores" (section IV.B), so it could not tell apart
+    curves as far from each other as they are there: the largest difference, over the bins
+    ``pick`` of (xi_T, xi_O], between any dump's xi^3 P(xi) and the last one's; None with one
+    dump."""
+    last = curves[-1][1]
+    spreads = [np.max(np.abs(np.interp(x[pick], c.x, c.mean) - last.mean[pick]))
+               for _, c in curves[:-1]]
+    return float(max(spreads)) if spreads and max(spreads) > 0 else None
 
 
 def pore_law_deviation(fig10):
