@@ -26,7 +26,7 @@ from __future__ import annotations
 
 # the statistic modules register their statistics when imported
 from . import ageing, bell, compaction, fluctuations, laws, pores, scans, zones  # noqa: F401
-from .ageing import ageing_collapse, ageing_eq6
+from .ageing import LAW_FREE_MIN_REALIZATIONS, ageing_collapse, ageing_eq6, dispersion_p_bound
 from .bell import (ALPHA_ABOVE_STEADY, CRITICAL_BRACKET_HALF_WIDTH, alpha_bell,
                    alpha_ramp_hysteresis, bell_maximum, bell_side_slope, critical_separation,
                    hysteresis_gap, low_ramp_frozen, ramp_branch_slope, ramp_down_minus_up,
@@ -41,15 +41,15 @@ from .compaction import (DECADE_BEFORE_WINDOW, EARLY_DECADE, EARLY_MIN_SEEDS, LA
                          phi_b_gain, tapped_phi)
 from .data import QUESTION_CSVS, FigureData, ReportData
 from .evaluate import Row, evaluate, scale_aspects
-from .fluctuations import (SPECTRUM_BAND, SPECTRUM_RESAMPLINGS, sigma_intercept,
-                           spectral_slopes, spectrum_eps_spread)
+from .fluctuations import (SPECTRUM_BAND, sigma_intercept, spectral_slopes,
+                           spectrum_low_band)
 from .laws import (EQ3_TRIPLET, ONE_RUN_FITS, REALIZATION_MIN_SEEDS, REALIZATION_MIN_TAPS,
                    SURROGATES_UNIQUE, b_exponential, back_at_start, eq3_fit_quality,
                    eq3_triplet_pattern, eq4_fit_quality, loosening_end, realization_curves,
                    realization_fits, surrogate_fits)
 from .measure import Measure, fmt
 from .pores import (nu_change, nu_ramp_hysteresis, nu_tail_over_nu, p0_final_minus_py,
-                    p0_initial_minus_final, pore_law_deviation, pore_quadratic_fit,
+                    p0_change_over_density, pore_law_deviation, pore_quadratic_fit,
                     pore_share_change, xi_min)
 from .reduced_ramps import (RAMP_LEVELS_DEFAULT_RUN, RAMP_REDUCTION_BRANCHES,
                             RAMP_REDUCTION_MIN_LEVELS, RAMP_REDUCTION_TAGS, ramp_reduction_bounds,

@@ -13,8 +13,10 @@ import numpy as np
 from tapmc.fluctuations import DEFAULT_BATCHES, SteadyState
 from tapmc.stats import mean_dof, weighted_line
 
+from .._runs import eps_tag
 from .common import (WITHIN_RUN_DOF, curve_arrays, fig2_curves, not_in_campaign,
-                     one_seed_error_text, per_fig2_curve, steady_dof, value_triple)
+                     one_seed_error_text, per_fig2_curve, seeds_error, steady_dof,
+                     value_triple)
 from .measure import Measure, fmt
 from .registry import statistic
 
@@ -82,6 +84,61 @@ def pbc_compaction(data, claim):
             si = 0.0  # one packing: its initial value is exact, the steady mean is not
     return [Measure(mf - mi, math.hypot(si, sf), dof,
                     shown=f"{fmt(mi, si, pct=True)} -> {fmt(mf, sf, pct=True)}")]
+
+
+def _fbc_groups(data):
+    """eps -> [(start, mean, sem)] of <Phi^c> of the F.B.C. constant-eps groups of
+    realization_scatter.csv (``const_fbc_eps<eps>``: seeds of one eps, each from its own
+    packing, the window of the last 1000 taps)."""
+    out = {}
+    for r in data.question("realization_scatter"):
+        if r["column"] == "phi_c" and r["group"].startswith("const_fbc_eps"):
+            out.setdefault(float(r["group"][len("const_fbc_eps"):]), []).append(
+                (float(r["start"]), float(r["mean"]), float(r["sem"])))
+    return out
+
+
+@statistic("pbc_vs_fbc")
+def pbc_vs_fbc(data, claim):
+    """Section IV.A: "the absolute value of the packing fraction is larger in periodic
+    conditions but its increase due to compaction is a bit smaller". At each eps where the
+    campaign has both: P.B.C., Fig. 4's steady square (from the bell's packing, whose <Phi^c>
+    the campaign's initial packings give); F.B.C., the groups of seeds of realization-scatter
+    (each from its own packing). Two rows: the steady <Phi^c> of P.B.C. minus F.B.C. (sign
+    +), and the increase of P.B.C. minus that of F.B.C. (sign -). The F.B.C. seeds' errors are
+    judged with the campaign's groups of realizations (common.seeds_error)."""
+    fig4 = data.result("fig4")
+    groups = _fbc_groups(data)
+    m0, s0, n0 = (math.nan if v is None else v for v in data.summary.get("initial_phi_c")
+                  or (None, None, None))
+    if fig4 is None or not groups or not np.isfinite(m0):
+        return not_in_campaign("P.B.C. steady states (Fig. 4), F.B.C. groups of seeds "
+                               "(realization-scatter) and the initial P.B.C. packings")
+    out = []
+    for eps, seeds in sorted(groups.items()):
+        match = np.flatnonzero(np.isclose(fig4.steady.x, math.sqrt(eps), rtol=1e-6))
+        if not match.size or len(seeds) < 2:
+            continue
+        k = int(match[0])
+        pbc, pbc_err, pbc_n = (float(v[k]) for v in (fig4.steady.mean, fig4.steady.err,
+                                                     fig4.steady.n))
+        start, mean, sem = (np.array(v) for v in zip(*seeds))
+        group = (f"const_fbc_eps{eps_tag(eps)}",)
+        fbc_err, fbc_dof, _, _ = seeds_error(data, mean, sem, "phi_c", "fbc", group)
+        rise_err, rise_dof, _, _ = seeds_error(data, mean - start, sem, "phi_c", "fbc", group)
+        dofs = [d for d in (steady_dof(int(pbc_n), pbc_err), fbc_dof) if d is not None]
+        dof = min(dofs) if len(dofs) == 2 else None
+        fbc, fbc_rise, pbc_rise = float(mean.mean()), float((mean - start).mean()), pbc - m0
+        out.append(Measure(pbc - fbc, math.hypot(pbc_err, fbc_err), dof, sign=1,
+                           label=f"eps = {eps:g}, denser in P.B.C.",
+                           shown=f"P.B.C. {fmt(pbc, pbc_err, pct=True)} vs F.B.C. "
+                                 f"{fmt(fbc, fbc_err, pct=True)} ({len(seeds)} seeds)"))
+        out.append(Measure(pbc_rise - fbc_rise, math.hypot(pbc_err, s0, rise_err), dof, sign=-1,
+                           label=f"eps = {eps:g}, smaller increase in P.B.C.",
+                           shown=f"increase P.B.C. {fmt(pbc_rise, math.hypot(pbc_err, s0))} "
+                                 f"(from {fmt(m0, s0, pct=True)}) vs F.B.C. "
+                                 f"{fmt(fbc_rise, rise_err)}"))
+    return out or not_in_campaign("no eps with both a P.B.C. steady square and F.B.C. seeds")
 
 
 def _gain(eps, t, mean, sem, n, run_error=(1.0, None)):

@@ -373,6 +373,63 @@ def eq3_triplet_pattern(data, claim):
     return [Measure(1.0 if holds else 0.0, shown=shown)]
 
 
+#: the random close packing the paper sets as the limit X_inf "can get over" (section I:
+#: "approximately ... 64 %, the random close packing")
+RANDOM_CLOSE_PACKING = 0.64
+
+
+def _band(row):
+    """(value, low, high, determined) of a fit_surrogates.csv row."""
+    return (float(row["value"]), float(row["low"]), float(row["high"]),
+            row["determined"] == "1")
+
+
+@statistic("eq3_small_eps_asymptote")
+def eq3_small_eps_asymptote(data, claim):
+    """Section III.B: "in this small excitations range, X_inf can get over the R.C.P. limit
+    and tau, the characteristic time of the fit, increases spectacularly". From one run per
+    eps of Fig. 2 (fit_surrogates.csv, the paper's protocol), two patterns: tau's band at the
+    smallest eps above the band of every larger eps where tau is determined (1), below one of
+    them (0); X_inf's band at the smallest eps beyond RANDOM_CLOSE_PACKING (1). One run's
+    surrogate bands are too narrow (test_slow_surrogate_fits.py), so neither is contradicted
+    by them, and a degenerate fit (X_inf undetermined, up to 1e4) is reported as such."""
+    rows = surrogate_fits(data, "eq3")
+    if len(rows) < 2:
+        return not_in_campaign("fewer than two eps with fits of one run's surrogates "
+                               "(tapmc-paper question fit-surrogates)")
+    eps = sorted(rows)
+    small, others = eps[0], eps[1:]
+    x_text = "; ".join(
+        f"eps = {e:g}: X_inf {_band(rows[e]['X_inf'])[0]:.3g} "
+        + ("({:.3g}-{:.3g})".format(*_band(rows[e]["X_inf"])[1:3])
+           if _band(rows[e]["X_inf"])[3] else "(degenerate: undetermined)") for e in eps)
+    tau_text = "; ".join(f"eps = {e:g}: tau {_band(rows[e]['tau'])[0]:.3g} "
+                         f"({_band(rows[e]['tau'])[1]:.3g}-{_band(rows[e]['tau'])[2]:.3g})"
+                         for e in eps)
+    _, low, high, _ = _band(rows[small]["tau"])
+    determined = [_band(rows[e]["tau"]) for e in others if _band(rows[e]["tau"])[3]]
+    if not determined:
+        tau = Measure(label="tau grows at the smallest eps", shown=tau_text,
+                      undecided="tau undetermined at every larger eps")
+    elif low > max(b[2] for b in determined):
+        tau = Measure(1.0, label="tau grows at the smallest eps", shown=tau_text)
+    else:
+        tau = Measure(label="tau grows at the smallest eps", shown=tau_text, undecided=(
+            "the smallest eps's band of tau overlaps a larger eps's (one run's surrogates: "
+            "too narrow to contradict)"))
+    value, low, high, fixed = _band(rows[small]["X_inf"])
+    label = "X_inf beyond the random close packing at the smallest eps"
+    if fixed and low > RANDOM_CLOSE_PACKING:
+        x_inf = Measure(1.0, label=label, shown=x_text)
+    else:
+        x_inf = Measure(label=label, shown=x_text, undecided=(
+            f"X_inf at eps = {small:g} " + ("undetermined (a degenerate fit)" if not fixed else
+                                            f"within {low:.3g}-{high:.3g}, below "
+                                            f"{RANDOM_CLOSE_PACKING:g}, in one run's "
+                                            "surrogates: too narrow to contradict")))
+    return [tau, x_inf]
+
+
 @statistic("eq4_fit_quality")
 def eq4_fit_quality(data, claim):
     return _fig2_law_quality(data, ZLaw(), "Z", "eq4")
