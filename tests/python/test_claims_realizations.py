@@ -682,3 +682,26 @@ def test_the_pooled_error_of_two_seeds_covers_the_truth_95_percent_of_the_time()
     sigma = np.sqrt(0.95 * 0.05 / draws)
     assert abs(covered / draws - 0.95) < 3 * sigma
     assert bare / draws < 0.5
+
+
+def test_small_eps_asymptote_reports_degenerate_fits():
+    """X_inf undetermined at the smallest eps (one run's surrogates) is a degenerate fit,
+    named as such and undecided; tau's band above every larger eps's agrees."""
+    claim = BY_ID["eq3-asymptote-small-eps"]
+    data = asymptote_rows(1e4, 0.7)
+    for r in data.question("fit_surrogates"):
+        if r["eps"] == "0.005" and r["parameter"] == "X_inf":
+            r.update(value="12.0", low="0.6", high="5000", determined="0")
+    tau, x_inf = claims.eq3_small_eps_asymptote(data, claim)
+    assert str(claims.verdict(claim, tau)) == "agrees"
+    assert "degenerate" in x_inf.undecided and "(degenerate: undetermined)" in x_inf.text()
+
+
+def test_pbc_against_fbc_only_at_a_common_eps():
+    """F.B.C. seeds at an eps without a P.B.C. steady square decide nothing; at a common eps
+    the two rows (denser, smaller increase) carry the F.B.C. seeds' error."""
+    claim = BY_ID["pbc-denser-smaller-increase"]
+    (m,) = claims.pbc_vs_fbc(fbc_groups(0.57, 0.55, eps=0.02), claim)
+    assert m.undecided and "no eps with both" in m.undecided
+    denser, rise = claims.pbc_vs_fbc(fbc_groups(0.57, 0.55), claim)
+    assert denser.sign == 1 and rise.sign == -1 and "3 seeds" in denser.text()

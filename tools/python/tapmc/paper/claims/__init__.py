@@ -37,20 +37,21 @@ from .calibration import (CALIBRATION_ALPHA, ONE_RUN_WINDOW_ROWS, RUN_ERROR_LABE
 from .common import WITHIN_RUN_DOF
 from .compaction import (DECADE_BEFORE_WINDOW, EARLY_DECADE, EARLY_MIN_SEEDS, LATE_WINDOW,
                          SHORT_WINDOW_BATCHES, efficiency_decrease, first_decade_rates,
-                         initial_phi, late_gain_share, pbc_compaction,
+                         initial_phi, late_gain_share, pbc_compaction, pbc_vs_fbc,
                          phi_b_gain, tapped_phi)
 from .data import QUESTION_CSVS, FigureData, ReportData
 from .evaluate import Row, evaluate, scale_aspects
 from .fluctuations import (SPECTRUM_BAND, sigma_intercept, spectral_slopes,
                            spectrum_low_band)
-from .laws import (EQ3_TRIPLET, ONE_RUN_FITS, REALIZATION_MIN_SEEDS, REALIZATION_MIN_TAPS,
-                   SURROGATES_UNIQUE, b_exponential, back_at_start, eq3_fit_quality,
-                   eq3_triplet_pattern, eq4_fit_quality, loosening_end, realization_curves,
-                   realization_fits, surrogate_fits)
+from .laws import (EQ3_TRIPLET, ONE_RUN_FITS, RANDOM_CLOSE_PACKING, REALIZATION_MIN_SEEDS,
+                   REALIZATION_MIN_TAPS, SURROGATES_UNIQUE, b_exponential, back_at_start,
+                   eq3_fit_quality, eq3_small_eps_asymptote, eq3_triplet_pattern,
+                   eq4_fit_quality, loosening_end, realization_curves, realization_fits,
+                   surrogate_fits, z_two_exponentials)
 from .measure import Measure, fmt
-from .pores import (nu_change, nu_ramp_hysteresis, nu_tail_over_nu, p0_final_minus_py,
-                    p0_change_over_density, pore_law_deviation, pore_quadratic_fit,
-                    pore_share_change, xi_min)
+from .pores import (GAUSSIAN_TAIL_SD, nu_change, nu_ramp_hysteresis, nu_tail_over_nu,
+                    p0_change_over_density, p0_final_minus_py, pore_gaussian_excess,
+                    pore_law_deviation, pore_quadratic_fit, pore_share_change, xi_min)
 from .reduced_ramps import (RAMP_LEVELS_DEFAULT_RUN, RAMP_REDUCTION_BRANCHES,
                             RAMP_REDUCTION_MIN_LEVELS, RAMP_REDUCTION_TAGS, ramp_reduction_bounds,
                             ramp_reduction_shift, ramp_tag)
@@ -61,7 +62,8 @@ from .rules import (FIT_P_VALUE, NEAR_FRACTION, RULE_NAMES, RULES, XI_CHECK_ROUN
 from .scan_tables import (OTHER_READING_TAGS, SCANS, read_scan, scan_files, scan_settings,
                           scan_table)
 from .scans import dmax_intermediate, theta0_optimum
-from .zones import central_minus_lateral, final_alpha, lateral_first_tap
+from .zones import (BELL_SIDE_POINTS, central_minus_lateral, final_alpha, lateral_first_tap,
+                    zone_bell)
 from tapmc.stats import t_quantile  # noqa: F401  (named here by older callers)
 
 __all__ = [name for name in dir() if not name.startswith("_")

@@ -11,7 +11,8 @@ import math
 import numpy as np
 from scipy.stats import chi2 as chi2_distribution
 
-from tapmc.laws import InverseLogLaw, RealizationLawTest, SURROGATE_P_MIN, ZLaw
+from tapmc.laws import (InverseLogLaw, RealizationLawTest, SURROGATE_P_MIN, TwoExponentials,
+                        ZLaw)
 from tapmc.stats import mean_dof
 
 from .common import (PACKING_FRACTION_PRECISION, curve_arrays, fig2_curves, not_in_campaign,
@@ -428,6 +429,20 @@ def eq3_small_eps_asymptote(data, claim):
                                             f"{RANDOM_CLOSE_PACKING:g}, in one run's "
                                             "surrogates: too narrow to contradict")))
     return [tau, x_inf]
+
+
+@statistic("z_two_exponentials")
+def z_two_exponentials(data, claim):
+    """Section III.A: "a sum of two exponentials can also fit reasonably well <Z>(t)":
+    tapmc.laws.TwoExponentials tested like eq. 4, across the realizations of early_taps.csv
+    at each eps from the end of the first taps' loosening (:func:`_law_across_realizations`)."""
+    eps_values = sorted({float(r["eps"]) for r in data.question("early_taps")})
+    out = []
+    for eps in eps_values:
+        out += _law_across_realizations(data, eps, TwoExponentials(), "Z") or []
+    return out or not_in_campaign(f"fewer than {REALIZATION_MIN_SEEDS} realizations of "
+                                  f"{REALIZATION_MIN_TAPS} taps or more (tapmc-paper question "
+                                  "early-taps)")
 
 
 @statistic("eq4_fit_quality")
