@@ -9,7 +9,7 @@ import math
 import numpy as np
 from scipy.stats import chi2 as chi2_distribution
 
-from tapmc.stats import mean_dof, weighted_polyfit
+from tapmc.stats import weighted_polyfit
 
 from .. import _plotting as P
 from .common import not_in_campaign, one_seed_error_text, steady_dof, value_triple
