@@ -155,11 +155,15 @@ def with_fig9_params(tab):
     return tab
 
 
-def fig9(diff=0.0, py_shift=0.0):
+def fig9(diff=0.0, py_shift=0.0, initial_phi=None):
+    """Fig. 9 of 5 seeds: P0 of the tapped packing at Phi 0.606 (Percus-Yevick's, shifted by
+    ``py_shift``), the initial packing's the same plus ``diff`` or, with ``initial_phi``,
+    Percus-Yevick's at that packing fraction."""
     sigma = np.linspace(0.0, 2.0, 60)
     final = percus_yevick_p0(sigma, 0.606) + py_shift
     tab = Table().add("a", "final", sigma, final, 0.0005)
-    tab.add("a", "initial", sigma, final + diff, 0.0005)
+    initial = final + diff if initial_phi is None else percus_yevick_p0(sigma, initial_phi)
+    tab.add("a", "initial", sigma, initial, 0.0005)
     tab.add("a", "percus_yevick", sigma, percus_yevick_p0(sigma, 0.606), None, 1)
     tab.param("phi_initial", 0.584, 0.001).param("phi_final", 0.606, 0.001)
     tab.param("phi_c_initial", 0.584, 0.001).param("phi_c_final", 0.606, 0.001)
@@ -253,6 +257,20 @@ def with_fig3_rows(tab):
     return tab
 
 
+def with_fig2_rows(tab):
+    """``tab`` with the row of Fig. 2's typed result (tapmc.paper.fig2.Fig2Result) that gives
+    each curve its eps: the fit's reduced chi2 of every curve of panel a (eq. 3) and c (eq. 4),
+    NaN where the table has none."""
+    for (panel, series) in list(tab.table):
+        prefix = {"a": "", "c": "Z:"}.get(panel)
+        if prefix is None or not series.startswith("eps=") or ":" in series:
+            continue
+        if ("params", f"{series}:{prefix}reduced_chi2") not in tab.table:
+            tab.param(f"{series}:{prefix}reduced_chi2", math.nan, None, n=0,
+                      x=float(series[len("eps="):]))
+    return tab
+
+
 #: the rows of Fig. 6's top panel (tapmc.paper.fig6.VerticalProfiles): its curves, its params
 FIG6_PROFILE_CURVES = ("initial", "final")
 
@@ -302,7 +320,7 @@ def with_fig4_rows(tab):
 
 
 #: figure -> what completes a test's table into every row of the figure's typed result
-COMPLETE_ROWS = {"fig3": with_fig3_rows, "fig4": with_fig4_rows, "fig6": with_fig6_rows,
+COMPLETE_ROWS = {"fig2": with_fig2_rows, "fig3": with_fig3_rows, "fig4": with_fig4_rows, "fig6": with_fig6_rows,
                  "fig8": with_fig8_rows}
 
 
@@ -358,9 +376,10 @@ def eq4_law(t):
     return 7.1 * (1.0 + L) / (7.1 / 7.6 + L)
 
 
-def fig5_collapse(p_value, realizations=10, tested=True):
+def fig5_collapse(p_value, realizations=10, tested=True, dispersion=1.1):
     """Fig. 5 data whose drawn collapse (three waiting times, time and amplitude) has the
-    test across ``realizations`` given by its p-value."""
+    test across ``realizations`` given by its p-value and the law-free ``dispersion`` at its
+    best exponents."""
     tab = Table()
     for tw in (0, 10, 30, 100):
         tab.add("a", f"tw={tw}", np.arange(0, 101), np.linspace(0, 0.1, 101), 0.001,
@@ -369,6 +388,8 @@ def fig5_collapse(p_value, realizations=10, tested=True):
     tab.param("drawn:mu", 1.0, None, n=1).param("scaling:reduced_chi2", 37.6)
     tab.param("scaling:mu", 1.0, 0.1, n=1).param("unscaled:reduced_chi2", 40.0)
     tab.param("scaling_test:needed", 7)
+    tab.param("scaling:dispersion_min", dispersion).param("scaling:dispersion_mu", 0.9)
+    tab.param("scaling:dispersion_kappa", 0.1).param("unscaled:dispersion", 40.0)
     if tested and realizations >= 7:
         tab.param("scaling_test:T2", 10.0).param("scaling_test:dof", 3)
         tab.param("scaling_test:p_value", p_value).param("scaling_test:bins", 8)
@@ -394,6 +415,47 @@ FROZEN = 0.58 + 0.02 * (1 - 1 / (1 + 0.3 * np.log1p(T)))    # slows down on ln t
 
 
 STEADY_LOG = 0.58 + 0.04 * np.log1p(T) / np.log(4001)       # keeps its rate on ln t
+
+
+def fbc_groups(mean, start, eps=0.01, sem=0.0005):
+    """A report with Fig. 4's bell (P.B.C. squares; initial packings at 0.584) and three F.B.C.
+    seeds at ``eps`` (realization-scatter's ``const_fbc_eps<eps>``): <Phi^c> ``mean`` from
+    ``start``, each seed a little apart."""
+    data = report(fig4=fig4(BELL))
+    data.questions["realization_scatter"] = [
+        {"group": f"const_fbc_eps{eps:g}", "run": f"const_fbc_eps{eps:g}_s{k}", "seed": str(k),
+         "column": "phi_c", "start": str(start + d), "mean": str(mean + d), "sem": str(sem),
+         "sem_dof": "19"} for k, d in ((1, -0.0004), (2, 0.0), (3, 0.0004))]
+    return data
+
+
+#: eps of a Fig. 8 on both sides of BELL's maximum (sqrt(eps) = 0.15), four each
+ZONE_EPS = (0.0025, 0.0064, 0.01, 0.016, 0.04, 0.0625, 0.09, 0.12)
+
+
+def fig8_bell(shape):
+    """Fig. 8's final zones at ZONE_EPS, lateral ``shape(sqrt(eps))`` and central half of it,
+    with the bell of Fig. 4."""
+    tab = Table()
+    for eps in ZONE_EPS:
+        tab.param(f"eps={P.fmt_eps(eps)}:final_lateral", shape(math.sqrt(eps)), 0.0002, x=eps)
+        tab.param(f"eps={P.fmt_eps(eps)}:final_central", shape(math.sqrt(eps)) / 2, 0.0002,
+                  x=eps)
+    return report(fig8=with_fig8_rows(tab), fig4=fig4(BELL))
+
+
+def asymptote_rows(tau_small, x_inf_small):
+    """fit_surrogates.csv rows of one run at eps 0.005 and 0.05: tau and X_inf at the smallest
+    eps as given (10 % bands), tau = 10 and X_inf = 0.6 at the larger."""
+    rows = []
+    for eps, tau, x_inf in ((0.005, tau_small, x_inf_small), (0.05, 10.0, 0.6)):
+        for name, value in (("X_inf", x_inf), ("dX_inf", 0.05), ("B", 0.5), ("tau", tau)):
+            rows.append({"source": f"const_fbc_eps{eps:g}_s1", "eps": f"{eps}", "law": "eq3",
+                         "taps": "4000", "parameter": name, "value": f"{value}",
+                         "low": f"{value * 0.97}", "high": f"{value * 1.03}",
+                         "half_width": f"{value * 0.03}", "log_scale": "0", "determined": "1",
+                         "range_p": "0.4", "fits": "200"})
+    return claims.ReportData(report().summary, {}, questions={"fit_surrogates": rows})
 
 
 #: statistic (or claim id, which comes first) -> (data on which its claims must agree, data on
@@ -458,19 +520,23 @@ CONTROLS = {
     "b_exponential": (report(fig2=fig2_fits({0.05: True}, b_chi2=1.0, b_dof=3)),
                       report(fig2=fig2_fits({0.05: True}, b_chi2=8.0, b_dof=3))),
     # the test across realizations decides, not the reduced chi2 over correlated delays
-    "ageing_collapse": (report(fig5=fig5_collapse(0.3)), report(fig5=fig5_collapse(0.002))),
+    # the law-free dispersion decides, whatever the collapse on eq. 6 gives
+    "ageing_collapse": (report(fig5=fig5_collapse(0.002)),
+                        report(fig5=fig5_collapse(0.3, dispersion=40.0))),
     "ageing_eq6": (report(fig5=fig5_eq6(0.3)), report(fig5=fig5_eq6(0.002))),
     "eq3_fit_quality": (realized(eq3_law, eq4_law),
                         realized(lambda t: 0.52 + 0.01 * t ** 0.3, eq4_law)),
-    "log_time_slowing": (report(fig2=fig2(_low_first({0.005: FROZEN, 0.15: STEADY_LOG}))),
-                         report(fig2=fig2(_low_first({0.005: STEADY_LOG, 0.15: FROZEN})))),
+    # the paper's own eq. 3 with tau growing at small eps (section III.B) agrees; the reverse not
+    "slowing-small-eps": (
+        report(fig2=fig2(_low_first({0.005: inverse_log(T, tau=300.0), 0.15: inverse_log(T)}))),
+        report(fig2=fig2(_low_first({0.005: inverse_log(T), 0.15: inverse_log(T, tau=300.0)})))),
     # the curve that keeps its rate on ln t makes a larger share of its gain late
     "late_gain_share": (report(fig2=fig2(_low_first({0.005: STEADY_LOG, 0.15: FROZEN}))),
                         report(fig2=fig2(_low_first({0.005: FROZEN, 0.15: STEADY_LOG})))),
     "spectral_slopes": (report(fig3=fig3(slope=-1.2)), report(fig3=fig3(slope=-0.5))),
-    "spectrum_eps_spread": (
-        # spectra that coincide at low f and separate at high f, and the reverse
-        report(fig3=fig3({e: (lambda f, e=e: 1e-3 / f + 10 * e) for e in (0.01, 0.04, 0.09)})),
+    "spectrum_low_band": (
+        # spectra that coincide at low f and separate at high f only, and the reverse
+        report(fig3=fig3({e: (lambda f, e=e: 1e-3 / f + 10 * e * f) for e in (0.01, 0.04, 0.09)})),
         report(fig3=fig3({e: (lambda f, e=e: 1e-3 * e / f + 1.0) for e in (0.01, 0.04, 0.09)}))),
     "sigma_intercept": (report(fig3=fig3()), report(fig3=fig3(intercept=0.05))),
     # each row reads its own sigma: the other's intercept stays zero in the failing case
@@ -512,17 +578,38 @@ CONTROLS = {
     "central_minus_lateral": (report(fig8=fig8(0.01, 0.02)), report(fig8=fig8(0.02, 0.01))),
     "lateral_first_tap": (report(fig8=fig8(0.01, 0.02, paper_first_tap=0.01)),
                           report(fig8=fig8(0.01, 0.02, paper_first_tap=-0.01))),
-    "p0_initial_minus_final": (report(fig9=fig9()), report(fig9=fig9(diff=0.05))),
+    # P0 changes with Phi as Percus-Yevick says; and as much again beyond it
+    "p0_change_over_density": (report(fig9=fig9(initial_phi=0.584)),
+                               report(fig9=fig9(diff=0.05))),
     "p0_final_minus_py": (report(fig9=fig9()), report(fig9=fig9(py_shift=0.05))),
     "xi_min": (report(fig10=fig10()), report(fig10=fig10(xi_min=0.20))),
+    # a linear onset at every dump: no spread between the curves hides it (the paper's
+    # precision for this law, which it calls superimposed for the small pores)
     "pore_quadratic_fit": (report(fig10=fig10()),
-                           report(fig10=fig10(last=np.where(XI > P.XI_T, XI - P.XI_T, 0.0)))),
+                           report(fig10=fig10(first=np.where(XI > P.XI_T, XI - P.XI_T, 0.0),
+                                              last=np.where(XI > P.XI_T, XI - P.XI_T, 0.0)))),
     "pore_share_change": (
         report(fig10=fig10()),
         # small pores change as much as the tail, and the tail grows
         report(fig10=fig10(first=pore_curve(0.05), last=1.5 * pore_curve(0.1)))),
     "nu_tail_over_nu": (report(fig10=fig10()), report(fig10=fig10(tail_ratio=1.5))),
     "nu_change": (report(fig10=fig10()), report(fig10=fig10(nu=(0.10, 0.12)))),
+    # denser in P.B.C. with a smaller increase; F.B.C. denser, rising less
+    "pbc_vs_fbc": (fbc_groups(0.57, 0.55), fbc_groups(0.61, 0.605)),
+    "zone_bell": (fig8_bell(lambda x: 0.03 - 2.0 * (x - 0.15) ** 2),
+                  fig8_bell(lambda x: 0.01 + 2.0 * (x - 0.15) ** 2)),
+    # an exponential tail over the quadratic onset; a box of pores, no tail at all
+    "pore_gaussian_excess": (report(fig10=fig10()),
+                             report(fig10=fig10(first=np.where(np.abs(XI - 0.45) < 0.15, 1.0, 0.0),
+                                                last=np.where(np.abs(XI - 0.45) < 0.15, 1.0,
+                                                              0.0)))),
+    # one run's surrogates: a spectacular tau and X_inf beyond 0.64 agree; the reverse cannot
+    # contradict (their bands are too narrow), it stays undecided
+    "eq3_small_eps_asymptote": (asymptote_rows(1e4, 0.7), asymptote_rows(5.0, 0.58)),
+    # <Z> as two exponentials across realizations; a logarithmic decay they cannot follow
+    "z_two_exponentials": (
+        realized(eq3_law, lambda t: 7.1 + 0.3 * np.exp(-t / 5.0) + 0.2 * np.exp(-t / 80.0)),
+        realized(eq3_law, lambda t: 7.7 - 0.05 * np.log1p(t))),
 }
 
 
@@ -630,10 +717,11 @@ __all__ = ['os', 'sys', 'Path', 'SOURCE', 'REGISTER', 'BY_ID', 'SEEDS', 'claims'
            'fig2', 'inverse_log', 'RISING', 'fig3', 'X', 'fig4', 'BELL', 'ramp_pores',
            'ramps_turning', '_critical', 'fig6_ramp', 'FIG9_PARAMS', 'with_fig9_params', 'fig9',
            'one_run_fig9', 'XI', 'pore_curve', 'with_fig10_rows', 'fig10', 'fig8',
-           'with_fig8_rows', 'with_fig3_rows', 'FIG6_PROFILE_CURVES', 'FIG6_PROFILE_PARAMS',
+           'with_fig8_rows', 'with_fig2_rows', 'with_fig3_rows', 'FIG6_PROFILE_CURVES', 'FIG6_PROFILE_PARAMS',
            'with_fig6_rows', 'FIG4_RAMP_TAGS', 'with_fig4_rows', 'COMPLETE_ROWS', '_low_first',
            'fig2_fits', 'realization_rows', 'realized', 'eq3_law', 'eq4_law', 'fig5_collapse',
            'fig5_eq6', 'FROZEN', 'STEADY_LOG', 'front_report', 'theta0_report', 'THETA0_PAPER',
            'THETA0_WIDER', 'CONTROLS', '_outcomes', '_packings', '_p0_rows', 'early_rows',
            'surrogate_rows', 'surrogate_report', 'seed_fit_rows', '_ramp_levels_rows',
-           '_scatter_rows', '_with_scatter']
+           '_scatter_rows', '_with_scatter', 'fbc_groups', 'ZONE_EPS', 'fig8_bell',
+           'asymptote_rows']

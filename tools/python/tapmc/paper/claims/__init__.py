@@ -29,7 +29,7 @@ from __future__ import annotations
 
 # the statistic modules register their statistics when imported
 from . import ageing, bell, compaction, fluctuations, laws, pores, scans, zones  # noqa: F401
-from .ageing import ageing_collapse, ageing_eq6
+from .ageing import LAW_FREE_MIN_REALIZATIONS, ageing_collapse, ageing_eq6, dispersion_p_bound
 from .bell import (ALPHA_ABOVE_STEADY, CRITICAL_BRACKET_HALF_WIDTH, alpha_bell,
                    alpha_ramp_hysteresis, bell_maximum, bell_side_slope, critical_separation,
                    hysteresis_gap, low_ramp_frozen, ramp_branch_slope, ramp_down_minus_up,
@@ -42,20 +42,20 @@ from .common import WITHIN_RUN_DOF
 from .conventions import CONVENTIONS, PAIRED_MIN_LEVELS, Convention
 from .compaction import (DECADE_BEFORE_WINDOW, EARLY_DECADE, EARLY_MIN_SEEDS, LATE_WINDOW,
                          SHORT_WINDOW_BATCHES, efficiency_decrease, first_decade_rates,
-                         initial_phi, late_gain_share, log_time_slowing, pbc_compaction,
+                         initial_phi, late_gain_share, pbc_compaction, pbc_vs_fbc,
                          phi_b_gain, tapped_phi)
 from .data import QUESTION_CSVS, FigureData, ReportData
 from .evaluate import Row, Rows, evaluate, scale_aspects
-from .fluctuations import (SPECTRUM_BAND, SPECTRUM_RESAMPLINGS, sigma_intercept,
-                           spectral_slopes, spectrum_eps_spread)
-from .laws import (EQ3_TRIPLET, ONE_RUN_FITS, REALIZATION_MIN_SEEDS, REALIZATION_MIN_TAPS,
-                   SURROGATES_UNIQUE, b_exponential, back_at_start, eq3_fit_quality,
-                   eq3_triplet_pattern, eq4_fit_quality, loosening_end, realization_curves,
-                   realization_fits, surrogate_fits)
+from .fluctuations import SPECTRUM_BAND, sigma_intercept, spectral_slopes, spectrum_low_band
+from .laws import (EQ3_TRIPLET, ONE_RUN_FITS, RANDOM_CLOSE_PACKING, REALIZATION_MIN_SEEDS,
+                   REALIZATION_MIN_TAPS, SURROGATES_UNIQUE, b_exponential, back_at_start,
+                   eq3_fit_quality, eq3_small_eps_asymptote, eq3_triplet_pattern,
+                   eq4_fit_quality, loosening_end, realization_curves, realization_fits,
+                   surrogate_fits, z_two_exponentials)
 from .measure import Measure, fmt
-from .pores import (nu_change, nu_ramp_hysteresis, nu_tail_over_nu, p0_final_minus_py,
-                    p0_initial_minus_final, pore_law_deviation, pore_quadratic_fit,
-                    pore_share_change, xi_min)
+from .pores import (GAUSSIAN_TAIL_SD, nu_change, nu_ramp_hysteresis, nu_tail_over_nu,
+                    p0_change_over_density, p0_final_minus_py, pore_gaussian_excess,
+                    pore_law_deviation, pore_quadratic_fit, pore_share_change, xi_min)
 from .reduced_ramps import (RAMP_LEVELS_DEFAULT_RUN, RAMP_REDUCTION_BRANCHES,
                             RAMP_REDUCTION_MIN_LEVELS, RAMP_REDUCTION_TAGS, ramp_reduction_bounds,
                             ramp_reduction_shift, ramp_tag)
@@ -67,7 +67,8 @@ from .scan_tables import (OTHER_READING_TAGS, SCANS, read_scan, scan_files, scan
                           scan_table)
 from .scans import dmax_intermediate, theta0_optimum
 from .sensitivity import Sensitivity, convention_changes, sensitivities, tolerance_table
-from .zones import central_minus_lateral, final_alpha, lateral_first_tap
+from .zones import (BELL_SIDE_POINTS, central_minus_lateral, final_alpha, lateral_first_tap,
+                    zone_bell)
 from tapmc.stats import t_quantile  # noqa: F401  (named here by older callers)
 
 __all__ = [name for name in dir() if not name.startswith("_")

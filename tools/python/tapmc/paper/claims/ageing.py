@@ -1,57 +1,92 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-"""Statistics of the ageing claims (section III.C, Fig. 5, eq. 6): the collapse of the
-response curves and eq. 6's law over the waiting times."""
+"""Statistics of the ageing claims (section III.C, Fig. 5, eq. 6): the law-free collapse of
+the response curves and eq. 6's law over the waiting times."""
 
 from __future__ import annotations
 
-import numpy as np
+import math
 
-from tapmc.ageing import scaling_test_min_realizations
+import numpy as np
+from scipy import integrate
+from scipy.stats import f as f_distribution
 
 from ..fig5 import EQ6_TEST_MIN_REALIZATIONS, LONG_DELAYS
 from .common import not_in_campaign
+from .conventions import LAW_FREE_MIN_REALIZATIONS
 from .measure import Measure, fmt
 from .registry import statistic
 
 
+def _value(values, name):
+    """The number of row ``name`` of a Fig. 5 dict of Values (NaN when absent)."""
+    value = (values or {}).get(name)
+    return math.nan if value is None else value.value
+
+
+def _waiting_curves(fig5):
+    """(t_W, AgeingCurve) of Fig. 5's curves with t_W > 0, by t_W."""
+    return sorted((tw, c) for tw, c in fig5.curves.items() if tw > 0)
+
+
+def dispersion_p_bound(dispersion, realizations):
+    """An upper bound of the p-value of the law-free dispersion of curves that collapse
+    (tapmc.ageing.collapse_dispersion: the mean over the delays of squared differences
+    between the rescaled curves, each standardized by the two curves' sems): each term is the
+    square of a difference of means over ``realizations`` standardized by its sem, Y ~ F(1,
+    n - 1); whatever the correlation between the delays, their mean is dominated by one Y in
+    convex order (Jensen), so P(mean >= d) <= min over a < d of E[(Y - a)+] / (d - a)."""
+    if not (np.isfinite(dispersion) and dispersion > 0) or realizations < 4:
+        return math.nan  # F(1, n - 1) has no mean below 4 realizations: no bound
+    y = f_distribution(1, realizations - 1)
+
+    def stop_loss(a):
+        return integrate.quad(y.sf, a, np.inf, limit=200)[0]
+
+    grid = np.linspace(0.0, dispersion, 201)[:-1]
+    return float(min(1.0, min(stop_loss(a) / (dispersion - a) for a in grid)))
+
+
 @statistic("ageing_collapse")
 def ageing_collapse(data, claim):
-    """Hotelling's T^2 of the drawn collapse of Fig. 5 across the realizations
-    (``scaling_test:`` rows, tapmc.ageing.ScalingRealizationTest), with mu and the reduced
-    chi2 over the correlated delays beside it (which decides nothing: its delays share their
-    realizations and their errors come from the same few of them)."""
-    fig = data.figure("fig5")
-    if fig is None:
+    """Section III.C, "there is obviously a scaling law": one rescaling of t (and of A)
+    collapses the curves of every t_W, whatever the master curve. The law-free dispersion of
+    Fig. 5's curves at the exponents that minimise it (tapmc.ageing.collapse_dispersion, rows
+    ``scaling:dispersion_min``, ``_mu``, ``_kappa``), about 1 for curves that are one within
+    their errors, with the p-value bound of :func:`dispersion_p_bound`; the collapse on eq. 6
+    tested across realizations (``scaling_test:``) is shown beside it and decides nothing
+    (eq. 6 is the next claim)."""
+    fig5 = data.result("fig5")
+    if fig5 is None:
         return not_in_campaign("no ageing runs")
-    drawn_mu = fig.param("drawn:mu")
-    if not np.isfinite(drawn_mu[0]):
-        return not_in_campaign("no rescaled collapse in the Fig. 5 data")
-    tag = "scaling" if drawn_mu[2] == 1 else "scaling_time"
-    chi = fig.param(f"{tag}:reduced_chi2")[0]
-    mu, mu_err, mu_closed = fig.param(f"{tag}:mu")
-    mu_text = fmt(mu, mu_err) if mu_closed == 1 else f"{fmt(mu)} (undetermined)"
-    shown = (f"mu = {mu_text}; reduced chi2 over the correlated delays {fmt(chi)} (decides "
-             "nothing)")
-    curves = [s for s in fig.series("a") if s.startswith("tw=") and float(s[3:]) > 0]
-    realizations = int(min(np.min(fig.get("a", s)[3]) for s in curves)) if curves else 0
-    needed = fig.param("scaling_test:needed")[0]
-    if not np.isfinite(needed):
-        needed = scaling_test_min_realizations(len(curves), drawn_mu[2] == 1)
-    if realizations < needed:
-        return [Measure(shown=shown, undecided=(
-            f"{realizations} realizations: the test of the collapse across realizations needs "
-            f"at least {int(needed)} (the paper averaged 10)"))]
-    T2 = fig.param("scaling_test:T2")[0]
+    scaling = fig5.scaling
+    law_free = None if scaling is None else scaling.collapses["scaling"].dispersion
+    d = _value(law_free, "dispersion_min")
+    if not np.isfinite(d):
+        return not_in_campaign("no law-free collapse in the Fig. 5 data")
+    curves = _waiting_curves(fig5)
+    realizations = int(min(np.min(c.A.n) for _, c in curves)) if curves else 0
+    shown = (f"law-free dispersion {fmt(d)} at mu = {fmt(_value(law_free, 'dispersion_mu'))}, "
+             f"kappa = {fmt(_value(law_free, 'dispersion_kappa'))} (1 for curves that are one "
+             f"within their errors; unscaled {fmt(scaling.unscaled_dispersion.value)}), "
+             f"{realizations} realizations") + _eq6_collapse_text(fig5)
+    if realizations < LAW_FREE_MIN_REALIZATIONS:
+        return [Measure(d, shown=shown, undecided=(
+            f"{realizations} realizations: the curves' errors need at least "
+            f"{LAW_FREE_MIN_REALIZATIONS}"))]
+    p = dispersion_p_bound(d, realizations)
+    return [Measure(d, dof=realizations - 1, p_value=p,
+                    shown=f"{shown}; p <= {p:.2g} whatever the delays' correlation")]
+
+
+def _eq6_collapse_text(fig5):
+    """The collapse on eq. 6 tested across the realizations, as the page shows it beside the
+    law-free one ("" when the Fig. 5 data have no such test)."""
+    T2 = _value(fig5.scaling_test, "T2")
     if not np.isfinite(T2):
-        return [Measure(shown=shown, undecided=(
-            "the Fig. 5 data have no test across realizations (drawn before it existed: "
-            "draw Fig. 5 again from its runs)"))]
-    dof = int(fig.param("scaling_test:dof")[0])
-    bins = int(fig.param("scaling_test:bins")[0])
-    shown += _long_delays_text("; the test", fig.param("scaling_test_long:p_value")[0])
-    return [Measure(T2, dof=dof, p_value=fig.param("scaling_test:p_value")[0],
-                    shown=f"T^2 {fmt(T2)} ({dof} dof) over {bins} log bins of delays, "
-                          f"{realizations} realizations; {shown}")]
+        return ""
+    return (f"; on eq. 6 as master curve (decides nothing): T^2 {fmt(T2)} "
+            f"({int(_value(fig5.scaling_test, 'dof'))} dof), p = "
+            f"{_value(fig5.scaling_test, 'p_value'):.2g}")
 
 
 def _long_delays_text(lead, p_value):
@@ -68,36 +103,36 @@ def ageing_eq6(data, claim):
     """Eq. 6 on each curve of Fig. 5 alone, tested across the realizations (``eq6_test:``
     rows, tapmc.ageing.Ageing.eq6_test), one row per waiting time, with the share of the curve
     that is the square of the mean displacement (``drift_share:``)."""
-    fig = data.figure("fig5")
-    if fig is None:
+    fig5 = data.result("fig5")
+    if fig5 is None:
         return not_in_campaign("no ageing runs")
-    curves = sorted((float(s[3:]), s) for s in fig.series("a")
-                    if s.startswith("tw=") and float(s[3:]) > 0)
+    curves = _waiting_curves(fig5)
     if not curves:
         return not_in_campaign("no curve A(t, t_W) with t_W > 0 in the Fig. 5 data")
-    needed = fig.param("eq6_test:needed")[0]
+    needed = math.nan if fig5.eq6_test_needed is None else fig5.eq6_test_needed.value
     if not np.isfinite(needed):                     # drawn before the rows existed
         needed = EQ6_TEST_MIN_REALIZATIONS
     out = []
-    for tw, series in curves:
+    for tw, curve in curves:
         label = f"t_W = {tw:g}"
-        realizations = int(np.min(fig.get("a", series)[3]))
+        realizations = int(np.min(curve.A.n))
         if realizations < needed:
             out.append(Measure(label=label, undecided=(
                 f"{realizations} realizations: eq. 6's test across realizations needs at "
                 f"least {int(needed)} (the paper averaged 10)")))
             continue
-        T2, _, _ = fig.param(f"eq6_test:tw={tw:g}:T2")
+        test = (fig5.eq6_tests or {}).get(tw)
+        T2 = math.nan if test is None else _value(test.every_delay, "T2")
         if not np.isfinite(T2):
             out.append(Measure(label=label, undecided=(
                 "the Fig. 5 data have no test of eq. 6 across realizations (drawn before it "
                 "existed: draw Fig. 5 again from its runs)")))
             continue
-        dof = int(fig.param(f"eq6_test:tw={tw:g}:dof")[0])
-        bins = int(fig.param(f"eq6_test:tw={tw:g}:bins")[0])
-        share = fig.param(f"drift_share:tw={tw:g}")[0]
-        long_text = _long_delays_text(";", fig.param(f"eq6_test_long:tw={tw:g}:p_value")[0])
-        out.append(Measure(T2, dof=dof, p_value=fig.param(f"eq6_test:tw={tw:g}:p_value")[0],
+        dof = int(_value(test.every_delay, "dof"))
+        bins = int(_value(test.every_delay, "bins"))
+        share = test.drift_share.value
+        long_text = _long_delays_text(";", _value(test.long_delays, "p_value"))
+        out.append(Measure(T2, dof=dof, p_value=_value(test.every_delay, "p_value"),
                            label=label,
                            shown=(f"T^2 {fmt(T2)} ({dof} dof) over {bins} log bins of delays, "
                                   f"{realizations} realizations; the mean displacement's "

@@ -48,6 +48,14 @@ def bell_maximum(data, claim):
                     shown=f"{fmt(top.value, top.err)} (parabola through {top.n} points)")]
 
 
+def steady_maximum(data):
+    """sqrt(eps) of the steady states' maximum (:func:`bell_maximum`: the parabola's vertex,
+    or the largest point when that is undecided); None without three steady states."""
+    if _steady(data) is None:
+        return None
+    return float(bell_maximum(data, None)[0].value)
+
+
 def _side_slope(x, y, s, i, side, what):
     """Weighted straight line through the points of a bell below (``side`` "below") or above
     its largest point i, largest included."""
@@ -110,9 +118,9 @@ def _alpha_above_steady_maximum(data, x, y, s):
     vertex, or its largest point when that is undecided) alpha falls as they do. A weighted
     straight line through the alphas there, its slope negated (falling is positive). None
     without Fig. 4."""
-    if _steady(data) is None:
+    top = steady_maximum(data)
+    if top is None:
         return None
-    top = float(bell_maximum(data, None)[0].value)
     pick = x >= top
     if pick.sum() < 3:
         return Measure(undecided=f"fewer than three alphas above the steady states' maximum "

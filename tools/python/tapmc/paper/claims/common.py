@@ -12,9 +12,20 @@ import numpy as np
 from tapmc.fluctuations import DEFAULT_BATCHES
 from tapmc.stats import beyond
 
+from .. import _plotting as P
 from .._results import Series, Value
 from .conventions import PAIRED_MIN_LEVELS
+from ..fig2 import LAWS as FIG2_LAWS
 from .measure import Measure, fmt
+
+
+def paper_precision(deviation, precision):
+    """A law's largest departure from the data, ``deviation``, in units of the paper's
+    ``precision`` for it: at most 1 when the paper could not tell the law from the data;
+    None when either is not a positive finite number."""
+    if not (np.isfinite(deviation) and np.isfinite(precision) and precision > 0):
+        return None
+    return float(deviation / precision)
 
 
 def above(value, err, dof, reference=0.0):
@@ -86,25 +97,32 @@ def steady_dof(n, err):
     return WITHIN_RUN_DOF if n == 1 and np.isfinite(err) else None
 
 
-def figure_param(data, name, series, absent):
-    """(fig, value, sem, n) of a one-row params series of figure ``name``, or (None,
-    undecided measures) naming what is missing (``absent``: why the series is not there)."""
-    fig = data.figure(name)
-    if fig is None:
-        return None, not_in_campaign(f"no Fig. {name[3:]} runs")
-    m, s, n = fig.param(series)
-    if not np.isfinite(m):
-        return None, not_in_campaign(absent)
-    return (fig, m, s, n), None
+def fig2_curves(data, tag="eq3"):
+    """(curves, None) with curves [(eps, CurveFit)] of Fig. 2's typed result for law ``tag``
+    ('eq3': Phi_b, panel a; 'eq4': <Z>, panel c) by eps, eps as the figure labels it; or
+    (None, the undecided measures) when there is no Fig. 2 or no curve of that law."""
+    fig2 = data.result("fig2")
+    if fig2 is None:
+        return None, not_in_campaign("no Fig. 2 runs")
+    law = fig2.laws.get(tag)
+    curves = [] if law is None else sorted(
+        ((float(P.fmt_eps(c.eps)), c) for c in law.curves.values()), key=lambda ec: ec[0])
+    if not curves:
+        return None, not_in_campaign(f"no curve in panel {FIG2_LAWS[tag][2]} of Fig. 2")
+    return curves, None
 
 
-def per_curve(data, name, panel, measure):
-    """``measure(fig, eps, t, mean, sem, n)`` of every curve 'eps=<eps>' of a figure panel."""
-    fig = data.figure(name)
-    if fig is None:
-        return not_in_campaign(f"no Fig. {name[3:]} runs")
-    out = [measure(fig, eps, *fig.get(panel, series)) for eps, series in eps_series(fig, panel)]
-    return out or not_in_campaign(f"no curve in panel {panel} of Fig. {name[3:]}")
+def curve_arrays(curve):
+    """(t, mean, sem, n) of a Fig. 2 CurveFit's data."""
+    return curve.data.x, curve.data.mean, curve.data.err, curve.data.n
+
+
+def per_fig2_curve(data, measure):
+    """``measure(eps, t, mean, sem, n)`` of every Phi_b curve of Fig. 2 (panel a), by eps."""
+    curves, missing = fig2_curves(data)
+    if curves is None:
+        return missing
+    return [measure(eps, *curve_arrays(c)) for eps, c in curves]
 
 
 def paired_levels(a, b):

@@ -1,7 +1,8 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 """Statistics of the initial packing and of the compaction curves (section III.A, Fig. 2; the
 steady states of Fig. 9): the packing fractions, the gain in Phi_b, the efficiency that
-decreases over the first decade, the slowing in log time and the late share of the gain."""
+decreases over the first decade, and the late share of the gain (the slowing strongest at
+small eps)."""
 
 from __future__ import annotations
 
@@ -12,8 +13,10 @@ import numpy as np
 from tapmc.fluctuations import DEFAULT_BATCHES, SteadyState
 from tapmc.stats import mean_dof, weighted_line
 
-from .common import (WITHIN_RUN_DOF, above, eps_series, not_in_campaign, one_seed_error_text,
-                     per_curve, steady_dof, value_triple)
+from .._runs import eps_tag
+from .common import (WITHIN_RUN_DOF, curve_arrays, fig2_curves, not_in_campaign,
+                     one_seed_error_text, per_fig2_curve, seeds_error, steady_dof,
+                     value_triple)
 from .conventions import EARLY_MIN_SEEDS
 from .measure import Measure, fmt
 from .registry import statistic
@@ -84,7 +87,62 @@ def pbc_compaction(data, claim):
                     shown=f"{fmt(mi, si, pct=True)} -> {fmt(mf, sf, pct=True)}")]
 
 
-def _gain(fig, eps, t, mean, sem, n, run_error=(1.0, None)):
+def _fbc_groups(data):
+    """eps -> [(start, mean, sem)] of <Phi^c> of the F.B.C. constant-eps groups of
+    realization_scatter.csv (``const_fbc_eps<eps>``: seeds of one eps, each from its own
+    packing, the window of the last 1000 taps)."""
+    out = {}
+    for r in data.question("realization_scatter"):
+        if r["column"] == "phi_c" and r["group"].startswith("const_fbc_eps"):
+            out.setdefault(float(r["group"][len("const_fbc_eps"):]), []).append(
+                (float(r["start"]), float(r["mean"]), float(r["sem"])))
+    return out
+
+
+@statistic("pbc_vs_fbc")
+def pbc_vs_fbc(data, claim):
+    """Section IV.A: "the absolute value of the packing fraction is larger in periodic
+    conditions but its increase due to compaction is a bit smaller". At each eps where the
+    campaign has both: P.B.C., Fig. 4's steady square (from the bell's packing, whose <Phi^c>
+    the campaign's initial packings give); F.B.C., the groups of seeds of realization-scatter
+    (each from its own packing). Two rows: the steady <Phi^c> of P.B.C. minus F.B.C. (sign
+    +), and the increase of P.B.C. minus that of F.B.C. (sign -). The F.B.C. seeds' errors are
+    judged with the campaign's groups of realizations (common.seeds_error)."""
+    fig4 = data.result("fig4")
+    groups = _fbc_groups(data)
+    m0, s0, n0 = (math.nan if v is None else v for v in data.summary.get("initial_phi_c")
+                  or (None, None, None))
+    if fig4 is None or not groups or not np.isfinite(m0):
+        return not_in_campaign("P.B.C. steady states (Fig. 4), F.B.C. groups of seeds "
+                               "(realization-scatter) and the initial P.B.C. packings")
+    out = []
+    for eps, seeds in sorted(groups.items()):
+        match = np.flatnonzero(np.isclose(fig4.steady.x, math.sqrt(eps), rtol=1e-6))
+        if not match.size or len(seeds) < 2:
+            continue
+        k = int(match[0])
+        pbc, pbc_err, pbc_n = (float(v[k]) for v in (fig4.steady.mean, fig4.steady.err,
+                                                     fig4.steady.n))
+        start, mean, sem = (np.array(v) for v in zip(*seeds))
+        group = (f"const_fbc_eps{eps_tag(eps)}",)
+        fbc_err, fbc_dof, _, _ = seeds_error(data, mean, sem, "phi_c", "fbc", group)
+        rise_err, rise_dof, _, _ = seeds_error(data, mean - start, sem, "phi_c", "fbc", group)
+        dofs = [d for d in (steady_dof(int(pbc_n), pbc_err), fbc_dof) if d is not None]
+        dof = min(dofs) if len(dofs) == 2 else None
+        fbc, fbc_rise, pbc_rise = float(mean.mean()), float((mean - start).mean()), pbc - m0
+        out.append(Measure(pbc - fbc, math.hypot(pbc_err, fbc_err), dof, sign=1,
+                           label=f"eps = {eps:g}, denser in P.B.C.",
+                           shown=f"P.B.C. {fmt(pbc, pbc_err, pct=True)} vs F.B.C. "
+                                 f"{fmt(fbc, fbc_err, pct=True)} ({len(seeds)} seeds)"))
+        out.append(Measure(pbc_rise - fbc_rise, math.hypot(pbc_err, s0, rise_err), dof, sign=-1,
+                           label=f"eps = {eps:g}, smaller increase in P.B.C.",
+                           shown=f"increase P.B.C. {fmt(pbc_rise, math.hypot(pbc_err, s0))} "
+                                 f"(from {fmt(m0, s0, pct=True)}) vs F.B.C. "
+                                 f"{fmt(fbc_rise, rise_err)}"))
+    return out or not_in_campaign("no eps with both a P.B.C. steady square and F.B.C. seeds")
+
+
+def _gain(eps, t, mean, sem, n, run_error=(1.0, None)):
     """Mean of the last quarter minus the first point. One seed (the paper's protocol): the
     curve is the run itself, so the last quarter's mean has its batch-means error
     (tapmc.fluctuations.SteadyState) and the start, the run's own packing, none."""
@@ -101,12 +159,11 @@ def _gain(fig, eps, t, mean, sem, n, run_error=(1.0, None)):
 
 @statistic("phi_b_gain")
 def phi_b_gain(data, claim):
-    return per_curve(data, "fig2", "a",
-                      lambda *curve: _gain(*curve, run_error=data.run_error("phi_b", "fbc")))
+    return per_fig2_curve(data, lambda *curve: _gain(*curve,
+                                                     run_error=data.run_error("phi_b", "fbc")))
 
 
-#: Decades of the log-time slopes of ``log_time_slowing``: the first decade of taps (the last
-#: one is [T/10, T]).
+#: The first decade of taps, whose rate ``efficiency_decrease`` compares with the last half's.
 EARLY_DECADE = (1.0, 10.0)
 
 
@@ -149,34 +206,6 @@ def _early_seeds(data, eps):
     return (mean[0], sem[0]), (mean[1], sem[1]), len(values)
 
 
-def _log_rates_one_run(t, x, early_seeds=None, halves_factor=1.0):
-    """Rates of Phi_b per unit ln t of one run (the curve is the run) over the first decade and
-    the last decade [T/10, T], each from the means of the decade's two halves in ln t: the
-    late halves with their batch-means errors (tapmc.fluctuations.SteadyState), the early ones
-    with the error over realizations when ``early_seeds`` (:func:`_early_seeds`) has them,
-    else with one tap's spread about the steady state (not divided by their number: taps that
-    close are correlated); ``halves_factor`` scales the late error to a realization's
-    (:meth:`ReportData.run_error` of 'phi_b:halves'). ((early, error), (late, error))."""
-    if early_seeds is not None:
-        early = early_seeds[1]
-    else:
-        spread = SteadyState(x, last=max(len(t) // 4, 2)).compute().std
-        (_, _), (log_rate, log_gap) = first_decade_rates(t, x)
-        early = (log_rate, math.sqrt(2.0) * spread / log_gap)
-    lo, hi = t[-1] / 10.0, t[-1]
-    mid = math.sqrt(lo * hi)
-    parts = [(t >= lo) & (t < mid), (t >= mid) & (t <= hi)]
-    means = [float(np.mean(x[p])) for p in parts]
-    errs = [SteadyState(x[p], last=int(p.sum())).compute().sem for p in parts]
-    gap = float(np.mean(np.log(t[parts[1]])) - np.mean(np.log(t[parts[0]])))
-    return early, ((means[1] - means[0]) / gap, halves_factor * math.hypot(*errs) / gap)
-
-
-def _log_slope(t, mean, sem, lo, hi):
-    pick = (t >= lo) & (t <= hi) & (t > 0)
-    return weighted_line(np.log(t[pick]), mean[pick], sem[pick])
-
-
 def _rate_change_one_run(eps, t, x, early_seeds=None, halves_factor=1.0):
     """:func:`_rate_change` of one run (the curve is the run): the late rate from the means of
     its last two quarters (each with its batch-means error); the early rate from the means of
@@ -206,7 +235,7 @@ def _rate_change_one_run(eps, t, x, early_seeds=None, halves_factor=1.0):
                          f"first decade; {source})")
 
 
-def _rate_change(fig, eps, t, mean, sem, n, early_seeds=None, halves_factor=1.0):
+def _rate_change(eps, t, mean, sem, n, early_seeds=None, halves_factor=1.0):
     """Rate dPhi_b/dt over the last half of the taps minus that over the first decade."""
     if np.nanmax(n) == 1 and len(t) >= 8 * DEFAULT_BATCHES and t[-1] > 10 * EARLY_DECADE[1]:
         return _rate_change_one_run(eps, t, mean, early_seeds, halves_factor)
@@ -227,60 +256,20 @@ def _weighted_line_in(t, mean, sem, lo, hi):
 
 @statistic("efficiency_decrease")
 def efficiency_decrease(data, claim):
-    return per_curve(data, "fig2", "a", lambda fig, eps, *curve: _rate_change(
-        fig, eps, *curve, early_seeds=_early_seeds(data, eps),
+    return per_fig2_curve(data, lambda eps, *curve: _rate_change(
+        eps, *curve, early_seeds=_early_seeds(data, eps),
         halves_factor=data.run_error("phi_b:halves", "fbc")[0]))
 
 
 def _fig2_end_curves(data):
-    """(fig, [(eps, series) of the smallest and the largest eps]) of Fig. 2's panel a, or
-    (None, the missing-data measures) when there are not two eps."""
-    fig = data.figure("fig2")
-    if fig is None:
+    """([(eps, (t, mean, sem, n)) of the smallest and the largest eps of Fig. 2's Phi_b], None),
+    or (None, the missing-data measures) when there are not two eps."""
+    if data.result("fig2") is None:
         return None, not_in_campaign("no Fig. 2 runs")
-    curves = eps_series(fig, "a")
-    if len(curves) < 2:
+    curves, _ = fig2_curves(data)
+    if curves is None or len(curves) < 2:
         return None, not_in_campaign("fewer than two eps in Fig. 2")
-    return fig, [curves[0], curves[-1]]
-
-
-@statistic("log_time_slowing")
-def log_time_slowing(data, claim):
-    """(late / early rate of Phi_b per unit ln t) at the smallest eps minus that at the
-    largest: negative when the slowing is strongest at small eps (section III.A)."""
-    fig, ends = _fig2_end_curves(data)
-    if fig is None:
-        return ends
-    ratios = []
-    for eps, series in ends:
-        t, mean, sem, n = fig.get("a", series)
-        if np.nanmax(n) == 1 and t[-1] >= 100 * EARLY_DECADE[1]:
-            seeds = _early_seeds(data, eps)
-            (early, e_early), (late, e_late) = _log_rates_one_run(
-                t, mean, seeds, data.run_error("phi_b:halves", "fbc")[0])
-            dof = WITHIN_RUN_DOF if seeds is None else min(seeds[2] - 1, WITHIN_RUN_DOF)
-        else:
-            early, e_early, _ = _log_slope(t, mean, sem, *EARLY_DECADE)
-            late, e_late, _ = _log_slope(t, mean, sem, t[-1] / 10.0, t[-1])
-            dof = mean_dof(n)
-        if not (np.isfinite(early) and early > 2 * e_early):
-            return [Measure(undecided=f"no significant compaction in the first decade at "
-                                      f"eps = {eps:g} (rate {fmt(early, e_early)})")]
-        r = late / early
-        ratios.append((eps, r, abs(r) * math.hypot(e_late / late if late else math.inf,
-                                                    e_early / early), dof))
-    (e0, r0, s0, d0), (e1, r1, s1, d1) = ratios
-    dofs = [d for d in (d0, d1) if d is not None]
-    dof = min(dofs) if len(dofs) == 2 else None
-    # both ratios beyond 1 by t sem: the log-time rate grows at both eps, no slowing on ln t
-    speeding = all(above(r, s, dof, reference=1.0) for r, s in ((r0, s0), (r1, s1)))
-    return [Measure(r0 - r1, math.hypot(s0, s1), dof,
-                    shown=f"late/early rate {fmt(r0, s0)} (eps = {e0:g}) vs {fmt(r1, s1)} "
-                          f"(eps = {e1:g})" + (
-                              "; both above 1: per unit ln t neither run slows down within "
-                              "its taps (the first decade begins with the first taps' "
-                              "loosening), the weakest taps compacting latest" if speeding
-                              else ""))]
+    return [(eps, curve_arrays(c)) for eps, c in (curves[0], curves[-1])], None
 
 
 #: late_gain_share: the windows, as fractions of the run's taps T, whose means give Phi_b at
@@ -322,12 +311,11 @@ def late_gain_share(data, claim):
     """Share of Phi_b's gain made over the last decade at the smallest eps minus that at the
     largest: positive when the smallest eps is farthest from its steady state at the end of
     the run (section III.A: 'without never really reaching it', most of all at small eps)."""
-    fig, ends = _fig2_end_curves(data)
-    if fig is None:
-        return ends
+    ends, missing = _fig2_end_curves(data)
+    if ends is None:
+        return missing
     shares = []
-    for eps, series in ends:
-        t, mean, sem, n = fig.get("a", series)
+    for eps, (t, mean, sem, n) in ends:
         if t[-1] < 10 * EARLY_DECADE[1] or (
                 np.nanmax(n) == 1 and np.sum(t >= LATE_WINDOW[0] * t[-1]) < 2 * DEFAULT_BATCHES):
             return not_in_campaign("runs too short for a last decade of taps")

@@ -45,9 +45,9 @@ CALIBRATION_ALPHA = 0.01
 #: cannot tell 0.15 from its neighbours
 CRITICAL_BRACKET_HALF_WIDTH = 0.05
 
-#: fraction of the frequencies (lowest, highest) compared by ``spectrum_eps_spread``
-#: (section III.A, "eps is noticeable only at high frequencies"; convention: a quarter of
-#: the band at each end, the paper names no frequency)
+#: fraction of the frequencies, the lowest, where ``spectrum_low_band`` asks whether eps is
+#: noticeable (section III.A, "eps is noticeable only at high frequencies": the highest band
+#: is shown beside it; convention: a quarter of the frequencies, the paper names none)
 SPECTRUM_BAND = 0.25
 
 #: realizations of the first decade (tapmc-paper question early-taps) below which its rates
@@ -103,6 +103,29 @@ class Convention:
         return None
 
 
+#: Half a unit of the last digit the paper prints of a packing fraction (58.4 %, 60.6 %,
+#: section IV.B): the precision at which the paper can tell a law from its curves of Phi
+#: (eq. 3 "compatible" with Fig. 2, section III.A), the register's ``rounding`` of a value
+PACKING_FRACTION_PRECISION = 0.0005
+
+#: realizations below which the law-free dispersion is not read: its bound
+#: (:func:`.ageing.dispersion_p_bound`) integrates the tail of F(1, n - 1), whose mean exists
+#: only for n - 1 > 2
+LAW_FREE_MIN_REALIZATIONS = 4
+
+#: the random close packing the paper sets as the limit X_inf "can get over" (section I:
+#: "approximately ... 64 %, the random close packing")
+RANDOM_CLOSE_PACKING = 0.64
+
+#: the share of a Gaussian beyond its mean plus this many standard deviations (2.3 %) is what
+#: ``pore_gaussian_excess`` compares the pores' volume distribution with: the tail of the
+#: largest pores, where the paper sees the over-population
+GAUSSIAN_TAIL_SD = 2.0
+
+#: points a straight line through one side of a bell needs (a slope with its own error)
+BELL_SIDE_POINTS = 3
+
+
 #: the conventions of the table of tolerances, in the order of the register's rules, then the
 #: statistics by section of the paper, then those applied before the report
 CONVENTIONS = (
@@ -129,9 +152,21 @@ CONVENTIONS = (
     Convention("CRITICAL_BRACKET_HALF_WIDTH", "how far from 0.15 the turning ramps may "
                "locate (sqrt eps)*", "the paper's ramp step: two steps of 0.025 in sqrt(eps) "
                "(section III.B)"),
-    Convention("SPECTRUM_BAND", "the low- and high-frequency bands whose spread over eps is "
-               "compared (eps 'noticeable only at high frequencies')",
-               "convention: a quarter of the frequencies at each end; the paper names none"),
+    Convention("SPECTRUM_BAND", "the lowest frequencies, where the spectra of every eps must "
+               "coincide (eps 'noticeable only at high frequencies')",
+               "convention: a quarter of the frequencies; the paper names none"),
+    Convention("PACKING_FRACTION_PRECISION", "the paper's precision of a law of Phi (eq. 3 "
+               "'compatible'): an outcome 'at the paper's precision, not at ours'",
+               "the paper's printed digits: half a unit of 58.4 %, 60.6 % (section IV.B)"),
+    Convention("RANDOM_CLOSE_PACKING", "the limit X_inf of eq. 3 'can get over'",
+               "the paper's 64 % (section I)", vary=""),
+    Convention("LAW_FREE_MIN_REALIZATIONS", "realizations a curve of Fig. 5 needs for the "
+               "law-free collapse's dispersion", "the mean of F(1, n - 1) exists for n >= 4",
+               vary="integer"),
+    Convention("GAUSSIAN_TAIL_SD", "where the large-pore tail of rho_v starts, against a "
+               "Gaussian's", "convention: 2 standard deviations (2.3 % of a Gaussian)"),
+    Convention("BELL_SIDE_POINTS", "points one side of a bell of delta Phi needs for its "
+               "slope", "a slope with its own error needs 3", vary="integer"),
     Convention("EARLY_MIN_SEEDS", "realizations of the first decade below which its rates "
                "keep one run's error", "convention", vary="integer"),
     Convention("REALIZATION_MIN_SEEDS", "realizations that test a law of Fig. 2 across runs",

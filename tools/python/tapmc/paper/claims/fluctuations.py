@@ -1,14 +1,15 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-"""Statistics of the fluctuations (section III.A, Fig. 3): the spectral slopes of <Z>, their
-spread over eps, and sigma_<Z>'s intercept at sqrt(eps) = 0."""
+"""Statistics of the fluctuations (section III.A, Fig. 3): the spectral slopes of <Z>, the
+spectra of every eps at the lowest frequencies, and sigma_<Z>'s intercept at sqrt(eps) = 0."""
 
 from __future__ import annotations
 
 import math
 
 import numpy as np
+from scipy.stats import chi2 as chi2_distribution
 
-from tapmc.stats import mean_dof, weighted_polyfit
+from tapmc.stats import weighted_polyfit
 
 from .. import _plotting as P
 from .common import not_in_campaign, one_seed_error_text, value_triple
@@ -36,62 +37,53 @@ def _spectra(fig3):
     return sorted((float(P.fmt_eps(eps)), spectrum) for eps, spectrum in fig3.spectra.items())
 
 
-#: Resamplings of the spectra that propagate their sem to ``spectrum_eps_spread``.
-SPECTRUM_RESAMPLINGS = 400
+def _band_level(f, power, err, lowest):
+    """(log10 of the mean power over the lowest (or highest) SPECTRUM_BAND of the frequencies,
+    its error from the bins' own errors, bins independent): the logarithm of the band's mean,
+    not the mean of the bins' logarithms, which their few periodogram ordinates at low f
+    would bias; on a logarithm the levels' differences grow with their ratio."""
+    ok = (f > 0) & (power > 0)
+    f, power, err = f[ok], power[ok], err[ok]
+    k = max(int(len(f) * SPECTRUM_BAND), 1)
+    order = np.argsort(f)
+    pick = order[:k] if lowest else order[-k:]
+    mean = float(np.mean(power[pick]))
+    return math.log10(mean), float(np.sqrt(np.sum(err[pick] ** 2)) / k) / (mean * math.log(10))
 
 
-@statistic("spectrum_eps_spread")
-def spectrum_eps_spread(data, claim):
-    """Spread over eps of log10 P(f) in the highest-frequency band minus that in the lowest
-    band (section III.A: eps is noticeable only at high frequencies)."""
+def _one_level(levels):
+    """(chi2, dof, p) of one level through the band means ``levels`` [(mean, err)]."""
+    y, e = (np.array(v) for v in zip(*levels))
+    w = 1.0 / e ** 2
+    chi = float(np.sum(w * (y - np.sum(w * y) / np.sum(w)) ** 2))
+    return chi, len(y) - 1, float(chi2_distribution.sf(chi, len(y) - 1))
+
+
+@statistic("spectrum_low_band")
+def spectrum_low_band(data, claim):
+    """Section III.A, "the effect of eps is noticeable only for the high frequencies": at the
+    lowest frequencies the spectra of every eps coincide. The chi-square of one level through
+    the log10 of the mean power of each spectrum's lowest SPECTRUM_BAND of frequencies (one
+    run per eps: the periodogram's own errors; several seeds: their sem); the same over the
+    highest band is shown beside it."""
     fig3 = data.result("fig3")
     if fig3 is None:
         return not_in_campaign("no Fig. 3 runs")
-    curves = [(sp.power.x, sp.power.mean, sp.power.err, sp.power.n) for _, sp in _spectra(fig3)]
-    if len(curves) < 3:
+    spectra = [sp.power for _, sp in _spectra(fig3)]
+    if len(spectra) < 3:
         return not_in_campaign("fewer than three spectra")
-    rng = np.random.default_rng(12345)
-
-    def spread(samples):
-        low, high = [], []
-        for f, logp in samples:
-            k = max(int(len(f) * SPECTRUM_BAND), 1)
-            order = np.argsort(f)
-            low.append(np.mean(logp[order[:k]]))
-            high.append(np.mean(logp[order[-k:]]))
-        return float(np.std(high, ddof=1) - np.std(low, ddof=1))
-
-    def logs(f, p):
-        ok = (f > 0) & (p > 0)
-        return f[ok], np.log10(p[ok])
-
-    base = spread([logs(f, p) for f, p, _, _ in curves])
-    if not all(np.all(np.isfinite(s[(f > 0) & (p > 0)])) for f, p, s, _ in curves):
-        return [Measure(base, undecided="one realization: the spectra have no error bars")]
-    seeds = int(min(c[3].min() for c in curves))
-    draws = []
-    for _ in range(SPECTRUM_RESAMPLINGS):
-        sample = []
-        for f, p, s, _ in curves:
-            if seeds == 1:
-                # one run per eps: its bins are Gamma means of m = (P / err)^2 effective
-                # periodogram ordinates (tapmc.fluctuations.PowerSpectrum.power_error)
-                with np.errstate(divide="ignore"):
-                    m = np.where(s > 0, (p / s) ** 2, np.inf)
-                finite = np.isfinite(m) & (m > 0)
-                factor = np.ones_like(p)
-                factor[finite] = rng.gamma(m[finite], 1.0 / m[finite])
-                noisy = p * factor
-            else:
-                noisy = p + s * rng.standard_normal(p.shape)
-            sample.append(logs(f, np.where(noisy > 0, noisy, p)))
-        draws.append(spread(sample))
-    # one run: the errors follow from the estimator's known distribution, not from a sample
-    # of realizations, so the verdict's quantile is the normal one (t with infinite dof)
-    dof = math.inf if seeds == 1 else mean_dof(seeds)
-    shown = f"{fmt(base, float(np.std(draws, ddof=1)))}" + (
-        " (one run per eps: the periodogram's own errors)" if seeds == 1 else "")
-    return [Measure(base, float(np.std(draws, ddof=1)), dof, shown=shown)]
+    low = [_band_level(s.x, s.mean, s.err, True) for s in spectra]
+    high = [_band_level(s.x, s.mean, s.err, False) for s in spectra]
+    if not all(np.isfinite(e) and e > 0 for _, e in low + high):
+        return [Measure(undecided="one realization: the spectra have no error bars")]
+    chi, dof, p = _one_level(low)
+    chi_high, _, p_high = _one_level(high)
+    span = 10 ** (max(m for m, _ in low) - min(m for m, _ in low))
+    return [Measure(chi / dof, dof=dof, p_value=p,
+                    shown=f"lowest quarter of the frequencies: chi2 {fmt(chi)} ({dof} dof) of "
+                          f"one level for the {len(low)} eps, whose levels span a factor "
+                          f"{span:.3g}; highest quarter: chi2 {fmt(chi_high)}, p = "
+                          f"{p_high:.2g}")]
 
 
 @statistic("sigma_intercept")

@@ -11,18 +11,20 @@ import math
 import numpy as np
 from scipy.stats import chi2 as chi2_distribution
 
-from tapmc.laws import InverseLogLaw, RealizationLawTest, SURROGATE_P_MIN, ZLaw
+from tapmc.laws import (InverseLogLaw, RealizationLawTest, SURROGATE_P_MIN, TwoExponentials,
+                        ZLaw)
 from tapmc.stats import mean_dof
 
-from .. import _plotting as P
-from .common import eps_series, not_in_campaign
-from .conventions import FIT_P_VALUE, REALIZATION_MIN_SEEDS, REALIZATION_MIN_TAPS
+from .common import curve_arrays, fig2_curves, not_in_campaign, paper_precision
+from .conventions import (FIT_P_VALUE, PACKING_FRACTION_PRECISION, RANDOM_CLOSE_PACKING,
+                          REALIZATION_MIN_SEEDS, REALIZATION_MIN_TAPS)
 from .measure import Measure, fmt
 from .registry import statistic
 
 
-def _fit_quality(fig, prefix, npoints, nparams, label):
-    chi, _, determined = fig.param(f"{prefix}reduced_chi2")
+def _fit_quality(curve, npoints, nparams, label):
+    """The reduced chi-square of the figure's own fit of one curve (a Fig. 2 CurveFit)."""
+    chi = curve.reduced_chi2.value
     if not np.isfinite(chi):
         return Measure(label=label, undecided="no fit in the figure data")
     dof = npoints - nparams
@@ -32,28 +34,27 @@ def _fit_quality(fig, prefix, npoints, nparams, label):
     return Measure(chi, dof=dof, label=label, shown=shown)
 
 
-def _law_quality(prefix):
-    """The per-curve chi-square of a 4-parameter law of Fig. 2 whose params rows are named
-    ``eps=<e>:<prefix>reduced_chi2`` (eq. 3: no prefix; eq. 4: ``Z:``), shown but undecided:
+def _law_quality(eps, curve):
+    """The chi-square of a 4-parameter law of Fig. 2 on one curve (a CurveFit, the figure's
+    ``eps=<e>:<prefix>reduced_chi2``; eq. 3: no prefix; eq. 4: ``Z:``), shown but undecided:
     the taps of a run are correlated (Fig. 3), so a chi-square over them with per-tap errors
     has no known distribution, whatever the number of seeds (with two seeds the medium
     preset's eq. 3 fits had reduced chi2 0.03: a test that cannot fail). The laws are decided
     across realizations (:func:`_law_across_realizations`)."""
-    def measure(fig, eps, t, mean, sem, n):
-        m = _fit_quality(fig, f"eps={P.fmt_eps(eps)}:{prefix}", len(t), 4, f"eps = {eps:g}")
-        if m.undecided is None:
-            seeds = mean_dof(n)
-            if seeds is None:
-                # without error bars the fit's "reduced chi2" is its mean squared residual
-                m.shown = f"rms residual {fmt(math.sqrt(m.value))}"
-                m.undecided = ("one realization: no error bars for a chi-square (the taps' "
-                               "scatter is correlated)")
-            else:
-                m.undecided = (f"{seeds + 1} seeds: a chi-square over correlated taps has no "
-                               f"known distribution; needs {REALIZATION_MIN_SEEDS} "
-                               "realizations (tapmc-paper question early-taps)")
-        return m
-    return measure
+    t, _, _, n = curve_arrays(curve)
+    m = _fit_quality(curve, len(t), 4, f"eps = {eps:g}")
+    if m.undecided is None:
+        seeds = mean_dof(n)
+        if seeds is None:
+            # without error bars the fit's "reduced chi2" is its mean squared residual
+            m.shown = f"rms residual {fmt(math.sqrt(m.value))}"
+            m.undecided = ("one realization: no error bars for a chi-square (the taps' "
+                           "scatter is correlated)")
+        else:
+            m.undecided = (f"{seeds + 1} seeds: a chi-square over correlated taps has no "
+                           f"known distribution; needs {REALIZATION_MIN_SEEDS} "
+                           "realizations (tapmc-paper question early-taps)")
+    return m
 
 
 def realization_curves(data, eps, column):
@@ -90,64 +91,98 @@ def back_at_start(t, mean):
 
 
 def _law_across_realizations(data, eps, law, column):
-    """Measures of one law of Fig. 2 tested across the realizations of early_taps.csv at
-    ``eps`` (tapmc.laws.RealizationLawTest): over every tap from the first, and from the end
-    of the first taps' loosening (:func:`loosening_end`); None when the realizations are too
-    few."""
+    """One measure per eps of a law of Fig. 2 tested across the realizations of
+    early_taps.csv at ``eps`` (tapmc.laws.RealizationLawTest) from the end of the first taps'
+    loosening (:func:`loosening_end`): the first taps loosen the deposited packing below its
+    t = 0 value, which no monotonic law follows, so the law is tested where the compaction
+    has begun; the test over every tap is shown beside it and decides nothing. With the
+    largest departure of the law from the bins' means against the paper's precision
+    (:func:`_law_precision`). None when the realizations are too few."""
     curves = realization_curves(data, eps, column)
     if curves is None:
         return None
-    out = []
+    label = f"eps = {eps:g}"
     back = loosening_end(data, eps)
-    for t_min, part in ((1.0, "every tap"), (back, "after the first taps' loosening")):
-        label = f"eps = {eps:g}, {part}"
-        if t_min is None or t_min * 10 > curves[0][-1]:
-            out.append(Measure(label=label, undecided=(
-                "the packing is still looser than at t = 0 a decade before the "
-                "realizations' last tap")))
-            continue
-        test = RealizationLawTest(law, t_min=t_min).compute(*curves)
-        edges = test.bin_edges
-        out.append(Measure(test.chi2, dof=test.dof, p_value=test.p_value, label=label,
-                           shown=f"T^2 {fmt(test.chi2)} ({test.dof} dof) over taps "
-                                 f"{edges[0]:g}-{edges[-1] - 1:g} in {len(edges) - 1} log "
-                                 f"bins, {test.realizations} realizations from the same "
-                                 "packing"))
-    return out
+    if back is None or back * 10 > curves[0][-1]:
+        return [Measure(label=label, undecided=(
+            "the packing is still looser than at t = 0 a decade before the realizations' "
+            "last tap"))]
+    test = RealizationLawTest(law, t_min=back).compute(*curves)
+    edges = test.bin_edges
+    shown = (f"T^2 {fmt(test.chi2)} ({test.dof} dof) over taps {edges[0]:g}-{edges[-1] - 1:g} "
+             f"in {len(edges) - 1} log bins, {test.realizations} realizations from the same "
+             f"packing; {_deviation_text(test, column)}")
+    if back > 1.0:
+        every = RealizationLawTest(law, t_min=1.0).compute(*curves)
+        shown += (f"; from tap 1, the loosening included (decides nothing): T^2 "
+                  f"{fmt(every.chi2)}, p = {every.p_value:.2g}")
+    return [Measure(test.chi2, dof=test.dof, p_value=test.p_value, label=label, shown=shown,
+                    paper_precision=_law_precision(test, column))]
 
 
-def _fig2_law_quality(data, law, column, panel, prefix):
-    """Per eps of Fig. 2: the law across realizations where early_taps.csv has them (two
-    measures: every tap, and after the first taps' loosening), else the chi-square of the
-    figure's own fit (:func:`_law_quality`)."""
-    fig = data.figure("fig2")
-    if fig is None:
-        return not_in_campaign("no Fig. 2 runs")
+def _law_precision(test, column):
+    """The largest departure of a RealizationLawTest's law from the bins' means in units of
+    the paper's precision: for Phi_b, half a unit of the last digit the paper prints of a
+    packing fraction (:data:`PACKING_FRACTION_PRECISION`); None for <Z>, of which the paper
+    prints no value."""
+    if column != "phi_b":
+        return None
+    return paper_precision(_largest_deviation(test), PACKING_FRACTION_PRECISION)
+
+
+def _largest_deviation(test):
+    return float(np.max(np.abs(np.asarray(test.bin_means, dtype=float) - test.bin_model)))
+
+
+def _deviation_text(test, column):
+    text = f"the law departs from the bins' means by at most {fmt(_largest_deviation(test))}"
+    if column != "phi_b":
+        return text
+    return text + f" (the paper's precision: {fmt(PACKING_FRACTION_PRECISION)})"
+
+
+def _fig2_law_quality(data, law, column, tag):
+    """Per eps of Fig. 2's curves of law ``tag``: the law across realizations where
+    early_taps.csv has them (from the end of the first taps' loosening), else the chi-square
+    of the figure's own fit (:func:`_law_quality`)."""
+    curves, missing = fig2_curves(data, tag)
+    if curves is None:
+        return missing
     out = []
-    for eps, series in eps_series(fig, panel):
+    for eps, curve in curves:
         ms = _law_across_realizations(data, eps, law, column)
-        out += ms if ms is not None else [_law_quality(prefix)(fig, eps, *fig.get(panel, series))]
-    return out or not_in_campaign(f"no curve in panel {panel} of Fig. 2")
+        out += ms if ms is not None else [_law_quality(eps, curve)]
+    return out
 
 
 @statistic("eq3_fit_quality")
 def eq3_fit_quality(data, claim):
-    return _fig2_law_quality(data, InverseLogLaw(), "phi_b", "a", "")
+    return _fig2_law_quality(data, InverseLogLaw(), "phi_b", "eq3")
 
 
 #: Parameters of eq. 3 whose uniqueness section III.B discusses: the triplet (X_inf, B, tau).
 EQ3_TRIPLET = ("X_inf", "B", "tau")
 
 
-def _eq3_uniqueness(fig, eps):
-    """(unique, reason) of the eq. 3 triplet at one eps from Fig. 2's params: unique when
-    every parameter is determined (its profile interval closes) and consistent over the tap
-    ranges; None when the figure data have no intervals."""
-    tag = f"eps={P.fmt_eps(eps)}"
-    if fig.get("params", f"{tag}:tau:range_deviation") is None:
+def _estimate_flag(curve, name, part=None):
+    """The n (flag) of a fitted parameter of a Fig. 2 CurveFit, or of its qualifying row
+    ``part``; 0 when the figure data have none."""
+    estimate = curve.params.get(name)
+    value = None if estimate is None else (
+        estimate.value if part is None else estimate.part(part))
+    return 0 if value is None else value.n
+
+
+def _eq3_uniqueness(curve):
+    """(unique, reason) of the eq. 3 triplet of one curve of Fig. 2 (a CurveFit): unique
+    when every parameter is determined (its profile interval closes) and consistent over the
+    tap ranges; None when the figure data have no intervals."""
+    tau = curve.params.get("tau")
+    if tau is None or tau.part("range_deviation") is None:
         return None, ""
-    undetermined = [k for k in EQ3_TRIPLET if fig.param(f"{tag}:{k}")[2] != 1]
-    dependent = [k for k in EQ3_TRIPLET if fig.param(f"{tag}:{k}:range_deviation")[2] != 1]
+    undetermined = [k for k in EQ3_TRIPLET if _estimate_flag(curve, k) != 1]
+    dependent = [k for k in EQ3_TRIPLET
+                 if _estimate_flag(curve, k, "range_deviation") != 1]
     reasons = ([f"{', '.join(undetermined)} undetermined"] if undetermined else []) + \
         ([f"{', '.join(dependent)} range dependent"] if dependent else [])
     return not reasons, "; ".join(reasons) or "unique"
@@ -159,10 +194,9 @@ def _eq3_uniqueness(fig, eps):
 ONE_RUN_FITS = "one realization: the fits' intervals ignore the taps' correlation"
 
 
-def _one_run_fig2(fig):
-    """True when every curve of Fig. 2 is one run (n = 1)."""
-    series = eps_series(fig, "a")
-    return bool(series) and max(np.nanmax(fig.get("a", name)[3]) for _, name in series) < 2
+def _one_run_fig2(curves):
+    """True when every curve of Fig. 2 (``curves``: [(eps, CurveFit)]) is one run (n = 1)."""
+    return bool(curves) and max(np.nanmax(c.data.n) for _, c in curves) < 2
 
 
 def _run_seed(name):
@@ -317,15 +351,14 @@ def eq3_triplet_pattern(data, claim):
             out = [dataclasses.replace(out[0], label="F.B.C., Fig. 2's runs")] + \
                 _triplet_from_realizations(pbc, "P.B.C. realizations")
         return out
-    fig = data.figure("fig2")
-    if fig is None:
+    if data.result("fig2") is None:
         return not_in_campaign("no Fig. 2 runs")
-    series = eps_series(fig, "a")
-    if len(series) < 2:
+    curves = fig2_curves(data)[0] or []
+    if len(curves) < 2:
         return not_in_campaign("fewer than two eps in Fig. 2")
-    if _one_run_fig2(fig):
+    if _one_run_fig2(curves):
         return [Measure(undecided=ONE_RUN_FITS)]
-    states = [(e, *_eq3_uniqueness(fig, e)) for e, _ in series]
+    states = [(e, *_eq3_uniqueness(c)) for e, c in curves]
     if any(u is None for _, u, _ in states):
         return not_in_campaign("no profile intervals and range refits in the Fig. 2 data")
     shown = "; ".join(f"eps = {e:g}: {why}" for e, _, why in states)
@@ -333,9 +366,75 @@ def eq3_triplet_pattern(data, claim):
     return [Measure(1.0 if holds else 0.0, shown=shown)]
 
 
+def _band(row):
+    """(value, low, high, determined) of a fit_surrogates.csv row."""
+    return (float(row["value"]), float(row["low"]), float(row["high"]),
+            row["determined"] == "1")
+
+
+@statistic("eq3_small_eps_asymptote")
+def eq3_small_eps_asymptote(data, claim):
+    """Section III.B: "in this small excitations range, X_inf can get over the R.C.P. limit
+    and tau, the characteristic time of the fit, increases spectacularly". From one run per
+    eps of Fig. 2 (fit_surrogates.csv, the paper's protocol), two patterns: tau's band at the
+    smallest eps above the band of every larger eps where tau is determined (1), below one of
+    them (0); X_inf's band at the smallest eps beyond RANDOM_CLOSE_PACKING (1). One run's
+    surrogate bands are too narrow (test_slow_surrogate_fits.py), so neither is contradicted
+    by them, and a degenerate fit (X_inf undetermined, up to 1e4) is reported as such."""
+    rows = surrogate_fits(data, "eq3")
+    if len(rows) < 2:
+        return not_in_campaign("fewer than two eps with fits of one run's surrogates "
+                               "(tapmc-paper question fit-surrogates)")
+    eps = sorted(rows)
+    small, others = eps[0], eps[1:]
+    x_text = "; ".join(
+        f"eps = {e:g}: X_inf {_band(rows[e]['X_inf'])[0]:.3g} "
+        + ("({:.3g}-{:.3g})".format(*_band(rows[e]["X_inf"])[1:3])
+           if _band(rows[e]["X_inf"])[3] else "(degenerate: undetermined)") for e in eps)
+    tau_text = "; ".join(f"eps = {e:g}: tau {_band(rows[e]['tau'])[0]:.3g} "
+                         f"({_band(rows[e]['tau'])[1]:.3g}-{_band(rows[e]['tau'])[2]:.3g})"
+                         for e in eps)
+    _, low, high, _ = _band(rows[small]["tau"])
+    determined = [_band(rows[e]["tau"]) for e in others if _band(rows[e]["tau"])[3]]
+    if not determined:
+        tau = Measure(label="tau grows at the smallest eps", shown=tau_text,
+                      undecided="tau undetermined at every larger eps")
+    elif low > max(b[2] for b in determined):
+        tau = Measure(1.0, label="tau grows at the smallest eps", shown=tau_text)
+    else:
+        tau = Measure(label="tau grows at the smallest eps", shown=tau_text, undecided=(
+            "the smallest eps's band of tau overlaps a larger eps's (one run's surrogates: "
+            "too narrow to contradict)"))
+    value, low, high, fixed = _band(rows[small]["X_inf"])
+    label = "X_inf beyond the random close packing at the smallest eps"
+    if fixed and low > RANDOM_CLOSE_PACKING:
+        x_inf = Measure(1.0, label=label, shown=x_text)
+    else:
+        x_inf = Measure(label=label, shown=x_text, undecided=(
+            f"X_inf at eps = {small:g} " + ("undetermined (a degenerate fit)" if not fixed else
+                                            f"within {low:.3g}-{high:.3g}, below "
+                                            f"{RANDOM_CLOSE_PACKING:g}, in one run's "
+                                            "surrogates: too narrow to contradict")))
+    return [tau, x_inf]
+
+
+@statistic("z_two_exponentials")
+def z_two_exponentials(data, claim):
+    """Section III.A: "a sum of two exponentials can also fit reasonably well <Z>(t)":
+    tapmc.laws.TwoExponentials tested like eq. 4, across the realizations of early_taps.csv
+    at each eps from the end of the first taps' loosening (:func:`_law_across_realizations`)."""
+    eps_values = sorted({float(r["eps"]) for r in data.question("early_taps")})
+    out = []
+    for eps in eps_values:
+        out += _law_across_realizations(data, eps, TwoExponentials(), "Z") or []
+    return out or not_in_campaign(f"fewer than {REALIZATION_MIN_SEEDS} realizations of "
+                                  f"{REALIZATION_MIN_TAPS} taps or more (tapmc-paper question "
+                                  "early-taps)")
+
+
 @statistic("eq4_fit_quality")
 def eq4_fit_quality(data, claim):
-    return _fig2_law_quality(data, ZLaw(), "Z", "c", "Z:")
+    return _fig2_law_quality(data, ZLaw(), "Z", "eq4")
 
 
 def _b_from_surrogates(rows, label):
@@ -368,6 +467,14 @@ def _b_from_surrogates(rows, label):
                              "narrow to reject")
 
 
+def _has_b_fit(dependence):
+    """Whether Fig. 2's data have the straight line of ln B in sqrt(eps) of a law (its
+    ``<law>:reduced_chi2`` row; a table built in memory may lack it: NaN with n = 0 and no
+    B rows)."""
+    chi2 = dependence.reduced_chi2
+    return np.isfinite(chi2.value) or chi2.n != 0 or len(dependence.B) > 0
+
+
 @statistic("b_exponential")
 def b_exponential(data, claim):
     """ln B linear in sqrt(eps) (Fig. 2 panel B) for the B of eq. 3 and of eq. 4."""
@@ -375,18 +482,19 @@ def b_exponential(data, claim):
                        for law in ("eq3", "eq4") if len(rows := surrogate_fits(data, law)) >= 1]
     if from_surrogates:
         return from_surrogates
-    fig = data.figure("fig2")
-    if fig is None:
+    fig2 = data.result("fig2")
+    if fig2 is None:
         return not_in_campaign("no Fig. 2 runs")
-    one_run = _one_run_fig2(fig)
+    one_run = _one_run_fig2(fig2_curves(data)[0] or [])
     out = []
     for law in ("eq3", "eq4"):
-        d = fig.get("B", f"{law}:reduced_chi2")
-        if d is None:
+        dependence = fig2.laws[law].B if law in fig2.laws else None
+        if dependence is None or not _has_b_fit(dependence):
             continue
-        chi, dof = float(d[1][0]), int(d[3][0])
-        slope = fig.get("B", f"{law}:slope")
-        text = "" if slope is None else f"d ln B / d sqrt(eps) = {fmt(slope[1][0], slope[2][0])}; "
+        chi, dof = dependence.reduced_chi2.value, dependence.reduced_chi2.n
+        slope = dependence.slope
+        text = "" if slope is None else \
+            f"d ln B / d sqrt(eps) = {fmt(slope.value.value, slope.value.err)}; "
         label = f"B of {law.replace('eq', 'eq. ')}"
         if one_run:
             out.append(Measure(label=label, undecided=ONE_RUN_FITS,

@@ -23,7 +23,10 @@ class Measure:
     F of tapmc.laws.RealizationLawTest), which the fit rule uses instead of the chi-square's;
     ``systematic`` = (low, high) how far a bias the measure does not sample could move the
     value (a ramp's levels at fewer taps than the paper's: :mod:`.reduced_ramps`), on top of
-    its error: the rule then decides only where its verdict is the same anywhere within it."""
+    its error: the rule then decides only where its verdict is the same anywhere within it;
+    ``paper_precision`` is a law's largest departure from the data in units of the paper's
+    precision for it (claims.common.paper_precision): at most 1, the fit rule calls a law its
+    test rejects one that agrees at the paper's precision, not at ours."""
 
     value: float = math.nan
     err: float = math.nan
@@ -37,6 +40,7 @@ class Measure:
     lacks: tuple = ()
     p_value: float | None = None
     systematic: tuple | None = None
+    paper_precision: float | None = None
 
     def text(self):
         if self.shown is not None:

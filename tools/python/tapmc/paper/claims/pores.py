@@ -1,20 +1,23 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-"""Statistics of the pores (section IV, Figs. 9-10): P0 against the configurations and
-Percus-Yevick, xi_min, nu and its hysteresis along the ramp, and the pore distribution's
-quadratic law."""
+"""Statistics of the pores (section IV, Figs. 9-10): P0's change against the packing
+fraction's and P0 against Percus-Yevick, xi_min, nu and its hysteresis along the ramp, the
+rho_v tail and the pore distribution's quadratic law."""
 
 from __future__ import annotations
 
 import math
 
 import numpy as np
+from scipy import stats
 
 from tapmc.pores import JACKKNIFE_BLOCKS, percus_yevick_p0
 from tapmc.stats import bonferroni_t_quantile, mean_dof, weighted_line
 
 from .. import _plotting as P
 from .._runs import RAMP_BRANCHES
-from .common import common_x, jackknife_dof, not_in_campaign, paired_levels
+from .common import (common_x, jackknife_dof, not_in_campaign,
+                     paired_levels, paper_precision)
+from .conventions import GAUSSIAN_TAIL_SD
 from .data import ReportData
 from .measure import Measure, fmt
 from .registry import statistic
@@ -51,7 +54,7 @@ def _py_change(fig9, sigma):
                                percus_yevick_p0(sigma, phi_i))))
 
 
-def _p0_configurations(data, other, what, more_than=1):
+def _p0_configurations(data, what, more_than=1):
     """The comparison of :func:`_p0_difference` over the configurations of
     tapmc-paper question p0-configs (depositions at t = 0, dumps of the continued Fig. 9
     run), None when they are not there or are not more than ``more_than`` of each kind."""
@@ -65,12 +68,8 @@ def _p0_configurations(data, other, what, more_than=1):
     phi_i, phi_t = float(phi[0]["initial"]), float(phi[0]["tapped"])
     x = col["sigma"]
     effect = float(np.max(np.abs(percus_yevick_p0(x, phi_t) - percus_yevick_p0(x, phi_i))))
-    if other == "initial":
-        diff, err = col["initial"] - col["tapped"], np.hypot(col["initial_sem"], col["tapped_sem"])
-        n = np.minimum(col["initial_n"], col["tapped_n"])
-    else:
-        diff = np.asarray(percus_yevick_p0(x, phi_t), float) - col["tapped"]
-        err, n = col["tapped_sem"], col["tapped_n"]
+    diff = np.asarray(percus_yevick_p0(x, phi_t), float) - col["tapped"]
+    err, n = col["tapped_sem"], col["tapped_n"]
     out = _pointwise_zero(x, diff, err, n, what, effect)
     for m in out:
         m.shown = (m.shown or m.text()) + (
@@ -80,9 +79,9 @@ def _p0_configurations(data, other, what, more_than=1):
     return out
 
 
-def _p0_difference(data, other, what):
-    """P0 of the tapped packing against the curve ``other`` of Fig. 9 (the initial packing's,
-    with its sem, or Percus-Yevick's, exact), sigma by sigma (:func:`_pointwise_zero`). Curves
+def _p0_difference(data, what):
+    """P0 of the tapped packing against Percus-Yevick's (exact) at its packing fraction,
+    sigma by sigma (:func:`_pointwise_zero`). Curves
     of fewer realizations than ``p0-configs`` has configurations (one run per point, the
     paper's protocol, or a campaign under way with two seeds, whose sem over two is itself
     hardly known) are compared over those configurations instead, when there."""
@@ -90,25 +89,92 @@ def _p0_difference(data, other, what):
     if fig9 is None:
         return not_in_campaign("no Fig. 9 runs")
     final = fig9.p0["final"]
-    ref = fig9.percus_yevick if other == "percus_yevick" else fig9.p0[other]
-    measured = _p0_configurations(data, other, what, more_than=int(np.nanmax(final.n)))
+    ref = fig9.percus_yevick
+    measured = _p0_configurations(data, what, more_than=int(np.nanmax(final.n)))
     if measured is not None:
         return measured
     x = final.x
     ref_err = np.nan_to_num(np.interp(x, ref.x, ref.err))  # Percus-Yevick: exact
-    n = final.n if other == "percus_yevick" else np.minimum(final.n, ref.n.min())
     return _pointwise_zero(x, np.interp(x, ref.x, ref.mean) - final.mean,
-                           np.hypot(ref_err, final.err), n, what, _py_change(fig9, x))
+                           np.hypot(ref_err, final.err), final.n, what, _py_change(fig9, x))
 
 
-@statistic("p0_initial_minus_final")
-def p0_initial_minus_final(data, claim):
-    return _p0_difference(data, "initial", "P0(initial) - P0(tapped)")
+def _p0_pair(data):
+    """(sigma, P0 initial, its error, P0 tapped, its error, realizations, (phi initial, its
+    error), (phi tapped, its error), source text) from the configurations of tapmc-paper
+    question p0-configs when they are more realizations than Fig. 9's curves, else from
+    Fig. 9's result; None without either (or without errors)."""
+    fig9 = data.result("fig9")
+    rows = [r for r in data.question("p0_configs") if r["sigma"] != "phi"]
+    phi = [r for r in data.question("p0_configs") if r["sigma"] == "phi"]
+    seeds = 0 if fig9 is None else int(np.nanmax(fig9.p0["final"].n))
+    if len(rows) >= 3 and phi and min(int(r["tapped_n"]) for r in rows) > max(seeds, 1):
+        col = {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+        p = phi[0]
+        return (col["sigma"], col["initial"], col["initial_sem"], col["tapped"],
+                col["tapped_sem"], int(min(col["initial_n"].min(), col["tapped_n"].min())),
+                (float(p["initial"]), float(p["initial_sem"])),
+                (float(p["tapped"]), float(p["tapped_sem"])),
+                f"P0 over {int(col['initial_n'].min())} depositions and "
+                f"{int(col['tapped_n'].min())} configurations of the tapped packing: "
+                "tapmc-paper question p0-configs")
+    if fig9 is None or seeds < 2:
+        return None
+    initial, final = fig9.p0["initial"], fig9.p0["final"]
+    x = final.x
+    return (x, np.interp(x, initial.x, initial.mean), np.interp(x, initial.x, initial.err),
+            final.mean, final.err, int(min(np.min(final.n), np.min(initial.n))),
+            (fig9.phi["initial"].value, fig9.phi["initial"].err),
+            (fig9.phi["final"].value, fig9.phi["final"].err), f"{seeds} seeds")
+
+
+def _py_change_at(sigma, phi_initial, phi_tapped):
+    """The largest |P0| change over ``sigma`` that Percus-Yevick (eqs. 8-9) gives between two
+    packing fractions, and where."""
+    change = np.abs(np.asarray(percus_yevick_p0(sigma, phi_tapped), float)
+                    - np.asarray(percus_yevick_p0(sigma, phi_initial), float))
+    k = int(np.argmax(change))
+    return float(change[k]), k
+
+
+@statistic("p0_change_over_density")
+def p0_change_over_density(data, claim):
+    """Section IV.B: the initial packing's P0 "is quite close" to the tapped one's, "this
+    slight difference" meaning that P0 is "insufficiently sensitive to small structural
+    changes as compaction": its change is the one the packing fraction alone gives. The
+    largest change of P0 over sigma between the two packings over the largest change
+    Percus-Yevick gives between their packing fractions, minus 1: 0 when P0 sees the
+    compaction only through Phi. Errors: the curves' at the largest change, and the packing
+    fractions' through Percus-Yevick."""
+    pair = _p0_pair(data)
+    if pair is None:
+        return not_in_campaign("no P0 of the initial and tapped packings with errors")
+    x, a, ea, b, eb, n, (phi_i, e_i), (phi_t, e_t), source = pair
+    if not (np.isfinite(phi_i) and np.isfinite(phi_t)):
+        return [Measure(undecided=f"no packing fractions of the two packings ({source})",
+                        shown=source)]
+    e_i, e_t = (e if np.isfinite(e) else 0.0 for e in (e_i, e_t))
+    change = np.abs(b - a)
+    k = int(np.argmax(change))
+    py, j = _py_change_at(x, phi_i, phi_t)
+    if not (np.isfinite(py) and py > 0):
+        return [Measure(undecided="the two packings have the same packing fraction")]
+    # the packing fractions' errors moved through Percus-Yevick's change
+    shifts = [abs(_py_change_at(x, phi_i + e_i, phi_t)[0] - py),
+              abs(_py_change_at(x, phi_i, phi_t + e_t)[0] - py)]
+    ratio = change[k] / py
+    err = ratio * math.hypot(math.hypot(ea[k], eb[k]) / change[k] if change[k] > 0 else 0.0,
+                             math.hypot(*shifts) / py)
+    return [Measure(ratio - 1.0, err, mean_dof(n), effect=1.0,
+                    shown=f"largest change {fmt(change[k])} at sigma = {x[k]:.3g} against "
+                          f"Percus-Yevick's {fmt(py)} at sigma = {x[j]:.3g} for Phi "
+                          f"{100 * phi_i:.2f} % -> {100 * phi_t:.2f} %: ratio "
+                          f"{fmt(ratio, err)} ({source})")]
 
 
 @statistic("p0_final_minus_py")
 def p0_final_minus_py(data, claim):
-    return _p0_difference(data, "percus_yevick", "Percus-Yevick - P0(tapped)")
+    return _p0_difference(data, "Percus-Yevick - P0(tapped)")
 
 
 @statistic("xi_min")
@@ -243,7 +309,27 @@ def pore_quadratic_fit(data, claim):
     pick, basis, c = law
     dof = int(pick.sum()) - 1
     chi = float(np.sum((y[pick] - c * basis) ** 2 / s[pick] ** 2)) / dof
-    return [Measure(chi, dof=dof, shown=f"reduced chi2 {fmt(chi)} ({dof} dof, t = {t:g})")]
+    precision = _superimposed_spread(curves, pick, x)
+    deviation = float(np.max(np.abs(y[pick] - c * basis)))
+    shown = f"reduced chi2 {fmt(chi)} ({dof} dof, t = {t:g})"
+    if precision is not None:
+        shown += (f"; the law departs from the histogram by at most {fmt(deviation)}, the "
+                  f"curves of t = {curves[0][0]:g} to {t:g} by up to {fmt(precision)} (which "
+                  "the paper calls superimposed)")
+    return [Measure(chi, dof=dof, shown=shown, paper_precision=None if precision is None
+                    else paper_precision(deviation, precision))]
+
+
+def _superimposed_spread(curves, pick, x):
+    """The paper's precision for a law of the small pores of Fig. 10a: it calls its curves of
+    every t "superimposed for the small pores" (section IV.B), so it could not tell apart
+    curves as far from each other as they are there: the largest difference, over the bins
+    ``pick`` of (xi_T, xi_O], between any dump's xi^3 P(xi) and the last one's; None with one
+    dump."""
+    last = curves[-1][1]
+    spreads = [np.max(np.abs(np.interp(x[pick], c.x, c.mean) - last.mean[pick]))
+               for _, c in curves[:-1]]
+    return float(max(spreads)) if spreads and max(spreads) > 0 else None
 
 
 def pore_law_deviation(fig10):
@@ -279,15 +365,54 @@ def _pore_values(data, name):
 
 @statistic("nu_tail_over_nu")
 def nu_tail_over_nu(data, claim):
-    nu, tail = _pore_values(data, "nu"), _pore_values(data, "nu_tail")
-    if not nu or not tail:
+    """nu_tail / nu at every dump of Fig. 10 (section IV.B: Fig. 10b draws rho_v(v) at every
+    stage of the compaction, t = 0 to 4000, and reads its tail as exp(-v/nu) on all of them),
+    one row per t."""
+    nu = {v.x: v for v in _pore_values(data, "nu")}
+    tail = {v.x: v for v in _pore_values(data, "nu_tail")}
+    steps = sorted(set(nu) & set(tail))
+    if not steps:
         return not_in_campaign("no nu_tail")
-    nu, tail = nu[-1], tail[-1]
-    m = tail.value / nu.value
-    ratio_err = abs(m) * math.hypot(tail.err / tail.value, nu.err / nu.value)
-    s = ratio_err if np.isfinite(ratio_err) else math.nan
-    return [Measure(float(m), float(s), _pore_dof(min(nu.n, tail.n), s),
-                    label=f"t = {nu.x:g}")]
+    out = []
+    for step in steps:
+        m = tail[step].value / nu[step].value
+        ratio_err = abs(m) * math.hypot(tail[step].err / tail[step].value,
+                                        nu[step].err / nu[step].value)
+        s = ratio_err if np.isfinite(ratio_err) else math.nan
+        out.append(Measure(float(m), float(s), _pore_dof(min(nu[step].n, tail[step].n), s),
+                           label=f"t = {step:g}"))
+    return out
+
+
+@statistic("pore_gaussian_excess")
+def pore_gaussian_excess(data, claim):
+    """Section IV.B: xi^3 P(xi) "is more or less close to a Gaussian distribution with an
+    over-population for the largest pores". At every dump of Fig. 10a: the share of the
+    distribution beyond its mean plus GAUSSIAN_TAIL_SD standard deviations (its own moments)
+    minus a Gaussian's share there; positive: the largest pores over-populated. Error: the
+    bins' own errors (independent), through the tail's integral."""
+    curves = _pore_curves(data)
+    if curves is None:
+        return not_in_campaign("no pore dumps")
+    gaussian = float(stats.norm.sf(GAUSSIAN_TAIL_SD))
+    out = []
+    for t, curve in curves:
+        x, y, s = curve.x, curve.mean, curve.err
+        ok = np.isfinite(y) & (y >= 0)
+        total = _band_integral(x[ok], y[ok], s[ok], -math.inf, math.inf)[0]
+        if not total > 0:
+            continue
+        mean = float(np.sum(x[ok] * y[ok]) / np.sum(y[ok]))
+        sd = float(math.sqrt(np.sum((x[ok] - mean) ** 2 * y[ok]) / np.sum(y[ok])))
+        edge = mean + GAUSSIAN_TAIL_SD * sd
+        tail, err = _band_integral(x[ok], y[ok], s[ok], edge, math.inf)
+        n = int(np.min(curve.n))
+        out.append(Measure(tail / total - gaussian, err / total, _pore_dof(n, err),
+                           label=f"t = {t:g}",
+                           shown=f"share beyond xi = {edge:.3g} (mean {mean:.3g} + "
+                                 f"{GAUSSIAN_TAIL_SD:g} sd): {fmt(tail / total, err / total)} "
+                                 f"against a Gaussian's {100 * gaussian:.2f} %"))
+    return out or not_in_campaign("no pore distribution")
 
 
 @statistic("nu_change")

@@ -150,7 +150,10 @@ class FitRule(Rule):
     name = "fit"
     text = (f"agrees when the fit's test has a p-value of at least {FIT_P_VALUE:g} "
             "(its chi-square; across realizations, Hotelling's T^2 of the law over log-spaced "
-            "bins of taps with their covariance between realizations), disagrees otherwise")
+            "bins of taps with their covariance between realizations), disagrees otherwise; "
+            "a law the test rejects agrees at the paper's precision, not at ours, when its "
+            "largest departure from the data is within the precision the paper can read "
+            "(given in the tolerance)")
     needs_error = False
 
     def decide(self, claim, m):
@@ -159,6 +162,9 @@ class FitRule(Rule):
         if m.dof is None or m.dof < 1:
             return undecided("no degrees of freedom")
         p = m.p_value if m.p_value is not None else float(stats.chi2.sf(m.value * m.dof, m.dof))
+        if p < FIT_P_VALUE and m.paper_precision is not None and m.paper_precision <= 1:
+            return Verdict(Outcome.AGREES_AT_PAPER_PRECISION,
+                           f"p = {p:.2g}; within the paper's precision")
         return Verdict(Outcome.AGREES if p >= FIT_P_VALUE else Outcome.DISAGREES, f"p = {p:.2g}")
 
 

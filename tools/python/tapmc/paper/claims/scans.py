@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from tapmc.stats import mean_dof
 
 from ..front import DEFAULT as FRONT_DEFAULT_SETTING
@@ -13,7 +15,7 @@ from .common import above, below
 from .measure import Measure, fmt
 from .register import PAPER_SCALE
 from .registry import statistic
-from .scan_tables import scan_settings, scan_table
+from .scan_tables import SCANS, scan_settings, scan_table
 
 
 @statistic("dmax_intermediate")
@@ -109,18 +111,49 @@ def _theta0_verdict(rows):
 
 
 def _dmax_scan_measures(rows):
-    """From a d_max scan: the compaction at R/5 minus that at the smallest and at the largest
-    d_max, paired over the seeds (sign +: those slow the redeposition down)."""
+    """From a d_max scan, the paper's two sides of "intermediate" (section II), each with its
+    own quantity, paired over the seeds (sign +: the paper's): a much smaller d_max leaves the
+    packing "nearly frozen", its redeposition having a "very slight" effect: the compaction
+    over the taps at R/5 minus at the smallest d_max; with a much larger one "the packing
+    evolves very slowly": the compaction per sweep of the redeposition (per tap over the
+    sweeps per tap) at R/5 minus at the largest."""
     table = scan_table(rows, "dmax")
     if len(table) < 3 or not any(r["is_paper"] for r in table):
         return [Measure(label=_scan_label(rows), undecided="fewer than three d_max, or no R/5")]
     n = min(r["n"] for r in table)
+    most = max(table, key=lambda r: r["gain"])["name"]
     out = []
-    for other in (table[0], table[-1]):
-        if other["is_paper"]:
-            continue
-        out.append(Measure(-other["vs_paper"], other["vs_paper_sem"], mean_dof(n), label=(
-            f"d_max scan, {_scan_label(rows, n)}: compaction with R/5 minus with {other['name']}; "
-            f"most with {max(table, key=lambda r: r['gain'])['name']}"),
+    small, large = table[0], table[-1]
+    if not small["is_paper"]:
+        out.append(Measure(-small["vs_paper"], small["vs_paper_sem"], mean_dof(n), label=(
+            f"d_max scan, {_scan_label(rows, n)}: compaction with R/5 minus with "
+            f"{small['name']} (nearly frozen); most with {most}"),
+            lacks=_size_lacking(rows[0]["N"])))
+    if not large["is_paper"]:
+        value, err, seeds = _per_sweep_vs_paper(rows, large["value"])
+        out.append(Measure(value, err, mean_dof(seeds), label=(
+            f"d_max scan, {_scan_label(rows, n)}: compaction per sweep with R/5 minus with "
+            f"{large['name']} (evolves very slowly)"),
+            shown=f"{fmt(value, err)} per sweep of the redeposition",
             lacks=_size_lacking(rows[0]["N"])))
     return out
+
+
+def _per_sweep_vs_paper(rows, value):
+    """(mean, sem, seeds) over the seeds of the compaction per sweep of the redeposition,
+    (<Phi^c>(end) - <Phi^c>(0)) / (taps x sweeps per tap), at R/5 minus at d_max ``value``
+    (over R), paired on the seeds both have."""
+    column, paper = SCANS["dmax"]["column"], SCANS["dmax"]["paper"]
+    values = sorted({float(r[column]) for r in rows})
+    at_paper = min(values, key=lambda f: abs(f - paper))
+
+    def per_sweep(at):
+        return {int(r["seed"]): (float(r["phi_c_end"]) - float(r["phi_c_0"]))
+                / (float(r["taps"]) * float(r["sweeps_per_tap"]))
+                for r in rows if float(r[column]) == at}
+
+    mine, other = per_sweep(at_paper), per_sweep(value)
+    d = np.array([mine[k] - other[k] for k in sorted(set(mine) & set(other))])
+    if len(d) < 2:
+        return (float(d.mean()) if len(d) else math.nan), math.nan, len(d)
+    return float(d.mean()), float(d.std(ddof=1) / math.sqrt(len(d))), len(d)

@@ -1,6 +1,7 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 """Statistics of the profiles and zones (Figs. 6-8): the final alpha, the central zone against
-the lateral one, and the lateral zone over the first taps from the paper's F.B.C. start."""
+the lateral one, the zones' bell in sqrt(eps), and the lateral zone over the first taps from
+the paper's F.B.C. start."""
 
 from __future__ import annotations
 
@@ -9,11 +10,13 @@ import math
 import numpy as np
 
 from tapmc.profiles import PROFILE_JACKKNIFE_BLOCKS
-from tapmc.stats import mean_dof
+from tapmc.stats import mean_dof, weighted_line
 
 from .._runs import PAPER_START_TAG, eps_tag
+from .bell import steady_maximum
 from .common import (jackknife_dof, not_in_campaign, one_seed_error_text, seed_mean_of,
                      steady_dof, value_triple)
+from .conventions import BELL_SIDE_POINTS
 from .measure import Measure, fmt
 from .registry import statistic
 
@@ -74,6 +77,39 @@ def central_minus_lateral(data, claim):
                            shown=f"{fmt(cen[0], cen[1])} vs {fmt(lat[0], lat[1])}; "
                                  f"difference {fmt(value, err)}{within}"))
     return out or not_in_campaign("no F.B.C. profile")
+
+
+@statistic("zone_bell")
+def zone_bell(data, claim):
+    """Section IV.A: delta Phi_lateral and delta Phi_central "have the same dependence on
+    eps^(1/2) than the other ones (bell shape curves)": each zone's final increase (Fig. 8,
+    mean over the last quarter of the taps) rises with sqrt(eps) below the steady states'
+    maximum (Fig. 4) and falls above it. A weighted straight line through each side (sign:
+    rising below, falling above); a side of fewer than BELL_SIDE_POINTS eps is undecided."""
+    fig8 = data.result("fig8")
+    if fig8 is None:
+        return not_in_campaign("no Fig. 8 runs")
+    top = steady_maximum(data)
+    if top is None:
+        return not_in_campaign("no maximum of the steady states (Fig. 4)")
+    out = []
+    for zone in ("lateral", "central"):
+        points = [(math.sqrt(eps), *value_triple(z.final.get(zone)))
+                  for eps, z in sorted(fig8.increases.items()) if z.final.get(zone) is not None]
+        for side, sign in (("below", 1), ("above", -1)):
+            pick = [p for p in points if (p[0] < top) == (side == "below")
+                    and np.isfinite(p[1]) and np.isfinite(p[2])]
+            label = f"delta Phi_{zone}, {side} sqrt(eps) = {top:.3g} (Fig. 4's maximum)"
+            if len(pick) < BELL_SIDE_POINTS:
+                out.append(Measure(label=label, sign=sign, undecided=(
+                    f"{len(pick)} eps of Fig. 8 {side} the maximum: a slope needs "
+                    f"{BELL_SIDE_POINTS}")))
+                continue
+            x, y, s, _ = (np.array(v, dtype=float) for v in zip(*pick))
+            slope, err, dof = weighted_line(x, y, s)
+            out.append(Measure(slope, err, dof, label=label, sign=sign,
+                               shown=f"slope {fmt(slope, err)} through {len(pick)} eps"))
+    return out
 
 
 @statistic("lateral_first_tap")
