@@ -248,7 +248,7 @@ def test_missing_figures_are_undecided_with_what_decides():
 def test_sigma_error_of_one_run_matches_the_spread_of_realizations():
     """Fig. 3's error of sigma_<Z> for one run (batch means of squared deviations) against the
     spread of sigma over 300 realizations of a correlated series (AR(1), correlation 0.8)."""
-    from tapmc.paper.fig3 import sigma_error_one_run
+    from tapmc.paper._steady_state import sigma_error_one_run
 
     rng = np.random.default_rng(7)
     sigmas, errors = [], []

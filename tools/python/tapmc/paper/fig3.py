@@ -35,13 +35,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from tapmc.fluctuations import DEFAULT_BATCHES, PowerSpectrum, SteadyState, sigma_scaling
+from tapmc.fluctuations import PowerSpectrum, SteadyState, sigma_scaling
 from tapmc.laws import StraightLine
 
 from . import _plotting as P
 from . import _runs, _steady_state
 from ._results import FigureResult, Series, Value
-from ._steady_state import BC, steady_last
+from ._steady_state import BC, sigma_error_one_run, steady_last
 
 NAME = "fig3"
 
@@ -57,20 +57,6 @@ def series_by_eps(campaign, column, bc=BC):
     groups = _runs.constant_eps_groups(campaign, bc)
     return {eps: [_runs.taps_table(campaign, s)[column][1:] for s in specs]
             for eps, specs in groups.items()}
-
-
-def sigma_error_one_run(x, last, batches=DEFAULT_BATCHES, detrend="constant"):
-    """Error of sigma_X over the last ``last`` taps of one run: batch means of the squared
-    deviations (from the segment's mean, or its straight line: ``detrend``) give the error of
-    sigma_X^2, propagated to sigma_X."""
-    dev2 = SteadyState(x, last=last, detrend=detrend).deviations() ** 2
-    size = len(dev2) // batches
-    if size < 1 or batches < 2:
-        return np.nan
-    means = dev2[: size * batches].reshape(batches, size).mean(axis=1)
-    var_err = float(np.std(means, ddof=1) / np.sqrt(batches))
-    sigma = float(np.sqrt(dev2.mean()))
-    return var_err / (2.0 * sigma) if sigma > 0 else np.nan
 
 
 def per_eps(campaign, column="Z", bc=BC):

@@ -37,8 +37,7 @@ from tapmc.fluctuations import SteadyState
 from tapmc.stats import beyond, t_quantile, t_quantile_of_mean, weighted_polyfit
 
 from . import _runs
-from ._steady_state import BC, steady_last
-from .fig3 import sigma_error_one_run
+from ._steady_state import BC, sigma_error_one_run, steady_last
 
 CSV_NAME = "sigma_eta.csv"
 #: The paper's steady packing fraction after 4000 taps (section III.D, Fig. 9), in percent.

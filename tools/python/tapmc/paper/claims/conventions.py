@@ -159,7 +159,7 @@ CONVENTIONS = (
                "'compatible'): an outcome 'at the paper's precision, not at ours'",
                "the paper's printed digits: half a unit of 58.4 %, 60.6 % (section IV.B)"),
     Convention("RANDOM_CLOSE_PACKING", "the limit X_inf of eq. 3 'can get over'",
-               "the paper's 64 % (section I)", vary=""),
+               "the paper's 64 % (section I)"),
     Convention("LAW_FREE_MIN_REALIZATIONS", "realizations a curve of Fig. 5 needs for the "
                "law-free collapse's dispersion", "the mean of F(1, n - 1) exists for n >= 4",
                vary="integer"),

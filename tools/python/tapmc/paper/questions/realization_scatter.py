@@ -20,7 +20,7 @@ from tapmc.fluctuations import DEFAULT_BATCHES, PowerSpectrum, SteadyState
 
 from ..claims import (CALIBRATION_ALPHA, RUN_ERROR_LABELS, RUN_ERROR_QUANTITIES,
                       ZONE_QUANTITIES, realization_calibrations)
-from ..fig3 import sigma_error_one_run
+from .._steady_state import sigma_error_one_run
 from .calibration import calibration_table, load, save, scatter_by_bc, scatter_quantity
 from .common import seed_groups, taps_table
 from .pbc_course import steady_halves
