@@ -464,3 +464,17 @@ def test_wall_layers_are_counted_from_each_wall_until_a_diameter_without_one():
     assert claims.wall_layers(d, phi, 0.5) == [(pytest.approx(1.1), pytest.approx(2.1)),
                                                (pytest.approx(3.1), pytest.approx(3.5))]
     assert claims.wall_layers(d, np.where(d > 2.5, 1.0, 0.0), 0.5) == []
+
+
+def test_p0_off_percus_yevick_by_less_than_its_change_agrees_at_the_papers_precision():
+    """Fig. 9: a tapped P0 that Percus-Yevick's test rejects agrees at the paper's precision
+    while its departure is within the change Percus-Yevick gives between the initial and
+    tapped packing fractions (what the paper calls a slight difference), not beyond it."""
+    claim = BY_ID["p0-percus-yevick"]
+    change = float(np.max(np.abs(percus_yevick_p0(np.linspace(0.0, 2.0, 60), 0.606)
+                                 - percus_yevick_p0(np.linspace(0.0, 2.0, 60), 0.584))))
+    (m,) = claims.p0_final_minus_py(report(fig9=fig9(py_shift=0.5 * change)), claim)
+    assert m.paper_precision == pytest.approx(0.5)
+    assert claims.verdict(claim, m).outcome == claims.Outcome.AGREES_AT_PAPER_PRECISION
+    (m,) = claims.p0_final_minus_py(report(fig9=fig9(py_shift=1.5 * change)), claim)
+    assert claims.verdict(claim, m).outcome == claims.Outcome.DISAGREES
