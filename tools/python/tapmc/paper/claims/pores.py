@@ -181,9 +181,9 @@ def p0_final_minus_py(data, claim):
     difference over sigma (:func:`_p0_difference`) as a fit of the law: its Bonferroni p-value
     decides; the paper's precision for it is the largest change Percus-Yevick gives between
     the initial and tapped packing fractions: the paper calls the two curves "quite close",
-    "a slight difference", so it reads a departure within that change as slight. Undecided while the difference's
-    uncertainty is not below that change (the test could not tell the law from the other
-    packing's)."""
+    "a slight difference", so it reads a departure within that change as slight. Undecided
+    while the difference's uncertainty is not below that change (the test could not tell the
+    law from the other packing's)."""
     out = _p0_difference(data, "Percus-Yevick - P0(tapped)")
     for m in out:
         if m.undecided or m.effect is None or not np.isfinite(m.err):
