@@ -17,6 +17,7 @@ sys.path.insert(0, str(SOURCE / "tools" / "python"))
 
 from tapmc.paper import claims  # noqa: E402
 from tapmc.paper import _plotting as P  # noqa: E402
+from tapmc.laws import ProfileLaw  # noqa: E402
 from tapmc.pores import percus_yevick_p0  # noqa: E402
 
 REGISTER = claims.load_register()
@@ -140,6 +141,38 @@ def fig6_ramp(gap):
     jitter = 5e-5 * (-1.0) ** np.arange(len(X))
     return (Table().add("b", "ramp:up1", X, alpha, 3e-4, 1)
             .add("b", "ramp:down", X, alpha + gap + jitter, 3e-4, 1))
+
+
+def fig6_profile(departure=0.0):
+    """Fig. 6's final profile (0.2R bins, errors 0.003) about its eq. 7 fit: wall layers one
+    diameter apart decaying from the floor, which the smoothing over 2R removes, plus a smooth
+    ``departure`` from eq. 7 over 10-16R that it keeps."""
+    z = np.arange(0.1, 40.0, 0.2)
+    params = {"Phi0": 0.59, "alpha": 0.0015, "beta": 2.0, "zb_star": 29.6}
+    law = ProfileLaw.function(z, *params.values())
+    layers = 0.05 * np.exp(-z / 4.0) * np.sin(np.pi * z)
+    bump = departure * np.exp(-((z - 13.0) / 3.0) ** 2)
+    above = z >= 5.0
+    tab = (Table().add("a", "initial", z, law, 0.003)
+           .add("a", "final", z, law + layers + bump, np.where(law > 1e-3, 0.003, 0.0))
+           .add("a", "fit:final", z[above], law[above], None, n=0)
+           .param("window_lo", 5.0, None).param("window_hi", 22.0, None))
+    for name, value in params.items():
+        tab.param(f"final:eq7_{name}", value, 1e-4, n=1)
+    return tab
+
+
+def fig7_profile(layering=0.05):
+    """Fig. 7's transversal profile in a 32R box (0.2R bins): three layers 1.8R apart from
+    each wall, peaks ``layering`` high, on a bulk of 0.58 with a scatter of 0.004 between
+    its bins."""
+    x = np.arange(0.1, 32.0, 0.2)
+    d = np.minimum(x, 32.0 - x)
+    peaks = sum(np.exp(-((d - centre) / 0.3) ** 2) for centre in (1.0, 2.8, 4.6))
+    phi = 0.58 + layering * peaks + 0.004 * np.sin(7.3 * x)
+    return (Table().add("a", "initial", x, phi, 0.005).add("a", "final", x, phi, 0.005)
+            .param("frontier_lo", 7.0, None).param("frontier_hi", 25.0, None)
+            .param("eps", 0.1, None))
 
 
 #: the one-row params of Fig. 9's typed result (tapmc.paper.fig9.Fig9Result) besides its curves
@@ -573,6 +606,10 @@ CONTROLS = {
                                           0.0002), fig4=fig4(BELL)),
                    report(fig6=Table().add("b", "bell:alpha", X, 0.001 + 0.01 * X, 0.0002),
                           fig4=fig4(BELL))),
+    # wall layers the smoothing removes; a smooth departure of 0.02 over 10-16R it keeps
+    "eq7_smoothed_fit": (report(fig6=fig6_profile()), report(fig6=fig6_profile(0.02))),
+    # three layers from each wall; none
+    "wall_layering": (report(fig7=fig7_profile()), report(fig7=fig7_profile(0.0))),
     "final_alpha": (report(fig6=Table().param("final:alpha", 0.002, 0.0002)),
                     report(fig6=Table().param("final:alpha", -0.002, 0.0002))),
     "central_minus_lateral": (report(fig8=fig8(0.01, 0.02)), report(fig8=fig8(0.02, 0.01))),
@@ -715,7 +752,8 @@ def _with_scatter(tab):
 __all__ = ['os', 'sys', 'Path', 'SOURCE', 'REGISTER', 'BY_ID', 'SEEDS', 'claims', 'P',
            'percus_yevick_p0', 'np', 'pytest', 'math', 'dataclasses', 'Table', 'report', 'T',
            'fig2', 'inverse_log', 'RISING', 'fig3', 'X', 'fig4', 'BELL', 'ramp_pores',
-           'ramps_turning', '_critical', 'fig6_ramp', 'FIG9_PARAMS', 'with_fig9_params', 'fig9',
+           'ramps_turning', '_critical', 'fig6_ramp', 'fig6_profile', 'fig7_profile',
+           'FIG9_PARAMS', 'with_fig9_params', 'fig9',
            'one_run_fig9', 'XI', 'pore_curve', 'with_fig10_rows', 'fig10', 'fig8',
            'with_fig8_rows', 'with_fig2_rows', 'with_fig3_rows', 'FIG6_PROFILE_CURVES', 'FIG6_PROFILE_PARAMS',
            'with_fig6_rows', 'FIG4_RAMP_TAGS', 'with_fig4_rows', 'COMPLETE_ROWS', '_low_first',

@@ -436,3 +436,45 @@ def test_dmax_scan_adds_both_ends_to_the_front():
     (_, fast) = [m for m in claims.STATISTICS["dmax_intermediate"](
         scan(0.010, 900), claim) if m.label.startswith("d_max scan")]
     assert str(claims.verdict(claim, fast)) == "disagrees", fast
+
+def test_eq7_smoothing_removes_the_wall_layers_and_keeps_a_departure():
+    """Fig. 6's profile about eq. 7: layers one diameter apart average out over blocks of 2R;
+    a smooth departure stays and the fit rule rejects it."""
+    claim = BY_ID["eq7-fit"]
+    profiles = report(fig6=fig6_profile()).result("fig6").profiles
+    departures, errors = claims.smoothed_departures(profiles.final, profiles.law_curves["final"],
+                                                    5.0, 2.0)
+    assert len(departures) == 13      # blocks from 5R up to the packing's top, 31R
+    # a decaying layering averages out to within a third of the errors
+    np.testing.assert_allclose(departures, 0.0, atol=1e-3)
+    np.testing.assert_allclose(errors, 0.003)
+    (m,) = claims.eq7_smoothed_fit(report(fig6=fig6_profile(0.02)), claim)
+    assert str(claims.verdict(claim, m)).startswith("disagrees")
+
+
+def test_wall_layers_are_counted_from_each_wall_until_a_diameter_without_one():
+    (left, right) = claims.wall_layering(report(fig7=fig7_profile()), BY_ID["wall-layering"])
+    for m in (left, right):
+        assert m.text().startswith("3 layers") and m.value == 1
+    # a run of bins above the level is one layer; a diameter below it ends the count, and a
+    # first layer further than a diameter from the wall is none
+    d = np.arange(0.1, 10.0, 0.2)
+    phi = np.where((d > 1) & (d < 2), 1.0, 0.0) + np.where((d > 3) & (d < 3.5), 1.0, 0.0) \
+        + np.where(d > 6, 1.0, 0.0)
+    assert claims.wall_layers(d, phi, 0.5) == [(pytest.approx(1.1), pytest.approx(2.1)),
+                                               (pytest.approx(3.1), pytest.approx(3.5))]
+    assert claims.wall_layers(d, np.where(d > 2.5, 1.0, 0.0), 0.5) == []
+
+
+def test_p0_off_percus_yevick_by_less_than_its_change_agrees_at_the_papers_precision():
+    """Fig. 9: a tapped P0 that Percus-Yevick's test rejects agrees at the paper's precision
+    while its departure is within the change Percus-Yevick gives between the initial and
+    tapped packing fractions (what the paper calls a slight difference), not beyond it."""
+    claim = BY_ID["p0-percus-yevick"]
+    change = float(np.max(np.abs(percus_yevick_p0(np.linspace(0.0, 2.0, 60), 0.606)
+                                 - percus_yevick_p0(np.linspace(0.0, 2.0, 60), 0.584))))
+    (m,) = claims.p0_final_minus_py(report(fig9=fig9(py_shift=0.5 * change)), claim)
+    assert m.paper_precision == pytest.approx(0.5)
+    assert claims.verdict(claim, m).outcome == claims.Outcome.AGREES_AT_PAPER_PRECISION
+    (m,) = claims.p0_final_minus_py(report(fig9=fig9(py_shift=1.5 * change)), claim)
+    assert claims.verdict(claim, m).outcome == claims.Outcome.DISAGREES

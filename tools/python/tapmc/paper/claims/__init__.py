@@ -67,7 +67,8 @@ from .scan_tables import (OTHER_READING_TAGS, SCANS, read_scan, scan_files, scan
                           scan_table)
 from .scans import dmax_intermediate, theta0_optimum
 from .sensitivity import Sensitivity, convention_changes, sensitivities, tolerance_table
-from .zones import (BELL_SIDE_POINTS, central_minus_lateral, final_alpha, lateral_first_tap,
+from .zones import (BELL_SIDE_POINTS, central_minus_lateral, eq7_smoothed_fit, final_alpha,
+                    lateral_first_tap, smoothed_departures, wall_layering, wall_layers,
                     zone_bell)
 from tapmc.stats import t_quantile  # noqa: F401  (named here by older callers)
 

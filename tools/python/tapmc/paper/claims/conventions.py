@@ -125,6 +125,19 @@ GAUSSIAN_TAIL_SD = 2.0
 #: points a straight line through one side of a bell needs (a slope with its own error)
 BELL_SIDE_POINTS = 3
 
+#: the "smoothing of the profile" the paper applies before reading Fig. 6 (section IV.A):
+#: means over blocks of this height, in R, from the bottom of the gradient window. One
+#: sphere diameter: the wall layers stacked from the floor, which the smoothing removes, are
+#: about a diameter apart (the paper-scale profile oscillates with a period of 1.6R, close to
+#: the sqrt(8/3) R of close-packed layers); the paper gives no width
+EQ7_SMOOTHING_WIDTH = 2.0
+
+#: "approximately a three layers range" (section IV.A): a count of wall layers within this
+#: many layers of three. One layer: the paper's own reading of the range, the lateral zone
+#: "at a distance less than 7R from the walls corresponding roughly to this wall effects
+#: range", is 3.5 sphere diameters, room for the centres of three or four layers
+WALL_LAYERS_APPROXIMATELY = 1.0
+
 
 #: the conventions of the table of tolerances, in the order of the register's rules, then the
 #: statistics by section of the paper, then those applied before the report
@@ -167,6 +180,14 @@ CONVENTIONS = (
                "Gaussian's", "convention: 2 standard deviations (2.3 % of a Gaussian)"),
     Convention("BELL_SIDE_POINTS", "points one side of a bell of delta Phi needs for its "
                "slope", "a slope with its own error needs 3", vary="integer"),
+    Convention("EQ7_SMOOTHING_WIDTH", "the smoothing of Fig. 6's profile before eq. 7 is "
+               "compared with it: means over blocks of this height (in R)",
+               "convention: one sphere diameter, about the wall layers' spacing; the paper "
+               "smooths but gives no width (section IV.A)"),
+    Convention("WALL_LAYERS_APPROXIMATELY", "'approximately a three layers range' of Fig. "
+               "7: the count of wall layers within this many layers of three",
+               "the paper's 7R wall-effects range (section IV.A): 3.5 diameters, three or "
+               "four layers"),
     Convention("EARLY_MIN_SEEDS", "realizations of the first decade below which its rates "
                "keep one run's error", "convention", vary="integer"),
     Convention("REALIZATION_MIN_SEEDS", "realizations that test a law of Fig. 2 across runs",

@@ -9,14 +9,16 @@ import math
 
 import numpy as np
 
+from tapmc.laws import ProfileLaw
 from tapmc.profiles import PROFILE_JACKKNIFE_BLOCKS
-from tapmc.stats import mean_dof, weighted_line
+from tapmc.stats import mean_dof, t_quantile, weighted_line
 
 from .._runs import PAPER_START_TAG, eps_tag
 from .bell import steady_maximum
 from .common import (jackknife_dof, not_in_campaign, one_seed_error_text, seed_mean_of,
                      steady_dof, value_triple)
-from .conventions import BELL_SIDE_POINTS
+from ..fig7 import FIRST_LAYER_WIDTH, LATERAL_WIDTH
+from .conventions import BELL_SIDE_POINTS, EQ7_SMOOTHING_WIDTH, WALL_LAYERS_APPROXIMATELY
 from .measure import Measure, fmt
 from .registry import statistic
 
@@ -45,6 +47,105 @@ def final_alpha(data, claim):
     within = " (one seed: lateral jackknife of its packing)" if n == 1 and np.isfinite(s) else ""
     return [Measure(m, s, jackknife_dof(n, s, PROFILE_JACKKNIFE_BLOCKS),
                     shown=fmt(m, s) + within)]
+
+
+def smoothed_departures(profile, curve, bottom, width):
+    """(departures, errors) of ``profile`` (a Series over z/R) from the eq. 7 ``curve`` (a
+    Series on the same bins) smoothed over blocks of ``width`` R from ``bottom`` up to the
+    packing's top (the last block whose bins all have a positive error): each block's mean of
+    the profile minus its mean of the curve, and the mean of the bins' errors, the most the
+    block mean's error can be (the bins share spheres: their errors are correlated)."""
+    fitted = np.interp(profile.x, curve.x, curve.mean, left=np.nan, right=np.nan)
+    departures, errors = [], []
+    start = bottom
+    while True:
+        block = (profile.x >= start) & (profile.x < start + width)
+        errs = profile.err[block]
+        if not block.any() or not np.all(np.isfinite(fitted[block])) \
+                or not np.all(np.isfinite(errs) & (errs > 0)):
+            break
+        departures.append(float(np.mean(profile.mean[block] - fitted[block])))
+        errors.append(float(np.mean(errs)))
+        start += width
+    return np.array(departures), np.array(errors)
+
+
+@statistic("eq7_smoothed_fit")
+def eq7_smoothed_fit(data, claim):
+    """Section IV.A: eq. 7 is "the following average fit for a typical vertical profile",
+    read "after a smoothing of the profile". Fig. 6's final profile (seed mean) smoothed
+    over blocks of EQ7_SMOOTHING_WIDTH from the bottom of the gradient window to the
+    packing's top, against eq. 7 fitted to it (tapmc.paper.fig6): a chi-square of the blocks'
+    departures over their errors, with the blocks less the law's parameters as dof. The raw
+    bins' rms departure in the window is shown beside it: the wall layers stacked from the
+    floor, which eq. 7 does not describe and the smoothing removes."""
+    fig6 = data.result("fig6")
+    profiles = None if fig6 is None else fig6.profiles
+    if profiles is None or "final" not in profiles.law_curves:
+        return not_in_campaign("no eq. 7 fit of Fig. 6's final profile")
+    final, curve = profiles.final, profiles.law_curves["final"]
+    departures, errors = smoothed_departures(final, curve, profiles.window[0],
+                                             EQ7_SMOOTHING_WIDTH)
+    dof = len(departures) - len(ProfileLaw.names)
+    if dof < 1:
+        return [Measure(undecided=f"{len(departures)} blocks of {EQ7_SMOOTHING_WIDTH:g}R "
+                                  "under the packing's top: too few for eq. 7's parameters")]
+    reduced = float(np.sum((departures / errors) ** 2) / dof)
+    lo, hi = profiles.window
+    inside = (final.x >= lo) & (final.x <= hi)
+    raw = final.mean[inside] - np.interp(final.x[inside], curve.x, curve.mean)
+    return [Measure(reduced, math.nan, dof, shown=(
+        f"smoothed over {EQ7_SMOOTHING_WIDTH:g}R: reduced chi2 {reduced:.3g} over "
+        f"{len(departures)} blocks from z/R = {lo:g}, largest departure "
+        f"{np.max(np.abs(departures)):.2g}; raw bins in {lo:g}-{hi:g}R: rms departure "
+        f"{np.sqrt(np.mean(raw ** 2)):.2g} against errors {np.median(final.err[inside]):.2g}"))]
+
+
+def wall_layers(distance, phi, threshold, gap=FIRST_LAYER_WIDTH):
+    """The layers along one wall of a transversal profile: (first, last) distances of each
+    run of bins above ``threshold``, walking from the wall (bins ordered by ``distance``)
+    until the profile stays at or below it for ``gap`` (one diameter: a layer's spacing
+    without a layer ends the layering; the first layer must start within it of the wall)."""
+    layers, below_since, inside = [], 0.0, False
+    for d, value in zip(distance, phi):
+        if value > threshold and not inside:
+            layers.append([d, d])
+            inside = True
+        elif value <= threshold and inside:
+            layers[-1][1], below_since, inside = d, d, False
+        elif not inside and d - below_since >= gap:
+            break
+    return [tuple(layer) for layer in layers]
+
+
+@statistic("wall_layering")
+def wall_layering(data, claim):
+    """Section IV.A: the F.B.C. transversal profile (Fig. 7, after the taps) shows "a local
+    organisation in layers due to the walls; this effect has approximately a three layers
+    range". From each wall, the runs of bins above the bulk's spread: the central zone's
+    (beyond LATERAL_WIDTH of the walls) mean plus t times the sd of its bins, with one dof
+    per sphere diameter of the zone less one (neighbouring bins share spheres). The pattern
+    agrees when the count is within WALL_LAYERS_APPROXIMATELY of three."""
+    fig7 = data.result("fig7")
+    if fig7 is None or not np.any(np.isfinite(fig7.final.mean)):
+        return not_in_campaign("no Fig. 7 runs")
+    x, phi, side = fig7.final.x, fig7.final.mean, fig7.side
+    bulk = np.minimum(x, side - x) >= LATERAL_WIDTH
+    dof = (side - 2 * LATERAL_WIDTH) / FIRST_LAYER_WIDTH - 1
+    if bulk.sum() < 3 or dof < 1:
+        return [Measure(undecided="no central zone to measure the bulk's spread in")]
+    spread = float(np.std(phi[bulk], ddof=1))
+    threshold = float(np.mean(phi[bulk])) + t_quantile(dof) * spread
+    out = []
+    for wall, order in (("x = 0", np.argsort(x)), (f"x = {side:g}R", np.argsort(-x))):
+        layers = wall_layers(np.minimum(x, side - x)[order], phi[order], threshold)
+        count = len(layers)
+        agrees = abs(count - 3) <= WALL_LAYERS_APPROXIMATELY
+        where = ", ".join(f"{lo:.1f}-{hi:.1f}R" for lo, hi in layers)
+        out.append(Measure(1.0 if agrees else 0.0, label=f"wall at {wall}", shown=(
+            f"{count} layers above Phi = {threshold:.3f} (bulk {np.mean(phi[bulk]):.3f}, "
+            f"sd {spread:.2g} over its bins){': ' + where if where else ''}")))
+    return out
 
 
 @statistic("central_minus_lateral")
