@@ -214,26 +214,25 @@ def _add_campaign_and_plan_parsers(sub):
                     help="runs at a time, for the wall time (default: the cores this process may use)")
 
 
+def _add_campaign_reader(sub, name, what, runs, csv_name):
+    """A command that reads a campaign's runs (finished or not) into one CSV of the report's
+    questions folder."""
+    parser = sub.add_parser(name, help=f"{what}, written to the report's questions/{csv_name}")
+    parser.add_argument("--campaign", type=Path, required=True, metavar="DIR",
+                        help=f"campaign directory holding {runs}")
+    parser.add_argument("--out", type=Path, default=Path("doc/paper_scale"), metavar="DIR",
+                        help="report directory (default doc/paper_scale): writes "
+                             f"DIR/validation/questions/{csv_name}")
+
+
 def _add_paper_ramp_and_question_parsers(sub):
     """``paper-ramp`` (section III.B at the paper's ramp protocol) and ``question NAME``."""
-    pr = sub.add_parser("paper-ramp", help="section III.B's question at the paper's ramp "
-                                           "protocol: the campaign's paperramp* runs judged "
-                                           "(frozen or not), written to the report's "
-                                           "questions/paper_ramp.csv")
-    pr.add_argument("--campaign", type=Path, required=True, metavar="DIR",
-                    help="campaign directory holding runs/paperramp*")
-    pr.add_argument("--out", type=Path, default=Path("doc/paper_scale"), metavar="DIR",
-                    help="report directory (default doc/paper_scale): writes "
-                         "DIR/validation/questions/paper_ramp.csv")
-    se = sub.add_parser("sigma-eta", help="sigma_<Z> and the bell's top against the "
-                                          "redeposition threshold: the campaign's const_* and "
-                                          "consteta_* P.B.C. runs, written to the report's "
-                                          "questions/sigma_eta.csv")
-    se.add_argument("--campaign", type=Path, required=True, metavar="DIR",
-                    help="campaign directory holding runs/const_* and runs/consteta_*")
-    se.add_argument("--out", type=Path, default=Path("doc/paper_scale"), metavar="DIR",
-                    help="report directory (default doc/paper_scale): writes "
-                         "DIR/validation/questions/sigma_eta.csv")
+    _add_campaign_reader(sub, "paper-ramp", "section III.B's question at the paper's ramp "
+                         "protocol: the campaign's paperramp* runs judged (frozen or not)",
+                         "runs/paperramp*", paper_ramp.CSV_NAME)
+    _add_campaign_reader(sub, "sigma-eta", "sigma_<Z> and the bell's top against the "
+                         "redeposition threshold: the campaign's const_* and consteta_* "
+                         "P.B.C. runs", "runs/const_* and runs/consteta_*", sigma_eta.CSV_NAME)
     question = sub.add_parser("question", help="one question of the validation settled by a "
                                                "measurement (tapmc.paper.questions; --list "
                                                "lists them)")

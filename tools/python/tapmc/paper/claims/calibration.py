@@ -91,16 +91,18 @@ def realization_factors(rows, bc="pbc"):
     realizations' dof. The groups of both boundary conditions are pooled unless their
     factors differ (:func:`realization_sharing` below CALIBRATION_ALPHA): then ``bc``'s
     groups alone. A boundary condition without groups takes the other's."""
+    return {q: (c.factor, c.dof) for q, c in _pooled_calibrations(rows, bc).items()
+            if c.p_value < CALIBRATION_ALPHA and c.factor > 1}
+
+
+def _pooled_calibrations(rows, bc):
+    """dict quantity -> the calibration :func:`realization_factors` uses for ``bc``: the
+    groups of both boundary conditions pooled, or ``bc``'s alone where they differ."""
     every = realization_calibrations(rows)
     own = realization_calibrations(rows, bc)
     sharing = realization_sharing(rows)
-    out = {}
-    for q, c in every.items():
-        if sharing.get(q, 1.0) < CALIBRATION_ALPHA:
-            c = own[q]
-        if c.p_value < CALIBRATION_ALPHA and c.factor > 1:
-            out[q] = (c.factor, c.dof)
-    return out
+    return {q: own[q] if sharing.get(q, 1.0) < CALIBRATION_ALPHA else c
+            for q, c in every.items()}
 
 
 def measured_factor(calibration):
@@ -182,17 +184,8 @@ def realization_trends(rows, bc="pbc"):
     pools for ``bc``, for the quantities whose factor measurably depends on eps
     (:func:`factor_trend`): their one-run rows of a known eps take the trend's factor
     there instead of the pooled one."""
-    every = realization_calibrations(rows)
-    own = realization_calibrations(rows, bc)
-    sharing = realization_sharing(rows)
-    out = {}
-    for q, c in every.items():
-        if sharing.get(q, 1.0) < CALIBRATION_ALPHA:
-            c = own[q]
-        trend = factor_trend(c)
-        if trend is not None:
-            out[q] = trend
-    return out
+    trends = {q: factor_trend(c) for q, c in _pooled_calibrations(rows, bc).items()}
+    return {q: trend for q, trend in trends.items() if trend is not None}
 
 
 def realization_sharing(rows):
