@@ -138,3 +138,15 @@ def test_command_writes_the_table_and_refuses_a_campaign_without_runs(tmp_path):
     refused = _cli("--campaign", tmp_path / "nothing", "--out", tmp_path / "out2")
     assert refused.returncode == 2 and "has no runs/ folder" in refused.stderr
     assert "Traceback" not in refused.stderr and not (tmp_path / "out2").exists()
+
+
+def test_both_campaign_readers_refuse_a_campaign_with_nothing_to_read(tmp_path):
+    (tmp_path / "empty" / "runs").mkdir(parents=True)
+    for command, what in (("sigma-eta", "constant-eps runs"), ("paper-ramp", "paperramp")):
+        env = dict(os.environ,
+                   PYTHONPATH=str(Path(__file__).resolve().parents[2] / "tools" / "python"))
+        done = subprocess.run([sys.executable, "-m", "tapmc.paper", command, "--campaign",
+                               str(tmp_path / "empty"), "--out", str(tmp_path / "out")],
+                              capture_output=True, text=True, env=env, timeout=120)
+        assert done.returncode == 2 and what in done.stderr and "Traceback" not in done.stderr
+        assert not (tmp_path / "out").exists()

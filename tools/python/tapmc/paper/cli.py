@@ -240,33 +240,22 @@ def _add_paper_ramp_and_question_parsers(sub):
         question_command.add_parser(question)
 
 
-def _paper_ramp(args):
+def _read_campaign(args, name, module, unit):
+    """A campaign reader's command (``paper-ramp``, ``sigma-eta``): ``module.analyse`` on the
+    campaign's runs, its CSV written to the report's questions folder, its finding printed;
+    exit 2 naming the folder when the campaign has no runs/ or nothing to read."""
     if not (args.campaign / "runs").is_dir():
-        print(f"tapmc-paper paper-ramp: --campaign {args.campaign} has no runs/ folder",
+        print(f"tapmc-paper {name}: --campaign {args.campaign} has no runs/ folder",
               file=sys.stderr)
         return 2
-    rows = paper_ramp.analyse(args.campaign, FULL.eta)
-    path = paper_ramp.write_csv(
-        rows, args.out / _runs.FIG_DIR / "questions" / paper_ramp.CSV_NAME)
-    print(paper_ramp.finding_text(rows, FULL.eta))
-    print(f"paper-ramp: {path} ({len(rows)} runs)")
-    return 0
-
-
-def _sigma_eta(args):
-    if not (args.campaign / "runs").is_dir():
-        print(f"tapmc-paper sigma-eta: --campaign {args.campaign} has no runs/ folder",
-              file=sys.stderr)
+    rows = module.analyse(args.campaign, FULL.eta)
+    if not rows:
+        print(f"tapmc-paper {name}: --campaign {args.campaign} has no run to read "
+              f"({module.RUNS_READ})", file=sys.stderr)
         return 2
-    points = sigma_eta.analyse(args.campaign, FULL.eta)
-    if not points:
-        print(f"tapmc-paper sigma-eta: --campaign {args.campaign} has no constant-eps P.B.C. "
-              f"run with {sigma_eta.MIN_STEADY_TAPS} steady taps", file=sys.stderr)
-        return 2
-    path = sigma_eta.write_csv(
-        points, args.out / _runs.FIG_DIR / "questions" / sigma_eta.CSV_NAME)
-    print(sigma_eta.finding_text(points, FULL.eta))
-    print(f"sigma-eta: {path} ({len(points)} points)")
+    path = module.write_csv(rows, args.out / _runs.FIG_DIR / "questions" / module.CSV_NAME)
+    print(module.finding_text(rows, FULL.eta))
+    print(f"{name}: {path} ({len(rows)} {unit})")
     return 0
 
 
@@ -525,9 +514,9 @@ def main(argv=None):
     if args.command == "front":
         return front_command.main(args)
     if args.command == "paper-ramp":
-        return _paper_ramp(args)
+        return _read_campaign(args, "paper-ramp", paper_ramp, "runs")
     if args.command == "sigma-eta":
-        return _sigma_eta(args)
+        return _read_campaign(args, "sigma-eta", sigma_eta, "points")
     if args.command == "plan":
         return _plan_cost(args)
     if args.command == "report" and args.refit and not args.from_data:

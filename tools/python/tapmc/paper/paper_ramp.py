@@ -31,6 +31,8 @@ from . import _runs
 TAPS_PER_LEVEL = 4000
 LAST_TAPS = 1000
 CSV_NAME = "paper_ramp.csv"
+#: What the command reads, for its message when a campaign has none of it.
+RUNS_READ = "runs/paperramp* with a taps.dat"
 #: The name of a run: paperramp<top>_<bc>[_eta<eta>]_s<seed> (tapmc.paper._runs).
 NAME = re.compile(rf"^{_runs.PAPER_RAMP_PREFIX}(?P<top>[0-9.]+)_(?P<bc>pbc|fbc)"
                   r"(?:_eta(?P<eta>[0-9.e+-]+))?_s(?P<seed>\d+)$")

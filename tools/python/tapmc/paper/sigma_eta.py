@@ -46,6 +46,8 @@ PAPER_PHI_PERCENT = 60.6
 #: means of a shorter window have too few taps per batch to stand for a correlated series
 #: (the campaign's runs decorrelate within tens of taps, Fig. 3's spectra).
 MIN_STEADY_TAPS = 250
+#: What the command reads, for its message when a campaign has none of it.
+RUNS_READ = f"P.B.C. constant-eps runs with {MIN_STEADY_TAPS} steady taps"
 #: Columns of taps.dat read here (tapmc.paper runs: step phi_b phi_c Z ...).
 STEP, PHI_C, Z = 0, 2, 3
 NAME = re.compile(rf"^(?:{re.escape(_runs.CONSTANT_ETA_PREFIX)}(?P<bc1>pbc|fbc)_eps"
