@@ -62,6 +62,24 @@ def test_frozen_compacting_and_running_ramps(tmp_path):
     assert "At eta = 1e-5, the model has no irreversible branch: the descending branch compacts" in text
     assert "At eta = 1e-6 the ramp is still going up (seed 2 at tap 12000): undecided." in text
 
+    # the first screen's sentence: one answer per eta, the decided seeds' changes, how far the
+    # running ones got
+    headline = paper_ramp.headline_text(back, 1e-7)
+    assert "eta = 1e-5: no irreversible branch (1 seed; the descending branch moves by +0.00" \
+        in headline
+    assert "eta = 1e-6: undecided, the ramp is still going up (seed 2 at tap 12000)" in headline
+    assert "eta = 1e-7 (the default): an irreversible (frozen) branch (1 seed;" in headline
+    assert paper_ramp.headline_text([], 1e-7) == ""
+
+
+def test_seeds_that_disagree_are_said_to_disagree(tmp_path):
+    up = [0.590, 0.595, 0.598, 0.600, 0.600]
+    write_run(tmp_path, "paperramp0.125_pbc_s1", up + [0.600] * 4, done=True)
+    write_run(tmp_path, "paperramp0.125_pbc_s2", up + [0.601, 0.602, 0.603, 0.604], seed=2,
+              done=True)
+    headline = paper_ramp.headline_text(paper_ramp.analyse(tmp_path, 1e-7), 1e-7)
+    assert "eta = 1e-7 (the default): the seeds disagree (2 seeds;" in headline
+
 
 def test_a_directory_that_is_not_a_paper_ramp_is_refused(tmp_path):
     run = write_run(tmp_path, "ramp_pbc_s1", [0.6] * 9)

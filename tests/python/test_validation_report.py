@@ -59,12 +59,20 @@ def test_committed_report_equals_its_regeneration(rendered):
 
 
 def test_main_page_answers_first_and_stays_short(rendered):
-    _, _, pages = rendered
+    page, _, pages = rendered
     lines = pages["validation.rst"].splitlines()
     title = lines.index(screen.SCREEN_TITLE) + 1
     counts = next(i for i, line in enumerate(lines, 1) if line.startswith("Of the paper's "))
     image = next(i for i, line in enumerate(lines, 1) if ".. image::" in line)
     assert max(title, counts) <= FIRST_SCREEN_LINES, (title, counts)
+    # issue 46: the answer about the irreversible branch at the paper's ramp protocol is on
+    # the first screen when the report has the paper-protocol ramps
+    if (page / "validation" / "questions" / "paper_ramp.csv").is_file():
+        central = next(i for i, line in enumerate(lines, 1)
+                       if line.startswith("The paper's central question"))
+        assert central <= FIRST_SCREEN_LINES, central
+        # the campaign's own threshold (report.json lists it) is named as the default
+        assert "(the default)" in lines[central - 1]
     assert image <= FIRST_FIGURE_LINE, image
     assert len(lines) <= MAIN_PAGE_MAX_LINES, len(lines)
 

@@ -142,6 +142,36 @@ def _eta_text(eta):
     return f"{eta:.0e}".replace("e-0", "e-")
 
 
+def headline_text(rows, default_eta):
+    """The finding in one sentence, for the report's first screen: per eta, the answer (no
+    irreversible branch, a frozen branch, the seeds disagree) with the seeds' changes of the
+    descending branch, or undecided with how far the running seeds got; the numbers with their
+    errors are in :func:`finding_text`."""
+    if not rows:
+        return ""
+    parts = []
+    for eta in sorted({r.eta for r in rows}, reverse=True):
+        group = [r for r in rows if r.eta == eta]
+        decided = [r for r in group if r.verdict != "running"]
+        label = f"eta = {_eta_text(eta)}" + (" (the default)" if eta == default_eta else "")
+        if not decided:
+            running = ", ".join(f"seed {r.seed} at tap {r.taps_done}" for r in group)
+            parts.append(f"{label}: undecided, the ramp is still going up ({running})")
+            continue
+        verdicts = {r.verdict for r in decided}
+        answer = ("an irreversible (frozen) branch" if verdicts == {"frozen"}
+                  else "the seeds disagree" if "frozen" in verdicts
+                  else "no irreversible branch")
+        changes = " and ".join(f"{r.down_change:+.4f}" for r in decided)
+        seeds = f"{len(decided)} seed{'s' if len(decided) > 1 else ''}"
+        parts.append(f"{label}: {answer} ({seeds}; the descending branch moves by {changes} "
+                     "in <Phi^c> from the turning level)")
+    return ("The paper's central question (section III.B: is the branch below (sqrt eps)* ~ "
+            f"0.15 irreversible?) at its own ramp protocol ({TAPS_PER_LEVEL} taps per level, "
+            "N = 4096, P.B.C.): " + "; ".join(parts) + ". The numbers with their errors: the "
+            "first open question below.")
+
+
 def finding_text(rows, default_eta):
     """The finding of the report's first screen: per eta, whether the model has an irreversible
     branch below (sqrt eps)* at the paper's ramp protocol, with each seed's numbers; the runs

@@ -233,12 +233,13 @@ def _entry_rows(entry):
             f"     - {image}"]
 
 
-def screen_rst(entries, finding=""):
-    """The one screen, as rst lines: the counts, one table row per entry (outcome, key
-    number, the paper's value, thumbnail), the rule, and the open questions (``finding``: the
-    irreversible-branch finding of section III.B, first of them when given)."""
+def screen_rst(entries, finding="", headline=""):
+    """The one screen, as rst lines: the counts, the central question's answer (``headline``,
+    when given), one table row per entry (outcome, key number, the paper's value, thumbnail),
+    the rule, and the open questions (``finding``: the irreversible-branch finding of section
+    III.B with its numbers, first of them when given)."""
     lines = [SCREEN_TITLE, "-" * len(SCREEN_TITLE), "", count_sentence(entries), "",
-             claims_sentence(entries), "",
+             claims_sentence(entries), ""] + ([headline, ""] if headline else []) + [
              ".. list-table::", "   :header-rows: 1", "   :widths: 18 22 26 16 18", "",
              "   * - Figure", "     - Outcome", "     - Key number (TAPMC)", "     - Paper",
              "     - Figure"]

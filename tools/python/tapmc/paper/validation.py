@@ -337,16 +337,23 @@ def _title_and_intro(summary):
 
 
 def _paper_ramp_finding(files, summary):
-    """The finding about the irreversible branch at the paper's ramp protocol, from
-    questions/paper_ramp.csv next to the figures (``tapmc-paper paper-ramp``), or ""."""
+    """(headline, finding): the answer about the irreversible branch at the paper's ramp
+    protocol in one sentence, and with its numbers, from questions/paper_ramp.csv next to the
+    figures (``tapmc-paper paper-ramp``), or ("", "")."""
     if not files:
-        return ""
+        return "", ""
     path = Path(next(iter(files.values()))[1]).parent / questions.FOLDER / paper_ramp.CSV_NAME
     if not path.exists():
-        return ""
-    text = paper_ramp.finding_text(paper_ramp.read_csv(path), summary["eta"])
-    return text + (" Per run: ``" + str(Path(FIG_DIR) / questions.FOLDER / paper_ramp.CSV_NAME)
-                   + "`` (``tapmc-paper paper-ramp``).")
+        return "", ""
+    rows = paper_ramp.read_csv(path)
+    # the campaign's eta: report.json lists the values of its runs (one in a campaign at one
+    # threshold, which the ramps without an eta in their name share)
+    etas = summary["eta"] if isinstance(summary["eta"], list) else [summary["eta"]]
+    default_eta = etas[0] if len(etas) == 1 else None
+    text = paper_ramp.finding_text(rows, default_eta)
+    return (paper_ramp.headline_text(rows, default_eta),
+            text + (" Per run: ``" + str(Path(FIG_DIR) / questions.FOLDER / paper_ramp.CSV_NAME)
+                    + "`` (``tapmc-paper paper-ramp``)."))
 
 
 def _appendix_line():
@@ -392,8 +399,8 @@ def _main_page(summary, files, rows, verdicts, notes, prefix):
     lines = [".. TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.", "",
              title, "=" * len(title), "", intro, "", describe_scale(summary), ""]
     lines += _appendix_line()
-    lines += summary_screen.screen_rst(summary_screen.summarise(rows, files),
-                                       _paper_ramp_finding(files, summary))
+    headline, finding = _paper_ramp_finding(files, summary)
+    lines += summary_screen.screen_rst(summary_screen.summarise(rows, files), finding, headline)
     lines += ["How close is TAPMC to the paper", "-" * 31, "",
               AGGREGATION_SENTENCE + " The rules of "
               "the rows' verdicts, the errors of one run and what \"Paper scale?\" means: "
