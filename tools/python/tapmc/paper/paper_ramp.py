@@ -138,7 +138,8 @@ def read_csv(path):
                 for row in csv.DictReader(f)]
 
 
-def _eta_text(eta):
+def eta_text(eta):
+    """A threshold as the report writes it (1e-5, not 1e-05)."""
     return f"{eta:.0e}".replace("e-0", "e-")
 
 
@@ -153,7 +154,7 @@ def headline_text(rows, default_eta):
     for eta in sorted({r.eta for r in rows}, reverse=True):
         group = [r for r in rows if r.eta == eta]
         decided = [r for r in group if r.verdict != "running"]
-        label = f"eta = {_eta_text(eta)}" + (" (the default)" if eta == default_eta else "")
+        label = f"eta = {eta_text(eta)}" + (" (the default)" if eta == default_eta else "")
         if not decided:
             running = ", ".join(f"seed {r.seed} at tap {r.taps_done}" for r in group)
             parts.append(f"{label}: undecided, the ramp is still going up ({running})")
@@ -182,7 +183,7 @@ def finding_text(rows, default_eta):
     for eta in sorted({r.eta for r in rows}, reverse=True):
         group = [r for r in rows if r.eta == eta]
         decided = [r for r in group if r.verdict != "running"]
-        label = f"eta = {_eta_text(eta)}" + (" (the default)" if eta == default_eta else "")
+        label = f"eta = {eta_text(eta)}" + (" (the default)" if eta == default_eta else "")
         if not decided:
             running = ", ".join(f"seed {r.seed} at tap {r.taps_done}" for r in group)
             parts.append(f"at {label} the ramp is still going up ({running}): undecided.")

@@ -6,6 +6,7 @@ turns."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -14,9 +15,11 @@ from tapmc.hysteresis import CRITICAL_SQRT_EPS, LEVEL_TOLERANCE
 from tapmc.stats import t_quantile, weighted_line, welch_dof
 
 from .. import fig4
+from ..paper_ramp import TAPS_PER_LEVEL as PAPER_RAMP_TAPS, eta_text
 
 from .common import (above, below, common_x, curve_of, mean_difference, not_in_campaign,
-                     paired_levels, seed_mean_of, seeds_error, steady_dof, value_triple)
+                     paired_levels, seed_mean_of, seeds_error, steady_dof, value_triple,
+                     WITHIN_RUN_DOF)
 from .conventions import CRITICAL_BRACKET_HALF_WIDTH
 from .measure import Measure, fmt
 from .registry import statistic
@@ -227,6 +230,11 @@ def _branch_difference(data, a, b, effect=None, statistic=None):
 
 @statistic("ramp_up_minus_steady")
 def ramp_up_minus_steady(data, claim):
+    """:func:`_up_minus_steady`, labelled with the ramps' protocol."""
+    return _at_campaign_protocol(data, _up_minus_steady(data))
+
+
+def _up_minus_steady(data):
     """The ramp's first increase minus the steady squares, mean over their common sqrt(eps).
     With several seeds of the ramp and each seed's mean of the first increase there (Fig. 4
     params ``ramp:up1_at_steady:seeds``), the error has two independent parts: the seeds'
@@ -261,13 +269,72 @@ def ramp_up_minus_steady(data, claim):
 
 @statistic("ramp_down_minus_up")
 def ramp_down_minus_up(data, claim):
-    return _branch_difference(data, "down", "up1", statistic="down_minus_up1")
+    return _at_campaign_protocol(data, _branch_difference(data, "down", "up1",
+                                                          statistic="down_minus_up1"))
 
 
 @statistic("ramp_up2_minus_down")
 def ramp_up2_minus_down(data, claim):
-    return _branch_difference(data, "up2", "down", hysteresis_gap(data),
-                              statistic="up2_minus_down")
+    return _at_campaign_protocol(data, _branch_difference(data, "up2", "down",
+                                                          hysteresis_gap(data),
+                                                          statistic="up2_minus_down"))
+
+
+def _protocol_label(taps_per_level, eta):
+    """Which ramps a Fig. 4 row was decided on: taps per level and redeposition threshold."""
+    return f"{taps_per_level} taps per level, eta = {eta_text(eta)}"
+
+
+def _campaign_ramp_label(data):
+    """The label of the rows of the campaign's own Fig. 4 ramps ("" when report.json does not
+    give one taps per level and one eta)."""
+    per_level, eta = (data.summary.get(k) for k in ("ramp_taps_per_level", "eta"))
+    if not (isinstance(per_level, list) and len(per_level) == 1 and isinstance(eta, list)
+            and len(eta) == 1):
+        return ""
+    return _protocol_label(int(per_level[0]), float(eta[0]))
+
+
+def _at_campaign_protocol(data, measures):
+    """``measures`` of the campaign's Fig. 4 ramps, each labelled with their taps per level
+    and eta (:func:`_campaign_ramp_label`) unless it has a label."""
+    label = _campaign_ramp_label(data)
+    return [m if m.label or not label else dataclasses.replace(m, label=label)
+            for m in measures]
+
+
+def _paper_protocol_frozen(data, effect):
+    """One row per eta of the ramps at the paper's own protocol (tapmc-paper paper-ramp's
+    paper_ramp.csv: 4000 taps per level, turning below (sqrt eps)*): the mean over the seeds
+    whose ramp came down two levels of the decreasing branch minus the turning level; the
+    error of one seed is its levels' batch-means error times the realizations' factor of a
+    difference of two parts of one run, of several the :func:`seeds_error` of their mean.
+    Seeds still going up leave the row undecided, saying how far they got. These runs have
+    the paper's taps per level, which the campaign's Fig. 4 ramps may lack (``meets``)."""
+    out = []
+    rows = data.question("paper_ramp")
+    for eta in sorted({float(r["eta"]) for r in rows}, reverse=True):
+        group = [r for r in rows if float(r["eta"]) == eta]
+        decided = [r for r in group if r["verdict"] != "running"]
+        label = _protocol_label(PAPER_RAMP_TAPS, eta)
+        if not decided:
+            running = ", ".join(f"seed {r['seed']} at tap {r['taps_done']}" for r in group)
+            out.append(Measure(label=label, meets=("ramp_taps",),
+                               undecided=f"the ramp is still going up ({running})"))
+            continue
+        values = [float(r["down_change"]) for r in decided]
+        errors = [float(r["down_change_sem"]) for r in decided]
+        if len(decided) >= 2:
+            err, dof, how, _ = seeds_error(data, values, errors, "phi_c")
+        else:
+            err = data.run_error("phi_c:halves")[0] * errors[0]
+            dof, how = WITHIN_RUN_DOF, "one seed"
+        m = float(np.mean(values))
+        tops = ", ".join(sorted({f"{float(r['top']):g}" for r in decided}))
+        out.append(Measure(m, err, dof, label=label, meets=("ramp_taps",), effect=effect,
+                           shown=f"{fmt(m, err)} (decrease minus turning level {tops}"
+                                 + (f"; {how})" if how else ")")))
+    return out
 
 
 @statistic("low_ramp_frozen")
@@ -275,7 +342,9 @@ def low_ramp_frozen(data, claim):
     """The ramp that stayed below (sqrt eps)*: its decreasing branch minus its top level
     (Fig. 4 params ``low:down_change``), against the same change on the ramp that went beyond
     it (``ramp:down_change``), the effect "nearly frozen" denies. With several seeds the error
-    of their mean is judged with the campaign's groups of realizations (:func:`seed_mean`)."""
+    of their mean is judged with the campaign's groups of realizations (:func:`seed_mean`).
+    Then one row per eta of the ramps at the paper's own protocol
+    (:func:`_paper_protocol_frozen`), against the same effect."""
     if data.result("fig4") is None:
         return not_in_campaign("no Fig. 4 runs")
     low = _ramp(data, "low")
@@ -285,9 +354,11 @@ def low_ramp_frozen(data, claim):
     beyond = _ramp(data)
     effect = value_triple(None if beyond is None
                           else (beyond.statistics or {}).get("down_change"))[0]
-    return [Measure(m, s, dof, effect=effect if np.isfinite(effect) else None,
+    effect = effect if np.isfinite(effect) else None
+    return [Measure(m, s, dof, label=_campaign_ramp_label(data), effect=effect,
                     shown=f"{fmt(m, s)} (decrease minus top level; the ramp beyond (sqrt eps)* "
-                          f"changes by {fmt(effect)}" + (f"; {how})" if how else ")"))]
+                          f"changes by {fmt(effect)}" + (f"; {how})" if how else ")"))
+            ] + _paper_protocol_frozen(data, effect)
 
 
 def turning_ramps(fig4):
@@ -323,6 +394,11 @@ def _ramp_turning_behaviour(fig4, tag, change, effect):
 
 
 @statistic("critical_separation")
+def critical_separation_rows(data, claim):
+    """:func:`critical_separation`, labelled with the ramps' protocol."""
+    return _at_campaign_protocol(data, critical_separation(data, claim))
+
+
 def critical_separation(data, claim, shifts=None):
     """Section III.B: (sqrt eps)* ~ 0.15 separates a ramp whose decreasing branch compacts on
     the way down (the reversible branch) from one whose decreasing branch stays frozen at its
@@ -382,6 +458,12 @@ def critical_separation(data, claim, shifts=None):
 
 @statistic("ramp_branch_slope")
 def ramp_branch_slope(data, claim):
+    """The weighted slope of a branch of the ramp (``branch`` param, default the decreasing
+    one), labelled with the ramps' protocol."""
+    return _at_campaign_protocol(data, _branch_slope(data, claim))
+
+
+def _branch_slope(data, claim):
     branch = ramp_branch(data, claim.params.get("branch", "down"))
     if branch is None:
         return not_in_campaign("no ramp")

@@ -97,7 +97,8 @@ def evaluate(claims, data, measures=None):
             found_measures = measures[claim.id]
         for m in found_measures:
             found = verdict(claim, m)
-            lacking = missing + tuple(a for a in m.lacks if a not in missing)
+            lacking = tuple(a for a in missing if a not in m.meets) + tuple(
+                a for a in m.lacks if a not in missing)
             if lacking and found.outcome != Outcome.UNDECIDED and claim.kind == "model":
                 decided, reach = (reduced_ramp_verdict(claim, m, found, data, bounds, per_level)
                                   if lacking == ("ramp_taps",) else (None, ""))

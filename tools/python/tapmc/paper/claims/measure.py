@@ -26,7 +26,9 @@ class Measure:
     its error: the rule then decides only where its verdict is the same anywhere within it;
     ``paper_precision`` is a law's largest departure from the data in units of the paper's
     precision for it (claims.common.paper_precision): at most 1, the fit rule calls a law its
-    test rejects one that agrees at the paper's precision, not at ours."""
+    test rejects one that agrees at the paper's precision, not at ours; ``meets`` the aspects
+    of the paper's scale this measure's own runs have when the campaign's other runs lack them
+    (the ramps at the paper's 4000 taps per level in a campaign whose Fig. 4 ramps have 1000)."""
 
     value: float = math.nan
     err: float = math.nan
@@ -41,6 +43,7 @@ class Measure:
     p_value: float | None = None
     systematic: tuple | None = None
     paper_precision: float | None = None
+    meets: tuple = ()
 
     def text(self):
         if self.shown is not None:
