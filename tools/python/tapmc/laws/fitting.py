@@ -483,39 +483,8 @@ class Law:
         chi2_min = result.chi2
         err = np.array(list(result.curvature_errors.values()))
         limits = self.profile_limits(x, y, popt, lo, hi, err)
-        samples = []
-        for i in range(len(popt)):
-            a, b, log = limits[i]
-            fwd = np.log if log else (lambda v: v)
-            back = np.exp if log else (lambda v: v)
-            u0, ua, ub = fwd(popt[i]), fwd(a), fwd(b)
-            pts = [(popt[i], chi2_min, popt)]
-            span = ub - ua
-            if span > 0:
-                e = err[i] / popt[i] if log else err[i]
-                step0 = e if np.isfinite(e) and e > 0 else span / 100
-                step0 = float(np.clip(step0, span * 1e-4, span / 10))
-                for direction, limit in ((-1.0, ua), (1.0, ub)):
-                    if direction * (limit - u0) <= 0:
-                        continue
-                    u_prev, c_prev, q_prev, step = u0, chi2_min, popt, step0
-                    while True:
-                        u = u_prev + direction * step
-                        at_limit = direction * (u - limit) >= 0
-                        u = limit if at_limit else u
-                        c, q = self._profile_point(x, y, sigma, i, back(u), q_prev, lo, hi)
-                        if np.isfinite(c):
-                            pts.append((back(u), c, q))
-                        if np.isfinite(c) and c - chi2_min > thr:
-                            self._refine(x, y, sigma, i, back, lo, hi, chi2_min, thr, pts,
-                                         (u_prev, c_prev, q_prev), (u, c))
-                            break
-                        if at_limit:
-                            break
-                        if np.isfinite(c):
-                            u_prev, c_prev, q_prev = u, c, q
-                        step *= _PROFILE_GROWTH
-            samples.append((pts, limits[i]))
+        samples = [(self._profile_walk(x, y, sigma, i, limits[i], popt, err, chi2_min, thr,
+                                       lo, hi), limits[i]) for i in range(len(popt))]
         best, best_params = chi2_min, None
         for pts, _ in samples:
             for _, c, q in pts:
@@ -528,26 +497,47 @@ class Law:
                     "the fit stopped in a local minimum (FitResult.improved() refits from there); "
                     "intervals are about the lower one")
         out = {}
-        for name, (pts, (a, b, log)) in zip(self.names, samples):
-            pts = sorted(pts, key=lambda point: point[0])
-            v = np.array([point[0] for point in pts])
-            d = (np.array([point[1] for point in pts]) - best) / scale
-            inside = np.flatnonzero(d <= PROFILE_DELTA_CHI2)
-            if inside.size == 0:  # a fit without residuals: only rounding left in d
-                inside = np.array([int(np.argmin(d))])
-            value = popt[self.names.index(name)]
-            ends = []
-            for k, outer in ((inside[0], inside[0] - 1), (inside[-1], inside[-1] + 1)):
-                if outer < 0 or outer >= len(v):
-                    ends.append(None)  # inside up to the last value walked: open
-                    continue
-                fwd = np.log if log else (lambda q: q)
-                back = np.exp if log else (lambda q: q)
-                r_in, r_out = np.sqrt(max(d[k], 0.0)), np.sqrt(d[outer])
-                frac = float(np.clip((1.0 - r_in) / (r_out - r_in), 0.0, 1.0)) if r_out > r_in else 0.0
-                ends.append(float(back(fwd(v[k]) + frac * (fwd(v[outer]) - fwd(v[k])))))
-            out[name] = Interval(value, ends[0], ends[1], (a, b), "profile", v, d)
+        for name, (pts, limit) in zip(self.names, samples):
+            out[name] = _profile_interval(popt[self.names.index(name)], pts, limit, best, scale)
         return out, note
+
+    def _profile_walk(self, x, y, sigma, i, limits, popt, err, chi2_min, thr, lo, hi):
+        """The walk of :meth:`profile` for parameter ``i``: ``(value, chi2, params)`` at its best
+        value and at every step from there towards each end of its allowed range ``limits``
+        (``(low, high, logarithmic)``), until chi2 - chi2_min exceeds ``thr`` (the crossing then
+        placed by :meth:`_refine`) or the end is reached (that side is open)."""
+        a, b, log = limits
+        fwd = np.log if log else (lambda v: v)
+        back = np.exp if log else (lambda v: v)
+        u0, ua, ub = fwd(popt[i]), fwd(a), fwd(b)
+        pts = [(popt[i], chi2_min, popt)]
+        span = ub - ua
+        if not span > 0:
+            return pts
+        e = err[i] / popt[i] if log else err[i]
+        step0 = e if np.isfinite(e) and e > 0 else span / 100
+        step0 = float(np.clip(step0, span * 1e-4, span / 10))
+        for direction, limit in ((-1.0, ua), (1.0, ub)):
+            if direction * (limit - u0) <= 0:
+                continue
+            u_prev, c_prev, q_prev, step = u0, chi2_min, popt, step0
+            while True:
+                u = u_prev + direction * step
+                at_limit = direction * (u - limit) >= 0
+                u = limit if at_limit else u
+                c, q = self._profile_point(x, y, sigma, i, back(u), q_prev, lo, hi)
+                if np.isfinite(c):
+                    pts.append((back(u), c, q))
+                if np.isfinite(c) and c - chi2_min > thr:
+                    self._refine(x, y, sigma, i, back, lo, hi, chi2_min, thr, pts,
+                                 (u_prev, c_prev, q_prev), (u, c))
+                    break
+                if at_limit:
+                    break
+                if np.isfinite(c):
+                    u_prev, c_prev, q_prev = u, c, q
+                step *= _PROFILE_GROWTH
+        return pts
 
     def _refine(self, x, y, sigma, i, back, lo, hi, chi2_min, thr, pts, inner, outer):
         """Secant refits on sqrt(chi2 - chi2_min), linear in the parameter for a parabolic
@@ -602,3 +592,28 @@ class Law:
                          "combination of these): " + ", ".join(pairs))
         return not notes, notes
 
+
+def _profile_interval(value, pts, limits, best, scale):
+    """The :class:`Interval` of one parameter of best fit ``value`` from the points
+    ``(value, chi2, params)`` of its profile walk (:meth:`Law.profile`): its ends are where
+    (chi2 - ``best``) / ``scale`` crosses ``PROFILE_DELTA_CHI2``, interpolated linearly in its
+    square root (linear in the parameter, or in its log on a logarithmic walk, for a
+    parabolic profile); a side still inside at the last value walked is open."""
+    a, b, log = limits
+    pts = sorted(pts, key=lambda point: point[0])
+    v = np.array([point[0] for point in pts])
+    d = (np.array([point[1] for point in pts]) - best) / scale
+    inside = np.flatnonzero(d <= PROFILE_DELTA_CHI2)
+    if inside.size == 0:  # a fit without residuals: only rounding left in d
+        inside = np.array([int(np.argmin(d))])
+    ends = []
+    for k, outer in ((inside[0], inside[0] - 1), (inside[-1], inside[-1] + 1)):
+        if outer < 0 or outer >= len(v):
+            ends.append(None)  # inside up to the last value walked: open
+            continue
+        fwd = np.log if log else (lambda q: q)
+        back = np.exp if log else (lambda q: q)
+        r_in, r_out = np.sqrt(max(d[k], 0.0)), np.sqrt(d[outer])
+        frac = float(np.clip((1.0 - r_in) / (r_out - r_in), 0.0, 1.0)) if r_out > r_in else 0.0
+        ends.append(float(back(fwd(v[k]) + frac * (fwd(v[outer]) - fwd(v[k])))))
+    return Interval(value, ends[0], ends[1], (a, b), "profile", v, d)
