@@ -181,7 +181,7 @@ BROKEN = [
      "_assess, a private name that tapmc.ageing does not define"),
     ("tapmc.ageing", "class A(B):\n    def f(self):\n        return self._prepare(1)\n",
      "_prepare, a private name that tapmc.ageing does not define"),
-    ("tapmc.laws", "from .paper import _runs\n",
+    ("tapmc.pores", "from .paper import _runs\n",
      "private module tapmc.paper._runs from outside tapmc.paper"),
     ("tapmc.paper.fig4", "from .fig3 import steady_last\n",
      "figure module tapmc.paper.fig4 imports figure module tapmc.paper.fig3"),
