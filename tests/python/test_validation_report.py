@@ -19,7 +19,7 @@ SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", Path(__file__).resolve().parent
 PYTHON_DIR = SOURCE / "tools" / "python"
 sys.path.insert(0, str(PYTHON_DIR))
 
-from tapmc.paper import _runs, claims, summary as screen, validation  # noqa: E402
+from tapmc.paper import claims, summary as screen, validation  # noqa: E402
 from tapmc.paper.validation_appendix import APPENDICES  # noqa: E402
 
 DOC = SOURCE / "doc"
@@ -147,34 +147,6 @@ def test_missing_data_is_named(tmp_path):
                          text=True, timeout=120)
     assert out.returncode == 2 and "no report summary" in out.stderr
     assert "Traceback" not in out.stderr
-
-
-@pytest.mark.skipif(not _runs.pores_available(), reason="tapmc-pores is not built: Figs. 9 "
-                    "and 10")
-def test_paper_scale_page_is_what_the_committed_campaign_gives(tmp_path):
-    """doc/paper_scale is 'report --full --finished-only' of the committed paper-scale
-    campaign: drawn anew from a copy of its finished runs, the page and its CSVs are the
-    committed ones (the questions folder comes from tapmc-paper question)."""
-    campaign = tmp_path / "full"
-    shutil.copytree(DOC / "validation" / "data" / "full", campaign,
-                    ignore=shutil.ignore_patterns("restart.*", "campaign.lock"))
-    out = tmp_path / "page"
-    shutil.copytree(DOC / "paper_scale" / "validation" / "questions",
-                    out / "validation" / "questions",
-                    ignore=shutil.ignore_patterns("partial"))  # local work folders
-    env = dict(os.environ, PYTHONPATH=str(PYTHON_DIR))
-    done = subprocess.run([sys.executable, "-m", "tapmc.paper", "report", "--full", "--seeds",
-                           "1", "--finished-only", "--campaign", str(campaign), "--out",
-                           str(out)], env=env, capture_output=True, text=True, timeout=600)
-    assert done.returncode == 0, done.stderr
-    committed = DOC / "paper_scale"
-    for name in PAGE_FILES:
-        assert (out / name).read_text() == (committed / name).read_text(), (
-            f"doc/paper_scale/{name} is not what the committed campaign gives: run "
-            "'build/tapmc-paper report --full --seeds 1 --finished-only --campaign "
-            "doc/validation/data/full --out doc/paper_scale' and commit the result")
-    for csv in sorted((committed / "validation").glob("*.csv")):
-        assert (out / "validation" / csv.name).read_text() == csv.read_text(), csv.name
 
 
 def test_seeds_per_point_counts_the_realizations_of_each_point():

@@ -4,11 +4,11 @@ the response curves and eq. 6's law over the waiting times."""
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
-from scipy import integrate
-from scipy.stats import f as f_distribution
+from scipy import integrate, special
 
 from ..fig5 import EQ6_TEST_MIN_REALIZATIONS, LONG_DELAYS
 from .common import not_in_campaign
@@ -28,19 +28,27 @@ def _waiting_curves(fig5):
     return sorted((tw, c) for tw, c in fig5.curves.items() if tw > 0)
 
 
+@functools.lru_cache(maxsize=64)
 def dispersion_p_bound(dispersion, realizations):
     """An upper bound of the p-value of the law-free dispersion of curves that collapse
     (tapmc.ageing.collapse_dispersion: the mean over the delays of squared differences
     between the rescaled curves, each standardized by the two curves' sems): each term is the
     square of a difference of means over ``realizations`` standardized by its sem, Y ~ F(1,
     n - 1); whatever the correlation between the delays, their mean is dominated by one Y in
-    convex order (Jensen), so P(mean >= d) <= min over a < d of E[(Y - a)+] / (d - a)."""
+    convex order (Jensen), so P(mean >= d) <= min over a < d of E[(Y - a)+] / (d - a).
+    A pure function of its two numbers, kept (the report's table of conventions re-evaluates
+    the claims many times on the same data: 200 integrals each)."""
     if not (np.isfinite(dispersion) and dispersion > 0) or realizations < 4:
         return math.nan  # F(1, n - 1) has no mean below 4 realizations: no bound
-    y = f_distribution(1, realizations - 1)
+    dfd = realizations - 1
+
+    def survival(x):
+        # the survival function of F(1, n - 1), as scipy.stats.f(1, dfd).sf computes it on
+        # x > 0 (the same special function), without its per-call checks (200 integrals)
+        return special.fdtrc(1, dfd, x)
 
     def stop_loss(a):
-        return integrate.quad(y.sf, a, np.inf, limit=200)[0]
+        return integrate.quad(survival, a, np.inf, limit=200)[0]
 
     grid = np.linspace(0.0, dispersion, 201)[:-1]
     return float(min(1.0, min(stop_loss(a) / (dispersion - a) for a in grid)))

@@ -1,0 +1,56 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""Slow (about 5 minutes of one core): the paper-scale page is what the committed campaign
+gives. The fast suite checks that the pages follow from their committed CSVs
+(test_validation_report.py); this draws every figure anew from the campaign's finished runs
+(profiles, pores, dumps) and compares the CSVs and pages with the committed ones. Run it after
+a campaign commit, before committing the regenerated page:
+
+    ctest --test-dir build -L slow -R paper_scale_regeneration
+"""
+
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", Path(__file__).resolve().parents[2]))
+PYTHON_DIR = SOURCE / "tools" / "python"
+sys.path.insert(0, str(PYTHON_DIR))
+
+from tapmc.paper import _runs  # noqa: E402
+from tapmc.paper.validation_appendix import APPENDICES  # noqa: E402
+
+DOC = SOURCE / "doc"
+#: every page a report writes: the main page and its appendices
+PAGE_FILES = ["validation.rst"] + [f"{name}.rst" for name in APPENDICES]
+
+
+@pytest.mark.skipif(not _runs.pores_available(), reason="tapmc-pores is not built: Figs. 9 "
+                    "and 10")
+def test_paper_scale_page_is_what_the_committed_campaign_gives(tmp_path):
+    """doc/paper_scale is 'report --full --finished-only' of the committed paper-scale
+    campaign: drawn anew from a copy of its finished runs, the page and its CSVs are the
+    committed ones (the questions folder comes from tapmc-paper question)."""
+    campaign = tmp_path / "full"
+    shutil.copytree(DOC / "validation" / "data" / "full", campaign,
+                    ignore=shutil.ignore_patterns("restart.*", "campaign.lock"))
+    out = tmp_path / "page"
+    shutil.copytree(DOC / "paper_scale" / "validation" / "questions",
+                    out / "validation" / "questions",
+                    ignore=shutil.ignore_patterns("partial"))  # local work folders
+    env = dict(os.environ, PYTHONPATH=str(PYTHON_DIR))
+    done = subprocess.run([sys.executable, "-m", "tapmc.paper", "report", "--full", "--seeds",
+                           "1", "--finished-only", "--campaign", str(campaign), "--out",
+                           str(out)], env=env, capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr
+    committed = DOC / "paper_scale"
+    for name in PAGE_FILES:
+        assert (out / name).read_text() == (committed / name).read_text(), (
+            f"doc/paper_scale/{name} is not what the committed campaign gives: run "
+            "'build/tapmc-paper report --full --seeds 1 --finished-only --campaign "
+            "doc/validation/data/full --out doc/paper_scale' and commit the result")
+    for csv in sorted((committed / "validation").glob("*.csv")):
+        assert (out / "validation" / csv.name).read_text() == csv.read_text(), csv.name
