@@ -183,8 +183,11 @@ def test_render_names_the_densest_run(table):
     sentence = next(line for line in text.splitlines() if line.startswith("* The densest"))
     assert "const_pbc_eps0.01_s1 (<Phi^c> = 64.00 % after 40 taps)" in sentence
     assert "in the bulk at 100.00 % (t = 0: 0.00 %)" in sentence
-    assert "the floor layer is more crystalline than the bulk in 1 of 3" in sentence
-    assert "largest: const_pbc_eps0.1_s1" in sentence
+    assert "The floor layer is more crystalline than the bulk in 1 of 3" in sentence
+    assert "largest excess: const_pbc_eps0.1_s1" in sentence
+    # the crystal's wall layer (its edges) is less crystalline than its bulk: no excess named
+    assert "side-wall layer is more crystalline than the bulk in 0 of 1 tapped packings;" \
+        in sentence
 
 
 def test_render_of_nothing(tmp_path):
