@@ -23,7 +23,8 @@ from tapmc.paper.questions import QUESTIONS, common  # noqa: E402
 REANALYSES = {"spectral-window": "spectral_window.csv", "realization-scatter":
               "realization_scatter.csv", "seed-fits": "seed_fits.csv",
               "pbc-course": "pbc_course.csv", "packing-scatter": "packing_scatter.csv",
-              "fit-surrogates": "fit_surrogates.csv", "crystallinity": "crystallinity.csv"}
+              "fit-surrogates": "fit_surrogates.csv", "crystallinity": "crystallinity.csv",
+              "alpha-window": "alpha_window.csv"}
 #: what a committed result holds before a command fails
 COMMITTED = "run,eps\ncommitted,0.05\n"
 RUN = SOURCE / "doc" / "validation" / "data" / "full" / "runs" / "const_pbc_eps0.0225_s1"
@@ -170,7 +171,7 @@ def test_ramp_levels_without_taps_names_the_file(capsys, tmp_path):
 def test_list_names_every_question(capsys):
     assert cli.main(["question", "--list"]) == 0
     listed = [line.split()[0] for line in capsys.readouterr().out.splitlines()]
-    assert listed == list(QUESTIONS) and len(listed) == 19
+    assert listed == list(QUESTIONS) and len(listed) == 20
 
 
 def test_help_lists_every_question(capsys):

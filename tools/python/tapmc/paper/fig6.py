@@ -129,15 +129,27 @@ def alpha_bell(campaign, bc=_steady_state.BC):
         groups = _runs.constant_eps_groups(campaign, bc)
     except ValueError:
         return None
-    rows = []
+    fits = {}
     for eps, specs in groups.items():
         window = gradient_window(campaign, specs, bc)
-        fits = [final_alpha(campaign, spec, window, bc) for spec in specs]
-        if len(fits) == 1:
-            rows.append((np.sqrt(eps), fits[0][0], fits[0][1], 1))
-        else:
-            m, s, n = P.seed_stats([[a] for a, _ in fits])
-            rows.append((np.sqrt(eps), m[0], s[0], n[0]))
+        fits[eps] = [final_alpha(campaign, spec, window, bc) for spec in specs]
+    return bell_series(fits)
+
+
+def bell_point(fits):
+    """(mean, error, n) of alpha over the seeds of one eps from their (alpha, error within
+    the packing) ``fits``: the mean and sem over seeds, or for one seed its own value and
+    error (the lateral jackknife of its packing, :func:`run_alpha`)."""
+    if len(fits) == 1:
+        return fits[0][0], fits[0][1], 1
+    m, s, n = P.seed_stats([[a] for a, _ in fits])
+    return m[0], s[0], n[0]
+
+
+def bell_series(fits):
+    """(sqrt_eps, mean, error, n) arrays of the bell's alphas from ``fits`` (eps -> the
+    seeds' (alpha, error)), in the order of ``fits``, each point by :func:`bell_point`."""
+    rows = [(np.sqrt(eps), *bell_point(seeds)) for eps, seeds in fits.items()]
     return tuple(np.array(col, dtype=float) for col in zip(*rows))
 
 

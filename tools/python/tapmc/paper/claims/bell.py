@@ -14,7 +14,7 @@ import numpy as np
 from tapmc.hysteresis import CRITICAL_SQRT_EPS, LEVEL_TOLERANCE
 from tapmc.stats import t_quantile, weighted_line, welch_dof
 
-from .. import fig4
+from .. import fig4, fig6
 from ..paper_ramp import TAPS_PER_LEVEL as PAPER_RAMP_TAPS, eta_text
 
 from .common import (above, below, common_x, curve_of, mean_difference, not_in_campaign,
@@ -89,11 +89,18 @@ def alpha_bell(data, claim):
     """Both sides of alpha against sqrt(eps) (Fig. 6 bottom): rising below its largest value,
     falling above it, as the steady states' bell; the weaker side is the measure (a bell needs
     both)."""
-    fig6 = data.result("fig6")
-    bell = None if fig6 is None else fig6.bell
+    fig6_result = data.result("fig6")
+    bell = None if fig6_result is None else fig6_result.bell
     if bell is None or len(bell) < 3:
-        return not_in_campaign("alpha of fewer than three runs of the bell")
-    x, y, s = bell.x, bell.mean, bell.err
+        rows = not_in_campaign("alpha of fewer than three runs of the bell")
+    else:
+        rows = _bell_rows(data, bell.x, bell.mean, bell.err)
+    return rows + _window_reading(data)
+
+
+def _bell_rows(data, x, y, s):
+    """The rows of alpha's bell through the points (x, y +- s): about its own largest
+    value, and above the steady states' maximum when the report has Fig. 4."""
     i = int(np.nanargmax(y))
     sides = [_side_slope(x, y, s, i, side, "alphas") for side in ("below", "above")]
     own = next((m for m in sides if m.undecided), None)
@@ -134,6 +141,54 @@ def _alpha_above_steady_maximum(data, x, y, s):
     return Measure(-slope, err, dof, label=ALPHA_ABOVE_STEADY,
                    shown=f"slope {fmt(slope, err)} through the {int(pick.sum())} alphas at "
                          f"sqrt(eps) >= {top:.3g} (Fig. 4's maximum)")
+
+
+def _window_reading(data):
+    """gradient-bell's rows in the narrower window of ``tapmc-paper question alpha-window``
+    (alpha_window.csv), labelled "window <lo>-<hi>R (reading)": the same sides and the same
+    reading of the steady states' maximum as :func:`alpha_bell`'s rows, through alpha of
+    the same runs averaged over seeds as Fig. 6 does (fig6.bell_series), with Fig. 6's
+    calibration of its errors (:func:`_calibrated_alpha_errors`). [] when not measured."""
+    rows = data.question("alpha_window")
+    if not rows:
+        return []
+    lo, hi = (float(rows[0][k]) for k in ("window_lo", "window_hi"))
+    label = f"window {lo:g}-{hi:g}R (reading)"
+    seeds = alpha_window_seeds(rows)
+    if len(seeds) < 3:
+        return [Measure(undecided=f"alpha of {len(seeds)} eps in the window {lo:g}-{hi:g}R; "
+                                  "the bell needs three", label=label)]
+    x, y, _, _ = fig6.bell_series(seeds)
+    measures = _bell_rows(data, x, y, _calibrated_alpha_errors(data, seeds))
+    return [dataclasses.replace(m, label=f"{label}: {m.label}" if m.label else label)
+            for m in measures]
+
+
+def alpha_window_seeds(rows):
+    """eps -> [(alpha, its error)] of the seeds of alpha_window.csv's ``rows`` (the
+    reading window), sorted by eps and seed."""
+    by_eps = {}
+    for r in sorted(rows, key=lambda r: (float(r["eps"]), int(r["seed"]))):
+        by_eps.setdefault(float(r["eps"]), []).append((float(r["alpha"]),
+                                                       float(r["alpha_err"])))
+    return by_eps
+
+
+def _calibrated_alpha_errors(data, seeds):
+    """The error of each eps's alpha as the report calibrates Fig. 6's bell:alpha
+    (calibration.ONE_RUN_WINDOW_ROWS, quantity packing:alpha, P.B.C.): one seed's lateral
+    jackknife times the realizations' factor (ReportData.run_error); several seeds' sem no
+    smaller than the groups' realization error of such a mean (ReportData.realization_floor)."""
+    factor = data.run_error("packing:alpha", "pbc")[0]
+    errors = []
+    for fits in seeds.values():
+        _, err, n = fig6.bell_point(fits)
+        if n == 1:
+            errors.append(err * factor)
+            continue
+        floor = data.realization_floor("packing:alpha", [e for _, e in fits], "pbc")
+        errors.append(err if floor is None or floor <= err else floor)
+    return np.array(errors, dtype=float)
 
 
 @statistic("alpha_ramp_hysteresis")
