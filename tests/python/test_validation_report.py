@@ -73,6 +73,10 @@ def test_main_page_answers_first_and_stays_short(rendered):
         assert central <= FIRST_SCREEN_LINES, central
         # the campaign's own threshold (report.json lists it) is named as the default
         assert "(the default)" in lines[central - 1]
+    # issue 46: sigma_<Z> against eta, when measured, is one of the open questions
+    if (page / "validation" / "questions" / "sigma_eta.csv").is_file():
+        assert any(line.startswith("* sigma_<Z> against the redeposition threshold")
+                   for line in lines)
     assert image <= FIRST_FIGURE_LINE, image
     assert len(lines) <= MAIN_PAGE_MAX_LINES, len(lines)
 

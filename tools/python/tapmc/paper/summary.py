@@ -236,8 +236,8 @@ def _entry_rows(entry):
 def screen_rst(entries, finding="", headline=""):
     """The one screen, as rst lines: the counts, the central question's answer (``headline``,
     when given), one table row per entry (outcome, key number, the paper's value, thumbnail),
-    the rule, and the open questions (``finding``: the irreversible-branch finding of section
-    III.B with its numbers, first of them when given)."""
+    the rule, and the open questions (``finding``: a finding or a list of them, e.g. the
+    irreversible branch of section III.B with its numbers, first of them when given)."""
     lines = [SCREEN_TITLE, "-" * len(SCREEN_TITLE), "", count_sentence(entries), "",
              claims_sentence(entries), ""] + ([headline, ""] if headline else []) + [
              ".. list-table::", "   :header-rows: 1", "   :widths: 18 22 26 16 18", "",
@@ -246,7 +246,8 @@ def screen_rst(entries, finding="", headline=""):
     for entry in entries:
         lines += _entry_rows(entry)
     lines += ["", OUTCOME_RULE, "", "Open questions:", ""]
-    questions = ([finding] if finding else []) + open_questions(entries)
+    findings = [finding] if isinstance(finding, str) else list(finding)
+    questions = [f for f in findings if f] + open_questions(entries)
     lines += [f"* {q}" for q in questions] or ["* none"]
     return lines + [""]
 

@@ -31,7 +31,7 @@ from tapmc.readers import TapmcFormatError
 from . import FIGURES
 from . import _plotting as P
 from . import _runs
-from . import claims, paper_ramp, questions
+from . import claims, paper_ramp, questions, sigma_eta
 from . import summary as summary_screen
 from .claims import fmt, scale_aspects
 from .claims.aggregate import AGGREGATION_SENTENCE, claim_verdicts
@@ -336,6 +336,13 @@ def _title_and_intro(summary):
             f"which is on the paper-scale page (:doc:`{PAPER_SCALE_DOC}`). " + common)
 
 
+def _campaign_eta(summary):
+    """The campaign's eta: report.json lists the values of its runs (one in a campaign at one
+    threshold, which the runs without an eta in their name share); None when several."""
+    etas = summary["eta"] if isinstance(summary["eta"], list) else [summary["eta"]]
+    return etas[0] if len(etas) == 1 else None
+
+
 def _paper_ramp_finding(files, summary):
     """(headline, finding): the answer about the irreversible branch at the paper's ramp
     protocol in one sentence, and with its numbers, from questions/paper_ramp.csv next to the
@@ -346,14 +353,26 @@ def _paper_ramp_finding(files, summary):
     if not path.exists():
         return "", ""
     rows = paper_ramp.read_csv(path)
-    # the campaign's eta: report.json lists the values of its runs (one in a campaign at one
-    # threshold, which the ramps without an eta in their name share)
-    etas = summary["eta"] if isinstance(summary["eta"], list) else [summary["eta"]]
-    default_eta = etas[0] if len(etas) == 1 else None
+    default_eta = _campaign_eta(summary)
     text = paper_ramp.finding_text(rows, default_eta)
     return (paper_ramp.headline_text(rows, default_eta),
             text + (" Per run: ``" + str(Path(FIG_DIR) / questions.FOLDER / paper_ramp.CSV_NAME)
                     + "`` (``tapmc-paper paper-ramp``)."))
+
+
+def _sigma_eta_finding(files, default_eta):
+    """The finding about sigma_<Z> against eta (section III.A, Fig. 3: is its offset the
+    redeposition's noise?) from questions/sigma_eta.csv next to the figures (``tapmc-paper
+    sigma-eta``), or ""."""
+    if not files:
+        return ""
+    path = Path(next(iter(files.values()))[1]).parent / questions.FOLDER / sigma_eta.CSV_NAME
+    if not path.exists():
+        return ""
+    text = sigma_eta.finding_text(sigma_eta.read_csv(path), default_eta)
+    return text and text + (" Per point: ``" + str(Path(FIG_DIR) / questions.FOLDER /
+                                                  sigma_eta.CSV_NAME) + "`` (``tapmc-paper "
+                            "sigma-eta``).")
 
 
 def _appendix_line():
@@ -400,7 +419,8 @@ def _main_page(summary, files, rows, verdicts, notes, prefix):
              title, "=" * len(title), "", intro, "", describe_scale(summary), ""]
     lines += _appendix_line()
     headline, finding = _paper_ramp_finding(files, summary)
-    lines += summary_screen.screen_rst(summary_screen.summarise(rows, files), finding, headline)
+    findings = [f for f in (finding, _sigma_eta_finding(files, _campaign_eta(summary))) if f]
+    lines += summary_screen.screen_rst(summary_screen.summarise(rows, files), findings, headline)
     lines += ["How close is TAPMC to the paper", "-" * 31, "",
               AGGREGATION_SENTENCE + " The rules of "
               "the rows' verdicts, the errors of one run and what \"Paper scale?\" means: "
