@@ -143,6 +143,19 @@ def eta_text(eta):
     return f"{eta:.0e}".replace("e-0", "e-")
 
 
+def by_eta(rows, default_eta):
+    """(label, decided, running) per eta of the rows, the loosest first: the label names the
+    default eta; ``decided`` are the seeds whose ramp came down two levels, ``running`` says
+    how far the others got ("seed 1 at tap 17459, ...")."""
+    for eta in sorted({r.eta for r in rows}, reverse=True):
+        group = [r for r in rows if r.eta == eta]
+        decided = [r for r in group if r.verdict != "running"]
+        label = f"eta = {eta_text(eta)}" + (" (the default)" if eta == default_eta else "")
+        running = ", ".join(f"seed {r.seed} at tap {r.taps_done}" for r in group
+                            if r.verdict == "running")
+        yield label, decided, running
+
+
 def headline_text(rows, default_eta):
     """The finding in one sentence, for the report's first screen: per eta, the answer (no
     irreversible branch, a frozen branch, the seeds disagree) with the seeds' changes of the
@@ -151,12 +164,8 @@ def headline_text(rows, default_eta):
     if not rows:
         return ""
     parts = []
-    for eta in sorted({r.eta for r in rows}, reverse=True):
-        group = [r for r in rows if r.eta == eta]
-        decided = [r for r in group if r.verdict != "running"]
-        label = f"eta = {eta_text(eta)}" + (" (the default)" if eta == default_eta else "")
+    for label, decided, running in by_eta(rows, default_eta):
         if not decided:
-            running = ", ".join(f"seed {r.seed} at tap {r.taps_done}" for r in group)
             parts.append(f"{label}: undecided, the ramp is still going up ({running})")
             continue
         verdicts = {r.verdict for r in decided}
@@ -180,12 +189,8 @@ def finding_text(rows, default_eta):
     if not rows:
         return ""
     parts = []
-    for eta in sorted({r.eta for r in rows}, reverse=True):
-        group = [r for r in rows if r.eta == eta]
-        decided = [r for r in group if r.verdict != "running"]
-        label = f"eta = {eta_text(eta)}" + (" (the default)" if eta == default_eta else "")
+    for label, decided, running in by_eta(rows, default_eta):
         if not decided:
-            running = ", ".join(f"seed {r.seed} at tap {r.taps_done}" for r in group)
             parts.append(f"at {label} the ramp is still going up ({running}): undecided.")
             continue
         verdicts = {r.verdict for r in decided}
