@@ -266,25 +266,6 @@ def test_curves_without_a_scaling_collapse_poorly():
     assert col.dispersion(*col.dispersion_exponents) > 5
 
 
-def test_collapse_of_a_random_walk_keeps_mu_compatible_with_no_ageing():
-    # increments independent of the age: no ageing, mu = 0. The delays of a curve are
-    # correlated, so the profile alone is far too narrow (it misses 0 in 11 of 12 seeds);
-    # widened by the jackknife and the bootstrap over realizations it holds 0 at about its
-    # nominal rate (10 of 12 seeds; here 6 seeds, at least 4 expected for a 68 % interval)
-    from tapmc.ageing import Ageing
-
-    widened = profile = 0
-    for seed in range(6):
-        rng = np.random.default_rng(seed)
-        z = 7.3 + np.cumsum(rng.normal(0, 1e-3, (10, 501)), axis=1)
-        col = Ageing(z, [10, 30, 100]).compute().scaling(fit_amplitude=False, bootstrap=20)
-        assert col.bootstrap is not None and np.isfinite(col.bootstrap["mu"])
-        iv, bare = col.interval("mu"), col.fit.intervals["mu"]
-        widened += iv.lo <= 0.0 <= iv.hi
-        profile += bare.lo <= 0.0 <= bare.hi
-    assert widened >= 4 and profile <= 2, (widened, profile)
-
-
 def test_fig5_statistics_from_a_csv(tmp_path):
     from tapmc.paper import _plotting as P
     from tapmc.paper import fig5
