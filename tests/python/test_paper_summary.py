@@ -13,7 +13,7 @@ import pytest
 SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", Path(__file__).resolve().parents[2]))
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
 
-from tapmc.paper import claims, summary, validation  # noqa: E402
+from tapmc.paper import claims, paper_ramp, summary, validation  # noqa: E402
 from tapmc.paper.claims import Claim, Measure, Row, Verdict  # noqa: E402
 from tapmc.paper.claims.aggregate import claim_verdicts  # noqa: E402
 from tapmc.paper.claims.rules import Outcome  # noqa: E402
@@ -146,7 +146,12 @@ def test_the_page_answers_on_its_first_screen(page):
 
 
 def test_readme_says_what_the_paper_scale_page_found():
-    expected = summary.readme_lines(_entries(DOC / "paper_scale"))
+    page = DOC / "paper_scale"
+    ramps = page / "validation" / "questions" / paper_ramp.CSV_NAME
+    report, _ = validation.committed_inputs(page)
+    headline = (paper_ramp.headline_text(paper_ramp.read_csv(ramps), validation.campaign_eta(report))
+                if ramps.is_file() else "")
+    expected = summary.readme_lines(_entries(page), headline)
     readme = (SOURCE / "README.md").read_text().splitlines()
     start = readme.index("## What the validation found")
     section = readme[start:start + 10]

@@ -159,8 +159,8 @@ def by_eta(rows, default_eta):
 def headline_text(rows, default_eta):
     """The finding in one sentence, for the report's first screen: per eta, the answer (no
     irreversible branch, a frozen branch, the seeds disagree) with the seeds' changes of the
-    descending branch, or undecided with how far the running seeds got; the numbers with their
-    errors are in :func:`finding_text`."""
+    descending branch, or undecided with how far the running seeds got (also README.md's); the
+    numbers with their errors are in :func:`finding_text`."""
     if not rows:
         return ""
     parts = []
@@ -178,8 +178,7 @@ def headline_text(rows, default_eta):
                      "in <Phi^c> from the turning level)")
     return ("The paper's central question (section III.B: is the branch below (sqrt eps)* ~ "
             f"0.15 irreversible?) at its own ramp protocol ({TAPS_PER_LEVEL} taps per level, "
-            "N = 4096, P.B.C.): " + "; ".join(parts) + ". The numbers with their errors: the "
-            "first open question below.")
+            "N = 4096, P.B.C.): " + "; ".join(parts) + ".")
 
 
 def finding_text(rows, default_eta):

@@ -252,12 +252,15 @@ def screen_rst(entries, finding="", headline=""):
     return lines + [""]
 
 
-def readme_lines(entries):
+def readme_lines(entries, headline=""):
     """The lines of README.md's "What the validation found" (from the paper-scale page's
-    entries): the figures' counts, the claims' counts, the open questions, the link."""
+    entries): the figures' counts, the claims' counts, the central question's answer
+    (``headline``: tapmc.paper.paper_ramp.headline_text, when given), the open questions, the
+    link."""
     open_titles = [f"{e.title}, {e.topic} ({', '.join(e.disagreeing)})" for e in entries
                    if e.disagreeing]
-    return [count_sentence(entries), claims_sentence(entries),
+    central = [headline] if headline else []
+    return [count_sentence(entries), claims_sentence(entries), *central,
             "Open questions, where claims disagree: " + ("; ".join(open_titles) or "none") + ".",
             f"Every figure, row and rule: [{PAPER_SCALE_PAGE}]({PAPER_SCALE_PAGE})."]
 

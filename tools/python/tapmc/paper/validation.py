@@ -336,7 +336,7 @@ def _title_and_intro(summary):
             f"which is on the paper-scale page (:doc:`{PAPER_SCALE_DOC}`). " + common)
 
 
-def _campaign_eta(summary):
+def campaign_eta(summary):
     """The campaign's eta: report.json lists the values of its runs (one in a campaign at one
     threshold, which the runs without an eta in their name share); None when several."""
     etas = summary["eta"] if isinstance(summary["eta"], list) else [summary["eta"]]
@@ -353,9 +353,10 @@ def _paper_ramp_finding(files, summary):
     if not path.exists():
         return "", ""
     rows = paper_ramp.read_csv(path)
-    default_eta = _campaign_eta(summary)
+    default_eta = campaign_eta(summary)
     text = paper_ramp.finding_text(rows, default_eta)
-    return (paper_ramp.headline_text(rows, default_eta),
+    return (paper_ramp.headline_text(rows, default_eta)
+            + " The numbers with their errors: the first open question below.",
             text + (" Per run: ``" + str(Path(FIG_DIR) / questions.FOLDER / paper_ramp.CSV_NAME)
                     + "`` (``tapmc-paper paper-ramp``)."))
 
@@ -419,7 +420,7 @@ def _main_page(summary, files, rows, verdicts, notes, prefix):
              title, "=" * len(title), "", intro, "", describe_scale(summary), ""]
     lines += _appendix_line()
     headline, finding = _paper_ramp_finding(files, summary)
-    findings = [f for f in (finding, _sigma_eta_finding(files, _campaign_eta(summary))) if f]
+    findings = [f for f in (finding, _sigma_eta_finding(files, campaign_eta(summary))) if f]
     lines += summary_screen.screen_rst(summary_screen.summarise(rows, files), findings, headline)
     lines += ["How close is TAPMC to the paper", "-" * 31, "",
               AGGREGATION_SENTENCE + " The rules of "
