@@ -15,11 +15,11 @@ from tapmc.hysteresis import CRITICAL_SQRT_EPS, LEVEL_TOLERANCE
 from tapmc.stats import t_quantile, weighted_line, welch_dof
 
 from .. import fig4, fig6
-from ..paper_ramp import TAPS_PER_LEVEL as PAPER_RAMP_TAPS, eta_text
+from ..paper_ramp import TAPS_PER_LEVEL as PAPER_RAMP_TAPS
 
 from .common import (above, below, common_x, curve_of, mean_difference, not_in_campaign,
-                     paired_levels, seed_mean_of, seeds_error, steady_dof, value_triple,
-                     WITHIN_RUN_DOF)
+                     paired_levels, protocol_label, seed_mean_of, seeds_error, steady_dof,
+                     value_triple, WITHIN_RUN_DOF)
 from .conventions import CRITICAL_BRACKET_HALF_WIDTH
 from .measure import Measure, fmt
 from .registry import statistic
@@ -285,11 +285,6 @@ def _branch_difference(data, a, b, effect=None, statistic=None):
 
 @statistic("ramp_up_minus_steady")
 def ramp_up_minus_steady(data, claim):
-    """:func:`_up_minus_steady`, labelled with the ramps' protocol."""
-    return _at_campaign_protocol(data, _up_minus_steady(data))
-
-
-def _up_minus_steady(data):
     """The ramp's first increase minus the steady squares, mean over their common sqrt(eps).
     With several seeds of the ramp and each seed's mean of the first increase there (Fig. 4
     params ``ramp:up1_at_steady:seeds``), the error has two independent parts: the seeds'
@@ -324,38 +319,13 @@ def _up_minus_steady(data):
 
 @statistic("ramp_down_minus_up")
 def ramp_down_minus_up(data, claim):
-    return _at_campaign_protocol(data, _branch_difference(data, "down", "up1",
-                                                          statistic="down_minus_up1"))
+    return _branch_difference(data, "down", "up1", statistic="down_minus_up1")
 
 
 @statistic("ramp_up2_minus_down")
 def ramp_up2_minus_down(data, claim):
-    return _at_campaign_protocol(data, _branch_difference(data, "up2", "down",
-                                                          hysteresis_gap(data),
-                                                          statistic="up2_minus_down"))
-
-
-def _protocol_label(taps_per_level, eta):
-    """Which ramps a Fig. 4 row was decided on: taps per level and redeposition threshold."""
-    return f"{taps_per_level} taps per level, eta = {eta_text(eta)}"
-
-
-def _campaign_ramp_label(data):
-    """The label of the rows of the campaign's own Fig. 4 ramps ("" when report.json does not
-    give one taps per level and one eta)."""
-    per_level, eta = (data.summary.get(k) for k in ("ramp_taps_per_level", "eta"))
-    if not (isinstance(per_level, list) and len(per_level) == 1 and isinstance(eta, list)
-            and len(eta) == 1):
-        return ""
-    return _protocol_label(int(per_level[0]), float(eta[0]))
-
-
-def _at_campaign_protocol(data, measures):
-    """``measures`` of the campaign's Fig. 4 ramps, each labelled with their taps per level
-    and eta (:func:`_campaign_ramp_label`) unless it has a label."""
-    label = _campaign_ramp_label(data)
-    return [m if m.label or not label else dataclasses.replace(m, label=label)
-            for m in measures]
+    return _branch_difference(data, "up2", "down", hysteresis_gap(data),
+                              statistic="up2_minus_down")
 
 
 def _paper_protocol_frozen(data, effect):
@@ -371,7 +341,7 @@ def _paper_protocol_frozen(data, effect):
     for eta in sorted({float(r["eta"]) for r in rows}, reverse=True):
         group = [r for r in rows if float(r["eta"]) == eta]
         decided = [r for r in group if r["verdict"] != "running"]
-        label = _protocol_label(PAPER_RAMP_TAPS, eta)
+        label = protocol_label(PAPER_RAMP_TAPS, eta)
         if not decided:
             running = ", ".join(f"seed {r['seed']} at tap {r['taps_done']}" for r in group)
             out.append(Measure(label=label, meets=("ramp_taps",),
@@ -410,7 +380,7 @@ def low_ramp_frozen(data, claim):
     effect = value_triple(None if beyond is None
                           else (beyond.statistics or {}).get("down_change"))[0]
     effect = effect if np.isfinite(effect) else None
-    return [Measure(m, s, dof, label=_campaign_ramp_label(data), effect=effect,
+    return [Measure(m, s, dof, effect=effect,
                     shown=f"{fmt(m, s)} (decrease minus top level; the ramp beyond (sqrt eps)* "
                           f"changes by {fmt(effect)}" + (f"; {how})" if how else ")"))
             ] + _paper_protocol_frozen(data, effect)
@@ -449,11 +419,6 @@ def _ramp_turning_behaviour(fig4, tag, change, effect):
 
 
 @statistic("critical_separation")
-def critical_separation_rows(data, claim):
-    """:func:`critical_separation`, labelled with the ramps' protocol."""
-    return _at_campaign_protocol(data, critical_separation(data, claim))
-
-
 def critical_separation(data, claim, shifts=None):
     """Section III.B: (sqrt eps)* ~ 0.15 separates a ramp whose decreasing branch compacts on
     the way down (the reversible branch) from one whose decreasing branch stays frozen at its
@@ -513,12 +478,6 @@ def critical_separation(data, claim, shifts=None):
 
 @statistic("ramp_branch_slope")
 def ramp_branch_slope(data, claim):
-    """The weighted slope of a branch of the ramp (``branch`` param, default the decreasing
-    one), labelled with the ramps' protocol."""
-    return _at_campaign_protocol(data, _branch_slope(data, claim))
-
-
-def _branch_slope(data, claim):
     branch = ramp_branch(data, claim.params.get("branch", "down"))
     if branch is None:
         return not_in_campaign("no ramp")

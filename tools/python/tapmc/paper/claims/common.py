@@ -16,6 +16,7 @@ from .. import _plotting as P
 from .._results import Series, Value
 from .conventions import PAIRED_MIN_LEVELS
 from ..fig2 import LAWS as FIG2_LAWS
+from ..paper_ramp import eta_text
 from .measure import Measure, fmt
 
 
@@ -217,3 +218,19 @@ def jackknife_dof(n, err, blocks_per_side):
     if n >= 2:
         return n - 1
     return blocks_per_side ** 2 - 1 if n == 1 and np.all(np.isfinite(err)) else None
+
+
+def protocol_label(taps_per_level, eta):
+    """Which ramps a ramp claim's row was decided on: taps per level and redeposition
+    threshold (section III.B's protocol has 4000 taps per level)."""
+    return f"{taps_per_level} taps per level, eta = {eta_text(eta)}"
+
+
+def campaign_ramp_label(summary):
+    """The label of the rows decided on the campaign's own ramps, from its summary
+    (report.json): "" unless it gives one taps per level and one eta."""
+    per_level, eta = (summary.get(k) for k in ("ramp_taps_per_level", "eta"))
+    if not (isinstance(per_level, list) and len(per_level) == 1 and isinstance(eta, list)
+            and len(eta) == 1):
+        return ""
+    return protocol_label(int(per_level[0]), float(eta[0]))

@@ -4,11 +4,13 @@ by its rule, with the parts of the paper's scale the campaign lacks."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
 from ..fig4 import RAMPS
 from ..scales import SCALES
+from .common import campaign_ramp_label
 from .measure import Measure
 from .reduced_ramps import reduced_ramp_verdict, ramp_reduction_bounds
 from .register import Claim, PAPER_SCALE
@@ -77,12 +79,15 @@ def evaluate(claims, data, measures=None):
     A model claim the campaign lacks part of the paper's scale for is undecided, with one
     exception: the ramp at fewer taps per level than the paper's, when ramp-levels measured
     the levels' shift to 4000 taps on every branch the measure reads and the verdict stays
-    the same anywhere within the range the shifts give (:func:`reduced_ramp_verdict`).
+    the same anywhere within the range the shifts give (:func:`reduced_ramp_verdict`). A row
+    of a claim that needs the paper's ramp_taps and was decided on the campaign's own ramps is
+    labelled with their taps per level and eta (:func:`.common.campaign_ramp_label`).
     ``measures``: claim id -> its statistic's measures, filled by the statistics the first
     time and read the next (a convention of the rules alone re-decides the same measures)."""
     met = scale_aspects(data.summary)
     bounds = {tag: ramp_reduction_bounds(data, tag) for tag, *_ in RAMPS}
     per_level = ", ".join(map(str, data.summary.get("ramp_taps_per_level") or []))
+    ramp_label = campaign_ramp_label(data.summary)
     rows = Rows(register=claims, data=data)
     for claim in claims:
         missing = tuple(a for a in claim.needs if a not in met)
@@ -96,6 +101,9 @@ def evaluate(claims, data, measures=None):
         else:
             found_measures = measures[claim.id]
         for m in found_measures:
+            if "ramp_taps" in claim.needs and "ramp_taps" not in m.meets and ramp_label \
+                    and not m.label:
+                m = dataclasses.replace(m, label=ramp_label)   # decided on the campaign's ramps
             found = verdict(claim, m)
             lacking = tuple(a for a in missing if a not in m.meets) + tuple(
                 a for a in m.lacks if a not in missing)
