@@ -316,3 +316,30 @@ def test_the_import_checkers_let_module_level_and_stdlib_imports_pass():
     assert local_package_imports("tapmc.paper.fig3",
                                  "from . import _runs\ndef f():\n    import json\n") == []
     assert package_imports_of("import numpy\nimport tapmcx\n") == []
+
+
+def test_the_facade_loads_submodules_on_first_use():
+    # `import tapmc.readers` (every reader, every tapmc-paper start) must not load the fits and
+    # scipy.stats; every name of tapmc.__all__ still resolves, to the object of its submodule.
+    import subprocess
+    import sys
+
+    code = ("import sys, tapmc.readers; "
+            "print(sorted(m for m in ('scipy.stats', 'tapmc.ageing', 'tapmc.laws') "
+            "if m in sys.modules))")
+    env = dict(os.environ, PYTHONPATH=str(PYTHON_ROOT))
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
+                         check=True).stdout
+    assert out.strip() == "[]", out
+    import importlib
+
+    sys.path.insert(0, str(PYTHON_ROOT))
+    tapmc = importlib.import_module(PACKAGE)
+    for name in tapmc.__all__:
+        value = getattr(tapmc, name)
+        home = value if name in tapmc._SUBMODULES else importlib.import_module(
+            f"{PACKAGE}.{tapmc._HOME[name]}")
+        assert value is (home if name in tapmc._SUBMODULES else getattr(home, name)), name
+    assert set(tapmc.__all__) <= set(dir(tapmc))
+    with pytest.raises(AttributeError, match="no_such_name"):
+        getattr(tapmc, "no_such_name")

@@ -18,32 +18,46 @@ run's settings, compaction curve and radial profiles). See doc/python_analysis.r
 
 __version__ = "0.1.0"
 
-from . import (ageing, connected_ageing, contacts, crystallinity, cylinder, fluctuations,
-               hysteresis, laws, packing, pores, profiles, readers, tube, tube_runs)
-from .ageing import Ageing
-from .connected_ageing import ConnectedAgeing
-from .contacts import Contacts
-from .crystallinity import Crystallinity
-from .cylinder import Cylinder
-from .fluctuations import PowerSpectrum, SteadyState, sigma_scaling, sigma_x
-from .hysteresis import Hysteresis
-from .laws import (AgeingLaw, FitResult, InverseLogLaw, ProfileLaw, TwoExponentials,
-                   ZLaw, profile_gradient)
-from .packing import PackingCheck
-from .pores import (TetrahedralLaw, VolumeTail, percus_yevick_p0, read_pores)
-from .profiles import ProfileIncrease, transversal_profile, vertical_profile
-from .readers import (TapmcFormatError, read_ave_time, read_dump, read_fix_print,
-                      read_log)
-from .tube import TubeProfile, TubeStereology
-from .tube_runs import RadialProfiles, TubeCompaction, TubeSettings
+import importlib
 
-__all__ = ["ageing", "connected_ageing", "contacts", "crystallinity", "cylinder", "fluctuations",
-           "hysteresis", "laws", "packing", "pores", "profiles", "readers", "tube", "tube_runs",
-           "Ageing", "ConnectedAgeing", "Contacts", "Crystallinity", "Cylinder",
-           "TubeProfile", "TubeStereology", "RadialProfiles", "TubeCompaction", "TubeSettings",
-           "PowerSpectrum", "SteadyState", "sigma_scaling", "sigma_x",
-           "Hysteresis", "AgeingLaw", "FitResult", "InverseLogLaw", "ProfileLaw",
-           "TwoExponentials", "ZLaw", "profile_gradient", "PackingCheck", "TetrahedralLaw",
-           "VolumeTail", "percus_yevick_p0", "read_pores",
-           "ProfileIncrease", "transversal_profile", "vertical_profile", "TapmcFormatError",
-           "read_ave_time", "read_dump", "read_fix_print", "read_log"]
+_SUBMODULES = ("ageing", "connected_ageing", "contacts", "crystallinity", "cylinder",
+               "fluctuations", "hysteresis", "laws", "packing", "pores", "profiles", "readers",
+               "tube", "tube_runs")
+# The classes and functions exported here, by the submodule that defines them.
+_EXPORTS = {
+    "ageing": ("Ageing",),
+    "connected_ageing": ("ConnectedAgeing",),
+    "contacts": ("Contacts",),
+    "crystallinity": ("Crystallinity",),
+    "cylinder": ("Cylinder",),
+    "fluctuations": ("PowerSpectrum", "SteadyState", "sigma_scaling", "sigma_x"),
+    "hysteresis": ("Hysteresis",),
+    "laws": ("AgeingLaw", "FitResult", "InverseLogLaw", "ProfileLaw", "TwoExponentials", "ZLaw",
+             "profile_gradient"),
+    "packing": ("PackingCheck",),
+    "pores": ("TetrahedralLaw", "VolumeTail", "percus_yevick_p0", "read_pores"),
+    "profiles": ("ProfileIncrease", "transversal_profile", "vertical_profile"),
+    "readers": ("TapmcFormatError", "read_ave_time", "read_dump", "read_fix_print", "read_log"),
+    "tube": ("TubeProfile", "TubeStereology"),
+    "tube_runs": ("RadialProfiles", "TubeCompaction", "TubeSettings"),
+}
+_HOME = {name: module for module, names in _EXPORTS.items() for name in names}
+
+
+def __getattr__(name):
+    """Submodules and their exported names load on first use (PEP 562): ``import tapmc.readers``
+    or a ``tapmc-paper --help`` does not pay for scipy.stats and the fits (about 0.4 s)."""
+    if name in _SUBMODULES:
+        return importlib.import_module(f"{__name__}.{name}")
+    if name in _HOME:
+        value = getattr(importlib.import_module(f"{__name__}.{_HOME[name]}"), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))
+
+
+__all__ = list(_SUBMODULES) + [name for names in _EXPORTS.values() for name in names]
