@@ -143,3 +143,23 @@ def test_fit_plot_labels_its_axes_and_has_a_legend():
     assert {x.get_text() for x in ax.get_legend().get_texts()} >= {"data", "InverseLogLaw"}
     ax = InverseLogLaw().fit(t, y).plot(ylabel="<Phi^c>")
     assert ax.get_ylabel() == "<Phi^c>"
+
+
+@pytest.mark.parametrize("law, params", [
+    (InverseLogLaw, (0.62, 0.05, 0.8, 20.0)), (InverseLogLaw, (0.58, -0.01, 30.0, 0.5)),
+    (ZLaw, (7.0, 7.4, 0.9, 15.0)), (ZLaw, (6.1, 5.2, 0.02, 800.0)),
+    (AgeingLaw, (0.01, 2.0, 30.0)), (AgeingLaw, (3e-4, 0.05, 2.0))])
+def test_exact_jacobians_are_the_derivatives_of_the_laws(law, params):
+    # the fits use them in place of differences: each column against a central difference
+    t = np.concatenate([[0.0], np.geomspace(0.3, 5000.0, 80)])
+    jac = law.jacobian(t, *params)
+    assert jac.shape == (t.size, len(law.names))
+    for k, p in enumerate(params):
+        h = 1e-6 * abs(p)
+        up, down = list(params), list(params)
+        up[k], down[k] = p + h, p - h
+        numeric = (law.function(t, *up) - law.function(t, *down)) / (2 * h)
+        scale = np.max(np.abs(numeric)) + 1e-300
+        assert np.max(np.abs(jac[:, k] - numeric)) < 1e-6 * scale, (law.__name__, law.names[k])
+    # a wrong column would be caught: the derivative in B is not the one in tau
+    assert not np.allclose(jac[:, -2], jac[:, -1])

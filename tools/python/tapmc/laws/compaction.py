@@ -171,6 +171,13 @@ def _log_term(t, B, tau):
     return B * np.log1p(np.maximum(t, 0.0) / tau)
 
 
+def _log_term_derivatives(t, B, tau):
+    """L = B ln(1 + t/tau) with dL/dB and dL/dtau (t clamped at 0 as in :func:`_log_term`)."""
+    t = np.maximum(t, 0.0)
+    ell = np.log1p(t / tau)
+    return B * ell, ell, -B * t / (tau * (tau + t))
+
+
 def _grid_inverse_log(t, targets, w, ncols):
     """Grid over (B, tau) of g = 1/(1 + B ln(1 + t/tau)); for each node solve the weighted
     linear least squares targets ~ c0 * (1 - g) + c1 * g (ncols = 2) or c0 * (1 - g)
@@ -225,6 +232,13 @@ class InverseLogLaw(TapsLaw):
     def function(t, X_inf, dX_inf, B, tau):
         return X_inf - dX_inf / (1.0 + _log_term(t, B, tau))
 
+    @staticmethod
+    def jacobian(t, X_inf, dX_inf, B, tau):
+        L, dL_dB, dL_dtau = _log_term_derivatives(t, B, tau)
+        g = 1.0 / (1.0 + L)
+        df_dL = dX_inf * g * g
+        return np.stack([np.ones_like(g), -g, df_dL * dL_dB, df_dL * dL_dtau], axis=-1)
+
     def bounds(self, x, y):
         return ([-np.inf, -np.inf, 0.0, 0.0], [np.inf, np.inf, np.inf, np.inf])
 
@@ -255,6 +269,16 @@ class ZLaw(TapsLaw):
     def function(t, Z_inf, Z_0, B, tau):
         L = _log_term(t, B, tau)
         return Z_inf * (1.0 + L) / (Z_inf / Z_0 + L)
+
+    @staticmethod
+    def jacobian(t, Z_inf, Z_0, B, tau):
+        L, dL_dB, dL_dtau = _log_term_derivatives(t, B, tau)
+        ratio = Z_inf / Z_0
+        inv_d = 1.0 / (ratio + L)
+        f = Z_inf * (1.0 + L) * inv_d
+        df_dL = Z_inf * (ratio - 1.0) * inv_d * inv_d
+        return np.stack([f / Z_inf * (1.0 - ratio * inv_d), f * ratio / Z_0 * inv_d,
+                         df_dL * dL_dB, df_dL * dL_dtau], axis=-1)
 
     def bounds(self, x, y):
         return ([0.0, 0.0, 0.0, 0.0], [np.inf] * 4)
@@ -300,6 +324,13 @@ class AgeingLaw(TapsLaw):
     @staticmethod
     def function(t, A_inf, B_A, tau_A):
         return A_inf * (1.0 - 1.0 / (1.0 + _log_term(t, B_A, tau_A)))
+
+    @staticmethod
+    def jacobian(t, A_inf, B_A, tau_A):
+        L, dL_dB, dL_dtau = _log_term_derivatives(t, B_A, tau_A)
+        g = 1.0 / (1.0 + L)
+        df_dL = A_inf * g * g
+        return np.stack([1.0 - g, df_dL * dL_dB, df_dL * dL_dtau], axis=-1)
 
     def bounds(self, x, y):
         return ([0.0, 0.0, 0.0], [np.inf] * 3)

@@ -328,6 +328,12 @@ class Law:
     def function(x, *p):
         raise NotImplementedError
 
+    #: ``jacobian(x, *params)``, the (len(x), len(names)) derivatives of ``function``, or None:
+    #: then the fits difference ``function`` (2-point). An exact one costs about one call of
+    #: ``function`` where the differences cost one per parameter, and the fits of a profile
+    #: walk or a range refit evaluate it thousands of times.
+    jacobian = None
+
     def initial_guess(self, x, y, w):
         raise NotImplementedError
 
@@ -369,7 +375,8 @@ class Law:
             try:
                 popt, pcov = curve_fit(self.function, x, y, p0=start, sigma=sigma,
                                        absolute_sigma=weighted, bounds=(lo, hi),
-                                       method="trf", x_scale="jac", max_nfev=20000)
+                                       method="trf", x_scale="jac", max_nfev=20000,
+                                       jac=self.jacobian or "2-point")
             except (RuntimeError, ValueError) as exc:
                 popt = start
                 pcov = np.full((len(start), len(start)), np.inf)
@@ -453,9 +460,16 @@ class Law:
             full[free] = q
             return (self.function(x, *full) - y) / sigma
 
+        jac = "2-point"
+        if self.jacobian is not None:
+            def jac(q):
+                full = p.copy()
+                full[free] = q
+                return self.jacobian(x, *full)[:, free] / sigma[:, None]
+
         with np.errstate(all="ignore"):
             try:
-                fit = least_squares(residuals, q0, bounds=(flo, fhi), method="trf",
+                fit = least_squares(residuals, q0, jac=jac, bounds=(flo, fhi), method="trf",
                                     x_scale="jac", max_nfev=100 * len(p))
             except ValueError:  # not finite at the start: this value is not allowed
                 return np.nan, p
