@@ -55,13 +55,13 @@ def package_copy(tmp_path):
     return root
 
 
-def test_help_lists_every_figure():
-    out = cli("--help")
+def test_help_lists_every_figure(capsys):
+    out = _main(capsys, "--help")
     assert out.returncode == 0
     for fig in FIGURES:
         assert fig in out.stdout
     assert "report" in out.stdout
-    sub = cli("fig2", "--help")
+    sub = _main(capsys, "fig2", "--help")
     assert sub.returncode == 0
     for option in ("--quick", "--full", "--seeds", "--jobs", "--campaign", "--out"):
         assert option in sub.stdout
@@ -75,8 +75,8 @@ def test_help_lists_every_figure():
     (("fig2", "--quick", "--full"), "not allowed with argument"),
     (("fig2", "--mode", "mpi"), "invalid choice: 'mpi'"),
 ])
-def test_bad_arguments(args, message):
-    out = cli(*args)
+def test_bad_arguments(args, message, capsys):
+    out = _main(capsys, *args)
     assert out.returncode == 2
     assert message in out.stderr
 
@@ -186,23 +186,25 @@ def test_paper_scale_plan():
         plan.runs(3, jobs=0)
 
 
-def test_campaign_subcommand(tmp_path):
+def test_campaign_subcommand(tmp_path, capsys):
     from tapmc.paper import plan
 
-    out = cli("campaign", "--dry-run", "--tier", "2", "--campaign", tmp_path / "c")
+    out = _main(capsys, "campaign", "--dry-run", "--tier", "2", "--campaign",
+                tmp_path / "c")
     assert out.returncode == 0, out.stderr
     lines = out.stdout.splitlines()
     assert "full plan, tiers 1-2" in lines[0]
     assert len(lines) - 2 == len(plan.runs(2))   # the header, the runs, the CPU hours left
     assert all(line.endswith("CPU h, to run]") for line in lines[1:-1])
     assert lines[-1].startswith("left to run: about ")
-    two = cli("campaign", "--dry-run", "--tier", "3", "--jobs", "2", "--campaign", tmp_path / "c")
+    two = _main(capsys, "campaign", "--dry-run", "--tier", "3", "--jobs", "2", "--campaign",
+                tmp_path / "c")
     assert two.returncode == 0 and two.stdout.splitlines()[1].split()[0] == "ramp_pbc_s1"
-    bad = cli("campaign", "--quick", "--dry-run", "--campaign", tmp_path / "c")
+    bad = _main(capsys, "campaign", "--quick", "--dry-run", "--campaign", tmp_path / "c")
     assert bad.returncode == 2 and "paper-scale plan only" in bad.stderr
     # --first: the matching runs first, in the patterns' order, the rest as planned
     names = [s.name for s in plan.runs(3, jobs=2)]
-    first = cli("campaign", "--dry-run", "--tier", "3", "--jobs", "2", "--campaign",
+    first = _main(capsys, "campaign", "--dry-run", "--tier", "3", "--jobs", "2", "--campaign",
                 tmp_path / "c", "--first", "ageing_*_s2", "const_fbc_eps0.02_s1", "ageing_*")
     assert first.returncode == 0, first.stderr
     order = [line.split()[0] for line in first.stdout.splitlines()[1:-1]]
@@ -210,8 +212,8 @@ def test_campaign_subcommand(tmp_path):
     head = ["ageing_pbc_eps0.01_s2", "const_fbc_eps0.02_s1"] + [
         n for n in ageing if n != "ageing_pbc_eps0.01_s2"]
     assert order == head + [n for n in names if n not in head]
-    typo = cli("campaign", "--dry-run", "--tier", "3", "--campaign", tmp_path / "c",
-               "--first", "agieng_*")
+    typo = _main(capsys, "campaign", "--dry-run", "--tier", "3", "--campaign", tmp_path / "c",
+                 "--first", "agieng_*")
     assert typo.returncode == 2 and "--first 'agieng_*': matches no run" in typo.stderr
 
 
@@ -229,7 +231,10 @@ def _main(capsys, *args):
     test."""
     from tapmc.paper.cli import main
 
-    status = main([str(a) for a in args])
+    try:
+        status = main([str(a) for a in args])
+    except SystemExit as done:  # argparse: --help (0) and usage errors (2)
+        status = done.code
     captured = capsys.readouterr()
     return subprocess.CompletedProcess(args, status, captured.out, captured.err)
 
@@ -383,7 +388,7 @@ def test_unreadable_campaign_and_manifest(tmp_path):
         shutil.rmtree(base)
 
 
-def test_campaign_keeps_the_scale_it_started_with(tmp_path):
+def test_campaign_keeps_the_scale_it_started_with(tmp_path, capsys):
     """The plan's campaign is pinned to its recorded Scale: a scale.json written before a
     field existed reads with that field's default, and one that differs from today's FULL is
     kept (with a note) instead of refused."""
@@ -399,13 +404,13 @@ def test_campaign_keeps_the_scale_it_started_with(tmp_path):
     assert _runs.recorded_scale(folder) == FULL
     _runs.check_scale(folder, FULL)  # accepted: the missing field takes its default
     (folder / "scale.json").write_text(json.dumps(dict(old, restart_every=50)))
-    out = cli("campaign", "--dry-run", "--campaign", folder)
+    out = _main(capsys, "campaign", "--dry-run", "--campaign", folder)
     assert out.returncode == 0, out.stderr
     assert "keeps the Scale it started with (restart_every differ" in out.stdout
     assert len([line for line in out.stdout.splitlines() if "to run]" in line]) == \
         len(plan.runs(1))
     (folder / "scale.json").write_text(json.dumps(dict(old, bogus=1)))
-    bad = cli("campaign", "--dry-run", "--campaign", folder)
+    bad = _main(capsys, "campaign", "--dry-run", "--campaign", folder)
     assert bad.returncode == 2 and "not a Scale record of this TAPMC" in bad.stderr
 
 
