@@ -699,14 +699,17 @@ def collapse_dispersion(curves, mu, kappa=0.0, t_ref=None):
         for tj, (lj, aj, ej) in scaled.items():
             if ti == tj:
                 continue
-            inside = (li >= lj[0]) & (li <= lj[-1])
-            if not inside.any():
+            # li is sorted: the points inside the other curve's span are one slice of it
+            first = int(np.searchsorted(li, lj[0], side="left"))
+            end = int(np.searchsorted(li, lj[-1], side="right"))
+            if end <= first:
                 continue
-            a_other = np.interp(li[inside], lj, aj)
-            e_other = np.interp(li[inside], lj, ej)
-            r = (ai[inside] - a_other) / np.sqrt(ei[inside] ** 2 + e_other ** 2)
+            at = li[first:end]
+            a_other = np.interp(at, lj, aj)
+            e_other = np.interp(at, lj, ej)
+            r = (ai[first:end] - a_other) / np.sqrt(ei[first:end] ** 2 + e_other ** 2)
             total += float(np.sum(r ** 2))
-            count += int(inside.sum())
+            count += int(end - first)
     return total / count if count else np.nan
 
 
