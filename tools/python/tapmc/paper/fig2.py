@@ -60,7 +60,7 @@ from tapmc.laws import (InverseLogLaw, ZLaw, exponential_dependence, range_refit
 
 from . import _plotting as P
 from . import _runs
-from ._results import Estimate, FigureResult, Series, Value, add_rows, estimates
+from ._results import Estimate, FigureResult, Series, Value, estimates
 
 NAME = "fig2"
 #: Boundary conditions of the paper's Fig. 2.
@@ -111,12 +111,6 @@ def pooled_sem(sem, window=POOLED_SEM_WINDOW):
     i = np.arange(sem.size)
     lo, hi = np.maximum(i - half, 0), np.minimum(i + half + 1, sem.size)
     return np.sqrt((c[hi] - c[lo]) / (hi - lo))
-
-
-def fit_curve(t, mean, sem, law=None):
-    """Eq. 3 (or ``law``) fitted to a seed-averaged curve, weighted by :func:`pooled_sem`."""
-    law = InverseLogLaw() if law is None else law
-    return law.fit(t, mean, sigma=pooled_sem(sem))
 
 
 def analyse_curve(t, mean, sem, law=None, ranges=None):
@@ -380,17 +374,6 @@ def refit_table(table):
                 Series.of(old["x"], refits.reference(old["x"]), old["sem"], old["n"]), refits)
         laws[tag] = LawFits(tag, fits, BDependence.of(tag, st["curves"], st["B"]))
     return Fig2Result(laws, curves_first=True).table()
-
-
-def add_curve_rows(table, eps, refits, prefix=""):
-    """The params rows of one fitted curve (module text) into a ``FigureTable``."""
-    fit = CurveFit.of(eps, None, None, refits)
-    add_rows(table, fit.param_rows(prefix))
-
-
-def add_b_rows(table, tag, refits, dependence):
-    """The ``B`` panel rows of one law (module text) into a ``FigureTable``."""
-    add_rows(table, BDependence.of(tag, refits, dependence).rows())
 
 
 def paper_eps(available, targets=PAPER_EPS):

@@ -215,12 +215,6 @@ def fit_estimates(x, fit, collapse=None):
     return out
 
 
-def add_fit_rows(table, tag, x, fit, collapse=None):
-    """Rows ``<tag>:<name>`` (+ ``:lo``, ``:hi``) of a FitResult (:func:`fit_estimates`) into
-    a ``FigureTable``."""
-    add_rows(table, _estimate_rows(tag, fit_estimates(x, fit, collapse)))
-
-
 @dataclass(frozen=True)
 class Collapse:
     """One collapse of the curves (``scaling``: time and amplitude; ``scaling_time``)."""
@@ -423,14 +417,6 @@ def eq6_tests(result):
                                                     result.n_realizations),
                                    found["eq6_test"], found["eq6_test_long"])
     return needed, tests
-
-
-def add_eq6_rows(table, result):
-    """The ``eq6_test:`` and ``drift_share:`` rows of the module text (:func:`eq6_tests`)
-    into a ``FigureTable``."""
-    needed, tests = eq6_tests(result)
-    add_rows(table, [("params", "eq6_test:needed", needed)]
-             + [row for test in tests.values() for row in test.rows()])
 
 
 def refit_table(table):

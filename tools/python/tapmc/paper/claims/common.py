@@ -56,12 +56,6 @@ def eps_of(series):
     return float(series.split("=")[1].split(":")[0])
 
 
-def eps_series(fig, panel):
-    """Sorted (eps, series) of the data series 'eps=<eps>' of a panel (fits excluded)."""
-    out = [(eps_of(s), s) for s in fig.series(panel) if s.startswith("eps=") and ":" not in s]
-    return sorted(out)
-
-
 def common_x(a, b):
     """Index pairs (i, k) of the x common to the curves a and b ((x, mean, sem, n) each)."""
     pairs = []
