@@ -309,7 +309,8 @@ class Law:
     base class of every fitter of the package (here and in :mod:`tapmc.fluctuations` and
     :mod:`tapmc.pores`). A law sets ``names`` (its parameters, in the order of ``function``),
     ``function(x, *params)`` and ``initial_guess(x, y, w)`` (``w`` the weights 1/sigma^2), and
-    may set ``bounds(x, y)`` and ``may_vanish``; :meth:`fit` and :meth:`assess` do the rest."""
+    may set ``bounds(x, y)``, ``may_vanish`` and ``jacobian``; :meth:`fit` and :meth:`assess`
+    do the rest."""
 
     names = ()
     #: parameters that may legitimately be zero (their relative error is not tested)
