@@ -60,14 +60,21 @@ def test_frozen_compacting_and_running_ramps(tmp_path):
     text = paper_ramp.finding_text(back, 1e-7)
     assert "At eta = 1e-7 (the default), the model has an irreversible (frozen) branch" in text
     assert "At eta = 1e-5, the model has no irreversible branch: the descending branch compacts" in text
-    assert "At eta = 1e-6 the ramp is still going up (seed 2 at tap 12000): undecided." in text
+    progress = paper_ramp.progress_text(2, 12000, running.down_levels)
+    assert f"At eta = 1e-6 the ramp has not come down two levels yet ({progress}): undecided." \
+        in text
+    assert paper_ramp.progress_text(1, 23737, 1) == \
+        "seed 1 at tap 23737, 1 descending level of the 2 needed"
 
     # the first screen's sentence: one answer per eta, the decided seeds' changes, how far the
     # running ones got
     headline = paper_ramp.headline_text(back, 1e-7)
     assert "eta = 1e-5: no irreversible branch (1 seed; the descending branch moves by +0.00" \
         in headline
-    assert "eta = 1e-6: undecided, the ramp is still going up (seed 2 at tap 12000)" in headline
+    assert ("eta = 1e-6: undecided, the ramp has not come down two levels yet (seed 2 at tap "
+            "12000, ") in headline
+    assert "seed 2 at tap 161, still going up" in paper_ramp.finding_text(
+        [started], 1e-7)
     assert "eta = 1e-7 (the default): an irreversible (frozen) branch (1 seed;" in headline
     assert paper_ramp.headline_text([], 1e-7) == ""
 

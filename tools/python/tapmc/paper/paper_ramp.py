@@ -143,15 +143,24 @@ def eta_text(eta):
     return f"{eta:.0e}".replace("e-0", "e-")
 
 
+def progress_text(seed, taps_done, down_levels):
+    """How far a ramp that has not come down two levels got: "seed 1 at tap 23737, 1
+    descending level of the 2 needed" (or "..., still going up")."""
+    down = int(down_levels)
+    where = (f"{down} descending level{'s' if down > 1 else ''} of the 2 needed" if down
+             else "still going up")
+    return f"seed {seed} at tap {taps_done}, {where}"
+
+
 def by_eta(rows, default_eta):
     """(label, decided, running) per eta of the rows, the loosest first: the label names the
     default eta; ``decided`` are the seeds whose ramp came down two levels, ``running`` says
-    how far the others got ("seed 1 at tap 17459, ...")."""
+    how far the others got (:func:`progress_text`)."""
     for eta in sorted({r.eta for r in rows}, reverse=True):
         group = [r for r in rows if r.eta == eta]
         decided = [r for r in group if r.verdict != "running"]
         label = f"eta = {eta_text(eta)}" + (" (the default)" if eta == default_eta else "")
-        running = ", ".join(f"seed {r.seed} at tap {r.taps_done}" for r in group
+        running = "; ".join(progress_text(r.seed, r.taps_done, r.down_levels) for r in group
                             if r.verdict == "running")
         yield label, decided, running
 
@@ -166,7 +175,8 @@ def headline_text(rows, default_eta):
     parts = []
     for label, decided, running in by_eta(rows, default_eta):
         if not decided:
-            parts.append(f"{label}: undecided, the ramp is still going up ({running})")
+            parts.append(f"{label}: undecided, the ramp has not come down two levels yet "
+                         f"({running})")
             continue
         verdicts = {r.verdict for r in decided}
         answer = ("an irreversible (frozen) branch" if verdicts == {"frozen"}
@@ -190,7 +200,8 @@ def finding_text(rows, default_eta):
     parts = []
     for label, decided, running in by_eta(rows, default_eta):
         if not decided:
-            parts.append(f"at {label} the ramp is still going up ({running}): undecided.")
+            parts.append(f"at {label} the ramp has not come down two levels yet ({running}): "
+                         "undecided.")
             continue
         verdicts = {r.verdict for r in decided}
         seeds = "; ".join(

@@ -15,7 +15,7 @@ from tapmc.hysteresis import CRITICAL_SQRT_EPS, LEVEL_TOLERANCE
 from tapmc.stats import t_quantile, weighted_line, welch_dof
 
 from .. import fig4, fig6
-from ..paper_ramp import TAPS_PER_LEVEL as PAPER_RAMP_TAPS
+from ..paper_ramp import TAPS_PER_LEVEL as PAPER_RAMP_TAPS, progress_text
 
 from .common import (above, below, common_x, curve_of, mean_difference, not_in_campaign,
                      paired_levels, protocol_label, seed_mean_of, seeds_error, steady_dof,
@@ -334,7 +334,7 @@ def _paper_protocol_frozen(data, effect):
     whose ramp came down two levels of the decreasing branch minus the turning level; the
     error of one seed is its levels' batch-means error times the realizations' factor of a
     difference of two parts of one run, of several the :func:`seeds_error` of their mean.
-    Seeds still going up leave the row undecided, saying how far they got. These runs have
+    Seeds not yet two levels down leave the row undecided, saying how far they got. These runs have
     the paper's taps per level, which the campaign's Fig. 4 ramps may lack (``meets``)."""
     out = []
     rows = data.question("paper_ramp")
@@ -343,9 +343,10 @@ def _paper_protocol_frozen(data, effect):
         decided = [r for r in group if r["verdict"] != "running"]
         label = protocol_label(PAPER_RAMP_TAPS, eta)
         if not decided:
-            running = ", ".join(f"seed {r['seed']} at tap {r['taps_done']}" for r in group)
-            out.append(Measure(label=label, meets=("ramp_taps",),
-                               undecided=f"the ramp is still going up ({running})"))
+            running = "; ".join(progress_text(r["seed"], r["taps_done"], r["down_levels"])
+                                for r in group)
+            out.append(Measure(label=label, meets=("ramp_taps",), undecided=(
+                f"the ramp has not come down two levels yet ({running})")))
             continue
         values = [float(r["down_change"]) for r in decided]
         errors = [float(r["down_change_sem"]) for r in decided]
