@@ -30,6 +30,8 @@ from . import _runs
 #: Taps per level of the paper's protocol, and the taps averaged at the end of each level.
 TAPS_PER_LEVEL = 4000
 LAST_TAPS = 1000
+#: Descending levels a ramp needs before its branch is judged: a change needs two levels.
+MIN_DOWN_LEVELS = 2
 CSV_NAME = "paper_ramp.csv"
 #: What the command reads, for its message when a campaign has none of it.
 RUNS_READ = "runs/paperramp* with a taps.dat"
@@ -95,7 +97,7 @@ def analyse_run(run_dir, default_eta):
         return _running(base, 0)
     hysteresis = Hysteresis(sqrt_eps, phi_c, TAPS_PER_LEVEL, LAST_TAPS).compute()
     down = hysteresis.branch("down")
-    if len(down) < 2:
+    if len(down) < MIN_DOWN_LEVELS:
         return _running(base, len(down))
     branches = RampBranches.from_hysteresis(hysteresis).compute()
     change = branches.down_change
@@ -147,8 +149,8 @@ def progress_text(seed, taps_done, down_levels):
     """How far a ramp that has not come down two levels got: "seed 1 at tap 23737, 1
     descending level of the 2 needed" (or "..., still going up")."""
     down = int(down_levels)
-    where = (f"{down} descending level{'s' if down > 1 else ''} of the 2 needed" if down
-             else "still going up")
+    where = (f"{down} descending level{'s' if down > 1 else ''} of the {MIN_DOWN_LEVELS} "
+             "needed" if down else "still going up")
     return f"seed {seed} at tap {taps_done}, {where}"
 
 

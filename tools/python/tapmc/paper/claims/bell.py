@@ -334,8 +334,8 @@ def _paper_protocol_frozen(data, effect):
     whose ramp came down two levels of the decreasing branch minus the turning level; the
     error of one seed is its levels' batch-means error times the realizations' factor of a
     difference of two parts of one run, of several the :func:`seeds_error` of their mean.
-    Seeds not yet two levels down leave the row undecided, saying how far they got. These runs have
-    the paper's taps per level, which the campaign's Fig. 4 ramps may lack (``meets``)."""
+    Seeds not yet two levels down leave the row undecided, saying how far they got. These runs
+    have the paper's taps per level, which the campaign's Fig. 4 ramps may lack (``meets``)."""
     out = []
     rows = data.question("paper_ramp")
     for eta in sorted({float(r["eta"]) for r in rows}, reverse=True):
