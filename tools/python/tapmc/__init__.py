@@ -20,10 +20,7 @@ __version__ = "0.1.0"
 
 import importlib
 
-_SUBMODULES = ("ageing", "connected_ageing", "contacts", "crystallinity", "cylinder",
-               "fluctuations", "hysteresis", "laws", "packing", "pores", "profiles", "readers",
-               "tube", "tube_runs")
-# The classes and functions exported here, by the submodule that defines them.
+# The submodules, and the classes and functions exported here by the one that defines them.
 _EXPORTS = {
     "ageing": ("Ageing",),
     "connected_ageing": ("ConnectedAgeing",),
@@ -41,6 +38,7 @@ _EXPORTS = {
     "tube": ("TubeProfile", "TubeStereology"),
     "tube_runs": ("RadialProfiles", "TubeCompaction", "TubeSettings"),
 }
+_SUBMODULES = tuple(_EXPORTS)
 _HOME = {name: module for module, names in _EXPORTS.items() for name in names}
 
 
