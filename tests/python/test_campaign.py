@@ -3,6 +3,7 @@
 (finished runs untouched, the resumed trajectory identical to an uninterrupted one), the
 manifest, LAMMPS -partition mode under mpirun, and clear errors for bad runs."""
 
+import contextlib
 import io
 import hashlib
 import json
@@ -532,3 +533,61 @@ def test_an_attempt_records_its_cpu_time_and_last_step(tmp_path):
     (attempt,) = record["attempts"]
     assert attempt["end_step"] == 3 and attempt["resumed_from_step"] is None
     assert 0 < attempt["cpu_s"] <= attempt["wall_s"] + 1  # one serial process: about its wall
+
+
+def test_each_run_has_mpi_session_directories_of_its_own(tmp_path, monkeypatch):
+    """A child gets a fresh OMPI_MCA_orte_tmpdir_base under the user's (made if missing),
+    removed after it ends."""
+    monkeypatch.setenv("OMPI_MCA_orte_tmpdir_base", str(tmp_path / "not" / "yet"))
+    seen = []
+    for k in range(2):
+        screen = tmp_path / f"env{k}.txt"
+        assert launch.run_child(["env"], tmp_path, screen) == 0
+        line = [x for x in screen.read_text().splitlines()
+                if x.startswith("OMPI_MCA_orte_tmpdir_base=")]
+        assert len(line) == 1
+        seen.append(Path(line[0].split("=", 1)[1]))
+    assert seen[0] != seen[1]
+    assert all(p.parent == tmp_path / "not" / "yet" and p.name.startswith("tapmc-mpi-")
+               for p in seen)
+    assert not any(p.exists() for p in seen)  # removed with its run
+
+
+def test_runs_start_while_singletons_end_beside_them(tmp_path, monkeypatch):
+    """Open MPI 4 singletons started with ess_singleton_isolated=1 share one session directory,
+    removed by whichever ends: a loop doing what an ending singleton does to the user's session
+    base killed about 1 start in 8 in MPI_Init (session_dir.c); a campaign's runs do not share
+    it, so all of them start."""
+    import socket
+    import threading
+
+    base = tmp_path / "base"
+    base.mkdir()
+    monkeypatch.setenv("OMPI_MCA_orte_tmpdir_base", str(base))
+    monkeypatch.setenv("OMPI_MCA_ess_singleton_isolated", "1")
+    top = base / f"ompi.{socket.gethostname().split('.')[0]}.{os.getuid()}"
+    chain = [top, top / "jf.0", top / "jf.0" / "1", top / "jf.0" / "1" / "0"]
+    stop = threading.Event()
+
+    def end_singletons():
+        while not stop.is_set():
+            for d in chain:
+                with contextlib.suppress(OSError):
+                    d.mkdir()
+            for d in reversed(chain):
+                with contextlib.suppress(OSError):
+                    d.rmdir()
+
+    (tmp_path / "in.one").write_text("units lj\n")
+    command = [str(LMP), "-log", "none", "-in", str(tmp_path / "in.one")]
+    churn = threading.Thread(target=end_singletons, daemon=True)
+    churn.start()
+    try:
+        codes = [launch.run_child(command, tmp_path, tmp_path / f"screen{k}.txt")
+                 for k in range(30)]
+    finally:
+        stop.set()
+        churn.join()
+    failed = [(k, (tmp_path / f"screen{k}.txt").read_text()[-300:])
+              for k, c in enumerate(codes) if c != 0]
+    assert not failed

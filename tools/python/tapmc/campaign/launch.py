@@ -10,12 +10,13 @@ import os
 import shutil
 import signal
 import subprocess
+import tempfile
 from pathlib import Path
 
 from .errors import CampaignDirectoryError, CampaignError
 
 __all__ = ["find_lmp", "available_cores", "campaign_lock", "run_child", "run_child_timed",
-           "mpirun_prefix",
+           "private_mpi_session", "mpirun_prefix",
            "lammps_command", "partition_batches", "partition_driver", "partition_command"]
 
 _REPO = Path(__file__).resolve().parents[4]
@@ -76,9 +77,40 @@ def _die_with_parent():
         pass
 
 
+# Open MPI 4 keeps a session directory per job under <base>/ompi.<host>.<uid>, created in
+# MPI_Init and removed, up to <base>/ompi.<host>.<uid>, in MPI_Finalize. Processes started
+# without mpirun under OMPI_MCA_ess_singleton_isolated=1 (the fast start the user guide and the
+# test suite use) all take the same one, jf.0/1/0: a run that starts while another one ends can
+# find its parent removed between two mkdirs and die in MPI_Init ("ORTE_ERROR_LOG ...
+# session_dir.c"). Beside a loop that ends such processes, 4 of 30 starts died; 0 of 30 with a
+# base of their own (tests/python/test_campaign.py). The variable is Open MPI 4's; other MPIs
+# ignore it.
+_MPI_SESSION_BASE = "OMPI_MCA_orte_tmpdir_base"
+
+
+@contextlib.contextmanager
+def private_mpi_session():
+    """Environment for one child whose MPI session directories nobody else shares: a fresh
+    folder under the user's ``OMPI_MCA_orte_tmpdir_base`` (made if missing, as Open MPI would)
+    or else the system's temporary folder, removed when the block ends. Where no folder can be
+    made, the environment is unchanged."""
+    base = os.environ.get(_MPI_SESSION_BASE) or None
+    try:
+        if base:
+            os.makedirs(base, exist_ok=True)
+        private = tempfile.mkdtemp(prefix="tapmc-mpi-", dir=base)
+    except OSError:
+        yield dict(os.environ)
+        return
+    try:
+        yield dict(os.environ, **{_MPI_SESSION_BASE: private})
+    finally:
+        shutil.rmtree(private, ignore_errors=True)
+
+
 def run_child(cmd, cwd, screen):
     """Run ``cmd`` in ``cwd`` with its output in the file ``screen``, as a child that dies with
-    this process; returns its exit status."""
+    this process and has MPI session directories of its own; returns its exit status."""
     return run_child_timed(cmd, cwd, screen)[0]
 
 
@@ -86,8 +118,8 @@ def run_child_timed(cmd, cwd, screen):
     """:func:`run_child`, returning (exit status, CPU seconds of the child: user + system).
     The CPU time is the child's own (wait4), whatever else runs at the same time: what a run
     costs on one core (tapmc.paper.front prices its settings by it)."""
-    with open(screen, "w") as out:
-        proc = subprocess.Popen(cmd, cwd=cwd, stdin=subprocess.DEVNULL, stdout=out,
+    with open(screen, "w") as out, private_mpi_session() as env:
+        proc = subprocess.Popen(cmd, cwd=cwd, stdin=subprocess.DEVNULL, stdout=out, env=env,
                                 stderr=subprocess.STDOUT, preexec_fn=_die_with_parent)
         try:
             _, status, usage = os.wait4(proc.pid, 0)
