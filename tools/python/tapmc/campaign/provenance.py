@@ -13,6 +13,7 @@ import time
 from pathlib import Path
 
 from .errors import CampaignDirectoryError, CampaignError
+from .launch import private_mpi_session
 
 __all__ = ["MANIFEST_FORMAT", "sha256", "now", "portable_paths", "read_manifest",
            "write_manifest", "lammps_version", "tapmc_version", "copy_inputs", "read_done",
@@ -98,10 +99,12 @@ def write_manifest(directory, data):
 
 
 def lammps_version(lmp):
-    """LAMMPS's version as ``lmp -h`` prints it, or None."""
+    """LAMMPS's version as ``lmp -h`` prints it, or None (a LAMMPS process like the runs,
+    with MPI session directories of its own)."""
     try:
-        out = subprocess.run([str(lmp), "-h"], stdin=subprocess.DEVNULL,
-                             capture_output=True, text=True, timeout=60).stdout
+        with private_mpi_session() as env:
+            out = subprocess.run([str(lmp), "-h"], stdin=subprocess.DEVNULL, env=env,
+                                 capture_output=True, text=True, timeout=60).stdout
     except (OSError, subprocess.TimeoutExpired):
         return None
     m = re.search(r"Simulator - (.+)", out)
