@@ -422,8 +422,8 @@ int main(int argc, char **argv)
     }
     const double batch_block_ns = seconds_since(t0) / n * 1e9;
     std::printf("\nmove generation: theta sample (one Philox block incl.) %.1f ns, Philox block %.1f ns,\n"
-                "  full draw %.1f ns, batched draw %.1f ns per trial (its two batched Philox blocks\n"
-                "  %.1f ns); exp needed in %.1f %% of theta samples\n",
+                "  full draw %.1f ns, batched draw %.1f ns per trial (its two batched Philox\n"
+                "  blocks %.1f ns); exp needed in %.1f %% of theta samples\n",
                 theta_ns, block_ns, draw_ns, batch_ns, 2 * batch_block_ns,
                 100 * sampler.theta_sampler().exp_fraction());
     if (sink == 42.0) std::printf(" ");
