@@ -551,6 +551,13 @@ def test_each_run_has_mpi_session_directories_of_its_own(tmp_path, monkeypatch):
     assert all(p.parent == tmp_path / "not" / "yet" and p.name.startswith("tapmc-mpi-")
                for p in seen)
     assert not any(p.exists() for p in seen)  # removed with its run
+    # a base that cannot be made (below a file): the child gets the environment unchanged,
+    # and Open MPI reports the base itself
+    blocked = tmp_path / "file"
+    blocked.write_text("")
+    monkeypatch.setenv("OMPI_MCA_orte_tmpdir_base", str(blocked / "base"))
+    with launch.private_mpi_session() as env:
+        assert env["OMPI_MCA_orte_tmpdir_base"] == str(blocked / "base")
 
 
 def test_runs_start_while_singletons_end_beside_them(tmp_path, monkeypatch):
