@@ -32,6 +32,8 @@ TAPS_PER_LEVEL = 4000
 LAST_TAPS = 1000
 #: Descending levels a ramp needs before its branch is judged: a change needs two levels.
 MIN_DOWN_LEVELS = 2
+#: Why a ramp with fewer descending levels decides nothing (page, claims and progress text).
+NOT_DOWN_YET = "the ramp has not come down two levels yet"
 CSV_NAME = "paper_ramp.csv"
 #: What the command reads, for its message when a campaign has none of it.
 RUNS_READ = "runs/paperramp* with a taps.dat"
@@ -177,8 +179,7 @@ def headline_text(rows, default_eta):
     parts = []
     for label, decided, running in by_eta(rows, default_eta):
         if not decided:
-            parts.append(f"{label}: undecided, the ramp has not come down two levels yet "
-                         f"({running})")
+            parts.append(f"{label}: undecided, {NOT_DOWN_YET} ({running})")
             continue
         verdicts = {r.verdict for r in decided}
         answer = ("an irreversible (frozen) branch" if verdicts == {"frozen"}
@@ -202,8 +203,7 @@ def finding_text(rows, default_eta):
     parts = []
     for label, decided, running in by_eta(rows, default_eta):
         if not decided:
-            parts.append(f"at {label} the ramp has not come down two levels yet ({running}): "
-                         "undecided.")
+            parts.append(f"at {label} {NOT_DOWN_YET} ({running}): undecided.")
             continue
         verdicts = {r.verdict for r in decided}
         seeds = "; ".join(

@@ -15,7 +15,7 @@ from tapmc.hysteresis import CRITICAL_SQRT_EPS, LEVEL_TOLERANCE
 from tapmc.stats import t_quantile, weighted_line, welch_dof
 
 from .. import fig4, fig6
-from ..paper_ramp import TAPS_PER_LEVEL as PAPER_RAMP_TAPS, progress_text
+from ..paper_ramp import NOT_DOWN_YET, TAPS_PER_LEVEL as PAPER_RAMP_TAPS, progress_text
 
 from .common import (above, below, common_x, curve_of, mean_difference, not_in_campaign,
                      paired_levels, protocol_label, seed_mean_of, seeds_error, steady_dof,
@@ -345,8 +345,8 @@ def _paper_protocol_frozen(data, effect):
         if not decided:
             running = "; ".join(progress_text(r["seed"], r["taps_done"], r["down_levels"])
                                 for r in group)
-            out.append(Measure(label=label, meets=("ramp_taps",), undecided=(
-                f"the ramp has not come down two levels yet ({running})")))
+            out.append(Measure(label=label, meets=("ramp_taps",),
+                               undecided=f"{NOT_DOWN_YET} ({running})"))
             continue
         values = [float(r["down_change"]) for r in decided]
         errors = [float(r["down_change_sem"]) for r in decided]
