@@ -647,6 +647,19 @@ void FixMCSettle::pre_exchange()
   if (result.hit_cap && comm->me == 0)
     error->warning(FLERR, "fix mc/settle: step {}: redeposition stopped at the cap of {} sweeps "
                    "before <Z> converged to eta = {}", update->ntimestep, max_sweeps, eta);
+  if (result.stopped_on_idle_check && !warned_idle_stop) {
+    warned_idle_stop = true;
+    if (comm->me == 0)
+      error->warning(FLERR, "fix mc/settle: step {}: the redeposition stopped at a <Z> check in "
+                     "which none of its {} trials was accepted. 'stop change' reads an unchanged "
+                     "<Z> as converged; when one accepted move changes <Z> by more than eta (here "
+                     "{} movable spheres), that is its only way to stop, so the stop depends on "
+                     "the check interval, not on eta, and a small bed loosens tap after tap. "
+                     "'stop drift' stops by eta at every N (warned once)",
+                     update->ntimestep,
+                     tapmc::Settler::trials_per_check(check_interval, result.movable),
+                     result.movable);
+  }
 }
 
 tapmc::SettleResult FixMCSettle::GatheredRedeposition::settle()

@@ -615,6 +615,7 @@ SettleResult DomainSettle::settle(const DomainSettleSetup &setup, const SettlePa
   result.trials = static_cast<long>(trials_total);
   result.accepted = static_cast<long>(accepted_total);
   result.checks = stop.checks();
+  result.stopped_on_idle_check = stop.stopped_on_idle_check();
   result.list_updates = mover_->local_updates();
   return result;
 }

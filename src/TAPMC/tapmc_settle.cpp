@@ -158,6 +158,7 @@ SettleResult Settler::settle(double *xyz, const double *radius, const unsigned c
   result.trials = tally.trials;
   result.accepted = tally.accepted;
   result.checks = stop.checks();
+  result.stopped_on_idle_check = stop.stopped_on_idle_check();
   result.mean_height = sum / static_cast<double>(m);
   result.list_updates = mover_->local_updates();
   result.mean_list_length = mover_->mean_list_length();

@@ -43,6 +43,9 @@ struct SettleResult {
   long trials = 0, accepted = 0, checks = 0;
   double mean_height_start = 0, mean_height = 0;  // <Z> of movable spheres above floor_z
   bool hit_cap = false;
+  // The paper's rule stopped at a check that accepted no trial (ConvergenceCheck::
+  // stopped_on_idle_check): a stop by chance, not by convergence.
+  bool stopped_on_idle_check = false;
   long movable = 0;  // number of movable spheres
   // Neighbour-list upkeep in this call (diagnostics only, results do not depend on the skin):
   // local list updates (a sphere moved skin/2 from where its list was made), widenings of the

@@ -62,12 +62,21 @@ class ConvergenceCheck {
     previous_mean_ = mean_height;
     const bool falling = static_cast<double>(accepted) >=
                          defaults::kSettleFreeFallAcceptance * static_cast<double>(trials);
-    if (settled && !falling) return Verdict::Converged;
+    if (settled && !falling) {
+      stopped_on_idle_check_ = rule_ == StopRule::Change && accepted == 0;
+      return Verdict::Converged;
+    }
     if (checks_ >= max_checks_) return Verdict::HitCap;
     return Verdict::Continue;
   }
 
   long checks() const { return checks_; }
+
+  // Change rule: true when the check that stopped the redeposition accepted no trial. When one
+  // accepted move changes <Z> by more than eta (a bed of a few dozen spheres at eta = 1e-7),
+  // that is the only way the rule can stop: the stop then comes where a check of so many
+  // trials happens to accept none, whatever eta.
+  bool stopped_on_idle_check() const { return stopped_on_idle_check_; }
 
   // Drift rule: the latest estimate of the drift of <Z> per sweep (mean decrement over the
   // window) and its standard error; both 0 until the window is full, and for the Change rule.
@@ -115,6 +124,7 @@ class ConvergenceCheck {
   std::vector<double> decrements_;  // Drift: decrement of <Z> per sweep of the last checks (ring)
   double drift_ = 0.0, drift_error_ = 0.0;
   long checks_ = 0;
+  bool stopped_on_idle_check_ = false;
 };
 
 }  // namespace tapmc

@@ -45,7 +45,8 @@ def thermo_table(log_text):
     for line in lines[start + 1:]:
         if line.startswith("Loop time"):
             break
-        rows.append([float(v) for v in line.split()])
+        if not line.startswith("WARNING"):   # LAMMPS interleaves warnings with the rows
+            rows.append([float(v) for v in line.split()])
     return lines[start].split(), np.array(rows)
 
 

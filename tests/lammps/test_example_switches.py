@@ -119,7 +119,7 @@ def thermo_steps(log):
             inside = True
         elif line.startswith("Loop time"):
             inside = False
-        elif inside:
+        elif inside and not line.startswith("WARNING"):   # LAMMPS interleaves warnings
             steps.append(int(line.split()[0]))
     return steps
 

@@ -123,3 +123,30 @@ def test_window_without_stop_drift_is_ignored_with_a_warning():
             np.testing.assert_array_equal(a["z"], b["z"])
     rc, out, _ = run_lammps(SCENE + RUN.format(keywords="eta 1e-3 stop drift window 12", taps=1))
     assert rc == 0 and "is ignored" not in out, out
+
+
+# 16 spheres in a 2 x 2 periodic box: one accepted move changes <Z> by about 1e-3 of itself, far
+# more than eta = 1e-7, so the paper's rule stops only at a check (16 trials) that accepts none.
+SMALL_BED = """units lj
+atom_style sphere
+boundary p p fm
+region box block 0 2 0 2 0 40
+create_box 1 box
+create_packing 16 1 0.5 4928 floor 0.0
+fix tap all tapdilate 0.01 floor 0.0
+fix settle all mc/settle 4928 floor 0.0 {keywords}
+run 6
+"""
+IDLE_STOP = "which none of its 16 trials was accepted. 'stop change' reads an unchanged <Z>"
+
+
+@pytest.mark.parametrize("nprocs,scheme", [(1, "gather"), (2, "domain")])
+def test_a_stop_at_an_idle_check_warns_once(nprocs, scheme):
+    rc, out, _ = run_lammps(SMALL_BED.format(keywords=f"scheme {scheme}"), nprocs=nprocs)
+    assert rc == 0, out
+    assert out.count(IDLE_STOP) == 1, out
+    assert "(here 16 movable spheres)" in out and "(warned once)" in out, out
+    # The drift rule stops by eta, also here.
+    rc, out, _ = run_lammps(SMALL_BED.format(keywords=f"scheme {scheme} stop drift eta 4e-7"),
+                            nprocs=nprocs)
+    assert rc == 0 and "none of its" not in out, out

@@ -184,6 +184,63 @@ TEST(StopRule, ChangeRuleIsTheSameThroughBothConstructors)
   EXPECT_EQ(legacy.checks(), general.checks());
 }
 
+// A stop of the paper's rule at a check that accepted no trial is flagged (<Z> did not move by
+// chance); a stop with accepted trials is not, nor any stop of the Drift rule, whose window
+// averages an idle check with the others.
+TEST(StopRule, ChangeRuleFlagsAStopAtAnIdleCheck)
+{
+  ConvergenceCheck idle(1e-3, 50, 10.0);
+  EXPECT_EQ(idle.after_check(9.0, 40, 100), ConvergenceCheck::Verdict::Continue);
+  EXPECT_FALSE(idle.stopped_on_idle_check());
+  EXPECT_EQ(idle.after_check(9.0, 0, 100), ConvergenceCheck::Verdict::Converged);
+  EXPECT_TRUE(idle.stopped_on_idle_check());
+
+  ConvergenceCheck moving(1e-3, 50, 10.0);
+  EXPECT_EQ(moving.after_check(9.0, 40, 100), ConvergenceCheck::Verdict::Continue);
+  EXPECT_EQ(moving.after_check(8.9999, 2, 100), ConvergenceCheck::Verdict::Converged);
+  EXPECT_FALSE(moving.stopped_on_idle_check());
+
+  ConvergenceCheck drift(StopRule::Drift, 1e-3, 50, 10.0, 1.0, 2, 0.0);
+  ConvergenceCheck::Verdict v = ConvergenceCheck::Verdict::Continue;
+  for (int c = 0; c < 3 && v == ConvergenceCheck::Verdict::Continue; ++c)
+    v = drift.after_check(10.0, 0, 100);
+  EXPECT_EQ(v, ConvergenceCheck::Verdict::Converged);
+  EXPECT_FALSE(drift.stopped_on_idle_check());
+}
+
+// In the kernel, a bed of 16 spheres checked every sweep (16 trials): one accepted move changes
+// <Z> by far more than eta = 1e-7, so the paper's rule only stops at a check that accepts
+// nothing, and the result says so; the stop is then the same at eta = 1e-9 (same moves, same
+// bed). The Drift rule, which stops by eta, is not flagged.
+TEST(StopRule, KernelReportsAStopAtAnIdleCheck)
+{
+  Scene s = settled_bed(16, 2.0, 0.5, true, false, 5, 300);
+  Settler settler;
+  for (int tap = 0; tap < 5; ++tap) {
+    dilate(s, 0.01);
+    Scene tighter = s;
+    SettleParams p = paper_params(0.5, 1, 9 + static_cast<std::uint64_t>(tap), 1e-7, 10000);
+    const SettleResult res =
+        settler.settle(s.xyz.data(), s.radius.data(), nullptr, s.size(), s.box, p);
+    EXPECT_TRUE(res.stopped_on_idle_check) << tap;
+    p.eta = 1e-9;
+    const SettleResult same = settler.settle(tighter.xyz.data(), tighter.radius.data(), nullptr,
+                                             tighter.size(), tighter.box, p);
+    EXPECT_TRUE(same.stopped_on_idle_check) << tap;
+    EXPECT_EQ(same.trials, res.trials) << tap;
+    EXPECT_EQ(tighter.xyz, s.xyz) << tap;
+
+    Scene drifting = tighter;
+    p.stop = StopRule::Drift;
+    p.eta = 1e-3;
+    p.drift_window = 4;
+    const SettleResult drift = settler.settle(drifting.xyz.data(), drifting.radius.data(),
+                                              nullptr, drifting.size(), drifting.box, p);
+    EXPECT_FALSE(drift.hit_cap) << tap;
+    EXPECT_FALSE(drift.stopped_on_idle_check) << tap;
+  }
+}
+
 // In the kernel: 'stop drift' on a tapped bed converges, after at least a full window of
 // checks, to a valid packing; a window longer than the cap ends at the cap; the window is
 // validated.
