@@ -1,7 +1,8 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 # Helpers for process-level tests: run lmp_tapmc (optionally under mpirun) on an input text,
 # read dumps and check hard-sphere geometry with an independent all-pairs oracle; an FCC lattice
-# input and readers of print lines and fix ave/time files for the compute tests.
+# input, a reader of thermo tables, and readers of print lines and fix ave/time files for the
+# compute tests.
 import os
 import subprocess
 import tempfile
@@ -28,6 +29,21 @@ def run_lammps(script, nprocs=1, workdir=None, variables=None, timeout=600):
     proc = subprocess.run(cmd, cwd=workdir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                           text=True, timeout=timeout, stdin=subprocess.DEVNULL)
     return proc.returncode, proc.stdout, workdir
+
+
+def thermo_table(out, second="c_phi[1]"):
+    """The first thermo table of a LAMMPS output or log text whose header reads 'Step <second>
+    ...': (column names, rows as a 2-d float array, step 0 included). The warnings LAMMPS writes
+    between the rows are skipped."""
+    lines = out.splitlines()
+    start = next(i for i, line in enumerate(lines) if line.split()[:2] == ["Step", second])
+    rows = []
+    for line in lines[start + 1:]:
+        if line.startswith("Loop time"):
+            break
+        if not line.startswith("WARNING"):
+            rows.append([float(v) for v in line.split()])
+    return lines[start].split(), np.array(rows)
 
 
 def dump_atoms_text(workdir, name="final.dump"):

@@ -9,7 +9,7 @@ import os
 
 import numpy as np
 
-from lmprun import run_lammps
+from lmprun import run_lammps, thermo_table
 
 EXAMPLE = os.path.join(os.environ.get("TAPMC_SOURCE_DIR", "../.."), "examples", "tapping",
                        "in.tapping_pbc")
@@ -36,18 +36,6 @@ run             {taps}
 # 0 +- 0.0002 and 0 +- 0.0035: the margins are 7 and 11 times that noise.
 MIN_FALL_OF_MEAN_Z = 0.04
 MIN_RISE_OF_PHI_B = 0.0015
-
-
-def thermo_table(log_text):
-    lines = log_text.splitlines()
-    start = next(i for i, line in enumerate(lines) if line.split()[:2] == ["Step", "c_phi[1]"])
-    rows = []
-    for line in lines[start + 1:]:
-        if line.startswith("Loop time"):
-            break
-        if not line.startswith("WARNING"):   # LAMMPS interleaves warnings with the rows
-            rows.append([float(v) for v in line.split()])
-    return lines[start].split(), np.array(rows)
 
 
 def test_small_bed_compacts_over_120_taps(tmp_path):

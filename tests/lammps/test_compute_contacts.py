@@ -4,18 +4,17 @@
 # mc/settle, the dumped per-atom counts equal an all-pairs count of the dumped packing and
 # tapmc.contacts.Contacts on it; every bad argument rejected with a message naming it; the
 # library interface stopped before ghosts exist or when they are too thin.
-import math
 import os
 import re
 import subprocess
 import sys
 import tempfile
-import textwrap
 
 import numpy as np
 import pytest
 
-from lmprun import LMP, ave_time_rows, fcc_lattice, printed, read_dump, run_lammps
+from lmprun import (LMP, ave_time_rows, fcc_lattice, printed, read_dump, run_lammps,
+                    thermo_table)
 
 SOURCE = os.environ.get("TAPMC_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
 sys.path.insert(0, os.path.join(SOURCE, "tools", "python"))
@@ -142,17 +141,6 @@ run 3
 """
 
 
-def thermo_rows(out):
-    lines = out.splitlines()
-    start = next(i for i, l in enumerate(lines) if l.split()[:2] == ["Step", "c_z0[1]"])
-    rows = []
-    for line in lines[start + 1:]:
-        if line.startswith("Loop time"):
-            break
-        rows.append([float(v) for v in line.split()])
-    return np.array(rows)
-
-
 @pytest.mark.parametrize("nprocs", [1, 2])
 def test_counts_after_taps_equal_an_all_pairs_count_and_python(nprocs):
     """A deposited packing tapped three times (both redeposition schemes: gather on 1 rank,
@@ -161,7 +149,7 @@ def test_counts_after_taps_equal_an_all_pairs_count_and_python(nprocs):
     the thermo means are their means."""
     rc, out, wd = run_lammps(TAPPED, nprocs=nprocs)
     assert rc == 0, out[-2000:]
-    thermo = thermo_rows(out)
+    _, thermo = thermo_table(out, "c_z0[1]")
     assert thermo[:, 0].tolist() == [0, 1, 2, 3]
     gaps = {"c_z0": (0.0, None), "c_z1": (0.001, None), "c_z2": (0.01, 0.0), "c_z3": (0.05, None)}
     frames = read_dump(os.path.join(wd, "taps.dump"))

@@ -10,7 +10,7 @@ import os
 import numpy as np
 import pytest
 
-from lmprun import read_dump, run_lammps
+from lmprun import read_dump, run_lammps, thermo_table
 
 GAP_TOLERANCE = 1e-10  # defaults::kContactsGapTolerance
 
@@ -176,20 +176,9 @@ def numpy_counts(xyz, r, gap, wall=True):
     return counts, on_wall
 
 
-def thermo(out, first):
-    lines = out.splitlines()
-    start = next(i for i, l in enumerate(lines) if l.split()[:2] == ["Step", first])
-    rows = []
-    for line in lines[start + 1:]:
-        if line.startswith("Loop time"):
-            break
-        rows.append([float(v) for v in line.split()])
-    return np.array(rows)
-
-
 def check_counts(wd, out, steps):
     frames = read_dump(os.path.join(wd, "tube.dump"))
-    rows = thermo(out, "c_z0[1]")
+    _, rows = thermo_table(out, "c_z0[1]")
     assert [f[0] for f in frames] == steps and rows[:, 0].tolist() == steps
     walls = []
     for (step, _, _, cols), row in zip(frames, rows):

@@ -11,7 +11,7 @@ import os
 import numpy as np
 import pytest
 
-from lmprun import min_gap, read_dump, run_lammps
+from lmprun import min_gap, read_dump, run_lammps, thermo_table
 from test_mc_settle import CONTACT_TOL, SCENE, TAPPING, check_frames
 
 # 'verify yes': after every round a full forward communication checks that the ghosts the kernel
@@ -104,10 +104,8 @@ def test_every_sphere_is_active_once_per_cycle_across_ghost_rebuilds():
     ).format(eps=0.05, seed=4928, every=taps, taps=taps)
     rc, out, _ = run_lammps(script, nprocs=4)
     assert rc == 0, out
-    lines = out.splitlines()
-    start = lines.index(next(line for line in lines if line.split()[:2] == ["Step", "Atoms"]))
-    rows = np.array([[float(v) for v in line.split()]
-                     for line in lines[start + 2:start + 2 + taps]])
+    rows = thermo_table(out, "Atoms")[1][1:]
+    assert len(rows) == taps, out
     n = rows[:, 1]
     trials, rebuilds = rows[:, 2], rows[:, 3]
     assert (rebuilds > 0).sum() >= 3, rows  # the falling lattice and the taps rebuild ghosts

@@ -12,7 +12,7 @@ import os
 import numpy as np
 import pytest
 
-from lmprun import free_drops, read_dump, run_lammps
+from lmprun import free_drops, read_dump, run_lammps, thermo_table
 
 RADIUS = 0.5
 TAPS = 4
@@ -48,10 +48,8 @@ def tapping(nprocs, grid, boundary, dispersity, scheme):
                            dispersity=dispersity, taps=TAPS)
     rc, out, wd = run_lammps(script, nprocs=nprocs)
     assert rc == 0, out
-    lines = out.splitlines()
-    start = next(k for k, line in enumerate(lines) if line.split()[:2] == ["Step", "c_phi[2]"])
-    rows = np.array([[float(v) for v in line.split()[1:3]]
-                     for line in lines[start + 2:start + 2 + TAPS]])
+    rows = thermo_table(out, "c_phi[2]")[1][1:, 1:3]
+    assert len(rows) == TAPS, out
     return rows, read_dump(os.path.join(wd, "dump.end"))[-1], out
 
 

@@ -10,7 +10,6 @@
 #    central column is nan, not 0.00000000.
 import math
 import re
-import subprocess
 
 import pytest
 

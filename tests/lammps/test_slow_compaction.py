@@ -4,7 +4,8 @@
 # 4928) tapped 200 times at eps = 0.01 with the default redeposition settings densifies, measured
 # by the exact stereology compute. About 3 minutes of one core.
 from lmprun import run_lammps
-from test_compaction import EXAMPLE, thermo_table
+from lmprun import thermo_table
+from test_compaction import EXAMPLE
 
 
 def test_bulk_packing_fraction_rises_over_200_taps(tmp_path):

@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 from lmprun import run_lammps
-from test_compaction import EXAMPLE, thermo_table
+from lmprun import thermo_table
+from test_compaction import EXAMPLE
 
 SEEDS = [101, 202, 303, 404, 505]
 

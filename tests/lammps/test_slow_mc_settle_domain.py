@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from lmprun import run_lammps
-from test_compaction import thermo_table
+from lmprun import thermo_table
 
 SEEDS = [11, 22, 33, 44, 55, 66]
 TAPS = 60

@@ -20,7 +20,7 @@ import os
 import numpy as np
 import pytest
 
-from lmprun import free_drops, read_dump, run_lammps
+from lmprun import free_drops, read_dump, run_lammps, thermo_table
 
 SEEDS = [11, 22, 33, 44, 55, 66, 77, 88]
 TOLERANCE_SE = 4.0
@@ -70,10 +70,9 @@ def run_means(scene, nprocs, grid, seed, workdir):
     script = SCRIPT.format(grid=grid, seed=seed, scheme=scheme, taps=TAPS, **spec)
     rc, out, wd = run_lammps(script, nprocs=nprocs, workdir=workdir)
     assert rc == 0, out
-    lines = out.splitlines()
-    start = next(k for k, line in enumerate(lines) if line.split()[:2] == ["Step", "c_phi[2]"])
-    rows = np.array([[float(v) for v in line.split()[1:3]]
-                     for line in lines[start + 2 + TAPS - LAST:start + 2 + TAPS]])
+    rows = thermo_table(out, "c_phi[2]")[1][1:, 1:3]
+    assert len(rows) == TAPS, out
+    rows = rows[-LAST:]
     frames = read_dump(os.path.join(wd, "dump.taps"))[-LAST:]
     heights = np.array([[np.percentile(cols["z"], 90)] for _, _, _, cols in frames])
     _, box, _, cols = read_dump(os.path.join(wd, "dump.end"))[-1]

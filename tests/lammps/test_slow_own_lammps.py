@@ -25,7 +25,7 @@ import pytest
 
 from lammps_builds import (LAMMPS_BUILDS, SOURCE_DIR, lammps_prefix, run, toolchain_only_path,
                            user_environment)
-from test_compaction import thermo_table
+from lmprun import thermo_table
 
 TAPS = 2
 EXAMPLE = Path("tapping", "in.tapping_pbc")

@@ -15,7 +15,8 @@ import pytest
 
 from lammps_builds import LAMMPS_BUILDS, lammps_prefix, run, tapmc_against
 from lmprun import LMP, MPIRUN, read_dump
-from test_compaction import EXAMPLE, thermo_table
+from lmprun import thermo_table
+from test_compaction import EXAMPLE
 
 PYTHON = "/usr/bin/python3"
 TAPS = 3
