@@ -21,6 +21,7 @@ import re
 from dataclasses import dataclass
 from pathlib import Path
 
+from ._rst import list_table
 from .claims.aggregate import claim_verdicts
 from .claims.aggregate import count_sentence as claim_count_sentence
 from .claims.rules import Outcome
@@ -225,12 +226,11 @@ def open_questions(entries):
             for e in entries if e.disagreeing]
 
 
-def _entry_rows(entry):
+def _entry_row(entry):
     image = (f".. image:: {entry.png}\n         :width: {THUMBNAIL_WIDTH}\n"
              f"         :alt: {entry.title}") if entry.png else "(text)"
-    return [f"   * - {entry.title}: {entry.topic}", f"     - **{entry.outcome}** "
-            f"({entry.reason})", f"     - {entry.headline}", f"     - {entry.paper}",
-            f"     - {image}"]
+    return [f"{entry.title}: {entry.topic}", f"**{entry.outcome}** ({entry.reason})",
+            entry.headline, entry.paper, image]
 
 
 def screen_rst(entries, finding="", headline=""):
@@ -239,12 +239,9 @@ def screen_rst(entries, finding="", headline=""):
     the rule, and the open questions (``finding``: a finding or a list of them, e.g. the
     irreversible branch of section III.B with its numbers, first of them when given)."""
     lines = [SCREEN_TITLE, "-" * len(SCREEN_TITLE), "", count_sentence(entries), "",
-             claims_sentence(entries), ""] + ([headline, ""] if headline else []) + [
-             ".. list-table::", "   :header-rows: 1", "   :widths: 18 22 26 16 18", "",
-             "   * - Figure", "     - Outcome", "     - Key number (TAPMC)", "     - Paper",
-             "     - Figure"]
-    for entry in entries:
-        lines += _entry_rows(entry)
+             claims_sentence(entries), ""] + ([headline, ""] if headline else [])
+    lines += list_table(["Figure", "Outcome", "Key number (TAPMC)", "Paper", "Figure"],
+                        [_entry_row(entry) for entry in entries], widths=(18, 22, 26, 16, 18))
     lines += ["", OUTCOME_RULE, "", "Open questions:", ""]
     findings = [finding] if isinstance(finding, str) else list(finding)
     questions = [f for f in findings if f] + open_questions(entries)

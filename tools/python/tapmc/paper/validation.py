@@ -31,6 +31,7 @@ from tapmc.readers import TapmcFormatError
 from . import FIGURES
 from . import _plotting as P
 from . import _runs
+from ._rst import list_table
 from . import claims, paper_ramp, questions, sigma_eta
 from . import summary as summary_screen
 from .claims import fmt, scale_aspects
@@ -280,9 +281,7 @@ def _claims_table(verdicts, prefix):
     """The answer to "how close is TAPMC to the paper": one row per claim, with the verdict
     its rows give it (:mod:`tapmc.paper.claims.aggregate`); a claim of several rows shows
     the row its verdict rests on and links the table of all of them."""
-    lines = [".. list-table::", "   :header-rows: 1", "   :widths: 8 30 14 20 8 20", "",
-             "   * - Where", "     - Claim", "     - Paper", "     - TAPMC", "     - Paper scale?",
-             "     - Verdict [rule]"]
+    rows = []
     for verdict in verdicts:
         c, shown = verdict.claim, verdict.shown_row()
         claim = f"``{c.id}``: {escape_bars(c.claim)}"
@@ -300,10 +299,10 @@ def _claims_table(verdicts, prefix):
             measure += f" (:ref:`in full <{link}>`)"
         if not c.could_fail:
             claim += " [could not fail for any compaction model]"
-        lines += [f"   * - {where(c)}", f"     - {claim}", f"     - {escape_bars(c.paper)}",
-                  f"     - {measure}", f"     - {scale_text(verdict.rows)}",
-                  f"     - {escape_bars(verdict.text())} [{c.rule}]"]
-    return lines
+        rows.append([where(c), claim, escape_bars(c.paper), measure, scale_text(verdict.rows),
+                     f"{escape_bars(verdict.text())} [{c.rule}]"])
+    return list_table(["Where", "Claim", "Paper", "TAPMC", "Paper scale?", "Verdict [rule]"],
+                      rows, widths=(8, 30, 14, 20, 8, 20))
 
 
 def _label_prefix(summary):

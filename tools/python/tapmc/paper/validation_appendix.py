@@ -14,6 +14,7 @@ from tapmc.pores import JACKKNIFE_BLOCKS
 from tapmc.profiles import PROFILE_JACKKNIFE_BLOCKS
 
 from . import claims, questions
+from ._rst import list_table
 from .claims.aggregate import AGGREGATION_RULE
 
 HEADER = ".. TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS."
@@ -104,14 +105,12 @@ def claims_page(verdicts, prefix, main):
                   f"{where(c)}: {escape_bars(c.claim)}. Paper: {escape_bars(c.paper)}.", "",
                   f"Verdict: **{escape_bars(verdict.text())}** [{c.rule}]"
                   + ("; this claim could not fail for any compaction model and is not counted "
-                     "as reproduction." if not c.could_fail else "."), "",
-                  ".. list-table::", "   :header-rows: 1", "   :widths: 30 34 10 26", "",
-                  "   * - Row", "     - TAPMC", "     - Paper scale?", "     - Verdict"]
-        for row in verdict.rows:
-            lines += [f"   * - {escape_bars(row.label) or '(the claim)'}",
-                      f"     - {escape_bars(row.measure.text())}",
-                      f"     - {scale_text([row])}", f"     - {escape_bars(str(row.verdict))}"]
-        lines += [""]
+                     "as reproduction." if not c.could_fail else "."), ""]
+        lines += list_table(["Row", "TAPMC", "Paper scale?", "Verdict"],
+                            [[escape_bars(row.label) or '(the claim)',
+                              escape_bars(row.measure.text()), scale_text([row]),
+                              escape_bars(str(row.verdict))] for row in verdict.rows],
+                            widths=(30, 34, 10, 26)) + [""]
     return _page("validation_claims", lines)
 
 
@@ -120,15 +119,12 @@ def register_page(verdicts, main):
     lines = _back(main) + [
         "The register is ``tools/python/tapmc/paper/claims.toml``: every claim of the paper, "
         "with the statistic that tests it, where its tolerance comes from and the runs that "
-        "decide it.", "",
-        ".. list-table::", "   :header-rows: 1", "   :widths: 14 8 22 28 28", "",
-        "   * - Claim", "     - Where", "     - Statistic", "     - Tolerance from",
-        "     - Decided by"]
-    for verdict in verdicts:
-        c = verdict.claim
-        lines += [f"   * - ``{c.id}``", f"     - {where(c)}",
-                  f"     - ``{c.statistic}``" if c.statistic else "     - (none yet)",
-                  f"     - {c.tolerance}", f"     - {c.decided_by}"]
+        "decide it.", ""]
+    lines += list_table(["Claim", "Where", "Statistic", "Tolerance from", "Decided by"],
+                        [[f"``{v.claim.id}``", where(v.claim),
+                          f"``{v.claim.statistic}``" if v.claim.statistic else "(none yet)",
+                          v.claim.tolerance, v.claim.decided_by] for v in verdicts],
+                        widths=(14, 8, 22, 28, 28))
     return _page("validation_register", lines)
 
 

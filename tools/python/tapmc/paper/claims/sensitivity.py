@@ -17,6 +17,7 @@ import contextlib
 import sys
 from dataclasses import dataclass
 
+from .._rst import list_table
 from .conventions import CONVENTIONS
 from .evaluate import evaluate
 from .registry import STATISTICS
@@ -165,16 +166,15 @@ def tolerance_table(rows, conventions=CONVENTIONS):
              "halved and when it is "
              "doubled (re-evaluated on the same data; a confidence level's tail 1 - level is "
              "halved and doubled; a count is rounded). '-': applied when a figure or a "
-             "question wrote its CSV, not re-evaluated from the committed data.", "",
-             ".. list-table::", "   :header-rows: 1", "   :widths: 18 8 30 26 6 6 16", "",
-             "   * - Convention", "     - Value", "     - Decides", "     - Source",
-             "     - Halved", "     - Doubled", "     - Claims that change"]
+             "question wrote its CSV, not re-evaluated from the committed data.", ""]
+    table = []
     for s in found:
         c = s.convention
         source = c.source + (f" (applied in {c.where})" if c.where else "")
-        lines += [f"   * - ``{c.name}``", f"     - {_number(c.value)}", f"     - {c.decides}",
-                  f"     - {source}",
-                  f"     - {'-' if s.halved is None else s.halved}",
-                  f"     - {'-' if s.doubled is None else s.doubled}",
-                  f"     - {', '.join(s.claims) or ('none' if s.halved is not None else '-')}"]
-    return lines + [""]
+        table.append([f"``{c.name}``", _number(c.value), c.decides, source,
+                      '-' if s.halved is None else s.halved,
+                      '-' if s.doubled is None else s.doubled,
+                      ', '.join(s.claims) or ('none' if s.halved is not None else '-')])
+    header = ["Convention", "Value", "Decides", "Source", "Halved", "Doubled",
+              "Claims that change"]
+    return lines + list_table(header, table, widths=(18, 8, 30, 26, 6, 6, 16)) + [""]

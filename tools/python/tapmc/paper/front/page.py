@@ -8,6 +8,7 @@ import math
 import os
 
 from .._plotting import FigureTable, finish_figure, legend, new_figure, write_figure
+from .._rst import simple_table
 from ..scales import SCALES
 from . import data
 from .analysis import Front, worst_bias, worst_bound, worst_trend
@@ -15,7 +16,7 @@ from .settings import (DEFAULT, PRESET_PURPOSE, PURPOSES, REFERENCE, SETTINGS, S
                        STEADY_LAST, TAPS, TIMES, BOUNDED, box_side_R, lammps_line,
                        setting_named, time_window)
 from .summary import SUMMARY, summary_text
-from .text import plus_minus, rst_table, seeds_text
+from .text import plus_minus, seeds_text
 from ...stats import beyond, t_quantile_of_mean
 
 PAGE = os.path.join("doc", "front.rst")
@@ -175,7 +176,7 @@ def _preset_lines(front):
                      "n/a" if ratio != ratio else "%.1f" % ratio])
     return ["**The presets of tapmc-paper** (:doc:`tapmc-paper`) against the recommendations, "
             "at the preset's N or the nearest N measured (last column: the CPU time per tap of "
-            "the recommended setting over the preset's, mean over eps):", ""] + rst_table(
+            "the recommended setting over the preset's, mean over eps):", ""] + simple_table(
         ["preset", "scale", "front at", "purpose", "its setting", "its worst 95 % bound",
          "recommended", "same", "CPU ratio"], body) + [""]
 
@@ -228,7 +229,7 @@ def _eps_table_lines(rows):
                      plus_minus(r.biases["Z_steady"].mean, r.biases["Z_steady"].se, digits=3),
                      "reference" if r.setting == REFERENCE else
                      ("n/a" if bound != bound else "%.4f" % bound)])
-    return lines + rst_table(header, body) + [""]
+    return lines + simple_table(header, body) + [""]
 
 
 def _still_moves(r):
@@ -303,7 +304,7 @@ def _recommendation_lines(front, N, recs):
                      "%+.4f" % rec.worst_bias, "%.3f" % rec.cpu_per_tap,
                      "``" + lammps_line(rec.setting, N) + "``"])
     return ([_RECOMMENDATION_TEXT, ""]
-            + rst_table(["purpose", "setting", "bound on", "its worst 95 % bound",
+            + simple_table(["purpose", "setting", "bound on", "its worst 95 % bound",
                          "worst bias of <Phi^c>", "CPU s/tap (mean over eps)",
                          "fix mc/settle"], body) + [""]
             + _default_lines(front, N, recs))

@@ -1,5 +1,5 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-"""How the front writes its numbers in text: value +- error, seed counts, rst tables."""
+"""How the front writes its numbers in text: value +- error, seed counts."""
 
 
 def plus_minus(value, err, digits=4, sign=True):
@@ -14,13 +14,3 @@ def seeds_text(n):
     n = int(n)
     return f"{n} seed" if n == 1 else f"{n} seeds"
 
-
-def rst_table(header, rows):
-    """An rst simple table."""
-    cols = list(zip(*([header] + rows)))
-    widths = [max(len(str(c)) for c in col) for col in cols]
-    rule = "  ".join("=" * w for w in widths)
-    out = [rule, "  ".join(str(h).ljust(w) for h, w in zip(header, widths)), rule]
-    out += ["  ".join(str(c).ljust(w) for c, w in zip(r, widths)) for r in rows]
-    out.append(rule)
-    return out

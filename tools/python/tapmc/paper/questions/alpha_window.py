@@ -17,6 +17,7 @@ from tapmc.laws import profile_gradient
 from tapmc.readers import read_ave_time
 
 from .. import fig6
+from .._rst import list_table
 from ..claims import fmt
 from ..claims.conventions import EQ7_SMOOTHING_WIDTH
 from .common import (QuestionError, csv_schema, eps_of, finished_runs, run_radius,
@@ -161,16 +162,13 @@ def render(path):
              f"window {lo:g}-{hi:g}R and in Fig. 6's ({lo:g} to at most {top_default:.3g}R), "
              "seeds averaged as Fig. 6 does (``alpha_window.csv``; errors before the "
              "realizations' calibration, which the register's rows "
-             f"\"window {lo:g}-{hi:g}R (reading)\" of ``gradient-bell`` apply):", "",
-             ".. list-table::", "   :header-rows: 1", "",
-             "   * - sqrt(eps)", "     - seeds", f"     - alpha, {lo:g}-{hi:g}R",
-             "     - alpha, Fig. 6's window",
-             f"     - Phi above {hi:g}R minus the {lo:g}-{hi:g}R line"]
+             f"\"window {lo:g}-{hi:g}R (reading)\" of ``gradient-bell`` apply):", ""]
     departures = _mean_departures(rows)
-    for k in range(len(x)):
-        lines += [f"   * - {x[k]:.4g}", f"     - {int(n[k])}",
-                  f"     - {fmt(narrow[k], narrow_err[k])}", f"     - {fmt(wide[k], wide_err[k])}",
-                  f"     - {departures[k]:+.3f}"]
+    lines += list_table(
+        ["sqrt(eps)", "seeds", f"alpha, {lo:g}-{hi:g}R", "alpha, Fig. 6's window",
+         f"Phi above {hi:g}R minus the {lo:g}-{hi:g}R line"],
+        [[f"{x[k]:.4g}", int(n[k]), fmt(narrow[k], narrow_err[k]), fmt(wide[k], wide_err[k]),
+          f"{departures[k]:+.3f}"] for k in range(len(x))])
     where = (f"The final profiles leave the bulk (a block of {LOOSE_TOP_BLOCK:g}R more than "
              f"{LOOSE_TOP_DROP:g} below the {lo:g}-{hi:g}R line) from "
              + (f"{min(tops):g}R at the lowest, {max(tops):g}R at the highest"

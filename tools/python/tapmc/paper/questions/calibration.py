@@ -6,6 +6,7 @@ realization_scatter.csv's columns (SCATTER_HEADER)."""
 
 from __future__ import annotations
 
+from .._rst import list_table
 from ..claims import (CALIBRATION_ALPHA, RUN_ERROR_LABELS, realization_calibrations,
                       realization_sharing)
 from .common import csv_schema
@@ -23,15 +24,15 @@ def calibration_table(calib, table_names, pooled_names, headers, realizations):
     ``table_names`` (key -> name) and the line of the factors pooled over the groups for
     those of ``pooled_names``; ``headers``: (the groups' column, the errors' column);
     ``realizations(group, n)``: the text of a group's realizations cell."""
-    lines = [".. list-table::", "   :header-rows: 1", "",
-             f"   * - {headers[0]}", "     - realizations", "     - quantity",
-             "     - spread between realizations", f"     - {headers[1]}", "     - ratio"]
+    table = []
     for column in (c for c in table_names if c in calib):
         c = calib[column]
         for group in c.ratios:
-            lines += [f"   * - {group}", f"     - {realizations(group, len(c.groups[group][0]))}",
-                      f"     - {table_names[column]}", f"     - {c.spreads[group]:.3g}",
-                      f"     - {c.errors[group]:.3g}", f"     - {c.ratios[group]:.2f}"]
+            table.append([group, realizations(group, len(c.groups[group][0])),
+                          table_names[column], f"{c.spreads[group]:.3g}",
+                          f"{c.errors[group]:.3g}", f"{c.ratios[group]:.2f}"])
+    lines = list_table([headers[0], "realizations", "quantity", "spread between realizations",
+                        headers[1], "ratio"], table)
     pooled = []
     for key in (k for k in pooled_names if k in calib):
         c = calib[key]

@@ -23,6 +23,7 @@ from tapmc.crystallinity import (BULK_MARGIN_OVER_R, CRYSTAL_L, NEAR_BOUNDARY_OV
                                  Crystallinity)
 from tapmc.readers import TapmcFormatError, read_dump
 
+from .._rst import list_table
 from .common import QuestionError, csv_schema, eps_of, finished_runs, last_rows, taps_table
 
 NAME = "crystallinity"
@@ -184,29 +185,27 @@ def _table(rows, tapped, refs):
     """The list-table: the exact lattices, the initial packings per bc (means over the
     distinct ones), every run's last packing."""
     cols = ["phi_c", "Q6", "q6_mean", "crystalline_all"] + [f"crystalline_{z}" for z in ZONES]
-    lines = [".. list-table::", "   :header-rows: 1", "",
-             "   * - packing", "     - <Phi^c>", "     - Q6", "     - mean q6",
-             "     - crystalline: all"] + [f"     - {ZONES[z]}" for z in ZONES]
+    header = ["packing", "<Phi^c>", "Q6", "mean q6", "crystalline: all"] + list(ZONES.values())
+    table = []
 
     def line(label, values):
         phi, q_glob, q_loc = values[:3]
-        out = [f"   * - {label}", f"     - {_pct(phi)}",
-               f"     - {'—' if not np.isfinite(q_glob) else f'{q_glob:.3f}'}",
-               f"     - {'—' if not np.isfinite(q_loc) else f'{q_loc:.3f}'}"]
-        return out + [f"     - {_pct(v)}" for v in values[3:]]
+        return [[label, _pct(phi), '—' if not np.isfinite(q_glob) else f'{q_glob:.3f}',
+                 '—' if not np.isfinite(q_loc) else f'{q_loc:.3f}']
+                + [_pct(v) for v in values[3:]]]
 
     for name, ref in refs.items():
-        lines += line(f"{name.upper()} (exact lattice, periodic)",
+        table += line(f"{name.upper()} (exact lattice, periodic)",
                       [ref.phi, ref.Q6, ref.q6_mean, ref.crystalline_fraction]
                       + [math.nan] * len(ZONES))
     for bc in ("pbc", "fbc"):
         start = initial_packings(rows, bc)
         if start:
-            lines += line(f"initial {bc.upper()[0]}.B.C. packings (t = 0, mean of "
+            table += line(f"initial {bc.upper()[0]}.B.C. packings (t = 0, mean of "
                           f"{len(start)})", [_mean(start, k) for k in cols])
     for r in tapped:
-        lines += line(f"{r['run']} (t = {r['tap']})", [_value(r, k) for k in cols])
-    return lines
+        table += line(f"{r['run']} (t = {r['tap']})", [_value(r, k) for k in cols])
+    return list_table(header, table)
 
 
 def _finding(rows, tapped, refs):

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._rst import list_table
 from ..claims import EARLY_DECADE, back_at_start, first_decade_rates, fmt
 from ..scales import FULL
 from . import launch
@@ -109,11 +110,10 @@ def render(path):
              "is tapped up to 400 times at each eps of Fig. 2 with more Monte Carlo seeds, the "
              "campaign's own run being one of them (``early_taps.csv``; mean ± sem over "
              "realizations; the rates from the means of the decade's halves, taps 1-5 and "
-             "6-10 per tap, split at sqrt(10) per unit ln t, as the claims compute them):", "",
-             ".. list-table::", "   :header-rows: 1", "",
-             "   * - eps", "     - realizations", "     - Phi_b at t = 0", "     - t = 1",
-             "     - t = 10", "     - spread at t = 10", "     - rate per tap",
-             "     - rate per unit ln t", "     - back at the t = 0 value from tap"]
+             "6-10 per tap, split at sqrt(10) per unit ln t, as the claims compute them):", ""]
+    header = ["eps", "realizations", "Phi_b at t = 0", "t = 1", "t = 10", "spread at t = 10",
+              "rate per tap", "rate per unit ln t", "back at the t = 0 value from tap"]
+    table = []
     taps = np.arange(EARLY_DECADE[0], EARLY_DECADE[1] + 1)
     for eps in sorted(curves):
         series = [c for c in curves[eps].values() if all(k in c for k in [0, *taps])]
@@ -128,13 +128,11 @@ def render(path):
             sem = float(np.std(values, ddof=1) / math.sqrt(n))
             return float(np.mean(values)), sem if sem > 0 else None
 
-        lines += [f"   * - {eps:g}", f"     - {n}", f"     - {fmt(*mean_sem(x[:, 0]), digits=5)}",
-                  f"     - {fmt(*mean_sem(x[:, 1]), digits=5)}",
-                  f"     - {fmt(*mean_sem(x[:, -1]), digits=5)}",
-                  f"     - {fmt(float(np.std(x[:, -1], ddof=1)))}",
-                  f"     - {fmt(*mean_sem(rates[:, 0]))}", f"     - {fmt(*mean_sem(rates[:, 1]))}",
-                  f"     - {back_at_start_text(curves[eps])}"]
-    return lines + ["", "The claim on the compaction's efficiency "
+        table.append([f"{eps:g}", n, fmt(*mean_sem(x[:, 0]), digits=5),
+                      fmt(*mean_sem(x[:, 1]), digits=5), fmt(*mean_sem(x[:, -1]), digits=5),
+                      fmt(float(np.std(x[:, -1], ddof=1))), fmt(*mean_sem(rates[:, 0])),
+                      fmt(*mean_sem(rates[:, 1])), back_at_start_text(curves[eps])])
+    return lines + list_table(header, table) + ["", "The claim on the compaction's efficiency "
                     "takes its first-decade rates from these realizations (their error over "
                     "realizations, n - 1 degrees of freedom) and its late rates from the "
                     "campaign's run (batch means). The first taps loosen the deposited "

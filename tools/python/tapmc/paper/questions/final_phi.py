@@ -10,6 +10,7 @@ import math
 
 import numpy as np
 
+from .._rst import list_table
 from ..claims import fmt
 from ..front import REFERENCE, SETTINGS, setting_named
 
@@ -51,19 +52,18 @@ def render(fig9, etas, front_rows):
              f"{int(rows[own]['paired_seeds'])} paired seed{'s' if rows[own]['paired_seeds'] != 1 else ''}) measures how much each setting "
              "moves the steady <Phi^c> (its stopping settings; d_max stays the paper's R/5); carried to Fig. 9's run, assuming the shifts hold at "
              "its N and tap count (value + shift; error: the two biases' standard errors "
-             "combined):", "",
-             ".. list-table::", "   :header-rows: 1", "",
-             "   * - setting", "     - CPU s per tap (front)", "     - shift against "
-             f"eta = {etas[0]:g}", "     - Fig. 9's steady <Phi^c> with it"]
-    predicted = []
+             "combined):", ""]
+    table, predicted = [], []
     for r in ordered:
         shift = r["phi_c_steady_bias"] - base
         shift_se = 0.0 if r["setting"] == own else math.hypot(r["phi_c_steady_bias_se"], base_se)
         value = phi + shift
         predicted.append((value, r["setting"], math.hypot(shift_se, phi_se)))
-        lines += [f"   * - {r['setting']}", f"     - {r['cpu_per_tap']:.3f}",
-                  "     - 0" if r["setting"] == own else f"     - {fmt(shift, shift_se, True)}",
-                  f"     - {fmt(value, math.hypot(shift_se, phi_se), True)}"]
+        table.append([r['setting'], f"{r['cpu_per_tap']:.3f}",
+                      "0" if r["setting"] == own else fmt(shift, shift_se, True),
+                      fmt(value, math.hypot(shift_se, phi_se), True)])
+    lines += list_table(["setting", "CPU s per tap (front)", f"shift against eta = {etas[0]:g}",
+                         "Fig. 9's steady <Phi^c> with it"], table)
     lo, hi = min(predicted), max(predicted)
     closest = min(predicted, key=lambda p: abs(p[0] - PAPER_FINAL_PHI_C))
     if lo[0] <= PAPER_FINAL_PHI_C <= hi[0]:

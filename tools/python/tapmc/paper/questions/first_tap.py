@@ -13,6 +13,7 @@ import numpy as np
 
 from tapmc.stats import beyond
 
+from .._rst import list_table
 from ..claims import fmt
 from . import launch
 from .common import PAPER, csv_schema, work_folder
@@ -60,11 +61,8 @@ def render(path):
         groups[(float(r["eps"]), float(r["eta"]))].append(r)
     lines = ["The first tap of P.B.C. runs lowers <Phi^c> (the dip of the first taps). Is it the "
              "model or a redeposition stopped too early? One tap from the same fresh packings "
-             "(N = 4096, L = 32R), at three eta (``first_tap.csv``; mean ± sem over seeds):", "",
-             ".. list-table::", "   :header-rows: 1", "",
-             "   * - eps", "     - eta", "     - <Phi^c> at t = 0", "     - after one tap",
-             "     - change", "     - sweeps"]
-    drops = {}
+             "(N = 4096, L = 32R), at three eta (``first_tap.csv``; mean ± sem over seeds):", ""]
+    table, drops = [], {}
     for (eps, eta), group in sorted(groups.items(), key=lambda kv: (kv[0][0], -kv[0][1])):
         p0 = np.array([float(r["phi_c_0"]) for r in group])
         p1 = np.array([float(r["phi_c_1"]) for r in group])
@@ -72,10 +70,11 @@ def render(path):
         d = p1 - p0
         sem = float(np.std(d, ddof=1) / math.sqrt(len(d))) if len(d) > 1 else math.nan
         drops[(eps, eta)] = (float(np.mean(d)), sem, len(d))
-        lines += [f"   * - {eps:g}", f"     - {eta:g}", f"     - {fmt(np.mean(p0), None, True)}",
-                  f"     - {fmt(np.mean(p1), None, True)}",
-                  f"     - {fmt(np.mean(d), sem, True)}", f"     - {np.mean(sweeps):.0f}"]
-    lines.append("")
+        table.append([f"{eps:g}", f"{eta:g}", fmt(np.mean(p0), None, True),
+                      fmt(np.mean(p1), None, True), fmt(np.mean(d), sem, True),
+                      f"{np.mean(sweeps):.0f}"])
+    lines += list_table(["eps", "eta", "<Phi^c> at t = 0", "after one tap", "change", "sweeps"],
+                        table) + [""]
     for eps in sorted({e for e, _ in drops}):
         etas = sorted(eta for e, eta in drops if e == eps)
         loose, tight = drops[(eps, etas[-1])], drops[(eps, etas[0])]

@@ -16,6 +16,7 @@ import numpy as np
 from tapmc.laws import (DETERMINED_FACTOR, RELATIVE_ERROR_LIMIT, InverseLogLaw, SurrogateFits,
                         ZLaw)
 
+from .._rst import list_table
 from .common import csv_schema, eps_of, finished_runs, last_rows, taps_table
 from .early_taps import CSV as EARLY_CSV, load as load_early
 
@@ -135,10 +136,8 @@ def render(path, seed_rows=None):
              "first taps (``early_taps.csv``) and give the spread of the fitted values over "
              "them, which needs no such model. Value, 16-84 % band (B and tau judged in ln: "
              "determined when the band is at most a factor 2 either side; the others when "
-             "its half width is at most the value), and the range test's p-value:", "",
-             ".. list-table::", "   :header-rows: 1", "",
-             "   * - source", "     - eps", "     - law", "     - taps", "     - fits",
-             "     - parameters (value, band, determined?, range p)"]
+             "its half width is at most the value), and the range test's p-value:", ""]
+    table = []
     for (_, law, eps, source, taps, fits), group in sorted(groups.items()):
         cells = []
         for r in group:
@@ -149,9 +148,9 @@ def render(path, seed_rows=None):
                          f"{'' if p == 'nan' else f', range p {float(p):.2g}'})")
         name = "realizations" if source == "realizations" else \
             f"campaign run {source.rsplit('_', 1)[1]}"
-        lines += [f"   * - {name}",
-                  f"     - {eps:g}", f"     - {law.replace('eq', 'eq. ')}", f"     - {taps}",
-                  f"     - {fits}", f"     - {'; '.join(cells)}"]
+        table.append([name, f"{eps:g}", law.replace('eq', 'eq. '), taps, fits, '; '.join(cells)])
+    lines += list_table(["source", "eps", "law", "taps", "fits",
+                         "parameters (value, band, determined?, range p)"], table)
     b_rows = [(key, r) for key, group in groups.items() for r in group
               if r["parameter"] == "B" and key[1] == "eq3"]
     runs = [r for key, r in b_rows if not key[0]]

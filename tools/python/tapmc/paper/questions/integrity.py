@@ -14,6 +14,7 @@ from collections import defaultdict
 from tapmc.packing import PackingCheck
 from tapmc.readers import TapmcFormatError, read_dump
 
+from .._rst import list_table
 from ..claims import fmt
 from .common import QuestionError, csv_schema, last_rows, runs_folder, taps_table
 
@@ -133,11 +134,10 @@ def render(path):
              "its diameter); and Phi_b, <Phi^c>, <Z>, z_top and h_s recomputed from the "
              "positions against the run's printed row of that tap, as the largest difference "
              "in units of what the print's last digit and the dump's rounding allow (below 1 "
-             "is agreement):", "",
-             ".. list-table::", "   :header-rows: 1", "",
-             "   * - run", "     - dumps at taps", "     - spheres",
-             "     - closest pair, t = 0", "     - closest pair after taps", "     - overlaps",
-             "     - floor gap", "     - wall gap", "     - printed scalars"]
+             "is agreement):", ""]
+    header = ["run", "dumps at taps", "spheres", "closest pair, t = 0",
+              "closest pair after taps", "overlaps", "floor gap", "wall gap", "printed scalars"]
+    table = []
 
     def low(items, key):
         values = [float(r[key]) for r in items if r[key] != ""]
@@ -156,17 +156,15 @@ def render(path):
             worst_all = (float(worst["scalars_worst"]), worst["scalars_worst_column"], run,
                          worst["tap"])
         counts = sorted({int(r["n"]) for r in items})
-        lines += [f"   * - {run}", f"     - {', '.join(r['tap'] for r in items)}",
-                  f"     - {', '.join(map(str, counts))}",
-                  f"     - {gap(low([r for r in items if r['tap'] == '0'], 'min_gap'))}",
-                  f"     - {gap(low([r for r in items if r['tap'] != '0'], 'min_gap'))}",
-                  f"     - {sum(int(r['overlaps']) for r in items)}",
-                  f"     - {fmt(low(items, 'floor_gap'))}",
-                  f"     - {'periodic' if wall is None else fmt(wall)}",
-                  "     - " + ("not printed" if worst is None else
-                               f"{float(worst['scalars_worst']):.2f} "
-                               f"({worst['scalars_worst_column']}, t = {worst['tap']})")]
-    return lines + _summary(rows, by_run, worst_all)
+        table.append([run, ', '.join(r['tap'] for r in items), ', '.join(map(str, counts)),
+                      gap(low([r for r in items if r['tap'] == '0'], 'min_gap')),
+                      gap(low([r for r in items if r['tap'] != '0'], 'min_gap')),
+                      sum(int(r['overlaps']) for r in items), fmt(low(items, 'floor_gap')),
+                      'periodic' if wall is None else fmt(wall),
+                      "not printed" if worst is None else
+                      f"{float(worst['scalars_worst']):.2f} "
+                      f"({worst['scalars_worst_column']}, t = {worst['tap']})"])
+    return lines + list_table(header, table) + _summary(rows, by_run, worst_all)
 
 
 def _summary(rows, by_run, worst_all):

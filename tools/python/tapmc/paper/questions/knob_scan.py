@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._rst import list_table
 from ..claims import (SCANS, STATISTICS, ReportData, fmt, load_register, scan_settings,
                       scan_table, verdict)
 from . import launch
@@ -140,14 +141,12 @@ def render(path, knob):
              f"fresh packings (N = {first['N']}, P.B.C., {scan_settings(rows)}) at each {name} "
              f"(``{Path(path).name}``; gain: <Phi^c> over the last 10 taps minus <Phi^c> at "
              f"t = 0, mean ± sem over seeds; against {paper}: the paired difference on the same "
-             "seeds):", "",
-             ".. list-table::", "   :header-rows: 1", "",
-             f"   * - {name}", "     - gain of <Phi^c>", f"     - against {paper}",
-             "     - sweeps per tap"]
-    for r in table:
-        lines += [f"   * - {r['name']}", f"     - {fmt(r['gain'], r['gain_sem'], True)}",
-                  "     - 0" if r["is_paper"] else f"     - {fmt(r['vs_paper'], r['vs_paper_sem'], True)}",
-                  f"     - {np.mean(sweeps[r['value']]):.0f}"]
+             "seeds):", ""]
+    lines += list_table(
+        [name, "gain of <Phi^c>", f"against {paper}", "sweeps per tap"],
+        [[r['name'], fmt(r['gain'], r['gain_sem'], True),
+          "0" if r["is_paper"] else fmt(r['vs_paper'], r['vs_paper_sem'], True),
+          f"{np.mean(sweeps[r['value']]):.0f}"] for r in table])
     claim = next(c for c in load_register() if c.statistic == statistic)
     measures = STATISTICS[statistic](ReportData({}, {}, (), {knob: [rows]}), claim)
     below = any(m.lacks for m in measures)

@@ -13,6 +13,7 @@ from collections import defaultdict
 
 import numpy as np
 
+from .._rst import list_table
 from ..claims import fmt
 from . import launch
 from .common import PAPER, csv_schema, work_folder
@@ -66,10 +67,8 @@ def render(path, fig8=None):
              "The campaign's F.B.C. runs start from packings deposited between the walls; the "
              "paper's start (periodic deposition, then the walls and a slight agitation) tapped "
              f"{last} times at each eps (``lateral_first_tap.csv``; delta Phi against t = 0, "
-             "mean ± sem over seeds):", "",
-             ".. list-table::", "   :header-rows: 1", "",
-             "   * - eps", "     - seeds", "     - delta Phi_lateral, t = 1",
-             "     - delta Phi_central, t = 1", f"     - delta Phi_lateral, t = {last}"]
+             "mean ± sem over seeds):", ""]
+    table = []
 
     def stat(values):
         v = np.asarray(values)
@@ -83,9 +82,11 @@ def render(path, fig8=None):
         lat1 = [t[1][0] - t[0][0] for t in seeds.values()]
         jumps[eps] = float(np.mean(lat1))
         more &= jumps[eps] > float(np.mean([t[1][1] - t[0][1] for t in seeds.values()]))
-        lines += [f"   * - {eps:g}", f"     - {len(seeds)}", f"     - {stat(lat1)}",
-                  f"     - {stat([t[1][1] - t[0][1] for t in seeds.values()])}",
-                  f"     - {stat([t[last][0] - t[0][0] for t in seeds.values()])}"]
+        table.append([f"{eps:g}", len(seeds), stat(lat1),
+                      stat([t[1][1] - t[0][1] for t in seeds.values()]),
+                      stat([t[last][0] - t[0][0] for t in seeds.values()])])
+    lines += list_table(["eps", "seeds", "delta Phi_lateral, t = 1", "delta Phi_central, t = 1",
+                         f"delta Phi_lateral, t = {last}"], table)
     walls = []
     if fig8 is not None:
         for s in fig8.series("a"):

@@ -24,6 +24,7 @@ from tapmc.pores import percus_yevick_p0, read_pores
 
 from .. import _runs
 from .._pores import P0_POINTS
+from .._rst import list_table
 from ..claims import fmt
 from .common import QuestionError, csv_schema, write_csv
 
@@ -268,18 +269,14 @@ def render(path, fig9=None):
              f"hard-sphere fluids of N = {int(f['N'][0])} spheres in a periodic cube (NVT "
              f"Monte Carlo, ``p0_fluid.csv``; mean ± sem over {configs} configurations per "
              "Phi; the contact value g(1+) against Carnahan-Starling checks the equilibrium):",
-             "",
-             ".. list-table::", "   :header-rows: 1", "",
-             "   * - Phi", "     - max abs(P0 - PY)", "     - at sigma", "     - P0 - PY there",
-             "     - g(1+)", "     - Carnahan-Starling",
-             "     - MSD before sampling (diameters²)"]
-    for k in range(len(rows)):
-        lines += [f"   * - {f['phi'][k]:.3f}",
-                  f"     - {fmt(f['max_abs_diff'][k], f['max_abs_diff_sem'][k])}",
-                  f"     - {f['sigma_at_max'][k]:.3f}", f"     - {f['diff_at_max'][k]:+.4f}",
-                  f"     - {f['g_contact'][k]:.3f} ± {f['g_contact_sem'][k]:.3f}",
-                  f"     - {f['g_contact_cs'][k]:.3f}", f"     - {f['eq_msd'][k]:.2f}"]
-    lines.append("")
+             ""]
+    header = ["Phi", "max abs(P0 - PY)", "at sigma", "P0 - PY there", "g(1+)",
+              "Carnahan-Starling", "MSD before sampling (diameters²)"]
+    lines += list_table(header, [
+        [f"{f['phi'][k]:.3f}", fmt(f['max_abs_diff'][k], f['max_abs_diff_sem'][k]),
+         f"{f['sigma_at_max'][k]:.3f}", f"{f['diff_at_max'][k]:+.4f}",
+         f"{f['g_contact'][k]:.3f} ± {f['g_contact_sem'][k]:.3f}", f"{f['g_contact_cs'][k]:.3f}",
+         f"{f['eq_msd'][k]:.2f}"] for k in range(len(rows))]) + [""]
     off = np.abs(f["g_contact"] / f["g_contact_cs"] - 1)
     bad = [f"{p:.3f}" for p, o in zip(f["phi"], off) if not o <= CONTACT_TOLERANCE]
     if bad:

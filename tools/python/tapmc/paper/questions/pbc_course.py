@@ -16,6 +16,7 @@ import numpy as np
 from tapmc.fluctuations import DEFAULT_BATCHES, SteadyState
 from tapmc.stats import beyond
 
+from .._rst import list_table
 from ..claims import fmt
 from .common import csv_schema, eps_of, finished_runs, taps_table
 
@@ -117,21 +118,18 @@ def render(path, factors=None):
              "second half minus its first" + (
                  f"; both errors times the realizations' factor, {steady_k:.1f} and "
                  f"{halves_k:.1f} (realization-scatter)" if (steady_k, halves_k) != (1.0, 1.0)
-                 else "") + "):", "",
-             ".. list-table::", "   :header-rows: 1", "",
-             "   * - eps", "     - seed", "     - <Phi^c> at t = 0", "     - lowest (tap)",
-             "     - back from tap", "     - steady", "     - halves"]
-    summary = {}
+                 else "") + "):", ""]
+    table, summary = [], {}
     for eps in sorted(by_eps):
         group = by_eps[eps]
         for r in sorted(group, key=lambda r: int(r["seed"])):
             back = r["tap_back"] or "never"
-            lines += [f"   * - {eps:g}", f"     - {r['seed']}",
-                      f"     - {fmt(float(r['phi_c_0']), None, True)}",
-                      f"     - {fmt(float(r['phi_c_min']), None, True)} ({r['tap_min']})",
-                      f"     - {back}",
-                      f"     - {fmt(float(r['phi_c_steady']), steady_k * float(r['phi_c_steady_sem']), True)}",
-                      f"     - {fmt(float(r['steady_halves_diff']), halves_k * float(r['steady_halves_diff_sem']), True)}"]
+            table.append([
+                f"{eps:g}", r['seed'], fmt(float(r['phi_c_0']), None, True),
+                f"{fmt(float(r['phi_c_min']), None, True)} ({r['tap_min']})", back,
+                fmt(float(r['phi_c_steady']), steady_k * float(r['phi_c_steady_sem']), True),
+                fmt(float(r['steady_halves_diff']),
+                    halves_k * float(r['steady_halves_diff_sem']), True)])
         col = {k: np.array([float(r[k]) if r[k] != "" else math.nan for r in group])
                for k in ("phi_c_0", "phi_c_min", "tap_back", "phi_c_steady", "phi_c_steady_sem",
                          "steady_halves_diff", "steady_halves_diff_sem")}
@@ -146,7 +144,9 @@ def render(path, factors=None):
                         "halves": float(np.mean(col["steady_halves_diff"])),
                         "halves_se": float(np.sqrt(np.sum(col["steady_halves_diff_sem"] ** 2))
                                            / n)}
-    return lines + _readings(summary)
+    header = ["eps", "seed", "<Phi^c> at t = 0", "lowest (tap)", "back from tap", "steady",
+              "halves"]
+    return lines + list_table(header, table) + _readings(summary)
 
 
 def _readings(summary):

@@ -28,6 +28,7 @@ import numpy as np
 from tapmc.fluctuations import SteadyState
 from tapmc.stats import beyond
 
+from .._rst import list_table
 from .._steady_state import steady_last
 from ..claims import RAMP_LEVELS_DEFAULT_RUN, ReportData, fmt, hysteresis_gap
 from . import launch
@@ -161,10 +162,10 @@ def render(path, fig4=None, factors=None):
              f"{longer} taps (``ramp_levels.csv``; <Phi^c> over the last quarter of the level, "
              "batch-means errors" + (f"; the shift's error times {k:.1f}, the realizations' "
                                      "factor of a difference of two windows of one run "
-                                     "(realization-scatter)" if k != 1.0 else "") + "):", "",
-             ".. list-table::", "   :header-rows: 1", "",
-             "   * - ramp", "     - level (branch)", "     - sqrt(eps)",
-             f"     - after {taps} taps", f"     - after {longer} taps", "     - shift"]
+                                     "(realization-scatter)" if k != 1.0 else "") + "):", ""]
+    header = ["ramp", "level (branch)", "sqrt(eps)", f"after {taps} taps",
+              f"after {longer} taps", "shift"]
+    cells = []
     shifts = defaultdict(list)
     for r in rows:
         ramp = r.get("ramp") or RAMP_LEVELS_DEFAULT_RUN
@@ -173,9 +174,10 @@ def render(path, fig4=None, factors=None):
         shifts[ramp].append((b - a, k * math.hypot(ea, eb)))
         start = r.get("start") or "run"
         mark = "; replayed" if start.startswith("replay") else ""
-        lines += [f"   * - {ramp}", f"     - {r['level']} ({BRANCH_NAMES[int(r['branch'])]}{mark})",
-                  f"     - {float(r['sqrt_eps']):g}", f"     - {fmt(a, ea, True)}",
-                  f"     - {fmt(b, eb, True)}", f"     - {fmt(*shifts[ramp][-1], True)}"]
+        cells.append([ramp, f"{r['level']} ({BRANCH_NAMES[int(r['branch'])]}{mark})",
+                      f"{float(r['sqrt_eps']):g}", fmt(a, ea, True), fmt(b, eb, True),
+                      fmt(*shifts[ramp][-1], True)])
+    lines += list_table(header, cells)
     gap = None if fig4 is None else hysteresis_gap(ReportData({}, {"fig4": fig4}))
     texts = []
     for ramp, moves in shifts.items():

@@ -17,6 +17,7 @@ from pathlib import Path
 from tapmc.pores import jackknife_error, read_pores
 
 from .. import _pores, _runs
+from .._rst import list_table
 from ..claims import fmt
 from . import launch
 from .common import QuestionError, read_csv, work_folder, write_csv
@@ -162,15 +163,13 @@ def render(path):
              "of the campaign's ramp analysed as Fig. 10's dumps are (``ramp_pores.csv``: one "
              "packing per level, the statistics box from 2R to "
              f"{float(rows[0]['window_top']):g}R above the floor, the error the lateral "
-             "jackknife over 4 x 4 blocks):", "",
-             ".. list-table::", "   :header-rows: 1", "",
-             "   * - run", "     - level (branch)", "     - sqrt(eps)", "     - nu"]
+             "jackknife over 4 x 4 blocks):", ""]
+    table = []
     for r in rows:
         mark = "; replayed" if r["source"].startswith("replay") else ""
-        lines += [f"   * - {r['run']}",
-                  f"     - {r['level']} ({BRANCH_NAMES[int(r['branch'])]}{mark})",
-                  f"     - {float(r['sqrt_eps']):g}",
-                  f"     - {fmt(float(r['nu']), float(r['nu_sem']))}"]
+        table.append([r['run'], f"{r['level']} ({BRANCH_NAMES[int(r['branch'])]}{mark})",
+                      f"{float(r['sqrt_eps']):g}", fmt(float(r['nu']), float(r['nu_sem']))])
+    lines += list_table(["run", "level (branch)", "sqrt(eps)", "nu"], table)
     text = ("The levels marked replayed are the ends of a replay of the ramp (``--replay``, "
             "bit for bit the campaign's taps) where the campaign's restart file was gone; the "
             "claims table reads the signs (``nu-hysteresis``).")

@@ -15,6 +15,7 @@ import numpy as np
 
 from tapmc.laws import RealizationFits
 
+from .._rst import list_table
 from .common import csv_schema, last_rows, seed_groups, taps_table
 from .fit_surrogates import FIT_LAWS, law as fit_law
 
@@ -88,10 +89,8 @@ def render(path):
              "amplitudes against their mean), and the paired t-test of the fits over taps "
              "1-T/4, 1-T/2 and T/10-T against all taps (p, Bonferroni over the ranges; range "
              "dependent below 0.01). Unlike one run's surrogates, this needs no model of the "
-             "noise, and decides both ways:", "",
-             ".. list-table::", "   :header-rows: 1", "",
-             "   * - group", "     - law", "     - runs", "     - taps",
-             "     - parameters (mean; sd with its 95 % interval; verdict; range p)"]
+             "noise, and decides both ways:", ""]
+    table = []
     for (bc, eps, group, law), group_rows in sorted(groups.items()):
         cells = []
         for r in group_rows:
@@ -101,8 +100,9 @@ def render(path):
                          f"{float(r['spread_low']):.2g} to {float(r['spread_high']):.2g}; "
                          f"{states[r['determined']]}; range p {float(r['range_p']):.2g})")
         first = group_rows[0]
-        lines += [f"   * - {group}", f"     - {law.replace('eq', 'eq. ')}",
-                  f"     - {first['realizations']}", f"     - {first['taps']}",
-                  f"     - {'; '.join(cells)}"]
-    return lines + [""]
+        table.append([group, law.replace('eq', 'eq. '), first['realizations'], first['taps'],
+                      '; '.join(cells)])
+    header = ["group", "law", "runs", "taps",
+              "parameters (mean; sd with its 95 % interval; verdict; range p)"]
+    return lines + list_table(header, table) + [""]
 
