@@ -342,37 +342,44 @@ def campaign_eta(summary):
     return etas[0] if len(etas) == 1 else None
 
 
+def _finding_csv(files, name):
+    """A finding's CSV, questions/<name> next to the figures; None without figures or file."""
+    if not files:
+        return None
+    path = Path(next(iter(files.values()))[1]).parent / questions.FOLDER / name
+    return path if path.exists() else None
+
+
+def _finding_source(unit, name, command):
+    """Where a finding's numbers are, as the page cites them."""
+    return (f" Per {unit}: ``{Path(FIG_DIR) / questions.FOLDER / name}`` "
+            f"(``tapmc-paper {command}``).")
+
+
 def _paper_ramp_finding(files, summary):
     """(headline, finding): the answer about the irreversible branch at the paper's ramp
     protocol in one sentence, and with its numbers, from questions/paper_ramp.csv next to the
     figures (``tapmc-paper paper-ramp``), or ("", "")."""
-    if not files:
-        return "", ""
-    path = Path(next(iter(files.values()))[1]).parent / questions.FOLDER / paper_ramp.CSV_NAME
-    if not path.exists():
+    path = _finding_csv(files, paper_ramp.CSV_NAME)
+    if path is None:
         return "", ""
     rows = paper_ramp.read_csv(path)
     default_eta = campaign_eta(summary)
-    text = paper_ramp.finding_text(rows, default_eta)
     return (paper_ramp.headline_text(rows, default_eta)
             + " The numbers with their errors: the first open question below.",
-            text + (" Per run: ``" + str(Path(FIG_DIR) / questions.FOLDER / paper_ramp.CSV_NAME)
-                    + "`` (``tapmc-paper paper-ramp``)."))
+            paper_ramp.finding_text(rows, default_eta)
+            + _finding_source("run", paper_ramp.CSV_NAME, "paper-ramp"))
 
 
 def _sigma_eta_finding(files, default_eta):
     """The finding about sigma_<Z> against eta (section III.A, Fig. 3: is its offset the
     redeposition's noise?) from questions/sigma_eta.csv next to the figures (``tapmc-paper
     sigma-eta``), or ""."""
-    if not files:
-        return ""
-    path = Path(next(iter(files.values()))[1]).parent / questions.FOLDER / sigma_eta.CSV_NAME
-    if not path.exists():
+    path = _finding_csv(files, sigma_eta.CSV_NAME)
+    if path is None:
         return ""
     text = sigma_eta.finding_text(sigma_eta.read_csv(path), default_eta)
-    return text and text + (" Per point: ``" + str(Path(FIG_DIR) / questions.FOLDER /
-                                                  sigma_eta.CSV_NAME) + "`` (``tapmc-paper "
-                            "sigma-eta``).")
+    return text and text + _finding_source("point", sigma_eta.CSV_NAME, "sigma-eta")
 
 
 def _appendix_line():
