@@ -59,6 +59,8 @@ def test_frozen_compacting_and_running_ramps(tmp_path):
     assert back[0] == list(rows.values())[0]
     text = paper_ramp.finding_text(back, 1e-7)
     assert "At eta = 1e-7 (the default), the model has an irreversible (frozen) branch" in text
+    # a seed still on its way is named beside the decided one, not counted
+    assert "; not counted yet: seed 2 at tap 161, still going up." in text
     assert "At eta = 1e-5, the model has no irreversible branch: the descending branch compacts" in text
     progress = paper_ramp.progress_text(2, 12000, running.down_levels)
     assert f"At eta = 1e-6 the ramp has not come down two levels yet ({progress}): undecided." \

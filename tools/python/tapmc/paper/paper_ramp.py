@@ -135,11 +135,15 @@ def write_csv(rows, path):
 
 def read_csv(path):
     """The rows of :func:`write_csv` as :class:`PaperRampRun` (types restored)."""
+    with open(path) as f:
+        return runs_from_rows(csv.DictReader(f))
+
+
+def runs_from_rows(rows):
+    """CSV rows of :func:`write_csv` (dicts of text) as :class:`PaperRampRun`."""
     kinds = {fl.name: fl.type for fl in fields(PaperRampRun)}
     convert = {"str": str, "float": float, "int": int, "bool": lambda v: v == "True"}
-    with open(path) as f:
-        return [PaperRampRun(**{k: convert[kinds[k]](v) for k, v in row.items()})
-                for row in csv.DictReader(f)]
+    return [PaperRampRun(**{k: convert[kinds[k]](v) for k, v in row.items()}) for row in rows]
 
 
 def eta_text(eta):
@@ -156,17 +160,21 @@ def progress_text(seed, taps_done, down_levels):
     return f"seed {seed} at tap {taps_done}, {where}"
 
 
-def by_eta(rows, default_eta):
-    """(label, decided, running) per eta of the rows, the loosest first: the label names the
-    default eta; ``decided`` are the seeds whose ramp came down two levels, ``running`` says
-    how far the others got (:func:`progress_text`)."""
+def by_eta(rows):
+    """(eta, decided, running) per eta of the rows (:class:`PaperRampRun`), the loosest first:
+    ``decided`` are the seeds whose ramp came down two levels, ``running`` says how far the
+    others got (:func:`progress_text`; "" when none is running)."""
     for eta in sorted({r.eta for r in rows}, reverse=True):
         group = [r for r in rows if r.eta == eta]
         decided = [r for r in group if r.verdict != "running"]
-        label = f"eta = {eta_text(eta)}" + (" (the default)" if eta == default_eta else "")
         running = "; ".join(progress_text(r.seed, r.taps_done, r.down_levels) for r in group
                             if r.verdict == "running")
-        yield label, decided, running
+        yield eta, decided, running
+
+
+def eta_label(eta, default_eta):
+    """'eta = 1e-7 (the default)', or without the parenthesis for another eta."""
+    return f"eta = {eta_text(eta)}" + (" (the default)" if eta == default_eta else "")
 
 
 def headline_text(rows, default_eta):
@@ -177,7 +185,8 @@ def headline_text(rows, default_eta):
     if not rows:
         return ""
     parts = []
-    for label, decided, running in by_eta(rows, default_eta):
+    for eta, decided, running in by_eta(rows):
+        label = eta_label(eta, default_eta)
         if not decided:
             parts.append(f"{label}: undecided, {NOT_DOWN_YET} ({running})")
             continue
@@ -201,7 +210,8 @@ def finding_text(rows, default_eta):
     if not rows:
         return ""
     parts = []
-    for label, decided, running in by_eta(rows, default_eta):
+    for eta, decided, running in by_eta(rows):
+        label = eta_label(eta, default_eta)
         if not decided:
             parts.append(f"at {label} {NOT_DOWN_YET} ({running}): undecided.")
             continue
@@ -219,7 +229,8 @@ def finding_text(rows, default_eta):
         else:
             head = "the model has no frozen branch: the descending branch moves"
         parts.append(f"at {label}, {head} ({len(decided)} seed{'s' if len(decided) > 1 else ''};"
-                     f" <Phi^c> of the descending levels, {seeds})")
+                     f" <Phi^c> of the descending levels, {seeds})"
+                     + (f"; not counted yet: {running}" if running else ""))
     return ("Section III.B's question at the paper's own ramp protocol (N = 4096, L = 32R, "
             f"P.B.C., {TAPS_PER_LEVEL} taps per level, steps of 0.025 in sqrt(eps), turning "
             "below (sqrt eps)* ~ 0.15; means of the last "

@@ -15,7 +15,7 @@ from tapmc.hysteresis import CRITICAL_SQRT_EPS, LEVEL_TOLERANCE
 from tapmc.stats import t_quantile, weighted_line, welch_dof
 
 from .. import fig4, fig6
-from ..paper_ramp import NOT_DOWN_YET, TAPS_PER_LEVEL as PAPER_RAMP_TAPS, progress_text
+from ..paper_ramp import NOT_DOWN_YET, TAPS_PER_LEVEL as PAPER_RAMP_TAPS, by_eta, runs_from_rows
 
 from .common import (above, below, common_x, curve_of, mean_difference, not_in_campaign,
                      paired_levels, protocol_label, seed_mean_of, seeds_error, steady_dof,
@@ -337,26 +337,21 @@ def _paper_protocol_frozen(data, effect):
     Seeds not yet two levels down leave the row undecided, saying how far they got. These runs
     have the paper's taps per level, which the campaign's Fig. 4 ramps may lack (``meets``)."""
     out = []
-    rows = data.question("paper_ramp")
-    for eta in sorted({float(r["eta"]) for r in rows}, reverse=True):
-        group = [r for r in rows if float(r["eta"]) == eta]
-        decided = [r for r in group if r["verdict"] != "running"]
+    for eta, decided, running in by_eta(runs_from_rows(data.question("paper_ramp"))):
         label = protocol_label(PAPER_RAMP_TAPS, eta)
         if not decided:
-            running = "; ".join(progress_text(r["seed"], r["taps_done"], r["down_levels"])
-                                for r in group)
             out.append(Measure(label=label, meets=("ramp_taps",),
                                undecided=f"{NOT_DOWN_YET} ({running})"))
             continue
-        values = [float(r["down_change"]) for r in decided]
-        errors = [float(r["down_change_sem"]) for r in decided]
+        values = [r.down_change for r in decided]
+        errors = [r.down_change_sem for r in decided]
         if len(decided) >= 2:
             err, dof, how, _ = seeds_error(data, values, errors, "phi_c")
         else:
             err = data.run_error("phi_c:halves")[0] * errors[0]
             dof, how = WITHIN_RUN_DOF, "one seed"
         m = float(np.mean(values))
-        tops = ", ".join(sorted({f"{float(r['top']):g}" for r in decided}))
+        tops = ", ".join(sorted({f"{r.top:g}" for r in decided}))
         out.append(Measure(m, err, dof, label=label, meets=("ramp_taps",), effect=effect,
                            shown=f"{fmt(m, err)} (decrease minus turning level {tops}"
                                  + (f"; {how})" if how else ")")))
