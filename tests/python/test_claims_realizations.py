@@ -3,7 +3,11 @@
 factors of groups of seeds, the ramps' levels and their reduction, the pooled error of two
 seeds (known answers on synthetic figure data, claims_fakes.py)."""
 
+import csv
+
 from claims_fakes import *  # noqa: F401,F403  (the synthetic figure data and controls)
+
+from tapmc.paper import paper_ramp  # noqa: E402
 
 
 def test_fig2_laws_across_realizations_of_early_taps():
@@ -548,6 +552,64 @@ def test_ramp_first_increase_of_two_seeds_against_the_squares_adds_the_squares_o
     del tab.table[("params", "ramp:up1_at_steady:seeds")]
     (curves,) = claims.ramp_up_minus_steady(_with_scatter(tab), claim)
     assert "seeds" not in curves.text() and curves.value == pytest.approx(0.001)
+
+
+def _paper_ramps(tmp_path, runs):
+    """paper_ramp.csv's text rows (as the report reads them) of ``runs``: (seed, eta, first
+    increase's levels done whole, their <Phi^c>)."""
+    nan = float("nan")
+    rows = [paper_ramp.PaperRampRun(
+        run=f"paperramp0.125_pbc_s{seed}", top=0.125, eta=eta, seed=seed, taps_done=4000 * len(x),
+        finished=False, down_levels=0, down_first=nan, down_last=nan, down_change=nan,
+        down_change_sem=nan, down_rise=nan, down_rise_sem=nan, verdict="running",
+        up_sqrt_eps=tuple(x), up_mean=tuple(y), up_sem=(0.0002,) * len(x))
+        for seed, eta, x, y in runs]
+    path = paper_ramp.write_csv(rows, tmp_path / "paper_ramp.csv")
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def test_ramp_first_increase_at_the_paper_protocol_against_the_squares(tmp_path):
+    """The ramps at the paper's own protocol (paper_ramp.csv) at the campaign's eta: a seed
+    whose first increase is done to its turning level 0.125 is held against the squares at
+    the sqrt(eps) they share (0.05-0.125 of X), with its levels' errors times the realizations'
+    factor and the squares' errors added; 0.0001 above them agrees, 0.01 above (the control)
+    disagrees; a seed still going up and a ramp at another eta are not counted, and with no
+    seed done the row is undecided."""
+    claim = BY_ID["ramp-up-near-squares"]
+    tab = fig4(BELL, up1=BELL, down=BELL + 0.03)                 # the gap: 0.03
+    levels = np.array([0.025, 0.05, 0.075, 0.1, 0.125])
+    squares = 0.60 - 2.0 * (levels - 0.15) ** 2                  # BELL at the ramp's levels
+
+    def rows(shift, runs=()):
+        data = report(fig4=tab)
+        data.questions["paper_ramp"] = _paper_ramps(
+            tmp_path, [(1, 1e-7, levels, squares + shift)] + list(runs))
+        return claims.ramp_up_minus_steady(data, claim)
+
+    _, paper = rows(0.0001)
+    assert paper.label == "4000 taps per level, eta = 1e-7" and paper.meets == ("ramp_taps",)
+    assert paper.value == pytest.approx(0.0001)
+    own = np.sqrt(4 * 0.0002 ** 2) / 4                            # one seed, factor 1
+    assert paper.err == pytest.approx(np.hypot(own, np.sqrt(4 * 0.001 ** 2) / 4))
+    assert "mean of 4 common sqrt(eps); one seed" in paper.text()
+    assert str(claims.verdict(claim, paper)) == "agrees"
+    _, control = rows(0.01)
+    assert str(claims.verdict(claim, control)).startswith("disagrees")
+    _, counted = rows(0.0001, [(2, 1e-7, levels[:2], squares[:2]), (3, 1e-5, levels, squares)])
+    assert counted.value == pytest.approx(0.0001) and "one seed" in counted.text()
+    assert "not counted yet: seed 2 at tap 8000, 2 of its first increase's levels done" in \
+        counted.text()
+    two = report(fig4=tab)
+    two.questions["paper_ramp"] = _paper_ramps(tmp_path, [(1, 1e-7, levels, squares + 0.001),
+                                                          (2, 1e-7, levels, squares + 0.002)])
+    _, both = claims.ramp_up_minus_steady(two, claim)
+    assert both.value == pytest.approx(0.0015) and "2 seeds" in both.text()
+    none = report(fig4=tab)
+    none.questions["paper_ramp"] = _paper_ramps(tmp_path, [(2, 1e-7, levels[:2], squares[:2])])
+    _, waiting = claims.ramp_up_minus_steady(none, claim)
+    assert waiting.undecided.startswith("no ramp has finished its first increase")
+    assert len(claims.ramp_up_minus_steady(report(fig4=tab), claim)) == 1   # no paper ramps
 
 
 def test_steady_squares_of_several_seeds_take_at_least_the_pooled_error():

@@ -46,7 +46,9 @@ NAME = re.compile(rf"^{_runs.PAPER_RAMP_PREFIX}(?P<top>[0-9.]+)_(?P<bc>pbc|fbc)"
 class PaperRampRun:
     """One ramp run: its settings, how far it got, and (once its descending branch has two
     levels) the change of that branch from the turning level with its standard error, the rise
-    along it (last level minus first) and the verdict (frozen, compacts, loosens)."""
+    along it (last level minus first) and the verdict (frozen, compacts, loosens); and the
+    whole levels of its first increase (sqrt(eps), <Phi^c> and its batch-means error), which
+    the claims hold against the constant-eps runs (Fig. 4)."""
 
     run: str
     top: float
@@ -62,6 +64,9 @@ class PaperRampRun:
     down_rise: float    # last descending level minus the first
     down_rise_sem: float
     verdict: str        # "frozen", "compacts", "loosens" or "running" (fewer than 2 levels down)
+    up_sqrt_eps: tuple = ()  # the first increase's levels done whole (all their taps)
+    up_mean: tuple = ()
+    up_sem: tuple = ()
 
 
 def read_taps(path):
@@ -84,6 +89,15 @@ def _running(base, down_levels):
                         verdict="running")
 
 
+def _whole_up_levels(hysteresis):
+    """(sqrt_eps, mean, sem) tuples of the first increase's levels that have all their taps."""
+    up = hysteresis.branch("up1")
+    whole = up[up["last_tap"] - up["first_tap"] + 1 == TAPS_PER_LEVEL]
+    return {"up_sqrt_eps": tuple(float(v) for v in whole["sqrt_eps"]),
+            "up_mean": tuple(float(v) for v in whole["mean"]),
+            "up_sem": tuple(float(v) for v in whole["sem"])}
+
+
 def analyse_run(run_dir, default_eta):
     """The :class:`PaperRampRun` of one run directory (name ``paperramp...``)."""
     run_dir = Path(run_dir)
@@ -98,6 +112,7 @@ def analyse_run(run_dir, default_eta):
     if len(phi_c) < TAPS_PER_LEVEL:  # a run just started: not one whole level yet
         return _running(base, 0)
     hysteresis = Hysteresis(sqrt_eps, phi_c, TAPS_PER_LEVEL, LAST_TAPS).compute()
+    base.update(_whole_up_levels(hysteresis))
     down = hysteresis.branch("down")
     if len(down) < MIN_DOWN_LEVELS:
         return _running(base, len(down))
@@ -129,7 +144,8 @@ def write_csv(rows, path):
         w = csv.DictWriter(f, fieldnames=[fl.name for fl in fields(PaperRampRun)])
         w.writeheader()
         for r in rows:
-            w.writerow(asdict(r))
+            w.writerow({k: " ".join(repr(x) for x in v) if isinstance(v, tuple) else v
+                        for k, v in asdict(r).items()})
     return path
 
 
@@ -142,7 +158,8 @@ def read_csv(path):
 def runs_from_rows(rows):
     """CSV rows of :func:`write_csv` (dicts of text) as :class:`PaperRampRun`."""
     kinds = {fl.name: fl.type for fl in fields(PaperRampRun)}
-    convert = {"str": str, "float": float, "int": int, "bool": lambda v: v == "True"}
+    convert = {"str": str, "float": float, "int": int, "bool": lambda v: v == "True",
+               "tuple": lambda v: tuple(float(x) for x in v.split())}
     return [PaperRampRun(**{k: convert[kinds[k]](v) for k, v in row.items()}) for row in rows]
 
 

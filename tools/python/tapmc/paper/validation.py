@@ -36,6 +36,7 @@ from . import claims, paper_ramp, questions, sigma_eta
 from . import summary as summary_screen
 from .claims import fmt, scale_aspects
 from .claims.aggregate import AGGREGATION_SENTENCE, claim_verdicts
+from .claims.common import campaign_eta
 from .front import bias_sentence  # what the redeposition setting costs in accuracy
 from .front import read_summary as read_front_summary
 from .scales import SCALES
@@ -333,13 +334,6 @@ def _title_and_intro(summary):
             "This page is a smoke test: a campaign below the paper's size, run through the "
             "same claims to show that the pipeline works; its verdicts are not the validation, "
             f"which is on the paper-scale page (:doc:`{PAPER_SCALE_DOC}`). " + common)
-
-
-def campaign_eta(summary):
-    """The campaign's eta: report.json lists the values of its runs (one in a campaign at one
-    threshold, which the runs without an eta in their name share); None when several."""
-    etas = summary["eta"] if isinstance(summary["eta"], list) else [summary["eta"]]
-    return etas[0] if len(etas) == 1 else None
 
 
 def _finding_csv(files, name):

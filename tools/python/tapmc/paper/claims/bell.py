@@ -17,7 +17,8 @@ from tapmc.stats import t_quantile, weighted_line, welch_dof
 from .. import fig4, fig6
 from ..paper_ramp import NOT_DOWN_YET, TAPS_PER_LEVEL as PAPER_RAMP_TAPS, by_eta, runs_from_rows
 
-from .common import (above, below, common_x, curve_of, mean_difference, not_in_campaign,
+from .common import (above, below, campaign_eta, common_x, curve_of, mean_difference,
+                     not_in_campaign,
                      paired_levels, protocol_label, seed_mean_of, seeds_error, steady_dof,
                      value_triple, WITHIN_RUN_DOF)
 from .conventions import CRITICAL_BRACKET_HALF_WIDTH
@@ -291,30 +292,85 @@ def ramp_up_minus_steady(data, claim):
     mean, judged with the campaign's groups of realizations (:func:`seed_mean`'s pooling),
     and the squares' own errors (other runs, one per sqrt(eps), shared by every seed),
     combined with the Welch-Satterthwaite dof. Otherwise the curves' errors
-    (:func:`_branch_difference`)."""
+    (:func:`_branch_difference`). Then the row of the ramps at the paper's own protocol
+    (:func:`_paper_protocol_up`)."""
     effect = hysteresis_gap(data)
+    return _campaign_up_minus_steady(data, effect) + _paper_protocol_up(data, effect)
+
+
+def _campaign_up_minus_steady(data, effect):
+    """:func:`ramp_up_minus_steady`'s row of the campaign's own ramp (Fig. 4)."""
     ramp = _ramp(data)
     up, steady = ramp_branch(data, "up1"), ramp_branch(data, "steady")
     seeds = None if ramp is None else ramp.up1_at_steady_seeds
     pairs = [] if up is None or steady is None else common_x(up, steady)
-    if seeds is None or len(seeds) < 2 or not pairs:
+    if seeds is None or len(seeds) < 2 or not pairs or not all(
+            np.isfinite(steady[2][j]) and steady_dof(int(steady[3][j]), steady[2][j]) is not None
+            for _, j in pairs):
         return _branch_difference(data, "up1", "steady", effect)
-    values, errors = seeds.mean, seeds.err
+    seed_err, seed_dof, how, _ = seeds_error(data, seeds.mean, seeds.err, "phi_c")
+    how = how or f"{len(seeds.mean)} seeds: the spread of their own values"
+    return [_up_minus_squares(seeds.mean, seed_err, seed_dof, how, steady, pairs, effect)]
+
+
+def _up_minus_squares(values, seed_err, seed_dof, how, steady, pairs, effect, label="",
+                      meets=(), note=""):
+    """The Measure of the seeds' first increase (``values``: each seed's mean over the common
+    sqrt(eps), their mean's error and dof) minus the squares at those sqrt(eps) (``pairs``:
+    index pairs into ``steady``, (x, mean, sem, n)), the squares' own errors added with the
+    Welch-Satterthwaite dof."""
     k = len(pairs)
     squares = np.array([steady[1][j] for _, j in pairs])
-    square_sems = np.array([steady[2][j] for _, j in pairs])
+    square_parts = np.array([steady[2][j] for _, j in pairs]) ** 2 / k ** 2
     square_dofs = [steady_dof(int(steady[3][j]), steady[2][j]) for _, j in pairs]
-    if not np.all(np.isfinite(square_sems)) or None in square_dofs:
-        return _branch_difference(data, "up1", "steady", effect)
-    seed_err, seed_dof, how, _ = seeds_error(data, values, errors, "phi_c")
-    how = how or f"{len(values)} seeds: the spread of their own values"
     value = float(np.mean(values) - np.mean(squares))
-    square_parts = square_sems ** 2 / k ** 2
     err = math.sqrt(seed_err ** 2 + float(np.sum(square_parts)))
     dof = welch_dof(np.r_[seed_err ** 2, square_parts], [seed_dof, *square_dofs])
-    return [Measure(value, err, dof, effect=effect,
-                    shown=f"{fmt(value, err)} (mean of {k} common sqrt(eps); {how}; the "
-                          f"squares' own errors added, {dof} dof)")]
+    return Measure(value, err, dof, label=label, meets=meets, effect=effect,
+                   shown=f"{fmt(value, err)} (mean of {k} common sqrt(eps); {how}; the "
+                         f"squares' own errors added, {dof} dof{note})")
+
+
+def _paper_protocol_up(data, effect):
+    """The row of the ramps at the paper's own protocol (paper_ramp.csv: 4000 taps per level)
+    at the campaign's eta, the threshold of its squares: the first increase of every seed
+    that has all its levels up to the turning one, minus the squares, mean over the sqrt(eps)
+    common to them. One seed's error: its levels' batch-means errors (in quadrature, over the
+    number of levels) times the realizations' factor of a steady state; several seeds: their
+    mean judged as the campaign's ramps are (:func:`seeds_error`). Seeds short of their
+    turning level are named, not counted; [] without such ramps or squares."""
+    eta, steady = campaign_eta(data.summary), ramp_branch(data, "steady")
+    runs = [r for r in runs_from_rows(data.question("paper_ramp")) if r.eta == eta]
+    if eta is None or steady is None or not runs:
+        return []
+    label = protocol_label(PAPER_RAMP_TAPS, eta)
+    whole = [r for r in runs
+             if r.up_sqrt_eps and abs(max(r.up_sqrt_eps) - r.top) <= LEVEL_TOLERANCE]
+    waiting = "; ".join(f"seed {r.seed} at tap {r.taps_done}, {len(r.up_sqrt_eps)} of its "
+                        "first increase's levels done" for r in runs if r not in whole)
+    common = [x for x in steady[0]
+              if all(np.any(np.isclose(r.up_sqrt_eps, x)) for r in whole)] if whole else []
+    if not common:
+        return [Measure(label=label, meets=("ramp_taps",),
+                        undecided="no ramp has finished its first increase at a sqrt(eps) of "
+                                  f"the squares yet ({waiting or 'none'})")]
+    pairs = common_x((np.array(common),), steady)
+    values, errors = [], []
+    for r in whole:
+        at = [int(np.argmax(np.isclose(r.up_sqrt_eps, x))) for x in common]
+        values.append(float(np.mean(np.array(r.up_mean)[at])))
+        errors.append(float(np.sqrt(np.sum(np.array(r.up_sem)[at] ** 2))) / len(at))
+    if len(whole) >= 2:
+        seed_err, seed_dof, how, _ = seeds_error(data, values, errors, "phi_c")
+        how = how or f"{len(whole)} seeds: the spread of their own values"
+    else:
+        factor = data.run_error("phi_c")[0]
+        seed_err, seed_dof = factor * errors[0], WITHIN_RUN_DOF
+        how = "one seed: its levels' batch-means errors" + (
+            f" x {factor:.1f}, the realizations' factor" if factor != 1.0 else "")
+    return [_up_minus_squares(values, seed_err, seed_dof, how, steady, pairs, effect,
+                              label=label, meets=("ramp_taps",),
+                              note=f"; not counted yet: {waiting}" if waiting else "")]
 
 
 @statistic("ramp_down_minus_up")

@@ -220,11 +220,19 @@ def protocol_label(taps_per_level, eta):
     return f"{taps_per_level} taps per level, eta = {eta_text(eta)}"
 
 
+def campaign_eta(summary):
+    """The campaign's eta from its summary (report.json lists the values of its runs: one in a
+    campaign at one threshold, which the runs without an eta in their name share); None when
+    it lists several or none."""
+    etas = summary.get("eta")
+    etas = etas if isinstance(etas, list) else [] if etas is None else [etas]
+    return float(etas[0]) if len(etas) == 1 else None
+
+
 def campaign_ramp_label(summary):
     """The label of the rows decided on the campaign's own ramps, from its summary
     (report.json): "" unless it gives one taps per level and one eta."""
-    per_level, eta = (summary.get(k) for k in ("ramp_taps_per_level", "eta"))
-    if not (isinstance(per_level, list) and len(per_level) == 1 and isinstance(eta, list)
-            and len(eta) == 1):
+    per_level, eta = summary.get("ramp_taps_per_level"), campaign_eta(summary)
+    if not (isinstance(per_level, list) and len(per_level) == 1) or eta is None:
         return ""
-    return protocol_label(int(per_level[0]), float(eta[0]))
+    return protocol_label(int(per_level[0]), eta)
