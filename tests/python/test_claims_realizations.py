@@ -554,9 +554,10 @@ def test_ramp_first_increase_of_two_seeds_against_the_squares_adds_the_squares_o
     assert "seeds" not in curves.text() and curves.value == pytest.approx(0.001)
 
 
-def _paper_ramps(tmp_path, runs):
+def _paper_ramps(tmp_path, runs, down=()):
     """paper_ramp.csv's text rows (as the report reads them) of ``runs``: (seed, eta, first
-    increase's levels done whole, their <Phi^c>)."""
+    increase's levels done whole, their <Phi^c>), ramps turning at 0.125 still going up; and
+    of ``down``: (top, seed, eta, change on the way down), ramps that came down."""
     nan = float("nan")
     rows = [paper_ramp.PaperRampRun(
         run=f"paperramp0.125_pbc_s{seed}", top=0.125, eta=eta, seed=seed, taps_done=4000 * len(x),
@@ -564,9 +565,41 @@ def _paper_ramps(tmp_path, runs):
         down_change_sem=nan, down_rise=nan, down_rise_sem=nan, verdict="running",
         up_sqrt_eps=tuple(x), up_mean=tuple(y), up_sem=(0.0002,) * len(x))
         for seed, eta, x, y in runs]
+    rows += [paper_ramp.PaperRampRun(
+        run=f"paperramp{top:g}_pbc_s{seed}", top=top, eta=eta, seed=seed, taps_done=40000,
+        finished=False, down_levels=2, down_first=top - 0.025, down_last=top - 0.05,
+        down_change=change, down_change_sem=0.0002, down_rise=0.0, down_rise_sem=0.0002,
+        verdict="compacts" if change > 0.0006 else "frozen") for top, seed, eta, change in down]
     path = paper_ramp.write_csv(rows, tmp_path / "paper_ramp.csv")
     with open(path, newline="") as f:
         return list(csv.DictReader(f))
+
+
+def test_paper_protocol_ramps_decide_the_separation_and_the_frozen_branch(tmp_path):
+    """At the paper's protocol (paper_ramp.csv), per eta: a ramp turning at 0.125 that stays
+    within its errors on the way down and one turning at 0.2 that compacts separate at
+    (sqrt eps)* (agrees); the ramp at 0.125 compacting too contradicts the separation
+    (disagrees, the control); the frozen branch's row reads only the ramp below 0.15."""
+    separation, frozen = BY_ID["critical-sqrt-eps"], BY_ID["irreversible-frozen"]
+    tab = ramps_turning({0.125: 0.0002, 0.175: 0.01})
+
+    def rows(changes):
+        data = report(fig4=tab)
+        data.questions["paper_ramp"] = _paper_ramps(
+            tmp_path, [], [(top, 1, 1e-7, c) for top, c in changes.items()])
+        return data
+
+    data = rows({0.125: 0.0001, 0.2: 0.01})
+    *_, paper = claims.critical_separation(data, separation)
+    assert paper.label == "4000 taps per level, eta = 1e-7" and paper.meets == ("ramp_taps",)
+    assert str(claims.verdict(separation, paper)) == "agrees"
+    assert "(sqrt eps)* in (0.125, 0.2]" in paper.shown
+    *_, below = claims.low_ramp_frozen(data, frozen)
+    assert below.value == pytest.approx(0.0001) and "decrease minus turning level 0.125" \
+        in below.text()
+    *_, control = claims.critical_separation(rows({0.125: 0.005, 0.2: 0.01}), separation)
+    assert str(claims.verdict(separation, control)).startswith("disagrees")
+    assert "top 0.125 moves on the way down" in control.shown
 
 
 def test_ramp_first_increase_at_the_paper_protocol_against_the_squares(tmp_path):

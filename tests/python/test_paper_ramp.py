@@ -81,6 +81,40 @@ def test_frozen_compacting_and_running_ramps(tmp_path):
     assert paper_ramp.headline_text([], 1e-7) == ""
 
 
+def test_a_ramp_beyond_the_critical_level_is_told_apart(tmp_path):
+    """A ramp turning at 0.2 (beyond (sqrt eps)* = 0.15) comes down the reversible branch: it
+    is no evidence about the branch below, so the headline counts only the ramp turning at
+    0.125 (frozen here) and the finding names the one beyond after it; the first increase's
+    whole levels (all 4000 taps) are kept for the claims, the level still running is not."""
+    up = [0.590, 0.595, 0.598, 0.600, 0.600]
+    write_run(tmp_path, "paperramp0.125_pbc_s1", up + [0.600] * 4, done=True)
+    high = [0.025 * k for k in range(1, 9)]
+    write_run(tmp_path, "paperramp0.2_pbc_s2", [0.59 + 0.001 * k for k in range(8)]
+              + [0.61, 0.612], levels=high + [0.175, 0.15], seed=2)
+    rows = {r.run: r for r in paper_ramp.analyse(tmp_path, 1e-7)}
+    beyond = rows["paperramp0.2_pbc_s2"]
+    assert beyond.verdict == "compacts" and beyond.top == 0.2
+    np.testing.assert_allclose(beyond.up_sqrt_eps, high)
+    np.testing.assert_allclose(beyond.up_mean, [0.59 + 0.001 * k for k in range(8)], atol=2e-4)
+    headline = paper_ramp.headline_text(list(rows.values()), 1e-7)
+    assert "eta = 1e-7 (the default): an irreversible (frozen) branch (1 seed;" in headline
+    assert "0.2" not in headline
+    finding = paper_ramp.finding_text(list(rows.values()), 1e-7)
+    assert "Beyond (sqrt eps)* (the reversible branch of the paper), the descending branch " \
+        "from the turning level: at eta = 1e-7 (the default), seed 2, turning at 0.2: +0.0" \
+        in finding and finding.endswith("(compacts).")
+    alone = paper_ramp.finding_text([beyond], 1e-7)
+    assert alone.startswith("Beyond (sqrt eps)*") and "Section III.B" not in alone
+    assert paper_ramp.headline_text([beyond], 1e-7) == ""
+    # a run in its first increase: the level in progress is not a whole level
+    run = write_run(tmp_path, "paperramp0.125_pbc_s3", up[:3], levels=LEVELS[:3], seed=3)
+    taps = (run / "taps.dat").read_text().splitlines()
+    (run / "taps.dat").write_text("\n".join(taps[:2 + 9000]) + "\n")   # 1000 taps into 0.075
+    going = paper_ramp.analyse_run(run, 1e-7)
+    assert going.verdict == "running" and going.taps_done == 9000
+    np.testing.assert_allclose(going.up_sqrt_eps, [0.025, 0.05])
+
+
 def test_seeds_that_disagree_are_said_to_disagree(tmp_path):
     up = [0.590, 0.595, 0.598, 0.600, 0.600]
     write_run(tmp_path, "paperramp0.125_pbc_s1", up + [0.600] * 4, done=True)

@@ -24,7 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..hysteresis import Hysteresis, RampBranches
+from ..hysteresis import CRITICAL_SQRT_EPS, Hysteresis, RampBranches
 from . import _runs
 
 #: Taps per level of the paper's protocol, and the taps averaged at the end of each level.
@@ -177,6 +177,12 @@ def progress_text(seed, taps_done, down_levels):
     return f"seed {seed} at tap {taps_done}, {where}"
 
 
+def below_critical(rows):
+    """The runs that turn below (sqrt eps)* ~ 0.15: the ramps the central question is about
+    (a ramp beyond it comes down the reversible branch, whatever the answer)."""
+    return [r for r in rows if r.top < CRITICAL_SQRT_EPS]
+
+
 def by_eta(rows):
     """(eta, decided, running) per eta of the rows (:class:`PaperRampRun`), the loosest first:
     ``decided`` are the seeds whose ramp came down two levels, ``running`` says how far the
@@ -198,7 +204,9 @@ def headline_text(rows, default_eta):
     """The finding in one sentence, for the report's first screen: per eta, the answer (no
     irreversible branch, a frozen branch, the seeds disagree) with the seeds' changes of the
     descending branch, or undecided with how far the running seeds got (also README.md's); the
-    numbers with their errors are in :func:`finding_text`."""
+    numbers with their errors are in :func:`finding_text`. Only the ramps that turn below
+    (sqrt eps)* count (:func:`below_critical`)."""
+    rows = below_critical(rows)
     if not rows:
         return ""
     parts = []
@@ -223,11 +231,13 @@ def headline_text(rows, default_eta):
 def finding_text(rows, default_eta):
     """The finding of the report's first screen: per eta, whether the model has an irreversible
     branch below (sqrt eps)* at the paper's ramp protocol, with each seed's numbers; the runs
-    still running are named with how far they got."""
+    still running are named with how far they got. Ramps that turn beyond (sqrt eps)* are
+    told apart, after it (:func:`_beyond_text`)."""
+    below = below_critical(rows)
     if not rows:
         return ""
     parts = []
-    for eta, decided, running in by_eta(rows):
+    for eta, decided, running in by_eta(below):
         label = eta_label(eta, default_eta)
         if not decided:
             parts.append(f"at {label} {NOT_DOWN_YET} ({running}): undecided.")
@@ -248,8 +258,24 @@ def finding_text(rows, default_eta):
         parts.append(f"at {label}, {head} ({len(decided)} seed{'s' if len(decided) > 1 else ''};"
                      f" <Phi^c> of the descending levels, {seeds})"
                      + (f"; not counted yet: {running}" if running else ""))
+    beyond = _beyond_text([r for r in rows if r not in below], default_eta)
+    if not parts:
+        return beyond.strip()
     return ("Section III.B's question at the paper's own ramp protocol (N = 4096, L = 32R, "
             f"P.B.C., {TAPS_PER_LEVEL} taps per level, steps of 0.025 in sqrt(eps), turning "
             "below (sqrt eps)* ~ 0.15; means of the last "
             f"{LAST_TAPS} taps of each level): " + " ".join(
-                p[0].upper() + p[1:] + ("" if p.endswith(".") else ".") for p in parts))
+                p[0].upper() + p[1:] + ("" if p.endswith(".") else ".") for p in parts) + beyond)
+
+
+def _beyond_text(rows, default_eta):
+    """The ramps that turned beyond (sqrt eps)* (the paper's reversible branch), per eta:
+    their decreasing branch from the turning level, or how far they got ("" without any)."""
+    parts = []
+    for eta, decided, running in by_eta(rows):
+        seeds = "; ".join(f"seed {r.seed}, turning at {r.top:g}: {r.down_change:+.4f} +- "
+                          f"{r.down_change_sem:.4f} ({r.verdict})" for r in decided)
+        parts.append(f"at {eta_label(eta, default_eta)}, "
+                     + "; ".join(p for p in (seeds, running and f"running: {running}") if p))
+    return (" Beyond (sqrt eps)* (the reversible branch of the paper), the descending branch "
+            "from the turning level: " + ". ".join(parts) + ".") if parts else ""

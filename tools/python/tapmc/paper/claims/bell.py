@@ -15,7 +15,8 @@ from tapmc.hysteresis import CRITICAL_SQRT_EPS, LEVEL_TOLERANCE
 from tapmc.stats import t_quantile, weighted_line, welch_dof
 
 from .. import fig4, fig6
-from ..paper_ramp import NOT_DOWN_YET, TAPS_PER_LEVEL as PAPER_RAMP_TAPS, by_eta, runs_from_rows
+from ..paper_ramp import (NOT_DOWN_YET, TAPS_PER_LEVEL as PAPER_RAMP_TAPS, below_critical, by_eta,
+                          runs_from_rows)
 
 from .common import (above, below, campaign_eta, common_x, curve_of, mean_difference,
                      not_in_campaign,
@@ -391,27 +392,37 @@ def _paper_protocol_frozen(data, effect):
     error of one seed is its levels' batch-means error times the realizations' factor of a
     difference of two parts of one run, of several the :func:`seeds_error` of their mean.
     Seeds not yet two levels down leave the row undecided, saying how far they got. These runs
-    have the paper's taps per level, which the campaign's Fig. 4 ramps may lack (``meets``)."""
+    have the paper's taps per level, which the campaign's Fig. 4 ramps may lack (``meets``).
+    Only the ramps turning below (sqrt eps)* count (a ramp beyond it is the reversible case)."""
     out = []
-    for eta, decided, running in by_eta(runs_from_rows(data.question("paper_ramp"))):
+    rows = below_critical(runs_from_rows(data.question("paper_ramp")))
+    for eta, decided, running in by_eta(rows):
         label = protocol_label(PAPER_RAMP_TAPS, eta)
         if not decided:
             out.append(Measure(label=label, meets=("ramp_taps",),
                                undecided=f"{NOT_DOWN_YET} ({running})"))
             continue
-        values = [r.down_change for r in decided]
-        errors = [r.down_change_sem for r in decided]
-        if len(decided) >= 2:
-            err, dof, how, _ = seeds_error(data, values, errors, "phi_c")
-        else:
-            err = data.run_error("phi_c:halves")[0] * errors[0]
-            dof, how = WITHIN_RUN_DOF, "one seed"
-        m = float(np.mean(values))
+        m, err, dof, how = _paper_down_change(data, decided)
         tops = ", ".join(sorted({f"{r.top:g}" for r in decided}))
         out.append(Measure(m, err, dof, label=label, meets=("ramp_taps",), effect=effect,
                            shown=f"{fmt(m, err)} (decrease minus turning level {tops}"
                                  + (f"; {how})" if how else ")")))
     return out
+
+
+def _paper_down_change(data, decided):
+    """(mean, error, dof, how) of the change on the way down of paper-protocol ramps
+    (:class:`PaperRampRun` rows, each with its levels' batch-means error): one seed's error
+    times the realizations' factor of a difference of two parts of one run; several seeds'
+    mean by :func:`seeds_error`."""
+    values = [r.down_change for r in decided]
+    errors = [r.down_change_sem for r in decided]
+    if len(decided) >= 2:
+        err, dof, how, _ = seeds_error(data, values, errors, "phi_c")
+    else:
+        err = data.run_error("phi_c:halves")[0] * errors[0]
+        dof, how = WITHIN_RUN_DOF, "one seed"
+    return float(np.mean(values)), err, dof, how
 
 
 @statistic("low_ramp_frozen")
@@ -450,13 +461,12 @@ def turning_top(fig4, tag):
     return value_triple(None if ramp is None else ramp.top_sqrt_eps)[0]
 
 
-def _ramp_turning_behaviour(fig4, tag, change, effect):
-    """(top, behaviour, text) of the ramp ``tag`` of Fig. 4 whose decrease minus top level is
+def _turning_behaviour(top, change, effect):
+    """(top, behaviour, text) of a ramp turning at ``top`` whose decrease minus top level is
     ``change`` = (value, error, dof): behaviour ``compacts`` when its decreasing branch rose
     above its top level beyond t sem (the reversible case), ``frozen`` when it stayed within
     t sem of it and t sem is below ``effect`` (the change of the ramps that compact),
     ``decompacts`` when it fell below beyond t sem, None otherwise."""
-    top = turning_top(fig4, tag)
     m, s, dof = change
     if not np.isfinite(m) or dof is None:
         return top, None, f"top {top:g}: no error on its decrease"
@@ -471,18 +481,31 @@ def _ramp_turning_behaviour(fig4, tag, change, effect):
 
 
 @statistic("critical_separation")
-def critical_separation(data, claim, shifts=None):
+def critical_separation(data, claim):
     """Section III.B: (sqrt eps)* ~ 0.15 separates a ramp whose decreasing branch compacts on
     the way down (the reversible branch) from one whose decreasing branch stays frozen at its
-    top level. From every ramp of Fig. 4 (params ``<tag>:top_sqrt_eps`` and
-    ``<tag>:down_change``): 1 when each ramp turning above 0.15 compacts, each turning below
-    is frozen (within t sem, below the change of the ramps that compact) and the highest frozen
-    and lowest compacting turning points lie within :data:`CRITICAL_BRACKET_HALF_WIDTH` of
-    0.15; 0 when a ramp turning above 0.15 does not compact on the way down or one turning
-    below moves beyond t sem; undecided otherwise (a side without a ramp, a behaviour within
-    the errors, or a bracket too wide to locate 0.15). ``shifts``: Fig. 4's tag -> a shift
-    of that ramp's change on the way down (a systematic band: :mod:`.reduced_ramps`). The error
-    of a mean of several seeds: :func:`seed_mean`."""
+    top level (:func:`separation`): on the campaign's ramps of Fig. 4
+    (:func:`campaign_separation`), then, per eta, on the ramps at the paper's own protocol
+    (paper_ramp.csv; each turning level's seeds as :func:`low_ramp_frozen` takes them)."""
+    rows = campaign_separation(data)
+    for eta, decided, running in by_eta(runs_from_rows(data.question("paper_ramp"))):
+        label = protocol_label(PAPER_RAMP_TAPS, eta)
+        tops = sorted({r.top for r in decided})
+        ramps = [(top, _paper_down_change(data, [r for r in decided if r.top == top])[:3])
+                 for top in tops]
+        found = separation(ramps, CRITICAL_SQRT_EPS) if ramps else [
+            Measure(undecided=f"{NOT_DOWN_YET} ({running})")]
+        note = f"; not counted yet: {running}" if ramps and running else ""
+        rows += [dataclasses.replace(m, label=label, meets=("ramp_taps",),
+                                     shown=(m.shown or "") + note) for m in found]
+    return rows
+
+
+def campaign_separation(data, shifts=None):
+    """:func:`separation` on every ramp of Fig. 4 (params ``<tag>:top_sqrt_eps`` and
+    ``<tag>:down_change``; the error of a mean of several seeds: :func:`seed_mean`).
+    ``shifts``: Fig. 4's tag -> a shift of that ramp's change on the way down (a systematic
+    band: :mod:`.reduced_ramps`)."""
     fig4 = data.result("fig4")
     tags = [] if fig4 is None else turning_ramps(fig4)
     if not tags:
@@ -492,12 +515,22 @@ def critical_separation(data, claim, shifts=None):
     changes = [_ramp_seed_mean(data, fig4.ramps[t], "down_change")[:3] for t in tags]
     if shifts:
         changes = [(m + shifts[t], s, dof) for t, (m, s, dof) in zip(tags, changes)]
+    return separation([(turning_top(fig4, t), c) for t, c in zip(tags, changes)], critical)
+
+
+def separation(ramps, critical):
+    """The measures of the separation at ``critical`` from ramps (top, (change on the way down,
+    error, dof)): 1 when each ramp turning above ``critical`` compacts, each turning below is
+    frozen (within t sem, below the change of the ramps that compact) and the highest frozen
+    and lowest compacting turning points lie within :data:`CRITICAL_BRACKET_HALF_WIDTH` of
+    it; 0 when a ramp turning above does not compact on the way down or one turning below
+    moves beyond t sem; undecided otherwise (a side without a ramp, a behaviour within the
+    errors, or a bracket too wide to locate ``critical``)."""
     # the frozen side's bar: the smallest change the compacting ramps surely have
-    compacting = [m - t_quantile(dof) * s for m, s, dof in changes
+    compacting = [m - t_quantile(dof) * s for _, (m, s, dof) in ramps
                   if np.isfinite(m) and dof is not None]
     effect = max(compacting) if compacting and max(compacting) > 0 else None
-    ramps = sorted((_ramp_turning_behaviour(fig4, t, c, effect) for t, c in zip(tags, changes)),
-                   key=lambda r: r[0])
+    ramps = sorted((_turning_behaviour(top, c, effect) for top, c in ramps), key=lambda r: r[0])
     words = {"compacts": "compacts on the way down", "frozen": "frozen",
              "decompacts": "decompacts on the way down", None: "within the errors"}
     shown = "; ".join(f"{text} ({words[behaviour]})" for _, behaviour, text in ramps)

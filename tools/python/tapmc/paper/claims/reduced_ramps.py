@@ -16,7 +16,7 @@ from tapmc.stats import t_quantile
 
 from .._runs import RAMP_BRANCHES
 from ..fig4 import RAMPS
-from .bell import critical_separation, ramp_branch, turning_ramps, turning_top
+from .bell import campaign_separation, ramp_branch, turning_ramps, turning_top
 from .common import WITHIN_RUN_DOF, value_triple
 from .conventions import RAMP_REDUCTION_MIN_LEVELS
 from .measure import fmt
@@ -142,7 +142,7 @@ def _turning_ramps_shifted(claim, data, bounds):
     for ends in itertools.product(*candidates):
         shifts = {tag: shift for (tag, _), shift in zip(ranges, ends)}
         outcomes |= {verdict(claim, m).outcome
-                     for m in critical_separation(data, claim, shifts)}
+                     for m in campaign_separation(data, shifts)}
     return (outcomes.pop() if len(outcomes) == 1 else None), [(top, r) for top, (_, r)
                                                          in zip(tops, ranges)]
 
