@@ -563,8 +563,8 @@ def _paper_ramps(tmp_path, runs, down=()):
         run=f"paperramp0.125_pbc_s{seed}", top=0.125, eta=eta, seed=seed, taps_done=4000 * len(x),
         finished=False, down_levels=0, down_first=nan, down_last=nan, down_change=nan,
         down_change_sem=nan, down_rise=nan, down_rise_sem=nan, verdict="running",
-        up_sqrt_eps=tuple(x), up_mean=tuple(y), up_sem=(0.0002,) * len(x))
-        for seed, eta, x, y in runs]
+        level_branches=" ".join(["up1"] * len(x)), level_sqrt_eps=tuple(x), level_mean=tuple(y),
+        level_sem=(0.0002,) * len(x)) for seed, eta, x, y in runs]
     rows += [paper_ramp.PaperRampRun(
         run=f"paperramp{top:g}_pbc_s{seed}", top=top, eta=eta, seed=seed, taps_done=40000,
         finished=False, down_levels=2, down_first=top - 0.025, down_last=top - 0.05,
@@ -643,6 +643,61 @@ def test_ramp_first_increase_at_the_paper_protocol_against_the_squares(tmp_path)
     _, waiting = claims.ramp_up_minus_steady(none, claim)
     assert waiting.undecided.startswith("no ramp has finished its first increase")
     assert len(claims.ramp_up_minus_steady(report(fig4=tab), claim)) == 1   # no paper ramps
+
+
+def _beyond_ramp(tmp_path, up1, down, up2=(), top=0.2, taps=60000):
+    """paper_ramp.csv's text rows of one ramp turning at ``top`` (eta 1e-7) with whole levels
+    ``up1``, ``down``, ``up2``: lists of (sqrt_eps, <Phi^c>), each with sem 0.0002."""
+    levels = [("up1", x, y) for x, y in up1] + [("down", x, y) for x, y in down] + \
+        [("up2", x, y) for x, y in up2]
+    nan = float("nan")
+    run = paper_ramp.PaperRampRun(
+        run=f"paperramp{top:g}_pbc_s1", top=top, eta=1e-7, seed=1, taps_done=taps,
+        finished=False, down_levels=len(down), down_first=nan, down_last=nan, down_change=nan,
+        down_change_sem=nan, down_rise=nan, down_rise_sem=nan, verdict="running",
+        level_branches=" ".join(b for b, _, _ in levels),
+        level_sqrt_eps=tuple(x for _, x, _ in levels), level_mean=tuple(y for _, _, y in levels),
+        level_sem=(0.0002,) * len(levels))
+    with open(paper_ramp.write_csv([run], tmp_path / "paper_ramp.csv"), newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def test_paper_protocol_ramp_beyond_decides_the_reversible_branch(tmp_path):
+    """The ramp turning at 0.2 at the paper's protocol: its decrease 0.01 above its first
+    increase (reversible-above agrees; the control, a decrease equal to the increase, does
+    not), falling with sqrt(eps) (slope -0.1 per unit: agrees), a second increase within a
+    tenth of the gap of the decrease (retraced: agrees; 0.01 off: disagrees); before its
+    descent the rows are undecided and say how far it got; the ramp below (sqrt eps)* is not
+    read."""
+    up = [(0.025 * k, 0.59 + 0.001 * k) for k in range(1, 9)]
+    down = [(0.175, 0.6175), (0.15, 0.62), (0.125, 0.6225), (0.1, 0.625)]
+    data = report(fig4=fig4(BELL, up1=BELL, down=BELL + 0.03))
+
+    def rows(statistic, claim_id, up1=up, dn=down, up2=()):
+        data.questions["paper_ramp"] = _beyond_ramp(tmp_path, up1, dn, up2)
+        *_, paper = statistic(data, BY_ID[claim_id])
+        assert paper.label == "4000 taps per level, eta = 1e-7"
+        return paper, str(claims.verdict(BY_ID[claim_id], paper))
+
+    above, word = rows(claims.ramp_down_minus_up, "reversible-above")
+    mean_up = np.mean([0.59 + 0.001 * k for k in (7, 6, 5, 4)])
+    assert above.value == pytest.approx(np.mean([y for _, y in down]) - mean_up)
+    assert word == "agrees" and "turning at 0.2; 4 levels; one seed" in above.text()
+    flat = [(x, 0.59 + 0.001 * round(x / 0.025)) for x, _ in down]
+    assert not rows(claims.ramp_down_minus_up, "reversible-above", dn=flat)[1] == "agrees"
+    slope, word = rows(claims.ramp_branch_slope, "reversible-falls")
+    assert slope.value == pytest.approx(-0.1) and word == "agrees"
+    retraced, word = rows(claims.ramp_up2_minus_down, "reversible-retraced",
+                          up2=[(0.125, 0.6226), (0.15, 0.6199)])
+    assert retraced.value == pytest.approx(0.0) and word == "agrees"
+    off = rows(claims.ramp_up2_minus_down, "reversible-retraced",
+               up2=[(0.125, 0.6325), (0.15, 0.63)])[1]
+    assert off.startswith("disagrees")
+    going, word = rows(claims.ramp_down_minus_up, "reversible-above", dn=[])
+    assert word.startswith("undecided") and "(seed 1 (turning at 0.2) at tap 60000)" in \
+        going.undecided
+    data.questions["paper_ramp"] = _beyond_ramp(tmp_path, up, down, top=0.125)
+    assert len(claims.ramp_down_minus_up(data, BY_ID["reversible-above"])) == 1
 
 
 def test_steady_squares_of_several_seeds_take_at_least_the_pooled_error():

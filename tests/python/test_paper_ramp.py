@@ -94,8 +94,11 @@ def test_a_ramp_beyond_the_critical_level_is_told_apart(tmp_path):
     rows = {r.run: r for r in paper_ramp.analyse(tmp_path, 1e-7)}
     beyond = rows["paperramp0.2_pbc_s2"]
     assert beyond.verdict == "compacts" and beyond.top == 0.2
-    np.testing.assert_allclose(beyond.up_sqrt_eps, high)
-    np.testing.assert_allclose(beyond.up_mean, [0.59 + 0.001 * k for k in range(8)], atol=2e-4)
+    x, mean, _ = beyond.branch("up1")
+    np.testing.assert_allclose(x, high)
+    np.testing.assert_allclose(mean, [0.59 + 0.001 * k for k in range(8)], atol=2e-4)
+    np.testing.assert_allclose(beyond.branch("down")[0], [0.175, 0.15])
+    assert len(beyond.branch("up2")[0]) == 0
     headline = paper_ramp.headline_text(list(rows.values()), 1e-7)
     assert "eta = 1e-7 (the default): an irreversible (frozen) branch (1 seed;" in headline
     assert "0.2" not in headline
@@ -112,7 +115,10 @@ def test_a_ramp_beyond_the_critical_level_is_told_apart(tmp_path):
     (run / "taps.dat").write_text("\n".join(taps[:2 + 9000]) + "\n")   # 1000 taps into 0.075
     going = paper_ramp.analyse_run(run, 1e-7)
     assert going.verdict == "running" and going.taps_done == 9000
-    np.testing.assert_allclose(going.up_sqrt_eps, [0.025, 0.05])
+    np.testing.assert_allclose(going.branch("up1")[0], [0.025, 0.05])
+    # the whole levels survive the CSV
+    back = paper_ramp.read_csv(paper_ramp.write_csv([going, beyond], tmp_path / "p.csv"))
+    assert list(map(repr, back)) == list(map(repr, [going, beyond]))   # nan != nan
 
 
 def test_seeds_that_disagree_are_said_to_disagree(tmp_path):

@@ -46,9 +46,9 @@ NAME = re.compile(rf"^{_runs.PAPER_RAMP_PREFIX}(?P<top>[0-9.]+)_(?P<bc>pbc|fbc)"
 class PaperRampRun:
     """One ramp run: its settings, how far it got, and (once its descending branch has two
     levels) the change of that branch from the turning level with its standard error, the rise
-    along it (last level minus first) and the verdict (frozen, compacts, loosens); and the
-    whole levels of its first increase (sqrt(eps), <Phi^c> and its batch-means error), which
-    the claims hold against the constant-eps runs (Fig. 4)."""
+    along it (last level minus first) and the verdict (frozen, compacts, loosens); and its
+    levels done whole (all their taps: branch, sqrt(eps), <Phi^c> and its batch-means error),
+    from which the claims of Fig. 4 read the branches (:meth:`branch`)."""
 
     run: str
     top: float
@@ -64,9 +64,17 @@ class PaperRampRun:
     down_rise: float    # last descending level minus the first
     down_rise_sem: float
     verdict: str        # "frozen", "compacts", "loosens" or "running" (fewer than 2 levels down)
-    up_sqrt_eps: tuple = ()  # the first increase's levels done whole (all their taps)
-    up_mean: tuple = ()
-    up_sem: tuple = ()
+    level_branches: str = ""  # the whole levels' branches (up1, down, up2), space-separated
+    level_sqrt_eps: tuple = ()
+    level_mean: tuple = ()
+    level_sem: tuple = ()
+
+    def branch(self, name):
+        """(sqrt_eps, mean, sem) arrays of the whole levels of branch ``name`` (up1, down,
+        up2), in the ramp's order."""
+        at = np.array(self.level_branches.split()) == name
+        return tuple(np.asarray(v, dtype=float)[at] if at.size else np.zeros(0)
+                     for v in (self.level_sqrt_eps, self.level_mean, self.level_sem))
 
 
 def read_taps(path):
@@ -89,13 +97,13 @@ def _running(base, down_levels):
                         verdict="running")
 
 
-def _whole_up_levels(hysteresis):
-    """(sqrt_eps, mean, sem) tuples of the first increase's levels that have all their taps."""
-    up = hysteresis.branch("up1")
-    whole = up[up["last_tap"] - up["first_tap"] + 1 == TAPS_PER_LEVEL]
-    return {"up_sqrt_eps": tuple(float(v) for v in whole["sqrt_eps"]),
-            "up_mean": tuple(float(v) for v in whole["mean"]),
-            "up_sem": tuple(float(v) for v in whole["sem"])}
+def _whole_levels(hysteresis):
+    """The fields of :class:`PaperRampRun` that keep the levels with all their taps."""
+    levels = hysteresis.levels
+    whole = levels[levels["last_tap"] - levels["first_tap"] + 1 == TAPS_PER_LEVEL]
+    return {"level_branches": " ".join(str(b) for b in whole["branch"]),
+            **{f"level_{k}": tuple(float(v) for v in whole[k]) for k in ("sqrt_eps", "mean",
+                                                                          "sem")}}
 
 
 def analyse_run(run_dir, default_eta):
@@ -112,7 +120,7 @@ def analyse_run(run_dir, default_eta):
     if len(phi_c) < TAPS_PER_LEVEL:  # a run just started: not one whole level yet
         return _running(base, 0)
     hysteresis = Hysteresis(sqrt_eps, phi_c, TAPS_PER_LEVEL, LAST_TAPS).compute()
-    base.update(_whole_up_levels(hysteresis))
+    base.update(_whole_levels(hysteresis))
     down = hysteresis.branch("down")
     if len(down) < MIN_DOWN_LEVELS:
         return _running(base, len(down))

@@ -345,12 +345,13 @@ def _paper_protocol_up(data, effect):
     if eta is None or steady is None or not runs:
         return []
     label = protocol_label(PAPER_RAMP_TAPS, eta)
+    ups = {r.run: r.branch("up1") for r in runs}
     whole = [r for r in runs
-             if r.up_sqrt_eps and abs(max(r.up_sqrt_eps) - r.top) <= LEVEL_TOLERANCE]
-    waiting = "; ".join(f"seed {r.seed} at tap {r.taps_done}, {len(r.up_sqrt_eps)} of its "
+             if len(ups[r.run][0]) and abs(ups[r.run][0].max() - r.top) <= LEVEL_TOLERANCE]
+    waiting = "; ".join(f"seed {r.seed} at tap {r.taps_done}, {len(ups[r.run][0])} of its "
                         "first increase's levels done" for r in runs if r not in whole)
     common = [x for x in steady[0]
-              if all(np.any(np.isclose(r.up_sqrt_eps, x)) for r in whole)] if whole else []
+              if all(np.any(np.isclose(ups[r.run][0], x)) for r in whole)] if whole else []
     if not common:
         return [Measure(label=label, meets=("ramp_taps",),
                         undecided="no ramp has finished its first increase at a sqrt(eps) of "
@@ -358,9 +359,10 @@ def _paper_protocol_up(data, effect):
     pairs = common_x((np.array(common),), steady)
     values, errors = [], []
     for r in whole:
-        at = [int(np.argmax(np.isclose(r.up_sqrt_eps, x))) for x in common]
-        values.append(float(np.mean(np.array(r.up_mean)[at])))
-        errors.append(float(np.sqrt(np.sum(np.array(r.up_sem)[at] ** 2))) / len(at))
+        x, mean, sem = ups[r.run]
+        at = [int(np.argmax(np.isclose(x, c))) for c in common]
+        values.append(float(np.mean(mean[at])))
+        errors.append(float(np.sqrt(np.sum(sem[at] ** 2))) / len(at))
     if len(whole) >= 2:
         seed_err, seed_dof, how, _ = seeds_error(data, values, errors, "phi_c")
         how = how or f"{len(whole)} seeds: the spread of their own values"
@@ -374,15 +376,84 @@ def _paper_protocol_up(data, effect):
                               note=f"; not counted yet: {waiting}" if waiting else "")]
 
 
+def _paper_beyond(data, measure_of_run, quantity, what, effect=None):
+    """Per eta, a row of the ramps at the paper's own protocol (paper_ramp.csv) that turn
+    beyond (sqrt eps)*: ``measure_of_run(run)`` gives a seed's (value, its levels' error,
+    number of levels) or None while the run lacks the levels (``what`` names them); one seed's
+    error times the realizations' factor of ``quantity``, several seeds' mean by
+    :func:`seeds_error`; [] without such ramps."""
+    beyond = [r for r in runs_from_rows(data.question("paper_ramp"))
+              if r.top > CRITICAL_SQRT_EPS + LEVEL_TOLERANCE]
+    out = []
+    for eta in sorted({r.eta for r in beyond}, reverse=True):
+        label = protocol_label(PAPER_RAMP_TAPS, eta)
+        found = [(r, measure_of_run(r)) for r in beyond if r.eta == eta]
+        done = [(r, m) for r, m in found if m is not None]
+        waiting = "; ".join(f"seed {r.seed} (turning at {r.top:g}) at tap {r.taps_done}"
+                            for r, m in found if m is None)
+        if not done:
+            out.append(Measure(label=label, meets=("ramp_taps",),
+                               undecided=f"{what} not done yet ({waiting})"))
+            continue
+        values, errors = [m[0] for _, m in done], [m[1] for _, m in done]
+        if len(done) >= 2:
+            err, dof, how, _ = seeds_error(data, values, errors, quantity)
+            how = how or f"{len(done)} seeds: the spread of their own values"
+        else:
+            factor = data.run_error(quantity)[0]
+            err, dof = factor * errors[0], WITHIN_RUN_DOF
+            how = "one seed" + (f", its levels' errors x {factor:.1f}" if factor != 1.0 else "")
+        value = float(np.mean(values))
+        tops = ", ".join(sorted({f"{r.top:g}" for r, _ in done}))
+        out.append(Measure(value, err, dof, label=label, meets=("ramp_taps",), effect=effect,
+                           shown=f"{fmt(value, err)} (turning at {tops}; {done[0][1][2]} "
+                                 f"levels; {how}"
+                                 + (f"; not counted yet: {waiting})" if waiting else ")")))
+    return out
+
+
+def _run_branch_difference(a, b):
+    """A paper ramp's branch ``a`` minus its branch ``b`` at their common sqrt(eps): (mean,
+    error of the mean, levels), or None when they share none."""
+    def measure(run):
+        (xa, ma, sa), (xb, mb, sb) = run.branch(a), run.branch(b)
+        pairs = [(i, int(np.argmax(np.isclose(xb, x)))) for i, x in enumerate(xa)
+                 if np.any(np.isclose(xb, x))]
+        if not pairs:
+            return None
+        diffs = [ma[i] - mb[k] for i, k in pairs]
+        err = math.sqrt(sum(sa[i] ** 2 + sb[k] ** 2 for i, k in pairs)) / len(pairs)
+        return float(np.mean(diffs)), err, len(pairs)
+    return measure
+
+
+def _run_branch_slope(run):
+    """The slope of a paper ramp's decreasing branch (weighted straight line): (slope, error,
+    levels), or None before three levels."""
+    x, mean, sem = run.branch("down")
+    if len(x) < 3:
+        return None
+    slope, err, _ = weighted_line(x, mean, sem)
+    return slope, err, len(x)
+
+
 @statistic("ramp_down_minus_up")
 def ramp_down_minus_up(data, claim):
-    return _branch_difference(data, "down", "up1", statistic="down_minus_up1")
+    """The decreasing branch minus the first increase of the ramp beyond (sqrt eps)*: the
+    campaign's (:func:`_branch_difference`), then per eta the ramps at the paper's protocol."""
+    return _branch_difference(data, "down", "up1", statistic="down_minus_up1") + _paper_beyond(
+        data, _run_branch_difference("down", "up1"), "phi_c:halves",
+        "a decreasing level at a sqrt(eps) of the first increase")
 
 
 @statistic("ramp_up2_minus_down")
 def ramp_up2_minus_down(data, claim):
-    return _branch_difference(data, "up2", "down", hysteresis_gap(data),
-                              statistic="up2_minus_down")
+    """The second increase minus the decreasing branch of the ramp beyond (sqrt eps)*, against
+    the campaign's hysteresis gap: the campaign's, then per eta the paper-protocol ramps."""
+    gap = hysteresis_gap(data)
+    return _branch_difference(data, "up2", "down", gap, statistic="up2_minus_down") + \
+        _paper_beyond(data, _run_branch_difference("up2", "down"), "phi_c:halves",
+                      "a level of the second increase at a sqrt(eps) of the decrease", gap)
 
 
 def _paper_protocol_frozen(data, effect):
@@ -563,10 +634,15 @@ def separation(ramps, critical):
 
 @statistic("ramp_branch_slope")
 def ramp_branch_slope(data, claim):
-    branch = ramp_branch(data, claim.params.get("branch", "down"))
+    """The slope of a branch of the ramp beyond (sqrt eps)*: the campaign's, then (for the
+    decreasing branch) per eta the paper-protocol ramps."""
+    name = claim.params.get("branch", "down")
+    paper = (_paper_beyond(data, _run_branch_slope, "phi_c", "three decreasing levels")
+             if name == "down" else [])
+    branch = ramp_branch(data, name)
     if branch is None:
-        return not_in_campaign("no ramp")
+        return not_in_campaign("no ramp") + paper
     slope, err, dof = weighted_line(*branch[:3])
     if not np.isfinite(slope):
-        return [Measure(undecided="fewer than three levels with error bars")]
-    return [Measure(slope, err, dof, shown=f"slope {fmt(slope, err)}")]
+        return [Measure(undecided="fewer than three levels with error bars")] + paper
+    return [Measure(slope, err, dof, shown=f"slope {fmt(slope, err)}")] + paper
