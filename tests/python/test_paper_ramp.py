@@ -121,6 +121,19 @@ def test_a_ramp_beyond_the_critical_level_is_told_apart(tmp_path):
     assert list(map(repr, back)) == list(map(repr, [going, beyond]))   # nan != nan
 
 
+def test_a_level_in_progress_is_not_a_level_yet(tmp_path):
+    """The paper's level is the mean of the last 1000 of its 4000 taps: a descending level
+    2000 taps in (here far above the others) is neither counted nor averaged until it ends."""
+    up = [0.590, 0.595, 0.598, 0.600, 0.600]
+    run = write_run(tmp_path, "paperramp0.125_pbc_s1", up + [0.601, 0.601, 0.640])
+    taps = (run / "taps.dat").read_text().splitlines()
+    (run / "taps.dat").write_text("\n".join(taps[:2 + 7 * 4000 + 2000]) + "\n")
+    r = paper_ramp.analyse_run(run, 1e-7)
+    assert r.taps_done == 30000 and r.down_levels == 2 and r.down_last == 0.075
+    assert r.down_change == pytest.approx(0.001, abs=1e-4) and r.verdict == "compacts"
+    np.testing.assert_allclose(r.branch("down")[0], [0.1, 0.075])
+
+
 def test_seeds_that_disagree_are_said_to_disagree(tmp_path):
     up = [0.590, 0.595, 0.598, 0.600, 0.600]
     write_run(tmp_path, "paperramp0.125_pbc_s1", up + [0.600] * 4, done=True)

@@ -5,8 +5,8 @@ irreversible (frozen)?
 The campaign's ``paperramp*`` runs (tier 7 of :mod:`tapmc.paper.plan`) ramp sqrt(eps) up to a
 turning level below (sqrt eps)* ~ 0.15 and back down at 4000 taps per level, at the default
 redeposition threshold and at looser ones. Each run is read from its taps.dat (finished or not:
-the levels done so far count), cut into levels by :class:`tapmc.hysteresis.Hysteresis` (the
-last 1000 taps of each level) and judged by :class:`tapmc.hysteresis.RampBranches`: the branch
+the levels done whole so far count), cut into levels by :class:`tapmc.hysteresis.Hysteresis`
+(the last 1000 taps of each level) and judged by :class:`tapmc.hysteresis.RampBranches`: the branch
 is *frozen* when the descending levels stay within noise of the turning level
 (``down_change`` within ``Z_DECIDE`` standard errors), and *compacts* when they rise beyond it.
 The per-run table is written to ``paper_ramp.csv`` of the report's questions folder, and the
@@ -24,7 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..hysteresis import CRITICAL_SQRT_EPS, Hysteresis, RampBranches
+from ..hysteresis import CRITICAL_SQRT_EPS, BranchData, Hysteresis, RampBranches
 from . import _runs
 
 #: Taps per level of the paper's protocol, and the taps averaged at the end of each level.
@@ -98,9 +98,14 @@ def _running(base, down_levels):
 
 
 def _whole_levels(hysteresis):
-    """The fields of :class:`PaperRampRun` that keep the levels with all their taps."""
+    """The levels of a computed :class:`Hysteresis` that have all their taps: a level in
+    progress is not yet a level of the paper's protocol (its last 1000 taps are not its end)."""
     levels = hysteresis.levels
-    whole = levels[levels["last_tap"] - levels["first_tap"] + 1 == TAPS_PER_LEVEL]
+    return levels[levels["last_tap"] - levels["first_tap"] + 1 == TAPS_PER_LEVEL]
+
+
+def _level_fields(whole):
+    """The fields of :class:`PaperRampRun` that keep the whole levels."""
     return {"level_branches": " ".join(str(b) for b in whole["branch"]),
             **{f"level_{k}": tuple(float(v) for v in whole[k]) for k in ("sqrt_eps", "mean",
                                                                           "sem")}}
@@ -119,12 +124,13 @@ def analyse_run(run_dir, default_eta):
                 taps_done=taps_done, finished=(run_dir / "DONE.json").exists())
     if len(phi_c) < TAPS_PER_LEVEL:  # a run just started: not one whole level yet
         return _running(base, 0)
-    hysteresis = Hysteresis(sqrt_eps, phi_c, TAPS_PER_LEVEL, LAST_TAPS).compute()
-    base.update(_whole_levels(hysteresis))
-    down = hysteresis.branch("down")
+    whole = _whole_levels(Hysteresis(sqrt_eps, phi_c, TAPS_PER_LEVEL, LAST_TAPS).compute())
+    base.update(_level_fields(whole))
+    up1, down, up2 = (whole[whole["branch"] == b] for b in ("up1", "down", "up2"))
     if len(down) < MIN_DOWN_LEVELS:
         return _running(base, len(down))
-    branches = RampBranches.from_hysteresis(hysteresis).compute()
+    branches = RampBranches(BranchData.from_levels(up1), BranchData.from_levels(down),
+                            BranchData.from_levels(up2) if len(up2) else None).compute()
     change = branches.down_change
     rise = float(down["mean"][-1] - down["mean"][0])
     rise_sem = float(np.hypot(down["sem"][-1], down["sem"][0]))
