@@ -43,7 +43,7 @@ using namespace FixConst;
 
 namespace {
 constexpr int kPackedPerAtom = 6;  // tag, x, y, z, radius, movable
-constexpr int kVectorSize = 12;
+constexpr int kVectorSize = 13;
 const char *const kAxisName[2] = {"x", "y"};
 }  // namespace
 
@@ -700,18 +700,21 @@ void FixMCSettle::store_diagnostics(const tapmc::SettleResult &result)
   last_mean_z = result.mean_height;
   last_mean_z0 = result.mean_height_start;
   last_hit_cap = result.hit_cap ? 1.0 : 0.0;
+  last_idle_stop = result.stopped_on_idle_check ? 1.0 : 0.0;
   last_parallel = redeposition->parallel_diagnostics();
 }
 
 // [1] sweeps used, [2] acceptance ratio, [3] <Z> after, [4] 1 if the sweep cap was hit,
 // [5] trial moves, [6] <Z> before the redeposition (after the tap); scheme domain (else 0):
 // [7] ghost rebuilds, [8] rounds, and this rank's seconds in [9] trial moves, [10] ghost
-// refreshes, [11] reductions, [12] migration and ghost rebuilds.
+// refreshes, [11] reductions, [12] migration and ghost rebuilds; [13] 1 if 'stop change' ended
+// the redeposition at a check that accepted no trial (SettleResult::stopped_on_idle_check).
 double FixMCSettle::compute_vector(int n)
 {
   const double values[kVectorSize] = {
       last_sweeps,       last_acceptance,   last_mean_z,       last_hit_cap,
       last_trials,       last_mean_z0,      last_parallel[0],  last_parallel[1],
-      last_parallel[2],  last_parallel[3],  last_parallel[4],  last_parallel[5]};
+      last_parallel[2],  last_parallel[3],  last_parallel[4],  last_parallel[5],
+      last_idle_stop};
   return values[n];
 }

@@ -78,6 +78,7 @@ class FixMCSettle : public Fix, public tapmc::ContainerHolder {
 
   // per-tap diagnostics (global vector)
   double last_sweeps, last_acceptance, last_mean_z, last_hit_cap, last_trials, last_mean_z0;
+  double last_idle_stop = 0.0;  // 1: stopped at a check that accepted no trial ('stop change')
   std::array<double, 6> last_parallel{};  // scheme domain: rebuilds, rounds, seconds per phase
 
   // How one redeposition is spread over the ranks ('scheme'), chosen once when the fix is

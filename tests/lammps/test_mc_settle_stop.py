@@ -8,7 +8,7 @@ import os
 import numpy as np
 import pytest
 
-from lmprun import read_dump, run_lammps
+from lmprun import read_dump, run_lammps, thermo_table
 
 # 294 spheres of diameter 1 on a simple cubic lattice (spacing 1.1, 7 x 7 x 6) in an 8 x 8 box.
 SCENE = """units lj
@@ -135,6 +135,8 @@ create_box 1 box
 create_packing 16 1 0.5 4928 floor 0.0
 fix tap all tapdilate 0.01 floor 0.0
 fix settle all mc/settle 4928 floor 0.0 {keywords}
+thermo_style custom step f_settle[1] f_settle[13]
+thermo 1
 run 6
 """
 IDLE_STOP = "which none of its 16 trials was accepted. 'stop change' reads an unchanged <Z>"
@@ -146,7 +148,10 @@ def test_a_stop_at_an_idle_check_warns_once(nprocs, scheme):
     assert rc == 0, out
     assert out.count(IDLE_STOP) == 1, out
     assert "(here 16 movable spheres)" in out and "(warned once)" in out, out
+    idle = thermo_table(out, "f_settle[1]")[1][1:, 2]   # [13], per tap: every stop was idle
+    np.testing.assert_array_equal(idle, np.ones(6))
     # The drift rule stops by eta, also here.
     rc, out, _ = run_lammps(SMALL_BED.format(keywords=f"scheme {scheme} stop drift eta 4e-7"),
                             nprocs=nprocs)
     assert rc == 0 and "none of its" not in out, out
+    np.testing.assert_array_equal(thermo_table(out, "f_settle[1]")[1][:, 2], np.zeros(7))
