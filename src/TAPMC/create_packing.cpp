@@ -245,6 +245,8 @@ Plan plan_domain(LAMMPS *lmp, const Request &req)
 
   plan.r_min = req.params.radii().r_min;
   plan.r_max = req.params.radii().r_max;
+  tapmc::require_exact_coordinates(lmp, "create_packing",
+                                   std::min(plan.r_min, tapmc::smallest_radius(lmp)));
   tapmc::DepositionDomain &dd = plan.dd;
   dd.xlo = lo[0];
   dd.xhi = hi[0];

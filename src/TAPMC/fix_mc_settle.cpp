@@ -591,6 +591,8 @@ std::string FixMCSettle::violation_message(const tapmc::Violation &v, tagint tag
 
 void FixMCSettle::setup_pre_exchange()
 {
+  tapmc::require_exact_coordinates(
+      lmp, "fix mc/settle", fixed_radius > 0.0 ? fixed_radius : tapmc::smallest_radius(lmp));
   redeposition->check_start();
   schedule_next_settle();
 }

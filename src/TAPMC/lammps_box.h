@@ -4,9 +4,14 @@
 #ifndef TAPMC_LAMMPS_BOX_H
 #define TAPMC_LAMMPS_BOX_H
 
+#include "tapmc_contact.h"
+
 #include "domain.h"
 #include "error.h"
 #include "lammps.h"
+
+#include <algorithm>
+#include <cmath>
 
 namespace tapmc {
 
@@ -21,6 +26,29 @@ inline void require_box_with_floor(LAMMPS_NS::LAMMPS *lmp, const char *style)
   if (lmp->domain->zperiodic)
     lmp->error->all(FLERR, "{}: the z boundary is periodic; the packing needs a floor and an open "
                     "top: use e.g. 'boundary p p fm' (or 'f f fm')", style);
+}
+
+// Stops when the box reaches coordinates where a double cannot resolve the contact of the
+// smallest spheres (radius `r_min`) to the contact tolerance, naming the axis, the coordinate
+// and the bound (tapmc_contact.h, largest_exact_coordinate). A radius that is not positive is
+// left to the style's own check of the radii.
+inline void require_exact_coordinates(LAMMPS_NS::LAMMPS *lmp, const char *style, double r_min)
+{
+  if (!(r_min > 0.0)) return;
+  const double bound = largest_exact_coordinate(2.0 * r_min);
+  const LAMMPS_NS::Domain *domain = lmp->domain;
+  for (int d = 0; d < 3; ++d) {
+    const double reach = std::max(std::fabs(domain->boxlo[d]), std::fabs(domain->boxhi[d]));
+    if (reach > bound)
+      lmp->error->all(FLERR, "{}: the box reaches {} = {}, where doubles are {:.2g} apart: the "
+                      "contacts of spheres of radius {} cannot be resolved to the contact "
+                      "tolerance ({} of their contact distance) beyond |{}| = {:.3g}; move the "
+                      "box nearer the origin (e.g. the floor at z = 0)", style, "xyz"[d],
+                      std::fabs(domain->boxlo[d]) > std::fabs(domain->boxhi[d])
+                          ? domain->boxlo[d] : domain->boxhi[d],
+                      reach * std::numeric_limits<double>::epsilon(), r_min,
+                      defaults::kContactTolerance, "xyz"[d], bound);
+  }
 }
 
 }  // namespace tapmc

@@ -124,6 +124,17 @@ inline double largest_radius(LAMMPS_NS::LAMMPS *lmp)
   return all;
 }
 
+// Smallest sphere radius over all atoms and ranks (+inf without atoms or radii). Collective.
+inline double smallest_radius(LAMMPS_NS::LAMMPS *lmp)
+{
+  double local = std::numeric_limits<double>::infinity(), all = local;
+  const double *radius = lmp->atom->radius;
+  if (radius)
+    for (int i = 0; i < lmp->atom->nlocal; ++i) local = std::min(local, radius[i]);
+  MPI_Allreduce(&local, &all, 1, MPI_DOUBLE, MPI_MIN, lmp->world);
+  return all;
+}
+
 // Hard spheres need no pair style, which leaves LAMMPS with a zero communication cutoff and the
 // warning "Communication cutoff is 0.0 ... Atoms may get lost" at every reneighbouring (every
 // tap). A style asks here for ghosts `depth` deep: fix mc/settle for what its contacts and

@@ -5,9 +5,21 @@
 #ifndef TAPMC_CONTACT_H
 #define TAPMC_CONTACT_H
 
+#include "tapmc_defaults.h"
+
 #include <cmath>
+#include <limits>
 
 namespace tapmc {
+
+// Largest |coordinate| at which a double still resolves a contact of `contact_distance` to the
+// relative contact tolerance (tapmc_defaults.h, kCoordinateRoundingMargin).
+inline double largest_exact_coordinate(double contact_distance,
+                                       double contact_tol = defaults::kContactTolerance)
+{
+  return contact_tol * contact_distance /
+         (defaults::kCoordinateRoundingMargin * std::numeric_limits<double>::epsilon());
+}
 
 // Squared distance, written once with explicit fused operations so every caller (vectorised
 // kernel loop, scalar violation check, benchmarks) rounds identically.

@@ -16,6 +16,14 @@ namespace defaults {
 // 1e-16 relative rounding of the coordinates. The same relative tolerance applies to the floor
 // and to side walls (measured against the sphere's diameter).
 constexpr double kContactTolerance = 1e-10;
+// Coordinates far from the origin are resolved coarsely: a double at |x| is |x| 2^-52 from
+// its neighbour, and a distance carries the rounding of both positions and of its arithmetic.
+// The contact test is exact only where kCoordinateRoundingMargin such spacings stay below the
+// tolerance of the smallest contact, kContactTolerance * 2 R_min: |x| up to 1.1e5 for spheres
+// of diameter 1. Measured: create_packing with the floor at z = 1e6 leaves pairs 1.04e-10
+// (relative) inside contact, which fix mc/settle then refuses; at z = 1e4 the taps are bit for
+// bit those at z = 0. The styles refuse a box beyond the bound (lammps_box.h).
+constexpr double kCoordinateRoundingMargin = 4.0;
 // Largest contact tolerance the kernels accept: beyond a tenth of the contact distance the
 // "hard" spheres would interpenetrate visibly and the packing fractions would be biased.
 constexpr double kMaxContactTolerance = 0.1;

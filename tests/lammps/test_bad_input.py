@@ -7,9 +7,10 @@ import re
 import struct
 from pathlib import Path
 
+import numpy as np
 import pytest
 
-from lmprun import LMP, run_lammps
+from lmprun import LMP, run_lammps, thermo_table
 
 BOX = """units lj
 atom_style sphere
@@ -144,6 +145,39 @@ def test_mc_settle_sphere_through_a_side_wall():
     rc, out = run_case("create_atoms 1 single 7.8 5 3\nfix s all mc/settle 1\nrun 1",
                        boundary="f f fm")
     assert rc != 0 and "crosses a side wall in x" in out, out
+
+
+FAR_BOX = """units lj
+atom_style sphere
+boundary p p fm
+region box block 0 6 0 6 {z0} {z1}
+create_box 1 box
+"""
+
+
+@pytest.mark.parametrize("z0,body,style", [
+    (1e6, "create_packing 50 1 0.5 7 floor 1e6", "create_packing"),
+    (-2e5, "create_packing 50 1 0.5 7 floor -2e5", "create_packing"),
+    (1e6, "create_atoms 1 single 3 3 1000000.5\nset group all diameter 1.0\n"
+          "fix s all mc/settle 1 floor 1e6\nrun 1", "fix mc/settle"),
+])
+def test_a_box_beyond_exact_contacts_is_refused(z0, body, style):
+    """Far from the origin a double cannot resolve a contact to its tolerance (at z = 1e6 the
+    deposited pairs sat 1.04e-10 inside contact): the styles refuse the box, naming the bound;
+    at z = 1e5 the same bed taps as at z = 0."""
+    rc, out, _ = run_lammps(FAR_BOX.format(z0=z0, z1=z0 + 40) + body + "\n")
+    assert rc != 0 and f"ERROR: {style}: the box reaches z = " in out, out
+    assert "beyond |z| = 1.13e+05; move the box nearer the origin" in out, out
+    near = "create_packing 50 1 0.5 7 floor {z}\nfix t all tapdilate 0.01 floor {z}\n" \
+           "fix s all mc/settle 7 floor {z} eta 1e-5\nthermo_style custom step f_s[1] f_s[3]\n" \
+           "thermo 1\nrun 3\n"
+    rows = []
+    for z in (0.0, 1e5):
+        rc, out, _ = run_lammps(FAR_BOX.format(z0=z, z1=z + 40) + near.format(z=z))
+        assert rc == 0, out
+        rows.append(thermo_table(out, "f_s[1]")[1])
+    assert rows[0].shape == (4, 3) and rows[0][-1, 1] > 0
+    np.testing.assert_array_equal(rows[0], rows[1])   # sweeps and <Z> above the floor
 
 
 def test_largest_seed_is_accepted():

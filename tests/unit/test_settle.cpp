@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -102,6 +103,32 @@ TEST(Settle, LoneSphereFallsOntoTheFloor)
 // onto the fixed sphere and stays on it, never below the lowest legal point of the column,
 // z* = R + sqrt(4 - 2 * 0.05^2) R (resting on the sphere in a corner of the column). Near the
 // apex almost every downward move is blocked, so it need not reach z* (the model's physics).
+// Two unit spheres placed at exact contact in random directions, at coordinates of magnitude z:
+// up to largest_exact_coordinate the rounding of the positions never makes the contact an
+// overlap beyond the tolerance; a hundred times farther out it does (the control).
+TEST(Settle, ContactsResolveUpToTheLargestExactCoordinate)
+{
+  const double bound = largest_exact_coordinate(1.0);
+  EXPECT_NEAR(bound, 1.126e5, 1e3);
+  std::mt19937_64 bits(5);
+  std::normal_distribution<double> gauss;
+  auto false_overlaps = [&](double z) {
+    int count = 0;
+    for (int k = 0; k < 20000; ++k) {
+      double u[3] = {gauss(bits), gauss(bits), gauss(bits)};
+      const double norm = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+      const double pi[3] = {z, -z, z};
+      double pj[3];
+      for (int d = 0; d < 3; ++d) pj[d] = pi[d] + u[d] / norm;
+      const double r2 = distance_sq(pj[0] - pi[0], pj[1] - pi[1], pj[2] - pi[2]);
+      if (r2 < overlap_threshold_sq(0.5, 0.5, 1.0 - defaults::kContactTolerance)) ++count;
+    }
+    return count;
+  };
+  EXPECT_EQ(false_overlaps(bound), 0);
+  EXPECT_GT(false_overlaps(100.0 * bound), 1000);
+}
+
 TEST(Settle, SphereCannotPassThroughAFixedSphere)
 {
   Scene s;
