@@ -109,6 +109,11 @@ def test_the_shown_row_is_the_one_the_verdict_rests_on():
     assert isinstance(marked, ClaimVerdict) and marked.missing_scale == ()
     lacking = _one([U, U], scale=("size",))
     assert lacking.undecided_for_scale and lacking.missing_scale == ("size",)
+    # of the rows with the claim's outcome, one at the paper's scale comes first (a ramp at
+    # 4000 taps per level before the campaign's at 1000)
+    short, full = _rows([D], labels=["1000 taps"], scale=("ramp_taps",)), _rows([D, D])
+    (both,) = claim_verdicts(short + full)
+    assert both.shown_row() is both.rows[1]
 
 
 def test_the_rule_is_stated_as_it_is_applied():

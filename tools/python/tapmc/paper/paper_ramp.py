@@ -197,11 +197,12 @@ def below_critical(rows):
     return [r for r in rows if r.top < CRITICAL_SQRT_EPS]
 
 
-def by_eta(rows):
-    """(eta, decided, running) per eta of the rows (:class:`PaperRampRun`), the loosest first:
-    ``decided`` are the seeds whose ramp came down two levels, ``running`` says how far the
-    others got (:func:`progress_text`; "" when none is running)."""
-    for eta in sorted({r.eta for r in rows}, reverse=True):
+def by_eta(rows, first=None):
+    """(eta, decided, running) per eta of the rows (:class:`PaperRampRun`): ``first`` (the
+    default eta) first, then the loosest first; ``decided`` are the seeds whose ramp came down
+    two levels, ``running`` says how far the others got (:func:`progress_text`; "" when none
+    is running)."""
+    for eta in sorted({r.eta for r in rows}, key=lambda e: (e != first, -e)):
         group = [r for r in rows if r.eta == eta]
         decided = [r for r in group if r.verdict != "running"]
         running = "; ".join(progress_text(r.seed, r.taps_done, r.down_levels) for r in group
@@ -224,7 +225,7 @@ def headline_text(rows, default_eta):
     if not rows:
         return ""
     parts = []
-    for eta, decided, running in by_eta(rows):
+    for eta, decided, running in by_eta(rows, default_eta):
         label = eta_label(eta, default_eta)
         if not decided:
             parts.append(f"{label}: undecided, {NOT_DOWN_YET} ({running})")
@@ -251,7 +252,7 @@ def finding_text(rows, default_eta):
     if not rows:
         return ""
     parts = []
-    for eta, decided, running in by_eta(below):
+    for eta, decided, running in by_eta(below, default_eta):
         label = eta_label(eta, default_eta)
         if not decided:
             parts.append(f"at {label} {NOT_DOWN_YET} ({running}): undecided.")
@@ -286,7 +287,7 @@ def _beyond_text(rows, default_eta):
     """The ramps that turned beyond (sqrt eps)* (the paper's reversible branch), per eta:
     their decreasing branch from the turning level, or how far they got ("" without any)."""
     parts = []
-    for eta, decided, running in by_eta(rows):
+    for eta, decided, running in by_eta(rows, default_eta):
         seeds = "; ".join(f"seed {r.seed}, turning at {r.top:g}: {r.down_change:+.4f} +- "
                           f"{r.down_change_sem:.4f} ({r.verdict})" for r in decided)
         parts.append(f"at {eta_label(eta, default_eta)}, "

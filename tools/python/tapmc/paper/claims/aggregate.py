@@ -142,12 +142,14 @@ class ClaimVerdict:
     def shown_row(self):
         """The row the main table shows for the claim: the first that disagrees (or fails)
         when the claim does, else the row of the claim's headline label when it has one,
-        else the first row with the claim's outcome."""
+        else the first row with the claim's outcome; a row at the paper's scale (none of it
+        missing, e.g. a ramp at the paper's 4000 taps per level) before one that lacks it."""
         rows = self.rows
         if isinstance(self.claim.headline, str) and self.outcome not in (
                 Outcome.DISAGREES, Outcome.FAILS):
             rows = [r for r in rows if r.label.startswith(self.claim.headline)] or rows
-        return next((r for r in rows if r.outcome == self.outcome), rows[0])
+        same = [r for r in rows if r.outcome == self.outcome]
+        return next((r for r in same if not r.missing_scale), same[0] if same else rows[0])
 
 
 def claim_verdicts(rows):

@@ -385,7 +385,8 @@ def _paper_beyond(data, measure_of_run, quantity, what, effect=None):
     beyond = [r for r in runs_from_rows(data.question("paper_ramp"))
               if r.top > CRITICAL_SQRT_EPS + LEVEL_TOLERANCE]
     out = []
-    for eta in sorted({r.eta for r in beyond}, reverse=True):
+    first = campaign_eta(data.summary)
+    for eta in sorted({r.eta for r in beyond}, key=lambda e: (e != first, -e)):
         label = protocol_label(PAPER_RAMP_TAPS, eta)
         found = [(r, measure_of_run(r)) for r in beyond if r.eta == eta]
         done = [(r, m) for r, m in found if m is not None]
@@ -467,7 +468,7 @@ def _paper_protocol_frozen(data, effect):
     Only the ramps turning below (sqrt eps)* count (a ramp beyond it is the reversible case)."""
     out = []
     rows = below_critical(runs_from_rows(data.question("paper_ramp")))
-    for eta, decided, running in by_eta(rows):
+    for eta, decided, running in by_eta(rows, campaign_eta(data.summary)):
         label = protocol_label(PAPER_RAMP_TAPS, eta)
         if not decided:
             out.append(Measure(label=label, meets=("ramp_taps",),
@@ -559,7 +560,8 @@ def critical_separation(data, claim):
     (:func:`campaign_separation`), then, per eta, on the ramps at the paper's own protocol
     (paper_ramp.csv; each turning level's seeds as :func:`low_ramp_frozen` takes them)."""
     rows = campaign_separation(data)
-    for eta, decided, running in by_eta(runs_from_rows(data.question("paper_ramp"))):
+    for eta, decided, running in by_eta(runs_from_rows(data.question("paper_ramp")),
+                                        campaign_eta(data.summary)):
         label = protocol_label(PAPER_RAMP_TAPS, eta)
         tops = sorted({r.top for r in decided})
         ramps = [(top, _paper_down_change(data, [r for r in decided if r.top == top])[:3])
