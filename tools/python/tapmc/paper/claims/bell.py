@@ -363,14 +363,7 @@ def _paper_protocol_up(data, effect):
         at = [int(np.argmax(np.isclose(x, c))) for c in common]
         values.append(float(np.mean(mean[at])))
         errors.append(float(np.sqrt(np.sum(sem[at] ** 2))) / len(at))
-    if len(whole) >= 2:
-        seed_err, seed_dof, how, _ = seeds_error(data, values, errors, "phi_c")
-        how = how or f"{len(whole)} seeds: the spread of their own values"
-    else:
-        factor = data.run_error("phi_c")[0]
-        seed_err, seed_dof = factor * errors[0], WITHIN_RUN_DOF
-        how = "one seed: its levels' batch-means errors" + (
-            f" x {factor:.1f}, the realizations' factor" if factor != 1.0 else "")
+    seed_err, seed_dof, how = _paper_seeds_error(data, values, errors, "phi_c")
     return [_up_minus_squares(values, seed_err, seed_dof, how, steady, pairs, effect,
                               label=label, meets=("ramp_taps",),
                               note=f"; not counted yet: {waiting}" if waiting else "")]
@@ -397,13 +390,7 @@ def _paper_beyond(data, measure_of_run, quantity, what, effect=None):
                                undecided=f"{what} not done yet ({waiting})"))
             continue
         values, errors = [m[0] for _, m in done], [m[1] for _, m in done]
-        if len(done) >= 2:
-            err, dof, how, _ = seeds_error(data, values, errors, quantity)
-            how = how or f"{len(done)} seeds: the spread of their own values"
-        else:
-            factor = data.run_error(quantity)[0]
-            err, dof = factor * errors[0], WITHIN_RUN_DOF
-            how = "one seed" + (f", its levels' errors x {factor:.1f}" if factor != 1.0 else "")
+        err, dof, how = _paper_seeds_error(data, values, errors, quantity)
         value = float(np.mean(values))
         tops = ", ".join(sorted({f"{r.top:g}" for r, _ in done}))
         out.append(Measure(value, err, dof, label=label, meets=("ramp_taps",), effect=effect,
@@ -488,13 +475,23 @@ def _paper_down_change(data, decided):
     times the realizations' factor of a difference of two parts of one run; several seeds'
     mean by :func:`seeds_error`."""
     values = [r.down_change for r in decided]
-    errors = [r.down_change_sem for r in decided]
-    if len(decided) >= 2:
-        err, dof, how, _ = seeds_error(data, values, errors, "phi_c")
-    else:
-        err = data.run_error("phi_c:halves")[0] * errors[0]
-        dof, how = WITHIN_RUN_DOF, "one seed"
+    err, dof, how = _paper_seeds_error(data, values, [r.down_change_sem for r in decided],
+                                       "phi_c:halves")
     return float(np.mean(values)), err, dof, how
+
+
+def _paper_seeds_error(data, values, errors, one_run_quantity):
+    """(error, dof, how) of the mean of paper-protocol seeds' ``values``, each with its levels'
+    batch-means error ``errors``: several seeds judged with the campaign's groups of
+    realizations (:func:`seeds_error`, phi_c), one seed its error times the realizations'
+    factor of ``one_run_quantity`` (run_error: 'phi_c' for a window mean, 'phi_c:halves' for a
+    difference of two parts of one run)."""
+    if len(values) >= 2:
+        err, dof, how, _ = seeds_error(data, values, errors, "phi_c")
+        return err, dof, how or f"{len(values)} seeds: the spread of their own values"
+    factor = data.run_error(one_run_quantity)[0]
+    return factor * errors[0], WITHIN_RUN_DOF, "one seed" + (
+        f": its levels' errors x {factor:.1f}" if factor != 1.0 else "")
 
 
 @statistic("low_ramp_frozen")
