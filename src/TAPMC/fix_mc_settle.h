@@ -74,7 +74,7 @@ class FixMCSettle : public Fix, public tapmc::ContainerHolder {
   long drift_window = 0;      // 'window': checks averaged by 'stop drift' (kSettleDriftWindow)
   bool window_given = false;
   bool verify_ghosts = false; // 'verify': scheme domain checks every ghost after every round
-  bool warned_idle_stop = false;  // the warning of a stop by chance (pre_exchange) is given once
+  bool warned_idle_stop = false;  // the warning of a stop at an idle check is given once
 
   // per-tap diagnostics (global vector)
   double last_sweeps, last_acceptance, last_mean_z, last_hit_cap, last_trials, last_mean_z0;
