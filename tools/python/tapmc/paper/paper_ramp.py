@@ -197,6 +197,11 @@ def below_critical(rows):
     return [r for r in rows if r.top < CRITICAL_SQRT_EPS]
 
 
+def beyond_critical(rows):
+    """The runs that turn beyond (sqrt eps)*: the ramps of the reversible branch."""
+    return [r for r in rows if r.top > CRITICAL_SQRT_EPS]
+
+
 def by_eta(rows, first=None):
     """(eta, decided, running) per eta of the rows (:class:`PaperRampRun`): ``first`` (the
     default eta) first, then the loosest first; ``decided`` are the seeds whose ramp came down
@@ -273,7 +278,7 @@ def finding_text(rows, default_eta):
         parts.append(f"at {label}, {head} ({len(decided)} seed{'s' if len(decided) > 1 else ''};"
                      f" <Phi^c> of the descending levels, {seeds})"
                      + (f"; not counted yet: {running}" if running else ""))
-    beyond = _beyond_text([r for r in rows if r not in below], default_eta)
+    beyond = _beyond_text(beyond_critical(rows), default_eta)
     if not parts:
         return beyond.strip()
     return ("Section III.B's question at the paper's own ramp protocol (N = 4096, L = 32R, "

@@ -15,8 +15,8 @@ from tapmc.hysteresis import CRITICAL_SQRT_EPS, LEVEL_TOLERANCE
 from tapmc.stats import t_quantile, weighted_line, welch_dof
 
 from .. import fig4, fig6
-from ..paper_ramp import (NOT_DOWN_YET, TAPS_PER_LEVEL as PAPER_RAMP_TAPS, below_critical, by_eta,
-                          runs_from_rows)
+from ..paper_ramp import (NOT_DOWN_YET, TAPS_PER_LEVEL as PAPER_RAMP_TAPS, below_critical,
+                          beyond_critical, by_eta, runs_from_rows)
 
 from .common import (above, below, campaign_eta, common_x, curve_of, mean_difference,
                      not_in_campaign,
@@ -375,8 +375,7 @@ def _paper_beyond(data, measure_of_run, quantity, what, effect=None):
     number of levels) or None while the run lacks the levels (``what`` names them); one seed's
     error times the realizations' factor of ``quantity``, several seeds' mean by
     :func:`seeds_error`; [] without such ramps."""
-    beyond = [r for r in runs_from_rows(data.question("paper_ramp"))
-              if r.top > CRITICAL_SQRT_EPS + LEVEL_TOLERANCE]
+    beyond = beyond_critical(runs_from_rows(data.question("paper_ramp")))
     out = []
     first = campaign_eta(data.summary)
     for eta in sorted({r.eta for r in beyond}, key=lambda e: (e != first, -e)):
