@@ -23,7 +23,7 @@ LMP = Path(os.environ.get("TAPMC_LMP", BUILD / "lmp_tapmc"))
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
 
 from tapmc.campaign import (Campaign, CampaignDirectoryError, CampaignError,  # noqa: E402
-                            MANIFEST_FORMAT, RunSpec, Words, launch)
+                            MANIFEST_FORMAT, RunSpec, Words, launch, provenance)
 
 CONSTANT_EPS = SOURCE / "examples" / "paper" / "in.constant_eps"
 TINY = dict(N=64, L=8, eta=1e-5, rsteps=5, thermo_every=5)
@@ -95,7 +95,7 @@ Campaign({folder!r}, runs, lmp={lmp!r}, jobs=1, progress_interval=0.5).run()
 """
 
 
-def test_resume_after_kill(tmp_path):
+def test_resume_after_kill(tmp_path, monkeypatch):
     short = dict(TINY, taps=5)
     long = dict(TINY, N=128, taps=200, eta=1e-6, rsteps=20, pevery=50)
     folder = tmp_path / "c"
@@ -120,8 +120,21 @@ def test_resume_after_kill(tmp_path):
 
     short_log = folder / "runs" / "short" / "log.lammps"
     before = short_log.stat().st_mtime_ns, (folder / "runs" / "short" / "DONE.json").read_text()
+    killed = json.loads((folder / "manifest.json").read_text())
+    first_version = killed["tapmc_version"]
+    # the killed campaign left the start of its running attempt, with the versions that ran it
+    running = killed["runs"][1]["running_attempt"]
+    assert running["tapmc_version"] == first_version and running["resumed_from_step"] is None
+    assert running["lammps_version"] == killed["lammps_version"] and running["started"]
     runs = [RunSpec("short", CONSTANT_EPS, short, seed=1), RunSpec("long", CONSTANT_EPS, long, seed=2)]
-    campaign = Campaign(folder, runs, lmp=LMP, jobs=1).run(progress=False)
+    # ... and the campaign resumes under another TAPMC build: it says so and records both
+    monkeypatch.setattr(provenance, "tapmc_version", lambda: "next-build")
+    latest = max((p.name for p in (folder / "runs" / "long").glob("restart.*")),
+                 key=lambda name: int(name.split(".")[1]))
+    stream = io.StringIO()
+    campaign = Campaign(folder, runs, lmp=LMP, jobs=1, stream=stream).run(progress=False)
+    assert (f"[campaign] run 'long': resumes from {latest} under TAPMC "
+            f"next-build; its earlier attempts ran TAPMC {first_version}") in stream.getvalue()
 
     # the finished run was not redone
     assert (short_log.stat().st_mtime_ns,
@@ -132,11 +145,18 @@ def test_resume_after_kill(tmp_path):
     assert "read_restart" in log and "Reading restart file" in log
     assert (run_dir / "log.attempt1.lammps").exists()
     assert steps(run_dir / "taps.dat") == list(range(201))
-    attempts = json.loads((folder / "manifest.json").read_text())["runs"][1]["attempts"]
+    record = json.loads((folder / "manifest.json").read_text())["runs"][1]
+    attempts = record["attempts"]
     assert attempts[0]["interrupted"] and attempts[-1]["resumed_from_step"] >= 40
+    assert attempts[0]["tapmc_version"] == first_version and attempts[0]["started"]
+    assert attempts[-1]["tapmc_version"] == "next-build" and "running_attempt" not in record
+    assert provenance.read_done(run_dir / "DONE.json")["tapmc_versions"] == [first_version,
+                                                                           "next-build"]
     # ... and followed exactly the trajectory of an uninterrupted run (counter-based RNG)
-    ref = Campaign(tmp_path / "ref", [RunSpec("long", CONSTANT_EPS, long, seed=2)],
-                   lmp=LMP, jobs=1).run(progress=False).result("long")
+    stream = io.StringIO()
+    ref = Campaign(tmp_path / "ref", [RunSpec("long", CONSTANT_EPS, long, seed=2)], lmp=LMP,
+                   jobs=1, stream=stream).run(progress=False).result("long")
+    assert "resumes" not in stream.getvalue()
     assert (run_dir / "taps.dat").read_text() == (ref / "taps.dat").read_text()
     assert (run_dir / "profile_z.dat").read_text() == (ref / "profile_z.dat").read_text()
     assert not list(run_dir.glob("*.from*"))
@@ -598,3 +618,16 @@ def test_runs_start_while_singletons_end_beside_them(tmp_path, monkeypatch):
     failed = [(k, (tmp_path / f"screen{k}.txt").read_text()[-300:])
               for k, c in enumerate(codes) if c != 0]
     assert not failed
+
+
+def test_the_versions_that_ran_a_run():
+    """Each attempt names the TAPMC that ran it; attempts recorded before attempts carried a
+    version count as the campaign's last recorded version, and a control without one names
+    none."""
+    record = {"attempts": [{"interrupted": True, "log": "log.attempt1.lammps"},
+                           {"started": "t", "tapmc_version": "b"},
+                           {"interrupted": True, "tapmc_version": "b", "log": "x"},
+                           {"started": "u", "tapmc_version": "c"}]}
+    assert provenance.attempt_versions(record, fallback="a") == ["a", "b", "c"]
+    assert provenance.attempt_versions(record) == ["b", "c"]
+    assert provenance.attempt_versions({"attempts": []}, fallback="a") == []

@@ -17,7 +17,8 @@ from .launch import private_mpi_session
 
 __all__ = ["MANIFEST_FORMAT", "sha256", "now", "portable_paths", "read_manifest",
            "write_manifest", "lammps_version", "tapmc_version", "copy_inputs", "read_done",
-           "write_done", "output_digests", "damaged_outputs", "verify_finished_run"]
+           "write_done", "output_digests", "damaged_outputs", "verify_finished_run",
+           "attempt_versions"]
 
 _REPO = Path(__file__).resolve().parents[4]
 #: Layout of a campaign folder (manifest keys, inputs/, runs/NAME/DONE.json) that this package
@@ -119,6 +120,18 @@ def tapmc_version():
         return out.stdout.strip() or None
     except (OSError, subprocess.TimeoutExpired):
         return None
+
+
+def attempt_versions(record, fallback=None):
+    """The TAPMC versions (``tapmc_version`` of each attempt, in order, each once) that ran a
+    run's manifest ``record``. An attempt written before attempts carried their version counts
+    as ``fallback`` (the version the campaign's manifest recorded last), when given."""
+    versions = []
+    for attempt in record.get("attempts", []):
+        version = attempt.get("tapmc_version", fallback)
+        if version is not None and version not in versions:
+            versions.append(version)
+    return versions
 
 
 def copy_inputs(directory, runs, pin_inputs, stream):

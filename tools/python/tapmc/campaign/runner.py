@@ -155,6 +155,7 @@ class Campaign:
         self._records = {}
         self._started = {}
         self._redo = {}  # name -> damaged files the running re-run must write again
+        self._previous_version = None
 
     # -- folders -------------------------------------------------------------------------
     def check_directory(self):
@@ -273,24 +274,56 @@ class Campaign:
         run_dir = self.run_dir(spec.name)
         run_dir.mkdir(parents=True, exist_ok=True)
         kept = run_folder.keep_log_as_attempt(run_dir)  # an earlier attempt that did not finish
-        if kept:
-            with self._lock:
-                self._records[spec.name]["attempts"].append(
-                    {"interrupted": True, "log": kept,
+        rec = self._records[spec.name]
+        with self._lock:
+            # the start of an attempt killed with its campaign (no entry of its own)
+            running = rec.pop("running_attempt", None)
+            if kept:
+                entry = running or self._versions_of_last_attempt(rec)
+                rec["attempts"].append(
+                    {"interrupted": True, **entry, "log": kept,
                      "taps_done": run_folder.taps_done(run_dir / spec.taps_file)})
         step, path = run_folder.latest_restart(run_dir)
         if step is None:
             return {"resume": "no", "resume_file": "restart.*"}, None
         run_folder.trim_rows(run_dir / spec.taps_file, step)
+        self._note_version_change(spec, rec, path)
         return {"resume": "yes", "resume_file": path.name}, step
 
+    def _versions(self):
+        """The versions of this session's LAMMPS executable and TAPMC (manifest keys)."""
+        return {k: self._manifest[k] for k in ("tapmc_version", "lammps_version")}
+
+    @staticmethod
+    def _versions_of_last_attempt(rec):
+        """The versions of a run's last attempt entry (the attempt a kept log belongs to when
+        its campaign recorded its end), or {} when it has none."""
+        last = rec["attempts"][-1] if rec["attempts"] else {}
+        return {k: last[k] for k in ("tapmc_version", "lammps_version") if k in last}
+
+    def _note_version_change(self, spec, rec, restart):
+        """Say so when a run resumes under another TAPMC than the one(s) that ran it so far:
+        one trajectory then comes from two builds. Its attempts record each version."""
+        earlier = provenance.attempt_versions(rec, fallback=self._previous_version)
+        current = self._manifest["tapmc_version"]
+        other = [v for v in earlier if v != current]
+        if other:
+            print(f"[campaign] run {spec.name!r}: resumes from {restart.name} under TAPMC "
+                  f"{current}; its earlier attempts ran TAPMC {', '.join(other)} (manifest.json "
+                  "records each attempt's version; a campaign pinned to one build runs from a "
+                  "work tree of that commit)", file=self.stream, flush=True)
+
     def _started_run(self, spec, cmd, step, **extra):
-        """Record the command and start of a run (under the lock)."""
+        """Record the command and start of a run (under the lock); the manifest keeps the
+        start (``running_attempt``) until the attempt ends, so that an attempt killed with its
+        campaign is still known by when it started, where from and which versions ran it."""
         rec = self._records[spec.name]
         rec["command"] = cmd
         rec.update(extra)
         rec["cwd"] = str(self.run_dir(spec.name))
         self._started[spec.name] = provenance.now()
+        rec["running_attempt"] = {"started": self._started[spec.name],
+                                  "resumed_from_step": step, **self._versions()}
         self._t0[spec.name] = time.time()
         self._done0[spec.name] = (run_folder.taps_done(self.run_dir(spec.name) / spec.taps_file)
                                   if step else 0)
@@ -320,10 +353,12 @@ class Campaign:
         attempt = {"started": self._started.get(spec.name), "finished": provenance.now(),
                    "wall_s": round(wall, 3), "returncode": returncode,
                    "resumed_from_step": resumed_from, "error": error or None,
-                   "end_step": run_folder.taps_done(run_dir / spec.taps_file)}
+                   "end_step": run_folder.taps_done(run_dir / spec.taps_file),
+                   **self._versions()}
         if cpu is not None:
             attempt["cpu_s"] = round(cpu, 3)
         with self._lock:
+            rec.pop("running_attempt", None)
             rec["attempts"].append(attempt)
         if not error:
             try:  # a malformed output names itself; the run then fails instead of the pool
@@ -346,6 +381,7 @@ class Campaign:
             rec["wall_s"] = round(sum(a.get("wall_s", 0) for a in rec["attempts"]), 3)
         done = {"run": spec.describe(), "finished": provenance.now(), "wall_s": rec["wall_s"],
                 "attempts": len(rec["attempts"]),
+                "tapmc_versions": provenance.attempt_versions(rec, self._previous_version),
                 "outputs": provenance.output_digests(run_dir, run_folder.output_files(run_dir))}
         provenance.write_done(run_dir, done)
         return ""
@@ -446,6 +482,9 @@ class Campaign:
 
     def _run_locked(self, progress):
         previous = provenance.read_manifest(self.directory)
+        # the version of the campaign's last session: the best record of attempts that were
+        # made before each attempt carried its own
+        self._previous_version = previous.get("tapmc_version")
         old = {r["name"]: r for r in previous.get("runs", [])
                if isinstance(r, dict) and "name" in r}
         self._manifest = {
