@@ -148,3 +148,45 @@ def test_a_directory_that_is_not_a_paper_ramp_is_refused(tmp_path):
     with pytest.raises(ValueError, match="ramp_pbc_s1"):
         paper_ramp.analyse_run(run, 1e-7)
     assert paper_ramp.analyse(tmp_path, 1e-7) == []
+
+
+LOOP = LEVELS + [0.05, 0.075, 0.1, 0.125]
+
+
+def test_back_at_the_turning_level_the_loop_splits_into_given_back_and_kept(tmp_path):
+    """A ramp that goes up again: back at the turning level, what the packing gives back of the
+    descent's compaction (a reversible response) and what the loop keeps, with a known answer;
+    controls: a frozen second increase gives back nothing, and one not yet back at the top
+    says nothing."""
+    up, down = [0.590, 0.595, 0.598, 0.600, 0.600], [0.601, 0.602, 0.603, 0.604]
+    write_run(tmp_path, "paperramp0.125_pbc_s1", up + down + [0.6035, 0.603, 0.6025, 0.602],
+              levels=LOOP)
+    write_run(tmp_path, "paperramp0.125_pbc_s2", up + down + [0.604] * 4, levels=LOOP, seed=2)
+    write_run(tmp_path, "paperramp0.125_pbc_s3", up + down + [0.6035, 0.603], levels=LOOP[:11],
+              seed=3)
+    rows = {r.run: r for r in paper_ramp.analyse(tmp_path, 1e-7)}
+    loosens = rows["paperramp0.125_pbc_s1"].return_to_top()
+    assert loosens.sqrt_eps == 0.125 and loosens.verdict == "loosens"
+    assert loosens.given_back.value == pytest.approx(-0.002, abs=2e-4)
+    assert loosens.kept.value == pytest.approx(0.002, abs=2e-4)
+    assert 0 < loosens.given_back.sem < 1e-4   # two level means of 1000 taps, sigma 1e-3
+    frozen = rows["paperramp0.125_pbc_s2"].return_to_top()
+    assert frozen.verdict == "frozen" and frozen.kept.value == pytest.approx(0.004, abs=2e-4)
+    assert rows["paperramp0.125_pbc_s3"].return_to_top() is None
+
+    one = [rows["paperramp0.125_pbc_s1"], rows["paperramp0.125_pbc_s3"]]
+    text = paper_ramp.finding_text(one, 1e-7)
+    assert ("Back up at the turning level (1 of 2 seeds), it loosens: the descent's compaction "
+            "is reversible in part (seed 1: of the +0.0040 gained from the turning level down "
+            "to the bottom of the loop it gives back -0.0020 +- 0.0000 and keeps +0.0020 +- "
+            "0.0000).") in text
+    headline = paper_ramp.headline_text(one, 1e-7)
+    assert "; back up at that level it moves by -0.0020 from the bottom of the loop, " \
+        "reversible in part)" in headline
+    both = paper_ramp.finding_text([rows["paperramp0.125_pbc_s1"],
+                                    rows["paperramp0.125_pbc_s2"]], 1e-7)
+    assert "Back up at the turning level (2 of 2 seeds), the seeds differ (seed 1:" in both
+    alone = paper_ramp.finding_text([rows["paperramp0.125_pbc_s2"]], 1e-7)
+    assert "it stays where the descent left it (frozen) (seed 2:" in alone
+    # a ramp still on its way up again adds nothing to the sentence
+    assert "Back up" not in paper_ramp.finding_text([rows["paperramp0.125_pbc_s3"]], 1e-7)

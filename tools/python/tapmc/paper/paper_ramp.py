@@ -9,6 +9,9 @@ the levels done whole so far count), cut into levels by :class:`tapmc.hysteresis
 (the last 1000 taps of each level) and judged by :class:`tapmc.hysteresis.RampBranches`: the branch
 is *frozen* when the descending levels stay within noise of the turning level
 (``down_change`` within ``Z_DECIDE`` standard errors), and *compacts* when they rise beyond it.
+Once the second increase is back at the turning level, :meth:`PaperRampRun.return_to_top` tells
+the two parts of that compaction apart: what the packing gives back as the taps grow again (a
+reversible response; a frozen branch gives back nothing) and what the loop keeps.
 The per-run table is written to ``paper_ramp.csv`` of the report's questions folder, and the
 report's first screen states the finding from it (:func:`finding_text`).
 
@@ -24,7 +27,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..hysteresis import CRITICAL_SQRT_EPS, BranchData, Hysteresis, RampBranches
+from ..hysteresis import (CRITICAL_SQRT_EPS, LEVEL_TOLERANCE, BranchData, BranchStatistic,
+                          Hysteresis, RampBranches)
 from . import _runs
 
 #: Taps per level of the paper's protocol, and the taps averaged at the end of each level.
@@ -75,6 +79,42 @@ class PaperRampRun:
         at = np.array(self.level_branches.split()) == name
         return tuple(np.asarray(v, dtype=float)[at] if at.size else np.zeros(0)
                      for v in (self.level_sqrt_eps, self.level_mean, self.level_sem))
+
+    def return_to_top(self):
+        """The :class:`ReturnToTop` of a ramp whose second increase has a whole level back at
+        the turning level, else None."""
+        up1, down, up2 = (self.branch(name) for name in ("up1", "down", "up2"))
+        if not (len(up1[0]) and len(down[0]) and len(up2[0])) or \
+                abs(up2[0][-1] - self.top) > LEVEL_TOLERANCE or \
+                abs(up1[0][-1] - self.top) > LEVEL_TOLERANCE:
+            return None
+        return ReturnToTop(self.top, _level_difference(up2, down), _level_difference(up2, up1))
+
+
+def _level_difference(a, b):
+    """The last level of branch ``a`` minus the last of ``b`` ((sqrt_eps, mean, sem) each),
+    with the error of two independent level means."""
+    return BranchStatistic(float(a[1][-1] - b[1][-1]), float(np.hypot(a[2][-1], b[2][-1])), 2)
+
+
+@dataclass(frozen=True)
+class ReturnToTop:
+    """A ramp back at its turning level after the descent (the last level of its second
+    increase), against the two levels that frame the loop: ``given_back`` = back at the top
+    minus the bottom of the loop (the last descending level): < 0 when the packing loosens as
+    the taps grow again, a reversible response (a frozen branch gives back nothing);
+    ``kept`` = back at the top minus the first visit of the turning level: what the loop left
+    (the slow compaction of its levels). :class:`tapmc.hysteresis.BranchStatistic` each."""
+
+    sqrt_eps: float
+    given_back: BranchStatistic
+    kept: BranchStatistic
+
+    @property
+    def verdict(self):
+        """"loosens", "frozen" (within noise) or "compacts", by ``given_back``."""
+        return ("loosens" if self.given_back.negative else
+                "compacts" if self.given_back.positive else "frozen")
 
 
 def read_taps(path):
@@ -242,7 +282,7 @@ def headline_text(rows, default_eta):
         changes = " and ".join(f"{r.down_change:+.4f}" for r in decided)
         seeds = f"{len(decided)} seed{'s' if len(decided) > 1 else ''}"
         parts.append(f"{label}: {answer} ({seeds}; the descending branch moves by {changes} "
-                     "in <Phi^c> from the turning level)")
+                     f"in <Phi^c> from the turning level{_return_headline(decided)})")
     return ("The paper's central question (section III.B: is the branch below (sqrt eps)* ~ "
             f"0.15 irreversible?) at its own ramp protocol ({TAPS_PER_LEVEL} taps per level, "
             "N = 4096, P.B.C.): " + "; ".join(parts) + ".")
@@ -277,7 +317,8 @@ def finding_text(rows, default_eta):
             head = "the model has no frozen branch: the descending branch moves"
         parts.append(f"at {label}, {head} ({len(decided)} seed{'s' if len(decided) > 1 else ''};"
                      f" <Phi^c> of the descending levels, {seeds})"
-                     + (f"; not counted yet: {running}" if running else ""))
+                     + (f"; not counted yet: {running}" if running else "")
+                     + _return_finding(decided))
     beyond = _beyond_text(beyond_critical(rows), default_eta)
     if not parts:
         return beyond.strip()
@@ -286,6 +327,50 @@ def finding_text(rows, default_eta):
             "below (sqrt eps)* ~ 0.15; means of the last "
             f"{LAST_TAPS} taps of each level): " + " ".join(
                 p[0].upper() + p[1:] + ("" if p.endswith(".") else ".") for p in parts) + beyond)
+
+
+def _returns(decided):
+    """(seed, ReturnToTop) of the decided runs back at their turning level."""
+    return [(r.seed, back) for r in decided if (back := r.return_to_top()) is not None]
+
+
+#: What the packing back at the turning level says, by the verdicts of its seeds: (the
+#: finding's words, the headline's).
+RETURN_ANSWERS = {("loosens",): ("it loosens: the descent's compaction is reversible in part",
+                                 "reversible in part"),
+                  ("frozen",): ("it stays where the descent left it (frozen)", "frozen"),
+                  ("compacts",): ("it compacts further", "compacts further")}
+
+
+def _return_answer(backs, short=False):
+    verdicts = tuple(sorted({b.verdict for _, b in backs}))
+    return RETURN_ANSWERS.get(verdicts, ("the seeds differ",) * 2)[int(short)]
+
+
+def _return_headline(decided):
+    """The headline's clause on the second increase back at the turning level ("" before)."""
+    backs = _returns(decided)
+    if not backs:
+        return ""
+    moves = " and ".join(f"{b.given_back.value:+.4f}" for _, b in backs)
+    return (f"; back up at that level it moves by {moves} from the bottom of the loop, "
+            f"{_return_answer(backs, short=True)}")
+
+
+def _return_finding(decided):
+    """The finding's sentence on the second increase back at the turning level ("" before):
+    of what the descent gained down to the bottom of the loop, what the packing gives back
+    and what the loop keeps, per seed."""
+    backs = _returns(decided)
+    if not backs:
+        return ""
+    seeds = "; ".join(
+        f"seed {s}: of the {b.kept.value - b.given_back.value:+.4f} gained from the turning "
+        f"level down to the bottom of the loop it gives back {b.given_back.value:+.4f} +- "
+        f"{b.given_back.sem:.4f} and keeps {b.kept.value:+.4f} +- {b.kept.sem:.4f}"
+        for s, b in backs)
+    return (f". Back up at the turning level ({len(backs)} of {len(decided)} seed"
+            f"{'s' if len(decided) > 1 else ''}), {_return_answer(backs)} ({seeds})")
 
 
 def _beyond_text(rows, default_eta):
