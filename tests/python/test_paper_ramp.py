@@ -190,3 +190,30 @@ def test_back_at_the_turning_level_the_loop_splits_into_given_back_and_kept(tmp_
     assert "it stays where the descent left it (frozen) (seed 2:" in alone
     # a ramp still on its way up again adds nothing to the sentence
     assert "Back up" not in paper_ramp.finding_text([rows["paperramp0.125_pbc_s3"]], 1e-7)
+
+
+def test_the_figure_draws_every_whole_level_one_panel_per_eta(tmp_path):
+    """paper_ramp.png: a panel per eta (the default first, then the loosest), per run a line
+    through its whole levels in the ramp's order and a marker series per branch; shared
+    <Phi^c> range; the settings on top; too few axes refused."""
+    up, down = [0.590, 0.595, 0.598, 0.600, 0.600], [0.601, 0.602, 0.603, 0.604]
+    write_run(tmp_path, "paperramp0.125_pbc_s1", up + down + [0.6035, 0.603], levels=LOOP[:11])
+    write_run(tmp_path, "paperramp0.125_pbc_eta1e-05_s2", up + [0.61] * 4, seed=2)
+    write_run(tmp_path, "paperramp0.125_pbc_eta1e-06_s3", up[:3], levels=LEVELS[:3], seed=3)
+    rows = paper_ramp.analyse(tmp_path, 1e-7)
+    axes = paper_ramp.plot(rows, 1e-7)
+    assert [ax.get_title() for ax in axes] == ["eta = 1e-7 (the default)", "eta = 1e-5",
+                                               "eta = 1e-6"]
+    loop = axes[0].get_lines()[0]
+    assert list(loop.get_xdata()) == LOOP[:11]     # the whole loop, in the ramp's order
+    labels = axes[0].get_legend_handles_labels()[1]
+    assert labels == ["$(\\varepsilon^{1/2})^* = 0.15$", "seed 1, to 0.125: increase",
+                      "seed 1, to 0.125: decrease", "seed 1, to 0.125: increase again"]
+    assert axes[2].get_legend_handles_labels()[1][1:] == ["seed 3, to 0.125: increase"]
+    assert axes[0].get_ylim() == axes[1].get_ylim() and axes[1].get_ylim()[1] > 0.61
+    with pytest.raises(ValueError, match="axes: 1 given, the rows have 3 etas"):
+        paper_ramp.plot(rows, 1e-7, axes[:1])
+    png = paper_ramp.write_figure(rows, 1e-7, tmp_path / "out" / paper_ramp.PNG_NAME)
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert "4000 taps per level" in paper_ramp.settings_line(rows)
+    assert paper_ramp.settings_line(rows).endswith("seeds 1, 2, 3")

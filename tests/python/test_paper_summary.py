@@ -122,6 +122,13 @@ def test_entries_follow_the_paper_order_with_thumbnails_and_headlines():
     assert ".. image:: validation/fig2.png" in rst and summary.OUTCOME_RULE in rst
     assert "* a finding." in rst
     assert "Fig. 10 (pore distributions; not reproduced): pores disagrees" in rst
+    # the central answer's figure follows its sentence, before the table; none without one
+    lines = summary.screen_rst(entries, "a finding.", "The answer.", ("q/ramps.png", "ramps"))
+    at = lines.index("The answer.")
+    assert lines[at + 2:at + 6] == [".. image:: q/ramps.png", "   :width: 600px",
+                                    "   :alt: ramps", ""]
+    assert lines[at + 6].startswith(".. list-table::")
+    assert not any("q/ramps.png" in line for line in summary.screen_rst(entries, "", "The answer."))
 
 
 def _entries(page):

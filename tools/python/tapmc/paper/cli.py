@@ -256,6 +256,8 @@ def _read_campaign(args, name, module, unit):
     path = module.write_csv(rows, args.out / _runs.FIG_DIR / "questions" / module.CSV_NAME)
     print(module.finding_text(rows, FULL.eta))
     print(f"{name}: {path} ({len(rows)} {unit})")
+    if hasattr(module, "write_figure"):  # paper-ramp draws its levels beside its CSV
+        print(f"{name}: {module.write_figure(rows, FULL.eta, path.parent / module.PNG_NAME)}")
     return 0
 
 

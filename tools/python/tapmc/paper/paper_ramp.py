@@ -12,8 +12,9 @@ is *frozen* when the descending levels stay within noise of the turning level
 Once the second increase is back at the turning level, :meth:`PaperRampRun.return_to_top` tells
 the two parts of that compaction apart: what the packing gives back as the taps grow again (a
 reversible response; a frozen branch gives back nothing) and what the loop keeps.
-The per-run table is written to ``paper_ramp.csv`` of the report's questions folder, and the
-report's first screen states the finding from it (:func:`finding_text`).
+The per-run table is written to ``paper_ramp.csv`` of the report's questions folder, its levels
+drawn in ``paper_ramp.png`` beside it (:func:`plot`, one panel per eta), and the report's
+first screen states the finding from it (:func:`finding_text`) with that figure.
 
   /usr/bin/python3 -m tapmc.paper paper-ramp --campaign DIR --out doc/paper_scale
 """
@@ -29,7 +30,8 @@ import numpy as np
 
 from ..hysteresis import (CRITICAL_SQRT_EPS, LEVEL_TOLERANCE, BranchData, BranchStatistic,
                           Hysteresis, RampBranches)
-from . import _runs
+from . import _plotting, _runs
+from .scales import FULL
 
 #: Taps per level of the paper's protocol, and the taps averaged at the end of each level.
 TAPS_PER_LEVEL = 4000
@@ -39,6 +41,10 @@ MIN_DOWN_LEVELS = 2
 #: Why a ramp with fewer descending levels decides nothing (page, claims and progress text).
 NOT_DOWN_YET = "the ramp has not come down two levels yet"
 CSV_NAME = "paper_ramp.csv"
+PNG_NAME = "paper_ramp.png"
+#: A branch's marker and legend words in :func:`plot` (the open symbols of the paper's Fig. 4).
+BRANCH_STYLE = {"up1": ("o", "increase"), "down": ("v", "decrease"),
+                "up2": ("^", "increase again")}
 #: What the command reads, for its message when a campaign has none of it.
 RUNS_READ = "runs/paperramp* with a taps.dat"
 #: The name of a run: paperramp<top>_<bc>[_eta<eta>]_s<seed> (tapmc.paper._runs).
@@ -384,3 +390,61 @@ def _beyond_text(rows, default_eta):
                      + "; ".join(p for p in (seeds, running and f"running: {running}") if p))
     return (" Beyond (sqrt eps)* (the reversible branch of the paper), the descending branch "
             "from the turning level: " + ". ".join(parts) + ".") if parts else ""
+
+
+def _panels(rows, default_eta):
+    """(eta, runs) per panel of :func:`plot`: the default eta first, then the loosest."""
+    etas = sorted({r.eta for r in rows}, key=lambda e: (e != default_eta, -e))
+    return [(eta, [r for r in rows if r.eta == eta]) for eta in etas]
+
+
+def plot(rows, default_eta, axes=None):
+    """The whole levels of every ramp (:class:`PaperRampRun`), one panel per eta (the default
+    first; ``axes``: one axis per eta, new ones when None): <Phi^c> against sqrt(eps), a colour
+    per run, a marker per branch (:data:`BRANCH_STYLE`), error bars the levels' batch-means
+    errors, a thin line through the levels in the ramp's order (the loop), (sqrt eps)* dotted;
+    the panels share their <Phi^c> range. Returns the axes."""
+    panels = _panels(rows, default_eta)
+    if axes is None:
+        _, axes = _plotting.new_figure(nrows=len(panels), height=2.8, width=6.0)
+    if len(axes) < len(panels):
+        raise ValueError(f"axes: {len(axes)} given, the rows have {len(panels)} etas")
+    for ax, (eta, runs) in zip(axes, panels):
+        for colour, run in enumerate(runs):
+            ax.plot(run.level_sqrt_eps, run.level_mean, color=f"C{colour}", lw=0.8)
+            for name, (marker, words) in BRANCH_STYLE.items():
+                sqrt_eps, mean, sem = run.branch(name)
+                if len(sqrt_eps):
+                    ax.errorbar(sqrt_eps, mean, yerr=sem, marker=marker, mfc="none", ms=5,
+                                color=f"C{colour}", ls="none", capsize=2,
+                                label=f"seed {run.seed}, to {run.top:g}: {words}")
+        ax.axvline(CRITICAL_SQRT_EPS, color="0.5", ls=":", lw=1,
+                   label=f"$(\\varepsilon^{{1/2}})^* = {CRITICAL_SQRT_EPS:g}$")
+        ax.set_title(eta_label(eta, default_eta), fontsize=8)
+        ax.set_xlabel(r"$\varepsilon^{1/2}$")
+        ax.set_ylabel(r"$\langle\Phi^c\rangle$ (last %d taps of a level)" % LAST_TAPS,
+                      fontsize=8)
+        _plotting.legend(ax, fontsize=6, outside=True)
+    means = [m for r in rows for m in r.level_mean]
+    if means:
+        pad = 0.05 * (max(means) - min(means) or 0.01)
+        for ax in axes[:len(panels)]:
+            ax.set_ylim(min(means) - pad, max(means) + pad)
+    return axes
+
+
+def settings_line(rows):
+    """The settings the figure states on top (every number of it is a setting of the runs)."""
+    seeds = sorted({r.seed for r in rows})
+    return (f"N = {FULL.N}, box {FULL.L:g}R x {FULL.L:g}R, P.B.C.; {TAPS_PER_LEVEL} taps per "
+            f"level, steps of {FULL.ramp_dsqrt:g} in sqrt(eps), means of the last {LAST_TAPS} taps of each level; levels "
+            f"done whole only; seeds {', '.join(map(str, seeds))}")
+
+
+def write_figure(rows, default_eta, path):
+    """``paper_ramp.png``: :func:`plot` with its settings on top; returns the path."""
+    panels = _panels(rows, default_eta)
+    fig, axes = _plotting.new_figure(nrows=len(panels), height=2.8, width=6.0)
+    plot(rows, default_eta, axes)
+    _plotting.finish_figure(fig, settings_line(rows))
+    return _plotting.save_figure(fig, path)

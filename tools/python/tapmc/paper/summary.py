@@ -233,13 +233,22 @@ def _entry_row(entry):
             entry.headline, entry.paper, image]
 
 
-def screen_rst(entries, finding="", headline=""):
+#: Width on the page of the central answer's figure (its PNG is about 900 pixels wide).
+ANSWER_FIGURE_WIDTH = 600
+
+
+def screen_rst(entries, finding="", headline="", figure=None):
     """The one screen, as rst lines: the counts, the central question's answer (``headline``,
-    when given), one table row per entry (outcome, key number, the paper's value, thumbnail),
-    the rule, and the open questions (``finding``: a finding or a list of them, e.g. the
-    irreversible branch of section III.B with its numbers, first of them when given)."""
+    when given, with ``figure``: (page path of its PNG, alt text), when given), one table row
+    per entry (outcome, key number, the paper's value, thumbnail), the rule, and the open
+    questions (``finding``: a finding or a list of them, e.g. the irreversible branch of
+    section III.B with its numbers, first of them when given)."""
     lines = [SCREEN_TITLE, "-" * len(SCREEN_TITLE), "", count_sentence(entries), "",
              claims_sentence(entries), ""] + ([headline, ""] if headline else [])
+    if figure:
+        path, alt = figure
+        lines += [f".. image:: {path}", f"   :width: {ANSWER_FIGURE_WIDTH}px",
+                  f"   :alt: {alt}", ""]
     lines += list_table(["Figure", "Outcome", "Key number (TAPMC)", "Paper", "Figure"],
                         [_entry_row(entry) for entry in entries], widths=(18, 22, 26, 16, 18))
     lines += ["", OUTCOME_RULE, "", "Open questions:", ""]

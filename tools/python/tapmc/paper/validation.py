@@ -351,18 +351,21 @@ def _finding_source(unit, name, command):
 
 
 def _paper_ramp_finding(files, summary):
-    """(headline, finding): the answer about the irreversible branch at the paper's ramp
-    protocol in one sentence, and with its numbers, from questions/paper_ramp.csv next to the
-    figures (``tapmc-paper paper-ramp``), or ("", "")."""
+    """(headline, finding, figure): the answer about the irreversible branch at the paper's
+    ramp protocol in one sentence, and with its numbers, from questions/paper_ramp.csv next to
+    the figures (``tapmc-paper paper-ramp``), and the page's path of the ramps' figure written
+    beside it (None without one); or ("", "", None)."""
     path = _finding_csv(files, paper_ramp.CSV_NAME)
     if path is None:
-        return "", ""
+        return "", "", None
     rows = paper_ramp.read_csv(path)
     default_eta = campaign_eta(summary)
+    figure = (Path(FIG_DIR) / questions.FOLDER / paper_ramp.PNG_NAME
+              if (path.parent / paper_ramp.PNG_NAME).is_file() else None)
     return (paper_ramp.headline_text(rows, default_eta)
             + " The numbers with their errors: the first open question below.",
             paper_ramp.finding_text(rows, default_eta)
-            + _finding_source("run", paper_ramp.CSV_NAME, "paper-ramp"))
+            + _finding_source("run", paper_ramp.CSV_NAME, "paper-ramp"), figure)
 
 
 def _sigma_eta_finding(files, default_eta):
@@ -419,9 +422,10 @@ def _main_page(summary, files, rows, verdicts, notes, prefix):
     lines = [".. TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.", "",
              title, "=" * len(title), "", intro, "", describe_scale(summary), ""]
     lines += _appendix_line()
-    headline, finding = _paper_ramp_finding(files, summary)
+    headline, finding, figure = _paper_ramp_finding(files, summary)
     findings = [f for f in (finding, _sigma_eta_finding(files, campaign_eta(summary))) if f]
-    lines += summary_screen.screen_rst(summary_screen.summarise(rows, files), findings, headline)
+    lines += summary_screen.screen_rst(summary_screen.summarise(rows, files), findings, headline,
+                                       figure and (figure, "the ramps at the paper's protocol"))
     lines += ["How close is TAPMC to the paper", "-" * 31, "",
               AGGREGATION_SENTENCE + " The rules of "
               "the rows' verdicts, the errors of one run and what \"Paper scale?\" means: "
