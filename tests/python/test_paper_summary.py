@@ -158,11 +158,12 @@ def test_readme_says_what_the_paper_scale_page_found():
     report, _ = validation.committed_inputs(page)
     headline = (paper_ramp.headline_text(paper_ramp.read_csv(ramps), validation.campaign_eta(report))
                 if ramps.is_file() else "")
-    expected = summary.readme_lines(_entries(page), headline)
+    figure = (ramps.parent / paper_ramp.PNG_NAME).is_file()
+    expected = summary.readme_lines(_entries(page), headline, figure)
+    assert (summary.README_FIGURE in expected) == figure
     readme = (SOURCE / "README.md").read_text().splitlines()
-    start = readme.index("## What the validation found")
-    section = readme[start:start + 10]
-    assert all(line in section for line in expected), (
+    start = readme.index("## What the validation found") + 3   # the heading, a line, a comment
+    assert readme[start:start + len(expected)] == expected, (
         "README.md's 'What the validation found' differs from tapmc.paper.summary.readme_lines "
         "of doc/paper_scale: replace its lines by:\n" + "\n".join(expected))
     assert "[doc/paper_scale/validation.rst](doc/paper_scale/validation.rst)" in expected[-1]

@@ -9,7 +9,7 @@ tools' consistency) are never counted, and a claim that could not fail for any c
 model (``could_fail = false``) never counts as agreeing. Its key number is the measure of
 the claim marked ``headline`` in the register (``claims.toml``), beside the paper's value.
 :func:`screen_rst` writes the screen at the top of the validation pages and
-:func:`readme_lines` the three lines of README.md's "What the validation found", from the same
+:func:`readme_lines` the paragraphs of README.md's "What the validation found", from the same
 entries, so the README cannot drift from the page (tests/python/test_paper_summary.py).
 """
 
@@ -258,17 +258,25 @@ def screen_rst(entries, finding="", headline="", figure=None):
     return lines + [""]
 
 
-def readme_lines(entries, headline=""):
+#: The central answer's figure as README.md shows it (Markdown; the path from the top).
+README_FIGURE = ("![The ramps at the paper's protocol, one panel per eta]"
+                 "(doc/paper_scale/validation/questions/paper_ramp.png)")
+
+
+def readme_lines(entries, headline="", figure=False):
     """The lines of README.md's "What the validation found" (from the paper-scale page's
-    entries): the figures' counts, the claims' counts, the central question's answer
-    (``headline``: tapmc.paper.paper_ramp.headline_text, when given), the open questions, the
-    link."""
+    entries), one paragraph each: the figures' counts, the claims' counts, the central
+    question's answer (``headline``: tapmc.paper.paper_ramp.headline_text, when given) and its
+    figure (``figure``: when its PNG is committed, :data:`README_FIGURE`), the open questions,
+    the link."""
     open_titles = [f"{e.title}, {e.topic} ({', '.join(e.disagreeing)})" for e in entries
                    if e.disagreeing]
-    central = [headline] if headline else []
-    return [count_sentence(entries), claims_sentence(entries), *central,
-            "Open questions, where claims disagree: " + ("; ".join(open_titles) or "none") + ".",
-            f"Every figure, row and rule: [{PAPER_SCALE_PAGE}]({PAPER_SCALE_PAGE})."]
+    central = ([headline] if headline else []) + ([README_FIGURE] if figure else [])
+    paragraphs = [count_sentence(entries), claims_sentence(entries), *central,
+                  "Open questions, where claims disagree: "
+                  + ("; ".join(open_titles) or "none") + ".",
+                  f"Every figure, row and rule: [{PAPER_SCALE_PAGE}]({PAPER_SCALE_PAGE})."]
+    return [line for p in paragraphs for line in (p, "")][:-1]
 
 
 __all__ = ["FigureEntry", "FigureOutcome", "OUTCOME_RULE", "summarise", "figure_outcome",
