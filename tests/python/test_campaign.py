@@ -134,7 +134,7 @@ def test_resume_after_kill(tmp_path, monkeypatch):
     stream = io.StringIO()
     campaign = Campaign(folder, runs, lmp=LMP, jobs=1, stream=stream).run(progress=False)
     assert (f"[campaign] run 'long': resumes from {latest} under TAPMC "
-            f"next-build; its earlier attempts ran TAPMC {first_version}") in stream.getvalue()
+            f"next-build; its last attempt ran TAPMC {first_version}") in stream.getvalue()
 
     # the finished run was not redone
     assert (short_log.stat().st_mtime_ns,
@@ -150,8 +150,9 @@ def test_resume_after_kill(tmp_path, monkeypatch):
     assert attempts[0]["interrupted"] and attempts[-1]["resumed_from_step"] >= 40
     assert attempts[0]["tapmc_version"] == first_version and attempts[0]["started"]
     assert attempts[-1]["tapmc_version"] == "next-build" and "running_attempt" not in record
-    assert provenance.read_done(run_dir / "DONE.json")["tapmc_versions"] == [first_version,
-                                                                           "next-build"]
+    done = provenance.read_done(run_dir / "DONE.json")
+    assert done["tapmc_versions"] == [first_version, "next-build"]
+    assert "attempts_without_version" not in done
     # ... and followed exactly the trajectory of an uninterrupted run (counter-based RNG)
     stream = io.StringIO()
     ref = Campaign(tmp_path / "ref", [RunSpec("long", CONSTANT_EPS, long, seed=2)], lmp=LMP,
@@ -621,13 +622,49 @@ def test_runs_start_while_singletons_end_beside_them(tmp_path, monkeypatch):
 
 
 def test_the_versions_that_ran_a_run():
-    """Each attempt names the TAPMC that ran it; attempts recorded before attempts carried a
-    version count as the campaign's last recorded version, and a control without one names
-    none."""
+    """Each attempt names the TAPMC that ran it, in order, once each; attempts recorded before
+    attempts carried a version are counted, not guessed."""
     record = {"attempts": [{"interrupted": True, "log": "log.attempt1.lammps"},
                            {"started": "t", "tapmc_version": "b"},
                            {"interrupted": True, "tapmc_version": "b", "log": "x"},
                            {"started": "u", "tapmc_version": "c"}]}
-    assert provenance.attempt_versions(record, fallback="a") == ["a", "b", "c"]
-    assert provenance.attempt_versions(record) == ["b", "c"]
-    assert provenance.attempt_versions({"attempts": []}, fallback="a") == []
+    assert provenance.attempt_versions(record) == (["b", "c"], 1)
+    assert provenance.attempt_versions({"attempts": []}) == ([], 0)
+
+
+FAKE_LMP = """#!/bin/sh
+case " $* " in *" -in "*) ;; *) exit 0 ;; esac
+printf '# step level\\n0 0\\n1 0\\n2 0\\n' > taps.dat
+echo x > restart.2
+if [ -e finish ]; then printf '3 0\\n' >> taps.dat; echo 'Total wall time: 0:00:01' > log.lammps
+else echo 'LAMMPS (fake)' > log.lammps; kill -TERM $$; fi
+"""
+
+
+def test_a_run_resumed_after_attempts_without_versions(tmp_path, monkeypatch):
+    """A manifest from before attempts recorded their version: the resume names the campaign's
+    last session's TAPMC, and DONE.json counts the attempts whose version is not known instead
+    of guessing it."""
+    fake = tmp_path / "lmp_fake"
+    fake.write_text(FAKE_LMP)
+    fake.chmod(0o755)
+    spec = RunSpec("old", CONSTANT_EPS, dict(TINY, taps=3), seed=1)
+    folder = tmp_path / "c"
+    monkeypatch.setattr(provenance, "tapmc_version", lambda: "old-build")
+    with pytest.raises(CampaignError, match="stopped by signal SIGTERM"):
+        Campaign(folder, [spec], lmp=str(fake), jobs=1).run(progress=False)
+    manifest = json.loads((folder / "manifest.json").read_text())
+    (attempt,) = manifest["runs"][0]["attempts"]
+    assert attempt["tapmc_version"] == "old-build"
+    for attempt in manifest["runs"][0]["attempts"]:   # as an older TAPMC wrote it
+        del attempt["tapmc_version"], attempt["lammps_version"]
+    (folder / "manifest.json").write_text(json.dumps(manifest))
+    (folder / "runs" / "old" / "finish").touch()
+    monkeypatch.setattr(provenance, "tapmc_version", lambda: "next-build")
+    stream = io.StringIO()
+    Campaign(folder, [spec], lmp=str(fake), jobs=1, stream=stream).run(progress=False)
+    assert ("[campaign] run 'old': resumes from restart.2 under TAPMC next-build; the "
+            "campaign's last session ran (its attempts did not record their version) TAPMC "
+            "old-build") in stream.getvalue()
+    done = provenance.read_done(folder / "runs" / "old" / "DONE.json")
+    assert done["tapmc_versions"] == ["next-build"] and done["attempts_without_version"] == 2

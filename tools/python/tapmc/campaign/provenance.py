@@ -122,16 +122,18 @@ def tapmc_version():
         return None
 
 
-def attempt_versions(record, fallback=None):
-    """The TAPMC versions (``tapmc_version`` of each attempt, in order, each once) that ran a
-    run's manifest ``record``. An attempt written before attempts carried their version counts
-    as ``fallback`` (the version the campaign's manifest recorded last), when given."""
-    versions = []
+def attempt_versions(record):
+    """(versions, unrecorded): the TAPMC versions that ran a run's manifest ``record``
+    (``tapmc_version`` of its attempts, in order, each once) and how many of its attempts were
+    recorded before attempts carried their version (their version is not known)."""
+    versions, unrecorded = [], 0
     for attempt in record.get("attempts", []):
-        version = attempt.get("tapmc_version", fallback)
-        if version is not None and version not in versions:
+        version = attempt.get("tapmc_version")
+        if version is None:
+            unrecorded += 1
+        elif version not in versions:
             versions.append(version)
-    return versions
+    return versions, unrecorded
 
 
 def copy_inputs(directory, runs, pin_inputs, stream):

@@ -94,6 +94,15 @@ def estimate_seconds_left(left, records, running, jobs, session_rate):
     return total / jobs
 
 
+def _versions_done(rec):
+    """DONE.json's record of the versions that made a run: ``tapmc_versions`` (those its
+    attempts recorded) and, when some attempts came before attempts recorded theirs,
+    ``attempts_without_version``."""
+    versions, unrecorded = provenance.attempt_versions(rec)
+    return {"tapmc_versions": versions,
+            **({"attempts_without_version": unrecorded} if unrecorded else {})}
+
+
 class Campaign:
     """An ensemble of runs in one folder, resumable; see :mod:`tapmc.campaign`.
 
@@ -302,16 +311,20 @@ class Campaign:
         return {k: last[k] for k in ("tapmc_version", "lammps_version") if k in last}
 
     def _note_version_change(self, spec, rec, restart):
-        """Say so when a run resumes under another TAPMC than the one(s) that ran it so far:
-        one trajectory then comes from two builds. Its attempts record each version."""
-        earlier = provenance.attempt_versions(rec, fallback=self._previous_version)
+        """Say so when a run resumes under another TAPMC than the one that ran its last
+        attempt (one trajectory then comes from two builds); an attempt recorded before
+        attempts carried their version is taken as the campaign's last session's."""
+        last = rec["attempts"][-1].get("tapmc_version") if rec["attempts"] else None
+        whose = "its last attempt ran"
+        if last is None:
+            last, whose = self._previous_version, ("the campaign's last session ran (its "
+                                                   "attempts did not record their version)")
         current = self._manifest["tapmc_version"]
-        other = [v for v in earlier if v != current]
-        if other:
+        if last is not None and last != current:
             print(f"[campaign] run {spec.name!r}: resumes from {restart.name} under TAPMC "
-                  f"{current}; its earlier attempts ran TAPMC {', '.join(other)} (manifest.json "
-                  "records each attempt's version; a campaign pinned to one build runs from a "
-                  "work tree of that commit)", file=self.stream, flush=True)
+                  f"{current}; {whose} TAPMC {last} (manifest.json records each attempt's "
+                  "version; a campaign pinned to one build runs from a work tree of that "
+                  "commit)", file=self.stream, flush=True)
 
     def _started_run(self, spec, cmd, step, **extra):
         """Record the command and start of a run (under the lock); the manifest keeps the
@@ -381,7 +394,7 @@ class Campaign:
             rec["wall_s"] = round(sum(a.get("wall_s", 0) for a in rec["attempts"]), 3)
         done = {"run": spec.describe(), "finished": provenance.now(), "wall_s": rec["wall_s"],
                 "attempts": len(rec["attempts"]),
-                "tapmc_versions": provenance.attempt_versions(rec, self._previous_version),
+                **_versions_done(rec),
                 "outputs": provenance.output_digests(run_dir, run_folder.output_files(run_dir))}
         provenance.write_done(run_dir, done)
         return ""
