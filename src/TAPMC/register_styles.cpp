@@ -1,6 +1,7 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 // The one table of TAPMC styles. Adding a style: include its header and add it to a list below.
 #include "register_styles.h"
+#include "tapmc_build_id.h"  // generated at build time (cmake/TAPMCBuildId.cmake)
 
 #include "command.h"
 #include "compute.h"
@@ -117,6 +118,9 @@ namespace tapmc {
 
 void print_styles_help(std::FILE *out)
 {
+  // The commit of this binary: a campaign records it with every attempt (tapmc.campaign).
+  std::fprintf(out, "TAPMC build: %s (git describe of the source tree it was built from)\n",
+               TAPMC_BUILD_ID);
   std::fprintf(out, "TAPMC styles (registered by lmp_tapmc at start-up, not in the lists "
                     "above):\n");
   print_category(out, "Fix", kFixes);

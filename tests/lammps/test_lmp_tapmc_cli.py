@@ -3,8 +3,10 @@
 # TAPMC styles still known after `clear` (which rebuilds LAMMPS's style tables), `-h` listing the
 # TAPMC styles, and LAMMPS's citation reminder naming the paper.
 import os
+import re
 import subprocess
 import tempfile
+from pathlib import Path
 
 from lmprun import LMP, MPIRUN, run_lammps
 
@@ -58,6 +60,24 @@ def test_help_lists_the_tapmc_styles_after_lammps_own():
         for style in ("fix tapdilate", "fix mc/settle", "compute stereo/profile",
                       "compute contacts", "command create_packing"):
             assert any(line.split()[:2] == style.split() for line in section), style
+
+
+def test_help_names_the_commit_the_binary_was_built_from():
+    """'TAPMC build: <git describe>' (a campaign records it with each attempt): a commit of
+    this repository when built from a git checkout, 'unknown' otherwise."""
+    rc, out = help_text("-h")
+    assert rc == 0, out
+    (line,) = [line for line in out.splitlines() if line.startswith("TAPMC build: ")]
+    build = line.split()[2]
+    source = Path(__file__).resolve().parents[2]
+    if not (source / ".git").exists():
+        assert build == "unknown"
+        return
+    name = re.sub(r"-dirty$", "", build)
+    name = re.sub(r"^.*-g([0-9a-f]{7,40})$", r"\1", name)   # tag-N-g<hash>: the hash
+    known = subprocess.run(["git", "-C", str(source), "cat-file", "-e", name + "^{commit}"],
+                           capture_output=True)
+    assert known.returncode == 0, f"{build}: not a commit of {source}"
 
 
 def test_help_section_once_on_several_ranks_and_never_after_an_error():

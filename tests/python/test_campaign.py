@@ -58,6 +58,9 @@ def test_pool_two_jobs_and_manifest(tmp_path):
     assert manifest["mode"] == "pool" and manifest["jobs"] == 2
     assert manifest["format"] == MANIFEST_FORMAT
     assert "2021" in manifest["lammps_version"]
+    # the commit the executable was built from, as its -h says
+    help_text = subprocess.run([str(LMP), "-h"], capture_output=True, text=True).stdout
+    assert f"TAPMC build: {manifest['lmp_build']} " in help_text
     entry = manifest["inputs"]["in.constant_eps"]
     assert entry["sha256"] == hashlib.sha256(CONSTANT_EPS.read_bytes()).hexdigest()
     assert (tmp_path / "c" / entry["copy"]).read_bytes() == CONSTANT_EPS.read_bytes()
@@ -126,6 +129,7 @@ def test_resume_after_kill(tmp_path, monkeypatch):
     running = killed["runs"][1]["running_attempt"]
     assert running["tapmc_version"] == first_version and running["resumed_from_step"] is None
     assert running["lammps_version"] == killed["lammps_version"] and running["started"]
+    assert running["lmp_build"] == killed["lmp_build"] is not None
     runs = [RunSpec("short", CONSTANT_EPS, short, seed=1), RunSpec("long", CONSTANT_EPS, long, seed=2)]
     # ... and the campaign resumes under another TAPMC build: it says so and records both
     monkeypatch.setattr(provenance, "tapmc_version", lambda: "next-build")
@@ -657,7 +661,7 @@ def test_a_run_resumed_after_attempts_without_versions(tmp_path, monkeypatch):
     (attempt,) = manifest["runs"][0]["attempts"]
     assert attempt["tapmc_version"] == "old-build"
     for attempt in manifest["runs"][0]["attempts"]:   # as an older TAPMC wrote it
-        del attempt["tapmc_version"], attempt["lammps_version"]
+        del attempt["tapmc_version"], attempt["lammps_version"], attempt["lmp_build"]
     (folder / "manifest.json").write_text(json.dumps(manifest))
     (folder / "runs" / "old" / "finish").touch()
     monkeypatch.setattr(provenance, "tapmc_version", lambda: "next-build")

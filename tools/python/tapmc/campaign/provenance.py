@@ -16,9 +16,9 @@ from .errors import CampaignDirectoryError, CampaignError
 from .launch import private_mpi_session
 
 __all__ = ["MANIFEST_FORMAT", "sha256", "now", "portable_paths", "read_manifest",
-           "write_manifest", "lammps_version", "tapmc_version", "copy_inputs", "read_done",
-           "write_done", "output_digests", "damaged_outputs", "verify_finished_run",
-           "attempt_versions"]
+           "write_manifest", "lmp_versions", "lammps_version", "tapmc_version", "copy_inputs",
+           "read_done", "write_done", "output_digests", "damaged_outputs",
+           "verify_finished_run", "attempt_versions"]
 
 _REPO = Path(__file__).resolve().parents[4]
 #: Layout of a campaign folder (manifest keys, inputs/, runs/NAME/DONE.json) that this package
@@ -99,17 +99,26 @@ def write_manifest(directory, data):
     tmp.replace(directory / "manifest.json")
 
 
-def lammps_version(lmp):
-    """LAMMPS's version as ``lmp -h`` prints it, or None (a LAMMPS process like the runs,
-    with MPI session directories of its own)."""
+def lmp_versions(lmp):
+    """What ``lmp -h`` says of the executable (a LAMMPS process like the runs, with MPI
+    session directories of its own): {"lammps_version": LAMMPS's version, "lmp_build": the
+    commit lmp_tapmc was built from (its "TAPMC build:" line)}, each None when not printed
+    (another LAMMPS, an older lmp_tapmc) or when the executable cannot run."""
     try:
         with private_mpi_session() as env:
             out = subprocess.run([str(lmp), "-h"], stdin=subprocess.DEVNULL, env=env,
                                  capture_output=True, text=True, timeout=60).stdout
     except (OSError, subprocess.TimeoutExpired):
-        return None
-    m = re.search(r"Simulator - (.+)", out)
-    return m.group(1).strip() if m else None
+        out = ""
+    version = re.search(r"Simulator - (.+)", out)
+    build = re.search(r"^TAPMC build: (\S+)", out, re.MULTILINE)
+    return {"lammps_version": version.group(1).strip() if version else None,
+            "lmp_build": build.group(1) if build else None}
+
+
+def lammps_version(lmp):
+    """LAMMPS's version as ``lmp -h`` prints it, or None (:func:`lmp_versions`)."""
+    return lmp_versions(lmp)["lammps_version"]
 
 
 def tapmc_version():

@@ -94,6 +94,12 @@ def estimate_seconds_left(left, records, running, jobs, session_rate):
     return total / jobs
 
 
+#: What a manifest records of the versions, each attempt too: the TAPMC tree the campaign runs
+#: from (git describe), LAMMPS's version and the commit the executable was built from (both
+#: from ``lmp -h``; lmp_build is None for a LAMMPS that does not print it).
+VERSION_KEYS = ("tapmc_version", "lammps_version", "lmp_build")
+
+
 def _versions_done(rec):
     """DONE.json's record of the versions that made a run: ``tapmc_versions`` (those its
     attempts recorded) and, when some attempts came before attempts recorded theirs,
@@ -301,14 +307,14 @@ class Campaign:
 
     def _versions(self):
         """The versions of this session's LAMMPS executable and TAPMC (manifest keys)."""
-        return {k: self._manifest[k] for k in ("tapmc_version", "lammps_version")}
+        return {k: self._manifest[k] for k in VERSION_KEYS}
 
     @staticmethod
     def _versions_of_last_attempt(rec):
         """The versions of a run's last attempt entry (the attempt a kept log belongs to when
         its campaign recorded its end), or {} when it has none."""
         last = rec["attempts"][-1] if rec["attempts"] else {}
-        return {k: last[k] for k in ("tapmc_version", "lammps_version") if k in last}
+        return {k: last[k] for k in VERSION_KEYS if k in last}
 
     def _note_version_change(self, spec, rec, restart):
         """Say so when a run resumes under another TAPMC than the one that ran its last
@@ -504,7 +510,7 @@ class Campaign:
             "format": provenance.MANIFEST_FORMAT, "campaign": str(self.directory),
             "created": previous.get("created"), "mode": self.mode, "jobs": self.jobs,
             "host": platform.node(), "python": sys.version.split()[0], "lmp": str(self.lmp),
-            "lammps_version": provenance.lammps_version(self.lmp),
+            **provenance.lmp_versions(self.lmp),
             "tapmc_version": provenance.tapmc_version(),
             "inputs": provenance.copy_inputs(self.directory, self.runs, self.pin_inputs,
                                              self.stream)}
