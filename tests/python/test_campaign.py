@@ -138,7 +138,7 @@ def test_resume_after_kill(tmp_path, monkeypatch):
     stream = io.StringIO()
     campaign = Campaign(folder, runs, lmp=LMP, jobs=1, stream=stream).run(progress=False)
     assert (f"[campaign] run 'long': resumes from {latest} under TAPMC "
-            f"next-build; its last attempt ran TAPMC {first_version}") in stream.getvalue()
+            f"next-build; its last attempt ran TAPMC {first_version} (") in stream.getvalue()
 
     # the finished run was not redone
     assert (short_log.stat().st_mtime_ns,
@@ -637,7 +637,7 @@ def test_the_versions_that_ran_a_run():
 
 
 FAKE_LMP = """#!/bin/sh
-case " $* " in *" -in "*) ;; *) exit 0 ;; esac
+case " $* " in *" -in "*) ;; *) echo "TAPMC build: ${FAKE_BUILD:-}"; exit 0 ;; esac
 printf '# step level\\n0 0\\n1 0\\n2 0\\n' > taps.dat
 echo x > restart.2
 if [ -e finish ]; then printf '3 0\\n' >> taps.dat; echo 'Total wall time: 0:00:01' > log.lammps
@@ -672,3 +672,25 @@ def test_a_run_resumed_after_attempts_without_versions(tmp_path, monkeypatch):
             "old-build") in stream.getvalue()
     done = provenance.read_done(folder / "runs" / "old" / "DONE.json")
     assert done["tapmc_versions"] == ["next-build"] and done["attempts_without_version"] == 2
+
+
+def test_a_run_resumed_by_another_build_of_the_executable(tmp_path, monkeypatch):
+    """The same TAPMC tree, another build of the executable (lmp -h's 'TAPMC build:'): the
+    resume says so, and each attempt records its build."""
+    fake = tmp_path / "lmp_fake"
+    fake.write_text(FAKE_LMP)
+    fake.chmod(0o755)
+    spec = RunSpec("rebuilt", CONSTANT_EPS, dict(TINY, taps=3), seed=1)
+    folder = tmp_path / "c"
+    monkeypatch.setenv("FAKE_BUILD", "b1")
+    with pytest.raises(CampaignError):
+        Campaign(folder, [spec], lmp=str(fake), jobs=1).run(progress=False)
+    (folder / "runs" / "rebuilt" / "finish").touch()
+    monkeypatch.setenv("FAKE_BUILD", "b2")
+    stream = io.StringIO()
+    Campaign(folder, [spec], lmp=str(fake), jobs=1, stream=stream).run(progress=False)
+    assert ("resumes from restart.2 under TAPMC " in stream.getvalue()
+            and "; its executable is built from b2, its last attempt's from b1 (" in
+            stream.getvalue() and "ran TAPMC" not in stream.getvalue())
+    record = json.loads((folder / "manifest.json").read_text())["runs"][0]
+    assert [a.get("lmp_build") for a in record["attempts"]] == ["b1", "b1", "b2"]

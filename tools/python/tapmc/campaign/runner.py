@@ -317,19 +317,25 @@ class Campaign:
         return {k: last[k] for k in VERSION_KEYS if k in last}
 
     def _note_version_change(self, spec, rec, restart):
-        """Say so when a run resumes under another TAPMC than the one that ran its last
-        attempt (one trajectory then comes from two builds); an attempt recorded before
-        attempts carried their version is taken as the campaign's last session's."""
-        last = rec["attempts"][-1].get("tapmc_version") if rec["attempts"] else None
-        whose = "its last attempt ran"
-        if last is None:
-            last, whose = self._previous_version, ("the campaign's last session ran (its "
-                                                   "attempts did not record their version)")
+        """Say so when a run resumes under another TAPMC, or another build of the executable,
+        than its last attempt (one trajectory then comes from two builds); an attempt recorded
+        before attempts carried their version is taken as the campaign's last session's."""
+        last = rec["attempts"][-1] if rec["attempts"] else {}
+        version, whose = last.get("tapmc_version"), "its last attempt ran"
+        if version is None:
+            version, whose = self._previous_version, ("the campaign's last session ran (its "
+                                                      "attempts did not record their version)")
         current = self._manifest["tapmc_version"]
-        if last is not None and last != current:
+        changes = [f"{whose} TAPMC {version}"] if version is not None and version != current \
+            else []
+        build, built = self._manifest["lmp_build"], last.get("lmp_build")
+        if build is not None and built is not None and build != built:
+            changes.append(f"its executable is built from {build}, its last attempt's from "
+                           f"{built}")
+        if changes:
             print(f"[campaign] run {spec.name!r}: resumes from {restart.name} under TAPMC "
-                  f"{current}; {whose} TAPMC {last} (manifest.json records each attempt's "
-                  "version; a campaign pinned to one build runs from a work tree of that "
+                  f"{current}; {'; '.join(changes)} (manifest.json records each attempt's "
+                  "versions; a campaign pinned to one build runs from a work tree of that "
                   "commit)", file=self.stream, flush=True)
 
     def _started_run(self, spec, cmd, step, **extra):
