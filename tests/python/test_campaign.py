@@ -153,6 +153,9 @@ def test_resume_after_kill(tmp_path, monkeypatch):
     attempts = record["attempts"]
     assert attempts[0]["interrupted"] and attempts[-1]["resumed_from_step"] >= 40
     assert attempts[0]["tapmc_version"] == first_version and attempts[0]["started"]
+    # the killed attempt's wall time: its start to its log's last write (seconds, not hours)
+    assert 0 < attempts[0]["wall_s"] < 60 and attempts[-1]["wall_s"] > 0
+    assert record["wall_s"] == pytest.approx(sum(a["wall_s"] for a in attempts), abs=0.01)
     assert attempts[-1]["tapmc_version"] == "next-build" and "running_attempt" not in record
     done = provenance.read_done(run_dir / "DONE.json")
     assert done["tapmc_versions"] == [first_version, "next-build"]

@@ -3,6 +3,7 @@
 their sha256, per run its parameters, commands and attempts) and each finished run's DONE.json
 (its parameters and the sha256 and size of its outputs), and the check of those outputs."""
 
+import calendar
 import hashlib
 import json
 import os
@@ -37,9 +38,20 @@ def sha256(path):
     return h.hexdigest()
 
 
+#: How the manifest writes a UTC time.
+TIME_FORMAT = "%Y-%m-%dT%H:%M:%SZ"
+
+
 def now():
     """The current UTC time as the manifest writes it."""
-    return time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
+    return time.strftime(TIME_FORMAT, time.gmtime())
+
+
+def seconds_between(start, end_epoch):
+    """Seconds from ``start`` (as :func:`now` writes it) to ``end_epoch`` (seconds since the
+    epoch, e.g. a file's mtime), rounded to the manifest's precision; never negative."""
+    begin = calendar.timegm(time.strptime(start, TIME_FORMAT))
+    return max(0.0, round(end_epoch - begin, 3))
 
 
 def portable_paths(value, campaign_dir):

@@ -294,7 +294,11 @@ class Campaign:
             # the start of an attempt killed with its campaign (no entry of its own)
             running = rec.pop("running_attempt", None)
             if kept:
-                entry = running or self._versions_of_last_attempt(rec)
+                entry = dict(running) if running else self._versions_of_last_attempt(rec)
+                if running:  # its wall time: from its start to the last write of its log
+                    entry["wall_s"] = provenance.seconds_between(
+                        running["started"], (run_dir / kept).stat().st_mtime)
+                    entry["wall_s_to"] = "the last write of its log"
                 rec["attempts"].append(
                     {"interrupted": True, **entry, "log": kept,
                      "taps_done": run_folder.taps_done(run_dir / spec.taps_file)})
