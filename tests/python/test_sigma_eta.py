@@ -2,6 +2,7 @@
 """tapmc.paper.sigma_eta: sigma_<Z> and the bell's top against the redeposition threshold, on
 synthetic runs of known sigma (white noise: the batch-means errors are then exact)."""
 
+import json
 import math
 import os
 import subprocess
@@ -100,6 +101,46 @@ def test_resumed_taps_count_once_and_short_runs_wait(tmp_path):
     assert sigma_eta.read_run(short, DEFAULT_ETA) is None  # steady window 249 < 250 taps
     with pytest.raises(ValueError, match="not a constant-eps run"):
         sigma_eta.read_run(runs.parent / "ramp_pbc_s1", DEFAULT_ETA)
+
+
+def test_a_run_still_going_counts_only_the_taps_of_its_protocols_steady_window(tmp_path):
+    """A 4000-tap run at tap 3400 counts its taps 3001-3400, not its last quarter so far
+    (taps 2551-3400, where the packing may still compact): here taps before 3000 are noisier
+    (sigma 0.05), the window's 0.01; at tap 3100 it has 100 window taps and waits. Control:
+    without the plan in the manifest, the last quarter of what it has counts (and is wrong)."""
+    runs = tmp_path / "runs"
+    d = write_run(runs, "consteta_pbc_eps0.01_eta1e-06_s1", 0.01, 0.6, taps=3400, done=False)
+    rows = np.loadtxt(d / "taps.dat")
+    noisy = rows[:, 0] <= 3000
+    rows[noisy, 3] = 7.3 + 5 * (rows[noisy, 3] - 7.3)
+    np.savetxt(d / "taps.dat", rows, header="step phi_b phi_c Z", fmt="%.8f")
+    unplanned = sigma_eta.read_run(d, DEFAULT_ETA)
+    assert unplanned.sigma > 0.02   # 450 of its 850 taps are the noisy ones
+    (tmp_path / "manifest.json").write_text(json.dumps(
+        {"runs": [{"name": d.name, "taps": 4000}]}))
+    (point,) = sigma_eta.analyse(tmp_path, DEFAULT_ETA)
+    assert point.taps == 3400 and not point.finished
+    assert abs(point.sigma - 0.01) < 4 * 0.01 / math.sqrt(800)
+    assert sigma_eta.steady_window(3400, 4000) == 400 and sigma_eta.steady_window(4000, 4000) \
+        == 1000 and sigma_eta.steady_window(2000, 4000) == 0
+    early = write_run(runs, "consteta_pbc_eps0.09_eta1e-06_s1", 0.01, 0.6, taps=3100,
+                      done=False)
+    assert sigma_eta.read_run(early, DEFAULT_ETA, planned_taps=4000) is None
+
+
+def test_a_top_at_the_edge_of_the_eps_measured_is_no_top(tmp_path):
+    """Two eps of a threshold done, the larger <Phi^c> at 60.6 %: the edge of what was measured,
+    not the bell's top, so it meets nothing; with an eps on each side it is the top."""
+    runs = tmp_path / "runs"
+    write_run(runs, "consteta_pbc_eps0.0025_eta1e-06_s1", 0.01, 0.606, seed=1)
+    write_run(runs, "consteta_pbc_eps0.01_eta1e-06_s1", 0.01, 0.600, seed=2)
+    text = sigma_eta.finding_text(sigma_eta.analyse(tmp_path, DEFAULT_ETA), DEFAULT_ETA)
+    assert "eta = 1e-6: 2 eps (too few for a line); largest <Phi^c> 60.5" in text
+    assert "% at eps = 0.0025, the edge of the eps measured: no top yet" in text
+    assert "No threshold's bell top meets" in text
+    write_run(runs, "consteta_pbc_eps0.001_eta1e-06_s1", 0.01, 0.600, seed=3)
+    text = sigma_eta.finding_text(sigma_eta.analyse(tmp_path, DEFAULT_ETA), DEFAULT_ETA)
+    assert "% at eps = 0.0025 (meets 60.6 %)" in text and "no top yet" not in text
 
 
 def test_csv_round_trip_and_a_foreign_header(tmp_path):

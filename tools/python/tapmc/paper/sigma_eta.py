@@ -17,8 +17,10 @@ the same constant-eps runs at other thresholds (``consteta_*`` runs, tier 8 of
 
 The answer (:func:`finding_text`): whether the offset shrinks as eta tightens (the tightest
 threshold's offset below the loosest one's beyond t times their combined error), and which
-eta's bell top meets 60.6 %. Runs still going count with the taps they have once their steady
-window holds ``MIN_STEADY_TAPS`` taps; the table says how many taps each point had.
+eta's bell top meets 60.6 %. A run still going counts once it holds ``MIN_STEADY_TAPS`` taps of
+its protocol's steady window (the last quarter of the taps the campaign's manifest plans for it:
+taps 3001-4000 of a 4000-tap run, never the last quarter of the taps it has so far, when the
+packing still compacts); the table says how many taps each point had.
 
   /usr/bin/python3 -m tapmc.paper sigma-eta --campaign DIR --out doc/paper_scale
 """
@@ -33,6 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
+from tapmc.campaign.provenance import read_manifest
 from tapmc.fluctuations import SteadyState
 from tapmc.stats import beyond, t_quantile, t_quantile_of_mean, weighted_polyfit
 
@@ -94,7 +97,9 @@ class EtaPoint:
 @dataclass(frozen=True)
 class EtaLine:
     """sigma_<Z> = offset + slope sqrt(eps) at one eta (None when fewer than 3 eps), and
-    the bell's top: the largest steady <Phi^c> over the eps, at ``top_eps``."""
+    the bell's top: the largest steady <Phi^c> over the eps, at ``top_eps``; ``top_inside``
+    when eps on both sides of it were measured (a top the data show, not the edge of the eps
+    done so far)."""
 
     eta: float
     eps_count: int
@@ -106,12 +111,23 @@ class EtaLine:
     top_eps: float
     top_phi_c: float
     top_phi_c_sem: float
+    top_inside: bool = True
 
 
-def read_run(run_dir, default_eta):
+def steady_window(taps, planned=None):
+    """Taps of a run's steady window that it has: the last quarter of its ``planned`` taps
+    (:func:`steady_last`, as for a finished run), of which a run still going has the taps past
+    the window's start (0 before it); without a plan, the last quarter of ``taps``."""
+    if planned is None or taps >= planned:
+        return steady_last(taps) if taps else 0
+    return max(0, taps - (planned - steady_last(planned)))
+
+
+def read_run(run_dir, default_eta, planned_taps=None):
     """The :class:`RunSteady` of one ``const_*`` / ``consteta_*`` run directory, or None when
-    its steady window is still shorter than ``MIN_STEADY_TAPS``. A tap written twice (a run
-    resumed from a restart) counts once, with its last row."""
+    it holds fewer than ``MIN_STEADY_TAPS`` taps of its steady window (:func:`steady_window`;
+    ``planned_taps``: the run's taps in the campaign's plan, None when unknown). A tap written
+    twice (a run resumed from a restart) counts once, with its last row."""
     run_dir = Path(run_dir)
     m = NAME.match(run_dir.name)
     if not m:
@@ -125,7 +141,7 @@ def read_run(run_dir, default_eta):
         last = len(steps) - 1 - np.unique(steps[::-1], return_index=True)[1]
         data = data[np.sort(last)]
     taps = len(data)
-    window = steady_last(taps) if taps else 0
+    window = steady_window(taps, planned_taps)
     if window < MIN_STEADY_TAPS:
         return None
     z, phi_c = data[:, Z], data[:, PHI_C]
@@ -170,13 +186,16 @@ def points(runs):
 
 def analyse(campaign, default_eta, bc=BC):
     """The points of every constant-eps run of ``bc`` in the campaign directory (its runs/
-    folder) with a steady window long enough, at every eta."""
+    folder) with a steady window long enough, at every eta; each run's planned taps come from
+    the campaign's manifest.json (a run it does not list is judged on the taps it has)."""
     runs_dir = Path(campaign) / "runs"
+    planned = {r.get("name"): r.get("taps") for r in read_manifest(campaign).get("runs", [])
+               if isinstance(r, dict)}
     found = []
     for d in sorted(runs_dir.glob(f"*_{bc}_eps*_s*")):
         if not NAME.match(d.name) or not (d / "taps.dat").exists():
             continue
-        run = read_run(d, default_eta)
+        run = read_run(d, default_eta, planned.get(d.name))
         if run is not None:
             found.append(run)
     return points(found)
@@ -200,9 +219,11 @@ def line(eta_points):
         offset, slope = float(coef[0]), float(coef[1])
         offset_err = float(math.sqrt(cov[0, 0] * scale))
         slope_err = float(math.sqrt(cov[1, 1] * scale))
+    measured = [p.eps for p in eta_points]
     return EtaLine(eta=eta, eps_count=len(eta_points), offset=offset, offset_err=offset_err,
                    slope=slope, slope_err=slope_err, dof=dof, top_eps=top.eps,
-                   top_phi_c=top.phi_c, top_phi_c_sem=top.phi_c_sem)
+                   top_phi_c=top.phi_c, top_phi_c_sem=top.phi_c_sem,
+                   top_inside=min(measured) < top.eps < max(measured))
 
 
 def lines(all_points):
@@ -300,7 +321,10 @@ def finding_text(all_points, default_eta):
                if ln.dof is not None else f"{ln.eps_count} eps (too few for a line)")
         top = (f"bell top <Phi^c> = {100 * ln.top_phi_c:.2f} +- {100 * ln.top_phi_c_sem:.2f} % "
                f"at eps = {ln.top_eps:g}"
-               + (" (meets 60.6 %)" if meets_paper_phi(ln, all_points) else ""))
+               + (" (meets 60.6 %)" if meets_paper_phi(ln, all_points) else "")
+               if ln.top_inside else
+               f"largest <Phi^c> {100 * ln.top_phi_c:.2f} +- {100 * ln.top_phi_c_sem:.2f} % at "
+               f"eps = {ln.top_eps:g}, the edge of the eps measured: no top yet")
         parts.append(f"{label}: {fit}; {top}")
     trend = offset_trend(eta_lines)
     if trend is None:
@@ -310,7 +334,7 @@ def finding_text(all_points, default_eta):
                else "does not change beyond its error")
         verdict = (f"from eta = {_eta_text(trend.loose_eta)} to {_eta_text(trend.tight_eta)} the "
                    f"offset {how} ({trend.change:+.4f} +- {trend.change_err:.4f}).")
-    meeting = [ln.eta for ln in eta_lines if meets_paper_phi(ln, all_points)]
+    meeting = [ln.eta for ln in eta_lines if ln.top_inside and meets_paper_phi(ln, all_points)]
     paper = (f"The bell's top meets the paper's {PAPER_PHI_PERCENT} % at eta = "
              + ", ".join(_eta_text(e) for e in meeting) if meeting
              else f"No threshold's bell top meets the paper's {PAPER_PHI_PERCENT} %")
