@@ -200,7 +200,11 @@ def test_the_figure_draws_every_whole_level_one_panel_per_eta(tmp_path):
     write_run(tmp_path, "paperramp0.125_pbc_s1", up + down + [0.6035, 0.603], levels=LOOP[:11])
     write_run(tmp_path, "paperramp0.125_pbc_eta1e-05_s2", up + [0.61] * 4, seed=2)
     write_run(tmp_path, "paperramp0.125_pbc_eta1e-06_s3", up[:3], levels=LEVELS[:3], seed=3)
+    # a run just started (no whole level yet) draws nothing and breaks nothing
+    write_run(tmp_path, "paperramp0.2_pbc_s1", up[:1], levels=LEVELS[:1], taps_per_level=161)
     rows = paper_ramp.analyse(tmp_path, 1e-7)
+    started = next(r for r in rows if r.top == 0.2)
+    assert [len(v) for v in started.branch("up1")] == [0, 0, 0]
     axes = paper_ramp.plot(rows, 1e-7)
     assert [ax.get_title() for ax in axes] == ["eta = 1e-7 (the default)", "eta = 1e-5",
                                                "eta = 1e-6"]

@@ -82,9 +82,9 @@ class PaperRampRun:
     def branch(self, name):
         """(sqrt_eps, mean, sem) arrays of the whole levels of branch ``name`` (up1, down,
         up2), in the ramp's order."""
-        at = np.array(self.level_branches.split()) == name
-        return tuple(np.asarray(v, dtype=float)[at] if at.size else np.zeros(0)
-                     for v in (self.level_sqrt_eps, self.level_mean, self.level_sem))
+        at = np.array(self.level_branches.split(), dtype=str) == name  # empty: no level yet
+        return tuple(np.asarray(v, dtype=float)[at] for v in (self.level_sqrt_eps,
+                                                              self.level_mean, self.level_sem))
 
     def return_to_top(self):
         """The :class:`ReturnToTop` of a ramp whose second increase has a whole level back at
