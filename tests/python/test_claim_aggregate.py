@@ -114,6 +114,14 @@ def test_the_shown_row_is_the_one_the_verdict_rests_on():
     short, full = _rows([D], labels=["1000 taps"], scale=("ramp_taps",)), _rows([D, D])
     (both,) = claim_verdicts(short + full)
     assert both.shown_row() is both.rows[1]
+    # ... unless it has no value yet (a ramp at the paper's scale still going up): the row
+    # with a number comes first
+    pending = Row(short[0].claim, "4000 taps", Measure(), Verdict(U), ())
+    (waiting,) = claim_verdicts(_rows([U], labels=["1000 taps"], scale=("ramp_taps",))
+                                + [pending])
+    assert waiting.shown_row() is waiting.rows[0]
+    (alone,) = claim_verdicts([pending])
+    assert alone.shown_row() is pending
 
 
 def test_the_rule_is_stated_as_it_is_applied():

@@ -14,6 +14,7 @@ cannot decide (too few seeds, a scale below the paper's), not counter-examples.
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass
 
@@ -143,13 +144,21 @@ class ClaimVerdict:
         """The row the main table shows for the claim: the first that disagrees (or fails)
         when the claim does, else the row of the claim's headline label when it has one,
         else the first row with the claim's outcome; a row at the paper's scale (none of it
-        missing, e.g. a ramp at the paper's 4000 taps per level) before one that lacks it."""
+        missing, e.g. a ramp at the paper's 4000 taps per level) before one that lacks it, and
+        a row with a value before one without (a ramp at the paper's scale not yet measured)."""
         rows = self.rows
         if isinstance(self.claim.headline, str) and self.outcome not in (
                 Outcome.DISAGREES, Outcome.FAILS):
             rows = [r for r in rows if r.label.startswith(self.claim.headline)] or rows
-        same = [r for r in rows if r.outcome == self.outcome]
-        return next((r for r in same if not r.missing_scale), same[0] if same else rows[0])
+        same = [r for r in rows if r.outcome == self.outcome] or [rows[0]]
+        return min(same, key=lambda r: (not _has_value(r.measure), bool(r.missing_scale)))
+
+
+def _has_value(measure):
+    """Whether a row's measure shows a number or a text of its own (not "n/a")."""
+    value = measure.value
+    return measure.shown is not None or (isinstance(value, (int, float))
+                                          and math.isfinite(value))
 
 
 def claim_verdicts(rows):
