@@ -87,8 +87,8 @@ def test_ramp_first_increase_at_the_paper_protocol_against_the_squares(tmp_path)
     assert str(claims.verdict(claim, control)).startswith("disagrees")
     _, counted = rows(0.0001, [(2, 1e-7, levels[:2], squares[:2]), (3, 1e-5, levels, squares)])
     assert counted.value == pytest.approx(0.0001) and "one seed" in counted.text()
-    assert "not counted yet: seed 2 at tap 8000, 2 of its first increase's levels done" in \
-        counted.text()
+    assert ("not counted yet: seed 2 (turning at 0.125) at tap 8000, 2 of its first increase's "
+            "levels done") in counted.text()
     two = report(fig4=tab)
     two.questions["paper_ramp"] = _paper_ramps(tmp_path, [(1, 1e-7, levels, squares + 0.001),
                                                           (2, 1e-7, levels, squares + 0.002)])

@@ -348,8 +348,9 @@ def _paper_protocol_up(data, effect):
     ups = {r.run: r.branch("up1") for r in runs}
     whole = [r for r in runs
              if len(ups[r.run][0]) and abs(ups[r.run][0].max() - r.top) <= LEVEL_TOLERANCE]
-    waiting = "; ".join(f"seed {r.seed} at tap {r.taps_done}, {len(ups[r.run][0])} of its "
-                        "first increase's levels done" for r in runs if r not in whole)
+    waiting = "; ".join(f"seed {r.seed} (turning at {r.top:g}) at tap {r.taps_done}, "
+                        f"{len(ups[r.run][0])} of its first increase's levels done"
+                        for r in runs if r not in whole)
     common = [x for x in steady[0]
               if all(np.any(np.isclose(ups[r.run][0], x)) for r in whole)] if whole else []
     if not common:
