@@ -253,12 +253,18 @@ def by_eta(rows, first=None):
     default eta) first, then the loosest first; ``decided`` are the seeds whose ramp came down
     two levels, ``running`` says how far the others got (:func:`progress_text`; "" when none
     is running)."""
-    for eta in sorted({r.eta for r in rows}, key=lambda e: (e != first, -e)):
-        group = [r for r in rows if r.eta == eta]
+    for eta, group in _groups_by_eta(rows, first):
         decided = [r for r in group if r.verdict != "running"]
         running = "; ".join(progress_text(r.seed, r.taps_done, r.down_levels) for r in group
                             if r.verdict == "running")
         yield eta, decided, running
+
+
+def _groups_by_eta(rows, first=None):
+    """(eta, its rows) per eta of ``rows``: ``first`` (the default eta) first, then the
+    loosest."""
+    etas = sorted({r.eta for r in rows}, key=lambda e: (e != first, -e))
+    return [(eta, [r for r in rows if r.eta == eta]) for eta in etas]
 
 
 def eta_label(eta, default_eta):
@@ -392,19 +398,13 @@ def _beyond_text(rows, default_eta):
             "from the turning level: " + ". ".join(parts) + ".") if parts else ""
 
 
-def _panels(rows, default_eta):
-    """(eta, runs) per panel of :func:`plot`: the default eta first, then the loosest."""
-    etas = sorted({r.eta for r in rows}, key=lambda e: (e != default_eta, -e))
-    return [(eta, [r for r in rows if r.eta == eta]) for eta in etas]
-
-
 def plot(rows, default_eta, axes=None):
     """The whole levels of every ramp (:class:`PaperRampRun`), one panel per eta (the default
     first; ``axes``: one axis per eta, new ones when None): <Phi^c> against sqrt(eps), a colour
     per run, a marker per branch (:data:`BRANCH_STYLE`), error bars the levels' batch-means
     errors, a thin line through the levels in the ramp's order (the loop), (sqrt eps)* dotted;
     the panels share their <Phi^c> range. Returns the axes."""
-    panels = _panels(rows, default_eta)
+    panels = _groups_by_eta(rows, default_eta)
     if axes is None:
         _, axes = _plotting.new_figure(nrows=len(panels), height=2.8, width=6.0)
     if len(axes) < len(panels):
@@ -437,14 +437,12 @@ def settings_line(rows):
     """The settings the figure states on top (every number of it is a setting of the runs)."""
     seeds = sorted({r.seed for r in rows})
     return (f"N = {FULL.N}, box {FULL.L:g}R x {FULL.L:g}R, P.B.C.; {TAPS_PER_LEVEL} taps per "
-            f"level, steps of {FULL.ramp_dsqrt:g} in sqrt(eps), means of the last {LAST_TAPS} taps of each level; levels "
-            f"done whole only; seeds {', '.join(map(str, seeds))}")
+            f"level, steps of {FULL.ramp_dsqrt:g} in sqrt(eps), means of the last {LAST_TAPS} "
+            f"taps of each level; levels done whole only; seeds {', '.join(map(str, seeds))}")
 
 
 def write_figure(rows, default_eta, path):
     """``paper_ramp.png``: :func:`plot` with its settings on top; returns the path."""
-    panels = _panels(rows, default_eta)
-    fig, axes = _plotting.new_figure(nrows=len(panels), height=2.8, width=6.0)
-    plot(rows, default_eta, axes)
+    fig = plot(rows, default_eta)[0].figure
     _plotting.finish_figure(fig, settings_line(rows))
     return _plotting.save_figure(fig, path)
