@@ -109,8 +109,8 @@ class ReturnToTop:
     increase), against the two levels that frame the loop: ``given_back`` = back at the top
     minus the bottom of the loop (the last descending level): < 0 when the packing loosens as
     the taps grow again, a reversible response (a frozen branch gives back nothing);
-    ``kept`` = back at the top minus the first visit of the turning level: what the loop left
-    (the slow compaction of its levels). :class:`tapmc.hysteresis.BranchStatistic` each."""
+    ``kept`` = back at the top minus the first visit of the turning level: what the loop left,
+    the compaction the way back up did not undo. :class:`tapmc.hysteresis.BranchStatistic` each."""
 
     sqrt_eps: float
     given_back: BranchStatistic
