@@ -176,13 +176,10 @@ def test_back_at_the_turning_level_the_loop_splits_into_given_back_and_kept(tmp_
 
     one = [rows["paperramp0.125_pbc_s1"], rows["paperramp0.125_pbc_s3"]]
     text = paper_ramp.finding_text(one, 1e-7)
-    assert ("Back up at the turning level (1 of 2 seeds), it loosens: the descent's compaction "
-            "is reversible in part (seed 1: of the +0.0040 gained from the turning level down "
-            "to the bottom of the loop it gives back -0.0020 +- 0.0000 and keeps +0.0020 +- "
-            "0.0000).") in text
-    headline = paper_ramp.headline_text(one, 1e-7)
-    assert "; back up at that level it moves by -0.0020 from the bottom of the loop, " \
-        "reversible in part)" in headline
+    assert ("Back up at the turning level (1 of 2 seeds), it loosens as the taps grow again (a "
+            "frozen branch would not) (seed 1: of the +0.0040 gained from the turning level "
+            "down to the bottom of the loop it gives back -0.0020 +- 0.0000 and keeps +0.0020 "
+            "+- 0.0000 over its first visit, on the first increase).") in text
     both = paper_ramp.finding_text([rows["paperramp0.125_pbc_s1"],
                                     rows["paperramp0.125_pbc_s2"]], 1e-7)
     assert "Back up at the turning level (2 of 2 seeds), the seeds differ (seed 1:" in both
@@ -190,6 +187,50 @@ def test_back_at_the_turning_level_the_loop_splits_into_given_back_and_kept(tmp_
     assert "it stays where the descent left it (frozen) (seed 2:" in alone
     # a ramp still on its way up again adds nothing to the sentence
     assert "Back up" not in paper_ramp.finding_text([rows["paperramp0.125_pbc_s3"]], 1e-7)
+
+
+def test_the_second_increase_against_the_descent_is_the_papers_test_of_reversibility(tmp_path):
+    """The second increase against the descent at the sqrt(eps) both visited, with known
+    answers: one that comes across the same values (reversible), one that lies 0.002 above
+    them (still compacting); controls: one level of the second increase compares that level
+    only, and a ramp not yet going up again has no answer."""
+    up, down = [0.590, 0.595, 0.598, 0.600, 0.600], [0.601, 0.602, 0.603, 0.604]
+    back = [0.603, 0.602, 0.601, 0.6005]  # the descent's values at 0.05, 0.075, 0.1, then 0.125
+    write_run(tmp_path, "paperramp0.125_pbc_s1", up + down + back, levels=LOOP)
+    write_run(tmp_path, "paperramp0.125_pbc_s2", up + down + [v + 0.002 for v in back],
+              levels=LOOP, seed=2)
+    write_run(tmp_path, "paperramp0.125_pbc_s3", up + down + back[:1], levels=LOOP[:10],
+              seed=3)
+    write_run(tmp_path, "paperramp0.125_pbc_s4", up + down, seed=4)
+    rows = {r.run: r for r in paper_ramp.analyse(tmp_path, 1e-7)}
+    same = rows["paperramp0.125_pbc_s1"].retrace()
+    assert same.verdict == "retraces" and same.levels == (0.05, 0.075, 0.1)
+    assert same.differences == pytest.approx((0.0, 0.0, 0.0), abs=2e-4)
+    assert all(0 < e < 1e-4 for e in same.sems) and same.mean.n == 3
+    above = rows["paperramp0.125_pbc_s2"].retrace()
+    assert above.verdict == "above" and above.mean.value == pytest.approx(0.002, abs=2e-4)
+    assert above.differences == pytest.approx((0.002,) * 3, abs=2e-4)
+    first = rows["paperramp0.125_pbc_s3"].retrace()
+    assert first.levels == (0.05,) and first.mean.n == 1 and first.verdict == "retraces"
+    assert rows["paperramp0.125_pbc_s4"].retrace() is None
+
+    text = paper_ramp.finding_text([rows["paperramp0.125_pbc_s1"]], 1e-7)
+    levels = ", ".join(f"{paper_ramp._signed(d)} +- 0.0000 at {x:g}"
+                       for x, d in zip(same.levels, same.differences))
+    assert ("The second increase against the descent at the sqrt(eps) both visited (1 of 1 "
+            "seed; the paper's test of its reversible branch, 'we approximately come across the "
+            "same values'): it comes across the same values: reversible (second increase minus "
+            f"descent, seed 1: {levels}; mean {paper_ramp._signed(same.mean.value)} +- "
+            "0.0000).") in text
+    headline = paper_ramp.headline_text([rows["paperramp0.125_pbc_s2"]], 1e-7)
+    share = 100 * above.mean.value / rows["paperramp0.125_pbc_s2"].down_change
+    assert (f"; the second increase minus the descent: +0.0020 (mean of 3 levels; {share:.0f} % "
+            "of the descent's move), it lies above the descent: still compacting)") in headline
+    both = paper_ramp.headline_text([rows["paperramp0.125_pbc_s1"],
+                                     rows["paperramp0.125_pbc_s2"]], 1e-7)
+    assert "+0.0000 and +0.0020 (mean of 3 levels;" in both and "the seeds differ)" in both
+    assert "the second increase" not in paper_ramp.headline_text(
+        [rows["paperramp0.125_pbc_s4"]], 1e-7)
 
 
 def test_the_figure_draws_every_whole_level_one_panel_per_eta(tmp_path):

@@ -9,9 +9,12 @@ the levels done whole so far count), cut into levels by :class:`tapmc.hysteresis
 (the last 1000 taps of each level) and judged by :class:`tapmc.hysteresis.RampBranches`: the branch
 is *frozen* when the descending levels stay within noise of the turning level
 (``down_change`` within ``Z_DECIDE`` standard errors), and *compacts* when they rise beyond it.
-Once the second increase is back at the turning level, :meth:`PaperRampRun.return_to_top` tells
-the two parts of that compaction apart: what the packing gives back as the taps grow again (a
-reversible response; a frozen branch gives back nothing) and what the loop keeps.
+Once the ramp goes up again, :meth:`PaperRampRun.retrace` applies the paper's own test of its
+reversible branch ("if we compute another increase process, we approximately come across the
+same values"): the second increase against the descent at the sqrt(eps) both visited. Back at
+the turning level, :meth:`PaperRampRun.return_to_top` tells what the packing gives back of the
+descent's compaction (a frozen branch gives back nothing) from what the loop keeps over its
+first visit (the first increase, which a reversible branch need not come back to).
 The per-run table is written to ``paper_ramp.csv`` of the report's questions folder, its levels
 drawn in ``paper_ramp.png`` beside it (:func:`plot`, one panel per eta), and the report's
 first screen states the finding from it (:func:`finding_text`) with that figure.
@@ -29,7 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from ..hysteresis import (CRITICAL_SQRT_EPS, LEVEL_TOLERANCE, BranchData, BranchStatistic,
-                          Hysteresis, RampBranches)
+                          Hysteresis, RampBranches, branch_difference)
 from . import _plotting, _runs
 from .scales import FULL
 
@@ -96,6 +99,20 @@ class PaperRampRun:
             return None
         return ReturnToTop(self.top, _level_difference(up2, down), _level_difference(up2, up1))
 
+    def retrace(self):
+        """The :class:`Retrace` of the second increase against the descent at the sqrt(eps)
+        both have whole levels at, or None before the second increase reaches one of them."""
+        down, up2 = self.branch("down"), self.branch("up2")
+        pairs = [(i, int(np.argmax(np.abs(down[0] - x) <= LEVEL_TOLERANCE)))
+                 for i, x in enumerate(up2[0]) if np.any(np.abs(down[0] - x) <= LEVEL_TOLERANCE)]
+        if not pairs:
+            return None
+        i, j = map(list, zip(*pairs))
+        return Retrace(tuple(float(x) for x in up2[0][i]),
+                       tuple(float(d) for d in up2[1][i] - down[1][j]),
+                       tuple(float(s) for s in np.hypot(up2[2][i], down[2][j])),
+                       branch_difference(BranchData(*up2), BranchData(*down)))
+
 
 def _level_difference(a, b):
     """The last level of branch ``a`` minus the last of ``b`` ((sqrt_eps, mean, sem) each),
@@ -121,6 +138,28 @@ class ReturnToTop:
         """"loosens", "frozen" (within noise) or "compacts", by ``given_back``."""
         return ("loosens" if self.given_back.negative else
                 "compacts" if self.given_back.positive else "frozen")
+
+
+@dataclass(frozen=True)
+class Retrace:
+    """The second increase of a ramp against its descent, at the sqrt(eps) both visited: the
+    paper's test of its reversible branch (section III.B: "if we compute another increase
+    process, we approximately come across the same values"). ``levels`` those sqrt(eps) in the
+    second increase's order, ``differences`` second increase minus descent at each, ``sems``
+    their errors (two independent level means); ``mean`` the mean difference over the levels
+    (:func:`tapmc.hysteresis.branch_difference`, as the claims judge the reversible branch)."""
+
+    levels: tuple
+    differences: tuple
+    sems: tuple
+    mean: BranchStatistic
+
+    @property
+    def verdict(self):
+        """"retraces" (the mean within noise), "above" (the packing still compacts as the
+        taps grow again) or "below" (it loosens below the descent)."""
+        return ("above" if self.mean.positive else "below" if self.mean.negative
+                else "retraces")
 
 
 def read_taps(path):
@@ -294,7 +333,7 @@ def headline_text(rows, default_eta):
         changes = " and ".join(f"{r.down_change:+.4f}" for r in decided)
         seeds = f"{len(decided)} seed{'s' if len(decided) > 1 else ''}"
         parts.append(f"{label}: {answer} ({seeds}; the descending branch moves by {changes} "
-                     f"in <Phi^c> from the turning level{_return_headline(decided)})")
+                     f"in <Phi^c> from the turning level{_retrace_headline(decided)})")
     return ("The paper's central question (section III.B: is the branch below (sqrt eps)* ~ "
             f"0.15 irreversible?) at its own ramp protocol ({TAPS_PER_LEVEL} taps per level, "
             "N = 4096, P.B.C.): " + "; ".join(parts) + ".")
@@ -330,7 +369,7 @@ def finding_text(rows, default_eta):
         parts.append(f"at {label}, {head} ({len(decided)} seed{'s' if len(decided) > 1 else ''};"
                      f" <Phi^c> of the descending levels, {seeds})"
                      + (f"; not counted yet: {running}" if running else "")
-                     + _return_finding(decided))
+                     + _retrace_finding(decided) + _return_finding(decided))
     beyond = _beyond_text(beyond_critical(rows), default_eta)
     if not parts:
         return beyond.strip()
@@ -346,27 +385,74 @@ def _returns(decided):
     return [(r.seed, back) for r in decided if (back := r.return_to_top()) is not None]
 
 
-#: What the packing back at the turning level says, by the verdicts of its seeds: (the
-#: finding's words, the headline's).
-RETURN_ANSWERS = {("loosens",): ("it loosens: the descent's compaction is reversible in part",
-                                 "reversible in part"),
-                  ("frozen",): ("it stays where the descent left it (frozen)", "frozen"),
-                  ("compacts",): ("it compacts further", "compacts further")}
+#: What the packing back at the turning level does, by the verdicts of its seeds.
+RETURN_ANSWERS = {("loosens",): "it loosens as the taps grow again (a frozen branch would not)",
+                  ("frozen",): "it stays where the descent left it (frozen)",
+                  ("compacts",): "it compacts further"}
 
 
-def _return_answer(backs, short=False):
+def _return_answer(backs):
     verdicts = tuple(sorted({b.verdict for _, b in backs}))
-    return RETURN_ANSWERS.get(verdicts, ("the seeds differ",) * 2)[int(short)]
+    return RETURN_ANSWERS.get(verdicts, "the seeds differ")
 
 
-def _return_headline(decided):
-    """The headline's clause on the second increase back at the turning level ("" before)."""
-    backs = _returns(decided)
-    if not backs:
+def _retraces(decided):
+    """(run, Retrace) of the decided runs whose second increase has reached a level of the
+    descent."""
+    return [(r, back) for r in decided if (back := r.retrace()) is not None]
+
+
+def _signed(value):
+    """A difference in <Phi^c> as the report writes it: 4 decimals, signed, never -0.0000."""
+    return f"{0.0 if abs(value) < 5e-5 else value:+.4f}"
+
+
+#: What the second increase against the descent says, by the verdicts of its seeds: (the
+#: finding's words, the headline's).
+RETRACE_ANSWERS = {
+    ("retraces",): ("it comes across the same values: reversible",
+                    "it retraces the descent: reversible"),
+    ("above",): ("it lies above the descent: the packing still compacts, neither frozen nor "
+                 "reversible", "it lies above the descent: still compacting"),
+    ("below",): ("it lies below the descent: the packing loosens as the taps grow again",
+                 "it lies below the descent")}
+
+
+def _retrace_answer(traces, short=False):
+    verdicts = tuple(sorted({t.verdict for _, t in traces}))
+    return RETRACE_ANSWERS.get(verdicts, ("the seeds differ",) * 2)[int(short)]
+
+
+def _retrace_headline(decided):
+    """The headline's clause on the second increase against the descent ("" before it
+    reaches a level of the descent)."""
+    traces = _retraces(decided)
+    if not traces:
         return ""
-    moves = " and ".join(f"{b.given_back.value:+.4f}" for _, b in backs)
-    return (f"; back up at that level it moves by {moves} from the bottom of the loop, "
-            f"{_return_answer(backs, short=True)}")
+    moves = " and ".join(_signed(t.mean.value) for _, t in traces)
+    counts = sorted({t.mean.n for _, t in traces})
+    levels = " and ".join(map(str, counts))
+    shares = " and ".join(f"{100 * t.mean.value / r.down_change:.0f} %" for r, t in traces
+                          if r.down_change > 0)
+    share = f"; {shares} of the descent's move" if shares else ""
+    return (f"; the second increase minus the descent: {moves} (mean of {levels} level"
+            f"{'s' if counts != [1] else ''}{share}), {_retrace_answer(traces, short=True)}")
+
+
+def _retrace_finding(decided):
+    """The finding's sentence on the second increase against the descent, per seed and level
+    ("" before it reaches a level of the descent)."""
+    traces = _retraces(decided)
+    if not traces:
+        return ""
+    seeds = "; ".join(
+        f"seed {r.seed}: " + ", ".join(f"{_signed(d)} +- {e:.4f} at {x:g}" for x, d, e in
+                                       zip(t.levels, t.differences, t.sems))
+        + f"; mean {_signed(t.mean.value)} +- {t.mean.sem:.4f}" for r, t in traces)
+    return (f". The second increase against the descent at the sqrt(eps) both visited ("
+            f"{len(traces)} of {len(decided)} seed{'s' if len(decided) > 1 else ''}; the "
+            f"paper's test of its reversible branch, 'we approximately come across the same "
+            f"values'): {_retrace_answer(traces)} (second increase minus descent, {seeds})")
 
 
 def _return_finding(decided):
@@ -379,7 +465,8 @@ def _return_finding(decided):
     seeds = "; ".join(
         f"seed {s}: of the {b.kept.value - b.given_back.value:+.4f} gained from the turning "
         f"level down to the bottom of the loop it gives back {b.given_back.value:+.4f} +- "
-        f"{b.given_back.sem:.4f} and keeps {b.kept.value:+.4f} +- {b.kept.sem:.4f}"
+        f"{b.given_back.sem:.4f} and keeps {b.kept.value:+.4f} +- {b.kept.sem:.4f} over its "
+        f"first visit, on the first increase"
         for s, b in backs)
     return (f". Back up at the turning level ({len(backs)} of {len(decided)} seed"
             f"{'s' if len(decided) > 1 else ''}), {_return_answer(backs)} ({seeds})")
