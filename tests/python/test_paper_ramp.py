@@ -2,6 +2,8 @@
 """tapmc.paper.paper_ramp: the paper-protocol ramps judged from their taps.dat (a frozen
 descending branch, a compacting one, a run still going up), the CSV round trip and the finding
 of the report's first screen."""
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -262,3 +264,35 @@ def test_the_figure_draws_every_whole_level_one_panel_per_eta(tmp_path):
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert "4000 taps per level" in paper_ramp.settings_line(rows)
     assert paper_ramp.settings_line(rows).endswith("seeds 1, 2, 3")
+
+
+def test_verdicts_take_the_realizations_error_when_given_its_factor(tmp_path):
+    """calibrated(): every error times the realizations' factor and the descent's verdict
+    decided again: a second increase 3 of its own errors above the descent lies above it with
+    the run's errors and retraces it at a factor of 2; a factor below 1 is refused."""
+    up, down = [0.590, 0.595, 0.598, 0.600, 0.600], [0.601, 0.602, 0.603, 0.604]
+    write_run(tmp_path, "paperramp0.125_pbc_s1", up + down + [0.603, 0.602, 0.601, 0.6005],
+              levels=LOOP)
+    raw = paper_ramp.analyse(tmp_path, 1e-7)[0]
+    trace = raw.retrace()
+    # shift the second increase by 3 of its mean's errors: above with the run's own errors
+    shift = 3 * trace.mean.sem
+    branches = raw.level_branches.split()
+    shifted = replace(raw, level_mean=tuple(
+        m + (shift if b == "up2" else 0.0) for m, b in zip(raw.level_mean, branches)))
+    assert shifted.retrace().verdict == "above"
+    [wide] = paper_ramp.calibrated([shifted], 2.0)
+    assert wide.retrace().verdict == "retraces"
+    assert wide.retrace().mean.sem == pytest.approx(2 * shifted.retrace().mean.sem)
+    assert wide.down_change_sem == pytest.approx(2 * raw.down_change_sem)
+    assert wide.level_sem == pytest.approx(tuple(2 * s for s in raw.level_sem))
+    # the descent's verdict is decided again: a change of 3 raw errors is frozen at 2
+    marginal = replace(raw, down_change=3 * raw.down_change_sem)
+    assert paper_ramp.calibrated([marginal], 2.0)[0].verdict == "frozen"
+    assert paper_ramp.calibrated([marginal], 1.0)[0] == marginal
+    text = paper_ramp.finding_text([shifted], 1e-7, error_factor=2.0)
+    assert "errors: the levels' batch-means errors x 2.0, the spread of the campaign's " \
+        "realizations" in text and "it comes across the same values: reversible" in text
+    assert "errors: the levels' batch-means errors)" in paper_ramp.finding_text([shifted], 1e-7)
+    with pytest.raises(ValueError, match="error factor: 0.5, must be >= 1"):
+        paper_ramp.calibrated([raw], 0.5)

@@ -155,9 +155,7 @@ def test_the_page_answers_on_its_first_screen(page):
 def test_readme_says_what_the_paper_scale_page_found():
     page = DOC / "paper_scale"
     ramps = page / "validation" / "questions" / paper_ramp.CSV_NAME
-    report, _ = validation.committed_inputs(page)
-    headline = (paper_ramp.headline_text(paper_ramp.read_csv(ramps), validation.campaign_eta(report))
-                if ramps.is_file() else "")
+    headline = validation.paper_ramp_headline(*validation.committed_inputs(page))
     figure = (ramps.parent / paper_ramp.PNG_NAME).is_file()
     expected = summary.readme_lines(_entries(page), headline, figure)
     assert (summary.README_FIGURE in expected) == figure

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import csv
 import re
-from dataclasses import asdict, dataclass, fields
+from dataclasses import asdict, dataclass, fields, replace
 from pathlib import Path
 
 import numpy as np
@@ -219,12 +219,47 @@ def analyse_run(run_dir, default_eta):
     change = branches.down_change
     rise = float(down["mean"][-1] - down["mean"][0])
     rise_sem = float(np.hypot(down["sem"][-1], down["sem"][0]))
-    verdict = ("frozen" if change.within_noise
-               else "compacts" if change.positive else "loosens")
+    verdict = _down_verdict(change)
     return PaperRampRun(**base, down_levels=len(down), down_first=float(down["sqrt_eps"][0]),
                         down_last=float(down["sqrt_eps"][-1]), down_change=change.value,
                         down_change_sem=change.sem, down_rise=rise, down_rise_sem=rise_sem,
                         verdict=verdict)
+
+
+def _down_verdict(change):
+    """"frozen" (the descent's change within noise), "compacts" or "loosens"."""
+    return "frozen" if change.within_noise else "compacts" if change.positive else "loosens"
+
+
+def calibrated(rows, factor):
+    """The rows (:class:`PaperRampRun`) with every error times ``factor`` and the descent's
+    verdict decided again. A run's batch-means errors are those of its own time averages; the
+    campaign's groups of runs that differ only in their seed show that another realization
+    lands about ``factor`` of them away (``ReportData.run_error('phi_c:halves')`` of
+    :mod:`tapmc.paper.claims`: the factor of a difference of two parts of one run), and a
+    verdict about the model needs that error. ``factor`` 1 leaves the rows as they are."""
+    factor = float(factor)
+    if not factor >= 1.0:
+        raise ValueError(f"error factor: {factor!r}, must be >= 1 (the realizations' spread "
+                         "is never below a run's own batch-means error)")
+    out = []
+    for r in rows:
+        scaled = dict(down_change_sem=r.down_change_sem * factor,
+                      down_rise_sem=r.down_rise_sem * factor,
+                      level_sem=tuple(s * factor for s in r.level_sem))
+        if r.verdict != "running":
+            scaled["verdict"] = _down_verdict(BranchStatistic(
+                r.down_change, scaled["down_change_sem"], r.down_levels))
+        out.append(replace(r, **scaled))
+    return out
+
+
+def errors_text(factor):
+    """How the finding's errors were made (:func:`calibrated`)."""
+    if factor == 1.0:
+        return "errors: the levels' batch-means errors"
+    return (f"errors: the levels' batch-means errors x {factor:.1f}, the spread of the "
+            "campaign's realizations for a difference of two parts of one run")
 
 
 def analyse(campaign, default_eta):
@@ -311,13 +346,14 @@ def eta_label(eta, default_eta):
     return f"eta = {eta_text(eta)}" + (" (the default)" if eta == default_eta else "")
 
 
-def headline_text(rows, default_eta):
+def headline_text(rows, default_eta, error_factor=1.0):
     """The finding in one sentence, for the report's first screen: per eta, the answer (no
     irreversible branch, a frozen branch, the seeds disagree) with the seeds' changes of the
     descending branch, or undecided with how far the running seeds got (also README.md's); the
     numbers with their errors are in :func:`finding_text`. Only the ramps that turn below
-    (sqrt eps)* count (:func:`below_critical`)."""
-    rows = below_critical(rows)
+    (sqrt eps)* count (:func:`below_critical`). ``error_factor``: the errors' factor of
+    :func:`calibrated`, with which the verdicts are decided."""
+    rows = calibrated(below_critical(rows), error_factor)
     if not rows:
         return ""
     parts = []
@@ -339,11 +375,13 @@ def headline_text(rows, default_eta):
             "N = 4096, P.B.C.): " + "; ".join(parts) + ".")
 
 
-def finding_text(rows, default_eta):
+def finding_text(rows, default_eta, error_factor=1.0):
     """The finding of the report's first screen: per eta, whether the model has an irreversible
     branch below (sqrt eps)* at the paper's ramp protocol, with each seed's numbers; the runs
     still running are named with how far they got. Ramps that turn beyond (sqrt eps)* are
-    told apart, after it (:func:`_beyond_text`)."""
+    told apart, after it (:func:`_beyond_text`). ``error_factor``: as for
+    :func:`headline_text`, and said in the text."""
+    rows = calibrated(rows, error_factor)
     below = below_critical(rows)
     if not rows:
         return ""
@@ -376,7 +414,7 @@ def finding_text(rows, default_eta):
     return ("Section III.B's question at the paper's own ramp protocol (N = 4096, L = 32R, "
             f"P.B.C., {TAPS_PER_LEVEL} taps per level, steps of 0.025 in sqrt(eps), turning "
             "below (sqrt eps)* ~ 0.15; means of the last "
-            f"{LAST_TAPS} taps of each level): " + " ".join(
+            f"{LAST_TAPS} taps of each level; {errors_text(float(error_factor))}): " + " ".join(
                 p[0].upper() + p[1:] + ("" if p.endswith(".") else ".") for p in parts) + beyond)
 
 

@@ -225,9 +225,32 @@ def _ageing_note(fig):
 _NOTES = {"fig2": _eq3_note, "fig3": _sigma_note, "fig6": _gradient_note, "fig5": _ageing_note}
 
 
+#: The one-run error whose realizations' factor (ReportData.run_error) the paper-protocol
+#: ramps' verdicts take: their statistics are differences of level means of one run.
+PAPER_RAMP_ERROR = "phi_c:halves"
+
+
+def paper_ramp_error_factor(data):
+    """The factor of :func:`tapmc.paper.paper_ramp.calibrated` for a campaign's ramps at the
+    paper's protocol, from its :class:`~tapmc.paper.claims.ReportData` (1 when the campaign's
+    seeds do not reject the runs' own errors)."""
+    return data.run_error(PAPER_RAMP_ERROR)[0]
+
+
+def paper_ramp_headline(summary, files):
+    """The central question's answer in one sentence (README.md's too), with the errors the
+    page decides it with; "" without questions/paper_ramp.csv."""
+    path = _finding_csv(files, paper_ramp.CSV_NAME)
+    if path is None:
+        return ""
+    factor = paper_ramp_error_factor(claims.ReportData.from_files(summary, files))
+    return paper_ramp.headline_text(paper_ramp.read_csv(path), campaign_eta(summary), factor)
+
+
 def _rows_and_notes(summary, files):
-    """The register's rows evaluated on the figure CSVs (tapmc.paper.claims.evaluate) and the
-    note of each figure."""
+    """The register's rows evaluated on the figure CSVs (tapmc.paper.claims.evaluate), the
+    note of each figure, the figures written, the note on one-run errors and the paper-ramp
+    errors' factor (:func:`paper_ramp_error_factor`)."""
     data = claims.ReportData.from_files(summary, files)
     rows = claims.evaluate(claims.load_register(), data)
     notes = {}
@@ -236,7 +259,7 @@ def _rows_and_notes(summary, files):
         text = note(fig) if fig is not None else None
         if text:
             notes[name] = text
-    return rows, notes, data.written, data.run_error_note()
+    return rows, notes, data.written, data.run_error_note(), paper_ramp_error_factor(data)
 
 
 CAPTIONS = {
@@ -350,11 +373,12 @@ def _finding_source(unit, name, command):
             f"(``tapmc-paper {command}``).")
 
 
-def _paper_ramp_finding(files, summary):
+def _paper_ramp_finding(files, summary, error_factor):
     """(headline, finding, figure): the answer about the irreversible branch at the paper's
     ramp protocol in one sentence, and with its numbers, from questions/paper_ramp.csv next to
-    the figures (``tapmc-paper paper-ramp``), and the page's path of the ramps' figure written
-    beside it (None without one); or ("", "", None)."""
+    the figures (``tapmc-paper paper-ramp``), its errors times ``error_factor``
+    (:func:`paper_ramp_error_factor`), and the page's path of the ramps' figure written beside
+    it (None without one); or ("", "", None)."""
     path = _finding_csv(files, paper_ramp.CSV_NAME)
     if path is None:
         return "", "", None
@@ -362,9 +386,9 @@ def _paper_ramp_finding(files, summary):
     default_eta = campaign_eta(summary)
     figure = (Path(FIG_DIR) / questions.FOLDER / paper_ramp.PNG_NAME
               if (path.parent / paper_ramp.PNG_NAME).is_file() else None)
-    return (paper_ramp.headline_text(rows, default_eta)
+    return (paper_ramp.headline_text(rows, default_eta, error_factor)
             + " The numbers with their errors: the first open question below.",
-            paper_ramp.finding_text(rows, default_eta)
+            paper_ramp.finding_text(rows, default_eta, error_factor)
             + _finding_source("run", paper_ramp.CSV_NAME, "paper-ramp"), figure)
 
 
@@ -416,13 +440,13 @@ def _figure_lines(files, notes):
     return lines
 
 
-def _main_page(summary, files, rows, verdicts, notes, prefix):
+def _main_page(summary, files, rows, verdicts, notes, prefix, ramp_factor):
     """The text of validation.rst: the answer on one screen, one row per claim, the figures."""
     title, intro = _title_and_intro(summary)
     lines = [".. TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.", "",
              title, "=" * len(title), "", intro, "", describe_scale(summary), ""]
     lines += _appendix_line()
-    headline, finding, figure = _paper_ramp_finding(files, summary)
+    headline, finding, figure = _paper_ramp_finding(files, summary, ramp_factor)
     findings = [f for f in (finding, _sigma_eta_finding(files, campaign_eta(summary))) if f]
     lines += summary_screen.screen_rst(summary_screen.summarise(rows, files), findings, headline,
                                        figure and (figure, "the ramps at the paper's protocol"))
@@ -440,14 +464,15 @@ def render_pages(summary, files):
     """file name -> text of every page of the report: validation.rst (:func:`render`) and
     its appendices (:data:`~tapmc.paper.validation_appendix.APPENDICES`), from one evaluation
     of the register on the campaign summary and the figure files (name -> (png, csv))."""
-    rows, notes, figures, run_note = _rows_and_notes(summary, files)
+    rows, notes, figures, run_note, ramp_factor = _rows_and_notes(summary, files)
     verdicts = claim_verdicts(rows)
     prefix = _label_prefix(summary)
     folder, groups = None, {}
     if files:
         folder = Path(next(iter(files.values()))[1]).parent / questions.FOLDER
         groups = questions.render_parts(folder, figures, summary["eta"], read_front_summary())
-    pages = {"validation": _main_page(summary, files, rows, verdicts, notes, prefix)}
+    pages = {"validation": _main_page(summary, files, rows, verdicts, notes, prefix,
+                                      ramp_factor)}
     pages.update(render_appendices(verdicts, run_note, prefix, folder, groups,
                                     tolerances=claims.tolerance_table(rows)))
     return {f"{name}.rst": text for name, text in pages.items()}
