@@ -2,12 +2,19 @@
 """tapmc.paper.paper_ramp: the paper-protocol ramps judged from their taps.dat (a frozen
 descending branch, a compacting one, a run still going up), the CSV round trip and the finding
 of the report's first screen."""
+import os
+import shutil
+import subprocess
+import sys
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pytest
 
-from tapmc.paper import paper_ramp
+from tapmc.paper import paper_ramp, validation
+
+SOURCE = Path(__file__).resolve().parents[2]
 
 LEVELS = [0.025, 0.05, 0.075, 0.1, 0.125, 0.1, 0.075, 0.05, 0.025]
 
@@ -296,3 +303,29 @@ def test_verdicts_take_the_realizations_error_when_given_its_factor(tmp_path):
     assert "errors: the levels' batch-means errors)" in paper_ramp.finding_text([shifted], 1e-7)
     with pytest.raises(ValueError, match="error factor: 0.5, must be >= 1"):
         paper_ramp.calibrated([raw], 0.5)
+
+
+def _paper_ramp_cli(*args):
+    env = dict(os.environ, PYTHONPATH=str(SOURCE / "tools" / "python"))
+    return subprocess.run([sys.executable, "-m", "tapmc.paper", "paper-ramp", *map(str, args)],
+                          capture_output=True, text=True, env=env, timeout=120)
+
+
+def test_the_command_decides_with_the_errors_of_the_report_in_out(tmp_path):
+    """tapmc-paper paper-ramp prints the finding with the errors the page in --out decides it
+    with (the committed paper-scale report: x 2.1), and says so when --out holds no report."""
+    write_run(tmp_path / "c", "paperramp0.125_pbc_s1", [0.590, 0.595, 0.598, 0.600, 0.600,
+                                                        0.601, 0.602, 0.603, 0.604])
+    bare = _paper_ramp_cli("--campaign", tmp_path / "c", "--out", tmp_path / "bare")
+    assert bare.returncode == 0, bare.stderr
+    assert "errors: the levels' batch-means errors)" in bare.stdout
+    assert "holds no report: the verdicts take the runs' own batch-means errors" in bare.stdout
+    page = tmp_path / "page"
+    shutil.copytree(SOURCE / "doc" / "paper_scale" / "validation", page / "validation",
+                    ignore=shutil.ignore_patterns("*.png", "partial"))
+    done = _paper_ramp_cli("--campaign", tmp_path / "c", "--out", page)
+    assert done.returncode == 0, done.stderr
+    factor = validation.report_ramp_error_factor(SOURCE / "doc" / "paper_scale")
+    assert factor > 1 and f"errors: the levels' batch-means errors x {factor:.1f}," in done.stdout
+    assert "holds no report" not in done.stdout
+    assert validation.report_ramp_error_factor(tmp_path / "bare") is None

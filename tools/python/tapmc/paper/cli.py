@@ -254,11 +254,27 @@ def _read_campaign(args, name, module, unit):
               f"({module.RUNS_READ})", file=sys.stderr)
         return 2
     path = module.write_csv(rows, args.out / _runs.FIG_DIR / "questions" / module.CSV_NAME)
-    print(module.finding_text(rows, FULL.eta))
+    if hasattr(module, "calibrated"):  # paper-ramp: with the errors of the page in --out
+        factor = _report_ramp_error_factor(args.out)
+        print(module.finding_text(rows, FULL.eta, factor or 1.0))
+        if factor is None:
+            print(f"{name}: {args.out} holds no report: the verdicts take the runs' own "
+                  "batch-means errors, not the realizations' (tapmc-paper report, then again)")
+    else:
+        print(module.finding_text(rows, FULL.eta))
     print(f"{name}: {path} ({len(rows)} {unit})")
     if hasattr(module, "write_figure"):  # paper-ramp draws its levels beside its CSV
         print(f"{name}: {module.write_figure(rows, FULL.eta, path.parent / module.PNG_NAME)}")
     return 0
+
+
+def _report_ramp_error_factor(out):
+    """The paper-ramp errors' factor of the report in ``out`` (None without one, or when this
+    installation has no report module)."""
+    try:
+        return load_validation().report_ramp_error_factor(out)
+    except FigureUnavailable:
+        return None
 
 
 def scale_of(args):

@@ -237,6 +237,16 @@ def paper_ramp_error_factor(data):
     return data.run_error(PAPER_RAMP_ERROR)[0]
 
 
+def report_ramp_error_factor(out_dir):
+    """:func:`paper_ramp_error_factor` of the report already written to ``out_dir`` (the
+    factor its page decides the ramps with), or None when out_dir holds no report."""
+    try:
+        summary, files = committed_inputs(out_dir)
+    except FileNotFoundError:
+        return None
+    return paper_ramp_error_factor(claims.ReportData.from_files(summary, files))
+
+
 def paper_ramp_headline(summary, files):
     """The central question's answer in one sentence (README.md's too), with the errors the
     page decides it with; "" without questions/paper_ramp.csv."""
