@@ -129,6 +129,14 @@ def test_entries_follow_the_paper_order_with_thumbnails_and_headlines():
                                     "   :alt: ramps", ""]
     assert lines[at + 6].startswith(".. list-table::")
     assert not any("q/ramps.png" in line for line in summary.screen_rst(entries, "", "The answer."))
+    # a finding with its own figure: the image indented under that item, the next item after
+    lines = summary.screen_rst(entries, ["a finding.", ("sigma.", ("q/sigma.png", "sigma")), ""])
+    at = lines.index("* sigma.")
+    assert lines[at - 1] == "* a finding."
+    assert lines[at + 1:at + 6] == ["", "  .. image:: q/sigma.png", "     :width: 500px",
+                                    "     :alt: sigma", ""]
+    assert lines[at + 6].startswith("* Fig. 10")
+    assert "* none" in summary.screen_rst(summary.summarise(rows[:1], {}), "")
 
 
 def _entries(page):

@@ -191,3 +191,34 @@ def test_both_campaign_readers_refuse_a_campaign_with_nothing_to_read(tmp_path):
                               capture_output=True, text=True, env=env, timeout=120)
         assert done.returncode == 2 and what in done.stderr and "Traceback" not in done.stderr
         assert not (tmp_path / "out").exists()
+
+
+def test_the_figure_draws_sigma_and_the_bell_per_eta_with_their_lines(tmp_path):
+    """sigma_eta.png: a colour per eta (the default first), sigma_<Z> with its fitted line
+    through the points (dashed), the steady <Phi^c> with the paper's 60.6 %; a run still
+    going drawn open; the settings on top; too few axes refused."""
+    camp = campaign(tmp_path / "c", {1e-6: 0.004, DEFAULT_ETA: 0.002}, {1e-6: 0.609,
+                                                                       DEFAULT_ETA: 0.606})
+    write_run(camp / "runs", "consteta_pbc_eps0.04_eta1e-06_s1", 0.01, 0.6, taps=3600,
+              done=False, seed=99)
+    points = sigma_eta.analyse(camp, DEFAULT_ETA)
+    axes = sigma_eta.plot(points, DEFAULT_ETA)
+    labels = axes[0].get_legend_handles_labels()[1]
+    assert labels == ["eta = 1e-7 (the default)", "eta = 1e-6"]
+    assert axes[1].get_legend_handles_labels()[1][0] == "the paper's 60.6 %"
+    fitted = [ln for ln in axes[0].get_lines() if ln.get_linestyle() == "--"]
+    assert len(fitted) == 2   # one line per eta with 3 eps or more
+    default_line = fitted[0]
+    (fit,) = [ln for ln in sigma_eta.lines(points) if ln.eta == DEFAULT_ETA]
+    x = default_line.get_xdata()
+    assert x[0] == pytest.approx(math.sqrt(EPS[0])) and x[-1] == pytest.approx(math.sqrt(EPS[-1]))
+    assert default_line.get_ydata() == pytest.approx(fit.offset + fit.slope * x)
+    assert fit.offset == pytest.approx(0.002, abs=0.002)
+    going = [c for c in axes[0].containers if c.lines[0].get_markerfacecolor() == "none"]
+    assert len(going) == 1 and list(going[0].lines[0].get_xdata()) == [0.2]
+    with pytest.raises(ValueError, match="axes: 1 given, the figure has 2 panels"):
+        sigma_eta.plot(points, DEFAULT_ETA, axes[:1])
+    png = sigma_eta.write_figure(points, DEFAULT_ETA, tmp_path / sigma_eta.PNG_NAME)
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert "4000 taps at constant eps" in sigma_eta.settings_line(points)
+    assert "mean +- sem over 1 to 2 seeds per point" in sigma_eta.settings_line(points)

@@ -20,7 +20,8 @@ threshold's offset below the loosest one's beyond t times their combined error),
 eta's bell top meets 60.6 %. A run still going counts once it holds ``MIN_STEADY_TAPS`` taps of
 its protocol's steady window (the last quarter of the taps the campaign's manifest plans for it:
 taps 3001-4000 of a 4000-tap run, never the last quarter of the taps it has so far, when the
-packing still compacts); the table says how many taps each point had.
+packing still compacts); the table says how many taps each point had. :func:`write_figure`
+draws both against sqrt(eps), a colour per eta, beside the table (``sigma_eta.png``).
 
   /usr/bin/python3 -m tapmc.paper sigma-eta --campaign DIR --out doc/paper_scale
 """
@@ -39,10 +40,12 @@ from tapmc.campaign.provenance import read_manifest
 from tapmc.fluctuations import SteadyState
 from tapmc.stats import beyond, t_quantile, t_quantile_of_mean, weighted_polyfit
 
-from . import _runs
+from . import _plotting, _runs
 from ._steady_state import BC, sigma_error_one_run, steady_last
+from .scales import FULL
 
 CSV_NAME = "sigma_eta.csv"
+PNG_NAME = "sigma_eta.png"
 #: The paper's steady packing fraction after 4000 taps (section III.D, Fig. 9), in percent.
 PAPER_PHI_PERCENT = 60.6
 #: A run counts once its steady window (the last quarter) holds this many taps: the batch
@@ -341,3 +344,62 @@ def finding_text(all_points, default_eta):
     return ("sigma_<Z> against the redeposition threshold (P.B.C. constant-eps runs, steady "
             "state over the last quarter; mean +- sem over seeds): " + "; ".join(parts)
             + ". Trend: " + verdict + " " + paper + ".")
+
+
+def _by_eta(all_points, default_eta):
+    """(eta, its points) per eta: the default first, then the loosest."""
+    etas = sorted({p.eta for p in all_points}, key=lambda e: (e != default_eta, -e))
+    return [(eta, [p for p in all_points if p.eta == eta]) for eta in etas]
+
+
+def plot(all_points, default_eta, axes=None):
+    """Two panels against sqrt(eps), a colour per eta (the default first): (a) sigma_<Z> with
+    the line offset + slope sqrt(eps) of :func:`line` dashed over the eps measured, (b) the
+    steady <Phi^c> (the bell) with the paper's 60.6 % dotted; mean +- sem over seeds, open
+    markers for points whose runs are still going. ``axes``: two axes, new ones when None.
+    Returns the axes."""
+    if axes is None:
+        _, axes = _plotting.new_figure(nrows=2, height=2.8, width=6.0)
+    if len(axes) < 2:
+        raise ValueError(f"axes: {len(axes)} given, the figure has 2 panels")
+    for colour, (eta, group) in enumerate(_by_eta(all_points, default_eta)):
+        ln = line(group)
+        x = np.array([p.sqrt_eps for p in group])
+        label = f"eta = {_eta_text(eta)}" + (" (the default)" if eta == default_eta else "")
+        for ax, value, err in ((axes[0], "sigma", "sigma_sem"), (axes[1], "phi_c", "phi_c_sem")):
+            y = np.array([getattr(p, value) for p in group])
+            e = np.array([getattr(p, err) for p in group])
+            done = np.array([p.finished for p in group])
+            for mask, fill in ((done, f"C{colour}"), (~done, "none")):
+                if mask.any():
+                    ax.errorbar(x[mask], y[mask], yerr=e[mask], marker="o", ms=4, ls="none",
+                                capsize=2, color=f"C{colour}", mfc=fill,
+                                label=label if fill != "none" or not done.any() else None)
+        if ln.dof is not None:
+            xs = np.linspace(x.min(), x.max(), 50)
+            axes[0].plot(xs, ln.offset + ln.slope * xs, color=f"C{colour}", ls="--", lw=0.8)
+    axes[1].axhline(PAPER_PHI_PERCENT / 100.0, color="0.5", ls=":", lw=1,
+                    label=f"the paper's {PAPER_PHI_PERCENT} %")
+    axes[0].set_ylabel(r"$\sigma_{\langle Z\rangle}$ (steady state)", fontsize=8)
+    axes[1].set_ylabel(r"$\langle\Phi^c\rangle$ (steady state)", fontsize=8)
+    for ax in axes[:2]:
+        ax.set_xlabel(r"$\varepsilon^{1/2}$")
+        _plotting.legend(ax, fontsize=6, outside=True)
+    return axes
+
+
+def settings_line(all_points):
+    """The settings the figure states on top (every number of it is a setting of the runs)."""
+    seeds = [p.seeds for p in all_points]
+    return (f"P.B.C., N = {FULL.N}, box {FULL.L:g}R x {FULL.L:g}R, {FULL.taps} taps at constant "
+            f"eps; steady state: the last quarter of each run's planned taps; mean +- sem over "
+            f"{min(seeds)} to {max(seeds)} seeds per point (one seed: its batch means); open "
+            "markers: runs still going; "
+            "dashed: sigma_<Z> = offset + slope sqrt(eps)")
+
+
+def write_figure(all_points, default_eta, path):
+    """``sigma_eta.png``: :func:`plot` with its settings on top; returns the path."""
+    fig = plot(all_points, default_eta)[0].figure
+    _plotting.finish_figure(fig, settings_line(all_points))
+    return _plotting.save_figure(fig, path)

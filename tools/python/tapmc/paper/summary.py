@@ -235,6 +235,8 @@ def _entry_row(entry):
 
 #: Width on the page of the central answer's figure (its PNG is about 900 pixels wide).
 ANSWER_FIGURE_WIDTH = 600
+#: Width of a figure inside an open question's item (a finding's own figure).
+FINDING_FIGURE_WIDTH = 500
 
 
 def screen_rst(entries, finding="", headline="", figure=None):
@@ -242,7 +244,8 @@ def screen_rst(entries, finding="", headline="", figure=None):
     when given, with ``figure``: (page path of its PNG, alt text), when given), one table row
     per entry (outcome, key number, the paper's value, thumbnail), the rule, and the open
     questions (``finding``: a finding or a list of them, e.g. the irreversible branch of
-    section III.B with its numbers, first of them when given)."""
+    section III.B with its numbers, first of them when given; a finding may be a pair (text,
+    figure), its figure (page path of its PNG, alt text) drawn inside its item)."""
     lines = [SCREEN_TITLE, "-" * len(SCREEN_TITLE), "", count_sentence(entries), "",
              claims_sentence(entries), ""] + ([headline, ""] if headline else [])
     if figure:
@@ -252,10 +255,17 @@ def screen_rst(entries, finding="", headline="", figure=None):
     lines += list_table(["Figure", "Outcome", "Key number (TAPMC)", "Paper", "Figure"],
                         [_entry_row(entry) for entry in entries], widths=(18, 22, 26, 16, 18))
     lines += ["", OUTCOME_RULE, "", "Open questions:", ""]
-    findings = [finding] if isinstance(finding, str) else list(finding)
-    questions = [f for f in findings if f] + open_questions(entries)
-    lines += [f"* {q}" for q in questions] or ["* none"]
-    return lines + [""]
+    findings = [finding] if isinstance(finding, (str, tuple)) else list(finding)
+    items = [f if isinstance(f, tuple) else (f, None) for f in findings]
+    items = [(text, own) for text, own in items if text]
+    items += [(q, None) for q in open_questions(entries)]
+    for text, own in items:
+        lines.append(f"* {text}")
+        if own:  # indented under the item's text: the image belongs to it
+            path, alt = own
+            lines += ["", f"  .. image:: {path}", f"     :width: {FINDING_FIGURE_WIDTH}px",
+                      f"     :alt: {alt}", ""]
+    return lines + ([] if items else ["* none"]) + [""]
 
 
 #: The central answer's figure as README.md shows it (Markdown; the path from the top).

@@ -405,12 +405,19 @@ def _paper_ramp_finding(files, summary, error_factor):
 def _sigma_eta_finding(files, default_eta):
     """The finding about sigma_<Z> against eta (section III.A, Fig. 3: is its offset the
     redeposition's noise?) from questions/sigma_eta.csv next to the figures (``tapmc-paper
-    sigma-eta``), or ""."""
+    sigma-eta``), with its figure written beside it when there is one ((text, (page path, alt
+    text)), as :func:`tapmc.paper.summary.screen_rst` takes it), or ""."""
     path = _finding_csv(files, sigma_eta.CSV_NAME)
     if path is None:
         return ""
     text = sigma_eta.finding_text(sigma_eta.read_csv(path), default_eta)
-    return text and text + _finding_source("point", sigma_eta.CSV_NAME, "sigma-eta")
+    if not text:
+        return ""
+    text += _finding_source("point", sigma_eta.CSV_NAME, "sigma-eta")
+    if not (path.parent / sigma_eta.PNG_NAME).is_file():
+        return text
+    return text, (str(Path(FIG_DIR) / questions.FOLDER / sigma_eta.PNG_NAME),
+                  "sigma_<Z> and the steady packing against sqrt(eps), per eta")
 
 
 def _appendix_line():
