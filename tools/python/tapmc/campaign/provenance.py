@@ -17,7 +17,7 @@ from .errors import CampaignDirectoryError, CampaignError
 from .launch import private_mpi_session
 
 __all__ = ["MANIFEST_FORMAT", "sha256", "now", "portable_paths", "read_manifest",
-           "write_manifest", "lmp_versions", "lammps_version", "tapmc_version", "copy_inputs",
+           "write_manifest", "lmp_versions", "tapmc_version", "copy_inputs",
            "read_done", "write_done", "output_digests", "damaged_outputs",
            "verify_finished_run", "attempt_versions"]
 
@@ -126,11 +126,6 @@ def lmp_versions(lmp):
     build = re.search(r"^TAPMC build: (\S+)", out, re.MULTILINE)
     return {"lammps_version": version.group(1).strip() if version else None,
             "lmp_build": build.group(1) if build else None}
-
-
-def lammps_version(lmp):
-    """LAMMPS's version as ``lmp -h`` prints it, or None (:func:`lmp_versions`)."""
-    return lmp_versions(lmp)["lammps_version"]
 
 
 def tapmc_version():
