@@ -329,3 +329,32 @@ def test_the_command_decides_with_the_errors_of_the_report_in_out(tmp_path):
     assert factor > 1 and f"errors: the levels' batch-means errors x {factor:.1f}," in done.stdout
     assert "holds no report" not in done.stdout
     assert validation.report_ramp_error_factor(tmp_path / "bare") is None
+
+
+def test_the_headline_gives_one_answer_then_a_bullet_per_eta(tmp_path):
+    """The headline: a sentence with the answer when every eta gives the same one, then a
+    blank line and one "- " line per eta (default first); when the etas differ or one is
+    undecided, the sentence gives no answer of its own."""
+    up = [0.590, 0.595, 0.598, 0.600, 0.600]
+    write_run(tmp_path, "paperramp0.125_pbc_s1", up + [0.602, 0.603, 0.604, 0.605])
+    write_run(tmp_path, "paperramp0.125_pbc_eta1e-05_s1", up + [0.601, 0.602, 0.603, 0.604],
+              seed=2)
+    write_run(tmp_path, "paperramp0.125_pbc_eta1e-06_s1", up + [0.600] * 4, seed=3)
+    write_run(tmp_path, "paperramp0.125_pbc_eta1e-08_s1", up[:3], levels=LEVELS[:3], seed=4)
+    rows = {r.eta: r for r in paper_ramp.analyse(tmp_path, 1e-7)}
+    agree = paper_ramp.headline_text([rows[1e-7], rows[1e-5]], 1e-7).split("\n")
+    assert agree[0].endswith("P.B.C.): no irreversible branch at any of the 2 redeposition "
+                             "thresholds eta measured.")
+    assert agree[1] == "" and len(agree) == 4
+    assert agree[2].startswith("- eta = 1e-7 (the default): no irreversible branch (1 seed;")
+    assert agree[3].startswith("- eta = 1e-5: no irreversible branch (1 seed;")
+    one = paper_ramp.headline_text([rows[1e-6]], 1e-7).split("\n")
+    assert one[0].endswith("an irreversible (frozen) branch at the redeposition threshold eta "
+                           "measured.")
+    differ = paper_ramp.headline_text([rows[1e-7], rows[1e-6]], 1e-7).split("\n")
+    assert differ[0].endswith("P.B.C.): per redeposition threshold eta.")
+    assert differ[3].startswith("- eta = 1e-6: an irreversible (frozen) branch (1 seed;")
+    pending = paper_ramp.headline_text([rows[1e-7], rows[1e-8]], 1e-7).split("\n")
+    assert pending[0].endswith("per redeposition threshold eta.")
+    assert pending[3] == ("- eta = 1e-8: undecided, the ramp has not come down two levels yet "
+                          "(seed 1 at tap 12000, still going up).")

@@ -71,8 +71,10 @@ def test_main_page_answers_first_and_stays_short(rendered):
         central = next(i for i, line in enumerate(lines, 1)
                        if line.startswith("The paper's central question"))
         assert central <= FIRST_SCREEN_LINES, central
-        # the campaign's own threshold (report.json lists it) is named as the default
-        assert "(the default)" in lines[central - 1]
+        # the campaign's own threshold (report.json lists it) is named as the default, in the
+        # first of the answer's bullets (one per eta, after the sentence and a blank line)
+        assert lines[central] == "" and lines[central + 1].startswith("- eta = ")
+        assert "(the default)" in lines[central + 1]
     # issue 46: sigma_<Z> against eta, when measured, is one of the open questions
     if (page / "validation" / "questions" / "sigma_eta.csv").is_file():
         assert any(line.startswith("* sigma_<Z> against the redeposition threshold")

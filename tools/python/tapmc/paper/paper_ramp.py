@@ -346,33 +346,52 @@ def eta_label(eta, default_eta):
     return f"eta = {eta_text(eta)}" + (" (the default)" if eta == default_eta else "")
 
 
+#: The headline's answer for one eta, by the verdicts of its decided seeds.
+NO_BRANCH = "no irreversible branch"
+FROZEN_BRANCH = "an irreversible (frozen) branch"
+SEEDS_DISAGREE = "the seeds disagree"
+
+
+def _eta_answer(decided):
+    verdicts = {r.verdict for r in decided}
+    return (FROZEN_BRANCH if verdicts == {"frozen"} else SEEDS_DISAGREE if "frozen" in verdicts
+            else NO_BRANCH)
+
+
 def headline_text(rows, default_eta, error_factor=1.0):
-    """The finding in one sentence, for the report's first screen: per eta, the answer (no
-    irreversible branch, a frozen branch, the seeds disagree) with the seeds' changes of the
-    descending branch, or undecided with how far the running seeds got (also README.md's); the
-    numbers with their errors are in :func:`finding_text`. Only the ramps that turn below
-    (sqrt eps)* count (:func:`below_critical`). ``error_factor``: the errors' factor of
-    :func:`calibrated`, with which the verdicts are decided."""
+    """The answer for the report's first screen and README.md: a sentence that gives the
+    answer when every eta gives the same one, then a bullet per eta ("- ..." lines, rst and
+    Markdown alike, after a blank line): the answer (no irreversible branch, a frozen branch,
+    the seeds disagree) with the seeds' changes of the descending branch and the second
+    increase against it, or undecided with how far the running seeds got; the numbers with
+    their errors are in :func:`finding_text`. Only the ramps that turn below (sqrt eps)* count
+    (:func:`below_critical`). ``error_factor``: the errors' factor of :func:`calibrated`, with
+    which the verdicts are decided."""
     rows = calibrated(below_critical(rows), error_factor)
     if not rows:
         return ""
-    parts = []
+    bullets, answers = [], set()
     for eta, decided, running in by_eta(rows, default_eta):
         label = eta_label(eta, default_eta)
         if not decided:
-            parts.append(f"{label}: undecided, {NOT_DOWN_YET} ({running})")
+            bullets.append(f"- {label}: undecided, {NOT_DOWN_YET} ({running}).")
+            answers.add(None)
             continue
-        verdicts = {r.verdict for r in decided}
-        answer = ("an irreversible (frozen) branch" if verdicts == {"frozen"}
-                  else "the seeds disagree" if "frozen" in verdicts
-                  else "no irreversible branch")
+        answer = _eta_answer(decided)
+        answers.add(answer)
         changes = " and ".join(f"{r.down_change:+.4f}" for r in decided)
         seeds = f"{len(decided)} seed{'s' if len(decided) > 1 else ''}"
-        parts.append(f"{label}: {answer} ({seeds}; the descending branch moves by {changes} "
-                     f"in <Phi^c> from the turning level{_retrace_headline(decided)})")
+        bullets.append(f"- {label}: {answer} ({seeds}; the descending branch moves by "
+                       f"{changes} in <Phi^c> from the turning level"
+                       f"{_retrace_headline(decided)}).")
+    etas = len(bullets)
+    where = (f"at any of the {etas} redeposition thresholds eta measured" if etas > 1
+             else "at the redeposition threshold eta measured")
+    overall = (f"{answers.pop()} {where}" if len(answers) == 1 and None not in answers
+               else "per redeposition threshold eta")
     return ("The paper's central question (section III.B: is the branch below (sqrt eps)* ~ "
             f"0.15 irreversible?) at its own ramp protocol ({TAPS_PER_LEVEL} taps per level, "
-            "N = 4096, P.B.C.): " + "; ".join(parts) + ".")
+            f"N = 4096, P.B.C.): {overall}.\n\n" + "\n".join(bullets))
 
 
 def finding_text(rows, default_eta, error_factor=1.0):

@@ -276,7 +276,8 @@ README_FIGURE = ("![The ramps at the paper's protocol, one panel per eta]"
 def readme_lines(entries, headline="", figure=False):
     """The lines of README.md's "What the validation found" (from the paper-scale page's
     entries), one paragraph each: the figures' counts, the claims' counts, the central
-    question's answer (``headline``: tapmc.paper.paper_ramp.headline_text, when given) and its
+    question's answer (``headline``: tapmc.paper.paper_ramp.headline_text, when given; its
+    lines, a sentence and a list, become lines of README.md) and its
     figure (``figure``: when its PNG is committed, :data:`README_FIGURE`), the open questions,
     the link."""
     open_titles = [f"{e.title}, {e.topic} ({', '.join(e.disagreeing)})" for e in entries
@@ -286,7 +287,7 @@ def readme_lines(entries, headline="", figure=False):
                   "Open questions, where claims disagree: "
                   + ("; ".join(open_titles) or "none") + ".",
                   f"Every figure, row and rule: [{PAPER_SCALE_PAGE}]({PAPER_SCALE_PAGE})."]
-    return [line for p in paragraphs for line in (p, "")][:-1]
+    return [line for p in paragraphs for line in (*p.split("\n"), "")][:-1]
 
 
 __all__ = ["FigureEntry", "FigureOutcome", "OUTCOME_RULE", "summarise", "figure_outcome",

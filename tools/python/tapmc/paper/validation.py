@@ -397,7 +397,7 @@ def _paper_ramp_finding(files, summary, error_factor):
     figure = (Path(FIG_DIR) / questions.FOLDER / paper_ramp.PNG_NAME
               if (path.parent / paper_ramp.PNG_NAME).is_file() else None)
     return (paper_ramp.headline_text(rows, default_eta, error_factor)
-            + " The numbers with their errors: the first open question below.",
+            + "\n\nThe numbers with their errors: the first open question below.",
             paper_ramp.finding_text(rows, default_eta, error_factor)
             + _finding_source("run", paper_ramp.CSV_NAME, "paper-ramp"), figure)
 
