@@ -325,10 +325,10 @@ def test_the_command_decides_with_the_errors_of_the_report_in_out(tmp_path):
                     ignore=shutil.ignore_patterns("*.png", "partial"))
     done = _paper_ramp_cli("--campaign", tmp_path / "c", "--out", page)
     assert done.returncode == 0, done.stderr
-    factor = validation.report_ramp_error_factor(SOURCE / "doc" / "paper_scale")
+    factor = validation.report_errors(SOURCE / "doc" / "paper_scale", paper_ramp)
     assert factor > 1 and f"errors: the levels' batch-means errors x {factor:.1f}," in done.stdout
     assert "holds no report" not in done.stdout
-    assert validation.report_ramp_error_factor(tmp_path / "bare") is None
+    assert validation.report_errors(tmp_path / "bare", paper_ramp) is None
 
 
 def test_the_headline_gives_one_answer_then_a_bullet_per_eta(tmp_path):

@@ -254,25 +254,23 @@ def _read_campaign(args, name, module, unit):
               f"({module.RUNS_READ})", file=sys.stderr)
         return 2
     path = module.write_csv(rows, args.out / _runs.FIG_DIR / "questions" / module.CSV_NAME)
-    if hasattr(module, "calibrated"):  # paper-ramp: with the errors of the page in --out
-        factor = _report_ramp_error_factor(args.out)
-        print(module.finding_text(rows, FULL.eta, factor or 1.0))
-        if factor is None:
-            print(f"{name}: {args.out} holds no report: the verdicts take the runs' own "
-                  "batch-means errors, not the realizations' (tapmc-paper report, then again)")
-    else:
-        print(module.finding_text(rows, FULL.eta))
+    errors = _report_errors(args.out, module)  # the errors of the page in --out
+    print(module.finding_text(rows, FULL.eta) if errors is None
+          else module.finding_text(rows, FULL.eta, errors))
+    if errors is None:
+        print(f"{name}: {args.out} holds no report: the verdicts take the runs' own "
+              "batch-means errors, not the realizations' (tapmc-paper report, then again)")
     print(f"{name}: {path} ({len(rows)} {unit})")
     if hasattr(module, "write_figure"):  # paper-ramp draws its levels beside its CSV
         print(f"{name}: {module.write_figure(rows, FULL.eta, path.parent / module.PNG_NAME)}")
     return 0
 
 
-def _report_ramp_error_factor(out):
-    """The paper-ramp errors' factor of the report in ``out`` (None without one, or when this
-    installation has no report module)."""
+def _report_errors(out, reader):
+    """The errors of the report in ``out`` for a campaign reader's finding (validation's
+    report_errors; None without a report, or when this installation has no report module)."""
     try:
-        return load_validation().report_ramp_error_factor(out)
+        return load_validation().report_errors(out, reader)
     except FigureUnavailable:
         return None
 

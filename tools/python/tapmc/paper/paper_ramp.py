@@ -254,6 +254,18 @@ def calibrated(rows, factor):
     return out
 
 
+#: The one-run error whose realizations' factor the verdicts take: a ramp's statistics are
+#: differences of level means of one run.
+ERROR_QUANTITY = "phi_c:halves"
+
+
+def errors_from_report(data):
+    """The ``error_factor`` of :func:`headline_text` and :func:`finding_text` from a report's
+    :class:`~tapmc.paper.claims.ReportData` (its ``run_error`` of :data:`ERROR_QUANTITY`; 1
+    when the campaign's seeds do not reject the runs' own errors)."""
+    return data.run_error(ERROR_QUANTITY)[0]
+
+
 def errors_text(factor):
     """How the finding's errors were made (:func:`calibrated`)."""
     if factor == 1.0:

@@ -9,7 +9,8 @@ the same constant-eps runs at other thresholds (``consteta_*`` runs, tier 8 of
 :mod:`tapmc.paper.plan`) beside the default ones (``const_*``), and per eta:
 
 - sigma_<Z> and <Phi^c> of the steady state (the last quarter of each run, as Figs. 3 and 4)
-  per eps, mean and standard error over seeds (one seed: batch means of the run itself);
+  per eps, mean and standard error over seeds (one seed: batch means of the run itself,
+  times the campaign's realizations' factor of the quantity on the page: :func:`calibrated`);
 - the straight line sigma_<Z> = offset + slope sqrt(eps) through them (weighted; errors
   scaled by the reduced chi-square when the scatter exceeds them);
 - the largest steady <Phi^c> over the eps (the bell's top), against the paper's 60.6 %
@@ -31,7 +32,7 @@ from __future__ import annotations
 import csv
 import math
 import re
-from dataclasses import asdict, dataclass, fields
+from dataclasses import asdict, dataclass, fields, replace
 from pathlib import Path
 
 import numpy as np
@@ -305,15 +306,69 @@ def read_csv(path):
         return [EtaPoint(**{k: convert[kinds[k]](v) for k, v in row.items()}) for row in reader]
 
 
+#: The one-run errors whose realizations' factors a point of one seed takes (ReportData's
+#: run_error quantities): sigma_<Z> and the window mean of <Phi^c>.
+ERROR_QUANTITIES = {"sigma": "Z:sigma", "phi_c": "phi_c"}
+
+
+def errors_from_report(data):
+    """The ``factor_of`` of :func:`finding_text` from a report's
+    :class:`~tapmc.paper.claims.ReportData`: (quantity, eps) -> its realizations' factor for a
+    P.B.C. run at that eps (1 when the campaign's seeds do not reject the runs' own errors)."""
+    return lambda quantity, eps: data.run_error(quantity, "pbc", eps)[0]
+
+
+def calibrated(all_points, factor_of):
+    """The points with the errors of every one-seed point times its realizations' factor
+    (``factor_of(quantity, eps)``, :data:`ERROR_QUANTITIES`): one run's batch-means errors are
+    those of its own time average, and another realization lands about that factor of them
+    away (the campaign's groups of seeds); a point of several seeds keeps the spread of its
+    seeds. Returns (points, {quantity: (smallest, largest) factor applied}); ``factor_of``
+    None leaves the points as they are."""
+    if factor_of is None:
+        return list(all_points), {}
+    out, used = [], {}
+    for p in all_points:
+        if p.seeds != 1:
+            out.append(p)
+            continue
+        scaled = {}
+        for field, quantity in ERROR_QUANTITIES.items():
+            k = float(factor_of(quantity, p.eps))
+            if not k >= 1.0:
+                raise ValueError(f"factor of {quantity} at eps = {p.eps:g}: {k!r}, must be "
+                                 ">= 1 (the realizations' spread is never below a run's own "
+                                 "batch-means error)")
+            scaled[f"{field}_sem"] = getattr(p, f"{field}_sem") * k
+            lo, hi = used.get(field, (k, k))
+            used[field] = (min(lo, k), max(hi, k))
+        out.append(replace(p, **scaled))
+    return out, used
+
+
+def _errors_text(used):
+    """How the finding's errors were made (:func:`calibrated`'s factors)."""
+    if not used:
+        return "mean +- sem over seeds; one seed: its batch means"
+    names = {"sigma": "sigma_<Z>", "phi_c": "<Phi^c>"}
+    factors = ", ".join(f"{names[q]} x {lo:.1f}" + (f"-{hi:.1f}" if hi - lo >= 0.05 else "")
+                        for q, (lo, hi) in used.items())
+    return ("mean +- sem over seeds; one seed: its batch means times the spread of the "
+            f"campaign's realizations ({factors})")
+
+
 def _eta_text(eta):
     return f"{eta:.0e}".replace("e-0", "e-")
 
 
-def finding_text(all_points, default_eta):
+def finding_text(all_points, default_eta, factor_of=None):
     """One paragraph: per eta, the line through sigma_<Z> and the bell's top; then whether the
-    offset shrinks as eta tightens and which eta meets the paper's 60.6 %."""
+    offset shrinks as eta tightens and which eta meets the paper's 60.6 %. ``factor_of``: the
+    realizations' factors the errors of one-seed points take (:func:`calibrated`,
+    :func:`errors_from_report`), said in the text; None: the runs' own errors."""
     if not all_points:
         return ""
+    all_points, used = calibrated(all_points, factor_of)
     eta_lines = lines(all_points)
     parts = []
     for ln in eta_lines:
@@ -342,7 +397,7 @@ def finding_text(all_points, default_eta):
              + ", ".join(_eta_text(e) for e in meeting) if meeting
              else f"No threshold's bell top meets the paper's {PAPER_PHI_PERCENT} %")
     return ("sigma_<Z> against the redeposition threshold (P.B.C. constant-eps runs, steady "
-            "state over the last quarter; mean +- sem over seeds): " + "; ".join(parts)
+            f"state over the last quarter; {_errors_text(used)}): " + "; ".join(parts)
             + ". Trend: " + verdict + " " + paper + ".")
 
 

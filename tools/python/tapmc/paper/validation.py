@@ -225,26 +225,15 @@ def _ageing_note(fig):
 _NOTES = {"fig2": _eq3_note, "fig3": _sigma_note, "fig6": _gradient_note, "fig5": _ageing_note}
 
 
-#: The one-run error whose realizations' factor (ReportData.run_error) the paper-protocol
-#: ramps' verdicts take: their statistics are differences of level means of one run.
-PAPER_RAMP_ERROR = "phi_c:halves"
-
-
-def paper_ramp_error_factor(data):
-    """The factor of :func:`tapmc.paper.paper_ramp.calibrated` for a campaign's ramps at the
-    paper's protocol, from its :class:`~tapmc.paper.claims.ReportData` (1 when the campaign's
-    seeds do not reject the runs' own errors)."""
-    return data.run_error(PAPER_RAMP_ERROR)[0]
-
-
-def report_ramp_error_factor(out_dir):
-    """:func:`paper_ramp_error_factor` of the report already written to ``out_dir`` (the
-    factor its page decides the ramps with), or None when out_dir holds no report."""
+def report_errors(out_dir, reader):
+    """``reader.errors_from_report`` (``paper_ramp`` or ``sigma_eta``: the errors its finding
+    is decided with) of the report already written to ``out_dir``, the errors of its page;
+    None when out_dir holds no report."""
     try:
         summary, files = committed_inputs(out_dir)
     except FileNotFoundError:
         return None
-    return paper_ramp_error_factor(claims.ReportData.from_files(summary, files))
+    return reader.errors_from_report(claims.ReportData.from_files(summary, files))
 
 
 def paper_ramp_headline(summary, files):
@@ -253,14 +242,14 @@ def paper_ramp_headline(summary, files):
     path = _finding_csv(files, paper_ramp.CSV_NAME)
     if path is None:
         return ""
-    factor = paper_ramp_error_factor(claims.ReportData.from_files(summary, files))
+    factor = paper_ramp.errors_from_report(claims.ReportData.from_files(summary, files))
     return paper_ramp.headline_text(paper_ramp.read_csv(path), campaign_eta(summary), factor)
 
 
 def _rows_and_notes(summary, files):
     """The register's rows evaluated on the figure CSVs (tapmc.paper.claims.evaluate), the
-    note of each figure, the figures written, the note on one-run errors and the paper-ramp
-    errors' factor (:func:`paper_ramp_error_factor`)."""
+    note of each figure, the figures written, the note on one-run errors and the report data
+    (whose realizations' factors the findings' errors take)."""
     data = claims.ReportData.from_files(summary, files)
     rows = claims.evaluate(claims.load_register(), data)
     notes = {}
@@ -269,7 +258,7 @@ def _rows_and_notes(summary, files):
         text = note(fig) if fig is not None else None
         if text:
             notes[name] = text
-    return rows, notes, data.written, data.run_error_note(), paper_ramp_error_factor(data)
+    return rows, notes, data.written, data.run_error_note(), data
 
 
 CAPTIONS = {
@@ -387,7 +376,7 @@ def _paper_ramp_finding(files, summary, error_factor):
     """(headline, finding, figure): the answer about the irreversible branch at the paper's
     ramp protocol in one sentence, and with its numbers, from questions/paper_ramp.csv next to
     the figures (``tapmc-paper paper-ramp``), its errors times ``error_factor``
-    (:func:`paper_ramp_error_factor`), and the page's path of the ramps' figure written beside
+    (:func:`tapmc.paper.paper_ramp.errors_from_report`), and the page's path of the ramps' figure written beside
     it (None without one); or ("", "", None)."""
     path = _finding_csv(files, paper_ramp.CSV_NAME)
     if path is None:
@@ -402,7 +391,7 @@ def _paper_ramp_finding(files, summary, error_factor):
             + _finding_source("run", paper_ramp.CSV_NAME, "paper-ramp"), figure)
 
 
-def _sigma_eta_finding(files, default_eta):
+def _sigma_eta_finding(files, default_eta, factor_of=None):
     """The finding about sigma_<Z> against eta (section III.A, Fig. 3: is its offset the
     redeposition's noise?) from questions/sigma_eta.csv next to the figures (``tapmc-paper
     sigma-eta``), with its figure written beside it when there is one ((text, (page path, alt
@@ -410,7 +399,7 @@ def _sigma_eta_finding(files, default_eta):
     path = _finding_csv(files, sigma_eta.CSV_NAME)
     if path is None:
         return ""
-    text = sigma_eta.finding_text(sigma_eta.read_csv(path), default_eta)
+    text = sigma_eta.finding_text(sigma_eta.read_csv(path), default_eta, factor_of)
     if not text:
         return ""
     text += _finding_source("point", sigma_eta.CSV_NAME, "sigma-eta")
@@ -457,14 +446,16 @@ def _figure_lines(files, notes):
     return lines
 
 
-def _main_page(summary, files, rows, verdicts, notes, prefix, ramp_factor):
+def _main_page(summary, files, rows, verdicts, notes, prefix, data):
     """The text of validation.rst: the answer on one screen, one row per claim, the figures."""
     title, intro = _title_and_intro(summary)
     lines = [".. TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.", "",
              title, "=" * len(title), "", intro, "", describe_scale(summary), ""]
     lines += _appendix_line()
-    headline, finding, figure = _paper_ramp_finding(files, summary, ramp_factor)
-    findings = [f for f in (finding, _sigma_eta_finding(files, campaign_eta(summary))) if f]
+    headline, finding, figure = _paper_ramp_finding(files, summary,
+                                                    paper_ramp.errors_from_report(data))
+    sigma = _sigma_eta_finding(files, campaign_eta(summary), sigma_eta.errors_from_report(data))
+    findings = [f for f in (finding, sigma) if f]
     lines += summary_screen.screen_rst(summary_screen.summarise(rows, files), findings, headline,
                                        figure and (figure, "the ramps at the paper's protocol"))
     lines += ["How close is TAPMC to the paper", "-" * 31, "",
@@ -481,15 +472,14 @@ def render_pages(summary, files):
     """file name -> text of every page of the report: validation.rst (:func:`render`) and
     its appendices (:data:`~tapmc.paper.validation_appendix.APPENDICES`), from one evaluation
     of the register on the campaign summary and the figure files (name -> (png, csv))."""
-    rows, notes, figures, run_note, ramp_factor = _rows_and_notes(summary, files)
+    rows, notes, figures, run_note, data = _rows_and_notes(summary, files)
     verdicts = claim_verdicts(rows)
     prefix = _label_prefix(summary)
     folder, groups = None, {}
     if files:
         folder = Path(next(iter(files.values()))[1]).parent / questions.FOLDER
         groups = questions.render_parts(folder, figures, summary["eta"], read_front_summary())
-    pages = {"validation": _main_page(summary, files, rows, verdicts, notes, prefix,
-                                      ramp_factor)}
+    pages = {"validation": _main_page(summary, files, rows, verdicts, notes, prefix, data)}
     pages.update(render_appendices(verdicts, run_note, prefix, folder, groups,
                                     tolerances=claims.tolerance_table(rows)))
     return {f"{name}.rst": text for name, text in pages.items()}
