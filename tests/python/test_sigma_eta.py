@@ -225,21 +225,26 @@ def test_the_figure_draws_sigma_and_the_bell_per_eta_with_their_lines(tmp_path):
 
 
 def test_one_seed_errors_take_the_realizations_factors(tmp_path):
-    """calibrated(): a one-seed point's errors times the factor of its quantity at its eps
-    (sigma_<Z>: Z:sigma, <Phi^c>: phi_c), a point of several seeds unchanged; a top 0.2 %
-    from the paper's 60.6 % with a one-run error of 0.02 % misses it and meets it at a factor
-    of 4; the text names the factors; a factor below 1 is refused."""
-    def point(eps, seeds, phi):
+    """calibrated(): the floor of a point's errors (one seed: its own error; several: the
+    root mean square of theirs over sqrt(seeds)) times the factor of its quantity at its eps
+    (sigma_<Z>: Z:sigma, <Phi^c>: phi_c); a spread of the seeds above the scaled floor stays;
+    a top 0.2 % from the paper's 60.6 % with a one-run error of 0.02 % misses it and meets it
+    at a factor of 4; the text names the factors; a factor below 1 is refused."""
+    def point(eps, seeds, phi, sem=0.0002, inside=0.0002):
         return sigma_eta.EtaPoint(eta=1e-6, eps=eps, seeds=seeds, taps=4000, finished=True,
-                                  sigma=0.01, sigma_sem=0.001, phi_c=phi, phi_c_sem=0.0002)
-    points = [point(0.0025, 2, 0.600), point(0.01, 1, 0.6080), point(0.0225, 1, 0.603)]
+                                  sigma=0.01, sigma_sem=0.001, phi_c=phi, phi_c_sem=sem,
+                                  sigma_inside=0.001, phi_c_inside=inside)
+    points = [point(0.0025, 2, 0.600, sem=0.002, inside=0.0001), point(0.01, 1, 0.6080),
+              point(0.0225, 1, 0.603), point(0.04, 3, 0.601, sem=0.0001, inside=0.0001)]
     asked = []
 
     def factor_of(quantity, eps):
         asked.append((quantity, eps))
         return {"Z:sigma": 2.5, "phi_c": 4.0}[quantity]
     scaled, used = sigma_eta.calibrated(points, factor_of)
-    assert scaled[0] == points[0]                              # two seeds: their spread
+    assert scaled[0].phi_c_sem == 0.002                        # two seeds: their spread
+    assert scaled[0].phi_c_inside == pytest.approx(0.0004)
+    assert scaled[3].phi_c_sem == pytest.approx(0.0004)        # three: the scaled floor
     assert scaled[1].phi_c_sem == pytest.approx(0.0008) and scaled[1].sigma_sem == 0.0025
     assert ("phi_c", 0.01) in asked and ("Z:sigma", 0.0225) in asked
     assert used == {"sigma": (2.5, 2.5), "phi_c": (4.0, 4.0)}
@@ -248,9 +253,10 @@ def test_one_seed_errors_take_the_realizations_factors(tmp_path):
     (wide_line,) = sigma_eta.lines(scaled)
     assert sigma_eta.meets_paper_phi(wide_line, scaled)
     text = sigma_eta.finding_text(points, DEFAULT_ETA, factor_of)
-    assert "one seed: its batch means times the spread of the campaign's realizations " \
-        "(sigma_<Z> x 2.5, <Phi^c> x 4.0)" in text and "(meets 60.6 %)" in text
+    assert "never below the runs' batch-means errors times the spread of the campaign's " \
+        "realizations (sigma_<Z> x 2.5, <Phi^c> x 4.0); one seed: that error" in text
+    assert "(meets 60.6 %)" in text
     assert "one seed: its batch means)" in sigma_eta.finding_text(points, DEFAULT_ETA)
     assert sigma_eta.calibrated(points, None) == (points, {})
-    with pytest.raises(ValueError, match=r"factor of phi_c at eps = 0.01: 0.5, must be >= 1"):
+    with pytest.raises(ValueError, match=r"factor of phi_c at eps = 0.0025: 0.5, must be >= 1"):
         sigma_eta.calibrated(points, lambda q, eps: 0.5 if q == "phi_c" else 1.0)

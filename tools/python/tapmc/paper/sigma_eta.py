@@ -9,8 +9,9 @@ the same constant-eps runs at other thresholds (``consteta_*`` runs, tier 8 of
 :mod:`tapmc.paper.plan`) beside the default ones (``const_*``), and per eta:
 
 - sigma_<Z> and <Phi^c> of the steady state (the last quarter of each run, as Figs. 3 and 4)
-  per eps, mean and standard error over seeds (one seed: batch means of the run itself,
-  times the campaign's realizations' factor of the quantity on the page: :func:`calibrated`);
+  per eps, mean and standard error over seeds (one seed: batch means of the run itself), on
+  the page never below the runs' batch-means errors times the campaign's realizations'
+  factor of the quantity (:func:`calibrated`);
 - the straight line sigma_<Z> = offset + slope sqrt(eps) through them (weighted; errors
   scaled by the reduced chi-square when the scatter exceeds them);
 - the largest steady <Phi^c> over the eps (the bell's top), against the paper's 60.6 %
@@ -81,7 +82,10 @@ class RunSteady:
 
 @dataclass(frozen=True)
 class EtaPoint:
-    """One (eta, eps): means over the seeds' runs (one run: its own batch-means errors)."""
+    """One (eta, eps): means over the seeds' runs with their errors (one run: its own
+    batch-means errors); ``*_inside``: the root mean square of the runs' own batch-means
+    errors over sqrt(seeds), the floor of the errors (:func:`_mean_sem`), which the
+    realizations' factors scale (:func:`calibrated`)."""
 
     eta: float
     eps: float
@@ -92,6 +96,8 @@ class EtaPoint:
     sigma_sem: float
     phi_c: float
     phi_c_sem: float
+    sigma_inside: float
+    phi_c_inside: float
 
     @property
     def sqrt_eps(self):
@@ -160,16 +166,18 @@ def read_run(run_dir, default_eta, planned_taps=None):
 
 
 def _mean_sem(values, own_err):
-    """Mean over the seeds and its standard error; one seed: its own error. With a few seeds
-    the spread can fall far below the runs' own batch-means errors by chance (3 seeds: 1 time
-    in 20 below a third of it), so the error is never below their root mean square over
-    sqrt(seeds), the same variance measured inside the runs."""
+    """(mean over the seeds, its standard error, the floor inside the runs); one seed: its own
+    error, twice. With a few seeds the spread can fall far below the runs' own batch-means
+    errors by chance (3 seeds: 1 time in 20 below a third of it), so the error is never below
+    their root mean square over sqrt(seeds), the same variance measured inside the runs (the
+    floor)."""
     values, own_err = np.asarray(values, dtype=float), np.asarray(own_err, dtype=float)
     if len(values) == 1:
-        return float(values[0]), float(own_err[0])
+        return float(values[0]), float(own_err[0]), float(own_err[0])
     spread = float(values.std(ddof=1) / math.sqrt(len(values)))
     inside = float(np.sqrt(np.mean(own_err ** 2)) / math.sqrt(len(values)))
-    return float(values.mean()), max(spread, inside) if np.isfinite(inside) else spread
+    return (float(values.mean()), max(spread, inside) if np.isfinite(inside) else spread,
+            inside)
 
 
 def points(runs):
@@ -180,11 +188,13 @@ def points(runs):
         groups.setdefault((r.eta, r.eps), []).append(r)
     out = []
     for (eta, eps), group in groups.items():
-        sigma, sigma_sem = _mean_sem([r.sigma for r in group], [r.sigma_err for r in group])
-        phi, phi_sem = _mean_sem([r.phi_c for r in group], [r.phi_c_err for r in group])
+        sigma, sigma_sem, sigma_in = _mean_sem([r.sigma for r in group],
+                                               [r.sigma_err for r in group])
+        phi, phi_sem, phi_in = _mean_sem([r.phi_c for r in group], [r.phi_c_err for r in group])
         out.append(EtaPoint(eta=eta, eps=eps, seeds=len(group), taps=min(r.taps for r in group),
                             finished=all(r.finished for r in group), sigma=sigma,
-                            sigma_sem=sigma_sem, phi_c=phi, phi_c_sem=phi_sem))
+                            sigma_sem=sigma_sem, phi_c=phi, phi_c_sem=phi_sem,
+                            sigma_inside=sigma_in, phi_c_inside=phi_in))
     return sorted(out, key=lambda p: (-p.eta, p.eps))
 
 
@@ -319,19 +329,17 @@ def errors_from_report(data):
 
 
 def calibrated(all_points, factor_of):
-    """The points with the errors of every one-seed point times its realizations' factor
-    (``factor_of(quantity, eps)``, :data:`ERROR_QUANTITIES`): one run's batch-means errors are
-    those of its own time average, and another realization lands about that factor of them
-    away (the campaign's groups of seeds); a point of several seeds keeps the spread of its
-    seeds. Returns (points, {quantity: (smallest, largest) factor applied}); ``factor_of``
+    """The points with the floor of their errors (``*_inside``: one seed's own batch-means
+    error, several seeds' root mean square of theirs over sqrt(seeds)) times its realizations'
+    factor (``factor_of(quantity, eps)``, :data:`ERROR_QUANTITIES`): one run's batch-means
+    errors are those of its own time average, and another realization lands about that factor
+    of them away (the campaign's groups of seeds); a spread of the seeds above the scaled floor
+    stays. Returns (points, {quantity: (smallest, largest) factor applied}); ``factor_of``
     None leaves the points as they are."""
     if factor_of is None:
         return list(all_points), {}
     out, used = [], {}
     for p in all_points:
-        if p.seeds != 1:
-            out.append(p)
-            continue
         scaled = {}
         for field, quantity in ERROR_QUANTITIES.items():
             k = float(factor_of(quantity, p.eps))
@@ -339,7 +347,9 @@ def calibrated(all_points, factor_of):
                 raise ValueError(f"factor of {quantity} at eps = {p.eps:g}: {k!r}, must be "
                                  ">= 1 (the realizations' spread is never below a run's own "
                                  "batch-means error)")
-            scaled[f"{field}_sem"] = getattr(p, f"{field}_sem") * k
+            floor = getattr(p, f"{field}_inside") * k
+            scaled[f"{field}_sem"] = max(getattr(p, f"{field}_sem"), floor)
+            scaled[f"{field}_inside"] = floor
             lo, hi = used.get(field, (k, k))
             used[field] = (min(lo, k), max(hi, k))
         out.append(replace(p, **scaled))
@@ -353,8 +363,8 @@ def _errors_text(used):
     names = {"sigma": "sigma_<Z>", "phi_c": "<Phi^c>"}
     factors = ", ".join(f"{names[q]} x {lo:.1f}" + (f"-{hi:.1f}" if hi - lo >= 0.05 else "")
                         for q, (lo, hi) in used.items())
-    return ("mean +- sem over seeds; one seed: its batch means times the spread of the "
-            f"campaign's realizations ({factors})")
+    return ("mean +- sem over seeds, never below the runs' batch-means errors times the "
+            f"spread of the campaign's realizations ({factors}); one seed: that error")
 
 
 def _eta_text(eta):
