@@ -594,7 +594,8 @@ def settings_line(rows):
     seeds = sorted({r.seed for r in rows})
     return (f"N = {FULL.N}, box {FULL.L:g}R x {FULL.L:g}R, P.B.C.; {TAPS_PER_LEVEL} taps per "
             f"level, steps of {FULL.ramp_dsqrt:g} in sqrt(eps), means of the last {LAST_TAPS} "
-            f"taps of each level; levels done whole only; seeds {', '.join(map(str, seeds))}")
+            f"taps of each level, error bars their batch-means errors; levels done whole only; "
+            f"seeds {', '.join(map(str, seeds))}")
 
 
 def write_figure(rows, default_eta, path):
