@@ -258,5 +258,7 @@ def test_one_seed_errors_take_the_realizations_factors(tmp_path):
     assert "(meets 60.6 %)" in text
     assert "one seed: its batch means)" in sigma_eta.finding_text(points, DEFAULT_ETA)
     assert sigma_eta.calibrated(points, None) == (points, {})
+    assert "one seed: its batch means)" in sigma_eta.finding_text(points, DEFAULT_ETA,
+                                                                  lambda q, eps: 1.0)
     with pytest.raises(ValueError, match=r"factor of phi_c at eps = 0.0025: 0.5, must be >= 1"):
         sigma_eta.calibrated(points, lambda q, eps: 0.5 if q == "phi_c" else 1.0)

@@ -358,7 +358,7 @@ def calibrated(all_points, factor_of):
 
 def _errors_text(used):
     """How the finding's errors were made (:func:`calibrated`'s factors)."""
-    if not used:
+    if all(hi == 1.0 for _, hi in used.values()):  # none, or seeds that reject no error
         return "mean +- sem over seeds; one seed: its batch means"
     names = {"sigma": "sigma_<Z>", "phi_c": "<Phi^c>"}
     factors = ", ".join(f"{names[q]} x {lo:.1f}" + (f"-{hi:.1f}" if hi - lo >= 0.05 else "")
