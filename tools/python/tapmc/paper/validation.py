@@ -237,8 +237,8 @@ def report_errors(out_dir, reader):
 
 
 def paper_ramp_headline(summary, files):
-    """The central question's answer in one sentence (README.md's too), with the errors the
-    page decides it with; "" without questions/paper_ramp.csv."""
+    """The central question's answer (a sentence, then a bullet per eta: README.md's too),
+    with the errors the page decides it with; "" without questions/paper_ramp.csv."""
     path = _finding_csv(files, paper_ramp.CSV_NAME)
     if path is None:
         return ""
@@ -376,8 +376,8 @@ def _paper_ramp_finding(files, summary, error_factor):
     """(headline, finding, figure): the answer about the irreversible branch at the paper's
     ramp protocol in one sentence, and with its numbers, from questions/paper_ramp.csv next to
     the figures (``tapmc-paper paper-ramp``), its errors times ``error_factor``
-    (:func:`tapmc.paper.paper_ramp.errors_from_report`), and the page's path of the ramps' figure written beside
-    it (None without one); or ("", "", None)."""
+    (:func:`tapmc.paper.paper_ramp.errors_from_report`), and the page's path of the ramps'
+    figure written beside it (None without one); or ("", "", None)."""
     path = _finding_csv(files, paper_ramp.CSV_NAME)
     if path is None:
         return "", "", None
