@@ -117,6 +117,13 @@ def test_a_ramp_beyond_the_critical_level_is_told_apart(tmp_path):
         in finding and finding.endswith("(compacts).")
     alone = paper_ramp.finding_text([beyond], 1e-7)
     assert alone.startswith("Beyond (sqrt eps)*") and "Section III.B" not in alone
+    assert "second increase" not in alone   # not going up again yet
+    # back up again: the second increase against the descent, the paper's test of its branch
+    write_run(tmp_path, "paperramp0.2_pbc_s3", [0.59 + 0.001 * k for k in range(8)]
+              + [0.61, 0.612, 0.612], levels=high + [0.175, 0.15, 0.175], seed=3)
+    again = paper_ramp.analyse_run(tmp_path / "runs" / "paperramp0.2_pbc_s3", 1e-7)
+    text = paper_ramp.finding_text([again], 1e-7)
+    assert ", second increase minus descent +0.0020 +- 0.0000 over 1 level (above)" in text
     assert paper_ramp.headline_text([beyond], 1e-7) == ""
     # a run in its first increase: the level in progress is not a whole level
     run = write_run(tmp_path, "paperramp0.125_pbc_s3", up[:3], levels=LEVELS[:3], seed=3)

@@ -543,15 +543,29 @@ def _return_finding(decided):
 
 def _beyond_text(rows, default_eta):
     """The ramps that turned beyond (sqrt eps)* (the paper's reversible branch), per eta:
-    their decreasing branch from the turning level, or how far they got ("" without any)."""
+    their decreasing branch from the turning level and, once they go up again, the second
+    increase against it (:meth:`PaperRampRun.retrace`), or how far they got ("" without
+    any)."""
     parts = []
     for eta, decided, running in by_eta(rows, default_eta):
         seeds = "; ".join(f"seed {r.seed}, turning at {r.top:g}: {r.down_change:+.4f} +- "
-                          f"{r.down_change_sem:.4f} ({r.verdict})" for r in decided)
+                          f"{r.down_change_sem:.4f} ({r.verdict}){_beyond_retrace(r)}"
+                          for r in decided)
         parts.append(f"at {eta_label(eta, default_eta)}, "
                      + "; ".join(p for p in (seeds, running and f"running: {running}") if p))
     return (" Beyond (sqrt eps)* (the reversible branch of the paper), the descending branch "
             "from the turning level: " + ". ".join(parts) + ".") if parts else ""
+
+
+def _beyond_retrace(run):
+    """", second increase minus descent +0.0001 +- 0.0003 over 3 levels (retraces)" of a ramp
+    beyond (sqrt eps)* going up again, or ""."""
+    trace = run.retrace()
+    if trace is None:
+        return ""
+    k = trace.mean.n
+    return (f", second increase minus descent {_signed(trace.mean.value)} +- "
+            f"{trace.mean.sem:.4f} over {k} level{'s' if k > 1 else ''} ({trace.verdict})")
 
 
 def plot(rows, default_eta, axes=None):
