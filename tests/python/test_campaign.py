@@ -697,3 +697,38 @@ def test_a_run_resumed_by_another_build_of_the_executable(tmp_path, monkeypatch)
             stream.getvalue() and "ran TAPMC" not in stream.getvalue())
     record = json.loads((folder / "manifest.json").read_text())["runs"][0]
     assert [a.get("lmp_build") for a in record["attempts"]] == ["b1", "b1", "b2"]
+
+
+def test_a_ramps_eta_weighs_its_taps_by_their_cost(tmp_path):
+    """A run whose taps differ in cost (a ramp's weak levels first): its ETA scales the time
+    so far by the cost left over the cost done, where its rate so far would promise the end
+    too soon; the overall ETA takes the same per-tap cost; tap_costs that do not fit the runs
+    are refused."""
+    from tapmc.campaign.runner import weighted_seconds_left
+    sums = [0.0, 1.0, 2.0, 4.0, 6.0]                     # taps costing 1, 1, 2, 2
+    assert weighted_seconds_left(sums, 0, 2, 10.0) == pytest.approx(20.0)
+    assert weighted_seconds_left(sums, 1, 3, 30.0) == pytest.approx(20.0)  # 30 s x 2 / 3
+    assert weighted_seconds_left(sums, 2, 2, 5.0) is None  # no tap done yet this session
+    fake = tmp_path / "lmp_fake"
+    fake.write_text(FAKE_LMP)
+    fake.chmod(0o755)
+    spec = RunSpec("ramp", CONSTANT_EPS, dict(TINY, taps=4), seed=1)
+    with pytest.raises(ValueError, match=r"tap_costs\['ramp'\]: 3 costs, the run has 4 taps"):
+        Campaign(tmp_path / "a", [spec], lmp=str(fake), tap_costs={"ramp": [1, 1, 2]})
+    with pytest.raises(ValueError, match="every cost must be finite and > 0"):
+        Campaign(tmp_path / "a", [spec], lmp=str(fake), tap_costs={"ramp": [1, 0, 2, 2]})
+    with pytest.raises(ValueError, match="'other' is not a run of the campaign"):
+        Campaign(tmp_path / "a", [spec], lmp=str(fake), tap_costs={"other": [1] * 4})
+    # the progress report of a run 2 taps in, 10 s after its start this session
+    stream = io.StringIO()
+    campaign = Campaign(tmp_path / "b", [spec], lmp=str(fake), jobs=1, stream=stream,
+                        tap_costs={"ramp": [1, 1, 2, 2]})
+    run = campaign.run_dir("ramp")
+    run.mkdir(parents=True)
+    (run / "taps.dat").write_text("# step\n0\n1\n2\n")
+    now = time.time()
+    campaign._t0, campaign._done0 = {"ramp": now - 10.0}, {"ramp": 0}
+    campaign._report(now - 10.0)
+    lines = stream.getvalue().splitlines()
+    assert lines[0].startswith("[campaign]   ramp: 2/4 taps (50%), ETA 20s")   # not 10 s
+    assert lines[1].endswith("ETA 20s")

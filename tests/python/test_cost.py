@@ -104,6 +104,10 @@ def test_runs_of_the_paper_inputs_are_priced_tap_by_tap():
     expected = sum(10 * rule.seconds_per_tap(4096, e, front.DEFAULT)
                    for e in (0.0025, 0.01, 0.0025, 0.01)) / 3600
     assert cost.run_cost(ramp, rule) == pytest.approx(expected, rel=1e-12)
+    # tap by tap, the strong levels cost more (the campaign's ETA of a ramp weighs by it)
+    per_tap = cost.tap_seconds(ramp, rule)
+    assert per_tap.shape == (40,) and per_tap[10] > per_tap[0] == per_tap[20]
+    assert per_tap[0] == pytest.approx(rule.seconds_per_tap(4096, 0.0025, front.DEFAULT))
     constant = Spec({"N": 1024, "eta": 1e-5, "sqrteps": 0.15, "eps": 0.5}, 100)
     assert cost.run_cost(constant, rule) == pytest.approx(rule.cpu_hours(1024, 100, 0.0225, "change 1e-5"))
     drift = Spec({"N": 1024, "eta": 1e-7, "eps": 0.1, "settle_keys": "stop drift window 32"}, 10)
@@ -170,3 +174,16 @@ def test_dry_run_prices_every_run(tmp_path):
     assert lines and all("CPU h, to run]" in line for line in lines)
     assert "left to run: about" in done.stdout
     assert not (tmp_path / "c").exists()
+
+
+def test_the_campaign_weighs_only_the_runs_whose_taps_differ_in_cost():
+    """tapmc-paper campaign passes the rule's seconds per tap of the ramps to the runner (their
+    ETA), not of the constant-eps runs, whose rate so far says as much."""
+    from tapmc.paper import cli, plan
+    specs = plan.runs(8, jobs=2)
+    costs = cli._tap_costs(specs)
+    ramps = {s.name for s in specs if "nlev" in s.variables}
+    assert set(costs) == ramps and "paperramp0.2_pbc_s1" in costs
+    by_name = {s.name: s for s in specs}
+    for name, seconds in costs.items():
+        assert seconds.shape == (by_name[name].taps,) and seconds.min() > 0

@@ -4,6 +4,7 @@ decides what runs and when; starting processes is :mod:`.launch`'s job, repairin
 :mod:`.run_folder`'s and recording what happened :mod:`.provenance`'s."""
 
 import json
+import math
 import os
 import platform
 import signal
@@ -11,6 +12,7 @@ import sys
 import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
+from itertools import accumulate
 from pathlib import Path
 
 from . import launch, provenance, run_folder
@@ -94,6 +96,35 @@ def estimate_seconds_left(left, records, running, jobs, session_rate):
     return total / jobs
 
 
+def _cost_sums(tap_costs, runs):
+    """name -> cumulative tap costs (index k: the cost of taps 1..k) of Campaign's
+    ``tap_costs``, checked against the runs (a known name, one positive finite cost per tap)."""
+    sums = {}
+    for name, costs in tap_costs.items():
+        spec = runs.get(name)
+        if spec is None:
+            raise ValueError(f"tap_costs: {name!r} is not a run of the campaign")
+        costs = [float(c) for c in costs]
+        if spec.taps is None or len(costs) != spec.taps:
+            raise ValueError(f"tap_costs[{name!r}]: {len(costs)} costs, the run has "
+                             f"{spec.taps} taps: one cost per tap")
+        if not all(math.isfinite(c) and c > 0 for c in costs):
+            raise ValueError(f"tap_costs[{name!r}]: every cost must be finite and > 0")
+        sums[name] = list(accumulate(costs, initial=0.0))
+    return sums
+
+
+def weighted_seconds_left(cost_sums, done0, done, elapsed):
+    """Seconds a running run still needs when its taps differ in cost: the ``elapsed`` seconds
+    it took from tap ``done0`` to tap ``done`` times the cost of the taps left over the cost of
+    those done (``cost_sums``: cumulative costs, index k the cost of taps 1..k, the last the
+    run's total); None before it has done a tap this session."""
+    spent = cost_sums[done] - cost_sums[done0]
+    if not spent > 0:
+        return None
+    return float(elapsed * (cost_sums[-1] - cost_sums[done]) / spent)
+
+
 #: What a manifest records of the versions, each attempt too: the TAPMC tree the campaign runs
 #: from (git describe), LAMMPS's version and the commit the executable was built from (both
 #: from ``lmp -h``; lmp_build is None for a LAMMPS that does not print it).
@@ -133,10 +164,17 @@ class Campaign:
         what to do when an input changed since the campaign started: False (default) stops
         with an error asking for a new campaign folder; True keeps running the campaign's own
         copy (a campaign that spans months of development stays one set of runs) and says so.
+    tap_costs : dict or None
+        run name -> the relative cost of each of its taps (``taps`` positive numbers, e.g. the
+        seconds a cost model gives a tap at its eps), for the ETA of a run whose taps differ in
+        cost (a ramp: its weak first levels would promise too early an end): its time so far
+        is scaled by the cost left over the cost done (:func:`weighted_seconds_left`). Runs
+        without one take their rate so far.
     """
 
     def __init__(self, directory, runs, lmp=None, jobs=None, mode="pool",
-                 progress_interval=PROGRESS_INTERVAL, stream=None, pin_inputs=False):
+                 progress_interval=PROGRESS_INTERVAL, stream=None, pin_inputs=False,
+                 tap_costs=None):
         runs = list(runs)
         if not runs:
             raise ValueError("runs = []: a campaign needs at least one RunSpec")
@@ -166,6 +204,7 @@ class Campaign:
         self.stream = stream if stream is not None else sys.stdout
         self.pin_inputs = bool(pin_inputs)
         self._by_name = {r.name: r for r in runs}
+        self._cost_sums = _cost_sums(tap_costs or {}, self._by_name)
         self._lock = threading.Lock()
         self._records = {}
         self._started = {}
@@ -486,7 +525,12 @@ class Campaign:
             if name in running and not final:
                 rate = (n - done0.get(name, 0)) / max(now - running[name], 1e-9)
                 eta = (total - n) / rate if (total is not None and rate > 0) else None
-                if rate > 0:
+                if name in self._cost_sums and total is not None:
+                    eta = weighted_seconds_left(self._cost_sums[name], done0.get(name, 0), n,
+                                                now - running[name])
+                if eta is not None and total is not None and total > n:
+                    spt_running[name] = eta / (total - n)
+                elif rate > 0:
                     spt_running[name] = 1.0 / rate
                 pct = f" ({100.0 * n / total:.0f}%)" if total else ""
                 lines.append(f"[campaign]   {name}: {n}/{total if total is not None else '?'} "

@@ -368,8 +368,8 @@ def _run_plan(args):
         # which decide the plan's order
         jobs = args.jobs if args.jobs is not None else max(1, launch.available_cores())
         specs = plan.first(plan.runs(args.tier, scale, jobs=jobs), args.first)
-        campaign = Campaign(directory, specs, lmp=args.lmp,
-                            jobs=jobs, mode=args.mode, pin_inputs=True)
+        campaign = Campaign(directory, specs, lmp=args.lmp, jobs=jobs, mode=args.mode,
+                            pin_inputs=True, tap_costs=_tap_costs(specs))
         _check_dir(campaign.directory, "campaign directory", create=not args.dry_run)
     except (ValueError, FileNotFoundError) as err:
         print(f"tapmc-paper: {err}", file=sys.stderr)
@@ -377,6 +377,25 @@ def _run_plan(args):
     if args.dry_run:
         return _list_runs(campaign, f"full plan, tiers 1-{args.tier}")
     return _run_campaign(campaign, scale, args.quiet)
+
+
+def _tap_costs(specs):
+    """Run name -> the seconds the cost rule gives each of its taps, for the ETA of the runs
+    whose taps differ in cost (the ramps; Campaign's ``tap_costs``); {} when the front's
+    summary behind the rule cannot be read, and a run the rule cannot price is left out."""
+    try:
+        rule = cost.CostRule.from_summary()
+    except cost.CostError:
+        return {}
+    out = {}
+    for spec in specs:
+        try:
+            seconds = cost.tap_seconds(spec, rule)
+        except (cost.CostError, KeyError, ValueError):
+            continue
+        if seconds.min() < seconds.max():  # a constant-eps run: its rate so far says as much
+            out[spec.name] = seconds
+    return out
 
 
 def _run_campaign(campaign, scale, quiet):

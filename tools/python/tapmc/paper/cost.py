@@ -254,16 +254,20 @@ def run_setting(variables):
     return setting_name(variables.get("eta", 1e-7), stop)
 
 
+def tap_seconds(spec, rule):
+    """CPU seconds of each tap of one RunSpec by the rule (N, the eps of the tap, the run's
+    setting), as an array: a ramp's strong levels cost more per tap than its weak ones."""
+    v = spec.variables
+    eps = run_eps(v, int(spec.taps))
+    setting = run_setting(v)
+    values, inverse = np.unique(eps, return_inverse=True)
+    per_eps = np.array([rule.seconds_per_tap(int(v["N"]), float(e), setting) for e in values])
+    return per_eps[inverse]
+
+
 def run_cost(spec, rule):
     """CPU hours of one RunSpec (N, its taps, the eps of each tap, its setting)."""
-    v = spec.variables
-    taps = int(spec.taps)
-    eps = run_eps(v, taps)
-    setting = run_setting(v)
-    values, counts = np.unique(eps, return_counts=True)
-    seconds = sum(n * rule.seconds_per_tap(int(v["N"]), float(e), setting)
-                  for e, n in zip(values, counts))
-    return seconds / 3600.0
+    return float(tap_seconds(spec, rule).sum()) / 3600.0
 
 
 def _thermo_sweeps(run_dir):
