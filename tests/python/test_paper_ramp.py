@@ -336,6 +336,13 @@ def test_the_command_decides_with_the_errors_of_the_report_in_out(tmp_path):
     assert factor > 1 and f"errors: the levels' batch-means errors x {factor:.1f}," in done.stdout
     assert "holds no report" not in done.stdout
     assert validation.report_errors(tmp_path / "bare", paper_ramp) is None
+    # a damaged report in --out: named, exit 2, nothing written
+    (page / "validation" / "report.json").write_text("{broken")
+    (page / "validation" / "questions" / paper_ramp.CSV_NAME).unlink()
+    damaged = _paper_ramp_cli("--campaign", tmp_path / "c", "--out", page)
+    assert damaged.returncode == 2 and "Traceback" not in damaged.stderr
+    assert "holds a damaged report" in damaged.stderr and "report.json:1:" in damaged.stderr
+    assert not (page / "validation" / "questions" / paper_ramp.CSV_NAME).exists()
 
 
 def test_the_headline_gives_one_answer_then_a_bullet_per_eta(tmp_path):

@@ -242,8 +242,10 @@ def _add_paper_ramp_and_question_parsers(sub):
 
 def _read_campaign(args, name, module, unit):
     """A campaign reader's command (``paper-ramp``, ``sigma-eta``): ``module.analyse`` on the
-    campaign's runs, its CSV written to the report's questions folder, its finding printed;
-    exit 2 naming the folder when the campaign has no runs/ or nothing to read."""
+    campaign's runs, its CSV written to the report's questions folder, its finding printed
+    with the errors of the report in --out; exit 2 naming the folder when the campaign has no
+    runs/ or nothing to read, or naming the file when --out holds a damaged report (nothing
+    written)."""
     if not (args.campaign / "runs").is_dir():
         print(f"tapmc-paper {name}: --campaign {args.campaign} has no runs/ folder",
               file=sys.stderr)
@@ -253,8 +255,13 @@ def _read_campaign(args, name, module, unit):
         print(f"tapmc-paper {name}: --campaign {args.campaign} has no run to read "
               f"({module.RUNS_READ})", file=sys.stderr)
         return 2
+    try:
+        errors = _report_errors(args.out, module)  # the errors of the page in --out
+    except TapmcFormatError as err:
+        print(f"tapmc-paper {name}: --out {args.out} holds a damaged report, whose errors "
+              f"the finding would take: {err}", file=sys.stderr)
+        return 2
     path = module.write_csv(rows, args.out / _runs.FIG_DIR / "questions" / module.CSV_NAME)
-    errors = _report_errors(args.out, module)  # the errors of the page in --out
     print(module.finding_text(rows, FULL.eta) if errors is None
           else module.finding_text(rows, FULL.eta, errors))
     if errors is None:
