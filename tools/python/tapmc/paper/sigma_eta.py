@@ -316,7 +316,7 @@ def read_csv(path):
         return [EtaPoint(**{k: convert[kinds[k]](v) for k, v in row.items()}) for row in reader]
 
 
-#: The one-run errors whose realizations' factors a point of one seed takes (ReportData's
+#: The one-run errors whose realizations' factors scale a point's error floor (ReportData's
 #: run_error quantities): sigma_<Z> and the window mean of <Phi^c>.
 ERROR_QUANTITIES = {"sigma": "Z:sigma", "phi_c": "phi_c"}
 
