@@ -278,6 +278,15 @@ def test_the_figure_draws_every_whole_level_one_panel_per_eta(tmp_path):
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert "4000 taps per level" in paper_ramp.settings_line(rows)
     assert paper_ramp.settings_line(rows).endswith("seeds 1, 2, 3")
+    assert "error bars their batch-means errors;" in paper_ramp.settings_line(rows)
+    assert "error bars their batch-means errors x 2.1 (the realizations' spread);" in \
+        paper_ramp.settings_line(rows, 2.1)
+    wide = paper_ramp.plot(paper_ramp.calibrated(rows, 3.0), 1e-7)
+    seg = lambda c: np.ptp(c.lines[2][0].get_segments()[0][:, 1])   # noqa: E731
+    first = lambda axs: next(c for c in axs[0].containers if c.has_yerr)   # noqa: E731
+    assert seg(first(wide)) == pytest.approx(3 * seg(first(axes)))
+    png = paper_ramp.write_figure(rows, 1e-7, tmp_path / "out" / "b.png", 2.1)
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
 def test_verdicts_take_the_realizations_error_when_given_its_factor(tmp_path):

@@ -221,7 +221,23 @@ def test_the_figure_draws_sigma_and_the_bell_per_eta_with_their_lines(tmp_path):
     png = sigma_eta.write_figure(points, DEFAULT_ETA, tmp_path / sigma_eta.PNG_NAME)
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert "4000 taps at constant eps" in sigma_eta.settings_line(points)
-    assert "mean +- sem over 1 to 2 seeds per point" in sigma_eta.settings_line(points)
+    assert "mean +- sem over 1 to 2 seeds per point (one seed: its batch means)" in \
+        sigma_eta.settings_line(points)
+    # with the realizations' factors the bars are the finding's errors, and say so
+    scaled, used = sigma_eta.calibrated(points, lambda q, eps: 3.0)
+    assert "never below the runs' batch-means errors x the realizations' spread, sigma_<Z> " \
+        "3.0, <Phi^c> 3.0" in sigma_eta.settings_line(scaled, used)
+    wide = sigma_eta.plot(scaled, DEFAULT_ETA)
+    bars = [c for c in wide[1].containers if c.has_yerr]
+    seg = lambda c: np.ptp(c.lines[2][0].get_segments()[0][:, 1])   # noqa: E731
+    first = next(p for p in scaled if p.eta == DEFAULT_ETA)   # the default's first eps
+    assert seg(bars[0]) == pytest.approx(2 * first.phi_c_sem)
+    raw_first = next(p for p in points if p.eta == DEFAULT_ETA)
+    assert first.phi_c_sem == pytest.approx(max(raw_first.phi_c_sem,
+                                                3.0 * raw_first.phi_c_inside))
+    assert first.phi_c_sem > raw_first.phi_c_sem   # the scaled floor, above two seeds' spread
+    png = sigma_eta.write_figure(points, DEFAULT_ETA, tmp_path / "b.png", lambda q, eps: 3.0)
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
 def test_one_seed_errors_take_the_realizations_factors(tmp_path):

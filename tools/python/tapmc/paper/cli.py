@@ -268,8 +268,10 @@ def _read_campaign(args, name, module, unit):
         print(f"{name}: {args.out} holds no report: the verdicts take the runs' own "
               "batch-means errors, not the realizations' (tapmc-paper report, then again)")
     print(f"{name}: {path} ({len(rows)} {unit})")
-    if hasattr(module, "write_figure"):  # paper-ramp draws its levels beside its CSV
-        print(f"{name}: {module.write_figure(rows, FULL.eta, path.parent / module.PNG_NAME)}")
+    png = path.parent / module.PNG_NAME  # its figure beside its CSV, with the same errors
+    figure = (module.write_figure(rows, FULL.eta, png) if errors is None
+              else module.write_figure(rows, FULL.eta, png, errors))
+    print(f"{name}: {figure}")
     return 0
 
 

@@ -603,17 +603,21 @@ def plot(rows, default_eta, axes=None):
     return axes
 
 
-def settings_line(rows):
-    """The settings the figure states on top (every number of it is a setting of the runs)."""
+def settings_line(rows, error_factor=1.0):
+    """The settings the figure states on top (every number of it is a setting of the runs),
+    with what its error bars are (:func:`calibrated`'s ``error_factor``)."""
     seeds = sorted({r.seed for r in rows})
+    bars = "their batch-means errors" + (
+        f" x {error_factor:.1f} (the realizations' spread)" if error_factor != 1.0 else "")
     return (f"N = {FULL.N}, box {FULL.L:g}R x {FULL.L:g}R, P.B.C.; {TAPS_PER_LEVEL} taps per "
             f"level, steps of {FULL.ramp_dsqrt:g} in sqrt(eps), means of the last {LAST_TAPS} "
-            f"taps of each level, error bars their batch-means errors; levels done whole only; "
+            f"taps of each level, error bars {bars}; levels done whole only; "
             f"seeds {', '.join(map(str, seeds))}")
 
 
-def write_figure(rows, default_eta, path):
-    """``paper_ramp.png``: :func:`plot` with its settings on top; returns the path."""
-    fig = plot(rows, default_eta)[0].figure
-    _plotting.finish_figure(fig, settings_line(rows))
+def write_figure(rows, default_eta, path, error_factor=1.0):
+    """``paper_ramp.png``: :func:`plot` of the rows with the errors the finding decides with
+    (:func:`calibrated`), its settings on top; returns the path."""
+    fig = plot(calibrated(rows, error_factor), default_eta)[0].figure
+    _plotting.finish_figure(fig, settings_line(rows, float(error_factor)))
     return _plotting.save_figure(fig, path)

@@ -453,18 +453,26 @@ def plot(all_points, default_eta, axes=None):
     return axes
 
 
-def settings_line(all_points):
-    """The settings the figure states on top (every number of it is a setting of the runs)."""
+def settings_line(all_points, used=None):
+    """The settings the figure states on top (every number of it is a setting of the runs),
+    with what its error bars are (``used``: :func:`calibrated`'s factors)."""
     seeds = [p.seeds for p in all_points]
+    names = {"sigma": "sigma_<Z>", "phi_c": "<Phi^c>"}
+    scaled = {q: hi for q, (_, hi) in (used or {}).items() if hi != 1.0}
+    floor = ("one seed: its batch means" if not scaled else
+             "never below the runs' batch-means errors x the realizations' spread, "
+             + ", ".join(f"{names[q]} {k:.1f}" for q, k in scaled.items()))
     return (f"P.B.C., N = {FULL.N}, box {FULL.L:g}R x {FULL.L:g}R, {FULL.taps} taps at constant "
             f"eps; steady state: the last quarter of each run's planned taps; mean +- sem over "
-            f"{min(seeds)} to {max(seeds)} seeds per point (one seed: its batch means); open "
+            f"{min(seeds)} to {max(seeds)} seeds per point ({floor}); open "
             "markers: runs still going; "
             "dashed: sigma_<Z> = offset + slope sqrt(eps)")
 
 
-def write_figure(all_points, default_eta, path):
-    """``sigma_eta.png``: :func:`plot` with its settings on top; returns the path."""
+def write_figure(all_points, default_eta, path, factor_of=None):
+    """``sigma_eta.png``: :func:`plot` of the points with the errors the finding decides with
+    (:func:`calibrated`), its settings on top; returns the path."""
+    all_points, used = calibrated(all_points, factor_of)
     fig = plot(all_points, default_eta)[0].figure
-    _plotting.finish_figure(fig, settings_line(all_points))
+    _plotting.finish_figure(fig, settings_line(all_points, used))
     return _plotting.save_figure(fig, path)
