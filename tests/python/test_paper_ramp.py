@@ -76,6 +76,16 @@ def test_frozen_compacting_and_running_ramps(tmp_path):
         in text
     assert paper_ramp.progress_text(1, 23737, 1) == \
         "seed 1 at tap 23737, 1 descending level of the 2 needed"
+    # past the turn (tap 20000 for 0.125) without a whole descending level: not "going up"
+    past = tmp_path / "past"
+    run = write_run(past, "paperramp0.125_pbc_s4", up + [0.601], levels=LEVELS[:6], seed=4)
+    taps = (run / "taps.dat").read_text().splitlines()
+    (run / "taps.dat").write_text("\n".join(taps[:2 + 21000]) + "\n")   # 1000 taps down
+    (turning,) = paper_ramp.analyse(past, 1e-7)
+    assert turning.verdict == "running" and paper_ramp.turned(turning)
+    assert "seed 4 at tap 21000, on its first descending level" in \
+        paper_ramp.finding_text([turning], 1e-7)
+    assert not paper_ramp.turned(rows["paperramp0.125_pbc_eta1e-06_s2"])
 
     # the first screen's sentence: one answer per eta, the decided seeds' changes, how far the
     # running ones got

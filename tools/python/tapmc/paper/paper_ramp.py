@@ -314,13 +314,22 @@ def eta_text(eta):
     return f"{eta:.0e}".replace("e-0", "e-")
 
 
-def progress_text(seed, taps_done, down_levels):
+def progress_text(seed, taps_done, down_levels, turned=False):
     """How far a ramp that has not come down two levels got: "seed 1 at tap 23737, 1
-    descending level of the 2 needed" (or "..., still going up")."""
+    descending level of the 2 needed" (or "..., on its first descending level" once it
+    ``turned``, or "..., still going up")."""
     down = int(down_levels)
     where = (f"{down} descending level{'s' if down > 1 else ''} of the {MIN_DOWN_LEVELS} "
-             "needed" if down else "still going up")
+             "needed" if down else "on its first descending level" if turned
+             else "still going up")
     return f"seed {seed} at tap {taps_done}, {where}"
+
+
+def turned(run):
+    """Whether a ramp (:class:`PaperRampRun`) is past its first increase: the paper's protocol
+    goes up from sqrt(eps) = 0.025 by 0.025 per level of 4000 taps to its turning level."""
+    levels_up = round((run.top - FULL.ramp_sqrt0) / FULL.ramp_dsqrt) + 1
+    return run.taps_done > levels_up * TAPS_PER_LEVEL
 
 
 def below_critical(rows):
@@ -341,7 +350,8 @@ def by_eta(rows, first=None):
     is running)."""
     for eta, group in _groups_by_eta(rows, first):
         decided = [r for r in group if r.verdict != "running"]
-        running = "; ".join(progress_text(r.seed, r.taps_done, r.down_levels) for r in group
+        running = "; ".join(progress_text(r.seed, r.taps_done, r.down_levels, turned(r))
+                            for r in group
                             if r.verdict == "running")
         yield eta, decided, running
 
