@@ -28,7 +28,7 @@ from ._validate import (as_1d, in_range, new_axis, positive, positive_int, requi
 from .fluctuations import SteadyState
 
 __all__ = ["Hysteresis", "LEVEL_TOLERANCE", "CRITICAL_SQRT_EPS", "Z_DECIDE", "BranchData",
-           "BranchStatistic", "branch_difference", "branch_slope", "branch_change",
+           "BranchStatistic", "common_levels", "branch_difference", "branch_slope", "branch_change",
            "RampBranches"]
 
 #: (sqrt eps)* ~ 0.15 of section III.B, between the irreversible and the reversible behaviour
@@ -184,7 +184,7 @@ class BranchStatistic:
         return abs(self.z) < Z_DECIDE
 
 
-def _common(a, b, tolerance=LEVEL_TOLERANCE):
+def common_levels(a, b, tolerance=LEVEL_TOLERANCE):
     """Index pairs (i, j) of the levels of a and b at the same sqrt(eps)."""
     pairs = []
     for i, x in enumerate(a.sqrt_eps):
@@ -198,7 +198,7 @@ def branch_difference(a, b):
     """Mean over the sqrt(eps) common to branches ``a`` and ``b`` of a - b; its standard error
     sqrt(sum(sem_a^2 + sem_b^2)) / k over the k common levels (independent levels).
     ValueError when they share no sqrt(eps)."""
-    pairs = _common(a, b)
+    pairs = common_levels(a, b)
     if not pairs:
         raise ValueError(f"the branches share no sqrt(eps) (a: {list(a.sqrt_eps)}, b: "
                          f"{list(b.sqrt_eps)})")
@@ -299,7 +299,7 @@ class RampBranches:
         varied = np.ptp(self.down.sqrt_eps) > LEVEL_TOLERANCE
         self._down_slope = branch_slope(self.down) if varied else None
         self._up2_minus_down = (branch_difference(self.up2, self.down)
-                                if self.up2 is not None and _common(self.up2, self.down)
+                                if self.up2 is not None and common_levels(self.up2, self.down)
                                 else None)
         self._down_change = branch_change(self.down, self.up1.mean[top], self.up1.sem[top])
         return self

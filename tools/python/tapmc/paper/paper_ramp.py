@@ -32,7 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from ..hysteresis import (CRITICAL_SQRT_EPS, LEVEL_TOLERANCE, BranchData, BranchStatistic,
-                          Hysteresis, RampBranches, branch_difference)
+                          Hysteresis, RampBranches, branch_difference, common_levels)
 from . import _plotting, _runs
 from .scales import FULL
 
@@ -103,15 +103,17 @@ class PaperRampRun:
         """The :class:`Retrace` of the second increase against the descent at the sqrt(eps)
         both have whole levels at, or None before the second increase reaches one of them."""
         down, up2 = self.branch("down"), self.branch("up2")
-        pairs = [(i, int(np.argmax(np.abs(down[0] - x) <= LEVEL_TOLERANCE)))
-                 for i, x in enumerate(up2[0]) if np.any(np.abs(down[0] - x) <= LEVEL_TOLERANCE)]
+        if not (len(down[0]) and len(up2[0])):
+            return None
+        down, up2 = BranchData(*down), BranchData(*up2)
+        pairs = common_levels(up2, down)
         if not pairs:
             return None
         i, j = map(list, zip(*pairs))
-        return Retrace(tuple(float(x) for x in up2[0][i]),
-                       tuple(float(d) for d in up2[1][i] - down[1][j]),
-                       tuple(float(s) for s in np.hypot(up2[2][i], down[2][j])),
-                       branch_difference(BranchData(*up2), BranchData(*down)))
+        return Retrace(tuple(float(x) for x in up2.sqrt_eps[i]),
+                       tuple(float(d) for d in up2.mean[i] - down.mean[j]),
+                       tuple(float(s) for s in np.hypot(up2.sem[i], down.sem[j])),
+                       branch_difference(up2, down))
 
 
 def _level_difference(a, b):
