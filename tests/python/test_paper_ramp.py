@@ -323,6 +323,7 @@ def test_verdicts_take_the_realizations_error_when_given_its_factor(tmp_path):
     marginal = replace(raw, down_change=3 * raw.down_change_sem)
     assert paper_ramp.calibrated([marginal], 2.0)[0].verdict == "frozen"
     assert paper_ramp.calibrated([marginal], 1.0)[0] == marginal
+    assert paper_ramp.calibrated([marginal], None) == [marginal]   # no report: as measured
     text = paper_ramp.finding_text([shifted], 1e-7, error_factor=2.0)
     assert "errors: the levels' batch-means errors x 2.0, the spread of the campaign's " \
         "realizations" in text and "it comes across the same values: reversible" in text

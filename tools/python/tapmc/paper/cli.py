@@ -262,16 +262,13 @@ def _read_campaign(args, name, module, unit):
               f"the finding would take: {err}", file=sys.stderr)
         return 2
     path = module.write_csv(rows, args.out / _runs.FIG_DIR / "questions" / module.CSV_NAME)
-    print(module.finding_text(rows, FULL.eta) if errors is None
-          else module.finding_text(rows, FULL.eta, errors))
+    print(module.finding_text(rows, FULL.eta, errors))
     if errors is None:
         print(f"{name}: {args.out} holds no report: the verdicts take the runs' own "
               "batch-means errors, not the realizations' (tapmc-paper report, then again)")
     print(f"{name}: {path} ({len(rows)} {unit})")
     png = path.parent / module.PNG_NAME  # its figure beside its CSV, with the same errors
-    figure = (module.write_figure(rows, FULL.eta, png) if errors is None
-              else module.write_figure(rows, FULL.eta, png, errors))
-    print(f"{name}: {figure}")
+    print(f"{name}: {module.write_figure(rows, FULL.eta, png, errors)}")
     return 0
 
 

@@ -239,7 +239,10 @@ def calibrated(rows, factor):
     campaign's groups of runs that differ only in their seed show that another realization
     lands about ``factor`` of them away (``ReportData.run_error('phi_c:halves')`` of
     :mod:`tapmc.paper.claims`: the factor of a difference of two parts of one run), and a
-    verdict about the model needs that error. ``factor`` 1 leaves the rows as they are."""
+    verdict about the model needs that error. ``factor`` None (no report to take it from)
+    leaves the rows as they are."""
+    if factor is None:
+        return list(rows)
     factor = float(factor)
     if not factor >= 1.0:
         raise ValueError(f"error factor: {factor!r}, must be >= 1 (the realizations' spread "
@@ -270,7 +273,7 @@ def errors_from_report(data):
 
 def errors_text(factor):
     """How the finding's errors were made (:func:`calibrated`)."""
-    if factor == 1.0:
+    if factor is None or factor == 1.0:
         return "errors: the levels' batch-means errors"
     return (f"errors: the levels' batch-means errors x {factor:.1f}, the spread of the "
             "campaign's realizations for a difference of two parts of one run")
@@ -382,7 +385,7 @@ def _eta_answer(decided):
             else NO_BRANCH)
 
 
-def headline_text(rows, default_eta, error_factor=1.0):
+def headline_text(rows, default_eta, error_factor=None):
     """The answer for the report's first screen and README.md: a sentence that gives the
     answer when every eta gives the same one, then a bullet per eta ("- ..." lines, rst and
     Markdown alike, after a blank line): the answer (no irreversible branch, a frozen branch,
@@ -418,7 +421,7 @@ def headline_text(rows, default_eta, error_factor=1.0):
             f"N = 4096, P.B.C.): {overall}.\n\n" + "\n".join(bullets))
 
 
-def finding_text(rows, default_eta, error_factor=1.0):
+def finding_text(rows, default_eta, error_factor=None):
     """The finding of the report's first screen: per eta, whether the model has an irreversible
     branch below (sqrt eps)* at the paper's ramp protocol, with each seed's numbers; the runs
     still running are named with how far they got. Ramps that turn beyond (sqrt eps)* are
@@ -457,7 +460,7 @@ def finding_text(rows, default_eta, error_factor=1.0):
     return ("Section III.B's question at the paper's own ramp protocol (N = 4096, L = 32R, "
             f"P.B.C., {TAPS_PER_LEVEL} taps per level, steps of 0.025 in sqrt(eps), turning "
             "below (sqrt eps)* ~ 0.15; means of the last "
-            f"{LAST_TAPS} taps of each level; {errors_text(float(error_factor))}): " + " ".join(
+            f"{LAST_TAPS} taps of each level; {errors_text(error_factor)}): " + " ".join(
                 p[0].upper() + p[1:] + ("" if p.endswith(".") else ".") for p in parts) + beyond)
 
 
@@ -615,21 +618,22 @@ def plot(rows, default_eta, axes=None):
     return axes
 
 
-def settings_line(rows, error_factor=1.0):
+def settings_line(rows, error_factor=None):
     """The settings the figure states on top (every number of it is a setting of the runs),
     with what its error bars are (:func:`calibrated`'s ``error_factor``)."""
     seeds = sorted({r.seed for r in rows})
     bars = "their batch-means errors" + (
-        f" x {error_factor:.1f} (the realizations' spread)" if error_factor != 1.0 else "")
+        f" x {error_factor:.1f} (the realizations' spread)"
+        if error_factor not in (None, 1.0) else "")
     return (f"N = {FULL.N}, box {FULL.L:g}R x {FULL.L:g}R, P.B.C.; {TAPS_PER_LEVEL} taps per "
             f"level, steps of {FULL.ramp_dsqrt:g} in sqrt(eps), means of the last {LAST_TAPS} "
             f"taps of each level, error bars {bars}; levels done whole only; "
             f"seeds {', '.join(map(str, seeds))}")
 
 
-def write_figure(rows, default_eta, path, error_factor=1.0):
+def write_figure(rows, default_eta, path, error_factor=None):
     """``paper_ramp.png``: :func:`plot` of the rows with the errors the finding decides with
     (:func:`calibrated`), its settings on top; returns the path."""
     fig = plot(calibrated(rows, error_factor), default_eta)[0].figure
-    _plotting.finish_figure(fig, settings_line(rows, float(error_factor)))
+    _plotting.finish_figure(fig, settings_line(rows, error_factor))
     return _plotting.save_figure(fig, path)

@@ -319,6 +319,8 @@ def read_csv(path):
 #: The one-run errors whose realizations' factors scale a point's error floor (ReportData's
 #: run_error quantities): sigma_<Z> and the window mean of <Phi^c>.
 ERROR_QUANTITIES = {"sigma": "Z:sigma", "phi_c": "phi_c"}
+#: How the text and the figure name those quantities.
+ERROR_NAMES = {"sigma": "sigma_<Z>", "phi_c": "<Phi^c>"}
 
 
 def errors_from_report(data):
@@ -360,8 +362,7 @@ def _errors_text(used):
     """How the finding's errors were made (:func:`calibrated`'s factors)."""
     if all(hi == 1.0 for _, hi in used.values()):  # none, or seeds that reject no error
         return "mean +- sem over seeds; one seed: its batch means"
-    names = {"sigma": "sigma_<Z>", "phi_c": "<Phi^c>"}
-    factors = ", ".join(f"{names[q]} x {lo:.1f}" + (f"-{hi:.1f}" if hi - lo >= 0.05 else "")
+    factors = ", ".join(f"{ERROR_NAMES[q]} x {lo:.1f}" + (f"-{hi:.1f}" if hi - lo >= 0.05 else "")
                         for q, (lo, hi) in used.items())
     return ("mean +- sem over seeds, never below the runs' batch-means errors times the "
             f"spread of the campaign's realizations ({factors}); one seed: that error")
@@ -457,11 +458,10 @@ def settings_line(all_points, used=None):
     """The settings the figure states on top (every number of it is a setting of the runs),
     with what its error bars are (``used``: :func:`calibrated`'s factors)."""
     seeds = [p.seeds for p in all_points]
-    names = {"sigma": "sigma_<Z>", "phi_c": "<Phi^c>"}
     scaled = {q: hi for q, (_, hi) in (used or {}).items() if hi != 1.0}
     floor = ("one seed: its batch means" if not scaled else
              "never below the runs' batch-means errors x the realizations' spread, "
-             + ", ".join(f"{names[q]} {k:.1f}" for q, k in scaled.items()))
+             + ", ".join(f"{ERROR_NAMES[q]} {k:.1f}" for q, k in scaled.items()))
     return (f"P.B.C., N = {FULL.N}, box {FULL.L:g}R x {FULL.L:g}R, {FULL.taps} taps at constant "
             f"eps; steady state: the last quarter of each run's planned taps; mean +- sem over "
             f"{min(seeds)} to {max(seeds)} seeds per point ({floor}); open "
