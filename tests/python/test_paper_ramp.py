@@ -66,8 +66,12 @@ def test_frozen_compacting_and_running_ramps(tmp_path):
     back = paper_ramp.read_csv(paper_ramp.write_csv(list(rows.values()), tmp_path / "p.csv"))
     assert [r.run for r in back] == list(rows)
     assert back[0] == list(rows.values())[0]
-    text = paper_ramp.finding_text(back, 1e-7)
+    text = paper_ramp.finding_text(back, 1e-7, source=" Per run: here.")
     assert "At eta = 1e-7 (the default), the model has an irreversible (frozen) branch" in text
+    # a sentence closed by where the numbers are, then one nested list item per eta
+    intro, blank, *items = text.split("\n")
+    assert intro.endswith("answered per redeposition threshold eta. Per run: here.")
+    assert blank == "" and [i[:12] for i in items] == ["  - At eta ="] * 3
     # a seed still on its way is named beside the decided one, not counted
     assert "; not counted yet: seed 2 at tap 161, still going up." in text
     assert "At eta = 1e-5, the model has no irreversible branch: the descending branch compacts" in text
@@ -125,6 +129,8 @@ def test_a_ramp_beyond_the_critical_level_is_told_apart(tmp_path):
     assert "Beyond (sqrt eps)* (the reversible branch of the paper), the descending branch " \
         "from the turning level: at eta = 1e-7 (the default), seed 2, turning at 0.2: +0.0" \
         in finding and finding.endswith("(compacts).")
+    assert finding.split("\n")[-1].startswith("  - Beyond (sqrt eps)*")
+    assert "then beyond (sqrt eps)*." in finding.split("\n")[0]
     alone = paper_ramp.finding_text([beyond], 1e-7)
     assert alone.startswith("Beyond (sqrt eps)*") and "Section III.B" not in alone
     assert "second increase" not in alone   # not going up again yet

@@ -421,12 +421,14 @@ def headline_text(rows, default_eta, error_factor=None):
             f"N = 4096, P.B.C.): {overall}.\n\n" + "\n".join(bullets))
 
 
-def finding_text(rows, default_eta, error_factor=None):
-    """The finding of the report's first screen: per eta, whether the model has an irreversible
-    branch below (sqrt eps)* at the paper's ramp protocol, with each seed's numbers; the runs
-    still running are named with how far they got. Ramps that turn beyond (sqrt eps)* are
-    told apart, after it (:func:`_beyond_text`). ``error_factor``: as for
-    :func:`headline_text`, and said in the text."""
+def finding_text(rows, default_eta, error_factor=None, source=""):
+    """The finding of the report's first screen: a sentence with the protocol and how the
+    errors were made (``error_factor``: as for :func:`headline_text`), closed by ``source``
+    (where the numbers are, e.g. " Per run: ..."), then a list item ("  - ", an rst list nested
+    in the page's item) per eta: whether the model has an irreversible branch below
+    (sqrt eps)* at the paper's ramp protocol, with each seed's numbers, the runs still running
+    named with how far they got; ramps that turn beyond (sqrt eps)* in an item of their own,
+    after them (:func:`_beyond_text`)."""
     rows = calibrated(rows, error_factor)
     below = below_critical(rows)
     if not rows:
@@ -456,12 +458,14 @@ def finding_text(rows, default_eta, error_factor=None):
                      + _retrace_finding(decided) + _return_finding(decided))
     beyond = _beyond_text(beyond_critical(rows), default_eta)
     if not parts:
-        return beyond.strip()
+        return beyond + source
+    items = [p[0].upper() + p[1:] + ("" if p.endswith(".") else ".") for p in parts]
     return ("Section III.B's question at the paper's own ramp protocol (N = 4096, L = 32R, "
             f"P.B.C., {TAPS_PER_LEVEL} taps per level, steps of 0.025 in sqrt(eps), turning "
-            "below (sqrt eps)* ~ 0.15; means of the last "
-            f"{LAST_TAPS} taps of each level; {errors_text(error_factor)}): " + " ".join(
-                p[0].upper() + p[1:] + ("" if p.endswith(".") else ".") for p in parts) + beyond)
+            f"below (sqrt eps)* ~ 0.15; means of the last {LAST_TAPS} taps of each level; "
+            f"{errors_text(error_factor)}), answered per redeposition threshold eta"
+            + (", then beyond (sqrt eps)*" if beyond else "") + f".{source}\n\n"
+            + "\n".join(f"  - {item}" for item in items + ([beyond] if beyond else [])))
 
 
 def _returns(decided):
@@ -568,7 +572,7 @@ def _beyond_text(rows, default_eta):
                           for r in decided)
         parts.append(f"at {eta_label(eta, default_eta)}, "
                      + "; ".join(p for p in (seeds, running and f"running: {running}") if p))
-    return (" Beyond (sqrt eps)* (the reversible branch of the paper), the descending branch "
+    return ("Beyond (sqrt eps)* (the reversible branch of the paper), the descending branch "
             "from the turning level: " + ". ".join(parts) + ".") if parts else ""
 
 

@@ -387,8 +387,9 @@ def _paper_ramp_finding(files, summary, error_factor):
               if (path.parent / paper_ramp.PNG_NAME).is_file() else None)
     return (paper_ramp.headline_text(rows, default_eta, error_factor)
             + "\n\nThe numbers with their errors: the first open question below.",
-            paper_ramp.finding_text(rows, default_eta, error_factor)
-            + _finding_source("run", paper_ramp.CSV_NAME, "paper-ramp"), figure)
+            paper_ramp.finding_text(rows, default_eta, error_factor,
+                                    _finding_source("run", paper_ramp.CSV_NAME, "paper-ramp")),
+            figure)
 
 
 def _sigma_eta_finding(files, default_eta, factor_of=None):
