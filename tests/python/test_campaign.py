@@ -23,7 +23,7 @@ LMP = Path(os.environ.get("TAPMC_LMP", BUILD / "lmp_tapmc"))
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
 
 from tapmc.campaign import (Campaign, CampaignDirectoryError, CampaignError,  # noqa: E402
-                            MANIFEST_FORMAT, RunSpec, Words, launch, provenance)
+                            MANIFEST_FORMAT, STOPPED_STATUS, RunSpec, Words, launch, provenance)
 
 CONSTANT_EPS = SOURCE / "examples" / "paper" / "in.constant_eps"
 TINY = dict(N=64, L=8, eta=1e-5, rsteps=5, thermo_every=5)
@@ -168,6 +168,70 @@ def test_resume_after_kill(tmp_path, monkeypatch):
     assert (run_dir / "taps.dat").read_text() == (ref / "taps.dat").read_text()
     assert (run_dir / "profile_z.dat").read_text() == (ref / "profile_z.dat").read_text()
     assert not list(run_dir.glob("*.from*"))
+
+
+STOPPABLE = """
+import sys
+sys.path.insert(0, {python!r})
+from tapmc.campaign import STOPPED_STATUS, Campaign, CampaignStopped, RunSpec
+runs = [RunSpec(name, {inp!r}, {long!r}, seed=seed) for name, seed in (("long", 2), ("next", 3))]
+try:
+    Campaign({folder!r}, runs, lmp={lmp!r}, jobs=1, progress_interval=0.5).run()
+except CampaignStopped as err:
+    print("STOPPED", err.signal, err, flush=True)
+    sys.exit(STOPPED_STATUS)
+"""
+
+
+def test_a_stopped_campaign_records_its_attempts_and_starts_nothing(tmp_path):
+    """SIGTERM (a batch system's, or kill's) stops the running LAMMPS child and records its
+    attempt whole (wall and CPU time, the last tap), starts no other run and exits with
+    STOPPED_STATUS; the next session resumes it, and its kept log joins that attempt instead
+    of making a second one, so DONE.json's cost is complete."""
+    long = dict(TINY, N=128, taps=200, eta=1e-6, rsteps=20, pevery=50)
+    folder = tmp_path / "c"
+    script = STOPPABLE.format(python=str(SOURCE / "tools" / "python"), inp=str(CONSTANT_EPS),
+                              long=long, folder=str(folder), lmp=str(LMP))
+    runner = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE,
+                              stderr=subprocess.STDOUT, text=True)
+    long_taps = folder / "runs" / "long" / "taps.dat"
+    deadline = time.time() + 40
+    while time.time() < deadline:  # stop once the run is past a restart file
+        if (folder / "runs" / "long" / "restart.40").exists() and long_taps.exists() \
+                and steps(long_taps)[-1] >= 45:
+            break
+        time.sleep(0.05)
+    runner.send_signal(signal.SIGTERM)
+    out, _ = runner.communicate(timeout=60)
+    assert runner.returncode == STOPPED_STATUS, out
+    assert "[campaign] SIGTERM: stopping the running runs" in out
+    stopped_at = steps(long_taps)[-1]
+    assert 45 <= stopped_at < 200, "the run finished before the stop: make it longer"
+    assert f"STOPPED SIGTERM stopped by SIGTERM: 1 running run stopped and recorded ('long' " \
+        f"at tap {stopped_at}), 1 not started" in out
+    assert not (folder / "runs" / "next").exists()    # queued, never started
+    manifest = json.loads((folder / "manifest.json").read_text())
+    long_rec, next_rec = manifest["runs"]
+    assert long_rec["status"] == "stopped" and "running_attempt" not in long_rec
+    assert next_rec["status"] == "pending" and next_rec["attempts"] == []
+    (attempt,) = long_rec["attempts"]
+    assert attempt["returncode"] == -signal.SIGTERM and attempt["end_step"] == stopped_at
+    assert attempt["wall_s"] > 0 and attempt["cpu_s"] > 0
+    assert "stopped by signal SIGTERM" in attempt["error"]
+
+    # the next session: the kept log joins the recorded attempt; the cost covers every attempt
+    campaign = Campaign(folder, [RunSpec(n, CONSTANT_EPS, long, seed=s)
+                                 for n, s in (("long", 2), ("next", 3))], lmp=LMP, jobs=1)
+    campaign.run(progress=False)
+    record = json.loads((folder / "manifest.json").read_text())["runs"][0]
+    first, second = record["attempts"]
+    assert first["log"] == "log.attempt1.lammps" and second["resumed_from_step"] >= 40
+    done = provenance.read_done(campaign.result("long") / "DONE.json")
+    assert done["attempts"] == 2
+    assert done["wall_s"] == pytest.approx(first["wall_s"] + second["wall_s"], abs=0.01)
+    assert done["cpu_s"] == pytest.approx(first["cpu_s"] + second["cpu_s"], abs=0.01)
+    assert "attempts_without_cpu_time" not in done and "attempts_without_wall_time" not in done
+    assert steps(campaign.result("long") / "taps.dat") == list(range(201))
 
 
 @pytest.mark.skipif(shutil.which("mpirun") is None, reason="no mpirun")
@@ -674,7 +738,9 @@ def test_a_run_resumed_after_attempts_without_versions(tmp_path, monkeypatch):
             "campaign's last session ran (its attempts did not record their version) TAPMC "
             "old-build") in stream.getvalue()
     done = provenance.read_done(folder / "runs" / "old" / "DONE.json")
-    assert done["tapmc_versions"] == ["next-build"] and done["attempts_without_version"] == 2
+    # the failed attempt (its kept log joined to it, not counted twice) and the finishing one
+    assert done["attempts"] == 2
+    assert done["tapmc_versions"] == ["next-build"] and done["attempts_without_version"] == 1
 
 
 def test_a_run_resumed_by_another_build_of_the_executable(tmp_path, monkeypatch):
@@ -696,7 +762,9 @@ def test_a_run_resumed_by_another_build_of_the_executable(tmp_path, monkeypatch)
             and "; its executable is built from b2, its last attempt's from b1 (" in
             stream.getvalue() and "ran TAPMC" not in stream.getvalue())
     record = json.loads((folder / "manifest.json").read_text())["runs"][0]
-    assert [a.get("lmp_build") for a in record["attempts"]] == ["b1", "b1", "b2"]
+    # one entry per attempt: the failed one (with its kept log) and the finishing one
+    assert [a.get("lmp_build") for a in record["attempts"]] == ["b1", "b2"]
+    assert record["attempts"][0]["log"] == "log.attempt1.lammps"
 
 
 def test_a_ramps_eta_weighs_its_taps_by_their_cost(tmp_path):

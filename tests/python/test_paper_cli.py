@@ -346,6 +346,47 @@ def test_bad_path_process(tmp_path):
     assert line == f"tapmc-paper: campaign directory {afile}: exists and is not a directory"
 
 
+SLEEPING_LMP = """#!/bin/sh
+case " $* " in *" -in "*) ;; *) echo "TAPMC build: fake"; exit 0 ;; esac
+touch started.$$
+exec sleep 60
+"""
+
+
+def test_a_campaign_stopped_by_sigterm(tmp_path):
+    """kill (or a batch system's SIGTERM) on a running campaign: its LAMMPS children stop
+    (not left running for the minute they had), the command says where and how to go on in
+    one line, and exits with STOPPED_STATUS, neither success nor a failed run."""
+    import signal
+    import time
+    from tapmc.campaign import STOPPED_STATUS
+
+    fake = tmp_path / "lmp_sleeps"
+    fake.write_text(SLEEPING_LMP)
+    fake.chmod(0o755)
+    camp = tmp_path / "c"
+    env = dict(os.environ, PYTHONPATH=str(PYTHON_DIR))
+    proc = subprocess.Popen([sys.executable, "-m", "tapmc.paper", "fig2", "--quick", "--jobs",
+                             "2", "--campaign", str(camp), "--lmp", str(fake), "--quiet"],
+                            env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.time() + 60
+    while time.time() < deadline and len(list(camp.glob("runs/*/started.*"))) < 2:
+        time.sleep(0.05)
+    started = list(camp.glob("runs/*/started.*"))
+    assert len(started) == 2, "the two runs did not start"
+    t0 = time.time()
+    proc.send_signal(signal.SIGTERM)
+    out, err = proc.communicate(timeout=30)
+    assert time.time() - t0 < 10, "the command waited for its children instead of stopping them"
+    assert proc.returncode == STOPPED_STATUS, (out, err)
+    lines = err.splitlines()
+    assert len(lines) == 1 and lines[0].startswith(
+        "tapmc-paper: stopped by SIGTERM: 2 running runs stopped and recorded ("), err
+    assert "running the campaign again resumes each from its latest restart file" in lines[0]
+    for marker in started:   # no child left behind
+        assert not Path("/proc", marker.name.split(".")[1]).exists()
+
+
 @pytest.mark.skipif(not shutil.which("setpriv") and os.geteuid() == 0,
                     reason="root reads any folder; setpriv is needed to run as another user")
 def test_unreadable_campaign_and_manifest(tmp_path):

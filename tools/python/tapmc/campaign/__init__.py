@@ -29,13 +29,13 @@ Modules, one job each: :mod:`.spec` (RunSpec), :mod:`.launch` (processes, the lo
 :mod:`.provenance` (manifest, DONE.json, checksums), :mod:`.runner` (Campaign).
 """
 
-from .errors import CampaignDirectoryError, CampaignError
+from .errors import STOPPED_STATUS, CampaignDirectoryError, CampaignError, CampaignStopped
 from .launch import available_cores, find_lmp
 from .provenance import MANIFEST_FORMAT, verify_finished_run
 from .run_folder import merge_ave_time_parts
 from .runner import PROGRESS_INTERVAL, Campaign
 from .spec import RunSpec, Words
 
-__all__ = ["RunSpec", "Words", "Campaign", "CampaignError", "CampaignDirectoryError", "find_lmp",
-           "merge_ave_time_parts", "MANIFEST_FORMAT", "PROGRESS_INTERVAL", "available_cores",
-           "verify_finished_run"]
+__all__ = ["RunSpec", "Words", "Campaign", "CampaignError", "CampaignDirectoryError",
+           "CampaignStopped", "STOPPED_STATUS", "find_lmp", "merge_ave_time_parts",
+           "MANIFEST_FORMAT", "PROGRESS_INTERVAL", "available_cores", "verify_finished_run"]

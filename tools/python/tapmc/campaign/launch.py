@@ -108,20 +108,23 @@ def private_mpi_session():
         shutil.rmtree(private, ignore_errors=True)
 
 
-def run_child(cmd, cwd, screen):
+def run_child(cmd, cwd, screen, started=None):
     """Run ``cmd`` in ``cwd`` with its output in the file ``screen``, as a child that dies with
     this process and has MPI session directories of its own; returns its exit status."""
-    return run_child_timed(cmd, cwd, screen)[0]
+    return run_child_timed(cmd, cwd, screen, started)[0]
 
 
-def run_child_timed(cmd, cwd, screen):
+def run_child_timed(cmd, cwd, screen, started=None):
     """:func:`run_child`, returning (exit status, CPU seconds of the child: user + system).
     The CPU time is the child's own (wait4), whatever else runs at the same time: what a run
-    costs on one core (tapmc.paper.front prices its settings by it)."""
+    costs on one core (tapmc.paper.front prices its settings by it). ``started``: called with
+    the child's Popen once it runs (a campaign that is stopped signals its children)."""
     with open(screen, "w") as out, private_mpi_session() as env:
         proc = subprocess.Popen(cmd, cwd=cwd, stdin=subprocess.DEVNULL, stdout=out, env=env,
                                 stderr=subprocess.STDOUT, preexec_fn=_die_with_parent)
         try:
+            if started is not None:
+                started(proc)
             _, status, usage = os.wait4(proc.pid, 0)
         except BaseException:
             proc.kill()

@@ -17,13 +17,17 @@ from pathlib import Path
 
 from . import launch, provenance, run_folder
 from ..readers import TapmcFormatError
-from .errors import CampaignDirectoryError, CampaignError
+from .errors import CampaignDirectoryError, CampaignError, CampaignStopped
 from .spec import RunSpec
 
 __all__ = ["Campaign", "PROGRESS_INTERVAL"]
 
 #: seconds between two progress reports
 PROGRESS_INTERVAL = 10.0
+
+#: The signals that stop a running campaign cleanly (:class:`CampaignStopped`): a batch system's
+#: or ``kill``'s SIGTERM, and Ctrl-C.
+STOP_SIGNALS = (signal.SIGTERM, signal.SIGINT)
 
 
 def _fmt_seconds(s):
@@ -140,6 +144,21 @@ def _versions_done(rec):
             **({"attempts_without_version": unrecorded} if unrecorded else {})}
 
 
+def _cost_done(rec):
+    """DONE.json's record of what a run cost: ``wall_s`` and ``cpu_s``, the sums over its
+    attempts, and, when some attempts have no such time (killed with their campaign by SIGKILL,
+    or before attempts recorded it), ``attempts_without_wall_time`` /
+    ``attempts_without_cpu_time``: the sums are then lower bounds."""
+    attempts = rec["attempts"]
+    out = {"wall_s": round(sum(a.get("wall_s") or 0.0 for a in attempts), 3),
+           "cpu_s": round(sum(a.get("cpu_s") or 0.0 for a in attempts), 3)}
+    for key, name in (("wall_s", "wall"), ("cpu_s", "cpu")):
+        untimed = sum(1 for a in attempts if a.get(key) is None)
+        if untimed:
+            out[f"attempts_without_{name}_time"] = untimed
+    return out
+
+
 class Campaign:
     """An ensemble of runs in one folder, resumable; see :mod:`tapmc.campaign`.
 
@@ -210,6 +229,9 @@ class Campaign:
         self._started = {}
         self._redo = {}  # name -> damaged files the running re-run must write again
         self._previous_version = None
+        self._children = {}  # name (or batch) -> Popen of its running LAMMPS process
+        self._stop_signal = None  # the name of the signal that stopped the campaign
+        self._stopped = {}  # name -> the last tap of a run stopped with the campaign
 
     # -- folders -------------------------------------------------------------------------
     def check_directory(self):
@@ -332,7 +354,10 @@ class Campaign:
         with self._lock:
             # the start of an attempt killed with its campaign (no entry of its own)
             running = rec.pop("running_attempt", None)
-            if kept:
+            last = rec["attempts"][-1] if rec["attempts"] else {}
+            if kept and running is None and "finished" in last and "log" not in last:
+                last["log"] = kept  # the attempt its campaign saw end (stopped or failed)
+            elif kept:
                 entry = dict(running) if running else self._versions_of_last_attempt(rec)
                 if running:  # its wall time: from its start to the last write of its log
                     entry["wall_s"] = provenance.seconds_between(
@@ -428,6 +453,11 @@ class Campaign:
         with self._lock:
             rec.pop("running_attempt", None)
             rec["attempts"].append(attempt)
+        if error and self._stop_signal is not None:  # stopped with its campaign: no failure
+            with self._lock:
+                rec["status"] = "stopped"
+                self._stopped[spec.name] = attempt["end_step"]
+            return ""
         if not error:
             try:  # a malformed output names itself; the run then fails instead of the pool
                 run_folder.merge_ave_time_parts(run_dir)
@@ -446,8 +476,9 @@ class Campaign:
         self._redo.pop(spec.name, None)
         with self._lock:
             rec["status"] = "done"
-            rec["wall_s"] = round(sum(a.get("wall_s", 0) for a in rec["attempts"]), 3)
-        done = {"run": spec.describe(), "finished": provenance.now(), "wall_s": rec["wall_s"],
+            cost = _cost_done(rec)
+            rec["wall_s"] = cost["wall_s"]
+        done = {"run": spec.describe(), "finished": provenance.now(), **cost,
                 "attempts": len(rec["attempts"]),
                 **_versions_done(rec),
                 "outputs": provenance.output_digests(run_dir, run_folder.output_files(run_dir))}
@@ -455,6 +486,8 @@ class Campaign:
         return ""
 
     def _pool_one(self, spec):
+        if self._stop_signal is not None:  # stopped before this run's turn: leave it alone
+            return ""
         run_dir = self.run_dir(spec.name)
         resume, step = self._prepare(spec)
         cmd = launch.lammps_command(self.lmp, spec, self._input_copy(spec), resume)
@@ -462,7 +495,10 @@ class Campaign:
             self._started_run(spec, cmd, step)
         self._write_manifest()
         t0 = time.time()
-        returncode, cpu = launch.run_child_timed(cmd, run_dir, run_dir / "screen.txt")
+        returncode, cpu = launch.run_child_timed(cmd, run_dir, run_dir / "screen.txt",
+                                                 lambda proc: self._child_started(spec.name,
+                                                                                  proc))
+        self._children.pop(spec.name, None)
         error = self._finish(spec, returncode, time.time() - t0, step, cpu)
         with self._lock:
             self._t0.pop(spec.name, None)
@@ -484,7 +520,10 @@ class Campaign:
                                   driver=str(driver.relative_to(self.directory)))
         self._write_manifest()
         t0 = time.time()
-        returncode = launch.run_child(cmd, pdir, pdir / f"batch{index}.screen")
+        key = f"batch{index}"
+        returncode = launch.run_child(cmd, pdir, pdir / f"{key}.screen",
+                                      lambda proc: self._child_started(key, proc))
+        self._children.pop(key, None)
         errors = []
         for spec in batch:
             log = self.run_dir(spec.name) / "log.lammps"
@@ -497,6 +536,54 @@ class Campaign:
                 self._t0.pop(spec.name, None)
         self._write_manifest()
         return errors
+
+    # -- stopping --------------------------------------------------------------------------
+    # The handler runs in the main thread between two of its bytecodes, perhaps while that
+    # thread holds self._lock: it takes no lock, and the workers check the flag it sets.
+    def _child_started(self, key, proc):
+        """Note a running LAMMPS process; one started after the stop is stopped at once."""
+        self._children[key] = proc
+        if self._stop_signal is not None:
+            _terminate(proc)
+
+    def _stop(self, signum, frame):
+        """Signal handler: stop the LAMMPS children (their threads then record their attempts)
+        and start no other run."""
+        first = self._stop_signal is None
+        if first:
+            self._stop_signal = _signal_name(signum)
+        for proc in list(self._children.values()):
+            _terminate(proc)
+        if first:
+            try:  # the main thread may be inside a write to the same stream (partition mode)
+                print(f"[campaign] {self._stop_signal}: stopping the running runs and "
+                      "recording their attempts; no other run starts", file=self.stream,
+                      flush=True)
+            except RuntimeError:
+                pass
+
+    def _install_stop_handlers(self):
+        """Catch :data:`STOP_SIGNALS` while the runs run (in the main thread only: Python
+        allows no handler elsewhere); returns the handlers they replace."""
+        self._stop_signal, self._stopped, self._children = None, {}, {}
+        if threading.current_thread() is not threading.main_thread():
+            return {}
+        return {signum: signal.signal(signum, self._stop) for signum in STOP_SIGNALS}
+
+    def _stop_error(self, errors):
+        """The CampaignStopped of a campaign stopped by a signal, naming where each running run
+        stopped, how many runs did not start, and the failures of the session."""
+        stopped = ", ".join(f"{name!r} at tap {tap}" for name, tap in self._stopped.items())
+        waiting = sum(1 for r in self.runs
+                      if self._records[r.name].get("status") == "pending")
+        failed = ("; " + f"{len(errors)} runs failed:\n  " + "\n  ".join(errors)) if errors \
+            else ""
+        return CampaignStopped(
+            f"stopped by {self._stop_signal}: {len(self._stopped)} running run"
+            f"{'s' if len(self._stopped) != 1 else ''} stopped and recorded"
+            + (f" ({stopped})" if stopped else "") + f", {waiting} not started; running the "
+            "campaign again resumes each from its latest restart file" + failed,
+            self._stop_signal)
 
     # -- progress --------------------------------------------------------------------------
     def progress(self):
@@ -602,6 +689,7 @@ class Campaign:
         if progress:
             watcher.start()
         errors = []
+        handlers = self._install_stop_handlers()
         try:
             if self.mode == "pool":
                 with ThreadPoolExecutor(max_workers=self.jobs) as pool:
@@ -610,16 +698,30 @@ class Campaign:
                             errors.append(err)
             else:
                 for i, batch in enumerate(launch.partition_batches(pending, self.jobs)):
-                    errors += self._partition_batch(i, batch)
+                    if self._stop_signal is None:
+                        errors += self._partition_batch(i, batch)
         finally:
+            for signum, handler in handlers.items():
+                signal.signal(signum, handler)
             stop.set()
             if progress:
                 watcher.join()
                 self._report(start, final=True)
+            self._write_manifest()
+        if self._stop_signal is not None:
+            raise self._stop_error(errors)
         if errors:
             raise CampaignError(f"{len(errors)} of {len(pending)} runs failed:\n  "
                                 + "\n  ".join(errors))
         return self
+
+
+def _terminate(proc):
+    """SIGTERM to a child that may have ended already."""
+    try:
+        proc.send_signal(signal.SIGTERM)
+    except (ProcessLookupError, OSError):
+        pass
 
 
 def _signal_name(number):

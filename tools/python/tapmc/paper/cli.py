@@ -27,7 +27,8 @@ import sys
 import tempfile
 from pathlib import Path
 
-from tapmc.campaign import Campaign, CampaignDirectoryError, CampaignError, launch
+from tapmc.campaign import (STOPPED_STATUS, Campaign, CampaignDirectoryError, CampaignError,
+                            CampaignStopped, launch)
 from tapmc.readers import TapmcFormatError
 
 from .. import __version__
@@ -405,11 +406,15 @@ def _tap_costs(specs):
 
 
 def _run_campaign(campaign, scale, quiet):
-    """Run the campaign; the exit status: 0, 1 (a run failed) or 2 (the folder is unusable)."""
+    """Run the campaign; the exit status: 0, 1 (a run failed), 2 (the folder is unusable) or
+    STOPPED_STATUS (stopped by SIGTERM or Ctrl-C; its runs' attempts recorded)."""
     try:
         _scale_before_run(campaign, scale)
         campaign.run(progress=not quiet)
         _runs.write_scale(campaign.directory, scale)
+    except CampaignStopped as err:
+        print(f"tapmc-paper: {err}", file=sys.stderr)
+        return STOPPED_STATUS
     except CampaignDirectoryError as err:
         print(f"tapmc-paper: {err}", file=sys.stderr)
         return 2

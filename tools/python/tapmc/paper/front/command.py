@@ -16,7 +16,7 @@ import argparse
 import os
 import sys
 
-from ...campaign import CampaignDirectoryError, CampaignError
+from ...campaign import STOPPED_STATUS, CampaignDirectoryError, CampaignError, CampaignStopped
 from ...readers import TapmcFormatError
 from .._runs import SOURCE_DIR
 from . import data, page, runs
@@ -24,7 +24,7 @@ from .settings import EPS, SETTINGS, TAPS
 
 #: the smallest N the front runs (the box side 32R sqrt(N / 4096) is 4R at N = 64)
 MIN_N = 64
-STOPPED = 3
+STOPPED = STOPPED_STATUS
 
 
 def add_parser(sub):
@@ -100,7 +100,7 @@ def _run(args):
         os.nice(args.nice)  # the lmp processes inherit it
     try:
         rows = runs.run_front(out, todo, lmp=args.lmp, jobs=args.jobs, nice=args.nice)
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, CampaignStopped):
         print("front run: stopped; the unfinished runs resume from their restart files at the "
               "next call", file=sys.stderr)
         return STOPPED

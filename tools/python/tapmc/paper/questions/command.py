@@ -14,6 +14,7 @@ import argparse
 import sys
 from pathlib import Path
 
+from tapmc.campaign import STOPPED_STATUS, CampaignStopped
 from tapmc.readers import TapmcFormatError
 
 from . import CAMPAIGN_QUESTIONS, QUESTIONS
@@ -59,6 +60,9 @@ def run(args, parser):
         parser.error("question: give a NAME (--list lists them)")
     try:
         QUESTIONS[args.question].measure(args)
+    except CampaignStopped as err:
+        print(f"tapmc-paper question {args.question}: {err}", file=sys.stderr)
+        return STOPPED_STATUS
     except QuestionError as err:
         print(f"tapmc-paper question {args.question}: {err}", file=sys.stderr)
         return 1

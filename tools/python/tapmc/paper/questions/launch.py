@@ -10,7 +10,8 @@ import json
 import shutil
 from pathlib import Path
 
-from tapmc.campaign import Campaign, CampaignDirectoryError, CampaignError, RunSpec, find_lmp
+from tapmc.campaign import (Campaign, CampaignDirectoryError, CampaignError, CampaignStopped,
+                            RunSpec, find_lmp)
 
 from .. import _runs
 from .common import QuestionError, taps_table
@@ -46,10 +47,12 @@ def spec(name, variables, input=CONSTANT_EPS, taps=None):
 def run_all(work, specs, lmp, jobs=1, progress=True):
     """Run ``specs`` as a campaign in ``work`` (finished ones kept, unfinished ones resumed;
     ``progress``: the campaign's progress lines); returns dict name -> run folder.
-    QuestionError on a failed run or an unusable folder."""
+    QuestionError on a failed run or an unusable folder; CampaignStopped passes through."""
     try:
         campaign = Campaign(work, specs, lmp=lmp, jobs=jobs, pin_inputs=True)
         campaign.run(progress=progress)
+    except CampaignStopped:
+        raise
     except (CampaignError, CampaignDirectoryError, ValueError) as err:
         raise QuestionError(str(err)) from None
     return {s.name: campaign.run_dir(s.name) for s in specs}
