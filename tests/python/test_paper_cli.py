@@ -3,6 +3,7 @@
 module, the Scale presets, and one end-to-end figure through a stub figure module (runs a
 tiny campaign, draws, prints the PNG and CSV paths) on a copy of the package."""
 
+import json
 import os
 import shutil
 import subprocess
@@ -117,7 +118,9 @@ def test_figure_end_to_end_with_stub(package_copy, tmp_path):
     assert (campaign / "manifest.json").exists()
     again = cli("fig3", "--dry-run", "--seeds", "2", "--campaign", campaign,
                 pythonpath=package_copy)
-    assert "stub_s2  [in.constant_eps, taps 4, cost unknown, done]" in again.stdout
+    # done, with the CPU and wall time its one attempt recorded
+    assert "stub_s2  [in.constant_eps, taps 4, cost unknown, done; 1 attempt: " in again.stdout
+    assert " h of wall time recorded]" in again.stdout and "unknown for" not in again.stdout
 
 
 def test_scales():
@@ -215,6 +218,31 @@ def test_campaign_subcommand(tmp_path, capsys):
     typo = _main(capsys, "campaign", "--dry-run", "--tier", "3", "--campaign", tmp_path / "c",
                  "--first", "agieng_*")
     assert typo.returncode == 2 and "--first 'agieng_*': matches no run" in typo.stderr
+
+
+def test_dry_run_prices_the_taps_left_and_shows_the_recorded_cost(tmp_path, capsys):
+    """A run under way is priced by its taps left (the cost rule per tap: a ramp's strong
+    levels cost more), and each run shows what its attempts recorded, naming those without
+    a time (the sums are then lower bounds)."""
+    from tapmc.paper import cost, plan
+
+    folder = tmp_path / "c"
+    spec = plan.runs(2)[0]
+    (folder / "runs" / spec.name).mkdir(parents=True)
+    (folder / "runs" / spec.name / "taps.dat").write_text(
+        "# step level\n" + "".join(f"{k} 0\n" for k in range(101)))
+    attempts = [{"cpu_s": 3600.0, "wall_s": 7200.0}, {"interrupted": True, "log": "x"}]
+    (folder / "manifest.json").write_text(json.dumps(
+        {"format": 1, "runs": [{"name": spec.name, "attempts": attempts}]}))
+    out = _main(capsys, "campaign", "--dry-run", "--tier", "2", "--campaign", folder)
+    assert out.returncode == 0, out.stderr
+    line = next(x for x in out.stdout.splitlines() if x.startswith(f"  {spec.name}  ["))
+    left = cost.tap_seconds(spec, cost.CostRule.from_summary())[100:].sum() / 3600.0
+    assert f", at tap 100, {left:.3g} CPU h to run; 2 attempts: 1 CPU h, 2 h of wall time " \
+        "recorded (CPU time unknown for 1, wall time unknown for 1)]" in line, line
+    other = plan.runs(2)[1].name
+    assert next(x for x in out.stdout.splitlines() if x.startswith(f"  {other}  [")) \
+        .endswith("CPU h, to run]")
 
 
 def _one_line_error(out, rc=2):

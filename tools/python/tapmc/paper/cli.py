@@ -28,7 +28,7 @@ import tempfile
 from pathlib import Path
 
 from tapmc.campaign import (STOPPED_STATUS, Campaign, CampaignDirectoryError, CampaignError,
-                            CampaignStopped, launch)
+                            CampaignStopped, launch, provenance)
 from tapmc.readers import TapmcFormatError
 
 from .. import __version__
@@ -482,32 +482,63 @@ def _finished_view(campaign, extra=()):
                     mode=campaign.mode), len(specs)
 
 
+def _recorded_cost(record):
+    """"; its N attempts recorded ... CPU h, ... h of wall time" from a run's manifest record,
+    naming the attempts without a time (killed with their campaign, or from before attempts
+    recorded it: the sums are then lower bounds); "" before its first attempt."""
+    attempts = (record or {}).get("attempts") or []
+    if not attempts:
+        return ""
+    sums, gaps = [], []
+    for key, unit, kind in (("cpu_s", "CPU h", "CPU"), ("wall_s", "h of wall time", "wall")):
+        timed = [a[key] for a in attempts if a.get(key) is not None]
+        if timed:
+            sums.append(f"{sum(timed) / 3600.0:.3g} {unit}")
+        if len(timed) < len(attempts):
+            gaps.append(f"{kind} time unknown for "
+                        + ("all" if not timed else f"{len(attempts) - len(timed)}"))
+    return (f"; {len(attempts)} attempt{'s' if len(attempts) > 1 else ''}: "
+            + (", ".join(sums) + " recorded" if sums else "no time recorded")
+            + (f" ({', '.join(gaps)})" if gaps and sums else ""))
+
+
 def _list_runs(campaign, what):
-    """The runs of a dry run, each with its CPU hours by the cost rule, and the total left."""
+    """The runs of a dry run, each with its CPU hours by the cost rule, how far it got (a run
+    under way: the CPU hours of its taps left) and what its attempts recorded, and the CPU
+    hours left in all."""
     print(f"campaign {campaign.directory} ({what}, {len(campaign.runs)} runs):")
     why = None  # the first reason a run has no estimate
     try:
         rule = cost.CostRule.from_summary()
     except cost.CostError as err:
         rule, why = None, str(err)
+    records = {r["name"]: r for r in provenance.read_manifest(campaign.directory).get("runs", [])
+               if isinstance(r, dict) and "name" in r}
+    reached = {name: n for name, n, _, _ in campaign.progress()}
     left, unknown = 0.0, 0
     for spec in campaign.runs:
         done = campaign.is_done(spec.name)
-        hours = None
+        seconds = None
         try:
-            hours = cost.run_cost(spec, rule) if rule else None
+            seconds = cost.tap_seconds(spec, rule) if rule else None
         except KeyError as err:
             why = why or f"{spec.name} has no {err.args[0]!r} variable"
         except (cost.CostError, ValueError) as err:
             why = why or str(err)
+        hours = float(seconds.sum()) / 3600.0 if seconds is not None else None
+        tap = 0 if done else min(reached.get(spec.name, 0), spec.taps or 0)
+        to_run = float(seconds[tap:].sum()) / 3600.0 if seconds is not None else None
         price = f"{hours:.3g} CPU h" if hours is not None else "cost unknown"
-        print(f"  {spec.name}  [{spec.input.name}, taps {spec.taps}, {price}, "
-              f"{'done' if done else 'to run'}]")
+        state = "done" if done else "to run" if not tap else (
+            f"at tap {tap}, " + (f"{to_run:.3g} CPU h to run" if to_run is not None
+                                 else "to run"))
+        print(f"  {spec.name}  [{spec.input.name}, taps {spec.taps}, {price}, {state}"
+              f"{_recorded_cost(records.get(spec.name))}]")
         if not done:
-            if hours is None:
+            if to_run is None:
                 unknown += 1
             else:
-                left += hours * spec.nprocs
+                left += to_run * spec.nprocs
     jobs = max(1, launch.available_cores())
     print(f"left to run: about {left:.1f} CPU hours (the cost rule of tapmc-paper plan; "
           f"{left / jobs:.1f} h of wall time on {jobs} cores)"
