@@ -169,6 +169,14 @@ def test_seeds_per_point_counts_the_realizations_of_each_point():
                              ([2, 2], "2 seeds per point"), (None, "2 seeds per point")):
         summary = dict(base) if per_point is None else dict(base, seeds_per_point=per_point)
         assert f"taps; {words}; redeposition" in validation.describe_scale(summary)
+    # the figures' ramps below the paper's taps per level; the page says when ramps at the
+    # paper's own protocol answer section III.B's question, and only then
+    ramps = dict(base, ramp_taps_per_level=[1000])
+    assert "The ramps of Fig. 4 have 1000 taps per level (the paper: 4000)." in \
+        validation.describe_scale(ramps)
+    assert ("The ramps of Fig. 4 have 1000 taps per level (the paper: 4000); ramps of their "
+            "own at the paper's 4000 taps per level answer section III.B's question below.") \
+        in validation.describe_scale(ramps, paper_ramps=True)
 
 
 def test_a_long_measure_is_cut_at_a_clause_and_a_short_one_kept():

@@ -106,8 +106,10 @@ def _seeds_text(summary):
     return f"{seeds} {'seed' if high == 1 else 'seeds'} per point"
 
 
-def describe_scale(summary):
-    """The scale that was run, from :func:`campaign_summary`."""
+def describe_scale(summary, paper_ramps=False):
+    """The scale that was run, from :func:`campaign_summary`; ``paper_ramps``: the page also
+    answers section III.B's question from ramps at the paper's 4000 taps per level (run
+    apart from the figures' ramps: :mod:`tapmc.paper.paper_ramp`)."""
     size = ", ".join(f"N = {n} spheres in a {l:g}R x {l:g}R box" for n, l in summary["sizes"])
     if summary["scale"] is None:
         name = "a scale of no preset"
@@ -124,7 +126,9 @@ def describe_scale(summary):
     per_level = summary.get("ramp_taps_per_level")
     if per_level:
         text += (f" The ramps of Fig. 4 have {', '.join(map(str, per_level))} taps per level "
-                 "(the paper: 4000).")
+                 "(the paper: 4000)" + ("; ramps of their own at the paper's 4000 taps per "
+                                        "level answer section III.B's question below."
+                                        if paper_ramps else "."))
     if summary.get("planned_runs"):
         text += (f" The campaign is under way: {summary['runs']} of its "
                  f"{summary['planned_runs']} runs have finished, and this page is drawn from "
@@ -450,11 +454,12 @@ def _figure_lines(files, notes):
 def _main_page(summary, files, rows, verdicts, notes, prefix, data):
     """The text of validation.rst: the answer on one screen, one row per claim, the figures."""
     title, intro = _title_and_intro(summary)
-    lines = [".. TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.", "",
-             title, "=" * len(title), "", intro, "", describe_scale(summary), ""]
-    lines += _appendix_line()
     headline, finding, figure = _paper_ramp_finding(files, summary,
                                                     paper_ramp.errors_from_report(data))
+    lines = [".. TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.", "",
+             title, "=" * len(title), "", intro, "", describe_scale(summary, bool(headline)),
+             ""]
+    lines += _appendix_line()
     sigma = _sigma_eta_finding(files, campaign_eta(summary), sigma_eta.errors_from_report(data))
     findings = [f for f in (finding, sigma) if f]
     lines += summary_screen.screen_rst(summary_screen.summarise(rows, files), findings, headline,
