@@ -217,7 +217,7 @@ def test_a_stopped_campaign_records_its_attempts_and_starts_nothing(tmp_path):
     (attempt,) = long_rec["attempts"]
     assert attempt["returncode"] == -signal.SIGTERM and attempt["end_step"] == stopped_at
     assert attempt["wall_s"] > 0 and attempt["cpu_s"] > 0
-    assert "stopped by signal SIGTERM" in attempt["error"]
+    assert attempt["error"].startswith("stopped with its campaign by SIGTERM")
 
     # the next session: the kept log joins the recorded attempt; the cost covers every attempt
     campaign = Campaign(folder, [RunSpec(n, CONSTANT_EPS, long, seed=s)
@@ -252,6 +252,43 @@ def test_partition_mode_two_partitions(tmp_path):
     for spec in runs:
         assert (pool.result(spec.name) / "taps.dat").read_text() == \
             (campaign.result(spec.name) / "taps.dat").read_text()
+
+
+@pytest.mark.skipif(shutil.which("mpirun") is None, reason="no mpirun")
+def test_a_stopped_partition_batch(tmp_path):
+    """SIGTERM in partition mode reaches mpirun and its partitions: both runs of the batch are
+    recorded as stopped in the campaign's words (the partition's log holds only echoed input
+    with "ERROR" in it), the next batch never starts, and the resume finishes them; DONE.json
+    has no CPU time to give (partition mode measures none per run) and says so."""
+    long = dict(TINY, N=128, taps=3000, eta=1e-7, rsteps=20)
+    folder = tmp_path / "p"
+    script = STOPPABLE.replace("jobs=1", "jobs=2, mode='partition'").replace(
+        '(("long", 2), ("next", 3))', '(("a", 1), ("b", 2), ("c", 3))').format(
+        python=str(SOURCE / "tools" / "python"), inp=str(CONSTANT_EPS), long=long,
+        folder=str(folder), lmp=str(LMP))
+    runner = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE,
+                              stderr=subprocess.STDOUT, text=True)
+    deadline = time.time() + 60
+    taps = [folder / "runs" / name / "taps.dat" for name in "ab"]
+    while time.time() < deadline and not all(
+            t.exists() and steps(t) and steps(t)[-1] >= 45 for t in taps):
+        time.sleep(0.05)
+    runner.send_signal(signal.SIGTERM)
+    out, _ = runner.communicate(timeout=60)
+    assert runner.returncode == STOPPED_STATUS, out
+    assert "2 running runs stopped and recorded ('a' at tap " in out and "1 not started" in out
+    records = json.loads((folder / "manifest.json").read_text())["runs"]
+    assert [r["status"] for r in records] == ["stopped", "stopped", "pending"]
+    for record in records[:2]:
+        (attempt,) = record["attempts"]
+        assert attempt["error"].startswith("stopped with its campaign by SIGTERM")
+        assert 45 <= attempt["end_step"] < 3000, "the run finished before the stop"
+    runs = [RunSpec(n, CONSTANT_EPS, long, seed=s) for n, s in (("a", 1), ("b", 2), ("c", 3))]
+    campaign = Campaign(folder, runs, lmp=LMP, jobs=2, mode="partition").run(progress=False)
+    done = provenance.read_done(campaign.result("a") / "DONE.json")
+    assert done["attempts"] == 2 and done["wall_s"] > 0
+    assert done["cpu_s"] is None and done["attempts_without_cpu_time"] == 2
+    assert steps(campaign.result("a") / "taps.dat") == list(range(3001))
 
 
 def test_bad_input_names_run_and_log(tmp_path):

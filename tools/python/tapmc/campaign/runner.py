@@ -148,14 +148,15 @@ def _cost_done(rec):
     """DONE.json's record of what a run cost: ``wall_s`` and ``cpu_s``, the sums over its
     attempts, and, when some attempts have no such time (killed with their campaign by SIGKILL,
     or before attempts recorded it), ``attempts_without_wall_time`` /
-    ``attempts_without_cpu_time``: the sums are then lower bounds."""
+    ``attempts_without_cpu_time``: the sums are then lower bounds (None when no attempt has
+    one: partition mode measures no CPU time per run)."""
     attempts = rec["attempts"]
-    out = {"wall_s": round(sum(a.get("wall_s") or 0.0 for a in attempts), 3),
-           "cpu_s": round(sum(a.get("cpu_s") or 0.0 for a in attempts), 3)}
+    out = {}
     for key, name in (("wall_s", "wall"), ("cpu_s", "cpu")):
-        untimed = sum(1 for a in attempts if a.get(key) is None)
-        if untimed:
-            out[f"attempts_without_{name}_time"] = untimed
+        timed = [a[key] for a in attempts if a.get(key) is not None]
+        out[key] = round(sum(timed), 3) if timed else None
+        if len(timed) < len(attempts):
+            out[f"attempts_without_{name}_time"] = len(attempts) - len(timed)
     return out
 
 
@@ -441,6 +442,10 @@ class Campaign:
         elif spec.taps is not None and run_folder.taps_done(run_dir / spec.taps_file) != spec.taps:
             error = (f"the per-tap file {spec.taps_file} ends at step "
                      f"{run_folder.taps_done(run_dir / spec.taps_file)}, expected {spec.taps}")
+        stopped = bool(error) and self._stop_signal is not None
+        if stopped:  # its own words: a partition's log may hold only an echoed "ERROR" line
+            error = (f"stopped with its campaign by {self._stop_signal} (the run resumes from "
+                     "its latest restart file when the campaign runs again)")
         # Records change under the lock only: another thread may be writing the manifest.
         rec = self._records[spec.name]
         attempt = {"started": self._started.get(spec.name), "finished": provenance.now(),
@@ -453,7 +458,7 @@ class Campaign:
         with self._lock:
             rec.pop("running_attempt", None)
             rec["attempts"].append(attempt)
-        if error and self._stop_signal is not None:  # stopped with its campaign: no failure
+        if stopped:  # no failure
             with self._lock:
                 rec["status"] = "stopped"
                 self._stopped[spec.name] = attempt["end_step"]
