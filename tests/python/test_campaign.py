@@ -254,6 +254,32 @@ def test_partition_mode_two_partitions(tmp_path):
             (campaign.result(spec.name) / "taps.dat").read_text()
 
 
+def test_a_stop_that_reaches_the_child_first_is_no_failure(tmp_path):
+    """A batch system's SIGTERM reaches every process of the job at once, and Ctrl-C the whole
+    foreground group: a LAMMPS child may die of it before the campaign's handler runs. The run
+    is then stopped with its campaign, not failed. A fake LAMMPS: the first run dies of SIGTERM
+    at once and has its campaign signalled a second later (the next run starts in
+    between, and the handler stops it)."""
+    fake = tmp_path / "lmp_fake"
+    first = tmp_path / "first_done"
+    fake.write_text("#!/bin/sh\ncase \" $* \" in *\" -in \"*) ;; *) exit 0 ;; esac\n"
+                    "echo 'LAMMPS (fake)' > log.lammps\n"
+                    f"if [ -e {first} ]; then exec sleep 30; fi\ntouch {first}\n"
+                    "campaign=$PPID\n(sleep 1; kill -TERM $campaign) &\nkill -TERM $$\n")
+    fake.chmod(0o755)
+    script = STOPPABLE.format(python=str(SOURCE / "tools" / "python"), inp=str(CONSTANT_EPS),
+                              long=dict(TINY, taps=3), folder=str(tmp_path / "c"),
+                              lmp=str(fake))
+    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                         timeout=60)
+    assert out.returncode == STOPPED_STATUS, out.stdout + out.stderr
+    assert "STOPPED SIGTERM stopped by SIGTERM: 2 running runs stopped and recorded" \
+        in out.stdout and "0 not started" in out.stdout
+    assert "failed" not in out.stdout
+    records = json.loads((tmp_path / "c" / "manifest.json").read_text())["runs"]
+    assert [r["status"] for r in records] == ["stopped", "stopped"]
+
+
 @pytest.mark.skipif(shutil.which("mpirun") is None, reason="no mpirun")
 def test_a_stopped_partition_batch(tmp_path):
     """SIGTERM in partition mode reaches mpirun and its partitions: both runs of the batch are

@@ -221,16 +221,18 @@ def test_campaign_subcommand(tmp_path, capsys):
 
 
 def test_dry_run_prices_the_taps_left_and_shows_the_recorded_cost(tmp_path, capsys):
-    """A run under way is priced by its taps left (the cost rule per tap: a ramp's strong
-    levels cost more), and each run shows what its attempts recorded, naming those without
-    a time (the sums are then lower bounds)."""
+    """A run under way is priced by its taps left from where it resumes (its latest restart
+    file, not the last row of its per-tap file: the taps after the restart run again; the cost
+    rule per tap: a ramp's strong levels cost more), and each run shows what its attempts
+    recorded, naming those without a time (the sums are then lower bounds)."""
     from tapmc.paper import cost, plan
 
     folder = tmp_path / "c"
     spec = plan.runs(2)[0]
     (folder / "runs" / spec.name).mkdir(parents=True)
     (folder / "runs" / spec.name / "taps.dat").write_text(
-        "# step level\n" + "".join(f"{k} 0\n" for k in range(101)))
+        "# step level\n" + "".join(f"{k} 0\n" for k in range(131)))
+    (folder / "runs" / spec.name / "restart.100").write_text("x")
     attempts = [{"cpu_s": 3600.0, "wall_s": 7200.0}, {"interrupted": True, "log": "x"}]
     (folder / "manifest.json").write_text(json.dumps(
         {"format": 1, "runs": [{"name": spec.name, "attempts": attempts}]}))
@@ -238,8 +240,8 @@ def test_dry_run_prices_the_taps_left_and_shows_the_recorded_cost(tmp_path, caps
     assert out.returncode == 0, out.stderr
     line = next(x for x in out.stdout.splitlines() if x.startswith(f"  {spec.name}  ["))
     left = cost.tap_seconds(spec, cost.CostRule.from_summary())[100:].sum() / 3600.0
-    assert f", at tap 100, {left:.3g} CPU h to run; 2 attempts: 1 CPU h, 2 h of wall time " \
-        "recorded (CPU time unknown for 1, wall time unknown for 1)]" in line, line
+    assert (f", resumes from tap 100, {left:.3g} CPU h to run; 2 attempts: 1 CPU h, 2 h of "
+            "wall time recorded (CPU time unknown for 1, wall time unknown for 1)]") in line, line
     other = plan.runs(2)[1].name
     assert next(x for x in out.stdout.splitlines() if x.startswith(f"  {other}  [")) \
         .endswith("CPU h, to run]")

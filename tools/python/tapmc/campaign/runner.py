@@ -233,6 +233,7 @@ class Campaign:
         self._children = {}  # name (or batch) -> Popen of its running LAMMPS process
         self._stop_signal = None  # the name of the signal that stopped the campaign
         self._stopped = {}  # name -> the last tap of a run stopped with the campaign
+        self._signalled = {}  # name -> the last tap of a run killed by a signal
 
     # -- folders -------------------------------------------------------------------------
     def check_directory(self):
@@ -430,9 +431,11 @@ class Campaign:
         log = run_dir / "log.lammps"
         text = log.read_text(errors="replace") if log.exists() else ""
         error = ""
+        cut_short = False  # ended before its end with no error of its own: stopped from outside
         if returncode != 0 or "Total wall time" not in text:
             own = run_folder.log_error(log) or run_folder.log_error(run_dir / "screen.txt")
-            if returncode is not None and returncode < 0 and not own.startswith("ERROR"):
+            cut_short = not own.startswith("ERROR")
+            if returncode is not None and returncode < 0 and cut_short:
                 # stopped from outside: a line of the echoed input that mentions ERROR is no
                 # error of the run
                 error = (f"LAMMPS was stopped by signal {_signal_name(-returncode)} (the run "
@@ -442,7 +445,7 @@ class Campaign:
         elif spec.taps is not None and run_folder.taps_done(run_dir / spec.taps_file) != spec.taps:
             error = (f"the per-tap file {spec.taps_file} ends at step "
                      f"{run_folder.taps_done(run_dir / spec.taps_file)}, expected {spec.taps}")
-        stopped = bool(error) and self._stop_signal is not None
+        stopped = cut_short and self._stop_signal is not None
         if stopped:  # its own words: a partition's log may hold only an echoed "ERROR" line
             error = (f"stopped with its campaign by {self._stop_signal} (the run resumes from "
                      "its latest restart file when the campaign runs again)")
@@ -463,6 +466,11 @@ class Campaign:
                 rec["status"] = "stopped"
                 self._stopped[spec.name] = attempt["end_step"]
             return ""
+        if cut_short and returncode is not None and returncode < 0:
+            # killed by a signal that may be the campaign's own stop, reaching the child (the
+            # terminal's Ctrl-C, a batch system's SIGTERM to every process) before the handler
+            # ran: _run_locked counts it as stopped if the campaign stops
+            self._signalled[spec.name] = attempt["end_step"]
         if not error:
             try:  # a malformed output names itself; the run then fails instead of the pool
                 run_folder.merge_ave_time_parts(run_dir)
@@ -560,20 +568,36 @@ class Campaign:
         for proc in list(self._children.values()):
             _terminate(proc)
         if first:
-            try:  # the main thread may be inside a write to the same stream (partition mode)
+            try:  # the main thread may be inside a write to the same stream (partition mode),
+                # or the stream is a pipe whose reader the same Ctrl-C ended
                 print(f"[campaign] {self._stop_signal}: stopping the running runs and "
                       "recording their attempts; no other run starts", file=self.stream,
                       flush=True)
-            except RuntimeError:
+            except (RuntimeError, OSError, ValueError):
                 pass
 
     def _install_stop_handlers(self):
         """Catch :data:`STOP_SIGNALS` while the runs run (in the main thread only: Python
-        allows no handler elsewhere); returns the handlers they replace."""
-        self._stop_signal, self._stopped, self._children = None, {}, {}
+        allows no handler elsewhere; a signal this process ignores, as a shell's background
+        job ignores SIGINT, stays ignored); returns the handlers they replace, to restore
+        (those set outside Python, which signal.signal reports as None, are left as ours)."""
+        self._stop_signal, self._stopped, self._signalled, self._children = None, {}, {}, {}
         if threading.current_thread() is not threading.main_thread():
             return {}
-        return {signum: signal.signal(signum, self._stop) for signum in STOP_SIGNALS}
+        replaced = {}
+        for signum in STOP_SIGNALS:
+            if signal.getsignal(signum) is not signal.SIG_IGN:
+                replaced[signum] = signal.signal(signum, self._stop)
+        return {s: h for s, h in replaced.items() if h is not None}
+
+    def _count_signalled_as_stopped(self, errors):
+        """After a stop, the runs killed by a signal before the handler ran are stopped too,
+        not failed; returns the errors without theirs."""
+        for name, tap in self._signalled.items():
+            self._records[name]["status"] = "stopped"
+            self._stopped[name] = tap
+        return [e for e in errors if not any(e.startswith(f"run {name!r} failed: ")
+                                            for name in self._signalled)]
 
     def _stop_error(self, errors):
         """The CampaignStopped of a campaign stopped by a signal, naming where each running run
@@ -581,8 +605,8 @@ class Campaign:
         stopped = ", ".join(f"{name!r} at tap {tap}" for name, tap in self._stopped.items())
         waiting = sum(1 for r in self.runs
                       if self._records[r.name].get("status") == "pending")
-        failed = ("; " + f"{len(errors)} runs failed:\n  " + "\n  ".join(errors)) if errors \
-            else ""
+        failed = (f"; {len(errors)} run{'s' if len(errors) > 1 else ''} failed:\n  "
+                  + "\n  ".join(errors)) if errors else ""
         return CampaignStopped(
             f"stopped by {self._stop_signal}: {len(self._stopped)} running run"
             f"{'s' if len(self._stopped) != 1 else ''} stopped and recorded"
@@ -711,9 +735,15 @@ class Campaign:
             stop.set()
             if progress:
                 watcher.join()
-                self._report(start, final=True)
+                try:
+                    self._report(start, final=True)
+                except (OSError, ValueError):  # a closed pipe: the stop or error matters more
+                    pass
+            if self._stop_signal is not None:
+                errors = self._count_signalled_as_stopped(errors)
             self._write_manifest()
-        if self._stop_signal is not None:
+        left = any(self._records[r.name].get("status") == "pending" for r in pending)
+        if self._stop_signal is not None and (self._stopped or left):
             raise self._stop_error(errors)
         if errors:
             raise CampaignError(f"{len(errors)} of {len(pending)} runs failed:\n  "
@@ -722,11 +752,14 @@ class Campaign:
 
 
 def _terminate(proc):
-    """SIGTERM to a child that may have ended already."""
-    try:
-        proc.send_signal(signal.SIGTERM)
-    except (ProcessLookupError, OSError):
-        pass
+    """SIGTERM to a child that may have ended already. Not Popen.send_signal: it polls first,
+    and that waitpid may reap the child before its thread's wait4, which then fails; the
+    thread sets ``returncode`` right after its wait4, so a reaped child is never signalled."""
+    if proc.returncode is None:
+        try:
+            os.kill(proc.pid, signal.SIGTERM)
+        except OSError:  # ended in between
+            pass
 
 
 def _signal_name(number):

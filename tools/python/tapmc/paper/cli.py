@@ -29,6 +29,7 @@ from pathlib import Path
 
 from tapmc.campaign import (STOPPED_STATUS, Campaign, CampaignDirectoryError, CampaignError,
                             CampaignStopped, launch, provenance)
+from tapmc.campaign.run_folder import latest_restart
 from tapmc.readers import TapmcFormatError
 
 from .. import __version__
@@ -503,9 +504,10 @@ def _recorded_cost(record):
 
 
 def _list_runs(campaign, what):
-    """The runs of a dry run, each with its CPU hours by the cost rule, how far it got (a run
-    under way: the CPU hours of its taps left) and what its attempts recorded, and the CPU
-    hours left in all."""
+    """The runs of a dry run, each with its CPU hours by the cost rule (times its ranks), how
+    far it got (a run under way: the tap of its latest restart file, where it resumes, and
+    the CPU hours of the taps from there) and what its attempts recorded, and the CPU hours
+    left in all."""
     print(f"campaign {campaign.directory} ({what}, {len(campaign.runs)} runs):")
     why = None  # the first reason a run has no estimate
     try:
@@ -514,7 +516,6 @@ def _list_runs(campaign, what):
         rule, why = None, str(err)
     records = {r["name"]: r for r in provenance.read_manifest(campaign.directory).get("runs", [])
                if isinstance(r, dict) and "name" in r}
-    reached = {name: n for name, n, _, _ in campaign.progress()}
     left, unknown = 0.0, 0
     for spec in campaign.runs:
         done = campaign.is_done(spec.name)
@@ -523,22 +524,23 @@ def _list_runs(campaign, what):
             seconds = cost.tap_seconds(spec, rule) if rule else None
         except KeyError as err:
             why = why or f"{spec.name} has no {err.args[0]!r} variable"
-        except (cost.CostError, ValueError) as err:
+        except (cost.CostError, ValueError, TypeError) as err:  # TypeError: taps unknown
             why = why or str(err)
-        hours = float(seconds.sum()) / 3600.0 if seconds is not None else None
-        tap = 0 if done else min(reached.get(spec.name, 0), spec.taps or 0)
-        to_run = float(seconds[tap:].sum()) / 3600.0 if seconds is not None else None
+        ranks = spec.nprocs / 3600.0
+        hours = float(seconds.sum()) * ranks if seconds is not None else None
+        tap = 0 if done else (latest_restart(campaign.run_dir(spec.name))[0] or 0)
+        to_run = float(seconds[tap:].sum()) * ranks if seconds is not None else None
         price = f"{hours:.3g} CPU h" if hours is not None else "cost unknown"
         state = "done" if done else "to run" if not tap else (
-            f"at tap {tap}, " + (f"{to_run:.3g} CPU h to run" if to_run is not None
-                                 else "to run"))
+            f"resumes from tap {tap}, " + (f"{to_run:.3g} CPU h to run" if to_run is not None
+                                           else "to run"))
         print(f"  {spec.name}  [{spec.input.name}, taps {spec.taps}, {price}, {state}"
               f"{_recorded_cost(records.get(spec.name))}]")
         if not done:
             if to_run is None:
                 unknown += 1
             else:
-                left += to_run * spec.nprocs
+                left += to_run
     jobs = max(1, launch.available_cores())
     print(f"left to run: about {left:.1f} CPU hours (the cost rule of tapmc-paper plan; "
           f"{left / jobs:.1f} h of wall time on {jobs} cores)"

@@ -100,7 +100,10 @@ def _run(args):
         os.nice(args.nice)  # the lmp processes inherit it
     try:
         rows = runs.run_front(out, todo, lmp=args.lmp, jobs=args.jobs, nice=args.nice)
-    except (KeyboardInterrupt, CampaignStopped):
+    except CampaignStopped as err:
+        print(f"tapmc-paper front run: {err}", file=sys.stderr)
+        return STOPPED
+    except KeyboardInterrupt:
         print("front run: stopped; the unfinished runs resume from their restart files at the "
               "next call", file=sys.stderr)
         return STOPPED
