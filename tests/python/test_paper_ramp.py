@@ -261,6 +261,11 @@ def test_the_second_increase_against_the_descent_is_the_papers_test_of_reversibi
     both = paper_ramp.headline_text([rows["paperramp0.125_pbc_s1"],
                                      rows["paperramp0.125_pbc_s2"]], 1e-7)
     assert "+0.0000 and +0.0020 (mean of 3 levels;" in both and "the seeds differ)" in both
+    # seeds that reached different numbers of levels: the counts follow the seeds' order
+    uneven = paper_ramp.headline_text([rows["paperramp0.125_pbc_s2"],
+                                       rows["paperramp0.125_pbc_s3"]], 1e-7)
+    assert f"+0.0020 and {paper_ramp._signed(first.mean.value)} (mean of 3 and 1 levels;" \
+        in uneven
     assert "the second increase" not in paper_ramp.headline_text(
         [rows["paperramp0.125_pbc_s4"]], 1e-7)
 

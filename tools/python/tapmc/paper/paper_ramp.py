@@ -518,13 +518,13 @@ def _retrace_headline(decided):
     if not traces:
         return ""
     moves = " and ".join(_signed(t.mean.value) for _, t in traces)
-    counts = sorted({t.mean.n for _, t in traces})
-    levels = " and ".join(map(str, counts))
+    counts = [t.mean.n for _, t in traces]  # per seed, in the order of the moves
+    levels = str(counts[0]) if len(set(counts)) == 1 else " and ".join(map(str, counts))
     shares = " and ".join(f"{100 * t.mean.value / r.down_change:.0f} %" for r, t in traces
                           if r.down_change > 0)
     share = f"; {shares} of the descent's move" if shares else ""
     return (f"; the second increase minus the descent: {moves} (mean of {levels} level"
-            f"{'s' if counts != [1] else ''}{share}), {_retrace_answer(traces, short=True)}")
+            f"{'s' if set(counts) != {1} else ''}{share}), {_retrace_answer(traces, short=True)}")
 
 
 def _retrace_finding(decided):
