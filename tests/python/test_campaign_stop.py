@@ -4,33 +4,18 @@ whole (wall and CPU time, the last tap), no other run started, CampaignStopped a
 status, the resume; pool and partition modes, and a signal that reaches a child first."""
 
 import json
-import os
 import shutil
 import signal
 import subprocess
 import sys
 import time
-from pathlib import Path
 
 import pytest
 
-SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", Path(__file__).resolve().parents[2]))
-BUILD = Path(os.environ.get("TAPMC_BUILD_DIR", SOURCE / "build"))
-LMP = Path(os.environ.get("TAPMC_LMP", BUILD / "lmp_tapmc"))
-sys.path.insert(0, str(SOURCE / "tools" / "python"))
-
+from campaign_runs import CONSTANT_EPS, LMP, SOURCE, TINY, steps
 from tapmc.campaign import STOPPED_STATUS, Campaign, RunSpec, provenance  # noqa: E402
 
-CONSTANT_EPS = SOURCE / "examples" / "paper" / "in.constant_eps"
-TINY = dict(N=64, L=8, eta=1e-5, rsteps=5, thermo_every=5)
-
 pytestmark = pytest.mark.skipif(not LMP.is_file(), reason=f"no LAMMPS executable at {LMP}")
-
-
-def steps(path):
-    """Steps of the data rows of a per-tap file."""
-    return [int(line.split()[0]) for line in Path(path).read_text().splitlines()
-            if line.strip() and not line.startswith("#")]
 
 
 STOPPABLE = """
