@@ -152,6 +152,22 @@ def attempt_versions(record):
     return versions, unrecorded
 
 
+def attempt_costs(record):
+    """What a run's manifest ``record`` says it cost: ``wall_s`` and ``cpu_s``, the sums over
+    its attempts (None when no attempt has that time: partition mode measures no CPU time per
+    run), and, when some attempts have none (killed with their campaign by SIGKILL, or from
+    before attempts recorded it), ``attempts_without_wall_time`` /
+    ``attempts_without_cpu_time``: the sums are then lower bounds. DONE.json keeps these."""
+    attempts = record.get("attempts", [])
+    out = {}
+    for key, name in (("wall_s", "wall"), ("cpu_s", "cpu")):
+        timed = [a[key] for a in attempts if a.get(key) is not None]
+        out[key] = round(sum(timed), 3) if timed else None
+        if len(timed) < len(attempts):
+            out[f"attempts_without_{name}_time"] = len(attempts) - len(timed)
+    return out
+
+
 def copy_inputs(directory, runs, pin_inputs, stream):
     """Copy each input into <campaign>/inputs once and return the manifest's "inputs" entry;
     the runs execute the copies, so a resumed campaign runs exactly what it started with. An

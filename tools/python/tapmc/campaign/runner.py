@@ -144,22 +144,6 @@ def _versions_done(rec):
             **({"attempts_without_version": unrecorded} if unrecorded else {})}
 
 
-def _cost_done(rec):
-    """DONE.json's record of what a run cost: ``wall_s`` and ``cpu_s``, the sums over its
-    attempts, and, when some attempts have no such time (killed with their campaign by SIGKILL,
-    or before attempts recorded it), ``attempts_without_wall_time`` /
-    ``attempts_without_cpu_time``: the sums are then lower bounds (None when no attempt has
-    one: partition mode measures no CPU time per run)."""
-    attempts = rec["attempts"]
-    out = {}
-    for key, name in (("wall_s", "wall"), ("cpu_s", "cpu")):
-        timed = [a[key] for a in attempts if a.get(key) is not None]
-        out[key] = round(sum(timed), 3) if timed else None
-        if len(timed) < len(attempts):
-            out[f"attempts_without_{name}_time"] = len(attempts) - len(timed)
-    return out
-
-
 class Campaign:
     """An ensemble of runs in one folder, resumable; see :mod:`tapmc.campaign`.
 
@@ -489,7 +473,7 @@ class Campaign:
         self._redo.pop(spec.name, None)
         with self._lock:
             rec["status"] = "done"
-            cost = _cost_done(rec)
+            cost = provenance.attempt_costs(rec)
             rec["wall_s"] = cost["wall_s"]
         done = {"run": spec.describe(), "finished": provenance.now(), **cost,
                 "attempts": len(rec["attempts"]),

@@ -490,14 +490,15 @@ def _recorded_cost(record):
     attempts = (record or {}).get("attempts") or []
     if not attempts:
         return ""
+    cost = provenance.attempt_costs(record)
     sums, gaps = [], []
     for key, unit, kind in (("cpu_s", "CPU h", "CPU"), ("wall_s", "h of wall time", "wall")):
-        timed = [a[key] for a in attempts if a.get(key) is not None]
-        if timed:
-            sums.append(f"{sum(timed) / 3600.0:.3g} {unit}")
-        if len(timed) < len(attempts):
+        if cost[key] is not None:
+            sums.append(f"{cost[key] / 3600.0:.3g} {unit}")
+        untimed = cost.get(f"attempts_without_{kind.lower()}_time")
+        if untimed:
             gaps.append(f"{kind} time unknown for "
-                        + ("all" if not timed else f"{len(attempts) - len(timed)}"))
+                        + ("all" if cost[key] is None else f"{untimed}"))
     return (f"; {len(attempts)} attempt{'s' if len(attempts) > 1 else ''}: "
             + (", ".join(sums) + " recorded" if sums else "no time recorded")
             + (f" ({', '.join(gaps)})" if gaps and sums else ""))
