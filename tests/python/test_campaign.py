@@ -626,6 +626,20 @@ def test_the_versions_that_ran_a_run():
     assert provenance.attempt_versions({"attempts": []}) == ([], 0)
 
 
+def test_an_executable_no_commit_of_this_tapmc_describes():
+    """A campaign says so when its executable was built from another commit than this TAPMC,
+    or from a tree with uncommitted changes; a dirty TAPMC tree (Python edits) over a build of
+    its commit, and versions unknown, say nothing."""
+    other = provenance.build_mismatch("/x/lmp_tapmc", "51b121b-dirty", "42e987c")
+    assert other.startswith("the executable /x/lmp_tapmc was built from 51b121b-dirty, and "
+                            "this TAPMC is 42e987c: its attempts record 51b121b-dirty as")
+    dirty = provenance.build_mismatch("lmp", "42e987c-dirty", "42e987c-dirty")
+    assert "a tree with uncommitted changes" in dirty and "point TAPMC_LMP or --lmp" in dirty
+    for build, tapmc in [("42e987c", "42e987c"), ("42e987c", "42e987c-dirty"),
+                         (None, "42e987c"), ("42e987c", None)]:
+        assert provenance.build_mismatch("lmp", build, tapmc) is None
+
+
 FAKE_LMP = """#!/bin/sh
 case " $* " in *" -in "*) ;; *) echo "TAPMC build: ${FAKE_BUILD:-}"; exit 0 ;; esac
 printf '# step level\\n0 0\\n1 0\\n2 0\\n' > taps.dat
@@ -675,12 +689,15 @@ def test_a_run_resumed_by_another_build_of_the_executable(tmp_path, monkeypatch)
     spec = RunSpec("rebuilt", CONSTANT_EPS, dict(TINY, taps=3), seed=1)
     folder = tmp_path / "c"
     monkeypatch.setenv("FAKE_BUILD", "b1")
+    monkeypatch.setattr(provenance, "tapmc_version", lambda: "t1")
     with pytest.raises(CampaignError):
         Campaign(folder, [spec], lmp=str(fake), jobs=1).run(progress=False)
     (folder / "runs" / "rebuilt" / "finish").touch()
     monkeypatch.setenv("FAKE_BUILD", "b2")
     stream = io.StringIO()
     Campaign(folder, [spec], lmp=str(fake), jobs=1, stream=stream).run(progress=False)
+    assert (f"[campaign] warning: the executable {fake} was built from b2, and this TAPMC is "
+            "t1: ") in stream.getvalue()
     assert ("resumes from restart.2 under TAPMC " in stream.getvalue()
             and "; its executable is built from b2, its last attempt's from b1 (" in
             stream.getvalue() and "ran TAPMC" not in stream.getvalue())

@@ -19,7 +19,7 @@ from .launch import private_mpi_session
 __all__ = ["MANIFEST_FORMAT", "sha256", "now", "portable_paths", "read_manifest",
            "write_manifest", "lmp_versions", "tapmc_version", "copy_inputs",
            "read_done", "write_done", "output_digests", "damaged_outputs",
-           "verify_finished_run", "attempt_versions"]
+           "verify_finished_run", "attempt_versions", "attempt_costs", "build_mismatch"]
 
 _REPO = Path(__file__).resolve().parents[4]
 #: Layout of a campaign folder (manifest keys, inputs/, runs/NAME/DONE.json) that this package
@@ -136,6 +136,29 @@ def tapmc_version():
         return out.stdout.strip() or None
     except (OSError, subprocess.TimeoutExpired):
         return None
+
+
+def build_mismatch(lmp, lmp_build, tapmc):
+    """One sentence when the executable cannot be pinned to the commit of this TAPMC: built
+    from another commit (``lmp_build``, its 'TAPMC build:' line, against ``tapmc``, this
+    package's ``git describe``; a ``-dirty`` suffix of either is not a commit of its own) or
+    from a tree with uncommitted changes; None when they agree or either is unknown (another
+    LAMMPS, a TAPMC outside git). A TAPMC_LMP left pointing at an older build otherwise runs a
+    whole campaign's attempts under a binary that no commit of it describes."""
+    if not lmp_build or not tapmc:
+        return None
+    clean = lmp_build.removesuffix("-dirty")
+    if clean != tapmc.removesuffix("-dirty"):
+        why = (f"was built from {lmp_build}, and this TAPMC is {tapmc}: its attempts record "
+               f"{lmp_build} as their build")
+    elif clean != lmp_build:
+        why = (f"was built from {lmp_build}, a tree with uncommitted changes: no commit "
+               "describes the binary its attempts run")
+    else:
+        return None
+    return (f"the executable {lmp} {why}; to pin the campaign to one commit, build lmp_tapmc "
+            "from a clean tree of this TAPMC (cmake --build) and point TAPMC_LMP or --lmp at "
+            "it")
 
 
 def attempt_versions(record):

@@ -669,6 +669,10 @@ class Campaign:
             "inputs": provenance.copy_inputs(self.directory, self.runs, self.pin_inputs,
                                              self.stream)}
         self._manifest["created"] = self._manifest["created"] or provenance.now()
+        mismatch = provenance.build_mismatch(self.lmp, self._manifest["lmp_build"],
+                                             self._manifest["tapmc_version"])
+        if mismatch:
+            print(f"[campaign] warning: {mismatch}", file=self.stream, flush=True)
         self._t0, self._done0 = {}, {}
         for spec in self.runs:  # every finished run's parameters first: a refusal moves nothing
             if self.is_done(spec.name):
