@@ -214,6 +214,21 @@ def test_run_stopped_by_a_signal_says_so(tmp_path):
     assert "ERROR: bc" in (tmp_path / "c" / "runs" / "stopped" / "log.lammps").read_text()
 
 
+def test_the_error_line_of_a_log(tmp_path):
+    """log_error quotes LAMMPS's own ERROR line, or one behind a prefix, and never an echoed
+    input line that would print one."""
+    from tapmc.campaign.run_folder import log_error
+    log = tmp_path / "log.lammps"
+    echoed = "if \"${bc} != pbc\" then \"print 'ERROR: bc = ${bc}'\" \"quit 2\"\n"
+    log.write_text(echoed + '  "print \\"ERROR: sqrteps\\"" "quit 2"\n')
+    assert log_error(log) == ""
+    log.write_text(echoed + "ERROR: bc = x; allowed values: pbc, fbc\n")
+    assert log_error(log) == "ERROR: bc = x; allowed values: pbc, fbc"
+    log.write_text(echoed + "[host:01] ERROR on proc 0: Lost atoms (src/thermo.cpp:481)\n")
+    assert log_error(log) == "[host:01] ERROR on proc 0: Lost atoms (src/thermo.cpp:481)"
+    assert log_error(tmp_path / "missing.lammps") == ""
+
+
 def test_runspec_and_campaign_validation(tmp_path):
     with pytest.raises(ValueError, match="name = 'a b'"):
         RunSpec("a b", CONSTANT_EPS)

@@ -116,16 +116,24 @@ def merge_ave_time_parts(run_dir):
     return merged
 
 
+#: ERROR as a word not quoted: a line of LAMMPS's own words (behind a prefix, such as an MPI
+#: launcher's), not an echoed input line that prints one (``"print 'ERROR: ...'"``)
+_UNQUOTED_ERROR = re.compile(r"""(?<!['"])\bERROR\b""")
+
+
 def log_error(log):
-    """The first ERROR line of a LAMMPS log (or screen file), or ''."""
+    """The first ERROR line of a LAMMPS log (or screen file), or ''. LAMMPS's own error
+    lines start with ERROR; failing those, a line with an unquoted ERROR in it. Echoed input
+    lines of the paper's inputs check their variables with ``print 'ERROR: ...'``: a log that
+    holds only those names no error (a run stopped from outside leaves such a log)."""
     log = Path(log)
     if not log.exists():
         return ""
     lines = log.read_text(errors="replace").splitlines()
-    for line in lines:  # LAMMPS's own error lines start with ERROR (echoed input does not)
+    for line in lines:
         if line.startswith("ERROR"):
             return line.strip()
-    return next((line.strip() for line in lines if "ERROR" in line), "")
+    return next((line.strip() for line in lines if _UNQUOTED_ERROR.search(line)), "")
 
 
 def taps_done(path):
