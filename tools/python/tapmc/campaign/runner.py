@@ -653,6 +653,24 @@ class Campaign:
         with launch.campaign_lock(self.directory):
             return self._run_locked(progress)
 
+    def _session_manifest(self, previous):
+        """This session's manifest.json (its runs added later): the campaign, this machine,
+        the versions of the executable and of TAPMC, the inputs' copies; a warning line on
+        the stream when no commit of this TAPMC describes the executable."""
+        manifest = {
+            "format": provenance.MANIFEST_FORMAT, "campaign": str(self.directory),
+            "created": previous.get("created") or provenance.now(), "mode": self.mode,
+            "jobs": self.jobs, "host": platform.node(), "python": sys.version.split()[0],
+            "lmp": str(self.lmp), **provenance.lmp_versions(self.lmp),
+            "tapmc_version": provenance.tapmc_version(),
+            "inputs": provenance.copy_inputs(self.directory, self.runs, self.pin_inputs,
+                                             self.stream)}
+        mismatch = provenance.build_mismatch(self.lmp, manifest["lmp_build"],
+                                             manifest["tapmc_version"])
+        if mismatch:
+            print(f"[campaign] warning: {mismatch}", file=self.stream, flush=True)
+        return manifest
+
     def _run_locked(self, progress):
         previous = provenance.read_manifest(self.directory)
         # the version of the campaign's last session: the best record of attempts that were
@@ -660,19 +678,7 @@ class Campaign:
         self._previous_version = previous.get("tapmc_version")
         old = {r["name"]: r for r in previous.get("runs", [])
                if isinstance(r, dict) and "name" in r}
-        self._manifest = {
-            "format": provenance.MANIFEST_FORMAT, "campaign": str(self.directory),
-            "created": previous.get("created"), "mode": self.mode, "jobs": self.jobs,
-            "host": platform.node(), "python": sys.version.split()[0], "lmp": str(self.lmp),
-            **provenance.lmp_versions(self.lmp),
-            "tapmc_version": provenance.tapmc_version(),
-            "inputs": provenance.copy_inputs(self.directory, self.runs, self.pin_inputs,
-                                             self.stream)}
-        self._manifest["created"] = self._manifest["created"] or provenance.now()
-        mismatch = provenance.build_mismatch(self.lmp, self._manifest["lmp_build"],
-                                             self._manifest["tapmc_version"])
-        if mismatch:
-            print(f"[campaign] warning: {mismatch}", file=self.stream, flush=True)
+        self._manifest = self._session_manifest(previous)
         self._t0, self._done0 = {}, {}
         for spec in self.runs:  # every finished run's parameters first: a refusal moves nothing
             if self.is_done(spec.name):
