@@ -414,6 +414,25 @@ def _sigma_eta_finding(files, default_eta, factor_of=None):
                   "sigma_<Z> and the steady packing against sqrt(eps), per eta")
 
 
+def _connected_ageing_finding(files):
+    """The finding about ageing with the drift removed (section III.C, Fig. 5: does the
+    packing age, or does A(t, t_W) measure the drift?) from questions/connected_ageing.csv
+    (``tapmc-paper question connected-ageing``), with its figure when there is one, or ""."""
+    module = questions.connected_ageing
+    path = _finding_csv(files, module.CSV)
+    if path is None:
+        return ""
+    text = module.finding_text(module.load(path))
+    if not text:
+        return ""
+    text += _finding_source("waiting time and delay", module.CSV,
+                            f"question {module.NAME}")
+    if not (path.parent / module.PNG).is_file():
+        return text
+    return text, (str(Path(FIG_DIR) / questions.FOLDER / module.PNG),
+                  "the paper's A(t, t_W) and the connected C(t, t_W) against the delay")
+
+
 def _appendix_line():
     return ["Appendices: " + "; ".join(f":doc:`{title.lower()} <{name}>`"
                                        for name, title in APPENDICES.items()) + ".", ""]
@@ -461,7 +480,7 @@ def _main_page(summary, files, rows, verdicts, notes, prefix, data):
              ""]
     lines += _appendix_line()
     sigma = _sigma_eta_finding(files, campaign_eta(summary), sigma_eta.errors_from_report(data))
-    findings = [f for f in (finding, sigma) if f]
+    findings = [f for f in (finding, sigma, _connected_ageing_finding(files)) if f]
     lines += summary_screen.screen_rst(summary_screen.summarise(rows, files), findings, headline,
                                        figure and (figure, "the ramps at the paper's protocol"))
     lines += ["How close is TAPMC to the paper", "-" * 31, "",

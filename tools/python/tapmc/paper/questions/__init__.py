@@ -37,6 +37,9 @@ those files, so the report can be rewritten from committed data.
 * alpha-window (``alpha_window.csv``): alpha of every P.B.C. constant-eps run in a window
   5-18R below the packing's loose top beside Fig. 6's own window: whether alpha's rise with
   eps is the model or the window's reading (the register's gradient-bell reads it).
+* connected-ageing (``connected_ageing.csv``, ``connected_ageing.png``): Fig. 5's ageing
+  realizations with the drift of the compaction removed (the connected function and a
+  collapse without a law): does the packing age, or does A(t, t_W) measure the drift?
 * Fig. 10's pores (:mod:`.pore_shares`) and the final <Phi^c> carried to the front's settings
   (:mod:`.final_phi`): sections computed from other CSVs, without a command.
 """
@@ -46,10 +49,11 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..claims import SCANS, realization_factors, scan_files
-from . import (alpha_window, crystallinity, dmax, early_taps, final_phi, first_tap,
-               fit_surrogates, integrity, initial_packing, knob_scan, lateral_first_tap,
-               noise_floor, p0_configs, p0_fluid, packing_scatter, pbc_course, pore_shares,
-               ramp_levels, ramp_pores, realization_scatter, seed_fits, spectral_window, theta0)
+from . import (alpha_window, connected_ageing, crystallinity, dmax, early_taps, final_phi,
+               first_tap, fit_surrogates, integrity, initial_packing, knob_scan,
+               lateral_first_tap, noise_floor, p0_configs, p0_fluid, packing_scatter, pbc_course,
+               pore_shares, ramp_levels, ramp_pores, realization_scatter, seed_fits,
+               spectral_window, theta0)
 from .calibration import load as load_scatter
 from .common import QuestionError
 
@@ -60,11 +64,12 @@ QUESTIONS = {m.NAME: m for m in (
     first_tap, noise_floor, spectral_window, pbc_course, integrity, realization_scatter,
     packing_scatter, early_taps, initial_packing, p0_configs, lateral_first_tap, ramp_levels,
     ramp_pores, theta0, dmax, p0_fluid, fit_surrogates, seed_fits, crystallinity,
-    alpha_window)}
+    alpha_window, connected_ageing)}
 #: the questions whose measurement reads the campaign's runs (--campaign)
 CAMPAIGN_QUESTIONS = ("spectral-window", "pbc-course", "integrity", "early-taps",
                       "ramp-levels", "realization-scatter", "packing-scatter", "ramp-pores",
-                      "fit-surrogates", "seed-fits", "crystallinity", "alpha-window")
+                      "fit-surrogates", "seed-fits", "crystallinity", "alpha-window",
+                      "connected-ageing")
 #: the page's section title
 TITLE = "Questions settled by measurement"
 #: the commands named under the title, in the page's order, with the CSV that shows each was
@@ -76,7 +81,8 @@ NAMED = (("realization-scatter", "realization_scatter.csv"),
          ("initial-packing", "initial_packing.csv"), ("p0-configs", "p0_configs.csv"),
          ("lateral-first-tap", "lateral_first_tap.csv"), ("ramp-levels", "ramp_levels.csv"),
          ("ramp-pores", "ramp_pores.csv"), ("crystallinity", "crystallinity.csv"),
-         ("alpha-window", "alpha_window.csv"))
+         ("alpha-window", "alpha_window.csv"),
+         ("connected-ageing", "connected_ageing.csv"))
 
 
 def _commands(folder):
@@ -105,6 +111,7 @@ HEADINGS = {
     p0_fluid: "P0 of an equilibrium fluid (p0-fluid)",
     crystallinity: "Crystallinity of the tapped packings (crystallinity)",
     alpha_window: "alpha in a window below the loose top (alpha-window)",
+    connected_ageing: "Ageing with the drift removed (connected-ageing)",
     pore_shares: "Fig. 10's pores",
     final_phi: "The final <Phi^c> at the front's settings"}
 #: the calibrations of the errors and the integrity check: their own appendix page (the
@@ -140,7 +147,7 @@ def _measured(folder, figures, factors):
     for module, extra in ((seed_fits, ()), (initial_packing, ()), (p0_configs, ()),
                           (ramp_levels, (figures.get("fig4"), factors)), (ramp_pores, ()),
                           (lateral_first_tap, (figures.get("fig8"),)), (crystallinity, ()),
-                          (alpha_window, ())):
+                          (alpha_window, ()), (connected_ageing, ())):
         if there(module):
             parts.append((module, module.render(folder / module.CSV, *extra)))
     for knob in SCANS:
