@@ -20,17 +20,20 @@ LEVELS = [0.025, 0.05, 0.075, 0.1, 0.125, 0.1, 0.075, 0.05, 0.025]
 
 
 def write_run(campaign, name, phi_of_level, levels=LEVELS, taps_per_level=4000, seed=1,
-              done=False, repeat_from=None):
-    """A synthetic ramp: <Phi^c> = phi_of_level[k] + white noise (sigma 1e-3) in level k; a
-    resumed run (repeat_from) writes the taps after that step twice, the first copy wrong."""
+              done=False, repeat_from=None, noise=1e-3, window_offset=None):
+    """A synthetic ramp: <Phi^c> = phi_of_level[k] + white noise (sigma ``noise``) in level
+    k, plus ``window_offset(k, w)`` in its 1000-tap window w (0-3) when given; a resumed run
+    (repeat_from) writes the taps after that step twice, the first copy wrong."""
     rng = np.random.default_rng(seed)
+    offsets = {} if window_offset is None else {
+        (k, w): window_offset(k, w) for k in range(len(levels)) for w in range(4)}
     run = campaign / "runs" / name
     run.mkdir(parents=True)
     rows = ["# step level branch sqrt_eps phi_b phi_c Z", "0 -1 0 0.0 0.5 0.58 7.3"]
     for k, (sq, phi) in enumerate(zip(levels, phi_of_level)):
         for t in range(taps_per_level):
             step = k * taps_per_level + t + 1
-            value = phi + 1e-3 * rng.standard_normal()
+            value = phi + offsets.get((k, t // 1000), 0.0) + noise * rng.standard_normal()
             if repeat_from is not None and step > repeat_from and k == len(levels) - 1:
                 rows.append(f"{step} {k} 0 {sq} 0.5 {value + 0.01:.8f} 7.0")
             rows.append(f"{step} {k} 0 {sq} 0.5 {value:.8f} 7.0")
@@ -403,3 +406,44 @@ def test_the_headline_gives_one_answer_then_a_bullet_per_eta(tmp_path):
     assert pending[0].endswith("per redeposition threshold eta.")
     assert pending[3] == ("- eta = 1e-8: undecided, the ramp has not come down two levels yet "
                           "(seed 1 at tap 12000, still going up).")
+
+
+def test_the_level_errors_take_the_ramps_own_windows_when_they_reject_the_report(tmp_path):
+    """level_previous is the mean of the 1000 taps before a level's last 1000; white noise
+    calibrates a factor near 1 that rejects nothing (the report's factor, or 1, stays); slow
+    fluctuations of the 1000-tap means (an offset per window, 9 batch-means errors) reject
+    the report's factor of 2 and set the errors; rows without level_previous (a CSV written
+    before it) count for nothing."""
+    up, down = [0.590, 0.595, 0.598, 0.600, 0.600], [0.601, 0.602, 0.603, 0.604]
+    loop = up + down + [0.603, 0.602, 0.601, 0.6005]
+    write_run(tmp_path / "exact", "paperramp0.125_pbc_s1", loop, levels=LOOP, noise=1e-6,
+              window_offset=lambda k, w: 1e-4 * w)
+    [exact] = paper_ramp.analyse(tmp_path / "exact", 1e-7)
+    assert exact.level_previous == pytest.approx([m + 2e-4 for m in loop], abs=1e-6)
+    assert exact.level_mean == pytest.approx([m + 3e-4 for m in loop], abs=1e-6)
+    for seed in (1, 2):
+        write_run(tmp_path / "white", f"paperramp0.125_pbc_s{seed}", loop, levels=LOOP,
+                  seed=seed)
+    white = paper_ramp.analyse(tmp_path / "white", 1e-7)
+    factor, levels = paper_ramp.window_factor(white)
+    assert levels == 16 and 0.6 < factor < 1.5
+    assert not paper_ramp.level_errors(white, 2.0).from_window
+    assert paper_ramp.level_errors(white, 2.0).value == 2.0
+    assert paper_ramp.level_errors(white).value == 1.0
+    assert paper_ramp.window_factor([replace(r, level_previous=()) for r in white]) == (None, 0)
+    rng = np.random.default_rng(7)
+    shifts = rng.standard_normal((len(LOOP), 4)) * 3e-4     # batch-means error ~ 3.3e-5
+    for seed in (1, 2):
+        write_run(tmp_path / "slow", f"paperramp0.125_pbc_s{seed}", loop, levels=LOOP,
+                  seed=seed, window_offset=lambda k, w: shifts[k, w] * (1 if seed == 1 else -1))
+    slow = paper_ramp.analyse(tmp_path / "slow", 1e-7)
+    errors = paper_ramp.level_errors(slow, 2.0)
+    assert errors.from_window and errors.window_p_value < 1e-6 and errors.value > 4.0
+    [scaled] = paper_ramp.calibrated(slow[:1], errors.value)
+    assert scaled.level_sem == pytest.approx([s * errors.value for s in slow[0].level_sem])
+    text = paper_ramp.finding_text(slow, 1e-7, error_factor=2.0)
+    assert (f"errors: the levels' batch-means errors x {errors.value:.1f}, the spread of one "
+            "1000-tap mean to the next within a level over the ramps' 16 levels after their "
+            "turn; the campaign's realizations give x 2.0)") in text
+    assert f"x {errors.value:.1f} (one 1000-tap mean to the next)" in \
+        paper_ramp.settings_line(slow, 2.0)

@@ -20,6 +20,10 @@ from scipy import stats as _scipy_stats
 #: The functions below read it when called (``confidence=None``), so that the report's table
 #: of tolerances can vary it.
 CONFIDENCE = 0.95
+#: Significance below which a spread rejects the errors it is tested against: one run's own
+#: error against the realizations' spread (tapmc.paper.claims), a paper ramp's level error
+#: against its windows (tapmc.paper.paper_ramp); convention: a 1 % test, as the fits'.
+CALIBRATION_ALPHA = 0.01
 
 
 def _level(confidence):

@@ -30,7 +30,9 @@ from dataclasses import asdict, dataclass, fields, replace
 from pathlib import Path
 
 import numpy as np
+from scipy.stats import chi2
 
+from ..stats import CALIBRATION_ALPHA
 from ..hysteresis import (CRITICAL_SQRT_EPS, LEVEL_TOLERANCE, BranchData, BranchStatistic,
                           Hysteresis, RampBranches, branch_difference, common_levels)
 from . import _plotting, _runs
@@ -39,6 +41,10 @@ from .scales import FULL
 #: Taps per level of the paper's protocol, and the taps averaged at the end of each level.
 TAPS_PER_LEVEL = 4000
 LAST_TAPS = 1000
+#: Levels of the ramps' loops (descending and second increase) that calibrate the error of a
+#: level's mean from the ramps themselves (:func:`window_factor`): an rms of fewer would be
+#: a noisy factor of its own.
+MIN_WINDOW_LEVELS = 8
 #: Descending levels a ramp needs before its branch is judged: a change needs two levels.
 MIN_DOWN_LEVELS = 2
 #: Why a ramp with fewer descending levels decides nothing (page, claims and progress text).
@@ -81,6 +87,9 @@ class PaperRampRun:
     level_sqrt_eps: tuple = ()
     level_mean: tuple = ()
     level_sem: tuple = ()
+    #: per whole level, the mean of the LAST_TAPS taps before its last LAST_TAPS: how far a
+    #: level's mean moves from one window to the next (:func:`window_factor`)
+    level_previous: tuple = ()
 
     def branch(self, name):
         """(sqrt_eps, mean, sem) arrays of the whole levels of branch ``name`` (up1, down,
@@ -191,11 +200,15 @@ def _whole_levels(hysteresis):
     return levels[levels["last_tap"] - levels["first_tap"] + 1 == TAPS_PER_LEVEL]
 
 
-def _level_fields(whole):
-    """The fields of :class:`PaperRampRun` that keep the whole levels."""
+def _level_fields(whole, phi_c):
+    """The fields of :class:`PaperRampRun` that keep the whole levels (``phi_c``: the run's
+    per-tap <Phi^c>, tap 1 first)."""
+    previous = tuple(float(np.mean(phi_c[last - 2 * LAST_TAPS:last - LAST_TAPS]))
+                     for last in whole["last_tap"])
     return {"level_branches": " ".join(str(b) for b in whole["branch"]),
             **{f"level_{k}": tuple(float(v) for v in whole[k]) for k in ("sqrt_eps", "mean",
-                                                                          "sem")}}
+                                                                          "sem")},
+            "level_previous": previous}
 
 
 def analyse_run(run_dir, default_eta):
@@ -212,7 +225,7 @@ def analyse_run(run_dir, default_eta):
     if len(phi_c) < TAPS_PER_LEVEL:  # a run just started: not one whole level yet
         return _running(base, 0)
     whole = _whole_levels(Hysteresis(sqrt_eps, phi_c, TAPS_PER_LEVEL, LAST_TAPS).compute())
-    base.update(_level_fields(whole))
+    base.update(_level_fields(whole, phi_c))
     up1, down, up2 = (whole[whole["branch"] == b] for b in ("up1", "down", "up2"))
     if len(down) < MIN_DOWN_LEVELS:
         return _running(base, len(down))
@@ -264,19 +277,92 @@ def calibrated(rows, factor):
 ERROR_QUANTITY = "phi_c:halves"
 
 
+@dataclass(frozen=True)
+class LevelErrors:
+    """The factor that turns a level's batch-means error into the error the verdicts take,
+    and where it comes from: ``report`` (the campaign's realizations' factor of a difference
+    of two parts of one run, :func:`errors_from_report`; None without a report) and
+    ``window`` (:func:`window_factor`, over ``window_levels`` loop levels; None with fewer
+    than :data:`MIN_WINDOW_LEVELS`). ``value``: the window's factor where the windows reject
+    the report's (or, without one, the batch-means errors) at CALIBRATION_ALPHA, else the
+    report's (at least 1): a factor measured on a few levels is itself noisy, and only a
+    spread that the smaller errors cannot explain replaces them."""
+
+    report: float = None
+    window: float = None
+    window_levels: int = 0
+
+    @property
+    def base(self):
+        return max(1.0, self.report or 1.0)
+
+    @property
+    def window_p_value(self):
+        """P(chi2 with window_levels dof >= the windows' sum of squares at ``base``), or NaN."""
+        if self.window is None:
+            return float("nan")
+        return float(chi2.sf(self.window_levels * (self.window / self.base) ** 2,
+                             self.window_levels))
+
+    @property
+    def from_window(self):
+        """Whether the ramps' own windows set the factor (they spread more than the
+        report's errors allow)."""
+        return self.window is not None and self.window > self.base and \
+            self.window_p_value < CALIBRATION_ALPHA
+
+    @property
+    def value(self):
+        return self.window if self.from_window else self.base
+
+    def text(self):
+        """How the finding's errors were made (:func:`calibrated`)."""
+        if self.value == 1.0:
+            return "errors: the levels' batch-means errors"
+        if self.from_window:
+            report = (f"; the campaign's realizations give x {self.report:.1f}"
+                      if self.report not in (None, 1.0) else "")
+            return (f"errors: the levels' batch-means errors x {self.value:.1f}, the spread "
+                    f"of one {LAST_TAPS}-tap mean to the next within a level over the ramps' "
+                    f"{self.window_levels} levels after their turn{report}")
+        return (f"errors: the levels' batch-means errors x {self.value:.1f}, the spread of the "
+                "campaign's realizations for a difference of two parts of one run")
+
+
+def window_factor(rows):
+    """(factor, levels): how far a level's mean of the last LAST_TAPS taps moves from the
+    mean of the LAST_TAPS before it, in units of its batch-means error, over the levels after
+    the ramps' turn (descending and second increase; the first increase still compacts):
+    the rms of (mean - previous) / (sqrt(2) sem), the factor a steady level's batch-means
+    error falls short by for 1000-tap means (the slow fluctuations of <Phi^c> outlast the
+    batches). A level's residual drift adds to it, and two neighbouring windows share part of
+    their fluctuations, which takes from it. (None, n) with fewer than MIN_WINDOW_LEVELS
+    levels."""
+    z = []
+    for r in rows:
+        if len(r.level_previous) != len(r.level_mean):
+            continue   # a row written before level_previous was kept
+        for branch, mean, sem, prev in zip(r.level_branches.split(), r.level_mean,
+                                           r.level_sem, r.level_previous):
+            if branch in ("down", "up2") and sem > 0:
+                z.append((mean - prev) / (np.sqrt(2.0) * sem))
+    if len(z) < MIN_WINDOW_LEVELS:
+        return None, len(z)
+    return float(np.sqrt(np.mean(np.square(z)))), len(z)
+
+
+def level_errors(rows, report_factor=None):
+    """The :class:`LevelErrors` of ``rows`` (every paper ramp of the campaign: their loops
+    calibrate the windows) with the report's factor ``report_factor``."""
+    window, levels = window_factor(rows)
+    return LevelErrors(report_factor, window, levels)
+
+
 def errors_from_report(data):
     """The ``error_factor`` of :func:`headline_text` and :func:`finding_text` from a report's
     :class:`~tapmc.paper.claims.ReportData` (its ``run_error`` of :data:`ERROR_QUANTITY`; 1
     when the campaign's seeds do not reject the runs' own errors)."""
     return data.run_error(ERROR_QUANTITY)[0]
-
-
-def errors_text(factor):
-    """How the finding's errors were made (:func:`calibrated`)."""
-    if factor is None or factor == 1.0:
-        return "errors: the levels' batch-means errors"
-    return (f"errors: the levels' batch-means errors x {factor:.1f}, the spread of the "
-            "campaign's realizations for a difference of two parts of one run")
 
 
 def analyse(campaign, default_eta):
@@ -393,8 +479,9 @@ def headline_text(rows, default_eta, error_factor=None):
     increase against it, or undecided with how far the running seeds got; the numbers with
     their errors are in :func:`finding_text`. Only the ramps that turn below (sqrt eps)* count
     (:func:`below_critical`). ``error_factor``: the errors' factor of :func:`calibrated`, with
-    which the verdicts are decided."""
-    rows = calibrated(below_critical(rows), error_factor)
+    which the verdicts are decided, or the ramps' own windows' when larger
+    (:func:`level_errors`)."""
+    rows = calibrated(below_critical(rows), level_errors(rows, error_factor).value)
     if not rows:
         return ""
     bullets, answers = [], set()
@@ -429,7 +516,8 @@ def finding_text(rows, default_eta, error_factor=None, source=""):
     (sqrt eps)* at the paper's ramp protocol, with each seed's numbers, the runs still running
     named with how far they got; ramps that turn beyond (sqrt eps)* in an item of their own,
     after them (:func:`_beyond_text`)."""
-    rows = calibrated(rows, error_factor)
+    errors = level_errors(rows, error_factor)
+    rows = calibrated(rows, errors.value)
     below = below_critical(rows)
     if not rows:
         return ""
@@ -463,7 +551,7 @@ def finding_text(rows, default_eta, error_factor=None, source=""):
     return ("Section III.B's question at the paper's own ramp protocol (N = 4096, L = 32R, "
             f"P.B.C., {TAPS_PER_LEVEL} taps per level, steps of 0.025 in sqrt(eps), turning "
             f"below (sqrt eps)* ~ 0.15; means of the last {LAST_TAPS} taps of each level; "
-            f"{errors_text(error_factor)}), answered per redeposition threshold eta"
+            f"{errors.text()}), answered per redeposition threshold eta"
             + (", then beyond (sqrt eps)*" if beyond else "") + f".{source}\n\n"
             + "\n".join(f"  - {item}" for item in items + ([beyond] if beyond else [])))
 
@@ -626,9 +714,11 @@ def settings_line(rows, error_factor=None):
     """The settings the figure states on top (every number of it is a setting of the runs),
     with what its error bars are (:func:`calibrated`'s ``error_factor``)."""
     seeds = sorted({r.seed for r in rows})
+    errors = level_errors(rows, error_factor)
     bars = "their batch-means errors" + (
-        f" x {error_factor:.1f} (the realizations' spread)"
-        if error_factor not in (None, 1.0) else "")
+        "" if errors.value == 1.0 else
+        f" x {errors.value:.1f} (one {LAST_TAPS}-tap mean to the next)" if errors.from_window
+        else f" x {errors.value:.1f} (the realizations' spread)")
     return (f"N = {FULL.N}, box {FULL.L:g}R x {FULL.L:g}R, P.B.C.; {TAPS_PER_LEVEL} taps per "
             f"level, steps of {FULL.ramp_dsqrt:g} in sqrt(eps), means of the last {LAST_TAPS} "
             f"taps of each level, error bars {bars}; levels done whole only; "
@@ -638,6 +728,6 @@ def settings_line(rows, error_factor=None):
 def write_figure(rows, default_eta, path, error_factor=None):
     """``paper_ramp.png``: :func:`plot` of the rows with the errors the finding decides with
     (:func:`calibrated`), its settings on top; returns the path."""
-    fig = plot(calibrated(rows, error_factor), default_eta)[0].figure
+    fig = plot(calibrated(rows, level_errors(rows, error_factor).value), default_eta)[0].figure
     _plotting.finish_figure(fig, settings_line(rows, error_factor))
     return _plotting.save_figure(fig, path)

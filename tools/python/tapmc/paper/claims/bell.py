@@ -15,8 +15,9 @@ from tapmc.hysteresis import CRITICAL_SQRT_EPS, LEVEL_TOLERANCE
 from tapmc.stats import t_quantile, weighted_line, welch_dof
 
 from .. import fig4, fig6
-from ..paper_ramp import (NOT_DOWN_YET, TAPS_PER_LEVEL as PAPER_RAMP_TAPS, below_critical,
-                          beyond_critical, by_eta, runs_from_rows)
+from ..paper_ramp import (LAST_TAPS as PAPER_RAMP_LAST, NOT_DOWN_YET,
+                          TAPS_PER_LEVEL as PAPER_RAMP_TAPS, below_critical, beyond_critical,
+                          by_eta, level_errors, runs_from_rows)
 
 from .common import (above, below, campaign_eta, common_x, curve_of, mean_difference,
                      not_in_campaign,
@@ -485,13 +486,17 @@ def _paper_seeds_error(data, values, errors, one_run_quantity):
     batch-means error ``errors``: several seeds judged with the campaign's groups of
     realizations (:func:`seeds_error`, phi_c), one seed its error times the realizations'
     factor of ``one_run_quantity`` (run_error: 'phi_c' for a window mean, 'phi_c:halves' for a
-    difference of two parts of one run)."""
+    difference of two parts of one run), or the ramps' own factor of a level's mean when
+    larger (:func:`tapmc.paper.paper_ramp.level_errors`)."""
     if len(values) >= 2:
         err, dof, how, _ = seeds_error(data, values, errors, "phi_c")
         return err, dof, how or f"{len(values)} seeds: the spread of their own values"
-    factor = data.run_error(one_run_quantity)[0]
+    levels = level_errors(runs_from_rows(data.question("paper_ramp")),
+                          data.run_error(one_run_quantity)[0])
+    factor = levels.value
     return factor * errors[0], WITHIN_RUN_DOF, "one seed" + (
-        f": its levels' errors x {factor:.1f}" if factor != 1.0 else "")
+        f": its levels' errors x {factor:.1f}" if factor != 1.0 else "") + (
+        f" (one {PAPER_RAMP_LAST}-tap mean to the next)" if levels.from_window else "")
 
 
 @statistic("low_ramp_frozen")

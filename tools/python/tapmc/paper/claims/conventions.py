@@ -16,7 +16,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from tapmc.laws import DETERMINED_FACTOR, RANGE_Z_LIMIT, RELATIVE_ERROR_LIMIT, SURROGATE_P_MIN
-from tapmc.stats import CONFIDENCE
+from tapmc.stats import CALIBRATION_ALPHA, CONFIDENCE
 
 from ..fig6 import WINDOW_TOP_FRACTION
 
@@ -34,11 +34,10 @@ NEAR_FRACTION = 0.1
 #: xi_T by the ``check`` rule
 XI_CHECK_ROUNDING = 1e-3
 
+#: CALIBRATION_ALPHA (tapmc.stats, where the paper ramps' own calibration reads it too):
 #: one-sided significance below which the realizations' spread rejects one run's own error,
 #: and two-sided significance below which two sets of groups (or a statistic's few seeds and
-#: the groups, or the groups at different eps) do not share one factor (convention: a 1 %
-#: test, as the fits')
-CALIBRATION_ALPHA = 0.01
+#: the groups, or the groups at different eps) do not share one factor
 
 #: the paper's "(sqrt eps)* ~ 0.15" (section III.B): a separation located within two of its
 #: ramp steps (dsqrt = 0.025) of 0.15 agrees; a bracket of turning points wider than that
