@@ -126,6 +126,13 @@ def test_a_damaged_run_is_named_and_the_committed_csv_kept(tmp_path, capsys):
     assert f"{taps}: taps missing" in err
     assert (out / connected_ageing.CSV).read_text() == "eps,quantity\ncommitted,1\n"
     assert sorted(p.name for p in out.iterdir()) == [connected_ageing.CSV]
+    # runs too short for Fig. 5's waiting times, a DONE.json without variables: named
+    short = write_campaign(tmp_path / "short", walks(stationary, 1)[:4, :6])
+    (short / "runs" / "ageing_pbc_eps0.01_s1" / "DONE.json").write_text("{}")
+    assert cli.main(["question", "connected-ageing", "--campaign", str(short), "--out",
+                     str(out)]) == 1
+    err = capsys.readouterr().err
+    assert "Traceback" not in err and "eps = 0.01: a collapse needs at least 2 waiting" in err
 
 
 def test_the_page_states_the_finding_with_its_figure(tmp_path, capsys):

@@ -32,9 +32,9 @@ from pathlib import Path
 import numpy as np
 from scipy.stats import chi2
 
-from ..stats import CALIBRATION_ALPHA
 from ..hysteresis import (CRITICAL_SQRT_EPS, LEVEL_TOLERANCE, BranchData, BranchStatistic,
                           Hysteresis, RampBranches, branch_difference, common_levels)
+from ..stats import CALIBRATION_ALPHA
 from . import _plotting, _runs
 from .scales import FULL
 

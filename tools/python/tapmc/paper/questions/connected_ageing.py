@@ -74,7 +74,11 @@ def realizations(run_dirs):
                                 f"{steps[-1]} with {len(steps)} rows); the run is damaged")
         series.append(np.asarray(table["Z"], dtype=float)[[last[s] for s in steps]])
     length = min(len(z) for z in series)
-    variables = json.loads((run_dirs[0] / "DONE.json").read_text())["run"]["variables"]
+    done = run_dirs[0] / "DONE.json"
+    try:
+        variables = json.loads(done.read_text()).get("run", {}).get("variables", {})
+    except (OSError, ValueError, AttributeError) as err:
+        raise QuestionError(f"{done}: not a run's DONE.json ({err})") from None
     return np.array([z[:length] for z in series]), variables
 
 
@@ -85,9 +89,12 @@ def _group_rows(eps, run_dirs):
     if len(run_dirs) < 3:
         raise QuestionError(f"eps = {eps:g}: {len(run_dirs)} ageing realizations; the "
                             "connected function needs at least 3")
-    connected = ConnectedAgeing(z, waiting).compute()
-    collapse = connected.collapse()
-    paper = Ageing(z, waiting).compute()
+    try:
+        connected = ConnectedAgeing(z, waiting).compute()
+        collapse = connected.collapse()
+        paper = Ageing(z, waiting).compute()
+    except ValueError as err:   # too few taps for Fig. 5's waiting times
+        raise QuestionError(f"eps = {eps:g}: {err}") from None
     settings = {"realizations": len(run_dirs), "taps": taps,
                 **{k: variables.get(k, "") for k in ("N", "L", "eta")}}
     rows = [[f"{eps:g}", key, "", "", value, ""] for key, value in settings.items()]
