@@ -245,6 +245,15 @@ def test_dry_run_prices_the_taps_left_and_shows_the_recorded_cost(tmp_path, caps
     other = plan.runs(2)[1].name
     assert next(x for x in out.stdout.splitlines() if x.startswith(f"  {other}  [")) \
         .endswith("CPU h, to run]")
+    # an executable of another build: the warning the campaign would start with, on stderr
+    fake = tmp_path / "lmp_other"
+    fake.write_text(SLEEPING_LMP)
+    fake.chmod(0o755)
+    other_build = _main(capsys, "campaign", "--dry-run", "--tier", "2", "--campaign", folder,
+                        "--lmp", fake)
+    assert other_build.returncode == 0 and other_build.stdout == out.stdout
+    assert other_build.stderr.startswith(f"tapmc-paper: warning: the executable {fake} was "
+                                         "built from fake, and this TAPMC is ")
 
 
 def _one_line_error(out, rc=2):

@@ -508,7 +508,8 @@ def _list_runs(campaign, what):
     """The runs of a dry run, each with its CPU hours by the cost rule (times its ranks), how
     far it got (a run under way: the tap of its latest restart file, where it resumes, and
     the CPU hours of the taps from there) and what its attempts recorded, and the CPU hours
-    left in all."""
+    left in all; on stderr, the campaign's warning when no commit of this TAPMC describes its
+    executable (:func:`tapmc.campaign.provenance.build_mismatch`)."""
     print(f"campaign {campaign.directory} ({what}, {len(campaign.runs)} runs):")
     why = None  # the first reason a run has no estimate
     try:
@@ -542,6 +543,11 @@ def _list_runs(campaign, what):
                 unknown += 1
             else:
                 left += to_run
+    mismatch = provenance.build_mismatch(campaign.lmp,
+                                         provenance.lmp_versions(campaign.lmp)["lmp_build"],
+                                         provenance.tapmc_version())
+    if mismatch:  # what the campaign would say at its start, before it is started
+        print(f"tapmc-paper: warning: {mismatch}", file=sys.stderr)
     jobs = max(1, launch.available_cores())
     print(f"left to run: about {left:.1f} CPU hours (the cost rule of tapmc-paper plan; "
           f"{left / jobs:.1f} h of wall time on {jobs} cores)"
