@@ -408,10 +408,16 @@ def _sigma_eta_finding(files, default_eta, factor_of=None):
     if not text:
         return ""
     text += _finding_source("point", sigma_eta.CSV_NAME, "sigma-eta")
-    if not (path.parent / sigma_eta.PNG_NAME).is_file():
+    return _with_figure(text, path.parent / sigma_eta.PNG_NAME,
+                        "sigma_<Z> and the steady packing against sqrt(eps), per eta")
+
+
+def _with_figure(text, png, alt):
+    """A finding's item: (text, (page path of ``png``, ``alt``)) when its figure was written
+    beside its CSV, else the text alone (:func:`tapmc.paper.summary.screen_rst`)."""
+    if not png.is_file():
         return text
-    return text, (str(Path(FIG_DIR) / questions.FOLDER / sigma_eta.PNG_NAME),
-                  "sigma_<Z> and the steady packing against sqrt(eps), per eta")
+    return text, (str(Path(FIG_DIR) / questions.FOLDER / png.name), alt)
 
 
 def _connected_ageing_finding(files):
@@ -427,10 +433,8 @@ def _connected_ageing_finding(files):
         return ""
     text += _finding_source("waiting time and delay", module.CSV,
                             f"question {module.NAME}")
-    if not (path.parent / module.PNG).is_file():
-        return text
-    return text, (str(Path(FIG_DIR) / questions.FOLDER / module.PNG),
-                  "the paper's A(t, t_W) and the connected C(t, t_W) against the delay")
+    return _with_figure(text, path.parent / module.PNG,
+                        "the paper's A(t, t_W) and the connected C(t, t_W) against the delay")
 
 
 def _appendix_line():
