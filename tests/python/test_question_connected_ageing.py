@@ -95,6 +95,8 @@ def test_the_control_without_ageing_fails_simple_ageing(tmp_path, capsys):
     text = connected_ageing.finding_text(connected_ageing.load(out / connected_ageing.CSV))
     assert "no ageing at this precision (mu = 0 within" in text
     assert "simple ageing (mu = 1) excluded by" in text
+    mu, err = res.mu
+    assert f"any ageing with mu above {mu + 2 * err:.2f} by 2" in text
     a_early, a_late = res.curves["A"][2][1], res.curves["A"][250][1]
     assert a_early[-1] > 3 * a_late[-1]                       # A: the drift's ln ages it
     assert res.dispersions["dispersion_unscaled"] < res.dispersions["dispersion_simple"]

@@ -186,8 +186,10 @@ def _verdict(res):
     """The answer in words: what mu = 0 and mu = 1 are against the fit."""
     none, simple = res.excluded_by(0.0), res.excluded_by(1.0)
     if none <= EXCLUDED_AT and simple > EXCLUDED_AT:
+        value, error = res.mu
         return (f"no ageing at this precision (mu = 0 within {none:.1f} errors), simple "
-                f"ageing (mu = 1) excluded by {simple:.1f} errors")
+                f"ageing (mu = 1) excluded by {simple:.1f} errors, any ageing with mu above "
+                f"{value + EXCLUDED_AT * error:.2f} by {EXCLUDED_AT:g}")
     if simple <= EXCLUDED_AT and none > EXCLUDED_AT:
         return (f"simple ageing (mu = 1 within {simple:.1f} errors); no ageing (mu = 0) "
                 f"excluded by {none:.1f} errors")
