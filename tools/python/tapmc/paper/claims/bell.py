@@ -396,7 +396,7 @@ def _paper_beyond(data, measure_of_run, quantity, what, effect=None):
         tops = ", ".join(sorted({f"{r.top:g}" for r, _ in done}))
         out.append(Measure(value, err, dof, label=label, meets=("ramp_taps",), effect=effect,
                            shown=f"{fmt(value, err)} (turning at {tops}; {done[0][1][2]} "
-                                 f"levels; {how}"
+                                 f"level{'s' if done[0][1][2] != 1 else ''}; {how}"
                                  + (f"; not counted yet: {waiting})" if waiting else ")")))
     return out
 
