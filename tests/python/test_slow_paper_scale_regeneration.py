@@ -21,6 +21,7 @@ PYTHON_DIR = SOURCE / "tools" / "python"
 sys.path.insert(0, str(PYTHON_DIR))
 
 from tapmc.paper import _runs  # noqa: E402
+from tapmc.paper.questions import campaign_runs  # noqa: E402
 from tapmc.paper.validation_appendix import APPENDICES  # noqa: E402
 
 DOC = SOURCE / "doc"
@@ -54,3 +55,14 @@ def test_paper_scale_page_is_what_the_committed_campaign_gives(tmp_path):
             "doc/validation/data/full --out doc/paper_scale' and commit the result")
     for csv in sorted((committed / "validation").glob("*.csv")):
         assert (out / "validation" / csv.name).read_text() == csv.read_text(), csv.name
+
+
+def test_the_runs_table_is_the_committed_campaigns(tmp_path):
+    """campaign_runs.csv (the checks' appendix: every run's settings, state, costs and
+    versions) is what the committed campaign's manifest and run folders give."""
+    committed = DOC / "paper_scale" / "validation" / "questions" / campaign_runs.CSV
+    fresh = campaign_runs.save(tmp_path / campaign_runs.CSV,
+                               campaign_runs.analyse(DOC / "validation" / "data" / "full"))
+    assert fresh.read_text() == committed.read_text(), (
+        "doc/paper_scale/validation/questions/campaign_runs.csv is not the committed "
+        "campaign's: run 'build/tapmc-paper question campaign-runs' with the campaign stopped")

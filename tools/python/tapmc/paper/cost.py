@@ -287,8 +287,10 @@ def _thermo_sweeps(run_dir):
     return np.array(sorted(unique)), np.array([unique[k] for k in sorted(unique)])
 
 
-def _cpu_seconds(run_dir):
-    """(CPU seconds, taps) of a run folder's logs: each run's loop time times its CPU use."""
+def log_cpu_seconds(run_dir):
+    """(CPU seconds, taps) of a run folder's logs (log*.lammps, every attempt's): each run
+    command's loop time times its CPU use, over the taps those commands ran (one rank;
+    taps a resumed attempt ran again count again: they were paid twice)."""
     cpu, taps = 0.0, 0
     for log in Path(run_dir).glob("log*.lammps"):
         text = log.read_text(errors="replace")
@@ -314,7 +316,7 @@ def campaign_check(directory, rule):
         if not len(steps):
             continue
         at = eps[np.clip(steps.astype(int) - 1, 0, taps - 1)]
-        cpu, cpu_taps = _cpu_seconds(done.parent)
+        cpu, cpu_taps = log_cpu_seconds(done.parent)
         out.append({"run": run["name"], "N": N, "setting": setting, "eps": float(np.mean(eps)),
                     "sweeps": float(np.mean(sweeps)), "samples": int(len(sweeps)),
                     "sweeps_predicted": float(np.mean([rule.sweeps_per_tap(N, e, setting) for e in at])),

@@ -2,8 +2,8 @@
 """The appendix pages of the validation report, written by ``tapmc-paper report`` beside
 its main page (:mod:`tapmc.paper.validation`) and linked from it: every row of every claim
 (the per-eps, per-run and per-level detail behind each claim's one verdict), the claims
-register, the rules of the verdicts, the calibrations of the errors with the integrity check,
-and the questions settled by measurement. :data:`APPENDICES` names them; each is rendered from
+register, the rules of the verdicts, the calibrations of the errors with the integrity check
+and the campaign's runs, and the questions settled by measurement. :data:`APPENDICES` names them; each is rendered from
 the same rows and CSVs as the main page, so the pages cannot disagree.
 """
 
@@ -24,7 +24,7 @@ APPENDICES = {
     "validation_claims": "Every row of every claim",
     "validation_register": "The claims register",
     "validation_rules": "The rules of the verdicts",
-    "validation_checks": "Calibrations of the errors and the integrity check",
+    "validation_checks": "Calibrations of the errors, the integrity check and the runs",
     "validation_questions": "Questions settled by measurement",
 }
 

@@ -37,6 +37,9 @@ those files, so the report can be rewritten from committed data.
 * alpha-window (``alpha_window.csv``): alpha of every P.B.C. constant-eps run in a window
   5-18R below the packing's loose top beside Fig. 6's own window: whether alpha's rise with
   eps is the model or the window's reading (the register's gradient-bell reads it).
+* campaign-runs (``campaign_runs.csv``): every run of the campaign with its settings (eta,
+  eps or a ramp's range and taps per level), how far it got, what its attempts recorded and
+  cost by the cost rule, and the TAPMC versions that ran it.
 * connected-ageing (``connected_ageing.csv``, ``connected_ageing.png``): Fig. 5's ageing
   realizations with the drift of the compaction removed (the connected function and a
   collapse without a law): does the packing age, or does A(t, t_W) measure the drift?
@@ -49,8 +52,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..claims import SCANS, realization_factors, scan_files
-from . import (alpha_window, connected_ageing, crystallinity, dmax, early_taps, final_phi,
-               first_tap, fit_surrogates, integrity, initial_packing, knob_scan,
+from . import (alpha_window, campaign_runs, connected_ageing, crystallinity, dmax, early_taps,
+               final_phi, first_tap, fit_surrogates, integrity, initial_packing, knob_scan,
                lateral_first_tap, noise_floor, p0_configs, p0_fluid, packing_scatter, pbc_course,
                pore_shares, ramp_levels, ramp_pores, realization_scatter, seed_fits,
                spectral_window, theta0)
@@ -64,19 +67,20 @@ QUESTIONS = {m.NAME: m for m in (
     first_tap, noise_floor, spectral_window, pbc_course, integrity, realization_scatter,
     packing_scatter, early_taps, initial_packing, p0_configs, lateral_first_tap, ramp_levels,
     ramp_pores, theta0, dmax, p0_fluid, fit_surrogates, seed_fits, crystallinity,
-    alpha_window, connected_ageing)}
+    alpha_window, connected_ageing, campaign_runs)}
 #: the questions whose measurement reads the campaign's runs (--campaign)
 CAMPAIGN_QUESTIONS = ("spectral-window", "pbc-course", "integrity", "early-taps",
                       "ramp-levels", "realization-scatter", "packing-scatter", "ramp-pores",
                       "fit-surrogates", "seed-fits", "crystallinity", "alpha-window",
-                      "connected-ageing")
+                      "connected-ageing", "campaign-runs")
 #: the page's section title
 TITLE = "Questions settled by measurement"
 #: the commands named under the title, in the page's order, with the CSV that shows each was
 #: run (first-tap, noise-floor and spectral-window are always named)
 NAMED = (("realization-scatter", "realization_scatter.csv"),
          ("packing-scatter", "packing_scatter.csv"), ("pbc-course", "pbc_course.csv"),
-         ("integrity", "integrity.csv"), ("early-taps", "early_taps.csv"),
+         ("integrity", "integrity.csv"), ("campaign-runs", "campaign_runs.csv"),
+         ("early-taps", "early_taps.csv"),
          ("fit-surrogates", "fit_surrogates.csv"), ("seed-fits", "seed_fits.csv"),
          ("initial-packing", "initial_packing.csv"), ("p0-configs", "p0_configs.csv"),
          ("lateral-first-tap", "lateral_first_tap.csv"), ("ramp-levels", "ramp_levels.csv"),
@@ -101,6 +105,7 @@ HEADINGS = {
     realization_scatter: "Errors of one run against realizations (realization-scatter)",
     packing_scatter: "Errors of one packing against realizations (packing-scatter)",
     pbc_course: "The course of P.B.C. runs (pbc-course)", integrity: "Integrity (integrity)",
+    campaign_runs: "The campaign's runs (campaign-runs)",
     early_taps: "The early taps (early-taps)",
     fit_surrogates: "Eq. 3 and eq. 4 fitted run by run (fit-surrogates)",
     seed_fits: "Eq. 3 and eq. 4 fitted over realizations (seed-fits)",
@@ -116,7 +121,7 @@ HEADINGS = {
     final_phi: "The final <Phi^c> at the front's settings"}
 #: the calibrations of the errors and the integrity check: their own appendix page (the
 #: other questions are on the questions' page)
-CHECKS = (realization_scatter, packing_scatter, integrity)
+CHECKS = (realization_scatter, packing_scatter, integrity, campaign_runs)
 #: the groups of :func:`render_parts`
 GROUPS = ("checks", "questions")
 
@@ -138,6 +143,7 @@ def _measured(folder, figures, factors):
     for module, extra in ((first_tap, ()), (noise_floor, (figures.get("fig3"),)),
                           (spectral_window, ()), (realization_scatter, ()),
                           (packing_scatter, ()), (pbc_course, (factors,)), (integrity, ()),
+                          (campaign_runs, ()),
                           (early_taps, ())):
         if there(module):
             parts.append((module, module.render(folder / module.CSV, *extra)))
