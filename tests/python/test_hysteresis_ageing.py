@@ -15,7 +15,7 @@ SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", HERE.parent.parent))
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
 
 from tapmc.ageing import Ageing, ScalingRealizationTest  # noqa: E402
-from tapmc.hysteresis import Hysteresis  # noqa: E402
+from tapmc.hysteresis import BranchStatistic, Hysteresis, seeds_together  # noqa: E402
 from tapmc.laws import AgeingLaw  # noqa: E402
 
 
@@ -185,3 +185,26 @@ def test_scaling_test_names_what_it_needs():
         ScalingRealizationTest().compute(z, [0, 10])
     with pytest.raises(RuntimeError, match="compute"):
         ScalingRealizationTest().p_value
+
+
+def test_seeds_together_pools_the_seeds_and_weighs_their_scatter():
+    """Three seeds: the pooled mean and its error are those of a mean of independent seeds;
+    the scatter is the chi2 about the inverse-variance mean, brute force; seeds beyond their
+    errors are not consistent; one seed or an error of 0 is refused."""
+    from scipy.stats import chi2
+    values, sems = np.array([0.001, 0.002, 0.0045]), np.array([0.0005, 0.001, 0.0008])
+    together = seeds_together(BranchStatistic(v, s, 3) for v, s in zip(values, sems))
+    assert together.pooled.value == pytest.approx(values.mean())
+    assert together.pooled.sem == pytest.approx(np.sqrt(np.sum(sems ** 2)) / 3)
+    assert together.pooled.n == 9 and together.dof == 2
+    w = 1 / sems ** 2
+    mean = np.sum(w * values) / np.sum(w)
+    assert together.chi2 == pytest.approx(np.sum(((values - mean) / sems) ** 2))
+    assert together.p == pytest.approx(chi2.sf(together.chi2, 2))
+    assert together.p < 0.01 and not together.consistent      # 0.0045 lies apart
+    close = seeds_together([BranchStatistic(0.001, 0.001, 1), BranchStatistic(0.002, 0.001, 1)])
+    assert close.chi2 == pytest.approx(0.5) and close.consistent
+    for bad in ([BranchStatistic(0.001, 0.001, 1)],
+                [BranchStatistic(0.001, 0.001, 1), BranchStatistic(0.002, 0.0, 1)]):
+        with pytest.raises(ValueError, match="needs 2 or more"):
+            seeds_together(bad)

@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from tapmc.hysteresis import BranchStatistic
 from tapmc.paper import paper_ramp, validation
 
 SOURCE = Path(__file__).resolve().parents[2]
@@ -217,7 +218,9 @@ def test_back_at_the_turning_level_the_loop_splits_into_given_back_and_kept(tmp_
             "+- 0.0000 over its first visit, on the first increase).") in text
     both = paper_ramp.finding_text([rows["paperramp0.125_pbc_s1"],
                                     rows["paperramp0.125_pbc_s2"]], 1e-7)
-    assert "Back up at the turning level (2 of 2 seeds), the seeds differ (seed 1:" in both
+    assert ("Back up at the turning level (2 of 2 seeds), the seeds disagree beyond their "
+            "errors (seed 1 loosens, seed 2 stays (frozen); chi2 = ") in both
+    assert "p < 1e-4): one answer per seed (seed 1:" in both
     alone = paper_ramp.finding_text([rows["paperramp0.125_pbc_s2"]], 1e-7)
     assert "it stays where the descent left it (frozen) (seed 2:" in alone
     # a ramp still on its way up again adds nothing to the sentence
@@ -263,7 +266,9 @@ def test_the_second_increase_against_the_descent_is_the_papers_test_of_reversibi
             "of the descent's move), it lies above the descent: still compacting)") in headline
     both = paper_ramp.headline_text([rows["paperramp0.125_pbc_s1"],
                                      rows["paperramp0.125_pbc_s2"]], 1e-7)
-    assert "+0.0000 and +0.0020 (mean of 3 levels;" in both and "the seeds differ)" in both
+    assert "+0.0000 and +0.0020 (mean of 3 levels;" in both
+    assert ("the seeds disagree beyond their errors (seed 1 retraces, seed 2 lies above; "
+            "chi2 = ") in both and "p < 1e-4): one answer per seed)" in both
     # seeds that reached different numbers of levels: the counts follow the seeds' order
     uneven = paper_ramp.headline_text([rows["paperramp0.125_pbc_s2"],
                                        rows["paperramp0.125_pbc_s3"]], 1e-7)
@@ -447,3 +452,32 @@ def test_the_level_errors_take_the_ramps_own_windows_when_they_reject_the_report
             "turn; the campaign's realizations give x 2.0)") in text
     assert f"x {errors.value:.1f} (one 1000-tap mean to the next)" in \
         paper_ramp.settings_line(slow, 2.0)
+
+
+def test_seeds_whose_verdicts_differ_within_their_errors_are_answered_together():
+    """Two seeds' second increases, one within noise of its descent (+0.0001 +- 0.0004), one
+    beyond (+0.0013 +- 0.0004): their difference is 2.1 errors (chi2 = 4.5, p = 0.034, not
+    below CALIBRATION_ALPHA), so the answer is their mean, +0.0007 +- 0.00028, 2.5 errors
+    above: still compacting. The
+    control, +0.0030 for the second: 5 errors apart, one answer per seed."""
+    def trace(mean):
+        return paper_ramp.Retrace((0.05,), (mean,), (0.0004,),
+                                  BranchStatistic(mean, 0.0004, 3))
+
+    def seed(k):
+        return type("Run", (), {"seed": k})()
+
+    traces = [(seed(1), trace(0.0001)), (seed(2), trace(0.0013))]
+    assert [t.verdict for _, t in traces] == ["retraces", "above"]
+    long = paper_ramp._retrace_answer(traces)
+    assert long == ("the seeds' verdicts differ (seed 1 retraces, seed 2 lies above) within "
+                    "their errors (chi2 = 4.5 for 1 dof, p = 0.034); over the 2 seeds, +0.0007 "
+                    "+- 0.0003: it lies above the descent: the packing still compacts, neither "
+                    "frozen nor reversible")
+    assert paper_ramp._retrace_answer(traces, short=True) == (
+        "together +0.0007 +- 0.0003: it lies above the descent: still compacting (seed 1 "
+        "retraces, seed 2 lies above, within their errors)")
+    apart = [(seed(1), trace(0.0001)), (seed(2), trace(0.0030))]
+    assert paper_ramp._retrace_answer(apart, short=True) == (
+        "the seeds disagree beyond their errors (seed 1 retraces, seed 2 lies above; chi2 = "
+        "26.3 for 1 dof, p < 1e-4): one answer per seed")

@@ -21,15 +21,17 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.stats import chi2 as chi2_distribution
 
 from ._legends import place_legend
 from ._validate import (as_1d, in_range, new_axis, positive, positive_int, require, result,
                         same_length)
 from .fluctuations import SteadyState
+from .stats import CALIBRATION_ALPHA
 
 __all__ = ["Hysteresis", "LEVEL_TOLERANCE", "CRITICAL_SQRT_EPS", "Z_DECIDE", "BranchData",
            "BranchStatistic", "common_levels", "branch_difference", "branch_slope", "branch_change",
-           "RampBranches"]
+           "RampBranches", "SeedsTogether", "seeds_together"]
 
 #: (sqrt eps)* ~ 0.15 of section III.B, between the irreversible and the reversible behaviour
 CRITICAL_SQRT_EPS = 0.15
@@ -182,6 +184,47 @@ class BranchStatistic:
     @property
     def within_noise(self):
         return abs(self.z) < Z_DECIDE
+
+
+@dataclass(frozen=True)
+class SeedsTogether:
+    """One statistic of several seeds taken together: ``pooled`` their mean, with the
+    standard error of a mean of independent seeds (the root of the sum of their squared
+    errors over the number of seeds); ``chi2`` (``dof`` = seeds - 1) the seeds' scatter about
+    their weighted mean against their own errors, ``p`` its chance; ``consistent``: the seeds
+    agree within their errors (p >= CALIBRATION_ALPHA, the project's one threshold for a
+    scatter that rejects the errors)."""
+
+    pooled: BranchStatistic
+    chi2: float
+    dof: int
+    p: float
+
+    @property
+    def consistent(self):
+        return self.p >= CALIBRATION_ALPHA
+
+    def scatter_text(self):
+        chance = f"p = {self.p:.2g}" if self.p >= 1e-4 else "p < 1e-4"
+        return f"chi2 = {self.chi2:.1f} for {self.dof} dof, {chance}"
+
+
+def seeds_together(stats):
+    """:class:`SeedsTogether` of two or more :class:`~tapmc.hysteresis.BranchStatistic` (one
+    per seed, each with a positive error); ValueError otherwise."""
+    stats = list(stats)
+    if len(stats) < 2 or not all(s.sem > 0 for s in stats):
+        raise ValueError(f"seeds_together: {len(stats)} statistics, needs 2 or more, each with "
+                         "an error > 0")
+    values = np.array([s.value for s in stats])
+    sems = np.array([s.sem for s in stats])
+    weights = 1.0 / sems ** 2
+    weighted = float(np.sum(weights * values) / np.sum(weights))
+    scatter = float(np.sum(weights * (values - weighted) ** 2))
+    dof = len(stats) - 1
+    pooled = BranchStatistic(float(values.mean()), float(np.sqrt(np.sum(sems ** 2))) / len(stats),
+                             sum(s.n for s in stats))
+    return SeedsTogether(pooled, scatter, dof, float(chi2_distribution.sf(scatter, dof)))
 
 
 def common_levels(a, b, tolerance=LEVEL_TOLERANCE):

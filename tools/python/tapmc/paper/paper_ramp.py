@@ -33,7 +33,8 @@ import numpy as np
 from scipy.stats import chi2
 
 from ..hysteresis import (CRITICAL_SQRT_EPS, LEVEL_TOLERANCE, BranchData, BranchStatistic,
-                          Hysteresis, RampBranches, branch_difference, common_levels)
+                          Hysteresis, RampBranches, branch_difference, common_levels,
+                          seeds_together)
 from ..stats import CALIBRATION_ALPHA
 from . import _plotting, _runs
 from .scales import FULL
@@ -131,6 +132,16 @@ def _level_difference(a, b):
     return BranchStatistic(float(a[1][-1] - b[1][-1]), float(np.hypot(a[2][-1], b[2][-1])), 2)
 
 
+def _retrace_verdict(stat):
+    """A second increase minus the descent (:class:`Retrace`) in a word."""
+    return "above" if stat.positive else "below" if stat.negative else "retraces"
+
+
+def _return_verdict(stat):
+    """What the packing gives back at the turning level (:class:`ReturnToTop`) in a word."""
+    return "loosens" if stat.negative else "compacts" if stat.positive else "frozen"
+
+
 @dataclass(frozen=True)
 class ReturnToTop:
     """A ramp back at its turning level after the descent (the last level of its second
@@ -147,8 +158,7 @@ class ReturnToTop:
     @property
     def verdict(self):
         """"loosens", "frozen" (within noise) or "compacts", by ``given_back``."""
-        return ("loosens" if self.given_back.negative else
-                "compacts" if self.given_back.positive else "frozen")
+        return _return_verdict(self.given_back)
 
 
 @dataclass(frozen=True)
@@ -169,8 +179,7 @@ class Retrace:
     def verdict(self):
         """"retraces" (the mean within noise), "above" (the packing still compacts as the
         taps grow again) or "below" (it loosens below the descent)."""
-        return ("above" if self.mean.positive else "below" if self.mean.negative
-                else "retraces")
+        return _retrace_verdict(self.mean)
 
 
 def read_taps(path):
@@ -569,7 +578,10 @@ RETURN_ANSWERS = {("loosens",): "it loosens as the taps grow again (a frozen bra
 
 def _return_answer(backs):
     verdicts = tuple(sorted({b.verdict for _, b in backs}))
-    return RETURN_ANSWERS.get(verdicts, "the seeds differ")
+    if verdicts in RETURN_ANSWERS:
+        return RETURN_ANSWERS[verdicts]
+    return _mixed_answer([(s, b.given_back, b.verdict) for s, b in backs], _return_verdict,
+                         RETURN_ANSWERS, short=False)
 
 
 def _retraces(decided):
@@ -594,9 +606,38 @@ RETRACE_ANSWERS = {
                  "it lies below the descent")}
 
 
+#: A seed's verdict in a list of verdicts that differ: (retrace words, return words).
+SEED_VERDICT_WORDS = {"retraces": "retraces", "above": "lies above", "below": "lies below",
+                      "loosens": "loosens", "frozen": "stays (frozen)", "compacts": "compacts"}
+
+
+def _mixed_answer(seeded, verdict_of, answers, short):
+    """The words for seeds whose verdicts differ: each seed's verdict, then the seeds
+    together (:func:`seeds_together`): within their errors, the pooled mean and its verdict
+    (``verdict_of(BranchStatistic)`` -> a key of ``answers``); beyond them, no answer over
+    the seeds. ``seeded``: (seed, BranchStatistic, verdict) per seed."""
+    each = ", ".join(f"seed {s} {SEED_VERDICT_WORDS[v]}" for s, _, v in seeded)
+    together = seeds_together(stat for _, stat, _ in seeded)
+    if not together.consistent:
+        return (f"the seeds disagree beyond their errors ({each}; {together.scatter_text()}): "
+                "one answer per seed")
+    pooled = together.pooled
+    words = answers[(verdict_of(pooled),)]
+    words = words[int(short)] if isinstance(words, tuple) else words
+    if short:
+        return (f"together {_signed(pooled.value)} +- {pooled.sem:.4f}: {words} ({each}, "
+                "within their errors)")
+    return (f"the seeds' verdicts differ ({each}) within their errors "
+            f"({together.scatter_text()}); over the {len(seeded)} seeds, "
+            f"{_signed(pooled.value)} +- {pooled.sem:.4f}: {words}")
+
+
 def _retrace_answer(traces, short=False):
     verdicts = tuple(sorted({t.verdict for _, t in traces}))
-    return RETRACE_ANSWERS.get(verdicts, ("the seeds differ",) * 2)[int(short)]
+    if verdicts in RETRACE_ANSWERS:
+        return RETRACE_ANSWERS[verdicts][int(short)]
+    return _mixed_answer([(r.seed, t.mean, t.verdict) for r, t in traces], _retrace_verdict,
+                         RETRACE_ANSWERS, short)
 
 
 def _retrace_headline(decided):
