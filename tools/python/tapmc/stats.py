@@ -22,8 +22,20 @@ from scipy import stats as _scipy_stats
 CONFIDENCE = 0.95
 #: Significance below which a spread rejects the errors it is tested against: one run's own
 #: error against the realizations' spread (tapmc.paper.claims), a paper ramp's level error
-#: against its windows (tapmc.paper.paper_ramp); convention: a 1 % test, as the fits'.
+#: against its windows (tapmc.paper.paper_ramp), seeds' means against their own errors
+#: (tapmc.hysteresis.seeds_together); convention: a 1 % test, as the fits'.
 CALIBRATION_ALPHA = 0.01
+
+
+def realization_factor(value, what):
+    """``value`` as a float when it can be the factor by which another realization lands
+    further than one run's own batch-means error (>= 1: the realizations' spread is never
+    below it); ValueError naming ``what`` otherwise (also for NaN)."""
+    factor = float(value)
+    if not factor >= 1.0:
+        raise ValueError(f"{what}: {factor!r}, must be >= 1 (the realizations' spread is never "
+                         "below a run's own batch-means error)")
+    return factor
 
 
 def _level(confidence):

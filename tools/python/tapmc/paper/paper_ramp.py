@@ -35,7 +35,7 @@ from scipy.stats import chi2
 from ..hysteresis import (CRITICAL_SQRT_EPS, LEVEL_TOLERANCE, BranchData, BranchStatistic,
                           Hysteresis, RampBranches, branch_difference, common_levels,
                           seeds_together)
-from ..stats import CALIBRATION_ALPHA
+from ..stats import CALIBRATION_ALPHA, realization_factor
 from . import _plotting, _runs
 from .scales import FULL
 
@@ -265,10 +265,7 @@ def calibrated(rows, factor):
     leaves the rows as they are."""
     if factor is None:
         return list(rows)
-    factor = float(factor)
-    if not factor >= 1.0:
-        raise ValueError(f"error factor: {factor!r}, must be >= 1 (the realizations' spread "
-                         "is never below a run's own batch-means error)")
+    factor = realization_factor(factor, "error factor")
     out = []
     for r in rows:
         scaled = dict(down_change_sem=r.down_change_sem * factor,

@@ -40,7 +40,8 @@ import numpy as np
 
 from tapmc.campaign.provenance import read_manifest
 from tapmc.fluctuations import SteadyState
-from tapmc.stats import beyond, t_quantile, t_quantile_of_mean, weighted_polyfit
+from tapmc.stats import (beyond, realization_factor, t_quantile, t_quantile_of_mean,
+                         weighted_polyfit)
 
 from . import _plotting, _runs
 from ._steady_state import BC, sigma_error_one_run, steady_last
@@ -344,11 +345,8 @@ def calibrated(all_points, factor_of):
     for p in all_points:
         scaled = {}
         for field, quantity in ERROR_QUANTITIES.items():
-            k = float(factor_of(quantity, p.eps))
-            if not k >= 1.0:
-                raise ValueError(f"factor of {quantity} at eps = {p.eps:g}: {k!r}, must be "
-                                 ">= 1 (the realizations' spread is never below a run's own "
-                                 "batch-means error)")
+            k = realization_factor(factor_of(quantity, p.eps),
+                                   f"factor of {quantity} at eps = {p.eps:g}")
             floor = getattr(p, f"{field}_inside") * k
             scaled[f"{field}_sem"] = max(getattr(p, f"{field}_sem"), floor)
             scaled[f"{field}_inside"] = floor
