@@ -170,3 +170,32 @@ def test_a_folder_that_is_no_campaign_is_named_and_the_csv_kept(tmp_path, capsys
     assert status == 1 and "Traceback" not in err and err.count("\n") == 1
     assert message in err
     assert (out / campaign_runs.CSV).read_text() == "run\ncommitted\n"
+
+
+def test_an_attempt_killed_with_its_campaign_counts_and_its_run_is_under_way(tmp_path):
+    """A run whose campaign was killed (SIGKILL) in its first minutes: its record holds only
+    the start of that attempt (running_attempt) and its folder a log but no restart file; it
+    is under way, from tap 0, with one attempt of unknown time under that attempt's version.
+    The control: the same run without the start and the log is not started."""
+    campaign = write_campaign(tmp_path / "campaign")
+    manifest = json.loads((campaign / "manifest.json").read_text())
+    fresh = manifest["runs"][2]
+    fresh["running_attempt"] = {"started": "2026-11-30T09:55:22Z", "tapmc_version": "0a1b2c3"}
+    (campaign / "manifest.json").write_text(json.dumps(manifest))
+    (campaign / "runs" / fresh["name"] / "log.lammps").write_text("LAMMPS (29 Sep 2021)\n")
+    rows = {r[0]: dict(zip(campaign_runs.HEADER, map(str, r)))
+            for r in campaign_runs.analyse(campaign)}
+    killed = rows[fresh["name"]]
+    assert (killed["status"], killed["resumes_from"], killed["attempts"]) == ("under way", "",
+                                                                              "1")
+    assert (killed["tapmc_versions"], killed["attempts_without_cpu_time"]) == ("0a1b2c3", "1")
+    assert killed["rule_cpu_h_left"] == killed["rule_cpu_h"]     # it starts again from tap 0
+    campaign_runs.save(tmp_path / campaign_runs.CSV, campaign_runs.analyse(campaign))
+    assert "- under way (no restart file yet: starts again from tap 0)" in "\n".join(
+        campaign_runs.render(tmp_path / campaign_runs.CSV))
+    del fresh["running_attempt"]
+    (campaign / "manifest.json").write_text(json.dumps(manifest))
+    (campaign / "runs" / fresh["name"] / "log.lammps").unlink()
+    status = campaign_runs.HEADER.index("status")
+    assert {r[0]: r[status] for r in campaign_runs.analyse(campaign)}[fresh["name"]] == \
+        "not started"

@@ -6,7 +6,9 @@ per level), taps and seed; whether it is done, under way (the tap of its latest 
 where it resumes) or not started; the CPU and wall time its attempts recorded (lower bounds
 when some attempts recorded none) and the CPU time its LAMMPS logs measured (each run
 command's loop time times its CPU use) over the taps they ran; what the cost rule of
-``tapmc-paper plan`` gives for it and for what is left of it; and the TAPMC versions its attempts ran (campaign_runs.csv)."""
+``tapmc-paper plan`` gives for it and for what is left of it; and the TAPMC versions its
+attempts ran (campaign_runs.csv). Read it with the campaign stopped: an attempt still
+running counts as one its campaign was killed in."""
 
 from __future__ import annotations
 
@@ -44,13 +46,26 @@ def _ramp_range(v):
     return f"{float(v['sqrt0']):g}", f"{top:g}"
 
 
+def _with_killed_attempt(record):
+    """The record with the attempt its campaign was killed in (``running_attempt``: its start
+    only, no entry of its own until the run is prepared again, when the campaign records it as
+    interrupted) counted as an attempt without times: the table is read with the campaign
+    stopped, so such an attempt has ended."""
+    running = record.get("running_attempt")
+    if not running:
+        return record
+    return {**record, "attempts": list(record.get("attempts", []))
+            + [{"interrupted": True, "tapmc_version": running.get("tapmc_version")}]}
+
+
 def _status(record, run_dir):
-    """(state, resumes_from): "done" (a DONE.json), "under way" (an attempt or a restart
-    file: the step of the latest, where it resumes, "" when none) or "not started"."""
+    """(state, resumes_from): "done" (a DONE.json), "under way" (an attempt, a restart file
+    or a log: the step of the latest restart, where it resumes, "" when none) or "not
+    started"."""
     if (run_dir / "DONE.json").is_file():
         return "done", ""
     step = latest_restart(run_dir)[0] if run_dir.is_dir() else None
-    if step is not None or record.get("attempts"):
+    if step is not None or record.get("attempts") or (run_dir / "log.lammps").is_file():
         return "under way", "" if step is None else str(step)
     return "not started", ""
 
@@ -74,6 +89,7 @@ def _hours(seconds):
 
 
 def _row(record, runs, rule):
+    record = _with_killed_attempt(record)
     v = record.get("variables", {})
     run_dir = runs / record["name"]
     state, resumes_from = _status(record, run_dir)
@@ -138,8 +154,8 @@ def _settings_cell(r):
 
 def _state_cell(r):
     if r["status"] == "under way":
-        return f"under way (resumes from tap {r['resumes_from']})" if r["resumes_from"] else \
-            "under way"
+        return (f"under way (resumes from tap {r['resumes_from']})" if r["resumes_from"] else
+                "under way (no restart file yet: starts again from tap 0)")
     return r["status"]
 
 
