@@ -603,7 +603,7 @@ RETRACE_ANSWERS = {
                  "it lies below the descent")}
 
 
-#: A seed's verdict in a list of verdicts that differ: (retrace words, return words).
+#: A seed's verdict in words, where the seeds' verdicts differ (second increase, return to the top).
 SEED_VERDICT_WORDS = {"retraces": "retraces", "above": "lies above", "below": "lies below",
                       "loosens": "loosens", "frozen": "stays (frozen)", "compacts": "compacts"}
 
