@@ -13,12 +13,12 @@ running counts as one its campaign was killed in."""
 from __future__ import annotations
 
 import math
-from types import SimpleNamespace
 
 from tapmc.campaign import CampaignDirectoryError, provenance
 from tapmc.campaign.run_folder import latest_restart
 
 from .. import cost
+from .._runs import ramp_level
 from .._rst import list_table
 from .common import QuestionError, csv_schema, runs_folder
 
@@ -42,7 +42,7 @@ def _ramp_range(v):
     sqrt0 up, then down and up again), or ("", "") for a run at one eps."""
     if "nlev" not in v:
         return "", ""
-    top = float(v["sqrt0"]) + float(v["dsqrt"]) * (int(v["nlev"]) - 1)
+    top = ramp_level(int(v["nlev"]) - 1, v["nlev"], v["sqrt0"], v["dsqrt"])[1]
     return f"{float(v['sqrt0']):g}", f"{top:g}"
 
 
@@ -75,9 +75,8 @@ def _rule_hours(record, resumes_from, rule):
     ranks; ("", "") when the rule cannot price it (no rule, a setting it has not measured)."""
     if rule is None:
         return "", ""
-    spec = SimpleNamespace(variables=record["variables"], taps=record["taps"])
     try:
-        seconds = cost.tap_seconds(spec, rule) * int(record.get("nprocs", 1)) / 3600.0
+        seconds = cost.tap_seconds(cost.run_spec_like(record), rule) * int(record.get("nprocs", 1)) / 3600.0
     except (cost.CostError, KeyError, ValueError, TypeError):
         return "", ""
     start = int(resumes_from) if resumes_from else 0
