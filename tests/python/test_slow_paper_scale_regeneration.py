@@ -86,22 +86,20 @@ def assert_same_table(fresh, committed):
             f"{committed.name}, row {k + 1}: {a} is not the committed {b}")
 
 
-def test_the_table_comparison_takes_rounding_not_a_change():
+def test_the_table_comparison_takes_rounding_not_a_change(tmp_path):
     """The comparison's own control: a last-digit difference passes, a changed number, a
     changed word and a missing row do not."""
-    import tempfile
-    with tempfile.TemporaryDirectory() as folder:
-        base = Path(folder) / "a.csv"
-        base.write_text("x,y,name\n0.1234567890123,1,done\n")
-        for text, same in (("0.1234567890124,1,done\n", True), ("0.1234568,1,done\n", False),
-                           ("0.1234567890123,1,under way\n", False), ("", False)):
-            other = Path(folder) / "b.csv"
-            other.write_text("x,y,name\n" + text)
-            if same:
+    base = tmp_path / "a.csv"
+    base.write_text("x,y,name\n0.1234567890123,1,done\n")
+    for text, same in (("0.1234567890124,1,done\n", True), ("0.1234568,1,done\n", False),
+                       ("0.1234567890123,1,under way\n", False), ("", False)):
+        other = tmp_path / "b.csv"
+        other.write_text("x,y,name\n" + text)
+        if same:
+            assert_same_table(other, base)
+        else:
+            with pytest.raises(AssertionError):
                 assert_same_table(other, base)
-            else:
-                with pytest.raises(AssertionError):
-                    assert_same_table(other, base)
 
 
 def test_the_runs_table_is_the_committed_campaigns(tmp_path):
