@@ -484,6 +484,31 @@ def test_merge_skips_the_empty_segment_of_a_run_killed_before_its_first_output(t
         merge_ave_time_parts(tmp_path)
 
 
+def test_joined_ave_time_reads_a_running_run_as_the_merge_would_write_it(tmp_path):
+    """A run still running (or killed): its segments joined as the merge joins them, nothing
+    written; the live segment's last block cut short and an empty live segment are left out."""
+    from tapmc.campaign import joined_ave_time, merge_ave_time_parts
+
+    header = "# Time-averaged data\n# TimeStep Number-of-rows\n# Row c_p[1]\n"
+    block = "{} 1\n1 {}.5\n"
+    assert joined_ave_time(tmp_path, "prof.dat") == ([], [])
+    (tmp_path / "prof.dat").write_text(header + block.format(0, 0) + block.format(20, 9))
+    (tmp_path / "prof.dat.from19").write_text(header + block.format(20, 2) + "40 1\n")
+    head, blocks = joined_ave_time(tmp_path, "prof.dat")
+    assert "".join(head) == header
+    assert [(s, "".join(b)) for s, b in blocks] == [(0, block.format(0, 0)),
+                                                    (20, block.format(20, 2))]
+    (tmp_path / "prof.dat.from39").write_text("")
+    assert [s for s, _ in joined_ave_time(tmp_path, "prof.dat")[1]] == [0, 20]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["prof.dat", "prof.dat.from19",
+                                                          "prof.dat.from39"]
+    (tmp_path / "prof.dat.from39").write_text(header + block.format(40, 4))
+    expected = joined_ave_time(tmp_path, "prof.dat")
+    merge_ave_time_parts(tmp_path)
+    assert (tmp_path / "prof.dat").read_text() == "".join(expected[0]) + "".join(
+        "".join(b) for _, b in expected[1])
+
+
 def test_finished_ramp_keeps_its_level_end_restarts(tmp_path):
     """A finished run keeps only its latest restart file; a ramp (variables P and nlev of
     in.ramp) also keeps those at its level ends, from which a level can be continued."""

@@ -171,7 +171,7 @@ def test_ramp_levels_without_taps_names_the_file(capsys, tmp_path):
 def test_list_names_every_question(capsys):
     assert cli.main(["question", "--list"]) == 0
     listed = [line.split()[0] for line in capsys.readouterr().out.splitlines()]
-    assert listed == list(QUESTIONS) and len(listed) == 22
+    assert listed == list(QUESTIONS) and len(listed) == 23
 
 
 def test_help_lists_every_question(capsys):

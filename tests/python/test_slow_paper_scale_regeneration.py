@@ -22,7 +22,7 @@ PYTHON_DIR = SOURCE / "tools" / "python"
 sys.path.insert(0, str(PYTHON_DIR))
 
 from tapmc.paper import _runs  # noqa: E402
-from tapmc.paper.questions import campaign_runs  # noqa: E402
+from tapmc.paper.questions import campaign_runs, ramp_alpha  # noqa: E402
 from tapmc.paper.validation_appendix import APPENDICES  # noqa: E402
 
 DOC = SOURCE / "doc"
@@ -111,3 +111,12 @@ def test_the_runs_table_is_the_committed_campaigns(tmp_path):
     assert fresh.read_text() == committed.read_text(), (
         "doc/paper_scale/validation/questions/campaign_runs.csv is not the committed "
         "campaign's: run 'build/tapmc-paper question campaign-runs' with the campaign stopped")
+
+
+def test_the_paper_ramps_alpha_is_the_committed_campaigns(tmp_path):
+    """ramp_alpha.csv (gradient-no-hysteresis's rows at 4000 taps per level) is what the
+    committed campaign's paper ramps give, those still running included."""
+    committed = DOC / "paper_scale" / "validation" / "questions" / ramp_alpha.CSV
+    fresh = ramp_alpha.save(tmp_path / ramp_alpha.CSV,
+                            ramp_alpha.analyse(DOC / "validation" / "data" / "full"))
+    assert_same_table(fresh, committed)

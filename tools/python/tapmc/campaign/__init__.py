@@ -32,10 +32,11 @@ Modules, one job each: :mod:`.spec` (RunSpec), :mod:`.launch` (processes, the lo
 from .errors import STOPPED_STATUS, CampaignDirectoryError, CampaignError, CampaignStopped
 from .launch import available_cores, find_lmp
 from .provenance import MANIFEST_FORMAT, verify_finished_run
-from .run_folder import merge_ave_time_parts
+from .run_folder import joined_ave_time, merge_ave_time_parts
 from .runner import PROGRESS_INTERVAL, Campaign
 from .spec import RunSpec, Words
 
 __all__ = ["RunSpec", "Words", "Campaign", "CampaignError", "CampaignDirectoryError",
            "CampaignStopped", "STOPPED_STATUS", "find_lmp", "merge_ave_time_parts",
+           "joined_ave_time",
            "MANIFEST_FORMAT", "PROGRESS_INTERVAL", "available_cores", "verify_finished_run"]

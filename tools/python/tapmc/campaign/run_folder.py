@@ -78,6 +78,52 @@ def drop_repeated_titles(path):
     path.write_text("".join(out))
 
 
+def _segments(run_dir):
+    """file name -> its ``name.from<step>`` segments [(step, path)], sorted by step."""
+    parts = {}
+    for p in Path(run_dir).glob("*.from*"):
+        m = re.fullmatch(r"(.+)\.from(\d+)", p.name)
+        if m:
+            parts.setdefault(m.group(1), []).append((int(m.group(2)), p))
+    return {base: sorted(segs) for base, segs in parts.items()}
+
+
+def _joined_blocks(main, segs, finished):
+    """(header, blocks) of ``main`` joined with its segments ``segs`` (see
+    :func:`joined_ave_time`); ``finished``: the last file was written by a run that ended (a
+    last block cut short raises), not by one still running or killed."""
+    files = ([(0, main)] if main.exists() else []) + segs
+    # A run killed before its first output leaves an empty segment: it holds no block, and
+    # the blocks of the segment before it stay valid up to the next segment's start (a
+    # resumed run repeats the same trajectory from its restart).
+    files = [f for k, f in enumerate(files)
+             if k + 1 == len(files) or f[1].stat().st_size > 0]
+    header, blocks = None, []
+    for k, (start, p) in enumerate(files):
+        last = k + 1 == len(files)
+        if last and not finished and p.stat().st_size == 0:
+            break
+        h, b = read_ave_time_blocks(p, killed=not (last and finished))
+        header = header if header is not None else h
+        end = None if last else files[k + 1][0]
+        blocks += [blk for blk in b if blk[0] >= start and (end is None or blk[0] < end)]
+    return header or [], blocks
+
+
+def joined_ave_time(run_dir, name):
+    """The fix ave/time file ``name`` of a run that may still be running or was killed, joined
+    with the ``name.from<step>`` segments its resumed attempts wrote, as
+    :func:`merge_ave_time_parts` would merge them, without touching a file: ``(header,
+    blocks)`` as :func:`tapmc.readers.read_ave_time_blocks` gives them, a last block cut short
+    left out; ``([], [])`` when the run has written none of them."""
+    run_dir = Path(run_dir)
+    main = run_dir / name
+    segs = _segments(run_dir).get(name, [])
+    if not main.exists() and not segs:
+        return [], []
+    return _joined_blocks(main, segs, finished=False)
+
+
 def merge_ave_time_parts(run_dir):
     """Merge ``X.from<step>`` segments of fix ave/time files written by resumed runs into X.
 
@@ -87,28 +133,10 @@ def merge_ave_time_parts(run_dir):
     every segment but the last was written by a killed run, so its last block may be cut
     short. Returns the list of merged file names."""
     run_dir = Path(run_dir)
-    parts = {}
-    for p in run_dir.glob("*.from*"):
-        m = re.fullmatch(r"(.+)\.from(\d+)", p.name)
-        if m:
-            parts.setdefault(m.group(1), []).append((int(m.group(2)), p))
     merged = []
-    for base, segs in parts.items():
-        segs.sort()
+    for base, segs in _segments(run_dir).items():
         main = run_dir / base
-        files = ([(0, main)] if main.exists() else []) + segs
-        # A run killed before its first output leaves an empty segment: it holds no block, and
-        # the blocks of the segment before it stay valid up to the next segment's start (a
-        # resumed run repeats the same trajectory from its restart).
-        files = [f for k, f in enumerate(files)
-                 if k + 1 == len(files) or f[1].stat().st_size > 0]
-        header, blocks = None, []
-        for k, (start, p) in enumerate(files):
-            last = k + 1 == len(files)
-            h, b = read_ave_time_blocks(p, killed=not last)
-            header = header if header is not None else h
-            end = None if last else files[k + 1][0]
-            blocks += [blk for blk in b if blk[0] >= start and (end is None or blk[0] < end)]
+        header, blocks = _joined_blocks(main, segs, finished=True)
         main.write_text("".join(header) + "".join("".join(lines) for _, lines in blocks))
         for _, p in segs:
             p.unlink()

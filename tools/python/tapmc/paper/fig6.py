@@ -180,23 +180,10 @@ def ramp_alpha(campaign, bc=_steady_state.BC, prefix="ramp_"):
     collected = defaultdict(lambda: defaultdict(list))
     for spec in _runs.select(campaign, prefix, bc=bc):
         prof = _runs.profile(campaign, spec, "profile_z.dat")
-        tab = _runs.taps_table(campaign, spec)
-        r = radius(spec)
-        lo, hi = PROFILE_WINDOWS[bc]
-        z0 = prof.blocks[0, :, 0] / r
-        height = profile_height(z0, prof.blocks[0, :, 2], (lo, hi))
-        window = (lo, min(hi, WINDOW_TOP_FRACTION * height))
-        steps = np.asarray(tab["step"], dtype=int)
-        sqrt_eps = _runs.ramp_sqrt_eps(tab)
-        for block, step in zip(prof.blocks, np.asarray(prof.steps, dtype=int)):
-            row = np.flatnonzero(steps == step)
-            if step == 0 or not len(row):
-                continue
-            fit = profile_gradient(block[:, 0] / r, block[:, 2], window=window, boundary=bc)
-            branch = _runs.RAMP_BRANCHES[int(tab["branch"][row[0]])]
-            key = round(float(sqrt_eps[row[0]]), 9)
-            collected[branch][key].append((float(fit.params["alpha"]),
-                                           float(fit.errors["alpha"])))
+        levels = level_alphas(prof.blocks, prof.steps, _runs.taps_table(campaign, spec),
+                              radius(spec), bc)
+        for level in levels:
+            collected[level.branch][round(level.sqrt_eps, 9)].append((level.alpha, level.err))
     out = {}
     for branch in _runs.RAMP_BRANCHES:
         by_sq = collected.get(branch)
@@ -208,6 +195,48 @@ def ramp_alpha(campaign, bc=_steady_state.BC, prefix="ramp_"):
             m, s, n = P.seed_stats([[a] for a, _ in by_sq[key]])
             rows.append((m[0], s[0] if n[0] >= 2 else by_sq[key][0][1], n[0]))
         out[branch] = (sq,) + tuple(np.array(col, dtype=float) for col in zip(*rows))
+    return out
+
+
+@dataclass(frozen=True)
+class LevelAlpha:
+    """alpha of the profile a ramp prints at the end of one level."""
+
+    step: int
+    branch: str
+    sqrt_eps: float
+    alpha: float
+    #: the straight line's own error (too small: the bins of one profile share spheres)
+    err: float
+    #: the gradient window (lo, hi) in R
+    window: tuple
+
+
+def level_alphas(blocks, steps, table, r, bc=_steady_state.BC):
+    """[LevelAlpha] of a ramp's vertical profiles (``blocks``, one per output ``steps``;
+    columns z, ..., Phi as in.ramp's profile_z.dat), the level of each read from the ramp's
+    taps ``table`` (columns step, branch, sqrt_eps; the last row of a step written twice by a
+    resumed run). The window is the boundary's (tapmc.laws.PROFILE_WINDOWS) cut at
+    WINDOW_TOP_FRACTION of the height of the profile at step 0, which must be there; a block
+    whose step has no row of the table is left out."""
+    steps = np.asarray(steps, dtype=int)
+    if not len(steps) or steps[0] != 0:
+        raise ValueError("the profiles do not start with the initial packing's (step 0): "
+                         "the gradient window cannot be cut at its height")
+    lo, hi = PROFILE_WINDOWS[bc]
+    height = profile_height(blocks[0][:, 0] / r, blocks[0][:, 2], (lo, hi))
+    window = (lo, min(hi, WINDOW_TOP_FRACTION * height))
+    tap_steps = np.asarray(table["step"], dtype=int)
+    sqrt_eps = _runs.ramp_sqrt_eps(table)
+    out = []
+    for block, step in zip(blocks[1:], steps[1:]):
+        row = np.flatnonzero(tap_steps == step)
+        if not len(row):
+            continue
+        fit = profile_gradient(block[:, 0] / r, block[:, 2], window=window, boundary=bc)
+        out.append(LevelAlpha(int(step), _runs.RAMP_BRANCHES[int(table["branch"][row[-1]])],
+                              float(sqrt_eps[row[-1]]), float(fit.params["alpha"]),
+                              float(fit.errors["alpha"]), window))
     return out
 
 

@@ -202,29 +202,104 @@ def alpha_ramp_hysteresis(data, claim):
     of the k level differences (t with k - 1 dof), which also holds any trend of the
     difference with sqrt(eps). The effect a hysteresis would have is alpha's variation along
     the first increase (<Phi^c>'s gap is as large as its own variation there); the same
-    ratio of <Phi^c> (Fig. 4) is shown beside it."""
+    ratio of <Phi^c> (Fig. 4) is shown beside it. Then, per eta, the ramps at the paper's
+    own protocol that turn beyond (sqrt eps)* (:func:`_paper_alpha_hysteresis`)."""
     fig6 = data.result("fig6")
     up, down = (None, None) if fig6 is None else (curve_of((fig6.ramp or {}).get(branch))
                                                   for branch in ("up1", "down"))
+    paper = _paper_alpha_hysteresis(data)
     if up is None or down is None:
-        return not_in_campaign("no ramp profiles on branches 'up1' and 'down'")
+        return paper or not_in_campaign("no ramp profiles on branches 'up1' and 'down'")
     diffs = paired_levels(down, up)
     if len(diffs) < 3:
         return [Measure(undecided=f"{len(diffs)} sqrt(eps) common to the first increase and "
-                                  "the decrease; the scatter needs three")]
+                                  "the decrease; the scatter needs three")] + paper
+    phi_up, phi_down = ramp_branch(data, "up1"), ramp_branch(data, "down")
+    phi_gap = None if phi_up is None or phi_down is None else paired_levels(phi_down, phi_up)
+    return [_alpha_gap_measure(diffs, float(np.ptp(up[1])), phi_gap,
+                               None if phi_up is None else phi_up[1])] + paper
+
+
+def _alpha_gap_measure(diffs, variation, phi_gap=None, phi_up=None, **row):
+    """gradient-no-hysteresis's row of the level differences ``diffs`` of alpha (decrease
+    minus first increase): their mean, its error from their scatter (t with k - 1 dof), against
+    alpha's ``variation`` along the first increase; with <Phi^c>'s differences ``phi_gap`` and
+    its first increase ``phi_up``, the same ratio of <Phi^c> beside it. ``row``: Measure's
+    label and meets."""
     value = float(np.mean(diffs))
     err = float(np.std(diffs, ddof=1) / math.sqrt(len(diffs)))
-    variation = float(np.ptp(up[1]))
     shown = (f"{fmt(value, err)} (decrease minus first increase, mean of {len(diffs)} common "
              f"sqrt(eps); error from their scatter): {abs(value) / variation:.0%} of alpha's "
              f"variation along the first increase ({fmt(variation)})")
-    phi_up, phi_down = ramp_branch(data, "up1"), ramp_branch(data, "down")
-    if phi_up is not None and phi_down is not None:
-        gap = paired_levels(phi_down, phi_up)
-        if len(gap) and np.ptp(phi_up[1]) > 0:
-            shown += (f"; <Phi^c>: {abs(float(np.mean(gap))) / float(np.ptp(phi_up[1])):.0%} "
-                      "of its own")
-    return [Measure(value, err, len(diffs) - 1, effect=variation, shown=shown)]
+    if phi_gap is not None and len(phi_gap) and np.ptp(phi_up) > 0:
+        shown += (f"; <Phi^c>: {abs(float(np.mean(phi_gap))) / float(np.ptp(phi_up)):.0%} "
+                  "of its own")
+    return Measure(value, err, len(diffs) - 1, effect=variation, shown=shown, **row)
+
+
+def _paper_alpha_hysteresis(data):
+    """Per eta, gradient-no-hysteresis's row of the ramps at the paper's own protocol that
+    turn beyond (sqrt eps)* (ramp_alpha.csv of tapmc-paper question ramp-alpha: alpha at the
+    end of every level of 4000 taps): the level differences of every seed pooled (one profile
+    per level, as the campaign's ramps), against the variation of the seeds' mean alpha along
+    their first increase; <Phi^c>'s ratio from the same ramps' levels (paper_ramp.csv).
+    [] without such ramps."""
+    levels = ramp_alpha_levels(data.question("ramp_alpha"))
+    beyond = {run: v for run, v in levels.items() if v.top > CRITICAL_SQRT_EPS}
+    if not beyond:
+        return []
+    phi_runs = {r.run: r for r in runs_from_rows(data.question("paper_ramp"))}
+    first = campaign_eta(data.summary)
+    out = []
+    for eta in sorted({v.eta for v in beyond.values()}, key=lambda e: (e != first, -e)):
+        runs = sorted(run for run, v in beyond.items() if v.eta == eta)
+        label = protocol_label(PAPER_RAMP_TAPS, eta)
+        diffs = np.concatenate([beyond[r].difference("down", "up1") for r in runs])
+        if len(diffs) < 3:
+            out.append(Measure(label=label, meets=("ramp_taps",),
+                               undecided=f"{len(diffs)} level(s) of the decrease at a sqrt(eps)"
+                                         " of the first increase; the scatter needs three"))
+            continue
+        ups = [beyond[r].branches["up1"][1] for r in runs]
+        up_mean = np.mean([u[:min(map(len, ups))] for u in ups], axis=0)
+        phi = [phi_runs[r] for r in runs if r in phi_runs]
+        phi_gap = np.concatenate([paired_levels(p.branch("down"), p.branch("up1"))
+                                  for p in phi]) if phi else None
+        phi_up = np.mean([p.branch("up1")[1][:len(up_mean)] for p in phi], axis=0) \
+            if phi else None
+        out.append(_alpha_gap_measure(diffs, float(np.ptp(up_mean)), phi_gap, phi_up,
+                                      label=label, meets=("ramp_taps",)))
+    return out
+
+
+@dataclasses.dataclass(frozen=True)
+class RampAlphaLevels:
+    """alpha at the level ends of one ramp at the paper's protocol (ramp_alpha.csv)."""
+
+    top: float
+    eta: float
+    seed: int
+    #: branch ('up1', 'down', 'up2') -> (sqrt_eps, alpha) arrays, levels in order
+    branches: dict
+
+    def difference(self, a, b):
+        """Branch ``a`` minus branch ``b`` at their common sqrt(eps) (empty when either is
+        missing)."""
+        if a not in self.branches or b not in self.branches:
+            return np.array([])
+        return paired_levels(self.branches[a], self.branches[b])
+
+
+def ramp_alpha_levels(rows):
+    """run -> :class:`RampAlphaLevels` of ramp_alpha.csv's ``rows`` (dicts of text)."""
+    found = {}
+    for r in rows:
+        found.setdefault(r["run"], (r, {}))[1].setdefault(r["branch"], []).append(
+            (float(r["sqrt_eps"]), float(r["alpha"])))
+    return {run: RampAlphaLevels(float(first["top"]), float(first["eta"]), int(first["seed"]),
+                                 {b: tuple(np.array(c, dtype=float) for c in zip(*v))
+                                  for b, v in by.items()})
+            for run, (first, by) in found.items()}
 
 
 def ramp_branch(data, name):

@@ -113,7 +113,7 @@ def _point_key(name, x, value):
 #: and nu at its level ends (ramp-pores)
 QUESTION_CSVS = ("initial_packing", "p0_configs", "lateral_first_tap", "early_taps",
                  "fit_surrogates", "ramp_levels", "ramp_pores", "realization_scatter",
-                 "packing_scatter", "seed_fits", "paper_ramp", "alpha_window")
+                 "packing_scatter", "seed_fits", "paper_ramp", "alpha_window", "ramp_alpha")
 
 
 #: the question CSVs whose rows are groups of realizations (:meth:`ReportData.scatter_rows`)

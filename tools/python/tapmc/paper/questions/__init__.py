@@ -37,6 +37,9 @@ those files, so the report can be rewritten from committed data.
 * alpha-window (``alpha_window.csv``): alpha of every P.B.C. constant-eps run in a window
   5-18R below the packing's loose top beside Fig. 6's own window: whether alpha's rise with
   eps is the model or the window's reading (the register's gradient-bell reads it).
+* ramp-alpha (``ramp_alpha.csv``): alpha at the end of every level of the ramps at the
+  paper's 4000 taps per level: whether alpha shows hysteresis at the paper's protocol (the
+  register's gradient-no-hysteresis reads it).
 * campaign-runs (``campaign_runs.csv``): every run of the campaign with its settings (eta,
   eps or a ramp's range and taps per level), how far it got, what its attempts recorded and
   cost by the cost rule, and the TAPMC versions that ran it.
@@ -55,8 +58,8 @@ from ..claims import SCANS, realization_factors, scan_files
 from . import (alpha_window, campaign_runs, connected_ageing, crystallinity, dmax, early_taps,
                final_phi, first_tap, fit_surrogates, integrity, initial_packing, knob_scan,
                lateral_first_tap, noise_floor, p0_configs, p0_fluid, packing_scatter, pbc_course,
-               pore_shares, ramp_levels, ramp_pores, realization_scatter, seed_fits,
-               spectral_window, theta0)
+               pore_shares, ramp_alpha, ramp_levels, ramp_pores, realization_scatter,
+               seed_fits, spectral_window, theta0)
 from .calibration import load as load_scatter
 from .common import QuestionError
 
@@ -67,12 +70,12 @@ QUESTIONS = {m.NAME: m for m in (
     first_tap, noise_floor, spectral_window, pbc_course, integrity, realization_scatter,
     packing_scatter, early_taps, initial_packing, p0_configs, lateral_first_tap, ramp_levels,
     ramp_pores, theta0, dmax, p0_fluid, fit_surrogates, seed_fits, crystallinity,
-    alpha_window, connected_ageing, campaign_runs)}
+    alpha_window, connected_ageing, campaign_runs, ramp_alpha)}
 #: the questions whose measurement reads the campaign's runs (--campaign)
 CAMPAIGN_QUESTIONS = ("spectral-window", "pbc-course", "integrity", "early-taps",
                       "ramp-levels", "realization-scatter", "packing-scatter", "ramp-pores",
                       "fit-surrogates", "seed-fits", "crystallinity", "alpha-window",
-                      "connected-ageing", "campaign-runs")
+                      "connected-ageing", "campaign-runs", "ramp-alpha")
 #: the page's section title
 TITLE = "Questions settled by measurement"
 #: the commands named under the title, in the page's order, with the CSV that shows each was
@@ -86,7 +89,7 @@ NAMED = (("realization-scatter", "realization_scatter.csv"),
          ("lateral-first-tap", "lateral_first_tap.csv"), ("ramp-levels", "ramp_levels.csv"),
          ("ramp-pores", "ramp_pores.csv"), ("crystallinity", "crystallinity.csv"),
          ("alpha-window", "alpha_window.csv"),
-         ("connected-ageing", "connected_ageing.csv"))
+         ("connected-ageing", "connected_ageing.csv"), ("ramp-alpha", "ramp_alpha.csv"))
 
 
 def _commands(folder):
@@ -117,6 +120,7 @@ HEADINGS = {
     crystallinity: "Crystallinity of the tapped packings (crystallinity)",
     alpha_window: "alpha in a window below the loose top (alpha-window)",
     connected_ageing: "Ageing with the drift removed (connected-ageing)",
+    ramp_alpha: "alpha on the ramps at the paper's protocol (ramp-alpha)",
     pore_shares: "Fig. 10's pores",
     final_phi: "The final <Phi^c> at the front's settings"}
 #: the calibrations of the errors and the integrity check: their own appendix page (the
@@ -153,7 +157,7 @@ def _measured(folder, figures, factors):
     for module, extra in ((seed_fits, ()), (initial_packing, ()), (p0_configs, ()),
                           (ramp_levels, (figures.get("fig4"), factors)), (ramp_pores, ()),
                           (lateral_first_tap, (figures.get("fig8"),)), (crystallinity, ()),
-                          (alpha_window, ()), (connected_ageing, ())):
+                          (alpha_window, ()), (ramp_alpha, ()), (connected_ageing, ())):
         if there(module):
             parts.append((module, module.render(folder / module.CSV, *extra)))
     for knob in SCANS:

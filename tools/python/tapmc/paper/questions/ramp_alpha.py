@@ -1,0 +1,149 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""ramp-alpha: does alpha, the vertical gradient of Fig. 6, show hysteresis on the ramps at
+the paper's own protocol (section III.B: 4000 taps per level; section IV.A: "alpha presents no
+hysteresis effect")? No simulation: alpha of the vertical profile every ``paperramp*`` run of
+the campaign prints at the end of each level (in.ramp's profile_z.dat, joined with the
+segments of its resumed attempts while it runs), read as Fig. 6 reads the campaign's own
+ramps (:func:`tapmc.paper.fig6.level_alphas`), one row per whole level (ramp_alpha.csv). The
+register decides from it: gradient-no-hysteresis's rows "4000 taps per level, eta = ..." for
+the ramps that turn beyond (sqrt eps)*; the page shows every ramp's branches against each
+other."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+
+from tapmc.campaign import joined_ave_time
+from tapmc.hysteresis import CRITICAL_SQRT_EPS
+
+from .. import fig6, paper_ramp
+from .._rst import list_table
+from ..claims import fmt
+from ..claims.bell import ramp_alpha_levels
+from ..scales import FULL
+from .common import QuestionError, csv_schema, runs_folder, taps_table
+
+NAME = "ramp-alpha"
+CSV = "ramp_alpha.csv"
+HEADER = ["run", "top", "eta", "seed", "step", "branch", "sqrt_eps", "alpha", "alpha_err",
+          "window_lo", "window_hi"]
+#: the boundary condition of the paper's ramps (section III.B: P.B.C.)
+BC = "pbc"
+#: the profile file in.ramp writes at t = 0 and at the end of every level
+PROFILE = "profile_z.dat"
+#: the sphere radius of a run that sets none (the inputs' default)
+DEFAULT_RADIUS = 0.5
+
+
+def add_arguments(parser):
+    """No options beyond --campaign and --out."""
+
+
+def _radius(campaign, name):
+    """R of run ``name``: its variable in the campaign's manifest.json (a run still running
+    has no DONE.json), DEFAULT_RADIUS when it sets none or the campaign has no manifest."""
+    path = campaign / "manifest.json"
+    if not path.is_file():
+        return DEFAULT_RADIUS
+    try:
+        runs = json.loads(path.read_text()).get("runs", [])
+    except ValueError as err:
+        raise QuestionError(f"{path}: not JSON ({err})") from None
+    for run in runs:
+        if run.get("name") == name:
+            return float(run.get("variables", {}).get("R", DEFAULT_RADIUS))
+    return DEFAULT_RADIUS
+
+
+def _profiles(run_dir):
+    """(blocks, steps) of a ramp's profiles so far, its resumed attempts' segments joined;
+    QuestionError when it has none or they do not start at t = 0."""
+    header, blocks = joined_ave_time(run_dir, PROFILE)
+    if not blocks:
+        raise QuestionError(f"{run_dir / PROFILE}: no profile yet (in.ramp writes the initial "
+                            "packing's when it starts)")
+    if blocks[0][0] != 0:
+        raise QuestionError(f"{run_dir / PROFILE}: its first profile is at step {blocks[0][0]},"
+                            " not the initial packing's (0): the gradient window is cut at "
+                            "its height")
+    arrays = [np.loadtxt(lines[1:], ndmin=2)[:, 1:] for _, lines in blocks]
+    return arrays, [step for step, _ in blocks]
+
+
+def analyse_run(campaign, run_dir, default_eta):
+    """The rows of one paper ramp: one per level whose end it has printed."""
+    m = paper_ramp.NAME.match(run_dir.name)
+    if not m:
+        raise QuestionError(f"{run_dir}: not a paper ramp's name "
+                            "(paperramp<top>_<bc>[_eta<eta>]_s<seed>)")
+    eta = float(m.group("eta")) if m.group("eta") else float(default_eta)
+    blocks, steps = _profiles(run_dir)
+    table = taps_table(run_dir / "taps.dat")
+    levels = fig6.level_alphas(blocks, steps, table, _radius(campaign, run_dir.name),
+                               m.group("bc"))
+    return [[run_dir.name, m.group("top"), f"{eta:g}", int(m.group("seed")), lv.step,
+             lv.branch, f"{lv.sqrt_eps:.8g}", f"{lv.alpha:.8g}", f"{lv.err:.4g}",
+             f"{lv.window[0]:g}", f"{lv.window[1]:.6g}"] for lv in levels]
+
+
+def analyse(campaign, default_eta=FULL.eta):
+    """The rows of ramp_alpha.csv: every ``paperramp*`` run with a taps.dat, by name, its
+    levels in order; QuestionError when the campaign has none."""
+    runs = [d for d in sorted(runs_folder(campaign).glob("paperramp*"))
+            if (d / "taps.dat").is_file()]
+    if not runs:
+        raise QuestionError(f"--campaign {campaign}: no paper ramp (runs/paperramp* with a "
+                            "taps.dat)")
+    rows = []
+    for run_dir in runs:
+        run_rows = analyse_run(campaign, run_dir, default_eta)
+        rows += run_rows
+        print(f"{run_dir.name}: alpha at the end of {len(run_rows)} levels", flush=True)
+    return rows
+
+
+def measure(args):
+    save(args.out / CSV, analyse(args.campaign))
+
+
+save, load = csv_schema(HEADER)
+
+
+def _difference_cell(levels, a, b):
+    """'mean +- scatter error (k)' of branch a minus b over its k common levels (one level:
+    its difference; none: '')."""
+    d = levels.difference(a, b)
+    if len(d) < 2:
+        return "" if not len(d) else f"{d[0]:+.5f} (1 level)"
+    return f"{fmt(float(np.mean(d)), float(np.std(d, ddof=1) / np.sqrt(len(d))))} ({len(d)})"
+
+
+def render(path):
+    """A table of every paper ramp: alpha's range along its first increase, and its
+    decreasing branch minus its first increase and its second increase minus its decrease
+    (mean over the common levels, error from their scatter); no verdict (the register's
+    gradient-no-hysteresis rows give it for the ramps beyond (sqrt eps)*)."""
+    rows = load(path)
+    if not rows:
+        return []
+    table = []
+    for lv in sorted(ramp_alpha_levels(rows).values(), key=lambda v: (v.top, -v.eta, v.seed)):
+        up = lv.branches.get("up1", (np.array([]), np.array([])))[1]
+        table.append([f"{lv.top:g}", paper_ramp.eta_text(lv.eta), lv.seed,
+                      sum(len(v[0]) for v in lv.branches.values()),
+                      f"{up.min():.5f} to {up.max():.5f}" if len(up) else "",
+                      _difference_cell(lv, "down", "up1"), _difference_cell(lv, "up2", "down")])
+    lo, hi = float(rows[0]["window_lo"]), max(float(r["window_hi"]) for r in rows)
+    lines = ["Does alpha show hysteresis at the paper's protocol (``gradient-no-hysteresis``)? "
+             "alpha of the vertical profile every ramp at 4000 taps per level prints at the end "
+             f"of each level, in the window {lo:g}R to at most {hi:.3g}R as Fig. 6 reads the "
+             "campaign's ramps (``ramp_alpha.csv``). Differences: mean over the sqrt(eps) "
+             "common to the two branches, the error from their scatter (one profile per "
+             f"level); ramps turning beyond (sqrt eps)* = {CRITICAL_SQRT_EPS:g} decide the "
+             "register's rows.", ""]
+    lines += list_table(["turning at", "eta", "seed", "levels", "alpha, first increase",
+                         "decrease minus first increase (levels)",
+                         "second increase minus decrease (levels)"], table)
+    return lines + [""]
