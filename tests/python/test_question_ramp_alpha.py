@@ -185,3 +185,34 @@ def test_seeds_of_one_eta_pool_their_levels():
     row, = no_hysteresis_rows(ramp_beyond(0.0002) + ramp_beyond(0.0, seed=2))
     assert row.dof == 7 and row.value == pytest.approx(0.0001)
     assert "mean of 8 common sqrt(eps)" in row.shown
+
+
+def low_pair(gaps, eta=1e-7):
+    """Two seeds of a ramp turning at 0.125: down minus up1 = gaps[seed] +- 0.0001 over 4
+    levels (each seed's scatter error 0.0001 / sqrt(4) x sqrt(4/3))."""
+    rows = []
+    for seed, gap in enumerate(gaps, 1):
+        noise = 0.0001 * (-1.0) ** np.arange(4)
+        rows += alpha_rows(f"paperramp0.125_pbc_s{seed}", 0.125, eta, seed,
+                           [("up1", x, 0.001) for x in UP[:5]]
+                           + [("down", x, 0.001 + gap + n)
+                              for x, n in zip(UP[:4][::-1], noise)])
+    return rows
+
+
+def test_the_level_scatter_error_is_checked_on_pairs_of_seeds():
+    """Seeds of the ramps at 0.125 apart within their scatter errors: the error is kept, the
+    chi2 the brute force's; apart far beyond them (the control): the 0.2 ramp's error takes
+    sqrt(chi2 / dof), and its verdict follows the wider error."""
+    claim = BY_ID["gradient-no-hysteresis"]
+    sem = 0.0001 * np.sqrt(4 / 3) / 2                     # each seed's scatter error
+    kept, = no_hysteresis_rows(ramp_beyond(0.0004) + low_pair([0.0002, 0.0003]))
+    chi2 = (0.0001 / 2) ** 2 / sem ** 2 * 2               # two seeds about their mean
+    assert f"chi2 = {chi2:.1f} over 1 dof" in kept.shown and "kept" in kept.shown
+    assert kept.err == pytest.approx(0.00002 * np.sqrt(4 / 3) / 2)   # ramp_beyond's noise
+    widened, = no_hysteresis_rows(ramp_beyond(0.0004) + low_pair([0.0, 0.003]))
+    chi2 = (0.003 / 2) ** 2 / sem ** 2 * 2
+    assert widened.err == pytest.approx(kept.err * np.sqrt(chi2))
+    assert f"x {np.sqrt(chi2):.1f}" in widened.shown
+    assert str(claims.verdict(claim, kept)).startswith("disagrees")
+    assert not str(claims.verdict(claim, widened)).startswith("disagrees")

@@ -10,9 +10,11 @@ import dataclasses
 import math
 
 import numpy as np
+from scipy.stats import chi2 as chi2_distribution
 
-from tapmc.hysteresis import CRITICAL_SQRT_EPS, LEVEL_TOLERANCE
-from tapmc.stats import t_quantile, weighted_line, welch_dof
+from tapmc.hysteresis import (CRITICAL_SQRT_EPS, LEVEL_TOLERANCE, BranchStatistic,
+                              seeds_together)
+from tapmc.stats import CALIBRATION_ALPHA, t_quantile, weighted_line, welch_dof
 
 from .. import fig4, fig6
 from ..paper_ramp import (LAST_TAPS as PAPER_RAMP_LAST, NOT_DOWN_YET,
@@ -220,16 +222,19 @@ def alpha_ramp_hysteresis(data, claim):
                                None if phi_up is None else phi_up[1])] + paper
 
 
-def _alpha_gap_measure(diffs, variation, phi_gap=None, phi_up=None, **row):
+def _alpha_gap_measure(diffs, variation, phi_gap=None, phi_up=None, check=None, **row):
     """gradient-no-hysteresis's row of the level differences ``diffs`` of alpha (decrease
     minus first increase): their mean, its error from their scatter (t with k - 1 dof), against
     alpha's ``variation`` along the first increase; with <Phi^c>'s differences ``phi_gap`` and
-    its first increase ``phi_up``, the same ratio of <Phi^c> beside it. ``row``: Measure's
-    label and meets."""
+    its first increase ``phi_up``, the same ratio of <Phi^c> beside it; ``check``: the
+    :class:`ScatterCheck` of that error on pairs of seeds, whose factor it takes. ``row``:
+    Measure's label and meets."""
     value = float(np.mean(diffs))
     err = float(np.std(diffs, ddof=1) / math.sqrt(len(diffs)))
+    err *= 1.0 if check is None else check.factor
+    how = "error from their scatter" + ("" if check is None else f"; {check.text()}")
     shown = (f"{fmt(value, err)} (decrease minus first increase, mean of {len(diffs)} common "
-             f"sqrt(eps); error from their scatter): {abs(value) / variation:.0%} of alpha's "
+             f"sqrt(eps); {how}): {abs(value) / variation:.0%} of alpha's "
              f"variation along the first increase ({fmt(variation)})")
     if phi_gap is not None and len(phi_gap) and np.ptp(phi_up) > 0:
         shown += (f"; <Phi^c>: {abs(float(np.mean(phi_gap))) / float(np.ptp(phi_up)):.0%} "
@@ -249,7 +254,7 @@ def _paper_alpha_hysteresis(data):
     if not beyond:
         return []
     phi_runs = {r.run: r for r in runs_from_rows(data.question("paper_ramp"))}
-    first = campaign_eta(data.summary)
+    first, check = campaign_eta(data.summary), scatter_check(levels)
     out = []
     for eta in sorted({v.eta for v in beyond.values()}, key=lambda e: (e != first, -e)):
         runs = sorted(run for run, v in beyond.items() if v.eta == eta)
@@ -267,9 +272,61 @@ def _paper_alpha_hysteresis(data):
                                   for p in phi]) if phi else None
         phi_up = np.mean([p.branch("up1")[1][:len(up_mean)] for p in phi], axis=0) \
             if phi else None
-        out.append(_alpha_gap_measure(diffs, float(np.ptp(up_mean)), phi_gap, phi_up,
+        out.append(_alpha_gap_measure(diffs, float(np.ptp(up_mean)), phi_gap, phi_up, check,
                                       label=label, meets=("ramp_taps",)))
     return out
+
+
+#: levels of the decrease on the first increase a seed needs for the scatter check: an error
+#: from the scatter of two differences has one degree of freedom and is itself too noisy
+SCATTER_CHECK_LEVELS = 3
+
+
+@dataclasses.dataclass(frozen=True)
+class ScatterCheck:
+    """How far the paper ramps' seeds of one turning level and eta lie apart in alpha's
+    decrease minus first increase against the errors from their levels' scatter: ``chi2`` of
+    each group's seeds about their weighted mean (tapmc.hysteresis.seeds_together), summed
+    over ``groups`` groups (``dof``: seeds - 1 each), ``p`` its chance. The levels of one run
+    share the packing's slow structure; if that made the scatter's error too small, seeds
+    would lie further apart than it allows. ``factor``: sqrt(chi2 / dof) when the pairs reject
+    the errors at CALIBRATION_ALPHA, else 1 (a factor from a few seeds is itself noisy)."""
+
+    chi2: float
+    dof: int
+    groups: int
+
+    @property
+    def p(self):
+        return float(chi2_distribution.sf(self.chi2, self.dof))
+
+    @property
+    def factor(self):
+        ratio = math.sqrt(self.chi2 / self.dof)
+        return ratio if ratio > 1.0 and self.p < CALIBRATION_ALPHA else 1.0
+
+    def text(self):
+        kept = "kept" if self.factor == 1.0 else f"x {self.factor:.1f}"
+        return (f"that error checked on {self.groups} pair(s) of seeds of the paper ramps: "
+                f"chi2 = {self.chi2:.1f} over {self.dof} dof (p = {self.p:.2f}), {kept}")
+
+
+def scatter_check(levels):
+    """The :class:`ScatterCheck` of ``levels`` (run -> :class:`RampAlphaLevels`): every
+    turning level and eta with two seeds or more that have SCATTER_CHECK_LEVELS common levels
+    each; None without such a group."""
+    groups = {}
+    for lv in levels.values():
+        d = lv.difference("down", "up1")
+        if len(d) >= SCATTER_CHECK_LEVELS:
+            groups.setdefault((lv.top, lv.eta), []).append(
+                BranchStatistic(float(np.mean(d)), float(np.std(d, ddof=1) / math.sqrt(len(d))),
+                                len(d)))
+    together = [seeds_together(g) for g in groups.values() if len(g) >= 2]
+    if not together:
+        return None
+    return ScatterCheck(float(sum(t.chi2 for t in together)), sum(t.dof for t in together),
+                        len(together))
 
 
 @dataclasses.dataclass(frozen=True)
