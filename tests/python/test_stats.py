@@ -59,6 +59,19 @@ def test_weighted_line_recovers_an_exact_line_and_needs_three_points():
     assert stats.weighted_line(x, y, np.full(6, 0.1))[1] > err
 
 
+def test_weighted_line_fit_gives_the_offset_with_its_error():
+    """The offset of an exact line and its error from the bars: sigma^2 sum(x^2) / (n Sxx)."""
+    x = np.arange(6.0)
+    offset, offset_err, slope, _, dof = stats.weighted_line_fit(x, 2.0 + 0.5 * x,
+                                                                np.full(6, 0.1))
+    sxx = np.sum((x - x.mean()) ** 2)
+    assert (offset, slope, dof) == (pytest.approx(2.0), pytest.approx(0.5), 4)
+    assert offset_err == pytest.approx(0.1 * math.sqrt(np.sum(x ** 2) / (6 * sxx)), rel=1e-9)
+    assert stats.weighted_line_fit(x, 2.0 + 0.5 * x, np.full(6, 0.1))[2:] == \
+        stats.weighted_line(x, 2.0 + 0.5 * x, np.full(6, 0.1))
+    assert math.isnan(stats.weighted_line_fit([0, 1], [0, 1], [1, 1])[0])
+
+
 def test_mean_dof():
     assert stats.mean_dof(5) == 4
     assert stats.mean_dof([5, 3, 7]) == 2

@@ -88,20 +88,26 @@ def weighted_polyfit(x, y, err, degree):
     return coef, cov, float(np.sum(w * (y - design @ coef) ** 2))
 
 
-def weighted_line(x, y, err):
-    """Weighted straight line y = a + b x: (b, its standard error, dof); errors scaled by the
-    reduced chi2 when it exceeds 1 (the scatter is then larger than the error bars say).
-    Points with a non-finite value or a non-positive error are left out; fewer than three
-    points give (nan, nan, None)."""
+def weighted_line_fit(x, y, err):
+    """Weighted straight line y = a + b x: (a, its standard error, b, its standard error,
+    dof); errors scaled by the reduced chi2 when it exceeds 1 (the scatter is then larger than
+    the error bars say). Points with a non-finite value or a non-positive error are left out;
+    fewer than three points give NaNs and dof None."""
     x, y, err = map(np.asarray, (x, y, err))
     ok = np.isfinite(x) & np.isfinite(y) & np.isfinite(err) & (err > 0)
     x, y, err = x[ok], y[ok], err[ok]
     if len(x) < 3:
-        return math.nan, math.nan, None
+        return math.nan, math.nan, math.nan, math.nan, None
     coef, cov, chi2 = weighted_polyfit(x, y, err, 1)
     dof = len(x) - 2
     scale = max(1.0, chi2 / dof)
-    return float(coef[1]), float(math.sqrt(cov[1, 1] * scale)), dof
+    return (float(coef[0]), float(math.sqrt(cov[0, 0] * scale)), float(coef[1]),
+            float(math.sqrt(cov[1, 1] * scale)), dof)
+
+
+def weighted_line(x, y, err):
+    """The slope of :func:`weighted_line_fit`: (b, its standard error, dof)."""
+    return weighted_line_fit(x, y, err)[2:]
 
 
 def mean_dof(n):

@@ -41,7 +41,7 @@ import numpy as np
 from tapmc.campaign.provenance import read_manifest
 from tapmc.fluctuations import SteadyState
 from tapmc.stats import (beyond, realization_factor, t_quantile, t_quantile_of_mean,
-                         weighted_polyfit)
+                         weighted_line_fit)
 
 from . import _plotting, _runs
 from ._steady_state import BC, sigma_error_one_run, steady_last
@@ -222,18 +222,9 @@ def line(eta_points):
     if any(p.eta != eta for p in eta_points):
         raise ValueError("line(): the points must share one eta")
     top = max(eta_points, key=lambda p: p.phi_c)
-    offset = offset_err = slope = slope_err = math.nan
-    dof = None
-    usable = [p for p in eta_points if np.isfinite(p.sigma_sem) and p.sigma_sem > 0]
-    if len(usable) >= 3:
-        x = np.array([p.sqrt_eps for p in usable])
-        coef, cov, chi2 = weighted_polyfit(x, np.array([p.sigma for p in usable]),
-                                           np.array([p.sigma_sem for p in usable]), 1)
-        dof = len(usable) - 2
-        scale = max(1.0, chi2 / dof)  # scatter beyond the error bars widens the errors
-        offset, slope = float(coef[0]), float(coef[1])
-        offset_err = float(math.sqrt(cov[0, 0] * scale))
-        slope_err = float(math.sqrt(cov[1, 1] * scale))
+    offset, offset_err, slope, slope_err, dof = weighted_line_fit(
+        [p.sqrt_eps for p in eta_points], [p.sigma for p in eta_points],
+        [p.sigma_sem for p in eta_points])
     measured = [p.eps for p in eta_points]
     return EtaLine(eta=eta, eps_count=len(eta_points), offset=offset, offset_err=offset_err,
                    slope=slope, slope_err=slope_err, dof=dof, top_eps=top.eps,
