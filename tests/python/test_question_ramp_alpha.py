@@ -81,6 +81,8 @@ def test_alpha_of_every_level_end_with_the_segments_of_a_running_ramp(tmp_path):
     assert [r[5] for r in first] == ["up1"] * 3 + ["down"] * 2 + ["up2"] * 2
     assert [float(r[6]) for r in first] == [x for _, x in LEVELS]
     assert [float(r[7]) for r in first] == pytest.approx(done, abs=1e-9)
+    assert [float(r[11]) for r in first] == pytest.approx(done, abs=1e-9)  # 5-18R: the same
+    assert all(r[12:] == ["5", "18"] for r in first)
     assert all(r[1:4] == ["0.075", "1e-07", 1] for r in first)
     assert float(first[0][10]) == pytest.approx(22.0 / 28.0 * HEIGHT, abs=0.3)
     second = [r for r in rows if r[0] == "paperramp0.075_pbc_eta1e-06_s2"]
@@ -103,7 +105,8 @@ def test_command_csv_and_page_section(tmp_path):
     text = "\n".join(questions.render_section(out))
     assert "alpha on the ramps at the paper's protocol (ramp-alpha)" in text
     # decrease minus first increase at 0.05 and 0.025: +0.0005 and +0.0003
-    assert "0.0004 ± 0.0001 (2)" in text
+    assert text.count("0.0004 ± 0.0001 (2)") == 2       # Fig. 6's window and 5-18R
+    assert "decrease minus first increase, 5-18R" in text
     assert "0.00100 to 0.00300" in text
     assert "agrees" not in text and "disagrees" not in text
 

@@ -212,20 +212,22 @@ class LevelAlpha:
     window: tuple
 
 
-def level_alphas(blocks, steps, table, r, bc=_steady_state.BC):
+def level_alphas(blocks, steps, table, r, bc=_steady_state.BC, window=None):
     """[LevelAlpha] of a ramp's vertical profiles (``blocks``, one per output ``steps``;
     columns z, ..., Phi as in.ramp's profile_z.dat), the level of each read from the ramp's
     taps ``table`` (columns step, branch, sqrt_eps; the last row of a step written twice by a
     resumed run). The window is the boundary's (tapmc.laws.PROFILE_WINDOWS) cut at
-    WINDOW_TOP_FRACTION of the height of the profile at step 0, which must be there; a block
-    whose step has no row of the table is left out."""
+    WINDOW_TOP_FRACTION of the height of the profile at step 0, which must be there, unless
+    ``window`` (lo, hi) in R is given; a block whose step has no row of the table is left
+    out."""
     steps = np.asarray(steps, dtype=int)
     if not len(steps) or steps[0] != 0:
         raise ValueError("the profiles do not start with the initial packing's (step 0): "
                          "the gradient window cannot be cut at its height")
-    lo, hi = PROFILE_WINDOWS[bc]
-    height = profile_height(blocks[0][:, 0] / r, blocks[0][:, 2], (lo, hi))
-    window = (lo, min(hi, WINDOW_TOP_FRACTION * height))
+    if window is None:
+        lo, hi = PROFILE_WINDOWS[bc]
+        height = profile_height(blocks[0][:, 0] / r, blocks[0][:, 2], (lo, hi))
+        window = (lo, min(hi, WINDOW_TOP_FRACTION * height))
     tap_steps = np.asarray(table["step"], dtype=int)
     sqrt_eps = _runs.ramp_sqrt_eps(table)
     out = []

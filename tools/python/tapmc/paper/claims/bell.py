@@ -347,12 +347,13 @@ class RampAlphaLevels:
         return paired_levels(self.branches[a], self.branches[b])
 
 
-def ramp_alpha_levels(rows):
-    """run -> :class:`RampAlphaLevels` of ramp_alpha.csv's ``rows`` (dicts of text)."""
+def ramp_alpha_levels(rows, column="alpha"):
+    """run -> :class:`RampAlphaLevels` of ramp_alpha.csv's ``rows`` (dicts of text): alpha
+    in Fig. 6's window, or with ``column`` 'alpha_reading' in the reading window."""
     found = {}
     for r in rows:
         found.setdefault(r["run"], (r, {}))[1].setdefault(r["branch"], []).append(
-            (float(r["sqrt_eps"]), float(r["alpha"])))
+            (float(r["sqrt_eps"]), float(r[column])))
     return {run: RampAlphaLevels(float(first["top"]), float(first["eta"]), int(first["seed"]),
                                  {b: tuple(np.array(c, dtype=float) for c in zip(*v))
                                   for b, v in by.items()})

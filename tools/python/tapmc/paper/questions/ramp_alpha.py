@@ -23,12 +23,13 @@ from .._rst import list_table
 from ..claims import fmt
 from ..claims.bell import ramp_alpha_levels
 from ..scales import FULL
+from .alpha_window import READING_WINDOW
 from .common import QuestionError, csv_schema, runs_folder, taps_table
 
 NAME = "ramp-alpha"
 CSV = "ramp_alpha.csv"
 HEADER = ["run", "top", "eta", "seed", "step", "branch", "sqrt_eps", "alpha", "alpha_err",
-          "window_lo", "window_hi"]
+          "window_lo", "window_hi", "alpha_reading", "reading_lo", "reading_hi"]
 #: the boundary condition of the paper's ramps (section III.B: P.B.C.)
 BC = "pbc"
 #: the profile file in.ramp writes at t = 0 and at the end of every level
@@ -81,11 +82,14 @@ def analyse_run(campaign, run_dir, default_eta):
     eta = float(m.group("eta")) if m.group("eta") else float(default_eta)
     blocks, steps = _profiles(run_dir)
     table = taps_table(run_dir / "taps.dat")
-    levels = fig6.level_alphas(blocks, steps, table, _radius(campaign, run_dir.name),
-                               m.group("bc"))
+    r = _radius(campaign, run_dir.name)
+    levels = fig6.level_alphas(blocks, steps, table, r, m.group("bc"))
+    reading = fig6.level_alphas(blocks, steps, table, r, m.group("bc"), READING_WINDOW)
     return [[run_dir.name, m.group("top"), f"{eta:g}", int(m.group("seed")), lv.step,
              lv.branch, f"{lv.sqrt_eps:.8g}", f"{lv.alpha:.8g}", f"{lv.err:.4g}",
-             f"{lv.window[0]:g}", f"{lv.window[1]:.6g}"] for lv in levels]
+             f"{lv.window[0]:g}", f"{lv.window[1]:.6g}", f"{low.alpha:.8g}",
+             f"{READING_WINDOW[0]:g}", f"{READING_WINDOW[1]:g}"]
+            for lv, low in zip(levels, reading)]
 
 
 def analyse(campaign, default_eta=FULL.eta):
@@ -129,21 +133,28 @@ def render(path):
     if not rows:
         return []
     table = []
-    for lv in sorted(ramp_alpha_levels(rows).values(), key=lambda v: (v.top, -v.eta, v.seed)):
+    reading = ramp_alpha_levels(rows, "alpha_reading")
+    for run, lv in sorted(ramp_alpha_levels(rows).items(),
+                          key=lambda kv: (kv[1].top, -kv[1].eta, kv[1].seed)):
         up = lv.branches.get("up1", (np.array([]), np.array([])))[1]
         table.append([f"{lv.top:g}", paper_ramp.eta_text(lv.eta), lv.seed,
                       sum(len(v[0]) for v in lv.branches.values()),
                       f"{up.min():.5f} to {up.max():.5f}" if len(up) else "",
-                      _difference_cell(lv, "down", "up1"), _difference_cell(lv, "up2", "down")])
+                      _difference_cell(lv, "down", "up1"), _difference_cell(lv, "up2", "down"),
+                      _difference_cell(reading[run], "down", "up1")])
     lo, hi = float(rows[0]["window_lo"]), max(float(r["window_hi"]) for r in rows)
+    low = f"{float(rows[0]['reading_lo']):g}-{float(rows[0]['reading_hi']):g}R"
     lines = ["Does alpha show hysteresis at the paper's protocol (``gradient-no-hysteresis``)? "
              "alpha of the vertical profile every ramp at 4000 taps per level prints at the end "
              f"of each level, in the window {lo:g}R to at most {hi:.3g}R as Fig. 6 reads the "
              "campaign's ramps (``ramp_alpha.csv``). Differences: mean over the sqrt(eps) "
              "common to the two branches, the error from their scatter (one profile per "
              f"level); ramps turning beyond (sqrt eps)* = {CRITICAL_SQRT_EPS:g} decide the "
-             "register's rows.", ""]
+             "register's rows. The last column reads alpha in the window "
+             f"{low} of ``alpha-window``, below the packing's loose top: a difference "
+             "there is not the window's reading of the top.", ""]
     lines += list_table(["turning at", "eta", "seed", "levels", "alpha, first increase",
                          "decrease minus first increase (levels)",
-                         "second increase minus decrease (levels)"], table)
+                         "second increase minus decrease (levels)",
+                         f"decrease minus first increase, {low}"], table)
     return lines + [""]
