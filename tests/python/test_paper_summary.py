@@ -5,6 +5,7 @@ known answer for every outcome, and controls that must not pass), the committed 
 150, and README.md's "What the validation found" is what the paper-scale page's data give."""
 
 import os
+import shutil
 import sys
 from pathlib import Path
 
@@ -13,7 +14,7 @@ import pytest
 SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", Path(__file__).resolve().parents[2]))
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
 
-from tapmc.paper import claims, paper_ramp, summary, validation  # noqa: E402
+from tapmc.paper import paper_ramp, summary, validation  # noqa: E402
 from tapmc.paper.claims import Claim, Measure, Row, Verdict  # noqa: E402
 from tapmc.paper.claims.aggregate import claim_verdicts  # noqa: E402
 from tapmc.paper.claims.rules import Outcome  # noqa: E402
@@ -140,9 +141,7 @@ def test_entries_follow_the_paper_order_with_thumbnails_and_headlines():
 
 
 def _entries(page):
-    summary_json, files = validation.committed_inputs(page)
-    data = claims.ReportData.from_files(summary_json, files)
-    return summary.summarise(claims.evaluate(claims.load_register(), data), files)
+    return validation.page_entries(*validation.committed_inputs(page))
 
 
 @pytest.mark.parametrize("page", PAGES, ids=lambda p: p.name)
@@ -166,10 +165,46 @@ def test_readme_says_what_the_paper_scale_page_found():
     headline = validation.paper_ramp_headline(*validation.committed_inputs(page))
     figure = (ramps.parent / paper_ramp.PNG_NAME).is_file()
     expected = summary.readme_lines(_entries(page), headline, figure)
+    assert validation.readme_lines(page) == expected
     assert (summary.README_FIGURE in expected) == figure
     readme = (SOURCE / "README.md").read_text().splitlines()
     start = readme.index("## What the validation found") + 3   # the heading, a line, a comment
     assert readme[start:start + len(expected)] == expected, (
-        "README.md's 'What the validation found' differs from tapmc.paper.summary.readme_lines "
-        "of doc/paper_scale: replace its lines by:\n" + "\n".join(expected))
+        "README.md's 'What the validation found' differs from the paper-scale page: run "
+        "'tapmc-paper report --from-data --out doc/paper_scale --readme README.md'")
+    assert readme[start + len(expected)] == "" and readme[start + len(expected) + 1][:3] == "## "
     assert "[doc/paper_scale/validation.rst](doc/paper_scale/validation.rst)" in expected[-1]
+
+
+def test_readme_section_is_replaced_up_to_the_next_heading():
+    """The section's body, after the heading and its two preamble lines, is replaced up to the
+    next '## ' heading; the rest of the file stays; a README without the section, or without
+    a heading after it, is refused naming what is missing."""
+    text = "# T\n\n## What the validation found\n\n<!-- c -->\nold 1\nold 2\n\n## Next\nx\n"
+    assert summary.readme_with_lines(text, ["new"]) == (
+        "# T\n\n## What the validation found\n\n<!-- c -->\nnew\n\n## Next\nx\n")
+    with pytest.raises(ValueError, match="no line '## What the validation found'"):
+        summary.readme_with_lines("# T\n", ["new"])
+    with pytest.raises(ValueError, match="no '## ' heading after"):
+        summary.readme_with_lines("## What the validation found\n\n<!-- c -->\nold\n", ["x"])
+
+
+def test_report_from_data_writes_the_readme_section(tmp_path, capsys):
+    """``report --from-data --readme``: the section of a README copy is the page's lines; a
+    README without the section: exit 2 naming it, the file as it was."""
+    from tapmc.paper import cli
+    page = tmp_path / "page"
+    shutil.copytree(DOC / "paper_scale", page)
+    readme = tmp_path / "README.md"
+    readme.write_text("# TAPMC\n\n## What the validation found\n\n<!-- c -->\nstale\n\n"
+                      "## Reproducing\nkept\n")
+    assert cli.main(["report", "--from-data", "--out", str(page), "--readme",
+                     str(readme)]) == 0
+    lines = readme.read_text().splitlines()
+    assert lines[5:5 + len(validation.readme_lines(page))] == validation.readme_lines(page)
+    assert "stale" not in lines and lines[-2:] == ["## Reproducing", "kept"]
+    readme.write_text("# no section\n")
+    assert cli.main(["report", "--from-data", "--out", str(page), "--readme",
+                     str(readme)]) == 2
+    assert "no line '## What the validation found'" in capsys.readouterr().err
+    assert readme.read_text() == "# no section\n"

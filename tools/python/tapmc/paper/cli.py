@@ -177,6 +177,10 @@ def _add_report_parser(sub):
                              "module can compute from its CSV's curves (Fig. 2's fit "
                              "intervals, range refits and ln B; Fig. 4's bell maximum; Fig. "
                              "5's collapse), rewriting those CSVs")
+    report.add_argument("--readme", type=Path, metavar="README",
+                        help="also write the section 'What the validation found' of README "
+                             "(the repository's README.md) from the page written to OUT: the "
+                             "counts, the central question's answer, the open questions")
     report.add_argument("--redraw", action="store_true",
                         help="with --from-data: first draw every figure's PNG again from its "
                              "committed CSV (its typed result) and report.json, after a change "
@@ -447,6 +451,24 @@ def _report_from_data(args):
         print(_os_message(err), file=sys.stderr)
         return 2
     print(f"report: {path}")
+    return _write_readme(args, validation, out)
+
+
+def _write_readme(args, validation, out):
+    """With ``--readme``: README's section "What the validation found" from the report just
+    written to ``out`` (``validation.update_readme``); exit 2 naming the file and what it
+    lacks when it cannot be written."""
+    if getattr(args, "readme", None) is None:
+        return 0
+    try:
+        readme = validation.update_readme(args.readme, out)
+    except (FileNotFoundError, ValueError) as err:
+        print(f"tapmc-paper: --readme {args.readme}: {err}", file=sys.stderr)
+        return 2
+    except OSError as err:
+        print(_os_message(err), file=sys.stderr)
+        return 2
+    print(f"report: {readme}")
     return 0
 
 
@@ -678,4 +700,4 @@ def _draw_and_report(args, campaign, modules, validation, out, planned):
     except OSError as err:
         print(_os_message(err), file=sys.stderr)
         return 2
-    return 0
+    return _write_readme(args, validation, out) if validation is not None else 0

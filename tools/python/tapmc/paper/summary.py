@@ -290,5 +290,26 @@ def readme_lines(entries, headline="", figure=False):
     return [line for p in paragraphs for line in (*p.split("\n"), "")][:-1]
 
 
+#: README.md's section that :func:`readme_lines` fills: its heading, then a blank line and the
+#: comment that says who writes it, then the lines, up to the next "## " heading
+README_SECTION = "## What the validation found"
+README_PREAMBLE_LINES = 2
+
+
+def readme_with_lines(text, lines):
+    """README.md's ``text`` with the body of :data:`README_SECTION` (after its preamble, up to
+    the next "## " heading) replaced by ``lines``; ValueError naming what is missing."""
+    old = text.splitlines()
+    if README_SECTION not in old:
+        raise ValueError(f"no line '{README_SECTION}' (the section the summary is written into)")
+    start = old.index(README_SECTION) + 1 + README_PREAMBLE_LINES
+    end = next((i for i in range(start, len(old)) if old[i].startswith("## ")), None)
+    if end is None:
+        raise ValueError(f"no '## ' heading after '{README_SECTION}': the section's end is "
+                         "unknown")
+    return "\n".join(old[:start] + list(lines) + [""] + old[end:]) + "\n"
+
+
 __all__ = ["FigureEntry", "FigureOutcome", "OUTCOME_RULE", "summarise", "figure_outcome",
-           "screen_rst", "readme_lines", "open_questions", "counts", "claims_sentence"]
+           "screen_rst", "readme_lines", "readme_with_lines", "README_SECTION",
+           "open_questions", "counts", "claims_sentence"]

@@ -674,6 +674,34 @@ def _replace_csv(table, csv):
     return csv
 
 
+def page_entries(summary, files):
+    """The figures' entries of the page (tapmc.paper.summary.summarise) of a report's
+    ``summary`` and figure ``files`` (:func:`committed_inputs`)."""
+    data = claims.ReportData.from_files(summary, files)
+    return summary_screen.summarise(claims.evaluate(claims.load_register(), data), files)
+
+
+def readme_lines(out_dir):
+    """README.md's "What the validation found" lines of the report in ``out_dir`` (its
+    committed data, :func:`committed_inputs`): the counts, the central question's answer with
+    its figure when its PNG is there, the open questions."""
+    summary, files = committed_inputs(out_dir)
+    figure = (Path(out_dir) / FIG_DIR / "questions" / paper_ramp.PNG_NAME).is_file()
+    return summary_screen.readme_lines(page_entries(summary, files),
+                                       paper_ramp_headline(summary, files), figure)
+
+
+def update_readme(readme, out_dir):
+    """Write README.md's "What the validation found" from the report in ``out_dir``
+    (:func:`readme_lines`); the file is replaced only when complete. Returns its path."""
+    readme = Path(readme)
+    text = summary_screen.readme_with_lines(readme.read_text(), readme_lines(out_dir))
+    tmp = readme.with_name(readme.name + ".tmp")
+    tmp.write_text(text)
+    tmp.replace(readme)
+    return readme
+
+
 def regenerate(out_dir):
     """Rewrite out_dir/validation.rst and its appendix pages from the committed data alone
     (report.json and the figure CSVs in out_dir/validation, checked first by
@@ -710,6 +738,7 @@ def report(campaign, out_dir, drawn=None, planned_runs=None):
     return write_rst(summary, files, out_dir)
 
 
-__all__ = ["report", "regenerate", "refit", "render", "render_pages", "write_rst",
+__all__ = ["report", "regenerate", "refit", "readme_lines", "update_readme", "page_entries",
+           "render", "render_pages", "write_rst",
            "campaign_summary",
            "committed_inputs", "read_summary", "RULES"]
