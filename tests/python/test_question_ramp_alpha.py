@@ -109,6 +109,10 @@ def test_command_csv_and_page_section(tmp_path):
     assert "decrease minus first increase, 5-18R" in text
     assert "0.00100 to 0.00300" in text
     assert "agrees" not in text and "disagrees" not in text
+    assert (out / ramp_alpha.PNG).stat().st_size > 0
+    assert ".. image:: validation/questions/ramp_alpha.png" in text
+    (out / ramp_alpha.PNG).unlink()                         # no figure, no image line
+    assert ".. image::" not in "\n".join(questions.render_section(out))
 
 
 def test_bad_campaigns_are_named_in_one_line(tmp_path, capsys):

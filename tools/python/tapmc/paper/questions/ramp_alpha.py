@@ -18,7 +18,7 @@ import numpy as np
 from tapmc.campaign import joined_ave_time
 from tapmc.hysteresis import CRITICAL_SQRT_EPS
 
-from .. import fig6, paper_ramp
+from .. import _plotting, _runs, fig6, paper_ramp
 from .._rst import list_table
 from ..claims import fmt
 from ..claims.bell import ramp_alpha_levels
@@ -28,6 +28,7 @@ from .common import QuestionError, csv_schema, runs_folder, taps_table
 
 NAME = "ramp-alpha"
 CSV = "ramp_alpha.csv"
+PNG = "ramp_alpha.png"
 HEADER = ["run", "top", "eta", "seed", "step", "branch", "sqrt_eps", "alpha", "alpha_err",
           "window_lo", "window_hi", "alpha_reading", "reading_lo", "reading_hi"]
 #: the boundary condition of the paper's ramps (section III.B: P.B.C.)
@@ -109,7 +110,8 @@ def analyse(campaign, default_eta=FULL.eta):
 
 
 def measure(args):
-    save(args.out / CSV, analyse(args.campaign))
+    path = save(args.out / CSV, analyse(args.campaign))
+    print(f"wrote {write_figure(load(path), args.out / PNG)}")
 
 
 save, load = csv_schema(HEADER)
@@ -157,4 +159,53 @@ def render(path):
                          "decrease minus first increase (levels)",
                          "second increase minus decrease (levels)",
                          f"decrease minus first increase, {low}"], table)
+    if (path.parent / PNG).is_file():
+        lines += ["", f".. image:: {_runs.FIG_DIR}/{path.parent.name}/{PNG}", "   :width: 600px",
+                  "   :alt: alpha at the end of every level of the ramps at the paper's "
+                  "protocol", ""]
     return lines + [""]
+
+
+def plot(rows, axes=None):
+    """alpha at the end of every level against sqrt(eps), one panel per eta (the default
+    first; ``axes``: one per eta, new ones when None), a colour per ramp, a marker per branch
+    (paper_ramp.BRANCH_STYLE), a thin line through the levels in the ramp's order, (sqrt
+    eps)* dotted. Returns the axes."""
+    levels = ramp_alpha_levels(rows)
+    etas = sorted({lv.eta for lv in levels.values()}, key=lambda e: (e != FULL.eta, -e))
+    if axes is None:
+        _, axes = _plotting.new_figure(nrows=len(etas), height=2.6, width=6.0)
+    order = {}
+    for r in rows:
+        order.setdefault(r["run"], []).append((float(r["sqrt_eps"]), float(r["alpha"])))
+    for ax, eta in zip(axes, etas):
+        runs = sorted((run for run, lv in levels.items() if lv.eta == eta),
+                      key=lambda run: (levels[run].top, levels[run].seed))
+        for colour, run in enumerate(runs):
+            lv = levels[run]
+            ax.plot(*zip(*order[run]), color=f"C{colour}", lw=0.8)
+            for branch, (marker, words) in paper_ramp.BRANCH_STYLE.items():
+                if branch in lv.branches:
+                    ax.plot(*lv.branches[branch], marker=marker, mfc="none", ms=5, ls="none",
+                            color=f"C{colour}", label=f"seed {lv.seed}, to {lv.top:g}: {words}")
+        ax.axvline(CRITICAL_SQRT_EPS, color="0.5", ls=":", lw=1,
+                   label=f"$(\\varepsilon^{{1/2}})^* = {CRITICAL_SQRT_EPS:g}$")
+        ax.set_title(paper_ramp.eta_label(eta, FULL.eta), fontsize=8)
+        ax.set_xlabel(r"$\varepsilon^{1/2}$")
+        ax.set_ylabel(r"$\alpha$ (end of each level)", fontsize=8)
+        _plotting.legend(ax, fontsize=6, outside=True)
+    return axes
+
+
+def write_figure(rows, path):
+    """ramp_alpha.png: :func:`plot`, its settings on top; returns the path."""
+    fig = plot(rows)[0].figure
+    hi = max(float(r["window_hi"]) for r in rows)
+    seeds = ", ".join(map(str, sorted({int(r["seed"]) for r in rows})))
+    _plotting.finish_figure(fig, f"N = {FULL.N}, box {FULL.L:g}R x {FULL.L:g}R, P.B.C.; "
+                            f"{paper_ramp.TAPS_PER_LEVEL} taps per level, steps of "
+                            f"{FULL.ramp_dsqrt:g} in sqrt(eps); alpha of the vertical profile "
+                            f"at the end of each level (one profile), fitted in "
+                            f"{float(rows[0]['window_lo']):g}R to at most {hi:.3g}R; levels "
+                            f"done whole only; seeds {seeds}")
+    return _plotting.save_figure(fig, path)
