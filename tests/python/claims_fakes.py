@@ -104,13 +104,14 @@ def fig4(steady, up1=None, down=None, up2=None):
 BELL = 0.60 - 2.0 * (X - 0.15) ** 2
 
 
-def ramp_pores(gap, slope, sem=0.001, levels=(0.025, 0.05, 0.075, 0.1, 0.125)):
-    """tapmc-paper question ramp-pores rows of a ramp beyond (sqrt eps)*: nu on the first
-    increase 0.1 - 0.05 sqrt(eps), the decrease ``gap`` away at 0.1 with ``slope``."""
+def ramp_pores(gap, slope, sem=0.001, levels=(0.025, 0.05, 0.075, 0.1, 0.125),
+               run="ramp_pbc_s1"):
+    """tapmc-paper question ramp-pores rows of a ramp ``run`` beyond (sqrt eps)*: nu on the
+    first increase 0.1 - 0.05 sqrt(eps), the decrease ``gap`` away at 0.1 with ``slope``."""
     rows = []
     for branch, nus in ((0, [0.1 - 0.05 * x for x in levels]),
                         (1, [0.1 + gap + slope * (x - 0.1) for x in levels])):
-        rows += [{"run": "ramp_pbc_s1", "branch": str(branch), "sqrt_eps": f"{x:g}",
+        rows += [{"run": run, "branch": str(branch), "sqrt_eps": f"{x:g}",
                   "nu": f"{nu:.8f}", "nu_sem": f"{sem:g}"} for x, nu in zip(levels, nus)]
     # the ramp below (sqrt eps)* in the same table is not read for the ramp beyond's signs
     rows += [{"run": "ramplow_pbc_s1", "branch": str(b), "sqrt_eps": "0.05", "nu": "0.5",

@@ -154,3 +154,34 @@ def test_paper_protocol_ramp_beyond_decides_the_reversible_branch(tmp_path):
         going.undecided
     data.questions["paper_ramp"] = _beyond_ramp(tmp_path, up, down, top=0.125)
     assert len(claims.ramp_down_minus_up(data, BY_ID["reversible-above"])) == 1
+
+
+def test_nu_hysteresis_at_the_paper_protocol_has_rows_per_eta():
+    """nu at the level ends of the paper ramps beyond (sqrt eps)* (ramp_pores.csv): per eta two
+    rows labelled with the protocol, two seeds of one eta averaged level by level (their
+    errors combined); the campaign's ramp keeps its own rows; a paper ramp below (sqrt eps)*
+    is not read. The control: a decrease above the first increase disagrees."""
+    claim = BY_ID["nu-hysteresis"]
+
+    def rows(*ramps):
+        table = [r for data in ramps for r in data.questions["ramp_pores"]]
+        return claims.nu_ramp_hysteresis(claims.ReportData(report().summary, {}, questions={
+            "ramp_pores": table}), claim)
+
+    own, own_slope, paper, paper_slope = rows(
+        ramp_pores(gap=-0.02, slope=0.05),
+        ramp_pores(gap=-0.01, slope=0.05, run="paperramp0.2_pbc_s1"),
+        ramp_pores(gap=-0.03, slope=0.05, run="paperramp0.2_pbc_s2"),
+        ramp_pores(gap=0.5, slope=-1.0, run="paperramp0.125_pbc_s1"))
+    assert own.label == "decrease minus first increase" and not own.meets
+    assert paper.label == "decrease minus first increase, 4000 taps per level, eta = 1e-7"
+    assert paper.meets == ("ramp_taps",) and paper_slope.meets == ("ramp_taps",)
+    assert paper.value == pytest.approx(own.value)              # the seeds' mean gap: -0.02
+    assert paper.err == pytest.approx(own.err / np.sqrt(2))     # two seeds per level
+    assert paper_slope.value == pytest.approx(0.05)
+    assert str(claims.verdict(claim, paper)) == "agrees"
+    eta_rows = rows(ramp_pores(gap=0.02, slope=0.05, run="paperramp0.2_pbc_eta1e-06_s1"))
+    assert [m.label for m in eta_rows] == [
+        "decrease minus first increase, 4000 taps per level, eta = 1e-6",
+        "slope on the decrease, 4000 taps per level, eta = 1e-6"]
+    assert str(claims.verdict(claim, eta_rows[0])).startswith("disagrees")

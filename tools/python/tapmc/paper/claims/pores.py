@@ -10,13 +10,15 @@ import math
 import numpy as np
 from scipy import stats
 
+from tapmc.hysteresis import CRITICAL_SQRT_EPS
 from tapmc.pores import JACKKNIFE_BLOCKS, percus_yevick_p0
 from tapmc.stats import bonferroni_t_quantile, mean_dof, weighted_line
 
 from .. import _plotting as P
 from .._runs import RAMP_BRANCHES
-from .common import (common_x, jackknife_dof, not_in_campaign,
-                     paired_levels, paper_precision)
+from ..paper_ramp import NAME as PAPER_RAMP_NAME, TAPS_PER_LEVEL as PAPER_RAMP_TAPS
+from .common import (campaign_eta, common_x, jackknife_dof, not_in_campaign, paired_levels,
+                     paper_precision, protocol_label)
 from .conventions import GAUSSIAN_TAIL_SD
 from .data import ReportData
 from .measure import Measure, fmt
@@ -223,44 +225,84 @@ def nu_ramp_hysteresis(data, claim):
     make <Phi^c>'s reversible branch, with nu's sign reversed (more pore volume, less
     packing): the decreasing branch lies below the first increase (mean of the differences at
     their common sqrt(eps), the levels' errors combined), and on it nu rises with sqrt(eps)
-    (weighted straight line)."""
+    (weighted straight line). The campaign's ramp, then per eta the ramps at the paper's own
+    protocol that turn beyond (sqrt eps)* (paperramp..., 4000 taps per level)."""
+    every = data.question("ramp_pores")
     # the ramp beyond (sqrt eps)* (runs ramp_<bc>_s<seed>; ramplow_ and rampnear_ are others)
-    rows = [r for r in data.question("ramp_pores") if r["run"].startswith("ramp_")]
-    if not rows:
-        return not_in_campaign("no nu at the level ends of the ramp beyond (sqrt eps)* "
-                        "(tapmc-paper question ramp-pores)")
+    rows = [r for r in every if r["run"].startswith("ramp_")]
     # one packing per level: its jackknife times the packings' factor where they reject it
     factor = data.run_error("packing:nu")[0]
+    paper = _paper_nu_rows(data, every, factor)
+    if not rows:
+        return paper or not_in_campaign("no nu at the level ends of the ramp beyond (sqrt "
+                                        "eps)* (tapmc-paper question ramp-pores)")
+    return _nu_measures(rows, factor) + paper
+
+
+def _paper_nu_rows(data, rows, factor):
+    """nu-hysteresis's two rows per eta of the paper ramps beyond (sqrt eps)* in ramp_pores
+    (their seeds' nu averaged level by level, their errors combined); [] without them."""
+    runs = {}
+    for r in rows:
+        m = PAPER_RAMP_NAME.match(r["run"])
+        if m and float(m.group("top")) > CRITICAL_SQRT_EPS:
+            eta = float(m.group("eta")) if m.group("eta") else campaign_eta(data.summary)
+            runs.setdefault(eta, []).append(r)
+    first = campaign_eta(data.summary)
+    out = []
+    for eta in sorted(runs, key=lambda e: (e != first, -e)):
+        out += _nu_measures(runs[eta], factor, f", {protocol_label(PAPER_RAMP_TAPS, eta)}",
+                            meets=("ramp_taps",))
+    return out
+
+
+def _nu_branches(rows, factor):
+    """branch -> (x, nu, error, n) of ramp_pores ``rows``: per sqrt(eps) the mean over the
+    rows' seeds, its error their jackknife errors (times ``factor``) combined."""
     branches = {}
     for index, name in enumerate(RAMP_BRANCHES):   # in.ramp's branch column
-        picked = sorted((float(r["sqrt_eps"]), float(r["nu"]), float(r["nu_sem"]) * factor)
-                        for r in rows if int(r["branch"]) == index)
-        if picked:
-            x, y, e = map(np.array, zip(*picked))
+        by_x = {}
+        for r in rows:
+            if int(r["branch"]) == index:
+                by_x.setdefault(round(float(r["sqrt_eps"]), 9), []).append(
+                    (float(r["nu"]), float(r["nu_sem"]) * factor))
+        if by_x:
+            x = np.array(sorted(by_x))
+            y = np.array([np.mean([v for v, _ in by_x[k]]) for k in x])
+            e = np.array([math.sqrt(sum(s * s for _, s in by_x[k])) / len(by_x[k]) for k in x])
             branches[name] = (x, y, e, np.ones(len(x), int))
+    return branches
+
+
+def _nu_measures(rows, factor, suffix="", **row):
+    """The two rows of nu-hysteresis from ramp_pores ``rows`` of one protocol: the decrease
+    minus the first increase, and the slope on the decrease; labels followed by ``suffix``,
+    ``row`` (meets) given to both."""
+    branches = _nu_branches(rows, factor)
     dof = _pore_dof(1, 0.0)
     out = []
     up, down = branches.get("up1"), branches.get("down")
     pairs = [] if up is None or down is None else common_x(down, up)
-    label = "decrease minus first increase"
+    label = "decrease minus first increase" + suffix
     if pairs:
         diffs = paired_levels(down, up)
         err = math.sqrt(sum(down[2][i] ** 2 + up[2][k] ** 2 for i, k in pairs)) / len(pairs)
         value = float(np.mean(diffs))
         out.append(Measure(value, err, dof, label=label, sign=-1, shown=(
             f"{fmt(value, err)} (mean of {len(pairs)} common sqrt(eps); one packing per level, "
-            "lateral jackknife)")))
+            "lateral jackknife)"), **row))
     else:
         out.append(Measure(label=label, undecided="no level of the first increase at a "
-                                                  "sqrt(eps) of the decrease"))
-    label = "slope on the decrease"
+                                                  "sqrt(eps) of the decrease", **row))
+    label = "slope on the decrease" + suffix
     if down is not None:
         slope, err, line_dof = weighted_line(*down[:3])
         if np.isfinite(slope):
             out.append(Measure(slope, err, line_dof, label=label, sign=1,
-                               shown=f"slope {fmt(slope, err)} over {len(down[0])} levels"))
+                               shown=f"slope {fmt(slope, err)} over {len(down[0])} levels",
+                               **row))
             return out
-    out.append(Measure(label=label, undecided="fewer than three levels of the decrease"))
+    out.append(Measure(label=label, undecided="fewer than three levels of the decrease", **row))
     return out
 
 
