@@ -160,7 +160,8 @@ def render(path):
         return []
     lines = ["Does nu, the mean normalised pore volume, follow <Phi^c> around the ramp (section "
              "IV.B: the same reversible-irreversible behaviour)? The packings at the level ends "
-             "of the campaign's ramp analysed as Fig. 10's dumps are (``ramp_pores.csv``: one "
+             "of the campaign's ramps (``ramp_...``: Fig. 4's, ``paperramp...``: at the paper's "
+             "4000 taps per level) analysed as Fig. 10's dumps are (``ramp_pores.csv``: one "
              "packing per level, the statistics box from 2R to "
              f"{float(rows[0]['window_top']):g}R above the floor, the error the lateral "
              "jackknife over 4 x 4 blocks):", ""]
