@@ -25,7 +25,7 @@ from .common import (above, below, campaign_eta, common_x, curve_of, mean_differ
                      not_in_campaign,
                      paired_levels, protocol_label, seed_mean_of, seeds_error, steady_dof,
                      value_triple, WITHIN_RUN_DOF)
-from .conventions import CRITICAL_BRACKET_HALF_WIDTH
+from .conventions import CRITICAL_BRACKET_HALF_WIDTH, SCATTER_CHECK_LEVELS
 from .measure import Measure, fmt
 from .registry import statistic
 
@@ -275,11 +275,6 @@ def _paper_alpha_hysteresis(data):
         out.append(_alpha_gap_measure(diffs, float(np.ptp(up_mean)), phi_gap, phi_up, check,
                                       label=label, meets=("ramp_taps",)))
     return out
-
-
-#: levels of the decrease on the first increase a seed needs for the scatter check: an error
-#: from the scatter of two differences has one degree of freedom and is itself too noisy
-SCATTER_CHECK_LEVELS = 3
 
 
 @dataclasses.dataclass(frozen=True)

@@ -71,6 +71,11 @@ RAMP_REDUCTION_MIN_LEVELS = 2
 #: rather than by the seeds' own spread (at least this many levels give the test 2 dof)
 PAIRED_MIN_LEVELS = 3
 
+#: levels of the decrease on the first increase a paper ramp's seed needs to take part in the
+#: check of alpha's level-scatter error on pairs of seeds (gradient-no-hysteresis): the error
+#: from the scatter of two differences has one degree of freedom and is itself too noisy
+SCATTER_CHECK_LEVELS = 3
+
 
 @dataclass(frozen=True)
 class Convention:
@@ -157,6 +162,9 @@ CONVENTIONS = (
     Convention("PAIRED_MIN_LEVELS", "levels from which a ramp difference of seeds judged alone "
                "is decided by the paired test over its levels", "convention: 2 dof at least",
                vary="integer"),
+    Convention("SCATTER_CHECK_LEVELS", "levels a paper ramp's seed needs to take part in the "
+               "check of alpha's level-scatter error on pairs of seeds", "convention: 2 dof at "
+               "least for each seed's error", vary="integer"),
     Convention("RAMP_REDUCTION_MIN_LEVELS", "levels of a branch measured at 4000 taps before "
                "its largest shift stands for the branch (ramps at fewer taps per level)",
                "convention: one level says nothing of the variation along the branch",
