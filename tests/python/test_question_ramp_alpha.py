@@ -131,6 +131,12 @@ def test_bad_campaigns_are_named_in_one_line(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "its first profile is at step 4" in err and err.count("\n") == 1
     assert "Traceback" not in err
+    # a killed attempt's segment whose block is malformed mid-file: named with its line
+    (folder / "profile_z.dat").write_text(HEAD + block(0, 0.001) + "4 2\n1 0.05 1.0\n8 1\n")
+    (folder / "profile_z.dat.from6").write_text(HEAD + block(8, 0.002))
+    assert cli.main(args) == 1
+    err = capsys.readouterr().err
+    assert "profile_z.dat:" in err and err.count("\n") == 1 and "Traceback" not in err
     assert (out / ramp_alpha.CSV).read_text() == "run\ncommitted\n"
 
 

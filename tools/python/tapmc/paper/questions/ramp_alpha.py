@@ -12,6 +12,7 @@ other."""
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import numpy as np
 
@@ -46,7 +47,7 @@ def add_arguments(parser):
 def _radius(campaign, name):
     """R of run ``name``: its variable in the campaign's manifest.json (a run still running
     has no DONE.json), DEFAULT_RADIUS when it sets none or the campaign has no manifest."""
-    path = campaign / "manifest.json"
+    path = Path(campaign) / "manifest.json"
     if not path.is_file():
         return DEFAULT_RADIUS
     try:
@@ -61,8 +62,9 @@ def _radius(campaign, name):
 
 def _profiles(run_dir):
     """(blocks, steps) of a ramp's profiles so far, its resumed attempts' segments joined;
-    QuestionError when it has none or they do not start at t = 0."""
-    header, blocks = joined_ave_time(run_dir, PROFILE)
+    QuestionError when it has none or they do not start at t = 0 (a damaged one: the
+    readers' TapmcFormatError, which the command prints on one line)."""
+    _, blocks = joined_ave_time(run_dir, PROFILE)
     if not blocks:
         raise QuestionError(f"{run_dir / PROFILE}: no profile yet (in.ramp writes the initial "
                             "packing's when it starts)")
