@@ -82,7 +82,12 @@ def test_alpha_of_every_level_end_with_the_segments_of_a_running_ramp(tmp_path):
     assert [float(r[6]) for r in first] == [x for _, x in LEVELS]
     assert [float(r[7]) for r in first] == pytest.approx(done, abs=1e-9)
     assert [float(r[11]) for r in first] == pytest.approx(done, abs=1e-9)  # 5-18R: the same
-    assert all(r[12:] == ["5", "18"] for r in first)
+    assert all(r[12:14] == ["5", "18"] for r in first)
+    # the bands' mean Phi: PHI0 - alpha times the mean z/R of the band's bins
+    for r, alpha in zip(first, done):
+        expected = [PHI0 - alpha * ZB[(ZB >= lo) & (ZB < hi)].mean()
+                    for lo, hi in ramp_alpha.PHI_BANDS]
+        assert [float(v) for v in r[14:]] == pytest.approx(expected, abs=1e-8)
     assert all(r[1:4] == ["0.075", "1e-07", 1] for r in first)
     assert float(first[0][10]) == pytest.approx(22.0 / 28.0 * HEIGHT, abs=0.3)
     second = [r for r in rows if r[0] == "paperramp0.075_pbc_eta1e-06_s2"]
@@ -107,6 +112,8 @@ def test_command_csv_and_page_section(tmp_path):
     # decrease minus first increase at 0.05 and 0.025: +0.0005 and +0.0003
     assert text.count("0.0004 ± 0.0001 (2)") == 2       # Fig. 6's window and 5-18R
     assert "decrease minus first increase, 5-18R" in text
+    # where the decrease gains: 0-4R (mean z/R 2): -0.0005 x 2 and -0.0003 x 2
+    assert "   * - 0.075\n     - 1e-7\n     - 1\n     - -0.0008 ± 0.0002 (2)" in text
     assert "0.00100 to 0.00300" in text
     assert "agrees" not in text and "disagrees" not in text
     assert (out / ramp_alpha.PNG).stat().st_size > 0

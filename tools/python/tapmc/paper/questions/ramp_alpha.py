@@ -30,8 +30,14 @@ from .common import QuestionError, csv_schema, runs_folder, taps_table
 NAME = "ramp-alpha"
 CSV = "ramp_alpha.csv"
 PNG = "ramp_alpha.png"
+#: height bands (R above the floor) where the mean Phi of every level-end profile is kept, to
+#: tell where in the bed a branch gains: the floor's layers (0-4R, the height of Phi_b), the
+#: next 4R, where the floor's layering decays (the raw profile oscillates up to about 11R,
+#: eq7-fit on the page), and the bulk up to Fig. 6's window top (about 23R)
+PHI_BANDS = ((0.0, 4.0), (4.0, 8.0), (8.0, 16.0), (16.0, 23.0))
+BAND_COLUMNS = [f"phi_{lo:g}_{hi:g}R" for lo, hi in PHI_BANDS]
 HEADER = ["run", "top", "eta", "seed", "step", "branch", "sqrt_eps", "alpha", "alpha_err",
-          "window_lo", "window_hi", "alpha_reading", "reading_lo", "reading_hi"]
+          "window_lo", "window_hi", "alpha_reading", "reading_lo", "reading_hi", *BAND_COLUMNS]
 #: the boundary condition of the paper's ramps (section III.B: P.B.C.)
 BC = "pbc"
 #: the profile file in.ramp writes at t = 0 and at the end of every level
@@ -88,11 +94,20 @@ def analyse_run(campaign, run_dir, default_eta):
     r = _radius(campaign, run_dir.name)
     levels = fig6.level_alphas(blocks, steps, table, r, m.group("bc"))
     reading = fig6.level_alphas(blocks, steps, table, r, m.group("bc"), READING_WINDOW)
+    by_step = dict(zip(steps, blocks))
     return [[run_dir.name, m.group("top"), f"{eta:g}", int(m.group("seed")), lv.step,
              lv.branch, f"{lv.sqrt_eps:.8g}", f"{lv.alpha:.8g}", f"{lv.err:.4g}",
              f"{lv.window[0]:g}", f"{lv.window[1]:.6g}", f"{low.alpha:.8g}",
-             f"{READING_WINDOW[0]:g}", f"{READING_WINDOW[1]:g}"]
+             f"{READING_WINDOW[0]:g}", f"{READING_WINDOW[1]:g}",
+             *(f"{phi:.8g}" for phi in band_means(by_step[lv.step], r))]
             for lv, low in zip(levels, reading)]
+
+
+def band_means(block, r):
+    """The mean Phi of a profile block (columns z, ..., Phi; bins of equal width) in each of
+    PHI_BANDS (z/R from the floor at 0): the slab average of the band."""
+    z = block[:, 0] / r
+    return [float(np.mean(block[(z >= lo) & (z < hi), 2])) for lo, hi in PHI_BANDS]
 
 
 def analyse(campaign, default_eta=FULL.eta):
@@ -138,8 +153,9 @@ def render(path):
         return []
     table = []
     reading = ramp_alpha_levels(rows, "alpha_reading")
-    for run, lv in sorted(ramp_alpha_levels(rows).items(),
-                          key=lambda kv: (kv[1].top, -kv[1].eta, kv[1].seed)):
+    ordered = sorted(ramp_alpha_levels(rows).items(),
+                     key=lambda kv: (kv[1].top, -kv[1].eta, kv[1].seed))
+    for run, lv in ordered:
         up = lv.branches.get("up1", (np.array([]), np.array([])))[1]
         table.append([f"{lv.top:g}", paper_ramp.eta_text(lv.eta), lv.seed,
                       sum(len(v[0]) for v in lv.branches.values()),
@@ -161,6 +177,16 @@ def render(path):
                          "decrease minus first increase (levels)",
                          "second increase minus decrease (levels)",
                          f"decrease minus first increase, {low}"], table)
+    lines += ["", "Where in the bed a branch gains: the mean Phi of each level-end profile in bands "
+              "of height above the floor, the decrease minus the first increase (mean over "
+              "their common sqrt(eps), the error from their scatter; ``phi_<lo>_<hi>R`` of the "
+              "CSV):", ""]
+    bands = {c: ramp_alpha_levels(rows, c) for c in BAND_COLUMNS}
+    lines += list_table(["turning at", "eta", "seed",
+                         *(f"{lo:g}-{hi:g}R" for lo, hi in PHI_BANDS)],
+                        [[f"{lv.top:g}", paper_ramp.eta_text(lv.eta), lv.seed,
+                          *(_difference_cell(bands[c][run], "down", "up1")
+                            for c in BAND_COLUMNS)] for run, lv in ordered])
     if (path.parent / PNG).is_file():
         lines += ["", f".. image:: {_runs.FIG_DIR}/{path.parent.name}/{PNG}", "   :width: 600px",
                   "   :alt: alpha at the end of every level of the ramps at the paper's "
