@@ -236,3 +236,21 @@ def test_the_level_scatter_error_is_checked_on_pairs_of_seeds():
     assert f"x {np.sqrt(chi2):.1f}" in widened.shown
     assert str(claims.verdict(claim, kept)).startswith("disagrees")
     assert not str(claims.verdict(claim, widened)).startswith("disagrees")
+
+
+def test_level_alphas_needs_the_initial_profile_and_takes_a_window(tmp_path):
+    """fig6.level_alphas: without the profile at step 0 the window cannot be cut (ValueError);
+    a given window is used as it is; a block whose step has no tap row is left out."""
+    from tapmc.paper import fig6
+    from tapmc.readers import read_fix_print
+
+    folder = write_ramp(tmp_path, "paperramp0.075_pbc_s1", [0.001, 0.002])
+    table = read_fix_print(folder / "taps.dat")
+    blocks = [np.loadtxt(block(s, a).splitlines()[1:])[:, 1:]
+              for s, a in ((0, 0.001), (4, 0.001), (8, 0.002), (99, 0.5))]
+    with pytest.raises(ValueError, match="step 0"):
+        fig6.level_alphas(blocks[1:], [4, 8, 99], table, RADIUS)
+    levels = fig6.level_alphas(blocks, [0, 4, 8, 99], table, RADIUS, window=(5.0, 18.0))
+    assert [lv.step for lv in levels] == [4, 8]                 # step 99: no tap row
+    assert [lv.window for lv in levels] == [(5.0, 18.0)] * 2
+    assert [lv.alpha for lv in levels] == pytest.approx([0.001, 0.002], abs=1e-9)
