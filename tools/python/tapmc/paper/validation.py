@@ -676,9 +676,8 @@ def _replace_csv(table, csv):
 
 def page_entries(summary, files):
     """The figures' entries of the page (tapmc.paper.summary.summarise) of a report's
-    ``summary`` and figure ``files`` (:func:`committed_inputs`)."""
-    data = claims.ReportData.from_files(summary, files)
-    return summary_screen.summarise(claims.evaluate(claims.load_register(), data), files)
+    ``summary`` and figure ``files`` (:func:`committed_inputs`): the rows the page evaluates."""
+    return summary_screen.summarise(_rows_and_notes(summary, files)[0], files)
 
 
 def readme_lines(out_dir):
