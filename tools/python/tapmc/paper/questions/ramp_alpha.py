@@ -11,7 +11,6 @@ other."""
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import numpy as np
@@ -26,6 +25,7 @@ from ..claims.bell import ramp_alpha_levels
 from ..scales import FULL
 from .alpha_window import READING_WINDOW
 from .common import QuestionError, csv_schema, runs_folder, taps_table
+from .ramp_replay import manifest_run
 
 NAME = "ramp-alpha"
 CSV = "ramp_alpha.csv"
@@ -51,19 +51,13 @@ def add_arguments(parser):
 
 
 def _radius(campaign, name):
-    """R of run ``name``: its variable in the campaign's manifest.json (a run still running
-    has no DONE.json), DEFAULT_RADIUS when it sets none or the campaign has no manifest."""
-    path = Path(campaign) / "manifest.json"
-    if not path.is_file():
+    """R of run ``name``: its variable in the campaign's manifest.json (ramp_replay's
+    manifest_run: a run still running has no DONE.json), DEFAULT_RADIUS when it sets none or
+    the folder has no manifest (runs alone)."""
+    if not (Path(campaign) / "manifest.json").is_file():
         return DEFAULT_RADIUS
-    try:
-        runs = json.loads(path.read_text()).get("runs", [])
-    except ValueError as err:
-        raise QuestionError(f"{path}: not JSON ({err})") from None
-    for run in runs:
-        if run.get("name") == name:
-            return float(run.get("variables", {}).get("R", DEFAULT_RADIUS))
-    return DEFAULT_RADIUS
+    variables, _ = manifest_run(campaign, name)
+    return float(variables.get("R", DEFAULT_RADIUS))
 
 
 def _profiles(run_dir):
