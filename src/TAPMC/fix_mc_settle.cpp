@@ -263,10 +263,18 @@ void FixMCSettle::parse_keywords(int narg, char **arg)
       {"theta_law", 1,
        [&](char **v) {
          const std::string law = v[0];
-         if (law != "angle" && law != "solid")
+         if (law == "angle")
+           theta_law = tapmc::ThetaLaw::Angle;
+         else if (law == "solid")
+           theta_law = tapmc::ThetaLaw::Solid;
+         else if (law == "exponential")
+           theta_law = tapmc::ThetaLaw::Exponential;
+         else if (law == "linear")
+           theta_law = tapmc::ThetaLaw::Linear;
+         else
            error->all(FLERR, "fix mc/settle: theta_law = {} must be 'angle' (P(theta) of eq. 1 "
-                      "per unit angle, the default) or 'solid' (per unit solid angle)", law);
-         solid_law = law == "solid";
+                      "per unit angle, the default), 'solid' (per unit solid angle), "
+                      "'exponential' or 'linear' (section II's alternative laws)", law);
        }},
       {"eta", 1, [&](char **v) { eta = number(v[0]); }},
       {"check", 1, [&](char **v) { check_interval = integer(v[0]); }},
@@ -330,7 +338,7 @@ tapmc::SettleParams FixMCSettle::make_params(double step, long movable) const
   tapmc::SettleParams params;
   params.d_max = step;
   params.theta0 = theta0;
-  params.theta_law = solid_law ? tapmc::ThetaLaw::Solid : tapmc::ThetaLaw::Angle;
+  params.theta_law = theta_law;
   params.eta = eta;
   params.check_interval = check_interval;
   params.max_checks = tapmc::Settler::max_checks_for_sweeps(max_sweeps, check_interval, movable);

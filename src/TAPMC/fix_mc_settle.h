@@ -8,6 +8,7 @@
 #include "lammps_container.h"
 #include "lmptype.h"
 #include "tapmc_cylinder.h"
+#include "tapmc_trial_move.h"
 
 #include <array>
 #include <cstdint>
@@ -65,7 +66,7 @@ class FixMCSettle : public Fix, public tapmc::ContainerHolder {
   // the rank count); domain = the decomposed redeposition (lammps_domain_settle.h); auto =
   // gather on one rank, domain on several.
   enum class Scheme { Auto, Gather, Domain } scheme;
-  bool solid_law = false;     // 'theta_law solid': P(theta) per unit solid angle (else angle)
+  tapmc::ThetaLaw theta_law = tapmc::ThetaLaw::Angle;  // 'theta_law' (tapmc_trial_move.h)
   // 'container REGION-ID': a vertical cylindrical container (lammps_container.h) replacing the
   // side walls; empty without one. Resolved when the fix is defined and again in init().
   std::string container_region_id;

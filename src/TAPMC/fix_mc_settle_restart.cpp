@@ -68,7 +68,8 @@ std::vector<FixMCSettle::RestartSetting> FixMCSettle::restart_settings() const
       {"stop (0 change, 1 drift)", stop_drift ? 1.0 : 0.0, kLayoutSettingsNoLaw, 0.0},
       {"window", static_cast<double>(drift_window), kLayoutSettingsNoLaw,
        static_cast<double>(tapmc::defaults::kSettleDriftWindow)},
-      {"theta_law (0 angle, 1 solid)", solid_law ? 1.0 : 0.0, kLayoutSettings, 0.0},
+      {"theta_law (0 angle, 1 solid, 2 exponential, 3 linear)",
+       static_cast<double>(static_cast<int>(theta_law)), kLayoutSettings, 0.0},
   };
 }
 

@@ -24,6 +24,10 @@ ThetaSampler::ThetaSampler(double theta0, ThetaLaw law) : law_(law), theta0_(the
     build_solid();
     return;
   }
+  if (law == ThetaLaw::Exponential || law == ThetaLaw::Linear) {
+    build_inversion();
+    return;
+  }
   norm_ = std::erf(kThetaMax / theta0);
   // Equal-probability strip edges: cdf(edge_k) = k / kStrips, by bisection (cdf is strictly
   // increasing). The loop stops at the double resolution of the edge, which takes at most
@@ -167,10 +171,33 @@ void ThetaSampler::build_solid()
   }
 }
 
+// Exponential and Linear: constants of the inverse CDF; no strips (the strip diagnostics read
+// as every first attempt accepted without exp).
+void ThetaSampler::build_inversion()
+{
+  by_inversion_ = true;
+  if (law_ == ThetaLaw::Exponential) {
+    inverse_mass_ = -std::expm1(-kThetaMax / theta0_);
+  } else {
+    support_ = std::min(theta0_, kThetaMax);
+    inverse_mass_ = theta0_ <= kThetaMax ? 0.5 * theta0_
+                                         : support_ * (1.0 - 0.5 * (support_ / theta0_));
+  }
+  norm_ = inverse_mass_;
+  for (int k = 0; k <= kStrips; ++k) edge_[k] = kThetaMax * k / kStrips;
+  for (int k = 0; k < kStrips; ++k) {
+    width_[k] = edge_[k + 1] - edge_[k];
+    squeeze_[k] = first_squeeze_[k] = acceptance_[k] = 1.0;
+  }
+}
+
 double ThetaSampler::density(double theta) const
 {
   if (theta < 0.0 || theta > kThetaMax) return 0.0;
   if (law_ == ThetaLaw::Solid) return solid_g(theta / theta0_) / (theta0_ * norm_);
+  if (law_ == ThetaLaw::Exponential) return std::exp(-theta / theta0_) / (theta0_ * norm_);
+  if (law_ == ThetaLaw::Linear)
+    return theta <= support_ ? (1.0 - theta / theta0_) / norm_ : 0.0;
   // A = 2 / (sqrt(pi) theta0 erf(pi / (2 theta0))) normalises eq. 1 on [0, pi/2].
   const double x = theta / theta0_;
   return 2.0 / (kSqrtPi * theta0_ * norm_) * std::exp(-x * x);
@@ -181,6 +208,9 @@ double ThetaSampler::cdf(double theta) const
   if (theta <= 0.0) return 0.0;
   if (theta >= kThetaMax) return 1.0;
   if (law_ == ThetaLaw::Solid) return solid_integral(theta / theta0_) / norm_;
+  if (law_ == ThetaLaw::Exponential) return -std::expm1(-theta / theta0_) / norm_;
+  if (law_ == ThetaLaw::Linear)
+    return theta >= support_ ? 1.0 : theta * (1.0 - 0.5 * (theta / theta0_)) / norm_;
   return std::erf(theta / theta0_) / norm_;
 }
 
@@ -346,6 +376,17 @@ void TrialMoveSampler::draw_trials(const CounterRandom &rng, const std::uint64_t
     positions[count + k] = base + kFirstThetaDraw;
   }
   rng.blocks(positions, 2 * count, blocks);
+  if (theta_.by_inversion())
+    draw_lanes<true>(rng, trial, count, n_pick, blocks, out);
+  else
+    draw_lanes<false>(rng, trial, count, n_pick, blocks, out);
+}
+
+template <bool kInversion>
+void TrialMoveSampler::draw_lanes(const CounterRandom &rng, const std::uint64_t *trial, int count,
+                                  std::uint32_t n_pick, const RandomBlock *blocks,
+                                  TrialDraw *out) const
+{
   // Lane-parallel pass over the draws that need no rejection step: the pick's first word is
   // accepted, the theta strip is flat and its first point passes the squeeze test (most
   // draws). finish() redoes the others from the same blocks, so every draw is bit-identical to
@@ -360,7 +401,11 @@ void TrialMoveSampler::draw_trials(const CounterRandom &rng, const std::uint64_t
     const bool pick_done = static_cast<std::uint32_t>(product) >= n_pick;
     pick[k] = product >> 32;
     double theta;
-    const bool theta_done = theta_.first_attempt(main[3], theta_first[0], theta_first[1], theta);
+    bool theta_done = true;
+    if constexpr (kInversion)
+      theta = theta_.invert(main[3], theta_first[0]);
+    else
+      theta_done = theta_.first_attempt(main[3], theta_first[0], theta_first[1], theta);
     const Displacement move = displacement(main, theta);
     dx[k] = move.dx;
     dy[k] = move.dy;

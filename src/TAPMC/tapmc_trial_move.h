@@ -14,14 +14,21 @@
 
 namespace tapmc {
 
-// How P(theta) of eq. 1 is read ('theta_law' of fix mc/settle). The paper (section II) gives
+// The law of theta ('theta_law' of fix mc/settle). The paper (section II) gives
 // P(theta) = A exp(-(theta/theta0)^2) without saying per what measure:
 //  - Angle (the default): a density in theta, theta has density A exp(-(theta/theta0)^2);
 //  - Solid: a density per unit solid angle, so theta has density A' exp(-(theta/theta0)^2)
 //    sin(theta) (dOmega = sin(theta) dtheta dphi); very large theta0 then gives directions
 //    uniform on the downward hemisphere, where Angle gives theta uniform.
-// phi is uniform under both.
-enum class ThetaLaw { Angle, Solid };
+// and says that "a Poissonian and a linear distribution give qualitatively the same
+// phenomenology; the pertinent parameter is the width theta0", without their formulas. Read
+// with theta0 where eq. 1 has it (the 1/e point of the exponential, the end of the line), both
+// densities in theta and truncated at pi/2 as eq. 1:
+//  - Exponential: P(theta) = A exp(-theta / theta0);
+//  - Linear: P(theta) = A (1 - theta / theta0) on [0, min(theta0, pi/2)], zero beyond.
+// phi is uniform under all four.
+// The values are stored in restart files (fix mc/settle): never renumber them.
+enum class ThetaLaw { Angle = 0, Solid = 1, Exponential = 2, Linear = 3 };
 
 // theta from P(theta) = A exp(-(theta/theta0)^2) on [0, pi/2] (eq. 1; theta from the downward
 // vertical), sampled exactly for every theta0 in (0, defaults::kThetaWidthMax] (the strips below
@@ -49,6 +56,9 @@ enum class ThetaLaw { Angle, Solid };
 // ln f at the left edge, lambda = 2 left / theta0^2 - cot(left). The edges come from the CDF by
 // Gauss-Legendre quadrature (no closed form), accurate to ~1e-15. Every strip accepts at least
 // ~1/2 of its proposals (the first strip, where f rises from 0 at theta = 0).
+// ThetaLaw::Exponential and Linear have closed-form inverse CDFs: theta is the inverse at one
+// uniform of 52 bits made of the strip word and the first position word (exact up to double
+// rounding; no strips, no rejection, every draw done in its first attempt).
 class ThetaSampler {
  public:
   static constexpr int kStrips = 256;
@@ -59,6 +69,8 @@ class ThetaSampler {
 
   double theta0() const { return theta0_; }
   ThetaLaw law() const { return law_; }
+  // Exponential and Linear: theta by inversion of the CDF (invert()), not from the strips.
+  bool by_inversion() const { return by_inversion_; }
 
   // Normalised density P(theta) and its CDF on [0, pi/2] (for tests and tools).
   double density(double theta) const;
@@ -72,6 +84,11 @@ class ThetaSampler {
   template <class NextPair>
   double sample(std::uint32_t strip_word, NextPair &&next_pair) const
   {
+    if (by_inversion_) {
+      std::uint32_t w_pos, w_accept;
+      next_pair(w_pos, w_accept);
+      return invert(strip_word, w_pos);
+    }
     if (law_ == ThetaLaw::Solid) return sample_solid(strip_word, next_pair);
     const unsigned strip = strip_word >> 24;
     const double left = edge_[strip];
@@ -112,6 +129,20 @@ class ThetaSampler {
     const unsigned strip = strip_word >> 24;
     theta = std::min(edge_[strip] + width_[strip] * uniform_open_from_u32(w_pos), kThetaMax);
     return uniform_open_from_u32(w_accept) <= first_squeeze_[strip];
+  }
+
+  // Exponential and Linear: the inverse of the CDF at u = (the 52 top bits of high, low, read
+  // as one integer + 1/2) / 2^52, in (0, 1).
+  double invert(std::uint32_t high, std::uint32_t low) const
+  {
+    const std::uint64_t bits = (static_cast<std::uint64_t>(high) << 20) | (low >> 12);
+    const double u = (static_cast<double>(bits) + 0.5) * 0x1.0p-52;
+    const double mass = u * inverse_mass_;
+    if (law_ == ThetaLaw::Exponential)  // 1 - exp(-theta / theta0) = mass
+      return std::min(-theta0_ * std::log1p(-mass), kThetaMax);
+    // theta - theta^2 / (2 theta0) = mass, the root without cancellation
+    return std::min(2.0 * mass / (1.0 + std::sqrt(std::max(0.0, 1.0 - 2.0 * mass / theta0_))),
+                    support_);
   }
 
   // ThetaLaw::Solid: the same strips (tables of the solid law), acceptance of a point by
@@ -180,8 +211,13 @@ class ThetaSampler {
   double solid_g(double x) const;
   double solid_integral(double x) const;  // int_0^x g
   void build_solid();
+  void build_inversion();
 
   ThetaLaw law_;
+  bool by_inversion_ = false;
+  // Exponential and Linear: the unnormalised CDF at the truncation (1 - exp(-pi/2 / theta0);
+  // b - b^2 / (2 theta0)), and the end of the support b = min(theta0, pi/2) (Linear)
+  double inverse_mass_ = 1.0, support_ = kThetaMax;
   double theta0_, inv_theta0_sq_, norm_;
   bool scaled_;
   // Solid: panels of the quadrature on [0, x_cut_], cumulative integrals at their edges
@@ -290,6 +326,11 @@ class TrialMoveSampler {
                    const RandomBlock &main, const RandomBlock &theta_first) const;
   double theta_from(const CounterRandom &rng, std::uint64_t trial, std::uint32_t strip_word,
                     const RandomBlock &theta_first) const;
+  // draw_trials after its random blocks: the lane-parallel pass and the rest, for one way of
+  // drawing theta's first attempt (strips, or inversion), chosen once per batch.
+  template <bool kInversion>
+  void draw_lanes(const CounterRandom &rng, const std::uint64_t *trial, int count,
+                  std::uint32_t n_pick, const RandomBlock *blocks, TrialDraw *out) const;
   Displacement displacement(const RandomBlock &main, double theta) const;
 
   double d_max_;

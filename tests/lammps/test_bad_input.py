@@ -81,7 +81,10 @@ MC_SETTLE_CASES = [
      "theta0 = -1 is outside the allowed range (0, 1000] (radians)"),
     ("fix s all mc/settle 1 theta_law sphere",
      "fix mc/settle: theta_law = sphere must be 'angle' (P(theta) of eq. 1 per unit angle, the "
-     "default) or 'solid' (per unit solid angle)"),
+     "default), 'solid' (per unit solid angle), 'exponential' or 'linear' (section II's "
+     "alternative laws)"),
+    ("fix s all mc/settle 1 theta_law linear theta0 0",
+     "theta0 = 0 is outside the allowed range (0, 1000] (radians)"),
     ("fix s all mc/settle 1 theta_law", "keyword 'theta_law' needs 1 value(s)"),
     ("fix s all mc/settle 1 eta 0", "eta = 0 is outside the allowed range (0, 1)"),
     ("fix s all mc/settle 1 eta -1e-3", "eta = -0.001 is outside the allowed range (0, 1)"),

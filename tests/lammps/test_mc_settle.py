@@ -91,6 +91,8 @@ FINAL_DUMP = ("write_dump all custom final.dump id x y z ix iy iz modify sort id
     pytest.param(1, "* * 1", "", 0.05, 11, 12, id="serial"),
     pytest.param(2, "2 1 1", " scheme domain", 0.02, 31, 6, id="domain_2_ranks"),
     pytest.param(1, "* * 1", " theta_law solid theta0 3", 0.05, 11, 12, id="serial_solid_law"),
+    pytest.param(2, "2 1 1", " scheme domain theta_law linear", 0.02, 31, 6,
+                 id="domain_2_ranks_linear_law"),
 ])
 def test_restart_round_trip_is_exact(tmp_path, nprocs, grid, scheme, eps, seed, taps):
     # Uninterrupted: `taps` taps. Interrupted: half of them, write_restart, then a new process
@@ -326,7 +328,7 @@ def test_restart_record_layout_and_older_layouts_are_read():
             "check 700", "check 700 theta_law solid") + "run 0\n", workdir=wd)
         assert rc == 0, out
         assert "settings differ from the restart file (restart -> now): theta_law (0 angle, " \
-               "1 solid) 0 -> 1;" in out, (name, out)
+               "1 solid, 2 exponential, 3 linear) 0 -> 1;" in out, (name, out)
     rc, out, _ = run_lammps("read_restart no_stop.restart\n" + settle.replace(
         "check 700", "check 700 stop drift") + "run 0\n", workdir=wd)
     assert rc == 0, out
@@ -345,6 +347,11 @@ def test_restart_record_layout_and_older_layouts_are_read():
     rc, out, _ = run_lammps("read_restart s.restart\n" + settle.replace(
         "check 700", "check 700 theta_law solid") + "run 0\n", workdir=wd2)
     assert rc == 0 and "differ from the restart file" not in out, out
+    # ... and with the exponential law: the record names the change
+    rc, out, _ = run_lammps("read_restart s.restart\n" + settle.replace(
+        "check 700", "check 700 theta_law exponential") + "run 0\n", workdir=wd2)
+    assert rc == 0, out
+    assert "theta_law (0 angle, 1 solid, 2 exponential, 3 linear) 1 -> 2;" in out, out
 
 
 # A restart file of layout -3 (before 'theta_law') written by a real campaign run and kept in
@@ -368,4 +375,4 @@ def test_committed_restart_of_the_layout_before_theta_law_is_read():
     rc, out, _ = run_lammps(read + settle.format(" theta_law solid"))
     assert rc == 0, out
     assert "settings differ from the restart file (restart -> now): theta_law (0 angle, " \
-           "1 solid) 0 -> 1;" in out, out
+           "1 solid, 2 exponential, 3 linear) 0 -> 1;" in out, out

@@ -1,7 +1,7 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
-// Tests of the two readings of eq. 1 (ThetaLaw: per unit angle, per unit solid angle) and of
-// theta0 beyond pi/2: exact distributions against independent quadrature, the flat limits,
-// efficiency, determinism.
+// Tests of the laws of theta (ThetaLaw: eq. 1 per unit angle and per unit solid angle, section
+// II's exponential and linear alternatives) and of theta0 beyond pi/2: exact distributions
+// against independent quadrature, the flat and narrow limits, efficiency, determinism.
 #include "mc_test_stats.h"
 #include "tapmc_defaults.h"
 #include "tapmc_trial_move.h"
@@ -28,8 +28,21 @@ constexpr double kKolmogorov6 = 2.69;
 double law_density(ThetaLaw law, double theta0, double theta)
 {
   const double x = theta / theta0;
-  return std::exp(-x * x) * (law == ThetaLaw::Solid ? std::sin(theta) : 1.0);
+  switch (law) {
+    case ThetaLaw::Exponential:
+      return std::exp(-x);
+    case ThetaLaw::Linear:
+      return std::max(0.0, 1.0 - x);
+    case ThetaLaw::Solid:
+      return std::exp(-x * x) * std::sin(theta);
+    case ThetaLaw::Angle:
+      break;
+  }
+  return std::exp(-x * x);
 }
+
+constexpr ThetaLaw kAllLaws[] = {ThetaLaw::Angle, ThetaLaw::Solid, ThetaLaw::Exponential,
+                                 ThetaLaw::Linear};
 
 // The CDF on [0, pi/2] by composite Simpson quadrature on a fine grid (2^16 intervals: error
 // below 1e-12 for theta0 >= pi/16), linear between grid nodes (error h^2 max|p'| / 8, below
@@ -83,7 +96,11 @@ std::vector<double> sample_theta(const TrialMoveSampler &sampler, std::uint64_t 
   return theta;
 }
 
-const char *name(ThetaLaw law) { return law == ThetaLaw::Solid ? "solid" : "angle"; }
+const char *name(ThetaLaw law)
+{
+  const char *names[] = {"angle", "solid", "exponential", "linear"};
+  return names[static_cast<int>(law)];
+}
 
 }  // namespace
 
@@ -92,7 +109,7 @@ const char *name(ThetaLaw law) { return law == ThetaLaw::Solid ? "solid" : "angl
 // sparse bins merged), and the sampler's own density and CDF against the same quadrature.
 TEST(ThetaLaw, SamplesFollowTheExactCdfOfEachLaw)
 {
-  for (ThetaLaw law : {ThetaLaw::Angle, ThetaLaw::Solid})
+  for (ThetaLaw law : kAllLaws)
     for (double theta0 : {kPi / 16, kPi / 4, kPi / 2, 3.0, 100.0}) {
       const TrialMoveSampler sampler(1.0, theta0, law);
       const ThetaSampler &ts = sampler.theta_sampler();
@@ -115,13 +132,17 @@ TEST(ThetaLaw, SamplesFollowTheExactCdfOfEachLaw)
       for (int k = 0; k < bins; ++k) {
         acc_o += counts[k];
         acc_e += n * (cdf((k + 1) * kHalfPi / bins) - cdf(k * kHalfPi / bins));
-        if (acc_e >= 20 || k == bins - 1) {
+        if (acc_e >= 20) {
           obs.push_back(acc_o);
           expected.push_back(acc_e);
           acc_o = 0;
           acc_e = 0.0;
         }
       }
+      // what is left (sparse bins at the top; none past the end of the linear law) joins the
+      // last group
+      obs.back() += acc_o;
+      expected.back() += acc_e;
       const int dof = static_cast<int>(obs.size()) - 1;
       EXPECT_TRUE(chi_square_plausible(chi_square(obs, expected), dof))
           << name(law) << " theta0 " << theta0 << " chi2 " << chi_square(obs, expected)
@@ -266,7 +287,7 @@ TEST(ThetaLaw, WidthOutsideTheRangeIsRefusedNamingIt)
     }
     return std::string();
   };
-  for (ThetaLaw law : {ThetaLaw::Angle, ThetaLaw::Solid}) {
+  for (ThetaLaw law : kAllLaws) {
     EXPECT_EQ(message(1001.0, law), "theta0 = 1001 is outside the allowed range (0, 1000] (radians)");
     EXPECT_EQ(message(0.0, law), "theta0 = 0 is outside the allowed range (0, 1000] (radians)");
     EXPECT_EQ(message(INFINITY, law), "theta0 = inf is outside the allowed range (0, 1000] (radians)");
@@ -274,4 +295,79 @@ TEST(ThetaLaw, WidthOutsideTheRangeIsRefusedNamingIt)
     EXPECT_EQ(message(defaults::kThetaWidthMax, law), "");
     EXPECT_EQ(message(1.6, law), "");
   }
+}
+
+// Section II's alternative laws. Exponential: narrow, it is the untruncated exponential (CDF
+// 1 - exp(-theta/theta0)); wide, theta uniform. Linear: theta never passes theta0 and comes
+// within a hair of it; wide, theta uniform. Each law against the other's CDF: rejected (the
+// control: the Kolmogorov test tells these laws apart at this sample size).
+TEST(ThetaLaw, AlternativeLawsHaveTheirLimitsAndSupport)
+{
+  const int n = 200000;
+  const std::vector<double> narrow =
+      sample_theta(TrialMoveSampler(0.1, 0.01, ThetaLaw::Exponential), 4, n);
+  EXPECT_LT(ks_statistic(narrow, [](double th) { return -std::expm1(-th / 0.01); }),
+            kKolmogorov6);
+  for (ThetaLaw law : {ThetaLaw::Exponential, ThetaLaw::Linear}) {
+    const std::vector<double> wide = sample_theta(TrialMoveSampler(0.1, 1e3, law), 5, n);
+    // the density departs from flat by at most (pi/2) / theta0 = 1.6e-3
+    EXPECT_LT(ks_statistic(wide, [](double th) { return th / kHalfPi; }), kKolmogorov6)
+        << name(law);
+    const ThetaSampler ts(kPi / 4, law);
+    EXPECT_TRUE(ts.by_inversion());
+    EXPECT_EQ(ts.min_acceptance(), 1.0);
+    EXPECT_EQ(ts.exp_fraction(), 0.0);
+    EXPECT_EQ(ts.tail_strips(), 0);
+  }
+  const double theta0 = kPi / 4;
+  const std::vector<double> linear =
+      sample_theta(TrialMoveSampler(0.1, theta0, ThetaLaw::Linear), 6, n);
+  const double top = *std::max_element(linear.begin(), linear.end());
+  EXPECT_LE(top, theta0);
+  EXPECT_GT(top, 0.99 * theta0);  // P(all below 0.99 theta0) = (1 - 1e-4)^n ~ 2e-9
+  const ThetaSampler linear_law(theta0, ThetaLaw::Linear);
+  EXPECT_EQ(linear_law.density(0.5 * (theta0 + kHalfPi)), 0.0);
+  EXPECT_EQ(linear_law.cdf(theta0), 1.0);
+  const std::vector<double> exponential =
+      sample_theta(TrialMoveSampler(0.1, theta0, ThetaLaw::Exponential), 6, n);
+  const QuadratureCdf gaussian(ThetaLaw::Angle, theta0), linear_cdf(ThetaLaw::Linear, theta0);
+  EXPECT_GT(ks_statistic(exponential, gaussian), 10 * kKolmogorov6);
+  EXPECT_GT(ks_statistic(linear, gaussian), 10 * kKolmogorov6);
+  EXPECT_GT(ks_statistic(exponential, linear_cdf), 10 * kKolmogorov6);
+}
+
+// The inversion laws: draws are deterministic, batches (the lane pass by inversion) are
+// bit-identical to single draws, and they share the keying of the other laws but not the draws.
+TEST(ThetaLaw, InversionDrawsAreDeterministicAndBatchesMatchSingleDraws)
+{
+  for (ThetaLaw law : {ThetaLaw::Exponential, ThetaLaw::Linear})
+    for (double theta0 : {1e-3, kPi / 4, 30 * kPi}) {
+      const TrialMoveSampler a(0.2, theta0, law), b(0.2, theta0, law);
+      const CounterRandom rng(5, 78);
+      std::vector<TrialDraw> batch(TrialMoveSampler::kBatchMax);
+      for (std::uint64_t first = 0; first < 20000; first += TrialMoveSampler::kBatchMax) {
+        // n_pick = 3e9: the pick's first word is rejected now and then (finish() redraws)
+        a.draw_batch(rng, first, TrialMoveSampler::kBatchMax, 3000000000u, batch.data());
+        for (int k = 0; k < TrialMoveSampler::kBatchMax; ++k) {
+          const TrialDraw single = b.draw(rng, first + k, 3000000000u);
+          ASSERT_EQ(batch[k].pick, single.pick);
+          ASSERT_EQ(batch[k].move.dx, single.move.dx) << name(law) << " " << theta0;
+          ASSERT_EQ(batch[k].move.dy, single.move.dy);
+          ASSERT_EQ(batch[k].move.dz, single.move.dz);
+          ASSERT_LE(single.move.dz, 0.0);
+        }
+      }
+    }
+  const CounterRandom rng(5, 77);
+  const TrialMoveSampler angle(0.2, kPi / 4, ThetaLaw::Angle),
+      exponential(0.2, kPi / 4, ThetaLaw::Exponential), linear(0.2, kPi / 4, ThetaLaw::Linear);
+  int same = 0;
+  for (std::uint64_t t = 0; t < 1000; ++t) {
+    const TrialDraw a = angle.draw(rng, t, 10), e = exponential.draw(rng, t, 10),
+                    l = linear.draw(rng, t, 10);
+    same += (a.move.dz == e.move.dz) + (a.move.dz == l.move.dz) + (e.move.dz == l.move.dz);
+    ASSERT_EQ(a.pick, e.pick);  // the pick and the phi of a trial do not depend on the law
+    ASSERT_NEAR(a.move.dx * e.move.dy - a.move.dy * e.move.dx, 0.0, 1e-14);  // same phi
+  }
+  EXPECT_LT(same, 10);
 }

@@ -7,8 +7,11 @@ taps 91-100 per seed (theta0.csv). --N sets the spheres (box 32R sqrt(N/4096), t
 bed height; the CSV then ends in _N<N>); a scan started again skips the runs its CSV has.
 --stop drift (with --eta, default 1e-7: the front's reference) repeats it with a converged
 redeposition, into theta0_drift.csv. --theta-law solid reads P(theta) of eq. 1 per unit solid
-angle (fix mc/settle theta_law solid; CSV tag _solid); --wide scans instead the widths beyond
-the paper's truncation pi/2 (3/4 pi, pi, 30 pi: the flat limit; CSV tag _wide)."""
+angle (fix mc/settle theta_law solid; CSV tag _solid); --theta-law exponential or linear scans
+section II's alternative laws of the same width (CSV tags _exponential, _linear: the claim
+theta-law-shape sets them against eq. 1's scan of the same N and stop); --wide scans instead
+the widths beyond the paper's truncation pi/2 (3/4 pi, pi, 30 pi: the flat limit; CSV tag
+_wide)."""
 
 from __future__ import annotations
 
@@ -21,7 +24,7 @@ NAME = "theta0"
 
 def add_arguments(parser):
     knob_scan.add_arguments(parser)
-    parser.add_argument("--theta-law", choices=("angle", "solid"), default="angle")
+    parser.add_argument("--theta-law", choices=("angle", "solid", "exponential", "linear"), default="angle")
     parser.add_argument("--wide", action="store_true")
 
 
