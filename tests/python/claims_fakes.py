@@ -509,6 +509,19 @@ def front_report(r10_bias, r2_bias):
 def theta0_report(gains):
     """A report with a theta0 scan: theta0 / pi -> compaction over the taps; 4 seeds, each seed
     shifting every theta0's gain alike (paired) plus a small jitter per theta0."""
+    data = report()
+    data.scans["theta0"] = [_theta0_rows(gains)]
+    return data
+
+
+def theta_law_report(law_gains, law="exponential"):
+    """theta0_report(THETA0_PAPER) with a scan of ``law`` (theta0_<law>.csv) as given."""
+    data = theta0_report(THETA0_PAPER)
+    data.questions[f"theta0_{law}"] = _theta0_rows(law_gains)
+    return data
+
+
+def _theta0_rows(gains):
     rows = []
     for seed, shift in zip(range(1, 5), (-0.002, -0.001, 0.001, 0.002)):
         for k, (frac, gain) in enumerate(sorted(gains.items())):
@@ -517,9 +530,7 @@ def theta0_report(gains):
                          "eps": "0.0225", "taps": "100", "phi_c_0": "0.58",
                          "phi_c_end": f"{0.58 + gain + shift + jitter:.8f}",
                          "sweeps_per_tap": "1800"})
-    data = report()
-    data.scans["theta0"] = [rows]
-    return data
+    return rows
 
 
 #: the paper's pattern (pi/16 decompacts, pi/4 compacts most) and one where pi/3 compacts most
@@ -532,6 +543,9 @@ THETA0_WIDER = {**THETA0_PAPER, 1 / 3: 0.016}
 CONTROLS = {
     "initial_phi": (report(), report({"initial_phi_c": [0.570, 0.001, SEEDS]})),
     "theta0_optimum": (theta0_report(THETA0_PAPER), theta0_report(THETA0_WIDER)),
+    # the exponential law turns earlier but decompacts at pi/16 / compacts there
+    "theta_law_shape": (theta_law_report({**THETA0_PAPER, 1 / 8: 0.004}),
+                        theta_law_report({**THETA0_PAPER, 1 / 16: 0.003})),
     # both other d_max leave the packing looser (slower) / both leave it denser than R/5
     "dmax_intermediate": (front_report(-0.005, -0.007), front_report(0.0, 0.0)),
     "tapped_phi": (report(fig9=fig9()),
@@ -759,8 +773,8 @@ __all__ = ['os', 'sys', 'Path', 'SOURCE', 'REGISTER', 'BY_ID', 'SEEDS', 'claims'
            'with_fig8_rows', 'with_fig2_rows', 'with_fig3_rows', 'FIG6_PROFILE_CURVES', 'FIG6_PROFILE_PARAMS',
            'with_fig6_rows', 'FIG4_RAMP_TAGS', 'with_fig4_rows', 'COMPLETE_ROWS', '_low_first',
            'fig2_fits', 'realization_rows', 'realized', 'eq3_law', 'eq4_law', 'fig5_collapse',
-           'fig5_eq6', 'FROZEN', 'STEADY_LOG', 'front_report', 'theta0_report', 'THETA0_PAPER',
-           'THETA0_WIDER', 'CONTROLS', '_outcomes', '_packings', '_p0_rows', 'early_rows',
+           'fig5_eq6', 'FROZEN', 'STEADY_LOG', 'front_report', 'theta0_report', 'theta_law_report',
+           'THETA0_PAPER', 'THETA0_WIDER', 'CONTROLS', '_outcomes', '_packings', '_p0_rows', 'early_rows',
            'surrogate_rows', 'surrogate_report', 'seed_fit_rows', '_ramp_levels_rows',
            '_scatter_rows', '_with_scatter', 'fbc_groups', 'ZONE_EPS', 'fig8_bell',
            'asymptote_rows']

@@ -393,6 +393,43 @@ def test_theta0_scan_within_noise_is_undecided():
     assert "pi/16: -2.00 ± " in m.shown and "most: pi/4" in m.shown
 
 
+def test_theta_law_shape_reads_each_law_against_eq1s_scan_of_the_same_size():
+    claim = BY_ID["theta-law-shape"]
+    statistic = claims.STATISTICS["theta_law_shape"]
+    data = theta_law_report({**THETA0_PAPER, 1 / 8: 0.004})
+    (m,) = statistic(data, claim)
+    assert m.value == 1.0
+    assert m.label.startswith("exponential P(theta) against eq. 1's, N = 1024")
+    # turns between pi/16 (-0.0200) and pi/8 (+0.0041 with the seeds' jitter): 0.83 of the way,
+    # theta0 = 0.114 pi; eq. 1 between pi/8 (-0.0101) and pi/4 (+0.0100): theta0 = 0.187 pi
+    assert "exponential turns at theta0 = 0.114 pi, <theta> = 19.2 deg" in m.shown
+    assert "eq. 1 turns at theta0 = 0.187 pi, <theta> = 18.9 deg" in m.shown
+    # the smallest width within the seeds' noise: undecided, naming it
+    (m,) = statistic(theta_law_report({**THETA0_PAPER, 1 / 16: 0.0001}), claim)
+    assert m.undecided == "within t sem at the smallest width pi/16"
+    # a law scanned at another N than eq. 1's: undecided, not compared across sizes
+    data = theta_law_report(THETA0_PAPER, law="linear")
+    for row in data.questions["theta0_linear"]:
+        row["N"] = "4096"
+    data.questions["theta0_linear_N4096"] = data.questions.pop("theta0_linear")
+    (m,) = statistic(data, claim)
+    assert m.undecided == "no scan of eq. 1's law at the same N, stop rule and eta"
+    assert statistic(theta0_report(THETA0_PAPER), claim)[0].undecided.startswith(
+        "no scan of the alternative laws")
+
+
+def test_mean_angle_of_the_theta_laws():
+    from tapmc.paper.claims.scans import mean_angle
+    # linear within pi/2: the triangle's mean theta0 / 3; flat limits: pi/4
+    for theta0 in (0.2, 0.7, 1.5):
+        assert mean_angle("linear", theta0) == pytest.approx(theta0 / 3, rel=1e-6)
+    for law in ("angle", "exponential", "linear"):
+        assert mean_angle(law, 1e3) == pytest.approx(math.pi / 4, rel=2e-3)
+    # narrow: the half-Gaussian's theta0 / sqrt(pi), the exponential's theta0
+    assert mean_angle("angle", 0.01) == pytest.approx(0.01 / math.sqrt(math.pi), rel=1e-4)
+    assert mean_angle("exponential", 0.01) == pytest.approx(0.01, rel=1e-4)
+
+
 def test_dmax_is_compared_within_one_N_of_the_front():
     # a second N where only the default has run (no reference yet: no bias) changes nothing
     data = front_report(-0.005, -0.007)

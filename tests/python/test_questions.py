@@ -120,6 +120,35 @@ def test_theta0_scan_table_and_verdict(tmp_path):
     assert "Verdict of the claim (rule pattern, t sem with 3 seeds): agrees" in text
 
 
+def test_theta_laws_side_by_side_with_their_mean_angles(tmp_path):
+    from tapmc.paper.questions import theta0
+    pi = 3.14159
+    scan_csv(tmp_path / "theta0.csv", "theta0_over_pi",
+             ((0.0625, pi, -0.02, 0.0002), (0.25, pi, 0.01, -0.0001), (0.5, pi, 0.004, 0.0001)),
+             "1e-7,change", lambda v: 1000 + 2000 * v)
+    # the linear law: none without eq. 1's scan of its size, nothing at all without a law
+    assert theta0.render_laws(tmp_path) == []
+    scan_csv(tmp_path / "theta0_linear_N4096.csv", "theta0_over_pi",
+             ((0.0625, pi, -0.03, 0.0), (0.5, pi, 0.01, 0.0)), "1e-7,change", lambda v: 1000)
+    assert theta0.law_scans(tmp_path) == {}
+    scan_csv(tmp_path / "theta0_linear.csv", "theta0_over_pi",
+             ((0.0625, pi, -0.03, 0.0002), (0.25, pi, -0.01, 0.0001), (0.5, pi, 0.01, 0.0)),
+             "1e-7,change", lambda v: 1000)
+    assert list(theta0.law_scans(tmp_path)) == [""]
+    (png,) = theta0.write_laws_figure(tmp_path)
+    assert png.name == "theta_laws.png" and png.stat().st_size > 10000
+    text = "\n".join(questions.render_section(tmp_path))
+    assert "The laws of theta (theta-law-shape)" in text
+    assert "``theta0.csv`` and ``theta0_linear.csv``" in text
+    # pi/4 under the linear law: <theta> = theta0 / 3 = 15 degrees; eq. 1's 25.0
+    assert "-0.98 ± 0.06 % (15.0 deg)" in text and "(25.0 deg)" in text
+    assert ("Verdict of ``theta-law-shape`` (rule pattern): linear P(theta) against eq. 1's: "
+            "agrees at N = 1024, below the paper's N") in text
+    assert "validation/" + tmp_path.name + "/theta_laws.png" in text
+    # the theta0 claim itself does not read the other laws
+    assert text.count("Verdict of the claim (rule pattern") == 1
+
+
 def test_dmax_scan_table_and_verdict(tmp_path):
     scan_csv(tmp_path / "dmax_drift.csv", "dmax_over_R",
              ((0.02, 0.5, 0.001, 0.0002), (0.2, 0.5, 0.01, -0.0001), (1.0, 0.5, 0.002, 0.0001)),

@@ -24,7 +24,7 @@ from .calibration import (CALIBRATION_ALPHA, ONE_RUN_WINDOW_ROWS, RUN_ERROR_LABE
                           realization_trends)
 from . import conventions
 from .common import steady_dof
-from .scan_tables import SCANS, read_scan, scan_files
+from .scan_tables import SCANS, THETA_LAW_SCAN_STEMS, read_scan, scan_files
 
 
 #: figure name -> its typed result (tapmc.paper.figN), what the report loads its CSV with
@@ -113,7 +113,8 @@ def _point_key(name, x, value):
 #: and nu at its level ends (ramp-pores)
 QUESTION_CSVS = ("initial_packing", "p0_configs", "lateral_first_tap", "early_taps",
                  "fit_surrogates", "ramp_levels", "ramp_pores", "realization_scatter",
-                 "packing_scatter", "seed_fits", "paper_ramp", "alpha_window", "ramp_alpha")
+                 "packing_scatter", "seed_fits", "paper_ramp", "alpha_window", "ramp_alpha"
+                 ) + THETA_LAW_SCAN_STEMS
 
 
 #: the question CSVs whose rows are groups of realizations (:meth:`ReportData.scatter_rows`)

@@ -33,10 +33,18 @@ SCANS = {"theta0": {"column": "theta0_over_pi", "paper": 0.25, "name": _pi_fract
          "dmax": {"column": "dmax_over_R", "paper": 0.2, "name": _r_fraction}}
 
 
-#: tags of scans that test another reading of the model, not the paper's claim (theta0
-#: --theta-law solid: P(theta) per unit solid angle; --wide: theta0 beyond the paper's pi/2):
-#: measured in doc/measurements.rst, left out of the claims
-OTHER_READING_TAGS = ("solid", "wide")
+#: section II's alternative laws of theta (fix mc/settle theta_law), scanned in theta0 like
+#: eq. 1 (tapmc-paper question theta0 --theta-law LAW: theta0_<law>[_N4096].csv): the claim
+#: theta-law-shape reads them
+ALTERNATIVE_THETA_LAWS = ("exponential", "linear")
+THETA_LAW_SCAN_STEMS = tuple(f"theta0_{law}{size}" for law in ALTERNATIVE_THETA_LAWS
+                             for size in ("", "_N4096"))
+
+#: tags of scans that test another reading of the model, not the paper's claim about eq. 1's
+#: theta0 (theta0 --theta-law solid: P(theta) per unit solid angle; --wide: theta0 beyond the
+#: paper's pi/2; the alternative laws): solid and wide measured in doc/measurements.rst, left
+#: out of the claims; the alternative laws read by theta-law-shape only
+OTHER_READING_TAGS = ("solid", "wide") + ALTERNATIVE_THETA_LAWS
 
 
 def scan_files(folder, knob):

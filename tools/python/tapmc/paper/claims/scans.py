@@ -15,7 +15,7 @@ from .common import above, below
 from .measure import Measure, fmt
 from .register import PAPER_SCALE
 from .registry import statistic
-from .scan_tables import SCANS, scan_settings, scan_table
+from .scan_tables import SCANS, THETA_LAW_SCAN_STEMS, scan_settings, scan_table
 
 
 @statistic("dmax_intermediate")
@@ -157,3 +157,109 @@ def _per_sweep_vs_paper(rows, value):
     if len(d) < 2:
         return (float(d.mean()) if len(d) else math.nan), math.nan, len(d)
     return float(d.mean()), float(d.std(ddof=1) / math.sqrt(len(d))), len(d)
+
+
+@statistic("theta_law_shape")
+def theta_law_shape(data, claim):
+    """Section II: "a Poissonian and a linear distribution give qualitatively the same
+    phenomenology; the pertinent parameter is the width theta0". Per alternative law and scan,
+    against eq. 1's scan of the same N, stop rule and eta (the same packings): the phenomenology
+    of theta0 that section II states for eq. 1 (a very small width decompacts, a large one
+    compacts), read at the scan's smallest and largest width (beyond the seeds' t sem). 1 when
+    the law does what eq. 1 does at both ends; 0 when it goes the other way at an end where
+    both are decided; undecided otherwise. Shown: where each law turns from decompaction to
+    compaction, in theta0 and in the mean angle <theta> of its moves (whether the width, read
+    as <theta>, is the pertinent parameter)."""
+    measures = []
+    for stem in THETA_LAW_SCAN_STEMS:
+        rows = data.question(stem)
+        if not rows:
+            continue
+        gaussian = [g for g in data.scans["theta0"] if g and _same_scan(g[0], rows[0])]
+        if not gaussian:
+            measures.append(Measure(label=f"{stem}: {_scan_label(rows)}", undecided=(
+                "no scan of eq. 1's law at the same N, stop rule and eta")))
+            continue
+        measures.append(_law_shape_measure(stem.split("_")[1], rows, gaussian[0]))
+    return measures or [Measure(undecided=(
+        "no scan of the alternative laws (tapmc-paper question theta0 --theta-law "
+        "exponential | linear)"))]
+
+
+def _same_scan(a, b):
+    return all(str(a.get(k)) == str(b.get(k)) for k in ("N", "eps", "taps", "stop")) and \
+        float(a.get("eta", 1e-7)) == float(b.get("eta", 1e-7))
+
+
+def _way(row, dof):
+    """+1 compacts, -1 decompacts (beyond t sem), 0 within it."""
+    if above(row["gain"], row["gain_sem"], dof):
+        return 1
+    return -1 if below(row["gain"], row["gain_sem"], dof) else 0
+
+
+def theta_law_density(law, theta0, theta):
+    """The unnormalised density of theta under fix mc/settle's theta_law ``law`` ('angle':
+    eq. 1; 'exponential', 'linear': section II's alternatives as TAPMC reads them)."""
+    x = np.asarray(theta, dtype=float) / theta0
+    if law == "exponential":
+        return np.exp(-x)
+    if law == "linear":
+        return np.clip(1.0 - x, 0.0, None)
+    return np.exp(-x * x)
+
+
+def mean_angle(law, theta0, points=20001):
+    """<theta> of the moves of ``law`` at width ``theta0`` on [0, pi/2] (trapezoid rule)."""
+    theta = np.linspace(0.0, 0.5 * math.pi, points)
+    weight = theta_law_density(law, theta0, theta)
+    weight[[0, -1]] *= 0.5          # the trapezoid rule on a uniform grid
+    return float(np.sum(theta * weight) / np.sum(weight))
+
+
+def turning_width(table, law):
+    """(theta0, <theta>) where the compaction of a scan first turns from negative to positive
+    as the width grows (linear between the two widths around it); None when it does not."""
+    for a, b in zip(table, table[1:]):
+        if a["gain"] < 0.0 <= b["gain"]:
+            f = a["gain"] / (a["gain"] - b["gain"])
+            mean_a, mean_b = (mean_angle(law, math.pi * r["value"]) for r in (a, b))
+            return math.pi * (a["value"] + f * (b["value"] - a["value"])), \
+                mean_a + f * (mean_b - mean_a)
+    return None
+
+
+def _turning_text(table, law):
+    turn = turning_width(table, law)
+    if turn is None:
+        return "no turn within the scan"
+    return (f"turns at theta0 = {turn[0] / math.pi:.3f} pi, "
+            f"<theta> = {math.degrees(turn[1]):.1f} deg")
+
+
+def _law_shape_measure(law, rows, gaussian_rows):
+    mine, eq1 = scan_table(rows, "theta0"), scan_table(gaussian_rows, "theta0")
+    n = min([r["n"] for r in mine + eq1] or [0])
+    label = f"{law} P(theta) against eq. 1's, {_scan_label(rows, n)}"
+    lacks = _size_lacking(rows[0]["N"])
+    if n < 2 or len(mine) < 2 or len(eq1) < 2:
+        return Measure(label=label, lacks=lacks,
+                       undecided="fewer than two seeds or two widths per scan")
+    dof = n - 1
+    shown = "; ".join(f"{r['name']}: {fmt(r['gain'], r['gain_sem'], True)}" for r in mine)
+    shown += (f"; {law} {_turning_text(mine, law)}; eq. 1 {_turning_text(eq1, 'angle')}")
+    ends = {"smallest": (mine[0], eq1[0]), "largest": (mine[-1], eq1[-1])}
+    other_way, open_ = [], []
+    for end, (a, b) in ends.items():
+        way, eq1_way = _way(a, dof), _way(b, dof)
+        if way and eq1_way and way != eq1_way:
+            other_way.append(f"{end} width {a['name']}")
+        elif not (way and eq1_way):
+            open_.append(f"{end} width {a['name']}")
+    if other_way:
+        return Measure(0.0, label=label, lacks=lacks,
+                       shown=shown + "; the other way than eq. 1 at the " + ", ".join(other_way))
+    if open_:
+        return Measure(label=label, lacks=lacks, shown=shown,
+                       undecided="within t sem at the " + ", ".join(open_))
+    return Measure(1.0, label=label, lacks=lacks, shown=shown)

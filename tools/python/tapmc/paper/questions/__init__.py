@@ -164,6 +164,10 @@ def _measured(folder, figures, factors):
         for scan in scan_files(folder, knob):
             title = f"The {knob} scan ({Path(scan).name})"
             parts.append((None, [title, "~" * len(title), ""] + knob_scan.render(scan, knob)))
+    laws = theta0.render_laws(folder)
+    if laws:
+        title = "The laws of theta (theta-law-shape)"
+        parts.append((None, [title, "~" * len(title), ""] + laws))
     if there(p0_fluid):
         parts.append((p0_fluid, p0_fluid.render(folder / p0_fluid.CSV, figures.get("fig9"))))
     return parts

@@ -15,16 +15,26 @@ _wide)."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 
+from .. import _plotting, _runs
+from .._rst import list_table
+from ..claims import (STATISTICS, ReportData, fmt, load_register, scan_settings, scan_table,
+                      verdict)
+from ..claims.scan_tables import ALTERNATIVE_THETA_LAWS
+from ..claims.scans import mean_angle
 from . import knob_scan
+from .common import read_csv
 
 NAME = "theta0"
 
 
 def add_arguments(parser):
     knob_scan.add_arguments(parser)
-    parser.add_argument("--theta-law", choices=("angle", "solid", "exponential", "linear"), default="angle")
+    parser.add_argument("--theta-law", choices=("angle", "solid", "exponential", "linear"),
+                        default="angle")
     parser.add_argument("--wide", action="store_true")
 
 
@@ -35,3 +45,110 @@ def measure(args):
     knob_scan.knob_scan(args, "theta0_over_pi", [(f, np.pi * f) for f in widths], "theta0",
                         extra_keys=f"theta_law {law}" if law != "angle" else "",
                         extra_tags=tags)
+    if law in ALTERNATIVE_THETA_LAWS or law == "angle":
+        for path in write_laws_figure(args.out):
+            print(f"wrote {path}")
+
+
+def law_scans(folder):
+    """Per size tag ("", "_N4096"): eq. 1's scan and section II's alternative laws scanned at
+    the same size, {"angle": rows, "exponential": rows, ...}; sizes without an alternative
+    law are left out."""
+    folder = Path(folder)
+    out = {}
+    for size in ("", "_N4096"):
+        scans = {law: read_csv(folder / f"theta0_{law}{size}.csv")
+                 for law in ALTERNATIVE_THETA_LAWS
+                 if (folder / f"theta0_{law}{size}.csv").is_file()}
+        if scans and (folder / f"theta0{size}.csv").is_file():
+            out[size] = {"angle": read_csv(folder / f"theta0{size}.csv"), **scans}
+    return out
+
+
+def render_laws(folder):
+    """Section II's alternative laws of theta against eq. 1's, per size: the compaction over the
+    scan's taps at every width with the mean angle <theta> of the moves there (is the width,
+    read as <theta>, the pertinent parameter?), and the verdict of the claim theta-law-shape."""
+    lines = []
+    claim = next(c for c in load_register() if c.id == "theta-law-shape")
+    for size, scans in law_scans(folder).items():
+        eq1 = scans["angle"]
+        tables = {law: {r["value"]: r for r in scan_table(rows, "theta0")}
+                  for law, rows in scans.items()}
+        first = eq1[0]
+        lines += [f"Section II's \"Poissonian and linear\" laws of theta (fix mc/settle theta_law "
+                  f"exponential: exp(-theta/theta0); linear: 1 - theta/theta0 up to theta0) "
+                  f"against eq. 1's Gaussian, {first['taps']} taps at eps = "
+                  f"{float(first['eps']):g} from the same fresh packings (N = {first['N']}, "
+                  f"P.B.C., {scan_settings(eq1)}; ``theta0{size}.csv`` and "
+                  + ", ".join(f"``theta0_{law}{size}.csv``" for law in scans if law != "angle")
+                  + "). Gain: <Phi^c> over the last 10 taps minus t = 0, mean ± sem over seeds; "
+                  "in brackets the mean angle <theta> of the law's moves at that width:", ""]
+        names = {"angle": "eq. 1 (Gaussian)", "exponential": "exponential", "linear": "linear"}
+        widths = sorted(tables["angle"])
+        lines += list_table(
+            ["theta0"] + [names[law] for law in scans],
+            [[tables["angle"][w]["name"]] +
+             [f"{fmt(t[w]['gain'], t[w]['gain_sem'], True)} "
+              f"({np.degrees(mean_angle(law, np.pi * w)):.1f} deg)" if w in t else "n/a"
+              for law, t in tables.items()] for w in widths])
+        data = ReportData({}, {}, (), {"theta0": [eq1]},
+                          {f"theta0_{law}{size}": rows for law, rows in scans.items()
+                           if law != "angle"})
+        verdicts = [f"{m.label.split(',')[0]}: {verdict(claim, m)}"
+                    + (f" at N = {first['N']}, below the paper's N (the claims' table counts it "
+                       "undecided there)" if m.lacks else "")
+                    for m in STATISTICS["theta_law_shape"](data, claim)]
+        lines += ["", f"Verdict of ``theta-law-shape`` (rule {claim.rule}): "
+                  + "; ".join(verdicts) + ".", ""]
+        png = Path(folder) / LAWS_PNG.format(size=size)
+        if png.is_file():
+            lines += [f".. image:: {_runs.FIG_DIR}/{Path(folder).name}/{png.name}",
+                      "   :width: 500px", "   :alt: the compaction of each law of theta against "
+                      "its width and its mean angle", ""]
+    return lines
+
+
+#: the figure of the laws side by side, per size tag: theta_laws[_N4096].png
+LAWS_PNG = "theta_laws{size}.png"
+LAW_NAMES = {"angle": "eq. 1 (Gaussian)", "exponential": "exponential", "linear": "linear"}
+
+
+def plot_laws(scans, axes=None):
+    """The compaction over the scan's taps (mean ± sem over seeds) of each law against its
+    width theta0 (top) and against the mean angle <theta> of its moves (bottom); ``scans``:
+    one size of :func:`law_scans`. Returns the axes."""
+    if axes is None:
+        _, axes = _plotting.new_figure(nrows=2, height=2.6, width=5.0)
+    for colour, (law, rows) in enumerate(scans.items()):
+        table = scan_table(rows, "theta0")
+        width = np.array([r["value"] for r in table])
+        gain = 100 * np.array([r["gain"] for r in table])
+        sem = 100 * np.array([r["gain_sem"] for r in table])
+        mean = np.degrees([mean_angle(law, np.pi * w) for w in width])
+        for ax, x in zip(axes, (width, mean)):
+            _plotting.errorbars(ax, x, gain, sem, label=LAW_NAMES[law], color=f"C{colour}",
+                                marker="o", ms=3)
+    axes[0].set_xlabel(r"$\theta_0 / \pi$")
+    axes[1].set_xlabel(r"mean angle $\langle\theta\rangle$ of the moves (degrees)")
+    for ax in axes:
+        ax.axhline(0.0, color="0.5", lw=0.8, ls=":")
+        ax.set_ylabel(r"gain of $\langle\Phi^c\rangle$ (%)", fontsize=8)
+        _plotting.legend(ax, fontsize=6)
+    return axes
+
+
+def write_laws_figure(folder):
+    """theta_laws[_N4096].png in ``folder`` for every size of :func:`law_scans`, its settings
+    on top; returns the paths."""
+    paths = []
+    for size, scans in law_scans(folder).items():
+        fig = plot_laws(scans)[0].figure
+        first = scans["angle"][0]
+        seeds = sorted({int(r["seed"]) for rows in scans.values() for r in rows})
+        _plotting.finish_figure(fig, (
+            f"N = {first['N']}, P.B.C., eps = {float(first['eps']):g}, {first['taps']} taps from "
+            f"the same fresh packings, {scan_settings(scans['angle'])}; gain: <Phi^c> over the "
+            f"last 10 taps minus t = 0; seeds {', '.join(map(str, seeds))}"))
+        paths.append(_plotting.save_figure(fig, Path(folder) / LAWS_PNG.format(size=size)))
+    return paths
