@@ -11,7 +11,9 @@ angle (fix mc/settle theta_law solid; CSV tag _solid); --theta-law exponential o
 section II's alternative laws of the same width (CSV tags _exponential, _linear: the claim
 theta-law-shape sets them against eq. 1's scan of the same N and stop); --wide scans instead
 the widths beyond the paper's truncation pi/2 (3/4 pi, pi, 30 pi: the flat limit; CSV tag
-_wide)."""
+_wide). --widths F ... scans only those widths (multiples of pi, e.g. 0.0625 0.25 0.5: the
+ends of the scan and the paper's value, what theta-law-shape reads, at a quarter of the
+cost of N = 4096's full scan); the CSV is the same scan's, so a later full scan adds to it."""
 
 from __future__ import annotations
 
@@ -26,7 +28,7 @@ from ..claims import (STATISTICS, ReportData, fmt, load_register, scan_settings,
 from ..claims.scan_tables import ALTERNATIVE_THETA_LAWS
 from ..claims.scans import mean_angle
 from . import knob_scan
-from .common import read_csv
+from .common import QuestionError, read_csv
 
 NAME = "theta0"
 
@@ -36,12 +38,19 @@ def add_arguments(parser):
     parser.add_argument("--theta-law", choices=("angle", "solid", "exponential", "linear"),
                         default="angle")
     parser.add_argument("--wide", action="store_true")
+    parser.add_argument("--widths", type=float, nargs="+", metavar="F",
+                        help="only these widths theta0 / pi (default: the scan's seven, or the "
+                             "wide scan's three)")
 
 
 def measure(args):
     law = args.theta_law
     tags = ([law] if law != "angle" else []) + (["wide"] if args.wide else [])
-    widths = knob_scan.THETA0_WIDE_PI if args.wide else knob_scan.THETA0_PI
+    widths = args.widths or (knob_scan.THETA0_WIDE_PI if args.wide else knob_scan.THETA0_PI)
+    bad = [f for f in widths if not 0.0 < f * np.pi <= 1e3]
+    if bad:
+        raise QuestionError(f"--widths {bad[0]:g}: theta0 = {bad[0]:g} pi is outside fix "
+                            "mc/settle's range (0, 1000] rad")
     knob_scan.knob_scan(args, "theta0_over_pi", [(f, np.pi * f) for f in widths], "theta0",
                         extra_keys=f"theta_law {law}" if law != "angle" else "",
                         extra_tags=tags)
