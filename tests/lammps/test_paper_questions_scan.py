@@ -98,3 +98,28 @@ def test_killed_scan_resumes_where_it_stopped(tmp_path):
     table = rows(tmp_path / "dmax_N64.csv")
     assert len(table) == 14 and table[:len(before)] == before and not partial.exists()
     assert done.stdout.count("sweeps per tap") == 14 - len(before)
+
+
+def test_theta0_scan_of_an_alternative_law_at_chosen_widths(tmp_path):
+    # --theta-law linear --widths: only those widths, every run with fix mc/settle theta_law
+    # linear, into theta0_linear_N64.csv (which the claim theta0-optimum leaves out)
+    done = subprocess.run([*QUESTION, "theta0", "--N", "64", "--lmp", str(LMP), "--out",
+                           str(tmp_path), "--seeds", "1", "2", "--theta-law", "linear",
+                           "--widths", "0.0625", "0.5"],
+                          capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    table = rows(tmp_path / "theta0_linear_N64.csv")
+    assert [(float(r["theta0_over_pi"]), r["seed"]) for r in table] == [
+        (0.0625, "1"), (0.5, "1"), (0.0625, "2"), (0.5, "2")]
+    logs = list(tmp_path.rglob("log.lammps"))
+    assert len(logs) == 4
+    assert all("theta_law linear" in log.read_text() for log in logs)
+    sys.path.insert(0, str(SOURCE / "tools" / "python"))
+    from tapmc.paper.claims import scan_files
+    assert scan_files(tmp_path, "theta0") == []
+    # a width outside fix mc/settle's range: one line naming it, exit 1, nothing run
+    bad = subprocess.run([*QUESTION, "theta0", "--N", "64", "--lmp", str(LMP), "--out",
+                          str(tmp_path / "bad"), "--widths", "0.25", "-1"],
+                         capture_output=True, text=True, timeout=60)
+    assert bad.returncode == 1 and "--widths -1: theta0 = -1 pi is outside" in bad.stderr
+    assert not (tmp_path / "bad").exists()
