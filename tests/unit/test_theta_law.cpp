@@ -371,3 +371,23 @@ TEST(ThetaLaw, InversionDrawsAreDeterministicAndBatchesMatchSingleDraws)
   }
   EXPECT_LT(same, 10);
 }
+
+// The inversion laws over the whole accepted range, down to the smallest subnormal width: every
+// theta finite, within [0, pi/2] and, for the linear law, within its support [0, theta0].
+TEST(ThetaLaw, InversionLawsStayInTheirSupportForEveryWidth)
+{
+  for (ThetaLaw law : {ThetaLaw::Exponential, ThetaLaw::Linear})
+    for (double theta0 : {5e-324, 1e-300, 1e-10, 0.5, kHalfPi, 2.0, defaults::kThetaWidthMax}) {
+      const TrialMoveSampler sampler(0.2, theta0, law);
+      const double top = law == ThetaLaw::Linear ? std::min(theta0, kHalfPi) : kHalfPi;
+      const std::vector<double> theta = sample_theta(sampler, 13, 20000);
+      for (double th : theta) {
+        ASSERT_TRUE(std::isfinite(th)) << name(law) << " theta0 " << theta0;
+        ASSERT_GE(th, 0.0);
+        ASSERT_LE(th, top) << name(law) << " theta0 " << theta0;
+      }
+      const ThetaSampler &ts = sampler.theta_sampler();
+      EXPECT_EQ(ts.cdf(top), 1.0);
+      EXPECT_EQ(ts.cdf(0.0), 0.0);
+    }
+}
