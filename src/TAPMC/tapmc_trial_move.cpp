@@ -177,13 +177,11 @@ void ThetaSampler::build_inversion()
 {
   by_inversion_ = true;
   if (law_ == ThetaLaw::Exponential) {
-    inverse_mass_ = -std::expm1(-kThetaMax / theta0_);
+    norm_ = -std::expm1(-kThetaMax / theta0_);
   } else {
     support_ = std::min(theta0_, kThetaMax);
-    inverse_mass_ = theta0_ <= kThetaMax ? 0.5 * theta0_
-                                         : support_ * (1.0 - 0.5 * (support_ / theta0_));
+    norm_ = theta0_ <= kThetaMax ? 0.5 * theta0_ : support_ * (1.0 - 0.5 * (support_ / theta0_));
   }
-  norm_ = inverse_mass_;
   for (int k = 0; k <= kStrips; ++k) edge_[k] = kThetaMax * k / kStrips;
   for (int k = 0; k < kStrips; ++k) {
     width_[k] = edge_[k + 1] - edge_[k];

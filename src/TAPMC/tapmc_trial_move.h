@@ -137,7 +137,7 @@ class ThetaSampler {
   {
     const std::uint64_t bits = (static_cast<std::uint64_t>(high) << 20) | (low >> 12);
     const double u = (static_cast<double>(bits) + 0.5) * 0x1.0p-52;
-    const double mass = u * inverse_mass_;
+    const double mass = u * norm_;
     if (law_ == ThetaLaw::Exponential)  // 1 - exp(-theta / theta0) = mass
       return std::min(-theta0_ * std::log1p(-mass), kThetaMax);
     // theta - theta^2 / (2 theta0) = mass, the root without cancellation
@@ -215,9 +215,10 @@ class ThetaSampler {
 
   ThetaLaw law_;
   bool by_inversion_ = false;
-  // Exponential and Linear: the unnormalised CDF at the truncation (1 - exp(-pi/2 / theta0);
-  // b - b^2 / (2 theta0)), and the end of the support b = min(theta0, pi/2) (Linear)
-  double inverse_mass_ = 1.0, support_ = kThetaMax;
+  // norm_: the law's unnormalised CDF at the truncation (erf(pi/2 / theta0); the solid
+  // quadrature's total; 1 - exp(-pi/2 / theta0); b - b^2 / (2 theta0)); support_: the end of
+  // the support, b = min(theta0, pi/2) for Linear, pi/2 otherwise
+  double support_ = kThetaMax;
   double theta0_, inv_theta0_sq_, norm_;
   bool scaled_;
   // Solid: panels of the quadrature on [0, x_cut_], cumulative integrals at their edges
