@@ -89,34 +89,29 @@ class ThetaSampler {
       next_pair(w_pos, w_accept);
       return invert(strip_word, w_pos);
     }
-    if (law_ == ThetaLaw::Solid) return sample_solid(strip_word, next_pair);
     const unsigned strip = strip_word >> 24;
+    if (law_ == ThetaLaw::Solid) {
+      // f / envelope = exp(-s^2 - theta0 s cot(left)) sin(theta) / sin(left) on a tail strip,
+      // f(theta) / f(peak) on a flat one (see the class comment)
+      return sample_strips(
+          strip, next_pair,
+          [&](double s, double theta, double u) {
+            return u <= std::exp(-s * (s + theta0_cot_left_[strip])) * sin_ratio(theta, strip);
+          },
+          [&](double theta, double u) {
+            const double p = peak_[strip];
+            return u <= std::exp(-((theta - p) / theta0_) * ((theta + p) / theta0_)) *
+                            sin_ratio(theta, strip);
+          });
+    }
     const double left = edge_[strip];
-    if (tail_[strip]) {
-      // theta = left + theta0 s, s ~ truncated Exp(rate) on [0, width / theta0] (inversion)
-      const double rate = rate_[strip], span = span_[strip];
-      const double right = std::min(edge_[strip + 1], kThetaMax);
-      for (;;) {
-        std::uint32_t w_pos, w_accept;
-        next_pair(w_pos, w_accept);
-        const double s = -std::log1p(-span * uniform_open_from_u32(w_pos)) / rate;
-        const double theta = std::min(left + theta0_ * s, right);
-        const double u = uniform_open_from_u32(w_accept);
-        const double s2 = s * s;
-        if (u <= 1.0 - s2) return theta;  // exp(-s^2) >= 1 - s^2: accept without exp
-        if (u <= std::exp(-s2)) return theta;
-      }
-    }
-    const double width = width_[strip];
-    for (;;) {
-      std::uint32_t w_pos, w_accept;
-      next_pair(w_pos, w_accept);
-      // min(): rounding must never push theta past pi/2 (then cos < 0 and the move would go up)
-      const double theta = std::min(left + width * uniform_open_from_u32(w_pos), kThetaMax);
-      const double u = uniform_open_from_u32(w_accept);
-      if (u <= squeeze_[strip]) return theta;  // below the strip's lowest density: accept
-      if (u <= std::exp(-flat_exponent(theta, left))) return theta;
-    }
+    return sample_strips(
+        strip, next_pair,
+        [](double s, double, double u) {
+          const double s2 = s * s;
+          return u <= 1.0 - s2 || u <= std::exp(-s2);  // exp(-s^2) >= 1 - s^2: often no exp
+        },
+        [&](double theta, double u) { return u <= std::exp(-flat_exponent(theta, left)); });
   }
 
   // The first attempt of sample() when it is the last: a flat strip whose squeeze test accepts
@@ -145,43 +140,6 @@ class ThetaSampler {
                     support_);
   }
 
-  // ThetaLaw::Solid: the same strips (tables of the solid law), acceptance of a point by
-  // f(theta) / envelope (see the class comment).
-  template <class NextPair>
-  double sample_solid(std::uint32_t strip_word, NextPair &&next_pair) const
-  {
-    const unsigned strip = strip_word >> 24;
-    const double left = edge_[strip];
-    if (tail_[strip]) {
-      // theta = left + theta0 s, s ~ truncated Exp(rate) on [0, width / theta0] (inversion);
-      // f / envelope = exp(-s^2 - theta0 s cot(left)) sin(theta) / sin(left) <= 1
-      const double rate = rate_[strip], span = span_[strip];
-      const double right = std::min(edge_[strip + 1], kThetaMax);
-      for (;;) {
-        std::uint32_t w_pos, w_accept;
-        next_pair(w_pos, w_accept);
-        const double s = -std::log1p(-span * uniform_open_from_u32(w_pos)) / rate;
-        const double theta = std::min(left + theta0_ * s, right);
-        const double u = uniform_open_from_u32(w_accept);
-        if (u <= std::exp(-s * (s + theta0_cot_left_[strip])) * sin_ratio(theta, strip))
-          return theta;
-      }
-    }
-    const double width = width_[strip];
-    for (;;) {
-      std::uint32_t w_pos, w_accept;
-      next_pair(w_pos, w_accept);
-      const double theta = std::min(left + width * uniform_open_from_u32(w_pos), kThetaMax);
-      const double u = uniform_open_from_u32(w_accept);
-      if (u <= squeeze_[strip]) return theta;  // below the strip's lowest density: accept
-      // f(theta) / f(peak)
-      const double p = peak_[strip];
-      if (u <= std::exp(-((theta - p) / theta0_) * ((theta + p) / theta0_)) *
-                   sin_ratio(theta, strip))
-        return theta;
-    }
-  }
-
   // Fraction of first attempts that need exp (diagnostic of the squeeze efficiency).
   double exp_fraction() const;
   // Smallest acceptance probability of a proposal over the strips (exact, from the CDF).
@@ -190,6 +148,37 @@ class ThetaSampler {
   int tail_strips() const;
 
  private:
+  // The rejection step on the strips, shared by Angle and Solid. A tail strip proposes
+  // theta = left + theta0 s with s ~ truncated Exp(rate) on [0, width / theta0] (inversion), a
+  // flat strip a uniform point; a flat proposal below the strip's squeeze is accepted at once,
+  // the others by the law's test: accept_tail(s, theta, u), accept_flat(theta, u).
+  template <class NextPair, class AcceptTail, class AcceptFlat>
+  double sample_strips(unsigned strip, NextPair &next_pair, AcceptTail &&accept_tail,
+                       AcceptFlat &&accept_flat) const
+  {
+    const double left = edge_[strip];
+    std::uint32_t w_pos, w_accept;
+    if (tail_[strip]) {
+      const double rate = rate_[strip], span = span_[strip];
+      const double right = std::min(edge_[strip + 1], kThetaMax);
+      for (;;) {
+        next_pair(w_pos, w_accept);
+        const double s = -std::log1p(-span * uniform_open_from_u32(w_pos)) / rate;
+        const double theta = std::min(left + theta0_ * s, right);
+        if (accept_tail(s, theta, uniform_open_from_u32(w_accept))) return theta;
+      }
+    }
+    const double width = width_[strip];
+    for (;;) {
+      next_pair(w_pos, w_accept);
+      // min(): rounding must never push theta past pi/2 (then cos < 0 and the move would go up)
+      const double theta = std::min(left + width * uniform_open_from_u32(w_pos), kThetaMax);
+      const double u = uniform_open_from_u32(w_accept);
+      if (u <= squeeze_[strip]) return theta;  // below the strip's lowest density: accept
+      if (accept_flat(theta, u)) return theta;
+    }
+  }
+
   // ln(P(left) / P(theta)) = (theta - left)(theta + left) / theta0^2. Below
   // kScaledBelow, 1 / theta0^2 would overflow: the factors are scaled by theta0 first.
   static constexpr double kScaledBelow = 1e-100;
