@@ -19,8 +19,15 @@ Two kinds of rows:
 Run on quiet cores: pause background runs (kill -STOP) and do not build meanwhile; the load
 average of the start and the end is printed.
 
+  instructions  (--instructions) each kernel program once under valgrind's callgrind: the
+          instructions it executes (Ir), total and per function, ref against new. A count, not
+          a time (it misses cache and memory effects), but exact and deaf to the other
+          processes of the machine: on a busy or noisy machine, where the pairs' ratios spread
+          by tens of per cent, it says whether a change altered the work at all (`--pairs 0
+          --instructions`: the counts alone, nothing paused; about 2-3 min per program).
+
   /usr/bin/python3 bench/ab_mc_settle.py [--ref df91a11] [--build build] [--pairs 9] [--large] [--lmp]
-      [--taps 5] [--work DIR] [--ref-bench current|own] [--csv FILE]
+      [--taps 5] [--work DIR] [--ref-bench current|own] [--instructions [--functions 8]] [--csv FILE]
 """
 import argparse
 import csv
@@ -136,6 +143,61 @@ def tap_rows(lmp, taps, work, label):
     return {"s per tap (loop)": loop / taps, "CPU s per process": cpu}, (last[1], last[3])
 
 
+#: A function's line of callgrind_annotate: its Ir, the share, then "file:function [binary]".
+ANNOTATE_LINE = re.compile(r"^\s*([0-9,]+) \(\s*[0-9.]+%\)\s+(.*?)\s*$")
+#: The row of the whole program's instructions (CSV and table).
+INSTRUCTIONS_ROW = "instructions, whole program (callgrind Ir)"
+
+
+def parse_annotate(text):
+    """(total Ir, {function: Ir}) from callgrind_annotate's output (--inclusive=no). A
+    function is named without its source file (``???:`` when unknown) and without the binary in
+    brackets, so that the same function of two builds has one name."""
+    total, functions = None, {}
+    for line in text.splitlines():
+        m = ANNOTATE_LINE.match(line)
+        if not m:
+            continue
+        ir, name = int(m.group(1).replace(",", "")), m.group(2)
+        if name == "PROGRAM TOTALS":
+            total = ir
+            continue
+        name = re.sub(r"\s+\[[^\]]*\]$", "", name).split(":", 1)[-1]  # "file:function"
+        functions[name] = functions.get(name, 0) + ir
+    if total is None:
+        sys.exit("ab_mc_settle: callgrind_annotate printed no PROGRAM TOTALS line")
+    return total, functions
+
+
+def instruction_counts(binary, large, out_file):
+    """(total Ir, {function: Ir}) of one `bench_mc_settle --kernel` run under callgrind."""
+    for tool in ("valgrind", "callgrind_annotate"):
+        if shutil.which(tool) is None:
+            sys.exit(f"ab_mc_settle: --instructions needs '{tool}' on PATH "
+                     f"(Debian: apt-get install valgrind)")
+    run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={out_file}", binary, "--kernel"]
+        + (["--large"] if large else []))
+    return parse_annotate(run(["callgrind_annotate", "--inclusive=no", "--threshold=100",
+                               out_file]))
+
+
+def instruction_table(ref, new, most):
+    """Lines comparing two instruction counts: the totals and their ratio, then the `most`
+    functions whose counts changed most (new - ref, largest |change| first)."""
+    (ref_total, ref_fn), (new_total, new_fn) = ref, new
+    lines = [f"{'total':46s} {ref_total:>16,d} {new_total:>16,d}   new / ref "
+             f"{new_total / ref_total:.5f}"]
+    changes = sorted(((new_fn.get(k, 0) - ref_fn.get(k, 0), k) for k in set(ref_fn) | set(new_fn)),
+                     key=lambda c: -abs(c[0]))
+    changes = [c for c in changes if c[0] != 0][:most]
+    if changes:
+        lines.append("largest changes by function (new - ref, share of the ref total):")
+        lines += [f"  {d:+16,d} ({d / ref_total:+.4%})  {name[:110]}" for d, name in changes]
+    else:
+        lines.append("no function's count changed")
+    return lines
+
+
 #: Rows that are times (lower is better); every other row is a rate.
 TIME_ROWS = ("s per tap (loop)", "CPU s per process")
 
@@ -166,10 +228,19 @@ def main():
     ap.add_argument("--no-kernel", action="store_true", help="skip the kernel rows")
     ap.add_argument("--large", action="store_true", help="kernel rows: also N = 262144")
     ap.add_argument("--taps", type=int, default=5, help="taps per lmp_tapmc run (default 5)")
+    ap.add_argument("--instructions", action="store_true",
+                    help="also count each kernel program's instructions under callgrind")
+    ap.add_argument("--functions", type=int, default=8,
+                    help="--instructions: how many functions' changes to list (default 8)")
     ap.add_argument("--csv", help="write the summary rows to this CSV file")
     args = ap.parse_args()
-    if args.pairs < 1:
-        sys.exit(f"ab_mc_settle: --pairs = {args.pairs}; allowed: an integer >= 1")
+    if args.pairs < (0 if args.instructions else 1):
+        sys.exit(f"ab_mc_settle: --pairs = {args.pairs}; allowed: an integer >= 1 "
+                 f"(>= 0 with --instructions)")
+    if args.instructions and args.no_kernel:
+        sys.exit("ab_mc_settle: --instructions counts the kernel program; drop --no-kernel")
+    if args.functions < 0:
+        sys.exit(f"ab_mc_settle: --functions = {args.functions}; allowed: an integer >= 0")
     if args.taps < 1:
         sys.exit(f"ab_mc_settle: --taps = {args.taps}; allowed: an integer >= 1")
     build = os.path.abspath(args.build)
@@ -209,11 +280,31 @@ def main():
 
     rows = [summarize(label, values["ref"][label], values["new"][label])
             for label in values["new"] if label in values["ref"]]
+    if args.instructions:
+        counts = {}
+        for who in ("ref", "new"):
+            print(f"  counting the instructions of {who} under callgrind", flush=True)
+            counts[who] = instruction_counts(
+                os.path.join(programs[who], "bench", "bench_mc_settle"), args.large,
+                os.path.join(args.work, f"callgrind.{who}"))
+        print(f"\ninstructions (callgrind, bench_mc_settle --kernel, one run each: exact, "
+              f"whatever else runs)\n{'':46s} {'ref':>16s} {'new':>16s}")
+        print("\n".join(instruction_table(counts["ref"], counts["new"], args.functions)))
+        ref_total, new_total = counts["ref"][0], counts["new"][0]
+        rows.append({"row": INSTRUCTIONS_ROW, "ref_median": ref_total, "new_median": new_total,
+                     "speedup_of_medians": ref_total / new_total,
+                     "pair_speedup_median": ref_total / new_total,
+                     "pair_speedup_min": ref_total / new_total,
+                     "pair_speedup_max": ref_total / new_total, "pairs": 1})
+    if not args.pairs:
+        if args.csv:
+            write_csv(args.csv, rows)
+        return
     print(f"\nload average at end {os.getloadavg()[0]:.2f}; {args.pairs} pairs, reference "
           f"{args.ref}; speed-up of the working tree (> 1: faster; rates new / ref, times "
           f"ref / new)")
     print(f"{'row':46s} {'ref':>9s} {'new':>9s} {'speed-up':>8s} {'pairs: median [min, max]':>26s}")
-    for r in rows:
+    for r in (r for r in rows if r["row"] != INSTRUCTIONS_ROW):
         print(f"{r['row']:46s} {r['ref_median']:9.3f} {r['new_median']:9.3f} "
               f"{r['speedup_of_medians']:8.3f}   {r['pair_speedup_median']:.3f} "
               f"[{r['pair_speedup_min']:.3f}, {r['pair_speedup_max']:.3f}]")
@@ -222,10 +313,15 @@ def main():
         print(f"last tap (Phi_b, <Z>): ref {sorted(finals['ref'])}, new {sorted(finals['new'])}: "
               f"{'identical' if same else 'DIFFERENT'}")
     if args.csv:
-        with open(args.csv, "w", newline="") as f:
-            w = csv.DictWriter(f, fieldnames=list(rows[0]))
-            w.writeheader()
-            w.writerows(rows)
+        write_csv(args.csv, rows)
+
+
+def write_csv(path, rows):
+    """The summary rows as CSV (the columns of summarize())."""
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
 
 
 if __name__ == "__main__":

@@ -44,3 +44,43 @@ def test_every_kernel_row_of_the_benchmark_is_read():
     assert "N = 4096, Random order (paper)" in rows
     bad = subprocess.run([str(binary), "--bogus"], capture_output=True, text=True)
     assert bad.returncode == 2 and "--kernel" in bad.stderr
+
+
+ANNOTATE = """--------------------------------------------------------------------------------
+Ir
+--------------------------------------------------------------------------------
+1,000,000 (100.0%)  PROGRAM TOTALS
+
+--------------------------------------------------------------------------------
+Ir                      file:function
+--------------------------------------------------------------------------------
+  600,000 (60.00%)  ???:tapmc::TrialMoveSampler::draw_trials(tapmc::CounterRandom const&, int) const [{binary}]
+  300,000 (30.00%)  ???:void tapmc::run_trials<true, false>(tapmc::SphereMover::State&) [{binary}]
+   {atan2:>6,d} ( 9.00%)  ./math/../sysdeps/ieee754/dbl-64/e_atan2.c:__ieee754_atan2_fma [/usr/lib/libm.so.6]
+"""
+
+
+def test_callgrind_counts_are_read_per_function_whatever_the_build():
+    ab = harness()
+    ref = ab.parse_annotate(ANNOTATE.format(binary="/tmp/ref/bench_mc_settle", atan2=90000))
+    new = ab.parse_annotate(ANNOTATE.format(binary="/work/build/bench_mc_settle", atan2=80000))
+    assert ref[0] == new[0] == 1_000_000
+    # the same function of two builds has one name: no source file, no binary
+    assert set(ref[1]) == set(new[1]) == {
+        "tapmc::TrialMoveSampler::draw_trials(tapmc::CounterRandom const&, int) const",
+        "void tapmc::run_trials<true, false>(tapmc::SphereMover::State&)",
+        "__ieee754_atan2_fma"}
+    table = ab.instruction_table(ref, new, 8)
+    assert "new / ref 1.00000" in table[0]
+    assert len(table) == 3 and "-10,000" in table[2] and "__ieee754_atan2_fma" in table[2]
+    # control: the same counts list no change
+    assert ab.instruction_table(ref, ref, 8)[-1] == "no function's count changed"
+    with pytest.raises(SystemExit, match="PROGRAM TOTALS"):
+        ab.parse_annotate("nothing here")
+
+
+def test_pairs_zero_needs_the_instruction_count():
+    script = SOURCE / "bench" / "ab_mc_settle.py"
+    out = subprocess.run(["/usr/bin/python3", str(script), "--pairs", "0", "--build", "/nonexistent"],
+                         capture_output=True, text=True)
+    assert out.returncode != 0 and "--pairs = 0" in out.stderr and "--instructions" in out.stderr
