@@ -62,8 +62,8 @@ Ir                      file:function
 
 def test_callgrind_counts_are_read_per_function_whatever_the_build():
     ab = harness()
-    ref = ab.parse_annotate(ANNOTATE.format(binary="/tmp/ref/bench_mc_settle", atan2=90000))
-    new = ab.parse_annotate(ANNOTATE.format(binary="/work/build/bench_mc_settle", atan2=80000))
+    ref = ab.parse_annotate(ANNOTATE.format(binary="ref-build/bench/bench_mc_settle", atan2=90000))
+    new = ab.parse_annotate(ANNOTATE.format(binary="build/bench/bench_mc_settle", atan2=80000))
     assert ref[0] == new[0] == 1_000_000
     # the same function of two builds has one name: no source file, no binary
     assert set(ref[1]) == set(new[1]) == {
