@@ -198,8 +198,8 @@ def instruction_table(ref, new, most):
     return lines
 
 
-#: Rows that are times (lower is better); every other row is a rate.
-TIME_ROWS = ("s per tap (loop)", "CPU s per process")
+#: Rows that are times or counts (lower is better); every other row is a rate.
+TIME_ROWS = ("s per tap (loop)", "CPU s per process", INSTRUCTIONS_ROW)
 
 
 def summarize(label, ref_values, new_values):
@@ -280,6 +280,20 @@ def main():
 
     rows = [summarize(label, values["ref"][label], values["new"][label])
             for label in values["new"] if label in values["ref"]]
+    if args.pairs:
+        print(f"\nload average at end {os.getloadavg()[0]:.2f}; {args.pairs} pairs, reference "
+              f"{args.ref}; speed-up of the working tree (> 1: faster; rates new / ref, times "
+              f"ref / new)")
+        print(f"{'row':46s} {'ref':>9s} {'new':>9s} {'speed-up':>8s} "
+              f"{'pairs: median [min, max]':>26s}")
+        for r in rows:
+            print(f"{r['row']:46s} {r['ref_median']:9.3f} {r['new_median']:9.3f} "
+                  f"{r['speedup_of_medians']:8.3f}   {r['pair_speedup_median']:.3f} "
+                  f"[{r['pair_speedup_min']:.3f}, {r['pair_speedup_max']:.3f}]")
+    if args.lmp:
+        same = finals["ref"] == finals["new"] and len(finals["new"]) == 1
+        print(f"last tap (Phi_b, <Z>): ref {sorted(finals['ref'])}, new {sorted(finals['new'])}: "
+              f"{'identical' if same else 'DIFFERENT'}")
     if args.instructions:
         counts = {}
         for who in ("ref", "new"):
@@ -290,38 +304,12 @@ def main():
         print(f"\ninstructions (callgrind, bench_mc_settle --kernel, one run each: exact, "
               f"whatever else runs)\n{'':46s} {'ref':>16s} {'new':>16s}")
         print("\n".join(instruction_table(counts["ref"], counts["new"], args.functions)))
-        ref_total, new_total = counts["ref"][0], counts["new"][0]
-        rows.append({"row": INSTRUCTIONS_ROW, "ref_median": ref_total, "new_median": new_total,
-                     "speedup_of_medians": ref_total / new_total,
-                     "pair_speedup_median": ref_total / new_total,
-                     "pair_speedup_min": ref_total / new_total,
-                     "pair_speedup_max": ref_total / new_total, "pairs": 1})
-    if not args.pairs:
-        if args.csv:
-            write_csv(args.csv, rows)
-        return
-    print(f"\nload average at end {os.getloadavg()[0]:.2f}; {args.pairs} pairs, reference "
-          f"{args.ref}; speed-up of the working tree (> 1: faster; rates new / ref, times "
-          f"ref / new)")
-    print(f"{'row':46s} {'ref':>9s} {'new':>9s} {'speed-up':>8s} {'pairs: median [min, max]':>26s}")
-    for r in (r for r in rows if r["row"] != INSTRUCTIONS_ROW):
-        print(f"{r['row']:46s} {r['ref_median']:9.3f} {r['new_median']:9.3f} "
-              f"{r['speedup_of_medians']:8.3f}   {r['pair_speedup_median']:.3f} "
-              f"[{r['pair_speedup_min']:.3f}, {r['pair_speedup_max']:.3f}]")
-    if args.lmp:
-        same = finals["ref"] == finals["new"] and len(finals["new"]) == 1
-        print(f"last tap (Phi_b, <Z>): ref {sorted(finals['ref'])}, new {sorted(finals['new'])}: "
-              f"{'identical' if same else 'DIFFERENT'}")
+        rows.append(summarize(INSTRUCTIONS_ROW, [counts["ref"][0]], [counts["new"][0]]))
     if args.csv:
-        write_csv(args.csv, rows)
-
-
-def write_csv(path, rows):
-    """The summary rows as CSV (the columns of summarize())."""
-    with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
+        with open(args.csv, "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=list(rows[0]))
+            w.writeheader()
+            w.writerows(rows)
 
 
 if __name__ == "__main__":

@@ -29,6 +29,9 @@ def test_speedups_are_oriented_by_the_kind_of_row():
     assert time["speedup_of_medians"] == pytest.approx(2.0 / 1.5)
     assert time["pair_speedup_median"] == pytest.approx(2.0)
     assert time["pair_speedup_min"] == pytest.approx(1.0)
+    # an instruction count is lower-is-better, as a time
+    count = ab.summarize(ab.INSTRUCTIONS_ROW, [200], [100])
+    assert count["speedup_of_medians"] == count["pair_speedup_max"] == pytest.approx(2.0)
 
 
 def test_every_kernel_row_of_the_benchmark_is_read():
