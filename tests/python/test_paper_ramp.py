@@ -110,8 +110,9 @@ def test_frozen_compacting_and_running_ramps(tmp_path):
 
 def test_a_ramp_beyond_the_critical_level_is_told_apart(tmp_path):
     """A ramp turning at 0.2 (beyond (sqrt eps)* = 0.15) comes down the reversible branch: it
-    is no evidence about the branch below, so the headline counts only the ramp turning at
-    0.125 (frozen here) and the finding names the one beyond after it; the first increase's
+    is no evidence about the branch below, so the headline's answer counts only the ramp
+    turning at 0.125 (frozen here), and the headline's last bullet and the finding name the
+    one beyond after it, for comparison; the first increase's
     whole levels (all 4000 taps) are kept for the claims, the level still running is not."""
     up = [0.590, 0.595, 0.598, 0.600, 0.600]
     write_run(tmp_path, "paperramp0.125_pbc_s1", up + [0.600] * 4, done=True)
@@ -128,7 +129,14 @@ def test_a_ramp_beyond_the_critical_level_is_told_apart(tmp_path):
     assert len(beyond.branch("up2")[0]) == 0
     headline = paper_ramp.headline_text(list(rows.values()), 1e-7)
     assert "eta = 1e-7 (the default): an irreversible (frozen) branch (1 seed;" in headline
-    assert "0.2" not in headline
+    lines = headline.split("\n")
+    assert lines[0].endswith("an irreversible (frozen) branch at the redeposition threshold "
+                             "eta measured.") and len(lines) == 4
+    assert "0.2" not in "\n".join(lines[:3])
+    assert lines[3] == ("- For comparison, beyond (sqrt eps)* (the branch the paper calls "
+                        "reversible): at eta = 1e-7 (the default), turning at 0.2 (1 seed): the "
+                        f"descending branch moves by {beyond.down_change:+.4f} in <Phi^c> from "
+                        "the turning level.")
     finding = paper_ramp.finding_text(list(rows.values()), 1e-7)
     assert "Beyond (sqrt eps)* (the reversible branch of the paper), the descending branch " \
         "from the turning level: at eta = 1e-7 (the default), seed 2, turning at 0.2: +0.0" \
@@ -145,6 +153,17 @@ def test_a_ramp_beyond_the_critical_level_is_told_apart(tmp_path):
     text = paper_ramp.finding_text([again], 1e-7)
     assert ", second increase minus descent +0.0020 +- 0.0000 over 1 level (above)" in text
     assert paper_ramp.headline_text([beyond], 1e-7) == ""
+    compared = paper_ramp.headline_text([rows["paperramp0.125_pbc_s1"], again], 1e-7)
+    assert compared.split("\n")[-1].endswith(
+        "the second increase minus the descent: +0.0020 (mean of 1 level; "
+        f"{100 * 0.002 / again.down_change:.0f} % of the descent's move), it lies above the "
+        "descent: still compacting.")
+    # a ramp beyond still going up: nothing to compare yet
+    write_run(tmp_path, "paperramp0.2_pbc_s4", [0.59, 0.591, 0.592], levels=high[:3], seed=4)
+    running = paper_ramp.analyse_run(tmp_path / "runs" / "paperramp0.2_pbc_s4", 1e-7)
+    assert running.verdict == "running"
+    assert len(paper_ramp.headline_text([rows["paperramp0.125_pbc_s1"], running],
+                                        1e-7).split("\n")) == 3
     # a run in its first increase: the level in progress is not a whole level
     run = write_run(tmp_path, "paperramp0.125_pbc_s3", up[:3], levels=LEVELS[:3], seed=3)
     taps = (run / "taps.dat").read_text().splitlines()

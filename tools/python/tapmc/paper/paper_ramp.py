@@ -486,8 +486,10 @@ def headline_text(rows, default_eta, error_factor=None):
     their errors are in :func:`finding_text`. Only the ramps that turn below (sqrt eps)* count
     (:func:`below_critical`). ``error_factor``: the errors' factor of :func:`calibrated`, with
     which the verdicts are decided, or the ramps' own windows' when larger
-    (:func:`level_errors`)."""
-    rows = calibrated(below_critical(rows), level_errors(rows, error_factor).value)
+    (:func:`level_errors`). The ramps that turn beyond it, down the paper's reversible branch,
+    follow in a last bullet of their own, for comparison (:func:`_beyond_headline`)."""
+    every = calibrated(rows, level_errors(rows, error_factor).value)
+    rows = below_critical(every)
     if not rows:
         return ""
     bullets, answers = [], set()
@@ -505,13 +507,35 @@ def headline_text(rows, default_eta, error_factor=None):
                        f"{changes} in <Phi^c> from the turning level"
                        f"{_retrace_headline(decided)}).")
     etas = len(bullets)
+    beyond = _beyond_headline(beyond_critical(every), default_eta)
     where = (f"at any of the {etas} redeposition thresholds eta measured" if etas > 1
              else "at the redeposition threshold eta measured")
     overall = (f"{answers.pop()} {where}" if len(answers) == 1 and None not in answers
                else "per redeposition threshold eta")
     return ("The paper's central question (section III.B: is the branch below (sqrt eps)* ~ "
             f"0.15 irreversible?) at its own ramp protocol ({TAPS_PER_LEVEL} taps per level, "
-            f"N = 4096, P.B.C.): {overall}.\n\n" + "\n".join(bullets))
+            f"N = 4096, P.B.C.): {overall}.\n\n" + "\n".join(bullets + beyond))
+
+
+def _beyond_headline(rows, default_eta):
+    """The headline's comparison: one bullet ("- ...") on the ramps that turned beyond
+    (sqrt eps)*, down the branch the paper calls reversible, with their seeds' descents and
+    second increases in the words of the bullets below it ([] without a ramp there that came
+    down two levels)."""
+    parts = []
+    for eta, decided, _ in by_eta(rows, default_eta):
+        if not decided:
+            continue
+        tops = " and ".join(f"{t:g}" for t in sorted({r.top for r in decided}))
+        changes = " and ".join(f"{r.down_change:+.4f}" for r in decided)
+        seeds = f"{len(decided)} seed{'s' if len(decided) > 1 else ''}"
+        parts.append(f"at {eta_label(eta, default_eta)}, turning at {tops} ({seeds}): the "
+                     f"descending branch moves by {changes} in <Phi^c> from the turning level"
+                     f"{_retrace_headline(decided)}")
+    if not parts:
+        return []
+    return ["- For comparison, beyond (sqrt eps)* (the branch the paper calls reversible): "
+            + "; ".join(parts) + "."]
 
 
 def finding_text(rows, default_eta, error_factor=None, source=""):
