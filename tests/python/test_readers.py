@@ -234,3 +234,66 @@ def test_broken_log_ave_time_print(tmp_path):
     _expect(_write(tmp_path, "nohead.sca", "0 1 2\n"), 1, read_ave_time)
     _expect(_write(tmp_path, "bad.print", "# s a\n0 1\n1 1e-3x\n"), 3, read_fix_print)
     _expect(_write(tmp_path, "width.print", "0 1\n1 2 3\n"), 2, read_fix_print)
+
+
+RESUMED_FIRST = """
+units lj
+atom_style sphere
+boundary p p fm
+region box block 0 4 0 4 0 12
+create_box 1 box
+create_packing 100 1 0.5 4928 floor 0.0
+compute phi all stereo/profile floor 0.0
+fix tap all tapdilate 0.01 floor 0.0
+fix settle all mc/settle 4928 floor 0.0 eta 1e-4 maxsweeps 100
+fix pr all print 1 "$(step) $(c_phi[1]:%.8f) $(c_phi[3]:%.8f)" file print.dat screen no title "# step phib z"
+restart 2 restart.*
+run 4
+"""
+
+# the same run resumed from its restart at step 2, appending to the same file (as a job killed
+# after step 4 and started again from its latest kept restart would)
+RESUMED_AGAIN = RESUMED_FIRST.split("create_box")[0].replace(
+    "region box block 0 4 0 4 0 12\n", "read_restart restart.2\n") + """
+compute phi all stereo/profile floor 0.0
+fix tap all tapdilate 0.01 floor 0.0
+fix settle all mc/settle 4928 floor 0.0 eta 1e-4 maxsweeps 100
+fix pr all print 1 "$(step) $(c_phi[1]:%.8f) $(c_phi[3]:%.8f)" append print.dat screen no
+run 3
+"""
+
+
+def test_fix_print_of_a_resumed_run_names_the_repeated_step(tmp_path):
+    """A run resumed from its restart at step 2 with fix print ... append prints steps 2 to 4
+    again: read by default, the repeat is an error at its line (counting those taps twice is
+    silently wrong); repeats='last' keeps the continued run's print of each step, 'all' every
+    row. The continued run restarts from the exact state: its step 2 is the first run's."""
+    run_input(tmp_path, RESUMED_FIRST, "in.first")
+    first = read_fix_print(tmp_path / "print.dat")
+    np.testing.assert_array_equal(first["step"], np.arange(5))
+    assert first.superseded == 0
+    run_input(tmp_path, RESUMED_AGAIN, "in.again")
+    # line 7: LAMMPS's own title of the appended run, no column names; line 8: step 2 again
+    err = _expect(tmp_path / "print.dat", 8, read_fix_print)
+    assert "step 2 printed after step 4" in str(err) and "repeats='last'" in str(err)
+    last = read_fix_print(tmp_path / "print.dat", repeats="last")
+    np.testing.assert_array_equal(last["step"], np.arange(6))
+    assert last.superseded == 3
+    np.testing.assert_array_equal(last.data[:3], first.data[:3])
+    every = read_fix_print(tmp_path / "print.dat", repeats="all")
+    np.testing.assert_array_equal(every["step"], [0, 1, 2, 3, 4, 2, 3, 4, 5])
+    np.testing.assert_array_equal(every.data[5:], last.data[2:])
+    with pytest.raises(ValueError, match="repeats = 'first'; allowed: 'error', 'last', 'all'"):
+        read_fix_print(tmp_path / "print.dat", repeats="first")
+
+
+def test_fix_print_without_a_title_or_a_step_column(tmp_path):
+    """LAMMPS's own title ("# Fix print output for fix ID", six words) names no column, even
+    over six fields; without a column named step, steps are not checked."""
+    six = "# Fix print output for fix pr\n1 2 3 4 5 6\n2 2 3 4 5 7\n1 0 0 0 0 0\n"
+    table = read_fix_print(_write(tmp_path, "six.print", six))
+    assert table.columns == [f"c{j}" for j in range(1, 7)] and len(table) == 3
+    named = read_fix_print(tmp_path / "six.print", columns=["Step", "a", "b", "c", "d", "e"],
+                           repeats="last")
+    np.testing.assert_array_equal(named["Step"], [1])
+    assert named.superseded == 2

@@ -390,18 +390,39 @@ def read_ave_time_blocks(path, killed=False):
     return [line + "\n" for line in lines[:nheader]], out
 
 
-def read_fix_print(path, columns=None):
+#: What read_fix_print does with a step printed again (see its docstring).
+FIX_PRINT_REPEATS = ("error", "last", "all")
+
+#: The title LAMMPS writes when fix print has no ``title`` keyword: words, not column names.
+_FIX_PRINT_DEFAULT_TITLE = re.compile(r"^\s*Fix print output for fix \S+\s*$")
+
+
+def read_fix_print(path, columns=None, repeats="error"):
     """Read a ``fix print`` file of numeric lines. Column names: ``columns`` if given, else the
     last ``#`` line before the data when it has one name per field (a ``title`` such as
-    ``"# step phib z"``), else ``c1, c2, ...``. A row identical to the previous one is dropped
-    (``fix print`` writes the boundary step of consecutive runs twice). A last line without its
-    end-of-line (a killed run) is left out."""
+    ``"# step phib z"``; LAMMPS's own title "# Fix print output for fix ID" never counts),
+    else ``c1, c2, ...``. A row identical to the previous one is dropped (``fix print`` writes
+    the boundary step of consecutive runs twice). A last line without its end-of-line (a killed
+    run) is left out.
+
+    Steps printed again: with a column named ``step`` (any case), a row whose step is not
+    above the previous row's comes from a run resumed from a restart file with ``append``
+    (it prints the taps after the restart again) or from consecutive runs that print their
+    boundary step with other values. ``repeats`` says what to do: ``"error"`` (the default)
+    raises :class:`TapmcFormatError` at that line, since counting such taps twice is silently
+    wrong; ``"last"`` keeps the last print of each step (the rows from that step on that were
+    printed before are dropped: the continued run supersedes them; ``Table.superseded``
+    counts them); ``"all"`` keeps every row as printed. Without a step column nothing is
+    checked."""
+    if repeats not in FIX_PRINT_REPEATS:
+        raise ValueError(f"repeats = {repeats!r}; allowed: "
+                         + ", ".join(repr(r) for r in FIX_PRINT_REPEATS))
     lines, cut_short = _read_lines(path)
-    rows, title = [], None
+    rows, linenos, title = [], [], None
     width = None
     for i, line in enumerate(lines):
         if line.startswith("#"):
-            if not rows:
+            if not rows and not _FIX_PRINT_DEFAULT_TITLE.match(line.lstrip("#")):
                 title = line.lstrip("#").split()
             continue
         fields = line.split()
@@ -411,6 +432,7 @@ def read_fix_print(path, columns=None):
         width = len(row)
         if not rows or row != rows[-1]:
             rows.append(row)
+            linenos.append(i + 1)
     if not rows:
         what = "empty file" if not lines and not cut_short else "no numeric line found"
         raise TapmcFormatError(path, None, what + _cut_short_note(cut_short, len(lines)))
@@ -418,7 +440,34 @@ def read_fix_print(path, columns=None):
         columns = title if title and len(title) == width else [f"c{j + 1}" for j in range(width)]
     elif len(columns) != width:
         raise ValueError(f"columns has {len(columns)} names but {path} has {width} fields")
-    return Table(columns, np.array(rows), path)
+    names = [str(c).lower() for c in columns]
+    superseded = 0
+    if repeats != "all" and "step" in names:
+        rows, superseded = _steps_once(path, rows, linenos, names.index("step"), repeats)
+    table = Table(columns, np.array(rows), path)
+    table.superseded = superseded
+    return table
+
+
+def _steps_once(path, rows, linenos, k, repeats):
+    """(rows, how many were dropped): each step once, the last print kept (``repeats`` "last"),
+    or TapmcFormatError at the first step not above the previous one ("error")."""
+    kept = []
+    dropped = 0
+    for row, lineno in zip(rows, linenos):
+        if kept and row[k] <= kept[-1][k]:
+            if repeats == "error":
+                raise TapmcFormatError(
+                    path, lineno, f"step {row[k]:g} printed after step {kept[-1][k]:g}: a run "
+                    "resumed from a restart file (or consecutive runs printing their boundary "
+                    "step with other values) printed it again; read_fix_print(..., "
+                    "repeats='last') keeps the last print of each step (the continued run's), "
+                    "repeats='all' every row")
+            while kept and kept[-1][k] >= row[k]:
+                kept.pop()
+                dropped += 1
+        kept.append(row)
+    return kept, dropped
 
 
 class Frame:

@@ -105,10 +105,11 @@ def finished_runs(campaign, pattern):
 
 
 def taps_table(path):
-    """The taps.dat of a run (tapmc.readers.read_fix_print), QuestionError naming the file
-    (and line) when it is missing or damaged."""
+    """The taps.dat of a run (tapmc.readers.read_fix_print, every row as printed: a resumed
+    continuation prints its restart step again, :func:`last_rows` picks the last print),
+    QuestionError naming the file (and line) when it is missing or damaged."""
     try:
-        table = read_fix_print(path)
+        table = read_fix_print(path, repeats="all")
     except FileNotFoundError:
         raise QuestionError(f"{path}: no such file") from None
     except TapmcFormatError as err:
