@@ -46,6 +46,26 @@ def test_ramp_levels_and_branches():
     assert len(h.branch("down")) == 7 and h.branch("up2")["sqrt_eps"][0] == 0.05
 
 
+def test_branches_follow_the_turns_not_the_highest_level():
+    """A loop whose second increase goes higher than the first (0.05-0.15, down to 0.05, up to
+    0.2): the first increase ends at its own turn, not at the highest level; a ramp that turns
+    down again after the second increase is refused, naming the level; a flat top (a level
+    repeated) stays on the first increase until the ramp falls."""
+    levels = [0.05, 0.10, 0.15, 0.10, 0.05, 0.10, 0.15, 0.20]
+    x = np.repeat(np.arange(len(levels), dtype=float), 10)
+    h = Hysteresis(np.repeat(levels, 10), x, taps_per_level=10, last=5).compute()
+    assert list(h.levels["branch"]) == ["up1"] * 3 + ["down"] * 2 + ["up2"] * 3
+    np.testing.assert_allclose(h.branch("down")["sqrt_eps"], [0.10, 0.05])
+    np.testing.assert_allclose(h.branch("up2")["mean"], [5, 6, 7])
+    twice = levels + [0.15]
+    with pytest.raises(ValueError, match=r"level 8 \(taps 81..90\): sqrt\(eps\) turns down "
+                       r"again, from 0.2 to 0.15, .* pass the taps up to 80"):
+        Hysteresis(np.repeat(twice, 10), np.zeros(90), 10, 5).compute()
+    flat = [0.05, 0.10, 0.10, 0.05]
+    h = Hysteresis(np.repeat(flat, 10), np.zeros(40), 10, 5).compute()
+    assert list(h.levels["branch"]) == ["up1", "up1", "up1", "down"]
+
+
 def test_ramp_incomplete_level_and_errors():
     rng = np.random.default_rng(1)
     _, _, sqrt_eps, x = ramp(400, rng)

@@ -56,8 +56,10 @@ class Hysteresis:
     The run is cut into consecutive levels of ``taps_per_level`` taps (an unfinished last level
     shorter than ``last`` is left out; ``incomplete_taps`` counts those taps). Inside the
     averaging window of a level sqrt(eps) must be constant. Branches: the first level and every
-    level up to the highest sqrt(eps) are 'up1', the levels after it that decrease are 'down',
-    and the levels after the lowest point of the descent are 'up2'.
+    level up to the ramp's first turn (the last level before sqrt(eps) first decreases) are
+    'up1', the levels after it that decrease are 'down', and the levels after the lowest point
+    of the descent are 'up2' (which may go higher than 'up1' went). One loop: a ramp that turns
+    down again during 'up2' raises ValueError naming the level (cut the run into loops).
 
     Results after ``compute()``: ``levels`` (numpy structured array with fields branch, level,
     sqrt_eps, mean, sem, std, first_tap, last_tap), ``branch(name)``, ``plot(ax)``."""
@@ -93,13 +95,19 @@ class Hysteresis:
             ss = SteadyState(self.x[a:b], last=self.last).compute()
             rows.append(["", k, float(np.median(window)), ss.mean, ss.sem, ss.std, a + 1, b])
         values = np.array([r[2] for r in rows])
-        top = int(np.argmax(values))
         branch = "up1"
         for k, row in enumerate(rows):
-            if k > top and branch == "up1":
+            falls = k > 0 and values[k] < values[k - 1] - LEVEL_TOLERANCE
+            rises = k > 0 and values[k] > values[k - 1] + LEVEL_TOLERANCE
+            if branch == "up1" and falls:
                 branch = "down"
-            if branch == "down" and k > 0 and values[k] > values[k - 1] + LEVEL_TOLERANCE:
+            elif branch == "down" and rises:
                 branch = "up2"
+            elif branch == "up2" and falls:
+                raise ValueError(
+                    f"level {k} (taps {row[6]}..{row[7]}): sqrt(eps) turns down again, from "
+                    f"{values[k - 1]:g} to {values[k]:g}, after the second increase; Hysteresis "
+                    f"takes one loop (up, down, up): pass the taps up to {row[6] - 1}")
             row[0] = branch
         self._levels = np.array([tuple(r) for r in rows], dtype=_DTYPE)
         return self
