@@ -196,6 +196,11 @@ def test_broken_dumps(tmp_path):
     e = _expect(_write(tmp_path, "short.dump", DUMP_OK.replace("2 1.5 0.5 0.5", "2 1.5")),
                 11, read_dump)
     assert "expected 4 fields" in str(e)
+    # a long line and a short one make up the frame's total of fields: still the long line
+    shifted = DUMP_OK.replace("1 0.5 0.5 0.5", "1 0.5 0.5 0.5 9.0").replace("2 1.5 0.5 0.5",
+                                                                           "2 1.5 0.5")
+    e = _expect(_write(tmp_path, "shifted.dump", shifted), 10, read_dump)
+    assert "expected 4 fields (id x y z), found 5" in str(e)
     _expect(_write(tmp_path, "count.dump", DUMP_OK.replace("\n2\n", "\ntwo\n")), 4, read_dump)
     _expect(_write(tmp_path, "item.dump", DUMP_OK.replace("ITEM: BOX", "ITEM: BLOB")), 5,
             read_dump)

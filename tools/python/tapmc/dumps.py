@@ -160,14 +160,17 @@ def _read_frame_header(lines, line):
 
 
 def _read_atom_table(lines, header):
-    """The per-atom block as an (N, columns) float array: parsed whole when it is clean,
-    line by line otherwise so that the error names the bad line."""
+    """The per-atom block as an (N, columns) float array: parsed whole when it is clean (every
+    line of the header's width: a short line and a long one would otherwise make up the total
+    and shift the fields between atoms), line by line otherwise so that the error names the
+    bad line."""
     n_atoms, width = header.n_atoms, len(header.columns)
     text = [lines.next_in_frame() for _ in range(n_atoms)]
     try:
-        flat = np.array(" ".join(text).split(), dtype=float)
-        if flat.size == n_atoms * width and np.all(np.isfinite(flat)):
-            return flat.reshape(n_atoms, width)
+        if all(len(t.split()) == width for t in text):
+            flat = np.array(" ".join(text).split(), dtype=float)
+            if np.all(np.isfinite(flat)):
+                return flat.reshape(n_atoms, width)
     except ValueError:
         pass
     table = np.empty((n_atoms, width))
