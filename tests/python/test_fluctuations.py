@@ -98,6 +98,18 @@ def test_steady_state_mean_sigma_and_correlated_sem():
     assert ss.last_value == x[-1]
 
 
+def test_steady_state_of_a_window_too_short_to_batch_and_bad_counts():
+    """Two or three taps cannot make two batches: the error is the naive one, never NaN; a
+    count that is not a whole number (infinity, NaN, None, text) is refused by name."""
+    x = np.array([1.0, 2.0, 3.0, 5.0, 4.0, 6.0])
+    for last in (2, 3):
+        s = SteadyState(x, last=last).compute()
+        assert np.isfinite(s.sem) and s.sem == pytest.approx(s.sem_naive)
+    for bad in (float("inf"), float("nan"), None, "3", 2.5):
+        with pytest.raises(ValueError, match=f"last = {bad!r} must be an integer >= 2"):
+            SteadyState(x, last=bad)
+
+
 def test_linear_detrend_separates_drift_from_fluctuations():
     # white noise of sigma 1e-3 on a drift of 1e-5 per tap: over 1000 taps the drift alone
     # spreads 1e-2 / sqrt(12) = 2.9e-3 about the mean, which the paper's sigma counts
@@ -233,6 +245,13 @@ def test_error_calibration_same_factor_p_is_uniform_under_one_factor_and_rejects
     assert a.same_factor_p(b) == pytest.approx(b.same_factor_p(a))
     with pytest.raises(ValueError, match="other: expected an ErrorCalibration"):
         a.same_factor_p(2.0)
+    # a set of groups whose realizations agree exactly (one seed run twice): factor 0, a factor
+    # apart from any other, symmetric; two such sets: nothing to compare
+    twins = ErrorCalibration({"x": ([1.0, 1.0], [0.1, 0.1])}).compute()
+    assert twins.factor == 0.0
+    assert a.same_factor_p(twins) == twins.same_factor_p(a) == pytest.approx(0.0, abs=1e-3)
+    with pytest.raises(ValueError, match="both calibrations have factor 0"):
+        twins.same_factor_p(twins)
     with pytest.raises(NotComputedError):
         a.same_factor_p(ErrorCalibration({"x": ([1.0, 2.0], [0.1, 0.1])}))
 

@@ -52,7 +52,11 @@ def same_length(name_a, a, name_b, b):
 
 
 def positive_int(name, value, minimum=1):
-    if isinstance(value, bool) or int(value) != value or value < minimum:
+    try:
+        whole = not isinstance(value, bool) and int(value) == value
+    except (TypeError, ValueError, OverflowError):  # None, text, NaN, infinity
+        whole = False
+    if not whole or value < minimum:
         raise ValueError(f"{name} = {value!r} must be an integer >= {minimum}")
     return int(value)
 

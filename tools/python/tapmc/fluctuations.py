@@ -49,9 +49,11 @@ def jackknife_error(replicates):
 
 
 def _batch_sem(x, batches):
-    n = len(x) // batches
+    """Batch-means standard error of the mean of x; with fewer than 2 batches of at least one
+    value (a window of 2 or 3 taps) the naive std / sqrt(n), the only one there is."""
+    n = len(x) // batches if batches >= 2 else 0
     if n < 1:
-        return np.std(x, ddof=1) / np.sqrt(len(x))
+        return float(np.std(x, ddof=1) / np.sqrt(len(x)))
     means = x[: n * batches].reshape(batches, n).mean(axis=1)
     return float(np.std(means, ddof=1) / np.sqrt(batches))
 
@@ -236,6 +238,11 @@ class ErrorCalibration:
         if not isinstance(other, ErrorCalibration):
             raise ValueError(f"other: expected an ErrorCalibration, got {type(other).__name__}")
         require(other, "_factor")
+        if other.factor == 0.0:  # identical means in every group of other: the test is symmetric
+            if self.factor == 0.0:
+                raise ValueError("both calibrations have factor 0 (identical realization means "
+                                 "in every group, e.g. one seed run twice): nothing to compare")
+            return other.same_factor_p(self)
         ratio = stats.f(self.dof, other.dof)
         tail = ratio.sf((self.factor / other.factor) ** 2)
         return float(min(1.0, 2 * min(tail, 1 - tail)))
