@@ -155,6 +155,10 @@ def test_exponential_dependence_of_b():
     assert np.isfinite(two.slope) and two.slope_interval.determined
     none = exponential_dependence(sqrt_eps[:1], B[:1], [np.nan], B[:1])
     assert none.fit is None and np.isnan(none.slope) and "not testable" in repr(none)
+    # two seeds of one eps: two determined B, no slope (was an infinite one)
+    seeds = exponential_dependence([0.1, 0.1], [1.0, 2.0], [0.9, 1.8], [1.1, 2.2])
+    assert seeds.fit is None and np.isnan(seeds.slope) and "not testable" in repr(seeds)
+    assert list(seeds.used) == [0.1, 0.1]
 
 
 # ---- Fig. 2: every statistic from the figure's CSV alone -------------------------------------

@@ -527,7 +527,7 @@ class LogLinear(Law):
 
 class ExponentialDependence:
     """Result of :func:`exponential_dependence`: ``fit`` (the :class:`LogLinear` FitResult of
-    ln B against sqrt(eps), None with fewer than 2 determined B), ``slope`` and
+    ln B against sqrt(eps), None with determined B at fewer than 2 sqrt(eps)), ``slope`` and
     ``slope_interval`` (the 68 % profile :class:`Interval`, rescaled by the reduced chi2 when
     that exceeds 1), ``reduced_chi2``, ``dof``, ``p_value`` (chi2 probability of the straight
     line; nan with no degree of freedom), ``linear`` (p_value >= ``LINEARITY_P_MIN``; None when
@@ -589,7 +589,7 @@ def exponential_dependence(sqrt_eps, B, B_lo, B_hi):
     for name, arr in (("B", b), ("B_lo", lo), ("B_hi", hi)):
         same_length("sqrt_eps", x, name, arr)
     ok = np.isfinite(b) & np.isfinite(lo) & np.isfinite(hi) & (lo > 0) & (hi > lo) & (b > 0)
-    if ok.sum() < 2:
+    if len(np.unique(x[ok])) < 2:  # a slope needs two sqrt(eps) (seeds of one eps give none)
         return ExponentialDependence(None, x[ok], x[~ok])
     sig = 0.5 * (np.log(hi[ok]) - np.log(lo[ok]))
     law = LogLinear()
