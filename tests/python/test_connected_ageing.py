@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from tapmc import Ageing
+from tapmc.ageing import collapse_dispersion
 from tapmc.connected_ageing import ConnectedAgeing, LawFreeCollapse, connected_curves
 
 WAITING = [10, 30, 100, 300]
@@ -93,6 +94,31 @@ def test_bad_input_is_refused_by_name():
         LawFreeCollapse(groups=1)
     with pytest.raises(ValueError, match="at least 2 waiting times"):
         ConnectedAgeing(stationary(), [10]).compute().collapse()
+    with pytest.raises(ValueError, match=r"at least 2 waiting times > 0, got \[0, 10\]"):
+        ConnectedAgeing(stationary(), [0, 10]).compute().collapse()
+
+
+def test_the_curve_of_t_w_0_is_measured_but_left_out_of_the_collapse():
+    """t_w = 0 has no scale: C(t, 0) is computed, the collapse of [0, 10, 30] is the one of
+    [10, 30] exactly (was a ZeroDivisionError)."""
+    z = simple_ageing(seed=2)
+    with_zero = ConnectedAgeing(z, [0, 10, 30]).compute()
+    assert 0 in with_zero.C
+    a = with_zero.collapse(fit_amplitude=False, groups=2)
+    b = ConnectedAgeing(z, [10, 30]).compute().collapse(fit_amplitude=False, groups=2)
+    assert (a.mu, a.mu_error, a.dispersion) == (b.mu, b.mu_error, b.dispersion)
+
+
+def test_collapse_dispersion_refuses_what_it_cannot_compare():
+    t = np.arange(1.0, 6.0)
+    good = (t, t, np.ones(5))
+    assert collapse_dispersion({1: good, 2: good}, 0.0) == 0.0
+    for curves, message in (({1: good}, "at least 2"),
+                            ({0: good, 2: good}, "must be > 0"),
+                            ({1: good, 2: (t, t[:4], np.ones(5))}, "one length"),
+                            ({1: good, 2: (t, t, np.zeros(5))}, "sigma must be > 0")):
+        with pytest.raises(ValueError, match=message):
+            collapse_dispersion(curves, 0.5)
 
 
 def test_connected_curves_matches_the_class():

@@ -683,8 +683,19 @@ def collapse_dispersion(curves, mu, kappa=0.0, t_ref=None):
     (about 1 for curves that are one within their errors; nan when no two curves overlap).
     ``curves``: dict t_w -> (t, A, sigma), t > 0. The points of a curve are correlated, so
     compare values of it (at several exponents, or against no rescaling) rather than read it
-    as a chi2 with a known distribution."""
+    as a chi2 with a known distribution. Waiting times must be > 0 (t_w = 0 has no scale), at
+    least 2, and every sigma > 0 (at t > 0)."""
+    if len(curves) < 2:
+        raise ValueError(f"curves has {len(curves)} waiting time(s); a dispersion needs at least 2")
+    if any(float(tw) <= 0 for tw in curves):
+        raise ValueError(f"waiting times {sorted(curves)} must be > 0 (t_w = 0 has no scale)")
     curves = {float(tw): tuple(np.asarray(v, dtype=float) for v in c) for tw, c in curves.items()}
+    for tw, (t, a, sig) in curves.items():
+        if not t.shape == a.shape == sig.shape or t.ndim != 1:
+            raise ValueError(f"curve t_w = {tw:g}: t, A and sigma must be 1-D of one length, got "
+                             f"shapes {t.shape}, {a.shape}, {sig.shape}")
+        if not np.all(sig[t > 0] > 0):
+            raise ValueError(f"curve t_w = {tw:g}: sigma must be > 0 at every t > 0")
     if t_ref is None:
         t_ref = float(np.exp(np.mean(np.log(list(curves)))))
     scaled = {}

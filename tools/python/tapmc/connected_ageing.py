@@ -121,7 +121,8 @@ class ConnectedAgeing:
 class LawFreeCollapse:
     """Exponents mu (time) and kappa (amplitude, 0 unless ``fit_amplitude``) of the collapse
     C(t, t_w) = r^kappa F(t / r^mu) that minimise the law-free dispersion, with grouped
-    jackknife errors over realizations.
+    jackknife errors over realizations. The curves of t_w > 0 collapse (t_w = 0 has no scale:
+    its curve is left out, as :meth:`tapmc.ageing.Ageing.scaling` leaves it).
 
     Results after ``compute(connected)``: ``mu``, ``kappa``, ``mu_error``, ``kappa_error``,
     ``dispersion`` (at the exponents), ``dispersion_unscaled`` (mu = kappa = 0: no ageing),
@@ -154,10 +155,10 @@ class LawFreeCollapse:
 
     def compute(self, connected):
         require(connected, "_C")
-        curves = {tw: (connected.t, connected.C[tw], connected.C_error[tw])
-                  for tw in connected.waiting_times}
+        waiting = [tw for tw in connected.waiting_times if tw > 0]
+        curves = {tw: (connected.t, connected.C[tw], connected.C_error[tw]) for tw in waiting}
         if len(curves) < 2:
-            raise ValueError("a collapse needs at least 2 waiting times, got "
+            raise ValueError("a collapse needs at least 2 waiting times > 0, got "
                              f"{connected.waiting_times}")
         self._mu, self._kappa = self._exponents(curves)
         self._dispersion = collapse_dispersion(curves, self._mu, self._kappa)
@@ -168,8 +169,7 @@ class LawFreeCollapse:
         values = []
         for left_out in groups:
             keep = np.setdiff1d(np.arange(n), left_out)
-            sub = connected_curves(connected.z[keep], connected.waiting_times,
-                                   connected.t.astype(int))
+            sub = connected_curves(connected.z[keep], waiting, connected.t.astype(int))
             values.append(self._exponents(sub))
         values = np.array(values)
         g = len(groups)
