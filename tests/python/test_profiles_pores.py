@@ -362,6 +362,15 @@ def test_profile_increase_single_and_seeds():
     np.testing.assert_allclose(from_file.delta_central, pi.delta_central)
     with pytest.raises(ValueError, match="must match"):
         ProfileIncrease(t, lat, np.stack([cen, cen]))
+    # the initial values: one per seed or common, refused by name otherwise
+    per_seed = ProfileIncrease(t, np.stack([lat, lat]), np.stack([cen, cen]),
+                               initial=([0.5, 0.55], 0.6)).compute()
+    np.testing.assert_allclose(per_seed.delta_lateral_all[1], lat - 0.55)
+    for bad, message in ((0.6, "must be a pair"), ((0.5, 0.6, 0.7), "must be a pair"),
+                         (([0.5, 0.5, 0.5], 0.6), "lateral_0 has 3 values; give 1"),
+                         ((0.5, float("nan")), "central_0 has 1 values")):
+        with pytest.raises(ValueError, match=message):
+            ProfileIncrease(t, np.stack([lat, lat]), np.stack([cen, cen]), initial=bad)
 
 
 def test_vertical_profile_from_stereo_array_and_eq7():
@@ -388,6 +397,11 @@ def test_vertical_profile_from_stereo_array_and_eq7():
         vertical_profile(AveTime(["TimeStep", "a"], np.zeros((2, 2))), radius=R)
     with pytest.raises(ValueError, match="radius"):
         vertical_profile(table, radius=-1)
+    np.testing.assert_allclose(vertical_profile(table, radius=R, index=np.int64(-1))[1], phi)
+    for index in (0.5, 2, -3, True):
+        with pytest.raises(ValueError, match=rf"index = {index!r} must be an integer block "
+                           r"index in \[-2, 1\] \(the file has 2 blocks\)"):
+            vertical_profile(table, radius=R, index=index)
 
 
 def test_plots():

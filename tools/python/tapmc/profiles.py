@@ -63,7 +63,27 @@ class ProfileIncrease:
             raise ValueError(f"lateral has shape {self.lateral.shape} but central has "
                              f"{self.central.shape}; they must match")
         same_length("t", self.t, "lateral (per seed)", self.lateral[0])
-        self.initial = initial
+        self.initial = None if initial is None else self._initial(initial)
+
+    def _initial(self, initial):
+        """(lateral_0, central_0), each (n_seeds, 1): one value common to all seeds or one per
+        seed, finite."""
+        seeds = self.lateral.shape[0]
+        try:
+            pair = list(initial)
+        except TypeError:
+            pair = []
+        if len(pair) != 2:
+            raise ValueError(f"initial = {initial!r} must be a pair (lateral_0, central_0), "
+                             "each a value or one value per seed")
+        out = []
+        for name, v in zip(("lateral_0", "central_0"), pair):
+            v = np.asarray(v, dtype=float).reshape(-1, 1)
+            if v.shape[0] not in (1, seeds) or not np.all(np.isfinite(v)):
+                raise ValueError(f"initial: {name} has {v.shape[0]} values; give 1 (common) or "
+                                 f"{seeds} (one per seed), all finite")
+            out.append(v)
+        return tuple(out)
 
     @classmethod
     def from_ave_time(cls, table, lateral="c_tprof[5]", central="c_tprof[6]", initial=None):
@@ -75,7 +95,7 @@ class ProfileIncrease:
         if self.initial is None:
             lat0, cen0 = self.lateral[:, :1], self.central[:, :1]
         else:
-            lat0, cen0 = (np.asarray(v, dtype=float).reshape(-1, 1) for v in self.initial)
+            lat0, cen0 = self.initial
         self._dl_all = self.lateral - lat0
         self._dc_all = self.central - cen0
         n = self._dl_all.shape[0]
@@ -122,8 +142,10 @@ def _profile(table, radius, origin, index, value):
         raise ValueError(f"value = {value!r} must be 'bin' (exact bin mean, column 3) or "
                          "'plane' (Phi at the plane, column 2)")
     n_t = table.blocks.shape[0]
-    if not -n_t <= index < n_t:
-        raise ValueError(f"index = {index} outside the {n_t} blocks of the file")
+    if isinstance(index, bool) or not isinstance(index, (int, np.integer)) or \
+            not -n_t <= index < n_t:
+        raise ValueError(f"index = {index!r} must be an integer block index in "
+                         f"[{-n_t}, {n_t - 1}] (the file has {n_t} blocks)")
     if table.blocks.shape[2] < 3:
         raise ValueError("the table needs the 3 columns of compute stereo/profile's array")
     block = table.blocks[index]
