@@ -118,6 +118,16 @@ def test_validation_messages():
         ZLaw().fit(np.arange(-1.0, 9.0), np.ones(10))
     with pytest.raises(ValueError, match="sigma"):
         AgeingLaw().fit(np.arange(10.0), np.arange(10.0), sigma=0.0)
+    with pytest.raises(ValueError, match=r"sigma has shape \(9,\); give one value or one per "
+                       r"point \(10\)"):
+        AgeingLaw().fit(np.arange(10.0), np.arange(10.0), sigma=np.ones(9))
+    with pytest.raises(ValueError, match=r"p0 has shape \(2,\); give one start per parameter "
+                       r"\(X_inf, dX_inf, B, tau\)"):
+        InverseLogLaw().fit(TAPS, np.linspace(0.58, 0.6, TAPS.size), p0=[0.6, 0.02])
+    # one sigma for all points, as a scalar or a one-element list, gives the same fit
+    y = InverseLogLaw.function(TAPS, 0.62, 0.02, 0.5, 50.0)
+    assert InverseLogLaw().fit(TAPS, y, sigma=[2e-3]).params == \
+        InverseLogLaw().fit(TAPS, y, sigma=2e-3).params
     with pytest.raises(ValueError, match="boundary"):
         ProfileLaw(boundary="xyz")
     with pytest.raises(ValueError, match="window"):

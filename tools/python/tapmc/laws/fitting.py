@@ -347,7 +347,11 @@ class Law:
         same_length("x", x, "y", y)
         weighted = sigma is not None
         if weighted:
-            sigma = np.broadcast_to(np.asarray(sigma, dtype=float), y.shape).copy()
+            sigma = np.asarray(sigma, dtype=float)
+            if sigma.ndim > 1 or sigma.size not in (1, y.size):
+                raise ValueError(f"sigma has shape {sigma.shape}; give one value or one per "
+                                 f"point ({y.size})")
+            sigma = np.broadcast_to(sigma.reshape(-1) if sigma.ndim else sigma, y.shape).copy()
             if not np.all(np.isfinite(sigma) & (sigma > 0)):
                 raise ValueError("sigma must be finite and > 0 everywhere")
         else:
@@ -361,6 +365,9 @@ class Law:
         lo, hi = self.bounds(x, y)
         lo = np.broadcast_to(lo, (len(self.names),)).astype(float)
         hi = np.broadcast_to(hi, (len(self.names),)).astype(float)
+        if p0 is not None and np.shape(p0) != (len(self.names),):
+            raise ValueError(f"p0 has shape {np.shape(p0)}; give one start per parameter "
+                             f"({', '.join(self.names)})")
         start = np.asarray(p0 if p0 is not None else self.initial_guess(x, y, 1.0 / sigma ** 2),
                            dtype=float)
         # keep the start strictly inside finite bounds (trust-region requirement)
