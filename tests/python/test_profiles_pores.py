@@ -122,6 +122,27 @@ def test_tetrahedral_law_recovers_xi_t_over_seeds():
     assert fixed.names == ["a"]
 
 
+def test_pore_law_fits_refuse_bins_of_other_lengths_by_name():
+    _, xi = sample_pores(np.random.default_rng(3), 5000, tail_nu=0.06)
+    h = histogram(xi, bins=100)
+    law = TetrahedralLaw()
+    with pytest.raises(ValueError, match="xi has 100 values but xi3_P_xi has 99"):
+        law.fit(h["xi"], h["xi3_P_xi"][:-1])
+    with pytest.raises(ValueError, match="xi has 100 values but counts has 99"):
+        law.fit(h["xi"], h["xi3_P_xi"], counts=h["count_xi"][:-1])
+    with pytest.raises(ValueError, match=r"sigma has 3 values; give one or one per bin of v "
+                       r"\(100\)"):
+        VolumeTail().fit(h["v"], h["rho_v"], sigma=[1.0, 1.0, 1.0])
+    with pytest.raises(ValueError, match="v has 100 values but counts has 98"):
+        VolumeTail().fit(h["v"], h["rho_v"], counts=h["count_v"][:-2])
+    for bad in (0.5, (1.0, 0.5), (-0.1, 0.2), ("a", 1)):
+        with pytest.raises(ValueError, match="must be \\(lo, hi\\) with 0 <= lo < hi"):
+            VolumeTail(v_range=bad)
+    # a scalar sigma or a one-element list: the same fit
+    one = VolumeTail().fit(h["v"], h["rho_v"], sigma=[0.1]).params
+    assert one == VolumeTail().fit(h["v"], h["rho_v"], sigma=0.1).params
+
+
 def test_volume_tail_recovers_nu_over_seeds():
     z, z_number = [], []
     # Up to v = 0.3 the tail bins hold >= ~10 pores. Beyond, bins of one or two pores bias a

@@ -37,7 +37,7 @@ import re
 import numpy as np
 
 from ._legends import place_legend
-from ._validate import as_1d, in_range, new_axis
+from ._validate import as_1d, in_range, new_axis, same_length
 from .fluctuations import jackknife_error
 from .laws import Law
 from .readers import TapmcFormatError
@@ -364,6 +364,23 @@ def _poisson_sigma(x_power, values, counts):
     return np.maximum(per_count * x_power, 1e-300) * np.sqrt(np.maximum(counts, 1.0))
 
 
+def _bin_errors(x_name, x, values, counts, sigma, x_power):
+    """The errors of a histogram's bins for a fit: ``sigma`` (one value or one per bin), else
+    Poisson from ``counts`` (one per bin, :func:`_poisson_sigma`), else None; lengths checked
+    against the bins of ``x`` by name."""
+    if sigma is not None:
+        s = np.asarray(sigma, dtype=float)
+        if s.ndim > 1 or s.size not in (1, x.size):
+            raise ValueError(f"sigma has {s.size} values; give one or one per bin of {x_name} "
+                             f"({x.size})")
+        return np.broadcast_to(s.reshape(-1) if s.ndim else s, x.shape)
+    if counts is None:
+        return None
+    counts = as_1d("counts", counts)
+    same_length(x_name, x, "counts", counts)
+    return _poisson_sigma(x_power, values, counts)
+
+
 class TetrahedralLaw(Law):
     """xi^3 P(xi) = a (xi - xi_T)^2 for xi_T <= xi <= xi_O, zero below xi_T (section IV.B).
     Parameters ``a`` and ``xi_T`` (``fit_xi_t=True``, to test that the smallest pores are
@@ -399,11 +416,10 @@ class TetrahedralLaw(Law):
     def fit(self, xi, xi3_p, counts=None, sigma=None, p0=None):
         xi = as_1d("xi", xi)
         xi3_p = as_1d("xi3_P_xi", xi3_p)
+        same_length("xi", xi, "xi3_P_xi", xi3_p)
         sel = (xi >= self.xi_range[0]) & (xi <= self.xi_range[1])
-        if sigma is None and counts is not None:
-            sigma = _poisson_sigma(xi ** 3, xi3_p, counts)
-        s = None if sigma is None else np.broadcast_to(np.asarray(sigma, float), xi.shape)[sel]
-        return super().fit(xi[sel], xi3_p[sel], s, p0)
+        s = _bin_errors("xi", xi, xi3_p, counts, sigma, xi ** 3)
+        return super().fit(xi[sel], xi3_p[sel], None if s is None else s[sel], p0)
 
 
 class VolumeTail(Law):
@@ -421,6 +437,14 @@ class VolumeTail(Law):
     names = ("c", "nu_tail")
 
     def __init__(self, v_range=None):
+        if v_range is not None:
+            try:
+                lo, hi = (float(b) for b in v_range)
+            except (TypeError, ValueError):
+                lo, hi = np.nan, np.nan
+            if not (0 <= lo < hi):
+                raise ValueError(f"v_range = {v_range!r} must be (lo, hi) with 0 <= lo < hi")
+            v_range = (lo, hi)
         self.v_range = v_range
 
     @staticmethod
@@ -441,13 +465,12 @@ class VolumeTail(Law):
     def fit(self, v, rho_v, counts=None, sigma=None, p0=None):
         v = as_1d("v", v)
         rho_v = as_1d("rho_v", rho_v)
+        same_length("v", v, "rho_v", rho_v)
         if self.v_range is None:
             nonzero = v[rho_v > 0]
             lo, hi = XI_O ** 3, (nonzero.max() if nonzero.size else v.max())
         else:
             lo, hi = self.v_range
         sel = (v >= lo) & (v <= hi)
-        if sigma is None and counts is not None:
-            sigma = _poisson_sigma(v, rho_v, counts)
-        s = None if sigma is None else np.broadcast_to(np.asarray(sigma, float), v.shape)[sel]
-        return super().fit(v[sel], rho_v[sel], s, p0)
+        s = _bin_errors("v", v, rho_v, counts, sigma, v)
+        return super().fit(v[sel], rho_v[sel], None if s is None else s[sel], p0)
