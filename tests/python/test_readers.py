@@ -208,6 +208,15 @@ def test_broken_dumps(tmp_path):
             read_dump)
     _expect(_write(tmp_path, "dup.dump", DUMP_OK.replace("\n2 1.5", "\n1 1.5")), 9, read_dump)
     _expect(_write(tmp_path, "garbage.dump", DUMP_OK + "hello\n"), 12, read_dump)
+    # frames of different atom counts: the native parser reads them, MDAnalysis cannot
+    fewer = DUMP_OK.replace("\n0\n", "\n5\n").replace("\n2\n", "\n1\n").rsplit("\n", 2)[0]
+    grown = _write(tmp_path, "grown.dump", DUMP_OK + fewer + "\n")
+    assert [f.n_atoms for f in read_dump(grown).frames] == [2, 1]
+    e = _expect(grown, None, lambda p: read_dump(p, backend="mdanalysis").frames)
+    assert "frames of 1 to 2 atoms (the first change at step 5)" in str(e)
+    for radius in (float("inf"), 0.0, float("nan")):
+        with pytest.raises(ValueError, match="radius = .* must be finite and > 0"):
+            read_dump(tmp_path / "ok.dump", radius=radius)
 
 
 def test_broken_log_ave_time_print(tmp_path):

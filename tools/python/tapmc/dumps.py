@@ -288,8 +288,8 @@ class Dump:
             raise FileNotFoundError(f"dump file {path!r} does not exist")
         if backend not in ("native", "mdanalysis"):
             raise ValueError(f"backend = {backend!r} must be 'native' or 'mdanalysis'")
-        if radius is not None and not float(radius) > 0:
-            raise ValueError(f"radius = {radius!r} must be > 0")
+        if radius is not None and not 0 < float(radius) < np.inf:
+            raise ValueError(f"radius = {radius!r} must be finite and > 0")
         if boundary is not None and (len(boundary) != 3 or set(boundary) - set("pfsm")):
             raise ValueError(f"boundary = {boundary!r} must be three letters of p, f, s, m "
                              "(e.g. 'ppf')")
@@ -361,6 +361,12 @@ class Dump:
         return universe
 
     def _mdanalysis_positions(self, frames):
+        counts = sorted({fr.n_atoms for fr in frames})
+        if len(counts) > 1:  # MDAnalysis keeps one topology for the whole trajectory
+            step = next(fr.step for fr in frames if fr.n_atoms != frames[0].n_atoms)
+            raise TapmcFormatError(self.path, None, f"frames of {counts[0]} to {counts[-1]} "
+                                   f"atoms (the first change at step {step}): MDAnalysis reads "
+                                   "one atom count per file; use backend='native'")
         path, temporary = self._mda_compatible_file(frames)
         try:
             universe = _mdanalysis_universe(path)
