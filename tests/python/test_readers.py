@@ -240,6 +240,12 @@ def test_broken_log_ave_time_print(tmp_path):
     vec = ("# Time-averaged data for fix v\n# TimeStep Number-of-rows\n# Row c_p[1] c_p[2]\n"
            "0 2\n1 0.25 0.5\n2 0.75 0.6\n10 2\n1 0.25 0.5\n")
     _expect(_write(tmp_path, "trunc.vec", vec), 7, read_ave_time)
+    # a run killed inside its second block: killed=True reads the complete first block
+    killed_vec = read_ave_time(tmp_path / "trunc.vec", killed=True)
+    assert list(killed_vec.steps) == [0] and killed_vec.blocks.shape == (1, 2, 2)
+    e = _expect(_write(tmp_path, "none.vec", vec.split("0 2\n")[0] + "0 2\n1 0.25 0.5\n"),
+                None, read_ave_time, killed=True)
+    assert "no complete data block" in str(e)
     _expect(_write(tmp_path, "bad.vec", vec.replace("2 0.75 0.6", "2 0.75 nope") + "2 1 1\n"),
             6, read_ave_time)
     _expect(_write(tmp_path, "rows.vec", vec.replace("10 2\n", "10 3\n") + "2 1 1\n3 1 1\n"),

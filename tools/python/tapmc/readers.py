@@ -264,12 +264,17 @@ def _parse_ave_time(path, killed=False):
     return lines, k, names, True, blocks
 
 
-def read_ave_time(path):
+def read_ave_time(path, killed=False):
     """Read a ``fix ave/time`` output file, scalar or vector mode (told apart by the header:
     vector mode has a third comment line starting with ``# Row``). A last line without its
     end-of-line (a killed run) is left out; a scalar-mode file with its header and no row yet
-    gives an empty table, a vector-mode file without a complete block raises."""
-    _, _, names, vector, blocks = _parse_ave_time(path)
+    gives an empty table, a vector-mode file without a complete block raises. A vector block
+    with fewer rows than it announces raises too, unless ``killed=True`` (the file of a run
+    that was killed while writing it): a last block cut short is then left out and the
+    complete blocks before it are read."""
+    _, _, names, vector, blocks = _parse_ave_time(path, killed)
+    if vector and not blocks:
+        raise TapmcFormatError(path, None, "vector-mode file with no complete data block")
     if not vector:
         rows = [values for _, _, values in blocks]
         return AveTime(names, np.array(rows).reshape(-1, len(names)), path=path)
