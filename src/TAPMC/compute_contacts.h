@@ -27,6 +27,11 @@ class ComputeContacts : public Compute, public tapmc::ContainerHolder {
   // 'floor' it leaves out the floor): a choice, not a mismatch.
   const std::string &container_region() const override { return container_id_; }
   bool container_optional() const override { return true; }
+  bool bed_floor(double &z0) const override
+  {
+    z0 = settings_.floor_z;
+    return settings_.floor;
+  }
 
  private:
   tapmc::contacts::Settings settings_;

@@ -150,7 +150,8 @@ bool ComputeStereoProfile::parse_keywords(int narg, char **arg)
        [&](char **v) {
          planes_.lo = number(v[0]);
          planes_.hi = number(v[1]);
-         planes_.n = utils::inumeric(FLERR, v[2], false, lmp);
+         planes_.n = static_cast<int>(tapmc::parse_integer(
+             lmp, "compute stereo/profile", "planes n", v[2], 1, std::numeric_limits<int>::max()));
          planes_given = true;
        }},
       {"window", 2,
@@ -210,6 +211,15 @@ void ComputeStereoProfile::init()
 {
   tapmc::require_box_with_floor(lmp, "compute stereo/profile");
   if (has_container()) resolve_container();
+  // The packing fractions divide by the box's horizontal area: a shrink-wrapped side spans the
+  // sphere centres, not the bed (a simple cubic lattice read 0.684 for pi/6 = 0.524).
+  for (int dim = 0; dim < 2 && !has_container(); ++dim)
+    if (!domain->periodicity[dim] && (domain->boundary[dim][0] != tapmc::kBoundaryFixed ||
+                                      domain->boundary[dim][1] != tapmc::kBoundaryFixed))
+      error->all(FLERR, "compute stereo/profile: the {0} boundary is shrink-wrapped, so the box "
+                 "spans the sphere centres, not the bed, and the packing fractions would divide "
+                 "by too small an area; use 'boundary f' in {0} with the walls at the box faces "
+                 "(or a periodic {0}, or a container)", "xy"[dim]);
   tapmc::quiet_sorting_without_pair_style(lmp);
   tapmc::request_ghost_depth(lmp, 2.0 * tapmc::largest_radius(lmp));
   update_mean_radius();

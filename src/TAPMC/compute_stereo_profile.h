@@ -24,6 +24,11 @@ class ComputeStereoProfile : public Compute, public tapmc::ContainerHolder {
   double memory_usage() override;
   // tapmc::ContainerHolder, for fix mc/settle's check of one container per run.
   const std::string &container_region() const override { return container_id_; }
+  bool bed_floor(double &z0) const override
+  {
+    z0 = settings_.floor;
+    return true;
+  }
 
  private:
   tapmc::stereo::SummarySettings settings_;

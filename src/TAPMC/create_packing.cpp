@@ -173,15 +173,13 @@ Request parse_request(LAMMPS *lmp, int narg, char **arg)
   check_preconditions(lmp, narg);
   Request req;
   req.params.n = utils::bnumeric(FLERR, arg[0], false, lmp);
-  req.type = utils::inumeric(FLERR, arg[1], false, lmp);
+  req.type = static_cast<int>(tapmc::parse_integer(lmp, "create_packing", "type", arg[1], 1,
+                                                   std::max(1, lmp->atom->ntypes),
+                                                   "the atom types of the box"));
   req.params.radius = utils::numeric(FLERR, arg[2], false, lmp);
   req.seed = tapmc::parse_seed(lmp, "create_packing", "seed", arg[3]);
   parse_options(lmp, narg, arg, req);
   tapmc::guarded(lmp, "create_packing", true, [&] { tapmc::validate(req.params); });
-  if (req.type < 1 || req.type > lmp->atom->ntypes)
-    lmp->error->all(FLERR, "create_packing: {} (the atom types of the box)",
-                    tapmc::outside_range_message("type", arg[1],
-                                                 "[1, " + std::to_string(lmp->atom->ntypes) + "]"));
   return req;
 }
 

@@ -56,9 +56,10 @@ class FixMCSettle::Redeposition {
   // From init(): the depth of the ghost shell the scheme reads, given the largest radius of all
   // spheres (collective).
   virtual double ghost_depth(double r_max) = 0;
-  // From setup: stops with an error naming the atoms when the start configuration has an overlap
-  // or a sphere through the floor or a wall (collective).
-  virtual void check_start() = 0;
+  // From setup (and after every tap when part of the bed stands still: `after_tap`): stops with
+  // an error naming the atoms when the configuration has an overlap or a sphere through the
+  // floor or a wall (collective).
+  virtual void check_start(bool after_tap) = 0;
   // One redeposition; the atoms end where LAMMPS's exchange and borders of this step expect
   // them (collective).
   virtual tapmc::SettleResult settle() = 0;
@@ -76,7 +77,7 @@ class FixMCSettle::GatheredRedeposition : public FixMCSettle::Redeposition,
   {
   }
   double ghost_depth(double r_max) override { return 2.0 * r_max; }  // one contact
-  void check_start() override;
+  void check_start(bool after_tap) override;
   tapmc::SettleResult settle() override;
 
  private:
@@ -103,7 +104,7 @@ class FixMCSettle::DecomposedRedeposition : public FixMCSettle::Redeposition,
  public:
   explicit DecomposedRedeposition(FixMCSettle &fix) : Pointers(fix.lmp), fix(fix) {}
   double ghost_depth(double r_max) override;
-  void check_start() override;
+  void check_start(bool after_tap) override;
   tapmc::SettleResult settle() override;
   std::array<double, 6> parallel_diagnostics() const override;
 
@@ -129,10 +130,12 @@ FixMCSettle::FixMCSettle(LAMMPS *lmp, int narg, char **arg) :
 
   parse_keywords(narg, arg);
   // The kernel's one validation; without 'dmax' the step comes from the radii at each tap
-  // (kMaxStepOverRadius times the smallest radius, > 0 once the radii are checked).
+  // (kMaxStepOverRadius times the smallest radius, > 0 once the radii are checked). Movable 0:
+  // the group's size, which the cap of 'check' against 'maxsweeps' needs, is known at each tap,
+  // where make_params checks it.
   const double step = dmax_given ? d_max : tapmc::defaults::kMaxStepOverRadius;
   tapmc::guarded(lmp, "fix mc/settle", true,
-                 [&] { tapmc::Settler::validate(make_params(step, 1)); });
+                 [&] { tapmc::Settler::validate(make_params(step, 0)); });
 
   tapmc::require_box_with_floor(lmp, "fix mc/settle");
   if (!container_region_id.empty()) {
@@ -144,23 +147,7 @@ FixMCSettle::FixMCSettle(LAMMPS *lmp, int narg, char **arg) :
                  container_region_id);
     container = tapmc::resolve_container(lmp, "fix mc/settle", container_region_id, 0.0);
   }
-  for (int dim = 0; dim < 2; ++dim) {
-    if (domain->periodicity[dim] || !container_region_id.empty()) {
-      if (walls_given[dim])
-        error->all(FLERR, "fix mc/settle: {}walls given but the {} boundary is periodic; side "
-                   "walls exist only in non-periodic directions", kAxisName[dim], kAxisName[dim]);
-      continue;
-    }
-    if (!walls_given[dim]) {
-      if (domain->boundary[dim][0] != tapmc::kBoundaryFixed || domain->boundary[dim][1] != tapmc::kBoundaryFixed)
-        error->all(FLERR, "fix mc/settle: the {0} boundary is shrink-wrapped, so the side walls "
-                   "have no fixed position; use 'boundary f' in {0} or give '{0}walls lo hi'",
-                   kAxisName[dim]);
-      wall_pos[dim][0] = domain->boxlo[dim];
-      wall_pos[dim][1] = domain->boxhi[dim];
-    }
-  }
-  check_walls_inside_fixed_box();
+  resolve_side_walls();
   if (fixed_radius == 0.0 && !atom->radius_flag)
     error->all(FLERR, "fix mc/settle: the atom style has no radius; use atom_style sphere or the "
                "'diameter' keyword");
@@ -374,20 +361,56 @@ void FixMCSettle::check_walls_inside_fixed_box()
   }
 }
 
+// The side walls of the box as it is now: 'xwalls'/'ywalls' where given, else the faces of a
+// fixed ('f') boundary; none along a periodic side or in a container. From the constructor and
+// from init(), since change_box may move the faces or change the boundary between runs.
+void FixMCSettle::resolve_side_walls()
+{
+  for (int dim = 0; dim < 2; ++dim) {
+    if (domain->periodicity[dim] || !container_region_id.empty()) {
+      if (walls_given[dim])
+        error->all(FLERR, "fix mc/settle: {}walls given but the {} boundary is periodic; side "
+                   "walls exist only in non-periodic directions", kAxisName[dim], kAxisName[dim]);
+      continue;
+    }
+    if (walls_given[dim]) continue;
+    if (domain->boundary[dim][0] != tapmc::kBoundaryFixed ||
+        domain->boundary[dim][1] != tapmc::kBoundaryFixed)
+      error->all(FLERR, "fix mc/settle: the {0} boundary is shrink-wrapped, so the side walls "
+                 "have no fixed position; use 'boundary f' in {0} or give '{0}walls lo hi'",
+                 kAxisName[dim]);
+    wall_pos[dim][0] = domain->boxlo[dim];
+    wall_pos[dim][1] = domain->boxhi[dim];
+  }
+  check_walls_inside_fixed_box();
+}
+
 void FixMCSettle::init()
 {
   tapmc::quiet_sorting_without_pair_style(lmp);
   tapmc::forbid_same_style_on_shared_atoms(lmp, this);
-  check_walls_inside_fixed_box();
+  tapmc::require_box_with_floor(lmp, "fix mc/settle");  // change_box may have made it another
+  resolve_side_walls();
+  if (!atom->tag_enable)  // the schemes name and order the spheres by their IDs
+    error->all(FLERR, "fix mc/settle: the atoms have no IDs ('atom_modify id no'); the "
+               "redeposition orders and names the spheres by their IDs: use 'atom_modify id yes' "
+               "(the default)");
+  if (domain->boundary[2][0] == tapmc::kBoundaryFixed && z_floor < domain->boxlo[2])
+    error->all(FLERR, "fix mc/settle: floor z0 = {} is below the fixed ('f') lower z face of the "
+               "box, {}: spheres falling to the floor would leave the box and be lost; put the "
+               "floor at or above the face, or make the lower z boundary shrink-wrapped",
+               z_floor, domain->boxlo[2]);
   if (!container_region_id.empty()) {  // the region may have been redefined, the radii set
     const double r_max = count_movable() > 0 ? group_radius_extreme(true) : 0.0;
     container = tapmc::resolve_container(lmp, "fix mc/settle", container_region_id, r_max);
   }
   // every TAPMC style of the run in the same container, or all in the box
   tapmc::require_one_container(lmp, "fix", id, style, *this);
-  tappers.clear();
-  for (int i = 0; i < modify->nfix; ++i)
-    if (auto *tapper = dynamic_cast<tapmc::Tapper *>(modify->fix[i])) tappers.push_back(tapper);
+  find_tappers();
+  bool all_move = count_movable() == atom->natoms;
+  for (const tapmc::Tapper *tapper : tappers)
+    all_move = all_move && dynamic_cast<const Fix *>(tapper)->igroup == 0;  // group 'all'
+  check_after_taps = !all_move;
 
   if (comm->me == 0 && update->whichflag == 2)
     error->warning(FLERR, "fix mc/settle moves atoms during minimization; use 'run' instead");
@@ -553,7 +576,7 @@ double FixMCSettle::effective_d_max() const
   return tapmc::defaults::kMaxStepOverRadius * group_radius_extreme(false);
 }
 
-void FixMCSettle::GatheredRedeposition::check_start()
+void FixMCSettle::GatheredRedeposition::check_start(bool after_tap)
 {
   gather_system();
   if (n_movable == 0)
@@ -570,14 +593,22 @@ void FixMCSettle::GatheredRedeposition::check_start()
                                        box, tapmc::defaults::kContactTolerance);
   });
   if (v.i < 0) return;
-  error->all(FLERR, fix.violation_message(v, sorted_tag[v.i], v.j >= 0 ? sorted_tag[v.j] : 0));
+  error->all(FLERR, fix.violation_message(v, sorted_tag[v.i], v.j >= 0 ? sorted_tag[v.j] : 0,
+                                          after_tap));
 }
 
 // What is wrong with a start configuration: an overlapping pair, a sphere below the floor or
 // through a side wall (plane numbering of tapmc_contact.h).
 std::string FixMCSettle::violation_message(const tapmc::Violation &v, tagint tag_i,
-                                           tagint tag_j) const
+                                           tagint tag_j, bool after_tap) const
 {
+  if (v.j >= 0 && after_tap)
+    return fmt::format("fix mc/settle: step {}: atoms {} and {} overlap by {} after the tap: "
+                       "part of the bed stands still (atoms outside the group of fix {} or of "
+                       "a tapping fix), and the tap's dilation pushed a sphere into one that "
+                       "did not follow it; tap and redeposit every sphere (group all), or keep "
+                       "the spheres that stand still below those that move",
+                       update->ntimestep, tag_i, tag_j, -v.gap, id);
   if (v.j >= 0)
     return fmt::format("fix mc/settle: atoms {} and {} overlap by {} at the start (allowed: a "
                        "relative tolerance of {} of the contact distance); start from a "
@@ -601,12 +632,12 @@ void FixMCSettle::setup_pre_exchange()
 {
   tapmc::require_exact_coordinates(
       lmp, "fix mc/settle", fixed_radius > 0.0 ? fixed_radius : tapmc::smallest_radius(lmp));
-  redeposition->check_start();
+  redeposition->check_start(false);
   schedule_next_settle();
 }
 
 // Each rank checks its spheres against its ghosts.
-void FixMCSettle::DecomposedRedeposition::check_start()
+void FixMCSettle::DecomposedRedeposition::check_start(bool after_tap)
 {
   if (fix.count_movable() == 0)
     error->all(FLERR, "fix mc/settle: group '{}' has no atoms", group->names[fix.igroup]);
@@ -626,9 +657,47 @@ void FixMCSettle::DecomposedRedeposition::check_start()
   if (reporter == comm->nprocs) return;
   std::string message;
   if (comm->me == reporter)
-    message = fix.violation_message(v, atom->tag[v.i], v.j >= 0 ? atom->tag[v.j] : 0);
+    message = fix.violation_message(v, atom->tag[v.i], v.j >= 0 ? atom->tag[v.j] : 0,
+                                    after_tap);
   tapmc::broadcast_text(lmp, reporter, message);
   error->all(FLERR, message);
+}
+
+// The run's tapping fixes (fix tapdilate or any tapmc::Tapper), in definition order.
+void FixMCSettle::find_tappers()
+{
+  tappers.clear();
+  tapper_ids.clear();
+  for (int i = 0; i < modify->nfix; ++i)
+    if (auto *tapper = dynamic_cast<tapmc::Tapper *>(modify->fix[i])) {
+      tappers.push_back(tapper);
+      tapper_ids.emplace_back(modify->fix[i]->id);
+    }
+}
+
+// A run with 'pre no' skips init(): a tapping fix deleted (or defined) since the last setup
+// would leave a dangling pointer (or never tap). Stop instead, naming the fixes.
+void FixMCSettle::require_same_tappers()
+{
+  std::vector<std::string> now;
+  std::vector<tapmc::Tapper *> found;
+  bool all_scheduled = true;
+  for (int i = 0; i < modify->nfix; ++i)
+    if (auto *tapper = dynamic_cast<tapmc::Tapper *>(modify->fix[i])) {
+      now.emplace_back(modify->fix[i]->id);
+      found.push_back(tapper);
+      all_scheduled = all_scheduled && tapper->scheduled();
+    }
+  if (now == tapper_ids && found == tappers && all_scheduled) return;
+  auto names = [](const std::vector<std::string> &ids) {
+    std::string s;
+    for (const std::string &id : ids) s += (s.empty() ? "" : ", ") + id;
+    return s.empty() ? std::string("none") : s;
+  };
+  error->all(FLERR, "fix mc/settle: the tapping fixes changed since the run's setup (then: {}; "
+             "now: {}), and this run skipped the setup ('run ... pre no'); run with 'pre yes' "
+             "(the default) after defining or deleting a fix", names(tapper_ids),
+             names(now) + (now == tapper_ids ? ", defined again since" : ""));
 }
 
 // The next step after this one on which a tapping fix taps (any fix, whatever its order), or
@@ -646,11 +715,13 @@ void FixMCSettle::schedule_next_settle()
 void FixMCSettle::pre_exchange()
 {
   if (update->ntimestep != next_reneighbor) return;
+  require_same_tappers();
   // The taps of this step come first, also those of tapping fixes defined after this fix
   // (LAMMPS calls pre_exchange in definition order); each taps once per step, and this step is
   // a tap step of at least one of them (schedule_next_settle).
   for (tapmc::Tapper *tap : tappers) tap->tap_if_due();
   schedule_next_settle();
+  if (check_after_taps && !tappers.empty()) redeposition->check_start(true);
 
   const tapmc::SettleResult result = redeposition->settle();
   store_diagnostics(result);

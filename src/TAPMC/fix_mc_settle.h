@@ -48,6 +48,11 @@ class FixMCSettle : public Fix, public tapmc::ContainerHolder {
 
   // tapmc::ContainerHolder: the styles of a run share one container (checked in init()).
   const std::string &container_region() const override { return container_region_id; }
+  bool bed_floor(double &z0) const override
+  {
+    z0 = z_floor;
+    return true;
+  }
 
  private:
   // user settings (defaults in tapmc_defaults.h)
@@ -94,8 +99,14 @@ class FixMCSettle : public Fix, public tapmc::ContainerHolder {
   std::unique_ptr<tapmc::DomainSettle> domain_settle;
 
   // The run's tapping fixes, in definition order: the redeposition follows their taps, on their
-  // tap steps only (none: every step).
+  // tap steps only (none: every step). Found in init(); their IDs are compared with the fixes
+  // of each tap step, since a run with 'pre no' skips init() (current_tappers()).
   std::vector<tapmc::Tapper *> tappers;
+  std::vector<std::string> tapper_ids;
+  // Part of the bed stands still (atoms outside this fix's group or a tapping fix's group): a
+  // tap can then push a sphere into one that does not follow it, so every tap is checked for
+  // overlaps before its redeposition (set in init()).
+  bool check_after_taps = false;
 
   // The settings kept in restart files (fix_mc_settle.cpp: the record's layouts).
   struct RestartSetting;
@@ -105,14 +116,18 @@ class FixMCSettle : public Fix, public tapmc::ContainerHolder {
   void parse_keywords(int narg, char **arg);
   void warn_ignored_keywords(bool decomposed) const;
   tapmc::SettleParams make_params(double step, long movable) const;
+  void resolve_side_walls();
   void check_walls_inside_fixed_box();
+  void find_tappers();
+  void require_same_tappers();
   void schedule_next_settle();
   double effective_d_max() const;
   tapmc::SettleBox make_box() const;
   tapmc::DomainSettleSetup domain_setup() const;
   double group_radius_extreme(bool largest) const;
   long count_movable() const;
-  std::string violation_message(const tapmc::Violation &v, tagint tag_i, tagint tag_j) const;
+  std::string violation_message(const tapmc::Violation &v, tagint tag_i, tagint tag_j,
+                                bool after_tap) const;
   void store_diagnostics(const tapmc::SettleResult &result);
 };
 

@@ -43,7 +43,11 @@ FixTapDilate::FixTapDilate(LAMMPS *lmp, int narg, char **arg) :
     params.eps = utils::numeric(FLERR, arg[3], false, lmp);
 
   const tapmc::Keyword table[] = {
-      {"every", 1, [&](char **v) { params.every = utils::inumeric(FLERR, v[0], false, lmp); }},
+      {"every", 1,
+       [&](char **v) {
+         params.every = tapmc::parse_integer(lmp, "fix tapdilate", "every", v[0], 1,
+                                             std::numeric_limits<int>::max());
+       }},
       {"floor", 1, [&](char **v) { params.z_floor = utils::numeric(FLERR, v[0], false, lmp); }},
       {tapmc::kContainerKeyword, 1, [&](char **v) { container_region_id = v[0]; }},
   };
@@ -78,6 +82,7 @@ void FixTapDilate::init()
   tapmc::quiet_sorting_without_pair_style(lmp);
   tapmc::request_ghost_depth(lmp, 2.0 * tapmc::largest_radius(lmp));
   tapmc::forbid_same_style_on_shared_atoms(lmp, this);
+  tapmc::require_box_with_floor(lmp, "fix tapdilate");  // change_box may have made it another
   // the region may have been deleted or redefined, the box changed, the radii set
   resolve_container(atom->radius_flag ? tapmc::largest_radius(lmp) : 0.0);
   if (!eps_variable.empty()) {

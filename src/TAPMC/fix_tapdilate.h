@@ -27,9 +27,15 @@ class FixTapDilate : public Fix, public tapmc::Tapper, public tapmc::ContainerHo
 
   // tapmc::Tapper, for fix mc/settle (taps fall on the multiples of 'every').
   void tap_if_due() override;
+  bool scheduled() const override { return next_reneighbor >= 0; }
   bigint next_tap_after(bigint step) const override;
   // tapmc::ContainerHolder, for fix mc/settle's check of one container per run.
   const std::string &container_region() const override { return container_region_id; }
+  bool bed_floor(double &z0) const override
+  {
+    z0 = params.z_floor;
+    return true;
+  }
 
  private:
   tapmc::DilationParams params;  // eps (when given as a number), every, floor

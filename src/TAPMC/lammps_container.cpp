@@ -19,6 +19,7 @@
 #include "modify.h"
 #include "region.h"
 
+#include "tapmc_defaults.h"
 #include "tapmc_math.h"
 
 #include <algorithm>
@@ -236,15 +237,33 @@ void require_one_container(LAMMPS *lmp, const char *kind, const char *id, const 
                     "or {}) to every TAPMC style of the run ({})",
                     kind, style, pair, kContainerKeyword, mine, theirs, kContainerStyles);
   };
+  double my_floor = 0.0;
+  const bool has_floor = self.bed_floor(my_floor);
+  auto compare_floor = [&](const char *other_kind, const char *other_id, const char *other_style,
+                           const ContainerHolder *other) {
+    double theirs = 0.0;
+    if (!has_floor || !other || other == &self || !other->bed_floor(theirs)) return;
+    const double scale = std::max({1.0, std::fabs(my_floor), std::fabs(theirs)});
+    if (std::fabs(my_floor - theirs) <= defaults::kFloorMatchTolerance * scale) return;
+    lmp->error->all(FLERR,
+                    "{} {}: two different floors in one run: {} {} ({}) has floor {}, {} {} ({}) "
+                    "has floor {}; give the same 'floor z0' to every TAPMC style of the run (a "
+                    "style without 'floor' takes the box's lower z bound when it is defined)",
+                    kind, style, kind, id, style, my_floor, other_kind, other_id, other_style,
+                    theirs);
+  };
   LAMMPS_NS::Modify *modify = lmp->modify;
   for (int i = 0; i < modify->nfix; ++i) {
     LAMMPS_NS::Fix *fix = modify->fix[i];
     compare("fix", fix->id, fix->style, dynamic_cast<const ContainerHolder *>(fix));
+    compare_floor("fix", fix->id, fix->style, dynamic_cast<const ContainerHolder *>(fix));
   }
   for (int i = 0; i < modify->ncompute; ++i) {
     LAMMPS_NS::Compute *compute = modify->compute[i];
     compare("compute", compute->id, compute->style,
             dynamic_cast<const ContainerHolder *>(compute));
+    compare_floor("compute", compute->id, compute->style,
+                  dynamic_cast<const ContainerHolder *>(compute));
   }
 }
 

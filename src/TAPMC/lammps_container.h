@@ -64,6 +64,12 @@ class ContainerHolder {
   // counts contacts between spheres only, as it leaves out the floor without 'floor'). Its
   // container, when it has one, must still be the run's.
   virtual bool container_optional() const { return false; }
+  // The floor plane z0 the style moves or measures the bed from ('floor', default the box's
+  // lower z bound when the style was defined), if it has one (compute contacts without
+  // 'floor' has none): the styles of a run must agree (require_one_container), since a tap
+  // about another floor lifts the bed by eps times the gap and a compute stereo/profile with
+  // another floor measures an empty slab (Phi_b 0 for a floor 2 below the bed).
+  virtual bool bed_floor(double & /*z0*/) const { return false; }
 
  protected:
   ~ContainerHolder() = default;  // never deleted through this interface: LAMMPS owns the style
@@ -73,8 +79,8 @@ class ContainerHolder {
 // `style`) with that of every other fix and compute of the run that is a ContainerHolder, and
 // stops (error->all: every rank holds the same styles) naming both styles, their regions (or
 // "no container") and what to do when one has a container and the other none (unless that one
-// is optional), or the two have different regions. fix mc/settle calls it in init(): every
-// tapping run has one.
+// is optional), or the two have different regions; and the same for their floors (bed_floor)
+// where both have one. fix mc/settle calls it in init(): every tapping run has one.
 void require_one_container(LAMMPS_NS::LAMMPS *lmp, const char *kind, const char *id,
                            const char *style, const ContainerHolder &self);
 

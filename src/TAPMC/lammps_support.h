@@ -30,10 +30,12 @@ namespace tapmc {
 // Largest seed: the seeds are 64-bit keys of the random numbers, kept in a signed 64-bit integer.
 constexpr std::int64_t kMaxSeed = std::numeric_limits<std::int64_t>::max();
 
-// A seed from its text: a plain decimal integer in [1, kMaxSeed]; anything else (a sign, a
-// fraction, an exponent, a value that would saturate) stops with a message naming the value.
-inline std::int64_t parse_seed(LAMMPS_NS::LAMMPS *lmp, const char *style, const char *name,
-                               const char *text)
+// A count or seed from its text: a plain decimal integer in [lo, hi] (lo >= 0); anything else
+// (a sign, a fraction, an exponent, a value too large: LAMMPS 2021's inumeric wraps 4294967297
+// to 1) stops with a message naming the value, the range and what the range is (`what`).
+inline std::int64_t parse_integer(LAMMPS_NS::LAMMPS *lmp, const char *style, const char *name,
+                                  const char *text, std::int64_t lo, std::int64_t hi,
+                                  const char *what = "an integer")
 {
   const std::string s = text;
   bool digits = !s.empty() && s.size() <= 19;
@@ -44,10 +46,20 @@ inline std::int64_t parse_seed(LAMMPS_NS::LAMMPS *lmp, const char *style, const 
     value = std::strtoull(s.c_str(), nullptr, 10);
     digits = errno == 0;
   }
-  if (!digits || value < 1 || value > static_cast<unsigned long long>(kMaxSeed))
-    lmp->error->all(FLERR, "{}: {} (an integer)", style,
-                    outside_range_message(name, s, "[1, " + std::to_string(kMaxSeed) + "]"));
+  if (!digits || value < static_cast<unsigned long long>(lo) ||
+      value > static_cast<unsigned long long>(hi))
+    lmp->error->all(FLERR, "{}: {} ({})", style,
+                    outside_range_message(name, s, "[" + std::to_string(lo) + ", " +
+                                                       std::to_string(hi) + "]"),
+                    what);
   return static_cast<std::int64_t>(value);
+}
+
+// A seed: a plain decimal integer in [1, kMaxSeed] (parse_integer).
+inline std::int64_t parse_seed(LAMMPS_NS::LAMMPS *lmp, const char *style, const char *name,
+                               const char *text)
+{
+  return parse_integer(lmp, style, name, text, 1, kMaxSeed);
 }
 
 // Runs a kernel call; an exception becomes a LAMMPS error naming the style. `same_on_all_ranks`:

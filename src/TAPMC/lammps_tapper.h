@@ -17,6 +17,9 @@ class Tapper {
   // Tap now if the current step is a tap step and this fix has not tapped on it yet: calling it
   // again, or the fix's own pre_exchange after it, does nothing more. Collective.
   virtual void tap_if_due() = 0;
+  // Whether the fix was set up by a run (its tap steps scheduled): a fix defined before a run
+  // with 'pre no' was not, and would never tap.
+  virtual bool scheduled() const = 0;
 
  protected:
   ~Tapper() = default;  // never deleted through this interface: the fix owns itself

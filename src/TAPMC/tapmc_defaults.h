@@ -16,6 +16,10 @@ namespace defaults {
 // 1e-16 relative rounding of the coordinates. The same relative tolerance applies to the floor
 // and to side walls (measured against the sphere's diameter).
 constexpr double kContactTolerance = 1e-10;
+// Two styles' floors are one floor when they differ by at most this fraction of the larger
+// |z0| (or of 1): the same number given twice is equal, a box face read back from a restart
+// file may differ in its last bits.
+constexpr double kFloorMatchTolerance = 1e-12;
 // Coordinates far from the origin are resolved coarsely: a double at |x| is |x| 2^-52 from
 // its neighbour, and a distance carries the rounding of both positions and of its arithmetic.
 // The contact test is exact only where kCoordinateRoundingMargin such spacings stay below the
@@ -69,6 +73,13 @@ constexpr double kTopFraction = 0.9;
 // one top-layer sphere each, so h_s follows the top layer and one stray sphere moves it by
 // (its excess height) / (number of columns) only.
 constexpr double kSurfaceColumnOverRadius = 2.0;
+// A box that is a whole number of columns wide in one unit system (6 diameters of 0.2) is one
+// within rounding in another (1.2 / 0.2 = 5.999...): the column count is floor(length / width
+// + this), so that it, and h_s, do not depend on the last bit of the units.
+constexpr double kColumnCountRounding = 1e-9;
+// At most this many columns along x and along y: a column width far below the spheres' size
+// (a typo such as 1e-4) would otherwise ask for a grid that cannot be allocated.
+constexpr int kMaxColumnsPerAxis = 4096;
 // Lateral zone of the transversal profiles: within 7R of the side walls ("roughly the wall
 // effects range", paper section IV.A).
 constexpr double kLateralWidthOverRadius = 7.0;

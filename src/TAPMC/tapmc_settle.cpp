@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -84,8 +85,20 @@ long Settler::max_checks_for_sweeps(long max_sweeps, long check_interval, long m
 {
   check_check_interval(check_interval);
   if (max_sweeps < 1) throw_outside_range("maxsweeps", max_sweeps, "[1, +inf)");
+  if (movable < 1) return 1;  // nothing moves: one (empty) check
   const long interval = trials_per_check(check_interval, movable);
-  return std::max(1L, (max_sweeps * movable + interval - 1) / interval);
+  // The cap in trials, saturated: maxsweeps 5e16 of 200 spheres must not wrap to a few sweeps.
+  const long most = std::numeric_limits<long>::max();
+  const long max_trials = max_sweeps > most / movable ? most : max_sweeps * movable;
+  // A check interval beyond the cap would run its whole first check past it (a check of 9e18
+  // trials never ends): refused, naming both.
+  if (interval > max_trials)
+    throw std::invalid_argument(
+        "check = " + std::to_string(interval) + " trials exceeds the cap of maxsweeps = " +
+        std::to_string(max_sweeps) + " sweeps of " + std::to_string(movable) +
+        " movable spheres (" + std::to_string(max_trials) + " trials): the first <Z> check "
+        "would come after the cap; lower check or raise maxsweeps");
+  return max_trials / interval + (max_trials % interval != 0 ? 1 : 0);
 }
 
 SettleResult Settler::settle(double *xyz, const double *radius, const unsigned char *movable,

@@ -280,7 +280,13 @@ ColumnGrid make_column_grid(const Box &box, double width)
     if (!(length > 0.0))
       throw_outside_range(std::string("box length along ") + "xy"[d], length, "(0, +inf)");
     g.lo[d] = box.lo[d];
-    g.n[d] = std::max(1, static_cast<int>(std::floor(length / width)));
+    const double columns = std::floor(length / width + defaults::kColumnCountRounding);
+    if (!(columns <= defaults::kMaxColumnsPerAxis))
+      throw_outside_range("column width", width,
+                          "[" + number(length / defaults::kMaxColumnsPerAxis) +
+                              ", +inf) (at most " + std::to_string(defaults::kMaxColumnsPerAxis) +
+                              " columns along " + "xy"[d] + ")");
+    g.n[d] = std::max(1, static_cast<int>(columns));
     g.width[d] = length / g.n[d];
     g.periodic[d] = box.periodic[d];
   }

@@ -35,7 +35,15 @@ TAPDILATE_CASES = [
     ("variable e equal 5\nfix t all tapdilate v_e\nrun 1",
      "(variable 'e', step 1): eps = 5 is outside the allowed range [0, 1]"),
     ("fix t all tapdilate abc", "abc"),
-    ("fix t all tapdilate 0.1 every 0", "every = 0 is outside the allowed range [1, +inf)"),
+    ("fix t all tapdilate 0.1 every 0",
+     "every = 0 is outside the allowed range [1, 2147483647] (an integer)"),
+    # LAMMPS 2021's inumeric wrapped these to 1 and to -2147483648
+    ("fix t all tapdilate 0.1 every 4294967297",
+     "every = 4294967297 is outside the allowed range [1, 2147483647] (an integer)"),
+    ("fix t all tapdilate 0.1 every 2147483648",
+     "every = 2147483648 is outside the allowed range [1, 2147483647] (an integer)"),
+    ("fix t all tapdilate 0.1 every 1.5",
+     "every = 1.5 is outside the allowed range [1, 2147483647] (an integer)"),
     ("fix t all tapdilate 0.1 floor", "keyword 'floor' needs 1 value(s)"),
     ("fix t all tapdilate 0.1 bogus 3",
      "unknown keyword 'bogus' (allowed: every, floor, container)"),
@@ -91,6 +99,12 @@ MC_SETTLE_CASES = [
     ("fix s all mc/settle 1 eta 1", "eta = 1 is outside the allowed range (0, 1)"),
     ("fix s all mc/settle 1 check -1", "check = -1 is outside the allowed range [0, +inf)"),
     ("fix s all mc/settle 1 maxsweeps 0", "maxsweeps = 0 is outside the allowed range [1, +inf)"),
+    # a check longer than the cap would run past it (9e18 trials: forever)
+    ("fix s all mc/settle 1 check 1000 maxsweeps 10\nrun 1",
+     "check = 1000 trials exceeds the cap of maxsweeps = 10 sweeps of 2 movable spheres (20 "
+     "trials)"),
+    ("fix s all mc/settle 1 check 9223372036854775807\nrun 1",
+     "check = 9223372036854775807 trials exceeds the cap of maxsweeps = 50000 sweeps"),
     ("fix s all mc/settle 1 diameter 0",
      "fix mc/settle: diameter = 0 is outside the allowed range (0, +inf)"),
     ("fix s all mc/settle 1 order backwards", "order = backwards must be 'random'"),
@@ -100,6 +114,9 @@ MC_SETTLE_CASES = [
     ("fix s all mc/settle 1 eta", "keyword 'eta' needs 1 value(s)"),
     ("fix s all mc/settle", "expected 'fix ID group mc/settle seed"),
     ("fix s all mc/settle 1 floor 0.8\nrun 1", "below the floor"),
+    # spheres falling below the fixed lower face would be lost by LAMMPS ("Lost atoms")
+    ("fix s all mc/settle 1 floor -1\nrun 1",
+     "floor z0 = -1 is below the fixed ('f') lower z face of the box, 0"),
     ("create_atoms 1 single 2.5 2 1\nfix s all mc/settle 1\nrun 1", "overlap by 0.5"),
     ("set atom 1 diameter 0.0\nfix s all mc/settle 1\nrun 1", "every sphere needs a radius > 0"),
     # 'threads' is no keyword: one rank's trial moves run on one thread (MPI ranks divide the
@@ -144,10 +161,123 @@ def test_mc_settle_needs_a_radius():
     assert rc == 0, out
 
 
+def test_mc_settle_needs_atom_ids():
+    rc, out = run_case("fix s all mc/settle 1\nrun 1", extra="atom_modify id no\n")
+    assert rc != 0 and "the atoms have no IDs ('atom_modify id no')" in out, out
+
+
 def test_mc_settle_sphere_through_a_side_wall():
     rc, out = run_case("create_atoms 1 single 7.8 5 3\nfix s all mc/settle 1\nrun 1",
                        boundary="f f fm")
     assert rc != 0 and "crosses a side wall in x" in out, out
+
+
+def test_default_side_walls_follow_the_box_between_runs():
+    """Without xwalls, the walls are the faces of the box of each run: after change_box moves
+    the x face to 5.3, the sphere near x = 5 (radius 0.5; it settled a little in the first
+    run) crosses it (the walls of the first run, at 8, would have let it stick out of the
+    box)."""
+    rc, out = run_case("fix s all mc/settle 1 eta 1e-3\nrun 1\n"
+                       "change_box all x final 0 5.3\nrun 1", boundary="f f fm")
+    assert rc != 0 and "atom 2 crosses a side wall in x by 0.1" in out, out
+    assert "(the high x wall)" in out
+    assert "Step" in out  # the first run ran
+
+
+@pytest.mark.parametrize("fix_line", FIX_LINES[:2])
+@pytest.mark.parametrize("change,message", [
+    ("change_box all z final 0 9 boundary p p p", "the z boundary is periodic"),
+    ("change_box all triclinic", "triclinic boxes are not supported"),
+])
+def test_a_box_changed_between_runs_is_checked_again(fix_line, change, message):
+    rc, out = run_case(f"{fix_line}\nrun 1\n{change}\nrun 1")
+    assert rc != 0 and message in out and "Lost atoms" not in out, out
+
+
+PRE_NO = "fix t all tapdilate 0.05\nfix s all mc/settle 1 eta 1e-3\nrun 2\n{change}\n" \
+         "run 2 pre no post no\n"
+
+
+@pytest.mark.parametrize("change,now", [("unfix t", "now: none"),
+                                        ("unfix t\nfix t all tapdilate 0.2 every 2",
+                                         "now: t, defined again since")])
+def test_tapping_fixes_changed_before_a_run_without_setup_stop(change, now):
+    """A run with 'pre no' skips init(): a tapping fix deleted since (a dangling pointer, a
+    segfault before) or defined since (never scheduled: it never tapped) stops the run."""
+    rc, out = run_case(PRE_NO.format(change=change))
+    assert rc != 0 and "the tapping fixes changed since the run's setup (then: t; " + now \
+        in out, out
+
+
+FLOORS = """units lj
+atom_style sphere
+boundary {boundary}
+region box block 0 6 0 6 -2 30
+create_box 1 box
+create_packing 60 1 0.5 7 floor 0.0
+fix settle all mc/settle 7 floor 0.0 eta 1e-3
+{line}
+run 1
+"""
+
+
+@pytest.mark.parametrize("line,other", [
+    ("fix tap all tapdilate 0.05", "fix tap (tapdilate) has floor -2"),
+    ("compute phi all stereo/profile", "compute phi (stereo/profile) has floor -2"),
+    ("compute n all contacts 0.01 floor 0.5", "compute n (contacts) has floor 0.5"),
+])
+def test_styles_with_different_floors_stop_naming_both(line, other):
+    """The box starts at z = -2, the bed at the floor 0: a style left at its default floor (the
+    box's lower bound) would tap about another floor (an extra lift of 2 eps) or measure an
+    empty slab (Phi_b 0); the run stops at setup naming both styles and floors."""
+    rc, out, _ = run_lammps(FLOORS.format(boundary="p p fm", line=line))
+    assert rc != 0 and "two different floors in one run: fix settle (mc/settle) has floor 0, " \
+        + other in out, out
+    same = line.replace("0.05", "0.05 floor 0.0").replace("profile", "profile floor 0.0") \
+        .replace("floor 0.5", "floor 0.0")
+    rc, out, _ = run_lammps(FLOORS.format(boundary="p p fm", line=same))
+    assert rc == 0 and "Loop time" in out, out
+    # compute contacts without 'floor' has no floor: nothing to compare
+    rc, out, _ = run_lammps(FLOORS.format(boundary="p p fm", line="compute n all contacts 0.01"))
+    assert rc == 0, out
+
+
+@pytest.mark.parametrize("boundary,axis", [("s p fm", "x"), ("p m fm", "y")])
+def test_stereo_profile_refuses_shrink_wrapped_sides(boundary, axis):
+    """A shrink-wrapped side spans the sphere centres, not the bed: the packing fractions would
+    divide by too small an area (a simple cubic lattice read 0.684 for pi/6)."""
+    rc, out, _ = run_lammps(FLOORS.format(boundary=boundary, line="").replace(
+        "fix settle all mc/settle 7 floor 0.0 eta 1e-3",
+        "compute phi all stereo/profile floor 0.0\nthermo_style custom step c_phi[1]"))
+    assert rc != 0 and f"compute stereo/profile: the {axis} boundary is shrink-wrapped" in out, out
+
+
+SUBSET_TAP = """units lj
+atom_style sphere
+boundary p p fm
+region box block 0 4 0 4 0 10
+create_box 2 box
+create_atoms 1 single 2 2 0.5
+create_atoms 2 single 2 2 {z_fixed}
+set group all diameter 1.0
+group grain type 1
+fix tap grain tapdilate 0.2 floor 0.0
+fix settle grain mc/settle 7 floor 0.0
+run 3
+"""
+
+
+def test_a_tap_that_pushes_a_sphere_into_one_standing_still_stops():
+    """Only the grain (type 1) is tapped and redeposited: the sphere resting on it (type 2)
+    stands still, so the tap lifts the grain into it; the run stops at that tap, naming both
+    atoms and the overlap (the tap lifts the grain by 0.2 x 0.5). A fixed sphere below the
+    grain (a rough floor) is never reached: the run goes on."""
+    rc, out, _ = run_lammps(SUBSET_TAP.format(z_fixed=1.5))
+    assert rc != 0 and "step 1: atoms 1 and 2 overlap by 0.0999999" in out, out
+    assert "after the tap: part of the bed stands still" in out
+    rc, out, _ = run_lammps(SUBSET_TAP.format(z_fixed=0.5).replace(
+        "create_atoms 1 single 2 2 0.5", "create_atoms 1 single 2 2 1.5"))
+    assert rc == 0 and "Loop time" in out, out
 
 
 FAR_BOX = """units lj

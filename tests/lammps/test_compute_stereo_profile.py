@@ -85,7 +85,9 @@ BAD = [
     ("compute s all stereo/profile radius -1.5",
      "compute stereo/profile: radius = -1.5 is outside the allowed range (0, +inf)"),
     ("compute s all stereo/profile planes 0 10 0",
-     "planes n = 0 is outside the allowed range [1, +inf)"),
+     "planes n = 0 is outside the allowed range [1, 2147483647] (an integer)"),
+    ("compute s all stereo/profile planes 0 10 4294967298",  # was 2 planes (atoi wrapped)
+     "planes n = 4294967298 is outside the allowed range [1, 2147483647] (an integer)"),
     ("compute s all stereo/profile planes 5 5 10",
      "planes lo = 5 is outside the allowed range (-inf, hi) = (-inf, 5)"),
     ("compute s all stereo/profile planes 6 5 10",

@@ -198,6 +198,9 @@ BAD_CASES = [
      "R = -1 is outside the allowed range (0, +inf) (the mean sphere radius)"),
     ("create_packing 10 2 1.0 5",
      "create_packing: type = 2 is outside the allowed range [1, 1] (the atom types of the box)"),
+    ("create_packing 10 4294967298 1.0 5",  # was type 2 (atoi wrapped)
+     "create_packing: type = 4294967298 is outside the allowed range [1, 1] (the atom types of "
+     "the box)"),
     ("create_packing 10 1 1.0 0", "create_packing: seed = 0 is outside the allowed range "
      "[1, 9223372036854775807] (an integer)"),
     ("create_packing 10 1 1.0", "expected 'create_packing N type R seed"),

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -569,14 +570,24 @@ TEST(Settle, BadParametersThrowNamingTheParameter)
   expect_throw(good, "periodic box length x");
 }
 
-// The sweep cap in checks: ceil(max_sweeps * movable / trials per check), at least 1.
+// The sweep cap in checks: ceil(max_sweeps * movable / trials per check), the product saturated;
+// a check interval beyond the cap is refused.
 TEST(Settle, SweepCapInChecks)
 {
   EXPECT_EQ(Settler::trials_per_check(0, 37), 37);
   EXPECT_EQ(Settler::trials_per_check(5, 37), 5);
   EXPECT_EQ(Settler::max_checks_for_sweeps(10, 0, 37), 10);   // one check per sweep
   EXPECT_EQ(Settler::max_checks_for_sweeps(10, 5, 37), 74);   // ceil(370 / 5)
-  EXPECT_EQ(Settler::max_checks_for_sweeps(1, 1000, 37), 1);  // never below one check
+  EXPECT_EQ(Settler::max_checks_for_sweeps(1, 37, 37), 1);    // one check, the whole cap
+  // a check beyond the cap (its first check would run past it; 9e18 trials never end)
+  EXPECT_THROW(Settler::max_checks_for_sweeps(1, 1000, 37), std::invalid_argument);
+  EXPECT_THROW(Settler::max_checks_for_sweeps(10, std::numeric_limits<long>::max(), 200),
+               std::invalid_argument);
+  // a cap beyond a long's trials saturates instead of wrapping to a few sweeps
+  const long huge = 50000000000000000L;
+  EXPECT_EQ(Settler::max_checks_for_sweeps(huge, 0, 200),
+            std::numeric_limits<long>::max() / 200 + 1);
+  EXPECT_EQ(Settler::max_checks_for_sweeps(huge, 0, 1), huge);
   EXPECT_THROW(Settler::max_checks_for_sweeps(0, 0, 37), std::invalid_argument);
   EXPECT_THROW(Settler::max_checks_for_sweeps(1, -1, 37), std::invalid_argument);
 }

@@ -602,6 +602,11 @@ TEST(StereologySurface, FlatTopAndOneStraySphere)
   const Box box = make_box(4 * a, 4 * a, 0.0, 10 * a, true);
   const ColumnGrid grid = make_column_grid(box, a);
   ASSERT_EQ(grid.size(), 16);
+  // a box a whole number of columns wide in other units (6 columns of 0.2: 1.2 / 0.2 is
+  // 5.999... in doubles) has that number of columns, whatever the units
+  for (double unit : {1.0, 0.2, 0.1, 3e-3, 1e-6, 7.0})
+    EXPECT_EQ(make_column_grid(make_box(6 * unit, 6 * unit, 0.0, 1.0, true), unit).n[0], 6)
+        << "unit " << unit;
   std::vector<double> tops(grid.size(), -std::numeric_limits<double>::infinity());
   accumulate_column_tops(p.view(), grid, tops.data());
   const double flat = 4.5 * a + r;
@@ -683,6 +688,11 @@ TEST(StereologyValidation, BadSettingsThrowNamingTheArgument)
   EXPECT_THROW(profile(p.view(), box, 2, PlaneGrid{1.0, 1.0, 3}, 0, 0), std::invalid_argument);
   EXPECT_THROW(profile(p.view(), box, 2, PlaneGrid{0.0, 1.0, 0}, 0, 0), std::invalid_argument);
   EXPECT_THROW(make_column_grid(box, 0.0), std::invalid_argument);
+  // a width far below the box's (1e-4 of a unit box: 10000 columns a side) is refused, never
+  // cast to a grid that cannot be allocated
+  EXPECT_THROW(make_column_grid(box, 1e-4), std::invalid_argument);
+  EXPECT_THROW(make_column_grid(box, 1e-300), std::invalid_argument);
+  EXPECT_EQ(make_column_grid(box, 1.0 / 4096).n[0], 4096);
   EXPECT_NO_THROW(validate(PlaneGrid{0.0, 1.0, 3}));
   try {
     validate(PlaneGrid{6.5, 5.0, 10});
