@@ -31,7 +31,7 @@ create_box 1 box
 create_packing 150 1 0.5 4928 floor 0.0
 compute phi all stereo/profile floor 0.0
 compute vprof all stereo/profile floor 0.0 planes 0.0 8.0 16
-compute tprof all stereo/profile axis x window 1.0 5.0 lateral 1.0
+compute tprof all stereo/profile axis x window 1.0 5.0 lateral 1.0 floor 0.0
 fix tap all tapdilate 0.01 floor 0.0
 fix settle all mc/settle 4928 floor 0.0 eta 1e-4 maxsweeps 100
 fix avs all ave/time 1 1 1 c_phi[1] c_phi[2] c_phi[3] c_tprof[5] c_tprof[6] file scalar.dat

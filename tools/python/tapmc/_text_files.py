@@ -16,29 +16,29 @@ class TapmcFormatError(ValueError):
         where = f"{self.path}:{line}" if line is not None else self.path
         super().__init__(f"{where}: {what}")
 
-_GZIP_MAGIC = b"\x1f\x8b"
+GZIP_MAGIC = b"\x1f\x8b"
 # What a damaged gzip stream raises: BadGzipFile (an OSError) for a bad header, zlib.error for
 # corrupt data, EOFError for a stream cut short.
-_GZIP_ERRORS = (OSError, EOFError, zlib.error)
+GZIP_ERRORS = (OSError, EOFError, zlib.error)
 
 
-def _open_text(path):
+def open_text(path):
     """Open a text file, gzip-compressed or not (detected from the content, not the name)."""
     with open(path, "rb") as probe:
         magic = probe.read(2)
-    if magic == _GZIP_MAGIC:
+    if magic == GZIP_MAGIC:
         return gzip.open(path, "rt")
     return open(path, "r")
 
 
-def _open_bytes(path):
+def open_bytes(path):
     """Open a file for reading bytes, through gzip when its content starts with gzip's magic."""
     with open(path, "rb") as probe:
         magic = probe.read(2)
-    return gzip.open(path, "rb") if magic == _GZIP_MAGIC else open(path, "rb")
+    return gzip.open(path, "rb") if magic == GZIP_MAGIC else open(path, "rb")
 
 
-def _decode_line(path, lineno, raw):
+def decode_line(path, lineno, raw):
     """One line of bytes as text; bytes that are not UTF-8 mean a binary file, named here."""
     try:
         return raw.decode("utf-8")
@@ -47,41 +47,41 @@ def _decode_line(path, lineno, raw):
                                f"{err.start + 1} is not UTF-8 text (a binary file?)") from None
 
 
-def _read_lines(path):
+def read_lines(path):
     """The complete lines of a text file (plain or gzip) without their end-of-line, and whether a
     last line without an end-of-line was left out (see the module's docstring). Lines are split
     at line feeds only, not at the other characters str.splitlines() breaks at (form feed,
     \\x1c, ...), so that line numbers are the ones an editor shows."""
     try:
-        with _open_bytes(path) as f:
+        with open_bytes(path) as f:
             data = f.read()
-    except _GZIP_ERRORS as err:
+    except GZIP_ERRORS as err:
         raise TapmcFormatError(path, None, f"damaged gzip file ({err})") from None
     pieces = data.split(b"\n")
     cut_short = pieces[-1].strip() != b""
     lines = []
     for i, raw in enumerate(pieces[:-1]):
-        lines.append(_decode_line(path, i + 1, raw[:-1] if raw.endswith(b"\r") else raw))
+        lines.append(decode_line(path, i + 1, raw[:-1] if raw.endswith(b"\r") else raw))
     return lines, cut_short
 
 
-def _cut_short_note(cut_short, nlines):
+def cut_short_note(cut_short, nlines):
     """Appended to a 'nothing found' message when the only content was a line cut short."""
     return (f" (line {nlines + 1}, the last, has no end-of-line and was left out as cut short)"
             if cut_short else "")
 
 
-def _floats(path, lineno, fields, expected=None):
+def floats(path, lineno, fields, expected=None):
     if expected is not None and len(fields) != expected:
         raise TapmcFormatError(path, lineno, f"expected {expected} fields, found {len(fields)}")
     try:
         return [float(f) for f in fields]
     except ValueError:
-        bad = next(f for f in fields if not _is_float(f))
+        bad = next(f for f in fields if not is_float(f))
         raise TapmcFormatError(path, lineno, f"non-numeric field {bad!r}") from None
 
 
-def _is_float(text):
+def is_float(text):
     try:
         float(text)
         return True

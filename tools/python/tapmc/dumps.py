@@ -11,8 +11,8 @@ from collections import namedtuple
 
 import numpy as np
 
-from ._text_files import (_GZIP_ERRORS, TapmcFormatError, _decode_line, _floats,
-                          _open_bytes, _open_text)
+from ._text_files import (GZIP_ERRORS, TapmcFormatError, decode_line, floats,
+                          open_bytes, open_text)
 
 __all__ = ["Frame", "Dump", "read_dump"]
 
@@ -73,14 +73,14 @@ class _DumpLines:
         self.lineno += 1
         try:
             raw = self._file.readline()
-        except _GZIP_ERRORS as err:
+        except GZIP_ERRORS as err:
             raise self.error(f"damaged gzip file ({err})") from None
         if not raw.endswith(b"\n"):
             if raw.strip():  # the file ends inside this line: its last number may be cut short
                 raise self.error("the file ends inside this line (no end-of-line): cut short "
                                  "while being written?")
             return None
-        return _decode_line(self.path, self.lineno, raw)
+        return decode_line(self.path, self.lineno, raw)
 
     def next_in_frame(self):
         """The next line without its newline; the end of the file here cuts a frame short."""
@@ -125,7 +125,7 @@ def _read_box_bounds(lines, item):
     bounds = []
     for _ in range(3):
         fields = lines.next_in_frame().split()
-        bounds.append(_floats(lines.path, lines.lineno, fields, 2))
+        bounds.append(floats(lines.path, lines.lineno, fields, 2))
     return bounds, flags
 
 
@@ -180,7 +180,7 @@ def _read_atom_table(lines, header):
         if len(fields) != width:
             raise lines.error(f"expected {width} fields ({' '.join(header.columns)}), "
                               f"found {len(fields)}", here)
-        table[a] = _floats(lines.path, here, fields)
+        table[a] = floats(lines.path, here, fields)
         if not np.all(np.isfinite(table[a])):
             raise lines.error("NaN or infinite value", here)
     return table
@@ -246,7 +246,7 @@ def _parse_dump_frames(path, radius=None, boundary=None):
     """Generator over the frames of a text dump, float64, checked line by line. A dump without
     any frame raises: no caller can mean an empty trajectory, and a file that LAMMPS has not
     written yet (or a wrong path to an empty file) would otherwise pass silently."""
-    with _open_bytes(path) as f:
+    with open_bytes(path) as f:
         lines = _DumpLines(path, f)
         frames = 0
         while True:
@@ -325,7 +325,7 @@ class Dump:
     def _mda_compatible_file(self, frames):
         """Path of a file MDAnalysis can read: the dump itself when it has ``type`` and the
         standard nine header lines, else a rewritten temporary copy (caller removes it)."""
-        with _open_text(self.path) as f:
+        with open_text(self.path) as f:
             head = [f.readline() for _ in range(9)]
         columns = head[8].split()[2:] if head[8].startswith("ITEM: ATOMS") else []
         # scaled coordinates are rewritten too: MDAnalysis 2.4 converts xs to x relative to the

@@ -16,7 +16,7 @@ import re
 
 import numpy as np
 
-from ._text_files import TapmcFormatError, _cut_short_note, _floats, _is_float, _read_lines
+from ._text_files import TapmcFormatError, cut_short_note, floats, is_float, read_lines
 from .dumps import Dump, Frame, read_dump
 
 __all__ = ["TapmcFormatError", "Table", "Thermo", "Log", "AveTime", "Frame", "Dump",
@@ -120,7 +120,7 @@ def read_log(path, strict=True):
     ``fix print`` or ``print`` also write to the screen during runs. An empty or binary file
     raises it as well."""
     runs, warnings, skipped = [], [], []
-    lines, cut_short = _read_lines(path)
+    lines, cut_short = read_lines(path)
     i = 0
     n = len(lines)
     while i < n:
@@ -149,11 +149,11 @@ def read_log(path, strict=True):
                     run_warnings.append(text.strip())
                 elif fields == header:
                     pass  # header repeated (thermo_modify line yes / multi-line styles)
-                elif len(fields) == len(header) and _is_float(fields[0]):
-                    rows.append(_floats(path, i + 1, fields, len(header)))
+                elif len(fields) == len(header) and is_float(fields[0]):
+                    rows.append(floats(path, i + 1, fields, len(header)))
                 elif fields and strict:
                     what = (f"expected {len(header)} fields, found {len(fields)}"
-                            if _is_float(fields[0]) else "unexpected text")
+                            if is_float(fields[0]) else "unexpected text")
                     raise TapmcFormatError(path, i + 1,
                                            f"{what} in the thermo table of run {len(runs) + 1}: "
                                            f"{text.strip()[:60]!r} (other output during the "
@@ -167,7 +167,7 @@ def read_log(path, strict=True):
     if not runs:
         what = "empty file" if not lines and not cut_short else \
             "no thermo table found (no 'run' in this log?)"
-        raise TapmcFormatError(path, None, what + _cut_short_note(cut_short, len(lines)))
+        raise TapmcFormatError(path, None, what + cut_short_note(cut_short, len(lines)))
     log = Log(runs, warnings, path)
     log.skipped = skipped
     return log
@@ -212,7 +212,7 @@ def _parse_ave_time(path, killed=False):
     scalar mode (values: the row), a ``TimeStep Number-of-rows`` line and its rows in vector mode
     (values: the rows without their ``Row`` column). ``killed``: the file was written by a run
     that was killed, so a last vector block cut short is left out instead of raising."""
-    lines, cut_short = _read_lines(path)
+    lines, cut_short = read_lines(path)
     if not lines and not cut_short:
         raise TapmcFormatError(path, None, "empty file")
     comments = []
@@ -223,7 +223,7 @@ def _parse_ave_time(path, killed=False):
     if len(comments) < 2:
         raise TapmcFormatError(path, k + 1, "not a fix ave/time file: expected at least two "
                                "'#' header lines (title and column names)"
-                               + _cut_short_note(cut_short and k == len(lines), len(lines)))
+                               + cut_short_note(cut_short and k == len(lines), len(lines)))
     # Vector mode names its second header line "TimeStep Number-of-rows": a file cut before
     # the third ("# Row ...") is a vector file without its column names, not a scalar one.
     vector = (len(comments) >= 3 and comments[2][:1] == ["Row"]) or \
@@ -236,13 +236,13 @@ def _parse_ave_time(path, killed=False):
         raise TapmcFormatError(path, 3 if vector else 2, "header line names no column")
     body = [(i + 1, lines[i].split()) for i in range(k, len(lines)) if lines[i].strip()]
     if not vector:
-        rows = [(ln, _floats(path, ln, fields, len(names))) for ln, fields in body]
+        rows = [(ln, floats(path, ln, fields, len(names))) for ln, fields in body]
         return lines, k, names, False, [(row[0], [ln], row) for ln, row in rows]
     blocks = []
     j = 0
     while j < len(body):
         ln, fields = body[j]
-        step, nrows = _floats(path, ln, fields, 2)
+        step, nrows = floats(path, ln, fields, 2)
         if not np.isfinite(nrows) or nrows != int(nrows) or nrows < 1:
             raise TapmcFormatError(path, ln, f"row count {fields[1]!r} is not a positive integer")
         nrows = int(nrows)
@@ -255,12 +255,12 @@ def _parse_ave_time(path, killed=False):
             raise TapmcFormatError(path, ln, f"truncated block: {nrows} rows announced, "
                                    f"{len(body) - j - 1} present")
         rows = body[j + 1:j + 1 + nrows]
-        values = [_floats(path, rln, rfields, len(names) + 1)[1:] for rln, rfields in rows]
+        values = [floats(path, rln, rfields, len(names) + 1)[1:] for rln, rfields in rows]
         blocks.append((step, [ln] + [rln for rln, _ in rows], values))
         j += nrows + 1
     if not blocks and not killed:
         raise TapmcFormatError(path, None, "vector-mode file with no data block"
-                               + _cut_short_note(cut_short, len(lines)))
+                               + cut_short_note(cut_short, len(lines)))
     return lines, k, names, True, blocks
 
 
@@ -326,7 +326,7 @@ def read_fix_print(path, columns=None, repeats="error"):
     if repeats not in FIX_PRINT_REPEATS:
         raise ValueError(f"repeats = {repeats!r}; allowed: "
                          + ", ".join(repr(r) for r in FIX_PRINT_REPEATS))
-    lines, cut_short = _read_lines(path)
+    lines, cut_short = read_lines(path)
     rows, linenos, title = [], [], None
     width = None
     for i, line in enumerate(lines):
@@ -337,14 +337,14 @@ def read_fix_print(path, columns=None, repeats="error"):
         fields = line.split()
         if not fields:
             continue
-        row = _floats(path, i + 1, fields, width)
+        row = floats(path, i + 1, fields, width)
         width = len(row)
         if not rows or row != rows[-1]:
             rows.append(row)
             linenos.append(i + 1)
     if not rows:
         what = "empty file" if not lines and not cut_short else "no numeric line found"
-        raise TapmcFormatError(path, None, what + _cut_short_note(cut_short, len(lines)))
+        raise TapmcFormatError(path, None, what + cut_short_note(cut_short, len(lines)))
     if columns is None:
         columns = title if title and len(title) == width else [f"c{j + 1}" for j in range(width)]
     elif len(columns) != width:
