@@ -173,6 +173,18 @@ TEST(PoreInvariants, DegenerateInputIsRefusedOrHandled) {
     fixed.max_padding_retries = 0;
     EXPECT_THROW(Tessellation(sparse.box, sparse.xyz, sparse.ids, fixed), std::runtime_error);
   }
+  // Four spheres in a 100^3 periodic box: cells no padding can resolve. Refused (was a result
+  // of 0 pores, or with a wide padding 5 of 17 pores and nu = 9e5).
+  Packing four;
+  four.box.lo = {0, 0, 0};
+  four.box.hi = {100, 100, 100};
+  const double centres[4][3] = {{1, 1, 1}, {5, 5, 5}, {2, 7, 3}, {8, 2, 6}};
+  for (const auto& c : centres) four.add(c[0], c[1], c[2]);
+  for (double padding : {8.0, 32.0}) {
+    PoreOptions o = options_for(four);
+    o.padding_over_radius = padding;
+    EXPECT_THROW(Tessellation(four.box, four.xyz, four.ids, o), std::runtime_error) << padding;
+  }
 }
 
 TEST(PoreInvariants, OverlapAcrossThePeriodicSeamIsRefused) {

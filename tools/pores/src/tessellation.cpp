@@ -505,13 +505,16 @@ Tessellation::Tessellation(const Box& box, const std::vector<double>& xyz, const
     if (final_attempt && flat)
       throw std::runtime_error("the centres span no volume (a " + std::to_string(impl_->triangulation.dimension()) +
                                "-dimensional set): there are no Delaunay tetrahedra, hence no pores");
-    // Triply periodic: every cell is a pore of the packing, so none may stay unresolved.
-    if (final_attempt && all_periodic && (untiled || r.unresolved > 0))
+    // Triply periodic: every cell is a pore of the packing, so none may stay unresolved, whether
+    // the retries ran out or no larger padding would resolve the cells left.
+    const bool stopping =
+        final_attempt || (r.retry_padding <= 0 && !flat && !(untiled && r.unresolved == 0));
+    if (stopping && all_periodic && (untiled || r.unresolved > 0))
       throw std::runtime_error("the packing is too sparse for the padding " + std::to_string(padding) + " (" +
                                std::to_string(r.unresolved) + " cells unresolved, cells cover " +
                                std::to_string(r.tetrahedra_volume) + " of the box volume " +
                                std::to_string(box.volume()) + "); raise --padding");
-    if (final_attempt || (r.retry_padding <= 0 && !flat && !(untiled && r.unresolved == 0))) break;
+    if (stopping) break;
     previous = padding;
     padding = std::min(max_padding, std::max({config::kRetryPaddingMargin * r.retry_padding,
                                               config::kMinPaddingGrowth * padding,
