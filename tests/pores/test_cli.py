@@ -40,6 +40,16 @@ def test_usage_errors():
     assert result.returncode == 2 and "unknown option" in result.stderr
 
 
+def test_xi_max_beyond_its_limit_is_a_usage_error():
+    # --xi-max 1e300 overflowed the v = xi^3 histogram to inf (empty v_lo, n_v 0), exit 0
+    for value in ("1e300", "1000.5", "0", "-1"):
+        result = run("-q", "--xi-max", value, "x.dump")
+        assert result.returncode == 2, result.stderr
+        assert f"--xi-max must lie in (0, 1000] (a pore radius over R), got '{value}'" \
+            in result.stderr, result.stderr
+    assert run("--xi-max", "1000", "--help").returncode == 0
+
+
 def test_bins_beyond_the_limit_is_a_usage_error():
     # --bins 10^15 used to reach the allocation of the histograms: "internal error:
     # std::bad_alloc", exit code 3. The limit is kMaxBins of pores_config.h, quoted by --help.

@@ -59,7 +59,7 @@ Selection of pores (by the position of the pore centre; z is the vertical)
 Histograms
   --bins N             bins of xi on [0, XI_MAX) and of v = xi^3 on [0, XI_MAX^3) (default 150,
                        at most 1000000)
-  --xi-max X           (default 1.5)
+  --xi-max X           (default 1.5, at most 1000: a pore radius over R)
 Outputs (files PREFIX.*)
   -o, --output PREFIX  default "pores". Always: PREFIX.hist.csv (over all analysed frames: P(xi),
                        xi^3 P(xi), the number density n_v(v) of v = xi^3 (integral 1) and the
@@ -240,8 +240,12 @@ bool set_input_option(Options& o, const std::string& a, const NextValue& value) 
 bool set_analysis_option(Options& o, const std::string& a, const NextValue& value) {
   if (a == "--bins") o.histogram.bins = to_count_in_range(a, value(), 1, config::kMaxBins);
   else if (a == "--xi-max") {
-    o.histogram.xi_max = to_double(a, value());
-    if (!(o.histogram.xi_max > 0)) throw UsageError("--xi-max must be positive");
+    const std::string text = value();
+    o.histogram.xi_max = to_double(a, text);
+    if (!(o.histogram.xi_max > 0 && o.histogram.xi_max <= config::kMaxXiMax))
+      throw UsageError("--xi-max must lie in (0, " +
+                       std::to_string(static_cast<int>(config::kMaxXiMax)) +
+                       "] (a pore radius over R), got '" + text + "'");
   } else if (a == "-o" || a == "--output") o.prefix = value();
   else if (a == "--p0") o.p0_samples = to_count_in_range(a, value(), 1, config::kMaxP0Samples);
   else if (a == "--sigma-max") {

@@ -109,6 +109,10 @@ constexpr double kDefaultSurfaceGap = 4.0;
 // Histogram of xi on [0, kDefaultXiMax] with kDefaultBins bins; v = xi^3 on [0, kDefaultXiMax^3].
 // 1.5 covers every interior pore of a hard-sphere packing (Bernal's largest hole: 0.645).
 constexpr double kDefaultXiMax = 1.5;
+// --xi-max above kMaxXiMax is a usage error: xi is a pore radius over R, and a pore of 1e3 R is
+// no pore of a packing but open space; beyond about 5e102 the v = xi^3 histogram overflowed to
+// inf (v_lo empty, n_v 0 with counts) without a word.
+constexpr double kMaxXiMax = 1000.0;
 constexpr std::size_t kDefaultBins = 150;
 // --bins above kMaxBins is a usage error. 10^6 bins are 1.5e-6 wide at the default --xi-max, far
 // below the ~1e-4 to which 6-digit dumps fix xi, and outnumber the pores of most frames (6.5
