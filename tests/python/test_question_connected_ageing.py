@@ -55,7 +55,7 @@ def write_campaign(root, z, resumed=None):
                                   for t in range(500, 601)] + rows[500:])
         (folder / "taps.dat").write_text("# step Z phi_b phi_c\n" + "\n".join(rows) + "\n")
         done = {"run": {"name": folder.name, "input": "in.ageing", "variables": SETTINGS,
-                        "seed": k + 1, "nprocs": 1, "taps": TAPS}}
+                        "seed": k + 1, "nprocs": 1, "taps": len(series) - 1}}
         (folder / "DONE.json").write_text(json.dumps(done))
     return root
 
@@ -135,6 +135,13 @@ def test_a_damaged_run_is_named_and_the_committed_csv_kept(tmp_path, capsys):
                      str(out)]) == 1
     err = capsys.readouterr().err
     assert "Traceback" not in err and "eps = 0.01: a collapse needs at least 2 waiting" in err
+    # a finished run whose taps.dat stops before its last tap (cut short): named, not analysed
+    lines = taps.read_text().splitlines()
+    taps.write_text("\n".join(lines[:200]) + "\n")
+    assert cli.main(["question", "connected-ageing", "--campaign", str(campaign), "--out",
+                     str(out)]) == 1
+    err = capsys.readouterr().err
+    assert f"{taps}: cut short: it ends at step 198, before the last tap 1000" in err, err
 
 
 def test_the_page_states_the_finding_with_its_figure(tmp_path, capsys):
