@@ -154,14 +154,29 @@ def _tapmc_paper(*args):
                           capture_output=True, text=True, timeout=120)
 
 
+def test_wall_hours_schedule_the_longest_runs_first():
+    assert cost.wall_hours([2.9], 8) == 2.9                     # one run: its own time
+    assert cost.wall_hours([1.0] * 4, 2) == 2.0                 # even: total / jobs
+    assert cost.wall_hours([3.0, 1.0, 1.0, 1.0], 2) == 3.0      # the long run bounds it
+    assert cost.wall_hours([2.0, 2.0, 1.0, 1.0, 1.0, 1.0], 2) == 4.0
+    assert cost.wall_hours([], 4) == 0.0
+
+
 def test_plan_prints_the_cost_of_each_purpose_and_the_line_to_paste():
     done = _tapmc_paper("plan", "--N", "4096", "--taps", "4000", "--eps", "0.0225", "0.1",
                         "--seeds", "3", "--jobs", "2")
     assert done.returncode == 0, done.stderr
     rule = cost.CostRule.from_summary()
-    total = 3 * sum(rule.cpu_hours(4096, 4000, e, cost.tier_setting(p, rule, 4096))
-                    for p in cost.TIERS for e in (0.0225, 0.1))
-    assert f"total: {total:.1f} CPU hours, about {total / 2:.1f} h of wall time on 2 cores" in done.stdout
+    each = [rule.cpu_hours(4096, 4000, e, cost.tier_setting(p, rule, 4096))
+            for p in cost.TIERS for e in (0.0225, 0.1)] * 3
+    total = sum(each)
+    assert f"total: {total:.1f} CPU hours, about {cost.wall_hours(each, 2):.1f} h of wall time " \
+        "on 2 cores" in done.stdout
+    # one run on 8 cores takes its own time, not an eighth of it
+    one = _tapmc_paper("plan", "--N", "4096", "--taps", "4000", "--eps", "0.1", "--setting",
+                       "publication", "--jobs", "8")
+    hours = float(one.stdout.split("total: ")[1].split(" CPU hours")[0])
+    assert f"about {hours:.1f} h of wall time on 8 cores" in one.stdout, one.stdout
     assert "fix settle all mc/settle SEED floor 0.0" in done.stdout
     bad = _tapmc_paper("plan", "--N", "4096", "--taps", "10", "--eps", "0.01", "--setting", "change 1e-12")
     assert bad.returncode == 2 and "change 1e-12" in bad.stderr and "Traceback" not in bad.stderr

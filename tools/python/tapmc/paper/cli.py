@@ -540,7 +540,7 @@ def _list_runs(campaign, what):
         rule, why = None, str(err)
     records = {r["name"]: r for r in provenance.read_manifest(campaign.directory).get("runs", [])
                if isinstance(r, dict) and "name" in r}
-    left, unknown = 0.0, 0
+    left, unknown, each = 0.0, 0, []
     for spec in campaign.runs:
         done = campaign.is_done(spec.name)
         seconds = None
@@ -565,6 +565,7 @@ def _list_runs(campaign, what):
                 unknown += 1
             else:
                 left += to_run
+                each.append(to_run / spec.nprocs)  # one run's wall hours
     mismatch = provenance.build_mismatch(campaign.lmp,
                                          provenance.lmp_versions(campaign.lmp)["lmp_build"],
                                          provenance.tapmc_version())
@@ -572,7 +573,7 @@ def _list_runs(campaign, what):
         print(f"tapmc-paper: warning: {mismatch}", file=sys.stderr)
     jobs = max(1, launch.available_cores())
     print(f"left to run: about {left:.1f} CPU hours (the cost rule of tapmc-paper plan; "
-          f"{left / jobs:.1f} h of wall time on {jobs} cores)"
+          f"{cost.wall_hours(each, jobs):.1f} h of wall time on {jobs} cores)"
           + (f"; {unknown} runs without an estimate: {why}" if unknown else ""))
     return 0
 
@@ -596,13 +597,15 @@ def _plan_cost(args):
           "core's speed)")
     header = ("setting", "eps", "sweeps/tap", "CPU s/tap", "CPU h/run", "CPU h")
     print("  %-36s %8s %10s %9s %9s %9s" % header)
-    total = 0.0
+    total, each = 0.0, []
     for label, name, eps, sweeps, per_tap, hours in rows:
         shown = name if label == name else f"{label}: {name}"
         print("  %-36s %8g %10.0f %9.3f %9.2f %9.2f" % (shown, eps, sweeps, per_tap, hours,
                                                        hours * args.seeds))
         total += hours * args.seeds
-    print(f"total: {total:.1f} CPU hours, about {total / jobs:.1f} h of wall time on {jobs} cores")
+        each += [hours] * args.seeds
+    print(f"total: {total:.1f} CPU hours, about {cost.wall_hours(each, jobs):.1f} h of wall "
+          f"time on {jobs} cores (the longest run first; never below the longest run)")
     for label, name in settings:
         print(f"  {label}: {cost.lammps_line(name, args.N)}")
     return 0
