@@ -6,6 +6,8 @@ import os
 import sys
 from pathlib import Path
 
+import pytest
+
 SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", Path(__file__).resolve().parents[2]))
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
 
@@ -60,6 +62,20 @@ def test_spectral_window_says_whether_the_window_moves_the_slope(tmp_path):
     assert "eps = 0.01 (4000 taps): W = 250: -1.1 ± 0.15, W = 1000: -1.12 ± 0.1; the window " \
            "moves it by less than twice its error." in text
     assert "eps = 0.1 (4000 taps)" in text and "beyond twice its error" in text
+
+
+def test_a_question_csv_cut_mid_row_is_named_at_its_line(tmp_path):
+    """A row with fewer or more fields than the header (a file cut mid-row, or damaged) raises
+    at its line: read as dicts it gave None values and one claim's row went missing."""
+    path = tmp_path / "q.csv"
+    path.write_text("a,b,c\n1,2,3\n4,5\n")
+    with pytest.raises(common.QuestionError, match=r"q.csv:3: 2 fields, the header has 3"):
+        common.read_csv(path)
+    path.write_text("a,b,c\n1,2,3,4\n")
+    with pytest.raises(common.QuestionError, match=r"q.csv:2: 4 fields, the header has 3"):
+        common.read_csv(path)
+    path.write_text("a,b,c\n1,,3\n")   # an empty field is a field
+    assert common.read_csv(path) == [{"a": "1", "b": "", "c": "3"}]
 
 
 def test_nothing_to_render_without_the_csvs(tmp_path):

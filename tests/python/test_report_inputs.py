@@ -266,8 +266,10 @@ def _replace_field(index, value):
     (lambda out: _write_csv(out, _csv_lines(out)[:3] + ["a,eps=0.005,3\r\n"]
                             + _csv_lines(out)[4:]), "fig2.csv:4: 3 fields, expected 6"),
     (_replace_field(3, "0.4x"), "fig2.csv:4: mean = '0.4x' is not a number"),
+    (_replace_field(3, "inf"), "fig2.csv:4: mean = 'inf' is not a finite number"),
+    (_replace_field(4, "nan"), "fig2.csv:4: sem = 'nan' is not a finite number"),
     (_replace_field(5, "2.5"), "fig2.csv:4: n = '2.5' is not an integer"),
-], ids=["empty", "header-only", "cut-mid-line", "header", "columns", "mean", "n"])
+], ids=["empty", "header-only", "cut-mid-line", "header", "columns", "mean", "inf", "nan", "n"])
 @pytest.mark.parametrize("refit", [False, True], ids=["render", "refit"])
 def test_from_data_refuses_a_damaged_figure_csv(capsys, committed, damage, what, refit):
     """Nothing is rendered from part of a CSV, and --refit never rewrites a damaged one

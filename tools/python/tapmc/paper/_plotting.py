@@ -197,9 +197,13 @@ def _csv_float(path, lineno, column, text):
     if text == "":
         return np.nan
     try:
-        return float(text)
+        value = float(text)
     except ValueError:
         raise FigureCsvError(path, lineno, f"{column} = {text!r} is not a number") from None
+    if not np.isfinite(value):  # the writer leaves a value it has not empty (_fmt): damage
+        raise FigureCsvError(path, lineno, f"{column} = {text!r} is not a finite number (a "
+                             "figure CSV leaves a missing value empty)")
+    return value
 
 
 def _csv_int(path, lineno, text):

@@ -67,9 +67,20 @@ def write_csv(path, header, rows, allow_empty=False):
 
 
 def read_csv(path):
-    """The rows of a question's CSV as dicts (its header names the columns)."""
+    """The rows of a question's CSV as dicts (its header names the columns); a row with another
+    number of fields than the header (a file cut mid-row) raises QuestionError at its line."""
     with open(path, newline="") as handle:
-        return list(csv.DictReader(handle))
+        reader = csv.DictReader(handle)
+        rows = []
+        for row in reader:
+            extra = row.pop(None, None) or []           # fields beyond the header's
+            missing = [k for k, v in row.items() if v is None]
+            if extra or missing:
+                width = len(reader.fieldnames)
+                raise QuestionError(f"{path}:{reader.line_num}: {width - len(missing) + len(extra)}"
+                                    f" fields, the header has {width}")
+            rows.append(row)
+        return rows
 
 
 def csv_schema(header):
