@@ -193,6 +193,39 @@ def test_both_campaign_readers_refuse_a_campaign_with_nothing_to_read(tmp_path):
         assert not (tmp_path / "out").exists()
 
 
+@pytest.mark.parametrize("damage,what", [
+    (lambda text: "nan 7.3\n".join(text.rsplit("0.5 7.3\n", 1)), "phi_c = nan at step 4"),
+    (lambda text: "7.3x\n".join(text.rsplit("7.3\n", 1)), "non-numeric field '7.3x'"),
+    (lambda text: text.replace("# step ", "# steps ", 1), "no column step"),
+])
+def test_both_campaign_readers_name_a_damaged_taps_file(tmp_path, damage, what):
+    """A NaN, a non-numeric field or a title without the columns: exit 2 naming the file (a
+    traceback before), nothing written; a run just started (its title, no tap) is no error."""
+    env = dict(os.environ,
+               PYTHONPATH=str(Path(__file__).resolve().parents[2] / "tools" / "python"))
+    for command, name, title in (
+            ("sigma-eta", "const_pbc_eps0.01_s1", "# step phi_b phi_c Z\n"),
+            ("paper-ramp", "paperramp0.125_pbc_s1",
+             "# step level branch sqrt_eps phi_b phi_c Z\n")):
+        folder = tmp_path / command / "runs" / name
+        folder.mkdir(parents=True)
+        width = title.count(" ")
+        rows = "".join(f"{t} " + " ".join(["0.5"] * (width - 2) + ["7.3"]) + "\n"
+                       for t in range(5))
+        (folder / "taps.dat").write_text(damage(title + rows))
+        done = subprocess.run([sys.executable, "-m", "tapmc.paper", command, "--campaign",
+                               str(tmp_path / command), "--out", str(tmp_path / "out")],
+                              capture_output=True, text=True, env=env, timeout=120)
+        assert done.returncode == 2 and what in done.stderr, done.stderr
+        assert str(folder / "taps.dat") in done.stderr and "Traceback" not in done.stderr
+        assert not (tmp_path / "out").exists()
+        (folder / "taps.dat").write_text(title)   # just started: nothing to read yet
+        done = subprocess.run([sys.executable, "-m", "tapmc.paper", command, "--campaign",
+                               str(tmp_path / command), "--out", str(tmp_path / "out")],
+                              capture_output=True, text=True, env=env, timeout=120)
+        assert "Traceback" not in done.stderr, done.stderr
+
+
 def test_the_figure_draws_sigma_and_the_bell_per_eta_with_their_lines(tmp_path):
     """sigma_eta.png: a colour per eta (the default first), sigma_<Z> with its fitted line
     through the points (dashed), the steady <Phi^c> with the paper's 60.6 %; a run still

@@ -259,6 +259,38 @@ def taps_table(campaign, spec):
     return table
 
 
+def run_taps(path, columns):
+    """The per-tap columns of a run's taps.dat, in the order of ``columns`` (names of its
+    title line), as float arrays from tap 1 on (the step-0 row left out), each step once with
+    its last print (a run resumed from a restart prints the taps after it again); a file with
+    its title and no tap yet (a run just started) gives empty arrays. A damaged file raises
+    TapmcFormatError naming it: a non-numeric field (at its line), a missing column, a value
+    that is not finite (at its step)."""
+    path = Path(path)
+    if not _has_data_line(path):
+        return [np.empty(0) for _ in columns]
+    table = read_fix_print(path, repeats="last")
+    missing = [c for c in ("step", *columns) if c not in table]
+    if missing:
+        raise TapmcFormatError(path, None, f"no column {', '.join(missing)} in its title line "
+                               f"(columns: {' '.join(table.columns)})")
+    after = table["step"] > 0
+    out = [np.asarray(table[c][after], dtype=float) for c in columns]
+    for name, values in zip(columns, out):
+        bad = np.flatnonzero(~np.isfinite(values))
+        if bad.size:
+            step = table["step"][after][bad[0]]
+            raise TapmcFormatError(path, None, f"{name} = {values[bad[0]]} at step {step:g} "
+                                   "(every value must be finite)")
+    return out
+
+
+def _has_data_line(path):
+    """Whether a text file has a line that is neither blank nor a '#' comment."""
+    with open(path, errors="replace") as handle:
+        return any(line.strip() and not line.startswith("#") for line in handle)
+
+
 def _check_not_cut_short(path, table, spec):
     """Refuse a per-tap file cut short: a last line without its end-of-line (which
     read_fix_print leaves out, as in a killed run), or, in a finished run's folder (with its

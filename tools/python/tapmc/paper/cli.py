@@ -256,7 +256,11 @@ def _read_campaign(args, name, module, unit):
         print(f"tapmc-paper {name}: --campaign {args.campaign} has no runs/ folder",
               file=sys.stderr)
         return 2
-    rows = module.analyse(args.campaign, FULL.eta)
+    try:
+        rows = module.analyse(args.campaign, FULL.eta)
+    except TapmcFormatError as err:  # a damaged taps.dat, named with its line or step
+        print(f"tapmc-paper {name}: {err}", file=sys.stderr)
+        return 2
     if not rows:
         print(f"tapmc-paper {name}: --campaign {args.campaign} has no run to read "
               f"({module.RUNS_READ})", file=sys.stderr)

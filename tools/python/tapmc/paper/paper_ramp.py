@@ -183,15 +183,11 @@ class Retrace:
 
 
 def read_taps(path):
-    """(sqrt_eps, <Phi^c>) per tap of a ramp's taps.dat (columns step level branch sqrt_eps
-    phi_b phi_c Z), tap 0 left out; a tap written twice (a run resumed from a restart) counts
-    once, with its last row."""
-    data = np.loadtxt(path, comments="#", ndmin=2)
-    data = data[data[:, 0] > 0]
-    steps = data[:, 0]
-    last = len(steps) - 1 - np.unique(steps[::-1], return_index=True)[1]
-    data = data[np.sort(last)]
-    return data[:, 3], data[:, 5], int(data[-1, 0]) if len(data) else 0
+    """(sqrt_eps, <Phi^c>, the last tap) of a ramp's taps.dat (columns step level branch
+    sqrt_eps phi_b phi_c Z; :func:`tapmc.paper._runs.run_taps`: tap 0 left out, a tap written
+    twice by a resumed run counted once with its last row, a damaged file named)."""
+    step, sqrt_eps, phi_c = _runs.run_taps(path, ("step", "sqrt_eps", "phi_c"))
+    return sqrt_eps, phi_c, int(step[-1]) if len(step) else 0
 
 
 def _running(base, down_levels):

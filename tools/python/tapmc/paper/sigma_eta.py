@@ -57,8 +57,6 @@ PAPER_PHI_PERCENT = 60.6
 MIN_STEADY_TAPS = 250
 #: What the command reads, for its message when a campaign has none of it.
 RUNS_READ = f"P.B.C. constant-eps runs with {MIN_STEADY_TAPS} steady taps"
-#: Columns of taps.dat read here (tapmc.paper runs: step phi_b phi_c Z ...).
-STEP, PHI_C, Z = 0, 2, 3
 NAME = re.compile(rf"^(?:{re.escape(_runs.CONSTANT_ETA_PREFIX)}(?P<bc1>pbc|fbc)_eps"
                   r"(?P<eps1>[0-9.e+-]+)_eta(?P<eta>[0-9.e+-]+)|const_(?P<bc0>pbc|fbc)_eps"
                   r"(?P<eps0>[0-9.e+-]+))_s(?P<seed>\d+)$")
@@ -145,17 +143,11 @@ def read_run(run_dir, default_eta, planned_taps=None):
         raise ValueError(f"run directory {run_dir.name!r} is not a constant-eps run "
                          f"(const_<bc>_eps<eps>_s<seed> or "
                          f"{_runs.CONSTANT_ETA_PREFIX}<bc>_eps<eps>_eta<eta>_s<seed>)")
-    data = np.loadtxt(run_dir / "taps.dat", comments="#", ndmin=2)
-    data = data[data[:, STEP] > 0]
-    if len(data):
-        steps = data[:, STEP]
-        last = len(steps) - 1 - np.unique(steps[::-1], return_index=True)[1]
-        data = data[np.sort(last)]
-    taps = len(data)
+    z, phi_c = _runs.run_taps(run_dir / "taps.dat", ("Z", "phi_c"))
+    taps = len(z)
     window = steady_window(taps, planned_taps)
     if window < MIN_STEADY_TAPS:
         return None
-    z, phi_c = data[:, Z], data[:, PHI_C]
     sigma = SteadyState(z, last=window).compute().std
     packing = SteadyState(phi_c, last=window).compute()
     eta = float(m.group("eta")) if m.group("eta") else float(default_eta)
