@@ -219,6 +219,11 @@ def test_both_campaign_readers_name_a_damaged_taps_file(tmp_path, damage, what):
         assert done.returncode == 2 and what in done.stderr, done.stderr
         assert str(folder / "taps.dat") in done.stderr and "Traceback" not in done.stderr
         assert not (tmp_path / "out").exists()
+        (tmp_path / "afile").write_text("")
+        done = subprocess.run([sys.executable, "-m", "tapmc.paper", command, "--campaign",
+                               str(tmp_path / command), "--out", str(tmp_path / "afile")],
+                              capture_output=True, text=True, env=env, timeout=120)
+        assert done.returncode == 2 and "afile is a file, not a folder" in done.stderr
         (folder / "taps.dat").write_text(title)   # just started: nothing to read yet
         done = subprocess.run([sys.executable, "-m", "tapmc.paper", command, "--campaign",
                                str(tmp_path / command), "--out", str(tmp_path / "out")],

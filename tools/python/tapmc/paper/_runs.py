@@ -265,11 +265,20 @@ def run_taps(path, columns):
     its last print (a run resumed from a restart prints the taps after it again); a file with
     its title and no tap yet (a run just started) gives empty arrays. A damaged file raises
     TapmcFormatError naming it: a non-numeric field (at its line), a missing column, a value
-    that is not finite (at its step)."""
+    that is not finite (at its step), or a finished run's file (a DONE.json beside it naming
+    the run's taps) that stops before its last tap."""
     path = Path(path)
+    planned = finished_taps(path.parent)
     if not _has_data_line(path):
+        if planned:
+            raise TapmcFormatError(path, None, f"cut short: no tap, but its run finished "
+                                   f"{planned:g} taps ({DONE_FILE})")
         return [np.empty(0) for _ in columns]
     table = read_fix_print(path, repeats="last")
+    last = float(table["step"][-1]) if "step" in table else 0.0
+    if planned and last < planned:
+        raise TapmcFormatError(path, None, f"cut short: it ends at step {last:g}, before the "
+                               f"last tap {planned:g} of its finished run ({DONE_FILE})")
     missing = [c for c in ("step", *columns) if c not in table]
     if missing:
         raise TapmcFormatError(path, None, f"no column {', '.join(missing)} in its title line "
@@ -283,6 +292,24 @@ def run_taps(path, columns):
             raise TapmcFormatError(path, None, f"{name} = {values[bad[0]]} at step {step:g} "
                                    "(every value must be finite)")
     return out
+
+
+#: The record a campaign writes into a run's folder when the run has finished.
+DONE_FILE = "DONE.json"
+
+
+def finished_taps(run_dir):
+    """The taps of a finished run (its DONE.json's run record), or None: no DONE.json, or one
+    that does not say (an older record). A DONE.json that is not JSON raises TapmcFormatError."""
+    done = Path(run_dir) / DONE_FILE
+    if not done.is_file():
+        return None
+    try:
+        record = json.loads(done.read_text() or "{}")
+    except ValueError as err:
+        raise TapmcFormatError(done, None, f"not JSON ({err})") from None
+    taps = (record.get("run") or {}).get("taps") if isinstance(record, dict) else None
+    return float(taps) if isinstance(taps, (int, float)) and not isinstance(taps, bool) else None
 
 
 def _has_data_line(path):

@@ -256,9 +256,12 @@ def _read_campaign(args, name, module, unit):
         print(f"tapmc-paper {name}: --campaign {args.campaign} has no runs/ folder",
               file=sys.stderr)
         return 2
+    if args.out.exists() and not args.out.is_dir():
+        print(f"tapmc-paper {name}: --out {args.out} is a file, not a folder", file=sys.stderr)
+        return 2
     try:
         rows = module.analyse(args.campaign, FULL.eta)
-    except TapmcFormatError as err:  # a damaged taps.dat, named with its line or step
+    except (TapmcFormatError, CampaignDirectoryError) as err:  # a damaged taps.dat, manifest
         print(f"tapmc-paper {name}: {err}", file=sys.stderr)
         return 2
     if not rows:

@@ -136,17 +136,14 @@ def _require_whole_run(path, table):
     """A finished run's taps.dat (its folder holds a DONE.json naming the run's taps) must
     reach the last tap: a file cut short (a copy, a disk full) would otherwise be analysed
     as a shorter run, its steady state from the wrong taps."""
-    done = Path(path).parent / "DONE.json"
-    if not done.is_file():
-        return
     try:
-        planned = (json.loads(done.read_text() or "{}").get("run") or {}).get("taps")
-    except (ValueError, AttributeError) as err:
-        raise QuestionError(f"{done}: not the JSON record of a finished run ({err})") from None
+        planned = _runs.finished_taps(Path(path).parent)
+    except TapmcFormatError as err:
+        raise QuestionError(str(err)) from None
     last = float(table["step"][-1]) if len(table) else 0.0
-    if isinstance(planned, (int, float)) and last < planned:
+    if planned and last < planned:
         raise QuestionError(f"{path}: cut short: it ends at step {last:g}, before the last tap "
-                            f"{planned:g} of its finished run ({done.name})")
+                            f"{planned:g} of its finished run ({_runs.DONE_FILE})")
 
 
 def last_rows(table):
