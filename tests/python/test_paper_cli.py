@@ -297,7 +297,8 @@ def _folder(tmp_path, manifest=None, scale=None):
 @pytest.mark.parametrize("case", [
     "campaign_is_file", "campaign_below_file", "campaign_uncreatable", "out_is_file",
     "out_below_file", "out_uncreatable", "manifest_is_directory", "manifest_not_json",
-    "manifest_not_object", "manifest_newer_format", "other_preset", "campaign_other_preset",
+    "manifest_not_object", "manifest_newer_format", "manifest_attempts_damaged",
+    "manifest_time_damaged", "other_preset", "campaign_other_preset",
     "edited_preset", "scale_json_damaged", "lmp_not_executable"])
 def test_bad_paths(tmp_path, case, capsys, monkeypatch):
     """Each bad path: exit 2, one line naming the path and what is wrong. The checks run
@@ -340,6 +341,17 @@ def test_bad_paths(tmp_path, case, capsys, monkeypatch):
         folder = _folder(tmp_path, manifest="[1, 2]")
         args = ["--campaign", folder, "--dry-run"]
         expected = f"campaign manifest {folder / 'manifest.json'}: not a campaign manifest"
+    elif case == "manifest_attempts_damaged":   # an AttributeError traceback before
+        folder = _folder(tmp_path, manifest='{"runs": [{"name": "r1", "attempts": "oops"}]}')
+        args = ["--campaign", folder, "--dry-run"]
+        expected = (f"campaign manifest {folder / 'manifest.json'}: run 'r1': attempts is "
+                    "'oops', not a list of attempt records")
+    elif case == "manifest_time_damaged":       # a TypeError traceback, or "nan h", before
+        folder = _folder(tmp_path, manifest='{"runs": [{"name": "r1", "attempts": '
+                                            '[{"wall_s": "abc"}]}]}')
+        args = ["--campaign", folder, "--dry-run"]
+        expected = (f"campaign manifest {folder / 'manifest.json'}: run 'r1', attempt 1: "
+                    "wall_s = 'abc', not a finite number of seconds >= 0")
     elif case == "manifest_newer_format":
         folder = _folder(tmp_path, manifest='{"format": 2, "runs": []}')
         args = ["--campaign", folder, "--dry-run"]

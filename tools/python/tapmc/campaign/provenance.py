@@ -6,6 +6,7 @@ their sha256, per run its parameters, commands and attempts) and each finished r
 import calendar
 import hashlib
 import json
+import math
 import os
 import re
 import shutil
@@ -99,7 +100,32 @@ def read_manifest(directory):
             f"campaign manifest {path}: format {fmt!r}, this TAPMC reads format "
             f"{MANIFEST_FORMAT}; the campaign was made by another TAPMC version (use that "
             "version, or a new campaign directory)")
+    for record in data.get("runs", []):
+        _check_run_record(path, record)
     return data
+
+
+def _check_run_record(path, record):
+    """A run's record of the manifest: an object whose attempts are a list of objects, each
+    time (wall_s, cpu_s) absent, null or a finite number >= 0; CampaignDirectoryError naming
+    the run and the field otherwise (a damaged record broke the price of a dry run)."""
+    if not isinstance(record, dict):
+        raise CampaignDirectoryError(f"campaign manifest {path}: a run record is {record!r}, "
+                                     "not a JSON object")
+    name = record.get("name", "?")
+    attempts = record.get("attempts", [])
+    if not isinstance(attempts, list) or not all(isinstance(a, dict) for a in attempts):
+        raise CampaignDirectoryError(f"campaign manifest {path}: run {name!r}: attempts is "
+                                     f"{attempts!r}, not a list of attempt records")
+    for k, attempt in enumerate(attempts):
+        for key in ("wall_s", "cpu_s"):
+            value = attempt.get(key)
+            if value is not None and (isinstance(value, bool) or
+                                      not isinstance(value, (int, float)) or
+                                      not math.isfinite(value) or value < 0):
+                raise CampaignDirectoryError(
+                    f"campaign manifest {path}: run {name!r}, attempt {k + 1}: {key} = "
+                    f"{value!r}, not a finite number of seconds >= 0")
 
 
 def write_manifest(directory, data):
