@@ -322,7 +322,10 @@ def _campaign_for(args, modules):
             seen[spec.name] = spec
             runs.append(spec)
     directory = args.campaign or default_campaign_dir(scale)
-    return Campaign(directory, runs, lmp=args.lmp, jobs=args.jobs, mode=args.mode)
+    # pinned as 'campaign' pins them: a campaign folder made by an earlier TAPMC (the committed
+    # one) redraws and resumes with its own copies of the inputs instead of being refused
+    return Campaign(directory, runs, lmp=args.lmp, jobs=args.jobs, mode=args.mode,
+                    pin_inputs=True)
 
 
 def _check_dir(path, label, create):
