@@ -3,6 +3,7 @@
 module, the Scale presets, and one end-to-end figure through a stub figure module (runs a
 tiny campaign, draws, prints the PNG and CSV paths) on a copy of the package."""
 
+import hashlib
 import json
 import os
 import shutil
@@ -254,6 +255,23 @@ def test_dry_run_prices_the_taps_left_and_shows_the_recorded_cost(tmp_path, caps
     assert other_build.returncode == 0 and other_build.stdout == out.stdout
     assert other_build.stderr.startswith(f"tapmc-paper: warning: the executable {fake} was "
                                          "built from fake, and this TAPMC is ")
+    # a finished run whose outputs changed since (taps.dat cut) or whose DONE.json is damaged:
+    # not "done", priced as a campaign would redo it
+    taps = folder / "runs" / spec.name / "taps.dat"
+    done = {"run": {"name": spec.name}, "outputs": {"taps.dat": {
+        "sha256": hashlib.sha256(taps.read_bytes()).hexdigest(), "size": taps.stat().st_size}}}
+    (folder / "runs" / spec.name / "DONE.json").write_text(json.dumps(done))
+    intact = _main(capsys, "campaign", "--dry-run", "--tier", "2", "--campaign", folder)
+    line = next(x for x in intact.stdout.splitlines() if x.startswith(f"  {spec.name}  ["))
+    assert "CPU h, done;" in line, line
+    taps.write_text(taps.read_text()[:200])
+    for damage in ("damaged (taps.dat), to run again",
+                   "damaged (DONE.json unreadable: the campaign stops at it)"):
+        if "DONE.json" in damage:
+            (folder / "runs" / spec.name / "DONE.json").write_text("{")
+        out = _main(capsys, "campaign", "--dry-run", "--tier", "2", "--campaign", folder)
+        line = next(x for x in out.stdout.splitlines() if x.startswith(f"  {spec.name}  ["))
+        assert damage in line, line
 
 
 def _one_line_error(out, rc=2):

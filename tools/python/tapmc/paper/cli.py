@@ -536,6 +536,21 @@ def _recorded_cost(record):
             + (f" ({', '.join(gaps)})" if gaps and sums else ""))
 
 
+def _damage(run_dir):
+    """What a campaign would find wrong with a finished run's folder, as the dry run's state:
+    outputs missing or changed since the run finished ("damaged (taps.dat), to run again": it
+    redoes the run), a DONE.json it cannot read (it stops there), or "" when intact."""
+    try:
+        recorded = provenance.read_done(Path(run_dir) / "DONE.json").get("outputs")
+    except CampaignDirectoryError:
+        return "damaged (DONE.json unreadable: the campaign stops at it)"
+    names = sorted(provenance.damaged_outputs(run_dir, recorded) if recorded else {})
+    if not names:
+        return ""
+    return ("damaged (" + ", ".join(names[:3])
+            + (f" and {len(names) - 3} more" if len(names) > 3 else "") + "), to run again")
+
+
 def _list_runs(campaign, what):
     """The runs of a dry run, each with its CPU hours by the cost rule (times its ranks), how
     far it got (a run under way: the tap of its latest restart file, where it resumes, and
@@ -562,10 +577,12 @@ def _list_runs(campaign, what):
             why = why or str(err)
         ranks = spec.nprocs / 3600.0
         hours = float(seconds.sum()) * ranks if seconds is not None else None
+        damage = _damage(campaign.run_dir(spec.name)) if done else ""
+        done = done and not damage  # a run would redo it (from its latest restart, or anew)
         tap = 0 if done else (latest_restart(campaign.run_dir(spec.name))[0] or 0)
         to_run = float(seconds[tap:].sum()) * ranks if seconds is not None else None
         price = f"{hours:.3g} CPU h" if hours is not None else "cost unknown"
-        state = "done" if done else "to run" if not tap else (
+        state = "done" if done else damage if damage else "to run" if not tap else (
             f"resumes from tap {tap}, " + (f"{to_run:.3g} CPU h to run" if to_run is not None
                                            else "to run"))
         print(f"  {spec.name}  [{spec.input.name}, taps {spec.taps}, {price}, {state}"
