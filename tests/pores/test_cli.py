@@ -354,6 +354,18 @@ def test_a_refused_run_writes_no_file(tmp_path):
     assert not list(tmp_path.glob("out*")), list(tmp_path.glob("out*"))
 
 
+def test_an_output_name_taken_by_a_directory_writes_no_file(tmp_path):
+    """x.hist.csv is a directory: the run is refused before any output is renamed into place
+    (x.frames.csv was left behind, after "no output written")."""
+    (tmp_path / "x.hist.csv").mkdir()
+    good = write(tmp_path / "good.dump", GOOD)
+    result = run("-q", "-o", tmp_path / "x", good)
+    assert result.returncode == 2
+    assert f"cannot write '{tmp_path / 'x.hist.csv'}': a directory of that name exists" \
+        in result.stderr and "no output written" in result.stderr, result.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["good.dump", "x.hist.csv"]
+
+
 def test_closing_line_lists_every_file_written(tmp_path):
     prefix = tmp_path / "all"
     result = run("--json", "--pores", "--frame-hist", "--p0", 1000, "-o", prefix, DATA)

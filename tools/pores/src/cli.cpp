@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iomanip>
@@ -310,6 +311,13 @@ class OutputFile {
   OutputFile& operator=(const OutputFile&) = delete;
   std::ofstream& stream() { return stream_; }
   const std::string& path() const { return path_; }
+  // Throws when the final name cannot take the file (a directory of that name): checked for
+  // every output before any is renamed, so that a refused run leaves no output at all.
+  void check_destination() const {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path_, ec))
+      throw OutputError("cannot write '" + path_ + "': a directory of that name exists");
+  }
   void commit() {
     stream_.close();
     if (!stream_) throw OutputError("writing '" + partial_ + "' failed (disk full?)");
@@ -746,6 +754,7 @@ void PoreRun::finish() {
   if (o_.json)
     write_json(output(".json"), analysed_, total_, summaries_, o_.frame_hist, o_.p0_samples > 0 ? &p0_total_ : nullptr);
   std::string written;
+  for (const auto& file : outputs_) file->check_destination();
   for (const auto& file : outputs_) {
     file->commit();
     written += (written.empty() ? "" : ", ") + file->path();
