@@ -78,6 +78,12 @@ def test_a_question_csv_cut_mid_row_is_named_at_its_line(tmp_path):
     assert common.read_csv(path) == [{"a": "1", "b": "", "c": "3"}]
 
 
+def test_a_missing_taps_file_is_named_as_missing(tmp_path):
+    """(it read "damaged gzip file ([Errno 2] ...)")"""
+    with pytest.raises(common.QuestionError, match=r"taps.dat: no such file$"):
+        common.taps_table(tmp_path / "run" / "taps.dat")
+
+
 def test_nothing_to_render_without_the_csvs(tmp_path):
     assert questions.render_section(tmp_path) == []
 

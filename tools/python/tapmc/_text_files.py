@@ -52,8 +52,9 @@ def read_lines(path):
     last line without an end-of-line was left out (see the module's docstring). Lines are split
     at line feeds only, not at the other characters str.splitlines() breaks at (form feed,
     \\x1c, ...), so that line numbers are the ones an editor shows."""
+    handle = open_bytes(path)  # a missing or unreadable file: its OSError, as open() gives it
     try:
-        with open_bytes(path) as f:
+        with handle as f:
             data = f.read()
     except GZIP_ERRORS as err:
         raise TapmcFormatError(path, None, f"damaged gzip file ({err})") from None
