@@ -78,6 +78,14 @@ def test_a_question_csv_cut_mid_row_is_named_at_its_line(tmp_path):
     assert common.read_csv(path) == [{"a": "1", "b": "", "c": "3"}]
 
 
+def test_out_a_file_is_refused_before_the_analysis(tmp_path, capsys):
+    (tmp_path / "afile").write_text("")
+    status = cli.main(["question", "pbc-course", "--campaign", str(tmp_path / "none"),
+                       "--out", str(tmp_path / "afile")])
+    assert status == 1
+    assert f"--out {tmp_path / 'afile'} is a file, not a folder" in capsys.readouterr().err
+
+
 def test_a_missing_taps_file_is_named_as_missing(tmp_path):
     """(it read "damaged gzip file ([Errno 2] ...)")"""
     with pytest.raises(common.QuestionError, match=r"taps.dat: no such file$"):

@@ -58,6 +58,11 @@ def run(args, parser):
         return 0
     if not args.question:
         parser.error("question: give a NAME (--list lists them)")
+    out = getattr(args, "out", None)
+    if out is not None and out.exists() and not out.is_dir():  # before minutes of analysis
+        print(f"tapmc-paper question {args.question}: --out {out} is a file, not a folder",
+              file=sys.stderr)
+        return 1
     try:
         QUESTIONS[args.question].measure(args)
     except CampaignStopped as err:
