@@ -232,6 +232,15 @@ Plan plan_domain(LAMMPS *lmp, const Request &req)
     if (!plan.walls[d] && !can_wrap)
       error->all(FLERR, "create_packing: walls: the {} direction needs walls (the box is not "
                  "periodic in {}, or the region is narrower than the box)", "xy"[d], "xy"[d]);
+    // Walls at the box faces need fixed faces: LAMMPS widens a shrink-wrapped box by 1e-4 of its
+    // length (the packing then reached past walls set at the region's faces) and moves it.
+    if (plan.walls[d] && opt.region_id.empty() && !periodic_box[d] &&
+        (domain->boundary[d][0] != tapmc::kBoundaryFixed ||
+         domain->boundary[d][1] != tapmc::kBoundaryFixed))
+      error->all(FLERR, "create_packing: the {0} boundary is shrink-wrapped, so the box faces are "
+                 "no walls (LAMMPS widens the box by 1e-4 of its length and moves it with the "
+                 "atoms); use 'boundary f' in {0}, or 'region ID' with the walls at its faces",
+                 "xy"[d]);
   }
   const double z_floor = opt.floor_given ? opt.floor_z : lo[2];
   if (z_floor < domain->boxlo[2])

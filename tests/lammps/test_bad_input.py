@@ -248,8 +248,14 @@ def test_stereo_profile_refuses_shrink_wrapped_sides(boundary, axis):
     divide by too small an area (a simple cubic lattice read 0.684 for pi/6)."""
     rc, out, _ = run_lammps(FLOORS.format(boundary=boundary, line="").replace(
         "fix settle all mc/settle 7 floor 0.0 eta 1e-3",
-        "compute phi all stereo/profile floor 0.0\nthermo_style custom step c_phi[1]"))
+        "compute phi all stereo/profile floor 0.0\nthermo_style custom step c_phi[1]").replace(
+        "floor 0.0\n", "floor 0.0 region box\n", 1))
     assert rc != 0 and f"compute stereo/profile: the {axis} boundary is shrink-wrapped" in out, out
+    # create_packing's walls at the faces of such a box: refused (LAMMPS widened the box by
+    # 1e-4 of its length, and the packing reached past walls at the region's faces)
+    rc, out, _ = run_lammps(FLOORS.format(boundary=boundary, line=""))
+    assert rc != 0 and f"create_packing: the {axis} boundary is shrink-wrapped, so the box " \
+        "faces are no walls" in out, out
 
 
 SUBSET_TAP = """units lj
