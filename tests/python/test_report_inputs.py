@@ -283,6 +283,17 @@ def test_from_data_refuses_a_damaged_figure_csv(capsys, committed, damage, what,
     assert snapshot(committed) == before
 
 
+def test_from_data_refuses_a_figure_whose_csv_was_lost(capsys, committed):
+    """fig9.png without fig9.csv: the CSV was lost (its claims would turn undecided and the
+    figure 'not reproduced'); exit 2 naming it, nothing rendered. CSVs alone render."""
+    before = snapshot(committed)
+    (committed / "validation" / "fig9.png").write_bytes(b"png")
+    (committed / "validation" / "fig9.csv").unlink()
+    status, err = run_cli(capsys, "report", "--from-data", "--out", committed)
+    assert status == 2 and f"{committed / 'validation' / 'fig9.csv'}: missing beside" in err
+    assert (committed / "validation.rst").read_bytes() == before[Path("validation.rst")]
+
+
 def test_refit_without_from_data_is_a_usage_error(capsys, tmp_path):
     status, err = run_cli(capsys, "report", "--refit", "--campaign", tmp_path / "c")
     assert status == 2 and "--refit" in err and "--from-data" in err

@@ -550,6 +550,11 @@ def committed_inputs(out_dir):
     if not path.is_file():
         raise FileNotFoundError(f"{path}: no report summary (written by 'tapmc-paper report' "
                                 "from a campaign)")
+    for name in FIGURES:  # a figure drawn without its CSV: the CSV was lost since (its claims
+        png, csv = folder / f"{name}.png", folder / f"{name}.csv"  # would turn undecided)
+        if png.is_file() and not csv.is_file():
+            raise FileNotFoundError(f"{csv}: missing beside {png} (a figure is written with "
+                                    "its CSV, from which the page is rendered)")
     files = {name: (folder / f"{name}.png", folder / f"{name}.csv") for name in FIGURES
              if (folder / f"{name}.csv").is_file()}
     if not files:
