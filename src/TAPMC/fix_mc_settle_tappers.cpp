@@ -1,0 +1,66 @@
+// TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+// fix mc/settle and the run's tapping fixes (tapmc::Tapper, lammps_tapper.h): which they are,
+// that they are still those of the run's setup, and the step of the next redeposition
+// (fix_mc_settle.cpp runs the redeposition).
+#include "fix_mc_settle.h"
+
+#include "lammps_tapper.h"
+
+#include "error.h"
+#include "modify.h"
+#include "update.h"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+using namespace LAMMPS_NS;
+
+// The run's tapping fixes (fix tapdilate or any tapmc::Tapper), in definition order.
+void FixMCSettle::find_tappers()
+{
+  tappers.clear();
+  tapper_ids.clear();
+  for (int i = 0; i < modify->nfix; ++i)
+    if (auto *tapper = dynamic_cast<tapmc::Tapper *>(modify->fix[i])) {
+      tappers.push_back(tapper);
+      tapper_ids.emplace_back(modify->fix[i]->id);
+    }
+}
+
+// A run with 'pre no' skips init(): a tapping fix deleted (or defined) since the last setup
+// would leave a dangling pointer (or never tap). Stop instead, naming the fixes.
+void FixMCSettle::require_same_tappers()
+{
+  std::vector<std::string> now;
+  std::vector<tapmc::Tapper *> found;
+  bool all_scheduled = true;
+  for (int i = 0; i < modify->nfix; ++i)
+    if (auto *tapper = dynamic_cast<tapmc::Tapper *>(modify->fix[i])) {
+      now.emplace_back(modify->fix[i]->id);
+      found.push_back(tapper);
+      all_scheduled = all_scheduled && tapper->scheduled();
+    }
+  if (now == tapper_ids && found == tappers && all_scheduled) return;
+  auto names = [](const std::vector<std::string> &ids) {
+    std::string s;
+    for (const std::string &id : ids) s += (s.empty() ? "" : ", ") + id;
+    return s.empty() ? std::string("none") : s;
+  };
+  error->all(FLERR, "fix mc/settle: the tapping fixes changed since the run's setup (then: {}; "
+             "now: {}), and this run skipped the setup ('run ... pre no'); run with 'pre yes' "
+             "(the default) after defining or deleting a fix", names(tapper_ids),
+             names(now) + (now == tapper_ids ? ", defined again since" : ""));
+}
+
+// The next step after this one on which a tapping fix taps (any fix, whatever its order), or
+// simply the next step when the run has no tapping fix.
+void FixMCSettle::schedule_next_settle()
+{
+  const bigint now = update->ntimestep;
+  next_reneighbor = now + 1;
+  if (tappers.empty()) return;
+  next_reneighbor = tappers.front()->next_tap_after(now);
+  for (const tapmc::Tapper *tap : tappers)
+    next_reneighbor = std::min(next_reneighbor, tap->next_tap_after(now));
+}
