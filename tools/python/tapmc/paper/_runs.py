@@ -276,9 +276,7 @@ def run_taps(path, columns):
         return [np.empty(0) for _ in columns]
     table = read_fix_print(path, repeats="last")
     last = float(table["step"][-1]) if "step" in table else 0.0
-    if planned and last < planned:
-        raise TapmcFormatError(path, None, f"cut short: it ends at step {last:g}, before the "
-                               f"last tap {planned:g} of its finished run ({DONE_FILE})")
+    require_last_tap(path, last, planned)
     missing = [c for c in ("step", *columns) if c not in table]
     if missing:
         raise TapmcFormatError(path, None, f"no column {', '.join(missing)} in its title line "
@@ -312,6 +310,15 @@ def finished_taps(run_dir):
     return float(taps) if isinstance(taps, (int, float)) and not isinstance(taps, bool) else None
 
 
+def require_last_tap(path, last_step, planned):
+    """TapmcFormatError naming ``path`` when a finished run's per-tap file ends at
+    ``last_step``, before its ``planned`` taps (:func:`finished_taps`; None: nothing to
+    check)."""
+    if planned and last_step < planned:
+        raise TapmcFormatError(path, None, f"cut short: it ends at step {last_step:g}, before "
+                               f"the last tap {planned:g} of its finished run ({DONE_FILE})")
+
+
 def _has_data_line(path):
     """Whether a text file has a line that is neither blank nor a '#' comment."""
     with open(path, errors="replace") as handle:
@@ -330,7 +337,7 @@ def _check_not_cut_short(path, table, spec):
                                "end-of-line (a finished run's per-tap file ends with a "
                                "complete row)")
     last = float(table.data[-1, 0])
-    finished = (Path(path).parent / "DONE.json").is_file()
+    finished = (Path(path).parent / DONE_FILE).is_file()
     if finished and spec.taps is not None and last < spec.taps:
         raise TapmcFormatError(path, complete_lines, f"cut short: ends at step {last:g}, "
                                f"before the last tap {spec.taps} of the run {spec.name!r}")

@@ -136,14 +136,11 @@ def _require_whole_run(path, table):
     """A finished run's taps.dat (its folder holds a DONE.json naming the run's taps) must
     reach the last tap: a file cut short (a copy, a disk full) would otherwise be analysed
     as a shorter run, its steady state from the wrong taps."""
+    last = float(table["step"][-1]) if len(table) else 0.0
     try:
-        planned = _runs.finished_taps(Path(path).parent)
+        _runs.require_last_tap(path, last, _runs.finished_taps(Path(path).parent))
     except TapmcFormatError as err:
         raise QuestionError(str(err)) from None
-    last = float(table["step"][-1]) if len(table) else 0.0
-    if planned and last < planned:
-        raise QuestionError(f"{path}: cut short: it ends at step {last:g}, before the last tap "
-                            f"{planned:g} of its finished run ({_runs.DONE_FILE})")
 
 
 def last_rows(table):
