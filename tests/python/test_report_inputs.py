@@ -227,8 +227,22 @@ def _summary(change):
     (_summary(lambda s: dict(s, initial_phi_c="0.58")), "field 'initial_phi_c' is '0.58'"),
     (_summary(lambda s: dict(s, fields={"taps": 3})), "field 'fields' is {'taps': 3}"),
     (_summary(lambda s: dict(s, seeds_per_point=[1, "2"])), "field 'seeds_per_point'"),
+    # values of the right type out of their range would print "-5 runs" or a Phi of 5.8
+    (_summary(lambda s: dict(s, runs=-5)), "field 'runs' is -5, expected an integer >= 0"),
+    (_summary(lambda s: dict(s, taps=[4000, 0])), "field 'taps' is [4000, 0]"),
+    (_summary(lambda s: dict(s, eta=[float("inf")])), "field 'eta' is [inf]"),
+    (_summary(lambda s: dict(s, eta=[-1e-7])), "expected a list of numbers > 0"),
+    (_summary(lambda s: dict(s, sizes=[[0, 16.0]])), "field 'sizes' is [[0, 16.0]]"),
+    (_summary(lambda s: dict(s, sizes=[[1024, -16.0]])), "an integer N >= 1 and a length L > 0"),
+    (_summary(lambda s: dict(s, initial_phi_c=[5.8, 0.001, 2])), "the mean in [0, 1]"),
+    (_summary(lambda s: dict(s, initial_phi_c=[0.58, -0.001, 2])), "field 'initial_phi_c'"),
+    (_summary(lambda s: dict(s, seeds_per_point=[3, 2])), "0 <= fewest <= most"),
+    (_summary(lambda s: dict(s, ramp_taps_per_level=[0])), "field 'ramp_taps_per_level'"),
+    (_summary(lambda s: dict(s, planned_runs=-1)), "field 'planned_runs' is -1"),
 ], ids=["list", "empty-object", "cut", "runs-text", "sizes-short", "phi-text", "fields",
-        "seeds-per-point"])
+        "seeds-per-point", "runs-negative", "taps-zero", "eta-inf", "eta-negative", "size-N",
+        "size-L", "phi-above-one", "sem-negative", "seeds-order", "ramp-taps-zero",
+        "planned-negative"])
 def test_from_data_refuses_a_damaged_report_json(capsys, committed, damage, what):
     damage(committed)
     before = snapshot(committed)

@@ -578,26 +578,48 @@ def _list_of(check, length=None):
                           and all(check(v) for v in value))
 
 
+def _count(least):
+    """An integer no smaller than ``least`` (a count of runs, taps or seeds)."""
+    return lambda value: _is_int(value) and value >= least
+
+
+def _positive(value):
+    """A finite number above zero (a length, a threshold)."""
+    return _is_number(value) and math.isfinite(value) and value > 0
+
+
+def _initial_phi_c(value):
+    """[mean, sem, n] of the initial <Phi^c>: a fraction in [0, 1], an error >= 0 and a count
+    >= 0, each null when the campaign had no initial packing to read."""
+    if not _list_of(lambda v: v is None or _is_number(v), 3)(value):
+        return False
+    mean, sem, n = value
+    return ((mean is None or 0 <= mean <= 1) and (sem is None or sem >= 0)
+            and (n is None or (float(n).is_integer() and n >= 0)))
+
+
 #: report.json's fields (:func:`campaign_summary`): name -> (the type the page needs, its test)
 SUMMARY_FIELDS = {
     "scale": ("a string or null", lambda v: v is None or isinstance(v, str)),
     "preset": ("true or false", lambda v: isinstance(v, bool)),
     "fields": ("null or an object with the fields " + ", ".join(_SCALE_KEYS),
                lambda v: v is None or (isinstance(v, dict) and all(k in v for k in _SCALE_KEYS))),
-    "sizes": ("a list of [N, L] pairs (an integer and a number)",
-              _list_of(lambda v: _list_of(_is_number, 2)(v) and _is_int(v[0]))),
-    "runs": ("an integer", _is_int),
-    "taps": ("a list of integers", _list_of(_is_int)),
-    "seeds": ("an integer", _is_int),
-    "eta": ("a list of numbers", _list_of(_is_number)),
-    "initial_phi_c": ("a list [mean, sem, n] of numbers or nulls",
-                      _list_of(lambda v: v is None or _is_number(v), 3)),
+    "sizes": ("a list of [N, L] pairs (an integer N >= 1 and a length L > 0)",
+              _list_of(lambda v: _list_of(_is_number, 2)(v) and _count(1)(v[0])
+                       and _positive(v[1]))),
+    "runs": ("an integer >= 0", _count(0)),
+    "taps": ("a list of integers >= 1", _list_of(_count(1))),
+    "seeds": ("an integer >= 0", _count(0)),
+    "eta": ("a list of numbers > 0", _list_of(_positive)),
+    "initial_phi_c": ("a list [mean, sem, n] of numbers or nulls, the mean in [0, 1], the sem "
+                      "and n >= 0", _initial_phi_c),
 }
 #: fields of report.json that a summary written before them lacks
 OPTIONAL_SUMMARY_FIELDS = {
-    "seeds_per_point": ("a list [fewest, most] of integers", _list_of(_is_int, 2)),
-    "ramp_taps_per_level": ("a list of integers", _list_of(_is_int)),
-    "planned_runs": ("an integer", _is_int),
+    "seeds_per_point": ("a list [fewest, most] of integers, 0 <= fewest <= most",
+                        lambda v: _list_of(_count(0), 2)(v) and v[0] <= v[1]),
+    "ramp_taps_per_level": ("a list of integers >= 1", _list_of(_count(1))),
+    "planned_runs": ("an integer >= 0", _count(0)),
 }
 
 
