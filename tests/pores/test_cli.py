@@ -247,6 +247,33 @@ def test_bad_input_is_refused_with_file_frame_and_line(tmp_path, name):
     assert "Traceback" not in message and "internal error" not in message
 
 
+def test_a_box_too_small_for_its_spheres_is_named_whatever_the_padding(tmp_path):
+    # One sphere in a periodic box of its own diameter: every pore is bound by the sphere and
+    # its own images. The default padding said only "too sparse ... raise --padding" (and
+    # --padding 32 then named the real cause): both now name a periodic length below a pore.
+    dump = write(tmp_path / "one.dump", _frame("1", ["1 0.5 0.5 0.5 0.5"], bounds=("0 1",) * 3))
+    for padding in ("8", "32"):
+        result = run("-q", "--padding", padding, "-o", tmp_path / "out", dump)
+        assert result.returncode == 2, result.stderr
+        assert "one.dump:1: frame 1 (timestep 0): " in result.stderr
+        assert re.search(r"periodic length is (likely )?below (a|the) pore'?s? diameter",
+                         result.stderr), result.stderr
+        assert not list(tmp_path.glob("out*"))
+
+
+def test_numbers_in_messages_are_short(tmp_path):
+    # std::to_string printed a radius of 1e300 as a padding of 301 digits, and a 1e-9 as 0.000000.
+    huge = write(tmp_path / "huge.dump", _frame("1", ["1 0.5 0.5 0.5 1e300"], bounds=("0 1",) * 3))
+    result = run("-q", "-o", tmp_path / "out", huge)
+    assert result.returncode == 2 and "padding 4e+300 is over 100 box lengths" in result.stderr, \
+        result.stderr
+    assert not re.search(r"\d{20}", result.stderr)
+    tiny = write(tmp_path / "tiny.dump", _frame("1", ["1 0.5 0.5 0.5 -1e-9"]))
+    result = run("-q", "-o", tmp_path / "out", tiny)
+    assert result.returncode == 2 and "radius must be positive, found -1e-09" in result.stderr, \
+        result.stderr
+
+
 def test_an_empty_dump_is_named_as_such(tmp_path):
     # It used to end the file cleanly: the run then said only "no frame analysed".
     good = write(tmp_path / "good.dump", GOOD)

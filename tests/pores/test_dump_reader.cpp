@@ -5,6 +5,8 @@
 #include <zlib.h>
 
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <optional>
 #include <string>
 
@@ -112,6 +114,40 @@ TEST(PoreDumpReader, GzipAndPlainFilesReadAlike) {
   EXPECT_THROW(DumpReader::open(::testing::TempDir() + "no_such_file.dump"), DumpError);
   std::remove(plain.c_str());
   std::remove(packed.c_str());
+}
+
+TEST(PoreDumpReader, ACutGzipFileIsNamedWhereItsDataEnds) {
+  // A gzip file cut short (a copy or a run stopped mid-write): the frames before the cut are
+  // read, and the error names the frame and line where the data ends (it said line 1, frame 1).
+  std::string text;
+  for (int step = 0; step < 40; ++step) {
+    std::vector<std::string> atoms;
+    for (int i = 1; i <= 50; ++i)
+      atoms.push_back(std::to_string(i) + " " + std::to_string(i % 7) + ".25 " + std::to_string(i / 7) + ".5 " +
+                      std::to_string(step) + ".75");
+    text += frame_text(step, "pp pp pp", "id x y z", atoms, "0 8\n0 8\n0 48\n");
+  }
+  const std::string whole = ::testing::TempDir() + "pores_whole.dump.gz", cut = ::testing::TempDir() + "pores_cut.dump.gz";
+  gzFile gz = gzopen(whole.c_str(), "wb");
+  gzwrite(gz, text.data(), static_cast<unsigned>(text.size()));
+  gzclose(gz);
+  std::ifstream in(whole, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  DumpReader reader = DumpReader::open(cut);
+  Frame f;
+  std::size_t frames = 0;
+  try {
+    while (reader.next(f)) ++frames;
+    ADD_FAILURE() << "a cut gzip file was read to its end";
+  } catch (const DumpError& e) {
+    EXPECT_NE(std::string(e.what()).find("decompression error"), std::string::npos) << e.what();
+    EXPECT_GT(frames, 0u) << e.what();
+    EXPECT_LT(frames, 40u);
+    EXPECT_GT(e.line(), 59 * frames) << e.what();  // 59 lines a frame: past the frames read
+  }
+  std::remove(whole.c_str());
+  std::remove(cut.c_str());
 }
 
 TEST(PoreDumpReader, BadInputNamesFileFrameAndLine) {

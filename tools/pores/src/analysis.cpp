@@ -2,6 +2,7 @@
 // Pore statistics: where the packing is (floor, free surface, walls), the selection, histograms,
 // nu, Gotoh's P0 measured and in Percus-Yevick form.
 #include "tapmc_pores/analysis.h"
+#include "tapmc_pores/errors.h"
 
 #include "tapmc_math.h"
 #include "tapmc_random.h"
@@ -14,17 +15,9 @@
 
 namespace tapmc {
 namespace pores {
-namespace {
-std::string to_text(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-}  // namespace
-
 double surface_height(const std::vector<double>& xyz, double radius, const std::array<double, 2>& lo,
                       const std::array<double, 2>& hi, double column_width) {
-  if (!(column_width > 0)) throw std::invalid_argument("surface column width must be > 0, got " + std::to_string(column_width));
+  if (!(column_width > 0)) throw std::invalid_argument("surface column width must be > 0, got " + message_number(column_width));
   std::array<int, 2> n{};
   std::array<double, 2> width{};
   for (int d = 0; d < 2; ++d) {
@@ -66,7 +59,7 @@ PackingBounds find_packing(const Box& box, const std::vector<double>& xyz, doubl
   packing.lowest_bottom = lowest[2];
   if (box.periodic[2]) {
     if (!std::isnan(floor))
-      throw std::invalid_argument("--floor " + to_text(floor) +
+      throw std::invalid_argument("--floor " + message_number(floor) +
                                   " needs a non-periodic z, but z is periodic (no floor, no free surface)");
     return packing;
   }
@@ -160,7 +153,7 @@ Region make_region(const Box& box, const PackingBounds& packing, double radius, 
 
 Histogram::Histogram(double lo, double hi, std::size_t bins) : lo_(lo), hi_(hi), counts_(bins, 0), sums_(bins, 0.0) {
   if (bins == 0) throw std::invalid_argument("histogram needs at least one bin");
-  if (!(hi > lo)) throw std::invalid_argument("histogram range must have hi > lo, got [" + std::to_string(lo) + ", " + std::to_string(hi) + ")");
+  if (!(hi > lo)) throw std::invalid_argument("histogram range must have hi > lo, got [" + message_number(lo) + ", " + message_number(hi) + ")");
 }
 
 void Histogram::add(double value) {
@@ -225,8 +218,8 @@ double PoreStatistics::mean_xi() const {
 }
 
 double gotoh_p0(double sigma, double phi) {
-  if (!(phi > 0 && phi < 1)) throw std::invalid_argument("gotoh_p0: phi must be in (0, 1), got " + std::to_string(phi));
-  if (!(sigma >= 0)) throw std::invalid_argument("gotoh_p0: sigma must be >= 0, got " + std::to_string(sigma));
+  if (!(phi > 0 && phi < 1)) throw std::invalid_argument("gotoh_p0: phi must be in (0, 1), got " + message_number(phi));
+  if (!(sigma >= 0)) throw std::invalid_argument("gotoh_p0: sigma must be >= 0, got " + message_number(sigma));
   if (sigma <= 1.0) return 1.0 - phi * sigma * sigma * sigma;  // eq. 8: disjoint balls
   // sigma >= 1: the scaled-particle / Percus-Yevick result, in place of the printed eq. 9 (which
   // does not meet eq. 8 at sigma = 1; doc/tapmc-pores.rst). -ln P0 is the cubic in t = sigma - 1
@@ -240,7 +233,7 @@ double gotoh_p0(double sigma, double phi) {
 
 P0Statistics::P0Statistics(double sigma_max_in, std::size_t steps) : sigma_max(sigma_max_in), farther(steps, 0) {
   if (steps < 2) throw std::invalid_argument("P0 needs at least 2 sigma steps, got " + std::to_string(steps));
-  if (!(sigma_max > 1.0)) throw std::invalid_argument("P0 sigma_max must exceed 1, got " + std::to_string(sigma_max));
+  if (!(sigma_max > 1.0)) throw std::invalid_argument("P0 sigma_max must exceed 1, got " + message_number(sigma_max));
 }
 
 void P0Statistics::add_distance(double distance_over_radius) {

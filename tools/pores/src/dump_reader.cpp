@@ -55,16 +55,23 @@ class GzipFileSource : public ByteSource {
   }
   ~GzipFileSource() override { gzclose(file_); }
   std::size_t read(char* destination, std::size_t n) override {
+    if (!pending_error_.empty()) throw std::runtime_error(pending_error_);
     const int count = gzread(file_, destination, static_cast<unsigned>(std::min<std::size_t>(n, 1u << 30)));
     int code = Z_OK;
     const char* message = gzerror(file_, &code);
-    if (count < 0 || (code != Z_OK && code != Z_STREAM_END))
-      throw std::runtime_error(std::string("read/decompression error: ") + message);
+    if (count < 0 || (code != Z_OK && code != Z_STREAM_END)) {
+      // A cut file (Z_BUF_ERROR) still yields what came before the cut: those bytes are read
+      // first, so that the error names the line where the data ends, not line 1.
+      const std::string error = std::string("read/decompression error: ") + message;
+      if (count <= 0) throw std::runtime_error(error);
+      pending_error_ = error;
+    }
     return static_cast<std::size_t>(count);
   }
 
  private:
   gzFile file_;
+  std::string pending_error_;  // the error that ended the last read, given at the next one
 };
 
 class MemorySource : public ByteSource {
@@ -357,7 +364,7 @@ void DumpReader::read_atom(const std::vector<std::string_view>& fields, const Co
   if (columns.radius >= 0) frame.radius.push_back(field_number(fields[columns.radius], "radius"));
   else if (columns.diameter >= 0) frame.radius.push_back(0.5 * field_number(fields[columns.diameter], "diameter"));
   if (!frame.radius.empty() && !(frame.radius.back() > 0))
-    fail(line_number_, "radius must be positive, found " + std::to_string(frame.radius.back()));
+    fail(line_number_, "radius must be positive, found " + message_number(frame.radius.back()));
   // With both columns the radius is used: a diameter that is not twice it means the dump does
   // not say which size the spheres have.
   if (columns.radius >= 0 && columns.diameter >= 0) {

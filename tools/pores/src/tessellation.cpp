@@ -2,6 +2,7 @@
 // The only CGAL translation unit of the pore tool: padded Delaunay triangulation, canonical
 // periodic tetrahedra, merged degenerate Voronoi vertices, nearest-centre queries.
 #include "tapmc_pores/tessellation.h"
+#include "tapmc_pores/errors.h"
 
 #include "tapmc_math.h"
 
@@ -164,7 +165,7 @@ void Tessellation::Impl::build(const std::vector<double>& xyz, double padding, d
     // Compared before the conversion: a count beyond int (padding 1e15) used to wrap around.
     const double layers = std::ceil(padding / box.length(d));
     if (!(layers <= 100))
-      throw std::invalid_argument("padding " + std::to_string(padding) +
+      throw std::invalid_argument("padding " + message_number(padding) +
                                   " is over 100 box lengths: the periodic box is far too small for R");
     images[d] = static_cast<int>(layers);
   }
@@ -467,13 +468,13 @@ Tessellation::Tessellation(const Box& box, const std::vector<double>& xyz, const
                            const PoreOptions& options)
     : impl_(std::make_unique<Impl>()) {
   if (!(options.radius > 0) || !std::isfinite(options.radius))
-    throw std::invalid_argument("radius must be positive and finite, got " + std::to_string(options.radius));
+    throw std::invalid_argument("radius must be positive and finite, got " + message_number(options.radius));
   if (!(options.merge_tolerance >= 0 && options.merge_tolerance < 0.1))
-    throw std::invalid_argument("merge tolerance must be in [0, 0.1), got " + std::to_string(options.merge_tolerance));
+    throw std::invalid_argument("merge tolerance must be in [0, 0.1), got " + message_number(options.merge_tolerance));
   if (!(options.overlap_tolerance >= 0 && options.overlap_tolerance < 1))
-    throw std::invalid_argument("overlap tolerance must be in [0, 1), got " + std::to_string(options.overlap_tolerance));
+    throw std::invalid_argument("overlap tolerance must be in [0, 1), got " + message_number(options.overlap_tolerance));
   if (!(options.padding_over_radius >= 2))
-    throw std::invalid_argument("padding must be at least 2 R, got " + std::to_string(options.padding_over_radius));
+    throw std::invalid_argument("padding must be at least 2 R, got " + message_number(options.padding_over_radius));
   if (xyz.size() != 3 * ids.size())
     throw std::invalid_argument("xyz holds " + std::to_string(xyz.size()) + " values for " +
                                 std::to_string(ids.size()) + " ids (expected 3 per id)");
@@ -509,11 +510,19 @@ Tessellation::Tessellation(const Box& box, const std::vector<double>& xyz, const
     // the retries ran out or no larger padding would resolve the cells left.
     const bool stopping =
         final_attempt || (r.retry_padding <= 0 && !flat && !(untiled && r.unresolved == 0));
+    // No cell left unresolved, yet the box untiled: the cells lost are those that a sphere and
+    // its own image bound (a periodic length below a pore's diameter) at every padding tried.
+    if (stopping && all_periodic && untiled && r.unresolved == 0)
+      throw std::runtime_error("the cells cover " + message_number(r.tetrahedra_volume) + " of the box volume " +
+                               message_number(box.volume()) + " with none unresolved at the padding " +
+                               message_number(padding) + ": a periodic length is likely below a pore's diameter (a "
+                               "sphere and its own image bound one pore; the box is too small for its spheres), "
+                               "else raise --padding");
     if (stopping && all_periodic && (untiled || r.unresolved > 0))
-      throw std::runtime_error("the packing is too sparse for the padding " + std::to_string(padding) + " (" +
+      throw std::runtime_error("the packing is too sparse for the padding " + message_number(padding) + " (" +
                                std::to_string(r.unresolved) + " cells unresolved, cells cover " +
-                               std::to_string(r.tetrahedra_volume) + " of the box volume " +
-                               std::to_string(box.volume()) + "); raise --padding");
+                               message_number(r.tetrahedra_volume) + " of the box volume " +
+                               message_number(box.volume()) + "); raise --padding");
     if (stopping) break;
     previous = padding;
     padding = std::min(max_padding, std::max({config::kRetryPaddingMargin * r.retry_padding,
