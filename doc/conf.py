@@ -49,7 +49,7 @@ LAMMPS_PAGES = {
     "Howto_output", "atom_style", "boundary", "comm_modify", "compute", "compute_chunk_atom",
     "create_atoms", "create_box", "displace_atoms", "dump", "fix", "fix_ave_time", "fix_print",
     "package", "plugin", "processors", "read_data", "read_restart", "region", "run",
-    "thermo_style", "variable", "write_restart",
+    "reset_timestep", "thermo_style", "variable", "write_data", "write_restart",
 }
 
 

@@ -52,7 +52,7 @@ constexpr int kRadialAxis = 3;
 
 ComputeStereoProfile::ComputeStereoProfile(LAMMPS *lmp, int narg, char **arg) :
     Compute(lmp, narg, arg), axis_(2), fixed_radius_(0.0), mean_radius_(0.0), group_count_(0.0), radius_ready_(false),
-    floor_warned_(false), central_warned_(false)
+    floor_warned_(false), central_warned_(false), window_warned_(false)
 {
   tapmc::cite_paper(lmp);
   tapmc::require_box_with_floor(lmp, "compute stereo/profile");
@@ -302,6 +302,20 @@ void ComputeStereoProfile::warn_empty_central_zone(const stereo::Windows &w, con
                  axis);
 }
 
+// The vertical window [window_lo, window_hi] (default floor + 2R to the window top) is empty in
+// a bed of about one layer: the zone means are NaN. Once per compute.
+void ComputeStereoProfile::warn_empty_window(const stereo::Windows &w)
+{
+  if (window_warned_ || w.window_hi > w.window_lo) return;
+  window_warned_ = true;
+  if (comm->me != 0) return;
+  error->warning(FLERR,
+                 "compute stereo/profile {}: empty vertical window: its top z = {:.6g} is not "
+                 "above its bottom z = {:.6g} (a bed of about one layer, below floor + 2R), so "
+                 "the lateral and central means (vector entries 5 and 6) are NaN; give 'window "
+                 "lo hi' to choose the heights", id, w.window_hi, w.window_lo);
+}
+
 // In a container the central zone is the core, inside the wall zone (lateral = w from the wall):
 // none when w reaches the axis (finish_cylinder_zones gives NaN). Once per compute, as above.
 void ComputeStereoProfile::warn_empty_core(const stereo::Windows &w)
@@ -388,7 +402,7 @@ double ComputeStereoProfile::reduce_surface_height(const stereo::Spheres &sphere
                                                    const stereo::Box &box)
 {
   const stereo::ColumnGrid grid =
-      stereo::make_column_grid(box, stereo::resolved_column_width(settings_, mean_radius_));
+      stereo::surface_column_grid(box, settings_, mean_radius_);
   buffer_.assign(grid.size(), -std::numeric_limits<double>::infinity());
   stereo::accumulate_column_tops(spheres, grid, buffer_.data());
   MPI_Allreduce(MPI_IN_PLACE, buffer_.data(), grid.size(), MPI_DOUBLE, MPI_MAX, world);
@@ -433,6 +447,7 @@ void ComputeStereoProfile::compute_vector_guarded()
                                 ? stereo::finish_cylinder_summary(sums, cylinder_, windows)
                                 : stereo::finish_summary(sums, box, windows);
   warn_empty_central_zone(windows, box);
+  warn_empty_window(windows);
 
   vector[kPhiBulk] = s.phi_bulk;
   vector[kPhiCorrected] = s.phi_corrected;

@@ -340,7 +340,7 @@ tapmc::SettleParams FixMCSettle::make_params(double step, long movable) const
 
 int FixMCSettle::setmask()
 {
-  return PRE_EXCHANGE;
+  return PRE_EXCHANGE | POST_INTEGRATE;
 }
 
 // Side walls given with 'xwalls'/'ywalls' along a fixed ('f') boundary must lie within the box
@@ -424,6 +424,9 @@ double FixMCSettle::DecomposedRedeposition::ghost_depth(double r_max)
   if (comm->style != 0)
     error->all(FLERR, "fix mc/settle: scheme domain needs the brick communication of LAMMPS "
                "('comm_style brick', the default); with 'comm_style tiled' use 'scheme gather'");
+  tapmc::require_ghosts_of_every_atom(lmp, "fix mc/settle",
+                                      "scheme domain would move spheres of neighbouring "
+                                      "sub-domains into each other", ", or 'scheme gather'");
   const double depth = tapmc::DomainSettle::ghost_cutoff(r_max, fix.effective_d_max());
   kernel().set_verify(fix.verify_ghosts);
   return depth;
@@ -633,7 +636,18 @@ void FixMCSettle::setup_pre_exchange()
   tapmc::require_exact_coordinates(
       lmp, "fix mc/settle", fixed_radius > 0.0 ? fixed_radius : tapmc::smallest_radius(lmp));
   redeposition->check_start(false);
-  schedule_next_settle();
+  schedule_next_settle(update->ntimestep);
+}
+
+// Every step, before LAMMPS decides whether to reneighbour (and so whether pre_exchange runs):
+// the redeposition steps again from the step before, as fix tapdilate does. A run with 'pre no'
+// calls no setup hook, and after reset_timestep the last run's schedule never (or late) met the
+// new steps: the run went on without a tap. The tapping fixes are read to schedule, so they are
+// first checked to be the setup's.
+void FixMCSettle::post_integrate()
+{
+  require_same_tappers();
+  schedule_next_settle(update->ntimestep - 1);
 }
 
 // Each rank checks its spheres against its ghosts.
@@ -671,7 +685,7 @@ void FixMCSettle::pre_exchange()
   // (LAMMPS calls pre_exchange in definition order); each taps once per step, and this step is
   // a tap step of at least one of them (schedule_next_settle).
   for (tapmc::Tapper *tap : tappers) tap->tap_if_due();
-  schedule_next_settle();
+  schedule_next_settle(update->ntimestep);
   if (check_after_taps && !tappers.empty()) redeposition->check_start(true);
 
   const tapmc::SettleResult result = redeposition->settle();
@@ -748,5 +762,6 @@ double FixMCSettle::compute_vector(int n)
       last_trials,       last_mean_z0,      last_parallel[0],  last_parallel[1],
       last_parallel[2],  last_parallel[3],  last_parallel[4],  last_parallel[5],
       last_idle_stop};
-  return values[n];
+  // thermo and variables check the index; the library interface (extract_fix) does not
+  return n >= 0 && n < kVectorSize ? values[n] : std::numeric_limits<double>::quiet_NaN();
 }

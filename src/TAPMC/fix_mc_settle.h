@@ -35,6 +35,7 @@ class FixMCSettle : public Fix, public tapmc::ContainerHolder {
   int setmask() override;
   void init() override;
   void setup_pre_exchange() override;
+  void post_integrate() override;
   void pre_exchange() override;
   double compute_vector(int) override;
   void write_restart(FILE *) override;
@@ -120,7 +121,7 @@ class FixMCSettle : public Fix, public tapmc::ContainerHolder {
   void check_walls_inside_fixed_box();
   void find_tappers();
   void require_same_tappers();
-  void schedule_next_settle();
+  void schedule_next_settle(bigint after);
   double effective_d_max() const;
   tapmc::SettleBox make_box() const;
   tapmc::DomainSettleSetup domain_setup() const;

@@ -53,14 +53,13 @@ void FixMCSettle::require_same_tappers()
              names(now) + (now == tapper_ids ? ", defined again since" : ""));
 }
 
-// The next step after this one on which a tapping fix taps (any fix, whatever its order), or
-// simply the next step when the run has no tapping fix.
-void FixMCSettle::schedule_next_settle()
+// The first step after `after` on which a tapping fix taps (any fix, whatever its order), or
+// simply the step after it when the run has no tapping fix.
+void FixMCSettle::schedule_next_settle(bigint after)
 {
-  const bigint now = update->ntimestep;
-  next_reneighbor = now + 1;
+  next_reneighbor = after + 1;
   if (tappers.empty()) return;
-  next_reneighbor = tappers.front()->next_tap_after(now);
+  next_reneighbor = tappers.front()->next_tap_after(after);
   for (const tapmc::Tapper *tap : tappers)
-    next_reneighbor = std::min(next_reneighbor, tap->next_tap_after(now));
+    next_reneighbor = std::min(next_reneighbor, tap->next_tap_after(after));
 }

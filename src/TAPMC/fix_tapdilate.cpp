@@ -74,7 +74,7 @@ FixTapDilate::FixTapDilate(LAMMPS *lmp, int narg, char **arg) :
 
 int FixTapDilate::setmask()
 {
-  return PRE_EXCHANGE;
+  return PRE_EXCHANGE | POST_INTEGRATE;
 }
 
 void FixTapDilate::init()
@@ -85,6 +85,9 @@ void FixTapDilate::init()
   tapmc::require_box_with_floor(lmp, "fix tapdilate");  // change_box may have made it another
   // the region may have been deleted or redefined, the box changed, the radii set
   resolve_container(atom->radius_flag ? tapmc::largest_radius(lmp) : 0.0);
+  const double r_min = atom->radius_flag ? tapmc::smallest_radius(lmp) : 0.0;
+  exact_z_bound = r_min > 0.0 ? tapmc::largest_exact_coordinate(2.0 * r_min)
+                              : std::numeric_limits<double>::infinity();
   if (!eps_variable.empty()) {
     eps_var_index = input->variable->find(eps_variable.c_str());
     if (eps_var_index < 0)
@@ -113,6 +116,18 @@ void FixTapDilate::setup_pre_exchange()
   tapped_step = -1;
   check_geometry();
   schedule_next_tap();
+}
+
+// Every step, before LAMMPS decides whether to reneighbour (and so whether pre_exchange runs):
+// the tap steps again from the step before. A run with 'pre no' calls no setup hook, and after
+// reset_timestep the last run's schedule never (or late) met the new steps: the run went on
+// without tapping. A fix no run has set up stays unscheduled, for fix mc/settle to refuse.
+void FixTapDilate::post_integrate()
+{
+  if (!scheduled()) return;
+  const bigint now = update->ntimestep;
+  if (tapped_step >= now) tapped_step = -1;  // the steps were reset back
+  next_reneighbor = next_tap_after(now - 1);
 }
 
 // Atoms of the group must sit above the floor; the dilation would otherwise push them down.
@@ -166,23 +181,31 @@ void FixTapDilate::tap_if_due()
   schedule_next_tap();
   if (last_eps == 0.0) return;
 
-  // A fixed upper z boundary would silently lose atoms: refuse before moving anything.
-  if (domain->boundary[2][1] == tapmc::kBoundaryFixed) {
-    double top = -std::numeric_limits<double>::infinity();
-    double **x = atom->x;
-    const double *radius = atom->radius;
-    for (int i = 0; i < atom->nlocal; ++i) {
-      if (!(atom->mask[i] & groupbit)) continue;
-      const double r = radius ? radius[i] : 0.0;
-      top = std::max(top, tapmc::dilated_height(x[i][2], params.z_floor, last_eps) + r);
-    }
-    double top_all;
-    MPI_Allreduce(&top, &top_all, 1, MPI_DOUBLE, MPI_MAX, world);
-    if (top_all > domain->boxhi[2])
-      error->all(FLERR, "fix tapdilate: the tap on step {} lifts atoms to z = {} above the fixed "
-                 "upper z boundary {}; use an open top ('boundary p p fm' or 'f s') or a higher "
-                 "box", update->ntimestep, top_all, domain->boxhi[2]);
+  // Where the tap puts the highest sphere top, checked before moving anything: a fixed upper z
+  // boundary would silently lose atoms, and beyond exact_z_bound contacts are not resolved.
+  double top = -std::numeric_limits<double>::infinity();
+  double **x = atom->x;
+  const double *radius = atom->radius;
+  for (int i = 0; i < atom->nlocal; ++i) {
+    if (!(atom->mask[i] & groupbit)) continue;
+    const double r = radius ? radius[i] : 0.0;
+    top = std::max(top, tapmc::dilated_height(x[i][2], params.z_floor, last_eps) + r);
   }
+  double top_all;
+  MPI_Allreduce(&top, &top_all, 1, MPI_DOUBLE, MPI_MAX, world);
+  if (domain->boundary[2][1] == tapmc::kBoundaryFixed && top_all > domain->boxhi[2])
+    error->all(FLERR, "fix tapdilate: the tap on step {} lifts atoms to z = {} above the fixed "
+               "upper z boundary {}; use an open top ('boundary p p fm' or 'f s') or a higher "
+               "box", update->ntimestep, top_all, domain->boxhi[2]);
+  // A bed rising tap after tap: spheres the redeposition left high (its stop rule compares the
+  // change of <Z> with eta <Z>, which a few high spheres make large) are lifted by eps each tap
+  // until doubles no longer resolve a contact. Stop by name, not with lost atoms later.
+  if (top_all > exact_z_bound)
+    error->all(FLERR, "fix tapdilate: the tap on step {} lifts a sphere to z = {}, beyond |z| = "
+               "{:.3g} where doubles cannot resolve the contacts of the smallest spheres: the "
+               "bed has come apart (spheres that the redeposition left high rise by eps at "
+               "every tap; a tighter eta or 'stop drift' of fix mc/settle brings them back)",
+               update->ntimestep, top_all, exact_z_bound);
 
   if (atom->nlocal > 0)
     tapmc::dilate_about_floor(&atom->x[0][0], atom->mask, groupbit, atom->nlocal,
@@ -198,7 +221,9 @@ double FixTapDilate::compute_scalar()
 // [1] eps of the latest tap, [2] sqrt(eps): the excitation strength (paper, eq. 2).
 double FixTapDilate::compute_vector(int n)
 {
-  return n == 0 ? last_eps : std::sqrt(last_eps);
+  if (n == 0) return last_eps;
+  // thermo and variables check the index; the library interface (extract_fix) does not
+  return n == 1 ? std::sqrt(last_eps) : std::numeric_limits<double>::quiet_NaN();
 }
 
 // The restart record is the eps of the latest tap (one double): a run resumed from the file

@@ -19,6 +19,7 @@ class FixTapDilate : public Fix, public tapmc::Tapper, public tapmc::ContainerHo
   int setmask() override;
   void init() override;
   void setup_pre_exchange() override;
+  void post_integrate() override;
   void pre_exchange() override;
   double compute_scalar() override;
   double compute_vector(int) override;
@@ -43,6 +44,9 @@ class FixTapDilate : public Fix, public tapmc::Tapper, public tapmc::ContainerHo
   int eps_var_index;
   double last_eps;          // eps of the most recent tap (outputs; kept in restart files)
   bigint tapped_step;       // timestep of the most recent tap (-1: none yet)
+  // z beyond which a double cannot resolve the contacts of the smallest spheres (init(); +inf
+  // without radii): a tap lifting a sphere beyond it stops the run by name
+  double exact_z_bound = std::numeric_limits<double>::infinity();
   // 'container REGION-ID', or empty. The tap moves spheres along z only, so a sphere inside a
   // vertical cylinder stays inside: the container changes no tap, it is resolved (at
   // definition and in init()) to check it as the other styles do and to compare it with theirs.

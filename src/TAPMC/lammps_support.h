@@ -159,6 +159,24 @@ inline void request_ghost_depth(LAMMPS_NS::LAMMPS *lmp, double depth)
   if (depth > 0.0 && lmp->comm->get_comm_cutoff() < depth) lmp->comm->cutghostuser = depth;
 }
 
+// A style that reads ghost atoms (fix mc/settle's domain scheme, compute contacts) needs every
+// atom within the depth asked for above. 'comm_modify mode multi' (and multi/old) sizes the
+// ghost shell per collection from the pair cutoffs: without a pair style, no ghosts at all (the
+// domain scheme let spheres of two sub-domains overlap by 97 % of a diameter). It stops here,
+// `loss` naming what would go wrong and `instead` a way out beside the default. (LAMMPS keeps
+// 'comm_modify group', which sends one group's ghosts only, out of reach: doc/fix_mc_settle.rst
+// warns of it.) Call from init().
+inline void require_ghosts_of_every_atom(LAMMPS_NS::LAMMPS *lmp, const char *style,
+                                         const char *loss, const char *instead = "")
+{
+  const LAMMPS_NS::Comm *comm = lmp->comm;
+  if (comm->mode != LAMMPS_NS::Comm::SINGLE)
+    lmp->error->all(FLERR, "{}: 'comm_modify mode {}' gives hard spheres no ghost atoms (LAMMPS "
+                    "sizes them from the pair cutoffs, and hard spheres have no pair style), so "
+                    "{}: use 'comm_modify mode single' (the default){}", style,
+                    comm->mode == LAMMPS_NS::Comm::MULTI ? "multi" : "multi/old", loss, instead);
+}
+
 // Two fixes of one style acting on the same atoms would tap (or settle) them twice per step.
 // Stops with an error naming both fix IDs, their groups and how many atoms they share when a
 // fix of `self`'s style listed before it has a group sharing atoms with `self`'s; fixes on

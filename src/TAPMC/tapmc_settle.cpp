@@ -75,6 +75,14 @@ ConvergenceCheck Settler::make_convergence_check(const SettleParams &params, lon
                                                  double mean_height_start)
 {
   if (movable < 1) throw_outside_range("movable", movable, "[1, +inf)");
+  // 'stop drift' never stops before `window` checks: a window beyond the cap would run every
+  // redeposition to the cap, warning each time that <Z> did not converge.
+  if (params.stop == StopRule::Drift && params.drift_window > params.max_checks)
+    throw std::invalid_argument(
+        "window = " + std::to_string(params.drift_window) + " checks of 'stop drift' is more "
+        "than the cap allows (" + std::to_string(params.max_checks) + " checks: maxsweeps "
+        "over the check interval), so the rule could never stop before the cap; lower window "
+        "or raise maxsweeps");
   const long interval = trials_per_check(params.check_interval, movable);
   return ConvergenceCheck(params.stop, params.eta, params.max_checks, mean_height_start,
                           static_cast<double>(interval) / static_cast<double>(movable),

@@ -17,6 +17,13 @@ namespace stereo {
 
 namespace {
 
+// floor(u) as a bin index, clamped to [-1, n] before the cast: a sphere millions of bins wide
+// (bins of 1e-13 diameter) reached beyond int, and the cast gave INT_MIN on x86: the sphere
+// was skipped and its bins read 0.
+int bin_floor(double u, int n)
+{
+  return static_cast<int>(std::clamp(std::floor(u), -1.0, static_cast<double>(n)));
+}
 
 // Visits every sphere as visit(x, y, z, radius); the two layout choices (per-sphere radius or
 // not, index list or not) are taken once, outside the loops.
@@ -213,8 +220,8 @@ void accumulate_profile(const Spheres &spheres, const Box &box, int axis, const 
   const double inv_w = 1.0 / w;
   // Bins [first, last] that [lo, hi] reaches (clamped to the grid).
   auto bin_range = [&](double lo, double hi, int &first, int &last) {
-    first = std::max(0, static_cast<int>(std::floor((lo - grid.lo) * inv_w)));
-    last = std::min(n - 1, static_cast<int>(std::floor((hi - grid.lo) * inv_w)));
+    first = std::max(0, bin_floor((lo - grid.lo) * inv_w, n));
+    last = std::min(n - 1, bin_floor((hi - grid.lo) * inv_w, n));
   };
 
   if (axis == 2) {
@@ -271,7 +278,7 @@ int ColumnGrid::column_of(double x, double y) const
   return idx[0] + n[0] * idx[1];
 }
 
-ColumnGrid make_column_grid(const Box &box, double width)
+ColumnGrid make_column_grid(const Box &box, double width, bool widen)
 {
   if (!(width > 0.0)) throw_outside_range("column width", width, "(0, +inf)");
   ColumnGrid g;
@@ -280,7 +287,8 @@ ColumnGrid make_column_grid(const Box &box, double width)
     if (!(length > 0.0))
       throw_outside_range(std::string("box length along ") + "xy"[d], length, "(0, +inf)");
     g.lo[d] = box.lo[d];
-    const double columns = std::floor(length / width + defaults::kColumnCountRounding);
+    double columns = std::floor(length / width + defaults::kColumnCountRounding);
+    if (widen) columns = std::min(columns, static_cast<double>(defaults::kMaxColumnsPerAxis));
     if (!(columns <= defaults::kMaxColumnsPerAxis))
       throw_outside_range("column width", width,
                           "[" + number(length / defaults::kMaxColumnsPerAxis) +
@@ -339,6 +347,13 @@ void validate(const SummarySettings &s)
 double resolved_column_width(const SummarySettings &settings, double mean_radius)
 {
   return settings.column_width.value_or(defaults::kSurfaceColumnOverRadius * mean_radius);
+}
+
+ColumnGrid surface_column_grid(const Box &box, const SummarySettings &settings,
+                               double mean_radius)
+{
+  return make_column_grid(box, resolved_column_width(settings, mean_radius),
+                          !settings.column_width.has_value());
 }
 
 double resolved_lateral_width(const SummarySettings &settings, double mean_radius)
@@ -439,11 +454,14 @@ Summary finish_summary(const double *sums, const Box &box, const Windows &w)
   const double central_length = w.central_width();
 
   Summary out = finish_horizontal(sums, box.horizontal_area(), w);
-  out.phi_lateral = ratio(sums[kLateralVolume], lateral_length * other * window);
-  // an empty central zone has no packing fraction: NaN, not a 0 that reads as a measurement
-  out.phi_central = central_length > 0.0
+  // an empty zone or an empty window (a bed of one layer: its top below floor + 2R) has no
+  // packing fraction: NaN, not a 0 that reads as a measurement
+  const double none = std::numeric_limits<double>::quiet_NaN();
+  out.phi_lateral = window > 0.0 ? ratio(sums[kLateralVolume], lateral_length * other * window)
+                                 : none;
+  out.phi_central = central_length > 0.0 && window > 0.0
                         ? ratio(sums[kCentralVolume], central_length * other * window)
-                        : std::numeric_limits<double>::quiet_NaN();
+                        : none;
   return out;
 }
 
@@ -461,7 +479,7 @@ namespace {
 Windows serial_windows(const Spheres &spheres, const Box &box, const SummarySettings &settings)
 {
   const double radius = mean_radius(spheres);
-  const ColumnGrid grid = make_column_grid(box, resolved_column_width(settings, radius));
+  const ColumnGrid grid = surface_column_grid(box, settings, radius);
   std::vector<double> tops(grid.size(), -std::numeric_limits<double>::infinity());
   accumulate_column_tops(spheres, grid, tops.data());
   const double surface = surface_height(tops.data(), grid.size(), settings.floor);
@@ -557,8 +575,8 @@ void accumulate_cylinder_profile(const Spheres &spheres, const Cylinder &cylinde
   for_each_sphere(spheres, [&](double x, double y, double zc, double r) {
     const double d = axis_distance(cylinder, x, y);
     if (d >= cylinder.radius + r) return;  // wholly outside the container
-    const int first = std::max(0, static_cast<int>(std::floor((zc - r - grid.lo) * inv_w)));
-    const int last = std::min(n - 1, static_cast<int>(std::floor((zc + r - grid.lo) * inv_w)));
+    const int first = std::max(0, bin_floor((zc - r - grid.lo) * inv_w, n));
+    const int last = std::min(n - 1, bin_floor((zc + r - grid.lo) * inv_w, n));
     for (int k = first; k <= last; ++k) {
       cut_area[k] += cut_in_disk(r, d, grid.position(k) - zc, cylinder.radius);
       const double edge = grid.lo + k * w - zc;
@@ -606,8 +624,8 @@ void accumulate_radial_profile(const Spheres &spheres, const Cylinder &cylinder,
     // annulus k holds V(r_k+1) - V(r_k), V(rho) the volume inside the coaxial cylinder of radius
     // rho; V is 0 below d - r and constant above d + r, so only the bins reaching
     // [d - r, d + r] change, and consecutive bins share their boundary's V
-    const int first = std::max(0, static_cast<int>(std::floor((d - r - radii.lo) * inv_w)));
-    const int last = std::min(n - 1, static_cast<int>(std::floor((d + r - radii.lo) * inv_w)));
+    const int first = std::max(0, bin_floor((d - r - radii.lo) * inv_w, n));
+    const int last = std::min(n - 1, bin_floor((d + r - radii.lo) * inv_w, n));
     if (first > last) return;
     double v_below = sphere_cylinder_slab_volume(r, d, radii.lo + first * w, lo, hi);
     for (int k = first; k <= last; ++k) {
@@ -674,11 +692,12 @@ CylinderZones finish_cylinder_zones(const double *sums, const Cylinder &cylinder
   const double core = out.core_radius;
   const double wall_area = kPi * (radius - core) * (radius + core);
   const double core_area = kPi * core * core;
-  out.phi_wall = wall_area * height > 0.0 ? sums[kCylinderWallVolume] / (wall_area * height) : 0.0;
-  // no core: NaN, not a 0 that reads as a measurement (as Summary::phi_central)
-  out.phi_core = core > 0.0 ? (height > 0.0 ? sums[kCylinderCoreVolume] / (core_area * height)
-                                            : 0.0)
-                            : std::numeric_limits<double>::quiet_NaN();
+  // no core or no window height: NaN, not a 0 that reads as a measurement (as Summary's zones)
+  const double none = std::numeric_limits<double>::quiet_NaN();
+  out.phi_wall = wall_area * height > 0.0 ? sums[kCylinderWallVolume] / (wall_area * height)
+                                          : none;
+  out.phi_core = core > 0.0 && height > 0.0 ? sums[kCylinderCoreVolume] / (core_area * height)
+                                            : none;
   return out;
 }
 

@@ -96,7 +96,10 @@ struct ColumnGrid {
   int size() const { return n[0] * n[1]; }
   int column_of(double x, double y) const;
 };
-ColumnGrid make_column_grid(const Box &box, double width);
+// Columns `width` wide (the last digits of L / width forgiven, kColumnCountRounding), at most
+// kMaxColumnsPerAxis a direction: a narrower width throws, unless `widen` (the default width,
+// not the user's), which then widens the columns of that direction to L / kMaxColumnsPerAxis.
+ColumnGrid make_column_grid(const Box &box, double width, bool widen = false);
 // tops[c] = max(tops[c], z_i + R_i) over the spheres of column c (initialise with -infinity;
 // combine ranks with a MAX reduction).
 void accumulate_column_tops(const Spheres &spheres, const ColumnGrid &grid, double *tops);
@@ -139,6 +142,10 @@ struct Windows {
 
 // Throws std::invalid_argument if a setting is outside its range (naming it).
 void validate(const SummarySettings &settings);
+// The grid of h_s for `settings`: its column width, else the default 2R widened where the box
+// is more than kMaxColumnsPerAxis of them wide.
+ColumnGrid surface_column_grid(const Box &box, const SummarySettings &settings,
+                               double mean_radius);
 double resolved_column_width(const SummarySettings &settings, double mean_radius);
 double resolved_lateral_width(const SummarySettings &settings, double mean_radius);
 Windows resolve_windows(const SummarySettings &settings, const Box &box, double mean_radius,

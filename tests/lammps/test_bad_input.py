@@ -105,6 +105,9 @@ MC_SETTLE_CASES = [
      "trials)"),
     ("fix s all mc/settle 1 check 9223372036854775807\nrun 1",
      "check = 9223372036854775807 trials exceeds the cap of maxsweeps = 50000 sweeps"),
+    # 'stop drift' never stops before its window: beyond the cap, every tap ran to the cap
+    ("fix s all mc/settle 1 stop drift window 100000 maxsweeps 30\nrun 1",
+     "window = 100000 checks of 'stop drift' is more than the cap allows (30 checks"),
     ("fix s all mc/settle 1 diameter 0",
      "fix mc/settle: diameter = 0 is outside the allowed range (0, +inf)"),
     ("fix s all mc/settle 1 order backwards", "order = backwards must be 'random'"),
@@ -192,6 +195,43 @@ def test_default_side_walls_follow_the_box_between_runs():
 def test_a_box_changed_between_runs_is_checked_again(fix_line, change, message):
     rc, out = run_case(f"{fix_line}\nrun 1\n{change}\nrun 1")
     assert rc != 0 and message in out and "Lost atoms" not in out, out
+
+
+@pytest.mark.parametrize("body,message", [
+    ("fix s all mc/settle 1 scheme domain\nrun 1",
+     "fix mc/settle: 'comm_modify mode multi' gives hard spheres no ghost atoms"),
+    ("compute n all contacts 0.01\nthermo_style custom step c_n[1]\nrun 0",
+     "compute contacts: 'comm_modify mode multi' gives hard spheres no ghost atoms"),
+])
+def test_styles_reading_ghosts_refuse_comm_mode_multi(body, message):
+    """LAMMPS sizes multi-mode ghosts from the pair cutoffs, and hard spheres have none: with no
+    ghost atoms, the domain scheme let spheres of two sub-domains overlap by 97 % of a diameter
+    and compute contacts missed every pair across a sub-domain or periodic face, silently. The
+    gather scheme reads no ghosts and runs."""
+    multi = "neighbor 0.3 multi\ncomm_modify mode multi\n"
+    rc, out = run_case(body, extra=multi)
+    assert rc != 0 and message in out and "use 'comm_modify mode single' (the default)" in out, out
+    rc, out = run_case("fix s all mc/settle 1 scheme gather\nrun 1", extra=multi)
+    assert rc == 0 and "Loop time" in out, out
+
+
+def test_a_bed_coming_apart_stops_by_name():
+    """eps = 1 with a loose eta: the stop rule compares the change of <Z> with eta <Z>, which
+    the spheres left high make large, so they stay high and double their height every tap
+    (z = 5e7 by step 58, h_s printed as 3e6) until LAMMPS lost an atom. The tap that would
+    lift a sphere beyond the coordinates where contacts are resolved now stops the run."""
+    rc, out, _ = run_lammps("""units lj
+atom_style sphere
+boundary p p fm
+region box block 0 4 0 4 0 20
+create_box 1 box
+create_packing 60 1 0.5 77 floor 0.0
+fix tap all tapdilate 1 floor 0.0
+fix settle all mc/settle 77 floor 0.0 eta 1e-4
+run 300
+""")
+    assert rc != 0 and "the bed has come apart" in out and "beyond |z| = 1.13e+05" in out, out
+    assert "Lost atoms" not in out and "atom count changed" not in out
 
 
 PRE_NO = "fix t all tapdilate 0.05\nfix s all mc/settle 1 eta 1e-3\nrun 2\n{change}\n" \

@@ -176,6 +176,33 @@ def test_counts_after_taps_equal_an_all_pairs_count_and_python(nprocs):
     assert thermo[-1, 1] < thermo[-1, 2] < thermo[-1, 3] < thermo[-1, 4]
 
 
+def test_ghost_shell_does_not_depend_on_the_unit_scale():
+    """A simple cubic lattice of spheres of diameter 1e-3 (lj units, whose neighbour skin is
+    0.3): the compute added the skin to its ghost cutoff, 300 diameters, and LAMMPS copied the
+    216 spheres into about 5 million periodic images (679 MB at 300 spheres). Without a pair
+    style nothing moves between rebuilds: the shell is the contact reach, at every scale."""
+    script = """units lj
+atom_style sphere
+boundary p p p
+lattice sc {density}
+region box block 0 6 0 6 0 6
+create_box 1 box
+create_atoms 1 box
+set group all diameter {diameter}
+compute z all contacts 0.01
+thermo_style custom step c_z[1]
+run 0
+"""
+    ghosts = {}
+    for diameter in (1.0, 1e-3):
+        rc, out, _ = run_lammps(script.format(density=diameter ** -3, diameter=diameter),
+                                timeout=120)
+        assert rc == 0, out[-2000:]
+        assert thermo_table(out, "c_z[1]")[1][0, 1] == 6.0  # simple cubic: 6 contacts each
+        ghosts[diameter] = float(re.search(r"Nghost: +([0-9.e+]+) ave", out).group(1))
+    assert ghosts[1e-3] == ghosts[1.0] < 10 * 216, ghosts
+
+
 BAD = [
     ("compute c all contacts",
      "compute contacts: the gap g is missing (relative to the contact distance R_i + R_j, in "

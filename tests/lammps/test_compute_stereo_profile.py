@@ -187,6 +187,34 @@ run 0
 
 
 @pytest.mark.parametrize("nprocs", [1, 2])
+def test_a_bed_of_one_layer_has_no_zone_means(nprocs):
+    """One layer on the floor: the default window [floor + 2R, window top] is empty, and the
+    lateral and central means (entries 5, 6) read 0, as measurements. They are NaN, with one
+    warning naming the window; the other entries are measured."""
+    script = """units lj
+atom_style sphere
+boundary p p fm
+region box block 0 6 0 6 0 4
+create_box 1 box
+lattice sc 1.0 origin 0.5 0.5 0.5
+region layer block 0 6 0 6 0 1 units box
+create_atoms 1 region layer
+set group all diameter 1.0
+compute phi all stereo/profile floor 0.0
+thermo_style custom step c_phi[1] c_phi[5] c_phi[6]
+run 1
+run 1
+""" + VECTOR_PRINT.format(id="phi")
+    rc, out, _ = run_lammps(script, nprocs=nprocs)
+    assert rc == 0, out[-2000:]
+    values = printed(out, "VEC")
+    assert math.isnan(values[4]) and math.isnan(values[5]), values
+    assert np.all(np.isfinite(np.delete(values, [4, 5]))) and values[0] > 0.1, values
+    assert out.count("compute stereo/profile phi: empty vertical window: its top z = 0.9 is not "
+                     "above its bottom z = 1 (a bed of about one layer") == 1, out[-3000:]
+
+
+@pytest.mark.parametrize("nprocs", [1, 2])
 def test_empty_central_zone_is_nan_with_one_warning(nprocs):
     """Lateral zones that reach the middle of the box (lateral >= half the box width, as the
     default 7R in the paper inputs' 12R reference box) leave no central zone: vector entry 6 is

@@ -88,6 +88,16 @@ TEST(MpiTapDilate, VariableEpsEveryTwoSteps)
   ASSERT_NE(eps, nullptr);
   EXPECT_NEAR(*eps, 0.06, 1e-15);
   lammps_free(eps);
+  // [1] eps, [2] sqrt(eps); an index beyond (the library does not check it) is NaN, not a read
+  // of whatever memory follows
+  const double expected[] = {0.06, std::sqrt(0.06)};
+  for (int n = 0; n < 4; ++n) {
+    auto *value = static_cast<double *>(lammps_extract_fix(tapped.get(), "tap", 0, 1, n, 0));
+    ASSERT_NE(value, nullptr);
+    if (n < 2) EXPECT_NEAR(*value, expected[n], 1e-15) << n;
+    else EXPECT_TRUE(std::isnan(*value)) << n << ": " << *value;
+    lammps_free(value);
+  }
 }
 
 // Only the group is dilated; the rest stays where it was.

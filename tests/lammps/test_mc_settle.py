@@ -194,6 +194,36 @@ def test_settle_runs_only_on_tap_steps():
     assert "Atom sorting therefore disabled" not in out, out
 
 
+@pytest.mark.parametrize("fixes", [
+    "fix tap all tapdilate 0.05 floor 0.0\nfix settle all mc/settle 7 floor 0.0 eta 1e-3\n",
+    "fix settle all mc/settle 7 floor 0.0 eta 1e-3\nfix tap all tapdilate 0.05 floor 0.0 every 2\n",
+    "fix settle all mc/settle 7 floor 0.0 eta 1e-3\n",
+], ids=["tap-every-step", "tap-every-2", "settle-alone"])
+@pytest.mark.parametrize("reset", [100, 1, 0])
+def test_a_run_without_setup_after_reset_timestep_taps_as_one_with_it(fixes, reset):
+    """'run N pre no' calls no setup hook of the fixes: after reset_timestep the last run's
+    schedule (the step after its end) never met the new steps (reset forward: no tap at all) or
+    met them late (reset back: the first taps skipped), silently. The tap and redeposition steps
+    now follow the step itself: the run is the one 'pre yes' gives, move for move."""
+    runs = {}
+    for pre in ("yes", "no"):
+        script = SCENE.format(boundary="p p fm", zprocs=1) + fixes + (
+            "thermo_style custom step f_settle[5]\nthermo 1\nrun 2\n"
+            f"reset_timestep {reset}\nrun 4 pre {pre}\n"
+            "write_dump all custom final.dump id x y z modify sort id format float %.17g\n")
+        rc, out, wd = run_lammps(script)
+        assert rc == 0, out
+        runs[pre] = dump_atoms_text(wd), out
+    assert runs["no"][0] == runs["yes"][0]
+
+    def trials_after_reset(out):  # f_settle[5] of the second run: each step's trials
+        rows = [line.split() for line in out.split("Step f_settle[5]")[2].splitlines()]
+        return [int(r[1]) for r in rows if len(r) == 2 and r[0].isdigit() and int(r[0]) > reset]
+    # the same redepositions step by step (before, 'pre no' repeated the last run's count)
+    assert trials_after_reset(runs["no"][1]) == trials_after_reset(runs["yes"][1])
+    assert len(trials_after_reset(runs["no"][1])) == 4
+
+
 @pytest.mark.parametrize("theta0", [0.1, 0.01])
 def test_narrow_theta0_taps_keep_hard_spheres(theta0):
     # Small theta0 (nearly vertical moves, the paper's decompacting regime): every tap ends

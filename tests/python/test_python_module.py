@@ -44,6 +44,21 @@ def test_tapdilate_from_python():
     lmp.close()
 
 
+def test_extract_fix_of_mc_settle_matches_thermo_and_refuses_other_indices():
+    """The 13 values of fix mc/settle through the library interface are those thermo prints;
+    an index beyond them (which the library does not check) gives NaN, where it read past the
+    values (5e-324 at index 13)."""
+    lmp = make_lammps()
+    lmp.commands_string(SETUP + "fix settle all mc/settle 7 floor 0.0 eta 1e-3\n"
+                        "variable trials equal f_settle[5]\nrun 1")
+    values = [lmp.extract_fix("settle", 0, 1, n) for n in range(13)]
+    assert values[4] == lmp.extract_variable("trials") > 0
+    assert values[0] == pytest.approx(values[4] / 2)  # sweeps = trials / movable spheres
+    for n in (13, 20, -1):
+        assert np.isnan(lmp.extract_fix("settle", 0, 1, n)), n
+    lmp.close()
+
+
 def test_styles_survive_clear():
     lmp = make_lammps()
     lmp.commands_string(SETUP + "fix tap all tapdilate 0.5 floor 0.0\nrun 1\nclear")

@@ -590,6 +590,18 @@ TEST(Settle, SweepCapInChecks)
   EXPECT_EQ(Settler::max_checks_for_sweeps(huge, 0, 1), huge);
   EXPECT_THROW(Settler::max_checks_for_sweeps(0, 0, 37), std::invalid_argument);
   EXPECT_THROW(Settler::max_checks_for_sweeps(1, -1, 37), std::invalid_argument);
+  // 'stop drift' never stops before its window: a window beyond the cap's checks is refused
+  // (every redeposition would reach the cap); the window at the cap is allowed
+  SettleParams drift;
+  drift.stop = StopRule::Drift;
+  drift.max_checks = 30;
+  drift.drift_window = 31;
+  EXPECT_THROW(Settler::make_convergence_check(drift, 37, 1.0), std::invalid_argument);
+  drift.drift_window = 30;
+  EXPECT_NO_THROW(Settler::make_convergence_check(drift, 37, 1.0));
+  drift.stop = StopRule::Change;
+  drift.drift_window = 31;  // unused by 'stop change'
+  EXPECT_NO_THROW(Settler::make_convergence_check(drift, 37, 1.0));
 }
 
 // In a cylinder: a redeposition after a tap leaves every sphere inside the wall (all-pairs

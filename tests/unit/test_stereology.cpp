@@ -371,6 +371,29 @@ TEST(StereologyLattice, EmptyCentralZoneIsNaNNotZero)
   EXPECT_TRUE(std::isfinite(summarize(wide.view(), box, set).phi_central));
 }
 
+TEST(StereologyLattice, EmptyWindowIsNaNNotZero)
+{
+  // One layer of spheres on the floor: the default window [floor + 2R, window top] is empty, so
+  // the zone means have no packing fraction (they read 0, as a measurement); a window given
+  // across the layer measures it.
+  Packing layer;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j) layer.add(0.5 + i, 0.5 + j, 0.5, 0.5);
+  const Box box = make_box(6.0, 6.0, 0.0, 4.0, true);
+  SummarySettings set;
+  set.floor = 0.0;
+  set.lateral_width = 1.0;
+  const Summary s = summarize(layer.view(), box, set);
+  EXPECT_TRUE(std::isnan(s.phi_lateral)) << s.phi_lateral;
+  EXPECT_TRUE(std::isnan(s.phi_central)) << s.phi_central;
+  EXPECT_TRUE(std::isfinite(s.phi_bulk) && s.phi_bulk > 0.0);
+  set.window_lo = 0.25;
+  set.window_hi = 0.75;
+  const Summary given = summarize(layer.view(), box, set);
+  EXPECT_GT(given.phi_lateral, 0.0);
+  EXPECT_GT(given.phi_central, 0.0);
+}
+
 TEST(StereologyLattice, FccSummaryOnWholePeriods)
 {
   const double a = 1.0;
@@ -550,6 +573,22 @@ TEST(StereologyProfile, BinsTileTheRangeAndPlanesAreCuts)
   EXPECT_NEAR(mean, horizontal_slab_volume(p.view(), 0.5, 8.5) / (36.0 * 8.0), 1e-13);
 }
 
+TEST(StereologyProfile, BinsFarNarrowerThanASphereStillSeeIt)
+{
+  // A bin of 1e-13 around z = 0.5: the sphere below reaches 1e13 bins beyond it, past int. The
+  // cast of that bin index gave INT_MIN and the sphere was skipped: Phi 0 in its middle.
+  const Packing p = random_spheres(5, 50, 6.0, 8.0);
+  const Box box = make_box(6.0, 6.0, 0.0, 10.0, true);
+  for (double width : {1e-6, 1e-13}) {
+    const PlaneGrid grid{3.0, 3.0 + width, 1};
+    const std::vector<double> rows = profile(p.view(), box, 2, grid, 0.0, 0.0);
+    const double at_plane = horizontal_cut_area(p.view(), grid.position(0)) / 36.0;
+    ASSERT_GT(at_plane, 0.1);
+    EXPECT_NEAR(rows[1], at_plane, 1e-14) << width;
+    EXPECT_NEAR(rows[2], at_plane, 1e-5) << width;  // the bin mean tends to the plane's value
+  }
+}
+
 TEST(StereologyProfile, VerticalProfileMatchesDirectSums)
 {
   const Packing p = random_spheres(9, 50, 6.0, 8.0);
@@ -693,6 +732,19 @@ TEST(StereologyValidation, BadSettingsThrowNamingTheArgument)
   EXPECT_THROW(make_column_grid(box, 1e-4), std::invalid_argument);
   EXPECT_THROW(make_column_grid(box, 1e-300), std::invalid_argument);
   EXPECT_EQ(make_column_grid(box, 1.0 / 4096).n[0], 4096);
+  // the default width (not the user's) is widened instead: a box 5000 diameters wide along x
+  // (create_packing's summary ended the run there) has 4096 columns along x, 3 along y
+  Packing wide;
+  wide.add(2.5, 1.0, 0.5, 0.5);
+  const Box long_box = make_box(5000.0, 3.0, 0.0, 10.0, true);
+  EXPECT_THROW(make_column_grid(long_box, 1.0), std::invalid_argument);
+  const ColumnGrid widened = surface_column_grid(long_box, SummarySettings{}, 0.5);
+  EXPECT_EQ(widened.n[0], 4096);
+  EXPECT_EQ(widened.n[1], 3);
+  SummarySettings given;
+  given.column_width = 1.0;
+  EXPECT_THROW(surface_column_grid(long_box, given, 0.5), std::invalid_argument);
+  EXPECT_NEAR(summarize(wide.view(), long_box, SummarySettings{}).surface, 1.0, 1e-12);
   EXPECT_NO_THROW(validate(PlaneGrid{0.0, 1.0, 3}));
   try {
     validate(PlaneGrid{6.5, 5.0, 10});

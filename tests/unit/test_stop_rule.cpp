@@ -261,12 +261,13 @@ TEST(StopRule, KernelDriftRuleConvergesAfterAFullWindow)
                                               defaults::kContactTolerance);
   EXPECT_EQ(v.i, -1);
 
+  // a window beyond the cap could never stop before it: refused before anything moves
   p.drift_window = 40;
   p.max_checks = 20;
-  const SettleResult capped =
-      settler.settle(copy.xyz.data(), copy.radius.data(), nullptr, copy.size(), copy.box, p);
-  EXPECT_TRUE(capped.hit_cap);
-  EXPECT_EQ(capped.checks, 20);
+  const std::vector<double> before = copy.xyz;
+  EXPECT_THROW(settler.settle(copy.xyz.data(), copy.radius.data(), nullptr, copy.size(), copy.box, p),
+               std::invalid_argument);
+  EXPECT_EQ(copy.xyz, before);
 
   for (long bad : {1L, 0L, -3L, defaults::kSettleDriftWindowMax + 1}) {
     p.drift_window = bad;
