@@ -75,6 +75,50 @@ def test_log_runs_warnings_and_concatenation(run_dir):
     assert np.isnan(th["c_phi[2]"][4:]).all()
 
 
+def _log_of_runs(*runs):
+    """A log text of one-line thermo runs, each given as its list of (step, value) rows."""
+    text = "LAMMPS (29 Sep 2021)\n"
+    for rows in runs:
+        text += "Per MPI rank memory allocation (min/avg/max) = 3.5 | 3.5 | 3.5 Mbytes\n"
+        text += "Step Phi\n" + "".join(f"{s} {v}\n" for s, v in rows)
+        text += "Loop time of 0.1 on 1 procs for 10 steps with 10 atoms\n\n"
+    return text
+
+
+def test_log_of_a_resumed_run_appended_names_the_repeated_steps(tmp_path):
+    """A run resumed from its restart at step 30 with 'log log.run append' prints steps 30 and
+    40 again: Log.thermo counted them twice without a word (steps 0 ... 40 30 40 50 60). It
+    raises naming the run and the steps; join(repeats='last') keeps the later run's rows."""
+    first = [(0, 0.55), (10, 0.56), (20, 0.57), (30, 0.58), (40, 0.59)]
+    again = [(30, 0.58), (40, 0.595), (50, 0.6), (60, 0.61)]
+    log = read_log(_write(tmp_path, "log.run", _log_of_runs(first, again)))
+    with pytest.raises(TapmcFormatError, match="run 2 starts at step 30, after step 40"):
+        log.thermo
+    last = log.join(repeats="last")
+    np.testing.assert_array_equal(last["Step"], [0, 10, 20, 30, 40, 50, 60])
+    np.testing.assert_array_equal(last["Phi"], [0.55, 0.56, 0.57, 0.58, 0.595, 0.6, 0.61])
+    assert len(log.join(repeats="all")) == 9
+    # consecutive runs (the boundary step printed twice) are merged as before
+    consecutive = read_log(_write(tmp_path, "log.two", _log_of_runs(first, again[1:])))
+    np.testing.assert_array_equal(consecutive.thermo["Step"], [0, 10, 20, 30, 40, 50, 60])
+    with pytest.raises(ValueError, match="repeats = 'first'"):
+        log.join(repeats="first")
+
+
+def test_log_keeps_the_table_of_a_run_with_pre_no(tmp_path):
+    """'run N pre no' prints no memory line (LAMMPS sets nothing up): its table was left out,
+    steps missing from Log.thermo without a word. Its header follows the run's echo; a 'Loop
+    time' whose table cannot be found (echo none) raises."""
+    text = _log_of_runs([(0, 0.55), (10, 0.56)]) + (
+        "run             10 pre no post no\nStep Phi\n10 0.56\n15 0.565\n20 0.57\n"
+        "Loop time of 0.05 on 1 procs for 10 steps with 300 atoms\n")
+    log = read_log(_write(tmp_path, "log.preno", text))
+    assert len(log.runs) == 2
+    np.testing.assert_array_equal(log.thermo["Step"], [0, 10, 15, 20])
+    hidden = text.replace("run             10 pre no post no\n", "")
+    _expect(_write(tmp_path, "log.hidden", hidden), 12, read_log)  # its Loop time line
+
+
 def test_ave_time_scalar_and_print_agree_with_log(run_dir):
     th = read_log(run_dir / "log.lammps").thermo
     av = read_ave_time(run_dir / "scalar.dat")
@@ -305,6 +349,34 @@ def test_fix_print_of_a_resumed_run_names_the_repeated_step(tmp_path):
     np.testing.assert_array_equal(every.data[5:], last.data[2:])
     with pytest.raises(ValueError, match="repeats = 'first'; allowed: 'error', 'last', 'all'"):
         read_fix_print(tmp_path / "print.dat", repeats="first")
+
+
+def test_fix_print_without_a_step_column_keeps_every_tap(tmp_path):
+    """An unchanged tap printed with 4 digits is a real row: it was dropped as a repeat (194
+    of 201 taps read, row k no longer tap k). Without a step column every row is kept, with a
+    warning naming how many equal the row before; a title after the data (a fix defined again,
+    e.g. a resumed run appending) cannot be sorted out without steps and stops there."""
+    text = "# phib phic\n0.5912 0.6015\n0.5912 0.6015\n0.5913 0.6015\n0.5913 0.6015\n"
+    with pytest.warns(UserWarning, match="2 row\\(s\\) equal to the row before, kept"):
+        table = read_fix_print(_write(tmp_path, "four.print", text))
+    assert len(table) == 4 and table.columns == ["phib", "phic"]
+    resumed = text + "# phib phic\n0.5912 0.6015\n"
+    err = _expect(_write(tmp_path, "resumed.print", resumed), 6, read_fix_print)
+    assert "a '#' line after the data" in str(err) and "print a step column" in str(err)
+    with pytest.warns(UserWarning):
+        assert len(read_fix_print(tmp_path / "resumed.print", repeats="all")) == 5
+
+
+@pytest.mark.parametrize("name", ["tap", "Timestep", "step"])
+def test_fix_print_step_column_by_any_of_its_names(tmp_path, name):
+    """The quick start and the tutorial name their step column 'tap': a resumed run's
+    repeated taps were counted twice without a word. 'tap' and 'timestep' count as 'step'."""
+    text = f"# {name} phib\n0 0.5\n1 0.51\n2 0.52\n2 0.52\n# {name} phib\n1 0.515\n2 0.525\n"
+    err = _expect(_write(tmp_path, "taps.dat", text), 7, read_fix_print)
+    assert "step 1 printed after step 2" in str(err)
+    last = read_fix_print(tmp_path / "taps.dat", repeats="last")
+    np.testing.assert_array_equal(last[name], [0, 1, 2])
+    np.testing.assert_array_equal(last["phib"], [0.5, 0.515, 0.525])
 
 
 def test_fix_print_without_a_title_or_a_step_column(tmp_path):

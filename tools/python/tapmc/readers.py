@@ -13,6 +13,7 @@ short still parses as a number; in a dump it cuts the last frame short and raise
 """
 
 import re
+import warnings
 
 import numpy as np
 
@@ -73,10 +74,23 @@ class Log:
 
     @property
     def thermo(self):
+        """All runs as one :class:`Thermo`: :meth:`join` with ``repeats="error"``."""
+        return self.join()
+
+    def join(self, repeats="error"):
         """All runs as one :class:`Thermo`. Columns are the union over the runs in order of
         appearance (NaN where a run does not print a column). Consecutive runs repeat their
         boundary step (the last row of one run and the first of the next): the two rows are
-        merged into one, the earlier run's values winning, so that every step appears once."""
+        merged into one, the earlier run's values winning, so that every step appears once.
+
+        A run that starts below the previous run's last step (a run resumed from a restart
+        file into the same log with ``log ... append``, or after ``reset_timestep``) would
+        count those steps twice: ``repeats="error"`` raises :class:`TapmcFormatError` naming
+        the run and the steps, ``"last"`` keeps the later run's rows of the steps printed
+        again (as ``read_fix_print``), ``"all"`` every row as printed."""
+        if repeats not in FIX_PRINT_REPEATS:
+            raise ValueError(f"repeats = {repeats!r}; allowed: "
+                             + ", ".join(repr(r) for r in FIX_PRINT_REPEATS))
         columns = []
         for run in self.runs:
             columns += [c for c in run.columns if c not in columns]
@@ -88,6 +102,18 @@ class Log:
             for j, c in enumerate(run.columns):
                 block[:, columns.index(c)] = run.data[:, j]
             start = 0
+            first = block[0, columns.index("Step")] if has_step and len(run) else np.nan
+            if steps and first < steps[-1] and repeats != "all":
+                if repeats == "error":
+                    raise TapmcFormatError(
+                        self.path, None, f"run {self.runs.index(run) + 1} starts at step "
+                        f"{first:g}, after step {steps[-1]:g}: a run resumed from a restart "
+                        "file (log ... append) or after reset_timestep prints those steps "
+                        "again; Log.join(repeats='last') keeps the later run's rows, "
+                        "repeats='all' every row, Log.runs each run alone")
+                while steps and steps[-1] >= first:
+                    steps.pop()
+                    rows.pop()
             if has_step and rows and len(run) and "Step" in run.columns \
                     and steps and block[0, columns.index("Step")] == steps[-1]:
                 last = rows[-1]
@@ -103,11 +129,30 @@ class Log:
 
 
 _MEMORY_LINE = re.compile(r"^\s*(Per MPI rank memory|Memory usage per processor)")
+#: The echo of a run command with 'pre no': LAMMPS sets nothing up and prints no memory line,
+#: its thermo header follows the echo.
+_RUN_PRE_NO = re.compile(r"^\s*run\s.*\bpre\s+no\b")
+
+
+def _table_header_line(lines, i):
+    """The index of the thermo header a table starting at line i has (after the memory line,
+    or after the echo of a 'run ... pre no'), else None."""
+    if i + 1 >= len(lines):
+        return None
+    if _MEMORY_LINE.match(lines[i]):
+        return i + 1
+    following = lines[i + 1].split()
+    if _RUN_PRE_NO.match(lines[i]) and following and not is_float(following[0]) \
+            and not _MEMORY_LINE.match(lines[i + 1]):
+        return i + 1
+    return None
 
 
 def read_log(path, strict=True):
     """Read a LAMMPS log file: the thermo table of every ``run`` (one-line thermo styles: the
-    header line follows the "Per MPI rank memory" line, the table ends at ``Loop time``) and
+    header line follows the "Per MPI rank memory" line, or the echo of a ``run ... pre no``,
+    which prints none; the table ends at ``Loop time``; a ``Loop time`` line without a table
+    raises, as a run left out would be silently missing) and
     the ``WARNING`` lines. A log cut during a run (killed job, ``ERROR``) keeps the rows written
     so far and marks that run ``complete = False``.
 
@@ -127,8 +172,14 @@ def read_log(path, strict=True):
         line = lines[i]
         if line.startswith("WARNING"):
             warnings.append(line.strip())
-        if _MEMORY_LINE.match(line) and i + 1 < n:
-            header = lines[i + 1].split()
+        if line.startswith("Loop time"):
+            raise TapmcFormatError(path, i + 1, "a run's 'Loop time' without its thermo table "
+                                   "(its header is found after the 'Per MPI rank memory' line "
+                                   "or the echo of a 'run ... pre no': a run with 'pre no' and "
+                                   "'echo none'?)")
+        at = _table_header_line(lines, i)
+        if at is not None:
+            header = lines[at].split()
             if not header:
                 raise TapmcFormatError(path, i + 2, "empty thermo header line")
             if header[0].startswith("---"):
@@ -305,23 +356,32 @@ FIX_PRINT_REPEATS = ("error", "last", "all")
 #: The title LAMMPS writes when fix print has no ``title`` keyword: words, not column names.
 _FIX_PRINT_DEFAULT_TITLE = re.compile(r"^\s*Fix print output for fix \S+\s*$")
 
+#: Names of a fix print column that counts the taps (any case): the step check reads it.
+FIX_PRINT_STEP_NAMES = ("step", "tap", "timestep")
+
 
 def read_fix_print(path, columns=None, repeats="error"):
     """Read a ``fix print`` file of numeric lines. Column names: ``columns`` if given, else the
     last ``#`` line before the data when it has one name per field (a ``title`` such as
     ``"# step phib z"``; LAMMPS's own title "# Fix print output for fix ID" never counts),
-    else ``c1, c2, ...``. A row identical to the previous one is dropped (``fix print`` writes
-    the boundary step of consecutive runs twice). A last line without its end-of-line (a killed
-    run) is left out.
+    else ``c1, c2, ...``. A last line without its end-of-line (a killed run) is left out.
 
-    Steps printed again: with a column named ``step`` (any case), a row whose step is not
-    above the previous row's comes from a run resumed from a restart file with ``append``
-    (it prints the taps after the restart again) or from consecutive runs that print their
-    boundary step with other values. ``repeats`` says what to do: ``"error"`` (the default)
-    raises :class:`TapmcFormatError` at that line, since counting such taps twice is silently
-    wrong; ``"last"`` keeps the last print of each step (the rows from that step on that were
-    printed before are dropped: the continued run supersedes them; ``Table.superseded``
-    counts them); ``"all"`` keeps every row as printed. Without a step column nothing is
+    Steps printed again: with a step column (named ``step``, ``tap`` or ``timestep``, any case:
+    :data:`FIX_PRINT_STEP_NAMES`), a row identical to the previous one is dropped (``fix
+    print`` writes the boundary step of consecutive runs twice), and a row whose step is not
+    above the previous row's comes from a run resumed from a restart file with ``append`` (it
+    prints the taps after the restart again) or from consecutive runs that print their boundary
+    step with other values. ``repeats`` says what to do: ``"error"`` (the default) raises
+    :class:`TapmcFormatError` at that line, since counting such taps twice is silently wrong;
+    ``"last"`` keeps the last print of each step (the rows from that step on that were printed
+    before are dropped: the continued run supersedes them; ``Table.superseded`` counts them);
+    ``"all"`` keeps every row as printed.
+
+    Without a step column no row can be told from a repeat: every row is kept (an unchanged tap
+    printed with few digits is a real row), with a warning when a row equals the one before it
+    (it may be the boundary step of consecutive runs); a ``#`` line after the data (the title a
+    fix defined again writes, e.g. a run resumed with ``append``) raises
+    :class:`TapmcFormatError` unless ``repeats="all"``. Print a step column to have both
     checked."""
     if repeats not in FIX_PRINT_REPEATS:
         raise ValueError(f"repeats = {repeats!r}; allowed: "
@@ -329,19 +389,21 @@ def read_fix_print(path, columns=None, repeats="error"):
     lines, cut_short = read_lines(path)
     rows, linenos, title = [], [], None
     width = None
+    title_after_data = None  # the line of the first '#' line after a row
     for i, line in enumerate(lines):
         if line.startswith("#"):
             if not rows and not _FIX_PRINT_DEFAULT_TITLE.match(line.lstrip("#")):
                 title = line.lstrip("#").split()
+            elif rows and title_after_data is None:
+                title_after_data = i + 1
             continue
         fields = line.split()
         if not fields:
             continue
         row = floats(path, i + 1, fields, width)
         width = len(row)
-        if not rows or row != rows[-1]:
-            rows.append(row)
-            linenos.append(i + 1)
+        rows.append(row)
+        linenos.append(i + 1)
     if not rows:
         what = "empty file" if not lines and not cut_short else "no numeric line found"
         raise TapmcFormatError(path, None, what + cut_short_note(cut_short, len(lines)))
@@ -350,12 +412,34 @@ def read_fix_print(path, columns=None, repeats="error"):
     elif len(columns) != width:
         raise ValueError(f"columns has {len(columns)} names but {path} has {width} fields")
     names = [str(c).lower() for c in columns]
+    step = next((names.index(n) for n in FIX_PRINT_STEP_NAMES if n in names), None)
     superseded = 0
-    if repeats != "all" and "step" in names:
-        rows, superseded = _steps_once(path, rows, linenos, names.index("step"), repeats)
+    if step is not None:
+        kept = [j for j in range(len(rows)) if j == 0 or rows[j] != rows[j - 1]]
+        rows, linenos = [rows[j] for j in kept], [linenos[j] for j in kept]
+        if repeats != "all":
+            rows, superseded = _steps_once(path, rows, linenos, step, repeats)
+    else:
+        _check_without_steps(path, rows, title_after_data, repeats)
     table = Table(columns, np.array(rows), path)
     table.superseded = superseded
     return table
+
+
+def _check_without_steps(path, rows, title_after_data, repeats):
+    """read_fix_print without a step column: a title after the data stops ("error", "last"),
+    rows equal to the one before are kept with a warning."""
+    if repeats != "all" and title_after_data is not None:
+        raise TapmcFormatError(
+            path, title_after_data, "a '#' line after the data: a fix print defined again "
+            "(e.g. a run resumed from a restart file with 'append') wrote here, and without a "
+            "step column (" + ", ".join(FIX_PRINT_STEP_NAMES) + ") the taps it printed again "
+            "cannot be found; print a step column, or read with repeats='all' to keep every row")
+    same = sum(1 for a, b in zip(rows, rows[1:]) if a == b)
+    if same:
+        warnings.warn(f"{path}: {same} row(s) equal to the row before, kept: without a step "
+                      "column an unchanged tap cannot be told from the boundary step that "
+                      "consecutive runs print twice; print a step column", stacklevel=3)
 
 
 def _steps_once(path, rows, linenos, k, repeats):
