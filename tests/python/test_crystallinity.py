@@ -327,6 +327,33 @@ def test_zones_of_a_crystal_on_a_floor_between_walls(tmp_path):
     assert empty.n == 0 and math.isnan(empty.crystalline_fraction)
 
 
+def test_in_a_tube_the_walls_are_the_cylinder():
+    """A simple cubic stack cut to a tube of radius 4.05 about (4, 4): the wall zone is the
+    spheres within the band of the cylinder, not of the box faces (105 of the 172 spheres
+    near a tube's wall were missed, and spheres in the box corners outside the tube counted)."""
+    from tapmc.cylinder import Cylinder
+
+    g = np.arange(0.5, 8.0, 1.0)
+    x, y, z = (a.ravel() for a in np.meshgrid(g, g, np.arange(0.5, 8.0, 1.0), indexing="ij"))
+    tube = Cylinder(4.0, 4.0, 4.05)
+    inside = np.hypot(x - 4, y - 4) <= 3.55
+    pos = np.column_stack([x, y, z])[inside]
+    c = Crystallinity(pos, 0.5, [0, 0, 0], [8, 8, 20], (False, False, False), floor=0.0,
+                      cylinder=tube).compute()
+    masks = c.zone_masks(band=2.0, margin=3.0)
+    gap = 4.05 - np.hypot(pos[:, 0] - 4, pos[:, 1] - 4)
+    surface = c.surface()
+    height_ok = (pos[:, 2] >= 1.5) & (pos[:, 2] <= surface - 1.5)
+    assert surface == pytest.approx(8.0, abs=1e-9)   # the flat top of the stack, in the tube
+    assert np.array_equal(masks["walls"], (gap < 1.0) & height_ok)
+    assert np.array_equal(masks["bulk"], (gap >= 1.5) & height_ok)
+    boxed = Crystallinity(pos, 0.5, [0, 0, 0], [8, 8, 20], (False, False, False),
+                          floor=0.0).compute().zone_masks(band=2.0, margin=3.0)
+    assert np.count_nonzero(masks["walls"] & ~boxed["walls"]) > 0   # what the box faces miss
+    with pytest.raises(ValueError, match="cylinder given but x or y is periodic"):
+        Crystallinity(pos, 0.5, [0, 0, 0], [8, 8, 20], (True, True, False), cylinder=tube)
+
+
 def test_periodic_sides_have_no_walls_and_no_floor_without_one():
     pos, box, _ = lattice("fcc")
     c = periodic_crystal("fcc")

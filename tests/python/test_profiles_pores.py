@@ -504,3 +504,27 @@ def test_slab_fractions_of_a_lattice_and_the_profile_jackknife():
     assert np.all(jackknife_error(reps) > 0.01)
     with pytest.raises(ValueError, match="blocks = 1"):
         vertical_profile_jackknife(pos, R, edges, [0, 0, 0], [8, 8, 8], blocks=1)
+
+
+def test_slab_fractions_of_a_polydisperse_bed_take_a_radius_per_sphere():
+    """A bidisperse simple cubic stack (layers of radius 0.5 and 0.25 alternating, spacing 1):
+    one period of two layers holds (pi/6)(1 + 1/8)/2 of its volume. A radius per sphere raised
+    a raw TypeError (and the mean radius, its only way in, is wrong by up to 0.09)."""
+    from tapmc.profiles import slab_fractions, vertical_profile_jackknife
+
+    n = 8
+    g = np.arange(n) + 0.5
+    x, y, z = np.meshgrid(g, g, g, indexing="ij")
+    pos = np.stack([x.ravel(), y.ravel(), z.ravel()], axis=1)
+    radii = np.where(np.floor(pos[:, 2]) % 2 == 0, 0.5, 0.25)
+    edges = np.array([1.0, 3.0, 5.0]) + 0.0     # whole periods of the two layers
+    expected = np.pi / 6 * (1 + 1 / 8) / 2
+    np.testing.assert_allclose(slab_fractions(pos[:, 2], radii, edges, n * n), expected,
+                               rtol=1e-12)
+    full, reps = vertical_profile_jackknife(pos, radii, edges, [0, 0, 0], [n, n, n], blocks=2)
+    np.testing.assert_allclose(full, expected, rtol=1e-12)
+    np.testing.assert_allclose(reps, expected, rtol=1e-12)
+    with pytest.raises(ValueError, match="radius has 3 values for 512 spheres"):
+        slab_fractions(pos[:, 2], [0.5, 0.5, 0.5], edges, n * n)
+    with pytest.raises(ValueError, match=r"radius\[0\] = -0.5 must be > 0"):
+        slab_fractions(pos[:, 2], -radii, edges, n * n)

@@ -258,6 +258,9 @@ def test_broken_dumps(tmp_path):
     assert [f.n_atoms for f in read_dump(grown).frames] == [2, 1]
     e = _expect(grown, None, lambda p: read_dump(p, backend="mdanalysis").frames)
     assert "frames of 1 to 2 atoms (the first change at step 5)" in str(e)
+    # Dump.universe() says the same (it ended in MDAnalysis's own ValueError)
+    e = _expect(grown, None, lambda p: read_dump(p).universe())
+    assert "frames of 1 to 2 atoms (the first change at step 5)" in str(e)
     for radius in (float("inf"), 0.0, float("nan")):
         with pytest.raises(ValueError, match="radius = .* must be finite and > 0"):
             read_dump(tmp_path / "ok.dump", radius=radius)

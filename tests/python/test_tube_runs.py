@@ -84,6 +84,18 @@ def test_settings_from_the_log(tmp_path):
         "N = ?, tube D = ?, eps = ?, eta = ?, ? taps")
 
 
+def test_from_log_takes_a_log_read_by_read_log():
+    """The docs write from_log(log): a Log (read_log's) ended in a raw TypeError of pathlib.
+    It is read from the path it carries; anything else is named."""
+    from tapmc.readers import read_log
+    log_path = SOURCE / "examples" / "cylinder" / "log.29Nov26.cylinder.g++.1"
+    log = read_log(log_path, strict=False)
+    assert Cylinder.from_log(log) == Cylinder.from_log(log_path) == Cylinder(5.0, 5.0, 5.0)
+    assert TubeSettings.from_log(log) == TubeSettings.from_log(log_path)
+    with pytest.raises(TypeError, match="from_log takes a log's path or a Log, got int"):
+        Cylinder.from_log(3)
+
+
 def test_compaction_curve_and_its_figure(tmp_path):
     rows, _ = write_run(tmp_path)
     curve = TubeCompaction.from_file(tmp_path / "taps.dat").compute()

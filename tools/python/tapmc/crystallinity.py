@@ -149,8 +149,10 @@ class Crystallinity:
     axis (x or y) has walls at the box faces; ``floor``: height of the floor (None: no floor);
     ``cutoff``: bond length (default ``CUTOFF_OVER_DIAMETER`` mean diameters); ``l``: the
     orders reported (integers 1 .. ``MAX_L``; ``CRYSTAL_L`` = 6 is always computed too);
-    ``bond_threshold`` and ``min_solid_bonds``: the crystal criterion.
-    :meth:`from_frame` takes a :class:`tapmc.readers.Frame` with radii (a dump).
+    ``bond_threshold`` and ``min_solid_bonds``: the crystal criterion; ``cylinder``: the
+    container of a tube run (a :class:`tapmc.cylinder.Cylinder`, with non-periodic x and y):
+    its wall is the side wall of the zones and bounds the columns of h_s, where the box faces
+    are otherwise. :meth:`from_frame` takes a :class:`tapmc.readers.Frame` with radii (a dump).
 
     After :meth:`compute`: ``n``; ``pairs`` (bonds i < j, indices into positions);
     ``neighbours`` (bonds per sphere); ``q`` {l: q_l(i), nan for a sphere without bonds};
@@ -160,7 +162,7 @@ class Crystallinity:
 
     def __init__(self, positions, radii, box_lo, box_hi, periodic=(True, True, False),
                  floor=None, cutoff=None, l=DEFAULT_L, bond_threshold=SOLID_BOND_THRESHOLD,
-                 min_solid_bonds=MIN_SOLID_BONDS):
+                 min_solid_bonds=MIN_SOLID_BONDS, cylinder=None):
         self.positions, r = validated_spheres(positions, radii, min_count=2)
         self.radii = r
         self.box_lo, self.box_hi, per = validated_box(box_lo, box_hi, periodic)
@@ -169,6 +171,10 @@ class Crystallinity:
         if self.floor is not None and self.periodic[2]:
             raise ValueError(f"floor = {floor!r} given but z is periodic: a floor needs a "
                              "non-periodic z")
+        if cylinder is not None and (self.periodic[0] or self.periodic[1]):
+            raise ValueError("cylinder given but x or y is periodic: a tube needs "
+                             "non-periodic x and y")
+        self.cylinder = cylinder
         self.mean_radius = float(r.mean())
         self.cutoff = (CUTOFF_OVER_DIAMETER * 2.0 * self.mean_radius if cutoff is None
                        else positive("cutoff", cutoff))
@@ -336,8 +342,11 @@ class Crystallinity:
             off_floor = (height >= margin) & (pos[:, 2] <= self.surface() - margin)
         near_wall = np.zeros(n, dtype=bool)
         off_wall = np.ones(n, dtype=bool)
+        if self.cylinder is not None:  # a tube: the wall is the cylinder, not the box faces
+            gap = self.cylinder.radius - self.cylinder.axis_distance(pos)
+            near_wall, off_wall = gap < band, gap >= margin
         for d in (0, 1):
-            if not self.periodic[d]:
+            if not self.periodic[d] and self.cylinder is None:
                 gap = np.minimum(pos[:, d] - self.box_lo[d], self.box_hi[d] - pos[:, d])
                 near_wall |= gap < band
                 off_wall &= gap >= margin
@@ -353,7 +362,8 @@ class Crystallinity:
             n = self.positions.shape[0]
             frame = Frame(0, self.box_lo, self.box_hi, self.periodic, np.arange(1, n + 1),
                           self.positions, self.radii)
-            self._surface = PackingCheck(frame, floor=self.floor, digits=None).compute().surface
+            self._surface = PackingCheck(frame, floor=self.floor, digits=None,
+                                         cylinder=self.cylinder).compute().surface
         return self._surface
 
     def zones(self, band=NEAR_BOUNDARY_OVER_R, margin=BULK_MARGIN_OVER_R):

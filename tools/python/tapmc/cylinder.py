@@ -23,6 +23,7 @@ inside or outside takes the closed forms. Accuracy ~1e-15 R^3, the compute's.
 from __future__ import annotations
 
 import math
+import os
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -104,7 +105,12 @@ class Cylinder:
     def from_log(cls, path, region=None):
         """The container of a LAMMPS run from its log: the region named by ``region`` (default:
         the last ``container ID`` keyword the log echoes), from its last fully substituted
-        ``region ID cylinder z cx cy radius ...`` command. ValueError when the log has none."""
+        ``region ID cylinder z cx cy radius ...`` command. ``path``: the log's path, or a
+        :class:`~tapmc.readers.Log` read from it (its ``path``). ValueError when the log has
+        none."""
+        path = getattr(path, "path", path)  # a Log carries the path it was read from
+        if not isinstance(path, (str, os.PathLike)):
+            raise TypeError(f"from_log takes a log's path or a Log, got {type(path).__name__}")
         text = Path(path).read_text(errors="replace")
         if region is None:
             named = re.findall(r"^\s*(?:compute|fix|create_packing)\b.*\bcontainer\s+(\S+)",

@@ -353,6 +353,7 @@ class Dump:
         """An MDAnalysis Universe of this dump (positions shifted to the origin, as MDAnalysis
         does; add ``frame.box_lo`` back for absolute coordinates)."""
         frames = list(_parse_dump_frames(self.path, self.radius, self.boundary))
+        self._require_one_atom_count(frames)
         path, temporary = self._mda_compatible_file(frames)
         universe = _mdanalysis_universe(path)
         if temporary:  # MDAnalysis keeps reading the file: remove it when Python exits
@@ -360,13 +361,16 @@ class Dump:
             atexit.register(lambda: os.path.exists(path) and os.remove(path))
         return universe
 
-    def _mdanalysis_positions(self, frames):
+    def _require_one_atom_count(self, frames):
         counts = sorted({fr.n_atoms for fr in frames})
         if len(counts) > 1:  # MDAnalysis keeps one topology for the whole trajectory
             step = next(fr.step for fr in frames if fr.n_atoms != frames[0].n_atoms)
             raise TapmcFormatError(self.path, None, f"frames of {counts[0]} to {counts[-1]} "
                                    f"atoms (the first change at step {step}): MDAnalysis reads "
                                    "one atom count per file; use backend='native'")
+
+    def _mdanalysis_positions(self, frames):
+        self._require_one_atom_count(frames)
         path, temporary = self._mda_compatible_file(frames)
         try:
             universe = _mdanalysis_universe(path)

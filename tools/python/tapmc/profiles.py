@@ -174,13 +174,28 @@ def sphere_slab_volume(z, radius, lo, hi):
     return np.pi * (radius * radius * (b - a) - (b ** 3 - a ** 3) / 3.0)
 
 
+def _radii(radius, count):
+    """A positive radius, or one per sphere (``count`` of them, each finite and > 0), as a
+    column to broadcast against the slabs."""
+    if np.ndim(radius) == 0:
+        return positive("radius", radius)
+    r = as_1d("radius", radius, min_len=0)
+    if len(r) != count:
+        raise ValueError(f"radius has {len(r)} values for {count} spheres (give one radius, "
+                         "or one per sphere)")
+    if np.any(r <= 0):
+        bad = int(np.flatnonzero(r <= 0)[0])
+        raise ValueError(f"radius[{bad}] = {r[bad]} must be > 0")
+    return r[:, None]
+
+
 def slab_fractions(z, radius, edges, area):
-    """Exact mean solid fraction of each slab [edges[k], edges[k+1]) of the spheres of radius
-    ``radius`` at heights ``z`` over a base of ``area``: the sphere volume inside the slab over
-    its volume, what compute stereo/profile's bin means are (section IV.A's smoothing); no
-    sphere gives zeros."""
+    """Exact mean solid fraction of each slab [edges[k], edges[k+1]) of the spheres at heights
+    ``z`` (``radius``: one for all, or one per sphere: a polydisperse bed) over a base of
+    ``area``: the sphere volume inside the slab over its volume, what compute stereo/profile's
+    bin means are (section IV.A's smoothing); no sphere gives zeros."""
     z = as_1d("z", z, min_len=0)
-    radius = positive("radius", radius)
+    radius = _radii(radius, len(z))
     edges = as_1d("edges", edges, min_len=2)
     if np.any(np.diff(edges) <= 0):
         raise ValueError("edges must increase")
@@ -190,8 +205,9 @@ def slab_fractions(z, radius, edges, area):
 
 def vertical_profile_jackknife(positions, radius, edges, box_lo, box_hi,
                                blocks=PROFILE_JACKKNIFE_BLOCKS):
-    """(profile, replicates): the exact slab fractions of the spheres at ``positions`` (n x 3)
-    between the lateral bounds box_lo[:2]..box_hi[:2], and blocks^2 replicates, each without
+    """(profile, replicates): the exact slab fractions of the spheres at ``positions`` (n x 3;
+    ``radius`` one for all or one per sphere) between the lateral bounds box_lo[:2]..box_hi[:2],
+    and blocks^2 replicates, each without
     the spheres whose centres lie in one lateral block (its base area removed too). The spread
     of a statistic of the replicates (tapmc.fluctuations.jackknife_error) is its error within
     the packing."""
@@ -208,8 +224,10 @@ def vertical_profile_jackknife(positions, radius, edges, box_lo, box_hi,
     label = cell[:, 0] + blocks * cell[:, 1]
     area = float(np.prod(hi - lo))
     width = np.diff(np.asarray(edges, float))
-    per_block = np.array([slab_fractions(pos[label == k, 2], radius, edges, area) * area
-                          for k in range(blocks * blocks)]) * width  # sphere volume per slab
+    radii = np.full(len(pos), positive("radius", radius)) if np.ndim(radius) == 0 else \
+        _radii(radius, len(pos))[:, 0]
+    per_block = np.array([slab_fractions(pos[label == k, 2], radii[label == k], edges, area)
+                          * area for k in range(blocks * blocks)]) * width  # per slab
     total = per_block.sum(axis=0)
     rest = area * (1.0 - 1.0 / blocks ** 2)
     return total / (area * width), (total - per_block) / (rest * width)

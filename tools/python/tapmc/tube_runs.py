@@ -18,6 +18,7 @@ from a run's folder.
 from __future__ import annotations
 
 import math
+import os
 import re
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -74,7 +75,12 @@ class TubeSettings:
     def from_log(cls, path, taps=None):
         """The settings a LAMMPS log echoes after variable substitution (the last full echo of
         create_packing, fix tapdilate, fix mc/settle and the container's region); ``taps``
-        overrides the last ``run N``. A missing file gives an empty TubeSettings."""
+        overrides the last ``run N``. ``path``: the log's path, or a
+        :class:`~tapmc.readers.Log` (its ``path``). A missing file gives an empty
+        TubeSettings."""
+        path = getattr(path, "path", path)  # a Log carries the path it was read from
+        if not isinstance(path, (str, os.PathLike)):
+            raise TypeError(f"from_log takes a log's path or a Log, got {type(path).__name__}")
         path = Path(path)
         text = path.read_text(errors="replace") if path.is_file() else ""
 
