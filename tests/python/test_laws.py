@@ -81,6 +81,25 @@ def test_profile_law_coverage_and_gradient_window():
     assert ProfileLaw(boundary="pbc").window == (5.0, 26.0)
 
 
+def test_a_default_window_reaching_the_surface_warns():
+    """A bed 24 R high (eq. 7 with zb_star = 24): the 'pbc' window (5..26 R) reaches the surface
+    decay and its line fitted the decay as a gradient (alpha 3x too large), without a word. It
+    warns; a bed above the window, or a window given, does not."""
+    import warnings as _warnings
+    zb = np.arange(0.25, 40.0, 0.5)
+    low = ProfileLaw.function(zb, 0.62, 0.0017, 1.5, 24.0)
+    with pytest.warns(UserWarning, match=r"default window \(5, 26\) of boundary 'pbc' reaches"):
+        steep = profile_gradient(zb, low, boundary="pbc")
+    assert steep.params["alpha"] > 2 * 0.0017
+    with _warnings.catch_warnings():
+        _warnings.simplefilter("error")
+        tall = ProfileLaw.function(zb, 0.62, 0.0017, 1.5, 40.0)
+        assert profile_gradient(zb, tall, boundary="pbc").params["alpha"] == \
+            pytest.approx(0.0017, rel=1e-3)
+        assert profile_gradient(zb, low, window=(5.0, 18.0)).params["alpha"] == \
+            pytest.approx(0.0017, rel=1e-3)
+
+
 def test_exact_data_give_exact_parameters():
     true = [0.61, 0.03, 0.7, 12.0]
     res = InverseLogLaw().fit(TAPS, InverseLogLaw.function(TAPS, *true))

@@ -3,6 +3,8 @@
 and the straight-line gradient alpha in the paper's window (:func:`profile_gradient`,
 :class:`StraightLine`, the numerator of eq. 7)."""
 
+import warnings
+
 import numpy as np
 
 from .._validate import as_1d, same_length
@@ -12,6 +14,10 @@ __all__ = ["StraightLine", "profile_gradient", "ProfileLaw", "PROFILE_WINDOWS"]
 
 #: gradient windows of the paper (section IV.A), in units of R.
 PROFILE_WINDOWS = {"fbc": (5.0, 22.0), "pbc": (5.0, 26.0)}
+#: A default window whose lowest Phi falls below this fraction of its median reaches the free
+#: surface's decay (a bed lower than the paper's 28 R or so): the line would fit the decay as a
+#: gradient (alpha 0.0048 for 0.0017 on a 24 R bed), so profile_gradient warns.
+SURFACE_DECAY_FRACTION = 0.9
 
 
 class StraightLine(Law):
@@ -46,7 +52,10 @@ def profile_gradient(zb, phi, window=None, boundary="fbc", sigma=None):
     """The vertical gradient alpha of section IV.A: a straight line Phi0 - alpha zb fitted to
     the profile inside ``window`` (default 5 <= z/R <= 22 for ``boundary`` 'fbc', 26 for 'pbc').
     The bin means of compute stereo/profile are exact slab averages, the "smoothing" of the
-    paper. Returns a :class:`FitResult` (params ``Phi0``, ``alpha``)."""
+    paper. Returns a :class:`FitResult` (params ``Phi0``, ``alpha``). A default window that
+    reaches the free surface's decay (Phi below :data:`SURFACE_DECAY_FRACTION` of the window's
+    median: a bed lower than the window) gives a warning: give ``window`` below the surface."""
+    default = window is None
     lo, hi = _window(window, boundary)
     zb = as_1d("zb", zb)
     phi = as_1d("phi", phi)
@@ -56,6 +65,15 @@ def profile_gradient(zb, phi, window=None, boundary="fbc", sigma=None):
         raise ValueError(f"window = ({lo:g}, {hi:g}) holds {inside.sum()} profile points; "
                          "at least 3 are needed")
     s = None if sigma is None else np.broadcast_to(np.asarray(sigma, float), zb.shape)[inside]
+    median = float(np.median(phi[inside]))
+    low = int(np.argmin(phi[inside]))
+    if default and phi[inside][low] < SURFACE_DECAY_FRACTION * median:
+        warnings.warn(f"the default window ({lo:g}, {hi:g}) of boundary {boundary!r} reaches the "
+                      f"free surface's decay (Phi {phi[inside][low]:.3g} at z/R = "
+                      f"{zb[inside][low]:.3g}, below {SURFACE_DECAY_FRACTION:g} of the window's "
+                      f"median {median:.3g}): the line fits the decay as a gradient; give "
+                      "window=(lo, hi) below the surface (e.g. an eq. 7 fit's zb_star - 3/beta)",
+                      stacklevel=2)
     return StraightLine().fit(zb[inside], phi[inside], s)
 
 
