@@ -99,10 +99,18 @@ def test_log_of_a_resumed_run_appended_names_the_repeated_steps(tmp_path):
     np.testing.assert_array_equal(last["Phi"], [0.55, 0.56, 0.57, 0.58, 0.595, 0.6, 0.61])
     assert len(log.join(repeats="all")) == 9
     # consecutive runs (the boundary step printed twice) are merged as before
-    consecutive = read_log(_write(tmp_path, "log.two", _log_of_runs(first, again[1:])))
+    consecutive = read_log(_write(tmp_path, "log.two", _log_of_runs(
+        first, [(40, 0.5900001), (50, 0.6), (60, 0.61)])))   # the same step 40, other format
     np.testing.assert_array_equal(consecutive.thermo["Step"], [0, 10, 20, 30, 40, 50, 60])
     with pytest.raises(ValueError, match="repeats = 'first'"):
         log.join(repeats="first")
+    # a boundary step printed with other values (atoms deleted between the runs): the earlier
+    # run's row is kept, with a warning naming the columns
+    changed = read_log(_write(tmp_path, "log.changed",
+                              _log_of_runs(first, [(40, 0.5), (50, 0.6)])))
+    with pytest.warns(UserWarning, match="step 40 ends run 1 and starts run 2 with other "
+                                         "values of Phi"):
+        np.testing.assert_array_equal(changed.thermo["Phi"][-2:], [0.59, 0.6])
 
 
 def test_log_keeps_the_table_of_a_run_with_pre_no(tmp_path):

@@ -61,6 +61,11 @@ class Thermo(Table):
         self.complete = complete
 
 
+#: A run-boundary step whose two prints differ by more than this (relative, or absolute near
+#: zero) changed between the runs; less is the rounding of two thermo formats (%.10g, %g).
+_BOUNDARY_RTOL, _BOUNDARY_ATOL = 1e-3, 1e-9
+
+
 class Log:
     """A LAMMPS log: ``runs`` (one :class:`Thermo` per ``run``), ``warnings`` (every
     ``WARNING`` line of the file, in order), ``thermo`` (all runs concatenated) and
@@ -118,6 +123,16 @@ class Log:
                     and steps and block[0, columns.index("Step")] == steps[-1]:
                 last = rows[-1]
                 fill = np.isnan(last)
+                # beyond the rounding of two thermo formats: e.g. atoms deleted between the runs
+                differs = ~fill & ~np.isnan(block[0]) & ~np.isclose(
+                    last, block[0], rtol=_BOUNDARY_RTOL, atol=_BOUNDARY_ATOL)
+                if np.any(differs):
+                    changed = [columns[j] for j in np.flatnonzero(differs)]
+                    warnings.warn(f"{self.path}: step {steps[-1]:g} ends run "
+                                  f"{self.runs.index(run)} and starts run "
+                                  f"{self.runs.index(run) + 1} with other values of "
+                                  f"{', '.join(changed)}; Log.thermo keeps the earlier run's "
+                                  "(Log.runs has both)", stacklevel=3)
                 last[fill] = block[0, fill]
                 start = 1
             for row in block[start:]:
