@@ -102,7 +102,7 @@ class Log:
         rows = []
         steps = []
         has_step = "Step" in columns
-        for run in self.runs:
+        for k, run in enumerate(self.runs):
             block = np.full((len(run), len(columns)), np.nan)
             for j, c in enumerate(run.columns):
                 block[:, columns.index(c)] = run.data[:, j]
@@ -111,7 +111,7 @@ class Log:
             if steps and first < steps[-1] and repeats != "all":
                 if repeats == "error":
                     raise TapmcFormatError(
-                        self.path, None, f"run {self.runs.index(run) + 1} starts at step "
+                        self.path, None, f"run {k + 1} starts at step "
                         f"{first:g}, after step {steps[-1]:g}: a run resumed from a restart "
                         "file (log ... append) or after reset_timestep prints those steps "
                         "again; Log.join(repeats='last') keeps the later run's rows, "
@@ -129,8 +129,7 @@ class Log:
                 if np.any(differs):
                     changed = [columns[j] for j in np.flatnonzero(differs)]
                     warnings.warn(f"{self.path}: step {steps[-1]:g} ends run "
-                                  f"{self.runs.index(run)} and starts run "
-                                  f"{self.runs.index(run) + 1} with other values of "
+                                  f"{k} and starts run {k + 1} with other values of "
                                   f"{', '.join(changed)}; Log.thermo keeps the earlier run's "
                                   "(Log.runs has both)", stacklevel=3)
                 last[fill] = block[0, fill]
