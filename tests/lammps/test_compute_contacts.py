@@ -176,6 +176,41 @@ def test_counts_after_taps_equal_an_all_pairs_count_and_python(nprocs):
     assert thermo[-1, 1] < thermo[-1, 2] < thermo[-1, 3] < thermo[-1, 4]
 
 
+TUBE = """units lj
+atom_style sphere
+boundary f f fm
+region box block 0 8 0 8 0 30
+create_box 1 box
+region tube cylinder z 4 4 4 INF INF
+create_packing 300 1 0.5 4928 floor 0.0 container tube
+fix tap all tapdilate 0.02 floor 0.0 container tube
+fix settle all mc/settle 7 floor 0.0 eta 1e-4 container tube
+compute zt all contacts 0.01 floor 0.0 container tube
+dump d all custom 2 tube.dump id x y z radius c_zt
+dump_modify d sort id format float %.17g
+thermo_style custom step c_zt[1] c_zt[6]
+run 2
+"""
+
+
+def test_tube_counts_equal_python_with_the_cylinder():
+    """In a tube, the compute with 'container' counts the wall: tapmc.contacts.Contacts with
+    the same cylinder gives the same count sphere by sphere (without it, a wall sphere read one
+    less), the deposited packing and after two taps."""
+    from tapmc.cylinder import Cylinder
+
+    rc, out, wd = run_lammps(TUBE)
+    assert rc == 0, out[-2000:]
+    _, thermo = thermo_table(out, "c_zt[1]")
+    frames = read_dump(os.path.join(wd, "tube.dump"))
+    python_frames = tapmc_read_dump(os.path.join(wd, "tube.dump")).frames
+    for (step, _, _, cols), frame, row in zip(frames, python_frames, thermo):
+        c = Contacts.from_frame(frame, gap=0.01, floor=0.0,
+                                cylinder=Cylinder(4.0, 4.0, 4.0)).compute()
+        np.testing.assert_array_equal(c.coordination, cols["c_zt"].astype(int), err_msg=step)
+        assert c.on_wall.any() and row[2] == pytest.approx(c.fraction_wall, abs=1e-8)  # %g
+
+
 def test_ghost_shell_does_not_depend_on_the_unit_scale():
     """A simple cubic lattice of spheres of diameter 1e-3 (lj units, whose neighbour skin is
     0.3): the compute added the skin to its ghost cutoff, 300 diameters, and LAMMPS copied the

@@ -127,6 +127,32 @@ def test_floor_gap_is_relative_to_the_diameter():
     np.testing.assert_array_equal(exact.coordination, [1, 0, 0, 1])
 
 
+def test_a_tube_wall_counts_as_the_compute_with_container_counts_it():
+    """compute contacts with 'container' adds the wall as one contact of every sphere within g
+    of it (radial gap relative to the diameter); Contacts had no wall, so a wall sphere read 1
+    less than the compute. Spheres at radial gaps 0, 0.0099 d, 0.0101 d and poking through by
+    0.01 d, in a tube of radius 4 about (4, 4), one of them also on the floor."""
+    from tapmc.cylinder import Cylinder
+
+    tube = Cylinder(4.0, 4.0, 4.0)
+    gaps = np.array([0.0, 0.0099, 0.0101, -0.01])          # in diameters inside the wall
+    angles = np.array([0.0, 1.5, 3.0, 4.5])
+    d = 4.0 - 0.5 - gaps                                    # centre distances from the axis
+    z = np.array([0.5, 3.0, 6.0, 9.0])                      # the first one on the floor
+    pos = np.column_stack([4 + d * np.cos(angles), 4 + d * np.sin(angles), z])
+    on = Contacts(pos, 0.5, [0, 0, 0], [8, 8, 12], [False] * 3, gap=0.01, floor=0.0,
+                  cylinder=tube).compute()
+    np.testing.assert_array_equal(on.on_wall, [True, True, False, True])
+    np.testing.assert_array_equal(on.coordination, [2, 1, 0, 1])   # floor + wall for the first
+    assert on.fraction_wall == 0.75
+    exact = Contacts(pos, 0.5, [0, 0, 0], [8, 8, 12], [False] * 3, gap=0.0, cylinder=tube)
+    np.testing.assert_array_equal(exact.compute().coordination, [1, 0, 0, 1])
+    plain = Contacts(pos, 0.5, [0, 0, 0], [8, 8, 12], [False] * 3, gap=0.01).compute()
+    assert not plain.on_wall.any() and plain.fraction_wall == 0.0
+    with pytest.raises(ValueError, match="cylinder given but x or y is periodic"):
+        Contacts(pos, 0.5, [0, 0, 0], [8, 8, 12], [True, True, False], cylinder=tube)
+
+
 def test_mixed_radii_use_each_pairs_contact_distance():
     gaps = [0.0, 0.005, 0.01, 0.02, 0.05, 0.1]
     pos = [[0, 0, 0]]

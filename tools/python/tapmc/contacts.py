@@ -10,7 +10,8 @@ The gap ``g`` is relative to each pair's contact distance. Spheres i and j are i
 
 that is when the gap between their surfaces is at most g (R_i + R_j); sphere i touches the floor
 z0 when z_i - R_i - z0 <= (g + tol) 2 R_i (its surface gap to the plane is at most g times its
-diameter). ``tol`` = ``GAP_TOLERANCE`` = 1e-10 is the model's contact tolerance
+diameter), and the wall of a tube (``cylinder``, the compute's ``container``) when
+(R_c - R_i) - d_i <= (g + tol) 2 R_i, d_i its distance from the axis. ``tol`` = ``GAP_TOLERANCE`` = 1e-10 is the model's contact tolerance
 (src/TAPMC/tapmc_defaults.h, kContactsGapTolerance): with g = 0 the spheres the model takes as
 touching count (exact lattices, the analytic contacts of create_packing). Along a periodic axis
 a pair is taken at its nearest image (the period must exceed twice the largest contact reach
@@ -80,18 +81,20 @@ class Contacts:
     ``positions`` (N, 3); ``radii`` (a scalar or N values, > 0); ``box_lo``, ``box_hi`` (3,)
     and ``periodic`` (3 bools): the box matters along periodic axes only; ``gap``: g in
     [0, ``MAX_GAP``], relative to each pair's contact distance; ``floor``: height of the floor
-    plane whose contacts count (None: no floor, as the compute without its ``floor`` keyword).
-    :meth:`from_frame` takes a :class:`tapmc.readers.Frame` with radii (a dump), with its box
+    plane whose contacts count (None: no floor, as the compute without its ``floor`` keyword);
+    ``cylinder``: a tube's container (a :class:`tapmc.cylinder.Cylinder`, as the compute's
+    ``container``), whose wall counts as one contact of each sphere touching it (None: no
+    wall, as the compute without ``container``). :meth:`from_frame` takes a :class:`tapmc.readers.Frame` with radii (a dump), with its box
     and periodicity.
 
     After :meth:`compute`: ``n``; ``coordination`` (N ints: contacts with other spheres, plus 1
-    for the floor); ``on_floor`` (N bools); ``pairs`` (the contacts i < j, indices into
+    for the floor and 1 for the wall); ``on_floor`` and ``on_wall`` (N bools each); ``pairs`` (the contacts i < j, indices into
     positions); ``mean``, ``fraction_none``, ``fraction_few``, ``fraction_floor``, ``largest``,
     ``distribution`` (P(Z), ``MAX_Z`` + 1 rows) and ``summary`` (the compute's vector and
     array in one :class:`ContactSummary`). Then :meth:`by_mask`, :meth:`sweep`, :meth:`plot`."""
 
     def __init__(self, positions, radii, box_lo, box_hi, periodic=(True, True, False), gap=0.0,
-                 floor=None):
+                 floor=None, cylinder=None):
         self.positions, self.radii = validated_spheres(positions, radii)
         self.box_lo, self.box_hi, per = validated_box(box_lo, box_hi, periodic)
         self.periodic = per
@@ -101,12 +104,16 @@ class Contacts:
         if self.floor is not None and self.periodic[2]:
             raise ValueError(f"floor = {floor!r} given but z is periodic: a floor needs a "
                              "non-periodic z")
+        if cylinder is not None and (self.periodic[0] or self.periodic[1]):
+            raise ValueError("cylinder given but x or y is periodic: a tube needs non-periodic "
+                             "x and y")
+        self.cylinder = cylinder
         self._check_periods(self.gap)
         self.frame = None
         self._n = None
 
     @classmethod
-    def from_frame(cls, frame, gap=0.0, floor=None, select=None):
+    def from_frame(cls, frame, gap=0.0, floor=None, select=None, cylinder=None):
         """From a :class:`tapmc.readers.Frame` with radii (``read_dump``): its box and
         periodicity. ``floor``: None (no floor contacts), a height, or "box" (the box's lower z
         bound). ``select``: N booleans choosing the spheres that count (the compute's group:
@@ -125,7 +132,7 @@ class Contacts:
                                  f"dtype {m.dtype} and shape {m.shape}")
             pos, radii = pos[m], radii[m]
         obj = cls(pos, radii, frame.box_lo, frame.box_hi, np.asarray(frame.periodic[:3], bool),
-                  gap=gap, floor=floor)
+                  gap=gap, floor=floor, cylinder=cylinder)
         obj.frame = frame
         return obj
 
@@ -153,8 +160,17 @@ class Contacts:
         pairs, delta = near_pairs(pos, self.box_lo, self.box_hi, self.periodic, reach)
         return pairs, delta
 
+    def _touching_wall(self, gap):
+        """The spheres touching the tube's wall at ``gap`` (none without ``cylinder``)."""
+        if self.cylinder is None:
+            return np.zeros(self.positions.shape[0], dtype=bool)
+        r = self.radii
+        gap_to_wall = (self.cylinder.radius - r) - self.cylinder.axis_distance(self.positions)
+        return gap_to_wall <= (gap + GAP_TOLERANCE) * (2.0 * r)
+
     def _counts(self, pairs, dist2, gap):
-        """(coordination, on_floor, contact mask of the pairs) at ``gap``."""
+        """(coordination, on_floor, contact mask of the pairs) at ``gap``; the wall's contacts
+        are in the coordination."""
         n, r = self.positions.shape[0], self.radii
         reach = (r[pairs[:, 0]] + r[pairs[:, 1]]) * (1.0 + gap + GAP_TOLERANCE)
         touching = dist2 <= reach * reach
@@ -165,7 +181,8 @@ class Contacts:
         else:
             z = self.positions[:, 2]
             on_floor = (z - r) - self.floor <= (gap + GAP_TOLERANCE) * (2.0 * r)
-        return counts.astype(int) + on_floor.astype(int), on_floor, touching
+        on_wall = self._touching_wall(gap)
+        return counts.astype(int) + on_floor.astype(int) + on_wall.astype(int), on_floor, touching
 
     def compute(self):
         pairs, delta = self._candidates(self.gap)
@@ -174,6 +191,7 @@ class Contacts:
         self._pairs = pairs[touching]
         self._coordination = counts
         self._on_floor = on_floor
+        self._on_wall = self._touching_wall(self.gap)
         self._summary = _summary(counts, on_floor)
         self._n = self.positions.shape[0]
         return self
@@ -181,6 +199,7 @@ class Contacts:
     n = result("_n")
     coordination = result("_coordination")
     on_floor = result("_on_floor")
+    on_wall = result("_on_wall")
     pairs = result("_pairs")
     summary = result("_summary")
 
@@ -199,6 +218,12 @@ class Contacts:
     @property
     def fraction_floor(self):
         return self.summary.fraction_floor
+
+    @property
+    def fraction_wall(self):
+        """The share of spheres touching the tube's wall (0 without ``cylinder``): the
+        compute's vector entry 6."""
+        return float(np.mean(self.on_wall)) if self.n else 0.0
 
     @property
     def largest(self):
