@@ -284,7 +284,8 @@ constexpr double kGridRoundingMargin = 1e-12;
 constexpr int kGridMaxCellsPerSideAxis = 4096;
 // At most kGridCellsPerSphere * N + kGridMinCells cells in all (the z axis gets the cells left):
 // a floor far below the spheres must not allocate a huge empty grid, while a dense packing
-// (a few spheres per cell) stays well inside the cap.
+// (a few spheres per cell) stays well inside the cap. The deposition's columns
+// (tapmc_deposition_grid.h) follow the same two caps.
 constexpr int kGridCellsPerSphere = 16;
 constexpr int kGridMinCells = 4096;
 

@@ -178,7 +178,7 @@ void check_radius(double radius, double max_radius)
 }  // namespace
 
 SequentialDeposition::SequentialDeposition(const DepositionDomain &domain, double max_radius,
-                                           std::uint64_t seed)
+                                           std::uint64_t seed, std::int64_t expected_spheres)
     : impl_(std::make_unique<Impl>())
 {
   if (!(max_radius > 0.0) || !std::isfinite(max_radius))
@@ -194,8 +194,15 @@ SequentialDeposition::SequentialDeposition(const DepositionDomain &domain, doubl
   DepositedSpheres &packing = impl_->packing;
   packing.domain = domain;
   packing.r_max = max_radius;
-  // Cells of one maximal contact distance (2 r_max): a fall visits 3 x 3 columns.
-  packing.grid.setup(domain, diameter);
+  // Cells of one maximal contact distance (2 r_max): a fall visits 3 x 3 columns. A dense bed
+  // has fewer columns than spheres; a sparse one gets wider columns (the searches read ranges).
+  const long max_columns =
+      expected_spheres > 0
+          ? defaults::kGridCellsPerSphere * static_cast<long>(expected_spheres) +
+                defaults::kGridMinCells
+          : static_cast<long>(defaults::kGridMaxCellsPerSideAxis) *
+                defaults::kGridMaxCellsPerSideAxis;
+  packing.grid.setup(domain, diameter, max_columns);
   impl_->equilibrium_draws = EquilibriumDraws(seed);
 }
 
@@ -267,7 +274,7 @@ Packing deposit_packing(std::int64_t n, const RadiusDistribution &radii,
   if (!(radii.r_max >= radii.r_min && std::isfinite(radii.r_max)))
     throw_outside_range("r_max", radii.r_max,
                         "[r_min, +inf) = [" + number(radii.r_min) + ", +inf)");
-  SequentialDeposition engine(domain, radii.r_max, seed);
+  SequentialDeposition engine(domain, radii.r_max, seed, n);
   Packing out;
   out.xyz.reserve(3 * static_cast<std::size_t>(n));
   out.radius.reserve(static_cast<std::size_t>(n));

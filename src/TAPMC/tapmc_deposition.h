@@ -79,7 +79,10 @@ class SequentialDeposition {
   // max_radius bounds every radius ever added (sets the grid spacing). Throws
   // std::invalid_argument naming the offending value (extent below one diameter, radius <= 0; a
   // cylinder with a periodic side, not wider than max_radius, or not inside the box).
-  SequentialDeposition(const DepositionDomain &domain, double max_radius, std::uint64_t seed);
+  // expected_spheres, when known (> 0), bounds the grid's columns by the packing's size
+  // (defaults::kGridCellsPerSphere per sphere) rather than by the box's area alone.
+  SequentialDeposition(const DepositionDomain &domain, double max_radius, std::uint64_t seed,
+                       std::int64_t expected_spheres = 0);
   ~SequentialDeposition();
   SequentialDeposition(SequentialDeposition &&) noexcept;
   SequentialDeposition &operator=(SequentialDeposition &&) noexcept;

@@ -9,6 +9,7 @@
 
 #include "tapmc_contact.h"
 #include "tapmc_deposition.h"
+#include "tapmc_defaults.h"
 #include "tapmc_deposition_detail.h"
 #include "tapmc_math.h"
 
@@ -26,7 +27,11 @@ namespace deposition_detail {
 // added as the packing grows; linked lists of sphere indices per cell; height map of column tops.
 class LayeredGrid {
  public:
-  void setup(const DepositionDomain &d, double min_width)
+  // Columns at least min_width wide, at most max_columns in all and
+  // defaults::kGridMaxCellsPerSideAxis along an axis (wider columns beyond): a wide box of few
+  // spheres would otherwise allocate a grid of its area (10 spheres in a box 20000 diameters
+  // wide: 4.8 GB).
+  void setup(const DepositionDomain &d, double min_width, long max_columns)
   {
     lx_ = d.xhi - d.xlo;
     ly_ = d.yhi - d.ylo;
@@ -35,8 +40,17 @@ class LayeredGrid {
     zf_ = d.z_floor;
     px_ = d.periodic_x;
     py_ = d.periodic_y;
-    nx_ = std::max(1, static_cast<int>(std::floor(lx_ / min_width)));
-    ny_ = std::max(1, static_cast<int>(std::floor(ly_ / min_width)));
+    const double side_cap = defaults::kGridMaxCellsPerSideAxis;
+    double nx = std::clamp(std::floor(lx_ / min_width), 1.0, side_cap);
+    double ny = std::clamp(std::floor(ly_ / min_width), 1.0, side_cap);
+    const double cap = static_cast<double>(std::max(1L, max_columns));
+    if (nx * ny > cap) {
+      const double widen = std::sqrt(nx * ny / cap);
+      nx = std::clamp(std::floor(nx / widen), 1.0, cap);
+      ny = std::clamp(std::floor(ny / widen), 1.0, std::floor(cap / nx));
+    }
+    nx_ = static_cast<int>(nx);
+    ny_ = static_cast<int>(ny);
     hx_ = lx_ / nx_;
     hy_ = ly_ / ny_;
     hz_ = min_width;
@@ -50,6 +64,8 @@ class LayeredGrid {
   int column_y(double y) const { return std::clamp(static_cast<int>(std::floor((y - ylo_) / hy_)), 0, ny_ - 1); }
   int layer_of(double z) const { return std::max(0, static_cast<int>(std::floor((z - zf_) / hz_))); }
   int layers() const { return layers_; }
+  int columns_x() const { return nx_; }
+  int columns_y() const { return ny_; }
   double layer_width() const { return hz_; }
   double floor_z() const { return zf_; }
 

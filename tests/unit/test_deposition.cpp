@@ -3,6 +3,7 @@
 // oracles over many seeds (PBC, FBC, polydisperse), and the bulk packing fraction.
 #include "tapmc_defaults.h"
 #include "tapmc_deposition.h"
+#include "tapmc_deposition_grid.h"
 #include "tapmc_math.h"
 #include "tapmc_stereology.h"
 
@@ -432,6 +433,61 @@ TEST(Deposition, SameSeedSamePackingOtherSeedOther)
   // A prefix of a deposition is the deposition of fewer spheres (sphere i only sees 0..i-1).
   const Packing prefix = deposit_packing(200, RadiusDistribution::uniform(0.8, 1.0), d, 42);
   EXPECT_TRUE(std::equal(prefix.xyz.begin(), prefix.xyz.end(), a.xyz.begin()));
+}
+
+// A wide box of few spheres gets columns wider than a diameter (at most kGridCellsPerSphere per
+// sphere): the grid no longer grows with the box's area, and the spheres land where they did
+// on the grid of one-diameter columns.
+TEST(Deposition, WideSparseBoxBoundsTheColumnsNotThePacking)
+{
+  namespace dd = tapmc::deposition_detail;
+  const auto wide = make_domain(20000, 20000, true, true);
+  dd::LayeredGrid grid;
+  grid.setup(wide, 1.0, 16 * 10 + 4096);
+  EXPECT_LE(static_cast<long>(grid.columns_x()) * grid.columns_y(), 16 * 10 + 4096);
+  EXPECT_GE(grid.columns_x(), 1);
+  EXPECT_LE(grid.columns_x(), 20000 / 1);
+  // One diameter wide and a million long: the long axis alone takes the cap.
+  grid.setup(make_domain(1.0, 1e6, false, true), 1.0, 3000);
+  EXPECT_EQ(grid.columns_x(), 1);
+  EXPECT_EQ(grid.columns_y(), 3000);
+  // Without a sphere count: kGridMaxCellsPerSideAxis per axis.
+  grid.setup(wide, 1.0, 1L << 40);
+  EXPECT_EQ(grid.columns_x(), tapmc::defaults::kGridMaxCellsPerSideAxis);
+
+  // A pile dropped on one spot of a box 300 diameters wide: 90 000 one-diameter columns
+  // against 66 x 66 wider ones (20 spheres announced): the same pile, to rounding. (The grids
+  // find a sphere's contacts in another order, so its support forces differ by ~1e-16; an
+  // unstable top amplifies that: here at drop 264 of a longer pile, two floor positions
+  // 1.7 apart. Hence 150 drops.)
+  const auto d = make_domain(300, 300, true, false);
+  SequentialDeposition fine(d, 0.5, 7), coarse(d, 0.5, 7, 20);
+  std::uint64_t state = 12345;
+  for (int i = 0; i < 150; ++i) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    const double u = static_cast<double>(state >> 11) * 0x1.0p-53;
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    const double v = static_cast<double>(state >> 11) * 0x1.0p-53;
+    const double x = 147.0 + 6.0 * u, y = 147.0 + 6.0 * v;
+    const auto a = fine.drop(x, y, 0.5);
+    const auto b = coarse.drop(x, y, 0.5);
+    ASSERT_EQ(a.rest, b.rest) << "drop " << i;
+
+  }
+  ASSERT_EQ(fine.size(), coarse.size());
+  double worst = 0.0, top = 0.0;
+  for (std::size_t i = 0; i < fine.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      worst = std::max(worst, std::fabs(fine.centre(i)[k] - coarse.centre(i)[k]));
+      if (k == 2) top = std::max(top, fine.centre(i)[k]);
+    }
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_GT(top, 3.0) << "the drops must pile up, not land side by side";
+
+  // deposit_packing announces its N: 50 spheres on the floor of a box 3000 diameters wide.
+  const auto sparse = make_domain(3000, 3000, true, false);
+  const Packing p = deposit_packing(50, RadiusDistribution::monodisperse(0.5), sparse, 3);
+  expect_valid_packing(p, sparse, "50 spheres, box of 3000 diameters");
 }
 
 // ---- bad input -------------------------------------------------------------------------------
