@@ -3,6 +3,8 @@
 parameter, its value and the allowed range, and result properties that refuse to be read before
 ``compute()`` / ``fit()``."""
 
+import os
+
 import numpy as np
 
 
@@ -59,6 +61,15 @@ def positive_int(name, value, minimum=1):
     if not whole or value < minimum:
         raise ValueError(f"{name} = {value!r} must be an integer >= {minimum}")
     return int(value)
+
+
+def log_path(path, caller="from_log"):
+    """The path of a LAMMPS log given as a path or as a :class:`~tapmc.readers.Log` (which
+    carries the path it was read from); TypeError for anything else."""
+    path = getattr(path, "path", path)
+    if not isinstance(path, (str, os.PathLike)):
+        raise TypeError(f"{caller} takes a log's path or a Log, got {type(path).__name__}")
+    return path
 
 
 def positive(name, value, allow_zero=False):

@@ -23,12 +23,13 @@ inside or outside takes the closed forms. Accuracy ~1e-15 R^3, the compute's.
 from __future__ import annotations
 
 import math
-import os
 import re
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+
+from ._validate import log_path
 
 __all__ = ["Cylinder", "disk_lens_area", "circle_arc_in_disk", "sphere_cylinder_volume",
            "sphere_cylinder_surface_area", "sphere_slab_volume", "QUADRATURE_NODES",
@@ -108,9 +109,7 @@ class Cylinder:
         ``region ID cylinder z cx cy radius ...`` command. ``path``: the log's path, or a
         :class:`~tapmc.readers.Log` read from it (its ``path``). ValueError when the log has
         none."""
-        path = getattr(path, "path", path)  # a Log carries the path it was read from
-        if not isinstance(path, (str, os.PathLike)):
-            raise TypeError(f"from_log takes a log's path or a Log, got {type(path).__name__}")
+        path = log_path(path)
         text = Path(path).read_text(errors="replace")
         if region is None:
             named = re.findall(r"^\s*(?:compute|fix|create_packing)\b.*\bcontainer\s+(\S+)",

@@ -18,7 +18,6 @@ from a run's folder.
 from __future__ import annotations
 
 import math
-import os
 import re
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -27,7 +26,7 @@ from typing import Optional
 import numpy as np
 
 from ._legends import place_legend
-from ._validate import as_1d, new_axis, require, result, same_length
+from ._validate import as_1d, log_path, new_axis, require, result, same_length
 from .cylinder import Cylinder
 from .laws import InverseLogLaw
 from .readers import read_ave_time, read_fix_print
@@ -78,10 +77,7 @@ class TubeSettings:
         overrides the last ``run N``. ``path``: the log's path, or a
         :class:`~tapmc.readers.Log` (its ``path``). A missing file gives an empty
         TubeSettings."""
-        path = getattr(path, "path", path)  # a Log carries the path it was read from
-        if not isinstance(path, (str, os.PathLike)):
-            raise TypeError(f"from_log takes a log's path or a Log, got {type(path).__name__}")
-        path = Path(path)
+        path = Path(log_path(path))
         text = path.read_text(errors="replace") if path.is_file() else ""
 
         def last(pattern, convert=_number):
