@@ -192,3 +192,18 @@ def test_exact_jacobians_are_the_derivatives_of_the_laws(law, params):
         assert np.max(np.abs(jac[:, k] - numeric)) < 1e-6 * scale, (law.__name__, law.names[k])
     # a wrong column would be caught: the derivative in B is not the one in tau
     assert not np.allclose(jac[:, -2], jac[:, -1])
+
+
+@pytest.mark.parametrize("lo, hi", [(10.0, 20.0), (-5.0, 5.0)])
+def test_correlation_of_a_straight_line_is_the_least_squares_one(lo, hi):
+    # y = Phi0 - alpha x by least squares: corr(Phi0, alpha) = mean(x) / sqrt(mean(x^2)),
+    # 0.985 on [10, 20] (intercept and slope nearly one combination), 0 on a centred window.
+    x = np.linspace(lo, hi, 30)
+    y = 0.6 - 0.002 * x + np.random.default_rng(3).normal(0.0, 1e-3, x.size)
+    res = profile_gradient(x, y, window=(lo, hi))
+    corr = res.correlation
+    expected = x.mean() / np.sqrt(np.mean(x ** 2))
+    assert corr.shape == (2, 2)
+    np.testing.assert_allclose(np.diag(corr), 1.0, rtol=1e-12)
+    assert corr[0, 1] == pytest.approx(corr[1, 0], rel=1e-12)
+    assert corr[0, 1] == pytest.approx(expected, abs=1e-6)

@@ -109,6 +109,17 @@ class Interval:
         return f"<Interval {self.value:.6g} in [{lo}, {hi}]>"
 
 
+def correlation_matrix(covariance):
+    """The correlation matrix of a covariance: C_ij / sqrt(C_ii C_jj) (``nan`` where a variance
+    is 0 or not finite)."""
+    cov = np.asarray(covariance, dtype=float)
+    err = np.sqrt(np.abs(np.diag(cov)))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        corr = cov / np.outer(err, err)
+    corr[~np.isfinite(corr)] = np.nan
+    return corr
+
+
 class FitResult:
     """Outcome of a fit: ``params`` (dict), ``intervals`` (dict of :class:`Interval`, the 68 %
     profile-likelihood intervals), ``determined_params`` / ``undetermined_params`` (names whose
@@ -159,6 +170,15 @@ class FitResult:
         diag = np.diag(self.covariance) if self.covariance.ndim == 2 else np.full(len(self.names), np.inf)
         with np.errstate(invalid="ignore"):
             return dict(zip(self.names, np.sqrt(np.abs(diag))))
+
+    @property
+    def correlation(self):
+        """Correlation matrix of the parameters (rows and columns in ``names`` order) from
+        ``covariance``; an entry near +-1 means the data fix only a combination of the two
+        (:meth:`Law.assess` flags beyond ``CORRELATION_LIMIT``)."""
+        if self.covariance.ndim != 2:
+            return np.full((len(self.names), len(self.names)), np.nan)
+        return correlation_matrix(self.covariance)
 
     @property
     def errors(self):
@@ -604,8 +624,7 @@ class Law:
             if name not in self.may_vanish and err[i] > RELATIVE_ERROR_LIMIT * abs(popt[i]):
                 notes.append(f"{name} error {err[i]:.3g} exceeds 100% of its value "
                              f"{popt[i]:.3g}")
-        with np.errstate(invalid="ignore", divide="ignore"):
-            corr = pcov / np.outer(err, err)
+        corr = correlation_matrix(pcov)
         n = len(self.names)
         pairs = [f"{self.names[i]}/{self.names[j]} {corr[i, j]:+.5f}" for i in range(n)
                  for j in range(i + 1, n) if abs(corr[i, j]) > CORRELATION_LIMIT]
