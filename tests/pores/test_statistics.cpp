@@ -130,6 +130,21 @@ TEST(PoreSelection, SurfaceHeightIsTheMeanColumnTop) {
   EXPECT_NEAR(surface_height(p.xyz, p.radius, {-16, -16}, {32, 32}, 1.0), expected, 1e-12);
 }
 
+// The column count is compute stereo/profile's: 1.2 / 0.2 = 5.999... in doubles still gives 6
+// columns (one sphere each: h_s the mean of their 6 tops, not 5 columns with one top hidden),
+// and a width far below the spheres' size widens to kMaxColumnsPerAxis columns a side.
+TEST(PoreSelection, SurfaceColumnsAreTheComputesColumns) {
+  std::vector<double> xyz;
+  for (int i = 0; i < 6; ++i) {
+    const double height[] = {1.0, 2.0, 3.0, 4.0, 5.0, 6.0};
+    xyz.insert(xyz.end(), {0.1 + 0.2 * i, 0.1, height[i]});
+  }
+  ASSERT_LT(1.2 / 0.2, 6.0);
+  EXPECT_NEAR(surface_height(xyz, 0.1, {0, 0}, {1.2, 0.2}, 0.2), 3.5 + 0.1, 1e-12);
+  const std::vector<double> one{0.5, 0.5, 1.0};
+  EXPECT_NEAR(surface_height(one, 0.1, {0, 0}, {1e6, 1e6}, 1e-6), 1.1, 1e-12);
+}
+
 TEST(PoreSelection, DefaultRegionIsThePackingNotTheBox) {
   for (bool periodic_xy : {true, false}) {
     const Packing p = layered_packing(10, periodic_xy);

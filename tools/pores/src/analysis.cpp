@@ -6,6 +6,7 @@
 
 #include "tapmc_math.h"
 #include "tapmc_random.h"
+#include "tapmc_stereology.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,26 +19,21 @@ namespace pores {
 double surface_height(const std::vector<double>& xyz, double radius, const std::array<double, 2>& lo,
                       const std::array<double, 2>& hi, double column_width) {
   if (!(column_width > 0)) throw std::invalid_argument("surface column width must be > 0, got " + message_number(column_width));
-  std::array<int, 2> n{};
-  std::array<double, 2> width{};
+  // The columns of compute stereo/profile (make_column_grid: the count forgives the last digits
+  // of L / width, at most kMaxColumnsPerAxis a side), clamped at the faces of the extent.
+  stereo::Box extent;
   for (int d = 0; d < 2; ++d) {
-    const double length = hi[d] - lo[d];
-    n[d] = length > 0 ? static_cast<int>(std::max(1.0, std::min(1e4, std::floor(length / column_width)))) : 1;
-    width[d] = length > 0 ? length / n[d] : 1.0;
+    extent.lo[d] = lo[d];
+    extent.hi[d] = hi[d] > lo[d] ? hi[d] : lo[d] + column_width;
+    extent.periodic[d] = false;
   }
-  std::vector<double> tops(static_cast<std::size_t>(n[0]) * n[1], -std::numeric_limits<double>::infinity());
+  const stereo::ColumnGrid grid = stereo::make_column_grid(extent, column_width, true);
+  std::vector<double> tops(static_cast<std::size_t>(grid.size()), -std::numeric_limits<double>::infinity());
   for (std::size_t i = 0; 3 * i < xyz.size(); ++i) {
-    std::array<int, 2> column{};
-    for (int d = 0; d < 2; ++d)
-      column[d] = static_cast<int>(std::clamp(std::floor((xyz[3 * i + d] - lo[d]) / width[d]), 0.0, n[d] - 1.0));
-    double& top = tops[static_cast<std::size_t>(column[0]) * n[1] + column[1]];
+    double& top = tops[static_cast<std::size_t>(grid.column_of(xyz[3 * i], xyz[3 * i + 1]))];
     top = std::max(top, xyz[3 * i + 2] + radius);
   }
-  double sum = 0.0;
-  std::size_t filled = 0;
-  for (double top : tops)
-    if (std::isfinite(top)) sum += top, ++filled;
-  return filled ? sum / static_cast<double>(filled) : std::numeric_limits<double>::quiet_NaN();
+  return stereo::surface_height(tops.data(), grid.size(), std::numeric_limits<double>::quiet_NaN());
 }
 
 PackingBounds find_packing(const Box& box, const std::vector<double>& xyz, double radius, double floor,

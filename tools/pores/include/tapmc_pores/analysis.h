@@ -49,8 +49,9 @@ struct PackingBounds {
 };
 
 // Mean over columns `column_width` wide tiling [lo, hi) in x and y (n = max(1, floor(L / width))
-// per direction) of the highest sphere top z_i + radius in the column; empty columns skipped.
-// The surface height of compute stereo/profile (doc/compute_stereo_profile.rst).
+// per direction, at most kMaxColumnsPerAxis: tapmc::make_column_grid) of the highest sphere top
+// z_i + radius in the column; empty columns skipped. The surface height of compute
+// stereo/profile, computed by its kernel (doc/compute_stereo_profile.rst).
 double surface_height(const std::vector<double>& xyz, double radius, const std::array<double, 2>& lo,
                       const std::array<double, 2>& hi, double column_width);
 
