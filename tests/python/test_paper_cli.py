@@ -3,6 +3,7 @@
 module, the Scale presets, and one end-to-end figure through a stub figure module (runs a
 tiny campaign, draws, prints the PNG and CSV paths) on a copy of the package."""
 
+import argparse
 import hashlib
 import json
 import os
@@ -67,6 +68,30 @@ def test_help_lists_every_figure(capsys):
     assert sub.returncode == 0
     for option in ("--quick", "--full", "--seeds", "--jobs", "--campaign", "--out"):
         assert option in sub.stdout
+
+
+def _parsers(parser, name="tapmc-paper"):
+    """(name, parser) of ``parser`` and of every sub-command under it, e.g. "tapmc-paper
+    question ramp-levels"."""
+    yield name, parser
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for sub_name, sub in action.choices.items():
+                yield from _parsers(sub, f"{name} {sub_name}")
+
+
+def test_every_option_has_help():
+    """--help explains every option of every command, the questions' own options included:
+    none is listed bare."""
+    from tapmc.paper.cli import build_parser
+
+    parsers = list(_parsers(build_parser()))
+    assert any(name.startswith("tapmc-paper question ") for name, _ in parsers)
+    bare = [f"{name} {'/'.join(action.option_strings)}" for name, parser in parsers
+            for action in parser._actions
+            if action.option_strings and not set(action.option_strings) <= {"-h", "--help"}
+            and not (action.help or "").strip()]
+    assert not bare, "options without a help text:\n  " + "\n  ".join(bare)
 
 
 @pytest.mark.parametrize("args, message", [

@@ -40,8 +40,14 @@ REALIZATION_RESTART_EVERY = 50
 
 
 def add_arguments(parser):
-    parser.add_argument("--seeds", type=int, nargs="+", default=list(EARLY_SEEDS))
-    parser.add_argument("--taps", type=int, default=REALIZATION_TAPS)
+    parser.add_argument("--seeds", type=int, nargs="+", default=list(EARLY_SEEDS),
+                        help="Monte Carlo seeds of the realizations, each tapping the "
+                             "campaign's F.B.C. packing (its pack_seed 1); the campaign's own "
+                             "run adds seed 1 from its taps.dat "
+                             f"(default: {EARLY_SEEDS[0]} to {EARLY_SEEDS[-1]})")
+    parser.add_argument("--taps", type=int, default=REALIZATION_TAPS,
+                        help="taps of each realization, at least "
+                             f"{EARLY_DECADE[1]:g} (the first decade) (default %(default)s)")
     parser.add_argument("--eps", type=float, nargs="+", default=None,
                         help="the eps measured (default: Fig. 2's); the CSV then holds those "
                              "only. The realizations of one --work folder run in one process "

@@ -13,8 +13,8 @@ from collections import defaultdict
 
 import numpy as np
 
-from tapmc.laws import (DETERMINED_FACTOR, RELATIVE_ERROR_LIMIT, InverseLogLaw, SurrogateFits,
-                        ZLaw)
+from tapmc.laws import (DETERMINED_FACTOR, RELATIVE_ERROR_LIMIT, SURROGATES, InverseLogLaw,
+                        SurrogateFits, ZLaw)
 
 from .._rst import list_table
 from .common import csv_schema, eps_of, finished_runs, last_rows, taps_table
@@ -32,8 +32,12 @@ BAND_PERCENTILES = (16.0, 50.0, 84.0)
 
 
 def add_arguments(parser):
-    parser.add_argument("--surrogates", type=int, default=None)
-    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--surrogates", type=int, default=None,
+                        help="Fourier surrogates of each run's residuals fitted per law, at "
+                             f"least 20 (default {SURROGATES})")
+    parser.add_argument("--seed", type=int, default=1,
+                        help="seed of the surrogates' random phases, the same for every run "
+                             "(default %(default)s)")
 
 
 def law(name):

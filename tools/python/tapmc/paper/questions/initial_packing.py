@@ -26,7 +26,10 @@ PAPER_INITIAL_PHI_C = next(c.target for c in load_register() if c.id == "phi-ini
 
 
 def add_arguments(parser):
-    parser.add_argument("--seeds", type=int, nargs="+", default=list(INITIAL_SEEDS))
+    parser.add_argument("--seeds", type=int, nargs="+", default=list(INITIAL_SEEDS),
+                        help="deposition seeds: one P.B.C. packing (N = 4096, L = 32R) "
+                             "deposited per seed and measured at t = 0, without a tap "
+                             f"(default: {INITIAL_SEEDS[0]} to {INITIAL_SEEDS[-1]})")
 
 
 def measure(args):

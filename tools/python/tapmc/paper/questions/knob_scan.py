@@ -36,10 +36,24 @@ SWEEPS_SHARE = 1.1
 
 
 def add_arguments(parser):
-    parser.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3, 4])
-    parser.add_argument("--N", type=int, default=THETA0_SCALE["N"])
-    parser.add_argument("--stop", choices=("change", "drift"), default="change")
-    parser.add_argument("--eta", type=float, default=1e-7)
+    parser.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3, 4],
+                        help="seeds of the scan's runs: each seed's fresh packing (the seed "
+                             "deposits it and seeds the Monte Carlo redeposition) is tapped at "
+                             "every value; the (seed, value) pairs the scan's CSV has are skipped "
+                             "(default: %(default)s)")
+    parser.add_argument("--N", type=int, default=THETA0_SCALE["N"],
+                        help="spheres per run, in a P.B.C. box of side 32R sqrt(N/4096) (the "
+                             "paper's bed height); another N than %(default)s adds _N<N> to "
+                             "the CSV's name (default %(default)s)")
+    parser.add_argument("--stop", choices=("change", "drift"), default="change",
+                        help="fix mc/settle's stopping rule: change (the paper's: <Z> changes "
+                             "by less than eta between two checks) or drift (<Z>'s drift per "
+                             "sweep below eta <Z>; adds _drift to the CSV's name) "
+                             "(default %(default)s)")
+    parser.add_argument("--eta", type=float, default=1e-7,
+                        help="fix mc/settle's convergence threshold eta of every run; recorded "
+                             "in the CSV's eta column, not in its name (default %(default)s: "
+                             "the front's reference)")
 
 
 def scan_file_name(stem, stop, N, extra=()):

@@ -27,7 +27,11 @@ NOISE_FROM_STEP = 4000
 
 
 def add_arguments(parser):
-    parser.add_argument("--restart", type=Path, default=CAMPAIGN_RUN / "restart.4000")
+    parser.add_argument("--restart", type=Path, default=CAMPAIGN_RUN / "restart.4000",
+                        help="restart file the runs continue from: the P.B.C. packing after "
+                             "4000 taps at eps = 0.0225 (default: restart.4000 of the "
+                             "paper-scale campaign's run const_pbc_eps0.0225_s1, in "
+                             "doc/validation/data/full/runs/)")
 
 
 def campaign_restart(path):

@@ -41,7 +41,11 @@ P0_INDEPENDENT_SHARE = 0.5
 
 def add_arguments(parser):
     restart_argument(parser)
-    parser.add_argument("--configs", type=int, default=P0_CONFIGS)
+    parser.add_argument("--configs", type=int, default=P0_CONFIGS,
+                        help="configurations of each packing: depositions at t = 0 (seeds 1 "
+                             "to CONFIGS) and dumps of the tapped run, one every "
+                             f"{P0_CONFIG_SPACING} taps from tap "
+                             f"{NOISE_FROM_STEP + P0_CONFIG_SPACING} (default %(default)s)")
     parser.add_argument("--work", default=None, type=Path,
                         help="the runs' folder (default OUT/partial/p0_configs)")
 

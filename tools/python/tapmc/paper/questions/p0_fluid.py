@@ -69,15 +69,35 @@ BASELINE_FACTOR = 2.0
 
 
 def add_arguments(parser):
-    parser.add_argument("--phi", type=float, nargs="+", default=list(P0_FLUID_PHI))
-    parser.add_argument("--configs", type=int, default=P0_FLUID_CONFIGS)
-    parser.add_argument("--cells", type=int, default=P0_FLUID_CELLS)
-    parser.add_argument("--eq-msd", type=float, default=P0_FLUID_EQ_MSD)
-    parser.add_argument("--spacing-msd", type=float, default=P0_FLUID_SPACING_MSD)
-    parser.add_argument("--max-sweeps", type=int, default=P0_FLUID_MAX_SWEEPS)
-    parser.add_argument("--seed", type=int, default=1)
-    parser.add_argument("--work", default=None, type=Path)
-    parser.add_argument("--mc", default=None)
+    parser.add_argument("--phi", type=float, nargs="+", default=list(P0_FLUID_PHI),
+                        help="volume fractions Phi of the equilibrium fluids, each in "
+                             f"[{PHI_RANGE[0]}, {PHI_RANGE[1]}] (default: %(default)s)")
+    parser.add_argument("--configs", type=int, default=P0_FLUID_CONFIGS,
+                        help="configurations sampled per Phi, at least 2 (default %(default)s)")
+    parser.add_argument("--cells", type=int, default=P0_FLUID_CELLS,
+                        help="FCC cells per side of the start lattice: 4 CELLS^3 spheres "
+                             "(default %(default)s: 4000 spheres)")
+    parser.add_argument("--eq-msd", type=float, default=P0_FLUID_EQ_MSD,
+                        help="mean-square displacement (diameters^2) of the equilibration "
+                             "before the first configuration (default %(default)s)")
+    parser.add_argument("--spacing-msd", type=float, default=P0_FLUID_SPACING_MSD,
+                        help="mean-square displacement (diameters^2) between successive "
+                             "configurations (default %(default)s)")
+    parser.add_argument("--max-sweeps", type=int, default=P0_FLUID_MAX_SWEEPS,
+                        help="MC sweeps at most per stage (the equilibration, each spacing); "
+                             "a stage it stops shows in the CSV's eq_msd and min_spacing_msd "
+                             "(default %(default)s)")
+    parser.add_argument("--seed", type=int, default=1,
+                        help="seed of the MC: the fluid at Phi runs with seed "
+                             "SEED * 1000 + round(1000 Phi) (default %(default)s)")
+    parser.add_argument("--work", default=None, type=Path,
+                        help="folder kept for the MC configurations and tapmc-pores outputs "
+                             "(WORK/phi_<Phi>/, reused by a re-run) and p0_fluid_curves.csv "
+                             "(default: a temporary folder, removed at the end)")
+    parser.add_argument("--mc", default=None,
+                        help="the hard-sphere MC executable (default: bench/bench_hs_fluid of "
+                             "$TAPMC_BUILD_DIR or build/, else bench/bench_hs_fluid.cpp "
+                             "compiled with $CXX, default c++, into the work folder)")
 
 
 def check(args):

@@ -55,11 +55,25 @@ GAP_SHARE = 0.1
 
 
 def add_arguments(parser):
-    parser.add_argument("--run", default="ramp_pbc_s1")
-    parser.add_argument("--levels", type=int, nargs="+", default=None)
-    parser.add_argument("--extend", type=int, default=RAMP_EXTEND)
-    parser.add_argument("--work", default=None, type=Path)
-    parser.add_argument("--replay", action="store_true")
+    parser.add_argument("--run", default="ramp_pbc_s1",
+                        help="the campaign's ramp run (a folder of CAMPAIGN/runs, named in its "
+                             "manifest.json) whose levels are continued (default %(default)s; "
+                             "ramplow_pbc_s1: the ramp below (sqrt eps)*)")
+    parser.add_argument("--levels", type=int, nargs="+", default=None,
+                        help="level indices of the ramp continued (in.ramp's 0 .. 3 nlev - 3; "
+                             "default: two of every branch, as above)")
+    parser.add_argument("--extend", type=int, default=RAMP_EXTEND,
+                        help="taps added to each level from its end, at its sqrt(eps); a "
+                             "larger value continues a level measured before (default "
+                             "%(default)s: the campaign's 1000 taps per level become the "
+                             "paper's 4000)")
+    parser.add_argument("--work", default=None, type=Path,
+                        help="campaign folder of the level continuations and of the ramp's "
+                             "replays, WORK/replays/ (default OUT/partial/ramp_levels)")
+    parser.add_argument("--replay", action="store_true",
+                        help="a level whose restart file the run no longer has starts from a "
+                             "replay of the ramp up to the level's end (in.ramp -var stop, "
+                             "in WORK/replays/); without it such a level is an error")
 
 
 def default_ramp_levels(nlev):

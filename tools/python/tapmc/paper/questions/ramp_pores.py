@@ -36,10 +36,22 @@ DUMP_OF_RESTART = ("read_restart ${restart}\n"
 
 
 def add_arguments(parser):
-    parser.add_argument("--run", default="ramp_pbc_s1")
-    parser.add_argument("--levels", type=int, nargs="+", default=None)
-    parser.add_argument("--work", default=None, type=Path)
-    parser.add_argument("--replay", action="store_true")
+    parser.add_argument("--run", default="ramp_pbc_s1",
+                        help="the campaign's ramp run (a folder of CAMPAIGN/runs, named in its "
+                             "manifest.json) whose level ends are dumped and analysed (default "
+                             "%(default)s; ramplow_pbc_s1: the ramp below (sqrt eps)*)")
+    parser.add_argument("--levels", type=int, nargs="+", default=None,
+                        help="level indices that must be measured (in.ramp's 0 .. 3 nlev - 3): "
+                             "one without a kept restart file or dump is replayed with "
+                             "--replay, else an error (default: none; every level whose "
+                             "packing is kept is measured anyway)")
+    parser.add_argument("--work", default=None, type=Path,
+                        help="folder of the ramp's replays (WORK/replays/) and of the level "
+                             "dumps and their tapmc-pores outputs (WORK/<run>_pores) (default "
+                             "OUT/partial/ramp_levels, shared with ramp-levels)")
+    parser.add_argument("--replay", action="store_true",
+                        help="run the ramp again up to the end of each of --levels without a "
+                             "restart file or dump (in.ramp -var stop, in WORK/replays/)")
 
 
 def dump_path(folder, k, P):

@@ -36,8 +36,15 @@ NAME = "theta0"
 def add_arguments(parser):
     knob_scan.add_arguments(parser)
     parser.add_argument("--theta-law", choices=("angle", "solid", "exponential", "linear"),
-                        default="angle")
-    parser.add_argument("--wide", action="store_true")
+                        default="angle",
+                        help="fix mc/settle's theta_law, the law of the moves' angle: angle "
+                             "(eq. 1 as a density in theta), solid (per unit solid angle), "
+                             "exponential or linear (section II's alternative laws of the same "
+                             "width); another law than angle adds _<law> to the CSV's name "
+                             "(default %(default)s)")
+    parser.add_argument("--wide", action="store_true",
+                        help="scan instead the widths beyond the paper's truncation pi/2 "
+                             "(3/4 pi, pi, 30 pi: the flat limit); adds _wide to the CSV's name")
     parser.add_argument("--widths", type=float, nargs="+", metavar="F",
                         help="only these widths theta0 / pi (default: the scan's seven, or the "
                              "wide scan's three)")
