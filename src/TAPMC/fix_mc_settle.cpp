@@ -661,6 +661,7 @@ void FixMCSettle::DecomposedRedeposition::check_start(bool after_tap)
                "radius > 0 (set it with atom_style sphere / set diameter, or the 'diameter' "
                "keyword)", rmin);
   kernel().distribute();
+  if (!after_tap) kernel().check_round_widths(fix.domain_setup(), fix.effective_d_max());
   tapmc::Violation v;
   tapmc::guarded(lmp, "fix mc/settle", false,
                  [&] { v = kernel().find_violation(fix.domain_setup()); });

@@ -470,6 +470,12 @@ struct DomainSettle::Run {
   std::array<double, 3> cuts_uniform{};  // this cycle's draws of the cuts
   CounterRandom trial_stream{0, 0}, cut_stream{0, 0};
   long interval = 0;
+  // This cycle: the spheres of each round over all ranks (constant through a cycle, since a
+  // sphere keeps its round when it migrates) and this rank's trials in each round.
+  std::array<long, RoundSchedule::kMaxRounds> round_total{}, round_trials{};
+  // order sweep: the tag each round's sweep reached (the next round of that index goes on from
+  // the next tag in its members, whatever they are in that cycle).
+  std::array<tagint, RoundSchedule::kMaxRounds> sweep_after{};
   TrialTally tally;
   std::uint64_t next_trial = 0, cycle = 0;
   bool rebuild_pending = false;
@@ -518,16 +524,67 @@ void DomainSettle::prepare(Run &run)
 // no longer cross to migrate: the bed would hang on them.
 void DomainSettle::lay_out_rounds(Run &run)
 {
+  run.schedule = schedule_on_sub_domains(run.contact, run.margin);
+}
+
+// The rounds on the sub-domains as they are now (collective); an error naming the axis, the
+// width needed and the ways out when a sub-domain is too narrow.
+std::unique_ptr<RoundSchedule> DomainSettle::schedule_on_sub_domains(double contact,
+                                                                     double margin)
+{
+  const std::array<DecomposedAxis, 3> axes = decomposed_axes();
+  const bool shrink_wrapped_top = domain->boundary[2][1] >= 2;  // 's' or 'm'
+  std::unique_ptr<RoundSchedule> schedule;
   guarded(lmp, "fix mc/settle", true, [&] {
     try {
-      run.schedule = std::make_unique<RoundSchedule>(decomposed_axes(), run.contact, run.margin);
+      schedule = std::make_unique<RoundSchedule>(axes, contact, margin);
     } catch (const std::invalid_argument &e) {  // sub-domains too narrow for the rounds
-      throw std::invalid_argument(std::string(e.what()) +
-                                  "; 'scheme gather' runs the same input on this processor grid "
-                                  "(every rank redeposits all spheres), or use fewer ranks along "
-                                  "that axis");
+      std::string text = std::string(e.what()) +
+                         "; 'scheme gather' runs the same input on this processor grid (every "
+                         "rank redeposits all spheres), or use fewer ranks along that axis";
+      if (shrink_wrapped_top && comm->procgrid[2] > 1)
+        text += " (the top is shrink-wrapped, so the " + std::to_string(comm->procgrid[2]) +
+                " sub-domains along z share the bed's height, " +
+                number(domain->boxhi[2] - domain->boxlo[2]) + " at rest: 'processors * * 1' "
+                "splits x and y only)";
+      throw std::invalid_argument(text);
     }
   });
+  return schedule;
+}
+
+void DomainSettle::check_round_widths(const DomainSettleSetup &setup, double d_max)
+{
+  set_kernel_axes();
+  schedule_on_sub_domains(2.0 * largest_radius(setup),
+                          defaults::kDomainMoveMarginOverStep * d_max);
+}
+
+// This rank's trials in the rounds from `from_round` on (collective): the check's trials shared
+// over the cycle's active spheres numbered round by round, rank by rank (round_trials), so that
+// a cycle makes exactly the trials of one check. `new_cycle`: the rounds' totals are counted
+// again (after a rebuild they are the cycle's, as each sphere keeps its round).
+void DomainSettle::share_trials(Run &run, int from_round, bool new_cycle)
+{
+  const int rounds = static_cast<int>(round_size_.size());
+  if (run.interval == run.movable_total) {  // one sweep a check: every active sphere once
+    for (int r = from_round; r < rounds; ++r) run.round_trials[r] = round_size_[r];
+    return;
+  }
+  long before_rank[RoundSchedule::kMaxRounds] = {};
+  MPI_Exscan(round_size_.data(), before_rank, rounds, MPI_LONG, MPI_SUM, world);
+  if (comm->me == 0) std::fill(before_rank, before_rank + rounds, 0L);  // Exscan leaves it
+  if (new_cycle)
+    MPI_Allreduce(round_size_.data(), run.round_total.data(), rounds, MPI_LONG, MPI_SUM, world);
+  long cycle_total = 0;
+  for (int r = 0; r < rounds; ++r) cycle_total += run.round_total[r];
+  long before_round = 0;
+  for (int r = 0; r < rounds; ++r) {
+    if (r >= from_round)
+      run.round_trials[r] = round_trials(before_round + before_rank[r], round_size_[r],
+                                         run.interval, cycle_total);
+    before_round += run.round_total[r];
+  }
 }
 
 // One cycle of rounds (one check interval): new cuts, then each round's trials on every rank,
@@ -539,6 +596,7 @@ void DomainSettle::run_cycle(Run &run)
                       run.cut_stream.uniform(3 * c + 2)};
   run.schedule->start_cycle(run.cuts_uniform);
   partition(*run.schedule);
+  share_trials(run, 0, true);
   for (int r = 0; r < run.schedule->rounds(); ++r) {
     if (run.rebuild_pending) {  // collective: decided by the reduction after the last round
       hand_rounds_to_atoms();
@@ -548,6 +606,7 @@ void DomainSettle::run_cycle(Run &run)
       lay_out_rounds(run);
       run.schedule->start_cycle(run.cuts_uniform);
       repartition_after_rebuild(r);
+      share_trials(run, r, false);
       ++ghost_rebuilds_;
       run.rebuild_pending = false;
       run.mark(timing_.rebuilds);
@@ -555,13 +614,24 @@ void DomainSettle::run_cycle(Run &run)
     const RoundSchedule &schedule = *run.schedule;
     if (verify_) verify_round_start(schedule, r);
     const long m = round_size_[r];
-    const long trials = round_trials(m, run.interval, run.movable_total);
+    const long trials = run.round_trials[r];
     const MoveRegion region = schedule.region(r);
+    const int *active = members(r);
+    const tagint *tag = atom->tag;
+    // order sweep: on from the tag this round's sweep reached (members are in tag order); a
+    // sweep restarted every round would never reach the later tags when a round makes fewer
+    // trials than it has members (check below one sweep).
     long cursor = 0;
+    if (run.params.order == PickOrder::Sweep && m > 0)
+      cursor = (std::upper_bound(active, active + m, run.sweep_after[r],
+                                 [tag](tagint t, int i) { return t < tag[i]; }) -
+                active) % m;
     guarded(lmp, "fix mc/settle", false, [&] {
-      mover_->run(members(r), m, run.params.order, cursor, *sampler_, run.trial_stream,
+      mover_->run(active, m, run.params.order, cursor, *sampler_, run.trial_stream,
                   run.next_trial, trials, &region, run.tally);
     });
+    if (run.params.order == PickOrder::Sweep && m > 0 && trials > 0)
+      run.sweep_after[r] = tag[active[(cursor + m - 1) % m]];
     run.next_trial += static_cast<std::uint64_t>(trials);
     ++rounds_;
     run.mark(timing_.trials);

@@ -79,6 +79,12 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
   // Collective, after distribute(): the first overlap or plane violation among this rank's
   // spheres and ghosts, i == -1 when none (indices are local LAMMPS indices).
   Violation find_violation(const DomainSettleSetup &setup);
+  // Collective, after distribute(), on the bed at rest (a run's setup): an error naming the axis
+  // and the width needed when a sub-domain is too narrow for the rounds, as every redeposition
+  // checks. With a shrink-wrapped top the sub-domains of a z split follow the bed: a bed too
+  // short for them passes the tapped (dilated) box of the first redeposition and fails in a
+  // later one, at a ghost rebuild; checked at setup, it stops before the first tap.
+  void check_round_widths(const DomainSettleSetup &setup, double d_max);
 
   // Collective: one complete redeposition (paper, section II) of the group's spheres; the
   // atoms end where LAMMPS's own exchange and borders (which follow on this step) expect them.
@@ -140,6 +146,7 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
   void prepare(Run &run);
   void run_cycle(Run &run);
   void lay_out_rounds(Run &run);
+  std::unique_ptr<RoundSchedule> schedule_on_sub_domains(double contact, double margin);
   void set_kernel_axes();
   void select_ghosts();
   void index_ghosts();
@@ -149,6 +156,7 @@ class DomainSettle : protected LAMMPS_NS::Pointers {
   void partition(const RoundSchedule &schedule);
   void hand_rounds_to_atoms();
   void repartition_after_rebuild(int from_round);
+  void share_trials(Run &run, int from_round, bool new_cycle);
   const int *members(int round) const;
   bool publish_round(double ghost_skin, bool vote);
   void verify_ghosts();

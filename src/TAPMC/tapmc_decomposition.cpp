@@ -75,12 +75,15 @@ MoveRegion RoundSchedule::region(int round) const
   return r;
 }
 
-long round_trials(long active, long trials_per_check, long movable_total)
+long round_trials(long before, long active, long trials_per_check, long movable_total)
 {
-  if (movable_total <= 0 || active <= 0) return 0;
-  const double share = static_cast<double>(active) * static_cast<double>(trials_per_check) /
-                       static_cast<double>(movable_total);
-  return std::lround(share);
+  if (movable_total <= 0 || active <= 0 || trials_per_check <= 0) return 0;
+  if (trials_per_check == movable_total) return active;
+  // floor(c I / N) in 128 bits: c and I reach 2^31 and more.
+  const auto trials_before = [&](long c) {
+    return static_cast<long>(static_cast<__int128>(c) * trials_per_check / movable_total);
+  };
+  return trials_before(before + active) - trials_before(before);
 }
 
 }  // namespace tapmc

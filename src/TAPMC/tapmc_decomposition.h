@@ -89,10 +89,15 @@ class RoundSchedule {
   std::array<double, 3> cut_{};  // absolute cut position per split axis
 };
 
-// Trials a rank makes in one round: its active spheres times the trials per check over all
-// movable spheres (rounded to nearest), so each sphere expects trials_per_check / movable_total
-// picks per cycle, as in the serial uniform pick.
-long round_trials(long active, long trials_per_check, long movable_total);
+// Trials a rank makes in one round. The cycle's active spheres are numbered over all (round,
+// rank) pairs, round first; this pair holds the `active` spheres after the first `before`. Its
+// share of the check's trials is floor((before + active) I / N) - floor(before I / N) (I =
+// trials_per_check, N = movable_total): the shares of a cycle add up to I exactly, and each is
+// active * I / N to within one trial, so each sphere expects I / N picks per cycle, as in the
+// serial uniform pick. (Rounding each share alone lost the check: 16 shares of 0.31 trials
+// made 0 trials a cycle, and the redeposition never stopped.) With I = N (one sweep a check,
+// the default) the share is `active`.
+long round_trials(long before, long active, long trials_per_check, long movable_total);
 
 // Trial moves of rank r in the decomposed redeposition: purpose kDomainSettleMoves
 // (tapmc_random.h) under the key round (r + 1) * 2^32 (CounterRandom::round): each rank's

@@ -218,3 +218,83 @@ run 1
     rc, out, _ = run_lammps(script, nprocs=2, timeout=120)
     assert rc != 0
     assert message in out, out
+
+
+@pytest.mark.parametrize("check", [1, 7, 300])
+def test_a_check_below_one_sweep_makes_exactly_its_trials_per_cycle(check):
+    # A cycle of rounds is one check: its trials are shared over the (round, rank) parts in
+    # proportion to their active spheres and add up to the check exactly. (Each part rounding
+    # its own share made 0 trials a cycle at check 1: the redeposition ran to the sweep cap
+    # without a move.)
+    script = scene("p p fm", "2 1 1") + DOMAIN_TAPPING.replace(
+        "verify yes", f"check {check} maxsweeps 20").replace(
+        "thermo_style custom step atoms f_settle[1] f_settle[2] f_settle[3] f_settle[4]",
+        "thermo_style custom step atoms f_settle[5] f_settle[8]").replace(
+        "thermo 10", "thermo 1").format(eps=0.05, seed=4928, every=4, taps=4)
+    rc, out, _ = run_lammps(script, nprocs=2, timeout=120)
+    assert rc == 0, out
+    rows = thermo_table(out, "Atoms")[1][1:]
+    assert len(rows) == 4, out
+    trials, rounds = rows[:, 2], rows[:, 3]
+    checks = rounds / 2  # 2 rounds a cycle (x split, y periodic on one rank)
+    np.testing.assert_array_equal(trials, check * checks)
+    assert (trials > 0).all(), rows
+
+
+SWEEP_BED = """processors 2 1 1
+units lj
+atom_style sphere
+boundary p p fm
+region box block 0 8 0 8 0 30
+create_box 1 box
+create_packing 500 1 0.5 77 floor 0.0
+fix tap all tapdilate 0.1 floor 0.0
+fix settle all mc/settle 4928 floor 0.0 eta 1e-5 order sweep check 250 scheme domain
+dump d all custom 1 dump.taps id x y z radius
+dump_modify d sort id format float %.17g
+run 3
+"""
+
+
+def test_order_sweep_below_one_sweep_reaches_every_sphere():
+    # order sweep with a check of half a sweep: each round goes on in tag order from where its
+    # sweep stopped, so every sphere is moved in each redeposition (about 150 sweeps a tap).
+    # (A sweep restarted every round never reached the higher tags: 242 of 500 spheres stayed
+    # where the tap had lifted them, and the bed dilated tap after tap.)
+    rc, out, wd = run_lammps(SWEEP_BED, nprocs=2, timeout=120)
+    assert rc == 0, out
+    frames = read_dump(os.path.join(wd, "dump.taps"))
+    assert len(frames) == 4
+    for (_, _, _, before), (step, _, _, after) in zip(frames, frames[1:]):
+        untouched = ((before["x"] == after["x"]) & (before["y"] == after["y"])
+                     & np.isclose(after["z"], 1.1 * before["z"], rtol=0.0, atol=1e-12))
+        assert untouched.sum() == 0, (step, before["id"][untouched])
+
+
+SHORT_BED_Z_SPLIT = """processors 1 1 2
+units lj
+atom_style sphere
+boundary p p fs
+region box block 0 8 0 8 0 30
+create_box 1 box
+create_packing 400 1 0.5 77 floor 0.0
+fix tap all tapdilate 0.1 floor 0.0
+fix settle all mc/settle 4928 floor 0.0 eta 1e-4 scheme domain
+thermo 1
+run 3
+"""
+
+
+def test_a_shrink_wrapped_bed_too_short_for_a_z_split_is_refused_before_the_first_tap():
+    # The box top follows the bed (6.6 tall at rest: two z sub-domains of 3.3, below the 3.6
+    # needed). The dilated box of the first tap was wide enough, so the run used to stop at a
+    # ghost rebuild in a later redeposition; the setup now checks the bed at rest.
+    rc, out, _ = run_lammps(SHORT_BED_Z_SPLIT, nprocs=2, timeout=120)
+    assert rc != 0
+    assert ("the narrowest sub-domain along z is 3.3" in out
+            and "the top is shrink-wrapped, so the 2 sub-domains along z share the bed's height"
+            in out), out
+    assert not any(line.split()[:1] == ["Step"] for line in out.splitlines()), out
+    # A fixed top keeps the sub-domains the box's: the same bed runs.
+    rc, out, _ = run_lammps(SHORT_BED_Z_SPLIT.replace("p p fs", "p p f"), nprocs=2, timeout=120)
+    assert rc == 0, out

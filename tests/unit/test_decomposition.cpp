@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -183,17 +184,30 @@ TEST(RoundSchedule, NoSplitAxisMeansOneUnboundedRound)
 TEST(RoundTrials, EverySphereExpectsTheSerialNumberOfPicksPerCycle)
 {
   // One sweep per check: each rank makes exactly as many trials as it has active spheres.
-  EXPECT_EQ(round_trials(517, 4096, 4096), 517);
-  EXPECT_EQ(round_trials(0, 4096, 4096), 0);
-  // A check interval of 2 sweeps doubles them; a tenth of a sweep rounds to nearest.
-  EXPECT_EQ(round_trials(517, 8192, 4096), 1034);
-  EXPECT_EQ(round_trials(517, 410, 4096), 52);  // 51.75
-  // Summed over the parts of a partition, the trials per cycle are the check interval to within
-  // one trial per part.
-  const long parts[4] = {1000, 1100, 950, 1046};
-  long sum = 0;
-  for (long p : parts) sum += round_trials(p, 1234, 4096);
-  EXPECT_LE(std::labs(sum - 1234), 2);
+  EXPECT_EQ(round_trials(100, 517, 4096, 4096), 517);
+  EXPECT_EQ(round_trials(100, 0, 4096, 4096), 0);
+  // A check interval of 2 sweeps doubles them; a tenth of a sweep: 51 or 52 of 51.75.
+  EXPECT_EQ(round_trials(0, 517, 8192, 4096), 1034);
+  EXPECT_EQ(round_trials(0, 517, 410, 4096), 51);
+  EXPECT_EQ(round_trials(3, 517, 410, 4096), 52);
+  // Summed over the parts of a partition (in their numbering), the trials of a cycle are the
+  // check interval exactly, also when every part's share is below one trial (500 spheres in
+  // 16 parts, check 5: the shares of 0.31 each rounded to nearest made none).
+  for (long interval : {1L, 5L, 7L, 250L, 1234L, 4096L, 9999L}) {
+    const long parts[16] = {31, 32, 30, 33, 31, 29, 34, 30, 32, 31, 30, 33, 31, 32, 30, 31};
+    long before = 0, sum = 0;
+    for (long p : parts) {
+      const long share = round_trials(before, p, interval, 500);
+      EXPECT_LE(std::fabs(share - static_cast<double>(p) * interval / 500.0), 1.0);
+      sum += share;
+      before += p;
+    }
+    EXPECT_EQ(before, 500);
+    EXPECT_EQ(sum, interval) << "check " << interval;
+  }
+  // Large counts do not overflow: 2^31 spheres, a check of 3 * 2^31 trials.
+  const long big = 1L << 31;
+  EXPECT_EQ(round_trials(big / 2, big / 2, 3 * big, big), 3 * (big / 2));
 }
 
 TEST(RandomKeys, RanksDrawFromDisjointKeys)
