@@ -55,6 +55,8 @@ def profiles(campaign, specs, filename):
 def fbc_start(specs):
     """The F.B.C. start of the runs ``specs`` ('walls' or 'paper'; one start for all)."""
     starts = {_runs.fbc_start_of(s) for s in specs}
+    if not starts:
+        raise ValueError("no F.B.C. run to draw")
     if len(starts) != 1:
         raise ValueError(f"runs {[s.name for s in specs]} mix the F.B.C. starts "
                          f"{sorted(starts)}")
