@@ -80,7 +80,7 @@ Tolerances
   --overlap-tol T      spheres closer than 2R (1 - T) are refused (default 1e-3); overlapping
                        inputs such as DEM dumps need T above their deepest overlap
   --merge-tol T        circumcentres closer than T R are one pore (default 1e-8)
-  --padding P          periodic image padding in R (default 4, 2 to 32; grown automatically)
+  --padding P          periodic image padding in R (default 4, at least 2, at most 32; grown automatically)
 Other
   -q, --quiet          no progress lines on stderr (warnings and errors still)
   -h, --help           this text
