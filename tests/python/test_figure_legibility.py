@@ -9,7 +9,8 @@ simulated), the front's figure from its committed runs, and every analysis class
   does not start with '_'), and where it has two data series or more, labelled or not;
 * no legend of the figure covers more than LEGEND_MAX_HIDDEN_FRACTION of the plotted points
   of any series of any of its axes (its window extent after ``fig.canvas.draw()``);
-* a paper-wing figure states its settings (N, the box, eta, taps, seeds) on top.
+* a paper-wing figure states its settings (N, the box, eta and the stop rule, taps,
+  seeds, the campaign) on top.
 
 The hidden-point count here is written afresh (not tapmc._legends'), so that the placement
 cannot pass by sharing a mistake with its check; the fraction is the one placement uses."""
@@ -123,10 +124,10 @@ def legend_problems(fig, where):
     return problems
 
 
-#: what the top line of a paper-wing figure names: N, the box, eta, the taps and the seeds
-#: (eps is in the figure's legends or on its axis, or for Figs. 5, 9 and 10, whose results do
-#: not record it, on that line too)
-SETTINGS_WORDS = ("N = ", "box", "eta = ", "taps", "seed")
+#: what the top line of a paper-wing figure names: N, the box, eta and the stop rule, the taps,
+#: the seeds and the campaign (eps is in the figure's legends or on its axis, or for Figs. 5, 9
+#: and 10, whose results do not record it, on that line too)
+SETTINGS_WORDS = ("N = ", "box", "eta = ", "stop ", "taps", "seed", "campaign: ")
 
 
 def states_settings(fig, words=SETTINGS_WORDS):
@@ -171,12 +172,13 @@ def test_a_figure_drawn_from_a_campaign_states_its_runs_settings(tmp_path):
     test_figure_results.py: N = 64, L = 16R, eta = 1e-4, 8 taps, two seeds) and the seeds
     behind the figure's own points."""
     campaign = fbc_campaign(tmp_path, "walls", wall_phi0=0.35)
-    settings = P.run_settings(campaign.runs)
+    settings = P.figure_settings(campaign, fig8.figure_runs(campaign))
     assert settings["sizes"] == [(64, 16.0)] and settings["seeds_per_point"] == [2, 2]
     fig = fig8.plot(fig8.analyse(campaign), settings)
     try:
-        assert fig._suptitle.get_text() == ("N = 64, box 16R x 16R; eta = 0.0001; 8 taps per "
-                                            "run; 2 seeds per point")
+        assert fig._suptitle.get_text().replace("\n", " ") == (
+            "N = 64, box 16R x 16R; eta = 0.0001, stop change; 8 taps per run; 2 seeds per "
+            f"point; campaign: {Path(campaign.directory).name}")
         assert legend_problems(fig, "fig8 of a campaign") == []
     finally:
         plt.close(fig)

@@ -12,8 +12,8 @@ curve (e.g. ``eps=0.05``, ``fit:eps=0.05``), ``x`` the abscissa, ``mean`` the me
 n < 2 or for a fitted curve) and ``n`` the number of seeds behind the mean.
 
 Every PNG states its settings on top (:func:`finish_figure`, :func:`settings_text`: N, the box,
-eta, taps, seeds) and has its legends placed off the data (:func:`legend`, through
-:mod:`tapmc._legends`).
+eta and the stop rule, the taps of its own runs, seeds, the campaign) and has its legends
+placed off the data (:func:`legend`, through :mod:`tapmc._legends`).
 """
 
 from __future__ import annotations
@@ -36,6 +36,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from tapmc.readers import TapmcFormatError  # noqa: E402
+
+from . import _runs  # noqa: E402
+from .scales import SCALES  # noqa: E402
 
 #: Column names of every figure CSV.
 CSV_COLUMNS = ("panel", "series", "x", "mean", "sem", "n")
@@ -268,67 +271,168 @@ def wrap_settings(text, width):
     return "\n".join(lines)
 
 
+#: panels of a figure CSV that hold statistics, drawn on no axis (``B``: Fig. 2's ln B
+#: against sqrt(eps))
+UNDRAWN_PANELS = ("params", "B")
+
+
 def plotted_seeds(result):
     """(fewest, most) seeds behind the plotted points of a figure result (the ``n`` of its
-    curves; the ``params`` panel's rows are statistics, a fitted curve has n = 0), None when
-    it has none."""
-    counts = {int(n) for panel, _, data in result.rows() if panel != "params"
+    drawn curves: the statistics of :data:`UNDRAWN_PANELS` are not drawn, a fitted curve has
+    n = 0), None when it has none."""
+    counts = {int(n) for panel, _, data in result.rows() if panel not in UNDRAWN_PANELS
               for n in np.atleast_1d(data.n) if n > 0}
     return (min(counts), max(counts)) if counts else None
 
 
-def run_settings(specs, figure_runs=()):
-    """The settings of a campaign's runs (``tapmc.campaign.RunSpec``s) in the fields of the
-    report's report.json that :func:`settings_text` states: sizes [(N, L)], eta, taps,
-    seeds_per_point [fewest, most] (runs whose names differ only in ``_s<seed>`` are one
-    point) and ramp_taps_per_level; with ``figure_runs`` (the runs of a figure whose result
-    does not record its eps: Figs. 5, 9, 10) also their ``eps`` and ``bc``."""
-    specs = list(specs)
-    points = Counter(re.sub(r"_s\d+$", "", s.name) for s in specs)
+#: fix mc/settle keywords of one value that the settings line states when a run sets them
+#: (``stop``: the stop rule; ``check 0`` is the default, one sweep)
+STATED_SETTLE_KEYS = ("stop", "window", "dmax", "check", "maxsweeps", "theta0", "theta_law")
+
+
+def settle_keys(spec):
+    """The fix mc/settle keywords (besides eta) of a run (``tapmc.campaign.RunSpec``): its
+    ``settle_keys`` variable when its input passes that variable to the fix
+    (in.constant_eps), else none (the fix's defaults: in.ramp, in.ageing, in.pore_dumps)."""
+    keys = spec.variables.get("settle_keys")
+    if keys is None:
+        return ""
+    try:
+        uses = "${settle_keys}" in Path(spec.input).read_text()
+    except OSError:     # the input is gone: the variable is what the run was given
+        uses = True
+    return str(keys) if uses else ""
+
+
+def stop_rule(keys=""):
+    """The redeposition's stop rule of fix mc/settle keywords ``keys`` (besides eta) as the
+    settings line states it: ``stop change`` (the fix's default, the paper's) or ``stop
+    drift``, followed by the other keywords of :data:`STATED_SETTLE_KEYS` the run sets."""
+    words = str(keys).split()
+    found = {}
+    for i, word in enumerate(words[:-1]):
+        if word in STATED_SETTLE_KEYS and word not in found:
+            found[word] = words[i + 1]
+    if found.get("check") == "0":
+        del found["check"]
+    parts = [f"stop {found.pop('stop', 'change')}"]
+    return " ".join(parts + [f"{k} {found[k]}" for k in STATED_SETTLE_KEYS if k in found])
+
+
+def _is_ramp(spec):
+    return Path(str(spec.input)).name == "in.ramp"
+
+
+def run_settings(specs, figure_runs=None, eps=False):
+    """The settings of runs (``tapmc.campaign.RunSpec``s) in the fields of the report's
+    report.json that :func:`settings_text` states: sizes [(N, L)], eta, stop (the stop rule
+    of each, :func:`stop_rule`), taps (of the runs at constant eps), seeds_per_point
+    [fewest, most] (runs whose names differ only in ``_s<seed>`` are one point),
+    ramp_taps_per_level and ramp_dsqrt (of the ramps, in.ramp). ``figure_runs``: the runs
+    of one figure, whose settings are given instead of those of all ``specs``; ``eps``: also
+    their ``eps`` and ``bc`` (a figure whose result does not record its eps: Figs. 5, 9,
+    10)."""
+    runs = list(specs if figure_runs is None else figure_runs)
+    points = Counter(re.sub(r"_s\d+$", "", s.name) for s in runs)
+    ramps = [s for s in runs if _is_ramp(s)]
     out = {
-        "sizes": sorted({(int(s.variables["N"]), float(s.variables["L"])) for s in specs
+        "sizes": sorted({(int(s.variables["N"]), float(s.variables["L"])) for s in runs
                          if "N" in s.variables}),
-        "eta": sorted({float(s.variables["eta"]) for s in specs if "eta" in s.variables}),
-        "taps": sorted({int(s.taps) for s in specs if s.taps is not None}),
+        "eta": sorted({float(s.variables["eta"]) for s in runs if "eta" in s.variables}),
+        "stop": sorted({stop_rule(settle_keys(s)) for s in runs}),
+        "taps": sorted({int(s.taps) for s in runs if s.taps is not None and not _is_ramp(s)}),
         "seeds_per_point": ([min(points.values()), max(points.values())] if points
                             else [0, 0]),
-        "ramp_taps_per_level": sorted({int(s.variables["P"]) for s in specs
-                                       if s.input.name == "in.ramp" and "P" in s.variables}),
+        "ramp_taps_per_level": sorted({int(s.variables["P"]) for s in ramps
+                                       if "P" in s.variables}),
+        "ramp_dsqrt": sorted({float(s.variables["dsqrt"]) for s in ramps
+                              if "dsqrt" in s.variables}),
     }
-    if figure_runs:
-        out["eps"] = sorted({float(s.variables["eps"]) for s in figure_runs})
-        out["bc"] = sorted({str(s.variables["bc"]) for s in figure_runs})
+    if eps:
+        out["eps"] = sorted({float(s.variables["eps"]) for s in runs if "eps" in s.variables})
+        out["bc"] = sorted({str(s.variables["bc"]) for s in runs if "bc" in s.variables})
     return out
+
+
+def figure_settings(campaign, figure_runs, eps=False):
+    """:func:`run_settings` of the runs of one figure of ``campaign`` with the campaign's
+    scale (``scale``, ``preset``: what :func:`settings_text` names it by, as report.json
+    does) and the name of its folder (``campaign``: no path)."""
+    scale = _runs.campaign_scale(campaign)
+    return dict(run_settings(campaign.runs, figure_runs, eps),
+                scale=None if scale is None else scale.name,
+                preset=scale is not None and SCALES.get(scale.name) == scale,
+                campaign=Path(campaign.directory).name)
+
+
+def campaign_text(summary):
+    """The campaign a figure comes from, named by its scale (report.json's ``scale`` and
+    ``preset``): "campaign: full preset", "campaign: scale <name>", else by its folder's name
+    (``campaign``); None when not known."""
+    name = summary.get("scale")
+    if not name:
+        return f"campaign: {summary['campaign']}" if summary.get("campaign") else None
+    return f"campaign: {name} preset" if summary.get("preset") else f"campaign: scale {name}"
+
+
+def after_taps(taps=None, settings=None):
+    """"after N taps" for a figure's final state: N the taps its result records, else the one
+    taps count of its runs' settings (a dict of :func:`run_settings` or report.json);
+    "after the taps" when neither gives one count."""
+    if taps is None and isinstance(settings, dict) and len(settings.get("taps") or ()) == 1:
+        taps = settings["taps"][0]
+    return "after the taps" if taps is None else f"after {int(taps)} taps"
 
 
 #: how the settings line names the boundary conditions
 BC_LABEL = {"pbc": "P.B.C.", "fbc": "F.B.C."}
 
 
+def taps_text(summary):
+    """The taps of the runs (``taps``) and of the ramps' levels (``ramp_taps_per_level``,
+    ``ramp_dsqrt``) as the settings line states them; "" when neither is known."""
+    taps = summary.get("taps") or []
+    per_level = summary.get("ramp_taps_per_level") or []
+    steps = summary.get("ramp_dsqrt") or []
+    ramps = ""
+    if per_level:
+        ramps = f"{', '.join(map(str, per_level))} taps per level"
+        if steps:
+            ramps += f", steps of {', '.join(f'{d:g}' for d in steps)} in sqrt(eps)"
+    if not taps:
+        return f"ramps of {ramps}" if ramps else ""
+    span = f"{taps[0]}" if len(taps) == 1 else f"{taps[0]} to {taps[-1]}"
+    return f"{span} taps per run" + (f" (ramps: {ramps})" if ramps else "")
+
+
 def settings_text(summary, seeds=None):
-    """One line stating a campaign's settings from :func:`run_settings` or report.json:
-    sphere count and box (side L in sphere radii R), redeposition threshold eta, taps per run
-    (and per level of a ramp), seeds per point (``seeds``: the figure's own (fewest, most)),
-    and the figure's boundary conditions and eps where given (``bc``, ``eps``: a figure that
-    does not state them in its legends or on its axis)."""
+    """One line stating the settings of a figure's runs from :func:`run_settings` or
+    report.json: sphere count and box (side L in sphere radii R), the figure's boundary
+    conditions and eps where given (``bc``, ``eps``: a figure that does not state them in its
+    legends or on its axis), redeposition threshold eta and stop rule (``stop``; report.json
+    written before it has none), taps per run (and per level of a ramp), seeds per point
+    (``seeds``: the figure's own (fewest, most)) and the campaign (:func:`campaign_text`)."""
     parts = [f"N = {n}, box {l:g}R x {l:g}R" for n, l in summary["sizes"]]
     if summary.get("eps"):
         bc = ", ".join(BC_LABEL.get(b, b) for b in summary.get("bc", ()))
         parts.append((f"{bc}, " if bc else "") + "eps = "
                      + ", ".join(fmt_eps(e) for e in summary["eps"]))
+    redeposition = []
     if summary.get("eta"):
-        parts.append("eta = " + ", ".join(f"{e:g}" for e in summary["eta"]))
-    taps = summary.get("taps") or []
+        redeposition.append("eta = " + ", ".join(f"{e:g}" for e in summary["eta"]))
+    redeposition += list(summary.get("stop") or [])
+    if redeposition:
+        parts.append(", ".join(redeposition))
+    taps = taps_text(summary)
     if taps:
-        span = f"{taps[0]}" if len(taps) == 1 else f"{taps[0]} to {taps[-1]}"
-        per_level = summary.get("ramp_taps_per_level")
-        ramps = (f" (ramps: {', '.join(map(str, per_level))} per level)" if per_level
-                 else "")
-        parts.append(f"{span} taps per run{ramps}")
+        parts.append(taps)
     low, high = seeds or summary.get("seeds_per_point") or (summary.get("seeds"),) * 2
     if high:
         seeds = f"{low}" if low == high else f"{low} to {high}"
         parts.append(f"{seeds} {'seed' if high == 1 else 'seeds'} per point")
+    source = campaign_text(summary)
+    if source:
+        parts.append(source)
     return "; ".join(parts)
 
 

@@ -223,9 +223,14 @@ def plot(result, settings=None):
     return P.finish_figure(fig, settings, P.plotted_seeds(result))
 
 
+def figure_runs(campaign):
+    """The runs Fig. 10 draws: the pore-dump runs."""
+    return _runs.select(campaign, KIND + "_")
+
+
 def draw(campaign, out_dir):
     """Fig. 10's PNG and CSV in ``out_dir``; returns their paths."""
-    settings = P.run_settings(campaign.runs, _runs.select(campaign, KIND + "_"))
+    settings = P.figure_settings(campaign, figure_runs(campaign), eps=True)
     return analyse(campaign).save_with_png(plot, out_dir, NAME, settings)
 
 

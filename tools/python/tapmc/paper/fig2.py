@@ -420,7 +420,18 @@ def plot(result, settings=None):
     return P.finish_figure(fig, settings, P.plotted_seeds(result))
 
 
+def figure_runs(campaign, eps_values=None):
+    """The runs Fig. 2 draws: the F.B.C. constant-eps runs of :func:`analyse`'s eps."""
+    specs = _runs.select(campaign, "const_", bc=BC)
+    if eps_values is None and specs:
+        scale = _runs.campaign_scale(campaign)
+        eps_values = (scale.fig2_eps if scale is not None
+                      else paper_eps({s.variables["eps"] for s in specs}))
+    return [s for group in _runs.constant_eps_groups(campaign, BC, eps_values).values()
+            for s in group]
+
+
 def draw(campaign, out_dir, eps_values=None):
     """Fig. 2's PNG and CSV in ``out_dir`` (:func:`analyse`); returns their paths."""
     return analyse(campaign, eps_values).save_with_png(
-        plot, out_dir, NAME, P.run_settings(campaign.runs))
+        plot, out_dir, NAME, P.figure_settings(campaign, figure_runs(campaign, eps_values)))

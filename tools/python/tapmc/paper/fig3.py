@@ -215,4 +215,9 @@ def plot(result, settings=None):
 def draw(campaign, out_dir):
     """Fig. 3's PNG and CSV in ``out_dir``; returns their paths."""
     return analyse(campaign).save_with_png(
-        plot, out_dir, NAME, P.run_settings(campaign.runs))
+        plot, out_dir, NAME, P.figure_settings(campaign, figure_runs(campaign)))
+
+
+def figure_runs(campaign):
+    """The runs Fig. 3 draws: the constant-eps P.B.C. runs."""
+    return [s for group in _runs.constant_eps_groups(campaign, BC).values() for s in group]

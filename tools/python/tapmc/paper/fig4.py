@@ -432,6 +432,17 @@ def analyse(campaign):
                       Value(0.0, CRITICAL_SQRT_EPS, np.nan, 1))
 
 
+def ramp_words(ramp, words):
+    """The legend's name of one ramp (:class:`RampResult`): where it turns (its highest
+    sqrt(eps)) and its seeds, e.g. "ramp to 0.3 (2 seeds)"; ``words`` (where it stands to
+    0.15) while it has no decreasing level."""
+    top = None if ramp is None else ramp.top_sqrt_eps
+    if top is None or not np.isfinite(top.value):
+        return words
+    seeds = f" ({top.n} seed{'s' if top.n != 1 else ''})" if top.n else ""
+    return f"ramp to {top.value:.3g}{seeds}"
+
+
 def plot(result, settings=None):
     """The figure of a :class:`Fig4Result` (drawing only)."""
     fig, (ax,) = P.new_figure(1, 1, height=4.0)
@@ -441,7 +452,9 @@ def plot(result, settings=None):
     ax.axvline(CRITICAL_SQRT_EPS, color="0.5", ls=":", lw=1,
                label=r"$(\varepsilon^{1/2})^* = 0.15$")
     for tag, _, style, words in RAMPS:
-        branches = result.ramps[tag].branches if tag in result.ramps else {}
+        ramp = result.ramps.get(tag)
+        branches = ramp.branches if ramp is not None else {}
+        words = ramp_words(ramp, words)
         for branch, s in branches.items():
             marker, label = style.get(branch, ("x", branch))
             ax.errorbar(s.x, s.mean, yerr=np.nan_to_num(s.err), marker=marker, mfc="none",
@@ -455,4 +468,10 @@ def plot(result, settings=None):
 def draw(campaign, out_dir):
     """Fig. 4's PNG and CSV in ``out_dir``; returns their paths."""
     return analyse(campaign).save_with_png(
-        plot, out_dir, NAME, P.run_settings(campaign.runs))
+        plot, out_dir, NAME, P.figure_settings(campaign, figure_runs(campaign)))
+
+
+def figure_runs(campaign):
+    """The runs Fig. 4 draws: the constant-eps P.B.C. runs and the ramps of :data:`RAMPS`."""
+    return ([s for group in _runs.constant_eps_groups(campaign, BC).values() for s in group]
+            + [s for _, prefix, _, _ in RAMPS for s in _runs.select(campaign, prefix, bc=BC)])

@@ -604,7 +604,12 @@ def _collapse_panel(ax, scaling, master, colors):
     P.legend(ax, fontsize=6)
 
 
+def figure_runs(campaign):
+    """The runs Fig. 5 draws: the ageing realizations."""
+    return _runs.select(campaign, "ageing_", bc=BC)
+
+
 def draw(campaign, out_dir, waiting_times=None):
     """Fig. 5's PNG and CSV in ``out_dir``; returns their paths."""
-    settings = P.run_settings(campaign.runs, _runs.select(campaign, "ageing_", bc=BC))
+    settings = P.figure_settings(campaign, figure_runs(campaign), eps=True)
     return analyse(campaign, waiting_times).save_with_png(plot, out_dir, NAME, settings)

@@ -33,7 +33,7 @@ CSV panels: ``a`` (series ``initial``, ``final``, ``fit:initial``, ``fit:final``
 ``params`` (``initial:alpha``, ``final:alpha``
 over seeds; with two seeds or more ``final:alpha:seeds``, one row per seed: its alpha and the
 lateral jackknife of its packing; ``final:<eq. 7 parameter>``, ``window_lo``, ``window_hi``,
-``eps``).
+``eps``; ``taps``: the taps of the runs, the legend's "after N taps").
 
 :func:`analyse` returns a :class:`Fig6Result` (its ``save``/``load`` are the CSV), :func:`plot`
 draws one, :func:`draw` does both into a folder.
@@ -265,7 +265,7 @@ class VerticalProfiles:
     alpha: dict
     #: each seed's final alpha and its lateral jackknife (two seeds or more, else None)
     alpha_seeds: Series = None
-    #: taps of the runs (legend only; not in the CSV, None when loaded)
+    #: taps of the runs (the legend's "after N taps"; None in CSVs written before it)
     taps: int = None
 
     def rows(self):
@@ -277,6 +277,8 @@ class VerticalProfiles:
         if self.alpha_seeds is not None:
             out.append(("params", "final:alpha:seeds", self.alpha_seeds))
         x, n = self.eps, self.seeds
+        if self.taps is not None:
+            out.append(("params", "taps", Value(x, float(self.taps), np.nan, n)))
         return out + [("params", "window_lo", Value(x, self.window[0], np.nan, n)),
                       ("params", "window_hi", Value(x, self.window[1], np.nan, n)),
                       ("params", "eps", Value(x, self.eps, np.nan, n))]
@@ -294,8 +296,9 @@ class VerticalProfiles:
         seeds = rows.take_optional("params", "final:alpha:seeds")
         lo, hi = rows.take_value("params", "window_lo"), rows.take_value("params", "window_hi")
         eps = rows.take_value("params", "eps")
+        taps = rows.take_value("params", "taps") if rows.has("params", "taps") else None
         return cls(eps.value, eps.n, initial, final, (lo.value, hi.value), curves, eq7, alpha,
-                   seeds)
+                   seeds, None if taps is None else int(taps.value))
 
 
 @dataclass(frozen=True)
@@ -397,15 +400,15 @@ def plot(result, settings=None):
     """The figure of a :class:`Fig6Result` (drawing only)."""
     bottom = result.bell is not None or bool(result.ramp)
     fig, axes = P.new_figure((result.profiles is not None) + bottom, 1, height=4.0)
+    final = P.after_taps(None if result.profiles is None else result.profiles.taps, settings)
     if result.profiles is not None:
-        _profile_panel(axes[0], result.profiles)
+        _profile_panel(axes[0], result.profiles, final)
     if bottom:
-        _bell_panel(axes[-1], result.bell, result.ramp or {})
+        _bell_panel(axes[-1], result.bell, result.ramp or {}, final)
     return P.finish_figure(fig, settings, P.plotted_seeds(result))
 
 
-def _profile_panel(ax, top):
-    final = "after the taps" if top.taps is None else f"after {top.taps} taps"
+def _profile_panel(ax, top, final):
     ax.plot(top.initial.x, top.initial.mean, ":", color="k", label="initial packing")
     ax.plot(top.final.x, top.final.mean, "-", color="C3", label=final)
     err = np.nan_to_num(top.final.err)
@@ -425,10 +428,10 @@ def _profile_panel(ax, top):
               title_fontsize=7)
 
 
-def _bell_panel(ax, bell, ramp):
+def _bell_panel(ax, bell, ramp, final):
     if bell is not None:
         ax.errorbar(bell.x, bell.mean, yerr=np.nan_to_num(bell.err), marker="s", ls="-",
-                    color="k", capsize=2, label="after the taps")
+                    color="k", capsize=2, label=final)
     for branch, series in ramp.items():
         marker, label = _runs.RAMP_BRANCH_STYLE[branch]
         ax.errorbar(series.x, series.mean, yerr=np.nan_to_num(series.err), marker=marker,
@@ -444,4 +447,20 @@ def _bell_panel(ax, bell, ramp):
 def draw(campaign, out_dir):
     """Fig. 6's PNG and CSV in ``out_dir``; returns their paths."""
     return analyse(campaign).save_with_png(
-        plot, out_dir, NAME, P.run_settings(campaign.runs))
+        plot, out_dir, NAME, P.figure_settings(campaign, figure_runs(campaign)))
+
+
+def figure_runs(campaign):
+    """The runs Fig. 6 draws: the F.B.C. runs of its top panel, the bell's constant-eps
+    P.B.C. runs and the ramp of its bottom panel."""
+    out = []
+    try:
+        out += _profile_runs.nearest_eps_runs(campaign)[1]
+    except ValueError:
+        pass
+    try:
+        out += [s for group in _runs.constant_eps_groups(campaign, _steady_state.BC).values()
+                for s in group]
+    except ValueError:
+        pass
+    return out + _runs.select(campaign, "ramp_", bc=_steady_state.BC)

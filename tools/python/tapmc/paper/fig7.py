@@ -13,7 +13,8 @@ The runs start from the scale's F.B.C. packing (``Scale.fbc_start``, see
 profile is under-populated along the walls (the paper's Fig. 7b).
 
 CSV panels: ``a`` (series ``initial``, ``final``; x = x/R), ``params`` (``frontier_lo``,
-``frontier_hi`` in units of R; ``eps``; ``paper_start``: 1 for the paper's start, 0 for the
+``frontier_hi`` in units of R; ``eps``; ``taps``: the taps of the runs, the legend's "after N
+taps"; ``paper_start``: 1 for the paper's start, 0 for the
 start deposited between walls; the zone means of each seed's profile, mean and sem over seeds,
 x = eps: ``initial:within_2R`` and ``final:within_2R``, Phi within 2R of either wall, the first
 layer, where the paper's start is under-populated; ``initial:2R_to_7R`` and
@@ -90,7 +91,7 @@ class Fig7Result(FigureResult):
     final: Series
     #: (state, zone) -> the zone mean over seeds (:func:`seed_zone_means`)
     zones: dict
-    #: taps of the runs (legend only; not in the CSV, None when loaded)
+    #: taps of the runs (the legend's "after N taps"; None in CSVs written before it)
     taps: int = None
 
     @property
@@ -106,6 +107,8 @@ class Fig7Result(FigureResult):
                ("params", "eps", Value(x, self.eps, np.nan, n))]
         if self.paper_start is not None:
             out.append(("params", "paper_start", Value(x, float(self.paper_start), np.nan, n)))
+        if self.taps is not None:
+            out.append(("params", "taps", Value(x, float(self.taps), np.nan, n)))
         return out + [("params", f"{state}:{zone}", value)
                       for (state, zone), value in self.zones.items()]
 
@@ -116,10 +119,12 @@ class Fig7Result(FigureResult):
         eps = rows.take_value("params", "eps")
         start = (rows.take_value("params", "paper_start")
                  if rows.has("params", "paper_start") else None)
+        taps = rows.take_value("params", "taps") if rows.has("params", "taps") else None
         zones = {(state, zone): rows.take_value("params", f"{state}:{zone}")
                  for state in STATES for zone in ZONES if rows.has("params", f"{state}:{zone}")}
-        return cls(eps.value, eps.n, None if start is None else bool(start.value), (lo.value, hi.value), initial, final,
-                   zones)
+        return cls(eps.value, eps.n, None if start is None else bool(start.value),
+                   (lo.value, hi.value), initial, final, zones,
+                   None if taps is None else int(taps.value))
 
 
 def analyse(campaign):
@@ -137,7 +142,7 @@ def analyse(campaign):
 def plot(result, settings=None):
     """The figure of a :class:`Fig7Result` (drawing only)."""
     fig, (ax,) = P.new_figure(1, 1, height=4.0)
-    final = "after the taps" if result.taps is None else f"after {result.taps} taps"
+    final = P.after_taps(result.taps, settings)
     P.errorbars(ax, result.initial.x, result.initial.mean, result.initial.err,
                 label="initial packing", color="k", ls=":")
     P.errorbars(ax, result.final.x, result.final.mean, result.final.err, label=final,
@@ -157,4 +162,9 @@ def plot(result, settings=None):
 def draw(campaign, out_dir):
     """Fig. 7's PNG and CSV in ``out_dir``; returns their paths."""
     return analyse(campaign).save_with_png(
-        plot, out_dir, NAME, P.run_settings(campaign.runs))
+        plot, out_dir, NAME, P.figure_settings(campaign, figure_runs(campaign)))
+
+
+def figure_runs(campaign):
+    """The runs Fig. 7 draws: the F.B.C. runs at the eps nearest to the paper's 0.1."""
+    return nearest_eps_runs(campaign)[1]

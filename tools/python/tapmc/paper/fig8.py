@@ -188,4 +188,12 @@ def plot(result, settings=None):
 def draw(campaign, out_dir):
     """Fig. 8's PNG and CSV in ``out_dir``; returns their paths."""
     return analyse(campaign).save_with_png(
-        plot, out_dir, NAME, P.run_settings(campaign.runs))
+        plot, out_dir, NAME, P.figure_settings(campaign, figure_runs(campaign)))
+
+
+def figure_runs(campaign):
+    """The runs Fig. 8 draws: the F.B.C. constant-eps runs of :func:`increases`."""
+    scale = _runs.campaign_scale(campaign)
+    eps_values = scale.profile_eps if scale is not None else None
+    return [s for group in _runs.constant_eps_groups(campaign, BC, eps_values).values()
+            for s in group]

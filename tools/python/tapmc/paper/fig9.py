@@ -17,7 +17,8 @@ dumps; ``phi_c_steady``: the steady state of <Phi^c>, the mean over the last qua
 taps (the paper's last 1000 of 4000), whose sem is over seeds, or for one seed (n = 1) the
 batch-means error of that mean (``tapmc.fluctuations.SteadyState``, successive taps being
 correlated); ``phi_c_tap_sd``: the standard deviation of single taps about it (the spread of a
-value read at one tap, as the paper's 60.6 % is)).
+value read at one tap, as the paper's 60.6 % is); ``taps``: the taps of the runs, after
+which the final packing is dumped).
 
 :func:`analyse` returns a :class:`Fig9Result` (its ``save``/``load`` are the CSV), :func:`plot`
 draws one, :func:`draw` does both into a folder.
@@ -62,13 +63,15 @@ def p0_runs(campaign, bc=BC):
 
 def p0_curves(campaign, bc=BC):
     """dict 'initial'/'final' -> (sigma, list of P0 per seed, list of phi per seed) and the
-    stereological <Phi^c> at both ends, over the runs of :func:`p0_runs`."""
+    stereological <Phi^c> at both ends, over the runs of :func:`p0_runs` (with ``taps``: the
+    tap of each run's final dump)."""
     _, specs = p0_runs(campaign, bc)
     out = {"initial": [None, [], []], "final": [None, [], []]}
-    phi_c = {"initial": [], "final": [], "steady": []}
+    phi_c = {"initial": [], "final": [], "steady": [], "taps": []}
     for spec in specs:
         files = _pores.dumps(_runs.run_dir(campaign, spec))
         first, last = min(files), max(files)
+        phi_c["taps"].append(int(last))
         tab = _runs.taps_table(campaign, spec)
         for key, step in (("initial", first), ("final", last)):
             prefix, _ = _pores.analyse(campaign, spec, f"p0_t{step}", steps=[step],
@@ -117,13 +120,16 @@ class Fig9Result(FigureResult):
     #: steady <Phi^c> and the spread of single taps about it (None in CSVs drawn before them)
     phi_c_steady: Value = None
     phi_c_tap_sd: Value = None
+    #: taps of the runs, dumped after them (the legend's "after N taps"; None in CSVs drawn
+    #: before it)
+    taps: Value = None
 
     def rows(self):
         out = []
         for state in STATES:
             out += [("a", state, self.p0[state]), ("params", f"phi_{state}", self.phi[state]),
                     ("params", f"phi_c_{state}", self.phi_c[state])]
-        for name in ("phi_c_steady", "phi_c_tap_sd"):
+        for name in ("phi_c_steady", "phi_c_tap_sd", "taps"):
             if getattr(self, name) is not None:
                 out.append(("params", name, getattr(self, name)))
         return out + [("a", "percus_yevick", self.percus_yevick),
@@ -137,8 +143,8 @@ class Fig9Result(FigureResult):
                             else rows.take_value(panel, name.format(state)))
                     for state in STATES}
 
-        optional = {name: rows.take_value("params", name) for name in ("phi_c_steady",
-                                                                        "phi_c_tap_sd")
+        optional = {name: rows.take_value("params", name)
+                    for name in ("phi_c_steady", "phi_c_tap_sd", "taps")
                     if rows.has("params", name)}
         return cls(each("a", "{}"), each("params", "phi_{}"), each("params", "phi_c_{}"),
                    rows.take("a", "percus_yevick"),
@@ -162,7 +168,15 @@ def analyse(campaign):
         p0, phi, phi_c_ends, Series.of(sigma, theory, None, 0),
         Value(0.0, float(np.max(np.abs(final - initial)))),
         Value(0.0, float(np.max(np.abs(final - theory)))),
-        Value(0.0, m, s, n), Value(0.0, tap_sd, np.nan, n))
+        Value(0.0, m, s, n), Value(0.0, tap_sd, np.nan, n),
+        _taps_value(phi_c.get("taps"), n))
+
+
+def _taps_value(taps, n):
+    """The tap of the final dumps (one count for every run, else None: the legend then says
+    "after the taps")."""
+    return (Value(0.0, float(taps[0]), np.nan, n) if taps and len(set(taps)) == 1
+            else None)
 
 
 def plot(result, settings=None):
@@ -170,9 +184,10 @@ def plot(result, settings=None):
     fig, (ax,) = P.new_figure(1, 1, height=4.0)
     final, initial, theory = result.p0["final"], result.p0["initial"], result.percus_yevick
     every = max(len(final.x) // 40, 1)
+    final_label = P.after_taps(None if result.taps is None else result.taps.value, settings)
     ax.errorbar(final.x[::every], final.mean[::every], yerr=np.nan_to_num(final.err[::every]),
                 marker="o", mfc="none", ls="none", color="C0", capsize=1,
-                label=f"after the taps ($\\Phi$ = {100 * result.phi['final'].value:.1f} %)")
+                label=f"{final_label} ($\\Phi$ = {100 * result.phi['final'].value:.1f} %)")
     ax.plot(initial.x, initial.mean, "-", lw=0.8, color="k",
             label=f"initial packing ($\\Phi$ = {100 * result.phi['initial'].value:.1f} %)")
     ax.plot(theory.x, theory.mean, "-", lw=2.5, color="C1", alpha=0.7,
@@ -185,7 +200,12 @@ def plot(result, settings=None):
     return P.finish_figure(fig, settings, P.plotted_seeds(result))
 
 
+def figure_runs(campaign):
+    """The runs Fig. 9 draws: the P.B.C. runs at the scale's p0_eps (:func:`p0_runs`)."""
+    return p0_runs(campaign)[1]
+
+
 def draw(campaign, out_dir):
     """Fig. 9's PNG and CSV in ``out_dir``; returns their paths."""
-    settings = P.run_settings(campaign.runs, p0_runs(campaign)[1])
+    settings = P.figure_settings(campaign, figure_runs(campaign), eps=True)
     return analyse(campaign).save_with_png(plot, out_dir, NAME, settings)

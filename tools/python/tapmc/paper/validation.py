@@ -32,7 +32,7 @@ from . import FIGURES
 from . import _plotting as P
 from . import _runs
 from ._rst import list_table
-from . import claims, paper_ramp, questions, sigma_eta
+from . import claims, paper_ramp, questions, redraw, sigma_eta
 from . import summary as summary_screen
 from .claims import fmt, scale_aspects
 from .claims.aggregate import AGGREGATION_SENTENCE, claim_verdicts
@@ -61,7 +61,9 @@ _SCALE_KEYS = ("taps", "steady_last", "fig2_eps", "steady sqrt(eps)", "ramp_sqrt
 
 def campaign_summary(campaign):
     """What the report says of the campaign itself (a JSON-ready dict): its scale, sizes,
-    runs, taps, seeds, eta, and the initial <Phi^c> of its P.B.C. packings."""
+    runs, taps, seeds, eta and stop rules, the settings of each figure's own runs
+    (``figures``, which its settings line states) and the initial <Phi^c> of its P.B.C.
+    packings."""
     specs = campaign.runs
     scale = _runs.campaign_scale(campaign)
     preset = scale is not None and scale.name in SCALES and SCALES[scale.name] == scale
@@ -82,6 +84,8 @@ def campaign_summary(campaign):
         "seeds_per_point": _seeds_per_point(specs),
         "eta": sorted({float(s.variables["eta"]) for s in specs if "eta" in s.variables}),
         "ramp_taps_per_level": _ramp_taps_per_level(specs),
+        "stop": sorted({P.stop_rule(P.settle_keys(s)) for s in specs}),
+        "figures": redraw.campaign_figure_settings(campaign),
         "initial_phi_c": list(_initial_phi(campaign)),
     }
 
@@ -119,7 +123,8 @@ def describe_scale(summary, paper_ramps=False):
         name = f"the scale ``{summary['scale']}``"
     text = (f"Scale: {name} ({size}; {summary['runs']} runs of "
             f"{', '.join(map(str, summary['taps']))} taps; {_seeds_text(summary)}; "
-            f"redeposition threshold eta = {', '.join(f'{e:g}' for e in summary['eta'])}). "
+            f"redeposition threshold eta = {', '.join(f'{e:g}' for e in summary['eta'])}"
+            + "".join(f", {stop}" for stop in summary.get("stop") or ()) + "). "
             "The paper used N = 4096, L = 32R and 4000 taps, one run per point from the same "
             "initial packing (section III.B), and 10 realizations for the ageing of Fig. 5 "
             "(section III.C).")
@@ -620,6 +625,10 @@ OPTIONAL_SUMMARY_FIELDS = {
                         lambda v: _list_of(_count(0), 2)(v) and v[0] <= v[1]),
     "ramp_taps_per_level": ("a list of integers >= 1", _list_of(_count(1))),
     "planned_runs": ("an integer >= 0", _count(0)),
+    "stop": ("a list of strings (the stop rules, 'stop change ...')",
+             _list_of(lambda v: isinstance(v, str) and v.startswith("stop "))),
+    "figures": ("an object: figure name -> the settings of its runs",
+                lambda v: isinstance(v, dict) and all(isinstance(f, dict) for f in v.values())),
 }
 
 
