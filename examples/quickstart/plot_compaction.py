@@ -22,6 +22,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from tapmc import InverseLogLaw, TapmcFormatError, read_fix_print  # noqa: E402
+from tapmc._legends import place_legend, replace_legends  # noqa: E402
 
 #: the fix mc/settle threshold when the input gives no eta (its default, doc/fix_mc_settle.rst)
 DEFAULT_ETA = "1e-7"
@@ -30,18 +31,39 @@ MIN_FIT_TAPS = 8
 
 
 def run_settings(log_path):
-    """N, eps, seed and eta of a run, from the commands its LAMMPS log echoes (after variable
-    substitution); values the log does not show are '?'."""
+    """N, the box, eps, seed, eta and the redeposition's stop rule of a run, from the commands
+    its LAMMPS log echoes (after variable substitution); values the log does not show are '?',
+    fix mc/settle's defaults are marked '(default)'."""
     text = Path(log_path).read_text(errors="replace") if Path(log_path).exists() else ""
     def last(pattern):
         found = re.findall(pattern, text, re.M)
         return found[-1] if found else "?"
     settle = last(r"^fix\s+\S+\s+\S+\s+mc/settle\s+(.*)$")
     eta = re.search(r"\beta\s+(\S+)", settle) if settle != "?" else None
+    stop = re.search(r"\bstop\s+(\S+)", settle) if settle != "?" else None
+    dmax = re.search(r"\bdmax\s+(\S+)", settle) if settle != "?" else None
     return {"N": last(r"^create_packing\s+(\d+)"),
+            "box": box_text(last(r"^region\s+\S+\s+block\s+(.*)$"),
+                            last(r"^create_packing\s+\S+\s+\S+\s+(\S+)"),
+                            last(r"^boundary\s+(.*)$")),
+            "stop": ("?" if settle == "?" else f"stop {stop.group(1)}" if stop
+                     else "stop change (default)") + (f", dmax {dmax.group(1)}" if dmax else ""),
             "eps": last(r"^fix\s+\S+\s+\S+\s+tapdilate\s+(\S+)"),
             "seed": settle.split()[0] if settle != "?" else "?",
-            "eta": eta.group(1) if eta else (DEFAULT_ETA if settle != "?" else "?")}
+            "eta": eta.group(1) if eta else (f"{DEFAULT_ETA} (default)" if settle != "?" else "?")}
+
+
+def box_text(block, radius, boundary):
+    """'box 16R x 16R (P.B.C.)': the base of the region block in sphere radii and whether its
+    sides are periodic, from the log's region, create_packing radius and boundary; 'box ?'."""
+    try:
+        xlo, xhi, ylo, yhi = (float(v) for v in block.split()[:4])
+        r = float(radius)
+    except (ValueError, AttributeError):
+        return "box ?"
+    sides = boundary.split()[:2] if boundary != "?" else []
+    bc = " (P.B.C.)" if sides == ["p", "p"] else " (walls)" if sides else ""
+    return f"box {(xhi - xlo) / r:g}R x {(yhi - ylo) / r:g}R{bc}"
 
 
 def main(argv=None):
@@ -62,23 +84,25 @@ def main(argv=None):
     # eq. 3 has 4 parameters: below MIN_FIT_TAPS taps the curve is drawn without it
     fit = InverseLogLaw().fit(tap[after], phi_c[after]) if after.sum() >= MIN_FIT_TAPS else None
     s = run_settings(log)
-    settings = f"N = {s['N']}, eps = {s['eps']}, eta = {s['eta']}, seed = {s['seed']}, {int(tap[-1])} taps"
+    settings = (f"N = {s['N']}, {s['box']}, eps = {s['eps']}, eta = {s['eta']}, {s['stop']}, "
+                f"seed = {s['seed']}, {int(tap[-1])} taps")
 
     np.savetxt(args.out + ".csv", np.column_stack([tap, phi_b, phi_c, z, fit(tap) if fit else np.full(tap.shape, np.nan)]),
                delimiter=",", fmt="%.8g", header="tap,Phi_b,Phi_c,Z,Phi_c_eq3_fit", comments="")
-    fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4), constrained_layout=True)
+    fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
     left.semilogx(tap[after], phi_c[after], ".", ms=3, label=r"$\langle\Phi^c\rangle$ (bed mean, floor band corrected)")
     left.semilogx(tap[after], phi_b[after], ".", ms=3, label=r"$\Phi_b$ (bottom slab, 4R)")
     if fit:
         left.semilogx(tap[after], fit(tap[after]), "k-", lw=1, label="eq. 3 fitted to " + r"$\langle\Phi^c\rangle$")
     left.set_xlabel("tap t")
     left.set_ylabel("packing fraction")
-    left.legend(loc="lower right", fontsize=8)
+    place_legend(left, later=True, fontsize=8)
     right.semilogx(tap[after], z[after], ".", ms=3, color="C2", label=r"$\langle Z\rangle$")
     right.set_xlabel("tap t")
     right.set_ylabel(r"mean centre height $\langle Z\rangle$ (distance units)")
-    right.legend(loc="upper right", fontsize=8)
+    place_legend(right, later=True, fontsize=8)
     fig.suptitle(settings, fontsize=9)
+    replace_legends(fig, fig.tight_layout)   # legends off the data, for the laid-out axes
     fig.savefig(args.out + ".png", dpi=120)
 
     print(f"{settings}: <Phi^c> {phi_c[0]:.4f} before the first tap, {phi_c[after][0]:.4f} after it, "

@@ -15,6 +15,7 @@ simulated), the front's figure from its committed runs, and every analysis class
 The hidden-point count here is written afresh (not tapmc._legends'), so that the placement
 cannot pass by sharing a mistake with its check; the fraction is the one placement uses."""
 
+import importlib.util
 import math
 import os
 import shutil
@@ -365,3 +366,61 @@ def test_analysis_plot_is_readable(name):
         assert legend_problems(fig, name) == []
     finally:
         plt.close(fig)
+
+
+# --- the example scripts' figures ------------------------------------------------------------
+
+def example_figures(monkeypatch, script, argv):
+    """The figures ``script`` (a path under examples/) saves when run with ``argv``."""
+    from matplotlib.figure import Figure
+    saved, save = [], Figure.savefig
+
+    def keep(fig, *args, **kw):
+        saved.append(fig)
+        return save(fig, *args, **kw)
+    monkeypatch.setattr(Figure, "savefig", keep)
+    spec = importlib.util.spec_from_file_location(Path(script).stem, SOURCE / script)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    module.main(argv)
+    return saved
+
+
+def test_the_quickstart_figure_is_readable_and_states_its_settings(tmp_path, monkeypatch):
+    """plot_compaction.py on a compaction curve of the quick start's shape (300 taps, the
+    reference log's settings): no legend on the data, N, the box, eps, eta, the stop rule."""
+    t = np.arange(301.0)
+    rng = np.random.default_rng(4928)
+    phi_c = 0.5765 + 0.017 * np.log1p(t) / np.log(301) + 0.001 * rng.standard_normal(t.size)
+    phi_b = 0.541 + 0.027 * np.log1p(t) / np.log(301) + 0.001 * rng.standard_normal(t.size)
+    z = 7.42 - 0.27 * np.log1p(t) / np.log(301)
+    with open(tmp_path / "taps.dat", "w") as f:
+        f.write("# tap Phi_b Phi_c Z sweeps\n")
+        for row in zip(t, phi_b, phi_c, z, 1000 + t):
+            f.write(f"{int(row[0])} " + " ".join(f"{v:.6f}" for v in row[1:]) + "\n")
+    log = SOURCE / "examples" / "quickstart" / "log.1Dec26.quickstart.g++.1"
+    (fig,) = example_figures(monkeypatch, "examples/quickstart/plot_compaction.py",
+                             [str(tmp_path / "taps.dat"), "--log", str(log),
+                              "--out", str(tmp_path / "compaction")])
+    try:
+        assert legend_problems(fig, "quick start") == []
+        assert states_settings(fig, ("N = 1024", "box 16R x 16R (P.B.C.)", "eps = 0.0225",
+                                     "eta = 1e-7 (default)", "stop change (default)",
+                                     "300 taps")), fig._suptitle
+    finally:
+        plt.close(fig)
+
+
+def test_the_tube_figures_are_readable_and_state_the_stop_rule(tmp_path, monkeypatch):
+    from test_tube_runs import write_run
+    write_run(tmp_path)
+    figures = example_figures(monkeypatch, "examples/cylinder/plot_tube.py",
+                              [str(tmp_path), "--out-dir", str(tmp_path / "out")])
+    assert figures
+    for fig in figures:
+        try:
+            assert legend_problems(fig, "tube") == []
+            titles = " ".join(ax.get_title() for ax in fig.axes)
+            assert "stop change (default)" in titles and "eta = " in titles
+        finally:
+            plt.close(fig)

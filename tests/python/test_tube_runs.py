@@ -79,9 +79,18 @@ def test_settings_from_the_log(tmp_path):
                                                                    "7", 60)
     assert s.cylinder == Cylinder(4.0, 4.0, 4.0) and s.wall_zone_start == 0.5
     assert s.describe() == ("N = 1200, tube D = 8 (8 bead diameters), eps = 0.0225, "
-                            "eta = 1e-5, seed = 7, 60 taps")
+                            "eta = 1e-5, stop change (default), seed = 7, 60 taps")
     assert TubeSettings.from_log(tmp_path / "missing.log").describe() == (
-        "N = ?, tube D = ?, eps = ?, eta = ?, ? taps")
+        "N = ?, tube D = ?, eps = ?, eta = ?, stop ?, ? taps")
+
+
+def test_settings_state_a_stop_rule_and_dmax_the_input_sets(tmp_path):
+    write_run(tmp_path)
+    log = tmp_path / "log.lammps"
+    text = log.read_text()
+    assert "mc/settle 7 " in text
+    log.write_text(text.replace("mc/settle 7 ", "mc/settle 7 stop drift dmax 0.1 "))
+    assert ", stop drift, dmax 0.1, seed = 7" in TubeSettings.from_log(log).describe()
 
 
 def test_from_log_takes_a_log_read_by_read_log():

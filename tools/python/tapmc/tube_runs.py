@@ -4,7 +4,8 @@ the compaction curve of its ``taps.dat`` (``fix print``: step Phi_b <Phi^c> <Z> 
 phi_core sweeps, tap 0 included) and the radial profiles of its ``profile_r.dat`` (``fix
 ave/time ... mode vector`` of ``compute stereo/profile ... container ID axis r``).
 
-* :class:`TubeSettings` (``from_log``): N, sphere radius, the container, eps, eta, seed, taps,
+* :class:`TubeSettings` (``from_log``): N, sphere radius, the container, eps, eta and the stop
+  rule, seed, taps,
   and ``describe()``, the line a figure states;
 * :class:`TubeCompaction` (``from_file``): the curves, eq. 3 fitted to <Phi^c>, ``plot(ax)``
   (Phi_b, <Phi^c>, the wall zone and the core against taps) and ``plot_height(ax)`` (<Z>);
@@ -56,6 +57,15 @@ def _number(text):
     return v if math.isfinite(v) else None
 
 
+def stop_text(settle):
+    """The stop rule of a fix mc/settle line's keywords (after its seed): "stop change
+    (default)" or "stop drift", with its dmax when the line sets one."""
+    stop = re.search(r"\bstop\s+(\S+)", settle)
+    dmax = re.search(r"\bdmax\s+(\S+)", settle)
+    return ((f"stop {stop.group(1)}" if stop else "stop change (default)")
+            + (f", dmax {dmax.group(1)}" if dmax else ""))
+
+
 @dataclass(frozen=True)
 class TubeSettings:
     """What a figure of a tube run states: ``n`` spheres of radius ``sphere_radius``, the
@@ -69,6 +79,9 @@ class TubeSettings:
     eta: Optional[str] = None
     seed: Optional[str] = None
     taps: Optional[int] = None
+    #: the redeposition's stop rule and its non-default keywords (e.g. "stop change (default)",
+    #: "stop drift, dmax 0.05"), from the fix mc/settle line
+    stop: Optional[str] = None
 
     @classmethod
     def from_log(cls, path, taps=None):
@@ -102,7 +115,8 @@ class TubeSettings:
                             lambda s: s if _number(s) is not None else None),
                    eta=(eta.group(1) if eta else DEFAULT_ETA) if settle else None,
                    seed=settle.split()[0] if settle else None,
-                   taps=taps if taps is not None else (int(run) if run is not None else None))
+                   taps=taps if taps is not None else (int(run) if run is not None else None),
+                   stop=stop_text(settle) if settle else None)
 
     def with_taps(self, taps):
         return replace(self, taps=int(taps))
@@ -115,8 +129,8 @@ class TubeSettings:
         return self.cylinder.radius - WALL_ZONE_OVER_R * self.sphere_radius
 
     def describe(self):
-        """One line: N, the tube's diameter (in bead diameters when R is known), eps, eta,
-        seed and taps, '?' for what is unknown."""
+        """One line: N, the tube's diameter (in bead diameters when R is known), eps, eta and
+        the stop rule, seed and taps, '?' for what is unknown."""
         tube = "?"
         if self.cylinder is not None:
             tube = f"{self.cylinder.diameter:g}"
@@ -124,6 +138,7 @@ class TubeSettings:
                 tube += f" ({self.cylinder.radius / self.sphere_radius:g} bead diameters)"
         parts = [f"N = {self.n if self.n is not None else '?'}", f"tube D = {tube}",
                  f"eps = {self.eps or '?'}", f"eta = {self.eta or '?'}"]
+        parts.append(self.stop or "stop ?")
         if self.seed is not None:
             parts.append(f"seed = {self.seed}")
         parts.append(f"{self.taps if self.taps is not None else '?'} taps")

@@ -384,6 +384,17 @@ def after_taps(taps=None, settings=None):
     return "after the taps" if taps is None else f"after {int(taps)} taps"
 
 
+#: the campaign of the question figures drawn from the paper-scale campaign (their modules
+#: take its settings from the FULL preset)
+FULL_CAMPAIGN = {"scale": "full", "preset": True}
+
+
+def planned_stop(spec):
+    """The stop rule of a run as a campaign plans it (``spec``: the RunSpec a
+    ``tapmc.paper._runs`` constructor makes): :func:`stop_rule` of :func:`settle_keys`."""
+    return stop_rule(settle_keys(spec))
+
+
 #: how the settings line names the boundary conditions
 BC_LABEL = {"pbc": "P.B.C.", "fbc": "F.B.C."}
 

@@ -777,10 +777,13 @@ def settings_line(rows, error_factor=None):
         "" if errors.value == 1.0 else
         f" x {errors.value:.1f} (one {LAST_TAPS}-tap mean to the next)" if errors.from_window
         else f" x {errors.value:.1f} (the realizations' spread)")
-    return (f"N = {FULL.N}, box {FULL.L:g}R x {FULL.L:g}R, P.B.C.; {TAPS_PER_LEVEL} taps per "
+    stop = _plotting.planned_stop(_runs.paper_ramp_run(FULL, "pbc", 1, FULL.ramp_below_top))
+    return (f"N = {FULL.N}, box {FULL.L:g}R x {FULL.L:g}R, P.B.C.; eta: each panel's, {stop}; "
+            f"{TAPS_PER_LEVEL} taps per "
             f"level, steps of {FULL.ramp_dsqrt:g} in sqrt(eps), means of the last {LAST_TAPS} "
             f"taps of each level, error bars {bars}; levels done whole only; "
-            f"seeds {', '.join(map(str, seeds))}")
+            f"seeds {', '.join(map(str, seeds))}; "
+            + _plotting.campaign_text(_plotting.FULL_CAMPAIGN))
 
 
 def write_figure(rows, default_eta, path, error_factor=None):

@@ -443,11 +443,13 @@ def settings_line(all_points, used=None):
     floor = ("one seed: its batch means" if not scaled else
              "never below the runs' batch-means errors x the realizations' spread, "
              + ", ".join(f"{ERROR_NAMES[q]} {k:.1f}" for q, k in scaled.items()))
+    stop = _plotting.planned_stop(_runs.constant_eps_eta_run(FULL, BC, 0.01, 1, FULL.eta))
     return (f"P.B.C., N = {FULL.N}, box {FULL.L:g}R x {FULL.L:g}R, {FULL.taps} taps at constant "
-            f"eps; steady state: the last quarter of each run's planned taps; mean +- sem over "
+            f"eps; eta: each series', {stop}; steady state: the last quarter of each run's planned taps; mean +- sem over "
             f"{min(seeds)} to {max(seeds)} seeds per point ({floor}); open "
             "markers: runs still going; "
-            "dashed: sigma_<Z> = offset + slope sqrt(eps)")
+            "dashed: sigma_<Z> = offset + slope sqrt(eps); "
+            + _plotting.campaign_text(_plotting.FULL_CAMPAIGN))
 
 
 def write_figure(all_points, default_eta, path, factor_of=None):

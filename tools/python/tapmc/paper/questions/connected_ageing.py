@@ -20,8 +20,9 @@ import numpy as np
 from tapmc.ageing import Ageing
 from tapmc.connected_ageing import ConnectedAgeing
 
-from .. import _plotting, fig5
+from .. import _plotting, _runs, fig5
 from .._rst import list_table
+from ..scales import FULL
 from ..claims import fmt
 from .common import QuestionError, csv_schema, eps_of, finished_runs, last_rows, taps_table
 
@@ -271,6 +272,8 @@ def plot(rows, axes=None):
 def write_figure(rows, path):
     """connected_ageing.png: :func:`plot`, its settings on top; returns the path."""
     fig = plot(rows)[0].figure
-    _plotting.finish_figure(fig, _settings_text(results(rows)[0]) + "; bands: jackknife "
-                            "errors over realizations")
+    stop = _plotting.planned_stop(_runs.ageing_run(FULL, fig5.BC, FULL.ageing_eps, 1))
+    _plotting.finish_figure(fig, _settings_text(results(rows)[0]) + f", {stop}; bands: "
+                            "jackknife errors over realizations; "
+                            + _plotting.campaign_text(_plotting.FULL_CAMPAIGN))
     return _plotting.save_figure(fig, path)

@@ -80,9 +80,15 @@ def settle_input(work, label, keys):
     return script
 
 
+def box_side(N):
+    """The side of the scan's P.B.C. box in R for N spheres: the paper's bed height, 32R at
+    N = 4096."""
+    return 32 * np.sqrt(N / 4096)
+
+
 def _run_row(args, lmp, work, label, value, seed, keys):
     """The CSV row of one run of the scan (run in ``work``, or kept from before)."""
-    scale = {"N": args.N, "L": 32 * np.sqrt(args.N / 4096)}
+    scale = {"N": args.N, "L": box_side(args.N)}
     run = launch.spec(f"s{seed}_{label:.6f}",
                       dict(scale, bc="pbc", eps=THETA0_EPS, seed=seed, taps=THETA0_TAPS,
                            rsteps=launch.NO_RESTART, eta=args.eta),

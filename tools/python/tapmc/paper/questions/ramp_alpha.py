@@ -224,10 +224,13 @@ def write_figure(rows, path):
     fig = plot(rows)[0].figure
     hi = max(float(r["window_hi"]) for r in rows)
     seeds = ", ".join(map(str, sorted({int(r["seed"]) for r in rows})))
+    stop = _plotting.planned_stop(_runs.paper_ramp_run(FULL, "pbc", 1, FULL.ramp_below_top))
     _plotting.finish_figure(fig, f"N = {FULL.N}, box {FULL.L:g}R x {FULL.L:g}R, P.B.C.; "
+                            f"eta: each panel's, {stop}; "
                             f"{paper_ramp.TAPS_PER_LEVEL} taps per level, steps of "
                             f"{FULL.ramp_dsqrt:g} in sqrt(eps); alpha of the vertical profile "
                             f"at the end of each level (one profile), fitted in "
                             f"{float(rows[0]['window_lo']):g}R to at most {hi:.3g}R; levels "
-                            f"done whole only; seeds {seeds}")
+                            f"done whole only; seeds {seeds}; "
+                            + _plotting.campaign_text(_plotting.FULL_CAMPAIGN))
     return _plotting.save_figure(fig, path)

@@ -163,7 +163,9 @@ def write_laws_figure(folder):
         first = scans["angle"][0]
         seeds = sorted({int(r["seed"]) for rows in scans.values() for r in rows})
         _plotting.finish_figure(fig, (
-            f"N = {first['N']}, P.B.C., eps = {float(first['eps']):g}, {first['taps']} taps from "
+            f"N = {first['N']}, box {knob_scan.box_side(int(first['N'])):g}R x "
+            f"{knob_scan.box_side(int(first['N'])):g}R, "
+            f"P.B.C., eps = {float(first['eps']):g}, {first['taps']} taps from "
             f"the same fresh packings, {scan_settings(scans['angle'])}; gain: <Phi^c> over the "
             f"last 10 taps minus t = 0; seeds {', '.join(map(str, seeds))}"))
         paths.append(_plotting.save_figure(fig, Path(folder) / LAWS_PNG.format(size=size)))
