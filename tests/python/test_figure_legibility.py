@@ -424,3 +424,86 @@ def test_the_tube_figures_are_readable_and_state_the_stop_rule(tmp_path, monkeyp
             assert "stop change (default)" in titles and "eta = " in titles
         finally:
             plt.close(fig)
+
+
+# --- text at the size the pages show it ------------------------------------------------------
+
+#: the pages that show the figures below, and the thumbnail width of the summary tables (a
+#: thumbnail links to the full figure: illegible by design)
+PAGES = ("doc/front.rst", "doc/paper_scale/validation.rst",
+         "doc/paper_scale/validation_questions.rst", "doc/validation.rst")
+THUMBNAIL = "160px"
+
+
+def shown_widths(png_name):
+    """The ``:width:`` in pixels of every image of ``png_name`` on :data:`PAGES` (None: shown
+    at its own width), thumbnails left out."""
+    widths = []
+    for page in PAGES:
+        lines = (SOURCE / page).read_text().splitlines()
+        for i, line in enumerate(lines):
+            if line.strip().startswith(".. image::") and line.strip().endswith("/" + png_name):
+                options = [o.strip() for o in lines[i + 1:i + 4] if o.strip().startswith(":")]
+                width = next((o.split()[1] for o in options if o.startswith(":width:")), None)
+                if width != THUMBNAIL:
+                    widths.append(None if width is None else int(width.rstrip("px")))
+    return widths
+
+
+def smallest_text_px(fig, shown):
+    """(points, pixels as shown) of the smallest visible text of the saved ``fig``."""
+    from matplotlib.text import Text
+    width = fig.get_figwidth() * P.PNG_DPI
+    sizes = [t.get_fontsize() for t in fig.findobj(Text)
+             if t.get_visible() and t.get_text().strip()]
+    return min(sizes), P.shown_text_px(min(sizes), width, shown)
+
+
+def question_figures(monkeypatch, tmp_path):
+    """png name -> the figure, of every question figure drawn from its committed CSV."""
+    from matplotlib.figure import Figure
+    from tapmc.paper import paper_ramp, sigma_eta, validation
+    from tapmc.paper.questions import connected_ageing, ramp_alpha, theta0
+    from tapmc.paper.scales import FULL
+    saved, save = {}, Figure.savefig
+
+    def keep(fig, path, *args, **kw):
+        saved[Path(path).name] = fig
+        return save(fig, path, *args, **kw)
+    monkeypatch.setattr(Figure, "savefig", keep)
+    monkeypatch.setattr(plt, "close", lambda *a, **k: None)
+    page = SOURCE / "doc" / "paper_scale"
+    folder = page / "validation" / "questions"
+    for module in (paper_ramp, sigma_eta):
+        module.write_figure(module.read_csv(folder / module.CSV_NAME), FULL.eta,
+                            tmp_path / module.PNG_NAME,
+                            validation.report_errors(page, module))
+    for module in (ramp_alpha, connected_ageing):
+        module.write_figure(module.load(folder / module.CSV), tmp_path / module.PNG)
+    shutil.copytree(folder, tmp_path / "questions")
+    theta0.write_laws_figure(tmp_path / "questions")
+    return saved
+
+
+def test_question_and_front_figures_are_legible_as_the_pages_show_them(
+        monkeypatch, tmp_path, computed_front):
+    """Text of at least MIN_TEXT_PX pixels at the width a page shows the figure (its
+    ``:width:``, at most the page body's PAGE_WIDTH_PX): connected_ageing (1100 pixels at
+    500), sigma_eta (836 at 500) and the front (1557 at about 820) had legends of 5 pixels."""
+    figures = question_figures(monkeypatch, tmp_path)
+    for N in computed_front.compared_sizes:
+        fig = front_page.figure(computed_front, N)
+        P.save_figure(fig, tmp_path / f"{front_page.figure_name(N)}.png")
+        figures[f"{front_page.figure_name(N)}.png"] = fig
+    assert len(figures) >= 8
+    small = []
+    for name, fig in figures.items():
+        widths = shown_widths(name)
+        assert widths, f"{name}: on no page"
+        for shown in widths:
+            points, pixels = smallest_text_px(fig, shown)
+            if pixels < P.MIN_TEXT_PX:
+                small.append(f"{name} shown at {shown or 'its width'}: {points} pt text is "
+                             f"{pixels:.1f} px")
+        plt.close(fig)
+    assert not small, "\n".join(small)

@@ -325,7 +325,8 @@ def test_the_figure_draws_every_whole_level_one_panel_per_eta(tmp_path):
     png = paper_ramp.write_figure(rows, 1e-7, tmp_path / "out" / paper_ramp.PNG_NAME)
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert "4000 taps per level" in paper_ramp.settings_line(rows)
-    assert paper_ramp.settings_line(rows).endswith("seeds 1, 2, 3")
+    assert paper_ramp.settings_line(rows).endswith("seeds 1, 2, 3; campaign: full preset")
+    assert "stop change" in paper_ramp.settings_line(rows)
     assert "error bars their batch-means errors;" in paper_ramp.settings_line(rows)
     assert "error bars their batch-means errors x 2.1 (the realizations' spread);" in \
         paper_ramp.settings_line(rows, 2.1)

@@ -235,6 +235,21 @@ def save_figure(fig, path):
     return path
 
 
+#: width of the documentation's page body in pixels (alabaster, page_width 1100px): a figure
+#: wider than this is shown at this width, a narrower one at its own
+PAGE_WIDTH_PX = 820
+#: the smallest height in pixels, as the page shows a figure, that its text may have
+MIN_TEXT_PX = 8
+
+
+def shown_text_px(points, png_width_px, shown_px=None):
+    """The height in pixels of text of ``points`` in a PNG of :data:`PNG_DPI` that is
+    ``png_width_px`` wide, as a page shows it: at ``shown_px`` (an rst ``:width:``), at most
+    :data:`PAGE_WIDTH_PX`."""
+    shown = min(png_width_px if shown_px is None else shown_px, PAGE_WIDTH_PX)
+    return points * PNG_DPI / 72.0 * shown / png_width_px
+
+
 #: font size of the settings line on top of a figure (smaller than the legends' 7 points)
 SETTINGS_FONTSIZE = 7
 #: characters of that font per inch of the figure's width: where its line wraps (measured

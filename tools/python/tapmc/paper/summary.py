@@ -233,10 +233,9 @@ def _entry_row(entry):
             entry.headline, entry.paper, image]
 
 
-#: Width on the page of the central answer's figure (its PNG is about 900 pixels wide).
-ANSWER_FIGURE_WIDTH = 600
-#: Width of a figure inside an open question's item (a finding's own figure).
-FINDING_FIGURE_WIDTH = 500
+#: The central answer's figure and a finding's own figure are shown at their own width (at
+#: most the page's: _plotting.PAGE_WIDTH_PX), the size their text is drawn for: shown at 500
+#: or 600 pixels, their legends were 5 to 6 pixels high.
 
 
 def screen_rst(entries, finding="", headline="", figure=None):
@@ -250,8 +249,7 @@ def screen_rst(entries, finding="", headline="", figure=None):
              claims_sentence(entries), ""] + ([headline, ""] if headline else [])
     if figure:
         path, alt = figure
-        lines += [f".. image:: {path}", f"   :width: {ANSWER_FIGURE_WIDTH}px",
-                  f"   :alt: {alt}", ""]
+        lines += [f".. image:: {path}", f"   :alt: {alt}", ""]
     lines += list_table(["Figure", "Outcome", "Key number (TAPMC)", "Paper", "Figure"],
                         [_entry_row(entry) for entry in entries], widths=(18, 22, 26, 16, 18))
     lines += ["", OUTCOME_RULE, "", "Open questions:", ""]
@@ -263,8 +261,7 @@ def screen_rst(entries, finding="", headline="", figure=None):
         lines.append(f"* {text}")
         if own:  # indented under the item's text: the image belongs to it
             path, alt = own
-            lines += ["", f"  .. image:: {path}", f"     :width: {FINDING_FIGURE_WIDTH}px",
-                      f"     :alt: {alt}", ""]
+            lines += ["", f"  .. image:: {path}", f"     :alt: {alt}", ""]
     return lines + ([] if items else ["* none"]) + [""]
 
 

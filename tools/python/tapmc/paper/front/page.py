@@ -45,12 +45,17 @@ def figure_table(front, N):
     return table
 
 
+#: the three panels stacked (a, b, c from the top): side by side they made a figure of 1400 to
+#: 1560 pixels that the page showed at about 820, its legends at 5 pixels
+FIGURE_LAYOUT = {"nrows": 3, "ncols": 1, "height": 2.6, "width": 5.0}
+
+
 def plot(front, N, ax=None):
     """Panels a, b (bias against cost at each eps) and c (bias against taps); `ax`: three
     axes, or None for a new figure. Returns the axes; their legends find their places off
     the data when the figure is laid out (:func:`figure`, _plotting.finish_figure)."""
     if ax is None:
-        _, ax = new_figure(nrows=1, ncols=3, height=3.6, width=4.2)
+        _, ax = new_figure(**FIGURE_LAYOUT)
     table = figure_table(front, N)
     by = {}
     for panel, series, x, mean, sem, n in table.rows:
@@ -100,7 +105,7 @@ def settings_line(front, N):
 def figure(front, N):
     """The front's figure at N (:func:`plot`), its settings on top and its legends placed off
     the data: a matplotlib figure, not saved."""
-    fig, ax = new_figure(nrows=1, ncols=3, height=3.6, width=4.2)
+    fig, ax = new_figure(**FIGURE_LAYOUT)
     plot(front, N, ax=ax)
     return finish_figure(fig, settings_line(front, N))
 
@@ -312,8 +317,9 @@ def _recommendation_lines(front, N, recs):
 
 def _figure_lines(front, N):
     return [f".. image:: validation/front/{figure_name(N)}.png", "",
-            f"Left, middle: bias of the steady <Phi^c> (taps {TAPS - STEADY_LAST + 1}-{TAPS}) against the CPU time per tap "
-            f"(error bars: standard error of the paired bias). Right: the bias against the "
+            f"Top, middle: bias of the steady <Phi^c> (taps {TAPS - STEADY_LAST + 1}-{TAPS}) "
+            f"against the CPU time per tap "
+            f"(error bars: standard error of the paired bias). Bottom: the bias against the "
             f"tap count at eps = {front.eps_values[0]:g} (the steady window at {2 * TAPS}). "
             f"Data: ``doc/validation/front/{figure_name(N)}.csv``.", ""]
 

@@ -249,7 +249,7 @@ def plot(rows, axes=None):
     axes, new ones when None. Returns the axes."""
     res = results(rows)[0]
     if axes is None:
-        _, axes = _plotting.new_figure(nrows=1, ncols=2, height=3.6, width=5.0)
+        _, axes = _plotting.new_figure(nrows=1, ncols=2, height=3.6, width=4.0)
     if len(axes) < 2:
         raise ValueError(f"axes: {len(axes)} given, the figure has 2 panels")
     labels = {"A": r"$A(t, t_W)$ (eq. 5): drift included",

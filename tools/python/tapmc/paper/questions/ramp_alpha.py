@@ -182,7 +182,7 @@ def render(path):
                           *(_difference_cell(bands[c][run], "down", "up1")
                             for c in BAND_COLUMNS)] for run, lv in ordered])
     if (path.parent / PNG).is_file():
-        lines += ["", f".. image:: {_runs.FIG_DIR}/{path.parent.name}/{PNG}", "   :width: 600px",
+        lines += ["", f".. image:: {_runs.FIG_DIR}/{path.parent.name}/{PNG}",
                   "   :alt: alpha at the end of every level of the ramps at the paper's "
                   "protocol", ""]
     return lines + [""]

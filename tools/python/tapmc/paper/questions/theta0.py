@@ -120,7 +120,7 @@ def render_laws(folder):
         png = Path(folder) / LAWS_PNG.format(size=size)
         if png.is_file():
             lines += [f".. image:: {_runs.FIG_DIR}/{Path(folder).name}/{png.name}",
-                      "   :width: 500px", "   :alt: the compaction of each law of theta against "
+                      "   :alt: the compaction of each law of theta against "
                       "its width and its mean angle", ""]
     return lines
 
