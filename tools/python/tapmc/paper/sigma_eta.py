@@ -445,7 +445,8 @@ def settings_line(all_points, used=None):
              + ", ".join(f"{ERROR_NAMES[q]} {k:.1f}" for q, k in scaled.items()))
     stop = _plotting.planned_stop(_runs.constant_eps_eta_run(FULL, BC, 0.01, 1, FULL.eta))
     return (f"P.B.C., N = {FULL.N}, box {FULL.L:g}R x {FULL.L:g}R, {FULL.taps} taps at constant "
-            f"eps; eta: each series', {stop}; steady state: the last quarter of each run's planned taps; mean +- sem over "
+            f"eps; eta: each series', {stop}; steady state: the last quarter of each run's "
+            "planned taps; mean +- sem over "
             f"{min(seeds)} to {max(seeds)} seeds per point ({floor}); open "
             "markers: runs still going; "
             "dashed: sigma_<Z> = offset + slope sqrt(eps); "
