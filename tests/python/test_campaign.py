@@ -531,7 +531,7 @@ def test_eta_counts_what_each_run_costs_per_tap():
     """The campaign's ETA sums each run's taps left times its own cost per tap (its running
     rate, else finished runs that differ only by seed, else of its input, else the session's),
     over the jobs; a mean rate over cheap taps would promise the expensive runs too soon."""
-    from tapmc.campaign.runner import estimate_seconds_left, past_seconds_per_tap
+    from tapmc.campaign.progress import estimate_seconds_left, past_seconds_per_tap
 
     def record(name, eps, seed, attempts, inp="in.constant_eps"):
         return {"name": name, "input": inp, "variables": {"eps": eps, "taps": 100},
@@ -752,7 +752,7 @@ def test_a_ramps_eta_weighs_its_taps_by_their_cost(tmp_path):
     so far by the cost left over the cost done, where its rate so far would promise the end
     too soon; the overall ETA takes the same per-tap cost; tap_costs that do not fit the runs
     are refused."""
-    from tapmc.campaign.runner import weighted_seconds_left
+    from tapmc.campaign.progress import weighted_seconds_left
     sums = [0.0, 1.0, 2.0, 4.0, 6.0]                     # taps costing 1, 1, 2, 2
     assert weighted_seconds_left(sums, 0, 2, 10.0) == pytest.approx(20.0)
     assert weighted_seconds_left(sums, 1, 3, 30.0) == pytest.approx(20.0)  # 30 s x 2 / 3

@@ -4,7 +4,6 @@ decides what runs and when; starting processes is :mod:`.launch`'s job, repairin
 :mod:`.run_folder`'s and recording what happened :mod:`.provenance`'s."""
 
 import json
-import math
 import os
 import platform
 import signal
@@ -12,10 +11,10 @@ import sys
 import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
-from itertools import accumulate
 from pathlib import Path
 
 from . import launch, provenance, run_folder
+from .progress import cost_sums, estimate_seconds_left, format_seconds, weighted_seconds_left
 from ..readers import TapmcFormatError
 from .errors import CampaignDirectoryError, CampaignError, CampaignStopped
 from .spec import RunSpec
@@ -28,105 +27,6 @@ PROGRESS_INTERVAL = 10.0
 #: The signals that stop a running campaign cleanly (:class:`CampaignStopped`): a batch system's
 #: or ``kill``'s SIGTERM, and Ctrl-C.
 STOP_SIGNALS = (signal.SIGTERM, signal.SIGINT)
-
-
-def _fmt_seconds(s):
-    if s is None:
-        return "?"
-    s = int(round(s))
-    h, rem = divmod(s, 3600)
-    m, sec = divmod(rem, 60)
-    return f"{h}h{m:02d}m{sec:02d}s" if h else (f"{m}m{sec:02d}s" if m else f"{sec}s")
-
-
-def _sibling_key(describe):
-    """What makes two runs cost the same per tap: their input, variables and ranks (the seed
-    and the name aside)."""
-    return (describe["input"], json.dumps(describe["variables"], sort_keys=True),
-            describe.get("nprocs", 1))
-
-
-def past_seconds_per_tap(records):
-    """Wall seconds per tap of the finished attempts in manifest ``records`` (name -> record):
-    dict name -> s per tap, from the attempts that ended with returncode 0 (taps = the run's
-    taps - the step it resumed from; attempts of no tap aside)."""
-    out = {}
-    for name, rec in records.items():
-        wall = taps = 0.0
-        for attempt in rec.get("attempts", []):
-            if attempt.get("returncode") != 0 or not attempt.get("wall_s") or not rec.get("taps"):
-                continue
-            covered = rec["taps"] - (attempt.get("resumed_from_step") or 0)
-            if covered > 0:
-                wall += attempt["wall_s"]
-                taps += covered
-        if taps:
-            out[name] = wall / taps
-    return out
-
-
-def estimate_seconds_left(left, records, running, jobs, session_rate):
-    """Wall seconds until the last run ends, from what each run costs per tap rather than
-    from the campaign's mean rate (taps of different runs differ several times in cost: a
-    weak tap settles in fewer sweeps than a strong one).
-
-    ``left``: name -> taps still to run (unfinished runs); ``records``: the manifest's records
-    (name -> describe() plus attempts); ``running``: name -> this session's measured s per tap
-    of a running run; ``jobs``: runs at a time; ``session_rate``: taps per second of the whole
-    session, or 0. Each run's s per tap: its own rate when running, else the mean of finished
-    runs that differ from it only by seed, else of finished runs of the same input, else the
-    session's (jobs / session_rate). The sum over the runs is divided by ``jobs``. None when
-    some run has no estimate."""
-    past = past_seconds_per_tap(records)
-    siblings, inputs = {}, {}
-    for name, spt in past.items():
-        rec = records[name]
-        siblings.setdefault(_sibling_key(rec), []).append(spt)
-        inputs.setdefault(rec["input"], []).append(spt)
-    fallback = jobs / session_rate if session_rate > 0 else None
-    total = 0.0
-    for name, taps in left.items():
-        if taps <= 0:
-            continue
-        rec = records.get(name, {})
-        spt = running.get(name)
-        if spt is None and rec:
-            similar = siblings.get(_sibling_key(rec)) or inputs.get(rec.get("input"))
-            spt = sum(similar) / len(similar) if similar else None
-        spt = fallback if spt is None else spt
-        if spt is None:
-            return None
-        total += taps * spt
-    return total / jobs
-
-
-def _cost_sums(tap_costs, runs):
-    """name -> cumulative tap costs (index k: the cost of taps 1..k) of Campaign's
-    ``tap_costs``, checked against the runs (a known name, one positive finite cost per tap)."""
-    sums = {}
-    for name, costs in tap_costs.items():
-        spec = runs.get(name)
-        if spec is None:
-            raise ValueError(f"tap_costs: {name!r} is not a run of the campaign")
-        costs = [float(c) for c in costs]
-        if spec.taps is None or len(costs) != spec.taps:
-            raise ValueError(f"tap_costs[{name!r}]: {len(costs)} costs, the run has "
-                             f"{spec.taps} taps: one cost per tap")
-        if not all(math.isfinite(c) and c > 0 for c in costs):
-            raise ValueError(f"tap_costs[{name!r}]: every cost must be finite and > 0")
-        sums[name] = list(accumulate(costs, initial=0.0))
-    return sums
-
-
-def weighted_seconds_left(cost_sums, done0, done, elapsed):
-    """Seconds a running run still needs when its taps differ in cost: the ``elapsed`` seconds
-    it took from tap ``done0`` to tap ``done`` times the cost of the taps left over the cost of
-    those done (``cost_sums``: cumulative costs, index k the cost of taps 1..k, the last the
-    run's total); None before it has done a tap this session."""
-    spent = cost_sums[done] - cost_sums[done0]
-    if not spent > 0:
-        return None
-    return float(elapsed * (cost_sums[-1] - cost_sums[done]) / spent)
 
 
 #: What a manifest records of the versions, each attempt too: the TAPMC tree the campaign runs
@@ -208,7 +108,7 @@ class Campaign:
         self.stream = stream if stream is not None else sys.stdout
         self.pin_inputs = bool(pin_inputs)
         self._by_name = {r.name: r for r in runs}
-        self._cost_sums = _cost_sums(tap_costs or {}, self._by_name)
+        self._cost_sums = cost_sums(tap_costs or {}, self._by_name)
         self._lock = threading.Lock()
         self._records = {}
         self._started = {}
@@ -634,14 +534,14 @@ class Campaign:
                     spt_running[name] = 1.0 / rate
                 pct = f" ({100.0 * n / total:.0f}%)" if total else ""
                 lines.append(f"[campaign]   {name}: {n}/{total if total is not None else '?'} "
-                             f"taps{pct}, ETA {_fmt_seconds(eta)}")
+                             f"taps{pct}, ETA {format_seconds(eta)}")
         finished = sum(1 for r in self.runs if self.is_done(r.name))
         elapsed = now - session_start
         rate = done_session / elapsed if elapsed > 0 else 0
         eta = estimate_seconds_left(left, records, spt_running, self.jobs, rate) \
             if any(left.values()) else 0
         lines.append(f"[campaign] {finished}/{len(self.runs)} runs done, elapsed "
-                     f"{_fmt_seconds(elapsed)}, ETA {_fmt_seconds(eta)}")
+                     f"{format_seconds(elapsed)}, ETA {format_seconds(eta)}")
         print("\n".join(lines), file=self.stream, flush=True)
 
     # -- main ------------------------------------------------------------------------------
