@@ -1,18 +1,21 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 """The folder of one run: what it holds and how it is repaired for a resume. Steps of the
 per-tap file and restart files, trimming rows written after a restart, the title lines that a
-resumed segment repeats, merging the ``fix ave/time`` segments of resumed runs, LAMMPS's error
-line, and setting damaged files aside."""
+resumed segment repeats, merging the ``fix ave/time`` segments of resumed runs, the check of
+the steps of a per-tap file, LAMMPS's error line, and setting damaged files aside. The files
+it rewrites are replaced whole (:mod:`.atomic`)."""
 
 import os
 import re
 from pathlib import Path
 
 from ..readers import read_ave_time_blocks
+from . import atomic
 
 __all__ = ["latest_restart", "keep_latest_restart", "trim_rows", "drop_repeated_titles",
-           "merge_ave_time_parts", "taps_done", "log_error", "keep_log_as_attempt",
-           "output_files", "step_in_name", "set_aside"]
+           "step_rows_problem", "merge_ave_time_parts", "taps_done", "log_error",
+           "keep_log_as_attempt", "remove_temporary_files", "output_files", "step_in_name",
+           "set_aside"]
 
 #: files that record how a run went rather than what it computed (never checksummed)
 _RECORDS = re.compile(r"DONE\.json|screen\.txt|log\.lammps|log\.attempt\d+\.lammps")
@@ -49,33 +52,81 @@ def _first_int(line):
 
 
 def trim_rows(path, before_step):
-    """Keep the comment lines and the rows of a per-step file whose step < before_step."""
+    """Keep the comment lines and the rows of a per-step file whose step < before_step (the
+    file replaced whole, :func:`atomic.write_text`, and only when a row goes)."""
     path = Path(path)
     if not path.exists():
         return
+    text = path.read_text(errors="replace")
     kept = []
-    for line in path.read_text().splitlines(keepends=True):
+    for line in text.splitlines(keepends=True):
         if not line.endswith("\n"):
             break  # a row cut short by the kill
         step = _first_int(line)
         if line.startswith("#") or (step is not None and step < before_step):
             kept.append(line)
-    path.write_text("".join(kept))
+    if "".join(kept) != text:
+        atomic.write_text(path, "".join(kept))
 
 
 def drop_repeated_titles(path):
-    """Remove the title line that each resumed segment appends again (fix print append)."""
+    """Remove the title line that each resumed segment appends again (fix print append); the
+    file is replaced whole, and only when a line goes."""
     path = Path(path)
     if not path.exists():
         return
-    seen, out = set(), []
-    for line in path.read_text().splitlines(keepends=True):
+    seen, out, dropped = set(), [], False
+    for line in path.read_text(errors="replace").splitlines(keepends=True):
         if line.startswith("#"):
             if line in seen:
+                dropped = True
                 continue
             seen.add(line)
         out.append(line)
-    path.write_text("".join(out))
+    if dropped:
+        atomic.write_text(path, "".join(out))
+
+
+def step_rows_problem(path, last, starts=(0,)):
+    """'' when the data rows of the per-tap file ``path`` (one row per tap, the step first) are
+    the steps first, first + 1, ..., ``last``, each once and in this order, with ``first`` one
+    of ``starts``; else the first thing wrong, as a phrase. No rows at all is right when
+    ``last + 1`` is one of ``starts`` (nothing written yet from that step). A missing file
+    has no rows. A resume trims the rows past its restart, and a finish reads the whole run:
+    a per-tap file emptied or rewritten by a kill, or written by two processes at once, is
+    never taken for a finished run's."""
+    path = Path(path)
+    expected = None
+    try:
+        f = open(path, errors="replace")
+    except FileNotFoundError:
+        f = None
+    except OSError as err:
+        return f"{path.name} cannot be read ({err.strerror})"
+    if f is not None:
+        with f:
+            for number, line in enumerate(f, start=1):
+                if line.startswith("#") or not line.strip():
+                    continue
+                step = _first_int(line)
+                if step is None:
+                    return f"{path.name}:{number}: not a row of a step"
+                if expected is None:
+                    if step not in starts:
+                        return (f"{path.name} starts at step {step}, not at "
+                                f"{' or '.join(map(str, sorted(set(starts))))}")
+                elif step != expected:
+                    what = "repeated" if step < expected else "missing"
+                    return (f"{path.name}:{number}: step {step} where {expected} was due "
+                            f"(rows {what})")
+                expected = step + 1
+    if expected is None:
+        if last + 1 in starts:
+            return ""
+        return f"{path.name} has no rows (steps up to {last} expected)"
+    if expected - 1 != last:
+        return f"{path.name} ends at step {expected - 1}, expected {last}"
+    return ""
 
 
 def _segments(run_dir):
@@ -137,7 +188,10 @@ def merge_ave_time_parts(run_dir):
     for base, segs in _segments(run_dir).items():
         main = run_dir / base
         header, blocks = _joined_blocks(main, segs, finished=True)
-        main.write_text("".join(header) + "".join("".join(lines) for _, lines in blocks))
+        # whole or not at all; a kill before the segments go leaves a merge that gives the
+        # same file again
+        text = "".join(header) + "".join("".join(lines) for _, lines in blocks)
+        atomic.write_text(main, text)
         for _, p in segs:
             p.unlink()
         merged.append(base)
@@ -190,6 +244,17 @@ def keep_log_as_attempt(run_dir):
     kept = run_dir / f"log.attempt{len(list(run_dir.glob('log.attempt*.lammps'))) + 1}.lammps"
     (run_dir / "log.lammps").replace(kept)
     return kept.name
+
+
+def remove_temporary_files(run_dir):
+    """Remove the ``NAME.tmp`` files a rewrite of the run folder left when it was killed
+    before they replaced their targets (:mod:`.atomic`); returns their names."""
+    removed = []
+    for p in Path(run_dir).iterdir():
+        if p.is_file() and atomic.is_temporary(p.name):
+            p.unlink()
+            removed.append(p.name)
+    return sorted(removed)
 
 
 def output_files(run_dir):

@@ -252,12 +252,43 @@ class Campaign:
                 rec["attempts"].append(
                     {"interrupted": True, **entry, "log": kept,
                      "taps_done": run_folder.taps_done(run_dir / spec.taps_file)})
+        run_folder.remove_temporary_files(run_dir)  # of a rewrite killed before its rename
+        fresh = {"resume": "no", "resume_file": "restart.*"}, None
         step, path = run_folder.latest_restart(run_dir)
         if step is None:
-            return {"resume": "no", "resume_file": "restart.*"}, None
+            return fresh
         run_folder.trim_rows(run_dir / spec.taps_file, step)
+        problem = run_folder.step_rows_problem(run_dir / spec.taps_file, step - 1,
+                                               self._first_steps(rec, step))
+        if problem:  # rows lost before the restart: resumed, the run would lack them for good
+            self._start_over(spec, f"{problem}, before its restart at step {step}")
+            return fresh
         self._note_version_change(spec, rec, path)
         return {"resume": "yes", "resume_file": path.name}, step
+
+    @staticmethod
+    def _first_steps(rec, resume_step=None):
+        """The steps a run's per-tap file may start at: 0, or the restart its first attempt
+        resumed from (a run started from another run's restart file, as tapmc-paper question
+        does); for a run with no attempt yet, ``resume_step``, the restart it resumes from."""
+        attempts = rec.get("attempts") or []
+        first = attempts[0].get("resumed_from_step") if attempts else resume_step
+        return {0, first} if first else {0}
+
+    def _start_over(self, spec, why):
+        """Set every file of a damaged unfinished run aside (runs/NAME/damagedK/), say so on
+        the stream and record it in the manifest: the run goes again from the start. Returns
+        the folder the files went to."""
+        run_dir = self.run_dir(spec.name)
+        aside = run_folder.set_aside(run_dir, [p.name for p in run_dir.iterdir() if p.is_file()])
+        print(f"[campaign] run {spec.name!r}: {run_dir / spec.taps_file}: {why}; the run goes "
+              f"again from the start (its files moved to {aside.name}/)", file=self.stream,
+              flush=True)
+        with self._lock:
+            self._records[spec.name].setdefault("damaged", []).append(
+                {"found": provenance.now(), "files": {spec.taps_file: why},
+                 "set_aside": aside.name, "rerun_from_step": 0})
+        return aside
 
     def _versions(self):
         """The versions of this session's LAMMPS executable and TAPMC (manifest keys)."""
@@ -366,6 +397,17 @@ class Campaign:
             if missing:
                 error = (f"re-run after damage did not write {', '.join(missing)} again; the "
                          "damaged files are in its damagedK/ folder")
+        if not error and (spec.taps is not None or (run_dir / spec.taps_file).exists()):
+            last = spec.taps if spec.taps is not None else \
+                run_folder.taps_done(run_dir / spec.taps_file)
+            problem = run_folder.step_rows_problem(run_dir / spec.taps_file, last,
+                                                   self._first_steps(rec))
+            if problem:  # e.g. rows lost to a kill, or written by two processes at once
+                aside = self._start_over(spec, problem)
+                log = aside / "log.lammps"
+                error = (f"its per-tap file is damaged ({problem}): no DONE.json; its files "
+                         f"are in {aside.name}/ and it runs again from the start when the "
+                         "campaign runs again")
         if error:
             with self._lock:
                 rec["status"] = "failed"

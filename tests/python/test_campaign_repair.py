@@ -1,0 +1,152 @@
+# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
+"""tapmc.campaign against what a kill, a full disk or a second process leave in a campaign
+folder: files rewritten whole or not at all, a per-tap file checked step by step before a run
+is sealed, restart files cut while LAMMPS wrote them, leftover temporary files, input copies,
+LAMMPS children that outlive their runner; each time the resumed run gives the same bytes as
+an uninterrupted one, or the campaign refuses with one line naming the file."""
+
+import io
+import os
+import sys
+
+import pytest
+
+from campaign_runs import CONSTANT_EPS, LMP, TINY, steps
+from tapmc.campaign import Campaign, CampaignError, RunSpec, run_folder  # noqa: E402
+
+pytestmark = pytest.mark.skipif(not LMP.is_file(), reason=f"no LAMMPS executable at {LMP}")
+
+#: a run of 20 taps with a restart and profiles every 5 taps
+SHORT = dict(TINY, taps=20, pevery=5)
+
+#: LAMMPS that stops at tap 10 whatever taps it is given: a session that ended at tap 10
+STOP_AT_10 = """#!{python}
+import os, sys
+args = sys.argv[1:]
+for k in range(len(args) - 2):
+    if args[k:k + 2] == ["-var", "taps"]:
+        args[k + 2] = "10"
+os.execv({lmp!r}, [{lmp!r}] + args)
+"""
+
+
+def _stopped_at_10(folder, spec, tmp_path):
+    """A campaign folder whose run ``spec`` ran to tap 10 (restarts 5 and 10) and failed."""
+    wrapper = tmp_path / "lmp_stop_at_10"
+    wrapper.write_text(STOP_AT_10.format(python=sys.executable, lmp=str(LMP)))
+    wrapper.chmod(0o755)
+    with pytest.raises(CampaignError, match="ends at step 10, expected 20"):
+        Campaign(folder, [spec], lmp=wrapper, jobs=1).run(progress=False)
+    run_dir = folder / "runs" / spec.name
+    assert steps(run_dir / "taps.dat") == list(range(11))
+    assert (run_dir / "restart.10").is_file()
+    return run_dir
+
+
+def _reference(tmp_path, spec):
+    """The folder of ``spec`` run without interruption."""
+    return Campaign(tmp_path / "ref", [spec], lmp=LMP, jobs=1).run(progress=False).result(
+        spec.name)
+
+
+def _same_outputs(run_dir, ref):
+    for name in ("taps.dat", "profile_z.dat", "profile_x.dat"):
+        assert (run_dir / name).read_bytes() == (ref / name).read_bytes(), name
+
+
+def test_rewrites_of_a_run_folder_are_whole_or_not_at_all(tmp_path, monkeypatch):
+    """The resume's trim of the per-tap file, the finish's removal of repeated titles and the
+    merge of profile segments write a new file that replaces the old one: killed before the
+    rename (os.replace fails here), the old file is intact, never truncated in place (a
+    SIGKILL between the truncation and the write once sealed an empty taps.dat into a
+    finished run)."""
+    taps = tmp_path / "taps.dat"
+    taps.write_text("# step x\n0 1\n1 2\n# step x\n2 3\n3 4\n")
+    header = "# Time-averaged data\n# TimeStep Number-of-rows\n# Row c_p[1]\n"
+    (tmp_path / "prof.dat").write_text(header + "0 1\n1 0.5\n")
+    (tmp_path / "prof.dat.from1").write_text(header + "1 1\n1 0.25\n")
+    before = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
+
+    def killed(src, dst):
+        raise KeyboardInterrupt("killed before the rename")
+
+    with monkeypatch.context() as m:
+        m.setattr(os, "replace", killed)
+        for rewrite in (lambda: run_folder.trim_rows(taps, 2),
+                        lambda: run_folder.drop_repeated_titles(taps),
+                        lambda: run_folder.merge_ave_time_parts(tmp_path)):
+            with pytest.raises(KeyboardInterrupt):
+                rewrite()
+            assert {p.name: p.read_bytes() for p in tmp_path.iterdir()
+                    if not p.name.endswith(".tmp")} == before
+    # done for real, each file is a new one (a reader holding the old file reads it whole)
+    inode = taps.stat().st_ino
+    run_folder.trim_rows(taps, 2)
+    assert taps.read_text() == "# step x\n0 1\n1 2\n# step x\n" and taps.stat().st_ino != inode
+    assert run_folder.remove_temporary_files(tmp_path) == ["prof.dat.tmp"]
+
+
+def test_the_steps_of_a_per_tap_file(tmp_path):
+    """step_rows_problem: the rows first..last once each and in order, first one of the
+    allowed starts; names the first row that breaks it."""
+    path = tmp_path / "taps.dat"
+    path.write_text("# step\n0 a\n1 b\n# step\n2 c\n")
+    assert run_folder.step_rows_problem(path, 2) == ""
+    assert run_folder.step_rows_problem(path, 3) == "taps.dat ends at step 2, expected 3"
+    path.write_text("# step\n0\n1\n2\n1\n2\n")
+    assert run_folder.step_rows_problem(path, 2) == \
+        "taps.dat:5: step 1 where 3 was due (rows repeated)"
+    path.write_text("# step\n0\n2\n")
+    assert run_folder.step_rows_problem(path, 2) == \
+        "taps.dat:3: step 2 where 1 was due (rows missing)"
+    path.write_text("# step\n10\n11\n")
+    assert run_folder.step_rows_problem(path, 11) == "taps.dat starts at step 10, not at 0"
+    assert run_folder.step_rows_problem(path, 11, {0, 10}) == ""
+    path.write_text("# step\n0\n\0\0\0 1\n")
+    assert run_folder.step_rows_problem(path, 1) == "taps.dat:3: not a row of a step"
+    path.write_text("# step\n")
+    assert run_folder.step_rows_problem(path, 9) == \
+        "taps.dat has no rows (steps up to 9 expected)"
+    assert run_folder.step_rows_problem(path, 9, {0, 10}) == ""
+
+
+def test_a_per_tap_file_emptied_before_a_resume_starts_the_run_over(tmp_path):
+    """A kill during the rewrite of an older TAPMC left taps.dat empty while the run had
+    reached tap 10: resumed from restart.10, it would have been sealed with rows 10..20 only.
+    The resume sees the rows before its restart missing, sets the run's files aside and runs
+    it again from the start, to the bytes of an uninterrupted run."""
+    spec = RunSpec("r", CONSTANT_EPS, SHORT, seed=3)
+    folder = tmp_path / "c"
+    run_dir = _stopped_at_10(folder, spec, tmp_path)
+    (run_dir / "taps.dat").write_bytes(b"")
+    stream = io.StringIO()
+    Campaign(folder, [spec], lmp=LMP, jobs=1, stream=stream).run(progress=False)
+    assert (f"[campaign] run 'r': {run_dir / 'taps.dat'}: taps.dat has no rows (steps up to 9 "
+            "expected), before its restart at step 10; the run goes again from the start "
+            "(its files moved to damaged1/)") in stream.getvalue()
+    assert "Reading restart file" not in (run_dir / "log.lammps").read_text()
+    _same_outputs(run_dir, _reference(tmp_path, spec))
+
+
+FAKE_TWO_WRITERS = """#!/bin/sh
+case " $* " in *" -in "*) ;; *) exit 0 ;; esac
+printf '# step x\\n0 0\\n1 0\\n2 0\\n1 0\\n2 0\\n3 0\\n' > taps.dat
+echo 'Total wall time: 0:00:01' > log.lammps
+"""
+
+
+def test_a_per_tap_file_with_repeated_rows_is_never_sealed(tmp_path):
+    """A per-tap file that reaches the last tap but repeats rows (two LAMMPS processes wrote
+    it) is no finished run: no DONE.json, its files set aside, and the failure says so."""
+    fake = tmp_path / "lmp_fake"
+    fake.write_text(FAKE_TWO_WRITERS)
+    fake.chmod(0o755)
+    spec = RunSpec("twice", CONSTANT_EPS, dict(TINY, taps=3), seed=1)
+    folder = tmp_path / "c"
+    with pytest.raises(CampaignError) as err:
+        Campaign(folder, [spec], lmp=str(fake), jobs=1).run(progress=False)
+    assert ("run 'twice' failed: its per-tap file is damaged (taps.dat:5: step 1 where 3 was "
+            "due (rows repeated)): no DONE.json; its files are in damaged1/ and it runs again "
+            "from the start") in str(err.value)
+    run_dir = folder / "runs" / "twice"
+    assert not (run_dir / "DONE.json").exists() and (run_dir / "damaged1" / "taps.dat").exists()
