@@ -683,7 +683,8 @@ def test_an_executable_no_commit_of_this_tapmc_describes():
 FAKE_LMP = """#!/bin/sh
 case " $* " in *" -in "*) ;; *) echo "TAPMC build: ${FAKE_BUILD:-}"; exit 0 ;; esac
 printf '# step level\\n0 0\\n1 0\\n2 0\\n' > taps.dat
-echo x > restart.2
+m='LammpS RestartT\\000'  # a restart file's marks: whole, format revision 2
+printf "$m\\001\\000\\000\\000\\002\\000\\000\\000$m" > restart.2
 if [ -e finish ]; then printf '3 0\\n' >> taps.dat; echo 'Total wall time: 0:00:01' > log.lammps
 else echo 'LAMMPS (fake)' > log.lammps; kill -TERM $$; fi
 """

@@ -6,6 +6,7 @@ LAMMPS children that outlive their runner; each time the resumed run gives the s
 an uninterrupted one, or the campaign refuses with one line naming the file."""
 
 import io
+import json
 import os
 import sys
 
@@ -30,17 +31,19 @@ os.execv({lmp!r}, [{lmp!r}] + args)
 """
 
 
-def _stopped_at_10(folder, spec, tmp_path):
-    """A campaign folder whose run ``spec`` ran to tap 10 (restarts 5 and 10) and failed."""
+def _stopped_at_10(folder, specs, tmp_path):
+    """A campaign folder whose runs ``specs`` ran to tap 10 (restarts 5 and 10) and failed;
+    returns their folders."""
     wrapper = tmp_path / "lmp_stop_at_10"
     wrapper.write_text(STOP_AT_10.format(python=sys.executable, lmp=str(LMP)))
     wrapper.chmod(0o755)
     with pytest.raises(CampaignError, match="ends at step 10, expected 20"):
-        Campaign(folder, [spec], lmp=wrapper, jobs=1).run(progress=False)
-    run_dir = folder / "runs" / spec.name
-    assert steps(run_dir / "taps.dat") == list(range(11))
-    assert (run_dir / "restart.10").is_file()
-    return run_dir
+        Campaign(folder, specs, lmp=wrapper, jobs=len(specs)).run(progress=False)
+    run_dirs = [folder / "runs" / spec.name for spec in specs]
+    for run_dir in run_dirs:
+        assert steps(run_dir / "taps.dat") == list(range(11))
+        assert (run_dir / "restart.10").is_file()
+    return run_dirs
 
 
 def _reference(tmp_path, spec):
@@ -117,7 +120,7 @@ def test_a_per_tap_file_emptied_before_a_resume_starts_the_run_over(tmp_path):
     it again from the start, to the bytes of an uninterrupted run."""
     spec = RunSpec("r", CONSTANT_EPS, SHORT, seed=3)
     folder = tmp_path / "c"
-    run_dir = _stopped_at_10(folder, spec, tmp_path)
+    (run_dir,) = _stopped_at_10(folder, [spec], tmp_path)
     (run_dir / "taps.dat").write_bytes(b"")
     stream = io.StringIO()
     Campaign(folder, [spec], lmp=LMP, jobs=1, stream=stream).run(progress=False)
@@ -126,6 +129,40 @@ def test_a_per_tap_file_emptied_before_a_resume_starts_the_run_over(tmp_path):
             "(its files moved to damaged1/)") in stream.getvalue()
     assert "Reading restart file" not in (run_dir / "log.lammps").read_text()
     _same_outputs(run_dir, _reference(tmp_path, spec))
+
+
+def test_a_restart_cut_short_is_set_aside_and_the_run_resumes_from_the_one_before(tmp_path):
+    """A kill, a stop or a full disk while LAMMPS wrote restart.10 left it cut short, and every
+    resume failed on it for good ("Unexpected end of file"). A restart without LAMMPS's end
+    mark is set aside before the resume (the dry run's resume point skips it too); one whose
+    end mark survived but that LAMMPS cannot read is set aside when read_restart fails, and
+    the run goes on at once from the restart before. Both give the bytes of an uninterrupted
+    run."""
+    runs = [RunSpec(name, CONSTANT_EPS, SHORT, seed=4) for name in ("cut", "unread")]
+    folder = tmp_path / "c"
+    cut, unread = _stopped_at_10(folder, runs, tmp_path)
+    whole = (cut / "restart.10").read_bytes()
+    assert whole.startswith(run_folder.RESTART_MARK) and whole.endswith(run_folder.RESTART_MARK)
+    (cut / "restart.10").write_bytes(whole[:len(whole) // 2])
+    (unread / "restart.10").write_bytes(whole[:3000] + run_folder.RESTART_MARK)
+    assert run_folder.resume_restart(cut)[0] == 5 and run_folder.resume_restart(unread)[0] == 10
+    stream = io.StringIO()
+    Campaign(folder, runs, lmp=LMP, jobs=1, stream=stream).run(progress=False)
+    text = stream.getvalue()
+    assert (f"[campaign] run 'cut': {cut / 'restart.10'}: {len(whole) // 2} bytes without "
+            "LAMMPS's end mark: cut short while it was written (a kill, a stop or a full "
+            "disk); moved to damaged1/, the run resumes from restart.5") in text
+    assert (f"[campaign] run 'unread': {unread / 'restart.10'}: LAMMPS could not read it "
+            "(ERROR on proc 0: Unexpected end of file while reading file") in text
+    assert "moved to damaged1/, the run resumes from restart.5" in text.split("'unread'")[1]
+    ref = _reference(tmp_path, runs[0])
+    for run_dir in (cut, unread):
+        assert (run_dir / "damaged1" / "restart.10").exists()
+        assert "read_restart    restart.5" in (run_dir / "log.lammps").read_text()
+        _same_outputs(run_dir, ref)
+    record = json.loads((folder / "manifest.json").read_text())["runs"][1]
+    assert [a["resumed_from_step"] for a in record["attempts"]] == [None, 10, 5]
+    assert record["damaged"][0]["rerun_from_step"] == 5
 
 
 FAKE_TWO_WRITERS = """#!/bin/sh

@@ -20,6 +20,7 @@ LMP = Path(os.environ.get("TAPMC_LMP", BUILD / "lmp_tapmc"))
 PYTHON_DIR = SOURCE / "tools" / "python"
 sys.path.insert(0, str(PYTHON_DIR))
 
+from campaign_runs import WHOLE_RESTART  # noqa: E402
 from tapmc.paper import FIGURES  # noqa: E402
 from tapmc.paper.scales import FULL, QUICK, Scale, get_scale  # noqa: E402
 
@@ -258,7 +259,7 @@ def test_dry_run_prices_the_taps_left_and_shows_the_recorded_cost(tmp_path, caps
     (folder / "runs" / spec.name).mkdir(parents=True)
     (folder / "runs" / spec.name / "taps.dat").write_text(
         "# step level\n" + "".join(f"{k} 0\n" for k in range(131)))
-    (folder / "runs" / spec.name / "restart.100").write_text("x")
+    (folder / "runs" / spec.name / "restart.100").write_bytes(WHOLE_RESTART)
     attempts = [{"cpu_s": 3600.0, "wall_s": 7200.0}, {"interrupted": True, "log": "x"}]
     (folder / "manifest.json").write_text(json.dumps(
         {"format": 1, "runs": [{"name": spec.name, "attempts": attempts}]}))

@@ -11,6 +11,7 @@ import pytest
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "tools", "python"))
 
+from campaign_runs import WHOLE_RESTART  # noqa: E402
 from tapmc.paper import cli, cost, questions  # noqa: E402
 from tapmc.paper.questions import campaign_runs  # noqa: E402
 
@@ -53,7 +54,7 @@ def write_campaign(root):
                                                      + loop(1800.0, 500, 100.0))
     (runs / ramp["name"] / "log.attempt1.lammps").write_text(loop(360.0, 10, 100.0))
     for step in (12000, 12800):
-        (runs / ramp["name"] / f"restart.{step}").write_bytes(b"x" * 64)
+        (runs / ramp["name"] / f"restart.{step}").write_bytes(WHOLE_RESTART)
     (root / "manifest.json").write_text(json.dumps({"format": 1, "runs": [done, ramp, fresh]}))
     return root
 

@@ -1,9 +1,9 @@
 # TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 """The folder of one run: what it holds and how it is repaired for a resume. Steps of the
 per-tap file and restart files, trimming rows written after a restart, the title lines that a
-resumed segment repeats, merging the ``fix ave/time`` segments of resumed runs, the check of
-the steps of a per-tap file, LAMMPS's error line, and setting damaged files aside. The files
-it rewrites are replaced whole (:mod:`.atomic`)."""
+resumed segment repeats, merging the ``fix ave/time`` segments of resumed runs, the checks of
+a restart file and of the steps of a per-tap file, LAMMPS's error line, and setting damaged
+files aside. The files it rewrites are replaced whole (:mod:`.atomic`)."""
 
 import os
 import re
@@ -12,23 +12,79 @@ from pathlib import Path
 from ..readers import read_ave_time_blocks
 from . import atomic
 
-__all__ = ["latest_restart", "keep_latest_restart", "trim_rows", "drop_repeated_titles",
-           "step_rows_problem", "merge_ave_time_parts", "taps_done", "log_error",
-           "keep_log_as_attempt", "remove_temporary_files", "output_files", "step_in_name",
-           "set_aside"]
+__all__ = ["RESTART_MARK", "restarts", "latest_restart", "restart_problem", "resume_restart",
+           "keep_latest_restart", "trim_rows", "drop_repeated_titles", "step_rows_problem",
+           "merge_ave_time_parts", "segments_after", "taps_done", "log_error",
+           "restart_read_error", "keep_log_as_attempt", "remove_temporary_files",
+           "output_files", "step_in_name", "set_aside"]
 
 #: files that record how a run went rather than what it computed (never checksummed)
 _RECORDS = re.compile(r"DONE\.json|screen\.txt|log\.lammps|log\.attempt\d+\.lammps")
 
 
-def latest_restart(run_dir):
-    """(step, path) of the restart file of the largest step, or (None, None)."""
-    best = (None, None)
+#: LAMMPS's restart files (write_restart.cpp) start with this string and, from format
+#: revision 1 on, end with it: read_restart's own check of a whole file (check_eof_magic)
+RESTART_MARK = b"LammpS RestartT\0"
+
+
+def restarts(run_dir):
+    """[(step, path)] of the non-empty restart.STEP files of a run folder, latest first."""
+    found = []
     for p in Path(run_dir).glob("restart.*"):
         m = re.fullmatch(r"restart\.(\d+)", p.name)
-        if m and p.stat().st_size > 0 and (best[0] is None or int(m.group(1)) > best[0]):
-            best = (int(m.group(1)), p)
-    return best
+        if m and p.is_file() and p.stat().st_size > 0:
+            found.append((int(m.group(1)), p))
+    return sorted(found, key=lambda sp: -sp[0])
+
+
+def latest_restart(run_dir):
+    """(step, path) of the restart file of the largest step, or (None, None), whole or not
+    (:func:`resume_restart` gives the one a run resumes from)."""
+    found = restarts(run_dir)
+    return found[0] if found else (None, None)
+
+
+def restart_problem(path):
+    """'' when the restart file ``path`` looks whole, else why not. A whole file starts with
+    LAMMPS's restart mark and, when its format revision says LAMMPS writes the mark at the end
+    too (revision 1 and later: every LAMMPS since 2019), ends with it. A file cut while LAMMPS
+    wrote it (a kill, a SIGTERM, a full disk) lacks the end mark; LAMMPS itself stops reading
+    such a file with "Unexpected end of file" (or, with a later LAMMPS, "Incomplete or
+    corrupted LAMMPS restart file"), or reads a file cut in its last byte without a word."""
+    n = len(RESTART_MARK)
+    try:
+        with open(path, "rb") as f:
+            head = f.read(n + 8)
+            size = f.seek(0, os.SEEK_END)
+            f.seek(max(0, size - n))
+            tail = f.read(n)
+    except OSError as err:
+        return f"cannot be read ({err.strerror})"
+    if head[:n] != RESTART_MARK:
+        return f"not a LAMMPS restart file ({size} bytes, without the restart mark it starts with)"
+    if len(head) < n + 8:
+        return f"{size} bytes: cut short in its header"
+    endian = int.from_bytes(head[n:n + 4], "little")
+    revision = int.from_bytes(head[n + 4:n + 8], "little")
+    if endian == 1 and revision >= 1 and tail != RESTART_MARK:
+        return (f"{size} bytes without LAMMPS's end mark: cut short while it was written (a "
+                "kill, a stop or a full disk)")
+    return ""
+
+
+def resume_restart(run_dir, bad=None):
+    """(step, path, cut): the latest restart file of a run that looks whole
+    (:func:`restart_problem`) and is not one of ``bad`` (file name -> what is wrong with it:
+    e.g. LAMMPS could not read it), or (None, None, cut) when there is none; ``cut``: [(path,
+    why)] of the later ones (a resume sets them aside)."""
+    bad = bad or {}
+    cut = []
+    for step, path in restarts(run_dir):
+        why = bad.get(path.name) or restart_problem(path)
+        if not why:
+            return step, path, cut
+        cut.append((path, why))
+    return None, None, cut
 
 
 def keep_latest_restart(run_dir, keep_every=None):
@@ -198,6 +254,14 @@ def merge_ave_time_parts(run_dir):
     return merged
 
 
+def segments_after(run_dir, step):
+    """Names of the profile segments ``X.from<s>`` of a run folder with s > ``step`` (all of
+    them when ``step`` is None): an attempt that resumes from ``step`` writes their steps again,
+    and kept, they would replace its blocks in the merge."""
+    return sorted(p.name for segs in _segments(run_dir).values() for s, p in segs
+                  if step is None or s > step)
+
+
 #: ERROR as a word not quoted: a line of LAMMPS's own words (behind a prefix, such as an MPI
 #: launcher's), not an echoed input line that prints one (``"print 'ERROR: ...'"``)
 _UNQUOTED_ERROR = re.compile(r"""(?<!['"])\bERROR\b""")
@@ -216,6 +280,21 @@ def log_error(log):
         if line.startswith("ERROR"):
             return line.strip()
     return next((line.strip() for line in lines if _UNQUOTED_ERROR.search(line)), "")
+
+
+#: LAMMPS's words when read_restart fails on its file: "Last command:" follows the error line
+_READ_RESTART_FAILED = re.compile(r"^Last command:\s*read_restart\b", re.MULTILINE)
+
+
+def restart_read_error(log):
+    """LAMMPS's error line when the run of ``log`` stopped in its read_restart (a restart file
+    cut short, or unreadable otherwise), else ''."""
+    log = Path(log)
+    if not log.exists():
+        return ""
+    if not _READ_RESTART_FAILED.search(log.read_text(errors="replace")):
+        return ""
+    return log_error(log) or "read_restart failed"
 
 
 def taps_done(path):

@@ -113,6 +113,7 @@ class Campaign:
         self._records = {}
         self._started = {}
         self._redo = {}  # name -> damaged files the running re-run must write again
+        self._again = set()  # runs whose restart LAMMPS could not read: pool mode retries
         self._previous_version = None
         self._children = {}  # name (or batch) -> Popen of its running LAMMPS process
         self._stop_signal = None  # the name of the signal that stopped the campaign
@@ -254,7 +255,7 @@ class Campaign:
                      "taps_done": run_folder.taps_done(run_dir / spec.taps_file)})
         run_folder.remove_temporary_files(run_dir)  # of a rewrite killed before its rename
         fresh = {"resume": "no", "resume_file": "restart.*"}, None
-        step, path = run_folder.latest_restart(run_dir)
+        step, path = self._set_cut_restarts_aside(spec)
         if step is None:
             return fresh
         run_folder.trim_rows(run_dir / spec.taps_file, step)
@@ -289,6 +290,29 @@ class Campaign:
                 {"found": provenance.now(), "files": {spec.taps_file: why},
                  "set_aside": aside.name, "rerun_from_step": 0})
         return aside
+
+    def _set_cut_restarts_aside(self, spec, bad=None):
+        """Move the restart files of a run later than its latest whole one
+        (run_folder.resume_restart: cut while LAMMPS wrote them, or in ``bad``, file name ->
+        what is wrong), with the profile segments of later steps, into runs/NAME/damagedK/;
+        one line each on the stream, recorded in the manifest. Returns (step, path) of the
+        restart the run resumes from, (None, None) for none."""
+        run_dir = self.run_dir(spec.name)
+        step, path, cut = run_folder.resume_restart(run_dir, bad)
+        if not cut:
+            return step, path
+        aside = run_folder.set_aside(run_dir, [p.name for p, _ in cut]
+                                     + run_folder.segments_after(run_dir, step))
+        then = f"the run resumes from {path.name}" if path is not None else \
+            "the run starts again from tap 0"
+        for p, why in cut:
+            print(f"[campaign] run {spec.name!r}: {p}: {why}; moved to {aside.name}/, {then}",
+                  file=self.stream, flush=True)
+        with self._lock:
+            self._records[spec.name].setdefault("damaged", []).append(
+                {"found": provenance.now(), "files": {p.name: why for p, why in cut},
+                 "set_aside": aside.name, "rerun_from_step": step or 0})
+        return step, path
 
     def _versions(self):
         """The versions of this session's LAMMPS executable and TAPMC (manifest keys)."""
@@ -376,6 +400,19 @@ class Campaign:
         with self._lock:
             rec.pop("running_attempt", None)
             rec["attempts"].append(attempt)
+        if error:  # a restart this attempt could not read, or cut short as it ended, goes
+            # aside now: the folder of a stopped run holds whole restart files only
+            unread = run_folder.restart_read_error(log) if resumed_from is not None else ""
+            name = f"restart.{resumed_from}"
+            _, path = self._set_cut_restarts_aside(
+                spec, {name: f"LAMMPS could not read it ({unread})"} if unread else None)
+            if unread and not stopped:
+                error = (f"LAMMPS could not read {name} ({unread}); it is set aside, and the "
+                         "run resumes from " + (path.name if path is not None else "tap 0"))
+                if self.mode == "pool":  # at once: _pool_one runs it again
+                    self._again.add(spec.name)
+                else:
+                    error += " when the campaign runs again"
         if stopped:  # no failure
             with self._lock:
                 rec["status"] = "stopped"
@@ -425,23 +462,28 @@ class Campaign:
         return ""
 
     def _pool_one(self, spec):
-        if self._stop_signal is not None:  # stopped before this run's turn: leave it alone
-            return ""
-        run_dir = self.run_dir(spec.name)
-        resume, step = self._prepare(spec)
-        cmd = launch.lammps_command(self.lmp, spec, self._input_copy(spec), resume)
-        with self._lock:
-            self._started_run(spec, cmd, step)
-        self._write_manifest()
-        t0 = time.time()
-        returncode, cpu = launch.run_child_timed(cmd, run_dir, run_dir / "screen.txt",
-                                                 lambda proc: self._child_started(spec.name,
-                                                                                  proc))
-        self._children.pop(spec.name, None)
-        error = self._finish(spec, returncode, time.time() - t0, step, cpu)
-        with self._lock:
-            self._t0.pop(spec.name, None)
-        self._write_manifest()
+        """Run one run (again from an earlier restart when LAMMPS could not read the one it
+        resumed from); returns its error or ''."""
+        error = ""
+        while self._stop_signal is None:  # once stopped, runs not started are left alone
+            run_dir = self.run_dir(spec.name)
+            resume, step = self._prepare(spec)
+            cmd = launch.lammps_command(self.lmp, spec, self._input_copy(spec), resume)
+            with self._lock:
+                self._started_run(spec, cmd, step)
+            self._write_manifest()
+            t0 = time.time()
+            returncode, cpu = launch.run_child_timed(
+                cmd, run_dir, run_dir / "screen.txt",
+                lambda proc: self._child_started(spec.name, proc))
+            self._children.pop(spec.name, None)
+            error = self._finish(spec, returncode, time.time() - t0, step, cpu)
+            with self._lock:
+                self._t0.pop(spec.name, None)
+            self._write_manifest()
+            if spec.name not in self._again:
+                break
+            self._again.discard(spec.name)  # its restart set aside: it goes on from another
         return error
 
     def _partition_batch(self, index, batch):

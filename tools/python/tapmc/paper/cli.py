@@ -29,7 +29,7 @@ from pathlib import Path
 
 from tapmc.campaign import (STOPPED_STATUS, Campaign, CampaignDirectoryError, CampaignError,
                             CampaignStopped, launch, provenance)
-from tapmc.campaign.run_folder import latest_restart
+from tapmc.campaign.run_folder import resume_restart
 from tapmc.readers import TapmcFormatError
 
 from .. import __version__
@@ -579,7 +579,7 @@ def _list_runs(campaign, what):
         hours = float(seconds.sum()) * ranks if seconds is not None else None
         damage = _damage(campaign.run_dir(spec.name)) if done else ""
         done = done and not damage  # a run would redo it (from its latest restart, or anew)
-        tap = 0 if done else (latest_restart(campaign.run_dir(spec.name))[0] or 0)
+        tap = 0 if done else (resume_restart(campaign.run_dir(spec.name))[0] or 0)
         to_run = float(seconds[tap:].sum()) * ranks if seconds is not None else None
         price = f"{hours:.3g} CPU h" if hours is not None else "cost unknown"
         state = "done" if done else damage if damage else "to run" if not tap else (

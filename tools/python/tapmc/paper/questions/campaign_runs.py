@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 
 from tapmc.campaign import CampaignDirectoryError, provenance
-from tapmc.campaign.run_folder import latest_restart
+from tapmc.campaign.run_folder import resume_restart
 
 from .. import cost
 from .._runs import ramp_level
@@ -60,11 +60,11 @@ def _with_killed_attempt(record):
 
 def _status(record, run_dir):
     """(state, resumes_from): "done" (a DONE.json), "under way" (an attempt, a restart file
-    or a log: the step of the latest restart, where it resumes, "" when none) or "not
+    or a log: the step of the latest whole restart, where it resumes, "" when none) or "not
     started"."""
     if (run_dir / "DONE.json").is_file():
         return "done", ""
-    step = latest_restart(run_dir)[0] if run_dir.is_dir() else None
+    step = resume_restart(run_dir)[0] if run_dir.is_dir() else None
     if step is not None or record.get("attempts") or (run_dir / "log.lammps").is_file():
         return "under way", "" if step is None else str(step)
     return "not started", ""
