@@ -13,7 +13,7 @@ import sys
 import pytest
 
 from campaign_runs import CONSTANT_EPS, LMP, TINY, steps
-from tapmc.campaign import Campaign, CampaignError, RunSpec, run_folder  # noqa: E402
+from tapmc.campaign import Campaign, CampaignError, RunSpec, provenance, run_folder  # noqa: E402
 
 pytestmark = pytest.mark.skipif(not LMP.is_file(), reason=f"no LAMMPS executable at {LMP}")
 
@@ -187,3 +187,25 @@ def test_a_per_tap_file_with_repeated_rows_is_never_sealed(tmp_path):
             "from the start") in str(err.value)
     run_dir = folder / "runs" / "twice"
     assert not (run_dir / "DONE.json").exists() and (run_dir / "damaged1" / "taps.dat").exists()
+
+
+def test_a_temporary_file_of_the_campaign_is_no_output(tmp_path):
+    """A DONE.json.tmp left by a kill before its rename (or any NAME.tmp of the campaign's own
+    writes) is no output: it was checksummed into the next DONE.json, found gone at the check
+    after, and the finished run went again from tap 0 and then failed. A DONE.json of an older
+    TAPMC that lists one is not damaged for its absence."""
+    spec = RunSpec("r", CONSTANT_EPS, dict(TINY, taps=5), seed=2)
+    folder = tmp_path / "c"
+    run_dir = Campaign(folder, [spec], lmp=LMP, jobs=1).run(progress=False).result("r")
+    (run_dir / "DONE.json").rename(run_dir / "DONE.json.tmp")     # killed before the rename
+    (run_dir / "taps.dat.tmp").write_text("0 cut")
+    assert run_folder.output_files(run_dir) == [
+        "profile_x.dat", "profile_z.dat", "restart.5", "taps.dat"]
+    Campaign(folder, [spec], lmp=LMP, jobs=1).run(progress=False)   # resumes at tap 5
+    done = provenance.read_done(run_dir / "DONE.json")
+    assert not any(name.endswith(".tmp") for name in done["outputs"])
+    stream = io.StringIO()
+    Campaign(folder, [spec], lmp=LMP, jobs=1, stream=stream).run()
+    assert "1 of 1 runs already done, 0 to run" in stream.getvalue()
+    older = dict(done["outputs"], **{"DONE.json.tmp": {"sha256": "0" * 64, "size": 9}})
+    assert provenance.damaged_outputs(run_dir, older) == {}

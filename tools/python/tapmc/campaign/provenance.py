@@ -14,6 +14,7 @@ import subprocess
 import time
 from pathlib import Path
 
+from . import atomic
 from .errors import CampaignDirectoryError, CampaignError
 from .launch import private_mpi_session
 
@@ -292,10 +293,13 @@ OPTIONAL_OUTPUTS = re.compile(r"restart\.\d+")
 def damaged_outputs(run_dir, recorded):
     """{name: what is wrong} for the files of ``recorded`` (DONE.json's "outputs") that are
     missing (unless OPTIONAL_OUTPUTS) or whose size or sha256 differ from the record; {} when
-    all are intact."""
+    all are intact. A temporary file of the campaign's own writes (``NAME.tmp``) that an older
+    TAPMC recorded as an output is no output."""
     run_dir = Path(run_dir)
     damaged = {}
     for name, digest in recorded.items():
+        if atomic.is_temporary(name):
+            continue
         path = run_dir / name
         if not path.is_file() and OPTIONAL_OUTPUTS.fullmatch(name):
             continue

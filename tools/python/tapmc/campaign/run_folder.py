@@ -338,9 +338,12 @@ def remove_temporary_files(run_dir):
 
 def output_files(run_dir):
     """Names of the files a run computed (per-tap file, profiles, dumps, restart): every file
-    of its folder but DONE.json, the logs and screen.txt, sorted."""
+    of its folder but DONE.json, the logs, screen.txt and the temporary files of the
+    campaign's own writes (``NAME.tmp``, :mod:`.atomic`: DONE.json.tmp of a kill before its
+    rename became an output, and the run's next check found it gone), sorted."""
     return sorted(p.name for p in Path(run_dir).iterdir()
-                  if p.is_file() and not _RECORDS.fullmatch(p.name))
+                  if p.is_file() and not _RECORDS.fullmatch(p.name)
+                  and not atomic.is_temporary(p.name))
 
 
 def step_in_name(name):
