@@ -8,12 +8,15 @@ an uninterrupted one, or the campaign refuses with one line naming the file."""
 import io
 import json
 import os
+import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
 from campaign_runs import CONSTANT_EPS, LMP, TINY, steps
-from tapmc.campaign import Campaign, CampaignError, RunSpec, provenance, run_folder  # noqa: E402
+from tapmc.campaign import (Campaign, CampaignDirectoryError, CampaignError,  # noqa: E402
+                            RunSpec, provenance, run_folder)
 
 pytestmark = pytest.mark.skipif(not LMP.is_file(), reason=f"no LAMMPS executable at {LMP}")
 
@@ -209,3 +212,51 @@ def test_a_temporary_file_of_the_campaign_is_no_output(tmp_path):
     assert "1 of 1 runs already done, 0 to run" in stream.getvalue()
     older = dict(done["outputs"], **{"DONE.json.tmp": {"sha256": "0" * 64, "size": 9}})
     assert provenance.damaged_outputs(run_dir, older) == {}
+
+
+COPY_UNDER_A_FULL_DISK = """
+import resource, sys
+sys.path.insert(0, {python!r})
+from tapmc.campaign import RunSpec, provenance
+spec = RunSpec("r", {inp!r}, {{"taps": 1}})
+resource.setrlimit(resource.RLIMIT_FSIZE, (4096, 4096))   # writes past 4 KiB fail (EFBIG)
+try:
+    provenance.copy_inputs({folder!r}, [spec], False, sys.stdout)
+except OSError as err:
+    print("ERROR", err.filename, err.strerror)
+"""
+
+
+def test_an_input_copy_is_whole_and_checked_against_the_manifest(tmp_path):
+    """The copy of an input is written whole or not at all: a write that fails (a full disk;
+    here a file size limit) leaves no copy and names the copy, not its source (a cut copy was
+    then run, for good, as "the input changed since the campaign started"). A copy whose
+    sha256 differs from the one the manifest recorded is copied again from its source when the
+    source still has it; when neither has it, the campaign refuses naming both files."""
+    source = tmp_path / "in.constant_eps"
+    source.write_bytes(CONSTANT_EPS.read_bytes())
+    folder = tmp_path / "c"
+    script = COPY_UNDER_A_FULL_DISK.format(python=str(Path(provenance.__file__).parents[2]),
+                                           inp=str(source), folder=str(folder))
+    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
+    copy = folder / "inputs" / "in.constant_eps"
+    assert out.stdout.strip() == f"ERROR {copy} File too large", out.stdout + out.stderr
+    assert list((folder / "inputs").iterdir()) == []
+
+    spec = RunSpec("r", source, dict(TINY, taps=2), seed=1)
+    Campaign(folder, [spec], lmp=LMP, jobs=1).run(progress=False)
+    copy.write_bytes(copy.read_bytes()[:4096])        # damaged after the campaign started
+    stream = io.StringIO()
+    Campaign(folder, [spec], lmp=LMP, jobs=1, stream=stream).run(progress=False)
+    assert (f"[campaign] input copy {copy}: its sha256 differed from the one manifest.json "
+            f"recorded (damaged since); copied again from {source}, which has it"
+            ) in stream.getvalue()
+    assert copy.read_bytes() == source.read_bytes()
+    copy.write_bytes(b"")
+    source.write_bytes(source.read_bytes() + b"# edited\n")
+    with pytest.raises(CampaignDirectoryError) as err:
+        Campaign(folder, [spec], lmp=LMP, jobs=1, pin_inputs=True).run(progress=False)
+    assert str(err.value) == (
+        f"input copy {copy}: its sha256 differs from the one {folder / 'manifest.json'} "
+        f"recorded, and so does its source {source}: the input this campaign started with "
+        "is gone; put it back in either place or use a new campaign directory")

@@ -9,7 +9,6 @@ import json
 import math
 import os
 import re
-import shutil
 import subprocess
 import time
 from pathlib import Path
@@ -218,15 +217,34 @@ def attempt_costs(record):
     return out
 
 
-def copy_inputs(directory, runs, pin_inputs, stream):
+def _recorded_sha256(recorded, name):
+    """The sha256 a previous manifest's "inputs" recorded for the copy of input ``name``, or
+    None (no record, or not one this TAPMC wrote)."""
+    entry = recorded.get(name) if isinstance(recorded, dict) else None
+    digest = entry.get("sha256") if isinstance(entry, dict) else None
+    return digest if isinstance(digest, str) and re.fullmatch(r"[0-9a-f]{64}", digest) \
+        else None
+
+
+def copy_inputs(directory, runs, pin_inputs, stream, recorded=None):
     """Copy each input into <campaign>/inputs once and return the manifest's "inputs" entry;
-    the runs execute the copies, so a resumed campaign runs exactly what it started with. An
-    input that changed since: CampaignDirectoryError, or with ``pin_inputs`` a note on
-    ``stream`` and both digests recorded."""
+    the runs execute the copies, so a resumed campaign runs exactly what it started with.
+
+    A copy is written whole or not at all (:func:`atomic.copy_file`: a kill or a full disk
+    leaves none; the error names the copy). ``recorded``: the "inputs" of the manifest so far;
+    a copy whose sha256 differs from the one recorded (damaged since) is copied again when its
+    source still has that sha256, else CampaignDirectoryError names both files, as it does
+    for a missing copy whose source changed. An input that changed since the campaign started:
+    CampaignDirectoryError, or with ``pin_inputs`` a note on ``stream`` and both digests
+    recorded."""
     directory = Path(directory)
     inputs = {}
     folder = directory / "inputs"
-    folder.mkdir(parents=True, exist_ok=True)
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise atomic.named(err, folder) from None
+    manifest = directory / "manifest.json"
     for r in runs:
         src = r.input
         if src.name in inputs:
@@ -238,6 +256,17 @@ def copy_inputs(directory, runs, pin_inputs, stream):
         copy = folder / src.name
         entry = {"source": str(src), "sha256": digest,
                  "copy": str(copy.relative_to(directory))}
+        known = _recorded_sha256(recorded, src.name)
+        if copy.exists() and known is not None and sha256(copy) != known:
+            if digest != known:
+                raise CampaignDirectoryError(
+                    f"input copy {copy}: its sha256 differs from the one {manifest} recorded, "
+                    f"and so does its source {src}: the input this campaign started with is "
+                    "gone; put it back in either place or use a new campaign directory")
+            atomic.copy_file(src, copy)
+            print(f"[campaign] input copy {copy}: its sha256 differed from the one "
+                  f"{manifest.name} recorded (damaged since); copied again from {src}, which "
+                  "has it", file=stream, flush=True)
         if copy.exists() and sha256(copy) != digest:
             if not pin_inputs:
                 raise CampaignDirectoryError(
@@ -247,7 +276,13 @@ def copy_inputs(directory, runs, pin_inputs, stream):
             print(f"[campaign] input {src} changed since this campaign started; its runs "
                   f"keep executing the campaign's copy {copy}", file=stream, flush=True)
         if not copy.exists():
-            shutil.copyfile(src, copy)
+            if known is not None and digest != known:
+                raise CampaignDirectoryError(
+                    f"input copy {copy}: missing, and its source {src} differs from the "
+                    f"sha256 {manifest} recorded for the copy: the input this campaign "
+                    "started with is gone; put it back in either place or use a new campaign "
+                    "directory")
+            atomic.copy_file(src, copy)
         inputs[src.name] = entry
     return inputs
 

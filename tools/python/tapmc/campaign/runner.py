@@ -648,7 +648,7 @@ class Campaign:
             "lmp": str(self.lmp), **provenance.lmp_versions(self.lmp),
             "tapmc_version": provenance.tapmc_version(),
             "inputs": provenance.copy_inputs(self.directory, self.runs, self.pin_inputs,
-                                             self.stream)}
+                                             self.stream, previous.get("inputs"))}
         mismatch = provenance.build_mismatch(self.lmp, manifest["lmp_build"],
                                              manifest["tapmc_version"])
         if mismatch:
