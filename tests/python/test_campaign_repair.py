@@ -8,15 +8,18 @@ an uninterrupted one, or the campaign refuses with one line naming the file."""
 import io
 import json
 import os
+import signal
 import subprocess
 import sys
+import time
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import pytest
 
 from campaign_runs import CONSTANT_EPS, LMP, TINY, steps
 from tapmc.campaign import (Campaign, CampaignDirectoryError, CampaignError,  # noqa: E402
-                            RunSpec, provenance, run_folder)
+                            RunSpec, launch, provenance, run_folder)
 
 pytestmark = pytest.mark.skipif(not LMP.is_file(), reason=f"no LAMMPS executable at {LMP}")
 
@@ -260,3 +263,92 @@ def test_an_input_copy_is_whole_and_checked_against_the_manifest(tmp_path):
         f"input copy {copy}: its sha256 differs from the one {folder / 'manifest.json'} "
         f"recorded, and so does its source {source}: the input this campaign started with "
         "is gone; put it back in either place or use a new campaign directory")
+
+
+def test_a_lammps_child_dies_with_its_runner_even_in_the_fork_window(tmp_path):
+    """Between fork and exec a child still has its runner's Python SIGTERM handler, which
+    swallowed the parent-death signal; and a runner killed before the child's prctl was never
+    noticed. The child's setup restores SIGTERM's default action, asks for the parent-death
+    signal and then ends itself when its parent is not the runner any more. Both cases are
+    made here on purpose: a SIGTERM in the setup window, and a runner that is another process
+    than the child's parent."""
+    caught = []
+    previous = signal.signal(signal.SIGTERM, lambda signum, frame: caught.append(signum))
+    try:
+        setup = launch.child_setup(os.getpid())
+
+        def term_in_the_window():
+            setup()
+            os.kill(os.getpid(), signal.SIGTERM)
+
+        # from a worker thread, as a campaign starts its runs
+        with ThreadPoolExecutor(1) as pool:
+            code = pool.submit(lambda: subprocess.run(
+                ["true"], preexec_fn=term_in_the_window).returncode).result()
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+    assert code == -signal.SIGTERM and caught == []
+    orphan = subprocess.run(["sleep", "30"], preexec_fn=launch.child_setup(os.getppid()))
+    assert orphan.returncode == -signal.SIGTERM
+
+
+LOCK_DRIVER = """
+import sys
+sys.path.insert(0, {python!r})
+from tapmc.campaign import Campaign, RunSpec
+Campaign({folder!r}, [RunSpec("r", {inp!r}, {{"taps": 3}})], lmp={lmp!r}, jobs=1).run()
+"""
+
+#: LAMMPS that, with a file ``hold`` in its folder, outlives its runner (SIGTERM ignored: the
+#: parent-death signal does nothing) and writes its pid; else it fails at once
+FAKE_ORPHAN = """#!/bin/sh
+case " $* " in *" -in "*) ;; *) exit 0 ;; esac
+if [ -e hold ]; then rm hold; trap '' TERM; echo $$ > {pidfile}; exec sleep 60; fi
+echo 'LAMMPS (fake)' > log.lammps; exit 1
+"""
+
+
+def test_a_lammps_run_left_by_a_killed_runner_keeps_the_campaign_locked(tmp_path):
+    """A LAMMPS child that outlives a SIGKILLed runner (the QA saw one write a finished run's
+    taps.dat together with the next session's) holds the campaign's lock: the runner passes
+    the lock's descriptor to its children, and a new session is refused, naming campaign.lock,
+    until that process ends."""
+    pidfile = tmp_path / "orphan.pid"
+    fake = tmp_path / "lmp_fake"
+    fake.write_text(FAKE_ORPHAN.format(pidfile=pidfile))
+    fake.chmod(0o755)
+    folder = tmp_path / "c"
+    (folder / "runs" / "r").mkdir(parents=True)
+    (folder / "runs" / "r" / "hold").touch()
+    script = LOCK_DRIVER.format(python=str(Path(provenance.__file__).parents[2]),
+                                folder=str(folder), inp=str(CONSTANT_EPS), lmp=str(fake))
+    env = dict(os.environ, OMPI_MCA_orte_tmpdir_base=str(tmp_path / "mpi"))
+    driver = subprocess.Popen([sys.executable, "-c", script], env=env,
+                              stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT)
+    orphan = None
+    try:
+        deadline = time.time() + 30
+        while not (pidfile.exists() and pidfile.read_text().strip()) and time.time() < deadline:
+            time.sleep(0.05)
+        orphan = int(pidfile.read_text())
+        driver.kill()
+        driver.wait()
+        spec = RunSpec("r", CONSTANT_EPS, {"taps": 3})
+        with pytest.raises(CampaignError, match=r"being run by another process \(campaign.lock "
+                                                r"is held: by another runner, or by a LAMMPS "
+                                                r"run a killed runner left, until it ends"):
+            Campaign(folder, [spec], lmp=str(fake), jobs=1).run(progress=False)
+    finally:
+        if orphan is not None:
+            os.kill(orphan, signal.SIGKILL)
+        driver.kill()
+        driver.wait()
+    deadline = time.time() + 30
+    while time.time() < deadline:   # the lock is free once the orphan has gone
+        try:
+            with launch.campaign_lock(folder):
+                break
+        except CampaignError:
+            time.sleep(0.05)
+    with pytest.raises(CampaignError, match="run 'r' failed"):
+        Campaign(folder, [spec], lmp=str(fake), jobs=1).run(progress=False)

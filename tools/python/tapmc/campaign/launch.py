@@ -15,8 +15,8 @@ from pathlib import Path
 
 from .errors import CampaignDirectoryError, CampaignError
 
-__all__ = ["find_lmp", "available_cores", "campaign_lock", "run_child", "run_child_timed",
-           "private_mpi_session", "mpirun_prefix",
+__all__ = ["find_lmp", "available_cores", "campaign_lock", "child_setup", "run_child",
+           "run_child_timed", "private_mpi_session", "mpirun_prefix",
            "lammps_command", "partition_batches", "partition_driver", "partition_command"]
 
 _REPO = Path(__file__).resolve().parents[4]
@@ -50,7 +50,10 @@ def available_cores():
 @contextlib.contextmanager
 def campaign_lock(directory):
     """Hold ``<directory>/campaign.lock`` (created with the folder if needed) while the block
-    runs: a second runner of the same folder gets CampaignError instead of racing this one."""
+    runs: a second runner of the same folder gets CampaignError instead of racing this one.
+    Yields the open lock file: the lock (flock) belongs to its open file description, so a
+    LAMMPS child given its descriptor (``run_child``'s ``keep_fds``) holds the lock as long as
+    it runs, also when its runner was killed; the lock is free when every holder is gone."""
     directory = Path(directory)
     try:
         directory.mkdir(parents=True, exist_ok=True)
@@ -63,18 +66,37 @@ def campaign_lock(directory):
         try:
             fcntl.flock(lockfile, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except OSError:
-            raise CampaignError(f"campaign {directory} is being run by another "
-                                "process (campaign.lock is held)") from None
-        yield
+            raise CampaignError(
+                f"campaign {directory} is being run by another process (campaign.lock is held: "
+                "by another runner, or by a LAMMPS run a killed runner left, until it ends; "
+                f"fuser -v {directory / 'campaign.lock'} names them)") from None
+        yield lockfile
 
 
-def _die_with_parent():
-    """Child setup: get SIGTERM when the campaign process dies (no orphaned runs that would
-    race a resumed campaign)."""
-    try:
-        ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
-    except OSError:
-        pass
+try:
+    _LIBC = ctypes.CDLL("libc.so.6", use_errno=True)
+except OSError:  # not glibc: no parent-death signal
+    _LIBC = None
+_PR_SET_PDEATHSIG = 1
+
+
+def child_setup(parent):
+    """The function a LAMMPS child runs between fork and exec (Popen's preexec_fn) so that it
+    dies with its runner, the process ``parent`` (its pid): SIGTERM and SIGINT back to their
+    default action unless ignored (inherited from the fork, the runner's Python handler would
+    catch the parent-death signal and the child would go on), the parent-death signal SIGTERM
+    (Linux's prctl), then a check that the runner still is its parent: one killed before the
+    prctl is not seen by it, and the child then ends itself as the signal would have."""
+    def setup():
+        for signum in (signal.SIGTERM, signal.SIGINT):
+            if signal.getsignal(signum) is not signal.SIG_IGN:
+                signal.signal(signum, signal.SIG_DFL)
+        if _LIBC is not None:
+            _LIBC.prctl(_PR_SET_PDEATHSIG, signal.SIGTERM)
+        if os.getppid() != parent:
+            os.kill(os.getpid(), signal.SIGTERM)
+            os._exit(128 + signal.SIGTERM)
+    return setup
 
 
 # Open MPI 4 keeps a session directory per job under <base>/ompi.<host>.<uid>, created in
@@ -108,20 +130,22 @@ def private_mpi_session():
         shutil.rmtree(private, ignore_errors=True)
 
 
-def run_child(cmd, cwd, screen, started=None):
+def run_child(cmd, cwd, screen, started=None, keep_fds=()):
     """Run ``cmd`` in ``cwd`` with its output in the file ``screen``, as a child that dies with
-    this process and has MPI session directories of its own; returns its exit status."""
-    return run_child_timed(cmd, cwd, screen, started)[0]
+    this process (:func:`child_setup`) and has MPI session directories of its own; returns its
+    exit status. ``keep_fds``: descriptors the child inherits (the campaign's lock)."""
+    return run_child_timed(cmd, cwd, screen, started, keep_fds)[0]
 
 
-def run_child_timed(cmd, cwd, screen, started=None):
+def run_child_timed(cmd, cwd, screen, started=None, keep_fds=()):
     """:func:`run_child`, returning (exit status, CPU seconds of the child: user + system).
     The CPU time is the child's own (wait4), whatever else runs at the same time: what a run
     costs on one core (tapmc.paper.front prices its settings by it). ``started``: called with
     the child's Popen once it runs (a campaign that is stopped signals its children)."""
     with open(screen, "w") as out, private_mpi_session() as env:
         proc = subprocess.Popen(cmd, cwd=cwd, stdin=subprocess.DEVNULL, stdout=out, env=env,
-                                stderr=subprocess.STDOUT, preexec_fn=_die_with_parent)
+                                stderr=subprocess.STDOUT, preexec_fn=child_setup(os.getpid()),
+                                pass_fds=tuple(keep_fds))
         try:
             if started is not None:
                 started(proc)

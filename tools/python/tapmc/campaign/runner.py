@@ -114,6 +114,7 @@ class Campaign:
         self._started = {}
         self._redo = {}  # name -> damaged files the running re-run must write again
         self._again = set()  # runs whose restart LAMMPS could not read: pool mode retries
+        self._lock_fds = ()  # the descriptor of campaign.lock while run() holds it
         self._previous_version = None
         self._children = {}  # name (or batch) -> Popen of its running LAMMPS process
         self._stop_signal = None  # the name of the signal that stopped the campaign
@@ -475,7 +476,7 @@ class Campaign:
             t0 = time.time()
             returncode, cpu = launch.run_child_timed(
                 cmd, run_dir, run_dir / "screen.txt",
-                lambda proc: self._child_started(spec.name, proc))
+                lambda proc: self._child_started(spec.name, proc), self._lock_fds)
             self._children.pop(spec.name, None)
             error = self._finish(spec, returncode, time.time() - t0, step, cpu)
             with self._lock:
@@ -503,7 +504,8 @@ class Campaign:
         t0 = time.time()
         key = f"batch{index}"
         returncode = launch.run_child(cmd, pdir, pdir / f"{key}.screen",
-                                      lambda proc: self._child_started(key, proc))
+                                      lambda proc: self._child_started(key, proc),
+                                      self._lock_fds)
         self._children.pop(key, None)
         errors = []
         for spec in batch:
@@ -634,8 +636,12 @@ class Campaign:
         outputs were damaged since, write manifest.json; raise CampaignError naming each
         failed run and its log. Returns self."""
         self.check_directory()
-        with launch.campaign_lock(self.directory):
-            return self._run_locked(progress)
+        with launch.campaign_lock(self.directory) as lock:
+            self._lock_fds = (lock.fileno(),)  # LAMMPS children hold the lock too
+            try:
+                return self._run_locked(progress)
+            finally:
+                self._lock_fds = ()
 
     def _session_manifest(self, previous):
         """This session's manifest.json (its runs added later): the campaign, this machine,
