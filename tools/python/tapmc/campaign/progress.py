@@ -47,18 +47,23 @@ def past_seconds_per_tap(records):
     return out
 
 
-def estimate_seconds_left(left, records, running, jobs, session_rate):
+def estimate_seconds_left(left, records, running, jobs, session_rate, started=None):
     """Wall seconds until the last run ends, from what each run costs per tap rather than
     from the campaign's mean rate (taps of different runs differ several times in cost: a
     weak tap settles in fewer sweeps than a strong one).
 
-    ``left``: name -> taps still to run (unfinished runs); ``records``: the manifest's records
-    (name -> describe() plus attempts); ``running``: name -> this session's measured s per tap
-    of a running run; ``jobs``: runs at a time; ``session_rate``: taps per second of the whole
-    session, or 0. Each run's s per tap: its own rate when running, else the mean of finished
-    runs that differ from it only by seed, else of finished runs of the same input, else the
-    session's (jobs / session_rate). The sum over the runs is divided by ``jobs``. None when
-    some run has no estimate."""
+    ``left``: name -> taps still to run (unfinished runs, in the order the campaign starts
+    them); ``records``: the manifest's records (name -> describe() plus attempts); ``running``:
+    name -> this session's measured s per tap of a running run; ``jobs``: runs at a time;
+    ``session_rate``: taps per second of the whole session, or 0; ``started``: the names of
+    the runs running now (default: those of ``running``). Each run's s per tap: its own rate
+    when running, else the mean of finished runs that differ from it only by seed, else of
+    finished runs of the same input, else the session's (jobs / session_rate). The runs
+    running now hold a job each, the others go in order to the job that is free first (as
+    the pool starts them), and the ETA is when the last job ends: never less than the longest
+    run left, which no number of jobs shortens (the sum over the runs divided by the jobs
+    promised one run left on two jobs in half its time). None when some run has no
+    estimate."""
     past = past_seconds_per_tap(records)
     siblings, inputs = {}, {}
     for name, spt in past.items():
@@ -66,7 +71,8 @@ def estimate_seconds_left(left, records, running, jobs, session_rate):
         siblings.setdefault(_sibling_key(rec), []).append(spt)
         inputs.setdefault(rec["input"], []).append(spt)
     fallback = jobs / session_rate if session_rate > 0 else None
-    total = 0.0
+    started = set(running if started is None else started)
+    now, queued = [], []
     for name, taps in left.items():
         if taps <= 0:
             continue
@@ -78,8 +84,11 @@ def estimate_seconds_left(left, records, running, jobs, session_rate):
         spt = fallback if spt is None else spt
         if spt is None:
             return None
-        total += taps * spt
-    return total / jobs
+        (now if name in started else queued).append(taps * spt)
+    loads = now + [0.0] * max(0, int(jobs) - len(now))
+    for seconds in queued:
+        loads[loads.index(min(loads))] += seconds
+    return max(loads, default=0.0)
 
 
 def cost_sums(tap_costs, runs):

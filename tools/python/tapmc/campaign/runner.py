@@ -624,8 +624,8 @@ class Campaign:
         finished = sum(1 for r in self.runs if self.is_done(r.name))
         elapsed = now - session_start
         rate = done_session / elapsed if elapsed > 0 else 0
-        eta = estimate_seconds_left(left, records, spt_running, self.jobs, rate) \
-            if any(left.values()) else 0
+        eta = estimate_seconds_left(left, records, spt_running, self.jobs, rate,
+                                    started=running) if any(left.values()) else 0
         lines.append(f"[campaign] {finished}/{len(self.runs)} runs done, elapsed "
                      f"{format_seconds(elapsed)}, ETA {format_seconds(eta)}")
         print("\n".join(lines), file=self.stream, flush=True)
