@@ -159,17 +159,23 @@ def test_resume_after_kill(tmp_path, monkeypatch):
 
 @pytest.mark.skipif(shutil.which("mpirun") is None, reason="no mpirun")
 def test_partition_mode_two_partitions(tmp_path):
+    """Two runs as two partitions of one mpirun, in a campaign folder whose path has a space
+    (the driver names the run folders relative to its own: a world variable takes one value
+    per word); the same trajectories as in pool mode."""
     runs = [RunSpec(f"fbc_s{s}", CONSTANT_EPS, dict(TINY, taps=8 + s, bc="fbc"), seed=s)
             for s in (1, 2)]
-    campaign = Campaign(tmp_path / "p", runs, lmp=LMP, jobs=2, mode="partition")
+    folder = tmp_path / "with space" / "p"
+    campaign = Campaign(folder, runs, lmp=LMP, jobs=2, mode="partition")
     campaign.run(progress=False)
     for spec in runs:
         assert steps(campaign.result(spec.name) / "taps.dat") == list(range(spec.taps + 1))
-    manifest = json.loads((tmp_path / "p" / "manifest.json").read_text())
+    manifest = json.loads((folder / "manifest.json").read_text())
     cmd = manifest["runs"][0]["command"]
     assert "mpirun" in cmd[0] and cmd[cmd.index("-partition") + 1] == "2x1"
-    driver = (tmp_path / "p" / manifest["runs"][0]["driver"]).read_text()
+    driver = (folder / manifest["runs"][0]["driver"]).read_text()
     assert "variable seed world 1 2" in driver and "variable taps world 9 10" in driver
+    assert "variable run_dir world ../runs/fbc_s1 ../runs/fbc_s2" in driver
+    assert "include ../../inputs/in.constant_eps" in driver
     # the same runs in pool mode give the same trajectories
     pool = Campaign(tmp_path / "q", runs, lmp=LMP, jobs=2).run(progress=False)
     for spec in runs:
@@ -596,6 +602,12 @@ def test_words_pass_several_words_as_one_value(tmp_path):
     driver = launch.partition_driver([spec, other], {"a": tmp_path / "a", "b": tmp_path / "b"},
                                      {"a": resume, "b": resume}, CONSTANT_EPS)
     assert 'variable settle_keys world "dmax 0.05 stop drift" "check 0"' in driver
+    # the input copy relative to the run folders, quoted when its name has a space
+    named = tmp_path / "inputs" / "in constant eps"
+    driver = launch.partition_driver([spec, other], {"a": tmp_path / "runs" / "a",
+                                                     "b": tmp_path / "runs" / "b"},
+                                     {"a": resume, "b": resume}, named, cwd=tmp_path / "part")
+    assert 'include "../../inputs/in constant eps"' in driver
 
 
 def test_an_attempt_records_its_cpu_time_and_last_step(tmp_path):

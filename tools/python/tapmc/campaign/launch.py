@@ -199,14 +199,38 @@ def partition_batches(pending, jobs):
     return batches
 
 
-def partition_driver(batch, run_dirs, resumes, input_copy):
+def _lammps_word(text):
+    """``text`` as one word of a LAMMPS input line: as it is, or in double quotes when it holds
+    a space, a single quote, ``#`` or ``$`` (LAMMPS splits on spaces, and reads # and $
+    outside quotes); CampaignError for a double quote, which no quoting keeps."""
+    if '"' in text:
+        raise CampaignError(f"partition mode: {text} holds a double quote, which a LAMMPS "
+                            "input line cannot quote; rename it, or use mode='pool'")
+    return f'"{text}"' if any(c.isspace() or c in "'#$" for c in text) else text
+
+
+def partition_driver(batch, run_dirs, resumes, input_copy, cwd=None):
     """Text of the driver input of a batch: each partition goes to its run's folder and sets
     its run's variables, seed and resume through world-style variables, then includes the
-    input copy. ``run_dirs`` and ``resumes`` map run names to folders and resume variables."""
+    input copy. ``run_dirs`` and ``resumes`` map run names to folders and resume variables.
+    ``cwd``: the folder LAMMPS runs the driver in; the run folders are then written relative
+    to it and the input copy relative to the run folders, so that a campaign path with spaces
+    in it works (a world variable takes one value per word, and ``shell cd ${run_dir}`` sees
+    the words of its value: no quoting keeps a value of several words together)."""
     first = batch[0]
+    dirs = [Path(run_dirs[s.name]) for s in batch]
+    include = Path(input_copy)
+    if cwd is not None:
+        dirs = [Path(os.path.relpath(d, cwd)) for d in dirs]
+        include = Path(os.path.relpath(input_copy, run_dirs[first.name]))
+    for d in dirs:
+        if any(c.isspace() or c in "\"'#$" for c in str(d)):
+            raise CampaignError(f"partition mode: run folder {d} holds a space, a quote, # or "
+                                "$, which a LAMMPS world variable cannot hold; use a campaign "
+                                "folder without them, or mode='pool'")
     lines = ["# TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.",
              "# Written by tapmc.campaign: one run per partition, each in its own folder.",
-             "variable run_dir world " + " ".join(str(run_dirs[s.name]) for s in batch),
+             "variable run_dir world " + " ".join(str(d) for d in dirs),
              "shell cd ${run_dir}", "log log.lammps"]
     single = [k for k, v in first.variables.items() if not isinstance(v, (list, tuple))]
     for key in single + ["seed", "resume", "resume_file"]:
@@ -220,7 +244,7 @@ def partition_driver(batch, run_dirs, resumes, input_copy):
                 value = str(s.variables[key])
                 values.append(f'"{value}"' if " " in value else value)  # Words: one value
         lines.append(f"variable {key} world " + " ".join(values))
-    lines.append(f"include {input_copy}")
+    lines.append(f"include {_lammps_word(str(include))}")
     return "\n".join(lines) + "\n"
 
 

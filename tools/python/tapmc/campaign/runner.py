@@ -494,7 +494,7 @@ class Campaign:
         driver = pdir / f"batch{index}.in"
         driver.write_text(launch.partition_driver(
             batch, {s.name: self.run_dir(s.name) for s in batch},
-            {name: r[0] for name, r in resumes.items()}, self._input_copy(batch[0])))
+            {name: r[0] for name, r in resumes.items()}, self._input_copy(batch[0]), cwd=pdir))
         cmd = launch.partition_command(self.lmp, batch, driver, pdir / f"batch{index}.log")
         with self._lock:
             for spec in batch:
