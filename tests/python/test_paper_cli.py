@@ -343,7 +343,7 @@ def _folder(tmp_path, manifest=None, scale=None):
     "out_below_file", "out_uncreatable", "manifest_is_directory", "manifest_not_json",
     "manifest_not_object", "manifest_newer_format", "manifest_attempts_damaged",
     "manifest_time_damaged", "other_preset", "campaign_other_preset",
-    "edited_preset", "scale_json_damaged", "lmp_not_executable"])
+    "edited_preset", "scale_json_damaged", "lmp_not_executable", "tapmc_lmp_missing"])
 def test_bad_paths(tmp_path, case, capsys, monkeypatch):
     """Each bad path: exit 2, one line naming the path and what is wrong. The checks run
     before any LAMMPS run, so the real figure modules are used; --dry-run only where a check
@@ -426,9 +426,14 @@ def test_bad_paths(tmp_path, case, capsys, monkeypatch):
     elif case == "lmp_not_executable":
         args = ["--campaign", camp, "--lmp", afile]
         expected = f"lmp = '{afile}': not an executable file"
+    elif case == "tapmc_lmp_missing":   # another executable was taken silently before
+        monkeypatch.setenv("TAPMC_LMP", str(tmp_path / "nowhere" / "lmp_tapmc"))
+        args = ["--campaign", camp]
+        expected = (f"TAPMC_LMP = '{tmp_path / 'nowhere' / 'lmp_tapmc'}': not an executable "
+                    "file (unset it for build/lmp_tapmc or lmp_tapmc on the PATH, or pass --lmp)")
     line = _one_line_error(_main(capsys, "fig2", "--quiet", *args))
     assert line.startswith("tapmc-paper: " + expected), line
-    if case in ("out_is_file", "out_below_file", "lmp_not_executable"):
+    if case in ("out_is_file", "out_below_file", "lmp_not_executable", "tapmc_lmp_missing"):
         assert not camp.exists(), "a refused command left a campaign folder behind"
 
 

@@ -24,13 +24,19 @@ _REPO = Path(__file__).resolve().parents[4]
 
 def find_lmp(lmp=None):
     """Path of the LAMMPS executable: ``lmp``, else $TAPMC_LMP, else the repository's
-    build/lmp_tapmc, else ``lmp_tapmc`` on the PATH."""
+    build/lmp_tapmc, else ``lmp_tapmc`` on the PATH. An ``lmp`` or a $TAPMC_LMP that is no
+    executable file is FileNotFoundError naming it, never replaced by another build."""
     if lmp is not None:
         if Path(lmp).is_file() and os.access(lmp, os.X_OK):
             return Path(lmp).resolve()
         raise FileNotFoundError(f"lmp = {str(lmp)!r}: not an executable file")
-    candidates = [os.environ.get("TAPMC_LMP"), _REPO / "build" / "lmp_tapmc",
-                  shutil.which("lmp_tapmc")]
+    env = os.environ.get("TAPMC_LMP")
+    if env:
+        if Path(env).is_file() and os.access(env, os.X_OK):
+            return Path(env).resolve()
+        raise FileNotFoundError(f"TAPMC_LMP = {env!r}: not an executable file (unset it for "
+                                "build/lmp_tapmc or lmp_tapmc on the PATH, or pass --lmp)")
+    candidates = [_REPO / "build" / "lmp_tapmc", shutil.which("lmp_tapmc")]
     for c in candidates:
         if c and Path(c).is_file() and os.access(c, os.X_OK):
             return Path(c).resolve()
