@@ -227,6 +227,10 @@ try:
     provenance.copy_inputs({folder!r}, [spec], False, sys.stdout)
 except OSError as err:
     print("ERROR", err.filename, err.strerror)
+try:
+    provenance.write_manifest({folder!r}, {{"runs": [], "note": "x" * 8192}})
+except OSError as err:
+    print("ERROR", err.filename, err.strerror)
 """
 
 
@@ -243,8 +247,11 @@ def test_an_input_copy_is_whole_and_checked_against_the_manifest(tmp_path):
                                            inp=str(source), folder=str(folder))
     out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
     copy = folder / "inputs" / "in.constant_eps"
-    assert out.stdout.strip() == f"ERROR {copy} File too large", out.stdout + out.stderr
+    assert out.stdout.splitlines() == [f"ERROR {copy} File too large",
+                                       f"ERROR {folder / 'manifest.json'} File too large"], \
+        out.stdout + out.stderr
     assert list((folder / "inputs").iterdir()) == []
+    assert sorted(p.name for p in folder.iterdir()) == ["inputs"]
 
     spec = RunSpec("r", source, dict(TINY, taps=2), seed=1)
     Campaign(folder, [spec], lmp=LMP, jobs=1).run(progress=False)
@@ -352,3 +359,28 @@ def test_a_lammps_run_left_by_a_killed_runner_keeps_the_campaign_locked(tmp_path
             time.sleep(0.05)
     with pytest.raises(CampaignError, match="run 'r' failed"):
         Campaign(folder, [spec], lmp=str(fake), jobs=1).run(progress=False)
+
+
+def test_a_manifest_that_cannot_be_written_hides_no_error_of_the_session(tmp_path, monkeypatch):
+    """On a full disk the manifest written after the runs failed and its OSError, without a
+    path, replaced the session's own error (a failed run here). The writes of the manifest
+    while the runs run and after them are best effort: one line says so, the runs go on, and
+    the session's error comes first, followed by the manifest's, path first."""
+    spec = RunSpec("bad", CONSTANT_EPS, dict(TINY, taps=3, bc="xyz"), seed=1)
+    written = provenance.write_manifest
+
+    def disk_full_once_a_run_ended(directory, data):
+        if any(r["attempts"] for r in data["runs"]):
+            raise OSError(28, "No space left on device", str(directory / "manifest.json"))
+        written(directory, data)
+
+    monkeypatch.setattr(provenance, "write_manifest", disk_full_once_a_run_ended)
+    stream = io.StringIO()
+    with pytest.raises(CampaignError) as err:
+        Campaign(tmp_path / "c", [spec], lmp=LMP, jobs=1, stream=stream).run(progress=False)
+    manifest = tmp_path / "c" / "manifest.json"
+    assert str(err.value).startswith("1 of 1 runs failed:\n  run 'bad' failed: ERROR: bc = xyz")
+    assert str(err.value).endswith(f"; and the manifest could not be written ({manifest}: No "
+                                   "space left on device)")
+    assert stream.getvalue().count(f"[campaign] warning: {manifest}: No space left on device: "
+                                   "the manifest is not written; the runs go on") == 1

@@ -132,9 +132,8 @@ def write_manifest(directory, data):
     """Write manifest.json (paths made portable) through a temporary file, so that a kill
     never leaves half a manifest."""
     directory = Path(directory)
-    tmp = directory / "manifest.json.tmp"
-    tmp.write_text(json.dumps(portable_paths(data, directory), indent=1) + "\n")
-    tmp.replace(directory / "manifest.json")
+    atomic.write_text(directory / "manifest.json",
+                      json.dumps(portable_paths(data, directory), indent=1) + "\n")
 
 
 def lmp_versions(lmp):
@@ -306,9 +305,7 @@ def read_done(done_file):
 
 def write_done(run_dir, done):
     """Write DONE.json, the mark of a finished run, last and through a temporary file."""
-    tmp = Path(run_dir) / "DONE.json.tmp"
-    tmp.write_text(json.dumps(done, indent=1) + "\n")
-    tmp.replace(Path(run_dir) / "DONE.json")
+    atomic.write_text(Path(run_dir) / "DONE.json", json.dumps(done, indent=1) + "\n")
 
 
 def output_digests(run_dir, names):

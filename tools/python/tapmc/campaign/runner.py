@@ -13,7 +13,7 @@ import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from . import launch, provenance, run_folder
+from . import atomic, launch, provenance, run_folder
 from .progress import cost_sums, estimate_seconds_left, format_seconds, weighted_seconds_left
 from ..readers import TapmcFormatError
 from .errors import CampaignDirectoryError, CampaignError, CampaignStopped
@@ -115,6 +115,7 @@ class Campaign:
         self._redo = {}  # name -> damaged files the running re-run must write again
         self._again = set()  # runs whose restart LAMMPS could not read: pool mode retries
         self._lock_fds = ()  # the descriptor of campaign.lock while run() holds it
+        self._manifest_error = None  # the OSError of the last manifest write, if it failed
         self._previous_version = None
         self._children = {}  # name (or batch) -> Popen of its running LAMMPS process
         self._stop_signal = None  # the name of the signal that stopped the campaign
@@ -170,12 +171,30 @@ class Campaign:
     def _input_copy(self, spec):
         return self.directory / self._manifest["inputs"][spec.input.name]["copy"]
 
-    def _write_manifest(self):
+    def _write_manifest(self, session=False):
+        """Write manifest.json from the records. ``session``: a write while the runs run or
+        after them: an OSError (a full disk) does not end the session nor hide its own errors;
+        it is said once on the stream and kept in ``_manifest_error`` until a later write
+        succeeds (every write holds every record)."""
         with self._lock:
             data = dict(self._manifest)
             data["updated"] = provenance.now()
             data["runs"] = [self._records[r.name] for r in self.runs]
-            provenance.write_manifest(self.directory, data)
+            try:
+                provenance.write_manifest(self.directory, data)
+            except OSError as err:
+                if not session:
+                    raise
+                if self._manifest_error is None:
+                    try:
+                        print(f"[campaign] warning: {_os_text(err)}: the manifest is not "
+                              "written; the runs go on and a later write tries again",
+                              file=self.stream, flush=True)
+                    except (OSError, ValueError):
+                        pass
+                self._manifest_error = err
+                return
+            self._manifest_error = None
 
     # -- finished runs ---------------------------------------------------------------------
     @staticmethod
@@ -472,7 +491,7 @@ class Campaign:
             cmd = launch.lammps_command(self.lmp, spec, self._input_copy(spec), resume)
             with self._lock:
                 self._started_run(spec, cmd, step)
-            self._write_manifest()
+            self._write_manifest(session=True)
             t0 = time.time()
             returncode, cpu = launch.run_child_timed(
                 cmd, run_dir, run_dir / "screen.txt",
@@ -481,7 +500,7 @@ class Campaign:
             error = self._finish(spec, returncode, time.time() - t0, step, cpu)
             with self._lock:
                 self._t0.pop(spec.name, None)
-            self._write_manifest()
+            self._write_manifest(session=True)
             if spec.name not in self._again:
                 break
             self._again.discard(spec.name)  # its restart set aside: it goes on from another
@@ -492,7 +511,7 @@ class Campaign:
         pdir.mkdir(exist_ok=True)
         resumes = {spec.name: self._prepare(spec) for spec in batch}
         driver = pdir / f"batch{index}.in"
-        driver.write_text(launch.partition_driver(
+        atomic.write_text(driver, launch.partition_driver(
             batch, {s.name: self.run_dir(s.name) for s in batch},
             {name: r[0] for name, r in resumes.items()}, self._input_copy(batch[0]), cwd=pdir))
         cmd = launch.partition_command(self.lmp, batch, driver, pdir / f"batch{index}.log")
@@ -500,7 +519,7 @@ class Campaign:
             for spec in batch:
                 self._started_run(spec, cmd, resumes[spec.name][1],
                                   driver=str(driver.relative_to(self.directory)))
-        self._write_manifest()
+        self._write_manifest(session=True)
         t0 = time.time()
         key = f"batch{index}"
         returncode = launch.run_child(cmd, pdir, pdir / f"{key}.screen",
@@ -517,7 +536,7 @@ class Campaign:
                 errors.append(err)
             with self._lock:
                 self._t0.pop(spec.name, None)
-        self._write_manifest()
+        self._write_manifest(session=True)
         return errors
 
     # -- stopping --------------------------------------------------------------------------
@@ -569,9 +588,9 @@ class Campaign:
         return [e for e in errors if not any(e.startswith(f"run {name!r} failed: ")
                                             for name in self._signalled)]
 
-    def _stop_error(self, errors):
+    def _stop_error(self, errors, note=""):
         """The CampaignStopped of a campaign stopped by a signal, naming where each running run
-        stopped, how many runs did not start, and the failures of the session."""
+        stopped, how many runs did not start, and the failures of the session (then ``note``)."""
         stopped = ", ".join(f"{name!r} at tap {tap}" for name, tap in self._stopped.items())
         waiting = sum(1 for r in self.runs
                       if self._records[r.name].get("status") == "pending")
@@ -581,7 +600,7 @@ class Campaign:
             f"stopped by {self._stop_signal}: {len(self._stopped)} running run"
             f"{'s' if len(self._stopped) != 1 else ''} stopped and recorded"
             + (f" ({stopped})" if stopped else "") + f", {waiting} not started; running the "
-            "campaign again resumes each from its latest restart file" + failed,
+            "campaign again resumes each from its latest restart file" + failed + note,
             self._stop_signal)
 
     # -- progress --------------------------------------------------------------------------
@@ -662,6 +681,7 @@ class Campaign:
         return manifest
 
     def _run_locked(self, progress):
+        self._manifest_error = None
         previous = provenance.read_manifest(self.directory)
         # the version of the campaign's last session: the best record of attempts that were
         # made before each attempt carried its own
@@ -725,13 +745,18 @@ class Campaign:
                     pass
             if self._stop_signal is not None:
                 errors = self._count_signalled_as_stopped(errors)
-            self._write_manifest()
+            # best effort: an error of the session that propagates comes first
+            self._write_manifest(session=True)
         left = any(self._records[r.name].get("status") == "pending" for r in pending)
+        unwritten = "" if self._manifest_error is None else (
+            f"; and the manifest could not be written ({_os_text(self._manifest_error)})")
         if self._stop_signal is not None and (self._stopped or left):
-            raise self._stop_error(errors)
+            raise self._stop_error(errors, unwritten)
         if errors:
             raise CampaignError(f"{len(errors)} of {len(pending)} runs failed:\n  "
-                                + "\n  ".join(errors))
+                                + "\n  ".join(errors) + unwritten)
+        if self._manifest_error is not None:
+            raise self._manifest_error
         return self
 
 
@@ -744,6 +769,11 @@ def _terminate(proc):
             os.kill(proc.pid, signal.SIGTERM)
         except OSError:  # ended in between
             pass
+
+
+def _os_text(err):
+    """An OSError as '<path>: <what>' (the path first, as tapmc-paper's lines give it)."""
+    return f"{err.filename}: {err.strerror}" if err.filename else str(err.strerror or err)
 
 
 def _signal_name(number):

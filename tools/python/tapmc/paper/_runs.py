@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from tapmc.campaign import CampaignDirectoryError, RunSpec, verify_finished_run
+from tapmc.campaign import CampaignDirectoryError, RunSpec, atomic, verify_finished_run
 from tapmc.pores import hist_is_current
 from tapmc.readers import TapmcFormatError, read_ave_time, read_fix_print
 
@@ -432,7 +432,7 @@ def write_scale(directory, scale):
     """Record ``scale`` in the campaign folder (see :func:`campaign_scale`)."""
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
-    (directory / SCALE_FILE).write_text(json.dumps(scale.as_dict(), indent=1) + "\n")
+    atomic.write_text(directory / SCALE_FILE, json.dumps(scale.as_dict(), indent=1) + "\n")
 
 
 def recorded_scale(directory):
