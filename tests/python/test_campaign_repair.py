@@ -384,3 +384,25 @@ def test_a_manifest_that_cannot_be_written_hides_no_error_of_the_session(tmp_pat
                                    "space left on device)")
     assert stream.getvalue().count(f"[campaign] warning: {manifest}: No space left on device: "
                                    "the manifest is not written; the runs go on") == 1
+
+
+@pytest.mark.parametrize("behaviour,expected", [
+    ("exit 0", "LAMMPS exited with code 0 without finishing the run (its log was not written): "
+               "is {lmp} a LAMMPS that runs in.constant_eps?"),
+    ("echo 'LAMMPS (fake)' > log.lammps; exit 0",
+     "LAMMPS exited with code 0 without finishing the run (its log has no Total wall time "
+     "line): is {lmp} a LAMMPS that runs in.constant_eps?"),
+    ("printf '# s\\n0\\n1\\n' > taps.dat; kill -SEGV $$",
+     "LAMMPS crashed (signal SIGSEGV) after tap 1: a fault of the executable, not a stop from "
+     "outside (its log and screen.txt say where;")])
+def test_a_lammps_that_ends_early_is_named_for_what_it_did(tmp_path, behaviour, expected):
+    """An executable that exits 0 without running was "LAMMPS exited with code 0", and a crash
+    (SIGSEGV) "stopped by signal SIGSEGV", as if stopped from outside."""
+    fake = tmp_path / "lmp_fake"
+    fake.write_text("#!/bin/sh\ncase \" $* \" in *\" -in \"*) ;; *) exit 0 ;; esac\n"
+                    + behaviour + "\n")
+    fake.chmod(0o755)
+    spec = RunSpec("r", CONSTANT_EPS, dict(TINY, taps=3), seed=1)
+    with pytest.raises(CampaignError) as err:
+        Campaign(tmp_path / "c", [spec], lmp=str(fake), jobs=1).run(progress=False)
+    assert f"run 'r' failed: {expected.format(lmp=fake)}" in str(err.value)

@@ -27,6 +27,9 @@ PROGRESS_INTERVAL = 10.0
 #: The signals that stop a running campaign cleanly (:class:`CampaignStopped`): a batch system's
 #: or ``kill``'s SIGTERM, and Ctrl-C.
 STOP_SIGNALS = (signal.SIGTERM, signal.SIGINT)
+#: The signals of a LAMMPS that crashed (a fault of its own, never a stop from outside)
+CRASH_SIGNALS = frozenset({signal.SIGSEGV, signal.SIGBUS, signal.SIGFPE, signal.SIGILL,
+                           signal.SIGABRT, signal.SIGSYS, signal.SIGTRAP})
 
 
 #: What a manifest records of the versions, each attempt too: the TAPMC tree the campaign runs
@@ -393,12 +396,23 @@ class Campaign:
         cut_short = False  # ended before its end with no error of its own: stopped from outside
         if returncode != 0 or "Total wall time" not in text:
             own = run_folder.log_error(log) or run_folder.log_error(run_dir / "screen.txt")
-            cut_short = not own.startswith("ERROR")
-            if returncode is not None and returncode < 0 and cut_short:
+            crashed = returncode is not None and -returncode in CRASH_SIGNALS
+            cut_short = not own.startswith("ERROR") and not crashed
+            if crashed:
+                error = (f"LAMMPS crashed (signal {_signal_name(-returncode)}) after tap "
+                         f"{run_folder.taps_done(run_dir / spec.taps_file)}: a fault of the "
+                         "executable, not a stop from outside (its log and screen.txt say "
+                         "where; the run resumes from its latest restart file when the "
+                         "campaign runs again)")
+            elif returncode is not None and returncode < 0 and cut_short:
                 # stopped from outside: a line of the echoed input that mentions ERROR is no
                 # error of the run
                 error = (f"LAMMPS was stopped by signal {_signal_name(-returncode)} (the run "
                          "resumes from its latest restart file when the campaign runs again)")
+            elif not own and returncode == 0:
+                error = (f"LAMMPS exited with code 0 without finishing the run (its log "
+                         f"{'has no Total wall time line' if log.exists() else 'was not written'}"
+                         f"): is {self.lmp} a LAMMPS that runs {spec.input.name}?")
             else:
                 error = own or f"LAMMPS exited with code {returncode}"
         elif spec.taps is not None and run_folder.taps_done(run_dir / spec.taps_file) != spec.taps:
@@ -468,6 +482,8 @@ class Campaign:
         if error:
             with self._lock:
                 rec["status"] = "failed"
+            if not log.exists() and (log.parent / "screen.txt").exists():
+                log = log.parent / "screen.txt"  # what the process said, where it wrote no log
             return f"run {spec.name!r} failed: {error}\n    log: {log}"
         self._redo.pop(spec.name, None)
         with self._lock:
