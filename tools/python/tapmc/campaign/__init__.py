@@ -26,8 +26,9 @@ What reads a campaign without running it checks each finished run it reads with
 
 Modules, one job each: :mod:`.spec` (RunSpec), :mod:`.launch` (processes, the lock,
 ``-partition``), :mod:`.run_folder` (a run's files and their repair for a resume),
-:mod:`.provenance` (manifest, DONE.json, checksums), :mod:`.progress` (the ETA),
-:mod:`.runner` (Campaign).
+:mod:`.repair` (damaged runs and restart files set aside, recorded), :mod:`.atomic` (files
+written whole or not at all), :mod:`.provenance` (manifest, DONE.json, checksums),
+:mod:`.progress` (the ETA), :mod:`.runner` (Campaign).
 """
 
 from .errors import STOPPED_STATUS, CampaignDirectoryError, CampaignError, CampaignStopped

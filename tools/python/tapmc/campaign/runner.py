@@ -13,7 +13,7 @@ import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from . import atomic, launch, provenance, run_folder
+from . import atomic, launch, provenance, repair, run_folder
 from .progress import cost_sums, estimate_seconds_left, format_seconds, weighted_seconds_left
 from ..readers import TapmcFormatError
 from .errors import CampaignDirectoryError, CampaignError, CampaignStopped
@@ -116,6 +116,7 @@ class Campaign:
         self._records = {}
         self._started = {}
         self._redo = {}  # name -> damaged files the running re-run must write again
+        self._repairs = repair.RunRepairs(self.run_dir, self._records, self._lock, self.stream)
         self._again = set()  # runs whose restart LAMMPS could not read: pool mode retries
         self._lock_fds = ()  # the descriptor of campaign.lock while run() holds it
         self._manifest_error = None  # the OSError of the last manifest write, if it failed
@@ -210,49 +211,6 @@ class Campaign:
                 f"run {spec.name!r}: finished in {done_file.parent} with other "
                 f"parameters ({done['run']}); use a new name or campaign")
 
-    def _unfinish_if_damaged(self, spec, done_file):
-        """Check the outputs of a finished run against its DONE.json (one written before
-        TAPMC recorded them is trusted as it is). A damaged or missing output makes the run
-        unfinished: DONE.json, its log, the damaged files and any file made from the outputs
-        after the run finished go to runs/NAME/damagedK/ (every file when the run must start
-        again), and the run resumes from its latest restart when that restart is intact and
-        no damaged file is named for an earlier step, else from the start. The damage is
-        printed and recorded in the manifest. Returns True when the run was made unfinished."""
-        recorded = provenance.read_done(done_file).get("outputs")
-        if recorded is None:
-            return False
-        run_dir = done_file.parent
-        damaged = provenance.damaged_outputs(run_dir, recorded)
-        if not damaged:
-            return False
-        step, restart = run_folder.latest_restart(run_dir)
-        if restart is not None and (restart.name not in recorded or restart.name in damaged):
-            step = None
-        steps = [run_folder.step_in_name(name) for name in damaged]
-        resume = step is not None and all(s is not None and s >= step for s in steps)
-        if resume:  # what the resumed run writes again, its log, and files made later
-            derived = [n for n in run_folder.output_files(run_dir) if n not in recorded]
-            moved = ["DONE.json", "log.lammps", "screen.txt"] + sorted(damaged) + derived
-        else:
-            moved = [p.name for p in run_dir.iterdir() if p.is_file()]
-        try:
-            aside = run_folder.set_aside(run_dir, moved)
-        except OSError as err:
-            files = ", ".join(f"{n} ({what})" for n, what in damaged.items())
-            raise CampaignError(
-                f"run {spec.name!r}: damaged since it finished: {files} in {run_dir}; it "
-                f"cannot be re-run: {err.strerror}: {err.filename}") from None
-        start = f"from its restart at step {step}" if resume else "from the start"
-        for name, what in damaged.items():
-            print(f"[campaign] run {spec.name!r}: {run_dir / name}: {what}; the run goes again "
-                  f"{start} (DONE.json and the files it replaces moved to {aside.name}/)",
-                  file=self.stream, flush=True)
-        self._records[spec.name].setdefault("damaged", []).append(
-            {"found": provenance.now(), "files": damaged, "set_aside": aside.name,
-             "rerun_from_step": step if resume else 0})
-        self._redo[spec.name] = sorted(damaged)
-        return True
-
     # -- one run ---------------------------------------------------------------------------
     def _prepare(self, spec):
         """Set up the folder of an unfinished run; returns the resume variables and the
@@ -278,64 +236,17 @@ class Campaign:
                      "taps_done": run_folder.taps_done(run_dir / spec.taps_file)})
         run_folder.remove_temporary_files(run_dir)  # of a rewrite killed before its rename
         fresh = {"resume": "no", "resume_file": "restart.*"}, None
-        step, path = self._set_cut_restarts_aside(spec)
+        step, path = self._repairs.set_cut_restarts_aside(spec)
         if step is None:
             return fresh
         run_folder.trim_rows(run_dir / spec.taps_file, step)
         problem = run_folder.step_rows_problem(run_dir / spec.taps_file, step - 1,
-                                               self._first_steps(rec, step))
+                                               repair.first_steps(rec, step))
         if problem:  # rows lost before the restart: resumed, the run would lack them for good
-            self._start_over(spec, f"{problem}, before its restart at step {step}")
+            self._repairs.start_over(spec, f"{problem}, before its restart at step {step}")
             return fresh
         self._note_version_change(spec, rec, path)
         return {"resume": "yes", "resume_file": path.name}, step
-
-    @staticmethod
-    def _first_steps(rec, resume_step=None):
-        """The steps a run's per-tap file may start at: 0, or the restart its first attempt
-        resumed from (a run started from another run's restart file, as tapmc-paper question
-        does); for a run with no attempt yet, ``resume_step``, the restart it resumes from."""
-        attempts = rec.get("attempts") or []
-        first = attempts[0].get("resumed_from_step") if attempts else resume_step
-        return {0, first} if first else {0}
-
-    def _start_over(self, spec, why):
-        """Set every file of a damaged unfinished run aside (runs/NAME/damagedK/), say so on
-        the stream and record it in the manifest: the run goes again from the start. Returns
-        the folder the files went to."""
-        run_dir = self.run_dir(spec.name)
-        aside = run_folder.set_aside(run_dir, [p.name for p in run_dir.iterdir() if p.is_file()])
-        print(f"[campaign] run {spec.name!r}: {run_dir / spec.taps_file}: {why}; the run goes "
-              f"again from the start (its files moved to {aside.name}/)", file=self.stream,
-              flush=True)
-        with self._lock:
-            self._records[spec.name].setdefault("damaged", []).append(
-                {"found": provenance.now(), "files": {spec.taps_file: why},
-                 "set_aside": aside.name, "rerun_from_step": 0})
-        return aside
-
-    def _set_cut_restarts_aside(self, spec, bad=None):
-        """Move the restart files of a run later than its latest whole one
-        (run_folder.resume_restart: cut while LAMMPS wrote them, or in ``bad``, file name ->
-        what is wrong), with the profile segments of later steps, into runs/NAME/damagedK/;
-        one line each on the stream, recorded in the manifest. Returns (step, path) of the
-        restart the run resumes from, (None, None) for none."""
-        run_dir = self.run_dir(spec.name)
-        step, path, cut = run_folder.resume_restart(run_dir, bad)
-        if not cut:
-            return step, path
-        aside = run_folder.set_aside(run_dir, [p.name for p, _ in cut]
-                                     + run_folder.segments_after(run_dir, step))
-        then = f"the run resumes from {path.name}" if path is not None else \
-            "the run starts again from tap 0"
-        for p, why in cut:
-            print(f"[campaign] run {spec.name!r}: {p}: {why}; moved to {aside.name}/, {then}",
-                  file=self.stream, flush=True)
-        with self._lock:
-            self._records[spec.name].setdefault("damaged", []).append(
-                {"found": provenance.now(), "files": {p.name: why for p, why in cut},
-                 "set_aside": aside.name, "rerun_from_step": step or 0})
-        return step, path
 
     def _versions(self):
         """The versions of this session's LAMMPS executable and TAPMC (manifest keys)."""
@@ -385,39 +296,94 @@ class Campaign:
         self._done0[spec.name] = (run_folder.taps_done(self.run_dir(spec.name) / spec.taps_file)
                                   if step else 0)
 
+    def _ending_error(self, spec, returncode, log):
+        """(error, cut_short) of an attempt that ended: '' for one that finished its run
+        (exit 0, the Total wall time line, the per-tap file at the last tap), else what went
+        wrong; ``cut_short``: ended early with no error of its own, not crashed (stopped from
+        outside)."""
+        run_dir = log.parent
+        text = log.read_text(errors="replace") if log.exists() else ""
+        if returncode == 0 and "Total wall time" in text:
+            done = run_folder.taps_done(run_dir / spec.taps_file)
+            if spec.taps is not None and done != spec.taps:
+                return (f"the per-tap file {spec.taps_file} ends at step {done}, expected "
+                        f"{spec.taps}"), False
+            return "", False
+        own = run_folder.log_error(log) or run_folder.log_error(run_dir / "screen.txt")
+        crashed = returncode is not None and -returncode in CRASH_SIGNALS
+        cut_short = not own.startswith("ERROR") and not crashed
+        if crashed:
+            return (f"LAMMPS crashed (signal {_signal_name(-returncode)}) after tap "
+                    f"{run_folder.taps_done(run_dir / spec.taps_file)}: a fault of the "
+                    "executable, not a stop from outside (its log and screen.txt say where; "
+                    "the run resumes from its latest restart file when the campaign runs "
+                    "again)"), False
+        if returncode is not None and returncode < 0 and cut_short:
+            # stopped from outside: a line of the echoed input that mentions ERROR is no
+            # error of the run
+            return (f"LAMMPS was stopped by signal {_signal_name(-returncode)} (the run "
+                    "resumes from its latest restart file when the campaign runs again)"), True
+        if not own and returncode == 0:
+            return (f"LAMMPS exited with code 0 without finishing the run (its log "
+                    f"{'has no Total wall time line' if log.exists() else 'was not written'}): "
+                    f"is {self.lmp} a LAMMPS that runs {spec.input.name}?"), cut_short
+        return own or f"LAMMPS exited with code {returncode}", cut_short
+
+    def _unreadable_restart(self, spec, log, resumed_from):
+        """After an attempt that failed or was stopped: set aside the restart files it left cut
+        short (a stopped run's folder then holds whole ones only) and the one it resumed from
+        when LAMMPS could not read it; in that case the error to give (pool mode runs it again
+        at once from the restart before), else ''."""
+        unread = run_folder.restart_read_error(log) if resumed_from is not None else ""
+        name = f"restart.{resumed_from}"
+        _, path = self._repairs.set_cut_restarts_aside(
+            spec, {name: f"LAMMPS could not read it ({unread})"} if unread else None)
+        if not unread:
+            return ""
+        error = (f"LAMMPS could not read {name} ({unread}); it is set aside, and the run "
+                 "resumes from " + (path.name if path is not None else "tap 0"))
+        if self.mode == "pool":  # at once: _pool_one runs it again
+            self._again.add(spec.name)
+            return error
+        return error + " when the campaign runs again"
+
+    def _put_together(self, spec, rec, log):
+        """The outputs of a run that finished put together (profile segments merged, repeated
+        titles and old restarts gone) and checked (the files of a re-run after damage, every
+        step of the per-tap file once): ('', log) or (the error, its log). A per-tap file that
+        breaks the check sets the run's files aside, its log too: the run starts over."""
+        run_dir = self.run_dir(spec.name)
+        try:  # a malformed output names itself; the run then fails instead of the pool
+            run_folder.merge_ave_time_parts(run_dir)
+            run_folder.drop_repeated_titles(run_dir / spec.taps_file)
+            run_folder.keep_latest_restart(run_dir, keep_every=spec.level_taps)
+        except (TapmcFormatError, OSError) as err:
+            return f"its outputs could not be put together: {err}", log
+        missing = [n for n in self._redo.get(spec.name, []) if not (run_dir / n).exists()]
+        if missing:
+            return (f"re-run after damage did not write {', '.join(missing)} again; the damaged "
+                    "files are in its damagedK/ folder"), log
+        if spec.taps is None and not (run_dir / spec.taps_file).exists():
+            return "", log
+        last = spec.taps if spec.taps is not None else \
+            run_folder.taps_done(run_dir / spec.taps_file)
+        problem = run_folder.step_rows_problem(run_dir / spec.taps_file, last,
+                                               repair.first_steps(rec))
+        if not problem:
+            return "", log
+        # e.g. rows lost to a kill, or written by two processes at once
+        aside = self._repairs.start_over(spec, problem)
+        return (f"its per-tap file is damaged ({problem}): no DONE.json; its files are in "
+                f"{aside.name}/ and it runs again from the start when the campaign runs "
+                "again"), aside / log.name
+
     def _finish(self, spec, returncode, wall, resumed_from, cpu=None):
         """Check a run that ended; write DONE.json on success, return an error or ''. The
         attempt's record holds its wall time, the step it resumed from and the last step it
         wrote (``end_step``), and in pool mode its CPU seconds (``cpu_s``)."""
         run_dir = self.run_dir(spec.name)
         log = run_dir / "log.lammps"
-        text = log.read_text(errors="replace") if log.exists() else ""
-        error = ""
-        cut_short = False  # ended before its end with no error of its own: stopped from outside
-        if returncode != 0 or "Total wall time" not in text:
-            own = run_folder.log_error(log) or run_folder.log_error(run_dir / "screen.txt")
-            crashed = returncode is not None and -returncode in CRASH_SIGNALS
-            cut_short = not own.startswith("ERROR") and not crashed
-            if crashed:
-                error = (f"LAMMPS crashed (signal {_signal_name(-returncode)}) after tap "
-                         f"{run_folder.taps_done(run_dir / spec.taps_file)}: a fault of the "
-                         "executable, not a stop from outside (its log and screen.txt say "
-                         "where; the run resumes from its latest restart file when the "
-                         "campaign runs again)")
-            elif returncode is not None and returncode < 0 and cut_short:
-                # stopped from outside: a line of the echoed input that mentions ERROR is no
-                # error of the run
-                error = (f"LAMMPS was stopped by signal {_signal_name(-returncode)} (the run "
-                         "resumes from its latest restart file when the campaign runs again)")
-            elif not own and returncode == 0:
-                error = (f"LAMMPS exited with code 0 without finishing the run (its log "
-                         f"{'has no Total wall time line' if log.exists() else 'was not written'}"
-                         f"): is {self.lmp} a LAMMPS that runs {spec.input.name}?")
-            else:
-                error = own or f"LAMMPS exited with code {returncode}"
-        elif spec.taps is not None and run_folder.taps_done(run_dir / spec.taps_file) != spec.taps:
-            error = (f"the per-tap file {spec.taps_file} ends at step "
-                     f"{run_folder.taps_done(run_dir / spec.taps_file)}, expected {spec.taps}")
+        error, cut_short = self._ending_error(spec, returncode, log)
         stopped = cut_short and self._stop_signal is not None
         if stopped:  # its own words: a partition's log may hold only an echoed "ERROR" line
             error = (f"stopped with its campaign by {self._stop_signal} (the run resumes from "
@@ -434,19 +400,9 @@ class Campaign:
         with self._lock:
             rec.pop("running_attempt", None)
             rec["attempts"].append(attempt)
-        if error:  # a restart this attempt could not read, or cut short as it ended, goes
-            # aside now: the folder of a stopped run holds whole restart files only
-            unread = run_folder.restart_read_error(log) if resumed_from is not None else ""
-            name = f"restart.{resumed_from}"
-            _, path = self._set_cut_restarts_aside(
-                spec, {name: f"LAMMPS could not read it ({unread})"} if unread else None)
-            if unread and not stopped:
-                error = (f"LAMMPS could not read {name} ({unread}); it is set aside, and the "
-                         "run resumes from " + (path.name if path is not None else "tap 0"))
-                if self.mode == "pool":  # at once: _pool_one runs it again
-                    self._again.add(spec.name)
-                else:
-                    error += " when the campaign runs again"
+        if error:  # restarts cut short go aside, and one LAMMPS could not read is the error
+            error = self._unreadable_restart(spec, log, None if stopped else resumed_from) \
+                or error
         if stopped:  # no failure
             with self._lock:
                 rec["status"] = "stopped"
@@ -458,32 +414,12 @@ class Campaign:
             # ran: _run_locked counts it as stopped if the campaign stops
             self._signalled[spec.name] = attempt["end_step"]
         if not error:
-            try:  # a malformed output names itself; the run then fails instead of the pool
-                run_folder.merge_ave_time_parts(run_dir)
-                run_folder.drop_repeated_titles(run_dir / spec.taps_file)
-                run_folder.keep_latest_restart(run_dir, keep_every=spec.level_taps)
-            except (TapmcFormatError, OSError) as err:
-                error = f"its outputs could not be put together: {err}"
-            missing = [n for n in self._redo.get(spec.name, []) if not (run_dir / n).exists()]
-            if missing:
-                error = (f"re-run after damage did not write {', '.join(missing)} again; the "
-                         "damaged files are in its damagedK/ folder")
-        if not error and (spec.taps is not None or (run_dir / spec.taps_file).exists()):
-            last = spec.taps if spec.taps is not None else \
-                run_folder.taps_done(run_dir / spec.taps_file)
-            problem = run_folder.step_rows_problem(run_dir / spec.taps_file, last,
-                                                   self._first_steps(rec))
-            if problem:  # e.g. rows lost to a kill, or written by two processes at once
-                aside = self._start_over(spec, problem)
-                log = aside / "log.lammps"
-                error = (f"its per-tap file is damaged ({problem}): no DONE.json; its files "
-                         f"are in {aside.name}/ and it runs again from the start when the "
-                         "campaign runs again")
+            error, log = self._put_together(spec, rec, log)
         if error:
             with self._lock:
                 rec["status"] = "failed"
-            if not log.exists() and (log.parent / "screen.txt").exists():
-                log = log.parent / "screen.txt"  # what the process said, where it wrote no log
+            if not log.exists() and (run_dir / "screen.txt").exists():
+                log = run_dir / "screen.txt"  # what the process said, where it wrote no log
             return f"run {spec.name!r} failed: {error}\n    log: {log}"
         self._redo.pop(spec.name, None)
         with self._lock:
@@ -716,7 +652,10 @@ class Campaign:
             rec.update(spec.describe())
             rec.setdefault("attempts", [])
             self._records[spec.name] = rec
-            finished = done_file.exists() and not self._unfinish_if_damaged(spec, done_file)
+            finished = done_file.exists()
+            redo = self._repairs.unfinish_if_damaged(spec, done_file) if finished else None
+            if redo is not None:  # damaged since it finished: it runs again
+                self._redo[spec.name], finished = redo, False
             rec["status"] = "done" if finished else "pending"
             if not finished:
                 pending.append(spec)
@@ -763,6 +702,13 @@ class Campaign:
                 errors = self._count_signalled_as_stopped(errors)
             # best effort: an error of the session that propagates comes first
             self._write_manifest(session=True)
+        self._raise_session_error(errors, pending)
+        return self
+
+    def _raise_session_error(self, errors, pending):
+        """Raise what the session that ran ``pending`` ends with: CampaignStopped (stopped by
+        a signal), CampaignError (runs failed), either followed by the manifest's write error
+        if the last write failed, or that OSError alone; nothing when all went well."""
         left = any(self._records[r.name].get("status") == "pending" for r in pending)
         unwritten = "" if self._manifest_error is None else (
             f"; and the manifest could not be written ({_os_text(self._manifest_error)})")
@@ -773,7 +719,6 @@ class Campaign:
                                 + "\n  ".join(errors) + unwritten)
         if self._manifest_error is not None:
             raise self._manifest_error
-        return self
 
 
 def _terminate(proc):
