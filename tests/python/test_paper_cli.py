@@ -102,11 +102,47 @@ def test_every_option_has_help():
     (("fig2", "--jobs", "two"), "argument --jobs: 'two' is not an integer"),
     (("fig2", "--quick", "--full"), "not allowed with argument"),
     (("fig2", "--mode", "mpi"), "invalid choice: 'mpi'"),
+    # an unset shell variable must not make the working directory a campaign
+    (("fig9", "--campaign", ""), "argument --campaign: an empty path (an unset shell variable?)"),
+    (("fig9", "--out", ""), "argument --out: an empty path"),
+    (("paper-ramp", "--campaign", " "), "argument --campaign: an empty path"),
+    (("question", "first-tap", "--jobs", "0"), "argument --jobs: 0 is not >= 1"),
+    (("question", "noise-floor", "--jobs", "-1"), "argument --jobs: -1 is not >= 1"),
+    (("question", "seed-fits", "--campaign", ""), "argument --campaign: an empty path"),
 ])
 def test_bad_arguments(args, message, capsys):
     out = _main(capsys, *args)
     assert out.returncode == 2
     assert message in out.stderr
+
+
+def test_campaign_help_offers_only_what_it_takes(capsys):
+    out = _main(capsys, "campaign", "--help")
+    assert out.returncode == 0
+    assert "--full" in out.stdout and "--tier" in out.stdout
+    for refused in ("--quick", "--medium", "--seeds", "--fbc-start", "--out"):
+        assert refused not in out.stdout, refused
+
+
+def test_ctrl_c_outside_the_runs_is_one_line(monkeypatch, capsys):
+    # Ctrl-C while starting up, reading or drawing (the runs stop with exit 3 on their own).
+    from tapmc.paper import cli
+
+    def interrupted(argv=None):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(cli, "_main", interrupted)
+    assert cli.main(["report", "--finished-only"]) == 130
+    err = capsys.readouterr().err
+    assert err == "tapmc-paper: interrupted (Ctrl-C)\n"
+
+
+def test_finished_only_on_a_missing_campaign_creates_nothing(tmp_path, capsys):
+    out = _main(capsys, "report", "--quick", "--finished-only", "--campaign", tmp_path / "none",
+                "--out", tmp_path / "out")
+    assert out.returncode == 2
+    assert f"campaign directory {tmp_path / 'none'}: does not exist" in out.stderr
+    assert not list(tmp_path.iterdir())
 
 
 def test_missing_figure_module(package_copy):
@@ -230,8 +266,9 @@ def test_campaign_subcommand(tmp_path, capsys):
     two = _main(capsys, "campaign", "--dry-run", "--tier", "3", "--jobs", "2", "--campaign",
                 tmp_path / "c")
     assert two.returncode == 0 and two.stdout.splitlines()[1].split()[0] == "ramp_pbc_s1"
-    bad = _main(capsys, "campaign", "--quick", "--dry-run", "--campaign", tmp_path / "c")
-    assert bad.returncode == 2 and "paper-scale plan only" in bad.stderr
+    for option in ("--quick", "--medium", "--seeds", "--fbc-start"):  # the plan fixes them
+        bad = _main(capsys, "campaign", option, "--dry-run", "--campaign", tmp_path / "c")
+        assert bad.returncode == 2 and "unrecognized arguments" in bad.stderr, bad.stderr
     # --first: the matching runs first, in the patterns' order, the rest as planned
     names = [s.name for s in plan.runs(3, jobs=2)]
     first = _main(capsys, "campaign", "--dry-run", "--tier", "3", "--jobs", "2", "--campaign",

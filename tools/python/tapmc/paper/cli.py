@@ -34,6 +34,7 @@ from tapmc.readers import TapmcFormatError
 
 from .. import __version__
 from . import FIGURES, _runs, cost, paper_ramp, plan, sigma_eta
+from ._arguments import folder, positive_int
 from .front import command as front_command
 from .plan import TIERS
 from .scales import FBC_STARTS, FULL, get_scale
@@ -92,19 +93,9 @@ def available_figures():
     return [f for f in FIGURES if (here / f"{f}.py").exists()]
 
 
-def _positive_int(text):
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"{value} is not >= 1")
-    return value
-
-
 def _add_scale_options(p):
-    """The options every figure, report and campaign command shares: scale, seeds, jobs,
-    folders, launcher."""
+    """The options every figure and report command shares: scale, seeds, jobs, folders,
+    launcher."""
     size = p.add_mutually_exclusive_group()
     size.add_argument("--quick", dest="scale", action="store_const", const="quick",
                       help="small packings and few taps, about a minute per figure on "
@@ -122,15 +113,19 @@ def _add_scale_options(p):
                         "paper's periodic deposition adapted to the walls by a slight "
                         "agitation, section IV.A); default campaign folder "
                         "./tapmc-paper-SCALE-fbc-paper")
-    p.add_argument("--seeds", type=_positive_int, default=None, metavar="K",
+    p.add_argument("--seeds", type=positive_int, default=None, metavar="K",
                    help="number of seeds (realizations) per point; default: the scale's")
-    p.add_argument("--jobs", type=_positive_int, default=None, metavar="J",
-                   help="runs at a time (default: the cores this process may use)")
-    p.add_argument("--campaign", type=Path, default=None, metavar="DIR",
-                   help="campaign folder, shared by the figures and resumable "
-                        "(default: ./tapmc-paper-SCALE)")
-    p.add_argument("--out", type=Path, default=None, metavar="DIR",
+    p.add_argument("--out", type=folder, default=None, metavar="DIR",
                    help="where PNG and CSV files go (default: CAMPAIGN/figures)")
+    _add_run_options(p, "campaign folder, shared by the figures and resumable (default: "
+                        "./tapmc-paper-SCALE)")
+
+
+def _add_run_options(p, campaign_help):
+    """The options of every command that runs a campaign: jobs, folder, launcher."""
+    p.add_argument("--jobs", type=positive_int, default=None, metavar="J",
+                   help="runs at a time (default: the cores this process may use)")
+    p.add_argument("--campaign", type=folder, default=None, metavar="DIR", help=campaign_help)
     p.add_argument("--mode", choices=("pool", "partition"), default="pool",
                    help="pool: a process pool on this machine; partition: LAMMPS "
                         "-partition under mpirun (multi-node)")
@@ -195,8 +190,10 @@ def _add_campaign_and_plan_parsers(sub):
     """``campaign`` (the paper-scale plan's runs) and ``plan`` (their CPU time first)."""
     plan = sub.add_parser("campaign", help="run the paper-scale campaign (tapmc.paper.plan) "
                                            "up to a tier, without drawing")
-    _add_scale_options(plan)
+    plan.add_argument("--full", dest="scale", action="store_const", const="full",
+                      help="the paper's scale, the only one of the plan (may be left out)")
     plan.set_defaults(scale="full")
+    _add_run_options(plan, "campaign folder, resumable (default: ./tapmc-paper-full)")
     plan.add_argument("--tier", type=int, choices=TIERS, default=1,
                       help="run tiers 1 .. TIER of the plan (default 1: the paper's one run "
                            "per point)")
@@ -206,17 +203,17 @@ def _add_campaign_and_plan_parsers(sub):
                            "plan's order")
     cp = sub.add_parser("plan", help="the CPU time of runs before they run (the cost rule of "
                                      "tapmc.paper.cost, from the front's measurements)")
-    cp.add_argument("--N", type=_positive_int, required=True, help="spheres per run")
-    cp.add_argument("--taps", type=_positive_int, required=True, help="taps per run")
+    cp.add_argument("--N", type=positive_int, required=True, help="spheres per run")
+    cp.add_argument("--taps", type=positive_int, required=True, help="taps per run")
     cp.add_argument("--eps", type=float, nargs="+", required=True, metavar="EPS",
                     help="tap strengths (eps, not sqrt(eps)); one row each")
     cp.add_argument("--setting", nargs="+", default=None, metavar="NAME",
                     help="purposes (publication, exploration, smoke: the setting doc/front.rst "
                          "recommends for each at the nearest N measured) or fix mc/settle "
                          "settings ('change 1e-6', 'drift 1e-7'); default: the three purposes")
-    cp.add_argument("--seeds", type=_positive_int, default=1, metavar="K",
+    cp.add_argument("--seeds", type=positive_int, default=1, metavar="K",
                     help="runs (seeds) per eps and setting (default 1)")
-    cp.add_argument("--jobs", type=_positive_int, default=None, metavar="J",
+    cp.add_argument("--jobs", type=positive_int, default=None, metavar="J",
                     help="runs at a time, for the wall time (default: the cores this process may use)")
 
 
@@ -224,9 +221,9 @@ def _add_campaign_reader(sub, name, what, runs, csv_name):
     """A command that reads a campaign's runs (finished or not) into one CSV of the report's
     questions folder."""
     parser = sub.add_parser(name, help=f"{what}, written to the report's questions/{csv_name}")
-    parser.add_argument("--campaign", type=Path, required=True, metavar="DIR",
+    parser.add_argument("--campaign", type=folder, required=True, metavar="DIR",
                         help=f"campaign directory holding {runs}")
-    parser.add_argument("--out", type=Path, default=Path("doc/paper_scale"), metavar="DIR",
+    parser.add_argument("--out", type=folder, default=Path("doc/paper_scale"), metavar="DIR",
                         help="report directory (default doc/paper_scale): writes "
                              f"DIR/validation/questions/{csv_name}")
 
@@ -369,10 +366,6 @@ def _scale_before_run(campaign, scale):
 
 def _run_plan(args):
     """``tapmc-paper campaign``: the paper-scale plan's runs, resumable, nothing drawn."""
-    if args.scale != "full" or args.seeds is not None or args.fbc_start is not None:
-        print("tapmc-paper: campaign runs the paper-scale plan only (--full, no --seeds or "
-              "--fbc-start; the plan fixes its seeds per tier)", file=sys.stderr)
-        return 2
     scale = get_scale("full")
     directory = args.campaign or Path(f"tapmc-paper-{scale.name}")
     try:
@@ -639,6 +632,16 @@ def _plan_cost(args):
 
 
 def main(argv=None):
+    """tapmc-paper; returns the exit status. Ctrl-C outside the runs (while reading, drawing
+    or starting up; the runs have their own stop, exit 3) ends with one line and 130."""
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:
+        print("tapmc-paper: interrupted (Ctrl-C)", file=sys.stderr)
+        return 130
+
+
+def _main(argv=None):
     parser = build_parser()
     args = parser.parse_args(argv)
     if args.command == "question":
@@ -676,6 +679,10 @@ def main(argv=None):
         folders = ((campaign.directory, "campaign directory"),
                    (out, "--out" if args.out else "figure folder"))
         # every check that writes nothing first: a bad --out leaves no empty campaign folder
+        finished_only = getattr(args, "finished_only", False)
+        if finished_only and not campaign.directory.is_dir():  # it runs nothing: reads only
+            raise ValueError(f"campaign directory {campaign.directory}: does not exist "
+                             "(--finished-only draws the runs a campaign has finished)")
         for create in (False, not args.dry_run):
             for path, label in folders:
                 _check_dir(path, label, create)

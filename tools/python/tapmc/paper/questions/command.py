@@ -17,6 +17,7 @@ from pathlib import Path
 from tapmc.campaign import STOPPED_STATUS, CampaignStopped
 from tapmc.readers import TapmcFormatError
 
+from .._arguments import folder, positive_int
 from . import CAMPAIGN_QUESTIONS, QUESTIONS
 from .common import DEFAULT_CAMPAIGN, DEFAULT_OUT, QuestionError
 
@@ -35,15 +36,15 @@ def add_parser(parser):
         p = sub.add_parser(name, help=_summary(module).replace("%", "%%"),  # argparse formats it
                            description=module.__doc__,
                            formatter_class=argparse.RawDescriptionHelpFormatter)
-        p.add_argument("--out", type=Path, default=DEFAULT_OUT, metavar="DIR",
+        p.add_argument("--out", type=folder, default=DEFAULT_OUT, metavar="DIR",
                        help="where the CSV goes (default: the committed page's "
                             "doc/paper_scale/validation/questions)")
         p.add_argument("--lmp", type=Path, default=None, metavar="EXE",
                        help="LAMMPS executable (default: $TAPMC_LMP, build/lmp_tapmc)")
-        p.add_argument("--jobs", type=int, default=1, metavar="J",
+        p.add_argument("--jobs", type=positive_int, default=1, metavar="J",
                        help="LAMMPS runs at a time (default 1)")
         if name in CAMPAIGN_QUESTIONS:
-            p.add_argument("--campaign", type=Path, default=DEFAULT_CAMPAIGN, metavar="DIR",
+            p.add_argument("--campaign", type=folder, default=DEFAULT_CAMPAIGN, metavar="DIR",
                            help="the campaign whose runs are read (default: the committed "
                                 "paper-scale campaign, doc/validation/data/full)")
         module.add_arguments(p)
