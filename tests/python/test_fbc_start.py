@@ -170,4 +170,4 @@ def test_cli_fbc_start(tmp_path):
     assert bad.returncode == 2 and "invalid choice: 'wall'" in bad.stderr
     plan = cli("campaign", "--fbc-start", "paper", "--dry-run", "--campaign", tmp_path / "c",
                cwd=tmp_path)
-    assert plan.returncode == 2 and "no --seeds or --fbc-start" in plan.stderr
+    assert plan.returncode == 2 and "unrecognized arguments: --fbc-start" in plan.stderr
