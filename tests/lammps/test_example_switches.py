@@ -320,7 +320,8 @@ def test_quickstart_switches_and_its_plot(tmp_path):
     plot = subprocess.run(["/usr/bin/python3", str(EXAMPLES / "quickstart" / "plot_compaction.py")],
                           cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120)
     assert plot.returncode == 0, plot.stderr
-    assert "N = 1024, eps = 0.03, eta = 1e-7, seed = 5, 12 taps" in plot.stdout
+    assert ("N = 1024, box 16R x 16R (P.B.C.), eps = 0.03, eta = 1e-7 (default), "
+            "stop change (default), seed = 5, 12 taps") in plot.stdout
     assert (tmp_path / "compaction.png").stat().st_size > 10000
     rows = np.loadtxt(tmp_path / "compaction.csv", delimiter=",", skiprows=1)
     assert np.allclose(rows[:, :4], taps[:, :4])
