@@ -276,6 +276,20 @@ def test_the_figure_draws_sigma_and_the_bell_per_eta_with_their_lines(tmp_path):
     assert first.phi_c_sem > raw_first.phi_c_sem   # the scaled floor, above two seeds' spread
     png = sigma_eta.write_figure(points, DEFAULT_ETA, tmp_path / "b.png", lambda q, eps: 3.0)
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    # beside it, every number it draws: the bars as drawn (scaled), the dashed line's values
+    from tapmc.paper._plotting import figure_csv_rows
+
+    rows = figure_csv_rows(sigma_eta.figure_csv_path(png))
+    default_label = f"eta = {sigma_eta._eta_text(DEFAULT_ETA)} (the default)"
+    drawn = [r for r in rows if r[1] == "b" and r[2] == default_label]
+    assert drawn[0][3] == pytest.approx(math.sqrt(first.eps))
+    assert drawn[0][4] == pytest.approx(first.phi_c) and drawn[0][5] == pytest.approx(
+        first.phi_c_sem)
+    dashed = [r for r in rows if r[2] == default_label + ": offset + slope sqrt(eps)"]
+    (fit3,) = [ln for ln in sigma_eta.lines(scaled) if ln.eta == DEFAULT_ETA]  # as drawn
+    assert [r[4] for r in dashed] == pytest.approx([fit3.offset + fit3.slope * r[3]
+                                                   for r in dashed])
+    assert len(dashed) == len(EPS)
 
 
 def test_one_seed_errors_take_the_realizations_factors(tmp_path):

@@ -399,12 +399,13 @@ def _by_eta(all_points, default_eta):
     return [(eta, [p for p in all_points if p.eta == eta]) for eta in etas]
 
 
-def plot(all_points, default_eta, axes=None):
+def plot(all_points, default_eta, axes=None, table=None):
     """Two panels against sqrt(eps), a colour per eta (the default first): (a) sigma_<Z> with
     the line offset + slope sqrt(eps) of :func:`line` dashed over the eps measured, (b) the
     steady <Phi^c> (the bell) with the paper's 60.6 % dotted; mean +- sem over seeds, open
     markers for points whose runs are still going. ``axes``: two axes, new ones when None.
-    Returns the axes."""
+    ``table``: a :class:`~tapmc.paper._plotting.FigureTable` that gets every plotted number
+    (the errors as drawn; the dashed lines at the eps measured). Returns the axes."""
     if axes is None:
         _, axes = _plotting.new_figure(nrows=2, height=2.8, width=6.0)
     if len(axes) < 2:
@@ -417,6 +418,9 @@ def plot(all_points, default_eta, axes=None):
             y = np.array([getattr(p, value) for p in group])
             e = np.array([getattr(p, err) for p in group])
             done = np.array([p.finished for p in group])
+            if table is not None:
+                table.add("a" if value == "sigma" else "b", label, x, y, e,
+                          [p.seeds for p in group])
             for mask, fill in ((done, f"C{colour}"), (~done, "none")):
                 if mask.any():
                     ax.errorbar(x[mask], y[mask], yerr=e[mask], marker="o", ms=4, ls="none",
@@ -425,6 +429,9 @@ def plot(all_points, default_eta, axes=None):
         if ln.dof is not None:
             xs = np.linspace(x.min(), x.max(), 50)
             axes[0].plot(xs, ln.offset + ln.slope * xs, color=f"C{colour}", ls="--", lw=0.8)
+            if table is not None:
+                table.add("a", f"{label}: offset + slope sqrt(eps)", x,
+                          ln.offset + ln.slope * x)
     axes[1].axhline(PAPER_PHI_PERCENT / 100.0, color="0.5", ls=":", lw=1,
                     label=f"the paper's {PAPER_PHI_PERCENT} %")
     axes[0].set_ylabel(r"$\sigma_{\langle Z\rangle}$ (steady state)", fontsize=8)
@@ -455,8 +462,18 @@ def settings_line(all_points, used=None):
 
 def write_figure(all_points, default_eta, path, factor_of=None):
     """``sigma_eta.png``: :func:`plot` of the points with the errors the finding decides with
-    (:func:`calibrated`), its settings on top; returns the path."""
+    (:func:`calibrated`), its settings on top, and beside it ``sigma_eta_figure.csv``, every
+    number it draws (:data:`~tapmc.paper._plotting.CSV_COLUMNS`: the errors as drawn, the
+    dashed lines' values); returns the PNG's path."""
     all_points, used = calibrated(all_points, factor_of)
-    fig = plot(all_points, default_eta)[0].figure
+    table = _plotting.FigureTable()
+    fig = plot(all_points, default_eta, table=table)[0].figure
     _plotting.finish_figure(fig, settings_line(all_points, used))
+    path = Path(path)
+    table.write(figure_csv_path(path))
     return _plotting.save_figure(fig, path)
+
+
+def figure_csv_path(png):
+    """The CSV of what :func:`write_figure` draws into ``png``: ``<stem>_figure.csv``."""
+    return Path(png).with_name(Path(png).stem + "_figure.csv")
