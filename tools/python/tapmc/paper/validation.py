@@ -271,13 +271,16 @@ def _rows_and_notes(summary, files):
 
 
 CAPTIONS = {
-    "fig2": "Phi_b against taps (F.B.C.), logarithmic (top) and linear (bottom) time; dotted: "
-            "eq. 3 fits.",
-    "fig3": "Power spectrum of <Z> - <Z>_SS (top) and sigma_<Z> against sqrt(eps) (bottom).",
-    "fig4": "Steady-state <Phi^c> against sqrt(eps) (squares) and the ramp up, down and up "
-            "again (open symbols).",
+    "fig2": "Phi_b against taps (F.B.C.), logarithmic (top) and linear (middle) time, and <Z> "
+            "against taps (bottom); dotted: eq. 3 fits (eq. 4 for <Z>).",
+    "fig3": "Power spectrum of <Z> - <Z>_SS (top) and sigma_<Z> against sqrt(eps) (bottom; "
+            "filled: about the steady mean, open: about each run's straight line).",
+    "fig4": "Steady-state <Phi^c> against sqrt(eps) (squares) and the ramps up, down and up "
+            "again (open symbols; the legend says where each ramp turns).",
     "fig5": "A(t, t_W) for several waiting times (top) and their collapse on eq. 6 (bottom).",
-    "fig6": "Vertical profiles of the initial packing and after the taps, with eq. 7 fits.",
+    "fig6": "Vertical profiles of the initial packing and after the taps, with eq. 7 fits "
+            "(top), and the gradient alpha against sqrt(eps) after the taps and at the end of "
+            "every level of the ramp (bottom).",
     "fig7": "Transversal profiles of the initial packing and after the taps; dotted: the 7R "
             "frontiers.",
     "fig8": "delta Phi_lateral (top) and delta Phi_central (bottom) against taps.",
