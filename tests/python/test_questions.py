@@ -167,6 +167,12 @@ def test_theta_laws_side_by_side_with_their_mean_angles(tmp_path):
     assert list(theta0.law_scans(tmp_path)) == [""]
     (png,) = theta0.write_laws_figure(tmp_path)
     assert png.name == "theta_laws.png" and png.stat().st_size > 10000
+    # beside it, every number it draws: the linear law at pi/4, -0.98 % at <theta> = 15 deg
+    from tapmc.paper._plotting import figure_csv_rows
+    rows = figure_csv_rows(tmp_path / "theta_laws_figure.csv")
+    (a,) = [r for r in rows if r[1:3] == ("a", "linear") and r[3] == 0.25]
+    (b,) = [r for r in rows if r[1:3] == ("b", "linear") and abs(r[3] - 15.0) < 1e-5]
+    assert a[4] == b[4] == pytest.approx(-0.98, abs=0.005) and a[6] == 3
     text = "\n".join(questions.render_section(tmp_path))
     assert "The laws of theta (theta-law-shape)" in text
     assert "``theta0.csv`` and ``theta0_linear.csv``" in text

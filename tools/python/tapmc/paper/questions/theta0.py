@@ -125,26 +125,31 @@ def render_laws(folder):
     return lines
 
 
-#: the figure of the laws side by side, per size tag: theta_laws[_N4096].png
+#: the figure of the laws side by side, per size tag: theta_laws[_N4096].png, and the CSV of
+#: every number it draws (panel a: against theta0 / pi, b: against the mean angle in degrees)
 LAWS_PNG = "theta_laws{size}.png"
+LAWS_CSV = "theta_laws{size}_figure.csv"
 LAW_NAMES = {"angle": "eq. 1 (Gaussian)", "exponential": "exponential", "linear": "linear"}
 
 
-def plot_laws(scans, axes=None):
+def plot_laws(scans, axes=None, table=None):
     """The compaction over the scan's taps (mean ± sem over seeds) of each law against its
     width theta0 (top) and against the mean angle <theta> of its moves (bottom); ``scans``:
-    one size of :func:`law_scans`. Returns the axes."""
+    one size of :func:`law_scans`; ``table``: a FigureTable that gets every plotted number.
+    Returns the axes."""
     if axes is None:
         _, axes = _plotting.new_figure(nrows=2, height=2.6, width=5.0)
     for colour, (law, rows) in enumerate(scans.items()):
-        table = scan_table(rows, "theta0")
-        width = np.array([r["value"] for r in table])
-        gain = 100 * np.array([r["gain"] for r in table])
-        sem = 100 * np.array([r["gain_sem"] for r in table])
+        scan = scan_table(rows, "theta0")
+        width = np.array([r["value"] for r in scan])
+        gain = 100 * np.array([r["gain"] for r in scan])
+        sem = 100 * np.array([r["gain_sem"] for r in scan])
         mean = np.degrees([mean_angle(law, np.pi * w) for w in width])
-        for ax, x in zip(axes, (width, mean)):
+        for panel, ax, x in zip("ab", axes, (width, mean)):
             _plotting.errorbars(ax, x, gain, sem, label=LAW_NAMES[law], color=f"C{colour}",
                                 marker="o", ms=3)
+            if table is not None:
+                table.add(panel, LAW_NAMES[law], x, gain, sem, [r["n"] for r in scan])
     axes[0].set_xlabel(r"$\theta_0 / \pi$")
     axes[1].set_xlabel(r"mean angle $\langle\theta\rangle$ of the moves (degrees)")
     for ax in axes:
@@ -156,10 +161,12 @@ def plot_laws(scans, axes=None):
 
 def write_laws_figure(folder):
     """theta_laws[_N4096].png in ``folder`` for every size of :func:`law_scans`, its settings
-    on top; returns the paths."""
+    on top, and beside each its CSV (:data:`LAWS_CSV`: every number it draws, gains in %);
+    returns the PNGs' paths."""
     paths = []
     for size, scans in law_scans(folder).items():
-        fig = plot_laws(scans)[0].figure
+        table = _plotting.FigureTable()
+        fig = plot_laws(scans, table=table)[0].figure
         first = scans["angle"][0]
         seeds = sorted({int(r["seed"]) for rows in scans.values() for r in rows})
         _plotting.finish_figure(fig, (
@@ -169,4 +176,5 @@ def write_laws_figure(folder):
             f"the same fresh packings, {scan_settings(scans['angle'])}; gain: <Phi^c> over the "
             f"last 10 taps minus t = 0; seeds {', '.join(map(str, seeds))}"))
         paths.append(_plotting.save_figure(fig, Path(folder) / LAWS_PNG.format(size=size)))
+        table.write(Path(folder) / LAWS_CSV.format(size=size))
     return paths
