@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from tapmc.hysteresis import BranchStatistic
-from tapmc.paper import paper_ramp, validation
+from tapmc.paper import paper_ramp, paper_ramp_figure, validation
 
 SOURCE = Path(__file__).resolve().parents[2]
 
@@ -310,7 +310,7 @@ def test_the_figure_draws_every_whole_level_one_panel_per_eta(tmp_path):
     rows = paper_ramp.analyse(tmp_path, 1e-7)
     started = next(r for r in rows if r.top == 0.2)
     assert [len(v) for v in started.branch("up1")] == [0, 0, 0]
-    axes = paper_ramp.plot(rows, 1e-7)
+    axes = paper_ramp_figure.plot(rows, 1e-7)
     assert [ax.get_title() for ax in axes] == ["eta = 1e-7 (the default)", "eta = 1e-5",
                                                "eta = 1e-6"]
     loop = axes[0].get_lines()[0]
@@ -321,21 +321,31 @@ def test_the_figure_draws_every_whole_level_one_panel_per_eta(tmp_path):
     assert axes[2].get_legend_handles_labels()[1][1:] == ["seed 3, to 0.125: increase"]
     assert axes[0].get_ylim() == axes[1].get_ylim() and axes[1].get_ylim()[1] > 0.61
     with pytest.raises(ValueError, match="axes: 1 given, the rows have 3 etas"):
-        paper_ramp.plot(rows, 1e-7, axes[:1])
-    png = paper_ramp.write_figure(rows, 1e-7, tmp_path / "out" / paper_ramp.PNG_NAME)
+        paper_ramp_figure.plot(rows, 1e-7, axes[:1])
+    png = paper_ramp_figure.write_figure(rows, 1e-7, tmp_path / "out" / paper_ramp.PNG_NAME)
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    assert "4000 taps per level" in paper_ramp.settings_line(rows)
-    assert paper_ramp.settings_line(rows).endswith("seeds 1, 2, 3; campaign: full preset")
-    assert "stop change" in paper_ramp.settings_line(rows)
-    assert "error bars their batch-means errors;" in paper_ramp.settings_line(rows)
+    assert "4000 taps per level" in paper_ramp_figure.settings_line(rows)
+    assert paper_ramp_figure.settings_line(rows).endswith("seeds 1, 2, 3; campaign: full preset")
+    assert "stop change" in paper_ramp_figure.settings_line(rows)
+    assert "error bars their batch-means errors;" in paper_ramp_figure.settings_line(rows)
     assert "error bars their batch-means errors x 2.1 (the realizations' spread);" in \
-        paper_ramp.settings_line(rows, 2.1)
-    wide = paper_ramp.plot(paper_ramp.calibrated(rows, 3.0), 1e-7)
+        paper_ramp_figure.settings_line(rows, 2.1)
+    wide = paper_ramp_figure.plot(paper_ramp.calibrated(rows, 3.0), 1e-7)
     seg = lambda c: np.ptp(c.lines[2][0].get_segments()[0][:, 1])   # noqa: E731
     first = lambda axs: next(c for c in axs[0].containers if c.has_yerr)   # noqa: E731
     assert seg(first(wide)) == pytest.approx(3 * seg(first(axes)))
-    png = paper_ramp.write_figure(rows, 1e-7, tmp_path / "out" / "b.png", 2.1)
+    png = paper_ramp_figure.write_figure(rows, 1e-7, tmp_path / "out" / "b.png", 2.1)
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    # beside it, every number it draws, the error bars as drawn (x 2.1)
+    from tapmc.paper._plotting import figure_csv_rows
+    csv_rows = figure_csv_rows(paper_ramp_figure.figure_csv_path(png))
+    run = next(r for r in rows if r.seed == 1 and r.eta == 1e-7)
+    x, mean, sem = run.branch("up1")
+    drawn = [r for r in csv_rows if r[1:3] == ("eta = 1e-7 (the default)",
+                                               "seed 1, to 0.125: increase")]
+    assert [r[3] for r in drawn] == pytest.approx(list(x))
+    assert [r[4] for r in drawn] == pytest.approx(list(mean))
+    assert [r[5] for r in drawn] == pytest.approx([2.1 * s for s in sem])
 
 
 def test_verdicts_take_the_realizations_error_when_given_its_factor(tmp_path):
@@ -471,7 +481,7 @@ def test_the_level_errors_take_the_ramps_own_windows_when_they_reject_the_report
             "1000-tap mean to the next within a level over the ramps' 16 levels after their "
             "turn; the campaign's realizations give x 2.0)") in text
     assert f"x {errors.value:.1f} (one 1000-tap mean to the next)" in \
-        paper_ramp.settings_line(slow, 2.0)
+        paper_ramp_figure.settings_line(slow, 2.0)
 
 
 def test_seeds_whose_verdicts_differ_within_their_errors_are_answered_together():

@@ -33,7 +33,7 @@ from tapmc.campaign.run_folder import resume_restart
 from tapmc.readers import TapmcFormatError
 
 from .. import __version__
-from . import FIGURES, _runs, cost, paper_ramp, plan, sigma_eta
+from . import FIGURES, _runs, cost, paper_ramp, paper_ramp_figure, plan, sigma_eta
 from ._arguments import folder, positive_int
 from .front import command as front_command
 from .plan import TIERS
@@ -243,10 +243,10 @@ def _add_paper_ramp_and_question_parsers(sub):
         question_command.add_parser(question)
 
 
-def _read_campaign(args, name, module, unit):
+def _read_campaign(args, name, module, unit, write_figure):
     """A campaign reader's command (``paper-ramp``, ``sigma-eta``): ``module.analyse`` on the
     campaign's runs, its CSV written to the report's questions folder, its finding printed
-    with the errors of the report in --out; exit 2 naming the folder when the campaign has no
+    with the errors of the report in --out, its figure drawn by ``write_figure``; exit 2 naming the folder when the campaign has no
     runs/ or nothing to read, or naming the file when --out holds a damaged report (nothing
     written)."""
     if not (args.campaign / "runs").is_dir():
@@ -278,7 +278,7 @@ def _read_campaign(args, name, module, unit):
               "batch-means errors, not the realizations' (tapmc-paper report, then again)")
     print(f"{name}: {path} ({len(rows)} {unit})")
     png = path.parent / module.PNG_NAME  # its figure beside its CSV, with the same errors
-    print(f"{name}: {module.write_figure(rows, FULL.eta, png, errors)}")
+    print(f"{name}: {write_figure(rows, FULL.eta, png, errors)}")
     return 0
 
 
@@ -655,9 +655,10 @@ def _main(argv=None):
     if args.command == "front":
         return front_command.main(args)
     if args.command == "paper-ramp":
-        return _read_campaign(args, "paper-ramp", paper_ramp, "runs")
+        return _read_campaign(args, "paper-ramp", paper_ramp, "runs",
+                              paper_ramp_figure.write_figure)
     if args.command == "sigma-eta":
-        return _read_campaign(args, "sigma-eta", sigma_eta, "points")
+        return _read_campaign(args, "sigma-eta", sigma_eta, "points", sigma_eta.write_figure)
     if args.command == "plan":
         return _plan_cost(args)
     if args.command == "report" and args.refit and not args.from_data:

@@ -36,7 +36,7 @@ from ..hysteresis import (CRITICAL_SQRT_EPS, LEVEL_TOLERANCE, BranchData, Branch
                           Hysteresis, RampBranches, branch_difference, common_levels,
                           seeds_together)
 from ..stats import CALIBRATION_ALPHA, realization_factor
-from . import _plotting, _runs
+from . import _runs
 from .scales import FULL
 
 #: Taps per level of the paper's protocol, and the taps averaged at the end of each level.
@@ -441,7 +441,7 @@ def by_eta(rows, first=None):
     default eta) first, then the loosest first; ``decided`` are the seeds whose ramp came down
     two levels, ``running`` says how far the others got (:func:`progress_text`; "" when none
     is running)."""
-    for eta, group in _groups_by_eta(rows, first):
+    for eta, group in groups_by_eta(rows, first):
         decided = [r for r in group if r.verdict != "running"]
         running = "; ".join(progress_text(r.seed, r.taps_done, r.down_levels, turned(r))
                             for r in group
@@ -449,7 +449,7 @@ def by_eta(rows, first=None):
         yield eta, decided, running
 
 
-def _groups_by_eta(rows, first=None):
+def groups_by_eta(rows, first=None):
     """(eta, its rows) per eta of ``rows``: ``first`` (the default eta) first, then the
     loosest."""
     etas = sorted({r.eta for r in rows}, key=lambda e: (e != first, -e))
@@ -731,64 +731,3 @@ def _beyond_retrace(run):
     k = trace.mean.n
     return (f", second increase minus descent {_signed(trace.mean.value)} +- "
             f"{trace.mean.sem:.4f} over {k} level{'s' if k > 1 else ''} ({trace.verdict})")
-
-
-def plot(rows, default_eta, axes=None):
-    """The whole levels of every ramp (:class:`PaperRampRun`), one panel per eta (the default
-    first; ``axes``: one axis per eta, new ones when None): <Phi^c> against sqrt(eps), a colour
-    per run, a marker per branch (:data:`BRANCH_STYLE`), error bars the levels' batch-means
-    errors, a thin line through the levels in the ramp's order (the loop), (sqrt eps)* dotted;
-    the panels share their <Phi^c> range. Returns the axes."""
-    panels = _groups_by_eta(rows, default_eta)
-    if axes is None:
-        _, axes = _plotting.new_figure(nrows=len(panels), height=2.8, width=6.0)
-    if len(axes) < len(panels):
-        raise ValueError(f"axes: {len(axes)} given, the rows have {len(panels)} etas")
-    for ax, (eta, runs) in zip(axes, panels):
-        for colour, run in enumerate(runs):
-            ax.plot(run.level_sqrt_eps, run.level_mean, color=f"C{colour}", lw=0.8)
-            for name, (marker, words) in BRANCH_STYLE.items():
-                sqrt_eps, mean, sem = run.branch(name)
-                if len(sqrt_eps):
-                    ax.errorbar(sqrt_eps, mean, yerr=sem, marker=marker, mfc="none", ms=5,
-                                color=f"C{colour}", ls="none", capsize=2,
-                                label=f"seed {run.seed}, to {run.top:g}: {words}")
-        ax.axvline(CRITICAL_SQRT_EPS, color="0.5", ls=":", lw=1,
-                   label=f"$(\\varepsilon^{{1/2}})^* = {CRITICAL_SQRT_EPS:g}$")
-        ax.set_title(eta_label(eta, default_eta), fontsize=8)
-        ax.set_xlabel(r"$\varepsilon^{1/2}$")
-        ax.set_ylabel(r"$\langle\Phi^c\rangle$ (last %d taps of a level)" % LAST_TAPS,
-                      fontsize=8)
-        _plotting.legend(ax, fontsize=6, outside=True)
-    means = [m for r in rows for m in r.level_mean]
-    if means:
-        pad = 0.05 * (max(means) - min(means) or 0.01)
-        for ax in axes[:len(panels)]:
-            ax.set_ylim(min(means) - pad, max(means) + pad)
-    return axes
-
-
-def settings_line(rows, error_factor=None):
-    """The settings the figure states on top (every number of it is a setting of the runs),
-    with what its error bars are (:func:`calibrated`'s ``error_factor``)."""
-    seeds = sorted({r.seed for r in rows})
-    errors = level_errors(rows, error_factor)
-    bars = "their batch-means errors" + (
-        "" if errors.value == 1.0 else
-        f" x {errors.value:.1f} (one {LAST_TAPS}-tap mean to the next)" if errors.from_window
-        else f" x {errors.value:.1f} (the realizations' spread)")
-    stop = _plotting.planned_stop(_runs.paper_ramp_run(FULL, "pbc", 1, FULL.ramp_below_top))
-    return (f"N = {FULL.N}, box {FULL.L:g}R x {FULL.L:g}R, P.B.C.; eta: each panel's, {stop}; "
-            f"{TAPS_PER_LEVEL} taps per "
-            f"level, steps of {FULL.ramp_dsqrt:g} in sqrt(eps), means of the last {LAST_TAPS} "
-            f"taps of each level, error bars {bars}; levels done whole only; "
-            f"seeds {', '.join(map(str, seeds))}; "
-            + _plotting.campaign_text(_plotting.FULL_CAMPAIGN))
-
-
-def write_figure(rows, default_eta, path, error_factor=None):
-    """``paper_ramp.png``: :func:`plot` of the rows with the errors the finding decides with
-    (:func:`calibrated`), its settings on top; returns the path."""
-    fig = plot(calibrated(rows, level_errors(rows, error_factor).value), default_eta)[0].figure
-    _plotting.finish_figure(fig, settings_line(rows, error_factor))
-    return _plotting.save_figure(fig, path)
