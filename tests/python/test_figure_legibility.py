@@ -462,7 +462,7 @@ def smallest_text_px(fig, shown):
 def question_figures(monkeypatch, tmp_path):
     """png name -> the figure, of every question figure drawn from its committed CSV."""
     from matplotlib.figure import Figure
-    from tapmc.paper import paper_ramp, sigma_eta, validation
+    from tapmc.paper import paper_ramp, paper_ramp_figure, sigma_eta, validation
     from tapmc.paper.questions import connected_ageing, ramp_alpha, theta0
     from tapmc.paper.scales import FULL
     saved, save = {}, Figure.savefig
@@ -474,10 +474,10 @@ def question_figures(monkeypatch, tmp_path):
     monkeypatch.setattr(plt, "close", lambda *a, **k: None)
     page = SOURCE / "doc" / "paper_scale"
     folder = page / "validation" / "questions"
-    for module in (paper_ramp, sigma_eta):
-        module.write_figure(module.read_csv(folder / module.CSV_NAME), FULL.eta,
-                            tmp_path / module.PNG_NAME,
-                            validation.report_errors(page, module))
+    for module, write_figure in ((paper_ramp, paper_ramp_figure.write_figure),
+                                 (sigma_eta, sigma_eta.write_figure)):
+        write_figure(module.read_csv(folder / module.CSV_NAME), FULL.eta,
+                     tmp_path / module.PNG_NAME, validation.report_errors(page, module))
     for module in (ramp_alpha, connected_ageing):
         module.write_figure(module.load(folder / module.CSV), tmp_path / module.PNG)
     shutil.copytree(folder, tmp_path / "questions")
