@@ -337,8 +337,8 @@ def test_the_figure_draws_every_whole_level_one_panel_per_eta(tmp_path):
     png = paper_ramp_figure.write_figure(rows, 1e-7, tmp_path / "out" / "b.png", 2.1)
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     # beside it, every number it draws, the error bars as drawn (x 2.1)
-    from tapmc.paper._plotting import figure_csv_rows
-    csv_rows = figure_csv_rows(paper_ramp_figure.figure_csv_path(png))
+    from tapmc.paper._plotting import figure_csv_path, figure_csv_rows
+    csv_rows = figure_csv_rows(figure_csv_path(png))
     run = next(r for r in rows if r.seed == 1 and r.eta == 1e-7)
     x, mean, sem = run.branch("up1")
     drawn = [r for r in csv_rows if r[1:3] == ("eta = 1e-7 (the default)",

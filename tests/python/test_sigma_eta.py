@@ -277,9 +277,9 @@ def test_the_figure_draws_sigma_and_the_bell_per_eta_with_their_lines(tmp_path):
     png = sigma_eta.write_figure(points, DEFAULT_ETA, tmp_path / "b.png", lambda q, eps: 3.0)
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     # beside it, every number it draws: the bars as drawn (scaled), the dashed line's values
-    from tapmc.paper._plotting import figure_csv_rows
+    from tapmc.paper._plotting import figure_csv_path, figure_csv_rows
 
-    rows = figure_csv_rows(sigma_eta.figure_csv_path(png))
+    rows = figure_csv_rows(figure_csv_path(png))
     default_label = f"eta = {sigma_eta._eta_text(DEFAULT_ETA)} (the default)"
     drawn = [r for r in rows if r[1] == "b" and r[2] == default_label]
     assert drawn[0][3] == pytest.approx(math.sqrt(first.eps))

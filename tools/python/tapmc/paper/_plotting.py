@@ -462,11 +462,19 @@ def settings_text(summary, seeds=None):
     return "; ".join(parts)
 
 
-def write_figure(fig, png, table, csv):
-    """A figure's two outputs: the PNG of ``fig`` and the CSV of ``table``; returns their paths."""
+def write_figure(fig, png, table, csv=None):
+    """A figure's two outputs: the PNG of ``fig`` and the CSV of ``table`` (default
+    :func:`figure_csv_path` of the PNG); returns their paths."""
+    csv = figure_csv_path(png) if csv is None else csv
     save_figure(fig, png)
     table.write(csv)
     return png, csv
+
+
+def figure_csv_path(png):
+    """The CSV of every number a figure draws beside its PNG, when the PNG's name is taken by a
+    data CSV of its own (``paper_ramp.csv``): ``<stem>_figure.csv``."""
+    return Path(png).with_name(Path(png).stem + "_figure.csv")
 
 
 def errorbars(ax, x, mean, sem, label=None, **kw):

@@ -74,17 +74,10 @@ def settings_line(rows, error_factor=None):
 
 def write_figure(rows, default_eta, path, error_factor=None):
     """``paper_ramp.png``: :func:`plot` of the rows with the errors the finding decides with
-    (:func:`calibrated`), its settings on top, and :func:`figure_csv_path` beside it; returns
-    the PNG's path."""
+    (:func:`calibrated`), its settings on top, and beside it ``paper_ramp_figure.csv``
+    (:func:`~tapmc.paper._plotting.figure_csv_path`); returns the PNG's path."""
     table = _plotting.FigureTable()
     scaled = calibrated(rows, level_errors(rows, error_factor).value)
     fig = plot(scaled, default_eta, table=table)[0].figure
     _plotting.finish_figure(fig, settings_line(rows, error_factor))
-    path = Path(path)
-    table.write(figure_csv_path(path))
-    return _plotting.save_figure(fig, path)
-
-
-def figure_csv_path(png):
-    """The CSV of what :func:`write_figure` draws into ``png``: ``<stem>_figure.csv``."""
-    return Path(png).with_name(Path(png).stem + "_figure.csv")
+    return _plotting.write_figure(fig, Path(path), table)[0]

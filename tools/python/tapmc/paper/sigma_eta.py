@@ -469,11 +469,4 @@ def write_figure(all_points, default_eta, path, factor_of=None):
     table = _plotting.FigureTable()
     fig = plot(all_points, default_eta, table=table)[0].figure
     _plotting.finish_figure(fig, settings_line(all_points, used))
-    path = Path(path)
-    table.write(figure_csv_path(path))
-    return _plotting.save_figure(fig, path)
-
-
-def figure_csv_path(png):
-    """The CSV of what :func:`write_figure` draws into ``png``: ``<stem>_figure.csv``."""
-    return Path(png).with_name(Path(png).stem + "_figure.csv")
+    return _plotting.write_figure(fig, Path(path), table)[0]

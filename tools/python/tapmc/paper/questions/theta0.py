@@ -125,10 +125,10 @@ def render_laws(folder):
     return lines
 
 
-#: the figure of the laws side by side, per size tag: theta_laws[_N4096].png, and the CSV of
-#: every number it draws (panel a: against theta0 / pi, b: against the mean angle in degrees)
+#: the figure of the laws side by side, per size tag: theta_laws[_N4096].png, and beside it
+#: theta_laws[_N4096]_figure.csv, every number it draws (panel a: against theta0 / pi, b:
+#: against the mean angle in degrees)
 LAWS_PNG = "theta_laws{size}.png"
-LAWS_CSV = "theta_laws{size}_figure.csv"
 LAW_NAMES = {"angle": "eq. 1 (Gaussian)", "exponential": "exponential", "linear": "linear"}
 
 
@@ -161,7 +161,7 @@ def plot_laws(scans, axes=None, table=None):
 
 def write_laws_figure(folder):
     """theta_laws[_N4096].png in ``folder`` for every size of :func:`law_scans`, its settings
-    on top, and beside each its CSV (:data:`LAWS_CSV`: every number it draws, gains in %);
+    on top, and beside each its CSV (every number it draws, gains in %);
     returns the PNGs' paths."""
     paths = []
     for size, scans in law_scans(folder).items():
@@ -175,6 +175,6 @@ def write_laws_figure(folder):
             f"P.B.C., eps = {float(first['eps']):g}, {first['taps']} taps from "
             f"the same fresh packings, {scan_settings(scans['angle'])}; gain: <Phi^c> over the "
             f"last 10 taps minus t = 0; seeds {', '.join(map(str, seeds))}"))
-        paths.append(_plotting.save_figure(fig, Path(folder) / LAWS_PNG.format(size=size)))
-        table.write(Path(folder) / LAWS_CSV.format(size=size))
+        paths.append(_plotting.write_figure(fig, Path(folder) / LAWS_PNG.format(size=size),
+                                            table)[0])
     return paths
