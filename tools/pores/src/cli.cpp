@@ -261,7 +261,7 @@ bool set_analysis_option(Options& o, const std::string& a, const NextValue& valu
     o.pores.merge_tolerance = to_double(a, value());
     if (!(o.pores.merge_tolerance >= 0 && o.pores.merge_tolerance < 0.1)) throw UsageError("--merge-tol must be in [0, 0.1)");
   } else if (a == "--padding")
-    o.pores.padding_over_radius = to_double_in_range(a, value(), 2.0, config::kMaxPaddingOverRadius, ", in R");
+    o.pores.padding_over_radius = to_double_in_range(a, value(), config::kMinPaddingOverRadius, config::kMaxPaddingOverRadius, ", in R");
   else return false;
   return true;
 }

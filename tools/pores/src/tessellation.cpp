@@ -473,8 +473,9 @@ Tessellation::Tessellation(const Box& box, const std::vector<double>& xyz, const
     throw std::invalid_argument("merge tolerance must be in [0, 0.1), got " + message_number(options.merge_tolerance));
   if (!(options.overlap_tolerance >= 0 && options.overlap_tolerance < 1))
     throw std::invalid_argument("overlap tolerance must be in [0, 1), got " + message_number(options.overlap_tolerance));
-  if (!(options.padding_over_radius >= 2))
-    throw std::invalid_argument("padding must be at least 2 R, got " + message_number(options.padding_over_radius));
+  if (!(options.padding_over_radius >= config::kMinPaddingOverRadius))
+    throw std::invalid_argument("padding must be at least " + message_number(config::kMinPaddingOverRadius) +
+                                " R, got " + message_number(options.padding_over_radius));
   if (xyz.size() != 3 * ids.size())
     throw std::invalid_argument("xyz holds " + std::to_string(xyz.size()) + " values for " +
                                 std::to_string(ids.size()) + " ids (expected 3 per id)");

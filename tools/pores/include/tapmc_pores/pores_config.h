@@ -39,6 +39,10 @@ constexpr double kSliverRelativeVolume = 1e-6;
 // (flat hull cells open towards a wall or free surface), is counted as unresolved and left out,
 // never silently kept (an error when triply periodic).
 constexpr double kPaddingOverRadius = 4.0;
+// --padding below kMinPaddingOverRadius (in R) is a usage error: a padding P resolves at the
+// first attempt the pores of empty-sphere radius up to xi = P / (2 R) - 1, so below 2 R not
+// even a pore of zero size (four spheres in contact) would fit beside a periodic face.
+constexpr double kMinPaddingOverRadius = 2.0;
 constexpr int kMaxPaddingRetries = 2;
 // --padding above kMaxPaddingOverRadius (in R) is a usage error. 32 R resolves at the first
 // attempt every pore whose circumsphere has a radius up to 16 R (xi up to 15), up to 64 R after
