@@ -210,12 +210,17 @@ def test_scaling_test_names_what_it_needs():
 def test_seeds_together_pools_the_seeds_and_weighs_their_scatter():
     """Three seeds: the pooled mean and its error are those of a mean of independent seeds;
     the scatter is the chi2 about the inverse-variance mean, brute force; seeds beyond their
-    errors are not consistent; one seed or an error of 0 is refused."""
+    errors are not consistent; seeds that scatter more than their errors (chi2 > dof) but
+    are not rejected widen the pooled error by sqrt(chi2 / dof), below that it stays; one
+    seed or an error of 0 is refused."""
     from scipy.stats import chi2
     values, sems = np.array([0.001, 0.002, 0.0045]), np.array([0.0005, 0.001, 0.0008])
     together = seeds_together(BranchStatistic(v, s, 3) for v, s in zip(values, sems))
     assert together.pooled.value == pytest.approx(values.mean())
-    assert together.pooled.sem == pytest.approx(np.sqrt(np.sum(sems ** 2)) / 3)
+    w = 1 / sems ** 2
+    reduced = np.sum(w * (values - np.sum(w * values) / np.sum(w)) ** 2) / 2
+    assert reduced > 1
+    assert together.pooled.sem == pytest.approx(np.sqrt(reduced * np.sum(sems ** 2)) / 3)
     assert together.pooled.n == 9 and together.dof == 2
     w = 1 / sems ** 2
     mean = np.sum(w * values) / np.sum(w)
@@ -224,6 +229,12 @@ def test_seeds_together_pools_the_seeds_and_weighs_their_scatter():
     assert together.p < 0.01 and not together.consistent      # 0.0045 lies apart
     close = seeds_together([BranchStatistic(0.001, 0.001, 1), BranchStatistic(0.002, 0.001, 1)])
     assert close.chi2 == pytest.approx(0.5) and close.consistent
+    assert close.pooled.sem == pytest.approx(np.sqrt(2) * 0.001 / 2)  # chi2 < dof: unscaled
+    # the two default-eta seeds of the committed paper ramps (second increase minus descent):
+    # chi2 = 2.9 for 1 dof is not rejected (p = 0.09), and the error of their mean widens
+    apart = seeds_together([BranchStatistic(0.0001, 0.0004, 3), BranchStatistic(0.0012, 0.0005, 3)])
+    assert apart.consistent and apart.chi2 > 1
+    assert apart.pooled.sem == pytest.approx(np.sqrt(apart.chi2) * np.hypot(0.0004, 0.0005) / 2)
     for bad in ([BranchStatistic(0.001, 0.001, 1)],
                 [BranchStatistic(0.001, 0.001, 1), BranchStatistic(0.002, 0.0, 1)]):
         with pytest.raises(ValueError, match="needs 2 or more"):

@@ -487,9 +487,11 @@ def test_the_level_errors_take_the_ramps_own_windows_when_they_reject_the_report
 def test_seeds_whose_verdicts_differ_within_their_errors_are_answered_together():
     """Two seeds' second increases, one within noise of its descent (+0.0001 +- 0.0004), one
     beyond (+0.0013 +- 0.0004): their difference is 2.1 errors (chi2 = 4.5, p = 0.034, not
-    below CALIBRATION_ALPHA), so the answer is their mean, +0.0007 +- 0.00028, 2.5 errors
-    above: still compacting. The
-    control, +0.0030 for the second: 5 errors apart, one answer per seed."""
+    below CALIBRATION_ALPHA), so the answer is their mean, whose error 0.00028 of two
+    independent seeds widens by their scatter, sqrt(4.5) = 2.1, to 0.0006: +0.0007 is within
+    noise of the descent, reversible (unwidened it read 2.5 errors above: still compacting,
+    a verdict the seeds' own disagreement does not support). The control, +0.0030 for the
+    second: 5 errors apart, one answer per seed."""
     def trace(mean):
         return paper_ramp.Retrace((0.05,), (mean,), (0.0004,),
                                   BranchStatistic(mean, 0.0004, 3))
@@ -502,10 +504,10 @@ def test_seeds_whose_verdicts_differ_within_their_errors_are_answered_together()
     long = paper_ramp._retrace_answer(traces)
     assert long == ("the seeds' verdicts differ (seed 1 retraces, seed 2 lies above) within "
                     "their errors (chi2 = 4.5 for 1 dof, p = 0.034); over the 2 seeds, +0.0007 "
-                    "+- 0.0003: it lies above the descent: the packing still compacts, neither "
-                    "frozen nor reversible")
+                    "+- 0.0006 (their errors' mean widened x 2.1 by their scatter): it comes "
+                    "across the same values: reversible")
     assert paper_ramp._retrace_answer(traces, short=True) == (
-        "together +0.0007 +- 0.0003: it lies above the descent: still compacting (seed 1 "
+        "together +0.0007 +- 0.0006: it retraces the descent: reversible (seed 1 "
         "retraces, seed 2 lies above, within their errors)")
     apart = [(seed(1), trace(0.0001)), (seed(2), trace(0.0030))]
     assert paper_ramp._retrace_answer(apart, short=True) == (

@@ -18,7 +18,7 @@ the last taps and its standard error) by :class:`RampBranches`:
 (:class:`BranchStatistic`)."""
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.stats import chi2 as chi2_distribution
@@ -198,7 +198,8 @@ class BranchStatistic:
 class SeedsTogether:
     """One statistic of several seeds taken together: ``pooled`` their mean, with the
     standard error of a mean of independent seeds (the root of the sum of their squared
-    errors over the number of seeds); ``chi2`` (``dof`` = seeds - 1) the seeds' scatter about
+    errors over the number of seeds), times sqrt(chi2 / dof) when the seeds scatter more than
+    their errors say (chi2 > dof; as the package's weighted fits do); ``chi2`` (``dof`` = seeds - 1) the seeds' scatter about
     their weighted mean against their own errors, ``p`` its chance; ``consistent``: the seeds
     agree within their errors (p >= CALIBRATION_ALPHA, the project's one threshold for a
     scatter that rejects the errors)."""
@@ -211,6 +212,12 @@ class SeedsTogether:
     @property
     def consistent(self):
         return self.p >= CALIBRATION_ALPHA
+
+    @property
+    def widened(self):
+        """The factor the pooled error took from the seeds' scatter, sqrt(chi2 / dof) (1
+        when they scatter within their errors)."""
+        return math.sqrt(max(1.0, self.chi2 / self.dof))
 
     def scatter_text(self):
         chance = f"p = {self.p:.2g}" if self.p >= 1e-4 else "p < 1e-4"
@@ -230,9 +237,12 @@ def seeds_together(stats):
     weighted = float(np.sum(weights * values) / np.sum(weights))
     scatter = float(np.sum(weights * (values - weighted) ** 2))
     dof = len(stats) - 1
-    pooled = BranchStatistic(float(values.mean()), float(np.sqrt(np.sum(sems ** 2))) / len(stats),
-                             sum(s.n for s in stats))
-    return SeedsTogether(pooled, scatter, dof, float(chi2_distribution.sf(scatter, dof)))
+    # seeds scattered beyond their errors (chi2 > dof, not yet rejected) widen the error of
+    # their mean by the square root of the reduced chi2, as tapmc.stats.weighted_line_fit
+    raw = BranchStatistic(float(values.mean()), float(np.sqrt(np.sum(sems ** 2))) / len(stats),
+                          sum(s.n for s in stats))
+    together = SeedsTogether(raw, scatter, dof, float(chi2_distribution.sf(scatter, dof)))
+    return replace(together, pooled=replace(raw, sem=raw.sem * together.widened))
 
 
 def common_levels(a, b, tolerance=LEVEL_TOLERANCE):

@@ -646,7 +646,9 @@ def _mixed_answer(seeded, verdict_of, answers, short):
                 "within their errors)")
     return (f"the seeds' verdicts differ ({each}) within their errors "
             f"({together.scatter_text()}); over the {len(seeded)} seeds, "
-            f"{_signed(pooled.value)} +- {pooled.sem:.4f}: {words}")
+            f"{_signed(pooled.value)} +- {pooled.sem:.4f}"
+            + (f" (their errors' mean widened x {together.widened:.1f} by their scatter)"
+               if together.widened > 1 else "") + f": {words}")
 
 
 def _retrace_answer(traces, short=False):

@@ -39,9 +39,8 @@ from pathlib import Path
 import numpy as np
 
 from tapmc.campaign.provenance import read_manifest
-from tapmc.fluctuations import SteadyState
-from tapmc.stats import (beyond, realization_factor, t_quantile, t_quantile_of_mean,
-                         weighted_line_fit)
+from tapmc.fluctuations import DEFAULT_BATCHES, SteadyState
+from tapmc.stats import beyond, realization_factor, t_quantile, weighted_line_fit
 
 from . import _plotting, _runs
 from ._steady_state import BC, sigma_error_one_run, steady_last
@@ -232,9 +231,9 @@ def lines(all_points):
 
 @dataclass(frozen=True)
 class OffsetTrend:
-    """The offset of the loosest and of the tightest threshold and their difference (loosest
-    minus tightest) with its error; ``shrinks`` when the difference is positive beyond t times
-    its error (dof: the smaller of the two fits'), ``grows`` when negative beyond it."""
+    """The offset's change from the loosest to the tightest threshold (tightest minus
+    loosest) with its error; ``shrinks`` when the change is negative beyond t times its error
+    (dof: the smaller of the two fits'), ``grows`` when positive beyond it."""
 
     loose_eta: float
     tight_eta: float
@@ -244,11 +243,11 @@ class OffsetTrend:
 
     @property
     def shrinks(self):
-        return self.change > 0 and beyond(self.change, self.change_err, self.dof)
+        return self.change < 0 and beyond(self.change, self.change_err, self.dof)
 
     @property
     def grows(self):
-        return self.change < 0 and beyond(self.change, self.change_err, self.dof)
+        return self.change > 0 and beyond(self.change, self.change_err, self.dof)
 
 
 def offset_trend(eta_lines):
@@ -259,18 +258,23 @@ def offset_trend(eta_lines):
         return None
     loose, tight = max(fitted, key=lambda ln: ln.eta), min(fitted, key=lambda ln: ln.eta)
     return OffsetTrend(loose_eta=loose.eta, tight_eta=tight.eta,
-                       change=loose.offset - tight.offset,
+                       change=tight.offset - loose.offset,
                        change_err=math.hypot(loose.offset_err, tight.offset_err),
                        dof=min(loose.dof, tight.dof))
 
 
-def meets_paper_phi(eta_line, eta_points):
+#: Degrees of freedom of a point's error floor (the runs' batch means, 20 batches; the
+#: realizations' factor that scales it is estimated with as many): a point's error is never
+#: below that floor, so the t of a verdict on it takes these dof. The seeds' own spread, when
+#: larger, stays the error, but not its dof: with two seeds, t of 1 dof (12.7) would let a top
+#: four errors from the paper's value meet it.
+ERROR_FLOOR_DOF = DEFAULT_BATCHES - 1
+
+
+def meets_paper_phi(eta_line):
     """Whether the bell's top of one eta meets the paper's 60.6 %: within t times its error
-    (t of the seeds' mean; one seed: of its batch means, taken as 19 dof, 20 batches) plus
-    half a unit of the paper's last digit (0.05 %)."""
-    top = next(p for p in eta_points if p.eta == eta_line.eta and p.eps == eta_line.top_eps)
-    t = t_quantile_of_mean(top.seeds) if top.seeds > 1 else t_quantile(19)
-    band = t * 100.0 * eta_line.top_phi_c_sem + 0.05
+    (t of :data:`ERROR_FLOOR_DOF`) plus half a unit of the paper's last digit (0.05 %)."""
+    band = t_quantile(ERROR_FLOOR_DOF) * 100.0 * eta_line.top_phi_c_sem + 0.05
     return abs(100.0 * eta_line.top_phi_c - PAPER_PHI_PERCENT) <= band
 
 
@@ -371,7 +375,7 @@ def finding_text(all_points, default_eta, factor_of=None):
                if ln.dof is not None else f"{ln.eps_count} eps (too few for a line)")
         top = (f"bell top <Phi^c> = {100 * ln.top_phi_c:.2f} +- {100 * ln.top_phi_c_sem:.2f} % "
                f"at eps = {ln.top_eps:g}"
-               + (" (meets 60.6 %)" if meets_paper_phi(ln, all_points) else "")
+               + (" (meets 60.6 %)" if meets_paper_phi(ln) else "")
                if ln.top_inside else
                f"largest <Phi^c> {100 * ln.top_phi_c:.2f} +- {100 * ln.top_phi_c_sem:.2f} % at "
                f"eps = {ln.top_eps:g}, the edge of the eps measured: no top yet")
@@ -384,7 +388,7 @@ def finding_text(all_points, default_eta, factor_of=None):
                else "does not change beyond its error")
         verdict = (f"from eta = {_eta_text(trend.loose_eta)} to {_eta_text(trend.tight_eta)} the "
                    f"offset {how} ({trend.change:+.4f} +- {trend.change_err:.4f}).")
-    meeting = [ln.eta for ln in eta_lines if ln.top_inside and meets_paper_phi(ln, all_points)]
+    meeting = [ln.eta for ln in eta_lines if ln.top_inside and meets_paper_phi(ln)]
     paper = (f"The bell's top meets the paper's {PAPER_PHI_PERCENT} % at eta = "
              + ", ".join(_eta_text(e) for e in meeting) if meeting
              else f"No threshold's bell top meets the paper's {PAPER_PHI_PERCENT} %")

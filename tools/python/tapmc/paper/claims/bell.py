@@ -468,9 +468,12 @@ def _paper_protocol_up(data, effect):
     common to them. One seed's error: its levels' batch-means errors (in quadrature, over the
     number of levels) times the realizations' factor of a steady state; several seeds: their
     mean judged as the campaign's ramps are (:func:`seeds_error`). Seeds short of their
-    turning level are named, not counted; [] without such ramps or squares."""
+    turning level are named, not counted; ramps of one seed that turn at different levels
+    are one realization here, counted once (:func:`_one_ramp_per_seed`); [] without such
+    ramps or squares."""
     eta, steady = campaign_eta(data.summary), ramp_branch(data, "steady")
-    runs = [r for r in runs_from_rows(data.question("paper_ramp")) if r.eta == eta]
+    runs = _one_ramp_per_seed(r for r in runs_from_rows(data.question("paper_ramp"))
+                              if r.eta == eta)
     if eta is None or steady is None or not runs:
         return []
     label = protocol_label(PAPER_RAMP_TAPS, eta)
@@ -497,6 +500,17 @@ def _paper_protocol_up(data, effect):
     return [_up_minus_squares(values, seed_err, seed_dof, how, steady, pairs, effect,
                               label=label, meets=("ramp_taps",),
                               note=f"; not counted yet: {waiting}" if waiting else "")]
+
+
+def _one_ramp_per_seed(runs):
+    """One ramp per seed, the one turning lowest: ramps of one seed start from the same
+    packing with the same Monte Carlo stream, so their first increases are one realization up
+    to the lower turning level (the committed ramps of seed 1 to 0.125 and to 0.2 are
+    identical to tap 7457, then part by round-off), not independent seeds."""
+    kept = {}
+    for r in sorted(runs, key=lambda r: (r.seed, r.top, r.run)):
+        kept.setdefault(r.seed, r)
+    return list(kept.values())
 
 
 def _paper_beyond(data, measure_of_run, quantity, what, effect=None):
