@@ -88,10 +88,42 @@ def test_one_seed_uses_its_batch_means_and_few_seeds_never_fall_below_them(tmp_p
     assert point.seeds == 1 and abs(point.sigma - 0.01) < 4 * 0.01 / math.sqrt(2000)
     assert 0.3 < point.sigma_sem / (0.01 / math.sqrt(2000)) < 3
     # three seeds with identical sigma: the spread is ~0, the floor is the runs' own error
-    runs_b = [sigma_eta.RunSteady("r", 1e-7, 0.01, s, 4000, True, 0.01, 0.0002, 0.6, 1e-4)
-              for s in (1, 2, 3)]
+    runs_b = [sigma_eta.RunSteady("r", 1e-7, 0.01, s, 4000, True, 0.01, 0.0002, 0.6, 1e-4,
+                                  0.01, 0.0002) for s in (1, 2, 3)]
     (point,) = sigma_eta.points(runs_b)
     assert point.sigma_sem == pytest.approx(0.0002 / math.sqrt(3))
+
+
+def test_a_drift_in_the_window_counts_in_sigma_but_not_about_each_runs_line(tmp_path):
+    """Runs whose <Z> still falls through its steady window (a drift of 0.06 over its 1000
+    taps, as the committed eps 0.15 seed 1) on white noise of sigma 0.004 + SLOPE sqrt(eps):
+    the paper's sigma_<Z> takes the drift (sqrt(0.004^2 + 0.06^2 / 12) at the smallest eps),
+    sigma_linear the noise alone; the finding's line about each run's line recovers the
+    offset 0.004 where the paper's reads one 4x larger. Control: without the drift both agree."""
+    def build(folder, drift):
+        camp = campaign(folder, {DEFAULT_ETA: 0.004, 1e-8: 0.004},
+                        {DEFAULT_ETA: 0.608, 1e-8: 0.606})
+        for d in (camp / "runs").iterdir():
+            rows = np.loadtxt(d / "taps.dat")
+            window = rows[:, 0] > 3000
+            rows[window, 3] -= drift * (rows[window, 0] - 3000) / 1000
+            np.savetxt(d / "taps.dat", rows, header="step phi_b phi_c Z", fmt="%.8f")
+        return sigma_eta.analyse(camp, DEFAULT_ETA)
+
+    drifting = build(tmp_path / "a", 0.06)
+    low = min(drifting, key=lambda p: p.eps)
+    noise = 0.004 + SLOPE * math.sqrt(low.eps)
+    assert low.sigma == pytest.approx(math.hypot(noise, 0.06 / math.sqrt(12)), rel=0.1)
+    assert low.sigma_linear == pytest.approx(noise, rel=0.1)
+    for ln in sigma_eta.lines(drifting, "sigma_linear"):
+        assert abs(ln.offset - 0.004) < 3 * ln.offset_err + 5e-4
+    assert all(ln.offset > 0.01 for ln in sigma_eta.lines(drifting))
+    text = sigma_eta.finding_text(drifting, DEFAULT_ETA)
+    assert "About each run's straight line over its window" in text
+    assert text.count("does not change beyond its error") == 2
+    steady = build(tmp_path / "b", 0.0)
+    for p in steady:
+        assert p.sigma_linear == pytest.approx(p.sigma, rel=0.02)
 
 
 def test_resumed_taps_count_once_and_short_runs_wait(tmp_path):
@@ -261,7 +293,9 @@ def test_the_figure_draws_sigma_and_the_bell_per_eta_with_their_lines(tmp_path):
     points = sigma_eta.analyse(camp, DEFAULT_ETA)
     axes = sigma_eta.plot(points, DEFAULT_ETA)
     labels = axes[0].get_legend_handles_labels()[1]
-    assert labels == ["eta = 1e-7 (the default)", "eta = 1e-6"]
+    assert labels == [sigma_eta.DRIFT_FREE_LABEL, "eta = 1e-7 (the default)", "eta = 1e-6"]
+    crosses = [ln for ln in axes[0].get_lines() if ln.get_marker() == "x" and len(ln.get_xdata())]
+    assert len(crosses) == 2   # sigma_<Z> about each run's line, one series per eta
     assert axes[1].get_legend_handles_labels()[1][0] == "the paper's 60.6 %"
     fitted = [ln for ln in axes[0].get_lines() if ln.get_linestyle() == "--"]
     assert len(fitted) == 2   # one line per eta with 3 eps or more
@@ -320,7 +354,8 @@ def test_one_seed_errors_take_the_realizations_factors(tmp_path):
     def point(eps, seeds, phi, sem=0.0002, inside=0.0002):
         return sigma_eta.EtaPoint(eta=1e-6, eps=eps, seeds=seeds, taps=4000, finished=True,
                                   sigma=0.01, sigma_sem=0.001, phi_c=phi, phi_c_sem=sem,
-                                  sigma_inside=0.001, phi_c_inside=inside)
+                                  sigma_inside=0.001, phi_c_inside=inside, sigma_linear=0.009,
+                                  sigma_linear_sem=0.001, sigma_linear_inside=0.001)
     points = [point(0.0025, 2, 0.600, sem=0.002, inside=0.0001), point(0.01, 1, 0.6080),
               point(0.0225, 1, 0.603), point(0.04, 3, 0.601, sem=0.0001, inside=0.0001)]
     asked = []
@@ -333,6 +368,7 @@ def test_one_seed_errors_take_the_realizations_factors(tmp_path):
     assert scaled[0].phi_c_inside == pytest.approx(0.0004)
     assert scaled[3].phi_c_sem == pytest.approx(0.0004)        # three: the scaled floor
     assert scaled[1].phi_c_sem == pytest.approx(0.0008) and scaled[1].sigma_sem == 0.0025
+    assert scaled[1].sigma_linear_sem == 0.0025               # sigma_<Z>'s factor, as sigma
     assert ("phi_c", 0.01) in asked and ("Z:sigma", 0.0225) in asked
     assert used == {"sigma": (2.5, 2.5), "phi_c": (4.0, 4.0)}
     (raw_line,) = sigma_eta.lines(points)

@@ -14,6 +14,10 @@ the same constant-eps runs at other thresholds (``consteta_*`` runs, tier 8 of
   factor of the quantity (:func:`calibrated`);
 - the straight line sigma_<Z> = offset + slope sqrt(eps) through them (weighted; errors
   scaled by the reduced chi-square when the scatter exceeds them);
+- the same for sigma_<Z> about each run's straight line over its window (``sigma_linear``):
+  a run still compacting (or loosening) in its last quarter counts its drift as fluctuation
+  in the paper's sigma_<Z>, so the two tell the offset's fluctuation from its drift (the line
+  also takes out part of the slowest fluctuations: a lower estimate);
 - the largest steady <Phi^c> over the eps (the bell's top), against the paper's 60.6 %
   (section III.D, after 4000 taps).
 
@@ -76,6 +80,8 @@ class RunSteady:
     sigma_err: float
     phi_c: float
     phi_c_err: float
+    sigma_linear: float
+    sigma_linear_err: float
 
 
 @dataclass(frozen=True)
@@ -83,7 +89,8 @@ class EtaPoint:
     """One (eta, eps): means over the seeds' runs with their errors (one run: its own
     batch-means errors); ``*_inside``: the root mean square of the runs' own batch-means
     errors over sqrt(seeds), the floor of the errors (:func:`_mean_sem`), which the
-    realizations' factors scale (:func:`calibrated`)."""
+    realizations' factors scale (:func:`calibrated`); ``sigma_linear*``: sigma_<Z> about each
+    run's straight line over its window, likewise."""
 
     eta: float
     eps: float
@@ -96,6 +103,9 @@ class EtaPoint:
     phi_c_sem: float
     sigma_inside: float
     phi_c_inside: float
+    sigma_linear: float
+    sigma_linear_sem: float
+    sigma_linear_inside: float
 
     @property
     def sqrt_eps(self):
@@ -148,13 +158,15 @@ def read_run(run_dir, default_eta, planned_taps=None):
     if window < MIN_STEADY_TAPS:
         return None
     sigma = SteadyState(z, last=window).compute().std
+    sigma_linear = SteadyState(z, last=window, detrend="linear").compute().std
     packing = SteadyState(phi_c, last=window).compute()
     eta = float(m.group("eta")) if m.group("eta") else float(default_eta)
     return RunSteady(run=run_dir.name, eta=eta, eps=float(m.group("eps0") or m.group("eps1")),
                      seed=int(m.group("seed")), taps=taps,
                      finished=(run_dir / "DONE.json").exists(), sigma=sigma,
                      sigma_err=sigma_error_one_run(z, window), phi_c=packing.mean,
-                     phi_c_err=packing.sem)
+                     phi_c_err=packing.sem, sigma_linear=sigma_linear,
+                     sigma_linear_err=sigma_error_one_run(z, window, detrend="linear"))
 
 
 def _mean_sem(values, own_err):
@@ -183,10 +195,13 @@ def points(runs):
         sigma, sigma_sem, sigma_in = _mean_sem([r.sigma for r in group],
                                                [r.sigma_err for r in group])
         phi, phi_sem, phi_in = _mean_sem([r.phi_c for r in group], [r.phi_c_err for r in group])
+        flat, flat_sem, flat_in = _mean_sem([r.sigma_linear for r in group],
+                                            [r.sigma_linear_err for r in group])
         out.append(EtaPoint(eta=eta, eps=eps, seeds=len(group), taps=min(r.taps for r in group),
                             finished=all(r.finished for r in group), sigma=sigma,
                             sigma_sem=sigma_sem, phi_c=phi, phi_c_sem=phi_sem,
-                            sigma_inside=sigma_in, phi_c_inside=phi_in))
+                            sigma_inside=sigma_in, phi_c_inside=phi_in, sigma_linear=flat,
+                            sigma_linear_sem=flat_sem, sigma_linear_inside=flat_in))
     return sorted(out, key=lambda p: (-p.eta, p.eps))
 
 
@@ -207,15 +222,16 @@ def analyse(campaign, default_eta, bc=BC):
     return points(found)
 
 
-def line(eta_points):
-    """The :class:`EtaLine` of the points of one eta."""
+def line(eta_points, sigma="sigma"):
+    """The :class:`EtaLine` of the points of one eta (``sigma``: the field fitted, "sigma"
+    the paper's, "sigma_linear" about each run's straight line)."""
     eta = eta_points[0].eta
     if any(p.eta != eta for p in eta_points):
         raise ValueError("line(): the points must share one eta")
     top = max(eta_points, key=lambda p: p.phi_c)
     offset, offset_err, slope, slope_err, dof = weighted_line_fit(
-        [p.sqrt_eps for p in eta_points], [p.sigma for p in eta_points],
-        [p.sigma_sem for p in eta_points])
+        [p.sqrt_eps for p in eta_points], [getattr(p, sigma) for p in eta_points],
+        [getattr(p, f"{sigma}_sem") for p in eta_points])
     measured = [p.eps for p in eta_points]
     return EtaLine(eta=eta, eps_count=len(eta_points), offset=offset, offset_err=offset_err,
                    slope=slope, slope_err=slope_err, dof=dof, top_eps=top.eps,
@@ -223,10 +239,10 @@ def line(eta_points):
                    top_inside=min(measured) < top.eps < max(measured))
 
 
-def lines(all_points):
-    """One :class:`EtaLine` per eta, loosest threshold first."""
+def lines(all_points, sigma="sigma"):
+    """One :class:`EtaLine` per eta, loosest threshold first (``sigma``: as :func:`line`)."""
     etas = sorted({p.eta for p in all_points}, reverse=True)
-    return [line([p for p in all_points if p.eta == eta]) for eta in etas]
+    return [line([p for p in all_points if p.eta == eta], sigma) for eta in etas]
 
 
 @dataclass(frozen=True)
@@ -306,8 +322,9 @@ def read_csv(path):
 
 #: The one-run errors whose realizations' factors scale a point's error floor (ReportData's
 #: run_error quantities): sigma_<Z> and the window mean of <Phi^c>.
-ERROR_QUANTITIES = {"sigma": "Z:sigma", "phi_c": "phi_c"}
-#: How the text and the figure name those quantities.
+ERROR_QUANTITIES = {"sigma": "Z:sigma", "phi_c": "phi_c", "sigma_linear": "Z:sigma"}
+#: How the text and the figure name those quantities (sigma_linear takes sigma_<Z>'s factor
+#: and is not named apart).
 ERROR_NAMES = {"sigma": "sigma_<Z>", "phi_c": "<Phi^c>"}
 
 
@@ -337,8 +354,9 @@ def calibrated(all_points, factor_of):
             floor = getattr(p, f"{field}_inside") * k
             scaled[f"{field}_sem"] = max(getattr(p, f"{field}_sem"), floor)
             scaled[f"{field}_inside"] = floor
-            lo, hi = used.get(field, (k, k))
-            used[field] = (min(lo, k), max(hi, k))
+            if field in ERROR_NAMES:
+                lo, hi = used.get(field, (k, k))
+                used[field] = (min(lo, k), max(hi, k))
         out.append(replace(p, **scaled))
     return out, used
 
@@ -380,21 +398,41 @@ def finding_text(all_points, default_eta, factor_of=None):
                f"largest <Phi^c> {100 * ln.top_phi_c:.2f} +- {100 * ln.top_phi_c_sem:.2f} % at "
                f"eps = {ln.top_eps:g}, the edge of the eps measured: no top yet")
         parts.append(f"{label}: {fit}; {top}")
-    trend = offset_trend(eta_lines)
-    if trend is None:
-        verdict = "the offset's trend needs fitted lines at two thresholds: undecided."
-    else:
-        how = ("shrinks" if trend.shrinks else "grows" if trend.grows
-               else "does not change beyond its error")
-        verdict = (f"from eta = {_eta_text(trend.loose_eta)} to {_eta_text(trend.tight_eta)} the "
-                   f"offset {how} ({trend.change:+.4f} +- {trend.change_err:.4f}).")
+    verdict = _trend_text(offset_trend(eta_lines))
     meeting = [ln.eta for ln in eta_lines if ln.top_inside and meets_paper_phi(ln)]
     paper = (f"The bell's top meets the paper's {PAPER_PHI_PERCENT} % at eta = "
              + ", ".join(_eta_text(e) for e in meeting) if meeting
              else f"No threshold's bell top meets the paper's {PAPER_PHI_PERCENT} %")
     return ("sigma_<Z> against the redeposition threshold (P.B.C. constant-eps runs, steady "
             f"state over the last quarter; {_errors_text(used)}): " + "; ".join(parts)
-            + ". Trend: " + verdict + " " + paper + ".")
+            + ". Trend: " + verdict + " " + paper + ". " + _drift_free_text(all_points))
+
+
+def _trend_text(trend):
+    """The offset's trend (:func:`offset_trend`) in words."""
+    if trend is None:
+        return "the offset's trend needs fitted lines at two thresholds: undecided."
+    how = ("shrinks" if trend.shrinks else "grows" if trend.grows
+           else "does not change beyond its error")
+    return (f"from eta = {_eta_text(trend.loose_eta)} to {_eta_text(trend.tight_eta)} the "
+            f"offset {how} ({trend.change:+.4f} +- {trend.change_err:.4f}).")
+
+
+def _drift_free_text(all_points):
+    """The sentence on sigma_<Z> about each run's straight line over its window: the
+    offset per eta and its trend; "" when no eta has a line."""
+    flat = [ln for ln in lines(all_points, "sigma_linear") if ln.dof is not None]
+    if not flat:
+        return ""
+    offsets = "; ".join(f"{ln.offset:.4f} +- {ln.offset_err:.4f} at eta = {_eta_text(ln.eta)}"
+                        for ln in flat)
+    return ("About each run's straight line over its window (a drift of the steady state "
+            "removed, with part of the slowest fluctuations: a lower estimate), the offset is "
+            f"{offsets}; " + _trend_text(offset_trend(flat)))
+
+
+#: The legend's entry of sigma_<Z> about each run's straight line (one for every eta).
+DRIFT_FREE_LABEL = "crosses: about each run's straight line"
 
 
 def _by_eta(all_points, default_eta):
@@ -405,7 +443,8 @@ def _by_eta(all_points, default_eta):
 
 def plot(all_points, default_eta, axes=None, table=None):
     """Two panels against sqrt(eps), a colour per eta (the default first): (a) sigma_<Z> with
-    the line offset + slope sqrt(eps) of :func:`line` dashed over the eps measured, (b) the
+    the line offset + slope sqrt(eps) of :func:`line` dashed over the eps measured and, as
+    crosses, sigma_<Z> about each run's straight line (``sigma_linear``), (b) the
     steady <Phi^c> (the bell) with the paper's 60.6 % dotted; mean +- sem over seeds, open
     markers for points whose runs are still going. ``axes``: two axes, new ones when None.
     ``table``: a :class:`~tapmc.paper._plotting.FigureTable` that gets every plotted number
@@ -430,12 +469,20 @@ def plot(all_points, default_eta, axes=None, table=None):
                     ax.errorbar(x[mask], y[mask], yerr=e[mask], marker="o", ms=4, ls="none",
                                 capsize=2, color=f"C{colour}", mfc=fill,
                                 label=label if fill != "none" or not done.any() else None)
+        flat = np.array([p.sigma_linear for p in group])
+        flat_err = np.array([p.sigma_linear_sem for p in group])
+        axes[0].errorbar(x, flat, yerr=flat_err, marker="x", ms=4, ls="none", capsize=2,
+                         color=f"C{colour}", lw=0.6)
+        if table is not None:
+            table.add("a", f"{label}: about each run's line", x, flat, flat_err,
+                      [p.seeds for p in group])
         if ln.dof is not None:
             xs = np.linspace(x.min(), x.max(), 50)
             axes[0].plot(xs, ln.offset + ln.slope * xs, color=f"C{colour}", ls="--", lw=0.8)
             if table is not None:
                 table.add("a", f"{label}: offset + slope sqrt(eps)", x,
                           ln.offset + ln.slope * x)
+    axes[0].plot([], [], marker="x", ls="none", color="0.3", label=DRIFT_FREE_LABEL)
     axes[1].axhline(PAPER_PHI_PERCENT / 100.0, color="0.5", ls=":", lw=1,
                     label=f"the paper's {PAPER_PHI_PERCENT} %")
     axes[0].set_ylabel(r"$\sigma_{\langle Z\rangle}$ (steady state)", fontsize=8)
@@ -460,7 +507,8 @@ def settings_line(all_points, used=None):
             "planned taps; mean +- sem over "
             f"{min(seeds)} to {max(seeds)} seeds per point ({floor}); open "
             "markers: runs still going; "
-            "dashed: sigma_<Z> = offset + slope sqrt(eps); "
+            "dashed: sigma_<Z> = offset + slope sqrt(eps); crosses: sigma_<Z> about each "
+            "run's straight line over its window; "
             + _plotting.campaign_text(_plotting.FULL_CAMPAIGN))
 
 
