@@ -254,3 +254,27 @@ def test_level_alphas_needs_the_initial_profile_and_takes_a_window(tmp_path):
     assert [lv.step for lv in levels] == [4, 8]                 # step 99: no tap row
     assert [lv.window for lv in levels] == [(5.0, 18.0)] * 2
     assert [lv.alpha for lv in levels] == pytest.approx([0.001, 0.002], abs=1e-9)
+
+
+def test_the_figure_states_the_scale_its_campaign_records(tmp_path, monkeypatch):
+    """A campaign made at another Scale (its scale.json) gets a figure that states that
+    scale's N, box and taps, and names it; one without scale.json is the full preset's
+    (the committed campaign's); an edited preset is named as a scale, not as the preset."""
+    from tapmc.paper import _plotting, _runs
+    from tapmc.paper.questions.common import campaign_scale, scale_text
+    from tapmc.paper.scales import FULL, QUICK
+    stated = []
+    monkeypatch.setattr(_plotting, "finish_figure", lambda fig, text, *a, **k: stated.append(text))
+    for name, scale in (("quick", QUICK), ("bare", None)):
+        campaign = tmp_path / name
+        write_ramp(campaign, "paperramp0.075_pbc_s1", [0.001, 0.002, 0.003, 0.0025, 0.0013,
+                                                       0.0021, 0.0031])
+        if scale is not None:
+            _runs.write_scale(campaign, scale)
+        assert cli.main(["question", "ramp-alpha", "--campaign", str(campaign), "--out",
+                         str(tmp_path / f"{name}_out")]) == 0
+    quick, bare = stated
+    assert f"N = {QUICK.N}, box {QUICK.L:g}R" in quick and "campaign: quick preset" in quick
+    assert f"N = {FULL.N}, box {FULL.L:g}R" in bare and "campaign: full preset" in bare
+    assert campaign_scale(tmp_path / "bare") == FULL
+    assert scale_text(QUICK.replace(N=100)) == "campaign: scale quick"

@@ -243,12 +243,14 @@ def _add_paper_ramp_and_question_parsers(sub):
         question_command.add_parser(question)
 
 
-def _read_campaign(args, name, module, unit, write_figure):
+def _read_campaign(args, name, module, unit, write_figure, figure_states_scale=False):
     """A campaign reader's command (``paper-ramp``, ``sigma-eta``): ``module.analyse`` on the
     campaign's runs, its CSV written to the report's questions folder, its finding printed
-    with the errors of the report in --out, its figure drawn by ``write_figure``; exit 2 naming the folder when the campaign has no
-    runs/ or nothing to read, or naming the file when --out holds a damaged report (nothing
-    written)."""
+    with the errors of the report in --out, its figure drawn by ``write_figure``; exit 2
+    naming the folder when the campaign has no runs/ or nothing to read, or naming the file
+    when --out holds a damaged report (nothing written). The campaign's default eta (and,
+    with ``figure_states_scale``, the settings its figure states) are those of the Scale it
+    records (scale.json; the full preset without one)."""
     if not (args.campaign / "runs").is_dir():
         print(f"tapmc-paper {name}: --campaign {args.campaign} has no runs/ folder",
               file=sys.stderr)
@@ -257,7 +259,8 @@ def _read_campaign(args, name, module, unit, write_figure):
         print(f"tapmc-paper {name}: --out {args.out} is a file, not a folder", file=sys.stderr)
         return 2
     try:
-        rows = module.analyse(args.campaign, FULL.eta)
+        scale = _runs.recorded_scale(args.campaign) or FULL
+        rows = module.analyse(args.campaign, scale.eta)
     except (TapmcFormatError, CampaignDirectoryError) as err:  # a damaged taps.dat, manifest
         print(f"tapmc-paper {name}: {err}", file=sys.stderr)
         return 2
@@ -272,13 +275,15 @@ def _read_campaign(args, name, module, unit, write_figure):
               f"the finding would take: {err}", file=sys.stderr)
         return 2
     path = module.write_csv(rows, args.out / _runs.FIG_DIR / "questions" / module.CSV_NAME)
-    print(module.finding_text(rows, FULL.eta, errors))
+    print(module.finding_text(rows, scale.eta, errors))
     if errors is None:
         print(f"{name}: {args.out} holds no report: the verdicts take the runs' own "
               "batch-means errors, not the realizations' (tapmc-paper report, then again)")
     print(f"{name}: {path} ({len(rows)} {unit})")
     png = path.parent / module.PNG_NAME  # its figure beside its CSV, with the same errors
-    print(f"{name}: {write_figure(rows, FULL.eta, png, errors)}")
+    figure = write_figure(rows, scale.eta, png, errors, **({"scale": scale}
+                                                          if figure_states_scale else {}))
+    print(f"{name}: {figure}")
     return 0
 
 
@@ -658,7 +663,8 @@ def _main(argv=None):
         return _read_campaign(args, "paper-ramp", paper_ramp, "runs",
                               paper_ramp_figure.write_figure)
     if args.command == "sigma-eta":
-        return _read_campaign(args, "sigma-eta", sigma_eta, "points", sigma_eta.write_figure)
+        return _read_campaign(args, "sigma-eta", sigma_eta, "points", sigma_eta.write_figure,
+                              figure_states_scale=True)
     if args.command == "plan":
         return _plan_cost(args)
     if args.command == "report" and args.refit and not args.from_data:

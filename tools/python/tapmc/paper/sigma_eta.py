@@ -48,7 +48,7 @@ from tapmc.stats import beyond, realization_factor, t_quantile, weighted_line_fi
 
 from . import _plotting, _runs
 from ._steady_state import BC, sigma_error_one_run, steady_last
-from .scales import FULL
+from .scales import FULL, SCALES
 
 CSV_NAME = "sigma_eta.csv"
 PNG_NAME = "sigma_eta.png"
@@ -493,7 +493,7 @@ def plot(all_points, default_eta, axes=None, table=None):
     return axes
 
 
-def settings_line(all_points, used=None):
+def settings_line(all_points, used=None, scale=FULL):
     """The settings the figure states on top (every number of it is a setting of the runs),
     with what its error bars are (``used``: :func:`calibrated`'s factors)."""
     seeds = [p.seeds for p in all_points]
@@ -501,18 +501,19 @@ def settings_line(all_points, used=None):
     floor = ("one seed: its batch means" if not scaled else
              "never below the runs' batch-means errors x the realizations' spread, "
              + ", ".join(f"{ERROR_NAMES[q]} {k:.1f}" for q, k in scaled.items()))
-    stop = _plotting.planned_stop(_runs.constant_eps_eta_run(FULL, BC, 0.01, 1, FULL.eta))
-    return (f"P.B.C., N = {FULL.N}, box {FULL.L:g}R x {FULL.L:g}R, {FULL.taps} taps at constant "
-            f"eps; eta: each series', {stop}; steady state: the last quarter of each run's "
-            "planned taps; mean +- sem over "
+    stop = _plotting.planned_stop(_runs.constant_eps_eta_run(scale, BC, 0.01, 1, scale.eta))
+    return (f"P.B.C., N = {scale.N}, box {scale.L:g}R x {scale.L:g}R, {scale.taps} taps at "
+            f"constant eps; eta: each series', {stop}; steady state: the last quarter of each "
+            "run's planned taps; mean +- sem over "
             f"{min(seeds)} to {max(seeds)} seeds per point ({floor}); open "
             "markers: runs still going; "
             "dashed: sigma_<Z> = offset + slope sqrt(eps); crosses: sigma_<Z> about each "
             "run's straight line over its window; "
-            + _plotting.campaign_text(_plotting.FULL_CAMPAIGN))
+            + _plotting.campaign_text({"scale": scale.name,
+                                       "preset": SCALES.get(scale.name) == scale}))
 
 
-def write_figure(all_points, default_eta, path, factor_of=None):
+def write_figure(all_points, default_eta, path, factor_of=None, scale=FULL):
     """``sigma_eta.png``: :func:`plot` of the points with the errors the finding decides with
     (:func:`calibrated`), its settings on top, and beside it ``sigma_eta_figure.csv``, every
     number it draws (:data:`~tapmc.paper._plotting.CSV_COLUMNS`: the errors as drawn, the
@@ -520,5 +521,5 @@ def write_figure(all_points, default_eta, path, factor_of=None):
     all_points, used = calibrated(all_points, factor_of)
     table = _plotting.FigureTable()
     fig = plot(all_points, default_eta, table=table)[0].figure
-    _plotting.finish_figure(fig, settings_line(all_points, used))
+    _plotting.finish_figure(fig, settings_line(all_points, used, scale))
     return _plotting.write_figure(fig, Path(path), table)[0]

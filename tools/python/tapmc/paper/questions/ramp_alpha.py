@@ -24,7 +24,8 @@ from ..claims import fmt
 from ..claims.bell import ramp_alpha_levels
 from ..scales import FULL
 from .alpha_window import READING_WINDOW
-from .common import QuestionError, csv_schema, runs_folder, taps_table
+from .common import (QuestionError, campaign_scale, csv_schema, runs_folder, scale_text,
+                     taps_table)
 from .ramp_replay import manifest_run
 
 NAME = "ramp-alpha"
@@ -121,8 +122,9 @@ def analyse(campaign, default_eta=FULL.eta):
 
 
 def measure(args):
-    path = save(args.out / CSV, analyse(args.campaign))
-    print(f"wrote {write_figure(load(path), args.out / PNG)}")
+    scale = campaign_scale(args.campaign)
+    path = save(args.out / CSV, analyse(args.campaign, scale.eta))
+    print(f"wrote {write_figure(load(path), args.out / PNG, scale)}")
 
 
 save, load = csv_schema(HEADER)
@@ -188,13 +190,13 @@ def render(path):
     return lines + [""]
 
 
-def plot(rows, axes=None):
-    """alpha at the end of every level against sqrt(eps), one panel per eta (the default
-    first; ``axes``: one per eta, new ones when None), a colour per ramp, a marker per branch
-    (paper_ramp.BRANCH_STYLE), a thin line through the levels in the ramp's order, (sqrt
-    eps)* dotted. Returns the axes."""
+def plot(rows, axes=None, default_eta=FULL.eta):
+    """alpha at the end of every level against sqrt(eps), one panel per eta (the campaign's
+    ``default_eta`` first; ``axes``: one per eta, new ones when None), a colour per ramp, a
+    marker per branch (paper_ramp.BRANCH_STYLE), a thin line through the levels in the ramp's
+    order, (sqrt eps)* dotted. Returns the axes."""
     levels = ramp_alpha_levels(rows)
-    etas = sorted({lv.eta for lv in levels.values()}, key=lambda e: (e != FULL.eta, -e))
+    etas = sorted({lv.eta for lv in levels.values()}, key=lambda e: (e != default_eta, -e))
     if axes is None:
         _, axes = _plotting.new_figure(nrows=len(etas), height=2.6, width=6.0)
     order = {}
@@ -212,25 +214,28 @@ def plot(rows, axes=None):
                             color=f"C{colour}", label=f"seed {lv.seed}, to {lv.top:g}: {words}")
         ax.axvline(CRITICAL_SQRT_EPS, color="0.5", ls=":", lw=1,
                    label=f"$(\\varepsilon^{{1/2}})^* = {CRITICAL_SQRT_EPS:g}$")
-        ax.set_title(paper_ramp.eta_label(eta, FULL.eta), fontsize=8)
+        ax.set_title(paper_ramp.eta_label(eta, default_eta), fontsize=8)
         ax.set_xlabel(r"$\varepsilon^{1/2}$")
         ax.set_ylabel(r"$\alpha$ (end of each level)", fontsize=8)
         _plotting.legend(ax, fontsize=6, outside=True)
     return axes
 
 
-def write_figure(rows, path):
-    """ramp_alpha.png: :func:`plot`, its settings on top; returns the path."""
-    fig = plot(rows)[0].figure
+def write_figure(rows, path, scale=FULL):
+    """ramp_alpha.png: :func:`plot`, its settings on top (``scale``: the campaign's,
+    :func:`~tapmc.paper.questions.common.campaign_scale`); returns the path."""
+    fig = plot(rows, default_eta=scale.eta)[0].figure
     hi = max(float(r["window_hi"]) for r in rows)
     seeds = ", ".join(map(str, sorted({int(r["seed"]) for r in rows})))
-    stop = _plotting.planned_stop(_runs.paper_ramp_run(FULL, "pbc", 1, FULL.ramp_below_top))
-    _plotting.finish_figure(fig, f"N = {FULL.N}, box {FULL.L:g}R x {FULL.L:g}R, P.B.C.; "
+    # the stop rule of the scale's paper ramps (any top on its grid has the same)
+    top = scale.ramp_sqrt0 + scale.ramp_dsqrt
+    stop = _plotting.planned_stop(_runs.paper_ramp_run(scale, "pbc", 1, top))
+    _plotting.finish_figure(fig, f"N = {scale.N}, box {scale.L:g}R x {scale.L:g}R, P.B.C.; "
                             f"eta: each panel's, {stop}; "
                             f"{paper_ramp.TAPS_PER_LEVEL} taps per level, steps of "
-                            f"{FULL.ramp_dsqrt:g} in sqrt(eps); alpha of the vertical profile "
+                            f"{scale.ramp_dsqrt:g} in sqrt(eps); alpha of the vertical profile "
                             f"at the end of each level (one profile), fitted in "
                             f"{float(rows[0]['window_lo']):g}R to at most {hi:.3g}R; levels "
                             f"done whole only; seeds {seeds}; "
-                            + _plotting.campaign_text(_plotting.FULL_CAMPAIGN))
+                            + scale_text(scale))
     return _plotting.save_figure(fig, path)
