@@ -207,3 +207,39 @@ def test_correlation_of_a_straight_line_is_the_least_squares_one(lo, hi):
     np.testing.assert_allclose(np.diag(corr), 1.0, rtol=1e-12)
     assert corr[0, 1] == pytest.approx(corr[1, 0], rel=1e-12)
     assert corr[0, 1] == pytest.approx(expected, abs=1e-6)
+
+
+def test_errors_of_a_weighted_fit_grow_with_a_scatter_beyond_the_error_bars():
+    """True scatter twice the stated errors (10 points, dof 8): FitResult.errors are scaled by
+    sqrt(chi2/dof) when it exceeds 1, as the profile intervals and stats.weighted_line_fit are,
+    so that the intercept's 2-sigma interval holds the truth in about 95 % of the replicas (the
+    unscaled curvature errors, half the true spread: about 69 %) and one fit tells one error
+    size; a scatter within the errors leaves them as stated (never narrowed)."""
+    from tapmc.fluctuations import sigma_scaling
+    from tapmc.laws import StraightLine
+    from tapmc.stats import weighted_line_fit
+
+    rng = np.random.default_rng(7)
+    x = np.sqrt(np.linspace(0.0025, 0.15, 10))
+    err = 0.001 * (1 + rng.random(10))
+    intercept, slope, underestimate = 0.005, 0.02, 2.0
+    inside_line, inside_k, replicas = 0, 0, 200
+    for _ in range(replicas):
+        y = intercept + slope * x + underestimate * err * rng.standard_normal(10)
+        fit = StraightLine().fit(x, y, err)
+        a, a_err, _, _, _ = weighted_line_fit(x, y, err)
+        assert fit.params["Phi0"] == pytest.approx(a, rel=1e-6)
+        assert fit.errors["Phi0"] == pytest.approx(a_err, rel=1e-4)
+        inside_line += abs(fit.params["Phi0"] - intercept) < 2 * fit.errors["Phi0"]
+        proportional = sigma_scaling(x, slope * x + underestimate * err * rng.standard_normal(10),
+                                     err)
+        inside_k += abs(proportional.params["k"] - slope) < 2 * proportional.errors["k"]
+    # Binomial(200, 0.95): sd 0.015; the unscaled errors cover about 0.69
+    assert inside_line / replicas > 0.88 and inside_k / replicas > 0.88, (inside_line, inside_k)
+    # the profile interval of a straight line is its (scaled) curvature error
+    interval = fit.intervals["Phi0"]
+    assert 0.5 * (interval.hi - interval.lo) == pytest.approx(fit.errors["Phi0"], rel=1e-2)
+    # a scatter below the errors: the stated errors, not narrowed
+    exact = StraightLine().fit(x, intercept + slope * x, err)
+    _, stated, _, _, _ = weighted_line_fit(x, intercept + slope * x, err)
+    assert exact.errors["Phi0"] == pytest.approx(stated, rel=1e-4)

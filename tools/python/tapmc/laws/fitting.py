@@ -120,6 +120,20 @@ def correlation_matrix(covariance):
     return corr
 
 
+def _scatter_scale(model, y, sigma, nparams):
+    """The factor of a weighted fit's covariance: its reduced chi2 when that exceeds 1 (the
+    points scatter more than their stated errors, which then understate them by
+    sqrt(chi2/dof)), else 1 (a scatter below the errors is taken for chance, never a reason to
+    narrow them). The convention of :func:`tapmc.stats.weighted_line_fit` and of the profile
+    intervals (:attr:`FitResult.chi2_scale`), so that ``errors`` and ``intervals`` of one fit
+    tell one error size."""
+    dof = len(y) - nparams
+    if dof < 1:
+        return 1.0
+    reduced = float(np.sum(((y - model) / sigma) ** 2)) / dof
+    return max(1.0, reduced) if np.isfinite(reduced) else 1.0
+
+
 class FitResult:
     """Outcome of a fit: ``params`` (dict), ``intervals`` (dict of :class:`Interval`, the 68 %
     profile-likelihood intervals), ``determined_params`` / ``undetermined_params`` (names whose
@@ -128,10 +142,13 @@ class FitResult:
     ``correlation``, ``chi2``, ``dof``, ``reduced_chi2``, ``rms`` (residual root mean square),
     ``converged``, ``determined`` (the covariance verdict of :meth:`Law.assess` and every
     parameter determined) and ``note`` (why not). ``result(x)`` evaluates the fitted law;
-    ``plot(ax)`` draws data and fit. With ``sigma`` given to the fit, errors are absolute
-    (``chi2`` is the weighted sum and ``reduced_chi2`` tests the model); without it the errors
-    are scaled by the scatter of the residuals and ``chi2`` is the plain sum of squared
-    residuals. The profiles are computed on first use of ``intervals``, ``errors``,
+    ``plot(ax)`` draws data and fit. With ``sigma`` given to the fit, ``chi2`` is the weighted
+    sum and ``reduced_chi2`` tests the model; the covariance (so ``errors``) is the one the
+    errors ``sigma`` give, multiplied by ``reduced_chi2`` when that exceeds 1 (the points
+    scatter more than their errors say; errors times sqrt(chi2/dof), never narrowed), as the
+    profile ``intervals`` are (``chi2_scale``) and :func:`tapmc.stats.weighted_line_fit`;
+    without it the errors are scaled by the scatter of the residuals and ``chi2`` is the plain
+    sum of squared residuals. The profiles are computed on first use of ``intervals``, ``errors``,
     ``determined`` or ``note`` (a few tens of refits); a result built otherwise may be given
     its ``intervals`` (dict of :class:`Interval`) instead."""
 
@@ -410,6 +427,8 @@ class Law:
                 pcov = np.full((len(start), len(start)), np.inf)
                 notes.append(f"fit did not converge ({exc})")
                 converged = False
+        if weighted and converged:
+            pcov = pcov * _scatter_scale(self.function(x, *popt), y, sigma, len(self.names))
         popt, pcov = self._canonical(popt, pcov)
         determined, more = self.assess(popt, pcov, lo, hi)
         notes += more

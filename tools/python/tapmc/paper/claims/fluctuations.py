@@ -9,7 +9,7 @@ import math
 import numpy as np
 from scipy.stats import chi2 as chi2_distribution
 
-from tapmc.stats import weighted_polyfit
+from tapmc.stats import weighted_line_fit
 
 from .. import _plotting as P
 from .common import not_in_campaign, one_seed_error_text, value_triple
@@ -108,9 +108,9 @@ def sigma_intercept(data, claim):
     shown = None
     factor = data.run_error("Z:sigma" + suffix)[0]
     if factor != 1.0 and np.all(np.isfinite(b.err)) and np.all(b.err > 0):
-        # the same weighted line, one-run sigmas with a realization's error
+        # the same weighted line, one-run sigmas with a realization's error (errors widened
+        # by the reduced chi2 when it exceeds 1, as Fig. 3's own line: FitResult.errors)
         sem = np.where(b.n == 1, b.err * factor, b.err)
-        coef, cov, _ = weighted_polyfit(b.x, b.mean, sem, 1)
-        m, s = float(coef[0]), float(math.sqrt(cov[0, 0]))
+        m, s = weighted_line_fit(b.x, b.mean, sem)[:2]
         shown = f"{fmt(m, s)} ({one_seed_error_text(factor)})"
     return [Measure(m, s, dof if dof and dof >= 1 else None, effect=effect, shown=shown)]
