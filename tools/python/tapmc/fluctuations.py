@@ -13,6 +13,7 @@ section III.A-B and Fig. 3 of Philippe & Bideau.
 """
 
 import numpy as np
+from scipy import fft as scipy_fft
 from scipy import signal, special, stats
 
 from ._legends import place_legend
@@ -20,7 +21,8 @@ from ._validate import as_1d, as_2d, new_axis, positive_int, require, result
 from .laws import FitResult, Law
 
 __all__ = ["SteadyState", "ErrorCalibration", "PowerSpectrum", "sigma_x", "sigma_scaling", "Proportional",
-           "DEFAULT_LAST", "DEFAULT_BATCHES", "DEFAULT_BINS_PER_DECADE", "jackknife_error"]
+           "DEFAULT_LAST", "DEFAULT_BATCHES", "DEFAULT_BINS_PER_DECADE", "jackknife_error",
+           "binned_periodogram_layout", "binned_periodograms", "shaped_gaussian_series"]
 
 #: taps averaged for the steady state (paper, section III.B: the last 1000 of 4000 taps)
 DEFAULT_LAST = 1000
@@ -283,6 +285,85 @@ class _LogLogLine(Law):
         return [a, b]
 
 
+def _log_bins(f, bins_per_decade):
+    """The logarithmic bin (a label, increasing with f) of every frequency ``f`` (> 0,
+    increasing): ``bins_per_decade`` bins a decade, edges at powers of 10^(1/bins_per_decade)."""
+    edges = 10 ** (np.arange(np.floor(np.log10(f[0]) * bins_per_decade),
+                             np.ceil(np.log10(f[-1]) * bins_per_decade) + 2) / bins_per_decade)
+    return np.digitize(f, edges)
+
+
+def _relative_covariance(which, ordinate_correlation):
+    """Relative covariance (cov / (mean_i mean_j)) of the bin means of ONE periodogram whose
+    ordinates fall in the bins ``which`` (labels, increasing): the ordinates are exponential
+    variables, those of a tapered series correlated with their neighbours
+    (``ordinate_correlation``, :data:`WINDOW_CORRELATIONS`), the spectrum taken as flat
+    across a bin. n independent periodograms averaged divide it by n."""
+    labels = np.unique(which)
+    index = np.searchsorted(labels, which)  # bin of every ordinate, 0..nbins-1
+    nbins = len(labels)
+    cov = np.zeros((nbins, nbins))
+    np.add.at(cov, (index, index), ordinate_correlation[0])
+    for lag, r in enumerate(ordinate_correlation[1:], start=1):
+        np.add.at(cov, (index[:-lag], index[lag:]), r)
+        np.add.at(cov, (index[lag:], index[:-lag]), r)
+    counts = np.bincount(index, minlength=nbins).astype(float)
+    return cov / np.outer(counts, counts)
+
+
+def binned_periodogram_layout(samples, taps_per_sample=1,
+                              bins_per_decade=DEFAULT_BINS_PER_DECADE, window="hann"):
+    """What :class:`PowerSpectrum` makes of a segment of ``samples`` samples, before any data:
+    (``frequency`` of its bins, ``counts`` of periodogram ordinates a bin, the bin means'
+    ``relative_covariance`` for one series, divide by the number of independent series
+    averaged). The statistics of a binned spectrum are known from this layout alone, so that
+    a test of spectra need not take each spectrum's errors from its own noisy power
+    (tapmc.paper.claims.fluctuations.spectrum_low_band)."""
+    f = np.arange(1, samples // 2 + 1) / (samples * taps_per_sample)
+    which = _log_bins(f, bins_per_decade)
+    labels = np.unique(which)
+    frequency = np.array([np.exp(np.mean(np.log(f[which == b]))) for b in labels])
+    counts = np.array([np.sum(which == b) for b in labels])
+    return frequency, counts, _relative_covariance(which, WINDOW_CORRELATIONS[window])
+
+
+#: a series of a given spectrum (:func:`shaped_gaussian_series`) is synthesised over this many
+#: times its length and cut to its last part: not periodic, and carrying power below its own
+#: lowest frequency, which leaks into its lowest ordinates as in a window of a longer run
+SYNTHESIS_OVERSAMPLING = 4
+
+
+def shaped_gaussian_series(frequency, power, low_slope, samples, count, rng):
+    """``count`` independent stationary Gaussian series of ``samples`` samples (one a tap)
+    whose power spectrum is proportional to ``power`` at ``frequency`` (1/taps, increasing;
+    linear in log-log between them, flat above the highest, the power law of log-log slope
+    ``low_slope`` below the lowest), as an array (count, samples). Spectral synthesis: random
+    complex Gaussian Fourier amplitudes over :data:`SYNTHESIS_OVERSAMPLING` times the length,
+    the last ``samples`` kept. The scale is not fixed: for tests of spectra's ratios."""
+    length = SYNTHESIS_OVERSAMPLING * samples
+    f = np.fft.rfftfreq(length)[1:]
+    log_f, log_p = np.log(np.asarray(frequency, float)), np.log(np.asarray(power, float))
+    shape = np.interp(np.log(f), log_f, log_p)
+    below = f < frequency[0]
+    shape[below] = log_p[0] + low_slope * (np.log(f[below]) - log_f[0])
+    amplitude = np.concatenate([[0.0], np.exp(0.5 * (shape - shape.max()))])
+    z = rng.standard_normal((count, len(amplitude))) * (1 + 0j)
+    z += 1j * rng.standard_normal((count, len(amplitude)))
+    z *= amplitude
+    return scipy_fft.irfft(z, n=length, axis=1, overwrite_x=True)[:, -samples:]
+
+
+def binned_periodograms(x, counts, window="hann"):
+    """The bin means (n_series, bins) of the periodograms of the rows of ``x`` about their
+    means, ordinates f > 0 binned ``counts`` a bin from the lowest (the first bins of
+    :func:`binned_periodogram_layout`): :class:`PowerSpectrum`'s power of each row, for many
+    rows at once."""
+    _, p = signal.periodogram(x - x.mean(axis=1, keepdims=True), axis=1, window=window,
+                              detrend="constant", scaling="density")
+    edges = np.concatenate([[0], np.cumsum(counts)]) + 1  # ordinate 0 (f = 0) left out
+    return np.stack([p[:, a:b].mean(axis=1) for a, b in zip(edges[:-1], edges[1:])], axis=1)
+
+
 class PowerSpectrum:
     """Power spectrum of the fluctuations X - X_SS against the frequency f = 1/taps and its
     log-log slope (section III.A, Fig. 3: "more or less a simple power-law ... with a slope in
@@ -345,10 +426,7 @@ class PowerSpectrum:
         p = p.mean(axis=0)  # independent series: their periodograms average
         f, p = f[1:], p[1:]  # f = 0 carries the removed mean only
         self.raw_frequency, self.raw_power = f, p
-        bpd = self.bins_per_decade
-        edges = 10 ** (np.arange(np.floor(np.log10(f[0]) * bpd),
-                                 np.ceil(np.log10(f[-1]) * bpd) + 2) / bpd)
-        which = np.digitize(f, edges)
+        which = _log_bins(f, self.bins_per_decade)
         freq, power, counts = [], [], []
         for b in np.unique(which):
             sel = which == b
@@ -364,29 +442,12 @@ class PowerSpectrum:
         if use.sum() < 3:
             raise ValueError(f"only {use.sum()} spectrum bins in fit_range = {self.fit_range}; "
                              "at least 3 are needed for a slope")
-        labels = np.unique(which)
-        relative = self._relative_covariance(which, labels)
+        relative = _relative_covariance(which, self.ordinate_correlation) / self.x.shape[0]
         # the bin means' own error: what one run's spectrum carries in place of a sem over
         # realizations (a Gamma mean of m effective ordinates has relative error 1/sqrt(m))
         self._power_error = self._power * np.sqrt(np.diag(relative))
         self._fit = self._fit_slope(relative, use)
         return self
-
-    def _relative_covariance(self, which, labels):
-        """Relative covariance of the bin means (cov / (mean_i mean_j)): the periodogram
-        ordinates are exponential variables, those of a tapered series correlated with their
-        neighbours (``ordinate_correlation``); averaged over the n_series independent
-        periodograms."""
-        rho = self.ordinate_correlation
-        index = np.searchsorted(labels, which)  # bin of every ordinate, 0..nbins-1
-        nbins = len(labels)
-        cov = np.zeros((nbins, nbins))
-        np.add.at(cov, (index, index), rho[0])
-        for lag, r in enumerate(rho[1:], start=1):
-            np.add.at(cov, (index[:-lag], index[lag:]), r)
-            np.add.at(cov, (index[lag:], index[:-lag]), r)
-        counts = np.bincount(index, minlength=nbins).astype(float)
-        return cov / np.outer(counts, counts) / self.x.shape[0]
 
     def _fit_slope(self, relative, use):
         """Generalised least squares of log10 P against log10 f over the bins in ``use``.
