@@ -58,11 +58,12 @@ set(_tapmc_own_headers_dir TRUE)
 if(_tapmc_headers_dir STREQUAL _tapmc_default_headers)
   set(_tapmc_own_headers_dir FALSE)  # TAPMC's cache directory: the fetch may fill it
 endif()
-string(CONCAT _tapmc_what_to_give
-       "Give -DTAPMC_LAMMPS_HEADERS_DIR=<the top directory of the LAMMPS source tree that the "
+string(CONCAT _tapmc_headers_option
+       "-DTAPMC_LAMMPS_HEADERS_DIR=<the top directory of the LAMMPS source tree that the "
        "LAMMPS in LAMMPS_DIR was built from: the directory with src/ and cmake/; any unpacked "
        "source of LAMMPS version ${LAMMPS_VERSION_NUMERIC} will do, it need not be built>. "
        "See doc/install.rst, route 1.")
+set(_tapmc_what_to_give "Give ${_tapmc_headers_option}")
 
 if(NOT EXISTS "${_tapmc_headers_dir}/src/neigh_request.h")
   if(_tapmc_own_headers_dir)
@@ -94,8 +95,9 @@ if(NOT EXISTS "${_tapmc_headers_dir}/src/neigh_request.h")
     RESULT_VARIABLE _tapmc_fetch_rc)
   if(NOT _tapmc_fetch_rc EQUAL 0 OR NOT EXISTS "${_tapmc_headers_dir}/src/neigh_request.h")
     message(FATAL_ERROR "TAPMC: the LAMMPS source headers are missing and could not be fetched "
-            "from Debian's source package (above); run tools/setup/fetch-lammps-headers.sh "
-            "${TAPMC_LAMMPS_HEADERS_DIR} by hand, or ${_tapmc_what_to_give}")
+            "from Debian's source package (why: above); run tools/setup/fetch-lammps-headers.sh "
+            "${TAPMC_LAMMPS_HEADERS_DIR} by hand once that is mended, or, offline, give "
+            "${_tapmc_headers_option}")
   endif()
   tapmc_header_version("${_tapmc_headers_dir}" _tapmc_fetched)
   if(NOT _tapmc_fetched EQUAL LAMMPS_VERSION_NUMERIC)

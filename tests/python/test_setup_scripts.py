@@ -4,11 +4,13 @@ tools/setup/build.sh, tools/setup/fetch-lammps-headers.sh): the Debian packages 
 optional (tools/setup/debian-packages.txt); as root, or with a sudo that works, every missing
 one is installed; without either, missing optional ones are named with what is left out and the
 build goes on without those parts, missing required ones stop the script with the apt-get line
-for an administrator, and a sudo that refuses is followed by TAPMC's own line.
+for an administrator, and a sudo that refuses is followed by TAPMC's own line. Without network,
+the fetch of the LAMMPS headers says that the archive is out of reach and how to go on offline.
 
 Debian's tools are stood in for by small scripts on PATH (dpkg-query reporting the packages of
 FAKE_MISSING missing, id, sudo, apt-get and cmake recording their arguments), so nothing is
-installed; one case runs as the user nobody for real (as root through setpriv)."""
+installed; one case runs as the user nobody for real (as root through setpriv). No network:
+http_proxy points at a closed port."""
 
 import os
 import re
@@ -21,6 +23,7 @@ import pytest
 
 SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", Path(__file__).resolve().parents[2]))
 SETUP = SOURCE / "tools" / "setup"
+NO_NETWORK = "http://127.0.0.1:9"   # the discard port: nothing listens there, connect fails at once
 
 FAKES = {
     # installed unless named in FAKE_MISSING; the script asks `dpkg-query -W -f=... PACKAGE`
@@ -206,3 +209,48 @@ def test_as_the_user_nobody():
     assert "not root" in out.stderr and "installing" not in out.stderr
     assert "apt-get install --no-install-recommends zlib1g-dev python3-venv\n" in out.stderr
     assert re.search(r"left out .*the venv route", out.stderr), out.stderr
+
+
+def test_without_network_the_fetch_says_the_archive_is_out_of_reach(tmp_path):
+    """apt-get update cannot reach Debian's archive (a proxy on a closed port): the message says
+    so and where the offline way is, not that the suite lacks the version."""
+    env = {k: v for k, v in os.environ.items() if k.lower() not in ("no_proxy", "https_proxy")}
+    env.update(http_proxy=NO_NETWORK, HTTP_PROXY=NO_NETWORK)
+    version = "20220106.git7586adbb6a+ds1-2"
+    env.setdefault("TAPMC_LAMMPS_SRC_VERSION", version)
+    env["TAPMC_LAMMPS_SRC_SUITE"] = "bookworm"
+    out = subprocess.run(["bash", str(SETUP / "fetch-lammps-headers.sh"), str(tmp_path / "h")],
+                         env=env, capture_output=True, text=True, timeout=240,
+                         stdin=subprocess.DEVNULL)
+    assert out.returncode == 1
+    text = " ".join(out.stderr.split())
+    assert "Debian's archive is out of reach" in text, text
+    assert f"a proxy in the way (http_proxy={NO_NETWORK})" in text
+    assert "doc/install.rst, 'Without network'" in text
+    assert "has no lammps=" not in text
+    assert not (tmp_path / "h").exists()
+    page = (SOURCE / "doc" / "install.rst").read_text()
+    assert "\nWithout network\n" in page, "the section the message names"
+
+
+
+def test_without_network_configuring_says_how_to_go_on_offline(tmp_path):
+    """The same through CMake, for Debian's LAMMPS with no headers in TAPMC's cache (an empty
+    HOME): the fetch's reason, then the offline way (-DTAPMC_LAMMPS_HEADERS_DIR)."""
+    if subprocess.run(["dpkg-query", "-W", "liblammps-dev"], capture_output=True).returncode:
+        pytest.skip("Debian's liblammps-dev is not installed: CMake fetches no headers")
+    home = tmp_path / "home"
+    home.mkdir()
+    env = {k: v for k, v in os.environ.items()
+           if k.lower() not in ("no_proxy", "https_proxy", "xdg_cache_home")
+           and not k.startswith("TAPMC_")}
+    env.update(HOME=str(home), http_proxy=NO_NETWORK, HTTP_PROXY=NO_NETWORK)
+    out = subprocess.run(["cmake", "-S", str(SOURCE), "-B", str(tmp_path / "build"),
+                          "-DTAPMC_BUILD_TESTS=OFF", "-DTAPMC_BUILD_PORES=OFF",
+                          "-DTAPMC_BUILD_BENCH=OFF"], env=env, capture_output=True, text=True,
+                         timeout=300, stdin=subprocess.DEVNULL)
+    assert out.returncode != 0, out.stdout
+    text = " ".join(out.stderr.split())
+    assert "Debian's archive is out of reach" in text, text
+    assert "by hand once that is mended, or, offline, give -DTAPMC_LAMMPS_HEADERS_DIR=<" in text
+    assert "or Give" not in text

@@ -101,8 +101,27 @@ SRC
 apt_opts=(-o "Dir::Etc::SourceList=$work/apt/sources.list" -o "Dir::Etc::SourceParts=/dev/null"
           -o "Dir::State::Lists=$work/apt/lists" -o "Dir::Cache=$work/apt/cache"
           -o "APT::Sandbox::User=root")
+# When apt's log $1 says that Debian's archive was out of reach: say so, and how to go on
+# offline, and stop.
+stop_if_unreachable() {
+  grep -qE 'Could not (connect|resolve)|Temporary failure resolving|Connection (failed|timed out)' \
+    "$1" || return 0
+  echo "fetch-lammps-headers.sh: Debian's archive is out of reach (apt's message is above): no" \
+       "network, or a proxy in the way (http_proxy=${http_proxy:-<not set>}), so lammps=$pkg_version" \
+       "cannot be fetched. Run this again once the archive is reachable, or go on offline with a" \
+       "LAMMPS source tree of that version: doc/install.rst, 'Without network'" >&2
+  exit 1
+}
+
 echo "tapmc: fetching Debian source package lammps=$pkg_version ($suite) for $mode" >&2
-apt-get "${apt_opts[@]}" update -qq
+# apt-get update only warns when it cannot download an index; --error-on=any makes that an error.
+if ! apt-get "${apt_opts[@]}" update -qq --error-on=any 2> "$work/apt-update.log"; then
+  cat "$work/apt-update.log" >&2
+  stop_if_unreachable "$work/apt-update.log"
+  echo "fetch-lammps-headers.sh: apt-get update of Debian's $suite deb-src failed (above); is" \
+       "'$suite' (TAPMC_LAMMPS_SRC_SUITE, default this system's release) a Debian suite?" >&2
+  exit 1
+fi
 # The original tarball is the whole upstream source; Debian's .dsc and patches are not needed.
 # apt fetches the tarball first, so when the archive lacks the .dsc (lammps 20260704+dfsg-2 in
 # unstable) the download fails after the tarball is in hand; the checksum test below decides.
@@ -111,6 +130,7 @@ apt-get "${apt_opts[@]}" update -qq
 orig=$(ls "$work"/lammps_*.orig.tar.* 2> /dev/null | head -n 1 || true)
 if [ -z "$orig" ]; then
   cat "$work/apt-source.log" >&2
+  stop_if_unreachable "$work/apt-source.log"
   echo "fetch-lammps-headers.sh: Debian's $suite deb-src has no lammps=$pkg_version; set" \
        "TAPMC_LAMMPS_SRC_SUITE to the suite that has it (e.g. unstable for 20260704+dfsg-2)" >&2
   exit 1
