@@ -2,8 +2,9 @@
 """`cmake --install` of the build under test into a temporary prefix (no root): the installed
 files (doc/install.rst lists them), the programs run from the prefix and find libtapmc.so through
 their RUNPATH (also after the prefix moved), the installed tapmc-paper imports the installed
-package and not the source tree, a downstream CMake project finds TAPMC::tapmc, and every
-program prints the one version of tools/python/tapmc/__init__.py."""
+package and not the source tree nor a folder tapmc of the current directory, a downstream
+CMake project finds TAPMC::tapmc, and every program prints the one version of
+tools/python/tapmc/__init__.py."""
 
 import os
 import re
@@ -213,3 +214,18 @@ def test_downstream_cmake_project_links_TAPMC_tapmc(prefix, tmp_path):
     assert out.returncode == 0, out.stdout + out.stderr
     out = run([tmp_path / "b/downstream"])
     assert out.returncode == 0 and out.stdout == "tapmc_register found\n", out
+
+
+def test_installed_tapmc_paper_ignores_a_tapmc_folder_in_the_current_directory(prefix, tmp_path):
+    """`python -m` puts the current directory first on sys.path: run from a folder holding a
+    package tapmc (a checkout's tools/python), the installed tapmc-paper must still run the
+    installed package (PYTHONSAFEPATH)."""
+    shadow = tmp_path / "tapmc" / "paper"
+    shadow.mkdir(parents=True)
+    (tmp_path / "tapmc" / "__init__.py").write_text("")
+    (shadow / "__init__.py").write_text("")
+    (shadow / "__main__.py").write_text("print('the shadow package of the current directory')\n")
+    out = run([prefix / "bin/tapmc-paper", "--version"], cwd=tmp_path,
+              env=clean_env(PYTHONPATH=""))
+    assert out.returncode == 0 and out.stdout == f"tapmc-paper {source_version()}\n", out
+
