@@ -2,9 +2,9 @@
 """`cmake --install` of the build under test into a temporary prefix (no root): the installed
 files (doc/install.rst lists them), the programs run from the prefix and find libtapmc.so through
 their RUNPATH (also after the prefix moved), the installed tapmc-paper imports the installed
-package and not the source tree nor a folder tapmc of the current directory, a downstream
-CMake project finds TAPMC::tapmc, and every program prints the one version of
-tools/python/tapmc/__init__.py."""
+package and not the source tree nor a folder tapmc of the current directory, an absolute
+TAPMC_INSTALL_PYTHONDIR, a downstream CMake project finds TAPMC::tapmc, and every program prints
+the one version of tools/python/tapmc/__init__.py."""
 
 import os
 import re
@@ -228,4 +228,32 @@ def test_installed_tapmc_paper_ignores_a_tapmc_folder_in_the_current_directory(p
     out = run([prefix / "bin/tapmc-paper", "--version"], cwd=tmp_path,
               env=clean_env(PYTHONPATH=""))
     assert out.returncode == 0 and out.stdout == f"tapmc-paper {source_version()}\n", out
+
+
+def test_a_python_dir_given_as_an_absolute_path_is_used_as_it_is(tmp_path):
+    """-DTAPMC_INSTALL_PYTHONDIR=/abs/path: the package goes there and the installed
+    tapmc-paper takes it from there (not from PREFIX//abs/path). Configured in a build directory
+    of its own without the compiled parts; the install rules of tools/python alone run."""
+    cache = (BUILD / "CMakeCache.txt").read_text()
+    given = {name: re.search(rf"^{name}:\w+=(.*)$", cache, re.M).group(1)
+             for name in ("LAMMPS_DIR", "TAPMC_LAMMPS_HEADERS_DIR")}
+    pythondir = tmp_path / "site" / "packages"
+    build = tmp_path / "build"
+    out = run(["cmake", "-S", SOURCE, "-B", build, "-DTAPMC_BUILD_TESTS=OFF",
+               "-DTAPMC_BUILD_PORES=OFF", "-DTAPMC_BUILD_BENCH=OFF",
+               *(f"-D{name}={value}" for name, value in given.items()),
+               f"-DTAPMC_INSTALL_PYTHONDIR={pythondir}"], timeout=300)
+    assert out.returncode == 0, out.stdout + out.stderr
+    prefix = tmp_path / "prefix"
+    out = run(["cmake", f"-DCMAKE_INSTALL_PREFIX={prefix}", "-P",
+               build / "tools/python/cmake_install.cmake"])
+    assert out.returncode == 0, out.stdout + out.stderr
+    assert (pythondir / "tapmc/__init__.py").is_file()
+    assert not (prefix / str(pythondir).lstrip("/")).exists()
+    assert launcher_settings(prefix / "bin/tapmc-paper").get("PYTHONPATH") == str(pythondir)
+    init = pythondir / "tapmc/__init__.py"
+    init.write_text(init.read_text().replace(f'__version__ = "{source_version()}"',
+                                             '__version__ = "0.0.0+absolute"'))
+    out = run([prefix / "bin/tapmc-paper", "--version"], env=clean_env(PYTHONPATH=""))
+    assert out.stdout == "tapmc-paper 0.0.0+absolute\n", out
 
