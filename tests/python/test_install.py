@@ -4,7 +4,9 @@ files (doc/install.rst lists them), the programs run from the prefix and find li
 their RUNPATH (also after the prefix moved), the installed tapmc-paper imports the installed
 package and not the source tree nor a folder tapmc of the current directory, an absolute
 TAPMC_INSTALL_PYTHONDIR, a downstream CMake project finds TAPMC::tapmc, and every program prints
-the one version of tools/python/tapmc/__init__.py."""
+the one version of tools/python/tapmc/__init__.py. An install again removes the modules of the
+earlier one; the target uninstall removes the last install (BUILD/install_manifest.txt, which
+docs.test_doc_snippets writes too: the two hold one ctest resource lock)."""
 
 import os
 import re
@@ -257,3 +259,52 @@ def test_a_python_dir_given_as_an_absolute_path_is_used_as_it_is(tmp_path):
     out = run([prefix / "bin/tapmc-paper", "--version"], env=clean_env(PYTHONPATH=""))
     assert out.stdout == "tapmc-paper 0.0.0+absolute\n", out
 
+
+def install(prefix):
+    out = run(["cmake", "--install", BUILD, "--prefix", prefix])
+    assert out.returncode == 0, out.stdout + out.stderr
+    return out.stdout
+
+
+def test_an_install_again_removes_modules_of_the_earlier_one(tmp_path):
+    """A module of an earlier install that the package no longer has must not stay importable:
+    the second install removes the package folder first (and only that folder)."""
+    prefix = tmp_path / "prefix"
+    install(prefix)
+    package = prefix / PYTHONDIR / "tapmc"
+    (package / "removed_upstream.py").write_text("GONE = False\n")
+    (package / "__pycache__").mkdir(exist_ok=True)
+    (prefix / PYTHONDIR / "beside.py").write_text("")   # not ours: stays
+    printed = install(prefix)
+    assert f"Removing the earlier install of the package: {package}" in printed
+    assert not (package / "removed_upstream.py").exists()
+    assert (package / "paper/__main__.py").is_file() and (prefix / PYTHONDIR / "beside.py").exists()
+
+
+def test_uninstall_removes_the_last_install_and_nothing_else(tmp_path):
+    prefix = tmp_path / "prefix"
+    install(prefix)
+    manifest = (BUILD / "install_manifest.txt").read_text().split()
+    assert manifest and all(path.startswith(f"{prefix}/") for path in manifest)
+    (prefix / PYTHONDIR / "tapmc/__pycache__").mkdir(exist_ok=True)
+    (prefix / PYTHONDIR / "tapmc/__pycache__/cli.cpython-311.pyc").write_text("")
+    (prefix / "bin/mine").write_text("a file of the user's\n")
+    (prefix / "share/tapmc/notes.txt").write_text("a file of the user's in TAPMC's folder\n")
+    out = run(["cmake", "--build", BUILD, "--target", "uninstall"])
+    assert out.returncode == 0, out.stdout + out.stderr
+    assert f"Removing: {prefix}/bin/lmp_tapmc" in out.stdout
+    assert f"Removing the Python package folder: {prefix / PYTHONDIR / 'tapmc'}" in out.stdout
+    left = sorted(str(p.relative_to(prefix)) for p in prefix.rglob("*") if not p.is_dir())
+    assert left == ["bin/mine", "share/tapmc/notes.txt"], left
+    for folder in ("share/doc/tapmc", "include/tapmc", "lib/cmake/TAPMC", PYTHONDIR / "tapmc",
+                   "share/tapmc/examples"):
+        assert not (prefix / folder).exists(), folder
+
+
+def test_uninstall_without_a_manifest_removes_nothing_and_says_why(tmp_path):
+    missing = tmp_path / "install_manifest.txt"
+    out = run(["cmake", f"-DMANIFEST={missing}", "-P", BUILD / "TAPMCUninstall.cmake"])
+    assert out.returncode != 0
+    text = " ".join(out.stderr.split())
+    assert f"there is no {missing}, the list of the files that `cmake --install`" in text, text
+    assert "so nothing is known to remove" in text
