@@ -261,7 +261,6 @@ def test_the_figure_states_the_scale_its_campaign_records(tmp_path, monkeypatch)
     scale's N, box and taps, and names it; one without scale.json is the full preset's
     (the committed campaign's); an edited preset is named as a scale, not as the preset."""
     from tapmc.paper import _plotting, _runs
-    from tapmc.paper.questions.common import campaign_scale, scale_text
     from tapmc.paper.scales import FULL, QUICK
     stated = []
     monkeypatch.setattr(_plotting, "finish_figure", lambda fig, text, *a, **k: stated.append(text))
@@ -276,5 +275,5 @@ def test_the_figure_states_the_scale_its_campaign_records(tmp_path, monkeypatch)
     quick, bare = stated
     assert f"N = {QUICK.N}, box {QUICK.L:g}R" in quick and "campaign: quick preset" in quick
     assert f"N = {FULL.N}, box {FULL.L:g}R" in bare and "campaign: full preset" in bare
-    assert campaign_scale(tmp_path / "bare") == FULL
-    assert scale_text(QUICK.replace(N=100)) == "campaign: scale quick"
+    assert _runs.folder_scale(tmp_path / "bare") == FULL
+    assert _plotting.scale_text(QUICK.replace(N=100)) == "campaign: scale quick"

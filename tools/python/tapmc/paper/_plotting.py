@@ -380,6 +380,12 @@ def figure_settings(campaign, figure_runs, eps=False):
                 campaign=Path(campaign.directory).name)
 
 
+def scale_text(scale):
+    """:func:`campaign_text` of a campaign of ``scale``: "full preset" when it is a preset
+    unchanged, else "scale <name>"."""
+    return campaign_text({"scale": scale.name, "preset": SCALES.get(scale.name) == scale})
+
+
 def campaign_text(summary):
     """The campaign a figure comes from, named by its scale (report.json's ``scale`` and
     ``preset``): "campaign: full preset", "campaign: scale <name>", else by its folder's name

@@ -21,7 +21,7 @@ from tapmc.campaign import CampaignDirectoryError, RunSpec, atomic, verify_finis
 from tapmc.pores import hist_is_current
 from tapmc.readers import TapmcFormatError, read_ave_time, read_fix_print
 
-from .scales import SCALES, Scale
+from .scales import FULL, SCALES, Scale
 
 #: Inputs of the paper's protocols, relative to the repository root.
 CONSTANT_EPS = "examples/paper/in.constant_eps"
@@ -482,6 +482,12 @@ def check_scale(directory, scale):
     raise CampaignDirectoryError(f"campaign {Path(directory)}: made with another Scale "
                                  f"{name!r} than this TAPMC's ({path}: {shown}); use another "
                                  "--campaign")
+
+
+def folder_scale(directory):
+    """The Scale a campaign folder records (:func:`recorded_scale`), the full preset when it
+    records none (the committed campaign's): what a figure drawn from the folder states."""
+    return recorded_scale(directory) or FULL
 
 
 def campaign_scale(campaign):

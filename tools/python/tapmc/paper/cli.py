@@ -37,7 +37,7 @@ from . import FIGURES, _runs, cost, paper_ramp, paper_ramp_figure, plan, sigma_e
 from ._arguments import folder, positive_int
 from .front import command as front_command
 from .plan import TIERS
-from .scales import FBC_STARTS, FULL, get_scale
+from .scales import FBC_STARTS, get_scale
 
 try:
     from .questions import command as question_command
@@ -259,7 +259,7 @@ def _read_campaign(args, name, module, unit, write_figure, figure_states_scale=F
         print(f"tapmc-paper {name}: --out {args.out} is a file, not a folder", file=sys.stderr)
         return 2
     try:
-        scale = _runs.recorded_scale(args.campaign) or FULL
+        scale = _runs.folder_scale(args.campaign)
         rows = module.analyse(args.campaign, scale.eta)
     except (TapmcFormatError, CampaignDirectoryError) as err:  # a damaged taps.dat, manifest
         print(f"tapmc-paper {name}: {err}", file=sys.stderr)

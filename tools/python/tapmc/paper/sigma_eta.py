@@ -48,7 +48,7 @@ from tapmc.stats import beyond, realization_factor, t_quantile, weighted_line_fi
 
 from . import _plotting, _runs
 from ._steady_state import BC, sigma_error_one_run, steady_last
-from .scales import FULL, SCALES
+from .scales import FULL
 
 CSV_NAME = "sigma_eta.csv"
 PNG_NAME = "sigma_eta.png"
@@ -509,8 +509,7 @@ def settings_line(all_points, used=None, scale=FULL):
             "markers: runs still going; "
             "dashed: sigma_<Z> = offset + slope sqrt(eps); crosses: sigma_<Z> about each "
             "run's straight line over its window; "
-            + _plotting.campaign_text({"scale": scale.name,
-                                       "preset": SCALES.get(scale.name) == scale}))
+            + _plotting.scale_text(scale))
 
 
 def write_figure(all_points, default_eta, path, factor_of=None, scale=FULL):

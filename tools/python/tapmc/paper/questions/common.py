@@ -16,8 +16,7 @@ from pathlib import Path
 
 from tapmc.readers import TapmcFormatError, read_fix_print
 
-from .. import _plotting, _runs
-from ..scales import FULL, SCALES
+from .. import _runs
 
 #: Where the committed page reads the questions' CSVs (the report's validation/questions/).
 DEFAULT_OUT = _runs.SOURCE_DIR / "doc" / "paper_scale" / "validation" / "questions"
@@ -30,19 +29,6 @@ CAMPAIGN_RUN = DEFAULT_CAMPAIGN / "runs" / "const_pbc_eps0.0225_s1"
 PARTIAL = "partial"
 #: The paper's scale (section II): N spheres in a box of side L (in R).
 PAPER = {"N": 4096, "L": 32}
-
-
-def campaign_scale(campaign):
-    """The Scale a campaign folder records (its ``scale.json``), the full preset when it
-    records none (the committed campaign's): what a question's figure states as its settings."""
-    return _runs.recorded_scale(campaign) or FULL
-
-
-def scale_text(scale):
-    """The settings line's "campaign: ..." for a campaign of ``scale``: "full preset" when it
-    is a preset unchanged, else "scale <name>"."""
-    return _plotting.campaign_text({"scale": scale.name,
-                                    "preset": SCALES.get(scale.name) == scale})
 
 
 class QuestionError(RuntimeError):

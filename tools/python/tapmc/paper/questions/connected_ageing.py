@@ -24,8 +24,8 @@ from .. import _plotting, _runs, fig5
 from .._rst import list_table
 from ..scales import FULL
 from ..claims import fmt
-from .common import (QuestionError, campaign_scale, csv_schema, eps_of, finished_runs, last_rows,
-                     scale_text, taps_table)
+from .common import (QuestionError, csv_schema, eps_of, finished_runs, last_rows,
+                     taps_table)
 
 NAME = "connected-ageing"
 CSV = "connected_ageing.csv"
@@ -133,7 +133,7 @@ save, load = csv_schema(HEADER)
 
 def measure(args):
     path = save(args.out / CSV, analyse(args.campaign))
-    print(f"wrote {write_figure(load(path), args.out / PNG, campaign_scale(args.campaign))}")
+    print(f"wrote {write_figure(load(path), args.out / PNG, _runs.folder_scale(args.campaign))}")
 
 
 # ---- reading the CSV -----------------------------------------------------------------------
@@ -272,9 +272,9 @@ def plot(rows, axes=None):
 
 def write_figure(rows, path, scale=FULL):
     """connected_ageing.png: :func:`plot`, its settings on top (``scale``: the campaign's,
-    :func:`~tapmc.paper.questions.common.campaign_scale`); returns the path."""
+    :func:`~tapmc.paper._runs.folder_scale`); returns the path."""
     fig = plot(rows)[0].figure
     stop = _plotting.planned_stop(_runs.ageing_run(scale, fig5.BC, scale.ageing_eps, 1))
     _plotting.finish_figure(fig, _settings_text(results(rows)[0]) + f", {stop}; bands: "
-                            "jackknife errors over realizations; " + scale_text(scale))
+                            "jackknife errors over realizations; " + _plotting.scale_text(scale))
     return _plotting.save_figure(fig, path)

@@ -24,8 +24,7 @@ from ..claims import fmt
 from ..claims.bell import ramp_alpha_levels
 from ..scales import FULL
 from .alpha_window import READING_WINDOW
-from .common import (QuestionError, campaign_scale, csv_schema, runs_folder, scale_text,
-                     taps_table)
+from .common import QuestionError, csv_schema, runs_folder, taps_table
 from .ramp_replay import manifest_run
 
 NAME = "ramp-alpha"
@@ -122,7 +121,7 @@ def analyse(campaign, default_eta=FULL.eta):
 
 
 def measure(args):
-    scale = campaign_scale(args.campaign)
+    scale = _runs.folder_scale(args.campaign)
     path = save(args.out / CSV, analyse(args.campaign, scale.eta))
     print(f"wrote {write_figure(load(path), args.out / PNG, scale)}")
 
@@ -223,7 +222,7 @@ def plot(rows, axes=None, default_eta=FULL.eta):
 
 def write_figure(rows, path, scale=FULL):
     """ramp_alpha.png: :func:`plot`, its settings on top (``scale``: the campaign's,
-    :func:`~tapmc.paper.questions.common.campaign_scale`); returns the path."""
+    :func:`~tapmc.paper._runs.folder_scale`); returns the path."""
     fig = plot(rows, default_eta=scale.eta)[0].figure
     hi = max(float(r["window_hi"]) for r in rows)
     seeds = ", ".join(map(str, sorted({int(r["seed"]) for r in rows})))
@@ -237,5 +236,5 @@ def write_figure(rows, path, scale=FULL):
                             f"at the end of each level (one profile), fitted in "
                             f"{float(rows[0]['window_lo']):g}R to at most {hi:.3g}R; levels "
                             f"done whole only; seeds {seeds}; "
-                            + scale_text(scale))
+                            + _plotting.scale_text(scale))
     return _plotting.save_figure(fig, path)
