@@ -511,12 +511,16 @@ void report(LAMMPS *lmp, const Request &req, const Plan &plan, const tapmc::Pack
                    "floor z = {}\n"
                    "  {}\n"
                    "  {}\n"
-                   "  highest centre z = {:.6g}; path segments {}, unstable equilibria left {}, "
+                   "  highest centre z = {:.6g}; path segments {}, unstable equilibria left {}{}, "
                    "re-drops {}, unresolved {}\n"
                    "  create_packing CPU = {:.3f} seconds\n",
                    req.params.n, sides_text(plan), plan.dd.z_floor,
                    stereo_profile_text(plan, packing), interior_text(req, plan, packing), zmax,
-                   packing.stats.segments, packing.stats.perturbations, packing.stats.redrops,
+                   packing.stats.segments, packing.stats.perturbations,
+                   packing.stats.wedged > 0
+                       ? " (wedged at rest " + std::to_string(packing.stats.wedged) + ")"
+                       : std::string(),
+                   packing.stats.redrops,
                    packing.stats.unresolved, t_deposit);
   }
   if (packing.stats.unresolved > 0 && lmp->comm->me == 0)

@@ -108,6 +108,12 @@ struct SequentialDeposition::Impl {
           (on_floor || descent.n_active == 3 || (wall_pair && wall_pair_rests(p, *sphere, *wall))))
         return {p.x, p.y, p.z, on_floor ? RestingOn::Floor : RestingOn::Supports, segment + 1};
       if (equilibrium) ++stats.perturbations;
+      // Only an equilibrium can be wedged: it was met, not left.
+      const auto wedged_here = [&] {
+        --stats.perturbations;
+        ++stats.wedged;
+        return DropOutcome{p.x, p.y, p.z, RestingOn::Supports, segment + 1};
+      };
 
       Constraint hit{};
       bool entering_now = false;
@@ -126,7 +132,7 @@ struct SequentialDeposition::Impl {
         WallRoll path;
         const RollSetup setup = make_wall_roll(p, *sphere, *wall, contacts, descent, equilibrium,
                                                equilibrium_draws, path);
-        if (setup == RollSetup::Wedged) return {p.x, p.y, p.z, RestingOn::Supports, segment + 1};
+        if (setup == RollSetup::Wedged) return wedged_here();
         if (setup == RollSetup::Degenerate) break;
         bool is_contact = false, support_lost = false;
         const double t = wall_roll_event(packing, path, r, active, hit, is_contact, entering_now,
@@ -150,7 +156,7 @@ struct SequentialDeposition::Impl {
       ForceLaw forces[2];
       const RollSetup setup =
           make_roll(p, contacts, descent, equilibrium, equilibrium_draws, path, forces);
-      if (setup == RollSetup::Wedged) return {p.x, p.y, p.z, RestingOn::Supports, segment + 1};
+      if (setup == RollSetup::Wedged) return wedged_here();
       if (setup == RollSetup::Degenerate) break;
       bool is_contact = false;
       const double t = roll_event(packing, path, r, active, forces, descent.n_active, hit,

@@ -48,6 +48,8 @@ struct DepositionStats {
   std::int64_t segments = 0;       // path pieces (fall, roll on one, roll on two) over all drops
   std::int64_t perturbations = 0;  // unstable equilibria (exactly on top of a sphere or a ridge)
                                    // left in a random direction
+  std::int64_t wedged = 0;         // unstable equilibria where every way off was blocked by a
+                                   // touching wall or sphere: the sphere rests there
   std::int64_t redrops = 0;        // drops abandoned after kDepositionMaxSegments segments and
                                    // restarted from a fresh random (x, y)
   std::int64_t unresolved = 0;     // spheres left, non-overlapping but not proven stable, where

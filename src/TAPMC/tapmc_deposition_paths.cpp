@@ -290,12 +290,36 @@ double lowest_point(const Circle &c)
   return wrap_angle(std::atan2(c.e2.z, c.e1.z) + kPi);
 }
 
+// A way off the top of a sphere (contact normal `up`) that enters no touching constraint, when
+// random directions found none: the ways left free form a cone in the tangent plane, an
+// intersection of half-planes (one per touching constraint); when it is not empty one of its
+// edges is the edge of some half-plane, so the edges of every half-plane are the candidates,
+// and one free candidate is drawn. A cone of measure zero (a slot one diameter wide: only along
+// its walls) is found this way; false when every way is blocked (the sphere is wedged).
+bool free_way_off_top(Vec3 up, const ContactSet &contacts, const Descent &descent,
+                      EquilibriumDraws &draws, Vec3 &way)
+{
+  std::vector<Vec3> free_ways;
+  for (const Vec3 &n : contacts.normals) {
+    const Vec3 across = n - dot(n, up) * up;  // the half-plane's inward normal in the plane
+    if (!(norm(across) > defaults::kDepositionZeroLength)) continue;
+    const Vec3 edge = unit(cross(up, across));
+    for (const Vec3 candidate : {edge, -1.0 * edge, unit(across)})
+      if (!blocked(candidate, contacts, descent)) free_ways.push_back(candidate);
+  }
+  if (free_ways.empty()) return false;
+  const auto pick = static_cast<std::size_t>(draws.uniform() * free_ways.size());
+  way = free_ways[std::min(pick, free_ways.size() - 1)];
+  return true;
+}
+
 }  // namespace
 
 // The roll for the active set (one or two constraints, at least one sphere), and the laws of
 // the support forces along it. At an unstable equilibrium (on top of a sphere, or on the
 // ridge of two supports) the roll starts in a random direction (from `draws`) that enters no
-// touching constraint; when both ways along a ridge are blocked the sphere is wedged (at rest).
+// touching constraint; when every way off a top, or both ways along a ridge, are blocked the
+// sphere is wedged (at rest).
 RollSetup make_roll(Vec3 p, const ContactSet &contacts, const Descent &descent, bool equilibrium,
                     EquilibriumDraws &draws, Circle &path, ForceLaw *forces)
 {
@@ -315,7 +339,8 @@ RollSetup make_roll(Vec3 p, const ContactSet &contacts, const Descent &descent, 
         dir = u - dot(u, path.e1) * path.e1;
         free = !blocked(dir, contacts, descent);
       }
-      if (!free) return RollSetup::Degenerate;
+      if (!free && !free_way_off_top(path.e1, contacts, descent, draws, dir))
+        return RollSetup::Wedged;
     }
     dir = dir - dot(dir, path.e1) * path.e1;
     if (!(norm(dir) > defaults::kDepositionZeroLength)) return RollSetup::Degenerate;

@@ -153,6 +153,18 @@ def test_walls_keyword_in_periodic_box():
     check_geometry(cols, box, (False, True), floor=0.0, walls={0: (0, 16)})
 
 
+def test_column_one_diameter_wide_is_a_straight_stack_at_rest():
+    """Four walls one diameter apart: each sphere lands on top of the one below, where every
+    way off enters a wall: wedged at rest (z = 1, 3, ..., 19), with no step-cap warning."""
+    out, box, bounds, cols = run_packing(packing_script(n=10, L=2, boundary="f f fm"))
+    np.testing.assert_allclose(np.sort(cols["z"]), 1.0 + 2.0 * np.arange(10), atol=1e-9)
+    np.testing.assert_allclose(cols["x"], 1.0, atol=1e-12)
+    np.testing.assert_allclose(cols["y"], 1.0, atol=1e-12)
+    assert "unstable equilibria left 0 (wedged at rest 9), re-drops 0, unresolved 0" in out
+    assert "stability not proven" not in out
+    check_geometry(cols, box, (False, False), floor=0.0, walls={0: (0, 2), 1: (0, 2)})
+
+
 def test_region_sets_extent_floor_and_walls():
     pre = "region slab block 2 14 INF INF 1.5 INF\n"
     out, box, bounds, cols = run_packing(packing_script(n=400, args="region slab", pre=pre),

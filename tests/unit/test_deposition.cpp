@@ -347,6 +347,46 @@ TEST(Deposition, WedgedInCorner)
   EXPECT_NEAR(o.z, 1.0 + std::sqrt(4.0 - 2 * a * a), 1e-12);
 }
 
+// A column exactly one diameter wide (four walls): a sphere dropped on the axis lands on top of
+// the floor sphere. Every horizontal way off that unstable top enters a wall, so it is wedged
+// there at rest (z = 3 R), on the first attempt; a stack of such spheres is a straight column.
+TEST(Deposition, WedgedOnTopInColumnOneDiameterWide)
+{
+  SequentialDeposition engine(make_domain(2, 2, false, false), 1.0, 5);
+  engine.add_fixed_sphere(1, 1, 1, 1);
+  for (int k = 1; k <= 3; ++k) {
+    const auto o = engine.drop(1, 1, 1.0);
+    ASSERT_EQ(o.rest, RestingOn::Supports) << "sphere " << k;
+    EXPECT_NEAR(o.x, 1.0, 1e-12);
+    EXPECT_NEAR(o.y, 1.0, 1e-12);
+    EXPECT_NEAR(o.z, 1.0 + 2.0 * k, 1e-12);
+    engine.add_fixed_sphere(o.x, o.y, o.z, 1.0);
+  }
+  EXPECT_EQ(engine.stats().unresolved, 0);
+  EXPECT_EQ(engine.stats().wedged, 3);
+  EXPECT_EQ(engine.stats().perturbations, 0);
+}
+
+// A slot one diameter wide (walls at x = 0 and 2, periodic in y): on top of a floor sphere the
+// only ways off run along the walls (+-y, a set of measure zero among horizontal directions); the
+// sphere leaves along one of them and ends on the floor two radii from the sphere, touching it.
+TEST(Deposition, LeavesTopAlongWallsOfSlotOneDiameterWide)
+{
+  auto run = [](std::uint64_t seed) {
+    SequentialDeposition engine(make_domain(2, 10, false, true), 1.0, seed);
+    engine.add_fixed_sphere(1, 5, 1, 1);
+    const auto o = engine.drop(1, 5, 1.0);
+    EXPECT_EQ(o.rest, RestingOn::Floor) << "seed " << seed;
+    EXPECT_NEAR(o.x, 1.0, 1e-12);
+    EXPECT_NEAR(std::fabs(o.y - 5.0), 2.0, 1e-12);
+    EXPECT_NEAR(o.z, 1.0, 1e-12);
+    return o.y > 5.0;
+  };
+  bool seen[2] = {false, false};
+  for (std::uint64_t seed = 1; seed <= 16; ++seed) seen[run(seed) ? 1 : 0] = true;
+  EXPECT_TRUE(seen[0] && seen[1]) << "both ways along the slot, by seed";
+}
+
 // Periodic images: a floor sphere near x = 0 is an obstacle to a drop near x = L.
 TEST(Deposition, PeriodicImageIsAnObstacle)
 {
