@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 from tapmc.fluctuations import DEFAULT_BATCHES, SteadyState
-from tapmc.stats import mean_dof, weighted_line
+from tapmc.stats import mean_dof
 
 from .._runs import eps_tag
 from .common import (WITHIN_RUN_DOF, curve_arrays, fig2_curves, not_in_campaign,
@@ -235,23 +235,40 @@ def _rate_change_one_run(eps, t, x, early_seeds=None, halves_factor=1.0):
                          f"first decade; {source})")
 
 
+def _window_rate(t, mean, sem, first, second):
+    """(rate, its error) between the means of the seed-averaged curve over two windows (masks
+    of t): each window's error is its taps' sem averaged, not divided by their number (a
+    seed's taps that close together move together: the bound for fully correlated taps), and
+    the two windows' errors add in quadrature (a seed high in one is high in the next, which
+    only narrows the difference: an upper bound)."""
+    if not (first.any() and second.any()):
+        return math.nan, math.nan
+    gap = float(np.mean(t[second]) - np.mean(t[first]))
+    rate = (float(np.mean(mean[second])) - float(np.mean(mean[first]))) / gap
+    return rate, math.hypot(float(np.mean(sem[first])), float(np.mean(sem[second]))) / gap
+
+
 def _rate_change(eps, t, mean, sem, n, early_seeds=None, halves_factor=1.0):
-    """Rate dPhi_b/dt over the last half of the taps minus that over the first decade."""
+    """Rate dPhi_b/dt over the last half of the taps minus that over the first decade. Several
+    seeds: each rate between the means of two windows of the seed-averaged curve (the last
+    half's quarters; the first decade's halves, taps 1-5 and 6-10, as for one run), with the
+    seeds' sem as each window's error (:func:`_window_rate`): a straight-line fit through the
+    taps took them as independent points, errors several times too small for seeds whose
+    taps are correlated over hundreds of taps (tests/python/test_claims.py)."""
     if np.nanmax(n) == 1 and len(t) >= 8 * DEFAULT_BATCHES and t[-1] > 10 * EARLY_DECADE[1]:
         return _rate_change_one_run(eps, t, mean, early_seeds, halves_factor)
-    early, e_early, _ = _weighted_line_in(t, mean, sem, *EARLY_DECADE)
-    late, e_late, _ = _weighted_line_in(t, mean, sem, t[-1] / 2.0, t[-1])
+    lo, hi = EARLY_DECADE
+    early, e_early = _window_rate(t, mean, sem, (t >= lo) & (t <= hi / 2),
+                                  (t > hi / 2) & (t <= hi))
+    end = t[-1]
+    late, e_late = _window_rate(t, mean, sem, (t >= end / 2) & (t < 0.75 * end),
+                                (t >= 0.75 * end) & (t <= end))
     label = f"eps = {eps:g}"
-    if not (np.isfinite(early) and np.isfinite(late)):
-        return Measure(label=label, undecided="no error bars on the curve")
+    if not all(np.isfinite(v) for v in (early, late, e_early, e_late)):
+        return Measure(label=label, undecided="no error bars on the curve, or a window empty")
     return Measure(late - early, math.hypot(e_late, e_early), mean_dof(n), label=label,
                    shown=f"{fmt(late, e_late)} vs {fmt(early, e_early)} per tap "
-                         f"(last half vs first decade)")
-
-
-def _weighted_line_in(t, mean, sem, lo, hi):
-    pick = (t >= lo) & (t <= hi)
-    return weighted_line(t[pick], mean[pick], sem[pick])
+                         f"(last half vs first decade; windows' means over seeds)")
 
 
 @statistic("efficiency_decrease")
