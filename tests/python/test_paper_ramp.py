@@ -14,6 +14,7 @@ import pytest
 
 from tapmc.hysteresis import BranchStatistic
 from tapmc.paper import paper_ramp, paper_ramp_figure, validation
+from tapmc.paper.scales import QUICK
 
 SOURCE = Path(__file__).resolve().parents[2]
 
@@ -330,6 +331,11 @@ def test_the_figure_draws_every_whole_level_one_panel_per_eta(tmp_path):
     assert "error bars their batch-means errors;" in paper_ramp_figure.settings_line(rows)
     assert "error bars their batch-means errors x 2.1 (the realizations' spread);" in \
         paper_ramp_figure.settings_line(rows, 2.1)
+    # a campaign of another scale (tier 7 keeps its N, box and ramp grid): the figure states it
+    small = QUICK.replace(ramp_sqrt0=0.025, ramp_dsqrt=0.025)
+    stated = paper_ramp_figure.settings_line(rows, scale=small)
+    assert stated.startswith(f"N = {QUICK.N}, box {QUICK.L:g}R x {QUICK.L:g}R, P.B.C.")
+    assert "steps of 0.025 in sqrt(eps)" in stated and stated.endswith("campaign: scale quick")
     wide = paper_ramp_figure.plot(paper_ramp.calibrated(rows, 3.0), 1e-7)
     seg = lambda c: np.ptp(c.lines[2][0].get_segments()[0][:, 1])   # noqa: E731
     first = lambda axs: next(c for c in axs[0].containers if c.has_yerr)   # noqa: E731

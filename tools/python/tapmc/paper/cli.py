@@ -243,14 +243,14 @@ def _add_paper_ramp_and_question_parsers(sub):
         question_command.add_parser(question)
 
 
-def _read_campaign(args, name, module, unit, write_figure, figure_states_scale=False):
+def _read_campaign(args, name, module, unit, write_figure):
     """A campaign reader's command (``paper-ramp``, ``sigma-eta``): ``module.analyse`` on the
     campaign's runs, its CSV written to the report's questions folder, its finding printed
     with the errors of the report in --out, its figure drawn by ``write_figure``; exit 2
     naming the folder when the campaign has no runs/ or nothing to read, or naming the file
-    when --out holds a damaged report (nothing written). The campaign's default eta (and,
-    with ``figure_states_scale``, the settings its figure states) are those of the Scale it
-    records (scale.json; the full preset without one)."""
+    when --out holds a damaged report (nothing written). The campaign's default eta and the
+    settings its figure states are those of the Scale it records (scale.json; the full
+    preset without one)."""
     if not (args.campaign / "runs").is_dir():
         print(f"tapmc-paper {name}: --campaign {args.campaign} has no runs/ folder",
               file=sys.stderr)
@@ -281,8 +281,7 @@ def _read_campaign(args, name, module, unit, write_figure, figure_states_scale=F
               "batch-means errors, not the realizations' (tapmc-paper report, then again)")
     print(f"{name}: {path} ({len(rows)} {unit})")
     png = path.parent / module.PNG_NAME  # its figure beside its CSV, with the same errors
-    figure = write_figure(rows, scale.eta, png, errors, **({"scale": scale}
-                                                          if figure_states_scale else {}))
+    figure = write_figure(rows, scale.eta, png, errors, scale=scale)
     print(f"{name}: {figure}")
     return 0
 
@@ -663,8 +662,7 @@ def _main(argv=None):
         return _read_campaign(args, "paper-ramp", paper_ramp, "runs",
                               paper_ramp_figure.write_figure)
     if args.command == "sigma-eta":
-        return _read_campaign(args, "sigma-eta", sigma_eta, "points", sigma_eta.write_figure,
-                              figure_states_scale=True)
+        return _read_campaign(args, "sigma-eta", sigma_eta, "points", sigma_eta.write_figure)
     if args.command == "plan":
         return _plan_cost(args)
     if args.command == "report" and args.refit and not args.from_data:

@@ -54,30 +54,31 @@ def plot(rows, default_eta, axes=None, table=None):
     return axes
 
 
-def settings_line(rows, error_factor=None):
-    """The settings the figure states on top (every number of it is a setting of the runs),
-    with what its error bars are (:func:`calibrated`'s ``error_factor``)."""
+def settings_line(rows, error_factor=None, scale=FULL):
+    """The settings the figure states on top (every number of it is a setting of the runs, of
+    the campaign's ``scale``: its size, eta, and the ramp's grid), with what its error bars
+    are (:func:`calibrated`'s ``error_factor``)."""
     seeds = sorted({r.seed for r in rows})
     errors = level_errors(rows, error_factor)
     bars = "their batch-means errors" + (
         "" if errors.value == 1.0 else
         f" x {errors.value:.1f} (one {LAST_TAPS}-tap mean to the next)" if errors.from_window
         else f" x {errors.value:.1f} (the realizations' spread)")
-    stop = _plotting.planned_stop(_runs.paper_ramp_run(FULL, "pbc", 1, FULL.ramp_below_top))
-    return (f"N = {FULL.N}, box {FULL.L:g}R x {FULL.L:g}R, P.B.C.; eta: each panel's, {stop}; "
+    stop = _plotting.planned_stop(_runs.paper_ramp_run(scale, "pbc", 1, scale.ramp_below_top))
+    return (f"N = {scale.N}, box {scale.L:g}R x {scale.L:g}R, P.B.C.; eta: each panel's, {stop}; "
             f"{TAPS_PER_LEVEL} taps per "
-            f"level, steps of {FULL.ramp_dsqrt:g} in sqrt(eps), means of the last {LAST_TAPS} "
+            f"level, steps of {scale.ramp_dsqrt:g} in sqrt(eps), means of the last {LAST_TAPS} "
             f"taps of each level, error bars {bars}; levels done whole only; "
             f"seeds {', '.join(map(str, seeds))}; "
-            + _plotting.campaign_text(_plotting.FULL_CAMPAIGN))
+            + _plotting.scale_text(scale))
 
 
-def write_figure(rows, default_eta, path, error_factor=None):
+def write_figure(rows, default_eta, path, error_factor=None, scale=FULL):
     """``paper_ramp.png``: :func:`plot` of the rows with the errors the finding decides with
     (:func:`calibrated`), its settings on top, and beside it ``paper_ramp_figure.csv``
     (:func:`~tapmc.paper._plotting.figure_csv_path`); returns the PNG's path."""
     table = _plotting.FigureTable()
     scaled = calibrated(rows, level_errors(rows, error_factor).value)
     fig = plot(scaled, default_eta, table=table)[0].figure
-    _plotting.finish_figure(fig, settings_line(rows, error_factor))
+    _plotting.finish_figure(fig, settings_line(rows, error_factor, scale))
     return _plotting.write_figure(fig, Path(path), table)[0]
