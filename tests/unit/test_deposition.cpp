@@ -461,6 +461,29 @@ TEST(Deposition, NoOverlapAndStableOverSeeds)
     }
 }
 
+// Columns (four walls) and slots (two walls, periodic along them) near the widths where spheres
+// stack or jam against the walls: exactly one diameter D (each sphere wedged on top of the one
+// below: the old kernel left those at the step cap), a hair above it, widths between D and 2 D
+// where spheres zig-zag between the walls, and a hair either side of 2 D (two spheres side by
+// side just fit): every sphere at rest, none overlapping, none left at the step cap.
+TEST(Deposition, NarrowColumnsAndSlotsNearJammingWidths)
+{
+  const double widths[] = {2.0, 2.0 + 1e-9, 2.0 + 1e-6, 2.3, 3.0, 2.0 * std::sqrt(3.0),
+                           4.0 - 1e-9, 4.0, 4.0 + 1e-9};
+  for (const double w : widths)
+    for (const bool slot : {false, true})
+      for (const bool poly : {false, true})
+        for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+          const auto d = make_domain(w, slot ? 8.0 : w, false, slot);
+          const auto radii = poly ? RadiusDistribution::uniform(0.8, 1.0)
+                                  : RadiusDistribution::monodisperse(1.0);
+          const Packing p = deposit_packing(slot ? 120 : 40, radii, d, seed);
+          expect_valid_packing(p, d, std::string(slot ? "slot" : "column") + " width " +
+                                         std::to_string(w) + (poly ? " poly" : " mono") +
+                                         " seed " + std::to_string(seed));
+        }
+}
+
 TEST(Deposition, SameSeedSamePackingOtherSeedOther)
 {
   const auto d = make_domain(10, 10, true, false);
