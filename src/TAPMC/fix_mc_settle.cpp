@@ -707,6 +707,18 @@ void FixMCSettle::pre_exchange()
                      tapmc::Settler::trials_per_check(check_interval, result.movable),
                      result.movable);
   }
+  taps_without_a_move = result.accepted == 0 && result.movable > 0 ? taps_without_a_move + 1 : 0;
+  if (taps_without_a_move == tapmc::defaults::kSettleNoMoveTaps && !warned_no_move) {
+    warned_no_move = true;
+    if (comm->me == 0)
+      error->warning(FLERR, "fix mc/settle: step {}: {} redepositions in a row accepted none of "
+                     "their trial moves ({} in the latest): the packing keeps each tap's "
+                     "dilation (<Z> = {:.6g} after the latest tap). Every trial move has a "
+                     "sideways part, so spheres held sideways on every side (a column one "
+                     "diameter wide, spheres jammed between walls) never move (warned once)",
+                     update->ntimestep, taps_without_a_move, result.trials,
+                     result.mean_height);
+  }
 }
 
 tapmc::SettleResult FixMCSettle::GatheredRedeposition::settle()

@@ -82,6 +82,8 @@ class FixMCSettle : public Fix, public tapmc::ContainerHolder {
   bool window_given = false;
   bool verify_ghosts = false; // 'verify': scheme domain checks every ghost after every round
   bool warned_idle_stop = false;  // the warning of a stop at an idle check is given once
+  int taps_without_a_move = 0;    // consecutive redepositions that accepted no trial move
+  bool warned_no_move = false;    // ... warned once, at kSettleNoMoveTaps
 
   // per-tap diagnostics (global vector)
   double last_sweeps, last_acceptance, last_mean_z, last_hit_cap, last_trials, last_mean_z0;

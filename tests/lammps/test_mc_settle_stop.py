@@ -160,3 +160,43 @@ def test_a_stop_at_an_idle_check_warns_once(nprocs, scheme):
                             nprocs=nprocs)
     assert rc == 0 and "none of its" not in out, out
     np.testing.assert_array_equal(thermo_table(out, "f_settle[1]")[1][:, 2], np.zeros(7))
+
+
+# A column one diameter wide (walls on x and y): create_packing stacks the spheres, each wedged
+# on top of the one below; every trial move has a sideways part that enters a wall.
+COLUMN = """units lj
+atom_style sphere
+boundary f f fm
+region box block 0 {width} 0 {width} 0 40
+create_box 1 box
+create_packing 10 1 0.5 4928 floor 0.0
+fix tap all tapdilate 0.01 floor 0.0
+fix settle all mc/settle 4928 floor 0.0 {keywords}
+thermo_style custom step f_settle[2] f_settle[3]
+thermo 1
+thermo_modify format float %.12g
+run 7
+"""
+NO_MOVE = "5 redepositions in a row accepted none of their trial moves"
+
+
+@pytest.mark.parametrize("nprocs,scheme", [(1, "gather"), (2, "domain")])
+def test_a_packing_that_cannot_move_is_named_not_silently_dilated(nprocs, scheme):
+    """Nothing is ever accepted: <Z> grows by 1 + eps per tap (the model's answer in this
+    geometry), and the fix says so once, at the fifth tap, under either stop rule. A column a
+    little wider lets the spheres move: no warning. The small periodic bed, whose 'stop change'
+    redepositions all stop at an idle check, accepts moves: no warning either."""
+    for stop in ("", "stop drift"):
+        keywords = f"scheme {scheme} {stop}"
+        rc, out, _ = run_lammps(COLUMN.format(width=1.0, keywords=keywords), nprocs=nprocs)
+        assert rc == 0, out
+        assert out.count(NO_MOVE) == 1 and "(warned once)" in out, out
+        assert "step 5: " + NO_MOVE in out, out
+        table = thermo_table(out, "f_settle[2]")[1]
+        np.testing.assert_array_equal(table[1:, 1], np.zeros(7))     # acceptance 0 every tap
+        # each tap's <Z> 1.01 times the last (step 0 has had no redeposition: [3] is 0)
+        np.testing.assert_allclose(table[2:, 2] / table[1:-1, 2], 1.01, rtol=1e-9)
+        rc, out, _ = run_lammps(COLUMN.format(width=1.1, keywords=keywords), nprocs=nprocs)
+        assert rc == 0 and NO_MOVE not in out, out
+    rc, out, _ = run_lammps(SMALL_BED.format(keywords=f"scheme {scheme}"), nprocs=nprocs)
+    assert rc == 0 and IDLE_STOP in out and NO_MOVE not in out, out
