@@ -543,3 +543,21 @@ def test_several_seeds_rate_change_error_covers_seeds_correlated_over_hundreds_o
     # bounds, not estimates: at least the coverage of an exact error, not wildly wider
     assert np.mean(pulls < 2.0) >= 0.93
     assert np.median(pulls) > 0.2
+
+
+def test_fits_of_a_seed_averaged_curve_decide_no_triplet_and_reject_no_line():
+    """Fig. 2's fits of a curve averaged over seeds take its taps as independent points (each
+    seed's taps are correlated): their 'unique' and 'range dependent' are both unsafe, so the
+    triplet's pattern stays undecided whatever their flags, and a B line they reject stays
+    undecided while one they accept agrees (too narrow errors only make rejection easier)."""
+    claim = BY_ID["eq3-triplet-range"]
+    for flags in ({0.005: False, 0.05: True, 0.15: True}, {0.005: True, 0.05: False}):
+        (m,) = claims.eq3_triplet_pattern(report(fig2=fig2_fits(flags)), claim)
+        assert m.undecided == claims.AVERAGED_FITS, m
+    claim = BY_ID["b-exponential"]
+    for law in claims.b_exponential(report(fig2=fig2_fits({0.05: True}, b_chi2=8.0, b_dof=3)),
+                                    claim):   # eq. 3's and eq. 4's B
+        assert law.undecided and law.undecided.endswith("too narrow to reject"), law
+    for law in claims.b_exponential(report(fig2=fig2_fits({0.05: True}, b_chi2=1.0, b_dof=3)),
+                                    claim):
+        assert str(claims.verdict(claim, law)).startswith("agrees"), law

@@ -47,8 +47,8 @@ from .compaction import (DECADE_BEFORE_WINDOW, EARLY_DECADE, EARLY_MIN_SEEDS, LA
 from .data import QUESTION_CSVS, FigureData, ReportData
 from .evaluate import Row, Rows, evaluate, scale_aspects
 from .fluctuations import SPECTRUM_BAND, sigma_intercept, spectral_slopes, spectrum_low_band
-from .laws import (EQ3_TRIPLET, ONE_RUN_FITS, RANDOM_CLOSE_PACKING, REALIZATION_MIN_SEEDS,
-                   REALIZATION_MIN_TAPS, SURROGATES_UNIQUE, b_exponential, back_at_start,
+from .laws import (AVERAGED_FITS, EQ3_TRIPLET, ONE_RUN_FITS, RANDOM_CLOSE_PACKING,
+                   REALIZATION_MIN_SEEDS, REALIZATION_MIN_TAPS, SURROGATES_UNIQUE, b_exponential, back_at_start,
                    eq3_fit_quality, eq3_small_eps_asymptote, eq3_triplet_pattern,
                    eq4_fit_quality, loosening_end, realization_curves, realization_fits,
                    surrogate_fits, z_two_exponentials)
