@@ -230,8 +230,8 @@ constexpr long kSettleMaxSweeps = 50000;
 // packing only dilates: every trial move has a sideways part (theta > 0 almost surely), so
 // spheres held on every side (a column one sphere diameter wide) never move, and each tap
 // multiplies <Z> by 1 + eps. A small bed's first check can accept none by chance under 'stop
-// change' (about 1 tap in 10 at 16 spheres, 14 % acceptance); five taps in a row, about 1 in
-// 10^5. A settled bed of the paper's size accepts ~1 % of thousands of trials per tap.
+// change' (0.86^16, about 1 tap in 11 at 16 spheres, 14 % acceptance); five taps in a row,
+// about 1 in 200 000. A settled bed of the paper's size accepts ~1 % of thousands of trials.
 constexpr int kSettleNoMoveTaps = 5;
 
 // ---- neighbour lists of the trial-move engine (tapmc_sphere_mover.cpp) --------------------
