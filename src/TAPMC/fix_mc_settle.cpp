@@ -328,7 +328,11 @@ tapmc::SettleParams FixMCSettle::make_params(double step, long movable) const
   params.theta_law = theta_law;
   params.eta = eta;
   params.check_interval = check_interval;
-  params.max_checks = tapmc::Settler::max_checks_for_sweeps(max_sweeps, check_interval, movable);
+  // Refused when check exceeds the cap (the movable count, hence the cap, may have changed
+  // since the run started, e.g. by delete_atoms): a LAMMPS error on every rank (same counts).
+  tapmc::guarded(lmp, "fix mc/settle", true, [&] {
+    params.max_checks = tapmc::Settler::max_checks_for_sweeps(max_sweeps, check_interval, movable);
+  });
   params.contact_tol = tapmc::defaults::kContactTolerance;
   params.seed = static_cast<std::uint64_t>(seed);
   params.stream = static_cast<std::uint64_t>(update->ntimestep);

@@ -99,12 +99,13 @@ MC_SETTLE_CASES = [
     ("fix s all mc/settle 1 eta 1", "eta = 1 is outside the allowed range (0, 1)"),
     ("fix s all mc/settle 1 check -1", "check = -1 is outside the allowed range [0, +inf)"),
     ("fix s all mc/settle 1 maxsweeps 0", "maxsweeps = 0 is outside the allowed range [1, +inf)"),
-    # a check longer than the cap would run past it (9e18 trials: forever)
+    # a check longer than the cap would run past it (9e18 trials: forever): a LAMMPS error of
+    # the fix (it escaped as a C++ exception: no log line, and a Python caller aborted)
     ("fix s all mc/settle 1 check 1000 maxsweeps 10\nrun 1",
-     "check = 1000 trials exceeds the cap of maxsweeps = 10 sweeps of 2 movable spheres (20 "
+     "ERROR: fix mc/settle: check = 1000 trials exceeds the cap of maxsweeps = 10 sweeps of 2 movable spheres (20 "
      "trials)"),
     ("fix s all mc/settle 1 check 9223372036854775807\nrun 1",
-     "check = 9223372036854775807 trials exceeds the cap of maxsweeps = 50000 sweeps"),
+     "ERROR: fix mc/settle: check = 9223372036854775807 trials exceeds the cap of maxsweeps = 50000 sweeps"),
     # 'stop drift' never stops before its window: beyond the cap, every tap ran to the cap
     ("fix s all mc/settle 1 stop drift window 100000 maxsweeps 30\nrun 1",
      "window = 100000 checks of 'stop drift' is more than the cap allows (30 checks"),
