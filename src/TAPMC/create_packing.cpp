@@ -100,6 +100,7 @@ struct Plan {
   bool has_cylinder = false;
   tapmc::Cylinder cylinder;
   double r_min = 0.0, r_max = 0.0;
+  double r_smallest = 0.0;  // of the created and the existing spheres (the coordinate bound)
 };
 
 void check_preconditions(LAMMPS *lmp, int narg)
@@ -252,8 +253,12 @@ Plan plan_domain(LAMMPS *lmp, const Request &req)
 
   plan.r_min = req.params.radii().r_min;
   plan.r_max = req.params.radii().r_max;
-  tapmc::require_exact_coordinates(lmp, "create_packing",
-                                   std::min(plan.r_min, tapmc::smallest_radius(lmp)));
+  plan.r_smallest = std::min(plan.r_min, tapmc::smallest_radius(lmp));
+  tapmc::require_exact_coordinates(lmp, "create_packing", plan.r_smallest);
+  // An open top grows with the packing: the floor may lie above the box, and the packing
+  // above that (checked once deposited)
+  tapmc::require_exact_coordinate(lmp, "create_packing", "the floor z", 'z', z_floor,
+                                  plan.r_smallest);
   tapmc::DepositionDomain &dd = plan.dd;
   dd.xlo = lo[0];
   dd.xhi = hi[0];
@@ -563,6 +568,8 @@ void CreatePacking::command(int narg, char **arg)
   const double t_deposit = MPI_Wtime() - t_start;
 
   const double zmax = highest_centre(lmp, packing);
+  tapmc::require_exact_coordinate(lmp, "create_packing", "the packing's top reaches z", 'z',
+                                  zmax + plan.r_max, plan.r_smallest);
   const bool box_changed = grow_open_top(lmp, plan, zmax);
   create_own_atoms(lmp, req, packing, box_changed);
   report(lmp, req, plan, packing, zmax, t_deposit);

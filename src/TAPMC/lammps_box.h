@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace tapmc {
 
@@ -33,22 +34,30 @@ inline void require_box_with_floor(LAMMPS_NS::LAMMPS *lmp, const char *style)
 // smallest spheres (radius `r_min`) to the contact tolerance, naming the axis, the coordinate
 // and the bound (tapmc_contact.h, largest_exact_coordinate). A radius that is not positive is
 // left to the style's own check of the radii.
-inline void require_exact_coordinates(LAMMPS_NS::LAMMPS *lmp, const char *style, double r_min)
+// Stops when `what` (e.g. "the box reaches x", "the floor z") = `value` lies beyond that bound.
+inline void require_exact_coordinate(LAMMPS_NS::LAMMPS *lmp, const char *style, const char *what,
+                                     char axis, double value, double r_min)
 {
   if (!(r_min > 0.0)) return;
   const double bound = largest_exact_coordinate(2.0 * r_min);
+  if (!(std::fabs(value) > bound)) return;
+  lmp->error->all(FLERR, "{}: {} = {}, where doubles are {:.2g} apart: the contacts of spheres "
+                  "of radius {} cannot be resolved to the contact tolerance ({} of their contact "
+                  "distance) beyond |{}| = {:.3g}, {:.3g} times that radius; move the box and "
+                  "the floor nearer the origin (e.g. the floor at z = 0), or make the smallest "
+                  "spheres larger (radius, dispersity)", style, what, value,
+                  std::fabs(value) * std::numeric_limits<double>::epsilon(), r_min,
+                  defaults::kContactTolerance, axis, bound, bound / r_min);
+}
+
+inline void require_exact_coordinates(LAMMPS_NS::LAMMPS *lmp, const char *style, double r_min)
+{
   const LAMMPS_NS::Domain *domain = lmp->domain;
   for (int d = 0; d < 3; ++d) {
-    const double reach = std::max(std::fabs(domain->boxlo[d]), std::fabs(domain->boxhi[d]));
-    if (reach > bound)
-      lmp->error->all(FLERR, "{}: the box reaches {} = {}, where doubles are {:.2g} apart: the "
-                      "contacts of spheres of radius {} cannot be resolved to the contact "
-                      "tolerance ({} of their contact distance) beyond |{}| = {:.3g}; move the "
-                      "box nearer the origin (e.g. the floor at z = 0)", style, "xyz"[d],
-                      std::fabs(domain->boxlo[d]) > std::fabs(domain->boxhi[d])
-                          ? domain->boxlo[d] : domain->boxhi[d],
-                      reach * std::numeric_limits<double>::epsilon(), r_min,
-                      defaults::kContactTolerance, "xyz"[d], bound);
+    const double far = std::fabs(domain->boxlo[d]) > std::fabs(domain->boxhi[d])
+                           ? domain->boxlo[d] : domain->boxhi[d];
+    const std::string what = std::string("the box reaches ") + "xyz"[d];
+    require_exact_coordinate(lmp, style, what.c_str(), "xyz"[d], far, r_min);
   }
 }
 

@@ -347,7 +347,8 @@ def test_a_box_beyond_exact_contacts_is_refused(z0, body, style):
     at z = 1e5 the same bed taps as at z = 0."""
     rc, out, _ = run_lammps(FAR_BOX.format(z0=z0, z1=z0 + 40) + body + "\n")
     assert rc != 0 and f"ERROR: {style}: the box reaches z = " in out, out
-    assert "beyond |z| = 1.13e+05; move the box nearer the origin" in out, out
+    assert "beyond |z| = 1.13e+05, 2.25e+05 times that radius; move the box and the floor " \
+        "nearer the origin" in out, out
     near = "create_packing 50 1 0.5 7 floor {z}\nfix t all tapdilate 0.01 floor {z}\n" \
            "fix s all mc/settle 7 floor {z} eta 1e-5\nthermo_style custom step f_s[1] f_s[3]\n" \
            "thermo 1\nrun 3\n"
@@ -358,6 +359,27 @@ def test_a_box_beyond_exact_contacts_is_refused(z0, body, style):
         rows.append(thermo_table(out, "f_s[1]")[1])
     assert rows[0].shape == (4, 3) and rows[0][-1, 1] > 0
     np.testing.assert_array_equal(rows[0], rows[1])   # sweeps and <Z> above the floor
+
+
+@pytest.mark.parametrize("body,named", [
+    # an open top grows with the packing: the floor above the box was not checked (1e300: 436
+    # overlapping pairs and Phi 0, exit 0), nor the packing grown beyond the bound
+    ("create_packing 100 1 0.5 7 floor 1e300", "the floor z = 1e+300"),
+    ("create_packing 4000 1 0.5 7 floor 1.125e5", "the packing's top reaches z = 1126"),
+])
+def test_a_floor_or_packing_beyond_exact_contacts_is_refused(body, named):
+    rc, out, _ = run_lammps(FAR_BOX.format(z0=0, z1=30) + body + "\n")
+    assert rc != 0 and f"ERROR: create_packing: {named}" in out, out
+    assert "beyond |z| = 1.13e+05" in out and "Created 100 spheres" not in out, out
+
+
+def test_the_bound_names_the_smallest_spheres_as_a_remedy():
+    """A box at the origin is refused for radii 1e-4 of its height (dispersity 0.9999): the
+    message says that larger spheres are the remedy, not only moving the box."""
+    rc, out, _ = run_lammps(FAR_BOX.format(z0=0, z1=30) + "create_packing 400 1 0.5 4928 floor "
+                            "0.0 dispersity 0.9999\n")
+    assert rc != 0 and "ERROR: create_packing: the box reaches z = 30" in out, out
+    assert "or make the smallest spheres larger (radius, dispersity)" in out, out
 
 
 def test_largest_seed_is_accepted():
