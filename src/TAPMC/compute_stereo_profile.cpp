@@ -512,3 +512,13 @@ double ComputeStereoProfile::memory_usage()
          static_cast<double>(selected_.capacity()) * sizeof(int) +
          static_cast<double>(buffer_.capacity()) * sizeof(double);
 }
+
+// The box faces along a non-periodic x or y: the compute's area and lateral zones are the box's
+// (none in a container, whose wall fix mc/settle compares as the container).
+bool ComputeStereoProfile::side_walls(int dim, double &lo, double &hi) const
+{
+  if (dim < 0 || dim > 1 || domain->periodicity[dim] || !container_id_.empty()) return false;
+  lo = domain->boxlo[dim];
+  hi = domain->boxhi[dim];
+  return true;
+}

@@ -29,6 +29,7 @@ class ComputeStereoProfile : public Compute, public tapmc::ContainerHolder {
     z0 = settings_.floor;
     return true;
   }
+  bool side_walls(int dim, double &lo, double &hi) const override;
 
  private:
   tapmc::stereo::SummarySettings settings_;

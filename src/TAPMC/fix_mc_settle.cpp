@@ -365,6 +365,16 @@ void FixMCSettle::check_walls_inside_fixed_box()
   }
 }
 
+// The walls resolve_side_walls set (init() runs it before the check of one container per run).
+bool FixMCSettle::side_walls(int dim, double &lo, double &hi) const
+{
+  if (dim < 0 || dim > 1 || domain->periodicity[dim] || !container_region_id.empty())
+    return false;
+  lo = wall_pos[dim][0];
+  hi = wall_pos[dim][1];
+  return true;
+}
+
 // The side walls of the box as it is now: 'xwalls'/'ywalls' where given, else the faces of a
 // fixed ('f') boundary; none along a periodic side or in a container. From the constructor and
 // from init(), since change_box may move the faces or change the boundary between runs.
@@ -411,10 +421,19 @@ void FixMCSettle::init()
   // every TAPMC style of the run in the same container, or all in the box
   tapmc::require_one_container(lmp, "fix", id, style, *this);
   find_tappers();
-  bool all_move = count_movable() == atom->natoms;
-  for (const tapmc::Tapper *tapper : tappers)
-    all_move = all_move && dynamic_cast<const Fix *>(tapper)->igroup == 0;  // group 'all'
+  const bool all_in_group = count_movable() == atom->natoms;
+  bool all_move = all_in_group;
+  int tapped_bits = 0;
+  for (const tapmc::Tapper *tapper : tappers) {
+    const int tapper_group = dynamic_cast<const Fix *>(tapper)->igroup;
+    all_move = all_move && tapper_group == 0;  // group 'all'
+    tapped_bits |= group->bitmask[tapper_group];
+  }
   check_after_taps = !all_move;
+  long untapped = 0, untapped_all = 0;
+  for (int i = 0; i < atom->nlocal; ++i) untapped += (atom->mask[i] & tapped_bits) ? 0 : 1;
+  MPI_Allreduce(&untapped, &untapped_all, 1, MPI_LONG, MPI_SUM, world);
+  every_atom_tapped = all_in_group && untapped_all == 0;
 
   if (comm->me == 0 && update->whichflag == 2)
     error->warning(FLERR, "fix mc/settle moves atoms during minimization; use 'run' instead");
@@ -609,6 +628,13 @@ void FixMCSettle::GatheredRedeposition::check_start(bool after_tap)
 std::string FixMCSettle::violation_message(const tapmc::Violation &v, tagint tag_i,
                                            tagint tag_j, bool after_tap) const
 {
+  if (v.j >= 0 && after_tap && every_atom_tapped)
+    return fmt::format("fix mc/settle: step {}: atoms {} and {} overlap by {} after the tap: "
+                       "every atom is tapped, but by tapping fixes of different groups that "
+                       "dilate them differently (another eps, floor or tap schedule), so one "
+                       "group's dilation pushed a sphere into one of another group; tap every "
+                       "sphere with one tapping fix (group all)",
+                       update->ntimestep, tag_i, tag_j, -v.gap);
   if (v.j >= 0 && after_tap)
     return fmt::format("fix mc/settle: step {}: atoms {} and {} overlap by {} after the tap: "
                        "part of the bed stands still (atoms outside the group of fix {} or of "

@@ -54,6 +54,7 @@ class FixMCSettle : public Fix, public tapmc::ContainerHolder {
     z0 = z_floor;
     return true;
   }
+  bool side_walls(int dim, double &lo, double &hi) const override;
 
  private:
   // user settings (defaults in tapmc_defaults.h)
@@ -110,6 +111,9 @@ class FixMCSettle : public Fix, public tapmc::ContainerHolder {
   // tap can then push a sphere into one that does not follow it, so every tap is checked for
   // overlaps before its redeposition (set in init()).
   bool check_after_taps = false;
+  // every atom is in this fix's group and tapped by some tapping fix: an overlap after a tap
+  // then comes from tapping fixes of different groups that dilate differently
+  bool every_atom_tapped = false;
 
   // The settings kept in restart files (fix_mc_settle.cpp: the record's layouts).
   struct RestartSetting;

@@ -252,18 +252,42 @@ void require_one_container(LAMMPS *lmp, const char *kind, const char *id, const 
                     kind, style, kind, id, style, my_floor, other_kind, other_id, other_style,
                     theirs);
   };
+  auto compare_walls = [&](const char *other_kind, const char *other_id, const char *other_style,
+                           const ContainerHolder *other) {
+    if (!other || other == &self) return;
+    for (int d = 0; d < 2; ++d) {
+      double lo = 0.0, hi = 0.0, their_lo = 0.0, their_hi = 0.0;
+      if (!self.side_walls(d, lo, hi) || !other->side_walls(d, their_lo, their_hi)) continue;
+      const double scale = std::max({1.0, std::fabs(lo), std::fabs(hi), std::fabs(their_lo),
+                                     std::fabs(their_hi)});
+      const double tol = defaults::kFloorMatchTolerance * scale;
+      if (std::fabs(lo - their_lo) <= tol && std::fabs(hi - their_hi) <= tol) continue;
+      lmp->error->all(FLERR,
+                      "{} {}: two different side walls along {} in one run: {} {} ({}) has them "
+                      "at {} = {} and {}, {} {} ({}) at {} and {}; a style without '{}walls' "
+                      "takes the box faces, and compute stereo/profile always does (it would "
+                      "divide by the box's width): make the box faces the walls ('boundary f' "
+                      "with the box from {} to {}), or give every style the box faces",
+                      kind, style, "xy"[d], kind, id, style, "xy"[d], lo, hi, other_kind,
+                      other_id, other_style, their_lo, their_hi, "xy"[d],
+                      std::max(lo, their_lo), std::min(hi, their_hi));
+    }
+  };
+  auto compare_all = [&](const char *other_kind, const char *other_id, const char *other_style,
+                         const ContainerHolder *other) {
+    compare(other_kind, other_id, other_style, other);
+    compare_floor(other_kind, other_id, other_style, other);
+    compare_walls(other_kind, other_id, other_style, other);
+  };
   LAMMPS_NS::Modify *modify = lmp->modify;
   for (int i = 0; i < modify->nfix; ++i) {
     LAMMPS_NS::Fix *fix = modify->fix[i];
-    compare("fix", fix->id, fix->style, dynamic_cast<const ContainerHolder *>(fix));
-    compare_floor("fix", fix->id, fix->style, dynamic_cast<const ContainerHolder *>(fix));
+    compare_all("fix", fix->id, fix->style, dynamic_cast<const ContainerHolder *>(fix));
   }
   for (int i = 0; i < modify->ncompute; ++i) {
     LAMMPS_NS::Compute *compute = modify->compute[i];
-    compare("compute", compute->id, compute->style,
-            dynamic_cast<const ContainerHolder *>(compute));
-    compare_floor("compute", compute->id, compute->style,
-                  dynamic_cast<const ContainerHolder *>(compute));
+    compare_all("compute", compute->id, compute->style,
+                dynamic_cast<const ContainerHolder *>(compute));
   }
 }
 

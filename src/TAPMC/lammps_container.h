@@ -70,6 +70,12 @@ class ContainerHolder {
   // about another floor lifts the bed by eps times the gap and a compute stereo/profile with
   // another floor measures an empty slab (Phi_b 0 for a floor 2 below the bed).
   virtual bool bed_floor(double & /*z0*/) const { return false; }
+  // The side walls along x (dim 0) or y (dim 1) the style moves or measures the bed between,
+  // if it has walls there: fix mc/settle's 'xwalls'/'ywalls' or the fixed box faces, compute
+  // stereo/profile's box faces. The styles of a run must agree (require_one_container): a
+  // compute stereo/profile between the box faces of a bed held by narrower walls divides by
+  // the box's area (Phi half the packing's for walls at half the box width).
+  virtual bool side_walls(int /*dim*/, double & /*lo*/, double & /*hi*/) const { return false; }
 
  protected:
   ~ContainerHolder() = default;  // never deleted through this interface: LAMMPS owns the style
@@ -80,7 +86,7 @@ class ContainerHolder {
 // stops (error->all: every rank holds the same styles) naming both styles, their regions (or
 // "no container") and what to do when one has a container and the other none (unless that one
 // is optional), or the two have different regions; and the same for their floors (bed_floor)
-// where both have one. fix mc/settle calls it in init(): every tapping run has one.
+// and their side walls (side_walls) where both have them. fix mc/settle calls it in init(): every tapping run has one.
 void require_one_container(LAMMPS_NS::LAMMPS *lmp, const char *kind, const char *id,
                            const char *style, const ContainerHolder &self);
 

@@ -283,6 +283,32 @@ def test_styles_with_different_floors_stop_naming_both(line, other):
     assert rc == 0, out
 
 
+SIDE_WALLS = """units lj
+atom_style sphere
+boundary f f fm
+region box block 0 16 0 8 0 30
+create_box 1 box
+region bed block 4 12 0 8 0 30
+create_packing 400 1 0.5 4928 floor 0.0 region bed
+fix settle all mc/settle 4928 floor 0.0 eta 1e-5 {walls}
+compute phi all stereo/profile floor 0.0
+thermo_style custom step c_phi[2]
+run 1
+"""
+
+
+def test_styles_with_different_side_walls_stop_naming_both():
+    """fix mc/settle holds the bed between xwalls 4 and 12, compute stereo/profile measures
+    between the box faces 0 and 16: it divided by twice the bed's area (<Phi^c> 0.27 for the
+    packing's 0.54), in silence. The run stops naming both; walls at the box faces run."""
+    rc, out, _ = run_lammps(SIDE_WALLS.format(walls="xwalls 4 12"))
+    assert rc != 0 and "two different side walls along x in one run: fix settle (mc/settle) " \
+        "has them at x = 4 and 12, compute phi (stereo/profile) at 0 and 16" in out, out
+    assert "('boundary f' with the box from 4 to 12)" in out, out
+    rc, out, _ = run_lammps(SIDE_WALLS.format(walls="xwalls 0 16 ywalls 0 8"))
+    assert rc == 0 and "Loop time" in out, out
+
+
 @pytest.mark.parametrize("boundary,axis", [("s p fm", "x"), ("p m fm", "y")])
 def test_stereo_profile_refuses_shrink_wrapped_sides(boundary, axis):
     """A shrink-wrapped side spans the sphere centres, not the bed: the packing fractions would
@@ -312,6 +338,33 @@ fix tap grain tapdilate 0.2 floor 0.0
 fix settle grain mc/settle 7 floor 0.0
 run 3
 """
+
+
+TWO_TAPPERS = """units lj
+atom_style sphere
+boundary p p fm
+region box block 0 8 0 8 0 30
+create_box 1 box
+create_packing 400 1 0.5 4928 floor 0.0
+region low block INF INF INF INF INF 2.5
+group low region low
+group high subtract all low
+fix tap1 low tapdilate {eps_low} floor 0.0
+fix tap2 high tapdilate 0.01 floor 0.0
+fix settle all mc/settle 4928 floor 0.0 eta 1e-5
+run 2
+"""
+
+
+def test_tapping_fixes_that_dilate_groups_differently_are_named_as_the_cause():
+    """Every atom is tapped and redeposited, the lower group at eps 0.2 and the upper at 0.01:
+    the lower spheres are lifted into the upper ones. The message names the unequal tapping
+    fixes (it blamed atoms standing still, which there are none of); equal eps runs."""
+    rc, out, _ = run_lammps(TWO_TAPPERS.format(eps_low=0.2))
+    assert rc != 0 and "every atom is tapped, but by tapping fixes of different groups" in out
+    assert "stands still" not in out, out
+    rc, out, _ = run_lammps(TWO_TAPPERS.format(eps_low=0.01))
+    assert rc == 0 and "Loop time" in out, out
 
 
 def test_a_tap_that_pushes_a_sphere_into_one_standing_still_stops():
