@@ -37,6 +37,7 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
@@ -724,31 +725,28 @@ void FixMCSettle::pre_exchange()
   if (result.hit_cap && comm->me == 0)
     error->warning(FLERR, "fix mc/settle: step {}: redeposition stopped at the cap of {} sweeps "
                    "before <Z> converged to eta = {}", update->ntimestep, max_sweeps, eta);
-  if (result.stopped_on_idle_check && !warned_idle_stop) {
-    warned_idle_stop = true;
-    if (comm->me == 0)
-      error->warning(FLERR, "fix mc/settle: step {}: the redeposition stopped at a <Z> check in "
-                     "which none of its {} trials was accepted. 'stop change' reads an unchanged "
-                     "<Z> as converged; when one accepted move changes <Z> by more than eta (here "
-                     "{} movable spheres), that is its only way to stop, so the stop depends on "
-                     "the check interval, not on eta, and a small bed loosens tap after tap. "
-                     "'stop drift' stops by eta at every N (warned once)",
-                     update->ntimestep,
-                     tapmc::Settler::trials_per_check(check_interval, result.movable),
-                     result.movable);
-  }
+  // Conditions that would repeat every tap: one warning per fix, from rank 0.
+  auto warn_once = [&](bool &warned, const char *format, auto &&...args) {
+    if (warned) return;
+    warned = true;
+    if (comm->me == 0) error->warning(FLERR, format, std::forward<decltype(args)>(args)...);
+  };
+  if (result.stopped_on_idle_check)
+    warn_once(warned_idle_stop, "fix mc/settle: step {}: the redeposition stopped at a <Z> check "
+              "in which none of its {} trials was accepted. 'stop change' reads an unchanged <Z> "
+              "as converged; when one accepted move changes <Z> by more than eta (here {} "
+              "movable spheres), that is its only way to stop, so the stop depends on the check "
+              "interval, not on eta, and a small bed loosens tap after tap. 'stop drift' stops "
+              "by eta at every N (warned once)", update->ntimestep,
+              tapmc::Settler::trials_per_check(check_interval, result.movable), result.movable);
   taps_without_a_move = result.accepted == 0 && result.movable > 0 ? taps_without_a_move + 1 : 0;
-  if (taps_without_a_move == tapmc::defaults::kSettleNoMoveTaps && !warned_no_move) {
-    warned_no_move = true;
-    if (comm->me == 0)
-      error->warning(FLERR, "fix mc/settle: step {}: {} redepositions in a row accepted none of "
-                     "their trial moves ({} in the latest): the packing keeps each tap's "
-                     "dilation (<Z> = {:.6g} after the latest tap). Every trial move has a "
-                     "sideways part, so spheres held sideways on every side (a column one "
-                     "diameter wide, spheres jammed between walls) never move (warned once)",
-                     update->ntimestep, taps_without_a_move, result.trials,
-                     result.mean_height);
-  }
+  if (taps_without_a_move == tapmc::defaults::kSettleNoMoveTaps)
+    warn_once(warned_no_move, "fix mc/settle: step {}: {} redepositions in a row accepted none "
+              "of their trial moves ({} in the latest): the packing keeps each tap's dilation "
+              "(<Z> = {:.6g} after the latest tap). Every trial move has a sideways part, so "
+              "spheres held sideways on every side (a column one diameter wide, spheres jammed "
+              "between walls) never move (warned once)", update->ntimestep,
+              taps_without_a_move, result.trials, result.mean_height);
 }
 
 tapmc::SettleResult FixMCSettle::GatheredRedeposition::settle()
