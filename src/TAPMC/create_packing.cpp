@@ -523,7 +523,7 @@ void report(LAMMPS *lmp, const Request &req, const Plan &plan, const tapmc::Pack
                    stereo_profile_text(plan, packing), interior_text(req, plan, packing), zmax,
                    packing.stats.segments, packing.stats.perturbations,
                    packing.stats.wedged > 0
-                       ? " (wedged at rest " + std::to_string(packing.stats.wedged) + ")"
+                       ? ", wedged at rest " + std::to_string(packing.stats.wedged)
                        : std::string(),
                    packing.stats.redrops,
                    packing.stats.unresolved, t_deposit);

@@ -366,13 +366,15 @@ void FixMCSettle::check_walls_inside_fixed_box()
   }
 }
 
-// The walls resolve_side_walls set (init() runs it before the check of one container per run).
+// The walls as they are now: 'xwalls'/'ywalls', else the box faces read live (another fix
+// mc/settle of the run may compare before its own init() has re-read the faces after a
+// change_box).
 bool FixMCSettle::side_walls(int dim, double &lo, double &hi) const
 {
   if (dim < 0 || dim > 1 || domain->periodicity[dim] || !container_region_id.empty())
     return false;
-  lo = wall_pos[dim][0];
-  hi = wall_pos[dim][1];
+  lo = walls_given[dim] ? wall_pos[dim][0] : domain->boxlo[dim];
+  hi = walls_given[dim] ? wall_pos[dim][1] : domain->boxhi[dim];
   return true;
 }
 
@@ -422,8 +424,7 @@ void FixMCSettle::init()
   // every TAPMC style of the run in the same container, or all in the box
   tapmc::require_one_container(lmp, "fix", id, style, *this);
   find_tappers();
-  const bool all_in_group = count_movable() == atom->natoms;
-  bool all_move = all_in_group;
+  bool all_move = count_movable() == atom->natoms;
   int tapped_bits = 0;
   for (const tapmc::Tapper *tapper : tappers) {
     const int tapper_group = dynamic_cast<const Fix *>(tapper)->igroup;
@@ -434,7 +435,8 @@ void FixMCSettle::init()
   long untapped = 0, untapped_all = 0;
   for (int i = 0; i < atom->nlocal; ++i) untapped += (atom->mask[i] & tapped_bits) ? 0 : 1;
   MPI_Allreduce(&untapped, &untapped_all, 1, MPI_LONG, MPI_SUM, world);
-  every_atom_tapped = all_in_group && untapped_all == 0;
+  // tapdilate dilates every atom of its group alike: tapped by any one fix, none stands still
+  every_atom_tapped = untapped_all == 0;
 
   if (comm->me == 0 && update->whichflag == 2)
     error->warning(FLERR, "fix mc/settle moves atoms during minimization; use 'run' instead");

@@ -111,8 +111,8 @@ class FixMCSettle : public Fix, public tapmc::ContainerHolder {
   // tap can then push a sphere into one that does not follow it, so every tap is checked for
   // overlaps before its redeposition (set in init()).
   bool check_after_taps = false;
-  // every atom is in this fix's group and tapped by some tapping fix: an overlap after a tap
-  // then comes from tapping fixes of different groups that dilate differently
+  // every atom is tapped by some tapping fix: an overlap after a tap then comes from tapping
+  // fixes of different groups that dilate differently
   bool every_atom_tapped = false;
 
   // The settings kept in restart files (fix_mc_settle.cpp: the record's layouts).

@@ -72,9 +72,10 @@ class ContainerHolder {
   virtual bool bed_floor(double & /*z0*/) const { return false; }
   // The side walls along x (dim 0) or y (dim 1) the style moves or measures the bed between,
   // if it has walls there: fix mc/settle's 'xwalls'/'ywalls' or the fixed box faces, compute
-  // stereo/profile's box faces. The styles of a run must agree (require_one_container): a
-  // compute stereo/profile between the box faces of a bed held by narrower walls divides by
-  // the box's area (Phi half the packing's for walls at half the box width).
+  // stereo/profile's box faces. The styles of a run must agree (require_one_container): every
+  // fix mc/settle of the run, and a compute stereo/profile, which between the box faces of a bed
+  // held by narrower walls divides by the box's area (Phi half the packing's for walls at half
+  // the box width).
   virtual bool side_walls(int /*dim*/, double & /*lo*/, double & /*hi*/) const { return false; }
 
  protected:

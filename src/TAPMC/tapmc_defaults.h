@@ -160,7 +160,8 @@ constexpr double kDepositionSingularRoll = 1e-12;
 // A roll direction shorter than this (after removing its radial part) has no direction.
 constexpr double kDepositionZeroLength = 1e-300;
 // Random horizontal directions tried to leave an unstable equilibrium on one sphere (a direction
-// that a touching contact blocks is rejected) before the roll is declared degenerate.
+// that a touching contact blocks is rejected) before the free directions are found exactly
+// (the edges of the cone the touching contacts leave free; none: the sphere is wedged at rest).
 constexpr int kDepositionLeaveAttempts = 8;
 // Samples of a contact function on each piece of a path between the roots that bound its sign
 // changes (the cylinder wall's paths, tapmc_deposition_cylinder.cpp): one would give the sign;

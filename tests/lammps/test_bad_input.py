@@ -309,6 +309,34 @@ def test_styles_with_different_side_walls_stop_naming_both():
     assert rc == 0 and "Loop time" in out, out
 
 
+TWO_SETTLES_WIDENED = """units lj
+atom_style sphere
+boundary f f fm
+region box block 0 8 0 8 0 30
+create_box 1 box
+create_packing 150 1 0.5 4928 floor 0.0
+region low block INF INF INF INF INF 0.55
+group low region low
+group high subtract all low
+fix tap all tapdilate 0.01 floor 0.0
+fix s1 low mc/settle 11 floor 0.0 eta 1e-5
+fix s2 high mc/settle 12 floor 0.0 eta 1e-5 {walls}
+change_box all x final 0 10 units box
+run 2
+"""
+
+
+def test_two_settles_compare_their_walls_as_they_are_now():
+    """Two fix mc/settle on the box faces, the box widened between their definition and the
+    run: the first fix's init() must read the second one's walls as the box now has them (it
+    read the faces the second had stored, 0 and 8, and refused the run); walls that really
+    differ still stop it."""
+    rc, out, _ = run_lammps(TWO_SETTLES_WIDENED.format(walls=""))
+    assert rc == 0 and "Loop time" in out, out
+    rc, out, _ = run_lammps(TWO_SETTLES_WIDENED.format(walls="xwalls 0 8"))
+    assert rc != 0 and "two different side walls along x in one run" in out, out
+
+
 @pytest.mark.parametrize("boundary,axis", [("s p fm", "x"), ("p m fm", "y")])
 def test_stereo_profile_refuses_shrink_wrapped_sides(boundary, axis):
     """A shrink-wrapped side spans the sphere centres, not the bed: the packing fractions would
@@ -423,7 +451,7 @@ def test_a_box_beyond_exact_contacts_is_refused(z0, body, style):
 def test_a_floor_or_packing_beyond_exact_contacts_is_refused(body, named):
     rc, out, _ = run_lammps(FAR_BOX.format(z0=0, z1=30) + body + "\n")
     assert rc != 0 and f"ERROR: create_packing: {named}" in out, out
-    assert "beyond |z| = 1.13e+05" in out and "Created 100 spheres" not in out, out
+    assert "beyond |z| = 1.13e+05" in out and "by sequential deposition" not in out, out
 
 
 def test_the_bound_names_the_smallest_spheres_as_a_remedy():

@@ -160,7 +160,7 @@ def test_column_one_diameter_wide_is_a_straight_stack_at_rest():
     np.testing.assert_allclose(np.sort(cols["z"]), 1.0 + 2.0 * np.arange(10), atol=1e-9)
     np.testing.assert_allclose(cols["x"], 1.0, atol=1e-12)
     np.testing.assert_allclose(cols["y"], 1.0, atol=1e-12)
-    assert "unstable equilibria left 0 (wedged at rest 9), re-drops 0, unresolved 0" in out
+    assert "unstable equilibria left 0, wedged at rest 9, re-drops 0, unresolved 0" in out
     assert "stability not proven" not in out
     check_geometry(cols, box, (False, False), floor=0.0, walls={0: (0, 2), 1: (0, 2)})
 

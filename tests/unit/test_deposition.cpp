@@ -465,7 +465,8 @@ TEST(Deposition, NoOverlapAndStableOverSeeds)
 // stack or jam against the walls: exactly one diameter D (each sphere wedged on top of the one
 // below: the old kernel left those at the step cap), a hair above it, widths between D and 2 D
 // where spheres zig-zag between the walls, and a hair either side of 2 D (two spheres side by
-// side just fit): every sphere at rest, none overlapping, none left at the step cap.
+// side just fit): every sphere at rest, none overlapping, none left unresolved (a slot up to
+// ~1e-5 D wider than D re-drops a few spheres: create_packing.rst).
 TEST(Deposition, NarrowColumnsAndSlotsNearJammingWidths)
 {
   const double widths[] = {2.0, 2.0 + 1e-9, 2.0 + 1e-6, 2.3, 3.0, 2.0 * std::sqrt(3.0),
