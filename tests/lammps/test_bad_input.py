@@ -309,16 +309,21 @@ def test_styles_with_different_side_walls_stop_naming_both():
     assert rc == 0 and "Loop time" in out, out
 
 
-TWO_SETTLES_WIDENED = """units lj
+def two_layers(boundary, spheres, cut):
+    """A packing in an 8 x 8 box split at height ``cut`` into the groups low and high."""
+    return f"""units lj
 atom_style sphere
-boundary f f fm
+boundary {boundary}
 region box block 0 8 0 8 0 30
 create_box 1 box
-create_packing 150 1 0.5 4928 floor 0.0
-region low block INF INF INF INF INF 0.55
+create_packing {spheres} 1 0.5 4928 floor 0.0
+region low block INF INF INF INF INF {cut}
 group low region low
 group high subtract all low
-fix tap all tapdilate 0.01 floor 0.0
+"""
+
+
+TWO_SETTLES_WIDENED = two_layers("f f fm", 150, 0.55) + """fix tap all tapdilate 0.01 floor 0.0
 fix s1 low mc/settle 11 floor 0.0 eta 1e-5
 fix s2 high mc/settle 12 floor 0.0 eta 1e-5 {walls}
 change_box all x final 0 10 units box
@@ -368,16 +373,7 @@ run 3
 """
 
 
-TWO_TAPPERS = """units lj
-atom_style sphere
-boundary p p fm
-region box block 0 8 0 8 0 30
-create_box 1 box
-create_packing 400 1 0.5 4928 floor 0.0
-region low block INF INF INF INF INF 2.5
-group low region low
-group high subtract all low
-fix tap1 low tapdilate {eps_low} floor 0.0
+TWO_TAPPERS = two_layers("p p fm", 400, 2.5) + """fix tap1 low tapdilate {eps_low} floor 0.0
 fix tap2 high tapdilate 0.01 floor 0.0
 fix settle all mc/settle 4928 floor 0.0 eta 1e-5
 run 2
