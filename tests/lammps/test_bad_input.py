@@ -560,7 +560,7 @@ TAPMC_LOCATION = re.compile(r"^(?:ERROR|WARNING)\b.*\((\S*TAPMC/[\w.]+):(\d+)\)$
 
 
 @pytest.mark.parametrize("body,source", [
-    ("fix s all mc/settle 1 xwalls 1 7", "src/TAPMC/fix_mc_settle.cpp"),     # error->all
+    ("fix s all mc/settle 1 xwalls 1 7", "src/TAPMC/fix_mc_settle_walls.cpp"),  # error->all
     ("fix t all tapdilate -0.1", "src/TAPMC/lammps_support.h"),             # FLERR in a header
     ("compute c all stereo/profile floor 3.0\nthermo_style custom step c_c[1]\nrun 0",
      "src/TAPMC/compute_stereo_profile.cpp"),                               # a warning
