@@ -115,7 +115,7 @@ class FixMCSettle : public Fix, public tapmc::ContainerHolder {
   // fixes of different groups that dilate differently
   bool every_atom_tapped = false;
 
-  // The settings kept in restart files (fix_mc_settle.cpp: the record's layouts).
+  // The settings kept in restart files (fix_mc_settle_restart.cpp: the record's layouts).
   struct RestartSetting;
   std::vector<RestartSetting> restart_settings() const;
   std::array<double *, 6> restart_diagnostics();
