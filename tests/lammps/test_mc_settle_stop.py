@@ -130,20 +130,27 @@ def test_window_without_stop_drift_is_ignored_with_a_warning():
     assert rc == 0 and "is ignored" not in out, out
 
 
+def narrow_bed(boundary, width, spheres, outputs, taps):
+    """A bed of ``spheres`` of diameter 1 in a ``width`` x ``width`` box, tapped ``taps`` times
+    at eps 0.01 (fix mc/settle's keywords: the template's {keywords}), thermo of ``outputs``."""
+    return f"""units lj
+atom_style sphere
+boundary {boundary}
+region box block 0 {width} 0 {width} 0 40
+create_box 1 box
+create_packing {spheres} 1 0.5 4928 floor 0.0
+fix tap all tapdilate 0.01 floor 0.0
+fix settle all mc/settle 4928 floor 0.0 {{keywords}}
+thermo_style custom step {outputs}
+thermo 1
+thermo_modify format float %.12g
+run {taps}
+"""
+
+
 # 16 spheres in a 2 x 2 periodic box: one accepted move changes <Z> by about 1e-3 of itself, far
 # more than eta = 1e-7, so the paper's rule stops only at a check (16 trials) that accepts none.
-SMALL_BED = """units lj
-atom_style sphere
-boundary p p fm
-region box block 0 2 0 2 0 40
-create_box 1 box
-create_packing 16 1 0.5 4928 floor 0.0
-fix tap all tapdilate 0.01 floor 0.0
-fix settle all mc/settle 4928 floor 0.0 {keywords}
-thermo_style custom step f_settle[1] f_settle[13]
-thermo 1
-run 6
-"""
+SMALL_BED = narrow_bed("p p fm", 2, 16, "f_settle[1] f_settle[13]", 6)
 IDLE_STOP = "which none of its 16 trials was accepted. 'stop change' reads an unchanged <Z>"
 
 
@@ -164,19 +171,8 @@ def test_a_stop_at_an_idle_check_warns_once(nprocs, scheme):
 
 # A column one diameter wide (walls on x and y): create_packing stacks the spheres, each wedged
 # on top of the one below; every trial move has a sideways part that enters a wall.
-COLUMN = """units lj
-atom_style sphere
-boundary f f fm
-region box block 0 {width} 0 {width} 0 40
-create_box 1 box
-create_packing 10 1 0.5 4928 floor 0.0
-fix tap all tapdilate 0.01 floor 0.0
-fix settle all mc/settle 4928 floor 0.0 {keywords}
-thermo_style custom step f_settle[2] f_settle[3]
-thermo 1
-thermo_modify format float %.12g
-run 7
-"""
+COLUMN = {width: narrow_bed("f f fm", width, 10, "f_settle[2] f_settle[3]", 7)
+          for width in (1.0, 1.1)}
 NO_MOVE = "5 redepositions in a row accepted none of their trial moves"
 
 
@@ -188,7 +184,7 @@ def test_a_packing_that_cannot_move_is_named_not_silently_dilated(nprocs, scheme
     redepositions all stop at an idle check, accepts moves: no warning either."""
     for stop in ("", "stop drift"):
         keywords = f"scheme {scheme} {stop}"
-        rc, out, _ = run_lammps(COLUMN.format(width=1.0, keywords=keywords), nprocs=nprocs)
+        rc, out, _ = run_lammps(COLUMN[1.0].format(keywords=keywords), nprocs=nprocs)
         assert rc == 0, out
         assert out.count(NO_MOVE) == 1 and "(warned once)" in out, out
         assert "step 5: " + NO_MOVE in out, out
@@ -196,7 +192,7 @@ def test_a_packing_that_cannot_move_is_named_not_silently_dilated(nprocs, scheme
         np.testing.assert_array_equal(table[1:, 1], np.zeros(7))     # acceptance 0 every tap
         # each tap's <Z> 1.01 times the last (step 0 has had no redeposition: [3] is 0)
         np.testing.assert_allclose(table[2:, 2] / table[1:-1, 2], 1.01, rtol=1e-9)
-        rc, out, _ = run_lammps(COLUMN.format(width=1.1, keywords=keywords), nprocs=nprocs)
+        rc, out, _ = run_lammps(COLUMN[1.1].format(keywords=keywords), nprocs=nprocs)
         assert rc == 0 and NO_MOVE not in out, out
     rc, out, _ = run_lammps(SMALL_BED.format(keywords=f"scheme {scheme}"), nprocs=nprocs)
     assert rc == 0 and IDLE_STOP in out and NO_MOVE not in out, out
