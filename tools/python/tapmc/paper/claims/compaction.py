@@ -173,14 +173,22 @@ def first_decade_rates(t, x):
     and 6-10; per ln t: split at sqrt(10)), and the two gaps between the halves (taps, ln t):
     ((rate, gap), (log_rate, log_gap))."""
     lo, hi = EARLY_DECADE
-    first, second = (t >= lo) & (t <= hi / 2), (t > hi / 2) & (t <= hi)
-    gap = float(np.mean(t[second]) - np.mean(t[first]))
-    rate = (float(np.mean(x[second])) - float(np.mean(x[first]))) / gap
     mid = math.sqrt(lo * hi)
     low, high = (t >= lo) & (t < mid), (t >= mid) & (t <= hi)
-    log_gap = float(np.mean(np.log(t[high])) - np.mean(np.log(t[low])))
-    log_rate = (float(np.mean(x[high])) - float(np.mean(x[low]))) / log_gap
-    return (rate, gap), (log_rate, log_gap)
+    return _means_rate(t, x, *_decade_halves(t)), _means_rate(np.log(t), x, low, high)
+
+
+def _decade_halves(t):
+    """Masks of the first decade's two halves in taps (taps 1-5 and 6-10)."""
+    lo, hi = EARLY_DECADE
+    return (t >= lo) & (t <= hi / 2), (t > hi / 2) & (t <= hi)
+
+
+def _means_rate(t, x, first, second):
+    """(rate, gap): the change of x between the means over two windows (masks of t), per unit
+    of t, and the gap between the windows' mean t."""
+    gap = float(np.mean(t[second]) - np.mean(t[first]))
+    return (float(np.mean(x[second])) - float(np.mean(x[first]))) / gap, gap
 
 
 def _early_seeds(data, eps):
@@ -243,8 +251,7 @@ def _window_rate(t, mean, sem, first, second):
     only narrows the difference: an upper bound)."""
     if not (first.any() and second.any()):
         return math.nan, math.nan
-    gap = float(np.mean(t[second]) - np.mean(t[first]))
-    rate = (float(np.mean(mean[second])) - float(np.mean(mean[first]))) / gap
+    rate, gap = _means_rate(t, mean, first, second)
     return rate, math.hypot(float(np.mean(sem[first])), float(np.mean(sem[second]))) / gap
 
 
@@ -257,9 +264,7 @@ def _rate_change(eps, t, mean, sem, n, early_seeds=None, halves_factor=1.0):
     taps are correlated over hundreds of taps (tests/python/test_claims.py)."""
     if np.nanmax(n) == 1 and len(t) >= 8 * DEFAULT_BATCHES and t[-1] > 10 * EARLY_DECADE[1]:
         return _rate_change_one_run(eps, t, mean, early_seeds, halves_factor)
-    lo, hi = EARLY_DECADE
-    early, e_early = _window_rate(t, mean, sem, (t >= lo) & (t <= hi / 2),
-                                  (t > hi / 2) & (t <= hi))
+    early, e_early = _window_rate(t, mean, sem, *_decade_halves(t))
     end = t[-1]
     late, e_late = _window_rate(t, mean, sem, (t >= end / 2) & (t < 0.75 * end),
                                 (t >= 0.75 * end) & (t <= end))
