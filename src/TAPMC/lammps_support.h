@@ -159,13 +159,22 @@ inline void request_ghost_depth(LAMMPS_NS::LAMMPS *lmp, double depth)
   if (depth > 0.0 && lmp->comm->get_comm_cutoff() < depth) lmp->comm->cutghostuser = depth;
 }
 
+// The index of the group whose atoms alone become ghosts ('comm_modify group'; 0, the group
+// all: every atom). LAMMPS keeps
+// this setting protected in Comm; a pointer to the member, named through a class derived from
+// Comm (where it is accessible), reads it from any Comm. Never instantiated.
+struct CommBorderGroup : LAMMPS_NS::Comm {
+  static int of(const LAMMPS_NS::Comm *comm) { return comm->*(&CommBorderGroup::bordergroup); }
+};
+
 // A style that reads ghost atoms (fix mc/settle's domain scheme, compute contacts) needs every
 // atom within the depth asked for above. 'comm_modify mode multi' (and multi/old) sizes the
 // ghost shell per collection from the pair cutoffs: without a pair style, no ghosts at all (the
 // domain scheme let spheres of two sub-domains overlap by 97 % of a diameter). It stops here,
-// `loss` naming what would go wrong and `instead` a way out beside the default. (LAMMPS keeps
-// 'comm_modify group', which sends one group's ghosts only, out of reach: doc/fix_mc_settle.rst
-// warns of it.) Call from init().
+// `loss` naming what would go wrong and `instead` a way out beside the default. 'comm_modify
+// group G' sends ghosts of G's atoms only: with atoms outside G, the domain scheme moved
+// spheres into them and compute contacts missed their contacts, silently. Collective; call
+// from init().
 inline void require_ghosts_of_every_atom(LAMMPS_NS::LAMMPS *lmp, const char *style,
                                          const char *loss, const char *instead = "")
 {
@@ -175,6 +184,18 @@ inline void require_ghosts_of_every_atom(LAMMPS_NS::LAMMPS *lmp, const char *sty
                     "sizes them from the pair cutoffs, and hard spheres have no pair style), so "
                     "{}: use 'comm_modify mode single' (the default){}", style,
                     comm->mode == LAMMPS_NS::Comm::MULTI ? "multi" : "multi/old", loss, instead);
+  const int border_group = CommBorderGroup::of(comm);
+  if (border_group == 0) return;
+  const int border_bit = lmp->group->bitmask[border_group];
+  long outside_local = 0, outside = 0;
+  for (int i = 0; i < lmp->atom->nlocal; ++i)
+    outside_local += (lmp->atom->mask[i] & border_bit) ? 0 : 1;
+  MPI_Allreduce(&outside_local, &outside, 1, MPI_LONG, MPI_SUM, lmp->world);
+  if (outside == 0) return;
+  const char *name = lmp->group->names[border_group];
+  lmp->error->all(FLERR, "{}: 'comm_modify group {}' sends ghost atoms of that group only, and "
+                  "{} atoms are outside it, so {}: use 'comm_modify group all' (the default){}",
+                  style, name, outside, loss, instead);
 }
 
 // Two fixes of one style acting on the same atoms would tap (or settle) them twice per step.
