@@ -235,11 +235,7 @@ def test_command_writes_the_table_and_refuses_a_campaign_without_runs(tmp_path):
 def test_both_campaign_readers_refuse_a_campaign_with_nothing_to_read(tmp_path):
     (tmp_path / "empty" / "runs").mkdir(parents=True)
     for command, what in (("sigma-eta", "constant-eps runs"), ("paper-ramp", "paperramp")):
-        env = dict(os.environ,
-                   PYTHONPATH=str(Path(__file__).resolve().parents[2] / "tools" / "python"))
-        done = subprocess.run([sys.executable, "-m", "tapmc.paper", command, "--campaign",
-                               str(tmp_path / "empty"), "--out", str(tmp_path / "out")],
-                              capture_output=True, text=True, env=env, timeout=120)
+        done = _campaign_command(command, tmp_path / "empty", tmp_path / "out")
         assert done.returncode == 2 and what in done.stderr and "Traceback" not in done.stderr
         assert not (tmp_path / "out").exists()
 
@@ -251,34 +247,49 @@ def test_both_campaign_readers_refuse_a_campaign_with_nothing_to_read(tmp_path):
 ])
 def test_both_campaign_readers_name_a_damaged_taps_file(tmp_path, damage, what):
     """A NaN, a non-numeric field or a title without the columns: exit 2 naming the file (a
-    traceback before), nothing written; a run just started (its title, no tap) is no error."""
-    env = dict(os.environ,
-               PYTHONPATH=str(Path(__file__).resolve().parents[2] / "tools" / "python"))
-    for command, name, title in (
-            ("sigma-eta", "const_pbc_eps0.01_s1", "# step phi_b phi_c Z\n"),
-            ("paper-ramp", "paperramp0.125_pbc_s1",
-             "# step level branch sqrt_eps phi_b phi_c Z\n")):
-        folder = tmp_path / command / "runs" / name
-        folder.mkdir(parents=True)
-        width = title.count(" ")
-        rows = "".join(f"{t} " + " ".join(["0.5"] * (width - 2) + ["7.3"]) + "\n"
-                       for t in range(5))
-        (folder / "taps.dat").write_text(damage(title + rows))
-        done = subprocess.run([sys.executable, "-m", "tapmc.paper", command, "--campaign",
-                               str(tmp_path / command), "--out", str(tmp_path / "out")],
-                              capture_output=True, text=True, env=env, timeout=120)
+    traceback before), nothing written."""
+    for command, title in _TAPS_TITLES:
+        folder = _one_run_campaign(tmp_path / command, command, title, damage)
+        done = _campaign_command(command, tmp_path / command, tmp_path / "out")
         assert done.returncode == 2 and what in done.stderr, done.stderr
         assert str(folder / "taps.dat") in done.stderr and "Traceback" not in done.stderr
         assert not (tmp_path / "out").exists()
+
+
+#: each campaign reader and the title of its runs' taps.dat
+_TAPS_TITLES = (("sigma-eta", "# step phi_b phi_c Z\n"),
+                ("paper-ramp", "# step level branch sqrt_eps phi_b phi_c Z\n"))
+
+
+def _one_run_campaign(campaign, command, title, damage=lambda text: text):
+    """A campaign folder with one run of ``command``'s kind, five taps (``damage``d)."""
+    name = "const_pbc_eps0.01_s1" if command == "sigma-eta" else "paperramp0.125_pbc_s1"
+    folder = campaign / "runs" / name
+    folder.mkdir(parents=True)
+    width = title.count(" ")
+    rows = "".join(f"{t} " + " ".join(["0.5"] * (width - 2) + ["7.3"]) + "\n" for t in range(5))
+    (folder / "taps.dat").write_text(damage(title + rows))
+    return folder
+
+
+def _campaign_command(command, campaign, out):
+    env = dict(os.environ,
+               PYTHONPATH=str(Path(__file__).resolve().parents[2] / "tools" / "python"))
+    return subprocess.run([sys.executable, "-m", "tapmc.paper", command, "--campaign",
+                           str(campaign), "--out", str(out)],
+                          capture_output=True, text=True, env=env, timeout=120)
+
+
+def test_both_campaign_readers_refuse_a_file_for_out_and_read_a_run_just_started(tmp_path):
+    """--out naming a file: exit 2 naming it; a run just started (its title, no tap) is no
+    error."""
+    for command, title in _TAPS_TITLES:
+        folder = _one_run_campaign(tmp_path / command, command, title)
         (tmp_path / "afile").write_text("")
-        done = subprocess.run([sys.executable, "-m", "tapmc.paper", command, "--campaign",
-                               str(tmp_path / command), "--out", str(tmp_path / "afile")],
-                              capture_output=True, text=True, env=env, timeout=120)
+        done = _campaign_command(command, tmp_path / command, tmp_path / "afile")
         assert done.returncode == 2 and "afile is a file, not a folder" in done.stderr
         (folder / "taps.dat").write_text(title)   # just started: nothing to read yet
-        done = subprocess.run([sys.executable, "-m", "tapmc.paper", command, "--campaign",
-                               str(tmp_path / command), "--out", str(tmp_path / "out")],
-                              capture_output=True, text=True, env=env, timeout=120)
+        done = _campaign_command(command, tmp_path / command, tmp_path / "out")
         assert "Traceback" not in done.stderr, done.stderr
 
 
