@@ -201,3 +201,18 @@ def test_paper_scale_dump_reproduces_its_printed_row():
         assert got[name] == pytest.approx(float(row[name]), abs=0.5e-8 + 1e-8), name
     for name in ("z_top", "h_s"):
         assert got[name] == pytest.approx(float(row[name]), abs=0.5e-6 + 1e-8), name
+
+
+def test_a_box_a_whole_number_of_columns_wide_only_within_rounding_has_them_all():
+    """Six diameters of 0.2 make 1.2, and 1.2 / 0.2 = 5.999...: the compute counts columns as
+    floor(L / 2R + 1e-9) (6 here), so h_s is the mean top of the 36 one-sphere columns. The
+    check counted 5 (h_s 0.5954 for the compute's 0.5823, <Phi^c> 0.1126 for 0.1120)."""
+    radius, side = 0.1, 1.2
+    assert side / (2 * radius) < 6
+    rng = np.random.default_rng(3)
+    pos, _ = square_layer(6, radius)
+    pos[:, 2] += rng.uniform(0, 0.8, len(pos))
+    check = PackingCheck(frame(pos, radius, [0, 0, 0], [side, side, 3], [True, True, False]),
+                         digits=None).compute()
+    assert check.surface == pytest.approx(np.mean(pos[:, 2] + radius), rel=1e-14)
+    assert check.window_top == pytest.approx(0.9 * check.surface, rel=1e-14)

@@ -182,6 +182,22 @@ def test_packing_check_in_a_tube():
     assert bad.wall_gap < 0 and not bad.legal
 
 
+def test_a_tube_a_whole_number_of_columns_wide_only_within_rounding_has_them_all():
+    """A tube of radius 0.6 with spheres of 0.2: its bounding square is 1.2 / 0.2 = 5.999...
+    columns wide, which the compute counts as 6 (floor(L / 2R + 1e-9)); h_s is then the mean
+    top of the occupied one-sphere columns (the stereology had 5: h_s 0.7365 for 0.6920)."""
+    radius = 0.1
+    g = (np.arange(6) + 0.5) * 2 * radius
+    x, y = (a.ravel() for a in np.meshgrid(g, g, indexing="ij"))
+    keep = np.hypot(x - 0.6, y - 0.6) <= 0.6 - radius
+    rng = np.random.default_rng(4)
+    pos = np.column_stack([x[keep], y[keep], radius + rng.uniform(0, 0.8, keep.sum())])
+    tube = TubeStereology(pos, radius, Cylinder(0.6, 0.6, 0.6), floor=0.0).compute()
+    assert tube.surface == pytest.approx(np.mean(pos[:, 2] + radius), rel=1e-14)
+    with pytest.raises(ValueError, match=r"column = 0.0001 is outside the allowed range"):
+        TubeStereology(pos, radius, Cylinder(0.6, 0.6, 0.6), floor=0.0, column=1e-4).compute()
+
+
 # ---- against lmp_tapmc ------------------------------------------------------------------------
 INPUT = """units lj
 atom_style sphere

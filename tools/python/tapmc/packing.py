@@ -29,7 +29,7 @@ import numpy as np
 
 from ._geometry import near_pairs
 from ._stereo_defaults import (BULK_OVER_R, COLUMN_OVER_R, TOP_FRACTION, WALL_BAND_OVER_R,
-                               WALL_FACTOR)
+                               WALL_FACTOR, column_count)
 from ._validate import in_range, positive, positive_int, require, result
 from .cylinder import Cylinder
 from .profiles import sphere_slab_volume
@@ -167,7 +167,7 @@ class PackingCheck:
         ncol = [0, 0]
         for d in (0, 1):
             length = float(hi[d] - lo[d])
-            ncol[d] = max(1, int(math.floor(length / (COLUMN_OVER_R * mean_r))))
+            ncol[d] = column_count(length, COLUMN_OVER_R * mean_r)
             width = length / ncol[d]
             c = np.floor((pos[:, d] - lo[d]) / width).astype(int)
             column[d] = np.mod(c, ncol[d]) if periodic[d] else np.clip(c, 0, ncol[d] - 1)

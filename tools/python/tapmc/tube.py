@@ -35,7 +35,7 @@ from ._validate import in_range, new_axis, positive, positive_int, require, resu
 from .cylinder import (Cylinder, disk_lens_area, sphere_cylinder_surface_area,
                        sphere_cylinder_volume)
 from ._stereo_defaults import (BULK_OVER_R, COLUMN_OVER_R, TOP_FRACTION, WALL_BAND_OVER_R,
-                               WALL_FACTOR)
+                               WALL_FACTOR, column_count)
 
 __all__ = ["TubeStereology", "TubeProfile", "as_cylinder", "WALL_ZONE_OVER_R",
            "WINDOW_BOTTOM_OVER_R", "PROFILE_BINS"]
@@ -186,7 +186,8 @@ class TubeStereology:
 
     def _surface(self, mean_r):
         c, rc = self.cylinder, self.cylinder.radius
-        ncol = max(1, int(math.floor(2.0 * rc / (self.column or COLUMN_OVER_R * mean_r))))
+        ncol = column_count(2.0 * rc, self.column or COLUMN_OVER_R * mean_r,
+                            given=self.column is not None)
         width = 2.0 * rc / ncol
         ij = [np.clip(np.floor((self.positions[:, k] - (centre - rc)) / width).astype(int),
                       0, ncol - 1) for k, centre in ((0, c.cx), (1, c.cy))]
