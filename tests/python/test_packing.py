@@ -216,3 +216,23 @@ def test_a_box_a_whole_number_of_columns_wide_only_within_rounding_has_them_all(
                          digits=None).compute()
     assert check.surface == pytest.approx(np.mean(pos[:, 2] + radius), rel=1e-14)
     assert check.window_top == pytest.approx(0.9 * check.surface, rel=1e-14)
+
+
+@pytest.mark.parametrize("lo,hi,message", [
+    ([0, 0, 0], [0, 4, 10], r"box_hi = \[0.0, 4.0, 10.0\] must exceed box_lo"),
+    ([4, 0, 0], [0, 4, 10], r"box_hi = \[0.0, 4.0, 10.0\] must exceed box_lo = \[4.0"),
+    ([0, 0, 0], [np.nan, 4, 10], r"box_hi\[0\] = nan is not finite"),
+])
+def test_a_box_without_width_is_refused_by_name(lo, hi, message):
+    """A periodic x of zero width gave legal = True and Phi = inf, an inverted box negative
+    fractions, a NaN bound a numpy error: the box is checked as Contacts checks it."""
+    pos = [[1.0, 1.0, 0.5], [2.5, 2.0, 0.5]]
+    with pytest.raises(ValueError, match=message):
+        PackingCheck(frame(pos, 0.5, lo, hi, [True, True, False]))
+
+
+def test_radii_and_positions_of_different_lengths_are_refused_by_name():
+    bad = Frame(0, [0, 0, 0], [4, 4, 10], [True, True, False], np.arange(1, 3),
+                np.array([[1.0, 1.0, 0.5], [2.5, 2.0, 0.5]]), np.array([0.5, 0.5, 0.5]))
+    with pytest.raises(ValueError, match="radii has 3 values but positions has 2 spheres"):
+        PackingCheck(bad)

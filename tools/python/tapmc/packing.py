@@ -27,7 +27,7 @@ import math
 
 import numpy as np
 
-from ._geometry import near_pairs
+from ._geometry import near_pairs, validated_box, validated_spheres
 from ._stereo_defaults import (BULK_OVER_R, COLUMN_OVER_R, TOP_FRACTION, WALL_BAND_OVER_R,
                                WALL_FACTOR, column_count)
 from ._validate import in_range, positive, positive_int, require, result
@@ -74,13 +74,10 @@ class PackingCheck:
         if frame.n_atoms < 1:
             raise ValueError("frame holds no atoms")
         self.frame = frame
-        self.positions = np.asarray(frame.positions, dtype=float)
-        self.radii = np.asarray(frame.radii, dtype=float)
-        if not np.all(np.isfinite(self.positions)):
-            raise ValueError("frame positions hold non-finite values")
-        if np.any(~(self.radii > 0)):
-            raise ValueError("every radius must be > 0")
-        self.floor = (float(frame.box_lo[2]) if floor is None
+        self.positions, self.radii = validated_spheres(frame.positions, frame.radii)
+        self.box_lo, self.box_hi, self.periodic = validated_box(frame.box_lo, frame.box_hi,
+                                                                np.asarray(frame.periodic, bool))
+        self.floor = (float(self.box_lo[2]) if floor is None
                       else in_range("floor", floor, -math.inf, math.inf))
         self.digits = None if digits is None else positive_int("digits", digits)
         self.contact_tolerance = positive("contact_tolerance", contact_tolerance,
@@ -111,8 +108,7 @@ class PackingCheck:
     # ---- geometry ----------------------------------------------------------------------------
     def _geometry(self):
         pos, r = self.positions, self.radii
-        lo, hi = self.frame.box_lo, self.frame.box_hi
-        periodic = np.asarray(self.frame.periodic[:3], dtype=bool)
+        lo, hi, periodic = self.box_lo, self.box_hi, self.periodic
         reach = 2.0 * float(r.max())
         radius = reach * (1.0 + 1e-6)
         pairs, delta = near_pairs(pos, lo, hi, periodic, radius)
@@ -157,8 +153,7 @@ class PackingCheck:
              self._phi_core, self._surface) = (float(v) for v in tube.vector)
             return
         pos, r = self.positions, self.radii
-        lo, hi = self.frame.box_lo, self.frame.box_hi
-        periodic = np.asarray(self.frame.periodic[:2], dtype=bool)
+        lo, hi, periodic = self.box_lo, self.box_hi, self.periodic[:2]
         mean_r = float(r.mean())
         area = float((hi[0] - lo[0]) * (hi[1] - lo[1]))
         z0, z = self.floor, pos[:, 2]
