@@ -151,6 +151,13 @@ def test_a_tube_wall_counts_as_the_compute_with_container_counts_it():
     assert not plain.on_wall.any() and plain.fraction_wall == 0.0
     with pytest.raises(ValueError, match="cylinder given but x or y is periodic"):
         Contacts(pos, 0.5, [0, 0, 0], [8, 8, 12], [True, True, False], cylinder=tube)
+    # a (cx, cy, radius) triple is the same tube (a raw AttributeError before)
+    triple = Contacts(pos, 0.5, [0, 0, 0], [8, 8, 12], [False] * 3, gap=0.01, floor=0.0,
+                      cylinder=(4.0, 4.0, 4.0)).compute()
+    np.testing.assert_array_equal(triple.coordination, on.coordination)
+    # a tube narrower than its spheres (every sphere, even one outside it, read on the wall)
+    with pytest.raises(ValueError, match="cylinder.radius = 0.4 must exceed the largest sphere"):
+        Contacts(pos, 0.5, [0, 0, 0], [8, 8, 12], [False] * 3, cylinder=Cylinder(4, 4, 0.4))
 
 
 def test_mixed_radii_use_each_pairs_contact_distance():

@@ -352,6 +352,12 @@ def test_in_a_tube_the_walls_are_the_cylinder():
     assert np.count_nonzero(masks["walls"] & ~boxed["walls"]) > 0   # what the box faces miss
     with pytest.raises(ValueError, match="cylinder given but x or y is periodic"):
         Crystallinity(pos, 0.5, [0, 0, 0], [8, 8, 20], (True, True, False), cylinder=tube)
+    triple = Crystallinity(pos, 0.5, [0, 0, 0], [8, 8, 20], (False, False, False), floor=0.0,
+                           cylinder=(4.0, 4.0, 4.05)).compute()
+    assert np.array_equal(triple.zone_masks(band=2.0, margin=3.0)["walls"], masks["walls"])
+    with pytest.raises(ValueError, match="cylinder.radius = 0.4 must exceed the largest sphere"):
+        Crystallinity(pos, 0.5, [0, 0, 0], [8, 8, 20], (False, False, False),
+                      cylinder=Cylinder(4, 4, 0.4))
 
 
 def test_periodic_sides_have_no_walls_and_no_floor_without_one():

@@ -121,8 +121,11 @@ def test_container_must_be_wider_than_its_spheres():
         tube.vertical_profile((0.0, 2.0, 0))
     box = Frame(0, [-3, -3, 0], [3, 3, 5], [False, False, False], np.array([1, 2]),
                 np.array(pos), np.array([0.3, 0.5]))
-    with pytest.raises(ValueError, match="cylinder = .* must be a tapmc.cylinder.Cylinder"):
-        PackingCheck(box, cylinder=(0, 0, 2))
+    # a (cx, cy, radius) triple is accepted wherever a cylinder is (python_analysis.rst)
+    assert PackingCheck(box, cylinder=(0, 0, 2)).compute().phi_b == \
+        PackingCheck(box, cylinder=Cylinder(0, 0, 2)).compute().phi_b
+    with pytest.raises(ValueError, match=r"cylinder = 'tube' must be a Cylinder or \(cx, cy, "):
+        PackingCheck(box, cylinder="tube")
 
 
 # ---- invariants -------------------------------------------------------------------------------

@@ -38,6 +38,7 @@ import numpy as np
 from ._geometry import near_pairs, validated_box, validated_spheres
 from ._legends import place_legend
 from ._validate import as_1d, choice, in_range, new_axis, require, result
+from .cylinder import as_cylinder
 
 __all__ = ["Contacts", "ContactSummary", "GapSweep", "GAP_TOLERANCE", "MAX_GAP", "FEW_BELOW",
            "MAX_Z"]
@@ -107,7 +108,8 @@ class Contacts:
         if cylinder is not None and (self.periodic[0] or self.periodic[1]):
             raise ValueError("cylinder given but x or y is periodic: a tube needs non-periodic "
                              "x and y")
-        self.cylinder = cylinder
+        self.cylinder = (None if cylinder is None
+                         else as_cylinder(cylinder).check_spheres(self.radii))
         self._check_periods(self.gap)
         self.frame = None
         self._n = None

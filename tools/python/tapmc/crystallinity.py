@@ -53,6 +53,7 @@ import numpy as np
 from ._geometry import near_pairs, validated_box, validated_spheres
 from ._legends import place_legend
 from ._validate import as_1d, choice, in_range, new_axis, positive, positive_int, require, result
+from .cylinder import as_cylinder
 from .packing import PackingCheck
 from .readers import Frame
 
@@ -174,7 +175,8 @@ class Crystallinity:
         if cylinder is not None and (self.periodic[0] or self.periodic[1]):
             raise ValueError("cylinder given but x or y is periodic: a tube needs "
                              "non-periodic x and y")
-        self.cylinder = cylinder
+        self.cylinder = (None if cylinder is None
+                         else as_cylinder(cylinder).check_spheres(r))
         self.mean_radius = float(r.mean())
         self.cutoff = (CUTOFF_OVER_DIAMETER * 2.0 * self.mean_radius if cutoff is None
                        else positive("cutoff", cutoff))

@@ -31,7 +31,7 @@ import numpy as np
 
 from ._validate import log_path
 
-__all__ = ["Cylinder", "disk_lens_area", "circle_arc_in_disk", "sphere_cylinder_volume",
+__all__ = ["Cylinder", "as_cylinder", "disk_lens_area", "circle_arc_in_disk", "sphere_cylinder_volume",
            "sphere_cylinder_surface_area", "sphere_slab_volume", "QUADRATURE_NODES",
            "LENS_SERIES_ANGLE"]
 
@@ -129,6 +129,19 @@ class Cylinder:
             raise ValueError(f"{path}: no 'region {region} cylinder z cx cy radius' command "
                              "with numbers in the log")
         return cls(*found)
+
+
+def as_cylinder(cylinder):
+    """A :class:`tapmc.cylinder.Cylinder`, or a (cx, cy, radius) triple made into one;
+    ValueError naming ``cylinder`` otherwise."""
+    if isinstance(cylinder, Cylinder):
+        return cylinder
+    try:
+        cx, cy, radius = cylinder
+    except (TypeError, ValueError):
+        raise ValueError(f"cylinder = {cylinder!r} must be a Cylinder or (cx, cy, radius)") \
+            from None
+    return Cylinder(cx, cy, radius)
 
 
 def sphere_slab_volume(radius, zlo, zhi):

@@ -31,7 +31,7 @@ from ._geometry import near_pairs, validated_box, validated_spheres
 from ._stereo_defaults import (BULK_OVER_R, COLUMN_OVER_R, TOP_FRACTION, WALL_BAND_OVER_R,
                                WALL_FACTOR, column_count)
 from ._validate import in_range, positive, positive_int, require, result
-from .cylinder import Cylinder
+from .cylinder import as_cylinder
 from .profiles import sphere_slab_volume
 from .tube import TubeStereology
 
@@ -82,9 +82,8 @@ class PackingCheck:
         self.digits = None if digits is None else positive_int("digits", digits)
         self.contact_tolerance = positive("contact_tolerance", contact_tolerance,
                                           allow_zero=True)
-        if cylinder is not None and not isinstance(cylinder, Cylinder):
-            raise ValueError(f"cylinder = {cylinder!r} must be a tapmc.cylinder.Cylinder")
-        self.cylinder = None if cylinder is None else cylinder.check_spheres(self.radii)
+        self.cylinder = (None if cylinder is None
+                         else as_cylinder(cylinder).check_spheres(self.radii))
         self._n = None
 
     @property

@@ -32,7 +32,7 @@ import numpy as np
 from ._geometry import validated_spheres
 from ._legends import place_legend
 from ._validate import in_range, new_axis, positive, positive_int, require, result
-from .cylinder import (Cylinder, disk_lens_area, sphere_cylinder_surface_area,
+from .cylinder import (Cylinder, as_cylinder, disk_lens_area, sphere_cylinder_surface_area,
                        sphere_cylinder_volume)
 from ._stereo_defaults import (BULK_OVER_R, COLUMN_OVER_R, TOP_FRACTION, WALL_BAND_OVER_R,
                                WALL_FACTOR, column_count)
@@ -47,19 +47,6 @@ WALL_ZONE_OVER_R = 7.0
 WINDOW_BOTTOM_OVER_R = 2.0
 #: bins of a profile when none are given (the compute's *planes* default n)
 PROFILE_BINS = 100
-
-
-def as_cylinder(cylinder):
-    """A :class:`tapmc.cylinder.Cylinder`, or a (cx, cy, radius) triple made into one;
-    ValueError naming ``cylinder`` otherwise."""
-    if isinstance(cylinder, Cylinder):
-        return cylinder
-    try:
-        cx, cy, radius = cylinder
-    except (TypeError, ValueError):
-        raise ValueError(f"cylinder = {cylinder!r} must be a Cylinder or (cx, cy, radius)") \
-            from None
-    return Cylinder(cx, cy, radius)
 
 
 def _planes(name, planes):
