@@ -132,6 +132,28 @@ def test_range_refits_validation():
         range_refits("eq3", TAPS, TAPS)
     with pytest.raises(ValueError, match="first < last"):
         range_refits(InverseLogLaw(), TAPS, TAPS, ranges=[(10, 1)])
+    # ranges beyond the run: every parameter read "consistent" from no fit at all
+    taps = np.arange(0.0, 2001.0)
+    with pytest.raises(ValueError, match=r"hold fewer than the 6 points a fit of InverseLogLaw "
+                                         r"needs in every range \(t from 0 to 2000\)"):
+        range_refits(InverseLogLaw(), taps, taps, ranges=[(3e3, 5e5), (2e5, 2e6)])
+    # a run of 3 taps: the default [1, T/4] would be (1, 0.75)
+    with pytest.raises(ValueError, match=r"t ends at tap 3: the default ranges start with"):
+        range_refits(InverseLogLaw(), [0, 1, 2, 3], [0.5, 0.51, 0.52, 0.53])
+
+
+def test_range_refits_without_a_fit_to_compare_decide_nothing():
+    """A range whose fit did not converge is left out; with none left, the deviation is nan
+    and no parameter is called consistent or range dependent (they were all "consistent")."""
+    taps = np.arange(0.0, 4001.0)
+    rng = np.random.default_rng(1)
+    y = 0.64 - 0.06 * np.exp(-np.sqrt(taps / 200.0)) + rng.normal(0, 2e-3, taps.size)
+    r = range_refits(InverseLogLaw(), taps, y, 2e-3)
+    for f in r.fits:
+        f.converged = False
+    r._deviation = None
+    assert all(np.isnan(v) for v in r.deviation.values())
+    assert all(ok is None for ok in r.consistent.values()) and r.range_dependent == []
 
 
 def test_exponential_dependence_of_b():

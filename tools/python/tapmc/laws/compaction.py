@@ -412,9 +412,10 @@ class RangeRefits:
     largest over the ranges of sqrt(profile delta chi2 of the range's fit at the reference
     value), :meth:`FitResult.profile_delta_chi2`: how many standard deviations each range puts
     between its data and the value fitted on all of them; a likelihood ratio, valid also for
-    the skewed profiles of a degenerate law, and 0 for a range whose profile is flat there),
-    ``consistent`` (dict name -> deviation <= ``RANGE_Z_LIMIT``) and ``range_dependent`` (the
-    names that are not)."""
+    the skewed profiles of a degenerate law, and 0 for a range whose profile is flat there;
+    nan when no range has a converged fit to compare), ``consistent`` (dict name -> deviation
+    <= ``RANGE_Z_LIMIT``; None when nan: no evidence either way) and ``range_dependent`` (the
+    names that are not consistent)."""
 
     def __init__(self, law, reference, ranges, fits):
         self.law = law
@@ -454,24 +455,25 @@ class RangeRefits:
             out = {}
             for k in self.names:
                 ref = self.reference.params[k]
-                worst = 0.0
+                worst = np.nan
                 for f in self.fits:
                     if f is None or not f.converged:
                         continue
                     d = f.profile_delta_chi2(k, ref)
                     if np.isfinite(d) or d == np.inf:
-                        worst = max(worst, float(np.sqrt(d)))
+                        worst = max(0.0 if np.isnan(worst) else worst, float(np.sqrt(d)))
                 out[k] = worst
             self._deviation = out
         return self._deviation
 
     @property
     def consistent(self):
-        return {k: bool(d <= RANGE_Z_LIMIT) for k, d in self.deviation.items()}
+        return {k: None if np.isnan(d) else bool(d <= RANGE_Z_LIMIT)
+                for k, d in self.deviation.items()}
 
     @property
     def range_dependent(self):
-        return [k for k, ok in self.consistent.items() if not ok]
+        return [k for k, ok in self.consistent.items() if ok is False]
 
     def __repr__(self):
         dev = ", ".join(f"{k} {v:.3g}" for k, v in self.deviation.items())
@@ -490,15 +492,26 @@ def range_refits(law, t, y, sigma=None, ranges=None):
     y = as_1d("y", y)
     same_length("t", t, "y", y)
     s = None if sigma is None else np.broadcast_to(np.asarray(sigma, dtype=float), t.shape)
-    ranges = default_tap_ranges(t) if ranges is None else [tuple(map(float, r)) for r in ranges]
+    if ranges is None:
+        if not np.max(t) > 4.0:
+            raise ValueError(f"t ends at tap {np.max(t):g}: the default ranges start with "
+                             f"[1, T/4], which needs T > 4; give ranges")
+        ranges = default_tap_ranges(t)
+    else:
+        ranges = [tuple(map(float, r)) for r in ranges]
     for r in ranges:
         if len(r) != 2 or not r[0] < r[1]:
             raise ValueError(f"ranges entry {r!r} must be (first, last) with first < last")
+    needed = len(law.names) + 2
+    if all(np.count_nonzero((t >= first) & (t <= last)) < needed for first, last in ranges):
+        raise ValueError(f"ranges = {ranges} hold fewer than the {needed} points a fit of "
+                         f"{type(law).__name__} needs in every range (t from {np.min(t):g} to "
+                         f"{np.max(t):g})")
     reference = law.fit(t, y, s).improved()
     fits = []
     for first, last in ranges:
         keep = (t >= first) & (t <= last)
-        if keep.sum() < len(law.names) + 2:
+        if keep.sum() < needed:
             fits.append(None)
             continue
         sk = None if s is None else s[keep]

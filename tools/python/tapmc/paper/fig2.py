@@ -207,7 +207,7 @@ class CurveFit:
             iv = fit.intervals[name]
             parts = _sides(eps, iv)
             parts["range_deviation"] = Value(eps, deviation[name], np.nan,
-                                             int(consistent[name]))
+                                             int(bool(consistent[name])))
             parts["range_spread"] = Value(eps, spread[name], np.nan,
                                           sum(f is not None for f in refits.fits))
             params[name] = Estimate(Value(eps, value, fit.errors[name], int(iv.determined)),
