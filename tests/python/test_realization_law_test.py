@@ -74,6 +74,12 @@ def test_realization_test_messages():
         RealizationLawTest(law).compute(REALIZATION_TAPS, curves[:, :10])
     with pytest.raises(ValueError, match="singular covariance"):
         RealizationLawTest(law).compute(REALIZATION_TAPS, np.ones((9, REALIZATION_TAPS.size)))
+    with pytest.raises(ValueError, match=r"t_min = 1000 leaves 0 taps \(t ends at 400\): 8 "
+                                         r"bins need at least 8"):
+        RealizationLawTest(law, t_min=1000).compute(REALIZATION_TAPS,
+                                                    np.ones((9, REALIZATION_TAPS.size)))
+    with pytest.raises(ValueError, match="t_min = nan: must be finite"):
+        RealizationLawTest(law, t_min=float("nan"))
     with pytest.raises(RuntimeError, match="compute"):
         RealizationLawTest(law).p_value
     with pytest.raises(TypeError, match="tapmc.laws.Law"):

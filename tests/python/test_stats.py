@@ -54,6 +54,8 @@ def test_weighted_line_recovers_an_exact_line_and_needs_three_points():
     # exact data: the error is the error bars' (chi2 = 0, no scaling)
     assert err == pytest.approx(0.1 / math.sqrt(np.sum((x - x.mean()) ** 2)), rel=1e-9)
     assert math.isnan(stats.weighted_line([0, 1], [0, 1], [1, 1])[0])
+    # one x only (seeds of one eps): no slope, NaNs (a singular-matrix error before)
+    assert math.isnan(stats.weighted_line_fit([0.1, 0.1, 0.1], [1, 2, 3], [1, 1, 1])[2])
     # scatter beyond the bars widens the error by sqrt(chi2 / dof)
     y = 2.0 + 0.5 * x + np.array([1, -1, 1, -1, 1, -1]) * 0.3
     assert stats.weighted_line(x, y, np.full(6, 0.1))[1] > err

@@ -92,11 +92,12 @@ def weighted_line_fit(x, y, err):
     """Weighted straight line y = a + b x: (a, its standard error, b, its standard error,
     dof); errors scaled by the reduced chi2 when it exceeds 1 (the scatter is then larger than
     the error bars say). Points with a non-finite value or a non-positive error are left out;
-    fewer than three points give NaNs and dof None."""
+    fewer than three points, or fewer than two distinct x (no slope to fit), give NaNs and dof
+    None."""
     x, y, err = map(np.asarray, (x, y, err))
     ok = np.isfinite(x) & np.isfinite(y) & np.isfinite(err) & (err > 0)
     x, y, err = x[ok], y[ok], err[ok]
-    if len(x) < 3:
+    if len(x) < 3 or np.unique(x).size < 2:
         return math.nan, math.nan, math.nan, math.nan, None
     coef, cov, chi2 = weighted_polyfit(x, y, err, 1)
     dof = len(x) - 2

@@ -130,6 +130,8 @@ class RealizationLawTest(Computed):
             raise ValueError(f"bins = {bins}: must be an integer >= {self.p + 1} (the law's "
                              f"{self.p} parameters + 1)")
         self.bins = None if bins is None else int(bins)
+        if not np.isfinite(t_min):
+            raise ValueError(f"t_min = {t_min}: must be finite")
         self.t_min = float(t_min)
         self._result = None
 
@@ -147,6 +149,9 @@ class RealizationLawTest(Computed):
             raise ValueError(f"{n} realizations: a test of {self.p} parameters needs at least "
                              f"{self.p + 2} (realizations > bins > parameters)")
         keep = t >= self.t_min
+        if np.count_nonzero(keep) < bins:
+            raise ValueError(f"t_min = {self.t_min:g} leaves {np.count_nonzero(keep)} taps (t "
+                             f"ends at {t.max():g}): {bins} bins need at least {bins}")
         t, curves = t[keep], curves[:, keep]
         edges = np.unique(np.round(np.geomspace(t.min(), t.max() + 1, bins + 1)))
         if edges.size != bins + 1:
