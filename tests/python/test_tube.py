@@ -61,6 +61,18 @@ def test_lens_area_closed_forms():
     assert circle_arc_in_disk(1.0, 1.0, 1.0) == pytest.approx(2 * math.pi / 3)
 
 
+def test_a_nan_input_gives_nan_not_zero():
+    """A NaN fails every test that picks a case: it read as "no overlap", 0, silently."""
+    nan = math.nan
+    for value in (sphere_cylinder_volume(nan, 0.0, 1.0), sphere_cylinder_volume(0.5, nan, 1.0),
+                  sphere_cylinder_volume(0.5, 0.0, nan), sphere_cylinder_volume(0.5, 0, 1, zlo=nan),
+                  sphere_cylinder_surface_area(0.5, nan, 0.4), disk_lens_area(nan, 1.0, 0.0),
+                  circle_arc_in_disk(1.0, nan, 0.5)):
+        assert math.isnan(value)
+    mixed = sphere_cylinder_volume(np.array([0.5, nan]), 0.0, 1.0)
+    assert mixed[0] == pytest.approx(4 / 3 * math.pi * 0.125, rel=1e-14) and math.isnan(mixed[1])
+
+
 def test_volume_against_an_independent_quadrature():
     """scipy.integrate.quad of the lens area over z (points at the kinks) on a grid of
     configurations crossing every case: the cylinder inside, around, tangent, off-centre."""

@@ -181,7 +181,8 @@ def _common_chord(a, b, d):
 
 def disk_lens_area(a, b, d):
     """Area common to two disks of radii ``a`` and ``b`` whose centres are ``d`` apart (0 when
-    a radius is <= 0); arrays broadcast. Two circular segments, accurate relative to the lens."""
+    a radius is <= 0; NaN where an input is NaN); arrays broadcast. Two circular segments,
+    accurate relative to the lens."""
     a, b, d = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (a, b, d)))
     small, big, d = np.minimum(a, b), np.maximum(a, b), np.abs(d)
     both = (small > 0) & (big > 0)
@@ -191,12 +192,14 @@ def disk_lens_area(a, b, d):
     with np.errstate(invalid="ignore"):
         lens = (_segment_area(small, np.arctan2(h, x_a))
                 + _segment_area(big, np.arctan2(h, d - x_a)))
-    return np.where(full, np.pi * small * small, np.where(cross, lens, 0.0))
+    return _nan_where_undefined(np.where(full, np.pi * small * small,
+                                         np.where(cross, lens, 0.0)), a, b, d)
 
 
 def circle_arc_in_disk(rho, a, d):
     """Length of the arc of the circle of radius ``rho`` inside the disk of radius ``a`` whose
-    centre is ``d`` from the circle's: d/d(rho) of disk_lens_area(a, rho, d)."""
+    centre is ``d`` from the circle's: d/d(rho) of disk_lens_area(a, rho, d) (NaN where an
+    input is NaN)."""
     rho, a, d = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (rho, a, d)))
     d = np.abs(d)
     both = (rho > 0) & (a > 0)
@@ -205,7 +208,17 @@ def circle_arc_in_disk(rho, a, d):
     h, x_rho = _common_chord(rho, a, d)
     with np.errstate(invalid="ignore"):
         arc = 2.0 * rho * np.arctan2(h, x_rho)
-    return np.where(whole, 2.0 * np.pi * rho, np.where(cross, arc, 0.0))
+    return _nan_where_undefined(np.where(whole, 2.0 * np.pi * rho, np.where(cross, arc, 0.0)),
+                                rho, a, d)
+
+
+def _nan_where_undefined(result, *inputs):
+    """``result`` with NaN wherever an input is NaN: a NaN fails every comparison that selects
+    a case, and would otherwise read as "no overlap", 0."""
+    undefined = np.zeros(np.shape(result), dtype=bool)
+    for v in inputs:
+        undefined |= np.isnan(v)
+    return np.where(undefined, np.nan, result) if undefined.any() else result
 
 
 def _polar_angle(R, z):
@@ -248,7 +261,8 @@ def _spheres(R, d, rho, zlo, zhi):
 def sphere_cylinder_volume(R, d, rho, zlo=-np.inf, zhi=np.inf):
     """Volume of a sphere of radius ``R`` (centre at height 0) inside a vertical cylinder of
     radius ``rho`` whose axis passes ``d`` from the sphere's centre, between the heights ``zlo``
-    and ``zhi`` relative to the centre (default: the whole sphere); arrays broadcast."""
+    and ``zhi`` relative to the centre (default: the whole sphere); arrays broadcast; NaN where
+    an input is NaN."""
     shape, (R, d, rho, zlo, zhi) = _spheres(R, d, rho, zlo, zhi)
     out = np.zeros(R.shape)
     ok = (R > 0) & (rho > 0) & (d < rho + R) & (zlo < zhi) & (zlo < R) & (zhi > -R)
@@ -258,7 +272,7 @@ def sphere_cylinder_volume(R, d, rho, zlo=-np.inf, zhi=np.inf):
     if np.any(cut):
         out[cut] = _integrate_over_height(R[cut], d[cut], rho[cut], zlo[cut], zhi[cut],
                                           lambda a, r, dd: disk_lens_area(a, r, dd))
-    return out.reshape(shape)
+    return _nan_where_undefined(out, R, d, rho, zlo, zhi).reshape(shape)
 
 
 def sphere_cylinder_surface_area(R, d, rho, zlo=-np.inf, zhi=np.inf):
@@ -272,4 +286,4 @@ def sphere_cylinder_surface_area(R, d, rho, zlo=-np.inf, zhi=np.inf):
     if np.any(cut):
         out[cut] = _integrate_over_height(R[cut], d[cut], rho[cut], zlo[cut], zhi[cut],
                                           lambda a, r, dd: circle_arc_in_disk(r, a, dd))
-    return out.reshape(shape)
+    return _nan_where_undefined(out, R, d, rho, zlo, zhi).reshape(shape)
