@@ -150,6 +150,17 @@ def test_sigma_scaling_fit_and_validation():
         PowerSpectrum(np.ones(100)).slope
     with pytest.raises(NotComputedError):
         SteadyState(np.ones(100), last=50).mean
+    # every documented result is a read-only property (these were plain attributes: an
+    # AttributeError before compute(), and writable after)
+    spectrum = PowerSpectrum(np.random.default_rng(0).normal(size=200))
+    for name in ("x_ss", "sigma", "raw_frequency", "raw_power"):
+        with pytest.raises(NotComputedError):
+            getattr(spectrum, name)
+    with pytest.raises(NotComputedError):
+        SteadyState(np.ones(100), last=50).window
+    spectrum.compute()
+    with pytest.raises(AttributeError):
+        spectrum.x_ss = 123.0
 
 
 def test_plots():

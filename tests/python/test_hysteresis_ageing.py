@@ -14,6 +14,7 @@ HERE = Path(__file__).resolve().parent
 SOURCE = Path(os.environ.get("TAPMC_SOURCE_DIR", HERE.parent.parent))
 sys.path.insert(0, str(SOURCE / "tools" / "python"))
 
+from tapmc._validate import NotComputedError  # noqa: E402
 from tapmc.ageing import Ageing, ScalingRealizationTest  # noqa: E402
 from tapmc.hysteresis import BranchStatistic, Hysteresis, seeds_together  # noqa: E402
 from tapmc.laws import AgeingLaw  # noqa: E402
@@ -69,7 +70,10 @@ def test_branches_follow_the_turns_not_the_highest_level():
 def test_ramp_incomplete_level_and_errors():
     rng = np.random.default_rng(1)
     _, _, sqrt_eps, x = ramp(400, rng)
-    h = Hysteresis(sqrt_eps[:-350], x[:-350], taps_per_level=400, last=100).compute()
+    h = Hysteresis(sqrt_eps[:-350], x[:-350], taps_per_level=400, last=100)
+    with pytest.raises(NotComputedError):
+        h.incomplete_taps
+    h.compute()
     assert len(h.levels) == 21 and h.incomplete_taps == 50
     with pytest.raises(ValueError, match="varies"):
         Hysteresis(sqrt_eps[200:], x[200:], taps_per_level=400, last=300).compute()

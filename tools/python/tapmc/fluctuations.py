@@ -92,7 +92,7 @@ class SteadyState:
 
     def compute(self):
         seg = self.x[-self.last:]
-        self.window = slice(len(self.x) - self.last, len(self.x))
+        self._window = slice(len(self.x) - self.last, len(self.x))
         self._mean = float(seg.mean())
         self._trend = float(np.polyfit(np.arange(len(seg)), seg, 1)[0])
         self._std = float(np.std(self.deviations(), ddof=1 if self.detrend == "constant" else 2))
@@ -109,6 +109,7 @@ class SteadyState:
         t = np.arange(len(seg))
         return seg - np.polyval(np.polyfit(t, seg, 1), t)
 
+    window = result("_window")
     mean = result("_mean")
     std = result("_std")
     trend = result("_trend")
@@ -419,13 +420,13 @@ class PowerSpectrum:
     def compute(self):
         seg = self.x[:, self.steady_from:]
         x_ss = seg.mean(axis=1, keepdims=True)  # X_SS of every series
-        self.x_ss = float(x_ss.mean())
-        self.sigma = float(np.sqrt(np.mean((seg - x_ss) ** 2)))
+        self._x_ss = float(x_ss.mean())
+        self._sigma = float(np.sqrt(np.mean((seg - x_ss) ** 2)))
         f, p = signal.periodogram(seg - x_ss, fs=1.0 / self.taps_per_sample, axis=1,
                                   window=self.window, detrend="constant", scaling="density")
         p = p.mean(axis=0)  # independent series: their periodograms average
         f, p = f[1:], p[1:]  # f = 0 carries the removed mean only
-        self.raw_frequency, self.raw_power = f, p
+        self._raw_frequency, self._raw_power = f, p
         which = _log_bins(f, self.bins_per_decade)
         freq, power, counts = [], [], []
         for b in np.unique(which):
@@ -479,6 +480,10 @@ class PowerSpectrum:
         res.reduced_chi2 = chi2 / dof if dof > 0 else np.nan
         return res
 
+    x_ss = result("_x_ss")
+    sigma = result("_sigma")
+    raw_frequency = result("_raw_frequency")
+    raw_power = result("_raw_power")
     frequency = result("_frequency")
     power = result("_power")
     power_error = result("_power_error")

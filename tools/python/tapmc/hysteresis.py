@@ -79,12 +79,12 @@ class Hysteresis:
         rows = []
         n = len(self.x)
         n_levels = int(np.ceil(n / self.taps_per_level))
-        self.incomplete_taps = 0
+        self._incomplete_taps = 0
         for k in range(n_levels):
             a = k * self.taps_per_level
             b = min(n, a + self.taps_per_level)
             if b - a < self.last:
-                self.incomplete_taps = b - a
+                self._incomplete_taps = b - a
                 break
             window = self.sqrt_eps[b - self.last:b]
             if np.ptp(window) > LEVEL_TOLERANCE:
@@ -113,6 +113,7 @@ class Hysteresis:
         return self
 
     levels = result("_levels")
+    incomplete_taps = result("_incomplete_taps")
 
     def branch(self, name):
         """The levels of one branch ('up1', 'down' or 'up2')."""
