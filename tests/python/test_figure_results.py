@@ -71,6 +71,32 @@ def test_a_csv_with_rows_of_no_field_is_refused(tmp_path):
         fig7.Fig7Result.load(path)
 
 
+@pytest.mark.parametrize("name,row,message", [
+    # the initial nu: the page then stated tap 1's nu as the initial one
+    ("fig10", "params,nu,0,", r"no params row nu at x = 0 \(every dump of panel a has one\)"),
+    ("fig3", "params,k_reduced_chi2,", r"no rows of params/k_reduced_chi2, which are written "
+                                       r"with params/k, b/fit:k sqrt\(eps\)"),    # a traceback
+    ("fig5", "params,collapse:reduced_chi2,", r"no rows of params/collapse:reduced_chi2, which "
+                                              r"are written with params/collapse:A_inf"),
+    # a row of the claim's table disappeared, or the claim read "no F.B.C. profile"
+    ("fig8", "params,eps=0.02:final_central,",
+     r"no rows of panel 'params', series 'eps=0.02:final_central'"),
+    ("fig8", "params,eps=0.02:final_lateral:seeds,", r"no rows of params/eps=0.02:final_lateral:"
+                                                     r"seeds, which are written with"),
+])
+def test_a_csv_missing_a_row_written_with_others_is_refused(name, row, message, tmp_path):
+    """report --from-data read these rows as absent and wrote the page (exit 0) with other
+    statements, or failed with a traceback."""
+    _, cls = result_class(name)
+    text = (SOURCE / "doc/paper_scale/validation" / f"{name}.csv").read_text()
+    lines = text.splitlines(keepends=True)
+    assert any(line.startswith(row) for line in lines)
+    path = tmp_path / f"{name}.csv"
+    path.write_text("".join(line for line in lines if not line.startswith(row)))
+    with pytest.raises(FigureCsvError, match=f"{name}.csv: " + message):
+        cls.load(path)
+
+
 def test_save_never_leaves_an_empty_file(tmp_path):
     path = tmp_path / "fig7.csv"
     path.write_text("kept\n")

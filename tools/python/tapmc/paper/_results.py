@@ -174,6 +174,18 @@ class CsvRows:
     def take_optional(self, panel, series):
         return self.take(panel, series) if self.has(panel, series) else None
 
+    def together(self, *keys):
+        """True when every (panel, series) of ``keys`` (rows a result writes together) is
+        there, False when none is; some without the others is a damaged file, refused by
+        name (read as absent, they turned a page's statement into another, silently)."""
+        present = [key for key in keys if self.has(*key)]
+        if present and len(present) < len(keys):
+            missing = ", ".join(f"{p}/{s}" for p, s in keys if (p, s) not in present)
+            there = ", ".join(f"{p}/{s}" for p, s in present)
+            raise FigureCsvError(self.path, None, f"no rows of {missing}, which are written "
+                                 f"with {there}")
+        return bool(present)
+
     def finish(self):
         """Refuse the rows no field took."""
         if self._groups:

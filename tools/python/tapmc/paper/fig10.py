@@ -39,7 +39,7 @@ from tapmc.pores import jackknife_error, read_pores
 
 from . import _plotting as P
 from . import _pores, _runs
-from ._results import FigureResult, Series, Value
+from ._results import FigureCsvError, FigureResult, Series, Value
 
 NAME = "fig10"
 #: run-name prefix of the Fig. 10 runs.
@@ -120,6 +120,8 @@ def _integral(x, y, lo, hi):
 
 #: the statistics of each dump (params rows, x = t), in the CSV's order
 DUMP_STATISTICS = ("nu", "xi_min", "xi_T", "nu_tail", "small", "large")
+#: those every dump has (the others are fits, absent where one failed)
+EVERY_DUMP_STATISTICS = ("nu", "small", "large")
 #: the pore-size ranges of the small and large shares: tetrahedral to octahedral sites, beyond
 SHARES = (("small", P.XI_T, P.XI_O), ("large", P.XI_O, np.inf))
 
@@ -163,6 +165,10 @@ class Fig10Result(FigureResult):
             step = int(label[len("t="):])
             stats = {name: Value.of_series(series, i) for name, series in by_step.items()
                      for i in np.flatnonzero(series.x == step)}
+            missing = [name for name in EVERY_DUMP_STATISTICS if name not in stats]
+            if missing:
+                raise FigureCsvError(rows.path, None, f"no params row {', '.join(missing)} at "
+                                     f"x = {step} (every dump of panel a has one)")
             dumps[step] = PoreDump(step, rows.take("a", label), rows.take("b", label), stats)
         return cls(dumps, rows.take_value("params", "small_change"),
                    rows.take_value("params", "large_change"))

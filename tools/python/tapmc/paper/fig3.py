@@ -143,10 +143,15 @@ class Fig3Result(FigureResult):
             spectra[slope.x] = Spectrum(slope.x, rows.take("a", label), slope)
         sigma = rows.take("b", "sigma_Z")
         optional = {name: rows.take_value("params", name)
-                    for name in ("k", "k_reduced_chi2", "intercept", "intercept_detrended")
+                    for name in ("intercept", "intercept_detrended")
                     if rows.has("params", name)}
+        law = rows.together(("params", "k"), ("params", "k_reduced_chi2"),
+                            ("b", "fit:k sqrt(eps)"))
+        if law:
+            optional.update(k=rows.take_value("params", "k"),
+                            k_reduced_chi2=rows.take_value("params", "k_reduced_chi2"))
         return cls(spectra, sigma, rows.take_optional("b", "sigma_Z_detrended"),
-                   rows.take_optional("b", "fit:k sqrt(eps)"), **optional)
+                   rows.take("b", "fit:k sqrt(eps)") if law else None, **optional)
 
 
 def _sigma_weights(sigma):

@@ -507,7 +507,9 @@ class Fig5Result(FigureResult):
                                      estimates(rows, "params", f"{label}:", AGEING_NAMES,
                                                FIT_PARTS))
         common = (rows.take_value("params", "collapse:reduced_chi2")
-                  if rows.has("params", "collapse:reduced_chi2") else None)
+                  if rows.together(("params", "collapse:reduced_chi2"),
+                                   *(("params", f"collapse:{name}") for name in AGEING_NAMES))
+                  else None)
         common_fit = estimates(rows, "params", "collapse:", AGEING_NAMES, FIT_PARTS)
         scaling = Scaling.from_rows(rows)
         tests = values(rows, "params", "scaling_test:", SCALING_TEST_NAMES)

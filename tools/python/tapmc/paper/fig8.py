@@ -87,6 +87,8 @@ def increases(campaign, bc=BC, eps_values=None):
 
 #: the zones of the final window means, in the CSV's order
 FINAL_ZONES = ("lateral", "central", "central_minus_lateral")
+#: those every Fig. 8 CSV has (central_minus_lateral came later: the smoke page's CSV lacks it)
+FINAL_ZONES_SINCE_FIRST = ("lateral", "central")
 #: the zones of the first tap's increase, in the CSV's order
 FIRST_TAP_ZONES = ("lateral", "central")
 
@@ -117,12 +119,19 @@ class ZoneIncreases:
     @classmethod
     def from_rows(cls, rows, prefix, label):
         def zones(names, form, take):
-            return {zone: take("params", f"{label}:{form.format(zone)}") for zone in names
-                    if rows.has("params", f"{label}:{form.format(zone)}")}
+            """Every zone's row, or none (the seeds' with one seed, the first tap's without
+            tap 1); some without the others is refused."""
+            keys = [("params", f"{label}:{form.format(zone)}") for zone in names]
+            if not rows.together(*keys):
+                return {}
+            return {zone: take(*key) for zone, key in zip(names, keys)}
 
         return cls(float(label[len("eps="):]), rows.take("a", prefix + label),
                    rows.take("b", prefix + label),
-                   zones(FINAL_ZONES, "final_{}", rows.take_value),
+                   {zone: rows.take_value("params", f"{label}:final_{zone}")
+                    for zone in FINAL_ZONES
+                    if zone in FINAL_ZONES_SINCE_FIRST
+                    or rows.has("params", f"{label}:final_{zone}")},
                    zones(FINAL_ZONES, "final_{}:seeds", rows.take),
                    zones(FIRST_TAP_ZONES, "first_tap_{}", rows.take_value))
 

@@ -175,7 +175,9 @@ def first_decade_rates(t, x):
     lo, hi = EARLY_DECADE
     mid = math.sqrt(lo * hi)
     low, high = (t >= lo) & (t < mid), (t >= mid) & (t <= hi)
-    return _means_rate(t, x, *_decade_halves(t)), _means_rate(np.log(t), x, low, high)
+    with np.errstate(divide="ignore"):      # tap 0's ln is -inf, outside both halves
+        log_t = np.log(t)
+    return _means_rate(t, x, *_decade_halves(t)), _means_rate(log_t, x, low, high)
 
 
 def _decade_halves(t):
