@@ -41,13 +41,32 @@ def test_usage_errors():
 
 
 def test_xi_max_beyond_its_limit_is_a_usage_error():
-    # --xi-max 1e300 overflowed the v = xi^3 histogram to inf (empty v_lo, n_v 0), exit 0
-    for value in ("1e300", "1000.5", "0", "-1"):
+    # --xi-max 1e300 overflowed the v = xi^3 histogram to inf (empty v_lo, n_v 0), exit 0;
+    # 1e-200 underflowed it to [0, 0), an error naming neither the option nor its value
+    for value in ("1e300", "1000.5", "0", "-1", "1e-200"):
         result = run("-q", "--xi-max", value, "x.dump")
         assert result.returncode == 2, result.stderr
-        assert f"--xi-max must lie in (0, 1000] (a pore radius over R), got '{value}'" \
+        assert f"--xi-max = {value}: allowed range [0.001, 1000] (a pore radius over R)" \
             in result.stderr, result.stderr
     assert run("--xi-max", "1000", "--help").returncode == 0
+
+
+@pytest.mark.parametrize("option,value,allowed", [
+    ("--radius", "-1", "(0, inf)"), ("--wall-gap", "-1", "[0, inf), in R"),
+    ("--surface-gap", "-3", "[0, inf), in R"), ("--sigma-max", "0.5", "(1, inf)"),
+    ("--overlap-tol", "2", "[0, 1)"), ("--merge-tol", "1e9", "[0, 0.1)"),
+])
+def test_a_value_out_of_range_is_named_with_its_range(option, value, allowed):
+    """These said "--radius must be positive" without the value given."""
+    result = run("-q", option, value, "x.dump")
+    assert result.returncode == 2
+    assert f"{option} = {value}: allowed range {allowed}" in result.stderr, result.stderr
+
+
+def test_an_empty_output_prefix_is_a_usage_error():
+    """-o '' wrote the hidden files .hist.csv and .frames.csv into the working folder."""
+    result = run("-q", "-o", "", "x.dump")
+    assert result.returncode == 2 and "-o expects a file prefix" in result.stderr, result.stderr
 
 
 def test_bins_beyond_the_limit_is_a_usage_error():

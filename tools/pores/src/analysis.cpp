@@ -298,7 +298,8 @@ RadiusCheck common_radius(const Frame& frame, double fallback, double tolerance)
   }
   check.radius = mean;
   if (fallback > 0 && std::abs(fallback - mean) > tolerance * mean) {
-    what << "--radius " << fallback << " disagrees with the dump's radius column (" << mean << ")";
+    what << "--radius " << fallback << " disagrees with the dump's radii (" << mean
+         << ", from its radius or diameter column)";
     throw RadiusError(what.str(), 0);
   }
   return check;

@@ -60,7 +60,7 @@ Selection of pores (by the position of the pore centre; z is the vertical)
 Histograms
   --bins N             bins of xi on [0, XI_MAX) and of v = xi^3 on [0, XI_MAX^3) (default 150,
                        at most 1000000)
-  --xi-max X           (default 1.5, at most 1000: a pore radius over R)
+  --xi-max X           (default 1.5, from 0.001 to 1000: a pore radius over R)
 Outputs (files PREFIX.*)
   -o, --output PREFIX  default "pores". Always: PREFIX.hist.csv (over all analysed frames: P(xi),
                        xi^3 P(xi), the number density n_v(v) of v = xi^3 (integral 1) and the
@@ -161,6 +161,13 @@ double to_double_in_range(const std::string& option, const std::string& text, do
   return value;
 }
 
+// UsageError naming `option`, the value given and the allowed range (an interval's text, e.g.
+// "(0, inf)") unless `allowed`.
+void require_in_range(bool allowed, const std::string& option, const std::string& text,
+                      const std::string& range, const std::string& unit = "") {
+  if (!allowed) throw UsageError(option + " = " + text + ": allowed range " + range + unit);
+}
+
 // The value of the option being parsed (the next argument); UsageError when there is none.
 using NextValue = std::function<const std::string&()>;
 
@@ -213,8 +220,9 @@ bool set_flag(Options& o, const std::string& a) {
 // Options of the input and of the selection; false when `a` is none of them.
 bool set_input_option(Options& o, const std::string& a, const NextValue& value) {
   if (a == "-r" || a == "--radius") {
-    o.radius = to_double(a, value());
-    if (!(o.radius > 0)) throw UsageError("--radius must be positive");
+    const std::string text = value();
+    o.radius = to_double(a, text);
+    require_in_range(o.radius > 0, a, text, "(0, inf)");
   } else if (a == "--boundary") {
     const std::string text = value();
     if (text.size() != 3 || text.find_first_not_of("pf") != std::string::npos)
@@ -227,11 +235,13 @@ bool set_input_option(Options& o, const std::string& a, const NextValue& value) 
   else if (a == "--x" || a == "--y" || a == "--z") set_range(o.region, a[2] - 'x', a, value());
   else if (a == "--cylinder") set_cylinder(o.region, a, value());
   else if (a == "--wall-gap") {
-    o.region.wall_gap_over_radius = to_double(a, value());
-    if (o.region.wall_gap_over_radius < 0) throw UsageError("--wall-gap must be >= 0");
+    const std::string text = value();
+    o.region.wall_gap_over_radius = to_double(a, text);
+    require_in_range(o.region.wall_gap_over_radius >= 0, a, text, "[0, inf)", ", in R");
   } else if (a == "--surface-gap") {
-    o.region.surface_gap_over_radius = to_double(a, value());
-    if (o.region.surface_gap_over_radius < 0) throw UsageError("--surface-gap must be >= 0");
+    const std::string text = value();
+    o.region.surface_gap_over_radius = to_double(a, text);
+    require_in_range(o.region.surface_gap_over_radius >= 0, a, text, "[0, inf)", ", in R");
   } else if (a == "--floor") o.floor = to_double(a, value());
   else return false;
   return true;
@@ -243,23 +253,28 @@ bool set_analysis_option(Options& o, const std::string& a, const NextValue& valu
   else if (a == "--xi-max") {
     const std::string text = value();
     o.histogram.xi_max = to_double(a, text);
-    if (!(o.histogram.xi_max > 0 && o.histogram.xi_max <= config::kMaxXiMax))
-      throw UsageError("--xi-max must lie in (0, " +
-                       std::to_string(static_cast<int>(config::kMaxXiMax)) +
-                       "] (a pore radius over R), got '" + text + "'");
-  } else if (a == "-o" || a == "--output") o.prefix = value();
+    require_in_range(o.histogram.xi_max >= config::kMinXiMax && o.histogram.xi_max <= config::kMaxXiMax, a,
+                     text, "[" + number_text(config::kMinXiMax) + ", " + number_text(config::kMaxXiMax) + "]",
+                     " (a pore radius over R)");
+  } else if (a == "-o" || a == "--output") {
+    o.prefix = value();
+    if (o.prefix.empty()) throw UsageError(a + " expects a file prefix (e.g. out/pores), got ''");
+  }
   else if (a == "--p0") o.p0_samples = to_count_in_range(a, value(), 1, config::kMaxP0Samples);
   else if (a == "--sigma-max") {
-    o.sigma_max = to_double(a, value());
-    if (!(o.sigma_max > 1)) throw UsageError("--sigma-max must exceed 1");
+    const std::string text = value();
+    o.sigma_max = to_double(a, text);
+    require_in_range(o.sigma_max > 1, a, text, "(1, inf)");
   } else if (a == "--sigma-steps") o.sigma_steps = to_count_in_range(a, value(), 2, config::kMaxSigmaSteps);
   else if (a == "--seed") o.seed = to_count(a, value(), 0);
   else if (a == "--overlap-tol") {
-    o.pores.overlap_tolerance = to_double(a, value());
-    if (!(o.pores.overlap_tolerance >= 0 && o.pores.overlap_tolerance < 1)) throw UsageError("--overlap-tol must be in [0, 1)");
+    const std::string text = value();
+    o.pores.overlap_tolerance = to_double(a, text);
+    require_in_range(o.pores.overlap_tolerance >= 0 && o.pores.overlap_tolerance < 1, a, text, "[0, 1)");
   } else if (a == "--merge-tol") {
-    o.pores.merge_tolerance = to_double(a, value());
-    if (!(o.pores.merge_tolerance >= 0 && o.pores.merge_tolerance < 0.1)) throw UsageError("--merge-tol must be in [0, 0.1)");
+    const std::string text = value();
+    o.pores.merge_tolerance = to_double(a, text);
+    require_in_range(o.pores.merge_tolerance >= 0 && o.pores.merge_tolerance < 0.1, a, text, "[0, 0.1)");
   } else if (a == "--padding")
     o.pores.padding_over_radius = to_double_in_range(a, value(), config::kMinPaddingOverRadius, config::kMaxPaddingOverRadius, ", in R");
   else return false;

@@ -117,6 +117,10 @@ constexpr double kDefaultXiMax = 1.5;
 // no pore of a packing but open space; beyond about 5e102 the v = xi^3 histogram overflowed to
 // inf (v_lo empty, n_v 0 with counts) without a word.
 constexpr double kMaxXiMax = 1000.0;
+// --xi-max below kMinXiMax is a usage error: the smallest pore of equal hard spheres is the
+// tetrahedral hole, xi = 0.225, so a range below 1e-3 holds none; and near 1e-103 the v = xi^3
+// range underflowed to [0, 0) (a histogram error naming neither the option nor its value).
+constexpr double kMinXiMax = 1e-3;
 constexpr std::size_t kDefaultBins = 150;
 // --bins above kMaxBins is a usage error. 10^6 bins are 1.5e-6 wide at the default --xi-max, far
 // below the ~1e-4 to which 6-digit dumps fix xi, and outnumber the pores of most frames (6.5
