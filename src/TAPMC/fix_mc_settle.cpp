@@ -377,7 +377,13 @@ void FixMCSettle::init()
     all_move = all_move && tapper_group == 0;  // group 'all'
     tapped_bits |= group->bitmask[tapper_group];
   }
-  check_after_taps = !all_move;
+  other_movers = other_fixes_moving_atoms();
+  check_after_taps = !all_move || !other_movers.empty();
+  if (!other_movers.empty() && comm->me == 0)
+    error->warning(FLERR, "fix mc/settle: fix {} move(s) atoms besides the taps and the "
+                   "redeposition: every step is checked for overlapping spheres before its "
+                   "redeposition (hard spheres are moved by fix tapdilate and fix mc/settle "
+                   "only; the floor, xwalls/ywalls or a container hold the bed)", other_movers);
   long untapped = 0, untapped_all = 0;
   for (int i = 0; i < atom->nlocal; ++i) untapped += (atom->mask[i] & tapped_bits) ? 0 : 1;
   MPI_Allreduce(&untapped, &untapped_all, 1, MPI_LONG, MPI_SUM, world);
@@ -554,6 +560,13 @@ void FixMCSettle::GatheredRedeposition::check_start(bool after_tap)
 std::string FixMCSettle::violation_message(const tapmc::Violation &v, tagint tag_i,
                                            tagint tag_j, bool after_tap) const
 {
+  if (v.j >= 0 && after_tap && !other_movers.empty())
+    return fmt::format("fix mc/settle: step {}: atoms {} and {} overlap by {} before the "
+                       "redeposition: fix {} move(s) atoms besides the taps and pushed a sphere "
+                       "into another (a wall/reflect lid reflects spheres lifted by a tap back "
+                       "into the bed; an integrator moves them by their velocities); unfix it: "
+                       "hard spheres are moved by fix tapdilate and fix mc/settle only",
+                       update->ntimestep, tag_i, tag_j, -v.gap, other_movers);
   if (v.j >= 0 && after_tap && every_atom_tapped)
     return fmt::format("fix mc/settle: step {}: atoms {} and {} overlap by {} after the tap: "
                        "every atom is tapped, but by tapping fixes of different groups that "
@@ -643,7 +656,8 @@ void FixMCSettle::pre_exchange()
   // a tap step of at least one of them (schedule_next_settle).
   for (tapmc::Tapper *tap : tappers) tap->tap_if_due();
   schedule_next_settle(update->ntimestep);
-  if (check_after_taps && !tappers.empty()) redeposition->check_start(true);
+  if (check_after_taps && (!tappers.empty() || !other_movers.empty()))
+    redeposition->check_start(true);
 
   const tapmc::SettleResult result = redeposition->settle();
   store_diagnostics(result);

@@ -114,6 +114,9 @@ class FixMCSettle : public Fix, public tapmc::ContainerHolder {
   // every atom is tapped by some tapping fix: an overlap after a tap then comes from tapping
   // fixes of different groups that dilate differently
   bool every_atom_tapped = false;
+  // the run's other fixes that move atoms (other_fixes_moving_atoms()), "" if none: every tap
+  // is then checked, and an overlap names them
+  std::string other_movers;
 
   // The settings kept in restart files (fix_mc_settle_restart.cpp: the record's layouts).
   struct RestartSetting;
@@ -126,6 +129,7 @@ class FixMCSettle : public Fix, public tapmc::ContainerHolder {
   void resolve_side_walls();
   void check_walls_inside_fixed_box();
   void find_tappers();
+  std::string other_fixes_moving_atoms() const;
   void require_same_tappers();
   void schedule_next_settle(bigint after);
   double effective_d_max() const;

@@ -1,7 +1,7 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 // fix mc/settle and the run's tapping fixes (tapmc::Tapper, lammps_tapper.h): which they are,
 // that they are still those of the run's setup, and the step of the next redeposition
-// (fix_mc_settle.cpp runs the redeposition).
+// (fix_mc_settle.cpp runs the redeposition); and the run's other fixes that move atoms.
 #include "fix_mc_settle.h"
 
 #include "lammps_tapper.h"
@@ -11,10 +11,30 @@
 #include "update.h"
 
 #include <algorithm>
+#include <cstring>
 #include <string>
 #include <vector>
 
 using namespace LAMMPS_NS;
+
+// The run's fixes that move atoms besides the taps and the redeposition, as "ID (style)": those
+// LAMMPS calls to integrate (an integrator, fix move, fix wall/reflect). A lid of
+// wall/reflect reflected spheres lifted by a tap back into the bed, and a leftover fix
+// nve/sphere moved them by their velocities: overlaps, silently (the redeposition keeps
+// overlaps it starts with). Such a run checks every tap (check_after_taps).
+std::string FixMCSettle::other_fixes_moving_atoms() const
+{
+  constexpr int kMoves = FixConst::INITIAL_INTEGRATE | FixConst::POST_INTEGRATE |
+                         FixConst::FINAL_INTEGRATE;
+  std::string names;
+  for (int i = 0; i < modify->nfix; ++i) {
+    Fix *fix = modify->fix[i];
+    const bool tapmc_style = dynamic_cast<tapmc::Tapper *>(fix) || std::strcmp(fix->style, style) == 0;
+    if (tapmc_style || !(modify->fmask[i] & kMoves)) continue;
+    names += (names.empty() ? "" : ", ") + std::string(fix->id) + " (" + fix->style + ")";
+  }
+  return names;
+}
 
 // The run's tapping fixes (fix tapdilate or any tapmc::Tapper), in definition order.
 void FixMCSettle::find_tappers()

@@ -630,3 +630,32 @@ def test_library_holds_source_paths_relative_to_the_source_tree():
     assert b"\0src/TAPMC/lammps_support.h\0" in rodata, LIB
     absolute = sorted(set(re.findall(rb"[^\0]*/src/TAPMC/\w+\.(?:cpp|h)", rodata)))
     assert not absolute, absolute
+
+
+LID_BED = """units lj
+atom_style sphere
+boundary p p fm
+region box block 0 6 0 6 0 30
+create_box 1 box
+create_packing 400 1 0.5 4928 floor 0.0
+{mover}
+fix tap all tapdilate 0.05 floor 0.0
+fix settle all mc/settle 4928 floor 0.0 eta 1e-5
+run 10
+"""
+
+
+def test_a_fix_that_moves_atoms_besides_the_taps_is_checked_every_step():
+    """A wall/reflect lid just above the bed (highest centre 10.548) reflected spheres lifted by
+    a tap back into the bed: 23 overlapping pairs, up to 0.91 of a diameter, after 10 taps, exit
+    0. Every step of a run with such a fix is now checked before its redeposition; an integrator
+    that moves nothing (zero velocities) runs on, warned; the bed alone runs without warning."""
+    rc, out, _ = run_lammps(LID_BED.format(mover="fix lid all wall/reflect zhi 10.6"))
+    assert rc != 0 and "fix mc/settle: step 2: atoms 345 and 397 overlap by" in out, out
+    assert "fix lid (wall/reflect) move(s) atoms besides the taps and pushed a sphere" in out
+    rc, out, _ = run_lammps(LID_BED.format(mover="fix still all nve/sphere"))
+    assert rc == 0 and "Loop time" in out, out
+    assert "fix still (nve/sphere) move(s) atoms besides the taps and the redeposition: every " \
+           "step is checked" in out
+    rc, out, _ = run_lammps(LID_BED.format(mover=""))
+    assert rc == 0 and "besides the taps" not in out, out
