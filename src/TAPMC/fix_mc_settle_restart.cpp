@@ -7,6 +7,7 @@
 #include "tapmc_defaults.h"
 
 #include "comm.h"
+#include "domain.h"
 #include "error.h"
 #include "utils.h"
 
@@ -41,19 +42,24 @@ constexpr double kLayoutSettingsNoStop = -2.0;
 
 // One setting in the restart record: its name in the changed-settings warning, this fix's value
 // and, for a setting added after the first settings layout, the layout that added it and the
-// value a file of an older layout (without it) implies.
+// value a file of an older layout (without it) implies. `meaning`: what the value stands for
+// when it is the setting's "not given" (dmax 0: R/5 of the radii; walls NaN: the box faces), so
+// that a default and the value it stands for, written either way, compare equal.
 struct FixMCSettle::RestartSetting {
+  enum class Meaning { Itself, DMax, XLo, XHi, YLo, YHi };
   const char *name;
   double value;
   double added_in_layout = kLayoutSettingsNoStop;
   double implied_before = 0.0;
+  Meaning meaning = Meaning::Itself;
 };
 
 std::vector<FixMCSettle::RestartSetting> FixMCSettle::restart_settings() const
 {
   auto wall = [this](int dim, int side) { return walls_given[dim] ? wall_pos[dim][side] : NAN; };
+  using Meaning = RestartSetting::Meaning;
   return {
-      {"dmax (0 = default R/5)", d_max},
+      {"dmax (0 = default R/5)", d_max, kLayoutSettingsNoStop, 0.0, Meaning::DMax},
       {"theta0", theta0},
       {"eta", eta},
       {"check", static_cast<double>(check_interval)},
@@ -61,10 +67,10 @@ std::vector<FixMCSettle::RestartSetting> FixMCSettle::restart_settings() const
       {"floor", z_floor},
       {"diameter/2 (0 = per-atom radii)", fixed_radius},
       {"order (0 random, 1 sweep)", sweep_order ? 1.0 : 0.0},
-      {"xwalls lo", wall(0, 0)},  // NaN: no walls given
-      {"xwalls hi", wall(0, 1)},
-      {"ywalls lo", wall(1, 0)},
-      {"ywalls hi", wall(1, 1)},
+      {"xwalls lo", wall(0, 0), kLayoutSettingsNoStop, 0.0, Meaning::XLo},  // NaN: not given
+      {"xwalls hi", wall(0, 1), kLayoutSettingsNoStop, 0.0, Meaning::XHi},
+      {"ywalls lo", wall(1, 0), kLayoutSettingsNoStop, 0.0, Meaning::YLo},
+      {"ywalls hi", wall(1, 1), kLayoutSettingsNoStop, 0.0, Meaning::YHi},
       {"stop (0 change, 1 drift)", stop_drift ? 1.0 : 0.0, kLayoutSettingsNoLaw, 0.0},
       {"window", static_cast<double>(drift_window), kLayoutSettingsNoLaw,
        static_cast<double>(tapmc::defaults::kSettleDriftWindow)},
@@ -98,9 +104,27 @@ void FixMCSettle::restart(char *buf)
   const auto *next = reinterpret_cast<const double *>(buf);
   const double layout = *next++;
   auto text = [](double v) { return std::isnan(v) ? std::string("none") : fmt::format("{}", v); };
+  // What a "not given" value stands for now (collective: every rank reads the record): the
+  // radii and the box are those the restart file brought.
+  using Meaning = RestartSetting::Meaning;
+  const double default_step = tapmc::defaults::kMaxStepOverRadius * group_radius_extreme(false);
+  auto face = [this](int dim, int side) {
+    return domain->periodicity[dim] ? NAN : (side == 0 ? domain->boxlo[dim] : domain->boxhi[dim]);
+  };
+  auto resolved = [&](Meaning meaning, double v) {
+    switch (meaning) {
+      case Meaning::DMax: return v == 0.0 ? default_step : v;
+      case Meaning::XLo: return std::isnan(v) ? face(0, 0) : v;
+      case Meaning::XHi: return std::isnan(v) ? face(0, 1) : v;
+      case Meaning::YLo: return std::isnan(v) ? face(1, 0) : v;
+      case Meaning::YHi: return std::isnan(v) ? face(1, 1) : v;
+      default: return v;
+    }
+  };
   std::string changed;
-  auto compare = [&](const char *name, double old_value, double new_value) {
-    const bool same = old_value == new_value || (std::isnan(old_value) && std::isnan(new_value));
+  auto compare = [&](const char *name, double old_value, double new_value, Meaning meaning) {
+    const double a = resolved(meaning, old_value), b = resolved(meaning, new_value);
+    const bool same = a == b || (std::isnan(a) && std::isnan(b));
     if (!same)
       changed += fmt::format("{}{} {} -> {}", changed.empty() ? "" : ", ", name, text(old_value),
                              text(new_value));
@@ -113,7 +137,8 @@ void FixMCSettle::restart(char *buf)
     if (old_seed != seed) changed += fmt::format("seed {} -> {}", old_seed, seed);
     for (const RestartSetting &setting : restart_settings()) {
       const bool stored = layout <= setting.added_in_layout;
-      compare(setting.name, stored ? *next++ : setting.implied_before, setting.value);
+      compare(setting.name, stored ? *next++ : setting.implied_before, setting.value,
+              setting.meaning);
     }
   } else {
     const auto old_seed = static_cast<std::int64_t>(layout);

@@ -255,6 +255,27 @@ def test_restart_with_changed_settings_warns_naming_them():
            "eta 0.001 -> 0.0001, order (0 random, 1 sweep) 0 -> 1" in out, out
     rc, out, _ = run_lammps(same.replace("mc/settle 11", "mc/settle 12"), workdir=wd)
     assert rc == 0 and "seed 11 -> 12" in out, out
+    # the value a default stands for, written out, is the same setting: dmax R/5 = 0.1 (it
+    # read "0 -> 0.1; the run will not continue the original trajectory", which it did)
+    rc, out, _ = run_lammps(same.replace("eta 1e-3", "eta 1e-3 dmax 0.1"), workdir=wd)
+    assert rc == 0 and "differ from the restart file" not in out, out
+
+
+def test_restart_compares_walls_by_the_planes_they_stand_for():
+    """xwalls/ywalls on the box faces and the default walls (the box faces) are the same walls
+    (the resumed run equals the uninterrupted one); other planes are named."""
+    base = SCENE.format(boundary="f f fm", zprocs=1)
+    first = base + ("fix tap all tapdilate 0.05 floor 0.0\n"
+                    "fix settle all mc/settle 11 floor 0.0 eta 1e-3 xwalls 0 10 ywalls 0 10\n"
+                    "run 2\nwrite_restart a.restart\n")
+    rc, out, wd = run_lammps(first)
+    assert rc == 0, out
+    default = ("read_restart a.restart\nfix tap all tapdilate 0.05 floor 0.0\n"
+               "fix settle all mc/settle 11 floor 0.0 eta 1e-3\nrun 1\n")
+    rc, out, _ = run_lammps(default, workdir=wd)
+    assert rc == 0 and "differ from the restart file" not in out, out
+    rc, out, _ = run_lammps(default.replace("eta 1e-3", "eta 1e-3 xwalls 0 9.9"), workdir=wd)
+    assert "settings differ from the restart file (restart -> now): xwalls hi 10 -> 9.9" in out
 
 
 def test_tap_outputs_continue_across_a_restart():
