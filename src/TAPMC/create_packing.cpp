@@ -117,7 +117,8 @@ void check_preconditions(LAMMPS *lmp, int narg)
     error->all(FLERR, "create_packing: the atom style has no per-atom radius and mass; use "
                "atom_style sphere");
   if (lmp->domain->dimension != 3)
-    error->all(FLERR, "create_packing: needs a 3d simulation (dimension 3)");
+    error->all(FLERR, "create_packing: needs a 3d simulation ('dimension 3', the default): the "
+               "spheres rest on a floor normal to z");
   tapmc::require_box_with_floor(lmp, "create_packing");
 }
 

@@ -23,6 +23,9 @@ constexpr int kBoundaryFixed = 1;
 // Stops with a message naming the style (e.g. "fix mc/settle") and what to change.
 inline void require_box_with_floor(LAMMPS_NS::LAMMPS *lmp, const char *style)
 {
+  if (lmp->domain->dimension != 3)  // 2d makes z periodic: the advice below could not be taken
+    lmp->error->all(FLERR, "{}: needs a 3d simulation ('dimension 3', the default): the spheres "
+                    "rest on a floor normal to z", style);
   if (lmp->domain->triclinic)
     lmp->error->all(FLERR, "{}: triclinic boxes are not supported; use an orthogonal box", style);
   if (lmp->domain->zperiodic)

@@ -659,3 +659,17 @@ def test_a_fix_that_moves_atoms_besides_the_taps_is_checked_every_step():
            "step is checked" in out
     rc, out, _ = run_lammps(LID_BED.format(mover=""))
     assert rc == 0 and "besides the taps" not in out, out
+
+
+@pytest.mark.parametrize("command,style", [
+    ("fix t all tapdilate 0.05", "fix tapdilate"),
+    ("fix s all mc/settle 7", "fix mc/settle"),
+    ("compute p all stereo/profile", "compute stereo/profile"),
+    ("create_packing 10 1 0.5 7", "create_packing"),
+])
+def test_a_2d_simulation_is_refused_as_such(command, style):
+    """In 2d LAMMPS makes z periodic: the styles said "the z boundary is periodic ... use e.g.
+    'boundary p p fm'", advice that 'dimension 2' forbids."""
+    rc, out, _ = run_lammps("units lj\ndimension 2\natom_style sphere\nboundary p p p\n"
+                            "region box block 0 8 0 8 -0.5 0.5\ncreate_box 1 box\n" + command)
+    assert rc != 0 and f"{style}: needs a 3d simulation ('dimension 3', the default)" in out, out
