@@ -17,6 +17,7 @@ sys.path.insert(0, str(SOURCE / "tools" / "python"))
 
 from tapmc.paper import claims  # noqa: E402
 from tapmc.paper import _plotting as P  # noqa: E402
+from tapmc.paper.fig10 import EVERY_DUMP_STATISTICS  # noqa: E402
 from tapmc.laws import ProfileLaw  # noqa: E402
 from tapmc.fluctuations import binned_periodogram_layout  # noqa: E402
 from tapmc.pores import percus_yevick_p0  # noqa: E402
@@ -225,14 +226,17 @@ def pore_curve(tail):
 
 def with_fig10_rows(tab):
     """``tab`` with every row of Fig. 10's typed result (tapmc.paper.fig10.Fig10Result): the
-    distributions of each dump its params name (one NaN point where it has none) and the
-    shares' changes (NaN: not measured)."""
+    distributions of each dump its params name (one NaN point where it has none), the
+    statistics every dump has (NaN: not measured) and the shares' changes (NaN)."""
     steps = sorted({float(x) for (panel, _), d in tab.table.items() if panel == "params"
                     for x in d["x"]})
     for step in steps:
         for panel in ("a", "b"):
             if (panel, f"t={step:g}") not in tab.table:
                 tab.add(panel, f"t={step:g}", [math.nan], [math.nan], None, n=1)
+    for name in EVERY_DUMP_STATISTICS:
+        if ("params", name) not in tab.table:
+            tab.add("params", name, steps, [math.nan] * len(steps), None, n=1)
     for name in ("small_change", "large_change"):
         if ("params", name) not in tab.table:
             tab.param(name, math.nan, None, n=1, x=max(steps, default=0.0))

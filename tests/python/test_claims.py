@@ -335,6 +335,8 @@ def test_fig5_refit_table_finds_the_scaling_of_its_curves(tmp_path):
         table.param(f"tw={tw:g}:A_inf", 0.02, 0.001, n=1, x=tw)
     table.add("b", "tw=10", [1.0, 2.0], [0.0, 0.0])  # an unscaled panel b of an older analysis
     table.param("collapse:reduced_chi2", 2.4e4)
+    for name in ("A_inf", "B_A", "tau_A"):    # written with it
+        table.param(f"collapse:{name}", 1.0, 0.1)
     out = tmp_path / "fig5.csv"
     fig5.refit_table(table.table).write(out)
     new = P.read_table(out)

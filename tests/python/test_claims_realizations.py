@@ -592,6 +592,9 @@ def test_fbc_few_seed_values_of_figs_6_and_8_are_pooled_with_their_groups():
     assert cml.dof == 1 and a.dof == 1 and cml.err == 0.0004 and a.err == 0.0002
     tab8.add("params", f"{tag}:final_central_minus_lateral:seeds", [0.1, 0.1],
              [-0.0124, -0.0116], [0.0002, 0.0002], n=1)
+    for zone, value in (("lateral", 0.023), ("central", 0.011)):   # written with it
+        tab8.add("params", f"{tag}:final_{zone}:seeds", [0.1, 0.1], [value, value],
+                 [0.0002, 0.0002], n=1)
     tab6.add("params", "final:alpha:seeds", [0.1, 0.1], [0.0022, 0.0026], [0.0001, 0.0001],
              n=1)
     data = report(fig8=tab8, fig6=tab6)

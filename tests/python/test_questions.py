@@ -294,7 +294,7 @@ def _fig10(small, large, power=2.0, xi_t_fit=(0.2166, 0.002)):
                             "n": [1] * 100},
              ("a", "t=4000"): {"x": list(xi), "mean": list(curve), "sem": [0.003] * 100,
                                "n": [1] * 100}}
-    for name, (a, b) in (("small", small), ("large", large)):
+    for name, (a, b) in (("small", small), ("large", large), ("nu", (0.12, 0.10))):
         table[("params", name)] = {"x": [0, 4000], "mean": [a, b], "sem": [0.0003, 0.0003],
                                    "n": [1, 1]}
     table[("params", "xi_T")] = {"x": [0, 4000], "mean": [xi_t_fit[0]] * 2,
