@@ -406,3 +406,44 @@ def test_a_lammps_that_ends_early_is_named_for_what_it_did(tmp_path, behaviour, 
     with pytest.raises(CampaignError) as err:
         Campaign(tmp_path / "c", [spec], lmp=str(fake), jobs=1).run(progress=False)
     assert f"run 'r' failed: {expected.format(lmp=fake)}" in str(err.value)
+
+
+def test_a_run_begun_under_other_parameters_is_refused_not_resumed(tmp_path):
+    """A run stopped at tap 10 (eps 0.02) and asked again with eps 0.1 resumed from its eps 0.02
+    restart: a taps.dat of two eps under a DONE.json naming the new one; asked with fewer taps
+    than it had, it resumed beyond them and failed at every session. Both are refused by name
+    (nothing moved); asked as it was, or with more taps, it resumes."""
+    folder = tmp_path / "c"
+    spec = RunSpec("r", CONSTANT_EPS, dict(SHORT, eps=0.02), seed=1)
+    (run_dir,) = _stopped_at_10(folder, [spec], tmp_path)
+    before = sorted(p.name for p in run_dir.iterdir())
+    for changed, message in (
+            (dict(SHORT, eps=0.1), r"begun in .* with other parameters \(eps 0.02 -> 0.1\)"),
+            (dict(SHORT, eps=0.02, taps=8), r"with other parameters \(taps 20 -> 8 \(fewer\)\)")):
+        with pytest.raises(CampaignDirectoryError, match=message):
+            Campaign(folder, [RunSpec("r", CONSTANT_EPS, changed, seed=1)], lmp=LMP,
+                     jobs=1).run(progress=False)
+        assert sorted(p.name for p in run_dir.iterdir()) == before
+    longer = RunSpec("r", CONSTANT_EPS, dict(SHORT, eps=0.02, taps=25), seed=1)
+    done = Campaign(folder, [longer], lmp=LMP, jobs=1).run(progress=False).result("r")
+    assert steps(done / "taps.dat") == list(range(26))
+
+
+def test_a_session_of_some_runs_keeps_the_records_of_the_others(tmp_path):
+    """A session that runs (or draws) some of a campaign's runs rewrote manifest.json with its
+    own runs only: the other runs' attempts, costs and versions, and their inputs' records
+    (whose pinned copies guard against a changed input), were gone (a Fig. 2 drawn from the
+    paper-scale campaign left 3 of its 78 run records)."""
+    folder = tmp_path / "c"
+    first = RunSpec("a", CONSTANT_EPS, dict(TINY, taps=5), seed=1)
+    Campaign(folder, [first], lmp=LMP, jobs=1).run(progress=False)
+    before = json.loads((folder / "manifest.json").read_text())
+    other_input = tmp_path / "in.other"
+    other_input.write_text(CONSTANT_EPS.read_text())
+    second = RunSpec("b", other_input, dict(TINY, taps=5), seed=2)
+    Campaign(folder, [second], lmp=LMP, jobs=1).run(progress=False)
+    after = json.loads((folder / "manifest.json").read_text())
+    assert [r["name"] for r in after["runs"]] == ["b", "a"]
+    assert after["runs"][1] == before["runs"][0]
+    assert after["inputs"]["in.constant_eps"] == before["inputs"]["in.constant_eps"]
+    assert "in.other" in after["inputs"]

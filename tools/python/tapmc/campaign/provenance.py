@@ -235,7 +235,7 @@ def copy_inputs(directory, runs, pin_inputs, stream, recorded=None):
     source still has that sha256, else CampaignDirectoryError names both files, as it does
     for a missing copy whose source changed. An input that changed since the campaign started:
     CampaignDirectoryError, or with ``pin_inputs`` a note on ``stream`` and both digests
-    recorded."""
+    recorded. The entries of ``recorded`` for inputs no run of ``runs`` uses are kept."""
     directory = Path(directory)
     inputs = {}
     folder = directory / "inputs"
@@ -283,6 +283,10 @@ def copy_inputs(directory, runs, pin_inputs, stream, recorded=None):
                     "directory")
             atomic.copy_file(src, copy)
         inputs[src.name] = entry
+    # the inputs of runs this session does not run keep their records (a session of some runs
+    # dropped them, and a changed input of the others then went unnoticed)
+    for name, entry in (recorded.items() if isinstance(recorded, dict) else ()):
+        inputs.setdefault(name, entry)
     return inputs
 
 

@@ -114,6 +114,8 @@ class Campaign:
         self._cost_sums = cost_sums(tap_costs or {}, self._by_name)
         self._lock = threading.Lock()
         self._records = {}
+        # the manifest records of runs of the campaign that this session does not run: kept
+        self._other_records = []
         self._started = {}
         self._redo = {}  # name -> damaged files the running re-run must write again
         self._repairs = repair.RunRepairs(self.run_dir, self._records, self._lock, self.stream)
@@ -183,7 +185,7 @@ class Campaign:
         with self._lock:
             data = dict(self._manifest)
             data["updated"] = provenance.now()
-            data["runs"] = [self._records[r.name] for r in self.runs]
+            data["runs"] = [self._records[r.name] for r in self.runs] + self._other_records
             try:
                 provenance.write_manifest(self.directory, data)
             except OSError as err:
@@ -210,6 +212,39 @@ class Campaign:
             raise CampaignDirectoryError(
                 f"run {spec.name!r}: finished in {done_file.parent} with other "
                 f"parameters ({done['run']}); use a new name or campaign")
+
+    def _check_started_parameters(self, spec, record):
+        """Refuse (CampaignDirectoryError) an unfinished run that has begun (a restart or a
+        per-tap file in its folder) under other parameters than ``spec``, as its manifest
+        ``record`` holds them: resumed, its trajectory would be the old run's up to the restart
+        and the new one's after it (it resumed silently, and DONE.json recorded the new ones
+        only). More taps than before continue the same run; fewer are refused too (it resumed
+        beyond them and failed at every session)."""
+        run_dir = self.run_dir(spec.name)
+        begun = run_dir.is_dir() and (any(run_dir.glob("restart.*"))
+                                      or (run_dir / spec.taps_file).exists())
+        if not begun:
+            return
+        now = json.loads(json.dumps(spec.describe()))
+        changed = []
+        for key in now:
+            if key in ("name", "taps") or key not in record or record[key] == now[key]:
+                continue
+            if key == "variables" and isinstance(record[key], dict):
+                old_vars, new_vars = record[key], now[key]
+                changed += [f"{v} {old_vars.get(v, 'unset')!r} -> {new_vars.get(v, 'unset')!r}"
+                            for v in sorted(set(old_vars) | set(new_vars))
+                            if v != "taps" and old_vars.get(v) != new_vars.get(v)]
+            else:
+                changed.append(f"{key} {record[key]!r} -> {now[key]!r}")
+        old_taps = record.get("taps")
+        if old_taps is not None and now["taps"] is not None and now["taps"] < old_taps:
+            changed.append(f"taps {old_taps} -> {now['taps']} (fewer)")
+        if changed:
+            raise CampaignDirectoryError(
+                f"run {spec.name!r}: begun in {run_dir} with other parameters "
+                f"({'; '.join(changed)}); resumed, it would continue the old run under the new "
+                "ones: finish it with its own parameters, or use a new name or campaign")
 
     # -- one run ---------------------------------------------------------------------------
     def _prepare(self, spec):
@@ -640,11 +675,14 @@ class Campaign:
         self._previous_version = previous.get("tapmc_version")
         old = {r["name"]: r for r in previous.get("runs", [])
                if isinstance(r, dict) and "name" in r}
+        self._other_records = [r for name, r in old.items() if name not in self._by_name]
         self._manifest = self._session_manifest(previous)
         self._t0, self._done0 = {}, {}
-        for spec in self.runs:  # every finished run's parameters first: a refusal moves nothing
+        for spec in self.runs:  # every run's parameters first: a refusal moves nothing
             if self.is_done(spec.name):
                 self._check_parameters(spec, self.run_dir(spec.name) / "DONE.json")
+            elif spec.name in old:
+                self._check_started_parameters(spec, old[spec.name])
         pending = []
         for spec in self.runs:
             done_file = self.run_dir(spec.name) / "DONE.json"
