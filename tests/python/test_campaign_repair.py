@@ -447,3 +447,24 @@ def test_a_session_of_some_runs_keeps_the_records_of_the_others(tmp_path):
     assert after["runs"][1] == before["runs"][0]
     assert after["inputs"]["in.constant_eps"] == before["inputs"]["in.constant_eps"]
     assert "in.other" in after["inputs"]
+
+
+def test_a_run_killed_in_its_first_attempt_whose_log_and_taps_went_is_run_again(tmp_path):
+    """Killed in its first attempt (the manifest holds its start, from tap 0), then its log and
+    taps.dat removed, restarts left: the campaign resumed from the latest restart and sealed a
+    taps.dat without its first taps (rows 340-1500 of 1501) as finished. The killed attempt is
+    now recorded without its log, so the run needs its rows from tap 0, and starts over."""
+    folder = tmp_path / "c"
+    spec = RunSpec("r", CONSTANT_EPS, dict(SHORT, eps=0.02), seed=1)
+    (run_dir,) = _stopped_at_10(folder, [spec], tmp_path)
+    manifest = json.loads((folder / "manifest.json").read_text())
+    record = manifest["runs"][0]
+    first = record["attempts"].pop(0)           # as a SIGKILL leaves it: a start, no end
+    record["running_attempt"] = {"started": first["started"], "resumed_from_step": None}
+    (folder / "manifest.json").write_text(json.dumps(manifest))
+    for name in ("log.lammps", "taps.dat"):
+        (run_dir / name).unlink()
+    stream = io.StringIO()
+    done = Campaign(folder, [spec], lmp=LMP, jobs=1, stream=stream).run(progress=False)
+    assert "the run goes again from the start" in stream.getvalue(), stream.getvalue()
+    assert steps(done.result("r") / "taps.dat") == list(range(21))

@@ -269,6 +269,8 @@ class Campaign:
                 rec["attempts"].append(
                     {"interrupted": True, **entry, "log": kept,
                      "taps_done": run_folder.taps_done(run_dir / spec.taps_file)})
+            elif running:  # killed, its log removed since: still the attempt where it began
+                rec["attempts"].append({"interrupted": True, **running, "log": None})
         run_folder.remove_temporary_files(run_dir)  # of a rewrite killed before its rename
         fresh = {"resume": "no", "resume_file": "restart.*"}, None
         step, path = self._repairs.set_cut_restarts_aside(spec)
