@@ -137,6 +137,21 @@ def test_ctrl_c_outside_the_runs_is_one_line(monkeypatch, capsys):
     assert err == "tapmc-paper: interrupted (Ctrl-C)\n"
 
 
+def test_ctrl_c_while_the_command_imports_is_one_line_too():
+    """The command's modules take about 1.5 s to import; a Ctrl-C then ended in a traceback
+    and status -2."""
+    import signal
+    import time
+
+    env = dict(os.environ, PYTHONPATH=str(SOURCE / "tools" / "python"))
+    child = subprocess.Popen([sys.executable, "-m", "tapmc.paper", "--help"], env=env,
+                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    time.sleep(0.3)
+    child.send_signal(signal.SIGINT)
+    _, err = child.communicate(timeout=60)
+    assert child.returncode == 130 and err == "tapmc-paper: interrupted (Ctrl-C)\n", err
+
+
 def test_finished_only_on_a_missing_campaign_creates_nothing(tmp_path, capsys):
     out = _main(capsys, "report", "--quick", "--finished-only", "--campaign", tmp_path / "none",
                 "--out", tmp_path / "out")

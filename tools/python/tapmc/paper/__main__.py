@@ -4,7 +4,11 @@
 import os
 import sys
 
-from .cli import main
+try:  # the command's modules take about 1.5 s to import: Ctrl-C then is main()'s one line too
+    from .cli import main
+except KeyboardInterrupt:
+    print("tapmc-paper: interrupted (Ctrl-C)", file=sys.stderr)
+    sys.exit(130)
 
 try:
     status = main()
