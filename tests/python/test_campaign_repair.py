@@ -468,3 +468,21 @@ def test_a_run_killed_in_its_first_attempt_whose_log_and_taps_went_is_run_again(
     done = Campaign(folder, [spec], lmp=LMP, jobs=1, stream=stream).run(progress=False)
     assert "the run goes again from the start" in stream.getvalue(), stream.getvalue()
     assert steps(done.result("r") / "taps.dat") == list(range(21))
+
+
+def test_the_rows_a_resume_keeps_are_read_as_the_dry_run_reads_them(tmp_path):
+    """A dry run reads the rows before the restart it would resume from (the resume trims the
+    rest): rows lost there mean a run from the start (it said "resumes from tap 2300" for a run
+    the campaign then ran again from tap 0). A killed first attempt's start (running_attempt)
+    is where the run began."""
+    taps = tmp_path / "taps.dat"
+    taps.write_text("# step x\n" + "".join(f"{s} 1\n" for s in range(30)))
+    assert run_folder.step_rows_problem(taps, 19, past_last=True) == ""
+    assert "ends at step 29" in run_folder.step_rows_problem(taps, 19)
+    taps.write_text("# step x\n" + "".join(f"{s} 1\n" for s in range(30) if s != 7))
+    assert run_folder.step_rows_problem(taps, 19, past_last=True) == \
+        "taps.dat:9: step 8 where 7 was due (rows missing)"
+    from tapmc.campaign.repair import first_steps
+    assert first_steps({"attempts": [], "running_attempt": {"resumed_from_step": None}}, 20) \
+        == {0}
+    assert first_steps({"attempts": []}, 20) == {0, 20}

@@ -16,8 +16,10 @@ def first_steps(rec, resume_step=None):
     """The steps a run's per-tap file may start at, from its manifest record ``rec``: 0, or
     the restart its first attempt resumed from (a run started from another run's restart file,
     as tapmc-paper question does); for a run with no attempt yet, ``resume_step``, the restart
-    it resumes from."""
-    attempts = rec.get("attempts") or []
+    it resumes from. The start of an attempt killed with its campaign (``running_attempt``)
+    counts as an attempt."""
+    attempts = rec.get("attempts") or ([rec["running_attempt"]]
+                                       if isinstance(rec.get("running_attempt"), dict) else [])
     first = attempts[0].get("resumed_from_step") if attempts else resume_step
     return {0, first} if first else {0}
 

@@ -143,14 +143,15 @@ def drop_repeated_titles(path):
         atomic.write_text(path, "".join(out))
 
 
-def step_rows_problem(path, last, starts=(0,)):
+def step_rows_problem(path, last, starts=(0,), past_last=False):
     """'' when the data rows of the per-tap file ``path`` (one row per tap, the step first) are
     the steps first, first + 1, ..., ``last``, each once and in this order, with ``first`` one
     of ``starts``; else the first thing wrong, as a phrase. No rows at all is right when
     ``last + 1`` is one of ``starts`` (nothing written yet from that step). A missing file
     has no rows. A resume trims the rows past its restart, and a finish reads the whole run:
     a per-tap file emptied or rewritten by a kill, or written by two processes at once, is
-    never taken for a finished run's."""
+    never taken for a finished run's. ``past_last``: rows after ``last`` are left unread (what
+    a resume from step ``last + 1`` would trim), as a dry run reads a run it would resume."""
     path = Path(path)
     expected = None
     try:
@@ -167,6 +168,8 @@ def step_rows_problem(path, last, starts=(0,)):
                 step = _first_int(line)
                 if step is None:
                     return f"{path.name}:{number}: not a row of a step"
+                if past_last and step > last and expected is not None and step >= expected:
+                    break
                 if expected is None:
                     if step not in starts:
                         return (f"{path.name} starts at step {step}, not at "

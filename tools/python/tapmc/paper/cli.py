@@ -29,7 +29,8 @@ from pathlib import Path
 
 from tapmc.campaign import (STOPPED_STATUS, Campaign, CampaignDirectoryError, CampaignError,
                             CampaignStopped, launch, provenance)
-from tapmc.campaign.run_folder import resume_restart
+from tapmc.campaign.repair import first_steps
+from tapmc.campaign.run_folder import resume_restart, step_rows_problem
 from tapmc.readers import TapmcFormatError
 
 from .. import __version__
@@ -577,6 +578,11 @@ def _list_runs(campaign, what):
         damage = _damage(campaign.run_dir(spec.name)) if done else ""
         done = done and not damage  # a run would redo it (from its latest restart, or anew)
         tap = 0 if done else (resume_restart(campaign.run_dir(spec.name))[0] or 0)
+        lost = tap and step_rows_problem(campaign.run_dir(spec.name) / spec.taps_file, tap - 1,
+                                         first_steps(records.get(spec.name, {}), tap),
+                                         past_last=True)
+        if lost:  # rows lost before the restart: the run goes again from the start
+            damage, tap = f"{lost}: to run again from the start", 0
         to_run = float(seconds[tap:].sum()) * ranks if seconds is not None else None
         price = f"{hours:.3g} CPU h" if hours is not None else "cost unknown"
         state = "done" if done else damage if damage else "to run" if not tap else (
