@@ -578,7 +578,8 @@ def _list_runs(campaign, what):
         damage = _damage(campaign.run_dir(spec.name)) if done else ""
         done = done and not damage  # a run would redo it (from its latest restart, or anew)
         tap = 0 if done else (resume_restart(campaign.run_dir(spec.name))[0] or 0)
-        lost = tap and step_rows_problem(campaign.run_dir(spec.name) / spec.taps_file, tap - 1,
+        # an unfinished run's rows before its restart (a finished one's damage is its own)
+        lost = tap and not damage and step_rows_problem(campaign.run_dir(spec.name) / spec.taps_file, tap - 1,
                                          first_steps(records.get(spec.name, {}), tap),
                                          past_last=True)
         if lost:  # rows lost before the restart: the run goes again from the start
