@@ -158,7 +158,7 @@ void ComputeContacts::init()
   const double r_max = group_radius_max();
   resolve_container(r_max);
   tapmc::require_ghosts_of_every_atom(lmp, kStyle, "the contacts across sub-domain and "
-                                      "periodic faces would be missed");
+                                      "periodic faces would be missed", "", groupbit);
   // Ghosts deep enough for every contact. With a pair style (a DEM run) atoms move between
   // reneighbourings, up to skin/2 before LAMMPS rebuilds the ghosts: the skin is added. Without
   // one, atoms move only in TAPMC's taps and redepositions, each followed by a rebuild, and the

@@ -172,11 +172,13 @@ struct CommBorderGroup : LAMMPS_NS::Comm {
 // ghost shell per collection from the pair cutoffs: without a pair style, no ghosts at all (the
 // domain scheme let spheres of two sub-domains overlap by 97 % of a diameter). It stops here,
 // `loss` naming what would go wrong and `instead` a way out beside the default. 'comm_modify
-// group G' sends ghosts of G's atoms only: with atoms outside G, the domain scheme moved
-// spheres into them and compute contacts missed their contacts, silently. Collective; call
-// from init().
+// group G' sends ghosts of G's atoms only: with atoms the style reads (`read_bits`, a group
+// bitmask: every atom for the domain scheme, whose obstacles they all are; its group for
+// compute contacts) outside G, the domain scheme moved spheres into them and compute contacts
+// missed their contacts, silently. Collective; call from init().
 inline void require_ghosts_of_every_atom(LAMMPS_NS::LAMMPS *lmp, const char *style,
-                                         const char *loss, const char *instead = "")
+                                         const char *loss, const char *instead = "",
+                                         int read_bits = 1)
 {
   const LAMMPS_NS::Comm *comm = lmp->comm;
   if (comm->mode != LAMMPS_NS::Comm::SINGLE)
@@ -189,12 +191,13 @@ inline void require_ghosts_of_every_atom(LAMMPS_NS::LAMMPS *lmp, const char *sty
   const int border_bit = lmp->group->bitmask[border_group];
   long outside_local = 0, outside = 0;
   for (int i = 0; i < lmp->atom->nlocal; ++i)
-    outside_local += (lmp->atom->mask[i] & border_bit) ? 0 : 1;
+    outside_local += (lmp->atom->mask[i] & read_bits) && !(lmp->atom->mask[i] & border_bit);
   MPI_Allreduce(&outside_local, &outside, 1, MPI_LONG, MPI_SUM, lmp->world);
   if (outside == 0) return;
   const char *name = lmp->group->names[border_group];
   lmp->error->all(FLERR, "{}: 'comm_modify group {}' sends ghost atoms of that group only, and "
-                  "{} atoms are outside it, so {}: use 'comm_modify group all' (the default){}",
+                  "{} atoms it reads are outside it, so {}: use 'comm_modify group all' (the "
+                  "default){}",
                   style, name, outside, loss, instead);
 }
 

@@ -219,10 +219,10 @@ def test_styles_reading_ghosts_refuse_comm_mode_multi(body, message):
 @pytest.mark.parametrize("body,message", [
     ("fix s all mc/settle 1 scheme domain\nrun 1",
      "fix mc/settle: 'comm_modify group one' sends ghost atoms of that group only, and 1 atoms "
-     "are outside it, so scheme domain would move spheres"),
+     "it reads are outside it, so scheme domain would move spheres"),
     ("compute n all contacts 0.01\nthermo_style custom step c_n[1]\nrun 0",
      "compute contacts: 'comm_modify group one' sends ghost atoms of that group only, and 1 "
-     "atoms are outside it, so the contacts across sub-domain and periodic faces"),
+     "atoms it reads are outside it, so the contacts across sub-domain and periodic faces"),
 ])
 def test_styles_reading_ghosts_refuse_a_ghost_group_without_every_atom(body, message):
     """'comm_modify group G' makes ghosts of G's atoms only: the domain scheme moved spheres
@@ -236,6 +236,10 @@ def test_styles_reading_ghosts_refuse_a_ghost_group_without_every_atom(body, mes
     assert rc == 0 and "Loop time" in out, out
     rc, out = run_case("group one id 1\ncomm_modify group one\n"
                        "fix s all mc/settle 1 scheme gather\nrun 1", extra=first)
+    assert rc == 0 and "Loop time" in out, out
+    # compute contacts reads its own group's ghosts only: that group's are all sent
+    rc, out = run_case("group one id 1\ncomm_modify group one\ncompute n one contacts 0.01\n"
+                       "thermo_style custom step c_n[1]\nrun 0", extra=first)
     assert rc == 0 and "Loop time" in out, out
 
 
@@ -645,18 +649,21 @@ run 10
 """
 
 
-def test_a_fix_that_moves_atoms_besides_the_taps_is_checked_every_step():
+def test_a_fix_that_moves_atoms_besides_the_taps_is_checked_before_each_tap():
     """A wall/reflect lid just above the bed (highest centre 10.548) reflected spheres lifted by
     a tap back into the bed: 23 overlapping pairs, up to 0.91 of a diameter, after 10 taps, exit
-    0. Every step of a run with such a fix is now checked before its redeposition; an integrator
-    that moves nothing (zero velocities) runs on, warned; the bed alone runs without warning."""
+    0. A run with such a fix (fix deform's remap too) is checked before each tap, and an
+    overlap found there names the fix; an integrator that moves nothing (zero velocities) runs
+    on, warned; the bed alone runs without warning."""
     rc, out, _ = run_lammps(LID_BED.format(mover="fix lid all wall/reflect zhi 10.6"))
     assert rc != 0 and "fix mc/settle: step 2: atoms 345 and 397 overlap by" in out, out
-    assert "fix lid (wall/reflect) move(s) atoms besides the taps and pushed a sphere" in out
+    assert "before the tap: fix lid (wall/reflect) move(s) atoms besides the taps" in out
     rc, out, _ = run_lammps(LID_BED.format(mover="fix still all nve/sphere"))
     assert rc == 0 and "Loop time" in out, out
-    assert "fix still (nve/sphere) move(s) atoms besides the taps and the redeposition: every " \
-           "step is checked" in out
+    assert "fix still (nve/sphere) move(s) atoms besides the taps and the redeposition: the " \
+           "spheres are checked for overlaps before each tap" in out
+    rc, out, _ = run_lammps(LID_BED.format(mover="fix squeeze all deform 1 x final 0 5.0 remap x"))
+    assert rc != 0 and "fix squeeze (deform) move(s) atoms besides the taps" in out, out
     rc, out, _ = run_lammps(LID_BED.format(mover=""))
     assert rc == 0 and "besides the taps" not in out, out
 
