@@ -116,10 +116,7 @@ void check_preconditions(LAMMPS *lmp, int narg)
   if (!lmp->atom->radius_flag || !lmp->atom->rmass_flag)
     error->all(FLERR, "create_packing: the atom style has no per-atom radius and mass; use "
                "atom_style sphere");
-  if (lmp->domain->dimension != 3)
-    error->all(FLERR, "create_packing: needs a 3d simulation ('dimension 3', the default): the "
-               "spheres rest on a floor normal to z");
-  tapmc::require_box_with_floor(lmp, "create_packing");
+  tapmc::require_box_with_floor(lmp, "create_packing");  // 3d, orthogonal, a floor
 }
 
 // 'walls' takes one or two of x, y, or none: returns how many values it used.

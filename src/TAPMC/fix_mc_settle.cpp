@@ -378,12 +378,12 @@ void FixMCSettle::init()
     tapped_bits |= group->bitmask[tapper_group];
   }
   other_movers = other_fixes_moving_atoms();
-  check_after_taps = !all_move || !other_movers.empty();
+  check_after_taps = !all_move;
   if (!other_movers.empty() && comm->me == 0)
     error->warning(FLERR, "fix mc/settle: fix {} move(s) atoms besides the taps and the "
-                   "redeposition: every step is checked for overlapping spheres before its "
-                   "redeposition (hard spheres are moved by fix tapdilate and fix mc/settle "
-                   "only; the floor, xwalls/ywalls or a container hold the bed)", other_movers);
+                   "redeposition: the spheres are checked for overlaps before each tap (hard "
+                   "spheres are moved by fix tapdilate and fix mc/settle only; the floor, "
+                   "xwalls/ywalls or a container hold the bed)", other_movers);
   long untapped = 0, untapped_all = 0;
   for (int i = 0; i < atom->nlocal; ++i) untapped += (atom->mask[i] & tapped_bits) ? 0 : 1;
   MPI_Allreduce(&untapped, &untapped_all, 1, MPI_LONG, MPI_SUM, world);
@@ -560,9 +560,9 @@ void FixMCSettle::GatheredRedeposition::check_start(bool after_tap)
 std::string FixMCSettle::violation_message(const tapmc::Violation &v, tagint tag_i,
                                            tagint tag_j, bool after_tap) const
 {
-  if (v.j >= 0 && after_tap && !other_movers.empty())
+  if (v.j >= 0 && checking_other_movers)
     return fmt::format("fix mc/settle: step {}: atoms {} and {} overlap by {} before the "
-                       "redeposition: fix {} move(s) atoms besides the taps and pushed a sphere "
+                       "tap: fix {} move(s) atoms besides the taps and pushed a sphere "
                        "into another (a wall/reflect lid reflects spheres lifted by a tap back "
                        "into the bed; an integrator moves them by their velocities); unfix it: "
                        "hard spheres are moved by fix tapdilate and fix mc/settle only",
@@ -651,13 +651,17 @@ void FixMCSettle::pre_exchange()
 {
   if (update->ntimestep != next_reneighbor) return;
   require_same_tappers();
+  if (!other_movers.empty()) {  // before the taps: an overlap now is the other fixes' doing
+    checking_other_movers = true;
+    redeposition->check_start(true);
+    checking_other_movers = false;
+  }
   // The taps of this step come first, also those of tapping fixes defined after this fix
   // (LAMMPS calls pre_exchange in definition order); each taps once per step, and this step is
   // a tap step of at least one of them (schedule_next_settle).
   for (tapmc::Tapper *tap : tappers) tap->tap_if_due();
   schedule_next_settle(update->ntimestep);
-  if (check_after_taps && (!tappers.empty() || !other_movers.empty()))
-    redeposition->check_start(true);
+  if (check_after_taps && !tappers.empty()) redeposition->check_start(true);
 
   const tapmc::SettleResult result = redeposition->settle();
   store_diagnostics(result);

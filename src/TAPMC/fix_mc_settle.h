@@ -114,9 +114,10 @@ class FixMCSettle : public Fix, public tapmc::ContainerHolder {
   // every atom is tapped by some tapping fix: an overlap after a tap then comes from tapping
   // fixes of different groups that dilate differently
   bool every_atom_tapped = false;
-  // the run's other fixes that move atoms (other_fixes_moving_atoms()), "" if none: every tap
-  // is then checked, and an overlap names them
+  // the run's other fixes that move atoms (other_fixes_moving_atoms()), "" if none: the
+  // spheres are then checked before each tap, and an overlap found there names them
   std::string other_movers;
+  bool checking_other_movers = false;
 
   // The settings kept in restart files (fix_mc_settle_restart.cpp: the record's layouts).
   struct RestartSetting;

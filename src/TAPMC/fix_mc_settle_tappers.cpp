@@ -18,19 +18,25 @@
 using namespace LAMMPS_NS;
 
 // The run's fixes that move atoms besides the taps and the redeposition, as "ID (style)": those
-// LAMMPS calls to integrate (an integrator, fix move, fix wall/reflect). A lid of
-// wall/reflect reflected spheres lifted by a tap back into the bed, and a leftover fix
-// nve/sphere moved them by their velocities: overlaps, silently (the redeposition keeps
-// overlaps it starts with). Such a run checks every tap (check_after_taps).
+// LAMMPS calls to integrate (an integrator, fix move, fix wall/reflect), and those that move or
+// insert atoms between steps (fix deform's remap, gcmc, pour). A lid of wall/reflect reflected
+// spheres lifted by a tap back into the bed, and a leftover fix nve/sphere moved them by their
+// velocities: overlaps, silently (the redeposition keeps overlaps it starts with). Such a run
+// is checked before each tap (pre_exchange).
 std::string FixMCSettle::other_fixes_moving_atoms() const
 {
   constexpr int kMoves = FixConst::INITIAL_INTEGRATE | FixConst::POST_INTEGRATE |
                          FixConst::FINAL_INTEGRATE;
+  const std::vector<std::string> moving_styles = {"deform", "gcmc", "pour"};
   std::string names;
   for (int i = 0; i < modify->nfix; ++i) {
     Fix *fix = modify->fix[i];
     const bool tapmc_style = dynamic_cast<tapmc::Tapper *>(fix) || std::strcmp(fix->style, style) == 0;
-    if (tapmc_style || !(modify->fmask[i] & kMoves)) continue;
+    const std::string base = std::string(fix->style).substr(0, std::string(fix->style).find('/'));
+    const bool moves = (modify->fmask[i] & kMoves) ||
+                       std::find(moving_styles.begin(), moving_styles.end(), base) !=
+                           moving_styles.end();
+    if (tapmc_style || !moves) continue;
     names += (names.empty() ? "" : ", ") + std::string(fix->id) + " (" + fix->style + ")";
   }
   return names;
