@@ -108,8 +108,10 @@ void FixMCSettle::restart(char *buf)
   // radii and the box are those the restart file brought.
   using Meaning = RestartSetting::Meaning;
   const double default_step = tapmc::defaults::kMaxStepOverRadius * group_radius_extreme(false);
-  auto face = [this](int dim, int side) {
-    return domain->periodicity[dim] ? NAN : (side == 0 ? domain->boxlo[dim] : domain->boxhi[dim]);
+  // in a container no flat walls stand anywhere: "not given" stays none
+  auto face = [this](int dim, int side) -> double {
+    if (domain->periodicity[dim] || !container_region_id.empty()) return NAN;
+    return side == 0 ? domain->boxlo[dim] : domain->boxhi[dim];
   };
   auto resolved = [&](Meaning meaning, double v) {
     switch (meaning) {
