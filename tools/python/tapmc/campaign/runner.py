@@ -36,6 +36,11 @@ CRASH_SIGNALS = frozenset({signal.SIGSEGV, signal.SIGBUS, signal.SIGFPE, signal.
 #: from (git describe), LAMMPS's version and the commit the executable was built from (both
 #: from ``lmp -h``; lmp_build is None for a LAMMPS that does not print it).
 VERSION_KEYS = ("tapmc_version", "lammps_version", "lmp_build")
+#: variables of the paper's inputs that say how long a run goes and what it writes when, not
+#: its trajectory: a run continued to more taps sets them anew (a level continued with
+#: pevery = taps, a restart every gcd(50, taps), a replay to a later stop)
+OUTPUT_VARIABLES = frozenset({"taps", "pevery", "rsteps", "thermo_every", "stop", "dump_times",
+                              "dump_ends"})
 
 
 def _versions_done(rec):
@@ -218,14 +223,16 @@ class Campaign:
         per-tap file in its folder) under other parameters than ``spec``, as its manifest
         ``record`` holds them: resumed, its trajectory would be the old run's up to the restart
         and the new one's after it (it resumed silently, and DONE.json recorded the new ones
-        only). More taps than before continue the same run; fewer are refused too (it resumed
-        beyond them and failed at every session)."""
+        only). More taps than before continue the same run (with the variables that follow the
+        taps, :data:`OUTPUT_VARIABLES`); fewer are refused too (it resumed beyond them and
+        failed at every session)."""
         run_dir = self.run_dir(spec.name)
         begun = run_dir.is_dir() and (any(run_dir.glob("restart.*"))
                                       or (run_dir / spec.taps_file).exists())
         if not begun:
             return
-        now = json.loads(json.dumps(spec.describe()))
+        # as the record was written (paths as <campaign>/..., <repo>/...)
+        now = json.loads(json.dumps(provenance.portable_paths(spec.describe(), self.directory)))
         changed = []
         for key in now:
             if key in ("name", "taps") or key not in record or record[key] == now[key]:
@@ -234,7 +241,7 @@ class Campaign:
                 old_vars, new_vars = record[key], now[key]
                 changed += [f"{v} {old_vars.get(v, 'unset')!r} -> {new_vars.get(v, 'unset')!r}"
                             for v in sorted(set(old_vars) | set(new_vars))
-                            if v != "taps" and old_vars.get(v) != new_vars.get(v)]
+                            if v not in OUTPUT_VARIABLES and old_vars.get(v) != new_vars.get(v)]
             else:
                 changed.append(f"{key} {record[key]!r} -> {now[key]!r}")
         old_taps = record.get("taps")
