@@ -81,8 +81,8 @@ def test_a_csv_with_rows_of_no_field_is_refused(tmp_path):
     # a row of the claim's table disappeared, or the claim read "no F.B.C. profile"
     ("fig8", "params,eps=0.02:final_central,",
      r"no rows of panel 'params', series 'eps=0.02:final_central'"),
-    ("fig8", "params,eps=0.02:final_lateral:seeds,", r"no rows of params/eps=0.02:final_lateral:"
-                                                     r"seeds, which are written with"),
+    ("fig8", "params,eps=0.02:first_tap_lateral,", r"no rows of params/eps=0.02:first_tap_"
+                                                   r"lateral, which are written with"),
 ])
 def test_a_csv_missing_a_row_written_with_others_is_refused(name, row, message, tmp_path):
     """report --from-data read these rows as absent and wrote the page (exit 0) with other

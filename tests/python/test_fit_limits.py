@@ -132,11 +132,13 @@ def test_range_refits_validation():
         range_refits("eq3", TAPS, TAPS)
     with pytest.raises(ValueError, match="first < last"):
         range_refits(InverseLogLaw(), TAPS, TAPS, ranges=[(10, 1)])
-    # ranges beyond the run: every parameter read "consistent" from no fit at all
+    # ranges beyond the run: every parameter read "consistent" from no fit at all; now none
+    # is decided (a short run's fit of all taps is still made)
     taps = np.arange(0.0, 2001.0)
-    with pytest.raises(ValueError, match=r"hold fewer than the 6 points a fit of InverseLogLaw "
-                                         r"needs in every range \(t from 0 to 2000\)"):
-        range_refits(InverseLogLaw(), taps, taps, ranges=[(3e3, 5e5), (2e5, 2e6)])
+    beyond = range_refits(InverseLogLaw(), taps, 0.6 - 0.05 / (1 + np.log1p(taps / 10)),
+                          ranges=[(3e3, 5e5), (2e5, 2e6)])
+    assert beyond.fits == [None, None] and beyond.range_dependent == []
+    assert all(ok is None for ok in beyond.consistent.values())
     # a run of 3 taps: the default [1, T/4] would be (1, 0.75)
     with pytest.raises(ValueError, match=r"t ends at tap 3: the default ranges start with"):
         range_refits(InverseLogLaw(), [0, 1, 2, 3], [0.5, 0.51, 0.52, 0.53])

@@ -222,6 +222,9 @@ def test_a_box_a_whole_number_of_columns_wide_only_within_rounding_has_them_all(
     ([0, 0, 0], [0, 4, 10], r"box_hi = \[0.0, 4.0, 10.0\] must exceed box_lo"),
     ([4, 0, 0], [0, 4, 10], r"box_hi = \[0.0, 4.0, 10.0\] must exceed box_lo = \[4.0"),
     ([0, 0, 0], [np.nan, 4, 10], r"box_hi\[0\] = nan is not finite"),
+    # spheres of diameter 1 that reach their own images: legal = True, no overlap, before
+    ([0, 0, 0], [0.9, 4, 10], r"periodic box length along x = 0.9 must be at least the largest "
+                              r"diameter 1 \(a sphere would overlap its own image\)"),
 ])
 def test_a_box_without_width_is_refused_by_name(lo, hi, message):
     """A periodic x of zero width gave legal = True and Phi = inf, an inverted box negative

@@ -77,6 +77,15 @@ class PackingCheck:
         self.positions, self.radii = validated_spheres(frame.positions, frame.radii)
         self.box_lo, self.box_hi, self.periodic = validated_box(frame.box_lo, frame.box_hi,
                                                                 np.asarray(frame.periodic, bool))
+        # a sphere must not overlap its own image (the pairs are checked at nearest images,
+        # which are the ones that can overlap)
+        diameter = 2.0 * float(self.radii.max())
+        for d in np.flatnonzero(self.periodic):
+            length = float(self.box_hi[d] - self.box_lo[d])
+            if not length >= diameter:
+                raise ValueError(f"periodic box length along {'xyz'[d]} = {length:g} must be at "
+                                 f"least the largest diameter {diameter:g} (a sphere would "
+                                 "overlap its own image)")
         self.floor = (float(self.box_lo[2]) if floor is None
                       else in_range("floor", floor, -math.inf, math.inf))
         self.digits = None if digits is None else positive_int("digits", digits)

@@ -33,7 +33,8 @@ CSV panels:
   tau (mean = best value, sem = 1-sigma curvature error when determined, empty when not, n = 1
   determined / 0 not); ``eps=<e>:<name>:lo`` and ``:hi`` (the 68 % profile interval; empty on
   an open side, n = 1 when that side closes); ``eps=<e>:<name>:range_deviation`` (n = 1 when
-  at most ``tapmc.laws.RANGE_Z_LIMIT``: consistent over the tap ranges) and
+  at most ``tapmc.laws.RANGE_Z_LIMIT``: consistent over the tap ranges; 0 when beyond it, or
+  nan when no range had a fit to compare) and
   ``eps=<e>:<name>:range_spread`` (max - min of the value over the ranges);
   ``eps=<e>:reduced_chi2`` (n = 1 when every parameter is determined). The eq. 4 parameters
   Z_inf, Z_0, B, tau likewise with the prefix ``eps=<e>:Z:`` (e.g. ``eps=0.05:Z:B:lo``,

@@ -119,12 +119,12 @@ class ZoneIncreases:
     @classmethod
     def from_rows(cls, rows, prefix, label):
         def zones(names, form, take):
-            """Every zone's row, or none (the seeds' with one seed, the first tap's without
-            tap 1); some without the others is refused."""
-            keys = [("params", f"{label}:{form.format(zone)}") for zone in names]
-            if not rows.together(*keys):
-                return {}
-            return {zone: take(*key) for zone, key in zip(names, keys)}
+            """The zones' rows the CSV has (each zone's seeds are written when its seeds'
+            errors are finite)."""
+            return {zone: take("params", f"{label}:{form.format(zone)}") for zone in names
+                    if rows.has("params", f"{label}:{form.format(zone)}")}
+
+        first_tap = [("params", f"{label}:first_tap_{zone}") for zone in FIRST_TAP_ZONES]
 
         return cls(float(label[len("eps="):]), rows.take("a", prefix + label),
                    rows.take("b", prefix + label),
@@ -133,7 +133,9 @@ class ZoneIncreases:
                     if zone in FINAL_ZONES_SINCE_FIRST
                     or rows.has("params", f"{label}:final_{zone}")},
                    zones(FINAL_ZONES, "final_{}:seeds", rows.take),
-                   zones(FIRST_TAP_ZONES, "first_tap_{}", rows.take_value))
+                   # both zones of tap 1 or none (a run without tap 1); one alone is refused
+                   zones(FIRST_TAP_ZONES, "first_tap_{}", rows.take_value)
+                   if rows.together(*first_tap) else {})
 
 
 @dataclass(frozen=True)
