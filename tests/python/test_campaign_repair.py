@@ -424,7 +424,9 @@ def test_a_run_begun_under_other_parameters_is_refused_not_resumed(tmp_path):
             Campaign(folder, [RunSpec("r", CONSTANT_EPS, changed, seed=1)], lmp=LMP,
                      jobs=1).run(progress=False)
         assert sorted(p.name for p in run_dir.iterdir()) == before
-    longer = RunSpec("r", CONSTANT_EPS, dict(SHORT, eps=0.02, taps=25), seed=1)
+    # more taps, with the variables that follow them (a question continuing a level sets
+    # pevery = taps: it was refused)
+    longer = RunSpec("r", CONSTANT_EPS, dict(SHORT, eps=0.02, taps=25, pevery=25), seed=1)
     done = Campaign(folder, [longer], lmp=LMP, jobs=1).run(progress=False).result("r")
     assert steps(done / "taps.dat") == list(range(26))
 
