@@ -31,6 +31,16 @@ def run_lammps(script, nprocs=1, workdir=None, variables=None, timeout=600):
     return proc.returncode, proc.stdout, workdir
 
 
+def written_restart(scene, tap, settle, taps=1):
+    """Run ``scene`` with ``fix tap all <tap>`` and ``fix settle all <settle>`` for ``taps``
+    taps and write a.restart: (its folder, the input that reads it back, defines the same
+    fixes and taps once). A test changes that input and reads what fix mc/settle says."""
+    rc, out, workdir = run_lammps(f"{scene}fix tap all {tap}\nfix settle all {settle}\n"
+                                  f"run {taps}\nwrite_restart a.restart\n")
+    assert rc == 0, out
+    return workdir, f"read_restart a.restart\nfix tap all {tap}\nfix settle all {settle}\nrun 1\n"
+
+
 def thermo_table(out, second="c_phi[1]"):
     """The first thermo table of a LAMMPS output or log text whose header reads 'Step <second>
     ...': (column names, rows as a 2-d float array, step 0 included). The warnings LAMMPS writes

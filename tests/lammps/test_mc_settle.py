@@ -10,7 +10,7 @@ import struct
 import numpy as np
 import pytest
 
-from lmprun import dump_atoms_text, min_gap, read_dump, run_lammps
+from lmprun import dump_atoms_text, min_gap, read_dump, run_lammps, written_restart
 
 CONTACT_TOL = 1e-10  # defaults::kContactTolerance (relative to the contact distance)
 
@@ -237,14 +237,9 @@ def test_narrow_theta0_taps_keep_hard_spheres(theta0):
 
 
 def test_restart_with_changed_settings_warns_naming_them():
-    base = SCENE.format(boundary="p p fm", zprocs=1)
-    first = base + ("fix tap all tapdilate 0.05 floor 0.0\n"
-                    "fix settle all mc/settle 11 floor 0.0 eta 1e-3\nrun 2\n"
-                    "write_restart a.restart\n")
-    rc, out, wd = run_lammps(first)
-    assert rc == 0, out
-    same = ("read_restart a.restart\nfix tap all tapdilate 0.05 floor 0.0\n"
-            "fix settle all mc/settle 11 floor 0.0 eta 1e-3\nrun 1\n")
+    wd, same = written_restart(SCENE.format(boundary="p p fm", zprocs=1),
+                               "tapdilate 0.05 floor 0.0", "mc/settle 11 floor 0.0 eta 1e-3",
+                               taps=2)
     rc, out, _ = run_lammps(same, workdir=wd)
     assert rc == 0 and "differ from the restart file" not in out, out
     changed = same.replace("eta 1e-3", "eta 1e-4 theta0 0.5 dmax 0.05 order sweep")
@@ -264,14 +259,10 @@ def test_restart_with_changed_settings_warns_naming_them():
 def test_restart_compares_walls_by_the_planes_they_stand_for():
     """xwalls/ywalls on the box faces and the default walls (the box faces) are the same walls
     (the resumed run equals the uninterrupted one); other planes are named."""
-    base = SCENE.format(boundary="f f fm", zprocs=1)
-    first = base + ("fix tap all tapdilate 0.05 floor 0.0\n"
-                    "fix settle all mc/settle 11 floor 0.0 eta 1e-3 xwalls 0 10 ywalls 0 10\n"
-                    "run 2\nwrite_restart a.restart\n")
-    rc, out, wd = run_lammps(first)
-    assert rc == 0, out
-    default = ("read_restart a.restart\nfix tap all tapdilate 0.05 floor 0.0\n"
-               "fix settle all mc/settle 11 floor 0.0 eta 1e-3\nrun 1\n")
+    wd, walls = written_restart(SCENE.format(boundary="f f fm", zprocs=1),
+                                "tapdilate 0.05 floor 0.0",
+                                "mc/settle 11 floor 0.0 eta 1e-3 xwalls 0 10 ywalls 0 10", taps=2)
+    default = walls.replace(" xwalls 0 10 ywalls 0 10", "")
     rc, out, _ = run_lammps(default, workdir=wd)
     assert rc == 0 and "differ from the restart file" not in out, out
     rc, out, _ = run_lammps(default.replace("eta 1e-3", "eta 1e-3 xwalls 0 9.9"), workdir=wd)

@@ -8,7 +8,7 @@ import os
 import numpy as np
 import pytest
 
-from lmprun import read_dump, run_lammps, thermo_table
+from lmprun import read_dump, run_lammps, thermo_table, written_restart
 
 # 294 spheres of diameter 1 on a simple cubic lattice (spacing 1.1, 7 x 7 x 6) in an 8 x 8 box.
 SCENE = """units lj
@@ -102,13 +102,8 @@ def test_bad_stop_values_stop_with_a_message_naming_them(keywords, message):
 
 
 def test_restart_keeps_the_stop_rule():
-    first = SCENE + ("fix tap all tapdilate 0.02 floor 0.0\n"
-                     "fix settle all mc/settle 11 floor 0.0 eta 1e-4 stop drift window 16\n"
-                     "run 1\nwrite_restart a.restart\n")
-    rc, out, wd = run_lammps(first)
-    assert rc == 0, out
-    same = ("read_restart a.restart\nfix tap all tapdilate 0.02 floor 0.0\n"
-            "fix settle all mc/settle 11 floor 0.0 eta 1e-4 stop drift window 16\nrun 1\n")
+    wd, same = written_restart(SCENE, "tapdilate 0.02 floor 0.0",
+                               "mc/settle 11 floor 0.0 eta 1e-4 stop drift window 16")
     rc, out, _ = run_lammps(same, workdir=wd)
     assert rc == 0 and "differ from the restart file" not in out, out
     rc, out, _ = run_lammps(same.replace(" stop drift window 16", ""), workdir=wd)
