@@ -161,11 +161,13 @@ double to_double_in_range(const std::string& option, const std::string& text, do
   return value;
 }
 
-// UsageError naming `option`, the value given and the allowed range (an interval's text, e.g.
-// "(0, inf)") unless `allowed`.
-void require_in_range(bool allowed, const std::string& option, const std::string& text,
-                      const std::string& range, const std::string& unit = "") {
-  if (!allowed) throw UsageError(option + " = " + text + ": allowed range " + range + unit);
+// A number for which `allowed` holds; else UsageError naming `option`, the value given and the
+// allowed range (an interval's text, e.g. "(0, inf)").
+double to_double_where(const std::string& option, const std::string& text, bool (*allowed)(double),
+                       const std::string& range, const std::string& unit = "") {
+  const double value = to_double(option, text);
+  if (!allowed(value)) throw UsageError(option + " = " + text + ": allowed range " + range + unit);
+  return value;
 }
 
 // The value of the option being parsed (the next argument); UsageError when there is none.
@@ -220,9 +222,7 @@ bool set_flag(Options& o, const std::string& a) {
 // Options of the input and of the selection; false when `a` is none of them.
 bool set_input_option(Options& o, const std::string& a, const NextValue& value) {
   if (a == "-r" || a == "--radius") {
-    const std::string text = value();
-    o.radius = to_double(a, text);
-    require_in_range(o.radius > 0, a, text, "(0, inf)");
+    o.radius = to_double_where(a, value(), [](double v) { return v > 0; }, "(0, inf)");
   } else if (a == "--boundary") {
     const std::string text = value();
     if (text.size() != 3 || text.find_first_not_of("pf") != std::string::npos)
@@ -234,15 +234,11 @@ bool set_input_option(Options& o, const std::string& a, const NextValue& value) 
   else if (a == "--max-frames") o.max_frames = to_count(a, value(), 1);
   else if (a == "--x" || a == "--y" || a == "--z") set_range(o.region, a[2] - 'x', a, value());
   else if (a == "--cylinder") set_cylinder(o.region, a, value());
-  else if (a == "--wall-gap") {
-    const std::string text = value();
-    o.region.wall_gap_over_radius = to_double(a, text);
-    require_in_range(o.region.wall_gap_over_radius >= 0, a, text, "[0, inf)", ", in R");
-  } else if (a == "--surface-gap") {
-    const std::string text = value();
-    o.region.surface_gap_over_radius = to_double(a, text);
-    require_in_range(o.region.surface_gap_over_radius >= 0, a, text, "[0, inf)", ", in R");
-  } else if (a == "--floor") o.floor = to_double(a, value());
+  else if (a == "--wall-gap")
+    o.region.wall_gap_over_radius = to_double_where(a, value(), [](double v) { return v >= 0; }, "[0, inf)", ", in R");
+  else if (a == "--surface-gap")
+    o.region.surface_gap_over_radius = to_double_where(a, value(), [](double v) { return v >= 0; }, "[0, inf)", ", in R");
+  else if (a == "--floor") o.floor = to_double(a, value());
   else return false;
   return true;
 }
@@ -250,32 +246,22 @@ bool set_input_option(Options& o, const std::string& a, const NextValue& value) 
 // Options of the analysis and of the outputs; false when `a` is none of them.
 bool set_analysis_option(Options& o, const std::string& a, const NextValue& value) {
   if (a == "--bins") o.histogram.bins = to_count_in_range(a, value(), 1, config::kMaxBins);
-  else if (a == "--xi-max") {
-    const std::string text = value();
-    o.histogram.xi_max = to_double(a, text);
-    require_in_range(o.histogram.xi_max >= config::kMinXiMax && o.histogram.xi_max <= config::kMaxXiMax, a,
-                     text, "[" + number_text(config::kMinXiMax) + ", " + number_text(config::kMaxXiMax) + "]",
-                     " (a pore radius over R)");
-  } else if (a == "-o" || a == "--output") {
+  else if (a == "--xi-max")
+    o.histogram.xi_max = to_double_in_range(a, value(), config::kMinXiMax, config::kMaxXiMax, " (a pore radius over R)");
+  else if (a == "-o" || a == "--output") {
     o.prefix = value();
     if (o.prefix.empty()) throw UsageError(a + " expects a file prefix (e.g. out/pores), got ''");
   }
   else if (a == "--p0") o.p0_samples = to_count_in_range(a, value(), 1, config::kMaxP0Samples);
-  else if (a == "--sigma-max") {
-    const std::string text = value();
-    o.sigma_max = to_double(a, text);
-    require_in_range(o.sigma_max > 1, a, text, "(1, inf)");
-  } else if (a == "--sigma-steps") o.sigma_steps = to_count_in_range(a, value(), 2, config::kMaxSigmaSteps);
+  else if (a == "--sigma-max")
+    o.sigma_max = to_double_where(a, value(), [](double v) { return v > 1; }, "(1, inf)");
+  else if (a == "--sigma-steps") o.sigma_steps = to_count_in_range(a, value(), 2, config::kMaxSigmaSteps);
   else if (a == "--seed") o.seed = to_count(a, value(), 0);
-  else if (a == "--overlap-tol") {
-    const std::string text = value();
-    o.pores.overlap_tolerance = to_double(a, text);
-    require_in_range(o.pores.overlap_tolerance >= 0 && o.pores.overlap_tolerance < 1, a, text, "[0, 1)");
-  } else if (a == "--merge-tol") {
-    const std::string text = value();
-    o.pores.merge_tolerance = to_double(a, text);
-    require_in_range(o.pores.merge_tolerance >= 0 && o.pores.merge_tolerance < 0.1, a, text, "[0, 0.1)");
-  } else if (a == "--padding")
+  else if (a == "--overlap-tol")
+    o.pores.overlap_tolerance = to_double_where(a, value(), [](double v) { return v >= 0 && v < 1; }, "[0, 1)");
+  else if (a == "--merge-tol")
+    o.pores.merge_tolerance = to_double_where(a, value(), [](double v) { return v >= 0 && v < 0.1; }, "[0, 0.1)");
+  else if (a == "--padding")
     o.pores.padding_over_radius = to_double_in_range(a, value(), config::kMinPaddingOverRadius, config::kMaxPaddingOverRadius, ", in R");
   else return false;
   return true;
