@@ -560,27 +560,26 @@ void FixMCSettle::GatheredRedeposition::check_start(bool after_tap)
 std::string FixMCSettle::violation_message(const tapmc::Violation &v, tagint tag_i,
                                            tagint tag_j, bool after_tap) const
 {
+  // an overlap found during the run: the pair, then its cause
+  const std::string pair = fmt::format("fix mc/settle: step {}: atoms {} and {} overlap by {}",
+                                       update->ntimestep, tag_i, tag_j, -v.gap);
   if (v.j >= 0 && checking_other_movers)
-    return fmt::format("fix mc/settle: step {}: atoms {} and {} overlap by {} before the "
-                       "tap: fix {} move(s) atoms besides the taps and pushed a sphere "
-                       "into another (a wall/reflect lid reflects spheres lifted by a tap back "
-                       "into the bed; an integrator moves them by their velocities); unfix it: "
-                       "hard spheres are moved by fix tapdilate and fix mc/settle only",
-                       update->ntimestep, tag_i, tag_j, -v.gap, other_movers);
+    return pair + fmt::format(" before the tap: fix {} move(s) atoms besides the taps and "
+                              "pushed a sphere into another (a wall/reflect lid reflects spheres "
+                              "lifted by a tap back into the bed; an integrator moves them by "
+                              "their velocities); unfix it: hard spheres are moved by fix "
+                              "tapdilate and fix mc/settle only", other_movers);
   if (v.j >= 0 && after_tap && every_atom_tapped)
-    return fmt::format("fix mc/settle: step {}: atoms {} and {} overlap by {} after the tap: "
-                       "every atom is tapped, but by tapping fixes of different groups that "
-                       "dilate them differently (another eps, floor or tap schedule), so one "
-                       "group's dilation pushed a sphere into one of another group; tap every "
-                       "sphere with one tapping fix (group all)",
-                       update->ntimestep, tag_i, tag_j, -v.gap);
+    return pair + " after the tap: every atom is tapped, but by tapping fixes of different "
+                  "groups that dilate them differently (another eps, floor or tap schedule), so "
+                  "one group's dilation pushed a sphere into one of another group; tap every "
+                  "sphere with one tapping fix (group all)";
   if (v.j >= 0 && after_tap)
-    return fmt::format("fix mc/settle: step {}: atoms {} and {} overlap by {} after the tap: "
-                       "part of the bed stands still (atoms outside the group of fix {} or of "
-                       "a tapping fix), and the tap's dilation pushed a sphere into one that "
-                       "did not follow it; tap and redeposit every sphere (group all), or keep "
-                       "the spheres that stand still below those that move",
-                       update->ntimestep, tag_i, tag_j, -v.gap, id);
+    return pair + fmt::format(" after the tap: part of the bed stands still (atoms outside the "
+                              "group of fix {} or of a tapping fix), and the tap's dilation "
+                              "pushed a sphere into one that did not follow it; tap and "
+                              "redeposit every sphere (group all), or keep the spheres that "
+                              "stand still below those that move", id);
   if (v.j >= 0)
     return fmt::format("fix mc/settle: atoms {} and {} overlap by {} at the start (allowed: a "
                        "relative tolerance of {} of the contact distance); start from a "
