@@ -105,6 +105,12 @@ def test_steady_state_of_a_window_too_short_to_batch_and_bad_counts():
     for last in (2, 3):
         s = SteadyState(x, last=last).compute()
         assert np.isfinite(s.sem) and s.sem == pytest.approx(s.sem_naive)
+        assert s.batches_used == 0
+    # fewer batches than asked when the window has under 2 taps per batch, and it says so
+    s = SteadyState(x, last=5, batches=20).compute()
+    assert (s.batches, s.batches_used) == (20, 2)
+    assert s.sem == pytest.approx(np.std([x[1:3].mean(), x[3:5].mean()], ddof=1) / np.sqrt(2))
+    assert SteadyState(np.arange(100.0), last=100).compute().batches_used == 20
     for bad in (float("inf"), float("nan"), None, "3", 2.5):
         with pytest.raises(ValueError, match=f"last = {bad!r} must be an integer >= 2"):
             SteadyState(x, last=bad)

@@ -135,6 +135,17 @@ def test_pore_law_fits_refuse_bins_of_other_lengths_by_name():
         VolumeTail().fit(h["v"], h["rho_v"], sigma=[1.0, 1.0, 1.0])
     with pytest.raises(ValueError, match="v has 100 values but counts has 98"):
         VolumeTail().fit(h["v"], h["rho_v"], counts=h["count_v"][:-2])
+    # a negative count is refused by its bin, also beside positive ones (the Poisson errors
+    # used max(count, 1)) and when all are negative (once "every bin is empty")
+    some = np.array(h["count_v"], dtype=float)
+    some[7] = -5
+    for law, x, y, counts, name in ((VolumeTail(), h["v"], h["rho_v"], some, "v"),
+                                    (TetrahedralLaw(), h["xi"], h["xi3_P_xi"],
+                                     -np.ones(100), "xi")):
+        with pytest.raises(ValueError, match=rf"counts\[{7 if name == 'v' else 0}\] = -[15] "
+                           rf"is negative: counts are the numbers of pores per bin of {name} "
+                           r"\(>= 0\)"):
+            law.fit(x, y, counts=counts)
     for bad in (0.5, (1.0, 0.5), (-0.1, 0.2), ("a", 1)):
         with pytest.raises(ValueError, match="must be \\(lo, hi\\) with 0 <= lo < hi"):
             VolumeTail(v_range=bad)

@@ -3,6 +3,7 @@
 # with two `run` commands and a warning between them), cross-checked against each other and
 # against exact stereology recomputed from the dumps; and on broken files (file and line named).
 import os
+import re
 import sys
 from pathlib import Path
 
@@ -203,6 +204,15 @@ def test_dumps_agree_across_formats_and_backends(run_dir):
     assert others["no_type native"].frames[0].types is None
     np.testing.assert_array_equal(others["no_type native"].frames[0].radii, 0.5)
     assert others["atom mda"].frames[0].radii is None
+    # without an id column: both parsers number the atoms 1 to N (MDAnalysis ended in KeyError)
+    (run_dir / "no_id.dump").write_text(re.sub(r"ITEM: ATOMS id ", "ITEM: ATOMS ",
+                                               re.sub(r"(?m)^\d+ (?=\d+ \S+ \S+ \S+)", "",
+                                                      (run_dir / "with_type.dump").read_text())))
+    for dump in (read_dump(run_dir / "no_id.dump"),
+                 read_dump(run_dir / "no_id.dump", backend="mdanalysis")):
+        assert len(dump) == 3
+        np.testing.assert_array_equal(dump.frames[1].ids, np.arange(1, 151))
+    assert read_dump(run_dir / "no_id.dump").universe().atoms.n_atoms == 150
     universe = others["no_type native"].universe()
     assert universe.atoms.n_atoms == 150 and len(universe.trajectory) == 3
 
@@ -272,6 +282,33 @@ def test_broken_dumps(tmp_path):
     for radius in (float("inf"), 0.0, float("nan")):
         with pytest.raises(ValueError, match="radius = .* must be finite and > 0"):
             read_dump(tmp_path / "ok.dump", radius=radius)
+
+
+def test_dump_columns_the_reader_does_not_use_may_hold_text_or_nan(tmp_path):
+    """``dump custom ... element`` and a per-atom variable that is NaN on some atoms: the frame
+    is read, those columns kept as written (text as strings), in the order of the ids; a
+    column the frame is made of (coordinates, radius, id, type) must still be a finite number,
+    and its error names the column and the line."""
+    extra = DUMP_OK.replace("id x y z", "element id x y z radius v_q").replace(
+        "1 0.5 0.5 0.5", "Si 1 0.5 0.5 0.5 0.5 nan").replace("2 1.5 0.5 0.5",
+                                                             "O 2 1.5 0.5 0.5 0.5 2.5")
+    # unsorted ids: the text column follows its atom
+    path = _write(tmp_path, "extra.dump", extra.replace(
+        "Si 1 0.5 0.5 0.5 0.5 nan\nO 2 1.5 0.5 0.5 0.5 2.5",
+        "O 2 1.5 0.5 0.5 0.5 2.5\nSi 1 0.5 0.5 0.5 0.5 nan"))
+    frame = read_dump(path).frames[0]
+    np.testing.assert_array_equal(frame.ids, [1, 2])
+    np.testing.assert_array_equal(frame.positions, [[0.5, 0.5, 0.5], [1.5, 0.5, 0.5]])
+    np.testing.assert_array_equal(frame.radii, [0.5, 0.5])
+    assert list(frame.fields["element"]) == ["Si", "O"]
+    np.testing.assert_array_equal(frame.fields["v_q"], [np.nan, 2.5])
+    for bad, column in (("1.5 0.5 x", "z 'x'"), ("1.5 nan 0.5", "y 'nan'")):
+        e = _expect(_write(tmp_path, "bad.dump", extra.replace("1.5 0.5 0.5", bad)), 11,
+                    read_dump)
+        assert column in str(e), str(e)
+    e = _expect(_write(tmp_path, "badr.dump", extra.replace("0.5 2.5", "inf 2.5")), 11,
+                read_dump)
+    assert "radius 'inf' is not finite" in str(e)
 
 
 def test_broken_log_ave_time_print(tmp_path):

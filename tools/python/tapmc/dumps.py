@@ -11,7 +11,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from ._text_files import (GZIP_ERRORS, TapmcFormatError, decode_line, floats,
+from ._text_files import (GZIP_ERRORS, TapmcFormatError, decode_line, floats, is_float,
                           open_bytes, open_text)
 
 __all__ = ["Frame", "Dump", "read_dump"]
@@ -56,6 +56,9 @@ class Frame:
 
 _COORDS = (("x", "y", "z", False), ("xs", "ys", "zs", True), ("xu", "yu", "zu", False),
            ("xsu", "ysu", "zsu", True))
+# the columns a Frame is made of: finite numbers required (others may hold text, NaN or inf)
+_USED_COLUMNS = frozenset({"id", "type", "radius", "diameter"}
+                          | {name for triple in _COORDS for name in triple[:3]})
 
 
 class _DumpLines:
@@ -160,30 +163,47 @@ def _read_frame_header(lines, line):
 
 
 def _read_atom_table(lines, header):
-    """The per-atom block as an (N, columns) float array: parsed whole when it is clean (every
-    line of the header's width: a short line and a long one would otherwise make up the total
-    and shift the fields between atoms), line by line otherwise so that the error names the
-    bad line."""
+    """The per-atom block: an (N, columns) float array and a dict of the text columns (e.g.
+    ``element``: their strings; NaN in the array). Parsed whole when it is clean (every line of
+    the header's width: a short line and a long one would otherwise make up the total and shift
+    the fields between atoms), column by column otherwise so that the error names the bad line.
+    The columns the reader uses (ids, types, coordinates, radii) must be finite numbers; any
+    other column may hold text, NaN or inf (a per-atom variable), kept as written."""
     n_atoms, width = header.n_atoms, len(header.columns)
     text = [lines.next_in_frame() for _ in range(n_atoms)]
-    try:
-        if all(len(t.split()) == width for t in text):
-            flat = np.array(" ".join(text).split(), dtype=float)
-            if np.all(np.isfinite(flat)):
-                return flat.reshape(n_atoms, width)
-    except ValueError:
-        pass
-    table = np.empty((n_atoms, width))
+    used = [j for j, name in enumerate(header.columns) if name in _USED_COLUMNS]
+    if all(len(t.split()) == width for t in text):
+        try:
+            table = np.array(" ".join(text).split(), dtype=float).reshape(n_atoms, width)
+        except ValueError:
+            table = None
+        if table is not None and np.all(np.isfinite(table[:, used])):
+            return table, {}
+    words = []
     for a, line_text in enumerate(text):
-        here = header.line + 1 + a
         fields = line_text.split()
         if len(fields) != width:
             raise lines.error(f"expected {width} fields ({' '.join(header.columns)}), "
-                              f"found {len(fields)}", here)
-        table[a] = floats(lines.path, here, fields)
-        if not np.all(np.isfinite(table[a])):
-            raise lines.error("NaN or infinite value", here)
-    return table
+                              f"found {len(fields)}", header.line + 1 + a)
+        words.append(fields)
+    words = np.array(words, dtype=str).reshape(n_atoms, width)
+    table = np.empty((n_atoms, width))
+    text_columns = {}
+    for j, name in enumerate(header.columns):
+        try:
+            table[:, j] = words[:, j].astype(float)
+        except ValueError:
+            if j in used:
+                a = next(a for a in range(n_atoms) if not is_float(words[a, j]))
+                raise lines.error(f"non-numeric {name} {words[a, j]!r}",
+                                  header.line + 1 + a) from None
+            table[:, j] = np.nan
+            text_columns[name] = words[:, j]
+            continue
+        if j in used and not np.all(np.isfinite(table[:, j])):
+            a = int(np.flatnonzero(~np.isfinite(table[:, j]))[0])
+            raise lines.error(f"{name} {words[a, j]!r} is not finite", header.line + 1 + a)
+    return table, text_columns
 
 
 def _periodic_axes(boundary, flags):
@@ -216,7 +236,7 @@ def _integer_column(path, header, table, col, name):
     return values.astype(np.int64)
 
 
-def _frame_from_table(path, header, table, radius, boundary):
+def _frame_from_table(path, header, table, text_columns, radius, boundary):
     """The Frame of a parsed block, atoms sorted by id."""
     n_atoms = header.n_atoms
     lo = np.array([b[0] for b in header.bounds])
@@ -238,7 +258,8 @@ def _frame_from_table(path, header, table, radius, boundary):
     else:
         radii = None
     types = _integer_column(path, header, table, col, "type")[order] if "type" in col else None
-    fields = {name: table[order, j] for j, name in enumerate(header.columns)}
+    fields = {name: text_columns[name][order] if name in text_columns else table[order, j]
+              for j, name in enumerate(header.columns)}
     return Frame(header.step, lo, hi, periodic, ids[order], pos[order], radii, types, fields)
 
 
@@ -256,9 +277,9 @@ def _parse_dump_frames(path, radius=None, boundary=None):
             if not line.strip():
                 continue
             header = _read_frame_header(lines, line)
-            table = _read_atom_table(lines, header)
+            table, text_columns = _read_atom_table(lines, header)
             frames += 1
-            yield _frame_from_table(path, header, table, radius, boundary)
+            yield _frame_from_table(path, header, table, text_columns, radius, boundary)
     if frames == 0:
         raise TapmcFormatError(path, None, "empty file: no dump frame" if lines.lineno == 1
                                else "no dump frame: the file holds only blank lines")
@@ -278,9 +299,10 @@ class Dump:
     exactly nine header lines, and misplaces scaled coordinates in a box whose lower corner is
     not the origin. With the MDAnalysis backend the lower corner is added back and
     box, periodicity, ids and radii still come from the header and columns; a dump without
-    ``type`` or with extra header items (``dump_modify units/time yes``) is rewritten into a
-    temporary copy with a ``type`` column of ones and the standard header, the simplest way to
-    give MDAnalysis what it needs without changing the user's file.
+    ``id`` or ``type`` or with extra header items (``dump_modify units/time yes``) is rewritten
+    into a temporary copy with the ids (1 to N without an ``id`` column), a ``type`` column of
+    ones and the standard header, the simplest way to give MDAnalysis what it needs without
+    changing the user's file.
     """
 
     def __init__(self, path, radius=None, boundary=None, backend="native"):
@@ -323,14 +345,15 @@ class Dump:
         return np.array([fr.step for fr in self.frames])
 
     def _mda_compatible_file(self, frames):
-        """Path of a file MDAnalysis can read: the dump itself when it has ``type`` and the
-        standard nine header lines, else a rewritten temporary copy (caller removes it)."""
+        """Path of a file MDAnalysis can read: the dump itself when it has ``id``, ``type``,
+        ``x y z`` and the standard nine header lines, else a rewritten temporary copy (caller
+        removes it)."""
         with open_text(self.path) as f:
             head = [f.readline() for _ in range(9)]
         columns = head[8].split()[2:] if head[8].startswith("ITEM: ATOMS") else []
         # scaled coordinates are rewritten too: MDAnalysis 2.4 converts xs to x relative to the
         # origin and then still subtracts the lower corner (wrong for a box not at the origin)
-        standard = head[0].startswith("ITEM: TIMESTEP") and "type" in columns \
+        standard = head[0].startswith("ITEM: TIMESTEP") and {"id", "type"} <= set(columns) \
             and {"x", "y", "z"} <= set(columns) and bool(frames)
         if standard:
             return self.path, False

@@ -70,8 +70,11 @@ class SteadyState:
     otherwise count as fluctuation. A straight line also takes out part of the slowest
     fluctuations, so the linear sigma_X is a lower estimate of the steady state's).
     Results after ``compute()``: ``mean`` (X_SS), ``std`` (sigma_X over the window, about
-    ``detrend``), ``trend`` (slope per tap of the straight line over the window), ``sem`` (batch-means standard error of X_SS: successive taps are correlated, so the naive
-    std/sqrt(n) underestimates it), ``sem_naive``, ``last_value`` (the paper's alternative
+    ``detrend``), ``trend`` (slope per tap of the straight line over the window), ``sem``
+    (batch-means standard error of X_SS: successive taps are correlated, so the naive
+    std/sqrt(n) underestimates it), ``batches_used`` (the batches ``sem`` came from:
+    ``batches``, or fewer when the window has under 2 taps per batch, ``last // 2``; 0 when it
+    cannot hold two, and ``sem`` is then the naive one), ``sem_naive``, ``last_value`` (the paper's alternative
     estimate, "directly through the last value"), ``window`` (slice of the taps used)."""
 
     DETRENDS = ("constant", "linear")
@@ -96,7 +99,9 @@ class SteadyState:
         self._mean = float(seg.mean())
         self._trend = float(np.polyfit(np.arange(len(seg)), seg, 1)[0])
         self._std = float(np.std(self.deviations(), ddof=1 if self.detrend == "constant" else 2))
-        self._sem = _batch_sem(seg, min(self.batches, self.last // 2))
+        used = min(self.batches, self.last // 2)  # batches of at least 2 taps each
+        self._batches_used = used if used >= 2 else 0
+        self._sem = _batch_sem(seg, used)
         self._sem_naive = self._std / np.sqrt(len(seg))
         return self
 
@@ -115,6 +120,7 @@ class SteadyState:
     trend = result("_trend")
     sem = result("_sem")
     sem_naive = result("_sem_naive")
+    batches_used = result("_batches_used")
     last_value = property(lambda self: float(self.x[-1]))
 
     def plot(self, ax=None, ylabel="X (the series, per tap)", **kw):

@@ -378,6 +378,10 @@ def _bin_errors(x_name, x, values, counts, sigma, x_power):
         return None
     counts = as_1d("counts", counts)
     same_length(x_name, x, "counts", counts)
+    if np.any(counts < 0):  # a count is a number of pores; max(count, 1) would hide a sign
+        bad = int(np.flatnonzero(counts < 0)[0])
+        raise ValueError(f"counts[{bad}] = {counts[bad]:g} is negative: counts are the "
+                         f"numbers of pores per bin of {x_name} (>= 0)")
     return _poisson_sigma(x_power, values, counts)
 
 
