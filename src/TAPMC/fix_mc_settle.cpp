@@ -685,10 +685,13 @@ void FixMCSettle::pre_exchange()
   if (taps_without_a_move == tapmc::defaults::kSettleNoMoveTaps)
     warn_once(warned_no_move, "fix mc/settle: step {}: {} redepositions in a row accepted none "
               "of their trial moves ({} in the latest): the packing keeps each tap's dilation "
-              "(<Z> = {:.6g} after the latest tap). Every trial move has a sideways part, so "
-              "spheres held sideways on every side (a column one diameter wide, spheres jammed "
-              "between walls) never move (warned once)", update->ntimestep,
-              taps_without_a_move, result.trials, result.mean_height);
+              "(<Z> = {:.6g} after the latest tap). Either the taps open gaps far narrower than "
+              "the trial steps (up to dmax = {:.6g}; a tap of eps separates neighbours by about "
+              "eps times their height above the floor): use a larger eps or a smaller dmax; or "
+              "the spheres are held sideways on every side (a column one diameter wide, spheres "
+              "jammed between walls): every trial move has a sideways part (warned once)",
+              update->ntimestep, taps_without_a_move, result.trials, result.mean_height,
+              effective_d_max());
 }
 
 tapmc::SettleResult FixMCSettle::GatheredRedeposition::settle()

@@ -191,3 +191,23 @@ def test_a_packing_that_cannot_move_is_named_not_silently_dilated(nprocs, scheme
         assert rc == 0 and NO_MOVE not in out, out
     rc, out, _ = run_lammps(SMALL_BED.format(keywords=f"scheme {scheme}"), nprocs=nprocs)
     assert rc == 0 and IDLE_STOP in out and NO_MOVE not in out, out
+
+
+def test_taps_too_weak_for_the_trial_steps_are_named_with_dmax():
+    """eps = 1e-8 opens gaps of about 1e-7 in a settled periodic bed, a millionth of the trial
+    steps (up to dmax = R/5 = 0.1): no trial is accepted, and the warning names that cause and
+    dmax beside the jammed column's (it named only the column)."""
+    bed = """units lj
+atom_style sphere
+boundary p p fm
+region box block 0 6 0 6 0 30
+create_box 1 box
+create_packing 300 1 0.5 4928 floor 0.0
+fix tap all tapdilate 1e-8 floor 0.0
+fix settle all mc/settle 4928 floor 0.0
+run 5
+"""
+    rc, out, _ = run_lammps(bed)
+    assert rc == 0, out
+    assert "step 5: " + NO_MOVE in out, out
+    assert "the taps open gaps far narrower than the trial steps (up to dmax = 0.1;" in out, out
