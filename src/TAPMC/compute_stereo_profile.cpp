@@ -111,9 +111,9 @@ ComputeStereoProfile::ComputeStereoProfile(LAMMPS *lmp, int narg, char **arg) :
 
   vector = new double[kVectorSize];
   for (int i = 0; i < kVectorSize; ++i) vector[i] = 0.0;
-  memory->create(array, nplanes, kArrayColumns, "stereo/profile:array");
-  for (int k = 0; k < nplanes; ++k)
-    for (int c = 0; c < kArrayColumns; ++c) array[k][c] = 0.0;
+  // the array is allocated when first computed (compute_array): a profile nobody reads, also
+  // one of many planes, costs no memory
+  array = nullptr;
 }
 
 // One table of keywords: name, number of values, what the values set. Returns whether
@@ -461,6 +461,11 @@ void ComputeStereoProfile::compute_vector_guarded()
 void ComputeStereoProfile::compute_array()
 {
   invoked_array = update->ntimestep;
+  if (!array) {  // first use: LAMMPS's message on failure names the bytes and this text
+    const std::string what = fmt::format("compute stereo/profile (planes n = {} rows of {})",
+                                         planes_.n, kArrayColumns);
+    memory->create(array, planes_.n, kArrayColumns, what.c_str());
+  }
   if (ready_to_measure()) {
     tapmc::guarded(lmp, "compute stereo/profile", false, [&] { compute_array_guarded(); });
     return;

@@ -163,6 +163,24 @@ def test_doc_examples_run():
         assert os.path.getsize(os.path.join(wd, name)) > 0
 
 
+def test_a_profile_nobody_reads_allocates_nothing():
+    """The array is made when first computed: a compute of the largest allowed planes n
+    (2^31 - 1 rows, 51 GB) whose vector alone is read runs (its constructor allocated and
+    zeroed the array: 'Failed to allocate 51539607528 bytes'); one of 4 planes read by fix
+    ave/time and thermo is made and filled."""
+    script = fcc_lattice() + """compute big all stereo/profile planes 0.0 8.0 2147483647
+compute p all stereo/profile planes 0.0 8.0 4
+fix az all ave/time 1 1 1 c_p[*] mode vector file p.dat format " %.17g"
+thermo_style custom step c_big[1] c_p[1][2]
+run 0
+"""
+    rc, out, wd = run_lammps(script)
+    assert rc == 0, out[-2000:]
+    rows = ave_time_rows(os.path.join(wd, "p.dat"))
+    np.testing.assert_array_equal(rows[:, 1], [1, 3, 5, 7])
+    assert np.all(rows[:, 2] > 0)
+
+
 @pytest.mark.parametrize("nprocs", [1, 2])
 def test_empty_group_gives_zero_fractions(nprocs):
     """An empty group is no error: every fraction and <Z> are 0, z_top = h_s = the floor, the
