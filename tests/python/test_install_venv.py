@@ -44,3 +44,27 @@ def test_pip_install_into_a_venv_offline(tmp_path):
     assert module_version == dist_version == version, out
     data = Path(module).parent / "paper" / "claims.toml"
     assert data.is_file(), "package data missing from the wheel: " + str(data)
+    # The venv of a project under git (a project's .venv): the installed package has no
+    # source tree, so its campaigns record no commit (they recorded the project's) and the
+    # paper's defaults are the current directory's, not V/lib (where doc/ was written)
+    git = ["git", "-c", "user.name=t", "-c", "user.email=t@t", "-C", tmp_path]
+    run(*git, "init", "-q")
+    run(*git, "commit", "-q", "--allow-empty", "-m", "a project")
+    out = run(venv / "bin/python", "-c",
+              "from tapmc._source import source_tree, git_checkout; "
+              "from tapmc.campaign.provenance import tapmc_version; "
+              "from tapmc.paper import _runs; "
+              "print(source_tree(), git_checkout(), tapmc_version(), _runs.SOURCE_DIR)")
+    assert out.split() == ["None", "None", "None", "."], out
+
+
+def test_the_source_tree_is_found_from_the_tree_itself():
+    """Run from this tree (the suite's PYTHONPATH), the package knows its tree and, in a git
+    checkout, describes it."""
+    from tapmc._source import git_checkout, source_tree
+    from tapmc.campaign.provenance import tapmc_version
+
+    tree = Path(__file__).resolve().parents[2]
+    assert source_tree() == tree
+    if (tree / ".git").exists():
+        assert git_checkout() == tree and tapmc_version()

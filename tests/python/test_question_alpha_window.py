@@ -117,7 +117,7 @@ def test_a_run_without_its_profile_is_named_and_keeps_the_committed_csv(tmp_path
     status = cli.main(["question", "alpha-window", "--campaign", str(tmp_path / "campaign"),
                        "--out", str(out)])
     err = capsys.readouterr().err
-    assert status == 1 and "Traceback" not in err and err.count("\n") == 1
+    assert status == 2 and "Traceback" not in err and err.count("\n") == 1
     assert f"{folder / 'profile_z.dat'}: no such file" in err
     assert (out / alpha_window.CSV).read_text() == "run,eps\ncommitted,0.05\n"
     assert sorted(p.name for p in out.iterdir()) == [alpha_window.CSV]

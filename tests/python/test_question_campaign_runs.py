@@ -168,7 +168,7 @@ def test_a_folder_that_is_no_campaign_is_named_and_the_csv_kept(tmp_path, capsys
     status = cli.main(["question", "campaign-runs", "--campaign", str(campaign), "--out",
                        str(out)])
     err = capsys.readouterr().err
-    assert status == 1 and "Traceback" not in err and err.count("\n") == 1
+    assert status == 2 and "Traceback" not in err and err.count("\n") == 1
     assert message in err
     assert (out / campaign_runs.CSV).read_text() == "run\ncommitted\n"
 

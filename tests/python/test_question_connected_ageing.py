@@ -124,7 +124,7 @@ def test_a_damaged_run_is_named_and_the_committed_csv_kept(tmp_path, capsys):
     status = cli.main(["question", "connected-ageing", "--campaign", str(campaign),
                        "--out", str(out)])
     err = capsys.readouterr().err
-    assert status == 1 and "Traceback" not in err and err.count("\n") == 1
+    assert status == 2 and "Traceback" not in err and err.count("\n") == 1
     assert f"{taps}: taps missing" in err
     assert (out / connected_ageing.CSV).read_text() == "eps,quantity\ncommitted,1\n"
     assert sorted(p.name for p in out.iterdir()) == [connected_ageing.CSV]
@@ -132,14 +132,14 @@ def test_a_damaged_run_is_named_and_the_committed_csv_kept(tmp_path, capsys):
     short = write_campaign(tmp_path / "short", walks(stationary, 1)[:4, :6])
     (short / "runs" / "ageing_pbc_eps0.01_s1" / "DONE.json").write_text("{}")
     assert cli.main(["question", "connected-ageing", "--campaign", str(short), "--out",
-                     str(out)]) == 1
+                     str(out)]) == 2
     err = capsys.readouterr().err
     assert "Traceback" not in err and "eps = 0.01: a collapse needs at least 2 waiting" in err
     # a finished run whose taps.dat stops before its last tap (cut short): named, not analysed
     lines = taps.read_text().splitlines()
     taps.write_text("\n".join(lines[:200]) + "\n")
     assert cli.main(["question", "connected-ageing", "--campaign", str(campaign), "--out",
-                     str(out)]) == 1
+                     str(out)]) == 2
     err = capsys.readouterr().err
     assert f"{taps}: cut short: it ends at step 198, before the last tap 1000" in err, err
 

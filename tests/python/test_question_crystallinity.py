@@ -211,7 +211,7 @@ def test_a_cut_dump_is_named_and_the_committed_csv_kept(capsys, tmp_path):
     out.mkdir()
     (out / crystallinity.CSV).write_text("run,eps\ncommitted,0.05\n")
     status, err = question(capsys, "crystallinity", "--campaign", campaign, "--out", out)
-    assert status == 1 and "Traceback" not in err and err.count("\n") == 1
+    assert status == 2 and "Traceback" not in err and err.count("\n") == 1
     assert f"{dump}:" in err and "cut short" in err
     assert (out / crystallinity.CSV).read_text() == "run,eps\ncommitted,0.05\n"
     assert sorted(p.name for p in out.iterdir()) == [crystallinity.CSV]
@@ -222,7 +222,7 @@ def test_a_run_without_its_final_dump_is_named(capsys, tmp_path):
     folder = write_run(campaign, "const_fbc_eps0.02_s1", "fcc", 0.62, walls=True, seed=1)
     (folder / f"dump.{TAPS}.lammpstrj").unlink()
     status, err = question(capsys, "crystallinity", "--campaign", campaign, "--out", tmp_path)
-    assert status == 1 and f"{folder}: needs dump.0.lammpstrj" in err
+    assert status == 2 and f"{folder}: needs dump.0.lammpstrj" in err
     assert not (tmp_path / crystallinity.CSV).exists()
 
 
@@ -230,6 +230,6 @@ def test_an_empty_campaign_writes_nothing(capsys, tmp_path):
     (tmp_path / "campaign" / "runs").mkdir(parents=True)
     status, err = question(capsys, "crystallinity", "--campaign", tmp_path / "campaign",
                            "--out", tmp_path / "out")
-    assert status == 1 and "no finished run matches" in err
+    assert status == 2 and "no finished run matches" in err
     assert not (tmp_path / "out").exists()
     assert "crystallinity" in QUESTIONS

@@ -60,7 +60,7 @@ def test_reanalysis_of_a_bad_campaign_keeps_the_committed_csv(capsys, tmp_path, 
     committed = out / REANALYSES[name]
     committed.write_text(COMMITTED)
     status, err = question(capsys, name, "--campaign", campaign, "--out", out)
-    assert status == 1
+    assert status == 2
     assert err.startswith(f"tapmc-paper question {name}: ") and err.count("\n") == 1, err
     assert str(campaign) in err and "Traceback" not in err
     assert committed.read_text() == COMMITTED
@@ -70,7 +70,7 @@ def test_reanalysis_of_a_bad_campaign_keeps_the_committed_csv(capsys, tmp_path, 
 def test_no_csv_is_made_from_nothing(capsys, tmp_path):
     status, _ = question(capsys, "pbc-course", "--campaign", bad_campaign(tmp_path, "empty"),
                          "--out", tmp_path / "out")
-    assert status == 1 and not (tmp_path / "out" / "pbc_course.csv").exists()
+    assert status == 2 and not (tmp_path / "out" / "pbc_course.csv").exists()
 
 
 def test_write_csv_replaces_a_file_whole_or_not_at_all(tmp_path):
@@ -89,7 +89,7 @@ def test_write_csv_replaces_a_file_whole_or_not_at_all(tmp_path):
 def test_integrity_of_a_bad_campaign(capsys, tmp_path, kind):
     campaign = bad_campaign(tmp_path, kind)
     status, err = question(capsys, "integrity", "--campaign", campaign, "--out", tmp_path)
-    assert status == 1 and str(campaign) in err and "Traceback" not in err
+    assert status == 2 and str(campaign) in err and "Traceback" not in err
     assert not (tmp_path / "integrity.csv").exists()
 
 
@@ -115,7 +115,7 @@ def test_integrity_of_a_cut_dump_names_the_file_and_line(capsys, tmp_path):
     (tmp_path / "integrity.csv").write_text(COMMITTED)
     status, err = question(capsys, "integrity", "--campaign", tmp_path / "campaign",
                            "--out", tmp_path)
-    assert status == 1 and "Traceback" not in err
+    assert status == 2 and "Traceback" not in err
     assert f"{folder / 'dump.0.lammpstrj'}:" in err and "cut short" in err
     assert (tmp_path / "integrity.csv").read_text() == COMMITTED
 
@@ -125,13 +125,13 @@ def test_integrity_of_a_cut_taps_file_names_it(capsys, tmp_path):
     cut(folder / "taps.dat", 3000)          # ends inside a line, long before tap 4000
     status, err = question(capsys, "integrity", "--campaign", tmp_path / "campaign",
                            "--out", tmp_path)
-    assert status == 1 and "Traceback" not in err
+    assert status == 2 and "Traceback" not in err
     assert f"{folder / 'taps.dat'}: ends at step" in err and "dump.4000.lammpstrj" in err
     assert not (tmp_path / "integrity.csv").exists()
     (folder / "taps.dat").write_text("# step phi_b phi_c Z\n0 0.5 0.5\n")   # a short row
     status, err = question(capsys, "integrity", "--campaign", tmp_path / "campaign",
                            "--out", tmp_path)
-    assert status == 1 and f"{folder / 'taps.dat'}:" in err and "Traceback" not in err
+    assert status == 2 and f"{folder / 'taps.dat'}:" in err and "Traceback" not in err
 
 
 def ramp_campaign(tmp_path, with_run):
@@ -150,21 +150,21 @@ def ramp_campaign(tmp_path, with_run):
 def test_ramp_question_without_its_run_folder(capsys, tmp_path, name):
     campaign = ramp_campaign(tmp_path, with_run=False)
     status, err = question(capsys, name, "--campaign", campaign, "--out", tmp_path / "out")
-    assert status == 1 and "Traceback" not in err
+    assert status == 2 and "Traceback" not in err
     assert f"{campaign / 'runs' / 'ramp_pbc_s1'}: no such run folder" in err
     status, err = question(capsys, name, "--campaign", campaign, "--run", "ramp_pbc_s9",
                            "--out", tmp_path / "out")
-    assert status == 1 and "no run 'ramp_pbc_s9' in" in err and "manifest.json" in err
+    assert status == 2 and "no run 'ramp_pbc_s9' in" in err and "manifest.json" in err
     status, err = question(capsys, name, "--campaign", tmp_path / "nothing",
                            "--out", tmp_path / "out")
-    assert status == 1 and f"{tmp_path / 'nothing' / 'manifest.json'} not found" in err
+    assert status == 2 and f"{tmp_path / 'nothing' / 'manifest.json'} not found" in err
 
 
 def test_ramp_levels_without_taps_names_the_file(capsys, tmp_path):
     campaign = ramp_campaign(tmp_path, with_run=True)
     status, err = question(capsys, "ramp-levels", "--campaign", campaign,
                            "--out", tmp_path / "out")
-    assert status == 1 and "Traceback" not in err
+    assert status == 2 and "Traceback" not in err
     assert f"{campaign / 'runs' / 'ramp_pbc_s1' / 'taps.dat'}: no such file" in err, err
 
 

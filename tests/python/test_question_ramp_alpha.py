@@ -123,25 +123,25 @@ def test_command_csv_and_page_section(tmp_path):
 
 
 def test_bad_campaigns_are_named_in_one_line(tmp_path, capsys):
-    """No paper ramp; a profile that does not start at t = 0: one line, exit 1, the committed
+    """No paper ramp; a profile that does not start at t = 0: one line, exit 2, the committed
     CSV kept."""
     out = tmp_path / "out"
     out.mkdir()
     (out / ramp_alpha.CSV).write_text("run\ncommitted\n")
     (tmp_path / "campaign" / "runs").mkdir(parents=True)
     args = ["question", "ramp-alpha", "--campaign", str(tmp_path / "campaign"), "--out", str(out)]
-    assert cli.main(args) == 1
+    assert cli.main(args) == 2
     assert "no paper ramp" in capsys.readouterr().err
     folder = write_ramp(tmp_path / "campaign", "paperramp0.075_pbc_s1", [0.001, 0.002])
     (folder / "profile_z.dat").write_text(HEAD + block(4, 0.001) + block(8, 0.002))
-    assert cli.main(args) == 1
+    assert cli.main(args) == 2
     err = capsys.readouterr().err
     assert "its first profile is at step 4" in err and err.count("\n") == 1
     assert "Traceback" not in err
     # a killed attempt's segment whose block is malformed mid-file: named with its line
     (folder / "profile_z.dat").write_text(HEAD + block(0, 0.001) + "4 2\n1 0.05 1.0\n8 1\n")
     (folder / "profile_z.dat.from6").write_text(HEAD + block(8, 0.002))
-    assert cli.main(args) == 1
+    assert cli.main(args) == 2
     err = capsys.readouterr().err
     assert "profile_z.dat:" in err and err.count("\n") == 1 and "Traceback" not in err
     assert (out / ramp_alpha.CSV).read_text() == "run\ncommitted\n"

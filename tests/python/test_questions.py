@@ -82,7 +82,7 @@ def test_out_a_file_is_refused_before_the_analysis(tmp_path, capsys):
     (tmp_path / "afile").write_text("")
     status = cli.main(["question", "pbc-course", "--campaign", str(tmp_path / "none"),
                        "--out", str(tmp_path / "afile")])
-    assert status == 1
+    assert status == 2
     assert f"--out {tmp_path / 'afile'} is a file, not a folder" in capsys.readouterr().err
 
 
@@ -770,3 +770,33 @@ def _surrogate_rows_unique():
              "high": "0.6", "half_width": "0.1", "log_scale": str(int(k in ("B", "tau"))),
              "determined": "1", "range_p": "0.4", "fits": "200"}
             for k in ("X_inf", "dX_inf", "B", "tau")]
+
+
+def test_exit_status_tells_a_failed_run_from_an_unusable_input(tmp_path, capsys, monkeypatch):
+    """1 when a run failed (or the campaign folder is in use), 2 for a usage error, a path that
+    cannot be used or a damaged input, the convention of doc/tapmc-paper.rst (every input error
+    of a question exited 1)."""
+    from tapmc.campaign import CampaignDirectoryError, CampaignError
+    from tapmc.paper.questions import command
+
+    def failing(error):
+        class Failing:
+            def __init__(self, *args, **kwargs):
+                raise error
+        return Failing
+
+    for error, raised in ((CampaignError("run x failed"), common.QuestionRunError),
+                          (CampaignDirectoryError("folder y: not writable"), common.QuestionError),
+                          (ValueError("bad spec"), common.QuestionError)):
+        monkeypatch.setattr(launch, "Campaign", failing(error))
+        with pytest.raises(raised) as info:
+            launch.run_all(tmp_path, [], None)
+        assert type(info.value) is raised and str(error) in str(info.value)
+    module = command.QUESTIONS["pbc-course"]
+    for error, status in ((common.QuestionRunError("run x failed"), 1),
+                          (common.QuestionError("--campaign y: no such folder"), 2)):
+        def measure(args, error=error):
+            raise error
+        monkeypatch.setattr(module, "measure", measure)
+        assert cli.main(["question", "pbc-course", "--out", str(tmp_path)]) == status
+        assert capsys.readouterr().err == f"tapmc-paper question pbc-course: {error}\n"

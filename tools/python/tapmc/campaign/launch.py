@@ -13,13 +13,13 @@ import subprocess
 import tempfile
 from pathlib import Path
 
+from .._source import source_tree
 from .errors import CampaignDirectoryError, CampaignError
 
 __all__ = ["find_lmp", "available_cores", "campaign_lock", "child_setup", "run_child",
            "run_child_timed", "private_mpi_session", "mpirun_prefix",
            "lammps_command", "partition_batches", "partition_driver", "partition_command"]
 
-_REPO = Path(__file__).resolve().parents[4]
 
 
 def find_lmp(lmp=None):
@@ -36,7 +36,8 @@ def find_lmp(lmp=None):
             return Path(env).resolve()
         raise FileNotFoundError(f"TAPMC_LMP = {env!r}: not an executable file (unset it for "
                                 "build/lmp_tapmc or lmp_tapmc on the PATH, or pass --lmp)")
-    candidates = [_REPO / "build" / "lmp_tapmc", shutil.which("lmp_tapmc")]
+    tree = source_tree()  # the source tree's build first; an installed package has none
+    candidates = [tree / "build" / "lmp_tapmc" if tree else None, shutil.which("lmp_tapmc")]
     for c in candidates:
         if c and Path(c).is_file() and os.access(c, os.X_OK):
             return Path(c).resolve()

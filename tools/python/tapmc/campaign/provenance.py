@@ -13,6 +13,7 @@ import subprocess
 import time
 from pathlib import Path
 
+from .._source import git_checkout, source_tree
 from . import atomic
 from .errors import CampaignDirectoryError, CampaignError
 from .launch import private_mpi_session
@@ -22,7 +23,6 @@ __all__ = ["MANIFEST_FORMAT", "sha256", "now", "portable_paths", "read_manifest"
            "read_done", "write_done", "output_digests", "damaged_outputs",
            "verify_finished_run", "attempt_versions", "attempt_costs", "build_mismatch"]
 
-_REPO = Path(__file__).resolve().parents[4]
 #: Layout of a campaign folder (manifest keys, inputs/, runs/NAME/DONE.json) that this package
 #: reads and writes, recorded as "format" in manifest.json. A manifest without the key was
 #: written before it was recorded and has this layout. Raise it when a change of the layout
@@ -60,8 +60,9 @@ def portable_paths(value, campaign_dir):
     as ``<campaign>/...`` and paths inside the repository as ``<repo>/...``: a manifest
     committed with its campaign (doc/validation/data) names no folder of the machine it ran
     on. Only what is written changes; the runner never reads these paths back."""
-    prefixes = sorted(((str(Path(campaign_dir).resolve()), "<campaign>"),
-                       (str(_REPO), "<repo>")), key=lambda p: -len(p[0]))
+    tree = source_tree()  # an installed package has no repository to name
+    prefixes = sorted([(str(Path(campaign_dir).resolve()), "<campaign>")]
+                      + ([(str(tree), "<repo>")] if tree else []), key=lambda p: -len(p[0]))
 
     def fix(text):
         for prefix, tag in prefixes:
@@ -154,9 +155,13 @@ def lmp_versions(lmp):
 
 
 def tapmc_version():
-    """``git describe`` of the repository this package runs from, or None."""
+    """``git describe`` of the TAPMC checkout this package runs from, or None (an installed
+    package: never the commit of a repository that merely holds the install or the venv)."""
+    repo = git_checkout()
+    if repo is None:
+        return None
     try:
-        out = subprocess.run(["git", "-C", str(_REPO), "describe", "--always", "--dirty",
+        out = subprocess.run(["git", "-C", str(repo), "describe", "--always", "--dirty",
                               "--tags"], capture_output=True, text=True, timeout=30)
         return out.stdout.strip() or None
     except (OSError, subprocess.TimeoutExpired):

@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from tapmc._source import source_tree
 from tapmc.campaign import CampaignDirectoryError, RunSpec, atomic, verify_finished_run
 from tapmc.pores import hist_is_current
 from tapmc.readers import TapmcFormatError, read_ave_time, read_fix_print
@@ -29,8 +30,11 @@ RAMP = "examples/paper/in.ramp"
 AGEING = "examples/paper/in.ageing"
 PORE_DUMPS = "examples/paper/in.pore_dumps"
 
-#: Repository root (tools/python/tapmc/paper -> four levels up).
-SOURCE_DIR = Path(__file__).resolve().parents[4]
+#: Where the repository's layout (doc/, examples/, build/) is read and written by default: the
+#: source tree this package is part of; for an installed package (no tree: its prefix must not
+#: be written) the current directory, so that `tapmc-paper` run inside a checkout of the data
+#: finds it, and elsewhere its defaults name folders of the current directory.
+SOURCE_DIR = source_tree() or Path(".")
 #: Where the inputs above are: $TAPMC_DATA_DIR when set (the installed tapmc-paper sets it to
 #: PREFIX/share/tapmc, which holds examples/), else the repository root.
 DATA_DIR = Path(os.environ["TAPMC_DATA_DIR"]) if os.environ.get("TAPMC_DATA_DIR") else SOURCE_DIR

@@ -166,7 +166,8 @@ def _add_report_parser(sub):
     report.add_argument("--from-data", action="store_true",
                         help="rewrite OUT/validation.rst and its appendix pages "
                              "(OUT/validation_*.rst) from the figure CSVs and report.json "
-                             "already in OUT/validation (default OUT: the repository's doc/); "
+                             "already in OUT/validation (default OUT: the source tree's doc/, "
+                             "the current directory's for an installed tapmc-paper); "
                              "nothing is run or drawn")
     report.add_argument("--refit", action="store_true",
                         help="with --from-data: first recompute the statistics that a figure "

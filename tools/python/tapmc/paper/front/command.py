@@ -35,7 +35,7 @@ def add_parser(sub):
                         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     root_help = ("repository whose doc/validation/front is read and whose doc/front.rst, figure "
                  "and tools/python/tapmc/paper/front_summary.csv are written (default: this "
-                 "package's repository)")
+                 "package's source tree; for an installed tapmc-paper, the current directory)")
     fr.add_argument("--root", type=os.path.abspath, default=None, metavar="DIR", help=root_help)
     actions = fr.add_subparsers(dest="front_action", metavar="{run,page}")
     pg = actions.add_parser("page", help="write doc/front.rst, its figures and "

@@ -24,8 +24,9 @@ import time
 from dataclasses import dataclass
 
 from ...campaign import Campaign, CampaignError, RunSpec, Words
+from ..._source import git_checkout
 from ...campaign.provenance import read_manifest
-from .._runs import CONSTANT_EPS, DATA_DIR as INPUTS_DIR, SOURCE_DIR
+from .._runs import CONSTANT_EPS, DATA_DIR as INPUTS_DIR
 from . import data
 from .settings import SETTINGS, box_side_R, seeds, settle_keys, wanted
 
@@ -152,8 +153,10 @@ def record_finished(out_dir, runs):
 def machine_meta(lmp, jobs, nice):
     """What meta.json records: the commit, the executable's name (no machine path), the CPU,
     cores, runs at a time, nice level and the day."""
-    commit = subprocess.run(["git", "-C", str(SOURCE_DIR), "describe", "--always", "--dirty"],
-                            capture_output=True, text=True).stdout.strip() or "unknown"
+    repo = git_checkout()  # an installed package describes no repository
+    commit = "unknown" if repo is None else subprocess.run(
+        ["git", "-C", str(repo), "describe", "--always", "--dirty"],
+        capture_output=True, text=True).stdout.strip() or "unknown"
     cpu = platform.processor() or platform.machine()
     try:
         with open("/proc/cpuinfo") as f:

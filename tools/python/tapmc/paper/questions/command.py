@@ -19,7 +19,7 @@ from tapmc.readers import TapmcFormatError
 
 from .._arguments import folder, positive_int
 from . import CAMPAIGN_QUESTIONS, QUESTIONS
-from .common import DEFAULT_CAMPAIGN, DEFAULT_OUT, QuestionError
+from .common import DEFAULT_CAMPAIGN, DEFAULT_OUT, QuestionError, QuestionRunError
 
 
 def _summary(module):
@@ -38,7 +38,8 @@ def add_parser(parser):
                            formatter_class=argparse.RawDescriptionHelpFormatter)
         p.add_argument("--out", type=folder, default=DEFAULT_OUT, metavar="DIR",
                        help="where the CSV goes (default: the committed page's "
-                            "doc/paper_scale/validation/questions)")
+                            "doc/paper_scale/validation/questions, in the source tree; for an "
+                            "installed tapmc-paper, in the current directory)")
         p.add_argument("--lmp", type=Path, default=None, metavar="EXE",
                        help="LAMMPS executable (default: $TAPMC_LMP, build/lmp_tapmc)")
         p.add_argument("--jobs", type=positive_int, default=1, metavar="J",
@@ -46,7 +47,8 @@ def add_parser(parser):
         if name in CAMPAIGN_QUESTIONS:
             p.add_argument("--campaign", type=folder, default=DEFAULT_CAMPAIGN, metavar="DIR",
                            help="the campaign whose runs are read (default: the committed "
-                                "paper-scale campaign, doc/validation/data/full)")
+                                "paper-scale campaign, doc/validation/data/full, in the source "
+                                "tree; for an installed tapmc-paper, in the current directory)")
         module.add_arguments(p)
     return parser
 
@@ -63,21 +65,21 @@ def run(args, parser):
     if out is not None and out.exists() and not out.is_dir():  # before minutes of analysis
         print(f"tapmc-paper question {args.question}: --out {out} is a file, not a folder",
               file=sys.stderr)
-        return 1
+        return 2
     try:
         QUESTIONS[args.question].measure(args)
     except CampaignStopped as err:
         print(f"tapmc-paper question {args.question}: {err}", file=sys.stderr)
         return STOPPED_STATUS
-    except QuestionError as err:
+    except QuestionRunError as err:  # a run failed: 1
         print(f"tapmc-paper question {args.question}: {err}", file=sys.stderr)
         return 1
-    except TapmcFormatError as err:
+    except (QuestionError, TapmcFormatError) as err:  # usage, path, damaged input: 2
         print(f"tapmc-paper question {args.question}: {err}", file=sys.stderr)
-        return 1
-    except OSError as err:
+        return 2
+    except OSError as err:  # a path that cannot be used (--out in a read-only folder): 2
         where = f"{err.filename}: " if err.filename else ""
         print(f"tapmc-paper question {args.question}: {where}{err.strerror or err}",
               file=sys.stderr)
-        return 1
+        return 2
     return 0

@@ -32,8 +32,14 @@ PAPER = {"N": 4096, "L": 32}
 
 
 class QuestionError(RuntimeError):
-    """A question that cannot run or finish: bad input (a file and what is wrong with it) or
-    a failed run. The command prints it on one line and exits 1; nothing is written."""
+    """A question that cannot run: a usage error, a path that cannot be used or a damaged
+    input (a file and what is wrong with it). The command prints it on one line and exits 2,
+    the convention of both TAPMC tools; nothing is written."""
+
+
+class QuestionRunError(QuestionError):
+    """A question whose runs failed (a LAMMPS run, the fluid Monte Carlo, the pore tool or its
+    compilation) or whose campaign folder is in use: exit 1; nothing is written."""
 
 
 def work_folder(args, name):

@@ -14,7 +14,7 @@ from tapmc.campaign import (Campaign, CampaignDirectoryError, CampaignError, Cam
                             RunSpec, find_lmp)
 
 from .. import _runs
-from .common import QuestionError, taps_table
+from .common import QuestionError, QuestionRunError, taps_table
 
 #: The inputs of the paper's protocols (examples/paper).
 CONSTANT_EPS = _runs.DATA_DIR / _runs.CONSTANT_EPS
@@ -47,14 +47,17 @@ def spec(name, variables, input=CONSTANT_EPS, taps=None):
 def run_all(work, specs, lmp, jobs=1, progress=True):
     """Run ``specs`` as a campaign in ``work`` (finished ones kept, unfinished ones resumed;
     ``progress``: the campaign's progress lines); returns dict name -> run folder.
-    QuestionError on a failed run or an unusable folder; CampaignStopped passes through."""
+    QuestionRunError on a failed run or a folder in use, QuestionError on an unusable folder;
+    CampaignStopped passes through."""
     try:
         campaign = Campaign(work, specs, lmp=lmp, jobs=jobs, pin_inputs=True)
         campaign.run(progress=progress)
     except CampaignStopped:
         raise
-    except (CampaignError, CampaignDirectoryError, ValueError) as err:
+    except (CampaignDirectoryError, ValueError) as err:  # an unusable folder or spec: exit 2
         raise QuestionError(str(err)) from None
+    except CampaignError as err:  # a run failed, or the folder is in use: exit 1
+        raise QuestionRunError(str(err)) from None
     return {s.name: campaign.run_dir(s.name) for s in specs}
 
 

@@ -26,7 +26,7 @@ from .. import _runs
 from .._pores import P0_POINTS
 from .._rst import list_table
 from ..claims import fmt
-from .common import QuestionError, csv_schema, write_csv
+from .common import QuestionError, QuestionRunError, csv_schema, write_csv
 
 NAME = "p0-fluid"
 CSV = "p0_fluid.csv"
@@ -126,7 +126,7 @@ def mc_command(exe, work):
         done = subprocess.run([cxx, *MC_FLAGS, "-o", str(built), str(MC_SOURCE)],
                               capture_output=True, text=True)
         if done.returncode != 0:
-            raise QuestionError(f"compiling {MC_SOURCE} with {cxx} failed:\n"
+            raise QuestionRunError(f"compiling {MC_SOURCE} with {cxx} failed:\n"
                                 f"{done.stderr[-2000:]}")
     return ["nice", "-n", "2", str(built)]
 
@@ -157,7 +157,7 @@ def fluid_configurations(mc, folder, phi, args):
                "--prefix", str(folder / "fluid")]
         done = subprocess.run(cmd, capture_output=True, text=True)
         if done.returncode != 0:
-            raise QuestionError(f"{' '.join(cmd)} failed:\n{done.stderr[-2000:]}")
+            raise QuestionRunError(f"{' '.join(cmd)} failed:\n{done.stderr[-2000:]}")
         (folder / "mc.txt.partial").write_text(done.stdout)
         (folder / "mc.txt.partial").rename(log)
     values, configs = parse_mc(log.read_text())
@@ -178,7 +178,7 @@ def measured_p0(pores, folder, dumps):
                    str(dump)]
             done = subprocess.run(cmd, capture_output=True, text=True)
             if done.returncode != 0:
-                raise QuestionError(f"{' '.join(cmd)} failed:\n{done.stderr}")
+                raise QuestionRunError(f"{' '.join(cmd)} failed:\n{done.stderr}")
         result = read_pores(prefix)
         sigma = np.asarray(result.p0["sigma"], dtype=float)
         p0s.append(np.asarray(result.p0["P0_measured"], dtype=float))

@@ -20,7 +20,7 @@ from .. import _pores, _runs
 from .._rst import list_table
 from ..claims import fmt
 from . import launch
-from .common import QuestionError, read_csv, work_folder, write_csv
+from .common import QuestionError, QuestionRunError, read_csv, work_folder, write_csv
 from .ramp_levels import BRANCH_NAMES
 from .ramp_replay import (level_restarts, manifest_run, ramp_run_dir, ramp_table,
                           replay_folder, replay_ramp)
@@ -113,7 +113,7 @@ def _dumps(lmp, sources, folder, P):
     dumps = {k: dump_path(folder, k, P) for k in sorted(sources)}
     for k, dump in dumps.items():
         if not dump.is_file():
-            raise QuestionError(f"dumping level {k} left no {dump}")
+            raise QuestionRunError(f"dumping level {k} left no {dump}")
     return dumps
 
 

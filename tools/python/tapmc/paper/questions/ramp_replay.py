@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from . import launch
-from .common import QuestionError, taps_table
+from .common import QuestionError, QuestionRunError, taps_table
 
 #: the runs of a ramp's replays, under the questions' ramp work folder
 REPLAYS = "replays"
@@ -82,7 +82,7 @@ def replay_ramp(lmp, name, variables, seed, end, work, table):
         print(f"replaying {name} to step {end}", flush=True)
         launch.run_all(replays, [run], lmp)
     if not target.is_file():
-        raise QuestionError(f"the replay of {name} to step {end} left no {target}")
+        raise QuestionRunError(f"the replay of {name} to step {end} left no {target}")
     replayed, _ = ramp_table(replay_folder(work, name))
     replayed = replayed[(replayed[:, 0] >= 1) & (replayed[:, 0] <= end)]
     return target, replayed, "replay (" + replay_agreement(replayed, table) + ")"
