@@ -64,6 +64,10 @@ string(CONCAT _tapmc_headers_option
        "source of LAMMPS version ${LAMMPS_VERSION_NUMERIC} will do, it need not be built>. "
        "See doc/install.rst, route 1.")
 set(_tapmc_what_to_give "Give ${_tapmc_headers_option}")
+# Debian's LAMMPS without network: route 2's own section, not route 1 (your own LAMMPS)
+string(REPLACE "See doc/install.rst, route 1."
+       "See doc/install.rst, route 2, 'Without network'." _tapmc_offline_option
+       "${_tapmc_headers_option}")
 
 if(NOT EXISTS "${_tapmc_headers_dir}/src/neigh_request.h")
   if(_tapmc_own_headers_dir)
@@ -97,7 +101,7 @@ if(NOT EXISTS "${_tapmc_headers_dir}/src/neigh_request.h")
     message(FATAL_ERROR "TAPMC: the LAMMPS source headers are missing and could not be fetched "
             "from Debian's source package (why: above); run tools/setup/fetch-lammps-headers.sh "
             "${TAPMC_LAMMPS_HEADERS_DIR} by hand once that is mended, or, offline, give "
-            "${_tapmc_headers_option}")
+            "${_tapmc_offline_option}")
   endif()
   tapmc_header_version("${_tapmc_headers_dir}" _tapmc_fetched)
   if(NOT _tapmc_fetched EQUAL LAMMPS_VERSION_NUMERIC)
