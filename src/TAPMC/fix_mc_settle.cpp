@@ -32,6 +32,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
@@ -387,6 +388,7 @@ void FixMCSettle::init()
   long untapped = 0, untapped_all = 0;
   for (int i = 0; i < atom->nlocal; ++i) untapped += (atom->mask[i] & tapped_bits) ? 0 : 1;
   MPI_Allreduce(&untapped, &untapped_all, 1, MPI_LONG, MPI_SUM, world);
+  warn_tapped_never_redeposited(tapped_bits);
   // tapdilate dilates every atom of its group alike: tapped by any one fix, none stands still
   every_atom_tapped = untapped_all == 0;
 
@@ -394,6 +396,27 @@ void FixMCSettle::init()
     error->warning(FLERR, "fix mc/settle moves atoms during minimization; use 'run' instead");
 
   tapmc::request_ghost_depth(lmp, redeposition->ghost_depth(group_radius_extreme(true)));
+}
+
+// Atoms a tap lifts that no fix mc/settle redeposits rise by eps times their height at every tap,
+// for ever (a rough floor of fixed spheres tapped with 'fix tapdilate all'): warned at setup.
+void FixMCSettle::warn_tapped_never_redeposited(int tapped_bits) const
+{
+  int settled_bits = 0;
+  for (int i = 0; i < modify->nfix; ++i)
+    if (std::strcmp(modify->fix[i]->style, style) == 0) settled_bits |= modify->fix[i]->groupbit;
+  long adrift = 0, adrift_all = 0;
+  for (int i = 0; i < atom->nlocal; ++i)
+    adrift += (atom->mask[i] & tapped_bits) && !(atom->mask[i] & settled_bits) ? 1 : 0;
+  MPI_Allreduce(&adrift, &adrift_all, 1, MPI_LONG, MPI_SUM, world);
+  if (adrift_all == 0 || comm->me != 0) return;
+  std::string tapping;
+  for (const std::string &tapper_id : tapper_ids) tapping += (tapping.empty() ? "" : ", ") + tapper_id;
+  error->warning(FLERR, "fix mc/settle: {} atom(s) are tapped (fix {}) but in the group of no "
+                   "fix mc/settle: nothing redeposits them, so each tap lifts them by eps times "
+                   "their height above the floor, tap after tap. Tap only the settled spheres "
+                   "(fix tapdilate on the group of fix mc/settle) or put them in its group",
+                   adrift_all, tapping);
 }
 
 // Ghosts as deep as the scheme needs: a contact, its move margin and the ghost skin.

@@ -18,8 +18,9 @@
 using namespace LAMMPS_NS;
 
 // The run's fixes that move atoms besides the taps and the redeposition, as "ID (style)": those
-// LAMMPS calls to integrate (an integrator, fix move, fix wall/reflect), and those that move or
-// insert atoms between steps (fix deform's remap, gcmc, pour). A lid of wall/reflect reflected
+// LAMMPS calls to integrate (an integrator, fix move, fix wall/reflect), those that move or
+// insert atoms between steps (fix deform's remap, gcmc, pour, deposit), and fix adapt, which
+// can grow the radii (atom diameter) into overlaps. A lid of wall/reflect reflected
 // spheres lifted by a tap back into the bed, and a leftover fix nve/sphere moved them by their
 // velocities: overlaps, silently (the redeposition keeps overlaps it starts with). Such a run
 // is checked before each tap (pre_exchange).
@@ -27,7 +28,7 @@ std::string FixMCSettle::other_fixes_moving_atoms() const
 {
   constexpr int kMoves = FixConst::INITIAL_INTEGRATE | FixConst::POST_INTEGRATE |
                          FixConst::FINAL_INTEGRATE;
-  const std::vector<std::string> moving_styles = {"deform", "gcmc", "pour"};
+  const std::vector<std::string> moving_styles = {"adapt", "deform", "deposit", "gcmc", "pour"};
   std::string names;
   for (int i = 0; i < modify->nfix; ++i) {
     Fix *fix = modify->fix[i];

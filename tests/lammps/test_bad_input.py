@@ -680,3 +680,36 @@ def test_a_2d_simulation_is_refused_as_such(command, style):
     rc, out, _ = run_lammps("units lj\ndimension 2\natom_style sphere\nboundary p p p\n"
                             "region box block 0 8 0 8 -0.5 0.5\ncreate_box 1 box\n" + command)
     assert rc != 0 and f"{style}: needs a 3d simulation ('dimension 3', the default)" in out, out
+
+
+def test_fix_adapt_growing_the_radii_and_fix_deposit_are_checked_too():
+    """fix adapt grew the diameters 2 % per step into overlaps of 0.02-0.08, and fix deposit
+    dropped spheres into the bed: neither was among the fixes that move atoms, so the
+    redeposition ran on with the overlaps, silently. Both are now, warned at setup and stopped
+    at the first overlap before a tap."""
+    adapt = LID_BED.replace("atom_style sphere", "atom_style sphere 1").format(
+        mover="variable d equal 1.0+0.02*step\nfix ad all adapt 1 atom diameter v_d reset no")
+    rc, out, _ = run_lammps(adapt)
+    assert "fix ad (adapt) move(s) atoms besides the taps" in out, out
+    assert rc != 0 and "before the tap: fix ad (adapt) move(s) atoms" in out, out
+    deposit = LID_BED.format(mover="region drop block 0 6 0 6 3 6\n"
+                                   "fix dep all deposit 3 1 1 12345 region drop near 0.6")
+    rc, out, _ = run_lammps(deposit)
+    assert "fix dep (deposit) move(s) atoms besides the taps" in out, out
+    assert rc != 0 and "before the tap: fix dep (deposit) move(s) atoms" in out, out
+
+
+def test_spheres_tapped_but_never_redeposited_are_named():
+    """fix tapdilate on all with fix mc/settle on the spheres above z = 2: the lowest layer
+    rose by (1 + eps) at every tap, for ever, silently (doc: atoms outside the group 'never
+    move'). The run says how many are tapped and redeposited by no fix mc/settle; tapping
+    only the settled group is quiet."""
+    split = LID_BED.format(mover="region low block INF INF INF INF INF 2.0\ngroup low region low\n"
+                                 "group up subtract all low").replace(
+        "fix settle all mc/settle", "fix settle up mc/settle").replace("run 10", "run 2")
+    rc, out, _ = run_lammps(split)
+    assert rc == 0, out
+    assert re.search(r"fix mc/settle: \d+ atom\(s\) are tapped \(fix tap\) but in the group of "
+                     r"no fix mc/settle: nothing redeposits them", out), out
+    rc, out, _ = run_lammps(split.replace("fix tap all tapdilate", "fix tap up tapdilate"))
+    assert rc == 0 and "are tapped (fix tap)" not in out, out

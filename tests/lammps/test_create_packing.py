@@ -140,6 +140,22 @@ def test_printed_packing_fractions_are_compute_stereo_profiles(boundary, args, f
     assert "6R above the floor to 6R below twice the mean centre height" in interior
 
 
+def test_printed_mean_height_keeps_its_digits_in_si_units():
+    """A bed of 5-micron spheres in SI units: <Z> printed 0.0000 (four decimals of metres);
+    it keeps four significant digits there, as h_s does, and equals the compute's."""
+    script = ("units si\natom_style sphere\nboundary p p fm\n"
+              "region box block 0 6e-5 0 6e-5 0 3e-4\ncreate_box 1 box\n"
+              "create_packing 300 1 5e-6 4928 floor 0.0\n" + STEREO_AFTER.format(floor=0.0)
+              .replace("%.10f", "%.10g"))
+    rc, out, _ = run_lammps(script)
+    assert rc == 0, out
+    lines = out.splitlines()
+    header = next(k for k, ln in enumerate(lines) if ln.split()[:1] == ["Step"])
+    mean_z = float(lines[header + 1].split()[3])
+    assert 1e-5 < mean_z < 1e-4
+    assert printed_measures(out)[2] == pytest.approx(mean_z, rel=1e-3)
+
+
 def test_walls_in_nonperiodic_box():
     out, box, bounds, cols = run_packing(packing_script(boundary="f f fm"), nprocs=2)
     assert len(cols["id"]) == 800

@@ -121,5 +121,5 @@ def test_theta0_scan_of_an_alternative_law_at_chosen_widths(tmp_path):
     bad = subprocess.run([*QUESTION, "theta0", "--N", "64", "--lmp", str(LMP), "--out",
                           str(tmp_path / "bad"), "--widths", "0.25", "-1"],
                          capture_output=True, text=True, timeout=60)
-    assert bad.returncode == 1 and "--widths -1: theta0 = -1 pi is outside" in bad.stderr
+    assert bad.returncode == 2 and "--widths -1: theta0 = -1 pi is outside" in bad.stderr
     assert not (tmp_path / "bad").exists()

@@ -65,3 +65,30 @@ def test_styles_survive_clear():
     lmp.commands_string(SETUP + "fix tap all tapdilate 1.0 floor 0.0\nrun 1")
     np.testing.assert_allclose(heights(lmp), [4.0, 8.0], rtol=1e-14)
     lmp.close()
+
+
+def test_a_compute_read_after_a_tap_describes_the_packing_after_it():
+    """An eps variable that reads compute stereo/profile evaluates it before the tap, stamped
+    with the step: the library handed out those values after the tap and the redeposition as
+    current (<Z> one tap behind, every tap). After TAPMC moves atoms the computes are
+    computed again: <Z> is the spheres' mean height and fix mc/settle's."""
+    lmp = make_lammps()
+    lmp.commands_string("""
+units lj
+atom_style sphere
+boundary p p fm
+region box block 0 6 0 6 0 30
+create_box 1 box
+create_packing 300 1 0.5 4928 floor 0.0
+compute phi all stereo/profile floor 0.0
+variable e equal 0.01+0.1*(0.58-c_phi[2])
+fix tap all tapdilate v_e floor 0.0
+fix settle all mc/settle 77 floor 0.0 eta 1e-5
+""")
+    for _ in range(3):
+        lmp.command("run 1")
+        mean_z = lmp.numpy.extract_compute("phi", lammps.LMP_STYLE_GLOBAL,
+                                           lammps.LMP_TYPE_VECTOR)[2]
+        assert mean_z == pytest.approx(heights(lmp).mean(), rel=1e-12)
+        assert mean_z == pytest.approx(lmp.extract_fix("settle", 0, 1, 2), rel=1e-12)
+    lmp.close()
