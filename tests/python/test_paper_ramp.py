@@ -99,7 +99,7 @@ def test_frozen_compacting_and_running_ramps(tmp_path):
     # the first screen's sentence: one answer per eta, the decided seeds' changes, how far the
     # running ones got
     headline = paper_ramp.headline_text(back, 1e-7)
-    assert "eta = 1e-5: no irreversible branch (1 seed; the descending branch moves by +0.00" \
+    assert "eta = 1e-5: no irreversible branch (1 seed; the descending levels lie +0.00" \
         in headline
     assert ("eta = 1e-6: undecided, the ramp has not come down two levels yet (seed 2 at tap "
             "12000, ") in headline
@@ -136,8 +136,8 @@ def test_a_ramp_beyond_the_critical_level_is_told_apart(tmp_path):
     assert "0.2" not in "\n".join(lines[:3])
     assert lines[3] == ("- For comparison, beyond (sqrt eps)* (the branch the paper calls "
                         "reversible): at eta = 1e-7 (the default), turning at 0.2 (1 seed): the "
-                        f"descending branch moves by {beyond.down_change:+.4f} in <Phi^c> from "
-                        "the turning level.")
+                        f"descending levels lie {beyond.down_change:+.4f} in <Phi^c> from the "
+                        "turning level on average (the descent's move).")
     finding = paper_ramp.finding_text(list(rows.values()), 1e-7)
     assert "Beyond (sqrt eps)* (the reversible branch of the paper), the descending branch " \
         "from the turning level: at eta = 1e-7 (the default), seed 2, turning at 0.2: +0.0" \
@@ -277,7 +277,8 @@ def test_the_second_increase_against_the_descent_is_the_papers_test_of_reversibi
                        for x, d in zip(same.levels, same.differences))
     assert ("The second increase against the descent at the sqrt(eps) both visited (1 of 1 "
             "seed; the paper's test of its reversible branch, 'we approximately come across the "
-            "same values'): it comes across the same values: reversible (second increase minus "
+            "same values'): it comes across the same values within its errors (how close: the "
+            "register's reversible-retraced row) (second increase minus "
             f"descent, seed 1: {levels}; mean {paper_ramp._signed(same.mean.value)} +- "
             "0.0000).") in text
     headline = paper_ramp.headline_text([rows["paperramp0.125_pbc_s2"]], 1e-7)
@@ -287,8 +288,8 @@ def test_the_second_increase_against_the_descent_is_the_papers_test_of_reversibi
     both = paper_ramp.headline_text([rows["paperramp0.125_pbc_s1"],
                                      rows["paperramp0.125_pbc_s2"]], 1e-7)
     assert "+0.0000 and +0.0020 (mean of 3 levels;" in both
-    assert ("the seeds disagree beyond their errors (seed 1 retraces, seed 2 lies above; "
-            "chi2 = ") in both and "p < 1e-4): one answer per seed)" in both
+    assert ("the seeds disagree beyond their errors (seed 1 within its errors, seed 2 lies "
+            "above; chi2 = ") in both and "p < 1e-4): one answer per seed)" in both
     # seeds that reached different numbers of levels: the counts follow the seeds' order
     uneven = paper_ramp.headline_text([rows["paperramp0.125_pbc_s2"],
                                        rows["paperramp0.125_pbc_s3"]], 1e-7)
@@ -381,7 +382,7 @@ def test_verdicts_take_the_realizations_error_when_given_its_factor(tmp_path):
     assert paper_ramp.calibrated([marginal], None) == [marginal]   # no report: as measured
     text = paper_ramp.finding_text([shifted], 1e-7, error_factor=2.0)
     assert "errors: the levels' batch-means errors x 2.0, the spread of the campaign's " \
-        "realizations" in text and "it comes across the same values: reversible" in text
+        "realizations" in text and "it comes across the same values within its errors" in text
     assert "errors: the levels' batch-means errors)" in paper_ramp.finding_text([shifted], 1e-7)
     with pytest.raises(ValueError, match="error factor: 0.5, must be >= 1"):
         paper_ramp.calibrated([raw], 0.5)
@@ -508,14 +509,16 @@ def test_seeds_whose_verdicts_differ_within_their_errors_are_answered_together()
     traces = [(seed(1), trace(0.0001)), (seed(2), trace(0.0013))]
     assert [t.verdict for _, t in traces] == ["retraces", "above"]
     long = paper_ramp._retrace_answer(traces)
-    assert long == ("the seeds' verdicts differ (seed 1 retraces, seed 2 lies above) within "
-                    "their errors (chi2 = 4.5 for 1 dof, p = 0.034); over the 2 seeds, +0.0007 "
-                    "+- 0.0006 (their errors' mean widened x 2.1 by their scatter): it comes "
-                    "across the same values: reversible")
+    assert long == ("the seeds' verdicts differ (seed 1 within its errors, seed 2 lies above) "
+                    "within their errors (chi2 = 4.5 for 1 dof, p = 0.034); over the 2 seeds, "
+                    "+0.0007 +- 0.0006 (their errors' mean widened x 2.1 by their scatter): it "
+                    "comes across the same values within its errors (how close: the register's "
+                    "reversible-retraced row)")
     assert paper_ramp._retrace_answer(traces, short=True) == (
-        "together +0.0007 +- 0.0006: it retraces the descent: reversible (seed 1 "
-        "retraces, seed 2 lies above, within their errors)")
+        "together +0.0007 +- 0.0006: within its errors of the descent (seed 1 within its "
+        "errors, seed 2 lies above, within their errors)")
     apart = [(seed(1), trace(0.0001)), (seed(2), trace(0.0030))]
     assert paper_ramp._retrace_answer(apart, short=True) == (
-        "the seeds disagree beyond their errors (seed 1 retraces, seed 2 lies above; chi2 = "
+        "the seeds disagree beyond their errors (seed 1 within its errors, seed 2 lies above; "
+        "chi2 = "
         "26.3 for 1 dof, p < 1e-4): one answer per seed")

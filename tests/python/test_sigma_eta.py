@@ -160,6 +160,9 @@ def test_a_run_still_going_counts_only_the_taps_of_its_protocols_steady_window(t
     early = write_run(runs, "consteta_pbc_eps0.09_eta1e-06_s1", 0.01, 0.6, taps=3100,
                       done=False)
     assert sigma_eta.read_run(early, DEFAULT_ETA, planned_taps=4000) is None
+    # the finding says so (it counted the run silently)
+    text = sigma_eta.finding_text([point], DEFAULT_ETA)
+    assert "(runs still going at eps = 0.01 (3400 taps): their windows partial)" in text, text
 
 
 def test_a_top_meets_the_paper_within_t_of_its_error_floors_dof():

@@ -499,8 +499,7 @@ def headline_text(rows, default_eta, error_factor=None):
         answers.add(answer)
         changes = " and ".join(f"{r.down_change:+.4f}" for r in decided)
         seeds = f"{len(decided)} seed{'s' if len(decided) > 1 else ''}"
-        bullets.append(f"- {label}: {answer} ({seeds}; the descending branch moves by "
-                       f"{changes} in <Phi^c> from the turning level"
+        bullets.append(f"- {label}: {answer} ({seeds}; {_descent_words(changes)}"
                        f"{_retrace_headline(decided)}).")
     etas = len(bullets)
     beyond = _beyond_headline(beyond_critical(every), default_eta)
@@ -511,6 +510,14 @@ def headline_text(rows, default_eta, error_factor=None):
     return ("The paper's central question (section III.B: is the branch below (sqrt eps)* ~ "
             f"0.15 irreversible?) at its own ramp protocol ({TAPS_PER_LEVEL} taps per level, "
             f"N = 4096, P.B.C.): {overall}.\n\n" + "\n".join(bullets + beyond))
+
+
+def _descent_words(changes):
+    """The descent's move (:attr:`PaperRampRun.down_change`, the mean of the descending levels
+    minus the turning level), as the headline says it: the shares of the second increase
+    refer to it."""
+    return (f"the descending levels lie {changes} in <Phi^c> from the turning level on average "
+            "(the descent's move)")
 
 
 def _beyond_headline(rows, default_eta):
@@ -525,8 +532,8 @@ def _beyond_headline(rows, default_eta):
         tops = " and ".join(f"{t:g}" for t in sorted({r.top for r in decided}))
         changes = " and ".join(f"{r.down_change:+.4f}" for r in decided)
         seeds = f"{len(decided)} seed{'s' if len(decided) > 1 else ''}"
-        parts.append(f"at {eta_label(eta, default_eta)}, turning at {tops} ({seeds}): the "
-                     f"descending branch moves by {changes} in <Phi^c> from the turning level"
+        parts.append(f"at {eta_label(eta, default_eta)}, turning at {tops} ({seeds}): "
+                     f"{_descent_words(changes)}"
                      f"{_retrace_headline(decided)}")
     if not parts:
         return []
@@ -615,8 +622,10 @@ def _signed(value):
 #: What the second increase against the descent says, by the verdicts of its seeds: (the
 #: finding's words, the headline's).
 RETRACE_ANSWERS = {
-    ("retraces",): ("it comes across the same values: reversible",
-                    "it retraces the descent: reversible"),
+    # within noise is a test against zero, not of how close: "approximately the same values"
+    # within a tenth of the hysteresis gap is the register's reversible-retraced row
+    ("retraces",): ("it comes across the same values within its errors (how close: the "
+                    "register's reversible-retraced row)", "within its errors of the descent"),
     ("above",): ("it lies above the descent: the packing still compacts, neither frozen nor "
                  "reversible", "it lies above the descent: still compacting"),
     ("below",): ("it lies below the descent: the packing loosens as the taps grow again",
@@ -624,7 +633,7 @@ RETRACE_ANSWERS = {
 
 
 #: A seed's verdict in words, where the seeds' verdicts differ (second increase, return to the top).
-SEED_VERDICT_WORDS = {"retraces": "retraces", "above": "lies above", "below": "lies below",
+SEED_VERDICT_WORDS = {"retraces": "within its errors", "above": "lies above", "below": "lies below",
                       "loosens": "loosens", "frozen": "stays (frozen)", "compacts": "compacts"}
 
 

@@ -397,7 +397,7 @@ def finding_text(all_points, default_eta, factor_of=None):
                if ln.top_inside else
                f"largest <Phi^c> {100 * ln.top_phi_c:.2f} +- {100 * ln.top_phi_c_sem:.2f} % at "
                f"eps = {ln.top_eps:g}, the edge of the eps measured: no top yet")
-        parts.append(f"{label}: {fit}; {top}")
+        parts.append(f"{label}: {fit}; {top}{_going_text(all_points, ln.eta)}")
     verdict = _trend_text(offset_trend(eta_lines))
     meeting = [ln.eta for ln in eta_lines if ln.top_inside and meets_paper_phi(ln)]
     paper = (f"The bell's top meets the paper's {PAPER_PHI_PERCENT} % at eta = "
@@ -406,6 +406,17 @@ def finding_text(all_points, default_eta, factor_of=None):
     return ("sigma_<Z> against the redeposition threshold (P.B.C. constant-eps runs, steady "
             f"state over the last quarter; {_errors_text(used)}): " + "; ".join(parts)
             + ". Trend: " + verdict + " " + paper + ". " + _drift_free_text(all_points))
+
+
+def _going_text(all_points, eta):
+    """" (runs still going at eps = 0.1 (3301 taps): their windows partial)" for the points of
+    ``eta`` whose runs have not all finished (their steady windows hold fewer taps than the
+    protocol's), "" when every run has."""
+    going = [p for p in all_points if p.eta == eta and not p.finished]
+    if not going:
+        return ""
+    where = ", ".join(f"eps = {p.eps:g} ({p.taps} taps)" for p in going)
+    return f" (runs still going at {where}: their windows partial)"
 
 
 def _trend_text(trend):
