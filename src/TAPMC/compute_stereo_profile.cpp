@@ -513,7 +513,7 @@ void ComputeStereoProfile::compute_array_guarded()
 
 double ComputeStereoProfile::memory_usage()
 {
-  return static_cast<double>(planes_.n) * kArrayColumns * sizeof(double) +
+  return (array ? static_cast<double>(planes_.n) * kArrayColumns * sizeof(double) : 0.0) +
          static_cast<double>(selected_.capacity()) * sizeof(int) +
          static_cast<double>(buffer_.capacity()) * sizeof(double);
 }

@@ -473,11 +473,12 @@ std::string stereo_profile_text(const Plan &plan, const tapmc::Packing &packing)
                                 : stereo::summarize(spheres, box, settings);
   const double bulk_top =
       plan.dd.z_floor + tapmc::defaults::kBulkHeightOverRadius * stereo::mean_radius(spheres);
-  // <Z> with four decimals where they are digits (lj's beds, 1e-3 to 1e6), else four
-  // significant ones: in SI units a bed of 5-micron spheres printed <Z> 0.0000
+  // <Z> with four decimals from 1 to 1e6 (lj's beds), else four significant digits: in SI
+  // units a bed of 5-micron spheres printed <Z> 0.0000, one of mm beads 0.0080
   const double z = s.mean_height;
-  const std::string mean_height =
-      std::fabs(z) >= 1e-3 && std::fabs(z) < 1e6 ? fmt::format("{:.4f}", z) : fmt::format("{:.4g}", z);
+  const std::string mean_height = std::fabs(z) >= 1.0 && std::fabs(z) < 1e6
+                                      ? fmt::format("{:.4f}", z)
+                                      : fmt::format("{:.4g}", z);
   return fmt::format("compute stereo/profile (defaults): Phi_b {:.4f} ({:.4g} <= z <= {:.4g}), "
                      "<Phi^c> {:.4f} ({:.4g} <= z <= {:.4g}), <Z> {}, h_s {:.4g}",
                      s.phi_bulk, plan.dd.z_floor, bulk_top, s.phi_corrected, plan.dd.z_floor,

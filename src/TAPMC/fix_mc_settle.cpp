@@ -346,7 +346,14 @@ tapmc::SettleParams FixMCSettle::make_params(double step, long movable) const
 
 int FixMCSettle::setmask()
 {
-  return PRE_EXCHANGE | POST_INTEGRATE;
+  return PRE_EXCHANGE | POST_INTEGRATE | END_OF_STEP;
+}
+
+// Computes read before this step's move (an eps variable's) computed again for the packing
+// after it (lammps_relocate.h): one loop over the computes per step.
+void FixMCSettle::end_of_step()
+{
+  tapmc::refresh_moved_computes(lmp);
 }
 
 void FixMCSettle::init()
@@ -400,16 +407,21 @@ void FixMCSettle::init()
 
 // Atoms a tap lifts that no fix mc/settle redeposits rise by eps times their height at every tap,
 // for ever (a rough floor of fixed spheres tapped with 'fix tapdilate all'): warned at setup.
-void FixMCSettle::warn_tapped_never_redeposited(int tapped_bits) const
+void FixMCSettle::warn_tapped_never_redeposited(int tapped_bits)
 {
   int settled_bits = 0;
+  const Fix *first_settle = nullptr;  // the one that warns, once: not every fix, every run
   for (int i = 0; i < modify->nfix; ++i)
-    if (std::strcmp(modify->fix[i]->style, style) == 0) settled_bits |= modify->fix[i]->groupbit;
+    if (std::strcmp(modify->fix[i]->style, style) == 0) {
+      settled_bits |= modify->fix[i]->groupbit;
+      if (!first_settle) first_settle = modify->fix[i];
+    }
   long adrift = 0, adrift_all = 0;
   for (int i = 0; i < atom->nlocal; ++i)
     adrift += (atom->mask[i] & tapped_bits) && !(atom->mask[i] & settled_bits) ? 1 : 0;
   MPI_Allreduce(&adrift, &adrift_all, 1, MPI_LONG, MPI_SUM, world);
-  if (adrift_all == 0 || comm->me != 0) return;
+  if (adrift_all == 0 || comm->me != 0 || first_settle != this || warned_adrift) return;
+  warned_adrift = true;
   std::string tapping;
   for (const std::string &tapper_id : tapper_ids) tapping += (tapping.empty() ? "" : ", ") + tapper_id;
   error->warning(FLERR, "fix mc/settle: {} atom(s) are tapped (fix {}) but in the group of no "
@@ -709,8 +721,8 @@ void FixMCSettle::pre_exchange()
     warn_once(warned_no_move, "fix mc/settle: step {}: {} redepositions in a row accepted none "
               "of their trial moves ({} in the latest): the packing keeps each tap's dilation "
               "(<Z> = {:.6g} after the latest tap). Either the taps open gaps far narrower than "
-              "the trial steps (up to dmax = {:.6g}; a tap of eps separates neighbours by about "
-              "eps times their height above the floor): use a larger eps or a smaller dmax; or "
+              "the trial steps (up to dmax = {:.6g}; a tap of eps separates touching neighbours by "
+              "at most eps times their diameter): use a larger eps or a smaller dmax; or "
               "the spheres are held sideways on every side (a column one diameter wide, spheres "
               "jammed between walls): every trial move has a sideways part (warned once)",
               update->ntimestep, taps_without_a_move, result.trials, result.mean_height,

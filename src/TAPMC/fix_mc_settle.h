@@ -37,6 +37,7 @@ class FixMCSettle : public Fix, public tapmc::ContainerHolder {
   void setup_pre_exchange() override;
   void post_integrate() override;
   void pre_exchange() override;
+  void end_of_step() override;
   double compute_vector(int) override;
   void write_restart(FILE *) override;
   void restart(char *) override;
@@ -85,6 +86,7 @@ class FixMCSettle : public Fix, public tapmc::ContainerHolder {
   bool warned_idle_stop = false;  // the warning of a stop at an idle check is given once
   int taps_without_a_move = 0;    // consecutive redepositions that accepted no trial move
   bool warned_no_move = false;    // ... warned once, at kSettleNoMoveTaps
+  bool warned_adrift = false;     // tapped atoms no fix mc/settle redeposits: warned once
 
   // per-tap diagnostics (global vector)
   double last_sweeps, last_acceptance, last_mean_z, last_hit_cap, last_trials, last_mean_z0;
@@ -131,7 +133,7 @@ class FixMCSettle : public Fix, public tapmc::ContainerHolder {
   void check_walls_inside_fixed_box();
   void find_tappers();
   std::string other_fixes_moving_atoms() const;
-  void warn_tapped_never_redeposited(int tapped_bits) const;
+  void warn_tapped_never_redeposited(int tapped_bits);
   void require_same_tappers();
   void schedule_next_settle(bigint after);
   double effective_d_max() const;

@@ -74,7 +74,14 @@ FixTapDilate::FixTapDilate(LAMMPS *lmp, int narg, char **arg) :
 
 int FixTapDilate::setmask()
 {
-  return PRE_EXCHANGE | POST_INTEGRATE;
+  return PRE_EXCHANGE | POST_INTEGRATE | END_OF_STEP;
+}
+
+// Computes read before this step's move (an eps variable's) computed again for the packing
+// after it (lammps_relocate.h): one loop over the computes per step.
+void FixTapDilate::end_of_step()
+{
+  tapmc::refresh_moved_computes(lmp);
 }
 
 void FixTapDilate::init()

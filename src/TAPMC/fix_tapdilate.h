@@ -21,6 +21,7 @@ class FixTapDilate : public Fix, public tapmc::Tapper, public tapmc::ContainerHo
   void setup_pre_exchange() override;
   void post_integrate() override;
   void pre_exchange() override;
+  void end_of_step() override;
   double compute_scalar() override;
   double compute_vector(int) override;
   void write_restart(FILE *) override;

@@ -12,6 +12,7 @@
 #include "irregular.h"
 #include "lammps.h"
 #include "modify.h"
+#include "update.h"
 
 #include <mpi.h>
 #include <string>
@@ -29,17 +30,39 @@ inline void check_atom_count(LAMMPS_NS::LAMMPS *lmp, const std::string &who)
                     "boundary?)", who, lmp->atom->natoms, ntotal);
 }
 
-// Every compute's values of this step are values of the packing before the move: one invoked
-// earlier in the step (an eps variable that reads it, evaluated before the tap) is stamped with
-// the step, and LAMMPS would hand its old values out as current (the library's
-// extract_compute, a variable read between runs). Clearing the stamps makes the next reader
-// compute them again.
+// The stamp (Compute::invoked_*) of a compute whose values of this step describe the packing
+// before TAPMC moved atoms: never a step, so no reader takes them as current.
+constexpr LAMMPS_NS::bigint kStampBeforeTheMove = -2;
+
+// A compute invoked earlier in this step (an eps variable that reads it, evaluated before the
+// tap) holds the packing before the move, stamped with the step: LAMMPS would hand those values
+// out as current (the library's extract_compute, a variable read between runs). Its stamps are
+// set to kStampBeforeTheMove, so that a reader computes it again, and refresh_moved_computes
+// computes it again at the end of the step.
 inline void forget_computed_values(LAMMPS_NS::LAMMPS *lmp)
 {
+  const LAMMPS_NS::bigint step = lmp->update->ntimestep;
   for (int i = 0; i < lmp->modify->ncompute; ++i) {
-    LAMMPS_NS::Compute *compute = lmp->modify->compute[i];
-    compute->invoked_scalar = compute->invoked_vector = compute->invoked_array = -1;
-    compute->invoked_peratom = compute->invoked_local = -1;
+    LAMMPS_NS::Compute *c = lmp->modify->compute[i];
+    for (LAMMPS_NS::bigint *stamp : {&c->invoked_scalar, &c->invoked_vector, &c->invoked_array,
+                                     &c->invoked_peratom, &c->invoked_local})
+      if (*stamp == step) *stamp = kStampBeforeTheMove;
+  }
+}
+
+// At the end of a step (ghosts and neighbour lists rebuilt): the computes forget_computed_values
+// marked, and nothing computed since, are computed again, so that a variable read between runs
+// (as LAMMPS allows for a compute current at the run's last step) gets the packing after the
+// tap, not an error. Only computes read before the move on this step pay for it.
+inline void refresh_moved_computes(LAMMPS_NS::LAMMPS *lmp)
+{
+  for (int i = 0; i < lmp->modify->ncompute; ++i) {
+    LAMMPS_NS::Compute *c = lmp->modify->compute[i];
+    if (c->invoked_scalar == kStampBeforeTheMove) c->compute_scalar();
+    if (c->invoked_vector == kStampBeforeTheMove) c->compute_vector();
+    if (c->invoked_array == kStampBeforeTheMove) c->compute_array();
+    if (c->invoked_peratom == kStampBeforeTheMove) c->compute_peratom();
+    if (c->invoked_local == kStampBeforeTheMove) c->compute_local();
   }
 }
 

@@ -194,9 +194,10 @@ def test_a_packing_that_cannot_move_is_named_not_silently_dilated(nprocs, scheme
 
 
 def test_taps_too_weak_for_the_trial_steps_are_named_with_dmax():
-    """eps = 1e-8 opens gaps of about 1e-7 in a settled periodic bed, a millionth of the trial
-    steps (up to dmax = R/5 = 0.1): no trial is accepted, and the warning names that cause and
-    dmax beside the jammed column's (it named only the column)."""
+    """eps = 1e-8 opens gaps of at most 1e-8 (eps times a diameter) between touching spheres of
+    a settled periodic bed, a ten-millionth of the trial steps (up to dmax = R/5 = 0.1): no
+    trial is accepted, and the warning names that cause and dmax beside the jammed column's (it
+    named only the column)."""
     bed = """units lj
 atom_style sphere
 boundary p p fm

@@ -71,7 +71,9 @@ def test_a_compute_read_after_a_tap_describes_the_packing_after_it():
     """An eps variable that reads compute stereo/profile evaluates it before the tap, stamped
     with the step: the library handed out those values after the tap and the redeposition as
     current (<Z> one tap behind, every tap). After TAPMC moves atoms the computes are
-    computed again: <Z> is the spheres' mean height and fix mc/settle's."""
+    computed again: <Z> is the spheres' mean height and fix mc/settle's, and the variable,
+    read between runs (which LAMMPS allows for a compute current at the run's last step),
+    is that of the packing after the tap, not an error."""
     lmp = make_lammps()
     lmp.commands_string("""
 units lj
@@ -91,4 +93,8 @@ fix settle all mc/settle 77 floor 0.0 eta 1e-5
                                            lammps.LMP_TYPE_VECTOR)[2]
         assert mean_z == pytest.approx(heights(lmp).mean(), rel=1e-12)
         assert mean_z == pytest.approx(lmp.extract_fix("settle", 0, 1, 2), rel=1e-12)
+        phi_c = lmp.numpy.extract_compute("phi", lammps.LMP_STYLE_GLOBAL,
+                                          lammps.LMP_TYPE_VECTOR)[1]
+        assert lmp.extract_variable("e") == pytest.approx(0.01 + 0.1 * (0.58 - phi_c),
+                                                          rel=1e-12)
     lmp.close()

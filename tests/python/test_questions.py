@@ -793,7 +793,10 @@ def test_exit_status_tells_a_failed_run_from_an_unusable_input(tmp_path, capsys,
             launch.run_all(tmp_path, [], None)
         assert type(info.value) is raised and str(error) in str(info.value)
     module = command.QUESTIONS["pbc-course"]
+    from tapmc.paper import _runs
+
     for error, status in ((common.QuestionRunError("run x failed"), 1),
+                          (_runs.PoresFailed("tapmc-pores d.dump failed (2): bad"), 1),
                           (common.QuestionError("--campaign y: no such folder"), 2)):
         def measure(args, error=error):
             raise error

@@ -36,7 +36,7 @@ PORE_DUMPS = "examples/paper/in.pore_dumps"
 #: finds it, and elsewhere its defaults name folders of the current directory.
 SOURCE_DIR = source_tree() or Path(".")
 #: Where the inputs above are: $TAPMC_DATA_DIR when set (the installed tapmc-paper sets it to
-#: PREFIX/share/tapmc, which holds examples/), else the repository root.
+#: PREFIX/share/tapmc, which holds examples/), else SOURCE_DIR.
 DATA_DIR = Path(os.environ["TAPMC_DATA_DIR"]) if os.environ.get("TAPMC_DATA_DIR") else SOURCE_DIR
 
 
@@ -399,7 +399,8 @@ def pores_executable():
         candidates.append(Path(os.environ["TAPMC_PORES"]))
     if os.environ.get("TAPMC_BUILD_DIR"):
         candidates.append(Path(os.environ["TAPMC_BUILD_DIR"]) / "tools/pores/tapmc-pores")
-    candidates.append(SOURCE_DIR / "build/tools/pores/tapmc-pores")
+    if source_tree() is not None:  # an installed package looks on the PATH, as find_lmp does
+        candidates.append(source_tree() / "build/tools/pores/tapmc-pores")
     for path in candidates:
         if path.is_file() and os.access(path, os.X_OK):
             return str(path)
@@ -409,6 +410,11 @@ def pores_executable():
     raise FileNotFoundError(
         "tapmc-pores not found: build it (cmake -DTAPMC_BUILD_PORES=ON) or set TAPMC_PORES "
         "to its path; looked in " + ", ".join(str(c) for c in candidates))
+
+
+class PoresFailed(RuntimeError):
+    """tapmc-pores ended with an error (its command line and message): a failed run, exit 1
+    of the command that ran it."""
 
 
 def run_pores(dumps, prefix, args):
@@ -424,7 +430,7 @@ def run_pores(dumps, prefix, args):
     cmd = [pores_executable(), *args, "-o", str(prefix), *map(str, dumps)]
     proc = subprocess.run(cmd, capture_output=True, text=True)
     if proc.returncode != 0:
-        raise RuntimeError(f"{' '.join(cmd)} failed ({proc.returncode}): {proc.stderr.strip()}")
+        raise PoresFailed(f"{' '.join(cmd)} failed ({proc.returncode}): {proc.stderr.strip()}")
     return prefix
 
 

@@ -747,6 +747,9 @@ def _draw_and_report(args, campaign, modules, validation, out, planned):
     except TapmcFormatError as err:  # a run's output damaged: named, never left out
         print(f"tapmc-paper: {err}", file=sys.stderr)
         return 2
+    except _runs.PoresFailed as err:  # the pore tool failed on a run's dumps
+        print(f"tapmc-paper: {err}", file=sys.stderr)
+        return 1
     except OSError as err:
         print(_os_message(err), file=sys.stderr)
         return 2

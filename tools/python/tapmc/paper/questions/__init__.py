@@ -61,7 +61,7 @@ from . import (alpha_window, campaign_runs, connected_ageing, crystallinity, dma
                pore_shares, ramp_alpha, ramp_levels, ramp_pores, realization_scatter,
                seed_fits, spectral_window, theta0)
 from .calibration import load as load_scatter
-from .common import QuestionError
+from .common import QuestionError, QuestionRunError
 
 FOLDER = "questions"
 #: every question with a command: name -> its module (NAME, add_arguments, measure; the
@@ -220,4 +220,4 @@ def render_section(folder, figures=None, etas=(), front_rows=None):
 
 
 __all__ = ["render_section", "render_parts", "introduction", "FOLDER", "QUESTIONS", "GROUPS",
-           "QuestionError"]
+           "QuestionError", "QuestionRunError"]

@@ -17,6 +17,7 @@ from pathlib import Path
 from tapmc.campaign import STOPPED_STATUS, CampaignStopped
 from tapmc.readers import TapmcFormatError
 
+from .. import _runs
 from .._arguments import folder, positive_int
 from . import CAMPAIGN_QUESTIONS, QUESTIONS
 from .common import DEFAULT_CAMPAIGN, DEFAULT_OUT, QuestionError, QuestionRunError
@@ -71,7 +72,7 @@ def run(args, parser):
     except CampaignStopped as err:
         print(f"tapmc-paper question {args.question}: {err}", file=sys.stderr)
         return STOPPED_STATUS
-    except QuestionRunError as err:  # a run failed: 1
+    except (QuestionRunError, _runs.PoresFailed) as err:  # a run failed: 1
         print(f"tapmc-paper question {args.question}: {err}", file=sys.stderr)
         return 1
     except (QuestionError, TapmcFormatError) as err:  # usage, path, damaged input: 2
