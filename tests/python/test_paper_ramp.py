@@ -288,7 +288,7 @@ def test_the_second_increase_against_the_descent_is_the_papers_test_of_reversibi
     both = paper_ramp.headline_text([rows["paperramp0.125_pbc_s1"],
                                      rows["paperramp0.125_pbc_s2"]], 1e-7)
     assert "+0.0000 and +0.0020 (mean of 3 levels;" in both
-    assert ("the seeds disagree beyond their errors (seed 1 within its errors, seed 2 lies "
+    assert ("the seeds disagree beyond their errors (seed 1 lies on the descent, seed 2 lies "
             "above; chi2 = ") in both and "p < 1e-4): one answer per seed)" in both
     # seeds that reached different numbers of levels: the counts follow the seeds' order
     uneven = paper_ramp.headline_text([rows["paperramp0.125_pbc_s2"],
@@ -509,16 +509,16 @@ def test_seeds_whose_verdicts_differ_within_their_errors_are_answered_together()
     traces = [(seed(1), trace(0.0001)), (seed(2), trace(0.0013))]
     assert [t.verdict for _, t in traces] == ["retraces", "above"]
     long = paper_ramp._retrace_answer(traces)
-    assert long == ("the seeds' verdicts differ (seed 1 within its errors, seed 2 lies above) "
+    assert long == ("the seeds' verdicts differ (seed 1 lies on the descent, seed 2 lies above) "
                     "within their errors (chi2 = 4.5 for 1 dof, p = 0.034); over the 2 seeds, "
                     "+0.0007 +- 0.0006 (their errors' mean widened x 2.1 by their scatter): it "
                     "comes across the same values within its errors (how close: the register's "
                     "reversible-retraced row)")
     assert paper_ramp._retrace_answer(traces, short=True) == (
-        "together +0.0007 +- 0.0006: within its errors of the descent (seed 1 within its "
-        "errors, seed 2 lies above, within their errors)")
+        "together +0.0007 +- 0.0006: within its errors of the descent (seed 1 lies on the "
+        "descent, seed 2 lies above, within their errors)")
     apart = [(seed(1), trace(0.0001)), (seed(2), trace(0.0030))]
     assert paper_ramp._retrace_answer(apart, short=True) == (
-        "the seeds disagree beyond their errors (seed 1 within its errors, seed 2 lies above; "
-        "chi2 = "
+        "the seeds disagree beyond their errors (seed 1 lies on the descent, seed 2 lies "
+        "above; chi2 = "
         "26.3 for 1 dof, p < 1e-4): one answer per seed")

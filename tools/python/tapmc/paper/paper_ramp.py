@@ -633,7 +633,7 @@ RETRACE_ANSWERS = {
 
 
 #: A seed's verdict in words, where the seeds' verdicts differ (second increase, return to the top).
-SEED_VERDICT_WORDS = {"retraces": "within its errors", "above": "lies above", "below": "lies below",
+SEED_VERDICT_WORDS = {"retraces": "lies on the descent", "above": "lies above", "below": "lies below",
                       "loosens": "loosens", "frozen": "stays (frozen)", "compacts": "compacts"}
 
 
