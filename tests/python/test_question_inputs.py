@@ -190,3 +190,36 @@ def test_help_of_every_question(capsys, name):
     text = capsys.readouterr().out
     assert f"tapmc-paper question {name}" in text and "--out" in text
     assert f"{name}:" in text            # the question, from its module's docstring
+
+
+def test_exit_status_tells_a_failed_run_from_an_unusable_input(tmp_path, capsys, monkeypatch):
+    """1 when a run failed (or the campaign folder is in use), 2 for a usage error, a path that
+    cannot be used or a damaged input, the convention of doc/tapmc-paper.rst (every input error
+    of a question exited 1)."""
+    from tapmc.campaign import CampaignDirectoryError, CampaignError
+    from tapmc.paper.questions import command, launch
+
+    def failing(error):
+        class Failing:
+            def __init__(self, *args, **kwargs):
+                raise error
+        return Failing
+
+    for error, raised in ((CampaignError("run x failed"), common.QuestionRunError),
+                          (CampaignDirectoryError("folder y: not writable"), common.QuestionError),
+                          (ValueError("bad spec"), common.QuestionError)):
+        monkeypatch.setattr(launch, "Campaign", failing(error))
+        with pytest.raises(raised) as info:
+            launch.run_all(tmp_path, [], None)
+        assert type(info.value) is raised and str(error) in str(info.value)
+    module = command.QUESTIONS["pbc-course"]
+    from tapmc.paper import _runs
+
+    for error, status in ((common.QuestionRunError("run x failed"), 1),
+                          (_runs.PoresFailed("tapmc-pores d.dump failed (2): bad"), 1),
+                          (common.QuestionError("--campaign y: no such folder"), 2)):
+        def measure(args, error=error):
+            raise error
+        monkeypatch.setattr(module, "measure", measure)
+        assert cli.main(["question", "pbc-course", "--out", str(tmp_path)]) == status
+        assert capsys.readouterr().err == f"tapmc-paper question pbc-course: {error}\n"
