@@ -392,12 +392,18 @@ void FixMCSettle::init()
                    "redeposition: the spheres are checked for overlaps before each tap (hard "
                    "spheres are moved by fix tapdilate and fix mc/settle only; the floor, "
                    "xwalls/ywalls or a container hold the bed)", other_movers);
-  long untapped = 0, untapped_all = 0;
-  for (int i = 0; i < atom->nlocal; ++i) untapped += (atom->mask[i] & tapped_bits) ? 0 : 1;
-  MPI_Allreduce(&untapped, &untapped_all, 1, MPI_LONG, MPI_SUM, world);
-  warn_tapped_never_redeposited(tapped_bits);
+  // one pass: atoms no tap lifts, and atoms a tap lifts that no fix mc/settle redeposits
+  const int settled_bits = settled_group_bits();
+  long counts[2] = {0, 0}, counts_all[2] = {0, 0};
+  for (int i = 0; i < atom->nlocal; ++i) {
+    const bool tapped = atom->mask[i] & tapped_bits;
+    counts[0] += !tapped;
+    counts[1] += tapped && !(atom->mask[i] & settled_bits);
+  }
+  MPI_Allreduce(counts, counts_all, 2, MPI_LONG, MPI_SUM, world);
   // tapdilate dilates every atom of its group alike: tapped by any one fix, none stands still
-  every_atom_tapped = untapped_all == 0;
+  every_atom_tapped = counts_all[0] == 0;
+  warn_tapped_never_redeposited(counts_all[1]);
 
   if (comm->me == 0 && update->whichflag == 2)
     error->warning(FLERR, "fix mc/settle moves atoms during minimization; use 'run' instead");
@@ -405,30 +411,35 @@ void FixMCSettle::init()
   tapmc::request_ghost_depth(lmp, redeposition->ghost_depth(group_radius_extreme(true)));
 }
 
-// Atoms a tap lifts that no fix mc/settle redeposits rise by eps times their height at every tap,
-// for ever (a rough floor of fixed spheres tapped with 'fix tapdilate all'): warned at setup.
-void FixMCSettle::warn_tapped_never_redeposited(int tapped_bits)
+// The group bits of every fix mc/settle of the run (fixes on disjoint groups are allowed).
+int FixMCSettle::settled_group_bits() const
 {
-  int settled_bits = 0;
-  const Fix *first_settle = nullptr;  // the one that warns, once: not every fix, every run
+  int bits = 0;
   for (int i = 0; i < modify->nfix; ++i)
+    if (std::strcmp(modify->fix[i]->style, style) == 0) bits |= modify->fix[i]->groupbit;
+  return bits;
+}
+
+// Atoms a tap lifts that no fix mc/settle redeposits (`adrift`, counted in init) rise by eps
+// times their height at every tap, for ever (a rough floor of fixed spheres tapped with 'fix
+// tapdilate all'): warned once, by the run's first fix mc/settle.
+void FixMCSettle::warn_tapped_never_redeposited(long adrift)
+{
+  if (adrift == 0 || comm->me != 0 || warned_adrift) return;
+  for (int i = 0; i < modify->nfix; ++i)  // the first fix mc/settle warns, not every one
     if (std::strcmp(modify->fix[i]->style, style) == 0) {
-      settled_bits |= modify->fix[i]->groupbit;
-      if (!first_settle) first_settle = modify->fix[i];
+      if (modify->fix[i] != this) return;
+      break;
     }
-  long adrift = 0, adrift_all = 0;
-  for (int i = 0; i < atom->nlocal; ++i)
-    adrift += (atom->mask[i] & tapped_bits) && !(atom->mask[i] & settled_bits) ? 1 : 0;
-  MPI_Allreduce(&adrift, &adrift_all, 1, MPI_LONG, MPI_SUM, world);
-  if (adrift_all == 0 || comm->me != 0 || first_settle != this || warned_adrift) return;
   warned_adrift = true;
   std::string tapping;
-  for (const std::string &tapper_id : tapper_ids) tapping += (tapping.empty() ? "" : ", ") + tapper_id;
+  for (const std::string &tapper_id : tapper_ids)
+    tapping += (tapping.empty() ? "" : ", ") + tapper_id;
   error->warning(FLERR, "fix mc/settle: {} atom(s) are tapped (fix {}) but in the group of no "
-                   "fix mc/settle: nothing redeposits them, so each tap lifts them by eps times "
-                   "their height above the floor, tap after tap. Tap only the settled spheres "
-                   "(fix tapdilate on the group of fix mc/settle) or put them in its group",
-                   adrift_all, tapping);
+                 "fix mc/settle: nothing redeposits them, so each tap lifts them by eps times "
+                 "their height above the floor, tap after tap. Tap only the settled spheres "
+                 "(fix tapdilate on the group of fix mc/settle) or put them in its group",
+                 adrift, tapping);
 }
 
 // Ghosts as deep as the scheme needs: a contact, its move margin and the ghost skin.

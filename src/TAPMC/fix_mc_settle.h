@@ -133,7 +133,8 @@ class FixMCSettle : public Fix, public tapmc::ContainerHolder {
   void check_walls_inside_fixed_box();
   void find_tappers();
   std::string other_fixes_moving_atoms() const;
-  void warn_tapped_never_redeposited(int tapped_bits);
+  int settled_group_bits() const;
+  void warn_tapped_never_redeposited(long adrift);
   void require_same_tappers();
   void schedule_next_settle(bigint after);
   double effective_d_max() const;

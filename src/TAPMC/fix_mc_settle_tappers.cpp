@@ -33,7 +33,8 @@ std::string FixMCSettle::other_fixes_moving_atoms() const
   for (int i = 0; i < modify->nfix; ++i) {
     Fix *fix = modify->fix[i];
     const bool tapmc_style = dynamic_cast<tapmc::Tapper *>(fix) || std::strcmp(fix->style, style) == 0;
-    const std::string base = std::string(fix->style).substr(0, std::string(fix->style).find('/'));
+    const std::string fix_style = fix->style;
+    const std::string base = fix_style.substr(0, fix_style.find('/'));
     const bool moves = (modify->fmask[i] & kMoves) ||
                        std::find(moving_styles.begin(), moving_styles.end(), base) !=
                            moving_styles.end();

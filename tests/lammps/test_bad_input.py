@@ -711,5 +711,8 @@ def test_spheres_tapped_but_never_redeposited_are_named():
     assert rc == 0, out
     assert re.search(r"fix mc/settle: \d+ atom\(s\) are tapped \(fix tap\) but in the group of "
                      r"no fix mc/settle: nothing redeposits them", out), out
+    # once, not at every run
+    rc, out, _ = run_lammps(split.replace("run 2", "run 1\nrun 1"))
+    assert rc == 0 and out.count("are tapped (fix tap)") == 1, out
     rc, out, _ = run_lammps(split.replace("fix tap all tapdilate", "fix tap up tapdilate"))
     assert rc == 0 and "are tapped (fix tap)" not in out, out
