@@ -384,6 +384,13 @@ def test_plot_and_results_before_compute():
     ax = c.compute().plot()
     assert ax.get_ylabel() == "$q_6(i)$"
     assert "0.00 % crystalline" in repr(c)
+    # spheres with no neighbour within the cutoff: no bond, and a repr without numpy's warning
+    import warnings
+    apart = Crystallinity(np.array([[1.0, 1, 1], [3.5, 3.5, 3.5]]), 0.5, [0, 0, 0], [6, 6, 6],
+                          [False] * 3).compute()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert "mean q6 none (no bonds)" in repr(apart)
 
 
 # ---- bad input --------------------------------------------------------------------------------

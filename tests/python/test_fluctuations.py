@@ -169,6 +169,17 @@ def test_sigma_scaling_fit_and_validation():
         spectrum.x_ss = 123.0
 
 
+def test_a_window_too_short_for_batches_gives_the_naive_error_about_its_detrend():
+    # last = 3 holds no two batches of 2 taps: sem is sem_naive, about the straight line
+    for detrend in ("constant", "linear"):
+        s = SteadyState([1.0, 2.0, 4.0], last=3, detrend=detrend).compute()
+        assert s.batches_used == 0 and s.sem == s.sem_naive
+    assert SteadyState([1.0, 2.0, 4.0], last=3, detrend="linear").compute().sem == \
+        pytest.approx(np.sqrt(1.0 / 6.0) / np.sqrt(3.0))   # residuals 1/6, -1/3, 1/6; ddof 2
+    with pytest.raises(ValueError, match="x must hold numbers"):
+        SteadyState(["a", "b"])
+
+
 def test_plots():
     import matplotlib
     matplotlib.use("Agg")
@@ -177,6 +188,29 @@ def test_plots():
     assert len(ps.plot(raw=True).lines) == 3
     ss = SteadyState(rng.normal(size=2000)).compute()
     assert len(ss.plot().lines) >= 4
+
+
+@pytest.mark.parametrize("backend", ["template", None])
+def test_plot_keeps_the_users_backend_and_figures(backend):
+    # plot(ax=None) makes its figure on the backend in use: it never switches backend (a
+    # switch closes every open figure, e.g. a notebook's); headless, matplotlib picks Agg.
+    import subprocess
+    code = ("import numpy as np, matplotlib, matplotlib.pyplot as plt\n"
+            "from tapmc.fluctuations import SteadyState\n"
+            "before = matplotlib.get_backend()\n"
+            "fig, _ = plt.subplots()\n"
+            "ax = SteadyState(np.arange(10.0), last=5).compute().plot()\n"
+            "assert matplotlib.get_backend() == before, (before, matplotlib.get_backend())\n"
+            "assert plt.fignum_exists(fig.number) and ax.figure is not fig\n"
+            "print(before)\n")
+    env = {k: v for k, v in os.environ.items() if k not in ("MPLBACKEND", "DISPLAY",
+                                                            "WAYLAND_DISPLAY")}
+    env["PYTHONPATH"] = str(SOURCE / "tools" / "python")
+    if backend:
+        env["MPLBACKEND"] = backend
+    run = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.strip().lower() == (backend or "agg")
 
 
 def test_power_error_is_the_scatter_of_one_runs_spectrum():

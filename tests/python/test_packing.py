@@ -239,3 +239,45 @@ def test_radii_and_positions_of_different_lengths_are_refused_by_name():
                 np.array([[1.0, 1.0, 0.5], [2.5, 2.0, 0.5]]), np.array([0.5, 0.5, 0.5]))
     with pytest.raises(ValueError, match="radii has 3 values but positions has 2 spheres"):
         PackingCheck(bad)
+
+
+def _write_dump(path, positions, radius, box, fmt):
+    """One frame of a dump custom 'id x y z radius' with the coordinates written by ``fmt``."""
+    lines = ["ITEM: TIMESTEP", "0", "ITEM: NUMBER OF ATOMS", str(len(positions)),
+             "ITEM: BOX BOUNDS pp pp fm"] + [f"0 {b!r}" for b in box]
+    lines.append("ITEM: ATOMS id x y z radius")
+    lines += [f"{i + 1} " + " ".join(fmt % c for c in p) + f" {radius!r}"
+              for i, p in enumerate(positions)]
+    path.write_text("\n".join(lines) + "\n")
+
+
+@pytest.mark.parametrize("fmt, digits", [("%g", 6), ("%.10g", 10), ("%.17g", 17)])
+def test_the_digits_a_dump_was_written_with_decide_its_resolution(tmp_path, fmt, digits):
+    """Touching spheres of irrational radius, dumped with LAMMPS's default %g (6 digits): the
+    rounding makes some pairs closer than contact by about 1e-6, which the check must take for
+    rounding (the reader records the 6 digits), not for overlaps; at 10 and 17 digits the
+    same packing is legal too, and a real overlap of 1e-3 is found at every precision."""
+    radius = math.pi / 6
+    pos, side = square_layer(12, radius)
+    pos = pos + np.array([0.1234567891, 0.9876543219, 0.0])   # coordinates with many digits
+    path = tmp_path / "layer.dump"
+    _write_dump(path, pos, radius, (side, side, 4.0), fmt)
+    read = read_dump(path).frames[0]
+    assert read.digits == digits
+    check = PackingCheck(read).compute()
+    assert check.resolution > 0 and check.legal and check.overlaps == 0, check.min_gap
+    if digits == 6:
+        # read as if written at the paper inputs' 10 digits, the rounding looks like overlaps
+        assert PackingCheck(read, digits=10).compute().overlaps > 0
+    pos[1, 1] -= 1e-3 * 2 * radius                             # push one sphere into its neighbour
+    _write_dump(path, pos, radius, (side, side, 4.0), fmt)
+    assert PackingCheck(read_dump(path).frames[0]).compute().overlaps == 1
+
+
+def test_a_frame_made_by_hand_is_checked_at_the_paper_inputs_digits():
+    pos, side = square_layer(4, 0.5)
+    made = frame(pos, 0.5, [0, 0, 0], [side, side, 5], [True, True, False])
+    assert made.digits is None
+    assert PackingCheck(made).digits == 10 and PackingCheck(made, digits=None).digits is None
+    with pytest.raises(ValueError, match="digits"):
+        PackingCheck(made, digits="dump")

@@ -258,6 +258,13 @@ def test_read_pores_documented_format(tmp_path):
     assert hist_is_current(tmp_path / "fig10.hist.csv")
     with pytest.raises(ValueError, match="timestep = 5"):
         out.distribution(5)
+    # a timestep given as text: its name and value, not numpy's failed comparison
+    with pytest.raises(ValueError, match="timestep = '10' must be an integer"):
+        out.distribution("10")
+    assert out.distribution(np.int64(10)).selected == d10.selected
+    # one of the output's files stands for its prefix
+    for name in ("fig10.hist.csv", "fig10.frames.csv", "fig10.frame_hist.csv"):
+        assert read_pores(tmp_path / name).prefix == str(tmp_path / "fig10")
     (tmp_path / "other.hist.csv").write_text("bin\n")
     with pytest.raises(ValueError, match="give prefix"):
         read_pores(tmp_path)

@@ -282,6 +282,11 @@ def test_broken_dumps(tmp_path):
     for radius in (float("inf"), 0.0, float("nan")):
         with pytest.raises(ValueError, match="radius = .* must be finite and > 0"):
             read_dump(tmp_path / "ok.dump", radius=radius)
+    # a folder, or a missing file, named as the path was given (not as a PosixPath repr)
+    with pytest.raises(IsADirectoryError, match=f"dump file '{tmp_path}' is a directory"):
+        read_dump(tmp_path)
+    with pytest.raises(FileNotFoundError, match="dump file '.*no.dump' does not exist"):
+        read_dump(tmp_path / "no.dump")
 
 
 def test_dump_columns_the_reader_does_not_use_may_hold_text_or_nan(tmp_path):
@@ -309,6 +314,11 @@ def test_dump_columns_the_reader_does_not_use_may_hold_text_or_nan(tmp_path):
     e = _expect(_write(tmp_path, "badr.dump", extra.replace("0.5 2.5", "inf 2.5")), 11,
                 read_dump)
     assert "radius 'inf' is not finite" in str(e)
+    # the digits the coordinates were written with: the most over the column, at least %g's 6
+    assert frame.digits == 6
+    long = _write(tmp_path, "long.dump", extra.replace("1.5 0.5 0.5 0.5 2.5",
+                                                       "1.500000000001 0.5 0.5 0.5 2.5"))
+    assert read_dump(long).frames[0].digits == 13
 
 
 def test_broken_log_ave_time_print(tmp_path):

@@ -82,6 +82,10 @@ def test_settings_from_the_log(tmp_path):
                             "eta = 1e-5, stop change (default), seed = 7, 60 taps")
     assert TubeSettings.from_log(tmp_path / "missing.log").describe() == (
         "N = ?, tube D = ?, eps = ?, eta = ?, stop ?, ? taps")
+    # a run in a box is not described as a tube of unknown diameter
+    box_log = SOURCE / "examples" / "tapping" / "log.29Nov26.tapping_pbc.g++.1"
+    with pytest.raises(ValueError, match="not a run in a tube .*container ID"):
+        TubeSettings.from_log(box_log)
 
 
 def test_settings_state_a_stop_rule_and_dmax_the_input_sets(tmp_path):

@@ -40,6 +40,8 @@ _EXPORTS = {
 }
 _SUBMODULES = tuple(_EXPORTS)
 _HOME = {name: module for module, names in _EXPORTS.items() for name in names}
+# what every analysis class raises when a result is read before compute()
+_HOME["NotComputedError"] = "_validate"
 
 
 def __getattr__(name):
@@ -58,4 +60,4 @@ def __dir__():
     return sorted(set(globals()) | set(__all__))
 
 
-__all__ = list(_SUBMODULES) + [name for names in _EXPORTS.values() for name in names]
+__all__ = list(_SUBMODULES) + sorted(_HOME)

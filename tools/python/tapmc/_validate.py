@@ -21,9 +21,17 @@ def require(obj, attr, method="compute"):
     return value
 
 
+def float_array(name, values):
+    """``values`` as a float array, or ValueError naming ``name`` (not numpy's bare message)."""
+    try:
+        return np.asarray(values, dtype=float)
+    except (TypeError, ValueError) as error:
+        raise ValueError(f"{name} must hold numbers: {error}") from None
+
+
 def as_1d(name, values, min_len=1, finite=True):
     """A 1-D float array of at least ``min_len`` entries (all finite if ``finite``)."""
-    arr = np.asarray(values, dtype=float)
+    arr = float_array(name, values)
     if arr.ndim != 1:
         raise ValueError(f"{name} must be one-dimensional, got shape {arr.shape}")
     if arr.size < min_len:
@@ -35,7 +43,7 @@ def as_1d(name, values, min_len=1, finite=True):
 
 
 def as_2d(name, values, min_rows=1, min_cols=1):
-    arr = np.asarray(values, dtype=float)
+    arr = float_array(name, values)
     if arr.ndim != 2:
         raise ValueError(f"{name} must be two-dimensional (realizations x taps), "
                          f"got shape {arr.shape}")
@@ -97,15 +105,10 @@ def choice(name, value, allowed):
 
 
 def new_axis(ax):
-    """The given matplotlib axis, or a new figure's axis (Agg backend, no display needed)."""
+    """The given matplotlib axis, or a new figure's axis on the user's backend: never switched
+    (a switch closes the user's open figures); without a display matplotlib itself picks Agg."""
     if ax is not None:
         return ax
-    import matplotlib
-    if matplotlib.get_backend().lower() not in ("agg", "pdf", "svg", "ps", "cairo"):
-        try:
-            matplotlib.use("Agg")
-        except Exception:  # backend already fixed by the user: keep it
-            pass
     import matplotlib.pyplot as plt
     _, ax = plt.subplots()
     return ax

@@ -414,6 +414,9 @@ class Crystallinity:
     def __repr__(self):
         if self._n is None:
             return f"<Crystallinity of {self.positions.shape[0]} spheres: not computed>"
+        q6 = self.q[CRYSTAL_L]
+        bonded = np.isfinite(q6)   # q6 is NaN for a sphere without neighbours
+        mean_q6 = f"{np.mean(q6[bonded]):.4f}" if bonded.any() else "none (no bonds)"
         return (f"<Crystallinity {self.n} spheres, cutoff {self.cutoff:.4g}: "
                 f"{100 * self.crystalline_fraction:.2f} % crystalline, "
-                f"Q6 {self.Q[CRYSTAL_L]:.4f}, mean q6 {np.nanmean(self.q[CRYSTAL_L]):.4f}>")
+                f"Q6 {self.Q[CRYSTAL_L]:.4f}, mean q6 {mean_q6}>")

@@ -32,10 +32,13 @@ class Frame:
     the header; ``ids`` (N,) sorted ascending; ``positions`` (N, 3) in the dump's own frame
     (absolute coordinates, not shifted to the origin; scaled ``xs`` columns converted);
     ``radii`` (N,) from a ``radius`` or ``diameter`` column (or the reader's ``radius``
-    argument), else None; ``types`` (N,) or None; ``fields`` dict of every per-atom column."""
+    argument), else None; ``types`` (N,) or None; ``fields`` dict of every per-atom column;
+    ``digits``: the significant digits the dump wrote its coordinates with (at least 6,
+    LAMMPS's default ``%g``; 10 after ``dump_modify format float %.10g``), None for positions
+    not read from text."""
 
     def __init__(self, step, box_lo, box_hi, periodic, ids, positions, radii=None, types=None,
-                 fields=None):
+                 fields=None, digits=None):
         self.step = step
         self.box_lo = np.asarray(box_lo, dtype=float)
         self.box_hi = np.asarray(box_hi, dtype=float)
@@ -45,6 +48,7 @@ class Frame:
         self.radii = radii
         self.types = types
         self.fields = fields or {}
+        self.digits = digits
 
     @property
     def n_atoms(self):
@@ -56,6 +60,13 @@ class Frame:
 
 _COORDS = (("x", "y", "z", False), ("xs", "ys", "zs", True), ("xu", "yu", "zu", False),
            ("xsu", "ysu", "zsu", True))
+_COORD_NAMES = frozenset(name for names in _COORDS for name in names[:3])
+#: significant digits of LAMMPS's default float format in dumps (``%g``): the fewest a dump
+#: holds, whatever its numbers' trailing zeros
+DEFAULT_DUMP_DIGITS = 6
+# coordinates sampled per column to find the digits they were written with: %.10g trims a
+# trailing zero one time in ten, so 64 values all shorter than written happen 1e-64 of the time
+_DIGITS_SAMPLE = 64
 # the columns a Frame is made of: finite numbers required (others may hold text, NaN or inf)
 _USED_COLUMNS = frozenset({"id", "type", "radius", "diameter"}
                           | {name for triple in _COORDS for name in triple[:3]})
@@ -162,9 +173,28 @@ def _read_frame_header(lines, line):
     return _FrameHeader(step, n_atoms, bounds, flags, columns, lines.lineno)
 
 
+def _significant_digits(word):
+    """Significant digits of one number as written: '-1.50e+01' -> 3, '0.000123' -> 3."""
+    mantissa = word.lstrip("+-").split("e")[0].split("E")[0].replace(".", "")
+    return len(mantissa.lstrip("0"))
+
+
+def _written_digits(header, words):
+    """The significant digits the coordinates were written with: the most over a sample of each
+    coordinate column, and at least LAMMPS's default %g's."""
+    width = len(header.columns)
+    digits = DEFAULT_DUMP_DIGITS
+    for j, name in enumerate(header.columns):
+        if name in _COORD_NAMES:
+            sample = words[j:j + width * _DIGITS_SAMPLE:width]
+            digits = max([digits] + [_significant_digits(w) for w in sample])
+    return digits
+
+
 def _read_atom_table(lines, header):
-    """The per-atom block: an (N, columns) float array and a dict of the text columns (e.g.
-    ``element``: their strings; NaN in the array). Parsed whole when it is clean (every line of
+    """The per-atom block: an (N, columns) float array, a dict of the text columns (e.g.
+    ``element``: their strings; NaN in the array) and the significant digits of the
+    coordinates (:func:`_written_digits`). Parsed whole when it is clean (every line of
     the header's width: a short line and a long one would otherwise make up the total and shift
     the fields between atoms), column by column otherwise so that the error names the bad line.
     The columns the reader uses (ids, types, coordinates, radii) must be finite numbers; any
@@ -172,38 +202,38 @@ def _read_atom_table(lines, header):
     n_atoms, width = header.n_atoms, len(header.columns)
     text = [lines.next_in_frame() for _ in range(n_atoms)]
     used = [j for j, name in enumerate(header.columns) if name in _USED_COLUMNS]
-    if all(len(t.split()) == width for t in text):
-        try:
-            table = np.array(" ".join(text).split(), dtype=float).reshape(n_atoms, width)
-        except ValueError:
-            table = None
-        if table is not None and np.all(np.isfinite(table[:, used])):
-            return table, {}
-    words = []
     for a, line_text in enumerate(text):
-        fields = line_text.split()
-        if len(fields) != width:
+        if len(line_text.split()) != width:
             raise lines.error(f"expected {width} fields ({' '.join(header.columns)}), "
-                              f"found {len(fields)}", header.line + 1 + a)
-        words.append(fields)
-    words = np.array(words, dtype=str).reshape(n_atoms, width)
+                              f"found {len(line_text.split())}", header.line + 1 + a)
+    words = " ".join(text).split()
+    digits = _written_digits(header, words)
+    try:
+        table = np.array(words, dtype=float).reshape(n_atoms, width)
+    except ValueError:
+        table = None
+    if table is not None and np.all(np.isfinite(table[:, used])):
+        return table, {}, digits
+    # a text column (e.g. element) or a non-finite used column: parsed column by column from
+    # the same words (every line has the header's width, so column j is words[j::width])
     table = np.empty((n_atoms, width))
     text_columns = {}
     for j, name in enumerate(header.columns):
+        column = words[j::width]
         try:
-            table[:, j] = words[:, j].astype(float)
+            table[:, j] = np.array(column, dtype=float)
         except ValueError:
             if j in used:
-                a = next(a for a in range(n_atoms) if not is_float(words[a, j]))
-                raise lines.error(f"non-numeric {name} {words[a, j]!r}",
+                a = next(a for a in range(n_atoms) if not is_float(column[a]))
+                raise lines.error(f"non-numeric {name} {column[a]!r}",
                                   header.line + 1 + a) from None
             table[:, j] = np.nan
-            text_columns[name] = words[:, j]
+            text_columns[name] = np.array(column, dtype=str)
             continue
         if j in used and not np.all(np.isfinite(table[:, j])):
             a = int(np.flatnonzero(~np.isfinite(table[:, j]))[0])
-            raise lines.error(f"{name} {words[a, j]!r} is not finite", header.line + 1 + a)
-    return table, text_columns
+            raise lines.error(f"{name} {column[a]!r} is not finite", header.line + 1 + a)
+    return table, text_columns, digits
 
 
 def _periodic_axes(boundary, flags):
@@ -236,7 +266,7 @@ def _integer_column(path, header, table, col, name):
     return values.astype(np.int64)
 
 
-def _frame_from_table(path, header, table, text_columns, radius, boundary):
+def _frame_from_table(path, header, table, text_columns, digits, radius, boundary):
     """The Frame of a parsed block, atoms sorted by id."""
     n_atoms = header.n_atoms
     lo = np.array([b[0] for b in header.bounds])
@@ -260,7 +290,8 @@ def _frame_from_table(path, header, table, text_columns, radius, boundary):
     types = _integer_column(path, header, table, col, "type")[order] if "type" in col else None
     fields = {name: text_columns[name][order] if name in text_columns else table[order, j]
               for j, name in enumerate(header.columns)}
-    return Frame(header.step, lo, hi, periodic, ids[order], pos[order], radii, types, fields)
+    return Frame(header.step, lo, hi, periodic, ids[order], pos[order], radii, types, fields,
+                 digits)
 
 
 def _parse_dump_frames(path, radius=None, boundary=None):
@@ -277,9 +308,9 @@ def _parse_dump_frames(path, radius=None, boundary=None):
             if not line.strip():
                 continue
             header = _read_frame_header(lines, line)
-            table, text_columns = _read_atom_table(lines, header)
+            table, text_columns, digits = _read_atom_table(lines, header)
             frames += 1
-            yield _frame_from_table(path, header, table, text_columns, radius, boundary)
+            yield _frame_from_table(path, header, table, text_columns, digits, radius, boundary)
     if frames == 0:
         raise TapmcFormatError(path, None, "empty file: no dump frame" if lines.lineno == 1
                                else "no dump frame: the file holds only blank lines")
@@ -306,8 +337,11 @@ class Dump:
     """
 
     def __init__(self, path, radius=None, boundary=None, backend="native"):
+        if os.path.isdir(path):
+            raise IsADirectoryError(f"dump file {os.fspath(path)!r} is a directory: give one "
+                                    "dump file (read_dump reads one file's frames)")
         if not os.path.isfile(path):
-            raise FileNotFoundError(f"dump file {path!r} does not exist")
+            raise FileNotFoundError(f"dump file {os.fspath(path)!r} does not exist")
         if backend not in ("native", "mdanalysis"):
             raise ValueError(f"backend = {backend!r} must be 'native' or 'mdanalysis'")
         if radius is not None and not 0 < float(radius) < np.inf:

@@ -101,8 +101,9 @@ class SteadyState:
         self._std = float(np.std(self.deviations(), ddof=1 if self.detrend == "constant" else 2))
         used = min(self.batches, self.last // 2)  # batches of at least 2 taps each
         self._batches_used = used if used >= 2 else 0
-        self._sem = _batch_sem(seg, used)
         self._sem_naive = self._std / np.sqrt(len(seg))
+        # a window too short for two batches: the naive error, about ``detrend`` as sem_naive
+        self._sem = _batch_sem(seg, used) if used >= 2 else self._sem_naive
         return self
 
     def deviations(self):

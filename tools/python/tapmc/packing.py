@@ -41,8 +41,11 @@ __all__ = ["PackingCheck", "CONTACT_TOLERANCE", "DUMP_DIGITS", "WALL_FACTOR", "T
 #: relative contact tolerance of the model: i and j overlap when |r_ij| < (R_i + R_j)(1 - tol)
 #: (src/TAPMC/tapmc_defaults.h, kContactTolerance)
 CONTACT_TOLERANCE = 1e-10
-#: significant digits of the coordinates in the paper inputs' dumps (``format float %.10g``)
+#: significant digits of the coordinates in the paper inputs' dumps (``format float %.10g``),
+#: taken for a frame that does not say how it was written (one made by hand)
 DUMP_DIGITS = 10
+#: ``digits`` default: the frame's own (``Frame.digits``, read from the dump's text)
+FRAME_DIGITS = "frame"
 
 
 class PackingCheck:
@@ -50,8 +53,10 @@ class PackingCheck:
 
     ``frame``: a :class:`tapmc.readers.Frame` with radii (a dump with a ``radius`` column, or
     read with ``radius=``). ``floor``: height of the floor (default: the box's lower z bound,
-    as the compute's default). ``digits``: significant digits of the dump's coordinates
-    (``None``: exact positions, resolution 0). ``contact_tolerance``: the model's relative
+    as the compute's default). ``digits``: significant digits of the dump's coordinates (default
+    ``"frame"``: those the dump was written with, ``frame.digits``, e.g. 6 for LAMMPS's default
+    ``%g`` and 10 for ``%.10g``; 10 for a frame made by hand; ``None``: exact positions,
+    resolution 0). ``contact_tolerance``: the model's relative
     tolerance. ``cylinder``: the container of a tube run (a :class:`tapmc.cylinder.Cylinder`
     wider than the largest sphere), None for a box.
 
@@ -66,7 +71,7 @@ class PackingCheck:
     ``phi_c``, ``z_mean`` (<Z> above the floor), ``surface`` (h_s) and ``window_top``
     (z_top); in a tube (``cylinder``) also ``phi_wall`` and ``phi_core``."""
 
-    def __init__(self, frame, floor=None, digits=DUMP_DIGITS,
+    def __init__(self, frame, floor=None, digits=FRAME_DIGITS,
                  contact_tolerance=CONTACT_TOLERANCE, cylinder=None):
         if frame.radii is None:
             raise ValueError("frame has no radii: read the dump with a radius column or "
@@ -88,6 +93,8 @@ class PackingCheck:
                                  "overlap its own image)")
         self.floor = (float(self.box_lo[2]) if floor is None
                       else in_range("floor", floor, -math.inf, math.inf))
+        if isinstance(digits, str) and digits == FRAME_DIGITS:
+            digits = getattr(frame, "digits", None) or DUMP_DIGITS
         self.digits = None if digits is None else positive_int("digits", digits)
         self.contact_tolerance = positive("contact_tolerance", contact_tolerance,
                                           allow_zero=True)

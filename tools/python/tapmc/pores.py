@@ -37,7 +37,7 @@ import re
 import numpy as np
 
 from ._legends import place_legend
-from ._validate import as_1d, in_range, new_axis, same_length
+from ._validate import as_1d, in_range, new_axis, positive_int, same_length
 from .fluctuations import jackknife_error
 from .laws import Law
 from .readers import TapmcFormatError
@@ -218,6 +218,12 @@ class PoreDistribution:
         return ax
 
 
+#: the files of one ``tapmc-pores -o PREFIX`` run, after PREFIX (frame_hist before hist: the
+#: longer suffix first)
+_OUTPUT_SUFFIXES = (".frame_hist.csv", ".hist.csv", ".frames.csv", ".p0.csv", ".pores.csv",
+                    ".json")
+
+
 class PoreOutput:
     """The output files of one ``tapmc-pores -o PREFIX`` run: ``hist`` (PREFIX.hist.csv,
     aggregate), ``frames`` (PREFIX.frames.csv), and when present ``frame_hist``
@@ -275,9 +281,10 @@ class PoreOutput:
         if self.frame_hist is None:
             raise ValueError(f"{self.prefix}.frame_hist.csv is missing: run tapmc-pores with "
                              "--frame-hist for per-timestep distributions")
+        timestep = positive_int("timestep", timestep, minimum=0)
         fsel = self.frames["timestep"] == timestep
         if not np.any(fsel):
-            raise ValueError(f"timestep = {timestep} is not in {self.prefix}.frames.csv; "
+            raise ValueError(f"timestep = {timestep!r} is not in {self.prefix}.frames.csv; "
                              f"timesteps are {self.timesteps}")
         fh = self.frame_hist
         frames = list(zip(self.frames["file"][fsel], self.frames["frame"][fsel],
@@ -335,9 +342,14 @@ class PoreOutput:
 
 def read_pores(path, prefix=None):
     """Open the outputs of ``tapmc-pores -o PREFIX``. ``path`` is the prefix itself (e.g.
-    ``out/fig10``) or a directory holding exactly one ``*.hist.csv`` (or give ``prefix``, the
-    file-name prefix inside that directory)."""
-    path = str(path)
+    ``out/fig10``), one of its files (``out/fig10.hist.csv``, ``.frames.csv``, ...) or a
+    directory holding exactly one ``*.hist.csv`` (or give ``prefix``, the file-name prefix
+    inside that directory)."""
+    path = os.fspath(path)
+    for suffix in _OUTPUT_SUFFIXES:
+        if path.endswith(suffix) and os.path.isfile(path):
+            path = path[:-len(suffix)]
+            break
     if os.path.isdir(path):
         if prefix is None:
             hists = sorted(f for f in os.listdir(path) if f.endswith(".hist.csv"))

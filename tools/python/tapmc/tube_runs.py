@@ -89,7 +89,7 @@ class TubeSettings:
         create_packing, fix tapdilate, fix mc/settle and the container's region); ``taps``
         overrides the last ``run N``. ``path``: the log's path, or a
         :class:`~tapmc.readers.Log` (its ``path``). A missing file gives an empty
-        TubeSettings."""
+        TubeSettings; a log whose fix mc/settle has no tube (a box run) raises ValueError."""
         path = Path(log_path(path))
         text = path.read_text(errors="replace") if path.is_file() else ""
 
@@ -105,7 +105,9 @@ class TubeSettings:
         eta = re.search(r"\beta\s+(\S+)", settle) if settle else None
         try:
             cylinder = Cylinder.from_log(path) if text else None
-        except ValueError:
+        except ValueError as error:
+            if settle is not None:   # a run, but in a box: its settings are not a tube's
+                raise ValueError(f"{path}: not a run in a tube ({error})") from None
             cylinder = None
         run = last(r"^run\s+(\S+)")
         return cls(n=int(float(packing[-1][0])) if packing else None,
