@@ -7,6 +7,7 @@
 #include "compute_contacts.h"
 
 #include "lammps_citation.h"
+#include "lammps_compat.h"
 #include "lammps_container.h"
 #include "lammps_keywords.h"
 #include "lammps_support.h"
@@ -85,6 +86,7 @@ ComputeContacts::ComputeContacts(LAMMPS *lmp, int narg, char **arg) :
   size_array_rows = contacts::kHistogramRows;
   size_array_cols = kArrayColumns;
   extarray = 0;
+  comm_forward = 1;  // the group bit, for a dynamic group's ghosts
 
   vector = new double[kVectorSize];
   for (int i = 0; i < kVectorSize; ++i) vector[i] = 0.0;
@@ -92,6 +94,24 @@ ComputeContacts::ComputeContacts(LAMMPS *lmp, int narg, char **arg) :
   for (int z = 0; z < contacts::kHistogramRows; ++z) {
     array[z][0] = z;
     array[z][1] = 0.0;
+  }
+}
+
+int ComputeContacts::pack_forward_comm(int n, int *list, double *buf, int, int *)
+{
+  const int *mask = atom->mask;
+  for (int k = 0; k < n; ++k) buf[k] = (mask[list[k]] & groupbit) ? 1.0 : 0.0;
+  return n;
+}
+
+void ComputeContacts::unpack_forward_comm(int n, int first, double *buf)
+{
+  int *mask = atom->mask;
+  for (int k = 0; k < n; ++k) {
+    if (buf[k] != 0.0)
+      mask[first + k] |= groupbit;
+    else
+      mask[first + k] &= ~groupbit;
   }
 }
 
@@ -155,7 +175,9 @@ void ComputeContacts::init()
   if (domain->triclinic)
     error->all(FLERR, "{}: triclinic boxes are not supported; use an orthogonal box", kStyle);
   tapmc::quiet_sorting_without_pair_style(lmp);
-  const double r_max = group_radius_max();
+  // a dynamic group is filled after init (at setup) and may take any atom later: the ghosts
+  // and the container are sized for every atom
+  const double r_max = group_radius_max(group->dynamic[igroup] != 0);
   resolve_container(r_max);
   tapmc::require_ghosts_of_every_atom(lmp, kStyle, "the contacts across sub-domain and "
                                       "periodic faces would be missed", "", groupbit);
@@ -168,15 +190,17 @@ void ComputeContacts::init()
                                       (force->pair != nullptr ? neighbor->skin : 0.0));
 }
 
-// Largest radius of the group's atoms (collective); stops when one has no positive radius.
-double ComputeContacts::group_radius_max()
+// Largest radius of the group's atoms, or of all atoms (any_atom_may_join: a dynamic group);
+// collective; stops when one has no positive radius.
+double ComputeContacts::group_radius_max(bool any_atom_may_join)
 {
   if (fixed_radius_ > 0.0) return fixed_radius_;
   const int *mask = atom->mask;
   const double *radius = atom->radius;
+  const int bits = any_atom_may_join ? group->bitmask[0] : groupbit;  // group 0: all
   double local[2] = {0.0, -std::numeric_limits<double>::infinity()};  // max R, -min R
   for (int i = 0; i < atom->nlocal; ++i) {
-    if (!(mask[i] & groupbit)) continue;
+    if (!(mask[i] & bits)) continue;
     local[0] = std::max(local[0], radius[i]);
     local[1] = std::max(local[1], -radius[i]);
   }
@@ -184,7 +208,7 @@ double ComputeContacts::group_radius_max()
   MPI_Allreduce(local, global, 2, MPI_DOUBLE, MPI_MAX, world);
   if (!(-global[1] > 0.0) && global[1] != -std::numeric_limits<double>::infinity())
     error->all(FLERR, "{}: per-atom radius must be > 0 (an atom of group {} has radius {})",
-               kStyle, group->names[igroup], -global[1]);
+               kStyle, any_atom_may_join ? "all" : group->names[igroup], -global[1]);
   return global[0];
 }
 
@@ -215,6 +239,9 @@ void ComputeContacts::count()
 {
   const double r_max = group_radius_max();
   check_ghost_shell(r_max);
+  // A dynamic group's membership changes on owned atoms only (fix GROUP of LAMMPS 29 Sep 2021
+  // does not refresh the ghosts' masks until the next rebuild): send it to the ghosts.
+  if (group->dynamic[igroup]) tapmc::compat::forward_comm_compute(comm, this);
   const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
   const int *mask = atom->mask;
   double **x = atom->x;

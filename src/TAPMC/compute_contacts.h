@@ -22,6 +22,9 @@ class ComputeContacts : public Compute, public tapmc::ContainerHolder {
   void compute_vector() override;
   void compute_array() override;
   double memory_usage() override;
+  // the group's bit of each owned atom to its ghosts (a dynamic group, see count())
+  int pack_forward_comm(int n, int *list, double *buf, int pbc_flag, int *pbc) override;
+  void unpack_forward_comm(int n, int first, double *buf) override;
   // tapmc::ContainerHolder, for fix mc/settle's check of one container per run. Without
   // 'container' the compute counts contacts between spheres only, in a tube too (as without
   // 'floor' it leaves out the floor): a choice, not a mismatch.
@@ -47,7 +50,7 @@ class ComputeContacts : public Compute, public tapmc::ContainerHolder {
 
   void parse_arguments(int narg, char **arg);
   void resolve_container(double max_sphere_radius);
-  double group_radius_max();
+  double group_radius_max(bool any_atom_may_join = false);
   double ghost_depth_needed(double r_max) const;
   void check_ghost_shell(double r_max);
   void count();

@@ -33,6 +33,8 @@ std::string FixMCSettle::other_fixes_moving_atoms() const
   for (int i = 0; i < modify->nfix; ++i) {
     Fix *fix = modify->fix[i];
     const bool tapmc_style = dynamic_cast<tapmc::Tapper *>(fix) || std::strcmp(fix->style, style) == 0;
+    // a dynamic group's own fix (style GROUP) updates membership, never positions
+    if (std::strcmp(fix->style, "GROUP") == 0) continue;
     const std::string fix_style = fix->style;
     const std::string base = fix_style.substr(0, fix_style.find('/'));
     const bool moves = (modify->fmask[i] & kMoves) ||

@@ -5,6 +5,7 @@
 #define TAPMC_LAMMPS_COMPAT_H
 
 #include "comm.h"
+#include "compute.h"
 #include "domain.h"
 #include "neighbor.h"
 
@@ -26,6 +27,16 @@ inline void forward_comm_fix(LAMMPS_NS::Comm *comm, LAMMPS_NS::Fix *fix)
   comm->forward_comm(fix);
 #else
   comm->forward_comm_fix(fix);
+#endif
+}
+
+// Forward communication of a compute's per-atom data (pack/unpack_forward_comm).
+inline void forward_comm_compute(LAMMPS_NS::Comm *comm, LAMMPS_NS::Compute *compute)
+{
+#if TAPMC_LAMMPS_NEW_API
+  comm->forward_comm(compute);
+#else
+  comm->forward_comm_compute(compute);
 #endif
 }
 

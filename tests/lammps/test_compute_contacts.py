@@ -176,6 +176,37 @@ def test_counts_after_taps_equal_an_all_pairs_count_and_python(nprocs):
     assert thermo[-1, 1] < thermo[-1, 2] < thermo[-1, 3] < thermo[-1, 4]
 
 
+@pytest.mark.parametrize("nprocs", [1, 2])
+def test_a_dynamic_group_counts_its_members_with_ghosts_for_any_atom(nprocs):
+    """A dynamic group is empty at init (LAMMPS fills it at setup): the ghosts were sized from
+    its radii then, 0, and the compute stopped with 'set comm_modify cutoff'. Sized for every
+    atom, it counts, at each dumped step, the contacts between the group's members (dumped with
+    gmask) as an all-pairs count of them does, on 1 and 2 ranks."""
+    script = TAPPED.split("compute z0")[0] + """variable low atom z<5
+group low dynamic all var low every 1
+variable member atom gmask(low)
+compute zl low contacts 0.01 floor 0.0
+fix tap all tapdilate 0.01 floor 0.0
+fix settle all mc/settle 4928 floor 0.0 eta 1e-5
+dump d all custom 1 low.dump id x y z radius c_zl v_member
+dump_modify d sort id format float %.17g
+run 2
+"""
+    rc, out, wd = run_lammps(script, nprocs=nprocs)
+    assert rc == 0, out[-2000:]
+    assert "move(s) atoms besides" not in out and "GROUP" not in out.split("run 2")[-1]
+    frames = read_dump(os.path.join(wd, "low.dump"))
+    assert [f[0] for f in frames] == [0, 1, 2]
+    for step, box, bounds, cols in frames:
+        member = cols["v_member"] == 1
+        assert 50 < member.sum() < len(member), step
+        xyz = np.column_stack([cols["x"], cols["y"], cols["z"]])[member]
+        expected = brute_force(xyz, cols["radius"][member], box,
+                               [b == "pp" for b in bounds], 0.01, floor=0.0)
+        np.testing.assert_array_equal(cols["c_zl"][member].astype(int), expected,
+                                      err_msg=f"step {step}")
+
+
 TUBE = """units lj
 atom_style sphere
 boundary f f fm
