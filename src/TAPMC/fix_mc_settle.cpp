@@ -169,7 +169,7 @@ FixMCSettle::FixMCSettle(LAMMPS *lmp, int narg, char **arg) :
   atom->add_callback(Atom::GROW);
   FixMCSettle::grow_arrays(atom->nmax);
 
-  const bool decomposed = scheme == Scheme::Domain || (scheme == Scheme::Auto && comm->nprocs > 1);
+  decomposed = scheme == Scheme::Domain || (scheme == Scheme::Auto && comm->nprocs > 1);
   if (decomposed)
     redeposition = std::make_unique<DecomposedRedeposition>(*this);
   else

@@ -74,6 +74,7 @@ class FixMCSettle : public Fix, public tapmc::ContainerHolder {
   // the rank count); domain = the decomposed redeposition (lammps_domain_settle.h); auto =
   // gather on one rank, domain on several.
   enum class Scheme { Auto, Gather, Domain } scheme;
+  bool decomposed = false;    // the scheme in use: domain (true) or gather, fixed when defined
   tapmc::ThetaLaw theta_law = tapmc::ThetaLaw::Angle;  // 'theta_law' (tapmc_trial_move.h)
   // 'container REGION-ID': a vertical cylindrical container (lammps_container.h) replacing the
   // side walls; empty without one. Resolved when the fix is defined and again in init().

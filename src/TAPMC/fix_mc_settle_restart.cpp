@@ -25,24 +25,27 @@ using namespace LAMMPS_NS;
 // and the last diagnostics [1]-[6]. Its layouts, told apart by the first double:
 // - kLayoutSettings (today's): the marker, the seed as two exact 32-bit halves, the values of
 //   restart_settings() in its order, the diagnostics in the order of restart_diagnostics();
+// - kLayoutSettingsNoGrid (written before the processor grid was kept): the same without the
+//   grid, which such files do not tell (it is then not compared);
 // - kLayoutSettingsNoLaw (written before 'theta_law' existed): the same without theta_law; such
 //   runs had 'theta_law angle';
 // - kLayoutSettingsNoStop (written before 'stop' and 'window' existed): the same without the
 //   settings that came with the stop rule and theta_law; such runs had 'stop change' and the
 //   default window;
 // - seed only (the first runs; the first double is the seed itself, >= 1): seed, diagnostics.
-// Files of all four are read: no release has been cut yet, but runs of every layout may exist.
+// Files of all five are read: no release has been cut yet, but runs of every layout may exist.
 // Markers are negative (they cannot be the seed of the seed-only layout) and decrease with each
 // new layout, so that a setting added with layout m is stored in every layout <= m.
 namespace {
-constexpr double kLayoutSettings = -4.0;
+constexpr double kLayoutSettings = -5.0;
+constexpr double kLayoutSettingsNoGrid = -4.0;
 constexpr double kLayoutSettingsNoLaw = -3.0;
 constexpr double kLayoutSettingsNoStop = -2.0;
 }  // namespace
 
 // One setting in the restart record: its name in the changed-settings warning, this fix's value
 // and, for a setting added after the first settings layout, the layout that added it and the
-// value a file of an older layout (without it) implies. `meaning`: what the value stands for
+// value a file of an older layout (without it) implies (NaN: unknown, not compared). `meaning`: what the value stands for
 // when it is the setting's "not given" (dmax 0: R/5 of the radii; walls NaN: the box faces), so
 // that a default and the value it stands for, written either way, compare equal.
 struct FixMCSettle::RestartSetting {
@@ -57,6 +60,9 @@ struct FixMCSettle::RestartSetting {
 std::vector<FixMCSettle::RestartSetting> FixMCSettle::restart_settings() const
 {
   auto wall = [this](int dim, int side) { return walls_given[dim] ? wall_pos[dim][side] : NAN; };
+  // scheme domain: the grid shapes the trajectory (sub-domains redeposit in rounds); scheme
+  // gather gives the same trajectory on any grid, stored as 0
+  auto grid = [this](int dim) { return decomposed ? static_cast<double>(comm->procgrid[dim]) : 0.0; };
   using Meaning = RestartSetting::Meaning;
   return {
       {"dmax (0 = default R/5)", d_max, kLayoutSettingsNoStop, 0.0, Meaning::DMax},
@@ -75,7 +81,10 @@ std::vector<FixMCSettle::RestartSetting> FixMCSettle::restart_settings() const
       {"window", static_cast<double>(drift_window), kLayoutSettingsNoLaw,
        static_cast<double>(tapmc::defaults::kSettleDriftWindow)},
       {"theta_law (0 angle, 1 solid, 2 exponential, 3 linear)",
-       static_cast<double>(static_cast<int>(theta_law)), kLayoutSettings, 0.0},
+       static_cast<double>(static_cast<int>(theta_law)), kLayoutSettingsNoGrid, 0.0},
+      {"processors x (0 = scheme gather, any grid)", grid(0), kLayoutSettings, NAN},
+      {"processors y", grid(1), kLayoutSettings, NAN},
+      {"processors z", grid(2), kLayoutSettings, NAN},
   };
 }
 
@@ -131,14 +140,15 @@ void FixMCSettle::restart(char *buf)
       changed += fmt::format("{}{} {} -> {}", changed.empty() ? "" : ", ", name, text(old_value),
                              text(new_value));
   };
-  if (layout == kLayoutSettings || layout == kLayoutSettingsNoLaw ||
-      layout == kLayoutSettingsNoStop) {
+  if (layout == kLayoutSettings || layout == kLayoutSettingsNoGrid ||
+      layout == kLayoutSettingsNoLaw || layout == kLayoutSettingsNoStop) {
     const auto old_seed = static_cast<std::int64_t>((static_cast<std::uint64_t>(next[0]) << 32) |
                                                     static_cast<std::uint64_t>(next[1]));
     next += 2;
     if (old_seed != seed) changed += fmt::format("seed {} -> {}", old_seed, seed);
     for (const RestartSetting &setting : restart_settings()) {
       const bool stored = layout <= setting.added_in_layout;
+      if (!stored && std::isnan(setting.implied_before)) continue;  // the file does not tell
       compare(setting.name, stored ? *next++ : setting.implied_before, setting.value,
               setting.meaning);
     }

@@ -118,7 +118,32 @@ def test_restart_round_trip_is_exact(tmp_path, nprocs, grid, scheme, eps, seed, 
               + FINAL_DUMP)
     rc, out, _ = run_lammps(second, nprocs=nprocs, workdir=wd)
     assert rc == 0, out
+    assert "differ from the restart file" not in out, out
     assert dump_atoms_text(wd_full) == dump_atoms_text(wd)
+
+
+def test_a_restart_read_on_another_grid_by_scheme_domain_is_named(tmp_path):
+    # scheme domain redeposits sub-domain by sub-domain: a restart read without 'processors'
+    # (LAMMPS picks 1 2 1 here) or on another grid continues another trajectory, said once with
+    # both grids; scheme gather (the same trajectory on any grid) stores no grid.
+    scene = SCENE.format(boundary="p p fm", zprocs=1).replace("processors * * 1",
+                                                              "processors 2 1 1")
+    settle = TAPPING.replace("eta 1e-3", "eta 1e-3 scheme domain").split("dump d")[0]
+    wd = str(tmp_path)
+    rc, out, _ = run_lammps(scene + settle.format(eps=0.02, seed=31) + "run 2\n"
+                            "write_restart half.restart\n", nprocs=2, workdir=wd)
+    assert rc == 0, out
+    again = "processors {}\nread_restart half.restart\n" + settle.format(eps=0.02, seed=31) + \
+        "run 1\n"
+    rc, out, _ = run_lammps(again.format("1 2 1"), nprocs=2, workdir=wd)
+    assert rc == 0, out
+    assert ("settings differ from the restart file (restart -> now): processors x (0 = scheme "
+            "gather, any grid) 2 -> 1, processors y 1 -> 2; the run will not continue") in out, out
+    rc, out, _ = run_lammps(again.format("2 1 1").replace("scheme domain", "scheme gather"),
+                            nprocs=2, workdir=wd)
+    assert rc == 0, out
+    assert "processors x (0 = scheme gather, any grid) 2 -> 0, processors y 1 -> 0, " \
+           "processors z 1 -> 0;" in out, out
 
 
 def test_polydisperse_and_fixed_obstacles():
@@ -295,17 +320,18 @@ def test_tap_outputs_continue_across_a_restart():
 
 
 # The restart record of fix mc/settle (fix_mc_settle.cpp): an int byte count, then doubles:
-# layout -4 (today's): -4, seed as two 32-bit halves, dmax, theta0, eta, check, maxsweeps,
+# layout -5 (today's): -5, seed as two 32-bit halves, dmax, theta0, eta, check, maxsweeps,
 # floor, diameter/2, order, xwalls lo hi, ywalls lo hi (NaN: none), stop, window, theta_law,
-# then the diagnostics [1]-[6]; layout -3 (before 'theta_law'): the same without it; layout -2
-# (before 'stop' and 'window'): the same without those three; seed only (the first runs): seed,
-# diagnostics.
-RECORD_DOUBLES = 1 + 2 + 15 + 6
+# the processor grid (x, y, z; 0 0 0 with scheme gather), then the diagnostics [1]-[6];
+# layout -4 (before the grid): the same without it; layout -3 (before 'theta_law'): without
+# theta_law too; layout -2 (before 'stop' and 'window'): without those three; seed only (the
+# first runs): seed, diagnostics.
+RECORD_DOUBLES = 1 + 2 + 18 + 6
 
 
 def restart_record(data):
     """(offset of the byte count, the doubles) of the fix mc/settle record in restart bytes."""
-    head = struct.pack("<i", 8 * RECORD_DOUBLES) + struct.pack("<d", -4.0)
+    head = struct.pack("<i", 8 * RECORD_DOUBLES) + struct.pack("<d", -5.0)
     at = data.find(head)
     assert at >= 0 and data.find(head, at + 1) < 0
     return at, struct.unpack_from(f"<{RECORD_DOUBLES}d", data, at + 4)
@@ -332,7 +358,7 @@ def last_thermo_row(out):
 
 def test_restart_record_layout_and_older_layouts_are_read():
     # Today's record holds exactly the documented fields, so files stay byte for byte what the
-    # layout says; records of the three older layouts (written here from today's by dropping
+    # layout says; records of the four older layouts (written here from today's by dropping
     # fields, as those versions wrote them) are read: the diagnostics come back, the settings
     # they did not store are taken as those versions ran them ('theta_law angle',
     # 'stop change', window 32).
@@ -347,17 +373,20 @@ def test_restart_record_layout_and_older_layouts_are_read():
         data = f.read()
     at, record = restart_record(data)
     settings = [0.0, np.pi / 4, 1e-3, 700, 50000, 0.0, 0.0, 0, 0.0, 10.0]
-    assert record[:3] == (-4.0, 2.0, 5.0)  # 8589934597 = 2 * 2^32 + 5
+    assert record[:3] == (-5.0, 2.0, 5.0)  # 8589934597 = 2 * 2^32 + 5
     assert list(record[3:13]) == settings
     assert np.isnan(record[13:15]).all()  # no ywalls
     assert record[15:17] == (0.0, 32.0)   # stop change, window 32
     assert record[17] == 0.0              # theta_law angle
-    assert list(record[18:]) == diagnostics
+    assert record[18:21] == (0.0, 0.0, 0.0)  # scheme gather: any grid
+    assert list(record[21:]) == diagnostics
 
-    no_law = (-3.0,) + record[1:17] + record[18:]
-    no_stop = (-2.0,) + record[1:15] + record[18:]
-    seed_only = (float(8589934597),) + record[18:]
-    for name, values in (("no_law", no_law), ("no_stop", no_stop), ("seed_only", seed_only)):
+    no_grid = (-4.0,) + record[1:18] + record[21:]
+    no_law = (-3.0,) + record[1:17] + record[21:]
+    no_stop = (-2.0,) + record[1:15] + record[21:]
+    seed_only = (float(8589934597),) + record[21:]
+    for name, values in (("no_grid", no_grid), ("no_law", no_law), ("no_stop", no_stop),
+                         ("seed_only", seed_only)):
         with open(os.path.join(wd, name + ".restart"), "wb") as f:
             f.write(with_record(data, at, values))
         again = (f"read_restart {name}.restart\n" + settle + "run 0\n")
@@ -365,7 +394,7 @@ def test_restart_record_layout_and_older_layouts_are_read():
         assert rc == 0, out
         assert "differ from the restart file" not in out, out
         assert last_thermo_row(out) == diagnostics, name
-    for name in ("a", "no_law", "no_stop"):
+    for name in ("a", "no_grid", "no_law", "no_stop"):
         rc, out, _ = run_lammps(f"read_restart {name}.restart\n" + settle.replace(
             "check 700", "check 700 theta_law solid") + "run 0\n", workdir=wd)
         assert rc == 0, out
