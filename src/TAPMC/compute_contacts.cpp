@@ -175,9 +175,20 @@ void ComputeContacts::init()
   if (domain->triclinic)
     error->all(FLERR, "{}: triclinic boxes are not supported; use an orthogonal box", kStyle);
   tapmc::quiet_sorting_without_pair_style(lmp);
+  tapmc::check_radius_keyword_against_atoms(lmp, kStyle, fmt::format("radius {}", fixed_radius_),
+                                            fixed_radius_, groupbit, group->names[igroup], false);
   // a dynamic group is filled after init (at setup) and may take any atom later: the ghosts
   // and the container are sized for every atom
   const double r_max = group_radius_max(group->dynamic[igroup] != 0);
+  // A periodic length below a diameter holds no hard-sphere packing (a sphere overlaps its own
+  // image), and the ghosts would be images of images: (4 R / L)^3 of them per atom (a radius
+  // of 1e3 in a box of 10 ran out of memory building them)
+  for (int d = 0; d < 3; ++d)
+    if (domain->periodicity[d] && domain->prd[d] < 2.0 * r_max)
+      error->all(FLERR, "{}: the periodic box length along {} = {} is below the largest sphere "
+                 "diameter {}: a sphere would overlap its own image (no hard-sphere packing); "
+                 "check the radii or the 'radius' keyword, or widen the box", kStyle, "xyz"[d],
+                 domain->prd[d], 2.0 * r_max);
   resolve_container(r_max);
   tapmc::require_ghosts_of_every_atom(lmp, kStyle, "the contacts across sub-domain and "
                                       "periodic faces would be missed", "", groupbit);

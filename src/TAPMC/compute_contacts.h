@@ -35,6 +35,11 @@ class ComputeContacts : public Compute, public tapmc::ContainerHolder {
     z0 = settings_.floor_z;
     return settings_.floor;
   }
+  bool keyword_radius(double &radius) const override
+  {
+    radius = fixed_radius_;
+    return fixed_radius_ > 0.0;
+  }
 
  private:
   tapmc::contacts::Settings settings_;

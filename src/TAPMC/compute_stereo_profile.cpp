@@ -210,6 +210,9 @@ ComputeStereoProfile::~ComputeStereoProfile()
 void ComputeStereoProfile::init()
 {
   tapmc::require_box_with_floor(lmp, "compute stereo/profile");
+  tapmc::check_radius_keyword_against_atoms(lmp, "compute stereo/profile",
+                                            fmt::format("radius {}", fixed_radius_),
+                                            fixed_radius_, groupbit, group->names[igroup], false);
   if (has_container()) resolve_container();
   // The packing fractions divide by the box's horizontal area: a shrink-wrapped side spans the
   // sphere centres, not the bed (a simple cubic lattice read 0.684 for pi/6 = 0.524).

@@ -30,6 +30,11 @@ class ComputeStereoProfile : public Compute, public tapmc::ContainerHolder {
     return true;
   }
   bool side_walls(int dim, double &lo, double &hi) const override;
+  bool keyword_radius(double &radius) const override
+  {
+    radius = fixed_radius_;
+    return fixed_radius_ > 0.0;
+  }
 
  private:
   tapmc::stereo::SummarySettings settings_;

@@ -381,7 +381,16 @@ bool grow_open_top(LAMMPS *lmp, const Plan &plan, double zmax)
   Domain *domain = lmp->domain;
   if (plan.top_fixed || zmax < domain->boxhi[2]) return false;
   domain->boxhi[2] = zmax + plan.r_max;
+  // set_initial_box pads each shrink-wrapped ('s') face by a small fraction of the box again
+  // (create_box padded it once): such faces keep their place, so that the floor the styles
+  // default to (the lower z bound) is the one the packing was deposited on
+  double lo[3], hi[3];
+  for (int d = 0; d < 3; ++d) lo[d] = domain->boxlo[d], hi[d] = domain->boxhi[d];
   domain->set_initial_box();
+  for (int d = 0; d < 3; ++d) {
+    if (domain->boundary[d][0] == tapmc::kBoundaryShrink) domain->boxlo[d] = lo[d];
+    if (domain->boundary[d][1] == tapmc::kBoundaryShrink) domain->boxhi[d] = hi[d];
+  }
   domain->set_global_box();
   domain->set_local_box();
   return true;

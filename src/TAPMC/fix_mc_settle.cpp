@@ -361,6 +361,9 @@ void FixMCSettle::init()
   tapmc::quiet_sorting_without_pair_style(lmp);
   tapmc::forbid_same_style_on_shared_atoms(lmp, this);
   tapmc::require_box_with_floor(lmp, "fix mc/settle");  // change_box may have made it another
+  tapmc::check_radius_keyword_against_atoms(lmp, "fix mc/settle",
+                                            fmt::format("diameter {}", 2.0 * fixed_radius),
+                                            fixed_radius, groupbit, group->names[igroup], true);
   resolve_side_walls();
   if (!atom->tag_enable)  // the schemes name and order the spheres by their IDs
     error->all(FLERR, "fix mc/settle: the atoms have no IDs ('atom_modify id no'); the "

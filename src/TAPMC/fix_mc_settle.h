@@ -56,6 +56,11 @@ class FixMCSettle : public Fix, public tapmc::ContainerHolder {
     return true;
   }
   bool side_walls(int dim, double &lo, double &hi) const override;
+  bool keyword_radius(double &radius) const override
+  {
+    radius = fixed_radius;
+    return fixed_radius > 0.0;
+  }
 
  private:
   // user settings (defaults in tapmc_defaults.h)

@@ -17,8 +17,9 @@
 
 namespace tapmc {
 
-// Domain::boundary[dim][side] code of a fixed ('f') face.
+// Domain::boundary[dim][side] codes of a fixed ('f') and a shrink-wrapped ('s') face.
 constexpr int kBoundaryFixed = 1;
+constexpr int kBoundaryShrink = 2;
 
 // Stops with a message naming the style (e.g. "fix mc/settle") and what to change.
 inline void require_box_with_floor(LAMMPS_NS::LAMMPS *lmp, const char *style)

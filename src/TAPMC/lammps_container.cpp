@@ -273,9 +273,26 @@ void require_one_container(LAMMPS *lmp, const char *kind, const char *id, const 
                       std::max(lo, their_lo), std::min(hi, their_hi));
     }
   };
+  double my_radius = 0.0;
+  const bool has_radius = self.keyword_radius(my_radius);
+  auto compare_radius = [&](const char *other_kind, const char *other_id, const char *other_style,
+                            const ContainerHolder *other) {
+    double theirs = 0.0;
+    if (!has_radius || !other || other == &self || !other->keyword_radius(theirs)) return;
+    if (std::fabs(my_radius - theirs) <= defaults::kRadiusMatchTolerance * my_radius) return;
+    if (lmp->comm->me == 0)  // a compute measuring other spheres: strange, not harmful
+      lmp->error->warning(FLERR,
+                          "{} {}: two different sphere radii in one run: {} {} ({}) takes radius "
+                          "{}, {} {} ({}) radius {} (from their 'diameter' / 'radius' "
+                          "keywords): the second measures spheres the run does not hold; give "
+                          "every TAPMC style of the run the same radius",
+                          kind, style, kind, id, style, my_radius, other_kind, other_id,
+                          other_style, theirs);
+  };
   auto compare_all = [&](const char *other_kind, const char *other_id, const char *other_style,
                          const ContainerHolder *other) {
     compare(other_kind, other_id, other_style, other);
+    compare_radius(other_kind, other_id, other_style, other);
     compare_floor(other_kind, other_id, other_style, other);
     compare_walls(other_kind, other_id, other_style, other);
   };

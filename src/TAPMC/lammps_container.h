@@ -77,6 +77,12 @@ class ContainerHolder {
   // held by narrower walls divides by the box's area (Phi half the packing's for walls at half
   // the box width).
   virtual bool side_walls(int /*dim*/, double & /*lo*/, double & /*hi*/) const { return false; }
+  // The sphere radius the style's keyword gives (fix mc/settle 'diameter'/2, the computes'
+  // 'radius'), if given. Per-atom radii, where the atom style has them, are compared with it
+  // (check_radius_keyword_against_atoms); without them the styles of a run are compared with
+  // one another (require_one_container warns): a compute measuring spheres of another radius
+  // than those settled reports another packing.
+  virtual bool keyword_radius(double & /*radius*/) const { return false; }
 
  protected:
   ~ContainerHolder() = default;  // never deleted through this interface: LAMMPS owns the style

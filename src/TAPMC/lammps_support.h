@@ -6,6 +6,7 @@
 #define TAPMC_LAMMPS_SUPPORT_H
 
 #include "tapmc_checks.h"
+#include "tapmc_defaults.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -18,6 +19,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -145,6 +147,45 @@ inline double smallest_radius(LAMMPS_NS::LAMMPS *lmp)
     for (int i = 0; i < lmp->atom->nlocal; ++i) local = std::min(local, radius[i]);
   MPI_Allreduce(&local, &all, 1, MPI_DOUBLE, MPI_MIN, lmp->world);
   return all;
+}
+
+// A style's radius keyword (fix mc/settle 'diameter', compute stereo/profile and compute
+// contacts 'radius') stands for the per-atom radii an atom style without them lacks. Where the
+// atoms have radii, the other styles, the dumps and the checks use those: a keyword that differs
+// would settle or measure other spheres than the run's (overlaps by the per-atom radii, <Phi^c>
+// near 1, silently). Names the first atom (by ID) of the group whose radius differs and the two
+// ways out: stops (`stop`: fix mc/settle, which would move the spheres into one another) or
+// warns (a compute, whose other radius is a measurement, if a strange one). `keyword_text`: the
+// keyword as given ("diameter 0.8"). Collective.
+inline void check_radius_keyword_against_atoms(LAMMPS_NS::LAMMPS *lmp, const char *style,
+                                               const std::string &keyword_text,
+                                               double keyword_radius, int groupbit,
+                                               const char *group_name, bool stop)
+{
+  LAMMPS_NS::Atom *atom = lmp->atom;
+  if (!atom->radius_flag || !(keyword_radius > 0.0)) return;
+  const double tolerance = defaults::kRadiusMatchTolerance * keyword_radius;
+  double first_tag = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < atom->nlocal; ++i)
+    if ((atom->mask[i] & groupbit) && std::fabs(atom->radius[i] - keyword_radius) > tolerance)
+      first_tag = std::min(first_tag, static_cast<double>(atom->tag[i]));
+  double first_all = first_tag;
+  MPI_Allreduce(&first_tag, &first_all, 1, MPI_DOUBLE, MPI_MIN, lmp->world);
+  if (first_all == std::numeric_limits<double>::infinity()) return;
+  double its_radius = -std::numeric_limits<double>::infinity(), its_all = its_radius;
+  for (int i = 0; i < atom->nlocal; ++i)
+    if (static_cast<double>(atom->tag[i]) == first_all) its_radius = atom->radius[i];
+  MPI_Allreduce(&its_radius, &its_all, 1, MPI_DOUBLE, MPI_MAX, lmp->world);
+  const std::string message = fmt::format(
+      "{}: {} gives the spheres radius {}, but atom {} of group {} has per-atom radius {} (atom "
+      "style {}): the dumps, the other TAPMC styles and the overlap checks use the per-atom "
+      "radii; leave '{}' out (the per-atom radii are used) or give the atoms that radius ('set "
+      "group {} diameter {}')",
+      style, keyword_text, keyword_radius, static_cast<std::int64_t>(first_all), group_name,
+      its_all, atom->atom_style, keyword_text.substr(0, keyword_text.find(' ')), group_name,
+      2.0 * keyword_radius);
+  if (stop) lmp->error->all(FLERR, message);
+  if (lmp->comm->me == 0) lmp->error->warning(FLERR, message);
 }
 
 // Hard spheres need no pair style, which leaves LAMMPS with a zero communication cutoff and the

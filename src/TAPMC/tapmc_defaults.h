@@ -20,6 +20,10 @@ constexpr double kContactTolerance = 1e-10;
 // |z0| (or of 1): the same number given twice is equal, a box face read back from a restart
 // file may differ in its last bits.
 constexpr double kFloorMatchTolerance = 1e-12;
+// A style's radius keyword (fix mc/settle 'diameter', the computes' 'radius') and a sphere's
+// per-atom radius, or two styles' keywords, are one radius within this fraction of it: the same
+// number given twice ('diameter 1.0' and 'set group all diameter 1.0') is equal.
+constexpr double kRadiusMatchTolerance = 1e-12;
 // Coordinates far from the origin are resolved coarsely: a double at |x| is |x| 2^-52 from
 // its neighbour, and a distance carries the rounding of both positions and of its arithmetic.
 // The contact test is exact only where kCoordinateRoundingMargin such spacings stay below the

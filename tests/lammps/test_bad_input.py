@@ -165,6 +165,45 @@ def test_mc_settle_needs_a_radius():
     assert rc == 0, out
 
 
+@pytest.mark.parametrize("line,given", [
+    ("fix s all mc/settle 1 floor 0.0 diameter 0.8", "fix mc/settle: diameter 0.8 gives the "
+     "spheres radius 0.4"),
+    ("compute phi all stereo/profile floor 0.0 radius 0.4", "compute stereo/profile: radius 0.4 "
+     "gives the spheres radius 0.4"),
+    ("compute n all contacts 0.01 radius 0.4", "compute contacts: radius 0.4 gives the spheres "
+     "radius 0.4"),
+])
+def test_a_radius_keyword_against_per_atom_radii_is_named(line, given):
+    """Per-atom radii 0.5 and a keyword for 0.4: the redeposition left the spheres 20 % into one
+    another by their own radii (<Phi^c> 0.98, no message); now fix mc/settle stops, and a compute
+    (a measurement of other spheres, strange but harmless) warns, naming an atom, its radius and
+    both ways out. The keyword with the atoms' own radius is accepted silently."""
+    rc, out = run_case(line + "\nrun 1\n")
+    named = given + ", but atom 1 of group all has per-atom radius 0.5 (atom style sphere)"
+    assert named in out and "set group all diameter 0.8" in out, out
+    if line.startswith("fix"):
+        assert rc != 0 and "ERROR: " + named in out, out
+    else:
+        assert rc == 0 and "WARNING: " + named in out and "Loop time" in out, out
+    rc, out = run_case(line.replace("0.8", "1.0").replace("0.4", "0.5") + "\nrun 1\n")
+    assert rc == 0 and "Loop time" in out and "per-atom radius" not in out, out
+
+
+def test_styles_without_radii_are_told_of_two_radii():
+    script = BOX.format(boundary="p p fm").replace("atom_style sphere", "atom_style atomic") \
+                .replace("set group all diameter 1.0", "mass 1 1.0")
+    settle = "fix s all mc/settle 1 floor 0.0 diameter 1.0\n"
+    for line, named in (("compute phi all stereo/profile floor 0.0 radius 0.4",
+                         "compute phi (stereo/profile) radius 0.4"),
+                        ("compute n all contacts 0.01 radius 0.7", "compute n (contacts) radius 0.7")):
+        rc, out, _ = run_lammps(script + settle + line + "\nrun 1\n")
+        assert rc == 0 and "WARNING: fix mc/settle: two different sphere radii in one run: fix s " \
+            "(mc/settle) takes radius 0.5, " + named in out, out
+    rc, out, _ = run_lammps(script + settle + "compute phi all stereo/profile floor 0.0 radius "
+                            "0.5\nrun 1\n")
+    assert rc == 0 and "Loop time" in out and "two different sphere radii" not in out, out
+
+
 def test_mc_settle_needs_atom_ids():
     rc, out = run_case("fix s all mc/settle 1\nrun 1", extra="atom_modify id no\n")
     assert rc != 0 and "the atoms have no IDs ('atom_modify id no')" in out, out

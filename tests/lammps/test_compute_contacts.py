@@ -305,6 +305,17 @@ def test_bad_argument(body, message):
     assert "Illegal compute command" not in out
 
 
+def test_a_periodic_box_below_a_diameter_is_refused():
+    """A radius of 1e3 in a periodic box of 8 made LAMMPS build the images of images until the
+    memory ran out (a hang); now the box length, the axis and the diameter are named."""
+    rc, out, _ = run_lammps("units lj\natom_style atomic\nboundary p p fm\n"
+                            "region box block 0 6 0 6 0 30\ncreate_box 1 box\nmass 1 1.0\n"
+                            "create_atoms 1 single 3 3 1\n"
+                            "compute c all contacts 1 radius 1e3\nrun 0\n")
+    assert rc != 0 and "the periodic box length along x = 6 is below the largest sphere " \
+        "diameter 2000" in out, out[-2000:]
+
+
 def test_box_restrictions_and_missing_radius():
     rc, out, _ = run_lammps(fcc_lattice("p p p") + "compute c all contacts 0.01 floor 0.0\n")
     assert rc != 0 and "the floor keyword needs a non-periodic z boundary" in out, out[-1500:]

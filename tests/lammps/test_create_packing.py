@@ -204,6 +204,28 @@ def test_shrink_wrapped_top_grows_the_box_on_ranks_split_in_z():
     np.testing.assert_array_equal(cols["z"], serial["z"])
 
 
+@pytest.mark.parametrize("grows", [True, False])
+def test_a_shrink_wrapped_floor_stays_where_the_packing_was_deposited(grows):
+    """boundary p p ss: create_box pads the lower z face once; growing the box's top for the
+    packing padded it again, so the box's lower bound (the floor every style defaults to) sat
+    below the floor the spheres were deposited on (<Z> off by that gap). It stays put, whether
+    the top grows (a box 2 high) or not (40 high)."""
+    script = f"""units lj
+atom_style sphere
+boundary p p ss
+region box block 0 8 0 8 0 {2 if grows else 40}
+create_box 1 box
+create_packing 300 1 0.5 21
+print "ZLO $(zlo:%.17g) ZHI $(zhi:%.17g)"
+"""
+    rc, out, _ = run_lammps(script)
+    assert rc == 0, out
+    floor = float(re.search(r"floor z = (\S+)", out).group(1))
+    zlo, zhi = (float(v) for v in re.search(r"ZLO (\S+) ZHI (\S+)", out).groups())
+    assert floor < 0.0 and zlo == pytest.approx(floor, abs=5e-5 * abs(floor) + 1e-12), out
+    assert (2.5 < zhi < 39.0) == grows   # grown to hold the packing, or left at 40
+
+
 def test_polydisperse_and_existing_atoms():
     pre = "create_atoms 1 single 8 8 38\nset atom 1 diameter 2.0\n"
     out, box, bounds, cols = run_packing(packing_script(n=500, args="dispersity 0.2", pre=pre),
