@@ -123,6 +123,7 @@ void check_preconditions(LAMMPS *lmp, int narg)
 int parse_walls(LAMMPS *lmp, Options &opt, int iarg, int narg, char **arg)
 {
   opt.walls_given = true;
+  opt.walls_x = opt.walls_y = false;  // the last 'walls' holds, as the last of any keyword
   int used = 0;
   for (int k = iarg + 1; k < narg && k <= iarg + 2; ++k) {
     const std::string v = arg[k];
@@ -207,6 +208,11 @@ Plan plan_domain(LAMMPS *lmp, const Request &req)
       if (d < 2) spans[d] = rlo[d] <= domain->boxlo[d] && rhi[d] >= domain->boxhi[d];
       lo[d] = std::max(lo[d], rlo[d]);
       hi[d] = std::min(hi[d], rhi[d]);
+      if (d < 2 && !(hi[d] > lo[d]))
+        error->all(FLERR, "create_packing: region '{}' lies outside the box in {} (region {} to "
+                   "{}, box {} to {}): the spheres are deposited in the part of the region "
+                   "inside the box", opt.region_id, "xy"[d], rlo[d], rhi[d], domain->boxlo[d],
+                   domain->boxhi[d]);
     }
     if (rhi[2] < z_top) {
       z_top = rhi[2];

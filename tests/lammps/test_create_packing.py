@@ -167,6 +167,11 @@ def test_walls_keyword_in_periodic_box():
     out, box, bounds, cols = run_packing(packing_script(args="walls x"))
     assert "sides: x walls, y periodic" in out
     check_geometry(cols, box, (False, True), floor=0.0, walls={0: (0, 16)})
+    # the last 'walls' holds, as the last of any keyword (they accumulated: x y walls)
+    out, _, _, _ = run_packing(packing_script(n=50, args="walls x y walls none"))
+    assert "sides: x periodic, y periodic" in out
+    out, _, _, _ = run_packing(packing_script(n=50, args="walls y walls x"))
+    assert "sides: x walls, y periodic" in out
 
 
 def test_column_one_diameter_wide_is_a_straight_stack_at_rest():
@@ -283,6 +288,15 @@ def test_bad_periodic_z():
     rc, out, _ = run_lammps(HEADER.format(boundary="p p p", L=16, H=40, ntypes=1) +
                             "create_packing 10 1 1.0 5")
     assert rc != 0 and "z boundary is periodic" in out, out
+
+
+def test_a_region_outside_the_box_is_named():
+    # it read "region 'r' is -1 wide in x" (the clipped width)
+    rc, out, _ = run_lammps(HEADER.format(boundary="p p fm", L=16, H=40, ntypes=1) +
+                            "region r block 17 20 INF INF INF INF\n"
+                            "create_packing 10 1 1.0 5 region r")
+    assert rc != 0 and "region 'r' lies outside the box in x (region 17 to 20, box 0 to 16)" \
+        in out, out
 
 
 def test_bad_walls_none_without_periodic_sides():
