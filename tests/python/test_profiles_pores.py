@@ -262,6 +262,9 @@ def test_read_pores_documented_format(tmp_path):
     with pytest.raises(ValueError, match="timestep = '10' must be an integer"):
         out.distribution("10")
     assert out.distribution(np.int64(10)).selected == d10.selected
+    assert repr(out) == (f"<PoreOutput {str(tmp_path / 'fig10')!r}: 2 timesteps, "
+                         f"{agg.selected} selected pores>")
+    assert repr(d10).startswith(f"<PoreDistribution (timestep 10): {d10.selected} selected ")
     # one of the output's files stands for its prefix
     for name in ("fig10.hist.csv", "fig10.frames.csv", "fig10.frame_hist.csv"):
         assert read_pores(tmp_path / name).prefix == str(tmp_path / "fig10")

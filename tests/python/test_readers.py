@@ -251,7 +251,9 @@ ITEM: ATOMS id x y z
 
 
 def test_broken_dumps(tmp_path):
-    assert len(read_dump(_write(tmp_path, "ok.dump", DUMP_OK))) == 1
+    ok = read_dump(_write(tmp_path, "ok.dump", DUMP_OK))
+    assert repr(ok) == f"<Dump {str(tmp_path / 'ok.dump')!r} (native): not read yet>"
+    assert len(ok) == 1 and repr(ok).endswith("(native): 1 frames>")
     _expect(_write(tmp_path, "trunc.dump", DUMP_OK.rsplit("\n", 2)[0] + "\n"), 11, read_dump)
     _expect(_write(tmp_path, "nan.dump", DUMP_OK.replace("1.5 0.5 0.5", "1.5 x12 0.5")),
             11, read_dump)

@@ -114,6 +114,13 @@ def new_axis(ax):
     return ax
 
 
+def computed_repr(obj, attr, inputs, results):
+    """``<Class inputs: results>`` once ``obj.<attr>`` is set (``results()`` formats them),
+    ``<Class inputs: not computed>`` before."""
+    done = getattr(obj, attr, None) is not None
+    return f"<{type(obj).__name__} {inputs}: {results() if done else 'not computed'}>"
+
+
 def result(attr, method="compute", doc=None):
     """A read-only property returning ``self.<attr>``, or raising NotComputedError before
     ``method()`` has set it."""

@@ -50,7 +50,7 @@ linear in t.
 import numpy as np
 
 from ._legends import place_legend
-from ._validate import as_1d, as_2d, new_axis, require, result
+from ._validate import as_1d, as_2d, computed_repr, new_axis, require, result
 from .laws import (REALIZATION_MAX_BINS, REALIZATION_P_MIN, AgeingLaw, Law,
                    RealizationLawTest, hotelling_gls, realization_bin_covariance)
 
@@ -125,6 +125,11 @@ class Ageing:
     t = result("_t")
     A = result("_A")
     A_sem = result("_A_sem")
+
+    def __repr__(self):
+        return computed_repr(self, "_A", f"of {self.z.shape[0]} realizations x "
+                             f"{self.z.shape[1] - 1} taps, t_w {self.waiting_times}",
+                             lambda: f"A(t, t_w) at {len(self._t)} delays")
 
     def _curves(self, tws, rows=None):
         """(t, A, sem) of every (t_w, t > 0) pair, realizations ``rows`` (default all)."""

@@ -26,7 +26,7 @@ recomputed), not from the dispersion's curvature.
 import numpy as np
 
 from ._legends import place_legend
-from ._validate import as_2d, new_axis, require, result
+from ._validate import as_2d, computed_repr, new_axis, require, result
 from .ageing import SCALING_EXPONENT_RANGE, collapse_dispersion
 
 __all__ = ["ConnectedAgeing", "LawFreeCollapse", "connected_curves"]
@@ -93,6 +93,11 @@ class ConnectedAgeing:
 
     t = result("_t")
     C = result("_C")
+
+    def __repr__(self):
+        return computed_repr(self, "_C", f"of {self.z.shape[0]} realizations x "
+                             f"{self.z.shape[1] - 1} taps, t_w {self.waiting_times}",
+                             lambda: f"C(t, t_w) at {len(self._t)} delays")
     C_error = result("_C_error")
     drift = result("_drift")
 

@@ -355,6 +355,10 @@ class Dump:
         self.backend = backend
         self._frames = None
 
+    def __repr__(self):
+        read = "not read yet" if self._frames is None else f"{len(self._frames)} frames"
+        return f"<Dump {self.path!r} ({self.backend}): {read}>"
+
     def __iter__(self):
         if self._frames is not None:
             return iter(self._frames)

@@ -17,7 +17,7 @@ from scipy import fft as scipy_fft
 from scipy import signal, special, stats
 
 from ._legends import place_legend
-from ._validate import as_1d, as_2d, new_axis, positive_int, require, result
+from ._validate import as_1d, as_2d, computed_repr, new_axis, positive_int, require, result
 from .laws import FitResult, Law
 
 __all__ = ["SteadyState", "ErrorCalibration", "PowerSpectrum", "sigma_x", "sigma_scaling", "Proportional",
@@ -123,6 +123,11 @@ class SteadyState:
     sem_naive = result("_sem_naive")
     batches_used = result("_batches_used")
     last_value = property(lambda self: float(self.x[-1]))
+
+    def __repr__(self):
+        return computed_repr(self, "_mean", f"of {len(self.x)} values, last {self.last}",
+                             lambda: f"X_SS {self._mean:.6g} +- {self._sem:.2g}, "
+                                     f"sigma_X {self._std:.3g}")
 
     def plot(self, ax=None, ylabel="X (the series, per tap)", **kw):
         """The series, the averaging window (grey) and X_SS +- sigma_X (solid, dotted)."""
@@ -230,6 +235,11 @@ class ErrorCalibration:
     spreads = result("_spreads")
     errors = result("_errors")
     ratios = result("_ratios")
+
+    def __repr__(self):
+        return computed_repr(self, "_factor", f"of {len(self.groups)} groups",
+                             lambda: f"factor {self._factor:.3g} ({self._dof} dof, "
+                                     f"p = {self._p_value:.2g})")
 
     def interval(self, level=0.95):
         """(low, high) of k at confidence ``level``: k^2 / F quantiles."""
@@ -496,6 +506,11 @@ class PowerSpectrum:
     power_error = result("_power_error")
     counts = result("_counts")
     fit = result("_fit")
+
+    def __repr__(self):
+        runs, taps = self.x.shape
+        return computed_repr(self, "_power", f"of {runs} run(s) x {taps} taps",
+                             lambda: f"{len(self._frequency)} frequency bins")
     slope = property(lambda self: float(self.fit.params["slope"]))
     slope_error = property(lambda self: float(self.fit.errors["slope"]))
 

@@ -24,8 +24,8 @@ import numpy as np
 from scipy.stats import chi2 as chi2_distribution
 
 from ._legends import place_legend
-from ._validate import (as_1d, in_range, new_axis, positive, positive_int, require, result,
-                        same_length)
+from ._validate import (as_1d, computed_repr, in_range, new_axis, positive, positive_int, require,
+                        result, same_length)
 from .fluctuations import SteadyState
 from .stats import CALIBRATION_ALPHA
 
@@ -114,6 +114,10 @@ class Hysteresis:
 
     levels = result("_levels")
     incomplete_taps = result("_incomplete_taps")
+
+    def __repr__(self):
+        return computed_repr(self, "_levels", f"of {len(self.x)} taps, {self.taps_per_level} "
+                             f"per level", lambda: f"{len(self._levels)} levels")
 
     def branch(self, name):
         """The levels of one branch ('up1', 'down' or 'up2')."""

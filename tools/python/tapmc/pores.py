@@ -187,6 +187,10 @@ class PoreDistribution:
         self.selected = selected
         self.timestep = timestep
 
+    def __repr__(self):
+        at = "all timesteps" if self.timestep is None else f"timestep {self.timestep}"
+        return f"<PoreDistribution ({at}): {self.selected} selected pores, nu {self.nu:.4g}>"
+
     def tetrahedral_law(self, xi_range=None, fit_xi_t=True):
         """:class:`TetrahedralLaw` fitted to this xi^3 P(xi) with Poisson errors."""
         law = TetrahedralLaw(xi_range=xi_range, fit_xi_t=fit_xi_t)
@@ -267,6 +271,10 @@ class PoreOutput:
     @property
     def timesteps(self):
         return sorted(set(int(s) for s in self.frames["timestep"]))
+
+    def __repr__(self):
+        return (f"<PoreOutput {self.prefix!r}: {len(self.timesteps)} timesteps, "
+                f"{int(np.sum(self.frames['selected']))} selected pores>")
 
     @property
     def nu(self):

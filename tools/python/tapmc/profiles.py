@@ -16,7 +16,7 @@
 import numpy as np
 
 from ._legends import place_legend
-from ._validate import as_1d, new_axis, positive, result, same_length
+from ._validate import as_1d, computed_repr, new_axis, positive, result, same_length
 from .laws import PROFILE_WINDOWS, ProfileLaw, profile_gradient  # noqa: F401 (re-exported)
 
 __all__ = ["ProfileIncrease", "vertical_profile", "transversal_profile", "ProfileLaw",
@@ -115,6 +115,11 @@ class ProfileIncrease:
     delta_central_sem = result("_dc_sem")
     delta_lateral_all = result("_dl_all")
     delta_central_all = result("_dc_all")
+
+    def __repr__(self):
+        return computed_repr(self, "_dl", f"of {self.lateral.shape[0]} seed(s) x {len(self.t)} "
+                             "times", lambda: f"delta Phi lateral {self._dl[-1]:.4g}, central "
+                                              f"{self._dc[-1]:.4g} at the last time")
 
     def plot(self, ax=None, logx=True):
         """delta Phi_lateral and delta Phi_central against taps (Fig. 8)."""
