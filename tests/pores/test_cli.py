@@ -53,7 +53,8 @@ def test_xi_max_beyond_its_limit_is_a_usage_error():
 
 @pytest.mark.parametrize("option,value,allowed", [
     ("--radius", "-1", "(0, inf)"), ("--wall-gap", "-1", "[0, inf), in R"),
-    ("--surface-gap", "-3", "[0, inf), in R"), ("--sigma-max", "0.5", "(1, inf)"),
+    ("--surface-gap", "-3", "[0, inf), in R"), ("--sigma-max", "0.5", "(1, 1000] (in R)"),
+    ("--sigma-max", "1e308", "(1, 1000] (in R)"),   # every grid step was inf
     ("--overlap-tol", "2", "[0, 1)"), ("--merge-tol", "1e9", "[0, 0.1)"),
 ])
 def test_a_value_out_of_range_is_named_with_its_range(option, value, allowed):
@@ -228,6 +229,33 @@ def test_fcc_and_paper_window(tmp_path):
     pores = read_csv(tmp_path / "paper.pores.csv")
     sel = pores["selected"] == 1
     assert np.all(sel == (pores["z"] >= 2 * r) & (pores["z"] < 20 * r))
+
+
+@pytest.mark.parametrize("digits", [6, 10, 17])
+def test_fcc_written_with_few_digits_keeps_its_octahedra_whole(tmp_path, digits):
+    """FCC shifted off the lattice planes (coordinates of many digits), written with %g (LAMMPS's
+    default, 6 digits), %.10g and %.17g: at every precision 3 pores per sphere, a quarter of
+    them octahedra of 4 tetrahedra, and nu = (2 xi_T^3 + xi_O^3) / 3. At 6 digits the fixed
+    tolerance 1e-8 split the octahedra (nu 0.0467); it now follows the digits (1e-4 here), and
+    --merge-tol 1e-8 given by hand still splits them."""
+    R = math.sqrt(0.5)
+    basis = np.array([[0, 0, 0], [1, 1, 0], [1, 0, 1], [0, 1, 1]])
+    cells = np.array([[i, j, k] for i in range(4) for j in range(4) for k in range(4)]) * 2
+    centres = (cells[:, None, :] + basis[None, :, :]).reshape(-1, 3) + np.array([0.1234567891, 0.2345678912, 0.3456789123])
+    lines = ["ITEM: TIMESTEP", "0", "ITEM: NUMBER OF ATOMS", str(len(centres)),
+             "ITEM: BOX BOUNDS pp pp pp"] + ["0 8"] * 3 + ["ITEM: ATOMS id x y z"]
+    lines += [f"{i + 1} " + " ".join(f"{v:.{digits}g}" for v in c) for i, c in enumerate(centres)]
+    dump = write(tmp_path / "fcc.dump", "\n".join(lines) + "\n")
+    nu = (2 * (math.sqrt(1.5) - 1) ** 3 + (math.sqrt(2) - 1) ** 3) / 3
+    result = run("-q", "-r", R, "-o", tmp_path / "fcc", dump)
+    assert result.returncode == 0, result.stderr
+    frames = read_csv(tmp_path / "fcc.frames.csv")
+    assert frames["pores"][0] == 3 * 256 and frames["degenerate_selected"][0] == 256
+    assert math.isclose(frames["nu"][0], nu, rel_tol=1e-4), frames["nu"][0]
+    if digits == 6:
+        result = run("-q", "-r", R, "--merge-tol", "1e-8", "-o", tmp_path / "split", dump)
+        assert result.returncode == 0, result.stderr
+        assert read_csv(tmp_path / "split.frames.csv")["pores"][0] > 3 * 256
 
 
 def _frame(n_atoms_line, atom_lines, flags="pp pp pp", columns="id x y z radius", bounds=("0 7", "0 7", "0 7")):

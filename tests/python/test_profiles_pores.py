@@ -305,6 +305,42 @@ def _pores_binary():
 
 
 @pytest.mark.skipif(_pores_binary() is None, reason="tapmc-pores not built")
+def test_read_pores_of_a_frame_without_pores_and_a_file_name_with_a_comma(tmp_path):
+    """A selection holding no pore leaves the frame's nu and mean_xi empty: read_pores made the
+    column text and nu raised numpy's UFuncTypeError; a dump named 'seed,1.dump' split its rows
+    (expected 15 fields, found 16). Now nu is NaN for that frame, and the name is quoted."""
+    a, n = np.sqrt(2.0), 3
+    basis = np.array([[0, 0, 0], [0.5, 0.5, 0], [0.5, 0, 0.5], [0, 0.5, 0.5]])
+    cells = np.array(np.meshgrid(*[np.arange(n)] * 3, indexing="ij")).reshape(3, -1).T
+    centres = ((cells[:, None, :] + basis[None]) * a).reshape(-1, 3) * 1.02
+    box = n * a * 1.02
+    lines = [f"ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n{len(centres)}\n"
+             f"ITEM: BOX BOUNDS pp pp pp\n0 {box}\n0 {box}\n0 {box}\nITEM: ATOMS id x y z radius"]
+    lines += [f"{i + 1} {x!r} {y!r} {z!r} 0.5" for i, (x, y, z) in enumerate(centres)]
+    dump = tmp_path / "seed,1.dump"
+    dump.write_text("\n".join(lines) + "\n")
+    proc = subprocess.run([str(_pores_binary()), "-q", "--z", "0.01:0.0100001", "-o",
+                           str(tmp_path / "none"), str(dump)],
+                          capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 0, proc.stderr
+    out = read_pores(tmp_path / "none")
+    assert list(out.frames["file"]) == [str(dump)]
+    assert out.frames["nu"].dtype == float and np.isnan(out.frames["nu"][0])
+    assert out.distribution().selected == 0 and np.isnan(out.nu)
+    # a frame without pores beside one with: nu is the other's (no NaN from the empty one)
+    proc = subprocess.run([str(_pores_binary()), "-q", "-o", str(tmp_path / "all"), str(dump)],
+                          capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 0, proc.stderr
+    whole = read_pores(tmp_path / "all")
+    mixed = tmp_path / "mixed.frames.csv"
+    rows = (tmp_path / "all.frames.csv").read_text().splitlines()
+    empty = (tmp_path / "none.frames.csv").read_text().splitlines()[-1]
+    mixed.write_text("\n".join(rows + [empty]) + "\n")
+    (tmp_path / "mixed.hist.csv").write_text((tmp_path / "all.hist.csv").read_text())
+    assert read_pores(tmp_path / "mixed").nu == pytest.approx(whole.nu, rel=1e-12)
+
+
+@pytest.mark.skipif(_pores_binary() is None, reason="tapmc-pores not built")
 def test_read_pores_real_program_fcc(tmp_path):
     # FCC at contact, periodic: pores are tetrahedral (2 per sphere) and octahedral (1)
     a, n = np.sqrt(2.0), 3

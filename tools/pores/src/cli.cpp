@@ -79,7 +79,8 @@ Outputs (files PREFIX.*)
 Tolerances
   --overlap-tol T      spheres closer than 2R (1 - T) are refused (default 1e-3); overlapping
                        inputs such as DEM dumps need T above their deepest overlap
-  --merge-tol T        circumcentres closer than T R are one pore (default 1e-8)
+  --merge-tol T        circumcentres closer than T R are one pore (default 1e-8, or 10 times
+                       the rounding of the dump's coordinates over R when coarser: 1e-4 for %g)
   --padding P          periodic image padding in R (default 4, at least 2, at most 32; grown automatically)
 Other
   -q, --quiet          no progress lines on stderr (warnings and errors still)
@@ -108,6 +109,7 @@ struct Options {
   std::size_t sigma_steps = config::kDefaultSigmaBins;
   std::uint64_t seed = 1;
   PoreOptions pores;
+  bool merge_tolerance_given = false;  // else from the frame's written digits (merge_tolerance_for)
 };
 
 double to_double(const std::string& option, const std::string& text) {
@@ -254,13 +256,17 @@ bool set_analysis_option(Options& o, const std::string& a, const NextValue& valu
   }
   else if (a == "--p0") o.p0_samples = to_count_in_range(a, value(), 1, config::kMaxP0Samples);
   else if (a == "--sigma-max")
-    o.sigma_max = to_double_where(a, value(), [](double v) { return v > 1; }, "(1, inf)");
+    o.sigma_max = to_double_where(a, value(), [](double v) { return v > 1 && v <= config::kMaxSigmaMax; },
+                                  "(1, " + message_number(config::kMaxSigmaMax) + "] (in R)");
   else if (a == "--sigma-steps") o.sigma_steps = to_count_in_range(a, value(), 2, config::kMaxSigmaSteps);
   else if (a == "--seed") o.seed = to_count(a, value(), 0);
   else if (a == "--overlap-tol")
     o.pores.overlap_tolerance = to_double_where(a, value(), [](double v) { return v >= 0 && v < 1; }, "[0, 1)");
   else if (a == "--merge-tol")
+  {
     o.pores.merge_tolerance = to_double_where(a, value(), [](double v) { return v >= 0 && v < 0.1; }, "[0, 0.1)");
+    o.merge_tolerance_given = true;
+  }
   else if (a == "--padding")
     o.pores.padding_over_radius = to_double_in_range(a, value(), config::kMinPaddingOverRadius, config::kMaxPaddingOverRadius, ", in R");
   else return false;
@@ -341,6 +347,15 @@ struct Warning {
 
 // Numbers for CSV: NaN becomes an empty field.
 std::string csv_number(double v) { return std::isnan(v) ? "" : number_text(v); }
+
+// A text field of a CSV row (a file name): quoted when it holds a comma, a quote or a line
+// break, its quotes doubled (RFC 4180, as Python's csv module reads it).
+std::string csv_text(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (const char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
 
 struct FrameSummary {
   std::string file;
@@ -627,9 +642,23 @@ void PoreRun::warn_about_packing(const Frame& frame, const Selection& selection)
   }
 }
 
+// The merge tolerance of a frame (in R) without --merge-tol: kMergeTolerance, or more when the
+// dump's digits round the coordinates coarser (pores_config.h, kMergeRoundingFactor).
+double merge_tolerance_for(const Frame& frame, double radius) {
+  if (frame.coordinate_digits <= 0) return config::kMergeTolerance;
+  double largest = 0.0;
+  for (const double v : frame.xyz) largest = std::max(largest, std::abs(v));
+  for (int d = 0; d < 3; ++d) largest = std::max({largest, std::abs(frame.box.lo[d]), std::abs(frame.box.hi[d])});
+  if (!(largest > 0.0)) return config::kMergeTolerance;
+  const double half_unit = 0.5 * std::pow(10.0, std::floor(std::log10(largest)) + 1 - frame.coordinate_digits);
+  return std::min(std::max(config::kMergeTolerance, config::kMergeRoundingFactor * half_unit / radius),
+                  config::kMaxMergeTolerance);
+}
+
 std::unique_ptr<Tessellation> PoreRun::tessellate(const Frame& frame, const Selection& selection) const {
   PoreOptions pore_options = o_.pores;
   pore_options.radius = selection.radius;
+  if (!o_.merge_tolerance_given) pore_options.merge_tolerance = merge_tolerance_for(frame, selection.radius);
   pore_options.focus_lo = selection.region.lo;  // wider paddings only for pores that are analysed
   pore_options.focus_hi = selection.region.hi;
   try {
@@ -689,7 +718,7 @@ void PoreRun::analyse_frame(const Frame& frame) {
     const bool selected = region.contains(pore.centre);
     if (selected) summary.stats.add(pore);
     if (pores_csv_)
-      *pores_csv_ << frame.source << "," << frame.index << "," << frame.timestep << "," << pore.centre[0] << ","
+      *pores_csv_ << csv_text(frame.source) << "," << frame.index << "," << frame.timestep << "," << pore.centre[0] << ","
                   << pore.centre[1] << "," << pore.centre[2] << "," << pore.xi << "," << pore.ids[0] << ","
                   << pore.ids[1] << "," << pore.ids[2] << "," << pore.ids[3] << "," << pore.tetrahedra << ","
                   << pore.volume << "," << (selected ? 1 : 0) << "\n";
@@ -714,7 +743,7 @@ void PoreRun::analyse_frame(const Frame& frame) {
 void PoreRun::write_frame(const Frame& frame, const FrameSummary& summary, const Region& region,
                           const PoreResult& result) {
   const PoreStatistics& s = summary.stats;
-  *frames_csv_ << frame.source << "," << frame.index << "," << frame.timestep << "," << summary.atoms << ","
+  *frames_csv_ << csv_text(frame.source) << "," << frame.index << "," << frame.timestep << "," << summary.atoms << ","
                << csv_number(summary.radius) << "," << summary.pores << "," << summary.tetrahedra << ","
                << summary.unresolved << "," << s.pores << "," << s.degenerate << "," << csv_number(s.nu()) << ","
                << csv_number(s.mean_xi()) << "," << csv_number(summary.region_volume) << ","
@@ -722,7 +751,7 @@ void PoreRun::write_frame(const Frame& frame, const FrameSummary& summary, const
                << csv_number(summary.seconds) << "\n";
   if (frame_hist_csv_) {
     std::ostringstream row;
-    row << frame.source << "," << frame.index << "," << frame.timestep << ",";
+    row << csv_text(frame.source) << "," << frame.index << "," << frame.timestep << ",";
     write_histogram_rows(*frame_hist_csv_, s, row.str());
   }
   if (!o_.quiet)

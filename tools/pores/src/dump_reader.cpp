@@ -112,6 +112,20 @@ bool parse_double(std::string_view text, double& value) {
   return result.ec == std::errc() && result.ptr == text.data() + text.size();
 }
 
+// Significant digits of a number as written: "-1.50e+01" -> 3, "0.000123" -> 3.
+int significant_digits(std::string_view text) {
+  int digits = 0;
+  bool leading = true;
+  for (const char c : text) {
+    if (c == 'e' || c == 'E') break;
+    if (c < '0' || c > '9') continue;  // sign, point
+    if (leading && c == '0') continue;
+    leading = false;
+    ++digits;
+  }
+  return digits;
+}
+
 bool parse_integer(std::string_view text, long long& value) {
   if (!text.empty() && text.front() == '+') text.remove_prefix(1);
   const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
@@ -359,7 +373,11 @@ void DumpReader::read_atom(const std::vector<std::string_view>& fields, const Co
   for (int d = 0; d < 3; ++d) {
     const CoordinateStyle style = columns.style[d];
     const bool scaled = style == CoordinateStyle::kScaled || style == CoordinateStyle::kScaledUnwrapped;
-    frame.xyz.push_back(place(field_number(fields[columns.coordinate[d]], "coordinate"), d, scaled, frame));
+    const std::string_view field = fields[columns.coordinate[d]];
+    frame.xyz.push_back(place(field_number(field, "coordinate"), d, scaled, frame));
+    if (i < config::kDigitsSample)
+      frame.coordinate_digits = std::max({frame.coordinate_digits, config::kLeastDumpDigits,
+                                          significant_digits(field)});
   }
   if (columns.radius >= 0) frame.radius.push_back(field_number(fields[columns.radius], "radius"));
   else if (columns.diameter >= 0) frame.radius.push_back(0.5 * field_number(fields[columns.diameter], "diameter"));
@@ -437,6 +455,7 @@ bool DumpReader::next(Frame& frame) {
   frame.ids.clear();
   frame.xyz.clear();
   frame.radius.clear();
+  frame.coordinate_digits = 0;
 
   long long atom_count = -1;
   bool have_box = false;

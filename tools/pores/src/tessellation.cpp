@@ -124,6 +124,13 @@ struct Tessellation::Impl {
       if (p[d] < options.focus_lo[d] || p[d] >= options.focus_hi[d]) return false;  // as Region::contains
     return true;
   }
+  // A cell unresolved at this padding asks for a wider one when its pore is centred in the
+  // selection, or in a triply periodic box, whose cells must all tile it: a cell outside the
+  // selection that never asked stopped the run, or not, depending on which periodic copy the
+  // canonical rule kept (so on the atoms' order).
+  bool may_widen_padding(const Sphere& s) const {
+    return (box.periodic[0] && box.periodic[1] && box.periodic[2]) || in_focus(s);
+  }
   void build(const std::vector<double>& xyz, double padding, double previous);
   // Throws OverlapError for centres (or images) at one position, which the triangulation merges.
   void refuse_coincident(const std::vector<double>& xyz, const std::vector<std::pair<Point, std::uint32_t>>& points) const;
@@ -373,7 +380,7 @@ void Tessellation::Impl::scan_cells(double padding, double max_padding, bool fin
     // caller inserts more images and comes back, so the rest of this pass would be wasted.
     if (!final_attempt && primary[canonical_vertex(&i, &i + 1).point]) {
       const double needed = padding_needed(a);
-      if (needed > padding && needed <= max_padding && in_focus(a))
+      if (needed > padding && needed <= max_padding && may_widen_padding(a))
         result.retry_padding = std::max(result.retry_padding, needed);
     }
     merge_with_neighbours(i, a);
@@ -406,9 +413,10 @@ void Tessellation::Impl::keep_pore(const std::uint32_t* first, const std::uint32
     ++result.unresolved;
     // Resolvable with a wider padding (up to max_padding): ask for a retry. Wider cells are
     // hull cells open towards a wall or a free surface (not pores of the packing).
-    const bool focused = in_focus(sphere_of(cells[*first]));
-    if (focused) ++result.unresolved_in_focus;
-    if (needed <= max_padding && focused) result.retry_padding = std::max(result.retry_padding, needed);
+    const Sphere head = sphere_of(cells[*first]);
+    if (in_focus(head)) ++result.unresolved_in_focus;
+    if (needed <= max_padding && may_widen_padding(head))
+      result.retry_padding = std::max(result.retry_padding, needed);
     return;
   }
   for (const std::uint32_t* c = first; c != last; ++c)

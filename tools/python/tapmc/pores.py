@@ -31,6 +31,7 @@ the one tapmc-pores writes in its p0 file.
 
 import csv
 import json
+import math
 import os
 import re
 
@@ -76,7 +77,9 @@ def _number(text):
 
 class CsvTable:
     """A CSV file with a header row: ``columns``, ``table[name]`` (float array when every entry
-    is numeric, else str array), ``len(table)``, ``comments`` (leading '#' lines)."""
+    is numeric or empty, an empty one NaN: tapmc-pores leaves nu and mean_xi empty for a frame
+    without a selected pore, and P0_percus_yevick where Phi = 1; else str array), ``len(table)``,
+    ``comments`` (leading '#' lines)."""
 
     def __init__(self, path):
         self.path = str(path)
@@ -99,7 +102,7 @@ class CsvTable:
         self._data = {}
         for j, name in enumerate(self.columns):
             col = [r[j] for r in body]
-            nums = [_number(v) for v in col]
+            nums = [math.nan if v == "" else _number(v) for v in col]
             if all(v is not None for v in nums):
                 self._data[name] = np.array(nums, dtype=float)
             else:
@@ -278,9 +281,12 @@ class PoreOutput:
 
     @property
     def nu(self):
-        """nu over all analysed frames (weighted by their selected pores)."""
+        """nu over all analysed frames (weighted by their selected pores; a frame without any
+        has no nu, NaN, and no weight); NaN when no frame has a selected pore."""
         w = self.frames["selected"]
-        return float(np.sum(self.frames["nu"] * w) / np.sum(w))
+        if not np.sum(w) > 0:
+            return math.nan
+        return float(np.sum(np.where(w > 0, self.frames["nu"], 0.0) * w) / np.sum(w))
 
     def distribution(self, timestep=None):
         if timestep is None:

@@ -39,6 +39,8 @@ struct Frame {
   std::vector<std::int64_t> ids;    // atom ids (1..N when the dump has no id column)
   std::vector<double> xyz;          // 3 N centre coordinates
   std::vector<double> radius;       // N radii, empty when the dump has no radius/diameter column
+  int coordinate_digits = 0;        // significant digits the coordinates were written with
+                                    // (>= config::kLeastDumpDigits; 0: not read from text)
   std::size_t size() const { return ids.size(); }
 };
 

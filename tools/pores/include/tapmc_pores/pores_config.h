@@ -19,6 +19,21 @@ namespace config {
 // exactly, see kSliverRelativeVolume), and genuinely distinct Voronoi vertices closer than
 // 1e-8 R are indistinguishable once a dump has been printed with 6 to 17 digits.
 constexpr double kMergeTolerance = 1e-8;
+// ... unless the dump's coordinates were written with fewer digits: without --merge-tol the
+// tolerance is then kMergeRoundingFactor times the rounding of the largest coordinate (half a
+// unit of its last written digit), over R. Measured on FCC written with %g (6 digits, rounding
+// 1e-5 R): the octahedral holes came out as 1 to 4 pores (nu 0.0467 for 0.0313) up to a
+// tolerance of 2e-5 R and whole from 5e-5 R; 10 times the rounding is 1e-4 R there. Dumps
+// written with %.10g (the paper inputs', rounding ~1e-8 R) get ~1e-7 R, with %.17g 1e-8 R.
+constexpr double kMergeRoundingFactor = 10.0;
+// ... and never above kMaxMergeTolerance (below --merge-tol's bound 0.1): a dump written with a
+// few digits of large coordinates would otherwise merge every pore with its neighbours.
+constexpr double kMaxMergeTolerance = 1e-2;
+// Written digits are read from the first kDigitsSample atoms of each frame (the most over their
+// coordinates): %.10g trims a trailing zero one time in ten, so 3 x 64 values all written short
+// happen 1e-192 of the time. Text never holds fewer than kLeastDumpDigits (LAMMPS's %g).
+constexpr std::size_t kDigitsSample = 64;
+constexpr int kLeastDumpDigits = 6;
 
 // A tetrahedron is a sliver when |det(b-a, c-a, d-a)| < kSliverRelativeVolume * |b-a||c-a||d-a|
 // (6 V over the product of three edges; 0.47 for a regular tetrahedron). Its circumcentre is then
@@ -130,6 +145,9 @@ constexpr std::size_t kDefaultBins = 150;
 constexpr std::size_t kMaxBins = 1000000;
 // Gotoh's P0(sigma) is tabulated on [0, kDefaultSigmaMax] with kDefaultSigmaBins steps.
 constexpr double kDefaultSigmaMax = 2.0;
+// --sigma-max above kMaxSigmaMax is a usage error: sigma R beyond the largest pore (kMaxXiMax R)
+// is open space, and 1e308 made every grid step inf (written inf, and null in the JSON).
+constexpr double kMaxSigmaMax = kMaxXiMax;
 constexpr std::size_t kDefaultSigmaBins = 200;
 // --sigma-steps above kMaxSigmaSteps is a usage error. 10^5 steps are 2e-5 R apart at the
 // default --sigma-max, 500 times finer than the default grid and about the precision to which
