@@ -172,6 +172,7 @@ ComputeContacts::~ComputeContacts()
 
 void ComputeContacts::init()
 {
+  counted_step_ = -1;  // atoms may have moved between runs (displace_atoms) on the same step
   if (domain->triclinic)
     error->all(FLERR, "{}: triclinic boxes are not supported; use an orthogonal box", kStyle);
   tapmc::quiet_sorting_without_pair_style(lmp);
@@ -248,6 +249,7 @@ void ComputeContacts::check_ghost_shell(double r_max)
 // counts_, on_floor_ and on_wall_ for the owned atoms of the group (owned_). Collective.
 void ComputeContacts::count()
 {
+  counted_step_ = update->ntimestep;
   const double r_max = group_radius_max();
   check_ghost_shell(r_max);
   // A dynamic group's membership changes on owned atoms only (fix GROUP of LAMMPS 29 Sep 2021
@@ -286,15 +288,26 @@ void ComputeContacts::count()
   });
 }
 
+// The counts of this step are at hand when one of the outputs was computed on it and no move
+// since made its stamp stale (forget_computed_values sets every stamp of the step to
+// kStampBeforeTheMove).
+bool ComputeContacts::counts_current() const
+{
+  const bigint step = update->ntimestep;
+  return counted_step_ == step &&
+         (invoked_peratom == step || invoked_vector == step || invoked_array == step);
+}
+
 void ComputeContacts::compute_peratom()
 {
+  const bool current = counts_current();
   invoked_peratom = update->ntimestep;
   if (atom->nmax > nmax_) {
     memory->destroy(vector_atom);
     nmax_ = atom->nmax;
     memory->create(vector_atom, nmax_, "contacts:vector_atom");
   }
-  count();
+  if (!current) count();
   for (int i = 0; i < atom->nlocal; ++i) vector_atom[i] = 0.0;
   for (std::size_t k = 0; k < owned_.size(); ++k) vector_atom[owned_[k]] = counts_[k];
 }
@@ -320,15 +333,17 @@ void ComputeContacts::summarize()
 
 void ComputeContacts::compute_vector()
 {
+  const bool current = counts_current();
   invoked_vector = update->ntimestep;
-  count();
+  if (!current) count();
   summarize();
 }
 
 void ComputeContacts::compute_array()
 {
+  const bool current = counts_current();
   invoked_array = update->ntimestep;
-  count();
+  if (!current) count();
   summarize();
 }
 

@@ -46,6 +46,10 @@ class ComputeContacts : public Compute, public tapmc::ContainerHolder {
   tapmc::contacts::Counter counter_;
   double fixed_radius_;  // radius keyword (> 0), or 0: per-atom radius
   int nmax_;             // length of vector_atom
+  // The step whose counts counts_ holds (-1: none since the run's init): the per-atom vector,
+  // the vector and the array read on one step share one count, unless a move since (fix
+  // tapdilate, fix mc/settle) marked the stamps stale (counts_current()).
+  bigint counted_step_ = -1;
   std::vector<int> owned_;                 // owned atoms of the group (local indices)
   std::vector<double> xyz_, radius_;       // owned atoms of the group, then ghosts of the group
   std::vector<int> counts_;                // per owned atom of the group
@@ -58,6 +62,7 @@ class ComputeContacts : public Compute, public tapmc::ContainerHolder {
   double group_radius_max(bool any_atom_may_join = false);
   double ghost_depth_needed(double r_max) const;
   void check_ghost_shell(double r_max);
+  bool counts_current() const;
   void count();
   void summarize();
 };

@@ -144,6 +144,7 @@ SettleResult Settler::settle(double *xyz, const double *radius, const unsigned c
       sampler_->theta_sampler().law() != params.theta_law)
     sampler_ = std::make_unique<TrialMoveSampler>(params.d_max, params.theta0, params.theta_law);
   mover_->reset(xyz, radius, n, box, params.d_max, params.contact_tol);
+  if (m > 0) mover_->prepare_candidates(movable_ids_.data(), m);
 
   TrialTally tally;  // sum_dz starts at the sum of the heights: it then holds the sum of <Z>
   for (int i : movable_ids_) tally.sum_dz += xyz[3 * i + 2] - box.floor_z;

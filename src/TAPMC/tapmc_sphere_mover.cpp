@@ -247,8 +247,13 @@ struct SphereMover::State {
   std::vector<double> wrapped;
   std::vector<int> wrapped_image, order_start, cell_ext, pairs;
   // Scratch of run(): slots of the candidates of the current block, a batch of draws and the
-  // slots of their picks.
+  // slots of their picks. The slots stay valid for the candidates prepare_candidates() was
+  // given while no build renumbers the slots (build_generation unchanged).
   std::vector<int> candidate_slots;
+  std::uint64_t build_generation = 0;  // builds since construction (never reset)
+  const int *prepared_candidates = nullptr;
+  long prepared_m = 0;
+  std::uint64_t prepared_generation = 0;
   std::array<TrialDraw, TrialMoveSampler::kBatchMax> batch{};
   std::array<int, TrialMoveSampler::kBatchMax> batch_slot{};
 
@@ -382,6 +387,7 @@ void SphereMover::State::build(const double *xyz_wrapped, const double *radius,
     b[++b[0]] = pairs[q];
   }
   ++full_builds;
+  ++build_generation;
 }
 
 SphereMover::SphereMover() : state_(std::make_unique<State>()) {}
@@ -691,6 +697,35 @@ void SphereMover::take_moved(std::vector<Moved> &moved)
   st.moved.slots.clear();
 }
 
+namespace {
+// The slots of candidates[0 .. m) into st.candidate_slots, each index checked to be a sphere.
+void translate_candidates(SphereMover::State &st, const int *candidates, long m)
+{
+  st.candidate_slots.resize(m);
+  int *slots = st.candidate_slots.data();
+  const int *slot_of = st.spheres.slot_of.data();
+  const int n = st.n;
+  for (long k = 0; k < m; ++k) {
+    const int c = candidates[k];
+    if (!(c >= 0 && c < n))
+      throw_outside_range("candidates[" + std::to_string(k) + "]", c,
+                          "[0, " + std::to_string(n) + ")");
+    slots[k] = slot_of[c];
+  }
+}
+}  // namespace
+
+void SphereMover::prepare_candidates(const int *candidates, long m)
+{
+  State &st = *state_;
+  if (!(m >= 1 && static_cast<std::uint64_t>(m) < (std::uint64_t{1} << 32)))
+    throw_outside_range("number of candidates", m, "[1, 2^32)");
+  translate_candidates(st, candidates, m);
+  st.prepared_candidates = candidates;
+  st.prepared_m = m;
+  st.prepared_generation = st.build_generation;
+}
+
 void SphereMover::run(const int *candidates, long m, PickOrder order, long &sweep_cursor,
                       const TrialMoveSampler &sampler, const CounterRandom &rng,
                       std::uint64_t first_trial, long trials, const MoveRegion *region,
@@ -706,17 +741,16 @@ void SphereMover::run(const int *candidates, long m, PickOrder order, long &swee
     throw_outside_range("sampler d_max", sampler.d_max(),
                         "(0, " + number(st.d_max) + "] (the d_max of reset)");
   // A block of at least half a sweep translates the candidates to slots once (one pass in
-  // order), so a random pick costs one indirection instead of two dependent ones.
+  // order), so a random pick costs one indirection instead of two dependent ones; candidates
+  // given to prepare_candidates() were translated there, once for every block.
   const int *candidate_slots = nullptr;
-  if (trials >= m / 2) {
-    st.candidate_slots.resize(m);
-    for (long k = 0; k < m; ++k) {
-      const int c = candidates[k];
-      if (!(c >= 0 && c < st.n))
-        throw_outside_range("candidates[" + std::to_string(k) + "]", c,
-                            "[0, " + std::to_string(st.n) + ")");
-      st.candidate_slots[k] = st.spheres.slot_of[c];
-    }
+  const bool prepared = candidates == st.prepared_candidates && m == st.prepared_m &&
+                        st.build_generation == st.prepared_generation;
+  if (prepared) {
+    candidate_slots = st.candidate_slots.data();
+  } else if (trials >= m / 2) {
+    st.prepared_candidates = nullptr;  // the slots below replace the prepared ones
+    translate_candidates(st, candidates, m);
     candidate_slots = st.candidate_slots.data();
   }
   const RunArgs args{candidates, candidate_slots, m,      order == PickOrder::Random,

@@ -336,6 +336,27 @@ def test_box_restrictions_and_missing_radius():
     assert printed(out, "VEC")[0] == 11.5
 
 
+def test_outputs_read_on_one_step_share_a_count_that_a_new_run_renews():
+    """The vector and the per-atom vector read on one step come from one count; atoms displaced
+    between two 'run 0' at the same step are counted afresh (a count kept from the first run
+    would still read the lattice's 11.5)."""
+    script = fcc_lattice() + """compute z all contacts 0.0
+compute zsum all reduce sum c_z
+variable n equal count(all)
+thermo_style custom step c_z[1] c_z[5] c_zsum
+run 0
+print "BEFORE $(c_z[1]:%.17g) $(c_zsum/v_n:%.17g)"
+displace_atoms all random 0.02 0.02 0.0 77 units box
+run 0
+print "AFTER $(c_z[1]:%.17g) $(c_zsum/v_n:%.17g)"
+"""
+    rc, out, wd = run_lammps(script)
+    assert rc == 0, out[-2000:]
+    before, after = printed(out, "BEFORE"), printed(out, "AFTER")
+    assert before[0] == 11.5 and before[1] == 11.5, before
+    assert after[0] < 11.0 and after[1] == pytest.approx(after[0], abs=1e-12), after
+
+
 @pytest.mark.parametrize("nprocs", [1, 2])
 def test_empty_group_gives_zeros(nprocs):
     script = fcc_lattice() + """group none empty
