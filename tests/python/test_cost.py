@@ -189,6 +189,13 @@ def test_dry_run_prices_every_run(tmp_path):
     assert lines and all("CPU h, to run]" in line for line in lines)
     assert "left to run: about" in done.stdout
     assert not (tmp_path / "c").exists()
+    # the wall time of the --jobs asked for (it took the cores available), and a quick
+    # campaign's seconds as seconds (it read '0.0 CPU hours ... 0.0 h of wall time')
+    one = _tapmc_paper("fig4", "--quick", "--dry-run", "--jobs", "1", "--campaign",
+                       str(tmp_path / "c"))
+    last = one.stdout.splitlines()[-1]
+    assert one.returncode == 0 and last.endswith("of wall time on 1 core)"), last
+    assert " s of CPU" in last or " min of CPU" in last, last
 
 
 def test_the_campaign_weighs_only_the_runs_whose_taps_differ_in_cost():

@@ -642,3 +642,35 @@ def test_finished_view_reads_a_run_with_the_variables_it_ran_with(tmp_path):
     (folder / "DONE.json").write_text("{}")   # no record: the plan's spec (what campaign runs)
     view, _ = cli._finished_view(camp, [ran])
     assert view.runs[0].variables["P"] == 1000
+
+
+def test_report_prints_the_figures_where_the_report_leaves_them(tmp_path, capsys):
+    """The report moves the figures it embeds into OUT/validation: it printed OUT/fig2.png, a
+    path that no longer existed."""
+    from types import SimpleNamespace
+
+    def draw(campaign, out):
+        out.mkdir(parents=True, exist_ok=True)
+        png, csv = out / "fig2.png", out / "fig2.csv"
+        png.write_text("png")
+        csv.write_text("csv")
+        return png, csv
+
+    def report(campaign, out_dir, drawn, planned_runs=None):   # as validation.report moves them
+        target = out_dir / "validation"
+        target.mkdir()
+        for png, csv in drawn.values():
+            png.rename(target / png.name)
+            csv.rename(target / csv.name)
+        (out_dir / "validation.rst").write_text("page")
+        return out_dir / "validation.rst"
+
+    from tapmc.paper import cli as paper_cli
+    validation = SimpleNamespace(FIG_DIR="validation", report=report)
+    status = paper_cli._draw_and_report(SimpleNamespace(finished_only=False), None,
+                                        [("fig2", SimpleNamespace(draw=draw))], validation,
+                                        tmp_path, None)
+    lines = capsys.readouterr().out.splitlines()
+    assert status == 0 and lines[-1] == f"report: {tmp_path / 'validation.rst'}", lines
+    printed = [Path(p) for p in lines[0].split(": ", 1)[1].split()]
+    assert lines[0].startswith("fig2: ") and printed and all(p.is_file() for p in printed), lines

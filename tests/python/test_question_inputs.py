@@ -223,3 +223,28 @@ def test_exit_status_tells_a_failed_run_from_an_unusable_input(tmp_path, capsys,
         monkeypatch.setattr(module, "measure", measure)
         assert cli.main(["question", "pbc-course", "--out", str(tmp_path)]) == status
         assert capsys.readouterr().err == f"tapmc-paper question pbc-course: {error}\n"
+
+
+@pytest.mark.parametrize("name", ["pbc-course", "realization-scatter"])
+def test_a_campaign_of_short_runs_is_named_not_a_traceback(capsys, tmp_path, name):
+    """A quick campaign's runs (100 taps) are shorter than the 1000-tap steady window these
+    two questions read: they ended in a traceback of SteadyState ('last = 1000 exceeds the
+    series length 100'); now one line names the run and the window, exit 2."""
+    import json
+    if not (RUN / "DONE.json").is_file():
+        pytest.skip("campaign data absent")
+    lines = (RUN / "taps.dat").read_text().splitlines()
+    short = [line for line in lines if line.startswith("#")] + \
+        [line for line in lines if not line.startswith("#")][:101]
+    for seed in (1, 2):
+        folder = tmp_path / "campaign" / "runs" / f"const_pbc_eps0.0225_s{seed}"
+        folder.mkdir(parents=True)
+        (folder / "taps.dat").write_text("\n".join(short) + "\n")
+        done = json.loads((RUN / "DONE.json").read_text())
+        done["run"]["taps"] = done["run"]["variables"]["taps"] = 100
+        done["run"]["name"], done["run"]["seed"] = folder.name, seed
+        (folder / "DONE.json").write_text(json.dumps(done))
+    status, err = question(capsys, name, "--campaign", tmp_path / "campaign", "--out",
+                           tmp_path / "out")
+    assert status == 2 and err.count("\n") == 1 and "Traceback" not in err, err
+    assert "100 taps, fewer than the 1000-tap steady window" in err, err

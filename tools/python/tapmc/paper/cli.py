@@ -396,7 +396,7 @@ def _run_plan(args):
         print(f"tapmc-paper: {err}", file=sys.stderr)
         return 2
     if args.dry_run:
-        return _list_runs(campaign, f"full plan, tiers 1-{args.tier}")
+        return _list_runs(campaign, f"full plan, tiers 1-{args.tier}", args.jobs)
     return _run_campaign(campaign, scale, args.quiet)
 
 
@@ -550,12 +550,13 @@ def _damage(run_dir):
             + (f" and {len(names) - 3} more" if len(names) > 3 else "") + "), to run again")
 
 
-def _list_runs(campaign, what):
+def _list_runs(campaign, what, jobs=None):
     """The runs of a dry run, each with its CPU hours by the cost rule (times its ranks), how
     far it got (a run under way: the tap of its latest restart file, where it resumes, and
     the CPU hours of the taps from there) and what its attempts recorded, and the CPU hours
     left in all; on stderr, the campaign's warning when no commit of this TAPMC describes its
-    executable (:func:`tapmc.campaign.provenance.build_mismatch`)."""
+    executable (:func:`tapmc.campaign.provenance.build_mismatch`). The wall time is that of
+    ``jobs`` runs at a time (--jobs; default: the cores this process may use)."""
     print(f"campaign {campaign.directory} ({what}, {len(campaign.runs)} runs):")
     why = None  # the first reason a run has no estimate
     try:
@@ -603,9 +604,10 @@ def _list_runs(campaign, what):
                                          provenance.tapmc_version())
     if mismatch:  # what the campaign would say at its start, before it is started
         print(f"tapmc-paper: warning: {mismatch}", file=sys.stderr)
-    jobs = max(1, launch.available_cores())
-    print(f"left to run: about {left:.1f} CPU hours (the cost rule of tapmc-paper plan; "
-          f"{cost.wall_hours(each, jobs):.1f} h of wall time on {jobs} cores)"
+    jobs = jobs or max(1, launch.available_cores())
+    print(f"left to run: about {_hours_text(left)} of CPU (the cost rule of tapmc-paper plan; "
+          f"{_hours_text(cost.wall_hours(each, jobs))} of wall time on {jobs} "
+          f"{'core' if jobs == 1 else 'cores'})"
           + (f"; {unknown} runs without an estimate: {why}" if unknown else ""))
     return 0
 
@@ -703,7 +705,7 @@ def _main(argv=None):
         print(f"tapmc-paper: {err}", file=sys.stderr)
         return 2
     if args.dry_run:
-        return _list_runs(campaign, args.scale)
+        return _list_runs(campaign, args.scale, args.jobs)
     planned = len(campaign.runs)
     if getattr(args, "finished_only", False):
         try:
@@ -723,6 +725,16 @@ def _main(argv=None):
     return _draw_and_report(args, campaign, modules, validation, out, planned)
 
 
+def _hours_text(hours):
+    """A duration given in hours, as a reader takes it in: hours from 0.1 h, else minutes, else
+    seconds (a quick campaign's 0.009 CPU h read '0.0 CPU hours')."""
+    if hours >= 0.1:
+        return f"{hours:.1f} h"
+    if hours * 60 >= 1:
+        return f"{hours * 60:.0f} min"
+    return f"{hours * 3600:.0f} s"
+
+
 def _draw_and_report(args, campaign, modules, validation, out, planned):
     """Draw every figure of ``modules`` from the campaign and, with ``validation``, write the
     report; returns the exit status. With --finished-only a figure whose runs have not
@@ -740,9 +752,13 @@ def _draw_and_report(args, campaign, modules, validation, out, planned):
                 print(f"{name}: left out ({err})")
                 continue
             drawn[name] = (Path(png), Path(csv))
-            print(f"{name}: {png}  {csv}")
-        if validation is not None:
+            if validation is None:
+                print(f"{name}: {png}  {csv}")
+        if validation is not None:  # the report moves the figures into out/validation
             report = validation.report(campaign, out, drawn, planned_runs=planned)
+            moved_to = Path(out) / validation.FIG_DIR
+            for name, (png, csv) in drawn.items():
+                print(f"{name}: {moved_to / png.name}  {moved_to / csv.name}")
             print(f"report: {report}")
     except TapmcFormatError as err:  # a run's output damaged: named, never left out
         print(f"tapmc-paper: {err}", file=sys.stderr)

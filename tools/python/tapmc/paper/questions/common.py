@@ -42,6 +42,15 @@ class QuestionRunError(QuestionError):
     compilation) or whose campaign folder is in use: exit 1; nothing is written."""
 
 
+def require_steady_window(run_dir, taps, window):
+    """QuestionError when a run of ``taps`` taps is shorter than the steady window ``window`` a
+    question reads (the paper's last 1000 of 4000 taps): a quick or medium campaign's runs."""
+    if taps < window:
+        raise QuestionError(f"{run_dir}: {taps} taps, fewer than the {window}-tap steady window "
+                            "this question reads (the paper's last 1000 of 4000 taps); ask it of "
+                            "a campaign at the paper's scale (--full)")
+
+
 def work_folder(args, name):
     """The folder of a question's runs: --work when given, else <out>/partial/<name>."""
     work = getattr(args, "work", None)

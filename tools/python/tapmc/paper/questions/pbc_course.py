@@ -13,12 +13,12 @@ from collections import defaultdict
 
 import numpy as np
 
-from tapmc.fluctuations import DEFAULT_BATCHES, SteadyState
+from tapmc.fluctuations import DEFAULT_BATCHES, DEFAULT_LAST, SteadyState
 from tapmc.stats import beyond
 
 from .._rst import list_table
 from ..claims import fmt
-from .common import csv_schema, eps_of, finished_runs, taps_table
+from .common import csv_schema, eps_of, finished_runs, require_steady_window, taps_table
 
 NAME = "pbc-course"
 CSV = "pbc_course.csv"
@@ -80,6 +80,7 @@ def analyse(campaign):
         early = (t >= 1) & (t <= COURSE_EARLY)
         k = int(np.flatnonzero(early)[np.argmin(phi[early])])
         back = recovery_tap(t, phi, phi[0])
+        require_steady_window(run_dir, len(phi) - 1, DEFAULT_LAST)
         steady = SteadyState(phi[1:]).compute()
         # still compacting? the second half of the steady window minus its first half
         drift, drift_se, _ = steady_halves(phi, steady)

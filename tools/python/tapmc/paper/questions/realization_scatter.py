@@ -16,13 +16,13 @@ from __future__ import annotations
 
 from collections import defaultdict
 
-from tapmc.fluctuations import DEFAULT_BATCHES, PowerSpectrum, SteadyState
+from tapmc.fluctuations import DEFAULT_BATCHES, DEFAULT_LAST, PowerSpectrum, SteadyState
 
 from ..claims import (CALIBRATION_ALPHA, RUN_ERROR_LABELS, RUN_ERROR_QUANTITIES,
                       ZONE_QUANTITIES, realization_calibrations)
 from .._steady_state import sigma_error_one_run
 from .calibration import calibration_table, load, save, scatter_by_bc, scatter_quantity
-from .common import seed_groups, taps_table
+from .common import require_steady_window, seed_groups, taps_table
 from .pbc_course import steady_halves
 
 NAME = "realization-scatter"
@@ -104,6 +104,7 @@ def analyse(campaign):
         for seed, run_dir in runs:
             table = tables[seed]
             keep = table["step"] > 0
+            require_steady_window(run_dir, int(keep.sum()), DEFAULT_LAST)
             head = [group, run_dir.name, seed, int(keep.sum())]
             mine = (_window_rows(head, table, keep) + _fig3_rows(head, table, keep)
                     + _zone_rows(head, table, keep))
