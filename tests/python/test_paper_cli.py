@@ -393,7 +393,8 @@ def _folder(tmp_path, manifest=None, scale=None):
 @pytest.mark.parametrize("case", [
     "campaign_is_file", "campaign_below_file", "campaign_uncreatable", "out_is_file",
     "out_below_file", "out_uncreatable", "manifest_is_directory", "manifest_not_json",
-    "manifest_not_object", "manifest_newer_format", "manifest_attempts_damaged",
+    "manifest_not_object", "manifest_newer_format", "manifest_format_text",
+    "manifest_format_true", "other_fbc_start", "manifest_attempts_damaged",
     "manifest_time_damaged", "other_preset", "campaign_other_preset",
     "edited_preset", "scale_json_damaged", "lmp_not_executable", "tapmc_lmp_missing"])
 def test_bad_paths(tmp_path, case, capsys, monkeypatch):
@@ -453,6 +454,18 @@ def test_bad_paths(tmp_path, case, capsys, monkeypatch):
         args = ["--campaign", folder, "--dry-run"]
         expected = (f"campaign manifest {folder / 'manifest.json'}: format 2, this TAPMC reads "
                     "format 1; the campaign was made by another TAPMC version")
+    elif case in ("manifest_format_text", "manifest_format_true"):   # true == 1 passed
+        value = '"1"' if case == "manifest_format_text" else "true"
+        folder = _folder(tmp_path, manifest='{"format": %s, "runs": []}' % value)
+        args = ["--campaign", folder, "--dry-run"]
+        shown = "True" if value == "true" else "'1'"
+        expected = (f"campaign manifest {folder / 'manifest.json'}: format {shown}, this TAPMC "
+                    "reads format 1")
+    elif case == "other_fbc_start":   # it blamed another TAPMC's Scale
+        folder = _folder(tmp_path, scale=QUICK.replace(fbc_start="paper"))
+        args = ["--quick", "--campaign", folder, "--dry-run"]
+        expected = (f"campaign {folder}: made with --fbc-start paper, not walls "
+                    f"({folder / 'scale.json'}); use --fbc-start paper or another --campaign")
     elif case == "other_preset":
         folder = _folder(tmp_path, scale=QUICK)
         args = ["--full", "--campaign", folder]

@@ -96,7 +96,7 @@ def read_manifest(directory):
         raise CampaignDirectoryError(f"campaign manifest {path}: not a campaign manifest "
                                      "(expected a JSON object with a list of runs)")
     fmt = data.get("format", MANIFEST_FORMAT)
-    if fmt != MANIFEST_FORMAT:
+    if type(fmt) is not int or fmt != MANIFEST_FORMAT:  # true == 1 and "1" are no format
         raise CampaignDirectoryError(
             f"campaign manifest {path}: format {fmt!r}, this TAPMC reads format "
             f"{MANIFEST_FORMAT}; the campaign was made by another TAPMC version (use that "

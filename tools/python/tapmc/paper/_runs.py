@@ -489,6 +489,11 @@ def check_scale(directory, scale):
         raise CampaignDirectoryError(f"campaign {Path(directory)}: made with Scale {name!r}, "
                                      f"not the {scale.name!r} asked for ({path}: {shown}); "
                                      f"use {hint}")
+    if differ == ["fbc_start"]:  # the option, not the version, differs
+        raise CampaignDirectoryError(f"campaign {Path(directory)}: made with --fbc-start "
+                                     f"{recorded.get('fbc_start')}, not "
+                                     f"{asked['fbc_start']} ({path}); use --fbc-start "
+                                     f"{recorded.get('fbc_start')} or another --campaign")
     raise CampaignDirectoryError(f"campaign {Path(directory)}: made with another Scale "
                                  f"{name!r} than this TAPMC's ({path}: {shown}); use another "
                                  "--campaign")
