@@ -110,7 +110,10 @@ def _null_statistics(pooled, counts, band, seeds, samples, band_covariance, repl
     mean ``pooled`` of the measured ones (below the lowest frequency continued by the log-log
     slope of the band)."""
     frequency = binned_periodogram_layout(samples)[0][:len(pooled)]
-    low_slope = float(np.polyfit(np.log(frequency[band]), np.log(pooled[band]), 1)[0])
+    log_f, log_power = np.log(frequency[band]), np.log(pooled[band])
+    # a band of one frequency (a quick campaign's short windows) has no slope: continued flat
+    # (polyfit warned 'poorly conditioned' on every report and returned an arbitrary one)
+    low_slope = float(np.polyfit(log_f, log_power, 1)[0]) if np.ptp(log_f) > 0 else 0.0
     rng = np.random.default_rng(BOOTSTRAP_SEED)
     per_campaign = int(seeds.sum())
     owner = np.repeat(np.arange(len(seeds)), seeds.astype(int))  # spectrum of every series
