@@ -256,3 +256,26 @@ def test_a_convention_reaches_the_claims_of_every_module_that_binds_it():
     claims_, reused, _ = reach("CONFIDENCE")
     assert len(claims_) == len(REGISTER) and reused == {}
     assert reach("CALIBRATION_ALPHA")[2]          # the calibration binds it: calibrated anew
+
+
+def test_a_spectral_band_of_one_frequency_is_continued_flat_without_warning():
+    """A quick campaign's windows give a band of one frequency: polyfit warned 'poorly
+    conditioned' on every report and returned an arbitrary slope; the null campaigns of the
+    bootstrap are now drawn with the band continued flat, silently."""
+    import warnings
+
+    import numpy as np
+
+    from tapmc.fluctuations import binned_periodogram_layout
+    from tapmc.paper.claims import fluctuations
+
+    samples = 25
+    _, counts, relative = binned_periodogram_layout(samples)[:3]
+    band = np.array([0])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        chunks = list(fluctuations._null_statistics(np.ones(len(counts)), counts, band,
+                                                    np.array([2.0, 2.0]), samples,
+                                                    relative[np.ix_(band, band)], 64))
+    statistics = np.concatenate(chunks)
+    assert len(statistics) == 64 and np.all(np.isfinite(statistics))
