@@ -50,6 +50,8 @@ def write_campaign(root):
     for r in (done, ramp, fresh):
         (runs / r["name"]).mkdir(parents=True)
     (runs / done["name"] / "DONE.json").write_text(json.dumps({"run": done}))
+    (runs / done["name"] / "taps.dat").write_text(
+        "# step phi_c\n" + "".join(f"{t} 0.58\n" for t in range(4001)))
     (runs / done["name"] / "log.lammps").write_text(loop(3600.0, 1000, 50.0)
                                                      + loop(1800.0, 500, 100.0))
     (runs / ramp["name"] / "log.attempt1.lammps").write_text(loop(360.0, 10, 100.0))
@@ -200,3 +202,25 @@ def test_an_attempt_killed_with_its_campaign_counts_and_its_run_is_under_way(tmp
     status = campaign_runs.HEADER.index("status")
     assert {r[0]: r[status] for r in campaign_runs.analyse(campaign)}[fresh["name"]] == \
         "not started"
+
+
+@pytest.mark.parametrize("damage", ["done_taps_cut", "folder_gone"])
+def test_a_damaged_or_missing_run_is_named_not_listed(tmp_path, capsys, damage):
+    """A done run whose taps.dat was cut read 'done', and a run whose folder was deleted read
+    'under way' with its whole cost left: each is now named, exit 2, nothing written."""
+    import shutil
+    campaign = write_campaign(tmp_path / "campaign")
+    runs = campaign / "runs"
+    if damage == "done_taps_cut":
+        path = runs / "const_pbc_eps0.0225_s1" / "taps.dat"
+        path.write_text("".join(path.read_text().splitlines(keepends=True)[:2001]))
+        named = f"{path}"
+    else:
+        shutil.rmtree(runs / "paperramp0.125_pbc_eta1e-06_s2")
+        named = (f"{runs / 'paperramp0.125_pbc_eta1e-06_s2'}: no such folder, but the campaign's "
+                 "manifest records 3 attempt(s)")
+    out = tmp_path / "questions"
+    status = cli.main(["question", "campaign-runs", "--campaign", str(campaign), "--out", str(out)])
+    err = capsys.readouterr().err
+    assert status == 2 and named in err and err.count("\n") == 1, err
+    assert not (out / campaign_runs.CSV).exists()

@@ -20,7 +20,7 @@ from tapmc.campaign.run_folder import resume_restart
 from .. import cost
 from .._runs import ramp_level
 from .._rst import list_table
-from .common import QuestionError, csv_schema, runs_folder
+from .common import QuestionError, csv_schema, runs_folder, taps_table
 
 NAME = "campaign-runs"
 CSV = "campaign_runs.csv"
@@ -61,9 +61,16 @@ def _with_killed_attempt(record):
 def _status(record, run_dir):
     """(state, resumes_from): "done" (a DONE.json), "under way" (an attempt, a restart file
     or a log: the step of the latest whole restart, where it resumes, "" when none) or "not
-    started"."""
+    started". A done run whose taps.dat stops short of its last tap, and a run the manifest
+    records attempts of whose folder is gone, are damaged: QuestionError (they read "done" and
+    "under way")."""
     if (run_dir / "DONE.json").is_file():
+        taps_table(run_dir / "taps.dat")  # whole, to the run's last tap
         return "done", ""
+    if not run_dir.is_dir() and record.get("attempts"):
+        raise QuestionError(f"{run_dir}: no such folder, but the campaign's manifest records "
+                            f"{len(record['attempts'])} attempt(s) of the run (moved or "
+                            "deleted?)")
     step = resume_restart(run_dir)[0] if run_dir.is_dir() else None
     if step is not None or record.get("attempts") or (run_dir / "log.lammps").is_file():
         return "under way", "" if step is None else str(step)
