@@ -414,37 +414,6 @@ void FixMCSettle::init()
   tapmc::request_ghost_depth(lmp, redeposition->ghost_depth(group_radius_extreme(true)));
 }
 
-// The group bits of every fix mc/settle of the run (fixes on disjoint groups are allowed).
-int FixMCSettle::settled_group_bits() const
-{
-  int bits = 0;
-  for (int i = 0; i < modify->nfix; ++i)
-    if (std::strcmp(modify->fix[i]->style, style) == 0) bits |= modify->fix[i]->groupbit;
-  return bits;
-}
-
-// Atoms a tap lifts that no fix mc/settle redeposits (`adrift`, counted in init) rise by eps
-// times their height at every tap, for ever (a rough floor of fixed spheres tapped with 'fix
-// tapdilate all'): warned once, by the run's first fix mc/settle.
-void FixMCSettle::warn_tapped_never_redeposited(long adrift)
-{
-  if (adrift == 0 || comm->me != 0 || warned_adrift) return;
-  for (int i = 0; i < modify->nfix; ++i)  // the first fix mc/settle warns, not every one
-    if (std::strcmp(modify->fix[i]->style, style) == 0) {
-      if (modify->fix[i] != this) return;
-      break;
-    }
-  warned_adrift = true;
-  std::string tapping;
-  for (const std::string &tapper_id : tapper_ids)
-    tapping += (tapping.empty() ? "" : ", ") + tapper_id;
-  error->warning(FLERR, "fix mc/settle: {} atom(s) are tapped (fix {}) but in the group of no "
-                 "fix mc/settle: nothing redeposits them, so each tap lifts them by eps times "
-                 "their height above the floor, tap after tap. Tap only the settled spheres "
-                 "(fix tapdilate on the group of fix mc/settle) or put them in its group",
-                 adrift, tapping);
-}
-
 // Ghosts as deep as the scheme needs: a contact, its move margin and the ghost skin.
 double FixMCSettle::DecomposedRedeposition::ghost_depth(double r_max)
 {

@@ -1,11 +1,13 @@
 // TAPMC: geometric tapping model (Philippe & Bideau) for LAMMPS.
 // fix mc/settle and the run's tapping fixes (tapmc::Tapper, lammps_tapper.h): which they are,
 // that they are still those of the run's setup, and the step of the next redeposition
-// (fix_mc_settle.cpp runs the redeposition); and the run's other fixes that move atoms.
+// (fix_mc_settle.cpp runs the redeposition); the run's other fixes that move atoms; and the
+// tapped atoms that no fix mc/settle redeposits.
 #include "fix_mc_settle.h"
 
 #include "lammps_tapper.h"
 
+#include "comm.h"
 #include "error.h"
 #include "modify.h"
 #include "update.h"
@@ -92,4 +94,35 @@ void FixMCSettle::schedule_next_settle(bigint after)
   next_reneighbor = tappers.front()->next_tap_after(after);
   for (const tapmc::Tapper *tap : tappers)
     next_reneighbor = std::min(next_reneighbor, tap->next_tap_after(after));
+}
+
+// The group bits of every fix mc/settle of the run (fixes on disjoint groups are allowed).
+int FixMCSettle::settled_group_bits() const
+{
+  int bits = 0;
+  for (int i = 0; i < modify->nfix; ++i)
+    if (std::strcmp(modify->fix[i]->style, style) == 0) bits |= modify->fix[i]->groupbit;
+  return bits;
+}
+
+// Atoms a tap lifts that no fix mc/settle redeposits (`adrift`, counted in init) rise by eps
+// times their height at every tap, for ever (a rough floor of fixed spheres tapped with 'fix
+// tapdilate all'): warned once, by the run's first fix mc/settle.
+void FixMCSettle::warn_tapped_never_redeposited(long adrift)
+{
+  if (adrift == 0 || comm->me != 0 || warned_adrift) return;
+  for (int i = 0; i < modify->nfix; ++i)  // the first fix mc/settle warns, not every one
+    if (std::strcmp(modify->fix[i]->style, style) == 0) {
+      if (modify->fix[i] != this) return;
+      break;
+    }
+  warned_adrift = true;
+  std::string tapping;
+  for (const std::string &tapper_id : tapper_ids)
+    tapping += (tapping.empty() ? "" : ", ") + tapper_id;
+  error->warning(FLERR, "fix mc/settle: {} atom(s) are tapped (fix {}) but in the group of no "
+                 "fix mc/settle: nothing redeposits them, so each tap lifts them by eps times "
+                 "their height above the floor, tap after tap. Tap only the settled spheres "
+                 "(fix tapdilate on the group of fix mc/settle) or put them in its group",
+                 adrift, tapping);
 }
