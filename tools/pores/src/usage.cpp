@@ -60,7 +60,8 @@ Tolerances
   --overlap-tol T      spheres closer than 2R (1 - T) are refused (default 1e-3); overlapping
                        inputs such as DEM dumps need T above their deepest overlap
   --merge-tol T        circumcentres closer than T R are one pore (default 1e-8, or 10 times
-                       the rounding of the dump's coordinates over R when coarser: 1e-4 for %g)
+                       the rounding of the dump's largest coordinate over R when coarser;
+                       e.g. 1e-4 for %g coordinates below 10 with R = 0.5)
   --padding P          periodic image padding in R (default 4, at least 2, at most 32; grown automatically)
 Other
   -q, --quiet          no progress lines on stderr (warnings and errors still)
