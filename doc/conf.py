@@ -47,7 +47,7 @@ html_theme_options = {"description": "granular compaction under vertical tapping
 LAMMPS_MANUAL = "https://docs.lammps.org/"
 LAMMPS_PAGES = {
     "Howto_output", "atom_style", "boundary", "comm_modify", "compute", "compute_chunk_atom",
-    "fix_ave_atom", "group",
+    "fix_ave_atom", "fix_ave_histo", "group",
     "create_atoms", "create_box", "displace_atoms", "dump", "fix", "fix_ave_time", "fix_print",
     "package", "plugin", "processors", "read_data", "read_restart", "region", "run",
     "reset_timestep", "thermo_style", "variable", "write_data", "write_restart",

@@ -121,13 +121,15 @@ ComputeStereoProfile::ComputeStereoProfile(LAMMPS *lmp, int narg, char **arg) :
 bool ComputeStereoProfile::parse_keywords(int narg, char **arg)
 {
   using tapmc::Keyword;
-  auto number = [&](const char *text) { return utils::numeric(FLERR, text, false, lmp); };
+  auto number = [&](const char *name, const char *text) {
+    return tapmc::parse_real(lmp, "compute stereo/profile", name, text);
+  };
   bool planes_given = false;
   const Keyword table[] = {
-      {"floor", 1, [&](char **v) { settings_.floor = number(v[0]); }},
+      {"floor", 1, [&](char **v) { settings_.floor = number("floor", v[0]); }},
       {"radius", 1,
        [&](char **v) {
-         fixed_radius_ = number(v[0]);
+         fixed_radius_ = number("radius", v[0]);
          if (!(fixed_radius_ > 0.0))
            error->all(FLERR, "compute stereo/profile: {}",
                       tapmc::outside_range_message("radius", v[0], "(0, +inf)"));
@@ -148,23 +150,23 @@ bool ComputeStereoProfile::parse_keywords(int narg, char **arg)
        }},
       {"planes", 3,
        [&](char **v) {
-         planes_.lo = number(v[0]);
-         planes_.hi = number(v[1]);
+         planes_.lo = number("planes lo", v[0]);
+         planes_.hi = number("planes hi", v[1]);
          planes_.n = static_cast<int>(tapmc::parse_integer(
              lmp, "compute stereo/profile", "planes n", v[2], 1, std::numeric_limits<int>::max()));
          planes_given = true;
        }},
       {"window", 2,
        [&](char **v) {
-         settings_.window_lo = number(v[0]);
-         settings_.window_hi = number(v[1]);
+         settings_.window_lo = number("window lo", v[0]);
+         settings_.window_hi = number("window hi", v[1]);
        }},
-      {"lateral", 1, [&](char **v) { settings_.lateral_width = number(v[0]); }},
-      {"top_fraction", 1, [&](char **v) { settings_.top_fraction = number(v[0]); }},
-      {"bulk", 1, [&](char **v) { settings_.bulk_height = number(v[0]); }},
-      {"column", 1, [&](char **v) { settings_.column_width = number(v[0]); }},
-      {"wall_band", 1, [&](char **v) { settings_.wall_band = number(v[0]); }},
-      {"wall_factor", 1, [&](char **v) { settings_.wall_factor = number(v[0]); }},
+      {"lateral", 1, [&](char **v) { settings_.lateral_width = number("lateral", v[0]); }},
+      {"top_fraction", 1, [&](char **v) { settings_.top_fraction = number("top_fraction", v[0]); }},
+      {"bulk", 1, [&](char **v) { settings_.bulk_height = number("bulk", v[0]); }},
+      {"column", 1, [&](char **v) { settings_.column_width = number("column", v[0]); }},
+      {"wall_band", 1, [&](char **v) { settings_.wall_band = number("wall_band", v[0]); }},
+      {"wall_factor", 1, [&](char **v) { settings_.wall_factor = number("wall_factor", v[0]); }},
       {tapmc::kContainerKeyword, 1, [&](char **v) { container_id_ = v[0]; }},
   };
   tapmc::parse_keywords(lmp, "compute stereo/profile", table, 3, narg, arg);
@@ -317,6 +319,21 @@ void ComputeStereoProfile::warn_empty_window(const stereo::Windows &w)
                  "above its bottom z = {:.6g} (a bed of about one layer, below floor + 2R), so "
                  "the lateral and central means (vector entries 5 and 6) are NaN; give 'window "
                  "lo hi' to choose the heights", id, w.window_hi, w.window_lo);
+}
+
+// The same for the profile of vertical (or coaxial) cuts, which the window bounds: its Phi and
+// bin means are NaN. Once per compute; every rank has the same za, zb (reduced data).
+void ComputeStereoProfile::warn_empty_profile_window(double za, double zb)
+{
+  if (profile_window_warned_ || zb > za) return;
+  profile_window_warned_ = true;
+  if (comm->me != 0) return;
+  error->warning(FLERR,
+                 "compute stereo/profile {}: empty vertical window of the {} profile: its top "
+                 "z = {:.6g} is not above its bottom z = {:.6g} (a bed of about one layer, below "
+                 "floor + 2R), so the profile's Phi and bin means (array columns 2 and 3) are "
+                 "NaN; give 'window lo hi' to choose the heights",
+                 id, axis_ == kRadialAxis ? "r" : (axis_ == 0 ? "x" : "y"), zb, za);
 }
 
 // In a container the central zone is the core, inside the wall zone (lateral = w from the wall):
@@ -494,6 +511,7 @@ void ComputeStereoProfile::compute_array_guarded()
       windows = stereo::resolve_windows(settings_, box, mean_radius_, surface);
     }
     stereo::default_vertical_window(settings_, windows, mean_radius_, za, zb);
+    warn_empty_profile_window(za, zb);
   }
 
   const int n = planes_.n;

@@ -134,6 +134,12 @@ int parse_walls(LAMMPS *lmp, Options &opt, int iarg, int narg, char **arg)
     ++used;
   }
   if (used == 0) lmp->error->all(FLERR, "create_packing: walls needs 'x', 'y', 'x y' or 'none'");
+  // 'walls none x' read 'x' as the next keyword ("keyword 'x' needs a value")
+  const int next = iarg + 1 + used;
+  if (std::string(arg[iarg + 1]) == "none" && next < narg &&
+      (std::string(arg[next]) == "x" || std::string(arg[next]) == "y"))
+    lmp->error->all(FLERR, "create_packing: walls none {}: 'none' stands alone; give 'walls x', "
+                    "'walls y', 'walls x y' or 'walls none'", arg[next]);
   return used;
 }
 
@@ -150,16 +156,16 @@ void parse_options(LAMMPS *lmp, int narg, char **arg, Request &req)
     if (iarg + 1 >= narg) error->all(FLERR, "create_packing: keyword '{}' needs a value", key);
     const char *value = arg[iarg + 1];
     if (key == "floor") {
-      opt.floor_z = utils::numeric(FLERR, value, false, lmp);
+      opt.floor_z = tapmc::parse_real(lmp, "create_packing", "floor", value);
       opt.floor_given = true;
     } else if (key == "region") {
       opt.region_id = value;
     } else if (key == tapmc::kContainerKeyword) {
       opt.container_id = value;
     } else if (key == "dispersity") {
-      req.params.dispersity = utils::numeric(FLERR, value, false, lmp);
+      req.params.dispersity = tapmc::parse_real(lmp, "create_packing", "dispersity", value);
     } else if (key == "density") {
-      req.params.density = utils::numeric(FLERR, value, false, lmp);
+      req.params.density = tapmc::parse_real(lmp, "create_packing", "density", value);
     } else {
       error->all(FLERR, "create_packing: unknown keyword '{}' (allowed: floor, region, walls, "
                  "container, dispersity, density)", key);
@@ -172,11 +178,11 @@ Request parse_request(LAMMPS *lmp, int narg, char **arg)
 {
   check_preconditions(lmp, narg);
   Request req;
-  req.params.n = utils::bnumeric(FLERR, arg[0], false, lmp);
+  req.params.n = tapmc::parse_long(lmp, "create_packing", "N", arg[0]);  // range: validate
   req.type = static_cast<int>(tapmc::parse_integer(lmp, "create_packing", "type", arg[1], 1,
                                                    std::max(1, lmp->atom->ntypes),
                                                    "the atom types of the box"));
-  req.params.radius = utils::numeric(FLERR, arg[2], false, lmp);
+  req.params.radius = tapmc::parse_real(lmp, "create_packing", "radius", arg[2]);
   req.seed = tapmc::parse_seed(lmp, "create_packing", "seed", arg[3]);
   parse_options(lmp, narg, arg, req);
   tapmc::guarded(lmp, "create_packing", true, [&] { tapmc::validate(req.params); });

@@ -150,6 +150,7 @@ FixMCSettle::FixMCSettle(LAMMPS *lmp, int narg, char **arg) :
     container = tapmc::resolve_container(lmp, "fix mc/settle", container_region_id, 0.0);
   }
   resolve_side_walls();
+  check_dmax_against_periods();
   if (fixed_radius == 0.0 && !atom->radius_flag)
     error->all(FLERR, "fix mc/settle: the atom style has no radius; use atom_style sphere or the "
                "'diameter' keyword");
@@ -230,12 +231,17 @@ FixMCSettle::~FixMCSettle()
 void FixMCSettle::parse_keywords(int narg, char **arg)
 {
   using tapmc::Keyword;
-  auto number = [&](const char *text) { return utils::numeric(FLERR, text, false, lmp); };
-  auto integer = [&](const char *text) { return utils::bnumeric(FLERR, text, false, lmp); };
+  auto number = [&](const char *name, const char *text) {
+    return tapmc::parse_real(lmp, "fix mc/settle", name, text);
+  };
+  auto integer = [&](const char *name, const char *text) {
+    return tapmc::parse_long(lmp, "fix mc/settle", name, text);
+  };
   auto walls = [&](int dim) {
     return [this, dim, number](char **v) {
-      wall_pos[dim][0] = number(v[0]);
-      wall_pos[dim][1] = number(v[1]);
+      const std::string name = std::string(kAxisName[dim]) + "walls";
+      wall_pos[dim][0] = number((name + " lo").c_str(), v[0]);
+      wall_pos[dim][1] = number((name + " hi").c_str(), v[1]);
       if (!(wall_pos[dim][0] < wall_pos[dim][1]))
         error->all(FLERR, "fix mc/settle: {}walls lo = {} must be below hi = {}", kAxisName[dim],
                    v[0], v[1]);
@@ -245,10 +251,10 @@ void FixMCSettle::parse_keywords(int narg, char **arg)
   const Keyword table[] = {
       {"dmax", 1,
        [&](char **v) {
-         d_max = number(v[0]);
+         d_max = number("dmax", v[0]);
          dmax_given = true;
        }},
-      {"theta0", 1, [&](char **v) { theta0 = number(v[0]); }},
+      {"theta0", 1, [&](char **v) { theta0 = number("theta0", v[0]); }},
       {"theta_law", 1,
        [&](char **v) {
          const std::string law = v[0];
@@ -265,13 +271,13 @@ void FixMCSettle::parse_keywords(int narg, char **arg)
                       "per unit angle, the default), 'solid' (per unit solid angle), "
                       "'exponential' or 'linear' (section II's alternative laws)", law);
        }},
-      {"eta", 1, [&](char **v) { eta = number(v[0]); }},
-      {"check", 1, [&](char **v) { check_interval = integer(v[0]); }},
-      {"maxsweeps", 1, [&](char **v) { max_sweeps = integer(v[0]); }},
-      {"floor", 1, [&](char **v) { z_floor = number(v[0]); }},
+      {"eta", 1, [&](char **v) { eta = number("eta", v[0]); }},
+      {"check", 1, [&](char **v) { check_interval = integer("check", v[0]); }},
+      {"maxsweeps", 1, [&](char **v) { max_sweeps = integer("maxsweeps", v[0]); }},
+      {"floor", 1, [&](char **v) { z_floor = number("floor", v[0]); }},
       {"diameter", 1,
        [&](char **v) {
-         const double d = number(v[0]);
+         const double d = number("diameter", v[0]);
          if (!(d > 0.0))
            error->all(FLERR, "fix mc/settle: {}",
                       tapmc::outside_range_message("diameter", v[0], "(0, +inf)"));
@@ -306,7 +312,7 @@ void FixMCSettle::parse_keywords(int narg, char **arg)
        }},
       {"window", 1,
        [&](char **v) {
-         drift_window = integer(v[0]);
+         drift_window = integer("window", v[0]);
          window_given = true;
        }},
       {tapmc::kContainerKeyword, 1, [&](char **v) { container_region_id = v[0]; }},
@@ -361,10 +367,12 @@ void FixMCSettle::init()
   tapmc::quiet_sorting_without_pair_style(lmp);
   tapmc::forbid_same_style_on_shared_atoms(lmp, this);
   tapmc::require_box_with_floor(lmp, "fix mc/settle");  // change_box may have made it another
+  // the keyword sizes every atom the redeposition sees, the fixed obstacles outside the group too
   tapmc::check_radius_keyword_against_atoms(lmp, "fix mc/settle",
                                             fmt::format("diameter {}", 2.0 * fixed_radius),
-                                            fixed_radius, groupbit, group->names[igroup], true);
+                                            fixed_radius, group->bitmask[0], group->names[0], true);
   resolve_side_walls();
+  check_dmax_against_periods();
   if (!atom->tag_enable)  // the schemes name and order the spheres by their IDs
     error->all(FLERR, "fix mc/settle: the atoms have no IDs ('atom_modify id no'); the "
                "redeposition orders and names the spheres by their IDs: use 'atom_modify id yes' "
@@ -573,50 +581,6 @@ void FixMCSettle::GatheredRedeposition::check_start(bool after_tap)
                                           after_tap));
 }
 
-// What is wrong with a start configuration: an overlapping pair, a sphere below the floor or
-// through a side wall (plane numbering of tapmc_contact.h).
-std::string FixMCSettle::violation_message(const tapmc::Violation &v, tagint tag_i,
-                                           tagint tag_j, bool after_tap) const
-{
-  // an overlap found during the run: the pair, then its cause
-  const std::string pair = fmt::format("fix mc/settle: step {}: atoms {} and {} overlap by {}",
-                                       update->ntimestep, tag_i, tag_j, -v.gap);
-  if (v.j >= 0 && checking_other_movers)
-    return pair + fmt::format(" before the tap: fix {} move(s) atoms besides the taps and "
-                              "pushed a sphere into another (a wall/reflect lid reflects spheres "
-                              "lifted by a tap back into the bed; an integrator moves them by "
-                              "their velocities); unfix it: hard spheres are moved by fix "
-                              "tapdilate and fix mc/settle only", other_movers);
-  if (v.j >= 0 && after_tap && every_atom_tapped)
-    return pair + " after the tap: every atom is tapped, but by tapping fixes of different "
-                  "groups that dilate them differently (another eps, floor or tap schedule), so "
-                  "one group's dilation pushed a sphere into one of another group; tap every "
-                  "sphere with one tapping fix (group all)";
-  if (v.j >= 0 && after_tap)
-    return pair + fmt::format(" after the tap: part of the bed stands still (atoms outside the "
-                              "group of fix {} or of a tapping fix), and the tap's dilation "
-                              "pushed a sphere into one that did not follow it; tap and "
-                              "redeposit every sphere (group all), or keep the spheres that "
-                              "stand still below those that move", id);
-  if (v.j >= 0)
-    return fmt::format("fix mc/settle: atoms {} and {} overlap by {} at the start (allowed: a "
-                       "relative tolerance of {} of the contact distance); start from a "
-                       "non-overlapping packing", tag_i, tag_j, -v.gap,
-                       tapmc::defaults::kContactTolerance);
-  if (v.j == tapmc::kFloorPlane)
-    return fmt::format("fix mc/settle: atom {} reaches {} below the floor z0 = {} (its centre "
-                       "must be at least its radius above the floor)", tag_i, -v.gap, z_floor);
-  if (v.j == tapmc::kCylinderWall)
-    return fmt::format("fix mc/settle: atom {} crosses the wall of container {} by {} (its centre "
-                       "must be within the container radius {} minus its own radius of the axis "
-                       "x = {}, y = {})", tag_i, container_region_id, -v.gap, container.radius,
-                       container.cx, container.cy);
-  const bool x_wall = v.j == tapmc::kWallXlo || v.j == tapmc::kWallXhi;
-  return fmt::format("fix mc/settle: atom {} crosses a side wall in {} by {} ({})", tag_i,
-                     x_wall ? "x" : "y", -v.gap,
-                     tapmc::plane_name(static_cast<tapmc::PlaneId>(v.j)));
-}
-
 void FixMCSettle::setup_pre_exchange()
 {
   tapmc::require_exact_coordinates(
@@ -641,11 +605,7 @@ void FixMCSettle::DecomposedRedeposition::check_start(bool after_tap)
 {
   if (fix.count_movable() == 0)
     error->all(FLERR, "fix mc/settle: group '{}' has no atoms", group->names[fix.igroup]);
-  const double rmin = fix.group_radius_extreme(false);
-  if (!(rmin > 0.0))
-    error->all(FLERR, "fix mc/settle: a sphere of the group has radius {}; every sphere needs a "
-               "radius > 0 (set it with atom_style sphere / set diameter, or the 'diameter' "
-               "keyword)", rmin);
+  fix.require_positive_radii();
   kernel().distribute();
   if (!after_tap) kernel().check_round_widths(fix.domain_setup(), fix.effective_d_max());
   tapmc::Violation v;
@@ -752,11 +712,14 @@ void FixMCSettle::store_diagnostics(const tapmc::SettleResult &result)
   last_hit_cap = result.hit_cap ? 1.0 : 0.0;
   last_idle_stop = result.stopped_on_idle_check ? 1.0 : 0.0;
   last_parallel = redeposition->parallel_diagnostics();
+  // [9]-[12] as rank 0 timed them, on every rank: each rank's own seconds differ, and a variable,
+  // 'if' or fix halt reading them would take other branches on other ranks (a hang)
+  if (comm->nprocs > 1) MPI_Bcast(last_parallel.data(), 6, MPI_DOUBLE, 0, world);
 }
 
 // [1] sweeps used, [2] acceptance ratio, [3] <Z> after, [4] 1 if the sweep cap was hit,
 // [5] trial moves, [6] <Z> before the redeposition (after the tap); scheme domain (else 0):
-// [7] ghost rebuilds, [8] rounds, and this rank's seconds in [9] trial moves, [10] ghost
+// [7] ghost rebuilds, [8] rounds, and rank 0's seconds in [9] trial moves, [10] ghost
 // refreshes, [11] reductions, [12] migration and ghost rebuilds; [13] 1 if 'stop change' ended
 // the redeposition at a check that accepted no trial (SettleResult::stopped_on_idle_check).
 double FixMCSettle::compute_vector(int n)

@@ -146,6 +146,8 @@ class FixMCSettle : public Fix, public tapmc::ContainerHolder {
   double effective_d_max() const;
   tapmc::SettleBox make_box() const;
   tapmc::DomainSettleSetup domain_setup() const;
+  void check_dmax_against_periods() const;
+  void require_positive_radii() const;
   double group_radius_extreme(bool largest) const;
   long count_movable() const;
   std::string violation_message(const tapmc::Violation &v, tagint tag_i, tagint tag_j,

@@ -37,10 +37,14 @@ FixTapDilate::FixTapDilate(LAMMPS *lmp, int narg, char **arg) :
                "[floor z0] [container region-ID]', got {} argument(s)", narg);
 
   params.z_floor = domain->boxlo[2];
-  if (std::strncmp(arg[3], "v_", 2) == 0)
+  if (std::strncmp(arg[3], "v_", 2) == 0) {
     eps_variable = arg[3] + 2;  // params.eps stays 0 here; each tap checks the variable's value
+    if (eps_variable.empty())  // init() would look up no variable: every tap at eps = 0
+      error->all(FLERR, "fix tapdilate: eps = v_ names no variable (give a number, or v_name "
+                 "of an equal-style variable)");
+  }
   else
-    params.eps = utils::numeric(FLERR, arg[3], false, lmp);
+    params.eps = tapmc::parse_real(lmp, "fix tapdilate", "eps", arg[3]);
 
   const tapmc::Keyword table[] = {
       {"every", 1,
@@ -48,7 +52,8 @@ FixTapDilate::FixTapDilate(LAMMPS *lmp, int narg, char **arg) :
          params.every = tapmc::parse_integer(lmp, "fix tapdilate", "every", v[0], 1,
                                              std::numeric_limits<int>::max());
        }},
-      {"floor", 1, [&](char **v) { params.z_floor = utils::numeric(FLERR, v[0], false, lmp); }},
+      {"floor", 1,
+       [&](char **v) { params.z_floor = tapmc::parse_real(lmp, "fix tapdilate", "floor", v[0]); }},
       {tapmc::kContainerKeyword, 1, [&](char **v) { container_region_id = v[0]; }},
   };
   tapmc::parse_keywords(lmp, "fix tapdilate", table, 4, narg, arg);
@@ -202,8 +207,8 @@ void FixTapDilate::tap_if_due()
   MPI_Allreduce(&top, &top_all, 1, MPI_DOUBLE, MPI_MAX, world);
   if (domain->boundary[2][1] == tapmc::kBoundaryFixed && top_all > domain->boxhi[2])
     error->all(FLERR, "fix tapdilate: the tap on step {} lifts atoms to z = {} above the fixed "
-               "upper z boundary {}; use an open top ('boundary p p fm' or 'f s') or a higher "
-               "box", update->ntimestep, top_all, domain->boxhi[2]);
+               "upper z boundary {}; use an open (shrink-wrapped) top, 'm' or 's' "
+               "('boundary p p fm' or 'f f fs'), or a higher box", update->ntimestep, top_all, domain->boxhi[2]);
   // A bed rising tap after tap: spheres the redeposition left high (its stop rule compares the
   // change of <Z> with eta <Z>, which a few high spheres make large) are lifted by eps each tap
   // until doubles no longer resolve a contact. Stop by name, not with lost atoms later.

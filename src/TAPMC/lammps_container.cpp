@@ -10,6 +10,7 @@
 // below tell apart.
 #include "lammps_container.h"
 
+#include "lammps_box.h"
 #include "lammps_compat.h"
 
 #include "compute.h"
@@ -173,6 +174,15 @@ void require_container_in_box(LAMMPS *lmp, const char *style, const std::string 
                     style, key, id,
                     domain->xperiodic && domain->yperiodic ? "x and y"
                                                            : (domain->xperiodic ? "x" : "y"));
+  // 's' shrinks the box to the spheres at every setup, inside the cylinder: this check passes at
+  // the first run's init and fails at the next (the box shrank since)
+  for (int d = 0; d < 2; ++d)
+    if (domain->boundary[d][0] == kBoundaryShrink || domain->boundary[d][1] == kBoundaryShrink)
+      lmp->error->all(FLERR,
+                      "{}: {} = {}: the {} boundary is shrink-wrapped ('s'), which shrinks the "
+                      "box to the spheres, inside the cylinder; use 'f' (the box holds the "
+                      "cylinder) or 'm' with the box's bounds as its minimum",
+                      style, key, id, "xy"[d]);
   const double centre[2] = {c.cx, c.cy};
   for (int d = 0; d < 2; ++d) {
     // the region's extent is centre -+ radius as LAMMPS computed it; ours is recomputed from

@@ -174,7 +174,9 @@ void DomainSettle::load(const DomainSettleSetup &setup, double d_max, double con
   SettleBox box;
   const int n = copy_spheres(setup, box);
   index_ghosts();
-  mover_->reset(xyz_.data(), radius_.data(), n, box, d_max, contact_tol);
+  // rank-local data: a refusal (e.g. a dmax the fix did not see) stops with the fix's name
+  guarded(lmp, "fix mc/settle", false,
+          [&] { mover_->reset(xyz_.data(), radius_.data(), n, box, d_max, contact_tol); });
   double **x = atom->x;
 
   owned_by_tag_.clear();
@@ -512,7 +514,7 @@ void DomainSettle::prepare(Run &run)
       sampler_->theta_sampler().law() != params.theta_law)
     sampler_ = std::make_unique<TrialMoveSampler>(params.d_max, params.theta0, params.theta_law);
   run.trial_stream = CounterRandom(params.seed, RandomPurpose::kDomainSettleMoves, params.stream)
-                         .round(rank_key_index(comm->me));
+                         .round(sub_domain_key_index(sub_domain_number(comm->myloc, comm->procgrid)));
   run.cut_stream = CounterRandom(params.seed, RandomPurpose::kDomainSettleCuts, params.stream);
   run.interval = Settler::trials_per_check(params.check_interval, run.movable_total);
 }

@@ -32,29 +32,76 @@ namespace tapmc {
 // Largest seed: the seeds are 64-bit keys of the random numbers, kept in a signed 64-bit integer.
 constexpr std::int64_t kMaxSeed = std::numeric_limits<std::int64_t>::max();
 
-// A count or seed from its text: a plain decimal integer in [lo, hi] (lo >= 0); anything else
-// (a sign, a fraction, an exponent, a value too large: LAMMPS 2021's inumeric wraps 4294967297
-// to 1) stops with a message naming the value, the range and what the range is (`what`).
+// Whether `s` is written as a whole number: an optional sign and decimal digits, nothing else
+// ("1.5", "1e3", "abc" and "" are not).
+inline bool integer_text(const std::string &s)
+{
+  const std::size_t first = !s.empty() && (s[0] == '-' || s[0] == '+') ? 1 : 0;
+  if (s.size() == first) return false;
+  for (std::size_t k = first; k < s.size(); ++k)
+    if (s[k] < '0' || s[k] > '9') return false;
+  return true;
+}
+
+// A count or seed from its text: a plain decimal integer in [lo, hi] (lo >= 0). Text that is
+// no whole number ("1.5", "1e3", "abc") is named as such; a whole number outside the range, or
+// too large to read (LAMMPS 2021's inumeric wraps 4294967297 to 1), is named with the range
+// and what the range is (`what`).
 inline std::int64_t parse_integer(LAMMPS_NS::LAMMPS *lmp, const char *style, const char *name,
                                   const char *text, std::int64_t lo, std::int64_t hi,
                                   const char *what = "an integer")
 {
   const std::string s = text;
-  bool digits = !s.empty() && s.size() <= 19;
-  for (char c : s) digits = digits && c >= '0' && c <= '9';
+  const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  if (!integer_text(s))
+    lmp->error->all(FLERR, "{}: {} = {} is not a whole number (allowed range {}, {})", style,
+                    name, s, range, what);
+  const std::string unsigned_text = s[0] == '+' ? s.substr(1) : s;  // "-5": below any lo
+  bool digits = unsigned_text.size() <= 19 && unsigned_text[0] != '-';
   unsigned long long value = 0;
   if (digits) {
     errno = 0;
-    value = std::strtoull(s.c_str(), nullptr, 10);
+    value = std::strtoull(unsigned_text.c_str(), nullptr, 10);
     digits = errno == 0;
   }
   if (!digits || value < static_cast<unsigned long long>(lo) ||
       value > static_cast<unsigned long long>(hi))
-    lmp->error->all(FLERR, "{}: {} ({})", style,
-                    outside_range_message(name, s, "[" + std::to_string(lo) + ", " +
-                                                       std::to_string(hi) + "]"),
-                    what);
+    lmp->error->all(FLERR, "{}: {} ({})", style, outside_range_message(name, s, range), what);
   return static_cast<std::int64_t>(value);
+}
+
+// A whole number that fits a long, from its text; its range is the kernel's to check (its
+// validate). Text that is no whole number, or one beyond a long, stops naming the argument.
+inline long parse_long(LAMMPS_NS::LAMMPS *lmp, const char *style, const char *name,
+                       const char *text)
+{
+  const std::string s = text;
+  if (!integer_text(s))
+    lmp->error->all(FLERR, "{}: {} = {} is not a whole number", style, name, s);
+  errno = 0;
+  const long value = std::strtol(s.c_str(), nullptr, 10);
+  if (errno == ERANGE)
+    lmp->error->all(FLERR, "{}: {}", style,
+                    outside_range_message(name, s,
+                                          "[" + std::to_string(std::numeric_limits<long>::min()) +
+                                              ", " +
+                                              std::to_string(std::numeric_limits<long>::max()) +
+                                              "]"));
+  return value;
+}
+
+// A real number from its text, finite, the whole text read; anything else ("abc", "nan", "inf",
+// "1.5x") stops naming the argument and its value (LAMMPS 2021's utils::numeric names neither).
+// The range of the value is the kernel's to check (its validate), after all arguments are read.
+inline double parse_real(LAMMPS_NS::LAMMPS *lmp, const char *style, const char *name,
+                         const char *text)
+{
+  const std::string s = text;
+  char *end = nullptr;
+  const double value = s.empty() ? 0.0 : std::strtod(s.c_str(), &end);
+  if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(value))
+    lmp->error->all(FLERR, "{}: {} = {} is not a finite number", style, name, s);
+  return value;
 }
 
 // A seed: a plain decimal integer in [1, kMaxSeed] (parse_integer).

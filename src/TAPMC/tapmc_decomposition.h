@@ -99,10 +99,22 @@ class RoundSchedule {
 // the default) the share is `active`.
 long round_trials(long before, long active, long trials_per_check, long movable_total);
 
-// Trial moves of rank r in the decomposed redeposition: purpose kDomainSettleMoves
-// (tapmc_random.h) under the key round (r + 1) * 2^32 (CounterRandom::round): each rank's
-// overflow rounds (fewer than 2^32) never reach another rank's key.
-inline std::uint64_t rank_key_index(int rank) { return (static_cast<std::uint64_t>(rank) + 1) << 32; }
+// Trial moves of sub-domain s in the decomposed redeposition: purpose kDomainSettleMoves
+// (tapmc_random.h) under the key round (s + 1) * 2^32 (CounterRandom::round): each
+// sub-domain's overflow rounds (fewer than 2^32) never reach another one's key.
+inline std::uint64_t sub_domain_key_index(int sub_domain)
+{
+  return (static_cast<std::uint64_t>(sub_domain) + 1) << 32;
+}
+
+// The number of the sub-domain at `loc` in a `grid` of sub-domains, z fastest: the rank that
+// LAMMPS's default mapping ('processors ... map cart', MPI_Cart_create without reordering)
+// gives it. Keyed by this number rather than by the rank, the trial moves of a sub-domain do
+// not depend on which rank holds it ('map xyz', a restart read under another mapping).
+inline int sub_domain_number(const int loc[3], const int grid[3])
+{
+  return (loc[0] * grid[1] + loc[1]) * grid[2] + loc[2];
+}
 
 }  // namespace tapmc
 

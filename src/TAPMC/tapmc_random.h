@@ -81,8 +81,8 @@ enum class RandomPurpose : std::uint8_t {
   kDepositionEquilibria = 2,    // create_packing: directions that leave unstable equilibria
                                 // while sphere i descends; stream: i
   kPoreSamplePoints = 3,        // tapmc-pores --p0: the sample points; stream: the frame
-  kDomainSettleMoves = 4,       // fix mc/settle scheme domain: trial moves of one rank (key
-                                // round rank_key_index(rank), tapmc_decomposition.h); stream:
+  kDomainSettleMoves = 4,       // fix mc/settle scheme domain: trial moves of one sub-domain
+                                // (key round sub_domain_key_index, tapmc_decomposition.h); stream:
                                 // the timestep of the tap
   kDomainSettleCuts = 5,        // fix mc/settle scheme domain: the cuts of every cycle of rounds;
                                 // stream: the timestep of the tap

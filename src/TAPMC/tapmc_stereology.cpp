@@ -507,7 +507,9 @@ void finish_profile(const double *cut_area, const double *bin_volume, const Box 
     plane_area = box.horizontal_area();
   else
     plane_area = box.length(1 - axis) * std::max(0.0, zb - za);
-  const double inv_area = plane_area > 0.0 ? 1.0 / plane_area : 0.0;
+  // an empty window (zb <= za) cuts no area: NaN, not a 0 that reads as a measurement
+  const double inv_area =
+      plane_area > 0.0 ? 1.0 / plane_area : std::numeric_limits<double>::quiet_NaN();
   const double inv_bin = inv_area / grid.bin_width();
   for (int k = 0; k < grid.n; ++k) {
     rows[3 * k] = grid.position(k);
@@ -642,14 +644,15 @@ void finish_radial_profile(const double *cut_area, const double *bin_volume,
 {
   const double height = std::max(0.0, zb - za);
   const double w = radii.bin_width();
+  const double nan = std::numeric_limits<double>::quiet_NaN();  // an empty window: no surface
   for (int k = 0; k < radii.n; ++k) {
     const double r_mid = radii.position(k);
     const double r0 = radii.lo + k * w, r1 = r0 + w;
     const double surface = kTwoPi * r_mid * height;
     const double annulus = kPi * (r1 - r0) * (r1 + r0) * height;
     rows[3 * k] = r_mid;
-    rows[3 * k + 1] = surface > 0.0 ? cut_area[k] / surface : 0.0;
-    rows[3 * k + 2] = annulus > 0.0 ? bin_volume[k] / annulus : 0.0;
+    rows[3 * k + 1] = surface > 0.0 ? cut_area[k] / surface : nan;
+    rows[3 * k + 2] = annulus > 0.0 ? bin_volume[k] / annulus : nan;
   }
 }
 

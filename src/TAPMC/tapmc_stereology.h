@@ -187,7 +187,8 @@ Summary summarize(const Spheres &spheres, const Box &box, const SummarySettings 
 // ---- profiles ---------------------------------------------------------------------------------
 // rows[3 k + 0] plane position, rows[3 k + 1] Phi at the plane, rows[3 k + 2] exact mean of Phi
 // over bin k, from the reduced cut_area / bin_volume sums. Phi of a vertical cut is normalised
-// by (length of the box along the other horizontal axis) * (zb - za): zero if zb <= za.
+// by (length of the box along the other horizontal axis) * (zb - za): NaN if zb <= za (an empty
+// window measures nothing; a 0 would read as an empty layer).
 void finish_profile(const double *cut_area, const double *bin_volume, const Box &box, int axis,
                     const PlaneGrid &grid, double za, double zb, double *rows);
 std::vector<double> profile(const Spheres &spheres, const Box &box, int axis,
@@ -226,7 +227,7 @@ void accumulate_radial_profile(const Spheres &spheres, const Cylinder &cylinder,
                                double *bin_volume);
 // rows[3 k + 0] radius of surface k, rows[3 k + 1] Phi on it (area / (2 pi r (zb - za))),
 // rows[3 k + 2] the volume fraction of annulus k (volume / (pi (r_k+1^2 - r_k^2) (zb - za)));
-// zeros if zb <= za.
+// NaN if zb <= za (an empty window).
 void finish_radial_profile(const double *cut_area, const double *bin_volume,
                            const PlaneGrid &radii, double za, double zb, double *rows);
 std::vector<double> radial_profile(const Spheres &spheres, const Cylinder &cylinder,

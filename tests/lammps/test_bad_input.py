@@ -43,7 +43,7 @@ TAPDILATE_CASES = [
     ("fix t all tapdilate 0.1 every 2147483648",
      "every = 2147483648 is outside the allowed range [1, 2147483647] (an integer)"),
     ("fix t all tapdilate 0.1 every 1.5",
-     "every = 1.5 is outside the allowed range [1, 2147483647] (an integer)"),
+     "every = 1.5 is not a whole number (allowed range [1, 2147483647], an integer)"),
     ("fix t all tapdilate 0.1 floor", "keyword 'floor' needs 1 value(s)"),
     ("fix t all tapdilate 0.1 bogus 3",
      "unknown keyword 'bogus' (allowed: every, floor, container)"),
@@ -76,7 +76,8 @@ MC_SETTLE_CASES = [
      "seed = 99999999999999999999 is outside the allowed range [1, 9223372036854775807]"),
     ("fix s all mc/settle 9223372036854775808",
      "seed = 9223372036854775808 is outside the allowed range [1, 9223372036854775807]"),
-    ("fix s all mc/settle 1.5", "seed = 1.5 " + SEED_RANGE),
+    ("fix s all mc/settle 1.5", "seed = 1.5 is not a whole number (allowed range [1, "
+     "9223372036854775807], an integer)"),
     ("create_packing 10 1 0.5 99999999999999999999",
      "create_packing: seed = 99999999999999999999 is outside the allowed range [1, "),
     ("fix s all mc/settle 1 dmax 0", "dmax = 0 is outside the allowed range (0, +inf)"),
@@ -187,6 +188,16 @@ def test_a_radius_keyword_against_per_atom_radii_is_named(line, given):
         assert rc == 0 and "WARNING: " + named in out and "Loop time" in out, out
     rc, out = run_case(line.replace("0.8", "1.0").replace("0.4", "0.5") + "\nrun 1\n")
     assert rc == 0 and "Loop time" in out and "per-atom radius" not in out, out
+
+
+def test_a_diameter_keyword_against_an_obstacle_outside_the_group_is_named():
+    """The keyword sizes every sphere the redeposition sees, its fixed obstacles too: a group of
+    0.8-wide spheres beside an obstacle of per-atom radius 0.5 settled into the obstacle by 0.1
+    (exit 0, checked against the group only); now the obstacle is named."""
+    rc, out = run_case("set atom 1 diameter 0.8\ngroup one id 1\n"
+                       "fix s one mc/settle 1 floor 0.0 diameter 0.8\nrun 1\n")
+    assert rc != 0 and "ERROR: fix mc/settle: diameter 0.8 gives the spheres radius 0.4, but " \
+        "atom 2 of group all has per-atom radius 0.5" in out, out
 
 
 def test_styles_without_radii_are_told_of_two_radii():

@@ -232,6 +232,34 @@ run 1
                      "above its bottom z = 1 (a bed of about one layer") == 1, out[-3000:]
 
 
+def test_a_bed_of_one_layer_has_no_vertical_profile():
+    """The profile of vertical cuts over the same empty window read 0 in every row, as an empty
+    layer would: its Phi and bin means are NaN, with one warning naming the window; the plane
+    positions and a z profile of the same bed are measured."""
+    script = """units lj
+atom_style sphere
+boundary p p fm
+region box block 0 6 0 6 0 4
+create_box 1 box
+lattice sc 1.0 origin 0.5 0.5 0.5
+region layer block 0 6 0 6 0 1 units box
+create_atoms 1 region layer
+set group all diameter 1.0
+compute px all stereo/profile floor 0.0 axis x planes 0.0 6.0 3
+compute pz all stereo/profile floor 0.0 planes 0.0 1.0 3
+fix ax all ave/time 1 1 1 c_px[*] c_pz[*] mode vector file p.dat format " %.17g"
+run 2
+"""
+    rc, out, wd = run_lammps(script)
+    assert rc == 0, out[-2000:]
+    rows = ave_time_rows(os.path.join(wd, "p.dat"))  # index, then x: 3 columns, z: 3 columns
+    np.testing.assert_array_equal(rows[:, 1], [1, 3, 5])
+    assert np.isnan(rows[:, [2, 3]]).all(), rows
+    assert np.isfinite(rows[:, 4:]).all() and (rows[:, 6] > 0.3).all(), rows
+    assert out.count("compute stereo/profile px: empty vertical window of the x profile: its "
+                     "top z = 0.9 is not above its bottom z = 1") == 1, out[-3000:]
+
+
 @pytest.mark.parametrize("nprocs", [1, 2])
 def test_empty_central_zone_is_nan_with_one_warning(nprocs):
     """Lateral zones that reach the middle of the box (lateral >= half the box width, as the

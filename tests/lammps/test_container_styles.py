@@ -146,6 +146,23 @@ def test_container_in_a_periodic_box_is_refused(style):
     assert "periodic in x" in error, error
 
 
+@pytest.mark.parametrize("style", ["fix tap all tapdilate 0.01 floor 0.0",
+                                   "compute z all contacts 0.01",
+                                   "compute p all stereo/profile floor 0.0"])
+def test_a_shrink_wrapped_side_with_a_container_is_refused_before_the_first_run(style):
+    """'s' shrinks the box to the spheres, inside the cylinder: the first run passed (checked
+    before LAMMPS shrank the box) and every later run stopped with a cylinder outside the box.
+    'm' keeps the box's bounds as its minimum and runs on."""
+    body = style + " container tube\nthermo_style custom step atoms\nrun 1\nrun 1\n"
+    script = TUBE + body
+    rc, out, _ = run_lammps(script.replace("boundary f f fm", "boundary s f fm"))
+    assert rc != 0 and "Loop time" not in out, out
+    error = first_error(out)
+    assert "container = tube: the x boundary is shrink-wrapped ('s')" in error, error
+    rc, out, _ = run_lammps(script.replace("boundary f f fm", "boundary m m fm"))
+    assert rc == 0 and out.count("Loop time") == 2, out
+
+
 # ---- compute contacts in a tube against numpy ------------------------------------------------
 
 GAPS = {"z0": 0.0, "z1": 0.01, "z2": 0.05}

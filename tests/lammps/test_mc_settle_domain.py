@@ -298,3 +298,76 @@ def test_a_shrink_wrapped_bed_too_short_for_a_z_split_is_refused_before_the_firs
     # A fixed top keeps the sub-domains the box's: the same bed runs.
     rc, out, _ = run_lammps(SHORT_BED_Z_SPLIT.replace("p p fs", "p p f"), nprocs=2, timeout=120)
     assert rc == 0, out
+
+
+def test_timings_are_rank_zeros_on_every_rank():
+    """[9]-[12] are rank 0's seconds on every rank: each rank's own differed, and an 'if' on
+    them sent rank 0 on and rank 1 into another run (a hang). Per-atom copies of each value,
+    reduced to their minimum and maximum over the atoms of both ranks, agree at every tap."""
+    columns = " ".join(f"c_lo{k} c_hi{k}" for k in range(9, 13))
+    defines = "".join(f"variable t{k} equal f_settle[{k}]\nvariable own{k} atom v_t{k}\n"
+                      f"compute lo{k} all reduce min v_own{k}\n"
+                      f"compute hi{k} all reduce max v_own{k}\n" for k in range(9, 13))
+    script = scene("p p fm", "2 1 1") + defines + f"""fix tap all tapdilate 0.05 floor 0.0
+fix settle all mc/settle 4928 floor 0.0 eta 1e-3 scheme domain
+thermo_style custom step {columns}
+thermo 1
+run 4
+"""
+    rc, out, _ = run_lammps(script, nprocs=2, timeout=300)
+    assert rc == 0, out
+    rows = thermo_table(out, "c_lo9")[1][1:]
+    assert len(rows) == 4, out
+    assert (rows[:, 1] > 0).all(), rows  # the trial moves take time
+    np.testing.assert_array_equal(rows[:, 1::2], rows[:, 2::2])
+
+
+def test_a_sphere_of_radius_zero_outside_the_group_is_named_by_its_id():
+    """A fixed obstacle of radius 0 passed the group's check and stopped each rank in the
+    kernel, with its internal index and MPI_Abort; now every rank names the atom's ID."""
+    script = scene("p p fm", "2 1 1") + """set atom 5 diameter 0.0
+group up id > 5
+fix settle up mc/settle 4928 floor 0.0 scheme domain
+run 1
+"""
+    rc, out, _ = run_lammps(script, nprocs=2, timeout=120)
+    assert rc != 0 and "ERROR: fix mc/settle: atom 5 has radius 0; every sphere needs a " \
+        "radius > 0" in out, out
+    assert "MPI_Abort" not in out and "ERROR on proc" not in out, out
+
+
+def test_a_step_of_a_whole_period_is_refused_when_the_fix_is_defined():
+    """dmax >= a periodic length with one rank along it stopped only after the first tap's
+    thermo, on each rank, without the fix's name."""
+    script = """units lj
+atom_style sphere
+boundary p p fm
+processors 2 1 1
+region box block 0 20 0 1.2 0 40
+create_box 1 box
+create_atoms 1 single 5 0.6 1
+create_atoms 1 single 15 0.6 1
+set group all diameter 1.0
+fix settle all mc/settle 4928 floor 0.0 dmax 1.5
+"""
+    rc, out, _ = run_lammps(script, nprocs=2, timeout=120)
+    assert rc != 0 and "ERROR: fix mc/settle: dmax = 1.5 is outside the allowed range (0, " \
+        "periodic length along y) = (0, 1.2)" in out, out
+    assert "Last command: fix settle" in out, out
+
+
+def test_the_trajectory_follows_the_sub_domains_not_the_ranks_that_hold_them():
+    """The trial moves of a sub-domain are keyed by its place in the grid: 'map xyz' puts other
+    ranks on the sub-domains of a 2 x 2 grid than the default 'map cart', and used to give
+    another trajectory for the same grid and seed."""
+    dumps = []
+    for mapping in ("cart", "xyz"):
+        script = scene("p p fm", f"2 2 1 map {mapping}") + DOMAIN_TAPPING.format(
+            eps=0.02, seed=4928, every=1, taps=4)
+        rc, out, wd = run_lammps(script, nprocs=4)
+        assert rc == 0 and "2 by 2 by 1 MPI processor grid" in out, out
+        dumps.append(read_dump(os.path.join(wd, "dump.taps")))
+    assert len(dumps[0]) == 5
+    for (_, _, _, a), (_, _, _, b) in zip(*dumps):
+        for col in ("x", "y", "z"):
+            np.testing.assert_array_equal(a[col], b[col])

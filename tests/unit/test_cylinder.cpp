@@ -562,6 +562,12 @@ TEST(CylinderStereology, WallZoneAndCoreAsFig8)
   EXPECT_NEAR(z.phi_wall, vol_outer / (kPi * (64.0 - 20.25) * (zb - za)), 1e-13);
   EXPECT_GT(z.phi_wall, 0.0);
   EXPECT_GT(z.phi_core, 0.0);
+  // an empty window (zb <= za) has no coaxial surface: NaN rows, not zeros
+  const std::vector<double> empty = stereo::radial_profile(s, c, PlaneGrid{0.0, 9.0, 2}, zb, za);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_TRUE(std::isnan(empty[3 * k + 1])) << k;
+    EXPECT_TRUE(std::isnan(empty[3 * k + 2])) << k;
+  }
   // a wall zone wider than the radius leaves no core: NaN, not a zero
   const stereo::CylinderZones all = stereo::cylinder_zones(s, c, 9.0, za, zb);
   EXPECT_TRUE(std::isnan(all.phi_core));

@@ -210,12 +210,29 @@ TEST(RoundTrials, EverySphereExpectsTheSerialNumberOfPicksPerCycle)
   EXPECT_EQ(round_trials(big / 2, big / 2, 3 * big, big), 3 * (big / 2));
 }
 
-TEST(RandomKeys, RanksDrawFromDisjointKeys)
+TEST(RandomKeys, SubDomainsDrawFromDisjointKeys)
 {
-  EXPECT_NE(rank_key_index(0), 0u);  // never the un-rounded key
-  EXPECT_EQ(rank_key_index(1) - rank_key_index(0), std::uint64_t{1} << 32);
+  EXPECT_NE(sub_domain_key_index(0), 0u);  // never the un-rounded key
+  EXPECT_EQ(sub_domain_key_index(1) - sub_domain_key_index(0), std::uint64_t{1} << 32);
   const CounterRandom base(42, RandomPurpose::kDomainSettleMoves, 1000);
-  EXPECT_NE(base.round(rank_key_index(0)).block(0), base.round(rank_key_index(1)).block(0));
-  EXPECT_NE(base.round(rank_key_index(0)).block(0), base.block(0));
+  EXPECT_NE(base.round(sub_domain_key_index(0)).block(0),
+            base.round(sub_domain_key_index(1)).block(0));
+  EXPECT_NE(base.round(sub_domain_key_index(0)).block(0), base.block(0));
   EXPECT_NE(CounterRandom(42, RandomPurpose::kDomainSettleCuts, 1000).block(0), base.block(0));
+}
+
+// The sub-domains of a grid are numbered 0 .. P-1 once each, z fastest: the ranks of MPI's
+// row-major Cartesian order (LAMMPS's default 'map cart'), whatever rank holds them.
+TEST(RandomKeys, SubDomainNumbersAreTheCartesianRanks)
+{
+  const int grid[3] = {2, 3, 2};
+  int expected = 0;
+  for (int x = 0; x < grid[0]; ++x)
+    for (int y = 0; y < grid[1]; ++y)
+      for (int z = 0; z < grid[2]; ++z) {
+        const int loc[3] = {x, y, z};
+        EXPECT_EQ(sub_domain_number(loc, grid), expected++);
+      }
+  const int one[3] = {1, 1, 1}, origin[3] = {0, 0, 0};
+  EXPECT_EQ(sub_domain_number(origin, one), 0);
 }

@@ -618,6 +618,23 @@ TEST(StereologyProfile, VerticalProfileMatchesDirectSums)
   }
 }
 
+// An empty window (zb <= za) cuts no area: every row's Phi and bin mean are NaN (they were 0,
+// which reads as an empty layer); the plane positions stay.
+TEST(StereologyProfile, EmptyWindowGivesNaNRows)
+{
+  const Packing p = random_spheres(9, 50, 6.0, 8.0);
+  const Box box = make_box(6.0, 5.0, 0.0, 10.0, true);
+  for (double zb : {2.0, 1.0}) {
+    const PlaneGrid grid{0.0, 6.0, 4};
+    const std::vector<double> rows = profile(p.view(), box, 0, grid, 2.0, zb);
+    for (int k = 0; k < grid.n; ++k) {
+      EXPECT_DOUBLE_EQ(rows[3 * k], grid.position(k));
+      EXPECT_TRUE(std::isnan(rows[3 * k + 1])) << k;
+      EXPECT_TRUE(std::isnan(rows[3 * k + 2])) << k;
+    }
+  }
+}
+
 TEST(StereologyProfile, FccProfileBinMeansAreExact)
 {
   // bins of one period along z and along x hold the FCC fraction exactly
