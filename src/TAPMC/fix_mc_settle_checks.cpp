@@ -50,19 +50,13 @@ void FixMCSettle::check_dmax_against_periods() const
 void FixMCSettle::require_positive_radii() const
 {
   if (fixed_radius > 0.0) return;  // the keyword's radius for every atom
-  double first_tag = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < atom->nlocal; ++i)
-    if (!(atom->radius[i] > 0.0)) first_tag = std::min(first_tag, static_cast<double>(atom->tag[i]));
-  double first_all = first_tag;
-  MPI_Allreduce(&first_tag, &first_all, 1, MPI_DOUBLE, MPI_MIN, world);
-  if (first_all == std::numeric_limits<double>::infinity()) return;
-  double its_radius = -std::numeric_limits<double>::infinity(), its_all = its_radius;
-  for (int i = 0; i < atom->nlocal; ++i)
-    if (static_cast<double>(atom->tag[i]) == first_all) its_radius = atom->radius[i];
-  MPI_Allreduce(&its_radius, &its_all, 1, MPI_DOUBLE, MPI_MAX, world);
+  const double *radius = atom->radius;
+  const tapmc::FirstAtom bad =
+      tapmc::first_atom_where(lmp, [&](int i) { return !(radius[i] > 0.0); });
+  if (bad.tag < 0) return;
   error->all(FLERR, "fix mc/settle: atom {} has radius {}; every sphere needs a radius > 0 (set "
              "it with atom_style sphere / set diameter, or the 'diameter' keyword)",
-             static_cast<std::int64_t>(first_all), its_all);
+             bad.tag, bad.radius);
 }
 
 // What is wrong with a start configuration: an overlapping pair, a sphere below the floor or

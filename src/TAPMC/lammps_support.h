@@ -196,6 +196,30 @@ inline double smallest_radius(LAMMPS_NS::LAMMPS *lmp)
   return all;
 }
 
+// The atom of lowest ID, over all ranks, among the owned atoms i for which `pick(i)` holds, and
+// its per-atom radius: (ID, radius), or (-1, 0) when none. Collective: every rank gets both, so
+// that all stop with one message naming it.
+struct FirstAtom {
+  std::int64_t tag;
+  double radius;
+};
+template <class Pick>
+FirstAtom first_atom_where(LAMMPS_NS::LAMMPS *lmp, Pick &&pick)
+{
+  LAMMPS_NS::Atom *atom = lmp->atom;
+  double first_tag = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < atom->nlocal; ++i)
+    if (pick(i)) first_tag = std::min(first_tag, static_cast<double>(atom->tag[i]));
+  double first_all = first_tag;
+  MPI_Allreduce(&first_tag, &first_all, 1, MPI_DOUBLE, MPI_MIN, lmp->world);
+  if (first_all == std::numeric_limits<double>::infinity()) return {-1, 0.0};
+  double its_radius = -std::numeric_limits<double>::infinity(), its_all = its_radius;
+  for (int i = 0; i < atom->nlocal; ++i)
+    if (static_cast<double>(atom->tag[i]) == first_all) its_radius = atom->radius[i];
+  MPI_Allreduce(&its_radius, &its_all, 1, MPI_DOUBLE, MPI_MAX, lmp->world);
+  return {static_cast<std::int64_t>(first_all), its_all};
+}
+
 // A style's radius keyword (fix mc/settle 'diameter', compute stereo/profile and compute
 // contacts 'radius') stands for the per-atom radii an atom style without them lacks. Where the
 // atoms have radii, the other styles, the dumps and the checks use those: a keyword that differs
@@ -212,24 +236,17 @@ inline void check_radius_keyword_against_atoms(LAMMPS_NS::LAMMPS *lmp, const cha
   LAMMPS_NS::Atom *atom = lmp->atom;
   if (!atom->radius_flag || !(keyword_radius > 0.0)) return;
   const double tolerance = defaults::kRadiusMatchTolerance * keyword_radius;
-  double first_tag = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < atom->nlocal; ++i)
-    if ((atom->mask[i] & groupbit) && std::fabs(atom->radius[i] - keyword_radius) > tolerance)
-      first_tag = std::min(first_tag, static_cast<double>(atom->tag[i]));
-  double first_all = first_tag;
-  MPI_Allreduce(&first_tag, &first_all, 1, MPI_DOUBLE, MPI_MIN, lmp->world);
-  if (first_all == std::numeric_limits<double>::infinity()) return;
-  double its_radius = -std::numeric_limits<double>::infinity(), its_all = its_radius;
-  for (int i = 0; i < atom->nlocal; ++i)
-    if (static_cast<double>(atom->tag[i]) == first_all) its_radius = atom->radius[i];
-  MPI_Allreduce(&its_radius, &its_all, 1, MPI_DOUBLE, MPI_MAX, lmp->world);
+  const FirstAtom differs = first_atom_where(lmp, [&](int i) {
+    return (atom->mask[i] & groupbit) && std::fabs(atom->radius[i] - keyword_radius) > tolerance;
+  });
+  if (differs.tag < 0) return;
   const std::string message = fmt::format(
       "{}: {} gives the spheres radius {}, but atom {} of group {} has per-atom radius {} (atom "
       "style {}): the dumps, the other TAPMC styles and the overlap checks use the per-atom "
       "radii; leave '{}' out (the per-atom radii are used) or give the atoms that radius ('set "
       "group {} diameter {}')",
-      style, keyword_text, keyword_radius, static_cast<std::int64_t>(first_all), group_name,
-      its_all, atom->atom_style, keyword_text.substr(0, keyword_text.find(' ')), group_name,
+      style, keyword_text, keyword_radius, differs.tag, group_name, differs.radius,
+      atom->atom_style, keyword_text.substr(0, keyword_text.find(' ')), group_name,
       2.0 * keyword_radius);
   if (stop) lmp->error->all(FLERR, message);
   if (lmp->comm->me == 0) lmp->error->warning(FLERR, message);

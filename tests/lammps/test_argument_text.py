@@ -8,16 +8,7 @@
 import pytest
 
 from lmprun import run_lammps
-
-BOX = """units lj
-atom_style sphere
-boundary {boundary}
-region box block 0 8 0 8 0 10
-create_box 1 box
-create_atoms 1 single 2 2 1
-create_atoms 1 single 5 5 1
-set group all diameter 1.0
-"""
+from test_bad_input import BOX
 
 LONG_RANGE = "[-9223372036854775808, 9223372036854775807]"
 

@@ -204,12 +204,8 @@ run 0
     np.testing.assert_array_equal(rows[:, [2, 3, 5, 6]], 0.0)
 
 
-@pytest.mark.parametrize("nprocs", [1, 2])
-def test_a_bed_of_one_layer_has_no_zone_means(nprocs):
-    """One layer on the floor: the default window [floor + 2R, window top] is empty, and the
-    lateral and central means (entries 5, 6) read 0, as measurements. They are NaN, with one
-    warning naming the window; the other entries are measured."""
-    script = """units lj
+# One layer of spheres on the floor: the default window [floor + 2R, window top] is empty.
+ONE_LAYER = """units lj
 atom_style sphere
 boundary p p fm
 region box block 0 6 0 6 0 4
@@ -218,7 +214,15 @@ lattice sc 1.0 origin 0.5 0.5 0.5
 region layer block 0 6 0 6 0 1 units box
 create_atoms 1 region layer
 set group all diameter 1.0
-compute phi all stereo/profile floor 0.0
+"""
+
+
+@pytest.mark.parametrize("nprocs", [1, 2])
+def test_a_bed_of_one_layer_has_no_zone_means(nprocs):
+    """One layer on the floor: the default window [floor + 2R, window top] is empty, and the
+    lateral and central means (entries 5, 6) read 0, as measurements. They are NaN, with one
+    warning naming the window; the other entries are measured."""
+    script = ONE_LAYER + """compute phi all stereo/profile floor 0.0
 thermo_style custom step c_phi[1] c_phi[5] c_phi[6]
 run 1
 run 1
@@ -236,16 +240,7 @@ def test_a_bed_of_one_layer_has_no_vertical_profile():
     """The profile of vertical cuts over the same empty window read 0 in every row, as an empty
     layer would: its Phi and bin means are NaN, with one warning naming the window; the plane
     positions and a z profile of the same bed are measured."""
-    script = """units lj
-atom_style sphere
-boundary p p fm
-region box block 0 6 0 6 0 4
-create_box 1 box
-lattice sc 1.0 origin 0.5 0.5 0.5
-region layer block 0 6 0 6 0 1 units box
-create_atoms 1 region layer
-set group all diameter 1.0
-compute px all stereo/profile floor 0.0 axis x planes 0.0 6.0 3
+    script = ONE_LAYER + """compute px all stereo/profile floor 0.0 axis x planes 0.0 6.0 3
 compute pz all stereo/profile floor 0.0 planes 0.0 1.0 3
 fix ax all ave/time 1 1 1 c_px[*] c_pz[*] mode vector file p.dat format " %.17g"
 run 2
