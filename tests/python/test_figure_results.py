@@ -379,3 +379,18 @@ def test_the_smoke_pages_fig2_and_fig5_statistics_are_what_a_refit_gives(name, t
     committed = SOURCE / "doc/validation" / f"{name}.csv"
     module.refit_table(module.P.read_table(committed)).write(tmp_path / f"{name}.csv")
     assert filecmp.cmp(committed, tmp_path / f"{name}.csv", shallow=False)
+
+
+def test_the_paper_scale_bell_draws_every_finished_default_eta_seed_of_the_campaign():
+    """Fig. 4's squares at the paper's scale take every constant-eps P.B.C. run the committed
+    campaign has finished (the plan's tiers all drawn: tier 8 gives each square 3 seeds), and
+    none of the looser or tighter thresholds' ``consteta_*`` runs."""
+    runs = SOURCE / "doc/validation/data/full/runs"
+    finished = {}
+    for done in runs.glob("const_pbc_eps*_s*/DONE.json"):
+        eps = float(done.parent.name[len("const_pbc_eps"):].rsplit("_s", 1)[0])
+        finished[eps] = finished.get(eps, 0) + 1
+    result = fig4.Fig4Result.load(SOURCE / "doc/paper_scale/validation/fig4.csv")
+    drawn = {round(x * x, 9): n for x, n in zip(result.steady.x, result.steady.n)}
+    assert drawn == {round(eps, 9): n for eps, n in finished.items()}
+    assert min(drawn.values()) >= 3

@@ -687,3 +687,19 @@ def test_report_prints_the_figures_where_the_report_leaves_them(tmp_path, capsys
     assert status == 0 and lines[-1] == f"report: {tmp_path / 'validation.rst'}", lines
     printed = [Path(p) for p in lines[0].split(": ", 1)[1].split()]
     assert lines[0].startswith("fig2: ") and printed and all(p.is_file() for p in printed), lines
+
+
+def test_the_report_draws_the_bells_three_seeds_and_no_run_of_another_protocol():
+    """report --finished-only draws the plan's tiers 1-6 and tier 8's default-eta seeds of the
+    bell: every square of Fig. 4 with 3 seeds. The 4000-tap ramps (tier 7) and the runs at
+    other eta (tier 8's consteta_*) stay out of the figures: among them the page's summary
+    listed 4 eta and 2 taps per level, and the claims' protocol labels failed."""
+    from tapmc.paper import _runs, plan
+    names = [spec.name for spec in plan.drawn_runs()]
+    assert len(names) == len(set(names))
+    for eps in FULL.steady_eps:
+        for seed in (1, 2, 3):
+            assert _runs.constant_eps_run(FULL, "pbc", eps, seed).name in names
+    assert not [n for n in names if n.startswith(("consteta_", "paperramp"))]
+    every = {spec.name for spec in plan.runs(8)}
+    assert set(names) <= every and len(every - set(names)) == 7 + 16  # paper ramps, consteta

@@ -709,7 +709,7 @@ def _main(argv=None):
     planned = len(campaign.runs)
     if getattr(args, "finished_only", False):
         try:
-            extra = plan.runs(plan.DRAWN_TIERS[-1]) if scale.name == "full" else ()
+            extra = plan.drawn_runs() if scale.name == "full" else ()
             campaign, planned = _finished_view(campaign, extra)
             _runs.check_finished_runs(campaign)  # nothing is drawn from a damaged run
         except ValueError as err:  # also CampaignDirectoryError: a DONE.json cut or incomplete
