@@ -703,3 +703,17 @@ def test_the_report_draws_the_bells_three_seeds_and_no_run_of_another_protocol()
     assert not [n for n in names if n.startswith(("consteta_", "paperramp"))]
     every = {spec.name for spec in plan.runs(8)}
     assert set(names) <= every and len(every - set(names)) == 7 + 16  # paper ramps, consteta
+
+
+def test_the_readme_counts_the_runs_and_taps_the_pages_draw():
+    """README.md says how many runs and taps the paper-scale page draws and the plan holds: the
+    numbers of plan.drawn_runs() and plan.runs(), kept true as tiers join the figures."""
+    import re
+    from tapmc.paper import plan
+    text = " ".join((SOURCE / "README.md").read_text().split())
+    drawn = re.search(r"the `full` preset's (\d+) runs \(([\d ]+) taps", text)
+    total = re.search(r"(\d+) runs and ([\d ]+) taps in all", text)
+    assert drawn and total, "README.md no longer counts the paper-scale runs"
+    for match, specs in ((drawn, plan.drawn_runs()), (total, plan.runs(8))):
+        assert int(match.group(1)) == len(specs), match.group(0)
+        assert int(match.group(2).replace(" ", "")) == sum(s.taps for s in specs), match.group(0)
