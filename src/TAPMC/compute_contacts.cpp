@@ -25,7 +25,6 @@
 #include "tapmc_defaults.h"
 
 #include <algorithm>
-#include <cstdlib>
 #include <limits>
 #include <mpi.h>
 #include <string>
@@ -51,19 +50,6 @@ constexpr const char *kUsage =
     "compute ID group-ID contacts g [floor z0] [radius R] [container region-ID]";
 
 const std::string kGapRange = "[0, " + tapmc::number(tapmc::defaults::kContactsMaxGap) + "]";
-
-// A number from its text, all of it; anything else stops with a message naming the argument,
-// its text and the allowed range.
-double parse_number(LAMMPS *lmp, const char *name, const char *text, const std::string &range)
-{
-  const std::string s = text;
-  char *end = nullptr;
-  const double value = std::strtod(s.c_str(), &end);
-  if (s.empty() || end != s.c_str() + s.size())
-    lmp->error->all(FLERR, "{}: {} = {} is not a number (allowed range {})", kStyle, name, s,
-                    range);
-  return value;
-}
 }  // namespace
 
 ComputeContacts::ComputeContacts(LAMMPS *lmp, int narg, char **arg) :
@@ -121,7 +107,7 @@ void ComputeContacts::parse_arguments(int narg, char **arg)
   if (narg < 4)
     error->all(FLERR, "{}: the gap g is missing (relative to the contact distance R_i + R_j, in "
                "{}): {}", kStyle, kGapRange, kUsage);
-  settings_.gap = parse_number(lmp, "gap", arg[3], kGapRange);
+  settings_.gap = tapmc::parse_real(lmp, kStyle, "gap", arg[3], kGapRange);
   if (!(settings_.gap >= 0.0 && settings_.gap <= tapmc::defaults::kContactsMaxGap))
     error->all(FLERR, "{}: {} (relative to the contact distance R_i + R_j)", kStyle,
                tapmc::outside_range_message("gap", arg[3], kGapRange));
@@ -131,11 +117,11 @@ void ComputeContacts::parse_arguments(int narg, char **arg)
       {"floor", 1,
        [&](char **v) {
          settings_.floor = true;
-         settings_.floor_z = parse_number(lmp, "floor", v[0], "(finite)");
+         settings_.floor_z = tapmc::parse_real(lmp, kStyle, "floor", v[0]);
        }},
       {"radius", 1,
        [&](char **v) {
-         fixed_radius_ = parse_number(lmp, "radius", v[0], "(0, +inf)");
+         fixed_radius_ = tapmc::parse_real(lmp, kStyle, "radius", v[0], "(0, +inf)");
          if (!(fixed_radius_ > 0.0 && fixed_radius_ < std::numeric_limits<double>::infinity()))
            error->all(FLERR, "{}: {}", kStyle,
                       tapmc::outside_range_message("radius", v[0], "(0, +inf)"));

@@ -91,16 +91,18 @@ inline long parse_long(LAMMPS_NS::LAMMPS *lmp, const char *style, const char *na
 }
 
 // A real number from its text, finite, the whole text read; anything else ("abc", "nan", "inf",
-// "1.5x") stops naming the argument and its value (LAMMPS 2021's utils::numeric names neither).
-// The range of the value is the kernel's to check (its validate), after all arguments are read.
+// "1.5x") stops naming the argument and its value (LAMMPS 2021's utils::numeric names neither),
+// and the allowed `range` when given. The range of a number is the kernel's to check (its
+// validate), after all arguments are read.
 inline double parse_real(LAMMPS_NS::LAMMPS *lmp, const char *style, const char *name,
-                         const char *text)
+                         const char *text, const std::string &range = "")
 {
   const std::string s = text;
   char *end = nullptr;
   const double value = s.empty() ? 0.0 : std::strtod(s.c_str(), &end);
   if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(value))
-    lmp->error->all(FLERR, "{}: {} = {} is not a finite number", style, name, s);
+    lmp->error->all(FLERR, "{}: {} = {} is not a finite number{}", style, name, s,
+                    range.empty() ? "" : " (allowed range " + range + ")");
   return value;
 }
 
