@@ -42,9 +42,9 @@ FixTapDilate::FixTapDilate(LAMMPS *lmp, int narg, char **arg) :
     if (eps_variable.empty())  // init() would look up no variable: every tap at eps = 0
       error->all(FLERR, "fix tapdilate: eps = v_ names no variable (give a number, or v_name "
                  "of an equal-style variable)");
-  }
-  else
+  } else {
     params.eps = tapmc::parse_real(lmp, "fix tapdilate", "eps", arg[3]);
+  }
 
   const tapmc::Keyword table[] = {
       {"every", 1,
