@@ -307,33 +307,20 @@ void ComputeStereoProfile::warn_empty_central_zone(const stereo::Windows &w, con
                  axis);
 }
 
-// The vertical window [window_lo, window_hi] (default floor + 2R to the window top) is empty in
-// a bed of about one layer: the zone means are NaN. Once per compute.
-void ComputeStereoProfile::warn_empty_window(const stereo::Windows &w)
+// The vertical window [lo, hi] (default floor + 2R to the window top) is empty in a bed of about
+// one layer: what it bounds (`what`: the vector's zone means, or the array's profile of vertical
+// or coaxial cuts) is NaN. Once per compute and output (`warned`); every rank has the same
+// window (reduced data), rank 0 writes.
+void ComputeStereoProfile::warn_empty_window(double lo, double hi, bool &warned,
+                                             const std::string &what)
 {
-  if (window_warned_ || w.window_hi > w.window_lo) return;
-  window_warned_ = true;
+  if (warned || hi > lo) return;
+  warned = true;
   if (comm->me != 0) return;
   error->warning(FLERR,
                  "compute stereo/profile {}: empty vertical window: its top z = {:.6g} is not "
                  "above its bottom z = {:.6g} (a bed of about one layer, below floor + 2R), so "
-                 "the lateral and central means (vector entries 5 and 6) are NaN; give 'window "
-                 "lo hi' to choose the heights", id, w.window_hi, w.window_lo);
-}
-
-// The same for the profile of vertical (or coaxial) cuts, which the window bounds: its Phi and
-// bin means are NaN. Once per compute; every rank has the same za, zb (reduced data).
-void ComputeStereoProfile::warn_empty_profile_window(double za, double zb)
-{
-  if (profile_window_warned_ || zb > za) return;
-  profile_window_warned_ = true;
-  if (comm->me != 0) return;
-  error->warning(FLERR,
-                 "compute stereo/profile {}: empty vertical window of the {} profile: its top "
-                 "z = {:.6g} is not above its bottom z = {:.6g} (a bed of about one layer, below "
-                 "floor + 2R), so the profile's Phi and bin means (array columns 2 and 3) are "
-                 "NaN; give 'window lo hi' to choose the heights",
-                 id, axis_ == kRadialAxis ? "r" : (axis_ == 0 ? "x" : "y"), zb, za);
+                 "{} are NaN; give 'window lo hi' to choose the heights", id, hi, lo, what);
 }
 
 // In a container the central zone is the core, inside the wall zone (lateral = w from the wall):
@@ -467,7 +454,8 @@ void ComputeStereoProfile::compute_vector_guarded()
                                 ? stereo::finish_cylinder_summary(sums, cylinder_, windows)
                                 : stereo::finish_summary(sums, box, windows);
   warn_empty_central_zone(windows, box);
-  warn_empty_window(windows);
+  warn_empty_window(windows.window_lo, windows.window_hi, window_warned_,
+                    "the lateral and central means (vector entries 5 and 6)");
 
   vector[kPhiBulk] = s.phi_bulk;
   vector[kPhiCorrected] = s.phi_corrected;
@@ -511,7 +499,9 @@ void ComputeStereoProfile::compute_array_guarded()
       windows = stereo::resolve_windows(settings_, box, mean_radius_, surface);
     }
     stereo::default_vertical_window(settings_, windows, mean_radius_, za, zb);
-    warn_empty_profile_window(za, zb);
+    warn_empty_window(za, zb, profile_window_warned_,
+                      fmt::format("the {} profile's Phi and bin means (array columns 2 and 3)",
+                                  axis_ == kRadialAxis ? 'r' : "xy"[axis_]));
   }
 
   const int n = planes_.n;

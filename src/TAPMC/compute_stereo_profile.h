@@ -46,8 +46,8 @@ class ComputeStereoProfile : public Compute, public tapmc::ContainerHolder {
   bool radius_ready_;         // mean_radius_ computed (init, or first use before any run)
   bool floor_warned_;         // the below-the-floor warning was given in this run
   bool central_warned_;       // the empty-central-zone warning was given (once per compute)
-  bool window_warned_;        // the empty-window warning was given (once per compute)
-  bool profile_window_warned_ = false;  // the same for the profile of vertical cuts
+  bool window_warned_;        // the empty-window warning was given for the vector (once)
+  bool profile_window_warned_ = false;  // ... for the array's profile of vertical cuts
   std::vector<int> selected_; // owned atoms of the group, rebuilt per invocation
   std::vector<double> buffer_;
   std::string container_id_;  // 'container' region ID; empty: the box is the container
@@ -61,8 +61,7 @@ class ComputeStereoProfile : public Compute, public tapmc::ContainerHolder {
   bool group_is_empty();
   void warn_below_floor();
   void warn_empty_central_zone(const tapmc::stereo::Windows &, const tapmc::stereo::Box &);
-  void warn_empty_window(const tapmc::stereo::Windows &);
-  void warn_empty_profile_window(double za, double zb);
+  void warn_empty_window(double lo, double hi, bool &warned, const std::string &what);
   void warn_empty_core(const tapmc::stereo::Windows &);
   bool ready_to_measure();
   void compute_vector_guarded();

@@ -251,8 +251,10 @@ run 2
     np.testing.assert_array_equal(rows[:, 1], [1, 3, 5])
     assert np.isnan(rows[:, [2, 3]]).all(), rows
     assert np.isfinite(rows[:, 4:]).all() and (rows[:, 6] > 0.3).all(), rows
-    assert out.count("compute stereo/profile px: empty vertical window of the x profile: its "
-                     "top z = 0.9 is not above its bottom z = 1") == 1, out[-3000:]
+    assert out.count("compute stereo/profile px: empty vertical window: its top z = 0.9 is not "
+                     "above its bottom z = 1 (a bed of about one layer, below floor + 2R), so "
+                     "the x profile's Phi and bin means (array columns 2 and 3) are NaN") == 1, \
+        out[-3000:]
 
 
 @pytest.mark.parametrize("nprocs", [1, 2])
